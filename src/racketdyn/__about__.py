@@ -1,0 +1,3 @@
+"""Version of racketdyn (single source, read by hatchling)."""
+
+__version__ = "0.1.0"

@@ -1,0 +1,328 @@
+"""The ball and the restoring-force laws of the ball, the strings and the two in series.
+
+Kawazoe's one-degree-of-freedom contact model (paper, section 3.4): the ball's mass sits at its
+centre and only the side touching the strings deforms.  The ball restoring force F_B(X), the
+string-bed force F_G(X) and the compound F_GB(X) of the two in series are smooth laws fitted by
+least squares to load–deflection data; their derivatives are the stiffnesses K(X) = dF/dX.
+
+Units: deflection X in m, force F in N, stiffness K in N/m.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+from typing import Literal, get_args
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import least_squares
+
+from racketdyn.errors import InputError, one_of, require_positive, require_range
+
+__all__ = [
+    "ITF_FORWARD_DEFORMATION_M",
+    "ITF_FORWARD_LOAD_N",
+    "Ball",
+    "LawKind",
+    "RestoringForce",
+    "default_ball_law",
+    "series",
+]
+
+log = logging.getLogger(__name__)
+
+LawKind = Literal["polynomial", "power"]
+LAW_KINDS: tuple[str, ...] = get_args(LawKind)
+
+# ITF Rules of Tennis, Appendix I (REFERENCE_VALUES.md): forward deformation 0.56–0.74 cm
+# between two plates under 80.1 N.  The middle of the range is used.
+ITF_FORWARD_LOAD_N = 80.1
+ITF_FORWARD_DEFORMATION_M = 0.5 * (0.56e-2 + 0.74e-2)
+
+_TABLE_POINTS = 4097
+
+
+@dataclass(frozen=True)
+class RestoringForce:
+    """A monotone restoring-force law F(X) with F(0) = 0.
+
+    Parameters
+    ----------
+    kind : {"polynomial", "power"}
+        ``polynomial``: ``F = Σ_k c_k X^k`` for k = 1..n (``coefficients = (c_1, …, c_n)``).
+        ``power``: ``F = c X^n`` (``coefficients = (c, n)``).
+    coefficients : tuple of float
+        SI units: c_k in N/m^k; for the power law c in N/m^n and n dimensionless.
+    max_deflection_m : float
+        Largest deflection the law is valid for (the range of the data it was fitted to), m.
+    rms_residual_n : float
+        Root-mean-square force residual of the least-squares fit, N (0 for a model law).
+    source : str
+        Where the law came from, recorded in run files.
+    """
+
+    kind: LawKind
+    coefficients: tuple[float, ...]
+    max_deflection_m: float
+    rms_residual_n: float = 0.0
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        one_of("restoring force kind", self.kind, LAW_KINDS)
+        require_positive("restoring force max_deflection_m", self.max_deflection_m)
+        if self.kind == "power" and len(self.coefficients) != 2:
+            raise InputError("a power law takes two coefficients (c, n) for F = c X^n")
+        if not self.coefficients:
+            raise InputError("a polynomial restoring force needs at least one coefficient")
+        x = np.linspace(0.0, self.max_deflection_m, 257)[1:]
+        if np.any(self.stiffness(x) <= 0.0):
+            raise InputError(
+                f"restoring force ({self.source or self.kind}) is not monotone over 0–"
+                f"{self.max_deflection_m * 1e3:.1f} mm: its stiffness dF/dX turns negative; fit a "
+                "lower-degree polynomial or a power law"
+            )
+
+    # --- evaluation -------------------------------------------------------------------------
+    def force(self, deflection: ArrayLike) -> NDArray[np.float64]:
+        """Restoring force F(X), N, for deflection X in m."""
+        x = np.asarray(deflection, dtype=float)
+        if self.kind == "power":
+            c, n = self.coefficients
+            return np.asarray(c * np.abs(x) ** n * np.sign(x))
+        return np.asarray(np.polynomial.polynomial.polyval(x, (0.0, *self.coefficients)))
+
+    def stiffness(self, deflection: ArrayLike) -> NDArray[np.float64]:
+        """Tangent stiffness K(X) = dF/dX, N/m."""
+        x = np.asarray(deflection, dtype=float)
+        if self.kind == "power":
+            c, n = self.coefficients
+            with np.errstate(divide="ignore"):
+                return np.asarray(c * n * np.abs(x) ** (n - 1.0))
+        k = np.arange(1, len(self.coefficients) + 1) * np.asarray(self.coefficients)
+        return np.asarray(np.polynomial.polynomial.polyval(x, k))
+
+    def curvature(self, deflection: ArrayLike) -> NDArray[np.float64]:
+        """Second derivative d²F/dX², N/m²."""
+        x = np.asarray(deflection, dtype=float)
+        if self.kind == "power":
+            c, n = self.coefficients
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return np.asarray(c * n * (n - 1.0) * np.abs(x) ** (n - 2.0))
+        orders = np.arange(1, len(self.coefficients) + 1)
+        k2 = (orders * (orders - 1.0) * np.asarray(self.coefficients))[1:]
+        return np.asarray(np.polynomial.polynomial.polyval(x, k2)) if k2.size else np.zeros_like(x)
+
+    def energy(self, deflection: ArrayLike) -> NDArray[np.float64]:
+        """Stored energy ∫₀ˣ F dX, J."""
+        x = np.asarray(deflection, dtype=float)
+        if self.kind == "power":
+            c, n = self.coefficients
+            return np.asarray(c * np.abs(x) ** (n + 1.0) / (n + 1.0))
+        orders = np.arange(1, len(self.coefficients) + 1)
+        integral = np.asarray(self.coefficients) / (orders + 1.0)
+        return np.asarray(np.polynomial.polynomial.polyval(x, (0.0, 0.0, *integral)))
+
+    @property
+    def max_force_n(self) -> float:
+        """Force at the end of the valid range, N."""
+        return float(self.force(self.max_deflection_m))
+
+    def deflection(self, force: ArrayLike) -> NDArray[np.float64]:
+        """Inverse law X(F), m; NaN beyond the valid range.
+
+        A monotone table gives the first guess, two Newton steps polish it to round-off.
+        """
+        f = np.asarray(force, dtype=float)
+        table_x = np.linspace(0.0, self.max_deflection_m, _TABLE_POINTS)
+        x = np.interp(f, self.force(table_x), table_x)
+        for _ in range(2):
+            k = self.stiffness(x)
+            step = np.divide(self.force(x) - f, k, out=np.zeros_like(x), where=k > 0)
+            x = np.clip(x - step, 0.0, self.max_deflection_m)
+        return np.asarray(np.where((f < 0) | (f > self.max_force_n * (1 + 1e-12)), np.nan, x))
+
+    def describe(self) -> str:
+        """One line: the law, its range and fit residual."""
+        if self.kind == "power":
+            c, n = self.coefficients
+            law = f"F = {c:.4g}·X^{n:.4g}"
+        else:
+            law = "F = " + " + ".join(f"{c:.4g}·X^{k}" for k, c in enumerate(self.coefficients, 1))
+        return (
+            f"{law} (N, m) for X ≤ {self.max_deflection_m * 1e3:.1f} mm, "
+            f"rms residual {self.rms_residual_n:.3g} N [{self.source}]"
+        )
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain dict for run records."""
+        return {
+            "kind": self.kind,
+            "coefficients": list(self.coefficients),
+            "max_deflection_m": self.max_deflection_m,
+            "rms_residual_n": self.rms_residual_n,
+            "source": self.source,
+        }
+
+    # --- fitting ----------------------------------------------------------------------------
+    @classmethod
+    def fit(
+        cls,
+        deflection: ArrayLike,
+        force: ArrayLike,
+        kind: LawKind = "polynomial",
+        degree: int = 3,
+        source: str = "least-squares fit",
+    ) -> RestoringForce:
+        """Fit a law to load–deflection data by least squares (paper, section 3.4).
+
+        Parameters
+        ----------
+        deflection : array_like
+            Deflections X, m (non-negative).
+        force : array_like
+            Forces F, N, one per deflection.
+        kind : {"polynomial", "power"}
+            Law to fit.  The polynomial has no constant term (F(0) = 0); its columns are scaled
+            by the largest deflection so the normal equations stay well conditioned.  The power
+            law is fitted on the force residual (not in log space) with a log–log start.
+        degree : int
+            Highest power of the polynomial.
+        source : str
+            Recorded with the law.
+
+        Returns
+        -------
+        RestoringForce
+            The law, with the rms force residual and the data's deflection range.
+        """
+        one_of("restoring force kind", kind, LAW_KINDS)
+        x = np.asarray(deflection, dtype=float).ravel()
+        f = np.asarray(force, dtype=float).ravel()
+        if x.shape != f.shape:
+            raise InputError(f"{source}: deflection and force columns differ in length")
+        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(f))):
+            raise InputError(f"{source}: load–deflection data must be finite numbers (no NaN)")
+        if np.any(x < 0) or np.any(f < 0):
+            raise InputError(f"{source}: deflections (m) and forces (N) must not be negative")
+        keep = x > 0
+        x, f = x[keep], f[keep]
+        needed = degree if kind == "polynomial" else 2
+        if x.size < max(needed, 2) + 1:
+            raise InputError(
+                f"{source}: need at least {max(needed, 2) + 1} points with positive deflection "
+                f"to fit a {kind} law (got {x.size})"
+            )
+        scale = float(x.max())
+        if kind == "polynomial":
+            if not 1 <= degree <= 9:
+                raise InputError(f"polynomial degree must be 1 to 9 (got {degree})")
+            columns = (x[:, None] / scale) ** np.arange(1, degree + 1)
+            scaled, *_ = np.linalg.lstsq(columns, f, rcond=None)
+            coefficients = tuple(float(c) for c in scaled / scale ** np.arange(1, degree + 1))
+        else:
+            positive = f > 0
+            slope, intercept = np.polyfit(np.log(x[positive] / scale), np.log(f[positive]), 1)
+
+            def residual(p: NDArray[np.float64]) -> NDArray[np.float64]:
+                return np.asarray(p[0] * (x / scale) ** p[1] - f)
+
+            solution = least_squares(
+                residual, x0=[np.exp(intercept), slope], bounds=([0.0, 0.05], [np.inf, 10.0])
+            )
+            c_scaled, n = solution.x
+            coefficients = (float(c_scaled / scale**n), float(n))
+        trial = cls(kind, coefficients, scale, 0.0, source)
+        rms = float(np.sqrt(np.mean((trial.force(x) - f) ** 2)))
+        return cls(kind, coefficients, scale, rms, source)
+
+
+def series(
+    first: RestoringForce,
+    second: RestoringForce,
+    kind: LawKind = "polynomial",
+    degree: int = 5,
+    source: str = "",
+) -> RestoringForce:
+    """The law of two springs in series, fitted by least squares (the paper's F_GB).
+
+    For a force F both springs carry F, so ``X_GB(F) = X_1(F) + X_2(F)``.  The compound curve is
+    sampled up to the smaller of the two laws' largest forces and fitted with
+    :meth:`RestoringForce.fit`; the fit residual is recorded on the result.
+    """
+    force = np.linspace(0.0, min(first.max_force_n, second.max_force_n), 400)
+    deflection = first.deflection(force) + second.deflection(force)
+    return RestoringForce.fit(
+        deflection,
+        force,
+        kind,
+        degree,
+        source or f"series of ({first.source}) and ({second.source})",
+    )
+
+
+BALL_GAUGE_PRESSURE_PA = 83.0e3
+"""Internal gauge pressure of a pressurised ball, Pa (≈ 12 psi, the usual figure; assumption)."""
+ATMOSPHERE_PA = 101.325e3
+AIR_HEAT_CAPACITY_RATIO = 1.4
+
+
+def default_ball_law(
+    diameter_m: float = 0.067, gauge_pressure_pa: float = BALL_GAUGE_PRESSURE_PA
+) -> RestoringForce:
+    """The ball's one-sided restoring force F_B(X) = k₁ X + k₃ X³, N for X in m.
+
+    Derivation (docs/develop.md, "Ball and string laws"):
+
+    * k₁ from the ITF compression test.  The forward deformation (REFERENCE_VALUES.md:
+      0.56–0.74 cm under 80.1 N; the middle, 0.65 cm) is measured between two plates, so both
+      sides flatten; in Kawazoe's model only the side on the strings deforms and carries half:
+      ``k₁ = 80.1 N / 3.25 mm ≈ 24.6 kN/m``.
+    * k₃ from the gas inside.  Flattening one side by X removes a cap of volume ≈ π R X² from
+      the ball's 4/3 π R³; compressed adiabatically in the millisecond of contact the gas
+      pressure rises by ``Δp = γ p (3 X² / 4 R²)`` and acts on the flat of area ≈ 2π R X, adding
+      ``F = (3π/2) γ p X³ / R`` (p absolute, γ = 1.4).  At small X this is nothing; at a
+      flattening of 25 mm it roughly doubles the force, as impact stiffness rises with speed.
+
+    Valid up to a flattening of one ball radius.  Cross (Sports Eng. 1999) shows the wall
+    buckling within the first 200 µs; one smooth law is the model's approximation.
+    """
+    radius = 0.5 * diameter_m
+    linear = ITF_FORWARD_LOAD_N / (0.5 * ITF_FORWARD_DEFORMATION_M)
+    absolute = gauge_pressure_pa + ATMOSPHERE_PA
+    cubic = 1.5 * np.pi * AIR_HEAT_CAPACITY_RATIO * absolute / radius
+    return RestoringForce(
+        "polynomial",
+        (linear, 0.0, float(cubic)),
+        radius,
+        0.0,
+        "ball, ITF forward deformation + adiabatic gas, one side",
+    )
+
+
+@dataclass(frozen=True)
+class Ball:
+    """A tennis ball.
+
+    Parameters
+    ----------
+    mass_kg : float
+        Mass, kg (ITF: 56.0–59.4 g; default the middle, 57.7 g).
+    diameter_m : float
+        Diameter, m (ITF type 1 and 2: 6.54–6.86 cm; default the middle, 6.70 cm).
+    e_bg : float
+        Coefficient of restitution of this ball on a head-clamped string bed (Kawazoe; ≈ 0.83,
+        nearly independent of speed and tension).
+    restoring_force : RestoringForce
+        One-sided ball law F_B(X) (default: :func:`default_ball_law`).
+    """
+
+    mass_kg: float = 0.0577
+    diameter_m: float = 0.0670
+    e_bg: float = 0.83
+    restoring_force: RestoringForce = field(default_factory=default_ball_law)
+
+    def __post_init__(self) -> None:
+        require_positive("ball mass_kg", self.mass_kg)
+        require_positive("ball diameter_m", self.diameter_m)
+        require_range("ball e_bg", self.e_bg, 0.0, 1.0)

@@ -1,0 +1,282 @@
+"""The ``racketdyn`` command line: parse, call the library, print with rich.
+
+Every user error becomes one line on stderr and exit status 2; no traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import logging
+import platform
+import sys
+from collections.abc import Sequence
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from rich.console import Console
+from rich.table import Table
+
+from racketdyn.__about__ import __version__
+from racketdyn.ball import Ball, RestoringForce
+from racketdyn.contact import compound_law
+from racketdyn.errors import InputError, one_of
+from racketdyn.impact import predict
+from racketdyn.io import (
+    default_racket,
+    load_racket,
+    racket_to_dict,
+    read_load_deflection,
+    read_points,
+)
+from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
+from racketdyn.modal import modal_model_for
+from racketdyn.racket import SUPPORTS, Racket
+
+__all__ = ["main"]
+
+log = logging.getLogger("racketdyn")
+DEFAULT_GRID = 9
+
+
+def _parse_list(name: str, text: str) -> list[str]:
+    items = [item.strip() for item in text.split(",")]
+    if not all(items):
+        raise InputError(
+            f"{name} must be a comma-separated list without empty items (got {text!r})"
+        )
+    return items
+
+
+def _parse_speeds(name: str, text: str) -> list[float]:
+    speeds = []
+    for item in _parse_list(name, text):
+        try:
+            value = float(item)
+        except ValueError:
+            raise InputError(
+                f"{name}: {item!r} is not a number; give speeds in m/s, e.g. 10,20,30"
+            ) from None
+        if not np.isfinite(value) or value < 0:
+            raise InputError(f"{name}: {item!r} must be a finite speed of zero or more, m/s")
+        speeds.append(value)
+    return speeds
+
+
+def _load(racket_file: str | None) -> tuple[Racket, dict[str, Any]]:
+    if racket_file is None:
+        return default_racket(), {"racket_file": f"built-in {DEFAULT_RACKET_NAME}"}
+    path = Path(racket_file)
+    racket = load_racket(path)
+    return racket, {
+        "racket_file": str(path.resolve()),
+        "racket_file_sha256": hashlib.sha256(path.read_bytes()).hexdigest(),
+    }
+
+
+def _ball(args: argparse.Namespace) -> tuple[Ball, list[str]]:
+    defaults = []
+    kwargs: dict[str, Any] = {}
+    for option, key, label in (
+        ("ball_mass", "mass_kg", "ball mass 57.7 g (ITF middle)"),
+        ("e_bg", "e_bg", "e_BG 0.83 (Kawazoe)"),
+    ):
+        value = getattr(args, option)
+        if value is None:
+            defaults.append(label)
+        else:
+            kwargs[key] = value
+    if args.ball_law is not None:
+        deflection, force = read_load_deflection(Path(args.ball_law))
+        kwargs["restoring_force"] = RestoringForce.fit(
+            deflection, force, "polynomial", 3, f"ball, fitted to {Path(args.ball_law).name}"
+        )
+    else:
+        defaults.append("ball law: ITF forward deformation + adiabatic gas (one side)")
+    return Ball(**kwargs), defaults
+
+
+def _points(args: argparse.Namespace, racket: Racket) -> tuple[np.ndarray, list[str], str]:
+    if args.points is not None and args.grid is not None:
+        raise InputError("give --grid or --points, not both")
+    if args.points is not None:
+        locations, labels = read_points(Path(args.points))
+        return locations, labels, f"points file {Path(args.points).resolve()}"
+    n = DEFAULT_GRID if args.grid is None else args.grid
+    locations = racket.head.grid(n)
+    return locations, [str(i + 1) for i in range(len(locations))], f"grid {n} x {n} over the head"
+
+
+def _predict(args: argparse.Namespace, console: Console) -> int:
+    racket, provenance = _load(args.racket)
+    ball, defaults = _ball(args)
+    speeds = _parse_speeds("--speed", args.speed)
+    racket_speed = _parse_speeds("--racket-speed", args.racket_speed)
+    if len(racket_speed) not in (1, len(speeds)):
+        raise InputError("--racket-speed takes one speed, or one per --speed value")
+    supports = [one_of("--support", s, SUPPORTS) for s in _parse_list("--support", args.support)]
+    locations, labels, points_source = _points(args, racket)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    if args.racket is None:
+        defaults.append(f"racket: built-in {DEFAULT_RACKET_NAME} (Kawazoe's test racket)")
+    if racket.modal_model_file is None and not args.rigid:
+        defaults.append("modal model: built-in free-free beam model")
+    model = None if args.rigid else modal_model_for(racket)
+    law = compound_law(racket, ball)
+
+    result = predict(
+        racket,
+        ball,
+        locations,
+        speeds,
+        supports,
+        np.asarray(racket_speed),
+        model,
+        labels,
+        law,
+        args.include_string_bed,
+    )
+    result.write_csv(out / "impact.csv")
+    written = [out / "impact.csv"]
+    if not args.no_figures:
+        from racketdyn.report import FIGURES, write_paper_figures  # matplotlib only when drawing
+
+        with console.status("drawing figures") as status:
+            written += write_paper_figures(
+                racket,
+                ball,
+                model,
+                out,
+                progress=lambda name: status.update(f"drawing {name} ({len(FIGURES)} figures)"),
+            )
+    record = {
+        "racketdyn_version": __version__,
+        "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
+        "command": ["racketdyn", *sys.argv[1:]],
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        **provenance,
+        "racket": racket_to_dict(racket),
+        "speeds_mps": speeds,
+        "racket_speed_mps": racket_speed,
+        "supports": supports,
+        "points": points_source,
+        "n_points": len(locations),
+        "include_string_bed": args.include_string_bed,
+        "rigid": args.rigid,
+        "defaults_used": defaults,
+        **result.inputs,
+        "outputs": [p.name for p in written] + ["run.json"],
+    }
+    (out / "run.json").write_text(json.dumps(record, indent=2, default=str), encoding="utf-8")
+    bad = result.status != "ok"
+    console.print(
+        f"[bold]{result.status.size}[/] impacts "
+        f"({len(locations)} points × {len(speeds)} speeds × {len(supports)} supports) "
+        f"→ {out}"
+    )
+    if np.any(bad):
+        reasons, counts = np.unique(result.status[bad], return_counts=True)
+        for reason, count in zip(reasons, counts, strict=True):
+            console.print(
+                f"[yellow]{count} impacts: {reason}; their results are NaN in impact.csv[/]"
+            )
+    for path in written:
+        console.print(f"  wrote {path}")
+    return 0
+
+
+def _racket(args: argparse.Namespace, console: Console) -> int:
+    racket, provenance = _load(args.racket)
+    table = Table(title=f"{racket.name} ({provenance['racket_file']})")
+    table.add_column("property")
+    table.add_column("value", justify="right")
+    table.add_column("unit")
+    units = {"kg": "kg", "m": "m", "kgm2": "kg·m²", "kgcm2": "kg·cm²", "cm2": "cm²"}
+    for key, value in racket.derived_properties().items():
+        name, _, unit = key.rpartition("_")
+        table.add_row(name.replace("_", " "), f"{value:.4g}", units.get(unit, unit))
+    model = modal_model_for(racket)
+    for name, frequency in zip(model.names, model.frequency, strict=True):
+        table.add_row(f"mode: {name} ({model.support})", f"{frequency:.1f}", "Hz")
+    console.print(table)
+    return 0
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="racketdyn",
+        description="Tennis racket impact dynamics: rebound ball speed over the string face "
+        "(Kawazoe's approximate method). SI units throughout.",
+    )
+    parser.add_argument("--version", action="version", version=f"racketdyn {__version__}")
+    parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
+    commands = parser.add_subparsers(dest="command", required=True)
+
+    run = commands.add_parser(
+        "predict", help="predict impacts over the face; write CSV, figures, run.json"
+    )
+    run.add_argument(
+        "racket", nargs="?", help="racket TOML file (default: the built-in paper racket)"
+    )
+    run.add_argument(
+        "--speed", default="10,20,30", help="incoming ball speeds, m/s (default 10,20,30)"
+    )
+    run.add_argument(
+        "--racket-speed",
+        default="0",
+        help="racket speed at the impact point towards the ball, m/s: one, or one per speed",
+    )
+    run.add_argument("--support", default="free,pinned", help="free, pinned or both (default both)")
+    run.add_argument(
+        "--grid", type=int, help=f"N x N grid of points over the head (default {DEFAULT_GRID})"
+    )
+    run.add_argument("--points", help="CSV of impact points with columns x_m, y_m [, point]")
+    run.add_argument("--ball-mass", type=float, help="ball mass, kg (default 0.0577)")
+    run.add_argument(
+        "--e-bg", type=float, help="ball-string COR on a head-clamped racket (default 0.83)"
+    )
+    run.add_argument(
+        "--ball-law", help="ball load-deflection CSV (deflection_m, force_n), one side"
+    )
+    run.add_argument("--rigid", action="store_true", help="no vibration: a rigid racket")
+    run.add_argument(
+        "--include-string-bed",
+        action="store_true",
+        help="charge string-bed modes as vibration loss too",
+    )
+    run.add_argument("--no-figures", action="store_true", help="write impact.csv and run.json only")
+    run.add_argument("--out", required=True, help="output folder (created if missing)")
+    run.set_defaults(handler=_predict)
+
+    show = commands.add_parser("racket", help="print a racket's derived properties")
+    show.add_argument(
+        "racket", nargs="?", help="racket TOML file (default: the built-in paper racket)"
+    )
+    show.set_defaults(handler=_racket)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``racketdyn`` command."""
+    args = _parser().parse_args(argv)
+    logging.basicConfig(
+        level=logging.INFO if args.verbose else logging.ERROR,
+        format="%(levelname)s %(name)s: %(message)s",
+    )
+    console = Console()
+    try:
+        return int(args.handler(args, console))
+    except InputError as error:
+        Console(stderr=True, highlight=False, soft_wrap=True).print(
+            f"racketdyn: error: {error}", markup=False
+        )
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

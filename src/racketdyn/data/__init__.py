@@ -1,0 +1,1 @@
+"""Shipped data: the built-in racket description (see README.md in this folder)."""

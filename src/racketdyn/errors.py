@@ -1,0 +1,61 @@
+"""Errors that carry a message a user can act on.
+
+Every check of user input raises :class:`InputError`; the command line prints its message on
+one line and exits with status 2.  Library users can catch it as a :class:`ValueError`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = ["InputError", "require_finite", "require_positive", "require_range"]
+
+
+class InputError(ValueError):
+    """Bad user input: the message names the input and says what is allowed."""
+
+
+def require_positive(name: str, value: float, *, allow_zero: bool = False) -> float:
+    """Return ``value`` as a float if it is a finite positive number, else raise InputError."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number (got {value!r})") from None
+    if not math.isfinite(number) or number < 0 or (number == 0 and not allow_zero):
+        what = "zero or positive" if allow_zero else "positive"
+        raise InputError(f"{name} must be a finite {what} number (got {value!r})")
+    return number
+
+
+def require_range(name: str, value: float, low: float, high: float) -> float:
+    """Return ``value`` as a float if ``low <= value <= high``, else raise InputError."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number (got {value!r})") from None
+    if not (math.isfinite(number) and low <= number <= high):
+        raise InputError(f"{name} must lie between {low:g} and {high:g} (got {value!r})")
+    return number
+
+
+def require_finite(name: str, values: ArrayLike) -> NDArray[np.float64]:
+    """Return ``values`` as a float array if every entry is finite, else raise InputError."""
+    try:
+        array = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be numbers (got {values!r})") from None
+    if not np.all(np.isfinite(array)):
+        raise InputError(f"{name} must be finite numbers, without NaN or inf")
+    return array
+
+
+def one_of(name: str, value: object, allowed: Iterable[str]) -> str:
+    """Return ``value`` if it is one of ``allowed``, else raise InputError listing them."""
+    options = tuple(allowed)
+    if not isinstance(value, str) or value not in options:
+        raise InputError(f"{name} must be one of {', '.join(options)} (got {value!r})")
+    return value

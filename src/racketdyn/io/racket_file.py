@@ -1,0 +1,255 @@
+"""Racket description files (TOML): schema, validation and the built-in default racket.
+
+The schema is documented in docs/racket-file.md.  Every table and key is checked: an unknown
+key, a missing key or a value of the wrong type raises :class:`~racketdyn.errors.InputError`
+naming the file, the key and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from racketdyn.errors import InputError
+from racketdyn.racket import (
+    KGM2_TO_KGCM2,
+    SWINGWEIGHT_AXIS_M,
+    HeadEllipse,
+    PointMass,
+    Racket,
+    StringBed,
+)
+
+__all__ = ["DEFAULT_RACKET_NAME", "default_racket", "load_racket", "racket_to_dict"]
+
+DEFAULT_RACKET_NAME = "kawazoe_2002.toml"
+
+_SCHEMA: dict[str, dict[str, type | tuple[type, ...]]] = {
+    "racket": {
+        "mass_kg": float,
+        "length_m": float,
+        "balance_m": float,
+        "inertia_cg_kgm2": float,
+        "swingweight_kgcm2": float,
+        "roll_inertia_kgm2": float,
+        "twistweight_kgcm2": float,
+        "grip_m": float,
+    },
+    "head": {
+        "centre_x_m": float,
+        "half_length_m": float,
+        "half_width_m": float,
+        "area_cm2": float,
+        "centre_y_m": float,
+    },
+    "strings": {
+        "tension_n": float,
+        "mains": int,
+        "crosses": int,
+        "string_diameter_m": float,
+        "string_modulus_pa": float,
+        "mass_kg": float,
+        "load_deflection_file": str,
+    },
+    "modal": {"file": str, "first_bending_hz": float, "twisting_hz": float},
+    "point_masses": {"mass_kg": float, "x_m": float, "y_m": float, "label": str},
+}
+_TOP = {"schema_version", "name", "description", *_SCHEMA}
+_REQUIRED = {
+    "racket": ("mass_kg", "length_m", "balance_m"),
+    "head": ("centre_x_m", "half_length_m"),
+    "point_masses": ("mass_kg", "x_m"),
+}
+
+
+def _check_table(where: str, table: object, kind: str) -> dict[str, Any]:
+    if not isinstance(table, dict):
+        raise InputError(f"{where} must be a table of keys")
+    allowed = _SCHEMA[kind]
+    for key, value in table.items():
+        if key not in allowed:
+            raise InputError(f"{where}: unknown key {key!r}; allowed keys are {', '.join(allowed)}")
+        wanted = allowed[key]
+        if wanted is float:
+            ok = (
+                isinstance(value, int | float)
+                and not isinstance(value, bool)
+                and math.isfinite(value)
+            )
+            what = "a number"
+        elif wanted is int:
+            ok = isinstance(value, int) and not isinstance(value, bool)
+            what = "a whole number"
+        else:
+            ok = isinstance(value, str)
+            what = "a string"
+        if not ok:
+            raise InputError(f"{where}.{key} must be {what} (got {value!r})")
+    for key in _REQUIRED.get(kind, ()):
+        if key not in table:
+            raise InputError(f"{where}.{key} is missing; it is required")
+    return dict(table)
+
+
+def _one_of_pair(where: str, table: dict[str, Any], first: str, second: str) -> None:
+    if first in table and second in table:
+        raise InputError(f"{where}: give {first} or {second}, not both")
+
+
+def load_racket(path: Path | str) -> Racket:
+    """Read and validate a racket description file.
+
+    Parameters
+    ----------
+    path : path-like
+        TOML file (schema: docs/racket-file.md).  Relative file names inside it are taken
+        relative to the file.
+
+    Returns
+    -------
+    Racket
+        The validated racket.  A missing roll inertia is derived from the hoop model
+        (:func:`racketdyn.modal.beam.hoop_roll_inertia`).
+    """
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such racket file") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"{path}: cannot be read ({error})") from None
+    except tomllib.TOMLDecodeError as error:
+        raise InputError(f"{path}: malformed TOML ({error})") from None
+    return racket_from_dict(data, path)
+
+
+def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
+    """Build a racket from parsed TOML (see :func:`load_racket`)."""
+    from racketdyn.modal.beam import hoop_roll_inertia  # the hoop model lives with the beam
+
+    for key in data:
+        if key not in _TOP:
+            raise InputError(
+                f"{path}: unknown top-level key {key!r}; allowed: {', '.join(sorted(_TOP))}"
+            )
+    version = data.get("schema_version", 1)
+    if version != 1:
+        raise InputError(
+            f"{path}: schema_version {version!r} is not supported (this racketdyn reads 1)"
+        )
+    for kind in ("racket", "head"):
+        if kind not in data:
+            raise InputError(f"{path}: the [{kind}] table is missing; it is required")
+    body = _check_table(f"{path}: [racket]", data["racket"], "racket")
+    head_table = _check_table(f"{path}: [head]", data["head"], "head")
+    strings_table = _check_table(f"{path}: [strings]", data.get("strings", {}), "strings")
+    modal_table = _check_table(f"{path}: [modal]", data.get("modal", {}), "modal")
+    raw_masses = data.get("point_masses", [])
+    if not isinstance(raw_masses, list):
+        raise InputError(f"{path}: point_masses must be an array of tables ([[point_masses]])")
+    masses = [
+        _check_table(f"{path}: [[point_masses]] {i + 1}", t, "point_masses")
+        for i, t in enumerate(raw_masses)
+    ]
+
+    where = f"{path}: [racket]"
+    _one_of_pair(where, body, "inertia_cg_kgm2", "swingweight_kgcm2")
+    _one_of_pair(where, body, "roll_inertia_kgm2", "twistweight_kgcm2")
+    _one_of_pair(f"{path}: [head]", head_table, "half_width_m", "area_cm2")
+    if "inertia_cg_kgm2" not in body and "swingweight_kgcm2" not in body:
+        raise InputError(
+            f"{where}: give inertia_cg_kgm2 (about the balance point) or swingweight_kgcm2"
+        )
+    if "half_width_m" not in head_table and "area_cm2" not in head_table:
+        raise InputError(f"{path}: [head]: give half_width_m or area_cm2")
+
+    def guarded(build: Any, *args: Any, **kwargs: Any) -> Any:
+        try:
+            return build(*args, **kwargs)
+        except InputError as error:
+            raise InputError(f"{path}: {error}") from None
+
+    mass, balance = float(body["mass_kg"]), float(body["balance_m"])
+    if "swingweight_kgcm2" in body:
+        inertia_cg = (
+            body["swingweight_kgcm2"] / KGM2_TO_KGCM2 - mass * (balance - SWINGWEIGHT_AXIS_M) ** 2
+        )
+        if inertia_cg <= 0:
+            raise InputError(
+                f"{where}.swingweight_kgcm2 is too small for the mass and balance given"
+            )
+    else:
+        inertia_cg = float(body["inertia_cg_kgm2"])
+    head_args = {k: float(v) for k, v in head_table.items() if k != "area_cm2"}
+    if "area_cm2" in head_table:
+        if head_table["area_cm2"] <= 0 or head_table["half_length_m"] <= 0:
+            raise InputError(f"{path}: [head] area_cm2 and half_length_m must be positive")
+        head_args["half_width_m"] = (
+            head_table["area_cm2"] / KGM2_TO_KGCM2 / (math.pi * head_args["half_length_m"])
+        )
+    head = guarded(HeadEllipse, **head_args)
+
+    strings_args = dict(strings_table)
+    if "load_deflection_file" in strings_args:
+        strings_args["load_deflection_file"] = path.parent / strings_args["load_deflection_file"]
+    strings = guarded(StringBed, **strings_args)
+
+    length = float(body["length_m"])
+    if "roll_inertia_kgm2" in body:
+        roll = float(body["roll_inertia_kgm2"])
+    elif "twistweight_kgcm2" in body:
+        roll = float(body["twistweight_kgcm2"]) / KGM2_TO_KGCM2
+    else:
+        roll = guarded(hoop_roll_inertia, length, mass, balance, inertia_cg, head)
+    modal_file = modal_table.get("file")
+    racket: Racket = guarded(
+        Racket,
+        name=str(data.get("name", path.stem)),
+        mass_kg=mass,
+        length_m=length,
+        balance_m=balance,
+        inertia_cg_kgm2=inertia_cg,
+        roll_inertia_kgm2=roll,
+        head=head,
+        strings=strings,
+        grip_m=float(body.get("grip_m", 0.070)),
+        point_masses=tuple(guarded(PointMass, **m) for m in masses),
+        modal_model_file=None if modal_file is None else path.parent / modal_file,
+        first_bending_hz=float(modal_table.get("first_bending_hz", 120.0)),
+        twisting_hz=float(modal_table.get("twisting_hz", 361.0)),
+    )
+    return racket
+
+
+def default_racket() -> Racket:
+    """The built-in racket: Kawazoe's test racket (paper, section 2)."""
+    resource = resources.files("racketdyn.data").joinpath(DEFAULT_RACKET_NAME)
+    with resources.as_file(resource) as path:
+        return load_racket(path)
+
+
+def racket_to_dict(racket: Racket) -> dict[str, Any]:
+    """The racket as plain data (for run records), with its derived properties."""
+    return {
+        "name": racket.name,
+        "mass_kg": racket.mass_kg,
+        "length_m": racket.length_m,
+        "balance_m": racket.balance_m,
+        "inertia_cg_kgm2": racket.inertia_cg_kgm2,
+        "roll_inertia_kgm2": racket.roll_inertia_kgm2,
+        "grip_m": racket.grip_m,
+        "head": vars(racket.head).copy(),
+        "strings": {
+            k: (str(v) if isinstance(v, Path) else v) for k, v in vars(racket.strings).items()
+        },
+        "point_masses": [vars(p).copy() for p in racket.point_masses],
+        "modal_model_file": None
+        if racket.modal_model_file is None
+        else str(racket.modal_model_file),
+        "first_bending_hz": racket.first_bending_hz,
+        "twisting_hz": racket.twisting_hz,
+        "derived": racket.derived_properties(),
+    }

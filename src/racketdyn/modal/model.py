@@ -1,0 +1,185 @@
+"""The modal model: natural frequencies, damping and mass-normalised mode shapes of a racket.
+
+Mode shapes are mass-normalised (``φᵀ M φ = 1``, units 1/√kg) and stored at sample locations
+over the racket; shapes anywhere else on the face come from a thin-plate-spline interpolation
+through the samples.  The modal constant of mode k between points i and j is
+``A_ijk = φ_ik φ_jk`` (1/kg): the paper's ``r_i0k r_0jk / r_00k`` of eq (12) once residues
+measured against a reference point 0 are scaled by the driving-point residue ``r_00k``.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from functools import cached_property
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import RBFInterpolator
+
+from racketdyn.__about__ import __version__
+from racketdyn.errors import InputError
+from racketdyn.racket import as_locations
+
+__all__ = ["ModalModel"]
+
+FORMAT = "racketdyn-modal-model"
+
+
+@dataclass(frozen=True, eq=False)
+class ModalModel:
+    """Natural frequencies, damping ratios and mass-normalised mode shapes.
+
+    Parameters
+    ----------
+    frequency : ndarray, shape (n_modes,)
+        Natural frequencies, Hz.
+    damping_ratio : ndarray, shape (n_modes,)
+        Viscous damping ratios (fraction of critical).
+    locations : ndarray, shape (n_points, 2)
+        Where the shapes are sampled, ``(x, y)`` in m.
+    mode_shapes : ndarray, shape (n_points, n_modes)
+        Mass-normalised mode shapes (displacement normal to the face), 1/√kg.
+    names : tuple of str
+        Mode names (``"2-node bending"``, …).
+    support : str
+        The support the modes belong to (``free``, ``hand`` …).
+    source : str
+        Where the model came from.
+    """
+
+    frequency: NDArray[np.float64]
+    damping_ratio: NDArray[np.float64]
+    locations: NDArray[np.float64]
+    mode_shapes: NDArray[np.float64]
+    names: tuple[str, ...]
+    support: str = "free"
+    source: str = ""
+    metadata: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        frequency = np.asarray(self.frequency, dtype=float)
+        damping = np.asarray(self.damping_ratio, dtype=float)
+        shapes = np.asarray(self.mode_shapes, dtype=float)
+        locations = as_locations(self.locations, "modal model locations")
+        if shapes.ndim != 2 or shapes.shape != (locations.shape[0], frequency.size):
+            raise InputError(
+                f"modal model ({self.source}): mode_shapes must be shaped (n_points, n_modes) = "
+                f"({locations.shape[0]}, {frequency.size}), got {shapes.shape}"
+            )
+        if damping.shape != frequency.shape or len(self.names) != frequency.size:
+            raise InputError(f"modal model ({self.source}): one damping ratio and name per mode")
+        if not (np.all(np.isfinite(frequency)) and np.all(frequency > 0)):
+            raise InputError(f"modal model ({self.source}): frequencies must be positive (Hz)")
+        if not (np.all(np.isfinite(damping)) and np.all((damping >= 0) & (damping < 1))):
+            raise InputError(f"modal model ({self.source}): damping ratios must lie in [0, 1)")
+        if not np.all(np.isfinite(shapes)):
+            raise InputError(f"modal model ({self.source}): mode shapes contain NaN or inf")
+        object.__setattr__(self, "frequency", frequency)
+        object.__setattr__(self, "damping_ratio", damping)
+        object.__setattr__(self, "mode_shapes", shapes)
+        object.__setattr__(self, "locations", locations)
+        object.__setattr__(self, "names", tuple(self.names))
+
+    @property
+    def n_modes(self) -> int:
+        """Number of modes."""
+        return int(self.frequency.size)
+
+    @property
+    def omega(self) -> NDArray[np.float64]:
+        """Natural angular frequencies, rad/s."""
+        return np.asarray(2 * np.pi * self.frequency)
+
+    @cached_property
+    def _interpolator(self) -> RBFInterpolator:
+        return RBFInterpolator(self.locations, self.mode_shapes, kernel="thin_plate_spline")
+
+    def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:
+        """Mass-normalised mode shapes at any locations, shaped ``(n, n_modes)``, 1/√kg."""
+        xy = as_locations(locations)
+        return np.asarray(self._interpolator(xy))
+
+    def modal_constants(self, response: ArrayLike, excitation: ArrayLike) -> NDArray[np.float64]:
+        """Modal constants ``A_ijk = φ_ik φ_jk`` (1/kg) for every response i and excitation j.
+
+        Returns an array shaped ``(n_response, n_excitation, n_modes)``: the paper's
+        ``r_i0k r_0jk / r_00k`` of eq (12).
+        """
+        phi_i = self.mode_shapes_at(response)
+        phi_j = self.mode_shapes_at(excitation)
+        return np.asarray(phi_i[:, None, :] * phi_j[None, :, :])
+
+    def select(self, modes: ArrayLike) -> ModalModel:
+        """A model keeping only the listed mode indices (0-based)."""
+        index = np.atleast_1d(np.asarray(modes, dtype=int))
+        return ModalModel(
+            self.frequency[index],
+            self.damping_ratio[index],
+            self.locations,
+            self.mode_shapes[:, index],
+            tuple(self.names[i] for i in index),
+            self.support,
+            self.source,
+            dict(self.metadata),
+        )
+
+    @property
+    def frame_modes(self) -> ModalModel:
+        """The model without string-bed modes (names containing ``string-bed``)."""
+        keep = [k for k, name in enumerate(self.names) if "string-bed" not in name]
+        return self if len(keep) == self.n_modes else self.select(keep)
+
+    # --- files --------------------------------------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dict (the racketdyn modal-model format)."""
+        return {
+            "format": FORMAT,
+            "format_version": 1,
+            "racketdyn_version": __version__,
+            "support": self.support,
+            "source": self.source,
+            "units": {"frequency": "Hz", "locations": "m", "mode_shapes": "1/sqrt(kg)"},
+            "modes": [
+                {"name": n, "frequency_hz": float(f), "damping_ratio": float(z)}
+                for n, f, z in zip(self.names, self.frequency, self.damping_ratio, strict=True)
+            ],
+            "locations_m": self.locations.tolist(),
+            "mode_shapes": self.mode_shapes.tolist(),
+            "metadata": self.metadata,
+        }
+
+    def write_json(self, path: Path) -> None:
+        """Write the model as racketdyn modal-model JSON."""
+        Path(path).write_text(json.dumps(self.to_dict(), indent=1), encoding="utf-8")
+
+    @classmethod
+    def read_json(cls, path: Path) -> ModalModel:
+        """Read a racketdyn modal-model JSON file."""
+        path = Path(path)
+        try:
+            data = json.loads(path.read_text(encoding="utf-8"))
+        except FileNotFoundError:
+            raise InputError(f"{path}: no such modal model file") from None
+        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as error:
+            raise InputError(f"{path}: not a racketdyn modal model JSON file ({error})") from None
+        if not isinstance(data, dict) or data.get("format") != FORMAT:
+            raise InputError(f"{path}: not a racketdyn modal model (format must be {FORMAT!r})")
+        try:
+            modes = data["modes"]
+            return cls(
+                frequency=np.array([m["frequency_hz"] for m in modes], dtype=float),
+                damping_ratio=np.array([m["damping_ratio"] for m in modes], dtype=float),
+                locations=np.array(data["locations_m"], dtype=float),
+                mode_shapes=np.array(data["mode_shapes"], dtype=float).reshape(-1, len(modes)),
+                names=tuple(str(m["name"]) for m in modes),
+                support=str(data.get("support", "free")),
+                source=str(data.get("source", path.name)),
+                metadata=dict(data.get("metadata", {})),
+            )
+        except (KeyError, TypeError, ValueError) as error:
+            raise InputError(
+                f"{path}: modal model is missing or has a bad field ({error})"
+            ) from None

@@ -1,0 +1,217 @@
+"""Plot primitives: each takes ``ax=`` (a new figure if None), draws, and returns the axes.
+
+Styles are applied inside the functions, never at import.  Units on every axis label.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only: racketdyn draws figures for reports, not windows
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.patches import Ellipse
+from matplotlib.tri import Triangulation
+from numpy.typing import NDArray
+
+from racketdyn.impact.result import ImpactResult
+from racketdyn.racket import Racket
+
+__all__ = [
+    "QUANTITIES",
+    "plot_along_axis",
+    "plot_face_map",
+    "plot_frame_amplitude",
+    "plot_outline",
+    "plot_speed_curves",
+]
+
+QUANTITIES: dict[str, tuple[str, float]] = {
+    "mean_force": ("equivalent force F_MEAN (N)", 1.0),
+    "peak_force": ("peak force F_MAX (N)", 1.0),
+    "contact_time": ("contact time T_c (ms)", 1e3),
+    "rebound_ratio": ("rebound ratio e (–)", 1.0),
+    "cor": ("ball–racket COR e_r (–)", 1.0),
+    "vibration_energy": ("vibration energy (J)", 1.0),
+    "rebound_speed": ("rebound ball speed (m/s)", 1.0),
+    "reduced_mass": ("reduced mass M_r (kg)", 1.0),
+}
+SUPPORT_STYLE = {
+    "pinned": {"color": "k", "marker": "s", "label": "hand-held (pinned at grip)"},
+    "free": {"color": "tab:blue", "marker": "D", "label": "freely supported"},
+}
+
+
+def _axes(ax: Axes | None, size: tuple[float, float] = (5.0, 3.6)) -> Axes:
+    if ax is None:
+        _, ax = plt.subplots(figsize=size, layout="constrained")
+    return ax
+
+
+def _values(result: ImpactResult, quantity: str) -> NDArray[np.float64]:
+    scale = QUANTITIES[quantity][1]
+    values = np.asarray(getattr(result, quantity), dtype=float)
+    if values.ndim == 2:  # reduced mass: (n, p) -> (n, s, p)
+        values = np.broadcast_to(values[:, None, :], result.shape)
+    return values * scale
+
+
+def plot_speed_curves(
+    result: ImpactResult, quantity: str, point_names: Sequence[str], ax: Axes | None = None
+) -> Axes:
+    """A quantity against incoming ball speed for each impact point and support (Figs 11–12)."""
+    ax = _axes(ax)
+    values = _values(result, quantity)
+    colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, len(point_names)))
+    for i, (name, colour) in enumerate(zip(point_names, colours, strict=True)):
+        for p, support in enumerate(result.supports):
+            ax.plot(
+                result.ball_speed,
+                values[i, :, p],
+                color=colour,
+                linestyle="-" if support == "pinned" else "--",
+                label=f"{name}, {SUPPORT_STYLE[support]['label']}",
+            )
+    ax.set_xlabel("incoming ball speed (m/s)")
+    ax.set_ylabel(QUANTITIES[quantity][0])
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return ax
+
+
+def plot_frame_amplitude(
+    result: ImpactResult,
+    response_x_m: NDArray[np.float64],
+    mode: int = 0,
+    support: str = "pinned",
+    point: int = 0,
+    ax: Axes | None = None,
+) -> Axes:
+    """Displacement amplitude of one mode along the frame after an impact (Fig. 14), mm."""
+    ax = _axes(ax)
+    response = np.column_stack([response_x_m, np.zeros_like(response_x_m)])
+    shapes = result.modal_model.mode_shapes_at(response)[:, mode] if result.modal_model else None
+    amplitude = result.displacement_amplitude(response)[
+        :, point, :, result.support_index(support), mode
+    ]
+    sign = np.sign(shapes) if shapes is not None else 1.0
+    for s, speed in enumerate(result.ball_speed):
+        ax.plot(response_x_m * 1e3, sign * amplitude[:, s] * 1e3, label=f"{speed:g} m/s")
+    ax.axhline(0.0, color="0.5", linewidth=0.8)
+    ax.axvline(result.locations[point, 0] * 1e3, color="r", linestyle=":", label="impact point")
+    name = result.modal_model.names[mode] if result.modal_model else ""
+    ax.set_title(f"{SUPPORT_STYLE[support]['label']}: {name}", fontsize=9)
+    ax.set_xlabel("x from the butt (mm)")
+    ax.set_ylabel("displacement amplitude (mm)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return ax
+
+
+def plot_along_axis(
+    result: ImpactResult,
+    quantity: str,
+    speed_index: int = 0,
+    ax: Axes | None = None,
+    marks: dict[str, float] | None = None,
+) -> Axes:
+    """A quantity along the long axis of the face, one line per support (Fig. 15)."""
+    ax = _axes(ax)
+    values = _values(result, quantity)
+    x_mm = result.locations[:, 0] * 1e3
+    for p, support in enumerate(result.supports):
+        style = SUPPORT_STYLE[support]
+        ax.plot(
+            x_mm,
+            values[:, speed_index, p],
+            color=style["color"],
+            marker=style["marker"],
+            markersize=3,
+            label=style["label"],
+        )
+        missing = result.status[:, speed_index, p] != "ok"
+        if np.any(missing):
+            ax.plot(
+                x_mm[missing],
+                np.zeros(int(missing.sum())),
+                "x",
+                color=style["color"],
+                label=f"{style['label']}: no valid rebound "
+                f"({result.status[missing, speed_index, p][0]})",
+            )
+    for name, x in (marks or {}).items():
+        ax.axvline(x * 1e3, color="0.4", linestyle=":", linewidth=1)
+        ax.annotate(
+            name, (x * 1e3, ax.get_ylim()[1]), rotation=90, va="top", ha="right", fontsize=7
+        )
+    ax.set_xlabel("impact point, x from the butt (mm)")
+    ax.set_ylabel(QUANTITIES[quantity][0])
+    ax.set_title(
+        f"incoming ball {result.ball_speed[speed_index]:g} m/s, racket at rest", fontsize=9
+    )
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return ax
+
+
+def plot_outline(racket: Racket, ax: Axes | None = None, **style: Any) -> Axes:
+    """The string-bed ellipse and the long axis (x, y in mm)."""
+    ax = _axes(ax)
+    head = racket.head
+    ax.add_patch(
+        Ellipse(
+            (head.centre_x_m * 1e3, head.centre_y_m * 1e3),
+            2e3 * head.half_length_m,
+            2e3 * head.half_width_m,
+            fill=False,
+            color=style.get("color", "k"),
+            linewidth=style.get("linewidth", 1.5),
+        )
+    )
+    ax.set_aspect("equal")
+    return ax
+
+
+def plot_face_map(
+    result: ImpactResult,
+    racket: Racket,
+    quantity: str,
+    speed_index: int = 0,
+    support: str = "pinned",
+    ax: Axes | None = None,
+    levels: int = 12,
+) -> Axes:
+    """Contour map of a quantity over the string face (x along, y across, mm)."""
+    ax = _axes(ax, (4.2, 3.6))
+    values = _values(result, quantity)[:, speed_index, result.support_index(support)]
+    x_mm, y_mm = result.locations[:, 0] * 1e3, result.locations[:, 1] * 1e3
+    finite = np.isfinite(values)
+    if finite.sum() >= 3:
+        triangles = Triangulation(x_mm[finite], y_mm[finite])
+        filled = ax.tricontourf(triangles, values[finite], levels=levels, cmap="viridis")
+        lines = ax.tricontour(
+            triangles, values[finite], levels=np.asarray(filled.levels), colors="k", linewidths=0.4
+        )
+        ax.clabel(lines, fontsize=6, fmt="%.3g")
+        ax.figure.colorbar(filled, ax=ax, label=QUANTITIES[quantity][0], shrink=0.85)
+    if np.any(~finite):
+        ax.plot(
+            x_mm[~finite],
+            y_mm[~finite],
+            "x",
+            color="r",
+            markersize=4,
+            label="no valid result (see status)",
+        )
+        ax.legend(fontsize=7, loc="lower left")
+    plot_outline(racket, ax)
+    ax.set_xlabel("x from the butt (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title(
+        f"{SUPPORT_STYLE[support]['label']}, {result.ball_speed[speed_index]:g} m/s", fontsize=9
+    )
+    return ax

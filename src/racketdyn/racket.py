@@ -1,0 +1,456 @@
+"""The racket: mass properties, string-bed geometry and reduced mass at an impact point.
+
+Coordinates (used everywhere in racketdyn): ``x`` in metres from the butt along the long axis,
+``y`` in metres across it (positive to the left seen from the hitting face), ``z`` normal to the
+string face.  A ``location`` is an ``(x, y)`` pair; arrays of locations are shaped ``(n, 2)``.
+
+All inertias are in kg·m² unless a name says otherwise (players quote swingweight and twistweight
+in kg·cm²; the properties named so return those units).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Literal, get_args
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from racketdyn.errors import InputError, one_of, require_positive
+
+__all__ = [
+    "SUPPORTS",
+    "SWINGWEIGHT_AXIS_M",
+    "HeadEllipse",
+    "MassProperties",
+    "PointMass",
+    "Racket",
+    "StringBed",
+    "Support",
+    "as_locations",
+]
+
+Support = Literal["free", "pinned"]
+"""Support condition of the racket during an impact.
+
+``free``: a freely supported (suspended) racket, translating and rotating about its centre of
+mass.  ``pinned``: the hand-held model of the paper (section 3.3), the racket turning about a
+point on the long axis at the grip (default 70 mm from the butt), free to roll about the long axis.
+"""
+
+SUPPORTS: tuple[str, ...] = get_args(Support)
+SWINGWEIGHT_AXIS_M = 0.100
+"""Swingweight axis, 100 mm from the butt, as racket makers and players quote it."""
+
+KGM2_TO_KGCM2 = 1.0e4
+
+
+def as_locations(locations: ArrayLike, name: str = "locations") -> NDArray[np.float64]:
+    """Return impact locations as a finite float array shaped ``(n, 2)`` (metres)."""
+    try:
+        array = np.asarray(locations, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be (x, y) pairs in metres (got {locations!r})") from None
+    if array.ndim == 1 and array.size == 2:
+        array = array[None, :]
+    if array.ndim != 2 or array.shape[1] != 2:
+        raise InputError(
+            f"{name} must be (x, y) pairs in metres, shaped (n, 2) (got {array.shape})"
+        )
+    if not np.all(np.isfinite(array)):
+        raise InputError(f"{name} must be finite numbers, without NaN or inf")
+    return array
+
+
+@dataclass(frozen=True)
+class PointMass:
+    """A concentrated mass fixed to the racket, such as lead tape.
+
+    Parameters
+    ----------
+    mass_kg : float
+        Mass in kg (positive).
+    x_m, y_m : float
+        Location in metres (x from the butt, y across the long axis).
+    label : str
+        Free text shown in tables, e.g. ``"12 o'clock"``.
+    """
+
+    mass_kg: float
+    x_m: float
+    y_m: float = 0.0
+    label: str = ""
+
+    def __post_init__(self) -> None:
+        require_positive(f"point mass {self.label or ''} mass_kg".replace("  ", " "), self.mass_kg)
+
+
+@dataclass(frozen=True)
+class HeadEllipse:
+    """The string bed, taken as an ellipse in the plane of the face.
+
+    Parameters
+    ----------
+    centre_x_m : float
+        x of the ellipse centre, metres from the butt.
+    half_length_m : float
+        Half-axis along the racket, metres (the main strings are twice this long).
+    half_width_m : float
+        Half-axis across the racket, metres (the cross strings are twice this long).
+    centre_y_m : float
+        y of the centre, metres (0 for a symmetric racket).
+    """
+
+    centre_x_m: float
+    half_length_m: float
+    half_width_m: float
+    centre_y_m: float = 0.0
+
+    def __post_init__(self) -> None:
+        require_positive("head.centre_x_m", self.centre_x_m)
+        require_positive("head.half_length_m", self.half_length_m)
+        require_positive("head.half_width_m", self.half_width_m)
+
+    @property
+    def area_m2(self) -> float:
+        """String-bed area, m² (π a b)."""
+        return float(np.pi * self.half_length_m * self.half_width_m)
+
+    @property
+    def tip_x_m(self) -> float:
+        """x of the top of the string bed, m."""
+        return self.centre_x_m + self.half_length_m
+
+    @property
+    def throat_x_m(self) -> float:
+        """x of the bottom (throat end) of the string bed, m."""
+        return self.centre_x_m - self.half_length_m
+
+    def normalised_radius(self, locations: ArrayLike) -> NDArray[np.float64]:
+        """Elliptic radius ρ (0 at the centre, 1 on the edge) of each location."""
+        xy = as_locations(locations)
+        xi = (xy[:, 0] - self.centre_x_m) / self.half_length_m
+        eta = (xy[:, 1] - self.centre_y_m) / self.half_width_m
+        return np.asarray(np.sqrt(xi**2 + eta**2))
+
+    def contains(self, locations: ArrayLike) -> NDArray[np.bool_]:
+        """True where a location lies on the string bed (edge included, to 1e-9 relative)."""
+        return self.normalised_radius(locations) <= 1.0 + 1e-9
+
+    def half_width_at(self, x_m: ArrayLike) -> NDArray[np.float64]:
+        """Half-width of the string bed at each x (0 outside the head), m."""
+        xi = (np.asarray(x_m, dtype=float) - self.centre_x_m) / self.half_length_m
+        return np.asarray(self.half_width_m * np.sqrt(np.clip(1.0 - xi**2, 0.0, None)))
+
+    def grid(self, n: int) -> NDArray[np.float64]:
+        """Impact locations on an ``n × n`` grid over the ellipse's bounding box, kept if inside.
+
+        The grid is inset by half a cell so that no point sits on the frame.
+        """
+        if n < 1:
+            raise InputError(f"--grid must be a whole number of at least 1 (got {n})")
+        u = (np.arange(n) + 0.5) / n * 2.0 - 1.0
+        xi, eta = np.meshgrid(u, u, indexing="ij")
+        inside = xi**2 + eta**2 <= 1.0
+        x = self.centre_x_m + self.half_length_m * xi[inside]
+        y = self.centre_y_m + self.half_width_m * eta[inside]
+        return np.column_stack([x, y])
+
+    def check_inside(self, locations: ArrayLike, name: str = "impact point") -> None:
+        """Raise InputError naming the first location outside the string bed."""
+        xy = as_locations(locations)
+        outside = np.flatnonzero(~self.contains(xy))
+        if outside.size:
+            i = int(outside[0])
+            raise InputError(
+                f"{name} {i + 1} at x={xy[i, 0]:.4f} m, y={xy[i, 1]:.4f} m lies outside the string "
+                f"bed (ellipse centre x={self.centre_x_m:.4f} m, half-axes "
+                f"{self.half_length_m:.4f} × {self.half_width_m:.4f} m); give points on the strings"
+            )
+
+
+@dataclass(frozen=True)
+class MassProperties:
+    """Rigid-body mass properties for motion normal to the string face.
+
+    Parameters
+    ----------
+    mass_kg : float
+        Total mass, kg.
+    centre_m : tuple of float
+        Centre of mass ``(x, y)``, m.
+    inertia_kgm2 : ndarray, shape (2, 2)
+        Inertia tensor about the centre of mass for rotation about the in-plane axes, kg·m²:
+        ``[[I_roll, I_xy], [I_xy, I_pitch]]`` with ``I_roll = Σ m y²`` (about the long axis),
+        ``I_pitch = Σ m x²`` (about an axis across the handle) and ``I_xy = -Σ m x y``.
+    """
+
+    mass_kg: float
+    centre_m: tuple[float, float]
+    inertia_kgm2: NDArray[np.float64]
+
+    def inertia_about(self, point: tuple[float, float]) -> NDArray[np.float64]:
+        """Inertia tensor about a point in the plane of the face (parallel-axis theorem), kg·m²."""
+        dx = self.centre_m[0] - point[0]
+        dy = self.centre_m[1] - point[1]
+        shift = self.mass_kg * np.array([[dy * dy, -dx * dy], [-dx * dy, dx * dx]])
+        return np.asarray(self.inertia_kgm2 + shift)
+
+    def with_point_masses(self, point_masses: tuple[PointMass, ...]) -> MassProperties:
+        """Mass properties with point masses added (a new object; this one is unchanged)."""
+        if not point_masses:
+            return self
+        masses = np.array([self.mass_kg] + [p.mass_kg for p in point_masses])
+        xs = np.array([self.centre_m[0]] + [p.x_m for p in point_masses])
+        ys = np.array([self.centre_m[1]] + [p.y_m for p in point_masses])
+        total = float(masses.sum())
+        centre = (float(masses @ xs / total), float(masses @ ys / total))
+        inertia = self.inertia_about(centre)
+        for p in point_masses:
+            dx, dy = p.x_m - centre[0], p.y_m - centre[1]
+            inertia = inertia + p.mass_kg * np.array([[dy * dy, -dx * dy], [-dx * dy, dx * dx]])
+        return MassProperties(total, centre, inertia)
+
+    def reduced_mass(
+        self, locations: ArrayLike, pivot: tuple[float, float] | None = None
+    ) -> NDArray[np.float64]:
+        """Reduced (effective) mass at each impact location for a force normal to the face, kg.
+
+        Free body (``pivot=None``): ``1/M_r = 1/M + uᵀ I_G⁻¹ u`` with ``u = (y - y_G, -(x - x_G))``,
+        which for a symmetric racket is ``1/M + b²/I_G + y²/I_roll`` (b the distance from the
+        centre of mass along the long axis).  Pinned at ``pivot``: ``1/M_r = uᵀ I_A⁻¹ u`` with
+        ``u`` and ``I_A`` taken about the pivot, i.e. the paper's eq (4) ``M_r = I_A / L_A²`` plus
+        the roll term.
+        """
+        xy = as_locations(locations)
+        if pivot is None:
+            origin, inertia, translation = self.centre_m, self.inertia_kgm2, 1.0 / self.mass_kg
+        else:
+            origin, inertia, translation = pivot, self.inertia_about(pivot), 0.0
+        lever = np.column_stack([xy[:, 1] - origin[1], -(xy[:, 0] - origin[0])])
+        compliance = np.einsum("ni,ij,nj->n", lever, np.linalg.inv(inertia), lever)
+        with np.errstate(divide="ignore"):
+            return np.asarray(1.0 / (translation + compliance))
+
+
+@dataclass(frozen=True)
+class StringBed:
+    """String-bed construction, for the default string restoring force and membrane mode.
+
+    Parameters
+    ----------
+    tension_n : float
+        Reference tension of each string, N (the paper's racket: 246 N, 55 lb).
+    mains, crosses : int
+        Number of main strings (running along the racket) and cross strings.
+    string_diameter_m : float
+        Gauge of the string, m.
+    string_modulus_pa : float
+        Axial (Young's) modulus of the string, Pa, for the stretching term of Kawazoe's law.
+    mass_kg : float or None
+        Mass of the strings, kg; ``None`` means 4 % of the racket mass (the paper, section 2).
+    load_deflection_file : Path or None
+        Measured string-bed load–deflection CSV; if given it replaces the Kawazoe law.
+    """
+
+    tension_n: float = 246.0
+    mains: int = 16
+    crosses: int = 19
+    string_diameter_m: float = 1.30e-3
+    string_modulus_pa: float = 5.0e9
+    mass_kg: float | None = None
+    load_deflection_file: Path | None = None
+
+    def __post_init__(self) -> None:
+        require_positive("strings.tension_n", self.tension_n)
+        require_positive("strings.string_diameter_m", self.string_diameter_m)
+        require_positive("strings.string_modulus_pa", self.string_modulus_pa)
+        for name in ("mains", "crosses"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+                raise InputError(
+                    f"strings.{name} must be a whole number of at least 1 (got {value!r})"
+                )
+        if self.mass_kg is not None:
+            require_positive("strings.mass_kg", self.mass_kg)
+
+    @property
+    def axial_stiffness_n(self) -> float:
+        """Axial stiffness A·E of one string, N."""
+        return float(np.pi / 4 * self.string_diameter_m**2 * self.string_modulus_pa)
+
+    def spacing_m(self, head: HeadEllipse) -> tuple[float, float]:
+        """Mean spacing of the mains (across) and of the crosses (along), m."""
+        return (
+            2 * head.half_width_m / (self.mains + 1),
+            2 * head.half_length_m / (self.crosses + 1),
+        )
+
+
+@dataclass(frozen=True)
+class Racket:
+    """A tennis racket as racketdyn sees it: mass properties, head, strings, optional modes.
+
+    The mass, balance and inertias describe the racket as strung, without ``point_masses``;
+    the derived properties (:attr:`mass_properties` and everything built on it) fold the point
+    masses in.
+
+    Parameters
+    ----------
+    name : str
+        Free text for tables and reports.
+    mass_kg : float
+        Strung mass, kg.
+    length_m : float
+        Overall length, m.
+    balance_m : float
+        Centre of mass (balance point) from the butt, m.
+    inertia_cg_kgm2 : float
+        Moment of inertia about an axis across the handle through the centre of mass, kg·m².
+    roll_inertia_kgm2 : float
+        Moment of inertia about the long axis (twistweight ×1e-4), kg·m².
+    head : HeadEllipse
+        String-bed ellipse.
+    strings : StringBed
+        String-bed construction.
+    grip_m : float
+        Grip (pivot) axis from the butt, m: the paper's 70 mm, the middle of a hand.
+    point_masses : tuple of PointMass
+        Added masses (lead tape).
+    modal_model_file : Path or None
+        A modal model (racketdyn JSON) to use instead of the built-in beam model.
+    first_bending_hz, twisting_hz : float
+        Targets for the built-in modal model's free 2-node bending and 2-node twisting modes, Hz.
+    """
+
+    name: str
+    mass_kg: float
+    length_m: float
+    balance_m: float
+    inertia_cg_kgm2: float
+    roll_inertia_kgm2: float
+    head: HeadEllipse
+    strings: StringBed = field(default_factory=StringBed)
+    grip_m: float = 0.070
+    point_masses: tuple[PointMass, ...] = ()
+    modal_model_file: Path | None = None
+    first_bending_hz: float = 120.0
+    twisting_hz: float = 361.0
+
+    def __post_init__(self) -> None:
+        require_positive("racket.mass_kg", self.mass_kg)
+        require_positive("racket.length_m", self.length_m)
+        require_positive("racket.inertia_cg_kgm2", self.inertia_cg_kgm2)
+        require_positive("racket.roll_inertia_kgm2", self.roll_inertia_kgm2)
+        require_positive("modal.first_bending_hz", self.first_bending_hz)
+        require_positive("modal.twisting_hz", self.twisting_hz)
+        require_positive("racket.balance_m", self.balance_m)
+        if self.balance_m >= self.length_m:
+            raise InputError(
+                f"racket.balance_m ({self.balance_m} m) must lie between the butt and the tip "
+                f"(0 < balance_m < length_m = {self.length_m} m)"
+            )
+        require_positive("racket.grip_m", self.grip_m, allow_zero=True)
+        if self.grip_m >= self.balance_m:
+            raise InputError(
+                f"racket.grip_m ({self.grip_m} m) must lie between the butt and the balance point "
+                f"({self.balance_m} m)"
+            )
+        if self.head.tip_x_m > self.length_m + 1e-9 or self.head.throat_x_m <= self.grip_m:
+            raise InputError(
+                f"head ellipse (x from {self.head.throat_x_m:.3f} to {self.head.tip_x_m:.3f} m) "
+                f"must lie between the grip ({self.grip_m} m) and the tip "
+                f"(length_m = {self.length_m} m)"
+            )
+        for i, p in enumerate(self.point_masses):
+            if not 0.0 <= p.x_m <= self.length_m:
+                raise InputError(
+                    f"point_masses[{i}].x_m ({p.x_m} m) must lie on the racket "
+                    f"(0 to {self.length_m} m)"
+                )
+
+    # --- mass properties -------------------------------------------------------------------
+    @property
+    def base_mass_properties(self) -> MassProperties:
+        """Mass properties of the racket without point masses."""
+        inertia = np.diag([self.roll_inertia_kgm2, self.inertia_cg_kgm2])
+        return MassProperties(self.mass_kg, (self.balance_m, 0.0), inertia)
+
+    @property
+    def mass_properties(self) -> MassProperties:
+        """Mass properties with the point masses folded in."""
+        return self.base_mass_properties.with_point_masses(self.point_masses)
+
+    @property
+    def pivot_m(self) -> tuple[float, float]:
+        """The grip pivot ``(grip_m, 0)`` used by the ``pinned`` support, m."""
+        return (self.grip_m, 0.0)
+
+    def inertia_about_axis(self, x_m: float) -> float:
+        """Moment of inertia about an axis across the handle at ``x_m`` from the butt, kg·m².
+
+        Parallel-axis theorem: ``I = I_G + M (x_G - x)²`` (point masses included).
+        """
+        return float(self.mass_properties.inertia_about((x_m, 0.0))[1, 1])
+
+    @property
+    def swingweight_kgcm2(self) -> float:
+        """Swingweight: inertia about the axis 100 mm from the butt, kg·cm²."""
+        return self.inertia_about_axis(SWINGWEIGHT_AXIS_M) * KGM2_TO_KGCM2
+
+    @property
+    def twistweight_kgcm2(self) -> float:
+        """Twistweight: inertia about the long axis, kg·cm²."""
+        return float(self.mass_properties.inertia_about((0.0, 0.0))[0, 0]) * KGM2_TO_KGCM2
+
+    @property
+    def recoil_weight_kgcm2(self) -> float:
+        """Recoil weight: inertia about the balance point (``SW − M (x_G − 0.1 m)²``), kg·cm²."""
+        return float(self.mass_properties.inertia_kgm2[1, 1]) * KGM2_TO_KGCM2
+
+    def centre_of_percussion_m(self, pivot_x_m: float | None = None) -> float:
+        """Centre of percussion for a pivot on the long axis, m from the butt.
+
+        ``x_cop = x_p + I_p / (M (x_G − x_p))``: an impact there leaves the pivot at rest.
+        ``pivot_x_m`` defaults to the grip.
+        """
+        props = self.mass_properties
+        pivot = self.grip_m if pivot_x_m is None else pivot_x_m
+        arm = props.centre_m[0] - pivot
+        if arm <= 0:
+            raise InputError(f"pivot ({pivot} m) must lie between the butt and the balance point")
+        return pivot + self.inertia_about_axis(pivot) / (props.mass_kg * arm)
+
+    def reduced_mass(self, locations: ArrayLike, support: str) -> NDArray[np.float64]:
+        """Reduced mass at each impact location for a support condition, kg.
+
+        ``free``: ``1/M_r = 1/M + b²/I_G + y²/I_roll`` (with point masses, the full in-plane
+        inertia tensor).  ``pinned``: the paper's eq (4), ``M_r = I_A / L_A²``, about the grip,
+        with the roll term ``y²/I_roll`` added.
+        """
+        one_of("support", support, SUPPORTS)
+        pivot = None if support == "free" else self.pivot_m
+        return self.mass_properties.reduced_mass(locations, pivot)
+
+    def with_point_masses(self, *point_masses: PointMass) -> Racket:
+        """A copy with more point masses."""
+        return replace(self, point_masses=self.point_masses + tuple(point_masses))
+
+    def derived_properties(self) -> dict[str, float]:
+        """The derived properties, keyed with unit-bearing names (for tables and run records)."""
+        props = self.mass_properties
+        centre = self.head.centre_x_m, self.head.centre_y_m
+        return {
+            "mass_kg": props.mass_kg,
+            "balance_m": props.centre_m[0],
+            "inertia_cg_kgm2": float(props.inertia_kgm2[1, 1]),
+            "inertia_grip_kgm2": self.inertia_about_axis(self.grip_m),
+            "swingweight_kgcm2": self.swingweight_kgcm2,
+            "twistweight_kgcm2": self.twistweight_kgcm2,
+            "recoil_weight_kgcm2": self.recoil_weight_kgcm2,
+            "centre_of_percussion_m": self.centre_of_percussion_m(),
+            "head_area_cm2": self.head.area_m2 * 1e4,
+            "reduced_mass_centre_free_kg": float(self.reduced_mass(centre, "free")[0]),
+            "reduced_mass_centre_pinned_kg": float(self.reduced_mass(centre, "pinned")[0]),
+        }

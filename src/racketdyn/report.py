@@ -1,0 +1,179 @@
+"""The paper's figures for a racket, written as PNG files.
+
+Each figure recomputes the predictions it needs on its own points and speeds, so it does not
+depend on the points a user asked for in ``impact.csv``.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.figure import Figure
+
+from racketdyn.ball import Ball
+from racketdyn.impact import predict
+from racketdyn.modal.model import ModalModel
+from racketdyn.plotting import (
+    plot_along_axis,
+    plot_face_map,
+    plot_frame_amplitude,
+    plot_speed_curves,
+)
+from racketdyn.racket import Racket
+
+__all__ = ["FIGURES", "landmark_points", "write_paper_figures"]
+
+log = logging.getLogger(__name__)
+
+CURVE_SPEEDS_MPS = np.linspace(5.0, 50.0, 46)
+VIBRATION_SPEEDS_MPS = (10.0, 20.0, 30.0)
+REBOUND_SPEED_MPS = 20.0
+
+
+def landmark_points(racket: Racket) -> dict[str, tuple[float, float]]:
+    """Named impact points on the long axis: top, centre and throat (Figs 11–12), tip (Fig. 14).
+
+    Top and throat lie three quarters of the half-length from the centre; the tip 90 %.
+    """
+    head = racket.head
+    a, xc, yc = head.half_length_m, head.centre_x_m, head.centre_y_m
+    return {
+        "top": (xc + 0.75 * a, yc),
+        "centre": (xc, yc),
+        "throat": (xc - 0.75 * a, yc),
+        "tip": (xc + 0.9 * a, yc),
+    }
+
+
+def _save(figure: Figure, path: Path) -> Path:
+    figure.savefig(path, dpi=150)
+    plt.close(figure)
+    return path
+
+
+def figure_force_and_contact_time(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
+    """Paper Figs 11 and 12: F_MEAN and T_c against speed at the top, centre and throat."""
+    marks = landmark_points(racket)
+    names = ["top", "centre", "throat"]
+    result = predict(
+        racket,
+        ball,
+        [marks[n] for n in names],
+        CURVE_SPEEDS_MPS,
+        ("pinned", "free"),
+        modal_model=model,
+        labels=names,
+    )
+    figure, axes = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
+    plot_speed_curves(result, "mean_force", names, ax=axes[0])
+    plot_speed_curves(result, "contact_time", names, ax=axes[1])
+    axes[0].set_title("Fig. 11: equivalent impact force", fontsize=9)
+    axes[1].set_title("Fig. 12: contact time", fontsize=9)
+    figure.suptitle(racket.name, fontsize=10)
+    return figure
+
+
+def figure_frame_vibration(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
+    """Paper Fig. 14: first-mode displacement along the frame for an impact at the tip."""
+    figure, axes = plt.subplots(1, 2, figsize=(10, 4), layout="constrained", sharey=True)
+    if model is None:
+        for ax in axes:
+            ax.text(0.5, 0.5, "rigid racket: no vibration", ha="center", transform=ax.transAxes)
+        return figure
+    result = predict(
+        racket,
+        ball,
+        [landmark_points(racket)["tip"]],
+        VIBRATION_SPEEDS_MPS,
+        ("free", "pinned"),
+        modal_model=model,
+        labels=["tip"],
+    )
+    along = np.linspace(0.0, racket.length_m, 121)
+    for ax, support in zip(axes, ("free", "pinned"), strict=True):
+        plot_frame_amplitude(result, along, mode=0, support=support, ax=ax)
+    figure.suptitle(
+        "Fig. 14: predicted frame vibration just after an impact at the tip (first mode only)",
+        fontsize=10,
+    )
+    return figure
+
+
+def figure_rebound_along_axis(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
+    """Paper Fig. 15: rebound ratio along the long axis at 20 m/s, free against pinned."""
+    head = racket.head
+    x = np.linspace(
+        head.throat_x_m + 0.05 * head.half_length_m, head.tip_x_m - 0.05 * head.half_length_m, 31
+    )
+    points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
+    result = predict(
+        racket, ball, points, [REBOUND_SPEED_MPS], ("pinned", "free"), modal_model=model
+    )
+    marks = {"centre of percussion (grip)": racket.centre_of_percussion_m()}
+    if model is not None and model.n_modes:
+        marks.update(_first_mode_nodes(model, head.throat_x_m, head.tip_x_m))
+    figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
+    plot_along_axis(result, "rebound_ratio", 0, ax=ax, marks=marks)
+    ax.set_title(
+        f"Fig. 15: predicted rebound ratio, ball at {REBOUND_SPEED_MPS:g} m/s on a racket at rest",
+        fontsize=9,
+    )
+    return figure
+
+
+def _first_mode_nodes(model: ModalModel, x_low: float, x_high: float) -> dict[str, float]:
+    x = np.linspace(x_low, x_high, 400)
+    shape = model.mode_shapes_at(np.column_stack([x, np.zeros_like(x)]))[:, 0]
+    crossings = np.flatnonzero(np.sign(shape[:-1]) != np.sign(shape[1:]))
+    nodes = {}
+    for i in crossings:
+        x0 = x[i] - shape[i] * (x[i + 1] - x[i]) / (shape[i + 1] - shape[i])
+        nodes[f"node of {model.names[0]}"] = float(x0)
+    return nodes
+
+
+def figure_face_maps(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
+    """Face maps at 20 m/s: rebound ratio (free, pinned), contact time, vibration energy."""
+    points = racket.head.grid(25)
+    result = predict(
+        racket, ball, points, [REBOUND_SPEED_MPS], ("pinned", "free"), modal_model=model
+    )
+    figure, axes = plt.subplots(2, 2, figsize=(10, 7.5), layout="constrained")
+    plot_face_map(result, racket, "rebound_ratio", 0, "pinned", ax=axes[0, 0])
+    plot_face_map(result, racket, "rebound_ratio", 0, "free", ax=axes[0, 1])
+    plot_face_map(result, racket, "contact_time", 0, "pinned", ax=axes[1, 0])
+    plot_face_map(result, racket, "vibration_energy", 0, "pinned", ax=axes[1, 1])
+    figure.suptitle(
+        f"{racket.name}: ball at {REBOUND_SPEED_MPS:g} m/s on a racket at rest", fontsize=10
+    )
+    return figure
+
+
+FIGURES: dict[str, Callable[[Racket, Ball, ModalModel | None], Figure]] = {
+    "fig11_12_force_contact_time.png": figure_force_and_contact_time,
+    "fig14_frame_vibration.png": figure_frame_vibration,
+    "fig15_rebound_along_axis.png": figure_rebound_along_axis,
+    "face_maps.png": figure_face_maps,
+}
+"""File name → figure builder."""
+
+
+def write_paper_figures(
+    racket: Racket,
+    ball: Ball,
+    model: ModalModel | None,
+    out_dir: Path,
+    progress: Callable[[str], None] | None = None,
+) -> list[Path]:
+    """Draw every figure in :data:`FIGURES` into ``out_dir``; returns the paths written."""
+    written = []
+    for name, build in FIGURES.items():
+        if progress is not None:
+            progress(name)
+        written.append(_save(build(racket, ball, model), Path(out_dir) / name))
+        log.info("wrote %s", written[-1])
+    return written
