@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from dataclasses import replace
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -173,16 +174,6 @@ def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
             raise InputError(f"{path}: {error}") from None
 
     mass, balance = float(body["mass_kg"]), float(body["balance_m"])
-    if "swingweight_kgcm2" in body:
-        inertia_cg = (
-            body["swingweight_kgcm2"] / KGM2_TO_KGCM2 - mass * (balance - SWINGWEIGHT_AXIS_M) ** 2
-        )
-        if inertia_cg <= 0:
-            raise InputError(
-                f"{where}.swingweight_kgcm2 is too small for the mass and balance given"
-            )
-    else:
-        inertia_cg = float(body["inertia_cg_kgm2"])
     head_args = {k: float(v) for k, v in head_table.items() if k != "area_cm2"}
     if "area_cm2" in head_table:
         if head_table["area_cm2"] <= 0 or head_table["half_length_m"] <= 0:
@@ -198,12 +189,11 @@ def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
     strings = guarded(StringBed, **strings_args)
 
     length = float(body["length_m"])
+    roll: float | None = None
     if "roll_inertia_kgm2" in body:
         roll = float(body["roll_inertia_kgm2"])
     elif "twistweight_kgcm2" in body:
         roll = float(body["twistweight_kgcm2"]) / KGM2_TO_KGCM2
-    else:
-        roll = guarded(hoop_roll_inertia, length, mass, balance, inertia_cg, head)
     modal_file = modal_table.get("file")
     racket: Racket = guarded(
         Racket,
@@ -211,8 +201,9 @@ def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
         mass_kg=mass,
         length_m=length,
         balance_m=balance,
-        inertia_cg_kgm2=inertia_cg,
-        roll_inertia_kgm2=roll,
+        # derived values get placeholders: the racket's own checks run first, on what was given
+        inertia_cg_kgm2=float(body.get("inertia_cg_kgm2", 1.0)),
+        roll_inertia_kgm2=1.0 if roll is None else roll,
         head=head,
         strings=strings,
         grip_m=float(body.get("grip_m", 0.070)),
@@ -221,6 +212,21 @@ def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
         first_bending_hz=float(modal_table.get("first_bending_hz", 120.0)),
         twisting_hz=float(modal_table.get("twisting_hz", 361.0)),
     )
+    if "swingweight_kgcm2" in body:
+        swing_axis = SWINGWEIGHT_AXIS_M
+        inertia_cg = body["swingweight_kgcm2"] / KGM2_TO_KGCM2 - mass * (balance - swing_axis) ** 2
+        if inertia_cg <= 0:
+            raise InputError(
+                f"{where}.swingweight_kgcm2 ({body['swingweight_kgcm2']}) must exceed "
+                f"M (x_G - 0.1 m)² = {mass * (balance - swing_axis) ** 2 * KGM2_TO_KGCM2:.1f} "
+                "kg·cm² for this mass and balance"
+            )
+        racket = guarded(replace, racket, inertia_cg_kgm2=inertia_cg)
+    if roll is None:
+        derived = guarded(
+            hoop_roll_inertia, length, mass, balance, racket.inertia_cg_kgm2, racket.head
+        )
+        racket = replace(racket, roll_inertia_kgm2=derived)
     return racket
 
 

@@ -126,7 +126,7 @@ class ModalModel:
             dict(self.metadata),
         )
 
-    @property
+    @cached_property
     def frame_modes(self) -> ModalModel:
         """The model without string-bed modes (names containing ``string-bed``)."""
         keep = [k for k, name in enumerate(self.names) if "string-bed" not in name]

@@ -1,0 +1,222 @@
+"""End-to-end tests of the ``racketdyn`` command line, run in-process through ``main``."""
+
+from __future__ import annotations
+
+import csv
+import json
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+
+import racketdyn
+from racketdyn.cli import main
+
+DEFAULT_TOML = Path(racketdyn.__file__).parent / "data" / "kawazoe_2002.toml"
+
+IMPACT_COLUMNS = [
+    "point",
+    "x_m",
+    "y_m",
+    "support",
+    "ball_speed_mps",
+    "racket_speed_mps",
+    "reduced_mass_kg",
+    "stiffness_n_per_m",
+    "contact_time_s",
+    "mean_force_n",
+    "peak_force_n",
+    "vibration_energy_j",
+    "cor",
+    "rebound_ratio",
+    "rebound_speed_mps",
+]
+
+FIGURE_NAMES = [
+    "fig11_12_force_contact_time.png",
+    "fig14_frame_vibration.png",
+    "fig15_rebound_along_axis.png",
+    "face_maps.png",
+]
+
+
+def _read_csv(path: Path) -> tuple[list[str], list[dict[str, str]]]:
+    with path.open(newline="", encoding="utf-8") as handle:
+        reader = csv.DictReader(handle)
+        rows = list(reader)
+        return list(reader.fieldnames or []), rows
+
+
+def _write(path: Path, text: str) -> Path:
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _edited_toml(tmp_path: Path, old: str, new: str) -> Path:
+    """The built-in racket file with one exact edit, written into ``tmp_path``."""
+    text = DEFAULT_TOML.read_text(encoding="utf-8")
+    assert old in text, f"{old!r} not found in {DEFAULT_TOML.name}; update the test"
+    return _write(tmp_path / "racket.toml", text.replace(old, new, 1))
+
+
+def _without_head(tmp_path: Path) -> Path:
+    text = DEFAULT_TOML.read_text(encoding="utf-8")
+    start, end = text.index("[head]"), text.index("[strings]")
+    return _write(tmp_path / "racket.toml", text[:start] + text[end:])
+
+
+def _predict(tmp_path: Path, *extra: str, speed: str = "10") -> list[str]:
+    out = tmp_path / "out"
+    return ["predict", *extra, "--speed", speed, "--no-figures", "--out", str(out)]
+
+
+# --- happy paths -------------------------------------------------------------------------------
+
+
+def test_predict_writes_csv_and_run_record(tmp_path: Path) -> None:
+    args = ["predict", "--speed", "10,20", "--support", "free,pinned", "--grid", "5"]
+    code = main([*args, "--no-figures", "--out", str(tmp_path)])
+
+    assert code == 0
+    header, rows = _read_csv(tmp_path / "impact.csv")
+    assert header[: len(IMPACT_COLUMNS)] == IMPACT_COLUMNS
+    n_points = len(racketdyn.default_racket().head.grid(5))
+    assert n_points > 0
+    assert len(rows) == n_points * 2 * 2
+    assert {row["support"] for row in rows} == {"free", "pinned"}
+    assert {float(row["ball_speed_mps"]) for row in rows} == {10.0, 20.0}
+
+    record = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))
+    assert record["racketdyn_version"] == racketdyn.__version__
+    assert record["speeds_mps"] == [10.0, 20.0]
+    assert record["supports"] == ["free", "pinned"]
+    assert isinstance(record["defaults_used"], list)
+    assert record["defaults_used"]
+    assert record["n_points"] == n_points
+
+
+def test_predict_with_points_file(tmp_path: Path) -> None:
+    points = _write(tmp_path / "points.csv", "x_m,y_m\n0.505,0.0\n0.45,0.02\n0.56,-0.03\n")
+    out = tmp_path / "out"
+    code = main(
+        ["predict", "--points", str(points), "--speed", "15", "--no-figures", "--out", str(out)]
+    )
+
+    assert code == 0
+    _, rows = _read_csv(out / "impact.csv")
+    assert len(rows) == 3 * 1 * 2
+    assert {(float(r["x_m"]), float(r["y_m"])) for r in rows} == {
+        (0.505, 0.0),
+        (0.45, 0.02),
+        (0.56, -0.03),
+    }
+
+
+def test_predict_with_point_off_the_strings_exits_2(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    points = _write(tmp_path / "points.csv", "x_m,y_m\n0.505,0.0\n0.2,0.0\n")
+    assert main(_predict(tmp_path, "--points", str(points))) == 2
+    assert "racketdyn: error:" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_predict_draws_figures(tmp_path: Path) -> None:
+    code = main(["predict", "--speed", "20", "--grid", "4", "--out", str(tmp_path)])
+
+    assert code == 0
+    for name in FIGURE_NAMES:
+        figure = tmp_path / name
+        assert figure.is_file(), f"{name} was not written"
+        assert figure.stat().st_size > 0, f"{name} is empty"
+    record = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))
+    assert set(FIGURE_NAMES) <= set(record["outputs"])
+
+
+def test_racket_prints_properties(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["racket"]) == 0
+    assert "swingweight" in capsys.readouterr().out
+
+
+# --- bad input: one line on stderr, exit status 2, no traceback ------------------------------
+
+# Each case builds the arguments (given tmp_path) and names the words the message must contain.
+BAD_INPUT: dict[str, tuple[Callable[[Path], list[str]], tuple[str, ...]]] = {
+    "point-outside-the-string-bed": (
+        lambda tmp: _predict(
+            tmp, "--points", str(_write(tmp / "points.csv", "x_m,y_m\n0.2,0.0\n"))
+        ),
+        ("impact point", "outside the string bed"),
+    ),
+    "zero-mass": (
+        lambda tmp: _predict(tmp, str(_edited_toml(tmp, "mass_kg = 0.360", "mass_kg = 0"))),
+        ("mass_kg",),
+    ),
+    "negative-mass": (
+        lambda tmp: _predict(tmp, str(_edited_toml(tmp, "mass_kg = 0.360", "mass_kg = -0.3"))),
+        ("mass_kg",),
+    ),
+    "balance-beyond-the-tip": (
+        lambda tmp: _predict(tmp, str(_edited_toml(tmp, "balance_m = 0.308", "balance_m = 0.700"))),
+        ("balance_m",),
+    ),
+    "malformed-TOML": (
+        lambda tmp: _predict(tmp, str(_edited_toml(tmp, "[racket]", "[racket"))),
+        ("racket.toml", "malformed TOML"),
+    ),
+    "unknown-support": (
+        lambda tmp: _predict(tmp, "--support", "free,clamped"),
+        ("--support", "clamped"),
+    ),
+    "non-numeric-speed": (
+        lambda tmp: _predict(tmp, speed="10,fast"),
+        ("--speed", "fast"),
+    ),
+    "negative-speed": (
+        lambda tmp: _predict(tmp, speed="10,-5"),
+        ("--speed", "-5"),
+    ),
+    "unknown-key": (
+        lambda tmp: _predict(tmp, str(_edited_toml(tmp, "mass_kg = 0.360", "mas_kg = 0.360"))),
+        ("mas_kg",),
+    ),
+    "missing-head-table": (
+        lambda tmp: _predict(tmp, str(_without_head(tmp))),
+        ("[head]", "missing"),
+    ),
+    "nonexistent-racket-file": (
+        lambda tmp: _predict(tmp, str(tmp / "no_such_racket.toml")),
+        ("no_such_racket.toml",),
+    ),
+    "points-without-y_m": (
+        lambda tmp: _predict(
+            tmp, "--points", str(_write(tmp / "points.csv", "x_m,z_m\n0.5,0.0\n"))
+        ),
+        ("y_m",),
+    ),
+    "points-with-a-non-number": (
+        lambda tmp: _predict(
+            tmp, "--points", str(_write(tmp / "points.csv", "x_m,y_m\n0.5,0.0\n0.5,abc\n"))
+        ),
+        ("y_m", "abc"),
+    ),
+}
+
+
+@pytest.mark.parametrize("case", list(BAD_INPUT))
+def test_bad_input_is_one_line_and_exit_2(
+    case: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    build, words = BAD_INPUT[case]
+
+    code = main(build(tmp_path))
+
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    lines = err.splitlines()
+    assert len(lines) == 1, f"expected one line on stderr, got {lines!r}"
+    assert lines[0].startswith("racketdyn: error:"), lines[0]
+    for word in words:
+        assert word in lines[0], f"{word!r} not named in {lines[0]!r}"
+    assert code == 2
+    assert not (tmp_path / "out" / "impact.csv").exists()
