@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -38,7 +39,8 @@ CSV_COLUMNS = (
     "peak_deflection_m",
     "status",
 )
-"""Columns of ``impact.csv`` (the first fifteen in the order the foundation issue fixes)."""
+"""Columns of ``impact.csv`` (the first fifteen in the order the foundation issue fixes); one
+``energy_<mode name>_j`` column per mode follows."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -159,10 +161,11 @@ class ImpactResult:
             "peak_deflection_m": self.peak_deflection,
             "status": self.status,
         }
-        flat = {name: np.asarray(values).reshape(-1) for name, values in table.items()}
+        flat = {name: np.asarray(table[name]).reshape(-1) for name in CSV_COLUMNS}
         if self.modal_model is not None:
-            for k in range(self.modal_model.n_modes):
-                flat[f"energy_mode{k + 1}_j"] = self.mode_energy[..., k].reshape(-1)
+            for k, name in enumerate(self.modal_model.names):
+                slug = re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_")
+                flat[f"energy_{slug}_j"] = self.mode_energy[..., k].reshape(-1)
         return flat
 
     def write_csv(self, path: Path) -> None:
