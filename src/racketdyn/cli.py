@@ -185,6 +185,7 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
             console.print(
                 f"[yellow]{count} impacts: {reason}; their results are NaN in impact.csv[/]"
             )
+    console.print(f"compound ball+string law: {law.describe()}")
     for path in written:
         console.print(f"  wrote {path}")
     return 0

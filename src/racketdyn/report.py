@@ -14,6 +14,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
+from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball
 from racketdyn.impact import predict
 from racketdyn.modal.model import ModalModel
@@ -50,7 +51,7 @@ def landmark_points(racket: Racket) -> dict[str, tuple[float, float]]:
 
 
 def _save(figure: Figure, path: Path) -> Path:
-    figure.savefig(path, dpi=150)
+    figure.savefig(path, dpi=150, metadata={"Software": f"racketdyn {__version__}"})
     plt.close(figure)
     return path
 

@@ -62,7 +62,20 @@ def _numbers(path: Path, columns: dict[str, list[str]], name: str) -> NDArray[np
 
 
 def read_points(path: Path) -> tuple[NDArray[np.float64], list[str]]:
-    """Read impact points: returns locations ``(n, 2)`` in m and their labels."""
+    """Read impact points from a CSV file.
+
+    Parameters
+    ----------
+    path : Path
+        CSV with columns ``x_m``, ``y_m`` (m) and optionally ``point`` (labels).
+
+    Returns
+    -------
+    locations : ndarray, shape (n, 2)
+        Impact points (x, y), m.
+    labels : list of str
+        The ``point`` column, or 1, 2, … without one.
+    """
     columns = _read_columns(path, ("x_m", "y_m"))
     x = _numbers(path, columns, "x_m")
     y = _numbers(path, columns, "y_m")
@@ -73,6 +86,17 @@ def read_points(path: Path) -> tuple[NDArray[np.float64], list[str]]:
 
 
 def read_load_deflection(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Read load–deflection data: returns deflection (m) and force (N)."""
+    """Read load–deflection data from a CSV file.
+
+    Parameters
+    ----------
+    path : Path
+        CSV with columns ``deflection_m`` (m) and ``force_n`` (N).
+
+    Returns
+    -------
+    deflection, force : ndarray
+        Deflection in m and force in N.
+    """
     columns = _read_columns(path, ("deflection_m", "force_n"))
     return _numbers(path, columns, "deflection_m"), _numbers(path, columns, "force_n")

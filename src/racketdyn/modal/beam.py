@@ -6,7 +6,8 @@ Derivation (documented in docs/develop.md, "Built-in modal model"):
   The mass per unit length of each element is the smallest departure from a uniform racket
   (least squares) whose mass, balance point and moment of inertia about the balance point equal
   the racket's.  The cubic (Hermite) element reproduces rigid-body motion exactly, so the FE
-  model has exactly those rigid-body properties.  Point masses are lumped on the nearest node.
+  model has exactly those rigid-body properties.  Point masses are lumped on the nearest node
+  after the stiffnesses are calibrated, so lead tape shifts the frequencies.
 * **Bending.**  Uniform bending stiffness EI, scaled so that the first flexible (2-node bending)
   mode of the free beam sits at ``racket.first_bending_hz`` (paper, section 3.2: ≈ 120 Hz).
   With one free parameter, uniform EI is the least-assumption choice.
@@ -185,20 +186,26 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
     mid, step = 0.5 * (x[:-1] + x[1:]), np.diff(x)
     nearest = [int(np.argmin(np.abs(x - p.x_m))) for p in racket.point_masses]
 
+    # Stiffnesses are calibrated on the racket as described (without point masses): the targets
+    # are its measured frequencies; lead tape then shifts the modes, as it would on the racket.
     stiffness, mass = _bending_matrices(x, density)
+    bare_omega2, _ = _flexible_modes(stiffness, mass, 2, n_bending)
+    bending_stiffness = (2 * np.pi * racket.first_bending_hz) ** 2 / bare_omega2[0]
     for node, p in zip(nearest, racket.point_masses, strict=True):
         mass[2 * node, 2 * node] += p.mass_kg
     omega2, vectors = _flexible_modes(stiffness, mass, 2, n_bending)
-    bending_stiffness = (2 * np.pi * racket.first_bending_hz) ** 2 / omega2[0]
     bending_omega = np.sqrt(omega2 * bending_stiffness)
     bending_shapes = vectors[0::2, :]  # displacement DOFs, mass-normalised
 
     roll_density = density * _section_radius(racket.head, mid) ** 2
     roll_density *= racket.roll_inertia_kgm2 / np.sum(roll_density * step)
     t_stiffness, t_inertia = _torsion_matrices(x, roll_density)
+    bare_t_omega2, _ = _flexible_modes(t_stiffness, t_inertia, 1, 1)
+    torsional_stiffness = (2 * np.pi * racket.twisting_hz) ** 2 / bare_t_omega2[0]
     for node, p in zip(nearest, racket.point_masses, strict=True):
         t_inertia[node, node] += p.mass_kg * p.y_m**2
     t_omega2, t_vectors = _flexible_modes(t_stiffness, t_inertia, 1, 1)
+    twist_omega = np.sqrt(t_omega2[0] * torsional_stiffness)
     twist_shape = t_vectors[:, 0]
 
     head, strings = racket.head, racket.strings
@@ -227,7 +234,6 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
     columns = [on_nodes(bending_shapes[:, k]) for k in range(n_bending)]
     columns.append(on_nodes(twist_shape) * (locations[:, 1] - head.centre_y_m))
     columns.append(np.where(rho < 1.0, membrane_scale * (1.0 - rho**2), 0.0))
-    twist_omega = 2 * np.pi * racket.twisting_hz
     frequency = np.concatenate([bending_omega, [twist_omega, membrane_omega]]) / (2 * np.pi)
     names = (
         *(f"{k + 2}-node bending" for k in range(n_bending)),
@@ -245,7 +251,7 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
         source=f"built-in beam model of {racket.name}",
         metadata={
             "bending_stiffness_nm2": float(bending_stiffness),
-            "torsional_stiffness_nm2_per_rad": float(twist_omega**2 / t_omega2[0]),
+            "torsional_stiffness_nm2_per_rad": float(torsional_stiffness),
             "string_mass_kg": float(string_mass),
             "elements": N_ELEMENTS,
         },
