@@ -63,8 +63,8 @@ def test_series_deflections_add(law: RestoringForce, racket: rd.Racket, ball: rd
     strings = rd.string_bed_law(racket, ball)
     force = np.linspace(10, 0.95 * law.max_force_n, 20)
     expected = ball.restoring_force.deflection(force) + strings.deflection(force)
-    # the degree-5 fit is within 0.1 mm of the exact series curve
-    np.testing.assert_allclose(law.deflection(force), expected, atol=1e-4)
+    # the degree-5 fit is within 30 µm of the exact series curve (measured: 14 µm)
+    np.testing.assert_allclose(law.deflection(force), expected, atol=3e-5)
     assert law.rms_residual_n < 1.0
 
 
@@ -97,8 +97,20 @@ def test_kawazoe_string_law(racket: rd.Racket, ball: rd.Ball) -> None:
     assert 20e3 < law.stiffness(0.0) < 40e3
 
 
+def test_power_fit_needs_positive_forces() -> None:
+    with pytest.raises(InputError, match="positive forces"):
+        RestoringForce.fit(np.linspace(0.001, 0.01, 5), np.zeros(5), "power")
+
+
+def test_nan_coefficients_are_rejected() -> None:
+    with pytest.raises(InputError, match="finite"):
+        RestoringForce("polynomial", (1.0e4, float("nan")), 0.02)
+
+
 def test_ball_rejects_bad_values() -> None:
     with pytest.raises(InputError, match="ball mass_kg"):
         rd.Ball(mass_kg=-0.05)
     with pytest.raises(InputError, match="ball e_bg"):
         rd.Ball(e_bg=1.2)
+    with pytest.raises(InputError, match="ball e_bg must be above 0"):
+        rd.Ball(e_bg=0.0)

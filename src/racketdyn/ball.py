@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import least_squares
 
 from racketdyn.errors import InputError, one_of, require_positive, require_range
+from racketdyn.numerics import invert_increasing
 
 __all__ = [
     "ITF_FORWARD_DEFORMATION_M",
@@ -39,8 +40,6 @@ LAW_KINDS: tuple[str, ...] = get_args(LawKind)
 # between two plates under 80.1 N.  The middle of the range is used.
 ITF_FORWARD_LOAD_N = 80.1
 ITF_FORWARD_DEFORMATION_M = 0.5 * (0.56e-2 + 0.74e-2)
-
-_TABLE_POINTS = 4097
 
 
 @dataclass(frozen=True)
@@ -75,6 +74,8 @@ class RestoringForce:
             raise InputError("a power law takes two coefficients (c, n) for F = c X^n")
         if not self.coefficients:
             raise InputError("a polynomial restoring force needs at least one coefficient")
+        if not all(np.isfinite(self.coefficients)):
+            raise InputError(f"restoring force ({self.source}): coefficients must be finite")
         x = np.linspace(0.0, self.max_deflection_m, 257)[1:]
         if np.any(self.stiffness(x) <= 0.0):
             raise InputError(
@@ -129,18 +130,12 @@ class RestoringForce:
         return float(self.force(self.max_deflection_m))
 
     def deflection(self, force: ArrayLike) -> NDArray[np.float64]:
-        """Inverse law X(F), m; NaN beyond the valid range.
+        """Inverse law X(F), m; NaN beyond the valid range."""
+        return invert_increasing(self.force, self.stiffness, force, self.max_deflection_m)
 
-        A monotone table gives the first guess, two Newton steps polish it to round-off.
-        """
-        f = np.asarray(force, dtype=float)
-        table_x = np.linspace(0.0, self.max_deflection_m, _TABLE_POINTS)
-        x = np.interp(f, self.force(table_x), table_x)
-        for _ in range(2):
-            k = self.stiffness(x)
-            step = np.divide(self.force(x) - f, k, out=np.zeros_like(x), where=k > 0)
-            x = np.clip(x - step, 0.0, self.max_deflection_m)
-        return np.asarray(np.where((f < 0) | (f > self.max_force_n * (1 + 1e-12)), np.nan, x))
+    def deflection_at_energy(self, energy: ArrayLike) -> NDArray[np.float64]:
+        """Deflection at which the stored energy ∫F dX reaches ``energy`` (J), m; NaN beyond."""
+        return invert_increasing(self.energy, self.force, energy, self.max_deflection_m)
 
     def describe(self) -> str:
         """One line: the law, its range and fit residual."""
@@ -222,6 +217,8 @@ class RestoringForce:
             coefficients = tuple(float(c) for c in scaled / scale ** np.arange(1, degree + 1))
         else:
             positive = f > 0
+            if positive.sum() < 2:
+                raise InputError(f"{source}: a power law needs at least two positive forces")
             slope, intercept = np.polyfit(np.log(x[positive] / scale), np.log(f[positive]), 1)
 
             def residual(p: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -326,3 +323,7 @@ class Ball:
         require_positive("ball mass_kg", self.mass_kg)
         require_positive("ball diameter_m", self.diameter_m)
         require_range("ball e_bg", self.e_bg, 0.0, 1.0)
+        if self.e_bg == 0:
+            raise InputError(
+                "ball e_bg must be above 0: a ball that does not rebound has no rebound"
+            )

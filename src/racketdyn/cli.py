@@ -18,13 +18,14 @@ from typing import Any
 
 import numpy as np
 from rich.console import Console
+from rich.progress import Progress
 from rich.table import Table
 
 from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of
-from racketdyn.impact import predict
+from racketdyn.errors import InputError, one_of, require_speeds
+from racketdyn.impact import ImpactResult, predict
 from racketdyn.io import (
     default_racket,
     load_racket,
@@ -40,6 +41,8 @@ __all__ = ["main"]
 
 log = logging.getLogger("racketdyn")
 DEFAULT_GRID = 9
+MAX_GRID = 400  # 400 × 400 ≈ 126,000 points: a few seconds a speed
+CHUNK_IMPACTS = 50_000  # above this, predict in chunks of points with a progress bar
 
 
 def _parse_list(name: str, text: str) -> list[str]:
@@ -55,15 +58,12 @@ def _parse_speeds(name: str, text: str) -> list[float]:
     speeds = []
     for item in _parse_list(name, text):
         try:
-            value = float(item)
+            speeds.append(float(item))
         except ValueError:
             raise InputError(
                 f"{name}: {item!r} is not a number; give speeds in m/s, e.g. 10,20,30"
             ) from None
-        if not np.isfinite(value) or value < 0:
-            raise InputError(f"{name}: {item!r} must be a finite speed of zero or more, m/s")
-        speeds.append(value)
-    return speeds
+    return [float(v) for v in require_speeds(name, speeds)]
 
 
 def _load(racket_file: str | None) -> tuple[Racket, dict[str, Any]]:
@@ -106,6 +106,8 @@ def _points(args: argparse.Namespace, racket: Racket) -> tuple[np.ndarray, list[
         locations, labels = read_points(Path(args.points))
         return locations, labels, f"points file {Path(args.points).resolve()}"
     n = DEFAULT_GRID if args.grid is None else args.grid
+    if not 1 <= n <= MAX_GRID:
+        raise InputError(f"--grid must be a whole number from 1 to {MAX_GRID} (got {n})")
     locations = racket.head.grid(n)
     return locations, [str(i + 1) for i in range(len(locations))], f"grid {n} x {n} over the head"
 
@@ -118,6 +120,8 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
     if len(racket_speed) not in (1, len(speeds)):
         raise InputError("--racket-speed takes one speed, or one per --speed value")
     supports = [one_of("--support", s, SUPPORTS) for s in _parse_list("--support", args.support)]
+    if len(set(supports)) != len(supports):
+        raise InputError(f"--support: name each support once (got {args.support})")
     locations, labels, points_source = _points(args, racket)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -128,18 +132,32 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
     model = None if args.rigid else modal_model_for(racket)
     law = compound_law(racket, ball)
 
-    result = predict(
-        racket,
-        ball,
-        locations,
-        speeds,
-        supports,
-        np.asarray(racket_speed),
-        model,
-        labels,
-        law,
-        args.include_string_bed,
-    )
+    options: dict[str, Any] = {
+        "supports": supports,
+        "racket_speed": np.asarray(racket_speed),
+        "modal_model": model,
+        "law": law,
+        "include_string_bed": args.include_string_bed,
+        "stiffness_reading": args.stiffness_reading,
+    }
+    per_point = len(speeds) * len(supports)
+    if len(locations) * per_point <= CHUNK_IMPACTS:
+        result = predict(racket, ball, locations, speeds, labels=labels, **options)
+    else:
+        step = max(CHUNK_IMPACTS // per_point, 1)
+        parts = []
+        with Progress(console=console, transient=True) as progress:
+            task = progress.add_task("predicting", total=len(locations))
+            for start in range(0, len(locations), step):
+                stop = min(start + step, len(locations))
+                chunk_labels = labels[start:stop]
+                parts.append(
+                    predict(
+                        racket, ball, locations[start:stop], speeds, labels=chunk_labels, **options
+                    )
+                )
+                progress.update(task, completed=stop)
+        result = ImpactResult.concatenate(parts)
     result.write_csv(out / "impact.csv")
     written = [out / "impact.csv"]
     if not args.no_figures:
@@ -166,7 +184,6 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
         "supports": supports,
         "points": points_source,
         "n_points": len(locations),
-        "include_string_bed": args.include_string_bed,
         "rigid": args.rigid,
         "defaults_used": defaults,
         **result.inputs,
@@ -245,6 +262,13 @@ def _parser() -> argparse.ArgumentParser:
         "--ball-law", help="ball load-deflection CSV (deflection_m, force_n), one side"
     )
     run.add_argument("--rigid", action="store_true", help="no vibration: a rigid racket")
+    run.add_argument(
+        "--stiffness-reading",
+        choices=("period", "tangent"),
+        default="period",
+        help="reading of the paper's eq 10: the exact elastic half period (default) or the "
+        "tangent stiffness at peak deflection (the paper's shortcut)",
+    )
     run.add_argument(
         "--include-string-bed",
         action="store_true",

@@ -12,7 +12,14 @@ from collections.abc import Iterable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["InputError", "require_finite", "require_positive", "require_range"]
+__all__ = [
+    "InputError",
+    "one_of",
+    "require_finite",
+    "require_positive",
+    "require_range",
+    "require_speeds",
+]
 
 
 class InputError(ValueError):
@@ -31,6 +38,17 @@ def require_positive(name: str, value: float, *, allow_zero: bool = False) -> fl
     return number
 
 
+def require_finite(name: str, value: float) -> float:
+    """Return ``value`` as a float if it is a finite number, else raise InputError."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number (got {value!r})") from None
+    if not math.isfinite(number):
+        raise InputError(f"{name} must be a finite number (got {value!r})")
+    return number
+
+
 def require_range(name: str, value: float, low: float, high: float) -> float:
     """Return ``value`` as a float if ``low <= value <= high``, else raise InputError."""
     try:
@@ -42,15 +60,17 @@ def require_range(name: str, value: float, low: float, high: float) -> float:
     return number
 
 
-def require_finite(name: str, values: ArrayLike) -> NDArray[np.float64]:
-    """Return ``values`` as a float array if every entry is finite, else raise InputError."""
+def require_speeds(name: str, values: ArrayLike) -> NDArray[np.float64]:
+    """Return speeds (m/s) as a non-empty 1-D float array of finite values ≥ 0, else InputError."""
     try:
-        array = np.asarray(values, dtype=float)
+        speeds = np.atleast_1d(np.asarray(values, dtype=float))
     except (TypeError, ValueError):
-        raise InputError(f"{name} must be numbers (got {values!r})") from None
-    if not np.all(np.isfinite(array)):
-        raise InputError(f"{name} must be finite numbers, without NaN or inf")
-    return array
+        raise InputError(f"{name} must be numbers in m/s (got {values!r})") from None
+    if speeds.ndim != 1 or speeds.size == 0:
+        raise InputError(f"{name}: give one or more speeds in m/s (got {values!r})")
+    if not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
+        raise InputError(f"{name} must be finite speeds of zero or more, m/s (got {values!r})")
+    return speeds
 
 
 def one_of(name: str, value: object, allowed: Iterable[str]) -> str:

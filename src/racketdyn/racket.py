@@ -17,7 +17,7 @@ from typing import Literal, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from racketdyn.errors import InputError, one_of, require_positive
+from racketdyn.errors import InputError, one_of, require_finite, require_positive
 
 __all__ = [
     "SUPPORTS",
@@ -44,6 +44,7 @@ SWINGWEIGHT_AXIS_M = 0.100
 """Swingweight axis, 100 mm from the butt, as racket makers and players quote it."""
 
 KGM2_TO_KGCM2 = 1.0e4
+M2_TO_CM2 = 1.0e4
 
 
 def as_locations(locations: ArrayLike, name: str = "locations") -> NDArray[np.float64]:
@@ -83,7 +84,10 @@ class PointMass:
     label: str = ""
 
     def __post_init__(self) -> None:
-        require_positive(f"point mass {self.label or ''} mass_kg".replace("  ", " "), self.mass_kg)
+        name = f"point mass {self.label}".strip()
+        require_positive(f"{name} mass_kg", self.mass_kg)
+        require_finite(f"{name} x_m", self.x_m)
+        require_finite(f"{name} y_m", self.y_m)
 
 
 @dataclass(frozen=True)
@@ -111,6 +115,7 @@ class HeadEllipse:
         require_positive("head.centre_x_m", self.centre_x_m)
         require_positive("head.half_length_m", self.half_length_m)
         require_positive("head.half_width_m", self.half_width_m)
+        require_finite("head.centre_y_m", self.centre_y_m)
 
     @property
     def area_m2(self) -> float:
@@ -149,7 +154,7 @@ class HeadEllipse:
         The grid is inset by half a cell so that no point sits on the frame.
         """
         if n < 1:
-            raise InputError(f"--grid must be a whole number of at least 1 (got {n})")
+            raise InputError(f"grid size must be a whole number of at least 1 (got {n})")
         u = (np.arange(n) + 0.5) / n * 2.0 - 1.0
         xi, eta = np.meshgrid(u, u, indexing="ij")
         inside = xi**2 + eta**2 <= 1.0

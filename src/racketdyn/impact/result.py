@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import csv
 import re
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -116,6 +117,42 @@ class ImpactResult:
     def impulse(self) -> NDArray[np.float64]:
         """Impulse F_MEAN · T_c = (1 + e_BG) μ V, N·s (eqs 6 and 8)."""
         return np.asarray(self.mean_force * self.contact_time)
+
+    @classmethod
+    def concatenate(cls, parts: Sequence[ImpactResult]) -> ImpactResult:
+        """Join results computed on consecutive chunks of points (same speeds, supports, model)."""
+        if not parts:
+            raise ValueError("nothing to concatenate")
+        first = parts[0]
+        for part in parts[1:]:
+            same = (
+                np.array_equal(part.ball_speed, first.ball_speed)
+                and np.array_equal(part.racket_speed, first.racket_speed)
+                and part.supports == first.supports
+                and part.modal_model is first.modal_model
+            )
+            if not same:
+                raise ValueError("results differ in speeds, supports or modal model")
+        joined: dict[str, Any] = {
+            name: np.concatenate([getattr(p, name) for p in parts], axis=0)
+            for name in (
+                "locations",
+                "reduced_mass",
+                "stiffness",
+                "peak_deflection",
+                "contact_time",
+                "mean_force",
+                "peak_force",
+                "mode_energy",
+                "vibration_energy",
+                "cor",
+                "rebound_ratio",
+                "rebound_speed",
+                "status",
+            )
+        }
+        labels = tuple(label for p in parts for label in p.labels)
+        return replace(first, labels=labels, **joined)
 
     def support_index(self, support: str) -> int:
         """Index of a support on the last axis."""

@@ -17,6 +17,7 @@ from typing import Any
 from racketdyn.errors import InputError
 from racketdyn.racket import (
     KGM2_TO_KGCM2,
+    M2_TO_CM2,
     SWINGWEIGHT_AXIS_M,
     HeadEllipse,
     PointMass,
@@ -179,7 +180,7 @@ def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
         if head_table["area_cm2"] <= 0 or head_table["half_length_m"] <= 0:
             raise InputError(f"{path}: [head] area_cm2 and half_length_m must be positive")
         head_args["half_width_m"] = (
-            head_table["area_cm2"] / KGM2_TO_KGCM2 / (math.pi * head_args["half_length_m"])
+            head_table["area_cm2"] / M2_TO_CM2 / (math.pi * head_args["half_length_m"])
         )
     head = guarded(HeadEllipse, **head_args)
 

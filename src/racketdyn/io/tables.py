@@ -18,7 +18,8 @@ from racketdyn.errors import InputError
 __all__ = ["read_load_deflection", "read_points"]
 
 
-def _read_columns(path: Path, required: tuple[str, ...]) -> dict[str, list[str]]:
+def _read_columns(path: Path, required: tuple[str, ...]) -> dict[str, list[tuple[int, str]]]:
+    """Columns of a CSV file as (file line number, text) pairs, comments and blank lines skipped."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -27,36 +28,47 @@ def _read_columns(path: Path, required: tuple[str, ...]) -> dict[str, list[str]]
     except (OSError, UnicodeDecodeError) as error:
         raise InputError(f"{path}: cannot be read as UTF-8 text ({error})") from None
     lines = [
-        line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")
+        (number, line)
+        for number, line in enumerate(text.splitlines(), start=1)
+        if line.strip() and not line.lstrip().startswith("#")
     ]
     if not lines:
         raise InputError(f"{path}: empty; expected a header with columns {', '.join(required)}")
-    reader = csv.DictReader(lines, skipinitialspace=True)
-    header = [name.strip() for name in (reader.fieldnames or [])]
+    rows = list(csv.reader((line for _, line in lines), skipinitialspace=True))
+    header = [name.strip() for name in rows[0]]
     missing = [name for name in required if name not in header]
     if missing:
         raise InputError(
             f"{path}: missing column(s) {', '.join(missing)}; the header must name "
             f"{', '.join(required)} (found {', '.join(header) or 'nothing'})"
         )
-    columns: dict[str, list[str]] = {name: [] for name in header}
-    for row in reader:
-        for name in header:
-            columns[name].append((row.get(name) or "").strip())
+    columns: dict[str, list[tuple[int, str]]] = {name: [] for name in header}
+    for (number, _), row in zip(lines[1:], rows[1:], strict=True):
+        if len(row) != len(header):
+            raise InputError(
+                f"{path}: line {number} has {len(row)} values for {len(header)} columns "
+                f"({', '.join(header)})"
+            )
+        for name, value in zip(header, row, strict=True):
+            columns[name].append((number, value.strip()))
     return columns
 
 
-def _numbers(path: Path, columns: dict[str, list[str]], name: str) -> NDArray[np.float64]:
+def _numbers(
+    path: Path, columns: dict[str, list[tuple[int, str]]], name: str
+) -> NDArray[np.float64]:
     values = []
-    for line, text in enumerate(columns[name], start=2):
+    for number, text in columns[name]:
         try:
             value = float(text)
         except ValueError:
             raise InputError(
-                f"{path}: row {line}, column {name}: {text!r} is not a number"
+                f"{path}: line {number}, column {name}: {text!r} is not a number"
             ) from None
         if not np.isfinite(value):
-            raise InputError(f"{path}: row {line}, column {name}: {text!r} is not a finite number")
+            raise InputError(
+                f"{path}: line {number}, column {name}: {text!r} is not a finite number"
+            )
         values.append(value)
     return np.asarray(values, dtype=float)
 
@@ -81,7 +93,15 @@ def read_points(path: Path) -> tuple[NDArray[np.float64], list[str]]:
     y = _numbers(path, columns, "y_m")
     if x.size == 0:
         raise InputError(f"{path}: no impact points listed")
-    labels = columns.get("point") or [str(i) for i in range(1, x.size + 1)]
+    if "point" in columns:
+        labels = [text for _, text in columns["point"]]
+        blank = [number for number, text in columns["point"] if not text]
+        if blank:
+            raise InputError(
+                f"{path}: line {blank[0]}: the point column is empty; label every point"
+            )
+    else:
+        labels = [str(i) for i in range(1, x.size + 1)]
     return np.column_stack([x, y]), labels
 
 

@@ -232,7 +232,7 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
 
     rho = head.normalised_radius(locations)
     columns = [on_nodes(bending_shapes[:, k]) for k in range(n_bending)]
-    columns.append(on_nodes(twist_shape) * (locations[:, 1] - head.centre_y_m))
+    columns.append(on_nodes(twist_shape) * locations[:, 1])  # roll about the long axis
     columns.append(np.where(rho < 1.0, membrane_scale * (1.0 - rho**2), 0.0))
     frequency = np.concatenate([bending_omega, [twist_omega, membrane_omega]]) / (2 * np.pi)
     names = (
@@ -240,6 +240,7 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
         "2-node twisting",
         "string-bed membrane",
     )
+    kinds = (*("bending",) * n_bending, "twisting", "string-bed")
     order = np.argsort(frequency)
     return ModalModel(
         frequency=frequency[order],
@@ -247,6 +248,7 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
         locations=locations,
         mode_shapes=np.column_stack(columns)[:, order],
         names=tuple(names[i] for i in order),
+        kinds=tuple(kinds[i] for i in order),
         support="free",
         source=f"built-in beam model of {racket.name}",
         metadata={
@@ -259,13 +261,26 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
 
 
 def _sample_locations(x: NDArray[np.float64], head: HeadEllipse) -> NDArray[np.float64]:
-    """Beam nodes on the axis, plus a 1 cm lattice across the head (edge included)."""
+    """Beam nodes on the axis, a 1 cm lattice across the head, and two rings on the frame.
+
+    The rings (on the bed's edge and 8 % outside it, every 5°) pin the membrane shape to zero
+    on the frame, so the interpolation neither bulges past the edge nor extrapolates onto it.
+    """
     points = [np.column_stack([x, np.zeros_like(x)])]
-    in_head = x[(x >= head.throat_x_m) & (x <= head.tip_x_m)]
+    in_head = x[(x > head.throat_x_m) & (x < head.tip_x_m)]
     for xi in in_head:
         half = float(head.half_width_at(xi))
         count = max(int(np.ceil(half / 0.01)), 1)
-        offsets = np.linspace(-half, half, 2 * count + 1)
+        offsets = np.linspace(-half, half, 2 * count + 1)[1:-1]
         offsets = offsets[np.abs(offsets) > 1e-12]
         points.append(np.column_stack([np.full(offsets.size, xi), head.centre_y_m + offsets]))
+    angle = np.deg2rad(np.arange(0.0, 360.0, 5.0))
+    for scale in (1.0, 1.08):
+        ring = np.column_stack(
+            [
+                head.centre_x_m + scale * head.half_length_m * np.cos(angle),
+                head.centre_y_m + scale * head.half_width_m * np.sin(angle),
+            ]
+        )
+        points.append(ring[(ring[:, 0] > 0) & (np.abs(ring[:, 1]) > 1e-12)])
     return np.vstack(points)

@@ -26,6 +26,7 @@ from racketdyn.racket import as_locations
 __all__ = ["ModalModel"]
 
 FORMAT = "racketdyn-modal-model"
+MODE_KINDS = ("bending", "twisting", "string-bed", "other")
 
 
 @dataclass(frozen=True, eq=False)
@@ -44,6 +45,10 @@ class ModalModel:
         Mass-normalised mode shapes (displacement normal to the face), 1/√kg.
     names : tuple of str
         Mode names (``"2-node bending"``, …).
+    kinds : tuple of str
+        What each mode is: ``bending``, ``twisting``, ``string-bed`` or ``other``.  String-bed
+        modes are left out of the vibration loss by default.  Empty: read from the names
+        (``string-bed`` where a name mentions a string bed or membrane, else ``other``).
     support : str
         The support the modes belong to (``free``, ``hand`` …).
     source : str
@@ -55,6 +60,7 @@ class ModalModel:
     locations: NDArray[np.float64]
     mode_shapes: NDArray[np.float64]
     names: tuple[str, ...]
+    kinds: tuple[str, ...] = ()
     support: str = "free"
     source: str = ""
     metadata: dict[str, Any] = field(default_factory=dict)
@@ -82,6 +88,20 @@ class ModalModel:
         object.__setattr__(self, "mode_shapes", shapes)
         object.__setattr__(self, "locations", locations)
         object.__setattr__(self, "names", tuple(self.names))
+        kinds = tuple(self.kinds) or tuple(
+            "string-bed" if ("string" in n.lower() or "membrane" in n.lower()) else "other"
+            for n in self.names
+        )
+        if len(kinds) != frequency.size or not set(kinds) <= set(MODE_KINDS):
+            raise InputError(
+                f"modal model ({self.source}): one kind per mode, each one of "
+                f"{', '.join(MODE_KINDS)}"
+            )
+        object.__setattr__(self, "kinds", kinds)
+        if locations.shape[0] < 3:
+            raise InputError(f"modal model ({self.source}): needs shapes at 3 points or more")
+        if np.unique(locations, axis=0).shape[0] != locations.shape[0]:
+            raise InputError(f"modal model ({self.source}): a location is listed twice")
 
     @property
     def n_modes(self) -> int:
@@ -94,13 +114,22 @@ class ModalModel:
         return np.asarray(2 * np.pi * self.frequency)
 
     @cached_property
+    def _along_axis_only(self) -> bool:
+        centred = self.locations - self.locations.mean(axis=0)
+        return bool(np.linalg.matrix_rank(centred, tol=1e-9) < 2)
+
+    @cached_property
     def _interpolator(self) -> RBFInterpolator:
-        return RBFInterpolator(self.locations, self.mode_shapes, kernel="thin_plate_spline")
+        # Thin-plate spline: smooth, exact at the samples, and it extends past the last sample
+        # linearly rather than wildly.  Shapes sampled on one line only (the long axis) are
+        # interpolated along x.
+        points = self.locations[:, :1] if self._along_axis_only else self.locations
+        return RBFInterpolator(points, self.mode_shapes, kernel="thin_plate_spline")
 
     def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:
         """Mass-normalised mode shapes at any locations, shaped ``(n, n_modes)``, 1/√kg."""
         xy = as_locations(locations)
-        return np.asarray(self._interpolator(xy))
+        return np.asarray(self._interpolator(xy[:, :1] if self._along_axis_only else xy))
 
     def modal_constants(self, response: ArrayLike, excitation: ArrayLike) -> NDArray[np.float64]:
         """Modal constants ``A_ijk = φ_ik φ_jk`` (1/kg) for every response i and excitation j.
@@ -116,20 +145,25 @@ class ModalModel:
         """A model keeping only the listed mode indices (0-based)."""
         index = np.atleast_1d(np.asarray(modes, dtype=int))
         return ModalModel(
-            self.frequency[index],
-            self.damping_ratio[index],
-            self.locations,
-            self.mode_shapes[:, index],
-            tuple(self.names[i] for i in index),
-            self.support,
-            self.source,
-            dict(self.metadata),
+            frequency=self.frequency[index],
+            damping_ratio=self.damping_ratio[index],
+            locations=self.locations,
+            mode_shapes=self.mode_shapes[:, index],
+            names=tuple(self.names[i] for i in index),
+            kinds=tuple(self.kinds[i] for i in index),
+            support=self.support,
+            source=self.source,
+            metadata=dict(self.metadata),
         )
+
+    def summary(self) -> dict[str, Any]:
+        """Source, support and the modes (for run records)."""
+        return {"source": self.source, "support": self.support, "modes": self.to_dict()["modes"]}
 
     @cached_property
     def frame_modes(self) -> ModalModel:
-        """The model without string-bed modes (names containing ``string-bed``)."""
-        keep = [k for k, name in enumerate(self.names) if "string-bed" not in name]
+        """The model without its string-bed modes."""
+        keep = [k for k, kind in enumerate(self.kinds) if kind != "string-bed"]
         return self if len(keep) == self.n_modes else self.select(keep)
 
     # --- files --------------------------------------------------------------------------------
@@ -143,8 +177,10 @@ class ModalModel:
             "source": self.source,
             "units": {"frequency": "Hz", "locations": "m", "mode_shapes": "1/sqrt(kg)"},
             "modes": [
-                {"name": n, "frequency_hz": float(f), "damping_ratio": float(z)}
-                for n, f, z in zip(self.names, self.frequency, self.damping_ratio, strict=True)
+                {"name": n, "kind": k, "frequency_hz": float(f), "damping_ratio": float(z)}
+                for n, k, f, z in zip(
+                    self.names, self.kinds, self.frequency, self.damping_ratio, strict=True
+                )
             ],
             "locations_m": self.locations.tolist(),
             "mode_shapes": self.mode_shapes.tolist(),
@@ -175,6 +211,7 @@ class ModalModel:
                 locations=np.array(data["locations_m"], dtype=float),
                 mode_shapes=np.array(data["mode_shapes"], dtype=float).reshape(-1, len(modes)),
                 names=tuple(str(m["name"]) for m in modes),
+                kinds=tuple(str(m.get("kind", "other")) for m in modes),
                 support=str(data.get("support", "free")),
                 source=str(data.get("source", path.name)),
                 metadata=dict(data.get("metadata", {})),

@@ -1,0 +1,56 @@
+"""Small numerical building blocks shared by the laws and the impact method."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = ["invert_increasing"]
+
+Function = Callable[[NDArray[np.float64]], NDArray[np.float64]]
+
+TABLE_POINTS = 4097
+
+
+def invert_increasing(
+    function: Function,
+    derivative: Function,
+    target: ArrayLike,
+    upper: float,
+    newton_steps: int = 3,
+) -> NDArray[np.float64]:
+    """Solve ``function(x) = target`` for x in [0, upper], vectorised; NaN beyond the range.
+
+    ``function`` must rise strictly on [0, upper].  A table of 4097 points gives the first guess
+    (linear interpolation), Newton steps with ``derivative`` polish it to round-off.
+
+    Parameters
+    ----------
+    function, derivative : callable
+        f(x) and f'(x) on arrays.
+    target : array_like
+        Values to invert.
+    upper : float
+        Upper end of the range (the lower end is 0).
+    newton_steps : int
+        Newton iterations after the table.
+
+    Raises
+    ------
+    ValueError
+        If ``function`` does not rise strictly over the table.
+    """
+    goal = np.asarray(target, dtype=float)
+    table_x = np.linspace(0.0, upper, TABLE_POINTS)
+    table_f = function(table_x)
+    if np.any(np.diff(table_f) <= 0):
+        raise ValueError("function does not rise strictly over the range")
+    x = np.interp(goal, table_f, table_x)
+    for _ in range(newton_steps):
+        slope = derivative(x)
+        step = np.divide(function(x) - goal, slope, out=np.zeros_like(x), where=slope > 0)
+        x = np.clip(x - step, 0.0, upper)
+    outside = (goal < table_f[0]) | (goal > table_f[-1] * (1 + 1e-12))
+    return np.asarray(np.where(outside, np.nan, x))
