@@ -1,0 +1,242 @@
+"""Roving-hammer test records and the FRF set estimated from them: the measurement nouns.
+
+A roving-hammer test strikes each point of a grid several times (averages) and records the
+hammer force and the response of a fixed accelerometer (the reference).  ``HammerRecords``
+holds the time records as measured; ``FrfSet`` holds one FRF per hammer point against the
+reference, with coherence and what was done to get it.  Frequencies in Hz, time in s, SI units.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Literal, get_args
+
+import numpy as np
+from numpy.typing import NDArray
+
+from racketdyn.errors import InputError, require_positive
+from racketdyn.racket import as_locations
+
+__all__ = ["FRF_TYPES", "RESPONSE_TYPES", "FrfSet", "FrfType", "HammerRecords", "ResponseType"]
+
+ResponseType = Literal["acceleration", "velocity", "displacement"]
+RESPONSE_TYPES: tuple[str, ...] = get_args(ResponseType)
+FrfType = Literal["accelerance", "mobility", "receptance"]
+FRF_TYPES: tuple[str, ...] = get_args(FrfType)
+FRF_TYPE_OF_RESPONSE: dict[str, str] = {
+    "acceleration": "accelerance",
+    "velocity": "mobility",
+    "displacement": "receptance",
+}
+
+
+@dataclass(frozen=True, eq=False)
+class HammerRecords:
+    """Force and response time records of a roving-hammer test.
+
+    Parameters
+    ----------
+    sampling_interval_s : float
+        Sampling period, s (the paper: 200 µs).
+    force : tuple of ndarray
+        One array per hammer point, shaped ``(n_averages, n_samples)``: hammer force, N.
+    response : tuple of ndarray
+        Same shapes: response at the reference, in SI units of ``response_type``
+        (m/s², m/s or m).
+    response_type : {"acceleration", "velocity", "displacement"}
+        What the response transducer measures.
+    nodes : tuple of int
+        Node number of each hammer point.
+    locations : ndarray, shape (n_points, 2)
+        Hammer point locations (x, y), m.
+    reference_node : int
+        Node of the response transducer.
+    reference_location : tuple of float
+        Its location (x, y), m.
+    pretrigger_s : float
+        Time recorded before the trigger, s.
+    source : str
+        Where the records came from (file name, rig settings).
+    """
+
+    sampling_interval_s: float
+    force: tuple[NDArray[np.float64], ...]
+    response: tuple[NDArray[np.float64], ...]
+    response_type: ResponseType
+    nodes: tuple[int, ...]
+    locations: NDArray[np.float64]
+    reference_node: int
+    reference_location: tuple[float, float]
+    pretrigger_s: float = 0.0
+    source: str = ""
+    metadata: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        require_positive(f"{self.source}: sampling interval", self.sampling_interval_s)
+        if self.response_type not in RESPONSE_TYPES:
+            raise InputError(
+                f"{self.source}: response type must be one of {', '.join(RESPONSE_TYPES)} "
+                f"(got {self.response_type!r})"
+            )
+        locations = as_locations(self.locations, f"{self.source}: hammer point locations")
+        n = len(self.nodes)
+        if not (len(self.force) == len(self.response) == n == locations.shape[0]):
+            raise InputError(
+                f"{self.source}: one force record set, response set and location per node"
+            )
+        forces, responses = [], []
+        for node, f, r in zip(self.nodes, self.force, self.response, strict=True):
+            f2, r2 = np.atleast_2d(np.asarray(f, float)), np.atleast_2d(np.asarray(r, float))
+            if f2.shape != r2.shape or f2.ndim != 2 or f2.shape[1] < 8:
+                raise InputError(
+                    f"{self.source}: node {node}: force {f2.shape} and response {r2.shape} must "
+                    "have the same (n_averages, n_samples) shape with 8 samples or more"
+                )
+            forces.append(f2)
+            responses.append(r2)
+        lengths = {f.shape[1] for f in forces}
+        if len(lengths) > 1:
+            raise InputError(f"{self.source}: records differ in length ({sorted(lengths)} samples)")
+        object.__setattr__(self, "force", tuple(forces))
+        object.__setattr__(self, "response", tuple(responses))
+        object.__setattr__(self, "locations", locations)
+        object.__setattr__(self, "nodes", tuple(int(n) for n in self.nodes))
+
+    @property
+    def n_points(self) -> int:
+        """Number of hammer points."""
+        return len(self.nodes)
+
+    @property
+    def n_samples(self) -> int:
+        """Samples per record."""
+        return int(self.force[0].shape[1])
+
+    @property
+    def pretrigger_samples(self) -> int:
+        """Samples recorded before the trigger."""
+        return round(self.pretrigger_s / self.sampling_interval_s)
+
+    @property
+    def time(self) -> NDArray[np.float64]:
+        """Sample times from the trigger, s (negative in the pre-trigger)."""
+        return np.asarray(np.arange(self.n_samples) * self.sampling_interval_s - self.pretrigger_s)
+
+    @property
+    def driving_point(self) -> int | None:
+        """Index of the hammer point at the reference node (the driving point), if any."""
+        return self.nodes.index(self.reference_node) if self.reference_node in self.nodes else None
+
+
+@dataclass(frozen=True, eq=False)
+class FrfSet:
+    """Frequency response functions of hammer points against one reference.
+
+    Parameters
+    ----------
+    frequency : ndarray, shape (n_freq,)
+        Frequency lines, Hz.
+    values : ndarray, complex, shape (n_points, n_freq)
+        FRF of the response at the reference to a force at each point, SI units of
+        ``frf_type`` (receptance m/N, mobility m/(N·s), accelerance m/(N·s²)).
+    frf_type : {"accelerance", "mobility", "receptance"}
+        What the FRF relates.
+    nodes : tuple of int
+        Node number of each hammer point.
+    locations : ndarray, shape (n_points, 2)
+        Hammer point locations (x, y), m.
+    reference_node : int
+        Node of the response transducer.
+    reference_location : tuple of float
+        Its location, m.
+    coherence : ndarray, shape (n_points, n_freq), optional
+        Ordinary coherence (0–1); None where unknown (e.g. FRFs read from a file).
+    n_averages : ndarray of int, shape (n_points,), optional
+        Averages used at each point.
+    exponential_window_s : float or None
+        Time constant τ of the exponential window applied to the response, s.  It adds
+        ``1/(τ ω)`` to the damping ratio of a mode at ω; identification removes it.
+    estimator : str
+        ``H1``, ``H2`` or ``file``.
+    source : str
+        Where the FRFs came from.
+    """
+
+    frequency: NDArray[np.float64]
+    values: NDArray[np.complex128]
+    frf_type: FrfType
+    nodes: tuple[int, ...]
+    locations: NDArray[np.float64]
+    reference_node: int
+    reference_location: tuple[float, float]
+    coherence: NDArray[np.float64] | None = None
+    n_averages: NDArray[np.int_] | None = None
+    exponential_window_s: float | None = None
+    estimator: str = "file"
+    source: str = ""
+    metadata: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        frequency = np.asarray(self.frequency, dtype=float)
+        values = np.atleast_2d(np.asarray(self.values, dtype=complex))
+        locations = as_locations(self.locations, f"{self.source}: FRF point locations")
+        if frequency.ndim != 1 or values.shape != (len(self.nodes), frequency.size):
+            raise InputError(
+                f"{self.source}: FRF values must be shaped (n_points, n_freq) = "
+                f"({len(self.nodes)}, {frequency.size}), got {values.shape}"
+            )
+        if locations.shape[0] != len(self.nodes):
+            raise InputError(f"{self.source}: one location per FRF node")
+        if np.any(np.diff(frequency) <= 0):
+            raise InputError(f"{self.source}: frequencies must rise strictly")
+        if self.frf_type not in FRF_TYPES:
+            raise InputError(
+                f"{self.source}: frf_type must be one of {', '.join(FRF_TYPES)} "
+                f"(got {self.frf_type!r})"
+            )
+        if self.coherence is not None and np.shape(self.coherence) != values.shape:
+            raise InputError(f"{self.source}: coherence must have the shape of the FRF values")
+        object.__setattr__(self, "frequency", frequency)
+        object.__setattr__(self, "values", values)
+        object.__setattr__(self, "locations", locations)
+        object.__setattr__(self, "nodes", tuple(int(n) for n in self.nodes))
+
+    @property
+    def n_points(self) -> int:
+        """Number of FRFs."""
+        return len(self.nodes)
+
+    @property
+    def omega(self) -> NDArray[np.float64]:
+        """Angular frequency of each line, rad/s."""
+        return np.asarray(2 * np.pi * self.frequency)
+
+    @property
+    def driving_point(self) -> int | None:
+        """Index of the FRF measured at the reference node (the driving point), if any."""
+        return self.nodes.index(self.reference_node) if self.reference_node in self.nodes else None
+
+    def as_type(self, frf_type: str) -> FrfSet:
+        """The same FRFs converted to another type (× (iω)ⁿ); the zero line becomes 0 or NaN."""
+        order = {"receptance": 0, "mobility": 1, "accelerance": 2}
+        if frf_type not in order:
+            raise InputError(f"frf_type must be one of {', '.join(FRF_TYPES)} (got {frf_type!r})")
+        power = order[frf_type] - order[self.frf_type]
+        factor = np.full(self.omega.shape, np.nan + 0j)
+        usable = self.omega > 0 if power < 0 else np.ones(self.omega.shape, bool)
+        factor[usable] = (1j * self.omega[usable]) ** float(power)
+        return FrfSet(
+            frequency=self.frequency,
+            values=self.values * factor,
+            frf_type=frf_type,  # type: ignore[arg-type]
+            nodes=self.nodes,
+            locations=self.locations,
+            reference_node=self.reference_node,
+            reference_location=self.reference_location,
+            coherence=self.coherence,
+            n_averages=self.n_averages,
+            exponential_window_s=self.exponential_window_s,
+            estimator=self.estimator,
+            source=self.source,
+            metadata=dict(self.metadata),
+        )

@@ -1,0 +1,184 @@
+"""FRF estimation, windows, quality checks and contact time against known systems."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.optimize import least_squares
+
+from racketdyn.measurement import HammerRecords
+from racketdyn.measurement.frf import estimate_frfs
+from racketdyn.measurement.pulse import contact_time
+from synthetic_records import Modes, half_sine, records_for
+
+# Three modes like a racket's (Hz, ζ, modal constants at two points against the reference).
+MODES = Modes(
+    frequency=np.array([120.0, 330.0, 560.0]),
+    damping_ratio=np.array([0.03, 0.02, 0.02]),
+    constants=np.array([[6.0, 4.0, 9.0], [-3.0, 2.5, -5.0]]),
+)
+LIGHT = Modes(MODES.frequency, np.array([0.004, 0.004, 0.005]), MODES.constants)
+
+
+def _band(frf, low: float = 20.0, high: float = 1000.0) -> np.ndarray:
+    return (frf.frequency > low) & (frf.frequency < high)
+
+
+def test_h1_is_the_analytic_frf() -> None:
+    # No windows, responses decayed within the 0.41 s record (ζ ≥ 2 %): the estimate is the
+    # continuous accelerance within 0.5 % over 20–1000 Hz (the anti-alias filter is common to
+    # both channels; what is left is the response not yet decayed, < 1e-4).
+    frf = estimate_frfs(records_for(MODES)).frfs
+    assert frf is not None
+    assert frf.frf_type == "accelerance"
+    band = _band(frf)
+    truth = MODES.accelerance(2j * np.pi * frf.frequency[band])
+    np.testing.assert_allclose(frf.values[:, band], truth, rtol=5e-3)
+    np.testing.assert_allclose(frf.coherence[:, band], 1.0, atol=1e-6)
+
+
+def test_windows_give_the_frf_with_poles_moved_by_one_over_tau() -> None:
+    # Lightly damped modes ring past the record: an exponential window on both channels makes
+    # the windowed response the response of a system with s → s + 1/τ, so the estimate must be
+    # H(iω + 1/τ) exactly — same residues (no renormalisation; pyFRF's H1 was 3–4.7× off).
+    tau = 0.06
+    estimate = estimate_frfs(records_for(LIGHT), force_window_s=0.01, exponential_window_s=tau)
+    frf = estimate.frfs
+    assert frf is not None
+    assert frf.exponential_window_s == tau
+    band = _band(frf)
+    truth = LIGHT.accelerance(2j * np.pi * frf.frequency[band] + 1.0 / tau)
+    scale = np.abs(truth).max(axis=1, keepdims=True)  # relative to the peak: zeros are zeros
+    assert np.abs(frf.values[:, band] - truth).max() < 2e-3 * scale.min()
+
+
+def _modal_fit(frequency: np.ndarray, values: np.ndarray, guess: Modes) -> np.ndarray:
+    """Poles (σ, ω_d in rad/s) of all modes fitted at once to one accelerance over 40–800 Hz."""
+    band = (frequency > 40) & (frequency < 800)
+    s = 2j * np.pi * frequency[band]
+    n = guess.frequency.size
+
+    def model(p: np.ndarray) -> np.ndarray:
+        sigma, damped, a = p[:n], p[n : 2 * n], p[2 * n : 3 * n]
+        poles = -sigma + 1j * damped
+        terms = a * s[:, None] ** 2 / ((s[:, None] - poles) * (s[:, None] - np.conj(poles)))
+        return terms.sum(axis=1)
+
+    def residual(p: np.ndarray) -> np.ndarray:
+        diff = model(p) - values[band]
+        return np.concatenate([diff.real, diff.imag])
+
+    omega = 2 * np.pi * guess.frequency
+    start = np.concatenate([0.03 * omega, omega, guess.constants[0]])
+    fit = least_squares(residual, start, x_scale="jac", xtol=1e-14, ftol=1e-14)
+    return fit.x[: 2 * n].reshape(2, n)
+
+
+def test_exponential_window_damping_is_removed_by_the_recorded_tau() -> None:
+    # The window moves every pole left by 1/τ (σ → σ + 1/τ, ω_d unchanged).  Poles fitted to the
+    # windowed FRF, less the 1/τ recorded on the FrfSet, give back the true damping within 5 %.
+    tau = 0.1
+    frf = estimate_frfs(records_for(LIGHT, n_averages=2), exponential_window_s=tau).frfs
+    assert frf is not None
+    sigma, damped = _modal_fit(frf.frequency, frf.values[0], LIGHT)
+    sigma_true = sigma - 1.0 / frf.exponential_window_s
+    zeta = sigma_true / np.hypot(sigma_true, damped)
+    np.testing.assert_allclose(zeta, LIGHT.damping_ratio, rtol=0.05)
+    assert np.all(sigma / np.hypot(sigma, damped) > 1.5 * LIGHT.damping_ratio)  # window's share
+
+
+def test_noise_is_averaged_and_coherence_drops_between_modes() -> None:
+    clean = estimate_frfs(records_for(MODES)).frfs
+    noisy = estimate_frfs(records_for(MODES, n_averages=10, response_noise=0.01, seed=3)).frfs
+    assert clean is not None
+    assert noisy is not None
+    peak = np.argmin(np.abs(noisy.frequency - 120.0))
+    assert noisy.values[0, peak] == pytest.approx(clean.values[0, peak], rel=0.02)
+    assert noisy.coherence[0, peak] > 0.99
+    assert noisy.coherence[0, _band(noisy)].min() < 0.99  # anti-resonance and high lines
+
+
+def test_h2_is_unbiased_by_force_noise_where_h1_is_not() -> None:
+    # Noise on the force biases H1 = S_fr/S_ff low by S_nn/S_ff; H2 = S_rr/S_rf does not see it.
+    records = records_for(MODES, n_averages=20, force_noise=0.02, seed=5)
+    h1 = estimate_frfs(records, "H1", force_window_s=None).frfs
+    h2 = estimate_frfs(records, "H2").frfs
+    truth = MODES.accelerance(2j * np.pi * h1.frequency)
+    band = (h1.frequency > 700) & (h1.frequency < 1000)  # weak force spectrum: noise matters
+    error_h1 = np.median(np.abs(np.abs(h1.values[0, band]) / np.abs(truth[0, band]) - 1))
+    error_h2 = np.median(np.abs(np.abs(h2.values[0, band]) / np.abs(truth[0, band]) - 1))
+    assert error_h2 < error_h1
+
+
+@pytest.mark.parametrize("delay_s", [0.5e-3, 1e-3, 2e-3, 4e-3])
+@pytest.mark.parametrize("pulse_s", [0.4e-3, 3.0e-3])  # a frame and a string impact
+def test_double_hits_are_caught(delay_s: float, pulse_s: float) -> None:
+    # Second hit 20 % of the first, delay_s after the first one ends (on the strings the
+    # hammer comes back 1–3 ms later; pyFRF missed 0.5–2 ms).
+    records = records_for(MODES, pulse_s=pulse_s, n_averages=2, second_hit=(pulse_s + delay_s, 0.2))
+    estimate = estimate_frfs(records)
+    assert estimate.frfs is None
+    assert all("double hit" in c.reasons for c in estimate.checks)
+
+
+def test_second_hit_on_the_tail_is_caught() -> None:
+    records = records_for(MODES, pulse_s=3e-3, n_averages=1, second_hit=(2.2e-3, 0.6))
+    assert "double hit" in estimate_frfs(records).checks[0].reasons
+
+
+def test_clean_hits_pass_and_clipping_is_caught() -> None:
+    clean = estimate_frfs(records_for(MODES, n_averages=3, force_noise=0.002, response_noise=0.01))
+    assert all(c.accepted for c in clean.checks)
+    clipped = estimate_frfs(records_for(MODES, n_averages=2, clip_n=20.0))
+    assert all("force overload" in c.reasons for c in clipped.checks)
+
+
+def _replace_point(records: HammerRecords, index: int, force: np.ndarray) -> HammerRecords:
+    forces = list(records.force)
+    forces[index] = force
+    return HammerRecords(
+        records.sampling_interval_s,
+        tuple(forces),
+        records.response,
+        records.response_type,
+        records.nodes,
+        records.locations,
+        records.reference_node,
+        records.reference_location,
+        records.pretrigger_s,
+        records.source,
+    )
+
+
+def test_all_rejected_point_is_reported_and_the_rest_goes_on() -> None:
+    records = records_for(MODES, n_averages=3)
+    bad = records.force[1].copy()
+    bad[0, 5] = np.nan
+    bad[1:] = 0.0  # no pulse at all
+    estimate = estimate_frfs(_replace_point(records, 1, bad))
+    assert estimate.rejected_points == (2,)
+    assert estimate.frfs is not None
+    assert estimate.frfs.nodes == (1,)
+    reasons = {c.average: c.reasons for c in estimate.checks if c.node == 2}
+    assert reasons == {1: ("non-finite",), 2: ("empty",), 3: ("empty",)}
+    assert estimate.summary()["accepted"] == 3
+
+
+def test_late_pulse_is_a_trigger_fault() -> None:
+    records = records_for(MODES, n_averages=1)
+    late = np.roll(records.force[0], 40)  # 8 ms late
+    estimate = estimate_frfs(_replace_point(records, 0, late))
+    assert "trigger" in next(c for c in estimate.checks if c.node == 1).reasons
+
+
+@pytest.mark.parametrize("duration", [2.0e-3, 3.3e-3, 4.7e-3])
+def test_contact_time_of_a_half_sine(duration: float) -> None:
+    # 200 µs sampling (the paper), random sub-sample start, 30 N offset, 0.5 % noise:
+    # the half-sine duration comes back within 2 %.
+    rng = np.random.default_rng(11)
+    dt = 2e-4
+    t = np.arange(512) * dt - 40 * dt
+    for _ in range(20):
+        start = rng.uniform(-dt, dt)
+        force = half_sine(t, start, duration, 100.0) + 30.0 + rng.normal(0, 0.5, t.size)
+        assert contact_time(force, dt, 40 * dt) == pytest.approx(duration, rel=0.02)
