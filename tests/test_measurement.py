@@ -182,3 +182,21 @@ def test_contact_time_of_a_half_sine(duration: float) -> None:
         start = rng.uniform(-dt, dt)
         force = half_sine(t, start, duration, 100.0) + 30.0 + rng.normal(0, 0.5, t.size)
         assert contact_time(force, dt, 40 * dt) == pytest.approx(duration, rel=0.02)
+
+
+def test_contact_times_per_point_skip_rejected_averages(tmp_path) -> None:
+    from racketdyn.measurement.pulse import contact_times
+
+    records = records_for(MODES, pulse_s=3e-3, n_averages=4)
+    estimate = estimate_frfs(records)
+    times = contact_times(records, estimate.checks)
+    np.testing.assert_allclose(times.mean_s, 3e-3, rtol=0.02)
+    assert list(times.n_averages) == [4, 4]
+    doubled = records_for(MODES, pulse_s=3e-3, n_averages=2, second_hit=(4.5e-3, 0.3))
+    rejected = contact_times(doubled, estimate_frfs(doubled).checks)
+    assert list(rejected.n_averages) == [0, 0]
+    assert np.all(np.isnan(rejected.mean_s))
+    times.write_csv(tmp_path / "contact.csv")
+    estimate.write_quality_csv(tmp_path / "quality.csv")
+    assert (tmp_path / "contact.csv").read_text().startswith("node,x_m,y_m,contact_time_mean_s")
+    assert len((tmp_path / "quality.csv").read_text().splitlines()) == 1 + 8

@@ -19,13 +19,17 @@ from matplotlib.tri import Triangulation
 from numpy.typing import NDArray
 
 from racketdyn.impact.result import ImpactResult
+from racketdyn.measurement.pulse import ContactTimes
+from racketdyn.measurement.records import FrfSet
 from racketdyn.racket import Racket
 
 __all__ = [
     "QUANTITIES",
     "plot_along_axis",
+    "plot_contact_map",
     "plot_face_map",
     "plot_frame_amplitude",
+    "plot_frf",
     "plot_outline",
     "plot_speed_curves",
 ]
@@ -214,4 +218,67 @@ def plot_face_map(
     ax.set_title(
         f"{SUPPORT_STYLE[support]['label']}, {result.ball_speed[speed_index]:g} m/s", fontsize=9
     )
+    return ax
+
+
+FRF_UNITS = {"receptance": "m/N", "mobility": "m/(N·s)", "accelerance": "m/(N·s²)"}
+
+
+def plot_frf(
+    frfs: FrfSet, index: int, axes: Sequence[Axes] | None = None, label: str = ""
+) -> Sequence[Axes]:
+    """Magnitude (log), phase and coherence of one FRF on three stacked axes (paper, Figs 2–3)."""
+    if axes is None:
+        _, created = plt.subplots(
+            3,
+            1,
+            figsize=(6, 6),
+            sharex=True,
+            layout="constrained",
+            gridspec_kw={"height_ratios": [2, 1, 1]},
+        )
+        axes = list(created)
+    magnitude, phase, coherence = axes
+    values = frfs.values[index]
+    magnitude.semilogy(frfs.frequency, np.abs(values), label=label or f"node {frfs.nodes[index]}")
+    phase.plot(frfs.frequency, np.degrees(np.angle(values)))
+    if frfs.coherence is not None:
+        coherence.plot(frfs.frequency, frfs.coherence[index])
+    magnitude.set_ylabel(f"|H| ({FRF_UNITS[frfs.frf_type]})")
+    phase.set_ylabel("phase (°)")
+    phase.set_yticks([-180, -90, 0, 90, 180])
+    coherence.set_ylabel("coherence")
+    coherence.set_ylim(0, 1.05)
+    coherence.set_xlabel("frequency (Hz)")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    magnitude.legend(fontsize=7)
+    return axes
+
+
+def plot_contact_map(
+    times: ContactTimes,
+    racket: Racket,
+    ax: Axes | None = None,
+    title: str = "",
+    levels: NDArray[np.float64] | int = 10,
+) -> Axes:
+    """Contour map of the hammer contact time over the string face, ms (paper, Fig. 7)."""
+    ax = _axes(ax, (4.2, 3.6))
+    on_bed = racket.head.contains(times.locations) & np.isfinite(times.mean_s)
+    x_mm, y_mm = times.locations[on_bed, 0] * 1e3, times.locations[on_bed, 1] * 1e3
+    values = times.mean_s[on_bed] * 1e3
+    if on_bed.sum() >= 3:
+        triangles = Triangulation(x_mm, y_mm)
+        filled = ax.tricontourf(triangles, values, levels=levels, cmap="magma")
+        lines = ax.tricontour(
+            triangles, values, levels=np.asarray(filled.levels), colors="k", linewidths=0.4
+        )
+        ax.clabel(lines, fontsize=6, fmt="%.2f")
+        ax.figure.colorbar(filled, ax=ax, label="contact time (ms)", shrink=0.85)
+    ax.plot(x_mm, y_mm, ".", color="w", markersize=3)
+    plot_outline(racket, ax)
+    ax.set_xlabel("x from the butt (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title(title, fontsize=9)
     return ax

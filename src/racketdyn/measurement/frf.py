@@ -21,8 +21,10 @@ Estimators
 
 from __future__ import annotations
 
+import csv
 import logging
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Literal
 
 import numpy as np
@@ -60,6 +62,22 @@ class FrfEstimate:
     frfs: FrfSet | None
     checks: tuple[AverageCheck, ...]
     rejected_points: tuple[int, ...]
+
+    def write_quality_csv(self, path: Path) -> None:
+        """``node, average, accepted, reasons, peak_force_n``: every average and its verdict."""
+        with Path(path).open("w", newline="", encoding="utf-8") as handle:
+            writer = csv.writer(handle)
+            writer.writerow(["node", "average", "accepted", "reasons", "peak_force_n"])
+            for c in self.checks:
+                writer.writerow(
+                    [
+                        c.node,
+                        c.average,
+                        int(c.accepted),
+                        ";".join(c.reasons),
+                        f"{c.peak_force_n:.6g}",
+                    ]
+                )
 
     def summary(self) -> dict[str, int]:
         """Counts of averages by verdict and reason."""

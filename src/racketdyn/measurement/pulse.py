@@ -11,12 +11,18 @@ on the amplitude or on an offset.
 
 from __future__ import annotations
 
+import csv
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
 import numpy as np
 from numpy.typing import NDArray
 
-from racketdyn.measurement.quality import force_baseline_and_noise
+from racketdyn.measurement.quality import AverageCheck, force_baseline_and_noise
+from racketdyn.measurement.records import HammerRecords
 
-__all__ = ["HALF_SINE_FWHM_FACTOR", "contact_time"]
+__all__ = ["HALF_SINE_FWHM_FACTOR", "ContactTimes", "contact_time", "contact_times"]
 
 HALF_SINE_FWHM_FACTOR = 1.5
 """T / FWHM of a half-sine pulse: 1 / (1 − 2 arcsin(½)/π)."""
@@ -51,3 +57,68 @@ def contact_time(
     rise = i + (half - pulse[i]) / (pulse[i + 1] - pulse[i])
     fall = j - 1 + (pulse[j - 1] - half) / (pulse[j - 1] - pulse[j])
     return float(HALF_SINE_FWHM_FACTOR * (fall - rise) * sampling_interval_s)
+
+
+@dataclass(frozen=True, eq=False)
+class ContactTimes:
+    """Contact time of the hammer at each point: mean and spread over the accepted averages.
+
+    Attributes
+    ----------
+    nodes : tuple of int
+        Hammer point nodes.
+    locations : ndarray, shape (n, 2)
+        Their (x, y), m.
+    mean_s, std_s : ndarray
+        Mean and sample standard deviation of the contact time, s (NaN without a clean pulse).
+    n_averages : ndarray of int
+        Averages that gave a contact time.
+    """
+
+    nodes: tuple[int, ...]
+    locations: NDArray[np.float64]
+    mean_s: NDArray[np.float64]
+    std_s: NDArray[np.float64]
+    n_averages: NDArray[np.int_]
+
+    def write_csv(self, path: Path) -> None:
+        """``node, x_m, y_m, contact_time_mean_s, contact_time_std_s, n_averages``."""
+        with Path(path).open("w", newline="", encoding="utf-8") as handle:
+            writer = csv.writer(handle)
+            writer.writerow(
+                ["node", "x_m", "y_m", "contact_time_mean_s", "contact_time_std_s", "n_averages"]
+            )
+            for row in zip(
+                self.nodes, *self.locations.T, self.mean_s, self.std_s, self.n_averages, strict=True
+            ):
+                writer.writerow([f"{v:.9g}" if isinstance(v, float) else v for v in row])
+
+
+def contact_times(records: HammerRecords, checks: Sequence[AverageCheck] = ()) -> ContactTimes:
+    """Contact time at every hammer point (see :func:`contact_time` for the method).
+
+    Parameters
+    ----------
+    records : HammerRecords
+        The hammer records.
+    checks : sequence of AverageCheck
+        Quality verdicts (:func:`racketdyn.measurement.frf.estimate_frfs`); rejected averages
+        are left out.  Empty: every average is used.
+    """
+    rejected = {(c.node, c.average) for c in checks if not c.accepted}
+    means, stds, counts = [], [], []
+    for node, force in zip(records.nodes, records.force, strict=True):
+        times = np.array(
+            [
+                contact_time(row, records.sampling_interval_s, records.pretrigger_s)
+                for k, row in enumerate(force)
+                if (node, k + 1) not in rejected
+            ]
+        )
+        times = times[np.isfinite(times)]
+        counts.append(times.size)
+        means.append(float(np.mean(times)) if times.size else float("nan"))
+        stds.append(float(np.std(times, ddof=1)) if times.size > 1 else float("nan"))
+    return ContactTimes(
+        records.nodes, records.locations, np.array(means), np.array(stds), np.array(counts)
+    )
