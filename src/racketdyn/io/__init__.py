@@ -1,6 +1,26 @@
-"""Reading and writing files: racket descriptions (TOML) and plain CSV tables."""
+"""Reading and writing files: racket descriptions (TOML), CSV tables and Universal Files."""
 
 from racketdyn.io.racket_file import default_racket, load_racket, racket_to_dict
 from racketdyn.io.tables import read_load_deflection, read_points
+from racketdyn.io.uff import (
+    read_frf_uff,
+    read_hammer_csv,
+    read_hammer_uff,
+    write_frf_uff,
+    write_hammer_csv,
+    write_hammer_uff,
+)
 
-__all__ = ["default_racket", "load_racket", "racket_to_dict", "read_load_deflection", "read_points"]
+__all__ = [
+    "default_racket",
+    "load_racket",
+    "racket_to_dict",
+    "read_frf_uff",
+    "read_hammer_csv",
+    "read_hammer_uff",
+    "read_load_deflection",
+    "read_points",
+    "write_frf_uff",
+    "write_hammer_csv",
+    "write_hammer_uff",
+]

@@ -8,7 +8,7 @@ reference, with coherence and what was done to get it.  Frequencies in Hz, time 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal, get_args
 
 import numpy as np
@@ -17,7 +17,15 @@ from numpy.typing import NDArray
 from racketdyn.errors import InputError, require_positive
 from racketdyn.racket import as_locations
 
-__all__ = ["FRF_TYPES", "RESPONSE_TYPES", "FrfSet", "FrfType", "HammerRecords", "ResponseType"]
+__all__ = [
+    "FRF_TYPES",
+    "FRF_TYPE_OF_RESPONSE",
+    "RESPONSE_TYPES",
+    "FrfSet",
+    "FrfType",
+    "HammerRecords",
+    "ResponseType",
+]
 
 ResponseType = Literal["acceleration", "velocity", "displacement"]
 RESPONSE_TYPES: tuple[str, ...] = get_args(ResponseType)
@@ -215,6 +223,18 @@ class FrfSet:
     def driving_point(self) -> int | None:
         """Index of the FRF measured at the reference node (the driving point), if any."""
         return self.nodes.index(self.reference_node) if self.reference_node in self.nodes else None
+
+    def band(self, low_hz: float, high_hz: float) -> FrfSet:
+        """The FRFs between two frequencies (inclusive), Hz."""
+        keep = (self.frequency >= low_hz) & (self.frequency <= high_hz)
+        if not np.any(keep):
+            raise InputError(f"{self.source}: no frequency line between {low_hz} and {high_hz} Hz")
+        return replace(
+            self,
+            frequency=self.frequency[keep],
+            values=self.values[:, keep],
+            coherence=None if self.coherence is None else self.coherence[:, keep],
+        )
 
     def as_type(self, frf_type: str) -> FrfSet:
         """The same FRFs converted to another type (× (iω)ⁿ); the zero line becomes 0 or NaN."""

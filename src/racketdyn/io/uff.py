@@ -1,0 +1,1320 @@
+"""Universal Files (UFF) and plain CSV files of roving-hammer tests: time records and FRFs.
+
+A roving-hammer test strikes each point of a grid several times and records the hammer force
+and the response of one fixed transducer (the reference).  This module reads and writes those
+records as :class:`~racketdyn.measurement.records.HammerRecords` and the FRFs estimated from
+them as :class:`~racketdyn.measurement.records.FrfSet`, through pyuff.
+
+What is read and written (see ``docs/uff-and-csv.md`` for the full description):
+
+- data set 15 or 2411: node coordinates (x along the racket from the butt, y across, m; z is
+  ignored); data set 164: the file's units, applied when it says non-SI;
+- data set 58 (ASCII) or 58b (binary), function type 1: time records, a force record
+  (ordinate type 13 at the hammer node) and a response record (ordinate type 8, 11 or 12 at the
+  reference node, its reference node the hammer node) per average, the load case being the
+  average number;
+- data set 58, function type 4: one FRF per hammer point, response node = the reference
+  transducer, reference (excitation) node = the hammer point; function type 6: coherence.
+
+Data sets are counted from 1 in the order of the file in every message.
+"""
+
+from __future__ import annotations
+
+import csv
+import datetime
+import io
+import logging
+import math
+import os
+import re
+import tempfile
+import warnings
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, cast
+
+import numpy as np
+import pyuff  # type: ignore[import-untyped]
+from numpy.typing import NDArray
+
+from racketdyn.__about__ import __version__
+from racketdyn.errors import InputError
+from racketdyn.measurement.records import (
+    FRF_TYPE_OF_RESPONSE,
+    RESPONSE_TYPES,
+    FrfSet,
+    FrfType,
+    HammerRecords,
+    ResponseType,
+)
+
+__all__ = [
+    "read_frf_uff",
+    "read_hammer_csv",
+    "read_hammer_uff",
+    "write_frf_uff",
+    "write_hammer_csv",
+    "write_hammer_uff",
+]
+
+logger = logging.getLogger(__name__)
+
+#: Function types of data set 58 (record 6, field 1).
+TIME_RESPONSE, FREQUENCY_RESPONSE, COHERENCE = 1, 4, 6
+#: Specific data types of data set 58 (records 8–11, field 1).
+QUANTITY_CODE: dict[str, int] = {
+    "displacement": 8,
+    "velocity": 11,
+    "acceleration": 12,
+    "force": 13,
+    "time": 17,
+    "frequency": 18,
+}
+RESPONSE_OF_CODE: dict[int, ResponseType] = {8: "displacement", 11: "velocity", 12: "acceleration"}
+#: Direction written for every record: +Z, normal to the string bed.
+DIRECTION = 3
+SI_LABEL: dict[str, str] = {
+    "displacement": "m",
+    "velocity": "m/s",
+    "acceleration": "m/s^2",
+    "force": "N",
+    "time": "s",
+    "frequency": "Hz",
+}
+#: Units labels understood in records 8–10 (lower case, spaces removed), as factors to SI.
+UNIT_SCALE: dict[str, dict[str, float]] = {
+    "displacement": {"m": 1.0, "mm": 1e-3, "um": 1e-6, "in": 0.0254},
+    "velocity": {"m/s": 1.0, "mm/s": 1e-3, "in/s": 0.0254},
+    "acceleration": {"m/s^2": 1.0, "mm/s^2": 1e-3, "g": 9.80665, "in/s^2": 0.0254},
+    "force": {"n": 1.0, "kn": 1e3, "mn": 1e-3, "lbf": 4.4482216152605},
+    "time": {"s": 1.0, "sec": 1.0, "ms": 1e-3},
+    "frequency": {"hz": 1.0, "1/s": 1.0},
+}
+_ABSCISSA_LINE = re.compile(r"racketdyn abscissa start (\S+) step (\S+)")
+_FRF_LINE = re.compile(r"estimator (\S+); exponential window tau (\S+) s; averages (\S+)")
+
+
+# --------------------------------------------------------------------------------------------
+# Reading: data sets → checked records
+# --------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class _Units:
+    """Factors of data set 164: file value / factor = SI value (1 when absent or SI)."""
+
+    length: float = 1.0
+    force: float = 1.0
+
+
+@dataclass(frozen=True)
+class _Record:
+    """One data set 58, checked and with its abscissa rebuilt (exactly if racketdyn wrote it)."""
+
+    index: int
+    func_type: int
+    rsp_node: int
+    rsp_dir: int
+    ref_node: int
+    ref_dir: int
+    load_case: int
+    quantity: int
+    denominator: int
+    labels: tuple[str, str, str]
+    x: NDArray[np.float64]
+    step: float
+    even: bool
+    data: NDArray[Any]
+    ids: tuple[str, ...]
+
+    def where(self, path: Path) -> str:
+        """The start of a message about this record."""
+        return (
+            f"{path}: data set {self.index} (58, function type {self.func_type}, "
+            f"response node {self.rsp_node}, reference node {self.ref_node}, "
+            f"load case {self.load_case})"
+        )
+
+
+@dataclass(frozen=True)
+class _Contents:
+    records: list[_Record]
+    nodes: dict[int, tuple[float, float]]
+    units: _Units
+    types: list[int]
+
+
+def _as_int(value: Any, default: int = 0) -> int:
+    try:
+        return int(value)
+    except (TypeError, ValueError):
+        return default
+
+
+def _read_sets(path: Path) -> list[dict[str, Any]]:
+    """All data sets of a Universal File as pyuff dictionaries; InputError on anything wrong."""
+    if not path.exists():
+        raise InputError(f"{path}: no such file")
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder; give a Universal File (.uff or .unv)")
+    try:
+        raw = path.read_bytes()
+    except OSError as error:
+        raise InputError(f"{path}: cannot be read ({error.strerror})") from None
+    if not raw.strip():
+        raise InputError(f"{path}: empty; expected a Universal File of data sets 15 and 58")
+    try:  # pyuff raises bare Exception for every failure
+        uff = pyuff.UFF(str(path))
+        n_sets = int(uff.get_n_sets())
+    except Exception:
+        raise InputError(f"{path}: cannot be read as a Universal File") from None
+    if n_sets == 0:
+        raise InputError(
+            f"{path}: not a Universal File (no data sets between '    -1' lines); export the "
+            "test as UFF data sets 15 and 58"
+        )
+    # pyuff pairs the '    -1' delimiters and silently drops an unpaired last one, so a file
+    # cut short loses its last data set without a word: a complete file ends with '    -1'.
+    if not raw.rstrip().endswith(b"    -1"):
+        raise InputError(
+            f"{path}: truncated or damaged: it does not end with a '    -1' line (data set "
+            f"{n_sets + 1} is incomplete); export the file again"
+        )
+    sets = []
+    for i in range(n_sets):
+        try:  # read one set at a time: pyuff's read_sets() names no set when one fails
+            dset = uff.read_sets(i)
+        except Exception:
+            raise InputError(
+                f"{path}: data set {i + 1} of {n_sets} cannot be read (truncated or damaged); "
+                "export the file again"
+            ) from None
+        sets.append(cast(dict[str, Any], dset))
+    return sets
+
+
+def _units_of(path: Path, sets: Sequence[dict[str, Any]]) -> _Units:
+    """Units of the first data set 164, if it says non-SI; SI otherwise."""
+    for i, dset in enumerate(sets, start=1):
+        if dset.get("type") != 164:
+            continue
+        if _as_int(dset.get("units_code"), 1) == 1:
+            return _Units()
+        length, force = dset.get("length"), dset.get("force")
+        if not all(isinstance(v, float) and math.isfinite(v) and v > 0 for v in (length, force)):
+            raise InputError(
+                f"{path}: data set {i} (164, units): the length and force factors must be "
+                f"positive numbers (got {length!r}, {force!r})"
+            )
+        return _Units(length=cast(float, length), force=cast(float, force))
+    return _Units()
+
+
+def _nodes_of(
+    path: Path, sets: Sequence[dict[str, Any]], units: _Units
+) -> dict[int, tuple[float, float]]:
+    """Node coordinates (x, y) in m from data sets 15 and 2411 (z ignored)."""
+    nodes: dict[int, tuple[float, float]] = {}
+    for i, dset in enumerate(sets, start=1):
+        if dset.get("type") not in (15, 2411):
+            continue
+        numbers = np.asarray(dset.get("node_nums", []), dtype=float)
+        x = np.asarray(dset.get("x", []), dtype=float) / units.length
+        y = np.asarray(dset.get("y", []), dtype=float) / units.length
+        if not (numbers.size == x.size == y.size) or not np.all(np.isfinite(np.r_[x, y])):
+            raise InputError(
+                f"{path}: data set {i} ({dset['type']}, nodes): every node needs finite x, y, z "
+                "coordinates"
+            )
+        for number, xi, yi in zip(numbers, x, y, strict=True):
+            nodes[int(number)] = (float(xi), float(yi))
+    return nodes
+
+
+def _normal_label(label: Any) -> str | None:
+    """A units label in lower case without spaces, or None where the record gives none."""
+    text = str(label or "").strip().lower().replace(" ", "")
+    text = text.replace("²", "^2").replace("**", "^").replace("µ", "u").replace("μ", "u")
+    if text.endswith("s2") and not text.endswith("^2") and "/" in text:
+        text = text[:-1] + "^2"
+    return None if text in ("", "none") else text
+
+
+def _scale(path: Path, record: _Record, quantity: str, label: str | None, units: _Units) -> float:
+    """Factor taking a value of ``quantity`` with units ``label`` to SI."""
+    if label is None:
+        length = {"displacement": 1, "velocity": 1, "acceleration": 1}.get(quantity, 0)
+        force = 1 if quantity == "force" else 0
+        return 1.0 / (units.length**length * units.force**force)
+    known = UNIT_SCALE[quantity]
+    if label in known:
+        return known[label]
+    raise InputError(
+        f"{record.where(path)}: units label {label!r} of the {quantity} is not one racketdyn "
+        f"knows ({', '.join(known)}); export in SI ({SI_LABEL[quantity]}) or with one of these"
+    )
+
+
+def _frf_scale(path: Path, record: _Record, response: str, units: _Units) -> float:
+    """Factor taking an FRF (response per force) to SI, from the labels of records 9 and 10."""
+    numerator, denominator = _normal_label(record.labels[1]), _normal_label(record.labels[2])
+    if numerator is not None and numerator not in UNIT_SCALE[response] and "/" in numerator:
+        top, bottom = numerator.rsplit("/", 1)
+        top = top.strip("()")
+        if top in UNIT_SCALE[response] and bottom in UNIT_SCALE["force"]:
+            return UNIT_SCALE[response][top] / UNIT_SCALE["force"][bottom]
+    return _scale(path, record, response, numerator, units) / _scale(
+        path, record, "force", denominator, units
+    )
+
+
+def _sign(path: Path, record: _Record, direction: int) -> float:
+    """+1 or −1 for a translational direction code (0, scalar, counts as +)."""
+    if abs(direction) > 3:
+        raise InputError(
+            f"{record.where(path)}: direction {direction} is a rotation; racketdyn reads "
+            "translations (±1, ±2, ±3) only"
+        )
+    return -1.0 if direction < 0 else 1.0
+
+
+def _abscissa(dset: dict[str, Any]) -> tuple[NDArray[np.float64], float, bool]:
+    """Abscissa, its step and whether it is even, exact where racketdyn's ID line 5 holds them.
+
+    The header holds the start and step with 6 significant digits (E13.5, as the format
+    prescribes); racketdyn writes both exactly in ID line 5 and takes them back when they agree
+    with the header.
+    """
+    x = np.asarray(dset.get("x"), dtype=float)
+    even = _as_int(dset.get("abscissa_spacing")) == 1
+    step = float((x[-1] - x[0]) / (x.size - 1)) if x.size > 1 else math.nan
+    if not even:
+        return x, step, even
+    header_start = float(dset.get("abscissa_min", math.nan))
+    header_step = float(dset.get("abscissa_inc", math.nan))
+    match = _ABSCISSA_LINE.search(str(dset.get("id5", "")))
+    if match and x.size:
+        try:
+            start, exact = float(match.group(1)), float(match.group(2))
+        except ValueError:
+            return x, header_step, even
+        if abs(exact - header_step) <= 1e-5 * abs(exact) and abs(start - header_start) <= 1e-5 * (
+            abs(start) + abs(exact)
+        ):
+            return np.asarray(start + np.arange(x.size) * exact), exact, even
+    return x, header_step, even
+
+
+def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
+    data = np.asarray(dset.get("data"))
+    x, step, even = _abscissa(dset)
+    record = _Record(
+        index=index,
+        func_type=_as_int(dset.get("func_type")),
+        rsp_node=_as_int(dset.get("rsp_node")),
+        rsp_dir=_as_int(dset.get("rsp_dir")),
+        ref_node=_as_int(dset.get("ref_node")),
+        ref_dir=_as_int(dset.get("ref_dir")),
+        load_case=_as_int(dset.get("load_case_id")),
+        quantity=_as_int(dset.get("ordinate_spec_data_type")),
+        denominator=_as_int(dset.get("orddenom_spec_data_type")),
+        labels=(
+            str(dset.get("abscissa_axis_units_lab", "")),
+            str(dset.get("ordinate_axis_units_lab", "")),
+            str(dset.get("orddenom_axis_units_lab", "")),
+        ),
+        x=x,
+        step=step,
+        even=even,
+        data=data,
+        ids=tuple(str(dset.get(f"id{k}", "")) for k in range(1, 6)),
+    )
+    n_header = _as_int(dset.get("num_pts"), -1)
+    if data.ndim != 1 or data.size != n_header or x.size != data.size:
+        raise InputError(
+            f"{record.where(path)}: holds {data.size} values but its header says {n_header} "
+            "(truncated or damaged file); export the file again"
+        )
+    if data.size < 2:
+        raise InputError(f"{record.where(path)}: a record needs two values or more")
+    bad = ~np.isfinite(data)
+    if np.any(bad):
+        raise InputError(
+            f"{record.where(path)}: {int(bad.sum())} of its values are NaN or infinite (the "
+            f"first at sample {int(np.argmax(bad))}); re-export the record or leave it out"
+        )
+    if not np.all(np.isfinite(x)) or (x.size > 1 and np.any(np.diff(x) <= 0)):
+        raise InputError(f"{record.where(path)}: the abscissa must rise strictly")
+    return record
+
+
+def _load(path: Path, geometry: Path | str | None) -> _Contents:
+    """Records 58 and node coordinates of a file (and of a separate geometry file)."""
+    sets = _read_sets(path)
+    units = _units_of(path, sets)
+    nodes = _nodes_of(path, sets, units)
+    if geometry is not None:
+        geometry = Path(geometry)
+        geometry_sets = _read_sets(geometry)
+        found = _nodes_of(geometry, geometry_sets, _units_of(geometry, geometry_sets))
+        if not found:
+            raise InputError(
+                f"{geometry}: no node coordinates (data set 15 or 2411); give a geometry file "
+                "that lists the nodes"
+            )
+        nodes.update(found)
+    records = [
+        _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
+    ]
+    types = [_as_int(dset.get("type")) for dset in sets]
+    return _Contents(records=records, nodes=nodes, units=units, types=types)
+
+
+def _location(
+    path: Path,
+    geometry: Path | str | None,
+    nodes: dict[int, tuple[float, float]],
+    node: int,
+    role: str,
+) -> tuple[float, float]:
+    if node in nodes:
+        return nodes[node]
+    where = f"{path}" if geometry is None else f"{path} or {geometry}"
+    if not nodes:
+        raise InputError(
+            f"{path}: no node coordinates (data set 15 or 2411); add them to the file or pass "
+            "geometry= a file that holds them"
+        )
+    raise InputError(
+        f"{path}: {role} node {node} has no coordinates in {where}; add it to the geometry "
+        "(data set 15 or 2411)"
+    )
+
+
+def _check_same_abscissa(path: Path, first: _Record, record: _Record, what: str) -> None:
+    """InputError naming both records unless they share one abscissa."""
+    same = first.x.size == record.x.size
+    if same:
+        scale = float(np.max(np.abs(first.x))) + float(np.ptp(first.x)) / max(first.x.size, 1)
+        same = bool(np.allclose(record.x, first.x, rtol=1e-9, atol=1e-9 * scale))
+    if not same:
+
+        def axis(r: _Record) -> str:
+            step = float(np.mean(np.diff(r.x))) if r.x.size > 1 else math.nan
+            return f"{r.x.size} values from {r.x[0]:g} by {step:g}"
+
+        raise InputError(
+            f"{path}: data sets {first.index} and {record.index} differ in {what} "
+            f"({axis(first)} against {axis(record)}); every record must share one {what}"
+        )
+
+
+def _describe_types(contents: _Contents) -> str:
+    functions = sorted({r.func_type for r in contents.records})
+    others = sorted(set(contents.types) - {58})
+    parts = []
+    if functions:
+        parts.append("data set 58 of function type " + ", ".join(map(str, functions)))
+    if others:
+        parts.append(f"data set{'s' if len(others) > 1 else ''} " + ", ".join(map(str, others)))
+    return " and ".join(parts) or "nothing usable"
+
+
+# --------------------------------------------------------------------------------------------
+# Public readers
+# --------------------------------------------------------------------------------------------
+
+
+def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> HammerRecords:
+    """Read the time records of a roving-hammer test from a Universal File.
+
+    Parameters
+    ----------
+    path : Path or str
+        Universal File with data sets 58 (ASCII) or 58b (binary) of function type 1: per hammer
+        point and average a force record (ordinate type 13 excitation force, response node =
+        the hammer node) and a response record (ordinate type 12 acceleration, 11 velocity or
+        8 displacement, response node = the fixed transducer, reference node = the hammer
+        node), paired by hammer node and load case (the average number).  Node coordinates
+        (data set 15 or 2411, m) may be in the same file.
+    geometry : Path or str, optional
+        A second Universal File with node coordinates (data set 15 or 2411, m); its nodes take
+        precedence over those of ``path``.
+
+    Returns
+    -------
+    HammerRecords
+        Points ordered by node number, averages in load-case order, SI units (converted where
+        the units labels or a data set 164 say otherwise; SI assumed where the file is silent).
+        ``metadata["averages"]`` lists the load cases of each point.
+
+    Raises
+    ------
+    InputError
+        Missing, damaged or truncated file; FRFs instead of time records; an average missing
+        its force or response record; records of different length or sampling; no force
+        channel; NaN in the data; a node without coordinates.
+    """
+    path = Path(path)
+    contents = _load(path, geometry)
+    records = [r for r in contents.records if r.func_type == TIME_RESPONSE]
+    if not records:
+        hint = (
+            "; read it with read_frf_uff"
+            if any(r.func_type == FREQUENCY_RESPONSE for r in contents.records)
+            else ""
+        )
+        raise InputError(
+            f"{path}: no time records (data set 58, function type 1): the file holds "
+            f"{_describe_types(contents)}{hint}"
+        )
+    ignored = len(contents.records) - len(records)
+    if ignored:
+        logger.info("%s: %d data sets 58 that are not time records ignored", path, ignored)
+    forces: dict[tuple[int, int], _Record] = {}
+    responses: dict[tuple[int, int], _Record] = {}
+    for record in records:
+        if np.iscomplexobj(record.data):
+            raise InputError(f"{record.where(path)}: a time record must be real, not complex")
+        if record.quantity == QUANTITY_CODE["force"]:
+            table, key = forces, (record.rsp_node, record.load_case)
+        elif record.quantity in RESPONSE_OF_CODE:
+            if record.ref_node == 0:
+                raise InputError(
+                    f"{record.where(path)}: a response record must name the hammer node as its "
+                    "reference node (record 6, field 9)"
+                )
+            table, key = responses, (record.ref_node, record.load_case)
+        else:
+            raise InputError(
+                f"{record.where(path)}: ordinate type {record.quantity} is neither a force (13) "
+                "nor a response (8 displacement, 11 velocity, 12 acceleration); set record 9, "
+                "field 1 to one of these"
+            )
+        if key in table:
+            raise InputError(
+                f"{path}: data sets {table[key].index} and {record.index} are both the "
+                f"{'force' if table is forces else 'response'} of hammer node {key[0]}, load "
+                f"case {key[1]}; give each average its own load case number"
+            )
+        table[key] = record
+    if not forces:
+        raise InputError(
+            f"{path}: no force channel: no time record has ordinate type 13 (excitation force); "
+            "export the hammer channel with the responses"
+        )
+    if not responses:
+        raise InputError(
+            f"{path}: no response channel: no time record has ordinate type 8, 11 or 12; export "
+            "the transducer channel with the forces"
+        )
+    for key in sorted(forces.keys() ^ responses.keys()):
+        present = forces.get(key) or responses[key]
+        missing = "response" if key in forces else "force"
+        raise InputError(
+            f"{present.where(path)}: hammer node {key[0]}, average (load case) {key[1]} has no "
+            f"{missing} record; export both channels of every average or leave the average out"
+        )
+    first_response = next(iter(responses.values()))
+    response_type = RESPONSE_OF_CODE[first_response.quantity]
+    reference_node = first_response.rsp_node
+    for record in responses.values():
+        if record.rsp_node != reference_node:
+            raise InputError(
+                f"{path}: data sets {first_response.index} and {record.index} were measured at "
+                f"different response nodes ({reference_node} and {record.rsp_node}); racketdyn "
+                "reads one reference transducer at a time"
+            )
+        if record.quantity != first_response.quantity:
+            raise InputError(
+                f"{path}: data sets {first_response.index} and {record.index} hold different "
+                f"responses ({response_type} and {RESPONSE_OF_CODE[record.quantity]}); give one "
+                "response type"
+            )
+    first = records[0]
+    for record in records[1:]:
+        _check_same_abscissa(path, first, record, "length and sampling")
+    x, step = first.x, first.step
+    if x.size < 2:
+        raise InputError(f"{first.where(path)}: a time record needs two samples or more")
+    if (
+        not first.even
+        and np.max(np.abs(np.diff(x) - step)) > 1e-5 * np.max(np.abs(x)) + 1e-9 * step
+    ):
+        raise InputError(f"{first.where(path)}: the samples must be evenly spaced in time")
+    time_scale = _scale(path, first, "time", _normal_label(first.labels[0]), contents.units)
+    nodes = sorted({node for node, _ in forces})
+    force_rows, response_rows, averages = [], [], []
+    for node in nodes:
+        cases = sorted(case for n, case in forces if n == node)
+        averages.append(cases)
+        rows_f, rows_r = [], []
+        for case in cases:
+            f, r = forces[node, case], responses[node, case]
+            f_scale = _scale(path, f, "force", _normal_label(f.labels[1]), contents.units)
+            r_scale = _scale(path, r, response_type, _normal_label(r.labels[1]), contents.units)
+            rows_f.append(f.data * f_scale * _sign(path, f, f.rsp_dir))
+            rows_r.append(r.data * r_scale * _sign(path, r, r.rsp_dir))
+        force_rows.append(np.asarray(rows_f, dtype=float))
+        response_rows.append(np.asarray(rows_r, dtype=float))
+    locations = [_location(path, geometry, contents.nodes, n, "hammer") for n in nodes]
+    reference_location = _location(path, geometry, contents.nodes, reference_node, "reference")
+    return HammerRecords(
+        sampling_interval_s=float(step * time_scale),
+        force=tuple(force_rows),
+        response=tuple(response_rows),
+        response_type=response_type,
+        nodes=tuple(nodes),
+        locations=np.asarray(locations, dtype=float),
+        reference_node=reference_node,
+        reference_location=reference_location,
+        pretrigger_s=float(-x[0] * time_scale),
+        source=str(path),
+        metadata={"averages": averages},
+    )
+
+
+def read_frf_uff(path: Path | str, geometry: Path | str | None = None) -> FrfSet:
+    """Read the FRFs of a roving-hammer test from a Universal File.
+
+    Parameters
+    ----------
+    path : Path or str
+        Universal File with data sets 58 or 58b of function type 4 (FRF), complex: response
+        node = the fixed transducer (the reference of the set), reference node = the hammer
+        point.  The FRF type follows the ordinate (numerator) type of record 9: 8 displacement
+        → receptance, 11 velocity → mobility, 12 acceleration → accelerance; the denominator
+        (record 10) must be a force (13) or left unknown (0).  Coherences (function type 6)
+        of the same node pairs are read when every point has one.  Node coordinates (data set
+        15 or 2411, m) may be in the same file.
+    geometry : Path or str, optional
+        A second Universal File with node coordinates (data set 15 or 2411, m); its nodes take
+        precedence over those of ``path``.
+
+    Returns
+    -------
+    FrfSet
+        Points ordered by node number, frequencies in Hz, values in SI units of the FRF type.
+        Files written by :func:`write_frf_uff` give back their estimator, exponential window
+        and averages; other files get ``estimator="file"``.
+
+    Raises
+    ------
+    InputError
+        Missing, damaged or truncated file; time records instead of FRFs; records on different
+        frequency axes; two FRFs of one point; NaN in the data; a node without coordinates.
+    """
+    path = Path(path)
+    contents = _load(path, geometry)
+    records = [r for r in contents.records if r.func_type == FREQUENCY_RESPONSE]
+    if not records:
+        hint = (
+            "; read it with read_hammer_uff"
+            if any(r.func_type == TIME_RESPONSE for r in contents.records)
+            else ""
+        )
+        raise InputError(
+            f"{path}: no FRFs (data set 58, function type 4): the file holds "
+            f"{_describe_types(contents)}{hint}"
+        )
+    by_node: dict[int, _Record] = {}
+    for record in records:
+        if not np.iscomplexobj(record.data):
+            raise InputError(
+                f"{record.where(path)}: an FRF must be complex (ordinate data type 5 or 6)"
+            )
+        if record.quantity not in RESPONSE_OF_CODE:
+            raise InputError(
+                f"{record.where(path)}: ordinate type {record.quantity} is not a response "
+                "(8 displacement, 11 velocity, 12 acceleration); set record 9, field 1"
+            )
+        if record.denominator not in (0, QUANTITY_CODE["force"]):
+            raise InputError(
+                f"{record.where(path)}: the FRF must be per force (record 10, field 1 = 13), "
+                f"not per quantity {record.denominator}"
+            )
+        if record.ref_node in by_node:
+            raise InputError(
+                f"{path}: data sets {by_node[record.ref_node].index} and {record.index} are both "
+                f"the FRF of hammer node {record.ref_node}; keep one"
+            )
+        by_node[record.ref_node] = record
+    first = records[0]
+    response_type = RESPONSE_OF_CODE[first.quantity]
+    for record in records[1:]:
+        if record.rsp_node != first.rsp_node:
+            raise InputError(
+                f"{path}: data sets {first.index} and {record.index} have different response "
+                f"nodes ({first.rsp_node} and {record.rsp_node}); racketdyn reads the FRFs of "
+                "one reference transducer at a time"
+            )
+        if record.quantity != first.quantity:
+            raise InputError(
+                f"{path}: data sets {first.index} and {record.index} are FRFs of different types "
+                f"({record.quantity} against {first.quantity} in record 9); give one type"
+            )
+        _check_same_abscissa(path, first, record, "frequency axis")
+    frequency_scale = _scale(
+        path, first, "frequency", _normal_label(first.labels[0]), contents.units
+    )
+    nodes = sorted(by_node)
+    values = np.asarray(
+        [
+            by_node[n].data
+            * _frf_scale(path, by_node[n], response_type, contents.units)
+            * _sign(path, by_node[n], by_node[n].rsp_dir)
+            * _sign(path, by_node[n], by_node[n].ref_dir)
+            for n in nodes
+        ],
+        dtype=complex,
+    )
+    coherence = _coherence(path, contents.records, first.rsp_node, nodes, first)
+    estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
+    return FrfSet(
+        frequency=first.x * frequency_scale,
+        values=values,
+        frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
+        nodes=tuple(nodes),
+        locations=np.asarray(
+            [_location(path, geometry, contents.nodes, n, "hammer") for n in nodes], dtype=float
+        ),
+        reference_node=first.rsp_node,
+        reference_location=_location(path, geometry, contents.nodes, first.rsp_node, "reference"),
+        coherence=coherence,
+        n_averages=averages,
+        exponential_window_s=tau,
+        estimator=estimator,
+        source=str(path),
+    )
+
+
+def _coherence(
+    path: Path, records: Iterable[_Record], reference: int, nodes: list[int], first: _Record
+) -> NDArray[np.float64] | None:
+    """Coherences (function type 6) of every point against the reference, or None."""
+    found: dict[int, _Record] = {}
+    for record in records:
+        if record.func_type == COHERENCE and record.rsp_node == reference:
+            found[record.ref_node] = record
+    if not found:
+        return None
+    if set(found) != set(nodes):
+        logger.warning(
+            "%s: coherence given for nodes %s only; coherence left out", path, sorted(found)
+        )
+        return None
+    for record in found.values():
+        _check_same_abscissa(path, first, record, "frequency axis")
+        if np.iscomplexobj(record.data):
+            raise InputError(f"{record.where(path)}: a coherence must be real")
+    return np.asarray([found[n].data for n in nodes], dtype=float)
+
+
+def _frf_id_fields(
+    records: Sequence[_Record],
+) -> tuple[str, float | None, NDArray[np.int_] | None]:
+    """Estimator, exponential window τ (s) and averages from racketdyn's ID line 2, if all agree."""
+    fields = []
+    for record in records:
+        match = _FRF_LINE.search(record.ids[1]) if record.ids[0].startswith("racketdyn") else None
+        if match is None:
+            return "file", None, None
+        fields.append(match.groups())
+    estimators = {f[0] for f in fields}
+    taus = {f[1] for f in fields}
+    if len(estimators) != 1 or len(taus) != 1:
+        return "file", None, None
+    tau_text = taus.pop()
+    try:
+        tau = None if tau_text == "none" else float(tau_text)
+    except ValueError:
+        tau = None
+    try:
+        averages = np.asarray([int(f[2]) for f in fields], dtype=int)
+    except ValueError:
+        averages = None
+    return estimators.pop(), tau, averages
+
+
+# --------------------------------------------------------------------------------------------
+# Writing
+# --------------------------------------------------------------------------------------------
+
+
+def _ascii_line(text: str) -> str:
+    """An ID line: ASCII, one line, at most 80 characters, never blank."""
+    line = " ".join(text.encode("ascii", "replace").decode("ascii").split())
+    return line[:80] or "NONE"
+
+
+def _abscissa_line(x: NDArray[np.float64]) -> str:
+    start, step = float(x[0]), float((x[-1] - x[0]) / (x.size - 1))
+    return _ascii_line(f"racketdyn abscissa start {start!r} step {step!r}")
+
+
+def _is_even(x: NDArray[np.float64]) -> bool:
+    step = (x[-1] - x[0]) / (x.size - 1)
+    return bool(np.allclose(np.diff(x), step, rtol=1e-9, atol=0.0))
+
+
+def _geometry_set(
+    target: Path,
+    reference_node: int,
+    reference_location: tuple[float, float],
+    nodes: Sequence[int],
+    locations: NDArray[np.float64],
+) -> dict[str, Any]:
+    """Data set 15 with the reference node first, then the hammer nodes."""
+    numbers, xs, ys = [reference_node], [reference_location[0]], [reference_location[1]]
+    seen: set[int] = set()
+    for node, (x, y) in zip(nodes, locations, strict=True):
+        if node <= 0:
+            raise InputError(f"{target}: node {node}: UFF node numbers must be positive")
+        if node in seen:
+            raise InputError(f"{target}: node {node} is listed twice; give each point its own node")
+        seen.add(node)
+        if node == reference_node:
+            if not np.allclose((x, y), reference_location, rtol=0.0, atol=1e-9):
+                raise InputError(
+                    f"{target}: node {node} is the reference and a hammer point at different "
+                    f"locations ({reference_location} and {(float(x), float(y))}); make them agree"
+                )
+            continue
+        numbers.append(node)
+        xs.append(float(x))
+        ys.append(float(y))
+    if reference_node <= 0:
+        raise InputError(
+            f"{target}: reference node {reference_node}: UFF node numbers must be positive"
+        )
+    n = len(numbers)
+    return {
+        "type": 15,
+        "node_nums": numbers,
+        "def_cs": [0] * n,
+        "disp_cs": [0] * n,
+        "color": [0] * n,
+        "x": xs,
+        "y": ys,
+        "z": [0.0] * n,
+    }
+
+
+def _record_set(
+    *,
+    func_type: int,
+    load_case: int,
+    rsp_node: int,
+    ref_node: int,
+    x: NDArray[np.float64],
+    data: NDArray[Any],
+    abscissa: str,
+    ordinate: str | None,
+    denominator: str | None,
+    ids: Sequence[str],
+    binary: bool,
+    number: int,
+) -> dict[str, Any]:
+    """A pyuff dictionary for one data set 58, SI units labelled."""
+    even = _is_even(x)
+    dset: dict[str, Any] = {
+        "type": 58,
+        "binary": int(binary),
+        "func_type": func_type,
+        "func_id": number,
+        "ver_num": 0,
+        "load_case_id": load_case,
+        "rsp_ent_name": "NONE",
+        "rsp_node": rsp_node,
+        "rsp_dir": DIRECTION,
+        "ref_ent_name": "NONE",
+        "ref_node": ref_node,
+        "ref_dir": DIRECTION,
+        "abscissa_spacing": int(even),
+        "abscissa_spec_data_type": QUANTITY_CODE[abscissa],
+        "abscissa_axis_lab": abscissa.capitalize(),
+        "abscissa_axis_units_lab": SI_LABEL[abscissa],
+        "ordinate_spec_data_type": QUANTITY_CODE[ordinate] if ordinate else 0,
+        "ordinate_axis_lab": (ordinate or "coherence").capitalize(),
+        "ordinate_axis_units_lab": SI_LABEL[ordinate] if ordinate else "NONE",
+        # pyuff requires this key although it documents it as optional
+        "orddenom_spec_data_type": QUANTITY_CODE[denominator] if denominator else 0,
+        "orddenom_axis_lab": denominator.capitalize() if denominator else "NONE",
+        "orddenom_axis_units_lab": SI_LABEL[denominator] if denominator else "NONE",
+        "z_axis_spec_data_type": 0,
+        "x": np.asarray(x, dtype=float),
+        "data": np.array(data),
+    }
+    for k, text in enumerate(ids, start=1):
+        dset[f"id{k}"] = _ascii_line(text)
+    dset["id5"] = _abscissa_line(x) if even else "racketdyn abscissa uneven"
+    return dset
+
+
+def _write_sets(path: Path, sets: Sequence[dict[str, Any]]) -> Path:
+    """Write data sets to a fresh file with pyuff.
+
+    Each data set goes with mode 'add' into a fresh scratch file whose bytes are appended to the
+    output, which then replaces ``path`` in one step: pyuff re-reads the whole file after every
+    data set it writes (quadratic time), and its mode 'overwrite' truncates the file again when
+    the first data set is binary, destroying that set's header.
+    """
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder; give a file name to write")
+    if not path.parent.is_dir():
+        raise InputError(f"{path}: the folder {path.parent} does not exist; create it first")
+    with tempfile.TemporaryDirectory(prefix="racketdyn-uff-") as scratch:
+        out = Path(scratch) / "out.uff"
+        try:
+            with out.open("wb") as target:
+                for k, dset in enumerate(sets):
+                    part = Path(scratch) / f"{k}.uff"
+                    # pyuff leaves a file handle open after a binary data set 58 (CPython closes
+                    # it at once; the ResourceWarning would reach the user as noise)
+                    with warnings.catch_warnings():
+                        warnings.simplefilter("ignore", ResourceWarning)
+                        pyuff.UFF(str(part)).write_sets([dset], mode="add")
+                    target.write(part.read_bytes())
+                    part.unlink()
+        except Exception as error:  # pyuff raises bare Exception
+            raise InputError(f"{path}: cannot be written ({error})") from None
+        try:
+            os.replace(out, path)
+        except OSError as error:
+            raise InputError(f"{path}: cannot be written ({error.strerror})") from None
+    return path
+
+
+def _finite(target: Path, what: str, node: int, values: NDArray[Any]) -> None:
+    bad = ~np.isfinite(values)
+    if np.any(bad):
+        raise InputError(
+            f"{target}: {what} of node {node} has {int(bad.sum())} NaN or infinite value(s); "
+            "pyuff would write them as 0 or huge numbers — drop those lines before writing"
+        )
+
+
+def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
+    """Write FRFs to a fresh Universal File.
+
+    The file holds a data set 15 (the reference node, then the hammer nodes, x and y in m, z 0)
+    and per point a data set 58 of function type 4 (complex, double precision; response node =
+    the reference, reference node = the hammer point, both +Z; ordinate type 8, 11 or 12 per
+    ``frf_type`` over force 13; frequency in Hz) followed, when the set has coherence, by its
+    coherence (function type 6).  ID line 1 names racketdyn and its version, line 2 the
+    estimator, exponential window τ and averages, line 3 the date, line 4 the nodes, line 5 the
+    exact frequency start and step.
+
+    Parameters
+    ----------
+    frfs : FrfSet
+        The FRFs; every value must be finite.
+    path : Path or str
+        File to write; an existing file is replaced.
+    binary : bool
+        Write binary data sets 58b instead of ASCII 58 (default False).  pyuff writes the byte
+        count of a complex binary record as half the true count in the 58b header (8 bytes per
+        value instead of 16), which readers that trust it choke on; hence ASCII by default.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    InputError
+        NaN or infinite values (pyuff would write them as 0), node numbers that are not
+        positive or repeat, fewer than two frequency lines, or a file that cannot be written.
+    """
+    path = Path(path)
+    frequency = np.asarray(frfs.frequency, dtype=float)
+    if frequency.size < 2:
+        raise InputError(f"{path}: an FRF needs two frequency lines or more to be written")
+    sets = [
+        _geometry_set(
+            path, frfs.reference_node, frfs.reference_location, frfs.nodes, frfs.locations
+        )
+    ]
+    response = {v: k for k, v in FRF_TYPE_OF_RESPONSE.items()}[frfs.frf_type]
+    tau = "none" if frfs.exponential_window_s is None else repr(float(frfs.exponential_window_s))
+    estimator = "_".join(str(frfs.estimator).split()) or "file"
+    date = datetime.datetime.now().strftime("%d-%b-%y %H:%M:%S")
+    for i, node in enumerate(frfs.nodes):
+        _finite(path, "the FRF", node, frfs.values[i])
+        averages = "?" if frfs.n_averages is None else str(int(frfs.n_averages[i]))
+        ids = [
+            f"racketdyn {__version__} FRF {frfs.frf_type}",
+            f"estimator {estimator}; exponential window tau {tau} s; averages {averages}",
+            date,
+            f"hammer node {node} to reference node {frfs.reference_node}; {frfs.source}",
+        ]
+        common = {"load_case": 0, "rsp_node": frfs.reference_node, "ref_node": node}
+        sets.append(
+            _record_set(
+                func_type=FREQUENCY_RESPONSE,
+                x=frequency,
+                data=np.asarray(frfs.values[i], dtype=complex),
+                abscissa="frequency",
+                ordinate=response,
+                denominator="force",
+                ids=ids,
+                binary=binary,
+                number=len(sets),
+                **common,
+            )
+        )
+        if frfs.coherence is not None:
+            _finite(path, "the coherence", node, frfs.coherence[i])
+            sets.append(
+                _record_set(
+                    func_type=COHERENCE,
+                    x=frequency,
+                    data=np.asarray(frfs.coherence[i], dtype=float),
+                    abscissa="frequency",
+                    ordinate=None,
+                    denominator=None,
+                    ids=[f"racketdyn {__version__} coherence", ids[1], date, ids[3]],
+                    binary=binary,
+                    number=len(sets),
+                    **common,
+                )
+            )
+    return _write_sets(path, sets)
+
+
+def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = False) -> Path:
+    """Write roving-hammer time records to a fresh Universal File, as a lab would.
+
+    The file holds a data set 15 (the reference node, then the hammer nodes, x and y in m, z 0)
+    and, per point and average, a force record and a response record: data sets 58 of function
+    type 1, real, double precision, time in s from ``-pretrigger_s``.  The force record has
+    ordinate type 13 (N) and the hammer node as response and reference node; the response record
+    has ordinate type 12, 11 or 8 per ``response_type`` (SI), the reference transducer as
+    response node and the hammer node as reference node.  The load case is the average number,
+    from 1.  :func:`read_hammer_uff` reads the file back.
+
+    Parameters
+    ----------
+    records : HammerRecords
+        The records; every value must be finite.
+    path : Path or str
+        File to write; an existing file is replaced.
+    binary : bool
+        Write binary data sets 58b instead of ASCII 58 (default False).
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    InputError
+        NaN or infinite values, node numbers that are not positive or repeat, or a file that
+        cannot be written.
+    """
+    path = Path(path)
+    sets = [
+        _geometry_set(
+            path,
+            records.reference_node,
+            records.reference_location,
+            records.nodes,
+            records.locations,
+        )
+    ]
+    time = records.time
+    date = datetime.datetime.now().strftime("%d-%b-%y %H:%M:%S")
+    kind = records.response_type
+    for node, force, response in zip(records.nodes, records.force, records.response, strict=True):
+        _finite(path, "the force", node, force)
+        _finite(path, "the response", node, response)
+        for k in range(force.shape[0]):
+            where = f"hammer node {node}, average {k + 1}, reference node {records.reference_node}"
+            for channel, data, rsp_node in (
+                ("force", force[k], node),
+                (kind, response[k], records.reference_node),
+            ):
+                sets.append(
+                    _record_set(
+                        func_type=TIME_RESPONSE,
+                        load_case=k + 1,
+                        rsp_node=rsp_node,
+                        ref_node=node,
+                        x=time,
+                        data=np.asarray(data, dtype=float),
+                        abscissa="time",
+                        ordinate=channel,
+                        denominator=None,
+                        ids=[
+                            f"racketdyn {__version__} hammer test, {channel}",
+                            records.source or "NONE",
+                            date,
+                            where,
+                        ],
+                        binary=binary,
+                        number=len(sets),
+                    )
+                )
+    return _write_sets(path, sets)
+
+
+# --------------------------------------------------------------------------------------------
+# CSV
+# --------------------------------------------------------------------------------------------
+
+CSV_COLUMNS = ("node", "average", "time_s", "force_n", "response")
+GEOMETRY_COLUMNS = ("node", "x_m", "y_m")
+
+
+def _csv_rows(
+    path: Path, required: tuple[str, ...]
+) -> tuple[dict[str, str], list[str], list[int], list[list[str]]]:
+    """Settings (``# key: value`` lines), header, line numbers and rows of a CSV file."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"{path}: cannot be read as UTF-8 text ({error})") from None
+    settings: dict[str, str] = {}
+    numbers, lines = [], []
+    for number, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if stripped.startswith("#"):
+            key, colon, value = stripped[1:].partition(":")
+            if colon:
+                settings[key.strip().lower()] = value.strip()
+        elif stripped:
+            numbers.append(number)
+            lines.append(line)
+    if not lines:
+        raise InputError(f"{path}: empty; expected a header with columns {', '.join(required)}")
+    rows = list(csv.reader(lines, skipinitialspace=True))
+    header = [name.strip() for name in rows[0]]
+    missing = [name for name in required if name not in header]
+    if missing:
+        raise InputError(
+            f"{path}: missing column(s) {', '.join(missing)}; the header must name "
+            f"{', '.join(required)} (found {', '.join(header) or 'nothing'})"
+        )
+    for number, row in zip(numbers[1:], rows[1:], strict=True):
+        if len(row) != len(header):
+            raise InputError(
+                f"{path}: line {number} has {len(row)} values for {len(header)} columns "
+                f"({', '.join(header)})"
+            )
+    return settings, header, numbers[1:], rows[1:]
+
+
+def _csv_column(
+    path: Path,
+    header: list[str],
+    numbers: list[int],
+    rows: list[list[str]],
+    name: str,
+    integer: bool,
+) -> NDArray[Any]:
+    """One column as numbers; InputError naming the line of the first bad value."""
+    j = header.index(name)
+    texts = [row[j].strip() for row in rows]
+    kind = "a whole number" if integer else "a finite number"
+    try:
+        values = np.asarray(texts, dtype=int if integer else float)
+    except (TypeError, ValueError):
+        values = None
+    if values is not None and (values.size == 0 or bool(np.all(np.isfinite(values)))):
+        return values
+    for number, text in zip(numbers, texts, strict=True):
+        try:
+            value = int(text) if integer else float(text)
+        except ValueError:
+            value = math.nan
+        if not math.isfinite(value):
+            raise InputError(f"{path}: line {number}, column {name}: {text!r} is not {kind}")
+    raise InputError(f"{path}: column {name} must hold {kind} on every line")
+
+
+def _csv_setting(path: Path, settings: dict[str, str], key: str, example: str) -> str:
+    if key not in settings or not settings[key]:
+        raise InputError(
+            f"{path}: no '# {key}: …' line; add one before the header (e.g. '# {key}: {example}')"
+        )
+    return settings[key]
+
+
+def read_hammer_csv(path: Path | str, geometry_path: Path | str) -> HammerRecords:
+    """Read roving-hammer time records from a CSV file and its geometry CSV.
+
+    Parameters
+    ----------
+    path : Path or str
+        CSV in long form: comment lines ``# reference_node: N`` and ``# response_type:
+        acceleration`` (or velocity, displacement) before the header ``node,average,time_s,
+        force_n,response``; one row per sample: hammer node, average number, time from the
+        trigger (s, the same evenly spaced times for every average), hammer force (N), response
+        at the reference node (SI units of the response type).
+    geometry_path : Path or str
+        CSV with header ``node,x_m,y_m``: coordinates (m) of the reference node and every
+        hammer node.
+
+    Returns
+    -------
+    HammerRecords
+        Points ordered by node number, averages by their number (listed in
+        ``metadata["averages"]``).
+
+    Raises
+    ------
+    InputError
+        Missing file or column, a value that is not a number (NaN included), a missing
+        setting, averages of different length or timing, a node without coordinates.
+    """
+    path, geometry_path = Path(path), Path(geometry_path)
+    settings, header, numbers, rows = _csv_rows(path, CSV_COLUMNS)
+    if not rows:
+        raise InputError(f"{path}: no samples listed under the header")
+    reference_text = _csv_setting(path, settings, "reference_node", "3")
+    try:
+        reference_node = int(reference_text)
+    except ValueError:
+        raise InputError(
+            f"{path}: reference_node must be a whole number (got {reference_text!r})"
+        ) from None
+    response_type = _csv_setting(path, settings, "response_type", "acceleration")
+    if response_type not in RESPONSE_TYPES:
+        raise InputError(
+            f"{path}: response_type must be one of {', '.join(RESPONSE_TYPES)} "
+            f"(got {response_type!r})"
+        )
+    node = _csv_column(path, header, numbers, rows, "node", True)
+    average = _csv_column(path, header, numbers, rows, "average", True)
+    time = _csv_column(path, header, numbers, rows, "time_s", False)
+    force = _csv_column(path, header, numbers, rows, "force_n", False)
+    response = _csv_column(path, header, numbers, rows, "response", False)
+    line = np.asarray(numbers)
+    order = np.lexsort((average, node))  # stable: samples keep their file order
+    keys = np.column_stack([node, average])[order]
+    starts = np.flatnonzero(np.r_[True, np.any(keys[1:] != keys[:-1], axis=1)])
+    groups = np.split(order, starts[1:])
+    axis = time[groups[0]]
+    if axis.size < 2:
+        raise InputError(f"{path}: line {line[groups[0][0]]}: an average needs two samples or more")
+    step = (axis[-1] - axis[0]) / (axis.size - 1)
+    if not step > 0 or np.max(np.abs(np.diff(axis) - step)) > 1e-3 * step:
+        raise InputError(
+            f"{path}: lines {line[groups[0][0]]}–{line[groups[0][-1]]}: time_s must rise in even "
+            "steps; write the times with enough digits"
+        )
+    for group in groups[1:]:
+        if group.size != axis.size or not np.allclose(time[group], axis, rtol=0, atol=1e-3 * step):
+            raise InputError(
+                f"{path}: line {line[group[0]]}: node {node[group[0]]}, average "
+                f"{average[group[0]]} has {group.size} samples from {time[group[0]]:g} s, the "
+                f"first average {axis.size} from {axis[0]:g} s; every average must share one "
+                "time axis"
+            )
+    nodes = sorted({int(n) for n in node})
+    forces, responses, averages = [], [], []
+    for n in nodes:
+        mine = [g for g in groups if node[g[0]] == n]
+        averages.append([int(average[g[0]]) for g in mine])
+        forces.append(np.asarray([force[g] for g in mine]))
+        responses.append(np.asarray([response[g] for g in mine]))
+    coordinates = _read_geometry_csv(geometry_path)
+    for n in [*nodes, reference_node]:
+        if n not in coordinates:
+            raise InputError(
+                f"{geometry_path}: node {n} has no coordinates; add a line '{n},x_m,y_m'"
+            )
+    return HammerRecords(
+        sampling_interval_s=float(step),
+        force=tuple(forces),
+        response=tuple(responses),
+        response_type=cast(ResponseType, response_type),
+        nodes=tuple(nodes),
+        locations=np.asarray([coordinates[n] for n in nodes], dtype=float),
+        reference_node=reference_node,
+        reference_location=coordinates[reference_node],
+        pretrigger_s=float(-axis[0]),
+        source=str(path),
+        metadata={"averages": averages},
+    )
+
+
+def _read_geometry_csv(path: Path) -> dict[int, tuple[float, float]]:
+    _, header, numbers, rows = _csv_rows(path, GEOMETRY_COLUMNS)
+    node = _csv_column(path, header, numbers, rows, "node", True)
+    x = _csv_column(path, header, numbers, rows, "x_m", False)
+    y = _csv_column(path, header, numbers, rows, "y_m", False)
+    coordinates: dict[int, tuple[float, float]] = {}
+    for number, n, xi, yi in zip(numbers, node, x, y, strict=True):
+        if int(n) in coordinates and coordinates[int(n)] != (float(xi), float(yi)):
+            raise InputError(f"{path}: line {number}: node {n} is listed twice, at two places")
+        coordinates[int(n)] = (float(xi), float(yi))
+    return coordinates
+
+
+def write_hammer_csv(
+    records: HammerRecords, path: Path | str, geometry_path: Path | str
+) -> tuple[Path, Path]:
+    """Write roving-hammer time records to a CSV file and a geometry CSV.
+
+    The layout is the one :func:`read_hammer_csv` reads; numbers are written with 17
+    significant digits, so the round trip is exact.
+
+    Parameters
+    ----------
+    records : HammerRecords
+        The records.
+    path : Path or str
+        CSV of the samples (``node,average,time_s,force_n,response``); replaced if it exists.
+    geometry_path : Path or str
+        CSV of the coordinates (``node,x_m,y_m``) of the reference node and the hammer nodes;
+        replaced if it exists.
+
+    Returns
+    -------
+    tuple of Path
+        ``(path, geometry_path)``, ready for :func:`read_hammer_csv`.
+    """
+    path, geometry_path = Path(path), Path(geometry_path)
+    time = records.time
+    buffer = io.StringIO()
+    buffer.write(
+        f"# racketdyn {__version__} hammer records\n"
+        f"# reference_node: {records.reference_node}\n"
+        f"# response_type: {records.response_type}\n"
+        f"{','.join(CSV_COLUMNS)}\n"
+    )
+    for node, force, response in zip(records.nodes, records.force, records.response, strict=True):
+        for k in range(force.shape[0]):
+            table = np.column_stack(
+                [np.full(time.size, node), np.full(time.size, k + 1), time, force[k], response[k]]
+            )
+            np.savetxt(buffer, table, fmt=["%d", "%d", "%.17g", "%.17g", "%.17g"], delimiter=",")
+    geometry = io.StringIO()
+    geometry.write(f"# racketdyn {__version__} node coordinates, m\n{','.join(GEOMETRY_COLUMNS)}\n")
+    written = {
+        records.reference_node: (
+            float(records.reference_location[0]),
+            float(records.reference_location[1]),
+        )
+    }
+    written.update(
+        {
+            n: (float(x), float(y))
+            for n, (x, y) in zip(records.nodes, records.locations, strict=True)
+        }
+    )
+    for n in sorted(written):
+        geometry.write(f"{n},{written[n][0]!r},{written[n][1]!r}\n")
+    for target, text in ((path, buffer.getvalue()), (geometry_path, geometry.getvalue())):
+        try:
+            target.write_text(text, encoding="utf-8")
+        except OSError as error:
+            raise InputError(f"{target}: cannot be written ({error.strerror})") from None
+    return path, geometry_path
