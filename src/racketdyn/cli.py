@@ -30,10 +30,16 @@ from racketdyn.io import (
     default_racket,
     load_racket,
     racket_to_dict,
+    read_hammer_csv,
+    read_hammer_uff,
     read_load_deflection,
     read_points,
+    write_frf_uff,
 )
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
+from racketdyn.measurement import HammerRecords
+from racketdyn.measurement.frf import estimate_frfs
+from racketdyn.measurement.pulse import contact_times
 from racketdyn.modal import modal_model_for
 from racketdyn.racket import SUPPORTS, Racket
 
@@ -225,6 +231,131 @@ def _racket(args: argparse.Namespace, console: Console) -> int:
     return 0
 
 
+def _read_records(path_text: str, geometry: str | None) -> HammerRecords:
+    path = Path(path_text)
+    if path.suffix.lower() == ".csv":
+        if geometry is None:
+            raise InputError(f"{path}: a CSV of hammer records needs --geometry NODES.csv")
+        return read_hammer_csv(path, geometry)
+    return read_hammer_uff(path, geometry)
+
+
+def _write_record(out: Path, command: str, inputs: dict[str, Any], outputs: list[Path]) -> None:
+    record = {
+        "racketdyn_version": __version__,
+        "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
+        "command": ["racketdyn", *sys.argv[1:]] if sys.argv[1:] else [command],
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        **inputs,
+        "outputs": [p.name for p in outputs] + ["run.json"],
+    }
+    (out / "run.json").write_text(json.dumps(record, indent=2, default=str), encoding="utf-8")
+
+
+def _sha256(path: Path) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def _frf(args: argparse.Namespace, console: Console) -> int:
+    from racketdyn.report import write_frf_figures
+
+    records = _read_records(args.tests, args.geometry)
+    racket, provenance = _load(args.racket)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    with console.status("estimating FRFs"):
+        estimate = estimate_frfs(
+            records,
+            estimator=args.estimator,
+            force_window_s=args.force_window,
+            exponential_window_s=args.exp_window,
+        )
+    estimate.write_quality_csv(out / "quality.csv")
+    written = [out / "quality.csv"]
+    if estimate.frfs is None:
+        raise InputError(
+            f"{args.tests}: every average of every point was rejected; see {written[0]}"
+        )
+    written.append(write_frf_uff(estimate.frfs, out / "frfs.uff"))
+    with console.status("drawing figures"):
+        written += write_frf_figures(estimate.frfs, racket, out)
+    summary = estimate.summary()
+    _write_record(
+        out,
+        "frf",
+        {
+            "tests_file": str(Path(args.tests).resolve()),
+            "tests_sha256": _sha256(Path(args.tests)),
+            **provenance,
+            "estimator": args.estimator,
+            "force_window_s": args.force_window,
+            "exponential_window_s": args.exp_window,
+            "quality": summary,
+            "rejected_points": list(estimate.rejected_points),
+        },
+        written,
+    )
+    console.print(
+        f"{estimate.frfs.n_points} FRFs from {summary['accepted']} of "
+        f"{summary['averages']} averages → {out}"
+    )
+    for reason, count in summary.items():
+        if reason not in ("averages", "accepted"):
+            console.print(f"[yellow]{count} averages rejected: {reason}[/]")
+    if estimate.rejected_points:
+        nodes = ", ".join(str(n) for n in estimate.rejected_points)
+        console.print(f"[yellow]every average rejected at node(s) {nodes}: no FRF there[/]")
+    for path in written:
+        console.print(f"  wrote {path}")
+    return 0
+
+
+def _contact(args: argparse.Namespace, console: Console) -> int:
+    from racketdyn.report import write_contact_figure
+
+    labels = (
+        _parse_list("--labels", args.labels) if args.labels else [Path(t).stem for t in args.tests]
+    )
+    if len(labels) != len(args.tests):
+        raise InputError(f"--labels: give one label per test file ({len(args.tests)})")
+    racket, provenance = _load(args.racket)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    tables = []
+    written: list[Path] = []
+    for label, test in zip(labels, args.tests, strict=True):
+        records = _read_records(test, args.geometry)
+        checks = estimate_frfs(records).checks
+        times = contact_times(records, checks)
+        path = out / f"contact_{label}.csv"
+        times.write_csv(path)
+        written.append(path)
+        tables.append(times)
+    written.append(write_contact_figure(tables, labels, racket, out))
+    _write_record(
+        out,
+        "contact",
+        {
+            "tests_files": [str(Path(t).resolve()) for t in args.tests],
+            "labels": labels,
+            **provenance,
+            "method": "half-sine-equivalent duration: 1.5 x full width at half maximum",
+        },
+        written,
+    )
+    for label, times in zip(labels, tables, strict=True):
+        on_bed = racket.head.contains(times.locations) & np.isfinite(times.mean_s)
+        if np.any(on_bed):
+            console.print(
+                f"{label}: contact time on the strings {np.nanmin(times.mean_s[on_bed]) * 1e3:.2f}"
+                f"–{np.nanmax(times.mean_s[on_bed]) * 1e3:.2f} ms over {int(on_bed.sum())} points"
+            )
+    for path in written:
+        console.print(f"  wrote {path}")
+    return 0
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="racketdyn",
@@ -277,6 +408,28 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--no-figures", action="store_true", help="write impact.csv and run.json only")
     run.add_argument("--out", required=True, help="output folder (created if missing)")
     run.set_defaults(handler=_predict)
+
+    frf = commands.add_parser("frf", help="FRFs, quality table and plots from hammer-test records")
+    frf.add_argument("tests", help="hammer records: UFF 58 time records, or CSV (with --geometry)")
+    frf.add_argument("--geometry", help="node coordinates (UFF 15/2411, or CSV node,x_m,y_m)")
+    frf.add_argument("--racket", help="racket TOML for the head outline (default: built-in)")
+    frf.add_argument("--estimator", choices=("H1", "H2"), default="H1")
+    frf.add_argument(
+        "--force-window", type=float, help="keep the force this long after the trigger, s"
+    )
+    frf.add_argument("--exp-window", type=float, help="exponential window time constant τ, s")
+    frf.add_argument("--out", required=True, help="output folder (created if missing)")
+    frf.set_defaults(handler=_frf)
+
+    contact = commands.add_parser(
+        "contact", help="hammer contact time over the face (paper Fig. 7)"
+    )
+    contact.add_argument("tests", nargs="+", help="hammer records, one file per condition")
+    contact.add_argument("--labels", help="a label per file, e.g. free,hand")
+    contact.add_argument("--geometry", help="node coordinates (UFF 15/2411, or CSV node,x_m,y_m)")
+    contact.add_argument("--racket", help="racket TOML for the head outline (default: built-in)")
+    contact.add_argument("--out", required=True, help="output folder (created if missing)")
+    contact.set_defaults(handler=_contact)
 
     show = commands.add_parser("racket", help="print a racket's derived properties")
     show.add_argument(

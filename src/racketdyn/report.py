@@ -7,7 +7,7 @@ depend on the points a user asked for in ``impact.csv``.
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -17,16 +17,26 @@ from matplotlib.figure import Figure
 from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball
 from racketdyn.impact import predict
+from racketdyn.measurement.pulse import ContactTimes
+from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.plotting import (
     plot_along_axis,
+    plot_contact_map,
     plot_face_map,
     plot_frame_amplitude,
+    plot_frf,
     plot_speed_curves,
 )
 from racketdyn.racket import Racket
 
-__all__ = ["FIGURES", "landmark_points", "write_paper_figures"]
+__all__ = [
+    "FIGURES",
+    "landmark_points",
+    "write_contact_figure",
+    "write_frf_figures",
+    "write_paper_figures",
+]
 
 log = logging.getLogger(__name__)
 
@@ -178,3 +188,47 @@ def write_paper_figures(
         written.append(_save(build(racket, ball, model), Path(out_dir) / name))
         log.info("wrote %s", written[-1])
     return written
+
+
+def write_frf_figures(frfs: FrfSet, racket: Racket, out_dir: Path) -> list[Path]:
+    """Paper Figs 2–3: the frame driving-point FRF and the FRF at the string-bed centre."""
+    written = []
+    centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
+    nearest = int(np.argmin(np.linalg.norm(frfs.locations - centre, axis=1)))
+    frame = frfs.driving_point if frfs.driving_point is not None else 0
+    for name, index, what in (
+        ("fig2_frf_frame.png", frame, "impact on the frame at the accelerometer"),
+        ("fig3_frf_string_centre.png", nearest, "impact at the string-bed centre"),
+    ):
+        figure, axes = plt.subplots(
+            3,
+            1,
+            figsize=(6.5, 6),
+            sharex=True,
+            layout="constrained",
+            gridspec_kw={"height_ratios": [2, 1, 1]},
+        )
+        plot_frf(frfs, index, axes=list(axes), label=f"node {frfs.nodes[index]}: {what}")
+        averages = "" if frfs.n_averages is None else f", {int(frfs.n_averages[index])} averages"
+        figure.suptitle(
+            f"{frfs.frf_type} FRF, {frfs.estimator}{averages} ({frfs.source})", fontsize=9
+        )
+        written.append(_save(figure, Path(out_dir) / name))
+    return written
+
+
+def write_contact_figure(
+    tables: Sequence[ContactTimes], labels: Sequence[str], racket: Racket, out_dir: Path
+) -> Path:
+    """Paper Fig. 7: hammer contact time over the string face, one panel per condition."""
+    figure, axes = plt.subplots(
+        1, len(tables), figsize=(4.6 * len(tables), 3.8), layout="constrained", squeeze=False
+    )
+    finite = np.concatenate([t.mean_s[np.isfinite(t.mean_s)] for t in tables]) * 1e3
+    levels = (
+        np.linspace(finite.min(), finite.max(), 11) if finite.size and np.ptp(finite) > 0 else 10
+    )
+    for ax, table, label in zip(axes[0], tables, labels, strict=True):
+        plot_contact_map(table, racket, ax=ax, title=label, levels=levels)
+    figure.suptitle("Fig. 7: contact time of the hammer on the strings", fontsize=10)
+    return _save(figure, Path(out_dir) / "fig7_contact_time.png")

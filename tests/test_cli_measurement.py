@@ -1,0 +1,74 @@
+"""`racketdyn frf` and `racketdyn contact` end to end on synthetic UFF records."""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from racketdyn.cli import main
+from racketdyn.io import read_frf_uff, write_hammer_uff
+from synthetic_records import Modes, records_for
+
+MODES = Modes(np.array([120.0, 330.0]), np.array([0.03, 0.02]), np.array([[6.0, 4.0], [-3.0, 2.5]]))
+
+
+@pytest.fixture(scope="module")
+def tests_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    records = records_for(MODES, pulse_s=3e-3, n_averages=3, second_hit=None)
+    records = dataclasses.replace(
+        records,
+        locations=np.array([[0.505, 0.0], [0.55, 0.03]]),
+        reference_location=(0.505, 0.0),
+    )
+    path = tmp_path_factory.mktemp("tests") / "free.uff"
+    write_hammer_uff(records, path)
+    return path
+
+
+@pytest.mark.slow
+def test_frf_command(tests_file: Path, tmp_path: Path) -> None:
+    assert main(["frf", str(tests_file), "--exp-window", "0.1", "--out", str(tmp_path)]) == 0
+    frfs = read_frf_uff(tmp_path / "frfs.uff")
+    assert frfs.nodes == (1, 2)
+    assert frfs.exponential_window_s == pytest.approx(0.1)
+    rows = list(csv.DictReader((tmp_path / "quality.csv").read_text().splitlines()))
+    assert len(rows) == 6
+    assert all(r["accepted"] == "1" for r in rows)
+    run = json.loads((tmp_path / "run.json").read_text())
+    assert run["exponential_window_s"] == 0.1
+    assert len(run["tests_sha256"]) == 64
+    for name in ("fig2_frf_frame.png", "fig3_frf_string_centre.png"):
+        assert (tmp_path / name).stat().st_size > 10_000
+
+
+@pytest.mark.slow
+def test_contact_command(tests_file: Path, tmp_path: Path) -> None:
+    argv = [
+        "contact",
+        str(tests_file),
+        str(tests_file),
+        "--labels",
+        "free,hand",
+        "--out",
+        str(tmp_path),
+    ]
+    assert main(argv) == 0
+    rows = list(csv.DictReader((tmp_path / "contact_hand.csv").read_text().splitlines()))
+    assert [float(r["contact_time_mean_s"]) for r in rows] == pytest.approx([3e-3, 3e-3], rel=0.02)
+    assert (tmp_path / "fig7_contact_time.png").stat().st_size > 10_000
+
+
+def test_bad_tests_file_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "junk.uff").write_text("this is not a universal file\n")
+    assert main(["frf", str(tmp_path / "junk.uff"), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1
+    assert err[0].startswith("racketdyn: error:")
+    assert "junk.uff" in err[0]
+    assert main(["contact", str(tmp_path / "x.csv"), "--out", str(tmp_path / "o")]) == 2
+    assert "--geometry" in capsys.readouterr().err
