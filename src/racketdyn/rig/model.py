@@ -1,0 +1,797 @@
+"""The virtual rig's racket: a beam frame with a coupled string bed, free or held in a hand.
+
+A structural model good enough to stand in for a real racket in a modal test (issue 3).  Its
+modes are the rig's *modal truth*: identification from simulated hammer records is checked
+against them.
+
+Frame
+    Euler–Bernoulli beam elements along the long axis (bending: Hermite cubics, DOFs ``w`` and
+    ``w'`` at each node) and linear torsion elements (DOF ``θ``), the same elements and the same
+    68-element mesh as the built-in modal model (:mod:`racketdyn.modal.beam`).  The frame moves
+    normal to the face by ``w(x) + θ(x)·y``: each section, the hoop included, is rigid in its
+    own plane.
+String bed
+    A tensioned membrane on the head ellipse, attached to the frame.  Its displacement is the
+    frame's motion carried across the bed plus Ritz functions that vanish on the edge::
+
+        u(x, y) = w(x) + θ(x)·y + Σ_j q_j ψ_j(ξ, η),   ψ_j = (1 − ξ² − η²) ξ^a η^b,  a + b ≤ 3
+
+    (ξ, η the coordinates scaled by the half-axes).  The membrane's mass (``strings.mass_kg``,
+    else 4 % of the racket, paper section 2) is spread evenly and couples the Ritz coordinates
+    to the frame through the mass matrix; its tension per unit width (``tension / spacing`` of
+    the mains along x and of the crosses along y, as in the built-in model) stiffens the Ritz
+    coordinates only.  The carried field's own gradient energy is left out: for rigid motion the
+    strings' tension and the frame's compression balance exactly (a pre-stressed, self-
+    equilibrated body has no geometric stiffness against rigid motion), and the cross terms
+    with the Ritz functions vanish for a linear carried field (integrate by parts: ψ = 0 on the
+    edge, ∇²u = 0).  The frame therefore takes part in the string-bed modes through inertia,
+    as Cross measured (REFERENCE_VALUES.md: string-bed modes 500–600 Hz, one test 615 Hz).
+    For the built-in racket the membrane alone on a rigid frame sits at 725 Hz (the built-in
+    one-term estimate: 739 Hz) and the frame's recoil raises the coupled mode to 772 Hz: the
+    full stringing tension and 4 % string mass put it above Cross's range, as in the built-in
+    model.
+Mass
+    The frame's mass per unit length is :func:`racketdyn.modal.beam.beam_mass_per_length` for
+    the racket's mass, balance and inertia less the strings' share (integrated with the same
+    quadrature that builds the membrane), so the assembled frame + strings have the racket's
+    mass, balance, pitch inertia and roll inertia exactly (the roll inertia per unit length is
+    put on the hoop as in the built-in model).  Point masses sit at their exact ``(x, y)`` on
+    the frame, added after calibration so lead tape moves the frequencies.
+Stiffness (calibration)
+    Uniform EI and GJ, found by fixed-point iteration so that the free racket's first bending
+    mode sits at ``racket.first_bending_hz`` and its first twisting mode at
+    ``racket.twisting_hz`` *with the strings coupled in* (the built-in model's targets).
+Free support
+    The racket on a soft sponge (paper, section 2).  Modelled as an ideal soft suspension: a
+    stiffness ``M R Ω² Rᵀ M`` on the mass-orthonormal rigid-body modes ``R`` (heave, pitch,
+    roll) only, giving them :data:`SUSPENSION_HZ` and :data:`SUSPENSION_DAMPING_RATIO` while the
+    flexible modes stay exactly those of the free–free racket (a real 2–3 Hz sponge moves a
+    120 Hz mode by well under 0.1 %).
+Hand support
+    :class:`HandModel`: a hand on the grip.  Its mass (the part of the hand that moves with
+    the handle at the racket's frequencies) is spread evenly over the grip; distributed springs
+    and dashpots from the grip to the arm, in translation and in roll, represent the arm's
+    compliance and the soft tissue's losses.  The arm is not rigid: the springs are soft, so the
+    three hand–racket rigid-body modes lie below 15 Hz (default hand: the racket swinging
+    about the hand at 0.95 Hz, ζ ≈ 4 %; roll and heave at 7.0 and 11.3 Hz, ζ ≈ 0.37 and 0.42),
+    and there is no clamped-handle cantilever mode (20–35 Hz in a vice, absent when hand-held:
+    Kawazoe, section 2).  Defaults and their sources are on :class:`HandModel`.
+Damping
+    The racket's own damping is modal: :data:`FRAME_DAMPING_RATIO` (0.5 %, the built-in model's
+    value; composite frames measured free are typically 0.3–1 %) on every flexible mode of the
+    free racket, i.e. ``C_r = M Φ diag(2ζω) Φᵀ M``.  The support adds its dashpots.  The rig's
+    modes are the real (undamped) modes of ``(K, M)`` with modal damping
+    ``ζ_k = φ_kᵀ C φ_k / (2 ω_k)``: exact for the free racket (proportional damping) and for the
+    hand the classical diagonal approximation (the hand's dashpots are not proportional).
+    Against the complex modes of the full ``(M, C, K)`` with the default hand: the bending
+    modes within 0.1 % in frequency and 0.3 % in damping, the twisting modes (more damped,
+    closer together) within 2 % and 6 %.  The rig *is* this modal model: the hammer simulation
+    uses exactly these modes, so the truth it writes is exact for the records it makes.
+
+Shapes are mass-normalised (``φᵀ M φ = 1``, 1/√kg), normal to the face; the frame's DOFs come
+first (``w, w'`` at each node, then ``θ`` at each node), then the Ritz coordinates.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+from typing import Any, Literal, get_args
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.linalg import eigh
+
+from racketdyn.errors import InputError, one_of, require_positive
+from racketdyn.modal.beam import (
+    N_ELEMENTS,
+    STRING_MASS_FRACTION,
+    _bending_matrices,
+    _section_radius,
+    _torsion_matrices,
+    beam_mass_per_length,
+)
+from racketdyn.modal.model import ModalModel
+from racketdyn.racket import Racket, as_locations
+
+__all__ = [
+    "FRAME_DAMPING_RATIO",
+    "RIG_SUPPORTS",
+    "SUSPENSION_DAMPING_RATIO",
+    "SUSPENSION_HZ",
+    "HandModel",
+    "RigModel",
+    "RigSupport",
+    "rig_model",
+]
+
+logger = logging.getLogger(__name__)
+
+RigSupport = Literal["free", "hand"]
+"""Support of the racket on the rig: ``free`` (soft sponge) or ``hand`` (held by a hand)."""
+RIG_SUPPORTS: tuple[str, ...] = get_args(RigSupport)
+
+FRAME_DAMPING_RATIO = 0.005
+"""Damping ratio of every flexible mode of the free racket (the built-in model's 0.5 %)."""
+SUSPENSION_HZ = (3.0, 2.0, 2.5)
+"""Frequencies of the free racket's heave, pitch and roll on the sponge, Hz (assumed)."""
+SUSPENSION_DAMPING_RATIO = 0.10
+"""Damping ratio of the suspension modes (a foam sponge is lossy; assumed)."""
+FRAME_WIDTH_M = 0.025
+"""How far past the string bed's half-width a location may lie and still be on the frame, m."""
+MEMBRANE_DEGREE = 3
+"""Highest degree of the polynomial multiplying ``1 − ρ²`` in the Ritz functions (10 of them)."""
+MAX_FREQUENCY_HZ = 10_000.0
+"""Modes above this are left out of the rig (well above any hammer test's band), Hz."""
+
+_GAUSS_X = np.polynomial.legendre.leggauss(8)
+_GAUSS_LINE = np.polynomial.legendre.leggauss(4)
+_CALIBRATION_TOLERANCE = 1e-7  # eigenvalue noise of the stiff Hermite mesh is ~1e-8
+
+
+@dataclass(frozen=True)
+class HandModel:
+    """A hand holding the grip: mass, and springs and dashpots to the arm spread over the grip.
+
+    Everything is spread evenly over the grip, from ``grip_start_m`` to ``grip_end_m``.  The
+    springs and dashpots join the handle to a fixed arm; the springs are soft (the arm is
+    compliant), so they set the hand–racket rigid-body modes, well below 15 Hz, and leave the
+    racket's flexible modes almost alone, while the dashpots damp them.
+
+    Defaults (for an adult's firm grip; sources and how sure they are):
+
+    * Grip 10–130 mm from the butt: a hand about 85 mm across the palm plus the wrap of thumb
+      and index finger, centred on the paper's 70 mm grip axis (section 3.3).  Assumption.
+    * ``mass_kg = 0.06``: the part of the hand that moves with the handle at 100–400 Hz.  The
+      whole hand is ≈ 0.6 % of body mass (≈ 0.45 kg; Dempster's segment tables as given by
+      Winter, *Biomechanics and Motor Control of Human Movement*, 2009); the apparent mass of a
+      gripping hand–arm falls well below that above ≈ 100 Hz (the ISO 10068 hand–arm impedance
+      data).  The value is chosen within that range so that the bending frequencies drop by a
+      few per cent, as Kawazoe (section 2) and Chadefaux et al. (J. Sports Sci. 2017) report for
+      a held racket; the number itself is an assumption.
+    * ``roll_radius_m = 0.015``: radius of gyration of that mass about the long axis, just
+      outside the handle's own (:data:`racketdyn.modal.beam.HANDLE_RADIUS_M`, 12.5 mm): the
+      skin and palm against the handle.  Assumption; a larger radius pulls the higher twisting
+      modes down strongly (the handle's own roll inertia is small).
+    * ``stiffness_n_per_m = 1000``: total translational stiffness to the arm.  Soft enough to
+      keep the hand–racket rigid-body modes under ≈ 12 Hz; arm stiffnesses at the hand measured
+      in posture-holding tasks are a few hundred to a few thousand N/m (e.g. Mussa-Ivaldi,
+      Hogan and Bizzi, J. Neurosci. 1985).  Only roughly sure.
+    * ``damping_ns_per_m = 12``: total translational damping.  Gives the 2-node mode several
+      times the free racket's damping (Kawazoe: at least twice; REFERENCE_VALUES.md) while the
+      rigid-body modes stay under-damped.  The resistive part of the hand–arm driving-point
+      impedance normal to the palm is of order 10–100 N·s/m in the racket's band (ISO 10068;
+      Gurram, Rakheja and Brammer, J. Sound Vib. 1995); the low end is taken because only the
+      dashpot's share across the grip, not the whole arm's impedance, acts here.  Assumption
+      within a published range.
+    * ``roll_stiffness_nm_per_rad = 3``, ``roll_damping_nms_per_rad = 0.05``: the fingers'
+      resistance to the handle turning in the hand.  No published value known to us; chosen so
+      the roll mode is a heavily damped few-hertz mode and the twisting mode's damping rises
+      like the bending modes'.  Assumption.
+
+    Parameters
+    ----------
+    grip_start_m, grip_end_m : float
+        Where the hand covers the handle, m from the butt.
+    mass_kg : float
+        Hand mass moving with the handle, kg.
+    roll_radius_m : float
+        Radius of gyration of that mass about the long axis, m.
+    stiffness_n_per_m : float
+        Total translational stiffness from the grip to the arm, N/m.
+    damping_ns_per_m : float
+        Total translational damping from the grip to the arm, N·s/m.
+    roll_stiffness_nm_per_rad : float
+        Total stiffness against the handle turning about the long axis, N·m/rad.
+    roll_damping_nms_per_rad : float
+        Total damping against the handle turning about the long axis, N·m·s/rad.
+    """
+
+    grip_start_m: float = 0.010
+    grip_end_m: float = 0.130
+    mass_kg: float = 0.06
+    roll_radius_m: float = 0.015
+    stiffness_n_per_m: float = 1000.0
+    damping_ns_per_m: float = 12.0
+    roll_stiffness_nm_per_rad: float = 3.0
+    roll_damping_nms_per_rad: float = 0.05
+
+    def __post_init__(self) -> None:
+        require_positive("hand.grip_start_m", self.grip_start_m, allow_zero=True)
+        require_positive("hand.grip_end_m", self.grip_end_m)
+        if self.grip_end_m <= self.grip_start_m:
+            raise InputError(
+                f"hand.grip_end_m ({self.grip_end_m} m) must lie beyond hand.grip_start_m "
+                f"({self.grip_start_m} m)"
+            )
+        require_positive("hand.mass_kg", self.mass_kg, allow_zero=True)
+        require_positive("hand.roll_radius_m", self.roll_radius_m, allow_zero=True)
+        require_positive("hand.stiffness_n_per_m", self.stiffness_n_per_m)
+        require_positive("hand.damping_ns_per_m", self.damping_ns_per_m, allow_zero=True)
+        require_positive("hand.roll_stiffness_nm_per_rad", self.roll_stiffness_nm_per_rad)
+        require_positive(
+            "hand.roll_damping_nms_per_rad", self.roll_damping_nms_per_rad, allow_zero=True
+        )
+
+    @property
+    def grip_length_m(self) -> float:
+        """Length of handle the hand covers, m."""
+        return self.grip_end_m - self.grip_start_m
+
+
+@dataclass(frozen=True, eq=False)
+class RigModel:
+    """The rig's structure: matrices, DOF map and modes of a racket on a support.
+
+    Build it with :func:`rig_model`.  Displacement normal to the face at ``(x, y)`` is
+    ``displacement_rows(locations) @ q`` for a DOF vector ``q``: ``w(x) + θ(x)·y`` on the
+    frame, plus the Ritz functions on the string bed.
+
+    Parameters
+    ----------
+    racket : Racket
+        The racket modelled.
+    support : {"free", "hand"}
+        Its support.
+    hand : HandModel or None
+        The hand (``support="hand"`` only).
+    nodes_x : ndarray, shape (n_nodes,)
+        Beam nodes along the long axis, m.
+    membrane_powers : tuple of (int, int)
+        Powers ``(a, b)`` of the Ritz functions ``(1 − ξ² − η²) ξ^a η^b``.
+    mass, stiffness, damping : ndarray, shape (n_dof, n_dof)
+        Assembled M (kg, kg·m, kg·m²), K (N/m …) and C (N·s/m …) with the support included.
+    frequency : ndarray, shape (n_modes,)
+        Natural frequencies of the modes kept, Hz (ascending).
+    damping_ratio : ndarray, shape (n_modes,)
+        Modal damping ratios ``φᵀCφ / (2ω)``.
+    modes : ndarray, shape (n_dof, n_modes)
+        Mass-normalised mode vectors, 1/√kg.
+    names, kinds : tuple of str
+        Mode names (``"2-node bending"`` …) and kinds (``bending``, ``twisting``,
+        ``string-bed``, ``other`` for the support's rigid-body modes).
+    metadata : dict
+        Calibrated stiffnesses, string mass, support parameters.
+    """
+
+    racket: Racket
+    support: str
+    hand: HandModel | None
+    nodes_x: NDArray[np.float64]
+    membrane_powers: tuple[tuple[int, int], ...]
+    mass: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    frequency: NDArray[np.float64]
+    damping_ratio: NDArray[np.float64]
+    modes: NDArray[np.float64]
+    names: tuple[str, ...]
+    kinds: tuple[str, ...]
+    metadata: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def n_dof(self) -> int:
+        """Number of degrees of freedom."""
+        return int(self.mass.shape[0])
+
+    @property
+    def n_modes(self) -> int:
+        """Number of modes kept."""
+        return int(self.frequency.size)
+
+    @property
+    def omega(self) -> NDArray[np.float64]:
+        """Natural angular frequencies, rad/s."""
+        return np.asarray(2 * np.pi * self.frequency)
+
+    @property
+    def dofs(self) -> dict[str, slice]:
+        """Where each kind of DOF sits: ``bending`` (w, w' per node), ``twist``, ``membrane``."""
+        n = self.nodes_x.size
+        return {
+            "bending": slice(0, 2 * n),
+            "twist": slice(2 * n, 3 * n),
+            "membrane": slice(3 * n, 3 * n + len(self.membrane_powers)),
+        }
+
+    def on_string_bed(self, locations: ArrayLike) -> NDArray[np.bool_]:
+        """True where a location lies inside the string bed (the frame's edge excluded)."""
+        return np.asarray(self.racket.head.normalised_radius(locations) < 1.0 - 1e-9)
+
+    def displacement_rows(self, locations: ArrayLike) -> NDArray[np.float64]:
+        """Rows mapping the DOFs to the normal displacement at each location, ``(n, n_dof)``.
+
+        ``w(x) + θ(x)·y`` everywhere, plus ``Σ q_j ψ_j`` inside the string bed.  Raises
+        InputError for a location off the racket.
+        """
+        xy = as_locations(locations)
+        racket = self.racket
+        reach = racket.head.half_width_m + abs(racket.head.centre_y_m) + FRAME_WIDTH_M
+        off = np.flatnonzero(
+            (xy[:, 0] < -1e-9) | (xy[:, 0] > racket.length_m + 1e-9) | (np.abs(xy[:, 1]) > reach)
+        )
+        if off.size:
+            i = int(off[0])
+            raise InputError(
+                f"location {i + 1} at x={xy[i, 0]:.4f} m, y={xy[i, 1]:.4f} m is off the racket "
+                f"(0 ≤ x ≤ {racket.length_m} m, |y| ≤ {reach:.3f} m)"
+            )
+        rows = np.zeros((xy.shape[0], self.n_dof))
+        rows[:, : 3 * self.nodes_x.size] = _frame_rows(self.nodes_x, xy[:, 0], xy[:, 1])
+        bed = self.on_string_bed(xy)
+        if np.any(bed):
+            psi, _, _ = _membrane_functions(racket, self.membrane_powers, xy[bed])
+            rows[np.ix_(bed, np.arange(3 * self.nodes_x.size, self.n_dof))] = psi
+        return rows
+
+    def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:
+        """Mass-normalised mode shapes at the locations, ``(n, n_modes)``, 1/√kg."""
+        return np.asarray(self.displacement_rows(locations) @ self.modes)
+
+    def modal_truth(
+        self, locations: ArrayLike, max_frequency_hz: float | None = None
+    ) -> ModalModel:
+        """The rig's modes at the locations, as a :class:`ModalModel` (the truth for checks).
+
+        Real modes with modal damping (see the module docstring); the support's rigid-body
+        modes are included with kind ``other``.
+
+        Parameters
+        ----------
+        locations : array_like, shape (n, 2)
+            Where to give the shapes, (x, y) in m (3 or more, all different).
+        max_frequency_hz : float or None
+            Keep only modes up to this frequency, Hz; None keeps every mode of the rig.
+        """
+        keep = np.ones(self.n_modes, dtype=bool)
+        if max_frequency_hz is not None:
+            require_positive("max_frequency_hz", max_frequency_hz)
+            keep = self.frequency <= max_frequency_hz
+        xy = as_locations(locations)
+        return ModalModel(
+            frequency=self.frequency[keep],
+            damping_ratio=self.damping_ratio[keep],
+            locations=xy,
+            mode_shapes=self.mode_shapes_at(xy)[:, keep],
+            names=tuple(n for n, k in zip(self.names, keep, strict=True) if k),
+            kinds=tuple(n for n, k in zip(self.kinds, keep, strict=True) if k),
+            support=self.support,
+            source=f"virtual rig model of {self.racket.name} ({self.support})",
+            metadata={
+                "damping": "real modes with modal damping phi^T C phi / (2 omega)",
+                **{k: v for k, v in self.metadata.items() if k != "strain_energy_shares"},
+            },
+        )
+
+    def frf(
+        self,
+        response: ArrayLike,
+        excitation: ArrayLike,
+        frequency: ArrayLike,
+        frf_type: str = "accelerance",
+    ) -> NDArray[np.complex128]:
+        """The rig's FRFs by modal superposition, shaped ``(n_response, n_excitation, n_freq)``.
+
+        ``H_ij(ω) = Σ_k φ_ik φ_jk (iω)^p / (ω_k² − ω² + 2iζ_k ω_k ω)`` with p = 0, 1, 2 for
+        receptance (m/N), mobility (m/(N·s)) and accelerance (m/(N·s²)).
+
+        Parameters
+        ----------
+        response, excitation : array_like, shape (n, 2)
+            Response and force locations, m.
+        frequency : array_like
+            Frequencies, Hz.
+        frf_type : {"accelerance", "mobility", "receptance"}
+            What the FRF relates.
+        """
+        power = {"receptance": 0, "mobility": 1, "accelerance": 2}
+        one_of("frf_type", frf_type, power)
+        omega = 2 * np.pi * np.atleast_1d(np.asarray(frequency, dtype=float))
+        phi_i = self.mode_shapes_at(response)
+        phi_j = self.mode_shapes_at(excitation)
+        wk, zk = self.omega, self.damping_ratio
+        modal = 1.0 / (wk[:, None] ** 2 - omega**2 + 2j * zk[:, None] * wk[:, None] * omega)
+        values = np.einsum("ik,jk,kf->ijf", phi_i, phi_j, modal)
+        return np.asarray(values * (1j * omega) ** power[frf_type])
+
+
+def rig_model(
+    racket: Racket,
+    support: RigSupport,
+    hand: HandModel | None = None,
+    *,
+    frame_damping_ratio: float = FRAME_DAMPING_RATIO,
+    max_frequency_hz: float = MAX_FREQUENCY_HZ,
+) -> RigModel:
+    """Build the rig's model of a racket on a support (see the module docstring).
+
+    Parameters
+    ----------
+    racket : Racket
+        Mass properties, head, strings, point masses and the two frequency targets
+        (``first_bending_hz``, ``twisting_hz``: the free racket's, strings included).
+    support : {"free", "hand"}
+        ``free``: on a soft sponge; ``hand``: held by ``hand``.
+    hand : HandModel or None
+        The hand for ``support="hand"`` (None: the default :class:`HandModel`); must be None
+        for ``free``.
+    frame_damping_ratio : float
+        Modal damping ratio of the free racket's flexible modes.
+    max_frequency_hz : float
+        Modes above this frequency are left out, Hz.
+
+    Returns
+    -------
+    RigModel
+        Matrices, DOF map and modes (ascending frequency).
+    """
+    one_of("support", support, RIG_SUPPORTS)
+    if support == "free" and hand is not None:
+        raise InputError("a hand is given but support is 'free'; use support='hand'")
+    if support == "hand" and hand is None:
+        hand = HandModel()
+    if not 0.0 <= frame_damping_ratio < 0.2:
+        raise InputError(f"frame_damping_ratio must lie in [0, 0.2) (got {frame_damping_ratio!r})")
+    require_positive("max_frequency_hz", max_frequency_hz)
+
+    x = np.linspace(0.0, racket.length_m, N_ELEMENTS + 1)
+    n_nodes = x.size
+    n_frame = 3 * n_nodes
+    powers = tuple((a, d - a) for d in range(MEMBRANE_DEGREE + 1) for a in range(d, -1, -1))
+    n_dof = n_frame + len(powers)
+    bending, twist = slice(0, 2 * n_nodes), slice(2 * n_nodes, n_frame)
+    membrane = slice(n_frame, n_dof)
+
+    # --- the string bed: quadrature, mass and membrane stiffness --------------------------
+    head, strings = racket.head, racket.strings
+    string_mass = float(strings.mass_kg or STRING_MASS_FRACTION * racket.mass_kg)
+    qx, qy, qw = _bed_quadrature(racket, x)
+    sigma = string_mass / qw.sum()  # areal density, the quadrature's mass exactly m_s
+    weight = sigma * qw
+    bed_rows = np.zeros((qx.size, n_dof))
+    bed_rows[:, :n_frame] = _frame_rows(x, qx, qy)
+    psi, dpsi_x, dpsi_y = _membrane_functions(racket, powers, np.column_stack([qx, qy]))
+    bed_rows[:, membrane] = psi
+    bed_mass = bed_rows.T @ (weight[:, None] * bed_rows)
+    spacing_mains, spacing_crosses = strings.spacing_m(head)
+    tension_x, tension_y = strings.tension_n / spacing_mains, strings.tension_n / spacing_crosses
+    k_membrane = tension_x * dpsi_x.T @ (qw[:, None] * dpsi_x) + tension_y * dpsi_y.T @ (
+        qw[:, None] * dpsi_y
+    )
+
+    # --- the frame: mass per length for the racket less the strings -----------------------
+    frame_mass = racket.mass_kg - string_mass
+    first = racket.mass_kg * racket.balance_m - weight @ qx
+    second = racket.inertia_cg_kgm2 + racket.mass_kg * racket.balance_m**2 - weight @ qx**2
+    frame_balance = first / frame_mass
+    density = beam_mass_per_length(
+        racket.length_m,
+        frame_mass,
+        frame_balance,
+        second - frame_mass * frame_balance**2,
+        N_ELEMENTS,
+    )
+    mid, step = 0.5 * (x[:-1] + x[1:]), np.diff(x)
+    frame_roll = racket.roll_inertia_kgm2 - weight @ qy**2
+    if frame_roll <= 0:
+        raise InputError(
+            f"racket: roll inertia {racket.roll_inertia_kgm2} kg·m² is less than the string "
+            f"bed's own ({weight @ qy**2:.3g} kg·m²); check roll_inertia / twistweight"
+        )
+    roll_density = density * _section_radius(head, mid) ** 2
+    roll_density *= frame_roll / np.sum(roll_density * step)
+    kb_unit, mb = _bending_matrices(x, density)
+    kt_unit, mt = _torsion_matrices(x, roll_density)
+
+    mass = bed_mass.copy()
+    mass[bending, bending] += mb
+    mass[twist, twist] += mt
+    k_bend = np.zeros((n_dof, n_dof))
+    k_bend[bending, bending] = kb_unit
+    k_twist = np.zeros((n_dof, n_dof))
+    k_twist[twist, twist] = kt_unit
+    k_strings = np.zeros((n_dof, n_dof))
+    k_strings[membrane, membrane] = k_membrane
+
+    # --- calibration on the bare racket (strings in, point masses out), held on the sponge --
+    k_suspension, _ = _suspension(mass, x, n_dof)
+    ei, gj = _calibrate(racket, mass, k_bend, k_twist, k_strings + k_suspension)
+    stiffness = ei * k_bend + gj * k_twist + k_strings
+
+    for p in racket.point_masses:
+        row = np.zeros(n_dof)
+        row[:n_frame] = _frame_rows(x, np.array([p.x_m]), np.array([p.y_m]))[0]
+        mass += p.mass_kg * np.outer(row, row)
+
+    # --- the free racket's own damping (modal) and the support ------------------------------
+    k_suspension, c_suspension = _suspension(mass, x, n_dof)
+    free_omega2, free_vectors = eigh(stiffness + k_suspension, mass)
+    flexible = _support_share(free_vectors, k_suspension, free_omega2) < 0.5
+    phi_f, omega_f = free_vectors[:, flexible], np.sqrt(free_omega2[flexible])
+    mphi = mass @ phi_f
+    c_racket = mphi @ np.diag(2 * frame_damping_ratio * omega_f) @ mphi.T
+
+    metadata: dict[str, Any] = {
+        "elements": N_ELEMENTS,
+        "membrane_functions": len(powers),
+        "bending_stiffness_nm2": float(ei),
+        "torsional_stiffness_nm2_per_rad": float(gj),
+        "string_mass_kg": string_mass,
+        "string_tension_per_width_n_per_m": [float(tension_x), float(tension_y)],
+        "frame_damping_ratio": float(frame_damping_ratio),
+        "max_frequency_hz": float(max_frequency_hz),
+    }
+    if support == "free":
+        k_support, c_support, m_support = k_suspension, c_suspension, np.zeros_like(mass)
+        label = "suspension"
+        metadata["suspension_hz"] = list(SUSPENSION_HZ)
+        metadata["suspension_damping_ratio"] = SUSPENSION_DAMPING_RATIO
+    else:
+        assert hand is not None
+        if hand.grip_end_m >= head.throat_x_m or hand.grip_end_m > racket.length_m:
+            raise InputError(
+                f"hand.grip_end_m ({hand.grip_end_m} m) must lie on the handle, below the "
+                f"string bed's throat end ({head.throat_x_m:.3f} m)"
+            )
+        m_support, k_support, c_support = _hand_matrices(hand, x, n_dof)
+        label = "hand"
+        metadata["hand"] = {k: float(v) for k, v in vars(hand).items()}
+
+    mass_total = mass + m_support
+    stiffness_total = stiffness + k_support
+    damping_total = c_racket + c_support
+    omega2, vectors = eigh(stiffness_total, mass_total)
+    keep = omega2 <= (2 * np.pi * max_frequency_hz) ** 2
+    omega2, vectors = omega2[keep], vectors[:, keep]
+    if np.any(omega2 <= 0):
+        raise InputError(f"rig model ({support}): a mode has no stiffness; check the support")
+    omega = np.sqrt(omega2)
+    zeta = np.einsum("ik,ij,jk->k", vectors, damping_total, vectors) / (2 * omega)
+    if np.any(zeta >= 1.0):
+        k = int(np.argmax(zeta))
+        raise InputError(
+            f"rig model ({support}): the mode at {omega[k] / (2 * np.pi):.2f} Hz is over-damped "
+            f"(damping ratio {zeta[k]:.2f}); lower the support's damping or raise its stiffness"
+        )
+    # sign convention: the largest displacement over the racket (sampled) positive
+    probe = _frame_rows(x, np.concatenate([x, x]), np.repeat([0.0, head.half_width_m], x.size))
+    sampled = np.vstack([probe @ vectors[:n_frame], _bed_centre_row(racket, powers) @ vectors])
+    largest = sampled[np.argmax(np.abs(sampled), axis=0), np.arange(vectors.shape[1])]
+    vectors = vectors * np.where(largest < 0, -1.0, 1.0)
+
+    shares = np.vstack(
+        [
+            np.einsum("ik,ij,jk->k", vectors, ei * k_bend, vectors),
+            np.einsum("ik,ij,jk->k", vectors, gj * k_twist, vectors),
+            np.einsum("ik,ij,jk->k", vectors, k_strings, vectors),
+            np.einsum("ik,ij,jk->k", vectors, k_support, vectors),
+        ]
+    )
+    names, kinds = _name_modes(np.argmax(shares, axis=0), label)
+    metadata["strain_energy_shares"] = {
+        "order": ["bending", "twisting", "string-bed", label],
+        "values": (shares / omega2).T.round(6).tolist(),
+    }
+    logger.debug("rig model (%s): %d modes up to %.0f Hz", support, omega.size, max_frequency_hz)
+    return RigModel(
+        racket=racket,
+        support=support,
+        hand=hand,
+        nodes_x=x,
+        membrane_powers=powers,
+        mass=mass_total,
+        stiffness=stiffness_total,
+        damping=damping_total,
+        frequency=omega / (2 * np.pi),
+        damping_ratio=zeta,
+        modes=vectors,
+        names=names,
+        kinds=kinds,
+        metadata=metadata,
+    )
+
+
+# --- pieces --------------------------------------------------------------------------------
+
+
+def _frame_rows(
+    x: NDArray[np.float64], xs: NDArray[np.float64], ys: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Rows giving ``w(x) + θ(x)·y`` from the frame DOFs (Hermite w, linear θ), ``(n, 3 n)``."""
+    n_nodes = x.size
+    element = np.clip(np.searchsorted(x, xs, side="right") - 1, 0, n_nodes - 2)
+    h = x[element + 1] - x[element]
+    s = (xs - x[element]) / h
+    rows = np.zeros((xs.size, 3 * n_nodes))
+    point = np.arange(xs.size)
+    hermite = (
+        1 - 3 * s**2 + 2 * s**3,
+        h * (s - 2 * s**2 + s**3),
+        3 * s**2 - 2 * s**3,
+        h * (-(s**2) + s**3),
+    )
+    for j, values in enumerate(hermite):
+        rows[point, 2 * element + j] = values
+    rows[point, 2 * n_nodes + element] = (1 - s) * ys
+    rows[point, 2 * n_nodes + element + 1] = s * ys
+    return rows
+
+
+def _membrane_functions(
+    racket: Racket, powers: tuple[tuple[int, int], ...], xy: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Ritz functions ψ and their x and y derivatives at the locations, each ``(n, n_psi)``."""
+    head = racket.head
+    a, b = head.half_length_m, head.half_width_m
+    xi = (xy[:, 0] - head.centre_x_m) / a
+    eta = (xy[:, 1] - head.centre_y_m) / b
+    bubble = 1 - xi**2 - eta**2
+    psi, dx, dy = [], [], []
+    for p, q in powers:
+        mono = xi**p * eta**q
+        dmono_xi = p * xi ** max(p - 1, 0) * eta**q
+        dmono_eta = q * xi**p * eta ** max(q - 1, 0)
+        psi.append(bubble * mono)
+        dx.append((bubble * dmono_xi - 2 * xi * mono) / a)
+        dy.append((bubble * dmono_eta - 2 * eta * mono) / b)
+    return np.column_stack(psi), np.column_stack(dx), np.column_stack(dy)
+
+
+def _bed_centre_row(racket: Racket, powers: tuple[tuple[int, int], ...]) -> NDArray[np.float64]:
+    """Row giving the displacement at the string bed's centre (frame part excluded)."""
+    x = np.linspace(0.0, racket.length_m, N_ELEMENTS + 1)
+    centre = np.array([[racket.head.centre_x_m, racket.head.centre_y_m]])
+    row = np.zeros((1, 3 * x.size + len(powers)))
+    row[:, : 3 * x.size] = _frame_rows(x, centre[:, 0], centre[:, 1])
+    row[:, 3 * x.size :] = _membrane_functions(racket, powers, centre)[0]
+    return row
+
+
+def _bed_quadrature(
+    racket: Racket, x: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Quadrature points (x, y) and area weights (m²) over the string-bed ellipse.
+
+    ``ξ = sin s`` removes the square-root ends of the chord; s is cut at the beam nodes so each
+    piece sees one element's smooth shape functions (Gauss–Legendre, 8 points), and each chord
+    is integrated with 8 Gauss points (exact for the polynomial Ritz products).
+    """
+    head = racket.head
+    a, b = head.half_length_m, head.half_width_m
+    cuts = np.arcsin(np.clip((x - head.centre_x_m) / a, -1.0, 1.0))
+    edges = np.unique(np.concatenate([[-np.pi / 2, np.pi / 2], cuts]))
+    gx, gw = _GAUSS_X
+    s = (0.5 * (edges[:-1, None] + edges[1:, None]) + 0.5 * np.diff(edges)[:, None] * gx).ravel()
+    ws = (0.5 * np.diff(edges)[:, None] * gw).ravel()
+    t, wt = _GAUSS_X
+    xs = head.centre_x_m + a * np.sin(s)
+    chord = np.cos(s)
+    qx = np.repeat(xs, t.size)
+    qy = head.centre_y_m + b * np.outer(chord, t).ravel()
+    qw = (a * b * np.outer(ws * chord**2, wt)).ravel()
+    return qx, qy, qw
+
+
+def _rigid_modes(mass: NDArray[np.float64], x: NDArray[np.float64], n_dof: int) -> NDArray[Any]:
+    """Mass-orthonormal rigid-body vectors: heave, pitch (about the centre of mass), roll."""
+    n = x.size
+    rigid = np.zeros((n_dof, 3))
+    rigid[0 : 2 * n : 2, 0] = 1.0
+    rigid[0 : 2 * n : 2, 1] = x
+    rigid[1 : 2 * n : 2, 1] = 1.0
+    rigid[2 * n : 3 * n, 2] = 1.0
+    for k in range(3):  # Gram–Schmidt in the mass inner product, in that order
+        for j in range(k):
+            rigid[:, k] -= (rigid[:, j] @ mass @ rigid[:, k]) * rigid[:, j]
+        rigid[:, k] /= np.sqrt(rigid[:, k] @ mass @ rigid[:, k])
+    return rigid
+
+
+def _suspension(
+    mass: NDArray[np.float64], x: NDArray[np.float64], n_dof: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Stiffness and damping of the ideal soft suspension (rigid-body modes only)."""
+    rigid = _rigid_modes(mass, x, n_dof)
+    omega = 2 * np.pi * np.asarray(SUSPENSION_HZ)
+    mr = mass @ rigid
+    return (
+        mr @ np.diag(omega**2) @ mr.T,
+        mr @ np.diag(2 * SUSPENSION_DAMPING_RATIO * omega) @ mr.T,
+    )
+
+
+def _support_share(
+    vectors: NDArray[np.float64], k_support: NDArray[np.float64], omega2: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Share of each mode's strain energy held by the support."""
+    return np.asarray(np.einsum("ik,ij,jk->k", vectors, k_support, vectors) / omega2)
+
+
+def _calibrate(
+    racket: Racket,
+    mass: NDArray[np.float64],
+    k_bend: NDArray[np.float64],
+    k_twist: NDArray[np.float64],
+    k_fixed: NDArray[np.float64],
+) -> tuple[float, float]:
+    """EI and GJ putting the free racket's first bending and twisting modes on their targets."""
+    target_b = 2 * np.pi * racket.first_bending_hz
+    target_t = 2 * np.pi * racket.twisting_hz
+    ei, gj = 100.0, 100.0
+    n_search = 12  # the lowest modes: 3 suspension + 2-node bending + twisting among them
+    for _ in range(60):
+        stiffness = ei * k_bend + gj * k_twist + k_fixed
+        omega2, vectors = eigh(stiffness, mass, subset_by_index=[0, n_search - 1])
+        energy_b = np.einsum("ik,ij,jk->k", vectors, ei * k_bend, vectors) / omega2
+        energy_t = np.einsum("ik,ij,jk->k", vectors, gj * k_twist, vectors) / omega2
+        bend = np.flatnonzero(energy_b > 0.5)
+        tors = np.flatnonzero(energy_t > 0.5)
+        if bend.size == 0 or tors.size == 0:
+            ei, gj = ei * 4.0 if bend.size == 0 else ei, gj * 4.0 if tors.size == 0 else gj
+            continue
+        ratio_b = target_b**2 / omega2[bend[0]]
+        ratio_t = target_t**2 / omega2[tors[0]]
+        ei, gj = ei * ratio_b, gj * ratio_t
+        if abs(ratio_b - 1) < _CALIBRATION_TOLERANCE and abs(ratio_t - 1) < _CALIBRATION_TOLERANCE:
+            return float(ei), float(gj)
+    raise InputError(  # pragma: no cover - the fixed point converges for any physical racket
+        f"rig model of {racket.name}: the stiffness calibration did not converge"
+    )
+
+
+def _line_matrix(
+    x: NDArray[np.float64], start: float, end: float, *, bending: bool
+) -> NDArray[np.float64]:
+    """``∫ NᵀN dx`` over [start, end] for the frame's w (bending) or θ (twist) field."""
+    gx, gw = _GAUSS_LINE
+    edges = np.unique(np.concatenate([[start, end], x[(x > start) & (x < end)]]))
+    xs = (0.5 * (edges[:-1, None] + edges[1:, None]) + 0.5 * np.diff(edges)[:, None] * gx).ravel()
+    ws = (0.5 * np.diff(edges)[:, None] * gw).ravel()
+    rows = _frame_rows(x, xs, np.ones_like(xs))
+    rows = rows[:, : 2 * x.size] if bending else rows[:, 2 * x.size :]
+    return np.asarray(rows.T @ (ws[:, None] * rows))
+
+
+def _hand_matrices(
+    hand: HandModel, x: NDArray[np.float64], n_dof: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Mass, stiffness and damping the hand adds (spread evenly over the grip)."""
+    n = x.size
+    length = hand.grip_length_m
+    w_line = _line_matrix(x, hand.grip_start_m, hand.grip_end_m, bending=True) / length
+    t_line = _line_matrix(x, hand.grip_start_m, hand.grip_end_m, bending=False) / length
+    out = []
+    for translational, rolling in (
+        (hand.mass_kg, hand.mass_kg * hand.roll_radius_m**2),
+        (hand.stiffness_n_per_m, hand.roll_stiffness_nm_per_rad),
+        (hand.damping_ns_per_m, hand.roll_damping_nms_per_rad),
+    ):
+        matrix = np.zeros((n_dof, n_dof))
+        matrix[: 2 * n, : 2 * n] = translational * w_line
+        matrix[2 * n : 3 * n, 2 * n : 3 * n] = rolling * t_line
+        out.append(matrix)
+    return out[0], out[1], out[2]
+
+
+def _name_modes(
+    dominant: NDArray[np.intp], support_label: str
+) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Names and kinds from each mode's largest strain energy (bending, twist, strings, support)."""
+    counts = [0, 0, 0, 0]
+    names, kinds = [], []
+    for d in dominant:
+        counts[d] += 1
+        c = counts[d]
+        if d == 0:
+            names.append(f"{c + 1}-node bending")
+            kinds.append("bending")
+        elif d == 1:
+            names.append(f"{c + 1}-node twisting")
+            kinds.append("twisting")
+        elif d == 2:
+            names.append("string-bed membrane" if c == 1 else f"string-bed membrane {c}")
+            kinds.append("string-bed")
+        else:
+            names.append(f"{support_label} rigid-body {c}")
+            kinds.append("other")
+    return tuple(names), tuple(kinds)
