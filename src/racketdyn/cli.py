@@ -40,6 +40,7 @@ from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
 from racketdyn.measurement import HammerRecords
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.pulse import contact_times
+from racketdyn.measurement.quality import QualitySettings
 from racketdyn.modal import modal_model_for
 from racketdyn.racket import SUPPORTS, Racket
 
@@ -48,7 +49,10 @@ __all__ = ["main"]
 log = logging.getLogger("racketdyn")
 DEFAULT_GRID = 9
 MAX_GRID = 400  # 400 × 400 ≈ 126,000 points: a few seconds a speed
-CHUNK_IMPACTS = 50_000  # above this, predict in chunks of points with a progress bar
+CHUNK_IMPACTS = 50_000
+# accelerometer: hammer_points gives 8 axis points, then the hoop from the tip; node 10 is 22.5°
+# round it, where the bending and the twisting modes both move the frame
+REFERENCE_HOOP_POINT = 9  # above this, predict in chunks of points with a progress bar
 
 
 def _parse_list(name: str, text: str) -> list[str]:
@@ -270,6 +274,7 @@ def _frf(args: argparse.Namespace, console: Console) -> int:
             estimator=args.estimator,
             force_window_s=args.force_window,
             exponential_window_s=args.exp_window,
+            quality=QualitySettings(overload_level_n=args.force_range),
         )
     estimate.write_quality_csv(out / "quality.csv")
     written = [out / "quality.csv"]
@@ -291,6 +296,7 @@ def _frf(args: argparse.Namespace, console: Console) -> int:
             "estimator": args.estimator,
             "force_window_s": args.force_window,
             "exponential_window_s": args.exp_window,
+            "force_range_n": args.force_range,
             "quality": summary,
             "rejected_points": list(estimate.rejected_points),
         },
@@ -351,6 +357,74 @@ def _contact(args: argparse.Namespace, console: Console) -> int:
                 f"{label}: contact time on the strings {np.nanmin(times.mean_s[on_bed]) * 1e3:.2f}"
                 f"–{np.nanmax(times.mean_s[on_bed]) * 1e3:.2f} ms over {int(on_bed.sum())} points"
             )
+    for path in written:
+        console.print(f"  wrote {path}")
+    return 0
+
+
+def _rig(args: argparse.Namespace, console: Console) -> int:
+    from racketdyn.io import write_hammer_uff
+    from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test
+
+    racket, provenance = _load(args.racket)
+    if args.averages < 1:
+        raise InputError(f"--averages must be a whole number of at least 1 (got {args.averages})")
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    locations, nodes = hammer_points(racket)
+    reference = REFERENCE_HOOP_POINT if len(nodes) > REFERENCE_HOOP_POINT else 0
+    reference_location = (float(locations[reference, 0]), float(locations[reference, 1]))
+    with console.status(f"building the {args.support} rig and simulating the hammer test"):
+        model = rig_model(racket, args.support)
+        records = simulate_hammer_test(
+            model,
+            locations,
+            nodes,
+            reference_location,
+            nodes[reference],
+            n_averages=args.averages,
+            double_hit_probability=args.double_hits,
+            overload_probability=args.overloads,
+            seed=args.seed,
+        )
+    tests = write_hammer_uff(records, out / f"hammer_{args.support}.uff", binary=args.binary)
+    truth_locations = np.vstack([locations, [[0.0, 0.0], [racket.length_m, 0.0]]])
+    truth = model.modal_truth(truth_locations, max_frequency_hz=0.5 / records.sampling_interval_s)
+    truth_path = out / f"modal_truth_{args.support}.json"
+    truth.write_json(truth_path)
+    written = [tests, truth_path]
+    faults = {
+        "double_hits": int(sum(sum(row) for row in records.metadata.get("double_hit", []))),
+        "overloads": int(sum(sum(row) for row in records.metadata.get("overload", []))),
+    }
+    _write_record(
+        out,
+        "rig",
+        {
+            **provenance,
+            "racket": racket_to_dict(racket),
+            "support": args.support,
+            "reference_node": nodes[reference],
+            "reference_location_m": reference_location,
+            "n_points": len(nodes),
+            "averages": args.averages,
+            "seed": args.seed,
+            **faults,
+            "rig": records.metadata.get("rig"),
+            "anti_alias": records.metadata.get("anti_alias"),
+        },
+        written,
+    )
+    console.print(
+        f"{len(nodes)} points × {args.averages} averages on the {args.support} rig "
+        f"(accelerometer at node {nodes[reference]}), {faults['double_hits']} double hits, "
+        f"{faults['overloads']} overloads → {out}"
+    )
+    for name, frequency, damping in zip(
+        truth.names, truth.frequency, truth.damping_ratio, strict=True
+    ):
+        if frequency > 15.0:
+            console.print(f"  {name:24s} {frequency:8.1f} Hz  ζ = {damping * 100:.2f} %")
     for path in written:
         console.print(f"  wrote {path}")
     return 0
@@ -418,6 +492,9 @@ def _parser() -> argparse.ArgumentParser:
         "--force-window", type=float, help="keep the force this long after the trigger, s"
     )
     frf.add_argument("--exp-window", type=float, help="exponential window time constant τ, s")
+    frf.add_argument(
+        "--force-range", type=float, help="hammer channel range, N: reaching it is an overload"
+    )
     frf.add_argument("--out", required=True, help="output folder (created if missing)")
     frf.set_defaults(handler=_frf)
 
@@ -430,6 +507,19 @@ def _parser() -> argparse.ArgumentParser:
     contact.add_argument("--racket", help="racket TOML for the head outline (default: built-in)")
     contact.add_argument("--out", required=True, help="output folder (created if missing)")
     contact.set_defaults(handler=_contact)
+
+    rig = commands.add_parser("rig", help="virtual roving-hammer test of a racket model (UFF out)")
+    rig.add_argument(
+        "racket", nargs="?", help="racket TOML file (default: the built-in paper racket)"
+    )
+    rig.add_argument("--support", choices=("free", "hand"), default="free")
+    rig.add_argument("--averages", type=int, default=10, help="hits per point (default 10)")
+    rig.add_argument("--double-hits", type=float, default=0.0, help="probability of a double hit")
+    rig.add_argument("--overloads", type=float, default=0.0, help="probability of an overload")
+    rig.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    rig.add_argument("--binary", action="store_true", help="write binary UFF 58b (default ASCII)")
+    rig.add_argument("--out", required=True, help="output folder (created if missing)")
+    rig.set_defaults(handler=_rig)
 
     show = commands.add_parser("racket", help="print a racket's derived properties")
     show.add_argument(
