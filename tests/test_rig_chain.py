@@ -81,3 +81,29 @@ def test_quality_checks_find_the_rigs_faults(free_rig) -> None:
     np.testing.assert_array_equal(found_overload, np.array(records.metadata["overload"]))
     assert found_double.sum() > 0
     assert found_overload.sum() > 0
+
+
+def test_hammer_contact_on_the_strings() -> None:
+    # At the centre the hammer meets a main of half-length a and a cross of half-width b:
+    # T = π sqrt(μ/k), k = 2 S₀ (1/a + 1/b) (within the 1e-4 edge guard: 0.01 %); shorter near
+    # the frame; hand-held (pinned) ≈ free (paper, section 3.1: within 2 %).
+    from racketdyn.rig import string_contact_time
+    from racketdyn.rig.hammer import HAMMER_MASS_KG
+
+    racket = rd.default_racket()
+    head = racket.head
+    centre = [[head.centre_x_m, 0.0]]
+    k = 2 * racket.strings.tension_n * (1 / head.half_length_m + 1 / head.half_width_m)
+    m_r = racket.reduced_mass(centre, "free")[0]
+    mu = HAMMER_MASS_KG * m_r / (HAMMER_MASS_KG + m_r)
+    assert string_contact_time(racket, centre)[0] == pytest.approx(
+        np.pi * np.sqrt(mu / k), rel=2e-4
+    )
+    ring = [
+        [head.centre_x_m + 0.85 * head.half_length_m, 0.0],
+        [head.centre_x_m, 0.85 * head.half_width_m],
+    ]
+    assert np.all(string_contact_time(racket, ring) < string_contact_time(racket, centre)[0])
+    free = string_contact_time(racket, racket.head.grid(7), "free")
+    pinned = string_contact_time(racket, racket.head.grid(7), "pinned")
+    np.testing.assert_allclose(pinned, free, rtol=0.02)

@@ -334,7 +334,8 @@ def _contact(args: argparse.Namespace, console: Console) -> int:
         records = _read_records(test, args.geometry)
         checks = estimate_frfs(records).checks
         times = contact_times(records, checks)
-        path = out / f"contact_{label}.csv"
+        slug = "".join(c if c.isalnum() or c in "-_" else "_" for c in label)
+        path = out / f"contact_{slug}.csv"
         times.write_csv(path)
         written.append(path)
         tables.append(times)
@@ -364,7 +365,8 @@ def _contact(args: argparse.Namespace, console: Console) -> int:
 
 def _rig(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.io import write_hammer_uff
-    from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test
+    from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test, string_contact_time
+    from racketdyn.rig.hammer import FRAME_PULSE_S
 
     racket, provenance = _load(args.racket)
     if args.averages < 1:
@@ -374,6 +376,10 @@ def _rig(args: argparse.Namespace, console: Console) -> int:
     locations, nodes = hammer_points(racket)
     reference = REFERENCE_HOOP_POINT if len(nodes) > REFERENCE_HOOP_POINT else 0
     reference_location = (float(locations[reference, 0]), float(locations[reference, 1]))
+    on_bed = racket.head.contains(locations)
+    durations = np.full(len(nodes), FRAME_PULSE_S)
+    support = "free" if args.support == "free" else "pinned"
+    durations[on_bed] = string_contact_time(racket, locations[on_bed], support)
     with console.status(f"building the {args.support} rig and simulating the hammer test"):
         model = rig_model(racket, args.support)
         records = simulate_hammer_test(
@@ -385,6 +391,7 @@ def _rig(args: argparse.Namespace, console: Console) -> int:
             n_averages=args.averages,
             double_hit_probability=args.double_hits,
             overload_probability=args.overloads,
+            pulse_duration_s=durations,
             seed=args.seed,
         )
     tests = write_hammer_uff(records, out / f"hammer_{args.support}.uff", binary=args.binary)

@@ -275,7 +275,7 @@ def plot_contact_map(
             triangles, values, levels=np.asarray(filled.levels), colors="k", linewidths=0.4
         )
         ax.clabel(lines, fontsize=6, fmt="%.2f")
-        ax.figure.colorbar(filled, ax=ax, label="contact time (ms)", shrink=0.85)
+        ax.figure.colorbar(filled, ax=ax, label="contact time (ms)", shrink=0.85, format="%.2f")
     ax.plot(x_mm, y_mm, ".", color="w", markersize=3)
     plot_outline(racket, ax)
     ax.set_xlabel("x from the butt (mm)")

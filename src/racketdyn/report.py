@@ -224,7 +224,12 @@ def write_contact_figure(
     figure, axes = plt.subplots(
         1, len(tables), figsize=(4.6 * len(tables), 3.8), layout="constrained", squeeze=False
     )
-    finite = np.concatenate([t.mean_s[np.isfinite(t.mean_s)] for t in tables]) * 1e3
+    finite = (
+        np.concatenate(
+            [t.mean_s[racket.head.contains(t.locations) & np.isfinite(t.mean_s)] for t in tables]
+        )
+        * 1e3
+    )
     levels = (
         np.linspace(finite.min(), finite.max(), 11) if finite.size and np.ptp(finite) > 0 else 10
     )

@@ -4,7 +4,12 @@
 its modal truth; :func:`simulate_hammer_test` makes the records a roving-hammer test would give.
 """
 
-from racketdyn.rig.hammer import anti_alias_filter, hammer_points, simulate_hammer_test
+from racketdyn.rig.hammer import (
+    anti_alias_filter,
+    hammer_points,
+    simulate_hammer_test,
+    string_contact_time,
+)
 from racketdyn.rig.model import HandModel, RigModel, RigSupport, rig_model
 
 __all__ = [
@@ -15,4 +20,5 @@ __all__ = [
     "hammer_points",
     "rig_model",
     "simulate_hammer_test",
+    "string_contact_time",
 ]
