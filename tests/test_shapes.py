@@ -1,0 +1,58 @@
+"""Mode naming, nodes and free/hand pairing against the rig's own (strain-energy) names."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import racketdyn as rd
+from racketdyn.modal.shapes import axis_nodes, classify_modes, pair_modes
+from racketdyn.rig import hammer_points, rig_model
+
+
+@pytest.fixture(scope="module")
+def truths() -> dict[str, rd.ModalModel]:
+    racket = rd.default_racket()
+    locations, _ = hammer_points(racket)
+    out = {}
+    for support in ("free", "hand"):
+        truth = rig_model(racket, support).modal_truth(locations, max_frequency_hz=900)
+        out[support] = truth.select([k for k, f in enumerate(truth.frequency) if f > 15])
+    return out
+
+
+@pytest.mark.parametrize("support", ["free", "hand"])
+def test_names_from_shapes_match_the_rig(truths, support) -> None:
+    # The rig names its modes from where their strain energy lies; the shape-only names
+    # (mirror symmetry, string/frame amplitude, bending order) must agree for every mode.
+    truth = truths[support]
+    names, kinds = classify_modes(truth, rd.default_racket().head)
+    assert names == truth.names
+    assert kinds == truth.kinds
+
+
+def test_first_mode_nodes_and_the_hand(truths) -> None:
+    # Paper, Fig. 6 and section 2: the hand moves the handle node, not the face node.
+    free = axis_nodes(truths["free"], 0, (0.0, 0.68))
+    hand = axis_nodes(truths["hand"], 0, (0.0, 0.68))
+    assert free.size == 2
+    assert hand.size == 2
+    assert abs(hand[1] - free[1]) < 0.01  # face node within 10 mm
+    assert abs(hand[0] - free[0]) > 0.01  # handle node moves
+
+
+def test_free_and_hand_pair_by_mac(truths) -> None:
+    pairing = pair_modes(truths["free"], truths["hand"])
+    free, hand = truths["free"], truths["hand"]
+    paired = {
+        free.names[a]: hand.names[b] for a, b in zip(pairing.first, pairing.second, strict=True)
+    }
+    for name in ("2-node bending", "3-node bending", "2-node twisting", "string-bed membrane"):
+        assert paired[name] == name
+    assert min(pairing.mac) > 0.6
+    shift = [
+        hand.frequency[b] / free.frequency[a] - 1
+        for a, b in zip(pairing.first, pairing.second, strict=True)
+    ]
+    assert all(-0.1 < s < 0.0 for s in shift)  # slightly lower when held (paper, conclusion 1)
+    np.testing.assert_array_equal(sorted(pairing.first), pairing.first)
