@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 from racketdyn.impact.result import ImpactResult
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FrfSet
+from racketdyn.modal.model import ModalModel
 from racketdyn.racket import Racket
 
 __all__ = [
@@ -30,6 +31,9 @@ __all__ = [
     "plot_face_map",
     "plot_frame_amplitude",
     "plot_frf",
+    "plot_mac",
+    "plot_mode_3d",
+    "plot_node_lines",
     "plot_outline",
     "plot_speed_curves",
 ]
@@ -281,4 +285,81 @@ def plot_contact_map(
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_title(title, fontsize=9)
+    return ax
+
+
+def _face_grid(racket: Racket, n: int = 41) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    head = racket.head
+    u = np.linspace(-1.0, 1.0, n)
+    xi, eta = np.meshgrid(u, u, indexing="ij")
+    return head.centre_x_m + head.half_length_m * xi, head.centre_y_m + head.half_width_m * eta
+
+
+def plot_node_lines(model: ModalModel, racket: Racket, mode: int, ax: Axes | None = None) -> Axes:
+    """Sign of a mode shape over the string face, black and white, node lines between (Fig. 5)."""
+    ax = _axes(ax, (3.2, 2.6))
+    x, y = _face_grid(racket)
+    inside = racket.head.contains(np.column_stack([x.ravel(), y.ravel()])).reshape(x.shape)
+    shape = model.mode_shapes_at(np.column_stack([x.ravel(), y.ravel()]))[:, mode].reshape(x.shape)
+    shape = np.where(inside, shape, np.nan)
+    ax.contourf(x * 1e3, y * 1e3, np.sign(shape), levels=[-1.5, 0.0, 1.5], colors=["k", "w"])
+    ax.contour(x * 1e3, y * 1e3, shape, levels=[0.0], colors="tab:red", linewidths=1.2)
+    plot_outline(racket, ax)
+    ax.set_title(f"{model.names[mode]}, {model.frequency[mode]:.0f} Hz", fontsize=8)
+    ax.set_xticks([])
+    ax.set_yticks([])
+    return ax
+
+
+def plot_mode_3d(model: ModalModel, racket: Racket, mode: int, ax: Axes | None = None) -> Axes:
+    """A mode shape over the racket outline in 3-D (paper, Fig. 4): the face and the long axis."""
+    if ax is None:
+        figure = plt.figure(figsize=(4.5, 3.2), layout="constrained")
+        ax = figure.add_subplot(projection="3d")
+    x, y = _face_grid(racket, 31)
+    points = np.column_stack([x.ravel(), y.ravel()])
+    inside = racket.head.contains(points).reshape(x.shape)
+    shape = model.mode_shapes_at(points)[:, mode].reshape(x.shape)
+    scale = 0.08 / max(float(np.abs(model.mode_shapes[:, mode]).max()), 1e-12)
+    ax3d: Any = ax  # a 3-D axes: matplotlib's stubs type it as plain Axes
+    ax3d.plot_surface(x, y, np.where(inside, shape * scale, np.nan), cmap="coolwarm", linewidth=0)
+    axis_x = np.linspace(0.0, racket.length_m, 101)
+    axis = model.mode_shapes_at(np.column_stack([axis_x, np.zeros_like(axis_x)]))[:, mode]
+    ax3d.plot(axis_x, np.zeros_like(axis_x), axis * scale, color="k")
+    ax3d.plot(axis_x, np.zeros_like(axis_x), np.zeros_like(axis_x), color="0.6", linewidth=0.8)
+    ax3d.scatter(
+        model.locations[:, 0],
+        model.locations[:, 1],
+        model.mode_shapes[:, mode] * scale,
+        s=4,
+        color="k",
+    )
+    ax.set_title(
+        f"{model.names[mode]}, {model.frequency[mode]:.1f} Hz, "
+        f"ζ = {100 * model.damping_ratio[mode]:.2f} %",
+        fontsize=8,
+    )
+    ax.set_axis_off()
+    return ax
+
+
+def plot_mac(
+    matrix: NDArray[np.float64], rows: Sequence[str], columns: Sequence[str], ax: Axes | None = None
+) -> Axes:
+    """A MAC (or AutoMAC) matrix with its values."""
+    ax = _axes(ax, (4.5, 3.8))
+    image = ax.imshow(matrix, vmin=0.0, vmax=1.0, cmap="Greys")
+    for (i, j), value in np.ndenumerate(matrix):
+        ax.text(
+            j,
+            i,
+            f"{value:.2f}",
+            ha="center",
+            va="center",
+            fontsize=6,
+            color="w" if value > 0.5 else "k",
+        )
+    ax.set_xticks(range(len(columns)), columns, rotation=60, ha="right", fontsize=7)
+    ax.set_yticks(range(len(rows)), rows, fontsize=7)
+    ax.figure.colorbar(image, ax=ax, label="MAC", shrink=0.8)
     return ax

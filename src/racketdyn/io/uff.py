@@ -49,6 +49,7 @@ from racketdyn.measurement.records import (
     HammerRecords,
     ResponseType,
 )
+from racketdyn.modal.model import ModalModel
 
 __all__ = [
     "read_frf_uff",
@@ -1318,3 +1319,74 @@ def write_hammer_csv(
         except OSError as error:
             raise InputError(f"{target}: cannot be written ({error.strerror})") from None
     return path, geometry_path
+
+
+def write_modes_uff(
+    model: ModalModel, path: Path | str, nodes: Sequence[int] | None = None, binary: bool = False
+) -> Path:
+    """Write mass-normalised mode shapes as UFF 55 (normal modes) with UFF 15 geometry.
+
+    One data set 55 per mode (analysis type 2, normal mode; displacement normal to the face in
+    the z direction, x and y zero), frequency in Hz, modal mass 1 (mass-normalised shapes),
+    viscous damping ratio; readable by other modal software.
+
+    Parameters
+    ----------
+    model : ModalModel
+        Shapes at its locations (1/√kg).
+    path : Path or str
+        File to write (replaced).
+    nodes : sequence of int, optional
+        Node number of each location (default 1, 2, …).
+    binary : bool
+        Ignored for data set 55 (pyuff writes it as ASCII); kept for symmetry.
+    """
+    target = Path(path)
+    numbers = (
+        list(range(1, model.locations.shape[0] + 1)) if nodes is None else [int(n) for n in nodes]
+    )
+    if len(numbers) != model.locations.shape[0] or len(set(numbers)) != len(numbers):
+        raise InputError(f"{target}: one distinct node number per mode-shape location")
+    geometry = {
+        "type": 15,
+        "node_nums": numbers,
+        "def_cs": [0] * len(numbers),
+        "disp_cs": [0] * len(numbers),
+        "color": [0] * len(numbers),
+        "x": model.locations[:, 0].tolist(),
+        "y": model.locations[:, 1].tolist(),
+        "z": [0.0] * len(numbers),
+    }
+    sets: list[dict[str, Any]] = [geometry]
+    zeros = np.zeros(len(numbers))
+    for k in range(model.n_modes):
+        shape = model.mode_shapes[:, k]
+        _finite(target, f"mode {k + 1} shape", k + 1, shape)
+        sets.append(
+            {
+                "type": 55,
+                "id1": _ascii_line(f"racketdyn {__version__} {model.names[k]}"),
+                "id2": _ascii_line(f"{model.support} support; {model.source}"),
+                "id3": _ascii_line("mass-normalised shapes, 1/sqrt(kg), normal to the face (z)"),
+                "id4": "NONE",
+                "id5": "NONE",
+                "model_type": 1,
+                "analysis_type": 2,
+                "data_ch": 2,
+                "spec_data_type": 8,
+                "data_type": 2,
+                "n_data_per_node": 3,
+                "r1": zeros,
+                "r2": zeros,
+                "r3": shape.astype(float),
+                "load_case": 1,
+                "mode_n": k + 1,
+                "freq": float(model.frequency[k]),
+                "modal_m": 1.0,
+                "modal_damp_vis": float(model.damping_ratio[k]),
+                "modal_damp_his": 0.0,
+                "node_nums": np.asarray(numbers, dtype=float),
+            }
+        )
+    del binary
+    return _write_sets(target, sets)
