@@ -30,6 +30,7 @@ from racketdyn.io import (
     default_racket,
     load_racket,
     racket_to_dict,
+    read_frf_uff,
     read_hammer_csv,
     read_hammer_uff,
     read_load_deflection,
@@ -42,6 +43,7 @@ from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.pulse import contact_times
 from racketdyn.measurement.quality import QualitySettings
 from racketdyn.modal import modal_model_for
+from racketdyn.modal.identify import Identification
 from racketdyn.racket import SUPPORTS, Racket
 
 __all__ = ["main"]
@@ -437,6 +439,160 @@ def _rig(args: argparse.Namespace, console: Console) -> int:
     return 0
 
 
+def _parse_band(text: str | None) -> tuple[float, float] | None:
+    if text is None:
+        return None
+    values = _parse_speeds("--band", text)  # non-negative numbers, same rules
+    if len(values) != 2 or values[0] >= values[1]:
+        raise InputError(f"--band takes two frequencies low,high in Hz (got {text!r})")
+    return (values[0], values[1])
+
+
+def _frequencies(name: str, text: str | None) -> list[float]:
+    return [] if text is None else _parse_speeds(name, text)
+
+
+def _identify_file(
+    path_text: str, args: argparse.Namespace, racket: Racket, support: str, console: Console
+) -> Identification:
+    from racketdyn.modal.identify import identify
+
+    frfs = read_frf_uff(Path(path_text), args.geometry)
+    with console.status(f"identifying {Path(path_text).name}"):
+        return identify(
+            frfs,
+            racket.head,
+            band_hz=_parse_band(args.band),
+            max_order=args.max_order,
+            pin_hz=_frequencies("--pin", args.pin),
+            exclude_hz=_frequencies("--exclude", args.exclude),
+            support=support,
+        )
+
+
+def _write_model(identification: Identification, out: Path, label: str) -> list[Path]:
+    from racketdyn.io.uff import write_modes_uff
+
+    model = identification.model
+    paths = [out / f"modes{label}.csv", out / f"modal_model{label}.json", out / f"modes{label}.uff"]
+    identification.write_modes_csv(paths[0])
+    model.write_json(paths[1])
+    write_modes_uff(model, paths[2], nodes=identification.frfs.nodes)
+    quality = out / f"fit_quality{label}.csv"
+    with quality.open("w", encoding="utf-8") as handle:
+        handle.write("node,x_m,y_m,fit_error\n")
+        for node, (x, y), error in zip(
+            identification.frfs.nodes,
+            identification.frfs.locations,
+            identification.fit.error,
+            strict=True,
+        ):
+            handle.write(f"{node},{x:.6g},{y:.6g},{error:.4g}\n")
+    return [*paths, quality]
+
+
+def _print_modes(console: Console, identification: Identification) -> None:
+    model = identification.model
+    table = Table(
+        title=f"{model.n_modes} modes ({model.support}), "
+        f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
+    )
+    for column in ("mode", "frequency (Hz)", "damping (%)", "name", "orders stable"):
+        table.add_column(column)
+    for k in range(model.n_modes):
+        table.add_row(
+            str(k + 1),
+            f"{model.frequency[k]:.2f}",
+            f"{100 * model.damping_ratio[k]:.3f}",
+            model.names[k],
+            str(int(identification.selected.n_orders[k])),
+        )
+    console.print(table)
+    console.print(
+        f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
+        f"condition {identification.fit.condition_number:.3g}"
+    )
+    for line in identification.selected.dropped:
+        console.print(f"[dim]dropped: {line}[/]")
+
+
+def _identify(args: argparse.Namespace, console: Console) -> int:
+    from racketdyn.report import write_identification
+
+    racket, provenance = _load(args.racket)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    identification = _identify_file(args.frfs, args, racket, args.support, console)
+    written = _write_model(identification, out, "")
+    with console.status("drawing figures"):
+        written += write_identification(identification, racket, out)
+    _write_record(
+        out,
+        "identify",
+        {
+            "frfs_file": str(Path(args.frfs).resolve()),
+            "frfs_sha256": _sha256(Path(args.frfs)),
+            **provenance,
+            "support": args.support,
+            "band_hz": list(identification.band_hz),
+            "max_order": args.max_order,
+            "pin_hz": _frequencies("--pin", args.pin),
+            "exclude_hz": _frequencies("--exclude", args.exclude),
+            "modes": identification.model.summary()["modes"],
+            "dropped": list(identification.selected.dropped),
+        },
+        written,
+    )
+    _print_modes(console, identification)
+    for path in written:
+        console.print(f"  wrote {path}")
+    return 0
+
+
+def _compare(args: argparse.Namespace, console: Console) -> int:
+    from racketdyn.report import write_comparison, write_identification
+
+    racket, provenance = _load(args.racket)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    free = _identify_file(args.free, args, racket, "free", console)
+    hand = _identify_file(args.hand, args, racket, "hand", console)
+    written = _write_model(free, out, "_free") + _write_model(hand, out, "_hand")
+    with console.status("drawing figures"):
+        written += write_identification(free, racket, out, "free")
+        written += write_identification(hand, racket, out, "hand")
+        written += write_comparison(free, hand, racket, Ball(), out)
+    _write_record(
+        out,
+        "compare",
+        {
+            "free_file": str(Path(args.free).resolve()),
+            "hand_file": str(Path(args.hand).resolve()),
+            **provenance,
+            "band_hz": list(free.band_hz),
+            "max_order": args.max_order,
+            "modes_free": free.model.summary()["modes"],
+            "modes_hand": hand.model.summary()["modes"],
+        },
+        written,
+    )
+    _print_modes(console, free)
+    _print_modes(console, hand)
+    for path in written:
+        console.print(f"  wrote {path}")
+    return 0
+
+
+def _add_identification_options(command: argparse.ArgumentParser) -> None:
+    command.add_argument("--geometry", help="node coordinates (UFF 15/2411) if not in the file")
+    command.add_argument("--racket", help="racket TOML for the head (default: built-in)")
+    command.add_argument("--band", help="frequency band low,high in Hz (default 40 Hz to fs/2.56)")
+    command.add_argument("--max-order", type=int, default=60, help="highest model order (60)")
+    command.add_argument("--pin", help="force modes in, by approximate frequency: 120,330 (Hz)")
+    command.add_argument("--exclude", help="leave modes out, by approximate frequency (Hz)")
+    command.add_argument("--out", required=True, help="output folder (created if missing)")
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="racketdyn",
@@ -527,6 +683,18 @@ def _parser() -> argparse.ArgumentParser:
     rig.add_argument("--binary", action="store_true", help="write binary UFF 58b (default ASCII)")
     rig.add_argument("--out", required=True, help="output folder (created if missing)")
     rig.set_defaults(handler=_rig)
+
+    ident = commands.add_parser("identify", help="modal model from FRFs (modes.csv, UFF 55, JSON)")
+    ident.add_argument("frfs", help="FRFs: UFF 58 (function type 4), e.g. racketdyn frf's frfs.uff")
+    ident.add_argument("--support", choices=("free", "hand"), default="free")
+    _add_identification_options(ident)
+    ident.set_defaults(handler=_identify)
+
+    compare = commands.add_parser("compare", help="identify free and hand-held FRFs and compare")
+    compare.add_argument("free", help="FRFs of the freely supported racket (UFF 58)")
+    compare.add_argument("hand", help="FRFs of the hand-held racket (UFF 58)")
+    _add_identification_options(compare)
+    compare.set_defaults(handler=_compare)
 
     show = commands.add_parser("racket", help="print a racket's derived properties")
     show.add_argument(

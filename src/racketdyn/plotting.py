@@ -339,6 +339,8 @@ def plot_mode_3d(model: ModalModel, racket: Racket, mode: int, ax: Axes | None =
         f"ζ = {100 * model.damping_ratio[mode]:.2f} %",
         fontsize=8,
     )
+    ax3d.set_box_aspect((racket.length_m, 2.4 * racket.head.half_width_m, 0.2))
+    ax3d.view_init(elev=25, azim=-60)
     ax.set_axis_off()
     return ax
 

@@ -6,12 +6,14 @@ depend on the points a user asked for in ``impact.csv``.
 
 from __future__ import annotations
 
+import csv
 import logging
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from racketdyn.__about__ import __version__
@@ -19,13 +21,21 @@ from racketdyn.ball import Ball
 from racketdyn.impact import predict
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FrfSet
+from racketdyn.modal.identify import Identification
 from racketdyn.modal.model import ModalModel
+from racketdyn.modal.poles import plot_stabilisation
+from racketdyn.modal.residues import mac
+from racketdyn.modal.shapes import axis_nodes, pair_modes
 from racketdyn.plotting import (
+    FRF_UNITS,
     plot_along_axis,
     plot_contact_map,
     plot_face_map,
     plot_frame_amplitude,
     plot_frf,
+    plot_mac,
+    plot_mode_3d,
+    plot_node_lines,
     plot_speed_curves,
 )
 from racketdyn.racket import Racket
@@ -33,8 +43,10 @@ from racketdyn.racket import Racket
 __all__ = [
     "FIGURES",
     "landmark_points",
+    "write_comparison",
     "write_contact_figure",
     "write_frf_figures",
+    "write_identification",
     "write_paper_figures",
 ]
 
@@ -237,3 +249,200 @@ def write_contact_figure(
         plot_contact_map(table, racket, ax=ax, title=label, levels=levels)
     figure.suptitle("Fig. 7: contact time of the hammer on the strings", fontsize=10)
     return _save(figure, Path(out_dir) / "fig7_contact_time.png")
+
+
+def write_identification(
+    identification: Identification, racket: Racket, out_dir: Path, label: str = ""
+) -> list[Path]:
+    """Figures of an identification: stabilisation, Figs 4–6, synthesised FRFs, AutoMAC."""
+    out = Path(out_dir)
+    model, frfs = identification.model, identification.frfs
+    suffix = f"_{label}" if label else ""
+    written = []
+    figure, ax = plt.subplots(figsize=(8, 5), layout="constrained")
+    plot_stabilisation(identification.stabilisation, identification.selected, ax=ax, frfs=frfs)
+    written.append(_save(figure, out / f"stabilisation{suffix}.png"))
+
+    n = model.n_modes
+    columns = min(n, 3)
+    rows = int(np.ceil(n / columns))
+    figure = plt.figure(figsize=(4.2 * columns, 3.2 * rows), layout="constrained")
+    for k in range(n):
+        plot_mode_3d(model, racket, k, ax=figure.add_subplot(rows, columns, k + 1, projection="3d"))
+    figure.suptitle(f"Fig. 4: mode shapes ({model.support})", fontsize=10)
+    # mplot3d's projection overflows on the NaN outside the face of some surfaces; harmless
+    with np.errstate(over="ignore", invalid="ignore"):
+        written.append(_save(figure, out / f"fig4_mode_shapes{suffix}.png"))
+
+    figure, axes = plt.subplots(
+        rows, columns, figsize=(3.2 * columns, 2.6 * rows), layout="constrained", squeeze=False
+    )
+    for k, ax in enumerate(axes.flat):
+        if k < n:
+            plot_node_lines(model, racket, k, ax=ax)
+        else:
+            ax.set_axis_off()
+    figure.suptitle(f"Fig. 5: node lines on the string face ({model.support})", fontsize=10)
+    written.append(_save(figure, out / f"fig5_node_lines{suffix}.png"))
+
+    figure, ax = plt.subplots(figsize=(7, 3), layout="constrained")
+    _plot_axis_nodes([model], racket, ax)
+    written.append(_save(figure, out / f"fig6_nodes{suffix}.png"))
+
+    figure, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
+    centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
+    picks = [
+        frfs.driving_point or 0,
+        int(np.argmin(np.linalg.norm(frfs.locations - centre, axis=1))),
+    ]
+    fit = identification.fit
+    band = (frfs.frequency >= fit.frequency[0]) & (frfs.frequency <= fit.frequency[-1])
+    for ax, index in zip(axes, picks, strict=True):
+        ax.semilogy(frfs.frequency, np.abs(frfs.values[index]), color="0.6", label="measured")
+        ax.semilogy(
+            fit.frequency,
+            np.abs(fit.synthesised[index]),
+            "--",
+            color="tab:red",
+            label=f"synthesised (error {fit.error[index]:.1%})",
+        )
+        ax.set_xlim(0, float(fit.frequency[-1]) * 1.05)
+        ax.set_ylim(
+            np.abs(frfs.values[index, band]).min() / 3, np.abs(frfs.values[index]).max() * 3
+        )
+        ax.set_xlabel("frequency (Hz)")
+        ax.set_ylabel(f"|H| ({FRF_UNITS[frfs.frf_type]})")
+        ax.set_title(f"node {frfs.nodes[index]}", fontsize=9)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    written.append(_save(figure, out / f"synthesised_frfs{suffix}.png"))
+
+    figure, ax = plt.subplots(figsize=(5.5, 4.5), layout="constrained")
+    plot_mac(mac(model.mode_shapes, model.mode_shapes), model.names, model.names, ax=ax)
+    ax.set_title("AutoMAC", fontsize=9)
+    written.append(_save(figure, out / f"automac{suffix}.png"))
+    return written
+
+
+def _plot_axis_nodes(models: Sequence[ModalModel], racket: Racket, ax: Axes) -> None:
+    """Paper Fig. 6: the first mode along the long axis with its nodes, one line per model."""
+    x = np.linspace(0.0, racket.length_m, 341)
+    for model, colour in zip(models, ("tab:blue", "k"), strict=False):
+        shape = model.mode_shapes_at(np.column_stack([x, np.zeros_like(x)]))[:, 0]
+        shape = shape * np.sign(shape[0])
+        ax.plot(
+            x * 1e3,
+            shape,
+            color=colour,
+            label=f"{model.support}: {model.names[0]}, {model.frequency[0]:.1f} Hz",
+        )
+        for node in axis_nodes(model, 0, (0.0, racket.length_m)):
+            ax.axvline(node * 1e3, color=colour, linestyle=":", linewidth=1)
+            ax.annotate(
+                f"{node * 1e3:.0f} mm",
+                (node * 1e3, 0),
+                fontsize=7,
+                rotation=90,
+                va="bottom",
+                color=colour,
+            )
+    ax.axvspan(0, racket.grip_m * 2e3, color="0.9", label="hand")
+    ax.axhline(0, color="0.5", linewidth=0.8)
+    ax.set_xlabel("x from the butt (mm)")
+    ax.set_ylabel("mass-normalised shape (1/√kg)")
+    ax.set_title("Fig. 6: node positions of the first mode", fontsize=9)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+
+
+def write_comparison(
+    free: Identification, hand: Identification, racket: Racket, ball: Ball, out_dir: Path
+) -> list[Path]:
+    """Free against hand-held: table, frequency/damping figure, Fig. 6 overlay, Fig. 15 check."""
+    out = Path(out_dir)
+    pairing = pair_modes(free.model, hand.model)
+    rows = []
+    for a, b, value in zip(pairing.first, pairing.second, pairing.mac, strict=True):
+        fa, fb = free.model.frequency[a], hand.model.frequency[b]
+        za, zb = free.model.damping_ratio[a], hand.model.damping_ratio[b]
+        rows.append(
+            {
+                "mode": free.model.names[a],
+                "frequency_free_hz": fa,
+                "frequency_hand_hz": fb,
+                "frequency_shift_percent": 100 * (fb / fa - 1),
+                "damping_free": za,
+                "damping_hand": zb,
+                "damping_ratio_hand_over_free": zb / za,
+                "mac": value,
+            }
+        )
+    nodes_free = axis_nodes(free.model, 0, (0.0, racket.length_m))
+    nodes_hand = axis_nodes(hand.model, 0, (0.0, racket.length_m))
+    table = out / "comparison.csv"
+    with table.open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]) if rows else ["mode"])
+        writer.writeheader()
+        for row in rows:
+            writer.writerow(
+                {k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()}
+            )
+        handle.write(
+            f"# first-mode nodes along the axis, free (m): {np.round(nodes_free, 4).tolist()}\n"
+        )
+        handle.write(
+            f"# first-mode nodes along the axis, hand (m): {np.round(nodes_hand, 4).tolist()}\n"
+        )
+    written = [table]
+
+    figure, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
+    names = [row["mode"] for row in rows]
+    index = np.arange(len(rows))
+    axes[0].bar(index, [row["frequency_shift_percent"] for row in rows], color="tab:blue")
+    axes[0].set_ylabel("frequency shift, hand-held vs free (%)")
+    axes[1].bar(index - 0.2, [100 * row["damping_free"] for row in rows], 0.4, label="free")
+    axes[1].bar(
+        index + 0.2, [100 * row["damping_hand"] for row in rows], 0.4, label="hand-held", color="k"
+    )
+    axes[1].set_ylabel("damping ratio (%)")
+    axes[1].legend(fontsize=8)
+    for ax in axes:
+        ax.set_xticks(index, names, rotation=30, ha="right", fontsize=8)
+        ax.grid(alpha=0.3, axis="y")
+    figure.suptitle("Free against hand-held (paired by MAC)", fontsize=10)
+    written.append(_save(figure, out / "comparison.png"))
+
+    figure, ax = plt.subplots(figsize=(7, 3), layout="constrained")
+    _plot_axis_nodes([free.model, hand.model], racket, ax)
+    written.append(_save(figure, out / "fig6_nodes_free_hand.png"))
+
+    head = racket.head
+    x = np.linspace(
+        head.throat_x_m + 0.05 * head.half_length_m, head.tip_x_m - 0.05 * head.half_length_m, 31
+    )
+    points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
+    cases = (
+        ("pinned", hand.model, "hand-held, hand-held modes", "k", "s", "-"),
+        ("pinned", free.model, "hand-held, free modes", "k", "s", "--"),
+        ("free", free.model, "freely supported, free modes", "tab:blue", "D", "-"),
+    )
+    figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
+    for support, model, label, colour, marker, style in cases:
+        result = predict(racket, ball, points, [REBOUND_SPEED_MPS], (support,), modal_model=model)
+        ax.plot(
+            x * 1e3,
+            result.rebound_ratio[:, 0, 0],
+            color=colour,
+            marker=marker,
+            markersize=3,
+            linestyle=style,
+            markerfacecolor="none" if style == "--" else colour,
+            label=label,
+        )
+    ax.set_xlabel("impact point, x from the butt (mm)")
+    ax.set_ylabel("rebound ratio e (–)")
+    ax.set_title(f"Fig. 15: identified models, ball at {REBOUND_SPEED_MPS:g} m/s", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    written.append(_save(figure, out / "fig15_identified.png"))
+    return written

@@ -29,6 +29,7 @@ from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
 from racketdyn.measurement.records import FrfSet
+from racketdyn.modal.poles import mac
 
 __all__ = ["ModalFit", "fit_modal_constants", "mac", "mass_normalised_shapes"]
 
@@ -175,12 +176,3 @@ def mass_normalised_shapes(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
             at_reference[k] / np.abs(fit.constants[:, k]).max(),
         )
     return np.asarray(fit.constants / np.sqrt(at_reference))
-
-
-def mac(first: NDArray[np.float64], second: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Modal assurance criterion between the columns of two shape matrices (n_points, n_modes)."""
-    a, b = np.asarray(first), np.asarray(second)
-    cross = np.abs(a.conj().T @ b) ** 2
-    return np.asarray(
-        cross / np.outer(np.sum(np.abs(a) ** 2, axis=0), np.sum(np.abs(b) ** 2, axis=0))
-    )

@@ -1,0 +1,186 @@
+"""Benchmark: LSCF stabilisation diagram + automatic pole selection, against sdypy-EMA.
+
+69 FRFs (the rig's free racket, accelerance, 1 % noise) × 1,551 lines between 60 Hz and the
+analyser band's top (1,953 Hz at 200 µs sampling, 4,096 samples), every model order from 1 to
+100.  Target: stabilisation + selection well under 0.5 s (the residue fit that follows needs
+the rest of a second).  Baseline in the same run: sdypy-EMA's LSCF (``Model.get_poles``,
+``pol_order_high=100``: the same number of poles per order) on the same FRFs and band; it has
+no automatic selection, so its ``select_closest_poles`` is timed apart with the rig's true
+frequencies given (the best it can do).  Accuracy of both against the rig's modal truth is
+printed, the modes whose peak is under 5 × the noise apart.  sdypy-EMA is a benchmark-only
+dependency (``pip install sdypy-EMA``); without it the comparison is skipped with a note.
+
+BLAS threads: one by default (``OPENBLAS_NUM_THREADS`` etc. set before numpy is imported,
+unless already set): the work is many small matrices, for which extra BLAS threads cost more
+than they give.  Run: ``python benchmarks/bench_poles.py``.  Informational: the exit status is
+0 whatever the timings.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _variable in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+
+import contextlib  # noqa: E402
+import io  # noqa: E402
+import logging  # noqa: E402
+import time  # noqa: E402
+import warnings  # noqa: E402
+from collections.abc import Callable  # noqa: E402
+from dataclasses import dataclass  # noqa: E402
+from typing import Any  # noqa: E402
+
+import numpy as np  # noqa: E402
+from numpy.typing import NDArray  # noqa: E402
+
+import racketdyn as rd  # noqa: E402
+from racketdyn.measurement.records import FrfSet  # noqa: E402
+from racketdyn.modal.poles import select_poles, stabilisation  # noqa: E402
+from racketdyn.rig import hammer_points, rig_model  # noqa: E402
+
+MAX_ORDER = 100
+BAND_LOW_HZ = 60.0
+SAMPLING_S = 2.0e-4
+N_SAMPLES = 4096
+NOISE = 0.01
+REFERENCE = 9  # a hoop point off the long axis: bending, twisting and membrane modes show
+TARGET_S = 0.5
+
+
+@dataclass(frozen=True)
+class Truth:
+    """The rig's modes inside the band (edges excluded) and their peaks over the noise."""
+
+    frequency: NDArray[np.float64]
+    damping_ratio: NDArray[np.float64]
+    peak_to_noise: NDArray[np.float64]
+
+
+def best_of(function: Callable[[], Any], repeats: int) -> tuple[float, Any]:
+    """Shortest wall time over ``repeats`` calls, s, and the last result."""
+    times, result = [], None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = function()
+        times.append(time.perf_counter() - start)
+    return min(times), result
+
+
+def rig_frfs() -> tuple[FrfSet, Truth]:
+    """69 accelerance FRFs of the free rig with 1 % complex noise, and the truth."""
+    racket = rd.default_racket()
+    model = rig_model(racket, "free")
+    locations, nodes = hammer_points(racket, n_frame=24, n_strings=45)
+    band_top = 1.0 / SAMPLING_S / 2.56
+    lines = np.arange(N_SAMPLES // 2 + 1) / (N_SAMPLES * SAMPLING_S)
+    lines = lines[lines <= band_top]
+    values = model.frf(locations[REFERENCE : REFERENCE + 1], locations, lines)[0]
+    rng = np.random.default_rng(1)
+    sigma = NOISE * float(np.abs(values).max())
+    noise = rng.normal(size=values.shape) + 1j * rng.normal(size=values.shape)
+    frfs = FrfSet(
+        frequency=lines,
+        values=values + sigma * noise / np.sqrt(2),
+        frf_type="accelerance",
+        nodes=nodes,
+        locations=locations,
+        reference_node=nodes[REFERENCE],
+        reference_location=tuple(locations[REFERENCE]),
+        source="virtual rig, free, 69 points",
+    )
+    modes = model.modal_truth(locations)
+    inside = (modes.frequency > BAND_LOW_HZ * 1.05) & (modes.frequency < 0.98 * lines[-1])
+    shapes = modes.mode_shapes[:, inside]
+    peaks = np.abs(shapes * shapes[REFERENCE]).max(axis=0) / (2 * modes.damping_ratio[inside])
+    truth = Truth(modes.frequency[inside], modes.damping_ratio[inside], peaks / sigma)
+    return frfs, truth
+
+
+def errors(frequency: NDArray[np.float64], damping: NDArray[np.float64], truth: Truth) -> str:
+    """Modes found / expected and the errors against the truth, the weak peaks apart."""
+    found = [int(np.argmin(np.abs(frequency - f))) for f in truth.frequency]
+    df = np.abs(frequency[found] / truth.frequency - 1)
+    dz = np.abs(damping[found] / truth.damping_ratio - 1)
+    hit = df < 0.005
+    strong = hit & (truth.peak_to_noise >= 5)
+    text = (
+        f"{hit.sum()}/{hit.size} modes; peaks ≥ 5 × noise: frequency within "
+        f"{100 * df[strong].max():.3f} %, damping within {100 * dz[strong].max():.1f} %"
+    )
+    for k in np.flatnonzero(~strong):
+        outcome = f"{100 * df[k]:.3f} %, {100 * dz[k]:.1f} %" if hit[k] else "missed"
+        text += (
+            f"; {truth.frequency[k]:.1f} Hz (peak {truth.peak_to_noise[k]:.1f} × noise) {outcome}"
+        )
+    return text
+
+
+def main() -> None:
+    logging.disable(logging.WARNING)
+    frfs, truth = rig_frfs()
+    band = (BAND_LOW_HZ, float(frfs.frequency[-1]))
+    n_lines = int(np.count_nonzero(frfs.frequency >= BAND_LOW_HZ))
+    print(
+        f"racketdyn {rd.__version__}: {frfs.n_points} FRFs × {n_lines} lines "
+        f"({band[0]:.0f}–{band[1]:.0f} Hz), orders 1–{MAX_ORDER}, "
+        f"OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}"
+    )
+    stab_s, stab = best_of(lambda: stabilisation(frfs, band, max_order=MAX_ORDER), repeats=5)
+    select_s, selected = best_of(lambda: select_poles(stab), repeats=5)
+    total = stab_s + select_s
+    verdict = "PASS" if total < TARGET_S else "MISS"
+    print(f"  stabilisation, every order 1–{MAX_ORDER}         {stab_s * 1e3:8.1f} ms")
+    print(f"  automatic selection                       {select_s * 1e3:8.1f} ms")
+    print(
+        f"  racketdyn total                           {total * 1e3:8.1f} ms  "
+        f"target < {TARGET_S * 1e3:.0f} ms: {verdict}"
+    )
+    print(f"    {errors(selected.frequency, selected.damping_ratio, truth)}")
+
+    try:
+        from sdypy import EMA  # type: ignore[import-not-found]
+    except ImportError:
+        print("  sdypy-EMA not importable: comparison skipped (pip install sdypy-EMA)")
+        return
+
+    def sdypy_poles() -> Any:
+        model = EMA.Model(
+            frf=frfs.values.copy(),
+            freq=frfs.frequency.copy(),
+            lower=BAND_LOW_HZ,
+            upper=float(frfs.frequency[-1]),
+            pol_order_high=MAX_ORDER,
+            frf_form="accelerance",
+        )
+        with warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()):
+            warnings.simplefilter("ignore")
+            model.get_poles(method="lscf", show_progress=False)
+        return model
+
+    sdypy_s, model = best_of(sdypy_poles, repeats=2)
+    pick_start = time.perf_counter()
+    with (
+        warnings.catch_warnings(),
+        contextlib.redirect_stdout(io.StringIO()),
+        contextlib.redirect_stderr(io.StringIO()),  # its progress bar
+    ):
+        warnings.simplefilter("ignore")
+        model.select_closest_poles(list(truth.frequency), f_window=5)
+    pick_s = time.perf_counter() - pick_start
+    print(
+        f"  sdypy-EMA {EMA.__version__} get_poles, lscf, order {MAX_ORDER}  {sdypy_s * 1e3:8.1f} ms"
+    )
+    print(f"  sdypy-EMA select_closest_poles, answers given {pick_s * 1e3:8.1f} ms")
+    nat_freq, nat_xi = np.asarray(model.nat_freq), np.asarray(model.nat_xi)
+    print(f"    {errors(nat_freq, nat_xi, truth)}")
+    print(f"  ratio sdypy-EMA get_poles / racketdyn stabilisation     {sdypy_s / stab_s:6.1f}×")
+    print(
+        "  ratio sdypy-EMA get_poles + select / racketdyn total    "
+        f"{(sdypy_s + pick_s) / total:6.1f}×"
+    )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,123 @@
+"""Identification end to end on the virtual rig: records → FRFs → modal model → prediction."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import racketdyn as rd
+from racketdyn.cli import main
+from racketdyn.io import write_frf_uff
+from racketdyn.measurement.frf import estimate_frfs
+from racketdyn.modal.identify import identify
+from racketdyn.modal.residues import mac
+from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test
+
+BAND = (40.0, 850.0)
+
+
+@pytest.fixture(scope="module", params=["free", "hand"])
+def case(request: pytest.FixtureRequest) -> dict:
+    racket = rd.default_racket()
+    rig = rig_model(racket, request.param)
+    locations, nodes = hammer_points(racket)
+    reference = 9  # the CLI's accelerometer, on the hoop 22.5° from the tip
+    records = simulate_hammer_test(
+        rig, locations, nodes, tuple(locations[reference]), nodes[reference], seed=2
+    )
+    frfs = estimate_frfs(records, exponential_window_s=0.1).frfs
+    truth = rig.modal_truth(locations, max_frequency_hz=BAND[1])
+    truth = truth.select([k for k, f in enumerate(truth.frequency) if f > BAND[0]])
+    return {
+        "racket": racket,
+        "frfs": frfs,
+        "truth": truth,
+        "result": identify(frfs, racket.head, BAND, support=request.param),
+    }
+
+
+def test_modes_match_the_truth(case) -> None:
+    # Issue 4: frequency within 0.2 %, damping within 10 % (the 0.1 s exponential window taken
+    # off), MAC ≥ 0.98, mass-normalised shapes within 5 %, names as the rig's.  Every truth mode
+    # whose peak stands out is found; the hand's 3- and 4-node twisting (ζ ≈ 6–8 %) may be
+    # missed — they are buried between their neighbours — and the hand's 2-node twisting
+    # (ζ 3.3 %) then carries some of the missed mode: 10 % on its shape.  The scale of a mode
+    # the accelerometer barely sees (the string bed: 3–5 % of its largest amplitude at the
+    # driving point, flagged by a warning) is not held to the 5 %.
+    model, truth = case["result"].model, case["truth"]
+    found = 0
+    for k in range(truth.n_modes):
+        j = int(np.argmin(np.abs(model.frequency - truth.frequency[k])))
+        if abs(model.frequency[j] / truth.frequency[k] - 1) > 0.002:
+            assert truth.damping_ratio[k] > 0.05, f"{truth.names[k]} not found"
+            continue
+        found += 1
+        assert model.damping_ratio[j] == pytest.approx(truth.damping_ratio[k], rel=0.1)
+        shape, expected = model.mode_shapes[:, j], truth.mode_shapes[:, k]
+        assert mac(shape[:, None], expected[:, None])[0, 0] > 0.98
+        sign = np.sign(shape @ expected)
+        error = np.linalg.norm(sign * shape - expected) / np.linalg.norm(expected)
+        seen = abs(expected[case["frfs"].driving_point]) > 0.1 * np.abs(expected).max()
+        if seen:
+            assert error < (0.10 if truth.damping_ratio[k] > 0.02 else 0.05), truth.names[k]
+        assert model.names[j] == truth.names[k]
+    assert found == model.n_modes  # no spurious mode
+
+
+def test_identified_model_drives_the_prediction(case) -> None:
+    # The identified model in eq 12 gives the rebound the rig's own modes give (within 0.01).
+    racket = case["racket"]
+    points = racket.head.grid(5)
+    identified = rd.predict(racket, rd.Ball(), points, [20.0], modal_model=case["result"].model)
+    true = rd.predict(racket, rd.Ball(), points, [20.0], modal_model=case["truth"])
+    ok = (identified.status == "ok") & (true.status == "ok")
+    assert ok.mean() > 0.8
+    np.testing.assert_allclose(identified.rebound_ratio[ok], true.rebound_ratio[ok], atol=0.01)
+
+
+def test_band_without_modes_is_a_clear_error(case) -> None:
+    # below the first bending mode only the sponge's or hand's rigid-body tail: nothing stable
+    with pytest.raises(rd.InputError, match="no mode found"):
+        identify(case["frfs"], case["racket"].head, (30.0, 100.0), max_order=8)
+    with pytest.raises(rd.InputError, match="band"):
+        identify(case["frfs"], case["racket"].head, (1500.0, 1510.0))
+
+
+@pytest.mark.slow
+def test_identify_and_compare_commands(tmp_path: Path) -> None:
+    racket = rd.default_racket()
+    locations, nodes = hammer_points(racket, n_frame=12, n_strings=20)
+    files = []
+    for support in ("free", "hand"):
+        rig = rig_model(racket, support)
+        records = simulate_hammer_test(
+            rig, locations, nodes, tuple(locations[5]), nodes[5], n_averages=4, seed=3
+        )
+        path = tmp_path / f"{support}.uff"
+        write_frf_uff(estimate_frfs(records, exponential_window_s=0.1).frfs, path)
+        files.append(str(path))
+    out = tmp_path / "identify"
+    assert main(["identify", files[0], "--band", "40,850", "--out", str(out)]) == 0
+    lines = (out / "modes.csv").read_text().splitlines()
+    assert lines[0].startswith("mode,frequency_hz,damping_ratio,name")
+    assert "2-node bending" in lines[1]
+    model = rd.ModalModel.read_json(out / "modal_model.json")
+    assert model.frequency[0] == pytest.approx(120.0, rel=2e-3)
+    for name in (
+        "stabilisation.png",
+        "fig4_mode_shapes.png",
+        "fig5_node_lines.png",
+        "fig6_nodes.png",
+        "modes.uff",
+        "run.json",
+    ):
+        assert (out / name).stat().st_size > 1000
+    compared = tmp_path / "compare"
+    assert main(["compare", *files, "--band", "40,850", "--out", str(compared)]) == 0
+    table = (compared / "comparison.csv").read_text().splitlines()
+    assert table[1].startswith("2-node bending")
+    shift = float(table[1].split(",")[3])
+    assert -10 < shift < 0  # slightly lower when held
+    assert (compared / "fig15_identified.png").stat().st_size > 10_000
