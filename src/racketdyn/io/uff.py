@@ -428,6 +428,27 @@ def _describe_types(contents: _Contents) -> str:
 # --------------------------------------------------------------------------------------------
 
 
+def _records_of(path: Path, contents: _Contents, func_type: int) -> list[_Record]:
+    """The file's records of one function type; an error naming what it holds instead."""
+    records = [r for r in contents.records if r.func_type == func_type]
+    if records:
+        return records
+    other = FREQUENCY_RESPONSE if func_type == TIME_RESPONSE else TIME_RESPONSE
+    what = {
+        TIME_RESPONSE: ("time records", "read_hammer_uff"),
+        FREQUENCY_RESPONSE: ("FRFs", "read_frf_uff"),
+    }
+    hint = (
+        f"; read it with {what[other][1]}"
+        if any(r.func_type == other for r in contents.records)
+        else ""
+    )
+    raise InputError(
+        f"{path}: no {what[func_type][0]} (data set 58, function type {func_type}): the file "
+        f"holds {_describe_types(contents)}{hint}"
+    )
+
+
 def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> HammerRecords:
     """Read the time records of a roving-hammer test from a Universal File.
 
@@ -460,17 +481,7 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
     """
     path = Path(path)
     contents = _load(path, geometry)
-    records = [r for r in contents.records if r.func_type == TIME_RESPONSE]
-    if not records:
-        hint = (
-            "; read it with read_frf_uff"
-            if any(r.func_type == FREQUENCY_RESPONSE for r in contents.records)
-            else ""
-        )
-        raise InputError(
-            f"{path}: no time records (data set 58, function type 1): the file holds "
-            f"{_describe_types(contents)}{hint}"
-        )
+    records = _records_of(path, contents, TIME_RESPONSE)
     ignored = len(contents.records) - len(records)
     if ignored:
         logger.info("%s: %d data sets 58 that are not time records ignored", path, ignored)
@@ -609,17 +620,7 @@ def read_frf_uff(path: Path | str, geometry: Path | str | None = None) -> FrfSet
     """
     path = Path(path)
     contents = _load(path, geometry)
-    records = [r for r in contents.records if r.func_type == FREQUENCY_RESPONSE]
-    if not records:
-        hint = (
-            "; read it with read_hammer_uff"
-            if any(r.func_type == TIME_RESPONSE for r in contents.records)
-            else ""
-        )
-        raise InputError(
-            f"{path}: no FRFs (data set 58, function type 4): the file holds "
-            f"{_describe_types(contents)}{hint}"
-        )
+    records = _records_of(path, contents, FREQUENCY_RESPONSE)
     by_node: dict[int, _Record] = {}
     for record in records:
         if not np.iscomplexobj(record.data):
