@@ -9,9 +9,11 @@ import argparse
 import hashlib
 import json
 import logging
+import os
 import platform
 import sys
 from collections.abc import Sequence
+from dataclasses import replace
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
@@ -126,6 +128,13 @@ def _points(args: argparse.Namespace, racket: Racket) -> tuple[np.ndarray, list[
 
 def _predict(args: argparse.Namespace, console: Console) -> int:
     racket, provenance = _load(args.racket)
+    if args.modal is not None:
+        if args.rigid:
+            raise InputError("give --modal or --rigid, not both")
+        if not Path(args.modal).is_file():
+            raise InputError(f"--modal {args.modal}: no such modal model file")
+        racket = replace(racket, modal_model_file=Path(args.modal))
+        provenance["modal_model_sha256"] = _sha256(Path(args.modal))
     ball, defaults = _ball(args)
     speeds = _parse_speeds("--speed", args.speed)
     racket_speed = _parse_speeds("--racket-speed", args.racket_speed)
@@ -583,6 +592,124 @@ def _compare(args: argparse.Namespace, console: Console) -> int:
     return 0
 
 
+DEMO_STEPS = 7
+
+
+def _demo(args: argparse.Namespace, console: Console) -> int:
+    """rig (free, hand) → FRFs → contact times → identification and comparison → prediction."""
+    from racketdyn.html_report import write_report
+
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    racket_args = [] if args.racket is None else [args.racket]
+    racket_option = [] if args.racket is None else ["--racket", args.racket]
+    rig, free, hand = out / "rig", out / "frf_free", out / "frf_hand"
+    faults = ["--double-hits", "0.03", "--overloads", "0.01"]  # a real test has a few bad hits
+    racket, _ = _load(args.racket)
+    steps: list[tuple[str, list[str]]] = [
+        (
+            "virtual hammer test, free",
+            ["rig", *racket_args, "--support", "free", *faults, "--out", str(rig)],
+        ),
+        (
+            "virtual hammer test, hand-held",
+            ["rig", *racket_args, "--support", "hand", *faults, "--out", str(rig)],
+        ),
+        (
+            "FRFs, free",
+            [
+                "frf",
+                str(rig / "hammer_free.uff"),
+                *racket_option,
+                "--exp-window",
+                "0.1",
+                "--force-range",
+                "200",
+                "--out",
+                str(free),
+            ],
+        ),
+        (
+            "FRFs, hand-held",
+            [
+                "frf",
+                str(rig / "hammer_hand.uff"),
+                *racket_option,
+                "--exp-window",
+                "0.1",
+                "--force-range",
+                "200",
+                "--out",
+                str(hand),
+            ],
+        ),
+        (
+            "contact times",
+            [
+                "contact",
+                str(rig / "hammer_free.uff"),
+                str(rig / "hammer_hand.uff"),
+                "--labels",
+                "free,hand",
+                *racket_option,
+                "--out",
+                str(out / "contact"),
+            ],
+        ),
+        (
+            "identification, free against hand-held",
+            [
+                "compare",
+                str(free / "frfs.uff"),
+                str(hand / "frfs.uff"),
+                "--band",
+                "40,850",
+                *racket_option,
+                "--out",
+                str(out / "compare"),
+            ],
+        ),
+    ]
+    quiet = Console(file=open(os.devnull, "w"), stderr=False)  # noqa: SIM115 - closed below
+    try:
+        with Progress(console=console) as progress:
+            task = progress.add_task("demo", total=DEMO_STEPS + 1)
+            for label, argv in steps:
+                progress.update(task, description=label)
+                _run_step(argv, quiet)
+                progress.advance(task)
+            progress.update(task, description="prediction with the identified free modes")
+            model = out / "compare" / "modal_model_free.json"
+            _run_step(
+                ["predict", *racket_args, "--modal", str(model), "--out", str(out / "predict")],
+                quiet,
+            )
+            progress.advance(task)
+            progress.update(task, description="report")
+            report = write_report(out, racket)
+            progress.advance(task)
+    finally:
+        quiet.file.close()
+    console.print(f"demo complete → {report}")
+    return 0
+
+
+def _run_step(argv: list[str], console: Console) -> None:
+    args = _parser().parse_args(argv)
+    args.handler(args, console)
+
+
+def _report(args: argparse.Namespace, console: Console) -> int:
+    from racketdyn.html_report import write_report
+
+    run_dir = Path(args.run_dir)
+    if not run_dir.is_dir():
+        raise InputError(f"{run_dir}: no such folder; give a folder written by racketdyn demo")
+    racket, _ = _load(args.racket)
+    console.print(f"wrote {write_report(run_dir, racket)}")
+    return 0
+
+
 def _add_identification_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--geometry", help="node coordinates (UFF 15/2411) if not in the file")
     command.add_argument("--racket", help="racket TOML for the head (default: built-in)")
@@ -629,6 +756,7 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument(
         "--ball-law", help="ball load-deflection CSV (deflection_m, force_n), one side"
     )
+    run.add_argument("--modal", help="modal model (racketdyn JSON, e.g. from identify) to use")
     run.add_argument("--rigid", action="store_true", help="no vibration: a rigid racket")
     run.add_argument(
         "--stiffness-reading",
@@ -695,6 +823,16 @@ def _parser() -> argparse.ArgumentParser:
     compare.add_argument("hand", help="FRFs of the hand-held racket (UFF 58)")
     _add_identification_options(compare)
     compare.set_defaults(handler=_compare)
+
+    demo = commands.add_parser("demo", help="the whole chain on a virtual rig, with a report")
+    demo.add_argument("--racket", help="racket TOML file (default: the built-in paper racket)")
+    demo.add_argument("--out", required=True, help="output folder (created if missing)")
+    demo.set_defaults(handler=_demo)
+
+    report = commands.add_parser("report", help="the HTML report of a demo folder")
+    report.add_argument("run_dir", help="a folder written by racketdyn demo")
+    report.add_argument("--racket", help="racket TOML file (default: the built-in paper racket)")
+    report.set_defaults(handler=_report)
 
     show = commands.add_parser("racket", help="print a racket's derived properties")
     show.add_argument(
