@@ -34,6 +34,7 @@ IMPACT_COLUMNS = [
 
 FIGURE_NAMES = [
     "fig11_12_force_contact_time.png",
+    "fig13_pulse_spectrum.png",
     "fig14_frame_vibration.png",
     "fig15_rebound_along_axis.png",
     "face_maps.png",

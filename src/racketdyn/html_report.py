@@ -127,6 +127,12 @@ _CAPTIONS: dict[str, tuple[str | None, str]] = {
         "Fig. 11: equivalent (mean) impact force and Fig. 12: contact time against ball speed "
         "at the top, centre and throat of the face, free and pinned at the grip",
     ),
+    "fig13_pulse_spectrum": (
+        "Fig. 13",
+        "the half-sine impact force at the face centre (pinned) and the magnitude of its "
+        "spectrum at 10–40 m/s, with the modes of the model: the faster the ball, the shorter "
+        "the pulse and the higher its spectrum reaches",
+    ),
     "fig14_frame_vibration": (
         "Fig. 14",
         "predicted first-mode displacement along the frame just after an impact at the tip, "
@@ -1154,9 +1160,10 @@ def _section_impact(ctx: _Context) -> str | None:
     if folder is None:
         return None
     parts = []
-    figure = folder / "fig11_12_force_contact_time.png"
-    if figure.is_file():
-        parts.append(f'<div class="stack">{ctx.figure(figure)}</div>')
+    for name in ("fig11_12_force_contact_time.png", "fig13_pulse_spectrum.png"):
+        figure = folder / name
+        if figure.is_file():
+            parts.append(f'<div class="stack">{ctx.figure(figure)}</div>')
     impacts = _impacts(ctx)
     if impacts is not None:
         x, y = _centre(ctx, impacts)

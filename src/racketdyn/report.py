@@ -18,7 +18,7 @@ from matplotlib.figure import Figure
 
 from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball
-from racketdyn.impact import predict
+from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.identify import Identification
@@ -176,8 +176,56 @@ def figure_face_maps(racket: Racket, ball: Ball, model: ModalModel | None) -> Fi
     return figure
 
 
+def figure_pulse_spectrum(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
+    """Paper Fig. 13: the half-sine pulse at the face centre and its spectrum, against speed."""
+    centre = landmark_points(racket)["centre"]
+    result = predict(
+        racket,
+        ball,
+        [centre],
+        (*VIBRATION_SPEEDS_MPS, 40.0),
+        ("pinned",),
+        modal_model=model,
+        labels=["centre"],
+    )
+    figure, axes = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
+    frequency = np.linspace(0.0, 1500.0, 1501)
+    for s, speed in enumerate(result.ball_speed):
+        contact, peak = result.contact_time[0, s, 0], result.peak_force[0, s, 0]
+        if not np.isfinite(contact):
+            continue
+        time = np.linspace(-0.5e-3, 7e-3, 751)
+        axes[0].plot(time * 1e3, half_sine_force(time, contact, peak), label=f"{speed:g} m/s")
+        axes[1].plot(
+            frequency,
+            half_sine_spectrum(frequency, contact, peak),
+            label=f"{speed:g} m/s: T_c = {contact * 1e3:.2f} ms",
+        )
+    if model is not None:
+        for name, f in zip(model.names, model.frequency, strict=True):
+            if f <= frequency[-1]:
+                axes[1].axvline(f, color="0.5", linestyle=":", linewidth=1)
+                axes[1].annotate(
+                    name, (f, axes[1].get_ylim()[1]), rotation=90, va="top", ha="right", fontsize=7
+                )
+    axes[0].set_xlabel("time from first contact (ms)")
+    axes[0].set_ylabel("impact force F(t) (N)")
+    axes[1].set_xlabel("frequency (Hz)")
+    axes[1].set_ylabel("|S(f)| (N·s)")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    figure.suptitle(
+        "Fig. 13: half-sine impact force at the face centre (pinned) and its "
+        "spectrum; modes of the model dotted",
+        fontsize=10,
+    )
+    return figure
+
+
 FIGURES: dict[str, Callable[[Racket, Ball, ModalModel | None], Figure]] = {
     "fig11_12_force_contact_time.png": figure_force_and_contact_time,
+    "fig13_pulse_spectrum.png": figure_pulse_spectrum,
     "fig14_frame_vibration.png": figure_frame_vibration,
     "fig15_rebound_along_axis.png": figure_rebound_along_axis,
     "face_maps.png": figure_face_maps,
