@@ -188,3 +188,20 @@ def test_bad_modal_file(tmp_path: Path) -> None:
     (tmp_path / "other.json").write_text('{"format": "something else"}')
     with pytest.raises(InputError, match="not a racketdyn modal model"):
         rd.ModalModel.read_json(tmp_path / "other.json")
+
+
+def test_mode_shapes_as_uff55(model: rd.ModalModel, tmp_path: Path) -> None:
+    # Other modal software reads data set 55: frequency, damping, shapes at numbered nodes,
+    # with the node coordinates in data set 15 (to the file's 6 significant digits).
+    import pyuff
+
+    from racketdyn.io import write_modes_uff
+
+    path = write_modes_uff(model, tmp_path / "modes.uff")
+    sets = pyuff.UFF(str(path)).read_sets()
+    assert [s["type"] for s in sets] == [15] + [55] * model.n_modes
+    np.testing.assert_allclose(sets[0]["x"], model.locations[:, 0], rtol=1e-5, atol=1e-9)
+    for k, record in enumerate(sets[1:]):
+        assert record["freq"] == pytest.approx(model.frequency[k], rel=1e-5)
+        assert record["modal_damp_vis"] == pytest.approx(model.damping_ratio[k], rel=1e-5)
+        np.testing.assert_allclose(record["r3"], model.mode_shapes[:, k], rtol=1e-5, atol=1e-9)

@@ -9,6 +9,7 @@ from racketdyn.io.uff import (
     write_frf_uff,
     write_hammer_csv,
     write_hammer_uff,
+    write_modes_uff,
 )
 
 __all__ = [
@@ -23,4 +24,5 @@ __all__ = [
     "write_frf_uff",
     "write_hammer_csv",
     "write_hammer_uff",
+    "write_modes_uff",
 ]

@@ -1323,7 +1323,7 @@ def write_hammer_csv(
 
 
 def write_modes_uff(
-    model: ModalModel, path: Path | str, nodes: Sequence[int] | None = None, binary: bool = False
+    model: ModalModel, path: Path | str, nodes: Sequence[int] | None = None
 ) -> Path:
     """Write mass-normalised mode shapes as UFF 55 (normal modes) with UFF 15 geometry.
 
@@ -1339,8 +1339,6 @@ def write_modes_uff(
         File to write (replaced).
     nodes : sequence of int, optional
         Node number of each location (default 1, 2, …).
-    binary : bool
-        Ignored for data set 55 (pyuff writes it as ASCII); kept for symmetry.
     """
     target = Path(path)
     numbers = (
@@ -1389,5 +1387,4 @@ def write_modes_uff(
                 "node_nums": np.asarray(numbers, dtype=float),
             }
         )
-    del binary
     return _write_sets(target, sets)
