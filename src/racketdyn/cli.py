@@ -710,6 +710,83 @@ def _report(args: argparse.Namespace, console: Console) -> int:
     return 0
 
 
+def _sweep(args: argparse.Namespace, console: Console) -> int:
+    from concurrent.futures import Executor
+    from contextlib import AbstractContextManager, ExitStack, nullcontext
+
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    from racketdyn.sweep import load_sweep_spec, make_executor, run_sweep
+
+    spec = load_sweep_spec(Path(args.spec))
+    engine: AbstractContextManager[Executor | None]
+    if args.serial:
+        engine = make_executor("serial")
+    elif args.workers is not None:
+        engine = make_executor("process", args.workers)
+    elif args.dask_local is not None:
+        engine = make_executor("dask-local", args.dask_local)
+    elif args.scheduler is not None:
+        engine = make_executor("dask", scheduler=args.scheduler)
+    else:  # run_sweep chooses: this process for a small sweep, else two processes
+        engine = nullcontext(None)
+    out = Path(args.out)
+    console.print(
+        f"{spec.name}: {len(spec.designs)} designs × {spec.impacts_per_design:,} impacts "
+        f"= {spec.n_impacts:,} impacts → {out}"
+    )
+    columns = (
+        TextColumn("designs"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+    )
+    if (args.dask_local is not None or args.scheduler is not None) and not args.verbose:
+        import distributed  # noqa: F401  (importing it sets its loggers to INFO: quieten them)
+
+        logging.getLogger("distributed").setLevel(logging.WARNING)
+    with ExitStack() as stack:
+        with console.status("starting the engine"):
+            executor = stack.enter_context(engine)
+        bar = stack.enter_context(Progress(*columns, console=console, transient=True))
+        task = bar.add_task("sweep", total=len(spec.designs))
+        result = run_sweep(
+            spec,
+            out,
+            executor,
+            progress=lambda done, total: bar.update(task, completed=done, total=total),
+            figures=not args.no_figures,
+        )
+    record = json.loads((out / "run.json").read_text(encoding="utf-8"))
+    console.print(
+        f"[bold]{record['impacts']:,}[/] impacts, {record['designs']} designs "
+        f"({record['ran']} run, {record['resumed']} resumed) on {record['engine']} "
+        f"in {record['wall_time_s']:.1f} s"
+    )
+    for text, count in record["status_counts"].items():
+        if text not in ("ok", "task failed") and count:
+            console.print(f"[yellow]{count:,} impacts: {text}; their results are NaN[/]")
+    failed = json.loads(result.attrs["failed_tasks"])
+    for failure in failed:
+        console.print(f"[red]{failure['task_id']} failed: {failure['error']}[/]")
+    for name in record["outputs"]:
+        console.print(f"  wrote {out / name}")
+    if failed:
+        console.print(
+            f"[red]{len(failed)} of {record['designs']} designs failed (NaN, status 3); "
+            f"details in {out / 'failures.json'}; run the same command again to retry them[/]"
+        )
+        return 1
+    return 0
+
+
 def _add_identification_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--geometry", help="node coordinates (UFF 15/2411) if not in the file")
     command.add_argument("--racket", help="racket TOML for the head (default: built-in)")
@@ -833,6 +910,25 @@ def _parser() -> argparse.ArgumentParser:
     report.add_argument("run_dir", help="a folder written by racketdyn demo")
     report.add_argument("--racket", help="racket TOML file (default: the built-in paper racket)")
     report.set_defaults(handler=_report)
+
+    sweep = commands.add_parser(
+        "sweep", help="a design sweep: racket variants × points × speeds (sweep.nc, figures)"
+    )
+    sweep.add_argument("spec", help="sweep spec TOML (docs/sweep-file.md)")
+    sweep.add_argument(
+        "--out", required=True, help="output folder (created if missing); run again to resume"
+    )
+    engine = sweep.add_mutually_exclusive_group()
+    engine.add_argument("--serial", action="store_true", help="run in this process")
+    engine.add_argument("--workers", type=int, metavar="N", help="a local pool of N processes")
+    engine.add_argument(
+        "--dask-local", type=int, metavar="N", help="a local Dask cluster of N worker processes"
+    )
+    engine.add_argument(
+        "--scheduler", metavar="tcp://HOST:PORT", help="a running Dask scheduler to use"
+    )
+    sweep.add_argument("--no-figures", action="store_true", help="write sweep.nc and run.json only")
+    sweep.set_defaults(handler=_sweep)
 
     show = commands.add_parser("racket", help="print a racket's derived properties")
     show.add_argument(

@@ -1,0 +1,568 @@
+"""Design sweeps: the same bits on every engine, the physics, resuming, retries, spec errors."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from collections.abc import Callable, Iterator
+from concurrent.futures import Future
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+import xarray as xr
+from distributed import LocalCluster
+
+import racketdyn as rd
+import racketdyn.sweep as sweep
+from racketdyn.sweep import (
+    SerialExecutor,
+    SweepSpec,
+    Variable,
+    build_design,
+    factorial_view,
+    load_sweep_spec,
+    make_executor,
+    plot_centre_rebound,
+    plot_sweet_area,
+    run_sweep,
+    summary_metrics,
+    variable_designs,
+)
+
+DOCS = Path(__file__).resolve().parents[1] / "docs" / "sweep-file.md"
+
+
+class CountingExecutor(SerialExecutor):
+    """Runs tasks in this process and records the task ids submitted."""
+
+    def __init__(self) -> None:
+        self.submitted: list[str] = []
+
+    def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> Future[Any]:
+        self.submitted.append(args[0].task_id)
+        return super().submit(fn, *args, **kwargs)
+
+
+def assert_same_bits(expected: xr.Dataset, actual: xr.Dataset) -> None:
+    """Identical datasets, numbers compared bit for bit (NaN included)."""
+    xr.testing.assert_identical(expected, actual)
+    for name in [*expected.data_vars, *expected.coords]:
+        a, b = expected[name].values, actual[name].values
+        if a.dtype.kind in "fiu":
+            assert a.dtype == b.dtype, name
+            assert a.tobytes() == b.tobytes(), f"{name} differs in its bits"
+        else:
+            assert a.tolist() == b.tolist(), name
+
+
+# --- fixtures ---------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def small_spec(racket: rd.Racket, ball: rd.Ball) -> SweepSpec:
+    """2 variables × 3 and 2 values, grid 4 (12 points), 2 speeds, 2 supports: 6 designs."""
+    return SweepSpec(
+        racket=racket,
+        ball=ball,
+        locations=racket.head.grid(4),
+        ball_speeds=[10.0, 25.0],
+        variables=(
+            Variable.point_mass([0.0, 0.005, 0.010], clock=12, head=racket.head),
+            Variable.scalar("e_bg", [0.80, 0.86]),
+        ),
+        name="small",
+    )
+
+
+@pytest.fixture(scope="module")
+def serial_result(small_spec: SweepSpec, tmp_path_factory: pytest.TempPathFactory) -> xr.Dataset:
+    return run_sweep(small_spec, tmp_path_factory.mktemp("serial"), SerialExecutor(), figures=False)
+
+
+@pytest.fixture(scope="module")
+def cluster() -> Iterator[LocalCluster]:
+    """One real local Dask cluster for the module (starting one is the slow part).
+
+    Its HTTP server on a free port (``":0"``): with ``None`` the scheduler still serves HTTP on
+    8787, and where that port is taken it warns and leaks a socket (ResourceWarning).
+    """
+    with LocalCluster(
+        n_workers=2, processes=True, threads_per_worker=1, dashboard_address=":0"
+    ) as local:
+        yield local
+
+
+@pytest.fixture(scope="module")
+def one_at_a_time(
+    racket: rd.Racket, ball: rd.Ball, tmp_path_factory: pytest.TempPathFactory
+) -> tuple[xr.Dataset, Path]:
+    """Lead at the tip, e_BG and a very stiff frame, each around the base; grid 5, 10 m/s."""
+    spec = SweepSpec(
+        racket=racket,
+        ball=ball,
+        locations=racket.head.grid(5),
+        ball_speeds=[10.0],
+        variables=(
+            Variable.point_mass([0.0, 0.010], clock=12, head=racket.head),
+            Variable.scalar("e_bg", [0.83, 0.88]),
+            Variable.scalar("frame_stiffness_scale", [1.0, 1.0e4]),
+        ),
+        mode="one-at-a-time",
+        name="physics",
+    )
+    out = tmp_path_factory.mktemp("physics")
+    return run_sweep(spec, out, SerialExecutor()), out
+
+
+def design(dataset: xr.Dataset, varied: str) -> xr.Dataset:
+    index = np.flatnonzero(dataset["varied"].values == varied)
+    assert index.size == 1, varied
+    return dataset.isel(design=int(index[0]))
+
+
+# --- engines ----------------------------------------------------------------------------------
+@pytest.mark.parametrize("engine", ["process", "dask"])
+def test_every_engine_gives_the_same_bits(
+    engine: str,
+    small_spec: SweepSpec,
+    serial_result: xr.Dataset,
+    cluster: LocalCluster,
+    tmp_path: Path,
+) -> None:
+    scheduler = cluster.scheduler_address if engine == "dask" else None
+    progress: list[tuple[int, int]] = []
+    with make_executor(engine, workers=2, scheduler=scheduler) as executor:  # type: ignore[arg-type]
+        result = run_sweep(
+            small_spec,
+            tmp_path,
+            executor,
+            progress=lambda done, total: progress.append((done, total)),
+            figures=False,
+        )
+    assert_same_bits(serial_result, result)
+    assert progress[0] == (0, 6)
+    assert progress[-1] == (6, 6)
+    with xr.open_dataset(tmp_path / "sweep.nc", engine="scipy") as written:
+        assert_same_bits(serial_result, written.load())
+
+
+def test_a_local_dask_cluster_from_make_executor(
+    small_spec: SweepSpec,
+    serial_result: xr.Dataset,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # A nanny writes its worker variables into this process's environment before it spawns
+    # (distributed's doing): the module's cluster left MALLOC_TRIM_THRESHOLD_ here.
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    with make_executor("dask-local", workers=1) as executor:
+        # make_executor leaves it out (with it, glibc maps every large array anew: ≈ 1.7 ×
+        # slower tasks)
+        assert executor.submit(os.environ.get, "MALLOC_TRIM_THRESHOLD_").result() is None
+        result = run_sweep(small_spec, tmp_path, executor, figures=False)
+    assert_same_bits(serial_result, result)
+
+
+def test_dataset_layout(small_spec: SweepSpec, serial_result: xr.Dataset) -> None:
+    ds = serial_result
+    assert ds["rebound_ratio"].dims == ("design", "point", "speed", "racket_speed", "support")
+    assert dict(ds.sizes) == {
+        "design": 6,
+        "point": 12,
+        "speed": 2,
+        "racket_speed": 1,
+        "support": 2,
+        "mode": 3,
+    }
+    assert ds["contact_time_s"].attrs["units"] == "s"
+    assert ds["status"].dtype == np.int8
+    assert ds.attrs["spec_sha256"] == small_spec.sha256
+    assert ds.attrs["racketdyn_version"] == rd.__version__
+    assert json.loads(ds.attrs["spec"])["variables"][1]["name"] == "e_bg"
+    # full factorial, the first variable slowest; point masses add to the racket's mass
+    np.testing.assert_array_equal(ds["e_bg"].values, [0.80, 0.86] * 3)
+    np.testing.assert_allclose(
+        ds["racket_mass_kg"].values - ds["point_mass_mass_kg"].values, small_spec.racket.mass_kg
+    )
+    # each design equals a direct prediction of its racket and ball
+    racket, ball, _ = build_design(
+        small_spec.racket, small_spec.ball, small_spec.variables, small_spec.designs[3].settings
+    )
+    direct = rd.predict(racket, ball, small_spec.locations, small_spec.ball_speeds)
+    # to the rounding of the mode-shape interpolator's dense solve, which the sweep does on one
+    # BLAS thread and this process may split over several
+    np.testing.assert_allclose(
+        ds["rebound_ratio"].isel(design=3, racket_speed=0).values, direct.rebound_ratio, rtol=1e-6
+    )
+    view = factorial_view(ds)
+    assert view["rebound_ratio"].sizes["point_mass_mass_kg"] == 3
+    assert view["rebound_ratio"].sizes["e_bg"] == 2
+
+
+def test_default_engine_is_serial_for_small_sweeps(small_spec: SweepSpec, tmp_path: Path) -> None:
+    run_sweep(small_spec, tmp_path, figures=False)
+    assert json.loads((tmp_path / "run.json").read_text())["engine"] == "SerialExecutor"
+
+
+# --- physics ----------------------------------------------------------------------------------
+def test_lead_at_the_tip_raises_rebound_near_the_tip_when_pinned(
+    one_at_a_time: tuple[xr.Dataset, Path],
+) -> None:
+    ds, _ = one_at_a_time
+    tip = int(np.argmax(np.where(np.abs(ds["y_m"].values) < 1e-9, ds["x_m"].values, -np.inf)))
+    base, lead = design(ds, "base"), design(ds, "point_mass")
+    before = float(
+        base["rebound_ratio"].isel(point=tip, speed=0, racket_speed=0).sel(support="pinned")
+    )
+    after = float(
+        lead["rebound_ratio"].isel(point=tip, speed=0, racket_speed=0).sel(support="pinned")
+    )
+    assert np.isfinite(before)
+    assert after > before + 0.01
+    assert float(lead["racket_swingweight_kgcm2"]) > float(base["racket_swingweight_kgcm2"])
+
+
+def test_higher_e_bg_raises_rebound_everywhere(one_at_a_time: tuple[xr.Dataset, Path]) -> None:
+    ds, _ = one_at_a_time
+    base, livelier = design(ds, "base"), design(ds, "e_bg")
+    ok = (base["status"] == 0) & (livelier["status"] == 0)
+    assert int(ok.sum()) > 0.9 * ok.size
+    assert bool((livelier["rebound_ratio"] > base["rebound_ratio"]).where(ok, True).all())
+
+
+def test_a_very_stiff_frame_hardly_vibrates(one_at_a_time: tuple[xr.Dataset, Path]) -> None:
+    ds, _ = one_at_a_time
+    base, stiff = design(ds, "base"), design(ds, "frame_stiffness_scale")
+    np.testing.assert_allclose(
+        stiff["mode_frequency_hz"].values, 100.0 * base["mode_frequency_hz"].values, rtol=1e-9
+    )
+    energy, reference = stiff["vibration_energy_j"].values, base["vibration_energy_j"].values
+    assert np.all(energy <= reference)
+    assert np.nanmax(energy) < 1e-3 * np.nanmax(reference)
+
+
+def test_frame_stiffness_scales_a_modal_model_file(
+    racket: rd.Racket, ball: rd.Ball, model: rd.ModalModel, tmp_path: Path
+) -> None:
+    model.write_json(tmp_path / "modes.json")
+    spec = SweepSpec(
+        racket=replace(racket, modal_model_file=tmp_path / "modes.json"),
+        ball=ball,
+        locations=[(0.5, 0.0), (0.6, 0.02)],
+        ball_speeds=[15.0],
+        variables=(Variable.scalar("frame_stiffness_scale", [1.0, 4.0]),),
+    )
+    ds = run_sweep(spec, tmp_path / "out", SerialExecutor(), figures=False)
+    frequency = ds["mode_frequency_hz"].values
+    np.testing.assert_allclose(frequency[1], 2.0 * frequency[0], rtol=1e-12)
+
+
+def test_swingweight_variable_sets_the_swingweight(racket: rd.Racket, ball: rd.Ball) -> None:
+    spec = SweepSpec(
+        racket=racket,
+        ball=ball,
+        locations=racket.head.grid(3),
+        ball_speeds=[20.0],
+        variables=(Variable.scalar("swingweight_kgcm2", [280.0, 320.0]),),
+    )
+    for d, wanted in zip(spec.designs, (280.0, 320.0), strict=True):
+        built, _, _ = build_design(spec.racket, spec.ball, spec.variables, d.settings)
+        assert built.swingweight_kgcm2 == pytest.approx(wanted, rel=1e-12)
+        assert built.balance_m == racket.balance_m
+
+
+# --- summary ----------------------------------------------------------------------------------
+def test_summary_figures_and_table(one_at_a_time: tuple[xr.Dataset, Path]) -> None:
+    ds, out = one_at_a_time
+    for name in ("point_mass", "e_bg", "frame_stiffness_scale"):
+        assert (out / f"summary_{name}.png").stat().st_size > 10_000
+    table = (out / "summary.csv").read_text().splitlines()
+    assert len(table) == 1 + ds.sizes["design"]
+    assert "centre_rebound_ratio_pinned" in table[0]
+    np.testing.assert_array_equal(variable_designs(ds, "e_bg"), [0, 2])
+    metrics = summary_metrics(ds)
+    assert metrics.attrs["centre_point_x_m"] == pytest.approx(ds.attrs["head_centre_x_m"])
+    assert np.all(metrics["sweet_area_cm2"].values <= ds.attrs["head_area_cm2"])
+    import matplotlib.pyplot as plt
+
+    figure, (left, right) = plt.subplots(1, 2)
+    assert plot_centre_rebound(ds, "point_mass", ax=left) is left
+    assert plot_sweet_area(ds, "e_bg", ax=right) is right
+    assert left.get_xlabel() == "point mass (g)"
+    plt.close(figure)
+
+
+# --- resuming and failures --------------------------------------------------------------------
+def test_a_rerun_computes_only_missing_designs(
+    small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
+) -> None:
+    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=False)
+    (tmp_path / "sweep.nc").unlink()
+    (tmp_path / "parts" / "design-00003.nc").unlink()
+    counting, progress = CountingExecutor(), []
+    result = run_sweep(
+        small_spec,
+        tmp_path,
+        counting,
+        progress=lambda done, total: progress.append((done, total)),
+        figures=False,
+    )
+    assert counting.submitted == ["design-00003"]
+    assert progress == [(5, 6), (6, 6)]
+    assert_same_bits(serial_result, result)
+
+
+def test_an_interrupted_sweep_resumes(
+    small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
+) -> None:
+    def interrupt(done: int, total: int) -> None:
+        if done == 2:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(small_spec, tmp_path, SerialExecutor(), progress=interrupt, figures=False)
+    assert sorted(p.name for p in (tmp_path / "parts").iterdir()) == [
+        "design-00000.nc",
+        "design-00001.nc",
+    ]
+    counting = CountingExecutor()
+    result = run_sweep(small_spec, tmp_path, counting, figures=False)
+    assert counting.submitted == [f"design-{i:05d}" for i in range(2, 6)]
+    assert_same_bits(serial_result, result)
+
+
+def test_parts_of_another_spec_are_recomputed(small_spec: SweepSpec, tmp_path: Path) -> None:
+    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=False)
+    changed = replace(small_spec, ball_speeds=np.array([10.0, 26.0]))
+    counting = CountingExecutor()
+    result = run_sweep(changed, tmp_path, counting, figures=False)
+    assert len(counting.submitted) == 6
+    assert result.attrs["spec_sha256"] == changed.sha256 != small_spec.sha256
+
+
+def _fail_design_3(times: int) -> Callable[..., rd.ImpactResult]:
+    """predict that fails ``times`` times for design 3 (5 g of lead, e_BG 0.86)."""
+    real, calls = rd.predict, []
+
+    def flaky(racket: rd.Racket, ball: rd.Ball, *args: Any, **kwargs: Any) -> rd.ImpactResult:
+        lead = [p.mass_kg for p in racket.point_masses]
+        if lead == [0.005] and ball.e_bg == 0.86 and len(calls) < times:
+            calls.append(1)
+            raise RuntimeError("worker lost")
+        return real(racket, ball, *args, **kwargs)
+
+    return flaky
+
+
+def test_a_failed_task_is_retried(
+    small_spec: SweepSpec,
+    serial_result: xr.Dataset,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    monkeypatch.setattr(sweep, "predict", _fail_design_3(times=1))
+    counting = CountingExecutor()
+    result = run_sweep(small_spec, tmp_path, counting, figures=False)
+    assert counting.submitted.count("design-00003") == 2
+    assert len(counting.submitted) == 7
+    assert "retrying" in caplog.text
+    assert result.attrs["n_failed"] == 0
+    assert not (tmp_path / "failures.json").exists()
+    assert_same_bits(serial_result, result)
+
+
+def test_a_task_that_always_fails_is_reported_and_the_rest_kept(
+    small_spec: SweepSpec,
+    serial_result: xr.Dataset,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setattr(sweep, "predict", _fail_design_3(times=99))
+    result = run_sweep(small_spec, tmp_path, SerialExecutor(), figures=False)
+    failures = json.loads((tmp_path / "failures.json").read_text())
+    assert [f["task_id"] for f in failures] == ["design-00003"]
+    assert failures[0]["attempts"] == 2
+    assert "RuntimeError: worker lost" in failures[0]["error"]
+    assert result.attrs["n_failed"] == 1
+    assert json.loads(result.attrs["failed_tasks"])[0]["design"]["e_bg"] == 0.86
+    assert np.all(result["status"].isel(design=3).values == sweep.STATUS_CODES["task failed"])
+    assert np.all(np.isnan(result["rebound_ratio"].isel(design=3).values))
+    others = [0, 1, 2, 4, 5]
+    for name in ("rebound_ratio", "vibration_energy_j", "status"):
+        np.testing.assert_array_equal(
+            result[name].isel(design=others).values,
+            serial_result[name].isel(design=others).values,
+        )
+    # fixed, a rerun computes the failed design only and clears the failure record
+    monkeypatch.undo()
+    counting = CountingExecutor()
+    rerun = run_sweep(small_spec, tmp_path, counting, figures=False)
+    assert counting.submitted == ["design-00003"]
+    assert not (tmp_path / "failures.json").exists()
+    assert_same_bits(serial_result, rerun)
+
+
+# --- the spec file ----------------------------------------------------------------------------
+BASE = """
+[impacts]
+grid = 4
+ball_speeds_mps = [20.0]
+
+[variables]
+e_bg = [0.80, 0.86]
+"""
+
+
+def test_the_documented_example_is_valid(tmp_path: Path) -> None:
+    block = re.search(r"```toml\n(.*?)```", DOCS.read_text(encoding="utf-8"), re.DOTALL)
+    assert block is not None
+    (tmp_path / "sweep.toml").write_text(block.group(1), encoding="utf-8")
+    spec = load_sweep_spec(tmp_path / "sweep.toml")
+    assert len(spec.designs) == 27
+    assert spec.n_impacts == 22_356  # the count the documentation gives
+    lead = spec.variables[2]
+    assert lead.values[-1] == pytest.approx((0.010, spec.racket.head.tip_x_m, 0.0, 12.0))
+
+
+def test_one_at_a_time_from_a_file(tmp_path: Path) -> None:
+    text = (
+        'mode = "one-at-a-time"\n'
+        + BASE
+        + (
+            "tension_n = { start = 206.0, stop = 286.0, num = 3 }\n"
+            "[[variables.point_mass]]\nlabel = 'tip'\nmass_kg = [0.0, 0.005]\nx_m = 0.66\n"
+            "[[variables.point_mass]]\nlabel = 'side'\nmass_kg = 0.003\nclock = [3, 9]\n"
+        )
+    )
+    (tmp_path / "spec.toml").write_text(text, encoding="utf-8")
+    spec = load_sweep_spec(tmp_path / "spec.toml")
+    # base + e_bg 2 + tension 2 (246 N is the base) + tip 1 (0 g is the base) + side 2
+    assert [d.varied for d in spec.designs] == [
+        "base",
+        "e_bg",
+        "e_bg",
+        "tension_n",
+        "tension_n",
+        "point_mass_tip",
+        "point_mass_side",
+        "point_mass_side",
+    ]
+    side = dict(spec.designs[-1].settings)
+    assert side["point_mass_side_y_m"] == pytest.approx(spec.racket.head.half_width_m)  # 9: left
+
+
+BAD_SPECS = [
+    ("foo = [1.0]\n", r"\[variables\]\.foo: unknown variable; allowed: point_mass"),
+    (
+        "hand_stiffness_n_per_m = [1e4]\n",
+        r"hand_stiffness_n_per_m: hand parameters need the "
+        r"transient impact model \(issue 5\)",
+    ),
+    ('tension_n = "high"\n', r"\[variables\]\.tension_n must be a number \(got 'high'\)"),
+    (
+        "tension_n = {start = 200.0, stop = 260.0}\n",
+        r"\[variables\]\.tension_n: a range is a "
+        r"table \{start, stop, num\}; num missing",
+    ),
+    ("e_bg_x = 1\n", r"\[variables\]\.e_bg_x: unknown variable"),
+    (
+        "balance_m = [0.30, 0.70]\n",
+        r"\[variables\]\.balance_m: balance_m = 0\.7: racket\.balance_m \(0\.7 m\) must lie "
+        r"between the butt and the tip",
+    ),
+    (
+        "mass_kg = [0.15]\n",
+        r"\[variables\]\.mass_kg: mass_kg = 0\.15: racket: no positive mass distribution",
+    ),
+    (
+        "mass_kg = [0.2]\ninertia_cg_kgm2 = [0.016]\n",  # each fine alone, not together
+        r"\[variables\]: design e_bg = 0\.8, mass_kg = 0\.2, inertia_cg_kgm2 = 0\.016: racket: no "
+        r"positive mass distribution",
+    ),
+    ("frame_stiffness_scale = [0.0]\n", r"frame_stiffness_scale must be a positive number"),
+    (
+        "support = ['free', 'hand']\n",
+        r"\[variables\]\.support must be one of free, pinned "
+        r"\(got 'hand'\)",
+    ),
+    (
+        "inertia_cg_kgm2 = [0.013]\nswingweight_kgcm2 = [300.0]\n",
+        r"give inertia_cg_kgm2 or "
+        r"swingweight_kgcm2, not both",
+    ),
+    ("swingweight_kgcm2 = [100.0]\n", r"swingweight_kgcm2 \(100\) must exceed"),
+    (
+        "[variables.point_mass]\nmass_kg = [0.005]\n",
+        r"\[variables\]\.point_mass: give the "
+        r"position as x_m \(and y_m\) or clock",
+    ),
+    (
+        "[variables.point_mass]\nmass_kg = [-0.005]\nclock = 12\n",
+        r"\[variables\]\.point_mass\."
+        r"mass_kg must be 0 or more",
+    ),
+    (
+        "[variables.point_mass]\nmass_kg = [0.005]\nx_m = 0.7\n",
+        r"point_masses\[0\]\.x_m \(0\.7 m\) "
+        r"must lie on the racket",
+    ),
+    (
+        "[variables.point_mass]\nmass_kg = 0.005\nx_m = 0.6\nz_m = 0\n",
+        r"\[variables\]\."
+        r"point_mass: unknown key 'z_m'",
+    ),
+]
+BAD_FILES = [
+    ('mode = "random"\n' + BASE, r"mode must be one of full-factorial, one-at-a-time"),
+    ("colour = 'red'\n" + BASE, r"unknown top-level key 'colour'"),
+    ('racket = "missing.toml"\n' + BASE, r"missing\.toml: no such racket file"),
+    (BASE.replace("grid = 4", "grid = 4\npoints = 'p.csv'"), r"\[impacts\]: give grid or points"),
+    (BASE.replace("grid = 4", "grid = 4.5"), r"\[impacts\]\.grid must be a whole number"),
+    (BASE.replace("grid = 4", "speed = 3"), r"\[impacts\]: unknown key 'speed'"),
+    (BASE.replace("ball_speeds_mps = [20.0]", ""), r"\[impacts\]\.ball_speeds_mps is missing"),
+    (
+        BASE.replace("grid = 4", 'grid = 4\nmethod = "transient"'),
+        r"\[impacts\]\.method: the "
+        r"transient impact model \(issue 5\) is not available yet",
+    ),
+    (BASE.replace("[0.80, 0.86]", "[0.80, 0.80]"), r"\[variables\]\.e_bg: a value is listed twice"),
+    (
+        BASE.replace("[0.80, 0.86]", "[0.80, 1.2]"),
+        r"\[variables\]\.e_bg: e_bg = 1\.2: ball e_bg must lie between 0 and 1",
+    ),
+    (
+        BASE + "[summary]\nball_speed_mps = 25.0\n",
+        r"\[summary\]\.ball_speed_mps \(25\.0\) must be "
+        r"one of the listed speeds \(20\)",
+    ),
+    ("[ball]\ne_bg = true\n" + BASE, r"\[ball\]\.e_bg must be a number \(got True\)"),
+    (BASE + "tension_n = [\n", r"malformed TOML"),
+]
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [(BASE + extra, message) for extra, message in BAD_SPECS] + BAD_FILES,
+    ids=[f"spec-{i}" for i in range(len(BAD_SPECS))] + [f"file-{i}" for i in range(len(BAD_FILES))],
+)
+def test_bad_specs_name_the_key(text: str, message: str, tmp_path: Path) -> None:
+    path = tmp_path / "spec.toml"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(rd.InputError, match=message) as error:
+        load_sweep_spec(path)
+    assert str(error.value).startswith(str(path))
+
+
+def test_engine_choices_are_checked() -> None:
+    checks = [
+        ({"kind": "threads"}, "engine must be one of serial, process"),
+        ({"kind": "dask"}, "needs a scheduler address"),
+        ({"kind": "process", "workers": 0}, "workers must be a whole number"),
+        ({"kind": "process", "scheduler": "tcp://127.0.0.1:8786"}, "for the dask engine only"),
+    ]
+    for arguments, message in checks:
+        with pytest.raises(rd.InputError, match=message), make_executor(**arguments):
+            pass
