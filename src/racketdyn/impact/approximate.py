@@ -188,7 +188,7 @@ def predict(
     if xy.shape[0] == 0:
         raise InputError("impact points: give at least one point")
     racket.head.check_inside(xy)
-    support_names = _supports(supports)
+    support_names = check_supports(supports)
     one_of("stiffness_reading", stiffness_reading, STIFFNESS_READINGS)
     v_ball = require_speeds("ball speed", ball_speed)
     v_racket = require_speeds("racket speed", racket_speed)
@@ -307,7 +307,8 @@ def predict(
     )
 
 
-def _supports(supports: Sequence[str] | str) -> tuple[str, ...]:
+def check_supports(supports: Sequence[str] | str) -> tuple[str, ...]:
+    """Support names as a tuple: one string or a sequence, each known, each once (InputError)."""
     names = (supports,) if isinstance(supports, str) else tuple(supports)
     if not names:
         raise InputError(f"support: give at least one of {', '.join(SUPPORTS)}")
