@@ -23,7 +23,7 @@ from scipy.signal import csd, welch
 import racketdyn as rd
 from racketdyn.io import read_hammer_uff, write_hammer_uff
 from racketdyn.measurement.frf import estimate_frfs
-from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test
+from racketdyn.rig import accelerometer_index, hammer_points, rig_model, simulate_hammer_test
 
 
 def best_of(function, repeats: int = 5) -> float:
@@ -55,7 +55,10 @@ def main() -> None:
     locations, nodes = hammer_points(racket, n_frame=24, n_strings=45)  # 69 points
     start = time.perf_counter()
     model = rig_model(racket, "free")
-    records = simulate_hammer_test(model, locations, nodes, tuple(locations[9]), nodes[9], seed=1)
+    reference = accelerometer_index(racket, locations)
+    records = simulate_hammer_test(
+        model, locations, nodes, tuple(locations[reference]), nodes[reference], seed=1
+    )
     simulate_s = time.perf_counter() - start
     print(
         f"racketdyn {rd.__version__}: {records.n_points} points × {records.force[0].shape[0]} "

@@ -13,7 +13,7 @@ from racketdyn.io import write_frf_uff
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.modal.identify import identify
 from racketdyn.modal.residues import mac
-from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test
+from racketdyn.rig import accelerometer_index, hammer_points, rig_model, simulate_hammer_test
 
 BAND = (40.0, 850.0)
 
@@ -23,7 +23,7 @@ def case(request: pytest.FixtureRequest) -> dict:
     racket = rd.default_racket()
     rig = rig_model(racket, request.param)
     locations, nodes = hammer_points(racket)
-    reference = 9  # the CLI's accelerometer, on the hoop 22.5° from the tip
+    reference = accelerometer_index(racket, locations)  # the CLI's, on the hoop
     records = simulate_hammer_test(
         rig, locations, nodes, tuple(locations[reference]), nodes[reference], seed=2
     )

@@ -9,7 +9,7 @@ import racketdyn as rd
 from racketdyn.errors import InputError
 from racketdyn.measurement import FrfSet
 from racketdyn.modal.residues import fit_modal_constants, mac, mass_normalised_shapes
-from racketdyn.rig import hammer_points, rig_model
+from racketdyn.rig import accelerometer_index, hammer_points, rig_model
 
 BAND = (60.0, 800.0)
 
@@ -25,7 +25,7 @@ def _frfs(
     # the CLI's layout: the accelerometer on the hoop 22.5° from the tip, where every mode of the
     # band moves it (a reference near a node makes that mode's mass normalisation ill-posed)
     locations, nodes = hammer_points(rig.racket, n_frame=24, n_strings=12)
-    reference = 9
+    reference = accelerometer_index(rig.racket, locations)
     frequency = np.arange(1, 1025) * 2.44140625  # 5 kHz / 2048 lines
     s_shift = 0.0 if tau is None else 1.0 / tau
     # H(iω + 1/τ): the windowed structure (accelerance), by modal superposition

@@ -53,10 +53,7 @@ __all__ = ["main"]
 log = logging.getLogger("racketdyn")
 DEFAULT_GRID = 9
 MAX_GRID = 400  # 400 × 400 ≈ 126,000 points: a few seconds a speed
-CHUNK_IMPACTS = 50_000
-# accelerometer: hammer_points gives 8 axis points, then the hoop from the tip; node 10 is 22.5°
-# round it, where the bending and the twisting modes both move the frame
-REFERENCE_HOOP_POINT = 9  # above this, predict in chunks of points with a progress bar
+CHUNK_IMPACTS = 50_000  # above this, predict in chunks of points with a progress bar
 
 
 def _parse_list(name: str, text: str) -> list[str]:
@@ -376,7 +373,13 @@ def _contact(args: argparse.Namespace, console: Console) -> int:
 
 def _rig(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.io import write_hammer_uff
-    from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test, string_contact_time
+    from racketdyn.rig import (
+        accelerometer_index,
+        hammer_points,
+        rig_model,
+        simulate_hammer_test,
+        string_contact_time,
+    )
     from racketdyn.rig.hammer import FRAME_PULSE_S
 
     racket, provenance = _load(args.racket)
@@ -385,7 +388,7 @@ def _rig(args: argparse.Namespace, console: Console) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     locations, nodes = hammer_points(racket)
-    reference = REFERENCE_HOOP_POINT if len(nodes) > REFERENCE_HOOP_POINT else 0
+    reference = accelerometer_index(racket, locations)
     reference_location = (float(locations[reference, 0]), float(locations[reference, 1]))
     on_bed = racket.head.contains(locations)
     durations = np.full(len(nodes), FRAME_PULSE_S)

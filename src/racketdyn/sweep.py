@@ -36,7 +36,6 @@ import logging
 import math
 import os
 import time
-import tomllib
 import traceback
 from collections import deque
 from collections.abc import Callable, Iterator, Mapping, Sequence
@@ -63,7 +62,7 @@ from racketdyn.impact.result import (
     STATUS_VIBRATION_LOSS,
     ImpactResult,
 )
-from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_racket
+from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_racket, read_toml
 from racketdyn.io.racket_file import racket_to_dict as _racket_to_dict
 from racketdyn.io.tables import read_load_deflection, read_points
 from racketdyn.modal import ModalModel, builtin_modal_model
@@ -1633,15 +1632,7 @@ def load_sweep_spec(path: Path | str) -> SweepSpec:
         The validated spec; every design is checked to be a valid racket.
     """
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such sweep spec file") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise InputError(f"{path}: cannot be read ({error})") from None
-    except tomllib.TOMLDecodeError as error:
-        raise InputError(f"{path}: malformed TOML ({error})") from None
-    return sweep_spec_from_dict(data, path.parent, str(path))
+    return sweep_spec_from_dict(read_toml(path, "sweep spec file"), path.parent, str(path))
 
 
 def sweep_spec_from_dict(

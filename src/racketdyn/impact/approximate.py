@@ -34,15 +34,14 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Sequence
-from typing import Any, Literal, get_args
+from typing import Literal, get_args
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball, RestoringForce
-from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of, require_speeds
+from racketdyn.errors import InputError, one_of
+from racketdyn.impact.grid import impact_grid
 from racketdyn.impact.result import (
     STATUS_BEYOND_LAW,
     STATUS_OK,
@@ -50,9 +49,9 @@ from racketdyn.impact.result import (
     ImpactResult,
 )
 from racketdyn.impact.spectrum import half_sine_spectrum
-from racketdyn.modal import ModalModel, modal_model_for
+from racketdyn.modal import ModalModel
 from racketdyn.numerics import invert_increasing
-from racketdyn.racket import SUPPORTS, Racket, as_locations
+from racketdyn.racket import SUPPORTS, Racket
 
 __all__ = [
     "STIFFNESS_READINGS",
@@ -184,48 +183,24 @@ def predict(
     ImpactResult
         Arrays shaped ``(n_points, n_speeds, n_supports)``.
     """
-    xy = as_locations(locations, "impact points")
-    if xy.shape[0] == 0:
-        raise InputError("impact points: give at least one point")
-    racket.head.check_inside(xy)
-    support_names = check_supports(supports)
     one_of("stiffness_reading", stiffness_reading, STIFFNESS_READINGS)
-    v_ball = require_speeds("ball speed", ball_speed)
-    v_racket = require_speeds("racket speed", racket_speed)
-    if v_racket.size == 1:
-        v_racket = np.full(v_ball.shape, float(v_racket[0]))
-    elif v_racket.shape != v_ball.shape:
-        raise InputError(
-            f"racket speed: give one speed or one per ball speed ({v_ball.size}), "
-            f"not {v_racket.size}"
-        )
+    grid = impact_grid(
+        racket,
+        ball,
+        locations,
+        ball_speed,
+        supports,
+        racket_speed,
+        modal_model,
+        labels,
+        law,
+        include_string_bed,
+    )
+    xy, model, law, reduced = grid.locations, grid.model, grid.law, grid.reduced_mass
+    v_ball, v_racket = grid.ball_speed, grid.racket_speed
     approach = v_ball + v_racket
-    if np.any(approach <= 0):
-        raise InputError(
-            "ball speed + racket speed must be positive: the ball must reach the strings"
-        )
-    point_labels = (
-        tuple(labels) if labels is not None else tuple(str(i + 1) for i in range(len(xy)))
-    )
-    if len(point_labels) != len(xy):
-        raise InputError(f"{len(point_labels)} labels given for {len(xy)} impact points")
-    if isinstance(modal_model, str):
-        if modal_model != "racket":
-            raise InputError(
-                f"modal_model must be a ModalModel, None or 'racket' (got {modal_model!r})"
-            )
-        model: ModalModel | None = modal_model_for(racket)
-    else:
-        model = modal_model
-    if model is not None and not include_string_bed:
-        model = model.frame_modes
-    law = law or compound_law(racket, ball)
-
     m_b, e_bg = ball.mass_kg, ball.e_bg
-    reduced = np.column_stack([racket.reduced_mass(xy, s) for s in support_names])  # (n, p)
-    mu = np.broadcast_to(
-        (m_b * reduced / (m_b + reduced))[:, None, :], (len(xy), v_ball.size, len(support_names))
-    )
+    mu = np.broadcast_to((m_b * reduced / (m_b + reduced))[:, None, :], grid.shape)
     speed = approach[None, :, None]  # (1, s, 1)
     impulse = (1.0 + e_bg) * mu * speed  # eqs (6), (8)
 
@@ -270,26 +245,18 @@ def predict(
         if count:
             log.warning("%d of %d impacts: %s (their results are NaN)", count, status.size, message)
 
-    inputs: dict[str, Any] = {
-        "racketdyn_version": __version__,
-        "method": "approximate (Kawazoe, eqs 1-12)",
-        "stiffness_reading": stiffness_reading,
-        "include_string_bed": include_string_bed,
-        "ball": {
-            "mass_kg": m_b,
-            "diameter_m": ball.diameter_m,
-            "e_bg": e_bg,
-            "restoring_force": ball.restoring_force.as_dict(),
-        },
-        "compound_law": law.as_dict(),
-        "modal_model": None if model is None else model.summary(),
-    }
+    inputs = grid.inputs(
+        ball,
+        "approximate (Kawazoe, eqs 1-12)",
+        stiffness_reading=stiffness_reading,
+        include_string_bed=include_string_bed,
+    )
     return ImpactResult(
         locations=xy,
-        labels=point_labels,
+        labels=grid.labels,
         ball_speed=v_ball,
         racket_speed=v_racket,
-        supports=support_names,
+        supports=grid.supports,
         reduced_mass=reduced,
         stiffness=stiffness,
         peak_deflection=deflection,
@@ -305,15 +272,3 @@ def predict(
         modal_model=model,
         inputs=inputs,
     )
-
-
-def check_supports(supports: Sequence[str] | str) -> tuple[str, ...]:
-    """Support names as a tuple: one string or a sequence, each known, each once (InputError)."""
-    names = (supports,) if isinstance(supports, str) else tuple(supports)
-    if not names:
-        raise InputError(f"support: give at least one of {', '.join(SUPPORTS)}")
-    for name in names:
-        one_of("support", name, SUPPORTS)
-    if len(set(names)) != len(names):
-        raise InputError(f"support: each support once (got {', '.join(names)})")
-    return names

@@ -57,13 +57,13 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_positive, require_range, require_speeds
-from racketdyn.impact.approximate import check_supports, elastic_contact_time
+from racketdyn.impact.approximate import elastic_contact_time
+from racketdyn.impact.grid import impact_grid, resolve_modal_model
 from racketdyn.impact.result import STATUS_BEYOND_LAW, STATUS_OK, ImpactResult
-from racketdyn.modal import ModalModel, modal_model_for
+from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket, as_locations
 
 __all__ = [
@@ -470,24 +470,6 @@ def simulate_contact(
 
 
 # --- racket-level entry points -------------------------------------------------------------------
-def _resolve_model(
-    racket: Racket,
-    modal_model: ModalModel | Literal["racket"] | None,
-    include_string_bed: bool,
-) -> ModalModel | None:
-    if isinstance(modal_model, str):
-        if modal_model != "racket":
-            raise InputError(
-                f"modal_model must be a ModalModel, None or 'racket' (got {modal_model!r})"
-            )
-        model: ModalModel | None = modal_model_for(racket)
-    else:
-        model = modal_model
-    if model is not None and not include_string_bed:
-        model = model.frame_modes
-    return model
-
-
 def simulate_impact(
     racket: Racket,
     ball: Ball,
@@ -538,7 +520,7 @@ def simulate_impact(
         raise InputError(f"impact point: give one (x, y) point (got {xy.shape[0]})")
     racket.head.check_inside(xy)
     one_of("support", support, SUPPORTS)
-    model = _resolve_model(racket, modal_model, include_string_bed)
+    model = resolve_modal_model(racket, modal_model, include_string_bed)
     law = law or compound_law(racket, ball)
     shapes = np.zeros(0) if model is None else model.mode_shapes_at(xy)[0]
     return simulate_contact(
@@ -606,37 +588,25 @@ def predict_transient(
         Arrays shaped ``(n_points, n_speeds, n_supports)``; ``inputs["method"]`` is
         ``"transient"``.
     """
-    xy = as_locations(locations, "impact points")
-    if xy.shape[0] == 0:
-        raise InputError("impact points: give at least one point")
-    racket.head.check_inside(xy)
-    support_names = check_supports(supports)
-    v_ball = require_speeds("ball speed", ball_speed)
-    v_racket = require_speeds("racket speed", racket_speed)
-    if v_racket.size == 1:
-        v_racket = np.full(v_ball.shape, float(v_racket[0]))
-    elif v_racket.shape != v_ball.shape:
-        raise InputError(
-            f"racket speed: give one speed or one per ball speed ({v_ball.size}), "
-            f"not {v_racket.size}"
-        )
-    if np.any(v_ball + v_racket <= 0):
-        raise InputError(
-            "ball speed + racket speed must be positive: the ball must reach the strings"
-        )
-    point_labels = (
-        tuple(labels) if labels is not None else tuple(str(i + 1) for i in range(len(xy)))
+    grid = impact_grid(
+        racket,
+        ball,
+        locations,
+        ball_speed,
+        supports,
+        racket_speed,
+        modal_model,
+        labels,
+        law,
+        include_string_bed,
     )
-    if len(point_labels) != len(xy):
-        raise InputError(f"{len(point_labels)} labels given for {len(xy)} impact points")
-    model = _resolve_model(racket, modal_model, include_string_bed)
-    law = law or compound_law(racket, ball)
+    xy, model, law, reduced = grid.locations, grid.model, grid.law, grid.reduced_mass
+    v_ball, v_racket = grid.ball_speed, grid.racket_speed
     shapes = np.zeros((len(xy), 0)) if model is None else model.mode_shapes_at(xy)
     omega = np.zeros(0) if model is None else model.omega
     zeta = np.zeros(0) if model is None else model.damping_ratio
-    reduced = np.column_stack([racket.reduced_mass(xy, s) for s in support_names])
 
-    shape = (len(xy), v_ball.size, len(support_names))
+    shape = grid.shape
     fields = (
         "stiffness",
         "peak_deflection",
@@ -684,27 +654,19 @@ def predict_transient(
             out[name][i, j, k] = value
         mode_energy[i, j, k] = impact.mode_energy_j
 
-    inputs: dict[str, Any] = {
-        "racketdyn_version": __version__,
-        "method": "transient",
-        "integrator": {"method": method, "rtol": rtol},
-        "hysteresis": "F_un = F_GB(X) (X/X_p)^p, p from e_BG",
-        "include_string_bed": include_string_bed,
-        "ball": {
-            "mass_kg": ball.mass_kg,
-            "diameter_m": ball.diameter_m,
-            "e_bg": ball.e_bg,
-            "restoring_force": ball.restoring_force.as_dict(),
-        },
-        "compound_law": law.as_dict(),
-        "modal_model": None if model is None else model.summary(),
-    }
+    inputs = grid.inputs(
+        ball,
+        "transient",
+        integrator={"method": method, "rtol": rtol},
+        hysteresis="F_un = F_GB(X) (X/X_p)^p, p from e_BG",
+        include_string_bed=include_string_bed,
+    )
     return ImpactResult(
         locations=xy,
-        labels=point_labels,
+        labels=grid.labels,
         ball_speed=v_ball,
         racket_speed=v_racket,
-        supports=support_names,
+        supports=grid.supports,
         reduced_mass=reduced,
         mode_energy=mode_energy,
         status=status.astype(str),

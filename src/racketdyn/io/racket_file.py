@@ -25,7 +25,13 @@ from racketdyn.racket import (
     StringBed,
 )
 
-__all__ = ["DEFAULT_RACKET_NAME", "default_racket", "load_racket", "racket_to_dict"]
+__all__ = [
+    "DEFAULT_RACKET_NAME",
+    "default_racket",
+    "load_racket",
+    "racket_to_dict",
+    "read_toml",
+]
 
 DEFAULT_RACKET_NAME = "kawazoe_2002.toml"
 
@@ -101,6 +107,26 @@ def _one_of_pair(where: str, table: dict[str, Any], first: str, second: str) -> 
         raise InputError(f"{where}: give {first} or {second}, not both")
 
 
+def read_toml(path: Path, what: str) -> dict[str, Any]:
+    """Parse a TOML file; a missing, unreadable or malformed file is an InputError naming it.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    what : str
+        What it should be, for the message ("racket file", "sweep spec file").
+    """
+    try:
+        return tomllib.loads(Path(path).read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such {what}") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"{path}: cannot be read ({error})") from None
+    except tomllib.TOMLDecodeError as error:
+        raise InputError(f"{path}: malformed TOML ({error})") from None
+
+
 def load_racket(path: Path | str) -> Racket:
     """Read and validate a racket description file.
 
@@ -117,15 +143,7 @@ def load_racket(path: Path | str) -> Racket:
         (:func:`racketdyn.modal.beam.hoop_roll_inertia`).
     """
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such racket file") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise InputError(f"{path}: cannot be read ({error})") from None
-    except tomllib.TOMLDecodeError as error:
-        raise InputError(f"{path}: malformed TOML ({error})") from None
-    return racket_from_dict(data, path)
+    return racket_from_dict(read_toml(path, "racket file"), path)
 
 
 def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:

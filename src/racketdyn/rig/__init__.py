@@ -5,6 +5,7 @@ its modal truth; :func:`simulate_hammer_test` makes the records a roving-hammer 
 """
 
 from racketdyn.rig.hammer import (
+    accelerometer_index,
     anti_alias_filter,
     hammer_points,
     simulate_hammer_test,
@@ -16,6 +17,7 @@ __all__ = [
     "HandModel",
     "RigModel",
     "RigSupport",
+    "accelerometer_index",
     "anti_alias_filter",
     "hammer_points",
     "rig_model",

@@ -54,6 +54,7 @@ __all__ = [
     "ANALYSER_BANDWIDTH_FACTOR",
     "FRAME_PULSE_S",
     "STRING_PULSE_S",
+    "accelerometer_index",
     "anti_alias_filter",
     "hammer_points",
     "simulate_hammer_test",
@@ -70,6 +71,33 @@ ANALYSER_BANDWIDTH_FACTOR = 2.56
 """Sampling rate / usable bandwidth of an FFT analyser (the anti-alias filter's passband edge)."""
 FILTER_ATTENUATION_DB = 90.0
 _CHUNK = 8192
+
+
+ACCELEROMETER_ANGLE_DEG = 22.5
+"""Where the rig's accelerometer sits: on the hoop, this far round from the tip.  There the
+bending modes (off the face's nodes) and the twisting modes (off the long axis) all move it, so
+every mode can be mass-normalised from the driving point."""
+
+
+def accelerometer_index(racket: Racket, locations: ArrayLike) -> int:
+    """Index of the hammer point nearest the accelerometer position on the hoop.
+
+    Parameters
+    ----------
+    racket : Racket
+        Its head gives the hoop.
+    locations : array_like, shape (n, 2)
+        Hammer points (x, y), m (e.g. from :func:`hammer_points`).
+    """
+    head = racket.head
+    angle = np.deg2rad(ACCELEROMETER_ANGLE_DEG)
+    target = np.array(
+        [
+            head.centre_x_m + 1.06 * head.half_length_m * np.cos(angle),
+            head.centre_y_m + 1.06 * head.half_width_m * np.sin(angle),
+        ]
+    )
+    return int(np.argmin(np.linalg.norm(as_locations(locations) - target, axis=1)))
 
 
 HAMMER_MASS_KG = 0.010
