@@ -5,7 +5,7 @@ Styles are applied inside the functions, never at import.  Units on every axis l
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import matplotlib
@@ -19,6 +19,7 @@ from matplotlib.tri import Triangulation
 from numpy.typing import NDArray
 
 from racketdyn.impact.result import ImpactResult
+from racketdyn.impact.swing import SweetSpot, SwingResult
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.model import ModalModel
@@ -26,6 +27,7 @@ from racketdyn.racket import Racket
 
 __all__ = [
     "QUANTITIES",
+    "SWEET_SPOT_STYLE",
     "plot_along_axis",
     "plot_contact_map",
     "plot_face_map",
@@ -36,6 +38,8 @@ __all__ = [
     "plot_node_lines",
     "plot_outline",
     "plot_speed_curves",
+    "plot_swing_along_axis",
+    "plot_swing_map",
 ]
 
 QUANTITIES: dict[str, tuple[str, float]] = {
@@ -364,4 +368,176 @@ def plot_mac(
     ax.set_xticks(range(len(columns)), columns, rotation=60, ha="right", fontsize=7)
     ax.set_yticks(range(len(rows)), rows, fontsize=7)
     ax.figure.colorbar(image, ax=ax, label="MAC", shrink=0.8)
+    return ax
+
+
+SWEET_SPOT_STYLE: dict[str, dict[str, Any]] = {
+    "centre_of_percussion_swing": {"marker": "o", "color": "tab:orange"},
+    "centre_of_percussion_grip": {"marker": "s", "color": "tab:red"},
+    "first_mode_node": {"marker": "^", "color": "w"},
+    "max_rebound_ratio": {"marker": "D", "color": "tab:cyan"},
+    "max_rebound_speed": {"marker": "*", "color": "magenta"},
+}
+"""Marker and colour of each sweet spot (keys of :func:`~racketdyn.impact.swing.sweet_spots`)."""
+
+
+def _support_label(support: str) -> str:
+    return str(SUPPORT_STYLE.get(support, {}).get("label", support))
+
+
+def _mark_sweet_spots(ax: Axes, spots: Mapping[str, SweetSpot], in_plane: bool) -> None:
+    """Sweet spots as markers on a face map (``in_plane``) or vertical lines on an x plot."""
+    for key, spot in spots.items():
+        style = SWEET_SPOT_STYLE.get(key, {"marker": "P", "color": "k"})
+        text = f"{spot.name}: x = {spot.x_m * 1e3:.0f} mm"
+        if not spot.on_face:
+            text += " (off the face)"
+        if in_plane:
+            if spot.on_face:
+                ax.plot(
+                    spot.x_m * 1e3,
+                    spot.y_m * 1e3,
+                    linestyle="none",
+                    marker=style["marker"],
+                    markersize=9 if style["marker"] == "*" else 6,
+                    markerfacecolor=style["color"],
+                    markeredgecolor="k",
+                    label=text,
+                )
+            else:
+                ax.plot([], [], linestyle="none", marker="", label=text)
+        else:
+            ax.axvline(
+                spot.x_m * 1e3,
+                color="k" if style["color"] == "w" else style["color"],
+                linestyle=":",
+                linewidth=1.2,
+                label=text,
+            )
+
+
+def plot_swing_map(
+    result: SwingResult,
+    racket: Racket,
+    spots: Mapping[str, SweetSpot] | None = None,
+    speed_index: int = 0,
+    support: str | None = None,
+    ax: Axes | None = None,
+    levels: int = 12,
+) -> Axes:
+    """Contour map of the outgoing ball speed over the string face of a swinging racket.
+
+    The look of :func:`plot_face_map` (x along, y across, mm), with the sweet spots of
+    :func:`racketdyn.impact.swing.sweet_spots` marked and named (those off the face listed).
+
+    Parameters
+    ----------
+    result : SwingResult
+        Impacts over the face (:func:`racketdyn.impact.swing.predict_swing`).
+    racket : Racket
+        The racket, for its outline.
+    spots : mapping of str to SweetSpot, optional
+        Sweet spots to mark.
+    speed_index : int
+        Which incoming ball speed.
+    support : str, optional
+        Which support (default the result's first).
+    ax : Axes, optional
+        Where to draw (a new figure if None).
+    levels : int
+        Number of contour levels.
+    """
+    ax = _axes(ax, (5.2, 3.8))
+    support = support or result.supports[0]
+    values = result.rebound_speed[:, speed_index, result.support_index(support)]
+    x_mm, y_mm = result.locations[:, 0] * 1e3, result.locations[:, 1] * 1e3
+    finite = np.isfinite(values)
+    if finite.sum() >= 3:
+        triangles = Triangulation(x_mm[finite], y_mm[finite])
+        filled = ax.tricontourf(triangles, values[finite], levels=levels, cmap="viridis")
+        lines = ax.tricontour(
+            triangles, values[finite], levels=np.asarray(filled.levels), colors="k", linewidths=0.4
+        )
+        ax.clabel(lines, fontsize=6, fmt="%.3g")
+        ax.figure.colorbar(filled, ax=ax, label="outgoing ball speed (m/s)", shrink=0.85)
+    if np.any(~finite):
+        ax.plot(
+            x_mm[~finite],
+            y_mm[~finite],
+            "x",
+            color="r",
+            markersize=4,
+            label="no valid result (see status)",
+        )
+    plot_outline(racket, ax)
+    if spots:
+        _mark_sweet_spots(ax, spots, in_plane=True)
+    entries = len(ax.get_legend_handles_labels()[1])
+    if entries:
+        # room below the face for the legend, inside the axes (so any layout keeps it)
+        head = racket.head
+        rows = (entries + 1) // 2
+        bottom = (head.centre_y_m - head.half_width_m) * 1e3 - 14.0 * rows - 8.0
+        ax.set_ylim(bottom, (head.centre_y_m + head.half_width_m) * 1e3 + 8.0)
+        ax.legend(fontsize=6, loc="lower center", ncol=2, frameon=False, handletextpad=0.3)
+    ax.set_xlabel("x from the butt (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title(
+        f"{_support_label(support)}, ball {result.ball_speed[speed_index]:g} m/s, "
+        f"swing Ω = {result.angular_speed_radps:.1f} rad/s",
+        fontsize=9,
+    )
+    return ax
+
+
+def plot_swing_along_axis(
+    results: Sequence[SwingResult],
+    spots: Mapping[str, SweetSpot] | None = None,
+    support: str | None = None,
+    ax: Axes | None = None,
+    names: Sequence[str] | None = None,
+) -> Axes:
+    """Outgoing ball speed along the long axis (x) for a few swings and ball speeds.
+
+    One line per result × incoming ball speed; the sweet spots as vertical lines.
+
+    Parameters
+    ----------
+    results : sequence of SwingResult
+        Impacts on points along the long axis, one result per swing.
+    spots : mapping of str to SweetSpot, optional
+        Sweet spots to mark.
+    support : str, optional
+        Which support (default each result's first).
+    ax : Axes, optional
+        Where to draw (a new figure if None).
+    names : sequence of str, optional
+        A name per result for the legend (default its Ω).
+    """
+    ax = _axes(ax, (6.5, 4.2))
+    if names is not None and len(names) != len(results):
+        raise ValueError(f"{len(names)} names given for {len(results)} results")
+    styles = ("-", "--", "-.", ":")
+    for k, result in enumerate(results):
+        chosen = support or result.supports[0]
+        p = result.support_index(chosen)
+        order = np.argsort(result.locations[:, 0])
+        name = names[k] if names is not None else f"Ω = {result.angular_speed_radps:.1f} rad/s"
+        colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, result.ball_speed.size))
+        for s, (speed, colour) in enumerate(zip(result.ball_speed, colours, strict=True)):
+            ax.plot(
+                result.locations[order, 0] * 1e3,
+                result.rebound_speed[order, s, p],
+                color=colour,
+                linestyle=styles[k % len(styles)],
+                label=f"{name}, ball {speed:g} m/s",
+            )
+    if spots:
+        _mark_sweet_spots(ax, spots, in_plane=False)
+    ax.set_xlabel("impact point, x from the butt (mm)")
+    ax.set_ylabel("outgoing ball speed (m/s)")
+    chosen = support or (results[0].supports[0] if results else "")
+    ax.set_title(f"swinging racket, {_support_label(chosen)}", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=6)
     return ax

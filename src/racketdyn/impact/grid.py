@@ -19,19 +19,30 @@ from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_speeds
+from racketdyn.impact.hand import Hand
 from racketdyn.modal import ModalModel, modal_model_for
 from racketdyn.racket import SUPPORTS, Racket, as_locations
 
 __all__ = ["ImpactGrid", "check_supports", "impact_grid", "resolve_modal_model"]
 
 
-def check_supports(supports: Sequence[str] | str) -> tuple[str, ...]:
-    """Support names as a tuple: one string or a sequence, each known, each once (InputError)."""
+def check_supports(
+    supports: Sequence[str] | str, allowed: Sequence[str] = SUPPORTS
+) -> tuple[str, ...]:
+    """Support names as a tuple: one string or a sequence, each known, each once (InputError).
+
+    ``allowed`` is the impact model's supports (the transient model adds ``hand``).
+    """
     names = (supports,) if isinstance(supports, str) else tuple(supports)
     if not names:
-        raise InputError(f"support: give at least one of {', '.join(SUPPORTS)}")
+        raise InputError(f"support: give at least one of {', '.join(allowed)}")
     for name in names:
-        one_of("support", name, SUPPORTS)
+        if name == "hand" and "hand" not in allowed:
+            raise InputError(
+                "support 'hand' needs the transient impact model (the approximate method "
+                "holds the grip as a pin: use 'pinned')"
+            )
+        one_of("support", name, allowed)
     if len(set(names)) != len(names):
         raise InputError(f"support: each support once (got {', '.join(names)})")
     return names
@@ -124,16 +135,20 @@ def impact_grid(
     labels: Sequence[str] | None = None,
     law: RestoringForce | None = None,
     include_string_bed: bool = False,
+    allowed_supports: Sequence[str] = SUPPORTS,
+    hand: Hand | None = None,
 ) -> ImpactGrid:
     """Validate an impact prediction's inputs (InputError naming the input) and prepare them.
 
-    Parameters are those of :func:`racketdyn.impact.approximate.predict`.
+    Parameters are those of :func:`racketdyn.impact.approximate.predict`, plus the model's
+    ``allowed_supports`` and the ``hand`` of a ``hand`` support (its reduced mass:
+    :meth:`racketdyn.impact.hand.Hand.reduced_mass`).
     """
     xy = as_locations(locations, "impact points")
     if xy.shape[0] == 0:
         raise InputError("impact points: give at least one point")
     racket.head.check_inside(xy)
-    support_names = check_supports(supports)
+    support_names = check_supports(supports, allowed_supports)
     v_ball = require_speeds("ball speed", ball_speed)
     v_racket = require_speeds("racket speed", racket_speed)
     if v_racket.size == 1:
@@ -158,7 +173,14 @@ def impact_grid(
         supports=support_names,
         ball_speed=v_ball,
         racket_speed=v_racket,
-        reduced_mass=np.column_stack([racket.reduced_mass(xy, s) for s in support_names]),
+        reduced_mass=np.column_stack(
+            [
+                (hand or Hand()).reduced_mass(racket, xy)
+                if s == "hand"
+                else racket.reduced_mass(xy, s)
+                for s in support_names
+            ]
+        ),
         model=resolve_modal_model(racket, modal_model, include_string_bed),
         law=law or compound_law(racket, ball),
     )

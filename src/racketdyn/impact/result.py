@@ -15,7 +15,15 @@ from numpy.typing import ArrayLike, NDArray
 from racketdyn.impact.spectrum import half_sine_spectrum
 from racketdyn.modal.model import ModalModel
 
-__all__ = ["CSV_COLUMNS", "STATUS_BEYOND_LAW", "STATUS_OK", "STATUS_VIBRATION_LOSS", "ImpactResult"]
+__all__ = [
+    "CSV_COLUMNS",
+    "STATUS_BEYOND_LAW",
+    "STATUS_OK",
+    "STATUS_VIBRATION_LOSS",
+    "ImpactResult",
+    "impact_columns",
+    "write_columns",
+]
 
 STATUS_OK = "ok"
 STATUS_VIBRATION_LOSS = "vibration loss exceeds e_BG"
@@ -177,42 +185,61 @@ class ImpactResult:
 
     def columns(self) -> dict[str, NDArray[Any]]:
         """The ``impact.csv`` table as flat columns, one row per point × speed × support."""
-        n, s, p = self.shape
-        point = np.broadcast_to(np.asarray(self.labels, dtype=object)[:, None, None], (n, s, p))
-        table: dict[str, NDArray[Any]] = {
-            "point": point,
-            "x_m": np.broadcast_to(self.locations[:, 0, None, None], (n, s, p)),
-            "y_m": np.broadcast_to(self.locations[:, 1, None, None], (n, s, p)),
-            "support": np.broadcast_to(np.asarray(self.supports, dtype=object), (n, s, p)),
-            "ball_speed_mps": np.broadcast_to(self.ball_speed[None, :, None], (n, s, p)),
-            "racket_speed_mps": np.broadcast_to(self.racket_speed[None, :, None], (n, s, p)),
-            "reduced_mass_kg": np.broadcast_to(self.reduced_mass[:, None, :], (n, s, p)),
-            "stiffness_n_per_m": self.stiffness,
-            "contact_time_s": self.contact_time,
-            "mean_force_n": self.mean_force,
-            "peak_force_n": self.peak_force,
-            "vibration_energy_j": self.vibration_energy,
-            "cor": self.cor,
-            "rebound_ratio": self.rebound_ratio,
-            "rebound_speed_mps": self.rebound_speed,
-            "peak_deflection_m": self.peak_deflection,
-            "status": self.status,
-        }
-        flat = {name: np.asarray(table[name]).reshape(-1) for name in CSV_COLUMNS}
-        if self.modal_model is not None:
-            for k, name in enumerate(self.modal_model.names):
-                slug = re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_")
-                flat[f"energy_{slug}_j"] = self.mode_energy[..., k].reshape(-1)
-        return flat
+        return impact_columns(self, self.racket_speed[None, :, None])
 
     def write_csv(self, path: Path) -> None:
         """Write ``impact.csv``: SI units named in the header, NaN where status is not ``ok``."""
-        columns = self.columns()
-        with Path(path).open("w", newline="", encoding="utf-8") as handle:
-            writer = csv.writer(handle)
-            writer.writerow(columns)
-            for row in zip(*columns.values(), strict=True):
-                writer.writerow(_format(value) for value in row)
+        write_columns(path, self.columns())
+
+
+def impact_columns(result: Any, racket_speed: NDArray[np.float64]) -> dict[str, NDArray[Any]]:
+    """The ``impact.csv`` columns of any result with :class:`ImpactResult`'s arrays.
+
+    Parameters
+    ----------
+    result : ImpactResult or alike
+        Has ``shape``, ``labels``, ``locations``, ``supports``, ``ball_speed``,
+        ``reduced_mass``, the impact arrays, ``status``, ``modal_model`` and ``mode_energy``.
+    racket_speed : ndarray
+        Racket speed broadcastable to ``(n_points, n_speeds, n_supports)``, m/s (one per speed
+        for :class:`ImpactResult`, one per point for a swing).
+    """
+    n, s, p = result.shape
+    point = np.broadcast_to(np.asarray(result.labels, dtype=object)[:, None, None], (n, s, p))
+    table: dict[str, NDArray[Any]] = {
+        "point": point,
+        "x_m": np.broadcast_to(result.locations[:, 0, None, None], (n, s, p)),
+        "y_m": np.broadcast_to(result.locations[:, 1, None, None], (n, s, p)),
+        "support": np.broadcast_to(np.asarray(result.supports, dtype=object), (n, s, p)),
+        "ball_speed_mps": np.broadcast_to(result.ball_speed[None, :, None], (n, s, p)),
+        "racket_speed_mps": np.broadcast_to(racket_speed, (n, s, p)),
+        "reduced_mass_kg": np.broadcast_to(result.reduced_mass[:, None, :], (n, s, p)),
+        "stiffness_n_per_m": result.stiffness,
+        "contact_time_s": result.contact_time,
+        "mean_force_n": result.mean_force,
+        "peak_force_n": result.peak_force,
+        "vibration_energy_j": result.vibration_energy,
+        "cor": result.cor,
+        "rebound_ratio": result.rebound_ratio,
+        "rebound_speed_mps": result.rebound_speed,
+        "peak_deflection_m": result.peak_deflection,
+        "status": result.status,
+    }
+    flat = {name: np.asarray(table[name]).reshape(-1) for name in CSV_COLUMNS}
+    if result.modal_model is not None:
+        for k, name in enumerate(result.modal_model.names):
+            slug = re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_")
+            flat[f"energy_{slug}_j"] = result.mode_energy[..., k].reshape(-1)
+    return flat
+
+
+def write_columns(path: Path, columns: dict[str, NDArray[Any]]) -> None:
+    """Write flat columns as CSV (header = column names), NaN as ``nan``, 9 digits."""
+    with Path(path).open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(columns)
+        for row in zip(*columns.values(), strict=True):
+            writer.writerow(_format(value) for value in row)
 
 
 def _format(value: Any) -> str:

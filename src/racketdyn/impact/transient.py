@@ -49,7 +49,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from typing import Any, Literal
 
 import numpy as np
@@ -61,18 +61,36 @@ from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_positive, require_range, require_speeds
 from racketdyn.impact.approximate import elastic_contact_time
-from racketdyn.impact.grid import impact_grid, resolve_modal_model
+from racketdyn.impact.grid import ImpactGrid, impact_grid, resolve_modal_model
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.kernel import (
+    NUMBA_AVAILABLE,
+    STATUS_CODE_BEYOND_LAW,
+    STATUS_CODE_OK,
+    integrate_impacts,
+    law_arrays,
+)
 from racketdyn.impact.result import STATUS_BEYOND_LAW, STATUS_OK, ImpactResult
+from racketdyn.impact.system import (
+    TRANSIENT_SUPPORTS,
+    ImpactSystem,
+    impact_system,
+    point_system,
+)
 from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket, as_locations
 
 __all__ = [
+    "ENGINES",
     "INTEGRATORS",
     "STATUS_NO_SEPARATION",
+    "STEPS_PER_CONTACT",
+    "TRANSIENT_SUPPORTS",
     "TransientImpact",
     "predict_transient",
     "simulate_contact",
     "simulate_impact",
+    "simulate_system_contact",
     "unloading_exponent",
 ]
 
@@ -134,6 +152,9 @@ class TransientImpact:
         strings) and compression X.
     modal_coordinates : ndarray (n_t, n_modes)
         Modal coordinates q_k, m·√kg.
+    support_energy_j : float
+        Energy held by the hand and arm at separation (their motion and the grip's springs
+        relative to the rigid-body motion), J; 0 for ``free`` and ``pinned``.
     """
 
     ball_speed_mps: float
@@ -160,6 +181,7 @@ class TransientImpact:
     ball_displacement_m: NDArray[np.float64]
     deflection_m: NDArray[np.float64]
     modal_coordinates: NDArray[np.float64]
+    support_energy_j: float = 0.0
 
     @property
     def stiffness_n_per_m(self) -> float:
@@ -229,7 +251,7 @@ def _scalar_force(law: RestoringForce) -> Callable[[float], float]:
     return force
 
 
-# --- the core ------------------------------------------------------------------------------------
+# --- the reference engine -----------------------------------------------------------------------
 def simulate_contact(
     ball_mass: float,
     e_bg: float,
@@ -243,7 +265,7 @@ def simulate_contact(
     rtol: float = 1e-10,
     method: Integrator = "DOP853",
 ) -> TransientImpact:
-    """Integrate one normal impact from first contact to separation.
+    """Integrate one normal impact on a reduced mass with flexible modes (reference engine).
 
     Parameters
     ----------
@@ -275,15 +297,29 @@ def simulate_contact(
     -------
     TransientImpact
     """
-    m_b = require_positive("ball mass", ball_mass)
+    m_r = float(reduced_mass)
+    if math.isnan(m_r) or m_r <= 0:
+        raise InputError(f"reduced mass must be positive (inf for a clamped head), got {m_r:g}")
+    phi = np.atleast_1d(np.asarray(mode_shapes, dtype=float))
+    w_k = np.atleast_1d(np.asarray(omega, dtype=float))
+    zeta = np.atleast_1d(np.asarray(damping_ratio, dtype=float))
+    if not (phi.shape == w_k.shape == zeta.shape) or phi.ndim != 1:
+        raise InputError("give one mode shape value, omega and damping ratio per mode")
+    if not (np.all(np.isfinite(phi)) and np.all(w_k > 0) and np.all(zeta >= 0)):
+        raise InputError("mode shapes must be finite, omega positive, damping ratios ≥ 0")
+    system = point_system(m_r, phi, w_k, zeta)
+    return simulate_system_contact(
+        system, 0, ball_mass, e_bg, law, ball_speed, racket_speed, m_r, rtol, method
+    )
+
+
+def _check_contact_inputs(
+    ball_mass: float, e_bg: float, ball_speed: float, racket_speed: float, rtol: float, method: str
+) -> tuple[float, float]:
+    require_positive("ball mass", ball_mass)
     require_range("e_bg", e_bg, 0.0, 1.0)
     if e_bg == 0:
         raise InputError("e_bg must be above 0")
-    m_r = float(reduced_mass)
-    if not math.isinf(m_r):
-        require_positive("reduced mass", m_r)
-    elif m_r < 0:
-        raise InputError("reduced mass must be positive (inf for a clamped head)")
     v_ball = require_speeds("ball speed", ball_speed)
     v_racket = require_speeds("racket speed", racket_speed)
     if v_ball.size != 1 or v_racket.size != 1:
@@ -295,55 +331,93 @@ def simulate_contact(
         )
     one_of("method", method, INTEGRATORS)
     require_range("rtol", rtol, 1e-14, 1e-3)
-    phi = np.atleast_1d(np.asarray(mode_shapes, dtype=float))
-    w_k = np.atleast_1d(np.asarray(omega, dtype=float))
-    zeta = np.atleast_1d(np.asarray(damping_ratio, dtype=float))
-    if not (phi.shape == w_k.shape == zeta.shape) or phi.ndim != 1:
-        raise InputError("give one mode shape value, omega and damping ratio per mode")
-    if not (np.all(np.isfinite(phi)) and np.all(w_k > 0) and np.all(zeta >= 0)):
-        raise InputError("mode shapes must be finite, omega positive, damping ratios ≥ 0")
-    n_modes = phi.size
-    compliance = 0.0 if math.isinf(m_r) else 1.0 / m_r
-    stiffness_w, damping_w = w_k**2, 2.0 * zeta * w_k
+    return v_in, v_r
+
+
+def simulate_system_contact(
+    system: ImpactSystem,
+    point: int,
+    ball_mass: float,
+    e_bg: float,
+    law: RestoringForce,
+    ball_speed: float,
+    racket_speed: float = 0.0,
+    reduced_mass: float | None = None,
+    rtol: float = 1e-10,
+    method: Integrator = "DOP853",
+) -> TransientImpact:
+    """Integrate one normal impact on a racket's equations of motion (reference engine).
+
+    ``M q̈ + C q̇ + K q = b_j F`` (:class:`~racketdyn.impact.system.ImpactSystem`) with the ball
+    ``m_B ẍ_B = −F`` on the hysteretic spring, in the frame where the racket starts at rest
+    (its rigid-body motion is a free motion, so the impact depends only on the approach speed);
+    speeds are reported in the lab frame, the racket moving at ``racket_speed`` towards the
+    ball in the rigid-body motion of least energy (the reduced-mass picture).
+
+    Parameters
+    ----------
+    system : ImpactSystem
+        The racket and its support.
+    point : int
+        Which of the system's impact points.
+    ball_mass, e_bg, law, ball_speed, racket_speed, rtol, method
+        As for :func:`simulate_contact`.
+    reduced_mass : float, optional
+        The support's reduced mass for the ``cor`` column (default: the rigid-body one,
+        ``1/c_j``).
+
+    Returns
+    -------
+    TransientImpact
+    """
+    v_in, v_r = _check_contact_inputs(ball_mass, e_bg, ball_speed, racket_speed, rtol, method)
+    m_b = float(ball_mass)
+    approach = v_in + v_r
+    b = system.force_input[point]
+    n = system.n_coordinates
+    rigid = system.rigid_basis()
+    rigid_modal = rigid.T @ b
+    compliance = float(rigid_modal @ rigid_modal)
+    m_r = (
+        (1.0 / compliance if compliance > 0 else math.inf) if reduced_mass is None else reduced_mass
+    )
+    mass_inv = np.linalg.inv(system.mass)
+    input_acc = mass_inv @ b
+    damping_acc = mass_inv @ system.damping
+    stiffness_acc = mass_inv @ system.stiffness
     loading_force = _scalar_force(law)
 
     # scales for the absolute tolerances and the time allowed
-    approach = v_in + v_r
     mu = m_b / (1.0 + m_b * compliance)
     elastic_peak = float(law.deflection_at_energy(0.5 * mu * approach**2))
     if not math.isfinite(elastic_peak):
         elastic_peak = law.max_deflection_m
     t_estimate = float(elastic_contact_time(law, mu, elastic_peak))
-    modal_speed = np.maximum(np.abs(phi), 1e-3 * max(float(np.abs(phi).max(initial=0.0)), 1.0))
-    modal_speed = modal_speed * 2.0 * mu * approach
+    impulse_scale = 2.0 * mu * approach
+    speed_scale = np.maximum(np.abs(input_acc) * impulse_scale, 1e-6 * approach)
+    omega_max = float(np.sqrt(np.abs(np.linalg.eigvals(stiffness_acc)).max(initial=0.0)))
+    length_scale = speed_scale * (min(t_estimate, 1.0 / omega_max) if omega_max > 0 else t_estimate)
     scale = np.concatenate(
-        [
-            [elastic_peak, approach, elastic_peak, approach],
-            modal_speed / w_k,
-            modal_speed,
-            [0.5 * mu * approach**2],
-        ]
+        [[elastic_peak, approach], length_scale, speed_scale, [0.5 * mu * approach**2]]
     )
-    atol = rtol * scale
+    atol = 1e-2 * rtol * scale  # the scales are generous: 1 % of them
 
     def deflection(y: NDArray[np.float64]) -> float:
-        return float(y[0] - y[2] - phi @ y[4 : 4 + n_modes])
+        return float(y[0] - b @ y[2 : 2 + n])
 
     def deflection_rate(y: NDArray[np.float64]) -> float:
-        return float(y[1] - y[3] - phi @ y[4 + n_modes : 4 + 2 * n_modes])
+        return float(y[1] - b @ y[2 + n : 2 + 2 * n])
 
     def make_rhs(force: Callable[[float], float]) -> Callable[[float, Any], NDArray[np.float64]]:
         def rhs(t: float, y: NDArray[np.float64]) -> NDArray[np.float64]:
             f = force(deflection(y))
-            q, q_dot = y[4 : 4 + n_modes], y[4 + n_modes : 4 + 2 * n_modes]
+            q, q_dot = y[2 : 2 + n], y[2 + n : 2 + 2 * n]
             dy = np.empty_like(y)
             dy[0] = y[1]
             dy[1] = -f / m_b
-            dy[2] = y[3]
-            dy[3] = f * compliance
-            dy[4 : 4 + n_modes] = q_dot
-            dy[4 + n_modes : 4 + 2 * n_modes] = phi * f - damping_w * q_dot - stiffness_w * q
-            dy[-1] = float(damping_w @ (q_dot * q_dot))
+            dy[2 : 2 + n] = q_dot
+            dy[2 + n : 2 + 2 * n] = input_acc * f - damping_acc @ q_dot - stiffness_acc @ q
+            dy[-1] = float(q_dot @ system.damping @ q_dot)
             return dy
 
         return rhs
@@ -360,9 +434,9 @@ def simulate_contact(
     beyond = event(lambda y: deflection(y) - law.max_deflection_m, 1.0)
     separation = event(deflection, -1.0)
 
-    # state: ball x, v; racket rigid w, v; q; q̇; damping loss.  +: into the strings.
-    y0 = np.zeros(5 + 2 * n_modes)
-    y0[1], y0[3] = v_in, -v_r
+    # state: ball x, v; q; q̇; damping loss.  +: into the strings; racket at rest at first.
+    y0 = np.zeros(3 + 2 * n)
+    y0[1] = approach
     t0, peak, loading, status = 0.0, 0.0, True, STATUS_NO_SEPARATION
     t_allowed = 50.0 * t_estimate
     times: list[NDArray[np.float64]] = []
@@ -422,50 +496,117 @@ def simulate_contact(
     time = np.concatenate(times)
     history = np.concatenate(states, axis=1)
     force_history = np.concatenate(forces)
-    q_history = history[4 : 4 + n_modes].T
-    compression = history[0] - history[2] - q_history @ phi
+    q_history = history[2 : 2 + n][system.mode_index].T
+    compression = history[0] - b @ history[2 : 2 + n]
+    n_modes = system.mode_index.size
     if status != STATUS_OK:
         log.warning("transient impact at %.3g m/s: %s (results are NaN)", approach, status)
         nan = math.nan
         return TransientImpact(
             v_in, v_r, m_r, mu, nan, nan, nan, nan, nan, nan, nan, nan, nan,
             np.full(n_modes, nan), nan, nan, nan, nan, status,
-            time, force_history, history[0], compression, q_history,
+            time, force_history, history[0], compression, q_history, nan,
         )  # fmt: skip
+    q_end, q_dot_end = y0[2 : 2 + n], y0[2 + n : 2 + 2 * n]
+    rigid_energy, mode_energy, support_energy = system.energies(q_end, q_dot_end)
+    return _assemble(
+        v_in, v_r, m_b, e_bg, law, m_r, compliance, float(y0[1]), t0, peak,
+        float(rigid_energy), mode_energy, float(support_energy), float(y0[-1]),
+        time, force_history, history[0], compression, q_history,
+    )  # fmt: skip
 
-    y_end = y0
-    v_ball_out, v_racket_out = float(y_end[1]), float(y_end[3])
-    q_end, q_dot_end = y_end[4 : 4 + n_modes], y_end[4 + n_modes : 4 + 2 * n_modes]
-    mode_energy = 0.5 * q_dot_end**2 + 0.5 * stiffness_w * q_end**2
-    impulse = m_b * (v_in - v_ball_out)
-    cor = (v_racket_out - v_ball_out) / (v_in + v_r)
-    mass_ratio = m_b * compliance
-    gain = 0.0 if compliance == 0 else 0.5 * m_r * (v_racket_out**2 - v_r**2)
+
+def _lab_numbers(
+    v_in: ArrayLike, v_r: ArrayLike, m_b: float, e_bg: float, law: RestoringForce,
+    m_r: ArrayLike, compliance: ArrayLike, ball_velocity_rest: ArrayLike,
+    contact_time: ArrayLike, peak: ArrayLike, rigid_energy_rest: ArrayLike,
+    mode_energy: ArrayLike, support_energy: ArrayLike, damping_loss: ArrayLike | None,
+) -> dict[str, NDArray[np.float64]]:  # fmt: skip
+    """The lab-frame numbers of impacts from their rest-frame end states (both engines).
+
+    Arrays broadcast together; ``mode_energy`` has the modes on its last axis.  With
+    ``damping_loss=None`` (compiled engine) the damping loss is what the other terms of the
+    energy balance leave; the reference engine integrates it.
+    """
+    v_in, v_r, m_r, c_r, v_out_rest, t_c, x_max = (
+        np.asarray(x, dtype=float)
+        for x in (v_in, v_r, m_r, compliance, ball_velocity_rest, contact_time, peak)
+    )
+    modes = np.asarray(mode_energy, dtype=float)
+    approach = v_in + v_r
+    impulse = m_b * (approach - v_out_rest)
+    racket_out = c_r * impulse - v_r  # lab rigid-body velocity of the point
+    rebound = v_r - v_out_rest  # lab, + away from the strings
+    rebound_ratio = (rebound - v_r) / approach
+    mass_ratio = np.where(np.isinf(m_r), 0.0, m_b / m_r)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        gain = np.where(c_r > 0, 0.5 * (racket_out**2 - v_r**2) / c_r, 0.0)
+    hysteresis = (1.0 - e_bg**2) * np.asarray(law.energy(x_max))
+    vibration = modes.sum(axis=-1)
+    if damping_loss is None:
+        damping_loss = (
+            0.5 * m_b * (approach**2 - v_out_rest**2) - np.asarray(rigid_energy_rest)
+            - vibration - np.asarray(support_energy) - hysteresis
+        )  # fmt: skip
+    mu = m_b / (1.0 + m_b * c_r)
+    return {
+        "mu": mu,
+        "contact_time": t_c,
+        "peak_force": np.asarray(law.force(x_max)),
+        "mean_force": impulse / t_c,
+        "impulse": impulse,
+        "peak_deflection": x_max,
+        "rebound_speed": rebound,
+        "racket_velocity": racket_out,
+        "rebound_ratio": rebound_ratio,
+        "cor": rebound_ratio * (1.0 + mass_ratio) + mass_ratio,
+        "vibration_energy": vibration,
+        "hysteresis_loss": hysteresis,
+        "damping_loss": np.asarray(damping_loss, dtype=float),
+        "racket_energy_gain": gain,
+        "stiffness": np.pi**2 * mu / t_c**2,
+    }
+
+
+def _assemble(
+    v_in: float, v_r: float, m_b: float, e_bg: float, law: RestoringForce, m_r: float,
+    compliance: float, ball_velocity_rest: float, contact_time: float, peak: float,
+    rigid_energy_rest: float, mode_energy: NDArray[np.float64], support_energy: float,
+    damping_loss: float | None, time: NDArray[np.float64], force: NDArray[np.float64],
+    ball_displacement: NDArray[np.float64], compression: NDArray[np.float64],
+    modal_coordinates: NDArray[np.float64],
+) -> TransientImpact:  # fmt: skip
+    """One impact's :class:`TransientImpact` from its rest-frame end state."""
+    n = _lab_numbers(
+        v_in, v_r, m_b, e_bg, law, m_r, compliance, ball_velocity_rest, contact_time, peak,
+        rigid_energy_rest, mode_energy, support_energy, damping_loss,
+    )  # fmt: skip
     return TransientImpact(
         ball_speed_mps=v_in,
         racket_speed_mps=v_r,
         reduced_mass_kg=m_r,
-        mu_kg=mu,
-        contact_time_s=t0,
-        peak_force_n=loading_force(peak),  # F_un ≤ F_GB ≤ F_GB(X_max) everywhere
-        mean_force_n=impulse / t0,
-        impulse_ns=impulse,
+        mu_kg=float(n["mu"]),
+        contact_time_s=contact_time,
+        peak_force_n=float(n["peak_force"]),
+        mean_force_n=float(n["mean_force"]),
+        impulse_ns=float(n["impulse"]),
         peak_deflection_m=peak,
-        rebound_speed_mps=-v_ball_out,
-        racket_velocity_mps=v_racket_out,
-        rebound_ratio=(cor - mass_ratio) / (1.0 + mass_ratio),
-        cor=cor,
-        mode_energy_j=mode_energy,
-        vibration_energy_j=float(mode_energy.sum()),
-        hysteresis_loss_j=(1.0 - e_bg**2) * float(law.energy(peak)),
-        damping_loss_j=float(y_end[-1]),
-        racket_energy_gain_j=gain,
-        status=status,
+        rebound_speed_mps=float(n["rebound_speed"]),
+        racket_velocity_mps=float(n["racket_velocity"]),
+        rebound_ratio=float(n["rebound_ratio"]),
+        cor=float(n["cor"]),
+        mode_energy_j=np.asarray(mode_energy, dtype=float),
+        vibration_energy_j=float(n["vibration_energy"]),
+        hysteresis_loss_j=float(n["hysteresis_loss"]),
+        damping_loss_j=float(n["damping_loss"]),
+        racket_energy_gain_j=float(n["racket_energy_gain"]),
+        status=STATUS_OK,
         time_s=time,
-        force_n=force_history,
-        ball_displacement_m=history[0],
+        force_n=force,
+        ball_displacement_m=ball_displacement,
         deflection_m=compression,
-        modal_coordinates=q_history,
+        modal_coordinates=modal_coordinates,
+        support_energy_j=support_energy,
     )
 
 
@@ -482,8 +623,9 @@ def simulate_impact(
     include_string_bed: bool = False,
     rtol: float = 1e-10,
     method: Integrator = "DOP853",
+    hand: Hand | None = None,
 ) -> TransientImpact:
-    """Simulate a normal impact of the ball at one point of the racket face.
+    """Simulate a normal impact of the ball at one point of the racket face (reference engine).
 
     Parameters
     ----------
@@ -495,8 +637,8 @@ def simulate_impact(
         Impact point (x, y) on the string bed, m.
     ball_speed : float
         Incoming ball speed towards the strings, m/s.
-    support : {"free", "pinned"}
-        Support condition for the rigid-body reduced mass.
+    support : {"free", "pinned", "hand"}
+        Support condition (:mod:`racketdyn.impact.system`).
     racket_speed : float
         Speed of the impact point towards the ball, m/s.
     modal_model : ModalModel, None or "racket"
@@ -510,6 +652,8 @@ def simulate_impact(
         Integrator relative tolerance.
     method : {"DOP853", "Radau"}
         Integrator.
+    hand : Hand, optional
+        The hand and arm of the ``hand`` support (default :class:`~racketdyn.impact.hand.Hand`).
 
     Returns
     -------
@@ -519,23 +663,30 @@ def simulate_impact(
     if xy.shape[0] != 1:
         raise InputError(f"impact point: give one (x, y) point (got {xy.shape[0]})")
     racket.head.check_inside(xy)
-    one_of("support", support, SUPPORTS)
+    one_of("support", support, TRANSIENT_SUPPORTS)
     model = resolve_modal_model(racket, modal_model, include_string_bed)
     law = law or compound_law(racket, ball)
-    shapes = np.zeros(0) if model is None else model.mode_shapes_at(xy)[0]
-    return simulate_contact(
-        ball.mass_kg,
-        ball.e_bg,
-        law,
-        float(racket.reduced_mass(xy, support)[0]),
-        ball_speed,
-        racket_speed,
-        shapes,
-        np.zeros(0) if model is None else model.omega,
-        np.zeros(0) if model is None else model.damping_ratio,
-        rtol=rtol,
-        method=method,
-    )
+    system = impact_system(racket, model, support, xy, hand if support == "hand" else None)
+    reduced = _reduced_mass(racket, xy, support, hand)[0]
+    return simulate_system_contact(
+        system, 0, ball.mass_kg, ball.e_bg, law, ball_speed, racket_speed, float(reduced),
+        rtol, method,
+    )  # fmt: skip
+
+
+def _reduced_mass(
+    racket: Racket, xy: NDArray[np.float64], support: str, hand: Hand | None
+) -> NDArray[np.float64]:
+    if support == "hand":
+        return (hand or Hand()).reduced_mass(racket, xy)
+    return racket.reduced_mass(xy, support)
+
+
+Engine = Literal["auto", "compiled", "reference"]
+ENGINES: tuple[str, ...] = ("auto", "compiled", "reference")
+STEPS_PER_CONTACT = 400
+"""Default steps of the compiled engine over one estimated contact time: the rebound ratio
+within ≈ 1e-5 of the reference engine (``tests/test_kernel.py``, ``docs/develop.md``)."""
 
 
 def predict_transient(
@@ -551,6 +702,9 @@ def predict_transient(
     include_string_bed: bool = False,
     rtol: float = 1e-10,
     method: Integrator = "DOP853",
+    engine: Engine = "auto",
+    hand: Hand | None = None,
+    steps_per_contact: int = STEPS_PER_CONTACT,
 ) -> ImpactResult:
     """Simulate every point × speed × support and collect an :class:`ImpactResult`.
 
@@ -565,7 +719,7 @@ def predict_transient(
         Impact points (x, y), m.
     ball_speed : array_like, shape (s,)
         Incoming ball speeds, m/s.
-    supports : str or sequence of {"free", "pinned"}
+    supports : str or sequence of {"free", "pinned", "hand"}
         Support conditions.
     racket_speed : float or array_like, shape (s,)
         Speed of the impact point towards the ball, m/s (one, or one per ball speed).
@@ -578,9 +732,17 @@ def predict_transient(
     include_string_bed : bool
         Keep string-bed modes.
     rtol : float
-        Integrator relative tolerance.
+        Relative tolerance of the reference engine.
     method : {"DOP853", "Radau"}
-        Integrator.
+        Integrator of the reference engine.
+    engine : {"auto", "compiled", "reference"}
+        ``compiled``: the numba batch integrator (:mod:`racketdyn.impact.kernel`, second order,
+        ``steps_per_contact``); ``reference``: one :func:`scipy.integrate.solve_ivp` per
+        impact (``rtol``, ``method``); ``auto``: compiled when numba is installed.
+    hand : Hand, optional
+        The hand and arm of the ``hand`` support.
+    steps_per_contact : int
+        Steps of the compiled engine over one estimated contact time.
 
     Returns
     -------
@@ -588,89 +750,184 @@ def predict_transient(
         Arrays shaped ``(n_points, n_speeds, n_supports)``; ``inputs["method"]`` is
         ``"transient"``.
     """
+    one_of("engine", engine, ENGINES)
+    if isinstance(steps_per_contact, bool) or not isinstance(steps_per_contact, int):
+        raise InputError(f"steps_per_contact must be a whole number (got {steps_per_contact!r})")
+    if steps_per_contact < 16:
+        raise InputError(f"steps_per_contact must be at least 16 (got {steps_per_contact})")
     grid = impact_grid(
-        racket,
-        ball,
-        locations,
-        ball_speed,
-        supports,
-        racket_speed,
-        modal_model,
-        labels,
-        law,
-        include_string_bed,
+        racket, ball, locations, ball_speed, supports, racket_speed, modal_model, labels, law,
+        include_string_bed, allowed_supports=TRANSIENT_SUPPORTS, hand=hand,
+    )  # fmt: skip
+    if hand is not None and "hand" not in grid.supports:
+        raise InputError("a hand is given but no support is 'hand'; add support 'hand'")
+    if engine == "auto":
+        engine = "compiled" if NUMBA_AVAILABLE else "reference"
+    if engine == "compiled" and not NUMBA_AVAILABLE:
+        raise InputError("engine 'compiled' needs numba (pip install numba); use 'reference'")
+    xy, model, law = grid.locations, grid.model, grid.law
+    systems = [
+        impact_system(racket, model, s, xy, hand if s == "hand" else None) for s in grid.supports
+    ]
+    run = _run_compiled if engine == "compiled" else _run_reference
+    out, mode_energy, status = run(grid, systems, ball, rtol, method, steps_per_contact)
+    settings: dict[str, Any] = (
+        {"engine": "compiled", "steps_per_contact": steps_per_contact, "order": 2}
+        if engine == "compiled"
+        else {"engine": "reference", "method": method, "rtol": rtol}
     )
-    xy, model, law, reduced = grid.locations, grid.model, grid.law, grid.reduced_mass
-    v_ball, v_racket = grid.ball_speed, grid.racket_speed
-    shapes = np.zeros((len(xy), 0)) if model is None else model.mode_shapes_at(xy)
-    omega = np.zeros(0) if model is None else model.omega
-    zeta = np.zeros(0) if model is None else model.damping_ratio
-
-    shape = grid.shape
-    fields = (
-        "stiffness",
-        "peak_deflection",
-        "contact_time",
-        "mean_force",
-        "peak_force",
-        "vibration_energy",
-        "cor",
-        "rebound_ratio",
-        "rebound_speed",
-    )
-    out = {name: np.full(shape, np.nan) for name in fields}
-    mode_energy = np.full((*shape, omega.size), np.nan)
-    status = np.full(shape, STATUS_OK, dtype=object)
-    # Plain path: one solve_ivp per impact.  The compiled batch path (numba: a fixed-step or
-    # embedded RK over all impacts at once, with the same phase/event logic) goes here, with
-    # this loop kept as its fallback and reference.
-    for i, j, k in np.ndindex(shape):
-        impact = simulate_contact(
-            ball.mass_kg,
-            ball.e_bg,
-            law,
-            float(reduced[i, k]),
-            float(v_ball[j]),
-            float(v_racket[j]),
-            shapes[i],
-            omega,
-            zeta,
-            rtol=rtol,
-            method=method,
-        )
-        status[i, j, k] = impact.status
-        values = {
-            "stiffness": impact.stiffness_n_per_m,
-            "peak_deflection": impact.peak_deflection_m,
-            "contact_time": impact.contact_time_s,
-            "mean_force": impact.mean_force_n,
-            "peak_force": impact.peak_force_n,
-            "vibration_energy": impact.vibration_energy_j,
-            "cor": impact.cor,
-            "rebound_ratio": impact.rebound_ratio,
-            "rebound_speed": impact.rebound_speed_mps,
-        }
-        for name, value in values.items():
-            out[name][i, j, k] = value
-        mode_energy[i, j, k] = impact.mode_energy_j
-
     inputs = grid.inputs(
         ball,
         "transient",
-        integrator={"method": method, "rtol": rtol},
+        integrator=settings,
         hysteresis="F_un = F_GB(X) (X/X_p)^p, p from e_BG",
         include_string_bed=include_string_bed,
+        hand=None if "hand" not in grid.supports else asdict(hand or Hand()),
     )
     return ImpactResult(
         locations=xy,
         labels=grid.labels,
-        ball_speed=v_ball,
-        racket_speed=v_racket,
+        ball_speed=grid.ball_speed,
+        racket_speed=grid.racket_speed,
         supports=grid.supports,
-        reduced_mass=reduced,
+        reduced_mass=grid.reduced_mass,
         mode_energy=mode_energy,
         status=status.astype(str),
         modal_model=model,
         inputs=inputs,
         **out,
     )
+
+
+_FIELDS = (
+    "stiffness",
+    "peak_deflection",
+    "contact_time",
+    "mean_force",
+    "peak_force",
+    "vibration_energy",
+    "cor",
+    "rebound_ratio",
+    "rebound_speed",
+)
+
+
+def _values(impact: TransientImpact) -> dict[str, float]:
+    return {
+        "stiffness": impact.stiffness_n_per_m,
+        "peak_deflection": impact.peak_deflection_m,
+        "contact_time": impact.contact_time_s,
+        "mean_force": impact.mean_force_n,
+        "peak_force": impact.peak_force_n,
+        "vibration_energy": impact.vibration_energy_j,
+        "cor": impact.cor,
+        "rebound_ratio": impact.rebound_ratio,
+        "rebound_speed": impact.rebound_speed_mps,
+    }
+
+
+_Outputs = tuple[dict[str, NDArray[np.float64]], NDArray[np.float64], NDArray[Any]]
+
+
+def _empty_outputs(shape: tuple[int, int, int], n_modes: int) -> _Outputs:
+    out = {name: np.full(shape, np.nan) for name in _FIELDS}
+    return out, np.full((*shape, n_modes), np.nan), np.full(shape, STATUS_OK, dtype=object)
+
+
+def _run_reference(
+    grid: ImpactGrid, systems: list[ImpactSystem], ball: Ball, rtol: float, method: str,
+    steps_per_contact: int,
+) -> _Outputs:  # fmt: skip
+    """One solve_ivp per impact, in physical coordinates."""
+    n_modes = 0 if grid.model is None else grid.model.n_modes
+    out, mode_energy, status = _empty_outputs(grid.shape, n_modes)
+    for i, j, k in np.ndindex(grid.shape):
+        impact = simulate_system_contact(
+            systems[k], i, ball.mass_kg, ball.e_bg, grid.law, float(grid.ball_speed[j]),
+            float(grid.racket_speed[j]), float(grid.reduced_mass[i, k]), rtol,
+            method,  # type: ignore[arg-type]
+        )  # fmt: skip
+        status[i, j, k] = impact.status
+        for name, value in _values(impact).items():
+            out[name][i, j, k] = value
+        mode_energy[i, j, k] = impact.mode_energy_j
+    return out, mode_energy, status
+
+
+def _run_compiled(
+    grid: ImpactGrid, systems: list[ImpactSystem], ball: Ball, rtol: float, method: str,
+    steps_per_contact: int,
+) -> _Outputs:  # fmt: skip
+    """All impacts in one call of the numba kernel, then the energies vectorised."""
+    n_points, n_speeds, n_supports = grid.shape
+    law, m_b = grid.law, ball.mass_kg
+    forms = [system.pole_residue() for system in systems]
+    n_poles = max(form.poles.size for form in forms)
+    n_sys = n_points * n_supports  # one system row per (point, support)
+    poles = np.full((n_sys, n_poles), -1.0 + 0j)
+    residues = np.zeros((n_sys, n_poles), complex)
+    weights = np.zeros((n_sys, n_poles))
+    compliance = np.zeros(n_sys)
+    for k, form in enumerate(forms):
+        rows = np.arange(n_points) * n_supports + k
+        poles[rows, : form.poles.size] = form.poles
+        residues[rows, : form.poles.size] = form.residues
+        weights[rows, : form.poles.size] = form.weights
+        compliance[rows] = form.rigid_compliance
+    index = np.arange(n_sys).reshape(n_points, 1, n_supports)
+    system_index = np.broadcast_to(index, grid.shape).ravel()
+    v_in = np.broadcast_to(grid.ball_speed[None, :, None], grid.shape).ravel()
+    v_r = np.broadcast_to(grid.racket_speed[None, :, None], grid.shape).ravel()
+    approach = v_in + v_r
+    c_r = compliance[system_index]
+    mu = m_b / (1.0 + m_b * c_r)
+    energy = 0.5 * mu * approach**2
+    peak = np.asarray(law.deflection_at_energy(energy), dtype=float)
+    peak = np.where(np.isfinite(peak), peak, law.max_deflection_m)
+    t_estimate = np.asarray(elastic_contact_time(law, mu, peak))
+    step = t_estimate / steps_per_contact
+    kind, coefficients = law_arrays(law.kind, law.coefficients)
+    modal, raw = integrate_impacts(
+        system_index, approach, step, poles, residues, weights, compliance, m_b, ball.e_bg,
+        kind, coefficients, law.max_deflection_m, 50 * steps_per_contact,
+    )  # fmt: skip
+    n_modes = 0 if grid.model is None else grid.model.n_modes
+    out, mode_energy, status = _empty_outputs(grid.shape, n_modes)
+    code = raw[:, 0].astype(int)
+    flat_status = np.where(
+        code == STATUS_CODE_OK,
+        STATUS_OK,
+        np.where(code == STATUS_CODE_BEYOND_LAW, STATUS_BEYOND_LAW, STATUS_NO_SEPARATION),
+    )
+    status[...] = flat_status.reshape(grid.shape)
+    # physical end state per impact: rigid part + Σ weight Re(v_k u_k), per support
+    rigid_energy = np.zeros(code.size)
+    support_energy = np.zeros(code.size)
+    modes = np.zeros((code.size, n_modes))
+    for k, (system, form) in enumerate(zip(systems, forms, strict=True)):
+        flat = np.flatnonzero(np.arange(code.size) % n_supports == k)
+        point = flat // (n_speeds * n_supports)
+        p = form.poles.size
+        state = np.einsum(
+            "ipn,ip->in", form.state_vectors[point] * form.weights[None, :, None], modal[flat, :p]
+        ).real
+        n_q = system.n_coordinates
+        q = state[:, :n_q] + form.rigid_vectors[point] * raw[flat, 5][:, None]
+        q_dot = state[:, n_q:] + form.rigid_vectors[point] * raw[flat, 6][:, None]
+        rigid_energy[flat], modes[flat], support_energy[flat] = system.energies(q, q_dot)
+    reduced = np.broadcast_to(grid.reduced_mass[:, None, :], grid.shape).ravel()
+    ok = code == STATUS_CODE_OK
+    with np.errstate(invalid="ignore", divide="ignore"):
+        numbers = _lab_numbers(
+            v_in, v_r, m_b, ball.e_bg, law, reduced, c_r, raw[:, 4], raw[:, 1], raw[:, 3],
+            rigid_energy, modes, support_energy, None,
+        )  # fmt: skip
+    for name in _FIELDS:
+        out[name] = np.where(ok, numbers[name], np.nan).reshape(grid.shape)
+    mode_energy = np.where(ok[:, None], modes, np.nan).reshape((*grid.shape, n_modes))
+    if np.any(code != STATUS_CODE_OK):
+        log.warning(
+            "transient: %d of %d impacts have no valid numbers (see the status column)",
+            int(np.sum(code != STATUS_CODE_OK)), code.size,
+        )  # fmt: skip
+    return out, mode_energy, status

@@ -1,0 +1,375 @@
+"""The racket's linear equations of motion under a normal force at the impact point.
+
+Both engines of the transient model (:mod:`racketdyn.impact.transient`) start here:
+
+    ``M q̈ + C q̇ + K q = b_j F``,   w_j = b_jᵀ q  (the face's displacement at point j),
+
+with coordinates ``q`` chosen by the support (a parameter, never a copy of the code):
+
+* ``free``: the racket's rigid body — translation of the centre of mass and the two in-plane
+  rotations about it (the full in-plane inertia tensor, so off-axis lead counts) — plus the
+  flexible modes;
+* ``pinned``: the two rotations about the grip pivot (the paper's eq 4 with roll) plus the
+  flexible modes, which stay those of the model given, as in the approximate method;
+* ``hand``: the ``free`` coordinates plus an arm mass joined to the grip by springs and dashpots
+  (:class:`racketdyn.impact.hand.Hand`).
+
+The flexible modes (mass-normalised, ``q_k`` with unit modal mass) carry no momentum, so the
+rigid and modal blocks of ``M`` are uncoupled and ``b_jᵀ M⁻¹ b_j`` of the rigid block is the
+reduced mass's compliance ``1/M_r`` (eq 4).
+
+The reference engine integrates these equations as they stand.  The compiled engine uses the
+same equations in pole–residue form (:meth:`ImpactSystem.pole_residue`): the receptance at j is
+
+    ``H_j(s) = c_j / s² + Σ_k r_jk / (s − λ_k)``,
+
+``c_j`` the rigid-body compliance (modes with K = C = 0, split off exactly) and λ_k, r_jk the
+poles and residues of the rest, which may be non-proportionally damped (the hand).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+import scipy.linalg
+from numpy.typing import ArrayLike, NDArray
+
+from racketdyn.errors import InputError, one_of
+from racketdyn.impact.hand import Hand
+from racketdyn.modal import ModalModel
+from racketdyn.racket import Racket, as_locations
+
+__all__ = [
+    "TRANSIENT_SUPPORTS",
+    "CoordinateKind",
+    "ImpactSystem",
+    "PoleResidue",
+    "impact_system",
+    "point_system",
+]
+
+TRANSIENT_SUPPORTS: tuple[str, ...] = ("free", "pinned", "hand")
+"""Supports of the transient model; the approximate method has ``free`` and ``pinned``."""
+
+CoordinateKind = Literal["rigid", "mode", "arm"]
+_POLE_IMAG_TOL = 1e-9  # a pole with |Im λ| below this × |λ| is real (an overdamped motion)
+
+
+@dataclass(frozen=True, eq=False)
+class PoleResidue:
+    """The receptance at each impact point in pole–residue form.
+
+    ``H_j(s) = rigid_compliance[j] / s² + Σ_k weight[k] · Re-part of r_jk / (s − λ_k)``:
+    each complex pole stands for itself and its conjugate (``weight`` 2), a real pole for
+    itself (``weight`` 1), so the displacement is ``c_j ρ + Σ_k weight_k Re(r_jk u_k)`` with
+    ``ρ̈ = F`` and ``u̇_k = λ_k u_k + F``.
+
+    Attributes
+    ----------
+    rigid_compliance : ndarray (n_points,)
+        ``c_j = 1/M_r``, 1/kg (0 if the support leaves no rigid-body motion).
+    poles : ndarray (n_poles,), complex
+        λ_k with Im λ_k ≥ 0, 1/s.
+    residues : ndarray (n_points, n_poles), complex
+        r_jk, s/kg.
+    weights : ndarray (n_poles,)
+        2 for a complex pole (and its conjugate), 1 for a real pole.
+    state_vectors : ndarray (n_points, n_poles, 2 n), complex
+        ``v_jk`` such that the physical state ``(q, q̇)`` of the non-rigid part is
+        ``Σ_k weight_k Re(v_jk u_k)``.
+    rigid_vectors : ndarray (n_points, n)
+        ``R Rᵀ b_j``: the physical displacement (velocity) of the rigid part is this times ρ (ρ̇).
+    """
+
+    rigid_compliance: NDArray[np.float64]
+    poles: NDArray[np.complex128]
+    residues: NDArray[np.complex128]
+    weights: NDArray[np.float64]
+    state_vectors: NDArray[np.complex128]
+    rigid_vectors: NDArray[np.float64]
+
+    def receptance(self, frequency_hz: ArrayLike) -> NDArray[np.complex128]:
+        """H_j(iω) at each point, shaped ``(n_points, n_frequencies)``, m/N."""
+        s = 2j * np.pi * np.atleast_1d(np.asarray(frequency_hz, dtype=float))
+        flexible = self.residues[:, :, None] / (s[None, None, :] - self.poles[None, :, None])
+        conjugate = np.conj(self.residues)[:, :, None] / (
+            s[None, None, :] - np.conj(self.poles)[None, :, None]
+        )
+        pair = self.weights[None, :, None] == 2.0
+        total = flexible + np.where(pair, conjugate, 0.0)
+        return np.asarray(self.rigid_compliance[:, None] / s[None, :] ** 2 + total.sum(axis=1))
+
+
+@dataclass(frozen=True, eq=False)
+class ImpactSystem:
+    """Equations of motion ``M q̈ + C q̇ + K q = b_j F`` of a supported racket.
+
+    Attributes
+    ----------
+    support : str
+        ``free``, ``pinned``, ``hand`` or ``point`` (a reduced mass and modes, no racket).
+    coordinate_names : tuple of str
+        One name per coordinate of ``q``.
+    coordinate_kinds : tuple of {"rigid", "mode", "arm"}
+        Rigid-body coordinates of the racket, flexible modal coordinates, the arm.
+    mass, damping, stiffness : ndarray (n, n)
+        M (kg, kg·m², 1), C and K in the same coordinates.
+    force_input : ndarray (n_points, n)
+        b_j: the generalised forces of a unit normal force at each impact point.
+    locations : ndarray (n_points, 2)
+        Impact points (x, y), m.
+    omega : ndarray (n_modes,)
+        Natural angular frequencies of the flexible modes, rad/s (energy per mode).
+    mode_names : tuple of str
+        Names of the flexible modes.
+    """
+
+    support: str
+    coordinate_names: tuple[str, ...]
+    coordinate_kinds: tuple[CoordinateKind, ...]
+    mass: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    force_input: NDArray[np.float64]
+    locations: NDArray[np.float64]
+    omega: NDArray[np.float64]
+    mode_names: tuple[str, ...]
+
+    @property
+    def n_coordinates(self) -> int:
+        """Number of coordinates in q."""
+        return len(self.coordinate_names)
+
+    @property
+    def mode_index(self) -> NDArray[np.intp]:
+        """Indices of the flexible modal coordinates in q."""
+        return np.flatnonzero(np.array(self.coordinate_kinds) == "mode")
+
+    def rigid_basis(self) -> NDArray[np.float64]:
+        """M-orthonormal basis R of the rigid-body motions (K R = C R = 0), shaped (n, n_rigid)."""
+        null = scipy.linalg.null_space(self.stiffness, rcond=1e-10)
+        if null.size == 0:
+            return np.zeros((self.n_coordinates, 0))
+        if not np.allclose(self.damping @ null, 0.0, atol=1e-9 * max(1.0, _norm(self.damping))):
+            raise InputError(
+                f"{self.support} support: a dashpot acts on a motion no spring resists; give it a "
+                "spring too"
+            )
+        gram = null.T @ self.mass @ null
+        return np.asarray(null @ np.linalg.inv(np.linalg.cholesky(gram)).T)
+
+    def pole_residue(self) -> PoleResidue:
+        """The receptance at every point in pole–residue form (for the compiled engine).
+
+        The rigid-body motions are split off exactly (``R``, M-orthonormal); the rest of the
+        coordinates, M-orthogonal to them, have ``M_e ë + C_e ė + K_e e = E ᵀ b F`` with K_e
+        positive definite, written first-order and diagonalised once for all points.
+        """
+        rigid = self.rigid_basis()
+        n = self.n_coordinates
+        elastic = scipy.linalg.null_space(rigid.T @ self.mass) if rigid.size else np.eye(n)
+        n_e = elastic.shape[1]
+        m_e = elastic.T @ self.mass @ elastic
+        c_e = elastic.T @ self.damping @ elastic
+        k_e = elastic.T @ self.stiffness @ elastic
+        b = self.force_input
+        rigid_modal = b @ rigid  # (n_points, n_rigid)
+        rigid_compliance = np.sum(rigid_modal**2, axis=1)
+        rigid_vectors = rigid_modal @ rigid.T
+        if n_e == 0:
+            empty = np.zeros((b.shape[0], 0), dtype=complex)
+            return PoleResidue(
+                rigid_compliance, np.zeros(0, complex), empty, np.zeros(0),
+                np.zeros((b.shape[0], 0, 2 * n), complex), rigid_vectors,
+            )  # fmt: skip
+        m_inv = np.linalg.inv(m_e)
+        first_order = np.block([[np.zeros((n_e, n_e)), np.eye(n_e)], [-m_inv @ k_e, -m_inv @ c_e]])
+        eigenvalues, right = np.linalg.eig(first_order)
+        left = np.linalg.inv(right)
+        keep = eigenvalues.imag > -_POLE_IMAG_TOL * np.abs(eigenvalues)
+        real = np.abs(eigenvalues.imag) <= _POLE_IMAG_TOL * np.abs(eigenvalues)
+        poles = eigenvalues[keep]
+        weights = np.where(real[keep], 1.0, 2.0)
+        b_e = b @ elastic  # (n_points, n_e)
+        inputs = np.concatenate([np.zeros_like(b_e), b_e @ m_inv.T], axis=1)  # (n_points, 2 n_e)
+        beta = inputs @ left[keep].T  # (n_points, n_poles)
+        gamma = b_e @ right[:n_e, keep]  # output w = b_eᵀ e
+        residues = gamma * beta
+        # physical (q, q̇) = blockdiag(E, E) · Σ V_k β_k u_k
+        lift = np.zeros((2 * n, 2 * n_e))
+        lift[:n, :n_e] = elastic
+        lift[n:, n_e:] = elastic
+        physical = lift @ right[:, keep]  # (2n, n_poles)
+        state_vectors = physical.T[None, :, :] * beta[:, :, None]
+        return PoleResidue(rigid_compliance, poles, residues, weights, state_vectors, rigid_vectors)
+
+    def energies(
+        self, displacement: NDArray[np.float64], velocity: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """Rigid-body kinetic energy, energy per flexible mode and the rest (the hand), J.
+
+        Parameters
+        ----------
+        displacement, velocity : ndarray (..., n)
+            q and q̇.
+
+        Returns
+        -------
+        rigid, modes, support : ndarray (...,), (..., n_modes), (...,)
+            ``½ ṙᵀṙ`` of the rigid-body motions (``ṙ = Rᵀ M q̇``); ``½ q̇_k² + ½ ω_k² q_k²`` per
+            flexible mode; and the rest of ``½ q̇ᵀMq̇ + ½ qᵀKq`` (the arm and the grip's
+            springs; zero without a hand).
+        """
+        q, v = np.asarray(displacement), np.asarray(velocity)
+        total = 0.5 * np.einsum("...i,ij,...j->...", v, self.mass, v) + 0.5 * np.einsum(
+            "...i,ij,...j->...", q, self.stiffness, q
+        )
+        rigid_rate = v @ (self.mass @ self.rigid_basis())
+        rigid = 0.5 * np.sum(rigid_rate**2, axis=-1)
+        idx = self.mode_index
+        modes = 0.5 * v[..., idx] ** 2 + 0.5 * self.omega**2 * q[..., idx] ** 2
+        return rigid, modes, total - rigid - modes.sum(axis=-1)
+
+
+def _kinds(kind: CoordinateKind, count: int) -> tuple[CoordinateKind, ...]:
+    return (kind,) * count
+
+
+def _norm(matrix: NDArray[np.float64]) -> float:
+    return float(np.abs(matrix).max(initial=0.0))
+
+
+# --- building systems ---------------------------------------------------------------------------
+def point_system(
+    reduced_mass: float,
+    mode_shapes: ArrayLike = (),
+    omega: ArrayLike = (),
+    damping_ratio: ArrayLike = (),
+) -> ImpactSystem:
+    """One impact point: a rigid reduced mass M_r (eq 4) plus flexible modes.
+
+    Parameters
+    ----------
+    reduced_mass : float
+        M_r at the point, kg; ``inf`` for a clamped head (no rigid-body motion).
+    mode_shapes, omega, damping_ratio : array_like (n_modes,)
+        φ_k at the point (1/√kg), natural angular frequencies (rad/s) and damping ratios.
+
+    Returns
+    -------
+    ImpactSystem
+    """
+    phi = np.atleast_1d(np.asarray(mode_shapes, dtype=float))
+    w_k = np.atleast_1d(np.asarray(omega, dtype=float))
+    zeta = np.atleast_1d(np.asarray(damping_ratio, dtype=float))
+    rigid = not np.isinf(reduced_mass)
+    rigid_names: tuple[str, ...] = ("point",) if rigid else ()
+    names = rigid_names + tuple(f"mode {k + 1}" for k in range(phi.size))
+    kinds = _kinds("rigid", int(rigid)) + _kinds("mode", phi.size)
+    mass = np.diag(np.concatenate([[reduced_mass] if rigid else [], np.ones(phi.size)]))
+    damping = np.diag(np.concatenate([[0.0] if rigid else [], 2.0 * zeta * w_k]))
+    stiffness = np.diag(np.concatenate([[0.0] if rigid else [], w_k**2]))
+    force = np.concatenate([[1.0] if rigid else [], phi])[None, :]
+    return ImpactSystem(
+        "point", names, kinds, mass, damping, stiffness, force, np.full((1, 2), np.nan), w_k,
+        tuple(names[int(rigid):]),
+    )  # fmt: skip
+
+
+def impact_system(
+    racket: Racket,
+    model: ModalModel | None,
+    support: str,
+    locations: ArrayLike,
+    hand: Hand | None = None,
+) -> ImpactSystem:
+    """The racket's equations of motion for a support, at the given impact points.
+
+    Parameters
+    ----------
+    racket : Racket
+        Mass properties (point masses included).
+    model : ModalModel or None
+        Flexible modes (mass-normalised); None for a rigid racket.
+    support : {"free", "pinned", "hand"}
+        Support condition.
+    locations : array_like (n_points, 2)
+        Impact points (x, y), m.
+    hand : Hand, optional
+        The hand and arm for ``support="hand"`` (default :class:`Hand`).
+
+    Returns
+    -------
+    ImpactSystem
+    """
+    one_of("support", support, TRANSIENT_SUPPORTS)
+    xy = as_locations(locations)
+    props = racket.mass_properties
+    if support == "pinned":
+        origin, inertia = racket.pivot_m, props.inertia_about(racket.pivot_m)
+        names: tuple[str, ...] = ()
+    else:
+        origin, inertia, names = props.centre_m, props.inertia_kgm2, ("translation",)
+    rigid_names = (*names, "roll", "pitch")
+    n_rigid = len(rigid_names)
+    rigid_mass = np.zeros((n_rigid, n_rigid))
+    if support != "pinned":
+        rigid_mass[0, 0] = props.mass_kg
+    rigid_mass[-2:, -2:] = inertia
+
+    def rigid_input(points: NDArray[np.float64]) -> NDArray[np.float64]:
+        lever = np.column_stack([points[:, 1] - origin[1], -(points[:, 0] - origin[0])])
+        if support == "pinned":
+            return lever
+        return np.column_stack([np.ones(len(points)), lever])
+
+    n_modes = 0 if model is None else model.n_modes
+    omega = np.zeros(0) if model is None else model.omega
+    zeta = np.zeros(0) if model is None else model.damping_ratio
+    mode_names = () if model is None else tuple(model.names)
+    arm = 1 if support == "hand" else 0
+    n = n_rigid + n_modes + arm
+    mass = np.zeros((n, n))
+    damping = np.zeros((n, n))
+    stiffness = np.zeros((n, n))
+    mass[:n_rigid, :n_rigid] = rigid_mass
+    modal = slice(n_rigid, n_rigid + n_modes)
+    mass[modal, modal] = np.eye(n_modes)
+    damping[modal, modal] = np.diag(2.0 * zeta * omega)
+    stiffness[modal, modal] = np.diag(omega**2)
+
+    def displacement_map(points: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Rows mapping q to the normal displacement at each point."""
+        rows = np.zeros((len(points), n))
+        rows[:, :n_rigid] = rigid_input(points)
+        if model is not None:
+            rows[:, modal] = model.mode_shapes_at(points)
+        return rows
+
+    force_input = displacement_map(xy)
+    kinds = _kinds("rigid", n_rigid) + _kinds("mode", n_modes)
+    coordinate_names = rigid_names + mode_names
+    if support == "hand":
+        hand = hand or Hand()
+        grip = np.array([[x, 0.0] for x in hand.grip_points_m])
+        share = 1.0 / len(grip)
+        relative = displacement_map(grip)
+        relative[:, -1] = -1.0  # the grip's springs pull towards the arm
+        for row in relative:
+            mass[:-1, :-1] += share * hand.hand_mass_kg * np.outer(row[:-1], row[:-1])
+            stiffness += share * hand.stiffness_n_per_m * np.outer(row, row)
+            damping += share * hand.damping_ns_per_m * np.outer(row, row)
+        roll = n_rigid - 2  # the roll rotation about the long axis
+        stiffness[roll, roll] += hand.roll_stiffness_nm_per_rad
+        damping[roll, roll] += hand.roll_damping_nms_per_rad
+        mass[-1, -1] = hand.arm_mass_kg
+        kinds = kinds + _kinds("arm", 1)
+        coordinate_names = (*coordinate_names, "arm")
+    elif hand is not None:
+        raise InputError(f"a hand is given but the support is {support!r}; use support='hand'")
+    return ImpactSystem(
+        support, coordinate_names, kinds, mass, damping, stiffness, force_input, xy, omega,
+        mode_names,
+    )  # fmt: skip
