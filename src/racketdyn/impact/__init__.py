@@ -1,14 +1,49 @@
-"""Impact of ball and racket: the paper's approximate method and its result."""
+"""Impact of ball and racket: the paper's approximate method, the transient simulation, the
+swinging racket, oblique impacts with spin, and the racket's twist off the axis."""
 
 from racketdyn.impact.approximate import elastic_contact_time, predict, tangent_peak_deflection
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.oblique import (
+    ObliqueCurve,
+    ObliqueImpact,
+    TangentialContact,
+    oblique_curve,
+    simulate_oblique,
+)
 from racketdyn.impact.result import ImpactResult
 from racketdyn.impact.spectrum import half_sine_force, half_sine_spectrum
+from racketdyn.impact.swing import Swing, SwingResult, predict_swing, sweet_spots
+from racketdyn.impact.system import TRANSIENT_SUPPORTS, ImpactSystem, impact_system
+from racketdyn.impact.transient import (
+    TransientImpact,
+    predict_transient,
+    simulate_impact,
+)
+from racketdyn.impact.twist import TwistCurve, twist_curve
 
 __all__ = [
+    "TRANSIENT_SUPPORTS",
+    "Hand",
     "ImpactResult",
+    "ImpactSystem",
+    "ObliqueCurve",
+    "ObliqueImpact",
+    "Swing",
+    "SwingResult",
+    "TangentialContact",
+    "TransientImpact",
+    "TwistCurve",
     "elastic_contact_time",
     "half_sine_force",
     "half_sine_spectrum",
+    "impact_system",
+    "oblique_curve",
     "predict",
+    "predict_swing",
+    "predict_transient",
+    "simulate_impact",
+    "simulate_oblique",
+    "sweet_spots",
     "tangent_peak_deflection",
+    "twist_curve",
 ]

@@ -94,6 +94,12 @@ class ImpactResult:
         The modes used (None: rigid racket).
     inputs : dict
         What produced the result (racket, ball, laws, version) for run records.
+    energy_terms : dict of str to ndarray, optional
+        Transient model only: where the ball's energy went, J, in the frame where the racket is
+        at rest before the impact (``energy_in_j`` = ``ball_energy_out_j`` +
+        ``racket_energy_j`` (rigid body) + ``vibration_energy_j`` + ``support_energy_j`` (hand
+        and arm) + ``hysteresis_loss_j`` + ``damping_loss_j``; see
+        :data:`racketdyn.impact.transient.ENERGY_TERMS`).
     """
 
     locations: NDArray[np.float64]
@@ -115,6 +121,7 @@ class ImpactResult:
     status: NDArray[np.str_]
     modal_model: ModalModel | None
     inputs: dict[str, Any]
+    energy_terms: dict[str, NDArray[np.float64]] | None = None
 
     @property
     def shape(self) -> tuple[int, int, int]:
@@ -160,7 +167,13 @@ class ImpactResult:
             )
         }
         labels = tuple(label for p in parts for label in p.labels)
-        return replace(first, labels=labels, **joined)
+        terms = None
+        if all(p.energy_terms is not None for p in parts) and first.energy_terms is not None:
+            terms = {
+                name: np.concatenate([p.energy_terms[name] for p in parts], axis=0)  # type: ignore[index]
+                for name in first.energy_terms
+            }
+        return replace(first, labels=labels, energy_terms=terms, **joined)
 
     def support_index(self, support: str) -> int:
         """Index of a support on the last axis."""

@@ -49,7 +49,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any, Literal
 
 import numpy as np
@@ -81,6 +81,7 @@ from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket, as_locations
 
 __all__ = [
+    "ENERGY_TERMS",
     "ENGINES",
     "INTEGRATORS",
     "STATUS_NO_SEPARATION",
@@ -155,6 +156,11 @@ class TransientImpact:
     support_energy_j : float
         Energy held by the hand and arm at separation (their motion and the grip's springs
         relative to the rigid-body motion), J; 0 for ``free`` and ``pinned``.
+    coordinate_names : tuple of str
+        Names of the racket's coordinates q (:class:`~racketdyn.impact.system.ImpactSystem`).
+    final_displacement, final_velocity : ndarray (n_coordinates,)
+        q and q̇ at separation, in the frame where the racket was at rest before the impact
+        (m or rad; m/s or rad/s; modal coordinates in m·√kg).
     """
 
     ball_speed_mps: float
@@ -182,6 +188,9 @@ class TransientImpact:
     deflection_m: NDArray[np.float64]
     modal_coordinates: NDArray[np.float64]
     support_energy_j: float = 0.0
+    coordinate_names: tuple[str, ...] = ()
+    final_displacement: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    final_velocity: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
 
     @property
     def stiffness_n_per_m(self) -> float:
@@ -509,11 +518,17 @@ def simulate_system_contact(
         )  # fmt: skip
     q_end, q_dot_end = y0[2 : 2 + n], y0[2 + n : 2 + 2 * n]
     rigid_energy, mode_energy, support_energy = system.energies(q_end, q_dot_end)
-    return _assemble(
+    impact = _assemble(
         v_in, v_r, m_b, e_bg, law, m_r, compliance, float(y0[1]), t0, peak,
         float(rigid_energy), mode_energy, float(support_energy), float(y0[-1]),
         time, force_history, history[0], compression, q_history,
     )  # fmt: skip
+    return replace(
+        impact,
+        coordinate_names=system.coordinate_names,
+        final_displacement=np.array(q_end),
+        final_velocity=np.array(q_dot_end),
+    )
 
 
 def _lab_numbers(
@@ -770,7 +785,7 @@ def predict_transient(
         impact_system(racket, model, s, xy, hand if s == "hand" else None) for s in grid.supports
     ]
     run = _run_compiled if engine == "compiled" else _run_reference
-    out, mode_energy, status = run(grid, systems, ball, rtol, method, steps_per_contact)
+    out, mode_energy, status, terms = run(grid, systems, ball, rtol, method, steps_per_contact)
     settings: dict[str, Any] = (
         {"engine": "compiled", "steps_per_contact": steps_per_contact, "order": 2}
         if engine == "compiled"
@@ -795,6 +810,7 @@ def predict_transient(
         status=status.astype(str),
         modal_model=model,
         inputs=inputs,
+        energy_terms=terms,
         **out,
     )
 
@@ -826,10 +842,45 @@ def _values(impact: TransientImpact) -> dict[str, float]:
     }
 
 
-_Outputs = tuple[dict[str, NDArray[np.float64]], NDArray[np.float64], NDArray[Any]]
+_Outputs = tuple[
+    dict[str, NDArray[np.float64]],
+    NDArray[np.float64],
+    NDArray[Any],
+    dict[str, NDArray[np.float64]],
+]
+
+ENERGY_TERMS: tuple[str, ...] = (
+    "energy_in_j",
+    "ball_energy_out_j",
+    "racket_energy_j",
+    "vibration_energy_j",
+    "support_energy_j",
+    "hysteresis_loss_j",
+    "damping_loss_j",
+)
+"""Where the ball's energy goes, J, in the frame where the racket is at rest before impact:
+the first term is the sum of the others (``ImpactResult.energy_terms``)."""
 
 
-def _empty_outputs(shape: tuple[int, int, int], n_modes: int) -> _Outputs:
+def _energy_terms(impact: TransientImpact, ball_mass: float) -> dict[str, float]:
+    """The energy balance of one impact in the racket's rest frame before impact, J."""
+    v_r = impact.racket_speed_mps
+    approach = impact.ball_speed_mps + v_r
+    return {
+        "energy_in_j": 0.5 * ball_mass * approach**2,
+        "ball_energy_out_j": 0.5 * ball_mass * (impact.rebound_speed_mps - v_r) ** 2,
+        # rigid body: ½ c J² = ½ (its point's velocity change) · J
+        "racket_energy_j": 0.5 * (impact.racket_velocity_mps + v_r) * impact.impulse_ns,
+        "vibration_energy_j": impact.vibration_energy_j,
+        "support_energy_j": impact.support_energy_j,
+        "hysteresis_loss_j": impact.hysteresis_loss_j,
+        "damping_loss_j": impact.damping_loss_j,
+    }
+
+
+def _empty_outputs(
+    shape: tuple[int, int, int], n_modes: int
+) -> tuple[dict[str, NDArray[np.float64]], NDArray[np.float64], NDArray[Any]]:
     out = {name: np.full(shape, np.nan) for name in _FIELDS}
     return out, np.full((*shape, n_modes), np.nan), np.full(shape, STATUS_OK, dtype=object)
 
@@ -841,6 +892,7 @@ def _run_reference(
     """One solve_ivp per impact, in physical coordinates."""
     n_modes = 0 if grid.model is None else grid.model.n_modes
     out, mode_energy, status = _empty_outputs(grid.shape, n_modes)
+    terms = {name: np.full(grid.shape, np.nan) for name in ENERGY_TERMS}
     for i, j, k in np.ndindex(grid.shape):
         impact = simulate_system_contact(
             systems[k], i, ball.mass_kg, ball.e_bg, grid.law, float(grid.ball_speed[j]),
@@ -851,7 +903,9 @@ def _run_reference(
         for name, value in _values(impact).items():
             out[name][i, j, k] = value
         mode_energy[i, j, k] = impact.mode_energy_j
-    return out, mode_energy, status
+        for name, value in _energy_terms(impact, ball.mass_kg).items():
+            terms[name][i, j, k] = value
+    return out, mode_energy, status, terms
 
 
 def _run_compiled(
@@ -924,10 +978,20 @@ def _run_compiled(
         )  # fmt: skip
     for name in _FIELDS:
         out[name] = np.where(ok, numbers[name], np.nan).reshape(grid.shape)
+    rest = {
+        "energy_in_j": 0.5 * m_b * approach**2,
+        "ball_energy_out_j": 0.5 * m_b * raw[:, 4] ** 2,
+        "racket_energy_j": rigid_energy,
+        "vibration_energy_j": numbers["vibration_energy"],
+        "support_energy_j": support_energy,
+        "hysteresis_loss_j": numbers["hysteresis_loss"],
+        "damping_loss_j": numbers["damping_loss"],
+    }
+    terms = {name: np.where(ok, rest[name], np.nan).reshape(grid.shape) for name in ENERGY_TERMS}
     mode_energy = np.where(ok[:, None], modes, np.nan).reshape((*grid.shape, n_modes))
     if np.any(code != STATUS_CODE_OK):
         log.warning(
             "transient: %d of %d impacts have no valid numbers (see the status column)",
             int(np.sum(code != STATUS_CODE_OK)), code.size,
         )  # fmt: skip
-    return out, mode_energy, status
+    return out, mode_energy, status, terms
