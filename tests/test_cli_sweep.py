@@ -36,3 +36,43 @@ def test_bad_spec_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1
     assert "tension_n" in err[0]
+
+
+HAND_SPEC = """
+name = "arm"
+[impacts]
+grid = 3
+ball_speeds_mps = [20.0]
+method = "transient"
+[variables]
+support = ["pinned", "hand"]
+hand.arm_mass_kg = [0.5, 1.5]
+"""
+
+
+def test_transient_sweep_with_the_hand(tmp_path: Path) -> None:
+    import json
+
+    import xarray as xr
+
+    (tmp_path / "spec.toml").write_text(HAND_SPEC)
+    out = tmp_path / "out"
+    argv = ["sweep", str(tmp_path / "spec.toml"), "--serial", "--no-figures", "--out", str(out)]
+    assert main(argv) == 0
+    with xr.open_dataset(out / "sweep.nc", engine="scipy") as ds:
+        assert ds.attrs["method"] == "transient"
+        assert list(ds["support"].values) == ["pinned", "hand"]
+        assert list(ds["hand.arm_mass_kg"].values) == [0.5, 1.5]
+        assert int((ds["status"] != 0).sum()) == 0
+    record = json.loads((out / "run.json").read_text())
+    assert record["status_counts"]["ok"] == record["impacts"]
+
+
+def test_hand_with_the_approximate_method_is_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "spec.toml").write_text(HAND_SPEC.replace('"transient"', '"approximate"'))
+    assert main(["sweep", str(tmp_path / "spec.toml"), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1
+    assert "'hand' needs [impacts].method = 'transient'" in err[0]

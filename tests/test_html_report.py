@@ -4,6 +4,8 @@ a real browser (headless Chromium), which must load it offline without a script 
 from __future__ import annotations
 
 import base64
+import csv
+import html as _html
 import io
 import json
 import os
@@ -19,7 +21,7 @@ from PIL import Image
 import racketdyn as rd
 from racketdyn.cli import main
 from racketdyn.errors import InputError
-from racketdyn.html_report import REPORT_NAME, SECTIONS, write_report
+from racketdyn.html_report import _CAPTIONS, REPORT_NAME, SECTIONS, write_report
 
 pytestmark = pytest.mark.slow
 
@@ -52,7 +54,8 @@ CAPTIONS = (
 
 @pytest.fixture(scope="module")
 def run_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """What ``racketdyn demo`` writes, with small settings: rig, FRFs, contact, compare, predict.
+    """What ``racketdyn demo`` writes, with small settings: rig, FRFs, contact, compare, predict
+    (both impact models, as the demo does).
 
     The rig double-hits and overloads now and then, so the quality table has reasons to show.
     """
@@ -68,7 +71,17 @@ def run_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
         ["frf", f"{d}/rig/hammer_hand.uff", *frf, "--out", f"{d}/frf_hand"],
         ["contact", *tests, "--labels", "free,hand", "--out", f"{d}/contact"],
         ["compare", *frfs, "--band", "40,850", "--out", f"{d}/compare"],
-        ["predict", "--grid", "5", "--speed", "10,20,30", "--out", f"{d}/predict"],
+        [
+            "predict",
+            "--grid",
+            "5",
+            "--speed",
+            "10,20,30",
+            "--model",
+            "both",
+            "--out",
+            f"{d}/predict",
+        ],
     ]
     for argv in commands:
         assert main(argv) == 0, argv
@@ -203,6 +216,56 @@ def test_missing_sections_are_listed_as_not_run(run_dir: Path, tmp_path: Path) -
         assert f'<section id="{key}">' in text
         assert SECTIONS[key] not in not_run
     assert rd.default_racket().name in text
+
+
+def _section(page: str, key: str) -> str:
+    start = page.index(f'<section id="{key}">')
+    return page[start : page.index("</section>", start)]
+
+
+def test_the_transient_section_shows_the_comparison(run_dir: Path, page: str) -> None:
+    section = _section(page, "transient")
+    assert SECTIONS["transient"] in section
+    captions = " ".join(re.findall(r"<figcaption>(.*?)</figcaption>", section, re.S))
+    for key in ("transient_comparison_face", "transient_comparison_speed", "transient_histories"):
+        _, what = _CAPTIONS[key]
+        assert _html.escape(what[0].upper() + what[1:]) in captions, key
+        assert f"predict/{key}.png" in captions
+    # one row per support and speed of comparison.csv, the largest |Δ| where comparison.csv has it
+    body = section[section.index("<tbody>") : section.index("</tbody>")]
+    rows = re.findall(r"<tr>(.*?)</tr>", body, re.S)
+    assert len(rows) == 2 * 3
+    with (run_dir / "predict" / "comparison.csv").open(encoding="utf-8") as handle:
+        table = list(csv.DictReader(handle))
+    free_20 = [r for r in table if r["support"] == "free" and float(r["ball_speed_mps"]) == 20]
+    largest = max(abs(float(r["difference_rebound_ratio"])) for r in free_20)
+    cells = re.findall(r"<td[^>]*>(.*?)</td>", rows[1])
+    assert cells[:3] == ["free", "20", f"{largest:.3f}"]
+    assert "approximate against transient, 20 m/s, free" in page  # at a glance
+
+
+def test_the_mode_table_still_reads_the_identification(page: str) -> None:
+    """compare's comparison.csv (modes paired by MAC) is not predict's (the two models)."""
+    section = _section(page, "modes")
+    table = section[section.index("Free against hand-held") :]
+    first = re.search(r"<tbody>\s*<tr>(.*?)</tr>", table, re.S)
+    assert first is not None
+    cells = re.findall(r"<td[^>]*>(.*?)</td>", first.group(1))
+    assert cells[0] == "2-node bending"
+    assert 110 < float(cells[1]) < 130  # free 2-node bending, Hz (the rig's 120 Hz)
+    assert "Nodes of the first mode along the long axis" in section
+
+
+def test_no_transient_section_without_a_comparison(run_dir: Path, tmp_path: Path) -> None:
+    shutil.copytree(run_dir / "predict", tmp_path / "predict")
+    (tmp_path / "predict" / "comparison.csv").unlink()
+    text = write_report(tmp_path, racket=rd.default_racket()).read_text(encoding="utf-8")
+    assert '<section id="transient">' not in text
+    not_run = text[text.index('<section id="not-run">') :]
+    assert SECTIONS["transient"] in not_run
+    assert "--model both" in not_run
+    for key in ("impact", "vibration", "rebound"):
+        assert f'<section id="{key}">' in text
 
 
 def test_an_empty_folder_is_an_input_error(tmp_path: Path) -> None:

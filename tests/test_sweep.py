@@ -18,11 +18,14 @@ from distributed import LocalCluster
 
 import racketdyn as rd
 import racketdyn.sweep as sweep
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.transient import predict_transient
 from racketdyn.sweep import (
     SerialExecutor,
     SweepSpec,
     Variable,
     build_design,
+    build_hand,
     factorial_view,
     load_sweep_spec,
     make_executor,
@@ -273,6 +276,116 @@ def test_swingweight_variable_sets_the_swingweight(racket: rd.Racket, ball: rd.B
         assert built.balance_m == racket.balance_m
 
 
+# --- the transient method ---------------------------------------------------------------------
+CENTRE, NEAR_TIP, OFF_AXIS = (0.505, 0.0), (0.62, 0.0), (0.45, 0.06)
+
+
+def test_transient_sweep_equals_direct_calls(
+    racket: rd.Racket, ball: rd.Ball, tmp_path: Path
+) -> None:
+    """Each design's numbers are those of predict_transient on its racket and ball, for each
+    (ball speed, racket speed) pair the sweep combines."""
+    spec = SweepSpec(
+        racket=racket,
+        ball=ball,
+        locations=[CENTRE, NEAR_TIP, OFF_AXIS],
+        ball_speeds=[10.0, 25.0],
+        racket_speeds=[0.0, 10.0],
+        variables=(Variable.scalar("e_bg", [0.80, 0.86]),),
+        method="transient",
+        name="transient",
+    )
+    ds = run_sweep(spec, tmp_path, SerialExecutor(), figures=False)
+    assert ds.attrs["method"] == "transient"
+    assert np.all(ds["status"].values == 0)
+    for design in spec.designs:
+        racket_d, ball_d, _ = build_design(racket, ball, spec.variables, design.settings)
+        for k, swing in enumerate(spec.racket_speeds):
+            direct = predict_transient(
+                racket_d, ball_d, spec.locations, spec.ball_speeds, spec.supports, swing
+            )
+            for name, attribute in (
+                ("rebound_ratio", "rebound_ratio"),
+                ("rebound_speed_mps", "rebound_speed"),
+                ("contact_time_s", "contact_time"),
+                ("peak_force_n", "peak_force"),
+                ("vibration_energy_j", "vibration_energy"),
+            ):
+                # to the rounding of the mode-shape interpolator (one BLAS thread in the sweep)
+                np.testing.assert_allclose(
+                    ds[name].isel(design=design.index, racket_speed=k).values,
+                    getattr(direct, attribute),
+                    rtol=1e-6,
+                    err_msg=name,
+                )
+    # the livelier ball rebounds faster at every impact (the hysteresis returns e_BG² of the
+    # stored energy)
+    slow, lively = (ds["rebound_speed_mps"].isel(design=i).values for i in (0, 1))
+    assert np.all(lively > slow)
+
+
+def test_hand_variables_change_the_hand_support_only(
+    racket: rd.Racket, ball: rd.Ball, tmp_path: Path
+) -> None:
+    spec = SweepSpec(
+        racket=racket,
+        ball=ball,
+        locations=[CENTRE, NEAR_TIP],
+        ball_speeds=[20.0],
+        supports=("free", "hand"),
+        variables=(Variable.scalar("hand.arm_mass_kg", [0.5, 2.0]),),
+        method="transient",
+        name="arm",
+    )
+    ds = run_sweep(spec, tmp_path, SerialExecutor())
+    np.testing.assert_array_equal(ds["hand.arm_mass_kg"].values, [0.5, 2.0])
+    free = ds["rebound_ratio"].sel(support="free").values
+    np.testing.assert_allclose(free[0], free[1], rtol=1e-12)
+    for design in spec.designs:
+        hand = build_hand(spec.variables, design.settings)
+        assert hand.arm_mass_kg == dict(design.settings)["hand.arm_mass_kg"]
+        assert hand.stiffness_n_per_m == Hand().stiffness_n_per_m  # not swept
+        direct = predict_transient(racket, ball, spec.locations, [20.0], ("hand",), hand=hand)
+        np.testing.assert_allclose(
+            ds["rebound_ratio"].isel(design=design.index, racket_speed=0).sel(support="hand"),
+            direct.rebound_ratio[:, :, 0],
+            rtol=1e-6,
+        )
+    assert (tmp_path / "summary_hand.arm_mass_kg.png").stat().st_size > 10_000
+    import matplotlib.pyplot as plt
+
+    figure, ax = plt.subplots()
+    assert plot_centre_rebound(ds, "hand.arm_mass_kg", ax=ax).get_xlabel() == "arm mass (kg)"
+    plt.close(figure)
+
+
+def test_hand_variables_as_dotted_keys_or_a_table(tmp_path: Path) -> None:
+    head = TRANSIENT + "support = ['hand']\n"
+    dotted = head + "hand.arm_mass_kg = [0.5, 1.5]\nhand.damping_ns_per_m = 20.0\n"
+    table = head + "[variables.hand]\narm_mass_kg = [0.5, 1.5]\ndamping_ns_per_m = 20.0\n"
+    specs = []
+    for name, text in (("dotted", dotted), ("table", table)):
+        (tmp_path / f"{name}.toml").write_text(text, encoding="utf-8")
+        specs.append(load_sweep_spec(tmp_path / f"{name}.toml"))
+    assert specs[0].sha256 == specs[1].sha256
+    assert [v.name for v in specs[0].variables] == ["hand.arm_mass_kg", "hand.damping_ns_per_m"]
+    hands = [build_hand(specs[0].variables, d.settings) for d in specs[0].designs]
+    assert [(h.arm_mass_kg, h.damping_ns_per_m) for h in hands] == [(0.5, 20.0), (1.5, 20.0)]
+
+
+def test_every_transient_status_has_a_code() -> None:
+    import racketdyn.impact.transient as transient
+
+    statuses = {
+        value
+        for name, value in vars(transient).items()
+        if name.startswith("STATUS_") and isinstance(value, str)
+    }
+    assert transient.STATUS_NO_SEPARATION in statuses
+    assert statuses <= set(sweep.STATUS_CODES)
+    assert len(set(sweep.STATUS_CODES.values())) == len(sweep.STATUS_CODES)
+
+
 # --- summary ----------------------------------------------------------------------------------
 def test_summary_figures_and_table(one_at_a_time: tuple[xr.Dataset, Path]) -> None:
     ds, out = one_at_a_time
@@ -416,6 +529,16 @@ e_bg = [0.80, 0.86]
 """
 
 
+TRANSIENT = """
+[impacts]
+grid = 3
+ball_speeds_mps = [20.0]
+method = "transient"
+
+[variables]
+"""
+
+
 def test_the_documented_example_is_valid(tmp_path: Path) -> None:
     block = re.search(r"```toml\n(.*?)```", DOCS.read_text(encoding="utf-8"), re.DOTALL)
     assert block is not None
@@ -458,8 +581,13 @@ BAD_SPECS = [
     ("foo = [1.0]\n", r"\[variables\]\.foo: unknown variable; allowed: point_mass"),
     (
         "hand_stiffness_n_per_m = [1e4]\n",
-        r"hand_stiffness_n_per_m: hand parameters need the "
-        r"transient impact model \(issue 5\)",
+        r"\[variables\]\.hand_stiffness_n_per_m: unknown hand parameter; the hand parameters are "
+        r"hand\.arm_mass_kg, hand\.stiffness_n_per_m, hand\.damping_ns_per_m",
+    ),
+    (
+        "hand.arm_mass_kg = [0.5, 1.0]\n",  # the approximate method has no hand
+        r"\[variables\]\.hand\.arm_mass_kg: hand parameters need \[impacts\]\.method = "
+        r"'transient' and support 'hand'",
     ),
     ('tension_n = "high"\n', r"\[variables\]\.tension_n must be a number \(got 'high'\)"),
     (
@@ -485,8 +613,8 @@ BAD_SPECS = [
     ("frame_stiffness_scale = [0.0]\n", r"frame_stiffness_scale must be a positive number"),
     (
         "support = ['free', 'hand']\n",
-        r"\[variables\]\.support must be one of free, pinned "
-        r"\(got 'hand'\)",
+        r"\[variables\]\.support: 'hand' needs \[impacts\]\.method = 'transient'; the approximate "
+        r"method has no hand",
     ),
     (
         "inertia_cg_kgm2 = [0.013]\nswingweight_kgcm2 = [300.0]\n",
@@ -524,9 +652,21 @@ BAD_FILES = [
     (BASE.replace("grid = 4", "speed = 3"), r"\[impacts\]: unknown key 'speed'"),
     (BASE.replace("ball_speeds_mps = [20.0]", ""), r"\[impacts\]\.ball_speeds_mps is missing"),
     (
-        BASE.replace("grid = 4", 'grid = 4\nmethod = "transient"'),
-        r"\[impacts\]\.method: the "
-        r"transient impact model \(issue 5\) is not available yet",
+        BASE.replace("grid = 4", 'grid = 4\nmethod = "implicit"'),
+        r"\[impacts\]\.method must be one of approximate, transient \(got 'implicit'\)",
+    ),
+    (
+        TRANSIENT + "hand.arm_mass_kg = [0.5, 1.0]\n",  # no hand support to change
+        r"\[variables\]\.hand\.arm_mass_kg: hand parameters change the 'hand' support only",
+    ),
+    (
+        TRANSIENT + "support = ['hand']\n[variables.hand]\nstiffness_n_per_m = [2e4, 0.0]\n",
+        r"\[variables\]\.hand\.stiffness_n_per_m: hand\.stiffness_n_per_m = 0: "
+        r"hand\.stiffness_n_per_m must be a finite positive number",
+    ),
+    (
+        TRANSIENT + "support = ['free', 'hand', 'free']\n",
+        r"\[variables\]\.support: name each support once",
     ),
     (BASE.replace("[0.80, 0.86]", "[0.80, 0.80]"), r"\[variables\]\.e_bg: a value is listed twice"),
     (

@@ -12,6 +12,7 @@ import logging
 import os
 import platform
 import sys
+import time
 from collections.abc import Sequence
 from dataclasses import replace
 from datetime import UTC, datetime
@@ -28,6 +29,17 @@ from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_speeds
 from racketdyn.impact import ImpactResult, predict
+from racketdyn.impact.comparison import (
+    COMPARED,
+    HISTORY_COLUMNS,
+    History,
+    ModelComparison,
+    compare_models,
+    simulate_histories,
+    write_histories_csv,
+)
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, predict_transient
 from racketdyn.io import (
     default_racket,
     load_racket,
@@ -137,9 +149,19 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
     racket_speed = _parse_speeds("--racket-speed", args.racket_speed)
     if len(racket_speed) not in (1, len(speeds)):
         raise InputError("--racket-speed takes one speed, or one per --speed value")
-    supports = [one_of("--support", s, SUPPORTS) for s in _parse_list("--support", args.support)]
-    if len(set(supports)) != len(supports):
-        raise InputError(f"--support: name each support once (got {args.support})")
+    supports = _supports(args)
+    hand = _hand(args, supports, defaults)
+    transient_wanted = args.model in ("transient", "both")
+    if not transient_wanted:
+        if args.engine is not None:
+            raise InputError("--engine is for the transient model: add --model transient or both")
+    elif args.stiffness_reading is not None and args.model == "transient":
+        raise InputError(
+            "--stiffness-reading is a choice of the approximate method (eq 10); the transient "
+            "model integrates the contact: drop it, or use --model approx or both"
+        )
+    engine = args.engine or "auto"
+    stiffness_reading = args.stiffness_reading or "period"
     locations, labels, points_source = _points(args, racket)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -150,45 +172,102 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
     model = None if args.rigid else modal_model_for(racket)
     law = compound_law(racket, ball)
 
-    options: dict[str, Any] = {
-        "supports": supports,
-        "racket_speed": np.asarray(racket_speed),
-        "modal_model": model,
-        "law": law,
-        "include_string_bed": args.include_string_bed,
-        "stiffness_reading": args.stiffness_reading,
-    }
-    per_point = len(speeds) * len(supports)
-    if len(locations) * per_point <= CHUNK_IMPACTS:
-        result = predict(racket, ball, locations, speeds, labels=labels, **options)
-    else:
-        step = max(CHUNK_IMPACTS // per_point, 1)
-        parts = []
-        with Progress(console=console, transient=True) as progress:
-            task = progress.add_task("predicting", total=len(locations))
-            for start in range(0, len(locations), step):
-                stop = min(start + step, len(locations))
-                chunk_labels = labels[start:stop]
-                parts.append(
-                    predict(
-                        racket, ball, locations[start:stop], speeds, labels=chunk_labels, **options
-                    )
-                )
-                progress.update(task, completed=stop)
-        result = ImpactResult.concatenate(parts)
-    result.write_csv(out / "impact.csv")
-    written = [out / "impact.csv"]
-    if not args.no_figures:
-        from racketdyn.report import FIGURES, write_paper_figures  # matplotlib only when drawing
+    written: list[Path] = []
+    approximate = transient = None
+    if args.model in ("approx", "both"):
+        approximate = _predict_approximate(
+            racket,
+            ball,
+            locations,
+            speeds,
+            labels,
+            console,
+            supports=supports,
+            racket_speed=np.asarray(racket_speed),
+            modal_model=model,
+            law=law,
+            include_string_bed=args.include_string_bed,
+            stiffness_reading=stiffness_reading,
+        )
+        approximate.write_csv(out / "impact.csv")
+        written.append(out / "impact.csv")
+    histories: list[History] = []
+    mode_names: Sequence[str] = ()
+    comparison = None
+    chosen = _history_speed(speeds)
+    transient_csv = "impact.csv" if args.model == "transient" else "impact_transient.csv"
+    if transient_wanted:
+        transient = _predict_transient(
+            racket,
+            ball,
+            locations,
+            speeds,
+            labels,
+            console,
+            supports=supports,
+            racket_speed=np.asarray(racket_speed),
+            modal_model=model,
+            law=law,
+            include_string_bed=args.include_string_bed,
+            engine=engine,
+            hand=hand,
+        )
+        transient.write_csv(out / transient_csv)
+        written.append(out / transient_csv)
+        from racketdyn.report import landmark_points  # the named points of the paper's figures
 
-        with console.status("drawing figures") as status:
-            written += write_paper_figures(
+        marks = landmark_points(racket)
+        with console.status("simulating the time histories"):
+            histories = simulate_histories(
                 racket,
                 ball,
-                model,
-                out,
-                progress=lambda name: status.update(f"drawing {name} ({len(FIGURES)} figures)"),
+                {"centre": marks["centre"], "tip": marks["tip"]},
+                speeds[chosen],
+                supports,
+                racket_speed[chosen if len(racket_speed) > 1 else 0],
+                modal_model=model,
+                law=law,
+                include_string_bed=args.include_string_bed,
+                hand=hand,
             )
+        mode_names = () if transient.modal_model is None else transient.modal_model.names
+        written.append(write_histories_csv(histories, mode_names, out / "transient_histories.csv"))
+    if approximate is not None and transient is not None:
+        comparison = compare_models(approximate, transient)
+        written.append(comparison.write_csv(out / "comparison.csv"))
+    if not args.no_figures:
+        from racketdyn.report import FIGURES, write_paper_figures, write_transient_figures
+
+        with console.status("drawing figures") as status:
+            if approximate is not None:
+                written += write_paper_figures(
+                    racket,
+                    ball,
+                    model,
+                    out,
+                    progress=lambda name: status.update(f"drawing {name} ({len(FIGURES)} figures)"),
+                )
+            if transient is not None:
+                status.update("drawing the transient model's figures")
+                curves = {
+                    "ball": ball,
+                    "model": model,
+                    "supports": supports,
+                    "law": law,
+                    "include_string_bed": args.include_string_bed,
+                    "engine": engine,
+                }
+                written += write_transient_figures(
+                    out,
+                    racket,
+                    histories,
+                    mode_names,
+                    comparison,
+                    chosen,
+                    curves if comparison is not None else None,
+                )
+    result = approximate if approximate is not None else transient
+    assert result is not None  # argparse allows only the three models
     record = {
         "racketdyn_version": __version__,
         "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
@@ -205,25 +284,224 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
         "rigid": args.rigid,
         "defaults_used": defaults,
         **result.inputs,
+        "model": args.model,
+        **_transient_record(transient, approximate, engine),
         "outputs": [p.name for p in written] + ["run.json"],
     }
     (out / "run.json").write_text(json.dumps(record, indent=2, default=str), encoding="utf-8")
-    bad = result.status != "ok"
     console.print(
         f"[bold]{result.status.size}[/] impacts "
         f"({len(locations)} points × {len(speeds)} speeds × {len(supports)} supports) "
-        f"→ {out}"
+        f"{'by each model ' if comparison is not None else ''}→ {out}"
     )
-    if np.any(bad):
-        reasons, counts = np.unique(result.status[bad], return_counts=True)
-        for reason, count in zip(reasons, counts, strict=True):
-            console.print(
-                f"[yellow]{count} impacts: {reason}; their results are NaN in impact.csv[/]"
-            )
+    for label, part, csv_name in (
+        ("approximate method", approximate, "impact.csv"),
+        ("transient model", transient, transient_csv),
+    ):
+        if part is None:
+            continue
+        bad = part.status != "ok"
+        if np.any(bad):
+            reasons, counts = np.unique(part.status[bad], return_counts=True)
+            for reason, count in zip(reasons, counts, strict=True):
+                console.print(
+                    f"[yellow]{label}: {count} impacts: {reason}; their results are NaN in "
+                    f"{csv_name}[/]"
+                )
+    if comparison is not None:
+        console.print(_comparison_table(comparison, chosen, racket))
     console.print(f"compound ball+string law: {law.describe()}")
     for path in written:
         console.print(f"  wrote {path}")
     return 0
+
+
+MODELS = ("approx", "transient", "both")
+TRANSIENT_FIRST_CHUNK = 32  # transient impacts in the first chunk, timed to size the others
+TRANSIENT_CHUNK_S = 0.5  # then chunks of about this long: the progress bar moves smoothly
+TRANSIENT_QUIET_IMPACTS = 64  # no progress bar up to this many transient impacts
+
+
+def _supports(args: argparse.Namespace) -> list[str]:
+    """The supports asked for, each allowed by the model(s) asked for."""
+    allowed = TRANSIENT_SUPPORTS if args.model == "transient" else SUPPORTS
+    supports = []
+    for support in _parse_list("--support", args.support):
+        if support == "hand" and args.model != "transient":
+            raise InputError(
+                "--support hand needs --model transient: the approximate method has no hand "
+                "(its hand-held racket is pinned at the grip: --support pinned)"
+            )
+        supports.append(one_of("--support", support, allowed))
+    if len(set(supports)) != len(supports):
+        raise InputError(f"--support: name each support once (got {args.support})")
+    return supports
+
+
+def _hand(args: argparse.Namespace, supports: Sequence[str], defaults: list[str]) -> Hand | None:
+    """The hand of the ``hand`` support (None without it)."""
+    if "hand" not in supports:
+        if args.hand_arm_mass is not None:
+            raise InputError("--hand-arm-mass is for --support hand (with --model transient)")
+        return None
+    if args.hand_arm_mass is None:
+        defaults.append("hand: racketdyn.impact.hand.Hand defaults (1 kg arm, Kawazoe ACMD 2002)")
+        return Hand()
+    return Hand(arm_mass_kg=args.hand_arm_mass)
+
+
+def _history_speed(speeds: Sequence[float]) -> int:
+    """Index of the ball speed the time histories and the face map show: 20 m/s, or the middle."""
+    for index, speed in enumerate(speeds):
+        if speed == 20.0:
+            return index
+    return (len(speeds) - 1) // 2
+
+
+def _predict_approximate(
+    racket: Racket,
+    ball: Ball,
+    locations: np.ndarray,
+    speeds: list[float],
+    labels: list[str],
+    console: Console,
+    **options: Any,
+) -> ImpactResult:
+    """The approximate method, in chunks of points with a progress bar when large."""
+    per_point = len(speeds) * len(options["supports"])
+    if len(locations) * per_point <= CHUNK_IMPACTS:
+        return predict(racket, ball, locations, speeds, labels=labels, **options)
+    step = max(CHUNK_IMPACTS // per_point, 1)
+    parts = []
+    with Progress(console=console, transient=True) as progress:
+        task = progress.add_task("predicting", total=len(locations))
+        for start in range(0, len(locations), step):
+            stop = min(start + step, len(locations))
+            chunk_labels = labels[start:stop]
+            parts.append(
+                predict(racket, ball, locations[start:stop], speeds, labels=chunk_labels, **options)
+            )
+            progress.update(task, completed=stop)
+    return ImpactResult.concatenate(parts)
+
+
+def _predict_transient(
+    racket: Racket,
+    ball: Ball,
+    locations: np.ndarray,
+    speeds: list[float],
+    labels: list[str],
+    console: Console,
+    **options: Any,
+) -> ImpactResult:
+    """The transient model, in chunks of points sized to about half a second, with a progress
+    bar (the first chunk is timed to size the others: the engines differ a thousandfold)."""
+    per_point = len(speeds) * len(options["supports"])
+    total = len(locations) * per_point
+
+    def chunk(start: int, stop: int) -> ImpactResult:
+        return predict_transient(
+            racket, ball, locations[start:stop], speeds, labels=labels[start:stop], **options
+        )
+
+    if total <= TRANSIENT_QUIET_IMPACTS:
+        return chunk(0, len(locations))
+    parts = []
+    with Progress(console=console, transient=True) as progress:
+        task = progress.add_task("transient simulation", total=total)
+        start, step = 0, max(TRANSIENT_FIRST_CHUNK // per_point, 1)
+        while start < len(locations):
+            stop = min(start + step, len(locations))
+            began = time.perf_counter()
+            parts.append(chunk(start, stop))
+            elapsed = max(time.perf_counter() - began, 1e-6)
+            progress.update(task, completed=stop * per_point)
+            step = max(int(TRANSIENT_CHUNK_S * (stop - start) / elapsed), 1)
+            start = stop
+    return ImpactResult.concatenate(parts)
+
+
+def _transient_record(
+    transient: ImpactResult | None, approximate: ImpactResult | None, engine: str
+) -> dict[str, Any]:
+    """What run.json says about the transient model: engine, integrator, its outputs."""
+    if transient is None:
+        return {}
+    inputs = transient.inputs
+    integrator = inputs.get("integrator")
+    used = integrator.get("engine") if isinstance(integrator, dict) else None
+    record: dict[str, Any] = {
+        "engine": {"requested": engine, "used": used or "not recorded by predict_transient"},
+        "integrator": integrator,
+        "time_histories": "simulate_impact (the reference engine: scipy solve_ivp, DOP853, "
+        "rtol 1e-10) at the centre and the tip, each support",
+        "columns": {
+            "transient_histories.csv": HISTORY_COLUMNS,
+            **(
+                {}
+                if approximate is None
+                else {
+                    "comparison.csv": "per point x speed x support: approx_<q>, transient_<q>, "
+                    "difference_<q> = approx - transient, relative_difference_<q> = "
+                    "(approx - transient) / |transient| for q in "
+                    + ", ".join(COMPARED.values())
+                    + "; status_approx, status_transient"
+                }
+            ),
+        },
+    }
+    if approximate is not None:  # the approximate method's inputs are at the top level
+        record["transient"] = {
+            key: value
+            for key, value in inputs.items()
+            if key not in approximate.inputs or approximate.inputs[key] != value
+        }
+    return record
+
+
+def _comparison_table(comparison: ModelComparison, speed: int, racket: Racket) -> Table:
+    """At the point nearest the face centre, and the largest difference over the face."""
+    result = comparison.approximate
+    centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
+    i = int(np.argmin(np.linalg.norm(result.locations - centre, axis=1)))
+    x, y = result.locations[i] * 1e3
+    table = Table(
+        title=f"approximate against transient at {result.ball_speed[speed]:g} m/s "
+        f"(centre: point {result.labels[i]}, x = {x:.0f} mm, y = {y:.0f} mm)"
+    )
+    for heading in (
+        "support",
+        "e approx",
+        "e transient",
+        "T_c approx (ms)",
+        "T_c transient (ms)",
+        "largest |Δe| on the face",
+        "at x, y (mm)",
+    ):
+        table.add_column(heading)
+    e_a, e_t = comparison.values("rebound_ratio")
+    t_a, t_t = comparison.values("contact_time")
+    difference = np.abs(comparison.difference("rebound_ratio"))
+    for p, support in enumerate(result.supports):
+        column = difference[:, speed, p]
+        if np.any(np.isfinite(column)):
+            worst = int(np.nanargmax(column))
+            where = (
+                f"{result.locations[worst, 0] * 1e3:.0f}, {result.locations[worst, 1] * 1e3:.0f}"
+            )
+            largest = f"{column[worst]:.3f}"
+        else:
+            largest, where = "–", "–"
+        table.add_row(
+            support,
+            f"{e_a[i, speed, p]:.3f}",
+            f"{e_t[i, speed, p]:.3f}",
+            f"{t_a[i, speed, p] * 1e3:.2f}",
+            f"{t_t[i, speed, p] * 1e3:.2f}",
+            largest,
+            where,
+        )
+    return table
 
 
 def _racket(args: argparse.Namespace, console: Console) -> int:
@@ -599,7 +877,8 @@ DEMO_STEPS = 7
 
 
 def _demo(args: argparse.Namespace, console: Console) -> int:
-    """rig (free, hand) → FRFs → contact times → identification and comparison → prediction."""
+    """rig (free, hand) → FRFs → contact times → identification and comparison → prediction
+    by both impact models → report."""
     from racketdyn.html_report import write_report
 
     out = Path(args.out)
@@ -681,10 +960,23 @@ def _demo(args: argparse.Namespace, console: Console) -> int:
                 progress.update(task, description=label)
                 _run_step(argv, quiet)
                 progress.advance(task)
-            progress.update(task, description="prediction with the identified free modes")
+            progress.update(
+                task, description="prediction with the identified free modes, both models"
+            )
             model = out / "compare" / "modal_model_free.json"
+            # --model both adds ≈ 2 s with the compiled transient engine, ≈ 10 s with the scipy
+            # reference (measured on the 2-core development machine, default 9 × 9 grid)
             _run_step(
-                ["predict", *racket_args, "--modal", str(model), "--out", str(out / "predict")],
+                [
+                    "predict",
+                    *racket_args,
+                    "--modal",
+                    str(model),
+                    "--model",
+                    "both",
+                    "--out",
+                    str(out / "predict"),
+                ],
                 quiet,
             )
             progress.advance(task)
@@ -804,7 +1096,8 @@ def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="racketdyn",
         description="Tennis racket impact dynamics: rebound ball speed over the string face "
-        "(Kawazoe's approximate method). SI units throughout.",
+        "(Kawazoe's approximate method, and a transient simulation of the contact). SI units "
+        "throughout.",
     )
     parser.add_argument("--version", action="version", version=f"racketdyn {__version__}")
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
@@ -824,7 +1117,30 @@ def _parser() -> argparse.ArgumentParser:
         default="0",
         help="racket speed at the impact point towards the ball, m/s: one, or one per speed",
     )
-    run.add_argument("--support", default="free,pinned", help="free, pinned or both (default both)")
+    run.add_argument(
+        "--model",
+        choices=MODELS,
+        default="approx",
+        help="approx: Kawazoe's approximate method (default); transient: the time-domain "
+        "simulation of the contact; both: each, with comparison.csv and figures of the difference",
+    )
+    run.add_argument(
+        "--support",
+        default="free,pinned",
+        help="free, pinned or both (default both); hand (the grip held by a hand and arm) with "
+        "--model transient only",
+    )
+    run.add_argument(
+        "--hand-arm-mass",
+        type=float,
+        help="mass of the arm holding the grip, kg, for --support hand (default 1.0)",
+    )
+    run.add_argument(
+        "--engine",
+        choices=ENGINES,
+        help="transient model's integrator: auto (default: compiled where numba is installed), "
+        "compiled (numba batch) or reference (scipy solve_ivp)",
+    )
     run.add_argument(
         "--grid", type=int, help=f"N x N grid of points over the head (default {DEFAULT_GRID})"
     )
@@ -841,16 +1157,17 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument(
         "--stiffness-reading",
         choices=("period", "tangent"),
-        default="period",
-        help="reading of the paper's eq 10: the exact elastic half period (default) or the "
-        "tangent stiffness at peak deflection (the paper's shortcut)",
+        help="reading of the paper's eq 10 (approximate method): the exact elastic half period "
+        "(default) or the tangent stiffness at peak deflection (the paper's shortcut)",
     )
     run.add_argument(
         "--include-string-bed",
         action="store_true",
         help="charge string-bed modes as vibration loss too",
     )
-    run.add_argument("--no-figures", action="store_true", help="write impact.csv and run.json only")
+    run.add_argument(
+        "--no-figures", action="store_true", help="write the CSV files and run.json only"
+    )
     run.add_argument("--out", required=True, help="output folder (created if missing)")
     run.set_defaults(handler=_predict)
 

@@ -10,8 +10,11 @@ readout, face maps with hover values) sit in the page as JSON.  The PNGs stay fo
 Sections, in order, each present only if its inputs exist: the racket and its derived
 properties; measurement quality; stabilisation diagrams; mode shapes and node lines, free
 against hand-held; contact time over the face; impact force and contact time against speed;
-frame vibration; rebound ratio and sweet spots; inputs, defaults and versions.  Sections whose
-inputs are missing are listed at the end as not run.  Every figure's caption names the figure of
+frame vibration; rebound ratio and sweet spots; the approximate method against the transient
+simulation (``racketdyn predict --model both``: ``comparison.csv`` with approximate and transient
+columns, told apart from ``racketdyn compare``'s ``comparison.csv`` of paired modes by its
+header); inputs, defaults and versions.  Sections whose inputs are missing are listed at the end
+as not run.  Every figure's caption names the figure of
 Kawazoe's paper it corresponds to, or says it has none.
 """
 
@@ -56,6 +59,7 @@ SECTIONS: dict[str, str] = {
     "impact": "Impact force and contact time against speed",
     "vibration": "Frame vibration",
     "rebound": "Rebound ratio and sweet spots",
+    "transient": "Approximate method against the transient simulation",
     "provenance": "Inputs, defaults and versions",
 }
 """Section id → heading, in the order of the report."""
@@ -71,6 +75,7 @@ _HOW_TO_RUN: dict[str, str] = {
     "impact": "racketdyn predict --out DIR/predict",
     "vibration": "racketdyn predict --out DIR/predict",
     "rebound": "racketdyn predict --out DIR/predict",
+    "transient": "racketdyn predict --model both --out DIR/predict",
     "provenance": "any racketdyn command with --out (each writes run.json)",
 }
 
@@ -147,6 +152,26 @@ _CAPTIONS: dict[str, tuple[str | None, str]] = {
         None,
         "maps over the face at 20 m/s: rebound ratio (pinned, free), contact time and "
         "vibration energy (pinned); the paper shows the long axis only (Fig. 15)",
+    ),
+    "transient_comparison_face": (
+        None,
+        "rebound ratio of the approximate method minus that of the transient simulation over "
+        "the face, one panel per support, at 20 m/s (or the middle speed of the run); red where "
+        "the approximate method predicts more; the paper checks its method against a freely "
+        "suspended racket only",
+    ),
+    "transient_comparison_speed": (
+        None,
+        "rebound ratio and contact time against ball speed at the face centre, near the tip and "
+        "near the throat, approximate method (dashed) against the transient simulation (solid), "
+        "racket at rest; missing dashes are impacts the approximate method flags (vibration "
+        "loss beyond e_BG)",
+    ),
+    "transient_histories": (
+        None,
+        "time histories of the transient simulation at the face centre and near the tip: "
+        "contact force (the approximate method assumes a half-sine, Fig. 13), ball and "
+        "racket-face displacement, and the modal coordinates of the flexible modes",
     ),
 }
 
@@ -877,7 +902,7 @@ def _section_modes(ctx: _Context) -> str | None:
             + "".join(node_lines)
             + "</div>"
         )
-    compare = ctx.first("comparison.csv")
+    compare = _mode_comparison_dir(ctx)
     overlay = compare / "fig6_nodes_free_hand.png" if compare else None
     if overlay is not None and overlay.is_file():
         parts.append(f'<div class="stack">{ctx.figure(overlay)}</div>')
@@ -945,9 +970,36 @@ def _section_modes(ctx: _Context) -> str | None:
     return "\n".join(p for p in parts if p)
 
 
+def _is_model_comparison(path: Path) -> bool:
+    """``comparison.csv`` of ``racketdyn predict --model both`` (approximate against
+    transient), not the free-against-hand mode table of ``racketdyn compare``."""
+    try:
+        with path.open(encoding="utf-8") as handle:
+            header = handle.readline()
+    except OSError:
+        return False
+    return "transient_rebound_ratio" in header.split(",") or "transient_rebound_ratio\n" in header
+
+
+def _mode_comparison_dir(ctx: _Context) -> Path | None:
+    """The folder of ``racketdyn compare``'s ``comparison.csv`` (modes paired by MAC)."""
+    for folder in ctx.with_file("comparison.csv"):
+        if not _is_model_comparison(folder / "comparison.csv"):
+            return folder
+    return None
+
+
+def _model_comparison_dir(ctx: _Context) -> Path | None:
+    """The folder of ``racketdyn predict --model both``'s ``comparison.csv``."""
+    for folder in ctx.with_file("comparison.csv"):
+        if _is_model_comparison(folder / "comparison.csv"):
+            return folder
+    return None
+
+
 def _first_mode_nodes(ctx: _Context) -> dict[str, list[float]]:
     """First-mode nodes along the axis (m) from ``comparison.csv``, by support."""
-    compare = ctx.first("comparison.csv")
+    compare = _mode_comparison_dir(ctx)
     if compare is None:
         return {}
     _, comments = _read_csv(compare / "comparison.csv")
@@ -1450,6 +1502,111 @@ def _section_rebound(ctx: _Context) -> str | None:
     return "\n".join(parts)
 
 
+def _section_transient(ctx: _Context) -> str | None:
+    folder = _model_comparison_dir(ctx)
+    if folder is None:
+        return None
+    parts = [
+        "<p>The same impacts by Kawazoe's approximate method (half-sine pulse, vibration "
+        "charged by eq 12) and by the transient simulation of the contact (ball on the "
+        "hysteretic ball+string spring, the racket's rigid-body reduced mass and its flexible "
+        "modes, integrated to separation), from <code>comparison.csv</code>. Δ = approximate "
+        "− transient: the transient simulation is the reference.</p>"
+    ]
+    record = ctx.records.get(folder, {})
+    engine = record.get("engine")
+    integrator = record.get("integrator")
+    if isinstance(engine, dict) or isinstance(integrator, dict):
+        used = engine.get("used", "–") if isinstance(engine, dict) else "–"
+        settings = (
+            ", ".join(f"{k} {v}" for k, v in integrator.items())
+            if isinstance(integrator, dict)
+            else "–"
+        )
+        parts.append(f"<p>Transient engine: {_e(used)}; integrator: {_e(settings)}.</p>")
+    for name in (
+        "transient_comparison_face.png",
+        "transient_comparison_speed.png",
+        "transient_histories.png",
+    ):
+        if (folder / name).is_file():
+            parts.append(f'<div class="stack">{ctx.figure(folder / name)}</div>')
+    rows, _ = _read_csv(folder / "comparison.csv")
+    if not rows:
+        return "\n".join(parts)
+    x = np.array([_float(r.get("x_m")) for r in rows])
+    y = np.array([_float(r.get("y_m")) for r in rows])
+    speed = np.array([_float(r.get("ball_speed_mps")) for r in rows])
+    support = np.array([r.get("support", "") for r in rows])
+    delta = np.array([_float(r.get("difference_rebound_ratio")) for r in rows])
+    e_approx = np.array([_float(r.get("approx_rebound_ratio")) for r in rows])
+    e_transient = np.array([_float(r.get("transient_rebound_ratio")) for r in rows])
+    contact = np.array([_float(r.get("relative_difference_contact_time")) for r in rows])
+    head = ctx.head()
+    centre_x, centre_y = (
+        (head.centre_x, head.centre_y) if head else (float(np.nanmean(x)), float(np.nanmean(y)))
+    )
+    body = []
+    speeds = sorted({float(v) for v in speed if math.isfinite(v)})
+    chosen = _chosen_speed(speeds) if speeds else math.nan
+    for name in dict.fromkeys(support.tolist()):
+        for value in speeds:
+            selected = np.flatnonzero((support == name) & (speed == value))
+            if not selected.size:
+                continue
+            centre = int(
+                selected[np.argmin(np.hypot(x[selected] - centre_x, y[selected] - centre_y))]
+            )
+            finite = selected[np.isfinite(delta[selected])]
+            if finite.size:
+                worst = int(finite[np.argmax(np.abs(delta[finite]))])
+                largest = f"{abs(delta[worst]):.3f}"
+                where = f"{x[worst] * 1e3:.0f}, {y[worst] * 1e3:.0f}"
+                median = _fmt(float(np.median(delta[finite])), "+.3f")
+                median_contact = _fmt(100 * float(np.nanmedian(contact[finite])), "+.1f")
+            else:
+                largest, where, median, median_contact = "–", "–", "–", "–"
+            body.append(
+                (
+                    name,
+                    f"{value:g}",
+                    largest,
+                    where,
+                    median,
+                    _fmt(e_approx[centre], ".3f"),
+                    _fmt(e_transient[centre], ".3f"),
+                    median_contact,
+                    str(int(selected.size - finite.size)),
+                )
+            )
+            if value == chosen and name == support[0] and finite.size:
+                ctx.glance.append(
+                    f"approximate against transient, {value:g} m/s, {name}: rebound ratio at "
+                    f"the centre {_fmt(e_approx[centre], '.3f')} against "
+                    f"{_fmt(e_transient[centre], '.3f')}; largest |Δ| {largest} at "
+                    f"x, y = {where} mm"
+                )
+    parts.append(
+        "<h3>Rebound ratio, approximate − transient, over the impact points of "
+        "comparison.csv</h3>"
+        + _table(
+            (
+                "support",
+                "ball speed (m/s)",
+                "largest |Δ rebound ratio|",
+                "at x, y (mm)",
+                "median Δ over the face",
+                "at the centre: approximate",
+                "at the centre: transient",
+                "median Δ contact time (%)",
+                "points without a number in one model",
+            ),
+            body,
+        )
+    )
+    return "\n".join(parts)
+
+
 def _section_provenance(ctx: _Context) -> str | None:
     if not ctx.records:
         return None
@@ -1528,6 +1685,7 @@ _BUILDERS: dict[str, Callable[[_Context], str | None]] = {
     "impact": _section_impact,
     "vibration": _section_vibration,
     "rebound": _section_rebound,
+    "transient": _section_transient,
     "provenance": _section_provenance,
 }
 

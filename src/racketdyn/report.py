@@ -10,6 +10,7 @@ import csv
 import logging
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -17,8 +18,10 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from racketdyn.__about__ import __version__
-from racketdyn.ball import Ball
+from racketdyn.ball import Ball, RestoringForce
 from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
+from racketdyn.impact.comparison import History, ModelComparison
+from racketdyn.impact.transient import predict_transient
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.identify import Identification
@@ -28,6 +31,7 @@ from racketdyn.modal.residues import mac
 from racketdyn.modal.shapes import axis_nodes, pair_modes
 from racketdyn.plotting import (
     FRF_UNITS,
+    SUPPORT_STYLE,
     plot_along_axis,
     plot_contact_map,
     plot_face_map,
@@ -36,18 +40,25 @@ from racketdyn.plotting import (
     plot_mac,
     plot_mode_3d,
     plot_node_lines,
+    plot_outline,
     plot_speed_curves,
 )
 from racketdyn.racket import Racket
 
 __all__ = [
     "FIGURES",
+    "TRANSIENT_CURVE_SPEEDS_MPS",
+    "TRANSIENT_FIGURES",
+    "figure_transient_comparison_face",
+    "figure_transient_comparison_speed",
+    "figure_transient_histories",
     "landmark_points",
     "write_comparison",
     "write_contact_figure",
     "write_frf_figures",
     "write_identification",
     "write_paper_figures",
+    "write_transient_figures",
 ]
 
 log = logging.getLogger(__name__)
@@ -55,6 +66,15 @@ log = logging.getLogger(__name__)
 CURVE_SPEEDS_MPS = np.linspace(5.0, 50.0, 46)
 VIBRATION_SPEEDS_MPS = (10.0, 20.0, 30.0)
 REBOUND_SPEED_MPS = 20.0
+TRANSIENT_CURVE_SPEEDS_MPS = np.linspace(5.0, 40.0, 15)
+"""Ball speeds of the approximate-against-transient curves (15 speeds: 3 points × 15 × 2
+supports ≈ 0.7 s with the scipy reference path of the transient model)."""
+TRANSIENT_FIGURES: dict[str, str] = {
+    "face": "transient_comparison_face.png",
+    "speed": "transient_comparison_speed.png",
+    "histories": "transient_histories.png",
+}
+"""The figures of the transient model, by what they show → file name."""
 
 
 def landmark_points(racket: Racket) -> dict[str, tuple[float, float]]:
@@ -493,4 +513,322 @@ def write_comparison(
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     written.append(_save(figure, out / "fig15_identified.png"))
+    return written
+
+
+# --- the approximate method against the transient simulation (issue 5) --------------------------
+_EXTRA_SUPPORT_STYLE = {"color": "tab:red", "marker": "o"}
+_SUPPORT_LINES = {"free": "-", "pinned": "--", "hand": ":"}
+
+
+def _support_style(support: str) -> dict[str, str]:
+    style = SUPPORT_STYLE.get(support)
+    if style is None:  # the transient model's hand support has no paper style
+        return {**_EXTRA_SUPPORT_STYLE, "label": f"{support}-held (hand and arm model)"}
+    return {key: str(value) for key, value in style.items()}
+
+
+def _difference_map(
+    comparison: ModelComparison,
+    racket: Racket,
+    quantity: str,
+    speed_index: int,
+    support: str,
+    limit: float,
+    ax: Axes,
+) -> Axes:
+    """Approximate − transient of a quantity over the face, diverging colours around 0."""
+    result = comparison.approximate
+    values = comparison.difference(quantity)[:, speed_index, result.support_index(support)]
+    x_mm, y_mm = result.locations[:, 0] * 1e3, result.locations[:, 1] * 1e3
+    finite = np.isfinite(values)
+    scale = limit if limit > 0 else 1.0
+    if finite.sum() >= 3 and np.ptp(x_mm[finite]) > 0 and np.ptp(y_mm[finite]) > 0:
+        filled = ax.tricontourf(
+            x_mm[finite],
+            y_mm[finite],
+            values[finite],
+            levels=np.linspace(-scale, scale, 13),
+            cmap="RdBu_r",
+            extend="both",
+        )
+        ax.figure.colorbar(filled, ax=ax, label="Δ rebound ratio, approx − transient (–)")
+    ax.scatter(
+        x_mm[finite],
+        y_mm[finite],
+        c=values[finite],
+        cmap="RdBu_r",
+        vmin=-scale,
+        vmax=scale,
+        s=12,
+        edgecolors="k",
+        linewidths=0.3,
+    )
+    if np.any(~finite):
+        ax.plot(
+            x_mm[~finite],
+            y_mm[~finite],
+            "x",
+            color="k",
+            markersize=4,
+            label="no valid result in one model (see status)",
+        )
+        ax.legend(fontsize=7, loc="lower left")
+    if finite.any():
+        worst = int(np.flatnonzero(finite)[np.argmax(np.abs(values[finite]))])
+        ax.annotate(
+            f"{values[worst]:+.3f}",
+            (x_mm[worst], y_mm[worst]),
+            xytext=(4, 4),
+            textcoords="offset points",
+            fontsize=7,
+        )
+    plot_outline(racket, ax)
+    ax.set_xlabel("x from the butt (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title(
+        f"{_support_style(support)['label']}, {result.ball_speed[speed_index]:g} m/s", fontsize=9
+    )
+    return ax
+
+
+def figure_transient_comparison_face(
+    comparison: ModelComparison, racket: Racket, speed_index: int
+) -> Figure:
+    """Rebound ratio, approximate − transient, over the face at one speed, one panel a support.
+
+    Parameters
+    ----------
+    comparison : ModelComparison
+        Both models on the same impacts (:func:`racketdyn.impact.comparison.compare_models`).
+    racket : Racket
+        For the head outline.
+    speed_index : int
+        Which ball speed of the comparison.
+    """
+    supports = comparison.approximate.supports
+    difference = comparison.difference("rebound_ratio")[:, speed_index, :]
+    limit = float(np.nanmax(np.abs(difference))) if np.any(np.isfinite(difference)) else 0.0
+    figure, axes = plt.subplots(
+        1, len(supports), figsize=(4.8 * len(supports), 3.9), layout="constrained", squeeze=False
+    )
+    for ax, support in zip(axes[0], supports, strict=True):
+        _difference_map(comparison, racket, "rebound_ratio", speed_index, support, limit, ax)
+    figure.suptitle(
+        "Rebound ratio: approximate method − transient simulation "
+        f"(largest |Δ| {limit:.3f}; red: the approximate method higher)",
+        fontsize=10,
+    )
+    return figure
+
+
+def figure_transient_comparison_speed(
+    racket: Racket,
+    ball: Ball,
+    model: ModalModel | None,
+    supports: Sequence[str],
+    law: RestoringForce | None = None,
+    include_string_bed: bool = False,
+    **options: Any,
+) -> Figure:
+    """Rebound ratio and contact time against speed, approximate against transient.
+
+    At the face centre, near the tip and near the throat (:func:`landmark_points`), at
+    :data:`TRANSIENT_CURVE_SPEEDS_MPS`, racket at rest; one column per support.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The racket and ball.
+    model : ModalModel or None
+        Modes of both models (None: rigid).
+    supports : sequence of str
+        Supports the approximate method takes (free, pinned).
+    law : RestoringForce, optional
+        Compound ball+string law.
+    include_string_bed : bool
+        Keep string-bed modes.
+    **options
+        Further keywords of :func:`~racketdyn.impact.transient.predict_transient` (engine).
+    """
+    marks = landmark_points(racket)
+    names = ["centre", "tip", "throat"]
+    common: dict[str, Any] = {
+        "modal_model": model,
+        "labels": names,
+        "law": law,
+        "include_string_bed": include_string_bed,
+    }
+    points = [marks[n] for n in names]
+    approximate = predict(racket, ball, points, TRANSIENT_CURVE_SPEEDS_MPS, supports, **common)
+    transient = predict_transient(
+        racket, ball, points, TRANSIENT_CURVE_SPEEDS_MPS, supports, **common, **options
+    )
+    figure, axes = plt.subplots(
+        2,
+        len(supports),
+        figsize=(5.0 * len(supports), 7.0),
+        layout="constrained",
+        squeeze=False,
+        sharex=True,
+    )
+    colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, len(names)))
+    for p, support in enumerate(supports):
+        for row, (quantity, label, scale) in enumerate(
+            (("rebound_ratio", "rebound ratio e (–)", 1.0), ("contact_time", "T_c (ms)", 1e3))
+        ):
+            ax = axes[row, p]
+            for i, (name, colour) in enumerate(zip(names, colours, strict=True)):
+                x = marks[name][0]
+                for result, style, model_name in (
+                    (approximate, "--", "approximate"),
+                    (transient, "-", "transient"),
+                ):
+                    values = np.where(
+                        result.status[i, :, p] == "ok",
+                        np.asarray(getattr(result, quantity))[i, :, p],
+                        np.nan,
+                    )
+                    ax.plot(
+                        TRANSIENT_CURVE_SPEEDS_MPS,
+                        values * scale,
+                        style,
+                        color=colour,
+                        marker="o" if style == "-" else None,
+                        markersize=3,
+                        label=f"{name} ({x * 1e3:.0f} mm), {model_name}",
+                    )
+            ax.set_ylabel(label)
+            ax.grid(alpha=0.3)
+            if row == 0:
+                ax.set_title(_support_style(support)["label"], fontsize=9)
+                ax.legend(fontsize=6)
+            else:
+                ax.set_xlabel("incoming ball speed (m/s)")
+    figure.suptitle(
+        "Approximate method (dashed) against the transient simulation (solid), racket at rest",
+        fontsize=10,
+    )
+    return figure
+
+
+def figure_transient_histories(histories: Sequence[History], mode_names: Sequence[str]) -> Figure:
+    """Time histories of simulated impacts: force, displacements, modal coordinates.
+
+    One column per impact point, one line per support (modal coordinates: one colour per mode,
+    one line style per support).
+
+    Parameters
+    ----------
+    histories : sequence of History
+        From :func:`racketdyn.impact.comparison.simulate_histories`.
+    mode_names : sequence of str
+        Names of the modes, in the order of the modal coordinates.
+    """
+    points = list(dict.fromkeys(h.point for h in histories))
+    figure, axes = plt.subplots(
+        3, len(points), figsize=(5.0 * len(points), 8.0), layout="constrained", squeeze=False
+    )
+    mode_colours = plt.get_cmap("tab10")(np.arange(max(len(mode_names), 1)) % 10)
+    for column, point in enumerate(points):
+        force_ax, move_ax, modal_ax = axes[:, column]
+        for history in (h for h in histories if h.point == point):
+            impact, style = history.impact, _support_style(history.support)
+            line = _SUPPORT_LINES.get(history.support, "-.")
+            time_ms = impact.time_s * 1e3
+            force_ax.plot(time_ms, impact.force_n, color=style["color"], label=style["label"])
+            move_ax.plot(
+                time_ms,
+                impact.ball_displacement_m * 1e3,
+                color=style["color"],
+                label=f"ball, {history.support}",
+            )
+            move_ax.plot(
+                time_ms,
+                history.face_displacement_m * 1e3,
+                color=style["color"],
+                linestyle=":",
+                label=f"racket face, {history.support}",
+            )
+            for k, name in enumerate(mode_names):
+                modal_ax.plot(
+                    time_ms,
+                    impact.modal_coordinates[:, k] * 1e3,
+                    color=mode_colours[k],
+                    linestyle=line,
+                    label=f"{name}, {history.support}",
+                )
+        first = next(h for h in histories if h.point == point)
+        force_ax.set_title(
+            f"{point}: x = {first.location[0] * 1e3:.0f} mm, y = {first.location[1] * 1e3:.0f} mm, "
+            f"{first.impact.ball_speed_mps:g} m/s",
+            fontsize=9,
+        )
+        force_ax.set_ylabel("contact force (N)")
+        move_ax.set_ylabel("displacement into the strings (mm)")
+        modal_ax.set_ylabel("modal coordinate q (mm·√kg)")
+        modal_ax.set_xlabel("time from first contact (ms)")
+        if not mode_names:
+            modal_ax.text(
+                0.5, 0.5, "rigid racket: no modes", ha="center", transform=modal_ax.transAxes
+            )
+        for ax in (force_ax, move_ax, modal_ax):
+            ax.grid(alpha=0.3)
+            if ax.get_legend_handles_labels()[0]:
+                ax.legend(fontsize=6)
+    figure.suptitle(
+        "Transient simulation: contact force, ball and racket-face displacement (dotted) and "
+        "modal coordinates",
+        fontsize=10,
+    )
+    return figure
+
+
+def write_transient_figures(
+    out_dir: Path,
+    racket: Racket,
+    histories: Sequence[History] = (),
+    mode_names: Sequence[str] = (),
+    comparison: ModelComparison | None = None,
+    speed_index: int = 0,
+    curves: dict[str, Any] | None = None,
+) -> list[Path]:
+    """Draw the transient model's figures (:data:`TRANSIENT_FIGURES`) into ``out_dir``.
+
+    Parameters
+    ----------
+    out_dir : Path
+        Output folder.
+    racket : Racket
+        The racket.
+    histories : sequence of History
+        Time histories to draw (none: no history figure).
+    mode_names : sequence of str
+        Names of their modes.
+    comparison : ModelComparison, optional
+        Both models on the run's impacts: the face map at ``speed_index`` (none: no face map).
+    speed_index : int
+        Ball speed of the face map.
+    curves : dict, optional
+        Keywords of :func:`figure_transient_comparison_speed` but the racket (``ball``,
+        ``model``, ``supports``, …): the curves against speed (none: no curves).
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    out = Path(out_dir)
+    written = []
+    if histories:
+        figure = figure_transient_histories(histories, mode_names)
+        written.append(_save(figure, out / TRANSIENT_FIGURES["histories"]))
+    if comparison is not None:
+        figure = figure_transient_comparison_face(comparison, racket, speed_index)
+        written.append(_save(figure, out / TRANSIENT_FIGURES["face"]))
+    if curves is not None:
+        figure = figure_transient_comparison_speed(racket, **curves)
+        written.append(_save(figure, out / TRANSIENT_FIGURES["speed"]))
+    for path in written:
+        log.info("wrote %s", path)
     return written

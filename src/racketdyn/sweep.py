@@ -23,8 +23,11 @@ Summary figures (:func:`write_summary_figures`) plot, for each variable, the reb
 face centre and the area of the face with a rebound ratio above a threshold against the variable,
 per support.
 
-The impact method is a parameter (``SweepSpec.method``, :data:`METHODS`): only ``approximate``
-exists; the transient simulation (issue 5) plugs in as another entry of :data:`METHODS`.
+The impact method is a parameter (``SweepSpec.method``, :data:`METHODS`): ``approximate``
+(:func:`racketdyn.impact.predict`) or ``transient``
+(:func:`racketdyn.impact.transient.predict_transient`).  The transient method also takes the
+``hand`` support, a grip held by a hand and arm (:class:`racketdyn.impact.hand.Hand`), whose
+parameters are sweepable (:data:`HAND_VARIABLES`).
 """
 
 from __future__ import annotations
@@ -56,11 +59,17 @@ from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_positive, require_speeds
 from racketdyn.impact.approximate import STIFFNESS_READINGS, StiffnessReading, predict
+from racketdyn.impact.hand import Hand
 from racketdyn.impact.result import (
     STATUS_BEYOND_LAW,
     STATUS_OK,
     STATUS_VIBRATION_LOSS,
     ImpactResult,
+)
+from racketdyn.impact.transient import (
+    STATUS_NO_SEPARATION,
+    TRANSIENT_SUPPORTS,
+    predict_transient,
 )
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_racket, read_toml
 from racketdyn.io.racket_file import racket_to_dict as _racket_to_dict
@@ -83,7 +92,9 @@ if TYPE_CHECKING:
 
 __all__ = [
     "ENGINES",
+    "HAND_VARIABLES",
     "METHODS",
+    "METHOD_SUPPORTS",
     "MODES",
     "SCALAR_VARIABLES",
     "SERIAL_IMPACT_LIMIT",
@@ -96,6 +107,7 @@ __all__ = [
     "TaskOutput",
     "Variable",
     "build_design",
+    "build_hand",
     "factorial_view",
     "load_sweep_spec",
     "make_executor",
@@ -147,6 +159,18 @@ SCALAR_VARIABLES: dict[str, str] = {
     "e_bg": "ball–string COR on a head-clamped racket",
 }
 """Variables that take one number per value, and what each changes."""
+HAND_VARIABLES: dict[str, str] = {
+    "hand.arm_mass_kg": "mass of the arm holding the grip, kg (racketdyn.impact.hand.Hand)",
+    "hand.stiffness_n_per_m": "total stiffness between handle and arm, N/m",
+    "hand.damping_ns_per_m": "total damping between handle and arm, N·s/m",
+}
+"""Hand parameters: one number per value, for the ``hand`` support of the transient method;
+the other fields of :class:`~racketdyn.impact.hand.Hand` keep their defaults."""
+METHOD_SUPPORTS: dict[str, tuple[str, ...]] = {
+    "approximate": SUPPORTS,
+    "transient": TRANSIENT_SUPPORTS,
+}
+"""Supports each impact method takes."""
 POINT_MASS = "point_mass"
 SUPPORT = "support"
 POINT_MASS_KEYS = ("mass_kg", "x_m", "y_m", "clock", "label")
@@ -159,6 +183,7 @@ STATUS_CODES: dict[str, int] = {
     STATUS_VIBRATION_LOSS: 1,
     STATUS_BEYOND_LAW: 2,
     STATUS_FAILED: 3,
+    STATUS_NO_SEPARATION: 4,
 }
 """Integer codes of the ``status`` variable of a sweep dataset (CF ``flag_values``)."""
 
@@ -199,10 +224,10 @@ class Variable:
     Parameters
     ----------
     name : str
-        The variable's name: a key of :data:`SCALAR_VARIABLES`, ``"point_mass"`` or
-        ``"point_mass_<label>"``.
+        The variable's name: a key of :data:`SCALAR_VARIABLES` or :data:`HAND_VARIABLES`,
+        ``"point_mass"`` or ``"point_mass_<label>"``.
     kind : str
-        A key of :data:`SCALAR_VARIABLES` or ``"point_mass"``.
+        A key of :data:`SCALAR_VARIABLES` or :data:`HAND_VARIABLES`, or ``"point_mass"``.
     coords : tuple of str
         Names of the design coordinates this variable sets (one for a scalar; for a point mass
         ``<name>_mass_kg``, ``<name>_x_m``, ``<name>_y_m`` and ``<name>_clock`` if placed by
@@ -236,11 +261,11 @@ class Variable:
         Parameters
         ----------
         name : str
-            A key of :data:`SCALAR_VARIABLES`.
+            A key of :data:`SCALAR_VARIABLES` or :data:`HAND_VARIABLES`.
         values : array_like
             Its values, in the unit its name carries.
         """
-        one_of("variable", name, SCALAR_VARIABLES)
+        one_of("variable", name, {**SCALAR_VARIABLES, **HAND_VARIABLES})
         numbers = _finite_values(f"[variables].{name}", values)
         return cls(name, name, (name,), tuple((v,) for v in numbers), name)
 
@@ -381,7 +406,7 @@ class SweepSpec:
         Racket speeds at the impact point towards the ball (swing), m/s; each is combined with
         each ball speed.
     supports : sequence of str
-        Support conditions (``free``, ``pinned``).
+        Support conditions (``free``, ``pinned``; ``hand`` with the transient method).
     variables : sequence of Variable
         The swept variables.
     mode : {"full-factorial", "one-at-a-time"}
@@ -389,9 +414,9 @@ class SweepSpec:
     labels : sequence of str, optional
         Point labels (default 1, 2, …).
     method : str
-        Impact method, a key of :data:`METHODS` (``approximate``).
+        Impact method, a key of :data:`METHODS` (``approximate`` or ``transient``).
     stiffness_reading : {"period", "tangent"}
-        Reading of eq (10) (see :func:`racketdyn.impact.predict`).
+        Reading of eq (10) (see :func:`racketdyn.impact.predict`; approximate method only).
     include_string_bed : bool
         Charge string-bed modes as vibration loss too.
     rigid : bool
@@ -449,20 +474,21 @@ class SweepSpec:
             )
         object.__setattr__(self, "ball_speeds", ball_speeds)
         object.__setattr__(self, "racket_speeds", racket_speeds)
+        _check_method("[impacts].method", self.method)
         given: object = self.supports  # a lone name is accepted too
         supports = (given,) if isinstance(given, str) else tuple(self.supports)
-        if not supports:
-            raise InputError(f"[variables].support: give one or more of {', '.join(SUPPORTS)}")
-        for support in supports:
-            one_of("[variables].support", support, SUPPORTS)
-        if len(set(supports)) != len(supports):
-            raise InputError("[variables].support: name each support once")
+        _check_supports("[variables].support", supports, self.method)
         object.__setattr__(self, "supports", supports)
         object.__setattr__(self, "variables", tuple(self.variables))
         one_of("mode", self.mode, MODES)
-        _check_method("[impacts].method", self.method)
         one_of("[impacts].stiffness_reading", self.stiffness_reading, STIFFNESS_READINGS)
         names = [v.name for v in self.variables]
+        for name in names:
+            if name in HAND_VARIABLES and "hand" not in supports:
+                raise InputError(
+                    f"[variables].{name}: hand parameters change the 'hand' support only; add "
+                    "'hand' to [variables].support (with [impacts].method = 'transient')"
+                )
         if len(set(names)) != len(names):
             raise InputError("[variables]: a variable is listed twice (label point masses)")
         for first, second in _EXCLUSIVE:
@@ -508,6 +534,8 @@ class SweepSpec:
 
     def _check_design(self, settings: tuple[tuple[str, float], ...]) -> None:
         racket, _, _ = build_design(self.racket, self.ball, self.variables, settings)
+        if "hand" in self.supports:
+            build_hand(self.variables, settings)
         if not self.rigid and racket.modal_model_file is None:
             beam_mass_per_length(
                 racket.length_m, racket.mass_kg, racket.balance_m, racket.inertia_cg_kgm2
@@ -524,6 +552,8 @@ class SweepSpec:
         """
         if variable.kind == POINT_MASS:
             return (0.0, *variable.values[0][1:])
+        if variable.kind in HAND_VARIABLES:
+            return (float(getattr(Hand(), variable.kind.removeprefix("hand."))),)
         racket = self.racket
         base = {
             "mass_kg": racket.mass_kg,
@@ -782,6 +812,33 @@ def build_design(
     return design_racket, design_ball, file_model_scale
 
 
+def build_hand(variables: Sequence[Variable], settings: Sequence[tuple[str, float]]) -> Hand:
+    """The hand of one design (``hand`` support of the transient method).
+
+    The design's hand variables (:data:`HAND_VARIABLES`) set their fields of
+    :class:`~racketdyn.impact.hand.Hand`; the other fields keep the defaults.
+
+    Parameters
+    ----------
+    variables : sequence of Variable
+        The sweep's variables.
+    settings : sequence of (str, float)
+        The design's coordinate values (:attr:`Design.settings`).
+
+    Returns
+    -------
+    Hand
+        The design's hand (InputError if its values are not a valid hand).
+    """
+    values = dict(settings)
+    fields = {
+        variable.kind.removeprefix("hand."): values[variable.kind]
+        for variable in variables
+        if variable.kind in HAND_VARIABLES
+    }
+    return Hand(**fields)
+
+
 # --- the task -------------------------------------------------------------------------------
 @dataclass(frozen=True, eq=False)
 class SweepTask:
@@ -883,20 +940,60 @@ def _approximate(
     )
 
 
+def _transient(
+    racket: Racket,
+    ball: Ball,
+    model: ModalModel | None,
+    law: RestoringForce,
+    task: SweepTask,
+) -> ImpactResult:
+    """The transient simulation over points × (ball speed, racket speed) pairs × supports.
+
+    The ``hand`` support holds the grip with the design's hand (:func:`build_hand`); the
+    engine is ``auto`` (compiled where numba is installed).
+    """
+    n_r = task.racket_speeds.size
+    hand = build_hand(task.variables, task.settings) if "hand" in task.supports else None
+    return predict_transient(
+        racket,
+        ball,
+        task.locations,
+        np.repeat(task.ball_speeds, n_r),
+        task.supports,
+        np.tile(task.racket_speeds, task.ball_speeds.size),
+        modal_model=model,
+        law=law,
+        include_string_bed=task.include_string_bed,
+        hand=hand,
+    )
+
+
 ImpactMethod = Callable[[Racket, Ball, ModalModel | None, RestoringForce, SweepTask], ImpactResult]
-METHODS: dict[str, ImpactMethod] = {"approximate": _approximate}
+METHODS: dict[str, ImpactMethod] = {"approximate": _approximate, "transient": _transient}
 """Impact methods a sweep can run, by name.  Each takes the design's racket, ball, modal model
 (None: rigid), compound law and the task, and returns an :class:`ImpactResult` over points ×
-(ball speed, racket speed) pairs (ball speed slowest) × supports.  The transient simulation of
-issue 5 registers here as ``"transient"``; nothing else in the sweep changes."""
+(ball speed, racket speed) pairs (ball speed slowest) × supports.  The supports each takes are
+in :data:`METHOD_SUPPORTS`."""
 
 
 def _check_method(where: str, method: object) -> str:
-    if method == "transient" and "transient" not in METHODS:
-        raise InputError(
-            f"{where}: the transient impact model (issue 5) is not available yet; use 'approximate'"
-        )
     return one_of(where, method, METHODS)
+
+
+def _check_supports(where: str, supports: Sequence[object], method: str) -> None:
+    """Each support known to the method, each once (InputError naming the key)."""
+    allowed = METHOD_SUPPORTS.get(method, SUPPORTS)
+    if not supports:
+        raise InputError(f"{where}: give one or more of {', '.join(allowed)}")
+    for support in supports:
+        if support == "hand" and "hand" not in allowed:
+            raise InputError(
+                f"{where}: 'hand' needs [impacts].method = 'transient'; the {method} method has "
+                "no hand (its hand-held racket is pinned at the grip: support 'pinned')"
+            )
+        one_of(where, support, allowed)
+    if len(set(supports)) != len(supports):
+        raise InputError(f"{where}: name each support once")
 
 
 def _modal_model(racket: Racket, file_model_scale: float) -> ModalModel:
@@ -972,7 +1069,7 @@ def run_task(task: SweepTask, attempt: int = 1) -> TaskOutput:
     # differently with their number, and a Dask worker runs one thread where this process may
     # run several; pinned, every engine gives the same bits.  Parallelism is across tasks.
     started = time.perf_counter()
-    with _blas_controller().limit(limits=1, user_api="blas"), _quiet(_PREDICT_LOG):
+    with _blas_controller().limit(limits=1, user_api="blas"), _quiet(*_PREDICT_LOGS):
         racket, ball, file_model_scale = build_design(
             task.racket, task.ball, task.variables, task.settings
         )
@@ -1008,24 +1105,26 @@ def run_task(task: SweepTask, attempt: int = 1) -> TaskOutput:
     )
 
 
-_PREDICT_LOG = "racketdyn.impact.approximate"
+_PREDICT_LOGS = ("racketdyn.impact.approximate", "racketdyn.impact.transient")
 
 
 @contextmanager
-def _quiet(logger_name: str) -> Iterator[None]:
-    """Drop a logger's warnings for a while: predict warns once per call about impacts whose
-    results are NaN; a sweep counts them from the status codes and warns once instead of
-    once per task (and from worker processes whose logging nobody configured)."""
+def _quiet(*logger_names: str) -> Iterator[None]:
+    """Drop loggers' warnings for a while: predict warns once per call (predict_transient once
+    per impact) about impacts whose results are NaN; a sweep counts them from the status codes
+    and warns once instead (and not from worker processes whose logging nobody configured)."""
 
     def below_error(record: logging.LogRecord) -> bool:
         return record.levelno >= logging.ERROR
 
-    logger = logging.getLogger(logger_name)
-    logger.addFilter(below_error)
+    loggers = [logging.getLogger(name) for name in logger_names]
+    for logger in loggers:
+        logger.addFilter(below_error)
     try:
         yield
     finally:
-        logger.removeFilter(below_error)
+        for logger in loggers:
+            logger.removeFilter(below_error)
 
 
 # --- executors ------------------------------------------------------------------------------
@@ -1251,8 +1350,8 @@ def run_sweep(
         failures_path.unlink()
     codes, counts = np.unique(dataset["status"].values, return_counts=True)
     status_counts = {text: int(counts[codes == code].sum()) for text, code in STATUS_CODES.items()}
-    for text in (STATUS_VIBRATION_LOSS, STATUS_BEYOND_LAW):
-        if status_counts[text]:
+    for text in STATUS_CODES:
+        if text not in (STATUS_OK, STATUS_FAILED) and status_counts[text]:
             log.warning(
                 "%d of %d impacts: %s (their results are NaN)",
                 status_counts[text],
@@ -1734,20 +1833,28 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         raise InputError("[variables] must be a table of variables")
     variables: list[Variable] = []
     supports: tuple[str, ...] = SUPPORTS
-    for key, value in table.items():
+    for key, value in _flat_hand_keys(table).items():
         where = f"[variables].{key}"
-        if key.startswith("hand") or key.startswith("wrist") or key.startswith("grip_force"):
+        if key in HAND_VARIABLES:
+            if method != "transient":
+                raise InputError(
+                    f"{where}: hand parameters need [impacts].method = 'transient' and support "
+                    "'hand'; the approximate method holds the racket pinned at the grip: sweep "
+                    "grip_m or support instead"
+                )
+            variables.append(Variable.scalar(key, _value_list(where, value)))
+            continue
+        if key.startswith(("hand", "wrist", "grip_force")):
             raise InputError(
-                f"{where}: hand parameters need the transient impact model (issue 5), not yet "
-                "available; the approximate method holds the racket pinned at the grip: sweep "
-                "grip_m or support instead"
+                f"{where}: unknown hand parameter; the hand parameters are "
+                f"{', '.join(HAND_VARIABLES)} (transient method, support 'hand')"
             )
         if key == SUPPORT:
             items = value if isinstance(value, list) else [value]
+            allowed = METHOD_SUPPORTS[method]
             if not items or not all(isinstance(s, str) for s in items):
-                raise InputError(f"{where} must be a list of {', '.join(SUPPORTS)}")
-            for item in items:
-                one_of(where, item, SUPPORTS)
+                raise InputError(f"{where} must be a list of {', '.join(allowed)}")
+            _check_supports(where, items, method)
             supports = tuple(items)
         elif key == POINT_MASS:
             tables = value if isinstance(value, list) else [value]
@@ -1762,7 +1869,7 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         else:
             raise InputError(
                 f"{where}: unknown variable; allowed: "
-                f"{', '.join([POINT_MASS, SUPPORT, *SCALAR_VARIABLES])}"
+                f"{', '.join([POINT_MASS, SUPPORT, *SCALAR_VARIABLES, *HAND_VARIABLES])}"
             )
 
     summary = _table(data, "summary", _SUMMARY_KEYS)
@@ -1794,6 +1901,19 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         name=name or "sweep",
         racket_source=racket_source,
     )
+
+
+def _flat_hand_keys(table: Mapping[str, Any]) -> dict[str, Any]:
+    """``[variables]`` with a ``hand`` table (TOML ``hand.arm_mass_kg = …`` or
+    ``[variables.hand]``) flattened to ``hand.<key>`` keys, in the order given."""
+    flat: dict[str, Any] = {}
+    for key, value in table.items():
+        if key == "hand" and isinstance(value, dict):
+            for inner, inner_value in value.items():
+                flat[f"hand.{inner}"] = inner_value
+        else:
+            flat[key] = value
+    return flat
 
 
 def _point_mass_from_table(where: str, entry: object, racket: Racket) -> Variable:
@@ -2028,6 +2148,13 @@ def _axis_label(dataset: xr.Dataset, variable: str) -> tuple[str, str, float]:
         }
         label, scale = labels[quantity]
         return coord, label, scale
+    hand_labels = {
+        "hand.arm_mass_kg": "arm mass (kg)",
+        "hand.stiffness_n_per_m": "hand stiffness (N/m)",
+        "hand.damping_ns_per_m": "hand damping (N·s/m)",
+    }
+    if coord in hand_labels:
+        return coord, hand_labels[coord], 1.0
     name, _, unit = coord.rpartition("_")
     units = {"kg": "kg", "m": "m", "kgm2": "kg·m²", "kgcm2": "kg·cm²", "n": "N"}
     if unit in units:
