@@ -9,10 +9,9 @@ engine, writing every part file and combining them into ``sweep.nc`` (no figures
 impacts per second and the ratio against serial, checks that every engine wrote the same
 numbers, and splits one serial task into its steps.
 
-The transient method (issue 5) has a hook: ``racketdyn.sweep.METHODS``.  Once it registers
-``"transient"``, ``python benchmarks/bench_sweep.py --method transient --designs 4`` times it
-the same way (scale ``--designs`` to its cost).  Informational: the exit status is 0 whatever
-the timings.
+``python benchmarks/bench_sweep.py --method transient --designs 10`` times the transient
+model (compiled engine) the same way on 100,000 impacts (measured: ≈ 16,000 impacts/s serial,
+1.35× with a process pool of 2).  Informational: the exit status is 0 whatever the timings.
 """
 
 from __future__ import annotations
