@@ -18,6 +18,7 @@ from distributed import LocalCluster
 
 import racketdyn as rd
 import racketdyn.sweep as sweep
+import racketdyn.sweep.task as sweep_task
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.transient import predict_transient
 from racketdyn.sweep import (
@@ -476,7 +477,7 @@ def test_a_failed_task_is_retried(
     monkeypatch: pytest.MonkeyPatch,
     caplog: pytest.LogCaptureFixture,
 ) -> None:
-    monkeypatch.setattr(sweep, "predict", _fail_design_3(times=1))
+    monkeypatch.setattr(sweep_task, "predict", _fail_design_3(times=1))
     counting = CountingExecutor()
     result = run_sweep(small_spec, tmp_path, counting, figures=False)
     assert counting.submitted.count("design-00003") == 2
@@ -493,7 +494,7 @@ def test_a_task_that_always_fails_is_reported_and_the_rest_kept(
     tmp_path: Path,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    monkeypatch.setattr(sweep, "predict", _fail_design_3(times=99))
+    monkeypatch.setattr(sweep_task, "predict", _fail_design_3(times=99))
     result = run_sweep(small_spec, tmp_path, SerialExecutor(), figures=False)
     failures = json.loads((tmp_path / "failures.json").read_text())
     assert [f["task_id"] for f in failures] == ["design-00003"]

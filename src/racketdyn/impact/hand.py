@@ -100,6 +100,11 @@ class Hand:
             value = require_finite(f"hand.{name}", getattr(self, name))
             if value < 0:
                 raise InputError(f"hand.{name} must be ≥ 0 (got {value:g})")
+        if self.roll_stiffness_nm_per_rad == 0 and self.roll_damping_nms_per_rad > 0:
+            raise InputError(
+                "hand: a roll damper needs a roll spring (roll_stiffness_nm_per_rad > 0): the "
+                "arm does not turn, so a damper alone would hold no motion the model can split"
+            )
         require_finite("hand.grip_start_m", self.grip_start_m)
         require_finite("hand.grip_end_m", self.grip_end_m)
         if not 0.0 <= self.grip_start_m < self.grip_end_m:

@@ -35,10 +35,12 @@ from numpy.typing import NDArray
 
 __all__ = [
     "NUMBA_AVAILABLE",
+    "RELOAD_MARGIN",
     "STATUS_CODE_BEYOND_LAW",
     "STATUS_CODE_NO_SEPARATION",
     "STATUS_CODE_OK",
     "integrate_impacts",
+    "law_arrays",
 ]
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -63,7 +65,8 @@ STATUS_CODE_BEYOND_LAW = 1
 STATUS_CODE_NO_SEPARATION = 2
 LAW_POLYNOMIAL = 0
 LAW_POWER = 1
-_RELOAD_MARGIN = 1e-9
+RELOAD_MARGIN = 1e-9
+"""Reload onto F_GB once X exceeds the peak X_p by this fraction (both engines)."""
 
 
 @_compiled
@@ -174,9 +177,18 @@ def _step_coefficients(
         z = poles[k] * h
         e = np.exp(z)
         decay[k] = e
-        if abs(z) < 1e-3:  # series: no cancellation
-            e1 = h * (1.0 + z / 2.0 + z * z / 6.0 + z * z * z / 24.0)
-            e2 = h * (0.5 + z / 6.0 + z * z / 24.0 + z * z * z / 120.0)
+        if abs(z) < 0.05:  # series to z⁷ (error < 1e-16); the closed form would cancel here
+            e1 = 0.0 + 0.0j
+            e2 = 0.0 + 0.0j
+            term = 1.0 + 0.0j
+            factorial = 1.0
+            for j in range(8):
+                factorial *= j + 1.0
+                e1 += term / factorial  # z^j / (j + 1)!
+                e2 += term / (factorial * (j + 2.0))  # z^j / (j + 2)!
+                term *= z
+            e1 *= h
+            e2 *= h
         else:
             e1 = (e - 1.0) / poles[k]
             e2 = (e - 1.0 - z) / (poles[k] * z)
@@ -244,7 +256,7 @@ def _integrate_one(
         if loading and x_new > max_deflection:
             status = STATUS_CODE_BEYOND_LAW
             break
-        if not loading and x_new > peak * (1.0 + _RELOAD_MARGIN):
+        if not loading and x_new > peak * (1.0 + RELOAD_MARGIN):
             loading = True
             x_new = _solve_compression(
                 free, alpha, x_new, loading, peak, exponent, kind, coefficients
@@ -393,7 +405,15 @@ def integrate_impacts(
 
 
 def law_arrays(kind: str, coefficients: tuple[float, ...]) -> tuple[int, NDArray[np.float64]]:
-    """The kernel's law code and coefficient array for a RestoringForce's kind/coefficients."""
+    """The kernel's law code and coefficients for a :class:`~racketdyn.ball.RestoringForce`.
+
+    Parameters
+    ----------
+    kind : {"polynomial", "power"}
+        The law's form: F = Σ c_i X^(i+1) (c_i in N/m^(i+1)) or F = c Xⁿ (c in N/mⁿ, n –).
+    coefficients : tuple of float
+        Its coefficients, SI as above.
+    """
     if kind == "power":
         return LAW_POWER, np.asarray(coefficients, float)
     return LAW_POLYNOMIAL, np.asarray(coefficients, float)

@@ -14,9 +14,10 @@ with coordinates ``q`` chosen by the support (a parameter, never a copy of the c
 * ``hand``: the ``free`` coordinates plus an arm mass joined to the grip by springs and dashpots
   (:class:`racketdyn.impact.hand.Hand`).
 
-The flexible modes (mass-normalised, ``q_k`` with unit modal mass) carry no momentum, so the
-rigid and modal blocks of ``M`` are uncoupled and ``b_jᵀ M⁻¹ b_j`` of the rigid block is the
-reduced mass's compliance ``1/M_r`` (eq 4).
+The flexible modes (mass-normalised, ``q_k`` with unit modal mass) carry no momentum, so for
+``free`` and ``pinned`` the rigid and modal blocks of ``M`` are uncoupled and ``b_jᵀ M⁻¹ b_j``
+of the rigid block is the reduced mass's compliance ``1/M_r`` (eq 4).  The hand's palm mass
+couples them; the split into rigid-body motions (K r = C r = 0) and the rest stays exact.
 
 The reference engine integrates these equations as they stand.  The compiled engine uses the
 same equations in pole–residue form (:meth:`ImpactSystem.pole_residue`): the receptance at j is
@@ -29,6 +30,7 @@ poles and residues of the rest, which may be non-proportionally damped (the hand
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 from typing import Literal
 
@@ -54,6 +56,8 @@ TRANSIENT_SUPPORTS: tuple[str, ...] = ("free", "pinned", "hand")
 """Supports of the transient model; the approximate method has ``free`` and ``pinned``."""
 
 CoordinateKind = Literal["rigid", "mode", "arm"]
+log = logging.getLogger(__name__)
+_MAX_CONDITION = 1e10  # eigenvector condition number beyond which the modal form is refused
 _POLE_IMAG_TOL = 1e-9  # a pole with |Im λ| below this × |λ| is real (an overdamped motion)
 
 
@@ -124,6 +128,9 @@ class ImpactSystem:
         Natural angular frequencies of the flexible modes, rad/s (energy per mode).
     mode_names : tuple of str
         Names of the flexible modes.
+    racket_mass : ndarray (n, n)
+        The racket body's own share of M (without the hand and arm): its rigid-body energy is
+        ``½ q̇ᵀ racket_mass q̇`` over the rigid coordinates.
     """
 
     support: str
@@ -136,6 +143,7 @@ class ImpactSystem:
     locations: NDArray[np.float64]
     omega: NDArray[np.float64]
     mode_names: tuple[str, ...]
+    racket_mass: NDArray[np.float64]
 
     @property
     def n_coordinates(self) -> int:
@@ -143,22 +151,46 @@ class ImpactSystem:
         return len(self.coordinate_names)
 
     @property
+    def rigid_index(self) -> NDArray[np.intp]:
+        """Indices of the racket's rigid-body coordinates in q."""
+        return np.flatnonzero(np.array(self.coordinate_kinds) == "rigid")
+
+    def rigid_point_velocity(self, velocity: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Velocity of each impact point from the racket's rigid-body motion alone, m/s.
+
+        Parameters
+        ----------
+        velocity : ndarray (..., n)
+            q̇.
+
+        Returns
+        -------
+        ndarray (..., n_points)
+        """
+        idx = self.rigid_index
+        return np.asarray(np.asarray(velocity)[..., idx] @ self.force_input[:, idx].T)
+
+    @property
     def mode_index(self) -> NDArray[np.intp]:
         """Indices of the flexible modal coordinates in q."""
         return np.flatnonzero(np.array(self.coordinate_kinds) == "mode")
 
     def rigid_basis(self) -> NDArray[np.float64]:
-        """M-orthonormal basis R of the rigid-body motions (K R = C R = 0), shaped (n, n_rigid)."""
-        null = scipy.linalg.null_space(self.stiffness, rcond=1e-10)
-        if null.size == 0:
-            return np.zeros((self.n_coordinates, 0))
-        if not np.allclose(self.damping @ null, 0.0, atol=1e-9 * max(1.0, _norm(self.damping))):
+        """M-orthonormal basis R of the rigid-body motions (K R = C R = 0), shaped (n, n_rigid).
+
+        The motions with ω² below ``1e-12`` of the largest of the generalised eigenproblem
+        K v = ω² M v (mass-scaled, so a soft grip spring beside kHz modes stays elastic).
+        """
+        omega_sq, vectors = scipy.linalg.eigh(self.stiffness, self.mass)
+        rigid = vectors[:, omega_sq < 1e-12 * max(float(omega_sq.max(initial=0.0)), 1.0)]
+        if rigid.size and not np.allclose(
+            self.damping @ rigid, 0.0, atol=1e-9 * max(1.0, _norm(self.damping))
+        ):
             raise InputError(
                 f"{self.support} support: a dashpot acts on a motion no spring resists; give it a "
                 "spring too"
             )
-        gram = null.T @ self.mass @ null
-        return np.asarray(null @ np.linalg.inv(np.linalg.cholesky(gram)).T)
+        return np.asarray(rigid)
 
     def pole_residue(self) -> PoleResidue:
         """The receptance at every point in pole–residue form (for the compiled engine).
@@ -187,6 +219,13 @@ class ImpactSystem:
         m_inv = np.linalg.inv(m_e)
         first_order = np.block([[np.zeros((n_e, n_e)), np.eye(n_e)], [-m_inv @ k_e, -m_inv @ c_e]])
         eigenvalues, right = np.linalg.eig(first_order)
+        condition = float(np.linalg.cond(right))
+        log.debug("%s support: eigenvector condition number %.3g", self.support, condition)
+        if condition > _MAX_CONDITION:
+            raise InputError(
+                f"{self.support} support: the equations of motion are nearly defective (a mode "
+                "damped almost exactly critically?); change a damping value slightly"
+            )
         left = np.linalg.inv(right)
         keep = eigenvalues.imag > -_POLE_IMAG_TOL * np.abs(eigenvalues)
         real = np.abs(eigenvalues.imag) <= _POLE_IMAG_TOL * np.abs(eigenvalues)
@@ -208,7 +247,7 @@ class ImpactSystem:
     def energies(
         self, displacement: NDArray[np.float64], velocity: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-        """Rigid-body kinetic energy, energy per flexible mode and the rest (the hand), J.
+        """The racket's rigid-body kinetic energy, energy per flexible mode and the rest, J.
 
         Parameters
         ----------
@@ -218,27 +257,30 @@ class ImpactSystem:
         Returns
         -------
         rigid, modes, support : ndarray (...,), (..., n_modes), (...,)
-            ``½ ṙᵀṙ`` of the rigid-body motions (``ṙ = Rᵀ M q̇``); ``½ q̇_k² + ½ ω_k² q_k²`` per
-            flexible mode; and the rest of ``½ q̇ᵀMq̇ + ½ qᵀKq`` (the arm and the grip's
-            springs; zero without a hand).
+            ``½ q̇_Rᵀ M_racket q̇_R`` of the racket body's rigid-body coordinates;
+            ``½ q̇_k² + ½ ω_k² q_k²`` per flexible mode of the racket (for ``hand`` a snapshot:
+            after separation the held system's modes exchange it with the hand); and the rest of
+            ``½ q̇ᵀMq̇ + ½ qᵀKq`` — the hand, palm and arm and the grip's springs (zero without a
+            hand).
         """
         q, v = np.asarray(displacement), np.asarray(velocity)
         total = 0.5 * np.einsum("...i,ij,...j->...", v, self.mass, v) + 0.5 * np.einsum(
             "...i,ij,...j->...", q, self.stiffness, q
         )
-        rigid_rate = v @ (self.mass @ self.rigid_basis())
-        rigid = 0.5 * np.sum(rigid_rate**2, axis=-1)
+        r = self.rigid_index
+        v_r = v[..., r]
+        rigid = 0.5 * np.einsum("...i,ij,...j->...", v_r, self.racket_mass[np.ix_(r, r)], v_r)
         idx = self.mode_index
         modes = 0.5 * v[..., idx] ** 2 + 0.5 * self.omega**2 * q[..., idx] ** 2
         return rigid, modes, total - rigid - modes.sum(axis=-1)
 
 
-def _kinds(kind: CoordinateKind, count: int) -> tuple[CoordinateKind, ...]:
-    return (kind,) * count
-
-
 def _norm(matrix: NDArray[np.float64]) -> float:
     return float(np.abs(matrix).max(initial=0.0))
+
+
+def _kinds(kind: CoordinateKind, count: int) -> tuple[CoordinateKind, ...]:
+    return (kind,) * count
 
 
 # --- building systems ---------------------------------------------------------------------------
@@ -274,7 +316,7 @@ def point_system(
     force = np.concatenate([[1.0] if rigid else [], phi])[None, :]
     return ImpactSystem(
         "point", names, kinds, mass, damping, stiffness, force, np.full((1, 2), np.nan), w_k,
-        tuple(names[int(rigid):]),
+        tuple(names[int(rigid):]), mass.copy(),
     )  # fmt: skip
 
 
@@ -349,10 +391,16 @@ def impact_system(
         return rows
 
     force_input = displacement_map(xy)
+    racket_mass = mass.copy()
     kinds = _kinds("rigid", n_rigid) + _kinds("mode", n_modes)
     coordinate_names = rigid_names + mode_names
     if support == "hand":
         hand = hand or Hand()
+        if model is not None and model.support == "hand":
+            raise InputError(
+                "support 'hand' adds the hand to a free racket, but the modal model is already "
+                "hand-held; give a free–free model, or use this one with 'free' or 'pinned'"
+            )
         grip = np.array([[x, 0.0] for x in hand.grip_points_m])
         share = 1.0 / len(grip)
         relative = displacement_map(grip)
@@ -371,5 +419,5 @@ def impact_system(
         raise InputError(f"a hand is given but the support is {support!r}; use support='hand'")
     return ImpactSystem(
         support, coordinate_names, kinds, mass, damping, stiffness, force_input, xy, omega,
-        mode_names,
+        mode_names, racket_mass,
     )  # fmt: skip

@@ -1,4 +1,4 @@
-"""Transient simulation of a normal ball–racket impact (issue 5, first increment).
+"""Transient simulation of a normal ball–racket impact: the check on the approximate method.
 
 The approximate method (:mod:`racketdyn.impact.approximate`) assumes the contact force is a
 half-sine and charges the vibration it leaves against e_BG.  Here the contact is integrated in
@@ -6,18 +6,19 @@ time instead, for a normal impact at one point j = (x, y) of the face:
 
 * the ball, a point mass m_B at displacement x_B (positive into the strings), meets the racket
   through the compound ball+string spring F_GB(X) (section 3.4), X = x_B − w the compression;
-* the racket's rigid-body freedom under the support is the reduced mass M_r at the impact point
-  (eq 4, :meth:`racketdyn.racket.Racket.reduced_mass`): a force F at j gives the point the
-  acceleration F/M_r, exactly, for the rigid-body part of the response;
-* its flexible modes are those of a :class:`~racketdyn.modal.model.ModalModel` (mass-normalised
-  shapes φ_k, frame modes by default):
-  ``q̈_k + 2 ζ_k ω_k q̇_k + ω_k² q_k = φ_k(j) F``, and the face moves by
-  ``w = w_rigid + Σ_k φ_k(j) q_k``.
+* the racket — its rigid-body freedom under the support (``free``, ``pinned`` or ``hand``) and
+  its flexible modes from any :class:`~racketdyn.modal.model.ModalModel` — is the linear system
+  ``M q̈ + C q̇ + K q = b_j F``, ``w = b_jᵀ q`` of :mod:`racketdyn.impact.system`; for ``free``
+  and ``pinned`` its rigid part is exactly the reduced mass of eq 4 at the point.
 
-So ``m_B ẍ_B = −F``, ``ẅ_rigid = F/M_r`` and the modal equations above, with F = 0 once the ball
-leaves the strings.  The free-body receptance at j is exactly rigid + Σ flexible modes; for
-``pinned`` the modes are still those of the model given (the free modes by default), as in the
-approximate method.
+So ``m_B ẍ_B = −F`` and the racket's equations, with F = 0 once the ball leaves the strings,
+integrated in the frame where the racket is at rest before impact (its rigid-body motion is a
+free motion, so only the approach speed matters) and reported in the lab frame.
+
+Two engines give the same numbers: ``reference`` (:func:`simulate_system_contact`, scipy's
+DOP853 in physical coordinates with events, one impact at a time) and ``compiled``
+(:mod:`racketdyn.impact.kernel`, numba, all impacts at once, second order in the step);
+:func:`predict_transient` chooses.
 
 Hysteresis
 ----------
@@ -65,11 +66,14 @@ from racketdyn.impact.grid import ImpactGrid, impact_grid, resolve_modal_model
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.kernel import (
     NUMBA_AVAILABLE,
+    RELOAD_MARGIN,
     STATUS_CODE_BEYOND_LAW,
     STATUS_CODE_OK,
     integrate_impacts,
     law_arrays,
 )
+from racketdyn.impact.kernel import _energy as kernel_energy
+from racketdyn.impact.kernel import _law as kernel_law
 from racketdyn.impact.result import STATUS_BEYOND_LAW, STATUS_OK, ImpactResult
 from racketdyn.impact.system import (
     TRANSIENT_SUPPORTS,
@@ -102,7 +106,6 @@ INTEGRATORS: tuple[str, ...] = ("DOP853", "Radau")
 STATUS_NO_SEPARATION = "ball did not leave the strings within the time allowed"
 
 _HISTORY_SAMPLES = 400  # samples of the time histories over one estimated contact time
-_RELOAD_MARGIN = 1e-9  # reload onto F_GB once X exceeds X_p by this fraction
 _MAX_PHASES = 200
 
 
@@ -143,9 +146,11 @@ class TransientImpact:
     hysteresis_loss_j : float
         Energy lost in the ball+string spring, (1 − e_BG²) E_GB(X_max), J.
     damping_loss_j : float
-        Energy lost to modal damping during contact, ∫ Σ 2 ζ ω q̇² dt, J.
-    racket_energy_gain_j : float
-        Change of the racket's rigid-body kinetic energy ½ M_r V_r², J.
+        Energy lost to damping during contact — the modes' and, for ``hand``, the grip's
+        dashpots — ∫ q̇ᵀ C q̇ dt, J.
+    racket_energy_j : float
+        The racket body's rigid-body kinetic energy at separation, in the frame where it was at
+        rest before the impact, J.
     status : str
         ``ok`` or why the numbers are NaN.
     time_s, force_n, ball_displacement_m, deflection_m : ndarray (n_t,)
@@ -180,7 +185,7 @@ class TransientImpact:
     vibration_energy_j: float
     hysteresis_loss_j: float
     damping_loss_j: float
-    racket_energy_gain_j: float
+    racket_energy_j: float
     status: str
     time_s: NDArray[np.float64]
     force_n: NDArray[np.float64]
@@ -200,13 +205,9 @@ class TransientImpact:
 
 # --- the hysteresis law --------------------------------------------------------------------------
 def _unloading_area(law: RestoringForce, peak: float, exponent: float) -> float:
-    """``∫₀^{X_p} F(X) (X/X_p)^p dX`` in closed form, J."""
-    if law.kind == "power":
-        c, n = law.coefficients
-        return float(c * peak ** (n + 1.0) / (n + 1.0 + exponent))
-    c_k = np.asarray(law.coefficients)
-    k = np.arange(1, c_k.size + 1)
-    return float(np.sum(c_k * peak ** (k + 1.0) / (k + 1.0 + exponent)))
+    """``∫₀^{X_p} F(X) (X/X_p)^p dX`` in closed form, J (the kernel's own function)."""
+    kind, coefficients = law_arrays(law.kind, law.coefficients)
+    return float(kernel_energy(peak, kind, coefficients, exponent))
 
 
 def unloading_exponent(law: RestoringForce, e_bg: float, peak: float) -> float:
@@ -243,21 +244,9 @@ def unloading_exponent(law: RestoringForce, e_bg: float, peak: float) -> float:
 
 
 def _scalar_force(law: RestoringForce) -> Callable[[float], float]:
-    """F(X) for a float X ≥ 0, in plain Python (no numpy call per evaluation)."""
-    if law.kind == "power":
-        c, n = law.coefficients
-        return lambda x: c * x**n if x > 0.0 else 0.0
-    coefficients = tuple(reversed(law.coefficients))
-
-    def force(x: float) -> float:
-        if x <= 0.0:
-            return 0.0
-        total = 0.0
-        for c in coefficients:
-            total = total * x + c
-        return total * x
-
-    return force
+    """F(X) for a float X (0 for X ≤ 0): the kernel's own scalar law."""
+    kind, coefficients = law_arrays(law.kind, law.coefficients)
+    return lambda x: float(kernel_law(x, kind, coefficients)[0])
 
 
 # --- the reference engine -----------------------------------------------------------------------
@@ -462,7 +451,7 @@ def simulate_system_contact(
                 return loading_force(x) * (x / _xp) ** _p if x > 0.0 else 0.0
 
             def past_peak(y: NDArray[np.float64], _xp: float = peak) -> float:
-                return deflection(y) - _xp * (1.0 + _RELOAD_MARGIN)
+                return deflection(y) - _xp * (1.0 + RELOAD_MARGIN)
 
             reload = event(past_peak, 1.0)
             events = [separation, reload]
@@ -518,8 +507,9 @@ def simulate_system_contact(
         )  # fmt: skip
     q_end, q_dot_end = y0[2 : 2 + n], y0[2 + n : 2 + 2 * n]
     rigid_energy, mode_energy, support_energy = system.energies(q_end, q_dot_end)
+    point_velocity = float(system.rigid_point_velocity(q_dot_end)[point])
     impact = _assemble(
-        v_in, v_r, m_b, e_bg, law, m_r, compliance, float(y0[1]), t0, peak,
+        v_in, v_r, m_b, e_bg, law, m_r, point_velocity, float(y0[1]), t0, peak,
         float(rigid_energy), mode_energy, float(support_energy), float(y0[-1]),
         time, force_history, history[0], compression, q_history,
     )  # fmt: skip
@@ -533,29 +523,27 @@ def simulate_system_contact(
 
 def _lab_numbers(
     v_in: ArrayLike, v_r: ArrayLike, m_b: float, e_bg: float, law: RestoringForce,
-    m_r: ArrayLike, compliance: ArrayLike, ball_velocity_rest: ArrayLike,
+    m_r: ArrayLike, point_velocity_rest: ArrayLike, ball_velocity_rest: ArrayLike,
     contact_time: ArrayLike, peak: ArrayLike, rigid_energy_rest: ArrayLike,
     mode_energy: ArrayLike, support_energy: ArrayLike, damping_loss: ArrayLike | None,
 ) -> dict[str, NDArray[np.float64]]:  # fmt: skip
     """The lab-frame numbers of impacts from their rest-frame end states (both engines).
 
-    Arrays broadcast together; ``mode_energy`` has the modes on its last axis.  With
-    ``damping_loss=None`` (compiled engine) the damping loss is what the other terms of the
-    energy balance leave; the reference engine integrates it.
+    Arrays broadcast together; ``mode_energy`` has the modes on its last axis;
+    ``point_velocity_rest`` is the impact point's velocity from the racket's rigid-body motion.
+    With ``damping_loss=None`` (compiled engine) the damping loss is what the other terms of
+    the energy balance leave; the reference engine integrates it.
     """
-    v_in, v_r, m_r, c_r, v_out_rest, t_c, x_max = (
+    v_in, v_r, m_r, v_point, v_out_rest, t_c, x_max = (
         np.asarray(x, dtype=float)
-        for x in (v_in, v_r, m_r, compliance, ball_velocity_rest, contact_time, peak)
+        for x in (v_in, v_r, m_r, point_velocity_rest, ball_velocity_rest, contact_time, peak)
     )
     modes = np.asarray(mode_energy, dtype=float)
     approach = v_in + v_r
     impulse = m_b * (approach - v_out_rest)
-    racket_out = c_r * impulse - v_r  # lab rigid-body velocity of the point
     rebound = v_r - v_out_rest  # lab, + away from the strings
     rebound_ratio = (rebound - v_r) / approach
     mass_ratio = np.where(np.isinf(m_r), 0.0, m_b / m_r)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        gain = np.where(c_r > 0, 0.5 * (racket_out**2 - v_r**2) / c_r, 0.0)
     hysteresis = (1.0 - e_bg**2) * np.asarray(law.energy(x_max))
     vibration = modes.sum(axis=-1)
     if damping_loss is None:
@@ -563,7 +551,7 @@ def _lab_numbers(
             0.5 * m_b * (approach**2 - v_out_rest**2) - np.asarray(rigid_energy_rest)
             - vibration - np.asarray(support_energy) - hysteresis
         )  # fmt: skip
-    mu = m_b / (1.0 + m_b * c_r)
+    mu = m_b / (1.0 + mass_ratio)
     return {
         "mu": mu,
         "contact_time": t_c,
@@ -572,20 +560,20 @@ def _lab_numbers(
         "impulse": impulse,
         "peak_deflection": x_max,
         "rebound_speed": rebound,
-        "racket_velocity": racket_out,
+        "racket_velocity": v_point - v_r,
         "rebound_ratio": rebound_ratio,
         "cor": rebound_ratio * (1.0 + mass_ratio) + mass_ratio,
         "vibration_energy": vibration,
         "hysteresis_loss": hysteresis,
         "damping_loss": np.asarray(damping_loss, dtype=float),
-        "racket_energy_gain": gain,
+        "racket_energy": np.asarray(rigid_energy_rest, dtype=float),
         "stiffness": np.pi**2 * mu / t_c**2,
     }
 
 
 def _assemble(
     v_in: float, v_r: float, m_b: float, e_bg: float, law: RestoringForce, m_r: float,
-    compliance: float, ball_velocity_rest: float, contact_time: float, peak: float,
+    point_velocity_rest: float, ball_velocity_rest: float, contact_time: float, peak: float,
     rigid_energy_rest: float, mode_energy: NDArray[np.float64], support_energy: float,
     damping_loss: float | None, time: NDArray[np.float64], force: NDArray[np.float64],
     ball_displacement: NDArray[np.float64], compression: NDArray[np.float64],
@@ -593,8 +581,8 @@ def _assemble(
 ) -> TransientImpact:  # fmt: skip
     """One impact's :class:`TransientImpact` from its rest-frame end state."""
     n = _lab_numbers(
-        v_in, v_r, m_b, e_bg, law, m_r, compliance, ball_velocity_rest, contact_time, peak,
-        rigid_energy_rest, mode_energy, support_energy, damping_loss,
+        v_in, v_r, m_b, e_bg, law, m_r, point_velocity_rest, ball_velocity_rest, contact_time,
+        peak, rigid_energy_rest, mode_energy, support_energy, damping_loss,
     )  # fmt: skip
     return TransientImpact(
         ball_speed_mps=v_in,
@@ -614,7 +602,7 @@ def _assemble(
         vibration_energy_j=float(n["vibration_energy"]),
         hysteresis_loss_j=float(n["hysteresis_loss"]),
         damping_loss_j=float(n["damping_loss"]),
-        racket_energy_gain_j=float(n["racket_energy_gain"]),
+        racket_energy_j=float(n["racket_energy"]),
         status=STATUS_OK,
         time_s=time,
         force_n=force,
@@ -700,8 +688,9 @@ def _reduced_mass(
 Engine = Literal["auto", "compiled", "reference"]
 ENGINES: tuple[str, ...] = ("auto", "compiled", "reference")
 STEPS_PER_CONTACT = 400
-"""Default steps of the compiled engine over one estimated contact time: the rebound ratio
-within ≈ 1e-5 of the reference engine (``tests/test_kernel.py``, ``docs/develop.md``)."""
+"""Default steps of the compiled engine over one estimated contact time: rebound speed within
+≈ 2e-4 m/s and contact time within ≈ 2e-5 of the reference engine over the face
+(``tests/test_kernel.py``, ``docs/develop.md``)."""
 
 
 def predict_transient(
@@ -787,7 +776,11 @@ def predict_transient(
     run = _run_compiled if engine == "compiled" else _run_reference
     out, mode_energy, status, terms = run(grid, systems, ball, rtol, method, steps_per_contact)
     settings: dict[str, Any] = (
-        {"engine": "compiled", "steps_per_contact": steps_per_contact, "order": 2}
+        {
+            "engine": "compiled",
+            "steps_per_contact": steps_per_contact,
+            "order": "2 (1 + n for a power law F = c Xⁿ with n < 1)",
+        }
         if engine == "compiled"
         else {"engine": "reference", "method": method, "rtol": rtol}
     )
@@ -869,8 +862,7 @@ def _energy_terms(impact: TransientImpact, ball_mass: float) -> dict[str, float]
     return {
         "energy_in_j": 0.5 * ball_mass * approach**2,
         "ball_energy_out_j": 0.5 * ball_mass * (impact.rebound_speed_mps - v_r) ** 2,
-        # rigid body: ½ c J² = ½ (its point's velocity change) · J
-        "racket_energy_j": 0.5 * (impact.racket_velocity_mps + v_r) * impact.impulse_ns,
+        "racket_energy_j": impact.racket_energy_j,
         "vibration_energy_j": impact.vibration_energy_j,
         "support_energy_j": impact.support_energy_j,
         "hysteresis_loss_j": impact.hysteresis_loss_j,
@@ -957,6 +949,7 @@ def _run_compiled(
     # physical end state per impact: rigid part + Σ weight Re(v_k u_k), per support
     rigid_energy = np.zeros(code.size)
     support_energy = np.zeros(code.size)
+    point_velocity = np.zeros(code.size)
     modes = np.zeros((code.size, n_modes))
     for k, (system, form) in enumerate(zip(systems, forms, strict=True)):
         flat = np.flatnonzero(np.arange(code.size) % n_supports == k)
@@ -969,11 +962,15 @@ def _run_compiled(
         q = state[:, :n_q] + form.rigid_vectors[point] * raw[flat, 5][:, None]
         q_dot = state[:, n_q:] + form.rigid_vectors[point] * raw[flat, 6][:, None]
         rigid_energy[flat], modes[flat], support_energy[flat] = system.energies(q, q_dot)
+        point_velocity[flat] = np.take_along_axis(
+            system.rigid_point_velocity(q_dot), point[:, None], axis=1
+        )[:, 0]
     reduced = np.broadcast_to(grid.reduced_mass[:, None, :], grid.shape).ravel()
     ok = code == STATUS_CODE_OK
     with np.errstate(invalid="ignore", divide="ignore"):
         numbers = _lab_numbers(
-            v_in, v_r, m_b, ball.e_bg, law, reduced, c_r, raw[:, 4], raw[:, 1], raw[:, 3],
+            v_in, v_r, m_b, ball.e_bg, law, reduced, point_velocity, raw[:, 4], raw[:, 1],
+            raw[:, 3],
             rigid_energy, modes, support_energy, None,
         )  # fmt: skip
     for name in _FIELDS:

@@ -10,9 +10,9 @@ a row of offsets across the face and reads, at separation:
   over ±``TWIST_DIFFERENCE_M`` of the mode shapes), and the total;
 * the outgoing ball speed and the rebound ratio, which fall as the offset grows.
 
-For a rigid free racket the roll rate after a normal impulse J at offset y is
-``J (y − y_G) / I_roll`` to first order (``tests/test_twist.py``): the twist grows linearly with
-the offset and falls with the twistweight, as players feel it.
+For a rigid free racket with no product of inertia (y_G = 0, a symmetric racket) the roll rate
+after a normal impulse J at offset y is exactly ``J y / I_roll`` (``tests/test_twist.py``): the
+twist grows with the offset and falls with the twistweight, as players feel it.
 """
 
 from __future__ import annotations

@@ -1,0 +1,100 @@
+"""Design sweeps: many racket variants × impact points × speeds × swing, on any executor.
+
+A sweep answers a racket maker's "what if" — 5 g of lead at 12 o'clock, a 10 % softer frame,
+20 N less tension — with a full map of predictions per variant.  A :class:`SweepSpec` (read from
+TOML by :func:`load_sweep_spec`, schema in docs/sweep-file.md) names a base racket and ball, the
+impact points and speeds, and the variables with their values; :meth:`SweepSpec.designs` lists
+the design variants, as a full factorial or one variable at a time around the base.
+
+:func:`run_sweep` makes one task per design — :func:`run_task`, a pure function of plain
+picklable inputs (:class:`SweepTask`) that builds the variant's racket, ball, modal model and
+contact law and calls :func:`racketdyn.impact.predict` — and submits the tasks to any
+:class:`concurrent.futures.Executor`: :class:`SerialExecutor` in this process, a
+:class:`~concurrent.futures.ProcessPoolExecutor`, or Dask through
+``dask.distributed.Client.get_executor()``.  :func:`make_executor` builds each of these (the
+``racketdyn sweep`` command line calls it).  Each finished task is written at once to
+``out_dir/parts/<task-id>.nc``; a rerun skips the tasks whose part carries the same spec hash,
+so an interrupted sweep resumes.  A failed task is retried once, then recorded (dataset
+attributes and ``failures.json``) while the other results are kept.  The parts are combined,
+always from the files, into ``out_dir/sweep.nc``: an :mod:`xarray` dataset with dimensions
+``(design, point, speed, racket_speed, support)``, so every engine gives the same file.
+
+Summary figures (:func:`write_summary_figures`) plot, for each variable, the rebound ratio at the
+face centre and the area of the face with a rebound ratio above a threshold against the variable,
+per support.
+
+The impact method is a parameter (``SweepSpec.method``, :data:`METHODS`): ``approximate``
+(:func:`racketdyn.impact.predict`) or ``transient``
+(:func:`racketdyn.impact.transient.predict_transient`).  The transient method also takes the
+``hand`` support, a grip held by a hand and arm (:class:`racketdyn.impact.hand.Hand`), whose
+parameters are sweepable (:data:`HAND_VARIABLES`).
+
+The modules follow the data, each importing only those above it:
+
+- :mod:`~racketdyn.sweep.variables`: what a sweep can change, :class:`Variable`;
+- :mod:`~racketdyn.sweep.design`: :class:`Design`, :func:`build_design`, :func:`build_hand`;
+- :mod:`~racketdyn.sweep.task`: :class:`SweepTask`, :func:`run_task`, :data:`METHODS`, status
+  codes, the per-process caches;
+- :mod:`~racketdyn.sweep.spec`: :class:`SweepSpec`, its designs, tasks and hash;
+- :mod:`~racketdyn.sweep.spec_file`: the TOML reader, :func:`load_sweep_spec`;
+- :mod:`~racketdyn.sweep.executors`: :class:`SerialExecutor`, :func:`make_executor`;
+- :mod:`~racketdyn.sweep.summary`: metrics and figures from a sweep dataset;
+- :mod:`~racketdyn.sweep.files`: part files and ``sweep.nc``;
+- :mod:`~racketdyn.sweep.run`: :func:`run_sweep`.
+
+Everything public is importable from :mod:`racketdyn.sweep` itself.
+"""
+
+from racketdyn.sweep.design import Design, build_design, build_hand
+from racketdyn.sweep.executors import ENGINES, EngineKind, SerialExecutor, make_executor
+from racketdyn.sweep.run import SERIAL_IMPACT_LIMIT, run_sweep
+from racketdyn.sweep.spec import MODES, SweepSpec
+from racketdyn.sweep.spec_file import load_sweep_spec, sweep_spec_from_dict
+from racketdyn.sweep.summary import (
+    factorial_view,
+    plot_centre_rebound,
+    plot_sweet_area,
+    summary_metrics,
+    variable_designs,
+    write_summary_figures,
+)
+from racketdyn.sweep.task import (
+    METHOD_SUPPORTS,
+    METHODS,
+    STATUS_CODES,
+    SweepTask,
+    TaskOutput,
+    run_task,
+)
+from racketdyn.sweep.variables import HAND_VARIABLES, SCALAR_VARIABLES, Variable
+
+__all__ = [
+    "ENGINES",
+    "HAND_VARIABLES",
+    "METHODS",
+    "METHOD_SUPPORTS",
+    "MODES",
+    "SCALAR_VARIABLES",
+    "SERIAL_IMPACT_LIMIT",
+    "STATUS_CODES",
+    "Design",
+    "EngineKind",
+    "SerialExecutor",
+    "SweepSpec",
+    "SweepTask",
+    "TaskOutput",
+    "Variable",
+    "build_design",
+    "build_hand",
+    "factorial_view",
+    "load_sweep_spec",
+    "make_executor",
+    "plot_centre_rebound",
+    "plot_sweet_area",
+    "run_sweep",
+    "run_task",
+    "summary_metrics",
+    "sweep_spec_from_dict",
+    "variable_designs",
+    "write_summary_figures",
+]

@@ -1,0 +1,362 @@
+"""Sweep summary: per-design metrics, the designs that show one variable, and the figures.
+
+The end of the flow: reads a sweep dataset (``sweep.nc``, :func:`~racketdyn.sweep.run_sweep`)
+and nothing else — the rebound ratio at the face centre and the "sweet" face area per design
+and support, their plots against each variable, ``summary.csv``, and a full factorial's
+dimensions.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from racketdyn.__about__ import __version__
+from racketdyn.errors import InputError
+from racketdyn.sweep.variables import POINT_MASS
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.axes import Axes
+
+__all__ = [
+    "factorial_view",
+    "plot_centre_rebound",
+    "plot_sweet_area",
+    "summary_metrics",
+    "variable_designs",
+    "write_summary_figures",
+]
+
+
+def _variables(dataset: xr.Dataset) -> dict[str, dict[str, Any]]:
+    return {v["name"]: v for v in json.loads(str(dataset.attrs["sweep_variables"]))}
+
+
+def variable_designs(dataset: xr.Dataset, variable: str) -> NDArray[np.int_]:
+    """Design indices that show one variable's effect, in order of its axis coordinate.
+
+    One at a time: the designs varying it and the base design.  Full factorial: the designs
+    with every other variable at its reference value — its base value if swept, else the swept
+    value nearest the base.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep dataset (:func:`run_sweep`).
+    variable : str
+        A variable name (``e_bg``, ``point_mass`` …).
+    """
+    variables = _variables(dataset)
+    if variable not in variables:
+        raise InputError(f"no variable {variable!r} in the sweep; it has {', '.join(variables)}")
+    info = variables[variable]
+    axis = dataset[info["axis"]].values
+    if dataset.attrs["sweep_mode"] == "one-at-a-time":
+        varied = dataset["varied"].values
+        keep = np.flatnonzero((varied == variable) | (varied == "base"))
+    else:
+        mask = np.ones(dataset.sizes["design"], dtype=bool)
+        for name, other in variables.items():
+            if name == variable:
+                continue
+            values = np.asarray(other["values"], dtype=float)
+            base = np.asarray(other["base"], dtype=float)
+            k = other["coords"].index(other["axis"])
+            reference = values[np.argmin(np.abs(values[:, k] - base[k]))]
+            if other["kind"] == POINT_MASS and base[0] == 0.0 and np.any(values[:, 0] == 0.0):
+                reference = values[np.flatnonzero(values[:, 0] == 0.0)[0]]
+            for coord, value in zip(other["coords"], reference, strict=True):
+                mask &= dataset[coord].values == value
+        keep = np.flatnonzero(mask)
+    return np.asarray(keep[np.argsort(axis[keep], kind="stable")])
+
+
+def summary_metrics(
+    dataset: xr.Dataset,
+    threshold_fraction: float | None = None,
+    ball_speed: float | None = None,
+    racket_speed: float | None = None,
+) -> xr.Dataset:
+    """Per design and support: rebound ratio at the face centre and the "sweet" face area.
+
+    The face centre is the impact point nearest the head's centre.  The area counts the
+    points whose rebound ratio reaches ``threshold_fraction`` × the best rebound ratio of the
+    designs in ``dataset`` (all their points, per support: one threshold for the designs
+    compared), each point standing for an equal share of the string-bed area (exact for a
+    grid, approximate for a points file).  The figures compare the designs of one variable
+    (:func:`variable_designs`) and pass only those; ``summary.csv`` compares all.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep dataset.
+    threshold_fraction : float, optional
+        Default: the spec's (``summary.threshold_fraction``, 0.9).
+    ball_speed, racket_speed : float, optional
+        The speeds to evaluate at, m/s (nearest listed; default the spec's summary speeds).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``centre_rebound_ratio`` and ``sweet_area_cm2`` over ``(design, support)``, with the
+        threshold per support and the centre point in the attributes.
+    """
+    import xarray as xr
+
+    fraction = float(
+        dataset.attrs["threshold_fraction"] if threshold_fraction is None else threshold_fraction
+    )
+    speed = float(dataset.attrs["summary_ball_speed_mps"] if ball_speed is None else ball_speed)
+    swing = float(
+        dataset.attrs["summary_racket_speed_mps"] if racket_speed is None else racket_speed
+    )
+    rebound = dataset["rebound_ratio"].sel(speed=speed, racket_speed=swing, method="nearest")
+    x, y = dataset["x_m"].values, dataset["y_m"].values
+    centre = int(
+        np.argmin(
+            (x - dataset.attrs["head_centre_x_m"]) ** 2
+            + (y - dataset.attrs["head_centre_y_m"]) ** 2
+        )
+    )
+    values = rebound.transpose("design", "point", "support").values
+    with np.errstate(invalid="ignore"):
+        finite = np.where(np.isfinite(values), values, -np.inf)
+        best = finite.max(axis=(0, 1))  # per support
+        threshold = np.where(np.isfinite(best), fraction * best, np.nan)
+        share = np.mean(finite >= threshold, axis=1)  # (design, support)
+    area = share * float(dataset.attrs["head_area_cm2"])
+    failed = np.all(~np.isfinite(values), axis=1)
+    area = np.where(failed, np.nan, area)
+    coords = {"design": dataset["design"].values, "support": dataset["support"].values}
+    return xr.Dataset(
+        {
+            "centre_rebound_ratio": (
+                ("design", "support"),
+                values[:, centre, :],
+                {"units": "1", "long_name": "rebound ratio at the face centre"},
+            ),
+            "sweet_area_cm2": (
+                ("design", "support"),
+                area,
+                {
+                    "units": "cm2",
+                    "long_name": f"face area with rebound ratio ≥ {fraction:g} × best",
+                },
+            ),
+        },
+        coords=coords,
+        attrs={
+            "ball_speed_mps": speed,
+            "racket_speed_mps": swing,
+            "threshold_fraction": fraction,
+            "threshold_rebound_ratio": threshold.tolist(),
+            "centre_point_x_m": float(x[centre]),
+            "centre_point_y_m": float(y[centre]),
+        },
+    )
+
+
+def _axis_label(dataset: xr.Dataset, variable: str) -> tuple[str, str, float]:
+    """The coordinate a variable is plotted against, its axis label and display scale."""
+    info = _variables(dataset)[variable]
+    coord = str(info["axis"])
+    if info["kind"] == POINT_MASS:
+        what = variable.replace("_", " ")
+        quantity = coord.removeprefix(variable + "_")
+        labels = {
+            "mass_kg": (f"{what} (g)", 1e3),
+            "clock": (f"{what} position (o'clock)", 1.0),
+            "x_m": (f"{what} x (m)", 1.0),
+            "y_m": (f"{what} y (m)", 1.0),
+        }
+        label, scale = labels[quantity]
+        return coord, label, scale
+    hand_labels = {
+        "hand.arm_mass_kg": "arm mass (kg)",
+        "hand.stiffness_n_per_m": "hand stiffness (N/m)",
+        "hand.damping_ns_per_m": "hand damping (N·s/m)",
+    }
+    if coord in hand_labels:
+        return coord, hand_labels[coord], 1.0
+    name, _, unit = coord.rpartition("_")
+    units = {"kg": "kg", "m": "m", "kgm2": "kg·m²", "kgcm2": "kg·cm²", "n": "N"}
+    if unit in units:
+        return coord, f"{name.replace('_', ' ')} ({units[unit]})", 1.0
+    return coord, f"{coord.replace('_', ' ')} (–)", 1.0
+
+
+def _plot_metric(
+    dataset: xr.Dataset,
+    variable: str,
+    metric: str,
+    ax: Axes | None,
+    threshold_fraction: float | None,
+    ball_speed: float | None,
+    racket_speed: float | None,
+) -> Axes:
+    import matplotlib.pyplot as plt
+
+    from racketdyn.plotting import SUPPORT_STYLE  # sets the Agg backend: files, not windows
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(5.0, 3.6), layout="constrained")
+    keep = variable_designs(dataset, variable)
+    # the designs compared share one threshold: a fraction of the best among them
+    metrics = summary_metrics(
+        dataset.isel(design=keep), threshold_fraction, ball_speed, racket_speed
+    )
+    coord, label, scale = _axis_label(dataset, variable)
+    x = dataset[coord].values[keep] * scale
+    for support in metrics["support"].values.tolist():
+        style = SUPPORT_STYLE.get(str(support), {})
+        ax.plot(
+            x,
+            metrics[metric].sel(support=support).values,
+            color=str(style.get("color", "tab:gray")),
+            marker=str(style.get("marker", "o")),
+            label=str(style.get("label", support)),
+            linestyle="-",
+            markersize=4,
+        )
+    ax.set_xlabel(label)
+    speeds = f"{metrics.attrs['ball_speed_mps']:g} m/s ball"
+    if metrics.attrs["racket_speed_mps"]:
+        speeds += f", {metrics.attrs['racket_speed_mps']:g} m/s racket"
+    if metric == "centre_rebound_ratio":
+        ax.set_ylabel("rebound ratio e at centre (–)")
+        ax.set_title(f"face centre, {speeds}", fontsize=9)
+    else:
+        ax.set_ylabel("face area above threshold (cm²)")
+        ax.set_title(f"e ≥ {metrics.attrs['threshold_fraction']:g} × best, {speeds}", fontsize=9)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_centre_rebound(
+    dataset: xr.Dataset,
+    variable: str,
+    ax: Axes | None = None,
+    ball_speed: float | None = None,
+    racket_speed: float | None = None,
+) -> Axes:
+    """Rebound ratio at the face centre against a variable, one line per support.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep dataset.
+    variable : str
+        The variable (designs from :func:`variable_designs`).
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if None).
+    ball_speed, racket_speed : float, optional
+        Speeds, m/s (default the spec's summary speeds).
+    """
+    return _plot_metric(
+        dataset, variable, "centre_rebound_ratio", ax, None, ball_speed, racket_speed
+    )
+
+
+def plot_sweet_area(
+    dataset: xr.Dataset,
+    variable: str,
+    ax: Axes | None = None,
+    threshold_fraction: float | None = None,
+    ball_speed: float | None = None,
+    racket_speed: float | None = None,
+) -> Axes:
+    """Face area with a rebound ratio above the threshold against a variable, per support.
+
+    The threshold is a fraction of the best rebound ratio among the designs plotted (see
+    :func:`summary_metrics`).
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep dataset.
+    variable : str
+        The variable (designs from :func:`variable_designs`).
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if None).
+    threshold_fraction : float, optional
+        Fraction of the sweep's best rebound ratio (default the spec's).
+    ball_speed, racket_speed : float, optional
+        Speeds, m/s (default the spec's summary speeds).
+    """
+    return _plot_metric(
+        dataset, variable, "sweet_area_cm2", ax, threshold_fraction, ball_speed, racket_speed
+    )
+
+
+def write_summary_figures(dataset: xr.Dataset, out_dir: Path | str) -> list[Path]:
+    """Write ``summary_<variable>.png`` (centre rebound and sweet area) and ``summary.csv``.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep dataset.
+    out_dir : path-like
+        Output folder.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    import matplotlib.pyplot as plt
+
+    import racketdyn.plotting  # noqa: F401  (sets the Agg backend: files, not windows)
+
+    out = Path(out_dir)
+    written = []
+    for variable in _variables(dataset):
+        figure, (left, right) = plt.subplots(1, 2, figsize=(9.0, 3.6), layout="constrained")
+        plot_centre_rebound(dataset, variable, ax=left)
+        plot_sweet_area(dataset, variable, ax=right)
+        figure.suptitle(f"{dataset.attrs['title']}: {variable.replace('_', ' ')}", fontsize=10)
+        path = out / f"summary_{variable}.png"
+        figure.savefig(path, dpi=120, metadata={"Software": f"racketdyn {__version__}"})
+        plt.close(figure)
+        written.append(path)
+    metrics = summary_metrics(dataset)
+    table = metrics.to_dataframe().unstack("support")
+    table.columns = [f"{name}_{support}" for name, support in table.columns]
+    design_coords = [c for c in dataset.coords if dataset[c].dims == ("design",) and c != "design"]
+    for coord in design_coords:
+        table[coord] = dataset[coord].values
+    table = table[design_coords + [c for c in table.columns if c not in design_coords]]
+    path = out / "summary.csv"
+    table.to_csv(path)
+    written.append(path)
+    return written
+
+
+def factorial_view(dataset: xr.Dataset) -> xr.Dataset:
+    """A full-factorial sweep with one dimension per variable instead of ``design``.
+
+    Each variable's dimension is its axis coordinate (``e_bg``, ``point_mass_mass_kg`` …).
+    For analysis in memory; netCDF cannot store the index this builds.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A full-factorial sweep dataset.
+    """
+    if dataset.attrs["sweep_mode"] != "full-factorial":
+        raise InputError("factorial_view needs a full-factorial sweep (mode = 'full-factorial')")
+    axes = [str(v["axis"]) for v in _variables(dataset).values()]
+    if not axes:
+        return dataset.squeeze("design", drop=False)
+    others = [
+        c
+        for c in dataset.coords
+        if dataset[c].dims == ("design",) and c not in axes and c != "design"
+    ]
+    stacked = dataset.drop_vars(others).set_index(design=axes)
+    return stacked.unstack("design")

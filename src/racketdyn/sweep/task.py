@@ -1,0 +1,369 @@
+"""The task: one design's computation, a pure function of plain picklable data.
+
+:class:`SweepTask` is what an executor ships to a worker; :func:`run_task` builds the design
+(:mod:`~racketdyn.sweep.design`), runs an impact method (:data:`METHODS`) and returns a
+:class:`TaskOutput`, which :mod:`~racketdyn.sweep.files` writes as a part file.  The
+per-process caches of modal models and contact laws live here.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from threadpoolctl import ThreadpoolController  # type: ignore[import-untyped]
+
+from racketdyn.ball import Ball, RestoringForce
+from racketdyn.contact import compound_law
+from racketdyn.errors import InputError, one_of
+from racketdyn.impact.approximate import StiffnessReading, predict
+from racketdyn.impact.result import (
+    STATUS_BEYOND_LAW,
+    STATUS_OK,
+    STATUS_VIBRATION_LOSS,
+    ImpactResult,
+)
+from racketdyn.impact.transient import (
+    STATUS_NO_SEPARATION,
+    TRANSIENT_SUPPORTS,
+    predict_transient,
+)
+from racketdyn.modal import ModalModel, builtin_modal_model
+from racketdyn.racket import SUPPORTS, Racket
+from racketdyn.sweep.design import build_design, build_hand
+from racketdyn.sweep.variables import Variable
+
+__all__ = [
+    "METHODS",
+    "METHOD_SUPPORTS",
+    "STATUS_CODES",
+    "STATUS_FAILED",
+    "SweepTask",
+    "TaskOutput",
+    "run_task",
+]
+
+METHOD_SUPPORTS: dict[str, tuple[str, ...]] = {
+    "approximate": SUPPORTS,
+    "transient": TRANSIENT_SUPPORTS,
+}
+"""Supports each impact method takes."""
+
+STATUS_FAILED = "task failed"
+STATUS_CODES: dict[str, int] = {
+    STATUS_OK: 0,
+    STATUS_VIBRATION_LOSS: 1,
+    STATUS_BEYOND_LAW: 2,
+    STATUS_FAILED: 3,
+    STATUS_NO_SEPARATION: 4,
+}
+"""Integer codes of the ``status`` variable of a sweep dataset (CF ``flag_values``)."""
+
+_IMPACT_VARIABLES: dict[str, tuple[str, str, str]] = {
+    # dataset name: (ImpactResult attribute, units, long name)
+    "stiffness_n_per_m": ("stiffness", "N m-1", "compound ball+string stiffness K_GB (eqs 9-10)"),
+    "contact_time_s": ("contact_time", "s", "contact time T_c (eq 7)"),
+    "mean_force_n": ("mean_force", "N", "equivalent force F_MEAN (eqs 8-10)"),
+    "peak_force_n": ("peak_force", "N", "peak force F_MAX (eq 11)"),
+    "vibration_energy_j": ("vibration_energy", "J", "frame vibration energy after impact (eq 12)"),
+    "cor": ("cor", "1", "ball-racket coefficient of restitution e_r"),
+    "rebound_ratio": ("rebound_ratio", "1", "rebound power coefficient e"),
+    "rebound_speed_mps": ("rebound_speed", "m s-1", "outgoing ball speed"),
+    "peak_deflection_m": ("peak_deflection", "m", "peak compound deflection X_p"),
+}
+
+
+@dataclass(frozen=True, eq=False)
+class SweepTask:
+    """Everything one design's computation needs: plain, picklable data.
+
+    Parameters
+    ----------
+    task_id : str
+        The design's task id (part file name).
+    racket, ball : Racket, Ball
+        The base racket and ball.
+    variables : tuple of Variable
+        The sweep's variables.
+    settings : tuple of (str, float)
+        The design's coordinate values.
+    locations : ndarray, shape (n, 2)
+        Impact points, m.
+    ball_speeds, racket_speeds : ndarray
+        Speeds, m/s.
+    supports : tuple of str
+        Support conditions.
+    method : str
+        Impact method (a key of :data:`METHODS`).
+    stiffness_reading : {"period", "tangent"}
+        Reading of eq (10).
+    include_string_bed : bool
+        Charge string-bed modes too.
+    rigid : bool
+        No modal model.
+    """
+
+    task_id: str
+    racket: Racket
+    ball: Ball
+    variables: tuple[Variable, ...]
+    settings: tuple[tuple[str, float], ...]
+    locations: NDArray[np.float64]
+    ball_speeds: NDArray[np.float64]
+    racket_speeds: NDArray[np.float64]
+    supports: tuple[str, ...]
+    method: str
+    stiffness_reading: StiffnessReading
+    include_string_bed: bool
+    rigid: bool
+
+
+@dataclass(frozen=True, eq=False)
+class TaskOutput:
+    """The arrays one task returns, shaped ``(n_points, n_speeds, n_racket_speeds, n_supports)``.
+
+    Parameters
+    ----------
+    task_id : str
+        The design's task id.
+    arrays : dict of str to ndarray
+        The impact quantities named as in the dataset (``contact_time_s`` …) and ``status``
+        (int8 codes, :data:`STATUS_CODES`).
+    reduced_mass_kg : ndarray, shape (n_points, n_supports)
+        Reduced mass at each point, kg.
+    mode_names : tuple of str
+        Modes charged with vibration (empty for a rigid racket).
+    mode_frequency_hz : ndarray
+        Their natural frequencies, Hz.
+    attempt : int
+        Which attempt produced it (1 first, 2 the retry).
+    elapsed_s : float
+        Time the task took where it ran, s (for the run record).
+    """
+
+    task_id: str
+    arrays: dict[str, NDArray[Any]]
+    reduced_mass_kg: NDArray[np.float64]
+    mode_names: tuple[str, ...]
+    mode_frequency_hz: NDArray[np.float64]
+    attempt: int = 1
+    elapsed_s: float = 0.0
+
+
+def _approximate(
+    racket: Racket,
+    ball: Ball,
+    model: ModalModel | None,
+    law: RestoringForce,
+    task: SweepTask,
+) -> ImpactResult:
+    """Kawazoe's approximate method over points × (ball speed, racket speed) pairs × supports."""
+    n_r = task.racket_speeds.size
+    return predict(
+        racket,
+        ball,
+        task.locations,
+        np.repeat(task.ball_speeds, n_r),
+        task.supports,
+        np.tile(task.racket_speeds, task.ball_speeds.size),
+        modal_model=model,
+        law=law,
+        include_string_bed=task.include_string_bed,
+        stiffness_reading=task.stiffness_reading,
+    )
+
+
+def _transient(
+    racket: Racket,
+    ball: Ball,
+    model: ModalModel | None,
+    law: RestoringForce,
+    task: SweepTask,
+) -> ImpactResult:
+    """The transient simulation over points × (ball speed, racket speed) pairs × supports.
+
+    The ``hand`` support holds the grip with the design's hand (:func:`build_hand`); the
+    engine is ``auto`` (compiled where numba is installed).
+    """
+    n_r = task.racket_speeds.size
+    hand = build_hand(task.variables, task.settings) if "hand" in task.supports else None
+    return predict_transient(
+        racket,
+        ball,
+        task.locations,
+        np.repeat(task.ball_speeds, n_r),
+        task.supports,
+        np.tile(task.racket_speeds, task.ball_speeds.size),
+        modal_model=model,
+        law=law,
+        include_string_bed=task.include_string_bed,
+        hand=hand,
+    )
+
+
+ImpactMethod = Callable[[Racket, Ball, ModalModel | None, RestoringForce, SweepTask], ImpactResult]
+METHODS: dict[str, ImpactMethod] = {"approximate": _approximate, "transient": _transient}
+"""Impact methods a sweep can run, by name.  Each takes the design's racket, ball, modal model
+(None: rigid), compound law and the task, and returns an :class:`ImpactResult` over points ×
+(ball speed, racket speed) pairs (ball speed slowest) × supports.  The supports each takes are
+in :data:`METHOD_SUPPORTS`."""
+
+
+def _check_method(where: str, method: object) -> str:
+    return one_of(where, method, METHODS)
+
+
+def _check_supports(where: str, supports: Sequence[object], method: str) -> None:
+    """Each support known to the method, each once (InputError naming the key)."""
+    allowed = METHOD_SUPPORTS.get(method, SUPPORTS)
+    if not supports:
+        raise InputError(f"{where}: give one or more of {', '.join(allowed)}")
+    for support in supports:
+        if support == "hand" and "hand" not in allowed:
+            raise InputError(
+                f"{where}: 'hand' needs [impacts].method = 'transient'; the {method} method has "
+                "no hand (its hand-held racket is pinned at the grip: support 'pinned')"
+            )
+        one_of(where, support, allowed)
+    if len(set(supports)) != len(supports):
+        raise InputError(f"{where}: name each support once")
+
+
+def _modal_model(racket: Racket, file_model_scale: float) -> ModalModel:
+    """The design's modal model (a file's frame modes scaled by √scale), cached per process."""
+    return _cached_modal_model(racket, file_model_scale, _file_stamps(racket))
+
+
+def _compound_law(racket: Racket, ball: Ball) -> RestoringForce:
+    """The design's compound ball+string law, cached per process."""
+    return _cached_compound_law(racket, ball, _file_stamps(racket))
+
+
+def _file_stamps(racket: Racket) -> tuple[tuple[int, int], ...]:
+    """Modification time and size of the files a racket reads: part of the cache keys, so a
+    changed file is read again (the racket itself holds only their names)."""
+    paths = (racket.modal_model_file, racket.strings.load_deflection_file)
+    return tuple(
+        (stat.st_mtime_ns, stat.st_size)
+        for stat in (Path(p).stat() for p in paths if p is not None)
+    )
+
+
+# A design often shares its racket (an e_BG sweep) or its strings with others.
+@lru_cache(maxsize=8)
+def _cached_modal_model(
+    racket: Racket, file_model_scale: float, stamps: tuple[tuple[int, int], ...]
+) -> ModalModel:
+    if racket.modal_model_file is None:
+        return builtin_modal_model(racket)
+    model = ModalModel.read_json(racket.modal_model_file)
+    if file_model_scale == 1.0:
+        return model
+    frame = np.array([kind != "string-bed" for kind in model.kinds])
+    return replace(
+        model,
+        frequency=np.where(frame, model.frequency * math.sqrt(file_model_scale), model.frequency),
+        source=f"{model.source}, frame stiffness × {file_model_scale:g}",
+    )
+
+
+@lru_cache(maxsize=8)
+def _cached_compound_law(
+    racket: Racket, ball: Ball, stamps: tuple[tuple[int, int], ...]
+) -> RestoringForce:
+    return compound_law(racket, ball)
+
+
+@lru_cache(maxsize=1)
+def _blas_controller() -> ThreadpoolController:
+    return ThreadpoolController()
+
+
+def run_task(task: SweepTask, attempt: int = 1) -> TaskOutput:
+    """Compute one design: build its racket, ball, modal model and law, then predict.
+
+    A pure function of its inputs (per-process caches of modal models and laws only save
+    time), so any executor gives the same numbers.
+
+    Parameters
+    ----------
+    task : SweepTask
+        The design.
+    attempt : int
+        Attempt number, recorded on the output (it also makes a retry a new task for executors
+        that reuse the result of an identical call, such as Dask's pure tasks).
+
+    Returns
+    -------
+    TaskOutput
+        Arrays shaped ``(n_points, n_speeds, n_racket_speeds, n_supports)``.
+    """
+    # One BLAS thread: a dense solve (the mode-shape interpolator) split over threads rounds
+    # differently with their number, and a Dask worker runs one thread where this process may
+    # run several; pinned, every engine gives the same bits.  Parallelism is across tasks.
+    started = time.perf_counter()
+    with _blas_controller().limit(limits=1, user_api="blas"), _quiet(*_PREDICT_LOGS):
+        racket, ball, file_model_scale = build_design(
+            task.racket, task.ball, task.variables, task.settings
+        )
+        model = None if task.rigid else _modal_model(racket, file_model_scale)
+        law = _compound_law(racket, ball)
+        result = METHODS[task.method](racket, ball, model, law, task)
+    shape = (
+        task.locations.shape[0],
+        task.ball_speeds.size,
+        task.racket_speeds.size,
+        len(task.supports),
+    )
+    arrays: dict[str, NDArray[Any]] = {
+        name: np.asarray(getattr(result, attribute), dtype=float).reshape(shape)
+        for name, (attribute, _, _) in _IMPACT_VARIABLES.items()
+    }
+    status = np.full(result.status.shape, -1, dtype=np.int8)
+    for text, code in STATUS_CODES.items():
+        status[result.status == text] = code
+    if np.any(status < 0):
+        unknown = sorted(set(result.status[status < 0].tolist()))
+        raise RuntimeError(f"{task.task_id}: unknown impact status {unknown}")
+    arrays["status"] = status.reshape(shape)
+    used = result.modal_model
+    return TaskOutput(
+        task_id=task.task_id,
+        arrays=arrays,
+        reduced_mass_kg=np.asarray(result.reduced_mass, dtype=float),
+        mode_names=() if used is None else tuple(used.names),
+        mode_frequency_hz=np.zeros(0) if used is None else np.asarray(used.frequency, dtype=float),
+        attempt=attempt,
+        elapsed_s=time.perf_counter() - started,
+    )
+
+
+_PREDICT_LOGS = ("racketdyn.impact.approximate", "racketdyn.impact.transient")
+
+
+@contextmanager
+def _quiet(*logger_names: str) -> Iterator[None]:
+    """Drop loggers' warnings for a while: predict warns once per call (predict_transient once
+    per impact) about impacts whose results are NaN; a sweep counts them from the status codes
+    and warns once instead (and not from worker processes whose logging nobody configured)."""
+
+    def below_error(record: logging.LogRecord) -> bool:
+        return record.levelno >= logging.ERROR
+
+    loggers = [logging.getLogger(name) for name in logger_names]
+    for logger in loggers:
+        logger.addFilter(below_error)
+    try:
+        yield
+    finally:
+        for logger in loggers:
+            logger.removeFilter(below_error)
