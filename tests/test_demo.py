@@ -15,11 +15,24 @@ from racketdyn.cli import main
 def test_demo_runs_the_chain(tmp_path: Path) -> None:
     out = tmp_path / "demo"
     assert main(["demo", "--out", str(out)]) == 0
-    for folder in ("rig", "frf_free", "frf_hand", "contact", "compare", "predict"):
+    for folder in (
+        "rig",
+        "frf_free",
+        "frf_hand",
+        "contact",
+        "compare",
+        "predict",
+        "swing",
+        "twist",
+        "oblique",
+    ):
         assert (out / folder / "run.json").is_file(), folder
-    # the prediction used the modes identified from the virtual hammer test
-    run = json.loads((out / "predict" / "run.json").read_text())
-    assert run["modal_model"]["source"].startswith("identified from")
+    # the prediction and the swing used the modes identified from the virtual hammer test
+    for folder in ("predict", "swing"):
+        run = json.loads((out / folder / "run.json").read_text())
+        assert run["modal_model"]["source"].startswith("identified from"), folder
+    for name in ("swing/sweet_spots.csv", "twist/twist.csv", "oblique/oblique.csv"):
+        assert (out / name).is_file(), name
     model = rd.ModalModel.read_json(out / "compare" / "modal_model_free.json")
     assert model.frequency[0] == pytest.approx(120.0, rel=2e-3)
     assert (out / "report.html").stat().st_size > 100_000

@@ -55,7 +55,7 @@ CAPTIONS = (
 @pytest.fixture(scope="module")
 def run_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """What ``racketdyn demo`` writes, with small settings: rig, FRFs, contact, compare, predict
-    (both impact models, as the demo does).
+    (both impact models, as the demo does), swing, twist and oblique impacts.
 
     The rig double-hits and overloads now and then, so the quality table has reasons to show.
     """
@@ -82,6 +82,9 @@ def run_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
             "--out",
             f"{d}/predict",
         ],
+        ["swing", "--grid", "5", "--out", f"{d}/swing"],
+        ["twist", "--support", "free,hand", "--offsets=-0.05,0,0.05", "--out", f"{d}/twist"],
+        ["oblique", "--angles", "0,30", "--out", f"{d}/oblique"],
     ]
     for argv in commands:
         assert main(argv) == 0, argv
@@ -181,7 +184,17 @@ def test_tables_carry_the_results(run_dir: Path, page: str) -> None:
     assert "Sweet spots" in page
     run = json.loads((run_dir / "predict" / "run.json").read_text())
     assert f"{run['racket']['derived']['swingweight_kgcm2']:.4g}" in page
-    for folder in ("rig", "frf_free", "frf_hand", "contact", "compare", "predict"):
+    for folder in (
+        "rig",
+        "frf_free",
+        "frf_hand",
+        "contact",
+        "compare",
+        "predict",
+        "swing",
+        "twist",
+        "oblique",
+    ):
         assert f"<h3>{folder}</h3>" in page  # provenance of every run
     assert re.search(r"[0-9a-f]{64}", page)  # file hashes
 
@@ -209,7 +222,7 @@ def test_missing_sections_are_listed_as_not_run(run_dir: Path, tmp_path: Path) -
     path = write_report(tmp_path, racket=rd.default_racket())
     text = path.read_text(encoding="utf-8")
     not_run = text[text.index('<section id="not-run">') :]
-    for key in ("quality", "stabilisation", "modes", "contact"):
+    for key in ("quality", "stabilisation", "modes", "contact", "swing", "oblique"):
         assert SECTIONS[key] in not_run
         assert f'<section id="{key}">' not in text
     for key in ("racket", "impact", "vibration", "rebound", "provenance"):
@@ -242,6 +255,31 @@ def test_the_transient_section_shows_the_comparison(run_dir: Path, page: str) ->
     cells = re.findall(r"<td[^>]*>(.*?)</td>", rows[1])
     assert cells[:3] == ["free", "20", f"{largest:.3f}"]
     assert "approximate against transient, 20 m/s, free" in page  # at a glance
+
+
+def test_the_swing_and_oblique_sections_show_their_runs(run_dir: Path, page: str) -> None:
+    swing = _section(page, "swing")
+    captions = " ".join(re.findall(r"<figcaption>(.*?)</figcaption>", swing, re.S))
+    for key in ("swing_map", "swing_along_axis"):
+        _, what = _CAPTIONS[key]
+        assert _html.escape(what[0].upper() + what[1:]) in captions, key
+        assert f"swing/{key}.png" in captions
+    # one row per sweet spot of sweet_spots.csv, at its x
+    with (run_dir / "swing" / "sweet_spots.csv").open(encoding="utf-8") as handle:
+        spots = list(csv.DictReader(handle))
+    body = swing[swing.index("<tbody>") : swing.index("</tbody>")]
+    rows = re.findall(r"<tr>(.*?)</tr>", body, re.S)
+    assert len(rows) == len(spots)
+    for row, spot in zip(rows, spots, strict=True):
+        cells = re.findall(r"<td[^>]*>(.*?)</td>", row)
+        assert cells[:2] == [_html.escape(spot["name"]), f"{float(spot['x_m']) * 1e3:.0f}"]
+    assert "section 4.2" in swing
+    assert "ACMD 2002" in swing
+    oblique = _section(page, "oblique")
+    for key in ("twist", "oblique"):
+        assert f"{key}/{key}.png" in oblique
+    assert "Caveat" in oblique
+    assert "swinging racket" in page[: page.index("<main>")]  # at a glance
 
 
 def test_the_mode_table_still_reads_the_identification(page: str) -> None:

@@ -6,15 +6,17 @@ Every user error becomes one line on stderr and exit status 2; no traceback.
 from __future__ import annotations
 
 import argparse
+import csv
 import hashlib
 import json
 import logging
+import math
 import os
 import platform
 import sys
 import time
 from collections.abc import Sequence
-from dataclasses import replace
+from dataclasses import asdict, replace
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
@@ -27,7 +29,13 @@ from rich.table import Table
 from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of, require_speeds
+from racketdyn.errors import (
+    InputError,
+    one_of,
+    require_finite,
+    require_positive,
+    require_speeds,
+)
 from racketdyn.impact import ImpactResult, predict
 from racketdyn.impact.comparison import (
     COMPARED,
@@ -39,7 +47,22 @@ from racketdyn.impact.comparison import (
     write_histories_csv,
 )
 from racketdyn.impact.hand import Hand
+from racketdyn.impact.oblique import DEFAULT_TANGENTIAL_CONTACT, TangentialContact, oblique_curve
+from racketdyn.impact.swing import (
+    DEFAULT_ARM_GYRATION_M,
+    DEFAULT_ARM_MASS_KG,
+    DEFAULT_AXIS_TO_BUTT_M,
+    DEFAULT_SWING_ANGLE_RAD,
+    DEFAULT_TORQUE_NM,
+    ImpactModel,
+    SweetSpot,
+    Swing,
+    predict_swing,
+    sweet_spot_table,
+    sweet_spots,
+)
 from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, predict_transient
+from racketdyn.impact.twist import twist_curve
 from racketdyn.io import (
     default_racket,
     load_racket,
@@ -56,7 +79,7 @@ from racketdyn.measurement import HammerRecords
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.pulse import contact_times
 from racketdyn.measurement.quality import QualitySettings
-from racketdyn.modal import modal_model_for
+from racketdyn.modal import ModalModel, modal_model_for
 from racketdyn.modal.identify import Identification
 from racketdyn.racket import SUPPORTS, Racket
 
@@ -873,12 +896,9 @@ def _compare(args: argparse.Namespace, console: Console) -> int:
     return 0
 
 
-DEMO_STEPS = 7
-
-
 def _demo(args: argparse.Namespace, console: Console) -> int:
     """rig (free, hand) → FRFs → contact times → identification and comparison → prediction
-    by both impact models → report."""
+    by both impact models → swing, twist, oblique impacts → report."""
     from racketdyn.html_report import write_report
 
     out = Path(args.out)
@@ -952,34 +972,37 @@ def _demo(args: argparse.Namespace, console: Console) -> int:
             ],
         ),
     ]
+    identified = [*racket_args, "--modal", str(out / "compare" / "modal_model_free.json")]
+    swing = ["--model", "approx", "--support", "pinned", "--ball-speed", "20", "--grid", "9"]
+    steps += [
+        # --model both adds ≈ 2 s with the compiled transient engine, ≈ 10 s with the scipy
+        # reference (measured on the 2-core development machine, default 9 × 9 grid)
+        (
+            "prediction with the identified free modes, both models",
+            ["predict", *identified, "--model", "both", "--out", str(out / "predict")],
+        ),
+        # the three below add ≈ 1.5 s together (measured on the 2-core development machine)
+        (
+            "swinging racket: outgoing speed and sweet spots",
+            ["swing", *identified, *swing, "--out", str(out / "swing")],
+        ),
+        (
+            "twist against offset, free and hand-held",
+            ["twist", *identified, "--support", "free,hand", "--out", str(out / "twist")],
+        ),
+        (
+            "oblique impacts: outgoing angle and spin",
+            ["oblique", *identified, "--angles", OBLIQUE_ANGLES_DEG, "--out", str(out / "oblique")],
+        ),
+    ]
     quiet = Console(file=open(os.devnull, "w"), stderr=False)  # noqa: SIM115 - closed below
     try:
         with Progress(console=console) as progress:
-            task = progress.add_task("demo", total=DEMO_STEPS + 1)
+            task = progress.add_task("demo", total=len(steps) + 1)  # + the report
             for label, argv in steps:
                 progress.update(task, description=label)
                 _run_step(argv, quiet)
                 progress.advance(task)
-            progress.update(
-                task, description="prediction with the identified free modes, both models"
-            )
-            model = out / "compare" / "modal_model_free.json"
-            # --model both adds ≈ 2 s with the compiled transient engine, ≈ 10 s with the scipy
-            # reference (measured on the 2-core development machine, default 9 × 9 grid)
-            _run_step(
-                [
-                    "predict",
-                    *racket_args,
-                    "--modal",
-                    str(model),
-                    "--model",
-                    "both",
-                    "--out",
-                    str(out / "predict"),
-                ],
-                quiet,
-            )
-            progress.advance(task)
             progress.update(task, description="report")
             report = write_report(out, racket)
             progress.advance(task)
@@ -1080,6 +1103,688 @@ def _sweep(args: argparse.Namespace, console: Console) -> int:
         )
         return 1
     return 0
+
+
+# --- the swinging racket, twist and oblique impacts (issue 5) ------------------------------------
+SWING_GRID = 15  # 177 points on the built-in head: a smooth map in ≈ 0.1 s (approximate model)
+IMPACT_MODELS: dict[str, ImpactModel] = {"approx": "approximate", "transient": "transient"}
+TWIST_OFFSETS_M = "-0.08,-0.06,-0.04,-0.02,0,0.02,0.04,0.06,0.08"
+OBLIQUE_ANGLES_DEG = "0,10,20,30,40,50,60"
+SPIN_CAVEAT = (
+    "caveat: spin depends strongly on the tangential stiffness k_t (the grip is lossless); "
+    "fit k_t to measured rebound spin before quoting it (racketdyn.impact.oblique)"
+)
+
+
+def _parse_numbers(name: str, text: str, unit: str) -> list[float]:
+    """Finite numbers (any sign) from a comma-separated list."""
+    numbers = []
+    for item in _parse_list(name, text):
+        try:
+            number = float(item)
+        except ValueError:
+            raise InputError(f"{name}: {item!r} is not a number ({unit})") from None
+        numbers.append(require_finite(name, number))
+    return numbers
+
+
+def _racket_setup(args: argparse.Namespace) -> tuple[Racket, dict[str, Any], list[str]]:
+    """Racket (built-in or TOML, with ``--modal`` if given), provenance and the defaults used."""
+    racket, provenance = _load(args.racket)
+    defaults = []
+    if args.racket is None:
+        defaults.append(f"racket: built-in {DEFAULT_RACKET_NAME} (Kawazoe's test racket)")
+    if args.modal is not None:
+        if args.rigid:
+            raise InputError("give --modal or --rigid, not both")
+        if not Path(args.modal).is_file():
+            raise InputError(f"--modal {args.modal}: no such modal model file")
+        racket = replace(racket, modal_model_file=Path(args.modal))
+        provenance["modal_model_file"] = str(Path(args.modal).resolve())
+        provenance["modal_model_sha256"] = _sha256(Path(args.modal))
+    elif not args.rigid and racket.modal_model_file is None:
+        defaults.append("modal model: built-in free-free beam model")
+    return racket, provenance, defaults
+
+
+def _modes(args: argparse.Namespace, racket: Racket) -> ModalModel | None:
+    """The racket's modes (built-in, its file or ``--modal``), None with ``--rigid``."""
+    return None if args.rigid else modal_model_for(racket)
+
+
+def _one_support(args: argparse.Namespace, transient: bool) -> str:
+    """One support, allowed by the impact model."""
+    if args.support == "hand" and not transient:
+        raise InputError(
+            "--support hand needs --model transient: the approximate method has no hand "
+            "(its hand-held racket is pinned at the grip: --support pinned)"
+        )
+    return one_of("--support", args.support, TRANSIENT_SUPPORTS if transient else SUPPORTS)
+
+
+def _swing_of(args: argparse.Namespace, defaults: list[str]) -> Swing:
+    """The swing from the options: constant shoulder torque (default) or an angular speed."""
+    if args.axis_to_butt is None:
+        axis = DEFAULT_AXIS_TO_BUTT_M
+        defaults.append(
+            f"swing axis (shoulder) {axis:.3f} m behind the butt: a straight arm in line with "
+            "the racket, 70 kg, 1.75 m adult (Dempster/Winter)"
+        )
+    else:
+        axis = require_positive("--axis-to-butt", args.axis_to_butt, allow_zero=True)
+    if args.angular_speed is not None:
+        if args.torque is not None or args.swing_angle_deg is not None:
+            raise InputError(
+                "give --angular-speed, or --torque and --swing-angle-deg (the constant shoulder "
+                "torque swing), not both"
+            )
+        omega = require_positive("--angular-speed", args.angular_speed, allow_zero=True)
+        return Swing(axis_to_butt_m=axis, angular_speed_radps=omega)
+    if args.torque is None:
+        torque = DEFAULT_TORQUE_NM
+        defaults.append(f"shoulder torque {torque:g} N·m (Kawazoe, ACMD 2002)")
+    else:
+        torque = require_positive("--torque", args.torque)
+    if args.swing_angle_deg is None:
+        angle = DEFAULT_SWING_ANGLE_RAD
+        defaults.append("swing angle 90° from rest to impact (assumption: a quarter turn)")
+    else:
+        degrees = require_finite("--swing-angle-deg", args.swing_angle_deg)
+        if not 0.0 < degrees <= 360.0:
+            raise InputError(
+                f"--swing-angle-deg must be more than 0 and at most 360 degrees (got {degrees:g})"
+            )
+        angle = math.radians(degrees)
+    defaults.append(
+        f"arm {DEFAULT_ARM_MASS_KG:g} kg, radius of gyration {DEFAULT_ARM_GYRATION_M:.3f} m "
+        "about the shoulder (Dempster/Winter, 70 kg, 1.75 m adult)"
+    )
+    return Swing(torque_nm=torque, swing_angle_rad=angle, axis_to_butt_m=axis)
+
+
+def _format_cell(value: Any) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, bool | np.bool_):
+        return str(bool(value))
+    if isinstance(value, float | np.floating):
+        return "nan" if not math.isfinite(value) else f"{float(value):.9g}"
+    return str(value)
+
+
+def _write_rows(path: Path, rows: Sequence[dict[str, Any]]) -> Path:
+    """Rows of dicts (same keys) as CSV; None as an empty cell, floats to 9 digits."""
+    with path.open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(rows[0])
+        for row in rows:
+            writer.writerow(_format_cell(v) for v in row.values())
+    return path
+
+
+SWEET_SPOT_COLUMNS = (
+    "key",
+    "name",
+    "x_m",
+    "y_m",
+    "on_face",
+    "value",
+    "definition",
+    "racket_speed_mps",
+    "rebound_speed_mps",
+)
+"""Columns of ``sweet_spots.csv``: :func:`~racketdyn.impact.swing.sweet_spot_table` (``value``:
+the rebound ratio or outgoing speed maximised, empty for the geometric points), then the speed of
+the racket and the outgoing ball speed at each spot for the swing (NaN off the face)."""
+
+
+def _spot_rows(
+    racket: Racket,
+    ball: Ball,
+    spots: dict[str, SweetSpot],
+    swing: Swing,
+    speed: float,
+    support: str,
+    impact_model: ImpactModel,
+    model: ModalModel | None,
+    options: dict[str, Any],
+) -> list[dict[str, Any]]:
+    """sweet_spot_table rows with the racket speed and the outgoing ball speed at each spot."""
+    rows = sweet_spot_table(spots)
+    on_face = [i for i, key in enumerate(spots) if spots[key].on_face]
+    outgoing = np.full(len(rows), np.nan)
+    if on_face:
+        at = predict_swing(
+            racket,
+            ball,
+            [spots[list(spots)[i]].location for i in on_face],
+            [speed],
+            swing,
+            support,
+            impact_model,
+            model,
+            **options,
+        )
+        outgoing[on_face] = at.rebound_speed[:, 0, 0]
+    racket_speed = swing.angular_speed(racket) * (
+        np.array([s.x_m for s in spots.values()]) + swing.axis_to_butt_m
+    )
+    for i, row in enumerate(rows):
+        row["racket_speed_mps"] = float(racket_speed[i])
+        row["rebound_speed_mps"] = float(outgoing[i])
+    return rows
+
+
+def _swing(args: argparse.Namespace, console: Console) -> int:
+    from racketdyn.report import write_swing_figures
+
+    speeds = _parse_speeds("--ball-speed", args.ball_speed)
+    transient = args.model == "transient"
+    impact_model = IMPACT_MODELS[args.model]
+    support = _one_support(args, transient)
+    n = SWING_GRID if args.grid is None else args.grid
+    if not 1 <= n <= MAX_GRID:
+        raise InputError(f"--grid must be a whole number from 1 to {MAX_GRID} (got {n})")
+    racket, provenance, defaults = _racket_setup(args)
+    hand = _hand(args, [support], defaults)
+    swing = _swing_of(args, defaults)
+    ball, ball_defaults = _ball(args)
+    defaults += ball_defaults
+    model = _modes(args, racket)
+    locations = racket.head.grid(n)
+    labels = [str(i + 1) for i in range(len(locations))]
+    law = compound_law(racket, ball)
+    options: dict[str, Any] = {"law": law, **({"hand": hand} if hand is not None else {})}
+    chosen = _history_speed(speeds)
+    omega = swing.angular_speed(racket)
+    with console.status(f"swing Ω = {omega:.2f} rad/s: {len(locations)} points") as status:
+        result = predict_swing(
+            racket,
+            ball,
+            locations,
+            speeds,
+            swing,
+            support,
+            impact_model,
+            model,
+            labels,
+            **options,
+        )
+        status.update(f"sweet spots at {speeds[chosen]:g} m/s")
+        spots = sweet_spots(
+            racket, ball, swing, speeds[chosen], support, impact_model, model, **options
+        )
+        rows = _spot_rows(
+            racket, ball, spots, swing, speeds[chosen], support, impact_model, model, options
+        )
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    result.write_csv(out / "swing.csv")
+    written = [out / "swing.csv", _write_rows(out / "sweet_spots.csv", rows)]
+    if not args.no_figures:
+        with console.status("drawing the swing's figures"):
+            written += write_swing_figures(
+                out, racket, ball, result, spots, chosen, impact_model, model, **options
+            )
+    _write_record(
+        out,
+        "swing",
+        {
+            **provenance,
+            "racket": racket_to_dict(racket),
+            "ball_speeds_mps": speeds,
+            "support": support,
+            "grid": n,
+            "n_points": len(locations),
+            "rigid": args.rigid,
+            "defaults_used": defaults,
+            **result.inputs,  # swing (parameters, Ω, inertias), impact model, ball, law, modes
+            "angular_speed_radps": omega,
+            "sweet_spots_at_mps": speeds[chosen],
+            "columns": {
+                "swing.csv": "impact.csv columns; racket_speed_mps = Ω (x + axis_to_butt_m) "
+                "at each point",
+                "sweet_spots.csv": list(SWEET_SPOT_COLUMNS),
+            },
+        },
+        written,
+    )
+    console.print(
+        f"swing {swing.describe(racket)} ({impact_model} model, {support}): "
+        f"[bold]{result.status.size}[/] impacts ({len(locations)} points × {len(speeds)} "
+        f"speeds) → {out}"
+    )
+    _print_status(console, result.status, "swing.csv")
+    table = Table(title=f"sweet spots, ball {speeds[chosen]:g} m/s, {support}")
+    for heading in ("sweet spot", "x (mm)", "on the face", "racket (m/s)", "outgoing (m/s)"):
+        table.add_column(heading, justify="left" if heading == "sweet spot" else "right")
+    for row in rows:
+        table.add_row(
+            str(row["name"]),
+            f"{row['x_m'] * 1e3:.0f}",
+            "yes" if row["on_face"] else "no",
+            f"{row['racket_speed_mps']:.1f}",
+            "–"
+            if not math.isfinite(row["rebound_speed_mps"])
+            else f"{row['rebound_speed_mps']:.1f}",
+        )
+    console.print(table)
+    for path in written:
+        console.print(f"  wrote {path}")
+    return 0
+
+
+def _print_status(console: Console, status: np.ndarray, csv_name: str) -> None:
+    bad = status != "ok"
+    if np.any(bad):
+        reasons, counts = np.unique(status[bad], return_counts=True)
+        for reason, count in zip(reasons, counts, strict=True):
+            console.print(f"[yellow]{count} impacts: {reason}; NaN in {csv_name}[/]")
+
+
+TWIST_COLUMNS = (
+    "support",
+    "x_m",
+    "y_m",
+    "ball_speed_mps",
+    "racket_speed_mps",
+    "roll_angle_rad",
+    "roll_rate_radps",
+    "flexible_twist_rad",
+    "total_twist_rad",
+    "rebound_speed_mps",
+    "rebound_ratio",
+    "contact_time_s",
+    "status",
+)
+"""Columns of ``twist.csv``, one row per support × offset (``y_m``: the offset from the long
+axis); the fields of :class:`~racketdyn.impact.twist.TwistCurve`."""
+
+
+def _twist(args: argparse.Namespace, console: Console) -> int:
+    from racketdyn.report import write_twist_figure
+
+    x = require_positive("--x", args.x)
+    offsets = _parse_numbers("--offsets", args.offsets, "offsets from the long axis in m")
+    speed = require_positive("--ball-speed", args.ball_speed)
+    racket_speed = require_finite("--racket-speed", args.racket_speed)
+    supports = [
+        one_of("--support", s, TRANSIENT_SUPPORTS) for s in _parse_list("--support", args.support)
+    ]
+    if len(set(supports)) != len(supports):
+        raise InputError(f"--support: name each support once (got {args.support})")
+    racket, provenance, defaults = _racket_setup(args)
+    racket.head.check_inside(np.column_stack([np.full(len(offsets), x), offsets]))
+    hand = _hand(args, supports, defaults)
+    ball, ball_defaults = _ball(args)
+    defaults += ball_defaults
+    model = _modes(args, racket)
+    curves = []
+    with console.status("") as status:
+        for support in supports:
+            status.update(f"twist against offset, {support} ({len(offsets)} impacts)")
+            curves.append(
+                twist_curve(racket, ball, x, offsets, speed, support, racket_speed, model, hand)
+            )
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    rows = [
+        {
+            "support": c.support,
+            "x_m": c.x_m,
+            "y_m": float(c.offsets_m[i]),
+            "ball_speed_mps": c.ball_speed_mps,
+            "racket_speed_mps": c.racket_speed_mps,
+            **{name: float(getattr(c, name)[i]) for name in TWIST_COLUMNS[5:-1]},
+            "status": str(c.status[i]),
+        }
+        for c in curves
+        for i in range(c.offsets_m.size)
+    ]
+    written = [_write_rows(out / "twist.csv", rows)]
+    if not args.no_figures:
+        with console.status("drawing the twist figure"):
+            written.append(write_twist_figure(out, curves))
+    _write_record(
+        out,
+        "twist",
+        {
+            **provenance,
+            "racket": racket_to_dict(racket),
+            "x_m": x,
+            "offsets_m": offsets,
+            "ball_speed_mps": speed,
+            "racket_speed_mps": racket_speed,
+            "supports": supports,
+            "rigid": args.rigid,
+            "defaults_used": defaults,
+            "method": "transient simulation, reference engine (racketdyn.impact.twist."
+            "twist_curve): roll and section rotation of the modes at separation",
+            "modal_model": None if model is None else model.summary(),
+            "hand": None if hand is None else asdict(hand),
+            "columns": {"twist.csv": list(TWIST_COLUMNS)},
+        },
+        written,
+    )
+    console.print(
+        f"twist at x = {x * 1e3:.0f} mm, ball {speed:g} m/s: {len(offsets)} offsets × "
+        f"{len(supports)} supports → {out}"
+    )
+    table = Table(title="roll angle at separation (°), + turns the +y side away from the ball")
+    table.add_column("y (mm)", justify="right")
+    for support in supports:
+        table.add_column(f"{support}: roll (°)", justify="right")
+        table.add_column(f"{support}: outgoing (m/s)", justify="right")
+    order = np.argsort(offsets)
+    for i in order:
+        cells = [f"{offsets[i] * 1e3:.0f}"]
+        for c in curves:
+            cells += [f"{math.degrees(c.roll_angle_rad[i]):.2f}", f"{c.rebound_speed_mps[i]:.2f}"]
+        table.add_row(*cells)
+    console.print(table)
+    for c in curves:
+        _print_status(console, c.status, "twist.csv")
+    for path in written:
+        console.print(f"  wrote {path}")
+    return 0
+
+
+OBLIQUE_COLUMNS = (
+    "ball_speed_mps",
+    "incoming_angle_deg",
+    "incoming_spin_radps",
+    "outgoing_angle_deg",
+    "outgoing_spin_radps",
+    "normal_speed_mps",
+    "tangential_speed_mps",
+    "gripped",
+    "grip_time_s",
+    "tangential_impulse_ns",
+    "friction_loss_j",
+    "status",
+)
+"""Columns of ``oblique.csv``, one row per incoming angle; the fields of
+:class:`~racketdyn.impact.oblique.ObliqueCurve` (angles from the face normal, spin about n̂ × t̂,
+speeds away from the face and along it)."""
+
+
+def _point(text: str | None, racket: Racket) -> tuple[float, float]:
+    if text is None:
+        return (racket.head.centre_x_m, racket.head.centre_y_m)
+    values = _parse_numbers("--point", text, "x,y in m")
+    if len(values) != 2:
+        raise InputError(f"--point takes x,y in m, e.g. 0.505,0 (got {text!r})")
+    return (values[0], values[1])
+
+
+def _oblique(args: argparse.Namespace, console: Console) -> int:
+    from racketdyn.report import write_oblique_figure
+
+    speed = require_positive("--ball-speed", args.ball_speed)
+    angles = _parse_numbers("--angles", args.angles, "degrees from the face normal")
+    for angle in angles:
+        if not -90.0 < angle < 90.0:
+            raise InputError(
+                "--angles: each incoming angle must lie strictly between -90 and 90 degrees "
+                f"from the face normal (got {angle:g})"
+            )
+    spin = require_finite("--spin", args.spin)
+    support = one_of("--support", args.support, TRANSIENT_SUPPORTS)
+    racket, provenance, defaults = _racket_setup(args)
+    point = _point(args.point, racket)
+    if args.point is None:
+        defaults.append("impact point: the face centre")
+    racket.head.check_inside([point])
+    hand = _hand(args, [support], defaults)
+    base = DEFAULT_TANGENTIAL_CONTACT
+    if args.friction is None or args.tangential_stiffness is None:
+        defaults.append(
+            "tangential contact: μ 0.4 (Cross), k_t 1e4 N/m, ball inertia 0.55 m R² "
+            "(racketdyn.impact.oblique)"
+        )
+    contact = TangentialContact(
+        friction_coefficient=base.friction_coefficient if args.friction is None else args.friction,
+        stiffness_n_per_m=(
+            base.stiffness_n_per_m
+            if args.tangential_stiffness is None
+            else args.tangential_stiffness
+        ),
+        inertia_factor=base.inertia_factor,
+    )
+    racket_speed = require_finite("--racket-speed", args.racket_speed)
+    face_speed = require_finite("--racket-tangential-speed", args.racket_tangential_speed)
+    ball, ball_defaults = _ball(args)
+    defaults += ball_defaults
+    model = _modes(args, racket)
+    with console.status(f"oblique impacts at {len(angles)} angles"):
+        curve = oblique_curve(
+            racket,
+            ball,
+            point,
+            speed,
+            angles,
+            spin,
+            support,
+            racket_speed,
+            contact,
+            face_speed,
+            modal_model=model,
+            law=compound_law(racket, ball),
+            hand=hand,
+        )
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    rows = [
+        {
+            "ball_speed_mps": curve.ball_speed_mps,
+            **{name: getattr(curve, name)[i] for name in OBLIQUE_COLUMNS[1:]},
+        }
+        for i in range(curve.incoming_angle_deg.size)
+    ]
+    written = [_write_rows(out / "oblique.csv", rows)]
+    if not args.no_figures:
+        with console.status("drawing the oblique-impact figure"):
+            written.append(write_oblique_figure(out, curve, point, support, contact))
+    _write_record(
+        out,
+        "oblique",
+        {
+            **provenance,
+            "racket": racket_to_dict(racket),
+            "point_m": list(point),
+            "ball_speed_mps": speed,
+            "angles_deg": angles,
+            "spin_radps": spin,
+            "support": support,
+            "racket_speed_mps": racket_speed,
+            "racket_tangential_speed_mps": face_speed,
+            "tangential_contact": {
+                **asdict(contact),
+                "effective_mass_kg": contact.effective_mass(ball),
+                "grip_period_s": contact.grip_period(ball),
+            },
+            "rigid": args.rigid,
+            "defaults_used": defaults,
+            "method": "normal impact by the transient simulation (reference engine), tangential "
+            "elastic-Coulomb contact on its normal force history (racketdyn.impact.oblique)",
+            "modal_model": None if model is None else model.summary(),
+            "hand": None if hand is None else asdict(hand),
+            "caveat": SPIN_CAVEAT,
+            "columns": {"oblique.csv": list(OBLIQUE_COLUMNS)},
+        },
+        written,
+    )
+    console.print(
+        f"oblique impacts at x = {point[0] * 1e3:.0f} mm, y = {point[1] * 1e3:.0f} mm, "
+        f"ball {speed:g} m/s, spin {spin:g} rad/s, {support} → {out}"
+    )
+    table = Table(
+        title=f"μ = {contact.friction_coefficient:g}, k_t = {contact.stiffness_n_per_m:.3g} N/m"
+    )
+    for heading in ("in (°)", "out (°)", "spin out (rad/s)", "along the face (m/s)", "gripped"):
+        table.add_column(heading, justify="right")
+    for i in np.argsort(curve.incoming_angle_deg, kind="stable"):
+        table.add_row(
+            f"{curve.incoming_angle_deg[i]:g}",
+            f"{curve.outgoing_angle_deg[i]:.1f}",
+            f"{curve.outgoing_spin_radps[i]:.0f}",
+            f"{curve.tangential_speed_mps[i]:.2f}",
+            "yes" if curve.gripped[i] else "no",
+        )
+    console.print(table)
+    console.print(f"[yellow]{SPIN_CAVEAT}[/]")
+    _print_status(console, curve.status, "oblique.csv")
+    for path in written:
+        console.print(f"  wrote {path}")
+    return 0
+
+
+def _add_racket_arguments(command: argparse.ArgumentParser) -> None:
+    """The racket, its modes and the ball: the same options as predict."""
+    command.add_argument(
+        "racket", nargs="?", help="racket TOML file (default: the built-in paper racket)"
+    )
+    command.add_argument("--modal", help="modal model (racketdyn JSON, e.g. from identify) to use")
+    command.add_argument("--rigid", action="store_true", help="no vibration: a rigid racket")
+    command.add_argument("--ball-mass", type=float, help="ball mass, kg (default 0.0577)")
+    command.add_argument(
+        "--e-bg", type=float, help="ball-string COR on a head-clamped racket (default 0.83)"
+    )
+    command.add_argument(
+        "--ball-law", help="ball load-deflection CSV (deflection_m, force_n), one side"
+    )
+    command.add_argument(
+        "--hand-arm-mass",
+        type=float,
+        help="mass of the arm holding the grip, kg, for --support hand (default 1.0)",
+    )
+    command.add_argument(
+        "--no-figures", action="store_true", help="write the CSV files and run.json only"
+    )
+    command.add_argument("--out", required=True, help="output folder (created if missing)")
+
+
+def _add_swing_commands(commands: Any) -> None:
+    swing = commands.add_parser(
+        "swing",
+        help="a swinging racket: outgoing ball speed over the face and the sweet spots",
+        description="Outgoing ball speed over the face of a racket swung about the shoulder "
+        "(constant shoulder torque, Kawazoe ACMD 2002, or a given angular speed), and where the "
+        "sweet spots lie: swing.csv, sweet_spots.csv, figures, run.json.",
+    )
+    _add_racket_arguments(swing)
+    swing.add_argument("--ball-speed", default="20", help="incoming ball speeds, m/s (default 20)")
+    swing.add_argument(
+        "--torque",
+        type=float,
+        help="constant shoulder torque, N·m (default 56.9, Kawazoe ACMD 2002)",
+    )
+    swing.add_argument(
+        "--swing-angle-deg",
+        type=float,
+        help="angle turned from rest to impact, degrees (default 90, an assumption)",
+    )
+    swing.add_argument(
+        "--angular-speed",
+        type=float,
+        help="angular speed at impact, rad/s, instead of the torque model",
+    )
+    swing.add_argument(
+        "--axis-to-butt",
+        type=float,
+        help="swing axis (shoulder) behind the butt, m (default 0.607: straight arm, 1.75 m adult)",
+    )
+    swing.add_argument(
+        "--support",
+        default="pinned",
+        help="pinned (default, the paper's hand-held racket), free, or hand (--model transient)",
+    )
+    swing.add_argument(
+        "--model",
+        choices=tuple(IMPACT_MODELS),
+        default="approx",
+        help="approx: Kawazoe's approximate method (default); transient: the time-domain model",
+    )
+    swing.add_argument(
+        "--grid", type=int, help=f"N x N grid of points over the head (default {SWING_GRID})"
+    )
+    swing.set_defaults(handler=_swing)
+
+    oblique = commands.add_parser(
+        "oblique",
+        help="oblique impacts with spin: outgoing angle and spin against incoming angle",
+        description="A ball arriving at an angle (and with spin) at one point of the face: "
+        "normal impact by the transient model, tangential elastic-Coulomb contact on its force "
+        "history. oblique.csv, a figure, run.json.",
+    )
+    _add_racket_arguments(oblique)
+    oblique.add_argument(
+        "--ball-speed", type=float, default=20.0, help="incoming ball speed, m/s (default 20)"
+    )
+    oblique.add_argument(
+        "--angles",
+        default=OBLIQUE_ANGLES_DEG,
+        help=f"incoming angles to the face normal, degrees, each in (-90, 90) (default "
+        f"{OBLIQUE_ANGLES_DEG}); a list that starts with a minus sign needs --angles=-30,0,30",
+    )
+    oblique.add_argument(
+        "--spin",
+        type=float,
+        default=0.0,
+        help="incoming spin, rad/s, + = the sense of rolling along the face (default 0)",
+    )
+    oblique.add_argument(
+        "--point", help="impact point x,y, m (default: the face centre), e.g. --point=0.5,-0.03"
+    )
+    oblique.add_argument("--support", default="free", help="free (default), pinned or hand")
+    oblique.add_argument(
+        "--friction", type=float, help="ball-string friction coefficient μ (default 0.4)"
+    )
+    oblique.add_argument(
+        "--tangential-stiffness",
+        type=float,
+        help="tangential stiffness k_t of strings and ball, N/m (default 1e4; inf: rigid grip)",
+    )
+    oblique.add_argument(
+        "--racket-speed", type=float, default=0.0, help="racket speed towards the ball, m/s"
+    )
+    oblique.add_argument(
+        "--racket-tangential-speed",
+        type=float,
+        default=0.0,
+        help="racket face speed along the face, m/s (brushing the ball)",
+    )
+    oblique.set_defaults(handler=_oblique)
+
+    twist = commands.add_parser(
+        "twist",
+        help="off-axis impacts: the racket's roll (twist) and the outgoing speed against offset",
+        description="Impacts across the face at one x: the racket's roll and twist at "
+        "separation and the outgoing ball speed against the offset from the long axis (transient "
+        "model). twist.csv, a figure, run.json.",
+    )
+    _add_racket_arguments(twist)
+    twist.add_argument(
+        "--x", type=float, default=0.52, help="impact position from the butt, m (default 0.52)"
+    )
+    twist.add_argument(
+        "--offsets",
+        default=TWIST_OFFSETS_M,
+        help="offsets y from the long axis, m (default -0.08 to 0.08 in steps of 0.02); a list "
+        "that starts with a minus sign needs the = form: --offsets=-0.05,0,0.05",
+    )
+    twist.add_argument(
+        "--ball-speed", type=float, default=25.0, help="incoming ball speed, m/s (default 25)"
+    )
+    twist.add_argument(
+        "--racket-speed", type=float, default=0.0, help="racket speed towards the ball, m/s"
+    )
+    twist.add_argument(
+        "--support",
+        default="free",
+        help="free (default), hand, pinned, or several: free,hand (one line each)",
+    )
+    twist.set_defaults(handler=_twist)
 
 
 def _add_identification_options(command: argparse.ArgumentParser) -> None:
@@ -1249,6 +1954,8 @@ def _parser() -> argparse.ArgumentParser:
     )
     sweep.add_argument("--no-figures", action="store_true", help="write sweep.nc and run.json only")
     sweep.set_defaults(handler=_sweep)
+
+    _add_swing_commands(commands)
 
     show = commands.add_parser("racket", help="print a racket's derived properties")
     show.add_argument(

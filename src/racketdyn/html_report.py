@@ -1,11 +1,12 @@
 """One self-contained HTML report of a run folder: the whole story, from the racket to the rebound.
 
 :func:`write_report` looks for what the pipeline commands wrote under a folder (the folder itself
-and its sub-folders: ``racketdyn rig``, ``frf``, ``contact``, ``identify`` / ``compare`` and
-``predict``) and writes ``report.html`` into it.  The page works offline and can be mailed as
-it is: the PNG figures are embedded as base64 data URIs, the CSS and a small dependency-free
-script are inline, and the data of the interactive plots (FRF magnitude with zoom and hover
-readout, face maps with hover values) sit in the page as JSON.  The PNGs stay for print.
+and its sub-folders: ``racketdyn rig``, ``frf``, ``contact``, ``identify`` / ``compare``,
+``predict``, ``swing``, ``twist`` and ``oblique``) and writes ``report.html`` into it.  The
+page works offline and can be mailed as it is: the PNG figures are embedded as base64 data URIs,
+the CSS and a small dependency-free script are inline, and the data of the interactive plots
+(FRF magnitude with zoom and hover readout, face maps with hover values) sit in the page as
+JSON.  The PNGs stay for print.
 
 Sections, in order, each present only if its inputs exist: the racket and its derived
 properties; measurement quality; stabilisation diagrams; mode shapes and node lines, free
@@ -13,9 +14,11 @@ against hand-held; contact time over the face; impact force and contact time aga
 frame vibration; rebound ratio and sweet spots; the approximate method against the transient
 simulation (``racketdyn predict --model both``: ``comparison.csv`` with approximate and transient
 columns, told apart from ``racketdyn compare``'s ``comparison.csv`` of paired modes by its
-header); inputs, defaults and versions.  Sections whose inputs are missing are listed at the end
-as not run.  Every figure's caption names the figure of
-Kawazoe's paper it corresponds to, or says it has none.
+header); the swinging racket (``racketdyn swing``: ``swing.csv``, ``sweet_spots.csv``);
+off-centre and oblique impacts (``racketdyn twist``: ``twist.csv``; ``racketdyn oblique``:
+``oblique.csv``; either is enough); inputs, defaults and versions.  Sections whose inputs are
+missing are listed at the end as not run.  Every figure's caption names the figure of Kawazoe's
+paper it corresponds to, or says it has none.
 """
 
 from __future__ import annotations
@@ -60,6 +63,8 @@ SECTIONS: dict[str, str] = {
     "vibration": "Frame vibration",
     "rebound": "Rebound ratio and sweet spots",
     "transient": "Approximate method against the transient simulation",
+    "swing": "The swinging racket",
+    "oblique": "Off-centre and oblique impacts",
     "provenance": "Inputs, defaults and versions",
 }
 """Section id → heading, in the order of the report."""
@@ -76,6 +81,9 @@ _HOW_TO_RUN: dict[str, str] = {
     "vibration": "racketdyn predict --out DIR/predict",
     "rebound": "racketdyn predict --out DIR/predict",
     "transient": "racketdyn predict --model both --out DIR/predict",
+    "swing": "racketdyn swing --out DIR/swing",
+    "oblique": "racketdyn twist --support free,hand --out DIR/twist; "
+    "racketdyn oblique --out DIR/oblique",
     "provenance": "any racketdyn command with --out (each writes run.json)",
 }
 
@@ -172,6 +180,33 @@ _CAPTIONS: dict[str, tuple[str | None, str]] = {
         "time histories of the transient simulation at the face centre and near the tip: "
         "contact force (the approximate method assumes a half-sine, Fig. 13), ball and "
         "racket-face displacement, and the modal coordinates of the flexible modes",
+    ),
+    "swing_map": (
+        None,
+        "outgoing ball speed over the face of the swinging racket (constant shoulder torque, "
+        "Kawazoe ACMD 2002), with the sweet spots: the centres of percussion about the swing "
+        "axis and about the grip, the node of the first mode, the largest rebound ratio "
+        "(racket at rest) and the largest outgoing speed for the swing; crosses mark impacts "
+        "without a valid number",
+    ),
+    "swing_along_axis": (
+        None,
+        "outgoing ball speed along the long axis for the racket at rest (the setting of the "
+        "paper's Fig. 15) and for swings of half, the same and one and a half times the swing "
+        "angle (or angular speed), with the sweet spots of the run's swing as vertical lines",
+    ),
+    "twist": (
+        None,
+        "off-axis impacts at one x: the racket's roll about its long axis at separation (left; "
+        "positive turns the hit side away from the ball) and the outgoing ball speed (right) "
+        "against the offset from the long axis, one line per support",
+    ),
+    "oblique": (
+        None,
+        "oblique impacts at one point: outgoing angle to the face normal (left; dashed: the "
+        "same impact without friction) and outgoing spin (right) against the incoming angle; "
+        "filled markers where the ball gripped the strings, open where it slid throughout; the "
+        "spin depends strongly on the tangential stiffness k_t",
     ),
 }
 
@@ -1607,6 +1642,272 @@ def _section_transient(ctx: _Context) -> str | None:
     return "\n".join(parts)
 
 
+def _rows_of(path: Path) -> list[dict[str, str]]:
+    try:
+        rows, _ = _read_csv(path)
+    except (OSError, UnicodeDecodeError, csv.Error) as error:
+        log.warning("%s: not read (%s)", path, error)
+        return []
+    return rows
+
+
+def _section_swing(ctx: _Context) -> str | None:
+    folder = ctx.first("swing.csv") or ctx.first("sweet_spots.csv")
+    if folder is None:
+        return None
+    record = ctx.records.get(folder, {})
+    swing = record.get("swing")
+    if not isinstance(swing, dict):
+        swing = {}
+    parts = [
+        "<p>Kawazoe closes his discussion of the rebound (section 4.2, last paragraph): "
+        "<q>In an actual swing, the racket velocity differs according to the impact location"
+        "</q>, and physical body movements must be considered. Here arm and racket, rigidly "
+        "joined, turn about the shoulder under a constant shoulder torque, the forehand model "
+        "of Kawazoe (ACMD 2002, 56.9 N·m): ½ I Ω² = T Δθ. A point x from the butt meets the "
+        "ball at V = Ω (x + d), d the shoulder's distance behind the butt, and sends it back "
+        "at e v<sub>ball</sub> + (1 + e) V, e the rebound ratio there (Cross).</p>"
+    ]
+    omega = swing.get("angular_speed_radps", record.get("angular_speed_radps"))
+    facts = []
+    if "torque_nm" in swing:
+        facts.append(f"shoulder torque {_fmt(swing.get('torque_nm'), 'g')} N·m")
+        angle = swing.get("swing_angle_rad")
+        if isinstance(angle, int | float):
+            facts.append(f"swing angle {math.degrees(angle):.0f}°")
+        facts.append(
+            f"arm {_fmt(swing.get('arm_mass_kg'), '.3g')} kg, "
+            f"{_fmt(swing.get('arm_inertia_kgm2'), '.3g')} kg·m² about the shoulder"
+        )
+    if isinstance(swing.get("axis_to_butt_m"), int | float):
+        facts.append(f"shoulder {swing['axis_to_butt_m'] * 1e3:.0f} mm behind the butt")
+    if isinstance(swing.get("inertia_about_axis_kgm2"), int | float):
+        facts.append(f"arm + racket {swing['inertia_about_axis_kgm2']:.3g} kg·m² about it")
+    if isinstance(omega, int | float):
+        facts.append(f"Ω = {omega:.2f} rad/s")
+    model = record.get("impact_model")
+    support = record.get("support")
+    if model or support:
+        facts.append(f"{model or '?'} impact model, {support or '?'}")
+    if facts:
+        parts.append(f"<p>Swing: {_e('; '.join(facts))}.</p>")
+    figures = [
+        ctx.figure(folder / name)
+        for name in ("swing_map.png", "swing_along_axis.png")
+        if (folder / name).is_file()
+    ]
+    if figures:
+        parts.append(f'<div class="stack">{"".join(figures)}</div>')
+    rows = _rows_of(folder / "sweet_spots.csv") if (folder / "sweet_spots.csv").is_file() else []
+    if rows:
+        speed = record.get("sweet_spots_at_mps")
+        heading = "Sweet spots" + (
+            f", ball {_fmt(speed, 'g')} m/s" if isinstance(speed, int | float) else ""
+        )
+        body = []
+        for row in rows:
+            value = _float(row.get("value"))
+            key = row.get("key", "")
+            shown = (
+                "–"
+                if not math.isfinite(value)
+                else f"{value:.1f} m/s"
+                if key == "max_rebound_speed"
+                else f"{value:.3f}"
+            )
+            body.append(
+                (
+                    row.get("name", key),
+                    _fmt(_float(row.get("x_m")) * 1e3, ".0f"),
+                    "yes" if row.get("on_face") == "True" else "no",
+                    _fmt(_float(row.get("racket_speed_mps")), ".1f"),
+                    _fmt(_float(row.get("rebound_speed_mps")), ".1f"),
+                    shown,
+                    row.get("definition", ""),
+                )
+            )
+        parts.append(
+            f"<h3>{_e(heading)}</h3>"
+            + _table(
+                (
+                    "sweet spot",
+                    "x from the butt (mm)",
+                    "on the face",
+                    "racket speed there (m/s)",
+                    "outgoing ball speed (m/s)",
+                    "largest value",
+                    "what it is",
+                ),
+                body,
+                "small",
+            )
+        )
+        spots = {row.get("key", ""): row for row in rows}
+        best = spots.get("max_rebound_speed")
+        if best is not None and math.isfinite(_float(best.get("value"))):
+            text = (
+                f"swinging racket (Ω = {_fmt(omega, '.1f')} rad/s"
+                + (f", ball {_fmt(speed, 'g')} m/s" if isinstance(speed, int | float) else "")
+                + f", {support or '?'}): largest outgoing speed {_float(best.get('value')):.1f}"
+                f" m/s at x = {_float(best.get('x_m')) * 1e3:.0f} mm"
+            )
+            for key, label in (
+                ("centre_of_percussion_grip", "centre of percussion (grip)"),
+                ("first_mode_node", "first-mode node"),
+            ):
+                if key in spots:
+                    text += f"; {label} {_float(spots[key].get('x_m')) * 1e3:.0f} mm"
+            ctx.glance.append(text)
+    return "\n".join(parts)
+
+
+def _section_oblique(ctx: _Context) -> str | None:
+    twist = ctx.first("twist.csv")
+    oblique = ctx.first("oblique.csv")
+    if twist is None and oblique is None:
+        return None
+    parts = []
+    if twist is not None:
+        parts.append(
+            "<h3>Twist against the offset from the long axis</h3><p>A ball that lands off the "
+            "long axis turns the racket about it. The transient simulation gives the racket's "
+            "rigid roll at separation and the section rotation of its flexible modes at the "
+            "impact point; for a rigid racket the roll rate is J y / I<sub>roll</sub>, so the "
+            "twist grows with the offset and falls with the twistweight. A positive roll turns "
+            "the hit side away from the ball.</p>"
+        )
+        if (twist / "twist.png").is_file():
+            parts.append(f'<div class="stack">{ctx.figure(twist / "twist.png")}</div>')
+        rows = _rows_of(twist / "twist.csv")
+        body = []
+        for support in dict.fromkeys(r.get("support", "") for r in rows):
+            mine = [r for r in rows if r.get("support", "") == support]
+            y = np.array([_float(r.get("y_m")) for r in mine])
+            roll = np.array([_float(r.get("roll_angle_rad")) for r in mine])
+            flexible = np.array([_float(r.get("flexible_twist_rad")) for r in mine])
+            speed = np.array([_float(r.get("rebound_speed_mps")) for r in mine])
+            if not mine or not np.any(np.isfinite(roll)):
+                continue
+            valid = [i for i in range(len(mine)) if math.isfinite(roll[i])]
+            far = max(valid, key=lambda i: (abs(y[i]), y[i]))  # the +y side on a tie
+            near = min(valid, key=lambda i: abs(y[i]))
+            share = float(np.nanmax(np.abs(flexible)) / max(float(np.nanmax(np.abs(roll))), 1e-300))
+            body.append(
+                (
+                    support,
+                    _fmt(y[far] * 1e3, ".0f"),
+                    _fmt(math.degrees(roll[far]), ".2f"),
+                    _fmt(speed[near], ".2f"),
+                    _fmt(speed[far], ".2f"),
+                    _fmt(100 * share, ".2g"),
+                )
+            )
+            ctx.glance.append(
+                f"off-axis impact, {support}, x = {_float(mine[far].get('x_m')) * 1e3:.0f} mm, "
+                f"ball {_fmt(_float(mine[far].get('ball_speed_mps')), 'g')} m/s: "
+                f"{y[far] * 1e3:.0f} mm off the axis the racket rolls "
+                f"{math.degrees(roll[far]):.1f}° and the ball leaves at {speed[far]:.1f} m/s "
+                f"({speed[near]:.1f} m/s on the axis)"
+            )
+        if body:
+            parts.append(
+                _table(
+                    (
+                        "support",
+                        "largest offset (mm)",
+                        "roll there (°)",
+                        "outgoing speed on the axis (m/s)",
+                        "outgoing speed there (m/s)",
+                        "modes' section rotation / roll, largest (%)",
+                    ),
+                    body,
+                    "small",
+                )
+            )
+    else:
+        parts.append(
+            f'<p class="note">Twist against offset not run: <code>'
+            f"{_e('racketdyn twist --support free,hand --out DIR/twist')}</code></p>"
+        )
+    if oblique is not None:
+        record = ctx.records.get(oblique, {})
+        contact = record.get("tangential_contact")
+        parts.append(
+            "<h3>Oblique impacts and spin</h3><p>The ball arrives at an angle to the face "
+            "normal. The normal part is the transient simulation; along the face the ball's "
+            "contact point meets the strings through an elastic–Coulomb contact (a tangential "
+            "spring k<sub>t</sub> that slides at μ F<sub>n</sub>) driven by the simulated normal "
+            "force. Angles are measured from the face normal; spin is positive in the sense of "
+            "rolling along the face in the direction the ball travels.</p>"
+        )
+        if isinstance(contact, dict):
+            parts.append(
+                f"<p>μ = {_e(_fmt(contact.get('friction_coefficient'), 'g'))}, k<sub>t</sub> = "
+                f"{_e(_fmt(contact.get('stiffness_n_per_m'), '.3g'))} N/m (half period of the "
+                "grip oscillation "
+                f"{_e(_fmt(_float(str(contact.get('grip_period_s'))) * 0.5e3, '.2f'))} ms); ball "
+                f"{_e(_fmt(record.get('ball_speed_mps'), 'g'))} m/s at x, y = "
+                f"{_e(', '.join(_fmt(v * 1e3, '.0f') for v in record.get('point_m', [])))} mm, "
+                f"{_e(record.get('support', '?'))}.</p>"
+            )
+        parts.append(
+            '<p class="warn">Caveat: the tangential contact has no damping, so a ball that '
+            "grips gives back what the spring stored, and the outgoing spin depends strongly on "
+            "k<sub>t</sub>: treat it as the upper end of the model's range until k<sub>t</sub> "
+            "and a tangential loss are fitted to measured rebound spin.</p>"
+        )
+        if (oblique / "oblique.png").is_file():
+            parts.append(f'<div class="stack">{ctx.figure(oblique / "oblique.png")}</div>')
+        rows = _rows_of(oblique / "oblique.csv")
+        usable = [r for r in rows if r.get("status") == "ok"]
+        if usable:
+            shown = min(usable, key=lambda r: abs(abs(_float(r.get("incoming_angle_deg"))) - 30))
+            ctx.glance.append(
+                f"oblique impact at {_float(shown.get('incoming_angle_deg')):g}°, ball "
+                f"{_float(shown.get('ball_speed_mps')):g} m/s, {record.get('support', '?')}: "
+                f"leaves at {_float(shown.get('outgoing_angle_deg')):.1f}° with "
+                f"{_float(shown.get('outgoing_spin_radps')):.0f} rad/s of spin (the spin "
+                "depends strongly on the tangential stiffness k_t)"
+            )
+        angle_rows = [
+            (
+                _fmt(_float(r.get("incoming_angle_deg")), "g"),
+                _fmt(_float(r.get("incoming_spin_radps")), "g"),
+                _fmt(_float(r.get("outgoing_angle_deg")), ".1f"),
+                _fmt(_float(r.get("outgoing_spin_radps")), ".0f"),
+                _fmt(_float(r.get("normal_speed_mps")), ".2f"),
+                _fmt(_float(r.get("tangential_speed_mps")), ".2f"),
+                "yes" if r.get("gripped") == "True" else "no",
+                r.get("status", ""),
+            )
+            for r in rows
+        ]
+        if angle_rows:
+            parts.append(
+                _table(
+                    (
+                        "incoming angle (°)",
+                        "incoming spin (rad/s)",
+                        "outgoing angle (°)",
+                        "outgoing spin (rad/s)",
+                        "normal speed out (m/s)",
+                        "speed along the face out (m/s)",
+                        "gripped",
+                        "status",
+                    ),
+                    angle_rows,
+                    "small",
+                    numeric_from=0,
+                )
+            )
+    else:
+        parts.append(
+            f'<p class="note">Oblique impacts not run: <code>'
+            f"{_e('racketdyn oblique --out DIR/oblique')}</code></p>"
+        )
+    return "\n".join(parts)
+
+
 def _section_provenance(ctx: _Context) -> str | None:
     if not ctx.records:
         return None
@@ -1686,6 +1987,8 @@ _BUILDERS: dict[str, Callable[[_Context], str | None]] = {
     "vibration": _section_vibration,
     "rebound": _section_rebound,
     "transient": _section_transient,
+    "swing": _section_swing,
+    "oblique": _section_oblique,
     "provenance": _section_provenance,
 }
 
@@ -1716,7 +2019,8 @@ def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
     run_dir : Path
         Folder written by the pipeline commands, or the folder of one command: the report
         looks in it and in its sub-folders (``racketdyn demo`` writes ``rig/``, ``frf_free/``,
-        ``frf_hand/``, ``contact/``, ``compare/`` and ``predict/``, each with its run.json).
+        ``frf_hand/``, ``contact/``, ``compare/``, ``predict/``, ``swing/``, ``twist/`` and
+        ``oblique/``, each with its run.json).
     racket : Racket, optional
         The racket the runs used, for its derived properties and head outline; by default
         read from ``predict/run.json`` (or the rig's run.json).

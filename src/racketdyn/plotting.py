@@ -18,16 +18,20 @@ from matplotlib.patches import Ellipse
 from matplotlib.tri import Triangulation
 from numpy.typing import NDArray
 
+from racketdyn.impact.oblique import ObliqueCurve
 from racketdyn.impact.result import ImpactResult
 from racketdyn.impact.swing import SweetSpot, SwingResult
+from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import Racket
 
 __all__ = [
+    "OBLIQUE_QUANTITIES",
     "QUANTITIES",
     "SWEET_SPOT_STYLE",
+    "TWIST_QUANTITIES",
     "plot_along_axis",
     "plot_contact_map",
     "plot_face_map",
@@ -36,10 +40,12 @@ __all__ = [
     "plot_mac",
     "plot_mode_3d",
     "plot_node_lines",
+    "plot_oblique_curve",
     "plot_outline",
     "plot_speed_curves",
     "plot_swing_along_axis",
     "plot_swing_map",
+    "plot_twist_curve",
 ]
 
 QUANTITIES: dict[str, tuple[str, float]] = {
@@ -540,4 +546,137 @@ def plot_swing_along_axis(
     ax.set_title(f"swinging racket, {_support_label(chosen)}", fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=6)
+    return ax
+
+
+# --- oblique impacts and twist (issue 5) ---------------------------------------------------------
+OBLIQUE_QUANTITIES: dict[str, tuple[str, float]] = {
+    "outgoing_angle_deg": ("outgoing angle to the face normal (°)", 1.0),
+    "outgoing_spin_radps": ("outgoing spin (rad/s)", 1.0),
+    "normal_speed_mps": ("outgoing speed along the normal (m/s)", 1.0),
+    "tangential_speed_mps": ("outgoing speed along the face (m/s)", 1.0),
+    "tangential_impulse_ns": ("tangential impulse (N·s)", 1.0),
+    "friction_loss_j": ("friction loss (J)", 1.0),
+}
+"""Quantities :func:`plot_oblique_curve` draws: field of ObliqueCurve → (axis label, scale)."""
+
+
+def plot_oblique_curve(
+    curve: ObliqueCurve,
+    quantity: str = "outgoing_angle_deg",
+    ax: Axes | None = None,
+    label: str | None = None,
+    frictionless: bool = True,
+) -> Axes:
+    """Outgoing angle, spin or another quantity of oblique impacts against the incoming angle.
+
+    One line per incoming spin; filled markers where the ball gripped the strings during the
+    contact, open where it slid throughout.  For the outgoing angle, the angle without friction
+    (μ = 0: the tangential velocity unchanged, ``atan2(v sin θ, v_n,out)`` with the curve's own
+    normal rebound speed) is drawn dashed, so the friction's part shows.
+
+    Parameters
+    ----------
+    curve : ObliqueCurve
+        From :func:`racketdyn.impact.oblique.oblique_curve`.
+    quantity : str
+        A key of :data:`OBLIQUE_QUANTITIES`.
+    ax : Axes, optional
+        Where to draw (a new figure if None).
+    label : str, optional
+        Legend label (default: the incoming spin).
+    frictionless : bool
+        Draw the outgoing angle without friction (``quantity`` ``outgoing_angle_deg`` only).
+    """
+    if quantity not in OBLIQUE_QUANTITIES:
+        raise ValueError(f"quantity must be one of {', '.join(OBLIQUE_QUANTITIES)}")
+    ax = _axes(ax)
+    axis_label, scale = OBLIQUE_QUANTITIES[quantity]
+    angles = np.ravel(curve.incoming_angle_deg)
+    spins = np.ravel(curve.incoming_spin_radps)
+    values = np.ravel(np.asarray(getattr(curve, quantity), dtype=float)) * scale
+    gripped = np.ravel(curve.gripped)
+    normal = np.ravel(curve.normal_speed_mps)
+    spin_values = np.unique(spins)
+    colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, spin_values.size))
+    for spin, colour in zip(spin_values, colours, strict=True):
+        chosen = np.flatnonzero(spins == spin)
+        chosen = chosen[np.argsort(angles[chosen])]
+        name = label if label is not None else f"incoming spin {spin:g} rad/s"
+        ax.plot(angles[chosen], values[chosen], "-", color=colour, label=name)
+        held, slid = chosen[gripped[chosen]], chosen[~gripped[chosen]]
+        ax.plot(angles[held], values[held], "o", color=colour, markersize=5)
+        ax.plot(angles[slid], values[slid], "o", mfc="w", mec=colour, markersize=5)
+        if quantity == "outgoing_angle_deg" and frictionless:
+            tangential = curve.ball_speed_mps * np.sin(np.radians(angles[chosen]))
+            ax.plot(
+                angles[chosen],
+                np.degrees(np.arctan2(tangential, normal[chosen])),
+                "--",
+                color=colour,
+                linewidth=0.9,
+                label=f"{name}, without friction",
+            )
+    ax.plot([], [], "o", color="0.4", markersize=5, label="gripped")
+    ax.plot([], [], "o", mfc="w", mec="0.4", markersize=5, label="slid throughout")
+    ax.set_xlabel("incoming angle to the face normal (°)")
+    ax.set_ylabel(axis_label)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return ax
+
+
+TWIST_QUANTITIES: dict[str, tuple[str, float]] = {
+    "roll_angle_rad": ("roll angle at separation (°)", 180.0 / np.pi),
+    "total_twist_rad": ("roll + section rotation at separation (°)", 180.0 / np.pi),
+    "flexible_twist_rad": ("section rotation of the modes (°)", 180.0 / np.pi),
+    "roll_rate_radps": ("roll rate at separation (rad/s)", 1.0),
+    "rebound_speed_mps": ("outgoing ball speed (m/s)", 1.0),
+    "rebound_ratio": ("rebound ratio e (–)", 1.0),
+    "contact_time_s": ("contact time T_c (ms)", 1e3),
+}
+"""Quantities :func:`plot_twist_curve` draws: field of TwistCurve → (axis label, scale); angles
+are drawn in degrees."""
+
+_EXTRA_STYLE = {"color": "tab:red", "marker": "o", "label": "hand-held (hand and arm model)"}
+
+
+def plot_twist_curve(
+    curve: TwistCurve,
+    quantity: str = "roll_angle_rad",
+    ax: Axes | None = None,
+    label: str | None = None,
+) -> Axes:
+    """A quantity of :func:`racketdyn.impact.twist.twist_curve` against the offset from the axis.
+
+    Parameters
+    ----------
+    curve : TwistCurve
+        The racket's twist against the offset y, at one x, speed and support.
+    quantity : str
+        A key of :data:`TWIST_QUANTITIES` (angles drawn in degrees).
+    ax : Axes, optional
+        Where to draw (a new figure if None); call once per support to compare supports.
+    label : str, optional
+        Legend label (default: the support's).
+    """
+    if quantity not in TWIST_QUANTITIES:
+        raise ValueError(f"quantity must be one of {', '.join(TWIST_QUANTITIES)}")
+    ax = _axes(ax)
+    axis_label, scale = TWIST_QUANTITIES[quantity]
+    style = SUPPORT_STYLE.get(curve.support, _EXTRA_STYLE)
+    order = np.argsort(curve.offsets_m)
+    values = np.asarray(getattr(curve, quantity), dtype=float)[order] * scale
+    ax.plot(
+        curve.offsets_m[order] * 1e3,
+        values,
+        color=style["color"],
+        marker=style["marker"],
+        markersize=4,
+        label=label if label is not None else str(style["label"]),
+    )
+    ax.set_xlabel("offset from the long axis, y (mm)")
+    ax.set_ylabel(axis_label)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
     return ax

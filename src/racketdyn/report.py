@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import csv
 import logging
-from collections.abc import Callable, Sequence
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -21,7 +23,10 @@ from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
 from racketdyn.impact.comparison import History, ModelComparison
+from racketdyn.impact.oblique import ObliqueCurve, TangentialContact
+from racketdyn.impact.swing import ImpactModel, SweetSpot, Swing, SwingResult, predict_swing
 from racketdyn.impact.transient import predict_transient
+from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.identify import Identification
@@ -40,25 +45,41 @@ from racketdyn.plotting import (
     plot_mac,
     plot_mode_3d,
     plot_node_lines,
+    plot_oblique_curve,
     plot_outline,
     plot_speed_curves,
+    plot_swing_along_axis,
+    plot_swing_map,
+    plot_twist_curve,
 )
 from racketdyn.racket import Racket
 
 __all__ = [
     "FIGURES",
+    "OBLIQUE_FIGURE",
+    "SWING_AXIS_POINTS",
+    "SWING_FIGURES",
     "TRANSIENT_CURVE_SPEEDS_MPS",
     "TRANSIENT_FIGURES",
+    "TWIST_FIGURE",
+    "axis_swings",
+    "figure_oblique",
+    "figure_swing_along_axis",
+    "figure_swing_map",
     "figure_transient_comparison_face",
     "figure_transient_comparison_speed",
     "figure_transient_histories",
+    "figure_twist",
     "landmark_points",
     "write_comparison",
     "write_contact_figure",
     "write_frf_figures",
     "write_identification",
+    "write_oblique_figure",
     "write_paper_figures",
+    "write_swing_figures",
     "write_transient_figures",
+    "write_twist_figure",
 ]
 
 log = logging.getLogger(__name__)
@@ -832,3 +853,288 @@ def write_transient_figures(
     for path in written:
         log.info("wrote %s", path)
     return written
+
+
+# --- the swinging racket, twist and oblique impacts (issue 5) ------------------------------------
+SWING_FIGURES: dict[str, str] = {"map": "swing_map.png", "axis": "swing_along_axis.png"}
+"""The figures of ``racketdyn swing``, by what they show → file name."""
+TWIST_FIGURE = "twist.png"
+"""The figure of ``racketdyn twist``."""
+OBLIQUE_FIGURE = "oblique.png"
+"""The figure of ``racketdyn oblique``."""
+SWING_AXIS_POINTS = 41
+"""Points along the long axis of the along-axis swing figure (inset half a step from the frame,
+as :func:`racketdyn.impact.swing.sweet_spots` samples it)."""
+_SWING_FACTORS = (0.5, 1.0, 1.5)
+
+
+def axis_swings(swing: Swing) -> list[tuple[str, Swing]]:
+    """The swings the along-axis figure compares, each with its legend name.
+
+    The racket at rest (Ω = 0, the paper's Fig. 15), then half, the same and one and a half
+    times the swing: the swing angle for the torque model (angles above one turn left out), Ω
+    for a swing given by its angular speed.
+
+    Parameters
+    ----------
+    swing : Swing
+        The swing of the run.
+    """
+    swings = [
+        ("racket at rest", Swing(angular_speed_radps=0.0, axis_to_butt_m=swing.axis_to_butt_m))
+    ]
+    for factor in _SWING_FACTORS:
+        if swing.angular_speed_radps is not None:
+            omega = factor * swing.angular_speed_radps
+            swings.append((f"Ω = {omega:.1f} rad/s", replace(swing, angular_speed_radps=omega)))
+        elif factor * swing.swing_angle_rad <= 2.0 * math.pi:
+            angle = factor * swing.swing_angle_rad
+            swings.append(
+                (
+                    f"{swing.torque_nm:g} N·m over {math.degrees(angle):.0f}°",
+                    replace(swing, swing_angle_rad=angle),
+                )
+            )
+    return swings
+
+
+def figure_swing_map(
+    result: SwingResult,
+    racket: Racket,
+    spots: Mapping[str, SweetSpot] | None = None,
+    speed_index: int = 0,
+) -> Figure:
+    """Outgoing ball speed over the face of the swinging racket, with the sweet spots.
+
+    Parameters
+    ----------
+    result : SwingResult
+        Impacts over the face (:func:`racketdyn.impact.swing.predict_swing`).
+    racket : Racket
+        The racket (outline, swing description).
+    spots : mapping of str to SweetSpot, optional
+        Sweet spots to mark (:func:`racketdyn.impact.swing.sweet_spots`).
+    speed_index : int
+        Which incoming ball speed of the result.
+    """
+    figure, ax = plt.subplots(figsize=(6.8, 5.0), layout="constrained")
+    plot_swing_map(result, racket, spots, speed_index, ax=ax)
+    swing = result.swing
+    how = (
+        "given angular speed"
+        if swing.angular_speed_radps is not None
+        else f"{swing.torque_nm:g} N·m over {math.degrees(swing.swing_angle_rad):.0f}°"
+    )
+    figure.suptitle(
+        f"Swinging racket ({how}), {result.inputs.get('impact_model', 'approximate')} model",
+        fontsize=10,
+    )
+    return figure
+
+
+def figure_swing_along_axis(
+    racket: Racket,
+    ball: Ball,
+    swing: Swing,
+    ball_speed: float,
+    support: str,
+    model: ImpactModel = "approximate",
+    modal_model: ModalModel | None = None,
+    spots: Mapping[str, SweetSpot] | None = None,
+    **options: Any,
+) -> Figure:
+    """Outgoing ball speed along the long axis for the racket at rest and a few swings.
+
+    The swings of :func:`axis_swings`, at :data:`SWING_AXIS_POINTS` points on the long axis.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The racket and ball.
+    swing : Swing
+        The swing of the run.
+    ball_speed : float
+        Incoming ball speed, m/s.
+    support : str
+        Support during the impact.
+    model : {"approximate", "transient"}
+        Impact model.
+    modal_model : ModalModel or None
+        Flexible modes (None: rigid racket).
+    spots : mapping of str to SweetSpot, optional
+        Sweet spots to mark as vertical lines.
+    **options
+        Further keywords of the impact model (``law``, ``hand``, …).
+    """
+    head = racket.head
+    step = 2.0 * head.half_length_m / SWING_AXIS_POINTS
+    x = head.throat_x_m + step * (np.arange(SWING_AXIS_POINTS) + 0.5)
+    points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
+    names, results = [], []
+    for name, each in axis_swings(swing):
+        names.append(name)
+        results.append(
+            predict_swing(
+                racket, ball, points, [ball_speed], each, support, model, modal_model, **options
+            )
+        )
+    figure, ax = plt.subplots(figsize=(7.5, 4.8), layout="constrained")
+    plot_swing_along_axis(results, spots, support, ax=ax, names=names)
+    figure.suptitle(
+        f"Outgoing ball speed along the long axis, ball {ball_speed:g} m/s, {model} model\n"
+        f"sweet spots for the swing {swing.describe(racket)}",
+        fontsize=10,
+    )
+    return figure
+
+
+def write_swing_figures(
+    out_dir: Path,
+    racket: Racket,
+    ball: Ball,
+    result: SwingResult,
+    spots: Mapping[str, SweetSpot] | None = None,
+    speed_index: int = 0,
+    model: ImpactModel = "approximate",
+    modal_model: ModalModel | None = None,
+    **options: Any,
+) -> list[Path]:
+    """Draw the swing's figures (:data:`SWING_FIGURES`) into ``out_dir``.
+
+    Parameters
+    ----------
+    out_dir : Path
+        Output folder.
+    racket, ball : Racket, Ball
+        The racket and ball.
+    result : SwingResult
+        Impacts over the face.
+    spots : mapping of str to SweetSpot, optional
+        Sweet spots to mark.
+    speed_index : int
+        Ball speed of the map and the along-axis curves.
+    model : {"approximate", "transient"}
+        Impact model of the along-axis curves.
+    modal_model : ModalModel or None
+        Flexible modes of the along-axis curves.
+    **options
+        Further keywords of the impact model (``law``, ``hand``, …).
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    out = Path(out_dir)
+    support = result.supports[0]
+    written = [
+        _save(figure_swing_map(result, racket, spots, speed_index), out / SWING_FIGURES["map"]),
+        _save(
+            figure_swing_along_axis(
+                racket,
+                ball,
+                result.swing,
+                float(result.ball_speed[speed_index]),
+                support,
+                model,
+                modal_model,
+                spots,
+                **options,
+            ),
+            out / SWING_FIGURES["axis"],
+        ),
+    ]
+    for path in written:
+        log.info("wrote %s", path)
+    return written
+
+
+def figure_twist(curves: Sequence[TwistCurve]) -> Figure:
+    """Roll angle and outgoing ball speed against the offset from the long axis, per support.
+
+    Parameters
+    ----------
+    curves : sequence of TwistCurve
+        One per support, at the same x and ball speed
+        (:func:`racketdyn.impact.twist.twist_curve`).
+    """
+    figure, axes = plt.subplots(1, 2, figsize=(10.0, 4.0), layout="constrained")
+    for curve in curves:
+        plot_twist_curve(curve, "roll_angle_rad", ax=axes[0])
+        plot_twist_curve(curve, "rebound_speed_mps", ax=axes[1])
+    first = curves[0]
+    figure.suptitle(
+        f"Off-axis impacts at x = {first.x_m * 1e3:.0f} mm, ball {first.ball_speed_mps:g} m/s"
+        + (f", racket {first.racket_speed_mps:g} m/s" if first.racket_speed_mps else "")
+        + ": the racket's roll at separation and the outgoing ball speed",
+        fontsize=10,
+    )
+    return figure
+
+
+def write_twist_figure(out_dir: Path, curves: Sequence[TwistCurve]) -> Path:
+    """Draw :func:`figure_twist` into ``out_dir`` (:data:`TWIST_FIGURE`); returns the path.
+
+    Parameters
+    ----------
+    out_dir : Path
+        Output folder.
+    curves : sequence of TwistCurve
+        One per support.
+    """
+    path = _save(figure_twist(curves), Path(out_dir) / TWIST_FIGURE)
+    log.info("wrote %s", path)
+    return path
+
+
+def figure_oblique(
+    curve: ObliqueCurve,
+    location: tuple[float, float],
+    support: str,
+    contact: TangentialContact,
+) -> Figure:
+    """Outgoing angle and spin against the incoming angle (oblique impacts at one point).
+
+    Parameters
+    ----------
+    curve : ObliqueCurve
+        From :func:`racketdyn.impact.oblique.oblique_curve`.
+    location : tuple of float
+        Impact point (x, y), m.
+    support : str
+        Support condition of the normal impact.
+    contact : TangentialContact
+        The tangential contact used (μ, k_t), for the title.
+    """
+    figure, axes = plt.subplots(1, 2, figsize=(10.0, 4.0), layout="constrained")
+    plot_oblique_curve(curve, "outgoing_angle_deg", ax=axes[0])
+    plot_oblique_curve(curve, "outgoing_spin_radps", ax=axes[1])
+    stiffness = "rigid grip" if contact.rigid else f"k_t = {contact.stiffness_n_per_m:.3g} N/m"
+    figure.suptitle(
+        f"Oblique impacts at x = {location[0] * 1e3:.0f} mm, y = {location[1] * 1e3:.0f} mm, "
+        f"ball {curve.ball_speed_mps:g} m/s, {support}: μ = {contact.friction_coefficient:g}, "
+        f"{stiffness} (spin depends strongly on k_t)",
+        fontsize=10,
+    )
+    return figure
+
+
+def write_oblique_figure(
+    out_dir: Path,
+    curve: ObliqueCurve,
+    location: tuple[float, float],
+    support: str,
+    contact: TangentialContact,
+) -> Path:
+    """Draw :func:`figure_oblique` into ``out_dir`` (:data:`OBLIQUE_FIGURE`); returns the path.
+
+    Parameters
+    ----------
+    out_dir : Path
+        Output folder.
+    curve, location, support, contact
+        As for :func:`figure_oblique`.
+    """
+    path = _save(figure_oblique(curve, location, support, contact), Path(out_dir) / OBLIQUE_FIGURE)
+    log.info("wrote %s", path)
+    return path
