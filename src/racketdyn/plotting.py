@@ -194,6 +194,30 @@ def plot_outline(racket: Racket, ax: Axes | None = None, **style: Any) -> Axes:
     return ax
 
 
+def _contour_face(
+    ax: Axes, locations: NDArray[np.float64], values: NDArray[np.float64], label: str, levels: int
+) -> bool:
+    """Filled, labelled contours of values at face points (mm) and a colour bar; points with no
+    valid value marked with red crosses.  Returns whether any were marked."""
+    x_mm, y_mm = locations[:, 0] * 1e3, locations[:, 1] * 1e3
+    finite = np.isfinite(values)
+    if finite.sum() >= 3:
+        triangles = Triangulation(x_mm[finite], y_mm[finite])
+        filled = ax.tricontourf(triangles, values[finite], levels=levels, cmap="viridis")
+        lines = ax.tricontour(
+            triangles, values[finite], levels=np.asarray(filled.levels), colors="k", linewidths=0.4
+        )
+        ax.clabel(lines, fontsize=6, fmt="%.3g")
+        ax.figure.colorbar(filled, ax=ax, label=label, shrink=0.85)
+    if np.all(finite):
+        return False
+    ax.plot(
+        x_mm[~finite], y_mm[~finite], "x", color="r", markersize=4,
+        label="no valid result (see status)",
+    )  # fmt: skip
+    return True
+
+
 def plot_face_map(
     result: ImpactResult,
     racket: Racket,
@@ -206,25 +230,7 @@ def plot_face_map(
     """Contour map of a quantity over the string face (x along, y across, mm)."""
     ax = _axes(ax, (4.2, 3.6))
     values = _values(result, quantity)[:, speed_index, result.support_index(support)]
-    x_mm, y_mm = result.locations[:, 0] * 1e3, result.locations[:, 1] * 1e3
-    finite = np.isfinite(values)
-    if finite.sum() >= 3:
-        triangles = Triangulation(x_mm[finite], y_mm[finite])
-        filled = ax.tricontourf(triangles, values[finite], levels=levels, cmap="viridis")
-        lines = ax.tricontour(
-            triangles, values[finite], levels=np.asarray(filled.levels), colors="k", linewidths=0.4
-        )
-        ax.clabel(lines, fontsize=6, fmt="%.3g")
-        ax.figure.colorbar(filled, ax=ax, label=QUANTITIES[quantity][0], shrink=0.85)
-    if np.any(~finite):
-        ax.plot(
-            x_mm[~finite],
-            y_mm[~finite],
-            "x",
-            color="r",
-            markersize=4,
-            label="no valid result (see status)",
-        )
+    if _contour_face(ax, result.locations, values, QUANTITIES[quantity][0], levels):
         ax.legend(fontsize=7, loc="lower left")
     plot_outline(racket, ax)
     ax.set_xlabel("x from the butt (mm)")
@@ -456,25 +462,7 @@ def plot_swing_map(
     ax = _axes(ax, (5.2, 3.8))
     support = support or result.supports[0]
     values = result.rebound_speed[:, speed_index, result.support_index(support)]
-    x_mm, y_mm = result.locations[:, 0] * 1e3, result.locations[:, 1] * 1e3
-    finite = np.isfinite(values)
-    if finite.sum() >= 3:
-        triangles = Triangulation(x_mm[finite], y_mm[finite])
-        filled = ax.tricontourf(triangles, values[finite], levels=levels, cmap="viridis")
-        lines = ax.tricontour(
-            triangles, values[finite], levels=np.asarray(filled.levels), colors="k", linewidths=0.4
-        )
-        ax.clabel(lines, fontsize=6, fmt="%.3g")
-        ax.figure.colorbar(filled, ax=ax, label="outgoing ball speed (m/s)", shrink=0.85)
-    if np.any(~finite):
-        ax.plot(
-            x_mm[~finite],
-            y_mm[~finite],
-            "x",
-            color="r",
-            markersize=4,
-            label="no valid result (see status)",
-        )
+    _contour_face(ax, result.locations, values, "outgoing ball speed (m/s)", levels)
     plot_outline(racket, ax)
     if spots:
         _mark_sweet_spots(ax, spots, in_plane=True)
