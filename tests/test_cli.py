@@ -221,3 +221,11 @@ def test_bad_input_is_one_line_and_exit_2(
         assert word in lines[0], f"{word!r} not named in {lines[0]!r}"
     assert code == 2
     assert not (tmp_path / "out" / "impact.csv").exists()
+
+
+def test_run_record_names_the_command_as_called(tmp_path: Path) -> None:
+    """run.json records the arguments given to main (not the Python process's own argv)."""
+    argv = ["predict", "--speed", "10", "--grid", "2", "--no-figures", "--out", str(tmp_path)]
+    assert main(argv) == 0
+    record = json.loads((tmp_path / "run.json").read_text())
+    assert record["command"] == ["racketdyn", *argv]

@@ -57,7 +57,7 @@ def test_flexible_modes_carry_no_momentum(model: rd.ModalModel, racket: rd.Racke
     scale = weight @ np.abs(shapes)
     np.testing.assert_allclose(weight @ shapes, 0.0, atol=2e-3 * scale.max())
     np.testing.assert_allclose(
-        (weight * (mid - 0.308)) @ shapes, 0.0, atol=2e-3 * scale.max() * 0.68
+        (weight * (mid - racket.balance_m)) @ shapes, 0.0, atol=2e-3 * scale.max() * racket.length_m
     )
     np.testing.assert_allclose(weight @ shapes**2, 1.0, rtol=2e-3)
 

@@ -97,7 +97,10 @@ def test_grip_firmness_hardly_changes_the_rebound(racket, ball, model) -> None:
     free = simulate_impact(racket, ball, (0.505, 0.0), 10.6, "free", modal_model=model)
     assert abs(base.rebound_ratio - free.rebound_ratio) > 1e-3 * free.rebound_ratio  # it acts
     for factor in (0.5, 2.0):
-        hand = Hand(stiffness_n_per_m=2.0e4 * factor, damping_ns_per_m=12.0 * factor)
+        hand = Hand(
+            stiffness_n_per_m=Hand().stiffness_n_per_m * factor,
+            damping_ns_per_m=Hand().damping_ns_per_m * factor,
+        )
         held = simulate_impact(
             racket, ball, (0.505, 0.0), 10.6, "hand", modal_model=model, hand=hand
         )

@@ -12,6 +12,7 @@ import csv
 
 import numpy as np
 import pytest
+from scipy.integrate import quad
 
 import racketdyn as rd
 from racketdyn.errors import InputError
@@ -19,7 +20,6 @@ from racketdyn.impact import predict
 from racketdyn.impact.result import STATUS_OK
 from racketdyn.impact.transient import (
     TransientImpact,
-    _unloading_area,
     predict_transient,
     simulate_contact,
     simulate_impact,
@@ -129,14 +129,22 @@ def test_clamped_head_returns_e_bg(ball, law, clamp_mass, speed) -> None:
     assert impact.cor == pytest.approx(ball.e_bg, rel=1e-6)
 
 
+def _unloading_area(law, peak: float, p: float) -> float:
+    """∫₀^{X_p} F(X) (X/X_p)^p dX by adaptive quadrature (independent of the closed form)."""
+    value, _ = quad(
+        lambda x: float(law.force(x)) * (x / peak) ** p, 0.0, peak, epsabs=0, epsrel=1e-13
+    )
+    return float(value)
+
+
 def test_unloading_exponent_returns_e_bg_squared(law) -> None:
+    """The returned energy is e_BG² of the stored one, to 1e-10 (quadrature)."""
     for peak in (1e-3, 1e-2, 2.5e-2):
         p = unloading_exponent(law, 0.83, peak)
         assert p > 0
         assert _unloading_area(law, peak, p) == pytest.approx(
-            0.83**2 * float(law.energy(peak)), rel=1e-12
+            0.83**2 * float(law.energy(peak)), rel=1e-10
         )
-        assert _unloading_area(law, peak, 0.0) == pytest.approx(float(law.energy(peak)), rel=1e-12)
     assert unloading_exponent(law, 1.0, 1e-2) == 0.0
     power = rd.RestoringForce("power", (3.0e6, 1.5), 0.05, 0.0, "power law")
     p = unloading_exponent(power, 0.7, 0.01)

@@ -294,7 +294,7 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
     record = {
         "racketdyn_version": __version__,
         "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
-        "command": ["racketdyn", *sys.argv[1:]],
+        "command": ["racketdyn", *args.argv],
         "python": platform.python_version(),
         "numpy": np.__version__,
         **provenance,
@@ -553,11 +553,13 @@ def _read_records(path_text: str, geometry: str | None) -> HammerRecords:
     return read_hammer_uff(path, geometry)
 
 
-def _write_record(out: Path, command: str, inputs: dict[str, Any], outputs: list[Path]) -> None:
+def _write_record(
+    out: Path, args: argparse.Namespace, inputs: dict[str, Any], outputs: list[Path]
+) -> None:
     record = {
         "racketdyn_version": __version__,
         "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
-        "command": ["racketdyn", *sys.argv[1:]] if sys.argv[1:] else [command],
+        "command": ["racketdyn", *args.argv],
         "python": platform.python_version(),
         "numpy": np.__version__,
         **inputs,
@@ -597,7 +599,7 @@ def _frf(args: argparse.Namespace, console: Console) -> int:
     summary = estimate.summary()
     _write_record(
         out,
-        "frf",
+        args,
         {
             "tests_file": str(Path(args.tests).resolve()),
             "tests_sha256": _sha256(Path(args.tests)),
@@ -651,7 +653,7 @@ def _contact(args: argparse.Namespace, console: Console) -> int:
     written.append(write_contact_figure(tables, labels, racket, out))
     _write_record(
         out,
-        "contact",
+        args,
         {
             "tests_files": [str(Path(t).resolve()) for t in args.tests],
             "labels": labels,
@@ -721,7 +723,7 @@ def _rig(args: argparse.Namespace, console: Console) -> int:
     }
     _write_record(
         out,
-        "rig",
+        args,
         {
             **provenance,
             "racket": racket_to_dict(racket),
@@ -841,7 +843,7 @@ def _identify(args: argparse.Namespace, console: Console) -> int:
         written += write_identification(identification, racket, out)
     _write_record(
         out,
-        "identify",
+        args,
         {
             "frfs_file": str(Path(args.frfs).resolve()),
             "frfs_sha256": _sha256(Path(args.frfs)),
@@ -877,7 +879,7 @@ def _compare(args: argparse.Namespace, console: Console) -> int:
         written += write_comparison(free, hand, racket, Ball(), out)
     _write_record(
         out,
-        "compare",
+        args,
         {
             "free_file": str(Path(args.free).resolve()),
             "hand_file": str(Path(args.hand).resolve()),
@@ -1013,8 +1015,15 @@ def _demo(args: argparse.Namespace, console: Console) -> int:
 
 
 def _run_step(argv: list[str], console: Console) -> None:
-    args = _parser().parse_args(argv)
+    args = _parse(argv)
     args.handler(args, console)
+
+
+def _parse(argv: Sequence[str] | None) -> argparse.Namespace:
+    """Parsed arguments, with the command line as given (``argv``) kept for run records."""
+    args = _parser().parse_args(argv)
+    args.argv = list(sys.argv[1:] if argv is None else argv)
+    return args
 
 
 def _report(args: argparse.Namespace, console: Console) -> int:
@@ -1328,7 +1337,7 @@ def _swing(args: argparse.Namespace, console: Console) -> int:
             )
     _write_record(
         out,
-        "swing",
+        args,
         {
             **provenance,
             "racket": racket_to_dict(racket),
@@ -1447,7 +1456,7 @@ def _twist(args: argparse.Namespace, console: Console) -> int:
             written.append(write_twist_figure(out, curves))
     _write_record(
         out,
-        "twist",
+        args,
         {
             **provenance,
             "racket": racket_to_dict(racket),
@@ -1587,7 +1596,7 @@ def _oblique(args: argparse.Namespace, console: Console) -> int:
             written.append(write_oblique_figure(out, curve, point, support, contact))
     _write_record(
         out,
-        "oblique",
+        args,
         {
             **provenance,
             "racket": racket_to_dict(racket),
@@ -1967,7 +1976,7 @@ def _parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``racketdyn`` command."""
-    args = _parser().parse_args(argv)
+    args = _parse(argv)
     logging.basicConfig(
         level=logging.INFO if args.verbose else logging.ERROR,
         format="%(levelname)s %(name)s: %(message)s",

@@ -60,6 +60,14 @@ def require_range(name: str, value: float, low: float, high: float) -> float:
     return number
 
 
+def require_whole(name: str, value: object, least: int = 1) -> int:
+    """Return ``value`` as an int if it is a whole number (not a bool) ≥ ``least``, else raise
+    InputError."""
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < least:
+        raise InputError(f"{name} must be a whole number of at least {least} (got {value!r})")
+    return int(value)
+
+
 def require_speeds(name: str, values: ArrayLike) -> NDArray[np.float64]:
     """Return speeds (m/s) as a non-empty 1-D float array of finite values ≥ 0, else InputError."""
     try:

@@ -17,7 +17,7 @@ from typing import Literal, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from racketdyn.errors import InputError, one_of, require_finite, require_positive
+from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_whole
 
 __all__ = [
     "SUPPORTS",
@@ -153,8 +153,7 @@ class HeadEllipse:
 
         The grid is inset by half a cell so that no point sits on the frame.
         """
-        if n < 1:
-            raise InputError(f"grid size must be a whole number of at least 1 (got {n})")
+        n = require_whole("grid size", n)
         u = (np.arange(n) + 0.5) / n * 2.0 - 1.0
         xi, eta = np.meshgrid(u, u, indexing="ij")
         inside = xi**2 + eta**2 <= 1.0
@@ -272,11 +271,7 @@ class StringBed:
         require_positive("strings.string_diameter_m", self.string_diameter_m)
         require_positive("strings.string_modulus_pa", self.string_modulus_pa)
         for name in ("mains", "crosses"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-                raise InputError(
-                    f"strings.{name} must be a whole number of at least 1 (got {value!r})"
-                )
+            require_whole(f"strings.{name}", getattr(self, name))
         if self.mass_kg is not None:
             require_positive("strings.mass_kg", self.mass_kg)
 

@@ -179,7 +179,10 @@ def figure_rebound_along_axis(racket: Racket, ball: Ball, model: ModalModel | No
     )
     marks = {"centre of percussion (grip)": racket.centre_of_percussion_m()}
     if model is not None and model.n_modes:
-        marks.update(_first_mode_nodes(model, head.throat_x_m, head.tip_x_m))
+        nodes = axis_nodes(model, 0, (head.throat_x_m, head.tip_x_m))
+        for k, node in enumerate(nodes, 1):
+            name = model.names[0]
+            marks[f"node of {name}" if nodes.size == 1 else f"node {k} of {name}"] = float(node)
     figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
     plot_along_axis(result, "rebound_ratio", 0, ax=ax, marks=marks)
     ax.set_title(
@@ -187,17 +190,6 @@ def figure_rebound_along_axis(racket: Racket, ball: Ball, model: ModalModel | No
         fontsize=9,
     )
     return figure
-
-
-def _first_mode_nodes(model: ModalModel, x_low: float, x_high: float) -> dict[str, float]:
-    x = np.linspace(x_low, x_high, 400)
-    shape = model.mode_shapes_at(np.column_stack([x, np.zeros_like(x)]))[:, 0]
-    crossings = np.flatnonzero(np.sign(shape[:-1]) != np.sign(shape[1:]))
-    nodes = {}
-    for i in crossings:
-        x0 = x[i] - shape[i] * (x[i + 1] - x[i]) / (shape[i + 1] - shape[i])
-        nodes[f"node of {model.names[0]}"] = float(x0)
-    return nodes
 
 
 def figure_face_maps(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:

@@ -23,8 +23,6 @@ The time histories of a few named impacts (:func:`simulate_histories`) go with i
 
 from __future__ import annotations
 
-import csv
-import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,7 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError, one_of
-from racketdyn.impact.result import ImpactResult
+from racketdyn.impact.result import ImpactResult, slug, write_columns
 from racketdyn.impact.transient import TransientImpact, simulate_impact
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import Racket
@@ -187,7 +185,7 @@ class ModelComparison:
         Path
             ``path``.
         """
-        _write_table(self.columns(), Path(path))
+        write_columns(Path(path), self.columns())
         return Path(path)
 
 
@@ -323,10 +321,6 @@ def simulate_histories(
     return histories
 
 
-def _slug(name: str) -> str:
-    return re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_")
-
-
 def write_histories_csv(
     histories: Sequence[History], mode_names: Sequence[str], path: Path
 ) -> Path:
@@ -348,7 +342,7 @@ def write_histories_csv(
         ``path``.
     """
     fixed = [name for name in HISTORY_COLUMNS if not name.startswith("q_")]
-    modes = [f"q_{_slug(name)}_m_sqrtkg" for name in mode_names]
+    modes = [f"q_{slug(name)}_m_sqrtkg" for name in mode_names]
     columns: dict[str, list[NDArray[Any]]] = {name: [] for name in [*fixed, *modes]}
     for history in histories:
         impact = history.impact
@@ -375,22 +369,8 @@ def write_histories_csv(
             rows[name] = impact.modal_coordinates[:, k]
         for name, values in rows.items():
             columns[name].append(np.asarray(values))
-    _write_table(
-        {name: np.concatenate(parts) if parts else np.zeros(0) for name, parts in columns.items()},
+    write_columns(
         Path(path),
+        {name: np.concatenate(parts) if parts else np.zeros(0) for name, parts in columns.items()},
     )
     return Path(path)
-
-
-def _write_table(columns: Mapping[str, NDArray[Any]], path: Path) -> None:
-    with path.open("w", newline="", encoding="utf-8") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(columns)
-        for row in zip(*columns.values(), strict=True):
-            writer.writerow(_format(value) for value in row)
-
-
-def _format(value: Any) -> str:
-    if isinstance(value, float | np.floating):
-        return "nan" if not np.isfinite(value) else f"{float(value):.9g}"
-    return str(value)

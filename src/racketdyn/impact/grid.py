@@ -23,7 +23,13 @@ from racketdyn.impact.hand import Hand
 from racketdyn.modal import ModalModel, modal_model_for
 from racketdyn.racket import SUPPORTS, Racket, as_locations
 
-__all__ = ["ImpactGrid", "check_supports", "impact_grid", "resolve_modal_model"]
+__all__ = [
+    "ImpactGrid",
+    "check_supports",
+    "impact_grid",
+    "resolve_modal_model",
+    "support_reduced_mass",
+]
 
 
 def check_supports(
@@ -69,6 +75,16 @@ def resolve_modal_model(
     if model is not None and not include_string_bed:
         model = model.frame_modes
     return model
+
+
+def support_reduced_mass(
+    racket: Racket, locations: ArrayLike, support: str, hand: Hand | None = None
+) -> NDArray[np.float64]:
+    """Reduced mass at each point for a support, kg: eq 4 for ``free`` and ``pinned``; for
+    ``hand``, Kawazoe's arm at the handle (:meth:`racketdyn.impact.hand.Hand.reduced_mass`)."""
+    if support == "hand":
+        return (hand or Hand()).reduced_mass(racket, locations)
+    return racket.reduced_mass(locations, support)
 
 
 @dataclass(frozen=True, eq=False)
@@ -174,12 +190,7 @@ def impact_grid(
         ball_speed=v_ball,
         racket_speed=v_racket,
         reduced_mass=np.column_stack(
-            [
-                (hand or Hand()).reduced_mass(racket, xy)
-                if s == "hand"
-                else racket.reduced_mass(xy, s)
-                for s in support_names
-            ]
+            [support_reduced_mass(racket, xy, s, hand) for s in support_names]
         ),
         model=resolve_modal_model(racket, modal_model, include_string_bed),
         law=law or compound_law(racket, ball),

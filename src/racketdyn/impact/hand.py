@@ -54,6 +54,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.errors import InputError, require_finite, require_positive
 from racketdyn.racket import PointMass, Racket
+from racketdyn.rig.model import (
+    HAND_DAMPING_NS_PER_M,
+    HAND_GRIP_END_M,
+    HAND_GRIP_START_M,
+    HAND_MASS_KG,
+    HAND_ROLL_DAMPING_NMS_PER_RAD,
+    HAND_ROLL_STIFFNESS_NM_PER_RAD,
+)
 
 __all__ = ["GRIP_POINTS", "Hand"]
 
@@ -84,22 +92,20 @@ class Hand:
     """
 
     arm_mass_kg: float = 1.0
-    hand_mass_kg: float = 0.06
-    grip_start_m: float = 0.010
-    grip_end_m: float = 0.130
+    hand_mass_kg: float = HAND_MASS_KG
+    grip_start_m: float = HAND_GRIP_START_M
+    grip_end_m: float = HAND_GRIP_END_M
     stiffness_n_per_m: float = 2.0e4
-    damping_ns_per_m: float = 12.0
-    roll_stiffness_nm_per_rad: float = 3.0
-    roll_damping_nms_per_rad: float = 0.05
+    damping_ns_per_m: float = HAND_DAMPING_NS_PER_M
+    roll_stiffness_nm_per_rad: float = HAND_ROLL_STIFFNESS_NM_PER_RAD
+    roll_damping_nms_per_rad: float = HAND_ROLL_DAMPING_NMS_PER_RAD
 
     def __post_init__(self) -> None:
         require_positive("hand.arm_mass_kg", self.arm_mass_kg)
         require_positive("hand.hand_mass_kg", self.hand_mass_kg, allow_zero=True)
         require_positive("hand.stiffness_n_per_m", self.stiffness_n_per_m)
         for name in ("damping_ns_per_m", "roll_stiffness_nm_per_rad", "roll_damping_nms_per_rad"):
-            value = require_finite(f"hand.{name}", getattr(self, name))
-            if value < 0:
-                raise InputError(f"hand.{name} must be ≥ 0 (got {value:g})")
+            require_positive(f"hand.{name}", getattr(self, name), allow_zero=True)
         if self.roll_stiffness_nm_per_rad == 0 and self.roll_damping_nms_per_rad > 0:
             raise InputError(
                 "hand: a roll damper needs a roll spring (roll_stiffness_nm_per_rad > 0): the "

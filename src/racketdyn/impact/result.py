@@ -22,6 +22,7 @@ __all__ = [
     "STATUS_VIBRATION_LOSS",
     "ImpactResult",
     "impact_columns",
+    "slug",
     "write_columns",
 ]
 
@@ -241,9 +242,13 @@ def impact_columns(result: Any, racket_speed: NDArray[np.float64]) -> dict[str, 
     flat = {name: np.asarray(table[name]).reshape(-1) for name in CSV_COLUMNS}
     if result.modal_model is not None:
         for k, name in enumerate(result.modal_model.names):
-            slug = re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_")
-            flat[f"energy_{slug}_j"] = result.mode_energy[..., k].reshape(-1)
+            flat[f"energy_{slug(name)}_j"] = result.mode_energy[..., k].reshape(-1)
     return flat
+
+
+def slug(name: str) -> str:
+    """A mode's name as a column-name part: lower case, runs of other characters as ``_``."""
+    return re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_")
 
 
 def write_columns(path: Path, columns: dict[str, NDArray[Any]]) -> None:

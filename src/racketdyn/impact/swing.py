@@ -69,11 +69,12 @@ from scipy.optimize import minimize_scalar
 
 from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of, require_finite, require_positive
+from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_whole
 from racketdyn.impact.approximate import predict
+from racketdyn.impact.grid import resolve_modal_model
 from racketdyn.impact.result import STATUS_OK, ImpactResult, impact_columns, write_columns
 from racketdyn.impact.transient import predict_transient
-from racketdyn.modal import ModalModel, modal_model_for
+from racketdyn.modal import ModalModel
 from racketdyn.modal.shapes import axis_nodes
 from racketdyn.racket import Racket, as_locations
 
@@ -434,14 +435,8 @@ def _prepared(
     kwargs: dict[str, Any],
 ) -> tuple[ModalModel | None, dict[str, Any]]:
     """Resolve the racket's modal model and the compound law once, for many predictor calls."""
-    if isinstance(modal_model, str) and modal_model == "racket":
-        model: ModalModel | None = modal_model_for(racket)
-    elif modal_model is None or isinstance(modal_model, ModalModel):
-        model = modal_model
-    else:
-        raise InputError(
-            f"modal_model must be a ModalModel, None or 'racket' (got {modal_model!r})"
-        )
+    # string-bed modes kept here: each predictor drops them itself (include_string_bed)
+    model = resolve_modal_model(racket, modal_model, include_string_bed=True)
     options = dict(kwargs)
     if options.get("law") is None:
         options["law"] = compound_law(racket, ball)
@@ -732,8 +727,7 @@ def sweet_spots(
     **kwargs
         Passed to the impact model.
     """
-    if isinstance(n_axis, bool) or not isinstance(n_axis, int) or n_axis < 3:
-        raise InputError(f"n_axis must be a whole number of at least 3 (got {n_axis!r})")
+    require_whole("n_axis", n_axis, least=3)
     speed = require_positive("ball_speed", ball_speed)
     one_of("model", model, IMPACT_MODELS)
     if not isinstance(support, str):

@@ -56,13 +56,24 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of, require_positive, require_range, require_speeds
+from racketdyn.errors import (
+    InputError,
+    one_of,
+    require_positive,
+    require_range,
+    require_speeds,
+    require_whole,
+)
 from racketdyn.impact.approximate import elastic_contact_time
-from racketdyn.impact.grid import ImpactGrid, impact_grid, resolve_modal_model
+from racketdyn.impact.grid import (
+    ImpactGrid,
+    impact_grid,
+    resolve_modal_model,
+    support_reduced_mass,
+)
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.kernel import (
     NUMBA_AVAILABLE,
@@ -72,8 +83,8 @@ from racketdyn.impact.kernel import (
     integrate_impacts,
     law_arrays,
 )
-from racketdyn.impact.kernel import _energy as kernel_energy
 from racketdyn.impact.kernel import _law as kernel_law
+from racketdyn.impact.kernel import _unloading_exponent as kernel_unloading_exponent
 from racketdyn.impact.result import STATUS_BEYOND_LAW, STATUS_OK, ImpactResult
 from racketdyn.impact.system import (
     TRANSIENT_SUPPORTS,
@@ -204,12 +215,6 @@ class TransientImpact:
 
 
 # --- the hysteresis law --------------------------------------------------------------------------
-def _unloading_area(law: RestoringForce, peak: float, exponent: float) -> float:
-    """``∫₀^{X_p} F(X) (X/X_p)^p dX`` in closed form, J (the kernel's own function)."""
-    kind, coefficients = law_arrays(law.kind, law.coefficients)
-    return float(kernel_energy(peak, kind, coefficients, exponent))
-
-
 def unloading_exponent(law: RestoringForce, e_bg: float, peak: float) -> float:
     """Exponent p of the unloading curve ``F_un(X) = F_GB(X) (X/X_p)^p``.
 
@@ -234,13 +239,7 @@ def unloading_exponent(law: RestoringForce, e_bg: float, peak: float) -> float:
     require_positive("peak compression", peak)
     if e_bg == 1.0:
         return 0.0
-    target = e_bg**2 * float(law.energy(peak))
-    high = 1.0
-    while _unloading_area(law, peak, high) > target:
-        high *= 2.0
-    return float(
-        brentq(lambda p: _unloading_area(law, peak, p) - target, 0.0, high, xtol=1e-14, rtol=1e-15)
-    )
+    return float(kernel_unloading_exponent(peak, e_bg, *law_arrays(law.kind, law.coefficients)))
 
 
 def _scalar_force(law: RestoringForce) -> Callable[[float], float]:
@@ -670,19 +669,11 @@ def simulate_impact(
     model = resolve_modal_model(racket, modal_model, include_string_bed)
     law = law or compound_law(racket, ball)
     system = impact_system(racket, model, support, xy, hand if support == "hand" else None)
-    reduced = _reduced_mass(racket, xy, support, hand)[0]
+    reduced = support_reduced_mass(racket, xy, support, hand)[0]
     return simulate_system_contact(
         system, 0, ball.mass_kg, ball.e_bg, law, ball_speed, racket_speed, float(reduced),
         rtol, method,
     )  # fmt: skip
-
-
-def _reduced_mass(
-    racket: Racket, xy: NDArray[np.float64], support: str, hand: Hand | None
-) -> NDArray[np.float64]:
-    if support == "hand":
-        return (hand or Hand()).reduced_mass(racket, xy)
-    return racket.reduced_mass(xy, support)
 
 
 Engine = Literal["auto", "compiled", "reference"]
@@ -755,10 +746,7 @@ def predict_transient(
         ``"transient"``.
     """
     one_of("engine", engine, ENGINES)
-    if isinstance(steps_per_contact, bool) or not isinstance(steps_per_contact, int):
-        raise InputError(f"steps_per_contact must be a whole number (got {steps_per_contact!r})")
-    if steps_per_contact < 16:
-        raise InputError(f"steps_per_contact must be at least 16 (got {steps_per_contact})")
+    require_whole("steps_per_contact", steps_per_contact, least=16)
     grid = impact_grid(
         racket, ball, locations, ball_speed, supports, racket_speed, modal_model, labels, law,
         include_string_bed, allowed_supports=TRANSIENT_SUPPORTS, hand=hand,

@@ -18,6 +18,7 @@ from racketdyn.errors import InputError, require_positive
 from racketdyn.racket import as_locations
 
 __all__ = [
+    "ANALYSER_BANDWIDTH_FACTOR",
     "FRF_TYPES",
     "FRF_TYPE_OF_RESPONSE",
     "RESPONSE_TYPES",
@@ -26,6 +27,10 @@ __all__ = [
     "HammerRecords",
     "ResponseType",
 ]
+
+ANALYSER_BANDWIDTH_FACTOR = 2.56
+"""Sampling rate / usable bandwidth of an analyser's anti-alias filter (the FFT analysers'
+convention): lines above fs/2.56 are filter roll-off."""
 
 ResponseType = Literal["acceleration", "velocity", "displacement"]
 RESPONSE_TYPES: tuple[str, ...] = get_args(ResponseType)

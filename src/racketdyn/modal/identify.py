@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from racketdyn.errors import InputError
-from racketdyn.measurement.records import FrfSet
+from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import SelectedPoles, Stabilisation, select_poles, stabilisation
 from racketdyn.modal.residues import ModalFit, fit_modal_constants, mass_normalised_shapes
@@ -35,8 +35,8 @@ hand (≤ 15 Hz), below its first bending mode (≥ 100 Hz)."""
 
 
 def default_band(frfs: FrfSet) -> tuple[float, float]:
-    """40 Hz to the analyser bandwidth (the last line / 1.28, i.e. fs / 2.56), Hz."""
-    return (DEFAULT_LOW_HZ, float(frfs.frequency[-1]) / 1.28)
+    """40 Hz to the analyser bandwidth, fs / 2.56 (the last line is fs / 2), Hz."""
+    return (DEFAULT_LOW_HZ, 2.0 * float(frfs.frequency[-1]) / ANALYSER_BANDWIDTH_FACTOR)
 
 
 @dataclass(frozen=True, eq=False)

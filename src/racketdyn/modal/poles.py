@@ -87,7 +87,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.cluster.hierarchy import fcluster, linkage
 
-from racketdyn.errors import InputError
+from racketdyn.errors import InputError, require_whole
 from racketdyn.measurement.records import FrfSet
 
 if TYPE_CHECKING:
@@ -374,8 +374,8 @@ def stabilisation(
         tolerances out of range.
     """
     data = _combine(frfs)
-    max_order = _positive_int("max_order", max_order)
-    order_step = _positive_int("order_step", order_step)
+    max_order = require_whole("max_order", max_order)
+    order_step = require_whole("order_step", order_step)
     for name, value in (
         ("frequency_tolerance", frequency_tolerance),
         ("damping_tolerance", damping_tolerance),
@@ -1373,12 +1373,6 @@ def _band(data: FrfSet, band_hz: tuple[float, float], max_order: int) -> FrfSet:
     if not np.any(np.abs(band.values) > 0):
         raise InputError(f"{data.source}: every FRF is zero between {low:g} and {high:g} Hz")
     return band
-
-
-def _positive_int(name: str, value: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
-        raise InputError(f"{name} must be a positive whole number (got {value!r})")
-    return int(value)
 
 
 def _frequencies(

@@ -45,8 +45,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.signal import firwin, kaiserord, oaconvolve
 
-from racketdyn.errors import InputError, require_positive, require_range
-from racketdyn.measurement.records import HammerRecords
+from racketdyn.errors import InputError, require_positive, require_range, require_whole
+from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, HammerRecords
 from racketdyn.racket import Racket, as_locations
 from racketdyn.rig.model import RigModel
 
@@ -67,8 +67,6 @@ FRAME_PULSE_S = 0.4e-3
 """Half-sine length of a plastic-tipped hammer on the frame, s (assumed, 0.3–0.5 ms typical)."""
 STRING_PULSE_S = 3.0e-3
 """Half-sine length of the hammer on the strings, s (assumed; the soft bed lengthens contact)."""
-ANALYSER_BANDWIDTH_FACTOR = 2.56
-"""Sampling rate / usable bandwidth of an FFT analyser (the anti-alias filter's passband edge)."""
 FILTER_ATTENUATION_DB = 90.0
 _CHUNK = 8192
 
@@ -557,8 +555,7 @@ def _check_settings(
         ("n_samples", n_samples, 8),
         ("oversampling", oversampling, 2),
     ):
-        if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < least:
-            raise InputError(f"{name} must be a whole number of at least {least} (got {value!r})")
+        require_whole(name, value, least)
     _check_range("peak_force_n", peak_force_n)
     require_positive("overload_level_n", overload_level_n)
     if peak_force_n[1] >= overload_level_n:

@@ -84,6 +84,7 @@ from scipy.linalg import eigh
 
 from racketdyn.errors import InputError, one_of, require_positive
 from racketdyn.modal.beam import (
+    DEFAULT_DAMPING_RATIO,
     N_ELEMENTS,
     STRING_MASS_FRACTION,
     _bending_matrices,
@@ -111,7 +112,16 @@ RigSupport = Literal["free", "hand"]
 """Support of the racket on the rig: ``free`` (soft sponge) or ``hand`` (held by a hand)."""
 RIG_SUPPORTS: tuple[str, ...] = get_args(RigSupport)
 
-FRAME_DAMPING_RATIO = 0.005
+FRAME_DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+
+# The hand's defaults, shared with the transient model's lumped hand (racketdyn.impact.hand);
+# sources and how sure they are: HandModel's docstring.
+HAND_GRIP_START_M = 0.010
+HAND_GRIP_END_M = 0.130
+HAND_MASS_KG = 0.06
+HAND_DAMPING_NS_PER_M = 12.0
+HAND_ROLL_STIFFNESS_NM_PER_RAD = 3.0
+HAND_ROLL_DAMPING_NMS_PER_RAD = 0.05
 """Damping ratio of every flexible mode of the free racket (the built-in model's 0.5 %)."""
 SUSPENSION_HZ = (3.0, 2.0, 2.5)
 """Frequencies of the free racket's heave, pitch and roll on the sponge, Hz (assumed)."""
@@ -187,14 +197,14 @@ class HandModel:
         Total damping against the handle turning about the long axis, N·m·s/rad.
     """
 
-    grip_start_m: float = 0.010
-    grip_end_m: float = 0.130
-    mass_kg: float = 0.06
+    grip_start_m: float = HAND_GRIP_START_M
+    grip_end_m: float = HAND_GRIP_END_M
+    mass_kg: float = HAND_MASS_KG
     roll_radius_m: float = 0.015
     stiffness_n_per_m: float = 1000.0
-    damping_ns_per_m: float = 12.0
-    roll_stiffness_nm_per_rad: float = 3.0
-    roll_damping_nms_per_rad: float = 0.05
+    damping_ns_per_m: float = HAND_DAMPING_NS_PER_M
+    roll_stiffness_nm_per_rad: float = HAND_ROLL_STIFFNESS_NM_PER_RAD
+    roll_damping_nms_per_rad: float = HAND_ROLL_DAMPING_NMS_PER_RAD
 
     def __post_init__(self) -> None:
         require_positive("hand.grip_start_m", self.grip_start_m, allow_zero=True)

@@ -13,7 +13,7 @@ from concurrent.futures import Executor, Future
 from contextlib import contextmanager
 from typing import Literal, ParamSpec, TypeVar, get_args
 
-from racketdyn.errors import InputError, one_of
+from racketdyn.errors import InputError, one_of, require_whole
 
 __all__ = ["ENGINES", "EngineKind", "SerialExecutor", "make_executor"]
 
@@ -84,8 +84,7 @@ def make_executor(
         The executor.  The Dask client and a local cluster are closed on exit.
     """
     one_of("engine", kind, ENGINES)
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-        raise InputError(f"workers must be a whole number of at least 1 (got {workers!r})")
+    require_whole("workers", workers)
     if kind == "dask":
         if not scheduler:
             raise InputError("the dask engine needs a scheduler address, e.g. tcp://HOST:8786")

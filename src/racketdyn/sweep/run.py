@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from racketdyn.__about__ import __version__
-from racketdyn.errors import InputError
+from racketdyn.errors import require_whole
 from racketdyn.impact.result import STATUS_OK
 from racketdyn.sweep.design import Design
 from racketdyn.sweep.executors import DEFAULT_WORKERS, EngineKind, _in_flight_limit, make_executor
@@ -98,8 +98,7 @@ def run_sweep(
     started = time.perf_counter()
     if not isinstance(spec, SweepSpec):
         spec = load_sweep_spec(Path(spec))
-    if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
-        raise InputError(f"retries must be a whole number of 0 or more (got {retries!r})")
+    require_whole("retries", retries, least=0)
     out = Path(out_dir)
     parts_dir = out / "parts"
     parts_dir.mkdir(parents=True, exist_ok=True)

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.ball import Ball, RestoringForce
-from racketdyn.errors import InputError, one_of
+from racketdyn.errors import InputError, one_of, require_whole
 from racketdyn.impact.approximate import STIFFNESS_READINGS
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_racket, read_toml
 from racketdyn.io.tables import read_load_deflection, read_points
@@ -320,10 +320,7 @@ def _value_list(where: str, value: object) -> NDArray[np.float64]:
             )
         start = _number(f"{where}.start", value["start"])
         stop = _number(f"{where}.stop", value["stop"])
-        num = value["num"]
-        if isinstance(num, bool) or not isinstance(num, int) or num < 1:
-            raise InputError(f"{where}.num must be a whole number of at least 1 (got {num!r})")
-        return np.linspace(start, stop, num)
+        return np.linspace(start, stop, require_whole(f"{where}.num", value["num"]))
     items = value if isinstance(value, list) else [value]
     if not items:
         raise InputError(f"{where}: give one or more values")
