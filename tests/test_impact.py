@@ -341,3 +341,14 @@ def test_power_law_runs_clean(racket, ball, reading) -> None:
     )
     assert np.all(result.status == "ok")
     assert np.all(np.diff(result.contact_time, axis=1) < 0)
+
+
+def test_shown_speed_is_20_or_the_middle_of_the_sorted_speeds() -> None:
+    """One rule for the CLI and the report: 20 m/s if given, else the median speed, whatever
+    the order the speeds were given in."""
+    from racketdyn.impact.result import shown_speed_index
+
+    assert shown_speed_index([10.0, 20.0, 30.0]) == 1
+    assert shown_speed_index([40.0, 20.0]) == 1
+    assert shown_speed_index([30.0, 10.0, 40.0]) == 0
+    assert shown_speed_index([15.0]) == 0

@@ -48,6 +48,7 @@ from racketdyn.impact.comparison import (
 )
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.oblique import DEFAULT_TANGENTIAL_CONTACT, TangentialContact, oblique_curve
+from racketdyn.impact.result import shown_speed_index
 from racketdyn.impact.swing import (
     DEFAULT_ARM_GYRATION_M,
     DEFAULT_ARM_MASS_KG,
@@ -217,7 +218,7 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
     histories: list[History] = []
     mode_names: Sequence[str] = ()
     comparison = None
-    chosen = _history_speed(speeds)
+    chosen = shown_speed_index(speeds)
     transient_csv = "impact.csv" if args.model == "transient" else "impact_transient.csv"
     if transient_wanted:
         transient = _predict_transient(
@@ -371,14 +372,6 @@ def _hand(args: argparse.Namespace, supports: Sequence[str], defaults: list[str]
         defaults.append("hand: racketdyn.impact.hand.Hand defaults (1 kg arm, Kawazoe ACMD 2002)")
         return Hand()
     return Hand(arm_mass_kg=args.hand_arm_mass)
-
-
-def _history_speed(speeds: Sequence[float]) -> int:
-    """Index of the ball speed the time histories and the face map show: 20 m/s, or the middle."""
-    for index, speed in enumerate(speeds):
-        if speed == 20.0:
-            return index
-    return (len(speeds) - 1) // 2
 
 
 def _predict_approximate(
@@ -1304,7 +1297,7 @@ def _swing(args: argparse.Namespace, console: Console) -> int:
     labels = [str(i + 1) for i in range(len(locations))]
     law = compound_law(racket, ball)
     options: dict[str, Any] = {"law": law, **({"hand": hand} if hand is not None else {})}
-    chosen = _history_speed(speeds)
+    chosen = shown_speed_index(speeds)
     omega = swing.angular_speed(racket)
     with console.status(f"swing Ω = {omega:.2f} rad/s: {len(locations)} points") as status:
         result = predict_swing(

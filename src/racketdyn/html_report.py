@@ -44,6 +44,7 @@ from numpy.typing import NDArray
 
 from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError
+from racketdyn.impact.result import shown_speed_index
 from racketdyn.racket import Racket
 
 __all__ = ["REPORT_NAME", "SECTIONS", "write_report"]
@@ -87,7 +88,6 @@ _HOW_TO_RUN: dict[str, str] = {
     "provenance": "any racketdyn command with --out (each writes run.json)",
 }
 
-_REBOUND_SPEED_MPS = 20.0
 _MAX_MAP_POINTS = 2500  # per speed and support in the interactive map; more are thinned
 _MAX_MAP_SPEEDS = 7
 _MAX_FRF_LINES = 4000
@@ -1237,9 +1237,7 @@ def _centre(ctx: _Context, impacts: _Impacts) -> tuple[float, float]:
 
 
 def _chosen_speed(speeds: Sequence[float]) -> float:
-    if _REBOUND_SPEED_MPS in speeds:
-        return _REBOUND_SPEED_MPS
-    return speeds[(len(speeds) - 1) // 2]
+    return speeds[shown_speed_index(speeds)]
 
 
 def _section_impact(ctx: _Context) -> str | None:

@@ -24,6 +24,7 @@ from racketdyn.ball import Ball, RestoringForce
 from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
 from racketdyn.impact.comparison import History, ModelComparison
 from racketdyn.impact.oblique import ObliqueCurve, TangentialContact
+from racketdyn.impact.result import SHOWN_SPEED_MPS
 from racketdyn.impact.swing import ImpactModel, SweetSpot, Swing, SwingResult, predict_swing
 from racketdyn.impact.transient import predict_transient
 from racketdyn.impact.twist import TwistCurve
@@ -86,7 +87,7 @@ log = logging.getLogger(__name__)
 
 CURVE_SPEEDS_MPS = np.linspace(5.0, 50.0, 46)
 VIBRATION_SPEEDS_MPS = (10.0, 20.0, 30.0)
-REBOUND_SPEED_MPS = 20.0
+REBOUND_SPEED_MPS = SHOWN_SPEED_MPS
 TRANSIENT_CURVE_SPEEDS_MPS = np.linspace(5.0, 40.0, 15)
 """Ball speeds of the approximate-against-transient curves (15 speeds: 3 points × 15 × 2
 supports ≈ 0.7 s with the scipy reference path of the transient model)."""

@@ -17,11 +17,13 @@ from racketdyn.modal.model import ModalModel
 
 __all__ = [
     "CSV_COLUMNS",
+    "SHOWN_SPEED_MPS",
     "STATUS_BEYOND_LAW",
     "STATUS_OK",
     "STATUS_VIBRATION_LOSS",
     "ImpactResult",
     "impact_columns",
+    "shown_speed_index",
     "slug",
     "write_columns",
 ]
@@ -244,6 +246,21 @@ def impact_columns(result: Any, racket_speed: NDArray[np.float64]) -> dict[str, 
         for k, name in enumerate(result.modal_model.names):
             flat[f"energy_{slug(name)}_j"] = result.mode_energy[..., k].reshape(-1)
     return flat
+
+
+SHOWN_SPEED_MPS = 20.0
+"""Ball speed that single-speed figures and summaries show when it is among the speeds (the
+paper's Fig. 15 speed), m/s."""
+
+
+def shown_speed_index(speeds: ArrayLike) -> int:
+    """Index of the ball speed single-speed figures and summaries show: 20 m/s if given, else
+    the middle of the speeds in increasing order (the same rule for the CLI and the report)."""
+    values = np.asarray(speeds, dtype=float)
+    hit = np.flatnonzero(values == SHOWN_SPEED_MPS)
+    if hit.size:
+        return int(hit[0])
+    return int(np.argsort(values, kind="stable")[(values.size - 1) // 2])
 
 
 def slug(name: str) -> str:
