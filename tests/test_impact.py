@@ -352,3 +352,17 @@ def test_shown_speed_is_20_or_the_middle_of_the_sorted_speeds() -> None:
     assert shown_speed_index([40.0, 20.0]) == 1
     assert shown_speed_index([30.0, 10.0, 40.0]) == 0
     assert shown_speed_index([15.0]) == 0
+
+
+def test_beyond_the_law_every_number_is_nan(racket, ball) -> None:
+    """A row past the law's range carries NaN in every impact quantity, not the law's end."""
+    import logging
+
+    logging.disable(logging.WARNING)
+    try:
+        result = predict(racket, ball, [(0.505, 0.0)], [60.0], "free")
+    finally:
+        logging.disable(logging.NOTSET)
+    assert result.status[0, 0, 0] != "ok"
+    for name in ("peak_deflection", "contact_time", "stiffness", "peak_force", "rebound_ratio"):
+        assert np.isnan(getattr(result, name)[0, 0, 0]), name

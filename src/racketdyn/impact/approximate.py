@@ -98,6 +98,35 @@ def elastic_contact_time(
     return np.asarray(2.0 * np.sum(integrand * _THETA_WEIGHTS, axis=-1))
 
 
+def elastic_contact(
+    law: RestoringForce, mu: ArrayLike, speed: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
+    """Peak deflection and duration of an elastic contact of mass μ at an approach speed.
+
+    ``E(X_p) = ½ μ V²`` solved for X_p, then :func:`elastic_contact_time`.  Where X_p lies
+    beyond the law's range, the law's end stands in (``in_range`` is False there).
+
+    Parameters
+    ----------
+    law : RestoringForce
+        Loading curve F(X).
+    mu : array_like
+        Two-body mass, kg.
+    speed : array_like
+        Approach speed V, m/s.
+
+    Returns
+    -------
+    peak, contact_time, in_range : ndarray
+        X_p (m), T_c (s) and whether X_p is within the law.
+    """
+    mu_ = np.asarray(mu, dtype=float)
+    deflection = np.asarray(law.deflection_at_energy(0.5 * mu_ * np.asarray(speed) ** 2))
+    in_range = np.isfinite(deflection)
+    peak = np.where(in_range, deflection, law.max_deflection_m)
+    return peak, np.asarray(elastic_contact_time(law, mu_, peak)), in_range
+
+
 def tangent_peak_deflection(law: RestoringForce, target: ArrayLike) -> NDArray[np.float64]:
     """Solve ``F(X)/sqrt(K(X)) = target`` for the peak deflection X, m (tangent reading).
 
@@ -205,10 +234,9 @@ def predict(
     impulse = (1.0 + e_bg) * mu * speed  # eqs (6), (8)
 
     if stiffness_reading == "period":
-        deflection = law.deflection_at_energy(0.5 * mu * speed**2)
-        in_range = np.isfinite(deflection)
-        safe = np.where(in_range, deflection, law.max_deflection_m)
-        contact_time = np.where(in_range, elastic_contact_time(law, mu, safe), np.nan)
+        deflection, contact_time, in_range = elastic_contact(law, mu, speed)
+        deflection = np.where(in_range, deflection, np.nan)
+        contact_time = np.where(in_range, contact_time, np.nan)
         stiffness = np.pi**2 * mu / contact_time**2  # eq (7) solved for K_GB
     else:
         deflection = tangent_peak_deflection(law, impulse / (2.0 * np.sqrt(mu)))

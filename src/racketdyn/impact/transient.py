@@ -67,7 +67,7 @@ from racketdyn.errors import (
     require_speeds,
     require_whole,
 )
-from racketdyn.impact.approximate import elastic_contact_time
+from racketdyn.impact.approximate import elastic_contact
 from racketdyn.impact.grid import (
     ImpactGrid,
     impact_grid,
@@ -386,10 +386,8 @@ def simulate_system_contact(
 
     # scales for the absolute tolerances and the time allowed
     mu = m_b / (1.0 + m_b * compliance)
-    elastic_peak = float(law.deflection_at_energy(0.5 * mu * approach**2))
-    if not math.isfinite(elastic_peak):
-        elastic_peak = law.max_deflection_m
-    t_estimate = float(elastic_contact_time(law, mu, elastic_peak))
+    peak_estimate, time_estimate, _ = elastic_contact(law, mu, approach)
+    elastic_peak, t_estimate = float(peak_estimate), float(time_estimate)
     impulse_scale = 2.0 * mu * approach
     speed_scale = np.maximum(np.abs(input_acc) * impulse_scale, 1e-6 * approach)
     omega_max = float(np.sqrt(np.abs(np.linalg.eigvals(stiffness_acc)).max(initial=0.0)))
@@ -915,11 +913,7 @@ def _run_compiled(
     approach = v_in + v_r
     c_r = compliance[system_index]
     mu = m_b / (1.0 + m_b * c_r)
-    energy = 0.5 * mu * approach**2
-    peak = np.asarray(law.deflection_at_energy(energy), dtype=float)
-    peak = np.where(np.isfinite(peak), peak, law.max_deflection_m)
-    t_estimate = np.asarray(elastic_contact_time(law, mu, peak))
-    step = t_estimate / steps_per_contact
+    step = elastic_contact(law, mu, approach)[1] / steps_per_contact
     kind, coefficients = law_arrays(law.kind, law.coefficients)
     modal, raw = integrate_impacts(
         system_index, approach, step, poles, residues, weights, compliance, m_b, ball.e_bg,
