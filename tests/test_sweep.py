@@ -196,9 +196,13 @@ def test_dataset_layout(small_spec: SweepSpec, serial_result: xr.Dataset) -> Non
     )
     direct = rd.predict(racket, ball, small_spec.locations, small_spec.ball_speeds)
     # to the rounding of the mode-shape interpolator's dense solve, which the sweep does on one
-    # BLAS thread and this process may split over several
+    # BLAS thread and this process may split over several (seen: 6e-9 on a ratio of 0.0045, so an
+    # absolute floor as well)
     np.testing.assert_allclose(
-        ds["rebound_ratio"].isel(design=3, racket_speed=0).values, direct.rebound_ratio, rtol=1e-6
+        ds["rebound_ratio"].isel(design=3, racket_speed=0).values,
+        direct.rebound_ratio,
+        rtol=1e-6,
+        atol=1e-7,
     )
     view = factorial_view(ds)
     assert view["rebound_ratio"].sizes["point_mass_mass_kg"] == 3

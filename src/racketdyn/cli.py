@@ -238,7 +238,8 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
         )
         transient.write_csv(out / transient_csv)
         written.append(out / transient_csv)
-        from racketdyn.report import landmark_points  # the named points of the paper's figures
+        # the named points of the paper's figures
+        from racketdyn.plotting.figures import landmark_points
 
         marks = landmark_points(racket)
         with console.status("simulating the time histories"):
@@ -260,7 +261,7 @@ def _predict(args: argparse.Namespace, console: Console) -> int:
         comparison = compare_models(approximate, transient)
         written.append(comparison.write_csv(out / "comparison.csv"))
     if not args.no_figures:
-        from racketdyn.report import FIGURES, write_paper_figures, write_transient_figures
+        from racketdyn.plotting.figures import FIGURES, write_paper_figures, write_transient_figures
 
         with console.status("drawing figures") as status:
             if approximate is not None:
@@ -566,7 +567,7 @@ def _sha256(path: Path) -> str:
 
 
 def _frf(args: argparse.Namespace, console: Console) -> int:
-    from racketdyn.report import write_frf_figures
+    from racketdyn.plotting.figures import write_frf_figures
 
     records = _read_records(args.tests, args.geometry)
     racket, provenance = _load(args.racket)
@@ -622,7 +623,7 @@ def _frf(args: argparse.Namespace, console: Console) -> int:
 
 
 def _contact(args: argparse.Namespace, console: Console) -> int:
-    from racketdyn.report import write_contact_figure
+    from racketdyn.plotting.figures import write_contact_figure
 
     labels = (
         _parse_list("--labels", args.labels) if args.labels else [Path(t).stem for t in args.tests]
@@ -825,7 +826,7 @@ def _print_modes(console: Console, identification: Identification) -> None:
 
 
 def _identify(args: argparse.Namespace, console: Console) -> int:
-    from racketdyn.report import write_identification
+    from racketdyn.plotting.figures import write_identification
 
     racket, provenance = _load(args.racket)
     out = Path(args.out)
@@ -858,7 +859,7 @@ def _identify(args: argparse.Namespace, console: Console) -> int:
 
 
 def _compare(args: argparse.Namespace, console: Console) -> int:
-    from racketdyn.report import write_comparison, write_identification
+    from racketdyn.plotting.figures import write_comparison, write_identification
 
     racket, provenance = _load(args.racket)
     out = Path(args.out)
@@ -1278,7 +1279,7 @@ def _spot_rows(
 
 
 def _swing(args: argparse.Namespace, console: Console) -> int:
-    from racketdyn.report import write_swing_figures
+    from racketdyn.plotting.figures import write_swing_figures
 
     speeds = _parse_speeds("--ball-speed", args.ball_speed)
     transient = args.model == "transient"
@@ -1404,7 +1405,7 @@ axis); the fields of :class:`~racketdyn.impact.twist.TwistCurve`."""
 
 
 def _twist(args: argparse.Namespace, console: Console) -> int:
-    from racketdyn.report import write_twist_figure
+    from racketdyn.plotting.figures import write_twist_figure
 
     x = require_positive("--x", args.x)
     offsets = _parse_numbers("--offsets", args.offsets, "offsets from the long axis in m")
@@ -1520,7 +1521,7 @@ def _point(text: str | None, racket: Racket) -> tuple[float, float]:
 
 
 def _oblique(args: argparse.Namespace, console: Console) -> int:
-    from racketdyn.report import write_oblique_figure
+    from racketdyn.plotting.figures import write_oblique_figure
 
     speed = require_positive("--ball-speed", args.ball_speed)
     angles = _parse_numbers("--angles", args.angles, "degrees from the face normal")

@@ -1247,7 +1247,7 @@ def plot_stabilisation(
         The diagram's axes (the summed FRF's twin axis, if drawn, is the other axes of
         ``ax.figure`` sharing its x axis).
     """
-    from racketdyn.plotting import FRF_UNITS, _axes
+    from racketdyn.plotting.primitives import FRF_UNITS, _axes
 
     ax = _axes(ax, (7.0, 4.5))
     if frfs is not None:

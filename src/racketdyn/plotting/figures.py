@@ -35,7 +35,7 @@ from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import plot_stabilisation
 from racketdyn.modal.residues import mac
 from racketdyn.modal.shapes import axis_nodes, pair_modes
-from racketdyn.plotting import (
+from racketdyn.plotting.primitives import (
     FRF_UNITS,
     SUPPORT_STYLE,
     plot_along_axis,
