@@ -105,7 +105,9 @@ def test_comparison_and_swing_columns_are_properties(
 def test_dataset_dims_coords_and_units(result: ImpactResult) -> None:
     ds = result.to_xarray()
     assert tuple(ds.sizes) == ("point", "ball_speed", "support", "mode")
-    assert ds.sizes["point"] == 3 and ds.sizes["ball_speed"] == 4 and ds.sizes["mode"] == 3
+    assert ds.sizes["point"] == 3
+    assert ds.sizes["ball_speed"] == 4
+    assert ds.sizes["mode"] == 3
     for name, dim in [
         ("x_m", "point"),
         ("y_m", "point"),
@@ -226,10 +228,13 @@ def test_impact_result_repr_is_short_and_says_what_it_is(result: ImpactResult) -
     assert "3 points × 4 ball speeds × 2 supports" in text
     flagged = int(np.count_nonzero(result.status != STATUS_OK))
     assert f"flagged {flagged} of 24" in text
-    assert "approximate" in text and "free, pinned" in text
+    assert "approximate" in text
+    assert "free, pinned" in text
     page = result._repr_html_()
     assert _looks_like_html(page)
-    assert "200" in page and f"{flagged} of 24" in page and "centre" in page
+    assert "200" in page
+    assert f"{flagged} of 24" in page
+    assert "centre" in page
 
 
 def test_core_objects_have_short_reprs(
@@ -247,9 +252,12 @@ def test_core_objects_have_short_reprs(
         text = repr(thing)
         assert len(text) < MAX_REPR, (type(thing).__name__, len(text))
         assert type(thing).__name__ in text
-    assert "0.36" in repr(racket) and "120" in repr(model) and "accelerance" in repr(frfs)
+    assert "0.36" in repr(racket)
+    assert "120" in repr(model)
+    assert "accelerance" in repr(frfs)
     for thing in (racket, model, records, frfs):
         page = thing._repr_html_()
         assert _looks_like_html(page), type(thing).__name__
-    assert "120 Hz" in model._repr_html_() and "0.36 kg" in racket._repr_html_()
+    assert "120 Hz" in model._repr_html_()
+    assert "0.36 kg" in racket._repr_html_()
     assert f"{records.n_samples}" in records._repr_html_()
