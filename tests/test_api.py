@@ -21,7 +21,7 @@ import racketdyn as rd
 from racketdyn.impact.comparison import compare_models
 from racketdyn.impact.result import (
     CSV_COLUMNS,
-    QUANTITIES,
+    IMPACT_QUANTITIES,
     STATUS_BEYOND_LAW,
     STATUS_OK,
     STATUS_VIBRATION_LOSS,
@@ -32,6 +32,10 @@ from racketdyn.impact.transient import predict_transient, simulate_impact
 from racketdyn.measurement.frf import estimate_frfs
 from synthetic_records import Modes, records_for
 
+# the impact quantities that are dataset variables (the racket speed is a coordinate)
+VARIABLES = [q for q in IMPACT_QUANTITIES if q.attribute != "racket_speed"]
+# those on (point, ball_speed, support)
+CELL_VARIABLES = [q for q in VARIABLES if q.attribute != "reduced_mass"]
 LOCATIONS = np.array([[0.505, 0.0], [0.60, 0.0], [0.45, 0.05]])
 LABELS = ("centre", "tip", "side")
 # 200 m/s compresses the ball and strings beyond the restoring-force law: flagged rows
@@ -58,7 +62,7 @@ def _same(a: object, b: object) -> bool:
 def test_each_attribute_is_the_bare_name_and_each_column_carries_the_unit() -> None:
     units = {"m s-1": "_mps", "kg": "_kg", "N m-1": "_n_per_m", "s": "_s", "N": "_n", "J": "_j"}
     units |= {"m": "_m", "1": ""}
-    for quantity in QUANTITIES:
+    for quantity in IMPACT_QUANTITIES:
         assert quantity.attribute in ImpactResult.__dataclass_fields__
         assert quantity.name == quantity.attribute + units[quantity.units]
         assert quantity.name in CSV_COLUMNS
@@ -121,7 +125,7 @@ def test_dataset_dims_coords_and_units(result: ImpactResult) -> None:
         assert ds[name].dims == (dim,), name
     assert list(ds["support"].values) == list(result.supports)
     assert list(ds["mode"].values) == list(result.modal_model.names)
-    for quantity in QUANTITIES[1:]:
+    for quantity in VARIABLES:
         variable = ds[quantity.name]
         assert variable.attrs["units"] == quantity.units
         assert variable.attrs["long_name"]
@@ -138,7 +142,7 @@ def test_dataset_dims_coords_and_units(result: ImpactResult) -> None:
 
 def test_dataset_round_trips_the_values_exactly(result: ImpactResult) -> None:
     ds = result.to_xarray()
-    for quantity in QUANTITIES[1:]:
+    for quantity in VARIABLES:
         assert _same(ds[quantity.name].values, getattr(result, quantity.attribute))
     assert _same(ds["racket_speed_mps"].values, result.racket_speed)
     assert _same(ds["x_m"].values, result.locations[:, 0])
@@ -158,7 +162,7 @@ def test_flagged_rows_are_nan_in_the_dataset(result: ImpactResult) -> None:
     status = ds["status"].values
     beyond = status == STATUS_BEYOND_LAW
     assert beyond.any(), "200 m/s goes beyond the restoring-force law"
-    for quantity in QUANTITIES[2:]:
+    for quantity in CELL_VARIABLES:
         assert np.isnan(ds[quantity.name].values[beyond]).all(), quantity.name
     for name in ("cor", "rebound_ratio", "rebound_speed_mps"):
         values = ds[name].values
@@ -208,7 +212,7 @@ def test_dataset_values_are_the_attributes_for_any_speeds(
         racket, ball, LOCATIONS[:2], speeds, modal_model=None, racket_speed=racket_speed
     )
     ds = result.to_xarray()
-    for quantity in QUANTITIES[1:]:
+    for quantity in VARIABLES:
         assert _same(ds[quantity.name].values, getattr(result, quantity.attribute))
     frame = result.to_dataframe()
     assert _same(frame["rebound_speed_mps"].to_numpy(), ds["rebound_speed_mps"].values.ravel())

@@ -24,8 +24,8 @@ if TYPE_CHECKING:
 
 __all__ = [
     "CSV_COLUMNS",
+    "IMPACT_QUANTITIES",
     "KEY_COLUMNS",
-    "QUANTITIES",
     "SHOWN_SPEED_MPS",
     "STATUS_BEYOND_LAW",
     "STATUS_MEANING",
@@ -68,7 +68,7 @@ class Quantity:
     long_name: str
 
 
-QUANTITIES: tuple[Quantity, ...] = (
+IMPACT_QUANTITIES: tuple[Quantity, ...] = (
     Quantity(
         "racket_speed",
         "racket_speed_mps",
@@ -101,7 +101,7 @@ datasets and data frames (attribute ``contact_time`` ↔ column ``contact_time_s
 KEY_COLUMNS = ("point", "x_m", "y_m", "support", "ball_speed_mps")
 """The columns that say which impact a row of ``impact.csv`` is."""
 
-CSV_COLUMNS = (*KEY_COLUMNS, *(q.name for q in QUANTITIES), "status")
+CSV_COLUMNS = (*KEY_COLUMNS, *(q.name for q in IMPACT_QUANTITIES), "status")
 """Columns of ``impact.csv`` (the first fifteen in the order the foundation issue fixes); one
 ``energy_<mode name>_j`` column per mode follows."""
 
@@ -119,7 +119,7 @@ class ImpactResult:
 
     Attributes carry the glossary's bare names in SI units (``contact_time``, s); the same
     quantities in ``impact.csv``, :meth:`to_xarray` and :meth:`to_dataframe` carry their unit
-    as a suffix (``contact_time_s``), see :data:`QUANTITIES`.
+    as a suffix (``contact_time_s``), see :data:`IMPACT_QUANTITIES`.
 
     Attributes
     ----------
@@ -266,7 +266,7 @@ class ImpactResult:
         """The ``impact.csv`` table: column name → 1-D array, one row per point × speed ×
         support (``pandas.DataFrame(result.columns)`` is :meth:`to_dataframe`).
 
-        Names carry their unit (``contact_time_s``, see :data:`QUANTITIES`); one
+        Names carry their unit (``contact_time_s``, see :data:`IMPACT_QUANTITIES`); one
         ``energy_<mode name>_j`` column per mode follows the :data:`CSV_COLUMNS`.  Built anew
         at each access.
         """
@@ -292,7 +292,7 @@ class ImpactResult:
         Returns
         -------
         pandas.DataFrame
-            Columns named with their unit (``contact_time_s`` …), see :data:`QUANTITIES`.
+            Columns named with their unit (``contact_time_s`` …), see :data:`IMPACT_QUANTITIES`.
         """
         import pandas as pd
 
@@ -306,7 +306,7 @@ class ImpactResult:
         ``ds.sel(label="centre")``); ``ball_speed_mps`` (indexed) and ``racket_speed_mps`` on
         ``ball_speed``; ``support``; on ``mode``, the mode names with ``mode_frequency_hz``,
         ``mode_damping_ratio`` and ``mode_kind``.  Variables are named as ``impact.csv``'s
-        columns (:data:`QUANTITIES`: ``contact_time_s`` holds :attr:`contact_time`) with
+        columns (:data:`IMPACT_QUANTITIES`: ``contact_time_s`` holds :attr:`contact_time`) with
         ``units`` (UDUNITS) and ``long_name`` attributes, plus ``mode_energy_j`` (point,
         ball_speed, support, mode), ``status`` (its meaning in ``description``) and, for the
         transient model, ``energy_balance_j`` over an ``energy_term`` dimension.  Values are
@@ -325,7 +325,8 @@ class ImpactResult:
         data: dict[str, Any] = {}
         # dims in the order (point, ball_speed, support): reduced mass, on (point, support),
         # after the impact quantities; the racket speed is a coordinate on ball_speed
-        for quantity in (*QUANTITIES[2:], QUANTITIES[1]):
+        variables = [q for q in IMPACT_QUANTITIES if q.attribute != "racket_speed"]
+        for quantity in sorted(variables, key=lambda q: q.attribute == "reduced_mass"):
             dims = ("point", "support") if quantity.attribute == "reduced_mass" else cell
             attrs = {"units": quantity.units, "long_name": quantity.long_name}
             data[quantity.name] = (dims, np.asarray(getattr(self, quantity.attribute)), attrs)
@@ -341,7 +342,7 @@ class ImpactResult:
             "racket_speed_mps": (
                 "ball_speed",
                 self.racket_speed,
-                {"units": "m s-1", "long_name": QUANTITIES[0].long_name},
+                {"units": "m s-1", "long_name": _LONG_NAMES["racket_speed_mps"]},
             ),
             "support": ("support", list(self.supports), {"long_name": "support condition"}),
         }
@@ -431,6 +432,9 @@ _LONG_NAMES = {
     "x_m": "x along the long axis from the butt",
     "y_m": "y across the long axis (0 on it)",
     "ball_speed_mps": "incoming ball speed towards the strings",
+    "racket_speed_mps": next(
+        q.long_name for q in IMPACT_QUANTITIES if q.attribute == "racket_speed"
+    ),
 }
 
 
@@ -455,7 +459,7 @@ def impact_columns(result: Any, racket_speed: NDArray[np.float64]) -> dict[str, 
         "support": np.asarray(result.supports, dtype=object),
         "ball_speed_mps": result.ball_speed[None, :, None],
     }
-    for quantity in QUANTITIES:
+    for quantity in IMPACT_QUANTITIES:
         value = getattr(result, quantity.attribute)
         if quantity.attribute == "racket_speed":
             value = racket_speed
