@@ -2,8 +2,9 @@
 
 The core objects follow the data: a :class:`Racket` (mass properties, head, strings), a
 :class:`Ball`, a :class:`ModalModel`, and the :class:`ImpactResult` that :func:`predict` returns
-(Kawazoe's approximate method).  SI units throughout; names carry them where they are not
-obvious.
+(Kawazoe's approximate method).  SI units throughout: attributes take the glossary's bare names
+(``result.contact_time``, s); file columns, dataset variables and data-frame columns carry the
+unit (``contact_time_s``), see :data:`racketdyn.impact.result.IMPACT_QUANTITIES`.
 """
 
 from racketdyn.__about__ import __version__

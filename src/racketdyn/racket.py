@@ -17,6 +17,7 @@ from typing import Literal, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from racketdyn._display import html_table, number, shorten
 from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_whole
 
 __all__ = [
@@ -337,6 +338,34 @@ class Racket:
     modal_model_file: Path | None = None
     first_bending_hz: float = 120.0
     twisting_hz: float = 361.0
+
+    def __repr__(self) -> str:
+        return (
+            f"<Racket {shorten(self.name)!r}: mass_kg={number(self.mass_kg)}, "
+            f"length_m={number(self.length_m)}, balance_m={number(self.balance_m)}, "
+            f"inertia_cg_kgm2={number(self.inertia_cg_kgm2)}, grip_m={number(self.grip_m)}, "
+            f"head {number(self.head.area_m2 * 1e4)} cm², strings {self.strings.mains}×"
+            f"{self.strings.crosses} at {number(self.strings.tension_n)} N, "
+            f"{len(self.point_masses)} point masses>"
+        )
+
+    def _repr_html_(self) -> str:
+        rows = [
+            ("mass", f"{number(self.mass_kg)} kg"),
+            ("length", f"{number(self.length_m)} m"),
+            ("balance", f"{number(self.balance_m)} m from the butt"),
+            ("inertia about the balance point", f"{number(self.inertia_cg_kgm2)} kg·m²"),
+            ("roll inertia", f"{number(self.roll_inertia_kgm2)} kg·m²"),
+            ("grip", f"{number(self.grip_m)} m from the butt"),
+            ("head", f"{number(self.head.area_m2 * 1e4)} cm²"),
+            (
+                "strings",
+                f"{self.strings.mains}×{self.strings.crosses} at "
+                f"{number(self.strings.tension_n)} N",
+            ),
+            ("point masses", str(len(self.point_masses))),
+        ]
+        return html_table(f"Racket: {self.name}", rows)
 
     def __post_init__(self) -> None:
         require_positive("racket.mass_kg", self.mass_kg)

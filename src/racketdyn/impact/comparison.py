@@ -156,9 +156,10 @@ class ModelComparison:
         scale = np.where(transient == 0.0, np.nan, np.abs(transient))
         return np.asarray((approximate - transient) / scale)
 
+    @property
     def columns(self) -> dict[str, NDArray[Any]]:
-        """The ``comparison.csv`` table as flat columns (:data:`COMPARISON_COLUMNS`)."""
-        keys = self.approximate.columns()
+        """The ``comparison.csv`` table: column name → 1-D array (:data:`COMPARISON_COLUMNS`)."""
+        keys = self.approximate.columns
         table: dict[str, NDArray[Any]] = {name: keys[name] for name in _KEYS}
         for quantity, name in COMPARED.items():
             approximate, transient = self.values(quantity)
@@ -185,7 +186,7 @@ class ModelComparison:
         Path
             ``path``.
         """
-        write_columns(Path(path), self.columns())
+        write_columns(Path(path), self.columns)
         return Path(path)
 
 

@@ -3,28 +3,40 @@
 from __future__ import annotations
 
 import csv
+import json
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from racketdyn.__about__ import __version__
+from racketdyn._display import html_table, numbers, shorten, span, words
 from racketdyn.impact.spectrum import half_sine_spectrum
 from racketdyn.modal.model import ModalModel
 
+if TYPE_CHECKING:
+    import pandas as pd
+    import xarray as xr
+
 __all__ = [
     "CSV_COLUMNS",
+    "IMPACT_QUANTITIES",
+    "KEY_COLUMNS",
     "SHOWN_SPEED_MPS",
     "STATUS_BEYOND_LAW",
+    "STATUS_MEANING",
     "STATUS_OK",
     "STATUS_VIBRATION_LOSS",
     "ImpactResult",
+    "Quantity",
     "impact_columns",
     "shown_speed_index",
     "slug",
+    "summary_rows",
     "write_columns",
 ]
 
@@ -32,32 +44,82 @@ STATUS_OK = "ok"
 STATUS_VIBRATION_LOSS = "vibration loss exceeds e_BG"
 STATUS_BEYOND_LAW = "deflection beyond the restoring-force law"
 
-CSV_COLUMNS = (
-    "point",
-    "x_m",
-    "y_m",
-    "support",
-    "ball_speed_mps",
-    "racket_speed_mps",
-    "reduced_mass_kg",
-    "stiffness_n_per_m",
-    "contact_time_s",
-    "mean_force_n",
-    "peak_force_n",
-    "vibration_energy_j",
-    "cor",
-    "rebound_ratio",
-    "rebound_speed_mps",
-    "peak_deflection_m",
-    "status",
+
+@dataclass(frozen=True)
+class Quantity:
+    """One impact quantity: its Python attribute and its name in files, datasets and tables.
+
+    Attributes
+    ----------
+    attribute : str
+        Attribute of :class:`ImpactResult`: the glossary's bare name, in SI units.
+    name : str
+        Column of ``impact.csv``, variable of :meth:`ImpactResult.to_xarray` and column of
+        :meth:`ImpactResult.to_dataframe`: the attribute with its unit as a suffix.
+    units : str
+        Unit in UDUNITS spelling (the ``units`` attribute of the dataset's variable).
+    long_name : str
+        What it is, with the paper's equation (the ``long_name`` attribute).
+    """
+
+    attribute: str
+    name: str
+    units: str
+    long_name: str
+
+
+IMPACT_QUANTITIES: tuple[Quantity, ...] = (
+    Quantity(
+        "racket_speed",
+        "racket_speed_mps",
+        "m s-1",
+        "racket speed at the impact point (towards ball)",
+    ),
+    Quantity(
+        "reduced_mass",
+        "reduced_mass_kg",
+        "kg",
+        "reduced mass of the racket at the impact point (eq 4)",
+    ),
+    Quantity(
+        "stiffness", "stiffness_n_per_m", "N m-1", "compound ball+string stiffness K_GB (eqs 9-10)"
+    ),
+    Quantity("contact_time", "contact_time_s", "s", "contact time T_c (eq 7)"),
+    Quantity("mean_force", "mean_force_n", "N", "equivalent force F_MEAN (eqs 8-10)"),
+    Quantity("peak_force", "peak_force_n", "N", "peak force F_MAX (eq 11)"),
+    Quantity(
+        "vibration_energy", "vibration_energy_j", "J", "frame vibration energy after impact (eq 12)"
+    ),
+    Quantity("cor", "cor", "1", "ball-racket coefficient of restitution e_r"),
+    Quantity("rebound_ratio", "rebound_ratio", "1", "rebound power coefficient e"),
+    Quantity("rebound_speed", "rebound_speed_mps", "m s-1", "outgoing ball speed"),
+    Quantity("peak_deflection", "peak_deflection_m", "m", "peak compound deflection X_p"),
 )
+"""The impact quantities in ``impact.csv``'s order: the one table that names them in files,
+datasets and data frames (attribute ``contact_time`` ↔ column ``contact_time_s``)."""
+
+KEY_COLUMNS = ("point", "x_m", "y_m", "support", "ball_speed_mps")
+"""The columns that say which impact a row of ``impact.csv`` is."""
+
+CSV_COLUMNS = (*KEY_COLUMNS, *(q.name for q in IMPACT_QUANTITIES), "status")
 """Columns of ``impact.csv`` (the first fifteen in the order the foundation issue fixes); one
 ``energy_<mode name>_j`` column per mode follows."""
+
+STATUS_MEANING = (
+    "'ok', or why the impact's numbers are NaN, for example "
+    f"'{STATUS_VIBRATION_LOSS}' (COR, rebound ratio and rebound speed NaN) or "
+    f"'{STATUS_BEYOND_LAW}' (every impact quantity NaN)"
+)
+"""What the ``status`` column and variable hold."""
 
 
 @dataclass(frozen=True, eq=False)
 class ImpactResult:
     """Predicted impact quantities, arrays shaped ``(n_points, n_speeds, n_supports)``.
+
+    Attributes carry the glossary's bare names in SI units (``contact_time``, s); the same
+    quantities in ``impact.csv``, :meth:`to_xarray` and :meth:`to_dataframe` carry their unit
+    as a suffix (``contact_time_s``), see :data:`IMPACT_QUANTITIES`.
 
     Attributes
     ----------
@@ -199,13 +261,181 @@ class ImpactResult:
         )  # (n, s, p, m)
         return np.asarray(constants[:, :, None, None, :] * spectrum[None] / model.omega)
 
+    @property
     def columns(self) -> dict[str, NDArray[Any]]:
-        """The ``impact.csv`` table as flat columns, one row per point × speed × support."""
+        """The ``impact.csv`` table: column name → 1-D array, one row per point × speed ×
+        support (``pandas.DataFrame(result.columns)`` is :meth:`to_dataframe`).
+
+        Names carry their unit (``contact_time_s``, see :data:`IMPACT_QUANTITIES`); one
+        ``energy_<mode name>_j`` column per mode follows the :data:`CSV_COLUMNS`.  Built anew
+        at each access.
+        """
         return impact_columns(self, self.racket_speed[None, :, None])
 
     def write_csv(self, path: Path) -> None:
-        """Write ``impact.csv``: SI units named in the header, NaN where status is not ``ok``."""
-        write_columns(path, self.columns())
+        """Write ``impact.csv``: :attr:`columns`, SI units named in the header, NaN as ``nan``.
+
+        Parameters
+        ----------
+        path : Path
+            File to write.
+        """
+        write_columns(path, self.columns)
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """The ``impact.csv`` table as a long :class:`pandas.DataFrame`.
+
+        Same columns, order and values as the file :meth:`write_csv` writes (one row per
+        point × speed × support, points slowest): ``pandas.read_csv("impact.csv")`` equals it
+        to the file's nine significant digits.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Columns named with their unit (``contact_time_s`` …), see :data:`IMPACT_QUANTITIES`.
+        """
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
+
+    def to_xarray(self) -> xr.Dataset:
+        """The result as an :class:`xarray.Dataset`, with units and names for every variable.
+
+        Dimensions ``point``, ``ball_speed``, ``support`` (and ``mode`` for the modal
+        energies).  Coordinates: ``x_m``, ``y_m``, ``label`` on ``point`` (``label`` indexed:
+        ``ds.sel(label="centre")``); ``ball_speed_mps`` (indexed) and ``racket_speed_mps`` on
+        ``ball_speed``; ``support``; on ``mode``, the mode names with ``mode_frequency_hz``,
+        ``mode_damping_ratio`` and ``mode_kind``.  Variables are named as ``impact.csv``'s
+        columns (:data:`IMPACT_QUANTITIES`: ``contact_time_s`` holds :attr:`contact_time`) with
+        ``units`` (UDUNITS) and ``long_name`` attributes, plus ``mode_energy_j`` (point,
+        ball_speed, support, mode), ``status`` (its meaning in ``description``) and, for the
+        transient model, ``energy_balance_j`` over an ``energy_term`` dimension.  Values are
+        the result's arrays as they are: NaN where the status says the numbers are missing.
+        Dataset attributes: ``method``, ``racket_speed_mps``, ``modal_model`` (its source),
+        ``racketdyn_version`` and ``inputs`` (JSON of :attr:`inputs`).
+
+        Returns
+        -------
+        xarray.Dataset
+            Writable as netCDF (``ds.to_netcdf("impact.nc")``).
+        """
+        import xarray as xr
+
+        cell = ("point", "ball_speed", "support")
+        data: dict[str, Any] = {}
+        # dims in the order (point, ball_speed, support): reduced mass, on (point, support),
+        # after the impact quantities; the racket speed is a coordinate on ball_speed
+        variables = [q for q in IMPACT_QUANTITIES if q.attribute != "racket_speed"]
+        for quantity in sorted(variables, key=lambda q: q.attribute == "reduced_mass"):
+            dims = ("point", "support") if quantity.attribute == "reduced_mass" else cell
+            attrs = {"units": quantity.units, "long_name": quantity.long_name}
+            data[quantity.name] = (dims, np.asarray(getattr(self, quantity.attribute)), attrs)
+        coords: dict[str, Any] = {
+            "x_m": ("point", self.locations[:, 0], {"units": "m", "long_name": _LONG_NAMES["x_m"]}),
+            "y_m": ("point", self.locations[:, 1], {"units": "m", "long_name": _LONG_NAMES["y_m"]}),
+            "label": ("point", list(self.labels), {"long_name": "point label"}),
+            "ball_speed_mps": (
+                "ball_speed",
+                self.ball_speed,
+                {"units": "m s-1", "long_name": _LONG_NAMES["ball_speed_mps"]},
+            ),
+            "racket_speed_mps": (
+                "ball_speed",
+                self.racket_speed,
+                {"units": "m s-1", "long_name": _LONG_NAMES["racket_speed_mps"]},
+            ),
+            "support": ("support", list(self.supports), {"long_name": "support condition"}),
+        }
+        model = self.modal_model
+        if model is not None:
+            data["mode_energy_j"] = (
+                (*cell, "mode"),
+                self.mode_energy,
+                {"units": "J", "long_name": "vibration energy per mode after impact (eq 12)"},
+            )
+            coords["mode"] = ("mode", list(model.names), {"long_name": "mode name"})
+            coords["mode_frequency_hz"] = (
+                "mode",
+                model.frequency,
+                {"units": "Hz", "long_name": "natural frequency"},
+            )
+            coords["mode_damping_ratio"] = (
+                "mode",
+                model.damping_ratio,
+                {"units": "1", "long_name": "damping ratio"},
+            )
+            coords["mode_kind"] = ("mode", list(model.kinds), {"long_name": "mode kind"})
+        if self.energy_terms is not None:
+            terms = list(self.energy_terms)
+            data["energy_balance_j"] = (
+                (*cell, "energy_term"),
+                np.stack([self.energy_terms[t] for t in terms], axis=-1),
+                {"units": "J", "long_name": "where the ball's energy went (transient model)"},
+            )
+            coords["energy_term"] = ("energy_term", terms)
+        data["status"] = (
+            cell,
+            np.asarray(self.status, dtype=str),
+            {"long_name": "impact status", "description": STATUS_MEANING},
+        )
+        info: dict[str, Any] = {
+            "title": "racketdyn impact prediction",
+            "method": str(self.inputs.get("method", "")),
+            "racket_speed_mps": np.asarray(self.racket_speed, dtype=float),
+            "modal_model": "none (rigid racket)" if model is None else model.source,
+            "racketdyn_version": str(self.inputs.get("racketdyn_version", __version__)),
+            "inputs": json.dumps(self.inputs, default=str),
+        }
+        dataset = xr.Dataset(data, coords=coords, attrs=info)
+        return dataset.set_xindex("label").set_xindex("ball_speed_mps")
+
+    def __repr__(self) -> str:
+        n, s, p = self.shape
+        return (
+            f"<ImpactResult {n} points × {s} ball speeds × {p} supports: "
+            + "; ".join(f"{key} {value}" for key, value in summary_rows(self)[1:])
+            + ">"
+        )
+
+    def _repr_html_(self) -> str:
+        return html_table("ImpactResult", summary_rows(self))
+
+
+def summary_rows(result: Any) -> list[tuple[str, str]]:
+    """(what, value) lines that sum up a result with :class:`ImpactResult`'s arrays: the short
+    ``repr`` and the notebook table.
+
+    Parameters
+    ----------
+    result : ImpactResult or alike
+        Has ``shape``, ``labels``, ``ball_speed``, ``racket_speed``, ``supports``,
+        ``status``, ``rebound_ratio``, ``modal_model`` and ``inputs``.
+    """
+    n, s, p = result.shape
+    flagged = int(np.count_nonzero(result.status != STATUS_OK))
+    model = result.modal_model
+    rows = [
+        ("shape", f"{n} points × {s} ball speeds × {p} supports"),
+        ("points", words(result.labels)),
+        ("ball speed", f"{numbers(result.ball_speed)} m/s"),
+        ("racket speed", f"{span(result.racket_speed)} m/s"),
+        ("supports", words(result.supports)),
+        ("method", shorten(str(result.inputs.get("method", "?")))),
+        ("modes", "none (rigid)" if model is None else f"{model.frequency.size}"),
+        ("rebound ratio", span(result.rebound_ratio[result.status == STATUS_OK])),
+        ("flagged", f"{flagged} of {result.status.size} not ok"),
+    ]
+    return rows
+
+
+_LONG_NAMES = {
+    "x_m": "x along the long axis from the butt",
+    "y_m": "y across the long axis (0 on it)",
+    "ball_speed_mps": "incoming ball speed towards the strings",
+    "racket_speed_mps": next(
+        q.long_name for q in IMPACT_QUANTITIES if q.attribute == "racket_speed"
+    ),
+}
 
 
 def impact_columns(result: Any, racket_speed: NDArray[np.float64]) -> dict[str, NDArray[Any]]:
@@ -221,27 +451,23 @@ def impact_columns(result: Any, racket_speed: NDArray[np.float64]) -> dict[str, 
         for :class:`ImpactResult`, one per point for a swing).
     """
     n, s, p = result.shape
-    point = np.broadcast_to(np.asarray(result.labels, dtype=object)[:, None, None], (n, s, p))
+    shape = (n, s, p)
     table: dict[str, NDArray[Any]] = {
-        "point": point,
-        "x_m": np.broadcast_to(result.locations[:, 0, None, None], (n, s, p)),
-        "y_m": np.broadcast_to(result.locations[:, 1, None, None], (n, s, p)),
-        "support": np.broadcast_to(np.asarray(result.supports, dtype=object), (n, s, p)),
-        "ball_speed_mps": np.broadcast_to(result.ball_speed[None, :, None], (n, s, p)),
-        "racket_speed_mps": np.broadcast_to(racket_speed, (n, s, p)),
-        "reduced_mass_kg": np.broadcast_to(result.reduced_mass[:, None, :], (n, s, p)),
-        "stiffness_n_per_m": result.stiffness,
-        "contact_time_s": result.contact_time,
-        "mean_force_n": result.mean_force,
-        "peak_force_n": result.peak_force,
-        "vibration_energy_j": result.vibration_energy,
-        "cor": result.cor,
-        "rebound_ratio": result.rebound_ratio,
-        "rebound_speed_mps": result.rebound_speed,
-        "peak_deflection_m": result.peak_deflection,
-        "status": result.status,
+        "point": np.asarray(result.labels, dtype=object)[:, None, None],
+        "x_m": result.locations[:, 0, None, None],
+        "y_m": result.locations[:, 1, None, None],
+        "support": np.asarray(result.supports, dtype=object),
+        "ball_speed_mps": result.ball_speed[None, :, None],
     }
-    flat = {name: np.asarray(table[name]).reshape(-1) for name in CSV_COLUMNS}
+    for quantity in IMPACT_QUANTITIES:
+        value = getattr(result, quantity.attribute)
+        if quantity.attribute == "racket_speed":
+            value = racket_speed
+        elif quantity.attribute == "reduced_mass":
+            value = value[:, None, :]
+        table[quantity.name] = value
+    table["status"] = result.status
+    flat = {name: np.broadcast_to(table[name], shape).reshape(-1) for name in CSV_COLUMNS}
     if result.modal_model is not None:
         for k, name in enumerate(result.modal_model.names):
             flat[f"energy_{slug(name)}_j"] = result.mode_energy[..., k].reshape(-1)

@@ -67,12 +67,19 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import minimize_scalar
 
+from racketdyn._display import html_table
 from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_whole
 from racketdyn.impact.approximate import predict
 from racketdyn.impact.grid import resolve_modal_model
-from racketdyn.impact.result import STATUS_OK, ImpactResult, impact_columns, write_columns
+from racketdyn.impact.result import (
+    STATUS_OK,
+    ImpactResult,
+    impact_columns,
+    summary_rows,
+    write_columns,
+)
 from racketdyn.impact.transient import predict_transient
 from racketdyn.modal import ModalModel
 from racketdyn.modal.shapes import axis_nodes
@@ -411,16 +418,26 @@ class SwingResult:
         one_of("support", support, self.supports)
         return self.supports.index(support)
 
+    @property
     def columns(self) -> dict[str, NDArray[Any]]:
-        """The ``impact.csv`` columns, one row per point × speed × support.
+        """The ``impact.csv`` table: column name → 1-D array, one row per point × speed ×
+        support (``pandas.DataFrame(result.columns)`` works).
 
         ``racket_speed_mps`` is each point's own; ``energy_<mode>_j`` columns follow.
         """
         return impact_columns(self, self.racket_speed[:, None, None])
 
+    def __repr__(self) -> str:
+        n, s, p = self.shape
+        rows = "; ".join(f"{key} {value}" for key, value in summary_rows(self)[1:])
+        return f"<SwingResult {n} points × {s} ball speeds × {p} supports: {rows}>"
+
+    def _repr_html_(self) -> str:
+        return html_table("SwingResult", summary_rows(self))
+
     def write_csv(self, path: Path) -> None:
         """Write the ``impact.csv`` columns (racket speed per point), NaN where not ``ok``."""
-        write_columns(path, self.columns())
+        write_columns(path, self.columns)
 
 
 Predictor = Callable[..., ImpactResult]

@@ -57,6 +57,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 
+from racketdyn._display import number
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
 from racketdyn.errors import (
@@ -212,6 +213,16 @@ class TransientImpact:
     def stiffness_n_per_m(self) -> float:
         """Linear stiffness with the same half period, π² μ / T_c², N/m (eq 7 solved for K)."""
         return float(np.pi**2 * self.mu_kg / self.contact_time_s**2)
+
+    def __repr__(self) -> str:
+        return (
+            f"<TransientImpact status {self.status!r}: ball_speed_mps="
+            f"{number(self.ball_speed_mps)}, racket_speed_mps={number(self.racket_speed_mps)}, "
+            f"contact_time_s={number(self.contact_time_s)}, peak_force_n="
+            f"{number(self.peak_force_n)}, rebound_speed_mps={number(self.rebound_speed_mps)}, "
+            f"cor={number(self.cor)}, vibration_energy_j={number(self.vibration_energy_j)}; "
+            f"{self.time_s.size} time steps, {self.mode_energy_j.size} modes>"
+        )
 
 
 # --- the hysteresis law --------------------------------------------------------------------------

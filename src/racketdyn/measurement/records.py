@@ -14,6 +14,7 @@ from typing import Any, Literal, get_args
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn._display import html_table, number, shorten, span, words
 from racketdyn.errors import InputError, require_positive
 from racketdyn.racket import as_locations
 
@@ -120,6 +121,23 @@ class HammerRecords:
         """Number of hammer points."""
         return len(self.nodes)
 
+    def _summary(self) -> list[tuple[str, str]]:
+        averages = sorted({f.shape[0] for f in self.force})
+        return [
+            ("hammer points", f"{self.n_points} (nodes {words([str(n) for n in self.nodes])})"),
+            ("averages", span(averages)),
+            ("samples", f"{self.n_samples} at {number(self.sampling_interval_s)} s"),
+            ("response", f"{self.response_type} at node {self.reference_node}"),
+            ("source", shorten(self.source)),
+        ]
+
+    def __repr__(self) -> str:
+        rows = "; ".join(f"{key} {value}" for key, value in self._summary())
+        return f"<HammerRecords {rows}>"
+
+    def _repr_html_(self) -> str:
+        return html_table("HammerRecords", self._summary())
+
     @property
     def n_samples(self) -> int:
         """Samples per record."""
@@ -218,6 +236,26 @@ class FrfSet:
     def n_points(self) -> int:
         """Number of FRFs."""
         return len(self.nodes)
+
+    def _summary(self) -> list[tuple[str, str]]:
+        return [
+            (
+                "FRFs",
+                f"{self.n_points} {self.frf_type} (nodes {words([str(n) for n in self.nodes])})",
+            ),
+            ("frequency", f"{self.frequency.size} lines, {span(self.frequency)} Hz"),
+            ("reference node", str(self.reference_node)),
+            ("estimator", self.estimator),
+            ("coherence", "none" if self.coherence is None else "yes"),
+            ("source", shorten(self.source)),
+        ]
+
+    def __repr__(self) -> str:
+        rows = "; ".join(f"{key} {value}" for key, value in self._summary())
+        return f"<FrfSet {rows}>"
+
+    def _repr_html_(self) -> str:
+        return html_table("FrfSet", self._summary())
 
     @property
     def omega(self) -> NDArray[np.float64]:

@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import RBFInterpolator
 
 from racketdyn.__about__ import __version__
+from racketdyn._display import html_table, number, numbers, shorten, words
 from racketdyn.errors import InputError
 from racketdyn.racket import as_locations
 
@@ -112,6 +113,27 @@ class ModalModel:
     def omega(self) -> NDArray[np.float64]:
         """Natural angular frequencies, rad/s."""
         return np.asarray(2 * np.pi * self.frequency)
+
+    def __repr__(self) -> str:
+        return (
+            f"<ModalModel {self.n_modes} modes at {numbers(self.frequency)} Hz "
+            f"({words(self.names)}), shapes at {self.locations.shape[0]} points, "
+            f"support {self.support!r}, source {shorten(self.source)!r}>"
+        )
+
+    def _repr_html_(self) -> str:
+        rows = [
+            (name, f"{number(f)} Hz, ζ = {number(z)}, {kind}")
+            for name, f, z, kind in zip(
+                self.names, self.frequency, self.damping_ratio, self.kinds, strict=True
+            )
+        ]
+        rows += [
+            ("shapes at", f"{self.locations.shape[0]} points"),
+            ("support", self.support),
+            ("source", shorten(self.source)),
+        ]
+        return html_table(f"ModalModel: {self.n_modes} modes", rows)
 
     @cached_property
     def _along_axis_only(self) -> bool:
