@@ -7,7 +7,9 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["invert_increasing"]
+from racketdyn.errors import InputError
+
+__all__ = ["as_locations", "invert_increasing"]
 
 Function = Callable[[NDArray[np.float64]], NDArray[np.float64]]
 
@@ -54,3 +56,20 @@ def invert_increasing(
         x = np.clip(x - step, 0.0, upper)
     outside = (goal < table_f[0]) | (goal > table_f[-1] * (1 + 1e-12))
     return np.asarray(np.where(outside, np.nan, x))
+
+
+def as_locations(locations: ArrayLike, name: str = "locations") -> NDArray[np.float64]:
+    """Return point locations as a finite float array shaped ``(n, 2)``, ``(x, y)`` in metres."""
+    try:
+        array = np.asarray(locations, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be (x, y) pairs in metres (got {locations!r})") from None
+    if array.ndim == 1 and array.size == 2:
+        array = array[None, :]
+    if array.ndim != 2 or array.shape[1] != 2:
+        raise InputError(
+            f"{name} must be (x, y) pairs in metres, shaped (n, 2) (got {array.shape})"
+        )
+    if not np.all(np.isfinite(array)):
+        raise InputError(f"{name} must be finite numbers, without NaN or inf")
+    return array

@@ -15,11 +15,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError, require_positive
-from racketdyn.racket import as_locations
+from racketdyn.numerics import as_locations
 
 __all__ = [
     "ANALYSER_BANDWIDTH_FACTOR",
     "FRF_TYPES",
+    "FRF_UNITS",
     "FRF_TYPE_OF_RESPONSE",
     "RESPONSE_TYPES",
     "FrfSet",
@@ -36,6 +37,8 @@ ResponseType = Literal["acceleration", "velocity", "displacement"]
 RESPONSE_TYPES: tuple[str, ...] = get_args(ResponseType)
 FrfType = Literal["accelerance", "mobility", "receptance"]
 FRF_TYPES: tuple[str, ...] = get_args(FrfType)
+FRF_UNITS = {"receptance": "m/N", "mobility": "m/(N·s)", "accelerance": "m/(N·s²)"}
+"""Units of each FRF type, for labels (values are stored in SI)."""
 FRF_TYPE_OF_RESPONSE: dict[str, str] = {
     "acceleration": "accelerance",
     "velocity": "mobility",

@@ -21,7 +21,7 @@ from scipy.interpolate import RBFInterpolator
 
 from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError
-from racketdyn.racket import as_locations
+from racketdyn.numerics import as_locations
 
 __all__ = ["ModalModel"]
 

@@ -32,7 +32,6 @@ from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.identify import Identification
 from racketdyn.modal.model import ModalModel
-from racketdyn.modal.poles import plot_stabilisation
 from racketdyn.modal.residues import mac
 from racketdyn.modal.shapes import axis_nodes, pair_modes
 from racketdyn.plotting.primitives import (
@@ -49,6 +48,7 @@ from racketdyn.plotting.primitives import (
     plot_oblique_curve,
     plot_outline,
     plot_speed_curves,
+    plot_stabilisation,
     plot_swing_along_axis,
     plot_swing_map,
     plot_twist_curve,

@@ -23,8 +23,9 @@ from racketdyn.impact.result import ImpactResult
 from racketdyn.impact.swing import SweetSpot, SwingResult
 from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
-from racketdyn.measurement.records import FrfSet
+from racketdyn.measurement.records import FRF_UNITS, FrfSet
 from racketdyn.modal.model import ModalModel
+from racketdyn.modal.poles import PoleStability, SelectedPoles, Stabilisation
 from racketdyn.racket import Racket
 
 __all__ = [
@@ -43,6 +44,7 @@ __all__ = [
     "plot_oblique_curve",
     "plot_outline",
     "plot_speed_curves",
+    "plot_stabilisation",
     "plot_swing_along_axis",
     "plot_swing_map",
     "plot_twist_curve",
@@ -239,9 +241,6 @@ def plot_face_map(
         f"{SUPPORT_STYLE[support]['label']}, {result.ball_speed[speed_index]:g} m/s", fontsize=9
     )
     return ax
-
-
-FRF_UNITS = {"receptance": "m/N", "mobility": "m/(N·s)", "accelerance": "m/(N·s²)"}
 
 
 def plot_frf(
@@ -667,4 +666,86 @@ def plot_twist_curve(
     ax.set_ylabel(axis_label)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
+    return ax
+
+
+# --- the stabilisation diagram (racketdyn.modal.poles) ------------------------------------------------------------------------------
+
+_POLE_STYLE: dict[PoleStability, dict[str, Any]] = {
+    PoleStability.NEW: {"marker": "o", "mfc": "none", "color": "0.75", "ms": 2.5, "mew": 0.5},
+    PoleStability.FREQUENCY: {"marker": "x", "color": "tab:orange", "ms": 3.0, "mew": 0.7},
+    PoleStability.DAMPING: {"marker": "^", "mfc": "none", "color": "tab:green", "ms": 3.0},
+    PoleStability.SHAPE: {"marker": "o", "color": "tab:blue", "ms": 3.0, "mew": 0.0},
+}
+_POLE_LABEL = {
+    PoleStability.NEW: "new",
+    PoleStability.FREQUENCY: "stable frequency",
+    PoleStability.DAMPING: "+ damping",
+    PoleStability.SHAPE: "+ shape (stable)",
+}
+
+
+def plot_stabilisation(
+    stab: Stabilisation,
+    selected: SelectedPoles | None = None,
+    ax: Axes | None = None,
+    frfs: FrfSet | None = None,
+) -> Axes:
+    """The stabilisation diagram: model order against pole frequency, marker by stability.
+
+    Parameters
+    ----------
+    stab : Stabilisation
+        The poles (:func:`racketdyn.modal.poles.stabilisation`).
+    selected : SelectedPoles, optional
+        Modes to mark with vertical lines (pinned ones solid).
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure if None.
+    frfs : FrfSet, optional
+        FRFs whose summed magnitude ``Σ|H|`` to draw on a twin log axis (over the band).
+
+    Returns
+    -------
+    Axes
+        The diagram's axes (the summed FRF's twin axis, if drawn, is the other axes of
+        ``ax.figure`` sharing its x axis).
+    """
+    ax = _axes(ax, (7.0, 4.5))
+    if frfs is not None:
+        band = frfs.band(*stab.band_hz)
+        twin = ax.twinx()
+        twin.semilogy(band.frequency, np.abs(band.values).sum(axis=0), color="0.4", lw=0.7)
+        twin.set_ylabel(f"Σ|H| ({FRF_UNITS[band.frf_type]})", color="0.4")
+        twin.tick_params(axis="y", colors="0.4")
+        ax.set_zorder(twin.get_zorder() + 1)
+        ax.patch.set_visible(False)
+    for kind in PoleStability:
+        mask = stab.stability == int(kind)
+        if np.any(mask):
+            ax.plot(
+                stab.frequency[mask],
+                stab.order[mask],
+                linestyle="none",
+                label=_POLE_LABEL[kind],
+                **_POLE_STYLE[kind],
+            )
+    if selected is not None:
+        for k, f in enumerate(selected.frequency):
+            ax.axvline(f, color="tab:red", lw=0.8, ls="-" if selected.pinned[k] else "--", zorder=0)
+            ax.annotate(
+                f"{f:.1f}",
+                (f, 1.0),
+                xycoords=("data", "axes fraction"),
+                xytext=(2, -2),
+                textcoords="offset points",
+                rotation=90,
+                va="top",
+                fontsize=6,
+                color="tab:red",
+            )
+    ax.set_xlim(*stab.band_hz)
+    ax.set_ylim(0, int(stab.orders[-1]) + 1)
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("model order (–)")
+    ax.legend(fontsize=6, loc="lower right", framealpha=0.8)
     return ax
