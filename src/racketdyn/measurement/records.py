@@ -20,8 +20,8 @@ from racketdyn.numerics import as_locations
 __all__ = [
     "ANALYSER_BANDWIDTH_FACTOR",
     "FRF_TYPES",
-    "FRF_UNITS",
     "FRF_TYPE_OF_RESPONSE",
+    "FRF_UNITS",
     "RESPONSE_TYPES",
     "FrfSet",
     "FrfType",

@@ -1,8 +1,8 @@
-"""The modal model: natural frequencies, damping and mass-normalised mode shapes of a racket.
+"""The modal model: natural frequencies, damping and mass-normalised mode shapes of a structure.
 
 Mode shapes are mass-normalised (``φᵀ M φ = 1``, units 1/√kg) and stored at sample locations
-over the racket; shapes anywhere else on the face come from a thin-plate-spline interpolation
-through the samples.  The modal constant of mode k between points i and j is
+over the structure; shapes anywhere else come from a thin-plate-spline interpolation through the
+samples.  The modal constant of mode k between points i and j is
 ``A_ijk = φ_ik φ_jk`` (1/kg): the paper's ``r_i0k r_0jk / r_00k`` of eq (12) once residues
 measured against a reference point 0 are scaled by the driving-point residue ``r_00k``.
 """
@@ -26,7 +26,8 @@ from racketdyn.numerics import as_locations
 __all__ = ["ModalModel"]
 
 FORMAT = "racketdyn-modal-model"
-MODE_KINDS = ("bending", "twisting", "string-bed", "other")
+MODE_KINDS = ("bending", "twisting", "string-bed", "other", "unknown")
+"""What a mode can be: a racket's kinds, ``other``, and ``unknown`` (not classified)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,8 +47,9 @@ class ModalModel:
     names : tuple of str
         Mode names (``"2-node bending"``, …).
     kinds : tuple of str
-        What each mode is: ``bending``, ``twisting``, ``string-bed`` or ``other``.  String-bed
-        modes are left out of the vibration loss by default.  Empty: read from the names
+        What each mode is: ``bending``, ``twisting``, ``string-bed``, ``other`` or ``unknown``
+        (not classified: :func:`racketdyn.modal.identify.identify` leaves it to the caller).
+        String-bed modes are left out of the vibration loss by default.  Empty: read from the names
         (``string-bed`` where a name mentions a string bed or membrane, else ``other``).
     support : str
         The support the modes belong to (``free``, ``hand`` …).

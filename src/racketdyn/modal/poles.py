@@ -90,6 +90,7 @@ from scipy.cluster.hierarchy import fcluster, linkage
 
 from racketdyn.errors import InputError, require_whole
 from racketdyn.measurement.records import FrfSet
+from racketdyn.modal.mac import mac
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -750,42 +751,6 @@ def _classify(
             stability[current] = ok_f.astype(np.int8) + ok_z + ok_s
         previous = current
     return stability
-
-
-def mac(
-    a: NDArray[np.complexfloating[Any, Any]] | NDArray[np.floating[Any]],
-    b: NDArray[np.complexfloating[Any, Any]] | NDArray[np.floating[Any]],
-    *,
-    pairwise: bool = False,
-) -> NDArray[np.float64]:
-    """Modal assurance criterion ``|aᴴb|² / ((aᴴa)(bᴴb))`` between shapes (columns).
-
-    Parameters
-    ----------
-    a, b : ndarray, shape (n_points, n_a) and (n_points, n_b)
-        Shapes as columns (real or complex).
-    pairwise : bool
-        False: the (n_a, n_b) matrix of every pair.  True: column k of ``a`` with column k of
-        ``b`` only (n_a = n_b), shape (n_a,).
-
-    Returns
-    -------
-    ndarray
-        MAC values in [0, 1] (0 where a shape is zero).
-    """
-    a2 = np.atleast_2d(np.asarray(a).T).T
-    b2 = np.atleast_2d(np.asarray(b).T).T
-    norm_a = np.sum(np.abs(a2) ** 2, axis=0)
-    norm_b = np.sum(np.abs(b2) ** 2, axis=0)
-    if pairwise:
-        cross = np.abs(np.sum(a2.conj() * b2, axis=0)) ** 2
-        denominator = norm_a * norm_b
-    else:
-        cross = np.abs(a2.conj().T @ b2) ** 2
-        denominator = np.outer(norm_a, norm_b)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        out = np.where(denominator > 0, cross / np.where(denominator > 0, denominator, 1), 0.0)
-    return np.asarray(np.clip(out, 0.0, 1.0), dtype=float)
 
 
 # --- automatic selection ---------------------------------------------------------------------
