@@ -12,8 +12,8 @@ from racketdyn.cli import main
 from racketdyn.io import write_frf_uff
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.modal.identify import identify
-from racketdyn.racket_modal.identify import identify_racket, name_racket_modes
 from racketdyn.modal.residues import mac
+from racketdyn.racket_modal.identify import identify_racket, name_racket_modes
 from racketdyn.rig import accelerometer_index, hammer_points, rig_model, simulate_hammer_test
 
 BAND = (40.0, 850.0)

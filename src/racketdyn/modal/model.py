@@ -116,22 +116,48 @@ class ModalModel:
         return np.asarray(2 * np.pi * self.frequency)
 
     @cached_property
-    def _along_axis_only(self) -> bool:
+    def _line(self) -> NDArray[np.float64] | None:
+        """For shapes sampled on one straight line: its unit direction (x itself if along x)."""
         centred = self.locations - self.locations.mean(axis=0)
-        return bool(np.linalg.matrix_rank(centred, tol=1e-9) < 2)
+        if np.linalg.matrix_rank(centred, tol=1e-9) >= 2:
+            return None
+        if np.ptp(self.locations[:, 1]) == 0:
+            return np.array([1.0, 0.0])
+        direction = np.linalg.svd(centred, full_matrices=False)[2][0]
+        return np.asarray(direction / np.linalg.norm(direction))
+
+    def _coordinates(self, xy: NDArray[np.float64]) -> NDArray[np.float64]:
+        """What the interpolator sees: (x, y), or the distance along the line of the samples."""
+        if self._line is None:
+            return xy
+        if self._line[1] == 0:
+            return xy[:, :1]  # along x (a racket's long axis): x itself
+        return np.asarray(((xy - self.locations[0]) @ self._line)[:, None])
 
     @cached_property
     def _interpolator(self) -> RBFInterpolator:
         # Thin-plate spline: smooth, exact at the samples, and it extends past the last sample
-        # linearly rather than wildly.  Shapes sampled on one line only (the long axis) are
-        # interpolated along x.
-        points = self.locations[:, :1] if self._along_axis_only else self.locations
-        return RBFInterpolator(points, self.mode_shapes, kernel="thin_plate_spline")
+        # linearly rather than wildly.  Shapes sampled on one straight line only (a racket's
+        # long axis, a beam along any direction) are interpolated along that line; a point off
+        # the line gets the shape of its projection onto it.
+        return RBFInterpolator(
+            self._coordinates(self.locations), self.mode_shapes, kernel="thin_plate_spline"
+        )
 
     def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:
-        """Mass-normalised mode shapes at any locations, shaped ``(n, n_modes)``, 1/√kg."""
-        xy = as_locations(locations)
-        return np.asarray(self._interpolator(xy[:, :1] if self._along_axis_only else xy))
+        """Mass-normalised mode shapes at any locations, shaped ``(n, n_modes)``, 1/√kg.
+
+        Parameters
+        ----------
+        locations : array_like, shape (n, 2)
+            Where, ``(x, y)`` in m.
+
+        Returns
+        -------
+        ndarray, shape (n, n_modes)
+            Interpolated (thin-plate spline) from the sampled shapes, 1/√kg.
+        """
+        return np.asarray(self._interpolator(self._coordinates(as_locations(locations))))
 
     def modal_constants(self, response: ArrayLike, excitation: ArrayLike) -> NDArray[np.float64]:
         """Modal constants ``A_ijk = φ_ik φ_jk`` (1/kg) for every response i and excitation j.
