@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from numpy.typing import NDArray
 
+from racketdyn.errors import InputError
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal import ModalModel, mac, nodes_along, pair_modes
 from racketdyn.modal.identify import identify
@@ -41,31 +42,33 @@ def beam_shapes(y: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.asarray(raw / np.sqrt(MASS_PER_LENGTH * LENGTH_M))  # ∫₀ᴸ raw² dy = L
 
 
-@pytest.fixture(scope="module")
-def beam() -> dict:
-    y = np.linspace(0.0, LENGTH_M, N_POINTS)
-    locations = np.column_stack([np.full_like(y, X_M), y])
-    phi = beam_shapes(y)
-    reference = 0  # accelerometer at the end y = 0: every mode moves there
+def beam_frfs(locations: NDArray[np.float64], along: NDArray[np.float64]) -> FrfSet:
+    """Accelerances of the beam (0.5 % noise), accelerometer at the first point (an end)."""
+    phi = beam_shapes(along)
     frequency = np.arange(0.0, 1280.0 + 1e-9, 0.5)  # default band: 40 Hz to 1000 Hz
     omega, omega_k = 2 * np.pi * frequency, 2 * np.pi * FREQUENCY
     denominator = omega_k**2 - omega[:, None] ** 2 + 2j * DAMPING * omega_k * omega[:, None]
-    values = np.einsum("pk,k,fk->pf", phi * phi[reference], np.ones_like(DAMPING), 1 / denominator)
-    values = values * -(omega**2)  # accelerance
+    values = -(omega**2) * ((phi * phi[0]) @ (1 / denominator).T)
     rng = np.random.default_rng(7)
     scale = 0.005 * np.abs(values).mean(axis=1, keepdims=True)
     values = values + scale * (rng.normal(size=values.shape) + 1j * rng.normal(size=values.shape))
-    frfs = FrfSet(
+    return FrfSet(
         frequency=frequency,
         values=values,
         frf_type="accelerance",
-        nodes=tuple(range(1, N_POINTS + 1)),
+        nodes=tuple(range(1, len(along) + 1)),
         locations=locations,
         reference_node=1,
-        reference_location=(X_M, 0.0),
-        source="free-free beam along y (closed form)",
+        reference_location=tuple(locations[0]),
+        source="free-free beam (closed form)",
     )
-    return {"frfs": frfs, "phi": phi, "result": identify(frfs)}
+
+
+@pytest.fixture(scope="module")
+def beam() -> dict:
+    y = np.linspace(0.0, LENGTH_M, N_POINTS)
+    frfs = beam_frfs(np.column_stack([np.full_like(y, X_M), y]), y)
+    return {"frfs": frfs, "phi": beam_shapes(y), "result": identify(frfs)}
 
 
 def test_the_beam_modes_come_back(beam) -> None:
@@ -152,4 +155,39 @@ def test_general_figures_on_a_surface() -> None:
     assert ax.get_title() == "mode 2, 120 Hz"
     plt.close(ax.figure)
     ax = plot_mode_3d(model, 1)
+    plt.close(ax.figure)
+
+
+def test_a_beam_in_space_along_z() -> None:
+    # (x, y, z) coordinates: the same beam along z, off the origin
+    z = np.linspace(0.0, LENGTH_M, N_POINTS)
+    locations = np.column_stack([np.full_like(z, 0.1), np.full_like(z, -0.3), z])
+    result = identify(beam_frfs(locations, z))
+    model = result.model
+    assert model.n_dimensions == 3
+    np.testing.assert_allclose(model.frequency, FREQUENCY[:4], rtol=5e-4)
+    np.testing.assert_allclose(model.damping_ratio, DAMPING[:4], rtol=0.02)
+    assert np.all(mac(model.mode_shapes, beam_shapes(z)[:, :4], pairwise=True) > 0.999)
+    line = np.column_stack([np.full(201, 0.1), np.full(201, -0.3), np.linspace(0, LENGTH_M, 201)])
+    nodes = nodes_along(model, line, 0)
+    np.testing.assert_allclose(nodes[:, 2], FIRST_NODES, atol=0.005)
+    with pytest.raises(InputError, match="3-D"):
+        model.mode_shapes_at([[0.1, 0.5]])
+
+
+def test_figures_of_points_in_space() -> None:
+    # points on two faces of a box (not one plane): drawn where they are, coloured by shape
+    from racketdyn.plotting.primitives import plot_mode_3d, plot_node_lines
+
+    u, v = np.meshgrid(np.linspace(0, 0.3, 5), np.linspace(0, 0.2, 4), indexing="ij")
+    top = np.column_stack([u.ravel(), v.ravel(), np.zeros(u.size)])
+    side = np.column_stack([u.ravel(), np.zeros(u.size), -0.05 - 0.1 * v.ravel() / 0.2])
+    points = np.vstack([top, side])
+    shapes = np.sin(np.pi * points[:, :1] / 0.3) * np.array([[1.0, -1.0]]) + points[:, 1:2]
+    model = ModalModel([80.0, 200.0], [0.01, 0.02], points, shapes, ("mode 1", "mode 2"))
+    assert model.mode_shapes_at(points[:3]).shape == (3, 2)
+    ax = plot_mode_3d(model, 0)
+    assert ax.get_title().startswith("mode 1, 80.0 Hz")
+    plt.close(ax.figure)
+    ax = plot_node_lines(model, 1)
     plt.close(ax.figure)

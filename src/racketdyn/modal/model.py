@@ -21,7 +21,7 @@ from scipy.interpolate import RBFInterpolator
 
 from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError
-from racketdyn.numerics import as_locations
+from racketdyn.numerics import as_points
 
 __all__ = ["ModalModel"]
 
@@ -40,8 +40,8 @@ class ModalModel:
         Natural frequencies, Hz.
     damping_ratio : ndarray, shape (n_modes,)
         Viscous damping ratios (fraction of critical).
-    locations : ndarray, shape (n_points, 2)
-        Where the shapes are sampled, ``(x, y)`` in m.
+    locations : ndarray, shape (n_points, 2) or (n_points, 3)
+        Where the shapes are sampled, ``(x, y)`` (a racket's face) or ``(x, y, z)``, m.
     mode_shapes : ndarray, shape (n_points, n_modes)
         Mass-normalised mode shapes (displacement normal to the face), 1/√kg.
     names : tuple of str
@@ -71,7 +71,7 @@ class ModalModel:
         frequency = np.asarray(self.frequency, dtype=float)
         damping = np.asarray(self.damping_ratio, dtype=float)
         shapes = np.asarray(self.mode_shapes, dtype=float)
-        locations = as_locations(self.locations, "modal model locations")
+        locations = as_points(self.locations, "modal model locations")
         if shapes.ndim != 2 or shapes.shape != (locations.shape[0], frequency.size):
             raise InputError(
                 f"modal model ({self.source}): mode_shapes must be shaped (n_points, n_modes) = "
@@ -115,31 +115,42 @@ class ModalModel:
         """Natural angular frequencies, rad/s."""
         return np.asarray(2 * np.pi * self.frequency)
 
-    @cached_property
-    def _line(self) -> NDArray[np.float64] | None:
-        """For shapes sampled on one straight line: its unit direction (x itself if along x)."""
-        centred = self.locations - self.locations.mean(axis=0)
-        if np.linalg.matrix_rank(centred, tol=1e-9) >= 2:
-            return None
-        if np.ptp(self.locations[:, 1]) == 0:
-            return np.array([1.0, 0.0])
-        direction = np.linalg.svd(centred, full_matrices=False)[2][0]
-        return np.asarray(direction / np.linalg.norm(direction))
+    @property
+    def n_dimensions(self) -> int:
+        """Coordinates of each location: 2 for ``(x, y)``, 3 for ``(x, y, z)``."""
+        return int(self.locations.shape[1])
 
-    def _coordinates(self, xy: NDArray[np.float64]) -> NDArray[np.float64]:
-        """What the interpolator sees: (x, y), or the distance along the line of the samples."""
-        if self._line is None:
-            return xy
-        if self._line[1] == 0:
-            return xy[:, :1]  # along x (a racket's long axis): x itself
-        return np.asarray(((xy - self.locations[0]) @ self._line)[:, None])
+    @cached_property
+    def _basis(self) -> NDArray[np.float64] | None:
+        """Orthonormal directions (rows) of the line or plane holding every sample, if any.
+
+        None when the samples fill their coordinates (a face in (x, y), a solid in (x, y, z)).
+        """
+        centred = self.locations - self.locations.mean(axis=0)
+        rank = int(np.linalg.matrix_rank(centred, tol=1e-9))
+        if rank >= self.n_dimensions:
+            return None
+        if self.n_dimensions == 2 and np.ptp(self.locations[:, 1]) == 0:
+            return np.array([[1.0, 0.0]])  # along x (a racket's long axis)
+        return np.asarray(np.linalg.svd(centred, full_matrices=False)[2][:rank])
+
+    def _coordinates(self, points: NDArray[np.float64]) -> NDArray[np.float64]:
+        """What the interpolator sees: the points, or their coordinates in the samples' line
+        or plane."""
+        basis = self._basis
+        if basis is None:
+            return points
+        if basis.shape == (1, 2) and basis[0, 1] == 0:
+            return points[:, :1]  # along x: x itself
+        return np.asarray((points - self.locations[0]) @ basis.T)
 
     @cached_property
     def _interpolator(self) -> RBFInterpolator:
         # Thin-plate spline: smooth, exact at the samples, and it extends past the last sample
         # linearly rather than wildly.  Shapes sampled on one straight line only (a racket's
-        # long axis, a beam along any direction) are interpolated along that line; a point off
-        # the line gets the shape of its projection onto it.
+        # long axis, a beam along any direction) are interpolated along that line, shapes on
+        # one plane of (x, y, z) in that plane; a point off them gets the shape of its
+        # projection onto them.
         return RBFInterpolator(
             self._coordinates(self.locations), self.mode_shapes, kernel="thin_plate_spline"
         )
@@ -149,15 +160,21 @@ class ModalModel:
 
         Parameters
         ----------
-        locations : array_like, shape (n, 2)
-            Where, ``(x, y)`` in m.
+        locations : array_like, shape (n, 2) or (n, 3)
+            Where, ``(x, y)`` or ``(x, y, z)`` in m, as the model's own locations.
 
         Returns
         -------
         ndarray, shape (n, n_modes)
             Interpolated (thin-plate spline) from the sampled shapes, 1/√kg.
         """
-        return np.asarray(self._interpolator(self._coordinates(as_locations(locations))))
+        points = as_points(locations, f"modal model ({self.source}): locations")
+        if points.shape[1] != self.n_dimensions:
+            raise InputError(
+                f"modal model ({self.source}): shapes are sampled at {self.n_dimensions}-D "
+                f"locations; asked at {points.shape[1]}-D ones"
+            )
+        return np.asarray(self._interpolator(self._coordinates(points)))
 
     def modal_constants(self, response: ArrayLike, excitation: ArrayLike) -> NDArray[np.float64]:
         """Modal constants ``A_ijk = φ_ik φ_jk`` (1/kg) for every response i and excitation j.

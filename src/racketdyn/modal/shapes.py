@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.modal.mac import mac
 from racketdyn.modal.model import ModalModel
-from racketdyn.numerics import as_locations
+from racketdyn.numerics import as_points
 
 __all__ = ["ModePairing", "nodes_along", "pair_modes"]
 
@@ -29,18 +29,19 @@ def nodes_along(model: ModalModel, points: ArrayLike, mode: int) -> NDArray[np.f
     ----------
     model : ModalModel
         The mode shapes.
-    points : array_like, shape (n, 2)
-        The line or curve, ``(x, y)`` in m, in order along it (densely enough sampled that a
-        mode has at most one node between two neighbours).
+    points : array_like, shape (n, 2) or (n, 3)
+        The line or curve, ``(x, y)`` or ``(x, y, z)`` as the model's locations, m, in order
+        along it (densely enough sampled that a mode has at most one node between two
+        neighbours).
     mode : int
         Index of the mode (0-based).
 
     Returns
     -------
-    ndarray, shape (n_nodes, 2)
-        The nodes, ``(x, y)`` in m, in order along the line.
+    ndarray, shape (n_nodes, 2) or (n_nodes, 3)
+        The nodes, m, in order along the line.
     """
-    line = as_locations(points, "points along the line")
+    line = as_points(points, "points along the line")
     shape = model.mode_shapes_at(line)[:, mode]
     crossing = np.flatnonzero(np.sign(shape[:-1]) * np.sign(shape[1:]) < 0)
     return np.asarray(

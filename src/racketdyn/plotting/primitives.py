@@ -342,10 +342,10 @@ def _line_through(locations: NDArray[np.float64], n: int = 101) -> NDArray[np.fl
     return np.asarray(locations.mean(axis=0) + t[:, None] * direction[None, :])
 
 
-def _mode_title(model: ModalModel, mode: int) -> str:
+def _mode_title(model: ModalModel, mode: int, decimals: int = 0) -> str:
+    """The mode's name, with its frequency unless the name holds it ("mode 1 (100.0 Hz)")."""
     name = model.names[mode]
-    frequency = f"{model.frequency[mode]:.0f} Hz"
-    return name if name.endswith(" Hz)") else f"{name}, {frequency}"
+    return name if name.endswith(" Hz)") else f"{name}, {model.frequency[mode]:.{decimals}f} Hz"
 
 
 def plot_node_lines(
@@ -359,7 +359,8 @@ def plot_node_lines(
     """Sign of a mode shape over a surface, black and white, node lines between (paper, Fig. 5).
 
     Works for any structure: by default over the convex hull of the model's points.  Points on
-    one straight line (a beam) give the shape along the line with its nodes marked instead.
+    one straight line (a beam) give the shape along the line with its nodes marked instead;
+    points in space ``(x, y, z)``, the measured shape over their best-fit plane.
 
     Parameters
     ----------
@@ -393,6 +394,21 @@ def plot_node_lines(
         ax.plot(nodes * 1e3, np.zeros_like(nodes), "o", color="tab:red", markersize=4)
         ax.set_xlabel("distance along the line (mm)")
         ax.set_title(_mode_title(model, mode), fontsize=8)
+        return ax
+    if grid is None and model.n_dimensions == 3:
+        # points in space: the measured shape over the points' best-fit plane
+        centred = locations - locations.mean(axis=0)
+        plane = centred @ np.linalg.svd(centred, full_matrices=False)[2][:2].T
+        triangles = Triangulation(plane[:, 0] * 1e3, plane[:, 1] * 1e3)
+        values = model.mode_shapes[:, mode]
+        span = float(np.abs(values).max()) + 1.0
+        ax.tricontourf(triangles, values, levels=[-span, 0.0, span], colors=["k", "w"])
+        ax.tricontour(triangles, values, levels=[0.0], colors="tab:red", linewidths=1.2)
+        ax.plot(plane[:, 0] * 1e3, plane[:, 1] * 1e3, ".", color="0.5", markersize=2)
+        ax.set_aspect("equal")
+        ax.set_title(_mode_title(model, mode), fontsize=8)
+        ax.set_xticks([])
+        ax.set_yticks([])
         return ax
     if grid is None:
         x, y, hull = _grid_over(locations, 41)
@@ -451,7 +467,8 @@ def plot_mode_3d(
     """A mode shape in 3-D (paper, Fig. 4): a surface, a line through it and the measured points.
 
     Works for any structure: by default the surface spans the convex hull of the model's
-    points; points on one straight line (a beam) give the shape along that line.
+    points; points on one straight line (a beam) give the shape along that line; points in
+    space ``(x, y, z)`` are drawn where they are, coloured by the shape.
 
     Parameters
     ----------
@@ -465,8 +482,9 @@ def plot_mode_3d(
         ``(x, y)`` 2-D arrays of the surface's grid, m (default 31 × 31 over the points).
     inside : ndarray of bool, optional
         Where on the grid to draw the surface (default inside the convex hull of the points).
-    line : ndarray, shape (n, 2), optional
-        A line to draw the shape along (e.g. a racket's long axis), ``(x, y)`` in m.
+    line : ndarray, shape (n, 2) or (n, 3), optional
+        A line to draw the shape along (e.g. a racket's long axis), ``(x, y)`` in m (for
+        ``(x, y, z)`` points: drawn as a grey line).
 
     Returns
     -------
@@ -476,11 +494,26 @@ def plot_mode_3d(
         figure = plt.figure(figsize=(4.5, 3.2), layout="constrained")
         ax = figure.add_subplot(projection="3d")
     locations = model.locations
+    ax3d: Any = ax  # a 3-D axes: matplotlib's stubs type it as plain Axes
+    if model.n_dimensions == 3:
+        # points in space: each point coloured by its shape value (the measured direction's)
+        values = model.mode_shapes[:, mode]
+        limit = max(float(np.abs(values).max()), 1e-12)
+        ax3d.scatter(*locations.T, c=values, cmap="coolwarm", vmin=-limit, vmax=limit, s=12)
+        if line is not None:
+            ax3d.plot(*np.asarray(line).T, color="0.6", linewidth=0.8)
+        ax.set_title(
+            f"{_mode_title(model, mode, 1)}, ζ = {100 * model.damping_ratio[mode]:.2f} %",
+            fontsize=8,
+        )
+        extent = np.maximum(np.ptp(locations, axis=0), 1e-3 * np.ptp(locations, axis=0).max())
+        ax3d.set_box_aspect(tuple(float(e) for e in extent))
+        ax.set_axis_off()
+        return ax
     surface = grid is not None or _spans_a_surface(locations)
     if line is None and not surface:
         line = _line_through(locations)
     scale = 0.08 / max(float(np.abs(model.mode_shapes[:, mode]).max()), 1e-12)
-    ax3d: Any = ax  # a 3-D axes: matplotlib's stubs type it as plain Axes
     if surface:
         if grid is None:
             x, y, hull = _grid_over(locations, 31)
@@ -503,11 +536,8 @@ def plot_mode_3d(
         s=4,
         color="k",
     )
-    name = model.names[mode]
     ax.set_title(
-        (name if name.endswith(" Hz)") else f"{name}, {model.frequency[mode]:.1f} Hz")
-        + f", ζ = {100 * model.damping_ratio[mode]:.2f} %",
-        fontsize=8,
+        f"{_mode_title(model, mode, 1)}, ζ = {100 * model.damping_ratio[mode]:.2f} %", fontsize=8
     )
     extent = np.maximum(np.ptp(locations, axis=0), 1e-3 * np.ptp(locations, axis=0).max())
     ax3d.set_box_aspect((float(extent[0]), float(extent[1]), 0.2))
