@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 import racketdyn  # noqa: E402
 from racketdyn.impact.transient import predict_transient  # noqa: E402
 from racketdyn.io.racket_file import default_racket  # noqa: E402
-from racketdyn.modal.beam import builtin_modal_model  # noqa: E402
+from racketdyn.racket_modal.beam import builtin_modal_model  # noqa: E402
 
 N_POINTS = 68
 GRID_N = 10

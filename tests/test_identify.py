@@ -13,6 +13,7 @@ from racketdyn.io import write_frf_uff
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.modal.identify import identify
 from racketdyn.modal.residues import mac
+from racketdyn.racket_modal.identify import identify_racket, name_racket_modes
 from racketdyn.rig import accelerometer_index, hammer_points, rig_model, simulate_hammer_test
 
 BAND = (40.0, 850.0)
@@ -34,7 +35,7 @@ def case(request: pytest.FixtureRequest) -> dict:
         "racket": racket,
         "frfs": frfs,
         "truth": truth,
-        "result": identify(frfs, racket.head, BAND, support=request.param),
+        "result": identify_racket(frfs, racket, BAND, support=request.param),
     }
 
 
@@ -77,12 +78,25 @@ def test_identified_model_drives_the_prediction(case) -> None:
     np.testing.assert_allclose(identified.rebound_ratio[ok], true.rebound_ratio[ok], atol=0.01)
 
 
+def test_racket_names_are_a_step_on_the_general_identification(case) -> None:
+    # identify() names modes neutrally; naming them the racket way changes nothing else
+    general = identify(case["frfs"], BAND, support=case["result"].model.support)
+    assert all(kind == "unknown" for kind in general.model.kinds)
+    assert general.model.names[0] == f"mode 1 ({general.model.frequency[0]:.1f} Hz)"
+    named = name_racket_modes(general, case["racket"])
+    assert named.model.names == case["result"].model.names
+    assert named.model.kinds == case["result"].model.kinds
+    np.testing.assert_array_equal(named.model.frequency, case["result"].model.frequency)
+    np.testing.assert_array_equal(named.model.mode_shapes, case["result"].model.mode_shapes)
+    assert named.stabilisation is general.stabilisation
+
+
 def test_band_without_modes_is_a_clear_error(case) -> None:
     # below the first bending mode only the sponge's or hand's rigid-body tail: nothing stable
     with pytest.raises(rd.InputError, match="no mode found"):
-        identify(case["frfs"], case["racket"].head, (30.0, 100.0), max_order=8)
+        identify(case["frfs"], (30.0, 100.0), max_order=8)
     with pytest.raises(rd.InputError, match="band"):
-        identify(case["frfs"], case["racket"].head, (1500.0, 1510.0))
+        identify_racket(case["frfs"], case["racket"].head, (1500.0, 1510.0))
 
 
 @pytest.mark.slow

@@ -10,7 +10,7 @@ import pytest
 
 import racketdyn as rd
 from racketdyn.errors import InputError
-from racketdyn.modal.beam import N_ELEMENTS, beam_mass_per_length
+from racketdyn.racket_modal.beam import N_ELEMENTS, beam_mass_per_length
 
 
 def test_targets_are_met(model: rd.ModalModel, racket: rd.Racket) -> None:

@@ -37,10 +37,10 @@ from racketdyn.modal.poles import (
     SelectedPoles,
     Stabilisation,
     mac,
-    plot_stabilisation,
     select_poles,
     stabilisation,
 )
+from racketdyn.plotting.primitives import plot_stabilisation
 from racketdyn.rig import RigModel, hammer_points, rig_model, simulate_hammer_test
 
 # A five-mode structure with a close pair: 520 and 530 Hz are one half-power bandwidth apart

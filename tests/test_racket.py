@@ -7,8 +7,8 @@ import pytest
 
 import racketdyn as rd
 from racketdyn.errors import InputError
-from racketdyn.modal.beam import hoop_roll_inertia
 from racketdyn.racket import MassProperties, PointMass
+from racketdyn.racket_modal.beam import hoop_roll_inertia
 
 
 def test_grip_inertia_matches_paper(racket: rd.Racket) -> None:

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
-from racketdyn.modal.shapes import axis_nodes, classify_modes, pair_modes
+from racketdyn.modal.shapes import pair_modes
+from racketdyn.racket_modal.shapes import axis_nodes, classify_modes
 from racketdyn.rig import hammer_points, rig_model
 
 

@@ -13,8 +13,9 @@ from racketdyn.contact import compound_law, string_bed_law
 from racketdyn.errors import InputError
 from racketdyn.impact import ImpactResult, predict
 from racketdyn.io import default_racket, load_racket
-from racketdyn.modal import ModalModel, builtin_modal_model, modal_model_for
+from racketdyn.modal import ModalModel
 from racketdyn.racket import HeadEllipse, MassProperties, PointMass, Racket, StringBed
+from racketdyn.racket_modal import builtin_modal_model, modal_model_for
 
 __all__ = [
     "Ball",

@@ -80,9 +80,10 @@ from racketdyn.measurement import HammerRecords
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.pulse import contact_times
 from racketdyn.measurement.quality import QualitySettings
-from racketdyn.modal import ModalModel, modal_model_for
+from racketdyn.modal import ModalModel
 from racketdyn.modal.identify import Identification
 from racketdyn.racket import SUPPORTS, Racket
+from racketdyn.racket_modal import modal_model_for
 
 __all__ = ["main"]
 
@@ -764,13 +765,13 @@ def _frequencies(name: str, text: str | None) -> list[float]:
 def _identify_file(
     path_text: str, args: argparse.Namespace, racket: Racket, support: str, console: Console
 ) -> Identification:
-    from racketdyn.modal.identify import identify
+    from racketdyn.racket_modal.identify import identify_racket
 
     frfs = read_frf_uff(Path(path_text), args.geometry)
     with console.status(f"identifying {Path(path_text).name}"):
-        return identify(
+        return identify_racket(
             frfs,
-            racket.head,
+            racket,
             band_hz=_parse_band(args.band),
             max_order=args.max_order,
             pin_hz=_frequencies("--pin", args.pin),

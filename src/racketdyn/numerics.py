@@ -7,7 +7,9 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["invert_increasing"]
+from racketdyn.errors import InputError
+
+__all__ = ["as_locations", "as_points", "invert_increasing"]
 
 Function = Callable[[NDArray[np.float64]], NDArray[np.float64]]
 
@@ -54,3 +56,50 @@ def invert_increasing(
         x = np.clip(x - step, 0.0, upper)
     outside = (goal < table_f[0]) | (goal > table_f[-1] * (1 + 1e-12))
     return np.asarray(np.where(outside, np.nan, x))
+
+
+def as_locations(locations: ArrayLike, name: str = "locations") -> NDArray[np.float64]:
+    """Return point locations as a finite float array shaped ``(n, 2)``, ``(x, y)`` in metres."""
+    try:
+        array = np.asarray(locations, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be (x, y) pairs in metres (got {locations!r})") from None
+    if array.ndim == 1 and array.size == 2:
+        array = array[None, :]
+    if array.ndim != 2 or array.shape[1] != 2:
+        raise InputError(
+            f"{name} must be (x, y) pairs in metres, shaped (n, 2) (got {array.shape})"
+        )
+    if not np.all(np.isfinite(array)):
+        raise InputError(f"{name} must be finite numbers, without NaN or inf")
+    return array
+
+
+def as_points(points: ArrayLike, name: str = "points") -> NDArray[np.float64]:
+    """Return point coordinates as a finite float array shaped ``(n, 2)`` or ``(n, 3)``, m.
+
+    Parameters
+    ----------
+    points : array_like
+        ``(x, y)`` or ``(x, y, z)`` of each point, m; one point may be given flat.
+    name : str
+        What the points are, for error messages.
+
+    Returns
+    -------
+    ndarray, shape (n, 2) or (n, 3)
+    """
+    try:
+        array = np.asarray(points, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be (x, y[, z]) in metres (got {points!r})") from None
+    if array.ndim == 1 and array.size in (2, 3):
+        array = array[None, :]
+    if array.ndim != 2 or array.shape[1] not in (2, 3):
+        raise InputError(
+            f"{name} must be (x, y) or (x, y, z) in metres, shaped (n, 2) or (n, 3) "
+            f"(got {array.shape})"
+        )
+    if not np.all(np.isfinite(array)):
+        raise InputError(f"{name} must be finite numbers, without NaN or inf")
+    return array

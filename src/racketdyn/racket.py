@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn._display import html_table, number, shorten
 from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_whole
+from racketdyn.numerics import as_locations
 
 __all__ = [
     "SUPPORTS",
@@ -46,23 +47,6 @@ SWINGWEIGHT_AXIS_M = 0.100
 
 KGM2_TO_KGCM2 = 1.0e4
 M2_TO_CM2 = 1.0e4
-
-
-def as_locations(locations: ArrayLike, name: str = "locations") -> NDArray[np.float64]:
-    """Return impact locations as a finite float array shaped ``(n, 2)`` (metres)."""
-    try:
-        array = np.asarray(locations, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be (x, y) pairs in metres (got {locations!r})") from None
-    if array.ndim == 1 and array.size == 2:
-        array = array[None, :]
-    if array.ndim != 2 or array.shape[1] != 2:
-        raise InputError(
-            f"{name} must be (x, y) pairs in metres, shaped (n, 2) (got {array.shape})"
-        )
-    if not np.all(np.isfinite(array)):
-        raise InputError(f"{name} must be finite numbers, without NaN or inf")
-    return array
 
 
 @dataclass(frozen=True)

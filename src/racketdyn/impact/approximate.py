@@ -192,8 +192,9 @@ def predict(
         Speed of the racket's impact point towards the ball before impact, m/s (the paper's
         V_Ro with the sign making it add to the ball's).
     modal_model : ModalModel, None or "racket"
-        Modes for eq (12); ``"racket"`` takes the racket's own (:func:`modal_model_for`);
-        ``None`` is a rigid racket (no vibration loss).
+        Modes for eq (12); ``"racket"`` takes the racket's own
+        (:func:`racketdyn.racket_modal.modal_model_for`); ``None`` is a rigid racket (no
+        vibration loss).
     labels : sequence of str, optional
         Point labels (default 1, 2, …).
     law : RestoringForce, optional

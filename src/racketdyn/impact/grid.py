@@ -20,8 +20,9 @@ from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_speeds
 from racketdyn.impact.hand import Hand
-from racketdyn.modal import ModalModel, modal_model_for
+from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket, as_locations
+from racketdyn.racket_modal import modal_model_for
 
 __all__ = [
     "ImpactGrid",

@@ -82,8 +82,8 @@ from racketdyn.impact.result import (
 )
 from racketdyn.impact.transient import predict_transient
 from racketdyn.modal import ModalModel
-from racketdyn.modal.shapes import axis_nodes
 from racketdyn.racket import Racket, as_locations
+from racketdyn.racket_modal.shapes import axis_nodes
 
 __all__ = [
     "DEFAULT_ARM_GYRATION_M",
@@ -659,8 +659,8 @@ class SweetSpot:
 
 
 def _first_bending_mode(model: ModalModel) -> int | None:
-    """The lowest bending mode (kind ``bending``; else the lowest of kind ``other``)."""
-    for kind in ("bending", "other"):
+    """The lowest bending mode (kind ``bending``; else the lowest ``other``, else ``unknown``)."""
+    for kind in ("bending", "other", "unknown"):
         candidates = [k for k, name in enumerate(model.kinds) if name == kind]
         if candidates:
             return min(candidates, key=lambda k: float(model.frequency[k]))

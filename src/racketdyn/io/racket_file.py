@@ -140,7 +140,7 @@ def load_racket(path: Path | str) -> Racket:
     -------
     Racket
         The validated racket.  A missing roll inertia is derived from the hoop model
-        (:func:`racketdyn.modal.beam.hoop_roll_inertia`).
+        (:func:`racketdyn.racket_modal.beam.hoop_roll_inertia`).
     """
     path = Path(path)
     return racket_from_dict(read_toml(path, "racket file"), path)
@@ -148,7 +148,7 @@ def load_racket(path: Path | str) -> Racket:
 
 def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
     """Build a racket from parsed TOML (see :func:`load_racket`)."""
-    from racketdyn.modal.beam import hoop_roll_inertia  # the hoop model lives with the beam
+    from racketdyn.racket_modal.beam import hoop_roll_inertia  # the hoop model lives with the beam
 
     for key in data:
         if key not in _TOP:

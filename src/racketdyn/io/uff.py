@@ -935,11 +935,10 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
     frequency = np.asarray(frfs.frequency, dtype=float)
     if frequency.size < 2:
         raise InputError(f"{path}: an FRF needs two frequency lines or more to be written")
-    sets = [
-        _geometry_set(
-            path, frfs.reference_node, frfs.reference_location, frfs.nodes, frfs.locations
-        )
-    ]
+    if frfs.locations.shape[1] != 2:
+        raise InputError(f"{path}: racketdyn writes UFF geometry for (x, y) locations only")
+    reference = (float(frfs.reference_location[0]), float(frfs.reference_location[1]))
+    sets = [_geometry_set(path, frfs.reference_node, reference, frfs.nodes, frfs.locations)]
     response = {v: k for k, v in FRF_TYPE_OF_RESPONSE.items()}[frfs.frf_type]
     tau = "none" if frfs.exponential_window_s is None else repr(float(frfs.exponential_window_s))
     estimator = "_".join(str(frfs.estimator).split()) or "file"

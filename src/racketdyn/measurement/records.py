@@ -16,12 +16,13 @@ from numpy.typing import NDArray
 
 from racketdyn._display import html_table, number, shorten, span, words
 from racketdyn.errors import InputError, require_positive
-from racketdyn.racket import as_locations
+from racketdyn.numerics import as_locations, as_points
 
 __all__ = [
     "ANALYSER_BANDWIDTH_FACTOR",
     "FRF_TYPES",
     "FRF_TYPE_OF_RESPONSE",
+    "FRF_UNITS",
     "RESPONSE_TYPES",
     "FrfSet",
     "FrfType",
@@ -37,6 +38,8 @@ ResponseType = Literal["acceleration", "velocity", "displacement"]
 RESPONSE_TYPES: tuple[str, ...] = get_args(ResponseType)
 FrfType = Literal["accelerance", "mobility", "receptance"]
 FRF_TYPES: tuple[str, ...] = get_args(FrfType)
+FRF_UNITS = {"receptance": "m/N", "mobility": "m/(N·s)", "accelerance": "m/(N·s²)"}
+"""Units of each FRF type, for labels (values are stored in SI)."""
 FRF_TYPE_OF_RESPONSE: dict[str, str] = {
     "acceleration": "accelerance",
     "velocity": "mobility",
@@ -174,8 +177,9 @@ class FrfSet:
         What the FRF relates.
     nodes : tuple of int
         Node number of each hammer point.
-    locations : ndarray, shape (n_points, 2)
-        Hammer point locations (x, y), m.
+    locations : ndarray, shape (n_points, 2) or (n_points, 3)
+        Hammer point locations (x, y) or (x, y, z), m (a racket's are (x, y): the racket
+        workflows use 2-D locations).
     reference_node : int
         Node of the response transducer.
     reference_location : tuple of float
@@ -199,7 +203,7 @@ class FrfSet:
     nodes: tuple[int, ...]
     locations: NDArray[np.float64]
     reference_node: int
-    reference_location: tuple[float, float]
+    reference_location: tuple[float, ...]
     coherence: NDArray[np.float64] | None = None
     n_averages: NDArray[np.int_] | None = None
     exponential_window_s: float | None = None
@@ -210,7 +214,7 @@ class FrfSet:
     def __post_init__(self) -> None:
         frequency = np.asarray(self.frequency, dtype=float)
         values = np.atleast_2d(np.asarray(self.values, dtype=complex))
-        locations = as_locations(self.locations, f"{self.source}: FRF point locations")
+        locations = as_points(self.locations, f"{self.source}: FRF point locations")
         if frequency.ndim != 1 or values.shape != (len(self.nodes), frequency.size):
             raise InputError(
                 f"{self.source}: FRF values must be shaped (n_points, n_freq) = "

@@ -1,16 +1,15 @@
-"""Modal models: natural frequencies, damping and mass-normalised mode shapes of a racket."""
+"""Modal analysis of any structure: models, poles, residues, shapes, MAC and identification.
+
+Nothing here knows what a racket is; what modal results mean for a racket (the built-in beam
+model, mode names from a racket's shapes) is :mod:`racketdyn.racket_modal`.  The identification
+chain is :func:`racketdyn.modal.identify.identify` (imported from its module: it loads the
+pole estimator).
+"""
 
 from __future__ import annotations
 
-from racketdyn.modal.beam import builtin_modal_model
+from racketdyn.modal.mac import mac
 from racketdyn.modal.model import ModalModel
-from racketdyn.racket import Racket
+from racketdyn.modal.shapes import ModePairing, nodes_along, pair_modes
 
-__all__ = ["ModalModel", "builtin_modal_model", "modal_model_for"]
-
-
-def modal_model_for(racket: Racket) -> ModalModel:
-    """The racket's modal model: its ``modal_model_file`` if set, else the built-in beam model."""
-    if racket.modal_model_file is not None:
-        return ModalModel.read_json(racket.modal_model_file)
-    return builtin_modal_model(racket)
+__all__ = ["ModalModel", "ModePairing", "mac", "nodes_along", "pair_modes"]

@@ -1,10 +1,13 @@
-"""From FRFs to a modal model: poles, selection, constants, mass normalisation, names.
+"""From FRFs to a modal model of any structure: poles, selection, constants, mass normalisation.
 
 :func:`identify` chains the steps — stabilisation diagram (:mod:`~racketdyn.modal.poles`),
-automatic pole selection, LSFD modal constants (:mod:`~racketdyn.modal.residues`), mass
-normalisation from the driving point, and names from the shapes
-(:mod:`~racketdyn.modal.shapes`) — and returns an :class:`Identification` holding every
+automatic pole selection, LSFD modal constants (:mod:`~racketdyn.modal.residues`) and mass
+normalisation from the driving point — and returns an :class:`Identification` holding every
 intermediate result, so nothing is lost and every figure can be drawn from it.
+
+The modes are named neutrally, ``"mode 1 (123.4 Hz)"``, of kind ``unknown``: what a mode is
+depends on the structure, and a caller that knows it names them from their shapes (a racket:
+:func:`racketdyn.racket_modal.identify.identify_racket`) with :meth:`Identification.renamed`.
 """
 
 from __future__ import annotations
@@ -22,16 +25,15 @@ from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import SelectedPoles, Stabilisation, select_poles, stabilisation
 from racketdyn.modal.residues import ModalFit, fit_modal_constants, mass_normalised_shapes
-from racketdyn.modal.shapes import classify_modes
-from racketdyn.racket import HeadEllipse
 
 __all__ = ["DEFAULT_LOW_HZ", "Identification", "default_band", "identify"]
 
 log = logging.getLogger(__name__)
 
 DEFAULT_LOW_HZ = 40.0
-"""Lower band edge by default, Hz: above the rigid-body modes of a racket on a sponge or in a
-hand (≤ 15 Hz), below its first bending mode (≥ 100 Hz)."""
+"""Lower band edge by default, Hz: above the rigid-body modes of a light structure on soft
+supports (≤ 15 Hz for a racket on a sponge or in a hand).  Pass ``band_hz`` for a structure
+whose first flexible mode lies lower."""
 
 
 def default_band(frfs: FrfSet) -> tuple[float, float]:
@@ -47,7 +49,7 @@ class Identification:
     ----------
     model : ModalModel
         Frequencies, damping (window removed), mass-normalised shapes at the FRF points, names
-        and kinds.
+        and kinds (neutral unless a caller named them: :meth:`renamed`).
     frfs : FrfSet
         The FRFs identified.
     stabilisation : Stabilisation
@@ -66,6 +68,23 @@ class Identification:
     selected: SelectedPoles
     fit: ModalFit
     band_hz: tuple[float, float]
+
+    def renamed(self, names: Sequence[str], kinds: Sequence[str]) -> Identification:
+        """The same identification with its modes named (e.g. from their shapes).
+
+        Parameters
+        ----------
+        names : sequence of str
+            One name per mode.
+        kinds : sequence of str
+            One kind per mode (:data:`racketdyn.modal.model.MODE_KINDS`).
+
+        Returns
+        -------
+        Identification
+            A copy whose model carries the names and kinds; everything else is shared.
+        """
+        return replace(self, model=replace(self.model, names=tuple(names), kinds=tuple(kinds)))
 
     def write_modes_csv(self, path: Path) -> None:
         """``mode, frequency_hz, damping_ratio, name`` (+ kind, orders stable, fit spread)."""
@@ -99,22 +118,19 @@ class Identification:
 
 def identify(
     frfs: FrfSet,
-    head: HeadEllipse,
     band_hz: tuple[float, float] | None = None,
     max_order: int = 60,
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
     support: str = "free",
 ) -> Identification:
-    """Identify a modal model from a set of FRFs against one reference.
+    """Identify a modal model of any structure from a set of FRFs against one reference.
 
     Parameters
     ----------
     frfs : FrfSet
         FRFs of the hammer points (with a driving point at the reference for mass-normalised
         shapes); an exponential window recorded on the set is taken off the damping.
-    head : HeadEllipse
-        The racket's string bed, to name modes (string-bed against frame).
     band_hz : tuple of float, optional
         Band to identify in, Hz (default :func:`default_band`).
     max_order : int
@@ -122,11 +138,12 @@ def identify(
     pin_hz, exclude_hz : sequence of float
         Modes to force in or leave out, by approximate frequency, Hz.
     support : str
-        Support the racket was tested on (``free``, ``hand``), recorded on the model.
+        Support the structure was tested on (``free``, ``hand`` …), recorded on the model.
 
     Returns
     -------
     Identification
+        The model's modes are named ``"mode k (f Hz)"``, of kind ``unknown``.
     """
     band = band_hz or default_band(frfs)
     if not 0 <= band[0] < band[1] <= frfs.frequency[-1]:
@@ -156,21 +173,14 @@ def identify(
             selected = selected.select(positive)
             fit = fit_modal_constants(frfs, selected.pole, band)
     shapes = mass_normalised_shapes(frfs, fit)
-    bare = ModalModel(
-        selected.frequency,
-        selected.damping_ratio,
-        frfs.locations,
-        shapes,
-        tuple(f"mode {k + 1}" for k in range(selected.n_modes)),
-    )
-    names, kinds = classify_modes(bare, head)
+    names = tuple(f"mode {k + 1} ({f:.1f} Hz)" for k, f in enumerate(selected.frequency))
     model = ModalModel(
         frequency=selected.frequency,
         damping_ratio=selected.damping_ratio,
         locations=frfs.locations,
         mode_shapes=shapes,
         names=names,
-        kinds=kinds,
+        kinds=("unknown",) * len(names),
         support=support,
         source=f"identified from {frfs.source}",
         metadata={

@@ -1,8 +1,8 @@
-"""The modal model: natural frequencies, damping and mass-normalised mode shapes of a racket.
+"""The modal model: natural frequencies, damping and mass-normalised mode shapes of a structure.
 
 Mode shapes are mass-normalised (``φᵀ M φ = 1``, units 1/√kg) and stored at sample locations
-over the racket; shapes anywhere else on the face come from a thin-plate-spline interpolation
-through the samples.  The modal constant of mode k between points i and j is
+over the structure; shapes anywhere else come from a thin-plate-spline interpolation through the
+samples.  The modal constant of mode k between points i and j is
 ``A_ijk = φ_ik φ_jk`` (1/kg): the paper's ``r_i0k r_0jk / r_00k`` of eq (12) once residues
 measured against a reference point 0 are scaled by the driving-point residue ``r_00k``.
 """
@@ -22,12 +22,13 @@ from scipy.interpolate import RBFInterpolator
 from racketdyn.__about__ import __version__
 from racketdyn._display import html_table, number, numbers, shorten, words
 from racketdyn.errors import InputError
-from racketdyn.racket import as_locations
+from racketdyn.numerics import as_points
 
 __all__ = ["ModalModel"]
 
 FORMAT = "racketdyn-modal-model"
-MODE_KINDS = ("bending", "twisting", "string-bed", "other")
+MODE_KINDS = ("bending", "twisting", "string-bed", "other", "unknown")
+"""What a mode can be: a racket's kinds, ``other``, and ``unknown`` (not classified)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,15 +41,16 @@ class ModalModel:
         Natural frequencies, Hz.
     damping_ratio : ndarray, shape (n_modes,)
         Viscous damping ratios (fraction of critical).
-    locations : ndarray, shape (n_points, 2)
-        Where the shapes are sampled, ``(x, y)`` in m.
+    locations : ndarray, shape (n_points, 2) or (n_points, 3)
+        Where the shapes are sampled, ``(x, y)`` (a racket's face) or ``(x, y, z)``, m.
     mode_shapes : ndarray, shape (n_points, n_modes)
         Mass-normalised mode shapes (displacement normal to the face), 1/√kg.
     names : tuple of str
         Mode names (``"2-node bending"``, …).
     kinds : tuple of str
-        What each mode is: ``bending``, ``twisting``, ``string-bed`` or ``other``.  String-bed
-        modes are left out of the vibration loss by default.  Empty: read from the names
+        What each mode is: ``bending``, ``twisting``, ``string-bed``, ``other`` or ``unknown``
+        (not classified: :func:`racketdyn.modal.identify.identify` leaves it to the caller).
+        String-bed modes are left out of the vibration loss by default.  Empty: read from the names
         (``string-bed`` where a name mentions a string bed or membrane, else ``other``).
     support : str
         The support the modes belong to (``free``, ``hand`` …).
@@ -70,7 +72,7 @@ class ModalModel:
         frequency = np.asarray(self.frequency, dtype=float)
         damping = np.asarray(self.damping_ratio, dtype=float)
         shapes = np.asarray(self.mode_shapes, dtype=float)
-        locations = as_locations(self.locations, "modal model locations")
+        locations = as_points(self.locations, "modal model locations")
         if shapes.ndim != 2 or shapes.shape != (locations.shape[0], frequency.size):
             raise InputError(
                 f"modal model ({self.source}): mode_shapes must be shaped (n_points, n_modes) = "
@@ -135,23 +137,66 @@ class ModalModel:
         ]
         return html_table(f"ModalModel: {self.n_modes} modes", rows)
 
+    @property
+    def n_dimensions(self) -> int:
+        """Coordinates of each location: 2 for ``(x, y)``, 3 for ``(x, y, z)``."""
+        return int(self.locations.shape[1])
+
     @cached_property
-    def _along_axis_only(self) -> bool:
+    def _basis(self) -> NDArray[np.float64] | None:
+        """Orthonormal directions (rows) of the line or plane holding every sample, if any.
+
+        None when the samples fill their coordinates (a face in (x, y), a solid in (x, y, z)).
+        """
         centred = self.locations - self.locations.mean(axis=0)
-        return bool(np.linalg.matrix_rank(centred, tol=1e-9) < 2)
+        rank = int(np.linalg.matrix_rank(centred, tol=1e-9))
+        if rank >= self.n_dimensions:
+            return None
+        if self.n_dimensions == 2 and np.ptp(self.locations[:, 1]) == 0:
+            return np.array([[1.0, 0.0]])  # along x (a racket's long axis)
+        return np.asarray(np.linalg.svd(centred, full_matrices=False)[2][:rank])
+
+    def _coordinates(self, points: NDArray[np.float64]) -> NDArray[np.float64]:
+        """What the interpolator sees: the points, or their coordinates in the samples' line
+        or plane."""
+        basis = self._basis
+        if basis is None:
+            return points
+        if basis.shape == (1, 2) and basis[0, 1] == 0:
+            return points[:, :1]  # along x: x itself
+        return np.asarray((points - self.locations[0]) @ basis.T)
 
     @cached_property
     def _interpolator(self) -> RBFInterpolator:
         # Thin-plate spline: smooth, exact at the samples, and it extends past the last sample
-        # linearly rather than wildly.  Shapes sampled on one line only (the long axis) are
-        # interpolated along x.
-        points = self.locations[:, :1] if self._along_axis_only else self.locations
-        return RBFInterpolator(points, self.mode_shapes, kernel="thin_plate_spline")
+        # linearly rather than wildly.  Shapes sampled on one straight line only (a racket's
+        # long axis, a beam along any direction) are interpolated along that line, shapes on
+        # one plane of (x, y, z) in that plane; a point off them gets the shape of its
+        # projection onto them.
+        return RBFInterpolator(
+            self._coordinates(self.locations), self.mode_shapes, kernel="thin_plate_spline"
+        )
 
     def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:
-        """Mass-normalised mode shapes at any locations, shaped ``(n, n_modes)``, 1/√kg."""
-        xy = as_locations(locations)
-        return np.asarray(self._interpolator(xy[:, :1] if self._along_axis_only else xy))
+        """Mass-normalised mode shapes at any locations, shaped ``(n, n_modes)``, 1/√kg.
+
+        Parameters
+        ----------
+        locations : array_like, shape (n, 2) or (n, 3)
+            Where, ``(x, y)`` or ``(x, y, z)`` in m, as the model's own locations.
+
+        Returns
+        -------
+        ndarray, shape (n, n_modes)
+            Interpolated (thin-plate spline) from the sampled shapes, 1/√kg.
+        """
+        points = as_points(locations, f"modal model ({self.source}): locations")
+        if points.shape[1] != self.n_dimensions:
+            raise InputError(
+                f"modal model ({self.source}): shapes are sampled at {self.n_dimensions}-D "
+                f"locations; asked at {points.shape[1]}-D ones"
+            )
+        return np.asarray(self._interpolator(self._coordinates(points)))
 
     def modal_constants(self, response: ArrayLike, excitation: ArrayLike) -> NDArray[np.float64]:
         """Modal constants ``A_ijk = φ_ik φ_jk`` (1/kg) for every response i and excitation j.

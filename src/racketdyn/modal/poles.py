@@ -5,7 +5,8 @@ chosen band, at every model order up to ``max_order``, and classes each pole by 
 with the poles of the order below (frequency, damping, shape).  :func:`select_poles` picks the
 physical modes from the stable poles with no clicking: it clusters them across orders, keeps
 close modes apart and lets the user pin or exclude modes by approximate frequency.
-:func:`plot_stabilisation` draws the diagram.
+:meth:`Stabilisation.plot` draws the diagram (with
+:func:`racketdyn.plotting.primitives.plot_stabilisation`).
 
 The estimator
     Least-squares complex-frequency (LSCF) common-denominator model in the z-domain
@@ -89,6 +90,7 @@ from scipy.cluster.hierarchy import fcluster, linkage
 
 from racketdyn.errors import InputError, require_whole
 from racketdyn.measurement.records import FrfSet
+from racketdyn.modal.mac import mac
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -98,7 +100,6 @@ __all__ = [
     "SelectedPoles",
     "Stabilisation",
     "mac",
-    "plot_stabilisation",
     "select_poles",
     "stabilisation",
 ]
@@ -221,7 +222,25 @@ class Stabilisation:
         ax: Axes | None = None,
         frfs: FrfSet | None = None,
     ) -> Axes:
-        """The stabilisation diagram (:func:`plot_stabilisation`)."""
+        """The stabilisation diagram (:func:`racketdyn.plotting.primitives.plot_stabilisation`).
+
+        Imports the presentation layer (matplotlib) when called, not before.
+
+        Parameters
+        ----------
+        selected : SelectedPoles, optional
+            Modes to mark with vertical lines (pinned ones solid).
+        ax : matplotlib Axes, optional
+            Where to draw; a new figure if None.
+        frfs : FrfSet, optional
+            FRFs whose summed magnitude to draw on a twin log axis (over the band).
+
+        Returns
+        -------
+        Axes
+        """
+        from racketdyn.plotting.primitives import plot_stabilisation
+
         return plot_stabilisation(self, selected=selected, ax=ax, frfs=frfs)
 
 
@@ -734,42 +753,6 @@ def _classify(
     return stability
 
 
-def mac(
-    a: NDArray[np.complexfloating[Any, Any]] | NDArray[np.floating[Any]],
-    b: NDArray[np.complexfloating[Any, Any]] | NDArray[np.floating[Any]],
-    *,
-    pairwise: bool = False,
-) -> NDArray[np.float64]:
-    """Modal assurance criterion ``|aᴴb|² / ((aᴴa)(bᴴb))`` between shapes (columns).
-
-    Parameters
-    ----------
-    a, b : ndarray, shape (n_points, n_a) and (n_points, n_b)
-        Shapes as columns (real or complex).
-    pairwise : bool
-        False: the (n_a, n_b) matrix of every pair.  True: column k of ``a`` with column k of
-        ``b`` only (n_a = n_b), shape (n_a,).
-
-    Returns
-    -------
-    ndarray
-        MAC values in [0, 1] (0 where a shape is zero).
-    """
-    a2 = np.atleast_2d(np.asarray(a).T).T
-    b2 = np.atleast_2d(np.asarray(b).T).T
-    norm_a = np.sum(np.abs(a2) ** 2, axis=0)
-    norm_b = np.sum(np.abs(b2) ** 2, axis=0)
-    if pairwise:
-        cross = np.abs(np.sum(a2.conj() * b2, axis=0)) ** 2
-        denominator = norm_a * norm_b
-    else:
-        cross = np.abs(a2.conj().T @ b2) ** 2
-        denominator = np.outer(norm_a, norm_b)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        out = np.where(denominator > 0, cross / np.where(denominator > 0, denominator, 1), 0.0)
-    return np.asarray(np.clip(out, 0.0, 1.0), dtype=float)
-
-
 # --- automatic selection ---------------------------------------------------------------------
 
 
@@ -1204,90 +1187,6 @@ def _summarise(stab: Stabilisation, members: NDArray[np.intp]) -> _Cluster:
         peak=float(np.max(peaks)) if math.isfinite(float(np.max(peaks))) else 0.0,
         peak_to_noise=float(np.nan_to_num(np.max(ratio), nan=0.0, posinf=np.inf)),
     )
-
-
-# --- the figure ------------------------------------------------------------------------------
-
-_STYLE: dict[PoleStability, dict[str, Any]] = {
-    PoleStability.NEW: {"marker": "o", "mfc": "none", "color": "0.75", "ms": 2.5, "mew": 0.5},
-    PoleStability.FREQUENCY: {"marker": "x", "color": "tab:orange", "ms": 3.0, "mew": 0.7},
-    PoleStability.DAMPING: {"marker": "^", "mfc": "none", "color": "tab:green", "ms": 3.0},
-    PoleStability.SHAPE: {"marker": "o", "color": "tab:blue", "ms": 3.0, "mew": 0.0},
-}
-_LABEL = {
-    PoleStability.NEW: "new",
-    PoleStability.FREQUENCY: "stable frequency",
-    PoleStability.DAMPING: "+ damping",
-    PoleStability.SHAPE: "+ shape (stable)",
-}
-
-
-def plot_stabilisation(
-    stab: Stabilisation,
-    selected: SelectedPoles | None = None,
-    ax: Axes | None = None,
-    frfs: FrfSet | None = None,
-) -> Axes:
-    """The stabilisation diagram: model order against pole frequency, marker by stability.
-
-    Parameters
-    ----------
-    stab : Stabilisation
-        The poles (:func:`stabilisation`).
-    selected : SelectedPoles, optional
-        Modes to mark with vertical lines (pinned ones solid).
-    ax : matplotlib Axes, optional
-        Where to draw; a new figure if None.
-    frfs : FrfSet, optional
-        FRFs whose summed magnitude ``Σ|H|`` to draw on a twin log axis (over the band).
-
-    Returns
-    -------
-    Axes
-        The diagram's axes (the summed FRF's twin axis, if drawn, is the other axes of
-        ``ax.figure`` sharing its x axis).
-    """
-    from racketdyn.plotting.primitives import FRF_UNITS, _axes
-
-    ax = _axes(ax, (7.0, 4.5))
-    if frfs is not None:
-        band = frfs.band(*stab.band_hz)
-        twin = ax.twinx()
-        twin.semilogy(band.frequency, np.abs(band.values).sum(axis=0), color="0.4", lw=0.7)
-        twin.set_ylabel(f"Σ|H| ({FRF_UNITS[band.frf_type]})", color="0.4")
-        twin.tick_params(axis="y", colors="0.4")
-        ax.set_zorder(twin.get_zorder() + 1)
-        ax.patch.set_visible(False)
-    for kind in PoleStability:
-        mask = stab.stability == int(kind)
-        if np.any(mask):
-            ax.plot(
-                stab.frequency[mask],
-                stab.order[mask],
-                linestyle="none",
-                label=_LABEL[kind],
-                **_STYLE[kind],
-            )
-    if selected is not None:
-        for k, f in enumerate(selected.frequency):
-            ax.axvline(f, color="tab:red", lw=0.8, ls="-" if selected.pinned[k] else "--", zorder=0)
-            ax.annotate(
-                f"{f:.1f}",
-                (f, 1.0),
-                xycoords=("data", "axes fraction"),
-                xytext=(2, -2),
-                textcoords="offset points",
-                rotation=90,
-                va="top",
-                fontsize=6,
-                color="tab:red",
-            )
-    ax.set_xlim(*stab.band_hz)
-    ax.set_ylim(0, int(stab.orders[-1]) + 1)
-    ax.set_xlabel("frequency (Hz)")
-    ax.set_ylabel("model order (–)")
-    ax.legend(fontsize=6, loc="lower right", framealpha=0.8)
-    return ax
 
 
 # --- input checks ----------------------------------------------------------------------------

@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
 from racketdyn.measurement.records import FrfSet
-from racketdyn.modal.poles import mac
+from racketdyn.modal.mac import mac
 
 __all__ = ["ModalFit", "fit_modal_constants", "mac", "mass_normalised_shapes"]
 

@@ -1,20 +1,7 @@
-"""What a mode shape is: naming (bending, twisting, string bed), nodes, and pairing of two models.
+"""General tools on mode shapes of any structure: nodes along a line, pairing two models by MAC.
 
-Naming, from the shape at the measured points and the racket's head:
-
-* **string-bed** when the mean square of the shape on the strings (points inside 95 % of the
-  bed's elliptic radius) is more than four times that on the frame;
-* **twisting** when more than half of the shape's energy is odd in y: points are paired with
-  their mirror images across the long axis (within 1 cm) and the odd part (φ(x,y) − φ(x,−y))/2
-  compared with the whole;
-* **bending** otherwise.  A free or hand-held racket (no clamp) has its bending modes in the
-  order of their nodes, so the n-th bending mode in frequency is "(n+1)-node bending" — the
-  first is the paper's "2-node bending".  Counting sign changes along the axis would need
-  points out to the butt and the tip, where nodes of the higher modes sit; :func:`axis_nodes`
-  gives the node positions for the figures.
-
-Twisting and string-bed modes are numbered in order of frequency ("2-node twisting",
-"3-node twisting", …; "string-bed membrane", "string-bed membrane 2", …).
+Nothing here knows what the structure is: a caller that does (a racket, a beam, a plate) names
+the modes from their shapes itself (for a racket, :mod:`racketdyn.racket_modal.shapes`).
 """
 
 from __future__ import annotations
@@ -22,101 +9,46 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
+from racketdyn.modal.mac import mac
 from racketdyn.modal.model import ModalModel
-from racketdyn.modal.residues import mac
-from racketdyn.racket import HeadEllipse
+from racketdyn.numerics import as_points
 
-__all__ = ["ModePairing", "axis_nodes", "classify_modes", "pair_modes"]
-
-STRING_BED_RATIO = 4.0
-MIRROR_TOLERANCE_M = 0.01
+__all__ = ["ModePairing", "nodes_along", "pair_modes"]
 
 
-def _mirror_pairs(locations: NDArray[np.float64]) -> NDArray[np.int_]:
-    """Index pairs (i, j) with point j the mirror image of point i across y = 0 (y_i > 1 cm)."""
-    pairs = []
-    for i, (x, y) in enumerate(locations):
-        if y <= MIRROR_TOLERANCE_M:
-            continue
-        distance = np.hypot(locations[:, 0] - x, locations[:, 1] + y)
-        j = int(np.argmin(distance))
-        if distance[j] <= MIRROR_TOLERANCE_M:
-            pairs.append((i, j))
-    return np.asarray(pairs, dtype=int).reshape(-1, 2)
+def nodes_along(model: ModalModel, points: ArrayLike, mode: int) -> NDArray[np.float64]:
+    """Where a mode's shape changes sign along a line or curve given by points, m.
 
-
-def classify_modes(model: ModalModel, head: HeadEllipse) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """Names and kinds of a model's modes from their shapes (see the module docstring).
+    The shape is interpolated (:meth:`ModalModel.mode_shapes_at`) at the points, taken in
+    order as a polyline; each sign change between two neighbours gives a node, placed by
+    linear interpolation of the shape between them.
 
     Parameters
     ----------
     model : ModalModel
-        Shapes at measured points (frame and strings).
-    head : HeadEllipse
-        The string bed, to tell string points from frame points.
+        The mode shapes.
+    points : array_like, shape (n, 2) or (n, 3)
+        The line or curve, ``(x, y)`` or ``(x, y, z)`` as the model's locations, m, in order
+        along it (densely enough sampled that a mode has at most one node between two
+        neighbours).
+    mode : int
+        Index of the mode (0-based).
 
     Returns
     -------
-    names, kinds : tuple of str
+    ndarray, shape (n_nodes, 2) or (n_nodes, 3)
+        The nodes, m, in order along the line.
     """
-    locations, shapes = model.locations, model.mode_shapes
-    on_strings = head.normalised_radius(locations) < 0.95
-    pairs = _mirror_pairs(locations)
-    names, kinds = [], []
-    counts = {"bending": 0, "twisting": 0, "string-bed": 0}
-    for k in range(model.n_modes):
-        phi = shapes[:, k]
-        strings = np.mean(phi[on_strings] ** 2) if on_strings.any() else 0.0
-        frame = np.mean(phi[~on_strings] ** 2) if (~on_strings).any() else np.inf
-        odd_fraction = 0.0
-        if pairs.size:
-            odd = 0.5 * (phi[pairs[:, 0]] - phi[pairs[:, 1]])
-            even = 0.5 * (phi[pairs[:, 0]] + phi[pairs[:, 1]])
-            total = np.sum(odd**2 + even**2)
-            odd_fraction = float(np.sum(odd**2) / total) if total > 0 else 0.0
-        if strings > STRING_BED_RATIO * frame:
-            counts["string-bed"] += 1
-            n = counts["string-bed"]
-            names.append("string-bed membrane" + (f" {n}" if n > 1 else ""))
-            kinds.append("string-bed")
-        elif odd_fraction > 0.5:
-            counts["twisting"] += 1
-            names.append(f"{counts['twisting'] + 1}-node twisting")
-            kinds.append("twisting")
-        else:
-            counts["bending"] += 1
-            names.append(f"{counts['bending'] + 1}-node bending")
-            kinds.append("bending")
-    return _unique(names), tuple(kinds)
-
-
-def _unique(names: list[str]) -> tuple[str, ...]:
-    seen: dict[str, int] = {}
-    out = []
-    for name in names:
-        seen[name] = seen.get(name, 0) + 1
-        out.append(name if seen[name] == 1 else f"{name} ({seen[name]})")
-    return tuple(out)
-
-
-def axis_nodes(
-    model: ModalModel, mode: int, x_range: tuple[float, float], y_m: float = 0.0, samples: int = 681
-) -> NDArray[np.float64]:
-    """Positions of a mode's nodes along a line parallel to the long axis (paper, Fig. 6), m.
-
-    Zero crossings of the interpolated shape on ``samples`` points between ``x_range``, refined
-    by linear interpolation between the two samples either side.
-    """
-    x = np.linspace(x_range[0], x_range[1], samples)
-    shape = model.mode_shapes_at(np.column_stack([x, np.full_like(x, y_m)]))[:, mode]
+    line = as_points(points, "points along the line")
+    shape = model.mode_shapes_at(line)[:, mode]
     crossing = np.flatnonzero(np.sign(shape[:-1]) * np.sign(shape[1:]) < 0)
     return np.asarray(
-        x[crossing]
-        - shape[crossing]
-        * (x[crossing + 1] - x[crossing])
-        / (shape[crossing + 1] - shape[crossing])
+        line[crossing]
+        - shape[crossing, None]
+        * (line[crossing + 1] - line[crossing])
+        / (shape[crossing + 1] - shape[crossing])[:, None]
     )
 
 
@@ -143,6 +75,18 @@ def pair_modes(first: ModalModel, second: ModalModel, minimum_mac: float = 0.6) 
     Greedy on the MAC matrix (largest first), each mode used once; pairs under ``minimum_mac``
     are left unpaired.  Shapes are compared at the first model's locations (the second model is
     interpolated there).
+
+    Parameters
+    ----------
+    first, second : ModalModel
+        The two models (e.g. one structure on two supports).
+    minimum_mac : float
+        Smallest MAC that makes a pair (–).
+
+    Returns
+    -------
+    ModePairing
+        The pairs, in order of the first model's modes.
     """
     matrix = mac(first.mode_shapes, second.mode_shapes_at(first.locations))
     pairs: list[tuple[int, int, float]] = []

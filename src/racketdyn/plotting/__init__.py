@@ -5,8 +5,8 @@ this package loads matplotlib (with the Agg backend: files, not windows); the co
 layers never import it.
 """
 
+from racketdyn.measurement.records import FRF_UNITS
 from racketdyn.plotting.primitives import (
-    FRF_UNITS,
     SUPPORT_STYLE,
     plot_along_axis,
     plot_contact_map,
@@ -18,7 +18,10 @@ from racketdyn.plotting.primitives import (
     plot_node_lines,
     plot_oblique_curve,
     plot_outline,
+    plot_racket_mode_3d,
+    plot_racket_node_lines,
     plot_speed_curves,
+    plot_stabilisation,
     plot_swing_along_axis,
     plot_swing_map,
     plot_twist_curve,
@@ -37,7 +40,10 @@ __all__ = [
     "plot_node_lines",
     "plot_oblique_curve",
     "plot_outline",
+    "plot_racket_mode_3d",
+    "plot_racket_node_lines",
     "plot_speed_curves",
+    "plot_stabilisation",
     "plot_swing_along_axis",
     "plot_swing_map",
     "plot_twist_curve",

@@ -29,14 +29,12 @@ from racketdyn.impact.swing import ImpactModel, SweetSpot, Swing, SwingResult, p
 from racketdyn.impact.transient import predict_transient
 from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
-from racketdyn.measurement.records import FrfSet
+from racketdyn.measurement.records import FRF_UNITS, FrfSet
 from racketdyn.modal.identify import Identification
 from racketdyn.modal.model import ModalModel
-from racketdyn.modal.poles import plot_stabilisation
 from racketdyn.modal.residues import mac
-from racketdyn.modal.shapes import axis_nodes, pair_modes
+from racketdyn.modal.shapes import pair_modes
 from racketdyn.plotting.primitives import (
-    FRF_UNITS,
     SUPPORT_STYLE,
     plot_along_axis,
     plot_contact_map,
@@ -44,16 +42,18 @@ from racketdyn.plotting.primitives import (
     plot_frame_amplitude,
     plot_frf,
     plot_mac,
-    plot_mode_3d,
-    plot_node_lines,
     plot_oblique_curve,
     plot_outline,
+    plot_racket_mode_3d,
+    plot_racket_node_lines,
     plot_speed_curves,
+    plot_stabilisation,
     plot_swing_along_axis,
     plot_swing_map,
     plot_twist_curve,
 )
 from racketdyn.racket import Racket
+from racketdyn.racket_modal.shapes import axis_nodes
 
 __all__ = [
     "FIGURES",
@@ -350,7 +350,9 @@ def write_identification(
     rows = int(np.ceil(n / columns))
     figure = plt.figure(figsize=(4.2 * columns, 3.2 * rows), layout="constrained")
     for k in range(n):
-        plot_mode_3d(model, racket, k, ax=figure.add_subplot(rows, columns, k + 1, projection="3d"))
+        plot_racket_mode_3d(
+            model, racket, k, ax=figure.add_subplot(rows, columns, k + 1, projection="3d")
+        )
     figure.suptitle(f"Fig. 4: mode shapes ({model.support})", fontsize=10)
     # mplot3d's projection overflows on the NaN outside the face of some surfaces; harmless
     with np.errstate(over="ignore", invalid="ignore"):
@@ -361,7 +363,7 @@ def write_identification(
     )
     for k, ax in enumerate(axes.flat):
         if k < n:
-            plot_node_lines(model, racket, k, ax=ax)
+            plot_racket_node_lines(model, racket, k, ax=ax)
         else:
             ax.set_axis_off()
     figure.suptitle(f"Fig. 5: node lines on the string face ({model.support})", fontsize=10)

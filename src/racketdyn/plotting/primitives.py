@@ -23,8 +23,9 @@ from racketdyn.impact.result import ImpactResult
 from racketdyn.impact.swing import SweetSpot, SwingResult
 from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
-from racketdyn.measurement.records import FrfSet
+from racketdyn.measurement.records import FRF_UNITS, FrfSet
 from racketdyn.modal.model import ModalModel
+from racketdyn.modal.poles import PoleStability, SelectedPoles, Stabilisation
 from racketdyn.racket import Racket
 
 __all__ = [
@@ -42,7 +43,10 @@ __all__ = [
     "plot_node_lines",
     "plot_oblique_curve",
     "plot_outline",
+    "plot_racket_mode_3d",
+    "plot_racket_node_lines",
     "plot_speed_curves",
+    "plot_stabilisation",
     "plot_swing_along_axis",
     "plot_swing_map",
     "plot_twist_curve",
@@ -241,9 +245,6 @@ def plot_face_map(
     return ax
 
 
-FRF_UNITS = {"receptance": "m/N", "mobility": "m/(N·s)", "accelerance": "m/(N·s²)"}
-
-
 def plot_frf(
     frfs: FrfSet, index: int, axes: Sequence[Axes] | None = None, label: str = ""
 ) -> Sequence[Axes]:
@@ -311,53 +312,267 @@ def _face_grid(racket: Racket, n: int = 41) -> tuple[NDArray[np.float64], NDArra
     return head.centre_x_m + head.half_length_m * xi, head.centre_y_m + head.half_width_m * eta
 
 
-def plot_node_lines(model: ModalModel, racket: Racket, mode: int, ax: Axes | None = None) -> Axes:
-    """Sign of a mode shape over the string face, black and white, node lines between (Fig. 5)."""
+def _spans_a_surface(locations: NDArray[np.float64]) -> bool:
+    """True if the points do not all lie on one straight line."""
+    centred = locations - locations.mean(axis=0)
+    return bool(np.linalg.matrix_rank(centred, tol=1e-9) >= 2)
+
+
+def _grid_over(
+    locations: NDArray[np.float64], n: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
+    """An n × n grid over the points' bounding box, and which nodes lie in their convex hull."""
+    from scipy.spatial import Delaunay
+
+    low, high = locations.min(axis=0), locations.max(axis=0)
+    x, y = np.meshgrid(
+        np.linspace(low[0], high[0], n), np.linspace(low[1], high[1], n), indexing="ij"
+    )
+    hull = Delaunay(locations)
+    inside = hull.find_simplex(np.column_stack([x.ravel(), y.ravel()]), tol=1e-9) >= 0
+    return x, y, inside.reshape(x.shape)
+
+
+def _line_through(locations: NDArray[np.float64], n: int = 101) -> NDArray[np.float64]:
+    """n points from one end of collinear points to the other, m."""
+    centred = locations - locations.mean(axis=0)
+    direction = np.linalg.svd(centred, full_matrices=False)[2][0]
+    along = centred @ direction
+    t = np.linspace(along.min(), along.max(), n)
+    return np.asarray(locations.mean(axis=0) + t[:, None] * direction[None, :])
+
+
+def _mode_title(model: ModalModel, mode: int, decimals: int = 0) -> str:
+    """The mode's name, with its frequency unless the name holds it ("mode 1 (100.0 Hz)")."""
+    name = model.names[mode]
+    return name if name.endswith(" Hz)") else f"{name}, {model.frequency[mode]:.{decimals}f} Hz"
+
+
+def plot_node_lines(
+    model: ModalModel,
+    mode: int,
+    ax: Axes | None = None,
+    *,
+    grid: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+    inside: NDArray[np.bool_] | None = None,
+) -> Axes:
+    """Sign of a mode shape over a surface, black and white, node lines between (paper, Fig. 5).
+
+    Works for any structure: by default over the convex hull of the model's points.  Points on
+    one straight line (a beam) give the shape along the line with its nodes marked instead;
+    points in space ``(x, y, z)``, the measured shape over their best-fit plane.
+
+    Parameters
+    ----------
+    model : ModalModel
+        The mode shapes.
+    mode : int
+        Index of the mode (0-based).
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure if None.
+    grid : tuple of ndarray, optional
+        ``(x, y)`` 2-D arrays of the grid to draw on, m (default 41 × 41 over the points).
+    inside : ndarray of bool, optional
+        Where on the grid to draw (default inside the convex hull of the points).
+
+    Returns
+    -------
+    Axes
+    """
     ax = _axes(ax, (3.2, 2.6))
-    x, y = _face_grid(racket)
-    inside = racket.head.contains(np.column_stack([x.ravel(), y.ravel()])).reshape(x.shape)
-    shape = model.mode_shapes_at(np.column_stack([x.ravel(), y.ravel()]))[:, mode].reshape(x.shape)
-    shape = np.where(inside, shape, np.nan)
+    locations = model.locations
+    if grid is None and not _spans_a_surface(locations):
+        line = _line_through(locations, 341)
+        along = np.linalg.norm(line - line[0], axis=1)
+        shape = model.mode_shapes_at(line)[:, mode]
+        ax.plot(along * 1e3, shape, color="k")
+        ax.axhline(0.0, color="0.5", linewidth=0.8)
+        crossing = np.flatnonzero(np.sign(shape[:-1]) * np.sign(shape[1:]) < 0)
+        nodes = along[crossing] - shape[crossing] * (along[crossing + 1] - along[crossing]) / (
+            shape[crossing + 1] - shape[crossing]
+        )
+        ax.plot(nodes * 1e3, np.zeros_like(nodes), "o", color="tab:red", markersize=4)
+        ax.set_xlabel("distance along the line (mm)")
+        ax.set_title(_mode_title(model, mode), fontsize=8)
+        return ax
+    if grid is None and model.n_dimensions == 3:
+        # points in space: the measured shape over the points' best-fit plane
+        centred = locations - locations.mean(axis=0)
+        plane = centred @ np.linalg.svd(centred, full_matrices=False)[2][:2].T
+        triangles = Triangulation(plane[:, 0] * 1e3, plane[:, 1] * 1e3)
+        values = model.mode_shapes[:, mode]
+        span = float(np.abs(values).max()) + 1.0
+        ax.tricontourf(triangles, values, levels=[-span, 0.0, span], colors=["k", "w"])
+        ax.tricontour(triangles, values, levels=[0.0], colors="tab:red", linewidths=1.2)
+        ax.plot(plane[:, 0] * 1e3, plane[:, 1] * 1e3, ".", color="0.5", markersize=2)
+        ax.set_aspect("equal")
+        ax.set_title(_mode_title(model, mode), fontsize=8)
+        ax.set_xticks([])
+        ax.set_yticks([])
+        return ax
+    if grid is None:
+        x, y, hull = _grid_over(locations, 41)
+        inside = hull if inside is None else inside
+    else:
+        x, y = grid
+    points = np.column_stack([x.ravel(), y.ravel()])
+    shape = model.mode_shapes_at(points)[:, mode].reshape(x.shape)
+    if inside is not None:
+        shape = np.where(inside, shape, np.nan)
     ax.contourf(x * 1e3, y * 1e3, np.sign(shape), levels=[-1.5, 0.0, 1.5], colors=["k", "w"])
     ax.contour(x * 1e3, y * 1e3, shape, levels=[0.0], colors="tab:red", linewidths=1.2)
-    plot_outline(racket, ax)
-    ax.set_title(f"{model.names[mode]}, {model.frequency[mode]:.0f} Hz", fontsize=8)
+    ax.set_aspect("equal")
+    ax.set_title(_mode_title(model, mode), fontsize=8)
     ax.set_xticks([])
     ax.set_yticks([])
     return ax
 
 
-def plot_mode_3d(model: ModalModel, racket: Racket, mode: int, ax: Axes | None = None) -> Axes:
-    """A mode shape over the racket outline in 3-D (paper, Fig. 4): the face and the long axis."""
+def plot_racket_node_lines(
+    model: ModalModel, racket: Racket, mode: int, ax: Axes | None = None
+) -> Axes:
+    """Node lines of a mode over a racket's string face, with its outline (paper, Fig. 5).
+
+    Parameters
+    ----------
+    model : ModalModel
+        The racket's mode shapes.
+    racket : Racket
+        The racket, for its face and outline.
+    mode : int
+        Index of the mode (0-based).
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure if None.
+
+    Returns
+    -------
+    Axes
+    """
+    x, y = _face_grid(racket)
+    inside = racket.head.contains(np.column_stack([x.ravel(), y.ravel()])).reshape(x.shape)
+    ax = plot_node_lines(model, mode, ax, grid=(x, y), inside=inside)
+    plot_outline(racket, ax)
+    return ax
+
+
+def plot_mode_3d(
+    model: ModalModel,
+    mode: int,
+    ax: Axes | None = None,
+    *,
+    grid: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+    inside: NDArray[np.bool_] | None = None,
+    line: NDArray[np.float64] | None = None,
+) -> Axes:
+    """A mode shape in 3-D (paper, Fig. 4): a surface, a line through it and the measured points.
+
+    Works for any structure: by default the surface spans the convex hull of the model's
+    points; points on one straight line (a beam) give the shape along that line; points in
+    space ``(x, y, z)`` are drawn where they are, coloured by the shape.
+
+    Parameters
+    ----------
+    model : ModalModel
+        The mode shapes.
+    mode : int
+        Index of the mode (0-based).
+    ax : 3-D matplotlib Axes, optional
+        Where to draw; a new figure if None.
+    grid : tuple of ndarray, optional
+        ``(x, y)`` 2-D arrays of the surface's grid, m (default 31 × 31 over the points).
+    inside : ndarray of bool, optional
+        Where on the grid to draw the surface (default inside the convex hull of the points).
+    line : ndarray, shape (n, 2) or (n, 3), optional
+        A line to draw the shape along (e.g. a racket's long axis), ``(x, y)`` in m (for
+        ``(x, y, z)`` points: drawn as a grey line).
+
+    Returns
+    -------
+    Axes
+    """
     if ax is None:
         figure = plt.figure(figsize=(4.5, 3.2), layout="constrained")
         ax = figure.add_subplot(projection="3d")
-    x, y = _face_grid(racket, 31)
-    points = np.column_stack([x.ravel(), y.ravel()])
-    inside = racket.head.contains(points).reshape(x.shape)
-    shape = model.mode_shapes_at(points)[:, mode].reshape(x.shape)
-    scale = 0.08 / max(float(np.abs(model.mode_shapes[:, mode]).max()), 1e-12)
+    locations = model.locations
     ax3d: Any = ax  # a 3-D axes: matplotlib's stubs type it as plain Axes
-    ax3d.plot_surface(x, y, np.where(inside, shape * scale, np.nan), cmap="coolwarm", linewidth=0)
-    axis_x = np.linspace(0.0, racket.length_m, 101)
-    axis = model.mode_shapes_at(np.column_stack([axis_x, np.zeros_like(axis_x)]))[:, mode]
-    ax3d.plot(axis_x, np.zeros_like(axis_x), axis * scale, color="k")
-    ax3d.plot(axis_x, np.zeros_like(axis_x), np.zeros_like(axis_x), color="0.6", linewidth=0.8)
+    if model.n_dimensions == 3:
+        # points in space: each point coloured by its shape value (the measured direction's)
+        values = model.mode_shapes[:, mode]
+        limit = max(float(np.abs(values).max()), 1e-12)
+        ax3d.scatter(*locations.T, c=values, cmap="coolwarm", vmin=-limit, vmax=limit, s=12)
+        if line is not None:
+            ax3d.plot(*np.asarray(line).T, color="0.6", linewidth=0.8)
+        ax.set_title(
+            f"{_mode_title(model, mode, 1)}, ζ = {100 * model.damping_ratio[mode]:.2f} %",
+            fontsize=8,
+        )
+        extent = np.maximum(np.ptp(locations, axis=0), 1e-3 * np.ptp(locations, axis=0).max())
+        ax3d.set_box_aspect(tuple(float(e) for e in extent))
+        ax.set_axis_off()
+        return ax
+    surface = grid is not None or _spans_a_surface(locations)
+    if line is None and not surface:
+        line = _line_through(locations)
+    scale = 0.08 / max(float(np.abs(model.mode_shapes[:, mode]).max()), 1e-12)
+    if surface:
+        if grid is None:
+            x, y, hull = _grid_over(locations, 31)
+            inside = hull if inside is None else inside
+        else:
+            x, y = grid
+        shape = model.mode_shapes_at(np.column_stack([x.ravel(), y.ravel()]))[:, mode]
+        shape = shape.reshape(x.shape) * scale
+        if inside is not None:
+            shape = np.where(inside, shape, np.nan)
+        ax3d.plot_surface(x, y, shape, cmap="coolwarm", linewidth=0)
+    if line is not None:
+        along = model.mode_shapes_at(line)[:, mode]
+        ax3d.plot(line[:, 0], line[:, 1], along * scale, color="k")
+        ax3d.plot(line[:, 0], line[:, 1], np.zeros(len(line)), color="0.6", linewidth=0.8)
     ax3d.scatter(
-        model.locations[:, 0],
-        model.locations[:, 1],
+        locations[:, 0],
+        locations[:, 1],
         model.mode_shapes[:, mode] * scale,
         s=4,
         color="k",
     )
     ax.set_title(
-        f"{model.names[mode]}, {model.frequency[mode]:.1f} Hz, "
-        f"ζ = {100 * model.damping_ratio[mode]:.2f} %",
-        fontsize=8,
+        f"{_mode_title(model, mode, 1)}, ζ = {100 * model.damping_ratio[mode]:.2f} %", fontsize=8
     )
-    ax3d.set_box_aspect((racket.length_m, 2.4 * racket.head.half_width_m, 0.2))
+    extent = np.maximum(np.ptp(locations, axis=0), 1e-3 * np.ptp(locations, axis=0).max())
+    ax3d.set_box_aspect((float(extent[0]), float(extent[1]), 0.2))
     ax3d.view_init(elev=25, azim=-60)
     ax.set_axis_off()
+    return ax
+
+
+def plot_racket_mode_3d(
+    model: ModalModel, racket: Racket, mode: int, ax: Axes | None = None
+) -> Axes:
+    """A racket's mode shape in 3-D (paper, Fig. 4): over the string face and the long axis.
+
+    Parameters
+    ----------
+    model : ModalModel
+        The racket's mode shapes.
+    racket : Racket
+        The racket, for its face and long axis.
+    mode : int
+        Index of the mode (0-based).
+    ax : 3-D matplotlib Axes, optional
+        Where to draw; a new figure if None.
+
+    Returns
+    -------
+    Axes
+    """
+    x, y = _face_grid(racket, 31)
+    inside = racket.head.contains(np.column_stack([x.ravel(), y.ravel()])).reshape(x.shape)
+    axis_x = np.linspace(0.0, racket.length_m, 101)
+    axis = np.column_stack([axis_x, np.zeros_like(axis_x)])
+    ax = plot_mode_3d(model, mode, ax, grid=(x, y), inside=inside, line=axis)
+    ax3d: Any = ax
+    ax3d.set_box_aspect((racket.length_m, 2.4 * racket.head.half_width_m, 0.2))
     return ax
 
 
@@ -667,4 +882,86 @@ def plot_twist_curve(
     ax.set_ylabel(axis_label)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
+    return ax
+
+
+# --- the stabilisation diagram (of racketdyn.modal.poles) ----------------------------------
+
+_POLE_STYLE: dict[PoleStability, dict[str, Any]] = {
+    PoleStability.NEW: {"marker": "o", "mfc": "none", "color": "0.75", "ms": 2.5, "mew": 0.5},
+    PoleStability.FREQUENCY: {"marker": "x", "color": "tab:orange", "ms": 3.0, "mew": 0.7},
+    PoleStability.DAMPING: {"marker": "^", "mfc": "none", "color": "tab:green", "ms": 3.0},
+    PoleStability.SHAPE: {"marker": "o", "color": "tab:blue", "ms": 3.0, "mew": 0.0},
+}
+_POLE_LABEL = {
+    PoleStability.NEW: "new",
+    PoleStability.FREQUENCY: "stable frequency",
+    PoleStability.DAMPING: "+ damping",
+    PoleStability.SHAPE: "+ shape (stable)",
+}
+
+
+def plot_stabilisation(
+    stab: Stabilisation,
+    selected: SelectedPoles | None = None,
+    ax: Axes | None = None,
+    frfs: FrfSet | None = None,
+) -> Axes:
+    """The stabilisation diagram: model order against pole frequency, marker by stability.
+
+    Parameters
+    ----------
+    stab : Stabilisation
+        The poles (:func:`racketdyn.modal.poles.stabilisation`).
+    selected : SelectedPoles, optional
+        Modes to mark with vertical lines (pinned ones solid).
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure if None.
+    frfs : FrfSet, optional
+        FRFs whose summed magnitude ``Σ|H|`` to draw on a twin log axis (over the band).
+
+    Returns
+    -------
+    Axes
+        The diagram's axes (the summed FRF's twin axis, if drawn, is the other axes of
+        ``ax.figure`` sharing its x axis).
+    """
+    ax = _axes(ax, (7.0, 4.5))
+    if frfs is not None:
+        band = frfs.band(*stab.band_hz)
+        twin = ax.twinx()
+        twin.semilogy(band.frequency, np.abs(band.values).sum(axis=0), color="0.4", lw=0.7)
+        twin.set_ylabel(f"Σ|H| ({FRF_UNITS[band.frf_type]})", color="0.4")
+        twin.tick_params(axis="y", colors="0.4")
+        ax.set_zorder(twin.get_zorder() + 1)
+        ax.patch.set_visible(False)
+    for kind in PoleStability:
+        mask = stab.stability == int(kind)
+        if np.any(mask):
+            ax.plot(
+                stab.frequency[mask],
+                stab.order[mask],
+                linestyle="none",
+                label=_POLE_LABEL[kind],
+                **_POLE_STYLE[kind],
+            )
+    if selected is not None:
+        for k, f in enumerate(selected.frequency):
+            ax.axvline(f, color="tab:red", lw=0.8, ls="-" if selected.pinned[k] else "--", zorder=0)
+            ax.annotate(
+                f"{f:.1f}",
+                (f, 1.0),
+                xycoords=("data", "axes fraction"),
+                xytext=(2, -2),
+                textcoords="offset points",
+                rotation=90,
+                va="top",
+                fontsize=6,
+                color="tab:red",
+            )
+    ax.set_xlim(*stab.band_hz)
+    ax.set_ylim(0, int(stab.orders[-1]) + 1)
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("model order (–)")
+    ax.legend(fontsize=6, loc="lower right", framealpha=0.8)
     return ax

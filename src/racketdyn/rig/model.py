@@ -7,8 +7,8 @@ against them.
 Frame
     Euler–Bernoulli beam elements along the long axis (bending: Hermite cubics, DOFs ``w`` and
     ``w'`` at each node) and linear torsion elements (DOF ``θ``), the same elements and the same
-    68-element mesh as the built-in modal model (:mod:`racketdyn.modal.beam`).  The frame moves
-    normal to the face by ``w(x) + θ(x)·y``: each section, the hoop included, is rigid in its
+    68-element mesh as the built-in modal model (:mod:`racketdyn.racket_modal.beam`).  The frame
+    moves normal to the face by ``w(x) + θ(x)·y``: each section, the hoop included, is rigid in its
     own plane.
 String bed
     A tensioned membrane on the head ellipse, attached to the frame.  Its displacement is the
@@ -31,7 +31,7 @@ String bed
     full stringing tension and 4 % string mass put it above Cross's range, as in the built-in
     model.
 Mass
-    The frame's mass per unit length is :func:`racketdyn.modal.beam.beam_mass_per_length` for
+    The frame's mass per unit length is :func:`racketdyn.racket_modal.beam.beam_mass_per_length` for
     the racket's mass, balance and inertia less the strings' share (integrated with the same
     quadrature that builds the membrane), so the assembled frame + strings have the racket's
     mass, balance, pitch inertia and roll inertia exactly (the roll inertia per unit length is
@@ -83,7 +83,9 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eigh
 
 from racketdyn.errors import InputError, one_of, require_positive
-from racketdyn.modal.beam import (
+from racketdyn.modal.model import ModalModel
+from racketdyn.racket import Racket, as_locations
+from racketdyn.racket_modal.beam import (
     DEFAULT_DAMPING_RATIO,
     N_ELEMENTS,
     STRING_MASS_FRACTION,
@@ -92,8 +94,6 @@ from racketdyn.modal.beam import (
     _torsion_matrices,
     beam_mass_per_length,
 )
-from racketdyn.modal.model import ModalModel
-from racketdyn.racket import Racket, as_locations
 
 __all__ = [
     "FRAME_DAMPING_RATIO",
@@ -160,7 +160,7 @@ class HandModel:
       few per cent, as Kawazoe (section 2) and Chadefaux et al. (J. Sports Sci. 2017) report for
       a held racket; the number itself is an assumption.
     * ``roll_radius_m = 0.015``: radius of gyration of that mass about the long axis, just
-      outside the handle's own (:data:`racketdyn.modal.beam.HANDLE_RADIUS_M`, 12.5 mm): the
+      outside the handle's own (:data:`racketdyn.racket_modal.beam.HANDLE_RADIUS_M`, 12.5 mm): the
       skin and palm against the handle.  Assumption; a larger radius pulls the higher twisting
       modes down strongly (the handle's own roll inertia is small).
     * ``stiffness_n_per_m = 1000``: total translational stiffness to the arm.  Soft enough to

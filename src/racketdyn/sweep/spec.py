@@ -27,7 +27,6 @@ from racketdyn.impact.approximate import STIFFNESS_READINGS, StiffnessReading
 from racketdyn.impact.hand import Hand
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
 from racketdyn.io.racket_file import racket_to_dict as _racket_to_dict
-from racketdyn.modal.beam import beam_mass_per_length
 from racketdyn.racket import (
     KGM2_TO_KGCM2,
     SUPPORTS,
@@ -35,6 +34,7 @@ from racketdyn.racket import (
     Racket,
     as_locations,
 )
+from racketdyn.racket_modal.beam import beam_mass_per_length
 from racketdyn.sweep.design import Design, build_design, build_hand
 from racketdyn.sweep.task import SweepTask, _check_method, _check_supports
 from racketdyn.sweep.variables import HAND_VARIABLES, POINT_MASS, Variable

@@ -37,8 +37,9 @@ from racketdyn.impact.transient import (
     TRANSIENT_SUPPORTS,
     predict_transient,
 )
-from racketdyn.modal import ModalModel, builtin_modal_model
+from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket
+from racketdyn.racket_modal import builtin_modal_model
 from racketdyn.sweep.design import build_design, build_hand
 from racketdyn.sweep.variables import Variable
 

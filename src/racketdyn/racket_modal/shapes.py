@@ -1,0 +1,134 @@
+"""What a racket's mode is: naming (bending, twisting, string bed) and nodes along the long axis.
+
+Naming, from the shape at the measured points and the racket's head:
+
+* **string-bed** when the mean square of the shape on the strings (points inside 95 % of the
+  bed's elliptic radius) is more than four times that on the frame;
+* **twisting** when more than half of the shape's energy is odd in y: points are paired with
+  their mirror images across the long axis (within 1 cm) and the odd part (φ(x,y) − φ(x,−y))/2
+  compared with the whole;
+* **bending** otherwise.  A free or hand-held racket (no clamp) has its bending modes in the
+  order of their nodes, so the n-th bending mode in frequency is "(n+1)-node bending" — the
+  first is the paper's "2-node bending".  Counting sign changes along the axis would need
+  points out to the butt and the tip, where nodes of the higher modes sit; :func:`axis_nodes`
+  gives the node positions for the figures (paper, Figs 6 and 15).
+
+Twisting and string-bed modes are numbered in order of frequency ("2-node twisting",
+"3-node twisting", …; "string-bed membrane", "string-bed membrane 2", …).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from racketdyn.modal.model import ModalModel
+from racketdyn.modal.shapes import nodes_along
+from racketdyn.racket import HeadEllipse
+
+__all__ = ["MIRROR_TOLERANCE_M", "STRING_BED_RATIO", "axis_nodes", "classify_modes"]
+
+STRING_BED_RATIO = 4.0
+"""A mode is a string-bed mode when its mean square on the strings exceeds this times that on
+the frame (–)."""
+MIRROR_TOLERANCE_M = 0.01
+"""Largest distance between a point and the mirror image of another across y = 0, m."""
+
+
+def _mirror_pairs(locations: NDArray[np.float64]) -> NDArray[np.int_]:
+    """Index pairs (i, j) with point j the mirror image of point i across y = 0 (y_i > 1 cm)."""
+    pairs = []
+    for i, (x, y) in enumerate(locations):
+        if y <= MIRROR_TOLERANCE_M:
+            continue
+        distance = np.hypot(locations[:, 0] - x, locations[:, 1] + y)
+        j = int(np.argmin(distance))
+        if distance[j] <= MIRROR_TOLERANCE_M:
+            pairs.append((i, j))
+    return np.asarray(pairs, dtype=int).reshape(-1, 2)
+
+
+def classify_modes(model: ModalModel, head: HeadEllipse) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Names and kinds of a racket's modes from their shapes (see the module docstring).
+
+    Parameters
+    ----------
+    model : ModalModel
+        Shapes at measured points (frame and strings).
+    head : HeadEllipse
+        The string bed, to tell string points from frame points.
+
+    Returns
+    -------
+    names, kinds : tuple of str
+        Names (``"2-node bending"`` …) and kinds (``bending``, ``twisting``, ``string-bed``).
+    """
+    locations, shapes = model.locations, model.mode_shapes
+    on_strings = head.normalised_radius(locations) < 0.95
+    pairs = _mirror_pairs(locations)
+    names, kinds = [], []
+    counts = {"bending": 0, "twisting": 0, "string-bed": 0}
+    for k in range(model.n_modes):
+        phi = shapes[:, k]
+        strings = np.mean(phi[on_strings] ** 2) if on_strings.any() else 0.0
+        frame = np.mean(phi[~on_strings] ** 2) if (~on_strings).any() else np.inf
+        odd_fraction = 0.0
+        if pairs.size:
+            odd = 0.5 * (phi[pairs[:, 0]] - phi[pairs[:, 1]])
+            even = 0.5 * (phi[pairs[:, 0]] + phi[pairs[:, 1]])
+            total = np.sum(odd**2 + even**2)
+            odd_fraction = float(np.sum(odd**2) / total) if total > 0 else 0.0
+        if strings > STRING_BED_RATIO * frame:
+            counts["string-bed"] += 1
+            n = counts["string-bed"]
+            names.append("string-bed membrane" + (f" {n}" if n > 1 else ""))
+            kinds.append("string-bed")
+        elif odd_fraction > 0.5:
+            counts["twisting"] += 1
+            names.append(f"{counts['twisting'] + 1}-node twisting")
+            kinds.append("twisting")
+        else:
+            counts["bending"] += 1
+            names.append(f"{counts['bending'] + 1}-node bending")
+            kinds.append("bending")
+    return _unique(names), tuple(kinds)
+
+
+def _unique(names: list[str]) -> tuple[str, ...]:
+    seen: dict[str, int] = {}
+    out = []
+    for name in names:
+        seen[name] = seen.get(name, 0) + 1
+        out.append(name if seen[name] == 1 else f"{name} ({seen[name]})")
+    return tuple(out)
+
+
+def axis_nodes(
+    model: ModalModel, mode: int, x_range: tuple[float, float], y_m: float = 0.0, samples: int = 681
+) -> NDArray[np.float64]:
+    """Positions of a mode's nodes along a line parallel to the long axis (paper, Fig. 6), m.
+
+    Zero crossings of the interpolated shape on ``samples`` points between ``x_range``, refined
+    by linear interpolation between the two samples either side
+    (:func:`racketdyn.modal.shapes.nodes_along` on that line).
+
+    Parameters
+    ----------
+    model : ModalModel
+        The racket's mode shapes.
+    mode : int
+        Index of the mode (0-based).
+    x_range : tuple of float
+        Ends of the line, x from the butt, m.
+    y_m : float
+        Offset of the line from the long axis, m.
+    samples : int
+        Points along the line (681: 1 mm apart over a 680 mm racket).
+
+    Returns
+    -------
+    ndarray
+        x of each node, m, from the butt towards the tip.
+    """
+    x = np.linspace(x_range[0], x_range[1], samples)
+    return np.asarray(nodes_along(model, np.column_stack([x, np.full_like(x, y_m)]), mode)[:, 0])
