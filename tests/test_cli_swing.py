@@ -18,7 +18,6 @@ import pytest
 
 import racketdyn as rd
 from racketdyn.cli import OBLIQUE_COLUMNS, SWEET_SPOT_COLUMNS, TWIST_COLUMNS, main
-from racketdyn.report import SECTIONS, write_report
 from racketdyn.impact.result import CSV_COLUMNS
 from racketdyn.impact.swing import (
     DEFAULT_ARM_GYRATION_M,
@@ -27,6 +26,7 @@ from racketdyn.impact.swing import (
     Swing,
     predict_swing,
 )
+from racketdyn.report import SECTIONS, write_report
 
 # The paper's racket (REFERENCE_VALUES.md, section 2): 360 g, CG 308 mm, I_G 13.1 g·m², grip
 # axis 70 mm from the butt; the built-in racket holds exactly these numbers.

@@ -219,6 +219,8 @@ def embed_png(path: Path, where: str, wide: bool = False) -> Figure | None:
     )
 
 
-def interactive(plot_id: str, kind: Literal["frf", "map"], paper: str | None, what: str, where: str) -> Figure:
+def interactive(
+    plot_id: str, kind: Literal["frf", "map"], paper: str | None, what: str, where: str
+) -> Figure:
     """An interactive plot drawn by the page's script from the data with id ``plot_id``."""
     return Figure(paper, what, where, plot_id=plot_id, plot_kind=kind, css_class="interactive")

@@ -351,7 +351,9 @@ class RunFolder:
         for comment in comments:
             match = re.search(r"axis, (\w+) \(m\): \[(.*)\]", comment)
             if match:
-                nodes[match.group(1)] = [to_float(v) for v in match.group(2).split(",") if v.strip()]
+                nodes[match.group(1)] = [
+                    to_float(v) for v in match.group(2).split(",") if v.strip()
+                ]
         return nodes
 
     # -- figures -------------------------------------------------------------------------------

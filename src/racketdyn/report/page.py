@@ -114,8 +114,10 @@ def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
             f"{run_dir}: nothing to report; give a folder written by racketdyn commands "
             "(run.json, impact.csv, quality.csv, modes*.csv, …)"
         )
-    page = environment().get_template("page.html.j2").render(
-        title=f"racketdyn report — {_racket_name(run)}" if _racket_name(run) else "racketdyn report",
+    name = _racket_name(run)
+    template = environment().get_template("page.html.j2")
+    page = template.render(
+        title=f"racketdyn report — {name}" if name else "racketdyn report",
         version=__version__,
         created=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
         folder=run_dir.name or run_dir.resolve().name,
@@ -125,7 +127,7 @@ def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
         data=plots,
         css=static("report.css"),
         error_trap=static("error_trap.js"),
-        scripts=[static(name) for name in SCRIPTS],
+        scripts=[static(script) for script in SCRIPTS],
     )
     path = run_dir / REPORT_NAME
     path.write_text(page, encoding="utf-8")

@@ -11,7 +11,9 @@ import numpy as np
 from racketdyn.report.folder import RunFolder, rows_of, to_float
 from racketdyn.report.formatting import fmt
 
-HOW_TO_RUN = "racketdyn twist --support free,hand --out DIR/twist; racketdyn oblique --out DIR/oblique"
+HOW_TO_RUN = (
+    "racketdyn twist --support free,hand --out DIR/twist; racketdyn oblique --out DIR/oblique"
+)
 HOW_TO_RUN_TWIST = "racketdyn twist --support free,hand --out DIR/twist"
 HOW_TO_RUN_OBLIQUE = "racketdyn oblique --out DIR/oblique"
 

@@ -27,7 +27,9 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         return None
     versions = {str(r.get("racketdyn_version")) for r in run.records.values()}
     # in the order they were run (created_utc is ISO 8601), then by folder
-    ordered = sorted(run.records.items(), key=lambda item: (str(item[1].get("created_utc")), item[0]))
+    ordered = sorted(
+        run.records.items(), key=lambda item: (str(item[1].get("created_utc")), item[0])
+    )
     runs = []
     for folder, record in ordered:
         command = record.get("command")

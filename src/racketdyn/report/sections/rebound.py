@@ -142,7 +142,15 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             }
         )
     spec = map_spec(
-        head, "map-rebound", groups, FIELDS, 2, speeds.index(chosen), np.vstack(all_xy), marks, "max"
+        head,
+        "map-rebound",
+        groups,
+        FIELDS,
+        2,
+        speeds.index(chosen),
+        np.vstack(all_xy),
+        marks,
+        "max",
     )
     data["plots"] = {"maps": [spec]}
     notes = " (points thinned for the page)" if thinned else ""

@@ -43,9 +43,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         if fit.is_file():
             errors = np.array([to_float(r.get("fit_error")) for r in read_csv(fit)[0]])
             if errors.size and np.isfinite(errors).any():
-                fit_error = (
-                    f"median {np.nanmedian(errors):.1%}, largest {np.nanmax(errors):.1%}"
-                )
+                fit_error = f"median {np.nanmedian(errors):.1%}, largest {np.nanmax(errors):.1%}"
         dropped = [str(d) for d in run.record(folder).get("dropped") or []]
         models.append({"label": label, "modes": body, "fit_error": fit_error, "dropped": dropped})
     return {
