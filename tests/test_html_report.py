@@ -7,10 +7,8 @@ import base64
 import csv
 import io
 import json
-import os
 import re
 import shutil
-import subprocess
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -19,6 +17,7 @@ from markupsafe import escape
 from PIL import Image
 
 import racketdyn as rd
+from browser import browse, find_chromium
 from racketdyn.cli import main
 from racketdyn.errors import InputError
 from racketdyn.report import CAPTIONS, REPORT_NAME, SECTIONS, write_report
@@ -26,16 +25,6 @@ from racketdyn.report import CAPTIONS, REPORT_NAME, SECTIONS, write_report
 pytestmark = pytest.mark.slow
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
-CHROMIUM_FLAGS = (
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--no-first-run",
-    "--disable-component-update",
-    "--disable-sync",
-    "--disable-dev-shm-usage",
-)
 # the paper's figures the captions must name, and the marker of figures it does not have
 PAPER_LEADS = (
     "Kawazoe Fig. 2.",
@@ -344,35 +333,12 @@ PROBE = """<script>
 
 @pytest.fixture(scope="module")
 def chromium() -> str:
-    """Debian's headless Chromium: skipped where missing, but a failure under CI."""
-    path = shutil.which("chromium")
-    if path is None:
-        message = (
-            "headless Chromium is not installed (Debian: apt-get install chromium); "
-            "the browser test of the report needs it"
-        )
-        if "CI" in os.environ:
-            pytest.fail(f"{message}, and CI must run it")
-        pytest.skip(message)
-    return path
-
-
-def _browse(
-    chromium: str, report: Path, profile: Path, *args: str
-) -> subprocess.CompletedProcess[str]:
-    command = [
-        chromium,
-        *CHROMIUM_FLAGS,
-        f"--user-data-dir={profile}",
-        *args,
-        report.resolve().as_uri(),
-    ]
-    return subprocess.run(command, capture_output=True, text=True, timeout=120, check=False)
+    return find_chromium()
 
 
 def test_browser_screenshot_is_not_blank(chromium: str, report: Path, tmp_path: Path) -> None:
     shot = tmp_path / "report.png"
-    done = _browse(
+    done = browse(
         chromium, report, tmp_path / "profile", f"--screenshot={shot}", "--window-size=1280,4000"
     )
     assert done.returncode == 0, done.stderr[-2000:]
@@ -390,7 +356,7 @@ def test_browser_runs_the_script_without_errors(
 ) -> None:
     probed = tmp_path / "probed.html"
     probed.write_text(report.read_text(encoding="utf-8").replace("</body>", PROBE + "</body>"))
-    done = _browse(
+    done = browse(
         chromium,
         probed,
         tmp_path / "profile",
