@@ -222,5 +222,20 @@ def embed_png(path: Path, where: str, wide: bool = False) -> Figure | None:
 def interactive(
     plot_id: str, kind: Literal["frf", "map"], paper: str | None, what: str, where: str
 ) -> Figure:
-    """An interactive plot drawn by the page's script from the data with id ``plot_id``."""
+    """An interactive plot drawn by the page's scripts from the data with id ``plot_id``.
+
+    Parameters
+    ----------
+    plot_id : str
+        Id of its element, and of its entry in the page's JSON data.
+    kind : {"frf", "map"}
+        ``"frf"``: FRF magnitude and coherence (``static/frf_plot.js``); ``"map"``: values over
+        the face (``static/face_map.js``).
+    paper : str or None
+        The figure of the paper it corresponds to.
+    what : str
+        What it shows, for the caption.
+    where : str
+        Where its data came from.
+    """
     return Figure(paper, what, where, plot_id=plot_id, plot_kind=kind, css_class="interactive")

@@ -24,6 +24,7 @@ DERIVED_LABELS: dict[str, str] = {
     "reduced_mass_centre_free": "reduced mass at the face centre, free (eq 4)",
     "reduced_mass_centre_pinned": "reduced mass at the face centre, pinned at the grip (eq 4)",
 }
+"""Labels of the racket's derived properties in the racket section, by key without its unit."""
 
 UNITS: dict[str, tuple[str, float]] = {
     "kg": ("g", 1e3),

@@ -12,7 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.report.figures import Figure, interactive
+from racketdyn.report.figures import interactive
 from racketdyn.report.folder import RunFolder, read_csv, to_float
 from racketdyn.report.formatting import finite, fmt, rounded
 
@@ -214,7 +214,7 @@ def _frf_data(run: RunFolder, folders: Sequence[tuple[str, Path]]) -> dict[str, 
         ],
         "modes": modes,
     }
-    figure: Figure = interactive(
+    figure = interactive(
         "frf-plot",
         "frf",
         "Figs 2–3",

@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from racketdyn.report.figures import FigureGroup
 from racketdyn.report.folder import RunFolder, read_csv, to_float
 from racketdyn.report.formatting import fmt
 
@@ -22,7 +23,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     if not idents:
         return None
 
-    def figures(stem: str) -> Any:
+    def figures(stem: str) -> FigureGroup | None:
         return run.group([(f / f"{stem}{s}.png", label) for label, f, s in idents])
 
     models = []

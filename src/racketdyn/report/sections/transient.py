@@ -6,6 +6,7 @@ import math
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from racketdyn.impact.result import shown_speed_index
 from racketdyn.report.folder import RunFolder, read_csv, to_float
@@ -46,7 +47,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     if not rows:
         return data
 
-    def column(name: str) -> np.ndarray[Any, np.dtype[np.float64]]:
+    def column(name: str) -> NDArray[np.float64]:
         return np.array([to_float(r.get(name)) for r in rows])
 
     x, y, speed = column("x_m"), column("y_m"), column("ball_speed_mps")
