@@ -896,7 +896,7 @@ def _compare(args: argparse.Namespace, console: Console) -> int:
 def _demo(args: argparse.Namespace, console: Console) -> int:
     """rig (free, hand) → FRFs → contact times → identification and comparison → prediction
     by both impact models → swing, twist, oblique impacts → report."""
-    from racketdyn.html_report import write_report
+    from racketdyn.report import write_report
 
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -1022,7 +1022,7 @@ def _parse(argv: Sequence[str] | None) -> argparse.Namespace:
 
 
 def _report(args: argparse.Namespace, console: Console) -> int:
-    from racketdyn.html_report import write_report
+    from racketdyn.report import write_report
 
     run_dir = Path(args.run_dir)
     if not run_dir.is_dir():

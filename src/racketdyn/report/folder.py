@@ -1,0 +1,397 @@
+"""What the pipeline commands wrote under a run folder, read once for every section.
+
+:class:`RunFolder` scans the folder and its sub-folders, reads every ``run.json`` and answers the
+questions the sections ask (where ``impact.csv`` is, which identifications exist, the racket's
+head outline, …).  It is the only input of a section's ``gather`` function.
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import json
+import logging
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from racketdyn.errors import InputError
+from racketdyn.racket import Racket
+from racketdyn.report.figures import Figure, FigureGroup, Layout, embed_png
+
+__all__ = ["REPORT_NAME", "Head", "Impacts", "RunFolder", "read_csv", "rows_of", "to_float"]
+
+log = logging.getLogger(__name__)
+
+REPORT_NAME = "report.html"
+"""File name of the report inside the run folder."""
+
+
+def read_json(path: Path) -> dict[str, Any] | None:
+    """A JSON object from ``path``, or None (logged) if it is not one."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as error:
+        log.warning("%s: not read (%s)", path, error)
+        return None
+    return data if isinstance(data, dict) else None
+
+
+def read_csv(path: Path) -> tuple[list[dict[str, str]], list[str]]:
+    """Rows of a CSV as dicts, and its comment lines (starting with ``#``) without the ``#``."""
+    lines = path.read_text(encoding="utf-8").splitlines()
+    comments = [line[1:].strip() for line in lines if line.startswith("#")]
+    rows = list(csv.DictReader(line for line in lines if line and not line.startswith("#")))
+    return rows, comments
+
+
+def rows_of(path: Path) -> list[dict[str, str]]:
+    """Rows of a CSV, or none (logged) if it cannot be read."""
+    try:
+        rows, _ = read_csv(path)
+    except (OSError, UnicodeDecodeError, csv.Error) as error:
+        log.warning("%s: not read (%s)", path, error)
+        return []
+    return rows
+
+
+def to_float(text: str | None) -> float:
+    """A CSV cell as a number; NaN when empty or not a number."""
+    try:
+        return float(text) if text not in (None, "") else math.nan
+    except ValueError:
+        return math.nan
+
+
+def sha256(path: Path) -> str:
+    """Hex SHA-256 of a file's bytes."""
+    digest = hashlib.sha256()
+    with path.open("rb") as handle:
+        for block in iter(lambda: handle.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+@dataclass(frozen=True)
+class Head:
+    """The string-bed ellipse: centre and half axes, m."""
+
+    centre_x: float
+    centre_y: float
+    half_length: float
+    half_width: float
+
+    def contains(self, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.bool_]:
+        """Whether points (x, y), m, lie on the string bed."""
+        return np.asarray(
+            ((x - self.centre_x) / self.half_length) ** 2
+            + ((y - self.centre_y) / self.half_width) ** 2
+            <= 1.0
+        )
+
+    @classmethod
+    def of(cls, racket: Racket) -> Head:
+        """The head of a racket."""
+        h = racket.head
+        return cls(h.centre_x_m, h.centre_y_m, h.half_length_m, h.half_width_m)
+
+
+@dataclass(frozen=True)
+class Impacts:
+    """``impact.csv``: numeric columns as arrays, support and status as strings."""
+
+    numbers: dict[str, NDArray[np.float64]]
+    support: NDArray[np.str_]
+    status: NDArray[np.str_]
+
+    @classmethod
+    def read(cls, path: Path) -> Impacts | None:
+        """The table of ``path``, or None if it lacks the columns the report needs."""
+        with path.open(encoding="utf-8", newline="") as handle:
+            rows = list(csv.reader(handle))
+        if len(rows) < 2:
+            return None
+        header, table = rows[0], np.array(rows[1:], dtype=str)
+        numbers = {}
+        for i, name in enumerate(header):
+            if name in ("point", "support", "status"):
+                continue
+            column = np.where(table[:, i] == "", "nan", table[:, i])
+            try:
+                numbers[name] = column.astype(float)
+            except ValueError:
+                continue
+        if not {"x_m", "y_m", "ball_speed_mps", "rebound_ratio"} <= set(numbers):
+            return None
+        return cls(
+            numbers,
+            table[:, header.index("support")] if "support" in header else np.full(len(table), ""),
+            table[:, header.index("status")] if "status" in header else np.full(len(table), "ok"),
+        )
+
+    def __getitem__(self, name: str) -> NDArray[np.float64]:
+        return self.numbers.get(name, np.full(self.support.size, np.nan))
+
+    @property
+    def speeds(self) -> list[float]:
+        """Ball speeds of the table, m/s, ascending."""
+        return sorted({float(v) for v in self["ball_speed_mps"]})
+
+    @property
+    def supports(self) -> list[str]:
+        """Supports in the order of the table."""
+        return list(dict.fromkeys(self.support.tolist()))
+
+    def rows(self, speed: float, support: str) -> NDArray[np.intp]:
+        """Row indices at one ball speed (m/s) and support."""
+        return np.flatnonzero((self["ball_speed_mps"] == speed) & (self.support == support))
+
+    def where(self, row: int) -> str:
+        """``x, y`` of a row in mm, for tables."""
+        return f"{self['x_m'][row] * 1e3:.0f}, {self['y_m'][row] * 1e3:.0f}"
+
+    def nearest(self, rows: NDArray[np.intp], x: float, y: float) -> int:
+        """The row among ``rows`` nearest the point (x, y), m."""
+        distance = np.hypot(self["x_m"][rows] - x, self["y_m"][rows] - y)
+        return int(rows[int(np.argmin(distance))])
+
+
+def _scan(run_dir: Path) -> tuple[list[Path], dict[Path, dict[str, Any]]]:
+    dirs = [
+        run_dir,
+        *sorted(
+            p
+            for p in run_dir.rglob("*")
+            if p.is_dir() and not any(part.startswith(".") for part in p.relative_to(run_dir).parts)
+        ),
+    ]
+    records = {}
+    for folder in dirs:
+        if (folder / "run.json").is_file():
+            record = read_json(folder / "run.json")
+            if record is not None:
+                records[folder] = record
+    return dirs, records
+
+
+@dataclass
+class RunFolder:
+    """What was found under a run folder: its folders, their run.json records, and the racket.
+
+    Parameters
+    ----------
+    run_dir : Path
+        The folder the report is written for.
+    racket : Racket or None
+        The racket given to :func:`~racketdyn.report.write_report`, if any.
+    dirs : list of Path
+        The folder and its sub-folders (hidden ones left out), the folder first.
+    records : dict
+        Each folder's ``run.json``, by folder.
+    """
+
+    run_dir: Path
+    racket: Racket | None
+    dirs: list[Path]
+    records: dict[Path, dict[str, Any]]
+    _cache: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    @classmethod
+    def scan(cls, run_dir: Path, racket: Racket | None = None) -> RunFolder:
+        """Read ``run_dir``: its sub-folders and every ``run.json``."""
+        dirs, records = _scan(run_dir)
+        return cls(run_dir, racket, dirs, records)
+
+    def with_file(self, pattern: str) -> list[Path]:
+        """Folders holding a file that matches ``pattern``, the run folder first."""
+        return [d for d in self.dirs if any(d.glob(pattern))]
+
+    def first(self, pattern: str) -> Path | None:
+        """The first folder holding a file that matches ``pattern``."""
+        found = self.with_file(pattern)
+        return found[0] if found else None
+
+    def rel(self, path: Path) -> str:
+        """``path`` relative to the run folder, with forward slashes."""
+        return path.relative_to(self.run_dir).as_posix()
+
+    def record(self, folder: Path | None) -> dict[str, Any]:
+        """The run.json of ``folder``; empty if it has none."""
+        return self.records.get(folder, {}) if folder is not None else {}
+
+    # -- what the pipeline wrote --------------------------------------------------------------
+    @property
+    def predict_dir(self) -> Path | None:
+        """The folder of ``racketdyn predict``."""
+        return self.first("impact.csv") or self.first("fig15_rebound_along_axis.png")
+
+    @property
+    def frf_dirs(self) -> list[tuple[str, Path]]:
+        """(label, folder) of every ``racketdyn frf`` run."""
+        found = []
+        for folder in self.with_file("quality.csv"):
+            if folder.name.startswith("frf_"):
+                label = folder.name[4:]
+            else:
+                tests = self.record(folder).get("tests_file")
+                label = Path(str(tests)).stem.removeprefix("hammer_") if tests else folder.name
+            found.append((label, folder))
+        return found
+
+    @property
+    def identifications(self) -> list[tuple[str, Path, str]]:
+        """(label, folder, file suffix) of every identified model."""
+        found = []
+        for folder in self.with_file("modes*.csv"):
+            for path in sorted(folder.glob("modes*.csv")):
+                match = re.fullmatch(r"modes(_[\w-]+)?\.csv", path.name)
+                if match is None:
+                    continue
+                suffix = match.group(1) or ""
+                support = self.record(folder).get("support")
+                label = suffix[1:] if suffix else str(support or folder.name)
+                found.append((label, folder, suffix))
+        return found
+
+    def _comparison(self, of_models: bool) -> Path | None:
+        for folder in self.with_file("comparison.csv"):
+            if is_model_comparison(folder / "comparison.csv") == of_models:
+                return folder
+        return None
+
+    @property
+    def mode_comparison_dir(self) -> Path | None:
+        """The folder of ``racketdyn compare``'s ``comparison.csv`` (modes paired by MAC)."""
+        return self._comparison(of_models=False)
+
+    @property
+    def model_comparison_dir(self) -> Path | None:
+        """The folder of ``racketdyn predict --model both``'s ``comparison.csv``."""
+        return self._comparison(of_models=True)
+
+    def head(self) -> Head | None:
+        """The string-bed outline: the given racket's, a run.json's, or the named racket's."""
+        if self.racket is not None:
+            return Head.of(self.racket)
+        for record in self.records.values():
+            head = record.get("racket", {}).get("head") if isinstance(record, dict) else None
+            if isinstance(head, dict):
+                try:
+                    return Head(
+                        float(head["centre_x_m"]),
+                        float(head.get("centre_y_m", 0.0)),
+                        float(head["half_length_m"]),
+                        float(head["half_width_m"]),
+                    )
+                except (KeyError, TypeError, ValueError):
+                    continue
+        racket = self.named_racket()
+        return None if racket is None else Head.of(racket)
+
+    def named_racket(self) -> Racket | None:
+        """The racket a run.json names (built-in, or a TOML file still there), if any."""
+        if "named_racket" not in self._cache:
+            from racketdyn.io import default_racket, load_racket
+
+            racket = None
+            for record in self.records.values():
+                name = str(record.get("racket_file", ""))
+                try:
+                    if name.startswith("built-in"):
+                        racket = default_racket()
+                    elif name and Path(name).is_file():
+                        racket = load_racket(Path(name))
+                except (InputError, OSError) as error:
+                    log.warning("%s: not read (%s)", name, error)
+                if racket is not None:
+                    break
+            self._cache["named_racket"] = racket
+        named: Racket | None = self._cache["named_racket"]
+        return named
+
+    def derived(self) -> dict[str, Any]:
+        """The racket's derived properties (unit-suffixed keys, SI units)."""
+        if self.racket is not None:
+            return dict(self.racket.derived_properties())
+        for folder in filter(None, (self.predict_dir, self.first("hammer_*.uff"))):
+            derived = self.record(folder).get("racket", {}).get("derived")
+            if isinstance(derived, dict):
+                return derived
+        return {}
+
+    def impacts(self) -> Impacts | None:
+        """``impact.csv`` of ``racketdyn predict``, read once."""
+        if "impacts" not in self._cache:
+            folder = self.predict_dir
+            path = folder / "impact.csv" if folder else None
+            found = Impacts.read(path) if path is not None and path.is_file() else None
+            self._cache["impacts"] = found
+        impacts: Impacts | None = self._cache["impacts"]
+        return impacts
+
+    def centre(self, impacts: Impacts) -> tuple[float, float]:
+        """The face centre, m: the head's, else the mean of the impact points."""
+        head = self.head()
+        if head is not None:
+            return head.centre_x, head.centre_y
+        return float(np.nanmean(impacts["x_m"])), float(np.nanmean(impacts["y_m"]))
+
+    def first_mode_nodes(self) -> dict[str, list[float]]:
+        """First-mode nodes along the axis (m) from ``comparison.csv``, by support."""
+        compare = self.mode_comparison_dir
+        if compare is None:
+            return {}
+        _, comments = read_csv(compare / "comparison.csv")
+        nodes = {}
+        for comment in comments:
+            match = re.search(r"axis, (\w+) \(m\): \[(.*)\]", comment)
+            if match:
+                nodes[match.group(1)] = [
+                    to_float(v) for v in match.group(2).split(",") if v.strip()
+                ]
+        return nodes
+
+    # -- figures -------------------------------------------------------------------------------
+    def figure(self, path: Path, label: str = "", wide: bool = False) -> Figure | None:
+        """The PNG at ``path`` embedded with its caption; None if it is not a PNG."""
+        return embed_png(path, f"{label}{' — ' if label else ''}{self.rel(path)}", wide)
+
+    def group(
+        self, found: list[tuple[Path, str]], layout: Layout | None = None, wide: bool = False
+    ) -> FigureGroup | None:
+        """The existing PNGs of (path, label) pairs; None if there are none.
+
+        Parameters
+        ----------
+        found : list of (Path, str)
+            Candidate PNG files, each with a label for its caption (empty for none).
+        layout : {"pair", "stack", "plain"}, optional
+            How they are shown; by default side by side when two or more, else stacked.
+        wide : bool
+            Figures that take the page's width.
+        """
+        figures = [
+            f for path, label in found if path.is_file() and (f := self.figure(path, label, wide))
+        ]
+        if not figures:
+            return None
+        if layout is None:
+            layout = "pair" if len(figures) > 1 else "stack"
+        return FigureGroup(tuple(figures), layout)
+
+
+def is_model_comparison(path: Path) -> bool:
+    """Whether ``path`` is ``racketdyn predict --model both``'s ``comparison.csv``
+    (approximate against transient), not the free-against-hand mode table of
+    ``racketdyn compare``."""
+    try:
+        with path.open(encoding="utf-8") as handle:
+            header = handle.readline()
+    except OSError:
+        return False
+    return "transient_rebound_ratio" in header.split(",") or "transient_rebound_ratio\n" in header

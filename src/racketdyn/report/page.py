@@ -1,0 +1,145 @@
+"""The page: Jinja2 templates (``templates/``) filled by the sections, with the styles and
+scripts of ``static/`` inline, so the file works offline on its own."""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from functools import cache
+from importlib.resources import files
+from pathlib import Path
+from typing import Any
+
+from jinja2 import Environment, PackageLoader, StrictUndefined
+from markupsafe import Markup
+
+from racketdyn.__about__ import __version__
+from racketdyn.errors import InputError
+from racketdyn.racket import Racket
+from racketdyn.report.folder import REPORT_NAME, RunFolder
+from racketdyn.report.sections import SECTIONS
+
+__all__ = ["render_section", "write_report"]
+
+log = logging.getLogger(__name__)
+
+SCRIPTS = ("plot_kit.js", "face_map.js", "frf_plot.js", "boot.js")
+"""Scripts of ``static/`` at the end of the page, in this order (``error_trap.js`` goes in the
+head, before them)."""
+
+
+@cache
+def environment() -> Environment:
+    """The Jinja2 environment of the report: templates from the package, autoescaping on."""
+    env = Environment(
+        loader=PackageLoader("racketdyn.report", "templates"),
+        autoescape=True,
+        undefined=StrictUndefined,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        keep_trailing_newline=True,
+    )
+    # compact JSON for the plots' data; NaN is never written (the sections give None)
+    env.policies["json.dumps_kwargs"] = {"separators": (",", ":"), "allow_nan": False}
+    return env
+
+
+@cache
+def static(name: str) -> Markup:
+    """A style sheet or script of ``static/``, trusted as it is (it ships with the package)."""
+    text = (files("racketdyn.report") / "static" / name).read_text(encoding="utf-8")
+    if "</script" in text.lower() or "</style" in text.lower():
+        raise ValueError(f"static/{name} would close its element early")
+    return Markup(text)
+
+
+def render_section(key: str, data: dict[str, Any]) -> Markup:
+    """The HTML of section ``key`` from the data its ``gather`` function returned."""
+    template = environment().get_template(f"sections/{key}.html.j2")
+    return Markup(template.render(**data))
+
+
+@dataclass(frozen=True)
+class _Shown:
+    key: str
+    title: str
+    body: Markup
+
+
+def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
+    """Write ``run_dir/report.html``: one self-contained HTML page telling the whole story.
+
+    Parameters
+    ----------
+    run_dir : Path
+        Folder written by the pipeline commands, or the folder of one command: the report
+        looks in it and in its sub-folders (``racketdyn demo`` writes ``rig/``, ``frf_free/``,
+        ``frf_hand/``, ``contact/``, ``compare/``, ``predict/``, ``swing/``, ``twist/`` and
+        ``oblique/``, each with its run.json).
+    racket : Racket, optional
+        The racket the runs used, for its derived properties and head outline; by default
+        read from ``predict/run.json`` (or the rig's run.json).
+
+    Returns
+    -------
+    Path
+        The report written, ``run_dir/report.html``.  PNG figures are embedded as data URIs and
+        the scripts and styles are inline, so the file works offline on its own.
+
+    Raises
+    ------
+    InputError
+        ``run_dir`` is not a folder, or holds nothing a racketdyn command wrote.
+    """
+    run_dir = Path(run_dir)
+    if not run_dir.is_dir():
+        raise InputError(f"{run_dir}: not a folder; give the output folder of racketdyn commands")
+    run = RunFolder.scan(run_dir, racket)
+    shown: list[_Shown] = []
+    missing = []
+    glance: list[str] = []
+    plots: dict[str, list[dict[str, Any]]] = {"maps": [], "frf": []}
+    for key, section in SECTIONS.items():
+        data = section.gather(run)
+        if data is None:
+            missing.append(section)
+            continue
+        shown.append(_Shown(key, section.title, render_section(key, data)))
+        glance += data.get("glance", [])
+        for kind, specs in data.get("plots", {}).items():
+            plots[kind] += specs
+    if not shown:
+        raise InputError(
+            f"{run_dir}: nothing to report; give a folder written by racketdyn commands "
+            "(run.json, impact.csv, quality.csv, modes*.csv, …)"
+        )
+    name = _racket_name(run)
+    template = environment().get_template("page.html.j2")
+    page = template.render(
+        title=f"racketdyn report — {name}" if name else "racketdyn report",
+        version=__version__,
+        created=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
+        folder=run_dir.name or run_dir.resolve().name,
+        glance=glance,
+        sections=shown,
+        missing=missing,
+        data=plots,
+        css=static("report.css"),
+        error_trap=static("error_trap.js"),
+        scripts=[static(script) for script in SCRIPTS],
+    )
+    path = run_dir / REPORT_NAME
+    path.write_text(page, encoding="utf-8")
+    log.info("wrote %s (%d sections)", path, len(shown))
+    return path
+
+
+def _racket_name(run: RunFolder) -> str:
+    if run.racket is not None:
+        return run.racket.name
+    for record in run.records.values():
+        racket = record.get("racket")
+        if isinstance(racket, dict) and racket.get("name"):
+            return str(racket["name"])
+    return ""

@@ -1,0 +1,70 @@
+"""Impact force and contact time against ball speed (Figs 11–13)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from racketdyn.impact.result import shown_speed_index
+from racketdyn.report.folder import RunFolder
+from racketdyn.report.formatting import fmt
+
+HOW_TO_RUN = "racketdyn predict --out DIR/predict"
+
+
+def gather(run: RunFolder) -> dict[str, Any] | None:
+    """Figs 11–13 of ``racketdyn predict``, and from ``impact.csv`` the contact time and forces
+    at the point nearest the face centre, per support and speed."""
+    folder = run.predict_dir
+    if folder is None:
+        return None
+    figures = [
+        run.group([(folder / name, "")])
+        for name in ("fig11_12_force_contact_time.png", "fig13_pulse_spectrum.png")
+    ]
+    figures = [g for g in figures if g is not None]
+    impacts = run.impacts()
+    if impacts is None:
+        if not figures:
+            return None
+        return {"figures": figures, "centre": None, "rows": [], "glance": []}
+    x, y = run.centre(impacts)
+    rows = []
+    for support in impacts.supports:
+        for speed in impacts.speeds:
+            selected = impacts.rows(speed, support)
+            if not selected.size:
+                continue
+            i = impacts.nearest(selected, x, y)
+            rows.append(
+                (
+                    support,
+                    f"{speed:g}",
+                    fmt(impacts["contact_time_s"][i] * 1e3, ".2f"),
+                    fmt(impacts["mean_force_n"][i], ".0f"),
+                    fmt(impacts["peak_force_n"][i], ".0f"),
+                    fmt(impacts["peak_deflection_m"][i] * 1e3, ".1f"),
+                    fmt(impacts["stiffness_n_per_m"][i] / 1e3, ".1f"),
+                )
+            )
+    i0 = impacts.nearest(np.arange(impacts.support.size), x, y)
+    glance = []
+    speed = impacts.speeds[shown_speed_index(impacts.speeds)]
+    for support in ("pinned", "free"):
+        selected = impacts.rows(speed, support)
+        if selected.size:
+            i = impacts.nearest(selected, x, y)
+            glance.append(
+                f"face centre, {speed:g} m/s, {support}: contact time "
+                f"{fmt(impacts['contact_time_s'][i] * 1e3, '.2f')} ms, mean force "
+                f"{fmt(impacts['mean_force_n'][i], '.0f')} N, rebound ratio "
+                f"{fmt(impacts['rebound_ratio'][i], '.3f')}"
+            )
+            break
+    return {
+        "figures": figures,
+        "centre": (f"{impacts['x_m'][i0] * 1e3:.0f}", f"{impacts['y_m'][i0] * 1e3:.0f}"),
+        "rows": rows,
+        "glance": glance,
+    }

@@ -1,0 +1,80 @@
+"""Mode shapes and node lines, free against hand-held."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from racketdyn.report.folder import RunFolder, read_csv, to_float
+from racketdyn.report.formatting import fmt
+
+HOW_TO_RUN = "racketdyn compare DIR/frf_free/frfs.uff DIR/frf_hand/frfs.uff --out DIR/compare"
+
+
+def gather(run: RunFolder) -> dict[str, Any] | None:
+    """Figs 4–6 of every identification, and ``racketdyn compare``'s pairing of the modes
+    (``comparison.csv``) with the first mode's nodes along the axis."""
+    idents = run.identifications
+    if not idents:
+        return None
+    shapes = run.group(
+        [(folder / f"fig4_mode_shapes{suffix}.png", label) for label, folder, suffix in idents],
+        "plain",
+        wide=True,
+    )
+    node_lines = run.group(
+        [(folder / f"fig5_node_lines{suffix}.png", label) for label, folder, suffix in idents]
+    )
+    compare = run.mode_comparison_dir
+    overlay = compare / "fig6_nodes_free_hand.png" if compare else None
+    if overlay is not None and overlay.is_file():
+        nodes = run.group([(overlay, "")])
+    else:
+        nodes = run.group(
+            [(folder / f"fig6_nodes{suffix}.png", label) for label, folder, suffix in idents],
+            "pair",
+        )
+    pairs: list[tuple[str, ...]] = []
+    first_nodes: list[tuple[str, str]] = []
+    glance = []
+    comparison = None
+    if compare is not None:
+        rows, _ = read_csv(compare / "comparison.csv")
+        pairs = [
+            (
+                r.get("mode", ""),
+                fmt(to_float(r.get("frequency_free_hz")), ".2f"),
+                fmt(to_float(r.get("frequency_hand_hz")), ".2f"),
+                fmt(to_float(r.get("frequency_shift_percent")), "+.2f"),
+                fmt(100 * to_float(r.get("damping_free")), ".3f"),
+                fmt(100 * to_float(r.get("damping_hand")), ".3f"),
+                fmt(to_float(r.get("damping_ratio_hand_over_free")), ".2f"),
+                fmt(to_float(r.get("mac")), ".3f"),
+            )
+            for r in rows
+        ]
+        first_nodes = [
+            (support, ", ".join(f"{v * 1e3:.0f}" for v in values))
+            for support, values in run.first_mode_nodes().items()
+        ]
+        if rows:
+            first = rows[0]
+            glance.append(
+                f"{first.get('mode', 'first mode')}: "
+                f"{fmt(to_float(first.get('frequency_free_hz')), '.1f')} Hz "
+                f"free, {fmt(to_float(first.get('frequency_hand_hz')), '.1f')} Hz hand-held "
+                f"({fmt(to_float(first.get('frequency_shift_percent')), '+.1f')} %), damping "
+                f"×{fmt(to_float(first.get('damping_ratio_hand_over_free')), '.1f')} in the hand"
+            )
+        comparison = run.group([(compare / "comparison.png", "")])
+    if not (shapes or node_lines or nodes or compare):
+        return None
+    return {
+        "shapes": shapes,
+        "node_lines": node_lines,
+        "nodes": nodes,
+        "compared": compare is not None,
+        "pairs": pairs,
+        "first_nodes": first_nodes,
+        "comparison": comparison,
+        "glance": glance,
+    }

@@ -1,0 +1,115 @@
+"""Off-centre and oblique impacts (``racketdyn twist``, ``racketdyn oblique``)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from racketdyn.report.folder import RunFolder, rows_of, to_float
+from racketdyn.report.formatting import fmt
+
+HOW_TO_RUN = (
+    "racketdyn twist --support free,hand --out DIR/twist; racketdyn oblique --out DIR/oblique"
+)
+HOW_TO_RUN_TWIST = "racketdyn twist --support free,hand --out DIR/twist"
+HOW_TO_RUN_OBLIQUE = "racketdyn oblique --out DIR/oblique"
+
+
+def gather(run: RunFolder) -> dict[str, Any] | None:
+    """``twist.csv`` (roll against the offset, per support) and ``oblique.csv`` (outgoing angle
+    and spin against the incoming angle) with their figures; either is enough."""
+    twist = run.first("twist.csv")
+    oblique = run.first("oblique.csv")
+    if twist is None and oblique is None:
+        return None
+    glance: list[str] = []
+    data: dict[str, Any] = {
+        "twist": None if twist is None else _twist(run, twist, glance),
+        "oblique": None if oblique is None else _oblique(run, oblique, glance),
+        "run_twist": HOW_TO_RUN_TWIST,
+        "run_oblique": HOW_TO_RUN_OBLIQUE,
+        "glance": glance,
+    }
+    return data
+
+
+def _twist(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
+    rows = rows_of(folder / "twist.csv")
+    body = []
+    for support in dict.fromkeys(r.get("support", "") for r in rows):
+        mine = [r for r in rows if r.get("support", "") == support]
+        y = np.array([to_float(r.get("y_m")) for r in mine])
+        roll = np.array([to_float(r.get("roll_angle_rad")) for r in mine])
+        flexible = np.array([to_float(r.get("flexible_twist_rad")) for r in mine])
+        speed = np.array([to_float(r.get("rebound_speed_mps")) for r in mine])
+        if not mine or not np.any(np.isfinite(roll)):
+            continue
+        valid = [i for i in range(len(mine)) if math.isfinite(roll[i])]
+        far = max(valid, key=lambda i: (abs(y[i]), y[i]))  # the +y side on a tie
+        near = min(valid, key=lambda i: abs(y[i]))
+        share = float(np.nanmax(np.abs(flexible)) / max(float(np.nanmax(np.abs(roll))), 1e-300))
+        body.append(
+            (
+                support,
+                fmt(y[far] * 1e3, ".0f"),
+                fmt(math.degrees(roll[far]), ".2f"),
+                fmt(speed[near], ".2f"),
+                fmt(speed[far], ".2f"),
+                fmt(100 * share, ".2g"),
+            )
+        )
+        glance.append(
+            f"off-axis impact, {support}, x = {to_float(mine[far].get('x_m')) * 1e3:.0f} mm, "
+            f"ball {fmt(to_float(mine[far].get('ball_speed_mps')), 'g')} m/s: "
+            f"{y[far] * 1e3:.0f} mm off the axis the racket rolls "
+            f"{math.degrees(roll[far]):.1f}° and the ball leaves at {speed[far]:.1f} m/s "
+            f"({speed[near]:.1f} m/s on the axis)"
+        )
+    return {"figure": run.group([(folder / "twist.png", "")]), "rows": body}
+
+
+def _oblique(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
+    record = run.record(folder)
+    contact = record.get("tangential_contact")
+    settings = None
+    if isinstance(contact, dict):
+        settings = {
+            "mu": fmt(contact.get("friction_coefficient"), "g"),
+            "k_t": fmt(contact.get("stiffness_n_per_m"), ".3g"),
+            "half_period": fmt(to_float(str(contact.get("grip_period_s"))) * 0.5e3, ".2f"),
+            "speed": fmt(record.get("ball_speed_mps"), "g"),
+            "point": ", ".join(fmt(v * 1e3, ".0f") for v in record.get("point_m", [])),
+            "support": str(record.get("support", "?")),
+        }
+    rows = rows_of(folder / "oblique.csv")
+    usable = [r for r in rows if r.get("status") == "ok"]
+    if usable:
+        shown = min(usable, key=lambda r: abs(abs(to_float(r.get("incoming_angle_deg"))) - 30))
+        glance.append(
+            f"oblique impact at {to_float(shown.get('incoming_angle_deg')):g}°, ball "
+            f"{to_float(shown.get('ball_speed_mps')):g} m/s, {record.get('support', '?')}: "
+            f"leaves at {to_float(shown.get('outgoing_angle_deg')):.1f}° with "
+            f"{to_float(shown.get('outgoing_spin_radps')):.0f} rad/s of spin (the spin "
+            "depends strongly on the tangential stiffness k_t)"
+        )
+    angle_rows = [
+        (
+            fmt(to_float(r.get("incoming_angle_deg")), "g"),
+            fmt(to_float(r.get("incoming_spin_radps")), "g"),
+            fmt(to_float(r.get("outgoing_angle_deg")), ".1f"),
+            fmt(to_float(r.get("outgoing_spin_radps")), ".0f"),
+            fmt(to_float(r.get("normal_speed_mps")), ".2f"),
+            fmt(to_float(r.get("tangential_speed_mps")), ".2f"),
+            "yes" if r.get("gripped") == "True" else "no",
+            r.get("status", ""),
+        )
+        for r in rows
+    ]
+    return {
+        "settings": settings,
+        "figure": run.group([(folder / "oblique.png", "")]),
+        "rows": angle_rows,
+    }

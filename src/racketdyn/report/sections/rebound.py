@@ -1,0 +1,184 @@
+"""Rebound ratio over the face and the sweet spots (Fig. 15 and the interactive map)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from racketdyn.impact.result import shown_speed_index
+from racketdyn.report.figures import interactive
+from racketdyn.report.folder import RunFolder
+from racketdyn.report.formatting import fmt
+from racketdyn.report.plots import map_spec
+
+HOW_TO_RUN = "racketdyn predict --out DIR/predict"
+
+MAX_MAP_POINTS = 2500
+"""Points per speed and support in the interactive map; more are thinned."""
+MAX_MAP_SPEEDS = 7
+"""Ball speeds in the interactive map; more are thinned (the shown speed is kept)."""
+FIELDS = [
+    ("x", "mm", 0),
+    ("y", "mm", 0),
+    ("rebound ratio", "", 3),
+    ("contact time", "ms", 2),
+    ("rebound speed", "m/s", 1),
+    ("vibration energy", "J", 3),
+    ("reduced mass", "g", 0),
+]
+"""Columns of a point of the map: name, unit, decimals."""
+
+
+def gather(run: RunFolder) -> dict[str, Any] | None:
+    """Fig. 15 (predicted and with the identified models), the face maps, and from
+    ``impact.csv`` the interactive map and the sweet spots per support and speed."""
+    folder = run.predict_dir
+    compare = run.first("fig15_identified.png")
+    if folder is None and compare is None:
+        return None
+    fig15 = run.group(
+        [
+            (path, "")
+            for path in (
+                folder / "fig15_rebound_along_axis.png" if folder else None,
+                compare / "fig15_identified.png" if compare else None,
+            )
+            if path is not None
+        ]
+    )
+    face_maps = run.group([(folder / "face_maps.png", "")]) if folder is not None else None
+    data: dict[str, Any] = {
+        "fig15": fig15,
+        "face_maps": face_maps,
+        "map": None,
+        "sweet": [],
+        "spots": [],
+        "glance": [],
+        "plots": {},
+    }
+    impacts = run.impacts()
+    if impacts is None:
+        return data if (fig15 or face_maps) else None
+    derived = run.derived()
+    nodes = run.first_mode_nodes()
+    head = run.head()
+    marks = []
+    cop = derived.get("centre_of_percussion_m")
+    if isinstance(cop, int | float):
+        marks.append({"x": round(cop * 1e3, 1), "label": "CoP"})
+    for support, values in nodes.items():
+        for node in values:
+            if head is None or abs(node - head.centre_x) < head.half_length:
+                marks.append({"x": round(node * 1e3, 1), "label": f"node ({support})"})
+    speeds = impacts.speeds
+    chosen = speeds[shown_speed_index(speeds)]
+    if len(speeds) > MAX_MAP_SPEEDS:
+        picks = np.unique(np.linspace(0, len(speeds) - 1, MAX_MAP_SPEEDS).round().astype(int))
+        speeds = sorted({speeds[i] for i in picks} | {chosen})
+    groups = []
+    thinned = False
+    all_xy = []
+    sweet = []
+    e = impacts["rebound_ratio"]
+    for speed in speeds:
+        panels: list[dict[str, Any]] = []
+        for support in impacts.supports:
+            selected = impacts.rows(speed, support)
+            if selected.size > MAX_MAP_POINTS:
+                selected = selected[:: math.ceil(selected.size / MAX_MAP_POINTS)]
+                thinned = True
+            rows = [
+                [
+                    round(float(impacts["x_m"][i]) * 1e3, 1),
+                    round(float(impacts["y_m"][i]) * 1e3, 1),
+                    *(
+                        None if not math.isfinite(v) else float(f"{v:.5g}")
+                        for v in (
+                            e[i],
+                            impacts["contact_time_s"][i] * 1e3,
+                            impacts["rebound_speed_mps"][i],
+                            impacts["vibration_energy_j"][i],
+                            impacts["reduced_mass_kg"][i] * 1e3,
+                        )
+                    ),
+                    "" if impacts.status[i] == "ok" else str(impacts.status[i]),
+                ]
+                for i in selected
+            ]
+            panels.append({"label": support, "rows": rows})
+            all_xy.append(np.column_stack([impacts["x_m"][selected], impacts["y_m"][selected]]))
+            finite = selected[np.isfinite(e[selected])]
+            if finite.size:
+                best = int(finite[np.argmax(e[finite])])
+                x, y = run.centre(impacts)
+                centre = impacts.nearest(selected, x, y)
+                calm = impacts["vibration_energy_j"]
+                calm_rows = finite[np.isfinite(calm[finite])]
+                quiet = int(calm_rows[np.argmin(calm[calm_rows])]) if calm_rows.size else None
+                sweet.append(
+                    (
+                        support,
+                        f"{speed:g}",
+                        f"{e[best]:.3f}",
+                        impacts.where(best),
+                        fmt(e[centre], ".3f"),
+                        "–" if quiet is None else impacts.where(quiet),
+                    )
+                )
+                if speed == chosen and support == "pinned":
+                    data["glance"].append(
+                        f"highest rebound ratio at {speed:g} m/s, pinned: {e[best]:.3f} at "
+                        f"x = {impacts['x_m'][best] * 1e3:.0f} mm, "
+                        f"y = {impacts['y_m'][best] * 1e3:.0f} mm"
+                    )
+        values = [r[2] for p in panels for r in p["rows"] if r[2] is not None]
+        groups.append(
+            {
+                "label": f"{speed:g} m/s",
+                "range": [min(values), max(values)] if values else [0.0, 1.0],
+                "panels": panels,
+            }
+        )
+    spec = map_spec(
+        head,
+        "map-rebound",
+        groups,
+        FIELDS,
+        2,
+        speeds.index(chosen),
+        np.vstack(all_xy),
+        marks,
+        "max",
+    )
+    data["plots"] = {"maps": [spec]}
+    notes = " (points thinned for the page)" if thinned else ""
+    data["map"] = interactive(
+        "map-rebound",
+        "map",
+        None,
+        f"rebound ratio over the face from impact.csv{notes}, one panel per support, "
+        "one shared colour scale per speed; hover a point for x, y, rebound ratio, contact "
+        "time and more; the ringed point is the highest rebound ratio, dashed lines the "
+        "centre of percussion (CoP) and the first-mode nodes; the paper shows the long axis "
+        "only (Fig. 15)",
+        "impact.csv",
+    )
+    order = {support: n for n, support in enumerate(impacts.supports)}
+    sweet.sort(key=lambda row: (order[row[0]], float(row[1])))
+    data["sweet"] = sweet
+    spots = []
+    if isinstance(cop, int | float):
+        spots.append(
+            f"centre of percussion (pivot at the grip): x = {cop * 1e3:.0f} mm — the least "
+            "shock to the hand"
+        )
+    for support, values in nodes.items():
+        spots.append(
+            f"first-mode nodes on the axis, {support}: "
+            + ", ".join(f"x = {v * 1e3:.0f} mm" for v in values)
+            + " — the least vibration"
+        )
+    data["spots"] = spots
+    return data

@@ -1,0 +1,55 @@
+"""Stabilisation diagrams and the identified modes of each model."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from racketdyn.report.figures import FigureGroup
+from racketdyn.report.folder import RunFolder, read_csv, to_float
+from racketdyn.report.formatting import fmt
+
+HOW_TO_RUN = (
+    "racketdyn compare DIR/frf_free/frfs.uff DIR/frf_hand/frfs.uff "
+    "--out DIR/compare (or racketdyn identify)"
+)
+
+
+def gather(run: RunFolder) -> dict[str, Any] | None:
+    """For every identification: its figures, its ``modes*.csv`` and ``fit_quality*.csv``, and
+    the orders it dropped (run.json)."""
+    idents = run.identifications
+    if not idents:
+        return None
+
+    def figures(stem: str) -> FigureGroup | None:
+        return run.group([(f / f"{stem}{s}.png", label) for label, f, s in idents])
+
+    models = []
+    for label, folder, suffix in idents:
+        rows, _ = read_csv(folder / f"modes{suffix}.csv")
+        body = [
+            (
+                r.get("name", ""),
+                fmt(to_float(r.get("frequency_hz")), ".2f"),
+                fmt(100 * to_float(r.get("damping_ratio")), ".3f"),
+                r.get("orders_stable", ""),
+                fmt(to_float(r.get("frequency_spread_hz")), ".3g"),
+            )
+            for r in rows
+        ]
+        fit = folder / f"fit_quality{suffix}.csv"
+        fit_error = ""
+        if fit.is_file():
+            errors = np.array([to_float(r.get("fit_error")) for r in read_csv(fit)[0]])
+            if errors.size and np.isfinite(errors).any():
+                fit_error = f"median {np.nanmedian(errors):.1%}, largest {np.nanmax(errors):.1%}"
+        dropped = [str(d) for d in run.record(folder).get("dropped") or []]
+        models.append({"label": label, "modes": body, "fit_error": fit_error, "dropped": dropped})
+    return {
+        "diagrams": figures("stabilisation"),
+        "models": models,
+        "synthesised": figures("synthesised_frfs"),
+        "automac": figures("automac"),
+    }

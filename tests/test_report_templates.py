@@ -1,0 +1,167 @@
+"""The report's pieces without a pipeline run: each section's template renders from a small
+hand-made data dict, autoescaping keeps run data as text, and the page loads nothing from
+outside the file."""
+
+from __future__ import annotations
+
+import json
+import re
+from importlib.resources import files
+from pathlib import Path
+from typing import Any
+
+import jinja2
+import pytest
+
+from racketdyn.report import SECTIONS, render_section, write_report
+from racketdyn.report.figures import Figure, FigureGroup, interactive
+from racketdyn.report.page import SCRIPTS, environment
+
+EVIL = '<script>alert("x")</script>'
+ESCAPED = "&lt;script&gt;alert(&#34;x&#34;)&lt;/script&gt;"
+
+
+def _png_figure(what: str = "a figure", paper: str | None = "Fig. 7") -> Figure:
+    return Figure(paper, what, "contact/fig7_contact_time.png", src="data:image/png;base64,AAAA")
+
+
+def test_every_section_has_a_template_and_a_how_to_run() -> None:
+    templates = files("racketdyn.report") / "templates" / "sections"
+    for key, section in SECTIONS.items():
+        assert (templates / f"{key}.html.j2").is_file(), key
+        assert section.how_to_run.startswith(("racketdyn ", "any racketdyn")), key
+        assert section.title
+    static = files("racketdyn.report") / "static"
+    for name in (*SCRIPTS, "error_trap.js", "report.css"):
+        text = (static / name).read_text(encoding="utf-8").lower()
+        assert "</script" not in text  # would close the inline element early
+        assert "</style" not in text
+        assert not re.search(r"https?://", text), name  # nothing fetched from outside
+
+
+def test_the_racket_section_renders_from_a_small_dict() -> None:
+    html = render_section(
+        "racket",
+        {
+            "name": "test racket",
+            "source": "given to write_report",
+            "derived": [("mass", "340", "g"), ("balance point, from the butt", "320", "mm")],
+            "inputs": [("length", "685", "mm")],
+            "modes": [("2-node bending", "bending", "120.0", "0.40")],
+            "model_source": "built-in beam",
+            "model_support": "free",
+        },
+    )
+    assert "<p><b>test racket</b> — given to write_report.</p>" in html
+    assert (
+        '<tr><td>mass</td><td class="num">340</td><td class="num">g</td></tr>' in html
+    )  # tables are compact: one row per line, no blanks inside
+    assert '<table class="small">' in html
+    assert "<h3>Modes the prediction used</h3>" in html
+    assert '<td>bending</td><td class="num">120.0</td>' in html  # numbers from column 2
+
+
+def test_a_section_refuses_missing_data() -> None:
+    with pytest.raises(jinja2.UndefinedError):
+        render_section("racket", {"name": "test racket"})
+
+
+def test_autoescaping_keeps_run_data_as_text() -> None:
+    html = render_section(
+        "swing",
+        {
+            "facts": EVIL,
+            "figures": FigureGroup((_png_figure(EVIL, None),)),
+            "heading": "Sweet spots",
+            "spots": [(EVIL, "600", "yes", "20.0", "30.0", "0.500", "")],
+        },
+    )
+    assert "<script>" not in html
+    assert html.count(ESCAPED) == 4  # the facts, the image's alt, its caption and a cell
+    assert "<b>No figure in the paper.</b>" in html
+
+
+def test_figures_and_groups() -> None:
+    pair = FigureGroup((_png_figure(), _png_figure()), "pair")
+    html = render_section(
+        "contact", {"fig7": pair, "summary": [], "map": interactive("map-x", "map", None, "m", "")}
+    )
+    assert html.count('<div class="pair"><figure>') == 1
+    assert html.count("<figcaption><b>Kawazoe Fig. 7.</b> A figure.") == 2
+    assert '<span class="src">contact/fig7_contact_time.png</span>' in html
+    assert '<figure class="interactive"><div class="interactive-body" id="map-x">' in html
+    plain = render_section(
+        "modes",
+        {
+            "shapes": FigureGroup((_png_figure(),), "plain"),
+            "node_lines": None,
+            "nodes": None,
+            "compared": False,
+            "pairs": [],
+            "first_nodes": [],
+            "comparison": None,
+        },
+    )
+    assert plain.strip().startswith("<figure>")
+
+
+def test_the_oblique_section_names_what_was_not_run() -> None:
+    html = render_section(
+        "oblique",
+        {
+            "twist": None,
+            "oblique": {"settings": None, "figure": None, "rows": []},
+            "run_twist": "racketdyn twist --out DIR/twist",
+            "run_oblique": "racketdyn oblique --out DIR/oblique",
+        },
+    )
+    assert "Twist against offset not run: <code>racketdyn twist --out DIR/twist</code>" in html
+    assert "<h3>Oblique impacts and spin</h3>" in html
+    assert "Caveat" in html
+
+
+def test_json_data_cannot_close_their_script() -> None:
+    text = environment().from_string("{{ d | tojson }}").render(d={"label": EVIL, "x": None})
+    assert "</script>" not in text
+    assert json.loads(text) == {"label": EVIL, "x": None}
+    assert ", " not in text  # compact
+
+
+def _folder_with_a_racket(tmp_path: Path, name: str) -> Path:
+    """A run folder holding only a predict run.json that names its racket ``name``."""
+    predict = tmp_path / "predict"
+    predict.mkdir()
+    record: dict[str, Any] = {
+        "racketdyn_version": "0",
+        "created_utc": "2026-01-01T00:00:00+00:00",
+        "command": ["racketdyn", "predict", "--out", str(predict)],
+        "racket": {"name": name, "length_m": 0.685, "derived": {"mass_kg": 0.34}},
+        "outputs": ["run.json"],
+    }
+    (predict / "run.json").write_text(json.dumps(record), encoding="utf-8")
+    (predict / "fig15_rebound_along_axis.png").write_bytes(b"not a png")
+    return tmp_path
+
+
+def test_a_racket_name_with_a_script_stays_text(tmp_path: Path) -> None:
+    page = write_report(_folder_with_a_racket(tmp_path, EVIL)).read_text(encoding="utf-8")
+    assert f"<title>racketdyn report — {ESCAPED}</title>" in page
+    assert f"<p><b>{ESCAPED}</b>" in page
+    assert "alert(" not in page.replace(ESCAPED, "")
+    assert '<section id="racket">' in page
+    assert '<section id="provenance">' in page
+    assert "<img" not in page  # the file that is not a PNG is left out
+
+
+def test_the_page_loads_nothing_from_outside(tmp_path: Path) -> None:
+    page = write_report(_folder_with_a_racket(tmp_path, "r")).read_text(encoding="utf-8")
+    assert not re.search(r"<(script|link|img|iframe)\b[^>]*\b(src|href)=", page)
+    assert not re.search(r"https?://", page)
+    assert re.findall(r"<script\b[^>]*>", page) == [
+        "<script>",  # the error trap, in the head
+        '<script type="application/json" id="report-data">',
+        *["<script>"] * len(SCRIPTS),
+    ]
+    data = re.search(r'id="report-data">(.*?)</script>', page, re.S)
+    assert data is not None
+    assert json.loads(data.group(1)) == {"maps": [], "frf": []}
