@@ -16,7 +16,7 @@ import racketdyn
 
 project = "racketdyn"
 author = "racketdyn developers"
-copyright = "racketdyn developers, MIT licence"  # noqa: A001 (Sphinx's name)
+copyright = "racketdyn developers, MIT licence"
 version = release = racketdyn.__version__
 
 extensions = [
@@ -41,7 +41,6 @@ autosummary_ignore_module_all = False  # a package's page lists exactly its __al
 autosummary_imported_members = True  # the packages re-export what their modules define
 autodoc_typehints = "none"  # numpydoc's Parameters section carries the types and units
 autodoc_member_order = "bysource"
-autodoc_default_options = {"members": True, "show-inheritance": False}
 
 
 
@@ -96,6 +95,7 @@ html_title = f"racketdyn {release}"
 html_static_path: list[str] = []
 html_theme_options = {
     "navigation_with_keys": False,
+    "header_links_before_dropdown": 6,
     "show_toc_level": 2,
     "icon_links": [],
 }
