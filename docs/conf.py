@@ -43,7 +43,6 @@ autodoc_typehints = "none"  # numpydoc's Parameters section carries the types an
 autodoc_member_order = "bysource"
 
 
-
 def api_packages() -> list[str]:
     """The packages listed in ``api/index.rst``'s autosummary, one per line."""
     text = (Path(__file__).parent / "api" / "index.rst").read_text(encoding="utf-8")
