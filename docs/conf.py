@@ -12,7 +12,14 @@ import inspect
 import re
 from pathlib import Path
 
+from docutils import nodes
+from sphinx.application import Sphinx
+from sphinx.environment import BuildEnvironment
+from sphinx.util import logging
+
 import racketdyn
+
+logger = logging.getLogger(__name__)
 
 project = "racketdyn"
 author = "racketdyn developers"
@@ -70,7 +77,7 @@ def reexported_classes(packages: list[str]) -> dict[str, str]:
         inside = defined_in[key] == package or defined_in[key].startswith(package + ".")
         return len(package) if inside else -1
 
-    secondary = {}
+    secondary: dict[str, str] = {}
     for key, names in names_of.items():
         home = max(names, key=lambda pair: nearness(key, pair[0]))[1]
         secondary |= {full: home for _, full in names if full != home}
@@ -99,3 +106,27 @@ html_theme_options = {
     "icon_links": [],
 }
 html_show_sourcelink = False
+
+
+def strict_on_written_pages(
+    app: Sphinx, env: BuildEnvironment, node: nodes.Element, contnode: nodes.Element
+) -> None:
+    """Fail the build on a Python name a hand-written page links to that the API lacks.
+
+    Docstrings may name private modules (left as plain text); the pages outside ``api/``
+    name public objects only, so a name moved or renamed there is an error under ``-W``.
+    """
+    if node.get("refdomain") == "py" and not node.get("refdoc", "").startswith("api/"):
+        logger.warning(
+            "%s is not in the API reference (moved or renamed?)",
+            node["reftarget"],
+            location=node,
+            type="racketdyn",
+            subtype="missing-api-name",
+        )
+
+
+def setup(app: Sphinx) -> dict[str, bool]:
+    """Register the page checks."""
+    app.connect("missing-reference", strict_on_written_pages)
+    return {"parallel_read_safe": True}
