@@ -29,7 +29,6 @@ version = release = racketdyn.__version__
 extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
-    "sphinx.ext.mathjax",
     "numpydoc",
     "myst_parser",
 ]
@@ -39,7 +38,8 @@ root_doc = "index"
 templates_path = ["_templates"]
 exclude_patterns = ["_build", "api/generated/*.md"]
 
-# No network: no intersphinx, no remote images, MathJax only for readers who have it.
+# No network, at build or at reading: no intersphinx inventories, no MathJax (a CDN script);
+# formulas are written in Unicode as in the docstrings.
 intersphinx_mapping: dict[str, tuple[str, str | None]] = {}
 
 # --- API reference -------------------------------------------------------------------------
@@ -92,7 +92,7 @@ numpydoc_xref_param_type = False  # names re-exported at several levels would be
 numpydoc_attributes_as_param_list = True
 
 # --- Markdown pages ------------------------------------------------------------------------
-myst_enable_extensions = ["dollarmath", "colon_fence", "deflist"]
+myst_enable_extensions = ["colon_fence", "deflist"]  # no dollarmath: MathJax is remote
 myst_heading_anchors = 3
 
 # --- HTML ----------------------------------------------------------------------------------

@@ -145,3 +145,4 @@ def test_ci_builds_the_docs_with_warnings_as_errors() -> None:
     assert re.search(r"python -m sphinx -W .*-b html docs docs/_build/html", ci)
     conf = (DOCS / "conf.py").read_text(encoding="utf-8")
     assert "sphinx.ext.intersphinx" not in conf, "no remote inventories: CI has no network"
+    assert "sphinx.ext.mathjax" not in conf, "MathJax is a remote script: the site is offline"
