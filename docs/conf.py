@@ -9,12 +9,14 @@ from __future__ import annotations
 
 import importlib
 import inspect
+import pkgutil
 import re
 from pathlib import Path
 
 from docutils import nodes
 from sphinx.application import Sphinx
 from sphinx.environment import BuildEnvironment
+from sphinx.pycode import ModuleAnalyzer
 from sphinx.util import logging
 
 import racketdyn
@@ -84,7 +86,63 @@ def reexported_classes(packages: list[str]) -> dict[str, str]:
     return secondary
 
 
-autosummary_context = {"no_index": reexported_classes(api_packages())}
+def constants(packages: list[str]) -> dict[str, str]:
+    """Each listed package's public data (neither class, function nor module), described.
+
+    autosummary finds a package's data only where the package itself documents it; racketdyn's
+    packages re-export data from their modules. The description is the docstring that follows
+    the assignment in the module that defines it (``NAME = ...`` then a string), then the value
+    (or a dict's keys).
+    """
+    found: dict[str, str] = {}
+    for package in packages:
+        module = importlib.import_module(package)
+        data = [
+            name
+            for name in getattr(module, "__all__", [])
+            if not name.startswith("__")
+            and not inspect.isclass(getattr(module, name))
+            and not inspect.isroutine(getattr(module, name))
+            and not inspect.ismodule(getattr(module, name))
+        ]
+        submodules = [package] + [
+            info.name
+            for info in pkgutil.walk_packages(module.__path__, prefix=f"{package}.")
+            if hasattr(module, "__path__")
+        ]
+        for name in data:
+            obj = getattr(module, name)
+            text = ""
+            for submodule in submodules:
+                if getattr(importlib.import_module(submodule), name, None) is not obj:
+                    continue
+                docs = ModuleAnalyzer.for_module(submodule).find_attr_docs().get(("", name))
+                if docs:
+                    text = "\n".join(docs).strip()
+                    break
+            value = repr(obj)
+            if len(value) <= 100:
+                text = f"{text}\n\nValue: ``{value}``".strip()
+            elif isinstance(obj, dict):
+                keys = ", ".join(f"``{key}``" for key in obj)
+                text = f"{text}\n\nKeys: {keys}".strip()
+            found[f"{package}.{name}"] = text
+    return found
+
+
+CONSTANTS = constants(api_packages())
+autosummary_context = {
+    "no_index": reexported_classes(api_packages()),
+    "constants": CONSTANTS,
+    "constants_of": {
+        package: [
+            name.rpartition(".")[2]
+            for name in CONSTANTS
+            if name.startswith(package + ".") and name.count(".") == package.count(".") + 1
+        ]
+        for package in api_packages()
+    },
+}
 
 numpydoc_show_class_members = False  # the class template's :members: lists them once
 numpydoc_class_members_toctree = False
@@ -98,7 +156,8 @@ myst_heading_anchors = 3
 # --- HTML ----------------------------------------------------------------------------------
 html_theme = "pydata_sphinx_theme"
 html_title = f"racketdyn {release}"
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+html_css_files = ["racketdyn.css"]
 html_theme_options = {
     "navigation_with_keys": False,
     "header_links_before_dropdown": 6,
