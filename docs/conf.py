@@ -38,7 +38,7 @@ extensions = [
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 templates_path = ["_templates"]
-exclude_patterns = ["_build", "api/generated/*.md"]
+exclude_patterns = ["_build"]
 
 # No network, at build or at reading: no intersphinx inventories, no MathJax (a CDN script);
 # formulas are written in Unicode as in the docstrings.
