@@ -31,7 +31,7 @@ def half_sine_force(
 def half_sine_spectrum(
     frequency: ArrayLike, contact_time: ArrayLike, peak_force: ArrayLike
 ) -> NDArray[np.float64]:
-    """Magnitude of the Fourier transform of the half-sine pulse, |S(f)| in N·s (N/Hz).
+    """Magnitude of the Fourier transform of the half-sine pulse, ``|S(f)|`` in N·s (N/Hz).
 
     ``S(f) = ∫ F(t) e^{-2πift} dt``; in closed form, with ``u = f T_c``,
 
