@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -19,7 +20,7 @@ from racketdyn.cli import options as opt
 if TYPE_CHECKING:
     from rich.console import Console
 
-FAULTS = {"double_hits": 0.03, "overloads": 0.01}  # a real test has a few bad hits
+DOUBLE_HITS, OVERLOADS = 0.03, 0.01  # probabilities per hit: a real test has a few bad hits
 EXP_WINDOW_S = 0.1
 FORCE_RANGE_N = 200.0
 BAND_HZ = (40.0, 850.0)
@@ -60,28 +61,35 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     identified = [*r, "--modal", str(modal)]
     result: list[tuple[str, list[str], Callable[[], object]]] = []
 
-    def step(label: str, argv: list[str], call: Callable[[list[str]], object]) -> None:
+    def step(label: str, argv: list[str], call: Callable[..., object]) -> None:
         command = ["racketdyn", *argv]
-        result.append((label, command, lambda: call(command)))
+        result.append((label, command, partial(call, command=command)))
 
     for support, label in (("free", "free"), ("hand", "hand-held")):
         step(
             f"virtual hammer test, {label}",
             ["rig", *r, "--support", support, *faults, "--out", str(rig)],
-            lambda c, s=support: run_rig(rig, racket=racket, support=s, command=c, **FAULTS),
+            partial(
+                run_rig,
+                rig,
+                racket=racket,
+                support=support,
+                double_hits=DOUBLE_HITS,
+                overloads=OVERLOADS,
+            ),
         )
     for support, folder, label in (("free", free, "free"), ("hand", hand, "hand-held")):
         tests = rig / f"hammer_{support}.uff"
         step(
             f"FRFs, {label}",
             ["frf", str(tests), *r, *frf_options, "--out", str(folder)],
-            lambda c, t=tests, f=folder: run_frf(
-                t,
-                f,
+            partial(
+                run_frf,
+                tests,
+                folder,
                 racket=racket,
                 exponential_window_s=EXP_WINDOW_S,
                 force_range_n=FORCE_RANGE_N,
-                command=c,
                 figures=fig.frf_figures,
             ),
         )
@@ -89,12 +97,12 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     step(
         "contact times",
         ["contact", *map(str, both), "--labels", "free,hand", *r, "--out", str(out / "contact")],
-        lambda c: run_contact(
+        partial(
+            run_contact,
             both,
             out / "contact",
             labels=["free", "hand"],
             racket=racket,
-            command=c,
             figures=fig.contact_figures,
         ),
     )
@@ -102,12 +110,13 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     step(
         "identification, free against hand-held",
         ["compare", *map(str, frfs), "--band", "40,850", *r, "--out", str(out / "compare")],
-        lambda c: run_compare(
-            *frfs,
+        partial(
+            run_compare,
+            frfs[0],
+            frfs[1],
             out / "compare",
             racket=racket,
             band_hz=BAND_HZ,
-            command=c,
             figures=fig.compare_figures,
         ),
     )
@@ -116,12 +125,12 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     step(
         "prediction with the identified free modes, both models",
         ["predict", *identified, "--model", "both", "--out", str(out / "predict")],
-        lambda c: run_predict(
+        partial(
+            run_predict,
             out / "predict",
             racket=racket,
             modal=modal,
             model="both",
-            command=c,
             figures=fig.predict_figures(),
         ),
     )
@@ -130,7 +139,8 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     step(
         "swinging racket: outgoing speed and sweet spots",
         ["swing", *identified, *swing, "--out", str(out / "swing")],
-        lambda c: run_swing(
+        partial(
+            run_swing,
             out / "swing",
             racket=racket,
             modal=modal,
@@ -138,27 +148,26 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
             support="pinned",
             speeds=[20.0],
             grid=9,
-            command=c,
             figures=fig.swing_figures,
         ),
     )
     step(
         "twist against offset, free and hand-held",
         ["twist", *identified, "--support", "free,hand", "--out", str(out / "twist")],
-        lambda c: run_twist(
+        partial(
+            run_twist,
             out / "twist",
             racket=racket,
             modal=modal,
             supports=["free", "hand"],
-            command=c,
             figures=fig.twist_figures,
         ),
     )
     step(
         "oblique impacts: outgoing angle and spin",
         ["oblique", *identified, "--out", str(out / "oblique")],
-        lambda c: run_oblique(
-            out / "oblique", racket=racket, modal=modal, command=c, figures=fig.oblique_figures
+        partial(
+            run_oblique, out / "oblique", racket=racket, modal=modal, figures=fig.oblique_figures
         ),
     )
     return result

@@ -49,8 +49,8 @@ def read_records(
     if path.suffix.lower() == ".csv":
         if geometry is None:
             raise InputError(f"{path}: a CSV of hammer records needs --geometry NODES.csv")
-        return read_hammer_csv(path, geometry)
-    return read_hammer_uff(path, geometry)
+        return read_hammer_csv(path, Path(geometry))
+    return read_hammer_uff(path, None if geometry is None else Path(geometry))
 
 
 @dataclass

@@ -83,7 +83,7 @@ def identify_file(
     pin_hz, exclude_hz : sequence of float
         Modes forced in or left out, by approximate frequency, Hz.
     """
-    frfs = read_frf_uff(Path(path), geometry)
+    frfs = read_frf_uff(Path(path), None if geometry is None else Path(geometry))
     return identify(
         frfs,
         racket.head,

@@ -10,8 +10,6 @@ import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Literal
-
 import numpy as np
 
 from racketdyn.errors import InputError, one_of, require_range
@@ -63,7 +61,7 @@ def run_rig(
     out: str | os.PathLike[str],
     *,
     racket: RacketInput = None,
-    support: Literal["free", "hand"] = "free",
+    support: str = "free",
     averages: int = 10,
     double_hits: float = 0.0,
     overloads: float = 0.0,
