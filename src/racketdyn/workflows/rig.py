@@ -10,6 +10,7 @@ import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+
 import numpy as np
 
 from racketdyn.errors import InputError, one_of, require_range
@@ -112,7 +113,7 @@ def run_rig(
     contact_support = "free" if support == "free" else "pinned"
     durations[on_bed] = string_contact_time(the_racket, locations[on_bed], contact_support)
     report(progress, f"building the {support} rig and simulating the hammer test")
-    model = rig_model(the_racket, support)
+    model = rig_model(the_racket, "free" if support == "free" else "hand")
     records = simulate_hammer_test(
         model,
         locations,
