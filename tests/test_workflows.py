@@ -35,7 +35,8 @@ def test_predict_writes_its_folder_and_returns_the_result(tmp_path: Path) -> Non
 
     assert isinstance(result, PredictResult)
     assert result.written == [tmp_path / "impact.csv"]
-    assert result.approximate is not None and result.transient is None
+    assert result.approximate is not None
+    assert result.transient is None
     n = len(racket.head.grid(3))
     assert result.approximate.rebound_ratio.shape == (n, 1, 1)
     record = _record(tmp_path)
@@ -112,7 +113,8 @@ def test_frf_writes_its_folder_and_returns_the_estimate(tests_file: Path, tmp_pa
 
     assert isinstance(result, FrfResult)
     assert [p.name for p in result.written] == ["quality.csv", "frfs.uff"]
-    assert result.estimate is not None and result.estimate.frfs is not None
+    assert result.estimate is not None
+    assert result.estimate.frfs is not None
     assert read_frf_uff(tmp_path / "frfs.uff").nodes == result.estimate.frfs.nodes == (1, 2)
     record = _record(tmp_path)
     assert record["command"] == ["racketdyn", "frf"]

@@ -42,7 +42,9 @@ def add(commands: Any) -> None:
         help="a local Dask cluster of N worker processes, a count (default: none)",
     )
     engine.add_argument(
-        "--scheduler", metavar="tcp://HOST:PORT", help="a running Dask scheduler to use (default: none)"
+        "--scheduler",
+        metavar="tcp://HOST:PORT",
+        help="a running Dask scheduler to use (default: none)",
     )
     opt.add_no_figures(p, "sweep.nc")
     p.set_defaults(handler=run)
