@@ -132,3 +132,17 @@ def test_twist_and_oblique_from_python(tmp_path: Path) -> None:
     assert oblique.curve is not None
     assert oblique.curve.outgoing_spin_radps.shape == (2,)
     assert _record(tmp_path / "oblique")["outputs"] == ["oblique.csv", "run.json"]
+
+
+def test_every_workflow_parameter_is_described() -> None:
+    import inspect
+
+    import racketdyn.workflows as workflows
+
+    for name in workflows.__all__:
+        obj = getattr(workflows, name)
+        doc = inspect.getdoc(obj)
+        assert doc, name
+        if inspect.isfunction(obj):
+            for parameter in inspect.signature(obj).parameters:
+                assert parameter in doc, f"{name}: parameter {parameter!r} is not described"
