@@ -84,11 +84,12 @@ def add_modes(parser: argparse.ArgumentParser) -> None:
 def add_ball(parser: argparse.ArgumentParser) -> None:
     """``--ball-mass``, ``--e-bg``, ``--ball-law``."""
     parser.add_argument(
-        "--ball-mass", type=float, help="ball mass, kg (default 0.0577, ITF middle)"
+        "--ball-mass", type=float, metavar="KG", help="ball mass, kg (default 0.0577, ITF middle)"
     )
     parser.add_argument(
         "--e-bg",
         type=float,
+        metavar="COR",
         help="ball-string COR on a head-clamped racket, dimensionless (default 0.83, Kawazoe)",
     )
     parser.add_argument(
@@ -104,6 +105,7 @@ def add_hand(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--hand-arm-mass",
         type=float,
+        metavar="KG",
         help="mass of the arm holding the grip, kg, for --support hand (default 1.0)",
     )
 
@@ -122,12 +124,14 @@ def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) 
         parser.add_argument(
             "--speed",
             default=default,
+            metavar="M/S[,M/S...]",
             help=f"incoming ball speeds, m/s, comma-separated (default {default})",
         )
     else:
         parser.add_argument(
             "--speed",
             type=float,
+            metavar="M/S",
             default=float(default),
             help=f"incoming ball speed, m/s (default {default})",
         )
@@ -135,6 +139,8 @@ def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) 
 
 def add_support(parser: argparse.ArgumentParser, default: str, text: str, **kw: Any) -> None:
     """``--support``."""
+    if "choices" not in kw:
+        kw.setdefault("metavar", "SUPPORT")
     parser.add_argument("--support", default=default, help=f"{text} (default {default})", **kw)
 
 
