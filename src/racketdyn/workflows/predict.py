@@ -274,7 +274,9 @@ def run_predict(
         "law": law,
         "include_string_bed": include_string_bed,
     }
+    n_impacts = len(locations) * len(speed_list) * len(support_list)
     if model in ("approx", "both"):
+        report(progress, f"approximate method: {n_impacts} impacts")
         result.approximate = _approximate(
             used.racket,
             the_ball,
@@ -288,6 +290,7 @@ def run_predict(
         result.approximate.write_csv(out_dir / "impact.csv")
         result.written.append(out_dir / "impact.csv")
     if model in ("transient", "both"):
+        report(progress, f"transient model ({engine} engine): {n_impacts} impacts")
         _transient_part(result, locations, labels, progress, options)
     if result.approximate is not None and result.transient is not None:
         result.comparison = compare_models(result.approximate, result.transient)
