@@ -150,19 +150,25 @@ BAD_INPUT: dict[str, tuple[Callable[[Path], list[str]], tuple[str, ...]]] = {
         ("impact point", "outside the string bed"),
     ),
     "zero-mass": (
-        lambda tmp: _predict(tmp, str(_edited_toml(tmp, "mass_kg = 0.360", "mass_kg = 0"))),
+        lambda tmp: _predict(
+            tmp, "--racket", str(_edited_toml(tmp, "mass_kg = 0.360", "mass_kg = 0"))
+        ),
         ("mass_kg",),
     ),
     "negative-mass": (
-        lambda tmp: _predict(tmp, str(_edited_toml(tmp, "mass_kg = 0.360", "mass_kg = -0.3"))),
+        lambda tmp: _predict(
+            tmp, "--racket", str(_edited_toml(tmp, "mass_kg = 0.360", "mass_kg = -0.3"))
+        ),
         ("mass_kg",),
     ),
     "balance-beyond-the-tip": (
-        lambda tmp: _predict(tmp, str(_edited_toml(tmp, "balance_m = 0.308", "balance_m = 0.700"))),
+        lambda tmp: _predict(
+            tmp, "--racket", str(_edited_toml(tmp, "balance_m = 0.308", "balance_m = 0.700"))
+        ),
         ("balance_m",),
     ),
     "malformed-TOML": (
-        lambda tmp: _predict(tmp, str(_edited_toml(tmp, "[racket]", "[racket"))),
+        lambda tmp: _predict(tmp, "--racket", str(_edited_toml(tmp, "[racket]", "[racket"))),
         ("racket.toml", "malformed TOML"),
     ),
     "unknown-support": (
@@ -178,15 +184,17 @@ BAD_INPUT: dict[str, tuple[Callable[[Path], list[str]], tuple[str, ...]]] = {
         ("--speed", "-5"),
     ),
     "unknown-key": (
-        lambda tmp: _predict(tmp, str(_edited_toml(tmp, "mass_kg = 0.360", "mas_kg = 0.360"))),
+        lambda tmp: _predict(
+            tmp, "--racket", str(_edited_toml(tmp, "mass_kg = 0.360", "mas_kg = 0.360"))
+        ),
         ("mas_kg",),
     ),
     "missing-head-table": (
-        lambda tmp: _predict(tmp, str(_without_head(tmp))),
+        lambda tmp: _predict(tmp, "--racket", str(_without_head(tmp))),
         ("[head]", "missing"),
     ),
     "nonexistent-racket-file": (
-        lambda tmp: _predict(tmp, str(tmp / "no_such_racket.toml")),
+        lambda tmp: _predict(tmp, "--racket", str(tmp / "no_such_racket.toml")),
         ("no_such_racket.toml",),
     ),
     "points-without-y_m": (

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
-from racketdyn.cli import OBLIQUE_COLUMNS, SWEET_SPOT_COLUMNS, TWIST_COLUMNS, main
+from racketdyn.cli import main
 from racketdyn.impact.result import CSV_COLUMNS
 from racketdyn.impact.swing import (
     DEFAULT_ARM_GYRATION_M,
@@ -27,6 +27,9 @@ from racketdyn.impact.swing import (
     predict_swing,
 )
 from racketdyn.report import SECTIONS, write_report
+from racketdyn.workflows.oblique import OBLIQUE_COLUMNS
+from racketdyn.workflows.swing import SWEET_SPOT_COLUMNS
+from racketdyn.workflows.twist import TWIST_COLUMNS
 
 # The paper's racket (REFERENCE_VALUES.md, section 2): 360 g, CG 308 mm, I_G 13.1 g·m², grip
 # axis 70 mm from the butt; the built-in racket holds exactly these numbers.

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
-import racketdyn.cli as cli
+import racketdyn.workflows.predict as predict_step
 from racketdyn.cli import main
 from racketdyn.impact.comparison import COMPARED, COMPARISON_COLUMNS, HISTORY_COLUMNS
 from racketdyn.impact.result import CSV_COLUMNS
@@ -96,9 +96,9 @@ def test_chunks_give_the_same_table(
     """The progress-bar path (chunks of points, here one point each) writes the same table."""
     argv = ["predict", "--model", "transient", "--points", str(points), "--speed", "10,20"]
     assert main([*argv, "--no-figures", "--out", str(tmp_path / "one")]) == 0
-    monkeypatch.setattr(cli, "TRANSIENT_QUIET_IMPACTS", 0)
-    monkeypatch.setattr(cli, "TRANSIENT_FIRST_CHUNK", 1)
-    monkeypatch.setattr(cli, "TRANSIENT_CHUNK_S", 1e-9)
+    monkeypatch.setattr(predict_step, "TRANSIENT_QUIET_IMPACTS", 0)
+    monkeypatch.setattr(predict_step, "TRANSIENT_FIRST_CHUNK", 1)
+    monkeypatch.setattr(predict_step, "TRANSIENT_CHUNK_S", 1e-9)
     assert main([*argv, "--no-figures", "--out", str(tmp_path / "chunks")]) == 0
     one, chunks = (_read(tmp_path / name / "impact.csv") for name in ("one", "chunks"))
     assert [(r["point"], r["support"], r["status"]) for r in chunks] == [

@@ -7,6 +7,7 @@ has an API page, every command a page with an example that uses options the comm
 
 from __future__ import annotations
 
+import argparse
 import importlib
 import inspect
 import pkgutil
@@ -20,7 +21,7 @@ import racketdyn as rd
 import racketdyn.impact as impact
 import racketdyn.io as rio
 import racketdyn.modal as modal
-from racketdyn.cli import main
+from racketdyn.cli import build_parser, main
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
 
@@ -38,22 +39,6 @@ NOT_IN_API = {
     "racketdyn.data": "package data (the built-in racket file), no code",
     "racketdyn.cli": "the command line, documented command by command in docs/commands/",
 }
-
-# Options the examples already use under the names issue 11 gives them, while the command line
-# still has the old ones: (command, option) -> the option today. Delete an entry once the CLI
-# has the new name (the test then fails if the example and the CLI disagree).
-PENDING_RENAMES = {
-    ("racket", "--racket"): "positional racket",
-    ("predict", "--racket"): "positional racket",
-    ("rig", "--racket"): "positional racket",
-    ("swing", "--racket"): "positional racket",
-    ("oblique", "--racket"): "positional racket",
-    ("twist", "--racket"): "positional racket",
-    ("swing", "--speed"): "--ball-speed",
-    ("oblique", "--speed"): "--ball-speed",
-    ("twist", "--speed"): "--ball-speed",
-}
-
 
 @pytest.mark.parametrize(("module", "name"), PUBLIC)
 def test_public_object_is_documented(module: str, name: str) -> None:
@@ -92,12 +77,12 @@ def test_api_package_lists_its_public_names(package: str) -> None:
 
 
 def command_names(capsys: pytest.CaptureFixture[str]) -> list[str]:
-    with pytest.raises(SystemExit):
-        main(["--help"])
-    usage = capsys.readouterr().out
-    found = re.search(r"\{([a-z,]+)\}", usage)
-    assert found, "no list of commands in racketdyn --help"
-    return found.group(1).split(",")
+    """The subcommands of ``racketdyn``, from its parser."""
+    parser = build_parser()
+    (commands,) = (
+        action for action in parser._actions if isinstance(action, argparse._SubParsersAction)
+    )
+    return list(commands.choices)
 
 
 def examples(command: str) -> list[list[str]]:
@@ -122,7 +107,6 @@ def test_every_command_has_a_page_with_an_example(capsys: pytest.CaptureFixture[
 
 def test_examples_use_the_commands_options(capsys: pytest.CaptureFixture[str]) -> None:
     wrong: list[str] = []
-    pending: list[str] = []
     for command in command_names(capsys):
         with pytest.raises(SystemExit):
             main([command, "--help"])
@@ -132,11 +116,8 @@ def test_examples_use_the_commands_options(capsys: pytest.CaptureFixture[str]) -
                 option = token.split("=")[0]
                 if not option.startswith("--") or option in options:
                     continue
-                target = pending if (command, option) in PENDING_RENAMES else wrong
-                target.append(f"racketdyn {command} … {option}")
+                wrong.append(f"racketdyn {command} … {option}")
     assert not wrong, f"examples use options the commands do not have: {wrong}"
-    if pending:
-        pytest.xfail(f"examples ahead of the CLI (issue 11's option names): {sorted(set(pending))}")
 
 
 def test_ci_builds_the_docs_with_warnings_as_errors() -> None:

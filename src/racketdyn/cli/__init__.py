@@ -1,0 +1,110 @@
+"""The ``racketdyn`` command line (layer 5): parse, call a workflow, print with rich.
+
+One short module per command (``predict``, ``racket``, ``rig``, ``frf``, ``contact``,
+``identify``/``compare``, ``demo``, ``report``, ``sweep``, ``swing``, ``oblique``, ``twist``),
+the shared options in :mod:`racketdyn.cli.options`, the figure hooks in
+:mod:`racketdyn.cli.figures`.  Building the parser imports neither NumPy nor the library: a
+command imports what it needs when it runs, so ``racketdyn --help`` is instant.
+
+Every user error (:class:`~racketdyn.errors.InputError`) becomes one line on stderr and exit
+status 2; no traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+from collections.abc import Sequence
+
+from racketdyn.__about__ import __version__
+from racketdyn.cli import (
+    contact,
+    demo,
+    frf,
+    identify,
+    oblique,
+    predict,
+    racket,
+    report,
+    rig,
+    sweep,
+    swing,
+    twist,
+)
+from racketdyn.cli import options as opt
+
+__all__ = ["build_parser", "main"]
+
+COMMANDS = (
+    predict,
+    frf,
+    contact,
+    rig,
+    identify,
+    demo,
+    report,
+    sweep,
+    swing,
+    oblique,
+    twist,
+    racket,
+)
+"""The command modules, in the order ``racketdyn --help`` lists them."""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``racketdyn`` parser with every subcommand."""
+    parser = argparse.ArgumentParser(
+        prog="racketdyn",
+        description="Tennis racket impact dynamics: rebound ball speed over the string face "
+        f"(Kawazoe's approximate method, and a transient simulation of the contact). {opt.UNITS}",
+    )
+    parser.add_argument("--version", action="version", version=f"racketdyn {__version__}")
+    opt.add_verbose(parser)
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for module in COMMANDS:
+        module.add(commands)
+    return parser
+
+
+def parse(argv: Sequence[str] | None) -> argparse.Namespace:
+    """Parsed arguments, with the command line as given (``argv``) kept for run records."""
+    args = build_parser().parse_args(argv)
+    args.argv = list(sys.argv[1:] if argv is None else argv)
+    return args
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``racketdyn`` command.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The arguments (default: the process's).
+
+    Returns
+    -------
+    int
+        Exit status: 0, 1 (a sweep with failed designs), 2 (bad input).
+    """
+    args = parse(argv)
+    logging.basicConfig(
+        level=logging.INFO if args.verbose else logging.ERROR,
+        format="%(levelname)s %(name)s: %(message)s",
+    )
+    from rich.console import Console
+
+    from racketdyn.errors import InputError
+
+    try:
+        return int(args.handler(args, Console()))
+    except InputError as error:
+        Console(stderr=True, highlight=False, soft_wrap=True).print(
+            f"racketdyn: error: {error}", markup=False
+        )
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

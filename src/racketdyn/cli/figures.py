@@ -1,0 +1,149 @@
+"""Figure hooks: what the CLI (and the demo) draws after each workflow step.
+
+Each hook has the shape the workflows take, ``hook(result, out) -> paths``, and calls the
+figure writers of :mod:`racketdyn.plotting.figures` (imported when a hook runs: matplotlib is
+loaded only when figures are drawn).  ``status`` shows what is being drawn.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from racketdyn.workflows.contact import ContactResult
+    from racketdyn.workflows.frf import FrfResult
+    from racketdyn.workflows.identify import CompareResult, IdentifyResult
+    from racketdyn.workflows.oblique import ObliqueResult
+    from racketdyn.workflows.predict import PredictResult
+    from racketdyn.workflows.swing import SwingStepResult
+    from racketdyn.workflows.twist import TwistResult
+
+Status = Callable[[str], None]
+
+
+def _quiet(_: str) -> None:
+    return None
+
+
+def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], list[Path]]:
+    """The paper's figures (approximate method) and the transient model's figures."""
+
+    def draw(result: PredictResult, out: Path) -> list[Path]:
+        from racketdyn.plotting.figures import (
+            FIGURES,
+            write_paper_figures,
+            write_transient_figures,
+        )
+
+        assert result.racket is not None
+        assert result.ball is not None
+        written: list[Path] = []
+        if result.approximate is not None:
+            written += write_paper_figures(
+                result.racket,
+                result.ball,
+                result.modal_model,
+                out,
+                progress=lambda name: status(f"drawing {name} ({len(FIGURES)} figures)"),
+            )
+        if result.transient is not None:
+            status("drawing the transient model's figures")
+            curves = {
+                "ball": result.ball,
+                "model": result.modal_model,
+                "supports": result.supports,
+                "law": result.law,
+                "include_string_bed": result.include_string_bed,
+                "engine": result.engine,
+            }
+            written += write_transient_figures(
+                out,
+                result.racket,
+                result.histories,
+                result.mode_names,
+                result.comparison,
+                result.shown_speed,
+                curves if result.comparison is not None else None,
+            )
+        return written
+
+    return draw
+
+
+def frf_figures(result: FrfResult, out: Path) -> list[Path]:
+    """Paper Figs 2–3."""
+    from racketdyn.plotting.figures import write_frf_figures
+
+    assert result.estimate is not None
+    assert result.estimate.frfs is not None
+    assert result.racket is not None
+    return write_frf_figures(result.estimate.frfs, result.racket, out)
+
+
+def contact_figures(result: ContactResult, out: Path) -> list[Path]:
+    """Paper Fig. 7."""
+    from racketdyn.plotting.figures import write_contact_figure
+
+    assert result.racket is not None
+    return [write_contact_figure(result.tables, result.labels, result.racket, out)]
+
+
+def identify_figures(result: IdentifyResult, out: Path) -> list[Path]:
+    """Stabilisation diagram, Figs 4–6, synthesised FRFs, AutoMAC."""
+    from racketdyn.plotting.figures import write_identification
+
+    assert result.identification is not None
+    assert result.racket is not None
+    return write_identification(result.identification, result.racket, out)
+
+
+def compare_figures(result: CompareResult, out: Path) -> list[Path]:
+    """Both identifications' figures, the comparison figures and the Fig. 15 check."""
+    from racketdyn.ball import Ball
+    from racketdyn.plotting.figures import write_comparison, write_identification
+
+    assert result.free is not None
+    assert result.hand is not None
+    assert result.racket is not None
+    written = write_identification(result.free, result.racket, out, "free")
+    written += write_identification(result.hand, result.racket, out, "hand")
+    # write_comparison rewrites comparison.csv (the workflow wrote the same table)
+    written += write_comparison(result.free, result.hand, result.racket, Ball(), out)
+    return written
+
+
+def swing_figures(result: SwingStepResult, out: Path) -> list[Path]:
+    """The swing map and the outgoing speed along the axis."""
+    from racketdyn.plotting.figures import write_swing_figures
+
+    assert result.racket is not None
+    assert result.ball is not None
+    assert result.swing_result is not None
+    return write_swing_figures(
+        out,
+        result.racket,
+        result.ball,
+        result.swing_result,
+        result.spots,
+        result.shown_speed,
+        result.impact_model,
+        result.modal_model,
+        **result.options,
+    )
+
+
+def twist_figures(result: TwistResult, out: Path) -> list[Path]:
+    """Roll and outgoing speed against offset."""
+    from racketdyn.plotting.figures import write_twist_figure
+
+    return [write_twist_figure(out, result.curves)]
+
+
+def oblique_figures(result: ObliqueResult, out: Path) -> list[Path]:
+    """Outgoing angle and spin against incoming angle."""
+    from racketdyn.plotting.figures import write_oblique_figure
+
+    assert result.curve is not None
+    return [write_oblique_figure(out, result.curve, result.point, result.support, result.contact)]

@@ -1,0 +1,96 @@
+"""``racketdyn frf``: FRFs, quality table and plots from hammer-test records."""
+
+from __future__ import annotations
+
+import argparse
+from typing import TYPE_CHECKING, Any
+
+from racketdyn.cli import options as opt
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+
+def add_geometry(parser: argparse.ArgumentParser) -> None:
+    """``--geometry FILE``."""
+    parser.add_argument(
+        "--geometry",
+        metavar="FILE",
+        help="node coordinates (UFF 15/2411, or CSV node,x_m,y_m in m) (default: from the "
+        "records file)",
+    )
+
+
+def add(commands: Any) -> None:
+    """Register the command."""
+    p = opt.command(
+        commands,
+        "frf",
+        "FRFs, quality table and plots from hammer-test records",
+        "One FRF per hammer point from its accepted averages: quality.csv, frfs.uff, "
+        "Figs 2-3, run.json",
+    )
+    p.add_argument("tests", help="hammer records: UFF 58 time records, or CSV (with --geometry)")
+    add_geometry(p)
+    opt.add_racket(p, " for the head outline")
+    p.add_argument(
+        "--estimator",
+        choices=("H1", "H2"),
+        default="H1",
+        help="FRF estimator: H1 (noise on the response) or H2 (noise on the force) (default H1)",
+    )
+    p.add_argument(
+        "--force-window",
+        type=float,
+        help="keep the force this long after the trigger, s (default: no force window)",
+    )
+    p.add_argument(
+        "--exp-window",
+        type=float,
+        help="exponential window time constant τ on force and response, s (default: no "
+        "window; identify takes 1/τ off the damping)",
+    )
+    p.add_argument(
+        "--force-range",
+        type=float,
+        help="hammer channel range, N: reaching it is an overload (default: flat tops only)",
+    )
+    opt.add_out(p)
+    p.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace, console: Console) -> int:
+    """Run the command."""
+    from racketdyn.cli.figures import frf_figures
+    from racketdyn.workflows.frf import run_frf
+
+    with opt.progress_display(console) as progress:
+        result = run_frf(
+            args.tests,
+            args.out,
+            geometry=args.geometry,
+            racket=args.racket,
+            estimator=args.estimator,
+            force_window_s=args.force_window,
+            exponential_window_s=args.exp_window,
+            force_range_n=args.force_range,
+            command=opt.command_line(args),
+            figures=frf_figures,
+            progress=progress,
+        )
+    estimate = result.estimate
+    assert estimate is not None
+    assert estimate.frfs is not None
+    summary = estimate.summary()
+    console.print(
+        f"{estimate.frfs.n_points} FRFs from {summary['accepted']} of "
+        f"{summary['averages']} averages → {result.out}"
+    )
+    for reason, count in summary.items():
+        if reason not in ("averages", "accepted"):
+            console.print(f"[yellow]{count} averages rejected: {reason}[/]")
+    if estimate.rejected_points:
+        nodes = ", ".join(str(n) for n in estimate.rejected_points)
+        console.print(f"[yellow]every average rejected at node(s) {nodes}: no FRF there[/]")
+    opt.print_written(console, result.written)
+    return 0

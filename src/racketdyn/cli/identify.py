@@ -1,0 +1,153 @@
+"""``racketdyn identify`` and ``racketdyn compare``: modal models from FRFs."""
+
+from __future__ import annotations
+
+import argparse
+from typing import TYPE_CHECKING, Any
+
+from racketdyn.cli import options as opt
+from racketdyn.cli.frf import add_geometry
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+    from racketdyn.modal.identify import Identification
+
+
+def _add_options(p: argparse.ArgumentParser) -> None:
+    add_geometry(p)
+    opt.add_racket(p, " for the head (names the modes)")
+    p.add_argument(
+        "--band",
+        metavar="LOW,HIGH",
+        help="frequency band low,high, Hz (default 40 Hz to fs/2.56)",
+    )
+    p.add_argument(
+        "--max-order",
+        type=int,
+        default=60,
+        help="highest model order of the stabilisation diagram, a count (default 60)",
+    )
+    p.add_argument(
+        "--pin", help="force modes in, by approximate frequency, Hz: 120,330 (default: none)"
+    )
+    p.add_argument(
+        "--exclude", help="leave modes out, by approximate frequency, Hz (default: none)"
+    )
+    opt.add_out(p)
+
+
+def add(commands: Any) -> None:
+    """Register both commands."""
+    p = opt.command(
+        commands,
+        "identify",
+        "modal model from FRFs (modes.csv, UFF 55, JSON)",
+        "LSCF poles, automatic selection, LSFD mass-normalised shapes: modes.csv, "
+        "modal_model.json (what predict --modal takes), modes.uff, fit_quality.csv, figures, "
+        "run.json",
+    )
+    p.add_argument("frfs", help="FRFs: UFF 58 (function type 4), e.g. racketdyn frf's frfs.uff")
+    opt.add_support(p, "free", "support of the test: free or hand", choices=("free", "hand"))
+    _add_options(p)
+    p.set_defaults(handler=run_identify)
+
+    p = opt.command(
+        commands,
+        "compare",
+        "identify free and hand-held FRFs and compare",
+        "Both identifications, modes paired by MAC (comparison.csv) and the paper's Fig. 15 "
+        "check with the identified models",
+    )
+    p.add_argument("free", help="FRFs of the freely supported racket (UFF 58)")
+    p.add_argument("hand", help="FRFs of the hand-held racket (UFF 58)")
+    _add_options(p)
+    p.set_defaults(handler=run_compare)
+
+
+def _options(args: argparse.Namespace) -> dict[str, Any]:
+    band = None if args.band is None else opt.parse_speeds("--band", args.band)
+    if band is not None and (len(band) != 2 or band[0] >= band[1]):
+        from racketdyn.errors import InputError
+
+        raise InputError(f"--band takes two frequencies low,high in Hz (got {args.band!r})")
+    return {
+        "racket": args.racket,
+        "geometry": args.geometry,
+        "band_hz": band,
+        "max_order": args.max_order,
+        "pin_hz": [] if args.pin is None else opt.parse_speeds("--pin", args.pin),
+        "exclude_hz": [] if args.exclude is None else opt.parse_speeds("--exclude", args.exclude),
+        "command": opt.command_line(args),
+    }
+
+
+def print_modes(console: Console, identification: Identification) -> None:
+    """The identified modes as a table, with the fit quality and the modes dropped."""
+    import numpy as np
+    from rich.table import Table
+
+    model = identification.model
+    table = Table(
+        title=f"{model.n_modes} modes ({model.support}), "
+        f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
+    )
+    for column in ("mode", "frequency (Hz)", "damping (%)", "name", "orders stable"):
+        table.add_column(column)
+    for k in range(model.n_modes):
+        table.add_row(
+            str(k + 1),
+            f"{model.frequency[k]:.2f}",
+            f"{100 * model.damping_ratio[k]:.3f}",
+            model.names[k],
+            str(int(identification.selected.n_orders[k])),
+        )
+    console.print(table)
+    console.print(
+        f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
+        f"condition {identification.fit.condition_number:.3g}"
+    )
+    for line in identification.selected.dropped:
+        console.print(f"[dim]dropped: {line}[/]")
+
+
+def run_identify(args: argparse.Namespace, console: Console) -> int:
+    """Run ``identify``."""
+    from racketdyn.cli.figures import identify_figures
+    from racketdyn.workflows.identify import run_identify as identify
+
+    with opt.progress_display(console) as progress:
+        result = identify(
+            args.frfs,
+            args.out,
+            support=args.support,
+            figures=identify_figures,
+            progress=progress,
+            **_options(args),
+        )
+    assert result.identification is not None
+    print_modes(console, result.identification)
+    opt.print_written(console, result.written)
+    return 0
+
+
+def run_compare(args: argparse.Namespace, console: Console) -> int:
+    """Run ``compare``."""
+    from racketdyn.cli.figures import compare_figures
+    from racketdyn.workflows.identify import run_compare as compare
+
+    with opt.progress_display(console) as progress:
+        result = compare(
+            args.free,
+            args.hand,
+            args.out,
+            figures=compare_figures,
+            progress=progress,
+            **_options(args),
+        )
+    assert result.free is not None
+    assert result.hand is not None
+    print_modes(console, result.free)
+    print_modes(console, result.hand)
+    opt.print_written(console, result.written)
+    return 0

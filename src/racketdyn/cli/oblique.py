@@ -1,0 +1,137 @@
+"""``racketdyn oblique``: oblique impacts with spin — outgoing angle and spin against incoming
+angle."""
+
+from __future__ import annotations
+
+import argparse
+from typing import TYPE_CHECKING, Any
+
+from racketdyn.cli import options as opt
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+OBLIQUE_ANGLES_DEG = "0,10,20,30,40,50,60"
+
+
+def add(commands: Any) -> None:
+    """Register the command."""
+    p = opt.command(
+        commands,
+        "oblique",
+        "oblique impacts with spin: outgoing angle and spin against incoming angle",
+        "A ball arriving at an angle (and with spin) at one point of the face: normal impact "
+        "by the transient model, tangential elastic-Coulomb contact on its force history. "
+        "oblique.csv, a figure, run.json",
+    )
+    opt.add_racket_and_ball(p)
+    opt.add_speed(p, "20", many=False)
+    p.add_argument(
+        "--angles",
+        default=OBLIQUE_ANGLES_DEG,
+        help=f"incoming angles to the face normal, degrees, each in (-90, 90) (default "
+        f"{OBLIQUE_ANGLES_DEG}); a list that starts with a minus sign needs --angles=-30,0,30",
+    )
+    p.add_argument(
+        "--spin",
+        type=float,
+        default=0.0,
+        help="incoming spin, rad/s, + = the sense of rolling along the face (default 0)",
+    )
+    p.add_argument(
+        "--point",
+        metavar="X,Y",
+        help="impact point x,y, m (default: the face centre), e.g. --point=0.5,-0.03",
+    )
+    opt.add_support(p, "free", "free, pinned or hand")
+    p.add_argument(
+        "--friction",
+        type=float,
+        help="ball-string friction coefficient μ, dimensionless (default 0.4)",
+    )
+    p.add_argument(
+        "--tangential-stiffness",
+        type=float,
+        help="tangential stiffness k_t of strings and ball, N/m (default 1e4; inf: rigid grip)",
+    )
+    p.add_argument(
+        "--racket-speed",
+        type=float,
+        default=0.0,
+        help="racket speed towards the ball, m/s (default 0)",
+    )
+    p.add_argument(
+        "--racket-tangential-speed",
+        type=float,
+        default=0.0,
+        help="racket face speed along the face, m/s, brushing the ball (default 0)",
+    )
+    opt.add_no_figures(p, "oblique.csv")
+    opt.add_out(p)
+    p.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace, console: Console) -> int:
+    """Run the command."""
+    import numpy as np
+    from rich.table import Table
+
+    from racketdyn.cli.figures import oblique_figures
+    from racketdyn.errors import InputError
+    from racketdyn.workflows.oblique import SPIN_CAVEAT, run_oblique
+
+    angles = opt.parse_numbers("--angles", args.angles, "degrees from the face normal")
+    point = None
+    if args.point is not None:
+        values = opt.parse_numbers("--point", args.point, "x,y in m")
+        if len(values) != 2:
+            raise InputError(f"--point takes x,y in m, e.g. 0.505,0 (got {args.point!r})")
+        point = (values[0], values[1])
+    opt.check_modes(args)
+    ball, hand, defaults = opt.ball_and_hand(args, [args.support])
+    with opt.progress_display(console) as progress:
+        result = run_oblique(
+            args.out,
+            racket=args.racket,
+            modal=args.modal,
+            rigid=args.rigid,
+            ball=ball,
+            speed=args.speed,
+            angles_deg=angles,
+            spin_radps=args.spin,
+            point=point,
+            support=args.support,
+            friction=args.friction,
+            tangential_stiffness=args.tangential_stiffness,
+            racket_speed=args.racket_speed,
+            racket_tangential_speed=args.racket_tangential_speed,
+            hand=hand,
+            defaults=defaults,
+            command=opt.command_line(args),
+            figures=None if args.no_figures else oblique_figures,
+            progress=progress,
+        )
+    curve, contact, where = result.curve, result.contact, result.point
+    assert curve is not None
+    console.print(
+        f"oblique impacts at x = {where[0] * 1e3:.0f} mm, y = {where[1] * 1e3:.0f} mm, "
+        f"ball {args.speed:g} m/s, spin {args.spin:g} rad/s, {result.support} → {result.out}"
+    )
+    table = Table(
+        title=f"μ = {contact.friction_coefficient:g}, k_t = {contact.stiffness_n_per_m:.3g} N/m"
+    )
+    for heading in ("in (°)", "out (°)", "spin out (rad/s)", "along the face (m/s)", "gripped"):
+        table.add_column(heading, justify="right")
+    for i in np.argsort(curve.incoming_angle_deg, kind="stable"):
+        table.add_row(
+            f"{curve.incoming_angle_deg[i]:g}",
+            f"{curve.outgoing_angle_deg[i]:.1f}",
+            f"{curve.outgoing_spin_radps[i]:.0f}",
+            f"{curve.tangential_speed_mps[i]:.2f}",
+            "yes" if curve.gripped[i] else "no",
+        )
+    console.print(table)
+    console.print(f"[yellow]{SPIN_CAVEAT}[/]")
+    opt.print_status(console, curve.status, "oblique.csv")
+    opt.print_written(console, result.written)
+    return 0

@@ -1,0 +1,284 @@
+"""Options shared by the commands: one name, one meaning, one help text each.
+
+Every command that takes a racket takes ``--racket FILE``; ball speeds are ``--speed`` (m/s),
+supports ``--support``, the grid ``--grid``, the output folder ``--out``, verbosity ``-v``.
+Help texts state the unit and the default.  Nothing here imports NumPy: ``racketdyn --help``
+stays fast.  The copies of the library's constants below are checked against it by the tests.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+    from racketdyn.workflows.run import Progress
+
+# Copies of library constants, kept here so that building the parser imports no NumPy
+# (tests/test_cli_options.py checks each against the library).
+SUPPORTS = ("free", "pinned")  # racketdyn.racket.SUPPORTS
+TRANSIENT_SUPPORTS = ("free", "pinned", "hand")  # racketdyn.impact.transient.TRANSIENT_SUPPORTS
+ENGINES = ("auto", "compiled", "reference")  # racketdyn.impact.transient.ENGINES
+MODELS = ("approx", "transient", "both")  # racketdyn.workflows.predict.MODELS
+IMPACT_MODELS = ("approx", "transient")  # racketdyn.workflows.swing.IMPACT_MODELS
+DEFAULT_GRID = 9  # racketdyn.workflows.predict.DEFAULT_GRID
+SWING_GRID = 15  # racketdyn.workflows.swing.SWING_GRID
+MAX_GRID = 400  # racketdyn.workflows.predict.MAX_GRID
+UNITS = "SI units throughout: m/s, m, kg, N, Hz, s (degrees where named)."
+
+Handler = Callable[[argparse.Namespace, "Console"], int]
+
+
+def command(
+    commands: Any, name: str, help_text: str, description: str | None = None
+) -> argparse.ArgumentParser:
+    """A subcommand with ``-v``; the description ends with the units note."""
+    parser: argparse.ArgumentParser = commands.add_parser(
+        name,
+        help=help_text,
+        description=f"{description or help_text[0].upper() + help_text[1:]}. {UNITS}",
+    )
+    add_verbose(parser, subcommand=True)
+    return parser
+
+
+def add_verbose(parser: argparse.ArgumentParser, subcommand: bool = False) -> None:
+    """``-v/--verbose``: log each step's stages (before or after the command name)."""
+    parser.add_argument(
+        "-v",
+        "--verbose",
+        action="store_true",
+        # a subcommand's default would overwrite ``racketdyn -v predict``: leave it unset
+        default=argparse.SUPPRESS if subcommand else False,
+        help="log each stage of the step (default: errors only)",
+    )
+
+
+def add_racket(parser: argparse.ArgumentParser, what: str = "") -> None:
+    """``--racket FILE``."""
+    parser.add_argument(
+        "--racket",
+        metavar="FILE",
+        help=f"racket TOML file{what} (default: the built-in paper racket, kawazoe_2002.toml)",
+    )
+
+
+def add_modes(parser: argparse.ArgumentParser) -> None:
+    """``--modal FILE`` and ``--rigid``."""
+    parser.add_argument(
+        "--modal",
+        metavar="FILE",
+        help="modal model (racketdyn JSON, e.g. from identify) to use (default: the racket's "
+        "own, else the built-in beam model)",
+    )
+    parser.add_argument(
+        "--rigid", action="store_true", help="no vibration: a rigid racket (default: off)"
+    )
+
+
+def add_ball(parser: argparse.ArgumentParser) -> None:
+    """``--ball-mass``, ``--e-bg``, ``--ball-law``."""
+    parser.add_argument(
+        "--ball-mass", type=float, metavar="KG", help="ball mass, kg (default 0.0577, ITF middle)"
+    )
+    parser.add_argument(
+        "--e-bg",
+        type=float,
+        metavar="COR",
+        help="ball-string COR on a head-clamped racket, dimensionless (default 0.83, Kawazoe)",
+    )
+    parser.add_argument(
+        "--ball-law",
+        metavar="CSV",
+        help="ball load-deflection CSV (deflection_m, force_n), one side (default: ITF "
+        "deformation + adiabatic gas)",
+    )
+
+
+def add_hand(parser: argparse.ArgumentParser) -> None:
+    """``--hand-arm-mass``."""
+    parser.add_argument(
+        "--hand-arm-mass",
+        type=float,
+        metavar="KG",
+        help="mass of the arm holding the grip, kg, for --support hand (default 1.0)",
+    )
+
+
+def add_racket_and_ball(parser: argparse.ArgumentParser) -> None:
+    """The racket, its modes, the ball and the hand: the same options for every impact step."""
+    add_racket(parser)
+    add_modes(parser)
+    add_ball(parser)
+    add_hand(parser)
+
+
+def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) -> None:
+    """``--speed``: incoming ball speed(s), m/s."""
+    if many:
+        parser.add_argument(
+            "--speed",
+            default=default,
+            metavar="M/S[,M/S...]",
+            help=f"incoming ball speeds, m/s, comma-separated (default {default})",
+        )
+    else:
+        parser.add_argument(
+            "--speed",
+            type=float,
+            metavar="M/S",
+            default=float(default),
+            help=f"incoming ball speed, m/s (default {default})",
+        )
+
+
+def add_support(parser: argparse.ArgumentParser, default: str, text: str, **kw: Any) -> None:
+    """``--support``."""
+    if "choices" not in kw:
+        kw.setdefault("metavar", "SUPPORT")
+    parser.add_argument("--support", default=default, help=f"{text} (default {default})", **kw)
+
+
+def add_grid(parser: argparse.ArgumentParser, default: int) -> None:
+    """``--grid N``."""
+    parser.add_argument(
+        "--grid",
+        type=int,
+        metavar="N",
+        help=f"N x N grid of points over the head, a count from 1 to {MAX_GRID} "
+        f"(default {default})",
+    )
+
+
+def add_out(parser: argparse.ArgumentParser, text: str = "") -> None:
+    """``--out DIR`` (required)."""
+    parser.add_argument(
+        "--out",
+        required=True,
+        metavar="DIR",
+        help=f"output folder (created if missing){text}; required",
+    )
+
+
+def add_no_figures(parser: argparse.ArgumentParser, what: str = "the CSV files") -> None:
+    """``--no-figures``."""
+    parser.add_argument(
+        "--no-figures",
+        action="store_true",
+        help=f"write {what} and run.json only (default: draw the figures too)",
+    )
+
+
+# --- parsing ----------------------------------------------------------------------------------
+def parse_list(name: str, text: str) -> list[str]:
+    """Items of a comma-separated list, none empty."""
+    from racketdyn.errors import InputError
+
+    items = [item.strip() for item in text.split(",")]
+    if not all(items):
+        raise InputError(
+            f"{name} must be a comma-separated list without empty items (got {text!r})"
+        )
+    return items
+
+
+def parse_speeds(name: str, text: str) -> list[float]:
+    """Speeds (m/s, ≥ 0) from a comma-separated list."""
+    from racketdyn.errors import InputError, require_speeds
+
+    speeds = []
+    for item in parse_list(name, text):
+        try:
+            speeds.append(float(item))
+        except ValueError:
+            raise InputError(
+                f"{name}: {item!r} is not a number; give speeds in m/s, e.g. 10,20,30"
+            ) from None
+    return [float(v) for v in require_speeds(name, speeds)]
+
+
+def parse_numbers(name: str, text: str, unit: str) -> list[float]:
+    """Finite numbers (any sign) from a comma-separated list."""
+    from racketdyn.errors import InputError
+
+    numbers = []
+    for item in parse_list(name, text):
+        try:
+            number = float(item)
+        except ValueError:
+            raise InputError(f"{name}: {item!r} is not a number ({unit})") from None
+        if not math.isfinite(number):
+            raise InputError(f"{name} must be a finite number (got {item!r})")
+        numbers.append(number)
+    return numbers
+
+
+def ball_and_hand(args: argparse.Namespace, supports: Sequence[str]) -> tuple[Any, Any, list[str]]:
+    """The ball and the hand from the options, with the defaults used."""
+    from racketdyn.errors import InputError
+    from racketdyn.workflows.inputs import ball_from, hand_for
+
+    if "hand" not in supports and args.hand_arm_mass is not None:
+        raise InputError("--hand-arm-mass is for --support hand (with --model transient)")
+    ball, ball_defaults = ball_from(args.ball_mass, args.e_bg, args.ball_law)
+    hand, hand_defaults = hand_for(supports, args.hand_arm_mass)
+    return ball, hand, [*ball_defaults, *hand_defaults]
+
+
+def check_modes(args: argparse.Namespace) -> None:
+    """``--modal`` and ``--rigid`` exclude each other."""
+    from racketdyn.errors import InputError
+
+    if args.modal is not None and args.rigid:
+        raise InputError("give --modal or --rigid, not both")
+
+
+def command_line(args: argparse.Namespace) -> list[str]:
+    """The command as called, for run.json."""
+    return ["racketdyn", *args.argv]
+
+
+# --- output -----------------------------------------------------------------------------------
+@contextmanager
+def progress_display(console: Console) -> Iterator[Progress]:
+    """A ``progress(what, done, total)`` callback drawing one rich progress line (a spinner
+    for ``total == 0``); the line goes when the step ends."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn
+
+    with Progress(
+        SpinnerColumn(),
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        console=console,
+        transient=True,
+    ) as bar:
+        task = bar.add_task("", total=None)
+
+        def update(what: str, done: int, total: int) -> None:
+            bar.update(task, description=what, completed=done, total=total or None)
+
+        yield update
+
+
+def print_written(console: Console, paths: Sequence[Any]) -> None:
+    """``wrote PATH`` per file."""
+    for path in paths:
+        console.print(f"  wrote {path}")
+
+
+def print_status(console: Console, status: Any, csv_name: str, label: str = "") -> None:
+    """How many impacts failed, by reason (their rows are NaN)."""
+    import numpy as np
+
+    bad = status != "ok"
+    if np.any(bad):
+        reasons, counts = np.unique(status[bad], return_counts=True)
+        for reason, count in zip(reasons, counts, strict=True):
+            prefix = f"{label}: " if label else ""
+            console.print(f"[yellow]{prefix}{count} impacts: {reason}; NaN in {csv_name}[/]")

@@ -1,0 +1,181 @@
+"""``racketdyn predict``: impacts over the face (approximate method, transient model or both)."""
+
+from __future__ import annotations
+
+import argparse
+from typing import TYPE_CHECKING, Any
+
+from racketdyn.cli import options as opt
+
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.table import Table
+
+    from racketdyn.impact.comparison import ModelComparison
+    from racketdyn.racket import Racket
+
+
+def add(commands: Any) -> None:
+    """Register the command."""
+    p = opt.command(
+        commands,
+        "predict",
+        "predict impacts over the face; write CSV, figures, run.json",
+        "Rebound ball speed, contact time, forces and vibration energy at every point x speed "
+        "x support: impact.csv, figures, run.json",
+    )
+    opt.add_racket_and_ball(p)
+    opt.add_speed(p, "10,20,30")
+    p.add_argument(
+        "--racket-speed",
+        default="0",
+        help="racket speed at the impact point towards the ball, m/s: one, or one per speed "
+        "(default 0)",
+    )
+    p.add_argument(
+        "--model",
+        choices=opt.MODELS,
+        default="approx",
+        help="approx: Kawazoe's approximate method (default); transient: the time-domain "
+        "simulation of the contact; both: each, with comparison.csv and figures of the difference",
+    )
+    opt.add_support(
+        p,
+        "free,pinned",
+        "free, pinned or both; hand (the grip held by a hand and arm) with --model transient only",
+    )
+    p.add_argument(
+        "--engine",
+        choices=opt.ENGINES,
+        help="transient model's integrator: auto (default: compiled where numba is installed), "
+        "compiled (numba batch) or reference (scipy solve_ivp)",
+    )
+    opt.add_grid(p, opt.DEFAULT_GRID)
+    p.add_argument(
+        "--points",
+        metavar="CSV",
+        help="CSV of impact points with columns x_m, y_m [, point], m (default: the --grid)",
+    )
+    p.add_argument(
+        "--stiffness-reading",
+        choices=("period", "tangent"),
+        help="reading of the paper's eq 10 (approximate method): the exact elastic half period "
+        "(default) or the tangent stiffness at peak deflection (the paper's shortcut)",
+    )
+    p.add_argument(
+        "--include-string-bed",
+        action="store_true",
+        help="charge string-bed modes as vibration loss too (default: off)",
+    )
+    opt.add_no_figures(p)
+    opt.add_out(p)
+    p.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace, console: Console) -> int:
+    """Run the command."""
+    from racketdyn.cli.figures import predict_figures
+    from racketdyn.errors import InputError
+    from racketdyn.workflows.predict import check_supports, run_predict, transient_csv_name
+
+    opt.check_modes(args)
+    speeds = opt.parse_speeds("--speed", args.speed)
+    racket_speed = opt.parse_speeds("--racket-speed", args.racket_speed)
+    supports = check_supports(opt.parse_list("--support", args.support), args.model)
+    if args.model == "approx":
+        if args.engine is not None:
+            raise InputError("--engine is for the transient model: add --model transient or both")
+    elif args.stiffness_reading is not None and args.model == "transient":
+        raise InputError(
+            "--stiffness-reading is a choice of the approximate method (eq 10); the transient "
+            "model integrates the contact: drop it, or use --model approx or both"
+        )
+    ball, hand, defaults = opt.ball_and_hand(args, supports)
+    with opt.progress_display(console) as progress:
+        result = run_predict(
+            args.out,
+            racket=args.racket,
+            modal=args.modal,
+            rigid=args.rigid,
+            ball=ball,
+            speeds=speeds,
+            racket_speed=racket_speed,
+            supports=supports,
+            model=args.model,
+            engine=args.engine or "auto",
+            hand=hand,
+            points=args.points,
+            grid=args.grid,
+            stiffness_reading=args.stiffness_reading or "period",
+            include_string_bed=args.include_string_bed,
+            defaults=defaults,
+            command=opt.command_line(args),
+            figures=None if args.no_figures else predict_figures(lambda s: progress(s, 0, 0)),
+            progress=progress,
+        )
+    table = result.result
+    console.print(
+        f"[bold]{table.status.size}[/] impacts "
+        f"({table.locations.shape[0]} points × {len(speeds)} speeds × {len(supports)} supports) "
+        f"{'by each model ' if result.comparison is not None else ''}→ {result.out}"
+    )
+    for label, part, csv_name in (
+        ("approximate method", result.approximate, "impact.csv"),
+        ("transient model", result.transient, transient_csv_name(args.model)),
+    ):
+        if part is not None:
+            opt.print_status(console, part.status, csv_name, label)
+    if result.comparison is not None:
+        assert result.racket is not None
+        console.print(_comparison_table(result.comparison, result.shown_speed, result.racket))
+    console.print(f"compound ball+string law: {result.law.describe()}")
+    opt.print_written(console, result.written)
+    return 0
+
+
+def _comparison_table(comparison: ModelComparison, speed: int, racket: Racket) -> Table:
+    """At the point nearest the face centre, and the largest difference over the face."""
+    import numpy as np
+    from rich.table import Table
+
+    result = comparison.approximate
+    centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
+    i = int(np.argmin(np.linalg.norm(result.locations - centre, axis=1)))
+    x, y = result.locations[i] * 1e3
+    table = Table(
+        title=f"approximate against transient at {result.ball_speed[speed]:g} m/s "
+        f"(centre: point {result.labels[i]}, x = {x:.0f} mm, y = {y:.0f} mm)"
+    )
+    for heading in (
+        "support",
+        "e approx",
+        "e transient",
+        "T_c approx (ms)",
+        "T_c transient (ms)",
+        "largest |Δe| on the face",
+        "at x, y (mm)",
+    ):
+        table.add_column(heading)
+    e_a, e_t = comparison.values("rebound_ratio")
+    t_a, t_t = comparison.values("contact_time")
+    difference = np.abs(comparison.difference("rebound_ratio"))
+    for p, support in enumerate(result.supports):
+        column = difference[:, speed, p]
+        if np.any(np.isfinite(column)):
+            worst = int(np.nanargmax(column))
+            where = (
+                f"{result.locations[worst, 0] * 1e3:.0f}, {result.locations[worst, 1] * 1e3:.0f}"
+            )
+            largest = f"{column[worst]:.3f}"
+        else:
+            largest, where = "–", "–"
+        table.add_row(
+            support,
+            f"{e_a[i, speed, p]:.3f}",
+            f"{e_t[i, speed, p]:.3f}",
+            f"{t_a[i, speed, p] * 1e3:.2f}",
+            f"{t_t[i, speed, p] * 1e3:.2f}",
+            largest,
+            where,
+        )
+    return table

@@ -1,0 +1,81 @@
+"""``racketdyn rig``: a virtual roving-hammer test of a racket model (UFF out)."""
+
+from __future__ import annotations
+
+import argparse
+from typing import TYPE_CHECKING, Any
+
+from racketdyn.cli import options as opt
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+
+def add(commands: Any) -> None:
+    """Register the command."""
+    p = opt.command(
+        commands,
+        "rig",
+        "virtual roving-hammer test of a racket model (UFF out)",
+        "A roving-hammer test simulated on the virtual rig: hammer_<support>.uff (geometry + "
+        "time records), modal_truth_<support>.json, run.json",
+    )
+    opt.add_racket(p)
+    opt.add_support(
+        p,
+        "free",
+        "free (on a sponge) or hand (held by a hand)",
+        choices=("free", "hand"),
+    )
+    p.add_argument("--averages", type=int, default=10, help="hits per point, a count (default 10)")
+    p.add_argument(
+        "--double-hits",
+        type=float,
+        default=0.0,
+        help="probability of a double hit per hit, 0 to 1, dimensionless (default 0)",
+    )
+    p.add_argument(
+        "--overloads",
+        type=float,
+        default=0.0,
+        help="probability of an overload per hit, 0 to 1, dimensionless (default 0)",
+    )
+    p.add_argument("--seed", type=int, default=1, help="random seed, a count (default 1)")
+    p.add_argument("--binary", action="store_true", help="write binary UFF 58b (default: ASCII)")
+    opt.add_out(p)
+    p.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace, console: Console) -> int:
+    """Run the command."""
+    from racketdyn.workflows.rig import run_rig
+
+    with opt.progress_display(console) as progress:
+        result = run_rig(
+            args.out,
+            racket=args.racket,
+            support=args.support,
+            averages=args.averages,
+            double_hits=args.double_hits,
+            overloads=args.overloads,
+            seed=args.seed,
+            binary=args.binary,
+            command=opt.command_line(args),
+            progress=progress,
+        )
+    assert result.records is not None
+    assert result.truth is not None
+    assert result.faults
+    console.print(
+        f"{result.records.n_points} points × {args.averages} averages on the {args.support} rig "
+        f"(accelerometer at node {result.reference_node}), {result.faults['double_hits']} "
+        f"double hits, {result.faults['overloads']} overloads → {result.out}"
+    )
+    truth = result.truth
+    for name, frequency, damping in zip(
+        truth.names, truth.frequency, truth.damping_ratio, strict=True
+    ):
+        if frequency > 15.0:
+            console.print(f"  {name:24s} {frequency:8.1f} Hz  ζ = {damping * 100:.2f} %")
+    opt.print_written(console, result.written)
+    return 0

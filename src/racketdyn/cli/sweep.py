@@ -1,0 +1,108 @@
+"""``racketdyn sweep``: a design sweep — racket variants × points × speeds."""
+
+from __future__ import annotations
+
+import argparse
+import logging
+from typing import TYPE_CHECKING, Any
+
+from racketdyn.cli import options as opt
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+
+def add(commands: Any) -> None:
+    """Register the command."""
+    p = opt.command(
+        commands,
+        "sweep",
+        "a design sweep: racket variants × points × speeds (sweep.nc, figures)",
+        "A design sweep from a spec TOML (docs/sweep-file.md), one task per design on the "
+        "engine chosen: sweep.nc, summary.csv, figures, run.json",
+    )
+    p.add_argument("spec", help="sweep spec TOML (docs/sweep-file.md)")
+    opt.add_out(p, "; run again to resume")
+    engine = p.add_mutually_exclusive_group()
+    engine.add_argument(
+        "--serial",
+        action="store_true",
+        help="run in this process (default: this process for a small sweep, else two processes)",
+    )
+    engine.add_argument(
+        "--workers",
+        type=int,
+        metavar="N",
+        help="a local pool of N processes, a count (default: chosen by size)",
+    )
+    engine.add_argument(
+        "--dask-local",
+        type=int,
+        metavar="N",
+        help="a local Dask cluster of N worker processes, a count (default: none)",
+    )
+    engine.add_argument(
+        "--scheduler",
+        metavar="tcp://HOST:PORT",
+        help="a running Dask scheduler to use (default: none)",
+    )
+    opt.add_no_figures(p, "sweep.nc")
+    p.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace, console: Console) -> int:
+    """Run the command."""
+    from pathlib import Path
+
+    from racketdyn.sweep import load_sweep_spec
+    from racketdyn.workflows.sweep import run_sweep_step
+
+    spec = load_sweep_spec(Path(args.spec))
+    if args.serial:
+        engine, workers = "serial", None
+    elif args.workers is not None:
+        engine, workers = "process", args.workers
+    elif args.dask_local is not None:
+        engine, workers = "dask-local", args.dask_local
+    elif args.scheduler is not None:
+        engine, workers = "dask", None
+    else:
+        engine, workers = "auto", None
+    console.print(
+        f"{spec.name}: {len(spec.designs)} designs × {spec.impacts_per_design:,} impacts "
+        f"= {spec.n_impacts:,} impacts → {args.out}"
+    )
+    if engine.startswith("dask") and not args.verbose:
+        import distributed  # noqa: F401  (importing it sets its loggers to INFO: quieten them)
+
+        logging.getLogger("distributed").setLevel(logging.WARNING)
+    with opt.progress_display(console) as progress:
+        result = run_sweep_step(
+            spec,
+            args.out,
+            engine=engine,  # type: ignore[arg-type]
+            workers=workers,
+            scheduler=args.scheduler,
+            figures=not args.no_figures,
+            progress=progress,
+        )
+    record, out = result.record, result.out
+    console.print(
+        f"[bold]{record['impacts']:,}[/] impacts, {record['designs']} designs "
+        f"({record['ran']} run, {record['resumed']} resumed) on {record['engine']} "
+        f"in {record['wall_time_s']:.1f} s"
+    )
+    for text, count in record["status_counts"].items():
+        if text not in ("ok", "task failed") and count:
+            console.print(f"[yellow]{count:,} impacts: {text}; their results are NaN[/]")
+    for failure in result.failed:
+        console.print(f"[red]{failure['task_id']} failed: {failure['error']}[/]")
+    for name in record["outputs"]:
+        console.print(f"  wrote {out / name}")
+    if result.failed:
+        console.print(
+            f"[red]{len(result.failed)} of {record['designs']} designs failed (NaN, status 3); "
+            f"details in {out / 'failures.json'}; run the same command again to retry them[/]"
+        )
+        return 1
+    return 0

@@ -1,0 +1,119 @@
+"""``racketdyn swing``: a swinging racket — outgoing ball speed over the face, sweet spots."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from typing import TYPE_CHECKING, Any
+
+from racketdyn.cli import options as opt
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+
+def add(commands: Any) -> None:
+    """Register the command."""
+    p = opt.command(
+        commands,
+        "swing",
+        "a swinging racket: outgoing ball speed over the face and the sweet spots",
+        "Outgoing ball speed over the face of a racket swung about the shoulder (constant "
+        "shoulder torque, Kawazoe ACMD 2002, or a given angular speed), and where the sweet "
+        "spots lie: swing.csv, sweet_spots.csv, figures, run.json",
+    )
+    opt.add_racket_and_ball(p)
+    opt.add_speed(p, "20")
+    p.add_argument(
+        "--torque",
+        type=float,
+        help="constant shoulder torque, N·m (default 56.9, Kawazoe ACMD 2002)",
+    )
+    p.add_argument(
+        "--swing-angle-deg",
+        type=float,
+        help="angle turned from rest to impact, degrees (default 90, an assumption)",
+    )
+    p.add_argument(
+        "--angular-speed",
+        type=float,
+        help="angular speed at impact, rad/s, instead of the torque model (default: from the "
+        "torque)",
+    )
+    p.add_argument(
+        "--axis-to-butt",
+        type=float,
+        help="swing axis (shoulder) behind the butt, m (default 0.607: straight arm, 1.75 m adult)",
+    )
+    opt.add_support(
+        p, "pinned", "pinned (the paper's hand-held racket), free, or hand (--model transient)"
+    )
+    p.add_argument(
+        "--model",
+        choices=opt.IMPACT_MODELS,
+        default="approx",
+        help="approx: Kawazoe's approximate method (default); transient: the time-domain model",
+    )
+    opt.add_grid(p, opt.SWING_GRID)
+    opt.add_no_figures(p)
+    opt.add_out(p)
+    p.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace, console: Console) -> int:
+    """Run the command."""
+    from rich.table import Table
+
+    from racketdyn.cli.figures import swing_figures
+    from racketdyn.workflows.swing import one_support, run_swing, swing_from
+
+    speeds = opt.parse_speeds("--speed", args.speed)
+    support = one_support(args.support, args.model == "transient")
+    opt.check_modes(args)
+    ball, hand, defaults = opt.ball_and_hand(args, [support])
+    swing, swing_defaults = swing_from(
+        args.torque, args.swing_angle_deg, args.angular_speed, args.axis_to_butt
+    )
+    with opt.progress_display(console) as progress:
+        result = run_swing(
+            args.out,
+            racket=args.racket,
+            modal=args.modal,
+            rigid=args.rigid,
+            ball=ball,
+            swing=swing,
+            speeds=speeds,
+            support=support,
+            model=args.model,
+            hand=hand,
+            grid=args.grid,
+            defaults=[*swing_defaults, *defaults],
+            command=opt.command_line(args),
+            figures=None if args.no_figures else swing_figures,
+            progress=progress,
+        )
+    assert result.swing_result is not None
+    assert result.racket is not None
+    chosen = result.shown_speed
+    console.print(
+        f"swing {swing.describe(result.racket)} ({result.impact_model} model, {support}): "
+        f"[bold]{result.swing_result.status.size}[/] impacts "
+        f"({result.swing_result.locations.shape[0]} points × {len(speeds)} speeds) → {result.out}"
+    )
+    opt.print_status(console, result.swing_result.status, "swing.csv")
+    table = Table(title=f"sweet spots, ball {speeds[chosen]:g} m/s, {support}")
+    for heading in ("sweet spot", "x (mm)", "on the face", "racket (m/s)", "outgoing (m/s)"):
+        table.add_column(heading, justify="left" if heading == "sweet spot" else "right")
+    for row in result.spot_rows:
+        table.add_row(
+            str(row["name"]),
+            f"{row['x_m'] * 1e3:.0f}",
+            "yes" if row["on_face"] else "no",
+            f"{row['racket_speed_mps']:.1f}",
+            "–"
+            if not math.isfinite(row["rebound_speed_mps"])
+            else f"{row['rebound_speed_mps']:.1f}",
+        )
+    console.print(table)
+    opt.print_written(console, result.written)
+    return 0

@@ -1,0 +1,110 @@
+"""Workflows (layer 3): one function per step, called by the CLI, the demo and Python users.
+
+Each step takes plain inputs (objects and paths), runs the step, writes its data files into a
+run folder with a ``run.json`` (:mod:`racketdyn.workflows.run`) and returns a result object
+(the paths written and the computed objects).  Workflows draw no figures and print nothing:
+figures come from a hook the caller passes (``figures(result, out) -> paths``), progress from a
+``progress(what, done, total)`` callback, and they log with :mod:`logging`.
+
+======================  =========================================================
+:func:`run_rig`          virtual roving-hammer test (UFF)
+:func:`run_frf`          FRFs and quality table from hammer records
+:func:`run_contact`      hammer contact time over the face
+:func:`run_identify`     modal model from FRFs
+:func:`run_compare`      free against hand-held identification
+:func:`run_predict`      impacts over the face: approximate, transient or both
+:func:`run_swing`        a swinging racket and its sweet spots
+:func:`run_oblique`      oblique impacts with spin
+:func:`run_twist`        off-axis impacts: roll and twist
+:func:`run_sweep_step`   a design sweep
+======================  =========================================================
+
+Example
+-------
+>>> from racketdyn.workflows import run_predict
+>>> result = run_predict("out", speeds=[20.0], grid=3)  # doctest: +SKIP
+>>> result.written  # doctest: +SKIP
+[PosixPath('out/impact.csv')]
+
+Submodules are imported when first used (SPEC 1), so ``import racketdyn.workflows`` is cheap.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from racketdyn.workflows.contact import ContactResult, run_contact
+    from racketdyn.workflows.frf import FrfResult, run_frf
+    from racketdyn.workflows.identify import (
+        CompareResult,
+        IdentifyResult,
+        run_compare,
+        run_identify,
+    )
+    from racketdyn.workflows.oblique import ObliqueResult, run_oblique
+    from racketdyn.workflows.predict import PredictResult, run_predict
+    from racketdyn.workflows.rig import RigResult, run_rig
+    from racketdyn.workflows.run import StepResult
+    from racketdyn.workflows.sweep import SweepResult, run_sweep_step
+    from racketdyn.workflows.swing import SwingStepResult, run_swing
+    from racketdyn.workflows.twist import TwistResult, run_twist
+
+_WHERE = {
+    "CompareResult": "identify",
+    "ContactResult": "contact",
+    "FrfResult": "frf",
+    "IdentifyResult": "identify",
+    "ObliqueResult": "oblique",
+    "PredictResult": "predict",
+    "RigResult": "rig",
+    "StepResult": "run",
+    "SweepResult": "sweep",
+    "SwingStepResult": "swing",
+    "TwistResult": "twist",
+    "run_compare": "identify",
+    "run_contact": "contact",
+    "run_frf": "frf",
+    "run_identify": "identify",
+    "run_oblique": "oblique",
+    "run_predict": "predict",
+    "run_rig": "rig",
+    "run_sweep_step": "sweep",
+    "run_swing": "swing",
+    "run_twist": "twist",
+}
+
+__all__ = [
+    "CompareResult",
+    "ContactResult",
+    "FrfResult",
+    "IdentifyResult",
+    "ObliqueResult",
+    "PredictResult",
+    "RigResult",
+    "StepResult",
+    "SweepResult",
+    "SwingStepResult",
+    "TwistResult",
+    "run_compare",
+    "run_contact",
+    "run_frf",
+    "run_identify",
+    "run_oblique",
+    "run_predict",
+    "run_rig",
+    "run_sweep_step",
+    "run_swing",
+    "run_twist",
+]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        return getattr(importlib.import_module(f"racketdyn.workflows.{_WHERE[name]}"), name)
+    raise AttributeError(f"module 'racketdyn.workflows' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return __all__

@@ -1,0 +1,103 @@
+"""Step ``contact``: hammer contact time over the face from one or more hammer tests (paper
+Fig. 7).
+
+Writes ``contact_<label>.csv`` per test and ``run.json``; the figure comes from the caller's hook.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from racketdyn.errors import InputError
+from racketdyn.measurement.frf import estimate_frfs
+from racketdyn.measurement.pulse import ContactTimes, contact_times
+from racketdyn.racket import Racket
+from racketdyn.workflows.frf import read_records
+from racketdyn.workflows.inputs import RacketInput, load_racket_input
+from racketdyn.workflows.run import Progress, StepResult, command_record, finish_run, report
+
+__all__ = ["CONTACT_METHOD", "ContactResult", "run_contact"]
+
+CONTACT_METHOD = "half-sine-equivalent duration: 1.5 x full width at half maximum"
+
+
+@dataclass
+class ContactResult(StepResult):
+    """What :func:`run_contact` measured and wrote.
+
+    Attributes
+    ----------
+    tables : list of ContactTimes
+        Contact times per point, one table per test.
+    labels : list of str
+        A label per test.
+    racket : Racket
+        The racket (head outline).
+    """
+
+    tables: list[ContactTimes] = field(default_factory=list)
+    labels: list[str] = field(default_factory=list)
+    racket: Racket | None = None
+
+
+def _slug(label: str) -> str:
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in label)
+
+
+def run_contact(
+    tests: Sequence[str | os.PathLike[str]],
+    out: str | os.PathLike[str],
+    *,
+    labels: Sequence[str] | None = None,
+    geometry: str | os.PathLike[str] | None = None,
+    racket: RacketInput = None,
+    command: Sequence[str] | None = None,
+    figures: Callable[[ContactResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> ContactResult:
+    """Contact time of every hammer hit, per point, for each test; write the run folder.
+
+    Parameters
+    ----------
+    tests : sequence of path
+        Hammer records, one file per condition (UFF 58 or CSV with ``geometry``).
+    out : path
+        Output folder (created if missing).
+    labels : sequence of str, optional
+        A label per file (default: the file names' stems).
+    geometry : path, optional
+        Node coordinates if not in the files.
+    racket : Racket, path or None
+        Racket (head outline); None for the built-in racket.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths``: Fig. 7 (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    names = [Path(t).stem for t in tests] if labels is None else list(labels)
+    if len(names) != len(tests):
+        raise InputError(f"--labels: give one label per test file ({len(tests)})")
+    the_racket, provenance = load_racket_input(racket)
+    out_dir = Path(out)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    result = ContactResult(out_dir, labels=names, racket=the_racket)
+    for i, (label, test) in enumerate(zip(names, tests, strict=True)):
+        report(progress, "contact times", i, len(names))
+        records = read_records(test, geometry)
+        times = contact_times(records, estimate_frfs(records).checks)
+        path = out_dir / f"contact_{_slug(label)}.csv"
+        times.write_csv(path)
+        result.written.append(path)
+        result.tables.append(times)
+    inputs = {
+        "tests_files": [str(Path(t).resolve()) for t in tests],
+        "labels": names,
+        **provenance,
+        "method": CONTACT_METHOD,
+    }
+    return finish_run(result, inputs, command_record(command, "contact"), figures)

@@ -1,0 +1,144 @@
+"""Step ``frf``: FRFs and the per-average quality table from hammer-test records.
+
+Writes ``quality.csv``, ``frfs.uff`` (UFF 58, with geometry) and ``run.json``; figures come from
+the caller's hook.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Literal
+
+from racketdyn.errors import InputError, one_of
+from racketdyn.io import read_hammer_csv, read_hammer_uff, write_frf_uff
+from racketdyn.measurement import HammerRecords
+from racketdyn.measurement.frf import FrfEstimate, estimate_frfs
+from racketdyn.measurement.quality import QualitySettings
+from racketdyn.racket import Racket
+from racketdyn.workflows.inputs import RacketInput, load_racket_input
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    report,
+    sha256,
+)
+
+__all__ = ["ESTIMATORS", "FrfResult", "read_records", "run_frf"]
+
+ESTIMATORS = ("H1", "H2")
+
+
+def read_records(
+    path: str | os.PathLike[str], geometry: str | os.PathLike[str] | None = None
+) -> HammerRecords:
+    """Hammer records from UFF 58 (geometry in the file or given) or CSV (geometry needed).
+
+    Parameters
+    ----------
+    path : path
+        UFF or CSV records.
+    geometry : path, optional
+        Node coordinates (UFF 15/2411, or CSV ``node, x_m, y_m``).
+    """
+    path = Path(path)
+    if path.suffix.lower() == ".csv":
+        if geometry is None:
+            raise InputError(f"{path}: a CSV of hammer records needs --geometry NODES.csv")
+        return read_hammer_csv(path, Path(geometry))
+    return read_hammer_uff(path, None if geometry is None else Path(geometry))
+
+
+@dataclass
+class FrfResult(StepResult):
+    """What :func:`run_frf` estimated and wrote.
+
+    Attributes
+    ----------
+    estimate : FrfEstimate
+        FRFs (``estimate.frfs``), per-average checks and rejected points.
+    racket : Racket
+        The racket (head outline for the figures).
+    """
+
+    estimate: FrfEstimate | None = None
+    racket: Racket | None = None
+
+
+def run_frf(
+    tests: str | os.PathLike[str],
+    out: str | os.PathLike[str],
+    *,
+    geometry: str | os.PathLike[str] | None = None,
+    racket: RacketInput = None,
+    estimator: Literal["H1", "H2"] = "H1",
+    force_window_s: float | None = None,
+    exponential_window_s: float | None = None,
+    force_range_n: float | None = None,
+    command: Sequence[str] | None = None,
+    figures: Callable[[FrfResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> FrfResult:
+    """Estimate FRFs from hammer records and write the run folder.
+
+    Parameters
+    ----------
+    tests : path
+        Hammer records: UFF 58 time records, or CSV (with ``geometry``).
+    out : path
+        Output folder (created if missing).
+    geometry : path, optional
+        Node coordinates if not in ``tests``.
+    racket : Racket, path or None
+        Racket (head outline for the figures); None for the built-in racket.
+    estimator : {"H1", "H2"}
+        FRF estimator.
+    force_window_s : float, optional
+        Keep the force this long after the trigger, s (default: the whole record).
+    exponential_window_s : float, optional
+        Exponential window time constant τ, s (default: none).
+    force_range_n : float, optional
+        Hammer channel range, N: reaching it is an overload.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths``: Figs 2–3 (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    one_of("--estimator", estimator, ESTIMATORS)
+    records = read_records(tests, geometry)
+    the_racket, provenance = load_racket_input(racket)
+    out_dir = Path(out)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    report(progress, "estimating FRFs")
+    estimate = estimate_frfs(
+        records,
+        estimator=estimator,
+        force_window_s=force_window_s,
+        exponential_window_s=exponential_window_s,
+        quality=QualitySettings(overload_level_n=force_range_n),
+    )
+    estimate.write_quality_csv(out_dir / "quality.csv")
+    result = FrfResult(out_dir, [out_dir / "quality.csv"], estimate=estimate, racket=the_racket)
+    if estimate.frfs is None:
+        raise InputError(
+            f"{tests}: every average of every point was rejected; see {out_dir / 'quality.csv'}"
+        )
+    result.written.append(write_frf_uff(estimate.frfs, out_dir / "frfs.uff"))
+    inputs = {
+        "tests_file": str(Path(tests).resolve()),
+        "tests_sha256": sha256(Path(tests)),
+        **provenance,
+        "estimator": estimator,
+        "force_window_s": force_window_s,
+        "exponential_window_s": exponential_window_s,
+        "force_range_n": force_range_n,
+        "quality": estimate.summary(),
+        "rejected_points": list(estimate.rejected_points),
+    }
+    return finish_run(result, inputs, command_record(command, "frf"), figures)

@@ -1,0 +1,323 @@
+"""Steps ``identify`` and ``compare``: modal models from FRFs, and free against hand-held.
+
+``identify`` writes ``modes.csv``, ``modal_model.json`` (what ``predict --modal`` takes),
+``modes.uff`` (UFF 55), ``fit_quality.csv`` and ``run.json``.  ``compare`` writes the same per
+support (suffixes ``_free``, ``_hand``), ``comparison.csv`` (modes paired by MAC) and ``run.json``.
+Figures come from the caller's hook.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from racketdyn.errors import InputError
+from racketdyn.io import read_frf_uff
+from racketdyn.io.uff import write_modes_uff
+from racketdyn.modal.identify import Identification
+from racketdyn.modal.shapes import pair_modes
+from racketdyn.racket import Racket
+from racketdyn.racket_modal.identify import identify_racket
+from racketdyn.racket_modal.shapes import axis_nodes
+from racketdyn.workflows.inputs import RacketInput, load_racket_input
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    report,
+    sha256,
+)
+
+__all__ = [
+    "CompareResult",
+    "IdentifyResult",
+    "identify_file",
+    "run_compare",
+    "run_identify",
+    "write_mode_comparison",
+    "write_model",
+]
+
+
+def _band(band_hz: Sequence[float] | None) -> tuple[float, float] | None:
+    if band_hz is None:
+        return None
+    values = [float(v) for v in band_hz]
+    if len(values) != 2 or not 0.0 <= values[0] < values[1]:
+        raise InputError(f"--band takes two frequencies low,high in Hz (got {band_hz!r})")
+    return (values[0], values[1])
+
+
+def identify_file(
+    path: str | os.PathLike[str],
+    racket: Racket,
+    support: str,
+    *,
+    geometry: str | os.PathLike[str] | None = None,
+    band_hz: Sequence[float] | None = None,
+    max_order: int = 60,
+    pin_hz: Sequence[float] = (),
+    exclude_hz: Sequence[float] = (),
+) -> Identification:
+    """Read FRFs (UFF 58) and identify their modal model (:func:`racketdyn.modal.identify`).
+
+    Parameters
+    ----------
+    path : path
+        FRFs, UFF 58 function type 4 with geometry (or ``geometry``).
+    racket : Racket
+        The racket (its head names the modes).
+    support : str
+        ``free`` or ``hand``, recorded on the model.
+    geometry : path, optional
+        Node coordinates if not in the file.
+    band_hz : (low, high), optional
+        Band, Hz (default 40 Hz to fs/2.56).
+    max_order : int
+        Highest model order.
+    pin_hz, exclude_hz : sequence of float
+        Modes forced in or left out, by approximate frequency, Hz.
+    """
+    frfs = read_frf_uff(Path(path), None if geometry is None else Path(geometry))
+    return identify_racket(
+        frfs,
+        racket,
+        band_hz=_band(band_hz),
+        max_order=max_order,
+        pin_hz=list(pin_hz),
+        exclude_hz=list(exclude_hz),
+        support=support,
+    )
+
+
+def write_model(identification: Identification, out: Path, label: str = "") -> list[Path]:
+    """``modes<label>.csv``, ``modal_model<label>.json``, ``modes<label>.uff`` and
+    ``fit_quality<label>.csv`` of one identification; returns the paths."""
+    model = identification.model
+    paths = [out / f"modes{label}.csv", out / f"modal_model{label}.json", out / f"modes{label}.uff"]
+    identification.write_modes_csv(paths[0])
+    model.write_json(paths[1])
+    write_modes_uff(model, paths[2], nodes=identification.frfs.nodes)
+    quality = out / f"fit_quality{label}.csv"
+    with quality.open("w", encoding="utf-8") as handle:
+        handle.write("node,x_m,y_m,fit_error\n")
+        for node, (x, y), error in zip(
+            identification.frfs.nodes,
+            identification.frfs.locations,
+            identification.fit.error,
+            strict=True,
+        ):
+            handle.write(f"{node},{x:.6g},{y:.6g},{error:.4g}\n")
+    return [*paths, quality]
+
+
+@dataclass
+class IdentifyResult(StepResult):
+    """What :func:`run_identify` identified and wrote.
+
+    Attributes
+    ----------
+    identification : Identification
+        Every intermediate result; ``identification.model`` is the modal model.
+    racket : Racket
+        The racket (head for the figures).
+    """
+
+    identification: Identification | None = None
+    racket: Racket | None = None
+
+
+def run_identify(
+    frfs: str | os.PathLike[str],
+    out: str | os.PathLike[str],
+    *,
+    support: str = "free",
+    racket: RacketInput = None,
+    geometry: str | os.PathLike[str] | None = None,
+    band_hz: Sequence[float] | None = None,
+    max_order: int = 60,
+    pin_hz: Sequence[float] = (),
+    exclude_hz: Sequence[float] = (),
+    command: Sequence[str] | None = None,
+    figures: Callable[[IdentifyResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> IdentifyResult:
+    """Identify a modal model from FRFs and write the run folder.
+
+    Parameters
+    ----------
+    frfs : path
+        FRFs, UFF 58 function type 4 (e.g. ``frfs.uff`` of :func:`~racketdyn.workflows.run_frf`).
+    out : path
+        Output folder (created if missing).
+    support : {"free", "hand"}
+        Support of the test.
+    racket : Racket, path or None
+        Racket (its head names the modes); None for the built-in racket.
+    geometry, band_hz, max_order, pin_hz, exclude_hz
+        As for :func:`identify_file`.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths`` (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    the_racket, provenance = load_racket_input(racket)
+    out_dir = Path(out)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    report(progress, f"identifying {Path(frfs).name}")
+    found = identify_file(
+        frfs,
+        the_racket,
+        support,
+        geometry=geometry,
+        band_hz=band_hz,
+        max_order=max_order,
+        pin_hz=pin_hz,
+        exclude_hz=exclude_hz,
+    )
+    result = IdentifyResult(
+        out_dir, write_model(found, out_dir), identification=found, racket=the_racket
+    )
+    inputs = {
+        "frfs_file": str(Path(frfs).resolve()),
+        "frfs_sha256": sha256(Path(frfs)),
+        **provenance,
+        "support": support,
+        "band_hz": list(found.band_hz),
+        "max_order": max_order,
+        "pin_hz": list(pin_hz),
+        "exclude_hz": list(exclude_hz),
+        "modes": found.model.summary()["modes"],
+        "dropped": list(found.selected.dropped),
+    }
+    return finish_run(result, inputs, command_record(command, "identify"), figures)
+
+
+def write_mode_comparison(
+    free: Identification, hand: Identification, racket: Racket, out: Path
+) -> Path:
+    """``comparison.csv``: free and hand-held modes paired by MAC (frequency shift, damping
+    ratio, MAC), with the first mode's nodes along the axis as comment lines."""
+    pairing = pair_modes(free.model, hand.model)
+    rows: list[dict[str, Any]] = []
+    for a, b, value in zip(pairing.first, pairing.second, pairing.mac, strict=True):
+        fa, fb = free.model.frequency[a], hand.model.frequency[b]
+        za, zb = free.model.damping_ratio[a], hand.model.damping_ratio[b]
+        rows.append(
+            {
+                "mode": free.model.names[a],
+                "frequency_free_hz": fa,
+                "frequency_hand_hz": fb,
+                "frequency_shift_percent": 100 * (fb / fa - 1),
+                "damping_free": za,
+                "damping_hand": zb,
+                "damping_ratio_hand_over_free": zb / za,
+                "mac": value,
+            }
+        )
+    nodes_free = axis_nodes(free.model, 0, (0.0, racket.length_m))
+    nodes_hand = axis_nodes(hand.model, 0, (0.0, racket.length_m))
+    table = out / "comparison.csv"
+    with table.open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]) if rows else ["mode"])
+        writer.writeheader()
+        for row in rows:
+            writer.writerow(
+                {k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()}
+            )
+        handle.write(
+            f"# first-mode nodes along the axis, free (m): {np.round(nodes_free, 4).tolist()}\n"
+        )
+        handle.write(
+            f"# first-mode nodes along the axis, hand (m): {np.round(nodes_hand, 4).tolist()}\n"
+        )
+    return table
+
+
+@dataclass
+class CompareResult(StepResult):
+    """What :func:`run_compare` identified and wrote.
+
+    Attributes
+    ----------
+    free, hand : Identification
+        The two identifications.
+    racket : Racket
+        The racket.
+    """
+
+    free: Identification | None = None
+    hand: Identification | None = None
+    racket: Racket | None = None
+
+
+def run_compare(
+    free: str | os.PathLike[str],
+    hand: str | os.PathLike[str],
+    out: str | os.PathLike[str],
+    *,
+    racket: RacketInput = None,
+    geometry: str | os.PathLike[str] | None = None,
+    band_hz: Sequence[float] | None = None,
+    max_order: int = 60,
+    pin_hz: Sequence[float] = (),
+    exclude_hz: Sequence[float] = (),
+    command: Sequence[str] | None = None,
+    figures: Callable[[CompareResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> CompareResult:
+    """Identify free and hand-held FRFs, pair their modes by MAC, write the run folder.
+
+    Parameters
+    ----------
+    free, hand : path
+        FRFs of the freely supported and of the hand-held racket (UFF 58).
+    out : path
+        Output folder (created if missing).
+    racket : Racket, path or None
+        Racket; None for the built-in racket.
+    geometry, band_hz, max_order, pin_hz, exclude_hz
+        As for :func:`identify_file`, for both.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths`` (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    the_racket, provenance = load_racket_input(racket)
+    out_dir = Path(out)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    options: dict[str, Any] = {
+        "geometry": geometry,
+        "band_hz": band_hz,
+        "max_order": max_order,
+        "pin_hz": pin_hz,
+        "exclude_hz": exclude_hz,
+    }
+    report(progress, f"identifying {Path(free).name}")
+    found_free = identify_file(free, the_racket, "free", **options)
+    report(progress, f"identifying {Path(hand).name}")
+    found_hand = identify_file(hand, the_racket, "hand", **options)
+    written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
+    written.append(write_mode_comparison(found_free, found_hand, the_racket, out_dir))
+    result = CompareResult(out_dir, written, free=found_free, hand=found_hand, racket=the_racket)
+    inputs = {
+        "free_file": str(Path(free).resolve()),
+        "hand_file": str(Path(hand).resolve()),
+        **provenance,
+        "band_hz": list(found_free.band_hz),
+        "max_order": max_order,
+        "modes_free": found_free.model.summary()["modes"],
+        "modes_hand": found_hand.model.summary()["modes"],
+    }
+    return finish_run(result, inputs, command_record(command, "compare"), figures)

@@ -1,0 +1,172 @@
+"""The inputs every step shares: the racket (with its modes), the ball and the hand.
+
+Each builder returns the object together with the sentences ``run.json`` lists under
+``defaults_used`` for whatever it filled in, so a run folder says which numbers nobody chose.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any
+
+from racketdyn.ball import Ball, RestoringForce
+from racketdyn.errors import InputError
+from racketdyn.impact.hand import Hand
+from racketdyn.io import default_racket, load_racket, read_load_deflection
+from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
+from racketdyn.modal import ModalModel
+from racketdyn.racket import Racket
+from racketdyn.racket_modal import modal_model_for
+from racketdyn.workflows.run import sha256
+
+__all__ = ["RacketInput", "RacketSetup", "ball_from", "hand_for", "load_racket_input", "setup"]
+
+RacketInput = Racket | str | os.PathLike[str] | None
+"""A racket as a step takes it: an object, a TOML file, or None for the built-in racket."""
+
+BUILT_IN_RACKET = f"racket: built-in {DEFAULT_RACKET_NAME} (Kawazoe's test racket)"
+BUILT_IN_MODES = "modal model: built-in free-free beam model"
+
+
+def load_racket_input(racket: RacketInput) -> tuple[Racket, dict[str, Any]]:
+    """The racket and its provenance (``racket_file`` and, for a file, its SHA-256)."""
+    if racket is None:
+        return default_racket(), {"racket_file": f"built-in {DEFAULT_RACKET_NAME}"}
+    if isinstance(racket, Racket):
+        return racket, {"racket_file": f"Racket object {racket.name!r} (given from Python)"}
+    path = Path(racket)
+    loaded = load_racket(path)
+    return loaded, {"racket_file": str(path.resolve()), "racket_file_sha256": sha256(path)}
+
+
+@dataclass(frozen=True)
+class RacketSetup:
+    """A racket ready for a step.
+
+    Attributes
+    ----------
+    racket : Racket
+        The racket (its ``modal_model_file`` set when a modal model file was given).
+    modal_model : ModalModel or None
+        Its modes (built-in, its file or the one given); None for a rigid racket.
+    provenance : dict
+        Racket and modal-model files with their SHA-256, for run.json.
+    defaults : list of str
+        The defaults used (built-in racket, built-in modes).
+    rigid : bool
+        No vibration: no modes.
+    """
+
+    racket: Racket
+    modal_model: ModalModel | None
+    provenance: dict[str, Any]
+    defaults: list[str]
+    rigid: bool
+
+
+def setup(
+    racket: RacketInput = None,
+    modal: str | os.PathLike[str] | None = None,
+    rigid: bool = False,
+    *,
+    with_modes: bool = True,
+) -> RacketSetup:
+    """Load the racket, attach a modal model file if given, and build its modes.
+
+    Parameters
+    ----------
+    racket : Racket, path or None
+        Racket object, TOML file, or None for the built-in racket.
+    modal : path, optional
+        Modal model JSON (e.g. from identify) replacing the racket's modes.
+    rigid : bool
+        No modes (a rigid racket); excludes ``modal``.
+    with_modes : bool
+        Build the modal model (False: steps that only need the racket's geometry).
+    """
+    loaded, provenance = load_racket_input(racket)
+    defaults = [BUILT_IN_RACKET] if racket is None else []
+    if modal is not None:
+        if rigid:
+            raise InputError("give a modal model file (--modal) or a rigid racket, not both")
+        path = Path(modal)
+        if not path.is_file():
+            raise InputError(f"--modal {modal}: no such modal model file")
+        loaded = replace(loaded, modal_model_file=path)
+        provenance["modal_model_file"] = str(path.resolve())
+        provenance["modal_model_sha256"] = sha256(path)
+    elif not rigid and loaded.modal_model_file is None and with_modes:
+        defaults.append(BUILT_IN_MODES)
+    model = modal_model_for(loaded) if with_modes and not rigid else None
+    return RacketSetup(loaded, model, provenance, defaults, rigid)
+
+
+def ball_from(
+    mass_kg: float | None = None,
+    e_bg: float | None = None,
+    law_file: str | os.PathLike[str] | None = None,
+) -> tuple[Ball, list[str]]:
+    """The ball, with the defaults used.
+
+    Parameters
+    ----------
+    mass_kg : float, optional
+        Ball mass, kg (default 0.0577, ITF middle).
+    e_bg : float, optional
+        Ball–string COR on a head-clamped racket (default 0.83, Kawazoe).
+    law_file : path, optional
+        Load–deflection CSV (``deflection_m, force_n``), one side; a cubic is fitted.
+    """
+    defaults = []
+    kwargs: dict[str, Any] = {}
+    for value, key, label in (
+        (mass_kg, "mass_kg", "ball mass 57.7 g (ITF middle)"),
+        (e_bg, "e_bg", "e_BG 0.83 (Kawazoe)"),
+    ):
+        if value is None:
+            defaults.append(label)
+        else:
+            kwargs[key] = value
+    if law_file is not None:
+        path = Path(law_file)
+        deflection, force = read_load_deflection(path)
+        kwargs["restoring_force"] = RestoringForce.fit(
+            deflection, force, "polynomial", 3, f"ball, fitted to {path.name}"
+        )
+    else:
+        defaults.append("ball law: ITF forward deformation + adiabatic gas (one side)")
+    return Ball(**kwargs), defaults
+
+
+def hand_for(
+    supports: Sequence[str], arm_mass_kg: float | None = None
+) -> tuple[Hand | None, list[str]]:
+    """The hand of the ``hand`` support (None without it), with the defaults used.
+
+    Parameters
+    ----------
+    supports : sequence of str
+        The supports of the step.
+    arm_mass_kg : float, optional
+        Mass of the arm holding the grip, kg (default 1.0, :class:`~racketdyn.impact.hand.Hand`).
+    """
+    if "hand" not in supports:
+        return None, []
+    if arm_mass_kg is None:
+        return Hand(), ["hand: racketdyn.impact.hand.Hand defaults (1 kg arm, Kawazoe ACMD 2002)"]
+    return Hand(arm_mass_kg=arm_mass_kg), []
+
+
+def ball_or_default(ball: Ball | None) -> tuple[Ball, list[str]]:
+    """``ball``, or the default ball with its defaults."""
+    return ball_from() if ball is None else (ball, [])
+
+
+def hand_or_default(supports: Sequence[str], hand: Hand | None) -> tuple[Hand | None, list[str]]:
+    """``hand`` for the ``hand`` support (default :class:`Hand` if None); None without it."""
+    if "hand" not in supports:
+        return None, []
+    return hand_for(supports) if hand is None else (hand, [])

@@ -1,0 +1,255 @@
+"""Step ``oblique``: a ball arriving at an angle (and with spin) at one point of the face —
+outgoing angle and spin against incoming angle.
+
+Writes ``oblique.csv`` (:data:`OBLIQUE_COLUMNS`) and ``run.json``; the figure comes from the
+caller's hook.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from racketdyn.ball import Ball
+from racketdyn.contact import compound_law
+from racketdyn.errors import InputError, one_of, require_finite, require_positive
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.oblique import (
+    DEFAULT_TANGENTIAL_CONTACT,
+    ObliqueCurve,
+    TangentialContact,
+    oblique_curve,
+)
+from racketdyn.impact.transient import TRANSIENT_SUPPORTS
+from racketdyn.io import racket_to_dict
+from racketdyn.racket import Racket
+from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    report,
+    write_rows,
+)
+
+__all__ = ["OBLIQUE_ANGLES_DEG", "OBLIQUE_COLUMNS", "SPIN_CAVEAT", "ObliqueResult", "run_oblique"]
+
+OBLIQUE_ANGLES_DEG = (0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0)
+"""Default incoming angles to the face normal, degrees."""
+
+SPIN_CAVEAT = (
+    "caveat: spin depends strongly on the tangential stiffness k_t (the grip is lossless); "
+    "fit k_t to measured rebound spin before quoting it (racketdyn.impact.oblique)"
+)
+
+OBLIQUE_COLUMNS = (
+    "ball_speed_mps",
+    "incoming_angle_deg",
+    "incoming_spin_radps",
+    "outgoing_angle_deg",
+    "outgoing_spin_radps",
+    "normal_speed_mps",
+    "tangential_speed_mps",
+    "gripped",
+    "grip_time_s",
+    "tangential_impulse_ns",
+    "friction_loss_j",
+    "status",
+)
+"""Columns of ``oblique.csv``, one row per incoming angle; the fields of
+:class:`~racketdyn.impact.oblique.ObliqueCurve` (angles from the face normal, spin about n̂ × t̂,
+speeds away from the face and along it)."""
+
+
+@dataclass
+class ObliqueResult(StepResult):
+    """What :func:`run_oblique` computed and wrote.
+
+    Attributes
+    ----------
+    curve : ObliqueCurve
+        Outgoing angle and spin against incoming angle.
+    point : tuple of float
+        The impact point (x, y), m.
+    support : str
+        The support.
+    contact : TangentialContact
+        The tangential contact used.
+    racket : Racket
+        The racket.
+    """
+
+    curve: ObliqueCurve | None = None
+    point: tuple[float, float] = (0.0, 0.0)
+    support: str = "free"
+    contact: TangentialContact = field(default_factory=lambda: DEFAULT_TANGENTIAL_CONTACT)
+    racket: Racket | None = None
+
+
+def run_oblique(
+    out: str | os.PathLike[str],
+    *,
+    racket: RacketInput = None,
+    modal: str | os.PathLike[str] | None = None,
+    rigid: bool = False,
+    ball: Ball | None = None,
+    speed: float = 20.0,
+    angles_deg: ArrayLike = OBLIQUE_ANGLES_DEG,
+    spin_radps: float = 0.0,
+    point: tuple[float, float] | None = None,
+    support: str = "free",
+    friction: float | None = None,
+    tangential_stiffness: float | None = None,
+    racket_speed: float = 0.0,
+    racket_tangential_speed: float = 0.0,
+    hand: Hand | None = None,
+    defaults: Sequence[str] = (),
+    command: Sequence[str] | None = None,
+    figures: Callable[[ObliqueResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> ObliqueResult:
+    """Oblique impacts at one point, one per incoming angle; write the run folder.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    racket : Racket, path or None
+        Racket object, TOML file, or None for the built-in racket.
+    modal : path, optional
+        Modal model JSON replacing the racket's modes.
+    rigid : bool
+        No vibration: a rigid racket.
+    ball : Ball, optional
+        The ball (default :class:`~racketdyn.ball.Ball`).
+    speed : float
+        Incoming ball speed, m/s.
+    angles_deg : array_like
+        Incoming angles to the face normal, degrees, each in (-90, 90).
+    spin_radps : float
+        Incoming spin, rad/s (+ = the sense of rolling along the face).
+    point : (x, y), optional
+        Impact point, m (default: the face centre).
+    support : {"free", "pinned", "hand"}
+        Support.
+    friction : float, optional
+        Ball–string friction coefficient μ (default 0.4).
+    tangential_stiffness : float, optional
+        Tangential stiffness k_t, N/m (default 1e4; inf: a rigid grip).
+    racket_speed : float
+        Racket speed towards the ball, m/s.
+    racket_tangential_speed : float
+        Racket face speed along the face, m/s.
+    hand : Hand, optional
+        The hand of the ``hand`` support.
+    defaults : sequence of str
+        Defaults the caller filled in (ball), added to run.json.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths`` (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    speed = require_positive("--speed", speed)
+    angles = [require_finite("--angles", v) for v in np.atleast_1d(angles_deg)]
+    for angle in angles:
+        if not -90.0 < angle < 90.0:
+            raise InputError(
+                "--angles: each incoming angle must lie strictly between -90 and 90 degrees "
+                f"from the face normal (got {angle:g})"
+            )
+    spin = require_finite("--spin", spin_radps)
+    the_support = one_of("--support", support, TRANSIENT_SUPPORTS)
+    used = setup(racket, modal, rigid)
+    extra = []
+    if point is None:
+        where = (used.racket.head.centre_x_m, used.racket.head.centre_y_m)
+        extra.append("impact point: the face centre")
+    else:
+        where = (float(point[0]), float(point[1]))
+    used.racket.head.check_inside([where])
+    the_hand, hand_defaults = hand_or_default([the_support], hand)
+    base = DEFAULT_TANGENTIAL_CONTACT
+    if friction is None or tangential_stiffness is None:
+        extra.append(
+            "tangential contact: μ 0.4 (Cross), k_t 1e4 N/m, ball inertia 0.55 m R² "
+            "(racketdyn.impact.oblique)"
+        )
+    contact = TangentialContact(
+        friction_coefficient=base.friction_coefficient if friction is None else friction,
+        stiffness_n_per_m=(
+            base.stiffness_n_per_m if tangential_stiffness is None else tangential_stiffness
+        ),
+        inertia_factor=base.inertia_factor,
+    )
+    racket_speed = require_finite("--racket-speed", racket_speed)
+    face_speed = require_finite("--racket-tangential-speed", racket_tangential_speed)
+    the_ball, ball_defaults = ball_or_default(ball)
+    defaults_used = [*used.defaults, *extra, *hand_defaults, *ball_defaults, *defaults]
+    model = used.modal_model
+    report(progress, f"oblique impacts at {len(angles)} angles")
+    curve = oblique_curve(
+        used.racket,
+        the_ball,
+        where,
+        speed,
+        angles,
+        spin,
+        the_support,
+        racket_speed,
+        contact,
+        face_speed,
+        modal_model=model,
+        law=compound_law(used.racket, the_ball),
+        hand=the_hand,
+    )
+    out_dir = Path(out)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    rows = [
+        {
+            "ball_speed_mps": curve.ball_speed_mps,
+            **{name: getattr(curve, name)[i] for name in OBLIQUE_COLUMNS[1:]},
+        }
+        for i in range(curve.incoming_angle_deg.size)
+    ]
+    result = ObliqueResult(
+        out_dir,
+        [write_rows(out_dir / "oblique.csv", rows)],
+        curve=curve,
+        point=where,
+        support=the_support,
+        contact=contact,
+        racket=used.racket,
+    )
+    inputs = {
+        **used.provenance,
+        "racket": racket_to_dict(used.racket),
+        "point_m": list(where),
+        "ball_speed_mps": speed,
+        "angles_deg": angles,
+        "spin_radps": spin,
+        "support": the_support,
+        "racket_speed_mps": racket_speed,
+        "racket_tangential_speed_mps": face_speed,
+        "tangential_contact": {
+            **asdict(contact),
+            "effective_mass_kg": contact.effective_mass(the_ball),
+            "grip_period_s": contact.grip_period(the_ball),
+        },
+        "rigid": rigid,
+        "defaults_used": defaults_used,
+        "method": "normal impact by the transient simulation (reference engine), tangential "
+        "elastic-Coulomb contact on its normal force history (racketdyn.impact.oblique)",
+        "modal_model": None if model is None else model.summary(),
+        "hand": None if the_hand is None else asdict(the_hand),
+        "caveat": SPIN_CAVEAT,
+        "columns": {"oblique.csv": list(OBLIQUE_COLUMNS)},
+    }
+    return finish_run(result, inputs, command_record(command, "oblique"), figures)

@@ -1,0 +1,474 @@
+"""Step ``predict``: impacts over the face by the approximate method, the transient model or
+both, with the time histories and the comparison of the two models.
+
+Writes ``impact.csv`` (``impact_transient.csv`` too with both models), ``transient_histories.csv``,
+``comparison.csv`` and ``run.json``; figures come from the caller's hook.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from racketdyn.ball import Ball
+from racketdyn.contact import compound_law
+from racketdyn.errors import InputError, one_of, require_speeds
+from racketdyn.impact import ImpactResult, predict
+from racketdyn.impact.comparison import (
+    COMPARED,
+    HISTORY_COLUMNS,
+    History,
+    ModelComparison,
+    compare_models,
+    simulate_histories,
+    write_histories_csv,
+)
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.result import shown_speed_index
+from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, predict_transient
+from racketdyn.io import racket_to_dict, read_points
+from racketdyn.modal import ModalModel
+from racketdyn.racket import SUPPORTS, Racket
+from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
+from racketdyn.workflows.run import Progress, StepResult, command_record, finish_run, report
+
+__all__ = ["DEFAULT_GRID", "MAX_GRID", "MODELS", "PredictResult", "impact_points", "run_predict"]
+
+Model = Literal["approx", "transient", "both"]
+MODELS: tuple[Model, ...] = ("approx", "transient", "both")
+DEFAULT_GRID = 9
+MAX_GRID = 400  # 400 × 400 ≈ 126,000 points: a few seconds a speed
+CHUNK_IMPACTS = 50_000  # above this, predict in chunks of points (progress reported)
+TRANSIENT_FIRST_CHUNK = 32  # transient impacts in the first chunk, timed to size the others
+TRANSIENT_CHUNK_S = 0.5  # then chunks of about this long: the progress moves smoothly
+TRANSIENT_QUIET_IMPACTS = 64  # no progress reports up to this many transient impacts
+
+
+@dataclass
+class PredictResult(StepResult):
+    """What :func:`run_predict` computed and wrote.
+
+    Attributes
+    ----------
+    racket, ball : Racket, Ball
+        The racket (with the modal model file used) and the ball.
+    modal_model : ModalModel or None
+        The racket's modes; None for a rigid racket.
+    law : RestoringForce
+        Compound ball + string-bed law.
+    speeds, racket_speed : list of float
+        Ball speeds and racket speeds, m/s.
+    supports : list of str
+        Supports.
+    approximate, transient : ImpactResult or None
+        Each model's impacts (None when not asked for).
+    comparison : ModelComparison or None
+        Both models on the same impacts (``model="both"``).
+    histories : list of History
+        Transient time histories at the centre and the tip, at the shown speed.
+    mode_names : tuple of str
+        Names of the transient model's modes.
+    shown_speed : int
+        Index of the speed single-speed figures and tables show (20 m/s if given).
+    engine : str
+        Transient engine asked for.
+    include_string_bed : bool
+        String-bed modes charged as vibration loss.
+    hand : Hand or None
+        The hand of the ``hand`` support.
+    """
+
+    racket: Racket | None = None
+    ball: Ball | None = None
+    modal_model: ModalModel | None = None
+    law: Any = None
+    speeds: list[float] = field(default_factory=list)
+    racket_speed: list[float] = field(default_factory=list)
+    supports: list[str] = field(default_factory=list)
+    approximate: ImpactResult | None = None
+    transient: ImpactResult | None = None
+    comparison: ModelComparison | None = None
+    histories: list[History] = field(default_factory=list)
+    mode_names: tuple[str, ...] = ()
+    shown_speed: int = 0
+    engine: str = "auto"
+    include_string_bed: bool = False
+    hand: Hand | None = None
+
+    @property
+    def result(self) -> ImpactResult:
+        """The main table: the approximate method's if run, else the transient model's."""
+        result = self.approximate if self.approximate is not None else self.transient
+        assert result is not None
+        return result
+
+
+def impact_points(
+    racket: Racket,
+    points: str | os.PathLike[str] | ArrayLike | None = None,
+    grid: int | None = None,
+    default_grid: int = DEFAULT_GRID,
+) -> tuple[NDArray[np.float64], list[str], str]:
+    """Impact points: a CSV file, an array of (x, y) in m, or an N × N grid over the head.
+
+    Parameters
+    ----------
+    racket : Racket
+        The racket (its head for the grid).
+    points : path or array, optional
+        CSV with columns ``x_m, y_m [, point]``, or locations ``(n, 2)`` in m.
+    grid : int, optional
+        N of the N × N grid (default ``default_grid``); excludes ``points``.
+    default_grid : int
+        N when neither is given.
+
+    Returns
+    -------
+    locations : ndarray (n, 2)
+        Points, m.
+    labels : list of str
+        Their labels.
+    source : str
+        What they are, for run.json.
+    """
+    if points is not None and grid is not None:
+        raise InputError("give --grid or --points, not both")
+    if isinstance(points, str | os.PathLike):
+        locations, labels = read_points(Path(points))
+        return locations, labels, f"points file {Path(points).resolve()}"
+    if points is not None:
+        array = np.asarray(points, dtype=float).reshape(-1, 2)
+        return array, [str(i + 1) for i in range(len(array))], f"{len(array)} points given"
+    n = default_grid if grid is None else grid
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_GRID:
+        raise InputError(f"--grid must be a whole number from 1 to {MAX_GRID} (got {n})")
+    locations = racket.head.grid(n)
+    return locations, [str(i + 1) for i in range(len(locations))], f"grid {n} x {n} over the head"
+
+
+def check_supports(supports: Sequence[str], model: str) -> list[str]:
+    """The supports, each allowed by the model(s) asked for, each named once."""
+    allowed = TRANSIENT_SUPPORTS if model == "transient" else SUPPORTS
+    checked = []
+    for support in supports:
+        if support == "hand" and model != "transient":
+            raise InputError(
+                "--support hand needs --model transient: the approximate method has no hand "
+                "(its hand-held racket is pinned at the grip: --support pinned)"
+            )
+        checked.append(one_of("--support", support, allowed))
+    if len(set(checked)) != len(checked):
+        raise InputError(f"--support: name each support once (got {','.join(supports)})")
+    return checked
+
+
+def run_predict(
+    out: str | os.PathLike[str],
+    *,
+    racket: RacketInput = None,
+    modal: str | os.PathLike[str] | None = None,
+    rigid: bool = False,
+    ball: Ball | None = None,
+    speeds: ArrayLike = (10.0, 20.0, 30.0),
+    racket_speed: ArrayLike = (0.0,),
+    supports: Sequence[str] = ("free", "pinned"),
+    model: Model = "approx",
+    engine: str = "auto",
+    hand: Hand | None = None,
+    points: str | os.PathLike[str] | ArrayLike | None = None,
+    grid: int | None = None,
+    stiffness_reading: Literal["period", "tangent"] = "period",
+    include_string_bed: bool = False,
+    defaults: Sequence[str] = (),
+    command: Sequence[str] | None = None,
+    figures: Callable[[PredictResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> PredictResult:
+    """Predict impacts over the face and write the run folder.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    racket : Racket, path or None
+        Racket object, TOML file, or None for the built-in racket.
+    modal : path, optional
+        Modal model JSON replacing the racket's modes.
+    rigid : bool
+        No vibration: a rigid racket.
+    ball : Ball, optional
+        The ball (default :class:`~racketdyn.ball.Ball`).
+    speeds : array_like
+        Incoming ball speeds, m/s.
+    racket_speed : array_like
+        Racket speed at the impact point towards the ball, m/s: one, or one per speed.
+    supports : sequence of str
+        ``free``, ``pinned``; ``hand`` with ``model="transient"`` only.
+    model : {"approx", "transient", "both"}
+        Kawazoe's approximate method, the transient simulation, or each with their comparison.
+    engine : {"auto", "compiled", "reference"}
+        Transient integrator.
+    hand : Hand, optional
+        The hand of the ``hand`` support (default :class:`~racketdyn.impact.hand.Hand`).
+    points : path or array, optional
+        Impact points (CSV or ``(n, 2)`` in m); excludes ``grid``.
+    grid : int, optional
+        N × N grid over the head (default 9).
+    stiffness_reading : {"period", "tangent"}
+        Reading of eq 10 (approximate method).
+    include_string_bed : bool
+        Charge string-bed modes as vibration loss too.
+    defaults : sequence of str
+        Defaults the caller filled in for its own inputs (ball, hand), added to run.json.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths``: draws the step's figures (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+
+    Returns
+    -------
+    PredictResult
+    """
+    one_of("model", model, MODELS)
+    one_of("engine", engine, ENGINES)
+    speed_list = [float(v) for v in require_speeds("--speed", speeds)]
+    racket_speeds = [float(v) for v in require_speeds("--racket-speed", racket_speed)]
+    if len(racket_speeds) not in (1, len(speed_list)):
+        raise InputError("--racket-speed takes one speed, or one per --speed value")
+    support_list = check_supports(supports, model)
+    used = setup(racket, modal, rigid)
+    the_ball, ball_defaults = ball_or_default(ball)
+    the_hand, hand_defaults = hand_or_default(support_list, hand)
+    defaults_used = [*used.defaults, *ball_defaults, *defaults, *hand_defaults]
+    locations, labels, points_source = impact_points(used.racket, points, grid)
+    out_dir = Path(out)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    law = compound_law(used.racket, the_ball)
+    result = PredictResult(
+        out_dir,
+        racket=used.racket,
+        ball=the_ball,
+        modal_model=used.modal_model,
+        law=law,
+        speeds=speed_list,
+        racket_speed=racket_speeds,
+        supports=support_list,
+        shown_speed=shown_speed_index(speed_list),
+        engine=engine,
+        include_string_bed=include_string_bed,
+        hand=the_hand,
+    )
+    options: dict[str, Any] = {
+        "supports": support_list,
+        "racket_speed": np.asarray(racket_speeds),
+        "modal_model": used.modal_model,
+        "law": law,
+        "include_string_bed": include_string_bed,
+    }
+    n_impacts = len(locations) * len(speed_list) * len(support_list)
+    if model in ("approx", "both"):
+        report(progress, f"approximate method: {n_impacts} impacts")
+        result.approximate = _approximate(
+            used.racket,
+            the_ball,
+            locations,
+            speed_list,
+            labels,
+            progress,
+            stiffness_reading=stiffness_reading,
+            **options,
+        )
+        result.approximate.write_csv(out_dir / "impact.csv")
+        result.written.append(out_dir / "impact.csv")
+    if model in ("transient", "both"):
+        report(progress, f"transient model ({engine} engine): {n_impacts} impacts")
+        _transient_part(result, locations, labels, progress, options)
+    if result.approximate is not None and result.transient is not None:
+        result.comparison = compare_models(result.approximate, result.transient)
+        result.written.append(result.comparison.write_csv(out_dir / "comparison.csv"))
+    inputs = {
+        **used.provenance,
+        "racket": racket_to_dict(used.racket),
+        "speeds_mps": speed_list,
+        "racket_speed_mps": racket_speeds,
+        "supports": support_list,
+        "points": points_source,
+        "n_points": len(locations),
+        "rigid": rigid,
+        "defaults_used": defaults_used,
+        **result.result.inputs,
+        "model": model,
+        **_transient_record(result.transient, result.approximate, engine),
+    }
+    return finish_run(result, inputs, command_record(command, "predict"), figures)
+
+
+def transient_csv_name(model: str) -> str:
+    """The transient model's table: ``impact.csv`` alone, ``impact_transient.csv`` with both."""
+    return "impact.csv" if model == "transient" else "impact_transient.csv"
+
+
+def history_points(racket: Racket) -> dict[str, tuple[float, float]]:
+    """Where the time histories are simulated: the face centre and the tip (90 % of the head's
+    half-length beyond the centre; the points of the paper's Figs 11–14)."""
+    head = racket.head
+    return {
+        "centre": (head.centre_x_m, head.centre_y_m),
+        "tip": (head.centre_x_m + 0.9 * head.half_length_m, head.centre_y_m),
+    }
+
+
+def _transient_part(
+    result: PredictResult,
+    locations: NDArray[np.float64],
+    labels: list[str],
+    progress: Progress | None,
+    options: dict[str, Any],
+) -> None:
+    assert result.racket is not None
+    assert result.ball is not None
+    hand = {} if result.hand is None else {"hand": result.hand}
+    transient = _transient(
+        result.racket,
+        result.ball,
+        locations,
+        result.speeds,
+        labels,
+        progress,
+        engine=result.engine,
+        **options,
+        **hand,
+    )
+    name = transient_csv_name("both" if result.approximate is not None else "transient")
+    transient.write_csv(result.out / name)
+    result.transient = transient
+    result.written.append(result.out / name)
+    chosen = result.shown_speed
+    report(progress, "simulating the time histories")
+    result.histories = simulate_histories(
+        result.racket,
+        result.ball,
+        history_points(result.racket),
+        result.speeds[chosen],
+        result.supports,
+        result.racket_speed[chosen if len(result.racket_speed) > 1 else 0],
+        modal_model=options["modal_model"],
+        law=options["law"],
+        include_string_bed=result.include_string_bed,
+        hand=result.hand,
+    )
+    result.mode_names = () if transient.modal_model is None else tuple(transient.modal_model.names)
+    result.written.append(
+        write_histories_csv(
+            result.histories, result.mode_names, result.out / "transient_histories.csv"
+        )
+    )
+
+
+def _approximate(
+    racket: Racket,
+    ball: Ball,
+    locations: NDArray[np.float64],
+    speeds: list[float],
+    labels: list[str],
+    progress: Progress | None,
+    **options: Any,
+) -> ImpactResult:
+    """The approximate method, in chunks of points (progress reported) when large."""
+    per_point = len(speeds) * len(options["supports"])
+    if len(locations) * per_point <= CHUNK_IMPACTS:
+        return predict(racket, ball, locations, speeds, labels=labels, **options)
+    step = max(CHUNK_IMPACTS // per_point, 1)
+    parts = []
+    report(progress, "predicting", 0, len(locations))
+    for start in range(0, len(locations), step):
+        stop = min(start + step, len(locations))
+        parts.append(
+            predict(
+                racket, ball, locations[start:stop], speeds, labels=labels[start:stop], **options
+            )
+        )
+        report(progress, "predicting", stop, len(locations))
+    return ImpactResult.concatenate(parts)
+
+
+def _transient(
+    racket: Racket,
+    ball: Ball,
+    locations: NDArray[np.float64],
+    speeds: list[float],
+    labels: list[str],
+    progress: Progress | None,
+    **options: Any,
+) -> ImpactResult:
+    """The transient model, in chunks of points sized to about half a second with progress
+    reported (the first chunk is timed to size the others: the engines differ a thousandfold)."""
+    per_point = len(speeds) * len(options["supports"])
+    total = len(locations) * per_point
+
+    def chunk(start: int, stop: int) -> ImpactResult:
+        return predict_transient(
+            racket, ball, locations[start:stop], speeds, labels=labels[start:stop], **options
+        )
+
+    if total <= TRANSIENT_QUIET_IMPACTS:
+        return chunk(0, len(locations))
+    parts = []
+    report(progress, "transient simulation", 0, total)
+    start, step = 0, max(TRANSIENT_FIRST_CHUNK // per_point, 1)
+    while start < len(locations):
+        stop = min(start + step, len(locations))
+        began = time.perf_counter()
+        parts.append(chunk(start, stop))
+        elapsed = max(time.perf_counter() - began, 1e-6)
+        report(progress, "transient simulation", stop * per_point, total)
+        step = max(int(TRANSIENT_CHUNK_S * (stop - start) / elapsed), 1)
+        start = stop
+    return ImpactResult.concatenate(parts)
+
+
+def _transient_record(
+    transient: ImpactResult | None, approximate: ImpactResult | None, engine: str
+) -> dict[str, Any]:
+    """What run.json says about the transient model: engine, integrator, its outputs."""
+    if transient is None:
+        return {}
+    inputs = transient.inputs
+    integrator = inputs.get("integrator")
+    used = integrator.get("engine") if isinstance(integrator, dict) else None
+    record: dict[str, Any] = {
+        "engine": {"requested": engine, "used": used or "not recorded by predict_transient"},
+        "integrator": integrator,
+        "time_histories": "simulate_impact (the reference engine: scipy solve_ivp, DOP853, "
+        "rtol 1e-10) at the centre and the tip, each support",
+        "columns": {
+            "transient_histories.csv": HISTORY_COLUMNS,
+            **(
+                {}
+                if approximate is None
+                else {
+                    "comparison.csv": "per point x speed x support: approx_<q>, transient_<q>, "
+                    "difference_<q> = approx - transient, relative_difference_<q> = "
+                    "(approx - transient) / |transient| for q in "
+                    + ", ".join(COMPARED.values())
+                    + "; status_approx, status_transient"
+                }
+            ),
+        },
+    }
+    if approximate is not None:  # the approximate method's inputs are at the top level
+        record["transient"] = {
+            key: value
+            for key, value in inputs.items()
+            if key not in approximate.inputs or approximate.inputs[key] != value
+        }
+    return record

@@ -1,0 +1,160 @@
+"""Step ``rig``: a virtual roving-hammer test of a racket model.
+
+Writes ``hammer_<support>.uff`` (geometry + time records), ``modal_truth_<support>.json`` (the
+rig's modes at the test points, butt and tip) and ``run.json``.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from racketdyn.errors import InputError, one_of, require_range
+from racketdyn.io import racket_to_dict, write_hammer_uff
+from racketdyn.measurement import HammerRecords
+from racketdyn.modal import ModalModel
+from racketdyn.rig import (
+    accelerometer_index,
+    hammer_points,
+    rig_model,
+    simulate_hammer_test,
+    string_contact_time,
+)
+from racketdyn.rig.hammer import FRAME_PULSE_S
+from racketdyn.workflows.inputs import RacketInput, load_racket_input
+from racketdyn.workflows.run import Progress, StepResult, command_record, finish_run, report
+
+__all__ = ["RIG_SUPPORTS", "RigResult", "run_rig"]
+
+RIG_SUPPORTS = ("free", "hand")
+
+
+@dataclass
+class RigResult(StepResult):
+    """What :func:`run_rig` simulated and wrote.
+
+    Attributes
+    ----------
+    records : HammerRecords
+        The simulated hammer test.
+    truth : ModalModel
+        The rig's modes (the truth identification should find).
+    support : str
+        ``free`` or ``hand``.
+    reference_node : int
+        The accelerometer's node.
+    faults : dict
+        Counts of ``double_hits`` and ``overloads``.
+    """
+
+    records: HammerRecords | None = None
+    truth: ModalModel | None = None
+    support: str = "free"
+    reference_node: int = 0
+    faults: dict[str, int] | None = None
+
+
+def run_rig(
+    out: str | os.PathLike[str],
+    *,
+    racket: RacketInput = None,
+    support: str = "free",
+    averages: int = 10,
+    double_hits: float = 0.0,
+    overloads: float = 0.0,
+    seed: int = 1,
+    binary: bool = False,
+    command: Sequence[str] | None = None,
+    figures: Callable[[RigResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> RigResult:
+    """Simulate a roving-hammer test on the virtual rig and write the run folder.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    racket : Racket, path or None
+        Racket object, TOML file, or None for the built-in racket.
+    support : {"free", "hand"}
+        On a sponge, or held by a hand.
+    averages : int
+        Hits per point.
+    double_hits, overloads : float
+        Probability of a double hit and of an overload per hit (0 to 1).
+    seed : int
+        Random seed.
+    binary : bool
+        Write binary UFF 58b (default ASCII).
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths`` (the rig draws none itself).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    one_of("--support", support, RIG_SUPPORTS)
+    if isinstance(averages, bool) or not isinstance(averages, int) or averages < 1:
+        raise InputError(f"--averages must be a whole number of at least 1 (got {averages})")
+    require_range("--double-hits", double_hits, 0.0, 1.0)
+    require_range("--overloads", overloads, 0.0, 1.0)
+    the_racket, provenance = load_racket_input(racket)
+    out_dir = Path(out)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    locations, nodes = hammer_points(the_racket)
+    reference = accelerometer_index(the_racket, locations)
+    reference_location = (float(locations[reference, 0]), float(locations[reference, 1]))
+    on_bed = the_racket.head.contains(locations)
+    durations = np.full(len(nodes), FRAME_PULSE_S)
+    contact_support = "free" if support == "free" else "pinned"
+    durations[on_bed] = string_contact_time(the_racket, locations[on_bed], contact_support)
+    report(progress, f"building the {support} rig and simulating the hammer test")
+    model = rig_model(the_racket, "free" if support == "free" else "hand")
+    records = simulate_hammer_test(
+        model,
+        locations,
+        nodes,
+        reference_location,
+        nodes[reference],
+        n_averages=averages,
+        double_hit_probability=double_hits,
+        overload_probability=overloads,
+        pulse_duration_s=durations,
+        seed=seed,
+    )
+    tests = write_hammer_uff(records, out_dir / f"hammer_{support}.uff", binary=binary)
+    truth_locations = np.vstack([locations, [[0.0, 0.0], [the_racket.length_m, 0.0]]])
+    truth = model.modal_truth(truth_locations, max_frequency_hz=0.5 / records.sampling_interval_s)
+    truth_path = out_dir / f"modal_truth_{support}.json"
+    truth.write_json(truth_path)
+    faults = {
+        "double_hits": int(sum(sum(row) for row in records.metadata.get("double_hit", []))),
+        "overloads": int(sum(sum(row) for row in records.metadata.get("overload", []))),
+    }
+    result = RigResult(
+        out_dir,
+        [tests, truth_path],
+        records=records,
+        truth=truth,
+        support=support,
+        reference_node=nodes[reference],
+        faults=faults,
+    )
+    inputs = {
+        **provenance,
+        "racket": racket_to_dict(the_racket),
+        "support": support,
+        "reference_node": nodes[reference],
+        "reference_location_m": reference_location,
+        "n_points": len(nodes),
+        "averages": averages,
+        "seed": seed,
+        **faults,
+        "rig": records.metadata.get("rig"),
+        "anti_alias": records.metadata.get("anti_alias"),
+    }
+    return finish_run(result, inputs, command_record(command, "rig"), figures)

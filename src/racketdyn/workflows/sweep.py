@@ -1,0 +1,105 @@
+"""Step ``sweep``: a design sweep (racket variants × points × speeds) on an executor.
+
+:func:`racketdyn.sweep.run_sweep` writes the folder itself (parts, ``sweep.nc``, ``summary.csv``,
+its own ``run.json`` with the engine, counts and timing, and the summary figures unless
+``figures=False``); this step chooses the executor and returns the record.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from concurrent.futures import Executor
+from contextlib import AbstractContextManager, ExitStack, nullcontext
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import xarray as xr
+
+from racketdyn.sweep import SweepSpec, load_sweep_spec, make_executor, run_sweep
+from racketdyn.workflows.run import Progress, StepResult, report
+
+__all__ = ["SweepResult", "run_sweep_step"]
+
+Engine = Literal["auto", "serial", "process", "dask-local", "dask"]
+
+
+@dataclass
+class SweepResult(StepResult):
+    """What :func:`run_sweep_step` ran.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        The combined results (``sweep.nc``).
+    spec : SweepSpec
+        The sweep.
+    failed : list of dict
+        Tasks that failed for good (``task_id``, ``error``).
+    """
+
+    dataset: xr.Dataset | None = None
+    spec: SweepSpec | None = None
+    failed: list[dict[str, Any]] = field(default_factory=list)
+
+
+def run_sweep_step(
+    spec: SweepSpec | str | os.PathLike[str],
+    out: str | os.PathLike[str],
+    *,
+    engine: Engine = "auto",
+    workers: int | None = None,
+    scheduler: str | None = None,
+    figures: bool = True,
+    progress: Progress | None = None,
+) -> SweepResult:
+    """Run (or resume) a design sweep into ``out``.
+
+    Parameters
+    ----------
+    spec : SweepSpec or path
+        The sweep, or its TOML file (docs/sweep-file.md).
+    out : path
+        Output folder (created if missing); run again to resume.
+    engine : {"auto", "serial", "process", "dask-local", "dask"}
+        Where tasks run; ``auto``: this process for a small sweep, else two processes.
+    workers : int, optional
+        Worker processes for ``process`` and ``dask-local``.
+    scheduler : str, optional
+        Dask scheduler address for ``dask`` (``tcp://HOST:PORT``).
+    figures : bool
+        Draw the summary figures (the sweep package draws them).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    the_spec = spec if isinstance(spec, SweepSpec) else load_sweep_spec(Path(spec))
+    executor: AbstractContextManager[Executor | None]
+    if engine == "auto":
+        executor = nullcontext(None)
+    elif engine in ("process", "dask-local") and workers is not None:
+        executor = make_executor(engine, workers)
+    else:
+        executor = make_executor(engine, scheduler=scheduler)
+    out_dir = Path(out)
+    with ExitStack() as stack:
+        report(progress, "starting the engine")
+        running = stack.enter_context(executor)
+        dataset = run_sweep(
+            the_spec,
+            out_dir,
+            running,
+            progress=None
+            if progress is None
+            else lambda done, total: progress("designs", done, total),
+            figures=figures,
+        )
+    record = json.loads((out_dir / "run.json").read_text(encoding="utf-8"))
+    return SweepResult(
+        out_dir,
+        [out_dir / name for name in record["outputs"] if name != "run.json"],
+        record,
+        dataset=dataset,
+        spec=the_spec,
+        failed=json.loads(dataset.attrs["failed_tasks"]),
+    )

@@ -1,0 +1,363 @@
+"""Step ``swing``: outgoing ball speed over the face of a swinging racket, and the sweet spots.
+
+Writes ``swing.csv`` (the impact.csv columns; the racket speed is Ω (x + d) at each point),
+``sweet_spots.csv`` (:data:`SWEET_SPOT_COLUMNS`) and ``run.json``; figures come from the
+caller's hook.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from racketdyn.ball import Ball
+from racketdyn.contact import compound_law
+from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_speeds
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.result import shown_speed_index
+from racketdyn.impact.swing import (
+    DEFAULT_ARM_GYRATION_M,
+    DEFAULT_ARM_MASS_KG,
+    DEFAULT_AXIS_TO_BUTT_M,
+    DEFAULT_SWING_ANGLE_RAD,
+    DEFAULT_TORQUE_NM,
+    ImpactModel,
+    SweetSpot,
+    Swing,
+    SwingResult,
+    predict_swing,
+    sweet_spot_table,
+    sweet_spots,
+)
+from racketdyn.impact.transient import TRANSIENT_SUPPORTS
+from racketdyn.io import racket_to_dict
+from racketdyn.modal import ModalModel
+from racketdyn.racket import SUPPORTS, Racket
+from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
+from racketdyn.workflows.predict import MAX_GRID
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    report,
+    write_rows,
+)
+
+__all__ = [
+    "IMPACT_MODELS",
+    "SWEET_SPOT_COLUMNS",
+    "SWING_GRID",
+    "SwingStepResult",
+    "run_swing",
+    "swing_from",
+]
+
+SWING_GRID = 15  # 177 points on the built-in head: a smooth map in ≈ 0.1 s (approximate model)
+IMPACT_MODELS: dict[str, ImpactModel] = {"approx": "approximate", "transient": "transient"}
+
+SWEET_SPOT_COLUMNS = (
+    "key",
+    "name",
+    "x_m",
+    "y_m",
+    "on_face",
+    "value",
+    "definition",
+    "racket_speed_mps",
+    "rebound_speed_mps",
+)
+"""Columns of ``sweet_spots.csv``: :func:`~racketdyn.impact.swing.sweet_spot_table` (``value``:
+the rebound ratio or outgoing speed maximised, empty for the geometric points), then the speed of
+the racket and the outgoing ball speed at each spot for the swing (NaN off the face)."""
+
+
+def swing_from(
+    torque_nm: float | None = None,
+    swing_angle_deg: float | None = None,
+    angular_speed_radps: float | None = None,
+    axis_to_butt_m: float | None = None,
+) -> tuple[Swing, list[str]]:
+    """The swing: constant shoulder torque (default) or a given angular speed; with the
+    defaults used.
+
+    Parameters
+    ----------
+    torque_nm : float, optional
+        Constant shoulder torque, N·m (default 56.9, Kawazoe ACMD 2002).
+    swing_angle_deg : float, optional
+        Angle turned from rest to impact, degrees, in (0, 360] (default 90, an assumption).
+    angular_speed_radps : float, optional
+        Angular speed at impact, rad/s, instead of the torque model.
+    axis_to_butt_m : float, optional
+        Swing axis (shoulder) behind the butt, m (default 0.607: straight arm, 1.75 m adult).
+    """
+    defaults = []
+    if axis_to_butt_m is None:
+        axis = DEFAULT_AXIS_TO_BUTT_M
+        defaults.append(
+            f"swing axis (shoulder) {axis:.3f} m behind the butt: a straight arm in line with "
+            "the racket, 70 kg, 1.75 m adult (Dempster/Winter)"
+        )
+    else:
+        axis = require_positive("--axis-to-butt", axis_to_butt_m, allow_zero=True)
+    if angular_speed_radps is not None:
+        if torque_nm is not None or swing_angle_deg is not None:
+            raise InputError(
+                "give --angular-speed, or --torque and --swing-angle-deg (the constant shoulder "
+                "torque swing), not both"
+            )
+        omega = require_positive("--angular-speed", angular_speed_radps, allow_zero=True)
+        return Swing(axis_to_butt_m=axis, angular_speed_radps=omega), defaults
+    if torque_nm is None:
+        torque = DEFAULT_TORQUE_NM
+        defaults.append(f"shoulder torque {torque:g} N·m (Kawazoe, ACMD 2002)")
+    else:
+        torque = require_positive("--torque", torque_nm)
+    if swing_angle_deg is None:
+        angle = DEFAULT_SWING_ANGLE_RAD
+        defaults.append("swing angle 90° from rest to impact (assumption: a quarter turn)")
+    else:
+        degrees = require_finite("--swing-angle-deg", swing_angle_deg)
+        if not 0.0 < degrees <= 360.0:
+            raise InputError(
+                f"--swing-angle-deg must be more than 0 and at most 360 degrees (got {degrees:g})"
+            )
+        angle = math.radians(degrees)
+    defaults.append(
+        f"arm {DEFAULT_ARM_MASS_KG:g} kg, radius of gyration {DEFAULT_ARM_GYRATION_M:.3f} m "
+        "about the shoulder (Dempster/Winter, 70 kg, 1.75 m adult)"
+    )
+    return Swing(torque_nm=torque, swing_angle_rad=angle, axis_to_butt_m=axis), defaults
+
+
+def one_support(support: str, transient: bool) -> str:
+    """One support, allowed by the impact model."""
+    if support == "hand" and not transient:
+        raise InputError(
+            "--support hand needs --model transient: the approximate method has no hand "
+            "(its hand-held racket is pinned at the grip: --support pinned)"
+        )
+    return one_of("--support", support, TRANSIENT_SUPPORTS if transient else SUPPORTS)
+
+
+@dataclass
+class SwingStepResult(StepResult):
+    """What :func:`run_swing` computed and wrote.
+
+    Attributes
+    ----------
+    swing_result : SwingResult
+        Impacts over the face on the swinging racket.
+    spots : dict of SweetSpot
+        The named sweet spots at the shown speed.
+    spot_rows : list of dict
+        ``sweet_spots.csv`` rows (:data:`SWEET_SPOT_COLUMNS`).
+    racket, ball, swing : Racket, Ball, Swing
+        The inputs used.
+    modal_model : ModalModel or None
+        The racket's modes (None: rigid).
+    impact_model : str
+        ``approximate`` or ``transient``.
+    support : str
+        The support.
+    speeds : list of float
+        Ball speeds, m/s.
+    shown_speed : int
+        Index of the speed of the sweet spots and figures.
+    options : dict
+        Keywords passed to the impact model (law, hand).
+    """
+
+    swing_result: SwingResult | None = None
+    spots: dict[str, SweetSpot] = field(default_factory=dict)
+    spot_rows: list[dict[str, Any]] = field(default_factory=list)
+    racket: Racket | None = None
+    ball: Ball | None = None
+    swing: Swing | None = None
+    modal_model: ModalModel | None = None
+    impact_model: ImpactModel = "approximate"
+    support: str = "pinned"
+    speeds: list[float] = field(default_factory=list)
+    shown_speed: int = 0
+    options: dict[str, Any] = field(default_factory=dict)
+
+
+def _spot_rows(
+    result: SwingStepResult, speed: float, model: ModalModel | None
+) -> list[dict[str, Any]]:
+    """sweet_spot_table rows with the racket speed and the outgoing ball speed at each spot."""
+    assert result.racket is not None
+    assert result.ball is not None
+    assert result.swing is not None
+    spots = result.spots
+    rows = sweet_spot_table(spots)
+    on_face = [i for i, key in enumerate(spots) if spots[key].on_face]
+    outgoing = np.full(len(rows), np.nan)
+    if on_face:
+        at = predict_swing(
+            result.racket,
+            result.ball,
+            [spots[list(spots)[i]].location for i in on_face],
+            [speed],
+            result.swing,
+            result.support,
+            result.impact_model,
+            model,
+            **result.options,
+        )
+        outgoing[on_face] = at.rebound_speed[:, 0, 0]
+    racket_speed = result.swing.angular_speed(result.racket) * (
+        np.array([s.x_m for s in spots.values()]) + result.swing.axis_to_butt_m
+    )
+    for i, row in enumerate(rows):
+        row["racket_speed_mps"] = float(racket_speed[i])
+        row["rebound_speed_mps"] = float(outgoing[i])
+    return rows
+
+
+def run_swing(
+    out: str | os.PathLike[str],
+    *,
+    racket: RacketInput = None,
+    modal: str | os.PathLike[str] | None = None,
+    rigid: bool = False,
+    ball: Ball | None = None,
+    swing: Swing | None = None,
+    speeds: ArrayLike = (20.0,),
+    support: str = "pinned",
+    model: Literal["approx", "transient"] = "approx",
+    hand: Hand | None = None,
+    grid: int | None = None,
+    defaults: Sequence[str] = (),
+    command: Sequence[str] | None = None,
+    figures: Callable[[SwingStepResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> SwingStepResult:
+    """Impacts over the face of a swinging racket and its sweet spots; write the run folder.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    racket : Racket, path or None
+        Racket object, TOML file, or None for the built-in racket.
+    modal : path, optional
+        Modal model JSON replacing the racket's modes.
+    rigid : bool
+        No vibration: a rigid racket.
+    ball : Ball, optional
+        The ball (default :class:`~racketdyn.ball.Ball`).
+    swing : Swing, optional
+        The swing (default: :func:`swing_from` with no arguments, 56.9 N·m over 90°).
+    speeds : array_like
+        Incoming ball speeds, m/s.
+    support : {"pinned", "free", "hand"}
+        Support (``hand`` with ``model="transient"``).
+    model : {"approx", "transient"}
+        Impact model.
+    hand : Hand, optional
+        The hand of the ``hand`` support.
+    grid : int, optional
+        N × N grid over the head (default 15).
+    defaults : sequence of str
+        Defaults the caller filled in (ball, swing), added to run.json.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths`` (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    speed_list = [float(v) for v in require_speeds("--speed", speeds)]
+    impact_model = IMPACT_MODELS[one_of("--model", model, tuple(IMPACT_MODELS))]
+    the_support = one_support(support, model == "transient")
+    n = SWING_GRID if grid is None else grid
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_GRID:
+        raise InputError(f"--grid must be a whole number from 1 to {MAX_GRID} (got {n})")
+    used = setup(racket, modal, rigid)
+    the_hand, hand_defaults = hand_or_default([the_support], hand)
+    if swing is None:
+        the_swing, swing_defaults = swing_from()
+    else:
+        the_swing, swing_defaults = swing, []
+    the_ball, ball_defaults = ball_or_default(ball)
+    defaults_used = [*used.defaults, *hand_defaults, *swing_defaults, *ball_defaults, *defaults]
+    locations = used.racket.head.grid(n)
+    labels = [str(i + 1) for i in range(len(locations))]
+    law = compound_law(used.racket, the_ball)
+    options: dict[str, Any] = {"law": law, **({"hand": the_hand} if the_hand is not None else {})}
+    chosen = shown_speed_index(speed_list)
+    omega = the_swing.angular_speed(used.racket)
+    report(progress, f"swing Ω = {omega:.2f} rad/s: {len(locations)} points")
+    computed = predict_swing(
+        used.racket,
+        the_ball,
+        locations,
+        speed_list,
+        the_swing,
+        the_support,
+        impact_model,
+        used.modal_model,
+        labels,
+        **options,
+    )
+    report(progress, f"sweet spots at {speed_list[chosen]:g} m/s")
+    spots = sweet_spots(
+        used.racket,
+        the_ball,
+        the_swing,
+        speed_list[chosen],
+        the_support,
+        impact_model,
+        used.modal_model,
+        **options,
+    )
+    out_dir = Path(out)
+    result = SwingStepResult(
+        out_dir,
+        swing_result=computed,
+        spots=spots,
+        racket=used.racket,
+        ball=the_ball,
+        swing=the_swing,
+        modal_model=used.modal_model,
+        impact_model=impact_model,
+        support=the_support,
+        speeds=speed_list,
+        shown_speed=chosen,
+        options=options,
+    )
+    result.spot_rows = _spot_rows(result, speed_list[chosen], used.modal_model)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    computed.write_csv(out_dir / "swing.csv")
+    result.written += [
+        out_dir / "swing.csv",
+        write_rows(out_dir / "sweet_spots.csv", result.spot_rows),
+    ]
+    inputs = {
+        **used.provenance,
+        "racket": racket_to_dict(used.racket),
+        "ball_speeds_mps": speed_list,
+        "support": the_support,
+        "grid": n,
+        "n_points": len(locations),
+        "rigid": rigid,
+        "defaults_used": defaults_used,
+        **computed.inputs,  # swing (parameters, Ω, inertias), impact model, ball, law, modes
+        "angular_speed_radps": omega,
+        "sweet_spots_at_mps": speed_list[chosen],
+        "columns": {
+            "swing.csv": "impact.csv columns; racket_speed_mps = Ω (x + axis_to_butt_m) "
+            "at each point",
+            "sweet_spots.csv": list(SWEET_SPOT_COLUMNS),
+        },
+    }
+    return finish_run(result, inputs, command_record(command, "swing"), figures)

@@ -1,0 +1,200 @@
+"""Step ``twist``: the racket's roll and twist at separation and the outgoing ball speed
+against the offset from the long axis (transient model).
+
+Writes ``twist.csv`` (:data:`TWIST_COLUMNS`) and ``run.json``; the figure comes from the
+caller's hook.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from racketdyn.ball import Ball
+from racketdyn.errors import InputError, one_of, require_finite, require_positive
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.transient import TRANSIENT_SUPPORTS
+from racketdyn.impact.twist import TwistCurve, twist_curve
+from racketdyn.io import racket_to_dict
+from racketdyn.racket import Racket
+from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    report,
+    write_rows,
+)
+
+__all__ = ["TWIST_COLUMNS", "TWIST_OFFSETS_M", "TwistResult", "run_twist"]
+
+TWIST_OFFSETS_M = (-0.08, -0.06, -0.04, -0.02, 0.0, 0.02, 0.04, 0.06, 0.08)
+"""Default offsets from the long axis, m."""
+
+TWIST_COLUMNS = (
+    "support",
+    "x_m",
+    "y_m",
+    "ball_speed_mps",
+    "racket_speed_mps",
+    "roll_angle_rad",
+    "roll_rate_radps",
+    "flexible_twist_rad",
+    "total_twist_rad",
+    "rebound_speed_mps",
+    "rebound_ratio",
+    "contact_time_s",
+    "status",
+)
+"""Columns of ``twist.csv``, one row per support × offset (``y_m``: the offset from the long
+axis); the fields of :class:`~racketdyn.impact.twist.TwistCurve`."""
+
+
+@dataclass
+class TwistResult(StepResult):
+    """What :func:`run_twist` computed and wrote.
+
+    Attributes
+    ----------
+    curves : list of TwistCurve
+        One curve per support.
+    racket : Racket
+        The racket.
+    offsets : list of float
+        Offsets from the long axis, m.
+    """
+
+    curves: list[TwistCurve] = field(default_factory=list)
+    racket: Racket | None = None
+    offsets: list[float] = field(default_factory=list)
+
+
+def run_twist(
+    out: str | os.PathLike[str],
+    *,
+    racket: RacketInput = None,
+    modal: str | os.PathLike[str] | None = None,
+    rigid: bool = False,
+    ball: Ball | None = None,
+    x_m: float = 0.52,
+    offsets_m: ArrayLike = TWIST_OFFSETS_M,
+    speed: float = 25.0,
+    racket_speed: float = 0.0,
+    supports: Sequence[str] = ("free",),
+    hand: Hand | None = None,
+    defaults: Sequence[str] = (),
+    command: Sequence[str] | None = None,
+    figures: Callable[[TwistResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> TwistResult:
+    """Impacts across the face at one x, one curve per support; write the run folder.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    racket : Racket, path or None
+        Racket object, TOML file, or None for the built-in racket.
+    modal : path, optional
+        Modal model JSON replacing the racket's modes.
+    rigid : bool
+        No vibration: a rigid racket.
+    ball : Ball, optional
+        The ball (default :class:`~racketdyn.ball.Ball`).
+    x_m : float
+        Impact position from the butt, m.
+    offsets_m : array_like
+        Offsets y from the long axis, m.
+    speed : float
+        Incoming ball speed, m/s.
+    racket_speed : float
+        Racket speed towards the ball, m/s.
+    supports : sequence of str
+        ``free``, ``pinned``, ``hand`` (one curve each).
+    hand : Hand, optional
+        The hand of the ``hand`` support.
+    defaults : sequence of str
+        Defaults the caller filled in (ball), added to run.json.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths`` (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    x = require_positive("--x", x_m)
+    offsets = [require_finite("--offsets", v) for v in np.atleast_1d(offsets_m)]
+    speed = require_positive("--speed", speed)
+    racket_speed = require_finite("--racket-speed", racket_speed)
+    checked = [one_of("--support", s, TRANSIENT_SUPPORTS) for s in supports]
+    if len(set(checked)) != len(checked):
+        raise InputError(f"--support: name each support once (got {','.join(supports)})")
+    used = setup(racket, modal, rigid)
+    used.racket.head.check_inside(np.column_stack([np.full(len(offsets), x), offsets]))
+    the_hand, hand_defaults = hand_or_default(checked, hand)
+    the_ball, ball_defaults = ball_or_default(ball)
+    defaults_used = [*used.defaults, *hand_defaults, *ball_defaults, *defaults]
+    curves = []
+    for i, support in enumerate(checked):
+        report(
+            progress, f"twist against offset, {support} ({len(offsets)} impacts)", i, len(checked)
+        )
+        curves.append(
+            twist_curve(
+                used.racket,
+                the_ball,
+                x,
+                offsets,
+                speed,
+                support,
+                racket_speed,
+                used.modal_model,
+                the_hand,
+            )
+        )
+    out_dir = Path(out)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    rows = [
+        {
+            "support": c.support,
+            "x_m": c.x_m,
+            "y_m": float(c.offsets_m[i]),
+            "ball_speed_mps": c.ball_speed_mps,
+            "racket_speed_mps": c.racket_speed_mps,
+            **{name: float(getattr(c, name)[i]) for name in TWIST_COLUMNS[5:-1]},
+            "status": str(c.status[i]),
+        }
+        for c in curves
+        for i in range(c.offsets_m.size)
+    ]
+    result = TwistResult(
+        out_dir,
+        [write_rows(out_dir / "twist.csv", rows)],
+        curves=curves,
+        racket=used.racket,
+        offsets=offsets,
+    )
+    model = used.modal_model
+    inputs = {
+        **used.provenance,
+        "racket": racket_to_dict(used.racket),
+        "x_m": x,
+        "offsets_m": offsets,
+        "ball_speed_mps": speed,
+        "racket_speed_mps": racket_speed,
+        "supports": checked,
+        "rigid": rigid,
+        "defaults_used": defaults_used,
+        "method": "transient simulation, reference engine (racketdyn.impact.twist."
+        "twist_curve): roll and section rotation of the modes at separation",
+        "modal_model": None if model is None else model.summary(),
+        "hand": None if the_hand is None else asdict(the_hand),
+        "columns": {"twist.csv": list(TWIST_COLUMNS)},
+    }
+    return finish_run(result, inputs, command_record(command, "twist"), figures)
