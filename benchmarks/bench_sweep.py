@@ -81,7 +81,7 @@ def time_engine(spec: SweepSpec, kind: str, workers: int, out: Path) -> tuple[fl
     start = time.perf_counter()
     with make_executor(kind, workers) as executor:  # type: ignore[arg-type]
         started = time.perf_counter()
-        run_sweep(spec, out, executor, figures=False)
+        run_sweep(spec, out, executor, figures=None)
     wall = time.perf_counter() - start
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))
     return wall, started - start, float(record["task_time_s"])

@@ -40,6 +40,7 @@ NOT_IN_API = {
     "racketdyn.cli": "the command line, documented command by command in docs/commands/",
 }
 
+
 @pytest.mark.parametrize(("module", "name"), PUBLIC)
 def test_public_object_is_documented(module: str, name: str) -> None:
     obj = getattr(__import__(module, fromlist=[name]), name)

@@ -21,6 +21,7 @@ import racketdyn.sweep as sweep
 import racketdyn.sweep.task as sweep_task
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.transient import predict_transient
+from racketdyn.plotting.sweep import plot_centre_rebound, plot_sweet_area, write_summary_figures
 from racketdyn.sweep import (
     SerialExecutor,
     SweepSpec,
@@ -30,8 +31,6 @@ from racketdyn.sweep import (
     factorial_view,
     load_sweep_spec,
     make_executor,
-    plot_centre_rebound,
-    plot_sweet_area,
     run_sweep,
     summary_metrics,
     variable_designs,
@@ -82,7 +81,7 @@ def small_spec(racket: rd.Racket, ball: rd.Ball) -> SweepSpec:
 
 @pytest.fixture(scope="module")
 def serial_result(small_spec: SweepSpec, tmp_path_factory: pytest.TempPathFactory) -> xr.Dataset:
-    return run_sweep(small_spec, tmp_path_factory.mktemp("serial"), SerialExecutor(), figures=False)
+    return run_sweep(small_spec, tmp_path_factory.mktemp("serial"), SerialExecutor(), figures=None)
 
 
 @pytest.fixture(scope="module")
@@ -117,7 +116,7 @@ def one_at_a_time(
         name="physics",
     )
     out = tmp_path_factory.mktemp("physics")
-    return run_sweep(spec, out, SerialExecutor()), out
+    return run_sweep(spec, out, SerialExecutor(), figures=write_summary_figures), out
 
 
 def design(dataset: xr.Dataset, varied: str) -> xr.Dataset:
@@ -143,7 +142,7 @@ def test_every_engine_gives_the_same_bits(
             tmp_path,
             executor,
             progress=lambda done, total: progress.append((done, total)),
-            figures=False,
+            figures=None,
         )
     assert_same_bits(serial_result, result)
     assert progress[0] == (0, 6)
@@ -165,7 +164,7 @@ def test_a_local_dask_cluster_from_make_executor(
         # make_executor leaves it out (with it, glibc maps every large array anew: ≈ 1.7 ×
         # slower tasks)
         assert executor.submit(os.environ.get, "MALLOC_TRIM_THRESHOLD_").result() is None
-        result = run_sweep(small_spec, tmp_path, executor, figures=False)
+        result = run_sweep(small_spec, tmp_path, executor, figures=None)
     assert_same_bits(serial_result, result)
 
 
@@ -210,7 +209,7 @@ def test_dataset_layout(small_spec: SweepSpec, serial_result: xr.Dataset) -> Non
 
 
 def test_default_engine_is_serial_for_small_sweeps(small_spec: SweepSpec, tmp_path: Path) -> None:
-    run_sweep(small_spec, tmp_path, figures=False)
+    run_sweep(small_spec, tmp_path, figures=None)
     assert json.loads((tmp_path / "run.json").read_text())["engine"] == "SerialExecutor"
 
 
@@ -262,7 +261,7 @@ def test_frame_stiffness_scales_a_modal_model_file(
         ball_speeds=[15.0],
         variables=(Variable.scalar("frame_stiffness_scale", [1.0, 4.0]),),
     )
-    ds = run_sweep(spec, tmp_path / "out", SerialExecutor(), figures=False)
+    ds = run_sweep(spec, tmp_path / "out", SerialExecutor(), figures=None)
     frequency = ds["mode_frequency_hz"].values
     np.testing.assert_allclose(frequency[1], 2.0 * frequency[0], rtol=1e-12)
 
@@ -300,7 +299,7 @@ def test_transient_sweep_equals_direct_calls(
         method="transient",
         name="transient",
     )
-    ds = run_sweep(spec, tmp_path, SerialExecutor(), figures=False)
+    ds = run_sweep(spec, tmp_path, SerialExecutor(), figures=None)
     assert ds.attrs["method"] == "transient"
     assert np.all(ds["status"].values == 0)
     for design in spec.designs:
@@ -342,7 +341,7 @@ def test_hand_variables_change_the_hand_support_only(
         method="transient",
         name="arm",
     )
-    ds = run_sweep(spec, tmp_path, SerialExecutor())
+    ds = run_sweep(spec, tmp_path, SerialExecutor(), figures=write_summary_figures)
     np.testing.assert_array_equal(ds["hand.arm_mass_kg"].values, [0.5, 2.0])
     free = ds["rebound_ratio"].sel(support="free").values
     np.testing.assert_allclose(free[0], free[1], rtol=1e-12)
@@ -416,7 +415,7 @@ def test_summary_figures_and_table(one_at_a_time: tuple[xr.Dataset, Path]) -> No
 def test_a_rerun_computes_only_missing_designs(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
-    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=False)
+    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
     (tmp_path / "sweep.nc").unlink()
     (tmp_path / "parts" / "design-00003.nc").unlink()
     counting, progress = CountingExecutor(), []
@@ -425,7 +424,7 @@ def test_a_rerun_computes_only_missing_designs(
         tmp_path,
         counting,
         progress=lambda done, total: progress.append((done, total)),
-        figures=False,
+        figures=None,
     )
     assert counting.submitted == ["design-00003"]
     assert progress == [(5, 6), (6, 6)]
@@ -440,22 +439,22 @@ def test_an_interrupted_sweep_resumes(
             raise KeyboardInterrupt
 
     with pytest.raises(KeyboardInterrupt):
-        run_sweep(small_spec, tmp_path, SerialExecutor(), progress=interrupt, figures=False)
+        run_sweep(small_spec, tmp_path, SerialExecutor(), progress=interrupt, figures=None)
     assert sorted(p.name for p in (tmp_path / "parts").iterdir()) == [
         "design-00000.nc",
         "design-00001.nc",
     ]
     counting = CountingExecutor()
-    result = run_sweep(small_spec, tmp_path, counting, figures=False)
+    result = run_sweep(small_spec, tmp_path, counting, figures=None)
     assert counting.submitted == [f"design-{i:05d}" for i in range(2, 6)]
     assert_same_bits(serial_result, result)
 
 
 def test_parts_of_another_spec_are_recomputed(small_spec: SweepSpec, tmp_path: Path) -> None:
-    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=False)
+    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
     changed = replace(small_spec, ball_speeds=np.array([10.0, 26.0]))
     counting = CountingExecutor()
-    result = run_sweep(changed, tmp_path, counting, figures=False)
+    result = run_sweep(changed, tmp_path, counting, figures=None)
     assert len(counting.submitted) == 6
     assert result.attrs["spec_sha256"] == changed.sha256 != small_spec.sha256
 
@@ -483,7 +482,7 @@ def test_a_failed_task_is_retried(
 ) -> None:
     monkeypatch.setattr(sweep_task, "predict", _fail_design_3(times=1))
     counting = CountingExecutor()
-    result = run_sweep(small_spec, tmp_path, counting, figures=False)
+    result = run_sweep(small_spec, tmp_path, counting, figures=None)
     assert counting.submitted.count("design-00003") == 2
     assert len(counting.submitted) == 7
     assert "retrying" in caplog.text
@@ -499,7 +498,7 @@ def test_a_task_that_always_fails_is_reported_and_the_rest_kept(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     monkeypatch.setattr(sweep_task, "predict", _fail_design_3(times=99))
-    result = run_sweep(small_spec, tmp_path, SerialExecutor(), figures=False)
+    result = run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
     failures = json.loads((tmp_path / "failures.json").read_text())
     assert [f["task_id"] for f in failures] == ["design-00003"]
     assert failures[0]["attempts"] == 2
@@ -517,7 +516,7 @@ def test_a_task_that_always_fails_is_reported_and_the_rest_kept(
     # fixed, a rerun computes the failed design only and clears the failure record
     monkeypatch.undo()
     counting = CountingExecutor()
-    rerun = run_sweep(small_spec, tmp_path, counting, figures=False)
+    rerun = run_sweep(small_spec, tmp_path, counting, figures=None)
     assert counting.submitted == ["design-00003"]
     assert not (tmp_path / "failures.json").exists()
     assert_same_bits(serial_result, rerun)

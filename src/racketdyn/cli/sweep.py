@@ -54,6 +54,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
     from pathlib import Path
 
+    from racketdyn.plotting.sweep import write_summary_figures as sweep_figures
     from racketdyn.sweep import load_sweep_spec
     from racketdyn.workflows.sweep import run_sweep_step
 
@@ -83,7 +84,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             engine=engine,  # type: ignore[arg-type]
             workers=workers,
             scheduler=args.scheduler,
-            figures=not args.no_figures,
+            figures=None if args.no_figures else sweep_figures,
             progress=progress,
         )
     record, out = result.record, result.out

@@ -19,7 +19,9 @@ attributes and ``failures.json``) while the other results are kept.  The parts a
 always from the files, into ``out_dir/sweep.nc``: an :mod:`xarray` dataset with dimensions
 ``(design, point, speed, racket_speed, support)``, so every engine gives the same file.
 
-Summary figures (:func:`write_summary_figures`) plot, for each variable, the rebound ratio at the
+``summary.csv`` (:func:`write_summary_csv`) and the summary figures
+(:func:`racketdyn.plotting.sweep.write_summary_figures`, a hook of :func:`run_sweep`) give, for
+each variable, the rebound ratio at the
 face centre and the area of the face with a rebound ratio above a threshold against the variable,
 per support.
 
@@ -52,11 +54,9 @@ from racketdyn.sweep.spec import MODES, SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec, sweep_spec_from_dict
 from racketdyn.sweep.summary import (
     factorial_view,
-    plot_centre_rebound,
-    plot_sweet_area,
     summary_metrics,
     variable_designs,
-    write_summary_figures,
+    write_summary_csv,
 )
 from racketdyn.sweep.task import (
     METHOD_SUPPORTS,
@@ -89,12 +89,10 @@ __all__ = [
     "factorial_view",
     "load_sweep_spec",
     "make_executor",
-    "plot_centre_rebound",
-    "plot_sweet_area",
     "run_sweep",
     "run_task",
     "summary_metrics",
     "sweep_spec_from_dict",
     "variable_designs",
-    "write_summary_figures",
+    "write_summary_csv",
 ]

@@ -31,7 +31,7 @@ from racketdyn.sweep.executors import DEFAULT_WORKERS, EngineKind, _in_flight_li
 from racketdyn.sweep.files import _combine, _read_netcdf, _read_part, _write_netcdf, _write_part
 from racketdyn.sweep.spec import SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec
-from racketdyn.sweep.summary import write_summary_figures
+from racketdyn.sweep.summary import write_summary_csv
 from racketdyn.sweep.task import STATUS_CODES, STATUS_FAILED, TaskOutput, run_task
 
 if TYPE_CHECKING:
@@ -58,7 +58,7 @@ def run_sweep(
     progress: ProgressCallback | None = None,
     *,
     retries: int = 1,
-    figures: bool = True,
+    figures: Callable[[xr.Dataset, Path], list[Path]] | None = None,
     max_in_flight: int | None = None,
 ) -> xr.Dataset:
     """Run a sweep: one task per design on an executor, parts on disk, one dataset at the end.
@@ -80,8 +80,10 @@ def run_sweep(
         ``progress(done, total)`` after the resumed tasks are counted and after each task ends.
     retries : int
         Times a failed task is submitted again before it is recorded as failed.
-    figures : bool
-        Draw the summary figures.
+    figures : callable, optional
+        ``figures(dataset, out_dir)`` draws the summary figures and returns their paths (the
+        presentation layer's :func:`racketdyn.plotting.sweep.write_summary_figures`); none
+        drawn if None.
     max_in_flight : int, optional
         Tasks submitted at once (default: twice the executor's workers; 1 for serial).
 
@@ -155,8 +157,10 @@ def run_sweep(
             )
     result = _read_netcdf(sweep_path)
     written = [sweep_path]
-    if figures and spec.variables:
-        written += write_summary_figures(result, out)
+    if spec.variables:
+        written.append(write_summary_csv(result, out))
+        if figures is not None:
+            written += figures(result, out)
     record = {
         "format": "racketdyn-sweep-run",
         "racketdyn_version": __version__,

@@ -1,9 +1,9 @@
-"""Sweep summary: per-design metrics, the designs that show one variable, and the figures.
+"""Sweep summary: per-design metrics, the designs that show one variable, ``summary.csv``.
 
 The end of the flow: reads a sweep dataset (``sweep.nc``, :func:`~racketdyn.sweep.run_sweep`)
 and nothing else — the rebound ratio at the face centre and the "sweet" face area per design
-and support, their plots against each variable, ``summary.csv``, and a full factorial's
-dimensions.
+and support, ``summary.csv``, and a full factorial's dimensions.  Their plots against each
+variable are presentation: :mod:`racketdyn.plotting.sweep`.
 """
 
 from __future__ import annotations
@@ -15,21 +15,18 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError
 from racketdyn.sweep.variables import POINT_MASS
 
 if TYPE_CHECKING:
     import xarray as xr
-    from matplotlib.axes import Axes
 
 __all__ = [
+    "axis_label",
     "factorial_view",
-    "plot_centre_rebound",
-    "plot_sweet_area",
     "summary_metrics",
     "variable_designs",
-    "write_summary_figures",
+    "write_summary_csv",
 ]
 
 
@@ -161,7 +158,7 @@ def summary_metrics(
     )
 
 
-def _axis_label(dataset: xr.Dataset, variable: str) -> tuple[str, str, float]:
+def axis_label(dataset: xr.Dataset, variable: str) -> tuple[str, str, float]:
     """The coordinate a variable is plotted against, its axis label and display scale."""
     info = _variables(dataset)[variable]
     coord = str(info["axis"])
@@ -190,112 +187,8 @@ def _axis_label(dataset: xr.Dataset, variable: str) -> tuple[str, str, float]:
     return coord, f"{coord.replace('_', ' ')} (–)", 1.0
 
 
-def _plot_metric(
-    dataset: xr.Dataset,
-    variable: str,
-    metric: str,
-    ax: Axes | None,
-    threshold_fraction: float | None,
-    ball_speed: float | None,
-    racket_speed: float | None,
-) -> Axes:
-    import matplotlib.pyplot as plt
-
-    from racketdyn.plotting import SUPPORT_STYLE  # sets the Agg backend: files, not windows
-
-    if ax is None:
-        _, ax = plt.subplots(figsize=(5.0, 3.6), layout="constrained")
-    keep = variable_designs(dataset, variable)
-    # the designs compared share one threshold: a fraction of the best among them
-    metrics = summary_metrics(
-        dataset.isel(design=keep), threshold_fraction, ball_speed, racket_speed
-    )
-    coord, label, scale = _axis_label(dataset, variable)
-    x = dataset[coord].values[keep] * scale
-    for support in metrics["support"].values.tolist():
-        style = SUPPORT_STYLE.get(str(support), {})
-        ax.plot(
-            x,
-            metrics[metric].sel(support=support).values,
-            color=str(style.get("color", "tab:gray")),
-            marker=str(style.get("marker", "o")),
-            label=str(style.get("label", support)),
-            linestyle="-",
-            markersize=4,
-        )
-    ax.set_xlabel(label)
-    speeds = f"{metrics.attrs['ball_speed_mps']:g} m/s ball"
-    if metrics.attrs["racket_speed_mps"]:
-        speeds += f", {metrics.attrs['racket_speed_mps']:g} m/s racket"
-    if metric == "centre_rebound_ratio":
-        ax.set_ylabel("rebound ratio e at centre (–)")
-        ax.set_title(f"face centre, {speeds}", fontsize=9)
-    else:
-        ax.set_ylabel("face area above threshold (cm²)")
-        ax.set_title(f"e ≥ {metrics.attrs['threshold_fraction']:g} × best, {speeds}", fontsize=9)
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
-    return ax
-
-
-def plot_centre_rebound(
-    dataset: xr.Dataset,
-    variable: str,
-    ax: Axes | None = None,
-    ball_speed: float | None = None,
-    racket_speed: float | None = None,
-) -> Axes:
-    """Rebound ratio at the face centre against a variable, one line per support.
-
-    Parameters
-    ----------
-    dataset : xarray.Dataset
-        A sweep dataset.
-    variable : str
-        The variable (designs from :func:`variable_designs`).
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if None).
-    ball_speed, racket_speed : float, optional
-        Speeds, m/s (default the spec's summary speeds).
-    """
-    return _plot_metric(
-        dataset, variable, "centre_rebound_ratio", ax, None, ball_speed, racket_speed
-    )
-
-
-def plot_sweet_area(
-    dataset: xr.Dataset,
-    variable: str,
-    ax: Axes | None = None,
-    threshold_fraction: float | None = None,
-    ball_speed: float | None = None,
-    racket_speed: float | None = None,
-) -> Axes:
-    """Face area with a rebound ratio above the threshold against a variable, per support.
-
-    The threshold is a fraction of the best rebound ratio among the designs plotted (see
-    :func:`summary_metrics`).
-
-    Parameters
-    ----------
-    dataset : xarray.Dataset
-        A sweep dataset.
-    variable : str
-        The variable (designs from :func:`variable_designs`).
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if None).
-    threshold_fraction : float, optional
-        Fraction of the sweep's best rebound ratio (default the spec's).
-    ball_speed, racket_speed : float, optional
-        Speeds, m/s (default the spec's summary speeds).
-    """
-    return _plot_metric(
-        dataset, variable, "sweet_area_cm2", ax, threshold_fraction, ball_speed, racket_speed
-    )
-
-
-def write_summary_figures(dataset: xr.Dataset, out_dir: Path | str) -> list[Path]:
-    """Write ``summary_<variable>.png`` (centre rebound and sweet area) and ``summary.csv``.
+def write_summary_csv(dataset: xr.Dataset, out_dir: Path | str) -> Path:
+    """Write ``summary.csv``: the summary metrics per design and support.
 
     Parameters
     ----------
@@ -306,24 +199,9 @@ def write_summary_figures(dataset: xr.Dataset, out_dir: Path | str) -> list[Path
 
     Returns
     -------
-    list of Path
-        The files written.
+    Path
+        The file written.
     """
-    import matplotlib.pyplot as plt
-
-    import racketdyn.plotting  # noqa: F401  (sets the Agg backend: files, not windows)
-
-    out = Path(out_dir)
-    written = []
-    for variable in _variables(dataset):
-        figure, (left, right) = plt.subplots(1, 2, figsize=(9.0, 3.6), layout="constrained")
-        plot_centre_rebound(dataset, variable, ax=left)
-        plot_sweet_area(dataset, variable, ax=right)
-        figure.suptitle(f"{dataset.attrs['title']}: {variable.replace('_', ' ')}", fontsize=10)
-        path = out / f"summary_{variable}.png"
-        figure.savefig(path, dpi=120, metadata={"Software": f"racketdyn {__version__}"})
-        plt.close(figure)
-        written.append(path)
     metrics = summary_metrics(dataset)
     table = metrics.to_dataframe().unstack("support")
     table.columns = [f"{name}_{support}" for name, support in table.columns]
@@ -331,10 +209,9 @@ def write_summary_figures(dataset: xr.Dataset, out_dir: Path | str) -> list[Path
     for coord in design_coords:
         table[coord] = dataset[coord].values
     table = table[design_coords + [c for c in table.columns if c not in design_coords]]
-    path = out / "summary.csv"
+    path = Path(out_dir) / "summary.csv"
     table.to_csv(path)
-    written.append(path)
-    return written
+    return path
 
 
 def factorial_view(dataset: xr.Dataset) -> xr.Dataset:

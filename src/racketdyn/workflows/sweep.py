@@ -1,14 +1,15 @@
 """Step ``sweep``: a design sweep (racket variants × points × speeds) on an executor.
 
 :func:`racketdyn.sweep.run_sweep` writes the folder itself (parts, ``sweep.nc``, ``summary.csv``,
-its own ``run.json`` with the engine, counts and timing, and the summary figures unless
-``figures=False``); this step chooses the executor and returns the record.
+its own ``run.json`` with the engine, counts and timing, and the figures the caller's hook
+draws); this step chooses the executor and returns the record.
 """
 
 from __future__ import annotations
 
 import json
 import os
+from collections.abc import Callable
 from concurrent.futures import Executor
 from contextlib import AbstractContextManager, ExitStack, nullcontext
 from dataclasses import dataclass, field
@@ -51,7 +52,7 @@ def run_sweep_step(
     engine: Engine = "auto",
     workers: int | None = None,
     scheduler: str | None = None,
-    figures: bool = True,
+    figures: Callable[[xr.Dataset, Path], list[Path]] | None = None,
     progress: Progress | None = None,
 ) -> SweepResult:
     """Run (or resume) a design sweep into ``out``.
@@ -68,8 +69,9 @@ def run_sweep_step(
         Worker processes for ``process`` and ``dask-local``.
     scheduler : str, optional
         Dask scheduler address for ``dask`` (``tcp://HOST:PORT``).
-    figures : bool
-        Draw the summary figures (the sweep package draws them).
+    figures : callable, optional
+        ``figures(dataset, out)`` draws the summary figures and returns their paths
+        (:func:`racketdyn.plotting.sweep.write_summary_figures`); none if None.
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """

@@ -1,0 +1,147 @@
+"""Figures of a design sweep: the summary metrics against each variable, one line per support.
+
+The metrics come from :mod:`racketdyn.sweep.summary`; this module only draws them.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import xarray as xr
+from matplotlib.axes import Axes
+
+from racketdyn.__about__ import __version__
+from racketdyn.plotting.primitives import SUPPORT_STYLE
+from racketdyn.sweep.summary import _variables, axis_label, summary_metrics, variable_designs
+
+__all__ = ["plot_centre_rebound", "plot_sweet_area", "write_summary_figures"]
+
+
+def _plot_metric(
+    dataset: xr.Dataset,
+    variable: str,
+    metric: str,
+    ax: Axes | None,
+    threshold_fraction: float | None,
+    ball_speed: float | None,
+    racket_speed: float | None,
+) -> Axes:
+    if ax is None:
+        _, ax = plt.subplots(figsize=(5.0, 3.6), layout="constrained")
+    keep = variable_designs(dataset, variable)
+    # the designs compared share one threshold: a fraction of the best among them
+    metrics = summary_metrics(
+        dataset.isel(design=keep), threshold_fraction, ball_speed, racket_speed
+    )
+    coord, label, scale = axis_label(dataset, variable)
+    x = dataset[coord].values[keep] * scale
+    for support in metrics["support"].values.tolist():
+        style = SUPPORT_STYLE.get(str(support), {})
+        ax.plot(
+            x,
+            metrics[metric].sel(support=support).values,
+            color=str(style.get("color", "tab:gray")),
+            marker=str(style.get("marker", "o")),
+            label=str(style.get("label", support)),
+            linestyle="-",
+            markersize=4,
+        )
+    ax.set_xlabel(label)
+    speeds = f"{metrics.attrs['ball_speed_mps']:g} m/s ball"
+    if metrics.attrs["racket_speed_mps"]:
+        speeds += f", {metrics.attrs['racket_speed_mps']:g} m/s racket"
+    if metric == "centre_rebound_ratio":
+        ax.set_ylabel("rebound ratio e at centre (–)")
+        ax.set_title(f"face centre, {speeds}", fontsize=9)
+    else:
+        ax.set_ylabel("face area above threshold (cm²)")
+        ax.set_title(f"e ≥ {metrics.attrs['threshold_fraction']:g} × best, {speeds}", fontsize=9)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_centre_rebound(
+    dataset: xr.Dataset,
+    variable: str,
+    ax: Axes | None = None,
+    ball_speed: float | None = None,
+    racket_speed: float | None = None,
+) -> Axes:
+    """Rebound ratio at the face centre against a variable, one line per support.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep dataset.
+    variable : str
+        The variable (designs from :func:`variable_designs`).
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if None).
+    ball_speed, racket_speed : float, optional
+        Speeds, m/s (default the spec's summary speeds).
+    """
+    return _plot_metric(
+        dataset, variable, "centre_rebound_ratio", ax, None, ball_speed, racket_speed
+    )
+
+
+def plot_sweet_area(
+    dataset: xr.Dataset,
+    variable: str,
+    ax: Axes | None = None,
+    threshold_fraction: float | None = None,
+    ball_speed: float | None = None,
+    racket_speed: float | None = None,
+) -> Axes:
+    """Face area with a rebound ratio above the threshold against a variable, per support.
+
+    The threshold is a fraction of the best rebound ratio among the designs plotted (see
+    :func:`summary_metrics`).
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep dataset.
+    variable : str
+        The variable (designs from :func:`variable_designs`).
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if None).
+    threshold_fraction : float, optional
+        Fraction of the sweep's best rebound ratio (default the spec's).
+    ball_speed, racket_speed : float, optional
+        Speeds, m/s (default the spec's summary speeds).
+    """
+    return _plot_metric(
+        dataset, variable, "sweet_area_cm2", ax, threshold_fraction, ball_speed, racket_speed
+    )
+
+
+def write_summary_figures(dataset: xr.Dataset, out_dir: Path | str) -> list[Path]:
+    """Write ``summary_<variable>.png``: centre rebound and sweet area against each variable.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep dataset.
+    out_dir : path-like
+        Output folder.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    out = Path(out_dir)
+    written = []
+    for variable in _variables(dataset):
+        figure, (left, right) = plt.subplots(1, 2, figsize=(9.0, 3.6), layout="constrained")
+        plot_centre_rebound(dataset, variable, ax=left)
+        plot_sweet_area(dataset, variable, ax=right)
+        figure.suptitle(f"{dataset.attrs['title']}: {variable.replace('_', ' ')}", fontsize=10)
+        path = out / f"summary_{variable}.png"
+        figure.savefig(path, dpi=120, metadata={"Software": f"racketdyn {__version__}"})
+        plt.close(figure)
+        written.append(path)
+    return written
