@@ -3,7 +3,7 @@
 One short module per command (``predict``, ``racket``, ``rig``, ``frf``, ``contact``,
 ``identify``/``compare``, ``demo``, ``report``, ``sweep``, ``swing``, ``oblique``, ``twist``),
 the shared options in :mod:`racketdyn.cli.options`, the figure hooks in
-:mod:`racketdyn.cli.figures`.  Building the parser imports neither NumPy nor the library: a
+:mod:`racketdyn.plotting.steps`.  Building the parser imports neither NumPy nor the library: a
 command imports what it needs when it runs, so ``racketdyn --help`` is instant.
 
 Every user error (:class:`~racketdyn.errors.InputError`) becomes one line on stderr and exit

@@ -33,7 +33,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
     import numpy as np
 
-    from racketdyn.cli.figures import contact_figures
+    from racketdyn.plotting.steps import contact_figures
     from racketdyn.workflows.contact import run_contact
 
     labels = opt.parse_list("--labels", args.labels) if args.labels else None

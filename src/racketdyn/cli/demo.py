@@ -43,7 +43,7 @@ def add(commands: Any) -> None:
 
 def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[[], object]]]:
     """The demo's steps: label, the equivalent command, and the call."""
-    from racketdyn.cli import figures as fig
+    from racketdyn.plotting import steps as fig
     from racketdyn.workflows.contact import run_contact
     from racketdyn.workflows.frf import run_frf
     from racketdyn.workflows.identify import run_compare

@@ -61,7 +61,7 @@ def add(commands: Any) -> None:
 
 def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
-    from racketdyn.cli.figures import frf_figures
+    from racketdyn.plotting.steps import frf_figures
     from racketdyn.workflows.frf import run_frf
 
     with opt.progress_display(console) as progress:

@@ -113,7 +113,7 @@ def print_modes(console: Console, identification: Identification) -> None:
 
 def run_identify(args: argparse.Namespace, console: Console) -> int:
     """Run ``identify``."""
-    from racketdyn.cli.figures import identify_figures
+    from racketdyn.plotting.steps import identify_figures
     from racketdyn.workflows.identify import run_identify as identify
 
     with opt.progress_display(console) as progress:
@@ -133,7 +133,7 @@ def run_identify(args: argparse.Namespace, console: Console) -> int:
 
 def run_compare(args: argparse.Namespace, console: Console) -> int:
     """Run ``compare``."""
-    from racketdyn.cli.figures import compare_figures
+    from racketdyn.plotting.steps import compare_figures
     from racketdyn.workflows.identify import run_compare as compare
 
     with opt.progress_display(console) as progress:

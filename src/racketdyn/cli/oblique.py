@@ -76,8 +76,8 @@ def run(args: argparse.Namespace, console: Console) -> int:
     import numpy as np
     from rich.table import Table
 
-    from racketdyn.cli.figures import oblique_figures
     from racketdyn.errors import InputError
+    from racketdyn.plotting.steps import oblique_figures
     from racketdyn.workflows.oblique import SPIN_CAVEAT, run_oblique
 
     angles = opt.parse_numbers("--angles", args.angles, "degrees from the face normal")

@@ -74,8 +74,8 @@ def add(commands: Any) -> None:
 
 def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
-    from racketdyn.cli.figures import predict_figures
     from racketdyn.errors import InputError
+    from racketdyn.plotting.steps import predict_figures
     from racketdyn.workflows.predict import check_supports, run_predict, transient_csv_name
 
     opt.check_modes(args)

@@ -64,7 +64,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
     from rich.table import Table
 
-    from racketdyn.cli.figures import swing_figures
+    from racketdyn.plotting.steps import swing_figures
     from racketdyn.workflows.swing import one_support, run_swing, swing_from
 
     speeds = opt.parse_speeds("--speed", args.speed)

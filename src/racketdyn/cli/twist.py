@@ -53,7 +53,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     import numpy as np
     from rich.table import Table
 
-    from racketdyn.cli.figures import twist_figures
+    from racketdyn.plotting.steps import twist_figures
     from racketdyn.workflows.twist import run_twist
 
     offsets = opt.parse_numbers("--offsets", args.offsets, "offsets from the long axis in m")

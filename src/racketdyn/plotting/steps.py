@@ -1,4 +1,4 @@
-"""Figure hooks: what the CLI (and the demo) draws after each workflow step.
+"""Figure hooks: what each workflow step draws (the CLI, the demo and Python users pass them).
 
 Each hook has the shape the workflows take, ``hook(result, out) -> paths``, and calls the
 figure writers of :mod:`racketdyn.plotting.figures` (imported when a hook runs: matplotlib is
