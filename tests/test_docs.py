@@ -124,6 +124,9 @@ def test_examples_use_the_commands_options(capsys: pytest.CaptureFixture[str]) -
 def test_ci_builds_the_docs_with_warnings_as_errors() -> None:
     ci = (DOCS.parent / ".ci" / "run").read_text(encoding="utf-8")
     assert '".[test,docs]"' in ci
+    readme = (DOCS.parent / "README.md").read_text(encoding="utf-8")
+    (test_command,) = [line for line in readme.splitlines() if "-m pytest" in line]
+    assert test_command.strip() in ci, "CI must run the README's test command as written"
     assert re.search(r"python -m sphinx -W .*-b html docs docs/_build/html", ci)
     conf = (DOCS / "conf.py").read_text(encoding="utf-8")
     assert "sphinx.ext.intersphinx" not in conf, "no remote inventories: CI has no network"
