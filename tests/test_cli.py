@@ -209,6 +209,20 @@ BAD_INPUT: dict[str, tuple[Callable[[Path], list[str]], tuple[str, ...]]] = {
         ),
         ("y_m", "abc"),
     ),
+    # review of issue 11: these raised FileExistsError / NotADirectoryError with a traceback
+    "out-is-a-file": (
+        lambda tmp: ["predict", "--no-figures", "--out", str(_write(tmp / "my.toml", "x"))],
+        ("--out", "my.toml", "is a file"),
+    ),
+    "out-below-a-file": (
+        lambda tmp: [
+            "swing",
+            "--no-figures",
+            "--out",
+            str(_write(tmp / "notes.txt", "x") / "sub"),
+        ],
+        ("--out", "notes.txt", "is a file"),
+    ),
 }
 
 
@@ -237,3 +251,22 @@ def test_run_record_names_the_command_as_called(tmp_path: Path) -> None:
     assert main(argv) == 0
     record = json.loads((tmp_path / "run.json").read_text())
     assert record["command"] == ["racketdyn", *argv]
+
+
+def test_report_takes_the_racket_the_runs_recorded(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Review of issue 11: `racketdyn report` showed the built-in racket for a run on another."""
+    toml = _edited_toml(
+        tmp_path, 'name = "Kawazoe test racket (360 g, 97 sq in)"', 'name = "Lab racket 300 g"'
+    )
+    toml = _write(
+        toml, toml.read_text(encoding="utf-8").replace("mass_kg = 0.360", "mass_kg = 0.300")
+    )
+    run_dir = tmp_path / "run"
+    argv = ["predict", "--racket", str(toml), "--speed", "20", "--grid", "3", "--no-figures"]
+    assert main([*argv, "--out", str(run_dir / "predict")]) == 0
+    assert main(["report", str(run_dir)]) == 0
+    page = (run_dir / "report.html").read_text(encoding="utf-8")
+    assert "Lab racket 300 g" in page
+    assert "Kawazoe test racket" not in page

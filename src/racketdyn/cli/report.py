@@ -35,6 +35,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     run_dir = Path(args.run_dir)
     if not run_dir.is_dir():
         raise InputError(f"{run_dir}: no such folder; give a folder written by racketdyn demo")
-    racket, _ = load_racket_input(args.racket)
+    # without --racket the report takes the racket the runs recorded in their run.json
+    racket = None if args.racket is None else load_racket_input(args.racket)[0]
     console.print(f"wrote {write_report(run_dir, racket)}")
     return 0

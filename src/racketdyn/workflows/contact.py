@@ -17,7 +17,14 @@ from racketdyn.measurement.pulse import ContactTimes, contact_times
 from racketdyn.racket import Racket
 from racketdyn.workflows.frf import read_records
 from racketdyn.workflows.inputs import RacketInput, load_racket_input
-from racketdyn.workflows.run import Progress, StepResult, command_record, finish_run, report
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    make_out_folder,
+    report,
+)
 
 __all__ = ["CONTACT_METHOD", "ContactResult", "run_contact"]
 
@@ -84,7 +91,7 @@ def run_contact(
         raise InputError(f"--labels: give one label per test file ({len(tests)})")
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    make_out_folder(out_dir)
     result = ContactResult(out_dir, labels=names, racket=the_racket)
     for i, (label, test) in enumerate(zip(names, tests, strict=True)):
         report(progress, "contact times", i, len(names))

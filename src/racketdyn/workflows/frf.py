@@ -24,6 +24,7 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
+    make_out_folder,
     report,
     sha256,
 )
@@ -114,7 +115,7 @@ def run_frf(
     records = read_records(tests, geometry)
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    make_out_folder(out_dir)
     report(progress, "estimating FRFs")
     estimate = estimate_frfs(
         records,

@@ -31,6 +31,7 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
+    make_out_folder,
     report,
     sha256,
 )
@@ -172,7 +173,7 @@ def run_identify(
     """
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    make_out_folder(out_dir)
     report(progress, f"identifying {Path(frfs).name}")
     found = identify_file(
         frfs,
@@ -296,7 +297,7 @@ def run_compare(
     """
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    make_out_folder(out_dir)
     options: dict[str, Any] = {
         "geometry": geometry,
         "band_hz": band_hz,

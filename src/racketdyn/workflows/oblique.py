@@ -34,6 +34,7 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
+    make_out_folder,
     report,
     write_rows,
 )
@@ -211,7 +212,7 @@ def run_oblique(
         hand=the_hand,
     )
     out_dir = Path(out)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    make_out_folder(out_dir)
     rows = [
         {
             "ball_speed_mps": curve.ball_speed_mps,

@@ -37,7 +37,14 @@ from racketdyn.io import racket_to_dict, read_points
 from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
-from racketdyn.workflows.run import Progress, StepResult, command_record, finish_run, report
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    make_out_folder,
+    report,
+)
 
 __all__ = ["DEFAULT_GRID", "MAX_GRID", "MODELS", "PredictResult", "impact_points", "run_predict"]
 
@@ -251,7 +258,7 @@ def run_predict(
     defaults_used = [*used.defaults, *ball_defaults, *defaults, *hand_defaults]
     locations, labels, points_source = impact_points(used.racket, points, grid)
     out_dir = Path(out)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    make_out_folder(out_dir)
     law = compound_law(used.racket, the_ball)
     result = PredictResult(
         out_dir,

@@ -26,7 +26,14 @@ from racketdyn.rig import (
 )
 from racketdyn.rig.hammer import FRAME_PULSE_S
 from racketdyn.workflows.inputs import RacketInput, load_racket_input
-from racketdyn.workflows.run import Progress, StepResult, command_record, finish_run, report
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    make_out_folder,
+    report,
+)
 
 __all__ = ["RIG_SUPPORTS", "RigResult", "run_rig"]
 
@@ -104,7 +111,7 @@ def run_rig(
     require_range("--overloads", overloads, 0.0, 1.0)
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    make_out_folder(out_dir)
     locations, nodes = hammer_points(the_racket)
     reference = accelerometer_index(the_racket, locations)
     reference_location = (float(locations[reference, 0]), float(locations[reference, 1]))

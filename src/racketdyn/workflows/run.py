@@ -23,12 +23,14 @@ from typing import Any, TypeVar
 import numpy as np
 
 from racketdyn.__about__ import __version__
+from racketdyn.errors import InputError
 
 __all__ = [
     "FigureHook",
     "Progress",
     "StepResult",
     "finish_run",
+    "make_out_folder",
     "sha256",
     "write_rows",
     "write_run_json",
@@ -71,6 +73,30 @@ FigureHook = Callable[[R, Path], list[Path]]
 Progress = Callable[[str, int, int], None]
 """A caller's progress display: ``progress(what, done, total)``; ``total == 0`` announces a
 stage of unknown length.  Steps also log every stage with :mod:`logging`."""
+
+
+def make_out_folder(out: Path) -> Path:
+    """Create the run folder ``out`` (and its parents) or say in one line why it cannot be.
+
+    Parameters
+    ----------
+    out : Path
+        The output folder (``--out``).
+
+    Raises
+    ------
+    InputError
+        ``out`` or one of its parents is a file, or the folder cannot be created.
+    """
+    out = Path(out)
+    for place in (out, *out.parents):
+        if place.exists() and not place.is_dir():
+            raise InputError(f"--out {out}: {place} is a file, not a folder; give a folder")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise InputError(f"--out {out}: cannot create the folder ({error.strerror})") from None
+    return out
 
 
 def report(progress: Progress | None, what: str, done: int = 0, total: int = 0) -> None:

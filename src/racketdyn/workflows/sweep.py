@@ -19,7 +19,7 @@ from typing import Any, Literal
 import xarray as xr
 
 from racketdyn.sweep import SweepSpec, load_sweep_spec, make_executor, run_sweep
-from racketdyn.workflows.run import Progress, StepResult, report
+from racketdyn.workflows.run import Progress, StepResult, make_out_folder, report
 
 __all__ = ["SweepResult", "run_sweep_step"]
 
@@ -83,7 +83,7 @@ def run_sweep_step(
         executor = make_executor(engine, workers)
     else:
         executor = make_executor(engine, scheduler=scheduler)
-    out_dir = Path(out)
+    out_dir = make_out_folder(Path(out))
     with ExitStack() as stack:
         report(progress, "starting the engine")
         running = stack.enter_context(executor)

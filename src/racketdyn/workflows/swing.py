@@ -47,6 +47,7 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
+    make_out_folder,
     report,
     write_rows,
 )
@@ -336,7 +337,7 @@ def run_swing(
         options=options,
     )
     result.spot_rows = _spot_rows(result, speed_list[chosen], used.modal_model)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    make_out_folder(out_dir)
     computed.write_csv(out_dir / "swing.csv")
     result.written += [
         out_dir / "swing.csv",

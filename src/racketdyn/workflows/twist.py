@@ -28,6 +28,7 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
+    make_out_folder,
     report,
     write_rows,
 )
@@ -159,7 +160,7 @@ def run_twist(
             )
         )
     out_dir = Path(out)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    make_out_folder(out_dir)
     rows = [
         {
             "support": c.support,
