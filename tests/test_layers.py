@@ -60,35 +60,69 @@ def _layer(module: str) -> int | None:
 
 
 # STYLE.md: "A `.plot()` on a result object may import presentation lazily, as python-control's
-# response objects do" -- the one upward import allowed, and only inside a method named plot
+# response objects do" -- the one upward import allowed: presentation, inside a method `plot`
 PLOT_METHODS = {"plot"}
+PRESENTATION = ("racketdyn.plotting", "racketdyn.report")
 
 
-def _imports(path: Path) -> tuple[set[str], set[str]]:
-    """Racketdyn modules imported at module level and inside functions (but ``.plot()``)."""
+def _imports(path: Path, package: str | None = None) -> tuple[set[str], set[str]]:
+    """Racketdyn modules imported at module level and inside functions.
+
+    Seen: ``import racketdyn.x``, ``from racketdyn.x import y`` (and ``racketdyn.x.y`` when ``y``
+    is a module), ``from racketdyn import x``, relative imports, and
+    ``importlib.import_module("racketdyn.x")`` with a literal name.  Not counted: imports under
+    ``if TYPE_CHECKING:`` (never run) and of presentation inside a ``plot`` method.
+    """
     tree = ast.parse(path.read_text(encoding="utf-8"))
+    if package is None:
+        package = _module_name(path)
+        if path.name != "__init__.py":
+            package = package.rpartition(".")[0]
     top: set[str] = set()
     lazy: set[str] = set()
 
-    def visit(node: ast.AST, in_function: bool) -> None:
+    def targets(node: ast.AST) -> list[str]:
+        if isinstance(node, ast.Import):
+            return [alias.name for alias in node.names]
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")
+                base = base[: len(base) - node.level + 1]
+                module = ".".join(base + ([node.module] if node.module else []))
+            else:
+                module = node.module or ""
+            submodules = [f"{module}.{alias.name}" for alias in node.names]
+            found = [name for name in submodules if name in MODULES]
+            if len(found) < len(submodules):  # names defined in the module itself
+                found.append(module)
+            return found
+        if (
+            isinstance(node, ast.Call)
+            and isinstance(node.func, ast.Attribute | ast.Name)
+            and getattr(node.func, "attr", getattr(node.func, "id", "")) == "import_module"
+            and node.args
+            and isinstance(node.args[0], ast.Constant)
+            and isinstance(node.args[0].value, str)
+        ):
+            return [node.args[0].value]
+        return []
+
+    def visit(node: ast.AST, in_function: bool, in_plot: bool) -> None:
         for child in ast.iter_child_nodes(node):
-            is_function = isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef)
-            if is_function and child.name in PLOT_METHODS:
-                continue
-            inside = in_function or is_function
-            names: list[str] = []
-            if isinstance(child, ast.Import):
-                names = [alias.name for alias in child.names]
-            elif isinstance(child, ast.ImportFrom) and child.module and child.level == 0:
-                names = [child.module]
             if isinstance(child, ast.If) and _is_type_checking(child.test):
                 continue  # annotations only: never imported at run time
-            for name in names:
-                if name == "racketdyn" or name.startswith("racketdyn."):
-                    (lazy if inside else top).add(name)
-            visit(child, inside)
+            is_function = isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef)
+            plot = in_plot or (is_function and child.name in PLOT_METHODS)
+            inside = in_function or is_function
+            for name in targets(child):
+                if not (name == "racketdyn" or name.startswith("racketdyn.")):
+                    continue
+                if plot and name.startswith(PRESENTATION):
+                    continue
+                (lazy if inside else top).add(name)
+            visit(child, inside, plot)
 
-    visit(tree, False)
+    visit(tree, False, False)
     return top, lazy
 
 
@@ -99,6 +133,27 @@ def _is_type_checking(test: ast.expr) -> bool:
 
 
 MODULES = {_module_name(path): path for path in sorted(PACKAGE.rglob("*.py"))}
+
+
+def test_the_import_reader_sees_every_form(tmp_path: Path) -> None:
+    """The forms a review found the first reader missed (issue 11)."""
+    source = tmp_path / "probe.py"
+    source.write_text(
+        "import importlib\n"
+        "from racketdyn import plotting\n"
+        "from ..report import page\n"
+        "from . import grid\n"
+        "def f():\n"
+        "    importlib.import_module('racketdyn.cli')\n"
+        "class Result:\n"
+        "    def plot(self):\n"
+        "        from racketdyn.plotting import primitives\n"
+        "        from racketdyn.workflows import run\n",
+        encoding="utf-8",
+    )
+    top, lazy = _imports(source, package="racketdyn.impact")
+    assert top == {"racketdyn.plotting", "racketdyn.report.page", "racketdyn.impact.grid"}
+    assert lazy == {"racketdyn.cli", "racketdyn.workflows.run"}
 
 
 def test_every_module_has_a_layer() -> None:
@@ -149,7 +204,8 @@ def test_modal_core_knows_no_racket() -> None:
 def test_computation_loads_no_presentation() -> None:
     code = (
         "import sys; import racketdyn.modal, racketdyn.impact, racketdyn.measurement, "
-        "racketdyn.io, racketdyn.sweep; "
+        "racketdyn.io, racketdyn.sweep, racketdyn.racket_modal, racketdyn.rig, racketdyn.contact, "
+        "racketdyn.workflows; "
         "print(sorted(m for m in ('matplotlib', 'jinja2', 'racketdyn.plotting', "
         "'racketdyn.report') if m in sys.modules))"
     )
