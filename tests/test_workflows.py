@@ -89,6 +89,11 @@ def test_predict_refuses_bad_input_before_writing(tmp_path: Path) -> None:
         run_predict(tmp_path / "out", supports=["hand"])
     with pytest.raises(rd.InputError, match="grid"):
         run_predict(tmp_path / "out", grid=0)
+    # review of issue 11: these were checked by the CLI only, and ignored from Python
+    with pytest.raises(rd.InputError, match="engine"):
+        run_predict(tmp_path / "out", model="approx", engine="reference")
+    with pytest.raises(rd.InputError, match="stiffness-reading"):
+        run_predict(tmp_path / "out", model="transient", stiffness_reading="tangent")
     assert not (tmp_path / "out").exists()
 
 
@@ -146,3 +151,15 @@ def test_every_workflow_parameter_is_described() -> None:
         if inspect.isfunction(obj):
             for parameter in inspect.signature(obj).parameters:
                 assert parameter in doc, f"{name}: parameter {parameter!r} is not described"
+
+
+def test_predict_takes_a_modal_model_object(tmp_path: Path) -> None:
+    """Review of issue 11: `modal=` took a file only (a ModalModel raised a raw TypeError)."""
+    racket = rd.default_racket()
+    model = rd.modal_model_for(racket)
+    by_object = run_predict(tmp_path / "a", modal=model, speeds=[20.0], grid=3)
+    by_default = run_predict(tmp_path / "b", speeds=[20.0], grid=3)
+    assert by_object.modal_model is model
+    np.testing.assert_array_equal(by_object.result.rebound_ratio, by_default.result.rebound_ratio)
+    record = json.loads((tmp_path / "a" / "run.json").read_text(encoding="utf-8"))
+    assert "ModalModel object" in json.dumps(record)

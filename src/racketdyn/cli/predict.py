@@ -74,7 +74,6 @@ def add(commands: Any) -> None:
 
 def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
-    from racketdyn.errors import InputError
     from racketdyn.plotting.steps import predict_figures
     from racketdyn.workflows.predict import check_supports, run_predict, transient_csv_name
 
@@ -82,14 +81,6 @@ def run(args: argparse.Namespace, console: Console) -> int:
     speeds = opt.parse_speeds("--speed", args.speed)
     racket_speed = opt.parse_speeds("--racket-speed", args.racket_speed)
     supports = check_supports(opt.parse_list("--support", args.support), args.model)
-    if args.model == "approx":
-        if args.engine is not None:
-            raise InputError("--engine is for the transient model: add --model transient or both")
-    elif args.stiffness_reading is not None and args.model == "transient":
-        raise InputError(
-            "--stiffness-reading is a choice of the approximate method (eq 10); the transient "
-            "model integrates the contact: drop it, or use --model approx or both"
-        )
     ball, hand, defaults = opt.ball_and_hand(args, supports)
     with opt.progress_display(console) as progress:
         result = run_predict(
@@ -102,11 +93,11 @@ def run(args: argparse.Namespace, console: Console) -> int:
             racket_speed=racket_speed,
             supports=supports,
             model=args.model,
-            engine=args.engine or "auto",
+            engine=args.engine,
             hand=hand,
             points=args.points,
             grid=args.grid,
-            stiffness_reading=args.stiffness_reading or "period",
+            stiffness_reading=args.stiffness_reading,
             include_string_bed=args.include_string_bed,
             defaults=defaults,
             command=opt.command_line(args),

@@ -69,7 +69,7 @@ class RacketSetup:
 
 def setup(
     racket: RacketInput = None,
-    modal: str | os.PathLike[str] | None = None,
+    modal: ModalModel | str | os.PathLike[str] | None = None,
     rigid: bool = False,
     *,
     with_modes: bool = True,
@@ -80,8 +80,8 @@ def setup(
     ----------
     racket : Racket, path or None
         Racket object, TOML file, or None for the built-in racket.
-    modal : path, optional
-        Modal model JSON (e.g. from identify) replacing the racket's modes.
+    modal : ModalModel or path, optional
+        Modal model, or its JSON file (e.g. from identify), replacing the racket's modes.
     rigid : bool
         No modes (a rigid racket); excludes ``modal``.
     with_modes : bool
@@ -89,9 +89,12 @@ def setup(
     """
     loaded, provenance = load_racket_input(racket)
     defaults = [BUILT_IN_RACKET] if racket is None else []
+    if modal is not None and rigid:
+        raise InputError("give a modal model file (--modal) or a rigid racket, not both")
+    if isinstance(modal, ModalModel):
+        provenance["modal_model_given"] = f"ModalModel object from Python: {modal.source}"
+        return RacketSetup(loaded, modal if with_modes else None, provenance, defaults, rigid)
     if modal is not None:
-        if rigid:
-            raise InputError("give a modal model file (--modal) or a rigid racket, not both")
         path = Path(modal)
         if not path.is_file():
             raise InputError(f"--modal {modal}: no such modal model file")

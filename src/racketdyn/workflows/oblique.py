@@ -27,6 +27,7 @@ from racketdyn.impact.oblique import (
 )
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
+from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
@@ -97,7 +98,7 @@ def run_oblique(
     out: str | os.PathLike[str],
     *,
     racket: RacketInput = None,
-    modal: str | os.PathLike[str] | None = None,
+    modal: ModalModel | str | os.PathLike[str] | None = None,
     rigid: bool = False,
     ball: Ball | None = None,
     speed: float = 20.0,
@@ -123,8 +124,8 @@ def run_oblique(
         Output folder (created if missing).
     racket : Racket, path or None
         Racket object, TOML file, or None for the built-in racket.
-    modal : path, optional
-        Modal model JSON replacing the racket's modes.
+    modal : ModalModel or path, optional
+        Modal model, or its JSON file, replacing the racket's modes.
     rigid : bool
         No vibration: a rigid racket.
     ball : Ball, optional

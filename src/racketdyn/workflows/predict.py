@@ -180,18 +180,18 @@ def run_predict(
     out: str | os.PathLike[str],
     *,
     racket: RacketInput = None,
-    modal: str | os.PathLike[str] | None = None,
+    modal: ModalModel | str | os.PathLike[str] | None = None,
     rigid: bool = False,
     ball: Ball | None = None,
     speeds: ArrayLike = (10.0, 20.0, 30.0),
     racket_speed: ArrayLike = (0.0,),
     supports: Sequence[str] = ("free", "pinned"),
     model: Model = "approx",
-    engine: str = "auto",
+    engine: str | None = None,
     hand: Hand | None = None,
     points: str | os.PathLike[str] | ArrayLike | None = None,
     grid: int | None = None,
-    stiffness_reading: Literal["period", "tangent"] = "period",
+    stiffness_reading: Literal["period", "tangent"] | None = None,
     include_string_bed: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -206,8 +206,8 @@ def run_predict(
         Output folder (created if missing).
     racket : Racket, path or None
         Racket object, TOML file, or None for the built-in racket.
-    modal : path, optional
-        Modal model JSON replacing the racket's modes.
+    modal : ModalModel or path, optional
+        Modal model, or its JSON file, replacing the racket's modes.
     rigid : bool
         No vibration: a rigid racket.
     ball : Ball, optional
@@ -220,16 +220,16 @@ def run_predict(
         ``free``, ``pinned``; ``hand`` with ``model="transient"`` only.
     model : {"approx", "transient", "both"}
         Kawazoe's approximate method, the transient simulation, or each with their comparison.
-    engine : {"auto", "compiled", "reference"}
-        Transient integrator.
+    engine : {"auto", "compiled", "reference"}, optional
+        Transient integrator (default ``auto``); for ``model`` transient or both only.
     hand : Hand, optional
         The hand of the ``hand`` support (default :class:`~racketdyn.impact.hand.Hand`).
     points : path or array, optional
         Impact points (CSV or ``(n, 2)`` in m); excludes ``grid``.
     grid : int, optional
         N × N grid over the head (default 9).
-    stiffness_reading : {"period", "tangent"}
-        Reading of eq 10 (approximate method).
+    stiffness_reading : {"period", "tangent"}, optional
+        Reading of eq 10 (default ``period``); for ``model`` approx or both only.
     include_string_bed : bool
         Charge string-bed modes as vibration loss too.
     defaults : sequence of str
@@ -246,6 +246,15 @@ def run_predict(
     PredictResult
     """
     one_of("model", model, MODELS)
+    if engine is not None and model == "approx":
+        raise InputError("--engine is for the transient model: add --model transient or both")
+    if stiffness_reading is not None and model == "transient":
+        raise InputError(
+            "--stiffness-reading is a choice of the approximate method (eq 10); the transient "
+            "model integrates the contact: drop it, or use --model approx or both"
+        )
+    engine = engine or "auto"
+    stiffness_reading = stiffness_reading or "period"
     one_of("engine", engine, ENGINES)
     speed_list = [float(v) for v in require_speeds("--speed", speeds)]
     racket_speeds = [float(v) for v in require_speeds("--racket-speed", racket_speed)]

@@ -228,7 +228,7 @@ def run_swing(
     out: str | os.PathLike[str],
     *,
     racket: RacketInput = None,
-    modal: str | os.PathLike[str] | None = None,
+    modal: ModalModel | str | os.PathLike[str] | None = None,
     rigid: bool = False,
     ball: Ball | None = None,
     swing: Swing | None = None,
@@ -250,8 +250,8 @@ def run_swing(
         Output folder (created if missing).
     racket : Racket, path or None
         Racket object, TOML file, or None for the built-in racket.
-    modal : path, optional
-        Modal model JSON replacing the racket's modes.
+    modal : ModalModel or path, optional
+        Modal model, or its JSON file, replacing the racket's modes.
     rigid : bool
         No vibration: a rigid racket.
     ball : Ball, optional

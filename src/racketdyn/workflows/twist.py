@@ -21,6 +21,7 @@ from racketdyn.impact.hand import Hand
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.impact.twist import TwistCurve, twist_curve
 from racketdyn.io import racket_to_dict
+from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
@@ -80,7 +81,7 @@ def run_twist(
     out: str | os.PathLike[str],
     *,
     racket: RacketInput = None,
-    modal: str | os.PathLike[str] | None = None,
+    modal: ModalModel | str | os.PathLike[str] | None = None,
     rigid: bool = False,
     ball: Ball | None = None,
     x_m: float = 0.52,
@@ -102,8 +103,8 @@ def run_twist(
         Output folder (created if missing).
     racket : Racket, path or None
         Racket object, TOML file, or None for the built-in racket.
-    modal : path, optional
-        Modal model JSON replacing the racket's modes.
+    modal : ModalModel or path, optional
+        Modal model, or its JSON file, replacing the racket's modes.
     rigid : bool
         No vibration: a rigid racket.
     ball : Ball, optional
