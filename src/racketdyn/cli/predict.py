@@ -42,7 +42,8 @@ def add(commands: Any) -> None:
     opt.add_support(
         p,
         "free,pinned",
-        "free, pinned or both; hand (the grip held by a hand and arm) with --model transient only",
+        "free, pinned, or both as free,pinned; hand (the grip held by a hand and arm) with "
+        "--model transient only",
     )
     p.add_argument(
         "--engine",

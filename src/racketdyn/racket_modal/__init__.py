@@ -11,6 +11,7 @@ from __future__ import annotations
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import Racket
 from racketdyn.racket_modal.beam import builtin_modal_model, hoop_roll_inertia
+from racketdyn.racket_modal.identify import identify_racket, name_racket_modes
 from racketdyn.racket_modal.shapes import axis_nodes, classify_modes
 
 __all__ = [
@@ -18,7 +19,9 @@ __all__ = [
     "builtin_modal_model",
     "classify_modes",
     "hoop_roll_inertia",
+    "identify_racket",
     "modal_model_for",
+    "name_racket_modes",
 ]
 
 
