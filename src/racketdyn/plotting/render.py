@@ -25,7 +25,7 @@ import sys
 import threading
 import warnings
 from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Any
 
@@ -234,11 +234,26 @@ def _close_worker() -> None:
 
 
 # --- batches -------------------------------------------------------------------------------------
-@dataclass
-class FigureBatch:
-    """The figures of one step: :meth:`add` them as they are built, then :meth:`render`."""
+_Outcome = tuple[_Job, str, str | None, list[tuple[type[Warning], str]]]
 
-    jobs: list[_Job] = field(default_factory=list)
+
+class FigureBatch:
+    """The figures of one step: :meth:`add` them as they are built, then :meth:`render`.
+
+    With a helper process, it takes figures from the front of the batch as soon as they are
+    added (so it draws while this process builds the next ones or computes what they need);
+    :meth:`render` draws the rest here, from the back.
+    """
+
+    def __init__(self) -> None:
+        self._jobs: list[_Job] = []
+        self._queue: deque[_Job] = deque()
+        self._ready = threading.Condition()
+        self._closed = False
+        self._outcomes: list[_Outcome] = []
+        self._left: list[_Job] = []
+        self._worker = _shared_worker()  # starts it: it imports while the figures are built
+        self._feeder: threading.Thread | None = None
 
     def add(self, figure: Figure, path: Path) -> Path:
         """Queue ``figure`` for ``path`` (closed in pyplot now, drawn by :meth:`render`).
@@ -258,8 +273,42 @@ class FigureBatch:
             ``path``.
         """
         plt.close(figure)
-        self.jobs.append(_Job(figure, Path(path), dict(np.geterr()), _rc_changes()))
+        job = _Job(figure, Path(path), dict(np.geterr()), _rc_changes())
+        self._jobs.append(job)
+        if self._worker is not None and not self._worker.broken:
+            try:
+                job.payload = pickle.dumps(figure)
+            except Exception as error:  # an artist that does not pickle: drawn here
+                log.info("%s is drawn here: its figure does not pickle (%s)", path, error)
+            if self._feeder is None:
+                self._feeder = threading.Thread(target=self._feed, daemon=True)
+                self._feeder.start()
+        with self._ready:
+            self._queue.append(job)
+            self._ready.notify()
         return Path(path)
+
+    def _feed(self) -> None:
+        """Hand the helper process figures from the front of the queue until render() ends."""
+        worker = self._worker
+        assert worker is not None
+        while True:
+            with self._ready:
+                while not self._queue and not self._closed:
+                    self._ready.wait()
+                if not self._queue:
+                    return
+                job = self._queue.popleft()
+            if not job.payload:
+                self._left.append(job)
+                continue
+            try:
+                status, detail, caught = worker.render(job.there())
+            except _WorkerGoneError as error:
+                log.info("figure helper process: %s; drawing here", error)
+                self._left.append(job)
+                return
+            self._outcomes.append((job, status, detail, caught))
 
     def render(self) -> list[Path]:
         """Draw and write every queued figure; returns their paths in the order added.
@@ -267,62 +316,28 @@ class FigureBatch:
         Warnings raised while drawing are raised again here; the first error is raised after
         every other figure has been written.
         """
-        jobs, self.jobs = self.jobs, []
-        worker = _shared_worker() if len(jobs) > 1 else None
-        queue: deque[_Job] = deque(jobs)
-        outcomes: list[tuple[_Job, str, str | None, list[tuple[type[Warning], str]]]] = []
-        left: list[_Job] = []
-        feeder = None
-        if worker is not None:
-            for job in jobs[:-1]:  # this process starts from the back
-                job.payload = pickle.dumps(job.figure)
-            feeder = threading.Thread(
-                target=_feed, args=(worker, queue, outcomes, left), daemon=True
-            )
-            feeder.start()
+        with self._ready:
+            self._closed = True
+            self._ready.notify()
         errors: list[BaseException] = []
         while True:
-            try:
-                job = queue.pop()
-            except IndexError:
-                break
+            with self._ready:
+                if not self._queue:
+                    break
+                job = self._queue.pop()
             try:
                 _png.render_job(job.here())
             except Exception as error:  # raised below, after the other figures
                 errors.append(error)
-        if feeder is not None:
-            feeder.join()
-        for job in left:  # the helper failed: draw its share here
+        if self._feeder is not None:
+            self._feeder.join()
+        for job in self._left:  # the helper failed: draw its share here
             _png.render_job(job.here())
-        for job, status, detail, caught in outcomes:
+        for job, status, detail, caught in self._outcomes:
             for category, message in caught:
                 warnings.warn(message, category, stacklevel=2)
             if status != "ok":
                 errors.append(RuntimeError(f"drawing {job.path.name} failed:\n{detail}"))
         if errors:
             raise errors[0]
-        return [job.path for job in jobs]
-
-
-def _feed(
-    worker: _Worker,
-    queue: deque[_Job],
-    outcomes: list[tuple[_Job, str, str | None, list[tuple[type[Warning], str]]]],
-    left: list[_Job],
-) -> None:
-    """Hand the helper process figures from the front of ``queue`` until it is empty."""
-    while True:
-        try:
-            job = queue.popleft()
-        except IndexError:
-            return
-        if not job.payload:  # the last figure: this process meant to draw it
-            left.append(job)
-            continue
-        try:
-            status, detail, caught = worker.render(job.there())
-        except _WorkerGoneError as error:
-            log.info("figure helper process: %s; drawing here", error)
-            left.append(job)
-            return
-        outcomes.append((job, status, detail, caught))
+        return [job.path for job in self._jobs]
