@@ -11,9 +11,10 @@ Run: ``python benchmarks/bench_cli.py`` (≈ 3–4 min; ``--repeat N`` for the s
 ``--demo-repeat N`` for the demo, ``--skip-demo`` to make the FRFs with ``rig`` + ``frf``
 instead, as the demo does, and leave the demo out).
 
-``--profile`` runs predict, identify and the demo in this process under cProfile (CPU time)
-instead and prints where the time goes: imports, computation, building figures, rendering
-them (layout, drawing, PNG encoding) and writing the other files.
+``--profile`` runs predict, identify and the demo once each in a fresh process with timers
+around the steps instead (wall and CPU time), every figure drawn in that process, and prints
+where the time goes: imports, computation, building figures, drawing them (layout, Agg, PNG)
+and writing the other files; for the demo also each step.
 """
 
 from __future__ import annotations
@@ -189,6 +190,9 @@ def _profile(argv: Sequence[str]) -> None:
         clock.wrap(figures, name, "computation in figures", inside="figures")
     clock.wrap(ModalModel, "mode_shapes_at", "computation in figures", inside="figures")
     clock.wrap(matplotlib.figure.Figure, "savefig", "savefig", inside="figures")
+    png = sys.modules.get("racketdyn.plotting._png")  # one drawing pass instead of savefig
+    if png is not None:
+        clock.wrap(png, "write_png", "savefig", inside="figures")
     clock.wrap(matplotlib.layout_engine.ConstrainedLayoutEngine, "execute", "layout", "savefig")
     clock.wrap(PIL.Image.Image, "save", "png", inside="savefig")
     if argv[0] == "demo":
@@ -214,9 +218,9 @@ def _profile(argv: Sequence[str]) -> None:
     print(_row("imports while it runs", clock.get("imports"), 4))
     print(_row("figures", clock.get("figures"), 4))
     print(_row("predictions and shapes inside figures", clock.get("computation in figures"), 6))
-    print(_row("savefig: constrained layout", clock.get("layout"), 6))
-    print(_row("savefig: drawing (Agg)", clock.rest("savefig", "layout", "png"), 6))
-    print(_row("savefig: PNG encoding and writing", clock.get("png"), 6))
+    print(_row("drawing: constrained layout", clock.get("layout"), 6))
+    print(_row("drawing: Agg", clock.rest("savefig", "layout", "png"), 6))
+    print(_row("drawing: PNG encoding and writing", clock.get("png"), 6))
     building = clock.rest("figures", "computation in figures", "savefig")
     print(_row("building artists (plot calls, subplots)", building, 6))
     if "report" in clock.wall:
@@ -246,7 +250,9 @@ def profile(which: str) -> None:
             here = str(Path(__file__).parent)
             code = f"import sys; sys.path.insert(0, {here!r}); import bench_cli; "
             code += f"bench_cli._profile({argv!r})"
-            subprocess.run([sys.executable, "-c", code], check=True)
+            # every figure drawn in the profiled process (no helper process), to see it all
+            env = {**os.environ, "RACKETDYN_FIGURE_WORKERS": "0"}
+            subprocess.run([sys.executable, "-c", code], check=True, env=env)
 
 
 def main() -> None:
@@ -261,7 +267,7 @@ def main() -> None:
         nargs="?",
         const="all",
         choices=["all", "predict", "identify", "demo"],
-        help="where the time goes (cProfile, CPU time) instead of wall times",
+        help="where the time goes (timers around the steps) instead of the benchmark",
     )
     args = parser.parse_args()
     if args.profile:
