@@ -174,12 +174,15 @@ def _profile(argv: Sequence[str]) -> None:
     import racketdyn.cli as cli
 
     start_wall, start_cpu = time.perf_counter() - wall, time.process_time() - cpu
+    wall, cpu = time.perf_counter(), time.process_time()
     import matplotlib.figure
     import matplotlib.layout_engine
     import PIL.Image
 
     import racketdyn.plotting.figures as figures
     from racketdyn.modal.model import ModalModel
+
+    plotting_wall, plotting_cpu = time.perf_counter() - wall, time.process_time() - cpu
 
     clock = _Clock()
     clock.wrap(builtins, "__import__", "imports")
@@ -214,6 +217,7 @@ def _profile(argv: Sequence[str]) -> None:
     cli.main(list(argv))
     print(f"\n== racketdyn {' '.join(argv[:2])} …  (one run, timers around the steps)")
     print(_row("start-up: importing the CLI (fresh process)", (start_wall, start_cpu)))
+    print(_row("importing the figures (matplotlib), done lazily", (plotting_wall, plotting_cpu)))
     print(_row("the command", clock.get("command")))
     print(_row("imports while it runs", clock.get("imports"), 4))
     print(_row("figures", clock.get("figures"), 4))
