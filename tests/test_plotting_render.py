@@ -112,3 +112,10 @@ def test_paper_figures_keep_their_content() -> None:
     finally:
         for figure in built.values():
             plt.close(figure)
+
+
+def test_no_helper_when_told(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("RACKETDYN_FIGURE_WORKERS", "0")
+    assert render.start_helper() is False
+    monkeypatch.setenv("RACKETDYN_FIGURE_WORKERS", "1")
+    assert render.start_helper() is True

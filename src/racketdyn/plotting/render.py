@@ -37,7 +37,7 @@ from matplotlib.figure import Figure
 from racketdyn.__about__ import __version__
 from racketdyn.plotting import _png
 
-__all__ = ["FigureBatch", "save_figure"]
+__all__ = ["FigureBatch", "save_figure", "start_helper"]
 
 log = logging.getLogger(__name__)
 
@@ -222,6 +222,15 @@ def _shared_worker() -> _Worker | None:
                 log.info("no figure helper process (%s): drawing here", error)
                 return None
         return _worker
+
+
+def start_helper() -> bool:
+    """Start the helper process now, so that it has imported matplotlib by the first figure.
+
+    A command that will draw several figures calls this before its computation; the first
+    :class:`FigureBatch` starts it otherwise. Returns whether a helper process runs.
+    """
+    return _shared_worker() is not None
 
 
 @atexit.register
