@@ -19,7 +19,6 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
 from racketdyn.impact.comparison import History, ModelComparison
@@ -52,6 +51,7 @@ from racketdyn.plotting.primitives import (
     plot_swing_map,
     plot_twist_curve,
 )
+from racketdyn.plotting.render import FigureBatch, save_figure
 from racketdyn.racket import Racket
 from racketdyn.racket_modal.shapes import axis_nodes
 
@@ -115,9 +115,8 @@ def landmark_points(racket: Racket) -> dict[str, tuple[float, float]]:
 
 
 def _save(figure: Figure, path: Path) -> Path:
-    figure.savefig(path, dpi=150, metadata={"Software": f"racketdyn {__version__}"})
-    plt.close(figure)
-    return path
+    """Draw one figure into ``path`` now (a step with one figure)."""
+    return save_figure(figure, path)
 
 
 def figure_force_and_contact_time(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
@@ -275,18 +274,20 @@ def write_paper_figures(
     progress: Callable[[str], None] | None = None,
 ) -> list[Path]:
     """Draw every figure in :data:`FIGURES` into ``out_dir``; returns the paths written."""
-    written = []
+    batch = FigureBatch()
     for name, build in FIGURES.items():
         if progress is not None:
             progress(name)
-        written.append(_save(build(racket, ball, model), Path(out_dir) / name))
-        log.info("wrote %s", written[-1])
+        batch.add(build(racket, ball, model), Path(out_dir) / name)
+    written = batch.render()
+    for path in written:
+        log.info("wrote %s", path)
     return written
 
 
 def write_frf_figures(frfs: FrfSet, racket: Racket, out_dir: Path) -> list[Path]:
     """Paper Figs 2–3: the frame driving-point FRF and the FRF at the string-bed centre."""
-    written = []
+    batch = FigureBatch()
     centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
     nearest = int(np.argmin(np.linalg.norm(frfs.locations - centre, axis=1)))
     frame = frfs.driving_point if frfs.driving_point is not None else 0
@@ -307,8 +308,8 @@ def write_frf_figures(frfs: FrfSet, racket: Racket, out_dir: Path) -> list[Path]
         figure.suptitle(
             f"{frfs.frf_type} FRF, {frfs.estimator}{averages} ({frfs.source})", fontsize=9
         )
-        written.append(_save(figure, Path(out_dir) / name))
-    return written
+        batch.add(figure, Path(out_dir) / name)
+    return batch.render()
 
 
 def write_contact_figure(
@@ -340,10 +341,10 @@ def write_identification(
     out = Path(out_dir)
     model, frfs = identification.model, identification.frfs
     suffix = f"_{label}" if label else ""
-    written = []
+    batch = FigureBatch()
     figure, ax = plt.subplots(figsize=(8, 5), layout="constrained")
     plot_stabilisation(identification.stabilisation, identification.selected, ax=ax, frfs=frfs)
-    written.append(_save(figure, out / f"stabilisation{suffix}.png"))
+    batch.add(figure, out / f"stabilisation{suffix}.png")
 
     n = model.n_modes
     columns = min(n, 3)
@@ -355,8 +356,8 @@ def write_identification(
         )
     figure.suptitle(f"Fig. 4: mode shapes ({model.support})", fontsize=10)
     # mplot3d's projection overflows on the NaN outside the face of some surfaces; harmless
-    with np.errstate(over="ignore", invalid="ignore"):
-        written.append(_save(figure, out / f"fig4_mode_shapes{suffix}.png"))
+    with np.errstate(over="ignore", invalid="ignore"):  # the state it is drawn under
+        batch.add(figure, out / f"fig4_mode_shapes{suffix}.png")
 
     figure, axes = plt.subplots(
         rows, columns, figsize=(3.2 * columns, 2.6 * rows), layout="constrained", squeeze=False
@@ -367,11 +368,11 @@ def write_identification(
         else:
             ax.set_axis_off()
     figure.suptitle(f"Fig. 5: node lines on the string face ({model.support})", fontsize=10)
-    written.append(_save(figure, out / f"fig5_node_lines{suffix}.png"))
+    batch.add(figure, out / f"fig5_node_lines{suffix}.png")
 
     figure, ax = plt.subplots(figsize=(7, 3), layout="constrained")
     _plot_axis_nodes([model], racket, ax)
-    written.append(_save(figure, out / f"fig6_nodes{suffix}.png"))
+    batch.add(figure, out / f"fig6_nodes{suffix}.png")
 
     figure, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
     centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
@@ -399,13 +400,13 @@ def write_identification(
         ax.set_title(f"node {frfs.nodes[index]}", fontsize=9)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    written.append(_save(figure, out / f"synthesised_frfs{suffix}.png"))
+    batch.add(figure, out / f"synthesised_frfs{suffix}.png")
 
     figure, ax = plt.subplots(figsize=(5.5, 4.5), layout="constrained")
     plot_mac(mac(model.mode_shapes, model.mode_shapes), model.names, model.names, ax=ax)
     ax.set_title("AutoMAC", fontsize=9)
-    written.append(_save(figure, out / f"automac{suffix}.png"))
-    return written
+    batch.add(figure, out / f"automac{suffix}.png")
+    return batch.render()
 
 
 def _plot_axis_nodes(models: Sequence[ModalModel], racket: Racket, ax: Axes) -> None:
@@ -477,7 +478,7 @@ def write_comparison(
         handle.write(
             f"# first-mode nodes along the axis, hand (m): {np.round(nodes_hand, 4).tolist()}\n"
         )
-    written = [table]
+    batch = FigureBatch()
 
     figure, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
     names = [row["mode"] for row in rows]
@@ -494,11 +495,11 @@ def write_comparison(
         ax.set_xticks(index, names, rotation=30, ha="right", fontsize=8)
         ax.grid(alpha=0.3, axis="y")
     figure.suptitle("Free against hand-held (paired by MAC)", fontsize=10)
-    written.append(_save(figure, out / "comparison.png"))
+    batch.add(figure, out / "comparison.png")
 
     figure, ax = plt.subplots(figsize=(7, 3), layout="constrained")
     _plot_axis_nodes([free.model, hand.model], racket, ax)
-    written.append(_save(figure, out / "fig6_nodes_free_hand.png"))
+    batch.add(figure, out / "fig6_nodes_free_hand.png")
 
     head = racket.head
     x = np.linspace(
@@ -528,8 +529,8 @@ def write_comparison(
     ax.set_title(f"Fig. 15: identified models, ball at {REBOUND_SPEED_MPS:g} m/s", fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    written.append(_save(figure, out / "fig15_identified.png"))
-    return written
+    batch.add(figure, out / "fig15_identified.png")
+    return [table, *batch.render()]
 
 
 # --- the approximate method against the transient simulation (issue 5) --------------------------
@@ -835,16 +836,17 @@ def write_transient_figures(
         The files written.
     """
     out = Path(out_dir)
-    written = []
+    batch = FigureBatch()
     if histories:
         figure = figure_transient_histories(histories, mode_names)
-        written.append(_save(figure, out / TRANSIENT_FIGURES["histories"]))
+        batch.add(figure, out / TRANSIENT_FIGURES["histories"])
     if comparison is not None:
         figure = figure_transient_comparison_face(comparison, racket, speed_index)
-        written.append(_save(figure, out / TRANSIENT_FIGURES["face"]))
+        batch.add(figure, out / TRANSIENT_FIGURES["face"])
     if curves is not None:
         figure = figure_transient_comparison_speed(racket, **curves)
-        written.append(_save(figure, out / TRANSIENT_FIGURES["speed"]))
+        batch.add(figure, out / TRANSIENT_FIGURES["speed"])
+    written = batch.render()
     for path in written:
         log.info("wrote %s", path)
     return written
@@ -1022,23 +1024,23 @@ def write_swing_figures(
     """
     out = Path(out_dir)
     support = result.supports[0]
-    written = [
-        _save(figure_swing_map(result, racket, spots, speed_index), out / SWING_FIGURES["map"]),
-        _save(
-            figure_swing_along_axis(
-                racket,
-                ball,
-                result.swing,
-                float(result.ball_speed[speed_index]),
-                support,
-                model,
-                modal_model,
-                spots,
-                **options,
-            ),
-            out / SWING_FIGURES["axis"],
+    batch = FigureBatch()
+    batch.add(figure_swing_map(result, racket, spots, speed_index), out / SWING_FIGURES["map"])
+    batch.add(
+        figure_swing_along_axis(
+            racket,
+            ball,
+            result.swing,
+            float(result.ball_speed[speed_index]),
+            support,
+            model,
+            modal_model,
+            spots,
+            **options,
         ),
-    ]
+        out / SWING_FIGURES["axis"],
+    )
+    written = batch.render()
     for path in written:
         log.info("wrote %s", path)
     return written
