@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -135,3 +136,7 @@ def test_identify_and_compare_commands(tmp_path: Path, racket: rd.Racket) -> Non
     shift = float(table[1].split(",")[3])
     assert -10 < shift < 0  # slightly lower when held
     assert (compared / "fig15_identified.png").stat().st_size > 10_000
+    # every file listed once in run.json (the table is the workflow's, the figures the hook's)
+    outputs = json.loads((compared / "run.json").read_text())["outputs"]
+    assert len(outputs) == len(set(outputs))
+    assert "comparison.csv" in outputs

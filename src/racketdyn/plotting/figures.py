@@ -6,7 +6,6 @@ depend on the points a user asked for in ``impact.csv``.
 
 from __future__ import annotations
 
-import csv
 import logging
 import math
 from collections.abc import Callable, Mapping, Sequence
@@ -32,7 +31,6 @@ from racketdyn.measurement.records import FRF_UNITS, FrfSet
 from racketdyn.modal.identify import Identification
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.residues import mac
-from racketdyn.modal.shapes import pair_modes
 from racketdyn.plotting.primitives import (
     SUPPORT_STYLE,
     plot_along_axis,
@@ -54,6 +52,7 @@ from racketdyn.plotting.primitives import (
 from racketdyn.plotting.render import FigureBatch, save_figure
 from racketdyn.racket import Racket
 from racketdyn.racket_modal.shapes import axis_nodes
+from racketdyn.workflows.identify import ModeComparison, compare_modes
 
 __all__ = [
     "FIGURES",
@@ -441,43 +440,22 @@ def _plot_axis_nodes(models: Sequence[ModalModel], racket: Racket, ax: Axes) -> 
 
 
 def write_comparison(
-    free: Identification, hand: Identification, racket: Racket, ball: Ball, out_dir: Path
+    free: Identification,
+    hand: Identification,
+    racket: Racket,
+    ball: Ball,
+    out_dir: Path,
+    comparison: ModeComparison | None = None,
 ) -> list[Path]:
-    """Free against hand-held: table, frequency/damping figure, Fig. 6 overlay, Fig. 15 check."""
+    """Free against hand-held: frequency/damping figure, Fig. 6 overlay, Fig. 15 check.
+
+    The table (``comparison.csv``) is the compare step's (:func:`racketdyn.workflows.run_compare`);
+    ``comparison`` is its pairing (made here from ``free`` and ``hand`` if not given).
+    """
     out = Path(out_dir)
-    pairing = pair_modes(free.model, hand.model)
-    rows = []
-    for a, b, value in zip(pairing.first, pairing.second, pairing.mac, strict=True):
-        fa, fb = free.model.frequency[a], hand.model.frequency[b]
-        za, zb = free.model.damping_ratio[a], hand.model.damping_ratio[b]
-        rows.append(
-            {
-                "mode": free.model.names[a],
-                "frequency_free_hz": fa,
-                "frequency_hand_hz": fb,
-                "frequency_shift_percent": 100 * (fb / fa - 1),
-                "damping_free": za,
-                "damping_hand": zb,
-                "damping_ratio_hand_over_free": zb / za,
-                "mac": value,
-            }
-        )
-    nodes_free = axis_nodes(free.model, 0, (0.0, racket.length_m))
-    nodes_hand = axis_nodes(hand.model, 0, (0.0, racket.length_m))
-    table = out / "comparison.csv"
-    with table.open("w", newline="", encoding="utf-8") as handle:
-        writer = csv.DictWriter(handle, fieldnames=list(rows[0]) if rows else ["mode"])
-        writer.writeheader()
-        for row in rows:
-            writer.writerow(
-                {k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()}
-            )
-        handle.write(
-            f"# first-mode nodes along the axis, free (m): {np.round(nodes_free, 4).tolist()}\n"
-        )
-        handle.write(
-            f"# first-mode nodes along the axis, hand (m): {np.round(nodes_hand, 4).tolist()}\n"
-        )
+    if comparison is None:
+        comparison = compare_modes(free, hand, racket)
+    rows = comparison.rows
     batch = FigureBatch()
 
     figure, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
@@ -530,7 +508,7 @@ def write_comparison(
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     batch.add(figure, out / "fig15_identified.png")
-    return [table, *batch.render()]
+    return batch.render()
 
 
 # --- the approximate method against the transient simulation (issue 5) --------------------------

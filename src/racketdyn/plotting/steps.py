@@ -109,8 +109,9 @@ def compare_figures(result: CompareResult, out: Path) -> list[Path]:
     assert result.racket is not None
     written = write_identification(result.free, result.racket, out, "free")
     written += write_identification(result.hand, result.racket, out, "hand")
-    # write_comparison rewrites comparison.csv (the workflow wrote the same table)
-    written += write_comparison(result.free, result.hand, result.racket, Ball(), out)
+    written += write_comparison(
+        result.free, result.hand, result.racket, Ball(), out, result.comparison
+    )
     return written
 
 

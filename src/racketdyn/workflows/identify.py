@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
 from racketdyn.io import read_frf_uff
@@ -39,6 +40,8 @@ from racketdyn.workflows.run import (
 __all__ = [
     "CompareResult",
     "IdentifyResult",
+    "ModeComparison",
+    "compare_modes",
     "identify_file",
     "run_compare",
     "run_identify",
@@ -203,11 +206,35 @@ def run_identify(
     return finish_run(result, inputs, command_record(command, "identify"), figures)
 
 
-def write_mode_comparison(
-    free: Identification, hand: Identification, racket: Racket, out: Path
-) -> Path:
-    """``comparison.csv``: free and hand-held modes paired by MAC (frequency shift, damping
-    ratio, MAC), with the first mode's nodes along the axis as comment lines."""
+@dataclass(frozen=True)
+class ModeComparison:
+    """Free and hand-held modes paired by MAC, and the first mode's nodes along the axis.
+
+    Attributes
+    ----------
+    rows : list of dict
+        One per pair: ``mode`` (the free mode's name), ``frequency_free_hz``,
+        ``frequency_hand_hz``, ``frequency_shift_percent``, ``damping_free``, ``damping_hand``,
+        ``damping_ratio_hand_over_free``, ``mac``.
+    nodes_free, nodes_hand : ndarray
+        Nodes of the first mode along the long axis, m from the butt.
+    """
+
+    rows: list[dict[str, Any]]
+    nodes_free: NDArray[np.float64]
+    nodes_hand: NDArray[np.float64]
+
+
+def compare_modes(free: Identification, hand: Identification, racket: Racket) -> ModeComparison:
+    """Pair the free and hand-held modes by MAC and find the first mode's nodes on the axis.
+
+    Parameters
+    ----------
+    free, hand : Identification
+        The two identifications.
+    racket : Racket
+        The racket (its length bounds the axis searched for nodes).
+    """
     pairing = pair_modes(free.model, hand.model)
     rows: list[dict[str, Any]] = []
     for a, b, value in zip(pairing.first, pairing.second, pairing.mac, strict=True):
@@ -225,9 +252,15 @@ def write_mode_comparison(
                 "mac": value,
             }
         )
-    nodes_free = axis_nodes(free.model, 0, (0.0, racket.length_m))
-    nodes_hand = axis_nodes(hand.model, 0, (0.0, racket.length_m))
+    axis = (0.0, racket.length_m)
+    return ModeComparison(rows, axis_nodes(free.model, 0, axis), axis_nodes(hand.model, 0, axis))
+
+
+def write_mode_comparison(comparison: ModeComparison, out: Path) -> Path:
+    """``comparison.csv``: the pairs of :func:`compare_modes`, with the first mode's nodes along
+    the axis as comment lines."""
     table = out / "comparison.csv"
+    rows = comparison.rows
     with table.open("w", newline="", encoding="utf-8") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]) if rows else ["mode"])
         writer.writeheader()
@@ -235,12 +268,10 @@ def write_mode_comparison(
             writer.writerow(
                 {k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()}
             )
-        handle.write(
-            f"# first-mode nodes along the axis, free (m): {np.round(nodes_free, 4).tolist()}\n"
-        )
-        handle.write(
-            f"# first-mode nodes along the axis, hand (m): {np.round(nodes_hand, 4).tolist()}\n"
-        )
+        for support, nodes in (("free", comparison.nodes_free), ("hand", comparison.nodes_hand)):
+            handle.write(
+                f"# first-mode nodes along the axis, {support} (m): {np.round(nodes, 4).tolist()}\n"
+            )
     return table
 
 
@@ -254,11 +285,14 @@ class CompareResult(StepResult):
         The two identifications.
     racket : Racket
         The racket.
+    comparison : ModeComparison
+        The modes paired by MAC and the first mode's nodes (``comparison.csv``).
     """
 
     free: Identification | None = None
     hand: Identification | None = None
     racket: Racket | None = None
+    comparison: ModeComparison | None = None
 
 
 def run_compare(
@@ -310,8 +344,16 @@ def run_compare(
     report(progress, f"identifying {Path(hand).name}")
     found_hand = identify_file(hand, the_racket, "hand", **options)
     written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
-    written.append(write_mode_comparison(found_free, found_hand, the_racket, out_dir))
-    result = CompareResult(out_dir, written, free=found_free, hand=found_hand, racket=the_racket)
+    comparison = compare_modes(found_free, found_hand, the_racket)
+    written.append(write_mode_comparison(comparison, out_dir))
+    result = CompareResult(
+        out_dir,
+        written,
+        free=found_free,
+        hand=found_hand,
+        racket=the_racket,
+        comparison=comparison,
+    )
     inputs = {
         "free_file": str(Path(free).resolve()),
         "hand_file": str(Path(hand).resolve()),
