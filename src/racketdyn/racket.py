@@ -31,6 +31,7 @@ __all__ = [
     "StringBed",
     "Support",
     "as_locations",
+    "landmark_points",
 ]
 
 Support = Literal["free", "pinned"]
@@ -467,3 +468,28 @@ class Racket:
             "reduced_mass_centre_free_kg": float(self.reduced_mass(centre, "free")[0]),
             "reduced_mass_centre_pinned_kg": float(self.reduced_mass(centre, "pinned")[0]),
         }
+
+
+def landmark_points(racket: Racket) -> dict[str, tuple[float, float]]:
+    """Named impact points on the long axis: top, centre and throat (Figs 11–12), tip (Fig. 14).
+
+    Top and throat lie three quarters of the half-length from the centre; the tip 90 %.
+
+    Parameters
+    ----------
+    racket : Racket
+        The racket (its head).
+
+    Returns
+    -------
+    dict
+        Name -> (x, y), m.
+    """
+    head = racket.head
+    a, xc, yc = head.half_length_m, head.centre_x_m, head.centre_y_m
+    return {
+        "top": (xc + 0.75 * a, yc),
+        "centre": (xc, yc),
+        "throat": (xc - 0.75 * a, yc),
+        "tip": (xc + 0.9 * a, yc),
+    }

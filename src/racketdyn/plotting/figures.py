@@ -50,7 +50,7 @@ from racketdyn.plotting.primitives import (
     plot_twist_curve,
 )
 from racketdyn.plotting.render import FigureBatch, save_figure
-from racketdyn.racket import Racket
+from racketdyn.racket import Racket, landmark_points
 from racketdyn.racket_modal.shapes import axis_nodes
 from racketdyn.workflows.identify import ModeComparison, compare_modes
 
@@ -70,7 +70,6 @@ __all__ = [
     "figure_transient_comparison_speed",
     "figure_transient_histories",
     "figure_twist",
-    "landmark_points",
     "write_comparison",
     "write_contact_figure",
     "write_frf_figures",
@@ -96,21 +95,6 @@ TRANSIENT_FIGURES: dict[str, str] = {
     "histories": "transient_histories.png",
 }
 """The figures of the transient model, by what they show → file name."""
-
-
-def landmark_points(racket: Racket) -> dict[str, tuple[float, float]]:
-    """Named impact points on the long axis: top, centre and throat (Figs 11–12), tip (Fig. 14).
-
-    Top and throat lie three quarters of the half-length from the centre; the tip 90 %.
-    """
-    head = racket.head
-    a, xc, yc = head.half_length_m, head.centre_x_m, head.centre_y_m
-    return {
-        "top": (xc + 0.75 * a, yc),
-        "centre": (xc, yc),
-        "throat": (xc - 0.75 * a, yc),
-        "tip": (xc + 0.9 * a, yc),
-    }
 
 
 def _save(figure: Figure, path: Path) -> Path:
@@ -628,7 +612,7 @@ def figure_transient_comparison_speed(
 ) -> Figure:
     """Rebound ratio and contact time against speed, approximate against transient.
 
-    At the face centre, near the tip and near the throat (:func:`landmark_points`), at
+    At the face centre, near the tip and near the throat (:func:`racketdyn.racket.landmark_points`), at
     :data:`TRANSIENT_CURVE_SPEEDS_MPS`, racket at rest; one column per support.
 
     Parameters

@@ -35,7 +35,7 @@ from racketdyn.impact.result import shown_speed_index
 from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, predict_transient
 from racketdyn.io import racket_to_dict, read_points
 from racketdyn.modal import ModalModel
-from racketdyn.racket import SUPPORTS, Racket
+from racketdyn.racket import SUPPORTS, Racket, landmark_points
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
     Progress,
@@ -334,13 +334,10 @@ def transient_csv_name(model: str) -> str:
 
 
 def history_points(racket: Racket) -> dict[str, tuple[float, float]]:
-    """Where the time histories are simulated: the face centre and the tip (90 % of the head's
-    half-length beyond the centre; the points of the paper's Figs 11–14)."""
-    head = racket.head
-    return {
-        "centre": (head.centre_x_m, head.centre_y_m),
-        "tip": (head.centre_x_m + 0.9 * head.half_length_m, head.centre_y_m),
-    }
+    """Where the time histories are simulated: the face centre and the tip
+    (:func:`racketdyn.racket.landmark_points`, the points of the paper's Figs 11–14)."""
+    marks = landmark_points(racket)
+    return {name: marks[name] for name in ("centre", "tip")}
 
 
 def _transient_part(
