@@ -613,7 +613,8 @@ def figure_transient_comparison_speed(
     """Rebound ratio and contact time against speed, approximate against transient.
 
     At the face centre, near the tip and near the throat
-    (:func:`racketdyn.racket.landmark_points`), at :data:`TRANSIENT_CURVE_SPEEDS_MPS`, racket at rest; one column per support.
+    (:func:`racketdyn.racket.landmark_points`), at :data:`TRANSIENT_CURVE_SPEEDS_MPS`, racket at
+    rest; one column per support.
 
     Parameters
     ----------
