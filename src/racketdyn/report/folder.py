@@ -8,7 +8,6 @@ head outline, …).  It is the only input of a section's ``gather`` function.
 from __future__ import annotations
 
 import csv
-import hashlib
 import json
 import logging
 import math
@@ -21,10 +20,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.racket import Racket
+from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.report.figures import Figure, FigureGroup, Layout, embed_png
 
-__all__ = ["REPORT_NAME", "Head", "Impacts", "RunFolder", "read_csv", "rows_of", "to_float"]
+__all__ = ["REPORT_NAME", "Impacts", "RunFolder", "read_csv", "rows_of", "to_float"]
 
 log = logging.getLogger(__name__)
 
@@ -66,39 +65,6 @@ def to_float(text: str | None) -> float:
         return float(text) if text not in (None, "") else math.nan
     except ValueError:
         return math.nan
-
-
-def sha256(path: Path) -> str:
-    """Hex SHA-256 of a file's bytes."""
-    digest = hashlib.sha256()
-    with path.open("rb") as handle:
-        for block in iter(lambda: handle.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
-
-
-@dataclass(frozen=True)
-class Head:
-    """The string-bed ellipse: centre and half axes, m."""
-
-    centre_x: float
-    centre_y: float
-    half_length: float
-    half_width: float
-
-    def contains(self, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.bool_]:
-        """Whether points (x, y), m, lie on the string bed."""
-        return np.asarray(
-            ((x - self.centre_x) / self.half_length) ** 2
-            + ((y - self.centre_y) / self.half_width) ** 2
-            <= 1.0
-        )
-
-    @classmethod
-    def of(cls, racket: Racket) -> Head:
-        """The head of a racket."""
-        h = racket.head
-        return cls(h.centre_x_m, h.centre_y_m, h.half_length_m, h.half_width_m)
 
 
 @dataclass(frozen=True)
@@ -274,24 +240,24 @@ class RunFolder:
         """The folder of ``racketdyn predict --model both``'s ``comparison.csv``."""
         return self._comparison(of_models=True)
 
-    def head(self) -> Head | None:
+    def head(self) -> HeadEllipse | None:
         """The string-bed outline: the given racket's, a run.json's, or the named racket's."""
         if self.racket is not None:
-            return Head.of(self.racket)
+            return self.racket.head
         for record in self.records.values():
             head = record.get("racket", {}).get("head") if isinstance(record, dict) else None
             if isinstance(head, dict):
                 try:
-                    return Head(
-                        float(head["centre_x_m"]),
-                        float(head.get("centre_y_m", 0.0)),
-                        float(head["half_length_m"]),
-                        float(head["half_width_m"]),
+                    return HeadEllipse(
+                        centre_x_m=float(head["centre_x_m"]),
+                        half_length_m=float(head["half_length_m"]),
+                        half_width_m=float(head["half_width_m"]),
+                        centre_y_m=float(head.get("centre_y_m", 0.0)),
                     )
-                except (KeyError, TypeError, ValueError):
+                except (KeyError, TypeError, ValueError, InputError):
                     continue
         racket = self.named_racket()
-        return None if racket is None else Head.of(racket)
+        return None if racket is None else racket.head
 
     def named_racket(self) -> Racket | None:
         """The racket a run.json names (built-in, or a TOML file still there), if any."""
@@ -338,7 +304,7 @@ class RunFolder:
         """The face centre, m: the head's, else the mean of the impact points."""
         head = self.head()
         if head is not None:
-            return head.centre_x, head.centre_y
+            return head.centre_x_m, head.centre_y_m
         return float(np.nanmean(impacts["x_m"])), float(np.nanmean(impacts["y_m"]))
 
     def first_mode_nodes(self) -> dict[str, list[float]]:

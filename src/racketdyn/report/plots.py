@@ -16,13 +16,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from racketdyn.report.folder import Head
+from racketdyn.racket import HeadEllipse
 
 __all__ = ["map_spec"]
 
 
 def map_spec(
-    head: Head | None,
+    head: HeadEllipse | None,
     map_id: str,
     groups: list[dict[str, Any]],
     fields: list[tuple[str, str, int]],
@@ -36,7 +36,7 @@ def map_spec(
 
     Parameters
     ----------
-    head : Head or None
+    head : HeadEllipse or None
         The string-bed outline drawn under the points, m.
     map_id : str
         Id of the map's element in the page.
@@ -65,10 +65,18 @@ def map_spec(
     xs, ys = xy[:, 0] * 1e3, xy[:, 1] * 1e3
     if head is not None:
         xs = np.append(
-            xs, [1e3 * (head.centre_x - head.half_length), 1e3 * (head.centre_x + head.half_length)]
+            xs,
+            [
+                1e3 * (head.centre_x_m - head.half_length_m),
+                1e3 * (head.centre_x_m + head.half_length_m),
+            ],
         )
         ys = np.append(
-            ys, [1e3 * (head.centre_y - head.half_width), 1e3 * (head.centre_y + head.half_width)]
+            ys,
+            [
+                1e3 * (head.centre_y_m - head.half_width_m),
+                1e3 * (head.centre_y_m + head.half_width_m),
+            ],
         )
     span = max(float(np.ptp(xs)), float(np.ptp(ys)), 1.0)
     pad = 0.06 * span
@@ -97,10 +105,10 @@ def map_spec(
         "head": None
         if head is None
         else [
-            round(head.centre_x * 1e3, 2),
-            round(head.centre_y * 1e3, 2),
-            round(head.half_length * 1e3, 2),
-            round(head.half_width * 1e3, 2),
+            round(head.centre_x_m * 1e3, 2),
+            round(head.centre_y_m * 1e3, 2),
+            round(head.half_length_m * 1e3, 2),
+            round(head.half_width_m * 1e3, 2),
         ],
         "fields": [list(f) for f in fields],
         "colour": colour,

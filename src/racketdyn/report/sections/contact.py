@@ -43,7 +43,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     summary = []
     panels: list[dict[str, Any]] = []
     for label, xy, mean, spread, n, node in tables:
-        on_bed = head.contains(xy[:, 0], xy[:, 1]) if head is not None else np.ones(len(xy), bool)
+        on_bed = head.contains(xy) if head is not None else np.ones(len(xy), bool)
         for where, mask in (("strings", on_bed), ("frame", ~on_bed)):
             values = mean[mask & np.isfinite(mean)] * 1e3
             if values.size:

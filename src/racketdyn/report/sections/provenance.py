@@ -11,8 +11,9 @@ from typing import Any
 import numpy as np
 
 from racketdyn.__about__ import __version__
-from racketdyn.report.folder import REPORT_NAME, RunFolder, sha256
+from racketdyn.report.folder import REPORT_NAME, RunFolder
 from racketdyn.report.formatting import fmt
+from racketdyn.workflows.run import sha256
 
 HOW_TO_RUN = "any racketdyn command with --out (each writes run.json)"
 

@@ -157,7 +157,7 @@ def _frf_data(run: RunFolder, folders: Sequence[tuple[str, Path]]) -> dict[str, 
         colour = SUPPORT_COLOURS.get(label, SERIES_COLOURS[n % len(SERIES_COLOURS)])
         frame = frfs.driving_point if frfs.driving_point is not None else 0
         centre_xy = (
-            np.array([head.centre_x, head.centre_y])
+            np.array([head.centre_x_m, head.centre_y_m])
             if head is not None
             else frfs.locations.mean(axis=0)
         )

@@ -70,7 +70,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         marks.append({"x": round(cop * 1e3, 1), "label": "CoP"})
     for support, values in nodes.items():
         for node in values:
-            if head is None or abs(node - head.centre_x) < head.half_length:
+            if head is None or abs(node - head.centre_x_m) < head.half_length_m:
                 marks.append({"x": round(node * 1e3, 1), "label": f"node ({support})"})
     speeds = impacts.speeds
     chosen = speeds[shown_speed_index(speeds)]

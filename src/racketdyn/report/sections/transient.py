@@ -58,7 +58,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     contact = column("relative_difference_contact_time")
     head = run.head()
     centre_x, centre_y = (
-        (head.centre_x, head.centre_y) if head else (float(np.nanmean(x)), float(np.nanmean(y)))
+        (head.centre_x_m, head.centre_y_m) if head else (float(np.nanmean(x)), float(np.nanmean(y)))
     )
     speeds = sorted({float(v) for v in speed if math.isfinite(v)})
     chosen = speeds[shown_speed_index(speeds)] if speeds else math.nan
