@@ -11,8 +11,8 @@ import matplotlib.pyplot as plt
 import xarray as xr
 from matplotlib.axes import Axes
 
-from racketdyn.__about__ import __version__
 from racketdyn.plotting.primitives import SUPPORT_STYLE
+from racketdyn.plotting.render import save_figure
 from racketdyn.sweep.summary import _variables, axis_label, summary_metrics, variable_designs
 
 __all__ = ["plot_centre_rebound", "plot_sweet_area", "write_summary_figures"]
@@ -141,7 +141,6 @@ def write_summary_figures(dataset: xr.Dataset, out_dir: Path | str) -> list[Path
         plot_sweet_area(dataset, variable, ax=right)
         figure.suptitle(f"{dataset.attrs['title']}: {variable.replace('_', ' ')}", fontsize=10)
         path = out / f"summary_{variable}.png"
-        figure.savefig(path, dpi=120, metadata={"Software": f"racketdyn {__version__}"})
-        plt.close(figure)
+        save_figure(figure, path)
         written.append(path)
     return written
