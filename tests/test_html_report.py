@@ -54,8 +54,7 @@ def run_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     tests = [f"{d}/rig/hammer_free.uff", f"{d}/rig/hammer_hand.uff"]
     frfs = [f"{d}/frf_free/frfs.uff", f"{d}/frf_hand/frfs.uff"]
     commands = [
-        ["rig", *rig, "--out", f"{d}/rig"],
-        ["rig", "--support", "hand", *rig, "--out", f"{d}/rig"],
+        ["rig", "--support", "free,hand", *rig, "--out", f"{d}/rig"],
         ["frf", f"{d}/rig/hammer_free.uff", *frf, "--out", f"{d}/frf_free"],
         ["frf", f"{d}/rig/hammer_hand.uff", *frf, "--out", f"{d}/frf_hand"],
         ["contact", *tests, "--labels", "free,hand", "--out", f"{d}/contact"],

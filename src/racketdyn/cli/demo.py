@@ -65,19 +65,18 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
         command = ["racketdyn", *argv]
         result.append((label, command, partial(call, command=command)))
 
-    for support, label in (("free", "free"), ("hand", "hand-held")):
-        step(
-            f"virtual hammer test, {label}",
-            ["rig", *r, "--support", support, *faults, "--out", str(rig)],
-            partial(
-                run_rig,
-                rig,
-                racket=racket,
-                support=support,
-                double_hits=DOUBLE_HITS,
-                overloads=OVERLOADS,
-            ),
-        )
+    step(
+        "virtual hammer tests, free and hand-held",
+        ["rig", *r, "--support", "free,hand", *faults, "--out", str(rig)],
+        partial(
+            run_rig,
+            rig,
+            racket=racket,
+            support=("free", "hand"),
+            double_hits=DOUBLE_HITS,
+            overloads=OVERLOADS,
+        ),
+    )
     for support, folder, label in (("free", free, "free"), ("hand", hand, "hand-held")):
         tests = rig / f"hammer_{support}.uff"
         step(

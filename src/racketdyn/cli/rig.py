@@ -24,8 +24,7 @@ def add(commands: Any) -> None:
     opt.add_support(
         p,
         "free",
-        "free (on a sponge) or hand (held by a hand)",
-        choices=("free", "hand"),
+        "free (on a sponge), hand (held by a hand), or free,hand: both tests into the one folder",
     )
     p.add_argument("--averages", type=int, default=10, help="hits per point, a count (default 10)")
     p.add_argument(
@@ -54,7 +53,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
         result = run_rig(
             args.out,
             racket=args.racket,
-            support=args.support,
+            support=opt.parse_list("--support", args.support),
             averages=args.averages,
             double_hits=args.double_hits,
             overloads=args.overloads,
@@ -63,19 +62,21 @@ def run(args: argparse.Namespace, console: Console) -> int:
             command=opt.command_line(args),
             progress=progress,
         )
-    assert result.records is not None
-    assert result.truth is not None
-    assert result.faults
-    console.print(
-        f"{result.records.n_points} points × {args.averages} averages on the {args.support} rig "
-        f"(accelerometer at node {result.reference_node}), {result.faults['double_hits']} "
-        f"double hits, {result.faults['overloads']} overloads → {result.out}"
-    )
-    truth = result.truth
-    for name, frequency, damping in zip(
-        truth.names, truth.frequency, truth.damping_ratio, strict=True
-    ):
-        if frequency > 15.0:
-            console.print(f"  {name:24s} {frequency:8.1f} Hz  ζ = {damping * 100:.2f} %")
+    for support in result.supports:
+        records, truth, faults = (
+            result.records[support],
+            result.truth[support],
+            result.faults[support],
+        )
+        console.print(
+            f"{records.n_points} points × {args.averages} averages on the {support} rig "
+            f"(accelerometer at node {result.reference_node}), {faults['double_hits']} "
+            f"double hits, {faults['overloads']} overloads → {result.out}"
+        )
+        for name, frequency, damping in zip(
+            truth.names, truth.frequency, truth.damping_ratio, strict=True
+        ):
+            if frequency > 15.0:
+                console.print(f"  {name:24s} {frequency:8.1f} Hz  ζ = {damping * 100:.2f} %")
     opt.print_written(console, result.written)
     return 0

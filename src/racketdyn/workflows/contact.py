@@ -22,8 +22,8 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
-    make_out_folder,
     report,
+    run_step,
 )
 
 __all__ = ["CONTACT_METHOD", "ContactResult", "run_contact"]
@@ -54,6 +54,7 @@ def _slug(label: str) -> str:
     return "".join(c if c.isalnum() or c in "-_" else "_" for c in label)
 
 
+@run_step
 def run_contact(
     tests: Sequence[str | os.PathLike[str]],
     out: str | os.PathLike[str],
@@ -91,7 +92,6 @@ def run_contact(
         raise InputError(f"--labels: give one label per test file ({len(tests)})")
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    make_out_folder(out_dir)
     result = ContactResult(out_dir, labels=names, racket=the_racket)
     for i, (label, test) in enumerate(zip(names, tests, strict=True)):
         report(progress, "contact times", i, len(names))

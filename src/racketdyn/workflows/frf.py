@@ -7,6 +7,7 @@ the caller's hook.
 from __future__ import annotations
 
 import os
+from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,8 +25,8 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
-    make_out_folder,
     report,
+    run_step,
     sha256,
 )
 
@@ -70,6 +71,7 @@ class FrfResult(StepResult):
     racket: Racket | None = None
 
 
+@run_step
 def run_frf(
     tests: str | os.PathLike[str],
     out: str | os.PathLike[str],
@@ -115,7 +117,6 @@ def run_frf(
     records = read_records(tests, geometry)
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    make_out_folder(out_dir)
     report(progress, "estimating FRFs")
     estimate = estimate_frfs(
         records,
@@ -127,8 +128,12 @@ def run_frf(
     estimate.write_quality_csv(out_dir / "quality.csv")
     result = FrfResult(out_dir, [out_dir / "quality.csv"], estimate=estimate, racket=the_racket)
     if estimate.frfs is None:
+        # the run folder is left as it was: the reasons go into the message
+        reasons = Counter(reason for check in estimate.checks for reason in check.reasons)
+        counted = ", ".join(f"{reason}: {count}" for reason, count in reasons.most_common())
         raise InputError(
-            f"{tests}: every average of every point was rejected; see {out_dir / 'quality.csv'}"
+            f"{tests}: every average of every point was rejected ({counted}); see the options "
+            "of racketdyn frf --help (--force-range, --force-window)"
         )
     result.written.append(write_frf_uff(estimate.frfs, out_dir / "frfs.uff"))
     inputs = {

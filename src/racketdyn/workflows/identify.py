@@ -32,8 +32,8 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
-    make_out_folder,
     report,
+    run_step,
     sha256,
 )
 
@@ -138,6 +138,7 @@ class IdentifyResult(StepResult):
     racket: Racket | None = None
 
 
+@run_step
 def run_identify(
     frfs: str | os.PathLike[str],
     out: str | os.PathLike[str],
@@ -176,7 +177,6 @@ def run_identify(
     """
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    make_out_folder(out_dir)
     report(progress, f"identifying {Path(frfs).name}")
     found = identify_file(
         frfs,
@@ -295,6 +295,7 @@ class CompareResult(StepResult):
     comparison: ModeComparison | None = None
 
 
+@run_step
 def run_compare(
     free: str | os.PathLike[str],
     hand: str | os.PathLike[str],
@@ -331,7 +332,6 @@ def run_compare(
     """
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    make_out_folder(out_dir)
     options: dict[str, Any] = {
         "geometry": geometry,
         "band_hz": band_hz,

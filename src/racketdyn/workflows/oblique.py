@@ -35,8 +35,8 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
-    make_out_folder,
     report,
+    run_step,
     write_rows,
 )
 
@@ -94,6 +94,7 @@ class ObliqueResult(StepResult):
     racket: Racket | None = None
 
 
+@run_step
 def run_oblique(
     out: str | os.PathLike[str],
     *,
@@ -213,7 +214,6 @@ def run_oblique(
         hand=the_hand,
     )
     out_dir = Path(out)
-    make_out_folder(out_dir)
     rows = [
         {
             "ball_speed_mps": curve.ball_speed_mps,

@@ -42,8 +42,8 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
-    make_out_folder,
     report,
+    run_step,
 )
 
 __all__ = ["DEFAULT_GRID", "MAX_GRID", "MODELS", "PredictResult", "impact_points", "run_predict"]
@@ -176,6 +176,7 @@ def check_supports(supports: Sequence[str], model: str) -> list[str]:
     return checked
 
 
+@run_step
 def run_predict(
     out: str | os.PathLike[str],
     *,
@@ -267,7 +268,6 @@ def run_predict(
     defaults_used = [*used.defaults, *ball_defaults, *defaults, *hand_defaults]
     locations, labels, points_source = impact_points(used.racket, points, grid)
     out_dir = Path(out)
-    make_out_folder(out_dir)
     law = compound_law(used.racket, the_ball)
     result = PredictResult(
         out_dir,

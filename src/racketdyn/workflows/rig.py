@@ -8,8 +8,9 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -31,8 +32,8 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
-    make_out_folder,
     report,
+    run_step,
 )
 
 __all__ = ["RIG_SUPPORTS", "RigResult", "run_rig"]
@@ -42,34 +43,35 @@ RIG_SUPPORTS = ("free", "hand")
 
 @dataclass
 class RigResult(StepResult):
-    """What :func:`run_rig` simulated and wrote.
+    """What :func:`run_rig` simulated and wrote, by support.
 
     Attributes
     ----------
-    records : HammerRecords
-        The simulated hammer test.
-    truth : ModalModel
-        The rig's modes (the truth identification should find).
-    support : str
-        ``free`` or ``hand``.
+    supports : list of str
+        The supports tested, in order (``free``, ``hand``).
+    records : dict of str to HammerRecords
+        The simulated hammer test of each support.
+    truth : dict of str to ModalModel
+        The rig's modes of each support (the truth identification should find).
     reference_node : int
-        The accelerometer's node.
-    faults : dict
-        Counts of ``double_hits`` and ``overloads``.
+        The accelerometer's node (the same for every support).
+    faults : dict of str to dict
+        Counts of ``double_hits`` and ``overloads`` of each support.
     """
 
-    records: HammerRecords | None = None
-    truth: ModalModel | None = None
-    support: str = "free"
+    supports: list[str] = field(default_factory=list)
+    records: dict[str, HammerRecords] = field(default_factory=dict)
+    truth: dict[str, ModalModel] = field(default_factory=dict)
     reference_node: int = 0
-    faults: dict[str, int] | None = None
+    faults: dict[str, dict[str, int]] = field(default_factory=dict)
 
 
+@run_step
 def run_rig(
     out: str | os.PathLike[str],
     *,
     racket: RacketInput = None,
-    support: str = "free",
+    support: str | Sequence[str] = "free",
     averages: int = 10,
     double_hits: float = 0.0,
     overloads: float = 0.0,
@@ -87,8 +89,9 @@ def run_rig(
         Output folder (created if missing).
     racket : Racket, path or None
         Racket object, TOML file, or None for the built-in racket.
-    support : {"free", "hand"}
-        On a sponge, or held by a hand.
+    support : {"free", "hand"} or sequence of them
+        On a sponge, or held by a hand; both (``("free", "hand")``) test the racket twice into
+        the one folder, as the paper does (``hammer_<support>.uff`` each).
     averages : int
         Hits per point.
     double_hits, overloads : float
@@ -104,64 +107,72 @@ def run_rig(
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """
-    one_of("--support", support, RIG_SUPPORTS)
+    supports = [support] if isinstance(support, str) else list(support)
+    if not supports or len(set(supports)) < len(supports):
+        raise InputError(f"--support: give free, hand or free,hand (got {','.join(supports)})")
+    for each in supports:
+        one_of("--support", each, RIG_SUPPORTS)
     if isinstance(averages, bool) or not isinstance(averages, int) or averages < 1:
         raise InputError(f"--averages must be a whole number of at least 1 (got {averages})")
     require_range("--double-hits", double_hits, 0.0, 1.0)
     require_range("--overloads", overloads, 0.0, 1.0)
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    make_out_folder(out_dir)
     locations, nodes = hammer_points(the_racket)
     reference = accelerometer_index(the_racket, locations)
     reference_location = (float(locations[reference, 0]), float(locations[reference, 1]))
     on_bed = the_racket.head.contains(locations)
-    durations = np.full(len(nodes), FRAME_PULSE_S)
-    contact_support = "free" if support == "free" else "pinned"
-    durations[on_bed] = string_contact_time(the_racket, locations[on_bed], contact_support)
-    report(progress, f"building the {support} rig and simulating the hammer test")
-    model = rig_model(the_racket, "free" if support == "free" else "hand")
-    records = simulate_hammer_test(
-        model,
-        locations,
-        nodes,
-        reference_location,
-        nodes[reference],
-        n_averages=averages,
-        double_hit_probability=double_hits,
-        overload_probability=overloads,
-        pulse_duration_s=durations,
-        seed=seed,
-    )
-    tests = write_hammer_uff(records, out_dir / f"hammer_{support}.uff", binary=binary)
-    truth_locations = np.vstack([locations, [[0.0, 0.0], [the_racket.length_m, 0.0]]])
-    truth = model.modal_truth(truth_locations, max_frequency_hz=0.5 / records.sampling_interval_s)
-    truth_path = out_dir / f"modal_truth_{support}.json"
-    truth.write_json(truth_path)
-    faults = {
-        "double_hits": int(sum(sum(row) for row in records.metadata.get("double_hit", []))),
-        "overloads": int(sum(sum(row) for row in records.metadata.get("overload", []))),
-    }
-    result = RigResult(
-        out_dir,
-        [tests, truth_path],
-        records=records,
-        truth=truth,
-        support=support,
-        reference_node=nodes[reference],
-        faults=faults,
-    )
+    result = RigResult(out_dir, supports=supports, reference_node=nodes[reference])
+    runs: dict[str, dict[str, Any]] = {}
+    for each in supports:
+        durations = np.full(len(nodes), FRAME_PULSE_S)
+        contact_support = "free" if each == "free" else "pinned"
+        durations[on_bed] = string_contact_time(the_racket, locations[on_bed], contact_support)
+        report(progress, f"building the {each} rig and simulating the hammer test")
+        model = rig_model(the_racket, "free" if each == "free" else "hand")
+        records = simulate_hammer_test(
+            model,
+            locations,
+            nodes,
+            reference_location,
+            nodes[reference],
+            n_averages=averages,
+            double_hit_probability=double_hits,
+            overload_probability=overloads,
+            pulse_duration_s=durations,
+            seed=seed,
+        )
+        tests = write_hammer_uff(records, out_dir / f"hammer_{each}.uff", binary=binary)
+        truth_locations = np.vstack([locations, [[0.0, 0.0], [the_racket.length_m, 0.0]]])
+        truth = model.modal_truth(
+            truth_locations, max_frequency_hz=0.5 / records.sampling_interval_s
+        )
+        truth_path = out_dir / f"modal_truth_{each}.json"
+        truth.write_json(truth_path)
+        faults = {
+            "double_hits": int(sum(sum(row) for row in records.metadata.get("double_hit", []))),
+            "overloads": int(sum(sum(row) for row in records.metadata.get("overload", []))),
+        }
+        result.written += [tests, truth_path]
+        result.records[each] = records
+        result.truth[each] = truth
+        result.faults[each] = faults
+        runs[each] = {
+            **faults,
+            "rig": records.metadata.get("rig"),
+            "anti_alias": records.metadata.get("anti_alias"),
+        }
     inputs = {
         **provenance,
         "racket": racket_to_dict(the_racket),
-        "support": support,
+        "supports": supports,
         "reference_node": nodes[reference],
         "reference_location_m": reference_location,
         "n_points": len(nodes),
         "averages": averages,
+        "double_hit_probability": double_hits,
+        "overload_probability": overloads,
         "seed": seed,
-        **faults,
-        "rig": records.metadata.get("rig"),
-        "anti_alias": records.metadata.get("anti_alias"),
+        "runs": runs,
     }
     return finish_run(result, inputs, command_record(command, "rig"), figures)

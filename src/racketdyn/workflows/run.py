@@ -9,16 +9,20 @@ included, which is why the record is written after the hook).
 from __future__ import annotations
 
 import csv
+import functools
 import hashlib
+import inspect
 import json
 import logging
 import math
+import os
 import platform
+import shutil
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, ParamSpec, TypeVar
 
 import numpy as np
 
@@ -31,6 +35,7 @@ __all__ = [
     "StepResult",
     "finish_run",
     "make_out_folder",
+    "run_step",
     "sha256",
     "write_rows",
     "write_run_json",
@@ -75,6 +80,13 @@ Progress = Callable[[str, int, int], None]
 stage of unknown length.  Steps also log every stage with :mod:`logging`."""
 
 
+LOCK_NAME = ".racketdyn.lock"
+"""A run folder being written holds this file (the writing process's id) until the run ends."""
+
+STAGING_PREFIX = ".racketdyn-staging-"
+"""A run writes into ``<out>/.racketdyn-staging-<pid>/`` and moves its files out when it ends."""
+
+
 def make_out_folder(out: Path) -> Path:
     """Create the run folder ``out`` (and its parents) or say in one line why it cannot be.
 
@@ -97,6 +109,132 @@ def make_out_folder(out: Path) -> Path:
     except OSError as error:
         raise InputError(f"--out {out}: cannot create the folder ({error.strerror})") from None
     return out
+
+
+def _process_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # somebody else's process: alive
+        return True
+    return True
+
+
+def _lock(folder: Path) -> Path:
+    """Take ``folder``'s lock, or say which run holds it; a dead run's lock is taken over."""
+    lock = folder / LOCK_NAME
+    for _ in range(2):
+        try:
+            descriptor = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+        except FileExistsError:
+            text = lock.read_text(encoding="utf-8", errors="replace").strip()
+            pid = int(text) if text.isdigit() else 0
+            if pid and _process_alive(pid):
+                raise InputError(
+                    f"--out {folder}: another racketdyn run (process {pid}) is writing into it; "
+                    f"wait for it to end, or give another --out (if no such run is going on, "
+                    f"delete {lock})"
+                ) from None
+            log.warning("%s: taking over the lock of an ended run (process %s)", folder, pid)
+            lock.unlink(missing_ok=True)
+            for stale in folder.glob(f"{STAGING_PREFIX}*"):
+                shutil.rmtree(stale, ignore_errors=True)
+            continue
+        with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
+            handle.write(str(os.getpid()))
+        return lock
+    raise InputError(f"--out {folder}: cannot take the folder's lock {lock}")
+
+
+def _previous_outputs(folder: Path) -> list[str]:
+    """The files an earlier run listed in ``folder/run.json`` (names inside ``folder``)."""
+    try:
+        record = json.loads((folder / RUN_JSON).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return []
+    outputs = record.get("outputs", []) if isinstance(record, dict) else []
+    names = [str(name).rstrip("/") for name in outputs if isinstance(name, str)]
+    # only plain names inside the folder: a damaged record must not reach outside it
+    return [name for name in names if name and Path(name).name == name and name != RUN_JSON]
+
+
+def _commit(staging: Path, folder: Path) -> None:
+    """Replace the previous run's files in ``folder`` by the staged ones."""
+    new = {entry.name for entry in staging.iterdir()}
+    for name in _previous_outputs(folder):
+        if name not in new:
+            old = folder / name
+            if old.is_dir() and not old.is_symlink():
+                shutil.rmtree(old)
+            else:
+                old.unlink(missing_ok=True)
+    for entry in sorted(staging.iterdir(), key=lambda e: e.name == RUN_JSON):
+        target = folder / entry.name
+        if target.is_dir() and not target.is_symlink():
+            shutil.rmtree(target)
+        os.replace(entry, target)  # run.json last: a folder's record follows its files
+    staging.rmdir()
+
+
+def _moved(path: Path, staging: Path, folder: Path) -> Path:
+    try:
+        return folder / Path(path).relative_to(staging)
+    except ValueError:
+        return Path(path)
+
+
+P = ParamSpec("P")
+S = TypeVar("S", bound=StepResult)
+
+
+def run_step(step: Callable[P, S]) -> Callable[P, S]:
+    """Run a step into a fresh copy of its folder, so the folder holds one whole run.
+
+    The step writes into ``<out>/.racketdyn-staging-<pid>/``; when it has finished (figures
+    and ``run.json`` included) the files the previous run's ``run.json`` listed are removed
+    and the new ones moved in, ``run.json`` last.  A step that fails leaves ``out`` as it was
+    (a folder it had to create is removed again).  While it runs, ``out/.racketdyn.lock``
+    holds the process id: a second run into the same folder is refused with one line; the
+    lock of a run that died is taken over.  Files of the user's in ``out`` are never touched.
+    Paths in the result (``out``, ``written``) name the final folder.  The step names its
+    folder ``out``.
+    """
+    signature = inspect.signature(step)
+
+    @functools.wraps(step)
+    def run(*args: P.args, **kwargs: P.kwargs) -> S:
+        bound = signature.bind(*args, **kwargs)
+        folder = Path(bound.arguments["out"])
+        created = not folder.exists()
+        make_out_folder(folder)
+        try:
+            lock = _lock(folder)
+        except InputError:
+            if created:
+                folder.rmdir()
+            raise
+        staging = folder / f"{STAGING_PREFIX}{os.getpid()}"
+        try:
+            shutil.rmtree(staging, ignore_errors=True)
+            staging.mkdir()
+            try:
+                bound.arguments["out"] = staging
+                result: S = step(*bound.args, **bound.kwargs)
+            except BaseException:
+                shutil.rmtree(staging, ignore_errors=True)
+                if created and not any(p.name != LOCK_NAME for p in folder.iterdir()):
+                    lock.unlink(missing_ok=True)
+                    folder.rmdir()
+                raise
+            _commit(staging, folder)
+        finally:
+            lock.unlink(missing_ok=True)
+        result.out = folder
+        result.written = [_moved(path, staging, folder) for path in result.written]
+        return result
+
+    return run
 
 
 def report(progress: Progress | None, what: str, done: int = 0, total: int = 0) -> None:

@@ -47,8 +47,8 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
-    make_out_folder,
     report,
+    run_step,
     write_rows,
 )
 
@@ -224,6 +224,7 @@ def _spot_rows(
     return rows
 
 
+@run_step
 def run_swing(
     out: str | os.PathLike[str],
     *,
@@ -337,7 +338,6 @@ def run_swing(
         options=options,
     )
     result.spot_rows = _spot_rows(result, speed_list[chosen], used.modal_model)
-    make_out_folder(out_dir)
     computed.write_csv(out_dir / "swing.csv")
     result.written += [
         out_dir / "swing.csv",

@@ -29,8 +29,8 @@ from racketdyn.workflows.run import (
     StepResult,
     command_record,
     finish_run,
-    make_out_folder,
     report,
+    run_step,
     write_rows,
 )
 
@@ -77,6 +77,7 @@ class TwistResult(StepResult):
     offsets: list[float] = field(default_factory=list)
 
 
+@run_step
 def run_twist(
     out: str | os.PathLike[str],
     *,
@@ -161,7 +162,6 @@ def run_twist(
             )
         )
     out_dir = Path(out)
-    make_out_folder(out_dir)
     rows = [
         {
             "support": c.support,

@@ -1,0 +1,98 @@
+"""A run folder holds one whole run (issue 13, "Output folders"): nothing stale, nothing mixed,
+nothing half-written; `workflows.run.run_step` is the one place that does it."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from racketdyn.cli import main
+from racketdyn.workflows.run import LOCK_NAME, STAGING_PREFIX
+
+QUICK = ["--grid", "3", "--speed", "20", "--no-figures"]
+
+
+def _files(folder: Path) -> dict[str, bytes]:
+    return {p.name: p.read_bytes() for p in sorted(folder.iterdir()) if p.is_file()}
+
+
+def test_a_second_run_leaves_only_its_own_files(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert main(["predict", *QUICK, "--model", "both", "--out", str(out)]) == 0
+    assert (out / "impact_transient.csv").exists()
+    (out / "my_notes.txt").write_text("mine", encoding="utf-8")
+    assert main(["predict", *QUICK, "--out", str(out)]) == 0
+    record = json.loads((out / "run.json").read_text(encoding="utf-8"))
+    names = {p.name for p in out.iterdir()}
+    # the first run's transient table and comparison are gone; the user's file stays
+    assert names == {*record["outputs"], "my_notes.txt"}
+    assert not (out / "impact_transient.csv").exists()
+    assert not (out / "comparison.csv").exists()
+
+
+def test_a_failing_run_leaves_the_folder_as_it_was(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    assert main(["predict", *QUICK, "--out", str(out)]) == 0
+    before = _files(out)
+    points = tmp_path / "points.csv"
+    points.write_text("x_m,y_m\n0.5,0.0\n0.1,0.0\n", encoding="utf-8")  # 0.1 m: off the face
+    assert main(["predict", "--no-figures", "--points", str(points), "--out", str(out)]) == 2
+    assert _files(out) == before
+    assert [p.name for p in out.iterdir() if p.name.startswith(".")] == []
+
+
+def test_a_failing_run_into_a_new_folder_leaves_no_folder(tmp_path: Path) -> None:
+    out = tmp_path / "new"
+    points = tmp_path / "points.csv"
+    points.write_text("x_m,y_m\n0.1,0.0\n", encoding="utf-8")
+    assert main(["predict", "--no-figures", "--points", str(points), "--out", str(out)]) == 2
+    assert not out.exists()
+
+
+def test_a_folder_being_written_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / LOCK_NAME).write_text(str(os.getpid()), encoding="utf-8")  # a live run holds it
+    assert main(["predict", *QUICK, "--out", str(out)]) == 2
+    (line,) = capsys.readouterr().err.splitlines()
+    assert "another racketdyn run" in line
+    assert str(out) in line
+    assert not (out / "impact.csv").exists()
+
+
+def test_the_lock_of_an_ended_run_is_taken_over(tmp_path: Path) -> None:
+    ended = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout.strip()
+    out = tmp_path / "out"
+    (out / f"{STAGING_PREFIX}{ended}").mkdir(parents=True)
+    (out / f"{STAGING_PREFIX}{ended}" / "impact.csv").write_text("half", encoding="utf-8")
+    (out / LOCK_NAME).write_text(ended, encoding="utf-8")
+    assert main(["predict", *QUICK, "--out", str(out)]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["impact.csv", "run.json"]
+
+
+def test_the_rig_tests_both_supports_into_one_folder(tmp_path: Path) -> None:
+    out = tmp_path / "rig"
+    argv = ["rig", "--support", "free,hand", "--averages", "1", "--out", str(out)]
+    assert main(argv) == 0
+    record = json.loads((out / "run.json").read_text(encoding="utf-8"))
+    assert record["supports"] == ["free", "hand"]
+    assert set(record["outputs"]) == {
+        "hammer_free.uff",
+        "modal_truth_free.json",
+        "hammer_hand.uff",
+        "modal_truth_hand.json",
+        "run.json",
+    }
+    assert {p.name for p in out.iterdir()} == set(record["outputs"])
