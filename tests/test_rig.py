@@ -14,6 +14,8 @@ Oracles and their sources:
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from numpy.typing import NDArray
@@ -335,3 +337,32 @@ def test_bad_input_is_refused(free: RigModel, racket: rd.Racket) -> None:
         simulate_hammer_test(free, points, [1, 2], (0.6, 0.0), 1, overload_level_n=50.0)
     with pytest.raises(InputError, match="too short"):
         simulate_hammer_test(free, points, [1, 2], (0.6, 0.0), 1, n_samples=60)
+
+
+@pytest.mark.parametrize("gap_m", [0.003, 0.005, 0.010, 0.030])
+def test_hammer_points_stay_on_a_racket_whose_head_nears_the_tip(
+    racket: rd.Racket, gap_m: float
+) -> None:
+    """Review of issues 11/13: a 685 mm racket whose string bed ends 5–10 mm inside the tip was
+    refused by `rig` and `demo` ("location 9 … is off the racket"): the hoop points sat at 1.06
+    half-lengths from the centre, beyond the tip.  They now sit on the frame, inside the racket,
+    and the rig builds on such a racket."""
+    head = racket.head
+    centre = racket.length_m - gap_m - head.half_length_m
+    near_tip = dataclasses.replace(racket, head=dataclasses.replace(head, centre_x_m=centre))
+    locations, nodes = hammer_points(near_tip)
+    assert locations[:, 0].max() <= near_tip.length_m + 1e-12
+    on_bed = near_tip.head.contains(locations)
+    assert on_bed.sum() == 44  # the string points; the frame points stay off the strings
+    assert len(nodes) == 68
+    model = rig_model(near_tip, "free")
+    assert model.modal_truth(locations).mode_shapes.shape[0] == 68
+
+
+def test_a_string_bed_that_reaches_the_tip_is_refused_by_the_rig(racket: rd.Racket) -> None:
+    head = racket.head
+    at_tip = dataclasses.replace(
+        racket, head=dataclasses.replace(head, centre_x_m=racket.length_m - head.half_length_m)
+    )
+    with pytest.raises(InputError, match=r"0\.0 mm from the tip"):
+        hammer_points(at_tip)

@@ -165,15 +165,20 @@ def anti_alias_filter(sampling_interval_s: float, oversampling: int) -> NDArray[
     return np.asarray(firwin(numtaps, fs / 2, window=("kaiser", beta), fs=fine))
 
 
+MIN_FRAME_M = 0.002
+"""The least frame beyond the string bed's tip the rig's hammer points need, m."""
+
+
 def hammer_points(
     racket: Racket, n_frame: int = 24, n_strings: int = 44
 ) -> tuple[NDArray[np.float64], tuple[int, ...]]:
     """A roving-hammer grid like the paper's Fig. 1: frame points, then string points.
 
     A third of the frame points (at least one) lie on the long axis between the grip and the
-    throat; the rest on the hoop 6 % outside the string bed's edge, evenly in angle from the
-    tip.  The string points lie on four elliptic rings (ρ = 0.2, 0.45, 0.68, 0.88) and the
-    centre.  Nodes are numbered from 1, frame first (the paper: 1–24 frame, 25–68 strings).
+    throat; the rest on the hoop 6 % outside the string bed's edge (where that would pass the
+    racket's tip, half way from the bed's tip to the racket's), evenly in angle from the tip.
+    The string points lie on four elliptic rings (ρ = 0.2, 0.45, 0.68, 0.88) and the centre.
+    Nodes are numbered from 1, frame first (the paper: 1–24 frame, 25–68 strings).
 
     Parameters
     ----------
@@ -200,9 +205,19 @@ def hammer_points(
     n_hoop = n_frame - n_axis
     axis_x = np.linspace(racket.grip_m + 0.02, head.throat_x_m - 0.02, n_axis)
     angle = 2 * np.pi * np.arange(n_hoop) / n_hoop
+    # the hoop 6 % outside the bed where that lies on the racket; a bed that ends closer to the
+    # tip than that has its frame points half-way between the bed's tip and the racket's
+    gap = racket.length_m - head.tip_x_m
+    if gap < MIN_FRAME_M:
+        raise InputError(
+            f"racket {racket.name!r}: the string bed ends {gap * 1e3:.1f} mm from the tip; the "
+            f"virtual rig strikes the frame around it and needs at least {MIN_FRAME_M * 1e3:g} mm "
+            "there (check [head] centre_x_m and half_length_m against [racket] length_m)"
+        )
+    reach_x = 0.06 * head.half_length_m if 0.06 * head.half_length_m <= gap else 0.5 * gap
     hoop = np.column_stack(
         [
-            head.centre_x_m + 1.06 * head.half_length_m * np.cos(angle),
+            head.centre_x_m + (head.half_length_m + reach_x) * np.cos(angle),
             head.centre_y_m + 1.06 * head.half_width_m * np.sin(angle),
         ]
     )
