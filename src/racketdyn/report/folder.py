@@ -308,19 +308,17 @@ class RunFolder:
         return float(np.nanmean(impacts["x_m"])), float(np.nanmean(impacts["y_m"]))
 
     def first_mode_nodes(self) -> dict[str, list[float]]:
-        """First-mode nodes along the axis (m) from ``comparison.csv``, by support."""
+        """First-mode nodes along the axis (m from the butt), by support: the
+        ``first_mode_nodes_m`` of ``racketdyn compare``'s run.json."""
         compare = self.mode_comparison_dir
-        if compare is None:
+        found = self.record(compare).get("first_mode_nodes_m")
+        if not isinstance(found, dict):
             return {}
-        _, comments = read_csv(compare / "comparison.csv")
-        nodes = {}
-        for comment in comments:
-            match = re.search(r"axis, (\w+) \(m\): \[(.*)\]", comment)
-            if match:
-                nodes[match.group(1)] = [
-                    to_float(v) for v in match.group(2).split(",") if v.strip()
-                ]
-        return nodes
+        return {
+            str(support): [float(v) for v in values if isinstance(v, int | float)]
+            for support, values in found.items()
+            if isinstance(values, list)
+        }
 
     # -- figures -------------------------------------------------------------------------------
     def figure(self, path: Path, label: str = "", wide: bool = False) -> Figure | None:
