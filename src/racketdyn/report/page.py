@@ -90,7 +90,8 @@ def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
     Raises
     ------
     InputError
-        ``run_dir`` is not a folder, or holds nothing a racketdyn command wrote.
+        ``run_dir`` is not a folder, holds nothing a racketdyn command wrote, or holds a
+        damaged file (named, with the command that wrote it); nothing is written then.
     """
     run_dir = Path(run_dir)
     if not run_dir.is_dir():
