@@ -283,6 +283,13 @@ def test_the_mode_table_still_reads_the_identification(page: str) -> None:
     assert "Nodes of the first mode along the long axis" in section
 
 
+def test_the_whole_page_has_no_json_escapes_nor_internal_names(page: str) -> None:
+    """Run data with Unicode (…, Ω, Xⁿ, m/(N·s²)) as it is, in the tables and the plots' data."""
+    assert not re.search(r"\\u[0-9a-fA-F]{4}", page)
+    assert "write_report" not in page
+    assert "Xⁿ" in page  # the transient integrator's order, from predict/run.json
+
+
 def test_first_mode_nodes_come_from_compare_run_json(run_dir: Path, page: str) -> None:
     """comparison.csv is pure data (issue 13); the nodes the page shows are run.json's."""
     nodes = json.loads((run_dir / "compare" / "run.json").read_text())["first_mode_nodes_m"]

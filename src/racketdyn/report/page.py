@@ -41,7 +41,12 @@ def environment() -> Environment:
         keep_trailing_newline=True,
     )
     # compact JSON for the plots' data; NaN is never written (the sections give None)
-    env.policies["json.dumps_kwargs"] = {"separators": (",", ":"), "allow_nan": False}
+    # (Unicode as it is: the page is UTF-8; tojson still escapes <, >, & and ')
+    env.policies["json.dumps_kwargs"] = {
+        "separators": (",", ":"),
+        "allow_nan": False,
+        "ensure_ascii": False,
+    }
     return env
 
 
