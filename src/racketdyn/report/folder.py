@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import csv
 import fnmatch
+import io
 import json
 import logging
 import math
@@ -165,7 +166,8 @@ class Row(dict[str, str]):
 def read_csv(path: Path, required: Sequence[str] = ()) -> list[Row]:
     """The rows of a CSV the pipeline wrote, each as a :class:`Row`.
 
-    Blank lines and lines starting with ``#`` (written by racketdyn before 0.2) are skipped.
+    Blank lines and lines starting with ``#`` are skipped (``comparison.csv`` of earlier
+    versions ended with two).
 
     Parameters
     ----------
@@ -188,29 +190,30 @@ def read_csv(path: Path, required: Sequence[str] = ()) -> list[Row]:
         raise damaged(path, f"cannot be read ({error.strerror or error})") from None
     if "\0" in text:
         raise damaged(path, "not text: binary data (NUL bytes)")
-    lines = [
-        (number, line)
-        for number, line in enumerate(text.splitlines(), start=1)
-        if line.strip() and not line.startswith("#")
-    ]
-    if not lines:
-        raise damaged(path, "empty: no header and no rows")
+    records: list[tuple[int, list[str]]] = []
+    reader = csv.reader(io.StringIO(text, newline=""))
     try:
-        header, *cells = csv.reader(line for _, line in lines)
+        for cells in reader:
+            if cells and "".join(cells).strip() and not cells[0].startswith("#"):
+                records.append((reader.line_num, cells))
     except csv.Error as error:
-        raise damaged(path, f"not a CSV ({error})") from None
+        raise damaged(path, f"not a CSV (line {reader.line_num}: {error})") from None
+    if not records:
+        raise damaged(path, "empty: no header and no rows")
+    (first, header), body = records[0], records[1:]
     missing = [name for name in required if name not in header]
     if missing:
-        raise damaged(path, f"no column {', '.join(missing)} in its header (line {lines[0][0]})")
+        raise damaged(path, f"no column {', '.join(missing)} in its header (line {first})")
     rows = []
-    for (number, _), row in zip(lines[1:], cells, strict=True):
-        if len(row) != len(header):
+    for line, cells in body:
+        if len(cells) != len(header):
             raise damaged(
                 path,
-                f"line {number} has {len(row)} fields where the header has {len(header)} "
+                f"line {line} has {len(cells)} field{'' if len(cells) == 1 else 's'} where the "
+                f"header has {len(header)} "
                 "(the file is cut short or damaged)",
             )
-        rows.append(Row(zip(header, row, strict=True), path, number))
+        rows.append(Row(zip(header, cells, strict=True), path, line))
     return rows
 
 
