@@ -28,7 +28,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     if isinstance(engine, dict) or isinstance(integrator, dict):
         used = engine.get("used", "–") if isinstance(engine, dict) else "–"
         steps = (
-            ", ".join(f"{k} {v}" for k, v in integrator.items())
+            ", ".join(f"{str(k).replace('_', ' ')} {v}" for k, v in integrator.items())
             if isinstance(integrator, dict)
             else "–"
         )
