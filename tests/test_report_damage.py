@@ -73,6 +73,15 @@ def _racket_as_text(path: Path) -> None:
     path.write_text(json.dumps(record), encoding="utf-8")
 
 
+def _binary_frfs(path: Path) -> None:
+    """An FRF folder (quality.csv as `racketdyn frf` writes it) whose frfs.uff is garbage."""
+    path.parent.mkdir()
+    (path.parent / "quality.csv").write_text(
+        "node,average,accepted,reasons,peak_force_n\n1,1,1,,38.1\n", encoding="utf-8"
+    )
+    path.write_bytes(BINARY)
+
+
 DAMAGE: dict[str, tuple[str, Callable[[Path], None]]] = {
     "impact.csv cut mid-row": ("predict/impact.csv", _cut_mid_row),
     "impact.csv rows missing": ("predict/impact.csv", _drop_rows),
@@ -87,6 +96,8 @@ DAMAGE: dict[str, tuple[str, Callable[[Path], None]]] = {
         _text_in("contact_time_mean_s"),
     ),
     "contact CSV cut mid-row": ("contact/contact_free.csv", _cut_mid_row),
+    "comparison.csv binary": ("predict/comparison.csv", lambda p: p.write_bytes(BINARY)),
+    "frfs.uff binary": ("frf_free/frfs.uff", _binary_frfs),
     "run.json cut short": ("predict/run.json", _cut_json),
     "run.json binary": ("predict/run.json", lambda p: p.write_bytes(BINARY)),
     "run.json not an object": ("predict/run.json", lambda p: p.write_text("[1, 2]\n")),
