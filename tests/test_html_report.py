@@ -282,6 +282,26 @@ def test_the_mode_table_still_reads_the_identification(page: str) -> None:
     assert "Nodes of the first mode along the long axis" in section
 
 
+def test_the_whole_page_has_no_json_escapes_nor_internal_names(page: str) -> None:
+    """Run data with Unicode (…, Ω, Xⁿ, m/(N·s²)) as it is, in the tables and the plots' data."""
+    assert not re.search(r"\\u[0-9a-fA-F]{4}", page)
+    assert "write_report" not in page
+    assert "Xⁿ" in page  # the transient integrator's order, from predict/run.json
+    assert "steps per contact 400" in _section(page, "transient")  # words, not run.json keys
+
+
+def test_first_mode_nodes_come_from_compare_run_json(run_dir: Path, page: str) -> None:
+    """comparison.csv is pure data (issue 13); the nodes the page shows are run.json's."""
+    nodes = json.loads((run_dir / "compare" / "run.json").read_text())["first_mode_nodes_m"]
+    modes, rebound = _section(page, "modes"), _section(page, "rebound")
+    for support in ("free", "hand"):
+        shown = ", ".join(f"{v * 1e3:.0f}" for v in nodes[support])
+        assert f"{support} {shown} mm" in modes
+        assert f"first-mode nodes on the axis, {support}: x = {nodes[support][0] * 1e3:.0f}" in (
+            rebound
+        )
+
+
 def test_no_transient_section_without_a_comparison(run_dir: Path, tmp_path: Path) -> None:
     shutil.copytree(run_dir / "predict", tmp_path / "predict")
     (tmp_path / "predict" / "comparison.csv").unlink()

@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import racketdyn as rd
@@ -135,6 +136,19 @@ def test_identify_and_compare_commands(tmp_path: Path, racket: rd.Racket) -> Non
     assert table[1].startswith("2-node bending")
     shift = float(table[1].split(",")[3])
     assert -10 < shift < 0  # slightly lower when held
+    # pure data: pandas reads one row per mode pair, the nodes are in run.json (issue 13)
+    record = json.loads((compared / "run.json").read_text())
+    pairs = pd.read_csv(compared / "comparison.csv")
+    assert len(pairs) == len(table) - 1 <= len(record["modes_free"])
+    assert pairs["mode"].iloc[0] == "2-node bending"
+    assert pairs["frequency_free_hz"].dtype == float
+    assert pairs["mac"].notna().all()
+    assert not any(line.startswith("#") for line in table)
+    nodes = record["first_mode_nodes_m"]
+    assert set(nodes) == {"free", "hand"}
+    for support in ("free", "hand"):  # a 2-node bending mode: one node near the throat,
+        assert len(nodes[support]) == 2  # one near the face centre (m from the butt)
+        assert 0.05 < nodes[support][0] < 0.25 < 0.4 < nodes[support][1] < 0.6
     assert (compared / "fig15_identified.png").stat().st_size > 10_000
     # every file listed once in run.json (the table is the workflow's, the figures the hook's)
     outputs = json.loads((compared / "run.json").read_text())["outputs"]

@@ -44,7 +44,7 @@ def test_the_racket_section_renders_from_a_small_dict() -> None:
         "racket",
         {
             "name": "test racket",
-            "source": "given to write_report",
+            "source": "the racket given with --racket",
             "derived": [("mass", "340", "g"), ("balance point, from the butt", "320", "mm")],
             "inputs": [("length", "685", "mm")],
             "modes": [("2-node bending", "bending", "120.0", "0.40")],
@@ -52,7 +52,7 @@ def test_the_racket_section_renders_from_a_small_dict() -> None:
             "model_support": "free",
         },
     )
-    assert "<p><b>test racket</b> — given to write_report.</p>" in html
+    assert "<p><b>test racket</b> — the racket given with --racket.</p>" in html
     assert (
         '<tr><td>mass</td><td class="num">340</td><td class="num">g</td></tr>' in html
     )  # tables are compact: one row per line, no blanks inside

@@ -242,6 +242,16 @@ def test_csv_round_trip_is_exact(tmp_path: Path) -> None:
         np.testing.assert_array_equal(got, want)
 
 
+def test_geometry_csv_is_pure_data(tmp_path: Path) -> None:
+    """No comment line before the header: pandas reads the node table as it is (issue 13)."""
+    import pandas as pd
+
+    _, geometry = write_hammer_csv(_records(), tmp_path / "h.csv", tmp_path / "g.csv")
+    table = pd.read_csv(geometry)
+    assert list(table.columns) == ["node", "x_m", "y_m"]
+    assert table["node"].tolist() == sorted({REFERENCE, *NODES})
+
+
 @pytest.mark.parametrize(
     ("frf_type", "code"), [("receptance", 8), ("mobility", 11), ("accelerance", 12)]
 )

@@ -1298,7 +1298,7 @@ def write_hammer_csv(
             )
             np.savetxt(buffer, table, fmt=["%d", "%d", "%.17g", "%.17g", "%.17g"], delimiter=",")
     geometry = io.StringIO()
-    geometry.write(f"# racketdyn {__version__} node coordinates, m\n{','.join(GEOMETRY_COLUMNS)}\n")
+    geometry.write(f"{','.join(GEOMETRY_COLUMNS)}\n")  # pure data: pandas reads it as it is
     written = {
         records.reference_node: (
             float(records.reference_location[0]),

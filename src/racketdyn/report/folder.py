@@ -8,10 +8,14 @@ head outline, …).  It is the only input of a section's ``gather`` function.
 from __future__ import annotations
 
 import csv
+import fnmatch
+import io
 import json
 import logging
 import math
 import re
+import shlex
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -23,7 +27,17 @@ from racketdyn.errors import InputError
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.report.figures import Figure, FigureGroup, Layout, embed_png
 
-__all__ = ["REPORT_NAME", "Impacts", "RunFolder", "read_csv", "rows_of", "to_float"]
+__all__ = [
+    "REPORT_NAME",
+    "Impacts",
+    "Row",
+    "RunFolder",
+    "damaged",
+    "number",
+    "read_csv",
+    "read_json",
+    "to_float",
+]
 
 log = logging.getLogger(__name__)
 
@@ -31,40 +45,219 @@ REPORT_NAME = "report.html"
 """File name of the report inside the run folder."""
 
 
-def read_json(path: Path) -> dict[str, Any] | None:
-    """A JSON object from ``path``, or None (logged) if it is not one."""
+REPAIR = "re-run the step that wrote it"
+"""The fix a damaged file's message ends with (followed by the command, when known)."""
+
+RECORD_TYPES: dict[str, type] = {
+    "racketdyn_version": str,
+    "created_utc": str,
+    "command": list,
+    "outputs": list,
+    "defaults_used": list,
+    "labels": list,
+    "racket": dict,
+    "ball": dict,
+}
+"""Keys of a run.json the report relies on, and the JSON type each must have (an object is a
+dict, an array a list)."""
+
+
+_JSON_WORDS: dict[type, str] = {
+    dict: "an object",
+    list: "an array",
+    str: "a string",
+    int: "a number",
+    float: "a number",
+    bool: "true or false",
+    type(None): "null",
+}
+
+
+def damaged(path: Path, problem: str) -> InputError:
+    """The error for a file of the run folder the report cannot read: the file, what is wrong
+    with it, and the fix — the command that wrote it, from its folder's run.json if readable.
+
+    Parameters
+    ----------
+    path : Path
+        The damaged file.
+    problem : str
+        What is wrong with it (no trailing full stop).
+    """
+    return InputError(f"{path}: {problem}; {REPAIR}{_written_by(path)}")
+
+
+WRITTEN_BY = {
+    "impact.csv": "racketdyn predict",
+    "comparison.csv": "racketdyn compare, or racketdyn predict --model both",
+    "contact_*.csv": "racketdyn contact",
+    "quality.csv": "racketdyn frf",
+    "modes*.csv": "racketdyn identify or compare",
+    "fit_quality*.csv": "racketdyn identify or compare",
+    "sweet_spots.csv": "racketdyn swing",
+    "twist.csv": "racketdyn twist",
+    "oblique.csv": "racketdyn oblique",
+}
+"""The command that writes each file the report reads, for a folder without a readable
+run.json."""
+
+
+def _written_by(path: Path) -> str:
+    """`` (racketdyn …)``: the command in the run.json beside ``path``, else the command that
+    writes such a file; empty for run.json itself."""
+    if path.name == "run.json":
+        return ""
+    try:
+        record = json.loads((path.parent / "run.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        record = None
+    command = record.get("command") if isinstance(record, dict) else None
+    if isinstance(command, list) and command and all(isinstance(c, str) for c in command):
+        return f" ({shlex.join(command)})"
+    step = next((v for k, v in WRITTEN_BY.items() if fnmatch.fnmatchcase(path.name, k)), "")
+    return f" ({step})" if step else ""
+
+
+def read_json(path: Path) -> dict[str, Any]:
+    """The JSON object of a run.json, its keys of :data:`RECORD_TYPES` checked.
+
+    Raises
+    ------
+    InputError
+        The file cannot be read, is not JSON, not an object, or a key has the wrong type.
+    """
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
+    except UnicodeDecodeError as error:
+        raise damaged(path, f"not text (byte {error.start} is not UTF-8)") from None
+    except json.JSONDecodeError as error:
+        raise damaged(
+            path, f"not valid JSON (line {error.lineno}, column {error.colno}: {error.msg})"
+        ) from None
     except (OSError, ValueError) as error:
-        log.warning("%s: not read (%s)", path, error)
-        return None
-    return data if isinstance(data, dict) else None
+        raise damaged(path, f"not read ({error})") from None
+    if not isinstance(data, dict):
+        found = _JSON_WORDS.get(type(data), "?")
+        raise damaged(path, f"{found} where a run.json holds an object of settings")
+    for key, kind in RECORD_TYPES.items():
+        if key in data and not isinstance(data[key], kind):
+            found, wanted = _JSON_WORDS.get(type(data[key]), "?"), _JSON_WORDS[kind]
+            raise damaged(path, f"'{key}' is {found} where {wanted} belongs")
+    return data
 
 
-def read_csv(path: Path) -> tuple[list[dict[str, str]], list[str]]:
-    """Rows of a CSV as dicts, and its comment lines (starting with ``#``) without the ``#``."""
-    lines = path.read_text(encoding="utf-8").splitlines()
-    comments = [line[1:].strip() for line in lines if line.startswith("#")]
-    rows = list(csv.DictReader(line for line in lines if line and not line.startswith("#")))
-    return rows, comments
+class Row(dict[str, str]):
+    """One row of a CSV of the run folder, by column; it knows its file and line.
+
+    Attributes
+    ----------
+    path : Path
+        The CSV file.
+    line : int
+        The row's line in the file, from 1.
+    """
+
+    def __init__(self, cells: Iterable[tuple[str, str]], path: Path, line: int) -> None:
+        super().__init__(cells)
+        self.path = path
+        self.line = line
 
 
-def rows_of(path: Path) -> list[dict[str, str]]:
-    """Rows of a CSV, or none (logged) if it cannot be read."""
+def read_csv(path: Path, required: Sequence[str] = ()) -> list[Row]:
+    """The rows of a CSV the pipeline wrote, each as a :class:`Row`.
+
+    Blank lines and lines starting with ``#`` are skipped (``comparison.csv`` of earlier
+    versions ended with two).
+
+    Parameters
+    ----------
+    path : Path
+        The CSV file.
+    required : sequence of str
+        Columns its header must have.
+
+    Raises
+    ------
+    InputError
+        The file cannot be read, is not text, has no header or lacks a required column, or a
+        row has more or fewer fields than the header (a file cut short).
+    """
     try:
-        rows, _ = read_csv(path)
-    except (OSError, UnicodeDecodeError, csv.Error) as error:
-        log.warning("%s: not read (%s)", path, error)
-        return []
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as error:
+        raise damaged(path, f"not text: binary data (byte {error.start} is not UTF-8)") from None
+    except OSError as error:
+        raise damaged(path, f"cannot be read ({error.strerror or error})") from None
+    if "\0" in text:
+        raise damaged(path, "not text: binary data (NUL bytes)")
+    records: list[tuple[int, list[str]]] = []
+    reader = csv.reader(io.StringIO(text, newline=""))
+    try:
+        for cells in reader:
+            if cells and "".join(cells).strip() and not cells[0].startswith("#"):
+                records.append((reader.line_num, cells))
+    except csv.Error as error:
+        raise damaged(path, f"not a CSV (line {reader.line_num}: {error})") from None
+    if not records:
+        raise damaged(path, "empty: no header and no rows")
+    (first, header), body = records[0], records[1:]
+    missing = [name for name in required if name not in header]
+    if missing:
+        raise damaged(path, f"no column {', '.join(missing)} in its header (line {first})")
+    rows = []
+    for line, cells in body:
+        if len(cells) != len(header):
+            raise damaged(
+                path,
+                f"line {line} has {len(cells)} field{'' if len(cells) == 1 else 's'} where the "
+                f"header has {len(header)} "
+                "(the file is cut short or damaged)",
+            )
+        rows.append(Row(zip(header, cells, strict=True), path, line))
     return rows
 
 
+def number(row: Mapping[str, str | None], column: str) -> float:
+    """A CSV cell as a number; NaN when the column is missing or the cell empty.
+
+    Raises
+    ------
+    InputError
+        The cell of a :class:`Row` holds text that is not a number (NaN and inf are numbers).
+    """
+    text = row.get(column)
+    if text is None or text == "":
+        return math.nan
+    try:
+        return float(text)
+    except ValueError:
+        if isinstance(row, Row):
+            raise damaged(
+                row.path, f"line {row.line}, column {column}: {text!r} is not a number"
+            ) from None
+        return math.nan
+
+
 def to_float(text: str | None) -> float:
-    """A CSV cell as a number; NaN when empty or not a number."""
+    """A value of run.json given as text, as a number; NaN when empty or not a number."""
     try:
         return float(text) if text not in (None, "") else math.nan
     except ValueError:
         return math.nan
+
+
+IMPACT_COLUMNS = ("x_m", "y_m", "support", "ball_speed_mps", "rebound_ratio")
+"""Columns of ``impact.csv`` the report cannot do without."""
+IMPACT_TEXT_COLUMNS = ("point", "support", "status")
+"""Columns of ``impact.csv`` that hold text; every other one holds numbers."""
+
+
+def _grid_size(record: Mapping[str, Any]) -> int | None:
+    """Rows of predict's ``impact.csv`` by its run.json: points × speeds × supports."""
+    points, speeds, supports = (record.get(k) for k in ("n_points", "speeds_mps", "supports"))
+    if isinstance(points, int) and isinstance(speeds, list) and isinstance(supports, list):
+        return points * len(speeds) * len(supports)
+    return None
 
 
 @dataclass(frozen=True)
@@ -76,24 +269,36 @@ class Impacts:
     status: NDArray[np.str_]
 
     @classmethod
-    def read(cls, path: Path) -> Impacts | None:
-        """The table of ``path``, or None if it lacks the columns the report needs."""
-        with path.open(encoding="utf-8", newline="") as handle:
-            rows = list(csv.reader(handle))
-        if len(rows) < 2:
-            return None
-        header, table = rows[0], np.array(rows[1:], dtype=str)
+    def read(cls, path: Path, record: Mapping[str, Any] | None = None) -> Impacts:
+        """The table of ``path``, checked against the run.json of its folder (``record``).
+
+        Raises
+        ------
+        InputError
+            The file is damaged: not a CSV, a column the report needs missing, a row cut
+            short, text in a number column, or fewer or more rows than the points × speeds ×
+            supports its run.json lists.
+        """
+        rows = read_csv(path, IMPACT_COLUMNS)
+        if not rows:
+            raise damaged(path, "no rows under its header")
+        header = list(rows[0])
+        table = np.array([list(row.values()) for row in rows], dtype=str)
         numbers = {}
         for i, name in enumerate(header):
-            if name in ("point", "support", "status"):
+            if name in IMPACT_TEXT_COLUMNS:
                 continue
-            column = np.where(table[:, i] == "", "nan", table[:, i])
             try:
-                numbers[name] = column.astype(float)
+                numbers[name] = np.where(table[:, i] == "", "nan", table[:, i]).astype(float)
             except ValueError:
-                continue
-        if not {"x_m", "y_m", "ball_speed_mps", "rebound_ratio"} <= set(numbers):
-            return None
+                numbers[name] = np.array([number(row, name) for row in rows])  # names the cell
+        expected = _grid_size(record or {})
+        if expected is not None and expected != len(rows):
+            raise damaged(
+                path,
+                f"{len(rows)} rows where its run.json lists {expected} (points × speeds × "
+                "supports): the file is cut short or damaged",
+            )
         return cls(
             numbers,
             table[:, header.index("support")] if "support" in header else np.full(len(table), ""),
@@ -139,9 +344,7 @@ def _scan(run_dir: Path) -> tuple[list[Path], dict[Path, dict[str, Any]]]:
     records = {}
     for folder in dirs:
         if (folder / "run.json").is_file():
-            record = read_json(folder / "run.json")
-            if record is not None:
-                records[folder] = record
+            records[folder] = read_json(folder / "run.json")
     return dirs, records
 
 
@@ -295,7 +498,9 @@ class RunFolder:
         if "impacts" not in self._cache:
             folder = self.predict_dir
             path = folder / "impact.csv" if folder else None
-            found = Impacts.read(path) if path is not None and path.is_file() else None
+            found = None
+            if folder is not None and path is not None and path.is_file():
+                found = Impacts.read(path, self.record(folder))
             self._cache["impacts"] = found
         impacts: Impacts | None = self._cache["impacts"]
         return impacts
@@ -308,19 +513,17 @@ class RunFolder:
         return float(np.nanmean(impacts["x_m"])), float(np.nanmean(impacts["y_m"]))
 
     def first_mode_nodes(self) -> dict[str, list[float]]:
-        """First-mode nodes along the axis (m) from ``comparison.csv``, by support."""
+        """First-mode nodes along the axis (m from the butt), by support: the
+        ``first_mode_nodes_m`` of ``racketdyn compare``'s run.json."""
         compare = self.mode_comparison_dir
-        if compare is None:
+        found = self.record(compare).get("first_mode_nodes_m")
+        if not isinstance(found, dict):
             return {}
-        _, comments = read_csv(compare / "comparison.csv")
-        nodes = {}
-        for comment in comments:
-            match = re.search(r"axis, (\w+) \(m\): \[(.*)\]", comment)
-            if match:
-                nodes[match.group(1)] = [
-                    to_float(v) for v in match.group(2).split(",") if v.strip()
-                ]
-        return nodes
+        return {
+            str(support): [float(v) for v in values if isinstance(v, int | float)]
+            for support, values in found.items()
+            if isinstance(values, list)
+        }
 
     # -- figures -------------------------------------------------------------------------------
     def figure(self, path: Path, label: str = "", wide: bool = False) -> Figure | None:
@@ -358,6 +561,8 @@ def is_model_comparison(path: Path) -> bool:
     try:
         with path.open(encoding="utf-8") as handle:
             header = handle.readline()
-    except OSError:
-        return False
-    return "transient_rebound_ratio" in header.split(",") or "transient_rebound_ratio\n" in header
+    except UnicodeDecodeError as error:
+        raise damaged(path, f"not text: binary data (byte {error.start} is not UTF-8)") from None
+    except OSError as error:
+        raise damaged(path, f"cannot be read ({error.strerror or error})") from None
+    return "transient_rebound_ratio" in header.rstrip("\r\n").split(",")

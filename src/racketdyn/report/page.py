@@ -41,7 +41,12 @@ def environment() -> Environment:
         keep_trailing_newline=True,
     )
     # compact JSON for the plots' data; NaN is never written (the sections give None)
-    env.policies["json.dumps_kwargs"] = {"separators": (",", ":"), "allow_nan": False}
+    # (Unicode as it is: the page is UTF-8; tojson still escapes <, >, & and ')
+    env.policies["json.dumps_kwargs"] = {
+        "separators": (",", ":"),
+        "allow_nan": False,
+        "ensure_ascii": False,
+    }
     return env
 
 
@@ -90,7 +95,8 @@ def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
     Raises
     ------
     InputError
-        ``run_dir`` is not a folder, or holds nothing a racketdyn command wrote.
+        ``run_dir`` is not a folder, holds nothing a racketdyn command wrote, or holds a
+        damaged file (named, with the command that wrote it); nothing is written then.
     """
     run_dir = Path(run_dir)
     if not run_dir.is_dir():

@@ -2,7 +2,8 @@
 
 ``identify`` writes ``modes.csv``, ``modal_model.json`` (what ``predict --modal`` takes),
 ``modes.uff`` (UFF 55), ``fit_quality.csv`` and ``run.json``.  ``compare`` writes the same per
-support (suffixes ``_free``, ``_hand``), ``comparison.csv`` (modes paired by MAC) and ``run.json``.
+support (suffixes ``_free``, ``_hand``), ``comparison.csv`` (modes paired by MAC) and ``run.json``
+(with the first mode's nodes along the axis, ``first_mode_nodes_m``).
 Figures come from the caller's hook.
 """
 
@@ -257,8 +258,8 @@ def compare_modes(free: Identification, hand: Identification, racket: Racket) ->
 
 
 def write_mode_comparison(comparison: ModeComparison, out: Path) -> Path:
-    """``comparison.csv``: the pairs of :func:`compare_modes`, with the first mode's nodes along
-    the axis as comment lines."""
+    """``comparison.csv``: the pairs of :func:`compare_modes`, one row per pair and nothing
+    else (the first mode's nodes go into run.json as ``first_mode_nodes_m``)."""
     table = out / "comparison.csv"
     rows = comparison.rows
     with table.open("w", newline="", encoding="utf-8") as handle:
@@ -268,11 +269,16 @@ def write_mode_comparison(comparison: ModeComparison, out: Path) -> Path:
             writer.writerow(
                 {k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()}
             )
-        for support, nodes in (("free", comparison.nodes_free), ("hand", comparison.nodes_hand)):
-            handle.write(
-                f"# first-mode nodes along the axis, {support} (m): {np.round(nodes, 4).tolist()}\n"
-            )
     return table
+
+
+def _first_mode_nodes(comparison: ModeComparison) -> dict[str, list[float]]:
+    """The first mode's nodes along the long axis by support, m from the butt to 0.1 mm: the
+    ``first_mode_nodes_m`` of compare's run.json."""
+    return {
+        "free": [round(float(v), 4) for v in comparison.nodes_free],
+        "hand": [round(float(v), 4) for v in comparison.nodes_hand],
+    }
 
 
 @dataclass
@@ -362,5 +368,6 @@ def run_compare(
         "max_order": max_order,
         "modes_free": found_free.model.summary()["modes"],
         "modes_hand": found_hand.model.summary()["modes"],
+        "first_mode_nodes_m": _first_mode_nodes(comparison),
     }
     return finish_run(result, inputs, command_record(command, "compare"), figures)

@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from racketdyn.report.figures import interactive
-from racketdyn.report.folder import RunFolder, read_csv, to_float
+from racketdyn.report.folder import RunFolder, number, read_csv
 from racketdyn.report.plots import map_spec
 
 HOW_TO_RUN = (
@@ -28,14 +28,14 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     tables = []
     for path in sorted(folder.glob("contact_*.csv")):
         label = path.stem.removeprefix("contact_")
-        rows, _ = read_csv(path)
+        rows = read_csv(path, ("x_m", "y_m", "contact_time_mean_s"))
         if not rows:
             continue
-        xy = np.array([[to_float(r.get("x_m")), to_float(r.get("y_m"))] for r in rows])
-        mean = np.array([to_float(r.get("contact_time_mean_s")) for r in rows])
-        spread = np.array([to_float(r.get("contact_time_std_s")) for r in rows])
-        n = np.array([to_float(r.get("n_averages")) for r in rows])
-        node = np.array([to_float(r.get("node")) for r in rows])
+        xy = np.array([[number(r, "x_m"), number(r, "y_m")] for r in rows])
+        mean = np.array([number(r, "contact_time_mean_s") for r in rows])
+        spread = np.array([number(r, "contact_time_std_s") for r in rows])
+        n = np.array([number(r, "n_averages") for r in rows])
+        node = np.array([number(r, "node") for r in rows])
         tables.append((label, xy, mean, spread, n, node))
     if labels and len(labels) == len(tables):
         order = {name: i for i, name in enumerate(labels)}

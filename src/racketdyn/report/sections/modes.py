@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from racketdyn.report.folder import RunFolder, read_csv, to_float
+from racketdyn.report.folder import RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = "racketdyn compare DIR/frf_free/frfs.uff DIR/frf_hand/frfs.uff --out DIR/compare"
@@ -38,17 +38,19 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     glance = []
     comparison = None
     if compare is not None:
-        rows, _ = read_csv(compare / "comparison.csv")
+        rows = read_csv(
+            compare / "comparison.csv", ("mode", "frequency_free_hz", "frequency_hand_hz")
+        )
         pairs = [
             (
                 r.get("mode", ""),
-                fmt(to_float(r.get("frequency_free_hz")), ".2f"),
-                fmt(to_float(r.get("frequency_hand_hz")), ".2f"),
-                fmt(to_float(r.get("frequency_shift_percent")), "+.2f"),
-                fmt(100 * to_float(r.get("damping_free")), ".3f"),
-                fmt(100 * to_float(r.get("damping_hand")), ".3f"),
-                fmt(to_float(r.get("damping_ratio_hand_over_free")), ".2f"),
-                fmt(to_float(r.get("mac")), ".3f"),
+                fmt(number(r, "frequency_free_hz"), ".2f"),
+                fmt(number(r, "frequency_hand_hz"), ".2f"),
+                fmt(number(r, "frequency_shift_percent"), "+.2f"),
+                fmt(100 * number(r, "damping_free"), ".3f"),
+                fmt(100 * number(r, "damping_hand"), ".3f"),
+                fmt(number(r, "damping_ratio_hand_over_free"), ".2f"),
+                fmt(number(r, "mac"), ".3f"),
             )
             for r in rows
         ]
@@ -60,10 +62,10 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             first = rows[0]
             glance.append(
                 f"{first.get('mode', 'first mode')}: "
-                f"{fmt(to_float(first.get('frequency_free_hz')), '.1f')} Hz "
-                f"free, {fmt(to_float(first.get('frequency_hand_hz')), '.1f')} Hz hand-held "
-                f"({fmt(to_float(first.get('frequency_shift_percent')), '+.1f')} %), damping "
-                f"×{fmt(to_float(first.get('damping_ratio_hand_over_free')), '.1f')} in the hand"
+                f"{fmt(number(first, 'frequency_free_hz'), '.1f')} Hz "
+                f"free, {fmt(number(first, 'frequency_hand_hz'), '.1f')} Hz hand-held "
+                f"({fmt(number(first, 'frequency_shift_percent'), '+.1f')} %), damping "
+                f"×{fmt(number(first, 'damping_ratio_hand_over_free'), '.1f')} in the hand"
             )
         comparison = run.group([(compare / "comparison.png", "")])
     if not (shapes or node_lines or nodes or compare):

@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from racketdyn.report.folder import RunFolder, rows_of, to_float
+from racketdyn.report.folder import RunFolder, number, read_csv, to_float
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = (
@@ -37,14 +37,14 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
 
 
 def _twist(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
-    rows = rows_of(folder / "twist.csv")
+    rows = read_csv(folder / "twist.csv", ("support", "y_m", "roll_angle_rad"))
     body = []
     for support in dict.fromkeys(r.get("support", "") for r in rows):
         mine = [r for r in rows if r.get("support", "") == support]
-        y = np.array([to_float(r.get("y_m")) for r in mine])
-        roll = np.array([to_float(r.get("roll_angle_rad")) for r in mine])
-        flexible = np.array([to_float(r.get("flexible_twist_rad")) for r in mine])
-        speed = np.array([to_float(r.get("rebound_speed_mps")) for r in mine])
+        y = np.array([number(r, "y_m") for r in mine])
+        roll = np.array([number(r, "roll_angle_rad") for r in mine])
+        flexible = np.array([number(r, "flexible_twist_rad") for r in mine])
+        speed = np.array([number(r, "rebound_speed_mps") for r in mine])
         if not mine or not np.any(np.isfinite(roll)):
             continue
         valid = [i for i in range(len(mine)) if math.isfinite(roll[i])]
@@ -62,8 +62,8 @@ def _twist(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
             )
         )
         glance.append(
-            f"off-axis impact, {support}, x = {to_float(mine[far].get('x_m')) * 1e3:.0f} mm, "
-            f"ball {fmt(to_float(mine[far].get('ball_speed_mps')), 'g')} m/s: "
+            f"off-axis impact, {support}, x = {number(mine[far], 'x_m') * 1e3:.0f} mm, "
+            f"ball {fmt(number(mine[far], 'ball_speed_mps'), 'g')} m/s: "
             f"{y[far] * 1e3:.0f} mm off the axis the racket rolls "
             f"{math.degrees(roll[far]):.1f}° and the ball leaves at {speed[far]:.1f} m/s "
             f"({speed[near]:.1f} m/s on the axis)"
@@ -84,25 +84,25 @@ def _oblique(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
             "point": ", ".join(fmt(v * 1e3, ".0f") for v in record.get("point_m", [])),
             "support": str(record.get("support", "?")),
         }
-    rows = rows_of(folder / "oblique.csv")
+    rows = read_csv(folder / "oblique.csv", ("incoming_angle_deg", "outgoing_angle_deg"))
     usable = [r for r in rows if r.get("status") == "ok"]
     if usable:
-        shown = min(usable, key=lambda r: abs(abs(to_float(r.get("incoming_angle_deg"))) - 30))
+        shown = min(usable, key=lambda r: abs(abs(number(r, "incoming_angle_deg")) - 30))
         glance.append(
-            f"oblique impact at {to_float(shown.get('incoming_angle_deg')):g}°, ball "
-            f"{to_float(shown.get('ball_speed_mps')):g} m/s, {record.get('support', '?')}: "
-            f"leaves at {to_float(shown.get('outgoing_angle_deg')):.1f}° with "
-            f"{to_float(shown.get('outgoing_spin_radps')):.0f} rad/s of spin (the spin "
+            f"oblique impact at {number(shown, 'incoming_angle_deg'):g}°, ball "
+            f"{number(shown, 'ball_speed_mps'):g} m/s, {record.get('support', '?')}: "
+            f"leaves at {number(shown, 'outgoing_angle_deg'):.1f}° with "
+            f"{number(shown, 'outgoing_spin_radps'):.0f} rad/s of spin (the spin "
             "depends strongly on the tangential stiffness k_t)"
         )
     angle_rows = [
         (
-            fmt(to_float(r.get("incoming_angle_deg")), "g"),
-            fmt(to_float(r.get("incoming_spin_radps")), "g"),
-            fmt(to_float(r.get("outgoing_angle_deg")), ".1f"),
-            fmt(to_float(r.get("outgoing_spin_radps")), ".0f"),
-            fmt(to_float(r.get("normal_speed_mps")), ".2f"),
-            fmt(to_float(r.get("tangential_speed_mps")), ".2f"),
+            fmt(number(r, "incoming_angle_deg"), "g"),
+            fmt(number(r, "incoming_spin_radps"), "g"),
+            fmt(number(r, "outgoing_angle_deg"), ".1f"),
+            fmt(number(r, "outgoing_spin_radps"), ".0f"),
+            fmt(number(r, "normal_speed_mps"), ".2f"),
+            fmt(number(r, "tangential_speed_mps"), ".2f"),
             "yes" if r.get("gripped") == "True" else "no",
             r.get("status", ""),
         )

@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
 from racketdyn.report.figures import interactive
-from racketdyn.report.folder import RunFolder, read_csv, to_float
+from racketdyn.report.folder import RunFolder, damaged, number, read_csv
 from racketdyn.report.formatting import finite, fmt, rounded
 
 HOW_TO_RUN = "racketdyn frf DIR/rig/hammer_free.uff --exp-window 0.1 --out DIR/frf_free"
@@ -28,7 +28,7 @@ _FRF_UNITS = {"receptance": "m/N", "mobility": "m/(NÂ·s)", "accelerance": "m/(NÂ
 
 
 def _counts(path: Path) -> dict[str, Any]:
-    rows, _ = read_csv(path)
+    rows = read_csv(path, ("node", "accepted"))
     reasons: dict[str, int] = {}
     nodes: dict[str, list[int]] = {}
     forces = []
@@ -36,7 +36,7 @@ def _counts(path: Path) -> dict[str, Any]:
         accepted = row.get("accepted") == "1"
         nodes.setdefault(row.get("node", ""), []).append(int(accepted))
         if accepted:
-            forces.append(to_float(row.get("peak_force_n")))
+            forces.append(number(row, "peak_force_n"))
         for reason in filter(None, (row.get("reasons") or "").split(";")):
             reasons[reason] = reasons.get(reason, 0) + 1
     return {
@@ -143,8 +143,7 @@ def _frf_data(run: RunFolder, folders: Sequence[tuple[str, Path]]) -> dict[str, 
         try:
             frfs = read_frf_uff(path)
         except (InputError, OSError, ValueError) as error:
-            log.warning("%s: not read (%s)", path, error)
-            continue
+            raise damaged(path, f"not read ({str(error).removeprefix(f'{path}: ')})") from None
         keep = frfs.frequency > 0
         if frequency is None:
             frequency = frfs.frequency[keep]
@@ -187,15 +186,15 @@ def _frf_data(run: RunFolder, folders: Sequence[tuple[str, Path]]) -> dict[str, 
             )
         if label in idents:
             ident_folder, suffix = idents[label]
-            rows, _ = read_csv(ident_folder / f"modes{suffix}.csv")
+            rows = read_csv(ident_folder / f"modes{suffix}.csv", ("frequency_hz",))
             modes += [
                 {
-                    "f": to_float(r.get("frequency_hz")),
+                    "f": number(r, "frequency_hz"),
                     "label": f"{r.get('name', '')} ({label})",
                     "colour": colour,
                 }
                 for r in rows
-                if finite(to_float(r.get("frequency_hz")))
+                if finite(number(r, "frequency_hz"))
             ]
     if frequency is None or not views["frame"]:
         return None

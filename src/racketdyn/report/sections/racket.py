@@ -11,21 +11,34 @@ from racketdyn.report.formatting import DERIVED_LABELS, fmt, quantity
 HOW_TO_RUN = "racketdyn predict --out DIR/predict (or racketdyn rig --out DIR/rig)"
 
 
+def _racket_file(name: object) -> str:
+    """The racket file a run.json records, in words."""
+    text = str(name or "")
+    if not text:
+        return "the racket file"
+    return "the built-in racket" if text.startswith("built-in") else text
+
+
 def gather(run: RunFolder) -> dict[str, Any] | None:
-    """The racket's inputs and derived properties: from the racket given to the report, else
-    from the run.json of ``predict`` (or the rig)."""
+    """The racket's inputs and derived properties: from the racket given to the report
+    (``--racket``, the demo's racket), else from the run.json of ``predict`` (or the rig)."""
     racket_record: dict[str, Any] | None = None
     source = ""
     if run.racket is not None:
-        from racketdyn.io import racket_to_dict
+        from racketdyn.io import default_racket, racket_to_dict
 
-        racket_record, source = racket_to_dict(run.racket), "given to write_report"
+        racket_record = racket_to_dict(run.racket)
+        builtin = run.racket == default_racket()
+        source = "the built-in racket" if builtin else "the racket given with --racket"
     else:
         for folder in filter(None, (run.predict_dir, run.first("hammer_*.uff"))):
             record = run.record(folder)
             if isinstance(record.get("racket"), dict):
                 racket_record = record["racket"]
-                source = f"{record.get('racket_file', 'racket file')} ({run.rel(folder)}/run.json)"
+                source = (
+                    f"{_racket_file(record.get('racket_file'))}, as recorded in "
+                    f"{run.rel(folder / 'run.json')}"
+                )
                 break
     if racket_record is None:
         return None

@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 
 from racketdyn.report.figures import FigureGroup
-from racketdyn.report.folder import RunFolder, read_csv, to_float
+from racketdyn.report.folder import RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = (
@@ -28,21 +28,21 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
 
     models = []
     for label, folder, suffix in idents:
-        rows, _ = read_csv(folder / f"modes{suffix}.csv")
+        rows = read_csv(folder / f"modes{suffix}.csv", ("frequency_hz", "damping_ratio"))
         body = [
             (
                 r.get("name", ""),
-                fmt(to_float(r.get("frequency_hz")), ".2f"),
-                fmt(100 * to_float(r.get("damping_ratio")), ".3f"),
+                fmt(number(r, "frequency_hz"), ".2f"),
+                fmt(100 * number(r, "damping_ratio"), ".3f"),
                 r.get("orders_stable", ""),
-                fmt(to_float(r.get("frequency_spread_hz")), ".3g"),
+                fmt(number(r, "frequency_spread_hz"), ".3g"),
             )
             for r in rows
         ]
         fit = folder / f"fit_quality{suffix}.csv"
         fit_error = ""
         if fit.is_file():
-            errors = np.array([to_float(r.get("fit_error")) for r in read_csv(fit)[0]])
+            errors = np.array([number(r, "fit_error") for r in read_csv(fit, ("fit_error",))])
             if errors.size and np.isfinite(errors).any():
                 fit_error = f"median {np.nanmedian(errors):.1%}, largest {np.nanmax(errors):.1%}"
         dropped = [str(d) for d in run.record(folder).get("dropped") or []]

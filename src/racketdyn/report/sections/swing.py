@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from racketdyn.report.folder import RunFolder, rows_of, to_float
+from racketdyn.report.folder import RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = "racketdyn swing --out DIR/swing"
@@ -44,14 +44,18 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     figures = run.group(
         [(folder / name, "") for name in ("swing_map.png", "swing_along_axis.png")], "stack"
     )
-    rows = rows_of(folder / "sweet_spots.csv") if (folder / "sweet_spots.csv").is_file() else []
+    rows = (
+        read_csv(folder / "sweet_spots.csv", ("key", "x_m", "value"))
+        if (folder / "sweet_spots.csv").is_file()
+        else []
+    )
     speed = record.get("sweet_spots_at_mps")
     heading = "Sweet spots" + (
         f", ball {fmt(speed, 'g')} m/s" if isinstance(speed, int | float) else ""
     )
     body = []
     for row in rows:
-        value = to_float(row.get("value"))
+        value = number(row, "value")
         key = row.get("key", "")
         shown = (
             "–"
@@ -63,10 +67,10 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         body.append(
             (
                 row.get("name", key),
-                fmt(to_float(row.get("x_m")) * 1e3, ".0f"),
+                fmt(number(row, "x_m") * 1e3, ".0f"),
                 "yes" if row.get("on_face") == "True" else "no",
-                fmt(to_float(row.get("racket_speed_mps")), ".1f"),
-                fmt(to_float(row.get("rebound_speed_mps")), ".1f"),
+                fmt(number(row, "racket_speed_mps"), ".1f"),
+                fmt(number(row, "rebound_speed_mps"), ".1f"),
                 shown,
                 row.get("definition", ""),
             )
@@ -74,19 +78,19 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     glance = []
     spots = {row.get("key", ""): row for row in rows}
     best = spots.get("max_rebound_speed")
-    if best is not None and math.isfinite(to_float(best.get("value"))):
+    if best is not None and math.isfinite(number(best, "value")):
         text = (
             f"swinging racket (Ω = {fmt(omega, '.1f')} rad/s"
             + (f", ball {fmt(speed, 'g')} m/s" if isinstance(speed, int | float) else "")
-            + f", {support or '?'}): largest outgoing speed {to_float(best.get('value')):.1f}"
-            f" m/s at x = {to_float(best.get('x_m')) * 1e3:.0f} mm"
+            + f", {support or '?'}): largest outgoing speed {number(best, 'value'):.1f}"
+            f" m/s at x = {number(best, 'x_m') * 1e3:.0f} mm"
         )
         for key, label in (
             ("centre_of_percussion_grip", "centre of percussion (grip)"),
             ("first_mode_node", "first-mode node"),
         ):
             if key in spots:
-                text += f"; {label} {to_float(spots[key].get('x_m')) * 1e3:.0f} mm"
+                text += f"; {label} {number(spots[key], 'x_m') * 1e3:.0f} mm"
         glance.append(text)
     return {
         "facts": "; ".join(facts),

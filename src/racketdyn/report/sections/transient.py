@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.impact.result import shown_speed_index
-from racketdyn.report.folder import RunFolder, read_csv, to_float
+from racketdyn.report.folder import RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = "racketdyn predict --model both --out DIR/predict"
@@ -28,7 +28,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     if isinstance(engine, dict) or isinstance(integrator, dict):
         used = engine.get("used", "–") if isinstance(engine, dict) else "–"
         steps = (
-            ", ".join(f"{k} {v}" for k, v in integrator.items())
+            ", ".join(f"{str(k).replace('_', ' ')} {v}" for k, v in integrator.items())
             if isinstance(integrator, dict)
             else "–"
         )
@@ -43,12 +43,12 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         if (g := run.group([(folder / name, "")])) is not None
     ]
     data: dict[str, Any] = {"settings": settings, "figures": figures, "rows": [], "glance": []}
-    rows, _ = read_csv(folder / "comparison.csv")
+    rows = read_csv(folder / "comparison.csv", ("x_m", "y_m", "support", "ball_speed_mps"))
     if not rows:
         return data
 
     def column(name: str) -> NDArray[np.float64]:
-        return np.array([to_float(r.get(name)) for r in rows])
+        return np.array([number(r, name) for r in rows])
 
     x, y, speed = column("x_m"), column("y_m"), column("ball_speed_mps")
     support = np.array([r.get("support", "") for r in rows])
