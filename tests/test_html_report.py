@@ -413,3 +413,10 @@ def test_browser_runs_the_script_without_errors(
     assert zoomed_high - zoomed_low < high - low  # the wheel zoomed in
     assert probe["group"] == "10 m/s"
     assert probe["ms"] < 2000  # interactive within 2 s of navigation start (issue 11)
+
+
+def test_every_file_of_the_demo_layout_is_its_runs_own(page: str) -> None:
+    """Issue 13: the report called the demo's own rig files "written by an earlier run" (two
+    rig runs shared one folder); the rig now tests both supports in one run."""
+    assert "not this run" not in page
+    assert "earlier run" not in page
