@@ -420,3 +420,25 @@ def test_every_file_of_the_demo_layout_is_its_runs_own(page: str) -> None:
     rig runs shared one folder); the rig now tests both supports in one run."""
     assert "not this run" not in page
     assert "earlier run" not in page
+
+
+def test_the_largest_vibration_is_never_a_flagged_row(tmp_path: Path) -> None:
+    """Issue 13: §7's "largest on the face" (11.7 J) came from rows flagged as beyond what e_BG
+    allows near the tip; only valid rows may give it."""
+    from racketdyn.report.folder import RunFolder
+    from racketdyn.report.sections import vibration
+
+    out = tmp_path / "run"
+    argv = ["predict", "--speed", "40", "--support", "free", "--grid", "9", "--no-figures"]
+    assert main([*argv, "--out", str(out / "predict")]) == 0
+    with (out / "predict" / "impact.csv").open(encoding="utf-8") as handle:
+        rows = list(csv.DictReader(handle))
+    energy: dict[bool, list[float]] = {}
+    for r in rows:
+        energy.setdefault(r["status"] == "ok", []).append(float(r["vibration_energy_j"]))
+    assert energy.get(False), "the test needs flagged rows: raise the speed"
+    assert max(energy[False]) > max(energy[True])
+    data = vibration.gather(RunFolder.scan(out))
+    assert data is not None
+    (row,) = data["rows"]
+    assert float(row[4]) == pytest.approx(max(energy[True]), rel=1e-3)

@@ -33,7 +33,9 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 if not selected.size:
                     continue
                 i = impacts.nearest(selected, x, y)
-                finite = selected[np.isfinite(energy[selected])]
+                # a flagged row's energy is not a valid result (issue 13): never the largest
+                valid = np.isfinite(energy[selected]) & (impacts.status[selected] == "ok")
+                finite = selected[valid]
                 largest = int(finite[np.argmax(energy[finite])]) if finite.size else None
                 smallest = int(finite[np.argmin(energy[finite])]) if finite.size else None
                 incoming = 0.5 * ball_mass * speed**2
@@ -41,8 +43,11 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                     (
                         support,
                         f"{speed:g}",
-                        fmt(energy[i], ".3g"),
-                        fmt(100 * energy[i] / incoming, ".2g"),
+                        *(
+                            (fmt(energy[i], ".3g"), fmt(100 * energy[i] / incoming, ".2g"))
+                            if impacts.status[i] == "ok"
+                            else (f"flagged: {impacts.status[i]}", "–")
+                        ),
                         "–" if largest is None else f"{energy[largest]:.3g}",
                         "–" if largest is None else impacts.where(largest),
                         "–" if smallest is None else f"{energy[smallest]:.3g}",
