@@ -109,7 +109,8 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             ]
             panels.append({"label": support, "rows": rows})
             all_xy.append(np.column_stack([impacts["x_m"][selected], impacts["y_m"][selected]]))
-            finite = selected[np.isfinite(e[selected])]
+            # only valid rows name a best or a quietest point (issue 13)
+            finite = selected[np.isfinite(e[selected]) & (impacts.status[selected] == "ok")]
             if finite.size:
                 best = int(finite[np.argmax(e[finite])])
                 x, y = run.centre(impacts)
