@@ -114,12 +114,20 @@ class Range:
         return f"{words} {self.tail}" if self.tail else words
 
     def likely_slips(self, value: float) -> list[str]:
-        """The slips that would make ``value`` plausible, as "grams (300 g = 0.3 kg)"."""
-        return [
-            f"{slip.name} ({_g(value)} {slip.symbol} = {_g(value * slip.si)} {self.unit})"
-            for slip in self.slips
-            if self.low <= value * slip.si <= self.high
-        ]
+        """The slips that would make ``value`` plausible, as "grams (300 g = 0.3 kg)"; for a
+        value beyond the limits with none, those that would bring it inside the limits."""
+
+        def within(low: float, high: float) -> list[str]:
+            return [
+                f"{slip.name} ({_g(value)} {slip.symbol} = {_g(value * slip.si)} {self.unit})"
+                for slip in self.slips
+                if low <= value * slip.si <= high
+            ]
+
+        found = within(self.low, self.high)
+        if not found and not self.limit_low <= value <= self.limit_high:
+            found = within(self.limit_low, self.limit_high)
+        return found
 
 
 def _g(number: float) -> str:
