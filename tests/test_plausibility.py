@@ -57,8 +57,8 @@ def _file(tmp_path: Path, name: str, text: str) -> Path:
 
 
 def _predict(tmp_path: Path, *extra: str) -> list[str]:
-    return ["predict", "--grid", "2", "--speed", "20", *extra, "--no-figures", "--out",
-            str(tmp_path / "out")]  # fmt: skip
+    out = str(tmp_path / "out")
+    return ["predict", "--grid", "2", "--speed", "20", *extra, "--no-figures", "--out", out]
 
 
 # slip -> (arguments given tmp_path, words the one line must hold)
@@ -211,7 +211,8 @@ def test_speeds_from_python() -> None:
 
 def test_load_deflection_scale(tmp_path: Path) -> None:
     deflection, force = read_load_deflection(_file(tmp_path, "good.csv", GOOD_CSV))
-    assert deflection.max() == 0.02 and force.max() == 1200.0
+    assert deflection.max() == 0.02
+    assert force.max() == 1200.0
     with pytest.raises(InputError, match="did you give millimetres"):
         read_load_deflection(_file(tmp_path, "mm.csv", MM_CSV))
     with pytest.raises(InputError, match="in kN"):
