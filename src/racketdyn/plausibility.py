@@ -131,7 +131,9 @@ class Range:
 
 
 def _g(number: float) -> str:
-    """A number to 3 significant figures, without float noise."""
+    """A number to 3 significant figures, without float noise (5000, not 5e+03)."""
+    if 1e3 <= abs(number) < 1e6:
+        return f"{float(f'{number:.3g}'):.0f}"
     return f"{number:.3g}"
 
 
