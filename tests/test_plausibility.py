@@ -200,6 +200,14 @@ def test_ball_and_hand_from_python() -> None:
     assert hand_for(["free"], 1000.0) == (None, [])  # no hand, nothing to check
 
 
+def test_a_ball_object_refuses_a_unit_slip() -> None:
+    with pytest.raises(InputError, match="did you give grams"):
+        rd.Ball(mass_kg=57.7)
+    with pytest.raises(InputError, match="did you give millimetres"):
+        rd.Ball(diameter_m=67.0)
+    assert rd.Ball(mass_kg=0.045).mass_kg == 0.045  # a stage ball object is taken as given
+
+
 def test_speeds_from_python() -> None:
     check_speeds("--speed", [10.0, 75.0])
     with pytest.raises(InputError, match=r"did you give km/h \(90 km/h = 25 m/s\)"):

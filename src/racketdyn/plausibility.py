@@ -33,6 +33,7 @@ __all__ = [
     "Range",
     "Slip",
     "check",
+    "check_limits",
     "check_load_deflection",
     "check_speeds",
 ]
@@ -375,6 +376,16 @@ def check(
         sep, advice = (" ", override[:1].upper() + override[1:]) if slips else ("; ", override)
         raise InputError(f"{message}{sep}{advice}")
     log.warning("%s (taken: allow_implausible)", message)
+    return value
+
+
+def check_limits(key: str, value: float, name: str) -> float:
+    """Return ``value`` unless it lies beyond the limits of ``key`` (a unit slip whatever the
+    object): the check a core object makes on itself, silent inside the limits."""
+    spec = RANGES[key]
+    number = float(value)
+    if math.isfinite(number) and not spec.limit_low <= number <= spec.limit_high:
+        check(key, value, name)
     return value
 
 
