@@ -174,7 +174,7 @@ def load_racket(path: Path | str, *, allow_implausible: bool = False) -> Racket:
 def _check_plausible(
     path: Path, tables: dict[str, list[dict[str, Any]]], allow_implausible: bool
 ) -> None:
-    """Every number against its plausible range (racketdyn.plausibility), in file order."""
+    """Every number against its plausible range (racketdyn.plausibility), table by table."""
     for kind, keys in _PLAUSIBLE.items():
         for i, table in enumerate(tables[kind]):
             where = f"[[point_masses]] {i + 1}" if kind == "point_masses" else f"[{kind}]"
