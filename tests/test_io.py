@@ -75,6 +75,8 @@ def test_bad_racket_files(tmp_path: Path, old: str, new: str, message: str) -> N
 
 def test_swingweight_too_small_is_explained(tmp_path: Path) -> None:
     text = DEFAULT_TEXT.replace("inertia_cg_kgm2 = 0.0131", "swingweight_kgcm2 = 100.0")
+    # 100 kg·cm² is implausible too (issue 13): allowed, to reach the geometric check
+    text += "\n[checks]\nallow_implausible = true\n"
     with pytest.raises(InputError, match=r"swingweight_kgcm2 .* must exceed"):
         _racket(tmp_path, text)
 

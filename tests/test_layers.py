@@ -22,6 +22,7 @@ LAYERS: dict[str, int] = {
     "racketdyn.__about__": 1,
     "racketdyn._display": 1,
     "racketdyn.errors": 1,
+    "racketdyn.plausibility": 1,
     "racketdyn.numerics": 1,
     "racketdyn.racket": 1,
     "racketdyn.ball": 1,

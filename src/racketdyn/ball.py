@@ -20,6 +20,7 @@ from scipy.optimize import least_squares
 
 from racketdyn.errors import InputError, one_of, require_positive, require_range
 from racketdyn.numerics import invert_increasing
+from racketdyn.plausibility import check_limits
 
 __all__ = [
     "ITF_FORWARD_DEFORMATION_M",
@@ -322,6 +323,10 @@ class Ball:
     def __post_init__(self) -> None:
         require_positive("ball mass_kg", self.mass_kg)
         require_positive("ball diameter_m", self.diameter_m)
+        # a 57.7 kg or 67 m ball is a unit slip, whatever the ball (racketdyn.plausibility);
+        # the ITF ranges themselves are checked where a person types them (workflows.inputs)
+        check_limits("ball_mass_kg", self.mass_kg, "ball mass_kg")
+        check_limits("ball_diameter_m", self.diameter_m, "ball diameter_m")
         require_range("ball e_bg", self.e_bg, 0.0, 1.0)
         if self.e_bg == 0:
             raise InputError(

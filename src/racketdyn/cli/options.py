@@ -110,12 +110,25 @@ def add_hand(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_allow_implausible(parser: argparse.ArgumentParser) -> None:
+    """``--allow-implausible``: go on with an unusual ball, speed or arm (see plausibility)."""
+    parser.add_argument(
+        "--allow-implausible",
+        action="store_true",
+        help="take a --ball-mass, --speed, --racket-speed or --hand-arm-mass outside the ranges "
+        "of play (ball 56.0-59.4 g, ITF; speeds up to 75 m/s; arm 0.2-6 kg) for an object "
+        "meant to be unusual; a value in the wrong unit (57.7 for kg) is refused still; a "
+        "racket file allows itself with [checks] allow_implausible = true (default: off)",
+    )
+
+
 def add_racket_and_ball(parser: argparse.ArgumentParser) -> None:
     """The racket, its modes, the ball and the hand: the same options for every impact step."""
     add_racket(parser)
     add_modes(parser)
     add_ball(parser)
     add_hand(parser)
+    add_allow_implausible(parser)
 
 
 def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) -> None:
@@ -125,7 +138,8 @@ def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) 
             "--speed",
             default=default,
             metavar="M/S[,M/S...]",
-            help=f"incoming ball speeds, m/s, comma-separated (default {default})",
+            help=f"incoming ball speeds, m/s, comma-separated (default {default}; above 75 "
+            "m/s only with --allow-implausible)",
         )
     else:
         parser.add_argument(
@@ -133,7 +147,8 @@ def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) 
             type=float,
             metavar="M/S",
             default=float(default),
-            help=f"incoming ball speed, m/s (default {default})",
+            help=f"incoming ball speed, m/s (default {default}; above 75 m/s only with "
+            "--allow-implausible)",
         )
 
 
@@ -225,9 +240,29 @@ def ball_and_hand(args: argparse.Namespace, supports: Sequence[str]) -> tuple[An
 
     if "hand" not in supports and args.hand_arm_mass is not None:
         raise InputError("--hand-arm-mass is for --support hand (with --model transient)")
-    ball, ball_defaults = ball_from(args.ball_mass, args.e_bg, args.ball_law)
-    hand, hand_defaults = hand_for(supports, args.hand_arm_mass)
+    allow = bool(getattr(args, "allow_implausible", False))
+    check_speeds_of_play(args, allow)
+    ball, ball_defaults = ball_from(
+        args.ball_mass, args.e_bg, args.ball_law, allow_implausible=allow
+    )
+    hand, hand_defaults = hand_for(supports, args.hand_arm_mass, allow_implausible=allow)
     return ball, hand, [*ball_defaults, *hand_defaults]
+
+
+def check_speeds_of_play(args: argparse.Namespace, allow_implausible: bool) -> None:
+    """``--speed`` and ``--racket-speed`` against the speeds of play (up to 75 m/s): km/h or
+    mph typed is refused with the slip named (racketdyn.plausibility)."""
+    from racketdyn.plausibility import check_speeds
+
+    for name, dest, key in (
+        ("--speed", "speed", "ball_speed_mps"),
+        ("--racket-speed", "racket_speed", "racket_speed_mps"),
+    ):
+        value = getattr(args, dest, None)
+        if value is None:
+            continue
+        speeds = parse_speeds(name, value) if isinstance(value, str) else [float(value)]
+        check_speeds(name, speeds, key, allow_implausible)
 
 
 def check_modes(args: argparse.Namespace) -> None:

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from racketdyn.errors import InputError
+from racketdyn.plausibility import OVERRIDE_FILE, check
 from racketdyn.racket import (
     KGM2_TO_KGCM2,
     M2_TO_CM2,
@@ -64,12 +65,28 @@ _SCHEMA: dict[str, dict[str, type | tuple[type, ...]]] = {
     },
     "modal": {"file": str, "first_bending_hz": float, "twisting_hz": float},
     "point_masses": {"mass_kg": float, "x_m": float, "y_m": float, "label": str},
+    "checks": {"allow_implausible": bool},
 }
 _TOP = {"schema_version", "name", "description", *_SCHEMA}
 _REQUIRED = {
     "racket": ("mass_kg", "length_m", "balance_m"),
     "head": ("centre_x_m", "half_length_m"),
     "point_masses": ("mass_kg", "x_m"),
+}
+# the entry of racketdyn.plausibility.RANGES each key is checked against, by table
+_PLAUSIBLE: dict[str, dict[str, str]] = {
+    "racket": {key: key for key in _SCHEMA["racket"]},
+    "head": {key: key for key in _SCHEMA["head"]},
+    "strings": {
+        "tension_n": "tension_n",
+        "mains": "mains",
+        "crosses": "crosses",
+        "string_diameter_m": "string_diameter_m",
+        "string_modulus_pa": "string_modulus_pa",
+        "mass_kg": "strings_mass_kg",
+    },
+    "modal": {"first_bending_hz": "first_bending_hz", "twisting_hz": "twisting_hz"},
+    "point_masses": {"mass_kg": "point_mass_kg", "x_m": "point_x_m", "y_m": "point_y_m"},
 }
 
 
@@ -91,6 +108,9 @@ def _check_table(where: str, table: object, kind: str) -> dict[str, Any]:
         elif wanted is int:
             ok = isinstance(value, int) and not isinstance(value, bool)
             what = "a whole number"
+        elif wanted is bool:
+            ok = isinstance(value, bool)
+            what = "true or false"
         else:
             ok = isinstance(value, str)
             what = "a string"
@@ -127,7 +147,7 @@ def read_toml(path: Path, what: str) -> dict[str, Any]:
         raise InputError(f"{path}: malformed TOML ({error})") from None
 
 
-def load_racket(path: Path | str) -> Racket:
+def load_racket(path: Path | str, *, allow_implausible: bool = False) -> Racket:
     """Read and validate a racket description file.
 
     Parameters
@@ -135,6 +155,9 @@ def load_racket(path: Path | str) -> Racket:
     path : path-like
         TOML file (schema: docs/racket-file.md).  Relative file names inside it are taken
         relative to the file.
+    allow_implausible : bool
+        Take values outside the plausible ranges of rackets on sale (but inside the limits of
+        :data:`racketdyn.plausibility.RANGES`), as the file's ``[checks] allow_implausible``.
 
     Returns
     -------
@@ -143,10 +166,32 @@ def load_racket(path: Path | str) -> Racket:
         (:func:`racketdyn.racket_modal.beam.hoop_roll_inertia`).
     """
     path = Path(path)
-    return racket_from_dict(read_toml(path, "racket file"), path)
+    return racket_from_dict(
+        read_toml(path, "racket file"), path, allow_implausible=allow_implausible
+    )
 
 
-def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
+def _check_plausible(
+    path: Path, tables: dict[str, list[dict[str, Any]]], allow_implausible: bool
+) -> None:
+    """Every number against its plausible range (racketdyn.plausibility), table by table."""
+    for kind, keys in _PLAUSIBLE.items():
+        for i, table in enumerate(tables[kind]):
+            where = f"[[point_masses]] {i + 1}" if kind == "point_masses" else f"[{kind}]"
+            for key, value in table.items():
+                if key in keys:
+                    check(
+                        keys[key],
+                        value,
+                        f"{path}: {where}.{key}",
+                        allow_implausible=allow_implausible,
+                        override=OVERRIDE_FILE,
+                    )
+
+
+def racket_from_dict(
+    data: dict[str, Any], path: Path, *, allow_implausible: bool = False
+) -> Racket:
     """Build a racket from parsed TOML (see :func:`load_racket`)."""
     from racketdyn.racket_modal.beam import hoop_roll_inertia  # the hoop model lives with the beam
 
@@ -174,6 +219,19 @@ def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
         _check_table(f"{path}: [[point_masses]] {i + 1}", t, "point_masses")
         for i, t in enumerate(raw_masses)
     ]
+    checks_table = _check_table(f"{path}: [checks]", data.get("checks", {}), "checks")
+    allow_implausible = allow_implausible or bool(checks_table.get("allow_implausible", False))
+    _check_plausible(
+        path,
+        {
+            "racket": [body],
+            "head": [head_table],
+            "strings": [strings_table],
+            "modal": [modal_table],
+            "point_masses": masses,
+        },
+        allow_implausible,
+    )
 
     where = f"{path}: [racket]"
     _one_of_pair(where, body, "inertia_cg_kgm2", "swingweight_kgcm2")
@@ -201,6 +259,14 @@ def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
             head_table["area_cm2"] / M2_TO_CM2 / (math.pi * head_args["half_length_m"])
         )
     head = guarded(HeadEllipse, **head_args)
+    if "area_cm2" not in head_table:
+        check(
+            "area_cm2",
+            head.area_m2 * M2_TO_CM2,
+            f"{path}: [head] area π half_length_m half_width_m (cm²)",
+            allow_implausible=allow_implausible,
+            override=OVERRIDE_FILE,
+        )
 
     strings_args = dict(strings_table)
     if "load_deflection_file" in strings_args:
@@ -241,6 +307,17 @@ def racket_from_dict(data: dict[str, Any], path: Path) -> Racket:
                 "kg·cm² for this mass and balance"
             )
         racket = guarded(replace, racket, inertia_cg_kgm2=inertia_cg)
+    else:
+        swingweight = (
+            racket.inertia_cg_kgm2 + mass * (balance - SWINGWEIGHT_AXIS_M) ** 2
+        ) * KGM2_TO_KGCM2
+        check(
+            "swingweight_kgcm2",
+            swingweight,
+            f"{path}: [racket] swingweight from mass_kg, balance_m and inertia_cg_kgm2 (kg·cm²)",
+            allow_implausible=allow_implausible,
+            override=OVERRIDE_FILE,
+        )
     if roll is None:
         derived = guarded(
             hoop_roll_inertia, length, mass, balance, racket.inertia_cg_kgm2, racket.head

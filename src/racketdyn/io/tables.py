@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
+from racketdyn.plausibility import check_load_deflection
 
 __all__ = ["read_load_deflection", "read_points"]
 
@@ -117,6 +118,16 @@ def read_load_deflection(path: Path) -> tuple[NDArray[np.float64], NDArray[np.fl
     -------
     deflection, force : ndarray
         Deflection in m and force in N.
+
+    Raises
+    ------
+    InputError
+        Also when the data's scale shows a unit slip: deflections beyond 0.1 m (millimetres
+        given as metres) or load over deflection under 500 N/m (kilonewtons given as newtons);
+        see :func:`racketdyn.plausibility.check_load_deflection`.
     """
     columns = _read_columns(path, ("deflection_m", "force_n"))
-    return _numbers(path, columns, "deflection_m"), _numbers(path, columns, "force_n")
+    deflection = _numbers(path, columns, "deflection_m")
+    force = _numbers(path, columns, "force_n")
+    check_load_deflection(str(path), deflection, force)
+    return deflection, force

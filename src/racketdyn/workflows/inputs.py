@@ -6,6 +6,7 @@ Each builder returns the object together with the sentences ``run.json`` lists u
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
@@ -18,6 +19,7 @@ from racketdyn.impact.hand import Hand
 from racketdyn.io import default_racket, load_racket, read_load_deflection
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
 from racketdyn.modal import ModalModel
+from racketdyn.plausibility import check
 from racketdyn.racket import Racket
 from racketdyn.racket_modal import modal_model_for
 from racketdyn.workflows.run import sha256
@@ -111,18 +113,27 @@ def ball_from(
     mass_kg: float | None = None,
     e_bg: float | None = None,
     law_file: str | os.PathLike[str] | None = None,
+    *,
+    allow_implausible: bool = False,
 ) -> tuple[Ball, list[str]]:
     """The ball, with the defaults used.
 
     Parameters
     ----------
     mass_kg : float, optional
-        Ball mass, kg (default 0.0577, ITF middle).
+        Ball mass, kg (default 0.0577, ITF middle).  Outside the ITF's 56.0–59.4 g it is
+        refused (grams typed: always) unless ``allow_implausible``.
     e_bg : float, optional
         Ball–string COR on a head-clamped racket (default 0.83, Kawazoe).
     law_file : path, optional
-        Load–deflection CSV (``deflection_m, force_n``), one side; a cubic is fitted.
+        Load–deflection CSV (``deflection_m, force_n``), one side; a cubic is fitted.  Data in
+        millimetres or kilonewtons are refused (:func:`racketdyn.io.read_load_deflection`).
+    allow_implausible : bool
+        Take a ball mass outside the plausible range but inside the limits
+        (:mod:`racketdyn.plausibility`).
     """
+    if mass_kg is not None and _positive(mass_kg):
+        check("ball_mass_kg", mass_kg, "--ball-mass", allow_implausible=allow_implausible)
     defaults = []
     kwargs: dict[str, Any] = {}
     for value, key, label in (
@@ -145,7 +156,7 @@ def ball_from(
 
 
 def hand_for(
-    supports: Sequence[str], arm_mass_kg: float | None = None
+    supports: Sequence[str], arm_mass_kg: float | None = None, *, allow_implausible: bool = False
 ) -> tuple[Hand | None, list[str]]:
     """The hand of the ``hand`` support (None without it), with the defaults used.
 
@@ -154,13 +165,29 @@ def hand_for(
     supports : sequence of str
         The supports of the step.
     arm_mass_kg : float, optional
-        Mass of the arm holding the grip, kg (default 1.0, :class:`~racketdyn.impact.hand.Hand`).
+        Mass of the arm holding the grip, kg (default 1.0, :class:`~racketdyn.impact.hand.Hand`);
+        outside 0.2–6 kg refused unless ``allow_implausible``.
+    allow_implausible : bool
+        Take an arm mass outside the plausible range but inside the limits.
     """
     if "hand" not in supports:
         return None, []
+    if arm_mass_kg is not None and _positive(arm_mass_kg):
+        check(
+            "hand_arm_mass_kg", arm_mass_kg, "--hand-arm-mass", allow_implausible=allow_implausible
+        )
     if arm_mass_kg is None:
         return Hand(), ["hand: racketdyn.impact.hand.Hand defaults (1 kg arm, Kawazoe ACMD 2002)"]
     return Hand(arm_mass_kg=arm_mass_kg), []
+
+
+def _positive(value: object) -> bool:
+    """A finite positive number (others are left to the object's own checks)."""
+    try:
+        number = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        return False
+    return number > 0 and math.isfinite(number)
 
 
 def ball_or_default(ball: Ball | None) -> tuple[Ball, list[str]]:

@@ -1,0 +1,423 @@
+"""Plausible ranges of every number a person types: the one table, and the check that reads it.
+
+A value in the wrong unit (grams for kilograms, millimetres for metres, km/h for m/s) is a
+valid number to the physics and gives garbage marked "ok".  Each input therefore has two
+ranges:
+
+* the **plausible** range — what real rackets, strings, balls and strokes span (sources and
+  reasoning in the comments of :data:`RANGES`).  A value outside is refused with one line naming
+  the input, the value, the range and the likely slip ("did you give grams?"), unless the user
+  says the object really is unusual (``allow_implausible``: ``--allow-implausible`` on the
+  command line, ``[checks] allow_implausible = true`` in a racket file, ``allow_implausible=True``
+  from Python);
+* the **limits** — beyond them no object of the kind exists in that unit (a 5 kg point mass, a
+  2 m ball flattening): the value is a slip and is refused even with ``allow_implausible``.
+
+Objects built in Python (``Racket(...)``, ``Ball(...)``, sweep designs) are taken as given; the
+readers of files and options call :func:`check`.  docs/racket-file.md says what the user sees.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from racketdyn.errors import InputError
+
+__all__ = [
+    "OVERRIDE_FILE",
+    "OVERRIDE_OPTION",
+    "RANGES",
+    "Range",
+    "Slip",
+    "check",
+    "check_limits",
+    "check_load_deflection",
+    "check_speeds",
+]
+
+log = logging.getLogger(__name__)
+
+OVERRIDE_OPTION = "if it is meant, give --allow-implausible (allow_implausible=True in Python)"
+"""How to go on with an unusual value given as an option or a Python argument."""
+OVERRIDE_FILE = "if the racket really is so, add [checks] allow_implausible = true to the file"
+"""How to go on with an unusual value in a racket file."""
+
+
+@dataclass(frozen=True)
+class Slip:
+    """A unit a value may have been given in by mistake.
+
+    Parameters
+    ----------
+    name : str
+        The unit's name in the message ("grams").
+    symbol : str
+        Its symbol ("g").
+    si : float
+        One of it in the SI unit of the quantity (1 g = 0.001 kg).
+    """
+
+    name: str
+    symbol: str
+    si: float
+
+
+@dataclass(frozen=True)
+class Range:
+    """The plausible range and the limits of one input, in its SI unit.
+
+    Parameters
+    ----------
+    says : str
+        The start of the sentence that gives the range ("a strung racket weighs").
+    low, high : float
+        Plausible range: values outside are refused unless ``allow_implausible``.
+    limit_low, limit_high : float
+        Beyond these no such object exists: refused even with ``allow_implausible``.
+    unit : str
+        The SI unit of the input ("kg").
+    slips : tuple of Slip
+        Units a person might have used instead; a value that lands in the plausible range when
+        read in one of them is named in the message.
+    field_unit : Slip or None
+        The unit the field quotes the range in, shown beside the SI one ("56–59.4 g").
+    tail : str
+        Words after the range ("from the butt").
+    """
+
+    says: str
+    low: float
+    high: float
+    limit_low: float
+    limit_high: float
+    unit: str
+    slips: tuple[Slip, ...] = ()
+    field_unit: Slip | None = None
+    tail: str = ""
+
+    def __post_init__(self) -> None:
+        if not self.limit_low <= self.low < self.high <= self.limit_high:
+            raise ValueError(f"range {self.says!r}: limits must enclose the plausible range")
+
+    def text(self) -> str:
+        """The plausible range in words: "a strung racket weighs 0.23–0.4 kg (230–400 g)"."""
+
+        def span(low: float, high: float, unit: str) -> str:
+            return f"up to {_g(high)} {unit}" if low == 0 else f"{_g(low)}–{_g(high)} {unit}"
+
+        words = f"{self.says} {span(self.low, self.high, self.unit)}"
+        if self.field_unit is not None:
+            shown = self.field_unit
+            words += f" ({span(self.low / shown.si, self.high / shown.si, shown.symbol)})"
+        return f"{words} {self.tail}" if self.tail else words
+
+    def likely_slips(self, value: float) -> list[str]:
+        """The slips that would make ``value`` plausible, as "grams (300 g = 0.3 kg)"; for a
+        value beyond the limits with none, those that would bring it inside the limits."""
+
+        def within(low: float, high: float) -> list[str]:
+            return [
+                f"{slip.name} ({_g(value)} {slip.symbol} = {_g(value * slip.si)} {self.unit})"
+                for slip in self.slips
+                if low <= value * slip.si <= high
+            ]
+
+        found = within(self.low, self.high)
+        if not found and not self.limit_low <= value <= self.limit_high:
+            found = within(self.limit_low, self.limit_high)
+        return found
+
+
+def _g(number: float) -> str:
+    """A number to 3 significant figures, without float noise (5000, not 5e+03)."""
+    if 1e3 <= abs(number) < 1e6:
+        return f"{float(f'{number:.3g}'):.0f}"
+    return f"{number:.3g}"
+
+
+# --- units a value may have slipped into -------------------------------------------------------
+GRAM = Slip("grams", "g", 1e-3)
+OUNCE = Slip("ounces", "oz", 0.028349523125)
+POUND = Slip("pounds", "lb", 0.45359237)
+MILLIMETRE = Slip("millimetres", "mm", 1e-3)
+CENTIMETRE = Slip("centimetres", "cm", 1e-2)
+INCH = Slip("inches", "in", 0.0254)
+KM_PER_H = Slip("km/h", "km/h", 1.0 / 3.6)
+MPH = Slip("mph", "mph", 0.44704)
+POUND_FORCE = Slip("pounds", "lb", 4.4482216152605)
+KILOGRAM_FORCE = Slip("kilograms (kgf)", "kg", 9.80665)
+KILONEWTON = Slip("kN", "kN", 1e3)
+GIGAPASCAL = Slip("GPa", "GPa", 1e9)
+MEGAPASCAL = Slip("MPa", "MPa", 1e6)
+KG_CM2 = Slip("kg·cm²", "kg·cm²", 1e-4)
+G_M2 = Slip("g·m²", "g·m²", 1e-3)
+G_CM2 = Slip("g·cm²", "g·cm²", 1e-7)
+KG_M2_AS_KG_CM2 = Slip("kg·m²", "kg·m²", 1e4)
+G_CM2_AS_KG_CM2 = Slip("g·cm²", "g·cm²", 1e-3)
+SQUARE_INCH = Slip("square inches", "sq in", 6.4516)  # as cm²
+SQUARE_METRE_AS_CM2 = Slip("m²", "m²", 1e4)
+RAD_PER_S = Slip("rad/s", "rad/s", 1.0 / (2.0 * math.pi))
+KILOHERTZ = Slip("kHz", "kHz", 1e3)
+
+_MASS = (GRAM, OUNCE, POUND)
+_LENGTH = (MILLIMETRE, CENTIMETRE, INCH)
+_SPEED = (KM_PER_H, MPH)
+
+# --- the table ---------------------------------------------------------------------------------
+RANGES: dict[str, Range] = {
+    # The ball.  ITF Rules of Tennis, Appendix I: mass 56.0–59.4 g, diameter 6.54–6.86 cm (types
+    # 1–3).  Stage (red/orange/green) balls weigh 36–51.5 g: unusual, allowed with the override.
+    # Limits: a 5 g or 1 kg "ball" is a unit slip, not a ball.
+    "ball_mass_kg": Range("a tennis ball weighs", 0.0560, 0.0594, 0.005, 1.0, "kg", _MASS, GRAM),
+    "ball_diameter_m": Range(
+        "a tennis ball measures", 0.0654, 0.0686, 0.01, 0.5, "m", _LENGTH, CENTIMETRE
+    ),
+    # Speeds of play: the fastest serves measured are ≈ 263 km/h (73 m/s); racket heads reach
+    # ≈ 45–50 m/s at the tip on a serve.  75 m/s covers both.  Limit: the speed of sound, where
+    # no contact model of a ball means anything.
+    "ball_speed_mps": Range("balls are played at", 0.0, 75.0, 0.0, 340.0, "m/s", _SPEED, KM_PER_H),
+    "racket_speed_mps": Range(
+        "rackets are swung at", 0.0, 75.0, 0.0, 340.0, "m/s", _SPEED, KM_PER_H
+    ),
+    # The arm behind the grip (impact.hand.Hand): Kawazoe's 1 kg at the handle; a whole adult
+    # arm is ≈ 3.5 kg (Dempster).  0.2–6 kg spans children to heavy adults.
+    "hand_arm_mass_kg": Range("an arm behind the grip weighs", 0.2, 6.0, 0.01, 100.0, "kg", _MASS),
+    # The racket.  Strung rackets on sale weigh 230–400 g (juniors' lighter: allow them);
+    # ITF Rules, Appendix II: overall length at most 29.0 in (73.7 cm); adult rackets are
+    # ≥ 26 in ≈ 0.66 m, juniors' from 19 in: 0.60 m keeps 25-in juniors' rackets implausible.
+    "mass_kg": Range("a strung racket weighs", 0.230, 0.400, 0.05, 3.0, "kg", _MASS, GRAM),
+    "length_m": Range("a racket is", 0.600, 0.7366, 0.2, 2.0, "m", _LENGTH, INCH, "long"),
+    # Balance point: 31–36 cm from the butt on rackets on sale (head-light to head-heavy).
+    "balance_m": Range(
+        "a racket balances", 0.28, 0.40, 0.05, 2.0, "m", _LENGTH, None, "from the butt"
+    ),
+    # Pivot of the hand-held racket: in the handle, ≈ 70 mm (the paper); the handle is ≈ 20 cm.
+    "grip_m": Range(
+        "the grip pivot lies", 0.02, 0.20, 0.0, 1.0, "m", _LENGTH, None, "from the butt"
+    ),
+    # Inertia about the balance point: I_G = swingweight − M (x_G − 0.1 m)², which over the
+    # ranges here gives ≈ 0.010–0.021 kg·m² (Kawazoe's racket 0.0131); widened a little.
+    "inertia_cg_kgm2": Range(
+        "a racket's inertia about its balance point is",
+        0.008,
+        0.025,
+        5e-4,
+        0.5,
+        "kg·m²",
+        (G_M2, KG_CM2, G_CM2),
+    ),
+    # Swingweight (axis 10 cm from the butt) of rackets on sale: 250–380 kg·cm².
+    "swingweight_kgcm2": Range(
+        "a racket's swingweight is",
+        250.0,
+        380.0,
+        20.0,
+        5000.0,
+        "kg·cm²",
+        (KG_M2_AS_KG_CM2, G_CM2_AS_KG_CM2),
+    ),
+    # Twistweight of rackets on sale: ≈ 12–17 kg·cm² (the hoop model gives 15.2 for Kawazoe's);
+    # 8–30 leaves room for wide and weighted heads.
+    "twistweight_kgcm2": Range(
+        "a racket's twistweight is",
+        8.0,
+        30.0,
+        0.5,
+        500.0,
+        "kg·cm²",
+        (KG_M2_AS_KG_CM2, G_CM2_AS_KG_CM2),
+    ),
+    "roll_inertia_kgm2": Range(
+        "a racket's roll inertia is",
+        8e-4,
+        3e-3,
+        5e-5,
+        0.05,
+        "kg·m²",
+        (G_M2, KG_CM2, G_CM2),
+    ),
+    # The head.  Heads on sale: 80–140 sq in (516–903 cm²); string beds 30–36 cm long and
+    # 21–28 cm wide; the centre 0.45–0.55 m from the butt on a 27-in racket.
+    "area_cm2": Range(
+        "a string bed covers",
+        80 * 6.4516,
+        140 * 6.4516,
+        150.0,
+        5000.0,
+        "cm²",
+        (SQUARE_INCH, SQUARE_METRE_AS_CM2),
+        SQUARE_INCH,
+    ),
+    "centre_x_m": Range(
+        "a head's centre lies", 0.40, 0.60, 0.1, 2.0, "m", _LENGTH, None, "from the butt"
+    ),
+    "half_length_m": Range("a string bed's half-length is", 0.12, 0.22, 0.03, 1.0, "m", _LENGTH),
+    "half_width_m": Range("a string bed's half-width is", 0.08, 0.16, 0.02, 1.0, "m", _LENGTH),
+    "centre_y_m": Range("a head's centre is off the axis by", -0.02, 0.02, -0.3, 0.3, "m", _LENGTH),
+    # Strings.  Tensions strung: 15–35 kg (33–77 lb) per string; gauges 15L–19 = 1.05–1.45 mm;
+    # axial modulus: nylon and gut ≈ 2–6 GPa, polyester ≈ 4–10 GPa, aramid hybrids up to
+    # tens of GPa; 16 × 19 and 18 × 20 patterns, 14–20 mains and 15–22 crosses on sale.
+    # The strings of a racket weigh ≈ 12–20 g (4 % of the racket in the paper).
+    "tension_n": Range(
+        "a string is strung at",
+        15 * 9.80665,
+        35 * 9.80665,
+        20.0,
+        2000.0,
+        "N",
+        (POUND_FORCE, KILOGRAM_FORCE, KILONEWTON),
+        KILOGRAM_FORCE,
+    ),
+    "string_diameter_m": Range(
+        "a string's gauge is", 1.05e-3, 1.45e-3, 3e-4, 5e-3, "m", _LENGTH, MILLIMETRE
+    ),
+    "string_modulus_pa": Range(
+        "a string's axial modulus is",
+        1e9,
+        5e10,
+        5e7,
+        1e12,
+        "Pa",
+        (GIGAPASCAL, MEGAPASCAL),
+        GIGAPASCAL,
+    ),
+    "mains": Range("a racket has", 12, 22, 2, 60, "main strings"),
+    "crosses": Range("a racket has", 14, 24, 2, 60, "cross strings"),
+    "strings_mass_kg": Range(
+        "a racket's strings weigh", 0.008, 0.025, 1e-3, 0.3, "kg", _MASS, GRAM
+    ),
+    # Free modes of rackets on sale: 2-node bending 110–180 Hz (wooden ≈ 100 Hz), 2-node
+    # twisting 300–600 Hz (Kawazoe's 361 Hz).
+    "first_bending_hz": Range(
+        "a racket's first bending mode is at", 80.0, 250.0, 10.0, 2000.0, "Hz", (RAD_PER_S,)
+    ),
+    "twisting_hz": Range(
+        "a racket's first twisting mode is at",
+        250.0,
+        700.0,
+        30.0,
+        5000.0,
+        "Hz",
+        (RAD_PER_S, KILOHERTZ),
+    ),
+    # Point masses: lead tape strips of 1–10 g, a few together ≤ ≈ 50 g; anywhere on a racket
+    # (≤ 0.737 m, ITF) and across a head ≤ 14 cm from the axis.
+    "point_mass_kg": Range("lead tape and the like weigh", 0.0, 0.050, 0.0, 1.0, "kg", _MASS, GRAM),
+    "point_x_m": Range(
+        "a point mass sits", 0.0, 0.7366, 0.0, 2.0, "m", _LENGTH, None, "from the butt"
+    ),
+    "point_y_m": Range("a point mass sits off the axis by", -0.15, 0.15, -0.5, 0.5, "m", _LENGTH),
+    # Load–deflection data (ball and string bed, io.tables): a ball flattens by at most its
+    # radius (34 mm), a string bed deflects ≈ 1–3 cm at play's speeds; 10 cm is beyond either.
+    # Stiffness F/X at the largest deflection: balls ≈ 25–100 kN/m (one side), string beds
+    # ≈ 20–40 kN/m static; foam balls a few kN/m.  Forces given in kN read ≈ 1000× too soft.
+    "load_deflection_m": Range(
+        "a ball or string bed deflects", 0.0, 0.05, 0.0, 0.1, "m", (MILLIMETRE, CENTIMETRE)
+    ),
+    "load_stiffness_n_per_m": Range(
+        "load over deflection at the largest deflection of a ball or string bed is",
+        2e3,
+        1e6,
+        500.0,
+        1e9,
+        "N/m",
+    ),
+}
+"""Every plausible range, by input key (docs/racket-file.md lists them for the user)."""
+
+
+def check(
+    key: str,
+    value: float,
+    name: str,
+    *,
+    allow_implausible: bool = False,
+    override: str = OVERRIDE_OPTION,
+) -> float:
+    """Return ``value`` if it is plausible for ``key``, else raise InputError in one line.
+
+    Parameters
+    ----------
+    key : str
+        The input's entry in :data:`RANGES`.
+    value : float
+        The value, in the input's SI unit.
+    name : str
+        How the message names the input ("[racket].mass_kg", "--ball-mass").
+    allow_implausible : bool
+        Take a value outside the plausible range but inside the limits (logged).
+    override : str
+        The sentence saying how to allow an unusual value, for the message.
+
+    Returns
+    -------
+    float
+        ``value``.  Values that are not finite numbers are returned unchecked: the type checks
+        of the caller report them.
+    """
+    spec = RANGES[key]
+    number = float(value)
+    if not math.isfinite(number) or spec.low <= number <= spec.high:
+        return value
+    given = f"{name} {_g(number)}" if name.startswith("-") else f"{name} = {_g(number)}"
+    message = f"{given}: {spec.text()}"
+    slips = spec.likely_slips(number)
+    if slips:
+        message += f"; did you give {' or '.join(slips)}?"
+    if not spec.limit_low <= number <= spec.limit_high:
+        raise InputError(
+            f"{message} (outside {_g(spec.limit_low)}–{_g(spec.limit_high)} {spec.unit}: refused "
+            "even with allow_implausible)"
+        )
+    if not allow_implausible:
+        sep, advice = (" ", override[:1].upper() + override[1:]) if slips else ("; ", override)
+        raise InputError(f"{message}{sep}{advice}")
+    log.warning("%s (taken: allow_implausible)", message)
+    return value
+
+
+def check_limits(key: str, value: float, name: str) -> float:
+    """Return ``value`` unless it lies beyond the limits of ``key`` (a unit slip whatever the
+    object): the check a core object makes on itself, silent inside the limits."""
+    spec = RANGES[key]
+    number = float(value)
+    if math.isfinite(number) and not spec.limit_low <= number <= spec.limit_high:
+        check(key, value, name)
+    return value
+
+
+def check_speeds(
+    name: str, speeds: Iterable[float], key: str = "ball_speed_mps", allow_implausible: bool = False
+) -> None:
+    """Check speeds (m/s) against the speeds of play (:func:`check`; negative ones are left to
+    :func:`racketdyn.errors.require_speeds`)."""
+    for speed in speeds:
+        if float(speed) >= 0:
+            check(key, speed, name, allow_implausible=allow_implausible)
+
+
+def check_load_deflection(where: str, deflection: Iterable[float], force: Iterable[float]) -> None:
+    """Refuse load–deflection data whose scale shows a unit slip: deflections in mm given as m
+    (beyond 0.1 m), forces in kN given as N (load over deflection under 500 N/m).
+
+    Only the limits are enforced (a slip, never an unusual object): the same data are read by
+    the ball options and by a racket file's string bed.
+    """
+    points = [(float(x), float(f)) for x, f in zip(deflection, force, strict=True)]
+    positive = [(x, f) for x, f in points if x > 0 and math.isfinite(x) and math.isfinite(f)]
+    if not positive:
+        return
+    largest, force_there = max(positive)
+    check("load_deflection_m", largest, f"{where}: largest deflection_m", allow_implausible=True)
+    if force_there > 0:
+        stiffness = force_there / largest
+        spec = RANGES["load_stiffness_n_per_m"]
+        if stiffness < spec.limit_low:
+            kilo = " Did you give the forces in kN?" if spec.low <= stiffness * 1e3 else ""
+            raise InputError(
+                f"{where}: force_n {_g(force_there)} N at deflection_m {_g(largest)} m is "
+                f"{_g(stiffness)} N/m; {spec.text()}.{kilo} (give forces in N)"
+            )
