@@ -115,7 +115,7 @@ def plot_frame_amplitude(
 ) -> Axes:
     """Displacement amplitude of one mode along the frame after an impact (Fig. 14), mm.
 
-    Impacts without a valid result (their ``status``) are drawn grey and dashed, labelled
+    Impacts without a valid result (their ``status``) are drawn faint and dashed, labelled
     flagged with the reason."""
     ax = _axes(ax)
     response = np.column_stack([response_x_m, np.zeros_like(response_x_m)])
@@ -134,7 +134,8 @@ def plot_frame_amplitude(
                 response_x_m * 1e3,
                 sign * amplitude[:, s] * 1e3,
                 linestyle="--",
-                color="0.6",
+                color=f"C{s}",
+                alpha=0.45,
                 label=f"{speed:g} m/s: flagged ({status})",
             )
     ax.axhline(0.0, color="0.5", linewidth=0.8)
