@@ -12,6 +12,7 @@ if TYPE_CHECKING:
     from rich.table import Table
 
     from racketdyn.impact.comparison import ModelComparison
+    from racketdyn.impact.result import ImpactResult
     from racketdyn.racket import Racket
 
 
@@ -111,18 +112,75 @@ def run(args: argparse.Namespace, console: Console) -> int:
         f"({table.locations.shape[0]} points × {len(speeds)} speeds × {len(supports)} supports) "
         f"{'by each model ' if result.comparison is not None else ''}→ {result.out}"
     )
+    assert result.racket is not None
     for label, part, csv_name in (
         ("approximate method", result.approximate, "impact.csv"),
         ("transient model", result.transient, transient_csv_name(args.model)),
     ):
         if part is not None:
-            opt.print_status(console, part.status, csv_name, label)
+            console.print(_headline(part, result.racket, label))
+            console.print(_flagged(part.status, csv_name))
     if result.comparison is not None:
-        assert result.racket is not None
         console.print(_comparison_table(result.comparison, result.shown_speed, result.racket))
-    console.print(f"compound ball+string law: {result.law.describe()}")
     opt.print_written(console, result.written)
     return 0
+
+
+def _headline(result: ImpactResult, racket: Racket, label: str) -> Table:
+    """Contact time, rebound ratio and peak force at the run's point nearest the face centre,
+    per support and speed; a flagged row shows its status, not numbers."""
+    import numpy as np
+    from rich.table import Table
+
+    from racketdyn.racket import landmark_points
+
+    centre = np.asarray(landmark_points(racket)["centre"])
+    i = int(np.argmin(np.linalg.norm(result.locations - centre, axis=1)))
+    x, y = result.locations[i] * 1e3
+    off = float(np.linalg.norm(result.locations[i] - centre)) * 1e3
+    table = Table(
+        title=f"{label} at the face centre: point {result.labels[i]}, x = {x:.0f} mm, "
+        f"y = {y:.0f} mm ({off:.0f} mm from the centre)"
+    )
+    for heading in (
+        "support",
+        "ball (m/s)",
+        "racket (m/s)",
+        "contact time (ms)",
+        "rebound ratio",
+        "peak force (N)",
+        "status",
+    ):
+        table.add_column(heading)
+    for p, support in enumerate(result.supports):
+        for s, speed in enumerate(result.ball_speed):
+            status = str(result.status[i, s, p])
+            valid = status == "ok"
+            table.add_row(
+                support,
+                f"{speed:g}",
+                f"{result.racket_speed[s]:g}",
+                f"{result.contact_time[i, s, p] * 1e3:.2f}" if valid else "–",
+                f"{result.rebound_ratio[i, s, p]:.3f}" if valid else "–",
+                f"{result.peak_force[i, s, p]:.0f}" if valid else "–",
+                status,
+            )
+    return table
+
+
+def _flagged(status: Any, csv_name: str) -> str:
+    """How many rows are flagged, by reason."""
+    import numpy as np
+
+    bad = status != "ok"
+    if not np.any(bad):
+        return f"flagged: none of {status.size} rows in {csv_name}"
+    reasons, counts = np.unique(status[bad], return_counts=True)
+    why = "; ".join(f"{count} {reason}" for reason, count in zip(reasons, counts, strict=True))
+    return (
+        f"[yellow]flagged: {int(bad.sum())} of {status.size} rows in {csv_name} "
+        f"(see its status column): {why}[/]"
+    )
 
 
 def _comparison_table(comparison: ModelComparison, speed: int, racket: Racket) -> Table:

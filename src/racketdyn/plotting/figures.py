@@ -1,7 +1,8 @@
 """The paper's figures for a racket, written as PNG files.
 
-Each figure recomputes the predictions it needs on its own points and speeds, so it does not
-depend on the points a user asked for in ``impact.csv``.
+The face maps draw the run's own impacts; the figures that need a grid of their own (curves
+against speed, the long axis, the tip) compute it with the run's options
+(:class:`FigureOptions`: supports, speeds, racket speed, law, eq 10 reading, string bed).
 """
 
 from __future__ import annotations
@@ -9,20 +10,22 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
+from racketdyn.impact.approximate import StiffnessReading
 from racketdyn.impact.comparison import History, ModelComparison
 from racketdyn.impact.oblique import ObliqueCurve, TangentialContact
-from racketdyn.impact.result import SHOWN_SPEED_MPS
+from racketdyn.impact.result import SHOWN_SPEED_MPS, ImpactResult
 from racketdyn.impact.swing import ImpactModel, SweetSpot, Swing, SwingResult, predict_swing
 from racketdyn.impact.transient import predict_transient
 from racketdyn.impact.twist import TwistCurve
@@ -62,6 +65,8 @@ __all__ = [
     "TRANSIENT_CURVE_SPEEDS_MPS",
     "TRANSIENT_FIGURES",
     "TWIST_FIGURE",
+    "FigureOptions",
+    "PaperFigure",
     "axis_swings",
     "figure_oblique",
     "figure_swing_along_axis",
@@ -102,63 +107,254 @@ def _save(figure: Figure, path: Path) -> Path:
     return save_figure(figure, path)
 
 
-def figure_force_and_contact_time(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
-    """Paper Figs 11 and 12: F_MEAN and T_c against speed at the top, centre and throat."""
+@dataclass(frozen=True)
+class FigureOptions:
+    """What a ``predict`` run asked for, for the figures that compute on a grid of their own.
+
+    The defaults are the paper's (both supports, a racket at rest, the period reading of
+    eq 10, string-bed modes not charged); :func:`racketdyn.plotting.steps.predict_figures`
+    fills them from the run (:class:`racketdyn.workflows.PredictResult`).
+
+    Attributes
+    ----------
+    supports : tuple of str
+        Supports to draw (``free``, ``pinned``).
+    speeds : tuple of float
+        The run's incoming ball speeds, m/s (none: the figures' own speeds); marked on the
+        speed axes, the speeds of Figs 13 and 14.
+    racket_speeds : tuple of float
+        The run's racket speeds, m/s: one, or one per speed of ``speeds``.
+    shown_speed : float
+        Ball speed of the single-speed figures (face maps, Fig. 15), m/s.
+    law : RestoringForce or None
+        Compound ball+string law (None: :func:`racketdyn.contact.compound_law`).
+    include_string_bed : bool
+        String-bed modes charged as vibration loss.
+    stiffness_reading : {"period", "tangent"}
+        Reading of eq 10.
+    """
+
+    supports: tuple[str, ...] = ("pinned", "free")
+    speeds: tuple[float, ...] = ()
+    racket_speeds: tuple[float, ...] = (0.0,)
+    shown_speed: float = SHOWN_SPEED_MPS
+    law: RestoringForce | None = None
+    include_string_bed: bool = False
+    stiffness_reading: StiffnessReading = "period"
+
+    def racket_speed_at(self, speeds: ArrayLike) -> NDArray[np.float64]:
+        """Racket speed at each ball speed, m/s: the run's one racket speed, or the run's
+        (ball speed, racket speed) pairs interpolated linearly (held beyond their ends)."""
+        v = np.asarray(speeds, dtype=float)
+        if len(set(self.racket_speeds)) <= 1 or len(self.racket_speeds) != len(self.speeds):
+            return np.full(v.shape, self.racket_speeds[0] if self.racket_speeds else 0.0)
+        order = np.argsort(self.speeds)
+        return np.asarray(
+            np.interp(v, np.asarray(self.speeds)[order], np.asarray(self.racket_speeds)[order]),
+            dtype=float,
+        )
+
+    def main_support(self) -> str:
+        """The support of single-support panels: pinned (the paper's hand-held) if drawn."""
+        return "pinned" if "pinned" in self.supports else self.supports[0]
+
+    def impact_options(self, model: ModalModel | None) -> dict[str, Any]:
+        """Keywords of :func:`racketdyn.impact.predict` but the points, speeds and supports."""
+        return {
+            "modal_model": model,
+            "law": self.law,
+            "include_string_bed": self.include_string_bed,
+            "stiffness_reading": self.stiffness_reading,
+        }
+
+    def describe(self, model: ModalModel | None, racket_speed: float | None = None) -> str:
+        """The options in words, for titles: racket speed, eq 10 reading, string bed, rigid."""
+        if racket_speed is None:
+            distinct = sorted(set(self.racket_speeds))
+            moving = len(distinct) > 1 or (distinct and distinct[0] != 0.0)
+            racket = (
+                "racket " + ", ".join(f"{v:g}" for v in self.racket_speeds) + " m/s"
+                if moving
+                else "racket at rest"
+            )
+        else:
+            racket = f"racket {racket_speed:g} m/s" if racket_speed else "racket at rest"
+        parts = [racket, f"eq 10 {self.stiffness_reading} reading"]
+        if self.include_string_bed:
+            parts.append("string-bed modes charged")
+        if model is None:
+            parts.append("rigid racket")
+        return "; ".join(parts)
+
+
+def _curve_speeds(options: FigureOptions, low: float, high: float, n: int) -> NDArray[np.float64]:
+    """A fixed sweep of ball speeds, stretched to the run's fastest, with the run's speeds in."""
+    top = max(high, *options.speeds) if options.speeds else high
+    return np.union1d(np.linspace(low, top, n), np.asarray(options.speeds, dtype=float))
+
+
+def _mark_run_speeds(
+    ax: Axes, speeds: NDArray[np.float64], values: NDArray[np.float64], options: FigureOptions
+) -> None:
+    """The run's speeds on a curve against speed: markers on the curve's values there."""
+    if not options.speeds:
+        return
+    at = np.isin(speeds, np.asarray(options.speeds, dtype=float))
+    ax.plot(speeds[at], values[at], "o", color="tab:red", markersize=4, label="the run's speeds")
+
+
+def figure_force_and_contact_time(
+    racket: Racket,
+    ball: Ball,
+    model: ModalModel | None,
+    options: FigureOptions | None = None,
+) -> Figure:
+    """Paper Figs 11 and 12: F_MEAN and T_c against speed at the top, centre and throat.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The racket and ball.
+    model : ModalModel or None
+        The racket's modes (None: rigid).
+    options : FigureOptions, optional
+        The run's supports, racket speed, law and eq 10 reading (default: the paper's); the
+        run's speeds are marked on the curves (a sweep from 5 m/s to 50 m/s or the fastest).
+    """
+    options = options or FigureOptions()
     marks = landmark_points(racket)
     names = ["top", "centre", "throat"]
+    speeds = _curve_speeds(
+        options, CURVE_SPEEDS_MPS[0], CURVE_SPEEDS_MPS[-1], CURVE_SPEEDS_MPS.size
+    )
     result = predict(
         racket,
         ball,
         [marks[n] for n in names],
-        CURVE_SPEEDS_MPS,
-        ("pinned", "free"),
-        modal_model=model,
+        speeds,
+        options.supports,
+        racket_speed=options.racket_speed_at(speeds),
         labels=names,
+        **options.impact_options(model),
     )
     figure, axes = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
-    plot_speed_curves(result, "mean_force", names, ax=axes[0])
-    plot_speed_curves(result, "contact_time", names, ax=axes[1])
+    for ax, quantity in zip(axes, ("mean_force", "contact_time"), strict=True):
+        plot_speed_curves(result, quantity, names, ax=ax)
+        scale = 1e3 if quantity == "contact_time" else 1.0
+        values = np.asarray(getattr(result, quantity), dtype=float) * scale
+        for i in range(len(names)):
+            for p in range(len(options.supports)):
+                _mark_run_speeds(ax, speeds, values[i, :, p], options)
+        _dedupe_legend(ax)
     axes[0].set_title("Fig. 11: equivalent impact force", fontsize=9)
     axes[1].set_title("Fig. 12: contact time", fontsize=9)
-    figure.suptitle(racket.name, fontsize=10)
+    figure.suptitle(f"{racket.name}: {options.describe(model)}", fontsize=10)
     return figure
 
 
-def figure_frame_vibration(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
-    """Paper Fig. 14: first-mode displacement along the frame for an impact at the tip."""
-    figure, axes = plt.subplots(1, 2, figsize=(10, 4), layout="constrained", sharey=True)
-    if model is None:
-        for ax in axes:
-            ax.text(0.5, 0.5, "rigid racket: no vibration", ha="center", transform=ax.transAxes)
+def _dedupe_legend(ax: Axes, fontsize: float = 7) -> None:
+    """One legend entry per label."""
+    handles, labels = ax.get_legend_handles_labels()
+    unique = dict(zip(labels, handles, strict=True))
+    ax.legend(list(unique.values()), list(unique.keys()), fontsize=fontsize)
+
+
+def figure_frame_vibration(
+    racket: Racket,
+    ball: Ball,
+    model: ModalModel | None,
+    options: FigureOptions | None = None,
+) -> Figure:
+    """Paper Fig. 14: first-mode displacement along the frame for an impact at the tip.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The racket and ball.
+    model : ModalModel or None
+        The racket's modes (None: rigid, a figure that says there is no vibration).
+    options : FigureOptions, optional
+        The run's speeds (default 10, 20, 30 m/s) with their racket speeds, its supports (one
+        panel each), law and options; flagged impacts are drawn dashed and labelled.
+    """
+    options = options or FigureOptions(supports=("free", "pinned"))
+    supports = options.supports
+    if model is None or not model.n_modes:
+        figure, ax = plt.subplots(figsize=(6, 2.5), layout="constrained")
+        ax.set_axis_off()
+        ax.text(
+            0.5,
+            0.5,
+            "rigid racket: no vibration (no modes)",
+            ha="center",
+            va="center",
+            transform=ax.transAxes,
+        )
+        figure.suptitle("Fig. 14: frame vibration", fontsize=10)
         return figure
+    speeds = np.asarray(options.speeds or VIBRATION_SPEEDS_MPS, dtype=float)
     result = predict(
         racket,
         ball,
         [landmark_points(racket)["tip"]],
-        VIBRATION_SPEEDS_MPS,
-        ("free", "pinned"),
-        modal_model=model,
+        speeds,
+        supports,
+        racket_speed=options.racket_speed_at(speeds),
         labels=["tip"],
+        **options.impact_options(model),
+    )
+    figure, axes = plt.subplots(
+        1,
+        len(supports),
+        figsize=(5 * len(supports), 4),
+        layout="constrained",
+        sharey=True,
+        squeeze=False,
     )
     along = np.linspace(0.0, racket.length_m, 121)
-    for ax, support in zip(axes, ("free", "pinned"), strict=True):
+    for ax, support in zip(axes[0], supports, strict=True):
         plot_frame_amplitude(result, along, mode=0, support=support, ax=ax)
     figure.suptitle(
-        "Fig. 14: predicted frame vibration just after an impact at the tip (first mode only)",
+        "Fig. 14: predicted frame vibration just after an impact at the tip (first mode only); "
+        + options.describe(model),
         fontsize=10,
     )
     return figure
 
 
-def figure_rebound_along_axis(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
-    """Paper Fig. 15: rebound ratio along the long axis at 20 m/s, free against pinned."""
+def figure_rebound_along_axis(
+    racket: Racket,
+    ball: Ball,
+    model: ModalModel | None,
+    options: FigureOptions | None = None,
+) -> Figure:
+    """Paper Fig. 15: rebound ratio along the long axis at the shown speed, per support.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The racket and ball.
+    model : ModalModel or None
+        The racket's modes (None: rigid).
+    options : FigureOptions, optional
+        The run's shown speed (default 20 m/s) and its racket speed, supports, law, options.
+    """
+    options = options or FigureOptions()
     head = racket.head
     x = np.linspace(
         head.throat_x_m + 0.05 * head.half_length_m, head.tip_x_m - 0.05 * head.half_length_m, 31
     )
     points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
+    speed = options.shown_speed
+    racket_speed = float(options.racket_speed_at([speed])[0])
     result = predict(
-        racket, ball, points, [REBOUND_SPEED_MPS], ("pinned", "free"), modal_model=model
+        racket,
+        ball,
+        points,
+        [speed],
+        options.supports,
+        racket_speed=racket_speed,
+        **options.impact_options(model),
     )
     marks = {"centre of percussion (grip)": racket.centre_of_percussion_m()}
     if model is not None and model.n_modes:
@@ -169,46 +365,108 @@ def figure_rebound_along_axis(racket: Racket, ball: Ball, model: ModalModel | No
     figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
     plot_along_axis(result, "rebound_ratio", 0, ax=ax, marks=marks)
     ax.set_title(
-        f"Fig. 15: predicted rebound ratio, ball at {REBOUND_SPEED_MPS:g} m/s on a racket at rest",
+        f"Fig. 15: predicted rebound ratio, ball at {speed:g} m/s\n"
+        + options.describe(model, racket_speed),
         fontsize=9,
     )
     return figure
 
 
-def figure_face_maps(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
-    """Face maps at 20 m/s: rebound ratio (free, pinned), contact time, vibration energy."""
-    points = racket.head.grid(25)
-    result = predict(
-        racket, ball, points, [REBOUND_SPEED_MPS], ("pinned", "free"), modal_model=model
+def figure_face_maps(
+    racket: Racket,
+    ball: Ball,
+    model: ModalModel | None,
+    options: FigureOptions | None = None,
+    result: ImpactResult | None = None,
+) -> Figure:
+    """Face maps at one speed: rebound ratio (each support), contact time and vibration energy.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The racket and ball.
+    model : ModalModel or None
+        The racket's modes (None: rigid).
+    options : FigureOptions, optional
+        The run's shown speed, supports and options (default: 20 m/s, pinned and free).
+    result : ImpactResult, optional
+        The run's impacts: the maps draw its points at ``options.shown_speed`` (points, not a
+        contour, where they span no surface).  None: a 25 × 25 grid computed here.
+    """
+    options = options or FigureOptions()
+    if result is None:
+        speed = options.shown_speed
+        result = predict(
+            racket,
+            ball,
+            racket.head.grid(25),
+            [speed],
+            options.supports,
+            racket_speed=options.racket_speed_at([speed]),
+            **options.impact_options(model),
+        )
+    hits = np.flatnonzero(np.isclose(result.ball_speed, options.shown_speed))
+    s = int(hits[0]) if hits.size else 0
+    main = (
+        options.main_support()
+        if options.main_support() in result.supports
+        else (result.supports[0])
     )
-    figure, axes = plt.subplots(2, 2, figsize=(10, 7.5), layout="constrained")
-    plot_face_map(result, racket, "rebound_ratio", 0, "pinned", ax=axes[0, 0])
-    plot_face_map(result, racket, "rebound_ratio", 0, "free", ax=axes[0, 1])
-    plot_face_map(result, racket, "contact_time", 0, "pinned", ax=axes[1, 0])
-    plot_face_map(result, racket, "vibration_energy", 0, "pinned", ax=axes[1, 1])
+    panels = [("rebound_ratio", support) for support in result.supports]
+    panels += [("contact_time", main), ("vibration_energy", main)]
+    columns = 2 if len(panels) == 4 else len(panels)
+    rows = int(np.ceil(len(panels) / columns))
+    figure, axes = plt.subplots(
+        rows, columns, figsize=(5 * columns, 3.75 * rows), layout="constrained", squeeze=False
+    )
+    for ax, (quantity, support) in zip(axes.flat, panels, strict=True):
+        plot_face_map(result, racket, quantity, s, support, ax=ax)
+    racket_speed = float(result.racket_speed[s])
     figure.suptitle(
-        f"{racket.name}: ball at {REBOUND_SPEED_MPS:g} m/s on a racket at rest", fontsize=10
+        f"{racket.name}: ball at {result.ball_speed[s]:g} m/s, {len(result.locations)} points; "
+        + options.describe(model, racket_speed),
+        fontsize=10,
     )
     return figure
 
 
-def figure_pulse_spectrum(racket: Racket, ball: Ball, model: ModalModel | None) -> Figure:
-    """Paper Fig. 13: the half-sine pulse at the face centre and its spectrum, against speed."""
+def figure_pulse_spectrum(
+    racket: Racket,
+    ball: Ball,
+    model: ModalModel | None,
+    options: FigureOptions | None = None,
+) -> Figure:
+    """Paper Fig. 13: the half-sine pulse at the face centre and its spectrum, against speed.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The racket and ball.
+    model : ModalModel or None
+        The racket's modes (dotted; None: rigid).
+    options : FigureOptions, optional
+        The run's speeds (default 10, 20, 30, 40 m/s) with their racket speeds, its support
+        (pinned if run, else the first), law and options.
+    """
+    options = options or FigureOptions()
+    support = options.main_support()
     centre = landmark_points(racket)["centre"]
+    speeds = np.asarray(options.speeds or (*VIBRATION_SPEEDS_MPS, 40.0), dtype=float)
     result = predict(
         racket,
         ball,
         [centre],
-        (*VIBRATION_SPEEDS_MPS, 40.0),
-        ("pinned",),
-        modal_model=model,
+        speeds,
+        (support,),
+        racket_speed=options.racket_speed_at(speeds),
         labels=["centre"],
+        **options.impact_options(model),
     )
     figure, axes = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
     frequency = np.linspace(0.0, 1500.0, 1501)
     for s, speed in enumerate(result.ball_speed):
         contact, peak = result.contact_time[0, s, 0], result.peak_force[0, s, 0]
-        if not np.isfinite(contact):
+        if not np.isfinite(contact) or result.status[0, s, 0] != "ok":
             continue
         time = np.linspace(-0.5e-3, 7e-3, 751)
         axes[0].plot(time * 1e3, half_sine_force(time, contact, peak), label=f"{speed:g} m/s")
@@ -230,16 +488,29 @@ def figure_pulse_spectrum(racket: Racket, ball: Ball, model: ModalModel | None) 
     axes[1].set_ylabel("|S(f)| (N·s)")
     for ax in axes:
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7)
     figure.suptitle(
-        "Fig. 13: half-sine impact force at the face centre (pinned) and its "
-        "spectrum; modes of the model dotted",
+        f"Fig. 13: half-sine impact force at the face centre ({SUPPORT_STYLE[support]['label']}) "
+        f"and its spectrum; modes of the model dotted\n{options.describe(model)}",
         fontsize=10,
     )
     return figure
 
 
-FIGURES: dict[str, Callable[[Racket, Ball, ModalModel | None], Figure]] = {
+class PaperFigure(Protocol):
+    """A builder of :data:`FIGURES`: ``build(racket, ball, model, options) -> Figure``."""
+
+    def __call__(
+        self,
+        racket: Racket,
+        ball: Ball,
+        model: ModalModel | None,
+        options: FigureOptions | None = None,
+    ) -> Figure: ...
+
+
+FIGURES: dict[str, PaperFigure] = {
     "fig11_12_force_contact_time.png": figure_force_and_contact_time,
     "fig13_pulse_spectrum.png": figure_pulse_spectrum,
     "fig14_frame_vibration.png": figure_frame_vibration,
@@ -255,13 +526,35 @@ def write_paper_figures(
     model: ModalModel | None,
     out_dir: Path,
     progress: Callable[[str], None] | None = None,
+    options: FigureOptions | None = None,
+    result: ImpactResult | None = None,
 ) -> list[Path]:
-    """Draw every figure in :data:`FIGURES` into ``out_dir``; returns the paths written."""
+    """Draw every figure in :data:`FIGURES` into ``out_dir``; returns the paths written.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The racket and ball.
+    model : ModalModel or None
+        The racket's modes (None: rigid).
+    out_dir : Path
+        Output folder.
+    progress : callable, optional
+        ``progress(file name)`` before each figure.
+    options : FigureOptions, optional
+        The run's supports, speeds and options (default: the paper's).
+    result : ImpactResult, optional
+        The run's impacts (approximate method), drawn by the face maps.
+    """
     batch = FigureBatch()
     for name, build in FIGURES.items():
         if progress is not None:
             progress(name)
-        batch.add(build(racket, ball, model), Path(out_dir) / name)
+        if name == "face_maps.png":
+            figure = figure_face_maps(racket, ball, model, options, result)
+        else:
+            figure = build(racket, ball, model, options)
+        batch.add(figure, Path(out_dir) / name)
     written = batch.render()
     for path in written:
         log.info("wrote %s", path)
@@ -605,16 +898,14 @@ def figure_transient_comparison_speed(
     racket: Racket,
     ball: Ball,
     model: ModalModel | None,
-    supports: Sequence[str],
-    law: RestoringForce | None = None,
-    include_string_bed: bool = False,
-    **options: Any,
+    options: FigureOptions | None = None,
+    **transient_options: Any,
 ) -> Figure:
     """Rebound ratio and contact time against speed, approximate against transient.
 
     At the face centre, near the tip and near the throat
-    (:func:`racketdyn.racket.landmark_points`), at :data:`TRANSIENT_CURVE_SPEEDS_MPS`, racket at
-    rest; one column per support.
+    (:func:`racketdyn.racket.landmark_points`), at :data:`TRANSIENT_CURVE_SPEEDS_MPS` (to the
+    run's fastest) and the run's speeds (marked); one column per support.
 
     Parameters
     ----------
@@ -622,27 +913,41 @@ def figure_transient_comparison_speed(
         The racket and ball.
     model : ModalModel or None
         Modes of both models (None: rigid).
-    supports : sequence of str
-        Supports the approximate method takes (free, pinned).
-    law : RestoringForce, optional
-        Compound ball+string law.
-    include_string_bed : bool
-        Keep string-bed modes.
-    **options
+    options : FigureOptions, optional
+        The run's supports (those the approximate method takes: free, pinned), speeds, racket
+        speed, law, string-bed option and eq 10 reading (default: the paper's).
+    **transient_options
         Further keywords of :func:`~racketdyn.impact.transient.predict_transient` (engine).
     """
+    options = options or FigureOptions(supports=("free", "pinned"))
+    supports = options.supports
     marks = landmark_points(racket)
     names = ["centre", "tip", "throat"]
+    speeds = _curve_speeds(
+        options,
+        TRANSIENT_CURVE_SPEEDS_MPS[0],
+        TRANSIENT_CURVE_SPEEDS_MPS[-1],
+        TRANSIENT_CURVE_SPEEDS_MPS.size,
+    )
     common: dict[str, Any] = {
         "modal_model": model,
         "labels": names,
-        "law": law,
-        "include_string_bed": include_string_bed,
+        "law": options.law,
+        "include_string_bed": options.include_string_bed,
+        "racket_speed": options.racket_speed_at(speeds),
     }
     points = [marks[n] for n in names]
-    approximate = predict(racket, ball, points, TRANSIENT_CURVE_SPEEDS_MPS, supports, **common)
+    approximate = predict(
+        racket,
+        ball,
+        points,
+        speeds,
+        supports,
+        stiffness_reading=options.stiffness_reading,
+        **common,
+    )
     transient = predict_transient(
-        racket, ball, points, TRANSIENT_CURVE_SPEEDS_MPS, supports, **common, **options
+        racket, ball, points, speeds, supports, **common, **transient_options
     )
     figure, axes = plt.subplots(
         2,
@@ -670,7 +975,7 @@ def figure_transient_comparison_speed(
                         np.nan,
                     )
                     ax.plot(
-                        TRANSIENT_CURVE_SPEEDS_MPS,
+                        speeds,
                         values * scale,
                         style,
                         color=colour,
@@ -678,15 +983,18 @@ def figure_transient_comparison_speed(
                         markersize=3,
                         label=f"{name} ({x * 1e3:.0f} mm), {model_name}",
                     )
+                    if style == "-":
+                        _mark_run_speeds(ax, speeds, values * scale, options)
             ax.set_ylabel(label)
             ax.grid(alpha=0.3)
             if row == 0:
                 ax.set_title(_support_style(support)["label"], fontsize=9)
-                ax.legend(fontsize=6)
+                _dedupe_legend(ax, 6)
             else:
                 ax.set_xlabel("incoming ball speed (m/s)")
     figure.suptitle(
-        "Approximate method (dashed) against the transient simulation (solid), racket at rest",
+        "Approximate method (dashed) against the transient simulation (solid); "
+        + options.describe(model),
         fontsize=10,
     )
     return figure
@@ -741,7 +1049,12 @@ def figure_transient_histories(histories: Sequence[History], mode_names: Sequenc
         first = next(h for h in histories if h.point == point)
         force_ax.set_title(
             f"{point}: x = {first.location[0] * 1e3:.0f} mm, y = {first.location[1] * 1e3:.0f} mm, "
-            f"{first.impact.ball_speed_mps:g} m/s",
+            f"{first.impact.ball_speed_mps:g} m/s"
+            + (
+                f", racket {first.impact.racket_speed_mps:g} m/s"
+                if first.impact.racket_speed_mps
+                else ", racket at rest"
+            ),
             fontsize=9,
         )
         force_ax.set_ylabel("contact force (N)")
@@ -791,7 +1104,7 @@ def write_transient_figures(
         Ball speed of the face map.
     curves : dict, optional
         Keywords of :func:`figure_transient_comparison_speed` but the racket (``ball``,
-        ``model``, ``supports``, …): the curves against speed (none: no curves).
+        ``model``, ``options``, ``engine``): the curves against speed (none: no curves).
 
     Returns
     -------

@@ -113,7 +113,10 @@ def plot_frame_amplitude(
     point: int = 0,
     ax: Axes | None = None,
 ) -> Axes:
-    """Displacement amplitude of one mode along the frame after an impact (Fig. 14), mm."""
+    """Displacement amplitude of one mode along the frame after an impact (Fig. 14), mm.
+
+    Impacts without a valid result (their ``status``) are drawn faint and dashed, labelled
+    flagged with the reason."""
     ax = _axes(ax)
     response = np.column_stack([response_x_m, np.zeros_like(response_x_m)])
     shapes = result.modal_model.mode_shapes_at(response)[:, mode] if result.modal_model else None
@@ -121,8 +124,20 @@ def plot_frame_amplitude(
         :, point, :, result.support_index(support), mode
     ]
     sign = np.sign(shapes) if shapes is not None else 1.0
+    p = result.support_index(support)
     for s, speed in enumerate(result.ball_speed):
-        ax.plot(response_x_m * 1e3, sign * amplitude[:, s] * 1e3, label=f"{speed:g} m/s")
+        status = str(result.status[point, s, p])
+        if status == "ok":
+            ax.plot(response_x_m * 1e3, sign * amplitude[:, s] * 1e3, label=f"{speed:g} m/s")
+        else:  # drawn so the size shows, but not as a valid prediction
+            ax.plot(
+                response_x_m * 1e3,
+                sign * amplitude[:, s] * 1e3,
+                linestyle="--",
+                color=f"C{s}",
+                alpha=0.45,
+                label=f"{speed:g} m/s: flagged ({status})",
+            )
     ax.axhline(0.0, color="0.5", linewidth=0.8)
     ax.axvline(result.locations[point, 0] * 1e3, color="r", linestyle=":", label="impact point")
     name = result.modal_model.names[mode] if result.modal_model else ""
@@ -172,9 +187,9 @@ def plot_along_axis(
         )
     ax.set_xlabel("impact point, x from the butt (mm)")
     ax.set_ylabel(QUANTITIES[quantity][0])
-    ax.set_title(
-        f"incoming ball {result.ball_speed[speed_index]:g} m/s, racket at rest", fontsize=9
-    )
+    racket_speed = float(result.racket_speed[speed_index])
+    moving = f"racket {racket_speed:g} m/s" if racket_speed else "racket at rest"
+    ax.set_title(f"incoming ball {result.ball_speed[speed_index]:g} m/s, {moving}", fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     return ax
@@ -201,11 +216,16 @@ def plot_outline(racket: Racket, ax: Axes | None = None, **style: Any) -> Axes:
 def _contour_face(
     ax: Axes, locations: NDArray[np.float64], values: NDArray[np.float64], label: str, levels: int
 ) -> bool:
-    """Filled, labelled contours of values at face points (mm) and a colour bar; points with no
-    valid value marked with red crosses.  Returns whether any were marked."""
+    """Filled, labelled contours of values at face points (mm) and a colour bar, the points
+    themselves as dots; where the valid points span no surface (fewer than three, on a line,
+    or one value everywhere) the points coloured by value instead.  Points with no valid value
+    marked with red crosses.  Returns whether any were marked."""
     x_mm, y_mm = locations[:, 0] * 1e3, locations[:, 1] * 1e3
     finite = np.isfinite(values)
-    if finite.sum() >= 3:
+    surface = (
+        finite.sum() >= 3 and _spans_a_surface(locations[finite]) and np.ptp(values[finite]) > 0
+    )
+    if surface:
         triangles = Triangulation(x_mm[finite], y_mm[finite])
         filled = ax.tricontourf(triangles, values[finite], levels=levels, cmap="viridis")
         lines = ax.tricontour(
@@ -213,6 +233,19 @@ def _contour_face(
         )
         ax.clabel(lines, fontsize=6, fmt="%.3g")
         ax.figure.colorbar(filled, ax=ax, label=label, shrink=0.85)
+        if finite.sum() <= 2000:
+            ax.scatter(x_mm[finite], y_mm[finite], s=2, color="k", linewidths=0)
+    elif finite.any():
+        dots = ax.scatter(
+            x_mm[finite], y_mm[finite], c=values[finite], cmap="viridis", s=30,
+            edgecolors="k", linewidths=0.4,
+        )  # fmt: skip
+        ax.figure.colorbar(dots, ax=ax, label=label, shrink=0.85)
+        if finite.sum() <= 30:
+            for x, y, value in zip(x_mm[finite], y_mm[finite], values[finite], strict=True):
+                ax.annotate(
+                    f"{value:.3g}", (x, y), xytext=(3, 3), textcoords="offset points", fontsize=6
+                )
     if np.all(finite):
         return False
     ax.plot(

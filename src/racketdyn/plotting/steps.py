@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from racketdyn.plotting.figures import FigureOptions
     from racketdyn.workflows.contact import ContactResult
     from racketdyn.workflows.frf import FrfResult
     from racketdyn.workflows.identify import CompareResult, IdentifyResult
@@ -27,8 +28,24 @@ def _quiet(_: str) -> None:
     return None
 
 
+def figure_options(result: PredictResult) -> FigureOptions:
+    """What the run asked for, for the figures that compute on a grid of their own."""
+    from racketdyn.plotting.figures import FigureOptions
+
+    return FigureOptions(
+        supports=tuple(s for s in result.supports if s != "hand"),
+        speeds=tuple(result.speeds),
+        racket_speeds=tuple(result.racket_speed),
+        shown_speed=result.speeds[result.shown_speed],
+        law=result.law,
+        include_string_bed=result.include_string_bed,
+        stiffness_reading=result.stiffness_reading,
+    )
+
+
 def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], list[Path]]:
-    """The paper's figures (approximate method) and the transient model's figures."""
+    """The paper's figures (approximate method) and the transient model's figures, drawn from
+    the run's impacts or computed with the run's options (:func:`figure_options`)."""
 
     def draw(result: PredictResult, out: Path) -> list[Path]:
         from racketdyn.plotting.figures import (
@@ -39,6 +56,7 @@ def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], 
 
         assert result.racket is not None
         assert result.ball is not None
+        options = figure_options(result)
         written: list[Path] = []
         if result.approximate is not None:
             written += write_paper_figures(
@@ -47,15 +65,15 @@ def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], 
                 result.modal_model,
                 out,
                 progress=lambda name: status(f"drawing {name} ({len(FIGURES)} figures)"),
+                options=options,
+                result=result.approximate,
             )
         if result.transient is not None:
             status("drawing the transient model's figures")
             curves = {
                 "ball": result.ball,
                 "model": result.modal_model,
-                "supports": result.supports,
-                "law": result.law,
-                "include_string_bed": result.include_string_bed,
+                "options": options,
                 "engine": result.engine,
             }
             written += write_transient_figures(

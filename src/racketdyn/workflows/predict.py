@@ -88,6 +88,12 @@ class PredictResult(StepResult):
         Transient engine asked for.
     include_string_bed : bool
         String-bed modes charged as vibration loss.
+    stiffness_reading : {"period", "tangent"}
+        Reading of eq 10 (approximate method).
+    rigid : bool
+        A rigid racket (no modes) was asked for.
+    points : str
+        What the impact points are (a grid, a file, points given).
     hand : Hand or None
         The hand of the ``hand`` support.
     """
@@ -107,6 +113,9 @@ class PredictResult(StepResult):
     shown_speed: int = 0
     engine: str = "auto"
     include_string_bed: bool = False
+    stiffness_reading: Literal["period", "tangent"] = "period"
+    rigid: bool = False
+    points: str = ""
     hand: Hand | None = None
 
     @property
@@ -281,6 +290,9 @@ def run_predict(
         shown_speed=shown_speed_index(speed_list),
         engine=engine,
         include_string_bed=include_string_bed,
+        stiffness_reading=stiffness_reading,
+        rigid=rigid,
+        points=points_source,
         hand=the_hand,
     )
     options: dict[str, Any] = {

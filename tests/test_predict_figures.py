@@ -1,0 +1,310 @@
+"""``predict``'s figures follow what was asked and what was run (issue 13), and its printed
+headline: the figures are caught as matplotlib objects on their way to the files (no pixels
+read), then their axes, titles, line labels and data are checked against the run."""
+
+from __future__ import annotations
+
+import csv
+import logging
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+import racketdyn as rd
+from racketdyn.cli import main
+from racketdyn.plotting import figures as figures_module
+from racketdyn.plotting.steps import predict_figures
+from racketdyn.racket import landmark_points
+from racketdyn.workflows import PredictResult, run_predict
+
+Drawn = dict[str, Figure]
+
+
+class _Catch:
+    """Stands in for FigureBatch: keeps each figure by file name, writes an empty file."""
+
+    def __init__(self, drawn: Drawn) -> None:
+        self.drawn = drawn
+        self.paths: list[Path] = []
+
+    def add(self, figure: Figure, path: Path) -> Path:
+        self.drawn[Path(path).name] = figure
+        Path(path).write_bytes(b"")
+        self.paths.append(Path(path))
+        return Path(path)
+
+    def render(self) -> list[Path]:
+        return list(self.paths)
+
+
+@pytest.fixture
+def draw(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> Iterator[Callable[..., tuple[PredictResult, Drawn]]]:
+    """``draw(**run_predict keywords)`` → (result, figures by file name)."""
+    caught: list[Drawn] = []
+
+    def run(**options: Any) -> tuple[PredictResult, Drawn]:
+        drawn: Drawn = {}
+        monkeypatch.setattr(figures_module, "FigureBatch", lambda: _Catch(drawn))
+        out = tmp_path / f"run{len(caught)}"
+        caught.append(drawn)
+        logging.disable(logging.WARNING)  # flagged rows log warnings; not the subject here
+        try:
+            result = run_predict(out, figures=predict_figures(), **options)
+        finally:
+            logging.disable(logging.NOTSET)
+        return result, drawn
+
+    yield run
+    for drawn in caught:
+        for figure in drawn.values():
+            plt.close(figure)
+
+
+def _titles(figure: Figure) -> list[str]:
+    return [ax.get_title() for ax in figure.axes if ax.get_title()]
+
+
+def _maps(figure: Figure) -> list[Axes]:
+    """The map panels of face_maps.png (colour bars have no title)."""
+    return [ax for ax in figure.axes if ax.get_title()]
+
+
+def _line_labels(figure: Figure) -> list[str]:
+    return [line.get_label() for ax in figure.axes for line in ax.get_lines()]
+
+
+def _line_data(figure: Figure) -> list[np.ndarray]:
+    return [np.asarray(line.get_ydata(), dtype=float) for ax in figure.axes for line in ax.lines]
+
+
+# --- face maps -----------------------------------------------------------------------------------
+
+
+def test_face_maps_show_the_run_speed_and_only_its_supports(draw: Any) -> None:
+    result, drawn = draw(speeds=[25.0, 35.0], supports=["free"], grid=5)
+    face = drawn["face_maps.png"]
+    shown = result.speeds[result.shown_speed]
+    assert shown == 25.0  # the CLI's rule: 20 m/s if given, else the middle speed
+    maps = _maps(face)
+    assert len(maps) == 3  # rebound ratio, contact time, vibration energy: free only
+    for title in _titles(face):
+        assert "freely supported" in title
+        assert "pinned" not in title
+        assert f"{shown:g} m/s" in title
+    assert "20 m/s" not in face.get_suptitle()
+
+
+def test_face_maps_draw_the_runs_points(draw: Any) -> None:
+    points = np.array([[0.505, 0.0], [0.45, 0.02], [0.56, -0.03], [0.52, 0.05]])
+    _, drawn = draw(speeds=[20.0], supports=["pinned", "free"], points=points)
+    maps = _maps(drawn["face_maps.png"])
+    assert len(maps) == 4
+    for ax in maps:
+        offsets = [np.asarray(c.get_offsets()) for c in ax.collections if len(c.get_offsets())]
+        drawn_points = {tuple(np.round(p, 3)) for o in offsets for p in o}
+        assert {tuple(np.round(p * 1e3, 3)) for p in points} <= drawn_points
+
+
+def test_face_maps_of_points_on_a_line_are_points_not_a_contour(draw: Any) -> None:
+    points = np.array([[0.45, 0.0], [0.505, 0.0], [0.56, 0.0]])  # collinear: no triangles
+    _, drawn = draw(speeds=[20.0], supports=["free"], points=points)
+    for ax in _maps(drawn["face_maps.png"]):
+        sizes = [len(c.get_offsets()) for c in ax.collections]
+        assert 3 in sizes
+
+
+def test_face_maps_say_the_options(draw: Any) -> None:
+    _, drawn = draw(
+        speeds=[20.0],
+        supports=["free"],
+        grid=4,
+        racket_speed=[15.0],
+        stiffness_reading="tangent",
+        include_string_bed=True,
+    )
+    title = drawn["face_maps.png"].get_suptitle()
+    assert "racket 15 m/s" in title
+    assert "tangent" in title
+    assert "string-bed modes charged" in title
+
+
+# --- curves against speed, Figs 11-13 and 15 -----------------------------------------------------
+
+
+def test_force_and_contact_time_follow_the_stiffness_reading(draw: Any) -> None:
+    _, period = draw(speeds=[20.0], supports=["free"], grid=3)
+    _, tangent = draw(speeds=[20.0], supports=["free"], grid=3, stiffness_reading="tangent")
+    name = "fig11_12_force_contact_time.png"
+    a, b = _line_data(period[name]), _line_data(tangent[name])
+    assert len(a) == len(b)
+    assert any(
+        x.shape == y.shape and not np.allclose(x, y, equal_nan=True)
+        for x, y in zip(a, b, strict=True)
+    )
+    assert "tangent" in tangent[name].get_suptitle()
+
+
+def test_force_and_contact_time_show_the_run_supports_and_speeds(draw: Any) -> None:
+    _, drawn = draw(speeds=[25.0, 35.0], supports=["free"], grid=3, racket_speed=[10.0])
+    figure = drawn["fig11_12_force_contact_time.png"]
+    labels = _line_labels(figure)
+    assert not any("pinned" in label for label in labels)
+    assert any("freely supported" in label for label in labels)
+    marked = [
+        line
+        for ax in figure.axes
+        for line in ax.get_lines()
+        if line.get_label().startswith("the run's speeds")
+    ]
+    assert marked
+    for line in marked:
+        assert set(np.asarray(line.get_xdata(), dtype=float)) == {25.0, 35.0}
+    assert "racket 10 m/s" in figure.get_suptitle()
+
+
+def test_force_curves_use_the_run_racket_speed(draw: Any) -> None:
+    _, rest = draw(speeds=[20.0], supports=["free"], grid=3)
+    _, moving = draw(speeds=[20.0], supports=["free"], grid=3, racket_speed=[15.0])
+    name = "fig11_12_force_contact_time.png"
+    assert not np.allclose(_line_data(rest[name])[0], _line_data(moving[name])[0], equal_nan=True)
+
+
+def test_pulse_spectrum_is_at_the_run_speeds_and_support(draw: Any) -> None:
+    _, drawn = draw(speeds=[15.0, 25.0], supports=["free"], grid=3)
+    figure = drawn["fig13_pulse_spectrum.png"]
+    labels = [line.get_label() for line in figure.axes[0].get_lines()]
+    assert labels == ["15 m/s", "25 m/s"]
+    assert "freely supported" in figure.get_suptitle()
+
+
+def test_rebound_along_axis_at_the_shown_speed_and_run_supports(draw: Any) -> None:
+    _, drawn = draw(speeds=[30.0, 40.0, 50.0], supports=["pinned"], grid=3, racket_speed=[5.0])
+    figure = drawn["fig15_rebound_along_axis.png"]
+    labels = _line_labels(figure)
+    assert not any("freely" in label for label in labels)
+    title = " ".join(_titles(figure))
+    assert "40 m/s" in title
+    assert "racket 5 m/s" in title
+
+
+def test_rebound_along_axis_follows_the_string_bed_option(draw: Any) -> None:
+    _, off = draw(speeds=[20.0], supports=["free"], grid=3)
+    _, on = draw(speeds=[20.0], supports=["free"], grid=3, include_string_bed=True)
+    name = "fig15_rebound_along_axis.png"
+    assert not np.allclose(_line_data(off[name])[0], _line_data(on[name])[0], equal_nan=True)
+
+
+# --- Fig. 14 -------------------------------------------------------------------------------------
+
+
+def test_frame_vibration_at_the_run_speeds_and_supports(draw: Any) -> None:
+    _, drawn = draw(speeds=[25.0, 35.0], supports=["free"], grid=3)
+    figure = drawn["fig14_frame_vibration.png"]
+    assert len(figure.axes) == 1
+    labels = _line_labels(figure)
+    assert any(label.startswith("25 m/s") for label in labels)
+    assert any(label.startswith("35 m/s") for label in labels)
+    assert not any(label.startswith("10 m/s") for label in labels)
+
+
+def test_frame_vibration_marks_flagged_impacts(draw: Any) -> None:
+    result, drawn = draw(speeds=[10.0, 30.0], supports=["pinned"], grid=3)
+    tip = rd.predict(
+        result.racket, result.ball, [landmark_points(result.racket)["tip"]], [30.0], "pinned"
+    )
+    assert tip.status[0, 0, 0] != "ok"  # the premise: 30 m/s at the tip is flagged
+    labels = _line_labels(drawn["fig14_frame_vibration.png"])
+    assert any(label.startswith("30 m/s") and "flagged" in label for label in labels)
+
+
+def test_rigid_racket_draws_no_vibration(draw: Any) -> None:
+    _, drawn = draw(speeds=[20.0], supports=["free"], grid=3, rigid=True)
+    figure = drawn.get("fig14_frame_vibration.png")
+    if figure is not None:
+        assert not any(ax.get_lines() for ax in figure.axes)
+        texts = [t.get_text() for ax in figure.axes for t in ax.texts]
+        assert any("rigid" in text for text in texts)
+
+
+# --- the transient model's figures ---------------------------------------------------------------
+
+
+def test_transient_curves_follow_the_run(draw: Any) -> None:
+    _, drawn = draw(
+        model="both",
+        speeds=[22.0],
+        supports=["free"],
+        points=[[0.505, 0.0], [0.45, 0.02], [0.56, -0.03]],
+        racket_speed=[5.0],
+        stiffness_reading="tangent",
+    )
+    figure = drawn["transient_comparison_speed.png"]
+    assert len(figure.axes) == 2  # one support: one column
+    x = {float(v) for ax in figure.axes for line in ax.get_lines() for v in line.get_xdata()}
+    assert 22.0 in x
+    title = figure.get_suptitle()
+    assert "racket 5 m/s" in title
+    assert "tangent" in title
+    histories = drawn["transient_histories.png"]
+    assert any("racket 5 m/s" in t for t in _titles(histories))
+
+
+# --- the printed headline ------------------------------------------------------------------------
+
+
+def _centre_row(out: Path, support: str, speed: float) -> dict[str, float]:
+    racket = rd.default_racket()
+    centre = np.array(landmark_points(racket)["centre"])
+    with (out / "impact.csv").open(newline="", encoding="utf-8") as handle:
+        rows = [
+            r
+            for r in csv.DictReader(handle)
+            if r["support"] == support and float(r["ball_speed_mps"]) == speed
+        ]
+    distance = [np.hypot(float(r["x_m"]) - centre[0], float(r["y_m"]) - centre[1]) for r in rows]
+    row = rows[int(np.argmin(distance))]
+    return {key: float(row[key]) for key in ("contact_time_s", "rebound_ratio", "peak_force_n")}
+
+
+def test_predict_prints_headline_numbers_at_the_centre(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    argv = ["predict", "--speed", "10,20", "--support", "free,pinned", "--grid", "5"]
+    assert main([*argv, "--no-figures", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "compound ball+string law" not in out  # no fitted polynomial
+    assert "face centre" in out
+    for support in ("free", "pinned"):
+        for speed in (10.0, 20.0):
+            row = _centre_row(tmp_path, support, speed)
+            assert f"{row['contact_time_s'] * 1e3:.2f}" in out
+            assert f"{row['rebound_ratio']:.3f}" in out
+            assert f"{row['peak_force_n']:.0f}" in out
+    assert "flagged: none" in out
+
+
+def test_predict_headline_counts_flagged_rows(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    argv = ["predict", "--speed", "30", "--support", "pinned", "--grid", "9", "--no-figures"]
+    logging.disable(logging.WARNING)
+    try:
+        assert main([*argv, "--out", str(tmp_path)]) == 0
+    finally:
+        logging.disable(logging.NOTSET)
+    out = " ".join(capsys.readouterr().out.split())
+    with (tmp_path / "impact.csv").open(newline="", encoding="utf-8") as handle:
+        statuses = [r["status"] for r in csv.DictReader(handle)]
+    flagged = sum(s != "ok" for s in statuses)
+    assert flagged > 0
+    assert f"flagged: {flagged} of {len(statuses)} rows" in out
+    for reason in set(statuses) - {"ok"}:
+        assert reason in out
