@@ -163,3 +163,13 @@ def test_predict_takes_a_modal_model_object(tmp_path: Path) -> None:
     np.testing.assert_array_equal(by_object.result.rebound_ratio, by_default.result.rebound_ratio)
     record = json.loads((tmp_path / "a" / "run.json").read_text(encoding="utf-8"))
     assert "ModalModel object" in json.dumps(record)
+
+
+def test_predict_from_python_refuses_a_speed_in_kmh(tmp_path: Path) -> None:
+    """Issue 13: `run_predict(speeds=[90])` (km/h typed) ran with every row NaN; the CLI
+    refused it, Python did not."""
+    with pytest.raises(rd.InputError, match="did you give"):
+        run_predict(tmp_path / "out", speeds=[90.0], grid=3)
+    assert not (tmp_path / "out").exists()
+    unusual = run_predict(tmp_path / "out", speeds=[80.0], grid=3, allow_implausible=True)
+    assert unusual.result.status.size == 2 * len(unusual.result.locations)

@@ -101,6 +101,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             grid=args.grid,
             stiffness_reading=args.stiffness_reading,
             include_string_bed=args.include_string_bed,
+            allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),
             figures=None if args.no_figures else predict_figures(lambda s: progress(s, 0, 0)),

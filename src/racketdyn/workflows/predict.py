@@ -35,6 +35,7 @@ from racketdyn.impact.result import shown_speed_index
 from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, predict_transient
 from racketdyn.io import racket_to_dict, read_points
 from racketdyn.modal import ModalModel
+from racketdyn.plausibility import check_speeds
 from racketdyn.racket import SUPPORTS, Racket, landmark_points
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
@@ -203,6 +204,7 @@ def run_predict(
     grid: int | None = None,
     stiffness_reading: Literal["period", "tangent"] | None = None,
     include_string_bed: bool = False,
+    allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[PredictResult, Path], list[Path]] | None = None,
@@ -242,6 +244,8 @@ def run_predict(
         Reading of eq 10 (default ``period``); for ``model`` approx or both only.
     include_string_bed : bool
         Charge string-bed modes as vibration loss too.
+    allow_implausible : bool
+        Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     defaults : sequence of str
         Defaults the caller filled in for its own inputs (ball, hand), added to run.json.
     command : sequence of str, optional
@@ -268,6 +272,8 @@ def run_predict(
     one_of("engine", engine, ENGINES)
     speed_list = [float(v) for v in require_speeds("--speed", speeds)]
     racket_speeds = [float(v) for v in require_speeds("--racket-speed", racket_speed)]
+    check_speeds("--speed", speed_list, "ball_speed_mps", allow_implausible)
+    check_speeds("--racket-speed", racket_speeds, "racket_speed_mps", allow_implausible)
     if len(racket_speeds) not in (1, len(speed_list)):
         raise InputError("--racket-speed takes one speed, or one per --speed value")
     support_list = check_supports(supports, model)
