@@ -308,3 +308,23 @@ def test_predict_headline_counts_flagged_rows(
     assert f"flagged: {flagged} of {len(statuses)} rows" in out
     for reason in set(statuses) - {"ok"}:
         assert reason in out
+
+
+def test_face_maps_leave_flagged_rows_out_of_every_quantity() -> None:
+    """Issue 13: the vibration-energy map contoured the tip's flagged rows (≈ 5 J where the
+    rebound ratio is 'no valid result'); every panel now leaves them out and counts them."""
+    from racketdyn.plotting.primitives import plot_face_map
+
+    racket = rd.default_racket()
+    result = rd.predict(racket, rd.Ball(), racket.head.grid(9), [40.0], ["free"])
+    flagged = result.status[:, 0, 0] != "ok"
+    assert flagged.any(), "the test needs flagged rows"
+    energy = result.vibration_energy[:, 0, 0]
+    assert np.nanmax(energy[flagged]) > np.nanmax(energy[~flagged])
+    figure, ax = plt.subplots()
+    plot_face_map(result, racket, "vibration_energy", 0, "free", ax=ax)
+    labels = [line.get_label() for line in ax.get_lines()]
+    assert f"no valid result at {int(flagged.sum())} points (see status)" in labels
+    (filled,) = [c for c in ax.collections if hasattr(c, "levels")][:1]
+    assert max(filled.levels) < np.nanmax(energy[flagged])
+    plt.close(figure)

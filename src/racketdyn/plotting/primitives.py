@@ -19,7 +19,7 @@ from matplotlib.tri import Triangulation
 from numpy.typing import NDArray
 
 from racketdyn.impact.oblique import ObliqueCurve
-from racketdyn.impact.result import ImpactResult
+from racketdyn.impact.result import STATUS_OK, ImpactResult
 from racketdyn.impact.swing import SweetSpot, SwingResult
 from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
@@ -248,9 +248,10 @@ def _contour_face(
                 )
     if np.all(finite):
         return False
+    count = int((~finite).sum())
     ax.plot(
         x_mm[~finite], y_mm[~finite], "x", color="r", markersize=4,
-        label="no valid result (see status)",
+        label=f"no valid result at {count} point{'s' if count > 1 else ''} (see status)",
     )  # fmt: skip
     return True
 
@@ -264,9 +265,16 @@ def plot_face_map(
     ax: Axes | None = None,
     levels: int = 12,
 ) -> Axes:
-    """Contour map of a quantity over the string face (x along, y across, mm)."""
+    """Contour map of a quantity over the string face (x along, y across, mm).
+
+    Rows whose status is not ``ok`` are left out of the map in every quantity and marked with
+    red crosses, their number in the legend (issue 13: no flagged row drawn as if valid).
+    """
     ax = _axes(ax, (4.2, 3.6))
-    values = _values(result, quantity)[:, speed_index, result.support_index(support)]
+    column = result.support_index(support)
+    values = _values(result, quantity)[:, speed_index, column]
+    valid = np.asarray(result.status)[:, speed_index, column] == STATUS_OK
+    values = np.where(valid, values, np.nan)
     if _contour_face(ax, result.locations, values, QUANTITIES[quantity][0], levels):
         ax.legend(fontsize=7, loc="lower left")
     plot_outline(racket, ax)
