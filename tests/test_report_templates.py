@@ -165,3 +165,22 @@ def test_the_page_loads_nothing_from_outside(tmp_path: Path) -> None:
     data = re.search(r'id="report-data">(.*?)</script>', page, re.S)
     assert data is not None
     assert json.loads(data.group(1)) == {"maps": [], "frf": []}
+
+
+def test_predict_captions_state_no_fixed_speed_or_support() -> None:
+    """Issue 13: captions said "at 20 m/s", "10–40 m/s", "free and pinned" and "racket at rest"
+    whatever the run was; predict's figures follow the run, so their captions point at it."""
+    from racketdyn.report.figures import CAPTIONS
+
+    for stem in (
+        "fig11_12_force_contact_time",
+        "fig13_pulse_spectrum",
+        "fig14_frame_vibration",
+        "fig15_rebound_along_axis",
+        "face_maps",
+        "transient_comparison_face",
+        "transient_comparison_speed",
+    ):
+        text = CAPTIONS[stem][1]
+        for fixed in ("20 m/s", "10–40 m/s", "free and pinned", "racket at rest"):
+            assert fixed not in text, f"{stem}: {fixed!r}"

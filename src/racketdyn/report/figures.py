@@ -57,33 +57,36 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "fig11_12_force_contact_time": (
         "Figs 11 and 12",
         "Fig. 11: equivalent (mean) impact force and Fig. 12: contact time against ball speed "
-        "at the top, centre and throat of the face, free and pinned at the grip",
+        "at the top, centre and throat of the face, for the run's supports; the run's speeds "
+        "are marked, its racket speed and options are in the title",
     ),
     "fig13_pulse_spectrum": (
         "Fig. 13",
-        "the half-sine impact force at the face centre (pinned) and the magnitude of its "
-        "spectrum at 10–40 m/s, with the modes of the model: the faster the ball, the shorter "
-        "the pulse and the higher its spectrum reaches",
+        "the half-sine impact force at the face centre and the magnitude of its spectrum at "
+        "the run's speeds (support in the title), with the modes of the model: the faster the "
+        "ball, the shorter the pulse and the higher its spectrum reaches",
     ),
     "fig14_frame_vibration": (
         "Fig. 14",
         "predicted first-mode displacement along the frame just after an impact at the tip, "
-        "free and pinned",
+        "at the run's speeds, one panel per support; impacts the method flags are faint and "
+        "dashed, with their status",
     ),
     "fig15_rebound_along_axis": (
         "Fig. 15",
-        "predicted rebound ratio along the long axis at 20 m/s, free against pinned at the "
-        "grip, with the centre of percussion and the node of the first mode",
+        "predicted rebound ratio along the long axis at the run's shown speed (in the title), "
+        "for its supports, with the centre of percussion and the node of the first mode",
     ),
     "face_maps": (
         None,
-        "maps over the face at 20 m/s: rebound ratio (pinned, free), contact time and "
-        "vibration energy (pinned); the paper shows the long axis only (Fig. 15)",
+        "maps over the face at the run's shown speed (in the title): rebound ratio for each "
+        "support, contact time and vibration energy; red crosses mark impacts with no valid "
+        "result, left out of every map; the paper shows the long axis only (Fig. 15)",
     ),
     "transient_comparison_face": (
         None,
         "rebound ratio of the approximate method minus that of the transient simulation over "
-        "the face, one panel per support, at 20 m/s (or the middle speed of the run); red where "
+        "the face, one panel per support, at the run's shown speed (in the title); red where "
         "the approximate method predicts more; the paper checks its method against a freely "
         "suspended racket only",
     ),
@@ -91,8 +94,8 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         None,
         "rebound ratio and contact time against ball speed at the face centre, near the tip and "
         "near the throat, approximate method (dashed) against the transient simulation (solid), "
-        "racket at rest; missing dashes are impacts the approximate method flags (vibration "
-        "loss beyond e_BG)",
+        "at the run's racket speed (in the title); missing dashes are impacts the approximate "
+        "method flags (vibration loss beyond e_BG)",
     ),
     "transient_histories": (
         None,
