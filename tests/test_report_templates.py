@@ -184,3 +184,23 @@ def test_predict_captions_state_no_fixed_speed_or_support() -> None:
         text = CAPTIONS[stem][1]
         for fixed in ("20 m/s", "10–40 m/s", "free and pinned", "racket at rest"):
             assert fixed not in text, f"{stem}: {fixed!r}"
+
+
+def test_the_racket_section_quotes_every_inertia_once_in_kgcm2(tmp_path: Path) -> None:
+    """Issue 13: inertias appeared both as 13.1 g·m² and 131 kg·cm² (pitch inertia about the
+    balance point and recoil weight, the same quantity)."""
+    from racketdyn.cli import main
+    from racketdyn.report.folder import RunFolder
+    from racketdyn.report.sections import racket as racket_section
+
+    out = tmp_path / "run"
+    assert (
+        main(["predict", "--grid", "3", "--speed", "20", "--no-figures", "--out", str(out / "p")])
+        == 0
+    )
+    data = racket_section.gather(RunFolder.scan(out))
+    assert data is not None
+    units = [row[2] for row in data["derived"]] + [row[2] for row in data["inputs"]]
+    assert "g·m²" not in units
+    values = [(row[1], row[2]) for row in data["derived"]]
+    assert values.count(("131", "kg·cm²")) == 1

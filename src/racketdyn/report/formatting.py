@@ -40,7 +40,7 @@ DERIVED_LABELS: dict[str, str] = {
 UNITS: dict[str, tuple[str, float]] = {
     "kg": ("g", 1e3),
     "m": ("mm", 1e3),
-    "kgm2": ("g·m²", 1e3),
+    "kgm2": ("kg·cm²", 1e4),  # inertias as players and makers quote them: one unit for all
     "kgcm2": ("kg·cm²", 1.0),
     "cm2": ("cm²", 1.0),
     "hz": ("Hz", 1.0),
@@ -131,7 +131,7 @@ def quantity(key: str, value: Any, si: bool = False) -> tuple[str, str, str]:
         Its value.
     si : bool
         Show SI units as the key names them; by default the units engineers quote for a
-        racket (:data:`UNITS`: g, mm, ms, g·m², GPa).
+        racket (:data:`UNITS`: g, mm, ms, kg·cm², GPa).
     """
     name, suffix = split_unit(key)
     unit, factor = unit_symbol(suffix), 1.0

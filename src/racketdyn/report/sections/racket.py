@@ -57,6 +57,8 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             inputs.append(quantity(key, value))
     rows = []
     for key, value in derived.items():
+        if key == "inertia_cg_kgm2" and "recoil_weight_kgcm2" in derived:
+            continue  # the same quantity as the recoil weight: one row, one unit
         name, text, unit = quantity(key, value)
         rows.append((DERIVED_LABELS.get(key.rpartition("_")[0], name), text, unit))
     name = str(racket_record.get("name", "racket"))
