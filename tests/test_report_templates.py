@@ -204,3 +204,10 @@ def test_the_racket_section_quotes_every_inertia_once_in_kgcm2(tmp_path: Path) -
     assert "g·m²" not in units
     values = [(row[1], row[2]) for row in data["derived"]]
     assert values.count(("131", "kg·cm²")) == 1
+
+
+def test_the_automac_caption_claims_nothing_the_figure_may_not_show() -> None:
+    """Issue 13: "near-zero off the diagonal" stood above an AutoMAC with 0.6 off it."""
+    from racketdyn.report.figures import CAPTIONS
+
+    assert "near-zero" not in CAPTIONS["automac"][1]

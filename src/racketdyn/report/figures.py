@@ -35,7 +35,11 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         "measured FRFs against those synthesised from the identified modal model "
         "(driving point and string-bed centre)",
     ),
-    "automac": (None, "AutoMAC of the identified mode shapes: near-zero off the diagonal"),
+    "automac": (
+        None,
+        "AutoMAC of the identified mode shapes: 1 on the diagonal; off it, how alike two modes "
+        "look at the measured points (near 1: the points cannot tell them apart)",
+    ),
     "fig4_mode_shapes": ("Fig. 4", "identified mode shapes in 3-D over the racket"),
     "fig5_node_lines": ("Fig. 5", "node lines of the identified modes on the string face"),
     "fig6_nodes_free_hand": (
