@@ -211,3 +211,20 @@ def test_the_automac_caption_claims_nothing_the_figure_may_not_show() -> None:
     from racketdyn.report.figures import CAPTIONS
 
     assert "near-zero" not in CAPTIONS["automac"][1]
+
+
+def test_negative_rebound_ratios_are_explained_on_the_page(tmp_path: Path) -> None:
+    """Issue 13: negative rebound ratios near the tip are physics, but the page must say what
+    they mean and which method to trust there."""
+    from racketdyn.cli import main
+    from racketdyn.report.folder import RunFolder
+    from racketdyn.report.sections import rebound
+
+    out = tmp_path / "run"
+    argv = ["predict", "--grid", "9", "--speed", "20", "--support", "free", "--no-figures"]
+    assert main([*argv, "--out", str(out / "p")]) == 0
+    data = rebound.gather(RunFolder.scan(out))
+    assert data is not None
+    assert data["negative"] is not None
+    assert "carries on forward" in data["negative"]
+    assert "trust the transient" in data["negative"]
