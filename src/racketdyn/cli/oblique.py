@@ -106,6 +106,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             racket_speed=args.racket_speed,
             racket_tangential_speed=args.racket_tangential_speed,
             hand=hand,
+            allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),
             figures=None if args.no_figures else oblique_figures,

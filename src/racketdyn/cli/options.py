@@ -241,28 +241,11 @@ def ball_and_hand(args: argparse.Namespace, supports: Sequence[str]) -> tuple[An
     if "hand" not in supports and args.hand_arm_mass is not None:
         raise InputError("--hand-arm-mass is for --support hand (with --model transient)")
     allow = bool(getattr(args, "allow_implausible", False))
-    check_speeds_of_play(args, allow)
     ball, ball_defaults = ball_from(
         args.ball_mass, args.e_bg, args.ball_law, allow_implausible=allow
     )
     hand, hand_defaults = hand_for(supports, args.hand_arm_mass, allow_implausible=allow)
     return ball, hand, [*ball_defaults, *hand_defaults]
-
-
-def check_speeds_of_play(args: argparse.Namespace, allow_implausible: bool) -> None:
-    """``--speed`` and ``--racket-speed`` against the speeds of play (up to 75 m/s): km/h or
-    mph typed is refused with the slip named (racketdyn.plausibility)."""
-    from racketdyn.plausibility import check_speeds
-
-    for name, dest, key in (
-        ("--speed", "speed", "ball_speed_mps"),
-        ("--racket-speed", "racket_speed", "racket_speed_mps"),
-    ):
-        value = getattr(args, dest, None)
-        if value is None:
-            continue
-        speeds = parse_speeds(name, value) if isinstance(value, str) else [float(value)]
-        check_speeds(name, speeds, key, allow_implausible)
 
 
 def check_modes(args: argparse.Namespace) -> None:

@@ -86,6 +86,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             support=support,
             model=args.model,
             hand=hand,
+            allow_implausible=args.allow_implausible,
             grid=args.grid,
             defaults=[*swing_defaults, *defaults],
             command=opt.command_line(args),

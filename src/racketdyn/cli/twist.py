@@ -73,6 +73,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             racket_speed=args.racket_speed,
             supports=supports,
             hand=hand,
+            allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),
             figures=None if args.no_figures else twist_figures,

@@ -167,6 +167,43 @@ class FigureOptions:
             "stiffness_reading": self.stiffness_reading,
         }
 
+    def predict(
+        self,
+        racket: Racket,
+        ball: Ball,
+        model: ModalModel | None,
+        points: ArrayLike,
+        speeds: ArrayLike,
+        supports: Sequence[str] | None = None,
+        labels: Sequence[str] | None = None,
+    ) -> ImpactResult:
+        """:func:`racketdyn.impact.predict` with the run's options: its racket speed at each
+        ball speed (:meth:`racket_speed_at`), law, eq 10 reading and string-bed choice.
+
+        Parameters
+        ----------
+        racket, ball, model : Racket, Ball, ModalModel or None
+            The racket, ball and modes (None: rigid).
+        points : array_like
+            Impact locations (x, y), m.
+        speeds : array_like
+            Ball speeds, m/s.
+        supports : sequence of str, optional
+            Supports (default the run's).
+        labels : sequence of str, optional
+            Point labels.
+        """
+        return predict(
+            racket,
+            ball,
+            points,
+            speeds,
+            self.supports if supports is None else supports,
+            racket_speed=self.racket_speed_at(speeds),
+            labels=labels,
+            **self.impact_options(model),
+        )
+
     def describe(self, model: ModalModel | None, racket_speed: float | None = None) -> str:
         """The options in words, for titles: racket speed, eq 10 reading, string bed, rigid."""
         if racket_speed is None:
@@ -227,16 +264,7 @@ def figure_force_and_contact_time(
     speeds = _curve_speeds(
         options, CURVE_SPEEDS_MPS[0], CURVE_SPEEDS_MPS[-1], CURVE_SPEEDS_MPS.size
     )
-    result = predict(
-        racket,
-        ball,
-        [marks[n] for n in names],
-        speeds,
-        options.supports,
-        racket_speed=options.racket_speed_at(speeds),
-        labels=names,
-        **options.impact_options(model),
-    )
+    result = options.predict(racket, ball, model, [marks[n] for n in names], speeds, labels=names)
     figure, axes = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
     for ax, quantity in zip(axes, ("mean_force", "contact_time"), strict=True):
         plot_speed_curves(result, quantity, names, ax=ax)
@@ -293,15 +321,8 @@ def figure_frame_vibration(
         figure.suptitle("Fig. 14: frame vibration", fontsize=10)
         return figure
     speeds = np.asarray(options.speeds or VIBRATION_SPEEDS_MPS, dtype=float)
-    result = predict(
-        racket,
-        ball,
-        [landmark_points(racket)["tip"]],
-        speeds,
-        supports,
-        racket_speed=options.racket_speed_at(speeds),
-        labels=["tip"],
-        **options.impact_options(model),
+    result = options.predict(
+        racket, ball, model, [landmark_points(racket)["tip"]], speeds, supports, labels=["tip"]
     )
     figure, axes = plt.subplots(
         1,
@@ -347,15 +368,7 @@ def figure_rebound_along_axis(
     points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
     speed = options.shown_speed
     racket_speed = float(options.racket_speed_at([speed])[0])
-    result = predict(
-        racket,
-        ball,
-        points,
-        [speed],
-        options.supports,
-        racket_speed=racket_speed,
-        **options.impact_options(model),
-    )
+    result = options.predict(racket, ball, model, points, [speed])
     marks = {"centre of percussion (grip)": racket.centre_of_percussion_m()}
     if model is not None and model.n_modes:
         nodes = axis_nodes(model, 0, (head.throat_x_m, head.tip_x_m))
@@ -396,15 +409,7 @@ def figure_face_maps(
     options = options or FigureOptions()
     if result is None:
         speed = options.shown_speed
-        result = predict(
-            racket,
-            ball,
-            racket.head.grid(25),
-            [speed],
-            options.supports,
-            racket_speed=options.racket_speed_at([speed]),
-            **options.impact_options(model),
-        )
+        result = options.predict(racket, ball, model, racket.head.grid(25), [speed])
     hits = np.flatnonzero(np.isclose(result.ball_speed, options.shown_speed))
     s = int(hits[0]) if hits.size else 0
     main = (
@@ -452,16 +457,7 @@ def figure_pulse_spectrum(
     support = options.main_support()
     centre = landmark_points(racket)["centre"]
     speeds = np.asarray(options.speeds or (*VIBRATION_SPEEDS_MPS, 40.0), dtype=float)
-    result = predict(
-        racket,
-        ball,
-        [centre],
-        speeds,
-        (support,),
-        racket_speed=options.racket_speed_at(speeds),
-        labels=["centre"],
-        **options.impact_options(model),
-    )
+    result = options.predict(racket, ball, model, [centre], speeds, (support,), labels=["centre"])
     figure, axes = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
     frequency = np.linspace(0.0, 1500.0, 1501)
     for s, speed in enumerate(result.ball_speed):

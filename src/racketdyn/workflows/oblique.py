@@ -28,6 +28,7 @@ from racketdyn.impact.oblique import (
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
+from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
@@ -112,6 +113,7 @@ def run_oblique(
     racket_speed: float = 0.0,
     racket_tangential_speed: float = 0.0,
     hand: Hand | None = None,
+    allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[ObliqueResult, Path], list[Path]] | None = None,
@@ -151,6 +153,8 @@ def run_oblique(
         Racket face speed along the face, m/s.
     hand : Hand, optional
         The hand of the ``hand`` support.
+    allow_implausible : bool
+        Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     defaults : sequence of str
         Defaults the caller filled in (ball), added to run.json.
     command : sequence of str, optional
@@ -161,6 +165,8 @@ def run_oblique(
         ``progress(what, done, total)`` for a progress display.
     """
     speed = require_positive("--speed", speed)
+    check_speeds("--speed", [speed], "ball_speed_mps", allow_implausible)
+    check_speeds("--racket-speed", [racket_speed], "racket_speed_mps", allow_implausible)
     angles = [require_finite("--angles", v) for v in np.atleast_1d(angles_deg)]
     for angle in angles:
         if not -90.0 < angle < 90.0:

@@ -39,6 +39,7 @@ from racketdyn.impact.swing import (
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
+from racketdyn.plausibility import check_speeds
 from racketdyn.racket import SUPPORTS, Racket
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.predict import MAX_GRID
@@ -237,6 +238,7 @@ def run_swing(
     support: str = "pinned",
     model: Literal["approx", "transient"] = "approx",
     hand: Hand | None = None,
+    allow_implausible: bool = False,
     grid: int | None = None,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -267,6 +269,8 @@ def run_swing(
         Impact model.
     hand : Hand, optional
         The hand of the ``hand`` support.
+    allow_implausible : bool
+        Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     grid : int, optional
         N × N grid over the head (default 15).
     defaults : sequence of str
@@ -279,6 +283,7 @@ def run_swing(
         ``progress(what, done, total)`` for a progress display.
     """
     speed_list = [float(v) for v in require_speeds("--speed", speeds)]
+    check_speeds("--speed", speed_list, "ball_speed_mps", allow_implausible)
     impact_model = IMPACT_MODELS[one_of("--model", model, tuple(IMPACT_MODELS))]
     the_support = one_support(support, model == "transient")
     n = SWING_GRID if grid is None else grid

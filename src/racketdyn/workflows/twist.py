@@ -22,6 +22,7 @@ from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.impact.twist import TwistCurve, twist_curve
 from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
+from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
@@ -91,6 +92,7 @@ def run_twist(
     racket_speed: float = 0.0,
     supports: Sequence[str] = ("free",),
     hand: Hand | None = None,
+    allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[TwistResult, Path], list[Path]] | None = None,
@@ -122,6 +124,8 @@ def run_twist(
         ``free``, ``pinned``, ``hand`` (one curve each).
     hand : Hand, optional
         The hand of the ``hand`` support.
+    allow_implausible : bool
+        Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     defaults : sequence of str
         Defaults the caller filled in (ball), added to run.json.
     command : sequence of str, optional
@@ -135,6 +139,8 @@ def run_twist(
     offsets = [require_finite("--offsets", v) for v in np.atleast_1d(offsets_m)]
     speed = require_positive("--speed", speed)
     racket_speed = require_finite("--racket-speed", racket_speed)
+    check_speeds("--speed", [speed], "ball_speed_mps", allow_implausible)
+    check_speeds("--racket-speed", [racket_speed], "racket_speed_mps", allow_implausible)
     checked = [one_of("--support", s, TRANSIENT_SUPPORTS) for s in supports]
     if len(set(checked)) != len(checked):
         raise InputError(f"--support: name each support once (got {','.join(supports)})")
