@@ -110,5 +110,6 @@ def test_a_folder_holding_another_steps_run_is_refused_and_kept(
     assert main(["predict", *QUICK, "--out", str(out)]) == 2
     message = capsys.readouterr().err.strip().splitlines()
     assert len(message) == 1
-    assert "racketdyn rig" in message[0] and "--out" in message[0]
+    assert "racketdyn rig" in message[0]
+    assert "--out" in message[0]
     assert _files(out) == before
