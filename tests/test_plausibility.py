@@ -139,6 +139,23 @@ SLIPS = {
         lambda tmp: ["oblique", "--speed", "90", "--no-figures", "--out", str(tmp / "out")],
         ("--speed 90", "did you give km/h"),
     ),
+    # trial of 2026-11-23: these ran with exit 0 (or blamed the ball speed)
+    "swing-axis-in-mm": (
+        lambda tmp: ["swing", "--axis-to-butt", "607", "--no-figures", "--out", str(tmp / "out")],
+        ("--axis-to-butt 607", "did you give millimetres"),
+    ),
+    "swing-angular-speed-in-deg/s": (
+        lambda tmp: ["swing", "--angular-speed", "900", "--no-figures", "--out", str(tmp / "out")],
+        ("--angular-speed 900", "did you give degrees per second"),
+    ),
+    "twist-point-in-mm": (
+        lambda tmp: ["twist", "--x", "520", "--no-figures", "--out", str(tmp / "out")],
+        ("x=520", "did you give millimetres"),
+    ),
+    "oblique-point-in-mm": (
+        lambda tmp: ["oblique", "--point=500,0", "--no-figures", "--out", str(tmp / "out")],
+        ("x=500", "did you give millimetres"),
+    ),
 }
 
 

@@ -96,3 +96,20 @@ def test_the_rig_tests_both_supports_into_one_folder(tmp_path: Path) -> None:
         "run.json",
     }
     assert {p.name for p in out.iterdir()} == set(record["outputs"])
+
+
+def test_a_folder_holding_another_steps_run_is_refused_and_kept(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # trial of 2026-11-23: `predict --out` on a copy of a rig folder deleted the rig's hammer
+    # UFF files and modal truth (its run.json listed them as the previous run's outputs)
+    out = tmp_path / "rig"
+    assert main(["rig", "--averages", "1", "--out", str(out)]) == 0
+    before = _files(out)
+    capsys.readouterr()
+    assert main(["predict", *QUICK, "--out", str(out)]) == 2
+    message = capsys.readouterr().err.strip().splitlines()
+    assert len(message) == 1
+    assert "racketdyn rig" in message[0]
+    assert "--out" in message[0]
+    assert _files(out) == before

@@ -33,6 +33,7 @@ from racketdyn.sweep import (
     make_executor,
     run_sweep,
     summary_metrics,
+    sweet_area_resolution_cm2,
     variable_designs,
 )
 
@@ -402,6 +403,18 @@ def test_summary_figures_and_table(one_at_a_time: tuple[xr.Dataset, Path]) -> No
     metrics = summary_metrics(ds)
     assert metrics.attrs["centre_point_x_m"] == pytest.approx(ds.attrs["head_centre_x_m"])
     assert np.all(metrics["sweet_area_cm2"].values <= ds.attrs["head_area_cm2"])
+    # trial of 2026-11-23: the table did not say its speed, the titles showed the key
+    # "tension n", and a grid-5 sweet area (14 points, 45 cm² a step) came with no word
+    header = table[0].split(",")
+    assert {"ball_speed_mps", "racket_speed_mps"} <= set(header)
+    speed = float(table[1].split(",")[header.index("ball_speed_mps")])
+    assert speed == metrics.attrs["ball_speed_mps"]
+    step = sweet_area_resolution_cm2(ds)
+    assert step == pytest.approx(ds.attrs["head_area_cm2"] / ds.sizes["point"])
+    areas = metrics["sweet_area_cm2"].values
+    np.testing.assert_allclose(areas / step, np.round(areas / step), atol=1e-9)
+    record = json.loads((out / "run.json").read_text(encoding="utf-8"))
+    assert any("steps of" in note and "finer" in note for note in record["notes"])
     import matplotlib.pyplot as plt
 
     figure, (left, right) = plt.subplots(1, 2)

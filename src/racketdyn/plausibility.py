@@ -161,6 +161,8 @@ SQUARE_INCH = Slip("square inches", "sq in", 6.4516)  # as cm²
 SQUARE_METRE_AS_CM2 = Slip("m²", "m²", 1e4)
 RAD_PER_S = Slip("rad/s", "rad/s", 1.0 / (2.0 * math.pi))
 KILOHERTZ = Slip("kHz", "kHz", 1e3)
+DEG_PER_S = Slip("degrees per second", "°/s", math.pi / 180.0)
+RPM = Slip("revolutions per minute", "rpm", 2.0 * math.pi / 60.0)
 
 _MASS = (GRAM, OUNCE, POUND)
 _LENGTH = (MILLIMETRE, CENTIMETRE, INCH)
@@ -182,6 +184,19 @@ RANGES: dict[str, Range] = {
     "racket_speed_mps": Range(
         "rackets are swung at", 0.0, 75.0, 0.0, 340.0, "m/s", _SPEED, KM_PER_H
     ),
+    # The swing (impact.swing.Swing).  The shoulder lies ≈ 0.6 m behind the butt for a straight
+    # arm (Dempster/Winter, 1.75 m adult); a wrist-led swing turns about ≈ 0.1 m: 0–1.2 m covers
+    # every stroke.  Angular speeds at impact: ≈ 20–40 rad/s in groundstrokes, up to ≈ 60 rad/s
+    # in serves (racket-head speeds of 30–50 m/s at ≈ 1.1 m from the shoulder); 0–80 rad/s.
+    # Limits: no arm turns a racket at 1000 rad/s or about an axis 3 m away.
+    "axis_to_butt_m": Range(
+        "the swing axis (shoulder) lies", 0.0, 1.2, 0.0, 3.0, "m", _LENGTH, None, "behind the butt"
+    ),
+    "angular_speed_radps": Range(
+        "rackets turn at", 0.0, 80.0, 0.0, 1000.0, "rad/s", (DEG_PER_S, RPM), None, "at impact"
+    ),
+    # Shoulder torque: Kawazoe's forehand 56.9 N·m; elite serves model at ≈ 100–150 N·m.
+    "torque_nm": Range("a shoulder gives", 5.0, 250.0, 0.1, 5000.0, "N·m", (), None, "of torque"),
     # The arm behind the grip (impact.hand.Hand): Kawazoe's 1 kg at the handle; a whole adult
     # arm is ≈ 3.5 kg (Dempster).  0.2–6 kg spans children to heavy adults.
     "hand_arm_mass_kg": Range("an arm behind the grip weighs", 0.2, 6.0, 0.01, 100.0, "kg", _MASS),

@@ -153,10 +153,16 @@ class HeadEllipse:
         outside = np.flatnonzero(~self.contains(xy))
         if outside.size:
             i = int(outside[0])
+            # the points in millimetres (520 for 0.52 m) land on the bed read as mm: say so
+            slip = (
+                "; did you give millimetres? (give metres)"
+                if bool(np.all(self.contains(xy[outside] * 1e-3)))
+                else "; give points on the strings"
+            )
             raise InputError(
                 f"{name} {i + 1} at x={xy[i, 0]:.4f} m, y={xy[i, 1]:.4f} m lies outside the string "
                 f"bed (ellipse centre x={self.centre_x_m:.4f} m, half-axes "
-                f"{self.half_length_m:.4f} × {self.half_width_m:.4f} m); give points on the strings"
+                f"{self.half_length_m:.4f} × {self.half_width_m:.4f} m){slip}"
             )
 
 

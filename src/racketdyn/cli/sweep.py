@@ -96,6 +96,8 @@ def run(args: argparse.Namespace, console: Console) -> int:
     for text, count in record["status_counts"].items():
         if text not in ("ok", "task failed") and count:
             console.print(f"[yellow]{count:,} impacts: {text}; their results are NaN[/]")
+    for note in record.get("notes", []):
+        console.print(f"[yellow]{note}[/]")
     for failure in result.failed:
         console.print(f"[red]{failure['task_id']} failed: {failure['error']}[/]")
     for name in record["outputs"]:

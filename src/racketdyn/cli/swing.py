@@ -72,7 +72,11 @@ def run(args: argparse.Namespace, console: Console) -> int:
     opt.check_modes(args)
     ball, hand, defaults = opt.ball_and_hand(args, [support])
     swing, swing_defaults = swing_from(
-        args.torque, args.swing_angle_deg, args.angular_speed, args.axis_to_butt
+        args.torque,
+        args.swing_angle_deg,
+        args.angular_speed,
+        args.axis_to_butt,
+        allow_implausible=args.allow_implausible,
     )
     with opt.progress_display(console) as progress:
         result = run_swing(

@@ -63,7 +63,10 @@ def resolve_modal_model(
     """The modes an impact model charges: ``"racket"`` → the racket's own, ``None`` → rigid.
 
     String-bed modes are dropped unless ``include_string_bed`` (see
-    :func:`racketdyn.impact.approximate.predict` for why).
+    :func:`racketdyn.impact.approximate.predict` for why).  Rigid-body modes (a sponge's or a
+    hand's, in the rig's modal truth) are always dropped: the reduced mass of the support
+    already carries the rigid-body motion, and a 2 Hz mode charged as vibration would take
+    the whole impulse (trial of 2026-11-23: every row flagged).
     """
     if isinstance(modal_model, str):
         if modal_model != "racket":
@@ -73,8 +76,8 @@ def resolve_modal_model(
         model: ModalModel | None = modal_model_for(racket)
     else:
         model = modal_model
-    if model is not None and not include_string_bed:
-        model = model.frame_modes
+    if model is not None:
+        model = model.flexible_modes if include_string_bed else model.frame_modes
     return model
 
 

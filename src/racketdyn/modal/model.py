@@ -27,8 +27,16 @@ from racketdyn.numerics import as_points
 __all__ = ["ModalModel"]
 
 FORMAT = "racketdyn-modal-model"
-MODE_KINDS = ("bending", "twisting", "string-bed", "other", "unknown")
-"""What a mode can be: a racket's kinds, ``other``, and ``unknown`` (not classified)."""
+MODE_KINDS = ("bending", "twisting", "string-bed", "rigid-body", "other", "unknown")
+"""What a mode can be: a racket's kinds, ``rigid-body`` (the structure moving as a whole on its
+support: a sponge, a hand), ``other``, and ``unknown`` (not classified)."""
+
+
+def _kind_from_name(name: str) -> str:
+    lower = name.lower()
+    if "string" in lower or "membrane" in lower:
+        return "string-bed"
+    return "rigid-body" if "rigid-body" in lower else "other"
 
 
 @dataclass(frozen=True, eq=False)
@@ -48,10 +56,12 @@ class ModalModel:
     names : tuple of str
         Mode names (``"2-node bending"``, …).
     kinds : tuple of str
-        What each mode is: ``bending``, ``twisting``, ``string-bed``, ``other`` or ``unknown``
-        (not classified: :func:`racketdyn.modal.identify.identify` leaves it to the caller).
-        String-bed modes are left out of the vibration loss by default.  Empty: read from the names
-        (``string-bed`` where a name mentions a string bed or membrane, else ``other``).
+        What each mode is: ``bending``, ``twisting``, ``string-bed``, ``rigid-body``, ``other``
+        or ``unknown`` (not classified: :func:`racketdyn.modal.identify.identify` leaves it to
+        the caller).  String-bed modes are left out of the vibration loss by default; rigid-body
+        modes always (an impact model carries the rigid-body motion in its reduced mass).
+        Empty: read from the names (``string-bed`` where a name mentions a string bed or
+        membrane, ``rigid-body`` where it says rigid-body, else ``other``).
     support : str
         The support the modes belong to (``free``, ``hand`` …).
     source : str
@@ -91,10 +101,7 @@ class ModalModel:
         object.__setattr__(self, "mode_shapes", shapes)
         object.__setattr__(self, "locations", locations)
         object.__setattr__(self, "names", tuple(self.names))
-        kinds = tuple(self.kinds) or tuple(
-            "string-bed" if ("string" in n.lower() or "membrane" in n.lower()) else "other"
-            for n in self.names
-        )
+        kinds = tuple(self.kinds) or tuple(_kind_from_name(n) for n in self.names)
         if len(kinds) != frequency.size or not set(kinds) <= set(MODE_KINDS):
             raise InputError(
                 f"modal model ({self.source}): one kind per mode, each one of "
@@ -229,8 +236,14 @@ class ModalModel:
 
     @cached_property
     def frame_modes(self) -> ModalModel:
-        """The model without its string-bed modes."""
-        keep = [k for k, kind in enumerate(self.kinds) if kind != "string-bed"]
+        """The model without its string-bed and rigid-body modes."""
+        keep = [k for k, kind in enumerate(self.kinds) if kind not in ("string-bed", "rigid-body")]
+        return self if len(keep) == self.n_modes else self.select(keep)
+
+    @cached_property
+    def flexible_modes(self) -> ModalModel:
+        """The model without its rigid-body modes (string-bed modes kept)."""
+        keep = [k for k, kind in enumerate(self.kinds) if kind != "rigid-body"]
         return self if len(keep) == self.n_modes else self.select(keep)
 
     # --- files --------------------------------------------------------------------------------

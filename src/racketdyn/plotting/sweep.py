@@ -139,7 +139,8 @@ def write_summary_figures(dataset: xr.Dataset, out_dir: Path | str) -> list[Path
         figure, (left, right) = plt.subplots(1, 2, figsize=(9.0, 3.6), layout="constrained")
         plot_centre_rebound(dataset, variable, ax=left)
         plot_sweet_area(dataset, variable, ax=right)
-        figure.suptitle(f"{dataset.attrs['title']}: {variable.replace('_', ' ')}", fontsize=10)
+        label = axis_label(dataset, variable)[1]  # "tension (N)", never the key "tension_n"
+        figure.suptitle(f"{dataset.attrs['title']}: {label}", fontsize=10)
         path = out / f"summary_{variable}.png"
         save_figure(figure, path)
         written.append(path)

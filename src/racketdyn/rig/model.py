@@ -803,5 +803,5 @@ def _name_modes(
             kinds.append("string-bed")
         else:
             names.append(f"{support_label} rigid-body {c}")
-            kinds.append("other")
+            kinds.append("rigid-body")
     return tuple(names), tuple(kinds)

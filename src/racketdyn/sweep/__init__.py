@@ -55,6 +55,7 @@ from racketdyn.sweep.spec_file import load_sweep_spec, sweep_spec_from_dict
 from racketdyn.sweep.summary import (
     factorial_view,
     summary_metrics,
+    sweet_area_resolution_cm2,
     variable_designs,
     write_summary_csv,
 )
@@ -93,6 +94,7 @@ __all__ = [
     "run_task",
     "summary_metrics",
     "sweep_spec_from_dict",
+    "sweet_area_resolution_cm2",
     "variable_designs",
     "write_summary_csv",
 ]

@@ -31,7 +31,11 @@ from racketdyn.sweep.executors import DEFAULT_WORKERS, EngineKind, _in_flight_li
 from racketdyn.sweep.files import _combine, _read_netcdf, _read_part, _write_netcdf, _write_part
 from racketdyn.sweep.spec import SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec
-from racketdyn.sweep.summary import write_summary_csv
+from racketdyn.sweep.summary import (
+    SWEET_AREA_COARSE_FRACTION,
+    sweet_area_resolution_cm2,
+    write_summary_csv,
+)
 from racketdyn.sweep.task import STATUS_CODES, STATUS_FAILED, TaskOutput, run_task
 
 if TYPE_CHECKING:
@@ -157,8 +161,17 @@ def run_sweep(
             )
     result = _read_netcdf(sweep_path)
     written = [sweep_path]
+    notes = []
     if spec.variables:
         written.append(write_summary_csv(result, out))
+        step = sweet_area_resolution_cm2(result)
+        if step > SWEET_AREA_COARSE_FRACTION * float(result.attrs["head_area_cm2"]):
+            notes.append(
+                f"the sweet area is counted in steps of {step:.1f} cm² (one of "
+                f"{result.sizes['point']} impact points): designs closer than that look the "
+                "same; give a finer [impacts] grid"
+            )
+            log.warning("%s", notes[-1])
         if figures is not None:
             written += figures(result, out)
     record = {
@@ -178,6 +191,7 @@ def run_sweep(
         "task_time_s": tally.task_seconds,
         "outputs": [p.name for p in written] + ["run.json", "parts/"],
         "spec": spec.to_dict(),
+        "notes": notes,
     }
     (out / "run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
     return result

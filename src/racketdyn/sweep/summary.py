@@ -25,6 +25,7 @@ __all__ = [
     "axis_label",
     "factorial_view",
     "summary_metrics",
+    "sweet_area_resolution_cm2",
     "variable_designs",
     "write_summary_csv",
 ]
@@ -158,6 +159,16 @@ def summary_metrics(
     )
 
 
+def sweet_area_resolution_cm2(dataset: xr.Dataset) -> float:
+    """The face area one impact point stands for, cm²: the step of ``sweet_area_cm2``."""
+    return float(dataset.attrs["head_area_cm2"]) / max(int(dataset.sizes["point"]), 1)
+
+
+SWEET_AREA_COARSE_FRACTION = 0.02
+"""A sweet area counted in steps of more than 2 % of the face (fewer than 50 points: a grid
+below 8) is reported as coarse."""
+
+
 def axis_label(dataset: xr.Dataset, variable: str) -> tuple[str, str, float]:
     """The coordinate a variable is plotted against, its axis label and display scale."""
     info = _variables(dataset)[variable]
@@ -205,6 +216,9 @@ def write_summary_csv(dataset: xr.Dataset, out_dir: Path | str) -> Path:
     metrics = summary_metrics(dataset)
     table = metrics.to_dataframe().unstack("support")
     table.columns = [f"{name}_{support}" for name, support in table.columns]
+    # the speeds the metrics are for, in every row (a table read alone must say so)
+    table["ball_speed_mps"] = metrics.attrs["ball_speed_mps"]
+    table["racket_speed_mps"] = metrics.attrs["racket_speed_mps"]
     design_coords = [c for c in dataset.coords if dataset[c].dims == ("design",) and c != "design"]
     for coord in design_coords:
         table[coord] = dataset[coord].values

@@ -159,6 +159,30 @@ def _previous_outputs(folder: Path) -> list[str]:
     return [name for name in names if name and Path(name).name == name and name != RUN_JSON]
 
 
+def _previous_step(folder: Path) -> str | None:
+    """The step (``rig``, ``predict``, …) whose run ``folder/run.json`` records, if any."""
+    try:
+        record = json.loads((folder / RUN_JSON).read_text(encoding="utf-8"))
+        command = [str(part) for part in record["command"]]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    if len(command) >= 2 and Path(command[0]).name == "racketdyn":
+        return command[1]
+    if len(command) >= 2 and command[1].startswith("racketdyn.workflows."):
+        return command[1].rsplit(".", 1)[-1]
+    return None
+
+
+def _refuse_other_step(folder: Path, step: str) -> None:
+    """A folder holding another step's run is not replaced: its files are that run's data."""
+    previous = _previous_step(folder)
+    if previous is not None and previous != step:
+        raise InputError(
+            f"--out {folder}: the folder holds a `racketdyn {previous}` run (its run.json), "
+            f"which `{step}` would replace; give another --out for {step}"
+        )
+
+
 def _commit(staging: Path, folder: Path) -> None:
     """Replace the previous run's files in ``folder`` by the staged ones."""
     new = {entry.name for entry in staging.iterdir()}
@@ -198,9 +222,11 @@ def run_step(step: Callable[P, S]) -> Callable[P, S]:
     holds the process id: a second run into the same folder is refused with one line; the
     lock of a run that died is taken over.  Files of the user's in ``out`` are never touched.
     Paths in the result (``out``, ``written``) name the final folder.  The step names its
-    folder ``out``.
+    folder ``out``.  A folder that holds another step's run (``rig`` data, say) is refused
+    with one line, before any work: nothing of another step is ever replaced.
     """
     signature = inspect.signature(step)
+    step_name = step.__name__.removeprefix("run_")
 
     @functools.wraps(step)
     def run(*args: P.args, **kwargs: P.kwargs) -> S:
@@ -208,6 +234,7 @@ def run_step(step: Callable[P, S]) -> Callable[P, S]:
         folder = Path(bound.arguments["out"])
         created = not folder.exists()
         make_out_folder(folder)
+        _refuse_other_step(folder, step_name)
         try:
             lock = _lock(folder)
         except InputError:

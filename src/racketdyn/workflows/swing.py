@@ -39,7 +39,7 @@ from racketdyn.impact.swing import (
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
-from racketdyn.plausibility import check_speeds
+from racketdyn.plausibility import check, check_speeds
 from racketdyn.racket import SUPPORTS, Racket
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.predict import MAX_GRID
@@ -86,6 +86,7 @@ def swing_from(
     swing_angle_deg: float | None = None,
     angular_speed_radps: float | None = None,
     axis_to_butt_m: float | None = None,
+    allow_implausible: bool = False,
 ) -> tuple[Swing, list[str]]:
     """The swing: constant shoulder torque (default) or a given angular speed; with the
     defaults used.
@@ -100,6 +101,9 @@ def swing_from(
         Angular speed at impact, rad/s, instead of the torque model.
     axis_to_butt_m : float, optional
         Swing axis (shoulder) behind the butt, m (default 0.607: straight arm, 1.75 m adult).
+    allow_implausible : bool
+        Take values outside the plausible ranges of :mod:`racketdyn.plausibility` (a unit slip
+        such as 607 for 0.607 m or 900 °/s for rad/s is refused otherwise).
     """
     defaults = []
     if axis_to_butt_m is None:
@@ -110,6 +114,7 @@ def swing_from(
         )
     else:
         axis = require_positive("--axis-to-butt", axis_to_butt_m, allow_zero=True)
+        check("axis_to_butt_m", axis, "--axis-to-butt", allow_implausible=allow_implausible)
     if angular_speed_radps is not None:
         if torque_nm is not None or swing_angle_deg is not None:
             raise InputError(
@@ -117,12 +122,14 @@ def swing_from(
                 "torque swing), not both"
             )
         omega = require_positive("--angular-speed", angular_speed_radps, allow_zero=True)
+        check("angular_speed_radps", omega, "--angular-speed", allow_implausible=allow_implausible)
         return Swing(axis_to_butt_m=axis, angular_speed_radps=omega), defaults
     if torque_nm is None:
         torque = DEFAULT_TORQUE_NM
         defaults.append(f"shoulder torque {torque:g} N·m (Kawazoe, ACMD 2002)")
     else:
         torque = require_positive("--torque", torque_nm)
+        check("torque_nm", torque, "--torque", allow_implausible=allow_implausible)
     if swing_angle_deg is None:
         angle = DEFAULT_SWING_ANGLE_RAD
         defaults.append("swing angle 90° from rest to impact (assumption: a quarter turn)")
