@@ -181,3 +181,113 @@ def test_built_in_racket_tip_turns_to_a_second_contact(racket, ball) -> None:
     assert two.status == STATUS_SECOND_CONTACT
     assert np.isnan(two.contact_time_s)
     assert np.isnan(two.rebound_speed_mps)
+
+
+# -- figures and the report never use a flagged row as if valid ------------------------------
+
+
+def _stale(result: ImpactResult, scale: float = 1.0) -> ImpactResult:
+    """The result with its flagged rows' numbers filled in again, as results were before
+    issue 13 (the figures must go by the status, not by NaN)."""
+    from dataclasses import replace
+
+    clean = replace(result, status=np.full(result.status.shape, STATUS_OK))
+    stale = replace(result)
+    for name in ("contact_time", "peak_force", "mean_force", "rebound_ratio"):
+        object.__setattr__(stale, name, np.asarray(getattr(clean, name)) * scale)
+    return stale
+
+
+def _finite_lines(ax) -> list:
+    return [line for line in ax.get_lines() if np.isfinite(np.asarray(line.get_ydata())).any()]
+
+
+def test_fig14_draws_no_vibration_for_flagged_impacts(racket, ball) -> None:
+    """Issue 13: Fig. 14 drew 15–26 mm amplitudes, faint and dashed, for flagged tip impacts."""
+    import matplotlib.pyplot as plt
+
+    from racketdyn.plotting.primitives import plot_frame_amplitude
+
+    tip = landmark_points(racket)["tip"]
+    result = _stale(predict(racket, ball, [tip], [10.0, 30.0], "pinned"))
+    assert result.status[0, 1, 0] == STATUS_VIBRATION_LOSS
+    figure, ax = plt.subplots()
+    plot_frame_amplitude(result, np.linspace(0.0, 0.68, 41), 0, "pinned", ax=ax)
+    drawn = [line.get_label() for line in _finite_lines(ax)]
+    assert [label for label in drawn if label.endswith("m/s")] == ["10 m/s"]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any(label.startswith("30 m/s: flagged, not drawn") for label in labels)
+    assert "1 of 2 speeds flagged" in ax.get_title()
+    plt.close(figure)
+
+
+def test_speed_curves_and_axis_curves_hatch_and_count_flagged_rows(racket, ball) -> None:
+    """Figs 11–12 and 15 must not draw a flagged row's value; they hatch where rows are
+    flagged and say how many (the along-axis crosses were drawn at e = 0, a value)."""
+    import matplotlib.pyplot as plt
+
+    from racketdyn.plotting.primitives import plot_along_axis, plot_speed_curves
+
+    marks = landmark_points(racket)
+    speeds = np.array([10.0, 20.0, 30.0])
+    names = ["tip", "centre"]
+    result = _stale(predict(racket, ball, [marks[n] for n in names], speeds, ("pinned", "free")))
+    flagged = result.status != STATUS_OK
+    assert flagged.any()
+    assert not flagged.all()
+    figure, ax = plt.subplots()
+    plot_speed_curves(result, "contact_time", names, ax=ax)
+    for i in range(len(names)):
+        for p in range(2):
+            line = next(
+                ln for ln in ax.get_lines()
+                if ln.get_label().startswith(f"{names[i]}, ")
+                and ln.get_linestyle() == ("-" if result.supports[p] == "pinned" else "--")
+            )  # fmt: skip
+            y = np.asarray(line.get_ydata())
+            assert np.all(np.isnan(y[flagged[i, :, p]]))
+            assert np.all(np.isfinite(y[~flagged[i, :, p]]))
+    hatched = [patch.get_label() for patch in ax.patches if patch.get_hatch()]
+    assert f"flagged, no valid value: {int(flagged.sum())} of {flagged.size} impacts (hatched)" in (
+        hatched
+    )
+    plt.close(figure)
+
+    x = np.linspace(0.45, 0.65, 9)
+    along = _stale(predict(racket, ball, np.column_stack([x, 0 * x]), [30.0], ("pinned",)))
+    missing = along.status[:, 0, 0] != STATUS_OK
+    assert missing.any()
+    figure, ax = plt.subplots()
+    plot_along_axis(along, "rebound_ratio", 0, ax=ax)
+    (curve,) = [ln for ln in ax.get_lines() if ln.get_label() == "hand-held (pinned at grip)"]
+    assert np.all(np.isnan(np.asarray(curve.get_ydata())[missing]))
+    crosses = [ln for ln in ax.get_lines() if ln.get_marker() == "x"]
+    assert crosses
+    assert all(ln.get_transform() != ax.transData for ln in crosses)  # not at e = 0
+    hatched = [patch.get_label() for patch in ax.patches if patch.get_hatch()]
+    assert f"flagged, no valid value: {int(missing.sum())} of 9 points (hatched)" in hatched
+    plt.close(figure)
+
+
+def test_report_reads_a_stale_impact_csv_as_nan(tmp_path, racket, ball) -> None:
+    """An impact.csv written before issue 13 holds numbers in flagged rows: the report's
+    reader (every section, the interactive map) sees NaN there."""
+    from racketdyn.report.folder import Impacts
+
+    tip = landmark_points(racket)["tip"]
+    result = predict(racket, ball, [tip], [10.0, 30.0], "pinned")
+    path = tmp_path / "impact.csv"
+    result.write_csv(path)
+    lines = path.read_text(encoding="utf-8").splitlines()
+    header = lines[0].split(",")
+    cells = lines[2].split(",")
+    assert cells[header.index("status")] == STATUS_VIBRATION_LOSS
+    for name in ("contact_time_s", "vibration_energy_j", "peak_force_n"):
+        assert cells[header.index(name)] == "nan"  # written as NaN now
+        cells[header.index(name)] = "0.005"
+    path.write_text("\n".join([lines[0], lines[1], ",".join(cells)]) + "\n", encoding="utf-8")
+    table = Impacts.read(path)
+    for name in ("contact_time_s", "vibration_energy_j", "peak_force_n"):
+        assert np.isfinite(table[name][0])
+        assert np.isnan(table[name][1])
+    assert table["reduced_mass_kg"][1] == pytest.approx(result.reduced_mass[0, 0])

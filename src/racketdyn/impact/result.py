@@ -38,6 +38,7 @@ __all__ = [
     "ImpactResult",
     "Quantity",
     "impact_columns",
+    "invalidate_table",
     "invalidated_columns",
     "shown_speed_index",
     "slug",
@@ -183,6 +184,39 @@ def invalidated_columns(status: str) -> tuple[str, ...]:
     if status == STATUS_OK:
         return ()
     return INVALIDATED.get(status, (OUTCOMES, ""))[0]
+
+
+def invalidate_table(
+    columns: dict[str, NDArray[np.float64]], status: NDArray[np.str_]
+) -> dict[str, NDArray[np.float64]]:
+    """``impact.csv``'s numeric columns with NaN wherever a row's status invalidates them.
+
+    For a table read from a file (one written before this rule, or by hand): the same
+    :data:`INVALIDATED` table as :class:`ImpactResult` applies on construction.
+
+    Parameters
+    ----------
+    columns : dict of str to ndarray
+        Numeric columns by ``impact.csv`` name (``contact_time_s``, ``energy_<mode>_j`` …).
+    status : ndarray of str
+        Each row's status.
+
+    Returns
+    -------
+    dict of str to ndarray
+        New arrays; columns no status touches are the ones given.
+    """
+    names = {q.attribute: q.name for q in IMPACT_QUANTITIES}
+    status = np.asarray(status, dtype=str)
+    out = dict(columns)
+    for text in np.unique(status[status != STATUS_OK]):
+        rows = status == text
+        dead = invalidated_columns(str(text))
+        for name in list(out):
+            mode_column = name.startswith("energy_") and name.endswith("_j")
+            if (mode_column and "mode_energy" in dead) or any(names.get(a) == name for a in dead):
+                out[name] = np.where(rows, np.nan, np.asarray(out[name], dtype=float))
+    return out
 
 
 def _invalidate(result: Any) -> dict[str, Any]:
