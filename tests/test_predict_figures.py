@@ -82,7 +82,13 @@ def _line_labels(figure: Figure) -> list[str]:
 
 
 def _line_data(figure: Figure) -> list[np.ndarray]:
-    return [np.asarray(line.get_ydata(), dtype=float) for ax in figure.axes for line in ax.lines]
+    """The curves' data (the crosses that mark flagged rows aside: their number varies)."""
+    return [
+        np.asarray(line.get_ydata(), dtype=float)
+        for ax in figure.axes
+        for line in ax.lines
+        if not line.get_label().startswith("_flagged")
+    ]
 
 
 # --- face maps -----------------------------------------------------------------------------------

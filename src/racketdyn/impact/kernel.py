@@ -17,7 +17,10 @@ a safeguarded Newton iteration (unique root because F rises with X).  Events ins
   on the unloading curve;
 * separation (X reaches 0 while unloading): the step is shortened to the crossing (secant on
   the step length, the force ramping to zero), so the state at separation is consistent;
-* reloading past X_p goes back onto F_GB.
+* reloading past X_p goes back onto F_GB;
+* after separation the ball and the racket move freely (exact for F = 0) for
+  :func:`recontact_horizon`; a compression above ``RECONTACT_TOLERANCE · X_p`` then is a second
+  contact (status ``STATUS_CODE_SECOND_CONTACT``: the vibrating frame caught the ball again).
 
 Tested against the reference engine (scipy's DOP853 in physical coordinates) and shown to
 converge at order 2 as h halves (``tests/test_kernel.py``).  Without numba the same functions

@@ -359,16 +359,7 @@ class ImpactResult:
             for name in (
                 "locations",
                 "reduced_mass",
-                "stiffness",
-                "peak_deflection",
-                "contact_time",
-                "mean_force",
-                "peak_force",
-                "mode_energy",
-                "vibration_energy",
-                "cor",
-                "rebound_ratio",
-                "rebound_speed",
+                *(a for a in OUTCOMES if a != "energy_terms"),
                 "status",
             )
         }

@@ -43,6 +43,15 @@ turn; unloading gives back ``½ m_B V_out² = e_BG² E_GB(X_p)``, so V_out = e_B
 The contact is integrated with :func:`scipy.integrate.solve_ivp` phase by phase (loading,
 unloading, …), each ending on an event: the turn (Ẋ = 0), separation (X = 0) or reloading past
 X_p; the force law is smooth within each phase.
+
+Second contact
+--------------
+At separation the frame may still be swinging towards the ball: near the tip of a pinned
+racket its first mode can catch the ball up a fraction of a millisecond after it left.  Both
+engines follow the ball and the racket with no force for the racket's slowest period (at most
+two contact times, :func:`racketdyn.impact.kernel.recontact_horizon`); if the compression
+becomes positive again the row's status is ``STATUS_SECOND_CONTACT`` and its results are NaN —
+the second contact is not simulated, so the end state would not be the impact's.
 """
 
 from __future__ import annotations

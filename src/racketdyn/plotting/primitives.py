@@ -84,7 +84,12 @@ def _values(result: ImpactResult, quantity: str) -> NDArray[np.float64]:
     return values * scale
 
 
-FLAGGED_STYLE = {"facecolor": "0.85", "edgecolor": "0.55", "hatch": "///", "linewidth": 0.0}
+FLAGGED_STYLE: dict[str, Any] = {
+    "facecolor": "0.85",
+    "edgecolor": "0.55",
+    "hatch": "///",
+    "linewidth": 0.0,
+}
 """How figures mark where rows are flagged (their status not ``ok``): grey, hatched."""
 
 
@@ -98,6 +103,9 @@ def mark_flagged_spans(
     ax: Axes, x: NDArray[np.float64], flagged: NDArray[np.bool_], what: str, total: int
 ) -> None:
     """Hatch the stretches of the x axis where rows are flagged and say how many.
+
+    Where every curve is flagged the hatching fills the axes' height (nothing valid there);
+    where only some are, it is a strip along the foot, so the valid curves stay in the clear.
 
     Parameters
     ----------
@@ -113,23 +121,20 @@ def mark_flagged_spans(
         Rows drawn in all, for "N of M".
     """
     flagged = np.asarray(flagged, dtype=bool).reshape(len(x), -1)
-    anywhere = flagged.any(axis=1)
+    anywhere = np.asarray(flagged.any(axis=1), dtype=bool)
     if not anywhere.any():
         return
-    edges = np.concatenate([[x[0]], 0.5 * (x[1:] + x[:-1]), [x[-1]]]) if len(x) > 1 else None
-    count = int(flagged.sum())
-    label = f"flagged, no valid value: {count} of {total} {what} (hatched)"
-    for first, last in _runs(anywhere):
-        low, high = (
-            (edges[first], edges[last + 1])
-            if edges is not None
-            else (x[first] - 0.5, x[last] + 0.5)
-        )
-        if high <= low:  # a single row at an end: give it a visible width
-            width = 0.01 * float(np.ptp(x) or 1.0)
-            low, high = low - width, high + width
-        ax.axvspan(low, high, zorder=0, label=label, **FLAGGED_STYLE)
-        label = "_flagged"
+    everywhere = np.asarray(flagged.all(axis=1), dtype=bool)
+    edges = np.concatenate([[x[0]], 0.5 * (x[1:] + x[:-1]), [x[-1]]])
+    width = 0.01 * float(np.ptp(x) or 1.0)
+    label = f"flagged, no valid value: {int(flagged.sum())} of {total} {what} (hatched)"
+    for mask, top in ((anywhere & ~everywhere, 0.06), (everywhere, 1.0)):
+        for first, last in _runs(mask):
+            low, high = float(edges[first]), float(edges[last + 1])
+            if high - low < 2 * width:  # a single row at an end: give it a visible width
+                low, high = low - width, high + width
+            ax.axvspan(low, high, ymin=0.0, ymax=top, zorder=0, label=label, **FLAGGED_STYLE)
+            label = "_flagged"
 
 
 def plot_speed_curves(
@@ -163,6 +168,7 @@ def plot_speed_curves(
                     color=colour,
                     transform=foot,
                     clip_on=False,
+                    label="_flagged rows",
                 )
     order = np.argsort(result.ball_speed)
     mark_flagged_spans(
