@@ -101,8 +101,9 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         None,
         "rebound ratio and contact time against ball speed at the face centre, near the tip and "
         "near the throat, approximate method (dashed) against the transient simulation (solid), "
-        "at the run's racket speed (in the title); missing dashes are impacts the approximate "
-        "method flags (vibration loss beyond e_BG)",
+        "at the run's racket speed (in the title); a curve breaks where its method flags the "
+        "impact (vibration loss beyond e_BG, a second contact, …): the speeds are hatched at "
+        "the foot, across the whole height where no curve is valid, and the legend counts them",
     ),
     "transient_histories": (
         None,
