@@ -191,7 +191,9 @@ def test_vibration_loss_beyond_e_bg_is_flagged(racket, ball, linear) -> None:
     assert np.all(result.status == STATUS_VIBRATION_LOSS)
     assert np.all(np.isnan(result.cor))
     assert np.all(np.isnan(result.rebound_speed))
-    assert np.all(np.isfinite(result.vibration_energy))  # the energy itself is still reported
+    # the vibration energy exceeds what the ball brings: not reported either (issue 13)
+    assert np.all(np.isnan(result.vibration_energy))
+    assert np.all(np.isnan(result.contact_time))
 
 
 def test_deflection_beyond_the_law_is_flagged(racket, ball, law) -> None:
@@ -206,8 +208,11 @@ def test_deflection_beyond_the_law_is_flagged(racket, ball, law) -> None:
 def test_contact_time_falls_with_speed(racket, ball, model, law) -> None:
     points = racket.head.grid(6)
     result = predict(racket, ball, points, np.linspace(2, 40, 39), modal_model=model, law=law)
-    assert np.all(np.diff(result.contact_time, axis=1) < 0)
-    assert np.all(np.diff(result.mean_force, axis=1) > 0)
+    # flagged rows (vibration loss beyond e_BG near the rim) hold NaN: compare the others
+    assert np.mean(result.status == "ok") > 0.8
+    falls, rises = np.diff(result.contact_time, axis=1), np.diff(result.mean_force, axis=1)
+    assert np.all(falls[np.isfinite(falls)] < 0)
+    assert np.all(rises[np.isfinite(rises)] > 0)
 
 
 def test_contact_time_in_the_published_range(racket, ball, model, law) -> None:

@@ -17,7 +17,8 @@ from racketdyn.report.page import SCRIPTS, environment, static
 
 pytestmark = pytest.mark.slow
 
-# three points per panel, one without a value (drawn hollow), a label that must stay text
+# two or three points per panel, one without a value and one flagged with a value (both drawn
+# hollow), a label that must stay text
 MAP = {
     "id": "map-test",
     "frame": [-10.0, 110.0, -40.0, 60.0],
@@ -41,7 +42,15 @@ MAP = {
             "range": [0.2, 0.4],
             "panels": [
                 {"label": "<i>free</i>", "rows": [[20, 0, 0.2, ""], [50, 0, 0.4, ""]]},
-                {"label": "pinned", "rows": [[20, 0, 0.3, ""], [80, 0, 0.25, ""]]},
+                {
+                    "label": "pinned",
+                    "rows": [
+                        [20, 0, 0.3, ""],
+                        [80, 0, 0.25, ""],
+                        # flagged with a number (an impact.csv written before issue 13)
+                        [50, 0, 0.45, "vibration loss exceeds e_BG"],
+                    ],
+                },
             ],
         },
     ],
@@ -86,6 +95,8 @@ PROBE = r"""
     out.mapGroup = map.dataset.group;
     out.hollow = map.querySelectorAll("circle.bad").length;
     out.rings = map.querySelectorAll('circle[stroke="#d62728"]').length;
+    out.ringX = Array.prototype.map.call(map.querySelectorAll('circle[stroke="#d62728"]'),
+      function (c) { return c.getAttribute("cx"); });
     out.marks = map.querySelectorAll("line[stroke-dasharray]").length;
     out.panelLabels = Array.prototype.map.call(map.querySelectorAll("svg.face > text[font-weight]"),
       function (t) { return t.textContent; });
@@ -191,10 +202,12 @@ def test_kit(probe: dict[str, Any]) -> None:
 
 
 def test_face_map_draws_every_point(probe: dict[str, Any]) -> None:
-    assert probe["mapDrawn"] == "4"
+    assert probe["mapDrawn"] == "5"
     assert probe["mapGroup"] == "20 m/s"  # the initial group
-    assert probe["hollow"] == 0
-    assert probe["rings"] == 2  # the largest value of each panel
+    assert probe["hollow"] == 1  # the flagged row: never coloured as a value (issue 13)
+    assert probe["rings"] == 2  # the largest valid value of each panel
+    # free: 0.4 at x = 50 mm; pinned: 0.3 at x = 20 mm, not the flagged 0.45 at 50 mm
+    assert probe["ringX"] == ["60.0", "30.0"]
     assert probe["marks"] == 2  # the CoP line in each panel
     assert probe["panelLabels"] == ["<i>free</i>", "pinned"]  # shown as text, not markup
 

@@ -25,15 +25,21 @@ if TYPE_CHECKING:
 __all__ = [
     "CSV_COLUMNS",
     "IMPACT_QUANTITIES",
+    "INVALIDATED",
     "KEY_COLUMNS",
+    "OUTCOMES",
     "SHOWN_SPEED_MPS",
     "STATUS_BEYOND_LAW",
     "STATUS_MEANING",
+    "STATUS_NO_SEPARATION",
     "STATUS_OK",
+    "STATUS_SECOND_CONTACT",
     "STATUS_VIBRATION_LOSS",
     "ImpactResult",
     "Quantity",
     "impact_columns",
+    "invalidate_table",
+    "invalidated_columns",
     "shown_speed_index",
     "slug",
     "summary_rows",
@@ -43,6 +49,8 @@ __all__ = [
 STATUS_OK = "ok"
 STATUS_VIBRATION_LOSS = "vibration loss exceeds e_BG"
 STATUS_BEYOND_LAW = "deflection beyond the restoring-force law"
+STATUS_NO_SEPARATION = "ball did not leave the strings within the time allowed"
+STATUS_SECOND_CONTACT = "second contact: the vibrating frame caught the ball again"
 
 
 @dataclass(frozen=True)
@@ -105,12 +113,138 @@ CSV_COLUMNS = (*KEY_COLUMNS, *(q.name for q in IMPACT_QUANTITIES), "status")
 """Columns of ``impact.csv`` (the first fifteen in the order the foundation issue fixes); one
 ``energy_<mode name>_j`` column per mode follows."""
 
+OUTCOMES: tuple[str, ...] = (
+    "stiffness",
+    "peak_deflection",
+    "contact_time",
+    "mean_force",
+    "peak_force",
+    "mode_energy",
+    "vibration_energy",
+    "cor",
+    "rebound_ratio",
+    "rebound_speed",
+    "energy_terms",
+)
+"""What an impact method computes (attributes of :class:`ImpactResult`); the rest of a row —
+point, x, y, support, ball and racket speeds, reduced mass — is its input."""
+
+INVALIDATED: dict[str, tuple[tuple[str, ...], str]] = {
+    STATUS_VIBRATION_LOSS: (
+        OUTCOMES,
+        "the approximate method's half-sine pulse (eqs 7-11) assumes a racket that is rigid "
+        "but for a small vibration loss; a loss larger than e_BG allows means the frame's "
+        "flexibility shapes the contact, so its time, forces, deflection and stiffness are not "
+        "the racket's either, and the vibration energy (eq 12) exceeds what the ball brings",
+    ),
+    STATUS_BEYOND_LAW: (
+        OUTCOMES,
+        "the compression leaves the range where the ball+string law F_GB is known: nothing "
+        "after that point (peak, time, forces, rebound, energies) is computed from a law",
+    ),
+    STATUS_NO_SEPARATION: (
+        OUTCOMES,
+        "the simulation stopped with the ball still on the strings: no end state",
+    ),
+    STATUS_SECOND_CONTACT: (
+        OUTCOMES,
+        "after the ball left, the vibrating frame caught it up again; that second contact is "
+        "not simulated, so the end state (rebound, COR, energies) is not the impact's, the "
+        "contact time and mean force miss the second pulse, and its peak is not known to be "
+        "below the first",
+    ),
+}
+"""Which results each failure status makes NaN, and why: ``status → (attributes, reason)``,
+the one table every result applies (:class:`ImpactResult` on construction, the report on
+reading ``impact.csv``).  A status not listed here other than ``ok`` invalidates
+:data:`OUTCOMES` too."""
+
 STATUS_MEANING = (
-    "'ok', or why the impact's numbers are NaN, for example "
-    f"'{STATUS_VIBRATION_LOSS}' (COR, rebound ratio and rebound speed NaN) or "
-    f"'{STATUS_BEYOND_LAW}' (every impact quantity NaN)"
+    "'ok', or why the impact's results are NaN: "
+    + "; ".join(f"'{status}'" for status in INVALIDATED)
+    + " (each makes every computed quantity NaN; inputs such as x, y, speeds and reduced mass "
+    "stay)"
 )
 """What the ``status`` column and variable hold."""
+
+
+def invalidated_columns(status: str) -> tuple[str, ...]:
+    """The :class:`ImpactResult` attributes a row with this ``status`` holds as NaN.
+
+    Parameters
+    ----------
+    status : str
+        A row's status.
+
+    Returns
+    -------
+    tuple of str
+        Empty for ``ok``; :data:`INVALIDATED`'s entry, or :data:`OUTCOMES` for any other status.
+    """
+    if status == STATUS_OK:
+        return ()
+    return INVALIDATED.get(status, (OUTCOMES, ""))[0]
+
+
+def invalidate_table(
+    columns: dict[str, NDArray[np.float64]], status: NDArray[np.str_]
+) -> dict[str, NDArray[np.float64]]:
+    """``impact.csv``'s numeric columns with NaN wherever a row's status invalidates them.
+
+    For a table read from a file (one written before this rule, or by hand): the same
+    :data:`INVALIDATED` table as :class:`ImpactResult` applies on construction.
+
+    Parameters
+    ----------
+    columns : dict of str to ndarray
+        Numeric columns by ``impact.csv`` name (``contact_time_s``, ``energy_<mode>_j`` …).
+    status : ndarray of str
+        Each row's status.
+
+    Returns
+    -------
+    dict of str to ndarray
+        New arrays; columns no status touches are the ones given.
+    """
+    names = {q.attribute: q.name for q in IMPACT_QUANTITIES}
+    status = np.asarray(status, dtype=str)
+    out = dict(columns)
+    for text in np.unique(status[status != STATUS_OK]):
+        rows = status == text
+        dead = invalidated_columns(str(text))
+        for name in list(out):
+            mode_column = name.startswith("energy_") and name.endswith("_j")
+            if (mode_column and "mode_energy" in dead) or any(names.get(a) == name for a in dead):
+                out[name] = np.where(rows, np.nan, np.asarray(out[name], dtype=float))
+    return out
+
+
+def _invalidate(result: Any) -> dict[str, Any]:
+    """NaN in every array a row's status invalidates (:data:`INVALIDATED`): the new arrays."""
+    status = np.asarray(result.status)
+    changed: dict[str, Any] = {}
+    if status.size == 0 or np.all(status == STATUS_OK):
+        return changed
+    for attribute in OUTCOMES:
+        mask = np.zeros(status.shape, dtype=bool)
+        for text in np.unique(status[status != STATUS_OK]):
+            if attribute in invalidated_columns(str(text)):
+                mask |= status == text
+        if not mask.any():
+            continue
+        value = getattr(result, attribute, None)
+        if value is None:
+            continue
+        if attribute == "energy_terms":
+            changed[attribute] = {
+                name: np.where(mask, np.nan, np.asarray(term, dtype=float))
+                for name, term in value.items()
+            }
+            continue
+        array = np.asarray(value, dtype=float)
+        extra = (None,) * (array.ndim - mask.ndim)
+        changed[attribute] = np.where(mask[(..., *extra)], np.nan, array)
+    return changed
 
 
 @dataclass(frozen=True, eq=False)
@@ -154,7 +288,8 @@ class ImpactResult:
     rebound_speed : ndarray
         Outgoing ball speed e·v_ball + (1 + e)·v_racket, m/s.
     status : ndarray of str
-        ``ok`` or why the numbers are missing.
+        ``ok`` or why the numbers are missing: a row whose status is not ``ok`` holds NaN in
+        every attribute :data:`INVALIDATED` lists for it (applied on construction).
     modal_model : ModalModel or None
         The modes used (None: rigid racket).
     inputs : dict
@@ -188,6 +323,12 @@ class ImpactResult:
     inputs: dict[str, Any]
     energy_terms: dict[str, NDArray[np.float64]] | None = None
 
+    def __post_init__(self) -> None:
+        # the one place a flagged row's results become NaN (issue 13): every producer and
+        # every copy (concatenate, replace, swing) goes through here
+        for attribute, value in _invalidate(self).items():
+            object.__setattr__(self, attribute, value)
+
     @property
     def shape(self) -> tuple[int, int, int]:
         """``(n_points, n_speeds, n_supports)``."""
@@ -218,16 +359,7 @@ class ImpactResult:
             for name in (
                 "locations",
                 "reduced_mass",
-                "stiffness",
-                "peak_deflection",
-                "contact_time",
-                "mean_force",
-                "peak_force",
-                "mode_energy",
-                "vibration_energy",
-                "cor",
-                "rebound_ratio",
-                "rebound_speed",
+                *(a for a in OUTCOMES if a != "energy_terms"),
                 "status",
             )
         }

@@ -43,6 +43,15 @@ turn; unloading gives back ``½ m_B V_out² = e_BG² E_GB(X_p)``, so V_out = e_B
 The contact is integrated with :func:`scipy.integrate.solve_ivp` phase by phase (loading,
 unloading, …), each ending on an event: the turn (Ẋ = 0), separation (X = 0) or reloading past
 X_p; the force law is smooth within each phase.
+
+Second contact
+--------------
+At separation the frame may still be swinging towards the ball: near the tip of a pinned
+racket its first mode can catch the ball up a fraction of a millisecond after it left.  Both
+engines follow the ball and the racket with no force for the racket's slowest period (at most
+two contact times, :func:`racketdyn.impact.kernel.recontact_horizon`); if the compression
+becomes positive again the row's status is ``STATUS_SECOND_CONTACT`` and its results are NaN —
+the second contact is not simulated, so the end state would not be the impact's.
 """
 
 from __future__ import annotations
@@ -78,15 +87,25 @@ from racketdyn.impact.grid import (
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.kernel import (
     NUMBA_AVAILABLE,
+    RECONTACT_TOLERANCE,
     RELOAD_MARGIN,
     STATUS_CODE_BEYOND_LAW,
+    STATUS_CODE_NO_SEPARATION,
     STATUS_CODE_OK,
+    STATUS_CODE_SECOND_CONTACT,
     integrate_impacts,
     law_arrays,
+    recontact_horizon,
 )
 from racketdyn.impact.kernel import _law as kernel_law
 from racketdyn.impact.kernel import _unloading_exponent as kernel_unloading_exponent
-from racketdyn.impact.result import STATUS_BEYOND_LAW, STATUS_OK, ImpactResult
+from racketdyn.impact.result import (
+    STATUS_BEYOND_LAW,
+    STATUS_NO_SEPARATION,
+    STATUS_OK,
+    STATUS_SECOND_CONTACT,
+    ImpactResult,
+)
 from racketdyn.impact.system import (
     TRANSIENT_SUPPORTS,
     ImpactSystem,
@@ -101,6 +120,7 @@ __all__ = [
     "ENGINES",
     "INTEGRATORS",
     "STATUS_NO_SEPARATION",
+    "STATUS_SECOND_CONTACT",
     "STEPS_PER_CONTACT",
     "TRANSIENT_SUPPORTS",
     "TransientImpact",
@@ -115,7 +135,6 @@ log = logging.getLogger(__name__)
 
 Integrator = Literal["DOP853", "Radau"]
 INTEGRATORS: tuple[str, ...] = ("DOP853", "Radau")
-STATUS_NO_SEPARATION = "ball did not leave the strings within the time allowed"
 
 _HISTORY_SAMPLES = 400  # samples of the time histories over one estimated contact time
 _MAX_PHASES = 200
@@ -495,6 +514,9 @@ def simulate_system_contact(
             break
         elif which == 0:  # separation
             status = STATUS_OK
+            solver = {"method": method, "rtol": rtol, "atol": atol}
+            if _caught_again(make_rhs(_no_force), deflection, y0, t0, peak, system, solver):
+                status = STATUS_SECOND_CONTACT
             break
         else:  # reload past the old peak along F_GB
             loading = True
@@ -527,6 +549,40 @@ def simulate_system_contact(
         final_displacement=np.array(q_end),
         final_velocity=np.array(q_dot_end),
     )
+
+
+def _no_force(x: float) -> float:
+    return 0.0
+
+
+def _caught_again(
+    free_flight: Callable[[float, Any], NDArray[np.float64]],
+    deflection: Callable[[NDArray[np.float64]], float],
+    state: NDArray[np.float64],
+    t0: float,
+    peak: float,
+    system: ImpactSystem,
+    solver: dict[str, Any],
+) -> bool:
+    """Whether the vibrating frame catches the ball up again after separation.
+
+    Follows the ball and the racket with no force for
+    :func:`~racketdyn.impact.kernel.recontact_horizon` (the racket's slowest period) and
+    watches for the compression to exceed ``RECONTACT_TOLERANCE · X_p`` (as the compiled
+    engine does).
+    """
+    form = system.pole_residue()
+    horizon = float(recontact_horizon(form.poles, form.weights, t0))
+    if horizon <= 0.0:
+        return False
+
+    def gap(t: float, y: NDArray[np.float64]) -> float:
+        return deflection(y) - RECONTACT_TOLERANCE * peak
+
+    gap.terminal = True  # type: ignore[attr-defined]
+    gap.direction = 1.0  # type: ignore[attr-defined]
+    solution: Any = solve_ivp(free_flight, (t0, t0 + horizon), state, events=[gap], **solver)
+    return bool(len(solution.t_events[0]))
 
 
 def _lab_numbers(
@@ -933,12 +989,13 @@ def _run_compiled(
     n_modes = 0 if grid.model is None else grid.model.n_modes
     out, mode_energy, status = _empty_outputs(grid.shape, n_modes)
     code = raw[:, 0].astype(int)
-    flat_status = np.where(
-        code == STATUS_CODE_OK,
-        STATUS_OK,
-        np.where(code == STATUS_CODE_BEYOND_LAW, STATUS_BEYOND_LAW, STATUS_NO_SEPARATION),
-    )
-    status[...] = flat_status.reshape(grid.shape)
+    texts = {
+        STATUS_CODE_OK: STATUS_OK,
+        STATUS_CODE_BEYOND_LAW: STATUS_BEYOND_LAW,
+        STATUS_CODE_NO_SEPARATION: STATUS_NO_SEPARATION,
+        STATUS_CODE_SECOND_CONTACT: STATUS_SECOND_CONTACT,
+    }
+    status[...] = np.array([texts[c] for c in code], dtype=object).reshape(grid.shape)
     # physical end state per impact: rigid part + Σ weight Re(v_k u_k), per support
     rigid_energy = np.zeros(code.size)
     support_energy = np.zeros(code.size)

@@ -36,6 +36,7 @@ from racketdyn.modal.model import ModalModel
 from racketdyn.modal.residues import mac
 from racketdyn.plotting.primitives import (
     SUPPORT_STYLE,
+    mark_flagged_spans,
     plot_along_axis,
     plot_contact_map,
     plot_face_map,
@@ -981,6 +982,17 @@ def figure_transient_comparison_speed(
                     )
                     if style == "-":
                         _mark_run_speeds(ax, speeds, values * scale, options)
+            # rows either method flags (vibration loss, second contact …): hatched, counted
+            flagged = np.stack(
+                [r.status[: len(names), :, p] != "ok" for r in (approximate, transient)]
+            )  # (method, point, speed)
+            mark_flagged_spans(
+                ax,
+                np.asarray(speeds, dtype=float),
+                flagged.transpose(2, 0, 1).reshape(len(speeds), -1),
+                "impacts of the two methods",
+                flagged.size,
+            )
             ax.set_ylabel(label)
             ax.grid(alpha=0.3)
             if row == 0:

@@ -29,10 +29,12 @@ from racketdyn.modal.poles import PoleStability, SelectedPoles, Stabilisation
 from racketdyn.racket import Racket
 
 __all__ = [
+    "FLAGGED_STYLE",
     "OBLIQUE_QUANTITIES",
     "QUANTITIES",
     "SWEET_SPOT_STYLE",
     "TWIST_QUANTITIES",
+    "mark_flagged_spans",
     "plot_along_axis",
     "plot_contact_map",
     "plot_face_map",
@@ -82,22 +84,100 @@ def _values(result: ImpactResult, quantity: str) -> NDArray[np.float64]:
     return values * scale
 
 
+FLAGGED_STYLE: dict[str, Any] = {
+    "facecolor": "0.85",
+    "edgecolor": "0.55",
+    "hatch": "///",
+    "linewidth": 0.0,
+}
+"""How figures mark where rows are flagged (their status not ``ok``): grey, hatched."""
+
+
+def _runs(mask: NDArray[np.bool_]) -> list[tuple[int, int]]:
+    """(first, last) index of each run of True in a 1-D mask."""
+    edges = np.diff(np.concatenate([[0], mask.astype(int), [0]]))
+    return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1, strict=True))
+
+
+def mark_flagged_spans(
+    ax: Axes, x: NDArray[np.float64], flagged: NDArray[np.bool_], what: str, total: int
+) -> None:
+    """Hatch the stretches of the x axis where rows are flagged and say how many.
+
+    Where every curve is flagged the hatching fills the axes' height (nothing valid there);
+    where only some are, it is a strip along the foot, so the valid curves stay in the clear.
+
+    Parameters
+    ----------
+    ax : Axes
+        Axes with x in the same units as ``x``.
+    x : ndarray (n,)
+        Sorted x values of the rows (speeds, positions).
+    flagged : ndarray of bool, shape (n, k)
+        Which of the ``k`` curves' rows are flagged at each x.
+    what : str
+        What a row is, in the legend ("impacts").
+    total : int
+        Rows drawn in all, for "N of M".
+    """
+    flagged = np.asarray(flagged, dtype=bool).reshape(len(x), -1)
+    anywhere = np.asarray(flagged.any(axis=1), dtype=bool)
+    if not anywhere.any():
+        return
+    everywhere = np.asarray(flagged.all(axis=1), dtype=bool)
+    edges = np.concatenate([[x[0]], 0.5 * (x[1:] + x[:-1]), [x[-1]]])
+    width = 0.01 * float(np.ptp(x) or 1.0)
+    label = f"flagged, no valid value: {int(flagged.sum())} of {total} {what} (hatched)"
+    for mask, top in ((anywhere & ~everywhere, 0.06), (everywhere, 1.0)):
+        for first, last in _runs(mask):
+            low, high = float(edges[first]), float(edges[last + 1])
+            if high - low < 2 * width:  # a single row at an end: give it a visible width
+                low, high = low - width, high + width
+            ax.axvspan(low, high, ymin=0.0, ymax=top, zorder=0, label=label, **FLAGGED_STYLE)
+            label = "_flagged"
+
+
 def plot_speed_curves(
     result: ImpactResult, quantity: str, point_names: Sequence[str], ax: Axes | None = None
 ) -> Axes:
-    """A quantity against incoming ball speed for each impact point and support (Figs 11–12)."""
+    """A quantity against incoming ball speed for each impact point and support (Figs 11–12).
+
+    Rows whose status is not ``ok`` have no value: their curve breaks there, a cross in its
+    colour at the foot of the axes marks each, the speeds are hatched and the legend says how
+    many (issue 13)."""
     ax = _axes(ax)
     values = _values(result, quantity)
     colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, len(point_names)))
+    foot = ax.get_xaxis_transform()
+    flagged = np.asarray(result.status) != STATUS_OK  # (n, s, p)
     for i, (name, colour) in enumerate(zip(point_names, colours, strict=True)):
         for p, support in enumerate(result.supports):
+            style = "-" if support == "pinned" else "--"
             ax.plot(
                 result.ball_speed,
-                values[i, :, p],
+                np.where(flagged[i, :, p], np.nan, values[i, :, p]),
                 color=colour,
-                linestyle="-" if support == "pinned" else "--",
+                linestyle=style,
                 label=f"{name}, {SUPPORT_STYLE[support]['label']}",
             )
+            if flagged[i, :, p].any():
+                ax.plot(
+                    result.ball_speed[flagged[i, :, p]],
+                    np.full(int(flagged[i, :, p].sum()), 0.03),
+                    "x",
+                    color=colour,
+                    transform=foot,
+                    clip_on=False,
+                    label="_flagged rows",
+                )
+    order = np.argsort(result.ball_speed)
+    mark_flagged_spans(
+        ax,
+        result.ball_speed[order],
+        flagged[: len(point_names)][:, order, :].transpose(1, 0, 2),
+        "impacts",
+        len(point_names) * result.ball_speed.size * len(result.supports),
+    )
     ax.set_xlabel("incoming ball speed (m/s)")
     ax.set_ylabel(QUANTITIES[quantity][0])
     ax.grid(alpha=0.3)
@@ -115,8 +195,8 @@ def plot_frame_amplitude(
 ) -> Axes:
     """Displacement amplitude of one mode along the frame after an impact (Fig. 14), mm.
 
-    Impacts without a valid result (their ``status``) are drawn faint and dashed, labelled
-    flagged with the reason."""
+    Impacts without a valid result (their ``status``) are not drawn: the legend names each
+    with its reason, the panel says how many and is hatched when none is valid (issue 13)."""
     ax = _axes(ax)
     response = np.column_stack([response_x_m, np.zeros_like(response_x_m)])
     shapes = result.modal_model.mode_shapes_at(response)[:, mode] if result.modal_model else None
@@ -125,23 +205,27 @@ def plot_frame_amplitude(
     ]
     sign = np.sign(shapes) if shapes is not None else 1.0
     p = result.support_index(support)
+    flagged = []
     for s, speed in enumerate(result.ball_speed):
         status = str(result.status[point, s, p])
-        if status == "ok":
+        if status == STATUS_OK:
             ax.plot(response_x_m * 1e3, sign * amplitude[:, s] * 1e3, label=f"{speed:g} m/s")
-        else:  # drawn so the size shows, but not as a valid prediction
-            ax.plot(
-                response_x_m * 1e3,
-                sign * amplitude[:, s] * 1e3,
-                linestyle="--",
-                color=f"C{s}",
-                alpha=0.45,
-                label=f"{speed:g} m/s: flagged ({status})",
-            )
+        else:  # no curve: the method gives no pulse here (issue 13); the legend says why
+            flagged.append(s)
+            ax.plot([], [], " ", label=f"{speed:g} m/s: flagged, not drawn ({status})")
+    if flagged:
+        count = len(flagged)
+        if count == result.ball_speed.size:  # nothing valid in the panel: grey it all
+            ax.axvspan(response_x_m[0] * 1e3, response_x_m[-1] * 1e3, zorder=0, **FLAGGED_STYLE)
     ax.axhline(0.0, color="0.5", linewidth=0.8)
     ax.axvline(result.locations[point, 0] * 1e3, color="r", linestyle=":", label="impact point")
     name = result.modal_model.names[mode] if result.modal_model else ""
-    ax.set_title(f"{SUPPORT_STYLE[support]['label']}: {name}", fontsize=9)
+    note = (
+        f"\n{len(flagged)} of {result.ball_speed.size} speeds flagged: no valid vibration"
+        if flagged
+        else ""
+    )
+    ax.set_title(f"{SUPPORT_STYLE[support]['label']}: {name}{note}", fontsize=9)
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("displacement amplitude (mm)")
     ax.grid(alpha=0.3)
@@ -160,26 +244,32 @@ def plot_along_axis(
     ax = _axes(ax)
     values = _values(result, quantity)
     x_mm = result.locations[:, 0] * 1e3
+    flagged = np.asarray(result.status)[:, speed_index, :] != STATUS_OK  # (n, p)
+    foot = ax.get_xaxis_transform()
     for p, support in enumerate(result.supports):
         style = SUPPORT_STYLE[support]
         ax.plot(
             x_mm,
-            values[:, speed_index, p],
+            np.where(flagged[:, p], np.nan, values[:, speed_index, p]),
             color=style["color"],
             marker=style["marker"],
             markersize=3,
             label=style["label"],
         )
-        missing = result.status[:, speed_index, p] != "ok"
-        if np.any(missing):
+        missing = flagged[:, p]
+        if np.any(missing):  # at the foot of the axes: a cross at 0 would read as a value
+            reasons = ", ".join(np.unique(result.status[missing, speed_index, p]))
             ax.plot(
                 x_mm[missing],
-                np.zeros(int(missing.sum())),
+                np.full(int(missing.sum()), 0.03),
                 "x",
                 color=style["color"],
-                label=f"{style['label']}: no valid rebound "
-                f"({result.status[missing, speed_index, p][0]})",
+                transform=foot,
+                clip_on=False,
+                label=f"{style['label']}: no valid value ({reasons})",
             )
+    order = np.argsort(x_mm)
+    mark_flagged_spans(ax, x_mm[order], flagged[order], "points", flagged.size)
     for name, x in (marks or {}).items():
         ax.axvline(x * 1e3, color="0.4", linestyle=":", linewidth=1)
         ax.annotate(

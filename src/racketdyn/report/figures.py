@@ -62,7 +62,9 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         "Figs 11 and 12",
         "Fig. 11: equivalent (mean) impact force and Fig. 12: contact time against ball speed "
         "at the top, centre and throat of the face, for the run's supports; the run's speeds "
-        "are marked, its racket speed and options are in the title",
+        "are marked, its racket speed and options are in the title; speeds where an impact is "
+        "flagged (no valid value) are hatched, crosses at the foot mark each, and the legend "
+        "counts them",
     ),
     "fig13_pulse_spectrum": (
         "Fig. 13",
@@ -73,8 +75,9 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "fig14_frame_vibration": (
         "Fig. 14",
         "predicted first-mode displacement along the frame just after an impact at the tip, "
-        "at the run's speeds, one panel per support; impacts the method flags are faint and "
-        "dashed, with their status",
+        "at the run's speeds, one panel per support; impacts the method flags have no valid "
+        "vibration and are not drawn: the legend names them with their status and each panel "
+        "says how many (hatched when none is valid)",
     ),
     "fig15_rebound_along_axis": (
         "Fig. 15",
@@ -98,8 +101,9 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         None,
         "rebound ratio and contact time against ball speed at the face centre, near the tip and "
         "near the throat, approximate method (dashed) against the transient simulation (solid), "
-        "at the run's racket speed (in the title); missing dashes are impacts the approximate "
-        "method flags (vibration loss beyond e_BG)",
+        "at the run's racket speed (in the title); a curve breaks where its method flags the "
+        "impact (vibration loss beyond e_BG, a second contact, …): the speeds are hatched at "
+        "the foot, across the whole height where no curve is valid, and the legend counts them",
     ),
     "transient_histories": (
         None,

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
+from racketdyn.impact.result import invalidate_table
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.report.figures import Figure, FigureGroup, Layout, embed_png
 
@@ -299,10 +300,14 @@ class Impacts:
                 f"{len(rows)} rows where its run.json lists {expected} (points × speeds × "
                 "supports): the file is cut short or damaged",
             )
+        status = (
+            table[:, header.index("status")] if "status" in header else np.full(len(table), "ok")
+        )
+        # a flagged row's numbers are never shown as valid, whoever wrote the file (issue 13)
         return cls(
-            numbers,
+            invalidate_table(numbers, status),
             table[:, header.index("support")] if "support" in header else np.full(len(table), ""),
-            table[:, header.index("status")] if "status" in header else np.full(len(table), "ok"),
+            status,
         )
 
     def __getitem__(self, name: str) -> NDArray[np.float64]:

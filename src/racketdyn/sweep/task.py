@@ -28,12 +28,13 @@ from racketdyn.errors import InputError, one_of
 from racketdyn.impact.approximate import StiffnessReading, predict
 from racketdyn.impact.result import (
     STATUS_BEYOND_LAW,
+    STATUS_NO_SEPARATION,
     STATUS_OK,
+    STATUS_SECOND_CONTACT,
     STATUS_VIBRATION_LOSS,
     ImpactResult,
 )
 from racketdyn.impact.transient import (
-    STATUS_NO_SEPARATION,
     TRANSIENT_SUPPORTS,
     predict_transient,
 )
@@ -66,6 +67,7 @@ STATUS_CODES: dict[str, int] = {
     STATUS_BEYOND_LAW: 2,
     STATUS_FAILED: 3,
     STATUS_NO_SEPARATION: 4,
+    STATUS_SECOND_CONTACT: 5,
 }
 """Integer codes of the ``status`` variable of a sweep dataset (CF ``flag_values``)."""
 

@@ -33,7 +33,8 @@
           '" text-anchor="middle" fill="#444">' + esc(m.label) + "</text>";
       });
       p.rows.forEach(function (r, i) {
-        var v = r[c];
+        // a flagged row (its status, after the fields) is never coloured as a value
+        var v = r[spec.fields.length] ? null : r[c];
         if (spec.best && v !== null && (best < 0 || v > p.rows[best][c])) { best = i; }
         s += '<circle class="pt' + (v === null ? " bad" : "") + '" data-p="' + pi +
           '" data-i="' + i + '" cx="' + X(r[0]) + '" cy="' + Y(r[1]) + '" r="' + spec.radius +

@@ -1,0 +1,293 @@
+"""Flagged rows carry NaN in every column their failure invalidates (issue 13).
+
+Each status kind is produced on the built-in racket (kawazoe_2002.toml and its modal model) at
+speeds and points found to give it; the oracle is the one table of what each status
+invalidates (racketdyn.impact.result.INVALIDATED): every listed quantity NaN, the inputs
+(x, y, speeds, reduced mass) finite.  The second contact is checked in both transient engines.
+"""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import racketdyn as rd
+from racketdyn.impact import kernel
+from racketdyn.impact.approximate import predict
+from racketdyn.impact.result import (
+    INVALIDATED,
+    OUTCOMES,
+    STATUS_BEYOND_LAW,
+    STATUS_NO_SEPARATION,
+    STATUS_OK,
+    STATUS_SECOND_CONTACT,
+    STATUS_VIBRATION_LOSS,
+    ImpactResult,
+    invalidated_columns,
+)
+from racketdyn.impact.transient import predict_transient, simulate_impact
+from racketdyn.racket import landmark_points
+
+INPUT_COLUMNS = ("point", "x_m", "y_m", "support", "ball_speed_mps", "racket_speed_mps")
+
+
+@pytest.fixture(autouse=True)
+def _quiet(caplog: pytest.LogCaptureFixture) -> None:
+    caplog.set_level(logging.ERROR)
+
+
+def _check_row(result: ImpactResult, row: tuple[int, int, int], status: str) -> None:
+    assert result.status[row] == status
+    dead = invalidated_columns(status)
+    assert dead == INVALIDATED[status][0]
+    for attribute in OUTCOMES:
+        if attribute == "energy_terms":
+            if result.energy_terms is not None:
+                for name, term in result.energy_terms.items():
+                    assert np.isnan(term[row]) == (attribute in dead), name
+            continue
+        value = np.asarray(getattr(result, attribute))[row]
+        assert np.all(np.isnan(value)) == (attribute in dead), attribute
+    assert np.all(np.isfinite(result.reduced_mass[row[0], row[2]]))
+    table = result.columns
+    flat = np.ravel_multi_index(row, result.shape)
+    for name in INPUT_COLUMNS:
+        value = table[name][flat]
+        assert not (isinstance(value, float) and np.isnan(value)), name
+    for name, column in table.items():
+        if name.startswith("energy_") and name.endswith("_j"):
+            assert np.isnan(column[flat]) == ("mode_energy" in dead), name
+
+
+def test_vibration_loss_row_is_nan_in_every_result(racket, ball) -> None:
+    # pinned tip at 30 m/s: eq 12 charges more than e_BG leaves (the demo's Fig. 14 case)
+    tip = landmark_points(racket)["tip"]
+    result = predict(racket, ball, [tip], [10.0, 30.0], "pinned")
+    assert result.status[0, 0, 0] == STATUS_OK
+    _check_row(result, (0, 1, 0), STATUS_VIBRATION_LOSS)
+    assert np.all(np.isfinite([getattr(result, a)[0, 0, 0] for a in OUTCOMES[:5]]))
+
+
+def test_beyond_law_rows_are_nan_in_both_methods(racket, ball) -> None:
+    centre = landmark_points(racket)["centre"]
+    for method in (predict, predict_transient):
+        result = method(racket, ball, [centre], [20.0, 70.0], "free")
+        assert result.status[0, 0, 0] == STATUS_OK
+        _check_row(result, (0, 1, 0), STATUS_BEYOND_LAW)
+
+
+@pytest.mark.parametrize(
+    "engine",
+    [
+        "reference",
+        pytest.param(
+            "compiled",
+            marks=pytest.mark.skipif(not kernel.NUMBA_AVAILABLE, reason="numba not installed"),
+        ),
+    ],
+)
+def test_second_contact_row_is_nan(racket, ball, engine: str) -> None:
+    # pinned tip at 40 m/s: the ball leaves, the frame's first mode swings back into it
+    tip = landmark_points(racket)["tip"]
+    result = predict_transient(racket, ball, [tip], [20.0, 40.0], "pinned", engine=engine)
+    assert result.status[0, 0, 0] == STATUS_OK
+    _check_row(result, (0, 1, 0), STATUS_SECOND_CONTACT)
+
+
+def test_no_separation_row_is_nan() -> None:
+    # the built-in racket never holds the ball past 50 contact times, so the row is made here:
+    # the table applies to any result, whatever produced it
+    arrays = {name: np.ones((1, 2, 1)) for name in OUTCOMES if name != "mode_energy"}
+    del arrays["energy_terms"]
+    result = ImpactResult(
+        locations=np.array([[0.5, 0.0]]),
+        labels=("1",),
+        ball_speed=np.array([10.0, 20.0]),
+        racket_speed=np.zeros(2),
+        supports=("free",),
+        reduced_mass=np.full((1, 1), 0.2),
+        mode_energy=np.ones((1, 2, 1, 3)),
+        status=np.array([[[STATUS_OK], [STATUS_NO_SEPARATION]]]),
+        modal_model=None,
+        inputs={},
+        energy_terms={"energy_in_j": np.ones((1, 2, 1))},
+        **arrays,
+    )
+    assert np.all(result.mode_energy[0, 1, 0] != result.mode_energy[0, 1, 0])
+    assert np.all(result.mode_energy[0, 0, 0] == 1.0)
+    assert result.energy_terms is not None
+    assert np.isnan(result.energy_terms["energy_in_j"][0, 1, 0])
+    for name in arrays:
+        assert np.isnan(getattr(result, name)[0, 1, 0])
+        assert getattr(result, name)[0, 0, 0] == 1
+
+
+def test_every_status_is_in_the_table() -> None:
+    import racketdyn.impact.result as result_module
+    import racketdyn.impact.transient as transient
+
+    statuses = {
+        value
+        for module in (result_module, transient)
+        for name, value in vars(module).items()
+        if name.startswith("STATUS_")
+        and name != "STATUS_MEANING"
+        and isinstance(value, str)
+        and value != STATUS_OK
+    }
+    assert statuses == set(INVALIDATED)
+    assert invalidated_columns("some future failure") == OUTCOMES
+
+
+DEMO_MODEL = Path(__file__).parent / "data" / "demo_modal_model_free.json"
+
+
+def test_tip_jump_is_a_second_contact(racket, ball) -> None:
+    """Issue 13: T_c at the tip, pinned, fell from 7.46 to 5.56 ms between 37.5 and 38.75 m/s
+    (the demo's identified free modes) while the rebound stayed smooth.  Cause: at 37.5 m/s the
+    compression falls to ≈ 0.1 mm after the peak (force < 1 % of the peak) and the frame's
+    first mode (120 Hz) presses the strings back into the ball for ≈ 2 ms at a few newtons —
+    still one contact; at 38.75 m/s the compression reaches zero, the ball leaves at 5.56 ms,
+    and the same swing of the frame strikes it again ≈ 0.1 ms later — a second contact the
+    simulation used to end before, so its T_c missed the second press.  Now that row says so
+    (status, NaN) in both engines; the row before keeps its one contact."""
+    model = rd.ModalModel.read_json(DEMO_MODEL)
+    tip = landmark_points(racket)["tip"]
+    before = simulate_impact(racket, ball, tip, 37.5, "pinned", modal_model=model)
+    assert before.status == STATUS_OK
+    assert before.contact_time_s == pytest.approx(7.46e-3, abs=0.01e-3)
+    force, peak_at = before.force_n, int(np.argmax(before.force_n))
+    low = peak_at + int(np.argmax(force[peak_at:] < 0.01 * force.max()))
+    assert before.time_s[low] < 5.7e-3  # the main pulse is over by then
+    assert 0.5 < force[low:].max() < 0.01 * force.max()  # a second, light press
+    for engine in ("reference", "compiled") if kernel.NUMBA_AVAILABLE else ("reference",):
+        after = predict_transient(
+            racket, ball, [tip], [37.5, 38.75], "pinned", modal_model=model, engine=engine
+        )
+        assert list(after.status[0, :, 0]) == [STATUS_OK, STATUS_SECOND_CONTACT], engine
+        assert np.isnan(after.contact_time[0, 1, 0])
+
+
+def test_built_in_racket_tip_turns_to_a_second_contact(racket, ball) -> None:
+    # the same on the built-in modal model, between 31 and 32 m/s
+    tip = landmark_points(racket)["tip"]
+    one = simulate_impact(racket, ball, tip, 31.0, "pinned")
+    two = simulate_impact(racket, ball, tip, 32.0, "pinned")
+    assert one.status == STATUS_OK
+    assert np.isfinite(one.contact_time_s)
+    assert two.status == STATUS_SECOND_CONTACT
+    assert np.isnan(two.contact_time_s)
+    assert np.isnan(two.rebound_speed_mps)
+
+
+# -- figures and the report never use a flagged row as if valid ------------------------------
+
+
+def _stale(result: ImpactResult, scale: float = 1.0) -> ImpactResult:
+    """The result with its flagged rows' numbers filled in again, as results were before
+    issue 13 (the figures must go by the status, not by NaN)."""
+    from dataclasses import replace
+
+    clean = replace(result, status=np.full(result.status.shape, STATUS_OK))
+    stale = replace(result)
+    for name in ("contact_time", "peak_force", "mean_force", "rebound_ratio"):
+        object.__setattr__(stale, name, np.asarray(getattr(clean, name)) * scale)
+    return stale
+
+
+def _finite_lines(ax) -> list:
+    return [line for line in ax.get_lines() if np.isfinite(np.asarray(line.get_ydata())).any()]
+
+
+def test_fig14_draws_no_vibration_for_flagged_impacts(racket, ball) -> None:
+    """Issue 13: Fig. 14 drew 15–26 mm amplitudes, faint and dashed, for flagged tip impacts."""
+    import matplotlib.pyplot as plt
+
+    from racketdyn.plotting.primitives import plot_frame_amplitude
+
+    tip = landmark_points(racket)["tip"]
+    result = _stale(predict(racket, ball, [tip], [10.0, 30.0], "pinned"))
+    assert result.status[0, 1, 0] == STATUS_VIBRATION_LOSS
+    figure, ax = plt.subplots()
+    plot_frame_amplitude(result, np.linspace(0.0, 0.68, 41), 0, "pinned", ax=ax)
+    drawn = [line.get_label() for line in _finite_lines(ax)]
+    assert [label for label in drawn if label.endswith("m/s")] == ["10 m/s"]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any(label.startswith("30 m/s: flagged, not drawn") for label in labels)
+    assert "1 of 2 speeds flagged" in ax.get_title()
+    plt.close(figure)
+
+
+def test_speed_curves_and_axis_curves_hatch_and_count_flagged_rows(racket, ball) -> None:
+    """Figs 11–12 and 15 must not draw a flagged row's value; they hatch where rows are
+    flagged and say how many (the along-axis crosses were drawn at e = 0, a value)."""
+    import matplotlib.pyplot as plt
+
+    from racketdyn.plotting.primitives import plot_along_axis, plot_speed_curves
+
+    marks = landmark_points(racket)
+    speeds = np.array([10.0, 20.0, 30.0])
+    names = ["tip", "centre"]
+    result = _stale(predict(racket, ball, [marks[n] for n in names], speeds, ("pinned", "free")))
+    flagged = result.status != STATUS_OK
+    assert flagged.any()
+    assert not flagged.all()
+    figure, ax = plt.subplots()
+    plot_speed_curves(result, "contact_time", names, ax=ax)
+    for i in range(len(names)):
+        for p in range(2):
+            line = next(
+                ln for ln in ax.get_lines()
+                if ln.get_label().startswith(f"{names[i]}, ")
+                and ln.get_linestyle() == ("-" if result.supports[p] == "pinned" else "--")
+            )  # fmt: skip
+            y = np.asarray(line.get_ydata())
+            assert np.all(np.isnan(y[flagged[i, :, p]]))
+            assert np.all(np.isfinite(y[~flagged[i, :, p]]))
+    hatched = [patch.get_label() for patch in ax.patches if patch.get_hatch()]
+    assert f"flagged, no valid value: {int(flagged.sum())} of {flagged.size} impacts (hatched)" in (
+        hatched
+    )
+    plt.close(figure)
+
+    x = np.linspace(0.45, 0.65, 9)
+    along = _stale(predict(racket, ball, np.column_stack([x, 0 * x]), [30.0], ("pinned",)))
+    missing = along.status[:, 0, 0] != STATUS_OK
+    assert missing.any()
+    figure, ax = plt.subplots()
+    plot_along_axis(along, "rebound_ratio", 0, ax=ax)
+    (curve,) = [ln for ln in ax.get_lines() if ln.get_label() == "hand-held (pinned at grip)"]
+    assert np.all(np.isnan(np.asarray(curve.get_ydata())[missing]))
+    crosses = [ln for ln in ax.get_lines() if ln.get_marker() == "x"]
+    assert crosses
+    assert all(ln.get_transform() != ax.transData for ln in crosses)  # not at e = 0
+    hatched = [patch.get_label() for patch in ax.patches if patch.get_hatch()]
+    assert f"flagged, no valid value: {int(missing.sum())} of 9 points (hatched)" in hatched
+    plt.close(figure)
+
+
+def test_report_reads_a_stale_impact_csv_as_nan(tmp_path, racket, ball) -> None:
+    """An impact.csv written before issue 13 holds numbers in flagged rows: the report's
+    reader (every section, the interactive map) sees NaN there."""
+    from racketdyn.report.folder import Impacts
+
+    tip = landmark_points(racket)["tip"]
+    result = predict(racket, ball, [tip], [10.0, 30.0], "pinned")
+    path = tmp_path / "impact.csv"
+    result.write_csv(path)
+    lines = path.read_text(encoding="utf-8").splitlines()
+    header = lines[0].split(",")
+    cells = lines[2].split(",")
+    assert cells[header.index("status")] == STATUS_VIBRATION_LOSS
+    for name in ("contact_time_s", "vibration_energy_j", "peak_force_n"):
+        assert cells[header.index(name)] == "nan"  # written as NaN now
+        cells[header.index(name)] = "0.005"
+    path.write_text("\n".join([lines[0], lines[1], ",".join(cells)]) + "\n", encoding="utf-8")
+    table = Impacts.read(path)
+    for name in ("contact_time_s", "vibration_energy_j", "peak_force_n"):
+        assert np.isfinite(table[name][0])
+        assert np.isnan(table[name][1])
+    assert table["reduced_mass_kg"][1] == pytest.approx(result.reduced_mass[0, 0])
