@@ -11,8 +11,8 @@ Units: deflection X in m, force F in N, stiffness K in N/m.
 from __future__ import annotations
 
 import logging
-from functools import lru_cache
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Literal, get_args
 
 import numpy as np
@@ -24,9 +24,9 @@ from racketdyn.numerics import invert_increasing
 from racketdyn.plausibility import check_limits
 
 __all__ = [
+    "BALL_LAW_RANGE_RADII",
     "ITF_FORWARD_DEFORMATION_M",
     "ITF_FORWARD_LOAD_N",
-    "BALL_LAW_RANGE_RADII",
     "Ball",
     "LawKind",
     "RestoringForce",
@@ -262,7 +262,9 @@ def series(
     """
     top = min(first.max_force_n, second.max_force_n)
     # samples even in force, plus a geometric run so the low forces of slow impacts are dense
-    force = np.unique(np.concatenate([np.linspace(0.0, top, 400), np.geomspace(top * 1e-3, top, 200)]))
+    force = np.unique(
+        np.concatenate([np.linspace(0.0, top, 400), np.geomspace(top * 1e-3, top, 200)])
+    )
     deflection = first.deflection(force) + second.deflection(force)
     return RestoringForce.fit(
         deflection,
@@ -399,9 +401,7 @@ class Ball:
             if not np.all(np.isfinite(table)):
                 raise InputError("ball e_bg_table: speeds and e_bg must be finite numbers")
             if np.any(table[:, 0] < 0) or np.any(np.diff(table[:, 0]) <= 0):
-                raise InputError(
-                    "ball e_bg_table: speeds (m/s) must be ≥ 0 and strictly rising"
-                )
+                raise InputError("ball e_bg_table: speeds (m/s) must be ≥ 0 and strictly rising")
             if np.any(table[:, 1] <= 0) or np.any(table[:, 1] > 1):
                 raise InputError("ball e_bg_table: every e_bg must be above 0 and at most 1")
 

@@ -6,12 +6,12 @@ The compound spring F_GB(X) is the ball's one-sided law and the string bed's law
 
 from __future__ import annotations
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
 from racketdyn.ball import Ball, RestoringForce, series
 from racketdyn.io.tables import read_load_deflection
 from racketdyn.racket import Racket
-
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["compound_law", "string_bed_law", "string_tension"]
 
@@ -69,9 +69,9 @@ def string_bed_law(racket: Racket, ball: Ball) -> RestoringForce:
     )
 
 
-def string_tension(racket: Racket, deflection: ArrayLike) -> tuple[
-    NDArray[np.float64], NDArray[np.float64]
-]:
+def string_tension(
+    racket: Racket, deflection: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Tension of a main and of a cross string at the centre deflected by X, N.
 
     ``S = S0 + A E X² / (2 L²)`` with L the string's half-length (the elongation behind the
@@ -98,9 +98,7 @@ def string_tension(racket: Racket, deflection: ArrayLike) -> tuple[
     return np.asarray(tensions[0]), np.asarray(tensions[1])
 
 
-def compound_law(
-    racket: Racket, ball: Ball, degree: int = COMPOUND_DEGREE
-) -> RestoringForce:
+def compound_law(racket: Racket, ball: Ball, degree: int = COMPOUND_DEGREE) -> RestoringForce:
     """Compound ball+string restoring force F_GB(X): the two laws in series, least-squares fit
     on the relative force residual (section 3.4).
 

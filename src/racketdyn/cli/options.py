@@ -145,7 +145,8 @@ def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) 
             default=default,
             metavar="M/S[,M/S...]",
             help=f"incoming ball speeds, m/s, comma-separated (default {default}; above 75 "
-            "m/s only with --allow-implausible)",
+            "m/s only with --allow-implausible; the contact model holds to 70 m/s of ball + "
+            "racket speed)",
         )
     else:
         parser.add_argument(
@@ -154,7 +155,7 @@ def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) 
             metavar="M/S",
             default=float(default),
             help=f"incoming ball speed, m/s (default {default}; above 75 m/s only with "
-            "--allow-implausible)",
+            "--allow-implausible; the contact model holds to 70 m/s of ball + racket speed)",
         )
 
 
