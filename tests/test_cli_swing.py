@@ -31,10 +31,10 @@ from racketdyn.workflows.oblique import OBLIQUE_COLUMNS
 from racketdyn.workflows.swing import SWEET_SPOT_COLUMNS
 from racketdyn.workflows.twist import TWIST_COLUMNS
 
-# The paper's racket (REFERENCE_VALUES.md, section 2): 360 g, CG 308 mm, I_G 13.1 g·m², grip
+# The paper's racket (docs/references.md, section 2): 360 g, CG 308 mm, I_G 13.1 g·m², grip
 # axis 70 mm from the butt; the built-in racket holds exactly these numbers.
 MASS_KG, CG_M, INERTIA_CG_KGM2, GRIP_M = 0.360, 0.308, 0.0131, 0.070
-TORQUE_NM = 56.9  # Kawazoe, ACMD 2002 (REFERENCE_VALUES.md)
+TORQUE_NM = 56.9  # Kawazoe, ACMD 2002 (docs/references.md)
 # CSV cells carry 9 significant digits: a value read back is within 5e-9 of the one written,
 # so 1e-8 relative for a value read once, 1e-7 for relations between several columns.
 CSV_REL = 1e-8
@@ -151,7 +151,7 @@ def test_sweet_spots_csv_names_the_four_sweet_spots(swing_dir: Path) -> None:
         "max_rebound_speed",
     }
     # centre of percussion about the grip: x_grip + I_grip / (M (x_G − x_grip)), the paper's
-    # numbers (I_grip = 33.5 g·m², REFERENCE_VALUES.md)
+    # numbers (I_grip = 33.5 g·m², docs/references.md)
     arm = CG_M - GRIP_M
     cop = GRIP_M + (INERTIA_CG_KGM2 + MASS_KG * arm**2) / (MASS_KG * arm)
     assert float(spots["centre_of_percussion_grip"]["x_m"]) == pytest.approx(cop, rel=CSV_REL)

@@ -247,7 +247,7 @@ def test_hand_support_with_the_transient_model(points: Path, tmp_path: Path) -> 
     assert all(r["status"] == "ok" for r in rows)
     record = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))
     assert record["hand"]["arm_mass_kg"] == 0.8
-    # Grip firmness hardly changes the rebound (Grabiner et al. 1983; REFERENCE_VALUES.md) and
+    # Grip firmness hardly changes the rebound (Grabiner et al. 1983; docs/references.md) and
     # an arm barely changes the reduced mass near the centre (Kawazoe 2002): within 2 % of free
     centre = {r["support"]: _number(r["rebound_ratio"]) for r in rows if r["point"] == "centre"}
     assert centre["hand"] == pytest.approx(centre["free"], rel=0.02)

@@ -454,4 +454,5 @@ def test_the_largest_vibration_is_never_a_flagged_row(tmp_path: Path) -> None:
     data = vibration.gather(RunFolder.scan(out))
     assert data is not None
     (row,) = data["rows"]
-    assert float(row[4]) == pytest.approx(max(energy[True]), rel=1e-3)
+    # the page gives 3 significant figures: within half a unit of the third (13.0 for 13.02)
+    assert float(row[4]) == pytest.approx(max(energy[True]), rel=5e-3)

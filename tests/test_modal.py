@@ -25,7 +25,7 @@ def test_targets_are_met(model: rd.ModalModel, racket: rd.Racket) -> None:
         "2-node twisting",
         "string-bed membrane",
     )
-    # Cross (REFERENCE_VALUES.md): string-bed modes lie at 500–600 Hz with the frame taking
+    # Cross (docs/references.md): string-bed modes lie at 500–600 Hz with the frame taking
     # part; the uncoupled membrane of 4 % of the mass must sit above that.
     assert 500 < model.frequency[-1] < 1000
 

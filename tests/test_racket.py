@@ -12,7 +12,7 @@ from racketdyn.racket_modal.beam import hoop_roll_inertia
 
 
 def test_grip_inertia_matches_paper(racket: rd.Racket) -> None:
-    # Paper, section 2 (REFERENCE_VALUES.md): 33.5 g·m² about the grip 70 mm from the butt,
+    # Paper, section 2 (docs/references.md): 33.5 g·m² about the grip 70 mm from the butt,
     # from 13.1 g·m² about the CG by the parallel-axis theorem; ±0.1 g·m² is the paper's rounding.
     assert racket.inertia_about_axis(0.070) * 1e3 == pytest.approx(33.5, abs=0.1)
 

@@ -5,9 +5,9 @@ Oracles and their sources:
   and linear elements reproduce rigid motion, the strings are subtracted with the quadrature
   that builds them);
 - free 2-node bending and twisting at the racket's targets (paper section 3.2: ≈ 120 Hz;
-  REFERENCE_VALUES.md: 361 Hz);
+  docs/references.md: 361 Hz);
 - hand-held: frequencies slightly lower, damping at least twice, no clamped-handle cantilever
-  mode at 20–35 Hz (Kawazoe, section 2; REFERENCE_VALUES.md);
+  mode at 20–35 Hz (Kawazoe, section 2; docs/references.md);
 - records: modal superposition in closed form, so a noise-free record's FFT ratio is the
   analytic FRF; reciprocity H_ij = H_ji (Maxwell–Betti).
 """
@@ -100,7 +100,7 @@ def test_modes_are_mass_normalised(free: RigModel, hand: RigModel, support: str)
 
 
 def test_hand_lowers_frequencies_and_raises_damping(free: RigModel, hand: RigModel) -> None:
-    # Kawazoe section 2 / REFERENCE_VALUES.md: slightly lower, damping at least twice
+    # Kawazoe section 2 / docs/references.md: slightly lower, damping at least twice
     for name in ("2-node bending", "3-node bending", "2-node twisting"):
         f_free, f_hand = free.frequency[_first(free, name)], hand.frequency[_first(hand, name)]
         assert 0.005 < 1 - f_hand / f_free < 0.10, name
@@ -168,7 +168,7 @@ def test_string_bed_mode_moves_the_frame(free: RigModel, racket: rd.Racket) -> N
     ) / (2 * np.pi)
     # the frame recoils, so the coupled mode sits above the membrane on a rigid frame, by a few
     # per cent (frame mass ≫ string mass); both in the range of the built-in uncoupled 739 Hz.
-    # (Cross measured 500–600 Hz on real rackets: REFERENCE_VALUES.md; the model's full
+    # (Cross measured 500–600 Hz on real rackets: docs/references.md; the model's full
     # stringing tension and 4 % string mass put it higher, as in the built-in model.)
     assert 1.0 < free.frequency[k] / on_rigid_frame < 1.15
     assert 500.0 < free.frequency[k] < 800.0

@@ -190,7 +190,7 @@ def test_centre_of_percussion_closed_form(racket: rd.Racket, ball: rd.Ball) -> N
         assert x_cop == pytest.approx(x_a + i_a / (m * (x_g - x_a)), rel=1e-12)
         axis_speed = 1.0 / m - (x_cop - x_g) / i_g * (x_g - x_a)  # per unit impulse
         assert abs(axis_speed) < 1e-12 / m
-    # the grip inertia the paper quotes: 33.5 g·m² (REFERENCE_VALUES.md), to its 3 digits
+    # the grip inertia the paper quotes: 33.5 g·m² (docs/references.md), to its 3 digits
     assert i_g + m * (x_g - racket.grip_m) ** 2 == pytest.approx(33.5e-3, abs=0.05e-3)
     # no modal model: no node
     assert "first_mode_node" not in spots

@@ -2,7 +2,7 @@
 
 Oracles: the reduced mass of eq 4 (racketdyn.racket, itself tested against the paper's grip
 inertia); the receptance b_jᵀ(−ω²M + iωC + K)⁻¹b_j solved directly; Kawazoe's measurements of
-a held racket (section 2; REFERENCE_VALUES.md): frequencies a little lower, damping at least
+a held racket (section 2; docs/references.md): frequencies a little lower, damping at least
 twice the free racket's; Grabiner et al. (1983): grip firmness hardly changes the rebound.
 """
 

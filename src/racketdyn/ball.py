@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Literal, get_args
 
 import numpy as np
@@ -23,11 +24,13 @@ from racketdyn.numerics import invert_increasing
 from racketdyn.plausibility import check_limits
 
 __all__ = [
+    "BALL_LAW_RANGE_RADII",
     "ITF_FORWARD_DEFORMATION_M",
     "ITF_FORWARD_LOAD_N",
     "Ball",
     "LawKind",
     "RestoringForce",
+    "ball_physical_force",
     "default_ball_law",
     "series",
 ]
@@ -37,7 +40,7 @@ log = logging.getLogger(__name__)
 LawKind = Literal["polynomial", "power"]
 LAW_KINDS: tuple[str, ...] = get_args(LawKind)
 
-# ITF Rules of Tennis, Appendix I (REFERENCE_VALUES.md): forward deformation 0.56–0.74 cm
+# ITF Rules of Tennis, Appendix I (docs/references.md, "Ball"): forward deformation 0.56–0.74 cm
 # between two plates under 80.1 N.  The middle of the range is used.
 ITF_FORWARD_LOAD_N = 80.1
 ITF_FORWARD_DEFORMATION_M = 0.5 * (0.56e-2 + 0.74e-2)
@@ -169,6 +172,8 @@ class RestoringForce:
         kind: LawKind = "polynomial",
         degree: int = 3,
         source: str = "least-squares fit",
+        *,
+        relative: bool = False,
     ) -> RestoringForce:
         """Fit a law to load–deflection data by least squares (paper, section 3.4).
 
@@ -186,6 +191,9 @@ class RestoringForce:
             Highest power of the polynomial.
         source : str
             Recorded with the law.
+        relative : bool
+            Polynomial only: minimise the *relative* force residual (each point weighted by
+            1/F), so a law spanning 0.1 kN to 10 kN stays accurate at the low forces too.
 
         Returns
         -------
@@ -214,7 +222,8 @@ class RestoringForce:
             if not 1 <= degree <= 9:
                 raise InputError(f"polynomial degree must be 1 to 9 (got {degree})")
             columns = (x[:, None] / scale) ** np.arange(1, degree + 1)
-            scaled, *_ = np.linalg.lstsq(columns, f, rcond=None)
+            weight = 1.0 / np.maximum(f, 1e-9 * f.max()) if relative else np.ones_like(f)
+            scaled, *_ = np.linalg.lstsq(columns * weight[:, None], f * weight, rcond=None)
             coefficients = tuple(float(c) for c in scaled / scale ** np.arange(1, degree + 1))
         else:
             positive = f > 0
@@ -241,14 +250,21 @@ def series(
     kind: LawKind = "polynomial",
     degree: int = 5,
     source: str = "",
+    *,
+    relative: bool = False,
 ) -> RestoringForce:
     """The law of two springs in series, fitted by least squares (the paper's F_GB).
 
     For a force F both springs carry F, so ``X_GB(F) = X_1(F) + X_2(F)``.  The compound curve is
     sampled up to the smaller of the two laws' largest forces and fitted with
-    :meth:`RestoringForce.fit`; the fit residual is recorded on the result.
+    :meth:`RestoringForce.fit` (``relative``: on the relative force residual); the fit residual
+    is recorded on the result.
     """
-    force = np.linspace(0.0, min(first.max_force_n, second.max_force_n), 400)
+    top = min(first.max_force_n, second.max_force_n)
+    # samples even in force, plus a geometric run so the low forces of slow impacts are dense
+    force = np.unique(
+        np.concatenate([np.linspace(0.0, top, 400), np.geomspace(top * 1e-3, top, 200)])
+    )
     deflection = first.deflection(force) + second.deflection(force)
     return RestoringForce.fit(
         deflection,
@@ -256,6 +272,7 @@ def series(
         kind,
         degree,
         source or f"series of ({first.source}) and ({second.source})",
+        relative=relative,
     )
 
 
@@ -265,37 +282,74 @@ ATMOSPHERE_PA = 101.325e3
 AIR_HEAT_CAPACITY_RATIO = 1.4
 
 
+BALL_LAW_RANGE_RADII = 1.65
+"""Range of the default ball law in ball radii (1.65 R ≈ 55 mm, ≈ 22 kN): a ball on a rigid
+plate stores ½ m V² at 70 m/s (141 J) at ≈ 53 mm, so the law covers relative speeds to
+≈ 75 m/s even on a rigid plate, and far beyond on a string bed (docs/references.md,
+"High-speed contact")."""
+BALL_LAW_DEGREE = 9
+
+
+def ball_physical_force(
+    deflection: ArrayLike,
+    diameter_m: float = 0.067,
+    gauge_pressure_pa: float = BALL_GAUGE_PRESSURE_PA,
+) -> NDArray[np.float64]:
+    """The one-sided ball force the default law is fitted to, N for a flattening X in m.
+
+    ``F = k₁ X + (p(X) − p₀) A(X)``:
+
+    * ``k₁ X`` — the wall and the initial pressure, from the ITF forward deformation (80.1 N
+      over half of 6.5 mm: the test flattens both sides, the model one).
+    * ``p(X) = p₀ (V₀ / (V₀ − V_cap))^γ`` — the gas compressed adiabatically (γ = 1.4, p₀
+      absolute) by the cap of height X cut off the sphere, ``V_cap = π X² (3R − X)/3``.
+    * ``A(X)`` — the flat the extra pressure acts on: the cap's base ``π (2RX − X²)`` up to one
+      radius, then the ball's cross-section ``π R²`` (beyond one radius the wall folds inwards;
+      the flat cannot outgrow the ball).  A is continuous with its slope at X = R.
+
+    For small X this is the earlier cubic ``k₁ X + (3π/2) γ p₀ X³/R``; near one radius the exact
+    geometry is ≈ 10 % softer; beyond it the shrinking gas volume makes the law stiffen without
+    bound (V → 0 as X → 2R), which is what keeps a ball at serve speeds from flattening through.
+    """
+    x = np.asarray(deflection, dtype=float)
+    radius = 0.5 * diameter_m
+    absolute = gauge_pressure_pa + ATMOSPHERE_PA
+    volume = 4.0 / 3.0 * np.pi * radius**3
+    cap = np.pi * x**2 * (3.0 * radius - x) / 3.0
+    pressure = absolute * (volume / (volume - cap)) ** AIR_HEAT_CAPACITY_RATIO
+    area = np.where(x < radius, np.pi * (2.0 * radius * x - x**2), np.pi * radius**2)
+    linear = ITF_FORWARD_LOAD_N / (0.5 * ITF_FORWARD_DEFORMATION_M)
+    return np.asarray(linear * x + (pressure - absolute) * area)
+
+
+@lru_cache(maxsize=16)  # a frozen law; every Ball() would otherwise refit it
 def default_ball_law(
     diameter_m: float = 0.067, gauge_pressure_pa: float = BALL_GAUGE_PRESSURE_PA
 ) -> RestoringForce:
-    """The ball's one-sided restoring force F_B(X) = k₁ X + k₃ X³, N for X in m.
+    """The ball's one-sided restoring force F_B(X), N for X in m (section 3.4's ball law).
 
-    Derivation (docs/develop.md, "Ball and string laws"):
+    A degree-9 polynomial fitted, on the relative residual, to :func:`ball_physical_force` over
+    0 to 1.65 ball radii (docs/develop.md, "Ball and string laws"; the fit's largest relative
+    error is ≈ 2.5 %, its rms force residual is recorded).  The ITF wall stiffness sets the law
+    at small flattening; the adiabatic gas sets it at large flattening, where it stiffens
+    steeply: ≈ 1.9 kN at one radius (34 mm), ≈ 9 kN at 1.5 R, ≈ 22 kN at 1.65 R (55 mm).
 
-    * k₁ from the ITF compression test.  The forward deformation (REFERENCE_VALUES.md:
-      0.56–0.74 cm under 80.1 N; the middle, 0.65 cm) is measured between two plates, so both
-      sides flatten; in Kawazoe's model only the side on the strings deforms and carries half:
-      ``k₁ = 80.1 N / 3.25 mm ≈ 24.6 kN/m``.
-    * k₃ from the gas inside.  Flattening one side by X removes a cap of volume ≈ π R X² from
-      the ball's 4/3 π R³; compressed adiabatically in the millisecond of contact the gas
-      pressure rises by ``Δp = γ p (3 X² / 4 R²)`` and acts on the flat of area ≈ 2π R X, adding
-      ``F = (3π/2) γ p X³ / R`` (p absolute, γ = 1.4).  At small X this is nothing; at a
-      flattening of 25 mm it roughly doubles the force, as impact stiffness rises with speed.
-
-    Valid up to a flattening of one ball radius.  Cross (Sports Eng. 1999) shows the wall
-    buckling within the first 200 µs; one smooth law is the model's approximation.
+    Cross (Sports Eng. 1999) shows the wall buckling within the first 200 µs; one smooth
+    loading law is the model's approximation, and impact stiffness rising with speed (Haake,
+    Carré and Goodwill 2003) is what the law's stiffening reproduces (docs/references.md).
     """
     radius = 0.5 * diameter_m
-    linear = ITF_FORWARD_LOAD_N / (0.5 * ITF_FORWARD_DEFORMATION_M)
-    absolute = gauge_pressure_pa + ATMOSPHERE_PA
-    cubic = 1.5 * np.pi * AIR_HEAT_CAPACITY_RATIO * absolute / radius
-    return RestoringForce(
+    top = BALL_LAW_RANGE_RADII * radius
+    x = np.linspace(0.0, top, 801)
+    law = RestoringForce.fit(
+        x,
+        ball_physical_force(x, diameter_m, gauge_pressure_pa),
         "polynomial",
-        (linear, 0.0, float(cubic)),
-        radius,
-        0.0,
+        BALL_LAW_DEGREE,
         "ball, ITF forward deformation + adiabatic gas, one side",
+        relative=True,
     )
+    return law
 
 
 @dataclass(frozen=True)
@@ -310,15 +364,23 @@ class Ball:
         Diameter, m (ITF type 1 and 2: 6.54–6.86 cm; default the middle, 6.70 cm).
     e_bg : float
         Coefficient of restitution of this ball on a head-clamped string bed (Kawazoe; ≈ 0.83,
-        nearly independent of speed and tension).
+        nearly independent of speed and tension), used at every speed unless ``e_bg_table``
+        is given.
     restoring_force : RestoringForce
         One-sided ball law F_B(X) (default: :func:`default_ball_law`).
+    e_bg_table : tuple of (float, float)
+        Optional e_BG against the relative (approach) speed: ``((speed_mps, e_bg), …)``,
+        speeds rising, interpolated linearly and held at the end values outside the table
+        (Haake, Carré and Goodwill 2003 measured e_BG falling with speed on head-clamped
+        rackets; docs/references.md).  Empty (the default): the constant ``e_bg``, as in the
+        paper.
     """
 
     mass_kg: float = 0.0577
     diameter_m: float = 0.0670
     e_bg: float = 0.83
     restoring_force: RestoringForce = field(default_factory=default_ball_law)
+    e_bg_table: tuple[tuple[float, float], ...] = ()
 
     def __post_init__(self) -> None:
         require_positive("ball mass_kg", self.mass_kg)
@@ -332,3 +394,36 @@ class Ball:
             raise InputError(
                 "ball e_bg must be above 0: a ball that does not rebound has no rebound"
             )
+        if self.e_bg_table:
+            table = np.asarray(self.e_bg_table, dtype=float)
+            if table.ndim != 2 or table.shape[1] != 2:
+                raise InputError("ball e_bg_table: give (speed_mps, e_bg) pairs")
+            if not np.all(np.isfinite(table)):
+                raise InputError("ball e_bg_table: speeds and e_bg must be finite numbers")
+            if np.any(table[:, 0] < 0) or np.any(np.diff(table[:, 0]) <= 0):
+                raise InputError("ball e_bg_table: speeds (m/s) must be ≥ 0 and strictly rising")
+            if np.any(table[:, 1] <= 0) or np.any(table[:, 1] > 1):
+                raise InputError("ball e_bg_table: every e_bg must be above 0 and at most 1")
+
+    @property
+    def speed_dependent(self) -> bool:
+        """Whether e_BG depends on speed (an ``e_bg_table`` is given)."""
+        return bool(self.e_bg_table)
+
+    def e_bg_at(self, speed: ArrayLike) -> NDArray[np.float64]:
+        """e_BG at relative (approach) speeds, m/s: the table's linear interpolation, held at
+        its end values outside it; the constant ``e_bg`` without a table."""
+        v = np.asarray(speed, dtype=float)
+        if not self.e_bg_table:
+            return np.full(v.shape, self.e_bg)
+        table = np.asarray(self.e_bg_table, dtype=float)
+        return np.asarray(np.interp(v, table[:, 0], table[:, 1]))
+
+    def e_bg_record(self) -> dict[str, object]:
+        """How e_BG was set, for run records."""
+        if not self.e_bg_table:
+            return {"kind": "constant", "e_bg": self.e_bg}
+        return {
+            "kind": "table (relative speed m/s, e_BG), linear, held beyond the ends",
+            "table": [list(map(float, row)) for row in self.e_bg_table],
+        }

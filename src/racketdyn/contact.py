@@ -6,14 +6,24 @@ The compound spring F_GB(X) is the ball's one-sided law and the string bed's law
 
 from __future__ import annotations
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
 from racketdyn.ball import Ball, RestoringForce, series
 from racketdyn.io.tables import read_load_deflection
 from racketdyn.racket import Racket
 
-__all__ = ["compound_law", "string_bed_law"]
+__all__ = ["compound_law", "string_bed_law", "string_tension"]
 
-STRING_BED_MAX_DEFLECTION_M = 0.05
-"""Range of the model string-bed law: 50 mm, beyond the deepest string-bed deflection of play."""
+STRING_BED_MAX_DEFLECTION_M = 0.08
+"""Range of the model string-bed law: 80 mm.  A 70 m/s impact at the centre of the paper's
+racket deflects the bed ≈ 55 mm (the ball then carries ≈ 5 kN); 80 mm (≈ 14 kN) leaves the
+compound law room beyond 70 m/s.  The law itself has no end of its own: it is a string
+stretched by its own transverse deflection (Kawazoe), its stiffness rising as the string
+elongates; its physical end is the string's strength (:func:`string_tension`)."""
+COMPOUND_DEGREE = 9
+"""Degree of the compound law's polynomial: the law spans ≈ 0.1 to 14 kN, so it is fitted on
+the relative residual with the degree the ball law has."""
 
 
 def string_bed_law(racket: Racket, ball: Ball) -> RestoringForce:
@@ -22,9 +32,13 @@ def string_bed_law(racket: Racket, ball: Ball) -> RestoringForce:
     A measured load–deflection file on the racket (``strings.load_deflection_file``) is fitted
     by least squares (cubic polynomial).  Otherwise Kawazoe's law for a string of half-length L
     under tension S0 stretched by a transverse deflection X,
-    ``F = 2 S0 X / L + A E X³ / L³`` (stiffness ``2 S0/L + 3 A E X²/L³``, REFERENCE_VALUES.md),
-    is summed over the strings the ball presses on: ball diameter / string spacing of the mains
-    (half-length = head half-length) and of the crosses (half-length = head half-width).
+    ``F = 2 S0 X / L + A E X³ / L³`` (stiffness ``2 S0/L + 3 A E X²/L³``, docs/references.md,
+    "Strings"), is summed over the strings the ball presses on: ball diameter / string spacing
+    of the mains (half-length = head half-length) and of the crosses (half-length = head
+    half-width).  The cubic term is the string's own elongation: a string deflected by X over a
+    half-length L stretches by ≈ X²/(2L), its tension rising to ``S0 + A E X²/(2L²)``
+    (:func:`string_tension`), so the law stays the physics of a stretched string to the 80 mm
+    of its range; at 70 m/s the crosses of the paper's racket carry ≈ 0.9 kN each.
     """
     strings = racket.strings
     if strings.load_deflection_file is not None:
@@ -55,8 +69,38 @@ def string_bed_law(racket: Racket, ball: Ball) -> RestoringForce:
     )
 
 
-def compound_law(racket: Racket, ball: Ball, degree: int = 5) -> RestoringForce:
-    """Compound ball+string restoring force F_GB(X): the two laws in series, least-squares fit.
+def string_tension(
+    racket: Racket, deflection: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Tension of a main and of a cross string at the centre deflected by X, N.
+
+    ``S = S0 + A E X² / (2 L²)`` with L the string's half-length (the elongation behind the
+    cubic term of :func:`string_bed_law`).  Divide by the string's cross-section for the stress.
+
+    Parameters
+    ----------
+    racket : Racket
+        Strings (S0, A E) and head (half-lengths).
+    deflection : array_like
+        String-bed deflection X at the centre, m.
+
+    Returns
+    -------
+    mains, crosses : ndarray
+        Tension of a main string and of a cross string, N.
+    """
+    x = np.asarray(deflection, dtype=float)
+    strings = racket.strings
+    tensions = [
+        strings.tension_n + strings.axial_stiffness_n * x**2 / (2.0 * half**2)
+        for half in (racket.head.half_length_m, racket.head.half_width_m)
+    ]
+    return np.asarray(tensions[0]), np.asarray(tensions[1])
+
+
+def compound_law(racket: Racket, ball: Ball, degree: int = COMPOUND_DEGREE) -> RestoringForce:
+    """Compound ball+string restoring force F_GB(X): the two laws in series, least-squares fit
+    on the relative force residual (section 3.4).
 
     Parameters
     ----------
@@ -71,4 +115,5 @@ def compound_law(racket: Racket, ball: Ball, degree: int = 5) -> RestoringForce:
         "polynomial",
         degree,
         "ball + string bed in series",
+        relative=True,
     )

@@ -179,7 +179,9 @@ RANGES: dict[str, Range] = {
     ),
     # Speeds of play: the fastest serves measured are ≈ 263 km/h (73 m/s); racket heads reach
     # ≈ 45–50 m/s at the tip on a serve.  75 m/s covers both.  Limit: the speed of sound, where
-    # no contact model of a ball means anything.
+    # no contact model of a ball means anything.  The contact model itself holds to 70 m/s of
+    # relative speed (ball + racket; docs/references.md, "High-speed contact"); beyond its laws'
+    # range a row is NaN with its status, not refused here.
     "ball_speed_mps": Range("balls are played at", 0.0, 75.0, 0.0, 340.0, "m/s", _SPEED, KM_PER_H),
     "racket_speed_mps": Range(
         "rackets are swung at", 0.0, 75.0, 0.0, 340.0, "m/s", _SPEED, KM_PER_H

@@ -82,7 +82,7 @@ def add_modes(parser: argparse.ArgumentParser) -> None:
 
 
 def add_ball(parser: argparse.ArgumentParser) -> None:
-    """``--ball-mass``, ``--e-bg``, ``--ball-law``."""
+    """``--ball-mass``, ``--e-bg``, ``--e-bg-table``, ``--ball-law``."""
     parser.add_argument(
         "--ball-mass", type=float, metavar="KG", help="ball mass, kg (default 0.0577, ITF middle)"
     )
@@ -91,6 +91,12 @@ def add_ball(parser: argparse.ArgumentParser) -> None:
         type=float,
         metavar="COR",
         help="ball-string COR on a head-clamped racket, dimensionless (default 0.83, Kawazoe)",
+    )
+    parser.add_argument(
+        "--e-bg-table",
+        metavar="CSV",
+        help="e_BG against relative speed: CSV with columns speed_mps, e_bg, interpolated "
+        "linearly (default: the constant --e-bg)",
     )
     parser.add_argument(
         "--ball-law",
@@ -139,7 +145,8 @@ def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) 
             default=default,
             metavar="M/S[,M/S...]",
             help=f"incoming ball speeds, m/s, comma-separated (default {default}; above 75 "
-            "m/s only with --allow-implausible)",
+            "m/s only with --allow-implausible; the contact model holds to 70 m/s of ball + "
+            "racket speed)",
         )
     else:
         parser.add_argument(
@@ -148,7 +155,7 @@ def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) 
             metavar="M/S",
             default=float(default),
             help=f"incoming ball speed, m/s (default {default}; above 75 m/s only with "
-            "--allow-implausible)",
+            "--allow-implausible; the contact model holds to 70 m/s of ball + racket speed)",
         )
 
 
@@ -242,7 +249,11 @@ def ball_and_hand(args: argparse.Namespace, supports: Sequence[str]) -> tuple[An
         raise InputError("--hand-arm-mass is for --support hand (with --model transient)")
     allow = bool(getattr(args, "allow_implausible", False))
     ball, ball_defaults = ball_from(
-        args.ball_mass, args.e_bg, args.ball_law, allow_implausible=allow
+        args.ball_mass,
+        args.e_bg,
+        args.ball_law,
+        allow_implausible=allow,
+        e_bg_table=getattr(args, "e_bg_table", None),
     )
     hand, hand_defaults = hand_for(supports, args.hand_arm_mass, allow_implausible=allow)
     return ball, hand, [*ball_defaults, *hand_defaults]

@@ -229,9 +229,10 @@ def predict(
     xy, model, law, reduced = grid.locations, grid.model, grid.law, grid.reduced_mass
     v_ball, v_racket = grid.ball_speed, grid.racket_speed
     approach = v_ball + v_racket
-    m_b, e_bg = ball.mass_kg, ball.e_bg
+    m_b = ball.mass_kg
     mu = np.broadcast_to((m_b * reduced / (m_b + reduced))[:, None, :], grid.shape)
     speed = approach[None, :, None]  # (1, s, 1)
+    e_bg = ball.e_bg_at(speed)  # e_BG at the relative speed (constant without a table)
     impulse = (1.0 + e_bg) * mu * speed  # eqs (6), (8)
 
     if stiffness_reading == "period":

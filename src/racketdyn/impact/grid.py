@@ -137,6 +137,7 @@ class ImpactGrid:
                 "mass_kg": ball.mass_kg,
                 "diameter_m": ball.diameter_m,
                 "e_bg": ball.e_bg,
+                "e_bg_law": ball.e_bg_record(),
                 "restoring_force": ball.restoring_force.as_dict(),
             },
             "compound_law": self.law.as_dict(),

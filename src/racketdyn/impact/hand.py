@@ -4,7 +4,7 @@ The approximate method models a hand-held racket as pinned at the grip (paper, s
 The transient model can instead hold the grip with a hand and an arm that have mass, stiffness
 and damping: a lumped version of the virtual rig's distributed hand
 (:class:`racketdyn.rig.model.HandModel`) with the arm given a mass, as in Kawazoe's model of
-an arm of ≈ 1 kg at the handle (ACMD 2002; REFERENCE_VALUES.md, "Racket dynamics").
+an arm of ≈ 1 kg at the handle (ACMD 2002; docs/references.md, "Racket dynamics").
 
 Model (built into the equations of motion by :mod:`racketdyn.impact.system`):
 
@@ -36,13 +36,13 @@ Defaults, with how sure they are:
 * ``damping_ns_per_m = 12``: total palm-and-finger damping, the rig's value, at the low end of
   the 10–100 N·s/m resistive part of the same impedance data.  With the built-in racket the
   2-node mode moves from 120 Hz, ζ 0.5 % (free) to 116.6 Hz, ζ 2.2 %: a few per cent lower and
-  more than twice as damped, as Kawazoe measured (section 2; REFERENCE_VALUES.md).  The
+  more than twice as damped, as Kawazoe measured (section 2; docs/references.md).  The
   hand–arm mode sits at 54 Hz, ζ 9 %.  Assumption within a published range.
 * ``roll_stiffness_nm_per_rad = 3.0``, ``roll_damping_nms_per_rad = 0.05``: as the rig's hand
   (no published value known to us).  Assumption.
 
 Grip firmness hardly changes the rebound (Grabiner et al., 1983, measured at 10.6 m/s;
-REFERENCE_VALUES.md): ``tests/test_system.py`` checks that the model agrees.
+docs/references.md): ``tests/test_system.py`` checks that the model agrees.
 """
 
 from __future__ import annotations

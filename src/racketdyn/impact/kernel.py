@@ -370,14 +370,15 @@ def _integrate_batch(
     system_index: NDArray[np.int64], approach: NDArray[np.float64], step: NDArray[np.float64],
     poles: NDArray[np.complex128], residues: NDArray[np.complex128],
     weights: NDArray[np.float64], compliance: NDArray[np.float64], ball_mass: float,
-    e_bg: float, kind: int, coefficients: NDArray[np.float64], max_deflection: float,
-    max_steps: int, modal: NDArray[np.complex128], result: NDArray[np.float64],
+    e_bg: NDArray[np.float64], kind: int, coefficients: NDArray[np.float64],
+    max_deflection: float, max_steps: int, modal: NDArray[np.complex128],
+    result: NDArray[np.float64],
 ) -> None:  # fmt: skip
     for i in range(approach.size):
         s = system_index[i]
         _integrate_one(
             poles[s], residues[s], weights[s], compliance[s], approach[i], step[i], ball_mass,
-            e_bg, kind, coefficients, max_deflection, max_steps, modal[i], result[i],
+            e_bg[i], kind, coefficients, max_deflection, max_steps, modal[i], result[i],
         )  # fmt: skip
 
 
@@ -390,7 +391,7 @@ def integrate_impacts(
     weights: NDArray[np.float64],
     rigid_compliance: NDArray[np.float64],
     ball_mass: float,
-    e_bg: float,
+    e_bg: float | NDArray[np.float64],
     law_kind: int,
     law_coefficients: NDArray[np.float64],
     max_deflection: float,
@@ -414,8 +415,8 @@ def integrate_impacts(
         c = 1/M_r, 1/kg.
     ball_mass : float
         m_B, kg.
-    e_bg : float
-        COR of the ball on head-clamped strings.
+    e_bg : float or ndarray (n_impacts,)
+        COR of the ball on head-clamped strings (one, or one per impact).
     law_kind : int
         ``LAW_POLYNOMIAL`` (F = Σ c_i X^{i+1}) or ``LAW_POWER`` (F = c Xⁿ).
     law_coefficients : ndarray
@@ -445,7 +446,7 @@ def integrate_impacts(
         np.ascontiguousarray(weights, float),
         np.ascontiguousarray(rigid_compliance, float),
         float(ball_mass),
-        float(e_bg),
+        np.ascontiguousarray(np.broadcast_to(np.asarray(e_bg, float), (n,)), float),
         int(law_kind),
         np.ascontiguousarray(law_coefficients, float),
         float(max_deflection),

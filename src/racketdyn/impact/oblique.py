@@ -66,7 +66,7 @@ Defaults (:class:`TangentialContact`)
   string material and on the direction (lower along a string than across it).
 * k_t = 1.0·10⁴ N/m, chosen so that the grip oscillation has a half period
   ``π √(m_eff/k_t)`` ≈ 4.5 ms (with the default ball, m_eff = 20.5 g), the middle of the
-  4–5 ms contact times of ordinary strokes (REFERENCE_VALUES.md).  A ball that grips during the
+  4–5 ms contact times of ordinary strokes (docs/references.md).  A ball that grips during the
   contact then springs back within it and leaves with its contact-point velocity reversed (spin
   beyond rolling), the grip–reverse behaviour Cross measured (Am. J. Phys. 70, 2002).  The order
   is that of the strings: the mains under the ball (≈ 4 of them, 2 S₀/L ≈ 3 kN/m each for the

@@ -3,7 +3,7 @@
 The swing
 ---------
 Kawazoe (ACMD 2002) turns the arm and the racket, rigidly joined (wrist locked), about the
-shoulder with a constant shoulder torque T (56.9 N·m in that paper, REFERENCE_VALUES.md).  From
+shoulder with a constant shoulder torque T (56.9 N·m in that paper, docs/references.md).  From
 rest through the swing angle Δθ the work done is the kinetic energy,
 
     ``½ I Ω² = T Δθ``,  so  ``Ω = sqrt(2 T Δθ / I)``,
@@ -21,13 +21,13 @@ The swing axis is across the handle, in the plane of the face (parallel to y), s
 its own, so :func:`predict_swing` calls the impact model once per group of points with the same x
 and merges the results back into point order.
 
-Rebound of a moving racket (Cross; REFERENCE_VALUES.md): ``v_out = e v_in + (1 + e) V`` with
+Rebound of a moving racket (Cross; docs/references.md): ``v_out = e v_in + (1 + e) V`` with
 ``e`` the rebound ratio (apparent COR) of the racket at that point — what
 :func:`racketdyn.impact.predict` returns as ``rebound_speed``.
 
 Defaults and their sources
 --------------------------
-* ``torque_nm`` = 56.9 N·m: Kawazoe, ACMD 2002 (REFERENCE_VALUES.md).
+* ``torque_nm`` = 56.9 N·m: Kawazoe, ACMD 2002 (docs/references.md).
 * ``swing_angle_rad`` = π/2: *assumption* — a quarter turn of arm and racket about the shoulder,
   from the end of the backswing (racket pointing at the back fence) to contact (racket parallel
   to the baseline).  Ω grows as √Δθ.

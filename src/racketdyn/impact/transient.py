@@ -586,7 +586,7 @@ def _caught_again(
 
 
 def _lab_numbers(
-    v_in: ArrayLike, v_r: ArrayLike, m_b: float, e_bg: float, law: RestoringForce,
+    v_in: ArrayLike, v_r: ArrayLike, m_b: float, e_bg: ArrayLike, law: RestoringForce,
     m_r: ArrayLike, point_velocity_rest: ArrayLike, ball_velocity_rest: ArrayLike,
     contact_time: ArrayLike, peak: ArrayLike, rigid_energy_rest: ArrayLike,
     mode_energy: ArrayLike, support_energy: ArrayLike, damping_loss: ArrayLike | None,
@@ -608,7 +608,7 @@ def _lab_numbers(
     rebound = v_r - v_out_rest  # lab, + away from the strings
     rebound_ratio = (rebound - v_r) / approach
     mass_ratio = np.where(np.isinf(m_r), 0.0, m_b / m_r)
-    hysteresis = (1.0 - e_bg**2) * np.asarray(law.energy(x_max))
+    hysteresis = (1.0 - np.asarray(e_bg, dtype=float) ** 2) * np.asarray(law.energy(x_max))
     vibration = modes.sum(axis=-1)
     if damping_loss is None:
         damping_loss = (
@@ -735,8 +735,14 @@ def simulate_impact(
     law = law or compound_law(racket, ball)
     system = impact_system(racket, model, support, xy, hand if support == "hand" else None)
     reduced = support_reduced_mass(racket, xy, support, hand)[0]
+    e_bg = ball.e_bg
+    if ball.speed_dependent:
+        approach = require_speeds("ball speed", ball_speed) + require_speeds(
+            "racket speed", racket_speed
+        )
+        e_bg = float(ball.e_bg_at(approach)[0])
     return simulate_system_contact(
-        system, 0, ball.mass_kg, ball.e_bg, law, ball_speed, racket_speed, float(reduced),
+        system, 0, ball.mass_kg, e_bg, law, ball_speed, racket_speed, float(reduced),
         rtol, method,
     )  # fmt: skip
 
@@ -939,8 +945,10 @@ def _run_reference(
     out, mode_energy, status = _empty_outputs(grid.shape, n_modes)
     terms = {name: np.full(grid.shape, np.nan) for name in ENERGY_TERMS}
     for i, j, k in np.ndindex(grid.shape):
+        approach = float(grid.ball_speed[j] + grid.racket_speed[j])
         impact = simulate_system_contact(
-            systems[k], i, ball.mass_kg, ball.e_bg, grid.law, float(grid.ball_speed[j]),
+            systems[k], i, ball.mass_kg, float(ball.e_bg_at(approach)), grid.law,
+            float(grid.ball_speed[j]),
             float(grid.racket_speed[j]), float(grid.reduced_mass[i, k]), rtol,
             method,  # type: ignore[arg-type]
         )  # fmt: skip
@@ -981,9 +989,10 @@ def _run_compiled(
     c_r = compliance[system_index]
     mu = m_b / (1.0 + m_b * c_r)
     step = elastic_contact(law, mu, approach)[1] / steps_per_contact
+    e_bg = ball.e_bg_at(approach)  # per impact, at its relative speed
     kind, coefficients = law_arrays(law.kind, law.coefficients)
     modal, raw = integrate_impacts(
-        system_index, approach, step, poles, residues, weights, compliance, m_b, ball.e_bg,
+        system_index, approach, step, poles, residues, weights, compliance, m_b, e_bg,
         kind, coefficients, law.max_deflection_m, 50 * steps_per_contact,
     )  # fmt: skip
     n_modes = 0 if grid.model is None else grid.model.n_modes
@@ -1019,7 +1028,7 @@ def _run_compiled(
     ok = code == STATUS_CODE_OK
     with np.errstate(invalid="ignore", divide="ignore"):
         numbers = _lab_numbers(
-            v_in, v_r, m_b, ball.e_bg, law, reduced, point_velocity, raw[:, 4], raw[:, 1],
+            v_in, v_r, m_b, e_bg, law, reduced, point_velocity, raw[:, 4], raw[:, 1],
             raw[:, 3],
             rigid_energy, modes, support_energy, None,
         )  # fmt: skip

@@ -1,7 +1,7 @@
 """Reading and writing files: racket descriptions (TOML), CSV tables and Universal Files."""
 
 from racketdyn.io.racket_file import default_racket, load_racket, racket_to_dict
-from racketdyn.io.tables import read_load_deflection, read_points
+from racketdyn.io.tables import read_e_bg_table, read_load_deflection, read_points
 from racketdyn.io.uff import (
     read_frf_uff,
     read_hammer_csv,
@@ -16,6 +16,7 @@ __all__ = [
     "default_racket",
     "load_racket",
     "racket_to_dict",
+    "read_e_bg_table",
     "read_frf_uff",
     "read_hammer_csv",
     "read_hammer_uff",

@@ -2,7 +2,8 @@
 
 Impact points: a header with ``x_m`` and ``y_m`` (metres; x from the butt along the long axis, y
 across it) and optionally ``point`` (a label or number).  Load–deflection: a header with
-``deflection_m`` and ``force_n``.  Lines starting with ``#`` are comments.
+``deflection_m`` and ``force_n``.  e_BG against speed: a header with ``speed_mps`` and
+``e_bg``.  Lines starting with ``#`` are comments.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from numpy.typing import NDArray
 from racketdyn.errors import InputError
 from racketdyn.plausibility import check_load_deflection
 
-__all__ = ["read_load_deflection", "read_points"]
+__all__ = ["read_e_bg_table", "read_load_deflection", "read_points"]
 
 
 def _read_columns(path: Path, required: tuple[str, ...]) -> dict[str, list[tuple[int, str]]]:
@@ -131,3 +132,31 @@ def read_load_deflection(path: Path) -> tuple[NDArray[np.float64], NDArray[np.fl
     force = _numbers(path, columns, "force_n")
     check_load_deflection(str(path), deflection, force)
     return deflection, force
+
+
+def read_e_bg_table(path: Path) -> tuple[tuple[float, float], ...]:
+    """Read e_BG against relative speed from a CSV file (``Ball.e_bg_table``).
+
+    Parameters
+    ----------
+    path : Path
+        CSV with columns ``speed_mps`` (relative ball–racket speed, m/s) and ``e_bg`` (COR of
+        the ball on the head-clamped strings at that speed), speeds rising.
+
+    Returns
+    -------
+    tuple of (float, float)
+        ``(speed_mps, e_bg)`` pairs; :class:`~racketdyn.ball.Ball` checks their order and range.
+    """
+    columns = _read_columns(path, ("speed_mps", "e_bg"))
+    speed = _numbers(path, columns, "speed_mps")
+    e_bg = _numbers(path, columns, "e_bg")
+    if speed.size < 2:
+        raise InputError(f"{path}: an e_BG table needs at least two speeds (got {speed.size})")
+    if np.any(speed > 340.0):
+        raise InputError(
+            f"{path}: speed_mps above 340 m/s; give speeds in m/s (km/h divided by 3.6)"
+        )
+    if np.any(e_bg > 1.0):
+        raise InputError(f"{path}: e_bg above 1; give the COR as a fraction (0.83, not 83)")
+    return tuple((float(v), float(e)) for v, e in zip(speed, e_bg, strict=True))

@@ -14,7 +14,7 @@ Derivation (documented in docs/develop.md, "Built-in modal model"):
 * **Twisting.**  Linear torsion elements; the roll inertia per unit length puts each section's
   mass on the frame hoop, at the string bed's half-width (at least a handle radius of 12.5 mm),
   scaled so the total equals the racket's roll inertia; uniform GJ is scaled so the first
-  flexible twisting mode sits at ``racket.twisting_hz`` (REFERENCE_VALUES.md: 361 Hz measured).
+  flexible twisting mode sits at ``racket.twisting_hz`` (docs/references.md: 361 Hz measured).
 * **String bed.**  The fundamental mode of an elliptic membrane of the strings' mass (4 % of the
   racket, paper section 2) under the tension per unit width of the mains and crosses
   (``tension / spacing``), with the trial shape ``ψ = 1 − ρ²`` (ρ the elliptic radius); its

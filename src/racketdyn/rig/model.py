@@ -25,7 +25,7 @@ String bed
     equilibrated body has no geometric stiffness against rigid motion), and the cross terms
     with the Ritz functions vanish for a linear carried field (integrate by parts: ψ = 0 on the
     edge, ∇²u = 0).  The frame therefore takes part in the string-bed modes through inertia,
-    as Cross measured (REFERENCE_VALUES.md: string-bed modes 500–600 Hz, one test 615 Hz).
+    as Cross measured (docs/references.md: string-bed modes 500–600 Hz, one test 615 Hz).
     For the built-in racket the membrane alone on a rigid frame sits at 725 Hz (the built-in
     one-term estimate: 739 Hz) and the frame's recoil raises the coupled mode to 772 Hz: the
     full stringing tension and 4 % string mass put it above Cross's range, as in the built-in
@@ -168,7 +168,7 @@ class HandModel:
       in posture-holding tasks are a few hundred to a few thousand N/m (e.g. Mussa-Ivaldi,
       Hogan and Bizzi, J. Neurosci. 1985).  Only roughly sure.
     * ``damping_ns_per_m = 12``: total translational damping.  Gives the 2-node mode several
-      times the free racket's damping (Kawazoe: at least twice; REFERENCE_VALUES.md) while the
+      times the free racket's damping (Kawazoe: at least twice; docs/references.md) while the
       rigid-body modes stay under-damped.  The resistive part of the hand–arm driving-point
       impedance normal to the palm is of order 10–100 N·s/m in the racket's band (ISO 10068;
       Gurram, Rakheja and Brammer, J. Sound Vib. 1995); the low end is taken because only the

@@ -16,7 +16,7 @@ from typing import Any
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError
 from racketdyn.impact.hand import Hand
-from racketdyn.io import default_racket, load_racket, read_load_deflection
+from racketdyn.io import default_racket, load_racket, read_e_bg_table, read_load_deflection
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check
@@ -115,6 +115,7 @@ def ball_from(
     law_file: str | os.PathLike[str] | None = None,
     *,
     allow_implausible: bool = False,
+    e_bg_table: str | os.PathLike[str] | Sequence[tuple[float, float]] | None = None,
 ) -> tuple[Ball, list[str]]:
     """The ball, with the defaults used.
 
@@ -131,7 +132,13 @@ def ball_from(
     allow_implausible : bool
         Take a ball mass outside the plausible range but inside the limits
         (:mod:`racketdyn.plausibility`).
+    e_bg_table : path or sequence of (float, float), optional
+        e_BG against relative speed: a CSV (``speed_mps, e_bg``,
+        :func:`racketdyn.io.read_e_bg_table`) or the pairs themselves (``Ball.e_bg_table``).
+        Not together with ``e_bg``.
     """
+    if e_bg_table is not None and e_bg is not None:
+        raise InputError("give --e-bg (one value) or --e-bg-table (e_BG against speed), not both")
     if mass_kg is not None and _positive(mass_kg):
         check("ball_mass_kg", mass_kg, "--ball-mass", allow_implausible=allow_implausible)
     defaults = []
@@ -144,6 +151,12 @@ def ball_from(
             defaults.append(label)
         else:
             kwargs[key] = value
+    if e_bg_table is not None:
+        if isinstance(e_bg_table, (str, os.PathLike)):
+            kwargs["e_bg_table"] = read_e_bg_table(Path(e_bg_table))
+        else:
+            kwargs["e_bg_table"] = tuple((float(v), float(e)) for v, e in e_bg_table)
+        defaults.remove("e_BG 0.83 (Kawazoe)")
     if law_file is not None:
         path = Path(law_file)
         deflection, force = read_load_deflection(path)
