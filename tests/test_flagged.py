@@ -74,7 +74,8 @@ def test_vibration_loss_row_is_nan_in_every_result(racket, ball) -> None:
 def test_beyond_law_rows_are_nan_in_both_methods(racket, ball) -> None:
     centre = landmark_points(racket)["centre"]
     for method in (predict, predict_transient):
-        result = method(racket, ball, [centre], [20.0, 70.0], "free")
+        # 160 m/s: past the laws' range (relative speed ≈ 120 m/s on a clamped head)
+        result = method(racket, ball, [centre], [20.0, 160.0], "free")
         assert result.status[0, 0, 0] == STATUS_OK
         _check_row(result, (0, 1, 0), STATUS_BEYOND_LAW)
 
@@ -153,34 +154,48 @@ def test_tip_jump_is_a_second_contact(racket, ball) -> None:
     still one contact; at 38.75 m/s the compression reaches zero, the ball leaves at 5.56 ms,
     and the same swing of the frame strikes it again ≈ 0.1 ms later — a second contact the
     simulation used to end before, so its T_c missed the second press.  Now that row says so
-    (status, NaN) in both engines; the row before keeps its one contact."""
+    (status, NaN) in both engines; the row before keeps its one contact.
+
+    The speed where it happens moves with the contact law (37.5 → 38.75 m/s with the laws of
+    that time, 41.5 → 42.75 m/s with the laws to 70 m/s); the test finds it on a 1.25 m/s
+    grid and checks what happens on either side."""
     model = rd.ModalModel.read_json(DEMO_MODEL)
+    _check_one_turn_to_second_contact(racket, ball, model, np.arange(30.0, 50.1, 1.25))
+
+
+def _check_one_turn_to_second_contact(racket, ball, model, speeds) -> None:
     tip = landmark_points(racket)["tip"]
-    before = simulate_impact(racket, ball, tip, 37.5, "pinned", modal_model=model)
-    assert before.status == STATUS_OK
-    assert before.contact_time_s == pytest.approx(7.46e-3, abs=0.01e-3)
+    impacts = [
+        simulate_impact(racket, ball, tip, float(v), "pinned", modal_model=model) for v in speeds
+    ]
+    status = [impact.status for impact in impacts]
+    assert STATUS_OK in status
+    assert STATUS_SECOND_CONTACT in status
+    turn = status.index(STATUS_SECOND_CONTACT)
+    # one turn: ok below it, a second contact from it on (the frame swings back harder)
+    assert set(status[:turn]) == {STATUS_OK}
+    assert set(status[turn:]) == {STATUS_SECOND_CONTACT}
+    before = impacts[turn - 1]
     force, peak_at = before.force_n, int(np.argmax(before.force_n))
     low = peak_at + int(np.argmax(force[peak_at:] < 0.01 * force.max()))
-    assert before.time_s[low] < 5.7e-3  # the main pulse is over by then
-    assert 0.5 < force[low:].max() < 0.01 * force.max()  # a second, light press
+    # below the turn: one contact whose force may dip and come back lightly (no separation)
+    assert force[low:].max() < 0.01 * force.max()
+    assert np.isfinite(before.contact_time_s)
     for engine in ("reference", "compiled") if kernel.NUMBA_AVAILABLE else ("reference",):
+        # the engines agree on the turn to within one step of the grid (right at it, a
+        # re-contact of 1e-6 of the peak is decided by the integrator's last digits)
+        pair = [float(speeds[turn - 2]), float(speeds[turn])]
         after = predict_transient(
-            racket, ball, [tip], [37.5, 38.75], "pinned", modal_model=model, engine=engine
+            racket, ball, [tip], pair, "pinned", modal_model=model, engine=engine
         )
         assert list(after.status[0, :, 0]) == [STATUS_OK, STATUS_SECOND_CONTACT], engine
         assert np.isnan(after.contact_time[0, 1, 0])
+        assert np.isnan(after.rebound_ratio[0, 1, 0])
 
 
 def test_built_in_racket_tip_turns_to_a_second_contact(racket, ball) -> None:
-    # the same on the built-in modal model, between 31 and 32 m/s
-    tip = landmark_points(racket)["tip"]
-    one = simulate_impact(racket, ball, tip, 31.0, "pinned")
-    two = simulate_impact(racket, ball, tip, 32.0, "pinned")
-    assert one.status == STATUS_OK
-    assert np.isfinite(one.contact_time_s)
-    assert two.status == STATUS_SECOND_CONTACT
-    assert np.isnan(two.contact_time_s)
-    assert np.isnan(two.rebound_speed_mps)
+    # the same on the built-in modal model (the turn lies between 35 and 36 m/s today)
+    _check_one_turn_to_second_contact(racket, ball, "racket", np.arange(25.0, 45.1, 1.0))
 
 
 # -- figures and the report never use a flagged row as if valid ------------------------------
