@@ -21,6 +21,7 @@ from browser import browse, find_chromium
 from racketdyn.cli import main
 from racketdyn.errors import InputError
 from racketdyn.report import CAPTIONS, REPORT_NAME, SECTIONS, write_report
+from racketdyn.report.figures import caption_of
 
 pytestmark = pytest.mark.slow
 
@@ -248,8 +249,9 @@ def test_the_transient_section_shows_the_comparison(run_dir: Path, page: str) ->
 def test_the_swing_and_oblique_sections_show_their_runs(run_dir: Path, page: str) -> None:
     swing = _section(page, "swing")
     captions = " ".join(re.findall(r"<figcaption>(.*?)</figcaption>", swing, re.S))
+    record = json.loads((run_dir / "swing" / "run.json").read_text())
     for key in ("swing_map", "swing_along_axis"):
-        _, what = CAPTIONS[key]
+        _, what = caption_of(key, record)
         assert escape(what[0].upper() + what[1:]) in captions, key
         assert f"swing/{key}.png" in captions
     # one row per sweet spot of sweet_spots.csv, at its x
@@ -300,6 +302,55 @@ def test_first_mode_nodes_come_from_compare_run_json(run_dir: Path, page: str) -
         assert f"first-mode nodes on the axis, {support}: x = {nodes[support][0] * 1e3:.0f}" in (
             rebound
         )
+
+
+def _captions(page: str, key: str) -> str:
+    return " ".join(re.findall(r"<figcaption>(.*?)</figcaption>", _section(page, key), re.S))
+
+
+def test_swing_captions_state_the_run_s_settings(run_dir: Path, tmp_path: Path) -> None:
+    """Issue 13: the swing captions named the default swing (constant torque, half/same/1.5
+    times the angle) whatever the run used; they now say what swing/run.json records."""
+    out = tmp_path / "swing"
+    argv = ["swing", "--grid", "3", "--speed", "15,35", "--angular-speed", "30"]
+    assert main([*argv, "--support", "free", "--out", str(out)]) == 0
+    page = write_report(tmp_path).read_text(encoding="utf-8")
+    captions = _captions(page, "swing")
+    record = json.loads((out / "run.json").read_text())
+    assert record["along_axis_swings"] == [
+        "racket at rest",
+        "Ω = 15.0 rad/s",
+        "Ω = 30.0 rad/s",
+        "Ω = 45.0 rad/s",
+    ]
+    assert captions.count("given angular speed Ω = 30.0 rad/s") == 2
+    shown = record["sweet_spots_at_mps"]
+    assert shown in (15.0, 35.0)
+    assert captions.count(f"ball at {shown:g} m/s, freely supported, approximate model") == 2
+    assert "the swings Ω = 15.0 rad/s, Ω = 30.0 rad/s and Ω = 45.0 rad/s" in captions
+    for default in ("56.9", "torque", "20 m/s", "hand-held", "pinned"):
+        assert default not in captions, default
+
+
+def test_compare_captions_state_the_files_band_and_speed(run_dir: Path, tmp_path: Path) -> None:
+    """Issue 13: compare's captions said 20 m/s and free/hand-held whatever was compared; a
+    compare of another pair at another speed is described as what it was."""
+    pair = tmp_path / "pair"
+    pair.mkdir()
+    shutil.copy(run_dir / "frf_hand" / "frfs.uff", pair / "first.uff")
+    shutil.copy(run_dir / "frf_free" / "frfs.uff", pair / "second.uff")
+    out = tmp_path / "compare"
+    argv = ["compare", str(pair / "first.uff"), str(pair / "second.uff"), "--band", "60,800"]
+    assert main([*argv, "--speed", "32.5", "--out", str(out)]) == 0
+    assert json.loads((out / "run.json").read_text())["fig15_ball_speed_mps"] == 32.5
+    page = write_report(tmp_path).read_text(encoding="utf-8")
+    modes, rebound = _captions(page, "modes"), _captions(page, "rebound")
+    assert "free (blue, pair/first.uff) against hand-held (black, pair/second.uff)" in modes
+    assert "identified over 60–800 Hz" in modes
+    assert "hand-held (pair/second.uff) against free (pair/first.uff)" in modes
+    assert "ball at 32.5 m/s" in rebound
+    assert "identified from pair/first.uff and pair/second.uff" in rebound
+    assert "20 m/s" not in rebound
 
 
 def test_no_transient_section_without_a_comparison(run_dir: Path, tmp_path: Path) -> None:

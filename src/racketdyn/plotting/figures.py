@@ -10,7 +10,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -26,7 +26,14 @@ from racketdyn.impact.approximate import StiffnessReading
 from racketdyn.impact.comparison import History, ModelComparison
 from racketdyn.impact.oblique import ObliqueCurve, TangentialContact
 from racketdyn.impact.result import SHOWN_SPEED_MPS, ImpactResult
-from racketdyn.impact.swing import ImpactModel, SweetSpot, Swing, SwingResult, predict_swing
+from racketdyn.impact.swing import (
+    ImpactModel,
+    SweetSpot,
+    Swing,
+    SwingResult,
+    axis_swings,
+    predict_swing,
+)
 from racketdyn.impact.transient import predict_transient
 from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
@@ -719,11 +726,13 @@ def write_comparison(
     ball: Ball,
     out_dir: Path,
     comparison: ModeComparison | None = None,
+    speed: float = REBOUND_SPEED_MPS,
 ) -> list[Path]:
     """Free against hand-held: frequency/damping figure, Fig. 6 overlay, Fig. 15 check.
 
     The table (``comparison.csv``) is the compare step's (:func:`racketdyn.workflows.run_compare`);
-    ``comparison`` is its pairing (made here from ``free`` and ``hand`` if not given).
+    ``comparison`` is its pairing (made here from ``free`` and ``hand`` if not given); ``speed``
+    the incoming ball speed of the Fig. 15 check, m/s.
     """
     out = Path(out_dir)
     if comparison is None:
@@ -764,7 +773,7 @@ def write_comparison(
     )
     figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
     for support, model, label, colour, marker, style in cases:
-        result = predict(racket, ball, points, [REBOUND_SPEED_MPS], (support,), modal_model=model)
+        result = predict(racket, ball, points, [speed], (support,), modal_model=model)
         ax.plot(
             x * 1e3,
             result.rebound_ratio[:, 0, 0],
@@ -777,7 +786,7 @@ def write_comparison(
         )
     ax.set_xlabel("impact point, x from the butt (mm)")
     ax.set_ylabel("rebound ratio e (–)")
-    ax.set_title(f"Fig. 15: identified models, ball at {REBOUND_SPEED_MPS:g} m/s", fontsize=9)
+    ax.set_title(f"Fig. 15: identified models, ball at {speed:g} m/s", fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     batch.add(figure, out / "fig15_identified.png")
@@ -1134,37 +1143,6 @@ OBLIQUE_FIGURE = "oblique.png"
 SWING_AXIS_POINTS = 41
 """Points along the long axis of the along-axis swing figure (inset half a step from the frame,
 as :func:`racketdyn.impact.swing.sweet_spots` samples it)."""
-_SWING_FACTORS = (0.5, 1.0, 1.5)
-
-
-def axis_swings(swing: Swing) -> list[tuple[str, Swing]]:
-    """The swings the along-axis figure compares, each with its legend name.
-
-    The racket at rest (Ω = 0, the paper's Fig. 15), then half, the same and one and a half
-    times the swing: the swing angle for the torque model (angles above one turn left out), Ω
-    for a swing given by its angular speed.
-
-    Parameters
-    ----------
-    swing : Swing
-        The swing of the run.
-    """
-    swings = [
-        ("racket at rest", Swing(angular_speed_radps=0.0, axis_to_butt_m=swing.axis_to_butt_m))
-    ]
-    for factor in _SWING_FACTORS:
-        if swing.angular_speed_radps is not None:
-            omega = factor * swing.angular_speed_radps
-            swings.append((f"Ω = {omega:.1f} rad/s", replace(swing, angular_speed_radps=omega)))
-        elif factor * swing.swing_angle_rad <= 2.0 * math.pi:
-            angle = factor * swing.swing_angle_rad
-            swings.append(
-                (
-                    f"{swing.torque_nm:g} N·m over {math.degrees(angle):.0f}°",
-                    replace(swing, swing_angle_rad=angle),
-                )
-            )
-    return swings
 
 
 def figure_swing_map(

@@ -5,11 +5,22 @@ from __future__ import annotations
 
 import base64
 import logging
+import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from pathlib import Path
-from typing import Literal
+from pathlib import Path, PurePath
+from typing import Any, Literal
 
-__all__ = ["CAPTIONS", "Figure", "FigureGroup", "Layout", "embed_png", "interactive"]
+__all__ = [
+    "CAPTIONS",
+    "Figure",
+    "FigureGroup",
+    "Layout",
+    "caption_of",
+    "embed_png",
+    "interactive",
+    "run_words",
+]
 
 log = logging.getLogger(__name__)
 
@@ -44,18 +55,21 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "fig5_node_lines": ("Fig. 5", "node lines of the identified modes on the string face"),
     "fig6_nodes_free_hand": (
         "Fig. 6",
-        "node positions of the first mode along the long axis, free (blue) against "
-        "hand-held (black); the grey band is the hand",
+        "node positions of the first mode along the long axis, free (blue, {free_file}) "
+        "against hand-held (black, {hand_file}), identified over {band}; the grey band is the "
+        "hand",
     ),
     "fig6_nodes": ("Fig. 6", "node positions of the first mode along the long axis"),
     "comparison": (
         None,
-        "frequency shift and damping ratio of each mode, hand-held against free (paired by MAC)",
+        "frequency shift and damping ratio of each mode, hand-held ({hand_file}) against free "
+        "({free_file}), identified over {band} and paired by MAC",
     ),
     "fig15_identified": (
         "Fig. 15",
-        "rebound ratio along the long axis at 20 m/s predicted with the identified models: "
-        "hand-held with hand-held modes, hand-held with free modes, free with free modes",
+        "rebound ratio along the long axis, ball at {check_speed}, racket at rest, predicted "
+        "with the models identified from {free_file} and {hand_file}: hand-held (pinned at the "
+        "grip) with hand-held modes, hand-held with free modes, free with free modes",
     ),
     "fig7_contact_time": ("Fig. 7", "contact time of the hammer on the strings, per support"),
     "fig11_12_force_contact_time": (
@@ -109,17 +123,17 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     ),
     "swing_map": (
         None,
-        "outgoing ball speed over the face of the swinging racket (constant shoulder torque, "
-        "Kawazoe ACMD 2002), with the sweet spots: the centres of percussion about the swing "
-        "axis and about the grip, the node of the first mode, the largest rebound ratio "
-        "(racket at rest) and the largest outgoing speed for the swing; crosses mark impacts "
-        "without a valid number",
+        "outgoing ball speed over the face of the swinging racket ({swing}), ball at "
+        "{sweet_speed}, {support}, {impact_model} model, with the sweet spots: the centres of "
+        "percussion about the swing axis and about the grip, the node of the first mode, the "
+        "largest rebound ratio (racket at rest) and the largest outgoing speed for the swing; "
+        "crosses mark impacts without a valid number",
     ),
     "swing_along_axis": (
         None,
-        "outgoing ball speed along the long axis for the racket at rest (the setting of the "
-        "paper's Fig. 15) and for swings of half, the same and one and a half times the swing "
-        "angle (or angular speed), with the sweet spots of the run's swing as vertical lines",
+        "outgoing ball speed along the long axis, ball at {sweet_speed}, {support}, "
+        "{impact_model} model, for the racket at rest (the setting of the paper's Fig. 15) and "
+        "for {axis_swings}, with the sweet spots of the run's swing ({swing}) as vertical lines",
     ),
     "twist": (
         None,
@@ -136,7 +150,8 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     ),
 }
 """Caption of every PNG the commands write, by file stem (or its start): (the figure of
-Kawazoe's paper it corresponds to, or None; what it shows)."""
+Kawazoe's paper it corresponds to, or None; what it shows, its ``{field}`` the settings its run
+used, from the run.json of its folder: :func:`run_words`)."""
 
 
 @dataclass(frozen=True)
@@ -194,13 +209,113 @@ class FigureGroup:
     layout: Layout = "stack"
 
 
-def caption_of(stem: str) -> tuple[str | None, str]:
-    """(paper figure, what it shows) of a PNG by its file stem; the longest matching key wins."""
+SUPPORT_WORDS = {
+    "free": "freely supported",
+    "pinned": "hand-held (pinned at the grip)",
+    "hand": "hand-held (hand and arm model)",
+}
+"""A support as the captions name it."""
+
+UNKNOWN_WORDS: dict[str, str] = {
+    "free_file": "the free FRFs",
+    "hand_file": "the hand-held FRFs",
+    "band": "the band of the run",
+    "check_speed": "20 m/s",  # what compare used before it took --speed
+    "swing": "the run's swing",
+    "sweet_speed": "the run's shown speed",
+    "support": "the run's support",
+    "impact_model": "the run's",
+    "axis_swings": "half, the same and one and a half times the run's swing",
+}
+"""The words of a caption's ``{field}`` when the run.json does not say (a run of an earlier
+version)."""
+
+
+def _file_words(path: object) -> str | None:
+    """A run's input file as the caption names it: its folder and name."""
+    if not isinstance(path, str) or not path:
+        return None
+    found = PurePath(path)
+    return f"{found.parent.name}/{found.name}" if found.parent.name else found.name
+
+
+def _number(value: object) -> float | None:
+    return float(value) if isinstance(value, int | float) and not isinstance(value, bool) else None
+
+
+def _swing_words(swing: object, omega: float | None) -> str | None:
+    """A swing of run.json's ``swing`` table in words (its torque model, or its Ω)."""
+    if not isinstance(swing, Mapping):
+        return None
+    speed = f"Ω = {omega:.1f} rad/s" if omega is not None else ""
+    torque, angle = _number(swing.get("torque_nm")), _number(swing.get("swing_angle_rad"))
+    if torque is not None and angle is not None:
+        words = f"shoulder torque {torque:g} N·m over {math.degrees(angle):.0f}°"
+        return f"{words}: {speed}" if speed else words
+    given = _number(swing.get("angular_speed_radps"))
+    return f"given angular speed Ω = {given:.1f} rad/s" if given is not None else speed or None
+
+
+def _list_words(items: Sequence[str]) -> str:
+    """``a``, ``a and b``, ``a, b and c``."""
+    return ", ".join(items[:-1]) + " and " + items[-1] if len(items) > 1 else "".join(items)
+
+
+def run_words(record: Mapping[str, Any]) -> dict[str, str]:
+    """The settings a run used, in the words of the captions' ``{field}``, from its run.json;
+    :data:`UNKNOWN_WORDS` where it does not say.
+
+    Parameters
+    ----------
+    record : mapping
+        The run.json of the folder the figure is in.
+    """
+    words: dict[str, str | None] = {
+        "free_file": _file_words(record.get("free_file")),
+        "hand_file": _file_words(record.get("hand_file")),
+        "support": SUPPORT_WORDS.get(str(record.get("support"))),
+        "impact_model": str(record["impact_model"]) if record.get("impact_model") else None,
+        "swing": _swing_words(record.get("swing"), _number(record.get("angular_speed_radps"))),
+    }
+    band = record.get("band_hz")
+    if isinstance(band, list) and len(band) == 2 and all(_number(b) is not None for b in band):
+        words["band"] = f"{band[0]:g}–{band[1]:g} Hz"
+    for key, field in (
+        ("check_speed", "fig15_ball_speed_mps"),
+        ("sweet_speed", "sweet_spots_at_mps"),
+    ):
+        speed = _number(record.get(field))
+        words[key] = f"{speed:g} m/s" if speed is not None else None
+    swings = record.get("along_axis_swings")
+    if isinstance(swings, list) and all(isinstance(s, str) for s in swings):
+        moving = [s for s in swings if s != "racket at rest"]
+        words["axis_swings"] = f"the swings {_list_words(moving)}" if moving else None
+    return {key: words.get(key) or unknown for key, unknown in UNKNOWN_WORDS.items()}
+
+
+def caption_of(stem: str, record: Mapping[str, Any] | None = None) -> tuple[str | None, str]:
+    """(paper figure, what it shows) of a PNG by its file stem, worded from its run's settings.
+
+    The longest matching key of :data:`CAPTIONS` wins; its ``{field}`` are filled in with
+    :func:`run_words` of ``record``.
+
+    Parameters
+    ----------
+    stem : str
+        The file name without ``.png``.
+    record : mapping, optional
+        The run.json of the folder the figure is in.
+    """
     key = next((k for k in sorted(CAPTIONS, key=len, reverse=True) if stem.startswith(k)), None)
-    return CAPTIONS[key] if key else (None, stem.replace("_", " "))
+    if key is None:
+        return None, stem.replace("_", " ")
+    paper, what = CAPTIONS[key]
+    return paper, what.format_map(run_words(record or {}))
 
 
-def embed_png(path: Path, where: str, wide: bool = False) -> Figure | None:
+def embed_png(
+    path: Path, where: str, wide: bool = False, record: Mapping[str, Any] | None = None
+) -> Figure | None:
     """The PNG at ``path`` as a :class:`Figure` with its caption; None (logged) if not a PNG.
 
     Parameters
@@ -211,6 +326,8 @@ def embed_png(path: Path, where: str, wide: bool = False) -> Figure | None:
         Shown at the end of the caption: the file, relative to the run folder.
     wide : bool
         A figure that takes the page's width.
+    record : mapping, optional
+        The run.json of its folder, for the caption's words (:func:`caption_of`).
     """
     try:
         data = path.read_bytes()
@@ -219,7 +336,7 @@ def embed_png(path: Path, where: str, wide: bool = False) -> Figure | None:
     if not data.startswith(_PNG_SIGNATURE):
         log.warning("%s: not a PNG; left out of the report", path)
         return None
-    paper, what = caption_of(path.stem)
+    paper, what = caption_of(path.stem, record)
     encoded = base64.b64encode(data).decode("ascii")
     return Figure(
         paper, what, where, src=f"data:image/png;base64,{encoded}", css_class="wide" if wide else ""

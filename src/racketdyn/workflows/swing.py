@@ -32,6 +32,7 @@ from racketdyn.impact.swing import (
     SweetSpot,
     Swing,
     SwingResult,
+    axis_swings,
     predict_swing,
     sweet_spot_table,
     sweet_spots,
@@ -360,6 +361,7 @@ def run_swing(
         **computed.inputs,  # swing (parameters, Ω, inertias), impact model, ball, law, modes
         "angular_speed_radps": omega,
         "sweet_spots_at_mps": speed_list[chosen],
+        "along_axis_swings": [name for name, _ in axis_swings(the_swing)],
         "columns": {
             "swing.csv": "impact.csv columns; racket_speed_mps = Ω (x + axis_to_butt_m) "
             "at each point",
