@@ -9,6 +9,7 @@ import io
 import json
 import re
 import shutil
+from html import unescape
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -290,6 +291,52 @@ def test_the_whole_page_has_no_json_escapes_nor_internal_names(page: str) -> Non
     assert "write_report" not in page
     assert "Xⁿ" in page  # the transient integrator's order, from predict/run.json
     assert "steps per contact 400" in _section(page, "transient")  # words, not run.json keys
+
+
+PERSON = "70 kg, 1.75 m adult"
+"""The one place the page quotes kg and m: the body the default arm is scaled from (a person's
+mass and height, as anthropometry quotes them; docs/develop.md, "Units on the page")."""
+
+OTHER_SPELLINGS = {
+    "an inertia not in kg·cm²": r"kg·m²|(?<!k)g·m²|g·cm²(?<!kg·cm²)",
+    "a mass not in g": r"\d\s*kg\b(?!·)",
+    "a length in m": r"\d\s*m\b(?![/²·_])",
+    "a length in cm": r"\d\s*cm\b(?!²)",
+    "a time in s": r"\d\s*s\b|\(s\)",
+    "a unit the page does not use": r"\d\s*(?:kN|mJ|kHz|km/h|mph|μm|µm)\b",
+    "an angle in rad": r"\d\s*rad\b(?!/)",
+    "a column in SI where the page has its own unit": r"\((?:kg|m|kg·m²)\)",
+    "a damping ratio not in %": r"damping(?: ratio)? \d+(?:\.\d+)?(?![\d.]|\s*(?:%|N))",
+}
+"""What the page must not show (issue 13: one unit per quantity, the field's)."""
+
+
+def _page_text(page: str) -> str:
+    """The words of the page: no scripts, styles, images' data or tags."""
+    text = re.sub(r"<(script|style)\b.*?</\1>", " ", page, flags=re.S)
+    text = re.sub(r"<[^>]+>", " ", text)
+    return re.sub(r"\s+", " ", unescape(text))
+
+
+def test_one_unit_per_quantity_and_one_term_for_the_rebound(page: str) -> None:
+    """Issue 13: inertias were 13.1 g·m² and 131 kg·cm², lengths m and mm, damping a fraction
+    and a percentage, the rebound a "ratio" and a "power coefficient"."""
+    text = _page_text(page)
+    assert PERSON in text
+    scanned = text.replace(PERSON, "")
+    for what, pattern in OTHER_SPELLINGS.items():
+        found = [
+            scanned[max(0, m.start() - 50) : m.end() + 10] for m in re.finditer(pattern, scanned)
+        ]
+        assert not found, f"{what}: {found[:3]}"
+    for unit in ("kg·cm²", " g", " mm", " Hz", " %", " ms", " N", " m/s", " J"):
+        assert unit in text, unit  # the page's units are there
+    # one term, defined once
+    assert len(re.findall(r"rebound power coefficient|apparent coefficient", text, re.I)) == 1
+    definition = _section(page, "rebound")
+    assert 'id="rebound-ratio"' in definition
+    assert "rebound power coefficient" in _page_text(definition)
+    assert text.count("rebound ratio") > 10
 
 
 def test_first_mode_nodes_come_from_compare_run_json(run_dir: Path, page: str) -> None:

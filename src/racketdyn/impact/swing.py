@@ -770,13 +770,14 @@ def sweet_spots(
         "centre of percussion (swing axis)",
         racket.centre_of_percussion_m(-d),
         None,
-        f"racket about the swing axis {d:.3f} m behind the butt: no reaction at the axis",
+        f"racket about the swing axis {d * 1e3:.0f} mm behind the butt: no reaction at the axis",
     )
     spots["centre_of_percussion_grip"] = spot(
         "centre of percussion (grip)",
         racket.centre_of_percussion_m(),
         None,
-        f"racket about the grip {racket.grip_m:.3f} m from the butt: no reaction at the grip",
+        f"racket about the grip {racket.grip_m * 1e3:.0f} mm from the butt: no reaction at the "
+        "grip",
     )
     mode = _first_bending_mode(resolved) if resolved is not None else None
     if resolved is not None and mode is not None:

@@ -63,7 +63,7 @@ QUANTITIES: dict[str, tuple[str, float]] = {
     "cor": ("ball–racket COR e_r (–)", 1.0),
     "vibration_energy": ("vibration energy (J)", 1.0),
     "rebound_speed": ("rebound ball speed (m/s)", 1.0),
-    "reduced_mass": ("reduced mass M_r (kg)", 1.0),
+    "reduced_mass": ("reduced mass M_r (g)", 1e3),
 }
 SUPPORT_STYLE = {
     "pinned": {"color": "k", "marker": "s", "label": "hand-held (pinned at grip)"},
