@@ -21,7 +21,7 @@ import racketdyn as rd
 from browser import browse, find_chromium
 from racketdyn.cli import main
 from racketdyn.errors import InputError
-from racketdyn.report import CAPTIONS, REPORT_NAME, SECTIONS, write_report
+from racketdyn.report import REPORT_NAME, SECTIONS, write_report
 from racketdyn.report.figures import caption_of
 
 pytestmark = pytest.mark.slow
@@ -230,8 +230,9 @@ def test_the_transient_section_shows_the_comparison(run_dir: Path, page: str) ->
     section = _section(page, "transient")
     assert SECTIONS["transient"].title in section
     captions = " ".join(re.findall(r"<figcaption>(.*?)</figcaption>", section, re.S))
+    record = json.loads((run_dir / "predict" / "run.json").read_text())
     for key in ("transient_comparison_face", "transient_comparison_speed", "transient_histories"):
-        _, what = CAPTIONS[key]
+        _, what = caption_of(key, record)
         assert escape(what[0].upper() + what[1:]) in captions, key
         assert f"predict/{key}.png" in captions
     # one row per support and speed of comparison.csv, the largest |Δ| where comparison.csv has it
@@ -377,6 +378,33 @@ def test_swing_captions_state_the_run_s_settings(run_dir: Path, tmp_path: Path) 
     assert "the swings Ω = 15.0 rad/s, Ω = 30.0 rad/s and Ω = 45.0 rad/s" in captions
     for default in ("56.9", "torque", "20 m/s", "hand-held", "pinned"):
         assert default not in captions, default
+
+
+def _caption_of(page: str, png: str) -> str:
+    """The caption text of the figure whose file is ``png`` (relative to the run folder)."""
+    for caption in re.findall(r"<figcaption>(.*?)</figcaption>", page, re.S):
+        if png in caption:
+            return unescape(re.sub(r"<[^>]+>", "", caption))
+    raise AssertionError(f"no figure {png} on the page")
+
+
+def test_predict_captions_state_the_run_s_speeds_and_supports(tmp_path: Path) -> None:
+    """Issue 13: predict's captions named "the run's speeds (in the title)"; they now say them."""
+    out = tmp_path / "predict"
+    argv = ["predict", "--grid", "3", "--speed", "35,25", "--racket-speed", "5"]
+    assert main([*argv, "--support", "free", "--model", "both", "--out", str(out)]) == 0
+    page = write_report(tmp_path).read_text(encoding="utf-8")
+    expected = {
+        "fig13_pulse_spectrum": "balls at 25 and 35 m/s, racket at 5 m/s (support in the title)",
+        "fig15_rebound_along_axis": "ball at 25 m/s, racket at 5 m/s, freely supported, with",
+        "transient_comparison_face": "one panel per support, ball at 25 m/s;",
+        "transient_comparison_speed": "(solid), racket at 5 m/s; missing dashes",
+    }
+    for name, words in expected.items():
+        caption = _caption_of(page, f"predict/{name}.png")
+        assert words in caption, name
+        for default in ("20 m/s", "pinned", "racket at rest", "the run's"):
+            assert default not in caption, (name, default)
 
 
 def test_compare_captions_state_the_files_band_and_speed(run_dir: Path, tmp_path: Path) -> None:

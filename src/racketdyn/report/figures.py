@@ -11,6 +11,8 @@ from dataclasses import dataclass
 from pathlib import Path, PurePath
 from typing import Any, Literal
 
+from racketdyn.impact.result import shown_speed_index
+
 __all__ = [
     "CAPTIONS",
     "Figure",
@@ -80,9 +82,9 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     ),
     "fig13_pulse_spectrum": (
         "Fig. 13",
-        "the half-sine impact force at the face centre and the magnitude of its spectrum at "
-        "the run's speeds (support in the title), with the modes of the model: the faster the "
-        "ball, the shorter the pulse and the higher its spectrum reaches",
+        "the half-sine impact force at the face centre and the magnitude of its spectrum for "
+        "balls at {speeds}, {racket_speed} (support in the title), with the modes of the "
+        "model: the faster the ball, the shorter the pulse and the higher its spectrum reaches",
     ),
     "fig14_frame_vibration": (
         "Fig. 14",
@@ -92,8 +94,9 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     ),
     "fig15_rebound_along_axis": (
         "Fig. 15",
-        "predicted rebound ratio along the long axis at the run's shown speed (in the title), "
-        "for its supports, with the centre of percussion and the node of the first mode",
+        "predicted rebound ratio along the long axis, ball at {shown_speed}, "
+        "{shown_racket_speed}, {approximate_supports}, with the centre of percussion and the "
+        "node of the first mode",
     ),
     "face_maps": (
         None,
@@ -104,7 +107,7 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "transient_comparison_face": (
         None,
         "rebound ratio of the approximate method minus that of the transient simulation over "
-        "the face, one panel per support, at the run's shown speed (in the title); red where "
+        "the face, one panel per support, ball at {shown_speed}; red where "
         "the approximate method predicts more; the paper checks its method against a freely "
         "suspended racket only",
     ),
@@ -112,7 +115,7 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         None,
         "rebound ratio and contact time against ball speed at the face centre, near the tip and "
         "near the throat, approximate method (dashed) against the transient simulation (solid), "
-        "at the run's racket speed (in the title); missing dashes are impacts the approximate "
+        "{racket_speed}; missing dashes are impacts the approximate "
         "method flags (vibration loss beyond e_BG)",
     ),
     "transient_histories": (
@@ -226,6 +229,11 @@ UNKNOWN_WORDS: dict[str, str] = {
     "support": "the run's support",
     "impact_model": "the run's",
     "axis_swings": "half, the same and one and a half times the run's swing",
+    "speeds": "the run's speeds",
+    "shown_speed": "the run's shown speed (in the title)",
+    "racket_speed": "the run's racket speed (in the title)",
+    "shown_racket_speed": "the run's racket speed (in the title)",
+    "approximate_supports": "for the run's supports",
 }
 """The words of a caption's ``{field}`` when the run.json does not say (a run of an earlier
 version)."""
@@ -261,6 +269,47 @@ def _list_words(items: Sequence[str]) -> str:
     return ", ".join(items[:-1]) + " and " + items[-1] if len(items) > 1 else "".join(items)
 
 
+def _speeds_words(speeds: Sequence[float]) -> str:
+    """``10, 20 and 30 m/s``."""
+    return _list_words([f"{v:g}" for v in speeds]) + " m/s"
+
+
+def _racket_words(speeds: Sequence[float]) -> str:
+    """The racket's speed(s) towards the ball in words."""
+    if not any(speeds):
+        return "racket at rest"
+    if len(set(speeds)) == 1:
+        return f"racket at {speeds[0]:g} m/s"
+    return f"racket at {_speeds_words(speeds)} (one per ball speed)"
+
+
+def _predict_words(record: Mapping[str, Any]) -> dict[str, str | None]:
+    """predict's speeds, racket speeds and supports in words (its run.json)."""
+    speeds = [v for v in _numbers(record.get("speeds_mps")) if v is not None]
+    racket = [v for v in _numbers(record.get("racket_speed_mps")) if v is not None]
+    if not speeds:
+        return {}
+    shown = shown_speed_index(speeds)
+    words: dict[str, str | None] = {
+        "speeds": _speeds_words(sorted(speeds)),
+        "shown_speed": f"{speeds[shown]:g} m/s",
+    }
+    if racket:
+        words["racket_speed"] = _racket_words(racket)
+        at_shown = racket[shown] if len(racket) == len(speeds) else racket[0]
+        words["shown_racket_speed"] = _racket_words([at_shown])
+    supports = record.get("supports")
+    if isinstance(supports, list):
+        # the approximate method's supports: the hand model is the transient simulation's
+        named = [SUPPORT_WORDS.get(str(s), str(s)) for s in supports if s != "hand"]
+        words["approximate_supports"] = _list_words(named) if named else None
+    return words
+
+
+def _numbers(values: object) -> list[float | None]:
+    return [_number(v) for v in values] if isinstance(values, list) else []
+
+
 def run_words(record: Mapping[str, Any]) -> dict[str, str]:
     """The settings a run used, in the words of the captions' ``{field}``, from its run.json;
     :data:`UNKNOWN_WORDS` where it does not say.
@@ -286,6 +335,7 @@ def run_words(record: Mapping[str, Any]) -> dict[str, str]:
     ):
         speed = _number(record.get(field))
         words[key] = f"{speed:g} m/s" if speed is not None else None
+    words |= _predict_words(record)
     swings = record.get("along_axis_swings")
     if isinstance(swings, list) and all(isinstance(s, str) for s in swings):
         moving = [s for s in swings if s != "racket at rest"]
