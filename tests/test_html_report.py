@@ -10,6 +10,7 @@ import json
 import math
 import re
 import shutil
+from html import unescape
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -21,7 +22,8 @@ import racketdyn as rd
 from browser import browse, find_chromium
 from racketdyn.cli import main
 from racketdyn.errors import InputError
-from racketdyn.report import CAPTIONS, REPORT_NAME, SECTIONS, write_report
+from racketdyn.report import REPORT_NAME, SECTIONS, write_report
+from racketdyn.report.figures import caption_of
 
 pytestmark = pytest.mark.slow
 
@@ -229,8 +231,9 @@ def test_the_transient_section_shows_the_comparison(run_dir: Path, page: str) ->
     section = _section(page, "transient")
     assert SECTIONS["transient"].title in section
     captions = " ".join(re.findall(r"<figcaption>(.*?)</figcaption>", section, re.S))
+    record = json.loads((run_dir / "predict" / "run.json").read_text())
     for key in ("transient_comparison_face", "transient_comparison_speed", "transient_histories"):
-        _, what = CAPTIONS[key]
+        _, what = caption_of(key, record)
         assert escape(what[0].upper() + what[1:]) in captions, key
         assert f"predict/{key}.png" in captions
     # one row per support and speed of comparison.csv, the largest |Δ| where comparison.csv has it
@@ -249,8 +252,9 @@ def test_the_transient_section_shows_the_comparison(run_dir: Path, page: str) ->
 def test_the_swing_and_oblique_sections_show_their_runs(run_dir: Path, page: str) -> None:
     swing = _section(page, "swing")
     captions = " ".join(re.findall(r"<figcaption>(.*?)</figcaption>", swing, re.S))
+    record = json.loads((run_dir / "swing" / "run.json").read_text())
     for key in ("swing_map", "swing_along_axis"):
-        _, what = CAPTIONS[key]
+        _, what = caption_of(key, record)
         assert escape(what[0].upper() + what[1:]) in captions, key
         assert f"swing/{key}.png" in captions
     # one row per sweet spot of sweet_spots.csv, at its x
@@ -291,6 +295,52 @@ def test_the_whole_page_has_no_json_escapes_nor_internal_names(page: str) -> Non
     assert "steps per contact 400" in _section(page, "transient")  # words, not run.json keys
 
 
+PERSON = "70 kg, 1.75 m adult"
+"""The one place the page quotes kg and m: the body the default arm is scaled from (a person's
+mass and height, as anthropometry quotes them; docs/develop.md, "Units on the page")."""
+
+OTHER_SPELLINGS = {
+    "an inertia not in kg·cm²": r"kg·m²|(?<!k)g·m²|g·cm²(?<!kg·cm²)",
+    "a mass not in g": r"\d\s*kg\b(?!·)",
+    "a length in m": r"\d\s*m\b(?![/²·_])",
+    "a length in cm": r"\d\s*cm\b(?!²)",
+    "a time in s": r"\d\s*s\b|\(s\)",
+    "a unit the page does not use": r"\d\s*(?:kN|mJ|kHz|km/h|mph|μm|µm)\b",
+    "an angle in rad": r"\d\s*rad\b(?!/)",
+    "a column in SI where the page has its own unit": r"\((?:kg|m|kg·m²)\)",
+    "a damping ratio not in %": r"damping(?: ratio)? \d+(?:\.\d+)?(?![\d.]|\s*(?:%|N))",
+}
+"""What the page must not show (issue 13: one unit per quantity, the field's)."""
+
+
+def _page_text(page: str) -> str:
+    """The words of the page: no scripts, styles, images' data or tags."""
+    text = re.sub(r"<(script|style)\b.*?</\1>", " ", page, flags=re.S)
+    text = re.sub(r"<[^>]+>", " ", text)
+    return re.sub(r"\s+", " ", unescape(text))
+
+
+def test_one_unit_per_quantity_and_one_term_for_the_rebound(page: str) -> None:
+    """Issue 13: inertias were 13.1 g·m² and 131 kg·cm², lengths m and mm, damping a fraction
+    and a percentage, the rebound a "ratio" and a "power coefficient"."""
+    text = _page_text(page)
+    assert PERSON in text
+    scanned = text.replace(PERSON, "")
+    for what, pattern in OTHER_SPELLINGS.items():
+        found = [
+            scanned[max(0, m.start() - 50) : m.end() + 10] for m in re.finditer(pattern, scanned)
+        ]
+        assert not found, f"{what}: {found[:3]}"
+    for unit in ("kg·cm²", " g", " mm", " Hz", " %", " ms", " N", " m/s", " J"):
+        assert unit in text, unit  # the page's units are there
+    # one term, defined once
+    assert len(re.findall(r"rebound power coefficient|apparent coefficient", text, re.I)) == 1
+    definition = _section(page, "rebound")
+    assert 'id="rebound-ratio"' in definition
+    assert "rebound power coefficient" in _page_text(definition)
+    assert text.count("rebound ratio") > 10
+
+
 def test_first_mode_nodes_come_from_compare_run_json(run_dir: Path, page: str) -> None:
     """comparison.csv is pure data (issue 13); the nodes the page shows are run.json's."""
     nodes = json.loads((run_dir / "compare" / "run.json").read_text())["first_mode_nodes_m"]
@@ -301,6 +351,82 @@ def test_first_mode_nodes_come_from_compare_run_json(run_dir: Path, page: str) -
         assert f"first-mode nodes on the axis, {support}: x = {nodes[support][0] * 1e3:.0f}" in (
             rebound
         )
+
+
+def _captions(page: str, key: str) -> str:
+    return " ".join(re.findall(r"<figcaption>(.*?)</figcaption>", _section(page, key), re.S))
+
+
+def test_swing_captions_state_the_run_s_settings(run_dir: Path, tmp_path: Path) -> None:
+    """Issue 13: the swing captions named the default swing (constant torque, half/same/1.5
+    times the angle) whatever the run used; they now say what swing/run.json records."""
+    out = tmp_path / "swing"
+    argv = ["swing", "--grid", "3", "--speed", "15,35", "--angular-speed", "30"]
+    assert main([*argv, "--support", "free", "--out", str(out)]) == 0
+    page = write_report(tmp_path).read_text(encoding="utf-8")
+    captions = _captions(page, "swing")
+    record = json.loads((out / "run.json").read_text())
+    assert record["along_axis_swings"] == [
+        "racket at rest",
+        "Ω = 15.0 rad/s",
+        "Ω = 30.0 rad/s",
+        "Ω = 45.0 rad/s",
+    ]
+    assert captions.count("given angular speed Ω = 30.0 rad/s") == 2
+    shown = record["sweet_spots_at_mps"]
+    assert shown in (15.0, 35.0)
+    assert captions.count(f"ball at {shown:g} m/s, freely supported, approximate model") == 2
+    assert "the swings Ω = 15.0 rad/s, Ω = 30.0 rad/s and Ω = 45.0 rad/s" in captions
+    for default in ("56.9", "torque", "20 m/s", "hand-held", "pinned"):
+        assert default not in captions, default
+
+
+def _caption_of(page: str, png: str) -> str:
+    """The caption text of the figure whose file is ``png`` (relative to the run folder)."""
+    for caption in re.findall(r"<figcaption>(.*?)</figcaption>", page, re.S):
+        if png in caption:
+            return unescape(re.sub(r"<[^>]+>", "", caption))
+    raise AssertionError(f"no figure {png} on the page")
+
+
+def test_predict_captions_state_the_run_s_speeds_and_supports(tmp_path: Path) -> None:
+    """Issue 13: predict's captions named "the run's speeds (in the title)"; they now say them."""
+    out = tmp_path / "predict"
+    argv = ["predict", "--grid", "3", "--speed", "35,25", "--racket-speed", "5"]
+    assert main([*argv, "--support", "free", "--model", "both", "--out", str(out)]) == 0
+    page = write_report(tmp_path).read_text(encoding="utf-8")
+    expected = {
+        "fig13_pulse_spectrum": "balls at 25 and 35 m/s, racket at 5 m/s (support in the title)",
+        "fig15_rebound_along_axis": "ball at 25 m/s, racket at 5 m/s, freely supported, with",
+        "transient_comparison_face": "one panel per support, ball at 25 m/s;",
+        "transient_comparison_speed": "(solid), racket at 5 m/s; missing dashes",
+    }
+    for name, words in expected.items():
+        caption = _caption_of(page, f"predict/{name}.png")
+        assert words in caption, name
+        for default in ("20 m/s", "pinned", "racket at rest", "the run's"):
+            assert default not in caption, (name, default)
+
+
+def test_compare_captions_state_the_files_band_and_speed(run_dir: Path, tmp_path: Path) -> None:
+    """Issue 13: compare's captions said 20 m/s and free/hand-held whatever was compared; a
+    compare of another pair at another speed is described as what it was."""
+    pair = tmp_path / "pair"
+    pair.mkdir()
+    shutil.copy(run_dir / "frf_hand" / "frfs.uff", pair / "first.uff")
+    shutil.copy(run_dir / "frf_free" / "frfs.uff", pair / "second.uff")
+    out = tmp_path / "compare"
+    argv = ["compare", str(pair / "first.uff"), str(pair / "second.uff"), "--band", "60,800"]
+    assert main([*argv, "--speed", "32.5", "--out", str(out)]) == 0
+    assert json.loads((out / "run.json").read_text())["fig15_ball_speed_mps"] == 32.5
+    page = write_report(tmp_path).read_text(encoding="utf-8")
+    modes, rebound = _captions(page, "modes"), _captions(page, "rebound")
+    assert "free (blue, pair/first.uff) against hand-held (black, pair/second.uff)" in modes
+    assert "identified over 60–800 Hz" in modes
+    assert "hand-held (pair/second.uff) against free (pair/first.uff)" in modes
+    assert "ball at 32.5 m/s" in rebound
+    assert "identified from pair/first.uff and pair/second.uff" in rebound
+    assert "20 m/s" not in rebound
 
 
 def test_no_transient_section_without_a_comparison(run_dir: Path, tmp_path: Path) -> None:

@@ -495,6 +495,31 @@ def test_plot_stabilisation(noisy, noisy_stab: Stabilisation) -> None:
     plt.close(own.figure)
 
 
+def test_stabilisation_legend_is_readable_and_off_the_poles(
+    noisy, noisy_stab: Stabilisation
+) -> None:
+    """Issue 13: the legend was 6 pt and sat on the poles in the lower right corner."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig, ax = plt.subplots(figsize=(8, 5), layout="constrained")
+    plot_stabilisation(noisy_stab, select_poles(noisy_stab), ax=ax, frfs=noisy[0])
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    legend = ax.get_legend()
+    assert legend is not None
+    assert min(t.get_fontsize() for t in legend.get_texts()) >= 8
+    box = legend.get_window_extent(canvas.get_renderer())
+    for line in ax.get_lines():
+        xy = np.column_stack([line.get_xdata(), line.get_ydata()]).astype(float)
+        shown = line.get_transform().transform(xy)
+        covered = (
+            (shown[:, 0] > box.x0) & (shown[:, 0] < box.x1)
+            & (shown[:, 1] > box.y0) & (shown[:, 1] < box.y1)
+        )  # fmt: skip
+        assert not np.any(covered), f"the legend covers {line.get_label()!r}"
+    plt.close(fig)
+
+
 def test_public_objects_are_documented() -> None:
     import inspect
 

@@ -72,7 +72,7 @@ def test_provenance_inputs_are_a_table_of_rounded_values_with_units(page: str) -
     assert rows["racket speed"] == ("0.3", "m/s")  # a list, unit from the key suffix
     assert rows["speeds"] == ("20", "m/s")
     assert rows["ball: e_BG"] == ("0.3", "")  # a nested table flattened to "table: key"
-    assert rows["ball: mass"] == ("0.0577", "kg")  # SI, as run.json holds it
+    assert rows["ball: mass"] == ("57.7", "g")  # the page's unit (run.json holds 0.0577 kg)
     assert rows["supports"] == ("free, pinned", "")
     assert rows["points"] == (UNICODE, "")
     assert rows["ball: source"] == (UNICODE, "")

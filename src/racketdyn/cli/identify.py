@@ -57,11 +57,13 @@ def add(commands: Any) -> None:
         "compare",
         "identify free and hand-held FRFs and compare",
         "Both identifications, modes paired by MAC (comparison.csv) and the paper's Fig. 15 "
-        "check with the identified models",
+        "check with the identified models at the ball speed --speed",
     )
     p.add_argument("free", help="FRFs of the freely supported racket (UFF 58)")
     p.add_argument("hand", help="FRFs of the hand-held racket (UFF 58)")
     _add_options(p)
+    opt.add_speed(p, "20", many=False)
+    opt.add_allow_implausible(p)
     p.set_defaults(handler=run_compare)
 
 
@@ -141,6 +143,8 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
             args.free,
             args.hand,
             args.out,
+            speed=args.speed,
+            allow_implausible=args.allow_implausible,
             figures=compare_figures,
             progress=progress,
             **_options(args),

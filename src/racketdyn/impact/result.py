@@ -99,7 +99,7 @@ IMPACT_QUANTITIES: tuple[Quantity, ...] = (
         "vibration_energy", "vibration_energy_j", "J", "frame vibration energy after impact (eq 12)"
     ),
     Quantity("cor", "cor", "1", "ball-racket coefficient of restitution e_r"),
-    Quantity("rebound_ratio", "rebound_ratio", "1", "rebound power coefficient e"),
+    Quantity("rebound_ratio", "rebound_ratio", "1", "rebound ratio e"),
     Quantity("rebound_speed", "rebound_speed_mps", "m s-1", "outgoing ball speed"),
     Quantity("peak_deflection", "peak_deflection_m", "m", "peak compound deflection X_p"),
 )
@@ -283,8 +283,8 @@ class ImpactResult:
         Ball–racket coefficient of restitution after the vibration loss, e_r (NaN where the
         status is not ``ok``).
     rebound_ratio : ndarray
-        Rebound power coefficient e = (e_r − m_B/M_r)/(1 + m_B/M_r): the ratio of rebound to
-        incident ball speed on a racket at rest.
+        Rebound ratio e = (e_r − m_B/M_r)/(1 + m_B/M_r): the ratio of rebound to incident ball
+        speed on a racket at rest (Kawazoe's "rebound capability", Fig. 15).
     rebound_speed : ndarray
         Outgoing ball speed e·v_ball + (1 + e)·v_racket, m/s.
     status : ndarray of str

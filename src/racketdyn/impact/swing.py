@@ -59,7 +59,7 @@ import logging
 import math
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Literal, get_args
 
@@ -86,6 +86,7 @@ from racketdyn.racket import Racket, as_locations
 from racketdyn.racket_modal.shapes import axis_nodes
 
 __all__ = [
+    "AXIS_SWING_FACTORS",
     "DEFAULT_ARM_GYRATION_M",
     "DEFAULT_ARM_MASS_KG",
     "DEFAULT_AXIS_TO_BUTT_M",
@@ -97,6 +98,7 @@ __all__ = [
     "Swing",
     "SwingResult",
     "arm_from_anthropometry",
+    "axis_swings",
     "predict_swing",
     "sweet_spot_table",
     "sweet_spots",
@@ -768,13 +770,14 @@ def sweet_spots(
         "centre of percussion (swing axis)",
         racket.centre_of_percussion_m(-d),
         None,
-        f"racket about the swing axis {d:.3f} m behind the butt: no reaction at the axis",
+        f"racket about the swing axis {d * 1e3:.0f} mm behind the butt: no reaction at the axis",
     )
     spots["centre_of_percussion_grip"] = spot(
         "centre of percussion (grip)",
         racket.centre_of_percussion_m(),
         None,
-        f"racket about the grip {racket.grip_m:.3f} m from the butt: no reaction at the grip",
+        f"racket about the grip {racket.grip_m * 1e3:.0f} mm from the butt: no reaction at the "
+        "grip",
     )
     mode = _first_bending_mode(resolved) if resolved is not None else None
     if resolved is not None and mode is not None:
@@ -854,3 +857,37 @@ def sweet_spot_table(spots: Mapping[str, SweetSpot]) -> list[dict[str, Any]]:
         }
         for key, s in spots.items()
     ]
+
+
+AXIS_SWING_FACTORS = (0.5, 1.0, 1.5)
+"""Multiples of the run's swing (its angle, or Ω) that the along-axis figure compares."""
+
+
+def axis_swings(swing: Swing) -> list[tuple[str, Swing]]:
+    """The swings the along-axis figure compares, each with its legend name.
+
+    The racket at rest (Ω = 0, the paper's Fig. 15), then half, the same and one and a half
+    times the swing: the swing angle for the torque model (angles above one turn left out), Ω
+    for a swing given by its angular speed.
+
+    Parameters
+    ----------
+    swing : Swing
+        The swing of the run.
+    """
+    swings = [
+        ("racket at rest", Swing(angular_speed_radps=0.0, axis_to_butt_m=swing.axis_to_butt_m))
+    ]
+    for factor in AXIS_SWING_FACTORS:
+        if swing.angular_speed_radps is not None:
+            omega = factor * swing.angular_speed_radps
+            swings.append((f"Ω = {omega:.1f} rad/s", replace(swing, angular_speed_radps=omega)))
+        elif factor * swing.swing_angle_rad <= 2.0 * math.pi:
+            angle = factor * swing.swing_angle_rad
+            swings.append(
+                (
+                    f"{swing.torque_nm:g} N·m over {math.degrees(angle):.0f}°",
+                    replace(swing, swing_angle_rad=angle),
+                )
+            )
+    return swings

@@ -10,7 +10,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -18,6 +18,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball, RestoringForce
@@ -26,7 +28,14 @@ from racketdyn.impact.approximate import StiffnessReading
 from racketdyn.impact.comparison import History, ModelComparison
 from racketdyn.impact.oblique import ObliqueCurve, TangentialContact
 from racketdyn.impact.result import SHOWN_SPEED_MPS, ImpactResult
-from racketdyn.impact.swing import ImpactModel, SweetSpot, Swing, SwingResult, predict_swing
+from racketdyn.impact.swing import (
+    ImpactModel,
+    SweetSpot,
+    Swing,
+    SwingResult,
+    axis_swings,
+    predict_swing,
+)
 from racketdyn.impact.transient import predict_transient
 from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
@@ -35,8 +44,10 @@ from racketdyn.modal.identify import Identification
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.residues import mac
 from racketdyn.plotting.primitives import (
+    SCALE_BAR_M,
     SUPPORT_STYLE,
     mark_flagged_spans,
+    label_lines,
     plot_along_axis,
     plot_contact_map,
     plot_face_map,
@@ -68,7 +79,8 @@ __all__ = [
     "TWIST_FIGURE",
     "FigureOptions",
     "PaperFigure",
-    "axis_swings",
+    "figure_mode_shapes",
+    "figure_node_lines",
     "figure_oblique",
     "figure_swing_along_axis",
     "figure_swing_map",
@@ -281,6 +293,22 @@ def figure_force_and_contact_time(
     return figure
 
 
+def _legend_below(ax: Axes, fontsize: float = 7, columns: int = 2) -> None:
+    """The axes' legend moved under the figure, out of the data's way (constrained layout
+    makes room for it)."""
+    handles, labels = ax.get_legend_handles_labels()
+    legend = ax.get_legend()
+    if legend is not None:
+        legend.remove()
+    figure = ax.get_figure()
+    if handles and isinstance(figure, Figure):
+        # as many columns as the widest entry lets fit across the figure (≈ 0.55 em a character)
+        entry_pt = 0.55 * fontsize * max(len(label) for label in labels) + 3.0 * fontsize
+        fit = int(0.95 * figure.get_figwidth() * 72.0 // entry_pt)
+        columns = max(1, min(columns, fit, len(labels)))
+        figure.legend(handles, labels, loc="outside lower center", ncols=columns, fontsize=fontsize)
+
+
 def _dedupe_legend(ax: Axes, fontsize: float = 7) -> None:
     """One legend entry per label."""
     handles, labels = ax.get_legend_handles_labels()
@@ -376,8 +404,9 @@ def figure_rebound_along_axis(
         for k, node in enumerate(nodes, 1):
             name = model.names[0]
             marks[f"node of {name}" if nodes.size == 1 else f"node {k} of {name}"] = float(node)
-    figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
+    figure, ax = plt.subplots(figsize=(6.5, 5.6), layout="constrained")
     plot_along_axis(result, "rebound_ratio", 0, ax=ax, marks=marks)
+    _legend_below(ax)
     ax.set_title(
         f"Fig. 15: predicted rebound ratio, ball at {speed:g} m/s\n"
         + options.describe(model, racket_speed),
@@ -459,7 +488,7 @@ def figure_pulse_spectrum(
     centre = landmark_points(racket)["centre"]
     speeds = np.asarray(options.speeds or (*VIBRATION_SPEEDS_MPS, 40.0), dtype=float)
     result = options.predict(racket, ball, model, [centre], speeds, (support,), labels=["centre"])
-    figure, axes = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
+    figure, axes = plt.subplots(1, 2, figsize=(10, 4.6), layout="constrained")
     frequency = np.linspace(0.0, 1500.0, 1501)
     for s, speed in enumerate(result.ball_speed):
         contact, peak = result.contact_time[0, s, 0], result.peak_force[0, s, 0]
@@ -473,12 +502,13 @@ def figure_pulse_spectrum(
             label=f"{speed:g} m/s: T_c = {contact * 1e3:.2f} ms",
         )
     if model is not None:
-        for name, f in zip(model.names, model.frequency, strict=True):
-            if f <= frequency[-1]:
-                axes[1].axvline(f, color="0.5", linestyle=":", linewidth=1)
-                axes[1].annotate(
-                    name, (f, axes[1].get_ylim()[1]), rotation=90, va="top", ha="right", fontsize=7
-                )
+        modes = [
+            (float(f), name, "0.4")
+            for name, f in zip(model.names, model.frequency, strict=True)
+            if f <= frequency[-1]
+        ]
+        axes[1].set_xlim(frequency[0] - 30.0, frequency[-1] + 30.0)
+        label_lines(axes[1], modes)
     axes[0].set_xlabel("time from first contact (ms)")
     axes[0].set_ylabel("impact force F(t) (N)")
     axes[1].set_xlabel("frequency (Hz)")
@@ -607,6 +637,71 @@ def write_contact_figure(
     return _save(figure, Path(out_dir) / "fig7_contact_time.png")
 
 
+def _mode_grid(n: int) -> tuple[int, int]:
+    """(rows, columns) of a grid of ``n`` mode panels, three to a row."""
+    columns = max(min(n, 3), 1)
+    return int(np.ceil(n / columns)), columns
+
+
+def figure_mode_shapes(model: ModalModel, racket: Racket) -> Figure:
+    """Paper Fig. 4: each mode shape in 3-D over the racket, with a 100 mm scale bar.
+
+    Parameters
+    ----------
+    model : ModalModel
+        The racket's modes.
+    racket : Racket
+        The racket (face and long axis).
+    """
+    rows, columns = _mode_grid(model.n_modes)
+    figure = plt.figure(figsize=(4.2 * columns, 3.2 * rows), layout="constrained")
+    for k in range(model.n_modes):
+        plot_racket_mode_3d(
+            model, racket, k, ax=figure.add_subplot(rows, columns, k + 1, projection="3d")
+        )
+    figure.suptitle(
+        f"Fig. 4: mode shapes ({model.support}), each scaled to the same largest amplitude; "
+        f"bar: {SCALE_BAR_M * 1e3:.0f} mm",
+        fontsize=10,
+    )
+    return figure
+
+
+def figure_node_lines(model: ModalModel, racket: Racket) -> Figure:
+    """Paper Fig. 5: node lines of each mode on the string face, with a key to black and white.
+
+    Parameters
+    ----------
+    model : ModalModel
+        The racket's modes.
+    racket : Racket
+        The racket (face and outline).
+    """
+    rows, columns = _mode_grid(model.n_modes)
+    figure, axes = plt.subplots(
+        rows, columns, figsize=(3.2 * columns, 2.6 * rows), layout="constrained", squeeze=False
+    )
+    for k, ax in enumerate(axes.flat):
+        if k < model.n_modes:
+            plot_racket_node_lines(model, racket, k, ax=ax)
+        else:
+            ax.set_axis_off()
+    figure.suptitle(f"Fig. 5: node lines on the string face ({model.support})", fontsize=10)
+    figure.legend(
+        handles=[
+            Patch(facecolor="k", edgecolor="k", label="black: the face moves one way"),
+            Patch(facecolor="w", edgecolor="k", label="white: it moves the other way"),
+            Line2D([], [], color="tab:red", label="node line: it does not move"),
+        ],
+        loc="outside lower center",
+        ncols=3,
+        fontsize=8,
+        title="at each instant of the mode's vibration (which way is which is arbitrary)",
+        title_fontsize=8,
+    )
+    return figure
+
+
 def write_identification(
     identification: Identification, racket: Racket, out_dir: Path, label: str = ""
 ) -> list[Path]:
@@ -619,31 +714,13 @@ def write_identification(
     plot_stabilisation(identification.stabilisation, identification.selected, ax=ax, frfs=frfs)
     batch.add(figure, out / f"stabilisation{suffix}.png")
 
-    n = model.n_modes
-    columns = min(n, 3)
-    rows = int(np.ceil(n / columns))
-    figure = plt.figure(figsize=(4.2 * columns, 3.2 * rows), layout="constrained")
-    for k in range(n):
-        plot_racket_mode_3d(
-            model, racket, k, ax=figure.add_subplot(rows, columns, k + 1, projection="3d")
-        )
-    figure.suptitle(f"Fig. 4: mode shapes ({model.support})", fontsize=10)
+    figure = figure_mode_shapes(model, racket)
     # mplot3d's projection overflows on the NaN outside the face of some surfaces; harmless
     with np.errstate(over="ignore", invalid="ignore"):  # the state it is drawn under
         batch.add(figure, out / f"fig4_mode_shapes{suffix}.png")
+    batch.add(figure_node_lines(model, racket), out / f"fig5_node_lines{suffix}.png")
 
-    figure, axes = plt.subplots(
-        rows, columns, figsize=(3.2 * columns, 2.6 * rows), layout="constrained", squeeze=False
-    )
-    for k, ax in enumerate(axes.flat):
-        if k < n:
-            plot_racket_node_lines(model, racket, k, ax=ax)
-        else:
-            ax.set_axis_off()
-    figure.suptitle(f"Fig. 5: node lines on the string face ({model.support})", fontsize=10)
-    batch.add(figure, out / f"fig5_node_lines{suffix}.png")
-
-    figure, ax = plt.subplots(figsize=(7, 3), layout="constrained")
+    figure, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
     _plot_axis_nodes([model], racket, ax)
     batch.add(figure, out / f"fig6_nodes{suffix}.png")
 
@@ -685,32 +762,28 @@ def write_identification(
 def _plot_axis_nodes(models: Sequence[ModalModel], racket: Racket, ax: Axes) -> None:
     """Paper Fig. 6: the first mode along the long axis with its nodes, one line per model."""
     x = np.linspace(0.0, racket.length_m, 341)
+    marks = []
     for model, colour in zip(models, ("tab:blue", "k"), strict=False):
         shape = model.mode_shapes_at(np.column_stack([x, np.zeros_like(x)]))[:, 0]
         shape = shape * np.sign(shape[0])
+        nodes = axis_nodes(model, 0, (0.0, racket.length_m)) * 1e3
         ax.plot(
             x * 1e3,
             shape,
             color=colour,
-            label=f"{model.support}: {model.names[0]}, {model.frequency[0]:.1f} Hz",
+            label=f"{model.support}: {model.names[0]}, {model.frequency[0]:.1f} Hz; nodes at "
+            + ", ".join(f"{node:.0f}" for node in nodes)
+            + " mm",
         )
-        for node in axis_nodes(model, 0, (0.0, racket.length_m)):
-            ax.axvline(node * 1e3, color=colour, linestyle=":", linewidth=1)
-            ax.annotate(
-                f"{node * 1e3:.0f} mm",
-                (node * 1e3, 0),
-                fontsize=7,
-                rotation=90,
-                va="bottom",
-                color=colour,
-            )
+        marks += [(float(node), f"{node:.0f}", colour) for node in nodes]
     ax.axvspan(0, racket.grip_m * 2e3, color="0.9", label="hand")
     ax.axhline(0, color="0.5", linewidth=0.8)
+    label_lines(ax, marks)
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("mass-normalised shape (1/√kg)")
-    ax.set_title("Fig. 6: node positions of the first mode", fontsize=9)
-    ax.legend(fontsize=7)
+    ax.set_title("Fig. 6: node positions of the first mode (mm from the butt)", fontsize=9)
     ax.grid(alpha=0.3)
+    _legend_below(ax, columns=len(models) + 1)
 
 
 def write_comparison(
@@ -720,11 +793,13 @@ def write_comparison(
     ball: Ball,
     out_dir: Path,
     comparison: ModeComparison | None = None,
+    speed: float = REBOUND_SPEED_MPS,
 ) -> list[Path]:
     """Free against hand-held: frequency/damping figure, Fig. 6 overlay, Fig. 15 check.
 
     The table (``comparison.csv``) is the compare step's (:func:`racketdyn.workflows.run_compare`);
-    ``comparison`` is its pairing (made here from ``free`` and ``hand`` if not given).
+    ``comparison`` is its pairing (made here from ``free`` and ``hand`` if not given); ``speed``
+    the incoming ball speed of the Fig. 15 check, m/s.
     """
     out = Path(out_dir)
     if comparison is None:
@@ -749,7 +824,7 @@ def write_comparison(
     figure.suptitle("Free against hand-held (paired by MAC)", fontsize=10)
     batch.add(figure, out / "comparison.png")
 
-    figure, ax = plt.subplots(figsize=(7, 3), layout="constrained")
+    figure, ax = plt.subplots(figsize=(7, 4.2), layout="constrained")
     _plot_axis_nodes([free.model, hand.model], racket, ax)
     batch.add(figure, out / "fig6_nodes_free_hand.png")
 
@@ -765,7 +840,7 @@ def write_comparison(
     )
     figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
     for support, model, label, colour, marker, style in cases:
-        result = predict(racket, ball, points, [REBOUND_SPEED_MPS], (support,), modal_model=model)
+        result = predict(racket, ball, points, [speed], (support,), modal_model=model)
         ax.plot(
             x * 1e3,
             result.rebound_ratio[:, 0, 0],
@@ -778,7 +853,7 @@ def write_comparison(
         )
     ax.set_xlabel("impact point, x from the butt (mm)")
     ax.set_ylabel("rebound ratio e (–)")
-    ax.set_title(f"Fig. 15: identified models, ball at {REBOUND_SPEED_MPS:g} m/s", fontsize=9)
+    ax.set_title(f"Fig. 15: identified models, ball at {speed:g} m/s", fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     batch.add(figure, out / "fig15_identified.png")
@@ -1146,37 +1221,6 @@ OBLIQUE_FIGURE = "oblique.png"
 SWING_AXIS_POINTS = 41
 """Points along the long axis of the along-axis swing figure (inset half a step from the frame,
 as :func:`racketdyn.impact.swing.sweet_spots` samples it)."""
-_SWING_FACTORS = (0.5, 1.0, 1.5)
-
-
-def axis_swings(swing: Swing) -> list[tuple[str, Swing]]:
-    """The swings the along-axis figure compares, each with its legend name.
-
-    The racket at rest (Ω = 0, the paper's Fig. 15), then half, the same and one and a half
-    times the swing: the swing angle for the torque model (angles above one turn left out), Ω
-    for a swing given by its angular speed.
-
-    Parameters
-    ----------
-    swing : Swing
-        The swing of the run.
-    """
-    swings = [
-        ("racket at rest", Swing(angular_speed_radps=0.0, axis_to_butt_m=swing.axis_to_butt_m))
-    ]
-    for factor in _SWING_FACTORS:
-        if swing.angular_speed_radps is not None:
-            omega = factor * swing.angular_speed_radps
-            swings.append((f"Ω = {omega:.1f} rad/s", replace(swing, angular_speed_radps=omega)))
-        elif factor * swing.swing_angle_rad <= 2.0 * math.pi:
-            angle = factor * swing.swing_angle_rad
-            swings.append(
-                (
-                    f"{swing.torque_nm:g} N·m over {math.degrees(angle):.0f}°",
-                    replace(swing, swing_angle_rad=angle),
-                )
-            )
-    return swings
 
 
 def figure_swing_map(
@@ -1259,8 +1303,9 @@ def figure_swing_along_axis(
                 racket, ball, points, [ball_speed], each, support, model, modal_model, **options
             )
         )
-    figure, ax = plt.subplots(figsize=(7.5, 4.8), layout="constrained")
+    figure, ax = plt.subplots(figsize=(7.5, 6.0), layout="constrained")
     plot_swing_along_axis(results, spots, support, ax=ax, names=names)
+    _legend_below(ax)
     figure.suptitle(
         f"Outgoing ball speed along the long axis, ball {ball_speed:g} m/s, {model} model\n"
         f"sweet spots for the swing {swing.describe(racket)}",

@@ -14,9 +14,10 @@ matplotlib.use("Agg")  # files only: racketdyn draws figures for reports, not wi
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 from matplotlib.patches import Ellipse
 from matplotlib.tri import Triangulation
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.impact.oblique import ObliqueCurve
 from racketdyn.impact.result import STATUS_OK, ImpactResult
@@ -35,6 +36,7 @@ __all__ = [
     "SWEET_SPOT_STYLE",
     "TWIST_QUANTITIES",
     "mark_flagged_spans",
+    "label_lines",
     "plot_along_axis",
     "plot_contact_map",
     "plot_face_map",
@@ -52,6 +54,7 @@ __all__ = [
     "plot_swing_along_axis",
     "plot_swing_map",
     "plot_twist_curve",
+    "spread",
 ]
 
 QUANTITIES: dict[str, tuple[str, float]] = {
@@ -62,7 +65,7 @@ QUANTITIES: dict[str, tuple[str, float]] = {
     "cor": ("ball–racket COR e_r (–)", 1.0),
     "vibration_energy": ("vibration energy (J)", 1.0),
     "rebound_speed": ("rebound ball speed (m/s)", 1.0),
-    "reduced_mass": ("reduced mass M_r (kg)", 1.0),
+    "reduced_mass": ("reduced mass M_r (g)", 1e3),
 }
 SUPPORT_STYLE = {
     "pinned": {"color": "k", "marker": "s", "label": "hand-held (pinned at grip)"},
@@ -233,6 +236,91 @@ def plot_frame_amplitude(
     return ax
 
 
+LINE_LABEL_GAP = 1.3
+"""Least distance between the centres of two line labels, in font heights: labels of vertical
+lines closer than that are spread apart."""
+
+
+def spread(
+    positions: ArrayLike, gap: float, low: float = 0.0, high: float = 1.0
+) -> NDArray[np.float64]:
+    """Positions moved apart as little as needed to be ``gap`` from each other, within
+    [low, high], in their given order of size.
+
+    One pass forward pushes each position past the one before, one pass back pulls them under
+    ``high``; the positions keep their order (our own 1-D version of what adjustText does in
+    2-D, which this needs no dependency for).
+
+    Parameters
+    ----------
+    positions : array_like
+        The positions (any unit).
+    gap : float
+        Least distance between neighbours, same unit.
+    low, high : float
+        The range they must stay in.
+    """
+    values = np.asarray(positions, dtype=float)
+    order = np.argsort(values, kind="stable")
+    moved = np.clip(values[order], low, high)
+    for k in range(1, moved.size):
+        moved[k] = max(moved[k], moved[k - 1] + gap)
+    if moved.size:
+        moved[-1] = min(moved[-1], high)
+    for k in range(moved.size - 2, -1, -1):
+        moved[k] = min(moved[k], moved[k + 1] - gap)
+    result: NDArray[np.float64] = np.empty_like(moved)
+    result[order] = np.maximum(moved, low)
+    return result
+
+
+def label_lines(
+    ax: Axes,
+    marks: Sequence[tuple[float, str, str]],
+    fontsize: float = 7,
+    **style: Any,
+) -> Axes:
+    """Vertical lines at ``x`` with their labels above the axes, out of the data's way.
+
+    The labels are the tick labels of a secondary x axis on top (matplotlib places the title
+    above them and the constrained layout makes room), turned upright and spread apart so that
+    no two overlap (:func:`spread`); each in its line's colour.
+
+    Parameters
+    ----------
+    ax : Axes
+        The axes, its data drawn (its x limits set).
+    marks : sequence of (float, str, str)
+        ``(x, label, colour)`` of each line, x in data units.
+    fontsize : float
+        Of the labels, points.
+    **style
+        Of the lines (default dotted, 1 pt).
+
+    Returns
+    -------
+    Axes
+        The secondary axis that holds the labels.
+    """
+    line = {"linestyle": ":", "linewidth": 1.0, **style}
+    for x, _, colour in marks:
+        ax.axvline(x, color=colour, **line)
+    low, high = ax.get_xlim()
+    figure = ax.get_figure(root=True)
+    assert isinstance(figure, Figure)
+    # the axes' width before layout, with a margin for a legend or colour bar beside it
+    width_pt = 0.7 * ax.get_position().width * figure.get_figwidth() * 72.0
+    gap = LINE_LABEL_GAP * fontsize / width_pt * (high - low)
+    where = spread([x for x, _, _ in marks], gap, min(low, high), max(low, high))
+    top: Any = ax.secondary_xaxis("top")
+    top.set_xticks(where, [label for _, label, _ in marks], rotation=90, fontsize=fontsize)
+    for text, (_, _, colour) in zip(top.get_xticklabels(), marks, strict=True):
+        text.set_color(colour)
+    top.tick_params(length=0, pad=2)
+    axes: Axes = top
+    return axes
+
+
 def plot_along_axis(
     result: ImpactResult,
     quantity: str,
@@ -270,11 +358,8 @@ def plot_along_axis(
             )
     order = np.argsort(x_mm)
     mark_flagged_spans(ax, x_mm[order], flagged[order], "points", flagged.size)
-    for name, x in (marks or {}).items():
-        ax.axvline(x * 1e3, color="0.4", linestyle=":", linewidth=1)
-        ax.annotate(
-            name, (x * 1e3, ax.get_ylim()[1]), rotation=90, va="top", ha="right", fontsize=7
-        )
+    if marks:
+        label_lines(ax, [(x * 1e3, name, "0.3") for name, x in marks.items()])
     ax.set_xlabel("impact point, x from the butt (mm)")
     ax.set_ylabel(QUANTITIES[quantity][0])
     racket_speed = float(result.racket_speed[speed_index])
@@ -677,6 +762,10 @@ def plot_mode_3d(
     return ax
 
 
+SCALE_BAR_M = 0.1
+"""Length of the scale bar of a racket's 3-D mode shapes, m."""
+
+
 def plot_racket_mode_3d(
     model: ModalModel, racket: Racket, mode: int, ax: Axes | None = None
 ) -> Axes:
@@ -704,6 +793,10 @@ def plot_racket_mode_3d(
     ax = plot_mode_3d(model, mode, ax, grid=(x, y), inside=inside, line=axis)
     ax3d: Any = ax
     ax3d.set_box_aspect((racket.length_m, 2.4 * racket.head.half_width_m, 0.2))
+    # a scale: 100 mm along the long axis from the butt, beside the handle
+    y_bar = -1.1 * racket.head.half_width_m
+    ax3d.plot([0.0, SCALE_BAR_M], [y_bar, y_bar], [0.0, 0.0], color="k", linewidth=2.5)
+    ax3d.text(0.0, 1.6 * y_bar, 0.0, f"{SCALE_BAR_M * 1e3:.0f} mm", fontsize=7)
     return ax
 
 
@@ -1094,5 +1187,6 @@ def plot_stabilisation(
     ax.set_ylim(0, int(stab.orders[-1]) + 1)
     ax.set_xlabel("frequency (Hz)")
     ax.set_ylabel("model order (–)")
-    ax.legend(fontsize=6, loc="lower right", framealpha=0.8)
+    # above the diagram, out of the poles' way, in a readable size
+    ax.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.01), ncols=4, frameon=False)
     return ax

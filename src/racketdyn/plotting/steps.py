@@ -128,7 +128,7 @@ def compare_figures(result: CompareResult, out: Path) -> list[Path]:
     written = write_identification(result.free, result.racket, out, "free")
     written += write_identification(result.hand, result.racket, out, "hand")
     written += write_comparison(
-        result.free, result.hand, result.racket, Ball(), out, result.comparison
+        result.free, result.hand, result.racket, Ball(), out, result.comparison, result.speed
     )
     return written
 

@@ -5,11 +5,24 @@ from __future__ import annotations
 
 import base64
 import logging
+import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from pathlib import Path
-from typing import Literal
+from pathlib import Path, PurePath
+from typing import Any, Literal
 
-__all__ = ["CAPTIONS", "Figure", "FigureGroup", "Layout", "embed_png", "interactive"]
+from racketdyn.impact.result import shown_speed_index
+
+__all__ = [
+    "CAPTIONS",
+    "Figure",
+    "FigureGroup",
+    "Layout",
+    "caption_of",
+    "embed_png",
+    "interactive",
+    "run_words",
+]
 
 log = logging.getLogger(__name__)
 
@@ -44,18 +57,21 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "fig5_node_lines": ("Fig. 5", "node lines of the identified modes on the string face"),
     "fig6_nodes_free_hand": (
         "Fig. 6",
-        "node positions of the first mode along the long axis, free (blue) against "
-        "hand-held (black); the grey band is the hand",
+        "node positions of the first mode along the long axis, free (blue, {free_file}) "
+        "against hand-held (black, {hand_file}), identified over {band}; the grey band is the "
+        "hand",
     ),
     "fig6_nodes": ("Fig. 6", "node positions of the first mode along the long axis"),
     "comparison": (
         None,
-        "frequency shift and damping ratio of each mode, hand-held against free (paired by MAC)",
+        "frequency shift and damping ratio of each mode, hand-held ({hand_file}) against free "
+        "({free_file}), identified over {band} and paired by MAC",
     ),
     "fig15_identified": (
         "Fig. 15",
-        "rebound ratio along the long axis at 20 m/s predicted with the identified models: "
-        "hand-held with hand-held modes, hand-held with free modes, free with free modes",
+        "rebound ratio along the long axis, ball at {check_speed}, racket at rest, predicted "
+        "with the models identified from {free_file} and {hand_file}: hand-held (pinned at the "
+        "grip) with hand-held modes, hand-held with free modes, free with free modes",
     ),
     "fig7_contact_time": ("Fig. 7", "contact time of the hammer on the strings, per support"),
     "fig11_12_force_contact_time": (
@@ -68,9 +84,9 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     ),
     "fig13_pulse_spectrum": (
         "Fig. 13",
-        "the half-sine impact force at the face centre and the magnitude of its spectrum at "
-        "the run's speeds (support in the title), with the modes of the model: the faster the "
-        "ball, the shorter the pulse and the higher its spectrum reaches",
+        "the half-sine impact force at the face centre and the magnitude of its spectrum for "
+        "balls at {speeds}, {racket_speed} (support in the title), with the modes of the "
+        "model: the faster the ball, the shorter the pulse and the higher its spectrum reaches",
     ),
     "fig14_frame_vibration": (
         "Fig. 14",
@@ -81,8 +97,9 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     ),
     "fig15_rebound_along_axis": (
         "Fig. 15",
-        "predicted rebound ratio along the long axis at the run's shown speed (in the title), "
-        "for its supports, with the centre of percussion and the node of the first mode",
+        "predicted rebound ratio along the long axis, ball at {shown_speed}, "
+        "{shown_racket_speed}, {approximate_supports}, with the centre of percussion and the "
+        "node of the first mode",
     ),
     "face_maps": (
         None,
@@ -93,7 +110,7 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "transient_comparison_face": (
         None,
         "rebound ratio of the approximate method minus that of the transient simulation over "
-        "the face, one panel per support, at the run's shown speed (in the title); red where "
+        "the face, one panel per support, ball at {shown_speed}; red where "
         "the approximate method predicts more; the paper checks its method against a freely "
         "suspended racket only",
     ),
@@ -101,9 +118,9 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         None,
         "rebound ratio and contact time against ball speed at the face centre, near the tip and "
         "near the throat, approximate method (dashed) against the transient simulation (solid), "
-        "at the run's racket speed (in the title); a curve breaks where its method flags the "
-        "impact (vibration loss beyond e_BG, a second contact, …): the speeds are hatched at "
-        "the foot, across the whole height where no curve is valid, and the legend counts them",
+        "{racket_speed}; a curve breaks where its method flags the impact (vibration loss "
+        "beyond e_BG, a second contact, …): the speeds are hatched at the foot, across the "
+        "whole height where no curve is valid, and the legend counts them",
     ),
     "transient_histories": (
         None,
@@ -113,17 +130,17 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     ),
     "swing_map": (
         None,
-        "outgoing ball speed over the face of the swinging racket (constant shoulder torque, "
-        "Kawazoe ACMD 2002), with the sweet spots: the centres of percussion about the swing "
-        "axis and about the grip, the node of the first mode, the largest rebound ratio "
-        "(racket at rest) and the largest outgoing speed for the swing; crosses mark impacts "
-        "without a valid number",
+        "outgoing ball speed over the face of the swinging racket ({swing}), ball at "
+        "{sweet_speed}, {support}, {impact_model} model, with the sweet spots: the centres of "
+        "percussion about the swing axis and about the grip, the node of the first mode, the "
+        "largest rebound ratio (racket at rest) and the largest outgoing speed for the swing; "
+        "crosses mark impacts without a valid number",
     ),
     "swing_along_axis": (
         None,
-        "outgoing ball speed along the long axis for the racket at rest (the setting of the "
-        "paper's Fig. 15) and for swings of half, the same and one and a half times the swing "
-        "angle (or angular speed), with the sweet spots of the run's swing as vertical lines",
+        "outgoing ball speed along the long axis, ball at {sweet_speed}, {support}, "
+        "{impact_model} model, for the racket at rest (the setting of the paper's Fig. 15) and "
+        "for {axis_swings}, with the sweet spots of the run's swing ({swing}) as vertical lines",
     ),
     "twist": (
         None,
@@ -140,7 +157,8 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     ),
 }
 """Caption of every PNG the commands write, by file stem (or its start): (the figure of
-Kawazoe's paper it corresponds to, or None; what it shows)."""
+Kawazoe's paper it corresponds to, or None; what it shows, its ``{field}`` the settings its run
+used, from the run.json of its folder: :func:`run_words`)."""
 
 
 @dataclass(frozen=True)
@@ -198,13 +216,160 @@ class FigureGroup:
     layout: Layout = "stack"
 
 
-def caption_of(stem: str) -> tuple[str | None, str]:
-    """(paper figure, what it shows) of a PNG by its file stem; the longest matching key wins."""
+SUPPORT_WORDS = {
+    "free": "freely supported",
+    "pinned": "hand-held (pinned at the grip)",
+    "hand": "hand-held (hand and arm model)",
+}
+"""A support as the captions name it."""
+
+UNKNOWN_WORDS: dict[str, str] = {
+    "free_file": "the free FRFs",
+    "hand_file": "the hand-held FRFs",
+    "band": "the band of the run",
+    "check_speed": "20 m/s",  # what compare used before it took --speed
+    "swing": "the run's swing",
+    "sweet_speed": "the run's shown speed",
+    "support": "the run's support",
+    "impact_model": "the run's",
+    "axis_swings": "half, the same and one and a half times the run's swing",
+    "speeds": "the run's speeds",
+    "shown_speed": "the run's shown speed (in the title)",
+    "racket_speed": "the run's racket speed (in the title)",
+    "shown_racket_speed": "the run's racket speed (in the title)",
+    "approximate_supports": "for the run's supports",
+}
+"""The words of a caption's ``{field}`` when the run.json does not say (a run of an earlier
+version)."""
+
+
+def _file_words(path: object) -> str | None:
+    """A run's input file as the caption names it: its folder and name."""
+    if not isinstance(path, str) or not path:
+        return None
+    found = PurePath(path)
+    return f"{found.parent.name}/{found.name}" if found.parent.name else found.name
+
+
+def _number(value: object) -> float | None:
+    return float(value) if isinstance(value, int | float) and not isinstance(value, bool) else None
+
+
+def _swing_words(swing: object, omega: float | None) -> str | None:
+    """A swing of run.json's ``swing`` table in words (its torque model, or its Ω)."""
+    if not isinstance(swing, Mapping):
+        return None
+    speed = f"Ω = {omega:.1f} rad/s" if omega is not None else ""
+    torque, angle = _number(swing.get("torque_nm")), _number(swing.get("swing_angle_rad"))
+    if torque is not None and angle is not None:
+        words = f"shoulder torque {torque:g} N·m over {math.degrees(angle):.0f}°"
+        return f"{words}: {speed}" if speed else words
+    given = _number(swing.get("angular_speed_radps"))
+    return f"given angular speed Ω = {given:.1f} rad/s" if given is not None else speed or None
+
+
+def _list_words(items: Sequence[str]) -> str:
+    """``a``, ``a and b``, ``a, b and c``."""
+    return ", ".join(items[:-1]) + " and " + items[-1] if len(items) > 1 else "".join(items)
+
+
+def _speeds_words(speeds: Sequence[float]) -> str:
+    """``10, 20 and 30 m/s``."""
+    return _list_words([f"{v:g}" for v in speeds]) + " m/s"
+
+
+def _racket_words(speeds: Sequence[float]) -> str:
+    """The racket's speed(s) towards the ball in words."""
+    if not any(speeds):
+        return "racket at rest"
+    if len(set(speeds)) == 1:
+        return f"racket at {speeds[0]:g} m/s"
+    return f"racket at {_speeds_words(speeds)} (one per ball speed)"
+
+
+def _predict_words(record: Mapping[str, Any]) -> dict[str, str | None]:
+    """predict's speeds, racket speeds and supports in words (its run.json)."""
+    speeds = [v for v in _numbers(record.get("speeds_mps")) if v is not None]
+    racket = [v for v in _numbers(record.get("racket_speed_mps")) if v is not None]
+    if not speeds:
+        return {}
+    shown = shown_speed_index(speeds)
+    words: dict[str, str | None] = {
+        "speeds": _speeds_words(sorted(speeds)),
+        "shown_speed": f"{speeds[shown]:g} m/s",
+    }
+    if racket:
+        words["racket_speed"] = _racket_words(racket)
+        at_shown = racket[shown] if len(racket) == len(speeds) else racket[0]
+        words["shown_racket_speed"] = _racket_words([at_shown])
+    supports = record.get("supports")
+    if isinstance(supports, list):
+        # the approximate method's supports: the hand model is the transient simulation's
+        named = [SUPPORT_WORDS.get(str(s), str(s)) for s in supports if s != "hand"]
+        words["approximate_supports"] = _list_words(named) if named else None
+    return words
+
+
+def _numbers(values: object) -> list[float | None]:
+    return [_number(v) for v in values] if isinstance(values, list) else []
+
+
+def run_words(record: Mapping[str, Any]) -> dict[str, str]:
+    """The settings a run used, in the words of the captions' ``{field}``, from its run.json;
+    :data:`UNKNOWN_WORDS` where it does not say.
+
+    Parameters
+    ----------
+    record : mapping
+        The run.json of the folder the figure is in.
+    """
+    words: dict[str, str | None] = {
+        "free_file": _file_words(record.get("free_file")),
+        "hand_file": _file_words(record.get("hand_file")),
+        "support": SUPPORT_WORDS.get(str(record.get("support"))),
+        "impact_model": str(record["impact_model"]) if record.get("impact_model") else None,
+        "swing": _swing_words(record.get("swing"), _number(record.get("angular_speed_radps"))),
+    }
+    band = record.get("band_hz")
+    if isinstance(band, list) and len(band) == 2 and all(_number(b) is not None for b in band):
+        words["band"] = f"{band[0]:g}–{band[1]:g} Hz"
+    for key, field in (
+        ("check_speed", "fig15_ball_speed_mps"),
+        ("sweet_speed", "sweet_spots_at_mps"),
+    ):
+        speed = _number(record.get(field))
+        words[key] = f"{speed:g} m/s" if speed is not None else None
+    words |= _predict_words(record)
+    swings = record.get("along_axis_swings")
+    if isinstance(swings, list) and all(isinstance(s, str) for s in swings):
+        moving = [s for s in swings if s != "racket at rest"]
+        words["axis_swings"] = f"the swings {_list_words(moving)}" if moving else None
+    return {key: words.get(key) or unknown for key, unknown in UNKNOWN_WORDS.items()}
+
+
+def caption_of(stem: str, record: Mapping[str, Any] | None = None) -> tuple[str | None, str]:
+    """(paper figure, what it shows) of a PNG by its file stem, worded from its run's settings.
+
+    The longest matching key of :data:`CAPTIONS` wins; its ``{field}`` are filled in with
+    :func:`run_words` of ``record``.
+
+    Parameters
+    ----------
+    stem : str
+        The file name without ``.png``.
+    record : mapping, optional
+        The run.json of the folder the figure is in.
+    """
     key = next((k for k in sorted(CAPTIONS, key=len, reverse=True) if stem.startswith(k)), None)
-    return CAPTIONS[key] if key else (None, stem.replace("_", " "))
+    if key is None:
+        return None, stem.replace("_", " ")
+    paper, what = CAPTIONS[key]
+    return paper, what.format_map(run_words(record or {}))
 
 
-def embed_png(path: Path, where: str, wide: bool = False) -> Figure | None:
+def embed_png(
+    path: Path, where: str, wide: bool = False, record: Mapping[str, Any] | None = None
+) -> Figure | None:
     """The PNG at ``path`` as a :class:`Figure` with its caption; None (logged) if not a PNG.
 
     Parameters
@@ -215,6 +380,8 @@ def embed_png(path: Path, where: str, wide: bool = False) -> Figure | None:
         Shown at the end of the caption: the file, relative to the run folder.
     wide : bool
         A figure that takes the page's width.
+    record : mapping, optional
+        The run.json of its folder, for the caption's words (:func:`caption_of`).
     """
     try:
         data = path.read_bytes()
@@ -223,7 +390,7 @@ def embed_png(path: Path, where: str, wide: bool = False) -> Figure | None:
     if not data.startswith(_PNG_SIGNATURE):
         log.warning("%s: not a PNG; left out of the report", path)
         return None
-    paper, what = caption_of(path.stem)
+    paper, what = caption_of(path.stem, record)
     encoded = base64.b64encode(data).decode("ascii")
     return Figure(
         paper, what, where, src=f"data:image/png;base64,{encoded}", css_class="wide" if wide else ""

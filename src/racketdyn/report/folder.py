@@ -533,7 +533,8 @@ class RunFolder:
     # -- figures -------------------------------------------------------------------------------
     def figure(self, path: Path, label: str = "", wide: bool = False) -> Figure | None:
         """The PNG at ``path`` embedded with its caption; None if it is not a PNG."""
-        return embed_png(path, f"{label}{' — ' if label else ''}{self.rel(path)}", wide)
+        where = f"{label}{' — ' if label else ''}{self.rel(path)}"
+        return embed_png(path, where, wide, self.record(path.parent))
 
     def group(
         self, found: list[tuple[Path, str]], layout: Layout | None = None, wide: bool = False

@@ -12,6 +12,7 @@ from numpy.typing import NDArray
 __all__ = [
     "DERIVED_LABELS",
     "LABELS",
+    "PERCENT_NAMES",
     "SI_UNITS",
     "UNITS",
     "finite",
@@ -27,7 +28,7 @@ DERIVED_LABELS: dict[str, str] = {
     "balance": "balance point, from the butt",
     "inertia_cg": "pitch inertia about the balance point",
     "inertia_grip": "pitch inertia about the grip pivot",
-    "swingweight": "swingweight (10 cm from the butt)",
+    "swingweight": "swingweight (100 mm from the butt)",
     "twistweight": "twistweight (roll inertia)",
     "recoil_weight": "recoil weight (inertia about the balance point)",
     "centre_of_percussion": "centre of percussion, pivot at the grip",
@@ -46,11 +47,16 @@ UNITS: dict[str, tuple[str, float]] = {
     "hz": ("Hz", 1.0),
     "n": ("N", 1.0),
     "pa": ("GPa", 1e-9),
+    "m2": ("cm²", 1e4),
     "s": ("ms", 1e3),
     "mps": ("m/s", 1.0),
+    "rad": ("°", 180.0 / math.pi),
 }
-"""Unit suffix of a key → (display unit, factor) in the racket's tables; other suffixes of
-:data:`SI_UNITS` are shown as they are."""
+"""Unit suffix of a key → (display unit, factor) on the page (docs/develop.md, "Units on the
+page"); other suffixes of :data:`SI_UNITS` are shown as they are."""
+
+PERCENT_NAMES = frozenset({"damping_ratio", "damping_free", "damping_hand"})
+"""Keys without a unit suffix that hold a ratio the page shows in %: damping ratios."""
 
 SI_UNITS: dict[str, str] = {
     "kg": "kg",
@@ -130,8 +136,8 @@ def quantity(key: str, value: Any, si: bool = False) -> tuple[str, str, str]:
     value : object
         Its value.
     si : bool
-        Show SI units as the key names them; by default the units engineers quote for a
-        racket (:data:`UNITS`: g, mm, ms, kg·cm², GPa).
+        Show SI units as the key names them; by default the units of the page, those the field
+        quotes (:data:`UNITS`: g, mm, ms, kg·cm², cm², °, GPa; damping ratios in %).
     """
     name, suffix = split_unit(key)
     unit, factor = unit_symbol(suffix), 1.0
@@ -139,6 +145,8 @@ def quantity(key: str, value: Any, si: bool = False) -> tuple[str, str, str]:
         unit, factor = UNITS[suffix]
         if suffix == "pa" and "modulus" not in name:
             unit, factor = "Pa", 1.0
+    elif not si and not suffix and name in PERCENT_NAMES:
+        unit, factor = "%", 100.0
     label = LABELS.get(name, name.replace("_", " "))
     if value is None:
         return label, "not set", ""

@@ -79,7 +79,7 @@ _IMPACT_VARIABLES: dict[str, tuple[str, str, str]] = {
     "peak_force_n": ("peak_force", "N", "peak force F_MAX (eq 11)"),
     "vibration_energy_j": ("vibration_energy", "J", "frame vibration energy after impact (eq 12)"),
     "cor": ("cor", "1", "ball-racket coefficient of restitution e_r"),
-    "rebound_ratio": ("rebound_ratio", "1", "rebound power coefficient e"),
+    "rebound_ratio": ("rebound_ratio", "1", "rebound ratio e"),
     "rebound_speed_mps": ("rebound_speed", "m s-1", "outgoing ball speed"),
     "peak_deflection_m": ("peak_deflection", "m", "peak compound deflection X_p"),
 }

@@ -19,11 +19,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from racketdyn.errors import InputError
+from racketdyn.errors import InputError, require_speeds
+from racketdyn.impact.result import SHOWN_SPEED_MPS
 from racketdyn.io import read_frf_uff
 from racketdyn.io.uff import write_modes_uff
 from racketdyn.modal.identify import Identification
 from racketdyn.modal.shapes import pair_modes
+from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
 from racketdyn.racket_modal.identify import identify_racket
 from racketdyn.racket_modal.shapes import axis_nodes
@@ -39,6 +41,7 @@ from racketdyn.workflows.run import (
 )
 
 __all__ = [
+    "CHECK_SPEED_MPS",
     "CompareResult",
     "IdentifyResult",
     "ModeComparison",
@@ -49,6 +52,9 @@ __all__ = [
     "write_mode_comparison",
     "write_model",
 ]
+
+CHECK_SPEED_MPS = SHOWN_SPEED_MPS
+"""Default incoming ball speed of ``compare``'s Fig. 15 check, m/s (the paper's 20 m/s)."""
 
 
 def _band(band_hz: Sequence[float] | None) -> tuple[float, float] | None:
@@ -293,12 +299,15 @@ class CompareResult(StepResult):
         The racket.
     comparison : ModeComparison
         The modes paired by MAC and the first mode's nodes (``comparison.csv``).
+    speed : float
+        Incoming ball speed of the Fig. 15 check, m/s.
     """
 
     free: Identification | None = None
     hand: Identification | None = None
     racket: Racket | None = None
     comparison: ModeComparison | None = None
+    speed: float = CHECK_SPEED_MPS
 
 
 @run_step
@@ -313,6 +322,8 @@ def run_compare(
     max_order: int = 60,
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
+    speed: float = CHECK_SPEED_MPS,
+    allow_implausible: bool = False,
     command: Sequence[str] | None = None,
     figures: Callable[[CompareResult, Path], list[Path]] | None = None,
     progress: Progress | None = None,
@@ -329,6 +340,11 @@ def run_compare(
         Racket; None for the built-in racket.
     geometry, band_hz, max_order, pin_hz, exclude_hz
         As for :func:`identify_file`, for both.
+    speed : float
+        Incoming ball speed of the paper's Fig. 15 check with the identified models, m/s
+        (default 20, the paper's).
+    allow_implausible : bool
+        Let a speed beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     command : sequence of str, optional
         The command as called, for run.json.
     figures : callable, optional
@@ -336,6 +352,8 @@ def run_compare(
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """
+    (check_speed,) = require_speeds("--speed", [speed])
+    check_speeds("--speed", [check_speed], "ball_speed_mps", allow_implausible)
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
     options: dict[str, Any] = {
@@ -359,6 +377,7 @@ def run_compare(
         hand=found_hand,
         racket=the_racket,
         comparison=comparison,
+        speed=float(check_speed),
     )
     inputs = {
         "free_file": str(Path(free).resolve()),
@@ -369,5 +388,6 @@ def run_compare(
         "modes_free": found_free.model.summary()["modes"],
         "modes_hand": found_hand.model.summary()["modes"],
         "first_mode_nodes_m": _first_mode_nodes(comparison),
+        "fig15_ball_speed_mps": float(check_speed),
     }
     return finish_run(result, inputs, command_record(command, "compare"), figures)

@@ -190,7 +190,7 @@ def hand_for(
             "hand_arm_mass_kg", arm_mass_kg, "--hand-arm-mass", allow_implausible=allow_implausible
         )
     if arm_mass_kg is None:
-        return Hand(), ["hand: racketdyn.impact.hand.Hand defaults (1 kg arm, Kawazoe ACMD 2002)"]
+        return Hand(), ["hand: the default hand and arm (1000 g arm, Kawazoe ACMD 2002)"]
     return Hand(arm_mass_kg=arm_mass_kg), []
 
 

@@ -188,7 +188,7 @@ def run_oblique(
     base = DEFAULT_TANGENTIAL_CONTACT
     if friction is None or tangential_stiffness is None:
         extra.append(
-            "tangential contact: μ 0.4 (Cross), k_t 1e4 N/m, ball inertia 0.55 m R² "
+            "tangential contact: μ 0.4 (Cross), k_t 1e4 N/m, ball inertia 0.55 m_B R² "
             "(racketdyn.impact.oblique)"
         )
     contact = TangentialContact(

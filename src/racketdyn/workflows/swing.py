@@ -32,6 +32,7 @@ from racketdyn.impact.swing import (
     SweetSpot,
     Swing,
     SwingResult,
+    axis_swings,
     predict_swing,
     sweet_spot_table,
     sweet_spots,
@@ -109,8 +110,8 @@ def swing_from(
     if axis_to_butt_m is None:
         axis = DEFAULT_AXIS_TO_BUTT_M
         defaults.append(
-            f"swing axis (shoulder) {axis:.3f} m behind the butt: a straight arm in line with "
-            "the racket, 70 kg, 1.75 m adult (Dempster/Winter)"
+            f"swing axis (shoulder) {axis * 1e3:.0f} mm behind the butt: a straight arm in line "
+            "with the racket, 70 kg, 1.75 m adult (Dempster/Winter)"
         )
     else:
         axis = require_positive("--axis-to-butt", axis_to_butt_m, allow_zero=True)
@@ -141,8 +142,9 @@ def swing_from(
             )
         angle = math.radians(degrees)
     defaults.append(
-        f"arm {DEFAULT_ARM_MASS_KG:g} kg, radius of gyration {DEFAULT_ARM_GYRATION_M:.3f} m "
-        "about the shoulder (Dempster/Winter, 70 kg, 1.75 m adult)"
+        f"arm {DEFAULT_ARM_MASS_KG * 1e3:.0f} g, radius of gyration "
+        f"{DEFAULT_ARM_GYRATION_M * 1e3:.0f} mm about the shoulder (Dempster/Winter, 70 kg, "
+        "1.75 m adult)"
     )
     return Swing(torque_nm=torque, swing_angle_rad=angle, axis_to_butt_m=axis), defaults
 
@@ -367,6 +369,7 @@ def run_swing(
         **computed.inputs,  # swing (parameters, Ω, inertias), impact model, ball, law, modes
         "angular_speed_radps": omega,
         "sweet_spots_at_mps": speed_list[chosen],
+        "along_axis_swings": [name for name, _ in axis_swings(the_swing)],
         "columns": {
             "swing.csv": "impact.csv columns; racket_speed_mps = Ω (x + axis_to_butt_m) "
             "at each point",

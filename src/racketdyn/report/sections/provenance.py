@@ -29,8 +29,9 @@ Input = tuple[str, str, str, str, bool]
 
 def inputs(record: dict[str, Any]) -> list[Input]:
     """A run.json's inputs as table rows: nested tables flattened to "table: key" rows (a list
-    of tables to a row per item), numbers to 4 significant figures in the SI unit their key's
-    suffix names, lists joined, text as it is. Keys under a file name (the ``columns`` of a
+    of tables to a row per item), numbers to 4 significant figures in the page's unit of the
+    quantity their key's suffix names (g, mm, ms, kg·cm², °, damping in %), lists joined, text
+    as it is. Keys under a file name (the ``columns`` of a
     CSV) are column names and stay as they are."""
     rows: list[Input] = []
     for key, value in record.items():
@@ -73,7 +74,7 @@ def _text(key: str, value: Any) -> tuple[str, str]:
             parts.append(f"{label} {text}{' ' + unit if unit else ''}" if numeric else text)
         return (", ".join(parts) or "none"), ""
     if isinstance(value, list):
-        _, shown, unit = quantity(key, value[:MAX_ITEMS], si=True)
+        _, shown, unit = quantity(key, value[:MAX_ITEMS])
         if not value:
             return "none", ""
         if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in value):
@@ -90,7 +91,7 @@ def _text(key: str, value: Any) -> tuple[str, str]:
         if len(value) > MAX_ITEMS:
             shown += f", … ({len(value)} in all)"
         return shown, unit
-    _, text, unit = quantity(key, value, si=True)
+    _, text, unit = quantity(key, value)
     return text, unit
 
 

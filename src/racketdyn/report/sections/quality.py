@@ -85,15 +85,17 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         ]
     )
     settings = []
-    for name, key, spec in (
-        ("estimator", "estimator", ""),
-        ("exponential window τ (s)", "exponential_window_s", "g"),
-        ("force window (s)", "force_window_s", "g"),
-        ("hammer range (N)", "force_range_n", "g"),
+    for name, key, spec, factor in (
+        ("estimator", "estimator", "", 1.0),
+        ("exponential window τ (ms)", "exponential_window_s", "g", 1e3),
+        ("force window (ms)", "force_window_s", "g", 1e3),
+        ("hammer range (N)", "force_range_n", "g", 1.0),
     ):
         values = []
         for _, folder in folders:
             value = run.record(folder).get(key)
+            if isinstance(value, int | float) and finite(value):
+                value = value * factor
             values.append("not set" if value is None else fmt(value, spec) if spec else value)
         settings.append([name, *map(str, values)])
     glance = [

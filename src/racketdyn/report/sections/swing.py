@@ -6,9 +6,14 @@ import math
 from typing import Any
 
 from racketdyn.report.folder import RunFolder, number, read_csv
-from racketdyn.report.formatting import fmt
+from racketdyn.report.formatting import finite, fmt
 
 HOW_TO_RUN = "racketdyn swing --out DIR/swing"
+
+
+def _scaled(value: Any, factor: float, spec: str) -> str:
+    """A run.json number in the page's unit (``factor`` times its SI value); a dash if none."""
+    return fmt(value * factor if finite(value) else None, spec)
 
 
 def gather(run: RunFolder) -> dict[str, Any] | None:
@@ -28,13 +33,13 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         if isinstance(angle, int | float):
             facts.append(f"swing angle {math.degrees(angle):.0f}°")
         facts.append(
-            f"arm {fmt(swing.get('arm_mass_kg'), '.3g')} kg, "
-            f"{fmt(swing.get('arm_inertia_kgm2'), '.3g')} kg·m² about the shoulder"
+            f"arm {_scaled(swing.get('arm_mass_kg'), 1e3, '.0f')} g, "
+            f"{_scaled(swing.get('arm_inertia_kgm2'), 1e4, '.0f')} kg·cm² about the shoulder"
         )
     if isinstance(swing.get("axis_to_butt_m"), int | float):
         facts.append(f"shoulder {swing['axis_to_butt_m'] * 1e3:.0f} mm behind the butt")
     if isinstance(swing.get("inertia_about_axis_kgm2"), int | float):
-        facts.append(f"arm + racket {swing['inertia_about_axis_kgm2']:.3g} kg·m² about it")
+        facts.append(f"arm + racket {swing['inertia_about_axis_kgm2'] * 1e4:.0f} kg·cm² about it")
     if isinstance(omega, int | float):
         facts.append(f"Ω = {omega:.2f} rad/s")
     model = record.get("impact_model")
