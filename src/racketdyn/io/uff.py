@@ -21,6 +21,7 @@ Data sets are counted from 1 in the order of the file in every message.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import datetime
 import io
@@ -30,7 +31,7 @@ import os
 import re
 import tempfile
 import warnings
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, cast
@@ -41,6 +42,7 @@ from numpy.typing import NDArray
 
 from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError
+from racketdyn.io.uff_structure import check_structure
 from racketdyn.measurement.records import (
     FRF_TYPE_OF_RESPONSE,
     RESPONSE_TYPES,
@@ -154,6 +156,16 @@ def _as_int(value: Any, default: int = 0) -> int:
         return default
 
 
+@contextlib.contextmanager
+def _quiet_pyuff() -> Iterator[None]:
+    """Keep pyuff's prints (it prints the layouts of some data sets) off the console; logged."""
+    captured = io.StringIO()
+    with contextlib.redirect_stdout(captured):
+        yield
+    if captured.getvalue():
+        logger.debug("pyuff printed: %s", captured.getvalue())
+
+
 def _read_sets(path: Path) -> list[dict[str, Any]]:
     """All data sets of a Universal File as pyuff dictionaries; InputError on anything wrong."""
     if not path.exists():
@@ -166,33 +178,34 @@ def _read_sets(path: Path) -> list[dict[str, Any]]:
         raise InputError(f"{path}: cannot be read ({error.strerror})") from None
     if not raw.strip():
         raise InputError(f"{path}: empty; expected a Universal File of data sets 15 and 58")
-    try:  # pyuff raises bare Exception for every failure
-        uff = pyuff.UFF(str(path))
-        n_sets = int(uff.get_n_sets())
-    except Exception:
-        raise InputError(f"{path}: cannot be read as a Universal File") from None
-    if n_sets == 0:
+    blocks = check_structure(path, raw)
+    if not blocks:
         raise InputError(
             f"{path}: not a Universal File (no data sets between '    -1' lines); export the "
             "test as UFF data sets 15 and 58"
         )
-    # pyuff pairs the '    -1' delimiters and silently drops an unpaired last one, so a file
-    # cut short loses its last data set without a word: a complete file ends with '    -1'.
-    if not raw.rstrip().endswith(b"    -1"):
-        raise InputError(
-            f"{path}: truncated or damaged: it does not end with a '    -1' line (data set "
-            f"{n_sets + 1} is incomplete); export the file again"
-        )
     sets = []
-    for i in range(n_sets):
-        try:  # read one set at a time: pyuff's read_sets() names no set when one fails
-            dset = uff.read_sets(i)
+    with _quiet_pyuff():
+        try:  # pyuff raises bare Exception for every failure
+            uff = pyuff.UFF(str(path))
+            n_sets = int(uff.get_n_sets())
         except Exception:
+            raise InputError(f"{path}: cannot be read as a Universal File") from None
+        if n_sets != len(blocks):  # the structure check follows pyuff's rule: never expected
             raise InputError(
-                f"{path}: data set {i + 1} of {n_sets} cannot be read (truncated or damaged); "
+                f"{path}: pyuff finds {n_sets} data sets where the file holds {len(blocks)}; "
                 "export the file again"
-            ) from None
-        sets.append(cast(dict[str, Any], dset))
+            )
+        for block in blocks:
+            i = block.number - 1
+            try:  # read one set at a time: pyuff's read_sets() names no set when one fails
+                dset = uff.read_sets(i)
+            except Exception:
+                raise InputError(
+                    f"{path}: data set {block.number} of {n_sets} ({block.type}, line "
+                    f"{block.line}) cannot be read (damaged); export the file again"
+                ) from None
+            sets.append(cast(dict[str, Any], dset))
     return sets
 
 
@@ -373,25 +386,20 @@ def _load(path: Path, geometry: Path | str | None) -> _Contents:
     return _Contents(records=records, nodes=nodes, units=units, types=types)
 
 
-def _location(
-    path: Path,
-    geometry: Path | str | None,
-    nodes: dict[int, tuple[float, float]],
-    node: int,
-    role: str,
-) -> tuple[float, float]:
-    if node in nodes:
-        return nodes[node]
-    where = f"{path}" if geometry is None else f"{path} or {geometry}"
-    if not nodes:
-        raise InputError(
-            f"{path}: no node coordinates (data set 15 or 2411); add them to the file or pass "
-            "geometry= a file that holds them"
+def _location(nodes: dict[int, tuple[float, float]], node: int) -> tuple[float, float]:
+    """A node's (x, y), m; NaN without coordinates (FRFs need none; a step that does asks)."""
+    return nodes.get(node, (math.nan, math.nan))
+
+
+def _note_missing(path: Path, nodes: dict[int, tuple[float, float]], wanted: list[int]) -> None:
+    missing = [n for n in wanted if n not in nodes]
+    if missing:
+        logger.info(
+            "%s: node(s) %s have no coordinates (FRFs need none; shapes and maps will ask for "
+            "--geometry)",
+            path,
+            ", ".join(map(str, missing[:8])),
         )
-    raise InputError(
-        f"{path}: {role} node {node} has no coordinates in {where}; add it to the geometry "
-        "(data set 15 or 2411)"
-    )
 
 
 def _check_same_abscissa(path: Path, first: _Record, record: _Record, what: str) -> None:
@@ -571,8 +579,9 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
             rows_r.append(r.data * r_scale * _sign(path, r, r.rsp_dir))
         force_rows.append(np.asarray(rows_f, dtype=float))
         response_rows.append(np.asarray(rows_r, dtype=float))
-    locations = [_location(path, geometry, contents.nodes, n, "hammer") for n in nodes]
-    reference_location = _location(path, geometry, contents.nodes, reference_node, "reference")
+    _note_missing(path, contents.nodes, [*nodes, reference_node])
+    locations = [_location(contents.nodes, n) for n in nodes]
+    reference_location = _location(contents.nodes, reference_node)
     return HammerRecords(
         sampling_interval_s=float(step * time_scale),
         force=tuple(force_rows),
@@ -662,6 +671,7 @@ def read_frf_uff(path: Path | str, geometry: Path | str | None = None) -> FrfSet
         path, first, "frequency", _normal_label(first.labels[0]), contents.units
     )
     nodes = sorted(by_node)
+    _note_missing(path, contents.nodes, [*nodes, first.rsp_node])
     values = np.asarray(
         [
             by_node[n].data
@@ -679,11 +689,9 @@ def read_frf_uff(path: Path | str, geometry: Path | str | None = None) -> FrfSet
         values=values,
         frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
         nodes=tuple(nodes),
-        locations=np.asarray(
-            [_location(path, geometry, contents.nodes, n, "hammer") for n in nodes], dtype=float
-        ),
+        locations=np.asarray([_location(contents.nodes, n) for n in nodes], dtype=float),
         reference_node=first.rsp_node,
-        reference_location=_location(path, geometry, contents.nodes, first.rsp_node, "reference"),
+        reference_location=_location(contents.nodes, first.rsp_node),
         coherence=coherence,
         n_averages=averages,
         exponential_window_s=tau,
@@ -767,9 +775,14 @@ def _geometry_set(
     reference_location: tuple[float, float],
     nodes: Sequence[int],
     locations: NDArray[np.float64],
-) -> dict[str, Any]:
-    """Data set 15 with the reference node first, then the hammer nodes."""
+) -> dict[str, Any] | None:
+    """Data set 15 with the reference node first, then the hammer nodes (those with coordinates).
+
+    None when no node has coordinates (the records came without geometry).
+    """
     numbers, xs, ys = [reference_node], [reference_location[0]], [reference_location[1]]
+    if any(math.isnan(v) for v in reference_location):
+        numbers, xs, ys = [], [], []
     seen: set[int] = set()
     for node, (x, y) in zip(nodes, locations, strict=True):
         if node <= 0:
@@ -777,7 +790,9 @@ def _geometry_set(
         if node in seen:
             raise InputError(f"{target}: node {node} is listed twice; give each point its own node")
         seen.add(node)
-        if node == reference_node:
+        if math.isnan(x) or math.isnan(y):
+            continue
+        if node == reference_node and numbers and numbers[0] == reference_node:
             if not np.allclose((x, y), reference_location, rtol=0.0, atol=1e-9):
                 raise InputError(
                     f"{target}: node {node} is the reference and a hammer point at different "
@@ -792,6 +807,8 @@ def _geometry_set(
             f"{target}: reference node {reference_node}: UFF node numbers must be positive"
         )
     n = len(numbers)
+    if n == 0:
+        return None
     return {
         "type": 15,
         "node_nums": numbers,
@@ -875,7 +892,7 @@ def _write_sets(path: Path, sets: Sequence[dict[str, Any]]) -> Path:
                     part = Path(scratch) / f"{k}.uff"
                     # pyuff leaves a file handle open after a binary data set 58 (CPython closes
                     # it at once; the ResourceWarning would reach the user as noise)
-                    with warnings.catch_warnings():
+                    with warnings.catch_warnings(), _quiet_pyuff():
                         warnings.simplefilter("ignore", ResourceWarning)
                         pyuff.UFF(str(part)).write_sets([dset], mode="add")
                     target.write(part.read_bytes())
@@ -938,7 +955,8 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
     if frfs.locations.shape[1] != 2:
         raise InputError(f"{path}: racketdyn writes UFF geometry for (x, y) locations only")
     reference = (float(frfs.reference_location[0]), float(frfs.reference_location[1]))
-    sets = [_geometry_set(path, frfs.reference_node, reference, frfs.nodes, frfs.locations)]
+    geometry = _geometry_set(path, frfs.reference_node, reference, frfs.nodes, frfs.locations)
+    sets: list[dict[str, Any]] = [] if geometry is None else [geometry]
     response = {v: k for k, v in FRF_TYPE_OF_RESPONSE.items()}[frfs.frf_type]
     tau = "none" if frfs.exponential_window_s is None else repr(float(frfs.exponential_window_s))
     estimator = "_".join(str(frfs.estimator).split()) or "file"
@@ -1018,15 +1036,10 @@ def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = Fa
         cannot be written.
     """
     path = Path(path)
-    sets = [
-        _geometry_set(
-            path,
-            records.reference_node,
-            records.reference_location,
-            records.nodes,
-            records.locations,
-        )
-    ]
+    geometry = _geometry_set(
+        path, records.reference_node, records.reference_location, records.nodes, records.locations
+    )
+    sets: list[dict[str, Any]] = [] if geometry is None else [geometry]
     time = records.time
     date = datetime.datetime.now().strftime("%d-%b-%y %H:%M:%S")
     kind = records.response_type
@@ -1147,7 +1160,7 @@ def _csv_setting(path: Path, settings: dict[str, str], key: str, example: str) -
     return settings[key]
 
 
-def read_hammer_csv(path: Path | str, geometry_path: Path | str) -> HammerRecords:
+def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -> HammerRecords:
     """Read roving-hammer time records from a CSV file and its geometry CSV.
 
     Parameters
@@ -1158,9 +1171,10 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str) -> HammerRecord
         force_n,response``; one row per sample: hammer node, average number, time from the
         trigger (s, the same evenly spaced times for every average), hammer force (N), response
         at the reference node (SI units of the response type).
-    geometry_path : Path or str
-        CSV with header ``node,x_m,y_m``: coordinates (m) of the reference node and every
-        hammer node.
+    geometry_path : Path or str, optional
+        CSV with header ``node,x_m,y_m``: coordinates (m) of the reference node and the hammer
+        nodes.  Without it (or for a node it does not list) the locations are NaN: FRFs need
+        none, the steps that do ask for ``--geometry``.
 
     Returns
     -------
@@ -1172,9 +1186,9 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str) -> HammerRecord
     ------
     InputError
         Missing file or column, a value that is not a number (NaN included), a missing
-        setting, averages of different length or timing, a node without coordinates.
+        setting, averages of different length or timing.
     """
-    path, geometry_path = Path(path), Path(geometry_path)
+    path = Path(path)
     settings, header, numbers, rows = _csv_rows(path, CSV_COLUMNS)
     if not rows:
         raise InputError(f"{path}: no samples listed under the header")
@@ -1225,21 +1239,17 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str) -> HammerRecord
         averages.append([int(average[g[0]]) for g in mine])
         forces.append(np.asarray([force[g] for g in mine]))
         responses.append(np.asarray([response[g] for g in mine]))
-    coordinates = _read_geometry_csv(geometry_path)
-    for n in [*nodes, reference_node]:
-        if n not in coordinates:
-            raise InputError(
-                f"{geometry_path}: node {n} has no coordinates; add a line '{n},x_m,y_m'"
-            )
+    coordinates = {} if geometry_path is None else _read_geometry_csv(Path(geometry_path))
+    _note_missing(path, coordinates, [*nodes, reference_node])
     return HammerRecords(
         sampling_interval_s=float(step),
         force=tuple(forces),
         response=tuple(responses),
         response_type=cast(ResponseType, response_type),
         nodes=tuple(nodes),
-        locations=np.asarray([coordinates[n] for n in nodes], dtype=float),
+        locations=np.asarray([_location(coordinates, n) for n in nodes], dtype=float),
         reference_node=reference_node,
-        reference_location=coordinates[reference_node],
+        reference_location=_location(coordinates, reference_node),
         pretrigger_s=float(-axis[0]),
         source=str(path),
         metadata={"averages": averages},
@@ -1312,6 +1322,8 @@ def write_hammer_csv(
         }
     )
     for n in sorted(written):
+        if math.isnan(written[n][0]) or math.isnan(written[n][1]):
+            continue  # no coordinates: left out, as read
         geometry.write(f"{n},{written[n][0]!r},{written[n][1]!r}\n")
     for target, text in ((path, buffer.getvalue()), (geometry_path, geometry.getvalue())):
         try:
