@@ -209,6 +209,12 @@ def _read_sets(path: Path) -> list[dict[str, Any]]:
     return sets
 
 
+#: Largest plausible extent of a hammer-tested structure's nodes, m (a racket is 0.7 m; a
+#: car body or a machine frame a few metres).  Coordinates beyond it are taken as mm written
+#: without a data set 164 (680 mm read as 680 m) and refused.
+MAX_EXTENT_M = 20.0
+
+
 def _units_of(path: Path, sets: Sequence[dict[str, Any]]) -> _Units:
     """Units of the first data set 164, if it says non-SI; SI otherwise."""
     for i, dset in enumerate(sets, start=1):
@@ -237,10 +243,21 @@ def _nodes_of(
         numbers = np.asarray(dset.get("node_nums", []), dtype=float)
         x = np.asarray(dset.get("x", []), dtype=float) / units.length
         y = np.asarray(dset.get("y", []), dtype=float) / units.length
-        if not (numbers.size == x.size == y.size) or not np.all(np.isfinite(np.r_[x, y])):
+        z = np.asarray(dset.get("z", np.zeros_like(x)), dtype=float) / units.length
+        if not (numbers.size == x.size == y.size == z.size) or not np.all(
+            np.isfinite(np.r_[numbers, x, y, z])
+        ):
             raise InputError(
-                f"{path}: data set {i} ({dset['type']}, nodes): every node needs finite x, y, z "
-                "coordinates"
+                f"{path}: data set {i} ({dset['type']}, nodes): every node needs a finite node "
+                "number and finite x, y, z coordinates"
+            )
+        extent = float(np.max(np.ptp(np.c_[x, y, z], axis=0))) if x.size else 0.0
+        if extent > MAX_EXTENT_M:
+            raise InputError(
+                f"{path}: data set {i} ({dset['type']}, nodes): the nodes span {extent:g} m, "
+                f"more than the {MAX_EXTENT_M:g} m of any structure tested with a hammer: the "
+                "coordinates are likely in mm; add a data set 164 giving the length unit, or "
+                "give the coordinates in m with --geometry FILE"
             )
         for number, xi, yi in zip(numbers, x, y, strict=True):
             nodes[int(number)] = (float(xi), float(yi))
@@ -318,7 +335,45 @@ def _abscissa(dset: dict[str, Any]) -> tuple[NDArray[np.float64], float, bool]:
             abs(start) + abs(exact)
         ):
             return np.asarray(start + np.arange(x.size) * exact), exact, even
+    snapped = _round_step(
+        header_start, header_step, x.size, _as_int(dset.get("abscissa_spec_data_type"))
+    )
+    if snapped is not None:
+        return np.asarray(header_start + np.arange(x.size) * snapped), snapped, even
     return x, header_step, even
+
+
+#: Significant digits of a "round" band top or sampling rate (1000 Hz, 51 200 Hz, 12.8 kHz).
+ROUND_DIGITS = 4
+
+
+def _round_step(start: float, step: float, n: int, kind: int) -> float | None:
+    """The exact step behind a 6-digit header step, where the axis ends on a round number.
+
+    The header holds the step with 6 significant digits (E13.5): 1.953125 Hz is written
+    1.95312, and 512 of them end at 999.997 Hz instead of 1000.  A frequency axis from 0 whose
+    top, within the header's rounding (±5e-6 of the step per line), is a number of at most
+    :data:`ROUND_DIGITS` significant digits gets the step that ends exactly there; a time axis
+    gets the step of a round sampling rate.  None where no such number lies within reach.
+    """
+    if not (math.isfinite(step) and step > 0 and n > 1):
+        return None
+    if kind == QUANTITY_CODE["time"]:
+        rate = 1.0 / step
+        for digits in range(1, ROUND_DIGITS + 1):
+            candidate = float(f"{rate:.{digits - 1}e}")
+            if abs(candidate - rate) <= 5e-6 * rate and f"{1 / candidate:.5e}" == f"{step:.5e}":
+                return 1.0 / candidate
+        return None
+    if start != 0.0:
+        return None
+    top = (n - 1) * step
+    for digits in range(1, ROUND_DIGITS + 1):
+        candidate = float(f"{top:.{digits - 1}e}")
+        if abs(candidate - top) <= 5e-6 * top:
+            exact = candidate / (n - 1)
+            return exact if f"{exact:.5e}" == f"{step:.5e}" else None
+    return None
 
 
 def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
