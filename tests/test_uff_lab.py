@@ -243,3 +243,40 @@ def test_structural_fuzz_gives_the_numbers_or_a_clean_error(tmp_path: Path) -> N
     assert not [m for m in messages if "\n" in m]
     assert counts["error"] > 100
     assert time.perf_counter() - start < 20.0
+
+
+def test_unstated_sign_convention_is_undone_from_the_driving_point(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    # Issue 12, item 3: the sensor mounted against the hammer but the file says +3 for both:
+    # every FRF reads negated, the driving point's modal constants negative.  The reader
+    # negates the set back (a driving point's constants are positive) and says so.
+    lines = _lines(FIXTURES / "testlab_like_frf.uff")
+    unstated = [line[:51] + "   3" + line[55:] if line[51:55] == "  -3" else line for line in lines]
+    path = _write(tmp_path / "unstated.uff", unstated)
+    frfs = read_frf_uff(path)
+    np.testing.assert_allclose(
+        frfs.values, make_fixtures.frfs().values, rtol=ASCII_RTOL, atol=1e-15
+    )
+    assert frfs.driving_point_sign() == 1
+    assert "negated" in frfs.metadata
+    assert "every FRF negated" in caplog.text
+
+
+def test_bandwidth_is_the_last_line_of_a_file_and_fs_over_2_56_of_an_estimate(
+    tmp_path: Path,
+) -> None:
+    # Issue 12, item 8: FRFs exported to 1000 Hz have their band to 1000 Hz (not 781 Hz by an
+    # fs/2 assumption); FRFs racketdyn estimates end at fs/2 and keep fs/2.56 through the file.
+    from racketdyn.measurement.frf import estimate_frfs
+    from test_uff import _records
+
+    assert read_frf_uff(FIXTURES / "testlab_like_frf.uff").bandwidth_hz == 1000.0
+    records = _records()
+    estimate = estimate_frfs(records).frfs
+    assert estimate is not None
+    fs = 1.0 / records.sampling_interval_s
+    assert estimate.bandwidth_hz == pytest.approx(fs / 2.56, rel=1e-12)
+    assert estimate.frequency[-1] == pytest.approx(fs / 2)
+    back = read_frf_uff(write_frf_uff(estimate, tmp_path / "frfs.uff"))
+    assert back.bandwidth_hz == pytest.approx(fs / 2.56, rel=1e-6)

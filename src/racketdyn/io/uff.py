@@ -97,6 +97,7 @@ UNIT_SCALE: dict[str, dict[str, float]] = {
 }
 _ABSCISSA_LINE = re.compile(r"racketdyn abscissa start (\S+) step (\S+)")
 _FRF_LINE = re.compile(r"estimator (\S+); exponential window tau (\S+) s; averages (\S+)")
+_BANDWIDTH = re.compile(r"; bandwidth (\S+) Hz")
 
 
 # --------------------------------------------------------------------------------------------
@@ -739,7 +740,8 @@ def read_frf_uff(path: Path | str, geometry: Path | str | None = None) -> FrfSet
     )
     coherence = _coherence(path, contents.records, first.rsp_node, nodes, first)
     estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
-    return FrfSet(
+    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
+    frfs = FrfSet(
         frequency=first.x * frequency_scale,
         values=values,
         frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
@@ -752,7 +754,9 @@ def read_frf_uff(path: Path | str, geometry: Path | str | None = None) -> FrfSet
         exponential_window_s=tau,
         estimator=estimator,
         source=str(path),
+        metadata={} if bandwidth is None else {"bandwidth_hz": bandwidth},
     )
+    return frfs.with_positive_driving_point()
 
 
 def _coherence(
@@ -775,6 +779,20 @@ def _coherence(
         if np.iscomplexobj(record.data):
             raise InputError(f"{record.where(path)}: a coherence must be real")
     return np.asarray([found[n].data for n in nodes], dtype=float)
+
+
+def _bandwidth_of(records: Sequence[_Record]) -> float | None:
+    """The analyser bandwidth racketdyn wrote in ID line 2 (Hz), if every record agrees."""
+    found = set()
+    for record in records:
+        match = _BANDWIDTH.search(record.ids[1]) if record.ids[0].startswith("racketdyn") else None
+        if match is None:
+            return None
+        found.add(match.group(1))
+    try:
+        return float(found.pop()) if len(found) == 1 else None
+    except ValueError:
+        return None
 
 
 def _frf_id_fields(
@@ -1016,12 +1034,15 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
     tau = "none" if frfs.exponential_window_s is None else repr(float(frfs.exponential_window_s))
     estimator = "_".join(str(frfs.estimator).split()) or "file"
     date = datetime.datetime.now().strftime("%d-%b-%y %H:%M:%S")
+    top = frfs.bandwidth_hz
+    bandwidth = "" if top == frequency[-1] else f"; bandwidth {top:.7g} Hz"
     for i, node in enumerate(frfs.nodes):
         _finite(path, "the FRF", node, frfs.values[i])
         averages = "?" if frfs.n_averages is None else str(int(frfs.n_averages[i]))
         ids = [
             f"racketdyn {__version__} FRF {frfs.frf_type}",
-            f"estimator {estimator}; exponential window tau {tau} s; averages {averages}",
+            f"estimator {estimator}; exponential window tau {tau} s; averages {averages}"
+            + bandwidth,
             date,
             f"hammer node {node} to reference node {frfs.reference_node}; {frfs.source}",
         ]

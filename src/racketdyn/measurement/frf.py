@@ -40,7 +40,12 @@ from racketdyn.measurement.quality import (
     check_point_starts,
     force_baseline_and_noise,
 )
-from racketdyn.measurement.records import FRF_TYPE_OF_RESPONSE, FrfSet, HammerRecords
+from racketdyn.measurement.records import (
+    ANALYSER_BANDWIDTH_FACTOR,
+    FRF_TYPE_OF_RESPONSE,
+    FrfSet,
+    HammerRecords,
+)
 
 __all__ = ["FrfEstimate", "estimate_frfs"]
 
@@ -207,6 +212,9 @@ def estimate_frfs(
         exponential_window_s=exponential_window_s,
         estimator=estimator,
         source=records.source,
-        metadata={"force_window_s": force_window_s},
-    )
+        metadata={
+            "force_window_s": force_window_s,
+            "bandwidth_hz": 1.0 / (ANALYSER_BANDWIDTH_FACTOR * dt),
+        },
+    ).with_positive_driving_point()
     return FrfEstimate(frfs, tuple(checks), rejected)

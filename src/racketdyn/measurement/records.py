@@ -8,6 +8,8 @@ reference, with coherence and what was done to get it.  Frequencies in Hz, time 
 
 from __future__ import annotations
 
+import logging
+import math
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal, get_args
 
@@ -17,6 +19,8 @@ from numpy.typing import NDArray
 from racketdyn._display import html_table, number, shorten, span, words
 from racketdyn.errors import InputError, require_positive
 from racketdyn.numerics import as_locations, as_points
+
+log = logging.getLogger(__name__)
 
 __all__ = [
     "ANALYSER_BANDWIDTH_FACTOR",
@@ -339,6 +343,63 @@ class FrfSet:
             The step that needs them (e.g. ``"the contact-time map"``).
         """
         _require_locations(self.source, what, self.nodes, self.locations, self.reference_location)
+
+    @property
+    def bandwidth_hz(self) -> float:
+        """Top of the usable band, Hz: the analyser bandwidth where known, else the last line.
+
+        FRFs estimated by racketdyn from time records end at fs/2, of which the lines above
+        fs/2.56 are the anti-alias filter's roll-off (``metadata["bandwidth_hz"]``); FRFs read
+        from another system's file are exported to their bandwidth, so their last line is it.
+        """
+        value = self.metadata.get("bandwidth_hz")
+        try:
+            top = float(value) if value is not None else math.nan
+        except (TypeError, ValueError):
+            top = math.nan
+        last = float(self.frequency[-1])
+        return top if 0 < top <= last else last
+
+    def driving_point_sign(self) -> int | None:
+        """+1 or −1: the sign the driving-point FRF's modal constants read with; None without one.
+
+        At the driving point every modal constant is positive, so the receptance's imaginary
+        part is ≤ 0 at every frequency (the mobility's real part, the accelerance's imaginary
+        part ≥ 0).  A driving-point FRF that reads the other way (summed over the lines,
+        weighted by magnitude) was measured with the sensor against the hammer or with opposite
+        sign conventions of the two channels that the file's direction codes do not say.
+        """
+        i = self.driving_point
+        if i is None:
+            return None
+        h = self.values[i]
+        usable = np.isfinite(h)
+        indicator = {"receptance": -h.imag, "mobility": h.real, "accelerance": h.imag}[
+            self.frf_type
+        ]
+        total = float(np.sum(indicator[usable]))
+        return None if total == 0 else (1 if total > 0 else -1)
+
+    def with_positive_driving_point(self) -> FrfSet:
+        """The set negated when its driving point reads with negative modal constants.
+
+        The reference sensor is common to every FRF of a roving-hammer set, so a sign
+        convention the file does not state flips them all; ``metadata["negated"]`` records
+        that it was undone (and a warning is logged).
+        """
+        if self.driving_point_sign() != -1:
+            return self
+        log.warning(
+            "%s: the driving-point FRF (node %d) reads with negative modal constants: the "
+            "sensor or the hammer measured against the other's direction; every FRF negated",
+            self.source,
+            self.reference_node,
+        )
+        return replace(
+            self,
+            values=-self.values,
+            metadata={**self.metadata, "negated": "driving point read with negative constants"},
+        )
 
     def band(self, low_hz: float, high_hz: float) -> FrfSet:
         """The FRFs between two frequencies (inclusive), Hz."""
