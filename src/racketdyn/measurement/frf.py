@@ -148,6 +148,7 @@ def estimate_frfs(
     settings = quality or QualitySettings()
     dt = records.sampling_interval_s
     time = records.time
+    pretrigger = records.pretrigger_samples
     exponential = (
         np.ones_like(time) if exponential_window_s is None else np.exp(-time / exponential_window_s)
     )
@@ -173,10 +174,12 @@ def estimate_frfs(
         f = force[accepted].copy()
         r = response[accepted].copy()
         for row_f, row_r, k in zip(f, r, accepted, strict=True):
-            # the quiet samples before the detected pulse give the offsets (the pre-trigger,
-            # whether or not the file's time axis starts at a negative time)
+            # the quiet samples before the pulse give the offsets: the pre-trigger when the
+            # pulse starts on the trigger, else those before the detected pulse (a pre-trigger
+            # exported with t >= 0)
             start = round(float(verdicts[k].pulse_start_s - time[0]) / dt)
-            quiet = max(start - 2, 0)
+            on_trigger = abs(verdicts[k].pulse_start_s) <= settings.trigger_tolerance_s
+            quiet = pretrigger if on_trigger and pretrigger > 0 else max(start - 2, 0)
             baseline, _ = force_baseline_and_noise(row_f, quiet)
             if force_window_s is not None:
                 row_f[time > verdicts[k].pulse_start_s + force_window_s] = baseline
