@@ -71,4 +71,27 @@ def test_bad_tests_file_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixtur
     assert err[0].startswith("racketdyn: error:")
     assert "junk.uff" in err[0]
     assert main(["contact", str(tmp_path / "x.csv"), "--out", str(tmp_path / "o")]) == 2
+    assert "no such file" in capsys.readouterr().err
+
+
+def test_frf_needs_no_geometry_and_says_why_most_averages_were_rejected(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Issue 12, items 1 and 2: time records without node coordinates (CSV without --geometry)
+    # give FRFs; a contact map, which needs coordinates, names --geometry.  When most averages
+    # are rejected, the console says why in words.
+    from racketdyn.io import write_hammer_csv
+
+    records = records_for(MODES, n_averages=3)
+    force = records.force[0].copy()
+    force[:] = 0.0  # node 1: no pulse at all; node 2 is fine
+    records = dataclasses.replace(records, force=(force, records.force[1].copy()))
+    records.force[1][0] = 0.0
+    data, _ = write_hammer_csv(records, tmp_path / "h.csv", tmp_path / "g.csv")
+    assert main(["frf", str(data), "--out", str(tmp_path / "o")]) == 0
+    out = capsys.readouterr().out
+    assert "most averages rejected (4 of 6)" in " ".join(out.split())
+    assert "no force pulse above the noise" in " ".join(out.split())
+    assert read_frf_uff(tmp_path / "o" / "frfs.uff").nodes == (2,)
+    assert main(["contact", str(data), "--out", str(tmp_path / "c")]) == 2
     assert "--geometry" in capsys.readouterr().err

@@ -164,11 +164,58 @@ def test_all_rejected_point_is_reported_and_the_rest_goes_on() -> None:
     assert estimate.summary()["accepted"] == 3
 
 
-def test_late_pulse_is_a_trigger_fault() -> None:
-    records = records_for(MODES, n_averages=1)
-    late = np.roll(records.force[0], 40)  # 8 ms late
+def _without_pretrigger(records: HammerRecords) -> HammerRecords:
+    """The same records with t = 0 at the first sample (a pre-trigger exported as t ≥ 0)."""
+    from dataclasses import replace
+
+    return replace(records, pretrigger_s=0.0)
+
+
+def test_pulse_anywhere_in_the_record_is_found() -> None:
+    # Issue 12, item 1: the pulse starts 10 ms into records whose t = 0 is the first sample
+    # (50 samples of pre-trigger, exported without negative times).  Every average is kept and
+    # the FRF is the analytic one as in test_h1_is_the_analytic_frf (a common delay of force
+    # and response cancels in S_fr / S_ff).
+    records = _without_pretrigger(records_for(MODES, pretrigger_samples=50))
+    estimate = estimate_frfs(records)
+    assert estimate.summary()["accepted"] == estimate.summary()["averages"] == 8
+    assert all(c.pulse_start_s == pytest.approx(0.010, abs=2.1e-4) for c in estimate.checks)
+    frf = estimate.frfs
+    assert frf is not None
+    band = _band(frf)
+    truth = MODES.accelerance(2j * np.pi * frf.frequency[band])
+    np.testing.assert_allclose(frf.values[:, band], truth, rtol=5e-3)
+
+
+def test_force_window_counts_from_the_detected_pulse() -> None:
+    # A 5 ms force window on records whose pulse starts at 10 ms keeps the pulse: the FRF is
+    # the analytic one (it cut the whole pulse away when it counted from t = 0).
+    records = _without_pretrigger(records_for(MODES, pretrigger_samples=50))
+    frf = estimate_frfs(records, force_window_s=0.005).frfs
+    assert frf is not None
+    assert frf.metadata["force_window_s"] == 0.005
+    band = _band(frf)
+    truth = MODES.accelerance(2j * np.pi * frf.frequency[band])
+    np.testing.assert_allclose(frf.values[:, band], truth, rtol=5e-3)
+
+
+def test_pulse_starting_away_from_the_other_averages_is_a_trigger_fault() -> None:
+    records = records_for(MODES, n_averages=3)
+    late = records.force[0].copy()
+    late[1] = np.roll(late[1], 40)  # average 2 of node 1: 8 ms after the other two
     estimate = estimate_frfs(_replace_point(records, 0, late))
-    assert "trigger" in next(c for c in estimate.checks if c.node == 1).reasons
+    reasons = {c.average: c.reasons for c in estimate.checks if c.node == 1}
+    assert reasons == {1: (), 2: ("trigger",), 3: ()}
+
+
+def test_pulse_cut_by_the_record_start_or_end_is_a_trigger_fault() -> None:
+    records = records_for(MODES, n_averages=2, pretrigger_samples=20)
+    cut = records.force[0].copy()
+    cut[0] = np.roll(cut[0], -22)  # the pulse (5 samples long) already on at the first sample
+    cut[1] = np.roll(cut[1], cut.shape[1] - 22)  # and running off the end
+    estimate = estimate_frfs(_replace_point(records, 0, cut))
+    reasons = {c.average: c.reasons for c in estimate.checks if c.node == 1}
+    assert reasons == {1: ("trigger",), 2: ("trigger",)}
 
 
 @pytest.mark.parametrize("duration", [2.0e-3, 3.3e-3, 4.7e-3])

@@ -311,7 +311,13 @@ def test_lab_file_with_geometry_in_a_separate_file(tmp_path: Path) -> None:
     np.testing.assert_array_equal(back.locations, LOCATIONS)
     assert back.reference_location == (0.55, 0.02)
     np.testing.assert_allclose(back.force[2], records.force[2], rtol=ASCII_RTOL)
-    _raises(data, lambda: read_hammer_uff(data), "no node coordinates")
+    # issue 12, item 2: FRFs need no geometry; the records come without locations, and a step
+    # that needs them names --geometry
+    bare = read_hammer_uff(data)
+    assert np.isnan(bare.locations).all()
+    assert not bare.has_locations
+    np.testing.assert_allclose(bare.force[2], records.force[2], rtol=ASCII_RTOL)
+    _raises(data, lambda: bare.require_locations("the map"), "the map", "--geometry")
 
 
 def test_lab_file_units_labels_and_directions(tmp_path: Path) -> None:
@@ -424,7 +430,13 @@ def test_node_without_coordinates(tmp_path: Path) -> None:
     sets = _lab_sets(_records())
     sets[0] = _geometry_set((3, 7))
     path = _write_lab(tmp_path / "lab.uff", sets)
-    _raises(path, lambda: read_hammer_uff(path), "hammer node 12")
+    records = read_hammer_uff(path)
+    assert np.isnan(records.locations[2]).all()
+    np.testing.assert_array_equal(records.locations[:2], LOCATIONS[:2])
+    _raises(path, lambda: records.require_locations("the map"), "12", "--geometry")
+    # written again, the node without coordinates is left out of data set 15
+    again = read_hammer_uff(write_hammer_uff(records, path.with_name("again.uff")))
+    np.testing.assert_array_equal(again.locations, records.locations)
 
 
 def test_frfs_on_different_frequency_axes(tmp_path: Path) -> None:
@@ -467,4 +479,7 @@ def test_bad_csv_files(tmp_path: Path) -> None:
     short.write_text("\n".join(text.splitlines()[:-3]) + "\n")
     _raises(short, lambda: read_hammer_csv(short, geometry), "node 12, average 2")
     geometry.write_text("node,x_m,y_m\n3,0.45,0.0\n7,0.55,0.02\n")
-    _raises(geometry, lambda: read_hammer_csv(data, geometry), "node 12")
+    partial = read_hammer_csv(data, geometry)
+    assert np.isnan(partial.locations[2]).all()
+    _raises(data, lambda: partial.require_locations("the map"), "node(s) 12", "--geometry")
+    assert np.isnan(read_hammer_csv(data).locations).all()

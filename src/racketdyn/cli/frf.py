@@ -86,9 +86,16 @@ def run(args: argparse.Namespace, console: Console) -> int:
         f"{estimate.frfs.n_points} FRFs from {summary['accepted']} of "
         f"{summary['averages']} averages → {result.out}"
     )
-    for reason, count in summary.items():
-        if reason not in ("averages", "accepted"):
-            console.print(f"[yellow]{count} averages rejected: {reason}[/]")
+    rejected = summary["averages"] - summary["accepted"]
+    if 2 * rejected > summary["averages"]:
+        console.print(
+            f"[yellow]most averages rejected ({rejected} of {summary['averages']}), why: "
+            f"{estimate.rejections()}; every verdict in quality.csv[/]"
+        )
+    else:
+        for reason, count in summary.items():
+            if reason not in ("averages", "accepted"):
+                console.print(f"[yellow]{count} averages rejected: {reason}[/]")
     if estimate.rejected_points:
         nodes = ", ".join(str(n) for n in estimate.rejected_points)
         console.print(f"[yellow]every average rejected at node(s) {nodes}: no FRF there[/]")

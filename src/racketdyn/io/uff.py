@@ -21,6 +21,7 @@ Data sets are counted from 1 in the order of the file in every message.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import datetime
 import io
@@ -30,7 +31,7 @@ import os
 import re
 import tempfile
 import warnings
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, cast
@@ -41,6 +42,7 @@ from numpy.typing import NDArray
 
 from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError
+from racketdyn.io.uff_structure import check_structure
 from racketdyn.measurement.records import (
     FRF_TYPE_OF_RESPONSE,
     RESPONSE_TYPES,
@@ -95,6 +97,7 @@ UNIT_SCALE: dict[str, dict[str, float]] = {
 }
 _ABSCISSA_LINE = re.compile(r"racketdyn abscissa start (\S+) step (\S+)")
 _FRF_LINE = re.compile(r"estimator (\S+); exponential window tau (\S+) s; averages (\S+)")
+_BANDWIDTH = re.compile(r"; bandwidth (\S+) Hz")
 
 
 # --------------------------------------------------------------------------------------------
@@ -154,6 +157,16 @@ def _as_int(value: Any, default: int = 0) -> int:
         return default
 
 
+@contextlib.contextmanager
+def _quiet_pyuff() -> Iterator[None]:
+    """Keep pyuff's prints (it prints the layouts of some data sets) off the console; logged."""
+    captured = io.StringIO()
+    with contextlib.redirect_stdout(captured):
+        yield
+    if captured.getvalue():
+        logger.debug("pyuff printed: %s", captured.getvalue())
+
+
 def _read_sets(path: Path) -> list[dict[str, Any]]:
     """All data sets of a Universal File as pyuff dictionaries; InputError on anything wrong."""
     if not path.exists():
@@ -166,34 +179,41 @@ def _read_sets(path: Path) -> list[dict[str, Any]]:
         raise InputError(f"{path}: cannot be read ({error.strerror})") from None
     if not raw.strip():
         raise InputError(f"{path}: empty; expected a Universal File of data sets 15 and 58")
-    try:  # pyuff raises bare Exception for every failure
-        uff = pyuff.UFF(str(path))
-        n_sets = int(uff.get_n_sets())
-    except Exception:
-        raise InputError(f"{path}: cannot be read as a Universal File") from None
-    if n_sets == 0:
+    blocks = check_structure(path, raw)
+    if not blocks:
         raise InputError(
             f"{path}: not a Universal File (no data sets between '    -1' lines); export the "
             "test as UFF data sets 15 and 58"
         )
-    # pyuff pairs the '    -1' delimiters and silently drops an unpaired last one, so a file
-    # cut short loses its last data set without a word: a complete file ends with '    -1'.
-    if not raw.rstrip().endswith(b"    -1"):
-        raise InputError(
-            f"{path}: truncated or damaged: it does not end with a '    -1' line (data set "
-            f"{n_sets + 1} is incomplete); export the file again"
-        )
     sets = []
-    for i in range(n_sets):
-        try:  # read one set at a time: pyuff's read_sets() names no set when one fails
-            dset = uff.read_sets(i)
+    with _quiet_pyuff():
+        try:  # pyuff raises bare Exception for every failure
+            uff = pyuff.UFF(str(path))
+            n_sets = int(uff.get_n_sets())
         except Exception:
+            raise InputError(f"{path}: cannot be read as a Universal File") from None
+        if n_sets != len(blocks):  # the structure check follows pyuff's rule: never expected
             raise InputError(
-                f"{path}: data set {i + 1} of {n_sets} cannot be read (truncated or damaged); "
+                f"{path}: pyuff finds {n_sets} data sets where the file holds {len(blocks)}; "
                 "export the file again"
-            ) from None
-        sets.append(cast(dict[str, Any], dset))
+            )
+        for block in blocks:
+            i = block.number - 1
+            try:  # read one set at a time: pyuff's read_sets() names no set when one fails
+                dset = uff.read_sets(i)
+            except Exception:
+                raise InputError(
+                    f"{path}: data set {block.number} of {n_sets} ({block.type}, line "
+                    f"{block.line}) cannot be read (damaged); export the file again"
+                ) from None
+            sets.append(cast(dict[str, Any], dset))
     return sets
+
+
+#: Largest plausible extent of a hammer-tested structure's nodes, m (a racket is 0.7 m; a
+#: car body or a machine frame a few metres).  Coordinates beyond it are taken as mm written
+#: without a data set 164 (680 mm read as 680 m) and refused.
+MAX_EXTENT_M = 20.0
 
 
 def _units_of(path: Path, sets: Sequence[dict[str, Any]]) -> _Units:
@@ -224,10 +244,21 @@ def _nodes_of(
         numbers = np.asarray(dset.get("node_nums", []), dtype=float)
         x = np.asarray(dset.get("x", []), dtype=float) / units.length
         y = np.asarray(dset.get("y", []), dtype=float) / units.length
-        if not (numbers.size == x.size == y.size) or not np.all(np.isfinite(np.r_[x, y])):
+        z = np.asarray(dset.get("z", np.zeros_like(x)), dtype=float) / units.length
+        if not (numbers.size == x.size == y.size == z.size) or not np.all(
+            np.isfinite(np.r_[numbers, x, y, z])
+        ):
             raise InputError(
-                f"{path}: data set {i} ({dset['type']}, nodes): every node needs finite x, y, z "
-                "coordinates"
+                f"{path}: data set {i} ({dset['type']}, nodes): every node needs a finite node "
+                "number and finite x, y, z coordinates"
+            )
+        extent = float(np.max(np.ptp(np.c_[x, y, z], axis=0))) if x.size else 0.0
+        if extent > MAX_EXTENT_M:
+            raise InputError(
+                f"{path}: data set {i} ({dset['type']}, nodes): the nodes span {extent:g} m, "
+                f"more than the {MAX_EXTENT_M:g} m of any structure tested with a hammer: the "
+                "coordinates are likely in mm; add a data set 164 giving the length unit, or "
+                "give the coordinates in m with --geometry FILE"
             )
         for number, xi, yi in zip(numbers, x, y, strict=True):
             nodes[int(number)] = (float(xi), float(yi))
@@ -305,7 +336,45 @@ def _abscissa(dset: dict[str, Any]) -> tuple[NDArray[np.float64], float, bool]:
             abs(start) + abs(exact)
         ):
             return np.asarray(start + np.arange(x.size) * exact), exact, even
+    snapped = _round_step(
+        header_start, header_step, x.size, _as_int(dset.get("abscissa_spec_data_type"))
+    )
+    if snapped is not None:
+        return np.asarray(header_start + np.arange(x.size) * snapped), snapped, even
     return x, header_step, even
+
+
+#: Significant digits of a "round" band top or sampling rate (1000 Hz, 51 200 Hz, 12.8 kHz).
+ROUND_DIGITS = 4
+
+
+def _round_step(start: float, step: float, n: int, kind: int) -> float | None:
+    """The exact step behind a 6-digit header step, where the axis ends on a round number.
+
+    The header holds the step with 6 significant digits (E13.5): 1.953125 Hz is written
+    1.95312, and 512 of them end at 999.997 Hz instead of 1000.  A frequency axis from 0 whose
+    top, within the header's rounding (±5e-6 of the step per line), is a number of at most
+    :data:`ROUND_DIGITS` significant digits gets the step that ends exactly there; a time axis
+    gets the step of a round sampling rate.  None where no such number lies within reach.
+    """
+    if not (math.isfinite(step) and step > 0 and n > 1):
+        return None
+    if kind == QUANTITY_CODE["time"]:
+        rate = 1.0 / step
+        for digits in range(1, ROUND_DIGITS + 1):
+            candidate = float(f"{rate:.{digits - 1}e}")
+            if abs(candidate - rate) <= 5e-6 * rate and f"{1 / candidate:.5e}" == f"{step:.5e}":
+                return 1.0 / candidate
+        return None
+    if start != 0.0:
+        return None
+    top = (n - 1) * step
+    for digits in range(1, ROUND_DIGITS + 1):
+        candidate = float(f"{top:.{digits - 1}e}")
+        if abs(candidate - top) <= 5e-6 * top:
+            exact = candidate / (n - 1)
+            return exact if f"{exact:.5e}" == f"{step:.5e}" else None
+    return None
 
 
 def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
@@ -373,25 +442,20 @@ def _load(path: Path, geometry: Path | str | None) -> _Contents:
     return _Contents(records=records, nodes=nodes, units=units, types=types)
 
 
-def _location(
-    path: Path,
-    geometry: Path | str | None,
-    nodes: dict[int, tuple[float, float]],
-    node: int,
-    role: str,
-) -> tuple[float, float]:
-    if node in nodes:
-        return nodes[node]
-    where = f"{path}" if geometry is None else f"{path} or {geometry}"
-    if not nodes:
-        raise InputError(
-            f"{path}: no node coordinates (data set 15 or 2411); add them to the file or pass "
-            "geometry= a file that holds them"
+def _location(nodes: dict[int, tuple[float, float]], node: int) -> tuple[float, float]:
+    """A node's (x, y), m; NaN without coordinates (FRFs need none; a step that does asks)."""
+    return nodes.get(node, (math.nan, math.nan))
+
+
+def _note_missing(path: Path, nodes: dict[int, tuple[float, float]], wanted: list[int]) -> None:
+    missing = [n for n in wanted if n not in nodes]
+    if missing:
+        logger.info(
+            "%s: node(s) %s have no coordinates (FRFs need none; shapes and maps will ask for "
+            "--geometry)",
+            path,
+            ", ".join(map(str, missing[:8])),
         )
-    raise InputError(
-        f"{path}: {role} node {node} has no coordinates in {where}; add it to the geometry "
-        "(data set 15 or 2411)"
-    )
 
 
 def _check_same_abscissa(path: Path, first: _Record, record: _Record, what: str) -> None:
@@ -571,8 +635,9 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
             rows_r.append(r.data * r_scale * _sign(path, r, r.rsp_dir))
         force_rows.append(np.asarray(rows_f, dtype=float))
         response_rows.append(np.asarray(rows_r, dtype=float))
-    locations = [_location(path, geometry, contents.nodes, n, "hammer") for n in nodes]
-    reference_location = _location(path, geometry, contents.nodes, reference_node, "reference")
+    _note_missing(path, contents.nodes, [*nodes, reference_node])
+    locations = [_location(contents.nodes, n) for n in nodes]
+    reference_location = _location(contents.nodes, reference_node)
     return HammerRecords(
         sampling_interval_s=float(step * time_scale),
         force=tuple(force_rows),
@@ -662,6 +727,7 @@ def read_frf_uff(path: Path | str, geometry: Path | str | None = None) -> FrfSet
         path, first, "frequency", _normal_label(first.labels[0]), contents.units
     )
     nodes = sorted(by_node)
+    _note_missing(path, contents.nodes, [*nodes, first.rsp_node])
     values = np.asarray(
         [
             by_node[n].data
@@ -674,22 +740,23 @@ def read_frf_uff(path: Path | str, geometry: Path | str | None = None) -> FrfSet
     )
     coherence = _coherence(path, contents.records, first.rsp_node, nodes, first)
     estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
-    return FrfSet(
+    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
+    frfs = FrfSet(
         frequency=first.x * frequency_scale,
         values=values,
         frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
         nodes=tuple(nodes),
-        locations=np.asarray(
-            [_location(path, geometry, contents.nodes, n, "hammer") for n in nodes], dtype=float
-        ),
+        locations=np.asarray([_location(contents.nodes, n) for n in nodes], dtype=float),
         reference_node=first.rsp_node,
-        reference_location=_location(path, geometry, contents.nodes, first.rsp_node, "reference"),
+        reference_location=_location(contents.nodes, first.rsp_node),
         coherence=coherence,
         n_averages=averages,
         exponential_window_s=tau,
         estimator=estimator,
         source=str(path),
+        metadata={} if bandwidth is None else {"bandwidth_hz": bandwidth},
     )
+    return frfs.with_positive_driving_point()
 
 
 def _coherence(
@@ -712,6 +779,20 @@ def _coherence(
         if np.iscomplexobj(record.data):
             raise InputError(f"{record.where(path)}: a coherence must be real")
     return np.asarray([found[n].data for n in nodes], dtype=float)
+
+
+def _bandwidth_of(records: Sequence[_Record]) -> float | None:
+    """The analyser bandwidth racketdyn wrote in ID line 2 (Hz), if every record agrees."""
+    found = set()
+    for record in records:
+        match = _BANDWIDTH.search(record.ids[1]) if record.ids[0].startswith("racketdyn") else None
+        if match is None:
+            return None
+        found.add(match.group(1))
+    try:
+        return float(found.pop()) if len(found) == 1 else None
+    except ValueError:
+        return None
 
 
 def _frf_id_fields(
@@ -767,9 +848,14 @@ def _geometry_set(
     reference_location: tuple[float, float],
     nodes: Sequence[int],
     locations: NDArray[np.float64],
-) -> dict[str, Any]:
-    """Data set 15 with the reference node first, then the hammer nodes."""
+) -> dict[str, Any] | None:
+    """Data set 15 with the reference node first, then the hammer nodes (those with coordinates).
+
+    None when no node has coordinates (the records came without geometry).
+    """
     numbers, xs, ys = [reference_node], [reference_location[0]], [reference_location[1]]
+    if any(math.isnan(v) for v in reference_location):
+        numbers, xs, ys = [], [], []
     seen: set[int] = set()
     for node, (x, y) in zip(nodes, locations, strict=True):
         if node <= 0:
@@ -777,7 +863,9 @@ def _geometry_set(
         if node in seen:
             raise InputError(f"{target}: node {node} is listed twice; give each point its own node")
         seen.add(node)
-        if node == reference_node:
+        if math.isnan(x) or math.isnan(y):
+            continue
+        if node == reference_node and numbers and numbers[0] == reference_node:
             if not np.allclose((x, y), reference_location, rtol=0.0, atol=1e-9):
                 raise InputError(
                     f"{target}: node {node} is the reference and a hammer point at different "
@@ -792,6 +880,8 @@ def _geometry_set(
             f"{target}: reference node {reference_node}: UFF node numbers must be positive"
         )
     n = len(numbers)
+    if n == 0:
+        return None
     return {
         "type": 15,
         "node_nums": numbers,
@@ -875,7 +965,7 @@ def _write_sets(path: Path, sets: Sequence[dict[str, Any]]) -> Path:
                     part = Path(scratch) / f"{k}.uff"
                     # pyuff leaves a file handle open after a binary data set 58 (CPython closes
                     # it at once; the ResourceWarning would reach the user as noise)
-                    with warnings.catch_warnings():
+                    with warnings.catch_warnings(), _quiet_pyuff():
                         warnings.simplefilter("ignore", ResourceWarning)
                         pyuff.UFF(str(part)).write_sets([dset], mode="add")
                     target.write(part.read_bytes())
@@ -938,17 +1028,21 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
     if frfs.locations.shape[1] != 2:
         raise InputError(f"{path}: racketdyn writes UFF geometry for (x, y) locations only")
     reference = (float(frfs.reference_location[0]), float(frfs.reference_location[1]))
-    sets = [_geometry_set(path, frfs.reference_node, reference, frfs.nodes, frfs.locations)]
+    geometry = _geometry_set(path, frfs.reference_node, reference, frfs.nodes, frfs.locations)
+    sets: list[dict[str, Any]] = [] if geometry is None else [geometry]
     response = {v: k for k, v in FRF_TYPE_OF_RESPONSE.items()}[frfs.frf_type]
     tau = "none" if frfs.exponential_window_s is None else repr(float(frfs.exponential_window_s))
     estimator = "_".join(str(frfs.estimator).split()) or "file"
     date = datetime.datetime.now().strftime("%d-%b-%y %H:%M:%S")
+    top = frfs.bandwidth_hz
+    bandwidth = "" if top == frequency[-1] else f"; bandwidth {top:.7g} Hz"
     for i, node in enumerate(frfs.nodes):
         _finite(path, "the FRF", node, frfs.values[i])
         averages = "?" if frfs.n_averages is None else str(int(frfs.n_averages[i]))
         ids = [
             f"racketdyn {__version__} FRF {frfs.frf_type}",
-            f"estimator {estimator}; exponential window tau {tau} s; averages {averages}",
+            f"estimator {estimator}; exponential window tau {tau} s; averages {averages}"
+            + bandwidth,
             date,
             f"hammer node {node} to reference node {frfs.reference_node}; {frfs.source}",
         ]
@@ -1018,15 +1112,10 @@ def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = Fa
         cannot be written.
     """
     path = Path(path)
-    sets = [
-        _geometry_set(
-            path,
-            records.reference_node,
-            records.reference_location,
-            records.nodes,
-            records.locations,
-        )
-    ]
+    geometry = _geometry_set(
+        path, records.reference_node, records.reference_location, records.nodes, records.locations
+    )
+    sets: list[dict[str, Any]] = [] if geometry is None else [geometry]
     time = records.time
     date = datetime.datetime.now().strftime("%d-%b-%y %H:%M:%S")
     kind = records.response_type
@@ -1147,7 +1236,7 @@ def _csv_setting(path: Path, settings: dict[str, str], key: str, example: str) -
     return settings[key]
 
 
-def read_hammer_csv(path: Path | str, geometry_path: Path | str) -> HammerRecords:
+def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -> HammerRecords:
     """Read roving-hammer time records from a CSV file and its geometry CSV.
 
     Parameters
@@ -1158,9 +1247,10 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str) -> HammerRecord
         force_n,response``; one row per sample: hammer node, average number, time from the
         trigger (s, the same evenly spaced times for every average), hammer force (N), response
         at the reference node (SI units of the response type).
-    geometry_path : Path or str
-        CSV with header ``node,x_m,y_m``: coordinates (m) of the reference node and every
-        hammer node.
+    geometry_path : Path or str, optional
+        CSV with header ``node,x_m,y_m``: coordinates (m) of the reference node and the hammer
+        nodes.  Without it (or for a node it does not list) the locations are NaN: FRFs need
+        none, the steps that do ask for ``--geometry``.
 
     Returns
     -------
@@ -1172,9 +1262,9 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str) -> HammerRecord
     ------
     InputError
         Missing file or column, a value that is not a number (NaN included), a missing
-        setting, averages of different length or timing, a node without coordinates.
+        setting, averages of different length or timing.
     """
-    path, geometry_path = Path(path), Path(geometry_path)
+    path = Path(path)
     settings, header, numbers, rows = _csv_rows(path, CSV_COLUMNS)
     if not rows:
         raise InputError(f"{path}: no samples listed under the header")
@@ -1225,21 +1315,17 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str) -> HammerRecord
         averages.append([int(average[g[0]]) for g in mine])
         forces.append(np.asarray([force[g] for g in mine]))
         responses.append(np.asarray([response[g] for g in mine]))
-    coordinates = _read_geometry_csv(geometry_path)
-    for n in [*nodes, reference_node]:
-        if n not in coordinates:
-            raise InputError(
-                f"{geometry_path}: node {n} has no coordinates; add a line '{n},x_m,y_m'"
-            )
+    coordinates = {} if geometry_path is None else _read_geometry_csv(Path(geometry_path))
+    _note_missing(path, coordinates, [*nodes, reference_node])
     return HammerRecords(
         sampling_interval_s=float(step),
         force=tuple(forces),
         response=tuple(responses),
         response_type=cast(ResponseType, response_type),
         nodes=tuple(nodes),
-        locations=np.asarray([coordinates[n] for n in nodes], dtype=float),
+        locations=np.asarray([_location(coordinates, n) for n in nodes], dtype=float),
         reference_node=reference_node,
-        reference_location=coordinates[reference_node],
+        reference_location=_location(coordinates, reference_node),
         pretrigger_s=float(-axis[0]),
         source=str(path),
         metadata={"averages": averages},
@@ -1312,6 +1398,8 @@ def write_hammer_csv(
         }
     )
     for n in sorted(written):
+        if math.isnan(written[n][0]) or math.isnan(written[n][1]):
+            continue  # no coordinates: left out, as read
         geometry.write(f"{n},{written[n][0]!r},{written[n][1]!r}\n")
     for target, text in ((path, buffer.getvalue()), (geometry_path, geometry.getvalue())):
         try:

@@ -6,7 +6,8 @@ added damping, misses second hits 0.5–2 ms after the first and rejects float s
 
 Windows
     *Force window*: the force is kept from the start of the record to ``force_window_s`` after
-    the trigger and set to its baseline afterwards, removing the noise the hammer channel
+    the start of the pulse (detected in each average, wherever it lies in the record) and set
+    to its baseline afterwards, removing the noise the hammer channel
     records once the pulse is over.  *Exponential window* ``w(t) = exp(−t/τ)`` (t from the
     trigger): applied to the response **and** the force, so that the windowed response is
     exactly the response of the structure with every pole moved left by 1/τ to the windowed
@@ -23,6 +24,7 @@ from __future__ import annotations
 
 import csv
 import logging
+from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
@@ -31,12 +33,19 @@ import numpy as np
 
 from racketdyn.errors import InputError, require_positive
 from racketdyn.measurement.quality import (
+    REASONS,
     AverageCheck,
     QualitySettings,
     check_average,
+    check_point_starts,
     force_baseline_and_noise,
 )
-from racketdyn.measurement.records import FRF_TYPE_OF_RESPONSE, FrfSet, HammerRecords
+from racketdyn.measurement.records import (
+    ANALYSER_BANDWIDTH_FACTOR,
+    FRF_TYPE_OF_RESPONSE,
+    FrfSet,
+    HammerRecords,
+)
 
 __all__ = ["FrfEstimate", "estimate_frfs"]
 
@@ -79,6 +88,18 @@ class FrfEstimate:
                     ]
                 )
 
+    def rejections(self) -> str:
+        """Why averages were rejected, most frequent reason first, each with its meaning.
+
+        Empty when none was.  E.g. ``"trigger 38 (the pulse is cut by the record's start or
+        end, or starts away from the other averages of its point); empty 2 (…)"``.
+        """
+        counts = Counter(reason for check in self.checks for reason in check.reasons)
+        return "; ".join(
+            f"{reason} {count} ({REASONS.get(reason, reason)})"
+            for reason, count in counts.most_common()
+        )
+
     def summary(self) -> dict[str, int]:
         """Counts of averages by verdict and reason."""
         counts: dict[str, int] = {"averages": len(self.checks)}
@@ -105,7 +126,8 @@ def estimate_frfs(
     estimator : {"H1", "H2"}
         Spectral estimator.
     force_window_s : float, optional
-        Keep the force up to this time after the trigger, s; None keeps the whole record.
+        Keep the force up to this time after the pulse start (detected in each average), s;
+        None keeps the whole record.
     exponential_window_s : float, optional
         Time constant τ of the exponential window on both channels, s; None for none.
     quality : QualitySettings, optional
@@ -130,31 +152,39 @@ def estimate_frfs(
     exponential = (
         np.ones_like(time) if exponential_window_s is None else np.exp(-time / exponential_window_s)
     )
-    keep_force = (
-        np.ones_like(time, dtype=bool) if force_window_s is None else time <= force_window_s
-    )
 
     checks: list[AverageCheck] = []
     values, coherence, counts, kept = [], [], [], []
     for index, node in enumerate(records.nodes):
         force, response = records.force[index], records.response[index]
-        verdicts = [
-            check_average(node, k + 1, force[k], response[k], dt, records.pretrigger_s, settings)
-            for k in range(force.shape[0])
-        ]
+        verdicts = check_point_starts(
+            [
+                check_average(
+                    node, k + 1, force[k], response[k], dt, records.pretrigger_s, settings
+                )
+                for k in range(force.shape[0])
+            ],
+            settings,
+        )
         checks.extend(verdicts)
         accepted = [k for k, v in enumerate(verdicts) if v.accepted]
         if not accepted:
             log.warning("node %d: every average rejected; left out", node)
             continue
         f = force[accepted].copy()
-        for row in f:
-            baseline, _ = force_baseline_and_noise(row, pretrigger)
-            row[~keep_force] = baseline
-            row -= baseline
-        r = response[accepted] - np.mean(
-            response[accepted, : max(pretrigger, 1)], axis=1, keepdims=True
-        )
+        r = response[accepted].copy()
+        for row_f, row_r, k in zip(f, r, accepted, strict=True):
+            # the quiet samples before the pulse give the offsets: the pre-trigger when the
+            # pulse starts on the trigger, else those before the detected pulse (a pre-trigger
+            # exported with t >= 0)
+            start = round(float(verdicts[k].pulse_start_s - time[0]) / dt)
+            on_trigger = abs(verdicts[k].pulse_start_s) <= settings.trigger_tolerance_s
+            quiet = pretrigger if on_trigger and pretrigger > 0 else max(start - 2, 0)
+            baseline, _ = force_baseline_and_noise(row_f, quiet)
+            if force_window_s is not None:
+                row_f[time > verdicts[k].pulse_start_s + force_window_s] = baseline
+            row_f -= baseline
+            row_r -= np.mean(row_r[: max(quiet, 1)])
         spectrum_f = np.fft.rfft(f * exponential, axis=1) * dt
         spectrum_r = np.fft.rfft(r * exponential, axis=1) * dt
         s_ff = np.sum(np.abs(spectrum_f) ** 2, axis=0)
@@ -185,6 +215,9 @@ def estimate_frfs(
         exponential_window_s=exponential_window_s,
         estimator=estimator,
         source=records.source,
-        metadata={"force_window_s": force_window_s},
-    )
+        metadata={
+            "force_window_s": force_window_s,
+            "bandwidth_hz": 1.0 / (ANALYSER_BANDWIDTH_FACTOR * dt),
+        },
+    ).with_positive_driving_point()
     return FrfEstimate(frfs, tuple(checks), rejected)

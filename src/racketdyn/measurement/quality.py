@@ -17,22 +17,44 @@ Checks (each named in the reasons it gives):
     (prominence), so a second hit 0.5–4 ms after the first is caught on frame and string
     pulses alike.
 ``trigger``
-    The pulse does not start within ``trigger_tolerance_s`` of the trigger time (t = 0), or it
-    is cut by the end of the record.
+    The pulse is cut by the start or the end of the record, or it starts more than
+    ``trigger_tolerance_s`` away from the other averages of its point (their median start;
+    :func:`check_point_starts`).  The pulse may lie anywhere in the record: a record whose
+    t = 0 is its first sample and whose pulse comes 10 ms later (an acquisition with a
+    pre-trigger that exports no negative times) is as good as one triggered at t = 0.
 
 The noise level comes from the pre-trigger samples when there are at least 8, else from the
-last quarter of the record (robust estimate: 1.4826 × median absolute deviation).
+last quarter of the record (robust estimate: 1.4826 × median absolute deviation).  The pulse
+starts at the first sample above the detection level; windows count from there.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.signal import find_peaks
 
-__all__ = ["AverageCheck", "QualitySettings", "check_average", "force_baseline_and_noise"]
+__all__ = [
+    "REASONS",
+    "AverageCheck",
+    "QualitySettings",
+    "check_average",
+    "check_point_starts",
+    "force_baseline_and_noise",
+]
+
+REASONS = {
+    "non-finite": "NaN or infinite samples",
+    "empty": "no force pulse above the noise",
+    "force overload": "the force clips (flat top) or reaches --force-range",
+    "response overload": "the response clips (flat top)",
+    "double hit": "a second hammer pulse",
+    "trigger": "the pulse is cut by the record's start or end, or starts away from the other "
+    "averages of its point",
+}
+"""What each rejection reason means, for summaries."""
 
 
 @dataclass(frozen=True)
@@ -46,7 +68,8 @@ class QualitySettings:
     noise_factor : float
         Detection level as a multiple of the force noise rms (whichever is higher).
     trigger_tolerance_s : float
-        Largest allowed distance between the pulse start and the trigger time, s.
+        Largest allowed distance between the pulse start of an average and the median start of
+        its point's averages, s.
     overload_level_n : float or None
         Hammer force range, N: a force reaching it is an overload.
     """
@@ -59,13 +82,29 @@ class QualitySettings:
 
 @dataclass(frozen=True)
 class AverageCheck:
-    """The verdict on one average of one hammer point."""
+    """The verdict on one average of one hammer point.
+
+    Attributes
+    ----------
+    node, average : int
+        Hammer node and average number (from 1).
+    accepted : bool
+        No reason to reject it.
+    reasons : tuple of str
+        Why it was rejected (:data:`REASONS`).
+    peak_force_n : float
+        Peak of the force pulse above its baseline, N.
+    pulse_start_s : float
+        Time of the pulse start (first sample above the detection level) on the records' time
+        axis (from the trigger), s; NaN without a pulse.
+    """
 
     node: int
     average: int
     accepted: bool
     reasons: tuple[str, ...]
     peak_force_n: float
+    pulse_start_s: float = float("nan")
 
 
 def force_baseline_and_noise(
@@ -119,6 +158,42 @@ def check_average(
         reasons.append("double hit")
     above = np.flatnonzero(pulse > level)
     start_time = (above[0] - pretrigger) * sampling_interval_s
-    if abs(start_time) > settings.trigger_tolerance_s or above[-1] >= force.size - 1:
+    if above[0] == 0 or above[-1] >= force.size - 1:  # cut by the record's start or end
         reasons.append("trigger")
-    return AverageCheck(node, average, not reasons, tuple(reasons), peak)
+    return AverageCheck(node, average, not reasons, tuple(reasons), peak, float(start_time))
+
+
+def check_point_starts(checks: list[AverageCheck], settings: QualitySettings) -> list[AverageCheck]:
+    """Reject (``trigger``) the averages of one point whose pulse starts away from the others.
+
+    The reference is the median pulse start of the point's averages that have a pulse; an
+    average more than ``settings.trigger_tolerance_s`` from it was triggered differently (a
+    false trigger, a hit during the pre-trigger).
+
+    Parameters
+    ----------
+    checks : list of AverageCheck
+        The checks of every average of one point (:func:`check_average`).
+    settings : QualitySettings
+        The tolerance.
+
+    Returns
+    -------
+    list of AverageCheck
+        The same checks, ``trigger`` added where the start disagrees.
+    """
+    starts = np.array([c.pulse_start_s for c in checks])
+    usable = np.isfinite(starts)
+    if np.count_nonzero(usable) < 2:
+        return checks
+    median = float(np.median(starts[usable]))
+    out = []
+    for check, start in zip(checks, starts, strict=True):
+        if (
+            np.isfinite(start)
+            and abs(start - median) > settings.trigger_tolerance_s
+            and "trigger" not in check.reasons
+        ):
+            check = replace(check, accepted=False, reasons=(*check.reasons, "trigger"))
+        out.append(check)
+    return out

@@ -8,6 +8,8 @@ reference, with coherence and what was done to get it.  Frequencies in Hz, time 
 
 from __future__ import annotations
 
+import logging
+import math
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal, get_args
 
@@ -17,6 +19,8 @@ from numpy.typing import NDArray
 from racketdyn._display import html_table, number, shorten, span, words
 from racketdyn.errors import InputError, require_positive
 from racketdyn.numerics import as_locations, as_points
+
+log = logging.getLogger(__name__)
 
 __all__ = [
     "ANALYSER_BANDWIDTH_FACTOR",
@@ -47,6 +51,33 @@ FRF_TYPE_OF_RESPONSE: dict[str, str] = {
 }
 
 
+def _locations_or_missing(locations: Any, check: Any, name: str) -> NDArray[np.float64]:
+    """Locations checked by ``check``, rows entirely NaN allowed (a point without coordinates)."""
+    array = np.asarray(locations, dtype=float)
+    if array.ndim == 2 and array.size:
+        missing = np.all(np.isnan(array), axis=1)
+        if np.any(missing):
+            known = check(np.where(missing[:, None], 0.0, array), name)
+            return np.asarray(np.where(missing[:, None], np.nan, known))
+    return np.asarray(check(array, name))
+
+
+def _require_locations(
+    source: str, what: str, nodes: tuple[int, ...], locations: Any, reference: Any
+) -> None:
+    missing = [
+        n for n, row in zip(nodes, np.asarray(locations), strict=True) if np.isnan(row).any()
+    ]
+    if np.isnan(np.asarray(reference, dtype=float)).any():
+        missing.append(-1)
+    if missing:
+        named = ", ".join("the reference" if n == -1 else str(n) for n in missing[:8])
+        raise InputError(
+            f"{source}: {what} needs node coordinates, which node(s) {named} lack; give them "
+            "with --geometry FILE (UFF data set 15 or 2411, or CSV node,x_m,y_m in m)"
+        )
+
+
 @dataclass(frozen=True, eq=False)
 class HammerRecords:
     """Force and response time records of a roving-hammer test.
@@ -65,11 +96,12 @@ class HammerRecords:
     nodes : tuple of int
         Node number of each hammer point.
     locations : ndarray, shape (n_points, 2)
-        Hammer point locations (x, y), m.
+        Hammer point locations (x, y), m; a row of NaN where a point has no coordinates (a
+        file without geometry: FRFs need none, :meth:`require_locations` asks for them).
     reference_node : int
         Node of the response transducer.
     reference_location : tuple of float
-        Its location (x, y), m.
+        Its location (x, y), m (NaN when unknown).
     pretrigger_s : float
         Time recorded before the trigger, s.
     source : str
@@ -95,7 +127,9 @@ class HammerRecords:
                 f"{self.source}: response type must be one of {', '.join(RESPONSE_TYPES)} "
                 f"(got {self.response_type!r})"
             )
-        locations = as_locations(self.locations, f"{self.source}: hammer point locations")
+        locations = _locations_or_missing(
+            self.locations, as_locations, f"{self.source}: hammer point locations"
+        )
         n = len(self.nodes)
         if not (len(self.force) == len(self.response) == n == locations.shape[0]):
             raise InputError(
@@ -161,6 +195,24 @@ class HammerRecords:
         """Index of the hammer point at the reference node (the driving point), if any."""
         return self.nodes.index(self.reference_node) if self.reference_node in self.nodes else None
 
+    @property
+    def has_locations(self) -> bool:
+        """Every point and the reference have coordinates."""
+        return not (
+            np.isnan(self.locations).any()
+            or np.isnan(np.asarray(self.reference_location, dtype=float)).any()
+        )
+
+    def require_locations(self, what: str) -> None:
+        """InputError naming ``--geometry`` unless every point has coordinates.
+
+        Parameters
+        ----------
+        what : str
+            The step that needs them (e.g. ``"the contact-time map"``).
+        """
+        _require_locations(self.source, what, self.nodes, self.locations, self.reference_location)
+
 
 @dataclass(frozen=True, eq=False)
 class FrfSet:
@@ -179,7 +231,8 @@ class FrfSet:
         Node number of each hammer point.
     locations : ndarray, shape (n_points, 2) or (n_points, 3)
         Hammer point locations (x, y) or (x, y, z), m (a racket's are (x, y): the racket
-        workflows use 2-D locations).
+        workflows use 2-D locations); a row of NaN where a point has no coordinates
+        (:meth:`require_locations` asks for them where a step needs them).
     reference_node : int
         Node of the response transducer.
     reference_location : tuple of float
@@ -214,7 +267,9 @@ class FrfSet:
     def __post_init__(self) -> None:
         frequency = np.asarray(self.frequency, dtype=float)
         values = np.atleast_2d(np.asarray(self.values, dtype=complex))
-        locations = as_points(self.locations, f"{self.source}: FRF point locations")
+        locations = _locations_or_missing(
+            self.locations, as_points, f"{self.source}: FRF point locations"
+        )
         if frequency.ndim != 1 or values.shape != (len(self.nodes), frequency.size):
             raise InputError(
                 f"{self.source}: FRF values must be shaped (n_points, n_freq) = "
@@ -270,6 +325,81 @@ class FrfSet:
     def driving_point(self) -> int | None:
         """Index of the FRF measured at the reference node (the driving point), if any."""
         return self.nodes.index(self.reference_node) if self.reference_node in self.nodes else None
+
+    @property
+    def has_locations(self) -> bool:
+        """Every point and the reference have coordinates."""
+        return not (
+            np.isnan(self.locations).any()
+            or np.isnan(np.asarray(self.reference_location, dtype=float)).any()
+        )
+
+    def require_locations(self, what: str) -> None:
+        """InputError naming ``--geometry`` unless every point has coordinates.
+
+        Parameters
+        ----------
+        what : str
+            The step that needs them (e.g. ``"the contact-time map"``).
+        """
+        _require_locations(self.source, what, self.nodes, self.locations, self.reference_location)
+
+    @property
+    def bandwidth_hz(self) -> float:
+        """Top of the usable band, Hz: the analyser bandwidth where known, else the last line.
+
+        FRFs estimated by racketdyn from time records end at fs/2, of which the lines above
+        fs/2.56 are the anti-alias filter's roll-off (``metadata["bandwidth_hz"]``); FRFs read
+        from another system's file are exported to their bandwidth, so their last line is it.
+        """
+        value = self.metadata.get("bandwidth_hz")
+        try:
+            top = float(value) if value is not None else math.nan
+        except (TypeError, ValueError):
+            top = math.nan
+        last = float(self.frequency[-1])
+        return top if 0 < top <= last else last
+
+    def driving_point_sign(self) -> int | None:
+        """+1 or −1: the sign the driving-point FRF's modal constants read with; None without one.
+
+        At the driving point every modal constant is positive, so the receptance's imaginary
+        part is ≤ 0 at every frequency (the mobility's real part, the accelerance's imaginary
+        part ≥ 0).  A driving-point FRF that reads the other way (summed over the lines,
+        weighted by magnitude) was measured with the sensor against the hammer or with opposite
+        sign conventions of the two channels that the file's direction codes do not say.
+        """
+        i = self.driving_point
+        if i is None:
+            return None
+        h = self.values[i]
+        usable = np.isfinite(h)
+        indicator = {"receptance": -h.imag, "mobility": h.real, "accelerance": h.imag}[
+            self.frf_type
+        ]
+        total = float(np.sum(indicator[usable]))
+        return None if total == 0 else (1 if total > 0 else -1)
+
+    def with_positive_driving_point(self) -> FrfSet:
+        """The set negated when its driving point reads with negative modal constants.
+
+        The reference sensor is common to every FRF of a roving-hammer set, so a sign
+        convention the file does not state flips them all; ``metadata["negated"]`` records
+        that it was undone (and a warning is logged).
+        """
+        if self.driving_point_sign() != -1:
+            return self
+        log.warning(
+            "%s: the driving-point FRF (node %d) reads with negative modal constants: the "
+            "sensor or the hammer measured against the other's direction; every FRF negated",
+            self.source,
+            self.reference_node,
+        )
+        return replace(
+            self,
+            values=-self.values,
+            metadata={**self.metadata, "negated": "driving point read with negative constants"},
+        )
 
     def band(self, low_hz: float, high_hz: float) -> FrfSet:
         """The FRFs between two frequencies (inclusive), Hz."""

@@ -96,6 +96,7 @@ def run_contact(
     for i, (label, test) in enumerate(zip(names, tests, strict=True)):
         report(progress, "contact times", i, len(names))
         records = read_records(test, geometry)
+        records.require_locations("the contact-time map")
         times = contact_times(records, estimate_frfs(records).checks)
         path = out_dir / f"contact_{_slug(label)}.csv"
         times.write_csv(path)

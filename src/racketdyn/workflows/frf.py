@@ -7,7 +7,6 @@ the caller's hook.
 from __future__ import annotations
 
 import os
-from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -38,7 +37,10 @@ ESTIMATORS = ("H1", "H2")
 def read_records(
     path: str | os.PathLike[str], geometry: str | os.PathLike[str] | None = None
 ) -> HammerRecords:
-    """Hammer records from UFF 58 (geometry in the file or given) or CSV (geometry needed).
+    """Hammer records from UFF 58 or CSV; node coordinates from the file or ``geometry``.
+
+    FRFs need no coordinates: without them the locations are NaN and the steps that need them
+    ask for ``--geometry``.
 
     Parameters
     ----------
@@ -49,9 +51,7 @@ def read_records(
     """
     path = Path(path)
     if path.suffix.lower() == ".csv":
-        if geometry is None:
-            raise InputError(f"{path}: a CSV of hammer records needs --geometry NODES.csv")
-        return read_hammer_csv(path, Path(geometry))
+        return read_hammer_csv(path, None if geometry is None else Path(geometry))
     return read_hammer_uff(path, None if geometry is None else Path(geometry))
 
 
@@ -129,11 +129,10 @@ def run_frf(
     result = FrfResult(out_dir, [out_dir / "quality.csv"], estimate=estimate, racket=the_racket)
     if estimate.frfs is None:
         # the run folder is left as it was: the reasons go into the message
-        reasons = Counter(reason for check in estimate.checks for reason in check.reasons)
-        counted = ", ".join(f"{reason}: {count}" for reason, count in reasons.most_common())
         raise InputError(
-            f"{tests}: every average of every point was rejected ({counted}); see the options "
-            "of racketdyn frf --help (--force-range, --force-window)"
+            f"{tests}: every average of every point was rejected: {estimate.rejections()}; "
+            "see quality.csv and the options of racketdyn frf --help (--force-range, "
+            "--force-window)"
         )
     result.written.append(write_frf_uff(estimate.frfs, out_dir / "frfs.uff"))
     inputs = {
