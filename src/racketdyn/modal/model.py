@@ -29,6 +29,9 @@ __all__ = ["ModalModel"]
 FORMAT = "racketdyn-modal-model"
 MODE_KINDS = ("bending", "twisting", "string-bed", "other", "unknown")
 """What a mode can be: a racket's kinds, ``other``, and ``unknown`` (not classified)."""
+SCALINGS = ("mass", "unscaled")
+"""How the shapes are scaled: mass-normalised (1/√kg), or unscaled (largest |φ| of each mode
+1, no unit: the test had no usable driving point)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -44,7 +47,8 @@ class ModalModel:
     locations : ndarray, shape (n_points, 2) or (n_points, 3)
         Where the shapes are sampled, ``(x, y)`` (a racket's face) or ``(x, y, z)``, m.
     mode_shapes : ndarray, shape (n_points, n_modes)
-        Mass-normalised mode shapes (displacement normal to the face), 1/√kg.
+        Mass-normalised mode shapes (displacement normal to the face), 1/√kg; unscaled shapes
+        (``scaling="unscaled"``) have their largest magnitude 1 and no unit.
     names : tuple of str
         Mode names (``"2-node bending"``, …).
     kinds : tuple of str
@@ -56,6 +60,12 @@ class ModalModel:
         The support the modes belong to (``free``, ``hand`` …).
     source : str
         Where the model came from.
+    metadata : dict
+        Anything else (an identified model: band, nodes, reference, what was dropped).
+    scaling : {"mass", "unscaled"}
+        ``mass`` (the default) or ``unscaled``: frequencies and damping ratios hold, but the
+        shapes are known up to a factor per mode, so no prediction can use them
+        (:meth:`require_mass_normalised`).
     """
 
     frequency: NDArray[np.float64]
@@ -67,6 +77,7 @@ class ModalModel:
     support: str = "free"
     source: str = ""
     metadata: dict[str, Any] = field(default_factory=dict)
+    scaling: str = "mass"
 
     def __post_init__(self) -> None:
         frequency = np.asarray(self.frequency, dtype=float)
@@ -101,10 +112,34 @@ class ModalModel:
                 f"{', '.join(MODE_KINDS)}"
             )
         object.__setattr__(self, "kinds", kinds)
-        if locations.shape[0] < 3:
-            raise InputError(f"modal model ({self.source}): needs shapes at 3 points or more")
-        if np.unique(locations, axis=0).shape[0] != locations.shape[0]:
-            raise InputError(f"modal model ({self.source}): a location is listed twice")
+        if self.scaling not in SCALINGS:
+            raise InputError(
+                f"modal model ({self.source}): scaling must be one of {', '.join(SCALINGS)} "
+                f"(got {self.scaling!r})"
+            )
+        if locations.shape[0] < 1:
+            raise InputError(f"modal model ({self.source}): needs shapes at one point or more")
+        _check_distinct(locations, self.source, self.metadata.get("nodes"))
+
+    @property
+    def mass_normalised(self) -> bool:
+        """True when the shapes are mass-normalised (1/√kg)."""
+        return self.scaling == "mass"
+
+    def require_mass_normalised(self, what: str) -> None:
+        """InputError unless the shapes are mass-normalised: ``what`` needs them.
+
+        Parameters
+        ----------
+        what : str
+            The step that needs them, for the message (e.g. ``"predict"``).
+        """
+        if not self.mass_normalised:
+            raise InputError(
+                f"modal model ({self.source}): its shapes are unscaled (the test had no usable "
+                f"driving point), so {what} cannot use it; measure a driving point (strike the "
+                "accelerometer's node) and identify again"
+            )
 
     @property
     def n_modes(self) -> int:
@@ -162,6 +197,11 @@ class ModalModel:
         basis = self._basis
         if basis is None:
             return points
+        if basis.shape[0] == 0:
+            raise InputError(
+                f"modal model ({self.source}): the shapes are known at one point only; they "
+                "cannot be interpolated elsewhere"
+            )
         if basis.shape == (1, 2) and basis[0, 1] == 0:
             return points[:, :1]  # along x: x itself
         return np.asarray((points - self.locations[0]) @ basis.T)
@@ -221,11 +261,17 @@ class ModalModel:
             support=self.support,
             source=self.source,
             metadata=dict(self.metadata),
+            scaling=self.scaling,
         )
 
     def summary(self) -> dict[str, Any]:
         """Source, support and the modes (for run records)."""
-        return {"source": self.source, "support": self.support, "modes": self.to_dict()["modes"]}
+        return {
+            "source": self.source,
+            "support": self.support,
+            "scaling": self.scaling,
+            "modes": self.to_dict()["modes"],
+        }
 
     @cached_property
     def frame_modes(self) -> ModalModel:
@@ -242,7 +288,12 @@ class ModalModel:
             "racketdyn_version": __version__,
             "support": self.support,
             "source": self.source,
-            "units": {"frequency": "Hz", "locations": "m", "mode_shapes": "1/sqrt(kg)"},
+            "scaling": self.scaling,
+            "units": {
+                "frequency": "Hz",
+                "locations": "m",
+                "mode_shapes": "1/sqrt(kg)" if self.mass_normalised else "1 (unscaled)",
+            },
             "modes": [
                 {"name": n, "kind": k, "frequency_hz": float(f), "damping_ratio": float(z)}
                 for n, k, f, z in zip(
@@ -282,8 +333,31 @@ class ModalModel:
                 support=str(data.get("support", "free")),
                 source=str(data.get("source", path.name)),
                 metadata=dict(data.get("metadata", {})),
+                scaling=str(data.get("scaling", "mass")),
             )
         except (KeyError, TypeError, ValueError) as error:
             raise InputError(
                 f"{path}: modal model is missing or has a bad field ({error})"
             ) from None
+
+
+def _check_distinct(locations: NDArray[np.float64], source: str, nodes: Any) -> None:
+    """InputError naming the source and the node numbers (when known) of two points at one
+    location."""
+    _, first, inverse = np.unique(locations, axis=0, return_index=True, return_inverse=True)
+    if first.size == locations.shape[0]:
+        return
+    inverse = np.ravel(inverse)
+    clashes = []
+    for group in np.unique(inverse[np.bincount(inverse)[inverse] > 1]):
+        members = np.flatnonzero(inverse == group)
+        if isinstance(nodes, list | tuple) and len(nodes) == locations.shape[0]:
+            names = " and ".join(f"node {nodes[i]}" for i in members)
+        else:
+            names = " and ".join(f"point {i + 1}" for i in members)
+        where = ", ".join(f"{v:.4g}" for v in locations[members[0]])
+        clashes.append(f"{names} at ({where}) m")
+    raise InputError(
+        f"modal model ({source}): two points share one location: {'; '.join(clashes[:4])}; "
+        "give each its own coordinates (keep z for points that differ only in z)"
+    )

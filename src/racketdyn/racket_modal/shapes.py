@@ -26,7 +26,13 @@ from racketdyn.modal.model import ModalModel
 from racketdyn.modal.shapes import nodes_along
 from racketdyn.racket import HeadEllipse
 
-__all__ = ["MIRROR_TOLERANCE_M", "STRING_BED_RATIO", "axis_nodes", "classify_modes"]
+__all__ = [
+    "MIRROR_TOLERANCE_M",
+    "STRING_BED_RATIO",
+    "axis_nodes",
+    "classify_modes",
+    "naming_evidence",
+]
 
 STRING_BED_RATIO = 4.0
 """A mode is a string-bed mode when its mean square on the strings exceeds this times that on
@@ -46,6 +52,31 @@ def _mirror_pairs(locations: NDArray[np.float64]) -> NDArray[np.int_]:
         if distance[j] <= MIRROR_TOLERANCE_M:
             pairs.append((i, j))
     return np.asarray(pairs, dtype=int).reshape(-1, 2)
+
+
+def naming_evidence(model: ModalModel, head: HeadEllipse) -> str:
+    """Why the shapes cannot tell a racket's modes apart, or "" when they can.
+
+    Twisting needs points mirrored across the long axis (two pairs or more); string-bed needs
+    points on the strings and on the frame; unscaled shapes are compared as they are (the
+    tests are ratios, so scaling does not matter).
+
+    Parameters
+    ----------
+    model : ModalModel
+        Shapes at face points (x, y), m.
+    head : HeadEllipse
+        The string bed.
+    """
+    if model.n_dimensions != 2:
+        return "the points are not on the racket's face (x, y)"
+    on_strings = head.normalised_radius(model.locations) < 0.95
+    missing = []
+    if _mirror_pairs(model.locations).shape[0] < 2:
+        missing.append("points mirrored across the long axis (for twisting)")
+    if not on_strings.any() or on_strings.all():
+        missing.append("points on both the strings and the frame (for string-bed modes)")
+    return "no " + " nor ".join(missing) if missing else ""
 
 
 def classify_modes(model: ModalModel, head: HeadEllipse) -> tuple[tuple[str, ...], tuple[str, ...]]:
