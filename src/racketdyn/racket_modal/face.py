@@ -97,8 +97,9 @@ def face_mapping(locations: ArrayLike, racket: Racket) -> FaceMapping | None:
     x_axis, y_axis = directions[0], directions[1]
     u = (points - centre) @ x_axis
     v = (points - centre) @ y_axis
-    middle = np.median(u)
-    if np.ptp(v[u > middle], initial=0.0) < np.ptp(v[u <= middle], initial=0.0):
+    middle = 0.5 * (u.min() + u.max())
+    upper, lower = v[u > middle], v[u <= middle]
+    if (np.ptp(upper) if upper.size else 0.0) < (np.ptp(lower) if lower.size else 0.0):
         x_axis, y_axis = -x_axis, -y_axis  # the head (widest end) at larger x; stay right-handed
         u, v = -u, -v
     origin_u = -(centre @ x_axis)  # the lab origin's x
