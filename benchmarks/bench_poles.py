@@ -270,8 +270,8 @@ def main_export() -> None:
             errors_pct = 100 * (found.model.frequency / truth[: found.model.n_modes] - 1)
             print(
                 f"  racketdyn read ({kind}) {read_s * 1e3:8.1f} ms + identify "
-                f"{ident_s * 1e3:8.1f} ms = {(read_s + ident_s) * 1e3:8.1f} ms; {found.model.n_modes} modes, frequency "
-                f"error ≤ {np.abs(errors_pct).max():.4f} %"
+                f"{ident_s * 1e3:8.1f} ms = {(read_s + ident_s) * 1e3:8.1f} ms; "
+                f"{found.model.n_modes} modes, frequency error ≤ {np.abs(errors_pct).max():.4f} %"
             )
     try:
         from sdypy import EMA

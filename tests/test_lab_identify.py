@@ -14,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+
 from free_beam import beam_frfs
 from lab_uff import write_lab_uff
-
 from racketdyn.errors import InputError
 from racketdyn.io.frf_layout import read_frfs
 from racketdyn.modal.identify import identify
@@ -61,7 +61,7 @@ def test_unscaled_model_is_refused_by_predict_only() -> None:
     model = identify(test.frfs, BAND).model
     assert model.scaling == "unscaled"
     assert "unscaled" in model.to_dict()["units"]["mode_shapes"]
-    with pytest.raises(InputError, match="unscaled.*measure a driving point"):
+    with pytest.raises(InputError, match=r"unscaled.*measure a driving point"):
         racket_setup(None, modal=model)
 
 
@@ -83,7 +83,8 @@ def test_a_pole_with_no_peak_in_the_data_is_dropped_into_the_table(tmp_path: Pat
     found.write_dropped_csv(tmp_path / "dropped_modes.csv")
     with (tmp_path / "dropped_modes.csv").open() as handle:
         rows = list(csv.DictReader(handle))
-    assert rows and set(rows[0]) >= {"frequency_hz", "stage", "reason", "fit_gain"}
+    assert rows
+    assert set(rows[0]) >= {"frequency_hz", "stage", "reason", "fit_gain"}
     assert all(row["reason"] for row in rows)
     assert found.model.n_modes == 5  # none of the beam's modes among them
 
@@ -91,20 +92,27 @@ def test_a_pole_with_no_peak_in_the_data_is_dropped_into_the_table(tmp_path: Pat
 def _write(tmp_path: Path, name: str, layout: str, *, sensor_dir: int = 3) -> Path:
     s = np.linspace(0.0, 0.8, 9)
     test = beam_frfs(s, 0.0, direction=(0.0, 0.0, 1.0), lines=2001, top_hz=1000.0)
-    nodes = {n: tuple(float(c) for c in p) for n, p in zip(test.frfs.nodes, test.frfs.locations)}
+    nodes = {
+        n: tuple(float(c) for c in p)
+        for n, p in zip(test.frfs.nodes, test.frfs.locations, strict=True)
+    }
     sign = -1.0 if sensor_dir < 0 else 1.0
     if layout == "roving hammer":
         records = [
-            (1, sensor_dir, n, 3, sign * v) for n, v in zip(test.frfs.nodes, test.frfs.values)
+            (1, sensor_dir, n, 3, sign * v)
+            for n, v in zip(test.frfs.nodes, test.frfs.values, strict=True)
         ]
     elif layout == "roving accelerometer":
         records = [
-            (n, sensor_dir, 1, 3, sign * v) for n, v in zip(test.frfs.nodes, test.frfs.values)
+            (n, sensor_dir, 1, 3, sign * v)
+            for n, v in zip(test.frfs.nodes, test.frfs.values, strict=True)
         ]
     else:  # two references (MIMO), each reaching every point
         other = beam_frfs(s, 0.8, direction=(0.0, 0.0, 1.0), lines=2001, top_hz=1000.0)
-        records = [(1, 3, n, 3, v) for n, v in zip(test.frfs.nodes, test.frfs.values)]
-        records += [(9, 3, n, 3, v) for n, v in zip(other.frfs.nodes, other.frfs.values)]
+        records = [(1, 3, n, 3, v) for n, v in zip(test.frfs.nodes, test.frfs.values, strict=True)]
+        records += [
+            (9, 3, n, 3, v) for n, v in zip(other.frfs.nodes, other.frfs.values, strict=True)
+        ]
     return write_lab_uff(tmp_path / name, nodes, test.frfs.frequency, records)
 
 
@@ -127,7 +135,8 @@ def test_several_references_need_a_choice(tmp_path: Path) -> None:
     with pytest.raises(InputError, match=r"several references \(nodes 1, 9.*--reference NODE"):
         read_frfs(path)
     frfs = read_frfs(path, reference=9)
-    assert frfs.reference_node == 9 and frfs.n_points == 9
+    assert frfs.reference_node == 9
+    assert frfs.n_points == 9
     assert frfs.metadata["left_out"] == 9
     with pytest.raises(InputError, match="--reference 42: no FRF"):
         read_frfs(path, reference=42)
@@ -138,14 +147,16 @@ def test_points_along_y_run_through_the_workflow(tmp_path: Path) -> None:
     s = np.linspace(0.0, 0.8, 9)
     test = beam_frfs(s, 0.0, direction=(0.0, 1.0, 0.0), lines=2001, top_hz=1000.0)
     nodes = {
-        n: (float(p[0]), float(p[1]), 0.0) for n, p in zip(test.frfs.nodes, test.frfs.locations)
+        n: (float(p[0]), float(p[1]), 0.0)
+        for n, p in zip(test.frfs.nodes, test.frfs.locations, strict=True)
     }
-    records = [(1, 3, n, 3, v) for n, v in zip(test.frfs.nodes, test.frfs.values)]
+    records = [(1, 3, n, 3, v) for n, v in zip(test.frfs.nodes, test.frfs.values, strict=True)]
     path = write_lab_uff(tmp_path / "y.uff", nodes, test.frfs.frequency, records)
     result = run_identify(path, tmp_path / "out", band_hz=(40, 950))
     assert result.identification is not None
     model = result.identification.model
-    assert model.names[0].startswith("mode 1") and set(model.kinds) == {"unknown"}
+    assert model.names[0].startswith("mode 1")
+    assert set(model.kinds) == {"unknown"}
     assert (tmp_path / "out" / "dropped_modes.csv").is_file()
     assert "not on a racket" in model.metadata["naming"]
 
@@ -197,3 +208,43 @@ def test_a_racket_measured_in_x_z_is_mapped_onto_the_face() -> None:
     assert looks_like_racket(mapped, racket)
     beam = np.column_stack([np.linspace(0, 0.8, 10), np.zeros(10)])
     assert not looks_like_racket(beam, racket)
+
+
+@pytest.mark.parametrize("jitter_m", [0.0, 1e-8, 1e-6, 1e-4, 1e-3])
+def test_points_off_a_line_by_rounding_interpolate_along_it(jitter_m: float) -> None:
+    # issue 12 item 5: coordinates rounded to a file's 6 digits (or a tape's millimetre) off a
+    # line along y made the 2-D spline ill-conditioned: shapes of 10⁴ between the points
+    from racketdyn.modal.model import ModalModel
+
+    y = np.linspace(0.0, 0.8, 9)
+    x = 0.1 + jitter_m * np.random.default_rng(0).standard_normal(9)
+    model = ModalModel(
+        frequency=np.array([100.0]),
+        damping_ratio=np.array([0.01]),
+        locations=np.column_stack([x, y]),
+        mode_shapes=np.cos(np.pi * y / 0.8)[:, None],
+        names=("mode 1",),
+    )
+    np.testing.assert_allclose(
+        model.mode_shapes_at(np.array([[0.1, 0.2], [0.3, 0.4]]))[:, 0],
+        [np.cos(np.pi / 4), 0.0],
+        atol=2e-3,
+    )
+
+
+def test_points_sharing_their_place_on_a_line_are_one_sample() -> None:
+    # two faces of a beam along x (z = 0 and z = 1 mm): distinct points, one place on the line
+    from racketdyn.modal.model import ModalModel
+
+    s = np.linspace(0.0, 0.8, 9)
+    line = np.column_stack([s, np.zeros(9), np.zeros(9)])
+    model = ModalModel(
+        frequency=np.array([100.0]),
+        damping_ratio=np.array([0.01]),
+        locations=np.vstack([line, line + np.array([0.0, 0.0, 1e-3])]),
+        mode_shapes=np.tile(np.cos(np.pi * s / 0.8), 2)[:, None],
+        names=("mode 1",),
+    )
+    assert model.mode_shapes_at(np.array([[0.2, 0.0, 0.0]]))[0, 0] == pytest.approx(
+        np.cos(np.pi / 4), abs=1e-6
+    )

@@ -42,8 +42,9 @@ def _add_options(p: argparse.ArgumentParser) -> None:
         "--reference",
         type=int,
         metavar="NODE",
-        help="reference node (a node number) when the file has FRFs against several "
-        "(default: the one node every FRF shares, else the one reaching the most points)",
+        help="reference node, a node number (dimensionless), when the file has FRFs against "
+        "several (default: the one node every FRF shares, else the one reaching the most "
+        "points)",
     )
     opt.add_out(p)
 

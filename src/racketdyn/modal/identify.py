@@ -217,7 +217,7 @@ def identify(
         late.append(
             _dropped(
                 selected,
-                k,
+                int(k),
                 f"no peak in the data: the fit near it is only {gain[k]:.2g} × better with it "
                 f"(< {FIT_GAIN_MIN:g})",
                 gain=gain[k],
@@ -267,7 +267,7 @@ def identify(
                 late.append(
                     _dropped(
                         selected,
-                        k,
+                        int(k),
                         "on a node at the accelerometer (driving-point constant "
                         f"{ratio[k]:.2g} of its largest): cannot be mass-normalised; move the "
                         "accelerometer off its node",

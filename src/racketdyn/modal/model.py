@@ -29,6 +29,10 @@ __all__ = ["ModalModel"]
 FORMAT = "racketdyn-modal-model"
 MODE_KINDS = ("bending", "twisting", "string-bed", "other", "unknown")
 """What a mode can be: a racket's kinds, ``other``, and ``unknown`` (not classified)."""
+FLAT = 0.01
+"""Sample points whose spread in a direction is under this fraction of their largest spread lie
+on a line or plane: shapes are interpolated along it (a beam's or a face's points measured off
+it by a millimetre)."""
 SCALINGS = ("mass", "unscaled")
 """How the shapes are scaled: mass-normalised (1/√kg), or unscaled (largest |φ| of each mode
 1, no unit: the test had no usable driving point)."""
@@ -184,7 +188,11 @@ class ModalModel:
         None when the samples fill their coordinates (a face in (x, y), a solid in (x, y, z)).
         """
         centred = self.locations - self.locations.mean(axis=0)
-        rank = int(np.linalg.matrix_rank(centred, tol=1e-9))
+        # a direction spread less than FLAT of the largest is no dimension: coordinates
+        # rounded to a file's 6 digits, or a tape's millimetre, off a line or plane made the
+        # thin-plate spline ill-conditioned (shapes × 10⁴ between the points, issue 12)
+        spread = np.linalg.svd(centred, compute_uv=False)
+        rank = int(np.count_nonzero(spread > max(FLAT * spread.max(), 1e-12)))
         if rank >= self.n_dimensions:
             return None
         if self.n_dimensions == 2 and np.ptp(self.locations[:, 1]) == 0:
@@ -213,9 +221,17 @@ class ModalModel:
         # long axis, a beam along any direction) are interpolated along that line, shapes on
         # one plane of (x, y, z) in that plane; a point off them gets the shape of its
         # projection onto them.
-        return RBFInterpolator(
-            self._coordinates(self.locations), self.mode_shapes, kernel="thin_plate_spline"
-        )
+        coordinates = self._coordinates(self.locations)
+        # points that share their place on the line or plane (two faces of a beam, nodes that
+        # differ off it only) are one sample: their mean shape (the spline needs distinct points)
+        scale = float(np.abs(coordinates).max()) or 1.0
+        keys = np.round(coordinates / (1e-6 * scale)).astype(np.int64)
+        _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+        inverse = np.ravel(inverse)
+        shapes = np.zeros((first.size, self.n_modes))
+        np.add.at(shapes, inverse, self.mode_shapes)
+        shapes /= np.bincount(inverse)[:, None]
+        return RBFInterpolator(coordinates[first], shapes, kernel="thin_plate_spline")
 
     def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:
         """Mass-normalised mode shapes at any locations, shaped ``(n, n_modes)``, 1/√kg.

@@ -123,7 +123,10 @@ def name_if_racket(
     if model.n_dimensions == 3:
         mapping = face_mapping(model.locations, racket)
         if mapping is None:
-            return identification, "modes numbered: the points do not lie on one face plane"
+            return (
+                identification,
+                "modes numbered: the points are not a racket's face (on a line, or off one plane)",
+            )
         face = mapping.apply(model.locations)
         if racket_given or looks_like_racket(face, racket):
             metadata = {
