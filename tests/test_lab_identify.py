@@ -10,6 +10,7 @@ ratios within 10 % (issue 12).
 from __future__ import annotations
 
 import csv
+import json
 from pathlib import Path
 
 import numpy as np
@@ -248,3 +249,74 @@ def test_points_sharing_their_place_on_a_line_are_one_sample() -> None:
     assert model.mode_shapes_at(np.array([[0.2, 0.0, 0.0]]))[0, 0] == pytest.approx(
         np.cos(np.pi / 4), abs=1e-6
     )
+
+
+def test_a_pole_with_no_peak_in_the_data_scores_about_one() -> None:
+    from racketdyn.modal.identify import fit_gain
+    from racketdyn.modal.residues import fit_modal_constants
+
+    test = beam_frfs(POINTS[20], 0.0)
+    wn = 2 * np.pi * np.r_[test.frequency_hz, 700.0]  # a pole where the beam has no mode
+    poles = -0.008 * wn + 1j * wn * np.sqrt(1 - 0.008**2)
+    gain = fit_gain(test.frfs, fit_modal_constants(test.frfs, poles, BAND))
+    assert np.all(gain[:5] > 30)
+    assert gain[5] < 2
+
+
+def test_a_racket_measured_in_the_lab_x_z_plane_is_named_on_its_face() -> None:
+    from dataclasses import replace
+
+    import racketdyn as rd
+    from racketdyn.measurement.frf import estimate_frfs
+    from racketdyn.racket_modal.identify import name_if_racket
+    from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test
+
+    racket = rd.default_racket()
+    locations, nodes = hammer_points(racket, n_frame=12, n_strings=20)
+    records = simulate_hammer_test(
+        rig_model(racket, "free"),
+        locations,
+        nodes,
+        tuple(locations[5]),
+        nodes[5],
+        n_averages=4,
+        seed=3,
+    )
+    frfs = estimate_frfs(records, exponential_window_s=0.1).frfs
+    # the lab: long axis along −z (head down), across along x, the face at y = 0.3 m
+    lab = np.column_stack([locations[:, 1], np.full(len(nodes), 0.3), -locations[:, 0]])
+    found = identify(replace(frfs, locations=lab), (40.0, 850.0))
+    named, how = name_if_racket(found, racket, racket_given=False)
+    assert how == "modes named from their shapes on the racket"
+    assert named.model.names[0] == "2-node bending"
+    assert named.model.n_dimensions == 2
+    assert "x along lab (+0.000, +0.000, -1.000)" in named.model.metadata["face_mapping"]
+    # a straight beam is never a racket's, whatever its points' extent
+    beam = identify(beam_frfs(POINTS[20], 0.0).frfs, BAND)
+    _, how = name_if_racket(beam, racket, racket_given=False)
+    assert how.startswith("modes numbered")
+
+
+def test_several_references_on_the_command_line(tmp_path: Path, capsys) -> None:
+    from racketdyn.cli import main
+
+    path = _write(tmp_path, "mimo.uff", "mimo")
+    assert main(["identify", str(path), "--band", "40,950", "--out", str(tmp_path / "a")]) == 2
+    assert "--reference NODE" in capsys.readouterr().err
+    assert not (tmp_path / "a").exists()
+    out = tmp_path / "b"
+    assert (
+        main(["identify", str(path), "--band", "40,950", "--reference", "9", "--out", str(out)])
+        == 0
+    )
+    assert json.loads((out / "run.json").read_text())["reference_node"] == 9
+
+
+def test_fig2_and_fig3_label_one_point_alike() -> None:
+    from racketdyn.plotting.figures import _point_label
+
+    test = beam_frfs([0.0, 0.4], 0.0)
+    assert _point_label(test.frfs, 0, 0) == (
+        "node 1 (0, 0, 0) mm: driving point (at the accelerometer), nearest the string-bed centre"
+    )
+    assert _point_label(test.frfs, 1, 0) == "node 2 (400, 0, 0) mm"

@@ -40,7 +40,14 @@ from racketdyn.modal.residues import (
     unscaled_shapes,
 )
 
-__all__ = ["DEFAULT_LOW_HZ", "FIT_GAIN_MIN", "Identification", "default_band", "identify"]
+__all__ = [
+    "DEFAULT_LOW_HZ",
+    "FIT_GAIN_MIN",
+    "STRONG_NEGATIVE",
+    "Identification",
+    "default_band",
+    "identify",
+]
 
 log = logging.getLogger(__name__)
 
@@ -52,6 +59,11 @@ FIT_GAIN_MIN = 3.0
 """A selected pole is a mode of the data when the fit near its frequency (three half-power
 bandwidths either side) is at least this many times worse without it; a pole that only fits
 noise or leakage scores about 1."""
+STRONG_NEGATIVE = 0.25
+"""A negative driving-point constant at least this fraction of the largest positive one there
+cannot be a fit's error on a small value: the reference is not a true driving point.  Smaller
+negative ones (a mode nearly still at the accelerometer, e.g. a string-bed mode at a hoop point)
+leave that mode out of a mass-normalised model."""
 
 
 def default_band(frfs: FrfSet) -> tuple[float, float]:
@@ -168,14 +180,15 @@ def identify(
       (:data:`FIT_GAIN_MIN`) — is left out, unless pinned;
     - with a driving point (an FRF at the reference node) whose constants are all positive
       (a true driving point: ``A_rr = φ_r² > 0``) the shapes are mass-normalised (eq 12); a
-      mode whose driving-point constant is weak (< 5 % of its largest) and negative sits on
-      a node at the accelerometer and is left out (it cannot be normalised);
+      mode whose driving-point constant is negative but small sits (nearly) on a node at the
+      accelerometer and is left out (it cannot be normalised);
     - all clear driving-point constants negative: the response was measured against the
       hammer (a sensor in −z, or opposite sign conventions); the FRFs are taken with the
       opposite sign and normalised;
-    - clear constants of both signs (not a true driving point: other directions at one node,
-      or the sensor beside the hammer point), or no driving point at all: every mode kept,
-      shapes unscaled (largest magnitude 1), ``model.scaling == "unscaled"``.
+    - negative constants as large as the positive ones (:data:`STRONG_NEGATIVE`: not a true
+      driving point — other directions at one node, or the sensor beside the hammer point),
+      or no driving point at all: every mode kept, shapes unscaled (largest magnitude 1),
+      ``model.scaling == "unscaled"``; smaller negative ones leave their mode out.
 
     Everything left out is in ``selected.dropped_modes`` (``dropped_modes.csv``).
 
@@ -248,8 +261,11 @@ def identify(
                 "negative: the response is measured against the hammer (a sensor in −z or "
                 "opposite sign conventions); the FRFs are taken with the opposite sign"
             )
-        if clear.any() and np.any(ratio[clear] > 0) and np.any(ratio[clear] < 0):
-            negative = ", ".join(f"{f:.1f}" for f in selected.frequency[clear & (ratio < 0)])
+        at_driving = fit.constants[driving]
+        kept_scale = float(at_driving[clear & (ratio > 0)].max(initial=0.0))
+        strong = clear & (ratio < 0) & (-at_driving >= STRONG_NEGATIVE * kept_scale)
+        if kept_scale > 0 and strong.any():
+            negative = ", ".join(f"{f:.1f}" for f in selected.frequency[strong])
             note = (
                 f"node {frfs.reference_node} is not a true driving point: modes at {negative} "
                 "Hz have clearly negative constants there (φ_r² cannot be), so the hammer and "

@@ -62,7 +62,7 @@ class FaceMapping:
         """The mapping in words (for run.json and the console)."""
 
         def vector(v: NDArray[np.float64]) -> str:
-            return "(" + ", ".join(f"{c:+.3f}" for c in v) + ")"
+            return "(" + ", ".join(f"{round(float(c), 3) + 0.0:+.3f}" for c in v) + ")"
 
         return (
             f"racket face from the lab's (x, y, z): x along lab {vector(self.x_axis)} from the "
