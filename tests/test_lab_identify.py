@@ -260,7 +260,7 @@ def test_a_pole_with_no_peak_in_the_data_scores_about_one() -> None:
     poles = -0.008 * wn + 1j * wn * np.sqrt(1 - 0.008**2)
     gain = fit_gain(test.frfs, fit_modal_constants(test.frfs, poles, BAND))
     assert np.all(gain[:5] > 30)
-    assert gain[5] < 2
+    assert gain[5] < 1.1
 
 
 def test_a_racket_measured_in_the_lab_x_z_plane_is_named_on_its_face() -> None:
