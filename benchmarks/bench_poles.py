@@ -10,6 +10,13 @@ frequencies given (the best it can do).  Accuracy of both against the rig's moda
 printed, the modes whose peak is under 5 × the noise apart.  sdypy-EMA is a benchmark-only
 dependency (``pip install sdypy-EMA``); without it the comparison is skipped with a note.
 
+Second part (issue 12): a real export's size — 9 FRFs × 51,201 lines (0–3,200 Hz, a free
+aluminium bar's five modes, 1 % noise) in a Universal File (binary 58b, and ASCII) — timed from
+the file to the modal model (``read_frfs`` + ``identify``: stabilisation, selection, constants,
+shapes) in the 40–1,000 Hz band, against sdypy-EMA's ``get_poles`` + ``select_closest_poles``
+(true frequencies given) + ``get_constants`` on the same arrays (its reading not counted).
+Target: racketdyn ≥ 5× faster.
+
 BLAS threads: one by default (``OPENBLAS_NUM_THREADS`` etc. set before numpy is imported,
 unless already set): the work is many small matrices, for which extra BLAS threads cost more
 than they give.  Run: ``python benchmarks/bench_poles.py``.  Informational: the exit status is
@@ -185,5 +192,128 @@ def main() -> None:
     )
 
 
+EXPORT_LINES = 51_201
+EXPORT_TOP_HZ = 3_200.0
+EXPORT_BAND_HZ = (40.0, 1_000.0)
+EXPORT_TARGET = 5.0
+
+
+def bar_frfs() -> tuple[FrfSet, NDArray[np.float64]]:
+    """9 accelerances of a free–free bar (0.8 m aluminium, 30 × 8 mm), 1 % noise; truth, Hz."""
+    from scipy.optimize import brentq
+
+    length, ei, rho_a = 0.8, 70e9 * 0.030 * 0.008**3 / 12, 2700 * 0.030 * 0.008
+    beta = np.array(
+        [
+            brentq(
+                lambda x: np.cos(x) * np.cosh(x) - 1,
+                (n + 0.5) * np.pi - 0.5,
+                (n + 0.5) * np.pi + 0.5,
+            )
+            for n in range(1, 6)
+        ]
+    )
+    f_n = beta**2 / (2 * np.pi * length**2) * np.sqrt(ei / rho_a)
+    s = np.linspace(0.0, length, 9)
+    b = beta / length
+    sigma = (np.cosh(beta) - np.cos(beta)) / (np.sinh(beta) - np.sin(beta))
+    phi = (
+        np.cosh(b * s[:, None])
+        + np.cos(b * s[:, None])
+        - sigma * (np.sinh(b * s[:, None]) + np.sin(b * s[:, None]))
+    ) / np.sqrt(rho_a * length)
+    frequency = np.linspace(0.0, EXPORT_TOP_HZ, EXPORT_LINES)
+    w, wn = 2 * np.pi * frequency, 2 * np.pi * f_n
+    h = (
+        (phi * phi[0])[:, None, :]
+        * (-(w[:, None] ** 2) / (wn**2 - w[:, None] ** 2 + 2j * 0.008 * wn * w[:, None]))[None]
+    ).sum(-1)
+    rng = np.random.default_rng(1)
+    h = h * (1 + 0.01 * (rng.standard_normal(h.shape) + 1j * rng.standard_normal(h.shape)))
+    frfs = FrfSet(
+        frequency=frequency,
+        values=h,
+        frf_type="accelerance",
+        nodes=tuple(range(1, 10)),
+        locations=np.column_stack([s, np.zeros_like(s)]),
+        reference_node=1,
+        reference_location=(0.0, 0.0),
+        source="free bar, 9 points",
+    )
+    return frfs, f_n
+
+
+def main_export() -> None:
+    """Read + identify a real export's size against sdypy-EMA (issue 12)."""
+    import tempfile
+    from pathlib import Path
+
+    from racketdyn.io.frf_layout import read_frfs
+    from racketdyn.io.uff import write_frf_uff
+    from racketdyn.modal.identify import identify
+
+    logging.disable(logging.WARNING)
+    frfs, truth = bar_frfs()
+    print(
+        f"\nreal export's size: {frfs.n_points} FRFs × {EXPORT_LINES} lines "
+        f"(0–{EXPORT_TOP_HZ:g} Hz), band {EXPORT_BAND_HZ[0]:g}–{EXPORT_BAND_HZ[1]:g} Hz"
+    )
+    with tempfile.TemporaryDirectory() as folder:
+        paths = {}
+        for kind, binary in (("binary 58b", True), ("ASCII 58", False)):
+            paths[kind] = write_frf_uff(frfs, Path(folder) / f"{kind[:5]}.uff", binary=binary)
+        timings = {}
+        for kind, path in paths.items():
+            read_s, read = best_of(lambda p=path: read_frfs(p), repeats=2)
+            ident_s, found = best_of(lambda r=read: identify(r, EXPORT_BAND_HZ), repeats=2)
+            timings[kind] = read_s + ident_s
+            errors_pct = 100 * (found.model.frequency / truth[: found.model.n_modes] - 1)
+            print(
+                f"  racketdyn read ({kind}) {read_s * 1e3:8.1f} ms + identify "
+                f"{ident_s * 1e3:8.1f} ms = {(read_s + ident_s) * 1e3:8.1f} ms; "
+                f"{found.model.n_modes} modes, frequency error ≤ {np.abs(errors_pct).max():.4f} %"
+            )
+    try:
+        from sdypy import EMA
+    except ImportError:
+        print("  sdypy-EMA not importable: comparison skipped (pip install sdypy-EMA)")
+        return
+
+    def sdypy_all() -> Any:
+        model = EMA.Model(
+            frf=frfs.values.copy(),
+            freq=frfs.frequency.copy(),
+            lower=EXPORT_BAND_HZ[0],
+            upper=EXPORT_BAND_HZ[1],
+            pol_order_high=MAX_ORDER,
+            frf_form="accelerance",
+        )
+        with (
+            warnings.catch_warnings(),
+            contextlib.redirect_stdout(io.StringIO()),
+            contextlib.redirect_stderr(io.StringIO()),
+        ):
+            warnings.simplefilter("ignore")
+            model.get_poles(method="lscf", show_progress=False)
+            model.select_closest_poles(list(truth), f_window=5)
+            model.get_constants(whose_poles="own", FRF_ind="all")
+        return model
+
+    sdypy_s, model = best_of(sdypy_all, repeats=1)
+    errors_pct = 100 * (np.asarray(model.nat_freq) / truth - 1)
+    print(
+        f"  sdypy-EMA {EMA.__version__} get_poles (order {MAX_ORDER}) + select_closest_poles + "
+        f"get_constants {sdypy_s * 1e3:8.1f} ms; frequency error ≤ {np.abs(errors_pct).max():.4f} %"
+    )
+    for kind, total in timings.items():
+        ratio = sdypy_s / total
+        verdict = "PASS" if ratio >= EXPORT_TARGET else "MISS"
+        print(
+            f"  ratio sdypy-EMA / racketdyn ({kind} read + identify) {ratio:6.1f}×  target ≥ "
+            f"{EXPORT_TARGET:g}×: {verdict}"
+        )
+
+
 if __name__ == "__main__":
     main()
+    main_export()

@@ -177,7 +177,7 @@ def test_bad_modal_model(model: rd.ModalModel, change: dict, message: str) -> No
 def test_repeated_location_is_rejected(model: rd.ModalModel) -> None:
     locations = model.locations.copy()
     locations[1] = locations[0]
-    with pytest.raises(InputError, match="listed twice"):
+    with pytest.raises(InputError, match=r"point 1 and point 2 at \(.*\) m"):
         replace(model, locations=locations)
 
 

@@ -16,7 +16,11 @@ if TYPE_CHECKING:
 
 def _add_options(p: argparse.ArgumentParser) -> None:
     add_geometry(p)
-    opt.add_racket(p, " for the head (names the modes)")
+    opt.add_racket(
+        p,
+        " for the head (names the modes; without it the modes are named only when the points "
+        "lie on the built-in racket's outline)",
+    )
     p.add_argument(
         "--band",
         metavar="LOW,HIGH",
@@ -33,6 +37,14 @@ def _add_options(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--exclude", help="leave modes out, by approximate frequency, Hz (default: none)"
+    )
+    p.add_argument(
+        "--reference",
+        type=int,
+        metavar="NODE",
+        help="reference node, a node number (dimensionless), when the file has FRFs against "
+        "several (default: the one node every FRF shares, else the one reaching the most "
+        "points)",
     )
     opt.add_out(p)
 
@@ -80,6 +92,7 @@ def _options(args: argparse.Namespace) -> dict[str, Any]:
         "max_order": args.max_order,
         "pin_hz": [] if args.pin is None else opt.parse_speeds("--pin", args.pin),
         "exclude_hz": [] if args.exclude is None else opt.parse_speeds("--exclude", args.exclude),
+        "reference": args.reference,
         "command": opt.command_line(args),
     }
 
@@ -109,8 +122,20 @@ def print_modes(console: Console, identification: Identification) -> None:
         f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
         f"condition {identification.fit.condition_number:.3g}"
     )
-    for line in identification.selected.dropped:
-        console.print(f"[dim]dropped: {line}[/]")
+    later = [d for d in identification.dropped_modes if d.stage == "constants"]
+    for row in later:
+        console.print(f"left out {row.frequency_hz:.2f} Hz: {row.reason}")
+    candidates = len(identification.dropped_modes) - len(later)
+    if candidates:
+        console.print(
+            f"[dim]{candidates} candidate poles not taken as modes; each with its reason in "
+            "dropped_modes.csv[/]"
+        )
+    if identification.scaling_note:
+        console.print(f"shapes: {identification.scaling_note}")
+    naming = model.metadata.get("naming")
+    if naming:
+        console.print(f"[dim]{naming}[/]")
 
 
 def run_identify(args: argparse.Namespace, console: Console) -> int:

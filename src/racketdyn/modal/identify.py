@@ -19,14 +19,35 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
 from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfSet
 from racketdyn.modal.model import ModalModel
-from racketdyn.modal.poles import SelectedPoles, Stabilisation, select_poles, stabilisation
-from racketdyn.modal.residues import ModalFit, fit_modal_constants, mass_normalised_shapes
+from racketdyn.modal.poles import (
+    DroppedMode,
+    SelectedPoles,
+    Stabilisation,
+    select_poles,
+    stabilisation,
+)
+from racketdyn.modal.residues import (
+    WEAK_DRIVING_POINT,
+    ModalFit,
+    design_columns,
+    fit_modal_constants,
+    mass_normalised_shapes,
+    unscaled_shapes,
+)
 
-__all__ = ["DEFAULT_LOW_HZ", "Identification", "default_band", "identify"]
+__all__ = [
+    "DEFAULT_LOW_HZ",
+    "FIT_GAIN_MIN",
+    "STRONG_NEGATIVE",
+    "Identification",
+    "default_band",
+    "identify",
+]
 
 log = logging.getLogger(__name__)
 
@@ -34,6 +55,17 @@ DEFAULT_LOW_HZ = 40.0
 """Lower band edge by default, Hz: above the rigid-body modes of a light structure on soft
 supports (≤ 15 Hz for a racket on a sponge or in a hand).  Pass ``band_hz`` for a structure
 whose first flexible mode lies lower."""
+FIT_GAIN_MIN = 1.5
+"""A selected pole is a mode of the data when the fit near its frequency (three half-power
+bandwidths either side) is at least this many times worse without it.  A pole where the data
+have no mode scores 1.00 (its constants fit to nothing: tests/test_lab_identify.py); a weak
+real mode among misfit neighbours scores 2–3 (the rig's third membrane mode at 1.24 kHz: 2.5),
+strong modes 30–1000."""
+STRONG_NEGATIVE = 0.25
+"""A negative driving-point constant at least this fraction of the largest positive one there
+cannot be a fit's error on a small value: the reference is not a true driving point.  Smaller
+negative ones (a mode nearly still at the accelerometer, e.g. a string-bed mode at a hoop point)
+leave that mode out of a mass-normalised model."""
 
 
 def default_band(frfs: FrfSet) -> tuple[float, float]:
@@ -60,6 +92,9 @@ class Identification:
         Modal constants, residuals, synthesised FRFs and the fit error of every FRF.
     band_hz : tuple of float
         Band used, Hz.
+    scaling_note : str
+        How the shapes were scaled and, when they could not be mass-normalised or the
+        driving point's sign was reversed, why (empty for a plain mass-normalised model).
     """
 
     model: ModalModel
@@ -68,6 +103,20 @@ class Identification:
     selected: SelectedPoles
     fit: ModalFit
     band_hz: tuple[float, float]
+    scaling_note: str = ""
+
+    @property
+    def dropped_modes(self) -> tuple[DroppedMode, ...]:
+        """Every candidate mode left out, with its evidence (``dropped_modes.csv``)."""
+        return self.selected.dropped_modes
+
+    def write_dropped_csv(self, path: Path) -> None:
+        """``dropped_modes.csv``: one row per candidate left out (:class:`DroppedMode`)."""
+        with Path(path).open("w", newline="", encoding="utf-8") as handle:
+            writer = csv.writer(handle)
+            writer.writerow(DroppedMode.COLUMNS)
+            for row in sorted(self.dropped_modes, key=lambda d: d.frequency_hz):
+                writer.writerow(row.row())
 
     def renamed(self, names: Sequence[str], kinds: Sequence[str]) -> Identification:
         """The same identification with its modes named (e.g. from their shapes).
@@ -126,11 +175,30 @@ def identify(
 ) -> Identification:
     """Identify a modal model of any structure from a set of FRFs against one reference.
 
+    Any number of FRFs (one is enough for frequencies and damping ratios).  What the modal
+    constants show decides what is kept and how the shapes are scaled:
+
+    - a selected pole with no peak in the data — the fit near it hardly worse without it
+      (:data:`FIT_GAIN_MIN`) — is left out, unless pinned;
+    - with a driving point (an FRF at the reference node) whose constants are all positive
+      (a true driving point: ``A_rr = φ_r² > 0``) the shapes are mass-normalised (eq 12); a
+      mode whose driving-point constant is negative but small sits (nearly) on a node at the
+      accelerometer and is left out (it cannot be normalised);
+    - all clear driving-point constants negative: the response was measured against the
+      hammer (a sensor in −z, or opposite sign conventions); the FRFs are taken with the
+      opposite sign and normalised;
+    - negative constants as large as the positive ones (:data:`STRONG_NEGATIVE`: not a true
+      driving point — other directions at one node, or the sensor beside the hammer point),
+      or no driving point at all: every mode kept, shapes unscaled (largest magnitude 1),
+      ``model.scaling == "unscaled"``; smaller negative ones leave their mode out.
+
+    Everything left out is in ``selected.dropped_modes`` (``dropped_modes.csv``).
+
     Parameters
     ----------
     frfs : FrfSet
-        FRFs of the hammer points (with a driving point at the reference for mass-normalised
-        shapes); an exponential window recorded on the set is taken off the damping.
+        FRFs of the points against one reference (2-D or 3-D locations); an exponential
+        window recorded on the set is taken off the damping.
     band_hz : tuple of float, optional
         Band to identify in, Hz (default :func:`default_band`).
     max_order : int
@@ -154,26 +222,87 @@ def identify(
     stab = stabilisation(frfs, band, max_order=max_order)
     selected = select_poles(stab, pin_hz=pin_hz, exclude_hz=exclude_hz)  # raises if none
     fit = fit_modal_constants(frfs, selected.pole, band)
-    unseen: list[str] = []
-    if frfs.driving_point is not None:
-        # a mode the accelerometer does not see cannot be mass-normalised: leave it out, say so
-        positive = fit.constants[frfs.driving_point] > 0
-        for k in np.flatnonzero(~positive):
-            unseen.append(
-                f"{selected.frequency[k]:.2f} Hz: not seen at the accelerometer (driving-point "
-                "constant not positive), so it cannot be mass-normalised; left out"
+    late: list[DroppedMode] = []
+
+    gain = fit_gain(frfs, fit)
+    real = (gain >= FIT_GAIN_MIN) | selected.pinned
+    if not real.any():
+        real = gain == gain.max()  # the best of them rather than nothing: select_poles chose
+    for k in np.flatnonzero(~real):
+        late.append(
+            _dropped(
+                selected,
+                int(k),
+                f"no peak in the data: the fit near it is only {gain[k]:.2g} × better with it "
+                f"(< {FIT_GAIN_MIN:g})",
+                gain=gain[k],
             )
-            log.warning("%s", unseen[-1])
-        if not positive.any():
-            raise InputError(
-                f"{frfs.source}: no mode is seen at the accelerometer (node "
-                f"{frfs.reference_node}); move it off the nodes"
+        )
+    if not real.all():
+        selected, gain = selected.select(real), gain[real]
+        fit = fit_modal_constants(frfs, selected.pole, band)
+
+    scaling, note = "unscaled", ""
+    driving = frfs.driving_point
+    if driving is None:
+        note = (
+            f"no driving point (no FRF at the reference node {frfs.reference_node}): shapes "
+            "unscaled; strike the reference node too for mass-normalised shapes"
+        )
+    else:
+        ratio = fit.constants[driving] / np.abs(fit.constants).max(axis=0)
+        clear = np.abs(ratio) >= WEAK_DRIVING_POINT
+        if clear.any() and np.all(ratio[clear] < 0):
+            frfs = replace(
+                frfs, values=-frfs.values, metadata={**frfs.metadata, "sign_reversed": True}
             )
-        if not positive.all():
-            selected = selected.select(positive)
             fit = fit_modal_constants(frfs, selected.pole, band)
-    shapes = mass_normalised_shapes(frfs, fit)
+            ratio = -ratio
+            note = (
+                f"every mode's driving-point constant (node {frfs.reference_node}) was "
+                "negative: the response is measured against the hammer (a sensor in −z or "
+                "opposite sign conventions); the FRFs are taken with the opposite sign"
+            )
+        at_driving = fit.constants[driving]
+        kept_scale = float(at_driving[clear & (ratio > 0)].max(initial=0.0))
+        strong = clear & (ratio < 0) & (-at_driving >= STRONG_NEGATIVE * kept_scale)
+        if kept_scale > 0 and strong.any():
+            negative = ", ".join(f"{f:.1f}" for f in selected.frequency[strong])
+            note = (
+                f"node {frfs.reference_node} is not a true driving point: modes at {negative} "
+                "Hz have clearly negative constants there (φ_r² cannot be), so the hammer and "
+                "the sensor differ in direction or place; every mode kept, shapes unscaled"
+            )
+        elif not clear.any():
+            note = (
+                f"every mode is weak at the driving point (node {frfs.reference_node}): shapes "
+                "unscaled; move the accelerometer where the modes move"
+            )
+        else:
+            scaling = "mass"
+            on_node = ratio <= 0
+            for k in np.flatnonzero(on_node):
+                late.append(
+                    _dropped(
+                        selected,
+                        int(k),
+                        "on a node at the accelerometer (driving-point constant "
+                        f"{ratio[k]:.2g} of its largest): cannot be mass-normalised; move the "
+                        "accelerometer off its node",
+                        gain=gain[k],
+                        ratio=ratio[k],
+                    )
+                )
+            if on_node.any():
+                selected = selected.select(~on_node)
+                fit = fit_modal_constants(frfs, selected.pole, band)
+    for row in late:
+        log.warning("%.2f Hz left out: %s", row.frequency_hz, row.reason)
+    if note:
+        log.warning("%s: %s", frfs.source, note)
+    shapes = mass_normalised_shapes(frfs, fit) if scaling == "mass" else unscaled_shapes(fit)
     names = tuple(f"mode {k + 1} ({f:.1f} Hz)" for k, f in enumerate(selected.frequency))
+    dropped = (*selected.dropped, *(f"{d.frequency_hz:.2f} Hz: {d.reason}" for d in late))
     model = ModalModel(
         frequency=selected.frequency,
         damping_ratio=selected.damping_ratio,
@@ -192,9 +321,71 @@ def identify(
             "fit_error_median": float(np.median(fit.error)),
             "design_condition_number": fit.condition_number,
             "orders_stable": selected.n_orders.tolist(),
-            "dropped": [*selected.dropped, *unseen],
+            "scaling_note": note,
+            "dropped": [
+                f"{d.frequency_hz:.2f} Hz: {d.reason}"
+                for d in (*selected.dropped_modes, *late)
+                if d.stage == "constants" or d.orders_stable > 3
+            ],
         },
+        scaling=scaling,
     )
     log.info("identified %d modes in %g–%g Hz", model.n_modes, *band)
-    selected = replace(selected, dropped=(*selected.dropped, *unseen))
-    return Identification(model, frfs, stab, selected, fit, band)
+    selected = replace(selected, dropped=dropped, dropped_modes=(*selected.dropped_modes, *late))
+    return Identification(model, frfs, stab, selected, fit, band, note)
+
+
+def fit_gain(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
+    """How much worse the fit is near each mode without it: the peak each mode has in the data.
+
+    Over the lines within three half-power bandwidths (``6 ζ f``, at least five lines) of the
+    mode, every FRF: ``‖residual + the mode's term‖ / ‖residual‖``.  A mode of the data
+    scores its peak over the misfit (tens to thousands); a pole that fits noise about 1; a
+    pole with no line near it ``inf`` (nothing to judge by).
+
+    Parameters
+    ----------
+    frfs : FrfSet
+        The FRFs fitted.
+    fit : ModalFit
+        Their fit (:func:`racketdyn.modal.residues.fit_modal_constants`).
+
+    Returns
+    -------
+    ndarray, shape (n_modes,)
+    """
+    lines = np.searchsorted(frfs.frequency, fit.frequency)
+    residual = frfs.values[:, lines] - fit.synthesised
+    step = float(np.median(np.diff(fit.frequency))) if fit.frequency.size > 1 else 1.0
+    gains = np.empty(fit.poles.size)
+    for k, (f, zeta) in enumerate(zip(fit.frequency_hz, fit.damping_ratio, strict=True)):
+        half = max(6 * zeta * f, 5 * step)
+        near = np.flatnonzero(np.abs(fit.frequency - f) <= half)
+        if near.size == 0:  # no line near it: nothing to judge by, keep it
+            gains[k] = np.inf
+            continue
+        term = design_columns(frfs, fit.poles[k : k + 1], fit.frequency[near])[:, 0]
+        without = residual[:, near] + fit.constants[:, k, None] * term[None, :]
+        misfit = float(np.linalg.norm(residual[:, near]))
+        gains[k] = float(np.linalg.norm(without)) / max(misfit, 1e-300)
+    return gains
+
+
+def _dropped(
+    selected: SelectedPoles,
+    k: int,
+    reason: str,
+    *,
+    gain: float = float("nan"),
+    ratio: float = float("nan"),
+) -> DroppedMode:
+    return DroppedMode(
+        float(selected.frequency[k]),
+        float(selected.damping_ratio[k]),
+        int(selected.n_orders[k]),
+        "constants",
+        reason,
+        peak_to_noise=float(selected.peak_to_noise[k]),
+        fit_gain=float(gain),
+        driving_point_ratio=float(ratio),
+    )

@@ -30,6 +30,13 @@ FORMAT = "racketdyn-modal-model"
 MODE_KINDS = ("bending", "twisting", "string-bed", "rigid-body", "other", "unknown")
 """What a mode can be: a racket's kinds, ``rigid-body`` (the structure moving as a whole on its
 support: a sponge, a hand), ``other``, and ``unknown`` (not classified)."""
+FLAT = 0.01
+"""Sample points whose spread in a direction is under this fraction of their largest spread lie
+on a line or plane: shapes are interpolated along it (a beam's or a face's points measured off
+it by a millimetre)."""
+SCALINGS = ("mass", "unscaled")
+"""How the shapes are scaled: mass-normalised (1/√kg), or unscaled (largest |φ| of each mode
+1, no unit: the test had no usable driving point)."""
 
 
 def _kind_from_name(name: str) -> str:
@@ -52,7 +59,8 @@ class ModalModel:
     locations : ndarray, shape (n_points, 2) or (n_points, 3)
         Where the shapes are sampled, ``(x, y)`` (a racket's face) or ``(x, y, z)``, m.
     mode_shapes : ndarray, shape (n_points, n_modes)
-        Mass-normalised mode shapes (displacement normal to the face), 1/√kg.
+        Mass-normalised mode shapes (displacement normal to the face), 1/√kg; unscaled shapes
+        (``scaling="unscaled"``) have their largest magnitude 1 and no unit.
     names : tuple of str
         Mode names (``"2-node bending"``, …).
     kinds : tuple of str
@@ -66,6 +74,12 @@ class ModalModel:
         The support the modes belong to (``free``, ``hand`` …).
     source : str
         Where the model came from.
+    metadata : dict
+        Anything else (an identified model: band, nodes, reference, what was dropped).
+    scaling : {"mass", "unscaled"}
+        ``mass`` (the default) or ``unscaled``: frequencies and damping ratios hold, but the
+        shapes are known up to a factor per mode, so no prediction can use them
+        (:meth:`require_mass_normalised`).
     """
 
     frequency: NDArray[np.float64]
@@ -77,6 +91,7 @@ class ModalModel:
     support: str = "free"
     source: str = ""
     metadata: dict[str, Any] = field(default_factory=dict)
+    scaling: str = "mass"
 
     def __post_init__(self) -> None:
         frequency = np.asarray(self.frequency, dtype=float)
@@ -108,10 +123,34 @@ class ModalModel:
                 f"{', '.join(MODE_KINDS)}"
             )
         object.__setattr__(self, "kinds", kinds)
-        if locations.shape[0] < 3:
-            raise InputError(f"modal model ({self.source}): needs shapes at 3 points or more")
-        if np.unique(locations, axis=0).shape[0] != locations.shape[0]:
-            raise InputError(f"modal model ({self.source}): a location is listed twice")
+        if self.scaling not in SCALINGS:
+            raise InputError(
+                f"modal model ({self.source}): scaling must be one of {', '.join(SCALINGS)} "
+                f"(got {self.scaling!r})"
+            )
+        if locations.shape[0] < 1:
+            raise InputError(f"modal model ({self.source}): needs shapes at one point or more")
+        _check_distinct(locations, self.source, self.metadata.get("nodes"))
+
+    @property
+    def mass_normalised(self) -> bool:
+        """True when the shapes are mass-normalised (1/√kg)."""
+        return self.scaling == "mass"
+
+    def require_mass_normalised(self, what: str) -> None:
+        """InputError unless the shapes are mass-normalised: ``what`` needs them.
+
+        Parameters
+        ----------
+        what : str
+            The step that needs them, for the message (e.g. ``"predict"``).
+        """
+        if not self.mass_normalised:
+            raise InputError(
+                f"modal model ({self.source}): its shapes are unscaled (the test had no usable "
+                f"driving point), so {what} cannot use it; measure a driving point (strike the "
+                "accelerometer's node) and identify again"
+            )
 
     @property
     def n_modes(self) -> int:
@@ -156,7 +195,11 @@ class ModalModel:
         None when the samples fill their coordinates (a face in (x, y), a solid in (x, y, z)).
         """
         centred = self.locations - self.locations.mean(axis=0)
-        rank = int(np.linalg.matrix_rank(centred, tol=1e-9))
+        # a direction spread less than FLAT of the largest is no dimension: coordinates
+        # rounded to a file's 6 digits, or a tape's millimetre, off a line or plane made the
+        # thin-plate spline ill-conditioned (shapes × 10⁴ between the points, issue 12)
+        spread = np.linalg.svd(centred, compute_uv=False)
+        rank = int(np.count_nonzero(spread > max(FLAT * spread.max(), 1e-12)))
         if rank >= self.n_dimensions:
             return None
         if self.n_dimensions == 2 and np.ptp(self.locations[:, 1]) == 0:
@@ -169,6 +212,11 @@ class ModalModel:
         basis = self._basis
         if basis is None:
             return points
+        if basis.shape[0] == 0:
+            raise InputError(
+                f"modal model ({self.source}): the shapes are known at one point only; they "
+                "cannot be interpolated elsewhere"
+            )
         if basis.shape == (1, 2) and basis[0, 1] == 0:
             return points[:, :1]  # along x: x itself
         return np.asarray((points - self.locations[0]) @ basis.T)
@@ -180,9 +228,17 @@ class ModalModel:
         # long axis, a beam along any direction) are interpolated along that line, shapes on
         # one plane of (x, y, z) in that plane; a point off them gets the shape of its
         # projection onto them.
-        return RBFInterpolator(
-            self._coordinates(self.locations), self.mode_shapes, kernel="thin_plate_spline"
-        )
+        coordinates = self._coordinates(self.locations)
+        # points that share their place on the line or plane (two faces of a beam, nodes that
+        # differ off it only) are one sample: their mean shape (the spline needs distinct points)
+        scale = float(np.abs(coordinates).max()) or 1.0
+        keys = np.round(coordinates / (1e-6 * scale)).astype(np.int64)
+        _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+        inverse = np.ravel(inverse)
+        shapes = np.zeros((first.size, self.n_modes))
+        np.add.at(shapes, inverse, self.mode_shapes)
+        shapes /= np.bincount(inverse)[:, None]
+        return RBFInterpolator(coordinates[first], shapes, kernel="thin_plate_spline")
 
     def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:
         """Mass-normalised mode shapes at any locations, shaped ``(n, n_modes)``, 1/√kg.
@@ -228,11 +284,17 @@ class ModalModel:
             support=self.support,
             source=self.source,
             metadata=dict(self.metadata),
+            scaling=self.scaling,
         )
 
     def summary(self) -> dict[str, Any]:
         """Source, support and the modes (for run records)."""
-        return {"source": self.source, "support": self.support, "modes": self.to_dict()["modes"]}
+        return {
+            "source": self.source,
+            "support": self.support,
+            "scaling": self.scaling,
+            "modes": self.to_dict()["modes"],
+        }
 
     @cached_property
     def frame_modes(self) -> ModalModel:
@@ -255,7 +317,12 @@ class ModalModel:
             "racketdyn_version": __version__,
             "support": self.support,
             "source": self.source,
-            "units": {"frequency": "Hz", "locations": "m", "mode_shapes": "1/sqrt(kg)"},
+            "scaling": self.scaling,
+            "units": {
+                "frequency": "Hz",
+                "locations": "m",
+                "mode_shapes": "1/sqrt(kg)" if self.mass_normalised else "1 (unscaled)",
+            },
             "modes": [
                 {"name": n, "kind": k, "frequency_hz": float(f), "damping_ratio": float(z)}
                 for n, k, f, z in zip(
@@ -295,8 +362,31 @@ class ModalModel:
                 support=str(data.get("support", "free")),
                 source=str(data.get("source", path.name)),
                 metadata=dict(data.get("metadata", {})),
+                scaling=str(data.get("scaling", "mass")),
             )
         except (KeyError, TypeError, ValueError) as error:
             raise InputError(
                 f"{path}: modal model is missing or has a bad field ({error})"
             ) from None
+
+
+def _check_distinct(locations: NDArray[np.float64], source: str, nodes: Any) -> None:
+    """InputError naming the source and the node numbers (when known) of two points at one
+    location."""
+    _, first, inverse = np.unique(locations, axis=0, return_index=True, return_inverse=True)
+    if first.size == locations.shape[0]:
+        return
+    inverse = np.ravel(inverse)
+    clashes = []
+    for group in np.unique(inverse[np.bincount(inverse)[inverse] > 1]):
+        members = np.flatnonzero(inverse == group)
+        if isinstance(nodes, list | tuple) and len(nodes) == locations.shape[0]:
+            names = " and ".join(f"node {nodes[i]}" for i in members)
+        else:
+            names = " and ".join(f"point {i + 1}" for i in members)
+        where = ", ".join(f"{v:.4g}" for v in locations[members[0]])
+        clashes.append(f"{names} at ({where}) m")
+    raise InputError(
+        f"modal model ({source}): two points share one location: {'; '.join(clashes[:4])}; "
+        "give each its own coordinates (keep z for points that differ only in z)"
+    )

@@ -82,7 +82,7 @@ import math
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 from enum import IntEnum
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -96,6 +96,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
 __all__ = [
+    "DroppedMode",
     "PoleStability",
     "SelectedPoles",
     "Stabilisation",
@@ -244,6 +245,70 @@ class Stabilisation:
         return plot_stabilisation(self, selected=selected, ax=ax, frfs=frfs)
 
 
+@dataclass(frozen=True)
+class DroppedMode:
+    """A candidate mode left out, with the evidence (one row of ``dropped_modes.csv``).
+
+    Attributes
+    ----------
+    frequency_hz : float
+        Its frequency, Hz.
+    damping_ratio : float
+        Its damping ratio.
+    orders_stable : int
+        Model orders it was stable in.
+    stage : str
+        ``selection`` (the stabilisation diagram's rules) or ``constants`` (what the modal
+        constants showed: no peak in the data, not normalisable at the driving point).
+    reason : str
+        Why, in words.
+    peak_to_noise : float
+        Its peak over the FRF's noise (NaN where not computed).
+    fit_gain : float
+        How much worse the fit is near its frequency without it (NaN where not computed);
+        about 1 for a pole with no peak in the data.
+    driving_point_ratio : float
+        Its driving-point constant over its largest constant, signed (NaN where not computed).
+    """
+
+    frequency_hz: float
+    damping_ratio: float
+    orders_stable: int
+    stage: str
+    reason: str
+    peak_to_noise: float = math.nan
+    fit_gain: float = math.nan
+    driving_point_ratio: float = math.nan
+
+    COLUMNS: ClassVar[tuple[str, ...]] = (
+        "frequency_hz",
+        "damping_ratio",
+        "orders_stable",
+        "stage",
+        "reason",
+        "peak_to_noise",
+        "fit_gain",
+        "driving_point_ratio",
+    )
+
+    def row(self) -> list[str]:
+        """The CSV row: numbers to 6 significant figures, NaN left empty."""
+
+        def text(value: float) -> str:
+            return "" if math.isnan(value) else f"{value:.6g}"
+
+        return [
+            text(self.frequency_hz),
+            text(self.damping_ratio),
+            str(self.orders_stable),
+            self.stage,
+            self.reason,
+            text(self.peak_to_noise),
+            text(self.fit_gain),
+            text(self.driving_point_ratio),
+        ]
+
+
 @dataclass(frozen=True, eq=False)
 class SelectedPoles:
     """The physical poles picked from a stabilisation diagram, one per mode.
@@ -280,6 +345,8 @@ class SelectedPoles:
         Node of each FRF (rows of ``residues``).
     dropped : tuple of str
         What was left out and why (one line per cluster of stable poles), also logged.
+    dropped_modes : tuple of DroppedMode
+        The same as a table, plus what identification left out later.
     """
 
     frequency: NDArray[np.float64]
@@ -296,6 +363,7 @@ class SelectedPoles:
     n_orders_computed: int
     nodes: tuple[int, ...]
     dropped: tuple[str, ...] = ()
+    dropped_modes: tuple[DroppedMode, ...] = ()
 
     @property
     def n_modes(self) -> int:
@@ -946,11 +1014,22 @@ def select_poles(
         accepted[k] = True
 
     dropped = []
+    dropped_modes = []
     for c, reason, keep in zip(clusters, reasons, accepted, strict=True):
         if keep:
             continue
         line = f"{c.frequency:.2f} Hz, ζ = {c.damping_ratio:.4f}, {c.n_orders} orders: {reason}"
         dropped.append(line)
+        dropped_modes.append(
+            DroppedMode(
+                float(c.frequency),
+                float(c.damping_ratio),
+                int(c.n_orders),
+                "selection",
+                reason,
+                peak_to_noise=float(c.peak_to_noise),
+            )
+        )
         # clusters of one to three poles are the noise's: logged at DEBUG only
         (logger.info if c.n_orders > 3 else logger.debug)("dropped %s", line)
     kept = sorted(
@@ -989,6 +1068,7 @@ def select_poles(
         n_orders_computed=n_orders_total,
         nodes=stab.nodes,
         dropped=tuple(dropped),
+        dropped_modes=tuple(dropped_modes),
     )
 
 

@@ -31,7 +31,14 @@ from racketdyn.errors import InputError
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.mac import mac
 
-__all__ = ["ModalFit", "fit_modal_constants", "mac", "mass_normalised_shapes"]
+__all__ = [
+    "ModalFit",
+    "design_columns",
+    "fit_modal_constants",
+    "mac",
+    "mass_normalised_shapes",
+    "unscaled_shapes",
+]
 
 log = logging.getLogger(__name__)
 
@@ -113,12 +120,7 @@ def fit_modal_constants(
             f"{frfs.source}: {int(keep.sum())} lines in {low:g}–{high:g} Hz are too few to fit "
             f"{lam.size} modes and two residuals"
         )
-    omega = 2 * np.pi * frfs.frequency[keep]
-    s = 1j * omega
-    windowed = lam - (1.0 / frfs.exponential_window_s if frfs.exponential_window_s else 0.0)
-    power = (s ** _POWER[frfs.frf_type])[:, None]
-    modal = 1.0 / ((s[:, None] - windowed) * (s[:, None] - np.conj(windowed)))
-    columns = power * np.column_stack([modal, -1.0 / omega**2, np.ones_like(omega)])
+    columns = design_columns(frfs, lam, frfs.frequency[keep])
     stacked = np.vstack([columns.real, columns.imag])
     scale = np.linalg.norm(stacked, axis=0)
     data = frfs.values[:, keep].T
@@ -141,6 +143,34 @@ def fit_modal_constants(
         error=np.asarray(error),
         condition_number=float(singular[0] / singular[-1]),
     )
+
+
+def design_columns(
+    frfs: FrfSet, poles: NDArray[np.complex128], frequency: NDArray[np.float64]
+) -> NDArray[np.complex128]:
+    """The LSFD model's columns at some lines: one per mode (unit constant), L and U.
+
+    Parameters
+    ----------
+    frfs : FrfSet
+        Gives the FRF type and the exponential window.
+    poles : ndarray, complex
+        Poles of the structure, rad/s.
+    frequency : ndarray
+        Lines, Hz (above 0).
+
+    Returns
+    -------
+    ndarray, complex, shape (n_freq, n_modes + 2)
+        ``(iω)^p / ((iω − λ)(iω − λ*))`` per mode, then ``−(iω)^p / ω²`` and ``(iω)^p``: the
+        FRF is these columns times ``[A_o, L_o, U_o]``.
+    """
+    omega = 2 * np.pi * np.asarray(frequency, dtype=float)
+    s = 1j * omega
+    windowed = poles - (1.0 / frfs.exponential_window_s if frfs.exponential_window_s else 0.0)
+    power = (s ** _POWER[frfs.frf_type])[:, None]
+    modal = 1.0 / ((s[:, None] - windowed) * (s[:, None] - np.conj(windowed)))
+    return np.asarray(power * np.column_stack([modal, -1.0 / omega**2, np.ones_like(omega)]))
 
 
 def mass_normalised_shapes(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
@@ -176,3 +206,16 @@ def mass_normalised_shapes(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
             at_reference[k] / np.abs(fit.constants[:, k]).max(),
         )
     return np.asarray(fit.constants / np.sqrt(at_reference))
+
+
+def unscaled_shapes(fit: ModalFit) -> NDArray[np.float64]:
+    """Shapes without a driving point: each mode's constants over its largest magnitude.
+
+    ``A_ok = φ_o φ_ref`` is the shape times an unknown factor ``φ_ref`` per mode, so the
+    constants are the shape up to that factor; each column is scaled so its largest magnitude
+    is +1 (no unit).
+    """
+    constants = fit.constants
+    largest = np.take_along_axis(constants, np.abs(constants).argmax(axis=0)[None], axis=0)[0]
+    largest = np.where(largest == 0, 1.0, largest)
+    return np.asarray(constants / largest)

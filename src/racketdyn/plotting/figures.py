@@ -46,14 +46,16 @@ from racketdyn.modal.residues import mac
 from racketdyn.plotting.primitives import (
     SCALE_BAR_M,
     SUPPORT_STYLE,
-    mark_flagged_spans,
     label_lines,
+    mark_flagged_spans,
     plot_along_axis,
     plot_contact_map,
     plot_face_map,
     plot_frame_amplitude,
     plot_frf,
     plot_mac,
+    plot_mode_3d,
+    plot_node_lines,
     plot_oblique_curve,
     plot_outline,
     plot_racket_mode_3d,
@@ -588,16 +590,29 @@ def write_paper_figures(
     return written
 
 
+def _point_label(frfs: FrfSet, index: int, centre_index: int) -> str:
+    """One label per point, the same in every figure: its node, where it is and what it is."""
+    where = ", ".join(f"{1e3 * c:.0f}" for c in frfs.locations[index])
+    roles = []
+    if index == frfs.driving_point:
+        roles.append("driving point (at the accelerometer)")
+    if index == centre_index:
+        roles.append("nearest the string-bed centre")
+    return f"node {frfs.nodes[index]} ({where}) mm" + (": " + ", ".join(roles) if roles else "")
+
+
 def write_frf_figures(frfs: FrfSet, racket: Racket, out_dir: Path) -> list[Path]:
-    """Paper Figs 2–3: the frame driving-point FRF and the FRF at the string-bed centre."""
+    """Paper Figs 2–3: the frame driving-point FRF and the FRF at the string-bed centre.
+
+    Each point is labelled the same way in both (:func:`_point_label`): without a driving
+    point Fig. 2 shows the first point and says so; when the driving point is also the point
+    nearest the string-bed centre both figures say both.
+    """
     batch = FigureBatch()
     centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
-    nearest = int(np.argmin(np.linalg.norm(frfs.locations - centre, axis=1)))
+    nearest = int(np.argmin(np.linalg.norm(frfs.locations[:, :2] - centre, axis=1)))
     frame = frfs.driving_point if frfs.driving_point is not None else 0
-    for name, index, what in (
-        ("fig2_frf_frame.png", frame, "impact on the frame at the accelerometer"),
-        ("fig3_frf_string_centre.png", nearest, "impact at the string-bed centre"),
-    ):
+    for name, index in (("fig2_frf_frame.png", frame), ("fig3_frf_string_centre.png", nearest)):
         figure, axes = plt.subplots(
             3,
             1,
@@ -606,7 +621,7 @@ def write_frf_figures(frfs: FrfSet, racket: Racket, out_dir: Path) -> list[Path]
             layout="constrained",
             gridspec_kw={"height_ratios": [2, 1, 1]},
         )
-        plot_frf(frfs, index, axes=list(axes), label=f"node {frfs.nodes[index]}: {what}")
+        plot_frf(frfs, index, axes=list(axes), label=_point_label(frfs, index, nearest))
         averages = "" if frfs.n_averages is None else f", {int(frfs.n_averages[index])} averages"
         figure.suptitle(
             f"{frfs.frf_type} FRF, {frfs.estimator}{averages} ({frfs.source})", fontsize=9
@@ -643,50 +658,59 @@ def _mode_grid(n: int) -> tuple[int, int]:
     return int(np.ceil(n / columns)), columns
 
 
-def figure_mode_shapes(model: ModalModel, racket: Racket) -> Figure:
+def figure_mode_shapes(model: ModalModel, racket: Racket | None) -> Figure:
     """Paper Fig. 4: each mode shape in 3-D over the racket, with a 100 mm scale bar.
 
     Parameters
     ----------
     model : ModalModel
-        The racket's modes.
-    racket : Racket
-        The racket (face and long axis).
+        The modes.
+    racket : Racket or None
+        The racket (face and long axis); None for a structure that is not a racket (the shapes
+        over its own points).
     """
     rows, columns = _mode_grid(model.n_modes)
     figure = plt.figure(figsize=(4.2 * columns, 3.2 * rows), layout="constrained")
     for k in range(model.n_modes):
-        plot_racket_mode_3d(
-            model, racket, k, ax=figure.add_subplot(rows, columns, k + 1, projection="3d")
-        )
+        ax3d = figure.add_subplot(rows, columns, k + 1, projection="3d")
+        if racket is None:
+            plot_mode_3d(model, k, ax=ax3d)
+        else:
+            plot_racket_mode_3d(model, racket, k, ax=ax3d)
+    scaled = "" if model.mass_normalised else ", unscaled"
+    bar = f"; bar: {SCALE_BAR_M * 1e3:.0f} mm" if racket is not None else ""
     figure.suptitle(
-        f"Fig. 4: mode shapes ({model.support}), each scaled to the same largest amplitude; "
-        f"bar: {SCALE_BAR_M * 1e3:.0f} mm",
+        f"Fig. 4: mode shapes ({model.support}{scaled}), each scaled to the same largest "
+        f"amplitude{bar}",
         fontsize=10,
     )
     return figure
 
 
-def figure_node_lines(model: ModalModel, racket: Racket) -> Figure:
+def figure_node_lines(model: ModalModel, racket: Racket | None) -> Figure:
     """Paper Fig. 5: node lines of each mode on the string face, with a key to black and white.
 
     Parameters
     ----------
     model : ModalModel
-        The racket's modes.
-    racket : Racket
-        The racket (face and outline).
+        The modes.
+    racket : Racket or None
+        The racket (face and outline); None for a structure that is not a racket (the node
+        lines over its own points).
     """
     rows, columns = _mode_grid(model.n_modes)
     figure, axes = plt.subplots(
         rows, columns, figsize=(3.2 * columns, 2.6 * rows), layout="constrained", squeeze=False
     )
     for k, ax in enumerate(axes.flat):
-        if k < model.n_modes:
-            plot_racket_node_lines(model, racket, k, ax=ax)
-        else:
+        if k >= model.n_modes:
             ax.set_axis_off()
-    figure.suptitle(f"Fig. 5: node lines on the string face ({model.support})", fontsize=10)
+        elif racket is None:
+            plot_node_lines(model, k, ax=ax)
+        else:
+            plot_racket_node_lines(model, racket, k, ax=ax)
+    where = "on the string face" if racket is not None else "over the measured points"
+    figure.suptitle(f"Fig. 5: node lines {where} ({model.support})", fontsize=10)
     figure.legend(
         handles=[
             Patch(facecolor="k", edgecolor="k", label="black: the face moves one way"),
@@ -705,34 +729,47 @@ def figure_node_lines(model: ModalModel, racket: Racket) -> Figure:
 def write_identification(
     identification: Identification, racket: Racket, out_dir: Path, label: str = ""
 ) -> list[Path]:
-    """Figures of an identification: stabilisation, Figs 4–6, synthesised FRFs, AutoMAC."""
+    """Figures of an identification: stabilisation, Figs 4–6, synthesised FRFs, AutoMAC.
+
+    A racket's modes (named from their shapes) get the racket's figures (face, outline, the
+    long axis); any other structure gets its own points (a surface over them, the shape along
+    their line, or the points in space) and no Fig. 6.  Shapes known at one point only get no
+    Figs 4–5.
+    """
     out = Path(out_dir)
     model, frfs = identification.model, identification.frfs
+    racket_modes = any(kind != "unknown" for kind in model.kinds) and model.n_dimensions == 2
     suffix = f"_{label}" if label else ""
     batch = FigureBatch()
     figure, ax = plt.subplots(figsize=(8, 5), layout="constrained")
     plot_stabilisation(identification.stabilisation, identification.selected, ax=ax, frfs=frfs)
     batch.add(figure, out / f"stabilisation{suffix}.png")
 
-    figure = figure_mode_shapes(model, racket)
-    # mplot3d's projection overflows on the NaN outside the face of some surfaces; harmless
-    with np.errstate(over="ignore", invalid="ignore"):  # the state it is drawn under
-        batch.add(figure, out / f"fig4_mode_shapes{suffix}.png")
-    batch.add(figure_node_lines(model, racket), out / f"fig5_node_lines{suffix}.png")
+    if model.locations.shape[0] >= 2:
+        on = racket if racket_modes else None
+        figure = figure_mode_shapes(model, on)
+        # mplot3d's projection overflows on the NaN outside the face of some surfaces; harmless
+        with np.errstate(over="ignore", invalid="ignore"):  # the state it is drawn under
+            batch.add(figure, out / f"fig4_mode_shapes{suffix}.png")
+        batch.add(figure_node_lines(model, on), out / f"fig5_node_lines{suffix}.png")
 
-    figure, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
-    _plot_axis_nodes([model], racket, ax)
-    batch.add(figure, out / f"fig6_nodes{suffix}.png")
+    if racket_modes:
+        figure, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
+        _plot_axis_nodes([model], racket, ax)
+        batch.add(figure, out / f"fig6_nodes{suffix}.png")
 
-    figure, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
-    centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
-    picks = [
-        frfs.driving_point or 0,
-        int(np.argmin(np.linalg.norm(frfs.locations - centre, axis=1))),
-    ]
     fit = identification.fit
+    if racket_modes:
+        centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
+        second = int(np.argmin(np.linalg.norm(frfs.locations - centre, axis=1)))
+    else:
+        second = int(np.argmax(fit.error))  # the worst-fitted point
+    picks = sorted({frfs.driving_point or 0, second})
+    figure, axes = plt.subplots(
+        1, len(picks), figsize=(5.5 * len(picks), 4), layout="constrained", squeeze=False
+    )
     band = (frfs.frequency >= fit.frequency[0]) & (frfs.frequency <= fit.frequency[-1])
-    for ax, index in zip(axes, picks, strict=True):
+    for ax, index in zip(axes[0], picks, strict=True):
         ax.semilogy(frfs.frequency, np.abs(frfs.values[index]), color="0.6", label="measured")
         ax.semilogy(
             fit.frequency,

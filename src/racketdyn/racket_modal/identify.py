@@ -8,13 +8,15 @@ the head: :func:`racketdyn.racket_modal.shapes.classify_modes`).
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.identify import Identification, identify
 from racketdyn.racket import HeadEllipse, Racket
-from racketdyn.racket_modal.shapes import classify_modes
+from racketdyn.racket_modal.face import face_mapping, looks_like_racket
+from racketdyn.racket_modal.shapes import classify_modes, naming_evidence
 
-__all__ = ["identify_racket", "name_racket_modes"]
+__all__ = ["identify_racket", "name_if_racket", "name_racket_modes"]
 
 
 def _head(racket: Racket | HeadEllipse) -> HeadEllipse:
@@ -85,3 +87,62 @@ def identify_racket(
         support=support,
     )
     return name_racket_modes(identification, racket)
+
+
+def name_if_racket(
+    identification: Identification, racket: Racket, racket_given: bool
+) -> tuple[Identification, str]:
+    """Name the modes the racket way only when the structure is a racket and the shapes show it.
+
+    3-D lab points on one plane are first mapped onto the racket's face
+    (:func:`racketdyn.racket_modal.face.face_mapping`); the model then holds face (x, y)
+    locations, its metadata the lab's (``lab_locations_m``) and the mapping in words
+    (``face_mapping``).  The modes are named from their shapes when the points are a racket's —
+    ``racket_given`` (the user gave ``--racket``) or they lie on the racket's outline
+    (:func:`~racketdyn.racket_modal.face.looks_like_racket`) — and the shapes can tell the
+    kinds apart (:func:`~racketdyn.racket_modal.shapes.naming_evidence`); otherwise they stay
+    ``mode 1 … n`` of kind ``unknown``.
+
+    Parameters
+    ----------
+    identification : Identification
+        From :func:`racketdyn.modal.identify.identify`.
+    racket : Racket
+        The racket the points may belong to.
+    racket_given : bool
+        True when the user named the racket (``--racket``).
+
+    Returns
+    -------
+    Identification, str
+        The identification (renamed, or as it was) and a sentence saying how the modes were
+        named and why.
+    """
+    model = identification.model
+    face = model.locations
+    if model.n_dimensions == 3:
+        mapping = face_mapping(model.locations, racket)
+        if mapping is None:
+            return (
+                identification,
+                "modes numbered: the points are not a racket's face (on a line, or off one plane)",
+            )
+        face = mapping.apply(model.locations)
+        if racket_given or looks_like_racket(face, racket):
+            metadata = {
+                **model.metadata,
+                "lab_locations_m": model.locations.tolist(),
+                "face_mapping": mapping.describe(),
+            }
+            identification = replace(
+                identification, model=replace(model, locations=face, metadata=metadata)
+            )
+    if not (racket_given or looks_like_racket(face, racket)):
+        return identification, (
+            "modes numbered: the points are not on a racket's outline (give --racket to name "
+            "a racket's modes)"
+        )
+    reason = naming_evidence(identification.model, racket.head)
+    if reason:
+        return identification, f"modes numbered: {reason}"
+    return name_racket_modes(identification, racket), "modes named from their shapes on the racket"

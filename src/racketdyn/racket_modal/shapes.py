@@ -3,7 +3,12 @@
 Naming, from the shape at the measured points and the racket's head:
 
 * **string-bed** when the mean square of the shape on the strings (points inside 95 % of the
-  bed's elliptic radius) is more than four times that on the frame;
+  bed's elliptic radius) is more than :data:`CLEAR_STRING_BED_RATIO` (40) times that on the
+  frame; between four and 40 times the shape does not say (the rig's 5- and 6-node bending
+  modes above 1 kHz, coupled with the bed, score 12 and 17, its second and fourth membrane
+  modes 17 and 19): the mode keeps its neutral name ``mode k (f Hz)``, kind ``unknown`` (so
+  a prediction charges its vibration energy rather than silently leaving it out), and the
+  bending modes above it lose their node count (``bending mode (f Hz)``);
 * **twisting** when more than half of the shape's energy is odd in y: points are paired with
   their mirror images across the long axis (within 1 cm) and the odd part (φ(x,y) − φ(x,−y))/2
   compared with the whole;
@@ -26,11 +31,21 @@ from racketdyn.modal.model import ModalModel
 from racketdyn.modal.shapes import nodes_along
 from racketdyn.racket import HeadEllipse
 
-__all__ = ["MIRROR_TOLERANCE_M", "STRING_BED_RATIO", "axis_nodes", "classify_modes"]
+__all__ = [
+    "CLEAR_STRING_BED_RATIO",
+    "MIRROR_TOLERANCE_M",
+    "STRING_BED_RATIO",
+    "axis_nodes",
+    "classify_modes",
+    "naming_evidence",
+]
 
 STRING_BED_RATIO = 4.0
-"""A mode is a string-bed mode when its mean square on the strings exceeds this times that on
-the frame (–)."""
+"""Below this ratio of mean squares on the strings and on the frame a mode is the frame's
+(bending or twisting) (–)."""
+CLEAR_STRING_BED_RATIO = 40.0
+"""Above this ratio a mode is clearly a string-bed mode; between the two the shape does not say
+(–)."""
 MIRROR_TOLERANCE_M = 0.01
 """Largest distance between a point and the mirror image of another across y = 0, m."""
 
@@ -48,6 +63,31 @@ def _mirror_pairs(locations: NDArray[np.float64]) -> NDArray[np.int_]:
     return np.asarray(pairs, dtype=int).reshape(-1, 2)
 
 
+def naming_evidence(model: ModalModel, head: HeadEllipse) -> str:
+    """Why the shapes cannot tell a racket's modes apart, or "" when they can.
+
+    Twisting needs points mirrored across the long axis (two pairs or more); string-bed needs
+    points on the strings and on the frame; unscaled shapes are compared as they are (the
+    tests are ratios, so scaling does not matter).
+
+    Parameters
+    ----------
+    model : ModalModel
+        Shapes at face points (x, y), m.
+    head : HeadEllipse
+        The string bed.
+    """
+    if model.n_dimensions != 2:
+        return "the points are not on the racket's face (x, y)"
+    on_strings = head.normalised_radius(model.locations) < 0.95
+    missing = []
+    if _mirror_pairs(model.locations).shape[0] < 2:
+        missing.append("points mirrored across the long axis (for twisting)")
+    if not on_strings.any() or on_strings.all():
+        missing.append("points on both the strings and the frame (for string-bed modes)")
+    return "no " + " nor ".join(missing) if missing else ""
+
+
 def classify_modes(model: ModalModel, head: HeadEllipse) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """Names and kinds of a racket's modes from their shapes (see the module docstring).
 
@@ -61,13 +101,15 @@ def classify_modes(model: ModalModel, head: HeadEllipse) -> tuple[tuple[str, ...
     Returns
     -------
     names, kinds : tuple of str
-        Names (``"2-node bending"`` …) and kinds (``bending``, ``twisting``, ``string-bed``).
+        Names (``"2-node bending"`` …) and kinds (``bending``, ``twisting``, ``string-bed``,
+        ``unknown`` where the shape does not say).
     """
     locations, shapes = model.locations, model.mode_shapes
     on_strings = head.normalised_radius(locations) < 0.95
     pairs = _mirror_pairs(locations)
     names, kinds = [], []
     counts = {"bending": 0, "twisting": 0, "string-bed": 0}
+    unclear = False
     for k in range(model.n_modes):
         phi = shapes[:, k]
         strings = np.mean(phi[on_strings] ** 2) if on_strings.any() else 0.0
@@ -78,7 +120,11 @@ def classify_modes(model: ModalModel, head: HeadEllipse) -> tuple[tuple[str, ...
             even = 0.5 * (phi[pairs[:, 0]] + phi[pairs[:, 1]])
             total = np.sum(odd**2 + even**2)
             odd_fraction = float(np.sum(odd**2) / total) if total > 0 else 0.0
-        if strings > STRING_BED_RATIO * frame:
+        if STRING_BED_RATIO * frame < strings <= CLEAR_STRING_BED_RATIO * frame:
+            unclear = True
+            names.append(f"mode {k + 1} ({model.frequency[k]:.1f} Hz)")
+            kinds.append("unknown")
+        elif strings > STRING_BED_RATIO * frame:
             counts["string-bed"] += 1
             n = counts["string-bed"]
             names.append("string-bed membrane" + (f" {n}" if n > 1 else ""))
@@ -89,7 +135,9 @@ def classify_modes(model: ModalModel, head: HeadEllipse) -> tuple[tuple[str, ...
             kinds.append("twisting")
         else:
             counts["bending"] += 1
-            names.append(f"{counts['bending'] + 1}-node bending")
+            # after a mode the shape could not name, the bending order is no longer known
+            order = f"bending mode ({model.frequency[k]:.1f} Hz)"
+            names.append(order if unclear else f"{counts['bending'] + 1}-node bending")
             kinds.append("bending")
     return _unique(names), tuple(kinds)
 

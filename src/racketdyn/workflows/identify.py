@@ -12,7 +12,7 @@ from __future__ import annotations
 import csv
 import os
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -21,13 +21,13 @@ from numpy.typing import NDArray
 
 from racketdyn.errors import InputError, require_speeds
 from racketdyn.impact.result import SHOWN_SPEED_MPS
-from racketdyn.io import read_frf_uff
+from racketdyn.io.frf_layout import read_frfs
 from racketdyn.io.uff import write_modes_uff
-from racketdyn.modal.identify import Identification
+from racketdyn.modal.identify import Identification, identify
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
-from racketdyn.racket_modal.identify import identify_racket
+from racketdyn.racket_modal.identify import name_if_racket
 from racketdyn.racket_modal.shapes import axis_nodes
 from racketdyn.workflows.inputs import RacketInput, load_racket_input
 from racketdyn.workflows.run import (
@@ -76,15 +76,23 @@ def identify_file(
     max_order: int = 60,
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
+    reference: int | None = None,
+    racket_given: bool = True,
 ) -> Identification:
-    """Read FRFs (UFF 58) and identify their modal model (:func:`racketdyn.modal.identify`).
+    """Read FRFs (UFF 58, any layout) and identify their modal model.
+
+    The FRFs are read against one reference (:func:`racketdyn.io.frf_layout.read_frfs`:
+    roving hammer, roving accelerometer or several references), identified on any structure
+    (:func:`racketdyn.modal.identify.identify`), and their modes named the racket way only
+    when the points are a racket's (:func:`racketdyn.racket_modal.identify.name_if_racket`);
+    how they were named is ``model.metadata["naming"]``.
 
     Parameters
     ----------
     path : path
         FRFs, UFF 58 function type 4 with geometry (or ``geometry``).
     racket : Racket
-        The racket (its head names the modes).
+        The racket the points may belong to (its head names the modes).
     support : str
         ``free`` or ``hand``, recorded on the model.
     geometry : path, optional
@@ -95,38 +103,47 @@ def identify_file(
         Highest model order.
     pin_hz, exclude_hz : sequence of float
         Modes forced in or left out, by approximate frequency, Hz.
+    reference : int, optional
+        Reference node when the file has several (``--reference``).
+    racket_given : bool
+        True when the user named the racket (then its modes are named whatever the points).
     """
-    frfs = read_frf_uff(Path(path), None if geometry is None else Path(geometry))
-    return identify_racket(
+    frfs = read_frfs(Path(path), None if geometry is None else Path(geometry), reference)
+    found = identify(
         frfs,
-        racket,
-        band_hz=_band(band_hz),
+        _band(band_hz),
         max_order=max_order,
         pin_hz=list(pin_hz),
         exclude_hz=list(exclude_hz),
         support=support,
     )
+    found, naming = name_if_racket(found, racket, racket_given)
+    metadata = {**found.model.metadata, "naming": naming, "layout": frfs.metadata.get("layout")}
+    return replace(found, model=replace(found.model, metadata=metadata))
 
 
 def write_model(identification: Identification, out: Path, label: str = "") -> list[Path]:
-    """``modes<label>.csv``, ``modal_model<label>.json``, ``modes<label>.uff`` and
-    ``fit_quality<label>.csv`` of one identification; returns the paths."""
+    """``modes<label>.csv``, ``modal_model<label>.json``, ``modes<label>.uff``,
+    ``fit_quality<label>.csv`` (x, y[, z] as the FRFs' points) and ``dropped_modes<label>.csv``
+    of one identification; returns the paths."""
     model = identification.model
     paths = [out / f"modes{label}.csv", out / f"modal_model{label}.json", out / f"modes{label}.uff"]
     identification.write_modes_csv(paths[0])
     model.write_json(paths[1])
     write_modes_uff(model, paths[2], nodes=identification.frfs.nodes)
     quality = out / f"fit_quality{label}.csv"
+    locations = identification.frfs.locations
+    axes = "xyz"[: locations.shape[1]]
     with quality.open("w", encoding="utf-8") as handle:
-        handle.write("node,x_m,y_m,fit_error\n")
-        for node, (x, y), error in zip(
-            identification.frfs.nodes,
-            identification.frfs.locations,
-            identification.fit.error,
-            strict=True,
+        handle.write("node," + ",".join(f"{a}_m" for a in axes) + ",fit_error\n")
+        for node, point, error in zip(
+            identification.frfs.nodes, locations, identification.fit.error, strict=True
         ):
-            handle.write(f"{node},{x:.6g},{y:.6g},{error:.4g}\n")
-    return [*paths, quality]
+            coordinates = ",".join(f"{c:.6g}" for c in point)
+            handle.write(f"{node},{coordinates},{error:.4g}\n")
+    dropped = out / f"dropped_modes{label}.csv"
+    identification.write_dropped_csv(dropped)
+    return [*paths, quality, dropped]
 
 
 @dataclass
@@ -157,6 +174,7 @@ def run_identify(
     max_order: int = 60,
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
+    reference: int | None = None,
     command: Sequence[str] | None = None,
     figures: Callable[[IdentifyResult, Path], list[Path]] | None = None,
     progress: Progress | None = None,
@@ -172,8 +190,9 @@ def run_identify(
     support : {"free", "hand"}
         Support of the test.
     racket : Racket, path or None
-        Racket (its head names the modes); None for the built-in racket.
-    geometry, band_hz, max_order, pin_hz, exclude_hz
+        Racket (its head names the modes); None for the built-in racket, whose modes are
+        named only when the points lie on its outline.
+    geometry, band_hz, max_order, pin_hz, exclude_hz, reference
         As for :func:`identify_file`.
     command : sequence of str, optional
         The command as called, for run.json.
@@ -194,6 +213,8 @@ def run_identify(
         max_order=max_order,
         pin_hz=pin_hz,
         exclude_hz=exclude_hz,
+        reference=reference,
+        racket_given=racket is not None,
     )
     result = IdentifyResult(
         out_dir, write_model(found, out_dir), identification=found, racket=the_racket
@@ -207,8 +228,14 @@ def run_identify(
         "max_order": max_order,
         "pin_hz": list(pin_hz),
         "exclude_hz": list(exclude_hz),
+        "reference_node": found.frfs.reference_node,
+        "layout": found.model.metadata.get("layout"),
+        "naming": found.model.metadata.get("naming"),
+        "face_mapping": found.model.metadata.get("face_mapping"),
+        "scaling": found.model.scaling,
+        "scaling_note": found.scaling_note,
         "modes": found.model.summary()["modes"],
-        "dropped": list(found.selected.dropped),
+        "dropped": found.model.metadata["dropped"],
     }
     return finish_run(result, inputs, command_record(command, "identify"), figures)
 
@@ -324,6 +351,7 @@ def run_compare(
     exclude_hz: Sequence[float] = (),
     speed: float = CHECK_SPEED_MPS,
     allow_implausible: bool = False,
+    reference: int | None = None,
     command: Sequence[str] | None = None,
     figures: Callable[[CompareResult, Path], list[Path]] | None = None,
     progress: Progress | None = None,
@@ -338,7 +366,7 @@ def run_compare(
         Output folder (created if missing).
     racket : Racket, path or None
         Racket; None for the built-in racket.
-    geometry, band_hz, max_order, pin_hz, exclude_hz
+    geometry, band_hz, max_order, pin_hz, exclude_hz, reference
         As for :func:`identify_file`, for both.
     speed : float
         Incoming ball speed of the paper's Fig. 15 check with the identified models, m/s
@@ -362,6 +390,8 @@ def run_compare(
         "max_order": max_order,
         "pin_hz": pin_hz,
         "exclude_hz": exclude_hz,
+        "reference": reference,
+        "racket_given": racket is not None,
     }
     report(progress, f"identifying {Path(free).name}")
     found_free = identify_file(free, the_racket, "free", **options)

@@ -95,6 +95,8 @@ def setup(
         raise InputError("give a modal model file (--modal) or a rigid racket, not both")
     if isinstance(modal, ModalModel):
         provenance["modal_model_given"] = f"ModalModel object from Python: {modal.source}"
+        if with_modes:
+            modal.require_mass_normalised("a prediction")
         return RacketSetup(loaded, modal if with_modes else None, provenance, defaults, rigid)
     if modal is not None:
         path = Path(modal)
@@ -106,6 +108,8 @@ def setup(
     elif not rigid and loaded.modal_model_file is None and with_modes:
         defaults.append(BUILT_IN_MODES)
     model = modal_model_for(loaded) if with_modes and not rigid else None
+    if model is not None:
+        model.require_mass_normalised("a prediction")
     return RacketSetup(loaded, model, provenance, defaults, rigid)
 
 

@@ -1,0 +1,278 @@
+"""FRFs as real labs lay them out: roving hammer, roving accelerometer, several references, 3-D.
+
+:func:`read_frfs` reads the FRFs (UFF 58, function type 4) of a file whatever moved during the
+test and returns them as one :class:`~racketdyn.measurement.records.FrfSet` against one
+reference node, with the points' coordinates in the lab's own frame:
+
+- **roving hammer** (every FRF has one response node): the reference is that node;
+- **roving accelerometer** (every FRF has one excitation node, the hammer): by reciprocity
+  (H_ij = H_ji) the same data; the reference is the hammer node and the points are the
+  response nodes;
+- **several references** (MIMO, several sensors or hammer nodes): the FRFs against one node are
+  used; the node that reaches the most points is chosen when it is the only one, else the
+  caller names it (``reference=``, the CLI's ``--reference NODE``).  FRFs of the other
+  references are left out and counted in the metadata.
+
+Coordinates keep z: a beam along z, a racket measured in the x–z plane, and nodes that share x
+and y but differ in z are read as they are ((x, y, z) locations); a set whose points all share
+one z gets (x, y) locations.  Units and direction signs are read as :mod:`racketdyn.io.uff`
+reads them (its helpers; this module adds the layouts and z).  Where one node is measured in
+several directions, the direction most FRFs share is used and the others are counted as left out.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections import Counter
+from pathlib import Path
+from typing import Any, cast
+
+import numpy as np
+
+from racketdyn.errors import InputError
+from racketdyn.io.uff import (
+    FREQUENCY_RESPONSE,
+    QUANTITY_CODE,
+    RESPONSE_OF_CODE,
+    _check_same_abscissa,
+    _coherence,
+    _frf_id_fields,
+    _frf_scale,
+    _normal_label,
+    _read_sets,
+    _Record,
+    _record_of,
+    _scale,
+    _sign,
+    _Units,
+    _units_of,
+)
+from racketdyn.measurement.records import FRF_TYPE_OF_RESPONSE, FrfSet, FrfType
+
+__all__ = ["LAYOUTS", "read_frfs"]
+
+log = logging.getLogger(__name__)
+
+LAYOUTS = ("roving hammer", "roving accelerometer", "several references")
+"""How a file's FRFs were measured (``FrfSet.metadata["layout"]``)."""
+
+
+def _coordinates(
+    path: Path, sets: list[dict[str, Any]], units: _Units
+) -> dict[int, tuple[float, float, float]]:
+    """Node coordinates (x, y, z) in m from data sets 15 and 2411."""
+    nodes: dict[int, tuple[float, float, float]] = {}
+    for i, dset in enumerate(sets, start=1):
+        if dset.get("type") not in (15, 2411):
+            continue
+        numbers = np.asarray(dset.get("node_nums", []), dtype=float)
+        xyz = [np.asarray(dset.get(k, []), dtype=float) / units.length for k in "xyz"]
+        if not all(a.size == numbers.size for a in xyz) or not np.all(
+            np.isfinite(np.r_[numbers, *xyz])
+        ):
+            raise InputError(
+                f"{path}: data set {i} ({dset['type']}, nodes): every node needs a finite "
+                "number and finite x, y, z coordinates"
+            )
+        for number, x, y, z in zip(numbers, *xyz, strict=True):
+            nodes[int(number)] = (float(x), float(y), float(z))
+    return nodes
+
+
+def _check(path: Path, record: _Record) -> None:
+    if not np.iscomplexobj(record.data):
+        raise InputError(
+            f"{record.where(path)}: an FRF must be complex (ordinate data type 5 or 6)"
+        )
+    if record.quantity not in RESPONSE_OF_CODE:
+        raise InputError(
+            f"{record.where(path)}: ordinate type {record.quantity} is not a response "
+            "(8 displacement, 11 velocity, 12 acceleration); set record 9, field 1"
+        )
+    if record.denominator not in (0, QUANTITY_CODE["force"]):
+        raise InputError(
+            f"{record.where(path)}: the FRF must be per force (record 10, field 1 = 13), "
+            f"not per quantity {record.denominator}"
+        )
+
+
+def _choose_reference(path: Path, records: list[_Record], reference: int | None) -> tuple[int, str]:
+    """The reference node and the layout's name."""
+    responses = {r.rsp_node for r in records}
+    hammers = {r.ref_node for r in records}
+    reach: dict[int, set[int]] = {}
+    for r in records:
+        reach.setdefault(r.rsp_node, set()).add(r.ref_node)
+        reach.setdefault(r.ref_node, set()).add(r.rsp_node)
+    if len(responses) == 1:
+        layout = "roving hammer"
+    elif len(hammers) == 1:
+        layout = "roving accelerometer"
+    else:
+        layout = "several references"
+    if reference is not None:
+        if reference not in reach:
+            raise InputError(
+                f"{path}: --reference {reference}: no FRF has node {reference} as its response "
+                f"or excitation node (references found: {_listed(sorted(responses))} respond, "
+                f"{_listed(sorted(hammers))} excite)"
+            )
+        return reference, layout
+    if layout == "roving hammer":
+        return next(iter(responses)), layout
+    if layout == "roving accelerometer":
+        return next(iter(hammers)), layout
+    most = max(len(v) for v in reach.values())
+    best = sorted(n for n, v in reach.items() if len(v) == most)
+    if len(best) > 1:
+        raise InputError(
+            f"{path}: the FRFs have several references (nodes {_listed(best)} each reach "
+            f"{most} points); choose one with --reference NODE"
+        )
+    return best[0], layout
+
+
+def _listed(nodes: list[int]) -> str:
+    return ", ".join(map(str, nodes[:8])) + (" …" if len(nodes) > 8 else "")
+
+
+def read_frfs(
+    path: Path | str, geometry: Path | str | None = None, reference: int | None = None
+) -> FrfSet:
+    """Read the FRFs of a file against one reference node, whatever moved during the test.
+
+    Parameters
+    ----------
+    path : Path or str
+        Universal File with data sets 58/58b of function type 4 (complex FRFs) and node
+        coordinates (data set 15 or 2411, with data set 164's length unit).
+    geometry : Path or str, optional
+        A second Universal File with node coordinates; its nodes take precedence.
+    reference : int, optional
+        The reference node (a node every FRF used has at one end).  Default: the only
+        response node (roving hammer), the only excitation node (roving accelerometer), or
+        the node reaching the most points when one node does.
+
+    Returns
+    -------
+    FrfSet
+        Points ordered by node number; ``reference_node`` the reference; locations (x, y, z)
+        in the lab's frame, m ((x, y) when every point has the same z); metadata
+        ``layout`` (:data:`LAYOUTS`), ``left_out`` (FRFs not against the reference) and
+        ``directions`` (node → direction code used).
+
+    Raises
+    ------
+    InputError
+        As :func:`racketdyn.io.uff.read_frf_uff`, and: several references with none chosen; a
+        reference that is in no FRF; a point without coordinates (naming ``--geometry``).
+    """
+    path = Path(path)
+    sets = _read_sets(path)
+    units = _units_of(path, sets)
+    coordinates = _coordinates(path, sets, units)
+    if geometry is not None:
+        geometry_sets = _read_sets(Path(geometry))
+        coordinates.update(
+            _coordinates(Path(geometry), geometry_sets, _units_of(Path(geometry), geometry_sets))
+        )
+    records = [
+        _record_of(path, i, dset)
+        for i, dset in enumerate(sets, start=1)
+        if dset.get("type") == 58 and int(dset.get("func_type", 0) or 0) == FREQUENCY_RESPONSE
+    ]
+    if not records:
+        raise InputError(f"{path}: no FRFs (data set 58, function type 4)")
+    for record in records:
+        _check(path, record)
+    ref, layout = _choose_reference(path, records, reference)
+    # the FRFs against the reference, one per point, in the direction most of them share
+    mine = [r for r in records if ref in (r.rsp_node, r.ref_node)]
+    left_out = len(records) - len(mine)
+
+    def point_of(r: _Record) -> tuple[int, int]:
+        return (r.ref_node, r.ref_dir) if r.rsp_node == ref else (r.rsp_node, r.rsp_dir)
+
+    usual = Counter(abs(point_of(r)[1]) for r in mine).most_common(1)[0][0]
+    by_node: dict[int, _Record] = {}
+    for r in mine:
+        node, direction = point_of(r)
+        if abs(direction) != usual:
+            left_out += 1
+            continue
+        kept = by_node.get(node)
+        if kept is None:
+            by_node[node] = r
+            continue
+        if (kept.rsp_node, kept.ref_node) == (r.rsp_node, r.ref_node):
+            raise InputError(
+                f"{path}: data sets {kept.index} and {r.index} are both the FRF between "
+                f"nodes {r.rsp_node} and {r.ref_node}; keep one"
+            )
+        left_out += 1  # both H_ij and H_ji: keep the one with the sensor at the reference
+        if r.rsp_node == ref and kept.rsp_node != ref:
+            by_node[node] = r
+    if left_out:
+        log.info(
+            "%s: %d FRFs not against reference node %d (or in another direction) left out",
+            path,
+            left_out,
+            ref,
+        )
+    nodes = sorted(by_node)
+    first = by_node[nodes[0]]
+    response_type = RESPONSE_OF_CODE[first.quantity]
+    for node in nodes[1:]:
+        record = by_node[node]
+        if record.quantity != first.quantity:
+            raise InputError(
+                f"{path}: data sets {first.index} and {record.index} are FRFs of different types "
+                f"({record.quantity} against {first.quantity} in record 9); give one type"
+            )
+        _check_same_abscissa(path, first, record, "frequency axis")
+    missing = [n for n in [*nodes, ref] if n not in coordinates]
+    if missing:
+        where = "" if geometry is None else f" or {geometry}"
+        raise InputError(
+            f"{path}: node{'s' if len(missing) > 1 else ''} {_listed(missing)} ha"
+            f"{'ve' if len(missing) > 1 else 's'} no coordinates in {path}{where}; shapes need "
+            "them: add data set 15 or pass --geometry FILE"
+        )
+    xyz = np.asarray([coordinates[n] for n in nodes], dtype=float)
+    reference_xyz = np.asarray(coordinates[ref], dtype=float)
+    three_d = bool(np.ptp(np.r_[xyz[:, 2], reference_xyz[2]]) > 0)
+    locations = xyz if three_d else xyz[:, :2]
+    values = np.asarray(
+        [
+            by_node[n].data
+            * _frf_scale(path, by_node[n], response_type, units)
+            * _sign(path, by_node[n], by_node[n].rsp_dir)
+            * _sign(path, by_node[n], by_node[n].ref_dir)
+            for n in nodes
+        ],
+        dtype=complex,
+    )
+    frequency_scale = _scale(path, first, "frequency", _normal_label(first.labels[0]), units)
+    coherence = _coherence(path, records, ref, nodes, first) if layout == "roving hammer" else None
+    estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
+    return FrfSet(
+        frequency=first.x * frequency_scale,
+        values=values,
+        frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
+        nodes=tuple(nodes),
+        locations=locations,
+        reference_node=ref,
+        reference_location=tuple(
+            float(v) for v in (reference_xyz if three_d else reference_xyz[:2])
+        ),
+        coherence=coherence,
+        n_averages=averages,
+        exponential_window_s=tau,
+        estimator=estimator,
+        source=str(path),
+        metadata={
+            "layout": layout,
+            "left_out": left_out,
+            "directions": {int(n): int(point_of(by_node[n])[1]) for n in nodes},
+        },
+    )
