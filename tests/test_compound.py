@@ -6,6 +6,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -332,3 +333,24 @@ def test_rig_ball_off_the_strings_is_one_line(tmp_path: Path, capsys) -> None:  
     err = capsys.readouterr().err.strip()
     assert "--ball-at" in err
     assert "\n" not in err
+
+
+def test_report_section_states_the_papers_claims_in_words(tmp_path: Path) -> None:
+    from racketdyn.report.folder import RunFolder
+    from racketdyn.report.page import render_section
+    from racketdyn.report.sections import compound as section
+
+    assert main(["compound", "--out", str(tmp_path / "compound")]) == 0
+    data = section.gather(RunFolder.scan(tmp_path))
+    assert data is not None
+    text = " ".join(data["statements"])
+    assert "88.4 Hz (-14 %)" in text  # the miss against the paper, stated
+    assert "within 11 %" in text  # half period against the contact time at 5–20 m/s
+    assert "ball mode moves by 0.5 %" in text
+    assert [row[0] for row in data["times"]] == ["free", "hand"]
+    html = render_section("compound", data)
+    assert "Half period against contact time" in html
+    assert "A frame four times as stiff" in html
+    words = re.sub(r"data:image/png;base64,[A-Za-z0-9+/=]+", "", str(html))
+    assert not re.search(r"\bnan\b", words, re.IGNORECASE)
+    assert section.gather(RunFolder.scan(tmp_path / "compound" / "nothing")) is None
