@@ -86,8 +86,8 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     for check in record.get("frame_stiffness_check", []) or []:
         if not isinstance(check, dict):
             continue
-        frame = [m for m in check.get("frame_modes", []) if isinstance(m, dict)]
-        ratios = [f"{m.get('mode')} ×{fmt(m.get('ratio'), '.2f')}" for m in frame]
+        stiffer = [m for m in check.get("frame_modes", []) if isinstance(m, dict)]
+        ratios = [f"{m.get('mode')} ×{fmt(m.get('ratio'), '.2f')}" for m in stiffer]
         change = check.get("ball_mode_change_percent")
         factor = fmt(check.get("frame_stiffness_factor"), "g")
         checks.append(
@@ -100,7 +100,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 ", ".join(ratios),
             )
         )
-        values = [float(m["ratio"]) for m in frame if isinstance(m.get("ratio"), int | float)]
+        values = [float(m["ratio"]) for m in stiffer if isinstance(m.get("ratio"), int | float)]
         if isinstance(change, int | float) and values:
             statements.append(
                 f"{check.get('support')}: with the frame {factor}× as stiff (same mass) the "
