@@ -354,3 +354,17 @@ def test_report_section_states_the_papers_claims_in_words(tmp_path: Path) -> Non
     words = re.sub(r"data:image/png;base64,[A-Za-z0-9+/=]+", "", str(html))
     assert not re.search(r"\bnan\b", words, re.IGNORECASE)
     assert section.gather(RunFolder.scan(tmp_path / "compound" / "nothing")) is None
+
+
+def test_ball_mode_shape_is_the_ratio_at_the_ball(tmp_path: Path) -> None:
+    """Fig. 8a's data: the frame's displacement under the ball (ball = 1) is 1 / (ball to frame
+    ratio) of compound.csv, and the frame moves against the ball."""
+    from racketdyn.workflows import run_compound
+
+    result = run_compound(tmp_path / "c", supports=("free",))
+    frame, ball = result.ball_shape["free"]
+    modes = result.modes["free"]
+    under = float(np.interp(result.location[0], result.axis_x, frame))
+    assert ball == 1.0
+    assert under == pytest.approx(1.0 / modes.ball_to_frame_ratio[modes.ball_mode], rel=0.02)
+    assert under < 0

@@ -24,6 +24,8 @@ if TYPE_CHECKING:
 __all__ = [
     "COMPOUND_FRF_FIGURE",
     "COMPOUND_RESPONSE_FIGURE",
+    "COMPOUND_SHAPE_FIGURE",
+    "plot_ball_mode_shape",
     "plot_compound_frf",
     "plot_neck_response",
     "write_compound_figures",
@@ -35,6 +37,46 @@ COMPOUND_RESPONSE_FIGURE = "compound_response.png"
 """The neck's acceleration after the hammer blow, ball on the strings (Fig. 8c)."""
 COMPOUND_FRF_FIGURE = "compound_frf.png"
 """Receptance hammer → neck without and with the ball (Fig. 9a, 9b)."""
+COMPOUND_SHAPE_FIGURE = "compound_shape.png"
+"""The ball mode: the frame along its axis against the ball (Fig. 8a)."""
+
+
+def plot_ball_mode_shape(
+    axis_x: ArrayLike,
+    frame: ArrayLike,
+    ball_x: float,
+    ball: float,
+    support: str = "free",
+    ax: Axes | None = None,
+) -> Axes:
+    """The ball mode's shape: the frame's displacement along its long axis and the ball's.
+
+    Parameters
+    ----------
+    axis_x : array_like
+        Points along the axis, m from the butt.
+    frame : array_like
+        The frame's displacement there (ball = 1), dimensionless.
+    ball_x : float
+        Where the ball sits, m from the butt.
+    ball : float
+        The ball's displacement (1).
+    support : str
+        Support (line colour and label).
+    ax : Axes, optional
+        Where to draw.
+    """
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.0, 3.6), layout="constrained")
+    colour = SUPPORT_STYLE.get(support, {}).get("color", "tab:orange")
+    x_mm = np.asarray(axis_x) * 1e3
+    ax.plot(x_mm, np.asarray(frame), color=colour, lw=1.2, label=f"frame, {support}")
+    ax.plot([ball_x * 1e3], [ball], "o", color=colour, ms=9, mfc="none", label=f"ball, {support}")
+    ax.axhline(0.0, color="0.6", lw=0.5)
+    ax.set_xlabel("x from the butt (mm)")
+    ax.set_ylabel("displacement in the ball mode (ball = 1)")
+    ax.legend(fontsize=8)
+    return ax
 
 
 def plot_neck_response(
@@ -161,6 +203,14 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         )
     figure.suptitle("Fig. 9: receptance hammer → neck without and with the ball", fontsize=10)
     paths.append(save_figure(figure, Path(out) / COMPOUND_FRF_FIGURE))
+    figure, ax = plt.subplots(figsize=(6.5, 3.8), layout="constrained")
+    for support, (frame, ball) in result.ball_shape.items():
+        plot_ball_mode_shape(result.axis_x, frame, result.location[0], ball, support, ax=ax)
+    ax.set_title(
+        "Fig. 8a: the ball mode, ball and frame moving against each other through the strings",
+        fontsize=9,
+    )
+    paths.append(save_figure(figure, Path(out) / COMPOUND_SHAPE_FIGURE))
     for path in paths:
         log.info("wrote %s", path)
     return paths

@@ -139,6 +139,11 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         "acceleration of the frame neck after a hammer blow on the strings near the ball fixed "
         "on them, per unit impulse, one panel per support (linear compound model)",
     ),
+    "compound_shape": (
+        "Fig. 8a",
+        "the ball mode: the frame's displacement along its long axis (line) against the ball's "
+        "(circle), scaled so the ball's is 1, one colour per support",
+    ),
     "compound_frf": (
         "Fig. 9",
         "receptance from the hammer point on the strings to the frame neck, the racket alone "

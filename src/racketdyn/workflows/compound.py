@@ -85,6 +85,9 @@ RESPONSE_TIME_S = 0.08
 """Length of the neck's time response (Fig. 8c), s; sampled at :data:`RESPONSE_STEP_S`."""
 RESPONSE_STEP_S = 1.0e-4
 
+AXIS_POINTS = 69
+"""Points along the long axis for the ball mode's shape (Fig. 8a)."""
+
 FRF_FREQUENCY_HZ = (20.0, 500.0, 2000)
 """Band and count of the FRFs without and with the ball (Fig. 9), Hz."""
 
@@ -177,6 +180,11 @@ class CompoundResult(StepResult):
         Frequencies of the FRFs, Hz.
     frf_alone, frf_with_ball : dict of str to ndarray
         Per support: receptance hammer → neck without and with the ball, m/N (complex).
+    axis_x : ndarray
+        Points along the long axis (y = 0) where the ball mode's shape is given, m.
+    ball_shape : dict of str to tuple of (ndarray, float)
+        Per support: the ball mode's frame displacement along the axis and the ball's, scaled
+        so the ball's is 1 (real parts after removing the ball's phase; Fig. 8a).
     """
 
     racket: Racket | None = None
@@ -197,6 +205,8 @@ class CompoundResult(StepResult):
     frequency: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     frf_alone: dict[str, NDArray[np.complex128]] = field(default_factory=dict)
     frf_with_ball: dict[str, NDArray[np.complex128]] = field(default_factory=dict)
+    axis_x: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    ball_shape: dict[str, tuple[NDArray[np.float64], float]] = field(default_factory=dict)
 
 
 def frame_shifts(with_ball: CompoundSystem, alone: CompoundSystem) -> list[dict[str, Any]]:
@@ -294,7 +304,8 @@ def run_compound(
         times=np.arange(0.0, RESPONSE_TIME_S, RESPONSE_STEP_S),
         frequency=np.linspace(*FRF_FREQUENCY_HZ[:2], FRF_FREQUENCY_HZ[2]),
     )  # fmt: skip
-    extra = [hammer, neck]
+    result.axis_x = np.linspace(0.0, the_racket.length_m, AXIS_POINTS)
+    extra = np.vstack([[hammer, neck], np.column_stack([result.axis_x, np.zeros(AXIS_POINTS)])])
     approximate = predict(
         the_racket,
         the_ball,
@@ -311,6 +322,11 @@ def run_compound(
         result.neck_acceleration[support] = with_ball.impulse_acceleration(result.times, 1, 2)
         result.frf_with_ball[support] = with_ball.receptance(result.frequency, 1, 2)
         result.frf_alone[support] = alone.receptance(result.frequency, 1, 2)
+        if with_ball.ball_mode >= 0:
+            shape = (
+                with_ball.shapes[:, with_ball.ball_mode] / with_ball.shapes[-1, with_ball.ball_mode]
+            )
+            result.ball_shape[support] = (np.real(with_ball.rows[3:] @ shape), 1.0)
         k = approximate.supports.index(_APPROXIMATE_SUPPORT[support])
         result.contact_time[support] = [float(t) for t in approximate.contact_time[0, :, k]]
         if stiffer is not None:

@@ -117,6 +117,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         "statements": statements,
         "figures": run.group(
             [
+                (folder / "compound_shape.png", ""),
                 (folder / "compound_response.png", ""),
                 (folder / "compound_frf.png", ""),
             ]
