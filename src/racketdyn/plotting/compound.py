@@ -161,27 +161,26 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
     out : Path
         Output folder.
     """
-    figure, axes = plt.subplots(
-        1, len(result.supports), figsize=(5.2 * len(result.supports), 3.8), layout="constrained",
-        squeeze=False,
-    )  # fmt: skip
-    for ax, support in zip(axes[0], result.supports, strict=True):
-        modes = result.modes[support]
-        plot_neck_response(
-            result.times,
-            result.neck_acceleration[support],
-            modes.ball_frequency,
-            modes.frequency_of("2-node bending"),
-            support,
-            ax=ax,
-        )
+    # one panel, the first support's (the page is near its size budget; the CSV and run.json
+    # hold every support)
+    support = result.supports[0]
+    modes = result.modes[support]
+    figure, ax = plt.subplots(figsize=(4.8, 2.8), layout="constrained")
+    plot_neck_response(
+        result.times,
+        result.neck_acceleration[support],
+        modes.ball_frequency,
+        modes.frequency_of("2-node bending"),
+        support,
+        ax=ax,
+    )
     away_mm = abs(result.location[0] - result.hammer[0]) * 1e3
     figure.suptitle(
-        f"Fig. 8c: the neck after a hammer blow {away_mm:.0f} mm from the ball on the strings",
-        fontsize=10,
+        f"Fig. 8c: the neck after a hammer blow {away_mm:.0f} mm from the ball, {support}",
+        fontsize=9,
     )
     paths = [save_figure(figure, Path(out) / COMPOUND_RESPONSE_FIGURE)]
-    figure, axes = plt.subplots(1, 2, figsize=(11.0, 3.8), layout="constrained", sharey=True)
+    figure, axes = plt.subplots(1, 2, figsize=(8.0, 2.7), layout="constrained", sharey=True)
     for support in result.supports:
         plot_compound_frf(result.frequency, result.frf_alone[support], support, support, ax=axes[0])
         plot_compound_frf(
@@ -203,7 +202,7 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         )
     figure.suptitle("Fig. 9: receptance hammer → neck without and with the ball", fontsize=10)
     paths.append(save_figure(figure, Path(out) / COMPOUND_FRF_FIGURE))
-    figure, ax = plt.subplots(figsize=(6.5, 3.8), layout="constrained")
+    figure, ax = plt.subplots(figsize=(4.8, 2.6), layout="constrained")
     for support, (frame, ball) in result.ball_shape.items():
         plot_ball_mode_shape(result.axis_x, frame, result.location[0], ball, support, ax=ax)
     ax.set_title(

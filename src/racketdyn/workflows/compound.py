@@ -81,7 +81,7 @@ paper: "a point, slightly away from the contact point of the ball")."""
 NECK_BELOW_BED_M = 0.03
 """The accelerometer on the frame neck: on the long axis, this far below the string bed, m."""
 
-RESPONSE_TIME_S = 0.08
+RESPONSE_TIME_S = 0.04
 """Length of the neck's time response (Fig. 8c), s; sampled at :data:`RESPONSE_STEP_S`."""
 RESPONSE_STEP_S = 1.0e-4
 
