@@ -150,9 +150,9 @@ class CompoundSystem:
     location : ndarray (2,)
         Where the ball sits (x, y), m.
     frequency : ndarray (n_modes,)
-        Undamped natural frequencies |λ|/2π, Hz, ascending.
+        Undamped natural frequencies ``abs(λ)/2π``, Hz, ascending.
     damping_ratio : ndarray (n_modes,)
-        −Re λ/|λ|.
+        ``−Re(λ)/abs(λ)``.
     names : tuple of str
         :data:`BALL_MODE_NAME` for the ball mode, else the racket coordinate with the largest
         share of the mode's kinetic energy (a flexible mode's name, ``rigid body (pitch)`` …,
