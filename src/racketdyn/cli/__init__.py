@@ -1,7 +1,8 @@
 """The ``racketdyn`` command line (layer 5): parse, call a workflow, print with rich.
 
 One short module per command (``predict``, ``racket``, ``rig``, ``frf``, ``contact``,
-``identify``/``compare``, ``demo``, ``report``, ``sweep``, ``swing``, ``oblique``, ``twist``),
+``identify``/``compare``, ``demo``, ``report``, ``sweep``, ``swing``, ``oblique``, ``twist``,
+``compound``),
 the shared options in :mod:`racketdyn.cli.options`, the figure hooks in
 :mod:`racketdyn.plotting.steps`.  Building the parser imports neither NumPy nor the library: a
 command imports what it needs when it runs, so ``racketdyn --help`` is instant.
@@ -19,6 +20,7 @@ from collections.abc import Sequence
 
 from racketdyn.__about__ import __version__
 from racketdyn.cli import (
+    compound,
     contact,
     demo,
     frf,
@@ -48,6 +50,7 @@ COMMANDS = (
     swing,
     oblique,
     twist,
+    compound,
     racket,
 )
 """The command modules, in the order ``racketdyn --help`` lists them."""

@@ -76,17 +76,11 @@ def run(args: argparse.Namespace, console: Console) -> int:
     import numpy as np
     from rich.table import Table
 
-    from racketdyn.errors import InputError
     from racketdyn.plotting.steps import oblique_figures
     from racketdyn.workflows.oblique import SPIN_CAVEAT, run_oblique
 
     angles = opt.parse_numbers("--angles", args.angles, "degrees from the face normal")
-    point = None
-    if args.point is not None:
-        values = opt.parse_numbers("--point", args.point, "x,y in m")
-        if len(values) != 2:
-            raise InputError(f"--point takes x,y in m, e.g. 0.505,0 (got {args.point!r})")
-        point = (values[0], values[1])
+    point = opt.parse_point("--point", args.point)
     opt.check_modes(args)
     ball, hand, defaults = opt.ball_and_hand(args, [args.support])
     with opt.progress_display(console) as progress:

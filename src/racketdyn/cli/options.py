@@ -240,6 +240,18 @@ def parse_numbers(name: str, text: str, unit: str) -> list[float]:
     return numbers
 
 
+def parse_point(name: str, text: str | None) -> tuple[float, float] | None:
+    """One point ``x,y`` in m (None stays None: the command's default point)."""
+    from racketdyn.errors import InputError
+
+    if text is None:
+        return None
+    values = parse_numbers(name, text, "x,y in m")
+    if len(values) != 2:
+        raise InputError(f"{name} takes x,y in m, e.g. 0.505,0 (got {text!r})")
+    return values[0], values[1]
+
+
 def ball_and_hand(args: argparse.Namespace, supports: Sequence[str]) -> tuple[Any, Any, list[str]]:
     """The ball and the hand from the options, with the defaults used."""
     from racketdyn.errors import InputError

@@ -41,6 +41,12 @@ def add(commands: Any) -> None:
     )
     p.add_argument("--seed", type=int, default=1, help="random seed, a count (default 1)")
     p.add_argument("--binary", action="store_true", help="write binary UFF 58b (default: ASCII)")
+    p.add_argument(
+        "--ball-at",
+        metavar="X,Y",
+        help="fix a ball on the strings at x,y, m, as in the paper's compound test (Figs 8-9); "
+        "the hammer skips the points under it (default: no ball)",
+    )
     opt.add_out(p)
     p.set_defaults(handler=run)
 
@@ -59,6 +65,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             overloads=args.overloads,
             seed=args.seed,
             binary=args.binary,
+            ball_at=opt.parse_point("--ball-at", args.ball_at),
             command=opt.command_line(args),
             progress=progress,
         )
@@ -68,8 +75,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
             result.truth[support],
             result.faults[support],
         )
+        ball = "" if result.ball is None else " with a ball on the strings"
         console.print(
-            f"{records.n_points} points × {args.averages} averages on the {support} rig "
+            f"{records.n_points} points × {args.averages} averages on the {support} rig{ball} "
             f"(accelerometer at node {result.reference_node}), {faults['double_hits']} "
             f"double hits, {faults['overloads']} overloads → {result.out}"
         )

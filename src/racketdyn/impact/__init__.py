@@ -1,7 +1,16 @@
 """Impact of ball and racket: the paper's approximate method, the transient simulation, the
-swinging racket, oblique impacts with spin, and the racket's twist off the axis."""
+swinging racket, oblique impacts with spin, the racket's twist off the axis, and the ball fixed
+on the strings (the compound system of section 3.2)."""
 
 from racketdyn.impact.approximate import elastic_contact_time, predict, tangent_peak_deflection
+from racketdyn.impact.compound import (
+    BallSpring,
+    CompoundSystem,
+    ball_spring,
+    compound_modes,
+    racket_modes,
+    stiffer_frame,
+)
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.oblique import (
     ObliqueCurve,
@@ -23,6 +32,8 @@ from racketdyn.impact.twist import TwistCurve, twist_curve
 
 __all__ = [
     "TRANSIENT_SUPPORTS",
+    "BallSpring",
+    "CompoundSystem",
     "Hand",
     "ImpactResult",
     "ImpactSystem",
@@ -33,6 +44,8 @@ __all__ = [
     "TangentialContact",
     "TransientImpact",
     "TwistCurve",
+    "ball_spring",
+    "compound_modes",
     "elastic_contact_time",
     "half_sine_force",
     "half_sine_spectrum",
@@ -41,8 +54,10 @@ __all__ = [
     "predict",
     "predict_swing",
     "predict_transient",
+    "racket_modes",
     "simulate_impact",
     "simulate_oblique",
+    "stiffer_frame",
     "sweet_spots",
     "tangent_peak_deflection",
     "twist_curve",

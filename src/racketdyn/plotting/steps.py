@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from racketdyn.plotting.figures import FigureOptions
+    from racketdyn.workflows.compound import CompoundResult
     from racketdyn.workflows.contact import ContactResult
     from racketdyn.workflows.frf import FrfResult
     from racketdyn.workflows.identify import CompareResult, IdentifyResult
@@ -166,3 +167,10 @@ def oblique_figures(result: ObliqueResult, out: Path) -> list[Path]:
 
     assert result.curve is not None
     return [write_oblique_figure(out, result.curve, result.point, result.support, result.contact)]
+
+
+def compound_figures(result: CompoundResult, out: Path) -> list[Path]:
+    """The neck's response (Fig. 8c) and the FRFs without and with the ball (Fig. 9)."""
+    from racketdyn.plotting.compound import write_compound_figures
+
+    return write_compound_figures(result, out)

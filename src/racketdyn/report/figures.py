@@ -155,6 +155,21 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         "filled markers where the ball gripped the strings, open where it slid throughout; the "
         "spin depends strongly on the tangential stiffness k_t",
     ),
+    "compound_response": (
+        "Fig. 8c",
+        "acceleration of the frame neck after a hammer blow on the strings near the ball fixed "
+        "on them, per unit impulse, for the run's first support (linear compound model)",
+    ),
+    "compound_shape": (
+        "Fig. 8a",
+        "the ball mode: the frame's displacement along its long axis (line) against the ball's "
+        "(circle), scaled so the ball's is 1, one colour per support",
+    ),
+    "compound_frf": (
+        "Fig. 9",
+        "receptance from the hammer point on the strings to the frame neck, the racket alone "
+        "(left) and with the ball fixed on the strings (right), with the ball mode marked",
+    ),
 }
 """Caption of every PNG the commands write, by file stem (or its start): (the figure of
 Kawazoe's paper it corresponds to, or None; what it shows, its ``{field}`` the settings its run

@@ -296,12 +296,15 @@ class RigModel:
 
     @property
     def dofs(self) -> dict[str, slice]:
-        """Where each kind of DOF sits: ``bending`` (w, w' per node), ``twist``, ``membrane``."""
+        """Where each kind of DOF sits: ``bending`` (w, w' per node), ``twist``, ``membrane``,
+        and ``ball`` (empty unless a ball is fixed on the strings: :mod:`racketdyn.rig.ball`)."""
         n = self.nodes_x.size
+        end = 3 * n + len(self.membrane_powers)
         return {
             "bending": slice(0, 2 * n),
             "twist": slice(2 * n, 3 * n),
-            "membrane": slice(3 * n, 3 * n + len(self.membrane_powers)),
+            "membrane": slice(3 * n, end),
+            "ball": slice(end, self.n_dof),
         }
 
     def on_string_bed(self, locations: ArrayLike) -> NDArray[np.bool_]:
@@ -331,7 +334,8 @@ class RigModel:
         bed = self.on_string_bed(xy)
         if np.any(bed):
             psi, _, _ = _membrane_functions(racket, self.membrane_powers, xy[bed])
-            rows[np.ix_(bed, np.arange(3 * self.nodes_x.size, self.n_dof))] = psi
+            membrane = self.dofs["membrane"]
+            rows[np.ix_(bed, np.arange(membrane.start, membrane.stop))] = psi
         return rows
 
     def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:

@@ -16,6 +16,7 @@ figures come from a hook the caller passes (``figures(result, out) -> paths``), 
 :func:`run_swing`        a swinging racket and its sweet spots
 :func:`run_oblique`      oblique impacts with spin
 :func:`run_twist`        off-axis impacts: roll and twist
+:func:`run_compound`     a ball fixed on the strings: the compound modes (Figs 8–9)
 :func:`run_sweep_step`   a design sweep
 ======================  =========================================================
 
@@ -35,6 +36,7 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from racketdyn.workflows.compound import CompoundResult, run_compound
     from racketdyn.workflows.contact import ContactResult, run_contact
     from racketdyn.workflows.frf import FrfResult, run_frf
     from racketdyn.workflows.identify import (
@@ -53,6 +55,7 @@ if TYPE_CHECKING:
 
 _WHERE = {
     "CompareResult": "identify",
+    "CompoundResult": "compound",
     "ContactResult": "contact",
     "FrfResult": "frf",
     "IdentifyResult": "identify",
@@ -64,6 +67,7 @@ _WHERE = {
     "SwingStepResult": "swing",
     "TwistResult": "twist",
     "run_compare": "identify",
+    "run_compound": "compound",
     "run_contact": "contact",
     "run_frf": "frf",
     "run_identify": "identify",
@@ -77,6 +81,7 @@ _WHERE = {
 
 __all__ = [
     "CompareResult",
+    "CompoundResult",
     "ContactResult",
     "FrfResult",
     "IdentifyResult",
@@ -88,6 +93,7 @@ __all__ = [
     "SwingStepResult",
     "TwistResult",
     "run_compare",
+    "run_compound",
     "run_contact",
     "run_frf",
     "run_identify",

@@ -1,7 +1,9 @@
 """Step ``rig``: a virtual roving-hammer test of a racket model.
 
 Writes ``hammer_<support>.uff`` (geometry + time records), ``modal_truth_<support>.json`` (the
-rig's modes at the test points, butt and tip) and ``run.json``.
+rig's modes at the test points, butt and tip) and ``run.json``.  With ``ball_at`` a ball is
+fixed on the strings (the paper's compound test, section 3.2: :mod:`racketdyn.rig.ball`); the
+hammer then skips the points under the ball.
 """
 
 from __future__ import annotations
@@ -14,7 +16,9 @@ from typing import Any
 
 import numpy as np
 
+from racketdyn.ball import Ball
 from racketdyn.errors import InputError, one_of, require_range
+from racketdyn.impact.compound import PRELOAD_N, restitution_damping_ratio
 from racketdyn.io import racket_to_dict, write_hammer_uff
 from racketdyn.measurement import HammerRecords
 from racketdyn.modal import ModalModel
@@ -25,6 +29,7 @@ from racketdyn.rig import (
     simulate_hammer_test,
     string_contact_time,
 )
+from racketdyn.rig.ball import ball_on_strings
 from racketdyn.rig.hammer import FRAME_PULSE_S
 from racketdyn.workflows.inputs import RacketInput, load_racket_input
 from racketdyn.workflows.run import (
@@ -57,6 +62,9 @@ class RigResult(StepResult):
         The accelerometer's node (the same for every support).
     faults : dict of str to dict
         Counts of ``double_hits`` and ``overloads`` of each support.
+    ball : dict or None
+        The ball fixed on the strings (``location_m``, ``mass_kg``, ``stiffness_n_per_m``,
+        ``damping_ratio``, ``preload_n``), None without one.
     """
 
     supports: list[str] = field(default_factory=list)
@@ -64,6 +72,7 @@ class RigResult(StepResult):
     truth: dict[str, ModalModel] = field(default_factory=dict)
     reference_node: int = 0
     faults: dict[str, dict[str, int]] = field(default_factory=dict)
+    ball: dict[str, Any] | None = None
 
 
 @run_step
@@ -77,6 +86,8 @@ def run_rig(
     overloads: float = 0.0,
     seed: int = 1,
     binary: bool = False,
+    ball_at: Sequence[float] | None = None,
+    ball: Ball | None = None,
     command: Sequence[str] | None = None,
     figures: Callable[[RigResult, Path], list[Path]] | None = None,
     progress: Progress | None = None,
@@ -100,6 +111,12 @@ def run_rig(
         Random seed.
     binary : bool
         Write binary UFF 58b (default ASCII).
+    ball_at : sequence of float, optional
+        Fix a ball on the strings at (x, y), m (the paper's section 3.2); its spring is the
+        ball's one-sided law's tangent at :data:`~racketdyn.impact.compound.PRELOAD_N` (the
+        rig's membrane is the string bed), its dashpot from e_BG.
+    ball : Ball, optional
+        The ball of ``ball_at`` (default :class:`~racketdyn.ball.Ball`).
     command : sequence of str, optional
         The command as called, for run.json.
     figures : callable, optional
@@ -119,10 +136,40 @@ def run_rig(
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
     locations, nodes = hammer_points(the_racket)
+    ball_record = None
+    spring: tuple[tuple[float, float], float, float, float] | None = None
+    if ball_at is not None:
+        the_ball = ball or Ball()
+        ball_xy = np.asarray(ball_at, dtype=float).ravel()
+        if ball_xy.size != 2 or not np.all(np.isfinite(ball_xy)):
+            raise InputError("--ball-at: give the ball's position as x,y in m, e.g. 0.505,0")
+        the_racket.head.check_inside(ball_xy[None, :], "--ball-at")
+        law = the_ball.restoring_force
+        spring = (
+            (float(ball_xy[0]), float(ball_xy[1])),
+            the_ball.mass_kg,
+            float(law.stiffness(law.deflection(PRELOAD_N))),
+            restitution_damping_ratio(the_ball.e_bg),
+        )
+        ball_record = {
+            "location_m": list(spring[0]),
+            "mass_kg": spring[1],
+            "stiffness_n_per_m": spring[2],
+            "damping_ratio": spring[3],
+            "preload_n": PRELOAD_N,
+            "spring": "the ball's own one-sided law, tangent at the preload (the rig's "
+            "membrane is the string bed); dashpot from e_BG",
+        }
+        # the hammer cannot strike the strings under the ball
+        free_of_ball = np.hypot(*(locations - ball_xy).T) > 0.5 * the_ball.diameter_m
+        locations = locations[free_of_ball]
+        nodes = tuple(n for n, keep in zip(nodes, free_of_ball, strict=True) if keep)
     reference = accelerometer_index(the_racket, locations)
     reference_location = (float(locations[reference, 0]), float(locations[reference, 1]))
     on_bed = the_racket.head.contains(locations)
-    result = RigResult(out_dir, supports=supports, reference_node=nodes[reference])
+    result = RigResult(
+        out_dir, supports=supports, reference_node=nodes[reference], ball=ball_record
+    )
     runs: dict[str, dict[str, Any]] = {}
     for each in supports:
         durations = np.full(len(nodes), FRAME_PULSE_S)
@@ -130,6 +177,8 @@ def run_rig(
         durations[on_bed] = string_contact_time(the_racket, locations[on_bed], contact_support)
         report(progress, f"building the {each} rig and simulating the hammer test")
         model = rig_model(the_racket, "free" if each == "free" else "hand")
+        if spring is not None:
+            model = ball_on_strings(model, *spring)
         records = simulate_hammer_test(
             model,
             locations,
@@ -173,6 +222,7 @@ def run_rig(
         "double_hit_probability": double_hits,
         "overload_probability": overloads,
         "seed": seed,
+        "ball_on_strings": ball_record,
         "runs": runs,
     }
     return finish_run(result, inputs, command_record(command, "rig"), figures)

@@ -18,6 +18,7 @@ from typing import Any
 
 from racketdyn.report.folder import RunFolder
 from racketdyn.report.sections import (
+    compound,
     contact,
     impact,
     modes,
@@ -64,6 +65,7 @@ SECTIONS: dict[str, Section] = {
         "Mode shapes and node lines, free against hand-held", modes.gather, modes.HOW_TO_RUN
     ),
     "contact": Section("Contact time over the face", contact.gather, contact.HOW_TO_RUN),
+    "compound": Section("The ball on the strings (Figs 8–9)", compound.gather, compound.HOW_TO_RUN),
     "impact": Section(
         "Impact force and contact time against speed", impact.gather, impact.HOW_TO_RUN
     ),

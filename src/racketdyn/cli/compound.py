@@ -1,0 +1,117 @@
+"""``racketdyn compound``: the modes of a racket with a ball fixed on its strings (section 3.2)."""
+
+from __future__ import annotations
+
+import argparse
+from typing import TYPE_CHECKING, Any
+
+from racketdyn.cli import options as opt
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+
+def add(commands: Any) -> None:
+    """Register the command."""
+    p = opt.command(
+        commands,
+        "compound",
+        "the modes of the racket with a ball fixed on its strings (paper, Figs 8-9)",
+        "The linear modes of ball + ball-string spring + racket (rigid body and flexible "
+        "modes) for a ball stuck at a point of the face: the ball mode whose half period is "
+        "the contact time, the frame modes with and without the ball, and the ball mode of a "
+        "racket with a 4x stiffer frame. compound.csv, figures, run.json",
+    )
+    opt.add_racket_and_ball(p)
+    p.add_argument(
+        "--point",
+        metavar="X,Y",
+        help="where the ball sits, x,y in m (default: the centre of the string bed), "
+        "e.g. --point=0.5,-0.03",
+    )
+    opt.add_support(p, "free,hand", "free, pinned, hand, or several: free,hand")
+    p.add_argument(
+        "--preload",
+        type=float,
+        default=5.0,
+        metavar="N",
+        help="force pressing the stuck ball on the strings, N; the spring is the compound "
+        "law's tangent there (default 5)",
+    )
+    opt.add_no_figures(p, "compound.csv")
+    opt.add_out(p)
+    p.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace, console: Console) -> int:
+    """Run the command."""
+    from rich.table import Table
+
+    from racketdyn.plotting.steps import compound_figures
+    from racketdyn.workflows.compound import run_compound
+
+    point = opt.parse_point("--point", args.point)
+    supports = opt.parse_list("--support", args.support)
+    opt.check_modes(args)
+    ball, hand, defaults = opt.ball_and_hand(args, supports)
+    with opt.progress_display(console) as progress:
+        result = run_compound(
+            args.out,
+            racket=args.racket,
+            modal=args.modal,
+            rigid=args.rigid,
+            ball=ball,
+            point=point,
+            supports=supports,
+            hand=hand,
+            preload_n=args.preload,
+            defaults=defaults,
+            command=opt.command_line(args),
+            figures=None if args.no_figures else compound_figures,
+            progress=progress,
+        )
+    spring = result.spring
+    assert spring is not None
+    x, y = result.location
+    console.print(
+        f"ball fixed at x = {x * 1e3:.0f} mm, y = {y * 1e3:.0f} mm on a bed preloaded with "
+        f"{spring.preload_n:g} N: spring {spring.stiffness / 1e3:.2f} kN/m (tangent of F_GB), "
+        f"ζ {spring.damping_ratio:.3f} (from e_BG) → {result.out}"
+    )
+    for support in result.supports:
+        modes, alone = result.modes[support], result.alone[support]
+        table = Table(title=f"{support}: modes with the ball (and the racket alone)")
+        for column in ("mode", "f (Hz)", "ζ", "ball / frame", "alone (Hz)", "shift"):
+            table.add_column(column, justify="left" if column == "mode" else "right")
+        for k, name in enumerate(modes.names):
+            f_alone = alone.frequency_of(name)
+            table.add_row(
+                name,
+                f"{modes.frequency[k]:.2f}",
+                f"{modes.damping_ratio[k]:.4f}",
+                f"{modes.ball_to_frame_ratio[k]:.3f}",
+                "–" if f_alone != f_alone else f"{f_alone:.2f}",
+                "new"
+                if f_alone != f_alone
+                else f"{100 * (modes.frequency[k] / f_alone - 1):+.2f} %",
+            )
+        console.print(table)
+        times = ", ".join(f"{t * 1e3:.2f}" for t in result.contact_time[support])
+        console.print(
+            f"{support}: ball mode {modes.ball_frequency:.2f} Hz, half period "
+            f"{modes.half_period * 1e3:.2f} ms; approximate contact time at 5, 10, 20 m/s: "
+            f"{times} ms"
+        )
+        check = result.checks.get(support)
+        if check is not None:
+            frames = ", ".join(
+                f"{name} ×{check.stiffer_frame_hz[name] / f:.2f}"
+                for name, f in check.frame_hz.items()
+            )
+            console.print(
+                f"{support}, frame {check.factor:g}× stiffer (same mass): ball mode "
+                f"{check.ball_hz:.2f} → {check.stiffer_ball_hz:.2f} Hz "
+                f"({100 * check.ball_change:+.2f} %); frame modes {frames}"
+            )
+    opt.print_written(console, result.written)
+    return 0

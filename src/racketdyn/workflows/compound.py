@@ -1,0 +1,402 @@
+"""Step ``compound``: the modes of a racket with a ball fixed on its strings (section 3.2).
+
+Writes ``compound.csv`` (:data:`COMPOUND_COLUMNS`) and ``run.json`` (the ball–string spring
+and why, the frame modes' shifts when the ball is added, and the frame-stiffness check); the
+figures come from the caller's hook.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from racketdyn.ball import Ball
+from racketdyn.errors import InputError, one_of
+from racketdyn.impact.approximate import predict
+from racketdyn.impact.compound import (
+    BALL_MODE_NAME,
+    PRELOAD_N,
+    BallSpring,
+    CompoundSystem,
+    ball_spring,
+    racket_modes,
+    stiffer_frame,
+)
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.system import TRANSIENT_SUPPORTS
+from racketdyn.io import racket_to_dict
+from racketdyn.modal import ModalModel
+from racketdyn.racket import Racket
+from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    report,
+    run_step,
+    write_rows,
+)
+
+__all__ = [
+    "COMPOUND_COLUMNS",
+    "CONTACT_SPEEDS_MPS",
+    "FRAME_STIFFNESS_FACTOR",
+    "CompoundResult",
+    "FrameCheck",
+    "run_compound",
+]
+
+CONTACT_SPEEDS_MPS = (5.0, 10.0, 20.0)
+"""Ball speeds of the approximate method's contact times beside the half period, m/s."""
+
+FRAME_STIFFNESS_FACTOR = 4.0
+"""The paper's stiffer racket: "approximately 4 times the frame rigidity", same mass."""
+
+COMPOUND_COLUMNS = (
+    "support",
+    "mode",
+    "frequency_hz",
+    "damping_ratio",
+    "ball_to_frame_ratio",
+    "half_period_s",
+    "contact_time_5_s",
+    "contact_time_10_s",
+    "contact_time_20_s",
+)
+"""Columns of ``compound.csv``: one row per support × elastic mode of the racket with the ball;
+the last four only on the ball mode (empty elsewhere)."""
+
+HAMMER_OFFSET_M = 0.04
+"""The hammer strikes the string face this far from the ball, towards the handle, m (the
+paper: "a point, slightly away from the contact point of the ball")."""
+
+NECK_BELOW_BED_M = 0.03
+"""The accelerometer on the frame neck: on the long axis, this far below the string bed, m."""
+
+RESPONSE_TIME_S = 0.04
+"""Length of the neck's time response (Fig. 8c), s; sampled at :data:`RESPONSE_STEP_S`."""
+RESPONSE_STEP_S = 1.0e-4
+
+AXIS_POINTS = 69
+"""Points along the long axis for the ball mode's shape (Fig. 8a)."""
+
+FRF_FREQUENCY_HZ = (20.0, 500.0, 2000)
+"""Band and count of the FRFs without and with the ball (Fig. 9), Hz."""
+
+# the approximate method's support for each support of the compound system: it has no hand,
+# and the paper's model of a held racket is the pin at the grip (section 3.3)
+_APPROXIMATE_SUPPORT = {"free": "free", "pinned": "pinned", "hand": "pinned"}
+
+
+@dataclass(frozen=True)
+class FrameCheck:
+    """The ball mode and the frame modes of the racket and of one with a stiffer frame.
+
+    Attributes
+    ----------
+    support : str
+        Support.
+    factor : float
+        Frame stiffness factor (4: the paper's stiffer racket).
+    ball_hz, stiffer_ball_hz : float
+        Ball mode of the racket and of the stiffer racket, Hz.
+    frame_hz, stiffer_frame_hz : dict of str to float
+        Frame modes (with the ball) by name, Hz.
+    """
+
+    support: str
+    factor: float
+    ball_hz: float
+    stiffer_ball_hz: float
+    frame_hz: dict[str, float]
+    stiffer_frame_hz: dict[str, float]
+
+    @property
+    def ball_change(self) -> float:
+        """Relative change of the ball mode, stiffer / original − 1."""
+        return self.stiffer_ball_hz / self.ball_hz - 1.0
+
+    def as_dict(self) -> dict[str, Any]:
+        """For run.json."""
+        return {
+            "support": self.support,
+            "frame_stiffness_factor": self.factor,
+            "ball_mode_hz": self.ball_hz,
+            "stiffer_ball_mode_hz": self.stiffer_ball_hz,
+            "ball_mode_change_percent": 100.0 * self.ball_change,
+            "frame_modes": [
+                {
+                    "mode": name,
+                    "frequency_hz": f,
+                    "stiffer_frequency_hz": self.stiffer_frame_hz.get(name, math.nan),
+                    "ratio": self.stiffer_frame_hz.get(name, math.nan) / f,
+                }
+                for name, f in self.frame_hz.items()
+            ],
+        }
+
+
+@dataclass
+class CompoundResult(StepResult):
+    """What :func:`run_compound` computed and wrote.
+
+    Attributes
+    ----------
+    racket : Racket
+        The racket.
+    ball : Ball
+        The ball.
+    spring : BallSpring
+        The ball–string spring.
+    location : tuple of float
+        Where the ball sits (x, y), m.
+    supports : list of str
+        Supports, in order.
+    modes, alone : dict of str to CompoundSystem
+        Per support: the racket with the ball, and alone.
+    checks : dict of str to FrameCheck
+        Per support: the frame-stiffness check.
+    contact_time : dict of str to list of float
+        Per support: the approximate method's contact time at :data:`CONTACT_SPEEDS_MPS`, s.
+    model : ModalModel or None
+        The racket's modes (None: rigid).
+    hand : Hand or None
+        The hand of ``hand``.
+    hammer, neck : tuple of float
+        Where the hammer strikes and the accelerometer sits (x, y), m.
+    times : ndarray
+        Times of the neck responses, s.
+    neck_acceleration : dict of str to ndarray
+        Per support: the neck's acceleration after a unit hammer impulse, m/s² per N·s.
+    frequency : ndarray
+        Frequencies of the FRFs, Hz.
+    frf_alone, frf_with_ball : dict of str to ndarray
+        Per support: receptance hammer → neck without and with the ball, m/N (complex).
+    axis_x : ndarray
+        Points along the long axis (y = 0) where the ball mode's shape is given, m.
+    ball_shape : dict of str to tuple of (ndarray, float)
+        Per support: the ball mode's frame displacement along the axis and the ball's, scaled
+        so the ball's is 1 (real parts after removing the ball's phase; Fig. 8a).
+    """
+
+    racket: Racket | None = None
+    ball: Ball | None = None
+    spring: BallSpring | None = None
+    location: tuple[float, float] = (math.nan, math.nan)
+    supports: list[str] = field(default_factory=list)
+    modes: dict[str, CompoundSystem] = field(default_factory=dict)
+    alone: dict[str, CompoundSystem] = field(default_factory=dict)
+    checks: dict[str, FrameCheck] = field(default_factory=dict)
+    contact_time: dict[str, list[float]] = field(default_factory=dict)
+    model: ModalModel | None = None
+    hand: Hand | None = None
+    hammer: tuple[float, float] = (math.nan, math.nan)
+    neck: tuple[float, float] = (math.nan, math.nan)
+    times: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    neck_acceleration: dict[str, NDArray[np.float64]] = field(default_factory=dict)
+    frequency: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    frf_alone: dict[str, NDArray[np.complex128]] = field(default_factory=dict)
+    frf_with_ball: dict[str, NDArray[np.complex128]] = field(default_factory=dict)
+    axis_x: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    ball_shape: dict[str, tuple[NDArray[np.float64], float]] = field(default_factory=dict)
+
+
+def frame_shifts(with_ball: CompoundSystem, alone: CompoundSystem) -> list[dict[str, Any]]:
+    """The racket's own modes with and without the ball, matched by name."""
+    rows = []
+    for name, f_alone in zip(alone.names, alone.frequency, strict=True):
+        f_with = with_ball.frequency_of(name)
+        rows.append(
+            {
+                "mode": name,
+                "alone_hz": float(f_alone),
+                "with_ball_hz": f_with,
+                "shift_percent": 100.0 * (f_with / float(f_alone) - 1.0),
+            }
+        )
+    return rows
+
+
+@run_step
+def run_compound(
+    out: str | os.PathLike[str],
+    *,
+    racket: RacketInput = None,
+    modal: ModalModel | str | os.PathLike[str] | None = None,
+    rigid: bool = False,
+    ball: Ball | None = None,
+    point: ArrayLike | None = None,
+    supports: Sequence[str] = ("free", "hand"),
+    hand: Hand | None = None,
+    preload_n: float = PRELOAD_N,
+    defaults: Sequence[str] = (),
+    command: Sequence[str] | None = None,
+    figures: Callable[[CompoundResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> CompoundResult:
+    """The linear modes of ball + ball–string spring + racket; write the run folder.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    racket : Racket, path or None
+        Racket object, TOML file, or None for the built-in racket.
+    modal : ModalModel or path, optional
+        Modal model, or its JSON file, replacing the racket's modes.
+    rigid : bool
+        No flexible modes: a rigid racket.
+    ball : Ball, optional
+        The ball (default :class:`~racketdyn.ball.Ball`).
+    point : array_like (2,), optional
+        Where the ball sits (x, y), m (default the centre of the string bed).
+    supports : sequence of str
+        ``free``, ``pinned``, ``hand`` (the modes of each).
+    hand : Hand, optional
+        The hand of the ``hand`` support.
+    preload_n : float
+        Preload of the stuck ball on the strings, N (the spring is F_GB's tangent there).
+    defaults : sequence of str
+        Defaults the caller filled in, added to run.json.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths`` (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    checked = [one_of("--support", s, TRANSIENT_SUPPORTS) for s in supports]
+    if not checked or len(set(checked)) != len(checked):
+        raise InputError(f"--support: name each support once (got {','.join(supports)})")
+    used = setup(racket, modal, rigid)
+    the_racket = used.racket
+    defaults_used = [*used.defaults, *defaults]
+    if point is None:
+        xy = (the_racket.head.centre_x_m, the_racket.head.centre_y_m)
+        defaults_used.append("point: the centre of the string bed")
+    else:
+        values = np.asarray(point, dtype=float).ravel()
+        if values.size != 2 or not np.all(np.isfinite(values)):
+            raise InputError("--point: give the ball's position as x,y in m, e.g. 0.505,0")
+        xy = (float(values[0]), float(values[1]))
+    the_racket.head.check_inside(np.array([xy]), "--point")
+    the_hand, hand_defaults = hand_or_default(checked, hand)
+    the_ball, ball_defaults = ball_or_default(ball)
+    defaults_used += [*hand_defaults, *ball_defaults]
+    spring = ball_spring(the_racket, the_ball, preload_n)
+    model = used.modal_model
+    stiffer = None if model is None else stiffer_frame(model, FRAME_STIFFNESS_FACTOR)
+    head = the_racket.head
+    hammer = (xy[0] - HAMMER_OFFSET_M, xy[1])
+    neck = (head.centre_x_m - head.half_length_m - NECK_BELOW_BED_M, 0.0)
+    head.check_inside(np.array([hammer]), "the hammer point (--point minus 40 mm in x)")
+    result = CompoundResult(
+        Path(out), racket=the_racket, ball=the_ball, spring=spring, location=xy,
+        supports=checked, model=model, hand=the_hand, hammer=hammer, neck=neck,
+        times=np.arange(0.0, RESPONSE_TIME_S, RESPONSE_STEP_S),
+        frequency=np.linspace(*FRF_FREQUENCY_HZ[:2], FRF_FREQUENCY_HZ[2]),
+    )  # fmt: skip
+    result.axis_x = np.linspace(0.0, the_racket.length_m, AXIS_POINTS)
+    extra = np.vstack([[hammer, neck], np.column_stack([result.axis_x, np.zeros(AXIS_POINTS)])])
+    approximate = predict(
+        the_racket,
+        the_ball,
+        [xy],
+        CONTACT_SPEEDS_MPS,
+        sorted({_APPROXIMATE_SUPPORT[s] for s in checked}),
+        modal_model=None,
+    )
+    for i, support in enumerate(checked):
+        report(progress, f"modes with the ball, {support}", i, len(checked))
+        with_ball = racket_modes(the_racket, model, support, xy, spring, the_ball, the_hand, extra)
+        alone = racket_modes(the_racket, model, support, xy, None, the_ball, the_hand, extra)
+        result.modes[support], result.alone[support] = with_ball, alone
+        result.neck_acceleration[support] = with_ball.impulse_acceleration(result.times, 1, 2)
+        result.frf_with_ball[support] = with_ball.receptance(result.frequency, 1, 2)
+        result.frf_alone[support] = alone.receptance(result.frequency, 1, 2)
+        if with_ball.ball_mode >= 0:
+            shape = (
+                with_ball.shapes[:, with_ball.ball_mode] / with_ball.shapes[-1, with_ball.ball_mode]
+            )
+            result.ball_shape[support] = (np.real(with_ball.rows[3:] @ shape), 1.0)
+        k = approximate.supports.index(_APPROXIMATE_SUPPORT[support])
+        result.contact_time[support] = [float(t) for t in approximate.contact_time[0, :, k]]
+        if stiffer is not None:
+            harder = racket_modes(the_racket, stiffer, support, xy, spring, the_ball, the_hand)
+            result.checks[support] = FrameCheck(
+                support,
+                FRAME_STIFFNESS_FACTOR,
+                with_ball.ball_frequency,
+                harder.ball_frequency,
+                _frame_frequencies(with_ball, model),
+                _frame_frequencies(harder, model),
+            )
+    rows = []
+    for support in checked:
+        modes = result.modes[support]
+        for k, name in enumerate(modes.names):
+            ball_mode = k == modes.ball_mode
+            times = result.contact_time[support] if ball_mode else [None] * 3
+            rows.append(
+                {
+                    "support": support,
+                    "mode": name,
+                    "frequency_hz": float(modes.frequency[k]),
+                    "damping_ratio": float(modes.damping_ratio[k]),
+                    "ball_to_frame_ratio": float(modes.ball_to_frame_ratio[k]),
+                    "half_period_s": modes.half_period if ball_mode else None,
+                    **dict(zip(COMPOUND_COLUMNS[-3:], times, strict=True)),
+                }
+            )
+    result.written.append(write_rows(result.out / "compound.csv", rows))
+    inputs = {
+        **used.provenance,
+        "racket": racket_to_dict(the_racket),
+        "point_m": list(xy),
+        "hammer_point_m": list(hammer),
+        "neck_point_m": list(neck),
+        "supports": checked,
+        "rigid": rigid,
+        "ball_mass_kg": the_ball.mass_kg,
+        "defaults_used": defaults_used,
+        "method": "linear modes of ball + ball–string spring + racket (racketdyn.impact."
+        "compound): the racket's rigid body and flexible modes (string-bed modes left out: the "
+        "spring carries the strings), complex eigenvalues of the damped system",
+        "ball_spring": {
+            **asdict(spring),
+            "why": "a ball stuck on the strings sits on a slightly preloaded bed: the small-"
+            "amplitude spring is the tangent dF_GB/dX of the compound ball + string-bed law "
+            f"at the preload; its dashpot gives a linear contact the ball's e_BG = "
+            f"{the_ball.e_bg:g}",
+            "stiffness_n_per_m_at": {
+                f"{f:g} N": ball_spring(the_racket, the_ball, f).stiffness for f in (0.0, 20.0)
+            },
+        },
+        "contact_speeds_mps": list(CONTACT_SPEEDS_MPS),
+        "contact_time_support": {s: _APPROXIMATE_SUPPORT[s] for s in checked},
+        "ball_mode_hz": {s: result.modes[s].ball_frequency for s in checked},
+        "frame_mode_shifts": {s: frame_shifts(result.modes[s], result.alone[s]) for s in checked},
+        "frame_stiffness_check": [c.as_dict() for c in result.checks.values()],
+        "modal_model": None if model is None else model.summary(),
+        "hand": None if the_hand is None else asdict(the_hand),
+        "columns": {"compound.csv": list(COMPOUND_COLUMNS)},
+    }
+    return finish_run(result, inputs, command_record(command, "compound"), figures)
+
+
+def _frame_frequencies(modes: CompoundSystem, model: ModalModel | None) -> dict[str, float]:
+    """The compound system's modes that carry a name of the racket's flexible modes, Hz."""
+    names = set() if model is None else set(model.frame_modes.names)
+    return {
+        n: float(f)
+        for n, f in zip(modes.names, modes.frequency, strict=True)
+        if n in names and n != BALL_MODE_NAME
+    }
