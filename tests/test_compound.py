@@ -179,7 +179,7 @@ def _band(racket, model, spring) -> tuple[float, float]:  # type: ignore[no-unty
 
 
 def test_ball_mode_band_from_the_inputs_spread(racket, spring, built_in) -> None:  # type: ignore[no-untyped-def]
-    """The inputs' spread puts the ball mode within about ±12 % of the nominal 88.4 Hz."""
+    """The inputs' spread puts the ball mode within about ±12 % of the nominal 88.7 Hz."""
     model, modes = built_in
     low, high = _band(racket, model, spring)
     nominal = modes["free"].ball_frequency
@@ -189,7 +189,7 @@ def test_ball_mode_band_from_the_inputs_spread(racket, spring, built_in) -> None
 
 @pytest.mark.xfail(
     strict=True,
-    reason="the model's ball mode is 88.4 Hz, 14 % below the paper's 103 Hz; the inputs' spread "
+    reason="the model's ball mode is 88.7 Hz, 14 % below the paper's 103 Hz; the inputs' spread "
     "(ball and bed stiffness at small amplitude, ball mass) reaches 77-99 Hz, so 103 Hz lies "
     "outside it: the small-amplitude compound stiffness would have to be ≈ 18.5 kN/m against "
     "13.5 kN/m from the built-in laws (docs/develop.md, 'The ball on the strings')",
@@ -344,8 +344,17 @@ def test_report_section_states_the_papers_claims_in_words(tmp_path: Path) -> Non
     data = section.gather(RunFolder.scan(tmp_path))
     assert data is not None
     text = " ".join(data["statements"])
-    assert "88.4 Hz (-14 %)" in text  # the miss against the paper, stated
-    assert "within 11 %" in text  # half period against the contact time at 5–20 m/s
+    with (tmp_path / "compound" / "compound.csv").open(encoding="utf-8") as file:
+        rows = list(csv.DictReader(file))
+    ball = next(r for r in rows if r["support"] == "free" and r["mode"] == "ball on the strings")
+    frequency = float(ball["frequency_hz"])
+    miss = round(100 * (frequency / 103.0 - 1))
+    assert f"at {frequency:.1f} Hz ({miss:+d} %)" in text  # the miss against the paper, stated
+    assert -20 < miss < -5  # docs/develop.md "The ball on the strings": 14 % below, not tuned
+    times = [float(ball[f"contact_time_{v}_s"]) for v in (5, 10, 20)]
+    worst = max(abs(t / float(ball["half_period_s"]) - 1.0) for t in times)
+    assert f"within {100 * worst:.0f} %" in text  # half period against the contact time, 5–20 m/s
+    assert worst < 0.15  # the paper: half the ball mode's period is the contact time
     assert "ball mode moves by 0.5 %" in text
     assert [row[0] for row in data["times"]] == ["free", "hand"]
     html = render_section("compound", data)
