@@ -401,7 +401,7 @@ def test_predict_captions_state_the_run_s_speeds_and_supports(tmp_path: Path) ->
         "fig13_pulse_spectrum": "balls at 25 and 35 m/s, racket at 5 m/s (support in the title)",
         "fig15_rebound_along_axis": "ball at 25 m/s, racket at 5 m/s, freely supported, with",
         "transient_comparison_face": "one panel per support, ball at 25 m/s;",
-        "transient_comparison_speed": "(solid), racket at 5 m/s; a curve breaks where its method flags",
+        "transient_comparison_speed": "(solid), racket at 5 m/s; a curve breaks where",
     }
     for name, words in expected.items():
         caption = _caption_of(page, f"predict/{name}.png")
