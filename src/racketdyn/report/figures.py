@@ -158,7 +158,8 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "compound_response": (
         "Fig. 8c",
         "acceleration of the frame neck after a hammer blow on the strings near the ball fixed "
-        "on them, per unit impulse, for the run's first support (linear compound model)",
+        "on them (a half-sine as long as the hammer's contact with the strings), per unit "
+        "impulse, for the run's first support (linear compound model)",
     ),
     "compound_shape": (
         "Fig. 8a",
