@@ -535,6 +535,14 @@ def test_ball_at_bad_input_is_one_line(rig_frfs, tmp_path, capsys, command, word
     assert "\n" not in err
 
 
+def test_rig_with_a_ball_says_how_to_identify_it(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
+    assert main(["rig", "--ball-at", "0.505,0", "--support", "free", "--averages", "1",
+                 "--out", str(tmp_path / "rig")]) == 0  # fmt: skip
+    printed = " ".join(capsys.readouterr().out.split())
+    assert "ball on the strings" in printed
+    assert "identify --ball-at 0.505,0" in printed
+
+
 def test_rig_ball_off_the_strings_is_one_line(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
     assert main(["rig", "--ball-at", "0.2,0", "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err.strip()
