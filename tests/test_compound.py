@@ -515,6 +515,19 @@ def test_compare_the_racket_alone_against_the_racket_with_the_ball(rig_frfs: Pat
     assert (out / "modes_ball.csv").is_file()
     # compare's own folder family: a free/hand compare may replace it, another step may not
     assert main(["rig", "--out", str(out)]) == 2
+    # the report's section on the ball shows the measured Fig. 9 beside the model's
+    from racketdyn.report.folder import RunFolder
+    from racketdyn.report.sections import compound as section
+
+    assert (
+        main(["compound", "--support", "free", "--no-figures", "--out", str(rig_frfs / "c")]) == 0
+    )
+    data = section.gather(RunFolder.scan(rig_frfs))
+    assert data is not None
+    text = " ".join(data["statements"])
+    assert f"measured (compare --ball-at): a new mode at {ball_hz:.1f} Hz" in text
+    shifts = [abs(float(r["frequency_shift_percent"])) for r in rows if r["mac"]]
+    assert f"{len(shifts)} racket modes paired by MAC move by {max(shifts):.1f} % at most" in text
 
 
 @pytest.mark.parametrize(

@@ -171,6 +171,12 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         "receptance from the hammer point on the strings to the frame neck, the racket alone "
         "(left) and with the ball fixed on the strings (right), with the ball mode marked",
     ),
+    "fig9_frf_alone_and_ball": (
+        "Fig. 9",
+        "measured accelerance from the hammer point nearest the ball to the accelerometer, the "
+        "racket alone (left) and with the ball fixed on the strings (right, the racket alone "
+        "dashed), identified modes dotted, the ball's labelled (racketdyn compare --ball-at)",
+    ),
 }
 """Caption of every PNG the commands write, by file stem (or its start): (the figure of
 Kawazoe's paper it corresponds to, or None; what it shows, its ``{field}`` the settings its run
