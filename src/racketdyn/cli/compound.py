@@ -38,6 +38,13 @@ def add(commands: Any) -> None:
         help="force pressing the stuck ball on the strings, N; the spring is the compound "
         "law's tangent there (default 5)",
     )
+    p.add_argument(
+        "--hammer",
+        metavar="X,Y",
+        help="where the hammer strikes the string face for Figs 8c and 9, x,y in m (default: "
+        "40 mm from the ball towards the handle); near the 2-node mode's node line the neck "
+        "shows the ball mode first, as in the paper's Fig. 8c",
+    )
     opt.add_no_figures(p, "compound.csv")
     opt.add_out(p)
     p.set_defaults(handler=run)
@@ -65,6 +72,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             supports=supports,
             hand=hand,
             preload_n=args.preload,
+            hammer=opt.parse_point("--hammer", args.hammer),
             defaults=defaults,
             command=opt.command_line(args),
             figures=None if args.no_figures else compound_figures,

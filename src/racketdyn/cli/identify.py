@@ -46,6 +46,13 @@ def _add_options(p: argparse.ArgumentParser) -> None:
         "several (default: the one node every FRF shares, else the one reaching the most "
         "points)",
     )
+    p.add_argument(
+        "--ball-at",
+        metavar="X,Y",
+        help="a ball was fixed on the strings at x,y, m, during the test (the paper's compound "
+        "test, Figs 8-9, racketdyn rig --ball-at): its mode is named 'ball on the strings' "
+        "(default: no ball)",
+    )
     opt.add_out(p)
 
 
@@ -67,13 +74,27 @@ def add(commands: Any) -> None:
     p = opt.command(
         commands,
         "compare",
-        "identify free and hand-held FRFs and compare",
+        "identify free and hand-held FRFs (or alone and with a ball) and compare",
         "Both identifications, modes paired by MAC (comparison.csv) and the paper's Fig. 15 "
-        "check with the identified models at the ball speed --speed",
+        "check with the identified models at the ball speed --speed.  With --ball-at: the "
+        "racket alone against the racket with a ball fixed on its strings (paper, Figs 9a and "
+        "9b): ball_comparison.csv with the ball's new mode and the frame modes' shifts, and "
+        "the two FRFs (fig9_frf_alone_and_ball.png)",
     )
-    p.add_argument("free", help="FRFs of the freely supported racket (UFF 58)")
-    p.add_argument("hand", help="FRFs of the hand-held racket (UFF 58)")
+    p.add_argument(
+        "free",
+        help="FRFs of the freely supported racket (UFF 58); with --ball-at, of the racket alone",
+    )
+    p.add_argument(
+        "hand",
+        help="FRFs of the hand-held racket (UFF 58); with --ball-at, of the racket with the ball",
+    )
     _add_options(p)
+    p.add_argument(
+        "--support",
+        choices=("free", "hand"),
+        help="with --ball-at: support of both tests, free or hand (default free)",
+    )
     opt.add_speed(p, "20", many=False)
     opt.add_allow_implausible(p)
     p.set_defaults(handler=run_compare)
@@ -93,6 +114,7 @@ def _options(args: argparse.Namespace) -> dict[str, Any]:
         "pin_hz": [] if args.pin is None else opt.parse_speeds("--pin", args.pin),
         "exclude_hz": [] if args.exclude is None else opt.parse_speeds("--exclude", args.exclude),
         "reference": args.reference,
+        "ball_at": opt.parse_point("--ball-at", args.ball_at),
         "command": opt.command_line(args),
     }
 
@@ -160,9 +182,19 @@ def run_identify(args: argparse.Namespace, console: Console) -> int:
 
 def run_compare(args: argparse.Namespace, console: Console) -> int:
     """Run ``compare``."""
+    from racketdyn.errors import InputError
     from racketdyn.plotting.steps import compare_figures
     from racketdyn.workflows.identify import run_compare as compare
 
+    options = _options(args)
+    ball_at = options.pop("ball_at")
+    if ball_at is not None:
+        return _run_compare_ball(args, console, ball_at, options)
+    if args.support is not None:
+        raise InputError(
+            "--support: compare takes the support from its two files (free, hand); --support "
+            "is for --ball-at (both tests on one support)"
+        )
     with opt.progress_display(console) as progress:
         result = compare(
             args.free,
@@ -172,11 +204,57 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
             allow_implausible=args.allow_implausible,
             figures=compare_figures,
             progress=progress,
-            **_options(args),
+            **options,
         )
     assert result.free is not None
     assert result.hand is not None
     print_modes(console, result.free)
     print_modes(console, result.hand)
+    opt.print_written(console, result.written)
+    return 0
+
+
+def _run_compare_ball(
+    args: argparse.Namespace,
+    console: Console,
+    ball_at: tuple[float, float],
+    options: dict[str, Any],
+) -> int:
+    """``compare --ball-at``: the racket alone against the racket with a ball (Figs 9a, 9b)."""
+    import math
+
+    from racketdyn.plotting.steps import compare_ball_figures
+    from racketdyn.workflows.identify import run_compare_ball
+
+    with opt.progress_display(console) as progress:
+        result = run_compare_ball(
+            args.free,
+            args.hand,
+            args.out,
+            ball_at=ball_at,
+            support=args.support or "free",
+            figures=compare_ball_figures,
+            progress=progress,
+            **options,
+        )
+    assert result.alone is not None
+    assert result.with_ball is not None
+    print_modes(console, result.alone)
+    print_modes(console, result.with_ball)
+    ball = [r for r in result.rows if math.isnan(r["frequency_alone_hz"])]
+    frame = [r for r in result.rows if math.isfinite(r["frequency_shift_percent"])]
+    if ball:
+        console.print(
+            f"new with the ball: {ball[0]['mode']} at {ball[0]['frequency_ball_hz']:.1f} Hz "
+            f"(ζ = {100 * ball[0]['damping_ball']:.1f} %)"
+        )
+    else:
+        console.print("no mode of the ball on the strings identified (see the naming above)")
+    if frame:
+        worst = max(frame, key=lambda r: abs(r["frequency_shift_percent"]))
+        console.print(
+            f"racket modes with the ball: {len(frame)} paired by MAC, the largest shift "
+            f"{worst['frequency_shift_percent']:+.1f} % ({worst['mode']})"
+        )
     opt.print_written(console, result.written)
     return 0

@@ -87,4 +87,10 @@ def run(args: argparse.Namespace, console: Console) -> int:
             if frequency > 15.0:
                 console.print(f"  {name:24s} {frequency:8.1f} Hz  ζ = {damping * 100:.2f} %")
     opt.print_written(console, result.written)
+    if result.ball is not None:
+        x, y = result.ball["location_m"]
+        console.print(
+            f"[dim]the ball's mode is heavily damped: frf --exp-window 0.1, then identify "
+            f"--ball-at {x:g},{y:g} to name it[/]"
+        )
     return 0

@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from racketdyn.workflows.compound import CompoundResult
     from racketdyn.workflows.contact import ContactResult
     from racketdyn.workflows.frf import FrfResult
-    from racketdyn.workflows.identify import CompareResult, IdentifyResult
+    from racketdyn.workflows.identify import BallCompareResult, CompareResult, IdentifyResult
     from racketdyn.workflows.oblique import ObliqueResult
     from racketdyn.workflows.predict import PredictResult
     from racketdyn.workflows.swing import SwingStepResult
@@ -132,6 +132,13 @@ def compare_figures(result: CompareResult, out: Path) -> list[Path]:
         result.free, result.hand, result.racket, Ball(), out, result.comparison, result.speed
     )
     return written
+
+
+def compare_ball_figures(result: BallCompareResult, out: Path) -> list[Path]:
+    """The FRFs of the racket alone and with the ball (the paper's Figs 9a and 9b)."""
+    from racketdyn.plotting.compound import write_ball_comparison_figure
+
+    return [write_ball_comparison_figure(result, out)]
 
 
 def swing_figures(result: SwingStepResult, out: Path) -> list[Path]:

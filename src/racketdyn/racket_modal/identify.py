@@ -10,11 +10,19 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 
+import numpy as np
+
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.identify import Identification, identify
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.racket_modal.face import face_mapping, looks_like_racket
-from racketdyn.racket_modal.shapes import classify_modes, naming_evidence
+from racketdyn.racket_modal.shapes import (
+    BALL_MODE_NAME,
+    BALL_RIGID_SHARE,
+    classify_modes,
+    naming_evidence,
+    rigid_share,
+)
 
 __all__ = ["identify_racket", "name_if_racket", "name_racket_modes"]
 
@@ -24,7 +32,9 @@ def _head(racket: Racket | HeadEllipse) -> HeadEllipse:
 
 
 def name_racket_modes(
-    identification: Identification, racket: Racket | HeadEllipse
+    identification: Identification,
+    racket: Racket | HeadEllipse,
+    ball_at: tuple[float, float] | None = None,
 ) -> Identification:
     """The identification with its modes named from their shapes on the racket.
 
@@ -34,6 +44,9 @@ def name_racket_modes(
         From :func:`racketdyn.modal.identify.identify` on a racket's FRFs.
     racket : Racket or HeadEllipse
         The racket (or its string bed), to tell string points from frame points.
+    ball_at : tuple of float, optional
+        Where a ball was fixed on the strings (x, y), m (the paper's compound test): its mode
+        is named ``"ball on the strings"`` (:func:`~racketdyn.racket_modal.shapes.classify_modes`).
 
     Returns
     -------
@@ -41,7 +54,7 @@ def name_racket_modes(
         Names ``"2-node bending"``, ``"2-node twisting"``, ``"string-bed membrane"`` … and
         kinds ``bending``, ``twisting``, ``string-bed``.
     """
-    names, kinds = classify_modes(identification.model, _head(racket))
+    names, kinds = classify_modes(identification.model, _head(racket), ball_at)
     return identification.renamed(names, kinds)
 
 
@@ -90,7 +103,10 @@ def identify_racket(
 
 
 def name_if_racket(
-    identification: Identification, racket: Racket, racket_given: bool
+    identification: Identification,
+    racket: Racket,
+    racket_given: bool,
+    ball_at: tuple[float, float] | None = None,
 ) -> tuple[Identification, str]:
     """Name the modes the racket way only when the structure is a racket and the shapes show it.
 
@@ -111,6 +127,9 @@ def name_if_racket(
         The racket the points may belong to.
     racket_given : bool
         True when the user named the racket (``--racket``).
+    ball_at : tuple of float, optional
+        Where a ball was fixed on the strings (x, y), m (``--ball-at``): one mode is named
+        ``"ball on the strings"`` if its frame shape shows it, and the sentence says which.
 
     Returns
     -------
@@ -145,4 +164,22 @@ def name_if_racket(
     reason = naming_evidence(identification.model, racket.head)
     if reason:
         return identification, f"modes numbered: {reason}"
-    return name_racket_modes(identification, racket), "modes named from their shapes on the racket"
+    named = name_racket_modes(identification, racket, ball_at)
+    sentence = "modes named from their shapes on the racket"
+    if ball_at is None:
+        return named, sentence
+    names = named.model.names
+    if BALL_MODE_NAME in names:
+        k = names.index(BALL_MODE_NAME)
+        return named, (
+            f"{sentence}; the ball on the strings at x = {1e3 * ball_at[0]:.0f} mm, "
+            f"y = {1e3 * ball_at[1]:.0f} mm: {named.model.frequency[k]:.1f} Hz, the mode whose "
+            "frame moves most nearly as a rigid body"
+        )
+    share = rigid_share(named.model, racket.head)
+    best = float(np.nanmax(share)) if np.any(np.isfinite(share)) else float("nan")
+    return named, (
+        f"{sentence}; no mode of the ball on the strings found: no mode's frame shape is more "
+        f"than {BALL_RIGID_SHARE:.0%} a rigid-body motion (largest {best:.0%}; widen --band or "
+        "measure more frame points)"
+    )

@@ -20,6 +20,15 @@ Naming, from the shape at the measured points and the racket's head:
 
 Twisting and string-bed modes are numbered in order of frequency ("2-node twisting",
 "3-node twisting", …; "string-bed membrane", "string-bed membrane 2", …).
+
+A ball fixed on the strings (the paper's compound test, section 3.2, ``ball_at``) adds one mode
+in which ball and frame push against each other through the strings (:data:`BALL_MODE_NAME`).
+Its shape on the frame is the frame's recoil, nearly a rigid-body motion of the head and handle,
+whereas an elastic mode of a bare racket is orthogonal (through the mass matrix) to every
+rigid-body motion and cannot look like one (:func:`rigid_share`).  With ``ball_at`` the mode
+whose frame shape is most nearly a plane ``a + b x + c y`` is the ball mode when more than
+:data:`BALL_RIGID_SHARE` of its frame shape is that plane (the rig's ball mode: 0.98; its
+2-node bending mode: 0.45); the bending modes are then counted without it.
 """
 
 from __future__ import annotations
@@ -32,13 +41,25 @@ from racketdyn.modal.shapes import nodes_along
 from racketdyn.racket import HeadEllipse
 
 __all__ = [
+    "BALL_MODE_NAME",
+    "BALL_RIGID_SHARE",
     "CLEAR_STRING_BED_RATIO",
     "MIRROR_TOLERANCE_M",
     "STRING_BED_RATIO",
     "axis_nodes",
+    "ball_mode_index",
     "classify_modes",
     "naming_evidence",
+    "rigid_share",
 ]
+
+BALL_MODE_NAME = "ball on the strings"
+"""Name of the compound mode in which a ball fixed on the strings moves against the frame (the
+paper's 103 Hz, section 3.2)."""
+BALL_RIGID_SHARE = 0.8
+"""Least share of a mode's frame shape (sum of squares) that a plane a + b x + c y must explain
+for the mode to be a ball's on the strings (–): the rig's ball mode scores 0.98, its bending and
+twisting modes at most 0.45 (``tests/test_compound.py``)."""
 
 STRING_BED_RATIO = 4.0
 """Below this ratio of mean squares on the strings and on the frame a mode is the frame's
@@ -88,7 +109,52 @@ def naming_evidence(model: ModalModel, head: HeadEllipse) -> str:
     return "no " + " nor ".join(missing) if missing else ""
 
 
-def classify_modes(model: ModalModel, head: HeadEllipse) -> tuple[tuple[str, ...], tuple[str, ...]]:
+def rigid_share(model: ModalModel, head: HeadEllipse) -> NDArray[np.float64]:
+    """Share of each mode's frame shape that a rigid-body motion of the face explains (–).
+
+    The least-squares plane ``a + b x + c y`` through the shape at the frame points (outside
+    95 % of the bed's elliptic radius), its sum of squares over the shape's; NaN when the frame
+    points cannot fix a plane (fewer than four, or all on one line).
+
+    Parameters
+    ----------
+    model : ModalModel
+        Shapes at face points (x, y), m.
+    head : HeadEllipse
+        The string bed, to tell string points from frame points.
+    """
+    frame = head.normalised_radius(model.locations) >= 0.95
+    plane = np.column_stack([np.ones(int(frame.sum())), model.locations[frame]])
+    if plane.shape[0] < 4 or np.linalg.matrix_rank(plane) < 3:
+        return np.full(model.n_modes, np.nan)
+    phi = model.mode_shapes[frame]
+    fitted = plane @ np.linalg.lstsq(plane, phi, rcond=None)[0]
+    total = np.sum(phi**2, axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.asarray(np.sum(fitted**2, axis=0) / total, dtype=float)
+
+
+def ball_mode_index(model: ModalModel, head: HeadEllipse) -> int:
+    """Index of the ball mode of a racket with a ball on its strings, or −1 if no mode's frame
+    shape is rigid enough (:data:`BALL_RIGID_SHARE`).
+
+    Parameters
+    ----------
+    model : ModalModel
+        Shapes at face points (x, y), m.
+    head : HeadEllipse
+        The string bed.
+    """
+    share = rigid_share(model, head)
+    if model.n_modes == 0 or not np.any(np.isfinite(share)):
+        return -1
+    k = int(np.nanargmax(share))
+    return k if share[k] > BALL_RIGID_SHARE else -1
+
+
+def classify_modes(
+    model: ModalModel, head: HeadEllipse, ball_at: tuple[float, float] | None = None
+) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """Names and kinds of a racket's modes from their shapes (see the module docstring).
 
     Parameters
@@ -97,12 +163,16 @@ def classify_modes(model: ModalModel, head: HeadEllipse) -> tuple[tuple[str, ...
         Shapes at measured points (frame and strings).
     head : HeadEllipse
         The string bed, to tell string points from frame points.
+    ball_at : tuple of float, optional
+        Where a ball was fixed on the strings during the test (x, y), m: one mode is then
+        named :data:`BALL_MODE_NAME` (kind ``other``) if its frame shape shows it
+        (:func:`ball_mode_index`).
 
     Returns
     -------
     names, kinds : tuple of str
         Names (``"2-node bending"`` …) and kinds (``bending``, ``twisting``, ``string-bed``,
-        ``unknown`` where the shape does not say).
+        ``other`` for the ball, ``unknown`` where the shape does not say).
     """
     locations, shapes = model.locations, model.mode_shapes
     on_strings = head.normalised_radius(locations) < 0.95
@@ -110,7 +180,12 @@ def classify_modes(model: ModalModel, head: HeadEllipse) -> tuple[tuple[str, ...
     names, kinds = [], []
     counts = {"bending": 0, "twisting": 0, "string-bed": 0}
     unclear = False
+    ball = -1 if ball_at is None else ball_mode_index(model, head)
     for k in range(model.n_modes):
+        if k == ball:
+            names.append(BALL_MODE_NAME)
+            kinds.append("other")
+            continue
         phi = shapes[:, k]
         strings = np.mean(phi[on_strings] ** 2) if on_strings.any() else 0.0
         frame = np.mean(phi[~on_strings] ** 2) if (~on_strings).any() else np.inf

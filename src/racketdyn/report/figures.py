@@ -158,7 +158,8 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "compound_response": (
         "Fig. 8c",
         "acceleration of the frame neck after a hammer blow on the strings near the ball fixed "
-        "on them, per unit impulse, for the run's first support (linear compound model)",
+        "on them (a half-sine as long as the hammer's contact with the strings), per unit "
+        "impulse, for the run's first support (linear compound model)",
     ),
     "compound_shape": (
         "Fig. 8a",
@@ -169,6 +170,12 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         "Fig. 9",
         "receptance from the hammer point on the strings to the frame neck, the racket alone "
         "(left) and with the ball fixed on the strings (right), with the ball mode marked",
+    ),
+    "fig9_frf_alone_and_ball": (
+        "Fig. 9",
+        "measured accelerance from the hammer point nearest the ball to the accelerometer, the "
+        "racket alone (left) and with the ball fixed on the strings (right, the racket alone "
+        "dashed), identified modes dotted, the ball's labelled (racketdyn compare --ball-at)",
     ),
 }
 """Caption of every PNG the commands write, by file stem (or its start): (the figure of

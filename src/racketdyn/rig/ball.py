@@ -26,12 +26,10 @@ from scipy.linalg import eigh
 
 from racketdyn.errors import InputError, require_positive
 from racketdyn.racket import as_locations
+from racketdyn.racket_modal.shapes import BALL_MODE_NAME
 from racketdyn.rig.model import RigModel
 
 __all__ = ["BALL_MODE_NAME", "ball_on_strings"]
-
-BALL_MODE_NAME = "ball on the strings"
-"""The rig's name of the mode in which the ball moves against the frame."""
 
 
 def ball_on_strings(

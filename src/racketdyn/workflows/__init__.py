@@ -6,19 +6,20 @@ run folder with a ``run.json`` (:mod:`racketdyn.workflows.run`) and returns a re
 figures come from a hook the caller passes (``figures(result, out) -> paths``), progress from a
 ``progress(what, done, total)`` callback, and they log with :mod:`logging`.
 
-======================  =========================================================
-:func:`run_rig`          virtual roving-hammer test (UFF)
-:func:`run_frf`          FRFs and quality table from hammer records
-:func:`run_contact`      hammer contact time over the face
-:func:`run_identify`     modal model from FRFs
-:func:`run_compare`      free against hand-held identification
-:func:`run_predict`      impacts over the face: approximate, transient or both
-:func:`run_swing`        a swinging racket and its sweet spots
-:func:`run_oblique`      oblique impacts with spin
-:func:`run_twist`        off-axis impacts: roll and twist
-:func:`run_compound`     a ball fixed on the strings: the compound modes (Figs 8–9)
-:func:`run_sweep_step`   a design sweep
-======================  =========================================================
+==========================  =========================================================
+:func:`run_rig`             virtual roving-hammer test (UFF)
+:func:`run_frf`             FRFs and quality table from hammer records
+:func:`run_contact`         hammer contact time over the face
+:func:`run_identify`        modal model from FRFs
+:func:`run_compare`         free against hand-held identification
+:func:`run_compare_ball`    the racket alone against the racket with a ball (Fig. 9)
+:func:`run_predict`         impacts over the face: approximate, transient or both
+:func:`run_swing`           a swinging racket and its sweet spots
+:func:`run_oblique`         oblique impacts with spin
+:func:`run_twist`           off-axis impacts: roll and twist
+:func:`run_compound`        a ball fixed on the strings: the compound modes (Figs 8–9)
+:func:`run_sweep_step`      a design sweep
+==========================  =========================================================
 
 Example
 -------
@@ -40,9 +41,11 @@ if TYPE_CHECKING:
     from racketdyn.workflows.contact import ContactResult, run_contact
     from racketdyn.workflows.frf import FrfResult, run_frf
     from racketdyn.workflows.identify import (
+        BallCompareResult,
         CompareResult,
         IdentifyResult,
         run_compare,
+        run_compare_ball,
         run_identify,
     )
     from racketdyn.workflows.oblique import ObliqueResult, run_oblique
@@ -54,6 +57,7 @@ if TYPE_CHECKING:
     from racketdyn.workflows.twist import TwistResult, run_twist
 
 _WHERE = {
+    "BallCompareResult": "identify",
     "CompareResult": "identify",
     "CompoundResult": "compound",
     "ContactResult": "contact",
@@ -67,6 +71,7 @@ _WHERE = {
     "SwingStepResult": "swing",
     "TwistResult": "twist",
     "run_compare": "identify",
+    "run_compare_ball": "identify",
     "run_compound": "compound",
     "run_contact": "contact",
     "run_frf": "frf",
@@ -80,6 +85,7 @@ _WHERE = {
 }
 
 __all__ = [
+    "BallCompareResult",
     "CompareResult",
     "CompoundResult",
     "ContactResult",
@@ -93,6 +99,7 @@ __all__ = [
     "SwingStepResult",
     "TwistResult",
     "run_compare",
+    "run_compare_ball",
     "run_compound",
     "run_contact",
     "run_frf",

@@ -34,6 +34,7 @@ from racketdyn.impact.system import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket
+from racketdyn.rig.hammer import string_contact_time
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
     Progress,
@@ -75,8 +76,9 @@ COMPOUND_COLUMNS = (
 the last four only on the ball mode (empty elsewhere)."""
 
 HAMMER_OFFSET_M = 0.04
-"""The hammer strikes the string face this far from the ball, towards the handle, m (the
-paper: "a point, slightly away from the contact point of the ball")."""
+"""By default the hammer strikes the string face this far from the ball, towards the handle, m
+(the paper: "a point, slightly away from the contact point of the ball"; the ball, 67 mm
+across, shades the strings nearer than its radius, as in ``rig --ball-at``)."""
 
 NECK_BELOW_BED_M = 0.03
 """The accelerometer on the frame neck: on the long axis, this far below the string bed, m."""
@@ -175,7 +177,10 @@ class CompoundResult(StepResult):
     times : ndarray
         Times of the neck responses, s.
     neck_acceleration : dict of str to ndarray
-        Per support: the neck's acceleration after a unit hammer impulse, m/s² per N·s.
+        Per support: the neck's acceleration after the hammer's blow of unit impulse (a
+        half-sine ``blow_s`` long), m/s² per N·s.
+    blow_s : dict of str to float
+        Per support: length of the hammer's half-sine blow on the strings, s.
     frequency : ndarray
         Frequencies of the FRFs, Hz.
     frf_alone, frf_with_ball : dict of str to ndarray
@@ -202,6 +207,7 @@ class CompoundResult(StepResult):
     neck: tuple[float, float] = (math.nan, math.nan)
     times: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     neck_acceleration: dict[str, NDArray[np.float64]] = field(default_factory=dict)
+    blow_s: dict[str, float] = field(default_factory=dict)
     frequency: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     frf_alone: dict[str, NDArray[np.complex128]] = field(default_factory=dict)
     frf_with_ball: dict[str, NDArray[np.complex128]] = field(default_factory=dict)
@@ -237,6 +243,7 @@ def run_compound(
     supports: Sequence[str] = ("free", "hand"),
     hand: Hand | None = None,
     preload_n: float = PRELOAD_N,
+    hammer: ArrayLike | None = None,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[CompoundResult, Path], list[Path]] | None = None,
@@ -264,6 +271,11 @@ def run_compound(
         The hand of the ``hand`` support.
     preload_n : float
         Preload of the stuck ball on the strings, N (the spring is F_GB's tangent there).
+    hammer : array_like (2,), optional
+        Where the hammer strikes the string face for Figs 8c and 9 (x, y), m (default
+        :data:`HAMMER_OFFSET_M` from the ball towards the handle).  Its blow is a half-sine as
+        long as the hammer's contact with the strings there
+        (:func:`racketdyn.rig.hammer.string_contact_time`, as the virtual rig's).
     defaults : sequence of str
         Defaults the caller filled in, added to run.json.
     command : sequence of str, optional
@@ -295,17 +307,25 @@ def run_compound(
     model = used.modal_model
     stiffer = None if model is None else stiffer_frame(model, FRAME_STIFFNESS_FACTOR)
     head = the_racket.head
-    hammer = (xy[0] - HAMMER_OFFSET_M, xy[1])
+    if hammer is None:
+        strike = (xy[0] - HAMMER_OFFSET_M, xy[1])
+        defaults_used.append(f"hammer: {1e3 * HAMMER_OFFSET_M:.0f} mm from the ball, to the handle")
+        head.check_inside(np.array([strike]), "the hammer point (--point minus 40 mm; --hammer)")
+    else:
+        values = np.asarray(hammer, dtype=float).ravel()
+        if values.size != 2 or not np.all(np.isfinite(values)):
+            raise InputError("--hammer: give the hammer's point as x,y in m, e.g. 0.495,0")
+        strike = (float(values[0]), float(values[1]))
+        head.check_inside(np.array([strike]), "--hammer")
     neck = (head.centre_x_m - head.half_length_m - NECK_BELOW_BED_M, 0.0)
-    head.check_inside(np.array([hammer]), "the hammer point (--point minus 40 mm in x)")
     result = CompoundResult(
         Path(out), racket=the_racket, ball=the_ball, spring=spring, location=xy,
-        supports=checked, model=model, hand=the_hand, hammer=hammer, neck=neck,
+        supports=checked, model=model, hand=the_hand, hammer=strike, neck=neck,
         times=np.arange(0.0, RESPONSE_TIME_S, RESPONSE_STEP_S),
         frequency=np.linspace(*FRF_FREQUENCY_HZ[:2], FRF_FREQUENCY_HZ[2]),
     )  # fmt: skip
     result.axis_x = np.linspace(0.0, the_racket.length_m, AXIS_POINTS)
-    extra = np.vstack([[hammer, neck], np.column_stack([result.axis_x, np.zeros(AXIS_POINTS)])])
+    extra = np.vstack([[strike, neck], np.column_stack([result.axis_x, np.zeros(AXIS_POINTS)])])
     approximate = predict(
         the_racket,
         the_ball,
@@ -319,7 +339,9 @@ def run_compound(
         with_ball = racket_modes(the_racket, model, support, xy, spring, the_ball, the_hand, extra)
         alone = racket_modes(the_racket, model, support, xy, None, the_ball, the_hand, extra)
         result.modes[support], result.alone[support] = with_ball, alone
-        result.neck_acceleration[support] = with_ball.impulse_acceleration(result.times, 1, 2)
+        blow = float(string_contact_time(the_racket, [strike], _APPROXIMATE_SUPPORT[support])[0])
+        result.blow_s[support] = blow
+        result.neck_acceleration[support] = with_ball.blow_acceleration(result.times, 1, 2, blow)
         result.frf_with_ball[support] = with_ball.receptance(result.frequency, 1, 2)
         result.frf_alone[support] = alone.receptance(result.frequency, 1, 2)
         if with_ball.ball_mode >= 0:
@@ -361,7 +383,11 @@ def run_compound(
         **used.provenance,
         "racket": racket_to_dict(the_racket),
         "point_m": list(xy),
-        "hammer_point_m": list(hammer),
+        "hammer_point_m": list(strike),
+        "hammer_blow_s": result.blow_s,
+        "hammer_blow": "a half-sine of unit impulse as long as the hammer's contact with the "
+        "strings there (racketdyn.rig.hammer.string_contact_time); it acts on the frame under "
+        "the point (the strings are folded into the ball's spring)",
         "neck_point_m": list(neck),
         "supports": checked,
         "rigid": rigid,

@@ -10,9 +10,10 @@ Figures come from the caller's hook.
 from __future__ import annotations
 
 import csv
+import math
 import os
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -28,8 +29,8 @@ from racketdyn.modal.shapes import pair_modes
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
 from racketdyn.racket_modal.identify import name_if_racket
-from racketdyn.racket_modal.shapes import axis_nodes
-from racketdyn.workflows.inputs import RacketInput, load_racket_input
+from racketdyn.racket_modal.shapes import BALL_MODE_NAME, axis_nodes
+from racketdyn.workflows.inputs import RacketInput, ball_location, load_racket_input
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
@@ -41,13 +42,17 @@ from racketdyn.workflows.run import (
 )
 
 __all__ = [
+    "BALL_COMPARISON_FILE",
     "CHECK_SPEED_MPS",
+    "BallCompareResult",
     "CompareResult",
     "IdentifyResult",
     "ModeComparison",
     "compare_modes",
+    "compare_with_ball",
     "identify_file",
     "run_compare",
+    "run_compare_ball",
     "run_identify",
     "write_mode_comparison",
     "write_model",
@@ -66,6 +71,27 @@ def _band(band_hz: Sequence[float] | None) -> tuple[float, float] | None:
     return (values[0], values[1])
 
 
+def _file_options(
+    geometry: str | os.PathLike[str] | None,
+    band_hz: Sequence[float] | None,
+    max_order: int,
+    pin_hz: Sequence[float],
+    exclude_hz: Sequence[float],
+    reference: int | None,
+    racket: RacketInput,
+) -> dict[str, Any]:
+    """The :func:`identify_file` options two identifications of one step share."""
+    return {
+        "geometry": geometry,
+        "band_hz": band_hz,
+        "max_order": max_order,
+        "pin_hz": pin_hz,
+        "exclude_hz": exclude_hz,
+        "reference": reference,
+        "racket_given": racket is not None,
+    }
+
+
 def identify_file(
     path: str | os.PathLike[str],
     racket: Racket,
@@ -78,6 +104,7 @@ def identify_file(
     exclude_hz: Sequence[float] = (),
     reference: int | None = None,
     racket_given: bool = True,
+    ball_at: Sequence[float] | None = None,
 ) -> Identification:
     """Read FRFs (UFF 58, any layout) and identify their modal model.
 
@@ -107,7 +134,11 @@ def identify_file(
         Reference node when the file has several (``--reference``).
     racket_given : bool
         True when the user named the racket (then its modes are named whatever the points).
+    ball_at : sequence of float, optional
+        Where a ball was fixed on the strings during the test (x, y), m (``--ball-at``, the
+        paper's compound test): its mode is named ``"ball on the strings"``.
     """
+    ball = None if ball_at is None else ball_location(ball_at, racket)
     frfs = read_frfs(Path(path), None if geometry is None else Path(geometry), reference)
     found = identify(
         frfs,
@@ -117,7 +148,9 @@ def identify_file(
         exclude_hz=list(exclude_hz),
         support=support,
     )
-    found, naming = name_if_racket(found, racket, racket_given)
+    found, naming = name_if_racket(found, racket, racket_given, ball)
+    if ball is not None and naming.startswith("modes numbered"):
+        naming += "; --ball-at unused: the ball's mode is named only among a racket's modes"
     metadata = {**found.model.metadata, "naming": naming, "layout": frfs.metadata.get("layout")}
     return replace(found, model=replace(found.model, metadata=metadata))
 
@@ -175,6 +208,7 @@ def run_identify(
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
     reference: int | None = None,
+    ball_at: Sequence[float] | None = None,
     command: Sequence[str] | None = None,
     figures: Callable[[IdentifyResult, Path], list[Path]] | None = None,
     progress: Progress | None = None,
@@ -192,7 +226,7 @@ def run_identify(
     racket : Racket, path or None
         Racket (its head names the modes); None for the built-in racket, whose modes are
         named only when the points lie on its outline.
-    geometry, band_hz, max_order, pin_hz, exclude_hz, reference
+    geometry, band_hz, max_order, pin_hz, exclude_hz, reference, ball_at
         As for :func:`identify_file`.
     command : sequence of str, optional
         The command as called, for run.json.
@@ -215,6 +249,7 @@ def run_identify(
         exclude_hz=exclude_hz,
         reference=reference,
         racket_given=racket is not None,
+        ball_at=ball_at,
     )
     result = IdentifyResult(
         out_dir, write_model(found, out_dir), identification=found, racket=the_racket
@@ -229,6 +264,7 @@ def run_identify(
         "pin_hz": list(pin_hz),
         "exclude_hz": list(exclude_hz),
         "reference_node": found.frfs.reference_node,
+        "ball_at_m": None if ball_at is None else [float(v) for v in ball_at],
         "layout": found.model.metadata.get("layout"),
         "naming": found.model.metadata.get("naming"),
         "face_mapping": found.model.metadata.get("face_mapping"),
@@ -384,15 +420,7 @@ def run_compare(
     check_speeds("--speed", [check_speed], "ball_speed_mps", allow_implausible)
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
-    options: dict[str, Any] = {
-        "geometry": geometry,
-        "band_hz": band_hz,
-        "max_order": max_order,
-        "pin_hz": pin_hz,
-        "exclude_hz": exclude_hz,
-        "reference": reference,
-        "racket_given": racket is not None,
-    }
+    options = _file_options(geometry, band_hz, max_order, pin_hz, exclude_hz, reference, racket)
     report(progress, f"identifying {Path(free).name}")
     found_free = identify_file(free, the_racket, "free", **options)
     report(progress, f"identifying {Path(hand).name}")
@@ -421,3 +449,215 @@ def run_compare(
         "fig15_ball_speed_mps": float(check_speed),
     }
     return finish_run(result, inputs, command_record(command, "compare"), figures)
+
+
+BALL_COMPARISON_FILE = "ball_comparison.csv"
+"""``compare --ball-at``'s table: the racket alone against the racket with a ball on its strings."""
+
+
+@dataclass
+class BallCompareResult(StepResult):
+    """What :func:`run_compare_ball` identified and wrote.
+
+    Attributes
+    ----------
+    alone, with_ball : Identification
+        The racket alone and with the ball fixed on its strings (paper, Figs 9a and 9b).
+    racket : Racket
+        The racket.
+    ball_at : tuple of float
+        Where the ball sat (x, y), m.
+    rows : list of dict
+        :func:`compare_with_ball`'s rows (``ball_comparison.csv``).
+    """
+
+    alone: Identification | None = None
+    with_ball: Identification | None = None
+    racket: Racket | None = None
+    ball_at: tuple[float, float] = (math.nan, math.nan)
+    rows: list[dict[str, Any]] = field(default_factory=list)
+
+
+def compare_with_ball(alone: Identification, with_ball: Identification) -> list[dict[str, Any]]:
+    """The modes of a racket with a ball on its strings against the racket alone.
+
+    The ball's mode (named by :func:`racketdyn.racket_modal.identify.name_if_racket`) is new:
+    its row has no partner (``frequency_alone_hz`` NaN).  The other modes are paired with the
+    racket's by MAC (:func:`racketdyn.modal.shapes.pair_modes`, at the points both sets share:
+    the hammer skips the strings under the ball) and their frequency shift is given (paper,
+    section 3.2: "the natural frequencies of the frame do not change").
+
+    Parameters
+    ----------
+    alone, with_ball : Identification
+        The two identifications.
+
+    Returns
+    -------
+    list of dict
+        ``mode``, ``frequency_alone_hz``, ``frequency_ball_hz``, ``frequency_shift_percent``,
+        ``damping_alone``, ``damping_ball``, ``mac`` — the ball's mode first, then the racket's
+        modes in order of frequency (a racket mode with no partner has NaN in the ball columns).
+    """
+    model = with_ball.model
+    ball = [k for k, name in enumerate(model.names) if name == BALL_MODE_NAME]
+    rest = [k for k in range(model.n_modes) if k not in ball]
+    nan = math.nan
+    rows: list[dict[str, Any]] = [
+        {
+            "mode": BALL_MODE_NAME,
+            "frequency_alone_hz": nan,
+            "frequency_ball_hz": float(model.frequency[k]),
+            "frequency_shift_percent": nan,
+            "damping_alone": nan,
+            "damping_ball": float(model.damping_ratio[k]),
+            "mac": nan,
+        }
+        for k in ball
+    ]
+    pairing = pair_modes(model.select(rest), alone.model) if rest else None
+    partner = (
+        {}
+        if pairing is None
+        else dict(zip(pairing.second, zip(pairing.first, pairing.mac, strict=True), strict=True))
+    )
+    for a in range(alone.model.n_modes):
+        fa, za = float(alone.model.frequency[a]), float(alone.model.damping_ratio[a])
+        if a in partner:
+            b, value = partner[a]
+            fb, zb = float(model.frequency[rest[b]]), float(model.damping_ratio[rest[b]])
+            rows.append(
+                {
+                    "mode": alone.model.names[a],
+                    "frequency_alone_hz": fa,
+                    "frequency_ball_hz": fb,
+                    "frequency_shift_percent": 100 * (fb / fa - 1),
+                    "damping_alone": za,
+                    "damping_ball": zb,
+                    "mac": value,
+                }
+            )
+        else:
+            rows.append(
+                {
+                    "mode": alone.model.names[a],
+                    "frequency_alone_hz": fa,
+                    "frequency_ball_hz": nan,
+                    "frequency_shift_percent": nan,
+                    "damping_alone": za,
+                    "damping_ball": nan,
+                    "mac": nan,
+                }
+            )
+    return rows
+
+
+@run_step
+def run_compare_ball(
+    alone: str | os.PathLike[str],
+    with_ball: str | os.PathLike[str],
+    out: str | os.PathLike[str],
+    *,
+    ball_at: Sequence[float],
+    support: str = "free",
+    racket: RacketInput = None,
+    geometry: str | os.PathLike[str] | None = None,
+    band_hz: Sequence[float] | None = None,
+    max_order: int = 60,
+    pin_hz: Sequence[float] = (),
+    exclude_hz: Sequence[float] = (),
+    reference: int | None = None,
+    command: Sequence[str] | None = None,
+    figures: Callable[[BallCompareResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> BallCompareResult:
+    """Identify a racket alone and with a ball fixed on its strings, and compare (Figs 9a, 9b).
+
+    Writes ``modes_alone.*`` and ``modes_ball.*`` (as :func:`write_model`),
+    ``ball_comparison.csv`` (:func:`compare_with_ball`) and ``run.json`` (the ball's mode, the
+    largest frame-mode shift).
+
+    Parameters
+    ----------
+    alone, with_ball : path
+        FRFs of the racket alone and with the ball (UFF 58), both on ``support``.
+    out : path
+        Output folder (created if missing).
+    ball_at : sequence of float
+        Where the ball sat (x, y), m (``--ball-at``).
+    support : {"free", "hand"}
+        Support of both tests.
+    racket : Racket, path or None
+        Racket; None for the built-in racket.
+    geometry, band_hz, max_order, pin_hz, exclude_hz, reference
+        As for :func:`identify_file`, for both.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths`` (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    the_racket, provenance = load_racket_input(racket)
+    ball = ball_location(ball_at, the_racket)
+    out_dir = Path(out)
+    options = _file_options(geometry, band_hz, max_order, pin_hz, exclude_hz, reference, racket)
+    report(progress, f"identifying {Path(alone).name}")
+    found_alone = identify_file(alone, the_racket, support, **options)
+    report(progress, f"identifying {Path(with_ball).name}")
+    found_ball = identify_file(with_ball, the_racket, support, ball_at=ball, **options)
+    written = write_model(found_alone, out_dir, "_alone") + write_model(
+        found_ball, out_dir, "_ball"
+    )
+    rows = compare_with_ball(found_alone, found_ball)
+    table = out_dir / BALL_COMPARISON_FILE
+    with table.open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]) if rows else ["mode"])
+        writer.writeheader()
+        for row in rows:
+            writer.writerow(
+                {
+                    k: ("" if isinstance(v, float) and math.isnan(v) else f"{v:.6g}")
+                    if isinstance(v, float)
+                    else v
+                    for k, v in row.items()
+                }
+            )
+    written.append(table)
+    result = BallCompareResult(
+        out_dir,
+        written,
+        alone=found_alone,
+        with_ball=found_ball,
+        racket=the_racket,
+        ball_at=ball,
+        rows=rows,
+    )
+    ball_rows = [r for r in rows if r["mode"] == BALL_MODE_NAME]
+    shifts = [
+        abs(r["frequency_shift_percent"])
+        for r in rows
+        if math.isfinite(r["frequency_shift_percent"])
+    ]
+    inputs = {
+        "alone_file": str(Path(alone).resolve()),
+        "with_ball_file": str(Path(with_ball).resolve()),
+        **provenance,
+        "support": support,
+        "ball_at_m": list(ball),
+        "band_hz": list(found_alone.band_hz),
+        "max_order": max_order,
+        "naming_with_ball": found_ball.model.metadata.get("naming"),
+        "ball_mode": (
+            {
+                "frequency_hz": ball_rows[0]["frequency_ball_hz"],
+                "damping_ratio": ball_rows[0]["damping_ball"],
+            }
+            if ball_rows
+            else None
+        ),
+        "largest_frame_mode_shift_percent": max(shifts) if shifts else None,
+        "modes_alone": found_alone.model.summary()["modes"],
+        "modes_ball": found_ball.model.summary()["modes"],
+    }
+    return finish_run(result, inputs, command_record(command, "compare_ball"), figures)

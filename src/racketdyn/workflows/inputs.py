@@ -13,6 +13,8 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError
 from racketdyn.impact.hand import Hand
@@ -24,7 +26,15 @@ from racketdyn.racket import Racket
 from racketdyn.racket_modal import modal_model_for
 from racketdyn.workflows.run import sha256
 
-__all__ = ["RacketInput", "RacketSetup", "ball_from", "hand_for", "load_racket_input", "setup"]
+__all__ = [
+    "RacketInput",
+    "RacketSetup",
+    "ball_from",
+    "ball_location",
+    "hand_for",
+    "load_racket_input",
+    "setup",
+]
 
 RacketInput = Racket | str | os.PathLike[str] | None
 """A racket as a step takes it: an object, a TOML file, or None for the built-in racket."""
@@ -67,6 +77,23 @@ class RacketSetup:
     provenance: dict[str, Any]
     defaults: list[str]
     rigid: bool
+
+
+def ball_location(ball_at: Sequence[float], racket: Racket) -> tuple[float, float]:
+    """``--ball-at``: where a ball is fixed on the strings (x, y), m, checked to lie on them.
+
+    Parameters
+    ----------
+    ball_at : sequence of float
+        x, y, m.
+    racket : Racket
+        The racket whose string bed must hold the point.
+    """
+    values = [float(v) for v in ball_at]
+    if len(values) != 2 or not all(math.isfinite(v) for v in values):
+        raise InputError("--ball-at: give the ball's position as x,y in m, e.g. 0.505,0")
+    racket.head.check_inside(np.asarray([values]), "--ball-at")
+    return values[0], values[1]
 
 
 def setup(

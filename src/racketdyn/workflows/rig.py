@@ -31,7 +31,7 @@ from racketdyn.rig import (
 )
 from racketdyn.rig.ball import ball_on_strings
 from racketdyn.rig.hammer import FRAME_PULSE_S
-from racketdyn.workflows.inputs import RacketInput, load_racket_input
+from racketdyn.workflows.inputs import RacketInput, ball_location, load_racket_input
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
@@ -140,10 +140,7 @@ def run_rig(
     spring: tuple[tuple[float, float], float, float, float] | None = None
     if ball_at is not None:
         the_ball = ball or Ball()
-        ball_xy = np.asarray(ball_at, dtype=float).ravel()
-        if ball_xy.size != 2 or not np.all(np.isfinite(ball_xy)):
-            raise InputError("--ball-at: give the ball's position as x,y in m, e.g. 0.505,0")
-        the_racket.head.check_inside(ball_xy[None, :], "--ball-at")
+        ball_xy = np.asarray(ball_location(ball_at, the_racket))
         law = the_ball.restoring_force
         spring = (
             (float(ball_xy[0]), float(ball_xy[1])),

@@ -159,6 +159,10 @@ def _previous_outputs(folder: Path) -> list[str]:
     return [name for name in names if name and Path(name).name == name and name != RUN_JSON]
 
 
+_COMMAND_OF = {"compare_ball": "compare"}
+"""Steps run by an option of another command (``compare --ball-at``): one folder family."""
+
+
 def _previous_step(folder: Path) -> str | None:
     """The step (``rig``, ``predict``, …) whose run ``folder/run.json`` records, if any."""
     try:
@@ -167,9 +171,10 @@ def _previous_step(folder: Path) -> str | None:
     except (OSError, ValueError, KeyError, TypeError):
         return None
     if len(command) >= 2 and Path(command[0]).name == "racketdyn":
-        return command[1]
+        return _COMMAND_OF.get(command[1], command[1])
     if len(command) >= 2 and command[1].startswith("racketdyn.workflows."):
-        return command[1].rsplit(".", 1)[-1]
+        step = command[1].rsplit(".", 1)[-1]
+        return _COMMAND_OF.get(step, step)
     return None
 
 
@@ -227,6 +232,7 @@ def run_step(step: Callable[P, S]) -> Callable[P, S]:
     """
     signature = inspect.signature(step)
     step_name = step.__name__.removeprefix("run_")
+    step_name = _COMMAND_OF.get(step_name, step_name)
 
     @functools.wraps(step)
     def run(*args: P.args, **kwargs: P.kwargs) -> S:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from racketdyn.report.folder import RunFolder, number, read_csv
+from racketdyn.report.folder import Row, RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = "racketdyn compound --support free,hand --out DIR/compound"
@@ -108,6 +108,15 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 f"moves by {abs(change):.1f} %: the paper's “not affected by frame "
                 "rigidity” holds."
             )
+    figures = [
+        (folder / "compound_shape.png", ""),
+        (folder / "compound_response.png", ""),
+        (folder / "compound_frf.png", ""),
+    ]
+    measured = run.first("ball_comparison.csv")
+    if measured is not None:
+        figures.append((measured / "fig9_frf_alone_and_ball.png", ""))
+        statements += _measured(read_csv(measured / "ball_comparison.csv", ("mode",)))
     return {
         "spring": _spring(record),
         "point": ", ".join(fmt(v * 1e3, ".0f") for v in record.get("point_m", []) or []),
@@ -115,15 +124,30 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         "times": times,
         "checks": checks,
         "statements": statements,
-        "figures": run.group(
-            [
-                (folder / "compound_shape.png", ""),
-                (folder / "compound_response.png", ""),
-                (folder / "compound_frf.png", ""),
-            ]
-        ),
+        "figures": run.group(figures),
         "glance": glance,
     }
+
+
+def _measured(rows: list[Row]) -> list[str]:
+    """Statements from ``compare --ball-at``'s ``ball_comparison.csv`` (measured Fig. 9)."""
+    ball = [r for r in rows if not r.get("frequency_alone_hz") and r.get("frequency_ball_hz")]
+    shifts = [
+        abs(number(r, "frequency_shift_percent"))
+        for r in rows
+        if math.isfinite(number(r, "frequency_shift_percent"))
+    ]
+    if not ball:
+        return ["measured (compare --ball-at): no mode of the ball on the strings identified."]
+    words = (
+        f"measured (compare --ball-at): a new mode at {number(ball[0], 'frequency_ball_hz'):.1f}"
+        f" Hz with the ball"
+    )
+    if shifts:
+        words += (
+            f"; the {len(shifts)} racket modes paired by MAC move by {max(shifts):.1f} % at most"
+        )
+    return [words + "."]
 
 
 def _spring(record: dict[str, Any]) -> dict[str, str] | None:
