@@ -145,4 +145,11 @@ def name_if_racket(
     reason = naming_evidence(identification.model, racket.head)
     if reason:
         return identification, f"modes numbered: {reason}"
-    return name_racket_modes(identification, racket), "modes named from their shapes on the racket"
+    if racket_given:
+        how = f"modes named from their shapes on the head of {racket.name}"
+    else:  # the default racket: say so, a user's own racket may merely lie near its outline
+        how = (
+            f"modes named from their shapes on the head of the built-in {racket.name}, whose "
+            "outline the points fit; give --racket to name them on your racket's head"
+        )
+    return name_racket_modes(identification, racket), how
