@@ -31,7 +31,8 @@ def add(commands: Any) -> None:
         "--racket-speed",
         default="0",
         help="racket speed at the impact point towards the ball, m/s: one, or one per speed "
-        "(default 0; the contact model holds to 70 m/s of ball + racket speed)",
+        "(default 0; above 55 m/s only with --allow-implausible; the contact model holds to "
+        "70 m/s of ball + racket speed)",
     )
     p.add_argument(
         "--model",
