@@ -289,3 +289,48 @@ def test_negative_rebound_ratios_at_the_throat_are_not_called_recoil(tmp_path: P
     span = f"x from {x[vibration].min() * 1e3:.0f} to {x[vibration].max() * 1e3:.0f} mm"
     assert f"{int(vibration.sum())} of them ({span}) are not recoil" in note
     assert "trust the transient" in note
+
+
+def test_report_refuses_a_folder_of_several_rackets_or_predictions(tmp_path: Path) -> None:
+    """New-user trial (issue 13): ``racketdyn report`` on the folder holding the runs of two
+    rackets (and several predictions) wrote one page titled after one racket from the first
+    impact.csv it found, the other runs' files mixed in.  It now refuses in one line, exit 2,
+    naming the runs."""
+    from racketdyn.cli import main
+
+    racket = tmp_path / "head_light.toml"
+    racket.write_text(HEAD_LIGHT_RACKET, encoding="utf-8")
+    trial = tmp_path / "trial"
+    common = ["--grid", "2", "--speed", "20", "--support", "free", "--no-figures"]
+    assert main(["predict", *common, "--out", str(trial / "builtin")]) == 0
+    assert main(["predict", "--racket", str(racket), *common, "--out", str(trial / "own")]) == 0
+    assert main(["report", str(trial)]) == 2
+    assert not (trial / "report.html").exists()
+    assert main(["predict", "--racket", str(racket), *common, "--out", str(trial / "own")]) == 0
+    (trial / "builtin" / "run.json").unlink()
+    (trial / "builtin" / "impact.csv").rename(trial / "builtin" / "kept.csv")
+    assert main(["report", str(trial / "own")]) == 0  # one run: a report
+
+
+def test_report_names_the_rackets_and_the_predictions_it_would_mix(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from racketdyn.cli import main
+
+    racket = tmp_path / "head_light.toml"
+    racket.write_text(HEAD_LIGHT_RACKET, encoding="utf-8")
+    trial = tmp_path / "trial"
+    common = ["--grid", "2", "--speed", "20", "--support", "free", "--no-figures"]
+    assert main(["predict", "--racket", str(racket), *common, "--out", str(trial / "a")]) == 0
+    assert main(["predict", "--racket", str(racket), *common, "--out", str(trial / "b")]) == 0
+    capsys.readouterr()
+    assert main(["report", str(trial)]) == 2
+    error = " ".join(capsys.readouterr().err.split())
+    assert "2 predict runs (a, b)" in error
+    assert main(["predict", *common, "--out", str(trial / "c")]) == 0
+    (trial / "b" / "impact.csv").unlink()
+    capsys.readouterr()
+    assert main(["report", str(trial)]) == 2
+    error = " ".join(capsys.readouterr().err.split())
+    assert "2 rackets" in error
+    assert "Trial 320 g head-light 95 sq in" in error
