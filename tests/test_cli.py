@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import json
+import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -137,6 +138,25 @@ def test_predict_draws_figures(tmp_path: Path) -> None:
 def test_racket_prints_properties(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["racket"]) == 0
     assert "swingweight" in capsys.readouterr().out
+
+
+def test_racket_prints_one_unit_per_quantity_and_its_defaults(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """New-user trial (issue 13): ``racket`` printed the inertia about the balance point twice
+    (0.0158 kg·m² and, as the recoil weight, 158 kg·cm²), inertias in two units, lengths in m
+    where the field quotes mm, and a 2-node twisting mode at 361 Hz for a racket file that gives
+    none: the paper's racket's frequency, with no word that it is a default."""
+    text = DEFAULT_TOML.read_text(encoding="utf-8")
+    assert "twisting_hz" in text
+    racket = _write(tmp_path / "r.toml", re.sub(r"(?m)^twisting_hz.*\n", "", text))
+    assert main(["racket", "--racket", str(racket)]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "kg·m²" not in out
+    assert "recoil weight" in out
+    assert "balance point, from the butt │ 308 │ mm" in out
+    assert "[modal] twisting_hz not in the file" in out
+    assert "default 361 Hz" in out
 
 
 # --- bad input: one line on stderr, exit status 2, no traceback ------------------------------

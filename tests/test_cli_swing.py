@@ -359,3 +359,14 @@ def test_report_sections_follow_the_folders(
     page = write_report(run, racket).read_text(encoding="utf-8")
     assert '<section id="swing">' not in page
     assert SECTIONS["swing"].title in page[page.index('<section id="not-run">') :]
+
+
+def test_oblique_says_the_racket_speed_it_used(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """New-user trial (issue 13): ``oblique --speed 40 --racket-speed 10`` printed "ball 40
+    m/s" above its table and nothing of the racket's 10 m/s the numbers include."""
+    argv = ["oblique", "--speed", "40", "--racket-speed", "10", "--angles", "0,30"]
+    assert main([*argv, "--no-figures", "--out", str(tmp_path / "o")]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "ball 40 m/s, racket 10 m/s towards it" in out

@@ -306,3 +306,57 @@ def test_report_reads_a_stale_impact_csv_as_nan(tmp_path, racket, ball) -> None:
         assert np.isfinite(table[name][0])
         assert np.isnan(table[name][1])
     assert table["reduced_mass_kg"][1] == pytest.approx(result.reduced_mass[0, 0])
+
+
+def test_swing_figures_hatch_and_count_flagged_rows(racket, ball) -> None:
+    """Issue 13: the swing figures broke their curves at NaN and said nothing of the flagged
+    rows (near the tip the vibration loss exceeds e_BG at 30 m/s); like predict's figures they
+    go by the status, hatch where rows are flagged and say how many."""
+    from dataclasses import replace
+
+    import matplotlib.pyplot as plt
+
+    from racketdyn.impact.swing import Swing, axis_swings, predict_swing
+    from racketdyn.plotting.primitives import plot_swing_along_axis, plot_swing_map
+
+    head = racket.head
+    x = head.throat_x_m + 2.0 * head.half_length_m / 11 * (np.arange(11) + 0.5)
+    points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
+    names, results = [], []
+    for name, swing in axis_swings(Swing()):
+        result = predict_swing(racket, ball, points, [30.0], swing, "pinned")
+        flagged = result.status != STATUS_OK
+        assert flagged.any(), name
+        # as results were before issue 13: numbers in the flagged rows (the figure must go by
+        # the status, not by NaN)
+        names.append(name)
+        results.append(replace(result, rebound_speed=np.where(flagged, 40.0, result.rebound_speed)))
+    flagged = np.stack([r.status[:, 0, 0] != STATUS_OK for r in results], axis=1)  # (n, k)
+
+    figure, ax = plt.subplots()
+    plot_swing_along_axis(results, ax=ax, names=names)
+    for k, name in enumerate(names):
+        (curve,) = [ln for ln in ax.get_lines() if ln.get_label() == f"{name}, ball 30 m/s"]
+        y = np.asarray(curve.get_ydata())
+        order = np.argsort(results[k].locations[:, 0])
+        assert np.all(np.isnan(y[flagged[order, k]]))
+        assert np.all(np.isfinite(y[~flagged[order, k]]))
+    crosses = [ln for ln in ax.get_lines() if ln.get_marker() == "x"]
+    assert crosses
+    assert all(ln.get_transform() != ax.transData for ln in crosses)  # at the foot, no value
+    hatched = [patch.get_label() for patch in ax.patches if patch.get_hatch()]
+    assert (
+        f"flagged, no valid value: {int(flagged.sum())} of {flagged.size} impacts (hatched)"
+        in hatched
+    )
+    plt.close(figure)
+
+    swung = results[2]
+    missing = int((swung.status != STATUS_OK).sum())
+    figure, ax = plt.subplots()
+    plot_swing_map(swung, racket, ax=ax)
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    plural = "s" if missing > 1 else ""
+    assert f"no valid result at {missing} point{plural} (see status)" in labels
+    assert f"{missing} of {swung.status.size} impacts flagged" in ax.get_title()
+    plt.close(figure)

@@ -1,9 +1,12 @@
 """The contact model at real stroke speeds: relative speeds of 30–70 m/s (issue 13).
 
 Published numbers and trends are those of docs/references.md ("Ball and strings", "Stroke
-speeds", "High-speed contact").  No table of contact time, peak force and COR at 40–70 m/s could
-be read for this work (docs/references.md says so), so the high-speed checks are the published
-ranges and trends plus the model's own physics: conservation, monotone laws, eq 11.
+speeds", "High-speed contact"); the numbers at stroke speeds that the tests read are in
+tests/data/published_stroke_speeds.csv, each with its conditions and tolerance.  No table of
+contact time, peak force and COR against speed at 40–70 m/s could be read for this work
+(docs/references.md says what was searched), so the high-speed checks are those published
+numbers (a serve's outgoing speed, the rebound power coefficient, the effect of tension), the
+published ranges and trends, and the model's own physics: conservation, monotone laws, eq 11.
 """
 
 from __future__ import annotations
@@ -249,3 +252,100 @@ def test_e_bg_table_in_percent_is_a_unit_slip(tmp_path: Path) -> None:
     path.write_text("speed_mps,e_bg\n10,88\n70,76\n", encoding="utf-8")
     with pytest.raises(InputError, match="fraction"):
         ball_from(e_bg_table=path)
+
+
+# --- published numbers at stroke speeds (tests/data/published_stroke_speeds.csv) ----------------
+PUBLISHED = Path(__file__).parent / "data" / "published_stroke_speeds.csv"
+
+
+def _published(row_id: str) -> dict[str, str]:
+    """One row of the published-numbers table (docs/references.md, "Stroke speeds")."""
+    with PUBLISHED.open(newline="", encoding="utf-8") as handle:
+        rows = {row["id"]: row for row in csv.DictReader(handle)}
+    return rows[row_id]
+
+
+@pytest.mark.parametrize("support", ["pinned", "free"])
+def test_a_serve_leaves_at_about_1_4_times_the_racket_speed(racket, ball, support) -> None:
+    """A serve sends the ball out at ≈ 1.4 times the racket's speed at the impact point
+    (Kawazoe), i.e. a rebound power coefficient e_A ≈ 0.4 at the centre (Kawazoe; 0.45 typical,
+    USRSA).  Tolerance 1.3–1.55: both sources say "about", for rackets of 290–370 g designed to
+    the same power, and 0.45 + 0.1 covers the typical value with a racket's spread; the serve's
+    racket speeds are 35–45 m/s (docs/references.md, "Stroke speeds")."""
+    row = _published("serve_ratio")
+    low, high = float(row["low"]), float(row["high"])
+    centre = [(racket.head.centre_x_m, racket.head.centre_y_m)]
+    for racket_speed in (35.0, 40.0, 45.0):
+        result = predict(racket, ball, centre, [0.0], support, racket_speed=[racket_speed])
+        ratio = result.rebound_speed[0, 0, 0] / racket_speed
+        assert low <= ratio <= high, (racket_speed, ratio)
+
+
+def test_rebound_power_at_the_centre_is_the_published_one_at_every_speed(racket, ball) -> None:
+    """e_A at the centre of a hand-held racket at rest: ≈ 0.4 (Kawazoe), 0.45 typical (USRSA);
+    30–55 % covers both with a racket's spread.  Kawazoe's hand-held rackets keep it as the
+    impact speed rises at the centre; here it stays within 0.02 from 10 to 50 m/s."""
+    row = _published("acor_centre")
+    low, high = float(row["low"]), float(row["high"])
+    centre = [(racket.head.centre_x_m, racket.head.centre_y_m)]
+    result = predict(racket, ball, centre, [10.0, 20.0, 30.0, 40.0, 50.0], "pinned")
+    e = result.rebound_ratio[0, :, 0]
+    assert np.all((e >= low) & (e <= high)), e
+    assert np.ptp(e) < 0.02, e
+
+
+@pytest.mark.parametrize("speed", [20.0, 40.0])
+def test_the_throat_rebounds_better_than_the_centre(racket, ball, speed) -> None:
+    """Typical ACORs: 0.50 at the throat against 0.45 at the centre (USRSA); Kawazoe measured the
+    rebound power rising towards the throat on a suspended racket.  The order is the test (the
+    sources' throat is not a stated point); the point is 40 mm inside the bed's throat end."""
+    head = racket.head
+    throat = (head.centre_x_m - head.half_length_m + 0.04, head.centre_y_m)
+    centre = (head.centre_x_m, head.centre_y_m)
+    result = predict(racket, ball, [throat, centre], [speed], "pinned")
+    assert np.all(result.status == "ok")
+    assert result.rebound_ratio[0, 0, 0] > result.rebound_ratio[1, 0, 0]
+
+
+def test_string_tension_hardly_changes_a_groundstroke(racket, ball) -> None:
+    """Bower and Cross measured 180 N strings sending groundstrokes (≈ 110 km/h out) ≈ 3 km/h
+    faster than 280 N; Kawazoe measured no tension effect on the ball–string COR at 20–30 m/s.
+    racketdyn's e_BG does not depend on tension (Kawazoe), so the model's difference comes only
+    from the contact time's effect on the vibration loss: it must stay within 0–5 km/h of
+    either source (the measured 3 km/h and its scatter)."""
+    from dataclasses import replace
+
+    row = _published("tension_out_speed")
+    high = float(row["high"])
+    centre = [(racket.head.centre_x_m, racket.head.centre_y_m)]
+    out = []
+    for tension in (180.0, 280.0):
+        strung = replace(racket, strings=replace(racket.strings, tension_n=tension))
+        result = predict(strung, ball, centre, [15.0], "pinned", racket_speed=[20.0])
+        out.append(result.rebound_speed[0, 0, 0] * 3.6)
+    assert 100.0 < out[0] < 140.0  # the measured strokes' ≈ 110 km/h
+    assert abs(out[0] - out[1]) <= high
+
+
+def test_tension_changes_contact_time_at_low_speed_only(racket, ball) -> None:
+    """Brody's contact time against impact speed for several tensions (as read by Kawazoe): the
+    looser bed holds the ball longer at 10 m/s, the curves nearly meet at 30–35 m/s.  Here on a
+    head-clamped bed (180 vs 290 N): longer at 10 m/s, a difference at 35 m/s under 0.4 ms
+    (≈ 8 % of the contact time, what "nearly meet" can be read as on a printed figure) and
+    under 60 % of the difference at 10 m/s."""
+    from dataclasses import replace
+
+    limit_ms = float(_published("tension_contact_time")["high"])
+    times = {}
+    for tension in (180.0, 290.0):
+        strung = replace(racket, strings=replace(racket.strings, tension_n=tension))
+        law = rd.compound_law(strung, ball)
+        times[tension] = [
+            simulate_contact(ball.mass_kg, ball.e_bg, law, np.inf, speed).contact_time_s * 1e3
+            for speed in (10.0, 35.0)
+        ]
+    slow = times[180.0][0] - times[290.0][0]
+    fast = times[180.0][1] - times[290.0][1]
+    assert slow > 0.0
+    assert 0.0 <= fast < limit_ms
+    assert fast < 0.6 * slow

@@ -287,7 +287,12 @@ def test_a_racket_measured_in_the_lab_x_z_plane_is_named_on_its_face() -> None:
     lab = np.column_stack([locations[:, 1], np.full(len(nodes), 0.3), -locations[:, 0]])
     found = identify(replace(frfs, locations=lab), (40.0, 850.0))
     named, how = name_if_racket(found, racket, racket_given=False)
-    assert how == "modes named from their shapes on the racket"
+    assert how.startswith(
+        f"modes named from their shapes on the head of the built-in {racket.name}"
+    )
+    assert "give --racket" in how
+    _, how = name_if_racket(found, racket, racket_given=True)
+    assert how == f"modes named from their shapes on the head of {racket.name}"
     assert named.model.names[0] == "2-node bending"
     assert named.model.n_dimensions == 2
     assert "x along lab (+0.000, +0.000, -1.000)" in named.model.metadata["face_mapping"]
@@ -320,3 +325,31 @@ def test_fig2_and_fig3_label_one_point_alike() -> None:
         "node 1 (0, 0, 0) mm: driving point (at the accelerometer), nearest the string-bed centre"
     )
     assert _point_label(test.frfs, 1, 0) == "node 2 (400, 0, 0) mm"
+
+
+def test_another_rackets_points_named_on_the_built_in_head_say_so() -> None:
+    """New-user trial (issue 13): ``identify`` without ``--racket`` on the FRFs of a 270 g,
+    105 sq in racket named its modes on the built-in racket's head (its points lie near that
+    outline) and said "named from their shapes on the racket"; with its own head one mode
+    changed kind (1590 Hz: bending → string bed).  The sentence now names the head used."""
+    from dataclasses import replace
+
+    import racketdyn as rd
+    from racketdyn.measurement.frf import estimate_frfs
+    from racketdyn.racket_modal.identify import name_if_racket
+    from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test
+
+    built_in = rd.default_racket()
+    head = replace(built_in.head, half_width_m=0.123, half_length_m=0.175, centre_x_m=0.499)
+    own = replace(built_in, name="trial 270 g racket", mass_kg=0.270, head=head)
+    locations, nodes = hammer_points(own, n_frame=12, n_strings=20)
+    records = simulate_hammer_test(
+        rig_model(own, "free"), locations, nodes, tuple(locations[5]), nodes[5], n_averages=4,
+        seed=3,
+    )  # fmt: skip
+    found = identify(estimate_frfs(records, exponential_window_s=0.1).frfs, (40.0, 850.0))
+    _, how = name_if_racket(found, built_in, racket_given=False)
+    assert built_in.name in how
+    assert "give --racket" in how
+    _, how = name_if_racket(found, own, racket_given=True)
+    assert how == "modes named from their shapes on the head of trial 270 g racket"

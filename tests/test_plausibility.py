@@ -148,6 +148,26 @@ SLIPS = {
         lambda tmp: ["swing", "--angular-speed", "900", "--no-figures", "--out", str(tmp / "out")],
         ("--angular-speed 900", "did you give degrees per second"),
     ),
+    # trial of 2026-11-26 (issue 13): these ran with exit 0 or named neither option nor slip
+    "racket-speed-in-mph": (
+        lambda tmp: _predict(tmp, "--racket-speed", "67"),
+        ("--racket-speed 67", "up to 55 m/s", "did you give", "mph (67 mph = 30 m/s)"),
+    ),
+    "swing-angle-in-radians": (
+        lambda tmp: [
+            "swing",
+            "--swing-angle-deg",
+            "1.57",
+            "--no-figures",
+            "--out",
+            str(tmp / "out"),
+        ],
+        ("--swing-angle-deg 1.57", "did you give radians (1.57 rad = 90 °)"),
+    ),
+    "e-bg-in-percent": (
+        lambda tmp: _predict(tmp, "--e-bg", "83"),
+        ("--e-bg 83", "between 0 and 1", "did you give a percentage (83 % = 0.83)"),
+    ),
     "twist-point-in-mm": (
         lambda tmp: ["twist", "--x", "520", "--no-figures", "--out", str(tmp / "out")],
         ("x=520", "did you give millimetres"),

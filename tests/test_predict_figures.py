@@ -341,3 +341,18 @@ def test_face_maps_leave_flagged_rows_out_of_every_quantity() -> None:
     (filled,) = [c for c in ax.collections if hasattr(c, "levels")][:1]
     assert max(filled.levels) <= 1.2 * np.nanmax(stale.vibration_energy[~flagged, 0, 0])
     plt.close(figure)
+
+
+def test_predict_headline_gives_the_outgoing_speed_of_a_serve(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """New-user trial (issue 13): a serve (ball nearly at rest, racket at 40 m/s) printed the
+    rebound ratio only; what a serve is about, the speed the ball leaves at, was in impact.csv
+    alone.  It is e v_ball + (1 + e) V (Cross), so about 1.3 × 40 m/s at the centre."""
+    argv = ["predict", "--speed", "0", "--racket-speed", "40", "--support", "pinned"]
+    assert main([*argv, "--grid", "5", "--no-figures", "--out", str(tmp_path)]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    row = _centre_row(tmp_path, "pinned", 0.0)
+    outgoing = (1.0 + row["rebound_ratio"]) * 40.0
+    assert 40.0 < outgoing < 80.0
+    assert f"{outgoing:.1f}" in out

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 import jinja2
+import numpy as np
 import pytest
 
 from racketdyn.report import SECTIONS, render_section, write_report
@@ -228,3 +229,108 @@ def test_negative_rebound_ratios_are_explained_on_the_page(tmp_path: Path) -> No
     assert data["negative"] is not None
     assert "carries on forward" in data["negative"]
     assert "trust the transient" in data["negative"]
+
+
+HEAD_LIGHT_RACKET = """schema_version = 1
+name = "Trial 320 g head-light 95 sq in"
+
+[racket]
+mass_kg = 0.320
+length_m = 0.685
+balance_m = 0.310
+inertia_cg_kgm2 = 0.0189
+grip_m = 0.070
+
+[head]
+area_cm2 = 613.0
+half_length_m = 0.160
+centre_x_m = 0.513
+
+[strings]
+tension_n = 267.0
+mains = 18
+crosses = 20
+string_diameter_m = 0.00130
+string_modulus_pa = 6.0e9
+
+[modal]
+first_bending_hz = 125.0
+twisting_hz = 380.0
+"""
+
+
+def test_negative_rebound_ratios_at_the_throat_are_not_called_recoil(tmp_path: Path) -> None:
+    """New-user trial (issue 13): on a 320 g head-light racket the approximate method gave
+    negative rebound ratios at the throat (x = 371 mm at 10 m/s, where the transient simulation
+    gives +0.42), and the page called every negative ratio "physics: near the tip the reduced
+    mass is small".  At the throat a rigid racket sends the ball back, (e_BG − m_B/M_r)/(1 +
+    m_B/M_r) > 0: the negative value there is the approximate method's vibration charge."""
+    from racketdyn.cli import main
+    from racketdyn.report.folder import RunFolder
+    from racketdyn.report.sections import rebound
+
+    racket = tmp_path / "head_light.toml"
+    racket.write_text(HEAD_LIGHT_RACKET, encoding="utf-8")
+    out = tmp_path / "run"
+    argv = ["predict", "--racket", str(racket), "--grid", "9", "--speed", "10"]
+    assert main([*argv, "--support", "free", "--no-figures", "--out", str(out / "p")]) == 0
+    run = RunFolder.scan(out)
+    impacts = run.impacts()
+    assert impacts is not None
+    e, x = impacts["rebound_ratio"], impacts["x_m"]
+    assert np.any((e < 0) & (x < 0.45))  # the throat side of the face
+    mu = 0.0577 / impacts["reduced_mass_kg"]
+    recoil = (e < 0) & ((0.83 - mu) / (1 + mu) < 0)
+    vibration = (e < 0) & ~recoil
+    assert vibration.any()
+    data = rebound.gather(run)
+    assert data is not None
+    note = " ".join(data["negative"].split())
+    span = f"x from {x[vibration].min() * 1e3:.0f} to {x[vibration].max() * 1e3:.0f} mm"
+    assert f"{int(vibration.sum())} of them ({span}) are not recoil" in note
+    assert "trust the transient" in note
+
+
+def test_report_refuses_a_folder_of_several_rackets_or_predictions(tmp_path: Path) -> None:
+    """New-user trial (issue 13): ``racketdyn report`` on the folder holding the runs of two
+    rackets (and several predictions) wrote one page titled after one racket from the first
+    impact.csv it found, the other runs' files mixed in.  It now refuses in one line, exit 2,
+    naming the runs."""
+    from racketdyn.cli import main
+
+    racket = tmp_path / "head_light.toml"
+    racket.write_text(HEAD_LIGHT_RACKET, encoding="utf-8")
+    trial = tmp_path / "trial"
+    common = ["--grid", "2", "--speed", "20", "--support", "free", "--no-figures"]
+    assert main(["predict", *common, "--out", str(trial / "builtin")]) == 0
+    assert main(["predict", "--racket", str(racket), *common, "--out", str(trial / "own")]) == 0
+    assert main(["report", str(trial)]) == 2
+    assert not (trial / "report.html").exists()
+    assert main(["predict", "--racket", str(racket), *common, "--out", str(trial / "own")]) == 0
+    (trial / "builtin" / "run.json").unlink()
+    (trial / "builtin" / "impact.csv").rename(trial / "builtin" / "kept.csv")
+    assert main(["report", str(trial / "own")]) == 0  # one run: a report
+
+
+def test_report_names_the_rackets_and_the_predictions_it_would_mix(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from racketdyn.cli import main
+
+    racket = tmp_path / "head_light.toml"
+    racket.write_text(HEAD_LIGHT_RACKET, encoding="utf-8")
+    trial = tmp_path / "trial"
+    common = ["--grid", "2", "--speed", "20", "--support", "free", "--no-figures"]
+    assert main(["predict", "--racket", str(racket), *common, "--out", str(trial / "a")]) == 0
+    assert main(["predict", "--racket", str(racket), *common, "--out", str(trial / "b")]) == 0
+    capsys.readouterr()
+    assert main(["report", str(trial)]) == 2
+    error = " ".join(capsys.readouterr().err.split())
+    assert "2 predict runs (a, b)" in error
+    assert main(["predict", *common, "--out", str(trial / "c")]) == 0
+    (trial / "b" / "impact.csv").unlink()
+    capsys.readouterr()
+    assert main(["report", str(trial)]) == 2
+    error = " ".join(capsys.readouterr().err.split())
+    assert "2 rackets" in error
+    assert "Trial 320 g head-light 95 sq in" in error

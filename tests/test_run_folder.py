@@ -35,6 +35,18 @@ def test_a_second_run_leaves_only_its_own_files(tmp_path: Path) -> None:
     assert not (out / "comparison.csv").exists()
 
 
+def test_a_second_run_removes_the_report_of_the_first(tmp_path: Path) -> None:
+    """New-user trial (issue 13): ``report`` on a swing folder, then ``swing --no-figures``
+    into it again: the old report.html stayed, its figures those of the first run (no longer
+    in the folder).  The page is the earlier run's output too: a new run removes it."""
+    out = tmp_path / "out"
+    assert main(["predict", *QUICK, "--out", str(out)]) == 0
+    assert main(["report", str(out)]) == 0
+    assert (out / "report.html").exists()
+    assert main(["predict", *QUICK, "--speed", "25", "--out", str(out)]) == 0
+    assert not (out / "report.html").exists()
+
+
 def test_a_failing_run_leaves_the_folder_as_it_was(tmp_path: Path) -> None:
     out = tmp_path / "out"
     assert main(["predict", *QUICK, "--out", str(out)]) == 0

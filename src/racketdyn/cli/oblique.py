@@ -108,9 +108,15 @@ def run(args: argparse.Namespace, console: Console) -> int:
         )
     curve, contact, where = result.curve, result.contact, result.point
     assert curve is not None
+    moving = ""  # the racket's motion is in every number: say it (issue 13)
+    if args.racket_speed or args.racket_tangential_speed:
+        moving = f", racket {args.racket_speed:g} m/s towards it"
+        if args.racket_tangential_speed:
+            moving += f" and {args.racket_tangential_speed:g} m/s along the face"
     console.print(
         f"oblique impacts at x = {where[0] * 1e3:.0f} mm, y = {where[1] * 1e3:.0f} mm, "
-        f"ball {args.speed:g} m/s, spin {args.spin:g} rad/s, {result.support} → {result.out}"
+        f"ball {args.speed:g} m/s{moving}, spin {args.spin:g} rad/s, {result.support} → "
+        f"{result.out}"
     )
     table = Table(
         title=f"μ = {contact.friction_coefficient:g}, k_t = {contact.stiffness_n_per_m:.3g} N/m"

@@ -122,7 +122,8 @@ def add_allow_implausible(parser: argparse.ArgumentParser) -> None:
         "--allow-implausible",
         action="store_true",
         help="take a --ball-mass, --speed, --racket-speed or --hand-arm-mass outside the ranges "
-        "of play (ball 56.0-59.4 g, ITF; speeds up to 75 m/s; arm 0.2-6 kg) for an object "
+        "of play (ball 56.0-59.4 g, ITF; ball speeds up to 75 m/s, racket 55 m/s; arm 0.2-6 kg) "
+        "for an object "
         "meant to be unusual; a value in the wrong unit (57.7 for kg) is refused still; a "
         "racket file allows itself with [checks] allow_implausible = true (default: off)",
     )

@@ -31,7 +31,8 @@ def add(commands: Any) -> None:
         "--racket-speed",
         default="0",
         help="racket speed at the impact point towards the ball, m/s: one, or one per speed "
-        "(default 0; the contact model holds to 70 m/s of ball + racket speed)",
+        "(default 0; above 55 m/s only with --allow-implausible; the contact model holds to "
+        "70 m/s of ball + racket speed)",
     )
     p.add_argument(
         "--model",
@@ -128,8 +129,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
 
 
 def _headline(result: ImpactResult, racket: Racket, label: str) -> Table:
-    """Contact time, rebound ratio and peak force at the run's point nearest the face centre,
-    per support and speed; a flagged row shows its status, not numbers."""
+    """Contact time, rebound ratio, outgoing ball speed and peak force at the run's point
+    nearest the face centre, per support and speed; a flagged row shows its status, not
+    numbers."""
     import numpy as np
     from rich.table import Table
 
@@ -145,10 +147,11 @@ def _headline(result: ImpactResult, racket: Racket, label: str) -> Table:
     )
     for heading in (
         "support",
-        "ball (m/s)",
+        "ball in (m/s)",
         "racket (m/s)",
         "contact time (ms)",
         "rebound ratio",
+        "ball out (m/s)",
         "peak force (N)",
         "status",
     ):
@@ -163,6 +166,7 @@ def _headline(result: ImpactResult, racket: Racket, label: str) -> Table:
                 f"{result.racket_speed[s]:g}",
                 f"{result.contact_time[i, s, p] * 1e3:.2f}" if valid else "–",
                 f"{result.rebound_ratio[i, s, p]:.3f}" if valid else "–",
+                f"{result.rebound_speed[i, s, p]:.1f}" if valid else "–",
                 f"{result.peak_force[i, s, p]:.0f}" if valid else "–",
                 status,
             )

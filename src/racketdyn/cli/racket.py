@@ -23,6 +23,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     from rich.table import Table
 
     from racketdyn.racket_modal import modal_model_for
+    from racketdyn.report.formatting import DERIVED_LABELS, quantity
     from racketdyn.workflows.inputs import load_racket_input
 
     racket, provenance = load_racket_input(args.racket)
@@ -30,12 +31,38 @@ def run(args: argparse.Namespace, console: Console) -> int:
     table.add_column("property")
     table.add_column("value", justify="right")
     table.add_column("unit")
-    units = {"kg": "kg", "m": "m", "kgm2": "kg·m²", "kgcm2": "kg·cm²", "cm2": "cm²"}
-    for key, value in racket.derived_properties().items():
-        name, _, unit = key.rpartition("_")
-        table.add_row(name.replace("_", " "), f"{value:.4g}", units.get(unit, unit))
+    derived = racket.derived_properties()
+    for key, value in derived.items():
+        if key == "inertia_cg_kgm2" and "recoil_weight_kgcm2" in derived:
+            continue  # the recoil weight is this inertia: one row, one unit (issue 13)
+        name, text, unit = quantity(key, value)  # the units the field quotes, as the report
+        table.add_row(DERIVED_LABELS.get(key.rpartition("_")[0], name), text, unit)
     model = modal_model_for(racket)
     for name, frequency in zip(model.names, model.frequency, strict=True):
         table.add_row(f"mode: {name} ({model.support})", f"{frequency:.1f}", "Hz")
     console.print(table)
+    for line in _defaults(args.racket, racket):
+        console.print(line, markup=False)
     return 0
+
+
+def _defaults(path: Any, racket: Any) -> list[str]:
+    """The built-in modal model's targets a racket file leaves to their defaults (the paper's
+    racket's frequencies), in words (the new-user trial of issue 13)."""
+    import tomllib
+    from pathlib import Path
+
+    if path is None or racket.modal_model_file is not None:
+        return []
+    with Path(path).open("rb") as handle:
+        modal = tomllib.load(handle).get("modal", {})
+    given = modal if isinstance(modal, dict) else {}
+    return [
+        f"[modal] {key} not in the file: the built-in modes are tuned to the default "
+        f"{value:g} Hz (the paper's racket's); give {key} for this racket's own"
+        for key, value in (
+            ("first_bending_hz", racket.first_bending_hz),
+            ("twisting_hz", racket.twisting_hz),
+        )
+        if key not in given
+    ]

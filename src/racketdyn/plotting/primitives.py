@@ -900,7 +900,9 @@ def plot_swing_map(
     """
     ax = _axes(ax, (5.2, 3.8))
     support = support or result.supports[0]
-    values = result.rebound_speed[:, speed_index, result.support_index(support)]
+    column = result.support_index(support)
+    flagged = np.asarray(result.status)[:, speed_index, column] != STATUS_OK
+    values = np.where(flagged, np.nan, result.rebound_speed[:, speed_index, column])
     _contour_face(ax, result.locations, values, "outgoing ball speed (m/s)", levels)
     plot_outline(racket, ax)
     if spots:
@@ -915,9 +917,14 @@ def plot_swing_map(
         ax.legend(fontsize=6, loc="lower center", ncol=2, frameon=False, handletextpad=0.3)
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("y (mm)")
+    note = (
+        f"\n{int(flagged.sum())} of {flagged.size} impacts flagged (crosses)"
+        if flagged.any()
+        else ""
+    )
     ax.set_title(
         f"{_support_label(support)}, ball {result.ball_speed[speed_index]:g} m/s, "
-        f"swing Ω = {result.angular_speed_radps:.1f} rad/s",
+        f"swing Ω = {result.angular_speed_radps:.1f} rad/s{note}",
         fontsize=9,
     )
     return ax
@@ -951,20 +958,39 @@ def plot_swing_along_axis(
     if names is not None and len(names) != len(results):
         raise ValueError(f"{len(names)} names given for {len(results)} results")
     styles = ("-", "--", "-.", ":")
+    foot = ax.get_xaxis_transform()
+    spans: dict[bytes, tuple[NDArray[np.float64], list[NDArray[np.bool_]]]] = {}
     for k, result in enumerate(results):
         chosen = support or result.supports[0]
         p = result.support_index(chosen)
         order = np.argsort(result.locations[:, 0])
+        x_mm = result.locations[order, 0] * 1e3
         name = names[k] if names is not None else f"Ω = {result.angular_speed_radps:.1f} rad/s"
         colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, result.ball_speed.size))
+        flagged = np.asarray(result.status)[order, :, p] != STATUS_OK  # (n, s)
         for s, (speed, colour) in enumerate(zip(result.ball_speed, colours, strict=True)):
             ax.plot(
-                result.locations[order, 0] * 1e3,
-                result.rebound_speed[order, s, p],
+                x_mm,
+                np.where(flagged[:, s], np.nan, result.rebound_speed[order, s, p]),
                 color=colour,
                 linestyle=styles[k % len(styles)],
                 label=f"{name}, ball {speed:g} m/s",
             )
+            if flagged[:, s].any():  # at the foot of the axes: a cross at 0 would read as a value
+                ax.plot(
+                    x_mm[flagged[:, s]],
+                    np.full(int(flagged[:, s].sum()), 0.03),
+                    "x",
+                    color=colour,
+                    transform=foot,
+                    clip_on=False,
+                    label="_flagged rows",
+                )
+        # curves on the same points share one hatching and one count (issue 13)
+        spans.setdefault(x_mm.tobytes(), (x_mm, []))[1].append(flagged)
+    for x_mm, flags in spans.values():
+        flagged_all = np.concatenate(flags, axis=1)
+        mark_flagged_spans(ax, x_mm, flagged_all, "impacts", flagged_all.size)
     if spots:
         _mark_sweet_spots(ax, spots, in_plane=False)
     ax.set_xlabel("impact point, x from the butt (mm)")

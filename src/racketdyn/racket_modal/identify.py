@@ -165,7 +165,13 @@ def name_if_racket(
     if reason:
         return identification, f"modes numbered: {reason}"
     named = name_racket_modes(identification, racket, ball_at)
-    sentence = "modes named from their shapes on the racket"
+    if racket_given:
+        sentence = f"modes named from their shapes on the head of {racket.name}"
+    else:  # the default racket: say so, a user's own racket may merely lie near its outline
+        sentence = (
+            f"modes named from their shapes on the head of the built-in {racket.name}, whose "
+            "outline the points fit; give --racket to name them on your racket's head"
+        )
     if ball_at is None:
         return named, sentence
     names = named.model.names

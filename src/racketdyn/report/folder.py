@@ -27,6 +27,7 @@ from racketdyn.errors import InputError
 from racketdyn.impact.result import invalidate_table
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.report.figures import Figure, FigureGroup, Layout, embed_png
+from racketdyn.workflows.run import REPORT_NAME
 
 __all__ = [
     "REPORT_NAME",
@@ -41,9 +42,6 @@ __all__ = [
 ]
 
 log = logging.getLogger(__name__)
-
-REPORT_NAME = "report.html"
-"""File name of the report inside the run folder."""
 
 
 REPAIR = "re-run the step that wrote it"

@@ -72,6 +72,35 @@ class _Shown:
     body: Markup
 
 
+def _refuse_mixed_runs(run: RunFolder) -> None:
+    """One page tells one run: refuse a folder whose run.json files name several rackets, or
+    that holds several predictions (the page would title one racket and mix the others' files
+    in; the new-user trial of issue 13 reported on a folder of two rackets' runs)."""
+    rackets: dict[str, str] = {}
+    for record in run.records.values():
+        name = record.get("racket_file")
+        if not name:
+            continue
+        key = str(record.get("racket_file_sha256") or name)
+        described = record.get("racket")
+        title = described.get("name") if isinstance(described, dict) else None
+        if title or key not in rackets:  # a record naming the racket wins over a file name
+            rackets[key] = str(title or Path(str(name)).name)
+    if len(rackets) > 1:
+        raise InputError(
+            f"{run.run_dir}: its runs used {len(rackets)} rackets ("
+            + "; ".join(sorted(set(rackets.values())))
+            + "): a report tells one run; give the folder of one racket's runs (a demo folder)"
+        )
+    predictions = run.with_file("impact.csv")
+    if len(predictions) > 1:
+        names = ", ".join(run.rel(folder) or "." for folder in predictions)
+        raise InputError(
+            f"{run.run_dir}: it holds {len(predictions)} predict runs ({names}): a report "
+            "tells one run; give the folder of one of them, or a demo folder"
+        )
+
+
 def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
     """Write ``run_dir/report.html``: one self-contained HTML page telling the whole story.
 
@@ -95,13 +124,15 @@ def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
     Raises
     ------
     InputError
-        ``run_dir`` is not a folder, holds nothing a racketdyn command wrote, or holds a
-        damaged file (named, with the command that wrote it); nothing is written then.
+        ``run_dir`` is not a folder, holds nothing a racketdyn command wrote, holds a damaged
+        file (named, with the command that wrote it), or holds the runs of several rackets or
+        several predictions (one page tells one run); nothing is written then.
     """
     run_dir = Path(run_dir)
     if not run_dir.is_dir():
         raise InputError(f"{run_dir}: not a folder; give the output folder of racketdyn commands")
     run = RunFolder.scan(run_dir, racket)
+    _refuse_mixed_runs(run)
     shown: list[_Shown] = []
     missing = []
     glance: list[str] = []

@@ -25,6 +25,7 @@ from racketdyn.impact.result import SHOWN_SPEED_MPS
 from racketdyn.io.frf_layout import read_frfs
 from racketdyn.io.uff import write_modes_uff
 from racketdyn.modal.identify import Identification, identify
+from racketdyn.modal.model import ModalModel
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
@@ -295,6 +296,48 @@ class ModeComparison:
     nodes_hand: NDArray[np.float64]
 
 
+NAMED_KINDS = ("bending", "twisting", "string-bed")
+"""Kinds whose names a hand-held mode takes from its free MAC pair (not ``unknown``, whose
+neutral name holds the free mode's frequency)."""
+
+
+def name_after_pairs(free: ModalModel, hand: ModalModel) -> ModalModel:
+    """The hand-held model with each mode named after its MAC pair among the free modes.
+
+    Twisting and bending modes are numbered in order of frequency
+    (:func:`racketdyn.racket_modal.shapes.classify_modes`); a hand damps some of them out of
+    the identification (the trial of issue 13 lost the 3- and 4-node twisting modes, ζ 10 %
+    and 6 %), and the hand's later modes were then named a node or two short.  A pair of the
+    same kind (:func:`racketdyn.modal.shapes.pair_modes`, MAC ≥ 0.6) gives the hand's mode the
+    free mode's name; the others keep theirs, made unique with their frequency.
+
+    Parameters
+    ----------
+    free, hand : ModalModel
+        The freely supported and the hand-held models (names and kinds from their shapes).
+
+    Returns
+    -------
+    ModalModel
+        ``hand`` with new names (kinds, frequencies and shapes unchanged).
+    """
+    if not hand.kinds or not free.kinds:
+        return hand
+    names = list(hand.names)
+    pairing = pair_modes(free, hand)
+    renamed = set()
+    for a, b in zip(pairing.first, pairing.second, strict=True):
+        kind = hand.kinds[b]
+        if kind in NAMED_KINDS and free.kinds[a] == kind:
+            names[b] = free.names[a]
+            renamed.add(int(b))
+    taken = {names[b] for b in renamed}
+    for b, name in enumerate(names):
+        if b not in renamed and name in taken:
+            names[b] = f"{name} ({hand.frequency[b]:.1f} Hz)"
+    return replace(hand, names=tuple(names))
+
+
 def compare_modes(free: Identification, hand: Identification, racket: Racket) -> ModeComparison:
     """Pair the free and hand-held modes by MAC and find the first mode's nodes on the axis.
 
@@ -425,6 +468,14 @@ def run_compare(
     found_free = identify_file(free, the_racket, "free", **options)
     report(progress, f"identifying {Path(hand).name}")
     found_hand = identify_file(hand, the_racket, "hand", **options)
+    # a hand damps some modes out: name the hand's modes after their free pairs (issue 13)
+    paired = name_after_pairs(found_free.model, found_hand.model)
+    if paired.names != found_hand.model.names:
+        naming = (
+            f"{paired.metadata.get('naming', '')}; named after their MAC pairs among the free modes"
+        )
+        paired = replace(paired, metadata={**paired.metadata, "naming": naming.lstrip("; ")})
+    found_hand = replace(found_hand, model=paired)
     written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
     comparison = compare_modes(found_free, found_hand, the_racket)
     written.append(write_mode_comparison(comparison, out_dir))

@@ -170,6 +170,9 @@ def ball_from(
     """
     if e_bg_table is not None and e_bg is not None:
         raise InputError("give --e-bg (one value) or --e-bg-table (e_BG against speed), not both")
+    if e_bg is not None and math.isfinite(e_bg) and not 0.0 <= e_bg <= 1.0:
+        slip = f"; did you give a percentage ({e_bg:g} % = {e_bg / 100:g})?" if e_bg <= 100 else ""
+        raise InputError(f"--e-bg {e_bg:g}: e_BG is a ratio between 0 and 1 (Kawazoe's 0.83){slip}")
     if mass_kg is not None and _positive(mass_kg):
         check("ball_mass_kg", mass_kg, "--ball-mass", allow_implausible=allow_implausible)
     defaults = []

@@ -30,6 +30,7 @@ from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError
 
 __all__ = [
+    "REPORT_NAME",
     "FigureHook",
     "Progress",
     "StepResult",
@@ -44,6 +45,10 @@ __all__ = [
 log = logging.getLogger(__name__)
 
 RUN_JSON = "run.json"
+
+REPORT_NAME = "report.html"
+"""File name of ``racketdyn report``'s page inside a run folder: it tells the run the folder
+held, so a new run into the folder removes it with that run's files (issue 13)."""
 
 
 @dataclass
@@ -191,7 +196,10 @@ def _refuse_other_step(folder: Path, step: str) -> None:
 def _commit(staging: Path, folder: Path) -> None:
     """Replace the previous run's files in ``folder`` by the staged ones."""
     new = {entry.name for entry in staging.iterdir()}
-    for name in _previous_outputs(folder):
+    previous = _previous_outputs(folder)
+    if (folder / RUN_JSON).is_file():  # the earlier run's page tells that run, not this one
+        previous.append(REPORT_NAME)
+    for name in previous:
         if name not in new:
             old = folder / name
             if old.is_dir() and not old.is_symlink():

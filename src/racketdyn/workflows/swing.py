@@ -140,6 +140,7 @@ def swing_from(
             raise InputError(
                 f"--swing-angle-deg must be more than 0 and at most 360 degrees (got {degrees:g})"
             )
+        check("swing_angle_deg", degrees, "--swing-angle-deg", allow_implausible=allow_implausible)
         angle = math.radians(degrees)
     defaults.append(
         f"arm {DEFAULT_ARM_MASS_KG * 1e3:.0f} g, radius of gyration "

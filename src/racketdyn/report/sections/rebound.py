@@ -6,6 +6,7 @@ import math
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from racketdyn.impact.result import shown_speed_index
 from racketdyn.report.figures import interactive
@@ -182,24 +183,66 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             + " — the least vibration"
         )
     data["spots"] = spots
-    data["negative"] = _negative_note(impacts)
+    data["negative"] = _negative_note(impacts, run.record(folder))
     return data
 
 
-def _negative_note(impacts: Impacts) -> str | None:
-    """What negative rebound ratios mean, where the run has any (issue 13)."""
+def _rigid_rebound_ratio(impacts: Impacts, record: dict[str, Any]) -> NDArray[np.float64]:
+    """Rebound ratio of each row on a rigid racket, (e_BG − μ)/(1 + μ) with μ = m_B/M_r (eq 4,
+    no vibration): negative only where the racket recoils too much to send the ball back.
+    e_BG is the run's (a table at the row's relative speed); NaN where the run.json does not
+    say (an old folder)."""
+    ball = record.get("ball") if isinstance(record.get("ball"), dict) else {}
+    mass = ball.get("mass_kg") if isinstance(ball, dict) else None
+    law = ball.get("e_bg_law") if isinstance(ball, dict) else None
+    table = law.get("table") if isinstance(law, dict) else None
+    e_bg: Any = ball.get("e_bg") if isinstance(ball, dict) else None
+    relative = impacts["ball_speed_mps"] + np.nan_to_num(impacts["racket_speed_mps"])
+    if isinstance(table, list) and table:
+        rows = np.asarray(table, dtype=float)
+        e_bg = np.interp(relative, rows[:, 0], rows[:, 1])
+    if not isinstance(mass, int | float) or e_bg is None:
+        return np.full(relative.shape, np.nan)
+    mu = float(mass) / impacts["reduced_mass_kg"]
+    return np.asarray((np.asarray(e_bg, dtype=float) - mu) / (1.0 + mu), dtype=float)
+
+
+def _negative_note(impacts: Impacts, record: dict[str, Any] | None = None) -> str | None:
+    """What negative rebound ratios mean, where the run has any (issue 13): recoil (a rigid
+    racket would not send the ball back either) or the approximate method's vibration charge
+    (a rigid racket would)."""
     e = impacts["rebound_ratio"]
     negative = np.isfinite(e) & (e < 0) & (impacts.status == "ok")
     if not negative.any():
         return None
-    x_mm = impacts["x_m"][negative] * 1e3
-    return (
-        f"{int(negative.sum())} of {e.size} impacts have a negative rebound ratio "
-        f"(x from {x_mm.min():.0f} to {x_mm.max():.0f} mm). On a racket at rest this is "
-        "physics, not an error: near the tip the racket's reduced mass is small, the frame "
-        "recoils and rings, and the ball carries on forward, slower, instead of bouncing "
-        "back. There the approximate method charges the frame vibration from a rigid-racket "
-        "pulse (eq 12) and overstates it (≈ 15 % near the tip against the transient "
-        "simulation, docs/develop.md): where the two disagree, trust the transient "
-        "simulation (racketdyn predict --model both compares them)."
+    x_mm = impacts["x_m"] * 1e3
+
+    def span(rows: NDArray[np.bool_]) -> str:
+        return f"x from {x_mm[rows].min():.0f} to {x_mm[rows].max():.0f} mm"
+
+    rigid = _rigid_rebound_ratio(impacts, record or {})
+    vibration = negative & (rigid >= 0)
+    recoil = negative & ~vibration
+    words = [f"{int(negative.sum())} of {e.size} impacts have a negative rebound ratio."]
+    if recoil.any():
+        words.append(
+            f"{int(recoil.sum())} of them ({span(recoil)}) are physics, not an error: the "
+            "racket's reduced mass there is small, the frame recoils and rings, and the ball "
+            "carries on forward, slower, instead of bouncing back (a rigid racket would not "
+            "send it back either); the approximate method charges the frame vibration from a "
+            "rigid-racket pulse (eq 12) and overstates it (≈ 15 % near the tip against the "
+            "transient simulation, docs/develop.md)."
+        )
+    if vibration.any():
+        words.append(
+            f"{int(vibration.sum())} of them ({span(vibration)}) are not recoil: a rigid "
+            "racket would send the ball back there ((e_BG − m_B/M_r)/(1 + m_B/M_r) > 0); the "
+            "negative value comes from the frame vibration the approximate method charges "
+            "from a rigid-racket pulse (eq 12), which it overstates where the contact lasts "
+            "long against the first mode's period."
+        )
+    words.append(
+        "Where the two disagree, trust the transient simulation (racketdyn predict --model "
+        "both compares them)."
     )
+    return " ".join(words)
