@@ -1,0 +1,221 @@
+"""Validation and calibration against measured rebound (issue 15): predictions at measured
+rows agree with the grid predictions, a calibration recovers a known truth within its standard
+errors, and a parameter the points cannot tell is reported so."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from racketdyn.ball import Ball
+from racketdyn.cli import main
+from racketdyn.cli.calibrate import PARAMETER_NAMES
+from racketdyn.errors import InputError
+from racketdyn.impact import predict
+from racketdyn.impact.calibration import PARAMETERS, apply, calibrate, simulate_measurements
+from racketdyn.impact.measured import NO_HAND_STATUS, ModelInputs, predict_rows
+from racketdyn.impact.transient import predict_transient
+from racketdyn.io import load_racket, read_measured
+from racketdyn.io.racket_file import default_racket
+from racketdyn.racket_modal import modal_model_for
+
+FACE = [
+    (0.45, 0.0),
+    (0.50, 0.0),
+    (0.55, 0.0),
+    (0.60, 0.0),
+    (0.50, 0.06),
+    (0.55, -0.06),
+    (0.45, 0.05),
+    (0.60, 0.04),
+]
+AXIS = [(0.42, 0.0), (0.47, 0.0), (0.52, 0.0), (0.57, 0.0), (0.62, 0.0)]
+FIT = ("e_bg", "roll_inertia_kgm2")
+
+
+@pytest.fixture(scope="module")
+def start() -> ModelInputs:
+    return ModelInputs(default_racket(), Ball())
+
+
+@pytest.fixture(scope="module")
+def truth(start: ModelInputs) -> tuple[ModelInputs, dict[str, float]]:
+    values = {"e_bg": 0.80, "roll_inertia_kgm2": 1.3 * start.racket.roll_inertia_kgm2}
+    return apply(start, values), values
+
+
+def test_the_cli_lists_every_parameter() -> None:
+    assert PARAMETER_NAMES == tuple(PARAMETERS)
+
+
+def test_rows_are_the_grid_predictions_of_both_models(start: ModelInputs) -> None:
+    """Each row's prediction is the one predict/predict_transient give at that impact."""
+    measured = simulate_measurements(start, FACE[:4], [20.0, 20.0, 30.0, 20.0], sd=0.0)
+    racket, model = start.racket, modal_model_for(start.racket)
+    for method, function in (("approx", predict), ("transient", predict_transient)):
+        rows, status = predict_rows(start, measured, method)  # type: ignore[arg-type]
+        assert np.all(status == "ok")
+        for i in range(len(measured)):
+            grid = function(
+                racket, start.ball, measured.locations[i : i + 1], [measured.ball_speed[i]],
+                ["free"], modal_model=model,
+            )  # fmt: skip
+            assert rows[i] == pytest.approx(grid.rebound_ratio[0, 0, 0], rel=1e-9)
+
+
+def test_a_moving_racket_measured_by_outgoing_speed_validates_to_zero(
+    tmp_path: Path, start: ModelInputs
+) -> None:
+    """A file of the model's own outgoing speeds (racket moving at 5 m/s) reads back as its
+    rebound ratios: the mapping v_out ↔ e is the glossary's both ways."""
+    xy = np.array(FACE[:3])
+    result = predict(start.racket, start.ball, xy, [20.0], ["free"], racket_speed=5.0)
+    lines = ["x_m,y_m,ball_speed_mps,racket_speed_mps,support,outgoing_speed_mps"]
+    lines += [
+        f"{x},{y},20,5,free,{float(v)!r}" for (x, y), v in zip(xy, result.rebound_speed[:, 0, 0])
+    ]
+    (tmp_path / "m.csv").write_text("\n".join(lines) + "\n", encoding="utf-8")
+    rows, _ = predict_rows(start, read_measured(tmp_path / "m.csv"), "approx")
+    np.testing.assert_allclose(rows, result.rebound_ratio[:, 0, 0], rtol=1e-9)
+    np.testing.assert_allclose(read_measured(tmp_path / "m.csv").rebound_ratio, rows, rtol=1e-9)
+
+
+def test_hand_rows_are_flagged_for_the_approximate_method(start: ModelInputs) -> None:
+    measured = simulate_measurements(start, FACE[:2], 20.0, ["free", "hand"], sd=0.0)
+    ratio, status = predict_rows(start, measured, "approx")
+    assert status.tolist() == ["ok", NO_HAND_STATUS]
+    assert math.isfinite(ratio[0]) and math.isnan(ratio[1])
+
+
+def test_exact_data_give_back_the_truth(
+    start: ModelInputs, truth: tuple[ModelInputs, dict[str, float]]
+) -> None:
+    """Without noise the fit lands on the values that made the data."""
+    inputs, values = truth
+    measured = simulate_measurements(inputs, FACE, 20.0, sd=0.0)
+    result, fitted = calibrate(start, measured, FIT)
+    assert all(result.identifiable)
+    for k, name in enumerate(FIT):
+        assert result.value[k] == pytest.approx(values[name], rel=2e-4)
+    assert result.fit_rms < 1e-5
+    assert fitted.ball.e_bg == pytest.approx(0.80, rel=2e-4)
+
+
+def test_synthetic_truth_within_two_standard_errors(
+    start: ModelInputs, truth: tuple[ModelInputs, dict[str, float]]
+) -> None:
+    """10 seeded trials (the 50-trial run: benchmarks/bench_calibration.py).  The truth lies
+    within two standard errors (nominal 95 %) in ≥ 9 of 10 for each parameter, and the
+    standard errors are tight enough to mean something (< 10 % of the value; ≈ 0.4 % for
+    e_BG, ≈ 5 % for the roll inertia)."""
+    inputs, values = truth
+    hits = np.zeros(len(FIT))
+    for seed in range(10):
+        measured = simulate_measurements(inputs, FACE, 20.0, sd=0.005, rng=seed)
+        result, _ = calibrate(start, measured, FIT)
+        assert all(result.identifiable)
+        assert np.all(result.standard_error < 0.1 * result.value)
+        hits += np.abs(result.value - [values[n] for n in FIT]) <= 2 * result.standard_error
+    assert np.all(hits >= 9), hits
+
+
+def test_roll_inertia_from_points_on_the_axis_is_not_identifiable(
+    start: ModelInputs, truth: tuple[ModelInputs, dict[str, float]]
+) -> None:
+    """On the long axis the racket does not roll: its roll inertia changes nothing there."""
+    inputs, _ = truth
+    measured = simulate_measurements(inputs, AXIS, 20.0, sd=0.005, rng=1)
+    result, fitted = calibrate(start, measured, FIT)
+    assert result.identifiable == [True, False]
+    assert "do not change" in result.why[1] or "cannot tell" in result.why[1]
+    assert math.isnan(result.values["roll_inertia_kgm2"])
+    assert fitted.racket.roll_inertia_kgm2 == start.racket.roll_inertia_kgm2
+    assert result.as_dict()["parameters"][1]["value"] is None
+    assert result.as_dict()["parameters"][1]["status"].startswith("not identifiable")
+    assert result.value[0] == pytest.approx(0.80, abs=0.02)
+
+
+def test_hand_parameters_without_hand_rows_are_not_identifiable(start: ModelInputs) -> None:
+    measured = simulate_measurements(start, FACE[:4], 20.0, sd=0.005, rng=2)
+    result, _ = calibrate(start, measured, ["e_bg", "hand_stiffness_n_per_m"])
+    assert result.identifiable == [True, False]
+    assert result.why[1] == "the data do not change with it"
+
+
+def test_two_parameters_the_data_trade_off_exactly(start: ModelInputs) -> None:
+    """One point at one speed: e_BG and the string-bed scale both move the one ratio."""
+    measured = simulate_measurements(start, [(0.5, 0.0)] * 3, 20.0, sd=0.005, rng=3)
+    result, _ = calibrate(start, measured, ["e_bg", "string_stiffness_scale"])
+    assert not all(result.identifiable)
+
+
+def test_bad_fits_are_one_line(start: ModelInputs) -> None:
+    measured = simulate_measurements(start, FACE[:3], 20.0, sd=0.005, rng=4)
+    with pytest.raises(InputError, match="not a parameter"):
+        calibrate(start, measured, ["stiffness"])
+    with pytest.raises(InputError, match="name each parameter once"):
+        calibrate(start, measured, ["e_bg", "e_bg"])
+    with pytest.raises(InputError, match="rows are numbered"):
+        calibrate(start, measured, ["e_bg"], holdout=[7])
+    table = replace(start, ball=Ball(e_bg_table=((10.0, 0.85), (40.0, 0.78))))
+    with pytest.raises(InputError, match="table against speed"):
+        calibrate(table, measured, ["e_bg"])
+
+
+def test_validate_and_calibrate_commands(tmp_path: Path, start: ModelInputs) -> None:
+    """calibrate writes calibration.json and a racket.toml predict reads; validate with the
+    calibration fits the data it was fitted on better than without."""
+    truth = apply(start, {"e_bg": 0.78, "roll_inertia_kgm2": 0.0018})
+    measured = simulate_measurements(truth, FACE, 20.0, sd=0.004, rng=5)
+    lines = ["point,x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio,rebound_ratio_sd"]
+    for i in range(len(measured)):
+        x, y = measured.locations[i]
+        lines.append(f"p{i},{x},{y},20,0,free,{float(measured.rebound_ratio[i])!r},0.004")
+    csv = tmp_path / "measured.csv"
+    csv.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    assert main(["validate", str(csv), "--out", str(tmp_path / "before"), "--no-figures"]) == 0
+    status = main(
+        ["calibrate", str(csv), "--fit", "e_bg,roll_inertia_kgm2,hand_arm_mass_kg",
+         "--holdout", "2,5", "--no-loo", "--out", str(tmp_path / "cal")]
+    )  # fmt: skip
+    assert status == 0
+    record = json.loads((tmp_path / "cal" / "calibration.json").read_text())
+    by_name = {p["name"]: p for p in record["parameters"]}
+    assert by_name["hand_arm_mass_kg"]["value"] is None
+    assert by_name["e_bg"]["value"] == pytest.approx(0.78, abs=0.01)
+    assert record["rows"] == {"fitted": 6, "held_out": 2, "flagged_left_out": 0}
+    assert math.isfinite(record["holdout_rms"])
+    racket = load_racket(tmp_path / "cal" / "racket.toml")
+    assert racket.roll_inertia_kgm2 == pytest.approx(by_name["roll_inertia_kgm2"]["value"])
+    assert (
+        main(
+            [
+                "validate",
+                str(csv),
+                "--calibration",
+                str(tmp_path / "cal" / "calibration.json"),
+                "--out",
+                str(tmp_path / "after"),
+                "--no-figures",
+            ]
+        )  # fmt: skip
+        == 0
+    )
+    before = json.loads((tmp_path / "before" / "run.json").read_text())["summary"]
+    after = json.loads((tmp_path / "after" / "run.json").read_text())["summary"]
+    assert after["transient"]["rms"] < 0.5 * before["transient"]["rms"]
+    assert after["transient"]["rms"] < 0.01
+
+
+def test_validate_refuses_points_off_the_strings(tmp_path: Path) -> None:
+    csv = tmp_path / "m.csv"
+    csv.write_text(
+        "x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio\n0.2,0,20,0,free,0.3\n",
+        encoding="utf-8",
+    )
+    assert main(["validate", str(csv), "--out", str(tmp_path / "o")]) == 2
