@@ -50,7 +50,7 @@ def truth(start: ModelInputs) -> tuple[ModelInputs, dict[str, float]]:
 
 
 def test_the_cli_lists_every_parameter() -> None:
-    assert PARAMETER_NAMES == tuple(PARAMETERS)
+    assert tuple(PARAMETERS) == PARAMETER_NAMES
 
 
 def test_rows_are_the_grid_predictions_of_both_models(start: ModelInputs) -> None:
@@ -77,7 +77,8 @@ def test_a_moving_racket_measured_by_outgoing_speed_validates_to_zero(
     result = predict(start.racket, start.ball, xy, [20.0], ["free"], racket_speed=5.0)
     lines = ["x_m,y_m,ball_speed_mps,racket_speed_mps,support,outgoing_speed_mps"]
     lines += [
-        f"{x},{y},20,5,free,{float(v)!r}" for (x, y), v in zip(xy, result.rebound_speed[:, 0, 0])
+        f"{x},{y},20,5,free,{float(v)!r}"
+        for (x, y), v in zip(xy, result.rebound_speed[:, 0, 0], strict=True)
     ]
     (tmp_path / "m.csv").write_text("\n".join(lines) + "\n", encoding="utf-8")
     rows, _ = predict_rows(start, read_measured(tmp_path / "m.csv"), "approx")
@@ -89,7 +90,8 @@ def test_hand_rows_are_flagged_for_the_approximate_method(start: ModelInputs) ->
     measured = simulate_measurements(start, FACE[:2], 20.0, ["free", "hand"], sd=0.0)
     ratio, status = predict_rows(start, measured, "approx")
     assert status.tolist() == ["ok", NO_HAND_STATUS]
-    assert math.isfinite(ratio[0]) and math.isnan(ratio[1])
+    assert math.isfinite(ratio[0])
+    assert math.isnan(ratio[1])
 
 
 def test_exact_data_give_back_the_truth(
@@ -192,20 +194,11 @@ def test_validate_and_calibrate_commands(tmp_path: Path, start: ModelInputs) -> 
     assert math.isfinite(record["holdout_rms"])
     racket = load_racket(tmp_path / "cal" / "racket.toml")
     assert racket.roll_inertia_kgm2 == pytest.approx(by_name["roll_inertia_kgm2"]["value"])
-    assert (
-        main(
-            [
-                "validate",
-                str(csv),
-                "--calibration",
-                str(tmp_path / "cal" / "calibration.json"),
-                "--out",
-                str(tmp_path / "after"),
-                "--no-figures",
-            ]
-        )  # fmt: skip
-        == 0
-    )
+    calibrated = str(tmp_path / "cal" / "calibration.json")
+    after_out = str(tmp_path / "after")
+    status = main(["validate", str(csv), "--calibration", calibrated, "--out", after_out])
+    assert status == 0
+    assert (tmp_path / "after" / "validation_parity.png").is_file()
     before = json.loads((tmp_path / "before" / "run.json").read_text())["summary"]
     after = json.loads((tmp_path / "after" / "run.json").read_text())["summary"]
     assert after["transient"]["rms"] < 0.5 * before["transient"]["rms"]
@@ -219,3 +212,20 @@ def test_validate_refuses_points_off_the_strings(tmp_path: Path) -> None:
         encoding="utf-8",
     )
     assert main(["validate", str(csv), "--out", str(tmp_path / "o")]) == 2
+
+
+def test_a_racket_written_as_toml_reads_back_the_same(tmp_path: Path) -> None:
+    """write_racket_toml → load_racket: the same racket (point masses and files included)."""
+    from racketdyn.io import write_racket_toml
+    from racketdyn.racket import PointMass
+
+    table = tmp_path / "bed.csv"
+    table.write_text("deflection_m,force_n\n0,0\n0.005,150\n0.01,320\n0.02,700\n", "utf-8")
+    racket = default_racket().with_point_masses(PointMass(0.004, 0.66, 0.02, "12 o'clock"))
+    racket = replace(
+        racket,
+        roll_inertia_kgm2=0.00171,
+        strings=replace(racket.strings, load_deflection_file=table),
+    )
+    back = load_racket(write_racket_toml(racket, tmp_path / "r.toml", "a test\nof two lines"))
+    assert back == racket

@@ -50,8 +50,11 @@ MEASURED_SUPPORTS = ("free", "pinned", "hand")
 
 RATIO_RANGE = (-0.2, 1.0)
 """Rebound ratios a measurement can hold.  Above 1 the ball would leave faster than an elastic
-impact on an immovable racket returns it; below −0.2 it would follow a racket at rest into the
-frame (the approximate method's most negative ratio on a free racket's tip is ≈ −0.1)."""
+impact on an immovable racket returns it.  Below 0 the ball goes on towards the racket after the
+impact, slower: possible only where the racket is very light under the ball (a free racket's
+tip), and measured ratios there are ≈ 0.1 (docs/validation.md); −0.2 leaves room for that
+(the approximate method predicts ≈ −0.3 at the tip of the built-in free racket at 15 m/s, the
+model's own weakness there, not a measurement)."""
 
 MAX_SD = 0.5
 """Largest standard deviation of a rebound ratio taken (half the whole range)."""
