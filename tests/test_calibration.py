@@ -229,3 +229,24 @@ def test_a_racket_written_as_toml_reads_back_the_same(tmp_path: Path) -> None:
     )
     back = load_racket(write_racket_toml(racket, tmp_path / "r.toml", "a test\nof two lines"))
     assert back == racket
+
+
+def test_the_report_shows_a_validate_run(tmp_path: Path) -> None:
+    """The report's section: the summary per model from run.json and the three figures."""
+    from racketdyn.report import SECTIONS, write_report
+
+    csv = tmp_path / "m.csv"
+    csv.write_text(
+        "x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio\n"
+        "0.50,0,20,0,free,0.39\n0.55,0.04,20,0,hand,0.30\n",
+        encoding="utf-8",
+    )
+    assert main(["validate", str(csv), "--out", str(tmp_path / "run" / "validate")]) == 0
+    page = write_report(tmp_path / "run").read_text(encoding="utf-8")
+    start = page.index('<section id="validation">')
+    section = page[start : page.index("</section>", start)]
+    assert SECTIONS["validation"].title in section
+    summary = json.loads((tmp_path / "run" / "validate" / "run.json").read_text())["summary"]
+    assert f"{summary['transient']['rms']:.4f}" in section
+    assert '<td>approximate method</td><td class="num">1</td><td class="num">1</td>' in section
+    assert section.count("<figure") == 3

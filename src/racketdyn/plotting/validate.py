@@ -40,6 +40,9 @@ METHOD_STYLE = {
     "transient": {"color": "tab:red", "marker": "s", "label": "transient simulation"},
 }
 
+SUPPORT_MARKER = {"free": "o", "pinned": "s", "hand": "^"}
+"""Marker of each support in the residual map (rows at one point overlap otherwise)."""
+
 
 def _flagged(predicted: ArrayLike) -> int:
     return int(np.count_nonzero(~np.isfinite(np.asarray(predicted, dtype=float))))
@@ -119,20 +122,31 @@ def write_validate_figures(result: ValidateResult, out: Path) -> list[Path]:
     residual = np.asarray(result.predicted["transient"]) - rows.rebound_ratio
     ok = np.isfinite(residual)
     limit = float(np.max(np.abs(residual[ok]))) if np.any(ok) else 1.0
-    points = ax.scatter(
-        rows.locations[ok, 0] * 1e3,
-        rows.locations[ok, 1] * 1e3,
-        c=residual[ok],
-        cmap="coolwarm",
-        vmin=-limit,
-        vmax=limit,
-        s=40,
-        edgecolors="k",
-        linewidths=0.5,
-    )
-    ax.scatter(rows.locations[~ok, 0] * 1e3, rows.locations[~ok, 1] * 1e3, marker="x", c="k",
-               label=f"flagged ({int((~ok).sum())})")  # fmt: skip
-    fig.colorbar(points, ax=ax, label="predicted − measured rebound ratio")
+    support = np.asarray(rows.support)
+    points = None
+    for name, marker in SUPPORT_MARKER.items():
+        here = ok & (support == name)
+        if not np.any(here):
+            continue
+        points = ax.scatter(
+            rows.locations[here, 0] * 1e3,
+            rows.locations[here, 1] * 1e3,
+            c=residual[here],
+            cmap="coolwarm",
+            vmin=-limit,
+            vmax=limit,
+            s=60 if marker == "o" else 40,
+            marker=marker,
+            edgecolors="k",
+            linewidths=0.5,
+            label=name,
+        )
+    if not np.all(ok):
+        ax.scatter(rows.locations[~ok, 0] * 1e3, rows.locations[~ok, 1] * 1e3, marker="x",
+                   c="k", label=f"flagged ({int((~ok).sum())})")  # fmt: skip
+    if points is not None:
+        fig.colorbar(points, ax=ax, label="predicted − measured rebound ratio")
+    ax.legend(fontsize=8, loc="upper left")
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_title("Residual of the transient simulation", fontsize=10)
