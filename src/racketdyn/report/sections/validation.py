@@ -10,6 +10,9 @@ from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = "racketdyn validate MEASURED.csv --racket R.toml --out DIR/validate"
 
+FIGURES = ("validation_parity.png", "validation_along_axis.png", "validation_residuals.png")
+"""validate's figures, in the order shown (racketdyn.plotting.validate)."""
+
 _MODELS = {"approx": "approximate method", "transient": "transient simulation"}
 
 
@@ -58,12 +61,6 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         "source": str(record.get("measured_file", "")),
         "calibration": calibration,
         "summary": table,
-        "figures": run.group(
-            [
-                (folder / "validation_parity.png", ""),
-                (folder / "validation_along_axis.png", ""),
-                (folder / "validation_residuals.png", ""),
-            ]
-        ),
+        "figures": run.group([(folder / name, "") for name in FIGURES]),
         "glance": glance,
     }
