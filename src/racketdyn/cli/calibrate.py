@@ -92,6 +92,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             ball=ball,
             hand=hand,
             engine=args.engine,
+            local_string_bed=args.local_string_bed,
             defaults=defaults,
             command=opt.command_line(args),
             progress=progress,

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.ball import Ball, RestoringForce
-from racketdyn.contact import compound_law
+from racketdyn.contact import compound_law, local_compound_law
 from racketdyn.errors import InputError, one_of
 from racketdyn.impact.approximate import predict
 from racketdyn.impact.hand import Hand
@@ -76,6 +76,10 @@ class ModelInputs:
         Charge string-bed modes as vibration loss too.
     engine : {"auto", "compiled", "reference"}
         Transient engine.
+    local_string_bed : bool
+        The string bed's law at each impact point from the lengths of its main and cross
+        strings (:func:`racketdyn.contact.local_compound_law`) instead of the face centre's for
+        every point.
     """
 
     racket: Racket
@@ -86,6 +90,7 @@ class ModelInputs:
     frame_damping_scale: float = 1.0
     include_string_bed: bool = False
     engine: str = "auto"
+    local_string_bed: bool = False
 
     @property
     def effective_racket(self) -> Racket:
@@ -118,9 +123,17 @@ class ModelInputs:
         damping = np.minimum(model.damping_ratio * self.frame_damping_scale, MAX_DAMPING_RATIO)
         return replace(model, damping_ratio=damping)
 
-    def law(self) -> RestoringForce:
-        """Compound ball + string-bed law of :attr:`effective_racket`."""
+    def law(self, location: tuple[float, float] | None = None) -> RestoringForce:
+        """Compound ball + string-bed law of :attr:`effective_racket`: the face centre's, or
+        with :attr:`local_string_bed` the one at ``location`` (x, y in m)."""
+        if self.local_string_bed and location is not None:
+            return _local_law(self.effective_racket, self.ball, location)
         return compound_law(self.effective_racket, self.ball)
+
+
+@lru_cache(maxsize=4096)
+def _local_law(racket: Racket, ball: Ball, location: tuple[float, float]) -> RestoringForce:
+    return local_compound_law(racket, ball, location)
 
 
 def predict_rows(
@@ -151,16 +164,20 @@ def predict_rows(
     status = np.full(n, STATUS_OK, dtype=object)
     racket = inputs.effective_racket
     model, law = inputs.modes(), inputs.law()
+    points = [(float(x), float(y)) for x, y in measured.locations]
     keys = list(
         zip(
             measured.support,
             measured.ball_speed.tolist(),
             measured.racket_speed.tolist(),
+            points if inputs.local_string_bed else [None] * n,
             strict=True,
         )
     )
     for key in dict.fromkeys(keys):
-        support, v_ball, v_racket = key
+        support, v_ball, v_racket, point = key
+        if point is not None:
+            law = inputs.law(point)
         rows = np.array([i for i, k in enumerate(keys) if k == key])
         if method == "approx" and support == "hand":
             status[rows] = NO_HAND_STATUS

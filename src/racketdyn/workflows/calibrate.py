@@ -108,6 +108,7 @@ def run_calibrate(
     ball: Ball | None = None,
     hand: Hand | None = None,
     engine: str = "auto",
+    local_string_bed: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[CalibrateResult, Path], list[Path]] | None = None,
@@ -131,7 +132,7 @@ def run_calibrate(
         The model fitted.
     leave_one_out : bool
         Refit once per fitted row without it (leave-one-out residuals).
-    modal, rigid, ball, hand, engine
+    modal, rigid, ball, hand, engine, local_string_bed
         As for :func:`racketdyn.workflows.validate.run_validate`.
     defaults, command, figures, progress
         As for every step.
@@ -143,7 +144,7 @@ def run_calibrate(
     if method not in METHODS:
         raise InputError(f"--model must be one of {', '.join(METHODS)} (got {method!r})")
     inputs, rows, provenance, defaults_used = measured_setup(
-        racket, measured, modal, rigid, ball, hand, engine
+        racket, measured, modal, rigid, ball, hand, engine, local_string_bed
     )
     held = [int(i) for i in holdout]
     if any(i < 1 or i > len(rows) for i in held):
@@ -189,6 +190,7 @@ def run_calibrate(
         "holdout_rows": held,
         "leave_one_out": leave_one_out,
         "engine": engine,
+        "local_string_bed": local_string_bed,
         "n_rows": len(rows),
         "summary": {
             key: record[key]

@@ -187,8 +187,11 @@ def measured_setup(
     ball: Ball | None,
     hand: Hand | None,
     engine: str,
+    local_string_bed: bool = False,
 ) -> tuple[ModelInputs, MeasuredRebound, dict[str, Any], list[str]]:
-    """The measured rows (checked on the racket's face) and the model inputs.
+    """The measured rows (checked on the racket's face) and the model inputs (with
+    ``local_string_bed``, the string-bed law of each point:
+    :func:`racketdyn.contact.local_string_bed_law`).
 
     Returns
     -------
@@ -218,16 +221,23 @@ def measured_setup(
     if not isinstance(measured, MeasuredRebound):
         provenance["measured_file"] = str(Path(measured).resolve())
         provenance["measured_sha256"] = sha256(Path(measured))
+    # the built-in model follows the racket (a fitted roll inertia changes its twisting mode)
+    follows = (
+        used.modal_model is not None and modal is None and used.racket.modal_model_file is None
+    )
     inputs = ModelInputs(
         used.racket,
         the_ball,
         the_hand,
-        None if rigid else used.modal_model,
+        "racket" if follows else (None if rigid else used.modal_model),
         engine=engine,
+        local_string_bed=local_string_bed,
     )
-    # the built-in model follows the racket (a fitted roll inertia changes its twisting mode)
-    if used.modal_model is not None and modal is None and used.racket.modal_model_file is None:
-        inputs = ModelInputs(used.racket, the_ball, the_hand, "racket", engine=engine)
+    if local_string_bed and used.racket.strings.load_deflection_file is not None:
+        raise InputError(
+            "--local-string-bed needs the strings' construction; the racket's string bed is a "
+            "measured load–deflection file (a law at one point): drop one of them"
+        )
     return inputs, rows, provenance, [*used.defaults, *ball_defaults, *hand_defaults]
 
 
@@ -243,6 +253,7 @@ def run_validate(
     ball: Ball | None = None,
     hand: Hand | None = None,
     engine: str = "auto",
+    local_string_bed: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[ValidateResult, Path], list[Path]] | None = None,
@@ -270,6 +281,8 @@ def run_validate(
         The hand of ``hand`` rows.
     engine : {"auto", "compiled", "reference"}
         Transient engine.
+    local_string_bed : bool
+        The string bed's law at each point from its strings' lengths (default: the centre's).
     defaults : sequence of str
         Defaults the caller filled in, added to run.json.
     command : sequence of str, optional
@@ -284,7 +297,7 @@ def run_validate(
     ValidateResult
     """
     inputs, rows, provenance, defaults_used = measured_setup(
-        racket, measured, modal, rigid, ball, hand, engine
+        racket, measured, modal, rigid, ball, hand, engine, local_string_bed
     )
     values: dict[str, float] = {}
     if isinstance(calibration, dict):
@@ -313,6 +326,7 @@ def run_validate(
         },
         "calibrated_values": values,
         "engine": engine,
+        "string_bed_law": _law_words(local_string_bed),
         "n_rows": len(rows),
         "measured_column": rows.given,
         "rebound_ratio": "e = (v_out - v_racket) / (v_ball + v_racket)",
@@ -350,3 +364,13 @@ def _rows(result: ValidateResult) -> list[dict[str, Any]]:
             }
         )
     return table
+
+
+def _law_words(local: bool) -> str:
+    """How the string bed's law was taken, for run.json."""
+    if local:
+        return (
+            "local: Kawazoe's law with the main and cross strings through each point "
+            "(racketdyn.contact.local_string_bed_law)"
+        )
+    return "one law for the whole face: the face centre's (racketdyn.contact.string_bed_law)"
