@@ -84,6 +84,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             hand=hand,
             engine=args.engine,
             local_string_bed=args.local_string_bed,
+            allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),
             figures=None if args.no_figures else validate_figures,

@@ -173,13 +173,16 @@ def _check_ratio(path: Path, line: int, column: str, value: float, hint: str) ->
     )
 
 
-def read_measured(path: Path | str) -> MeasuredRebound:
+def read_measured(path: Path | str, *, allow_implausible: bool = False) -> MeasuredRebound:
     """Read measured rebound from a CSV file (layout in the module docstring).
 
     Parameters
     ----------
     path : path
         The CSV file.
+    allow_implausible : bool
+        Take speeds beyond those of play (75 m/s) that are inside the limits
+        (:mod:`racketdyn.plausibility`; ``--allow-implausible``).
 
     Returns
     -------
@@ -228,7 +231,7 @@ def read_measured(path: Path | str) -> MeasuredRebound:
                     f"{_where(path, line, name)}: {value:g} m/s; a speed towards the other body "
                     f"must be {need}"
                 )
-            check(key, value, _where(path, line, name))
+            check(key, value, _where(path, line, name), allow_implausible=allow_implausible)
     supports = []
     for line, text in columns["support"]:
         if text not in MEASURED_SUPPORTS:

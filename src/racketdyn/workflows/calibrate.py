@@ -109,6 +109,7 @@ def run_calibrate(
     hand: Hand | None = None,
     engine: str = "auto",
     local_string_bed: bool = False,
+    allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[CalibrateResult, Path], list[Path]] | None = None,
@@ -132,7 +133,7 @@ def run_calibrate(
         The model fitted.
     leave_one_out : bool
         Refit once per fitted row without it (leave-one-out residuals).
-    modal, rigid, ball, hand, engine, local_string_bed
+    modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
         As for :func:`racketdyn.workflows.validate.run_validate`.
     defaults, command, figures, progress
         As for every step.
@@ -144,7 +145,7 @@ def run_calibrate(
     if method not in METHODS:
         raise InputError(f"--model must be one of {', '.join(METHODS)} (got {method!r})")
     inputs, rows, provenance, defaults_used = measured_setup(
-        racket, measured, modal, rigid, ball, hand, engine, local_string_bed
+        racket, measured, modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
     )
     held = [int(i) for i in holdout]
     if any(i < 1 or i > len(rows) for i in held):

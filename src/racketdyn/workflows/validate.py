@@ -188,6 +188,7 @@ def measured_setup(
     hand: Hand | None,
     engine: str,
     local_string_bed: bool = False,
+    allow_implausible: bool = False,
 ) -> tuple[ModelInputs, MeasuredRebound, dict[str, Any], list[str]]:
     """The measured rows (checked on the racket's face) and the model inputs (with
     ``local_string_bed``, the string-bed law of each point:
@@ -204,7 +205,11 @@ def measured_setup(
     """
     if engine not in ENGINES:
         raise InputError(f"--engine must be one of {', '.join(ENGINES)} (got {engine!r})")
-    rows = measured if isinstance(measured, MeasuredRebound) else read_measured(Path(measured))
+    rows = (
+        measured
+        if isinstance(measured, MeasuredRebound)
+        else read_measured(Path(measured), allow_implausible=allow_implausible)
+    )
     used = setup(racket, modal, rigid)
     outside = np.flatnonzero(~used.racket.head.contains(rows.locations))
     if outside.size:
@@ -254,6 +259,7 @@ def run_validate(
     hand: Hand | None = None,
     engine: str = "auto",
     local_string_bed: bool = False,
+    allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[ValidateResult, Path], list[Path]] | None = None,
@@ -283,6 +289,8 @@ def run_validate(
         Transient engine.
     local_string_bed : bool
         The string bed's law at each point from its strings' lengths (default: the centre's).
+    allow_implausible : bool
+        Take measured speeds beyond those of play (:func:`racketdyn.io.read_measured`).
     defaults : sequence of str
         Defaults the caller filled in, added to run.json.
     command : sequence of str, optional
@@ -297,7 +305,7 @@ def run_validate(
     ValidateResult
     """
     inputs, rows, provenance, defaults_used = measured_setup(
-        racket, measured, modal, rigid, ball, hand, engine, local_string_bed
+        racket, measured, modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
     )
     values: dict[str, float] = {}
     if isinstance(calibration, dict):
