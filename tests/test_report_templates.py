@@ -228,3 +228,23 @@ def test_negative_rebound_ratios_are_explained_on_the_page(tmp_path: Path) -> No
     assert data["negative"] is not None
     assert "carries on forward" in data["negative"]
     assert "trust the transient" in data["negative"]
+
+
+def test_the_validation_section_renders_from_a_small_dict() -> None:
+    """Issue 15: the summary table and whether a calibration was applied, from a hand-made
+    dict; a source path with markup stays text."""
+    data = {
+        "n_rows": 2,
+        "supports": "free, pinned",
+        "source": "<b>lab</b>.csv",
+        "calibration": "",
+        "summary": [("transient simulation", "2", "0", "0.0123", "+0.0040", "0.25", "3.1")],
+        "figures": None,
+    }
+    html = render_section("validation", data)
+    assert "<td>transient simulation</td>" in html
+    assert "RMS error of v_out (%)" in html
+    assert "no calibration applied" in html
+    assert "&lt;b&gt;lab&lt;/b&gt;.csv" in html
+    html = render_section("validation", {**data, "calibration": "e_bg = 0.81"})
+    assert "Calibrated inputs applied: e_bg = 0.81." in html
