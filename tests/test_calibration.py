@@ -319,3 +319,17 @@ def test_the_local_law_changes_the_rebound_near_the_frame_only(start: ModelInput
         assert each[0] == pytest.approx(face[0], abs=1e-12)
         assert np.all(np.abs(each[1:4] - face[1:4]) < 2e-3)
         assert each[4] < face[4] - 0.01
+
+
+def test_the_hand_is_not_identifiable_from_rebound_at_20_mps() -> None:
+    """The ball leaves the strings before the hand's springs act (≈ 4 ms against the hand's
+    period): rebound ratios of a held racket, even with the truth's hand 3× as stiff and a
+    2 kg arm, cannot give the hand's stiffness or the arm's mass; e_BG they give."""
+    from racketdyn.impact.hand import Hand
+
+    start = ModelInputs(default_racket(), Ball(), Hand())
+    truth = apply(start, {"hand_stiffness_n_per_m": 6e4, "hand_arm_mass_kg": 2.0})
+    measured = simulate_measurements(truth, FACE, 20.0, "hand", sd=0.005, rng=0)
+    result, _ = calibrate(start, measured, ["e_bg", "hand_stiffness_n_per_m", "hand_arm_mass_kg"])
+    assert result.identifiable == [True, False, False]
+    assert result.value[0] == pytest.approx(0.83, abs=0.01)
