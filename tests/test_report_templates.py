@@ -334,3 +334,23 @@ def test_report_names_the_rackets_and_the_predictions_it_would_mix(
     error = " ".join(capsys.readouterr().err.split())
     assert "2 rackets" in error
     assert "Trial 320 g head-light 95 sq in" in error
+
+
+def test_the_validation_section_renders_from_a_small_dict() -> None:
+    """Issue 15: the summary table and whether a calibration was applied, from a hand-made
+    dict; a source path with markup stays text."""
+    data = {
+        "n_rows": 2,
+        "supports": "free, pinned",
+        "source": "<b>lab</b>.csv",
+        "calibration": "",
+        "summary": [("transient simulation", "2", "0", "0.0123", "+0.0040", "0.25", "3.1")],
+        "figures": None,
+    }
+    html = render_section("validation", data)
+    assert "<td>transient simulation</td>" in html
+    assert "RMS error of v_out (%)" in html
+    assert "no calibration applied" in html
+    assert "&lt;b&gt;lab&lt;/b&gt;.csv" in html
+    html = render_section("validation", {**data, "calibration": "e_bg = 0.81"})
+    assert "Calibrated inputs applied: e_bg = 0.81." in html

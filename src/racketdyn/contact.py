@@ -6,14 +6,23 @@ The compound spring F_GB(X) is the ball's one-sided law and the string bed's law
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball, RestoringForce, series
+from racketdyn.errors import InputError
 from racketdyn.io.tables import read_load_deflection
 from racketdyn.racket import Racket
 
-__all__ = ["compound_law", "string_bed_law", "string_tension"]
+__all__ = [
+    "compound_law",
+    "local_compound_law",
+    "local_string_bed_law",
+    "string_bed_law",
+    "string_tension",
+]
 
 STRING_BED_MAX_DEFLECTION_M = 0.08
 """Range of the model string-bed law: 80 mm.  A 70 m/s impact at the centre of the paper's
@@ -115,5 +124,108 @@ def compound_law(racket: Racket, ball: Ball, degree: int = COMPOUND_DEGREE) -> R
         "polynomial",
         degree,
         "ball + string bed in series",
+        relative=True,
+    )
+
+
+def _stretched_string(
+    tension_n: float, axial_n: float, near: float, far: float
+) -> tuple[float, float]:
+    """Linear and cubic coefficients of one string of ends ``near`` and ``far`` (m) from the
+    point it is pressed at: ``F = S0 k X + A E k² X³ / (2 (l1 + l2))`` with
+    ``k = 1/l1 + 1/l2`` (Kawazoe's ``2 S0 X/L + A E X³/L³`` for l1 = l2 = L)."""
+    k = 1.0 / near + 1.0 / far
+    return tension_n * k, axial_n * k * k / (2.0 * (near + far))
+
+
+def local_string_bed_law(
+    racket: Racket, ball: Ball, location: ArrayLike, samples: int = 1
+) -> RestoringForce:
+    """String-bed restoring force F_G(X) at a point of the face, N for X in m.
+
+    Kawazoe's stretched-string law (:func:`string_bed_law`) with each string's own geometry:
+    a string of tension S0 pressed at distances l1 and l2 from its ends pushes back with
+    ``S0 (1/l1 + 1/l2) X``; deflected by X it lengthens by ``X² (1/l1 + 1/l2)/2`` and its
+    tension rises by A E times that over ``l1 + l2``, the cubic term
+    ``A E (1/l1 + 1/l2)² X³ / (2 (l1 + l2))``.  The mains run along x between the head's
+    outline at their y, the crosses along y between the outline at their x; as in
+    :func:`string_bed_law` the ball presses ``diameter / spacing`` of each.  With
+    ``samples = 1`` those strings are taken as the main and the cross through the point (at
+    the centre of the face: :func:`string_bed_law` exactly); with more, at ``samples`` evenly
+    spread positions across the ball's diameter, each with its own length (a string beyond
+    the outline is not there).  Near the frame the shorter strings make the bed stiffer.
+    A string end closer to the point than the ball's radius is taken at the ball's radius:
+    the ball cannot bend a string over less than its own half-width.
+
+    Parameters
+    ----------
+    racket : Racket
+        Head outline and strings (tension, counts, gauge, modulus).
+    ball : Ball
+        Its diameter sets the strings pressed.
+    location : array_like (2,)
+        Impact point (x, y), m.
+    samples : int
+        Positions across the ball's diameter at which strings are taken.
+
+    Returns
+    -------
+    RestoringForce
+        Polynomial ``(linear, 0, cubic)`` over the 80 mm of :func:`string_bed_law`.
+    """
+    strings, head = racket.strings, racket.head
+    if strings.load_deflection_file is not None:
+        raise InputError(
+            "local string-bed law: the racket's string bed is a measured load–deflection file "
+            f"({strings.load_deflection_file.name}), a law at one point; a law at every point "
+            "needs the strings' construction ([strings] tension_n, mains, crosses, gauge)"
+        )
+    x, y = (float(v) for v in np.asarray(location, dtype=float).reshape(2))
+    if not bool(head.contains([(x, y)])[0]):
+        raise InputError(f"local string-bed law: the point x={x:g} m, y={y:g} m is off the bed")
+    spacing_mains, spacing_crosses = strings.spacing_m(head)
+    radius = 0.5 * ball.diameter_m
+    offsets = (
+        ((np.arange(samples) + 0.5) / samples - 0.5) * ball.diameter_m if samples > 1 else [0.0]
+    )
+    linear = cubic = 0.0
+    a, b = head.half_length_m, head.half_width_m
+    for offset in offsets:
+        # a main at y + offset, from x0 to x1; a cross at x + offset, from y0 to y1
+        for along, across, half_axis, other_axis, centre, other_centre, spacing in (
+            (x, y + offset, a, b, head.centre_x_m, head.centre_y_m, spacing_mains),
+            (y, x + offset, b, a, head.centre_y_m, head.centre_x_m, spacing_crosses),
+        ):
+            ratio = (across - other_centre) / other_axis
+            if abs(ratio) >= 1.0:
+                continue
+            half = half_axis * math.sqrt(1.0 - ratio**2)
+            near = max(along - (centre - half), radius)
+            far = max(centre + half - along, radius)
+            lin, cub = _stretched_string(strings.tension_n, strings.axial_stiffness_n, near, far)
+            weight = ball.diameter_m / spacing / len(offsets)
+            linear += weight * lin
+            cubic += weight * cub
+    return RestoringForce(
+        "polynomial",
+        (linear, 0.0, cubic),
+        STRING_BED_MAX_DEFLECTION_M,
+        0.0,
+        f"string bed at x={x:.4f} m, y={y:.4f} m, Kawazoe law per string at "
+        f"{strings.tension_n:g} N",
+    )
+
+
+def local_compound_law(
+    racket: Racket, ball: Ball, location: ArrayLike, samples: int = 1
+) -> RestoringForce:
+    """Compound ball + string law at a point: :func:`local_string_bed_law` in series with the
+    ball, fitted as :func:`compound_law` does."""
+    return series(
+        ball.restoring_force,
+        local_string_bed_law(racket, ball, location, samples),
+        "polynomial",
+        COMPOUND_DEGREE,
+        "ball + local string bed in series",
         relative=True,
     )

@@ -2,7 +2,7 @@
 
 One short module per command (``predict``, ``racket``, ``rig``, ``frf``, ``contact``,
 ``identify``/``compare``, ``demo``, ``report``, ``sweep``, ``swing``, ``oblique``, ``twist``,
-``compound``),
+``compound``, ``validate``, ``calibrate``),
 the shared options in :mod:`racketdyn.cli.options`, the figure hooks in
 :mod:`racketdyn.plotting.steps`.  Building the parser imports neither NumPy nor the library: a
 command imports what it needs when it runs, so ``racketdyn --help`` is instant.
@@ -20,6 +20,7 @@ from collections.abc import Sequence
 
 from racketdyn.__about__ import __version__
 from racketdyn.cli import (
+    calibrate,
     compound,
     contact,
     demo,
@@ -33,6 +34,7 @@ from racketdyn.cli import (
     sweep,
     swing,
     twist,
+    validate,
 )
 from racketdyn.cli import options as opt
 
@@ -51,6 +53,8 @@ COMMANDS = (
     oblique,
     twist,
     compound,
+    validate,
+    calibrate,
     racket,
 )
 """The command modules, in the order ``racketdyn --help`` lists them."""

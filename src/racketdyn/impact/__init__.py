@@ -3,6 +3,12 @@ swinging racket, oblique impacts with spin, the racket's twist off the axis, and
 on the strings (the compound system of section 3.2)."""
 
 from racketdyn.impact.approximate import elastic_contact_time, predict, tangent_peak_deflection
+from racketdyn.impact.calibration import (
+    PARAMETERS,
+    Calibration,
+    calibrate,
+    simulate_measurements,
+)
 from racketdyn.impact.compound import (
     BallSpring,
     CompoundSystem,
@@ -12,6 +18,7 @@ from racketdyn.impact.compound import (
     stiffer_frame,
 )
 from racketdyn.impact.hand import Hand
+from racketdyn.impact.measured import ModelInputs, predict_rows
 from racketdyn.impact.oblique import (
     ObliqueCurve,
     ObliqueImpact,
@@ -31,12 +38,15 @@ from racketdyn.impact.transient import (
 from racketdyn.impact.twist import TwistCurve, twist_curve
 
 __all__ = [
+    "PARAMETERS",
     "TRANSIENT_SUPPORTS",
     "BallSpring",
+    "Calibration",
     "CompoundSystem",
     "Hand",
     "ImpactResult",
     "ImpactSystem",
+    "ModelInputs",
     "ObliqueCurve",
     "ObliqueImpact",
     "Swing",
@@ -45,6 +55,7 @@ __all__ = [
     "TransientImpact",
     "TwistCurve",
     "ball_spring",
+    "calibrate",
     "compound_modes",
     "elastic_contact_time",
     "half_sine_force",
@@ -52,10 +63,12 @@ __all__ = [
     "impact_system",
     "oblique_curve",
     "predict",
+    "predict_rows",
     "predict_swing",
     "predict_transient",
     "racket_modes",
     "simulate_impact",
+    "simulate_measurements",
     "simulate_oblique",
     "stiffer_frame",
     "sweet_spots",

@@ -1,6 +1,12 @@
 """Reading and writing files: racket descriptions (TOML), CSV tables and Universal Files."""
 
-from racketdyn.io.racket_file import default_racket, load_racket, racket_to_dict
+from racketdyn.io.measured import MeasuredRebound, read_measured
+from racketdyn.io.racket_file import (
+    default_racket,
+    load_racket,
+    racket_to_dict,
+    write_racket_toml,
+)
 from racketdyn.io.tables import read_e_bg_table, read_load_deflection, read_points
 from racketdyn.io.uff import (
     read_frf_uff,
@@ -13,6 +19,7 @@ from racketdyn.io.uff import (
 )
 
 __all__ = [
+    "MeasuredRebound",
     "default_racket",
     "load_racket",
     "racket_to_dict",
@@ -21,9 +28,11 @@ __all__ = [
     "read_hammer_csv",
     "read_hammer_uff",
     "read_load_deflection",
+    "read_measured",
     "read_points",
     "write_frf_uff",
     "write_hammer_csv",
     "write_hammer_uff",
     "write_modes_uff",
+    "write_racket_toml",
 ]

@@ -32,6 +32,7 @@ __all__ = [
     "load_racket",
     "racket_to_dict",
     "read_toml",
+    "write_racket_toml",
 ]
 
 DEFAULT_RACKET_NAME = "kawazoe_2002.toml"
@@ -355,3 +356,79 @@ def racket_to_dict(racket: Racket) -> dict[str, Any]:
         "twisting_hz": racket.twisting_hz,
         "derived": racket.derived_properties(),
     }
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return repr(value)
+    text = str(value).replace("\\", "\\\\").replace('"', '\\"')
+    return f'"{text}"'
+
+
+def write_racket_toml(racket: Racket, path: Path, comment: str = "") -> Path:
+    """Write a racket as a racket file :func:`load_racket` reads back to the same racket.
+
+    Inertias are written as such (``inertia_cg_kgm2``, ``roll_inertia_kgm2``), the head by its
+    half-axes, files (string-bed load–deflection, modal model) by absolute path unless they lie
+    beside ``path``.
+
+    Parameters
+    ----------
+    racket : Racket
+        The racket.
+    path : Path
+        The TOML file to write.
+    comment : str
+        Lines put at the top as ``#`` comments (what made the file).
+    """
+    path = Path(path)
+
+    def file_name(file: Path) -> str:
+        file = Path(file).resolve()
+        return file.name if file.parent == path.parent.resolve() else str(file)
+
+    strings = {
+        k: v
+        for k, v in vars(racket.strings).items()
+        if v is not None and k != "load_deflection_file"
+    }
+    if racket.strings.load_deflection_file is not None:
+        strings["load_deflection_file"] = file_name(racket.strings.load_deflection_file)
+    modal: dict[str, Any] = {
+        "first_bending_hz": racket.first_bending_hz,
+        "twisting_hz": racket.twisting_hz,
+    }
+    if racket.modal_model_file is not None:
+        modal["file"] = file_name(racket.modal_model_file)
+    tables: list[tuple[str, dict[str, Any]]] = [
+        (
+            "racket",
+            {
+                "mass_kg": racket.mass_kg,
+                "length_m": racket.length_m,
+                "balance_m": racket.balance_m,
+                "inertia_cg_kgm2": racket.inertia_cg_kgm2,
+                "roll_inertia_kgm2": racket.roll_inertia_kgm2,
+                "grip_m": racket.grip_m,
+            },
+        ),
+        ("head", dict(vars(racket.head))),
+        ("strings", strings),
+        ("modal", modal),
+    ]
+    lines = [f"# {line}" for line in comment.splitlines()]
+    lines += ["schema_version = 1", f"name = {_toml_value(racket.name)}", ""]
+    for name, table in tables:
+        lines.append(f"[{name}]")
+        lines += [f"{key} = {_toml_value(value)}" for key, value in table.items()]
+        lines.append("")
+    for mass in racket.point_masses:
+        lines.append("[[point_masses]]")
+        lines += [f"{key} = {_toml_value(value)}" for key, value in vars(mass).items()]
+        lines.append("")
+    path.write_text("\n".join(lines), encoding="utf-8")
+    return path

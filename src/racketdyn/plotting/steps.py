@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from racketdyn.workflows.predict import PredictResult
     from racketdyn.workflows.swing import SwingStepResult
     from racketdyn.workflows.twist import TwistResult
+    from racketdyn.workflows.validate import ValidateResult
 
 Status = Callable[[str], None]
 
@@ -181,3 +182,10 @@ def compound_figures(result: CompoundResult, out: Path) -> list[Path]:
     from racketdyn.plotting.compound import write_compound_figures
 
     return write_compound_figures(result, out)
+
+
+def validate_figures(result: ValidateResult, out: Path) -> list[Path]:
+    """Predicted against measured (1:1 line), along the axis, and the residual map."""
+    from racketdyn.plotting.validate import write_validate_figures
+
+    return write_validate_figures(result, out)

@@ -166,6 +166,21 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
         "the ball mode: the frame's displacement along its long axis (line) against the ball's "
         "(circle), scaled so the ball's is 1, one colour per support",
     ),
+    "validation_parity": (
+        None,
+        "predicted against measured rebound ratio, approximate method and transient simulation, "
+        "with the 1:1 line; flagged rows are counted in the legend and not drawn",
+    ),
+    "validation_along_axis": (
+        None,
+        "measured rebound ratio (with one standard deviation where measured) and both models' "
+        "predictions against the position along the long axis, every measured row",
+    ),
+    "validation_residuals": (
+        None,
+        "the transient simulation's residual (predicted − measured rebound ratio) over the face, "
+        "one marker per support; flagged rows as crosses",
+    ),
     "compound_frf": (
         "Fig. 9",
         "receptance from the hammer point on the strings to the frame neck, the racket alone "

@@ -18,6 +18,8 @@ figures come from a hook the caller passes (``figures(result, out) -> paths``), 
 :func:`run_oblique`         oblique impacts with spin
 :func:`run_twist`           off-axis impacts: roll and twist
 :func:`run_compound`        a ball fixed on the strings: the compound modes (Figs 8–9)
+:func:`run_validate`        predicted against measured rebound, both models
+:func:`run_calibrate`       uncertain inputs fitted to measured rebound
 :func:`run_sweep_step`      a design sweep
 ==========================  =========================================================
 
@@ -37,6 +39,7 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from racketdyn.workflows.calibrate import CalibrateResult, run_calibrate
     from racketdyn.workflows.compound import CompoundResult, run_compound
     from racketdyn.workflows.contact import ContactResult, run_contact
     from racketdyn.workflows.frf import FrfResult, run_frf
@@ -55,9 +58,14 @@ if TYPE_CHECKING:
     from racketdyn.workflows.sweep import SweepResult, run_sweep_step
     from racketdyn.workflows.swing import SwingStepResult, run_swing
     from racketdyn.workflows.twist import TwistResult, run_twist
+    from racketdyn.workflows.validate import ValidateResult, run_validate
 
 _WHERE = {
     "BallCompareResult": "identify",
+    "CalibrateResult": "calibrate",
+    "ValidateResult": "validate",
+    "run_calibrate": "calibrate",
+    "run_validate": "validate",
     "CompareResult": "identify",
     "CompoundResult": "compound",
     "ContactResult": "contact",
@@ -86,6 +94,7 @@ _WHERE = {
 
 __all__ = [
     "BallCompareResult",
+    "CalibrateResult",
     "CompareResult",
     "CompoundResult",
     "ContactResult",
@@ -98,6 +107,8 @@ __all__ = [
     "SweepResult",
     "SwingStepResult",
     "TwistResult",
+    "ValidateResult",
+    "run_calibrate",
     "run_compare",
     "run_compare_ball",
     "run_compound",
@@ -110,6 +121,7 @@ __all__ = [
     "run_sweep_step",
     "run_swing",
     "run_twist",
+    "run_validate",
 ]
 
 

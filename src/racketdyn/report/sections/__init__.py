@@ -30,6 +30,7 @@ from racketdyn.report.sections import (
     stabilisation,
     swing,
     transient,
+    validation,
     vibration,
 )
 
@@ -78,6 +79,9 @@ SECTIONS: dict[str, Section] = {
     ),
     "swing": Section("The swinging racket", swing.gather, swing.HOW_TO_RUN),
     "oblique": Section("Off-centre and oblique impacts", oblique.gather, oblique.HOW_TO_RUN),
+    "validation": Section(
+        "Predicted against measured rebound", validation.gather, validation.HOW_TO_RUN
+    ),
     "provenance": Section(
         "Inputs, defaults and versions", provenance.gather, provenance.HOW_TO_RUN
     ),

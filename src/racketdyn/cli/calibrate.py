@@ -1,0 +1,121 @@
+"""``racketdyn calibrate``: uncertain inputs fitted to measured rebound (issue 15)."""
+
+from __future__ import annotations
+
+import argparse
+from typing import TYPE_CHECKING, Any
+
+from racketdyn.cli import options as opt
+from racketdyn.cli.validate import add_measured, ball_hand
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+# racketdyn.impact.calibration.PARAMETERS (checked by tests/test_calibration.py)
+PARAMETER_NAMES = (
+    "e_bg",
+    "string_stiffness_scale",
+    "roll_inertia_kgm2",
+    "frame_damping_scale",
+    "hand_stiffness_n_per_m",
+    "hand_damping_ns_per_m",
+    "hand_arm_mass_kg",
+)
+
+
+def add(commands: Any) -> None:
+    """Register the command."""
+    p = opt.command(
+        commands,
+        "calibrate",
+        "fit uncertain inputs (e_BG, string bed, roll inertia, damping, hand) to measured rebound",
+        "Bounded weighted least squares of the named parameters against measured rebound "
+        "ratios: calibration.json (values, standard errors, correlation, parameters the data "
+        "cannot tell apart, fit / held-out / leave-one-out RMS), calibration_rows.csv, the "
+        "calibrated racket.toml, run.json",
+    )
+    add_measured(p)
+    p.add_argument(
+        "--fit",
+        required=True,
+        metavar="NAME,NAME",
+        help=f"parameters to fit, comma-separated: {', '.join(PARAMETER_NAMES)}; required",
+    )
+    p.add_argument(
+        "--holdout",
+        metavar="ROWS",
+        help="rows of MEASURED.csv held out of the fit and predicted after it, numbered from 1 "
+        "(first data row), a count, e.g. 3,7 (default: none)",
+    )
+    p.add_argument(
+        "--model",
+        choices=opt.IMPACT_MODELS,
+        default="transient",
+        help="the model fitted: transient (default; the hand support and the damping need it) "
+        "or approx",
+    )
+    p.add_argument(
+        "--no-loo",
+        action="store_true",
+        help="skip leave-one-out cross-validation (one refit per row) (default: run it)",
+    )
+    opt.add_out(p)
+    p.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace, console: Console) -> int:
+    """Run the command."""
+    from rich.table import Table
+
+    from racketdyn.errors import InputError
+    from racketdyn.workflows.calibrate import run_calibrate
+
+    opt.check_modes(args)
+    ball, hand, defaults = ball_hand(args)
+    holdout = []
+    if args.holdout:
+        for item in opt.parse_list("--holdout", args.holdout):
+            if not item.isdigit():
+                raise InputError(f"--holdout: {item!r} is not a row number (1, 2, …)")
+            holdout.append(int(item))
+    with opt.progress_display(console) as progress:
+        result = run_calibrate(
+            args.out,
+            args.measured,
+            opt.parse_list("--fit", args.fit),
+            racket=args.racket,
+            holdout=holdout,
+            method=args.model,
+            leave_one_out=not args.no_loo,
+            modal=args.modal,
+            rigid=args.rigid,
+            ball=ball,
+            hand=hand,
+            engine=args.engine,
+            local_string_bed=args.local_string_bed,
+            allow_implausible=args.allow_implausible,
+            defaults=defaults,
+            command=opt.command_line(args),
+            progress=progress,
+        )
+    cal = result.calibration
+    assert cal is not None
+    table = Table(title=f"calibration ({cal.method}, {cal.n_fit} rows fitted) → {result.out}")
+    for column in ("parameter", "start", "fitted", "std. error", "status"):
+        table.add_column(column, justify="left" if column in ("parameter", "status") else "right")
+    for k, name in enumerate(cal.names):
+        ok = cal.identifiable[k]
+        table.add_row(
+            name,
+            f"{cal.start[k]:.5g}",
+            f"{cal.value[k]:.5g}" if ok else "–",
+            f"{cal.standard_error[k]:.3g}" if ok else "–",
+            "ok" if ok else f"not identifiable: {cal.why[k]}",
+        )
+    console.print(table)
+    console.print(
+        f"RMS of the rebound ratio: fit {cal.fit_rms:.4f}, held out {cal.holdout_rms:.4f} "
+        f"({cal.n_holdout} rows), leave-one-out {cal.loo_rms:.4f}; {cal.n_flagged} rows flagged"
+    )
+    opt.print_written(console, result.written)
+    return 0

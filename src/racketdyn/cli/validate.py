@@ -1,0 +1,118 @@
+"""``racketdyn validate``: predicted against measured rebound, both models (issue 15)."""
+
+from __future__ import annotations
+
+import argparse
+from typing import TYPE_CHECKING, Any
+
+from racketdyn.cli import options as opt
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+
+def add_measured(p: argparse.ArgumentParser) -> None:
+    """The measured file, the racket, its modes, the ball, the hand and the engine."""
+    p.add_argument(
+        "measured",
+        metavar="MEASURED.csv",
+        help="measured rebound: x_m, y_m, ball_speed_mps, racket_speed_mps, support, and "
+        "rebound_ratio or outgoing_speed_mps (optional rebound_ratio_sd); docs/formats.md",
+    )
+    opt.add_racket_and_ball(p)
+    p.add_argument(
+        "--engine",
+        choices=opt.ENGINES,
+        default="auto",
+        help="transient model's integrator: auto (default: compiled where numba is installed), "
+        "compiled (numba batch) or reference (scipy solve_ivp)",
+    )
+    p.add_argument(
+        "--local-string-bed",
+        action="store_true",
+        help="the string bed's law at each point from the lengths of its main and cross strings "
+        "(stiffer near the frame) (default: the face centre's law everywhere)",
+    )
+
+
+def add(commands: Any) -> None:
+    """Register the command."""
+    p = opt.command(
+        commands,
+        "validate",
+        "predicted against measured rebound, approximate method and transient simulation",
+        "Each measured row predicted by the approximate method and the transient simulation: "
+        "validation.csv (measured, predicted, residual and status per model), the RMS error and "
+        "bias per model (flagged rows left out and counted), figures, run.json",
+    )
+    add_measured(p)
+    p.add_argument(
+        "--calibration",
+        metavar="FILE",
+        help="calibration.json from racketdyn calibrate: its identifiable values applied "
+        "(default: none, the inputs as given)",
+    )
+    opt.add_no_figures(p, "validation.csv")
+    opt.add_out(p)
+    p.set_defaults(handler=run)
+
+
+def ball_hand(args: argparse.Namespace) -> tuple[Any, Any, list[str]]:
+    """The ball and, with --hand-arm-mass, the hand."""
+    supports = ("hand",) if args.hand_arm_mass is not None else ()
+    return opt.ball_and_hand(args, supports)
+
+
+def run(args: argparse.Namespace, console: Console) -> int:
+    """Run the command."""
+    from rich.table import Table
+
+    from racketdyn.plotting.steps import validate_figures
+    from racketdyn.workflows.validate import run_validate
+
+    opt.check_modes(args)
+    ball, hand, defaults = ball_hand(args)
+    with opt.progress_display(console) as progress:
+        result = run_validate(
+            args.out,
+            args.measured,
+            racket=args.racket,
+            calibration=args.calibration,
+            modal=args.modal,
+            rigid=args.rigid,
+            ball=ball,
+            hand=hand,
+            engine=args.engine,
+            local_string_bed=args.local_string_bed,
+            allow_implausible=args.allow_implausible,
+            defaults=defaults,
+            command=opt.command_line(args),
+            figures=None if args.no_figures else validate_figures,
+            progress=progress,
+        )
+    table = Table(title=f"{len(result.measured or ())} measured rows → {result.out}")
+    for column in (
+        "model",
+        "compared",
+        "flagged",
+        "RMS e",
+        "bias e",
+        "RMS v_out (m/s)",
+        "RMS v_out (%)",
+    ):
+        table.add_column(column, justify="left" if column == "model" else "right")
+    for summary in result.summary.values():
+        table.add_row(
+            summary.method,
+            str(summary.n_compared),
+            str(summary.n_flagged),
+            f"{summary.rms:.4f}",
+            f"{summary.bias:+.4f}",
+            f"{summary.rms_speed_mps:.3f}",
+            f"{summary.rms_speed_percent:.2f}",
+        )
+    console.print(table)
+    for method, status in result.status.items():
+        opt.print_status(console, status, "validation.csv", method)
+    opt.print_written(console, result.written)
+    return 0

@@ -1,0 +1,209 @@
+"""Predictions at measured impacts: each row of a measured-rebound file by either model.
+
+A measured file lists impacts one by one (point, ball speed, racket speed, support), not as a
+grid.  :func:`predict_rows` groups the rows by support, ball speed and racket speed and runs the
+approximate method (:func:`racketdyn.impact.predict`) or the transient simulation
+(:func:`racketdyn.impact.transient.predict_transient`) once per group, so a whole file costs a
+few vectorised calls.  :class:`ModelInputs` holds what a prediction depends on and what a
+calibration may change (:mod:`racketdyn.impact.calibration`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from racketdyn.ball import Ball, RestoringForce
+from racketdyn.contact import compound_law, local_compound_law
+from racketdyn.errors import InputError, one_of
+from racketdyn.impact.approximate import predict
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.result import STATUS_OK
+from racketdyn.impact.transient import predict_transient
+from racketdyn.io.measured import MeasuredRebound
+from racketdyn.modal import ModalModel
+from racketdyn.racket import Racket
+from racketdyn.racket_modal import modal_model_for
+
+__all__ = [
+    "METHODS",
+    "NO_HAND_STATUS",
+    "ModelInputs",
+    "predict_rows",
+]
+
+Method = Literal["approx", "transient"]
+METHODS: tuple[Method, ...] = ("approx", "transient")
+
+NO_HAND_STATUS = "hand support: the approximate method has no hand"
+"""Status of a ``hand`` row under the approximate method (its held racket is ``pinned``)."""
+
+MAX_DAMPING_RATIO = 0.5
+"""Largest modal damping ratio a scaled damping reaches (the modal model takes < 1)."""
+
+
+@lru_cache(maxsize=32)
+def _built_in_modes(racket: Racket) -> ModalModel:
+    """The racket's own modal model, kept for the racket (calibration rebuilds it often)."""
+    return modal_model_for(racket)
+
+
+@dataclass(frozen=True, eq=False)
+class ModelInputs:
+    """What a prediction at measured rows depends on.
+
+    Parameters
+    ----------
+    racket : Racket
+        The racket as described (its strings unscaled).
+    ball : Ball
+        The ball.
+    hand : Hand or None
+        The hand of ``hand`` rows (default :class:`Hand` when a row needs one).
+    modal_model : ModalModel, None or "racket"
+        The modes: ``"racket"`` builds the racket's own (its file, else the built-in beam
+        model, rebuilt when the racket changes); None is a rigid racket.
+    string_stiffness_scale : float
+        Factor on the string bed's restoring force (its tension and axial stiffness both
+        scaled: Kawazoe's law F = 2 S0 X / L + A E X³ / L³ scales as a whole).
+    frame_damping_scale : float
+        Factor on every mode's damping ratio (capped at :data:`MAX_DAMPING_RATIO`).
+    include_string_bed : bool
+        Charge string-bed modes as vibration loss too.
+    engine : {"auto", "compiled", "reference"}
+        Transient engine.
+    local_string_bed : bool
+        The string bed's law at each impact point from the lengths of its main and cross
+        strings (:func:`racketdyn.contact.local_compound_law`) instead of the face centre's for
+        every point.
+    """
+
+    racket: Racket
+    ball: Ball
+    hand: Hand | None = None
+    modal_model: ModalModel | Literal["racket"] | None = "racket"
+    string_stiffness_scale: float = 1.0
+    frame_damping_scale: float = 1.0
+    include_string_bed: bool = False
+    engine: str = "auto"
+    local_string_bed: bool = False
+
+    @property
+    def effective_racket(self) -> Racket:
+        """The racket with its string bed scaled by :attr:`string_stiffness_scale`."""
+        scale = self.string_stiffness_scale
+        if scale == 1.0:
+            return self.racket
+        strings = self.racket.strings
+        if strings.load_deflection_file is not None:
+            raise InputError(
+                "string_stiffness_scale: the racket's string bed is a measured load–deflection "
+                f"file ({strings.load_deflection_file.name}); fit its scale there, not here"
+            )
+        return replace(
+            self.racket,
+            strings=replace(
+                strings,
+                tension_n=strings.tension_n * scale,
+                string_modulus_pa=strings.string_modulus_pa * scale,
+            ),
+        )
+
+    def modes(self) -> ModalModel | None:
+        """The modal model used, its damping scaled."""
+        if self.modal_model is None:
+            return None
+        model = _built_in_modes(self.racket) if self.modal_model == "racket" else self.modal_model
+        if self.frame_damping_scale == 1.0:
+            return model
+        damping = np.minimum(model.damping_ratio * self.frame_damping_scale, MAX_DAMPING_RATIO)
+        return replace(model, damping_ratio=damping)
+
+    def law(self, location: tuple[float, float] | None = None) -> RestoringForce:
+        """Compound ball + string-bed law of :attr:`effective_racket`: the face centre's, or
+        with :attr:`local_string_bed` the one at ``location`` (x, y in m)."""
+        if self.local_string_bed and location is not None:
+            return _local_law(self.effective_racket, self.ball, location)
+        return compound_law(self.effective_racket, self.ball)
+
+
+@lru_cache(maxsize=4096)
+def _local_law(racket: Racket, ball: Ball, location: tuple[float, float]) -> RestoringForce:
+    return local_compound_law(racket, ball, location)
+
+
+def predict_rows(
+    inputs: ModelInputs, measured: MeasuredRebound, method: Method
+) -> tuple[NDArray[np.float64], NDArray[np.str_]]:
+    """Predicted rebound ratio at every measured row.
+
+    Parameters
+    ----------
+    inputs : ModelInputs
+        Racket, ball, hand, modes and the scales.
+    measured : MeasuredRebound
+        The rows (points, speeds, supports).
+    method : {"approx", "transient"}
+        Kawazoe's approximate method (eqs 1–12) or the transient simulation.
+
+    Returns
+    -------
+    rebound_ratio : ndarray (n,)
+        Predicted rebound ratio (glossary ``rebound_ratio``); NaN where the status is not ok.
+    status : ndarray of str (n,)
+        ``ok`` or why the method gives no number (:data:`racketdyn.impact.result.INVALIDATED`,
+        :data:`NO_HAND_STATUS`).
+    """
+    one_of("method", method, METHODS)
+    n = len(measured)
+    ratio = np.full(n, np.nan)
+    status = np.full(n, STATUS_OK, dtype=object)
+    racket = inputs.effective_racket
+    model, law = inputs.modes(), inputs.law()
+    points = [(float(x), float(y)) for x, y in measured.locations]
+    keys = list(
+        zip(
+            measured.support,
+            measured.ball_speed.tolist(),
+            measured.racket_speed.tolist(),
+            points if inputs.local_string_bed else [None] * n,
+            strict=True,
+        )
+    )
+    for key in dict.fromkeys(keys):
+        support, v_ball, v_racket, point = key
+        if point is not None:
+            law = inputs.law(point)
+        rows = np.array([i for i, k in enumerate(keys) if k == key])
+        if method == "approx" and support == "hand":
+            status[rows] = NO_HAND_STATUS
+            continue
+        options = {
+            "supports": [support],
+            "racket_speed": v_racket,
+            "modal_model": model,
+            "law": law,
+            "include_string_bed": inputs.include_string_bed,
+            "labels": [measured.labels[i] for i in rows],
+        }
+        if method == "approx":
+            result = predict(racket, inputs.ball, measured.locations[rows], [v_ball], **options)
+        else:
+            hand = (inputs.hand or Hand()) if support == "hand" else None
+            result = predict_transient(
+                racket,
+                inputs.ball,
+                measured.locations[rows],
+                [v_ball],
+                engine=inputs.engine,  # type: ignore[arg-type]
+                hand=hand,
+                **options,
+            )
+        ratio[rows] = result.rebound_ratio[:, 0, 0]
+        status[rows] = np.asarray(result.status)[:, 0, 0]
+    ratio[status != STATUS_OK] = np.nan
+    return ratio, status.astype(str)

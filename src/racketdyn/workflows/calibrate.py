@@ -1,0 +1,285 @@
+"""Step ``calibrate``: uncertain inputs fitted to measured rebound (issue 15).
+
+Writes ``calibration.json`` (:meth:`racketdyn.impact.calibration.Calibration.as_dict`: values,
+standard errors, identifiability, correlation, fit / held-out / leave-one-out RMS),
+``calibration_rows.csv`` (each measured row: fitted or held out, measured, predicted before and
+after, residual, leave-one-out residual), the calibrated inputs as files the other commands
+take — ``racket.toml`` (roll inertia, string bed scaled; with ``modal.json`` when the frame
+damping was fitted) — and ``run.json``.  ``validate --calibration calibration.json`` applies
+every identifiable value, the ball's and the hand's included.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from racketdyn.ball import Ball
+from racketdyn.errors import InputError
+from racketdyn.impact.calibration import Calibration, calibrate
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.measured import METHODS, Method, ModelInputs, predict_rows
+from racketdyn.io.measured import MeasuredRebound
+from racketdyn.io.racket_file import load_racket, write_racket_toml
+from racketdyn.modal import ModalModel
+from racketdyn.racket import Racket
+from racketdyn.workflows.inputs import RacketInput
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    report,
+    run_step,
+    write_rows,
+)
+from racketdyn.workflows.validate import measured_setup
+
+__all__ = ["CALIBRATION_ROW_COLUMNS", "CalibrateResult", "run_calibrate"]
+
+CALIBRATION_ROW_COLUMNS = (
+    "row",
+    "point",
+    "x_m",
+    "y_m",
+    "ball_speed_mps",
+    "racket_speed_mps",
+    "support",
+    "role",
+    "measured",
+    "predicted_before",
+    "predicted_after",
+    "residual_after",
+    "residual_leave_one_out",
+    "status",
+)
+"""Columns of ``calibration_rows.csv``: ``role`` is ``fitted``, ``held out`` or ``flagged``
+(the model gives no number there at the start); rebound ratios, residual = predicted −
+measured."""
+
+
+@dataclass
+class CalibrateResult(StepResult):
+    """What :func:`run_calibrate` computed and wrote.
+
+    Attributes
+    ----------
+    calibration : Calibration
+        The fit.
+    inputs, calibrated : ModelInputs
+        The inputs before and after.
+    measured : MeasuredRebound
+        The rows.
+    before, after : ndarray
+        Predicted rebound ratio per row before and after.
+    holdout : list of int
+        Held-out rows, 0-based.
+    """
+
+    calibration: Calibration | None = None
+    inputs: ModelInputs | None = None
+    calibrated: ModelInputs | None = None
+    measured: MeasuredRebound | None = None
+    before: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    after: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    holdout: list[int] = field(default_factory=list)
+
+
+@run_step
+def run_calibrate(
+    out: str | os.PathLike[str],
+    measured: MeasuredRebound | str | os.PathLike[str],
+    fit: Sequence[str],
+    *,
+    racket: RacketInput = None,
+    holdout: Sequence[int] = (),
+    method: Method = "transient",
+    leave_one_out: bool = True,
+    modal: ModalModel | str | os.PathLike[str] | None = None,
+    rigid: bool = False,
+    ball: Ball | None = None,
+    hand: Hand | None = None,
+    engine: str = "auto",
+    local_string_bed: bool = False,
+    allow_implausible: bool = False,
+    defaults: Sequence[str] = (),
+    command: Sequence[str] | None = None,
+    figures: Callable[[CalibrateResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> CalibrateResult:
+    """Fit the named parameters to measured rebound and write the run folder.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    measured : MeasuredRebound or path
+        Measured rebound (:func:`racketdyn.io.read_measured`).
+    fit : sequence of str
+        Parameters to fit (:data:`racketdyn.impact.calibration.PARAMETERS`).
+    racket : Racket, path or None
+        The racket measured.
+    holdout : sequence of int
+        Rows held out of the fit, numbered from 1 (the first data row).
+    method : {"approx", "transient"}
+        The model fitted.
+    leave_one_out : bool
+        Refit once per fitted row without it (leave-one-out residuals).
+    modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
+        As for :func:`racketdyn.workflows.validate.run_validate`.
+    defaults, command, figures, progress
+        As for every step.
+
+    Returns
+    -------
+    CalibrateResult
+    """
+    if method not in METHODS:
+        raise InputError(f"--model must be one of {', '.join(METHODS)} (got {method!r})")
+    inputs, rows, provenance, defaults_used = measured_setup(
+        racket, measured, modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
+    )
+    held = [int(i) for i in holdout]
+    if any(i < 1 or i > len(rows) for i in held):
+        raise InputError(f"--holdout: rows are numbered 1 to {len(rows)} (got {held})")
+    held0 = [i - 1 for i in held]
+    report(progress, f"fitting {', '.join(fit)} to {len(rows) - len(held)} rows ({method})")
+    calibration, calibrated = calibrate(
+        inputs, rows, fit, method=method, holdout=held0, leave_one_out=leave_one_out
+    )
+    before, status = predict_rows(inputs, rows, method)
+    after, status_after = predict_rows(calibrated, rows, method)
+    out_dir = Path(out)
+    result = CalibrateResult(
+        out_dir,
+        calibration=calibration,
+        inputs=inputs,
+        calibrated=calibrated,
+        measured=rows,
+        before=before,
+        after=after,
+        holdout=held0,
+    )
+    record = calibration.as_dict()
+    files = _calibrated_files(calibrated, calibration, out_dir)
+    record["calibrated_files"] = {
+        "racket.toml": "the racket with the fitted roll inertia and string-bed scale "
+        "(predict --racket, validate --racket)",
+        **({"modal.json": "its modes with the fitted damping (named by racket.toml)"}
+           if "frame_damping_scale" in calibration.values else {}),
+        "options": _options(calibration),
+        "validate": "validate --calibration calibration.json applies every identifiable value",
+    }  # fmt: skip
+    path = out_dir / "calibration.json"
+    path.write_text(json.dumps(record, indent=2), encoding="utf-8")
+    result.written += [path, *files]
+    result.written.append(
+        write_rows(out_dir / "calibration_rows.csv", _rows(result, status, status_after))
+    )
+    inputs_record = {
+        **provenance,
+        "fit": list(fit),
+        "method": method,
+        "holdout_rows": held,
+        "leave_one_out": leave_one_out,
+        "engine": engine,
+        "local_string_bed": local_string_bed,
+        "n_rows": len(rows),
+        "summary": {
+            key: record[key]
+            for key in ("fit_rms", "holdout_rms", "leave_one_out_rms", "rows", "reduced_chi2")
+        },
+        "columns": {"calibration_rows.csv": list(CALIBRATION_ROW_COLUMNS)},
+        "defaults_used": [*defaults_used, *defaults],
+    }
+    return finish_run(result, inputs_record, command_record(command, "calibrate"), figures)
+
+
+def _options(calibration: Calibration) -> str:
+    """The command-line options carrying the fitted values racket.toml cannot hold."""
+    values = calibration.values
+    parts = []
+    if math.isfinite(values.get("e_bg", math.nan)):
+        parts.append(f"--e-bg {values['e_bg']:.4f}")
+    if math.isfinite(values.get("hand_arm_mass_kg", math.nan)):
+        parts.append(f"--hand-arm-mass {values['hand_arm_mass_kg']:.4f}")
+    hand_only = [n for n in ("hand_stiffness_n_per_m", "hand_damping_ns_per_m") if n in values]
+    text = " ".join(parts) if parts else "none"
+    if hand_only:
+        text += f"; {', '.join(hand_only)}: no option, validate --calibration applies them"
+    return text
+
+
+def _calibrated_files(calibrated: ModelInputs, calibration: Calibration, out: Path) -> list[Path]:
+    """racket.toml (and modal.json with a fitted damping), read back to prove them."""
+    racket = calibrated.effective_racket
+    written = []
+    if math.isfinite(calibration.values.get("frame_damping_scale", math.nan)):
+        model = calibrated.modes()
+        assert model is not None
+        model.write_json(out / "modal.json")
+        written.append(out / "modal.json")
+        racket = _with_modal_file(racket, out / "modal.json")
+    path = write_racket_toml(
+        racket, out / "racket.toml", "written by racketdyn calibrate (calibration.json beside)"
+    )
+    try:
+        load_racket(path)
+    except InputError as error:  # a fitted value beyond the plausible range: say so in the file
+        text = path.read_text(encoding="utf-8")
+        path.write_text(
+            f"# a fitted value lies outside the plausible range ({error})\n"
+            + text
+            + "[checks]\nallow_implausible = true\n",
+            encoding="utf-8",
+        )
+        load_racket(path)
+    written.append(path)
+    return written
+
+
+def _with_modal_file(racket: Racket, path: Path) -> Racket:
+    return replace(racket, modal_model_file=path)
+
+
+def _rows(
+    result: CalibrateResult, status: NDArray[np.str_], status_after: NDArray[np.str_]
+) -> list[dict[str, Any]]:
+    rows, calibration = result.measured, result.calibration
+    assert rows is not None
+    assert calibration is not None
+    loo = calibration.loo if calibration.loo.size else np.full(len(rows), np.nan)
+    table = []
+    for i in range(len(rows)):
+        role = (
+            "held out"
+            if i in result.holdout
+            else ("flagged" if not math.isfinite(result.before[i]) else "fitted")
+        )
+        table.append(
+            {
+                "row": i + 1,
+                "point": rows.labels[i],
+                "x_m": rows.locations[i, 0],
+                "y_m": rows.locations[i, 1],
+                "ball_speed_mps": rows.ball_speed[i],
+                "racket_speed_mps": rows.racket_speed[i],
+                "support": rows.support[i],
+                "role": role,
+                "measured": rows.rebound_ratio[i],
+                "predicted_before": result.before[i],
+                "predicted_after": result.after[i],
+                "residual_after": result.after[i] - rows.rebound_ratio[i],
+                "residual_leave_one_out": loo[i],
+                "status": status_after[i] if status_after[i] != "ok" else status[i],
+            }
+        )
+    return table

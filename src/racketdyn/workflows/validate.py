@@ -1,0 +1,384 @@
+"""Step ``validate``: predicted against measured rebound, for both impact models (issue 15).
+
+Writes ``validation.csv`` (:data:`VALIDATION_COLUMNS`: each measured row with both models'
+predictions, residuals and statuses) and ``run.json`` (the summary per model: rows compared,
+rows flagged, RMS error and bias of the rebound ratio, RMS of the outgoing speed in m/s and in
+per cent); the figures come from the caller's hook.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from racketdyn.ball import Ball
+from racketdyn.errors import InputError
+from racketdyn.impact.calibration import PARAMETERS, apply
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.measured import METHODS, ModelInputs, predict_rows
+from racketdyn.impact.transient import ENGINES
+from racketdyn.io import racket_to_dict
+from racketdyn.io.measured import MeasuredRebound, read_measured
+from racketdyn.modal import ModalModel
+from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    report,
+    run_step,
+    sha256,
+    write_rows,
+)
+
+__all__ = [
+    "VALIDATION_COLUMNS",
+    "MethodSummary",
+    "ValidateResult",
+    "load_calibration",
+    "measured_setup",
+    "run_validate",
+    "summarise",
+]
+
+VALIDATION_COLUMNS = (
+    "row",
+    "point",
+    "x_m",
+    "y_m",
+    "ball_speed_mps",
+    "racket_speed_mps",
+    "support",
+    "measured",
+    "measured_sd",
+    "predicted_approx",
+    "predicted_transient",
+    "residual_approx",
+    "residual_transient",
+    "status_approx",
+    "status_transient",
+)
+"""Columns of ``validation.csv``: rebound ratios (measured, predicted, residual = predicted −
+measured); a row a model flags holds NaN in its predicted and residual columns, its status
+says why.  ``row`` is the row's number in the measured file (1 = first data row)."""
+
+
+@dataclass(frozen=True)
+class MethodSummary:
+    """Predicted against measured for one model.
+
+    Attributes
+    ----------
+    method : str
+        ``approx`` or ``transient``.
+    n_compared, n_flagged : int
+        Rows with a prediction, and rows the model flags (NaN, left out).
+    rms, bias : float
+        RMS and mean of predicted − measured rebound ratio (NaN with no row compared).
+    rms_speed_mps : float
+        RMS of predicted − measured outgoing ball speed, m/s.
+    rms_speed_percent : float
+        RMS of (predicted − measured) / measured outgoing speed, %.
+    """
+
+    method: str
+    n_compared: int
+    n_flagged: int
+    rms: float
+    bias: float
+    rms_speed_mps: float
+    rms_speed_percent: float
+
+    def as_dict(self) -> dict[str, Any]:
+        """For run.json (NaN as null)."""
+        return {
+            key: (None if isinstance(v, float) and not math.isfinite(v) else v)
+            for key, v in vars(self).items()
+        }
+
+
+def summarise(
+    method: str, measured: MeasuredRebound, predicted: NDArray[np.float64]
+) -> MethodSummary:
+    """RMS error and bias of one model's predictions (flagged rows left out, counted)."""
+    ok = np.isfinite(predicted)
+    residual = (predicted - measured.rebound_ratio)[ok]
+    approach = (measured.ball_speed + measured.racket_speed)[ok]
+    out = measured.outgoing_speed[ok]
+    speed_error = residual * approach  # v_out = e v_b + (1 + e) v_r: dv_out = de (v_b + v_r)
+    nan = math.nan
+    if not residual.size:
+        return MethodSummary(method, 0, int((~ok).sum()), nan, nan, nan, nan)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        relative = speed_error / out
+    return MethodSummary(
+        method,
+        int(ok.sum()),
+        int((~ok).sum()),
+        float(np.sqrt(np.mean(residual**2))),
+        float(np.mean(residual)),
+        float(np.sqrt(np.mean(speed_error**2))),
+        float(100.0 * np.sqrt(np.mean(relative**2))) if np.all(out > 0) else nan,
+    )
+
+
+@dataclass
+class ValidateResult(StepResult):
+    """What :func:`run_validate` computed and wrote.
+
+    Attributes
+    ----------
+    measured : MeasuredRebound
+        The measured rows.
+    inputs : ModelInputs
+        Racket, ball, hand, modes and scales the predictions used (calibrated if asked).
+    predicted, status : dict of str to ndarray
+        Per model: predicted rebound ratio per row (NaN where flagged) and its status.
+    summary : dict of str to MethodSummary
+        Per model.
+    calibration : dict of str to float
+        The calibrated values applied (empty without ``calibration``).
+    """
+
+    measured: MeasuredRebound | None = None
+    inputs: ModelInputs | None = None
+    predicted: dict[str, NDArray[np.float64]] = field(default_factory=dict)
+    status: dict[str, NDArray[np.str_]] = field(default_factory=dict)
+    summary: dict[str, MethodSummary] = field(default_factory=dict)
+    calibration: dict[str, float] = field(default_factory=dict)
+
+
+def load_calibration(path: str | os.PathLike[str]) -> dict[str, float]:
+    """The identifiable fitted values of a ``calibration.json`` (calibrate's output)."""
+    file = Path(path)
+    try:
+        data = json.loads(file.read_text(encoding="utf-8"))
+        parameters = data["parameters"]
+        values = {
+            str(p["name"]): float(p["value"]) for p in parameters if p.get("value") is not None
+        }
+    except FileNotFoundError:
+        raise InputError(f"--calibration {file}: no such file") from None
+    except (OSError, ValueError, KeyError, TypeError) as error:
+        raise InputError(
+            f"--calibration {file}: not a calibration.json written by racketdyn calibrate "
+            f"({type(error).__name__}: {error})"
+        ) from None
+    unknown = [name for name in values if name not in PARAMETERS]
+    if unknown:
+        raise InputError(f"--calibration {file}: unknown parameter(s) {', '.join(unknown)}")
+    return values
+
+
+def measured_setup(
+    racket: RacketInput,
+    measured: MeasuredRebound | str | os.PathLike[str],
+    modal: ModalModel | str | os.PathLike[str] | None,
+    rigid: bool,
+    ball: Ball | None,
+    hand: Hand | None,
+    engine: str,
+    local_string_bed: bool = False,
+    allow_implausible: bool = False,
+) -> tuple[ModelInputs, MeasuredRebound, dict[str, Any], list[str]]:
+    """The measured rows (checked on the racket's face) and the model inputs (with
+    ``local_string_bed``, the string-bed law of each point:
+    :func:`racketdyn.contact.local_string_bed_law`).
+
+    Returns
+    -------
+    inputs : ModelInputs
+    measured : MeasuredRebound
+    provenance : dict
+        Racket, modes and measured file, for run.json.
+    defaults : list of str
+        Defaults used.
+    """
+    if engine not in ENGINES:
+        raise InputError(f"--engine must be one of {', '.join(ENGINES)} (got {engine!r})")
+    rows = (
+        measured
+        if isinstance(measured, MeasuredRebound)
+        else read_measured(Path(measured), allow_implausible=allow_implausible)
+    )
+    used = setup(racket, modal, rigid)
+    outside = np.flatnonzero(~used.racket.head.contains(rows.locations))
+    if outside.size:
+        i = int(outside[0])
+        x, y = rows.locations[i]
+        raise InputError(
+            f"{rows.source}: line {rows.lines[i]}: the point x={x:.4f} m, y={y:.4f} m lies "
+            f"outside the string bed of {used.racket.name} (give points on its strings, or "
+            "the racket file of the racket measured: --racket)"
+        )
+    the_ball, ball_defaults = ball_or_default(ball)
+    the_hand, hand_defaults = hand_or_default(rows.support, hand)
+    provenance = dict(used.provenance)
+    if not isinstance(measured, MeasuredRebound):
+        provenance["measured_file"] = str(Path(measured).resolve())
+        provenance["measured_sha256"] = sha256(Path(measured))
+    # the built-in model follows the racket (a fitted roll inertia changes its twisting mode)
+    follows = (
+        used.modal_model is not None and modal is None and used.racket.modal_model_file is None
+    )
+    inputs = ModelInputs(
+        used.racket,
+        the_ball,
+        the_hand,
+        "racket" if follows else (None if rigid else used.modal_model),
+        engine=engine,
+        local_string_bed=local_string_bed,
+    )
+    if local_string_bed and used.racket.strings.load_deflection_file is not None:
+        raise InputError(
+            "--local-string-bed needs the strings' construction; the racket's string bed is a "
+            "measured load–deflection file (a law at one point): drop one of them"
+        )
+    return inputs, rows, provenance, [*used.defaults, *ball_defaults, *hand_defaults]
+
+
+@run_step
+def run_validate(
+    out: str | os.PathLike[str],
+    measured: MeasuredRebound | str | os.PathLike[str],
+    *,
+    racket: RacketInput = None,
+    calibration: str | os.PathLike[str] | dict[str, float] | None = None,
+    modal: ModalModel | str | os.PathLike[str] | None = None,
+    rigid: bool = False,
+    ball: Ball | None = None,
+    hand: Hand | None = None,
+    engine: str = "auto",
+    local_string_bed: bool = False,
+    allow_implausible: bool = False,
+    defaults: Sequence[str] = (),
+    command: Sequence[str] | None = None,
+    figures: Callable[[ValidateResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> ValidateResult:
+    """Predict every measured row by both models and write the run folder.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    measured : MeasuredRebound or path
+        Measured rebound (a CSV file: :func:`racketdyn.io.read_measured`).
+    racket : Racket, path or None
+        The racket measured (object, TOML file, or None for the built-in racket).
+    calibration : path or dict, optional
+        A ``calibration.json`` (calibrate's output) or ``{name: value}``: its values applied.
+    modal : ModalModel or path, optional
+        Modal model replacing the racket's modes.
+    rigid : bool
+        No vibration: a rigid racket.
+    ball : Ball, optional
+        The ball (default :class:`~racketdyn.ball.Ball`).
+    hand : Hand, optional
+        The hand of ``hand`` rows.
+    engine : {"auto", "compiled", "reference"}
+        Transient engine.
+    local_string_bed : bool
+        The string bed's law at each point from its strings' lengths (default: the centre's).
+    allow_implausible : bool
+        Take measured speeds beyond those of play (:func:`racketdyn.io.read_measured`).
+    defaults : sequence of str
+        Defaults the caller filled in, added to run.json.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths`` (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)``.
+
+    Returns
+    -------
+    ValidateResult
+    """
+    inputs, rows, provenance, defaults_used = measured_setup(
+        racket, measured, modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
+    )
+    values: dict[str, float] = {}
+    if isinstance(calibration, dict):
+        values = {str(k): float(v) for k, v in calibration.items()}
+        provenance["calibration"] = "values given from Python"
+    elif calibration is not None:
+        values = load_calibration(calibration)
+        provenance["calibration_file"] = str(Path(calibration).resolve())
+        provenance["calibration_sha256"] = sha256(Path(calibration))
+    inputs = apply(inputs, values)
+    result = ValidateResult(Path(out), measured=rows, inputs=inputs, calibration=values)
+    for method in METHODS:
+        report(progress, f"{method}: {len(rows)} measured impacts")
+        predicted, status = predict_rows(inputs, rows, method)
+        result.predicted[method], result.status[method] = predicted, status
+        result.summary[method] = summarise(method, rows, predicted)
+    result.written.append(write_rows(Path(out) / "validation.csv", _rows(result)))
+    record = {
+        **provenance,
+        "racket": racket_to_dict(inputs.effective_racket),
+        "ball_e_bg": inputs.ball.e_bg_record(),
+        "hand": None if inputs.hand is None else vars(inputs.hand),
+        "scales": {
+            "string_stiffness_scale": inputs.string_stiffness_scale,
+            "frame_damping_scale": inputs.frame_damping_scale,
+        },
+        "calibrated_values": values,
+        "engine": engine,
+        "string_bed_law": _law_words(local_string_bed),
+        "n_rows": len(rows),
+        "measured_column": rows.given,
+        "rebound_ratio": "e = (v_out - v_racket) / (v_ball + v_racket)",
+        "summary": {m: s.as_dict() for m, s in result.summary.items()},
+        "columns": {"validation.csv": list(VALIDATION_COLUMNS)},
+        "defaults_used": [*defaults_used, *defaults],
+    }
+    return finish_run(result, record, command_record(command, "validate"), figures)
+
+
+def _rows(result: ValidateResult) -> list[dict[str, Any]]:
+    rows = result.measured
+    assert rows is not None
+    sd = rows.rebound_ratio_sd
+    table = []
+    for i in range(len(rows)):
+        approx, transient = result.predicted["approx"][i], result.predicted["transient"][i]
+        table.append(
+            {
+                "row": i + 1,
+                "point": rows.labels[i],
+                "x_m": rows.locations[i, 0],
+                "y_m": rows.locations[i, 1],
+                "ball_speed_mps": rows.ball_speed[i],
+                "racket_speed_mps": rows.racket_speed[i],
+                "support": rows.support[i],
+                "measured": rows.rebound_ratio[i],
+                "measured_sd": None if sd is None else sd[i],
+                "predicted_approx": approx,
+                "predicted_transient": transient,
+                "residual_approx": approx - rows.rebound_ratio[i],
+                "residual_transient": transient - rows.rebound_ratio[i],
+                "status_approx": result.status["approx"][i],
+                "status_transient": result.status["transient"][i],
+            }
+        )
+    return table
+
+
+def _law_words(local: bool) -> str:
+    """How the string bed's law was taken, for run.json."""
+    if local:
+        return (
+            "local: Kawazoe's law with the main and cross strings through each point "
+            "(racketdyn.contact.local_string_bed_law)"
+        )
+    return "one law for the whole face: the face centre's (racketdyn.contact.string_bed_law)"
