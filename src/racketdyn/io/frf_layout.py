@@ -34,6 +34,7 @@ from racketdyn.io.uff import (
     FREQUENCY_RESPONSE,
     QUANTITY_CODE,
     RESPONSE_OF_CODE,
+    _bandwidth_of,
     _check_same_abscissa,
     _coherence,
     _frf_id_fields,
@@ -158,8 +159,10 @@ def read_frfs(
     FrfSet
         Points ordered by node number; ``reference_node`` the reference; locations (x, y, z)
         in the lab's frame, m ((x, y) when every point has the same z); metadata
-        ``layout`` (:data:`LAYOUTS`), ``left_out`` (FRFs not against the reference) and
-        ``directions`` (node → direction code used).
+        ``layout`` (:data:`LAYOUTS`), ``left_out`` (FRFs not against the reference),
+        ``directions`` (node → direction code used) and, for FRFs racketdyn estimated,
+        ``bandwidth_hz`` (fs/2.56; another system's export ends at its bandwidth:
+        :attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`).
 
     Raises
     ------
@@ -255,6 +258,7 @@ def read_frfs(
     frequency_scale = _scale(path, first, "frequency", _normal_label(first.labels[0]), units)
     coherence = _coherence(path, records, ref, nodes, first) if layout == "roving hammer" else None
     estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
+    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
     return FrfSet(
         frequency=first.x * frequency_scale,
         values=values,
@@ -274,5 +278,6 @@ def read_frfs(
             "layout": layout,
             "left_out": left_out,
             "directions": {int(n): int(point_of(by_node[n])[1]) for n in nodes},
+            **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
         },
     )
