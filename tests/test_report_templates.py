@@ -228,3 +228,36 @@ def test_negative_rebound_ratios_are_explained_on_the_page(tmp_path: Path) -> No
     assert data["negative"] is not None
     assert "carries on forward" in data["negative"]
     assert "trust the transient" in data["negative"]
+
+
+def test_the_truth_section_renders_found_and_missed_modes() -> None:
+    html = render_section(
+        "truth",
+        {
+            "blocks": [
+                {
+                    "label": "free",
+                    "truth": "rig/modal_truth_free.json",
+                    "identified": "compare/modal_model_free.json",
+                    "rows": [
+                        (
+                            "2-node bending",
+                            "120.00",
+                            "120.01",
+                            "+0.005",
+                            "0.500",
+                            "0.502",
+                            "+0.4",
+                            "1.000",
+                        )
+                    ],
+                    "missed": [
+                        ("string-bed membrane 3", "1236.5", "on a node at the accelerometer")
+                    ],
+                }
+            ]
+        },
+    )
+    assert "against the rig's truth rig/modal_truth_free.json" in html
+    assert '<td>2-node bending</td><td class="num">120.00</td>' in html
+    assert "on a node at the accelerometer" in html

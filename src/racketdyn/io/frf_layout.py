@@ -25,7 +25,7 @@ from __future__ import annotations
 import logging
 from collections import Counter
 from pathlib import Path
-from typing import Any, cast
+from typing import cast
 
 import numpy as np
 
@@ -37,6 +37,9 @@ from racketdyn.io.uff import (
     _bandwidth_of,
     _check_same_abscissa,
     _coherence,
+    _Contents,
+    _coordinates,
+    _describe_types,
     _frf_id_fields,
     _frf_scale,
     _normal_label,
@@ -45,7 +48,6 @@ from racketdyn.io.uff import (
     _record_of,
     _scale,
     _sign,
-    _Units,
     _units_of,
 )
 from racketdyn.measurement.records import FRF_TYPE_OF_RESPONSE, FrfSet, FrfType
@@ -56,28 +58,6 @@ log = logging.getLogger(__name__)
 
 LAYOUTS = ("roving hammer", "roving accelerometer", "several references")
 """How a file's FRFs were measured (``FrfSet.metadata["layout"]``)."""
-
-
-def _coordinates(
-    path: Path, sets: list[dict[str, Any]], units: _Units
-) -> dict[int, tuple[float, float, float]]:
-    """Node coordinates (x, y, z) in m from data sets 15 and 2411."""
-    nodes: dict[int, tuple[float, float, float]] = {}
-    for i, dset in enumerate(sets, start=1):
-        if dset.get("type") not in (15, 2411):
-            continue
-        numbers = np.asarray(dset.get("node_nums", []), dtype=float)
-        xyz = [np.asarray(dset.get(k, []), dtype=float) / units.length for k in "xyz"]
-        if not all(a.size == numbers.size for a in xyz) or not np.all(
-            np.isfinite(np.r_[numbers, *xyz])
-        ):
-            raise InputError(
-                f"{path}: data set {i} ({dset['type']}, nodes): every node needs a finite "
-                "number and finite x, y, z coordinates"
-            )
-        for number, x, y, z in zip(numbers, *xyz, strict=True):
-            nodes[int(number)] = (float(x), float(y), float(z))
-    return nodes
 
 
 def _check(path: Path, record: _Record) -> None:
@@ -138,7 +118,11 @@ def _listed(nodes: list[int]) -> str:
 
 
 def read_frfs(
-    path: Path | str, geometry: Path | str | None = None, reference: int | None = None
+    path: Path | str,
+    geometry: Path | str | None = None,
+    reference: int | None = None,
+    *,
+    require_coordinates: bool = True,
 ) -> FrfSet:
     """Read the FRFs of a file against one reference node, whatever moved during the test.
 
@@ -153,6 +137,10 @@ def read_frfs(
         The reference node (a node every FRF used has at one end).  Default: the only
         response node (roving hammer), the only excitation node (roving accelerometer), or
         the node reaching the most points when one node does.
+    require_coordinates : bool
+        A point without coordinates is an error naming ``--geometry`` (default: shapes need
+        them); False gives it NaN coordinates (FRFs need none;
+        :func:`racketdyn.io.uff.read_frf_uff`).
 
     Returns
     -------
@@ -173,19 +161,20 @@ def read_frfs(
     path = Path(path)
     sets = _read_sets(path)
     units = _units_of(path, sets)
-    coordinates = _coordinates(path, sets, units)
-    if geometry is not None:
-        geometry_sets = _read_sets(Path(geometry))
-        coordinates.update(
-            _coordinates(Path(geometry), geometry_sets, _units_of(Path(geometry), geometry_sets))
-        )
-    records = [
-        _record_of(path, i, dset)
-        for i, dset in enumerate(sets, start=1)
-        if dset.get("type") == 58 and int(dset.get("func_type", 0) or 0) == FREQUENCY_RESPONSE
+    coordinates = _coordinates(path, sets, units, geometry)
+    every = [
+        _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
     ]
+    records = [r for r in every if r.func_type == FREQUENCY_RESPONSE]
     if not records:
-        raise InputError(f"{path}: no FRFs (data set 58, function type 4)")
+        contents = _Contents(
+            records=every, nodes={}, units=units, types=[int(d.get("type") or 0) for d in sets]
+        )
+        hint = "; read it with read_hammer_uff" if any(r.func_type == 1 for r in every) else ""
+        raise InputError(
+            f"{path}: no FRFs (data set 58, function type {FREQUENCY_RESPONSE}): the file holds "
+            f"{_describe_types(contents)}{hint}"
+        )
     for record in records:
         _check(path, record)
     ref, layout = _choose_reference(path, records, reference)
@@ -234,7 +223,15 @@ def read_frfs(
             )
         _check_same_abscissa(path, first, record, "frequency axis")
     missing = [n for n in [*nodes, ref] if n not in coordinates]
-    if missing:
+    if missing and not require_coordinates:
+        log.info(
+            "%s: node(s) %s have no coordinates (FRFs need none; shapes and maps will ask for "
+            "--geometry)",
+            path,
+            _listed(missing),
+        )
+        coordinates = {**coordinates, **{n: (np.nan, np.nan, np.nan) for n in missing}}
+    elif missing:
         where = "" if geometry is None else f" or {geometry}"
         raise InputError(
             f"{path}: node{'s' if len(missing) > 1 else ''} {_listed(missing)} ha"
@@ -243,7 +240,8 @@ def read_frfs(
         )
     xyz = np.asarray([coordinates[n] for n in nodes], dtype=float)
     reference_xyz = np.asarray(coordinates[ref], dtype=float)
-    three_d = bool(np.ptp(np.r_[xyz[:, 2], reference_xyz[2]]) > 0)
+    z = np.r_[xyz[:, 2], reference_xyz[2]]
+    three_d = bool(np.nanmax(z) > np.nanmin(z)) if np.isfinite(z).any() else False
     locations = xyz if three_d else xyz[:, :2]
     values = np.asarray(
         [
@@ -256,7 +254,7 @@ def read_frfs(
         dtype=complex,
     )
     frequency_scale = _scale(path, first, "frequency", _normal_label(first.labels[0]), units)
-    coherence = _coherence(path, records, ref, nodes, first) if layout == "roving hammer" else None
+    coherence = _coherence(path, every, ref, nodes, first) if layout == "roving hammer" else None
     estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
     bandwidth = _bandwidth_of([by_node[n] for n in nodes])
     return FrfSet(

@@ -47,7 +47,6 @@ from racketdyn.measurement.records import (
     FRF_TYPE_OF_RESPONSE,
     RESPONSE_TYPES,
     FrfSet,
-    FrfType,
     HammerRecords,
     ResponseType,
 )
@@ -233,11 +232,11 @@ def _units_of(path: Path, sets: Sequence[dict[str, Any]]) -> _Units:
     return _Units()
 
 
-def _nodes_of(
+def _nodes_xyz_of(
     path: Path, sets: Sequence[dict[str, Any]], units: _Units
-) -> dict[int, tuple[float, float]]:
-    """Node coordinates (x, y) in m from data sets 15 and 2411 (z ignored)."""
-    nodes: dict[int, tuple[float, float]] = {}
+) -> dict[int, tuple[float, float, float]]:
+    """Node coordinates (x, y, z) in m from data sets 15 and 2411, their extent checked."""
+    nodes: dict[int, tuple[float, float, float]] = {}
     for i, dset in enumerate(sets, start=1):
         if dset.get("type") not in (15, 2411):
             continue
@@ -260,8 +259,8 @@ def _nodes_of(
                 "coordinates are likely in mm; add a data set 164 giving the length unit, or "
                 "give the coordinates in m with --geometry FILE"
             )
-        for number, xi, yi in zip(numbers, x, y, strict=True):
-            nodes[int(number)] = (float(xi), float(yi))
+        for number, xi, yi, zi in zip(numbers, x, y, z, strict=True):
+            nodes[int(number)] = (float(xi), float(yi), float(zi))
     return nodes
 
 
@@ -420,21 +419,29 @@ def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
     return record
 
 
-def _load(path: Path, geometry: Path | str | None) -> _Contents:
-    """Records 58 and node coordinates of a file (and of a separate geometry file)."""
-    sets = _read_sets(path)
-    units = _units_of(path, sets)
-    nodes = _nodes_of(path, sets, units)
+def _coordinates(
+    path: Path, sets: Sequence[dict[str, Any]], units: _Units, geometry: Path | str | None
+) -> dict[int, tuple[float, float, float]]:
+    """Node coordinates (x, y, z), m, of a file and of a separate geometry file (which wins)."""
+    nodes = _nodes_xyz_of(path, sets, units)
     if geometry is not None:
         geometry = Path(geometry)
         geometry_sets = _read_sets(geometry)
-        found = _nodes_of(geometry, geometry_sets, _units_of(geometry, geometry_sets))
+        found = _nodes_xyz_of(geometry, geometry_sets, _units_of(geometry, geometry_sets))
         if not found:
             raise InputError(
                 f"{geometry}: no node coordinates (data set 15 or 2411); give a geometry file "
                 "that lists the nodes"
             )
         nodes.update(found)
+    return nodes
+
+
+def _load(path: Path, geometry: Path | str | None) -> _Contents:
+    """Records 58 and node coordinates (x, y) of a file (and of a separate geometry file)."""
+    sets = _read_sets(path)
+    units = _units_of(path, sets)
+    nodes = {n: (x, y) for n, (x, y, _) in _coordinates(path, sets, units, geometry).items()}
     records = [
         _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
     ]
@@ -653,109 +660,48 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
     )
 
 
-def read_frf_uff(path: Path | str, geometry: Path | str | None = None) -> FrfSet:
-    """Read the FRFs of a roving-hammer test from a Universal File.
+def read_frf_uff(
+    path: Path | str, geometry: Path | str | None = None, reference: int | None = None
+) -> FrfSet:
+    """Read the FRFs of a Universal File against one reference node.
+
+    The one FRF reader: :func:`racketdyn.io.frf_layout.read_frfs` (any layout — roving
+    hammer, roving accelerometer, several references —, z kept), with points allowed to lack
+    coordinates (FRFs need none: they get NaN, and a step that needs them asks for
+    ``--geometry``) and the set negated back where its driving point reads with negative
+    modal constants (:meth:`FrfSet.with_positive_driving_point`).
 
     Parameters
     ----------
     path : Path or str
-        Universal File with data sets 58 or 58b of function type 4 (FRF), complex: response
-        node = the fixed transducer (the reference of the set), reference node = the hammer
-        point.  The FRF type follows the ordinate (numerator) type of record 9: 8 displacement
-        → receptance, 11 velocity → mobility, 12 acceleration → accelerance; the denominator
-        (record 10) must be a force (13) or left unknown (0).  Coherences (function type 6)
-        of the same node pairs are read when every point has one.  Node coordinates (data set
-        15 or 2411, m) may be in the same file.
+        Universal File with data sets 58 or 58b of function type 4 (FRF), complex.  The FRF
+        type follows the ordinate (numerator) type of record 9: 8 displacement → receptance,
+        11 velocity → mobility, 12 acceleration → accelerance; the denominator (record 10)
+        must be a force (13) or left unknown (0).  Coherences (function type 6) of the same
+        node pairs are read when every point has one.  Node coordinates (data set 15 or 2411,
+        m, or in data set 164's unit) may be in the same file.
     geometry : Path or str, optional
-        A second Universal File with node coordinates (data set 15 or 2411, m); its nodes take
-        precedence over those of ``path``.
+        A second Universal File with node coordinates; its nodes take precedence.
+    reference : int, optional
+        The reference node when the file has FRFs against several (``--reference``).
 
     Returns
     -------
     FrfSet
         Points ordered by node number, frequencies in Hz, values in SI units of the FRF type.
-        Files written by :func:`write_frf_uff` give back their estimator, exponential window
-        and averages; other files get ``estimator="file"``.
+        Files written by :func:`write_frf_uff` give back their estimator, exponential window,
+        averages and bandwidth; other files get ``estimator="file"``.
 
     Raises
     ------
     InputError
         Missing, damaged or truncated file; time records instead of FRFs; records on different
-        frequency axes; two FRFs of one point; NaN in the data; a node without coordinates.
+        frequency axes; two FRFs of one point; NaN in the data; several references and none
+        chosen.
     """
-    path = Path(path)
-    contents = _load(path, geometry)
-    records = _records_of(path, contents, FREQUENCY_RESPONSE)
-    by_node: dict[int, _Record] = {}
-    for record in records:
-        if not np.iscomplexobj(record.data):
-            raise InputError(
-                f"{record.where(path)}: an FRF must be complex (ordinate data type 5 or 6)"
-            )
-        if record.quantity not in RESPONSE_OF_CODE:
-            raise InputError(
-                f"{record.where(path)}: ordinate type {record.quantity} is not a response "
-                "(8 displacement, 11 velocity, 12 acceleration); set record 9, field 1"
-            )
-        if record.denominator not in (0, QUANTITY_CODE["force"]):
-            raise InputError(
-                f"{record.where(path)}: the FRF must be per force (record 10, field 1 = 13), "
-                f"not per quantity {record.denominator}"
-            )
-        if record.ref_node in by_node:
-            raise InputError(
-                f"{path}: data sets {by_node[record.ref_node].index} and {record.index} are both "
-                f"the FRF of hammer node {record.ref_node}; keep one"
-            )
-        by_node[record.ref_node] = record
-    first = records[0]
-    response_type = RESPONSE_OF_CODE[first.quantity]
-    for record in records[1:]:
-        if record.rsp_node != first.rsp_node:
-            raise InputError(
-                f"{path}: data sets {first.index} and {record.index} have different response "
-                f"nodes ({first.rsp_node} and {record.rsp_node}); racketdyn reads the FRFs of "
-                "one reference transducer at a time"
-            )
-        if record.quantity != first.quantity:
-            raise InputError(
-                f"{path}: data sets {first.index} and {record.index} are FRFs of different types "
-                f"({record.quantity} against {first.quantity} in record 9); give one type"
-            )
-        _check_same_abscissa(path, first, record, "frequency axis")
-    frequency_scale = _scale(
-        path, first, "frequency", _normal_label(first.labels[0]), contents.units
-    )
-    nodes = sorted(by_node)
-    _note_missing(path, contents.nodes, [*nodes, first.rsp_node])
-    values = np.asarray(
-        [
-            by_node[n].data
-            * _frf_scale(path, by_node[n], response_type, contents.units)
-            * _sign(path, by_node[n], by_node[n].rsp_dir)
-            * _sign(path, by_node[n], by_node[n].ref_dir)
-            for n in nodes
-        ],
-        dtype=complex,
-    )
-    coherence = _coherence(path, contents.records, first.rsp_node, nodes, first)
-    estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
-    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
-    frfs = FrfSet(
-        frequency=first.x * frequency_scale,
-        values=values,
-        frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
-        nodes=tuple(nodes),
-        locations=np.asarray([_location(contents.nodes, n) for n in nodes], dtype=float),
-        reference_node=first.rsp_node,
-        reference_location=_location(contents.nodes, first.rsp_node),
-        coherence=coherence,
-        n_averages=averages,
-        exponential_window_s=tau,
-        estimator=estimator,
-        source=str(path),
-        metadata={} if bandwidth is None else {"bandwidth_hz": bandwidth},
-    )
+    from racketdyn.io.frf_layout import read_frfs
+
+    frfs = read_frfs(path, geometry, reference, require_coordinates=False)
     return frfs.with_positive_driving_point()
 
 
@@ -1080,7 +1026,9 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
     return _write_sets(path, sets)
 
 
-def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = False) -> Path:
+def write_hammer_uff(
+    records: HammerRecords, path: Path | str, binary: bool = False, response_direction: int = 3
+) -> Path:
     """Write roving-hammer time records to a fresh Universal File, as a lab would.
 
     The file holds a data set 15 (the reference node, then the hammer nodes, x and y in m, z 0)
@@ -1099,6 +1047,10 @@ def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = Fa
         File to write; an existing file is replaced.
     binary : bool
         Write binary data sets 58b instead of ASCII 58 (default False).
+    response_direction : int
+        Direction code of the response records (record 6): ``3`` (+z, along the hammer) or
+        ``-3`` (an accelerometer mounted against the hammer, in −z: the records hold what it
+        measures, the response negated, and the code says so, as a lab's export does).
 
     Returns
     -------
@@ -1108,10 +1060,15 @@ def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = Fa
     Raises
     ------
     InputError
-        NaN or infinite values, node numbers that are not positive or repeat, or a file that
-        cannot be written.
+        NaN or infinite values, node numbers that are not positive or repeat, a direction code
+        other than ±3, or a file that cannot be written.
     """
     path = Path(path)
+    if response_direction not in (DIRECTION, -DIRECTION):
+        raise InputError(
+            f"{path}: response direction {response_direction!r}: racketdyn writes +3 or -3"
+        )
+    mounted = 1.0 if response_direction > 0 else -1.0
     geometry = _geometry_set(
         path, records.reference_node, records.reference_location, records.nodes, records.locations
     )
@@ -1124,9 +1081,9 @@ def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = Fa
         _finite(path, "the response", node, response)
         for k in range(force.shape[0]):
             where = f"hammer node {node}, average {k + 1}, reference node {records.reference_node}"
-            for channel, data, rsp_node in (
-                ("force", force[k], node),
-                (kind, response[k], records.reference_node),
+            for channel, data, rsp_node, direction in (
+                ("force", force[k], node, DIRECTION),
+                (kind, mounted * response[k], records.reference_node, response_direction),
             ):
                 sets.append(
                     _record_set(
@@ -1149,6 +1106,7 @@ def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = Fa
                         number=len(sets),
                     )
                 )
+                sets[-1]["rsp_dir"] = direction
     return _write_sets(path, sets)
 
 
@@ -1412,16 +1370,21 @@ def write_hammer_csv(
 def write_modes_uff(
     model: ModalModel, path: Path | str, nodes: Sequence[int] | None = None
 ) -> Path:
-    """Write mass-normalised mode shapes as UFF 55 (normal modes) with UFF 15 geometry.
+    """Write mode shapes as UFF 55 (normal modes) with UFF 15 geometry.
 
-    One data set 55 per mode (analysis type 2, normal mode; displacement normal to the face in
-    the z direction, x and y zero), frequency in Hz, modal mass 1 (mass-normalised shapes),
-    viscous damping ratio; readable by other modal software.
+    One data set 55 per mode (analysis type 2, normal mode), frequency in Hz, viscous damping
+    ratio; readable by other modal software.  The geometry keeps z of a 3-D model (the lab's
+    frame; 0 for (x, y) locations).  The displacement is written along the direction the FRFs
+    were measured in (``model.metadata["directions"]``: the one translation code every point
+    shares; z, normal to a racket's face, when none is recorded), the other two zero.  A
+    mass-normalised model (``model.scaling == "mass"``) has modal mass 1 and says
+    "mass-normalised, 1/sqrt(kg)" in ID line 3; an unscaled one (no driving point) has modal
+    mass 0 (unknown) and says "unscaled (largest 1), modal mass unknown".
 
     Parameters
     ----------
     model : ModalModel
-        Shapes at its locations (1/√kg).
+        Shapes at its locations (1/√kg, or unscaled).
     path : Path or str
         File to write (replaced).
     nodes : sequence of int, optional
@@ -1441,10 +1404,25 @@ def write_modes_uff(
         "color": [0] * len(numbers),
         "x": model.locations[:, 0].tolist(),
         "y": model.locations[:, 1].tolist(),
-        "z": [0.0] * len(numbers),
+        "z": (
+            model.locations[:, 2].tolist()
+            if model.locations.shape[1] == 3
+            else [0.0] * len(numbers)
+        ),
     }
     sets: list[dict[str, Any]] = [geometry]
     zeros = np.zeros(len(numbers))
+    recorded = model.metadata.get("directions") or {}
+    codes = {abs(int(c)) for c in recorded.values()} if isinstance(recorded, dict) else set()
+    axis = codes.pop() if len(codes) == 1 and codes <= {1, 2, 3} else 3
+    letter = "xyz"[axis - 1]
+    scaled = model.scaling == "mass"
+    scaling = (
+        "mass-normalised shapes, 1/sqrt(kg)"
+        if scaled
+        else "unscaled shapes (largest 1), modal mass unknown"
+    )
+    where = "normal to the face (z)" if recorded == {} else f"along {letter} as measured"
     for k in range(model.n_modes):
         shape = model.mode_shapes[:, k]
         _finite(target, f"mode {k + 1} shape", k + 1, shape)
@@ -1453,7 +1431,7 @@ def write_modes_uff(
                 "type": 55,
                 "id1": _ascii_line(f"racketdyn {__version__} {model.names[k]}"),
                 "id2": _ascii_line(f"{model.support} support; {model.source}"),
-                "id3": _ascii_line("mass-normalised shapes, 1/sqrt(kg), normal to the face (z)"),
+                "id3": _ascii_line(f"{scaling}, {where}"),
                 "id4": "NONE",
                 "id5": "NONE",
                 "model_type": 1,
@@ -1462,13 +1440,11 @@ def write_modes_uff(
                 "spec_data_type": 8,
                 "data_type": 2,
                 "n_data_per_node": 3,
-                "r1": zeros,
-                "r2": zeros,
-                "r3": shape.astype(float),
+                **{f"r{i}": shape.astype(float) if i == axis else zeros for i in (1, 2, 3)},
                 "load_case": 1,
                 "mode_n": k + 1,
                 "freq": float(model.frequency[k]),
-                "modal_m": 1.0,
+                "modal_m": 1.0 if scaled else 0.0,
                 "modal_damp_vis": float(model.damping_ratio[k]),
                 "modal_damp_his": 0.0,
                 "node_nums": np.asarray(numbers, dtype=float),

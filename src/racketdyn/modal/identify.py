@@ -420,6 +420,7 @@ def identify(
             "exponential_window_s": frfs.exponential_window_s,
             "nodes": list(frfs.nodes),
             "reference_node": frfs.reference_node,
+            "directions": frfs.metadata.get("directions") or {},
             "fit_error_median": float(np.median(fit.error)),
             "design_condition_number": fit.condition_number,
             "orders_stable": selected.n_orders.tolist(),
