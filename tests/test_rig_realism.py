@@ -140,3 +140,46 @@ def test_realistic_rig_round_trips_through_frf_and_identify(tmp_path: Path) -> N
     for k in strong:
         j = int(np.argmin(np.abs(truth.frequency - found.frequency[k])))
         assert mac(found.mode_shapes[:, [k]], shapes_truth[:, [j]])[0, 0] > 0.95
+
+
+def test_a_racket_measured_in_the_lab_x_z_plane_round_trips(tmp_path: Path) -> None:
+    # --lab-plane xz: points (x, 0, y), normal along y (codes ±2).  frf reads the records
+    # without coordinates (rather none than points squashed onto x–y: z dropped silently
+    # put every point on the axis); identify takes the (x, y, z) points from the rig's file
+    # with --geometry and maps them onto the face.
+    import pyuff
+
+    from racketdyn.workflows.frf import run_frf
+    from racketdyn.workflows.identify import identify_file
+    from racketdyn.workflows.rig import run_rig
+
+    rig = run_rig(tmp_path / "rig", averages=3, lab_plane="xz")
+    path = tmp_path / "rig" / "hammer_free.uff"
+    geometry = pyuff.UFF(str(path)).read_sets(0)  # data set 15 comes first
+    assert np.ptp(geometry["z"]) > 0.2
+    assert np.all(np.asarray(geometry["y"]) == 0.0)
+    codes = {(s["rsp_dir"], s["ref_dir"]) for s in pyuff.UFF(str(path)).read_sets([1, 2])}
+    assert codes == {(2, 2)}  # force and response both along the lab's y, the face normal
+    frf = run_frf(path, tmp_path / "frf", exponential_window_s=0.1)
+    assert frf.records_metadata["three_d_geometry"] == str(path)
+    assert frf.estimate is not None
+    assert frf.estimate.frfs is not None
+    assert not frf.estimate.frfs.has_locations
+    found = identify_file(
+        tmp_path / "frf" / "frfs.uff",
+        rd.default_racket(),
+        "free",
+        geometry=path,
+        band_hz=(40.0, 850.0),
+        racket_given=False,
+    )
+    model = found.model
+    assert found.frfs.locations.shape[1] == 3  # the lab's (x, y, z) read ...
+    assert model.locations.shape[1] == 2  # ... and mapped onto the face
+    assert "2-node bending" in model.names  # named: the points are a racket's
+    truth = ModalModel.read_json(tmp_path / "rig" / "modal_truth_free.json")
+    df, _ = _errors(model, truth)
+    assert df.size >= 5
+    assert np.all(df < 5e-4)
+    points = rig.records["free"].locations
+    np.testing.assert_allclose(np.sort(model.locations[:, 0]), np.sort(points[:, 0]), atol=1e-3)

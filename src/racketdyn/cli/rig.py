@@ -91,6 +91,14 @@ def add(commands: Any) -> None:
         help="the hammer skips the accelerometer's node: identify then gives unscaled shapes "
         "(default: the node is struck too)",
     )
+    p.add_argument(
+        "--lab-plane",
+        choices=("xy", "xz"),
+        default="xy",
+        help="the lab plane the file's coordinates put the face in: xy, or xz (the racket "
+        "standing: points (x, 0, y), normal along y, direction codes ±2; identify then needs "
+        "--geometry hammer_<support>.uff), dimensionless (default xy)",
+    )
     opt.add_out(p)
     p.set_defaults(handler=run)
 
@@ -116,6 +124,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             time_zero=args.time_zero,
             response_direction=args.accelerometer_direction,
             driving_point=not args.no_driving_point,
+            lab_plane=args.lab_plane,
             command=opt.command_line(args),
             progress=progress,
         )

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import dataclasses
 import datetime
 import io
 import logging
@@ -147,6 +148,7 @@ class _Contents:
     nodes: dict[int, tuple[float, float]]
     units: _Units
     types: list[int]
+    depth: dict[int, float] = dataclasses.field(default_factory=dict)  # z of each node, m
 
 
 def _as_int(value: Any, default: int = 0) -> int:
@@ -441,12 +443,14 @@ def _load(path: Path, geometry: Path | str | None) -> _Contents:
     """Records 58 and node coordinates (x, y) of a file (and of a separate geometry file)."""
     sets = _read_sets(path)
     units = _units_of(path, sets)
-    nodes = {n: (x, y) for n, (x, y, _) in _coordinates(path, sets, units, geometry).items()}
+    xyz = _coordinates(path, sets, units, geometry)
+    nodes = {n: (x, y) for n, (x, y, _) in xyz.items()}
     records = [
         _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
     ]
     types = [_as_int(dset.get("type")) for dset in sets]
-    return _Contents(records=records, nodes=nodes, units=units, types=types)
+    depth = {n: z for n, (_, _, z) in xyz.items()}
+    return _Contents(records=records, nodes=nodes, units=units, types=types, depth=depth)
 
 
 def _location(nodes: dict[int, tuple[float, float]], node: int) -> tuple[float, float]:
@@ -643,6 +647,18 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         force_rows.append(np.asarray(rows_f, dtype=float))
         response_rows.append(np.asarray(rows_r, dtype=float))
     _note_missing(path, contents.nodes, [*nodes, reference_node])
+    metadata: dict[str, Any] = {"averages": averages}
+    depths = [contents.depth[n] for n in [*nodes, reference_node] if n in contents.depth]
+    if depths and max(depths) > min(depths):
+        # (x, y, z) points: time records and FRFs are (x, y); rather no coordinates than
+        # points squashed onto x–y.  identify reads the lab's (x, y, z) from this file.
+        logger.warning(
+            "%s: the points differ in z (3-D geometry): the records are read without "
+            "coordinates; give this file to identify as --geometry for the (x, y, z) points",
+            path,
+        )
+        metadata["three_d_geometry"] = str(path)
+        contents = dataclasses.replace(contents, nodes={})
     locations = [_location(contents.nodes, n) for n in nodes]
     reference_location = _location(contents.nodes, reference_node)
     return HammerRecords(
@@ -656,7 +672,7 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         reference_location=reference_location,
         pretrigger_s=float(-x[0] * time_scale),
         source=str(path),
-        metadata={"averages": averages},
+        metadata=metadata,
     )
 
 
@@ -794,10 +810,12 @@ def _geometry_set(
     reference_location: tuple[float, float],
     nodes: Sequence[int],
     locations: NDArray[np.float64],
+    plane: str = "xy",
 ) -> dict[str, Any] | None:
     """Data set 15 with the reference node first, then the hammer nodes (those with coordinates).
 
-    None when no node has coordinates (the records came without geometry).
+    None when no node has coordinates (the records came without geometry).  ``plane="xz"``
+    writes the points (x, y) in the lab's x–z plane: (x, 0, y).
     """
     numbers, xs, ys = [reference_node], [reference_location[0]], [reference_location[1]]
     if any(math.isnan(v) for v in reference_location):
@@ -828,15 +846,16 @@ def _geometry_set(
     n = len(numbers)
     if n == 0:
         return None
+    in_plane = {"x": xs, "y": ys, "z": [0.0] * n}
+    if plane == "xz":
+        in_plane = {"x": xs, "y": [0.0] * n, "z": ys}
     return {
         "type": 15,
         "node_nums": numbers,
         "def_cs": [0] * n,
         "disp_cs": [0] * n,
         "color": [0] * n,
-        "x": xs,
-        "y": ys,
-        "z": [0.0] * n,
+        **in_plane,
     }
 
 
@@ -1027,7 +1046,11 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
 
 
 def write_hammer_uff(
-    records: HammerRecords, path: Path | str, binary: bool = False, response_direction: int = 3
+    records: HammerRecords,
+    path: Path | str,
+    binary: bool = False,
+    response_direction: int = 3,
+    plane: str = "xy",
 ) -> Path:
     """Write roving-hammer time records to a fresh Universal File, as a lab would.
 
@@ -1051,6 +1074,10 @@ def write_hammer_uff(
         Direction code of the response records (record 6): ``3`` (+z, along the hammer) or
         ``-3`` (an accelerometer mounted against the hammer, in −z: the records hold what it
         measures, the response negated, and the code says so, as a lab's export does).
+    plane : {"xy", "xz"}
+        The lab plane the face lies in: ``xy`` (coordinates (x, y, 0), the normal z: codes
+        ±3) or ``xz`` (the racket in the lab's x–z plane, as a lab measures it standing:
+        coordinates (x, 0, y), the normal y: codes ±2).
 
     Returns
     -------
@@ -1068,9 +1095,17 @@ def write_hammer_uff(
         raise InputError(
             f"{path}: response direction {response_direction!r}: racketdyn writes +3 or -3"
         )
+    if plane not in ("xy", "xz"):
+        raise InputError(f"{path}: plane {plane!r}: give xy or xz")
     mounted = 1.0 if response_direction > 0 else -1.0
+    normal = DIRECTION if plane == "xy" else 2
     geometry = _geometry_set(
-        path, records.reference_node, records.reference_location, records.nodes, records.locations
+        path,
+        records.reference_node,
+        records.reference_location,
+        records.nodes,
+        records.locations,
+        plane,
     )
     sets: list[dict[str, Any]] = [] if geometry is None else [geometry]
     time = records.time
@@ -1082,8 +1117,8 @@ def write_hammer_uff(
         for k in range(force.shape[0]):
             where = f"hammer node {node}, average {k + 1}, reference node {records.reference_node}"
             for channel, data, rsp_node, direction in (
-                ("force", force[k], node, DIRECTION),
-                (kind, mounted * response[k], records.reference_node, response_direction),
+                ("force", force[k], node, normal),
+                (kind, mounted * response[k], records.reference_node, int(mounted) * normal),
             ):
                 sets.append(
                     _record_set(
@@ -1106,7 +1141,7 @@ def write_hammer_uff(
                         number=len(sets),
                     )
                 )
-                sets[-1]["rsp_dir"] = direction
+                sets[-1]["rsp_dir"], sets[-1]["ref_dir"] = direction, normal
     return _write_sets(path, sets)
 
 

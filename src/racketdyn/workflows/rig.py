@@ -94,6 +94,7 @@ def run_rig(
     time_zero: str = "pulse",
     response_direction: int = 3,
     driving_point: bool = True,
+    lab_plane: str = "xy",
     command: Sequence[str] | None = None,
     figures: Callable[[RigResult, Path], list[Path]] | None = None,
     progress: Progress | None = None,
@@ -139,6 +140,11 @@ def run_rig(
     driving_point : bool
         Strike the accelerometer's node too (default).  False leaves it out: identification
         then gives unscaled shapes, as from a lab that did not measure it.
+    lab_plane : {"xy", "xz"}
+        The lab plane the file's coordinates put the face in: ``xz`` writes (x, 0, y) with
+        the normal along y (direction codes ±2), a racket measured standing; ``frf`` then
+        reads the records without coordinates and ``identify --geometry hammer_<support>.uff``
+        takes the (x, y, z) points and maps them onto the face.
     command : sequence of str, optional
         The command as called, for run.json.
     figures : callable, optional
@@ -160,6 +166,7 @@ def run_rig(
             require_range(name, snr, 0.0, 200.0)
     require_range("--pretrigger", pretrigger_s, 0.0, 0.1)
     one_of("--time-zero", time_zero, ("pulse", "record"))
+    one_of("--lab-plane", lab_plane, ("xy", "xz"))
     if response_direction not in (3, -3):
         raise InputError(f"--accelerometer-direction: give 3 or -3 (got {response_direction})")
     the_racket, provenance = load_racket_input(racket)
@@ -237,6 +244,7 @@ def run_rig(
             out_dir / f"hammer_{each}.uff",
             binary=binary,
             response_direction=response_direction,
+            plane=lab_plane,
         )
         extra = [] if driving_point else [list(reference_location)]
         truth_locations = np.vstack([locations, *extra, [0.0, 0.0], [the_racket.length_m, 0.0]])
@@ -270,6 +278,7 @@ def run_rig(
         "response_snr_db": response_snr_db,
         "pretrigger_s": pretrigger_s,
         "time_zero": time_zero,
+        "lab_plane": lab_plane,
         "n_points": len(nodes),
         "averages": averages,
         "double_hit_probability": double_hits,
