@@ -99,6 +99,14 @@ def add(commands: Any) -> None:
         "standing: points (x, 0, y), normal along y, direction codes ±2; identify then needs "
         "--geometry hammer_<support>.uff), dimensionless (default xy)",
     )
+    p.add_argument(
+        "--layout",
+        choices=("roving-hammer", "roving-accelerometer"),
+        default="roving-hammer",
+        help="roving-hammer, or roving-accelerometer: the hammer on the reference node, the "
+        "accelerometer moved over the points (by reciprocity the same FRFs), dimensionless "
+        "(default roving-hammer)",
+    )
     opt.add_out(p)
     p.set_defaults(handler=run)
 
@@ -125,6 +133,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             response_direction=args.accelerometer_direction,
             driving_point=not args.no_driving_point,
             lab_plane=args.lab_plane,
+            layout=args.layout.replace("-", " "),
             command=opt.command_line(args),
             progress=progress,
         )

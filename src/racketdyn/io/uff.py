@@ -607,8 +607,19 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
     first_response = next(iter(responses.values()))
     response_type = RESPONSE_OF_CODE[first_response.quantity]
     reference_node = first_response.rsp_node
+    hammer_nodes = {node for node, _ in forces}
+    roving_accelerometer = (
+        len({r.rsp_node for r in responses.values()}) > 1 and len(hammer_nodes) == 1
+    )
+    # the point of each average: the hammer node (roving hammer), or, with one hammer node
+    # and the accelerometer moved, the response node (by reciprocity H_ij = H_ji the same
+    # data; the hammer node is then the reference)
+    point_of = {key: key[0] for key in forces}
+    if roving_accelerometer:
+        reference_node = next(iter(hammer_nodes))
+        point_of = {key: responses[key].rsp_node for key in forces}
     for record in responses.values():
-        if record.rsp_node != reference_node:
+        if record.rsp_node != reference_node and not roving_accelerometer:
             raise InputError(
                 f"{path}: data sets {first_response.index} and {record.index} were measured at "
                 f"different response nodes ({reference_node} and {record.rsp_node}); racketdyn "
@@ -632,14 +643,14 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
     ):
         raise InputError(f"{first.where(path)}: the samples must be evenly spaced in time")
     time_scale = _scale(path, first, "time", _normal_label(first.labels[0]), contents.units)
-    nodes = sorted({node for node, _ in forces})
+    nodes = sorted(set(point_of.values()))
     force_rows, response_rows, averages = [], [], []
     for node in nodes:
-        cases = sorted(case for n, case in forces if n == node)
-        averages.append(cases)
+        keys = sorted((key for key in forces if point_of[key] == node), key=lambda k: k[1])
+        averages.append([case for _, case in keys])
         rows_f, rows_r = [], []
-        for case in cases:
-            f, r = forces[node, case], responses[node, case]
+        for key in keys:
+            f, r = forces[key], responses[key]
             f_scale = _scale(path, f, "force", _normal_label(f.labels[1]), contents.units)
             r_scale = _scale(path, r, response_type, _normal_label(r.labels[1]), contents.units)
             rows_f.append(f.data * f_scale * _sign(path, f, f.rsp_dir))
@@ -648,6 +659,8 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         response_rows.append(np.asarray(rows_r, dtype=float))
     _note_missing(path, contents.nodes, [*nodes, reference_node])
     metadata: dict[str, Any] = {"averages": averages}
+    if roving_accelerometer:
+        metadata["layout"] = "roving accelerometer"
     depths = [contents.depth[n] for n in [*nodes, reference_node] if n in contents.depth]
     if depths and max(depths) > min(depths):
         # (x, y, z) points: time records and FRFs are (x, y); rather no coordinates than
@@ -1051,6 +1064,7 @@ def write_hammer_uff(
     binary: bool = False,
     response_direction: int = 3,
     plane: str = "xy",
+    layout: str = "roving hammer",
 ) -> Path:
     """Write roving-hammer time records to a fresh Universal File, as a lab would.
 
@@ -1078,6 +1092,12 @@ def write_hammer_uff(
         The lab plane the face lies in: ``xy`` (coordinates (x, y, 0), the normal z: codes
         ±3) or ``xz`` (the racket in the lab's x–z plane, as a lab measures it standing:
         coordinates (x, 0, y), the normal y: codes ±2).
+    layout : {"roving hammer", "roving accelerometer"}
+        ``roving accelerometer`` writes the same data (by reciprocity, H_ij = H_ji) as a test
+        with the hammer at the reference node and the accelerometer moved over the points:
+        every force record at the reference node, each response record at its point, the load
+        case a running number over the file (each point's averages its own cases).
+        :func:`read_hammer_uff` reads either.
 
     Returns
     -------
@@ -1097,6 +1117,9 @@ def write_hammer_uff(
         )
     if plane not in ("xy", "xz"):
         raise InputError(f"{path}: plane {plane!r}: give xy or xz")
+    if layout not in ("roving hammer", "roving accelerometer"):
+        raise InputError(f"{path}: layout {layout!r}: give roving hammer or roving accelerometer")
+    moving = layout == "roving accelerometer"
     mounted = 1.0 if response_direction > 0 else -1.0
     normal = DIRECTION if plane == "xy" else 2
     geometry = _geometry_set(
@@ -1116,16 +1139,21 @@ def write_hammer_uff(
         _finite(path, "the response", node, response)
         for k in range(force.shape[0]):
             where = f"hammer node {node}, average {k + 1}, reference node {records.reference_node}"
+            hammer, sensor, case = node, records.reference_node, k + 1
+            if moving:
+                hammer, sensor = records.reference_node, node
+                where = f"accelerometer node {node}, average {k + 1}, hammer node {hammer}"
+                case = sum(1 for s in sets if s.get("func_type") == TIME_RESPONSE) // 2 + 1
             for channel, data, rsp_node, direction in (
-                ("force", force[k], node, normal),
-                (kind, mounted * response[k], records.reference_node, int(mounted) * normal),
+                ("force", force[k], hammer, normal),
+                (kind, mounted * response[k], sensor, int(mounted) * normal),
             ):
                 sets.append(
                     _record_set(
                         func_type=TIME_RESPONSE,
-                        load_case=k + 1,
+                        load_case=case,
                         rsp_node=rsp_node,
-                        ref_node=node,
+                        ref_node=hammer,
                         x=time,
                         data=np.asarray(data, dtype=float),
                         abscissa="time",

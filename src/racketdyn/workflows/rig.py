@@ -95,6 +95,7 @@ def run_rig(
     response_direction: int = 3,
     driving_point: bool = True,
     lab_plane: str = "xy",
+    layout: str = "roving hammer",
     command: Sequence[str] | None = None,
     figures: Callable[[RigResult, Path], list[Path]] | None = None,
     progress: Progress | None = None,
@@ -145,6 +146,10 @@ def run_rig(
         the normal along y (direction codes ±2), a racket measured standing; ``frf`` then
         reads the records without coordinates and ``identify --geometry hammer_<support>.uff``
         takes the (x, y, z) points and maps them onto the face.
+    layout : {"roving hammer", "roving accelerometer"}
+        ``roving accelerometer``: the hammer strikes the reference node (node 10, its pulse
+        for every hit) and the accelerometer is moved over the points; by reciprocity the same
+        FRFs (the file says it: :func:`~racketdyn.io.write_hammer_uff`'s ``layout``).
     command : sequence of str, optional
         The command as called, for run.json.
     figures : callable, optional
@@ -167,6 +172,7 @@ def run_rig(
     require_range("--pretrigger", pretrigger_s, 0.0, 0.1)
     one_of("--time-zero", time_zero, ("pulse", "record"))
     one_of("--lab-plane", lab_plane, ("xy", "xz"))
+    one_of("--layout", layout, ("roving hammer", "roving accelerometer"))
     if response_direction not in (3, -3):
         raise InputError(f"--accelerometer-direction: give 3 or -3 (got {response_direction})")
     the_racket, provenance = load_racket_input(racket)
@@ -214,6 +220,13 @@ def run_rig(
         durations = np.full(len(nodes), FRAME_PULSE_S)
         contact_support = "free" if each == "free" else "pinned"
         durations[on_bed] = string_contact_time(the_racket, locations[on_bed], contact_support)
+        if layout == "roving accelerometer":  # every hit on the reference node (the hoop)
+            at_reference = np.asarray([reference_location])
+            durations[:] = (
+                string_contact_time(the_racket, at_reference, contact_support)[0]
+                if the_racket.head.contains(at_reference)[0]
+                else FRAME_PULSE_S
+            )
         report(progress, f"building the {each} rig and simulating the hammer test")
         model = rig_model(the_racket, "free" if each == "free" else "hand")
         if spring is not None:
@@ -245,6 +258,7 @@ def run_rig(
             binary=binary,
             response_direction=response_direction,
             plane=lab_plane,
+            layout=layout,
         )
         extra = [] if driving_point else [list(reference_location)]
         truth_locations = np.vstack([locations, *extra, [0.0, 0.0], [the_racket.length_m, 0.0]])
@@ -279,6 +293,7 @@ def run_rig(
         "pretrigger_s": pretrigger_s,
         "time_zero": time_zero,
         "lab_plane": lab_plane,
+        "layout": layout,
         "n_points": len(nodes),
         "averages": averages,
         "double_hit_probability": double_hits,
