@@ -354,7 +354,7 @@ def test_one_reader_path_for_frfs(tmp_path: Path) -> None:
     # State-table left-over of issue 12: read_frf_uff and read_frfs were two readers.  Now one:
     # a roving-accelerometer file (the old read_frf_uff refused "different response nodes")
     # reads alike through both, z kept, and coherences reach read_frfs (it never read them).
-    from racketdyn.io.uff import read_frf_uff, write_frf_uff
+    from racketdyn.io import read_frf_uff, write_frf_uff
     from test_uff import _frfs
 
     path = _write(tmp_path, "beam.uff", "roving accelerometer")

@@ -1,9 +1,9 @@
 """Reading and writing files: racket descriptions (TOML), CSV tables and Universal Files."""
 
+from racketdyn.io.frf_layout import read_frf_uff, read_frfs
 from racketdyn.io.racket_file import default_racket, load_racket, racket_to_dict
 from racketdyn.io.tables import read_e_bg_table, read_load_deflection, read_points
 from racketdyn.io.uff import (
-    read_frf_uff,
     read_hammer_csv,
     read_hammer_uff,
     write_frf_uff,
@@ -18,6 +18,7 @@ __all__ = [
     "racket_to_dict",
     "read_e_bg_table",
     "read_frf_uff",
+    "read_frfs",
     "read_hammer_csv",
     "read_hammer_uff",
     "read_load_deflection",

@@ -54,7 +54,6 @@ from racketdyn.measurement.records import (
 from racketdyn.modal.model import ModalModel
 
 __all__ = [
-    "read_frf_uff",
     "read_hammer_csv",
     "read_hammer_uff",
     "write_frf_uff",
@@ -687,51 +686,6 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         source=str(path),
         metadata=metadata,
     )
-
-
-def read_frf_uff(
-    path: Path | str, geometry: Path | str | None = None, reference: int | None = None
-) -> FrfSet:
-    """Read the FRFs of a Universal File against one reference node.
-
-    The one FRF reader: :func:`racketdyn.io.frf_layout.read_frfs` (any layout — roving
-    hammer, roving accelerometer, several references —, z kept), with points allowed to lack
-    coordinates (FRFs need none: they get NaN, and a step that needs them asks for
-    ``--geometry``) and the set negated back where its driving point reads with negative
-    modal constants (:meth:`FrfSet.with_positive_driving_point`).
-
-    Parameters
-    ----------
-    path : Path or str
-        Universal File with data sets 58 or 58b of function type 4 (FRF), complex.  The FRF
-        type follows the ordinate (numerator) type of record 9: 8 displacement → receptance,
-        11 velocity → mobility, 12 acceleration → accelerance; the denominator (record 10)
-        must be a force (13) or left unknown (0).  Coherences (function type 6) of the same
-        node pairs are read when every point has one.  Node coordinates (data set 15 or 2411,
-        m, or in data set 164's unit) may be in the same file.
-    geometry : Path or str, optional
-        A second Universal File with node coordinates; its nodes take precedence.
-    reference : int, optional
-        The reference node when the file has FRFs against several (``--reference``).
-
-    Returns
-    -------
-    FrfSet
-        Points ordered by node number, frequencies in Hz, values in SI units of the FRF type.
-        Files written by :func:`write_frf_uff` give back their estimator, exponential window,
-        averages and bandwidth; other files get ``estimator="file"``.
-
-    Raises
-    ------
-    InputError
-        Missing, damaged or truncated file; time records instead of FRFs; records on different
-        frequency axes; two FRFs of one point; NaN in the data; several references and none
-        chosen.
-    """
-    from racketdyn.io.frf_layout import read_frfs
-
-    frfs = read_frfs(path, geometry, reference, require_coordinates=False)
-    return frfs.with_positive_driving_point()
 
 
 def _coherence(
