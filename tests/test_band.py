@@ -139,3 +139,14 @@ def test_noise_at_the_edges_is_not_called_a_mode(tmp_path: Path) -> None:
     # the full 1000 Hz band holds no mode near its edges: no edge row
     found = identify(read_frfs(_export(tmp_path, 1000.0, 801)))
     assert not [d for d in found.dropped_modes if d.stage == "edge"]
+
+
+def test_no_band_beyond_the_analyser_bandwidth_is_suggested() -> None:
+    # racketdyn's own estimates run to fs/2, the lines above fs/2.56 being the anti-alias
+    # filter's roll-off: a clear mode at that edge is kept with --pin, not a band above it
+    test = beam_frfs(POINTS, 0.0, top_hz=1126.4, lines=902)
+    frfs = replace(test.frfs, metadata={"bandwidth_hz": 880.0})  # fs = 2252.8 Hz
+    edge = [d for d in identify(frfs).dropped_modes if d.stage == "edge"]
+    assert len(edge) == 1
+    assert "--band" not in edge[0].reason
+    assert "--pin 87" in edge[0].reason

@@ -115,8 +115,10 @@ def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]
     The edge margin (:data:`EDGE_MARGIN`) keeps the fit's computational poles out; a mode of
     the data there (stable in more than three orders, peak within 20 dB of the kept modes',
     :data:`EDGE_CLEAR`) is not dropped silently.  Clusters of one peak split by the edge are
-    one row (the strongest).  The reason names ``--band LOW,HIGH`` when the FRFs reach far
-    enough to put the mode out of the margin, else ``--pin F``.
+    one row (the strongest).  The reason names ``--band LOW,HIGH`` when the FRFs' bandwidth
+    (:attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`: lines above it are the
+    anti-alias filter's roll-off) reaches far enough to put the mode out of the margin, else
+    ``--pin F``.
     """
     low, high = band
     margin = EDGE_MARGIN * (high - low)
@@ -143,9 +145,9 @@ def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]
             wanted = (f + room - EDGE_MARGIN * low) / (1 - EDGE_MARGIN)
             edge = f"the band's top {high:g} Hz"
             new = float(np.ceil(wanted / 5.0) * 5.0)
-            fits = new <= float(frfs.frequency[-1])
+            fits = new <= float(frfs.bandwidth_hz)
             option = f"--band {low:g},{new:g}"
-            end = f"the FRFs end at {float(frfs.frequency[-1]):.6g} Hz"
+            end = f"the FRFs' bandwidth ends at {float(frfs.bandwidth_hz):.6g} Hz"
         else:
             wanted = (f - room - EDGE_MARGIN * high) / (1 - EDGE_MARGIN)
             edge = f"the band's bottom {low:g} Hz"
