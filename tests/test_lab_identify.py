@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import csv
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -353,3 +354,46 @@ def test_another_rackets_points_named_on_the_built_in_head_say_so() -> None:
     assert "give --racket" in how
     _, how = name_if_racket(found, own, racket_given=True)
     assert how == "modes named from their shapes on the head of trial 270 g racket"
+
+
+def test_modes_uff_keeps_z_and_says_unscaled(tmp_path: Path) -> None:
+    # State-table left-over of issue 12: write_modes_uff wrote z = 0 and "mass-normalised" for
+    # every model.  A beam along z without a driving point: z kept, unscaled said, modal mass
+    # unknown (0), the shape along the measured direction (code −3 → z).
+    import pyuff
+
+    from racketdyn.io.uff import write_modes_uff
+
+    path = _write(tmp_path, "beam.uff", "roving accelerometer", sensor_dir=-3)
+    frfs = read_frfs(path)
+    unscaled = identify(replace(frfs, reference_node=100), (40.0, 950.0)).model
+    assert unscaled.scaling == "unscaled"
+    out = write_modes_uff(unscaled, tmp_path / "modes.uff", nodes=frfs.nodes)
+    sets = pyuff.UFF(str(out)).read_sets()
+    geometry = next(s for s in sets if s["type"] == 15)
+    np.testing.assert_allclose(geometry["z"], frfs.locations[:, 2], atol=1e-9)
+    modes = [s for s in sets if s["type"] == 55]
+    assert all("unscaled" in s["id3"] and "mass-normalised" not in s["id3"] for s in modes)
+    assert all(s["modal_m"] == 0.0 for s in modes)
+    np.testing.assert_allclose(np.abs(modes[0]["r3"]).max(), 1.0, rtol=1e-4)
+    scaled = identify(frfs, (40.0, 950.0)).model
+    assert scaled.scaling == "mass"
+    sets = pyuff.UFF(str(write_modes_uff(scaled, tmp_path / "m.uff", frfs.nodes))).read_sets()
+    modes = [s for s in sets if s["type"] == 55]
+    assert all("mass-normalised" in s["id3"] and s["modal_m"] == 1.0 for s in modes)
+
+
+def test_one_reader_path_for_frfs(tmp_path: Path) -> None:
+    # State-table left-over of issue 12: read_frf_uff and read_frfs were two readers.  Now one:
+    # a roving-accelerometer file (the old read_frf_uff refused "different response nodes")
+    # reads alike through both, z kept, and coherences reach read_frfs (it never read them).
+    from racketdyn.io import read_frf_uff, write_frf_uff
+    from test_uff import _frfs
+
+    path = _write(tmp_path, "beam.uff", "roving accelerometer")
+    by_uff, by_layout = read_frf_uff(path), read_frfs(path)
+    np.testing.assert_array_equal(by_uff.values, by_layout.values)
+    assert by_uff.locations.shape == (9, 3)
+    assert by_uff.metadata["layout"] == "roving accelerometer"
+    written = write_frf_uff(_frfs(), tmp_path / "frf.uff")
+    assert read_frfs(written).coherence is not None

@@ -354,3 +354,36 @@ def test_the_validation_section_renders_from_a_small_dict() -> None:
     assert "&lt;b&gt;lab&lt;/b&gt;.csv" in html
     html = render_section("validation", {**data, "calibration": "e_bg = 0.81"})
     assert "Calibrated inputs applied: e_bg = 0.81." in html
+
+
+def test_the_truth_section_renders_found_and_missed_modes() -> None:
+    html = render_section(
+        "truth",
+        {
+            "blocks": [
+                {
+                    "label": "free",
+                    "truth": "rig/modal_truth_free.json",
+                    "identified": "compare/modal_model_free.json",
+                    "rows": [
+                        (
+                            "2-node bending",
+                            "120.00",
+                            "120.01",
+                            "+0.005",
+                            "0.500",
+                            "0.502",
+                            "+0.4",
+                            "1.000",
+                        )
+                    ],
+                    "missed": [
+                        ("string-bed membrane 3", "1236.5", "on a node at the accelerometer")
+                    ],
+                }
+            ]
+        },
+    )
+    assert "against the rig's truth rig/modal_truth_free.json" in html
+    assert '<td>2-node bending</td><td class="num">120.00</td>' in html
+    assert "on a node at the accelerometer" in html

@@ -16,7 +16,7 @@ import pyuff  # type: ignore[import-untyped]
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.io.uff import (
+from racketdyn.io import (
     read_frf_uff,
     read_hammer_csv,
     read_hammer_uff,

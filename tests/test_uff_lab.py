@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from racketdyn.errors import InputError
-from racketdyn.io.uff import read_frf_uff, read_hammer_uff, write_frf_uff, write_hammer_uff
+from racketdyn.io import read_frf_uff, read_hammer_uff, write_frf_uff, write_hammer_uff
 from racketdyn.measurement.records import FrfSet
 
 FIXTURES = Path(__file__).parent / "fixtures"

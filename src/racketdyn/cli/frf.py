@@ -96,6 +96,12 @@ def run(args: argparse.Namespace, console: Console) -> int:
         for reason, count in summary.items():
             if reason not in ("averages", "accepted"):
                 console.print(f"[yellow]{count} averages rejected: {reason}[/]")
+    three_d = result.records_metadata.get("three_d_geometry")
+    if three_d:
+        console.print(
+            f"[yellow]the points differ in z (3-D): frfs.uff carries no coordinates; give "
+            f"--geometry {three_d} to identify for the (x, y, z) points[/]"
+        )
     if estimate.rejected_points:
         nodes = ", ".join(str(n) for n in estimate.rejected_points)
         console.print(f"[yellow]every average rejected at node(s) {nodes}: no FRF there[/]")

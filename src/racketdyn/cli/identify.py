@@ -24,7 +24,8 @@ def _add_options(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--band",
         metavar="LOW,HIGH",
-        help="frequency band low,high, Hz (default 40 Hz to fs/2.56)",
+        help="frequency band low,high, Hz (default 40 Hz to the FRFs' bandwidth: the last "
+        "line of an exported file, fs/2.56 of FRFs racketdyn estimated)",
     )
     p.add_argument(
         "--max-order",
@@ -144,7 +145,7 @@ def print_modes(console: Console, identification: Identification) -> None:
         f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
         f"condition {identification.fit.condition_number:.3g}"
     )
-    later = [d for d in identification.dropped_modes if d.stage == "constants"]
+    later = [d for d in identification.dropped_modes if d.stage in ("constants", "edge")]
     for row in later:
         console.print(f"left out {row.frequency_hz:.2f} Hz: {row.reason}")
     candidates = len(identification.dropped_modes) - len(later)

@@ -47,6 +47,66 @@ def add(commands: Any) -> None:
         help="fix a ball on the strings at x,y, m, as in the paper's compound test (Figs 8-9); "
         "the hammer skips the points under it (default: no ball)",
     )
+    p.add_argument(
+        "--force-snr",
+        type=float,
+        metavar="DB",
+        help="hammer noise as a signal-to-noise ratio, dB: each record's peak over its noise rms "
+        "(default: a fixed 0.02 N rms noise floor)",
+    )
+    p.add_argument(
+        "--response-snr",
+        type=float,
+        metavar="DB",
+        help="accelerometer noise as a signal-to-noise ratio, dB: each record's peak over its "
+        "noise rms; 40 gives coherence ≈ 0.95 and damping within a few %% (default: a fixed "
+        "0.05 m/s² rms noise floor)",
+    )
+    p.add_argument(
+        "--pretrigger",
+        type=float,
+        default=0.01,
+        metavar="S",
+        help="time recorded before the pulse, s (default 0.01)",
+    )
+    p.add_argument(
+        "--time-zero",
+        choices=("pulse", "record"),
+        default="pulse",
+        help="where the file's time axis starts: pulse (t = 0 at the pulse, the pre-trigger "
+        "negative) or record (t = 0 at the first sample, the pulse --pretrigger into it, as "
+        "many acquisition systems export) (default pulse)",
+    )
+    p.add_argument(
+        "--accelerometer-direction",
+        type=int,
+        choices=(3, -3),
+        default=3,
+        help="the accelerometer's UFF direction code: 3 (+z, along the hammer) or -3 (mounted "
+        "against it), dimensionless (default 3)",
+    )
+    p.add_argument(
+        "--no-driving-point",
+        action="store_true",
+        help="the hammer skips the accelerometer's node: identify then gives unscaled shapes "
+        "(default: the node is struck too)",
+    )
+    p.add_argument(
+        "--lab-plane",
+        choices=("xy", "xz"),
+        default="xy",
+        help="the lab plane the file's coordinates put the face in: xy, or xz (the racket "
+        "standing: points (x, 0, y), normal along y, direction codes ±2; identify then needs "
+        "--geometry hammer_<support>.uff), dimensionless (default xy)",
+    )
+    p.add_argument(
+        "--layout",
+        choices=("roving-hammer", "roving-accelerometer"),
+        default="roving-hammer",
+        help="roving-hammer, or roving-accelerometer: the hammer on the reference node, the "
+        "accelerometer moved over the points (by reciprocity the same FRFs), dimensionless "
+        "(default roving-hammer)",
+    )
     opt.add_out(p)
     p.set_defaults(handler=run)
 
@@ -66,6 +126,14 @@ def run(args: argparse.Namespace, console: Console) -> int:
             seed=args.seed,
             binary=args.binary,
             ball_at=opt.parse_point("--ball-at", args.ball_at),
+            force_snr_db=args.force_snr,
+            response_snr_db=args.response_snr,
+            pretrigger_s=args.pretrigger,
+            time_zero=args.time_zero,
+            response_direction=args.accelerometer_direction,
+            driving_point=not args.no_driving_point,
+            lab_plane=args.lab_plane,
+            layout=args.layout.replace("-", " "),
             command=opt.command_line(args),
             progress=progress,
         )

@@ -1,5 +1,6 @@
 """Reading and writing files: racket descriptions (TOML), CSV tables and Universal Files."""
 
+from racketdyn.io.frf_layout import read_frf_uff, read_frfs
 from racketdyn.io.measured import MeasuredRebound, read_measured
 from racketdyn.io.racket_file import (
     default_racket,
@@ -9,7 +10,6 @@ from racketdyn.io.racket_file import (
 )
 from racketdyn.io.tables import read_e_bg_table, read_load_deflection, read_points
 from racketdyn.io.uff import (
-    read_frf_uff,
     read_hammer_csv,
     read_hammer_uff,
     write_frf_uff,
@@ -25,6 +25,7 @@ __all__ = [
     "racket_to_dict",
     "read_e_bg_table",
     "read_frf_uff",
+    "read_frfs",
     "read_hammer_csv",
     "read_hammer_uff",
     "read_load_deflection",

@@ -25,7 +25,7 @@ from __future__ import annotations
 import logging
 from collections import Counter
 from pathlib import Path
-from typing import Any, cast
+from typing import cast
 
 import numpy as np
 
@@ -34,8 +34,12 @@ from racketdyn.io.uff import (
     FREQUENCY_RESPONSE,
     QUANTITY_CODE,
     RESPONSE_OF_CODE,
+    _bandwidth_of,
     _check_same_abscissa,
     _coherence,
+    _Contents,
+    _coordinates,
+    _describe_types,
     _frf_id_fields,
     _frf_scale,
     _normal_label,
@@ -44,39 +48,16 @@ from racketdyn.io.uff import (
     _record_of,
     _scale,
     _sign,
-    _Units,
     _units_of,
 )
 from racketdyn.measurement.records import FRF_TYPE_OF_RESPONSE, FrfSet, FrfType
 
-__all__ = ["LAYOUTS", "read_frfs"]
+__all__ = ["LAYOUTS", "read_frf_uff", "read_frfs"]
 
 log = logging.getLogger(__name__)
 
 LAYOUTS = ("roving hammer", "roving accelerometer", "several references")
 """How a file's FRFs were measured (``FrfSet.metadata["layout"]``)."""
-
-
-def _coordinates(
-    path: Path, sets: list[dict[str, Any]], units: _Units
-) -> dict[int, tuple[float, float, float]]:
-    """Node coordinates (x, y, z) in m from data sets 15 and 2411."""
-    nodes: dict[int, tuple[float, float, float]] = {}
-    for i, dset in enumerate(sets, start=1):
-        if dset.get("type") not in (15, 2411):
-            continue
-        numbers = np.asarray(dset.get("node_nums", []), dtype=float)
-        xyz = [np.asarray(dset.get(k, []), dtype=float) / units.length for k in "xyz"]
-        if not all(a.size == numbers.size for a in xyz) or not np.all(
-            np.isfinite(np.r_[numbers, *xyz])
-        ):
-            raise InputError(
-                f"{path}: data set {i} ({dset['type']}, nodes): every node needs a finite "
-                "number and finite x, y, z coordinates"
-            )
-        for number, x, y, z in zip(numbers, *xyz, strict=True):
-            nodes[int(number)] = (float(x), float(y), float(z))
-    return nodes
 
 
 def _check(path: Path, record: _Record) -> None:
@@ -137,7 +118,11 @@ def _listed(nodes: list[int]) -> str:
 
 
 def read_frfs(
-    path: Path | str, geometry: Path | str | None = None, reference: int | None = None
+    path: Path | str,
+    geometry: Path | str | None = None,
+    reference: int | None = None,
+    *,
+    require_coordinates: bool = True,
 ) -> FrfSet:
     """Read the FRFs of a file against one reference node, whatever moved during the test.
 
@@ -152,37 +137,44 @@ def read_frfs(
         The reference node (a node every FRF used has at one end).  Default: the only
         response node (roving hammer), the only excitation node (roving accelerometer), or
         the node reaching the most points when one node does.
+    require_coordinates : bool
+        A point without coordinates is an error naming ``--geometry`` (default: shapes need
+        them); False gives it NaN coordinates (FRFs need none;
+        :func:`read_frf_uff`).
 
     Returns
     -------
     FrfSet
         Points ordered by node number; ``reference_node`` the reference; locations (x, y, z)
         in the lab's frame, m ((x, y) when every point has the same z); metadata
-        ``layout`` (:data:`LAYOUTS`), ``left_out`` (FRFs not against the reference) and
-        ``directions`` (node → direction code used).
+        ``layout`` (:data:`LAYOUTS`), ``left_out`` (FRFs not against the reference),
+        ``directions`` (node → direction code used) and, for FRFs racketdyn estimated,
+        ``bandwidth_hz`` (fs/2.56; another system's export ends at its bandwidth:
+        :attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`).
 
     Raises
     ------
     InputError
-        As :func:`racketdyn.io.uff.read_frf_uff`, and: several references with none chosen; a
+        As :func:`read_frf_uff`, and: several references with none chosen; a
         reference that is in no FRF; a point without coordinates (naming ``--geometry``).
     """
     path = Path(path)
     sets = _read_sets(path)
     units = _units_of(path, sets)
-    coordinates = _coordinates(path, sets, units)
-    if geometry is not None:
-        geometry_sets = _read_sets(Path(geometry))
-        coordinates.update(
-            _coordinates(Path(geometry), geometry_sets, _units_of(Path(geometry), geometry_sets))
-        )
-    records = [
-        _record_of(path, i, dset)
-        for i, dset in enumerate(sets, start=1)
-        if dset.get("type") == 58 and int(dset.get("func_type", 0) or 0) == FREQUENCY_RESPONSE
+    coordinates = _coordinates(path, sets, units, geometry)
+    every = [
+        _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
     ]
+    records = [r for r in every if r.func_type == FREQUENCY_RESPONSE]
     if not records:
-        raise InputError(f"{path}: no FRFs (data set 58, function type 4)")
+        contents = _Contents(
+            records=every, nodes={}, units=units, types=[int(d.get("type") or 0) for d in sets]
+        )
+        hint = "; read it with read_hammer_uff" if any(r.func_type == 1 for r in every) else ""
+        raise InputError(
+            f"{path}: no FRFs (data set 58, function type {FREQUENCY_RESPONSE}): the file holds "
+            f"{_describe_types(contents)}{hint}"
+        )
     for record in records:
         _check(path, record)
     ref, layout = _choose_reference(path, records, reference)
@@ -231,7 +223,15 @@ def read_frfs(
             )
         _check_same_abscissa(path, first, record, "frequency axis")
     missing = [n for n in [*nodes, ref] if n not in coordinates]
-    if missing:
+    if missing and not require_coordinates:
+        log.info(
+            "%s: node(s) %s have no coordinates (FRFs need none; shapes and maps will ask for "
+            "--geometry)",
+            path,
+            _listed(missing),
+        )
+        coordinates = {**coordinates, **{n: (np.nan, np.nan, np.nan) for n in missing}}
+    elif missing:
         where = "" if geometry is None else f" or {geometry}"
         raise InputError(
             f"{path}: node{'s' if len(missing) > 1 else ''} {_listed(missing)} ha"
@@ -240,7 +240,8 @@ def read_frfs(
         )
     xyz = np.asarray([coordinates[n] for n in nodes], dtype=float)
     reference_xyz = np.asarray(coordinates[ref], dtype=float)
-    three_d = bool(np.ptp(np.r_[xyz[:, 2], reference_xyz[2]]) > 0)
+    z = np.r_[xyz[:, 2], reference_xyz[2]]
+    three_d = bool(np.nanmax(z) > np.nanmin(z)) if np.isfinite(z).any() else False
     locations = xyz if three_d else xyz[:, :2]
     values = np.asarray(
         [
@@ -253,8 +254,9 @@ def read_frfs(
         dtype=complex,
     )
     frequency_scale = _scale(path, first, "frequency", _normal_label(first.labels[0]), units)
-    coherence = _coherence(path, records, ref, nodes, first) if layout == "roving hammer" else None
+    coherence = _coherence(path, every, ref, nodes, first) if layout == "roving hammer" else None
     estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
+    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
     return FrfSet(
         frequency=first.x * frequency_scale,
         values=values,
@@ -274,5 +276,49 @@ def read_frfs(
             "layout": layout,
             "left_out": left_out,
             "directions": {int(n): int(point_of(by_node[n])[1]) for n in nodes},
+            **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
         },
     )
+
+
+def read_frf_uff(
+    path: Path | str, geometry: Path | str | None = None, reference: int | None = None
+) -> FrfSet:
+    """Read the FRFs of a Universal File against one reference node.
+
+    The one FRF reader: :func:`read_frfs` (any layout — roving
+    hammer, roving accelerometer, several references —, z kept), with points allowed to lack
+    coordinates (FRFs need none: they get NaN, and a step that needs them asks for
+    ``--geometry``) and the set negated back where its driving point reads with negative
+    modal constants (:meth:`~racketdyn.measurement.records.FrfSet.with_positive_driving_point`).
+
+    Parameters
+    ----------
+    path : Path or str
+        Universal File with data sets 58 or 58b of function type 4 (FRF), complex.  The FRF
+        type follows the ordinate (numerator) type of record 9: 8 displacement → receptance,
+        11 velocity → mobility, 12 acceleration → accelerance; the denominator (record 10)
+        must be a force (13) or left unknown (0).  Coherences (function type 6) of the same
+        node pairs are read when every point has one.  Node coordinates (data set 15 or 2411,
+        m, or in data set 164's unit) may be in the same file.
+    geometry : Path or str, optional
+        A second Universal File with node coordinates; its nodes take precedence.
+    reference : int, optional
+        The reference node when the file has FRFs against several (``--reference``).
+
+    Returns
+    -------
+    FrfSet
+        Points ordered by node number, frequencies in Hz, values in SI units of the FRF type.
+        Files written by :func:`racketdyn.io.uff.write_frf_uff` give back their estimator,
+        exponential window, averages and bandwidth; other files get ``estimator="file"``.
+
+    Raises
+    ------
+    InputError
+        Missing, damaged or truncated file; time records instead of FRFs; records on different
+        frequency axes; two FRFs of one point; NaN in the data; several references and none
+        chosen.
+    """
+    frfs = read_frfs(path, geometry, reference, require_coordinates=False)
+    return frfs.with_positive_driving_point()

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import dataclasses
 import datetime
 import io
 import logging
@@ -47,14 +48,12 @@ from racketdyn.measurement.records import (
     FRF_TYPE_OF_RESPONSE,
     RESPONSE_TYPES,
     FrfSet,
-    FrfType,
     HammerRecords,
     ResponseType,
 )
 from racketdyn.modal.model import ModalModel
 
 __all__ = [
-    "read_frf_uff",
     "read_hammer_csv",
     "read_hammer_uff",
     "write_frf_uff",
@@ -148,6 +147,7 @@ class _Contents:
     nodes: dict[int, tuple[float, float]]
     units: _Units
     types: list[int]
+    depth: dict[int, float] = dataclasses.field(default_factory=dict)  # z of each node, m
 
 
 def _as_int(value: Any, default: int = 0) -> int:
@@ -233,11 +233,11 @@ def _units_of(path: Path, sets: Sequence[dict[str, Any]]) -> _Units:
     return _Units()
 
 
-def _nodes_of(
+def _nodes_xyz_of(
     path: Path, sets: Sequence[dict[str, Any]], units: _Units
-) -> dict[int, tuple[float, float]]:
-    """Node coordinates (x, y) in m from data sets 15 and 2411 (z ignored)."""
-    nodes: dict[int, tuple[float, float]] = {}
+) -> dict[int, tuple[float, float, float]]:
+    """Node coordinates (x, y, z) in m from data sets 15 and 2411, their extent checked."""
+    nodes: dict[int, tuple[float, float, float]] = {}
     for i, dset in enumerate(sets, start=1):
         if dset.get("type") not in (15, 2411):
             continue
@@ -260,8 +260,8 @@ def _nodes_of(
                 "coordinates are likely in mm; add a data set 164 giving the length unit, or "
                 "give the coordinates in m with --geometry FILE"
             )
-        for number, xi, yi in zip(numbers, x, y, strict=True):
-            nodes[int(number)] = (float(xi), float(yi))
+        for number, xi, yi, zi in zip(numbers, x, y, z, strict=True):
+            nodes[int(number)] = (float(xi), float(yi), float(zi))
     return nodes
 
 
@@ -420,26 +420,36 @@ def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
     return record
 
 
-def _load(path: Path, geometry: Path | str | None) -> _Contents:
-    """Records 58 and node coordinates of a file (and of a separate geometry file)."""
-    sets = _read_sets(path)
-    units = _units_of(path, sets)
-    nodes = _nodes_of(path, sets, units)
+def _coordinates(
+    path: Path, sets: Sequence[dict[str, Any]], units: _Units, geometry: Path | str | None
+) -> dict[int, tuple[float, float, float]]:
+    """Node coordinates (x, y, z), m, of a file and of a separate geometry file (which wins)."""
+    nodes = _nodes_xyz_of(path, sets, units)
     if geometry is not None:
         geometry = Path(geometry)
         geometry_sets = _read_sets(geometry)
-        found = _nodes_of(geometry, geometry_sets, _units_of(geometry, geometry_sets))
+        found = _nodes_xyz_of(geometry, geometry_sets, _units_of(geometry, geometry_sets))
         if not found:
             raise InputError(
                 f"{geometry}: no node coordinates (data set 15 or 2411); give a geometry file "
                 "that lists the nodes"
             )
         nodes.update(found)
+    return nodes
+
+
+def _load(path: Path, geometry: Path | str | None) -> _Contents:
+    """Records 58 and node coordinates (x, y) of a file (and of a separate geometry file)."""
+    sets = _read_sets(path)
+    units = _units_of(path, sets)
+    xyz = _coordinates(path, sets, units, geometry)
+    nodes = {n: (x, y) for n, (x, y, _) in xyz.items()}
     records = [
         _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
     ]
     types = [_as_int(dset.get("type")) for dset in sets]
-    return _Contents(records=records, nodes=nodes, units=units, types=types)
+    depth = {n: z for n, (_, _, z) in xyz.items()}
+    return _Contents(records=records, nodes=nodes, units=units, types=types, depth=depth)
 
 
 def _location(nodes: dict[int, tuple[float, float]], node: int) -> tuple[float, float]:
@@ -596,8 +606,19 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
     first_response = next(iter(responses.values()))
     response_type = RESPONSE_OF_CODE[first_response.quantity]
     reference_node = first_response.rsp_node
+    hammer_nodes = {node for node, _ in forces}
+    roving_accelerometer = (
+        len({r.rsp_node for r in responses.values()}) > 1 and len(hammer_nodes) == 1
+    )
+    # the point of each average: the hammer node (roving hammer), or, with one hammer node
+    # and the accelerometer moved, the response node (by reciprocity H_ij = H_ji the same
+    # data; the hammer node is then the reference)
+    point_of = {key: key[0] for key in forces}
+    if roving_accelerometer:
+        reference_node = next(iter(hammer_nodes))
+        point_of = {key: responses[key].rsp_node for key in forces}
     for record in responses.values():
-        if record.rsp_node != reference_node:
+        if record.rsp_node != reference_node and not roving_accelerometer:
             raise InputError(
                 f"{path}: data sets {first_response.index} and {record.index} were measured at "
                 f"different response nodes ({reference_node} and {record.rsp_node}); racketdyn "
@@ -621,14 +642,14 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
     ):
         raise InputError(f"{first.where(path)}: the samples must be evenly spaced in time")
     time_scale = _scale(path, first, "time", _normal_label(first.labels[0]), contents.units)
-    nodes = sorted({node for node, _ in forces})
+    nodes = sorted(set(point_of.values()))
     force_rows, response_rows, averages = [], [], []
     for node in nodes:
-        cases = sorted(case for n, case in forces if n == node)
-        averages.append(cases)
+        keys = sorted((key for key in forces if point_of[key] == node), key=lambda k: k[1])
+        averages.append([case for _, case in keys])
         rows_f, rows_r = [], []
-        for case in cases:
-            f, r = forces[node, case], responses[node, case]
+        for key in keys:
+            f, r = forces[key], responses[key]
             f_scale = _scale(path, f, "force", _normal_label(f.labels[1]), contents.units)
             r_scale = _scale(path, r, response_type, _normal_label(r.labels[1]), contents.units)
             rows_f.append(f.data * f_scale * _sign(path, f, f.rsp_dir))
@@ -636,6 +657,20 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         force_rows.append(np.asarray(rows_f, dtype=float))
         response_rows.append(np.asarray(rows_r, dtype=float))
     _note_missing(path, contents.nodes, [*nodes, reference_node])
+    metadata: dict[str, Any] = {"averages": averages}
+    if roving_accelerometer:
+        metadata["layout"] = "roving accelerometer"
+    depths = [contents.depth[n] for n in [*nodes, reference_node] if n in contents.depth]
+    if depths and max(depths) > min(depths):
+        # (x, y, z) points: time records and FRFs are (x, y); rather no coordinates than
+        # points squashed onto x–y.  identify reads the lab's (x, y, z) from this file.
+        logger.warning(
+            "%s: the points differ in z (3-D geometry): the records are read without "
+            "coordinates; give this file to identify as --geometry for the (x, y, z) points",
+            path,
+        )
+        metadata["three_d_geometry"] = str(path)
+        contents = dataclasses.replace(contents, nodes={})
     locations = [_location(contents.nodes, n) for n in nodes]
     reference_location = _location(contents.nodes, reference_node)
     return HammerRecords(
@@ -649,114 +684,8 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         reference_location=reference_location,
         pretrigger_s=float(-x[0] * time_scale),
         source=str(path),
-        metadata={"averages": averages},
+        metadata=metadata,
     )
-
-
-def read_frf_uff(path: Path | str, geometry: Path | str | None = None) -> FrfSet:
-    """Read the FRFs of a roving-hammer test from a Universal File.
-
-    Parameters
-    ----------
-    path : Path or str
-        Universal File with data sets 58 or 58b of function type 4 (FRF), complex: response
-        node = the fixed transducer (the reference of the set), reference node = the hammer
-        point.  The FRF type follows the ordinate (numerator) type of record 9: 8 displacement
-        → receptance, 11 velocity → mobility, 12 acceleration → accelerance; the denominator
-        (record 10) must be a force (13) or left unknown (0).  Coherences (function type 6)
-        of the same node pairs are read when every point has one.  Node coordinates (data set
-        15 or 2411, m) may be in the same file.
-    geometry : Path or str, optional
-        A second Universal File with node coordinates (data set 15 or 2411, m); its nodes take
-        precedence over those of ``path``.
-
-    Returns
-    -------
-    FrfSet
-        Points ordered by node number, frequencies in Hz, values in SI units of the FRF type.
-        Files written by :func:`write_frf_uff` give back their estimator, exponential window
-        and averages; other files get ``estimator="file"``.
-
-    Raises
-    ------
-    InputError
-        Missing, damaged or truncated file; time records instead of FRFs; records on different
-        frequency axes; two FRFs of one point; NaN in the data; a node without coordinates.
-    """
-    path = Path(path)
-    contents = _load(path, geometry)
-    records = _records_of(path, contents, FREQUENCY_RESPONSE)
-    by_node: dict[int, _Record] = {}
-    for record in records:
-        if not np.iscomplexobj(record.data):
-            raise InputError(
-                f"{record.where(path)}: an FRF must be complex (ordinate data type 5 or 6)"
-            )
-        if record.quantity not in RESPONSE_OF_CODE:
-            raise InputError(
-                f"{record.where(path)}: ordinate type {record.quantity} is not a response "
-                "(8 displacement, 11 velocity, 12 acceleration); set record 9, field 1"
-            )
-        if record.denominator not in (0, QUANTITY_CODE["force"]):
-            raise InputError(
-                f"{record.where(path)}: the FRF must be per force (record 10, field 1 = 13), "
-                f"not per quantity {record.denominator}"
-            )
-        if record.ref_node in by_node:
-            raise InputError(
-                f"{path}: data sets {by_node[record.ref_node].index} and {record.index} are both "
-                f"the FRF of hammer node {record.ref_node}; keep one"
-            )
-        by_node[record.ref_node] = record
-    first = records[0]
-    response_type = RESPONSE_OF_CODE[first.quantity]
-    for record in records[1:]:
-        if record.rsp_node != first.rsp_node:
-            raise InputError(
-                f"{path}: data sets {first.index} and {record.index} have different response "
-                f"nodes ({first.rsp_node} and {record.rsp_node}); racketdyn reads the FRFs of "
-                "one reference transducer at a time"
-            )
-        if record.quantity != first.quantity:
-            raise InputError(
-                f"{path}: data sets {first.index} and {record.index} are FRFs of different types "
-                f"({record.quantity} against {first.quantity} in record 9); give one type"
-            )
-        _check_same_abscissa(path, first, record, "frequency axis")
-    frequency_scale = _scale(
-        path, first, "frequency", _normal_label(first.labels[0]), contents.units
-    )
-    nodes = sorted(by_node)
-    _note_missing(path, contents.nodes, [*nodes, first.rsp_node])
-    values = np.asarray(
-        [
-            by_node[n].data
-            * _frf_scale(path, by_node[n], response_type, contents.units)
-            * _sign(path, by_node[n], by_node[n].rsp_dir)
-            * _sign(path, by_node[n], by_node[n].ref_dir)
-            for n in nodes
-        ],
-        dtype=complex,
-    )
-    coherence = _coherence(path, contents.records, first.rsp_node, nodes, first)
-    estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
-    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
-    frfs = FrfSet(
-        frequency=first.x * frequency_scale,
-        values=values,
-        frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
-        nodes=tuple(nodes),
-        locations=np.asarray([_location(contents.nodes, n) for n in nodes], dtype=float),
-        reference_node=first.rsp_node,
-        reference_location=_location(contents.nodes, first.rsp_node),
-        coherence=coherence,
-        n_averages=averages,
-        exponential_window_s=tau,
-        estimator=estimator,
-        source=str(path),
-        metadata={} if bandwidth is None else {"bandwidth_hz": bandwidth},
-    )
-    return frfs.with_positive_driving_point()
 
 
 def _coherence(
@@ -848,10 +777,12 @@ def _geometry_set(
     reference_location: tuple[float, float],
     nodes: Sequence[int],
     locations: NDArray[np.float64],
+    plane: str = "xy",
 ) -> dict[str, Any] | None:
     """Data set 15 with the reference node first, then the hammer nodes (those with coordinates).
 
-    None when no node has coordinates (the records came without geometry).
+    None when no node has coordinates (the records came without geometry).  ``plane="xz"``
+    writes the points (x, y) in the lab's x–z plane: (x, 0, y).
     """
     numbers, xs, ys = [reference_node], [reference_location[0]], [reference_location[1]]
     if any(math.isnan(v) for v in reference_location):
@@ -882,15 +813,16 @@ def _geometry_set(
     n = len(numbers)
     if n == 0:
         return None
+    in_plane = {"x": xs, "y": ys, "z": [0.0] * n}
+    if plane == "xz":
+        in_plane = {"x": xs, "y": [0.0] * n, "z": ys}
     return {
         "type": 15,
         "node_nums": numbers,
         "def_cs": [0] * n,
         "disp_cs": [0] * n,
         "color": [0] * n,
-        "x": xs,
-        "y": ys,
-        "z": [0.0] * n,
+        **in_plane,
     }
 
 
@@ -1080,7 +1012,14 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
     return _write_sets(path, sets)
 
 
-def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = False) -> Path:
+def write_hammer_uff(
+    records: HammerRecords,
+    path: Path | str,
+    binary: bool = False,
+    response_direction: int = 3,
+    plane: str = "xy",
+    layout: str = "roving hammer",
+) -> Path:
     """Write roving-hammer time records to a fresh Universal File, as a lab would.
 
     The file holds a data set 15 (the reference node, then the hammer nodes, x and y in m, z 0)
@@ -1099,6 +1038,20 @@ def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = Fa
         File to write; an existing file is replaced.
     binary : bool
         Write binary data sets 58b instead of ASCII 58 (default False).
+    response_direction : int
+        Direction code of the response records (record 6): ``3`` (+z, along the hammer) or
+        ``-3`` (an accelerometer mounted against the hammer, in −z: the records hold what it
+        measures, the response negated, and the code says so, as a lab's export does).
+    plane : {"xy", "xz"}
+        The lab plane the face lies in: ``xy`` (coordinates (x, y, 0), the normal z: codes
+        ±3) or ``xz`` (the racket in the lab's x–z plane, as a lab measures it standing:
+        coordinates (x, 0, y), the normal y: codes ±2).
+    layout : {"roving hammer", "roving accelerometer"}
+        ``roving accelerometer`` writes the same data (by reciprocity, H_ij = H_ji) as a test
+        with the hammer at the reference node and the accelerometer moved over the points:
+        every force record at the reference node, each response record at its point, the load
+        case a running number over the file (each point's averages its own cases).
+        :func:`read_hammer_uff` reads either.
 
     Returns
     -------
@@ -1108,12 +1061,28 @@ def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = Fa
     Raises
     ------
     InputError
-        NaN or infinite values, node numbers that are not positive or repeat, or a file that
-        cannot be written.
+        NaN or infinite values, node numbers that are not positive or repeat, a direction code
+        other than ±3, or a file that cannot be written.
     """
     path = Path(path)
+    if response_direction not in (DIRECTION, -DIRECTION):
+        raise InputError(
+            f"{path}: response direction {response_direction!r}: racketdyn writes +3 or -3"
+        )
+    if plane not in ("xy", "xz"):
+        raise InputError(f"{path}: plane {plane!r}: give xy or xz")
+    if layout not in ("roving hammer", "roving accelerometer"):
+        raise InputError(f"{path}: layout {layout!r}: give roving hammer or roving accelerometer")
+    moving = layout == "roving accelerometer"
+    mounted = 1.0 if response_direction > 0 else -1.0
+    normal = DIRECTION if plane == "xy" else 2
     geometry = _geometry_set(
-        path, records.reference_node, records.reference_location, records.nodes, records.locations
+        path,
+        records.reference_node,
+        records.reference_location,
+        records.nodes,
+        records.locations,
+        plane,
     )
     sets: list[dict[str, Any]] = [] if geometry is None else [geometry]
     time = records.time
@@ -1124,16 +1093,21 @@ def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = Fa
         _finite(path, "the response", node, response)
         for k in range(force.shape[0]):
             where = f"hammer node {node}, average {k + 1}, reference node {records.reference_node}"
-            for channel, data, rsp_node in (
-                ("force", force[k], node),
-                (kind, response[k], records.reference_node),
+            hammer, sensor, case = node, records.reference_node, k + 1
+            if moving:
+                hammer, sensor = records.reference_node, node
+                where = f"accelerometer node {node}, average {k + 1}, hammer node {hammer}"
+                case = sum(1 for s in sets if s.get("func_type") == TIME_RESPONSE) // 2 + 1
+            for channel, data, rsp_node, direction in (
+                ("force", force[k], hammer, normal),
+                (kind, mounted * response[k], sensor, int(mounted) * normal),
             ):
                 sets.append(
                     _record_set(
                         func_type=TIME_RESPONSE,
-                        load_case=k + 1,
+                        load_case=case,
                         rsp_node=rsp_node,
-                        ref_node=node,
+                        ref_node=hammer,
                         x=time,
                         data=np.asarray(data, dtype=float),
                         abscissa="time",
@@ -1149,6 +1123,7 @@ def write_hammer_uff(records: HammerRecords, path: Path | str, binary: bool = Fa
                         number=len(sets),
                     )
                 )
+                sets[-1]["rsp_dir"], sets[-1]["ref_dir"] = direction, normal
     return _write_sets(path, sets)
 
 
@@ -1412,16 +1387,21 @@ def write_hammer_csv(
 def write_modes_uff(
     model: ModalModel, path: Path | str, nodes: Sequence[int] | None = None
 ) -> Path:
-    """Write mass-normalised mode shapes as UFF 55 (normal modes) with UFF 15 geometry.
+    """Write mode shapes as UFF 55 (normal modes) with UFF 15 geometry.
 
-    One data set 55 per mode (analysis type 2, normal mode; displacement normal to the face in
-    the z direction, x and y zero), frequency in Hz, modal mass 1 (mass-normalised shapes),
-    viscous damping ratio; readable by other modal software.
+    One data set 55 per mode (analysis type 2, normal mode), frequency in Hz, viscous damping
+    ratio; readable by other modal software.  The geometry keeps z of a 3-D model (the lab's
+    frame; 0 for (x, y) locations).  The displacement is written along the direction the FRFs
+    were measured in (``model.metadata["directions"]``: the one translation code every point
+    shares; z, normal to a racket's face, when none is recorded), the other two zero.  A
+    mass-normalised model (``model.scaling == "mass"``) has modal mass 1 and says
+    "mass-normalised, 1/sqrt(kg)" in ID line 3; an unscaled one (no driving point) has modal
+    mass 0 (unknown) and says "unscaled (largest 1), modal mass unknown".
 
     Parameters
     ----------
     model : ModalModel
-        Shapes at its locations (1/√kg).
+        Shapes at its locations (1/√kg, or unscaled).
     path : Path or str
         File to write (replaced).
     nodes : sequence of int, optional
@@ -1441,10 +1421,25 @@ def write_modes_uff(
         "color": [0] * len(numbers),
         "x": model.locations[:, 0].tolist(),
         "y": model.locations[:, 1].tolist(),
-        "z": [0.0] * len(numbers),
+        "z": (
+            model.locations[:, 2].tolist()
+            if model.locations.shape[1] == 3
+            else [0.0] * len(numbers)
+        ),
     }
     sets: list[dict[str, Any]] = [geometry]
     zeros = np.zeros(len(numbers))
+    recorded = model.metadata.get("directions") or {}
+    codes = {abs(int(c)) for c in recorded.values()} if isinstance(recorded, dict) else set()
+    axis = codes.pop() if len(codes) == 1 and codes <= {1, 2, 3} else 3
+    letter = "xyz"[axis - 1]
+    scaled = model.scaling == "mass"
+    scaling = (
+        "mass-normalised shapes, 1/sqrt(kg)"
+        if scaled
+        else "unscaled shapes (largest 1), modal mass unknown"
+    )
+    where = "normal to the face (z)" if recorded == {} else f"along {letter} as measured"
     for k in range(model.n_modes):
         shape = model.mode_shapes[:, k]
         _finite(target, f"mode {k + 1} shape", k + 1, shape)
@@ -1453,7 +1448,7 @@ def write_modes_uff(
                 "type": 55,
                 "id1": _ascii_line(f"racketdyn {__version__} {model.names[k]}"),
                 "id2": _ascii_line(f"{model.support} support; {model.source}"),
-                "id3": _ascii_line("mass-normalised shapes, 1/sqrt(kg), normal to the face (z)"),
+                "id3": _ascii_line(f"{scaling}, {where}"),
                 "id4": "NONE",
                 "id5": "NONE",
                 "model_type": 1,
@@ -1462,13 +1457,11 @@ def write_modes_uff(
                 "spec_data_type": 8,
                 "data_type": 2,
                 "n_data_per_node": 3,
-                "r1": zeros,
-                "r2": zeros,
-                "r3": shape.astype(float),
+                **{f"r{i}": shape.astype(float) if i == axis else zeros for i in (1, 2, 3)},
                 "load_case": 1,
                 "mode_n": k + 1,
                 "freq": float(model.frequency[k]),
-                "modal_m": 1.0,
+                "modal_m": 1.0 if scaled else 0.0,
                 "modal_damp_vis": float(model.damping_ratio[k]),
                 "modal_damp_his": 0.0,
                 "node_nums": np.asarray(numbers, dtype=float),

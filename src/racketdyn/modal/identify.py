@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfSet
+from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import (
     DroppedMode,
@@ -42,6 +42,8 @@ from racketdyn.modal.residues import (
 
 __all__ = [
     "DEFAULT_LOW_HZ",
+    "EDGE_CLEAR",
+    "EDGE_MARGIN",
     "FIT_GAIN_MIN",
     "STRONG_NEGATIVE",
     "Identification",
@@ -68,9 +70,109 @@ negative ones (a mode nearly still at the accelerometer, e.g. a string-bed mode 
 leave that mode out of a mass-normalised model."""
 
 
+EDGE_MARGIN = 0.02
+"""Part of the band's width at each end where the fit's computational poles fall and no mode is
+taken (:func:`racketdyn.modal.poles.select_poles`' ``edge_margin``)."""
+EDGE_CLEAR = 0.1
+"""A mode dropped in the edge margin is reported as a clear mode (stage ``edge``, one warning
+naming the option that keeps it) when it is stable in more than three orders and its peak is at
+least this fraction of the median kept mode's (20 dB): the bar's 873 Hz mode 7 Hz below an
+880 Hz top scores ≈ 0.9, edge poles of noise ≤ 0.01 (tests/test_band.py)."""
+HEADER_DIGITS_RTOL = 1e-5
+"""A band top this far (relative) above the last line is the last line: the UFF header keeps
+the step with 6 significant digits (E13.5), so a 1000 Hz export reads 999.997 Hz."""
+
+
 def default_band(frfs: FrfSet) -> tuple[float, float]:
-    """40 Hz to the analyser bandwidth, fs / 2.56 (the last line is fs / 2), Hz."""
-    return (DEFAULT_LOW_HZ, 2.0 * float(frfs.frequency[-1]) / ANALYSER_BANDWIDTH_FACTOR)
+    """40 Hz to the FRFs' bandwidth, Hz.
+
+    The bandwidth is :attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`: the last
+    spectral line of FRFs another system exported (they end at its analyser bandwidth, e.g.
+    1000 Hz from fs = 2560 Hz), fs / 2.56 of FRFs racketdyn estimated from time records (whose
+    lines above it are the anti-alias filter's roll-off; :data:`ANALYSER_BANDWIDTH_FACTOR`).
+    """
+    return (DEFAULT_LOW_HZ, float(frfs.bandwidth_hz))
+
+
+def _checked_band(frfs: FrfSet, band: tuple[float, float]) -> tuple[float, float]:
+    """The band within the FRFs; a top within the header's rounding of the last line is it."""
+    last = float(frfs.frequency[-1])
+    low, high = float(band[0]), float(band[1])
+    if last < high <= last * (1 + HEADER_DIGITS_RTOL):
+        high = last
+    if not 0 <= low < high <= last:
+        raise InputError(
+            f"{frfs.source}: band {low:g}–{high:g} Hz must lie within the FRFs' "
+            f"{float(frfs.frequency[0]):g}–{last:.7g} Hz (their last line); give --band "
+            f"LOW,HIGH inside it"
+        )
+    return (low, high)
+
+
+def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]) -> SelectedPoles:
+    """Clear modes dropped in the band's edge margin: one row each, naming what keeps them.
+
+    The edge margin (:data:`EDGE_MARGIN`) keeps the fit's computational poles out; a mode of
+    the data there (stable in more than three orders, peak within 20 dB of the kept modes',
+    :data:`EDGE_CLEAR`) is not dropped silently.  Clusters of one peak split by the edge are
+    one row (the strongest).  The reason names ``--band LOW,HIGH`` when the FRFs' bandwidth
+    (:attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`: lines above it are the
+    anti-alias filter's roll-off) reaches far enough to put the mode out of the margin, else
+    ``--pin F``.
+    """
+    low, high = band
+    margin = EDGE_MARGIN * (high - low)
+    reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else 0.0
+    clear = [
+        d
+        for d in selected.dropped_modes
+        if d.stage == "selection"
+        and d.reason.startswith("within")
+        and d.orders_stable > 3
+        and d.peak_to_noise >= EDGE_CLEAR * reference
+    ]
+    if not clear:
+        return selected
+    rows: list[DroppedMode] = []
+    for top in (False, True):
+        side = [d for d in clear if (d.frequency_hz > (low + high) / 2) == top]
+        if not side:
+            continue
+        mode = max(side, key=lambda d: d.peak_to_noise)
+        f, zeta = mode.frequency_hz, mode.damping_ratio
+        room = 3 * 2 * zeta * f + 2 * float(frfs.frequency[1] - frfs.frequency[0])
+        if top:
+            wanted = (f + room - EDGE_MARGIN * low) / (1 - EDGE_MARGIN)
+            edge = f"the band's top {high:g} Hz"
+            new = float(np.ceil(wanted / 5.0) * 5.0)
+            fits = new <= float(frfs.bandwidth_hz)
+            option = f"--band {low:g},{new:g}"
+            end = f"the FRFs' bandwidth ends at {float(frfs.bandwidth_hz):.6g} Hz"
+        else:
+            wanted = (f - room - EDGE_MARGIN * high) / (1 - EDGE_MARGIN)
+            edge = f"the band's bottom {low:g} Hz"
+            new = float(np.floor(wanted / 5.0) * 5.0)
+            fits = new >= float(frfs.frequency[0])
+            option = f"--band {new:g},{high:g}"
+            end = f"the FRFs start at {float(frfs.frequency[0]):.6g} Hz"
+        keep = (
+            f"{option} keeps it"
+            if fits
+            else f"{end}: --pin {f:.1f} keeps it (fitted with part of its peak beyond the data)"
+        )
+        rows.append(
+            replace(
+                mode,
+                stage="edge",
+                reason=(
+                    f"a clear mode (stable in {mode.orders_stable} orders, peak "
+                    f"{mode.peak_to_noise:.2g} × the noise) within {margin:.3g} Hz of {edge}, "
+                    f"where no mode is taken; {keep}"
+                ),
+            )
+        )
+    rest = tuple(d for d in selected.dropped_modes if all(d is not c for c in clear))
+    return replace(selected, dropped_modes=(*rest, *rows))
 
 
 @dataclass(frozen=True, eq=False)
@@ -200,7 +302,8 @@ def identify(
         FRFs of the points against one reference (2-D or 3-D locations); an exponential
         window recorded on the set is taken off the damping.
     band_hz : tuple of float, optional
-        Band to identify in, Hz (default :func:`default_band`).
+        Band to identify in, Hz (default :func:`default_band`: 40 Hz to the FRFs' bandwidth);
+        a top within the UFF header's 6-digit rounding of the last line is the last line.
     max_order : int
         Highest model order of the stabilisation diagram.
     pin_hz, exclude_hz : sequence of float
@@ -213,14 +316,15 @@ def identify(
     Identification
         The model's modes are named ``"mode k (f Hz)"``, of kind ``unknown``.
     """
-    band = band_hz or default_band(frfs)
-    if not 0 <= band[0] < band[1] <= frfs.frequency[-1]:
-        raise InputError(
-            f"{frfs.source}: band {band[0]:g}–{band[1]:g} Hz must lie within the FRFs' "
-            f"0–{frfs.frequency[-1]:g} Hz"
-        )
+    band = _checked_band(frfs, band_hz or default_band(frfs))
     stab = stabilisation(frfs, band, max_order=max_order)
-    selected = select_poles(stab, pin_hz=pin_hz, exclude_hz=exclude_hz)  # raises if none
+    selected = select_poles(
+        stab, pin_hz=pin_hz, exclude_hz=exclude_hz, edge_margin=EDGE_MARGIN
+    )  # raises if none
+    selected = _edge_modes(selected, frfs, band)
+    for row in selected.dropped_modes:
+        if row.stage == "edge":
+            log.warning("%.1f Hz left out: %s", row.frequency_hz, row.reason)
     fit = fit_modal_constants(frfs, selected.pole, band)
     late: list[DroppedMode] = []
 
@@ -318,6 +422,7 @@ def identify(
             "exponential_window_s": frfs.exponential_window_s,
             "nodes": list(frfs.nodes),
             "reference_node": frfs.reference_node,
+            "directions": frfs.metadata.get("directions") or {},
             "fit_error_median": float(np.median(fit.error)),
             "design_condition_number": fit.condition_number,
             "orders_stable": selected.n_orders.tolist(),

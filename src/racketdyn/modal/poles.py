@@ -258,8 +258,10 @@ class DroppedMode:
     orders_stable : int
         Model orders it was stable in.
     stage : str
-        ``selection`` (the stabilisation diagram's rules) or ``constants`` (what the modal
-        constants showed: no peak in the data, not normalisable at the driving point).
+        ``selection`` (the stabilisation diagram's rules), ``edge`` (a clear mode in the
+        band's edge margin; the reason names the option that keeps it) or ``constants`` (what
+        the modal constants showed: no peak in the data, not normalisable at the driving
+        point).
     reason : str
         Why, in words.
     peak_to_noise : float

@@ -18,7 +18,8 @@ What is simulated, and how:
   aliases.  Then a low-pass filter (linear-phase Kaiser FIR, applied with zero phase: passband
   to ``fs / 2.56``, the usual analyser bandwidth, flat to 3e-5; ≥ 90 dB down from
   ``fs − fs / 2.56``, so nothing aliases into the passband) and decimation.  White sensor noise
-  is added to each channel last (``force_noise_n``, ``acceleration_noise_ms2``, rms).  A pulse
+  is added to each channel last (``force_noise_n``, ``acceleration_noise_ms2``, rms; or as a
+  signal-to-noise ratio of each record's peak, ``force_snr_db``, ``response_snr_db``).  A pulse
   much shorter than the sampling interval rings after the filter (the frame's 0.4 ms pulse
   spans two samples at 200 µs), as it does on a real analyser.
 * **Faults.**  With ``double_hit_probability`` an average gets a second, smaller pulse
@@ -256,6 +257,8 @@ def simulate_hammer_test(
     peak_force_n: tuple[float, float] = (20.0, 60.0),
     force_noise_n: float = 0.02,
     acceleration_noise_ms2: float = 0.05,
+    force_snr_db: float | None = None,
+    response_snr_db: float | None = None,
     double_hit_probability: float = 0.0,
     double_hit_gap_s: tuple[float, float] = (0.5e-3, 3.0e-3),
     double_hit_ratio: tuple[float, float] = (0.2, 0.6),
@@ -297,6 +300,11 @@ def simulate_hammer_test(
         Force sensor noise, N rms (white, after the anti-alias filter).
     acceleration_noise_ms2 : float
         Accelerometer noise, m/s² rms.
+    force_snr_db, response_snr_db : float, optional
+        Noise of the force and response channels as a signal-to-noise ratio, dB: each record's
+        noise rms is its noiseless peak × 10^(−SNR/20) (so a weak response far from the
+        accelerometer is noisier relative to its modes, as on a real test).  Given, it replaces
+        ``force_noise_n`` / ``acceleration_noise_ms2``.
     double_hit_probability : float
         Chance that an average gets a second pulse.
     double_hit_gap_s : tuple of float
@@ -339,6 +347,9 @@ def simulate_hammer_test(
         require_range(name, value, 0.0, 1.0)
     require_positive("force_noise_n", force_noise_n, allow_zero=True)
     require_positive("acceleration_noise_ms2", acceleration_noise_ms2, allow_zero=True)
+    for name, snr in (("force_snr_db", force_snr_db), ("response_snr_db", response_snr_db)):
+        if snr is not None:
+            require_range(name, snr, 0.0, 200.0)
     _check_range("double_hit_gap_s", double_hit_gap_s, allow_zero=True)
     _check_range("double_hit_ratio", double_hit_ratio)
     n_pre = round(require_positive("pretrigger_s", pretrigger_s, allow_zero=True) / dt)
@@ -414,8 +425,13 @@ def simulate_hammer_test(
             force_fine[a, hit + shift :] += second * pulse[: pulse.size - shift]
             response_fine[a, hit + shift :] += second * unit_response[p, : pulse.size - shift]
         both = oaconvolve(np.vstack([force_fine, response_fine]), taps[None, :], "same", axes=1)
-        force = both[:n_avg, pick] + force_noise_n * rng.standard_normal((n_avg, n_out))
-        response = both[n_avg:, pick] + acceleration_noise_ms2 * rng.standard_normal((n_avg, n_out))
+        force_clean, response_clean = both[:n_avg, pick], both[n_avg:, pick]
+        force = force_clean + _noise_rms(force_clean, force_snr_db, force_noise_n)[
+            :, None
+        ] * rng.standard_normal((n_avg, n_out))
+        response = response_clean + _noise_rms(
+            response_clean, response_snr_db, acceleration_noise_ms2
+        )[:, None] * rng.standard_normal((n_avg, n_out))
         clipped = np.any(np.abs(force) >= overload_level_n, axis=1)
         force = np.clip(force, -overload_level_n, overload_level_n)
         forces.append(force)
@@ -450,6 +466,8 @@ def simulate_hammer_test(
             "peak_force_n": list(peak_force_n),
             "force_noise_n": force_noise_n,
             "acceleration_noise_ms2": acceleration_noise_ms2,
+            "force_snr_db": force_snr_db,
+            "response_snr_db": response_snr_db,
             "double_hit_probability": double_hit_probability,
             "overload_probability": overload_probability,
             "overload_level_n": overload_level_n,
@@ -486,6 +504,15 @@ def simulate_hammer_test(
         source=f"racketdyn virtual rig: {model.racket.name}, {model.support} support",
         metadata=metadata,
     )
+
+
+def _noise_rms(
+    clean: NDArray[np.float64], snr_db: float | None, absolute: float
+) -> NDArray[np.float64]:
+    """Noise rms of each record: its peak × 10^(−SNR/20), or the absolute level."""
+    if snr_db is None:
+        return np.full(clean.shape[0], absolute)
+    return np.asarray(np.max(np.abs(clean), axis=1) * 10.0 ** (-snr_db / 20.0))
 
 
 def _half_sine(duration: float, dt: float, n: int) -> NDArray[np.float64]:

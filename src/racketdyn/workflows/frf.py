@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal
 
 from racketdyn.errors import InputError, one_of
 from racketdyn.io import read_hammer_csv, read_hammer_uff, write_frf_uff
@@ -65,10 +65,14 @@ class FrfResult(StepResult):
         FRFs (``estimate.frfs``), per-average checks and rejected points.
     racket : Racket
         The racket (head outline for the figures).
+    records_metadata : dict
+        What the reader said of the records (``three_d_geometry``: the file whose points
+        differ in z, read without coordinates).
     """
 
     estimate: FrfEstimate | None = None
     racket: Racket | None = None
+    records_metadata: dict[str, Any] = field(default_factory=dict)
 
 
 @run_step
@@ -126,7 +130,13 @@ def run_frf(
         quality=QualitySettings(overload_level_n=force_range_n),
     )
     estimate.write_quality_csv(out_dir / "quality.csv")
-    result = FrfResult(out_dir, [out_dir / "quality.csv"], estimate=estimate, racket=the_racket)
+    result = FrfResult(
+        out_dir,
+        [out_dir / "quality.csv"],
+        estimate=estimate,
+        racket=the_racket,
+        records_metadata=dict(records.metadata),
+    )
     if estimate.frfs is None:
         # the run folder is left as it was: the reasons go into the message
         raise InputError(
@@ -145,5 +155,6 @@ def run_frf(
         "force_range_n": force_range_n,
         "quality": estimate.summary(),
         "rejected_points": list(estimate.rejected_points),
+        "three_d_geometry": records.metadata.get("three_d_geometry"),
     }
     return finish_run(result, inputs, command_record(command, "frf"), figures)

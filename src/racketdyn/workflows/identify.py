@@ -126,7 +126,8 @@ def identify_file(
     geometry : path, optional
         Node coordinates if not in the file.
     band_hz : (low, high), optional
-        Band, Hz (default 40 Hz to fs/2.56).
+        Band, Hz (default 40 Hz to the FRFs' bandwidth:
+        :func:`racketdyn.modal.identify.default_band`).
     max_order : int
         Highest model order.
     pin_hz, exclude_hz : sequence of float

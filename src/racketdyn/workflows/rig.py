@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -88,6 +88,14 @@ def run_rig(
     binary: bool = False,
     ball_at: Sequence[float] | None = None,
     ball: Ball | None = None,
+    force_snr_db: float | None = None,
+    response_snr_db: float | None = None,
+    pretrigger_s: float = 0.01,
+    time_zero: str = "pulse",
+    response_direction: int = 3,
+    driving_point: bool = True,
+    lab_plane: str = "xy",
+    layout: str = "roving hammer",
     command: Sequence[str] | None = None,
     figures: Callable[[RigResult, Path], list[Path]] | None = None,
     progress: Progress | None = None,
@@ -117,6 +125,31 @@ def run_rig(
         rig's membrane is the string bed), its dashpot from e_BG.
     ball : Ball, optional
         The ball of ``ball_at`` (default :class:`~racketdyn.ball.Ball`).
+    force_snr_db, response_snr_db : float, optional
+        Hammer and accelerometer noise as a signal-to-noise ratio, dB (each record's peak over
+        its noise rms); default: the fixed noise floors of 0.02 N and 0.05 m/s² rms
+        (:func:`~racketdyn.rig.simulate_hammer_test`).
+    pretrigger_s : float
+        Time recorded before the pulse, s (default 0.01).
+    time_zero : {"pulse", "record"}
+        Where the file's time axis starts: ``pulse`` (t = 0 at the pulse, the pre-trigger
+        negative) or ``record`` (t = 0 at the record's first sample, the pulse
+        ``pretrigger_s`` into it, as many acquisition systems export).
+    response_direction : {3, -3}
+        The accelerometer's direction code: +z (along the hammer) or −z (mounted against it;
+        the records hold what it measures and the code says so).
+    driving_point : bool
+        Strike the accelerometer's node too (default).  False leaves it out: identification
+        then gives unscaled shapes, as from a lab that did not measure it.
+    lab_plane : {"xy", "xz"}
+        The lab plane the file's coordinates put the face in: ``xz`` writes (x, 0, y) with
+        the normal along y (direction codes ±2), a racket measured standing; ``frf`` then
+        reads the records without coordinates and ``identify --geometry hammer_<support>.uff``
+        takes the (x, y, z) points and maps them onto the face.
+    layout : {"roving hammer", "roving accelerometer"}
+        ``roving accelerometer``: the hammer strikes the reference node (node 10, its pulse
+        for every hit) and the accelerometer is moved over the points; by reciprocity the same
+        FRFs (the file says it: :func:`~racketdyn.io.write_hammer_uff`'s ``layout``).
     command : sequence of str, optional
         The command as called, for run.json.
     figures : callable, optional
@@ -133,6 +166,15 @@ def run_rig(
         raise InputError(f"--averages must be a whole number of at least 1 (got {averages})")
     require_range("--double-hits", double_hits, 0.0, 1.0)
     require_range("--overloads", overloads, 0.0, 1.0)
+    for name, snr in (("--force-snr", force_snr_db), ("--response-snr", response_snr_db)):
+        if snr is not None:
+            require_range(name, snr, 0.0, 200.0)
+    require_range("--pretrigger", pretrigger_s, 0.0, 0.1)
+    one_of("--time-zero", time_zero, ("pulse", "record"))
+    one_of("--lab-plane", lab_plane, ("xy", "xz"))
+    one_of("--layout", layout, ("roving hammer", "roving accelerometer"))
+    if response_direction not in (3, -3):
+        raise InputError(f"--accelerometer-direction: give 3 or -3 (got {response_direction})")
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
     locations, nodes = hammer_points(the_racket)
@@ -163,15 +205,25 @@ def run_rig(
         nodes = tuple(n for n, keep in zip(nodes, free_of_ball, strict=True) if keep)
     reference = accelerometer_index(the_racket, locations)
     reference_location = (float(locations[reference, 0]), float(locations[reference, 1]))
+    reference_node = nodes[reference]
+    if not driving_point:  # the hammer skips the accelerometer's node
+        struck = np.arange(len(nodes)) != reference
+        locations = locations[struck]
+        nodes = tuple(n for n, keep in zip(nodes, struck, strict=True) if keep)
     on_bed = the_racket.head.contains(locations)
-    result = RigResult(
-        out_dir, supports=supports, reference_node=nodes[reference], ball=ball_record
-    )
+    result = RigResult(out_dir, supports=supports, reference_node=reference_node, ball=ball_record)
     runs: dict[str, dict[str, Any]] = {}
     for each in supports:
         durations = np.full(len(nodes), FRAME_PULSE_S)
         contact_support = "free" if each == "free" else "pinned"
         durations[on_bed] = string_contact_time(the_racket, locations[on_bed], contact_support)
+        if layout == "roving accelerometer":  # every hit on the reference node (the hoop)
+            at_reference = np.asarray([reference_location])
+            durations[:] = (
+                string_contact_time(the_racket, at_reference, contact_support)[0]
+                if the_racket.head.contains(at_reference)[0]
+                else FRAME_PULSE_S
+            )
         report(progress, f"building the {each} rig and simulating the hammer test")
         model = rig_model(the_racket, "free" if each == "free" else "hand")
         if spring is not None:
@@ -181,15 +233,32 @@ def run_rig(
             locations,
             nodes,
             reference_location,
-            nodes[reference],
+            reference_node,
             n_averages=averages,
+            pretrigger_s=pretrigger_s,
             double_hit_probability=double_hits,
             overload_probability=overloads,
             pulse_duration_s=durations,
+            force_snr_db=force_snr_db,
+            response_snr_db=response_snr_db,
             seed=seed,
         )
-        tests = write_hammer_uff(records, out_dir / f"hammer_{each}.uff", binary=binary)
-        truth_locations = np.vstack([locations, [[0.0, 0.0], [the_racket.length_m, 0.0]]])
+        if time_zero == "record":  # t = 0 at the first sample: the pulse pretrigger_s into it
+            records = replace(
+                records,
+                pretrigger_s=0.0,
+                metadata={**records.metadata, "pulse_at_s": records.pretrigger_s},
+            )
+        tests = write_hammer_uff(
+            records,
+            out_dir / f"hammer_{each}.uff",
+            binary=binary,
+            response_direction=response_direction,
+            plane=lab_plane,
+            layout=layout,
+        )
+        extra = [] if driving_point else [list(reference_location)]
+        truth_locations = np.vstack([locations, *extra, [0.0, 0.0], [the_racket.length_m, 0.0]])
         truth = model.modal_truth(
             truth_locations, max_frequency_hz=0.5 / records.sampling_interval_s
         )
@@ -212,8 +281,16 @@ def run_rig(
         **provenance,
         "racket": racket_to_dict(the_racket),
         "supports": supports,
-        "reference_node": nodes[reference],
+        "reference_node": reference_node,
         "reference_location_m": reference_location,
+        "driving_point": driving_point,
+        "accelerometer_direction": response_direction,
+        "force_snr_db": force_snr_db,
+        "response_snr_db": response_snr_db,
+        "pretrigger_s": pretrigger_s,
+        "time_zero": time_zero,
+        "lab_plane": lab_plane,
+        "layout": layout,
         "n_points": len(nodes),
         "averages": averages,
         "double_hit_probability": double_hits,

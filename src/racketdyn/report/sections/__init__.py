@@ -30,6 +30,7 @@ from racketdyn.report.sections import (
     stabilisation,
     swing,
     transient,
+    truth,
     validation,
     vibration,
 )
@@ -64,6 +65,9 @@ SECTIONS: dict[str, Section] = {
     ),
     "modes": Section(
         "Mode shapes and node lines, free against hand-held", modes.gather, modes.HOW_TO_RUN
+    ),
+    "truth": Section(
+        "Identified modes against the truth of the virtual rig", truth.gather, truth.HOW_TO_RUN
     ),
     "contact": Section("Contact time over the face", contact.gather, contact.HOW_TO_RUN),
     "compound": Section("The ball on the strings (Figs 8–9)", compound.gather, compound.HOW_TO_RUN),
