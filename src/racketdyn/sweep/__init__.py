@@ -42,14 +42,22 @@ The modules follow the data, each importing only those above it:
 - :mod:`~racketdyn.sweep.executors`: :class:`SerialExecutor`, :func:`make_executor`;
 - :mod:`~racketdyn.sweep.summary`: metrics and figures from a sweep dataset;
 - :mod:`~racketdyn.sweep.files`: part files and ``sweep.nc``;
+- :mod:`~racketdyn.sweep.runner`: the task loop (retries, a lost worker, timeouts, Ctrl-C);
 - :mod:`~racketdyn.sweep.run`: :func:`run_sweep`.
 
 Everything public is importable from :mod:`racketdyn.sweep` itself.
 """
 
 from racketdyn.sweep.design import Design, build_design, build_hand
-from racketdyn.sweep.executors import ENGINES, EngineKind, SerialExecutor, make_executor
+from racketdyn.sweep.executors import (
+    ENGINES,
+    EngineKind,
+    ProcessPool,
+    SerialExecutor,
+    make_executor,
+)
 from racketdyn.sweep.run import SERIAL_IMPACT_LIMIT, run_sweep
+from racketdyn.sweep.runner import SweepInterrupted, TaskTimeoutError, WorkerLostError
 from racketdyn.sweep.spec import MODES, SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec, sweep_spec_from_dict
 from racketdyn.sweep.summary import (
@@ -80,11 +88,15 @@ __all__ = [
     "STATUS_CODES",
     "Design",
     "EngineKind",
+    "ProcessPool",
     "SerialExecutor",
+    "SweepInterrupted",
     "SweepSpec",
     "SweepTask",
     "TaskOutput",
+    "TaskTimeoutError",
     "Variable",
+    "WorkerLostError",
     "build_design",
     "build_hand",
     "factorial_view",

@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.__about__ import __version__
-from racketdyn.sweep.design import Design, build_design
+from racketdyn.sweep.design import build_design
 from racketdyn.sweep.spec import SweepSpec
 from racketdyn.sweep.task import _IMPACT_VARIABLES, STATUS_CODES, STATUS_FAILED, TaskOutput
 
@@ -78,12 +78,19 @@ def _read_netcdf(path: Path) -> xr.Dataset:
 # Part files are plain netCDF 3 (xarray reads them), written and read with scipy's netCDF
 # module directly: a few milliseconds less per part than through xarray, which is most of the
 # coordinating process's work per task.  Numbers only; names and settings go in attributes.
-def _write_part(spec: SweepSpec, design: Design, output: TaskOutput, parts_dir: Path) -> None:
+def _write_part(
+    sha256: str,
+    task_id: str,
+    settings: Sequence[tuple[str, float]],
+    output: TaskOutput,
+    parts_dir: Path,
+) -> None:
+    """Write one finished task as ``parts_dir/<task_id>.nc`` (in a worker or the main process)."""
     from scipy.io import netcdf_file
 
     dims = _IMPACT_DIMS[1:]
     with (
-        _atomic(parts_dir / f"{design.task_id}.nc") as temporary,
+        _atomic(parts_dir / f"{task_id}.nc") as temporary,
         netcdf_file(temporary, "w", version=2) as part,
     ):
         shape = output.arrays["status"].shape
@@ -101,15 +108,35 @@ def _write_part(spec: SweepSpec, design: Design, output: TaskOutput, parts_dir: 
             variable[:] = output.mode_frequency_hz
         attributes = {
             "format": PART_FORMAT,
-            "task_id": design.task_id,
-            "spec_sha256": spec.sha256,
-            "design": json.dumps(dict(design.settings)),
+            "task_id": task_id,
+            "spec_sha256": sha256,
+            "design": json.dumps(dict(settings)),
             "mode_names": json.dumps(list(output.mode_names)),
             "attempt": output.attempt,
             "racketdyn_version": __version__,
         }
         for key, value in attributes.items():
             setattr(part, key, value)
+
+
+def _remove_stale_temporaries(parts_dir: Path) -> None:
+    """Remove half-written parts (``.<name>.<pid>.tmp``) of processes that are gone (a worker
+    killed while writing); those of a live process are its business."""
+    for stale in parts_dir.glob(".*.tmp"):
+        pid = stale.name.rsplit(".", 2)[-2]
+        if pid.isdigit() and _process_exists(int(pid)):
+            continue
+        stale.unlink(missing_ok=True)
+
+
+def _process_exists(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 def _read_part(path: Path, spec: SweepSpec, data: bool) -> dict[str, Any] | None:
@@ -245,6 +272,7 @@ def _combine(spec: SweepSpec, parts_dir: Path, failures: Sequence[dict[str, Any]
         ),
         "sweep_mode": spec.mode,
         "method": spec.method,
+        "engine": spec.transient_engine if spec.method == "transient" else "",
         "stiffness_reading": spec.stiffness_reading,
         "include_string_bed": int(spec.include_string_bed),
         "rigid": int(spec.rigid),
