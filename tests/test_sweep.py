@@ -363,9 +363,7 @@ def test_the_engine_key_chooses_the_transient_engine(
         (('"reference"', '"fast"'), r"\[impacts\]\.engine must be one of auto, compiled"),
     ],
 )
-def test_a_bad_engine_key_is_one_line(
-    edit: tuple[str, str], message: str, tmp_path: Path
-) -> None:
+def test_a_bad_engine_key_is_one_line(edit: tuple[str, str], message: str, tmp_path: Path) -> None:
     (tmp_path / "points.csv").write_text("x_m,y_m\n0.505,0.0\n")
     path = tmp_path / "spec.toml"
     text = ENGINE_SPEC.replace("ENGINE", "reference")
