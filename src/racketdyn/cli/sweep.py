@@ -82,6 +82,7 @@ def _run(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.errors import InputError
     from racketdyn.plotting.sweep import write_summary_figures as sweep_figures
     from racketdyn.sweep import load_sweep_spec
+    from racketdyn.sweep.runner import SECONDS_PER_IMPACT
     from racketdyn.workflows.sweep import run_sweep_step
 
     if args.task_timeout is not None and not args.task_timeout > 0:
@@ -103,6 +104,12 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         f"{spec.name}: {len(spec.designs)} designs × {spec.impacts_per_design:,} impacts "
         f"= {spec.n_impacts:,} impacts → {args.out}"
     )
+    work_s = spec.n_impacts * SECONDS_PER_IMPACT.get(spec.method, max(SECONDS_PER_IMPACT.values()))
+    if engine in ("process", "dask-local") and work_s < WORKERS_PAY_S:
+        console.print(
+            f"[yellow]about {work_s:.1f} s of work on one core: starting workers takes longer "
+            "(a second or more each); --serial is faster for a sweep this small[/]"
+        )
     if engine.startswith("dask") and not args.verbose:
         import distributed  # noqa: F401  (importing it sets its loggers to INFO: quieten them)
 
@@ -141,6 +148,11 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         )
         return 1
     return 0
+
+
+WORKERS_PAY_S = 2.0
+"""Below this much work on one core (s, estimated), a pool of workers costs more than it saves:
+the command says so."""
 
 
 def _where_time_went(record: dict[str, Any]) -> str:

@@ -57,12 +57,26 @@ class SerialExecutor(Executor):
         return future
 
 
+WORKER_PRELOAD = ("racketdyn.sweep.runner",)
+"""Modules the forkserver imports once, before it forks the pool's workers: each worker then
+starts with NumPy, SciPy, numba and racketdyn's impact models loaded, instead of importing
+them itself (seconds per worker on a loaded machine, paid again by a replaced pool)."""
+
+
 def _start_context() -> Any:
-    """forkserver where available, else spawn: never fork, unsafe in a process with threads."""
+    """forkserver where available, else spawn: never fork, unsafe in a process with threads.
+
+    The forkserver preloads the main module (as multiprocessing does by default) and
+    :data:`WORKER_PRELOAD`.  It is started once per process: the preload applies if no
+    forkserver runs yet.
+    """
     import multiprocessing
 
-    methods = multiprocessing.get_all_start_methods()
-    return multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+    if "forkserver" not in multiprocessing.get_all_start_methods():
+        return multiprocessing.get_context("spawn")
+    context = multiprocessing.get_context("forkserver")
+    context.set_forkserver_preload(["__main__", *WORKER_PRELOAD])
+    return context
 
 
 def _worker_setup(parent_pid: int) -> None:
@@ -281,14 +295,14 @@ def make_executor(
             Client(cluster) as client,  # type: ignore[no-untyped-call]
         ):
             log.info("local Dask cluster: %d workers, dashboard %s", workers, client.dashboard_link)
-            yield client.get_executor(pure=False)
+            yield _dask_executor(client)
         return
     try:
         client = Client(scheduler, timeout="20s")  # type: ignore[no-untyped-call]
     except (OSError, TimeoutError, ValueError) as error:
         raise InputError(f"scheduler {scheduler}: cannot connect ({error})") from None
     with client:
-        yield client.get_executor(pure=False)  # type: ignore[no-untyped-call]
+        yield _dask_executor(client)
 
 
 def _in_flight_limit(executor: Executor) -> int:
@@ -307,6 +321,46 @@ def _in_flight_limit(executor: Executor) -> int:
         if threads > 0:
             return 2 * threads
     return 64
+
+
+def _dask_executor(client: Any) -> Executor:
+    """``client.get_executor(pure=False)`` that can also stop a hung task's worker."""
+    from distributed.cfexecutor import ClientExecutor
+
+    class DaskExecutor(ClientExecutor):
+        """A Dask client's executor that knows the Dask task behind each future, so
+        :meth:`stop_task` can restart the worker running it (a thread cannot be stopped)."""
+
+        def __init__(self, client: Any) -> None:
+            super().__init__(client, pure=False)  # type: ignore[no-untyped-call]
+            self._keys: dict[Future[Any], str] = {}
+
+        def submit(self, fn: Any, *args: Any, **kwargs: Any) -> Any:  # type: ignore[override]
+            task = self._client.submit(fn, *args, pure=False, **kwargs)
+            self._futures.add(task)
+            future: Future[Any] = self._wrap_future(task)  # type: ignore[no-untyped-call]
+            self._keys[future] = task.key
+            future.add_done_callback(lambda done: self._keys.pop(done, None))
+            return future
+
+        def stop_task(self, future: Future[Any]) -> None:
+            """Cancel a task and restart the worker that runs it (through its nanny), so the
+            scheduler does not queue the retry behind the hung thread; where the worker cannot
+            be restarted, the task is only abandoned."""
+            key = self._keys.get(future)
+            try:
+                processing = self._client.processing()
+            except Exception:  # the scheduler cannot say: abandon it
+                processing = {}
+            hung = [worker for worker, keys in processing.items() if key in keys]
+            future.cancel()
+            if hung:
+                try:
+                    self._client.restart_workers(hung, timeout=60, raise_for_error=False)
+                except Exception as error:  # no nanny, an older scheduler: abandon it
+                    log.warning("could not restart the Dask worker %s: %s", hung, error)
+
+    return DaskExecutor(client)
 
 
 def _local_workers(executor: Executor) -> bool:

@@ -127,7 +127,7 @@ def run_sweep(
         Tasks submitted at once (default: twice the executor's workers; 1 for serial).
     task_timeout : float, optional
         Seconds a task may take from its submission before it counts as hung: its worker is
-        stopped (a process pool is replaced; a Dask task is abandoned, its worker stays busy)
+        stopped (a process pool is replaced; a Dask worker restarted through its nanny)
         and the task runs again elsewhere, as a failed attempt (:class:`TaskTimeoutError`).
         Default: 10 × the longest task finished so far, at least 60 s (600 s until one has
         finished); ``math.inf``: never.  Not for :class:`SerialExecutor`, which runs a task

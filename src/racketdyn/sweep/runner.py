@@ -6,7 +6,7 @@ executor and writes (or has the workers write) each finished design as a part fi
 handles: a task that raises (retried, then recorded as failed), a process pool that lost a
 worker (replaced; the designs in flight run again, one at a time, until the one that kills its
 worker is found: :class:`WorkerLostError`), a task past the timeout
-(:class:`TaskTimeoutError`: its pool replaced, or on Dask the task abandoned, and run again),
+(:class:`TaskTimeoutError`: its pool replaced, or on Dask its worker restarted, and run again),
 and Ctrl-C (the workers stopped, every finished design kept: :class:`SweepInterrupted`).
 """
 
@@ -83,7 +83,8 @@ class WorkerLostError(RuntimeError):
 
 
 class TaskTimeoutError(RuntimeError):
-    """A task ran past the task timeout; its worker was stopped (or, on Dask, abandoned)."""
+    """A task ran past the task timeout; its worker was stopped (a pool replaced, a Dask worker
+    restarted)."""
 
 
 class SweepInterrupted(KeyboardInterrupt):
@@ -370,9 +371,14 @@ class _Runner:
         if not late:
             return
         self.tally.timed_out += len(late)
+        stop_task = getattr(self.executor, "stop_task", None)
         for future, _ in late:
             del self.pending[future]
-            future.cancel()
+            if stop_task is not None:  # Dask: cancel it and restart its worker
+                stop_task(future)
+                self.ready_at = None  # a restarted worker starts again
+            else:
+                future.cancel()
         renew = getattr(self.executor, "renew", None)
         if renew is not None:
             # a worker cannot be told to stop a task: replace the pool; the other jobs in
@@ -380,7 +386,8 @@ class _Runner:
             others = self._drain()
             self._renew()
             self.queue.extendleft(reversed(others))
-        # else (e.g. Dask): the task is let go (its worker stays busy) and runs again elsewhere
+        # else (Dask): the task is cancelled, its worker restarted where it has a nanny (else
+        # the worker stays busy), and it runs again
         for _, job in late:
             log.warning(
                 "%s still running after %.0f s (the task timeout); running it again",
