@@ -18,10 +18,10 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-import sweep_faults
 import xarray as xr
 
 import racketdyn as rd
+import sweep_faults
 from racketdyn.cli import main
 from racketdyn.sweep import SweepSpec
 
@@ -57,8 +57,10 @@ def scheduler(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
         try:
             started.append(
                 subprocess.Popen(
-                    [command, "scheduler", "--host", "127.0.0.1", "--port", "0"]
-                    + ["--no-dashboard", "--scheduler-file", str(address_file)],
+                    [
+                        *(command, "scheduler", "--host", "127.0.0.1", "--port", "0"),
+                        *("--no-dashboard", "--scheduler-file", str(address_file)),
+                    ],
                     stdout=log,
                     stderr=log,
                     env=env,
@@ -73,8 +75,10 @@ def scheduler(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
             address = json.loads(address_file.read_text())["address"]
             started.append(
                 subprocess.Popen(
-                    [command, "worker", address, "--nworkers", "2", "--nthreads", "1"]
-                    + ["--no-dashboard", "--memory-limit", "0"],
+                    [
+                        *(command, "worker", address, "--nworkers", "2", "--nthreads", "1"),
+                        *("--no-dashboard", "--memory-limit", "0"),
+                    ],
                     stdout=log,
                     stderr=log,
                     env=env,
