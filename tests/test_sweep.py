@@ -506,6 +506,22 @@ def test_an_interrupted_sweep_resumes(
     assert_same_bits(serial_result, result)
 
 
+def test_parts_read_as_they_arrive_combine_as_read_at_the_end(
+    small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
+) -> None:
+    """The coordinating process reads parts as tasks end, in any order; the rest at the end."""
+    from racketdyn.sweep import files
+
+    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
+    assembly = files._Assembly(small_spec, tmp_path / "parts")
+    for design in reversed(small_spec.designs[2:]):
+        assembly.add(design)
+    combined = files._combine(small_spec, tmp_path / "parts", [], assembly)
+    assert_same_bits(files._combine(small_spec, tmp_path / "parts", []), combined)
+    for name in serial_result.data_vars:
+        assert combined[name].values.tobytes() == serial_result[name].values.tobytes()
+
+
 def test_parts_of_another_spec_are_recomputed(small_spec: SweepSpec, tmp_path: Path) -> None:
     run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
     changed = replace(small_spec, ball_speeds=np.array([10.0, 26.0]))

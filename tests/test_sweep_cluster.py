@@ -106,7 +106,7 @@ def test_a_sweep_on_a_running_cluster_equals_serial(
     argv = ["sweep", str(spec), "--scheduler", scheduler, "--no-figures", "--out", str(out)]
     assert main(argv) == 0
     record = json.loads((out / "run.json").read_text())
-    assert record["engine"] == "ClientExecutor"
+    assert record["engine"] == "DaskExecutor"
     assert record["ran"] == 6
     with xr.open_dataset(out / "sweep.nc", engine="scipy") as written:
         result = written.load()

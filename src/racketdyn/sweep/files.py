@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.__about__ import __version__
-from racketdyn.sweep.design import build_design
+from racketdyn.sweep.design import Design, build_design
 from racketdyn.sweep.spec import SweepSpec
 from racketdyn.sweep.task import _IMPACT_VARIABLES, STATUS_CODES, STATUS_FAILED, TaskOutput
 
@@ -182,35 +182,71 @@ def _units(name: str) -> dict[str, Any]:
     return {"units": units, "long_name": long_name}
 
 
-def _combine(spec: SweepSpec, parts_dir: Path, failures: Sequence[dict[str, Any]]) -> xr.Dataset:
-    """The sweep dataset from the part files, in design order (NaN where a part is missing)."""
+class _Assembly:
+    """The sweep's arrays, filled design by design from the part files: while the workers
+    compute, the coordinating process reads each part as it is recorded, so combining at the
+    end reads only the resumed ones.  Mode names are ordered at the end, in design order, so
+    the order parts arrive in does not show in ``sweep.nc``."""
+
+    def __init__(self, spec: SweepSpec, parts_dir: Path) -> None:
+        self.spec, self.parts_dir = spec, parts_dir
+        n_d, n_p, n_s, n_r, n_u = (
+            len(spec.designs),
+            spec.locations.shape[0],
+            spec.ball_speeds.size,
+            spec.racket_speeds.size,
+            len(spec.supports),
+        )
+        shape = (n_d, n_p, n_s, n_r, n_u)
+        self.arrays: dict[str, NDArray[Any]] = {
+            name: np.full(shape, np.nan) for name in _IMPACT_VARIABLES
+        }
+        self.arrays["status"] = np.full(shape, STATUS_CODES[STATUS_FAILED], dtype=np.int8)
+        self.reduced = np.full((n_d, n_p, n_u), np.nan)
+        self.modes: dict[int, list[tuple[str, float]]] = {}
+        self.read: set[int] = set()
+
+    def add(self, design: Design) -> None:
+        """Read one design's part, if it is there and of this spec."""
+        part = _read_part(self.parts_dir / f"{design.task_id}.nc", self.spec, data=True)
+        self.read.add(design.index)
+        if part is None:
+            return
+        for name, array in self.arrays.items():
+            array[design.index] = part[name]
+        self.reduced[design.index] = part["reduced_mass_kg"]
+        names = json.loads(part["attributes"]["mode_names"])
+        frequencies = part.get("mode_frequency_hz", [])
+        self.modes[design.index] = [
+            (mode, float(f)) for mode, f in zip(names, frequencies, strict=True)
+        ]
+
+
+def _combine(
+    spec: SweepSpec,
+    parts_dir: Path,
+    failures: Sequence[dict[str, Any]],
+    assembly: _Assembly | None = None,
+) -> xr.Dataset:
+    """The sweep dataset from the part files, in design order (NaN where a part is missing);
+    the parts an ``assembly`` has read already are not read again."""
     import xarray as xr
 
     designs = spec.designs
-    n_p, n_s, n_r, n_u = (
-        spec.locations.shape[0],
-        spec.ball_speeds.size,
-        spec.racket_speeds.size,
-        len(spec.supports),
-    )
-    shape = (len(designs), n_p, n_s, n_r, n_u)
-    arrays: dict[str, NDArray[Any]] = {name: np.full(shape, np.nan) for name in _IMPACT_VARIABLES}
-    arrays["status"] = np.full(shape, STATUS_CODES[STATUS_FAILED], dtype=np.int8)
-    reduced = np.full((len(designs), n_p, n_u), np.nan)
+    n_p = spec.locations.shape[0]
+    if assembly is None:
+        assembly = _Assembly(spec, parts_dir)
+    for design in designs:
+        if design.index not in assembly.read:
+            assembly.add(design)
+    arrays, reduced = assembly.arrays, assembly.reduced
     mode_names: list[str] = []
     frequencies: dict[tuple[int, str], float] = {}
     for design in designs:
-        part = _read_part(parts_dir / f"{design.task_id}.nc", spec, data=True)
-        if part is None:
-            continue
-        for name in arrays:
-            arrays[name][design.index] = part[name]
-        reduced[design.index] = part["reduced_mass_kg"]
-        names = json.loads(part["attributes"]["mode_names"])
-        for mode, frequency in zip(names, part.get("mode_frequency_hz", []), strict=True):
+        for mode, hz in assembly.modes.get(design.index, []):
             if mode not in mode_names:
                 mode_names.append(mode)
-            frequencies[design.index, mode] = float(frequency)
+            frequencies[design.index, mode] = hz
     data: dict[str, Any] = {
         name: (_IMPACT_DIMS, array, _units(name)) for name, array in arrays.items()
     }

@@ -35,6 +35,7 @@ from racketdyn.sweep.executors import (
     make_executor,
 )
 from racketdyn.sweep.files import (
+    _Assembly,
     _combine,
     _read_netcdf,
     _read_part,
@@ -182,6 +183,7 @@ def run_sweep(
     if progress is not None:
         progress(skipped, total)
     tally = _Tally(done=skipped, total=total)
+    assembly = _Assembly(spec, parts_dir)
     engine = "none (all resumed)"
     batch = 0
     if todo:
@@ -211,12 +213,13 @@ def run_sweep(
                 progress,
                 tally,
                 write_in_worker=_local_workers(executor),
+                assembly=assembly,
             )
             runner.run(jobs)
             time_s["tasks"] = time.perf_counter() - clock
     failures = tally.failures
     clock = time.perf_counter()
-    dataset = _combine(spec, parts_dir, failures)
+    dataset = _combine(spec, parts_dir, failures, assembly)
     sweep_path = out / "sweep.nc"
     _write_netcdf(dataset, sweep_path)
     time_s["combining"] = time.perf_counter() - clock
@@ -279,6 +282,7 @@ def run_sweep(
         "time_s": time_s,
         "task_time_s": tally.task_seconds,
         "part_write_time_s": tally.write_seconds,
+        "part_read_time_s": tally.assemble_seconds,
         "first_result_s": tally.first_result_s,
         "outputs": [p.name for p in written] + ["run.json", "parts/"],
         "spec": spec.to_dict(),

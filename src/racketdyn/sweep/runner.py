@@ -25,7 +25,7 @@ from typing import Any
 
 from racketdyn.sweep.design import Design
 from racketdyn.sweep.executors import SerialExecutor, _in_flight_limit
-from racketdyn.sweep.files import _read_part, _write_part
+from racketdyn.sweep.files import _Assembly, _read_part, _write_part
 from racketdyn.sweep.spec import SweepSpec
 from racketdyn.sweep.task import SweepTask, TaskOutput, run_task
 
@@ -73,6 +73,7 @@ class _Tally:
     pools_replaced: int = 0
     task_seconds: float = 0.0
     write_seconds: float = 0.0
+    assemble_seconds: float = 0.0
     longest_s: float = 0.0
     first_result_s: float | None = None
     failures: list[dict[str, Any]] = field(default_factory=list)
@@ -163,10 +164,11 @@ class _Runner:
         progress: ProgressCallback | None,
         tally: _Tally,
         write_in_worker: bool,
+        assembly: _Assembly | None = None,
     ) -> None:
         self.spec, self.parts_dir, self.executor = spec, parts_dir, executor
         self.limit, self.retries, self.task_timeout = limit, retries, task_timeout
-        self.progress, self.tally = progress, tally
+        self.progress, self.tally, self.assembly = progress, tally, assembly
         self.write_dir = str(parts_dir) if write_in_worker else None
         self.queue: deque[_Job] = deque()
         self.pending: dict[Future[list[TaskOutput]], tuple[_Job, float]] = {}
@@ -266,6 +268,10 @@ class _Runner:
             tally.ran += 1
             tally.task_seconds += output.elapsed_s
             batch_s += output.elapsed_s + output.write_s
+            if self.assembly is not None:  # read it now, while the workers compute
+                started = time.perf_counter()
+                self.assembly.add(design)
+                tally.assemble_seconds += time.perf_counter() - started
             self._finished_one()
         tally.longest_s = max(tally.longest_s, batch_s)
 
