@@ -112,15 +112,20 @@ e_bg = { start = 0.78, stop = 0.88, num = 16 }
 """
 
 
-def _start(tmp_path: Path) -> tuple[subprocess.Popen[bytes], Path, list[str]]:
+def _start(
+    tmp_path: Path, engine: tuple[str, ...] = ("--workers", "2")
+) -> tuple[subprocess.Popen[bytes], Path, list[str]]:
     """``racketdyn sweep`` on 2 workers in a session of its own, with tasks of 0.4 s each;
     its output in ``stdout.txt`` and ``stderr.txt`` (files: a pipe would stay open as long as
     any child process lives)."""
     spec = tmp_path / "slow.toml"
     spec.write_text(SLOW_SPEC, encoding="utf-8")
     out = tmp_path / "out"
-    argv = ["sweep", str(spec), "--workers", "2", "--no-figures", "--out", str(out)]
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    argv = ["sweep", str(spec), *engine, "--no-figures", "--out", str(out)]
+    # a user's environment: not the variables an earlier Dask cluster of this test process
+    # wrote into it (its nannies set their workers' variables in the parent's os.environ)
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("DASK_", "MALLOC_"))}
+    env["PYTHONPATH"] = os.pathsep.join(sys.path)
     with (
         (tmp_path / "stdout.txt").open("wb") as stdout,
         (tmp_path / "stderr.txt").open("wb") as stderr,
@@ -176,16 +181,18 @@ needs_proc = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="ne
 
 
 @needs_proc
+@pytest.mark.parametrize("engine", [("--workers", "2"), ("--dask-local", "2")])
 def test_ctrl_c_keeps_the_finished_parts_and_says_how_to_resume(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+    engine: tuple[str, ...], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    process, out, argv = _start(tmp_path)
+    process, out, argv = _start(tmp_path, engine)
     os.killpg(process.pid, signal.SIGINT)  # the whole group, as a terminal does
     process.wait(timeout=60)
     stdout, stderr = _output(tmp_path)
     assert process.returncode == 130, (stdout, stderr)
     assert "Traceback" not in stdout + stderr
     assert "KeyboardInterrupt" not in stdout + stderr
+    assert not stderr.strip()  # workers say nothing either
     lines = [line for line in (stdout + stderr).splitlines() if "interrupted" in line]
     assert len(lines) == 1, stdout + stderr
     kept = len(list((out / "parts").glob("design-*.nc")))

@@ -69,7 +69,10 @@ def run(args: argparse.Namespace, console: Console) -> int:
 
         resume = "racketdyn " + shlex.join(args.argv)
         if isinstance(interrupt, SweepInterrupted):
-            kept = f"{interrupt.done} of {interrupt.total} designs kept in {interrupt.parts_dir}"
+            kept = (  # counted now that every worker has stopped
+                f"{interrupt.count_kept()} of {interrupt.total} designs kept in "
+                f"{interrupt.parts_dir}"
+            )
         else:
             kept = f"the finished designs are kept in {args.out}"
         console.print(f"interrupted: {kept}; resume with: {resume}", markup=False, soft_wrap=True)

@@ -283,7 +283,20 @@ def make_executor(
         # adaptive mmap threshold: every large temporary array is then mapped and unmapped
         # afresh, and a sweep task runs ≈ 1.7 times slower.  Leave the allocator alone.
         with (
-            dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}),
+            dask.config.set(
+                {
+                    "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
+                    # where this process shows no info of distributed (the command line
+                    # without -v), its workers log errors only: each would warn of every task
+                    # cancelled by Ctrl-C or a timeout
+                    "distributed.nanny.pre-spawn-environ.DASK_LOGGING__DISTRIBUTED": (
+                        "error"
+                        if logging.getLogger("distributed").getEffectiveLevel() >= logging.WARNING
+                        else "info"
+                    ),
+                }
+            ),
+            _workers_ignore_ctrl_c(),
             LocalCluster(  # type: ignore[no-untyped-call]
                 # the scheduler's HTTP server (dashboard if bokeh is installed) on a free port:
                 # with None it still takes 8787, and warns and leaks a socket where that is taken
@@ -294,6 +307,7 @@ def make_executor(
             ) as cluster,
             Client(cluster) as client,  # type: ignore[no-untyped-call]
         ):
+            _restore_ctrl_c()
             log.info("local Dask cluster: %d workers, dashboard %s", workers, client.dashboard_link)
             yield _dask_executor(client)
         return
@@ -321,6 +335,30 @@ def _in_flight_limit(executor: Executor) -> int:
         if threads > 0:
             return 2 * threads
     return 64
+
+
+_SAVED_SIGINT: list[Any] = []
+
+
+@contextmanager
+def _workers_ignore_ctrl_c() -> Iterator[None]:
+    """Start processes with SIGINT ignored (the disposition survives their exec), so a
+    terminal's Ctrl-C to the process group reaches only this process, which stops the sweep;
+    each Dask worker would otherwise print a KeyboardInterrupt traceback.  Restored by
+    :func:`_restore_ctrl_c` once the workers run, or on leaving."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    _SAVED_SIGINT.append(signal.signal(signal.SIGINT, signal.SIG_IGN))
+    try:
+        yield
+    finally:
+        _restore_ctrl_c()
+
+
+def _restore_ctrl_c() -> None:
+    while _SAVED_SIGINT:
+        signal.signal(signal.SIGINT, _SAVED_SIGINT.pop())
 
 
 def _dask_executor(client: Any) -> Executor:

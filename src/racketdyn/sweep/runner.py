@@ -101,9 +101,22 @@ class SweepInterrupted(KeyboardInterrupt):
         Where the finished designs are.
     """
 
-    def __init__(self, done: int, total: int, parts_dir: Path) -> None:
+    def __init__(
+        self, done: int, total: int, parts_dir: Path, spec: SweepSpec | None = None
+    ) -> None:
         super().__init__(f"{done} of {total} designs kept in {parts_dir}")
-        self.done, self.total, self.parts_dir = done, total, parts_dir
+        self.done, self.total, self.parts_dir, self.spec = done, total, parts_dir, spec
+
+    def count_kept(self) -> int:
+        """Designs of this sweep on disk now: a Dask worker may finish a task and write its
+        part after the interruption, until its cluster is closed."""
+        if self.spec is None:
+            return self.done
+        self.done = sum(
+            _read_part(self.parts_dir / f"{d.task_id}.nc", self.spec, data=False) is not None
+            for d in self.spec.designs
+        )
+        return self.done
 
 
 @dataclass(frozen=True)
@@ -209,7 +222,7 @@ class _Runner:
                 self.tally.total,
                 self.parts_dir,
             )
-            raise SweepInterrupted(kept, self.tally.total, self.parts_dir) from None
+            raise SweepInterrupted(kept, self.tally.total, self.parts_dir, self.spec) from None
         except BaseException:
             self._stop_all()
             raise
