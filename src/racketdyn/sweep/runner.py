@@ -18,7 +18,14 @@ import time
 import traceback
 from collections import deque
 from collections.abc import Sequence
-from concurrent.futures import FIRST_COMPLETED, BrokenExecutor, Executor, Future, wait
+from concurrent.futures import (
+    FIRST_COMPLETED,
+    BrokenExecutor,
+    CancelledError,
+    Executor,
+    Future,
+    wait,
+)
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -247,8 +254,8 @@ class _Runner:
             self.pending[future] = (job, time.monotonic())
 
     def _settle(self, future: Future[list[TaskOutput]], job: _Job, broken: list[_Job]) -> None:
-        if future.cancelled():
-            self.queue.appendleft(job)
+        if future.cancelled():  # not by us (we drop a future before cancelling it)
+            self._failed(job, CancelledError("the executor cancelled the task"))
             return
         error = future.exception()
         if error is None:
