@@ -31,8 +31,11 @@ def test_sweep_command(tmp_path: Path) -> None:
 
 
 def test_workers_on_a_small_sweep(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    """A pool gives the serial numbers; on a sweep this small the command says it does not pay,
-    and where the time went."""
+    """A pool gives the serial numbers (a design computed here while the pool starts, one in
+    the pool); on a sweep this small the command says it does not pay, and where the time
+    went."""
+    import json
+
     import xarray as xr
 
     (tmp_path / "spec.toml").write_text(SPEC)
@@ -47,6 +50,9 @@ def test_workers_on_a_small_sweep(tmp_path: Path, capsys: pytest.CaptureFixture[
         assert "time: start" in printed
         assert "combining" in printed
         assert ("--serial is faster" in printed) == (engine[0] == "--workers")
+        if engine[0] == "--workers":  # one design went to the starting pool, one ran here
+            record = json.loads((out / "run.json").read_text())
+            assert record["ran_in_main_process"] == 1
     for name in runs["--serial"].data_vars:
         assert runs["--serial"][name].values.tobytes() == runs["--workers"][name].values.tobytes()
 

@@ -275,6 +275,7 @@ def run_sweep(
         "retried": tally.retried,
         "timed_out": tally.timed_out,
         "pools_replaced": tally.pools_replaced,
+        "ran_in_main_process": tally.ran_here,
         "designs_per_task": batch,
         "failed": [f["task_id"] for f in failures],
         "status_counts": status_counts,

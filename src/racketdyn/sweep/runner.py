@@ -31,7 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from racketdyn.sweep.design import Design
-from racketdyn.sweep.executors import SerialExecutor, _in_flight_limit
+from racketdyn.sweep.executors import ProcessPool, SerialExecutor, _in_flight_limit
 from racketdyn.sweep.files import _Assembly, _read_part, _write_part
 from racketdyn.sweep.spec import SweepSpec
 from racketdyn.sweep.task import SweepTask, TaskOutput, run_task
@@ -81,6 +81,7 @@ class _Tally:
     task_seconds: float = 0.0
     write_seconds: float = 0.0
     assemble_seconds: float = 0.0
+    ran_here: int = 0
     longest_s: float = 0.0
     first_result_s: float | None = None
     failures: list[dict[str, Any]] = field(default_factory=list)
@@ -202,10 +203,13 @@ class _Runner:
         try:
             while self.queue or self.pending:
                 self._submit()
+                helped = self._help_while_starting()
                 if not self.pending:
                     continue
                 finished, _ = wait(
-                    self.pending, timeout=self._poll_s(), return_when=FIRST_COMPLETED
+                    self.pending,
+                    timeout=0.0 if helped else self._poll_s(),
+                    return_when=FIRST_COMPLETED,
                 )
                 broken: list[_Job] = []
                 for future in finished:
@@ -234,8 +238,36 @@ class _Runner:
             self._stop_all()
             raise
 
+    def _starting(self) -> bool:
+        """A fresh process pool (never replaced) that has given no result yet: its workers
+        are still starting (forkserver, imports)."""
+        return (
+            isinstance(self.executor, ProcessPool)
+            and self.ready_at is None
+            and self.tally.pools_replaced == 0
+        )
+
+    def _help_while_starting(self) -> bool:
+        """While a fresh pool starts its workers, run one queued job in this process (the cores
+        are otherwise idle then; a small sweep may be done before the workers are up).  Not
+        after a pool was replaced: a job that kills its process must not kill this one."""
+        if not self._starting() or not self.queue or self.queue[0].alone:
+            return False
+        job = self.queue.popleft()
+        tasks = tuple(self.spec.task(d) for d in job.designs)
+        try:
+            outputs = _run_batch(tasks, job.attempt, self.spec.sha256, None)
+        except Exception as error:
+            self._failed(job, error)
+            return True
+        self.tally.ran_here += len(job.designs)
+        self._record(job, outputs, here=True)
+        return True
+
     def _submit(self) -> None:
-        while self.queue and len(self.pending) < self.limit:
+        # while a fresh pool starts, one task per worker: the rest may run here meanwhile
+        limit = max(1, self.limit // 2) if self._starting() else self.limit
+        while self.queue and len(self.pending) < limit:
             job = self.queue[0]
             if self.pending and (job.alone or any(j.alone for j, _ in self.pending.values())):
                 return
@@ -265,11 +297,11 @@ class _Runner:
         else:
             self._failed(job, error)
 
-    def _record(self, job: _Job, outputs: Sequence[TaskOutput]) -> None:
+    def _record(self, job: _Job, outputs: Sequence[TaskOutput], here: bool = False) -> None:
         tally = self.tally
-        if tally.first_result_s is None:
+        if not here and tally.first_result_s is None:
             tally.first_result_s = time.monotonic() - self.started
-        if self.ready_at is None:
+        if not here and self.ready_at is None:
             self.ready_at = time.monotonic()
         batch_s = 0.0
         for design, output in zip(job.designs, outputs, strict=True):
