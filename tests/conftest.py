@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import pytest
-import xarray as xr
 
 import racketdyn as rd
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 
 @pytest.fixture(scope="session")
