@@ -218,9 +218,12 @@ def test_ctrl_c_keeps_the_finished_parts_and_says_how_to_resume(
 
 
 @needs_proc
-def test_workers_exit_when_the_main_process_is_killed(tmp_path: Path) -> None:
-    process, _, _ = _start(tmp_path)
-    assert len(_alive_in_group(process.pid)) >= 3  # main, forkserver, workers (and tracker)
+@pytest.mark.parametrize("engine", [("--workers", "2"), ("--dask-local", "2")])
+def test_workers_exit_when_the_main_process_is_killed(
+    engine: tuple[str, ...], tmp_path: Path
+) -> None:
+    process, _, _ = _start(tmp_path, engine)
+    assert len(_alive_in_group(process.pid)) >= 3  # main and workers (forkserver, tracker)
     process.kill()
     process.wait(timeout=30)
     alive = _wait_until_gone(process.pid, 10)
