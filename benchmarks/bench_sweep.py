@@ -123,7 +123,7 @@ def main() -> int:
     print(
         f"sweep: {len(spec.designs)} designs × {N_POINTS} points × {SPEEDS.size} speeds × "
         f"{len(SUPPORTS)} supports = {n_impacts:,} impacts, method {spec.method!r}; "
-        "one task per design, one BLAS thread per task"
+        "designs grouped into tasks by size, one BLAS thread per task"
     )
     print()
 

@@ -18,8 +18,9 @@ def add(commands: Any) -> None:
         commands,
         "sweep",
         "a design sweep: racket variants × points × speeds (sweep.nc, figures)",
-        "A design sweep from a spec TOML (docs/sweep-file.md), one task per design on the "
-        "engine chosen: sweep.nc, summary.csv, figures, run.json",
+        "A design sweep from a spec TOML (docs/sweep-file.md), its designs computed in tasks "
+        "on the engine chosen: sweep.nc, summary.csv, figures, run.json; Ctrl-C keeps the "
+        "finished designs (exit 130) and the same command resumes",
     )
     p.add_argument("spec", help="sweep spec TOML (docs/sweep-file.md)")
     opt.add_out(p, "; run again to resume")

@@ -1,4 +1,4 @@
-"""Running a sweep: :func:`run_sweep`, one task per design on an executor, parts, retries.
+"""Running a sweep: :func:`run_sweep`, tasks of designs on an executor, parts, retries.
 
 The top of the flow: takes a :class:`~.spec.SweepSpec` (or its file), submits the
 :func:`~.task.run_task` of each design not yet on disk to an executor
