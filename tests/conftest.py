@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import pytest
 
 import racketdyn as rd
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 
 @pytest.fixture(scope="session")
@@ -25,3 +30,21 @@ def model(racket: rd.Racket) -> rd.ModalModel:
 @pytest.fixture(scope="session")
 def law(racket: rd.Racket, ball: rd.Ball) -> rd.RestoringForce:
     return rd.compound_law(racket, ball)
+
+
+@pytest.fixture(scope="module")
+def small_spec(racket: rd.Racket, ball: rd.Ball) -> rd.sweep.SweepSpec:
+    """A sweep of 6 designs (tests/sweep_faults.py), for the sweep tests."""
+    import sweep_faults
+
+    return sweep_faults.small_spec(racket, ball, "small")
+
+
+@pytest.fixture(scope="module")
+def serial_result(
+    small_spec: rd.sweep.SweepSpec, tmp_path_factory: pytest.TempPathFactory
+) -> xr.Dataset:
+    """``small_spec`` run in this process."""
+    from racketdyn.sweep import SerialExecutor, run_sweep
+
+    return run_sweep(small_spec, tmp_path_factory.mktemp("serial"), SerialExecutor(), figures=None)

@@ -30,6 +30,33 @@ def test_sweep_command(tmp_path: Path) -> None:
     assert (out / "run.json").is_file()
 
 
+def test_workers_on_a_small_sweep(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """A pool gives the serial numbers (a design computed here while the pool starts, one in
+    the pool); on a sweep this small the command says it does not pay, and where the time
+    went."""
+    import json
+
+    import xarray as xr
+
+    (tmp_path / "spec.toml").write_text(SPEC)
+    runs = {}
+    for engine in (["--serial"], ["--workers", "1"]):
+        out = tmp_path / engine[0].strip("-")
+        argv = ["sweep", str(tmp_path / "spec.toml"), *engine, "--no-figures", "--out", str(out)]
+        assert main(argv) == 0
+        with xr.open_dataset(out / "sweep.nc", engine="scipy") as ds:
+            runs[engine[0]] = ds.load()
+        printed = " ".join(capsys.readouterr().out.split())
+        assert "time: start" in printed
+        assert "combining" in printed
+        assert ("--serial is faster" in printed) == (engine[0] == "--workers")
+        if engine[0] == "--workers":  # one design went to the starting pool, one ran here
+            record = json.loads((out / "run.json").read_text())
+            assert record["ran_in_main_process"] == 1
+    for name in runs["--serial"].data_vars:
+        assert runs["--serial"][name].values.tobytes() == runs["--workers"][name].values.tobytes()
+
+
 def test_bad_spec_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     (tmp_path / "spec.toml").write_text(SPEC.replace("[226.0, 266.0]", '"high"'))
     assert main(["sweep", str(tmp_path / "spec.toml"), "--out", str(tmp_path / "o")]) == 2

@@ -18,8 +18,9 @@ def add(commands: Any) -> None:
         commands,
         "sweep",
         "a design sweep: racket variants × points × speeds (sweep.nc, figures)",
-        "A design sweep from a spec TOML (docs/sweep-file.md), one task per design on the "
-        "engine chosen: sweep.nc, summary.csv, figures, run.json",
+        "A design sweep from a spec TOML (docs/sweep-file.md), its designs computed in tasks "
+        "on the engine chosen: sweep.nc, summary.csv, figures, run.json; Ctrl-C keeps the "
+        "finished designs (exit 130) and the same command resumes",
     )
     p.add_argument("spec", help="sweep spec TOML (docs/sweep-file.md)")
     opt.add_out(p, "; run again to resume")
@@ -46,18 +47,52 @@ def add(commands: Any) -> None:
         metavar="tcp://HOST:PORT",
         help="a running Dask scheduler to use (default: none)",
     )
+    p.add_argument(
+        "--task-timeout",
+        type=float,
+        metavar="S",
+        help="seconds a task may run before its worker is stopped and the task run again "
+        "elsewhere, s (default: 10 × the longest task so far, at least 60 s)",
+    )
     opt.add_no_figures(p, "sweep.nc")
     p.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace, console: Console) -> int:
-    """Run the command."""
+    """Run the command; Ctrl-C stops it with one line (what was kept, the command that resumes)
+    and exit status 130."""
+    import shlex
+
+    try:
+        return _run(args, console)
+    except KeyboardInterrupt as interrupt:
+        from racketdyn.sweep import SweepInterrupted
+
+        resume = "racketdyn " + shlex.join(args.argv)
+        if isinstance(interrupt, SweepInterrupted):
+            kept = (  # counted now that every worker has stopped
+                f"{interrupt.count_kept()} of {interrupt.total} designs kept in "
+                f"{interrupt.parts_dir}"
+            )
+        else:
+            kept = f"the finished designs are kept in {args.out}"
+        console.print(f"interrupted: {kept}; resume with: {resume}", markup=False, soft_wrap=True)
+        return 130
+
+
+def _run(args: argparse.Namespace, console: Console) -> int:
     from pathlib import Path
 
+    from racketdyn.errors import InputError
     from racketdyn.plotting.sweep import write_summary_figures as sweep_figures
     from racketdyn.sweep import load_sweep_spec
+    from racketdyn.sweep.runner import SECONDS_PER_IMPACT
     from racketdyn.workflows.sweep import run_sweep_step
 
+    if args.task_timeout is not None and not args.task_timeout > 0:
+        raise InputError(
+            f"--task-timeout must be a number of seconds above 0 (got {args.task_timeout})"
+        )
     spec = load_sweep_spec(Path(args.spec))
     if args.serial:
         engine, workers = "serial", None
@@ -73,6 +108,12 @@ def run(args: argparse.Namespace, console: Console) -> int:
         f"{spec.name}: {len(spec.designs)} designs × {spec.impacts_per_design:,} impacts "
         f"= {spec.n_impacts:,} impacts → {args.out}"
     )
+    work_s = spec.n_impacts * SECONDS_PER_IMPACT.get(spec.method, max(SECONDS_PER_IMPACT.values()))
+    if engine in ("process", "dask-local") and work_s < WORKERS_PAY_S:
+        console.print(
+            f"[yellow]about {work_s:.1f} s of work on one core: starting workers takes longer "
+            "(a second or more each); --serial is faster for a sweep this small[/]"
+        )
     if engine.startswith("dask") and not args.verbose:
         import distributed  # noqa: F401  (importing it sets its loggers to INFO: quieten them)
 
@@ -86,6 +127,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             scheduler=args.scheduler,
             figures=None if args.no_figures else sweep_figures,
             progress=progress,
+            task_timeout=args.task_timeout,
         )
     record, out = result.record, result.out
     console.print(
@@ -93,6 +135,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
         f"({record['ran']} run, {record['resumed']} resumed) on {record['engine']} "
         f"in {record['wall_time_s']:.1f} s"
     )
+    console.print(f"  time: {_where_time_went(record)}")
     for text, count in record["status_counts"].items():
         if text not in ("ok", "task failed") and count:
             console.print(f"[yellow]{count:,} impacts: {text}; their results are NaN[/]")
@@ -109,3 +152,27 @@ def run(args: argparse.Namespace, console: Console) -> int:
         )
         return 1
     return 0
+
+
+WORKERS_PAY_S = 2.0
+"""Below this much work on one core (s, estimated), a pool of workers costs more than it saves:
+the command says so."""
+
+
+def _where_time_went(record: dict[str, Any]) -> str:
+    """Where the wall time went, from run.json: start, tasks, writing, combining, summary."""
+    spent = record.get("time_s", {})
+    parts = [f"start {spent['start']:.1f} s"] if "start" in spent else []
+    if "tasks" in spent:
+        first = record.get("first_result_s")
+        parts.append(
+            f"tasks {spent['tasks']:.1f} s"
+            + (f" (first result after {first:.1f} s)" if first is not None else "")
+        )
+        parts.append(f"writing parts {record.get('part_write_time_s', 0.0):.1f} s (in the tasks)")
+    parts += [
+        f"{name} {spent[key]:.1f} s"
+        for name, key in (("combining", "combining"), ("summary", "summary"))
+        if key in spent
+    ]
+    return ", ".join(parts)

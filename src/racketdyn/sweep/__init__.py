@@ -6,16 +6,18 @@ TOML by :func:`load_sweep_spec`, schema in docs/sweep-file.md) names a base rack
 impact points and speeds, and the variables with their values; :meth:`SweepSpec.designs` lists
 the design variants, as a full factorial or one variable at a time around the base.
 
-:func:`run_sweep` makes one task per design — :func:`run_task`, a pure function of plain
+:func:`run_sweep` computes each design with :func:`run_task`, a pure function of plain
 picklable inputs (:class:`SweepTask`) that builds the variant's racket, ball, modal model and
-contact law and calls :func:`racketdyn.impact.predict` — and submits the tasks to any
-:class:`concurrent.futures.Executor`: :class:`SerialExecutor` in this process, a
-:class:`~concurrent.futures.ProcessPoolExecutor`, or Dask through
-``dask.distributed.Client.get_executor()``.  :func:`make_executor` builds each of these (the
-``racketdyn sweep`` command line calls it).  Each finished task is written at once to
-``out_dir/parts/<task-id>.nc``; a rerun skips the tasks whose part carries the same spec hash,
-so an interrupted sweep resumes.  A failed task is retried once, then recorded (dataset
-attributes and ``failures.json``) while the other results are kept.  The parts are combined,
+contact law and calls :func:`racketdyn.impact.predict`, and submits them, a few designs to a
+task when designs are small, to any :class:`concurrent.futures.Executor`:
+:class:`SerialExecutor` in this process, a :class:`ProcessPool` (replaced when a worker dies),
+or Dask through ``dask.distributed.Client.get_executor()``.  :func:`make_executor` builds
+each of these (the ``racketdyn sweep`` command line calls it).  Each finished design is
+written at once to ``out_dir/parts/<task-id>.nc``; a rerun skips the designs whose part
+carries the same spec hash, so an interrupted sweep (Ctrl-C: :class:`SweepInterrupted`)
+resumes.  A failed design is retried once, then recorded (dataset attributes and
+``failures.json``) while the other results are kept; a worker that dies or hangs costs only
+its own design (:class:`WorkerLostError`, :class:`TaskTimeoutError`).  The parts are combined,
 always from the files, into ``out_dir/sweep.nc``: an :mod:`xarray` dataset with dimensions
 ``(design, point, speed, racket_speed, support)``, so every engine gives the same file.
 
@@ -42,14 +44,22 @@ The modules follow the data, each importing only those above it:
 - :mod:`~racketdyn.sweep.executors`: :class:`SerialExecutor`, :func:`make_executor`;
 - :mod:`~racketdyn.sweep.summary`: metrics and figures from a sweep dataset;
 - :mod:`~racketdyn.sweep.files`: part files and ``sweep.nc``;
+- :mod:`~racketdyn.sweep.runner`: the task loop (retries, a lost worker, timeouts, Ctrl-C);
 - :mod:`~racketdyn.sweep.run`: :func:`run_sweep`.
 
 Everything public is importable from :mod:`racketdyn.sweep` itself.
 """
 
 from racketdyn.sweep.design import Design, build_design, build_hand
-from racketdyn.sweep.executors import ENGINES, EngineKind, SerialExecutor, make_executor
+from racketdyn.sweep.executors import (
+    ENGINES,
+    EngineKind,
+    ProcessPool,
+    SerialExecutor,
+    make_executor,
+)
 from racketdyn.sweep.run import SERIAL_IMPACT_LIMIT, run_sweep
+from racketdyn.sweep.runner import SweepInterrupted, TaskTimeoutError, WorkerLostError
 from racketdyn.sweep.spec import MODES, SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec, sweep_spec_from_dict
 from racketdyn.sweep.summary import (
@@ -80,11 +90,15 @@ __all__ = [
     "STATUS_CODES",
     "Design",
     "EngineKind",
+    "ProcessPool",
     "SerialExecutor",
+    "SweepInterrupted",
     "SweepSpec",
     "SweepTask",
     "TaskOutput",
+    "TaskTimeoutError",
     "Variable",
+    "WorkerLostError",
     "build_design",
     "build_hand",
     "factorial_view",

@@ -8,14 +8,18 @@ knows nothing of sweeps beyond how many tasks to keep submitted at once.
 from __future__ import annotations
 
 import logging
+import os
+import signal
+import threading
+import time
 from collections.abc import Callable, Iterator
-from concurrent.futures import Executor, Future
+from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
-from typing import Literal, ParamSpec, TypeVar, get_args
+from typing import Any, Literal, ParamSpec, TypeVar, get_args
 
 from racketdyn.errors import InputError, one_of, require_whole
 
-__all__ = ["ENGINES", "EngineKind", "SerialExecutor", "make_executor"]
+__all__ = ["ENGINES", "EngineKind", "ProcessPool", "SerialExecutor", "make_executor"]
 
 # the package's logger, racketdyn.sweep: the sweep's messages keep one name
 log = logging.getLogger(__package__)
@@ -53,6 +57,169 @@ class SerialExecutor(Executor):
         return future
 
 
+WORKER_PRELOAD = ("racketdyn.sweep.runner",)
+"""Modules the forkserver imports once, before it forks the pool's workers: each worker then
+starts with NumPy, SciPy, numba and racketdyn's impact models loaded, instead of importing
+them itself (seconds per worker on a loaded machine, paid again by a replaced pool)."""
+
+
+def _start_context() -> Any:
+    """forkserver where available, else spawn: never fork, unsafe in a process with threads.
+
+    The forkserver preloads the main module (as multiprocessing does by default) and
+    :data:`WORKER_PRELOAD`.  It is started once per process: the preload applies if no
+    forkserver runs yet.
+    """
+    import multiprocessing
+
+    if "forkserver" not in multiprocessing.get_all_start_methods():
+        return multiprocessing.get_context("spawn")
+    context = multiprocessing.get_context("forkserver")
+    context.set_forkserver_preload(["__main__", *WORKER_PRELOAD])
+    return context
+
+
+def _worker_setup(parent_pid: int) -> None:
+    """Run in each pool worker as it starts: leave Ctrl-C to the main process, and exit when
+    the main process is gone.
+
+    A terminal sends SIGINT to the whole process group: the main process stops the workers and
+    keeps what finished, so the workers ignore it (else each prints a traceback).  A worker's
+    parent is the forkserver, not the main process, and nothing tells it when the main
+    process is killed (SIGKILL): a daemon thread waits on the main process (a pidfd where
+    Linux has them, else polling its pid every second) and ends the worker with it; the
+    forkserver and the resource tracker end once no worker holds their pipes.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(
+        target=_exit_with, args=(parent_pid,), name="racketdyn-parent-watch", daemon=True
+    ).start()
+
+
+def _exit_with(parent_pid: int) -> None:
+    """Return never: ``os._exit`` this process once ``parent_pid`` has ended."""
+    import select
+
+    try:
+        descriptor = os.pidfd_open(parent_pid)
+    except (AttributeError, OSError):  # not Linux ≥ 5.3: poll
+        while _alive(parent_pid):
+            time.sleep(1.0)
+    else:
+        select.select([descriptor], [], [])  # readable once the process has ended
+    os._exit(1)
+
+
+def _alive(pid: int) -> bool:
+    if os.getppid() == 1:  # re-parented: whoever started us is gone
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # it exists, owned by someone else (pid reused)
+        return False
+    return True
+
+
+class ProcessPool(Executor):
+    """A local process pool that survives a dead worker and stops at once when asked.
+
+    A :class:`~concurrent.futures.ProcessPoolExecutor` whose worker dies (killed, out of
+    memory, ``os._exit`` in a task) is broken for good: every pending future fails with
+    :class:`~concurrent.futures.process.BrokenProcessPool` and it takes no more tasks.
+    :meth:`renew` replaces it with a fresh pool of the same size, so
+    :func:`~racketdyn.sweep.run.run_sweep` can rerun the lost tasks; :meth:`stop` kills the
+    workers (a task that hangs, Ctrl-C) instead of waiting for them.  Workers ignore SIGINT
+    and exit when the process that made the pool ends (:func:`_worker_setup`).
+
+    Parameters
+    ----------
+    workers : int
+        Worker processes.
+    pool : ProcessPoolExecutor, optional
+        A pool to take over (its size and start method are kept for the replacements); by
+        default a new one.
+    """
+
+    def __init__(self, workers: int, pool: ProcessPoolExecutor | None = None) -> None:
+        self.workers = workers
+        self._context = _start_context() if pool is None else pool._mp_context
+        self._pool = self._new() if pool is None else pool
+        self.renewals = 0
+
+    @classmethod
+    def adopt(cls, pool: ProcessPoolExecutor) -> ProcessPool:
+        """A :class:`ProcessPool` that takes over a pool made elsewhere (not shut down here
+        unless replaced).
+
+        Parameters
+        ----------
+        pool : ProcessPoolExecutor
+            The pool.
+        """
+        return cls(int(getattr(pool, "_max_workers", DEFAULT_WORKERS)), pool)
+
+    @property
+    def _max_workers(self) -> int:  # read by _in_flight_limit, as for a ProcessPoolExecutor
+        return self.workers
+
+    def _new(self) -> ProcessPoolExecutor:
+        return ProcessPoolExecutor(
+            max_workers=self.workers,
+            mp_context=self._context,
+            initializer=_worker_setup,
+            initargs=(os.getpid(),),
+        )
+
+    def submit(self, fn: Callable[P, T], /, *args: P.args, **kwargs: P.kwargs) -> Future[T]:
+        """Submit ``fn(*args, **kwargs)`` to the current pool.
+
+        Parameters
+        ----------
+        fn : callable
+            The task (picklable, as its arguments).
+        *args, **kwargs
+            Its arguments.
+        """
+        return self._pool.submit(fn, *args, **kwargs)
+
+    def stop(self) -> None:
+        """Kill the workers now; every pending future ends (cancelled or broken)."""
+        processes = list((getattr(self._pool, "_processes", None) or {}).values())
+        for process in processes:
+            if process.is_alive():
+                process.kill()
+        self._pool.shutdown(wait=False, cancel_futures=True)
+        for process in processes:
+            process.join(timeout=5.0)
+
+    def renew(self) -> None:
+        """Replace the pool (broken, or with a worker that hangs) by a fresh one."""
+        self.stop()
+        self._pool = self._new()
+        self.renewals += 1
+        log.info("process pool replaced (%d so far)", self.renewals)
+
+    def shutdown_replacements(self) -> None:
+        """Shut down the current pool if it replaced the one taken over (:meth:`adopt`): that
+        one belongs to whoever made it."""
+        if self.renewals:
+            self.shutdown(wait=True)
+
+    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
+        """Shut the current pool down (see :meth:`ProcessPoolExecutor.shutdown`).
+
+        Parameters
+        ----------
+        wait : bool
+            Wait for the running tasks.
+        cancel_futures : bool
+            Cancel the tasks not yet started.
+        """
+        self._pool.shutdown(wait=wait, cancel_futures=cancel_futures)
+
+
 @contextmanager
 def make_executor(
     kind: EngineKind, workers: int = DEFAULT_WORKERS, scheduler: str | None = None
@@ -67,10 +234,11 @@ def make_executor(
     ----------
     kind : {"serial", "process", "dask-local", "dask"}
         ``serial``: this process (:class:`SerialExecutor`).  ``process``: a local
-        :class:`~concurrent.futures.ProcessPoolExecutor` of ``workers`` processes (started by
-        forkserver where available, else spawn: never fork, which is unsafe in a process with
-        threads).  ``dask-local``: a ``dask.distributed.LocalCluster`` of ``workers``
-        single-threaded worker processes and a client to it.  ``dask``: a client to a running
+        :class:`ProcessPool` of ``workers`` processes (started by forkserver where available,
+        else spawn: never fork, which is unsafe in a process with threads; replaced when a
+        worker dies, killed on an error or Ctrl-C rather than waited for).  ``dask-local``: a
+        ``dask.distributed.LocalCluster`` of ``workers`` single-threaded worker processes and
+        a client to it.  ``dask``: a client to a running
         Dask scheduler at ``scheduler``.  Dask engines use ``Client.get_executor()``; their
         workers need racketdyn installed.
     workers : int
@@ -94,13 +262,13 @@ def make_executor(
         yield SerialExecutor()
         return
     if kind == "process":
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
-
-        methods = multiprocessing.get_all_start_methods()
-        context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-        with ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
+        pool = ProcessPool(workers)
+        try:
             yield pool
+        except BaseException:
+            pool.stop()
+            raise
+        pool.shutdown(wait=True)
         return
     try:
         from dask.distributed import Client, LocalCluster
@@ -115,7 +283,20 @@ def make_executor(
         # adaptive mmap threshold: every large temporary array is then mapped and unmapped
         # afresh, and a sweep task runs ≈ 1.7 times slower.  Leave the allocator alone.
         with (
-            dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}),
+            dask.config.set(
+                {
+                    "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
+                    # where this process shows no info of distributed (the command line
+                    # without -v), its workers log errors only: each would warn of every task
+                    # cancelled by Ctrl-C or a timeout
+                    "distributed.nanny.pre-spawn-environ.DASK_LOGGING__DISTRIBUTED": (
+                        "error"
+                        if logging.getLogger("distributed").getEffectiveLevel() >= logging.WARNING
+                        else "info"
+                    ),
+                }
+            ),
+            _workers_ignore_ctrl_c(),
             LocalCluster(  # type: ignore[no-untyped-call]
                 # the scheduler's HTTP server (dashboard if bokeh is installed) on a free port:
                 # with None it still takes 8787, and warns and leaks a socket where that is taken
@@ -126,15 +307,16 @@ def make_executor(
             ) as cluster,
             Client(cluster) as client,  # type: ignore[no-untyped-call]
         ):
+            _restore_ctrl_c()
             log.info("local Dask cluster: %d workers, dashboard %s", workers, client.dashboard_link)
-            yield client.get_executor(pure=False)
+            yield _dask_executor(client)
         return
     try:
         client = Client(scheduler, timeout="20s")  # type: ignore[no-untyped-call]
     except (OSError, TimeoutError, ValueError) as error:
         raise InputError(f"scheduler {scheduler}: cannot connect ({error})") from None
     with client:
-        yield client.get_executor(pure=False)  # type: ignore[no-untyped-call]
+        yield _dask_executor(client)
 
 
 def _in_flight_limit(executor: Executor) -> int:
@@ -153,3 +335,77 @@ def _in_flight_limit(executor: Executor) -> int:
         if threads > 0:
             return 2 * threads
     return 64
+
+
+_SAVED_SIGINT: list[Any] = []
+
+
+@contextmanager
+def _workers_ignore_ctrl_c() -> Iterator[None]:
+    """Start processes with SIGINT ignored (the disposition survives their exec), so a
+    terminal's Ctrl-C to the process group reaches only this process, which stops the sweep;
+    each Dask worker would otherwise print a KeyboardInterrupt traceback.  Restored by
+    :func:`_restore_ctrl_c` once the workers run, or on leaving."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    _SAVED_SIGINT.append(signal.signal(signal.SIGINT, signal.SIG_IGN))
+    try:
+        yield
+    finally:
+        _restore_ctrl_c()
+
+
+def _restore_ctrl_c() -> None:
+    while _SAVED_SIGINT:
+        signal.signal(signal.SIGINT, _SAVED_SIGINT.pop())
+
+
+def _dask_executor(client: Any) -> Executor:
+    """``client.get_executor(pure=False)`` that can also stop a hung task's worker."""
+    from distributed.cfexecutor import ClientExecutor
+
+    class DaskExecutor(ClientExecutor):
+        """A Dask client's executor that knows the Dask task behind each future, so
+        :meth:`stop_task` can restart the worker running it (a thread cannot be stopped)."""
+
+        def __init__(self, client: Any) -> None:
+            super().__init__(client, pure=False)  # type: ignore[no-untyped-call]
+            self._keys: dict[Future[Any], str] = {}
+
+        def submit(self, fn: Any, *args: Any, **kwargs: Any) -> Any:  # type: ignore[override]
+            task = self._client.submit(fn, *args, pure=False, **kwargs)
+            self._futures.add(task)
+            future: Future[Any] = self._wrap_future(task)  # type: ignore[no-untyped-call]
+            self._keys[future] = task.key
+            future.add_done_callback(lambda done: self._keys.pop(done, None))
+            return future
+
+        def stop_task(self, future: Future[Any]) -> None:
+            """Cancel a task and restart the worker that runs it (through its nanny), so the
+            scheduler does not queue the retry behind the hung thread; where the worker cannot
+            be restarted, the task is only abandoned."""
+            key = self._keys.get(future)
+            try:
+                processing = self._client.processing()
+            except Exception:  # the scheduler cannot say: abandon it
+                processing = {}
+            hung = [worker for worker, keys in processing.items() if key in keys]
+            future.cancel()
+            if hung:
+                try:
+                    self._client.restart_workers(hung, timeout=60, raise_for_error=False)
+                except Exception as error:  # no nanny, an older scheduler: abandon it
+                    log.warning("could not restart the Dask worker %s: %s", hung, error)
+
+    return DaskExecutor(client)
+
+
+def _local_workers(executor: Executor) -> bool:
+    """Whether the executor's workers run on this machine (and see its files): then each
+    worker writes its own part files, in parallel, and only small records travel back."""
+    if isinstance(executor, SerialExecutor | ProcessPool | ProcessPoolExecutor):
+        return True
+    client = getattr(executor, "_client", None)
+    cluster = getattr(client, "cluster", None)
+    return type(cluster).__name__ == "LocalCluster"

@@ -78,12 +78,19 @@ def _read_netcdf(path: Path) -> xr.Dataset:
 # Part files are plain netCDF 3 (xarray reads them), written and read with scipy's netCDF
 # module directly: a few milliseconds less per part than through xarray, which is most of the
 # coordinating process's work per task.  Numbers only; names and settings go in attributes.
-def _write_part(spec: SweepSpec, design: Design, output: TaskOutput, parts_dir: Path) -> None:
+def _write_part(
+    sha256: str,
+    task_id: str,
+    settings: Sequence[tuple[str, float]],
+    output: TaskOutput,
+    parts_dir: Path,
+) -> None:
+    """Write one finished task as ``parts_dir/<task_id>.nc`` (in a worker or the main process)."""
     from scipy.io import netcdf_file
 
     dims = _IMPACT_DIMS[1:]
     with (
-        _atomic(parts_dir / f"{design.task_id}.nc") as temporary,
+        _atomic(parts_dir / f"{task_id}.nc") as temporary,
         netcdf_file(temporary, "w", version=2) as part,
     ):
         shape = output.arrays["status"].shape
@@ -101,15 +108,35 @@ def _write_part(spec: SweepSpec, design: Design, output: TaskOutput, parts_dir: 
             variable[:] = output.mode_frequency_hz
         attributes = {
             "format": PART_FORMAT,
-            "task_id": design.task_id,
-            "spec_sha256": spec.sha256,
-            "design": json.dumps(dict(design.settings)),
+            "task_id": task_id,
+            "spec_sha256": sha256,
+            "design": json.dumps(dict(settings)),
             "mode_names": json.dumps(list(output.mode_names)),
             "attempt": output.attempt,
             "racketdyn_version": __version__,
         }
         for key, value in attributes.items():
             setattr(part, key, value)
+
+
+def _remove_stale_temporaries(parts_dir: Path) -> None:
+    """Remove half-written parts (``.<name>.<pid>.tmp``) of processes that are gone (a worker
+    killed while writing); those of a live process are its business."""
+    for stale in parts_dir.glob(".*.tmp"):
+        pid = stale.name.rsplit(".", 2)[-2]
+        if pid.isdigit() and _process_exists(int(pid)):
+            continue
+        stale.unlink(missing_ok=True)
+
+
+def _process_exists(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 def _read_part(path: Path, spec: SweepSpec, data: bool) -> dict[str, Any] | None:
@@ -155,35 +182,71 @@ def _units(name: str) -> dict[str, Any]:
     return {"units": units, "long_name": long_name}
 
 
-def _combine(spec: SweepSpec, parts_dir: Path, failures: Sequence[dict[str, Any]]) -> xr.Dataset:
-    """The sweep dataset from the part files, in design order (NaN where a part is missing)."""
+class _Assembly:
+    """The sweep's arrays, filled design by design from the part files: while the workers
+    compute, the coordinating process reads each part as it is recorded, so combining at the
+    end reads only the resumed ones.  Mode names are ordered at the end, in design order, so
+    the order parts arrive in does not show in ``sweep.nc``."""
+
+    def __init__(self, spec: SweepSpec, parts_dir: Path) -> None:
+        self.spec, self.parts_dir = spec, parts_dir
+        n_d, n_p, n_s, n_r, n_u = (
+            len(spec.designs),
+            spec.locations.shape[0],
+            spec.ball_speeds.size,
+            spec.racket_speeds.size,
+            len(spec.supports),
+        )
+        shape = (n_d, n_p, n_s, n_r, n_u)
+        self.arrays: dict[str, NDArray[Any]] = {
+            name: np.full(shape, np.nan) for name in _IMPACT_VARIABLES
+        }
+        self.arrays["status"] = np.full(shape, STATUS_CODES[STATUS_FAILED], dtype=np.int8)
+        self.reduced = np.full((n_d, n_p, n_u), np.nan)
+        self.modes: dict[int, list[tuple[str, float]]] = {}
+        self.read: set[int] = set()
+
+    def add(self, design: Design) -> None:
+        """Read one design's part, if it is there and of this spec."""
+        part = _read_part(self.parts_dir / f"{design.task_id}.nc", self.spec, data=True)
+        self.read.add(design.index)
+        if part is None:
+            return
+        for name, array in self.arrays.items():
+            array[design.index] = part[name]
+        self.reduced[design.index] = part["reduced_mass_kg"]
+        names = json.loads(part["attributes"]["mode_names"])
+        frequencies = part.get("mode_frequency_hz", [])
+        self.modes[design.index] = [
+            (mode, float(f)) for mode, f in zip(names, frequencies, strict=True)
+        ]
+
+
+def _combine(
+    spec: SweepSpec,
+    parts_dir: Path,
+    failures: Sequence[dict[str, Any]],
+    assembly: _Assembly | None = None,
+) -> xr.Dataset:
+    """The sweep dataset from the part files, in design order (NaN where a part is missing);
+    the parts an ``assembly`` has read already are not read again."""
     import xarray as xr
 
     designs = spec.designs
-    n_p, n_s, n_r, n_u = (
-        spec.locations.shape[0],
-        spec.ball_speeds.size,
-        spec.racket_speeds.size,
-        len(spec.supports),
-    )
-    shape = (len(designs), n_p, n_s, n_r, n_u)
-    arrays: dict[str, NDArray[Any]] = {name: np.full(shape, np.nan) for name in _IMPACT_VARIABLES}
-    arrays["status"] = np.full(shape, STATUS_CODES[STATUS_FAILED], dtype=np.int8)
-    reduced = np.full((len(designs), n_p, n_u), np.nan)
+    n_p = spec.locations.shape[0]
+    if assembly is None:
+        assembly = _Assembly(spec, parts_dir)
+    for design in designs:
+        if design.index not in assembly.read:
+            assembly.add(design)
+    arrays, reduced = assembly.arrays, assembly.reduced
     mode_names: list[str] = []
     frequencies: dict[tuple[int, str], float] = {}
     for design in designs:
-        part = _read_part(parts_dir / f"{design.task_id}.nc", spec, data=True)
-        if part is None:
-            continue
-        for name in arrays:
-            arrays[name][design.index] = part[name]
-        reduced[design.index] = part["reduced_mass_kg"]
-        names = json.loads(part["attributes"]["mode_names"])
-        for mode, frequency in zip(names, part.get("mode_frequency_hz", []), strict=True):
+        for mode, hz in assembly.modes.get(design.index, []):
             if mode not in mode_names:
                 mode_names.append(mode)
-            frequencies[design.index, mode] = float(frequency)
+            frequencies[design.index, mode] = hz
     data: dict[str, Any] = {
         name: (_IMPACT_DIMS, array, _units(name)) for name, array in arrays.items()
     }
@@ -245,6 +308,7 @@ def _combine(spec: SweepSpec, parts_dir: Path, failures: Sequence[dict[str, Any]
         ),
         "sweep_mode": spec.mode,
         "method": spec.method,
+        "engine": spec.transient_engine if spec.method == "transient" else "",
         "stiffness_reading": spec.stiffness_reading,
         "include_string_bed": int(spec.include_string_bed),
         "rigid": int(spec.rigid),

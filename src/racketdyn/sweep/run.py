@@ -1,4 +1,4 @@
-"""Running a sweep: :func:`run_sweep`, one task per design on an executor, parts, retries.
+"""Running a sweep: :func:`run_sweep`, tasks of designs on an executor, parts, retries.
 
 The top of the flow: takes a :class:`~.spec.SweepSpec` (or its file), submits the
 :func:`~.task.run_task` of each design not yet on disk to an executor
@@ -11,24 +11,46 @@ from __future__ import annotations
 import json
 import logging
 import time
-import traceback
-from collections import deque
-from collections.abc import Callable, Sequence
-from concurrent.futures import FIRST_COMPLETED, Executor, Future, wait
+from collections.abc import Callable, Mapping
+from concurrent.futures import (
+    Executor,
+    ProcessPoolExecutor,
+)
 from contextlib import ExitStack
-from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from racketdyn.__about__ import __version__
-from racketdyn.errors import require_whole
+from racketdyn.errors import InputError, require_whole
 from racketdyn.impact.result import STATUS_OK
-from racketdyn.sweep.design import Design
-from racketdyn.sweep.executors import DEFAULT_WORKERS, EngineKind, _in_flight_limit, make_executor
-from racketdyn.sweep.files import _combine, _read_netcdf, _read_part, _write_netcdf, _write_part
+from racketdyn.sweep.executors import (
+    DEFAULT_WORKERS,
+    EngineKind,
+    ProcessPool,
+    _in_flight_limit,
+    _local_workers,
+    make_executor,
+)
+from racketdyn.sweep.files import (
+    _Assembly,
+    _combine,
+    _read_netcdf,
+    _read_part,
+    _remove_stale_temporaries,
+    _write_netcdf,
+)
+from racketdyn.sweep.runner import (
+    SweepInterrupted,
+    TaskTimeoutError,
+    WorkerLostError,
+    _designs_per_task,
+    _Job,
+    _Runner,
+    _Tally,
+)
 from racketdyn.sweep.spec import SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec
 from racketdyn.sweep.summary import (
@@ -36,12 +58,19 @@ from racketdyn.sweep.summary import (
     sweet_area_resolution_cm2,
     write_summary_csv,
 )
-from racketdyn.sweep.task import STATUS_CODES, STATUS_FAILED, TaskOutput, run_task
+from racketdyn.sweep.task import STATUS_CODES, STATUS_FAILED
 
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["SERIAL_IMPACT_LIMIT", "ProgressCallback", "run_sweep"]
+__all__ = [
+    "SERIAL_IMPACT_LIMIT",
+    "ProgressCallback",
+    "SweepInterrupted",
+    "TaskTimeoutError",
+    "WorkerLostError",
+    "run_sweep",
+]
 
 # the package's logger, racketdyn.sweep: the sweep's messages keep one name
 log = logging.getLogger(__package__)
@@ -64,8 +93,11 @@ def run_sweep(
     retries: int = 1,
     figures: Callable[[xr.Dataset, Path], list[Path]] | None = None,
     max_in_flight: int | None = None,
+    task_timeout: float | None = None,
+    designs_per_task: int | None = None,
+    times: Mapping[str, float] | None = None,
 ) -> xr.Dataset:
-    """Run a sweep: one task per design on an executor, parts on disk, one dataset at the end.
+    """Run a sweep: tasks of designs on an executor, parts on disk, one dataset at the end.
 
     Parameters
     ----------
@@ -79,17 +111,34 @@ def run_sweep(
         Where tasks run (:func:`make_executor`; a ``dask.distributed`` client's
         ``get_executor()``).  Default: this process for fewer than
         :data:`SERIAL_IMPACT_LIMIT` impacts to compute, else a pool of two processes.  An
-        executor passed in is not shut down.
+        executor passed in is not shut down.  A process pool that loses a worker is replaced
+        (a :class:`~concurrent.futures.ProcessPoolExecutor` passed in is taken over); the
+        designs in flight run again, one at a time, and the one whose worker dies when alone
+        has failed an attempt (:class:`WorkerLostError`).
     progress : callable, optional
-        ``progress(done, total)`` after the resumed tasks are counted and after each task ends.
+        ``progress(done, total)`` (designs) after the resumed ones are counted and after each
+        design ends.
     retries : int
-        Times a failed task is submitted again before it is recorded as failed.
+        Times a failed design is submitted again before it is recorded as failed.
     figures : callable, optional
         ``figures(dataset, out_dir)`` draws the summary figures and returns their paths (the
         presentation layer's :func:`racketdyn.plotting.sweep.write_summary_figures`); none
         drawn if None.
     max_in_flight : int, optional
         Tasks submitted at once (default: twice the executor's workers; 1 for serial).
+    task_timeout : float, optional
+        Seconds a task may take from its submission before it counts as hung: its worker is
+        stopped (a process pool is replaced; a Dask worker restarted through its nanny)
+        and the task runs again elsewhere, as a failed attempt (:class:`TaskTimeoutError`).
+        Default: 10 × the longest task finished so far, at least 60 s (600 s until one has
+        finished); ``math.inf``: never.  Not for :class:`SerialExecutor`, which runs a task
+        inside ``submit``.
+    designs_per_task : int, optional
+        Designs per task (default: :func:`designs_per_task` — one for serial, else enough for
+        about :data:`TARGET_TASK_S` of work, with at least four tasks per worker).
+    times : mapping of str to float, optional
+        Seconds spent before this call to add to ``run.json``'s ``time_s`` (the engine's
+        start, measured by the caller).
 
     Returns
     -------
@@ -100,14 +149,23 @@ def run_sweep(
         coordinates for every variable and the derived racket properties; attributes recording
         the spec (JSON), its hash, the racketdyn version and failed tasks.  A failed design
         has NaN and status code 3.
+
+    Raises
+    ------
+    SweepInterrupted
+        On Ctrl-C (a :class:`KeyboardInterrupt`): the workers are stopped, every finished
+        design is on disk; run again to resume.
     """
     started = time.perf_counter()
     if not isinstance(spec, SweepSpec):
         spec = load_sweep_spec(Path(spec))
     require_whole("retries", retries, least=0)
+    if task_timeout is not None and not task_timeout > 0:
+        raise InputError(f"task_timeout must be a number of seconds above 0 (got {task_timeout})")
     out = Path(out_dir)
     parts_dir = out / "parts"
     parts_dir.mkdir(parents=True, exist_ok=True)
+    _remove_stale_temporaries(parts_dir)
     designs = spec.designs
     total = len(designs)
     todo = [d for d in designs if _read_part(parts_dir / f"{d.task_id}.nc", spec, False) is None]
@@ -121,23 +179,50 @@ def run_sweep(
         parts_dir,
         len(todo),
     )
+    time_s = {**(times or {}), "resume_check": time.perf_counter() - started}
     if progress is not None:
         progress(skipped, total)
     tally = _Tally(done=skipped, total=total)
+    assembly = _Assembly(spec, parts_dir)
     engine = "none (all resumed)"
+    batch = 0
     if todo:
         with ExitStack() as stack:
             if executor is None:
                 small = len(todo) * spec.impacts_per_design < SERIAL_IMPACT_LIMIT
                 kind: EngineKind = "serial" if small else "process"
+                clock = time.perf_counter()
                 executor = stack.enter_context(make_executor(kind, DEFAULT_WORKERS))
+                time_s["start"] = time_s.get("start", 0.0) + time.perf_counter() - clock
+            elif isinstance(executor, ProcessPoolExecutor):
+                adopted = ProcessPool.adopt(executor)
+                stack.callback(adopted.shutdown_replacements)
+                executor = adopted
             engine = type(executor).__name__
             limit = max_in_flight or _in_flight_limit(executor)
-            _run_tasks(spec, todo, parts_dir, executor, limit, retries, progress, tally)
+            batch = designs_per_task or _designs_per_task(spec, len(todo), executor)
+            jobs = [_Job(tuple(todo[i : i + batch])) for i in range(0, len(todo), batch)]
+            clock = time.perf_counter()
+            runner = _Runner(
+                spec,
+                parts_dir,
+                executor,
+                limit,
+                retries,
+                task_timeout,
+                progress,
+                tally,
+                write_in_worker=_local_workers(executor),
+                assembly=assembly,
+            )
+            runner.run(jobs)
+            time_s["tasks"] = time.perf_counter() - clock
     failures = tally.failures
-    dataset = _combine(spec, parts_dir, failures)
+    clock = time.perf_counter()
+    dataset = _combine(spec, parts_dir, failures, assembly)
     sweep_path = out / "sweep.nc"
     _write_netcdf(dataset, sweep_path)
+    time_s["combining"] = time.perf_counter() - clock
     failures_path = out / "failures.json"
     if failures:
         failures_path.write_text(json.dumps(failures, indent=2), encoding="utf-8")
@@ -159,6 +244,7 @@ def run_sweep(
                 spec.n_impacts,
                 text,
             )
+    clock = time.perf_counter()
     result = _read_netcdf(sweep_path)
     written = [sweep_path]
     notes = []
@@ -174,6 +260,8 @@ def run_sweep(
             log.warning("%s", notes[-1])
         if figures is not None:
             written += figures(result, out)
+    time_s["summary"] = time.perf_counter() - clock
+    wall = time.perf_counter() - started + sum((times or {}).values())
     record = {
         "format": "racketdyn-sweep-run",
         "racketdyn_version": __version__,
@@ -185,106 +273,21 @@ def run_sweep(
         "resumed": skipped,
         "ran": tally.ran,
         "retried": tally.retried,
+        "timed_out": tally.timed_out,
+        "pools_replaced": tally.pools_replaced,
+        "ran_in_main_process": tally.ran_here,
+        "designs_per_task": batch,
         "failed": [f["task_id"] for f in failures],
         "status_counts": status_counts,
-        "wall_time_s": time.perf_counter() - started,
+        "wall_time_s": wall,
+        "time_s": time_s,
         "task_time_s": tally.task_seconds,
+        "part_write_time_s": tally.write_seconds,
+        "part_read_time_s": tally.assemble_seconds,
+        "first_result_s": tally.first_result_s,
         "outputs": [p.name for p in written] + ["run.json", "parts/"],
         "spec": spec.to_dict(),
         "notes": notes,
     }
     (out / "run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
     return result
-
-
-@dataclass
-class _Tally:
-    """What a run did so far: tasks done (with resumed ones) of all, run, retried, failed."""
-
-    done: int
-    total: int
-    ran: int = 0
-    retried: int = 0
-    task_seconds: float = 0.0
-    failures: list[dict[str, Any]] = field(default_factory=list)
-
-
-def _run_tasks(
-    spec: SweepSpec,
-    todo: Sequence[Design],
-    parts_dir: Path,
-    executor: Executor,
-    limit: int,
-    retries: int,
-    progress: ProgressCallback | None,
-    tally: _Tally,
-) -> None:
-    """Submit the tasks (at most ``limit`` at once), write each part as it ends, retry."""
-    queue: deque[tuple[Design, int]] = deque((d, 1) for d in todo)
-    pending: dict[Future[TaskOutput], tuple[Design, int]] = {}
-
-    def finished_one() -> None:
-        tally.done += 1
-        if progress is not None:
-            progress(tally.done, tally.total)
-
-    def failed(design: Design, attempt: int, error: BaseException) -> None:
-        if attempt <= retries:
-            tally.retried += 1
-            log.warning(
-                "%s (%s) failed on attempt %d (%s: %s); retrying",
-                design.task_id,
-                design.describe(),
-                attempt,
-                type(error).__name__,
-                error,
-            )
-            queue.appendleft((design, attempt + 1))
-            return
-        log.error(
-            "%s (%s) failed: %s: %s", design.task_id, design.describe(), type(error).__name__, error
-        )
-        tally.failures.append(
-            {
-                "task_id": design.task_id,
-                "design": dict(design.settings),
-                "attempts": attempt,
-                "error": f"{type(error).__name__}: {error}",
-                "traceback": "".join(traceback.format_exception(error)),
-            }
-        )
-        finished_one()
-
-    try:
-        while queue or pending:
-            while queue and len(pending) < limit:
-                design, attempt = queue.popleft()
-                try:
-                    future = executor.submit(run_task, spec.task(design), attempt)
-                except Exception as error:  # e.g. a broken process pool
-                    failed(design, attempt, error)
-                    continue
-                pending[future] = (design, attempt)
-            if not pending:
-                continue
-            finished, _ = wait(pending, return_when=FIRST_COMPLETED)
-            for future in finished:
-                design, attempt = pending.pop(future)
-                try:
-                    output = future.result()
-                    _write_part(spec, design, output, parts_dir)
-                except Exception as error:
-                    failed(design, attempt, error)
-                    continue
-                tally.ran += 1
-                tally.task_seconds += output.elapsed_s
-                finished_one()
-    except BaseException:
-        for future in pending:
-            future.cancel()
-        log.warning(
-            "sweep interrupted: %d designs are done in %s; run again to resume",
-            tally.done,
-            parts_dir,
-        )
-        raise

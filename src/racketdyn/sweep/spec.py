@@ -25,6 +25,9 @@ from racketdyn.ball import Ball
 from racketdyn.errors import InputError, one_of, require_positive, require_speeds
 from racketdyn.impact.approximate import STIFFNESS_READINGS, StiffnessReading
 from racketdyn.impact.hand import Hand
+from racketdyn.impact.kernel import NUMBA_AVAILABLE
+from racketdyn.impact.transient import ENGINES as TRANSIENT_ENGINES
+from racketdyn.impact.transient import Engine
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
 from racketdyn.io.racket_file import racket_to_dict as _racket_to_dict
 from racketdyn.racket import (
@@ -78,6 +81,11 @@ class SweepSpec:
         Impact method, a key of :data:`METHODS` (``approximate`` or ``transient``).
     stiffness_reading : {"period", "tangent"}
         Reading of eq (10) (see :func:`racketdyn.impact.predict`; approximate method only).
+    engine : {"auto", "compiled", "reference"}
+        Engine of the transient method (:func:`racketdyn.impact.transient.predict_transient`):
+        ``auto`` is ``compiled`` where numba is installed, else ``reference``, decided when the
+        spec is made (:attr:`transient_engine`), so the hash, and with it resuming, tells the
+        two apart.  Only ``auto`` with the approximate method.
     include_string_bed : bool
         Charge string-bed modes as vibration loss too.
     rigid : bool
@@ -105,6 +113,7 @@ class SweepSpec:
     labels: tuple[str, ...] = ()
     method: str = "approximate"
     stiffness_reading: StiffnessReading = "period"
+    engine: Engine = "auto"
     include_string_bed: bool = False
     rigid: bool = False
     threshold_fraction: float = DEFAULT_THRESHOLD_FRACTION
@@ -142,6 +151,16 @@ class SweepSpec:
         object.__setattr__(self, "supports", supports)
         object.__setattr__(self, "variables", tuple(self.variables))
         one_of("mode", self.mode, MODES)
+        one_of("[impacts].engine", self.engine, TRANSIENT_ENGINES)
+        if self.engine != "auto" and self.method != "transient":
+            raise InputError(
+                f"[impacts].engine = '{self.engine}' is for method = 'transient' only (the "
+                f"{self.method} method has one way to compute); leave it out"
+            )
+        if self.engine == "compiled" and not NUMBA_AVAILABLE:
+            raise InputError(
+                "[impacts].engine = 'compiled' needs numba (pip install numba); use 'reference'"
+            )
         one_of("[impacts].stiffness_reading", self.stiffness_reading, STIFFNESS_READINGS)
         names = [v.name for v in self.variables]
         for name in names:
@@ -201,6 +220,13 @@ class SweepSpec:
             beam_mass_per_length(
                 racket.length_m, racket.mass_kg, racket.balance_m, racket.inertia_cg_kgm2
             )
+
+    @property
+    def transient_engine(self) -> Engine:
+        """The transient method's engine as run here: ``compiled`` or ``reference``."""
+        if self.engine == "auto":
+            return "compiled" if NUMBA_AVAILABLE else "reference"
+        return self.engine
 
     # --- designs ----------------------------------------------------------------------------
     def base_value(self, variable: Variable) -> tuple[float, ...]:
@@ -297,6 +323,7 @@ class SweepSpec:
             stiffness_reading=self.stiffness_reading,
             include_string_bed=self.include_string_bed,
             rigid=self.rigid,
+            engine=self.transient_engine,
         )
 
     # --- record -----------------------------------------------------------------------------
@@ -324,6 +351,7 @@ class SweepSpec:
         racket["strings"]["load_deflection_file"] = _file_record(
             self.racket.strings.load_deflection_file
         )
+        engine = {"engine": self.transient_engine} if self.method == "transient" else {}
         return {
             "format": "racketdyn-sweep-spec",
             "schema_version": SPEC_SCHEMA_VERSION,
@@ -341,6 +369,7 @@ class SweepSpec:
             "variables": [v.to_dict() for v in self.variables],
             "mode": self.mode,
             "method": self.method,
+            **engine,
             "stiffness_reading": self.stiffness_reading,
             "include_string_bed": self.include_string_bed,
             "rigid": self.rigid,

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError, one_of, require_whole
 from racketdyn.impact.approximate import STIFFNESS_READINGS
+from racketdyn.impact.transient import ENGINES as TRANSIENT_ENGINES
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_racket, read_toml
 from racketdyn.io.tables import read_load_deflection, read_points
 from racketdyn.racket import SUPPORTS, Racket
@@ -39,6 +40,7 @@ _IMPACT_KEYS = (
     "ball_speeds_mps",
     "racket_speeds_mps",
     "method",
+    "engine",
     "stiffness_reading",
     "include_string_bed",
     "rigid",
@@ -158,6 +160,7 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         impacts, "include_string_bed", bool, False, "[impacts].include_string_bed"
     )
     rigid = _get(impacts, "rigid", bool, False, "[impacts].rigid")
+    engine = one_of("[impacts].engine", impacts.get("engine", "auto"), TRANSIENT_ENGINES)
 
     table = data.get("variables", {})
     if not isinstance(table, dict):
@@ -224,6 +227,7 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         mode=mode,  # type: ignore[arg-type]  # checked by one_of
         method=method,
         stiffness_reading=reading,  # type: ignore[arg-type]  # checked by one_of
+        engine=engine,  # type: ignore[arg-type]  # checked by one_of
         include_string_bed=include_string_bed,
         rigid=rigid,
         threshold_fraction=fraction,

@@ -36,6 +36,7 @@ from racketdyn.impact.result import (
 )
 from racketdyn.impact.transient import (
     TRANSIENT_SUPPORTS,
+    Engine,
     predict_transient,
 )
 from racketdyn.modal import ModalModel
@@ -113,6 +114,8 @@ class SweepTask:
         Charge string-bed modes too.
     rigid : bool
         No modal model.
+    engine : {"compiled", "reference"}
+        Engine of the transient method (resolved: never ``auto``).
     """
 
     task_id: str
@@ -128,6 +131,7 @@ class SweepTask:
     stiffness_reading: StiffnessReading
     include_string_bed: bool
     rigid: bool
+    engine: Engine = "compiled"
 
 
 @dataclass(frozen=True, eq=False)
@@ -151,6 +155,9 @@ class TaskOutput:
         Which attempt produced it (1 first, 2 the retry).
     elapsed_s : float
         Time the task took where it ran, s (for the run record).
+    write_s : float
+        Time its worker took to write it as a part file, s; 0 with ``arrays`` set: the
+        coordinating process writes it.
     """
 
     task_id: str
@@ -160,6 +167,7 @@ class TaskOutput:
     mode_frequency_hz: NDArray[np.float64]
     attempt: int = 1
     elapsed_s: float = 0.0
+    write_s: float = 0.0
 
 
 def _approximate(
@@ -195,7 +203,7 @@ def _transient(
     """The transient simulation over points × (ball speed, racket speed) pairs × supports.
 
     The ``hand`` support holds the grip with the design's hand (:func:`build_hand`); the
-    engine is ``auto`` (compiled where numba is installed).
+    engine is the spec's (``[impacts].engine``, resolved where the spec was read).
     """
     n_r = task.racket_speeds.size
     hand = build_hand(task.variables, task.settings) if "hand" in task.supports else None
@@ -210,6 +218,7 @@ def _transient(
         law=law,
         include_string_bed=task.include_string_bed,
         hand=hand,
+        engine=task.engine,
     )
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import os
+import time
 from collections.abc import Callable
 from concurrent.futures import Executor
 from contextlib import AbstractContextManager, ExitStack, nullcontext
@@ -54,6 +55,7 @@ def run_sweep_step(
     scheduler: str | None = None,
     figures: Callable[[xr.Dataset, Path], list[Path]] | None = None,
     progress: Progress | None = None,
+    task_timeout: float | None = None,
 ) -> SweepResult:
     """Run (or resume) a design sweep into ``out``.
 
@@ -74,6 +76,16 @@ def run_sweep_step(
         (:func:`racketdyn.plotting.sweep.write_summary_figures`); none if None.
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
+    task_timeout : float, optional
+        Seconds before a task counts as hung and runs again elsewhere
+        (:func:`racketdyn.sweep.run_sweep`; default: 10 × the longest task so far, at least
+        60 s).
+
+    Raises
+    ------
+    racketdyn.sweep.SweepInterrupted
+        On Ctrl-C: the workers are stopped and every finished design is kept; run again to
+        resume.
     """
     the_spec = spec if isinstance(spec, SweepSpec) else load_sweep_spec(Path(spec))
     executor: AbstractContextManager[Executor | None]
@@ -86,7 +98,9 @@ def run_sweep_step(
     out_dir = make_out_folder(Path(out))
     with ExitStack() as stack:
         report(progress, "starting the engine")
+        clock = time.perf_counter()
         running = stack.enter_context(executor)
+        started = time.perf_counter() - clock
         dataset = run_sweep(
             the_spec,
             out_dir,
@@ -95,6 +109,8 @@ def run_sweep_step(
             if progress is None
             else lambda done, total: progress("designs", done, total),
             figures=figures,
+            task_timeout=task_timeout,
+            times={"start": started} if running is not None else None,
         )
     record = json.loads((out_dir / "run.json").read_text(encoding="utf-8"))
     return SweepResult(

@@ -1,0 +1,232 @@
+"""Sweeps that meet faults: a worker that dies or hangs, Ctrl-C, the main process killed.
+
+Each fault is made for real: a pool worker ends with ``os._exit`` or sleeps for an hour inside a
+task (``tests/sweep_faults.py``, shipped to the workers by name), and a sweep run as a
+subprocess in its own session gets SIGINT on its whole process group (as a terminal sends
+Ctrl-C) or SIGKILL on its main process.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from concurrent.futures import Executor, Future
+from pathlib import Path
+from typing import Any
+
+import pytest
+import xarray as xr
+
+import racketdyn as rd
+import racketdyn.sweep.task as sweep_task
+import sweep_faults
+from racketdyn.sweep import SerialExecutor, SweepSpec, make_executor, run_sweep
+
+SCRIPT = Path(sweep_faults.__file__)
+
+
+class Sabotaged(Executor):
+    """An executor whose tasks go through a fault (``fault(*fault_args, fn, *args)``)."""
+
+    def __init__(self, inner: Executor, fault: Callable[..., Any], *fault_args: Any) -> None:
+        self.inner, self.fault, self.fault_args = inner, fault, fault_args
+
+    def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> Future[Any]:
+        return self.inner.submit(self.fault, *self.fault_args, fn, *args, **kwargs)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.inner, name)
+
+
+assert_same_bits = sweep_faults.assert_same_bits
+
+
+# --- a worker that dies ----------------------------------------------------------------------
+def test_a_dead_worker_costs_only_its_tasks(
+    small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
+) -> None:
+    marker = str(tmp_path / "died")
+    with make_executor("process", 2) as pool:
+        executor = Sabotaged(pool, sweep_faults.die_once, marker, "design-00002")
+        result = run_sweep(small_spec, tmp_path / "out", executor, figures=None)
+    assert Path(marker).exists()  # a worker did die
+    assert result.attrs["n_failed"] == 0
+    assert_same_bits(serial_result, result)
+    record = json.loads((tmp_path / "out" / "run.json").read_text())
+    assert record["pools_replaced"] >= 1
+    assert record["ran"] == 6
+
+
+def test_a_task_that_always_kills_its_worker_fails_alone(
+    small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
+) -> None:
+    with make_executor("process", 2) as pool:
+        executor = Sabotaged(pool, sweep_faults.die_always, "design-00004")
+        result = run_sweep(small_spec, tmp_path, executor, figures=None)
+    failures = json.loads((tmp_path / "failures.json").read_text())
+    assert [f["task_id"] for f in failures] == ["design-00004"]
+    assert "worker process died" in failures[0]["error"]
+    others = [0, 1, 2, 3, 5]
+    for name in serial_result.data_vars:
+        expected, actual = serial_result[name].isel(design=others), result[name].isel(design=others)
+        assert expected.values.tobytes() == actual.values.tobytes(), name
+
+
+# --- a worker that hangs ---------------------------------------------------------------------
+@pytest.mark.parametrize("engine", ["process", "dask-local"])
+def test_a_hung_task_is_retried_elsewhere(
+    engine: str, small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
+) -> None:
+    marker = str(tmp_path / "hung")
+    started = time.perf_counter()
+    with make_executor(engine, 2) as inner:  # type: ignore[arg-type]
+        executor = Sabotaged(inner, sweep_faults.hang_once, marker, "design-00001")
+        result = run_sweep(small_spec, tmp_path / "out", executor, figures=None, task_timeout=3.0)
+    assert Path(marker).exists()  # a task did hang
+    assert time.perf_counter() - started < 120  # not the hour it slept
+    assert result.attrs["n_failed"] == 0
+    assert_same_bits(serial_result, result)
+    record = json.loads((tmp_path / "out" / "run.json").read_text())
+    assert record["timed_out"] == 1
+
+
+def test_the_task_timeout_is_checked(small_spec: SweepSpec, tmp_path: Path) -> None:
+    with pytest.raises(rd.InputError, match="task_timeout"):
+        run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None, task_timeout=-1.0)
+
+
+# --- signals to a sweep run as a command -----------------------------------------------------
+SLOW_SPEC = """
+name = "slow"
+[impacts]
+grid = 3
+ball_speeds_mps = [20.0]
+method = "slow"
+[variables]
+e_bg = { start = 0.78, stop = 0.88, num = 16 }
+"""
+
+
+def _start(
+    tmp_path: Path, engine: tuple[str, ...] = ("--workers", "2")
+) -> tuple[subprocess.Popen[bytes], Path, list[str]]:
+    """``racketdyn sweep`` on 2 workers in a session of its own, with tasks of 0.4 s each;
+    its output in ``stdout.txt`` and ``stderr.txt`` (files: a pipe would stay open as long as
+    any child process lives)."""
+    spec = tmp_path / "slow.toml"
+    spec.write_text(SLOW_SPEC, encoding="utf-8")
+    out = tmp_path / "out"
+    argv = ["sweep", str(spec), *engine, "--no-figures", "--out", str(out)]
+    # a user's environment: not the variables an earlier Dask cluster of this test process
+    # wrote into it (its nannies set their workers' variables in the parent's os.environ)
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("DASK_", "MALLOC_"))}
+    env["PYTHONPATH"] = os.pathsep.join(sys.path)
+    with (
+        (tmp_path / "stdout.txt").open("wb") as stdout,
+        (tmp_path / "stderr.txt").open("wb") as stderr,
+    ):
+        process = subprocess.Popen(
+            [sys.executable, str(SCRIPT), *argv],
+            stdout=stdout,
+            stderr=stderr,
+            env=env,
+            start_new_session=True,
+        )
+    parts = out / "parts"
+    deadline = time.monotonic() + 120
+    while len(list(parts.glob("design-*.nc"))) < 2:
+        if process.poll() is not None or time.monotonic() > deadline:
+            process.kill()
+            process.wait()
+            raise AssertionError(f"the sweep did not start: {_output(tmp_path)}")
+        time.sleep(0.05)
+    return process, out, argv
+
+
+def _output(tmp_path: Path) -> tuple[str, str]:
+    return tuple(  # type: ignore[return-value]
+        (tmp_path / name).read_text(encoding="utf-8") for name in ("stdout.txt", "stderr.txt")
+    )
+
+
+def _alive_in_group(group: int) -> list[str]:
+    """Processes of a process group that still run (zombies, waiting to be reaped, do not)."""
+    alive = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+            command = (entry / "cmdline").read_text().replace("\0", " ")
+        except OSError:
+            continue
+        if int(fields[2]) == group and fields[0] != "Z":
+            alive.append(f"{entry.name} {command[:80]}")
+    return alive
+
+
+def _wait_until_gone(group: int, seconds: float) -> list[str]:
+    deadline = time.monotonic() + seconds
+    while (alive := _alive_in_group(group)) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    return alive
+
+
+needs_proc = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc")
+
+
+@needs_proc
+@pytest.mark.parametrize("engine", [("--workers", "2"), ("--dask-local", "2")])
+def test_ctrl_c_keeps_the_finished_parts_and_says_how_to_resume(
+    engine: tuple[str, ...], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    process, out, argv = _start(tmp_path, engine)
+    os.killpg(process.pid, signal.SIGINT)  # the whole group, as a terminal does
+    process.wait(timeout=60)
+    stdout, stderr = _output(tmp_path)
+    assert process.returncode == 130, (stdout, stderr)
+    assert "Traceback" not in stdout + stderr
+    assert "KeyboardInterrupt" not in stdout + stderr
+    assert not stderr.strip()  # workers say nothing either
+    lines = [line for line in (stdout + stderr).splitlines() if "interrupted" in line]
+    assert len(lines) == 1, stdout + stderr
+    kept = len(list((out / "parts").glob("design-*.nc")))
+    assert 2 <= kept < 16
+    assert f"{kept} of 16 designs" in lines[0]
+    command = "racketdyn " + " ".join(argv)
+    assert command in " ".join(stdout.split())  # the line may wrap on a narrow console
+    assert not _wait_until_gone(process.pid, 10), "workers left running"
+    # the resumed sweep computes the rest and equals one run straight through
+    monkeypatch.setitem(sweep_task.METHODS, "slow", sweep_faults.slow)
+    spec = rd.sweep.load_sweep_spec(tmp_path / "slow.toml")
+    counted: list[str] = []
+    resumed = run_sweep(
+        spec,
+        out,
+        SerialExecutor(),
+        figures=None,
+        progress=lambda done, total: counted.append(f"{done}/{total}"),
+    )
+    assert counted[0] == f"{kept}/16"
+    straight = run_sweep(spec, tmp_path / "straight", SerialExecutor(), figures=None)
+    assert_same_bits(straight, resumed)
+
+
+@needs_proc
+@pytest.mark.parametrize("engine", [("--workers", "2"), ("--dask-local", "2")])
+def test_workers_exit_when_the_main_process_is_killed(
+    engine: tuple[str, ...], tmp_path: Path
+) -> None:
+    process, _, _ = _start(tmp_path, engine)
+    assert len(_alive_in_group(process.pid)) >= 3  # main and workers (forkserver, tracker)
+    process.kill()
+    process.wait(timeout=30)
+    alive = _wait_until_gone(process.pid, 10)
+    for line in alive:  # do not leave them behind for the next test
+        os.kill(int(line.split()[0]), signal.SIGKILL)
+    assert not alive, f"left running after the main process was killed: {alive}"
