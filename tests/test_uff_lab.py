@@ -280,3 +280,17 @@ def test_bandwidth_is_the_last_line_of_a_file_and_fs_over_2_56_of_an_estimate(
     assert estimate.frequency[-1] == pytest.approx(fs / 2)
     back = read_frf_uff(write_frf_uff(estimate, tmp_path / "frfs.uff"))
     assert back.bandwidth_hz == pytest.approx(fs / 2.56, rel=1e-6)
+
+
+def test_line_numbers_in_any_order_are_those_counted_from_the_start() -> None:
+    """The structure check counts line numbers on from the last offset asked (reading a
+    56 MiB export was quadratic: 22 s, ``benchmarks/bench_frf.py``); asked out of order, the
+    numbers are still those of the file."""
+    from racketdyn.io.uff_structure import _Lines
+
+    raw = b"".join(b"x" * (k % 7) + b"\n" for k in range(500))
+    lines = _Lines(raw)
+    rng = np.random.default_rng(3)
+    offsets = [*range(0, len(raw), 97), *rng.integers(0, len(raw), 50).tolist(), len(raw)]
+    for offset in offsets:
+        assert lines.at(int(offset)) == raw.count(b"\n", 0, int(offset)) + 1

@@ -85,13 +85,24 @@ def _delimiters(raw: bytes) -> list[int]:
 
 
 class _Lines:
-    """Line numbers of byte offsets (computed on demand: only messages need them)."""
+    """Line numbers of byte offsets, counted on from the last offset asked for.
+
+    The check asks in file order (every data set's opening line), so the whole file is
+    counted once; counting from its start for each data set made reading a 69-point,
+    10-average export quadratic (22 s for 56 MiB).
+    """
 
     def __init__(self, raw: bytes) -> None:
         self.raw = raw
+        self._offset = 0
+        self._line = 1
 
     def at(self, offset: int) -> int:
-        return self.raw.count(b"\n", 0, offset) + 1
+        if offset < self._offset:  # asked out of order: count from the start again
+            self._offset, self._line = 0, 1
+        self._line += self.raw.count(b"\n", self._offset, offset)
+        self._offset = offset
+        return self._line
 
 
 def _line_end(raw: bytes, offset: int) -> int:
