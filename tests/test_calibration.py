@@ -333,3 +333,33 @@ def test_the_hand_is_not_identifiable_from_rebound_at_20_mps() -> None:
     result, _ = calibrate(start, measured, ["e_bg", "hand_stiffness_n_per_m", "hand_arm_mass_kg"])
     assert result.identifiable == [True, False, False]
     assert result.value[0] == pytest.approx(0.83, abs=0.01)
+
+
+def test_calibrate_predicts_every_row_once_before_and_once_after(
+    tmp_path: Path, start: ModelInputs, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The workflow takes the before/after predictions the fit made, not a second run of the
+    model over every row (a transient model over every row costs as much as the fit's step)."""
+    import racketdyn.impact.calibration as calibration_module
+    from racketdyn.workflows.calibrate import run_calibrate
+
+    measured = simulate_measurements(start, FACE, 20.0, method="approx", rng=3)
+    whole: list[int] = []
+
+    def counted(inputs: ModelInputs, rows: object, method: str) -> object:
+        if len(rows) == len(measured):  # type: ignore[arg-type]
+            whole.append(1)
+        return predict_rows(inputs, rows, method)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(calibration_module, "predict_rows", counted)
+    import racketdyn.workflows.calibrate as workflow_module
+
+    if hasattr(workflow_module, "predict_rows"):
+        monkeypatch.setattr(workflow_module, "predict_rows", counted)
+    result = run_calibrate(
+        tmp_path / "cal", measured, ["e_bg"], holdout=[1], method="approx", leave_one_out=False
+    )
+    assert len(whole) == 2  # the start and the fitted inputs, over every row
+    np.testing.assert_allclose(
+        result.after - measured.rebound_ratio, result.calibration.residual_fit
+    )

@@ -26,7 +26,7 @@ from racketdyn.ball import Ball
 from racketdyn.errors import InputError
 from racketdyn.impact.calibration import Calibration, calibrate
 from racketdyn.impact.hand import Hand
-from racketdyn.impact.measured import METHODS, Method, ModelInputs, predict_rows
+from racketdyn.impact.measured import METHODS, Method, ModelInputs
 from racketdyn.io.measured import MeasuredRebound
 from racketdyn.io.racket_file import load_racket, write_racket_toml
 from racketdyn.modal import ModalModel
@@ -155,8 +155,8 @@ def run_calibrate(
     calibration, calibrated = calibrate(
         inputs, rows, fit, method=method, holdout=held0, leave_one_out=leave_one_out
     )
-    before, status = predict_rows(inputs, rows, method)
-    after, status_after = predict_rows(calibrated, rows, method)
+    before, status = calibration.predicted_start, calibration.status_start
+    after, status_after = calibration.predicted, calibration.status
     out_dir = Path(out)
     result = CalibrateResult(
         out_dir,
