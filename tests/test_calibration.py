@@ -363,3 +363,23 @@ def test_calibrate_predicts_every_row_once_before_and_once_after(
     np.testing.assert_allclose(
         result.after - measured.rebound_ratio, result.calibration.residual_fit
     )
+
+
+def test_the_record_names_only_the_fitted_values_racket_toml_holds(
+    tmp_path: Path, start: ModelInputs
+) -> None:
+    """calibration.json says which fitted values racket.toml carries: none for e_bg alone."""
+    from racketdyn.workflows.calibrate import run_calibrate
+
+    measured = simulate_measurements(start, FACE, 20.0, method="approx", rng=4)
+    only_e = run_calibrate(tmp_path / "e", measured, ["e_bg"], method="approx", leave_one_out=False)
+    said = json.loads((only_e.out / "calibration.json").read_text())["calibrated_files"]
+    assert "roll inertia" not in said["racket.toml"]
+    assert "string" not in said["racket.toml"]
+    both = run_calibrate(
+        tmp_path / "r", measured, ["e_bg", "roll_inertia_kgm2"], method="approx",
+        leave_one_out=False,
+    )  # fmt: skip
+    said = json.loads((both.out / "calibration.json").read_text())["calibrated_files"]
+    assert "roll inertia" in said["racket.toml"]
+    assert "string" not in said["racket.toml"]

@@ -171,8 +171,7 @@ def run_calibrate(
     record = calibration.as_dict()
     files = _calibrated_files(calibrated, calibration, out_dir)
     record["calibrated_files"] = {
-        "racket.toml": "the racket with the fitted roll inertia and string-bed scale "
-        "(predict --racket, validate --racket)",
+        "racket.toml": f"{_racket_holds(calibration)} (predict --racket, validate --racket)",
         **({"modal.json": "its modes with the fitted damping (named by racket.toml)"}
            if "frame_damping_scale" in calibration.values else {}),
         "options": _options(calibration),
@@ -201,6 +200,24 @@ def run_calibrate(
         "defaults_used": [*defaults_used, *defaults],
     }
     return finish_run(result, inputs_record, command_record(command, "calibrate"), figures)
+
+
+_IN_RACKET_TOML = {
+    "roll_inertia_kgm2": "roll inertia",
+    "string_stiffness_scale": "string-bed scale",
+    "frame_damping_scale": "frame damping (its modal.json)",
+}
+"""The fitted values racket.toml carries, with the words calibration.json names them by."""
+
+
+def _racket_holds(calibration: Calibration) -> str:
+    """What racket.toml holds of the fit: the fitted values it carries, if any."""
+    values = calibration.values
+    held = [words for name, words in _IN_RACKET_TOML.items()
+            if math.isfinite(values.get(name, math.nan))]  # fmt: skip
+    if not held:
+        return "the racket as given: it carries none of the fitted values"
+    return f"the racket with the fitted {' and '.join(held)}"
 
 
 def _options(calibration: Calibration) -> str:
