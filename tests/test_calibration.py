@@ -164,6 +164,8 @@ def test_bad_fits_are_one_line(start: ModelInputs) -> None:
         calibrate(start, measured, ["e_bg", "e_bg"])
     with pytest.raises(InputError, match="rows are numbered"):
         calibrate(start, measured, ["e_bg"], holdout=[7])
+    with pytest.raises(InputError, match=r"0 rows left to fit \(3 held out, 0 without"):
+        calibrate(start, measured, ["e_bg"], holdout=[0, 1, 2])
     table = replace(start, ball=Ball(e_bg_table=((10.0, 0.85), (40.0, 0.78))))
     with pytest.raises(InputError, match="table against speed"):
         calibrate(table, measured, ["e_bg"])

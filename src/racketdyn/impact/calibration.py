@@ -428,8 +428,9 @@ def calibrate(
     fitted = [i for i in kept if math.isfinite(start_ratio[i])]
     if len(fitted) < len(parameters):
         raise InputError(
-            f"calibrate: {len(fitted)} rows the {method} model gives a number for, fewer than "
-            f"the {len(parameters)} parameters to fit; measure more points or fit fewer"
+            f"calibrate: {len(fitted)} rows left to fit ({len(held)} held out, {len(flagged)} "
+            f"without a number from the {method} model), fewer than the {len(parameters)} "
+            "parameters to fit; hold out fewer rows (--holdout), measure more points or fit fewer"
         )
     result, fitted_inputs = _fit(inputs, parameters, measured.subset(fitted), method)
     result.n_flagged = len(flagged)
