@@ -385,3 +385,17 @@ def test_the_record_names_only_the_fitted_values_racket_toml_holds(
     said = json.loads((both.out / "calibration.json").read_text())["calibrated_files"]
     assert "roll inertia" in said["racket.toml"]
     assert "string" not in said["racket.toml"]
+
+
+def test_a_calibration_value_the_model_refuses_names_the_calibration_file(tmp_path: Path) -> None:
+    from racketdyn.workflows.validate import run_validate
+
+    measured = tmp_path / "measured.csv"
+    measured.write_text(
+        "x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio\n0.5,0,20,0,free,0.4\n",
+        encoding="utf-8",
+    )
+    damaged = tmp_path / "calibration.json"
+    damaged.write_text(json.dumps({"parameters": [{"name": "e_bg", "value": -3.0}]}))
+    with pytest.raises(InputError, match=r"^--calibration .*calibration\.json: .*e_bg"):
+        run_validate(tmp_path / "out", measured, calibration=damaged)
