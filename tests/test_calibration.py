@@ -164,6 +164,8 @@ def test_bad_fits_are_one_line(start: ModelInputs) -> None:
         calibrate(start, measured, ["e_bg", "e_bg"])
     with pytest.raises(InputError, match="rows are numbered"):
         calibrate(start, measured, ["e_bg"], holdout=[7])
+    with pytest.raises(InputError, match=r"0 rows left to fit \(3 held out, 0 without"):
+        calibrate(start, measured, ["e_bg"], holdout=[0, 1, 2])
     table = replace(start, ball=Ball(e_bg_table=((10.0, 0.85), (40.0, 0.78))))
     with pytest.raises(InputError, match="table against speed"):
         calibrate(table, measured, ["e_bg"])
@@ -333,3 +335,67 @@ def test_the_hand_is_not_identifiable_from_rebound_at_20_mps() -> None:
     result, _ = calibrate(start, measured, ["e_bg", "hand_stiffness_n_per_m", "hand_arm_mass_kg"])
     assert result.identifiable == [True, False, False]
     assert result.value[0] == pytest.approx(0.83, abs=0.01)
+
+
+def test_calibrate_predicts_every_row_once_before_and_once_after(
+    tmp_path: Path, start: ModelInputs, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The workflow takes the before/after predictions the fit made, not a second run of the
+    model over every row (a transient model over every row costs as much as the fit's step)."""
+    import racketdyn.impact.calibration as calibration_module
+    from racketdyn.workflows.calibrate import run_calibrate
+
+    measured = simulate_measurements(start, FACE, 20.0, method="approx", rng=3)
+    whole: list[int] = []
+
+    def counted(inputs: ModelInputs, rows: object, method: str) -> object:
+        if len(rows) == len(measured):  # type: ignore[arg-type]
+            whole.append(1)
+        return predict_rows(inputs, rows, method)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(calibration_module, "predict_rows", counted)
+    import racketdyn.workflows.calibrate as workflow_module
+
+    if hasattr(workflow_module, "predict_rows"):
+        monkeypatch.setattr(workflow_module, "predict_rows", counted)
+    result = run_calibrate(
+        tmp_path / "cal", measured, ["e_bg"], holdout=[1], method="approx", leave_one_out=False
+    )
+    assert len(whole) == 2  # the start and the fitted inputs, over every row
+    np.testing.assert_allclose(
+        result.after - measured.rebound_ratio, result.calibration.residual_fit
+    )
+
+
+def test_the_record_names_only_the_fitted_values_racket_toml_holds(
+    tmp_path: Path, start: ModelInputs
+) -> None:
+    """calibration.json says which fitted values racket.toml carries: none for e_bg alone."""
+    from racketdyn.workflows.calibrate import run_calibrate
+
+    measured = simulate_measurements(start, FACE, 20.0, method="approx", rng=4)
+    only_e = run_calibrate(tmp_path / "e", measured, ["e_bg"], method="approx", leave_one_out=False)
+    said = json.loads((only_e.out / "calibration.json").read_text())["calibrated_files"]
+    assert "roll inertia" not in said["racket.toml"]
+    assert "string" not in said["racket.toml"]
+    both = run_calibrate(
+        tmp_path / "r", measured, ["e_bg", "roll_inertia_kgm2"], method="approx",
+        leave_one_out=False,
+    )  # fmt: skip
+    said = json.loads((both.out / "calibration.json").read_text())["calibrated_files"]
+    assert "roll inertia" in said["racket.toml"]
+    assert "string" not in said["racket.toml"]
+
+
+def test_a_calibration_value_the_model_refuses_names_the_calibration_file(tmp_path: Path) -> None:
+    from racketdyn.workflows.validate import run_validate
+
+    measured = tmp_path / "measured.csv"
+    measured.write_text(
+        "x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio\n0.5,0,20,0,free,0.4\n",
+        encoding="utf-8",
+    )
+    damaged = tmp_path / "calibration.json"
+    damaged.write_text(json.dumps({"parameters": [{"name": "e_bg", "value": -3.0}]}))
+    with pytest.raises(InputError, match=r"^--calibration .*calibration\.json: .*e_bg"):
+        run_validate(tmp_path / "out", measured, calibration=damaged)

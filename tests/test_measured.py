@@ -125,6 +125,9 @@ def test_no_rows_and_no_file(tmp_path: Path) -> None:
         read_measured(write(tmp_path))
     with pytest.raises(InputError, match="no such file"):
         read_measured(tmp_path / "nothing.csv")
+    (tmp_path / "folder.csv").mkdir()
+    with pytest.raises(InputError, match=r"folder\.csv: is a folder; give a CSV file$"):
+        read_measured(tmp_path / "folder.csv")
 
 
 def test_a_fast_measured_ball_goes_on_with_allow_implausible(tmp_path: Path) -> None:

@@ -320,6 +320,23 @@ def test_lab_file_with_geometry_in_a_separate_file(tmp_path: Path) -> None:
     _raises(data, lambda: bare.require_locations("the map"), "the map", "--geometry")
 
 
+def test_lab_file_with_geometry_in_a_csv_file(tmp_path: Path) -> None:
+    """--geometry takes a CSV node,x_m,y_m for a Universal File too, as its help says."""
+    records = _records()
+    data = _write_lab(tmp_path / "data.uff", _lab_sets(records, geometry=False))
+    nodes = [*records.nodes, records.reference_node]
+    places = [*(tuple(row) for row in LOCATIONS), records.reference_location]
+    lines = [
+        "node,x_m,y_m",
+        *(f"{n},{float(x)!r},{float(y)!r}" for n, (x, y) in zip(nodes, places, strict=True)),
+    ]
+    geometry = tmp_path / "nodes.csv"
+    geometry.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    back = read_hammer_uff(data, geometry=geometry)
+    np.testing.assert_array_equal(back.locations, LOCATIONS)
+    assert back.reference_location == records.reference_location
+
+
 def test_lab_file_units_labels_and_directions(tmp_path: Path) -> None:
     records = _records()
     sets = [_geometry_set()]

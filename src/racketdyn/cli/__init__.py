@@ -8,7 +8,9 @@ the shared options in :mod:`racketdyn.cli.options`, the figure hooks in
 command imports what it needs when it runs, so ``racketdyn --help`` is instant.
 
 Every user error (:class:`~racketdyn.errors.InputError`) becomes one line on stderr and exit
-status 2; no traceback.
+status 2; no traceback.  Ctrl-C becomes one line and exit status 130: a step writes into a
+staging folder and moves its files in only when it has finished, so the folder it was writing
+is as it was (``sweep`` says more: the designs it kept and the command that resumes).
 """
 
 from __future__ import annotations
@@ -93,7 +95,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     Returns
     -------
     int
-        Exit status: 0, 1 (a sweep with failed designs), 2 (bad input).
+        Exit status: 0, 1 (a sweep with failed designs), 2 (bad input), 130 (Ctrl-C).
     """
     args = parse(argv)
     logging.basicConfig(
@@ -111,6 +113,15 @@ def main(argv: Sequence[str] | None = None) -> int:
             f"racketdyn: error: {error}", markup=False
         )
         return 2
+    except KeyboardInterrupt:
+        out = getattr(args, "out", None)
+        where = "" if out is None else f" to {out}"
+        Console(stderr=True, highlight=False, soft_wrap=True).print(
+            f"racketdyn: interrupted; nothing of the unfinished step was written{where} "
+            "(a step's files move in only when it has finished)",
+            markup=False,
+        )
+        return 130
 
 
 if __name__ == "__main__":

@@ -235,6 +235,11 @@ class Calibration:
         Predicted − measured per row (NaN for flagged rows).
     loo : ndarray
         Leave-one-out residuals (empty unless asked for).
+    predicted_start, predicted : ndarray
+        Every row's rebound ratio predicted with the starting and with the fitted inputs
+        (NaN where the model gives none), dimensionless.
+    status_start, status : ndarray of str
+        Why a row has no prediction (``ok`` where it has one), with each set of inputs.
     """
 
     names: list[str]
@@ -262,6 +267,10 @@ class Calibration:
     residual_fit: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     residual_holdout: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     loo: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    predicted_start: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    predicted: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    status_start: NDArray[np.str_] = field(default_factory=lambda: np.zeros(0, dtype=str))
+    status: NDArray[np.str_] = field(default_factory=lambda: np.zeros(0, dtype=str))
 
     @property
     def values(self) -> dict[str, float]:
@@ -409,23 +418,26 @@ def calibrate(
     held = sorted({int(i) for i in holdout})
     if any(not 0 <= i < n for i in held):
         raise InputError(f"--holdout: rows are numbered 1 to {n}")
-    kept = [i for i in range(n) if i not in set(held)]
+    kept = sorted(set(range(n)) - set(held))
     for p in parameters:
         if p.support and p.support not in measured.support:
             log.info("%s: no %s rows; it will be reported not identifiable", p.name, p.support)
     # rows the model flags at the start are left out (counted), as validate leaves them out
-    start_ratio, _ = predict_rows(inputs, measured, method)
+    start_ratio, start_status = predict_rows(inputs, measured, method)
     flagged = [i for i in kept if not math.isfinite(start_ratio[i])]
-    fitted = [i for i in kept if i not in set(flagged)]
+    fitted = [i for i in kept if math.isfinite(start_ratio[i])]
     if len(fitted) < len(parameters):
         raise InputError(
-            f"calibrate: {len(fitted)} rows the {method} model gives a number for, fewer than "
-            f"the {len(parameters)} parameters to fit; measure more points or fit fewer"
+            f"calibrate: {len(fitted)} rows left to fit ({len(held)} held out, {len(flagged)} "
+            f"without a number from the {method} model), fewer than the {len(parameters)} "
+            "parameters to fit; hold out fewer rows (--holdout), measure more points or fit fewer"
         )
     result, fitted_inputs = _fit(inputs, parameters, measured.subset(fitted), method)
     result.n_flagged = len(flagged)
     result.n_holdout = len(held)
-    predicted, _ = predict_rows(fitted_inputs, measured, method)
+    predicted, status = predict_rows(fitted_inputs, measured, method)
+    result.predicted_start, result.status_start = start_ratio, start_status
+    result.predicted, result.status = predicted, status
     residual = predicted - measured.rebound_ratio
     result.residual_fit = residual
     result.fit_rms = _rms(residual[fitted])

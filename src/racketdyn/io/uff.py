@@ -423,12 +423,16 @@ def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
 def _coordinates(
     path: Path, sets: Sequence[dict[str, Any]], units: _Units, geometry: Path | str | None
 ) -> dict[int, tuple[float, float, float]]:
-    """Node coordinates (x, y, z), m, of a file and of a separate geometry file (which wins)."""
+    """Node coordinates (x, y, z), m, of a file and of a separate geometry file (which wins):
+    a Universal File (data set 15 or 2411) or a CSV ``node,x_m,y_m``."""
     nodes = _nodes_xyz_of(path, sets, units)
     if geometry is not None:
         geometry = Path(geometry)
-        geometry_sets = _read_sets(geometry)
-        found = _nodes_xyz_of(geometry, geometry_sets, _units_of(geometry, geometry_sets))
+        if geometry.suffix.lower() == ".csv":  # node,x_m,y_m: face coordinates, m
+            found = {n: (x, y, 0.0) for n, (x, y) in _read_geometry_csv(geometry).items()}
+        else:
+            geometry_sets = _read_sets(geometry)
+            found = _nodes_xyz_of(geometry, geometry_sets, _units_of(geometry, geometry_sets))
         if not found:
             raise InputError(
                 f"{geometry}: no node coordinates (data set 15 or 2411); give a geometry file "

@@ -62,24 +62,53 @@ def _locations_or_missing(locations: Any, check: Any, name: str) -> NDArray[np.f
     return np.asarray(check(array, name))
 
 
-def _require_locations(
-    source: str, what: str, nodes: tuple[int, ...], locations: Any, reference: Any
-) -> None:
-    missing = [
-        n for n, row in zip(nodes, np.asarray(locations), strict=True) if np.isnan(row).any()
-    ]
-    if np.isnan(np.asarray(reference, dtype=float)).any():
-        missing.append(-1)
-    if missing:
-        named = ", ".join("the reference" if n == -1 else str(n) for n in missing[:8])
-        raise InputError(
-            f"{source}: {what} needs node coordinates, which node(s) {named} lack; give them "
-            "with --geometry FILE (UFF data set 15 or 2411, or CSV node,x_m,y_m in m)"
+class _PointsAndReference:
+    """What hammer records and FRF sets share: points (nodes, locations) and a reference."""
+
+    nodes: tuple[int, ...]
+    locations: NDArray[np.float64]
+    reference_node: int
+    reference_location: tuple[float, ...]
+    source: str
+
+    @property
+    def driving_point(self) -> int | None:
+        """Index of the point at the reference node (the driving point), if any."""
+        return self.nodes.index(self.reference_node) if self.reference_node in self.nodes else None
+
+    @property
+    def has_locations(self) -> bool:
+        """Every point and the reference have coordinates."""
+        return not (
+            np.isnan(self.locations).any()
+            or np.isnan(np.asarray(self.reference_location, dtype=float)).any()
         )
+
+    def require_locations(self, what: str) -> None:
+        """InputError naming ``--geometry`` unless every point has coordinates.
+
+        Parameters
+        ----------
+        what : str
+            The step that needs them (e.g. ``"the contact-time map"``).
+        """
+        missing = [
+            n
+            for n, row in zip(self.nodes, np.asarray(self.locations), strict=True)
+            if np.isnan(row).any()
+        ]
+        if np.isnan(np.asarray(self.reference_location, dtype=float)).any():
+            missing.append(-1)
+        if missing:
+            named = ", ".join("the reference" if n == -1 else str(n) for n in missing[:8])
+            raise InputError(
+                f"{self.source}: {what} needs node coordinates, which node(s) {named} lack; give "
+                "them with --geometry FILE (UFF data set 15 or 2411, or CSV node,x_m,y_m in m)"
+            )
 
 
 @dataclass(frozen=True, eq=False)
-class HammerRecords:
+class HammerRecords(_PointsAndReference):
     """Force and response time records of a roving-hammer test.
 
     Parameters
@@ -190,32 +219,9 @@ class HammerRecords:
         """Sample times from the trigger, s (negative in the pre-trigger)."""
         return np.asarray(np.arange(self.n_samples) * self.sampling_interval_s - self.pretrigger_s)
 
-    @property
-    def driving_point(self) -> int | None:
-        """Index of the hammer point at the reference node (the driving point), if any."""
-        return self.nodes.index(self.reference_node) if self.reference_node in self.nodes else None
-
-    @property
-    def has_locations(self) -> bool:
-        """Every point and the reference have coordinates."""
-        return not (
-            np.isnan(self.locations).any()
-            or np.isnan(np.asarray(self.reference_location, dtype=float)).any()
-        )
-
-    def require_locations(self, what: str) -> None:
-        """InputError naming ``--geometry`` unless every point has coordinates.
-
-        Parameters
-        ----------
-        what : str
-            The step that needs them (e.g. ``"the contact-time map"``).
-        """
-        _require_locations(self.source, what, self.nodes, self.locations, self.reference_location)
-
 
 @dataclass(frozen=True, eq=False)
-class FrfSet:
+class FrfSet(_PointsAndReference):
     """Frequency response functions of hammer points against one reference.
 
     Parameters
@@ -320,29 +326,6 @@ class FrfSet:
     def omega(self) -> NDArray[np.float64]:
         """Angular frequency of each line, rad/s."""
         return np.asarray(2 * np.pi * self.frequency)
-
-    @property
-    def driving_point(self) -> int | None:
-        """Index of the FRF measured at the reference node (the driving point), if any."""
-        return self.nodes.index(self.reference_node) if self.reference_node in self.nodes else None
-
-    @property
-    def has_locations(self) -> bool:
-        """Every point and the reference have coordinates."""
-        return not (
-            np.isnan(self.locations).any()
-            or np.isnan(np.asarray(self.reference_location, dtype=float)).any()
-        )
-
-    def require_locations(self, what: str) -> None:
-        """InputError naming ``--geometry`` unless every point has coordinates.
-
-        Parameters
-        ----------
-        what : str
-            The step that needs them (e.g. ``"the contact-time map"``).
-        """
-        _require_locations(self.source, what, self.nodes, self.locations, self.reference_location)
 
     @property
     def bandwidth_hz(self) -> float:

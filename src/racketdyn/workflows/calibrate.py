@@ -26,7 +26,7 @@ from racketdyn.ball import Ball
 from racketdyn.errors import InputError
 from racketdyn.impact.calibration import Calibration, calibrate
 from racketdyn.impact.hand import Hand
-from racketdyn.impact.measured import METHODS, Method, ModelInputs, predict_rows
+from racketdyn.impact.measured import METHODS, Method, ModelInputs
 from racketdyn.io.measured import MeasuredRebound
 from racketdyn.io.racket_file import load_racket, write_racket_toml
 from racketdyn.modal import ModalModel
@@ -155,8 +155,8 @@ def run_calibrate(
     calibration, calibrated = calibrate(
         inputs, rows, fit, method=method, holdout=held0, leave_one_out=leave_one_out
     )
-    before, status = predict_rows(inputs, rows, method)
-    after, status_after = predict_rows(calibrated, rows, method)
+    before, status = calibration.predicted_start, calibration.status_start
+    after, status_after = calibration.predicted, calibration.status
     out_dir = Path(out)
     result = CalibrateResult(
         out_dir,
@@ -171,8 +171,7 @@ def run_calibrate(
     record = calibration.as_dict()
     files = _calibrated_files(calibrated, calibration, out_dir)
     record["calibrated_files"] = {
-        "racket.toml": "the racket with the fitted roll inertia and string-bed scale "
-        "(predict --racket, validate --racket)",
+        "racket.toml": f"{_racket_holds(calibration)} (predict --racket, validate --racket)",
         **({"modal.json": "its modes with the fitted damping (named by racket.toml)"}
            if "frame_damping_scale" in calibration.values else {}),
         "options": _options(calibration),
@@ -201,6 +200,24 @@ def run_calibrate(
         "defaults_used": [*defaults_used, *defaults],
     }
     return finish_run(result, inputs_record, command_record(command, "calibrate"), figures)
+
+
+_IN_RACKET_TOML = {
+    "roll_inertia_kgm2": "roll inertia",
+    "string_stiffness_scale": "string-bed scale",
+    "frame_damping_scale": "frame damping (its modal.json)",
+}
+"""The fitted values racket.toml carries, with the words calibration.json names them by."""
+
+
+def _racket_holds(calibration: Calibration) -> str:
+    """What racket.toml holds of the fit: the fitted values it carries, if any."""
+    values = calibration.values
+    held = [words for name, words in _IN_RACKET_TOML.items()
+            if math.isfinite(values.get(name, math.nan))]  # fmt: skip
+    if not held:
+        return "the racket as given: it carries none of the fitted values"
+    return f"the racket with the fitted {' and '.join(held)}"
 
 
 def _options(calibration: Calibration) -> str:

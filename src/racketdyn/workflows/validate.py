@@ -315,7 +315,11 @@ def run_validate(
         values = load_calibration(calibration)
         provenance["calibration_file"] = str(Path(calibration).resolve())
         provenance["calibration_sha256"] = sha256(Path(calibration))
-    inputs = apply(inputs, values)
+    try:
+        inputs = apply(inputs, values)
+    except InputError as error:  # a value the model refuses: name where it came from
+        source = "calibration" if isinstance(calibration, dict) else f"--calibration {calibration}"
+        raise InputError(f"{source}: {error}") from None
     result = ValidateResult(Path(out), measured=rows, inputs=inputs, calibration=values)
     for method in METHODS:
         report(progress, f"{method}: {len(rows)} measured impacts")
