@@ -68,7 +68,14 @@ def _check(path: Path, record: _Record) -> None:
     if record.quantity not in RESPONSE_OF_CODE:
         raise InputError(
             f"{record.where(path)}: ordinate type {record.quantity} is not a response "
-            "(8 displacement, 11 velocity, 12 acceleration); set record 9, field 1"
+            "(8 displacement, 11 velocity, 12 acceleration) and its units label "
+            f"{record.labels[1].strip()!r} names none; set record 9, field 1"
+        )
+    if record.rsp_node <= 0 or record.ref_node <= 0:
+        raise InputError(
+            f"{record.where(path)}: names no point (node 0 means none): racketdyn cannot tell "
+            "the points apart nor find the driving point; set record 6, fields 6 and 9 to the "
+            "sensor's and the hammer's node numbers (the same at the driving point)"
         )
     if record.denominator not in (0, QUANTITY_CODE["force"]):
         raise InputError(
@@ -222,7 +229,7 @@ def read_frfs(
                 f"({record.quantity} against {first.quantity} in record 9); give one type"
             )
         _check_same_abscissa(path, first, record, "frequency axis")
-    missing = [n for n in [*nodes, ref] if n not in coordinates]
+    missing = [n for n in dict.fromkeys([*nodes, ref]) if n not in coordinates]
     if missing and not require_coordinates:
         log.info(
             "%s: node(s) %s have no coordinates (FRFs need none; shapes and maps will ask for "

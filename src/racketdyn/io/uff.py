@@ -269,6 +269,8 @@ def _normal_label(label: Any) -> str | None:
     """A units label in lower case without spaces, or None where the record gives none."""
     text = str(label or "").strip().lower().replace(" ", "")
     text = text.replace("²", "^2").replace("**", "^").replace("µ", "u").replace("μ", "u")
+    # a Latin-1 "²" (byte 0xB2) that pyuff decodes as U+FFFD: after "/s" it can be nothing else
+    text = text.replace("/s\ufffd", "/s^2")
     if text.endswith("s2") and not text.endswith("^2") and "/" in text:
         text = text[:-1] + "^2"
     return None if text in ("", "none") else text
@@ -377,6 +379,68 @@ def _round_step(start: float, step: float, n: int, kind: int) -> float | None:
     return None
 
 
+#: Ordinate types that say nothing of the quantity (0 unknown, 1 general): the units label
+#: then tells it (HBM catman's time records, FRFs labelled "(1/N)*(m/s²)").
+_GENERAL_QUANTITY = (0, 1)
+
+
+def _quantity_of_label(label: str | None) -> int | None:
+    """The ordinate type a units label names unambiguously (force or a response), else None."""
+    if label is None:
+        return None
+    found = [
+        QUANTITY_CODE[quantity]
+        for quantity in ("force", *RESPONSE_OF_CODE.values())
+        if label in UNIT_SCALE[quantity]
+    ]
+    return found[0] if len(found) == 1 else None
+
+
+def _split_frf_label(label: str | None) -> tuple[str, str] | None:
+    """(response, force) labels of an FRF's one label: "m/s^2/n", "(m/s^2)/(n)", "(1/n)*(m/s^2)"."""
+    if label is None:
+        return None
+    text = label.replace(" ", "")
+    for prefix in ("(1/", "1/"):
+        if text.startswith(prefix) and "*" in text:
+            force, response = text[len(prefix) :].split("*", 1)
+            return response.strip("()"), force.strip("()")
+    if "/" in text:
+        response, force = text.rsplit("/", 1)
+        return response.strip("()"), force.strip("()")
+    return None
+
+
+def _with_quantity_from_label(record: _Record) -> _Record:
+    """A record of ordinate type 0/1 given the quantity its units label names, if it names one.
+
+    Time records: the label itself ("N", "m/s^2").  FRFs: a response label over a force label
+    in records 9 and 10, or both in record 9 ("(1/N)*(m/s^2)", "m/s^2/N"), which become the
+    two labels.  Anything else is left as it is (and refused where a quantity is needed).
+    """
+    if record.quantity not in _GENERAL_QUANTITY:
+        return record
+    numerator = _normal_label(record.labels[1])
+    denominator = _normal_label(record.labels[2])
+    if record.func_type == TIME_RESPONSE:
+        code = _quantity_of_label(numerator)
+        return record if code is None else dataclasses.replace(record, quantity=code)
+    if denominator is None:
+        split = _split_frf_label(numerator)
+        if split is None:
+            return record
+        numerator, denominator = split
+    code = _quantity_of_label(numerator)
+    if code is None or code == QUANTITY_CODE["force"]:
+        return record
+    if _quantity_of_label(denominator) != QUANTITY_CODE["force"]:
+        return record
+    labels = (record.labels[0], numerator or "", denominator or "")
+    return dataclasses.replace(
+        record, quantity=code, denominator=QUANTITY_CODE["force"], labels=labels
+    )
+
+
 def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
     data = np.asarray(dset.get("data"))
     x, step, even = _abscissa(dset)
@@ -401,6 +465,16 @@ def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
         data=data,
         ids=tuple(str(dset.get(f"id{k}", "")) for k in range(1, 6)),
     )
+    labelled = _with_quantity_from_label(record)
+    if labelled is not record:
+        logger.info(
+            "%s: ordinate type %d (general) read as %d from the units label %r",
+            record.where(path),
+            record.quantity,
+            labelled.quantity,
+            record.labels[1],
+        )
+        record = labelled
     n_header = _as_int(dset.get("num_pts"), -1)
     if data.ndim != 1 or data.size != n_header or x.size != data.size:
         raise InputError(
@@ -561,6 +635,7 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         logger.info("%s: %d data sets 58 that are not time records ignored", path, ignored)
     forces: dict[tuple[int, int], _Record] = {}
     responses: dict[tuple[int, int], _Record] = {}
+    unreferenced: list[_Record] = []  # responses naming no hammer node (reference node 0)
     for record in records:
         if np.iscomplexobj(record.data):
             raise InputError(f"{record.where(path)}: a time record must be real, not complex")
@@ -568,10 +643,8 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
             table, key = forces, (record.rsp_node, record.load_case)
         elif record.quantity in RESPONSE_OF_CODE:
             if record.ref_node == 0:
-                raise InputError(
-                    f"{record.where(path)}: a response record must name the hammer node as its "
-                    "reference node (record 6, field 9)"
-                )
+                unreferenced.append(record)
+                continue
             table, key = responses, (record.ref_node, record.load_case)
         else:
             raise InputError(
@@ -588,8 +661,17 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         table[key] = record
     if not forces:
         raise InputError(
-            f"{path}: no force channel: no time record has ordinate type 13 (excitation force); "
-            "export the hammer channel with the responses"
+            f"{path}: no force channel: no time record has ordinate type 13 (excitation force) "
+            "or units of force; export the hammer channel with the responses (an output-only "
+            "export, as ARTeMIS writes for operational modal analysis, has none: racketdyn "
+            "needs the hammer's force)"
+        )
+    if unreferenced:
+        raise InputError(
+            f"{unreferenced[0].where(path)}: a response record must name the hammer node as its "
+            "reference node (record 6, field 9; 0 means none, as general-purpose recorders such "
+            "as HBM catman write); set it for every average, or write the test as racketdyn CSV "
+            "(docs/uff-and-csv.md)"
         )
     if not responses:
         raise InputError(
