@@ -148,3 +148,13 @@ def test_a_driving_point_without_coordinates_is_named_once(
     line = _cli_refuses(tmp_path, capsys, "identify", str(path))
     assert "node 2 has no coordinates" in line
     assert "--geometry" in line
+
+
+def test_spectra_and_psds_are_refused_naming_what_to_export(tmp_path: Path) -> None:
+    # A power spectral density (function type 9, as ARTeMIS exports for output-only data):
+    # no force, no phase; the line says which function types racketdyn reads.
+    path = _with_record6(FIXTURES / "h1_unlabelled_frf.uff", tmp_path, [(2, 3, 2)])
+    path.write_bytes(path.read_bytes().replace(b"\n    4         0", b"\n    9         0", 1))
+    _one_line_error(
+        lambda: read_frf_uff(path), "function type 9", "function type 4", "PSDs (2, 3, 9, 12)"
+    )

@@ -39,13 +39,13 @@ from racketdyn.io.uff import (
     _coherence,
     _Contents,
     _coordinates,
-    _describe_types,
     _frf_id_fields,
     _frf_scale,
     _normal_label,
     _read_sets,
     _Record,
     _record_of,
+    _records_of,
     _scale,
     _sign,
     _units_of,
@@ -172,16 +172,10 @@ def read_frfs(
     every = [
         _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
     ]
-    records = [r for r in every if r.func_type == FREQUENCY_RESPONSE]
-    if not records:
-        contents = _Contents(
-            records=every, nodes={}, units=units, types=[int(d.get("type") or 0) for d in sets]
-        )
-        hint = "; read it with read_hammer_uff" if any(r.func_type == 1 for r in every) else ""
-        raise InputError(
-            f"{path}: no FRFs (data set 58, function type {FREQUENCY_RESPONSE}): the file holds "
-            f"{_describe_types(contents)}{hint}"
-        )
+    contents = _Contents(
+        records=every, nodes={}, units=units, types=[int(d.get("type") or 0) for d in sets]
+    )
+    records = _records_of(path, contents, FREQUENCY_RESPONSE)  # an error naming what it holds
     for record in records:
         _check(path, record)
     ref, layout = _choose_reference(path, records, reference)

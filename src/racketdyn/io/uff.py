@@ -589,7 +589,8 @@ def _records_of(path: Path, contents: _Contents, func_type: int) -> list[_Record
     hint = (
         f"; read it with {what[other][1]}"
         if any(r.func_type == other for r in contents.records)
-        else ""
+        else "; export FRFs (function type 4) or the time records of the hammer and the sensor "
+        "(1): spectra and PSDs (2, 3, 9, 12) are not read"
     )
     raise InputError(
         f"{path}: no {what[func_type][0]} (data set 58, function type {func_type}): the file "
