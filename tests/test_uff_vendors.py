@@ -158,3 +158,53 @@ def test_spectra_and_psds_are_refused_naming_what_to_export(tmp_path: Path) -> N
     _one_line_error(
         lambda: read_frf_uff(path), "function type 9", "function type 4", "PSDs (2, 3, 9, 12)"
     )
+
+
+# ---- LMS Test.Lab: a coordinate system per node ---------------------------------------------
+
+
+def test_testlab_directions_in_each_nodes_own_system_are_made_global() -> None:
+    # Every record says +3, but in its nodes' own systems (data sets 18, 15 field 3): at the
+    # sensor's node 2 the system is turned over, +3 is global −Z.  Read in global axes the
+    # FRFs are the model's, transfer points too; read as written (+3 everywhere) the
+    # transfer FRFs would come out negated while the driving point looks right.
+    frfs = read_frf_uff(FIXTURES / "testlab_like_local_systems.uff")
+    truth = make_fixtures.frfs()
+    assert frfs.nodes == truth.nodes
+    np.testing.assert_allclose(frfs.values, truth.values, rtol=1e-11, atol=1e-15)
+    assert "negated" not in frfs.metadata
+    np.testing.assert_allclose(frfs.locations, make_fixtures.LOCATIONS, atol=1e-12)
+
+
+def _edited(tmp_path: Path, old: str, new: str) -> Path:
+    text = (FIXTURES / "testlab_like_local_systems.uff").read_text()
+    assert text.count(old) == 1
+    path = tmp_path / "edited.uff"
+    path.write_text(text.replace(old, new))
+    return path
+
+
+def test_a_direction_oblique_to_the_global_axes_is_refused(tmp_path: Path) -> None:
+    # Node 3's system turned 45° about z: its +1 would be half X, half Y.  Its +3 is still
+    # global Z, so the records (all +3) read; a record in +1 at node 3 is refused.
+    c, s = np.cos(np.pi / 4), np.sin(np.pi / 4)
+    x_point = "".join(f"{v:13.5e}" for v in (0.55, 0.04, 0.0, 0.55 + c, 0.04 + s, 0.0))
+    xz_point = "".join(f"{v:13.5e}" for v in (0.55 + c, 0.04 + s, 1.0))
+    old_x = "".join(f"{v:13.5e}" for v in (0.55, 0.04, 0.0, 0.55, 1.04, 0.0))
+    path = _edited(tmp_path, old_x, x_point)
+    path.write_text(path.read_text().replace(f"{0.55:13.5e}{1.04:13.5e}{1.0:13.5e}", xz_point))
+    assert read_frf_uff(path).nodes == (1, 2, 3)
+    text = path.read_text().split("\n")
+    at = next(i for i, line in enumerate(text) if "hammer node 3" in line) + 2  # record 6
+    text[at] = text[at][:76] + f"{1:4d}"
+    path.write_text("\n".join(text))
+    _one_line_error(lambda: read_frf_uff(path), "node 3", "obliquely", "global directions")
+
+
+def test_coordinates_given_in_a_nodes_system_are_taken_to_the_global_one(tmp_path: Path) -> None:
+    # Node 3 defined in its own system (15, field 2 = 3), 10 mm along that system's x, which
+    # is global +Y: at (0.55, 0.05) globally.
+    old = f"{3:10d}{0:10d}{3:10d}{8:10d}" + "".join(f"{v:13.5e}" for v in (0.55, 0.04, 0.0))
+    new = f"{3:10d}{3:10d}{3:10d}{8:10d}" + "".join(f"{v:13.5e}" for v in (0.01, 0.0, 0.0))
+    frfs = read_frf_uff(_edited(tmp_path, old, new))
+    np.testing.assert_allclose(frfs.locations[2], [0.55, 0.05], atol=1e-12)

@@ -41,6 +41,7 @@ from racketdyn.io.uff import (
     _coordinates,
     _frf_id_fields,
     _frf_scale,
+    _in_global_axes,
     _normal_label,
     _read_sets,
     _Record,
@@ -168,10 +169,11 @@ def read_frfs(
     path = Path(path)
     sets = _read_sets(path)
     units = _units_of(path, sets)
-    coordinates = _coordinates(path, sets, units, geometry)
+    coordinates, frames = _coordinates(path, sets, units, geometry)
     every = [
         _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
     ]
+    every = _in_global_axes(path, every, frames)
     contents = _Contents(
         records=every, nodes={}, units=units, types=[int(d.get("type") or 0) for d in sets]
     )

@@ -233,11 +233,62 @@ def _units_of(path: Path, sets: Sequence[dict[str, Any]]) -> _Units:
     return _Units()
 
 
+@dataclass(frozen=True)
+class _System:
+    """A coordinate system of data set 18: origin (m) and axes (columns x, y, z), global."""
+
+    kind: int  # 0 cartesian, 1 cylindrical, 2 spherical
+    origin: NDArray[np.float64]
+    axes: NDArray[np.float64]
+
+
+def _systems_of(path: Path, sets: Sequence[dict[str, Any]], units: _Units) -> dict[int, _System]:
+    """Coordinate systems of data sets 18, defined in the global system (reference 0).
+
+    Record 3 gives the origin and a point on the +x axis, record 4 a point in the x–z plane
+    (on the +z side): x = (x point − origin), y = (x–z point − origin) × x, z = x × y.
+    """
+    systems: dict[int, _System] = {}
+    for i, dset in enumerate(sets, start=1):
+        if dset.get("type") != 18:
+            continue
+        numbers = np.atleast_1d(np.asarray(dset.get("cs_num", []), dtype=float))
+        kinds = np.atleast_1d(np.asarray(dset.get("cs_type", []), dtype=float))
+        references = np.atleast_1d(np.asarray(dset.get("ref_cs_num", []), dtype=float))
+        points = [
+            np.asarray(dset.get(key, []), dtype=float).reshape(-1, 3) / units.length
+            for key in ("ref_o", "x_point", "xz_point")
+        ]
+        for k, number in enumerate(numbers):
+            origin, on_x, in_xz = (p[k] for p in points)
+            x = on_x - origin
+            y = np.cross(in_xz - origin, x)
+            if references[k] != 0 or not (
+                np.linalg.norm(x) > 0 and np.linalg.norm(y) > 1e-12 * np.linalg.norm(x) ** 2
+            ):
+                raise InputError(
+                    f"{path}: data set {i} (18, coordinate systems): system {int(number)} is "
+                    "defined in another system or by points on one line; define every system "
+                    "in the global one (reference system 0) by three points not on a line"
+                )
+            x, y = x / np.linalg.norm(x), y / np.linalg.norm(y)
+            axes = np.column_stack([x, y, np.cross(x, y)])
+            systems[int(number)] = _System(int(kinds[k]), origin, axes)
+    return systems
+
+
 def _nodes_xyz_of(
     path: Path, sets: Sequence[dict[str, Any]], units: _Units
-) -> dict[int, tuple[float, float, float]]:
-    """Node coordinates (x, y, z) in m from data sets 15 and 2411, their extent checked."""
+) -> tuple[dict[int, tuple[float, float, float]], dict[int, _System]]:
+    """Node coordinates (x, y, z) in m from data sets 15 and 2411, their extent checked, and
+    the coordinate system of data set 18 that each node's measurement directions are in.
+
+    Coordinates given in a system of data set 18 (field 2, definition system) are taken to the
+    global system; a system number no data set 18 defines is taken as the global system.
+    """
     nodes: dict[int, tuple[float, float, float]] = {}
+    frames: dict[int, _System] = {}
+    systems = _systems_of(path, sets, units)
     for i, dset in enumerate(sets, start=1):
         if dset.get("type") not in (15, 2411):
             continue
@@ -252,6 +303,23 @@ def _nodes_xyz_of(
                 f"{path}: data set {i} ({dset['type']}, nodes): every node needs a finite node "
                 "number and finite x, y, z coordinates"
             )
+        defined = np.asarray(dset.get("def_cs", np.zeros_like(x)), dtype=float).ravel()
+        displaced = np.asarray(dset.get("disp_cs", np.zeros_like(x)), dtype=float).ravel()
+        for k in range(x.size):
+            system = systems.get(int(defined[k])) if defined.size == x.size else None
+            if system is None:
+                continue
+            if system.kind != 0:
+                raise InputError(
+                    f"{path}: data set {i} ({dset['type']}, nodes): node {int(numbers[k])} is "
+                    f"given in system {int(defined[k])}, which is not cartesian; give the "
+                    "coordinates in a cartesian system"
+                )
+            x[k], y[k], z[k] = system.origin + system.axes @ np.array([x[k], y[k], z[k]])
+        if displaced.size == x.size:
+            for number, code in zip(numbers, displaced, strict=True):
+                if int(code) in systems:
+                    frames[int(number)] = systems[int(code)]
         extent = float(np.max(np.ptp(np.c_[x, y, z], axis=0))) if x.size else 0.0
         if extent > MAX_EXTENT_M:
             raise InputError(
@@ -262,7 +330,61 @@ def _nodes_xyz_of(
             )
         for number, xi, yi, zi in zip(numbers, x, y, z, strict=True):
             nodes[int(number)] = (float(xi), float(yi), float(zi))
-    return nodes
+    return nodes, frames
+
+
+def _global_direction(path: Path, record: _Record, node: int, code: int, frame: _System) -> int:
+    """The global direction code (±1, ±2, ±3) of ``code`` measured in a node's own system."""
+    if code == 0 or abs(code) > 3:
+        return code  # scalar; rotations are refused by _sign
+    if frame.kind != 0:
+        raise InputError(
+            f"{record.where(path)}: node {node} measures in a system that is not cartesian "
+            "(data set 18); give its directions in a cartesian system"
+        )
+    vector = np.sign(code) * frame.axes[:, abs(code) - 1]
+    axis = int(np.argmax(np.abs(vector)))
+    if abs(vector[axis]) < 1 - 1e-6:
+        raise InputError(
+            f"{record.where(path)}: direction {code} at node {node} is in the node's own "
+            "coordinate system (data set 18), which points it obliquely to the global axes; "
+            "racketdyn reads directions along the global axes: export in global directions"
+        )
+    return (axis + 1) * (1 if vector[axis] > 0 else -1)
+
+
+def _in_global_axes(
+    path: Path, records: list[_Record], frames: dict[int, _System]
+) -> list[_Record]:
+    """Records whose direction codes are those of their nodes' own systems, made global.
+
+    LMS Test.Lab gives every node a displacement coordinate system (data set 15, field 3;
+    data set 18): direction +3 at a node whose system is turned over is global −Z.
+    """
+    out = []
+    changed = 0
+    for record in records:
+        rsp_dir, ref_dir = record.rsp_dir, record.ref_dir
+        if record.rsp_node in frames:
+            rsp_dir = _global_direction(
+                path, record, record.rsp_node, rsp_dir, frames[record.rsp_node]
+            )
+        if record.ref_node in frames:
+            ref_dir = _global_direction(
+                path, record, record.ref_node, ref_dir, frames[record.ref_node]
+            )
+        if (rsp_dir, ref_dir) != (record.rsp_dir, record.ref_dir):
+            changed += 1
+            record = dataclasses.replace(record, rsp_dir=rsp_dir, ref_dir=ref_dir)
+        out.append(record)
+    if changed:
+        logger.info(
+            "%s: the directions of %d records taken from their nodes' coordinate systems "
+            "(data set 18) to the global axes",
+            path,
+            changed,
+        )
+    return out
 
 
 def _normal_label(label: Any) -> str | None:
@@ -496,31 +618,36 @@ def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
 
 def _coordinates(
     path: Path, sets: Sequence[dict[str, Any]], units: _Units, geometry: Path | str | None
-) -> dict[int, tuple[float, float, float]]:
-    """Node coordinates (x, y, z), m, of a file and of a separate geometry file (which wins)."""
-    nodes = _nodes_xyz_of(path, sets, units)
+) -> tuple[dict[int, tuple[float, float, float]], dict[int, _System]]:
+    """Node coordinates (x, y, z), m, of a file and of a separate geometry file (which wins),
+    and the coordinate system each node's directions are measured in (from the same file)."""
+    nodes, frames = _nodes_xyz_of(path, sets, units)
     if geometry is not None:
         geometry = Path(geometry)
         geometry_sets = _read_sets(geometry)
-        found = _nodes_xyz_of(geometry, geometry_sets, _units_of(geometry, geometry_sets))
+        found, found_frames = _nodes_xyz_of(
+            geometry, geometry_sets, _units_of(geometry, geometry_sets)
+        )
         if not found:
             raise InputError(
                 f"{geometry}: no node coordinates (data set 15 or 2411); give a geometry file "
                 "that lists the nodes"
             )
         nodes.update(found)
-    return nodes
+        frames = {n: f for n, f in frames.items() if n not in found} | found_frames
+    return nodes, frames
 
 
 def _load(path: Path, geometry: Path | str | None) -> _Contents:
     """Records 58 and node coordinates (x, y) of a file (and of a separate geometry file)."""
     sets = _read_sets(path)
     units = _units_of(path, sets)
-    xyz = _coordinates(path, sets, units, geometry)
+    xyz, frames = _coordinates(path, sets, units, geometry)
     nodes = {n: (x, y) for n, (x, y, _) in xyz.items()}
     records = [
         _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
     ]
+    records = _in_global_axes(path, records, frames)
     types = [_as_int(dset.get("type")) for dset in sets]
     depth = {n: z for n, (_, _, z) in xyz.items()}
     return _Contents(records=records, nodes=nodes, units=units, types=types, depth=depth)
