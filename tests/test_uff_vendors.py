@@ -208,3 +208,14 @@ def test_coordinates_given_in_a_nodes_system_are_taken_to_the_global_one(tmp_pat
     new = f"{3:10d}{3:10d}{3:10d}{8:10d}" + "".join(f"{v:13.5e}" for v in (0.01, 0.0, 0.0))
     frfs = read_frf_uff(_edited(tmp_path, old, new))
     np.testing.assert_allclose(frfs.locations[2], [0.55, 0.05], atol=1e-12)
+
+
+def test_a_system_defined_in_another_is_refused_only_where_a_node_uses_it(tmp_path: Path) -> None:
+    # System 3 given in system 1's frame (18, field 3 = 1): node 3 measures in it, refused
+    # naming the node; the same system used by no node is left alone.
+    old, new = f"{3:10d}{0:10d}{0:10d}{8:10d}{1:10d}", f"{3:10d}{0:10d}{1:10d}{8:10d}{1:10d}"
+    path = _edited(tmp_path, old, new)
+    _one_line_error(lambda: read_frf_uff(path), "node 3", "defined in another system")
+    unused = f"{3:10d}{0:10d}{0:10d}{8:10d}"
+    path.write_text(path.read_text().replace(f"{3:10d}{0:10d}{3:10d}{8:10d}", unused))
+    assert read_frf_uff(path).nodes == (1, 2, 3)

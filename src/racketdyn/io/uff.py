@@ -233,11 +233,21 @@ def _units_of(path: Path, sets: Sequence[dict[str, Any]]) -> _Units:
     return _Units()
 
 
+#: ``_System.kind`` of a system defined in another one or by points on one line.
+_UNUSABLE_SYSTEM = -1
+_SYSTEM_KIND = {_UNUSABLE_SYSTEM: "defined in another system or by points on one line"}
+
+
+def _system_problem(kind: int) -> str:
+    """Why a coordinate system cannot be used (its kind is not cartesian)."""
+    return _SYSTEM_KIND.get(kind, "not cartesian")
+
+
 @dataclass(frozen=True)
 class _System:
     """A coordinate system of data set 18: origin (m) and axes (columns x, y, z), global."""
 
-    kind: int  # 0 cartesian, 1 cylindrical, 2 spherical
+    kind: int  # 0 cartesian, 1 cylindrical, 2 spherical, _UNUSABLE_SYSTEM
     origin: NDArray[np.float64]
     axes: NDArray[np.float64]
 
@@ -265,12 +275,16 @@ def _systems_of(path: Path, sets: Sequence[dict[str, Any]], units: _Units) -> di
             y = np.cross(in_xz - origin, x)
             if references[k] != 0 or not (
                 np.linalg.norm(x) > 0 and np.linalg.norm(y) > 1e-12 * np.linalg.norm(x) ** 2
-            ):
-                raise InputError(
-                    f"{path}: data set {i} (18, coordinate systems): system {int(number)} is "
-                    "defined in another system or by points on one line; define every system "
-                    "in the global one (reference system 0) by three points not on a line"
+            ):  # unusable: refused only where a node uses it
+                logger.info(
+                    "%s: data set %d (18): system %d is defined in another system or by points "
+                    "on one line",
+                    path,
+                    i,
+                    int(number),
                 )
+                systems[int(number)] = _System(_UNUSABLE_SYSTEM, origin, np.eye(3))
+                continue
             x, y = x / np.linalg.norm(x), y / np.linalg.norm(y)
             axes = np.column_stack([x, y, np.cross(x, y)])
             systems[int(number)] = _System(int(kinds[k]), origin, axes)
@@ -312,8 +326,9 @@ def _nodes_xyz_of(
             if system.kind != 0:
                 raise InputError(
                     f"{path}: data set {i} ({dset['type']}, nodes): node {int(numbers[k])} is "
-                    f"given in system {int(defined[k])}, which is not cartesian; give the "
-                    "coordinates in a cartesian system"
+                    f"given in system {int(defined[k])}, which is "
+                    f"{_system_problem(system.kind)} (data set 18); give the coordinates in a "
+                    "cartesian system defined in the global one"
                 )
             x[k], y[k], z[k] = system.origin + system.axes @ np.array([x[k], y[k], z[k]])
         if displaced.size == x.size:
@@ -339,8 +354,9 @@ def _global_direction(path: Path, record: _Record, node: int, code: int, frame: 
         return code  # scalar; rotations are refused by _sign
     if frame.kind != 0:
         raise InputError(
-            f"{record.where(path)}: node {node} measures in a system that is not cartesian "
-            "(data set 18); give its directions in a cartesian system"
+            f"{record.where(path)}: node {node} measures in a coordinate system that is "
+            f"{_system_problem(frame.kind)} (data set 18); give its directions in a cartesian "
+            "system defined in the global one"
         )
     vector = np.sign(code) * frame.axes[:, abs(code) - 1]
     axis = int(np.argmax(np.abs(vector)))
