@@ -9,6 +9,7 @@ an FRF export that names no point (Latin-1 units, ordinate type "general").  Iss
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 from pathlib import Path
 
@@ -219,3 +220,13 @@ def test_a_system_defined_in_another_is_refused_only_where_a_node_uses_it(tmp_pa
     unused = f"{3:10d}{0:10d}{0:10d}{8:10d}"
     path.write_text(path.read_text().replace(f"{3:10d}{0:10d}{3:10d}{8:10d}", unused))
     assert read_frf_uff(path).nodes == (1, 2, 3)
+
+
+def test_identify_without_coordinates_names_geometry() -> None:
+    # FRFs read without coordinates (NaN locations) gave "modal model locations must be
+    # finite numbers" from deep inside; the line now names the nodes and --geometry.
+    frfs = read_frf_uff(FIXTURES / "testlab_like_frf.uff")
+    no_points = dataclasses.replace(
+        frfs, locations=np.full_like(frfs.locations, np.nan), reference_location=(np.nan,) * 2
+    )
+    _one_line_error(lambda: identify(no_points), "node(s) 1, 2, 3", "--geometry")
