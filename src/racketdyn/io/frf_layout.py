@@ -39,13 +39,14 @@ from racketdyn.io.uff import (
     _coherence,
     _Contents,
     _coordinates,
-    _describe_types,
     _frf_id_fields,
     _frf_scale,
+    _in_global_axes,
     _normal_label,
     _read_sets,
     _Record,
     _record_of,
+    _records_of,
     _scale,
     _sign,
     _units_of,
@@ -68,7 +69,14 @@ def _check(path: Path, record: _Record) -> None:
     if record.quantity not in RESPONSE_OF_CODE:
         raise InputError(
             f"{record.where(path)}: ordinate type {record.quantity} is not a response "
-            "(8 displacement, 11 velocity, 12 acceleration); set record 9, field 1"
+            "(8 displacement, 11 velocity, 12 acceleration) and its units label "
+            f"{record.labels[1].strip()!r} names none; set record 9, field 1"
+        )
+    if record.rsp_node <= 0 or record.ref_node <= 0:
+        raise InputError(
+            f"{record.where(path)}: names no point (node 0 means none): racketdyn cannot tell "
+            "the points apart nor find the driving point; set record 6, fields 6 and 9 to the "
+            "sensor's and the hammer's node numbers (the same at the driving point)"
         )
     if record.denominator not in (0, QUANTITY_CODE["force"]):
         raise InputError(
@@ -161,20 +169,15 @@ def read_frfs(
     path = Path(path)
     sets = _read_sets(path)
     units = _units_of(path, sets)
-    coordinates = _coordinates(path, sets, units, geometry)
+    coordinates, frames = _coordinates(path, sets, units, geometry)
     every = [
         _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
     ]
-    records = [r for r in every if r.func_type == FREQUENCY_RESPONSE]
-    if not records:
-        contents = _Contents(
-            records=every, nodes={}, units=units, types=[int(d.get("type") or 0) for d in sets]
-        )
-        hint = "; read it with read_hammer_uff" if any(r.func_type == 1 for r in every) else ""
-        raise InputError(
-            f"{path}: no FRFs (data set 58, function type {FREQUENCY_RESPONSE}): the file holds "
-            f"{_describe_types(contents)}{hint}"
-        )
+    every = _in_global_axes(path, every, frames)
+    contents = _Contents(
+        records=every, nodes={}, units=units, types=[int(d.get("type") or 0) for d in sets]
+    )
+    records = _records_of(path, contents, FREQUENCY_RESPONSE)  # an error naming what it holds
     for record in records:
         _check(path, record)
     ref, layout = _choose_reference(path, records, reference)
@@ -222,7 +225,7 @@ def read_frfs(
                 f"({record.quantity} against {first.quantity} in record 9); give one type"
             )
         _check_same_abscissa(path, first, record, "frequency axis")
-    missing = [n for n in [*nodes, ref] if n not in coordinates]
+    missing = [n for n in dict.fromkeys([*nodes, ref]) if n not in coordinates]
     if missing and not require_coordinates:
         log.info(
             "%s: node(s) %s have no coordinates (FRFs need none; shapes and maps will ask for "

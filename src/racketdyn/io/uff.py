@@ -233,11 +233,76 @@ def _units_of(path: Path, sets: Sequence[dict[str, Any]]) -> _Units:
     return _Units()
 
 
+#: ``_System.kind`` of a system defined in another one or by points on one line.
+_UNUSABLE_SYSTEM = -1
+_SYSTEM_KIND = {_UNUSABLE_SYSTEM: "defined in another system or by points on one line"}
+
+
+def _system_problem(kind: int) -> str:
+    """Why a coordinate system cannot be used (its kind is not cartesian)."""
+    return _SYSTEM_KIND.get(kind, "not cartesian")
+
+
+@dataclass(frozen=True)
+class _System:
+    """A coordinate system of data set 18: origin (m) and axes (columns x, y, z), global."""
+
+    kind: int  # 0 cartesian, 1 cylindrical, 2 spherical, _UNUSABLE_SYSTEM
+    origin: NDArray[np.float64]
+    axes: NDArray[np.float64]
+
+
+def _systems_of(path: Path, sets: Sequence[dict[str, Any]], units: _Units) -> dict[int, _System]:
+    """Coordinate systems of data sets 18, defined in the global system (reference 0).
+
+    Record 3 gives the origin and a point on the +x axis, record 4 a point in the x–z plane
+    (on the +z side): x = (x point − origin), y = (x–z point − origin) × x, z = x × y.
+    """
+    systems: dict[int, _System] = {}
+    for i, dset in enumerate(sets, start=1):
+        if dset.get("type") != 18:
+            continue
+        numbers = np.atleast_1d(np.asarray(dset.get("cs_num", []), dtype=float))
+        kinds = np.atleast_1d(np.asarray(dset.get("cs_type", []), dtype=float))
+        references = np.atleast_1d(np.asarray(dset.get("ref_cs_num", []), dtype=float))
+        points = [
+            np.asarray(dset.get(key, []), dtype=float).reshape(-1, 3) / units.length
+            for key in ("ref_o", "x_point", "xz_point")
+        ]
+        for k, number in enumerate(numbers):
+            origin, on_x, in_xz = (p[k] for p in points)
+            x = on_x - origin
+            y = np.cross(in_xz - origin, x)
+            if references[k] != 0 or not (
+                np.linalg.norm(x) > 0 and np.linalg.norm(y) > 1e-12 * np.linalg.norm(x) ** 2
+            ):  # unusable: refused only where a node uses it
+                logger.info(
+                    "%s: data set %d (18): system %d is defined in another system or by points "
+                    "on one line",
+                    path,
+                    i,
+                    int(number),
+                )
+                systems[int(number)] = _System(_UNUSABLE_SYSTEM, origin, np.eye(3))
+                continue
+            x, y = x / np.linalg.norm(x), y / np.linalg.norm(y)
+            axes = np.column_stack([x, y, np.cross(x, y)])
+            systems[int(number)] = _System(int(kinds[k]), origin, axes)
+    return systems
+
+
 def _nodes_xyz_of(
     path: Path, sets: Sequence[dict[str, Any]], units: _Units
-) -> dict[int, tuple[float, float, float]]:
-    """Node coordinates (x, y, z) in m from data sets 15 and 2411, their extent checked."""
+) -> tuple[dict[int, tuple[float, float, float]], dict[int, _System]]:
+    """Node coordinates (x, y, z) in m from data sets 15 and 2411, their extent checked, and
+    the coordinate system of data set 18 that each node's measurement directions are in.
+
+    Coordinates given in a system of data set 18 (field 2, definition system) are taken to the
+    global system; a system number no data set 18 defines is taken as the global system.
+    """
     nodes: dict[int, tuple[float, float, float]] = {}
+    frames: dict[int, _System] = {}
+    systems = _systems_of(path, sets, units)
     for i, dset in enumerate(sets, start=1):
         if dset.get("type") not in (15, 2411):
             continue
@@ -252,6 +317,24 @@ def _nodes_xyz_of(
                 f"{path}: data set {i} ({dset['type']}, nodes): every node needs a finite node "
                 "number and finite x, y, z coordinates"
             )
+        defined = np.asarray(dset.get("def_cs", np.zeros_like(x)), dtype=float).ravel()
+        displaced = np.asarray(dset.get("disp_cs", np.zeros_like(x)), dtype=float).ravel()
+        for k in range(x.size):
+            system = systems.get(int(defined[k])) if defined.size == x.size else None
+            if system is None:
+                continue
+            if system.kind != 0:
+                raise InputError(
+                    f"{path}: data set {i} ({dset['type']}, nodes): node {int(numbers[k])} is "
+                    f"given in system {int(defined[k])}, which is "
+                    f"{_system_problem(system.kind)} (data set 18); give the coordinates in a "
+                    "cartesian system defined in the global one"
+                )
+            x[k], y[k], z[k] = system.origin + system.axes @ np.array([x[k], y[k], z[k]])
+        if displaced.size == x.size:
+            for number, code in zip(numbers, displaced, strict=True):
+                if int(code) in systems:
+                    frames[int(number)] = systems[int(code)]
         extent = float(np.max(np.ptp(np.c_[x, y, z], axis=0))) if x.size else 0.0
         if extent > MAX_EXTENT_M:
             raise InputError(
@@ -262,13 +345,70 @@ def _nodes_xyz_of(
             )
         for number, xi, yi, zi in zip(numbers, x, y, z, strict=True):
             nodes[int(number)] = (float(xi), float(yi), float(zi))
-    return nodes
+    return nodes, frames
+
+
+def _global_direction(path: Path, record: _Record, node: int, code: int, frame: _System) -> int:
+    """The global direction code (±1, ±2, ±3) of ``code`` measured in a node's own system."""
+    if code == 0 or abs(code) > 3:
+        return code  # scalar; rotations are refused by _sign
+    if frame.kind != 0:
+        raise InputError(
+            f"{record.where(path)}: node {node} measures in a coordinate system that is "
+            f"{_system_problem(frame.kind)} (data set 18); give its directions in a cartesian "
+            "system defined in the global one"
+        )
+    vector = np.sign(code) * frame.axes[:, abs(code) - 1]
+    axis = int(np.argmax(np.abs(vector)))
+    if abs(vector[axis]) < 1 - 1e-6:
+        raise InputError(
+            f"{record.where(path)}: direction {code} at node {node} is in the node's own "
+            "coordinate system (data set 18), which points it obliquely to the global axes; "
+            "racketdyn reads directions along the global axes: export in global directions"
+        )
+    return (axis + 1) * (1 if vector[axis] > 0 else -1)
+
+
+def _in_global_axes(
+    path: Path, records: list[_Record], frames: dict[int, _System]
+) -> list[_Record]:
+    """Records whose direction codes are those of their nodes' own systems, made global.
+
+    LMS Test.Lab gives every node a displacement coordinate system (data set 15, field 3;
+    data set 18): direction +3 at a node whose system is turned over is global −Z.
+    """
+    out = []
+    changed = 0
+    for record in records:
+        rsp_dir, ref_dir = record.rsp_dir, record.ref_dir
+        if record.rsp_node in frames:
+            rsp_dir = _global_direction(
+                path, record, record.rsp_node, rsp_dir, frames[record.rsp_node]
+            )
+        if record.ref_node in frames:
+            ref_dir = _global_direction(
+                path, record, record.ref_node, ref_dir, frames[record.ref_node]
+            )
+        if (rsp_dir, ref_dir) != (record.rsp_dir, record.ref_dir):
+            changed += 1
+            record = dataclasses.replace(record, rsp_dir=rsp_dir, ref_dir=ref_dir)
+        out.append(record)
+    if changed:
+        logger.info(
+            "%s: the directions of %d records taken from their nodes' coordinate systems "
+            "(data set 18) to the global axes",
+            path,
+            changed,
+        )
+    return out
 
 
 def _normal_label(label: Any) -> str | None:
     """A units label in lower case without spaces, or None where the record gives none."""
     text = str(label or "").strip().lower().replace(" ", "")
     text = text.replace("²", "^2").replace("**", "^").replace("µ", "u").replace("μ", "u")
+    # a Latin-1 "²" (byte 0xB2) that pyuff decodes as U+FFFD: after "/s" it can be nothing else
+    text = text.replace("/s\ufffd", "/s^2")
     if text.endswith("s2") and not text.endswith("^2") and "/" in text:
         text = text[:-1] + "^2"
     return None if text in ("", "none") else text
@@ -377,6 +517,68 @@ def _round_step(start: float, step: float, n: int, kind: int) -> float | None:
     return None
 
 
+#: Ordinate types that say nothing of the quantity (0 unknown, 1 general): the units label
+#: then tells it (HBM catman's time records, FRFs labelled "(1/N)*(m/s²)").
+_GENERAL_QUANTITY = (0, 1)
+
+
+def _quantity_of_label(label: str | None) -> int | None:
+    """The ordinate type a units label names unambiguously (force or a response), else None."""
+    if label is None:
+        return None
+    found = [
+        QUANTITY_CODE[quantity]
+        for quantity in ("force", *RESPONSE_OF_CODE.values())
+        if label in UNIT_SCALE[quantity]
+    ]
+    return found[0] if len(found) == 1 else None
+
+
+def _split_frf_label(label: str | None) -> tuple[str, str] | None:
+    """(response, force) labels of an FRF's one label: "m/s^2/n", "(m/s^2)/(n)", "(1/n)*(m/s^2)"."""
+    if label is None:
+        return None
+    text = label.replace(" ", "")
+    for prefix in ("(1/", "1/"):
+        if text.startswith(prefix) and "*" in text:
+            force, response = text[len(prefix) :].split("*", 1)
+            return response.strip("()"), force.strip("()")
+    if "/" in text:
+        response, force = text.rsplit("/", 1)
+        return response.strip("()"), force.strip("()")
+    return None
+
+
+def _with_quantity_from_label(record: _Record) -> _Record:
+    """A record of ordinate type 0/1 given the quantity its units label names, if it names one.
+
+    Time records: the label itself ("N", "m/s^2").  FRFs: a response label over a force label
+    in records 9 and 10, or both in record 9 ("(1/N)*(m/s^2)", "m/s^2/N"), which become the
+    two labels.  Anything else is left as it is (and refused where a quantity is needed).
+    """
+    if record.quantity not in _GENERAL_QUANTITY:
+        return record
+    numerator = _normal_label(record.labels[1])
+    denominator = _normal_label(record.labels[2])
+    if record.func_type == TIME_RESPONSE:
+        code = _quantity_of_label(numerator)
+        return record if code is None else dataclasses.replace(record, quantity=code)
+    if denominator is None:
+        split = _split_frf_label(numerator)
+        if split is None:
+            return record
+        numerator, denominator = split
+    code = _quantity_of_label(numerator)
+    if code is None or code == QUANTITY_CODE["force"]:
+        return record
+    if _quantity_of_label(denominator) != QUANTITY_CODE["force"]:
+        return record
+    labels = (record.labels[0], numerator or "", denominator or "")
+    return dataclasses.replace(
+        record, quantity=code, denominator=QUANTITY_CODE["force"], labels=labels
+    )
+
+
 def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
     data = np.asarray(dset.get("data"))
     x, step, even = _abscissa(dset)
@@ -401,6 +603,16 @@ def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
         data=data,
         ids=tuple(str(dset.get(f"id{k}", "")) for k in range(1, 6)),
     )
+    labelled = _with_quantity_from_label(record)
+    if labelled is not record:
+        logger.info(
+            "%s: ordinate type %d (general) read as %d from the units label %r",
+            record.where(path),
+            record.quantity,
+            labelled.quantity,
+            record.labels[1],
+        )
+        record = labelled
     n_header = _as_int(dset.get("num_pts"), -1)
     if data.ndim != 1 or data.size != n_header or x.size != data.size:
         raise InputError(
@@ -422,35 +634,43 @@ def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
 
 def _coordinates(
     path: Path, sets: Sequence[dict[str, Any]], units: _Units, geometry: Path | str | None
-) -> dict[int, tuple[float, float, float]]:
+) -> tuple[dict[int, tuple[float, float, float]], dict[int, _System]]:
     """Node coordinates (x, y, z), m, of a file and of a separate geometry file (which wins):
-    a Universal File (data set 15 or 2411) or a CSV ``node,x_m,y_m``."""
-    nodes = _nodes_xyz_of(path, sets, units)
+    a Universal File (data set 15 or 2411) or a CSV ``node,x_m,y_m``; and the coordinate
+    system each node's directions are measured in (a CSV gives positions only: the file's
+    systems stay)."""
+    nodes, frames = _nodes_xyz_of(path, sets, units)
     if geometry is not None:
         geometry = Path(geometry)
+        found_frames: dict[int, _System] | None = None
         if geometry.suffix.lower() == ".csv":  # node,x_m,y_m: face coordinates, m
             found = {n: (x, y, 0.0) for n, (x, y) in _read_geometry_csv(geometry).items()}
         else:
             geometry_sets = _read_sets(geometry)
-            found = _nodes_xyz_of(geometry, geometry_sets, _units_of(geometry, geometry_sets))
+            found, found_frames = _nodes_xyz_of(
+                geometry, geometry_sets, _units_of(geometry, geometry_sets)
+            )
         if not found:
             raise InputError(
                 f"{geometry}: no node coordinates (data set 15 or 2411); give a geometry file "
                 "that lists the nodes"
             )
         nodes.update(found)
-    return nodes
+        if found_frames is not None:
+            frames = {n: f for n, f in frames.items() if n not in found} | found_frames
+    return nodes, frames
 
 
 def _load(path: Path, geometry: Path | str | None) -> _Contents:
     """Records 58 and node coordinates (x, y) of a file (and of a separate geometry file)."""
     sets = _read_sets(path)
     units = _units_of(path, sets)
-    xyz = _coordinates(path, sets, units, geometry)
+    xyz, frames = _coordinates(path, sets, units, geometry)
     nodes = {n: (x, y) for n, (x, y, _) in xyz.items()}
     records = [
         _record_of(path, i, dset) for i, dset in enumerate(sets, start=1) if dset.get("type") == 58
     ]
+    records = _in_global_axes(path, records, frames)
     types = [_as_int(dset.get("type")) for dset in sets]
     depth = {n: z for n, (_, _, z) in xyz.items()}
     return _Contents(records=records, nodes=nodes, units=units, types=types, depth=depth)
@@ -519,7 +739,8 @@ def _records_of(path: Path, contents: _Contents, func_type: int) -> list[_Record
     hint = (
         f"; read it with {what[other][1]}"
         if any(r.func_type == other for r in contents.records)
-        else ""
+        else "; export FRFs (function type 4) or the time records of the hammer and the sensor "
+        "(1): spectra and PSDs (2, 3, 9, 12) are not read"
     )
     raise InputError(
         f"{path}: no {what[func_type][0]} (data set 58, function type {func_type}): the file "
@@ -565,6 +786,7 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         logger.info("%s: %d data sets 58 that are not time records ignored", path, ignored)
     forces: dict[tuple[int, int], _Record] = {}
     responses: dict[tuple[int, int], _Record] = {}
+    unreferenced: list[_Record] = []  # responses naming no hammer node (reference node 0)
     for record in records:
         if np.iscomplexobj(record.data):
             raise InputError(f"{record.where(path)}: a time record must be real, not complex")
@@ -572,10 +794,8 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
             table, key = forces, (record.rsp_node, record.load_case)
         elif record.quantity in RESPONSE_OF_CODE:
             if record.ref_node == 0:
-                raise InputError(
-                    f"{record.where(path)}: a response record must name the hammer node as its "
-                    "reference node (record 6, field 9)"
-                )
+                unreferenced.append(record)
+                continue
             table, key = responses, (record.ref_node, record.load_case)
         else:
             raise InputError(
@@ -592,8 +812,17 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         table[key] = record
     if not forces:
         raise InputError(
-            f"{path}: no force channel: no time record has ordinate type 13 (excitation force); "
-            "export the hammer channel with the responses"
+            f"{path}: no force channel: no time record has ordinate type 13 (excitation force) "
+            "or units of force; export the hammer channel with the responses (an output-only "
+            "export, as ARTeMIS writes for operational modal analysis, has none: racketdyn "
+            "needs the hammer's force)"
+        )
+    if unreferenced:
+        raise InputError(
+            f"{unreferenced[0].where(path)}: a response record must name the hammer node as its "
+            "reference node (record 6, field 9; 0 means none, as general-purpose recorders such "
+            "as HBM catman write); set it for every average, or write the test as racketdyn CSV "
+            "(docs/uff-and-csv.md)"
         )
     if not responses:
         raise InputError(
