@@ -25,6 +25,7 @@ def test_demo_runs_the_chain(tmp_path: Path) -> None:
         "swing",
         "twist",
         "oblique",
+        "compound",
     ):
         assert (out / folder / "run.json").is_file(), folder
     # the prediction and the swing used the modes identified from the virtual hammer test
@@ -33,6 +34,12 @@ def test_demo_runs_the_chain(tmp_path: Path) -> None:
         assert run["modal_model"]["source"].startswith("identified from"), folder
     for name in ("swing/sweet_spots.csv", "twist/twist.csv", "oblique/oblique.csv"):
         assert (out / name).is_file(), name
+    # the rig measured with mild noise (issue 12), and still identifies the 2-node mode
+    rig = json.loads((out / "rig" / "run.json").read_text())
+    assert (rig["response_snr_db"], rig["force_snr_db"]) == (50.0, 60.0)
     model = rd.ModalModel.read_json(out / "compare" / "modal_model_free.json")
     assert model.frequency[0] == pytest.approx(120.0, rel=2e-3)
-    assert (out / "report.html").stat().st_size > 100_000
+    page = (out / "report.html").read_text(encoding="utf-8")
+    assert 100_000 < len(page.encode()) <= 6_000_000  # the page budget of issue 11
+    assert "The ball on the strings" in page.split("Not run</h2>")[0]  # issue 14's section
+    assert "The ball on the strings" not in page.split("Not run</h2>")[-1]

