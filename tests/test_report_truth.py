@@ -10,7 +10,7 @@ import pytest
 import racketdyn as rd
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.modal.identify import identify
-from racketdyn.report.sections.truth import compare_with_truth
+from racketdyn.report.sections.truth import compare_with_truth, glance_line
 from racketdyn.rig import accelerometer_index, hammer_points, rig_model, simulate_hammer_test
 
 
@@ -55,3 +55,18 @@ def test_missed_modes_say_node_or_dropped(rig_test) -> None:
     _, missed = compare_with_truth(fake, truth, on_node, [])
     row = next(m for m in missed if m[0] == truth.names[k])
     assert row[2].startswith("on a node at the accelerometer")
+
+
+def test_glance_counts_modes_outside_the_band_apart(rig_test) -> None:
+    """The demo's "At a glance" said "6 of the rig's modes in the band found, 9 missed" where
+    all 9 lay above the band: a reader took them for failures of the identification."""
+    found, truth, reference = rig_test
+    rows, missed = compare_with_truth(found.model, truth, reference, [])
+    outside = [m for m in missed if m[2].startswith("outside the band")]
+    assert outside  # the fixture's band ends at 700 Hz, below the rig's higher modes
+    line = glance_line("free", rows, missed)
+    in_band = len(rows) + len(missed) - len(outside)
+    assert line == (
+        f"free: {len(rows)} of the rig's {in_band} modes in the band found, "
+        f"{len(outside)} more outside it"
+    )

@@ -128,6 +128,15 @@ def compare_with_truth(
     return rows, missed
 
 
+def glance_line(label: str, rows: list[tuple[str, ...]], missed: list[tuple[str, str, str]]) -> str:
+    """The "At a glance" line: modes found of those in the band, and how many lie outside it
+    (those are not misses of the identification)."""
+    outside = sum(why.startswith("outside the band") for _, _, why in missed)
+    in_band = len(rows) + len(missed) - outside
+    more = f", {outside} more outside it" if outside else ""
+    return f"{label}: {len(rows)} of the rig's {in_band} modes in the band found{more}"
+
+
 def gather(run: RunFolder) -> dict[str, Any] | None:
     """Every identification whose support has a ``modal_truth_<support>.json`` in the folder."""
     truths = {
@@ -169,9 +178,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 "missed": missed,
             }
         )
-        glance.append(
-            f"{label}: {len(rows)} of the rig's modes in the band found, {len(missed)} missed"
-        )
+        glance.append(glance_line(label, rows, missed))
     if not blocks:
         return None
     return {"blocks": blocks, "glance": glance}
