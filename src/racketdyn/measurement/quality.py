@@ -34,7 +34,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.signal import find_peaks
 
 __all__ = [
     "REASONS",
@@ -153,6 +152,10 @@ def check_average(
         reasons.append("force overload")
     if _clipped(response):
         reasons.append("response overload")
+    # imported here: scipy.signal costs ≈ 0.7 s to import, and the report and identify load
+    # this module only for its tables (benchmarks/bench_cli.py)
+    from scipy.signal import find_peaks
+
     peaks, _ = find_peaks(pulse, prominence=level)
     if peaks.size > 1:
         reasons.append("double hit")
