@@ -107,3 +107,28 @@ def test_compare_refuses_frfs_without_coordinates_naming_geometry(tmp_path: Path
     assert "compare" in err
     assert "--geometry" in err
     assert "Traceback" not in err
+
+
+def test_a_sweep_fails_its_designs_naming_geometry(tmp_path: Path) -> None:
+    from dataclasses import replace
+
+    import racketdyn as rd
+    from racketdyn.sweep import SerialExecutor, SweepSpec, Variable, run_sweep
+
+    racket = rd.default_racket()
+    model = rd.modal_model_for(racket)
+    replace(model, locations=np.full_like(model.locations, np.nan)).write_json(
+        tmp_path / "modes.json"
+    )
+    spec = SweepSpec(
+        racket=replace(racket, modal_model_file=tmp_path / "modes.json"),
+        ball=rd.Ball(),
+        locations=[(0.5, 0.0)],
+        ball_speeds=[15.0],
+        variables=(Variable.scalar("frame_stiffness_scale", [1.0]),),
+    )
+    ds = run_sweep(spec, tmp_path / "out", SerialExecutor(), figures=None)
+    assert np.isnan(ds["rebound_ratio"].values).all()
+    failures = json.loads((tmp_path / "out" / "failures.json").read_text())
+    assert "no node coordinates" in failures[0]["error"]
+    assert "--geometry" in failures[0]["error"]
