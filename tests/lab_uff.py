@@ -23,9 +23,12 @@ def write_lab_uff(
     nodes: dict[int, tuple[float, float, float]],
     frequency: NDArray[np.float64],
     frfs: Sequence[tuple[int, int, int, int, NDArray[np.complex128]]],
+    *,
+    geometry: bool = True,
 ) -> Path:
     """Write node coordinates (m) and accelerances ``(rsp_node, rsp_dir, ref_node, ref_dir,
-    values)`` (m/s²/N) to a Universal File."""
+    values)`` (m/s²/N) to a Universal File; ``geometry=False`` leaves data set 15 out (a file
+    of FRFs only, as labs export them without their geometry)."""
     numbers = sorted(nodes)
     sets: list[dict] = [
         {
@@ -39,6 +42,8 @@ def write_lab_uff(
             "z": [nodes[n][2] for n in numbers],
         }
     ]
+    if not geometry:
+        sets = []
     for k, (rsp, rsp_dir, ref, ref_dir, values) in enumerate(frfs, start=1):
         dset = _record_set(
             func_type=4,

@@ -156,6 +156,10 @@ def print_modes(console: Console, identification: Identification) -> None:
         )
     if identification.scaling_note:
         console.print(f"shapes: {identification.scaling_note}")
+    if not model.has_locations:
+        from racketdyn.workflows.identify import coordinates_note
+
+        console.print(f"[bold]{coordinates_note(model)}[/]")
     naming = model.metadata.get("naming")
     if naming:
         console.print(f"[dim]{naming}[/]")

@@ -1629,7 +1629,9 @@ def write_modes_uff(
     shares; z, normal to a racket's face, when none is recorded), the other two zero.  A
     mass-normalised model (``model.scaling == "mass"``) has modal mass 1 and says
     "mass-normalised, 1/sqrt(kg)" in ID line 3; an unscaled one (no driving point) has modal
-    mass 0 (unknown) and says "unscaled (largest 1), modal mass unknown".
+    mass 0 (unknown) and says "unscaled (largest 1), modal mass unknown".  A model without
+    node coordinates (:attr:`~racketdyn.modal.model.ModalModel.has_locations` False) gets no
+    data set 15: its shapes by node number only.
 
     Parameters
     ----------
@@ -1660,7 +1662,7 @@ def write_modes_uff(
             else [0.0] * len(numbers)
         ),
     }
-    sets: list[dict[str, Any]] = [geometry]
+    sets: list[dict[str, Any]] = [geometry] if model.has_locations else []
     zeros = np.zeros(len(numbers))
     recorded = model.metadata.get("directions") or {}
     codes = {abs(int(c)) for c in recorded.values()} if isinstance(recorded, dict) else set()

@@ -300,8 +300,9 @@ def identify(
     ----------
     frfs : FrfSet
         FRFs of the points against one reference (2-D or 3-D locations, every point and the
-        reference with coordinates: an InputError naming ``--geometry`` otherwise); an
-        exponential window recorded on the set is taken off the damping.
+        reference with coordinates, or none: a model without coordinates,
+        ``model.has_locations`` False; some without them is an InputError naming
+        ``--geometry``); an exponential window recorded on the set is taken off the damping.
     band_hz : tuple of float, optional
         Band to identify in, Hz (default :func:`default_band`: 40 Hz to the FRFs' bandwidth);
         a top within the UFF header's 6-digit rounding of the last line is the last line.
@@ -317,7 +318,8 @@ def identify(
     Identification
         The model's modes are named ``"mode k (f Hz)"``, of kind ``unknown``.
     """
-    frfs.require_locations("identification (the mode shapes at the points)")
+    if not np.isnan(frfs.locations).all():  # none: a model without coordinates
+        frfs.require_locations("identification (the mode shapes at the points)")
     band = _checked_band(frfs, band_hz or default_band(frfs))
     stab = stabilisation(frfs, band, max_order=max_order)
     selected = select_poles(

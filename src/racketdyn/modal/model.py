@@ -13,7 +13,7 @@ import json
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -57,7 +57,10 @@ class ModalModel:
     damping_ratio : ndarray, shape (n_modes,)
         Viscous damping ratios (fraction of critical).
     locations : ndarray, shape (n_points, 2) or (n_points, 3)
-        Where the shapes are sampled, ``(x, y)`` (a racket's face) or ``(x, y, z)``, m.
+        Where the shapes are sampled, ``(x, y)`` (a racket's face) or ``(x, y, z)``, m; all NaN
+        when the points have no coordinates (FRFs identified without geometry:
+        :attr:`has_locations` False; the shapes are known per point only, and a step needing
+        locations refuses the model, :meth:`require_locations`).
     mode_shapes : ndarray, shape (n_points, n_modes)
         Mass-normalised mode shapes (displacement normal to the face), 1/√kg; unscaled shapes
         (``scaling="unscaled"``) have their largest magnitude 1 and no unit.
@@ -97,7 +100,7 @@ class ModalModel:
         frequency = np.asarray(self.frequency, dtype=float)
         damping = np.asarray(self.damping_ratio, dtype=float)
         shapes = np.asarray(self.mode_shapes, dtype=float)
-        locations = as_points(self.locations, "modal model locations")
+        locations = _locations(self.locations, self.source)
         if shapes.ndim != 2 or shapes.shape != (locations.shape[0], frequency.size):
             raise InputError(
                 f"modal model ({self.source}): mode_shapes must be shaped (n_points, n_modes) = "
@@ -130,7 +133,29 @@ class ModalModel:
             )
         if locations.shape[0] < 1:
             raise InputError(f"modal model ({self.source}): needs shapes at one point or more")
-        _check_distinct(locations, self.source, self.metadata.get("nodes"))
+        if self.has_locations:
+            _check_distinct(locations, self.source, self.metadata.get("nodes"))
+
+    @property
+    def has_locations(self) -> bool:
+        """True when the points have coordinates (False: FRFs identified without geometry)."""
+        return not bool(np.isnan(self.locations).any())
+
+    def require_locations(self, what: str) -> None:
+        """InputError naming ``--geometry`` unless the points have coordinates.
+
+        Parameters
+        ----------
+        what : str
+            The step that needs them, for the message (e.g. ``"a prediction"``).
+        """
+        if not self.has_locations:
+            self._refuse(
+                what,
+                "it has no node coordinates (FRFs identified without geometry)",
+                "identify again with --geometry FILE (UFF data set 15 or 2411, or CSV "
+                "node,x_m,y_m in m)",
+            )
 
     @property
     def mass_normalised(self) -> bool:
@@ -146,11 +171,14 @@ class ModalModel:
             The step that needs them, for the message (e.g. ``"predict"``).
         """
         if not self.mass_normalised:
-            raise InputError(
-                f"modal model ({self.source}): its shapes are unscaled (the test had no usable "
-                f"driving point), so {what} cannot use it; measure a driving point (strike the "
-                "accelerometer's node) and identify again"
+            self._refuse(
+                what,
+                "its shapes are unscaled (the test had no usable driving point)",
+                "measure a driving point (strike the accelerometer's node) and identify again",
             )
+
+    def _refuse(self, what: str, reason: str, fix: str) -> NoReturn:
+        raise InputError(f"modal model ({self.source}): {reason}, so {what} cannot use it; {fix}")
 
     @property
     def n_modes(self) -> int:
@@ -165,7 +193,8 @@ class ModalModel:
     def __repr__(self) -> str:
         return (
             f"<ModalModel {self.n_modes} modes at {numbers(self.frequency)} Hz "
-            f"({words(self.names)}), shapes at {self.locations.shape[0]} points, "
+            f"({words(self.names)}), shapes at {self.locations.shape[0]} points"
+            f"{'' if self.has_locations else ' without coordinates'}, "
             f"support {self.support!r}, source {shorten(self.source)!r}>"
         )
 
@@ -177,7 +206,11 @@ class ModalModel:
             )
         ]
         rows += [
-            ("shapes at", f"{self.locations.shape[0]} points"),
+            (
+                "shapes at",
+                f"{self.locations.shape[0]} points"
+                + ("" if self.has_locations else " (no coordinates)"),
+            ),
             ("support", self.support),
             ("source", shorten(self.source)),
         ]
@@ -253,6 +286,7 @@ class ModalModel:
         ndarray, shape (n, n_modes)
             Interpolated (thin-plate spline) from the sampled shapes, 1/√kg.
         """
+        self.require_locations("shapes between the points")
         points = as_points(locations, f"modal model ({self.source}): locations")
         if points.shape[1] != self.n_dimensions:
             raise InputError(
@@ -329,7 +363,7 @@ class ModalModel:
                     self.names, self.kinds, self.frequency, self.damping_ratio, strict=True
                 )
             ],
-            "locations_m": self.locations.tolist(),
+            "locations_m": self.locations.tolist() if self.has_locations else None,
             "mode_shapes": self.mode_shapes.tolist(),
             "metadata": self.metadata,
         }
@@ -352,11 +386,17 @@ class ModalModel:
             raise InputError(f"{path}: not a racketdyn modal model (format must be {FORMAT!r})")
         try:
             modes = data["modes"]
+            shapes = np.array(data["mode_shapes"], dtype=float).reshape(-1, len(modes))
+            located = data["locations_m"]
             return cls(
                 frequency=np.array([m["frequency_hz"] for m in modes], dtype=float),
                 damping_ratio=np.array([m["damping_ratio"] for m in modes], dtype=float),
-                locations=np.array(data["locations_m"], dtype=float),
-                mode_shapes=np.array(data["mode_shapes"], dtype=float).reshape(-1, len(modes)),
+                locations=(
+                    np.full((shapes.shape[0], 3), np.nan)
+                    if located is None
+                    else np.array(located, dtype=float)
+                ),
+                mode_shapes=shapes,
                 names=tuple(str(m["name"]) for m in modes),
                 kinds=tuple(str(m.get("kind", "other")) for m in modes),
                 support=str(data.get("support", "free")),
@@ -368,6 +408,21 @@ class ModalModel:
             raise InputError(
                 f"{path}: modal model is missing or has a bad field ({error})"
             ) from None
+
+
+def _locations(raw: ArrayLike, source: str) -> NDArray[np.float64]:
+    """The model's locations, m: finite, or all NaN (no coordinates); InputError for some of
+    each."""
+    array = np.asarray(raw, dtype=float)
+    missing = np.isnan(array)
+    if not missing.any():
+        return as_points(array, "modal model locations")
+    if not missing.all():
+        raise InputError(
+            f"modal model ({source}): some points have coordinates and some not; give every "
+            "point's (--geometry FILE) or none"
+        )
+    return np.full(as_points(np.zeros_like(array), "modal model locations").shape, np.nan)
 
 
 def _check_distinct(locations: NDArray[np.float64], source: str, nodes: Any) -> None:

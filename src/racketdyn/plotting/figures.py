@@ -733,8 +733,8 @@ def write_identification(
 
     A racket's modes (named from their shapes) get the racket's figures (face, outline, the
     long axis); any other structure gets its own points (a surface over them, the shape along
-    their line, or the points in space) and no Fig. 6.  Shapes known at one point only get no
-    Figs 4–5.
+    their line, or the points in space) and no Fig. 6.  Shapes known at one point only, or at
+    points without coordinates, get no Figs 4–5.
     """
     out = Path(out_dir)
     model, frfs = identification.model, identification.frfs
@@ -745,7 +745,7 @@ def write_identification(
     plot_stabilisation(identification.stabilisation, identification.selected, ax=ax, frfs=frfs)
     batch.add(figure, out / f"stabilisation{suffix}.png")
 
-    if model.locations.shape[0] >= 2:
+    if model.locations.shape[0] >= 2 and model.has_locations:
         on = racket if racket_modes else None
         figure = figure_mode_shapes(model, on)
         # mplot3d's projection overflows on the NaN outside the face of some surfaces; harmless

@@ -138,6 +138,11 @@ def name_if_racket(
         named and why.
     """
     model = identification.model
+    if not model.has_locations:
+        return identification, (
+            "modes numbered: the points have no coordinates (give --geometry to name a "
+            "racket's modes)"
+        )
     face = model.locations
     if model.n_dimensions == 3:
         mapping = face_mapping(model.locations, racket)

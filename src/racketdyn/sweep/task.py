@@ -278,6 +278,7 @@ def _cached_modal_model(
     if racket.modal_model_file is None:
         return builtin_modal_model(racket)
     model = ModalModel.read_json(racket.modal_model_file)
+    model.require_locations("a sweep")
     model.require_mass_normalised("a sweep")
     if file_model_scale == 1.0:
         return model

@@ -45,12 +45,14 @@ from racketdyn.workflows.run import (
 __all__ = [
     "BALL_COMPARISON_FILE",
     "CHECK_SPEED_MPS",
+    "NO_COORDINATES",
     "BallCompareResult",
     "CompareResult",
     "IdentifyResult",
     "ModeComparison",
     "compare_modes",
     "compare_with_ball",
+    "coordinates_note",
     "identify_file",
     "run_compare",
     "run_compare_ball",
@@ -141,7 +143,12 @@ def identify_file(
         paper's compound test): its mode is named ``"ball on the strings"``.
     """
     ball = None if ball_at is None else ball_location(ball_at, racket)
-    frfs = read_frfs(Path(path), None if geometry is None else Path(geometry), reference)
+    frfs = read_frfs(
+        Path(path),
+        None if geometry is None else Path(geometry),
+        reference,
+        require_coordinates=False,  # none at all: a model without coordinates; some: refused
+    )
     found = identify(
         frfs,
         _band(band_hz),
@@ -157,10 +164,23 @@ def identify_file(
     return replace(found, model=replace(found.model, metadata=metadata))
 
 
+NO_COORDINATES = (
+    "no node coordinates: frequencies, damping ratios and the shapes by node only; no shape "
+    "figures, no node lines, no racket naming, and predict refuses the model; --geometry FILE "
+    "(UFF data set 15 or 2411, or CSV node,x_m,y_m in m) adds them"
+)
+"""What an identification from FRFs without coordinates gives and lacks (console, run.json)."""
+
+
+def coordinates_note(model: ModalModel) -> str:
+    """:data:`NO_COORDINATES` for a model without node coordinates, else empty."""
+    return "" if model.has_locations else NO_COORDINATES
+
+
 def write_model(identification: Identification, out: Path, label: str = "") -> list[Path]:
     """``modes<label>.csv``, ``modal_model<label>.json``, ``modes<label>.uff``,
-    ``fit_quality<label>.csv`` (x, y[, z] as the FRFs' points) and ``dropped_modes<label>.csv``
-    of one identification; returns the paths."""
+    ``fit_quality<label>.csv`` (x, y[, z] as the FRFs' points, empty without coordinates) and
+    ``dropped_modes<label>.csv`` of one identification; returns the paths."""
     model = identification.model
     paths = [out / f"modes{label}.csv", out / f"modal_model{label}.json", out / f"modes{label}.uff"]
     identification.write_modes_csv(paths[0])
@@ -174,7 +194,7 @@ def write_model(identification: Identification, out: Path, label: str = "") -> l
         for node, point, error in zip(
             identification.frfs.nodes, locations, identification.fit.error, strict=True
         ):
-            coordinates = ",".join(f"{c:.6g}" for c in point)
+            coordinates = ",".join("" if np.isnan(c) else f"{c:.6g}" for c in point)
             handle.write(f"{node},{coordinates},{error:.4g}\n")
     dropped = out / f"dropped_modes{label}.csv"
     identification.write_dropped_csv(dropped)
@@ -272,6 +292,8 @@ def run_identify(
         "face_mapping": found.model.metadata.get("face_mapping"),
         "scaling": found.model.scaling,
         "scaling_note": found.scaling_note,
+        "coordinates": found.model.has_locations,
+        "coordinates_note": coordinates_note(found.model),
         "modes": found.model.summary()["modes"],
         "dropped": found.model.metadata["dropped"],
     }
@@ -467,8 +489,10 @@ def run_compare(
     options = _file_options(geometry, band_hz, max_order, pin_hz, exclude_hz, reference, racket)
     report(progress, f"identifying {Path(free).name}")
     found_free = identify_file(free, the_racket, "free", **options)
+    found_free.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
     report(progress, f"identifying {Path(hand).name}")
     found_hand = identify_file(hand, the_racket, "hand", **options)
+    found_hand.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
     # a hand damps some modes out: name the hand's modes after their free pairs (issue 13)
     paired = name_after_pairs(found_free.model, found_hand.model)
     if paired.names != found_hand.model.names:
@@ -656,8 +680,10 @@ def run_compare_ball(
     options = _file_options(geometry, band_hz, max_order, pin_hz, exclude_hz, reference, racket)
     report(progress, f"identifying {Path(alone).name}")
     found_alone = identify_file(alone, the_racket, support, **options)
+    found_alone.model.require_locations("compare --ball-at (modes paired by MAC)")
     report(progress, f"identifying {Path(with_ball).name}")
     found_ball = identify_file(with_ball, the_racket, support, ball_at=ball, **options)
+    found_ball.model.require_locations("compare --ball-at (modes paired by MAC)")
     written = write_model(found_alone, out_dir, "_alone") + write_model(
         found_ball, out_dir, "_ball"
     )

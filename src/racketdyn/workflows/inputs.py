@@ -123,6 +123,7 @@ def setup(
     if isinstance(modal, ModalModel):
         provenance["modal_model_given"] = f"ModalModel object from Python: {modal.source}"
         if with_modes:
+            modal.require_locations("a prediction")
             modal.require_mass_normalised("a prediction")
         return RacketSetup(loaded, modal if with_modes else None, provenance, defaults, rigid)
     if modal is not None:
@@ -136,6 +137,7 @@ def setup(
         defaults.append(BUILT_IN_MODES)
     model = modal_model_for(loaded) if with_modes and not rigid else None
     if model is not None:
+        model.require_locations("a prediction")
         model.require_mass_normalised("a prediction")
     return RacketSetup(loaded, model, provenance, defaults, rigid)
 
