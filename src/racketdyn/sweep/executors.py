@@ -79,6 +79,22 @@ def _start_context() -> Any:
     return context
 
 
+def _dask_forkserver() -> bool:
+    """Start this process's forkserver, if none runs yet, preloading distributed besides
+    :data:`WORKER_PRELOAD` (then a local Dask cluster forks its workers from it instead of
+    starting an interpreter that imports them for each); whether there is a forkserver."""
+    import multiprocessing
+    import multiprocessing.forkserver
+
+    if "forkserver" not in multiprocessing.get_all_start_methods():
+        return False
+    context = multiprocessing.get_context("forkserver")
+    context.set_forkserver_preload(["__main__", *WORKER_PRELOAD, "distributed"])
+    with _workers_ignore_ctrl_c():  # its children start with Ctrl-C ignored
+        multiprocessing.forkserver.ensure_running()
+    return True
+
+
 def _worker_setup(parent_pid: int) -> None:
     """Run in each pool worker as it starts: leave Ctrl-C to the main process, and exit when
     the main process is gone.
@@ -294,6 +310,14 @@ def make_executor(
                         if logging.getLogger("distributed").getEffectiveLevel() >= logging.WARNING
                         else "info"
                     ),
+                    # workers forked from a forkserver that has imported distributed and
+                    # racketdyn (_dask_forkserver): no interpreter start and imports per worker
+                    **(
+                        {"distributed.worker.multiprocessing-method": "forkserver"}
+                        if _dask_forkserver()
+                        else {}
+                    ),
+                    "distributed.worker.preload": ["racketdyn.sweep._dask_worker"],
                 }
             ),
             _workers_ignore_ctrl_c(),
