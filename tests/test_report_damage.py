@@ -135,3 +135,27 @@ def test_a_damaged_file_is_one_line_naming_it(
     if name == "predict/impact.csv":  # the command that wrote it, from its run.json
         assert "racketdyn predict --grid 3" in err[0]
     assert not (run / "report.html").exists()
+
+
+def test_an_interrupted_page_write_leaves_the_previous_page_whole(
+    folder: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """report.html was written in place: a write cut off (Ctrl-C, a full disk) left half a
+    page where the previous one had been.  It is now written beside and moved in whole."""
+    from racketdyn.report import write_report
+
+    run = tmp_path / "run"
+    shutil.copytree(folder, run)
+    previous = write_report(run).read_text(encoding="utf-8")
+    write_text = Path.write_text
+
+    def cut_off(self: Path, data: str, *args: object, **kwargs: object) -> int:
+        write_text(self, data[: len(data) // 2], encoding="utf-8")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(Path, "write_text", cut_off)
+    with pytest.raises(KeyboardInterrupt):
+        write_report(run)
+    monkeypatch.undo()
+    assert (run / "report.html").read_text(encoding="utf-8") == previous
+    assert sorted(p.name for p in run.iterdir() if p.name.startswith(".")) == []

@@ -4,6 +4,7 @@ scripts of ``static/`` inline, so the file works offline on its own."""
 from __future__ import annotations
 
 import logging
+import os
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from functools import cache
@@ -167,7 +168,13 @@ def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
         scripts=[static(script) for script in SCRIPTS],
     )
     path = run_dir / REPORT_NAME
-    path.write_text(page, encoding="utf-8")
+    # written beside and moved in whole: an interrupted write never leaves half a page
+    partial = path.with_name(f".{REPORT_NAME}.{os.getpid()}.partial")
+    try:
+        partial.write_text(page, encoding="utf-8")
+        os.replace(partial, path)
+    finally:
+        partial.unlink(missing_ok=True)
     log.info("wrote %s (%d sections)", path, len(shown))
     return path
 
