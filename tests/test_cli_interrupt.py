@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import os
 import signal
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -16,6 +15,7 @@ from pathlib import Path
 import pytest
 
 import racketdyn
+from terminal import popen_as_from_a_terminal
 
 needs_proc = pytest.mark.skipif(not hasattr(os, "killpg"), reason="needs POSIX signals")
 
@@ -28,7 +28,7 @@ def test_ctrl_c_in_a_step_is_one_line_and_leaves_the_folder_as_it_was(tmp_path: 
     env = dict(os.environ, PYTHONPATH=str(Path(racketdyn.__file__).parents[1]))
     stdout, stderr = tmp_path / "stdout", tmp_path / "stderr"
     with stdout.open("w") as out_file, stderr.open("w") as err_file:
-        process = subprocess.Popen(
+        process = popen_as_from_a_terminal(
             [sys.executable, "-m", "racketdyn.cli", "rig", "--out", str(out)],
             stdout=out_file,
             stderr=err_file,

@@ -26,6 +26,7 @@ import racketdyn as rd
 import racketdyn.sweep.task as sweep_task
 import sweep_faults
 from racketdyn.sweep import SerialExecutor, SweepSpec, make_executor, run_sweep
+from terminal import popen_as_from_a_terminal
 
 SCRIPT = Path(sweep_faults.__file__)
 
@@ -130,7 +131,7 @@ def _start(
         (tmp_path / "stdout.txt").open("wb") as stdout,
         (tmp_path / "stderr.txt").open("wb") as stderr,
     ):
-        process = subprocess.Popen(
+        process = popen_as_from_a_terminal(
             [sys.executable, str(SCRIPT), *argv],
             stdout=stdout,
             stderr=stderr,
