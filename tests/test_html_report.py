@@ -592,3 +592,21 @@ def test_the_largest_vibration_is_never_a_flagged_row(tmp_path: Path) -> None:
     (row,) = data["rows"]
     # the page gives 3 significant figures: within half a unit of the third (13.0 for 13.02)
     assert float(row[4]) == pytest.approx(max(energy[True]), rel=5e-3)
+
+
+def test_the_ball_section_says_what_the_papers_103_hz_asks_of_the_inputs(
+    run_dir: Path, page: str
+) -> None:
+    """Issue 14: the page states the band of the small-amplitude inputs from the run's own
+    run.json, whether it holds the paper's 103 Hz, and the bed that 103 Hz needs."""
+    record = json.loads((run_dir / "compound" / "run.json").read_text(encoding="utf-8"))
+    band = record["ball_mode_band"]["free"]
+    low, high = band["band_hz"]
+    bed = band["bed_for_paper"]["bed_stiffness_n_per_m"]
+    text = unescape(" ".join(re.sub(r"<[^>]+>", " ", page).split()))
+    assert (
+        f"free: the spread of the small-amplitude inputs (the ball's stiffness, the bed under "
+        f"the ball, the ball's mass) puts the ball mode between {low:.0f} and {high:.0f} Hz, "
+        f"which holds the paper's 103 Hz; with the nominal ball it needs the bed at "
+        f"{bed / 1e3:.0f} kN/m under it" in text
+    )

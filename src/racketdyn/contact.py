@@ -20,6 +20,8 @@ __all__ = [
     "compound_law",
     "local_compound_law",
     "local_string_bed_law",
+    "membrane_patch_radius",
+    "membrane_patch_stiffness",
     "string_bed_law",
     "string_tension",
 ]
@@ -105,6 +107,69 @@ def string_tension(
         for half in (racket.head.half_length_m, racket.head.half_width_m)
     ]
     return np.asarray(tensions[0]), np.asarray(tensions[1])
+
+
+def membrane_patch_stiffness(racket: Racket, patch_radius_m: float) -> float:
+    """Small-deflection stiffness of the string bed as a net under a rigid round patch, N/m.
+
+    :func:`string_bed_law` counts only the strings under the ball, each pushed on its own: the
+    crosses beside the ball, lifted by the mains they cross, pull back on them too, and that
+    law leaves it out.  Here the bed is the continuum of a string net (a cable net): tension
+    per unit width ``T_x = S0 / s_mains`` along x and ``T_y = S0 / s_crosses`` along y, its
+    deflection w obeying ``T_x w_xx + T_y w_yy = 0`` between the head ellipse (w = 0) and a
+    rigid round patch of radius a at the centre (w = X).  Stretching x by ``√T_x`` and y by
+    ``√T_y`` makes the net isotropic with tension ``√(T_x T_y)``; head and patch become
+    ellipses, and for confocal ellipses the stiffness is exact:
+
+        ``k = 2π √(T_x T_y) / ln(Λ / λ)``,  ``Λ = A/√T_x + B/√T_y``,
+        ``λ = a (1/√T_x + 1/√T_y)``
+
+    (the two ellipses' sums of half-axes; A, B the head's half-axes).  Ours are nearly
+    confocal: a finite-difference solution of the same net agrees within 2 % for
+    a = 3–34 mm (``tests/test_compound.py``).  The stiffness grows as the patch widens, and
+    the linear stretching term of the net only (no elongation of the strings: small X).
+
+    Parameters
+    ----------
+    racket : Racket
+        Head half-axes, string tension S0 and spacings (:meth:`Strings.spacing_m`).
+    patch_radius_m : float
+        Radius of the patch that pushes the bed, m; smaller than the head's half-width.
+
+    Returns
+    -------
+    float
+        Stiffness dF/dX at small X, N/m.
+    """
+    tension, outer, inner_per_radius = _net(racket)
+    if not 0.0 < patch_radius_m < racket.head.half_width_m:
+        raise InputError(
+            f"patch radius {patch_radius_m:g} m: must lie between 0 and the head's half-width "
+            f"{racket.head.half_width_m:g} m"
+        )
+    return 2.0 * math.pi * tension / math.log(outer / (patch_radius_m * inner_per_radius))
+
+
+def membrane_patch_radius(racket: Racket, stiffness_n_per_m: float) -> float:
+    """The patch radius whose :func:`membrane_patch_stiffness` is ``stiffness_n_per_m``, m.
+
+    NaN when no patch inside the head's half-width has it.
+    """
+    tension, outer, inner_per_radius = _net(racket)
+    if not stiffness_n_per_m > 0.0:
+        return math.nan
+    radius = outer / math.exp(2.0 * math.pi * tension / stiffness_n_per_m) / inner_per_radius
+    return radius if 0.0 < radius < racket.head.half_width_m else math.nan
+
+
+def _net(racket: Racket) -> tuple[float, float, float]:
+    """√(T_x T_y), Λ and λ/a of :func:`membrane_patch_stiffness`."""
+    head, strings = racket.head, racket.strings
+    spacing_mains, spacing_crosses = strings.spacing_m(head)
+    root_x = math.sqrt(strings.tension_n / spacing_mains)
+    root_y = math.sqrt(strings.tension_n / spacing_crosses)
+    outer = head.half_length_m / root_x + head.half_width_m / root_y
+    return root_x * root_y, outer, 1.0 / root_x + 1.0 / root_y
 
 
 def compound_law(racket: Racket, ball: Ball, degree: int = COMPOUND_DEGREE) -> RestoringForce:

@@ -78,8 +78,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
             figures=None if args.no_figures else compound_figures,
             progress=progress,
         )
-    spring = result.spring
+    spring, ball = result.spring, result.ball
     assert spring is not None
+    assert ball is not None
     x, y = result.location
     console.print(
         f"ball fixed at x = {x * 1e3:.0f} mm, y = {y * 1e3:.0f} mm on a bed preloaded with "
@@ -109,6 +110,25 @@ def run(args: argparse.Namespace, console: Console) -> int:
             f"{support}: ball mode {modes.ball_frequency:.2f} Hz, half period "
             f"{modes.half_period * 1e3:.2f} ms; approximate contact time at 5, 10, 20 m/s: "
             f"{times} ms"
+        )
+        band, bed = result.band[support], result.paper_bed[support]
+        needs = (
+            ""
+            if bed.bed_stiffness_n_per_m != bed.bed_stiffness_n_per_m
+            else f"; {bed.frequency_hz:g} Hz needs the bed at "
+            f"{bed.bed_stiffness_n_per_m / 1e3:.0f} kN/m under the nominal ball"
+            + (
+                ""
+                if bed.patch_radius_m != bed.patch_radius_m
+                else f" (the string net pushed over {bed.patch_radius_m * 1e3:.1f} mm in radius;"
+                f" the ball's radius is {ball.diameter_m * 500:.1f} mm)"
+            )
+        )
+        console.print(
+            f"{support}: the small-amplitude inputs' spread puts the ball mode at "
+            f"{band.low_hz:.0f}–{band.high_hz:.0f} Hz (the paper's "
+            f"{bed.frequency_hz:g} Hz {'inside' if band.holds(bed.frequency_hz) else 'outside'})"
+            f"{needs}"
         )
         check = result.checks.get(support)
         if check is not None:

@@ -27,6 +27,12 @@ if TYPE_CHECKING:
         racket_modes,
         stiffer_frame,
     )
+    from racketdyn.impact.compound_band import (
+        BallModeBand,
+        BedForFrequency,
+        ball_mode_band,
+        bed_for_frequency,
+    )
     from racketdyn.impact.hand import Hand
     from racketdyn.impact.measured import ModelInputs, predict_rows
     from racketdyn.impact.oblique import (
@@ -48,6 +54,10 @@ if TYPE_CHECKING:
     from racketdyn.impact.twist import TwistCurve, twist_curve
 
 _WHERE = {
+    "BallModeBand": "compound_band",
+    "BedForFrequency": "compound_band",
+    "ball_mode_band": "compound_band",
+    "bed_for_frequency": "compound_band",
     "BallSpring": "compound",
     "Calibration": "calibration",
     "CompoundSystem": "compound",
@@ -89,7 +99,9 @@ _WHERE = {
 __all__ = [
     "PARAMETERS",
     "TRANSIENT_SUPPORTS",
+    "BallModeBand",
     "BallSpring",
+    "BedForFrequency",
     "Calibration",
     "CompoundSystem",
     "Hand",
@@ -103,7 +115,9 @@ __all__ = [
     "TangentialContact",
     "TransientImpact",
     "TwistCurve",
+    "ball_mode_band",
     "ball_spring",
+    "bed_for_frequency",
     "calibrate",
     "compound_modes",
     "elastic_contact_time",

@@ -29,6 +29,13 @@ from racketdyn.impact.compound import (
     racket_modes,
     stiffer_frame,
 )
+from racketdyn.impact.compound_band import (
+    PAPER_BALL_MODE_HZ,
+    BallModeBand,
+    BedForFrequency,
+    ball_mode_band,
+    bed_for_frequency,
+)
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.system import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
@@ -166,6 +173,11 @@ class CompoundResult(StepResult):
         Per support: the racket with the ball, and alone.
     checks : dict of str to FrameCheck
         Per support: the frame-stiffness check.
+    band : dict of str to BallModeBand
+        Per support: the ball mode over the small-amplitude inputs' spread
+        (:mod:`racketdyn.impact.compound_band`).
+    paper_bed : dict of str to BedForFrequency
+        Per support: the bed under the nominal ball that would give the paper's 103 Hz.
     contact_time : dict of str to list of float
         Per support: the approximate method's contact time at :data:`CONTACT_SPEEDS_MPS`, s.
     model : ModalModel or None
@@ -200,6 +212,8 @@ class CompoundResult(StepResult):
     modes: dict[str, CompoundSystem] = field(default_factory=dict)
     alone: dict[str, CompoundSystem] = field(default_factory=dict)
     checks: dict[str, FrameCheck] = field(default_factory=dict)
+    band: dict[str, BallModeBand] = field(default_factory=dict)
+    paper_bed: dict[str, BedForFrequency] = field(default_factory=dict)
     contact_time: dict[str, list[float]] = field(default_factory=dict)
     model: ModalModel | None = None
     hand: Hand | None = None
@@ -349,6 +363,12 @@ def run_compound(
                 with_ball.shapes[:, with_ball.ball_mode] / with_ball.shapes[-1, with_ball.ball_mode]
             )
             result.ball_shape[support] = (np.real(with_ball.rows[3:] @ shape), 1.0)
+        result.band[support] = ball_mode_band(
+            the_racket, model, support, xy, spring, the_ball, the_hand
+        )
+        result.paper_bed[support] = bed_for_frequency(
+            the_racket, model, support, xy, spring, PAPER_BALL_MODE_HZ, the_ball, the_hand
+        )
         k = approximate.supports.index(_APPROXIMATE_SUPPORT[support])
         result.contact_time[support] = [float(t) for t in approximate.contact_time[0, :, k]]
         if stiffer is not None:
@@ -411,6 +431,19 @@ def run_compound(
         "ball_mode_hz": {s: result.modes[s].ball_frequency for s in checked},
         "frame_mode_shifts": {s: frame_shifts(result.modes[s], result.alone[s]) for s in checked},
         "frame_stiffness_check": [c.as_dict() for c in result.checks.values()],
+        "ball_mode_band": {
+            s: {
+                **result.band[s].as_dict(),
+                "why": "the ball mode at the corners of the small-amplitude inputs' spread: "
+                "ball one-sided stiffness (ITF forward deformation, halved), the bed under the "
+                "ball (published static stiffness and the per-string law, to the string net "
+                "pushed over the ball's width), ball mass (ITF); racketdyn.impact.compound_band",
+                "paper_hz": PAPER_BALL_MODE_HZ,
+                "paper_inside": result.band[s].holds(PAPER_BALL_MODE_HZ),
+                "bed_for_paper": result.paper_bed[s].as_dict(),
+            }
+            for s in checked
+        },
         "modal_model": None if model is None else model.summary(),
         "hand": None if the_hand is None else asdict(the_hand),
         "columns": {"compound.csv": list(COMPOUND_COLUMNS)},

@@ -5,13 +5,11 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from racketdyn.impact.compound_band import PAPER_BALL_MODE_HZ
 from racketdyn.report.folder import Row, RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = "racketdyn compound --support free,hand --out DIR/compound"
-
-PAPER_BALL_MODE_HZ = 103.0
-"""The paper's ball mode (section 3.2, Fig. 9b), Hz."""
 
 _SPEEDS = (("contact_time_5_s", 5), ("contact_time_10_s", 10), ("contact_time_20_s", 20))
 
@@ -65,6 +63,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             f"period matches the approximate method's contact time at 5–20 m/s within "
             f"{100 * worst:.0f} %."
         )
+        statements.extend(_band_statement(support, record.get("ball_mode_band")))
         frame = [
             abs(float(s["shift_percent"]))
             for s in alone.values()
@@ -167,3 +166,30 @@ def _kilo(value: Any) -> float:
 
 
 __all__ = ["HOW_TO_RUN", "gather"]
+
+
+def _band_statement(support: str, bands: object) -> list[str]:
+    """What the small-amplitude inputs' spread allows, and what the paper's mode would need."""
+    band = bands.get(support) if isinstance(bands, dict) else None
+    if not isinstance(band, dict):
+        return []
+    low, high = (band.get("band_hz") or [math.nan, math.nan])[:2]
+    inside = "holds" if band.get("paper_inside") else "does not hold"
+    text = (
+        f"{support}: the spread of the small-amplitude inputs (the ball's stiffness, the bed "
+        f"under the ball, the ball's mass) puts the ball mode between {fmt(low, '.0f')} and "
+        f"{fmt(high, '.0f')} Hz, which {inside} the paper's {PAPER_BALL_MODE_HZ:g} Hz"
+    )
+    bed = band.get("bed_for_paper")
+    if isinstance(bed, dict) and math.isfinite(number(bed, "bed_stiffness_n_per_m")):
+        radius = number(bed, "patch_radius_m")
+        text += (
+            f"; with the nominal ball it needs the bed at "
+            f"{number(bed, 'bed_stiffness_n_per_m') / 1e3:.0f} kN/m under it"
+            + (
+                f", the string net pushed over a patch {radius * 1e3:.0f} mm in radius"
+                if math.isfinite(radius)
+                else ""
+            )
+        )
+    return [text + "."]

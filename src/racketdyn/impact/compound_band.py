@@ -1,0 +1,227 @@
+"""How far the ball mode of a ball fixed on the strings can lie from its nominal value.
+
+The ball mode (:mod:`racketdyn.impact.compound`) rests on three inputs at small amplitude, none
+of them measured on the racket at hand: the ball's one-sided stiffness, the string bed's
+stiffness under the ball and the ball's mass.  Their spread:
+
+- **ball**, one-sided: the ITF forward deformation 5.6–7.4 mm at 80.1 N between two plates,
+  halved because only the side on the strings deforms (docs/references.md, "Ball"): 21.6–28.6
+  kN/m.  The ITF test is quasi-static; nothing readable gave the stiffness of a ball stuck on
+  strings and shaken by a hammer.
+- **bed**, under the ball: from the smaller of the published static stiffness of strung beds
+  (20 kN/m) and the per-string law the impact model uses (:func:`racketdyn.contact.
+  string_bed_law`, only the strings under the ball), to the larger of the published 40 kN/m
+  and the string net pushed over the ball's whole width
+  (:func:`racketdyn.contact.membrane_patch_stiffness` at the ball's radius: the crosses beside
+  the ball pull on the mains too).  How much of the bed a stuck ball pushes depends on how it
+  was stuck, which the paper does not say.
+- **ball mass**: 56.0–59.4 g (ITF).
+
+:func:`ball_mode_band` takes the ball mode at every corner of that box;
+:func:`bed_for_frequency` turns a measured ball mode (the paper's 103 Hz) back into the bed
+stiffness, and the net's patch radius, it needs with the nominal ball.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from itertools import product
+
+import scipy.optimize
+from numpy.typing import ArrayLike
+
+from racketdyn.ball import Ball
+from racketdyn.contact import membrane_patch_radius, membrane_patch_stiffness, string_bed_law
+from racketdyn.impact.compound import BallSpring, racket_modes
+from racketdyn.impact.hand import Hand
+from racketdyn.modal import ModalModel
+from racketdyn.racket import Racket
+
+__all__ = [
+    "BALL_MASS_KG",
+    "BALL_STIFFNESS_N_PER_M",
+    "BED_STATIC_STIFFNESS_N_PER_M",
+    "PAPER_BALL_MODE_HZ",
+    "BallModeBand",
+    "BedForFrequency",
+    "ball_mode_band",
+    "bed_for_frequency",
+]
+
+PAPER_BALL_MODE_HZ = 103.0
+"""The paper's ball mode (section 3.2, Fig. 9b), Hz."""
+ITF_LOAD_N = 80.1
+BALL_STIFFNESS_N_PER_M = (ITF_LOAD_N / 3.7e-3, ITF_LOAD_N / 2.8e-3)
+"""One-sided ball stiffness, N/m: the ITF forward deformation 7.4 and 5.6 mm at 80.1 N, halved."""
+BED_STATIC_STIFFNESS_N_PER_M = (20e3, 40e3)
+"""Published static stiffness of strung beds, N/m (docs/references.md, "Ball fixed on the
+strings")."""
+BALL_MASS_KG = (0.0560, 0.0594)
+"""ITF ball mass range, kg."""
+
+
+@dataclass(frozen=True)
+class BallModeBand:
+    """The ball mode's range over the small-amplitude inputs' spread.
+
+    Attributes
+    ----------
+    nominal_hz : float
+        The ball mode with the built-in spring, Hz.
+    low_hz, high_hz : float
+        Smallest and largest ball mode over the corners of the inputs' box, Hz.
+    ball_stiffness_n_per_m, bed_stiffness_n_per_m : tuple of float
+        The box's ball and bed stiffness ranges, N/m.
+    ball_mass_kg : tuple of float
+        The box's ball mass range, kg.
+    """
+
+    nominal_hz: float
+    low_hz: float
+    high_hz: float
+    ball_stiffness_n_per_m: tuple[float, float]
+    bed_stiffness_n_per_m: tuple[float, float]
+    ball_mass_kg: tuple[float, float]
+
+    def holds(self, frequency_hz: float) -> bool:
+        """Whether a frequency lies within the band (ends included)."""
+        return self.low_hz <= frequency_hz <= self.high_hz
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain numbers for run.json (SI)."""
+        return {
+            "nominal_hz": self.nominal_hz,
+            "band_hz": [self.low_hz, self.high_hz],
+            "ball_stiffness_n_per_m": list(self.ball_stiffness_n_per_m),
+            "bed_stiffness_n_per_m": list(self.bed_stiffness_n_per_m),
+            "ball_mass_kg": list(self.ball_mass_kg),
+        }
+
+
+@dataclass(frozen=True)
+class BedForFrequency:
+    """The bed under the nominal ball that puts the ball mode at a given frequency.
+
+    Attributes
+    ----------
+    frequency_hz : float
+        The frequency asked for, Hz.
+    bed_stiffness_n_per_m : float
+        Small-amplitude bed stiffness that gives it, N/m; NaN if no bed stiffness does (the
+        nominal ball alone is too soft or too stiff for it).
+    patch_radius_m : float
+        Radius of the patch of the string net (:func:`membrane_patch_stiffness`) with that
+        stiffness, m; NaN when the bed stiffness is NaN or beyond the head.
+    """
+
+    frequency_hz: float
+    bed_stiffness_n_per_m: float
+    patch_radius_m: float
+
+    def as_dict(self) -> dict[str, float]:
+        """Plain numbers for run.json (SI; NaN as is)."""
+        return {
+            "frequency_hz": self.frequency_hz,
+            "bed_stiffness_n_per_m": self.bed_stiffness_n_per_m,
+            "patch_radius_m": self.patch_radius_m,
+        }
+
+
+def _ball_stiffness(racket: Racket, ball: Ball, spring: BallSpring) -> float:
+    """The ball's own one-sided tangent at the spring's preload, N/m."""
+    bed = string_bed_law(racket, ball)
+    # k_GB = 1/(1/k_B + 1/k_G): the ball's part of the built-in spring at its preload
+    k_bed = float(bed.stiffness(bed.deflection(spring.preload_n)))
+    return 1.0 / (1.0 / spring.stiffness - 1.0 / k_bed)
+
+
+def ball_mode_band(
+    racket: Racket,
+    model: ModalModel | None,
+    support: str,
+    location: ArrayLike,
+    spring: BallSpring,
+    ball: Ball | None = None,
+    hand: Hand | None = None,
+) -> BallModeBand:
+    """The ball mode over the corners of the small-amplitude inputs' spread (module docstring).
+
+    Parameters
+    ----------
+    racket, model, support, location, ball, hand
+        As :func:`racketdyn.impact.compound.racket_modes`.
+    spring : BallSpring
+        The built-in spring (its ζ and preload are kept; the stiffness is varied).
+
+    Returns
+    -------
+    BallModeBand
+    """
+    the_ball = ball or Ball()
+    law = string_bed_law(racket, the_ball)
+    k_law = float(law.stiffness(law.deflection(spring.preload_n)))
+    net = membrane_patch_stiffness(racket, the_ball.diameter_m / 2.0)
+    bed = (
+        min(BED_STATIC_STIFFNESS_N_PER_M[0], k_law),
+        max(BED_STATIC_STIFFNESS_N_PER_M[1], net),
+    )
+    corners = []
+    for k_b, k_g, m_b in product(BALL_STIFFNESS_N_PER_M, bed, BALL_MASS_KG):
+        trial = replace(spring, stiffness=1.0 / (1.0 / k_b + 1.0 / k_g))
+        modes = racket_modes(
+            racket, model, support, location, trial, replace(the_ball, mass_kg=m_b), hand
+        )
+        corners.append(modes.ball_frequency)
+    nominal = racket_modes(racket, model, support, location, spring, the_ball, hand)
+    return BallModeBand(
+        nominal.ball_frequency,
+        min(corners),
+        max(corners),
+        BALL_STIFFNESS_N_PER_M,
+        bed,
+        BALL_MASS_KG,
+    )
+
+
+def bed_for_frequency(
+    racket: Racket,
+    model: ModalModel | None,
+    support: str,
+    location: ArrayLike,
+    spring: BallSpring,
+    frequency_hz: float,
+    ball: Ball | None = None,
+    hand: Hand | None = None,
+) -> BedForFrequency:
+    """The bed stiffness under the nominal ball that puts the ball mode at ``frequency_hz``.
+
+    The ball's part of the spring is kept (its tangent at the preload); the bed's is solved for
+    with Brent's method between 1 kN/m and 10 MN/m; the patch radius is
+    :func:`racketdyn.contact.membrane_patch_radius` of it.
+
+    Parameters
+    ----------
+    racket, model, support, location, spring, ball, hand
+        As :func:`ball_mode_band`.
+    frequency_hz : float
+        The ball mode wanted (e.g. the paper's 103 Hz), Hz.
+
+    Returns
+    -------
+    BedForFrequency
+    """
+    the_ball = ball or Ball()
+    k_ball = _ball_stiffness(racket, the_ball, spring)
+
+    def miss(log_bed: float) -> float:
+        k = 1.0 / (1.0 / k_ball + 1.0 / math.exp(log_bed))
+        trial = replace(spring, stiffness=k)
+        modes = racket_modes(racket, model, support, location, trial, the_ball, hand)
+        return modes.ball_frequency - frequency_hz
+
+    low, high = math.log(1e3), math.log(1e7)
+    if miss(low) * miss(high) > 0:
+        return BedForFrequency(frequency_hz, math.nan, math.nan)
+    bed = math.exp(scipy.optimize.brentq(miss, low, high, xtol=1e-10))
+    return BedForFrequency(frequency_hz, bed, membrane_patch_radius(racket, bed))
