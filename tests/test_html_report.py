@@ -610,3 +610,5 @@ def test_the_ball_section_says_what_the_papers_103_hz_asks_of_the_inputs(
         f"which holds the paper's 103 Hz; with the nominal ball it needs the bed at "
         f"{bed / 1e3:.0f} kN/m under it" in text
     )
+    cycles = record["neck_hand_over"]["free"]["ball_cycles"]
+    assert f"the 2-node mode takes over after {cycles:.1f} ball cycles" in text

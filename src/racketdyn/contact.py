@@ -22,6 +22,7 @@ __all__ = [
     "local_string_bed_law",
     "membrane_patch_radius",
     "membrane_patch_stiffness",
+    "net_share",
     "string_bed_law",
     "string_tension",
 ]
@@ -160,6 +161,39 @@ def membrane_patch_radius(racket: Racket, stiffness_n_per_m: float) -> float:
         return math.nan
     radius = outer / math.exp(2.0 * math.pi * tension / stiffness_n_per_m) / inner_per_radius
     return radius if 0.0 < radius < racket.head.half_width_m else math.nan
+
+
+def net_share(racket: Racket, patch_radius_m: float, distance_m: float) -> float:
+    """Share of a point force on the string net that a held patch takes, 0–1.
+
+    By reciprocity the force a held patch (radius a, at the centre) takes from a unit force at
+    a point of the net equals the net's deflection there when the patch alone is pushed by a
+    unit: in the net of :func:`membrane_patch_stiffness`, ``ln(Λ/(r κ)) / ln(Λ/(a κ))`` with
+    κ = 1/√T_x + 1/√T_y, r the point's distance from the patch centre (the patch's own circles
+    are the net's level lines in this approximation); 1 on the patch, 0 at the head's edge.
+    The rest of the force goes to the frame through the strings.
+
+    Parameters
+    ----------
+    racket : Racket
+        Head and strings.
+    patch_radius_m : float
+        Radius of the held patch, m.
+    distance_m : float
+        Distance of the force from the patch centre, m.
+
+    Returns
+    -------
+    float
+    """
+    _, outer, inner_per_radius = _net(racket)
+    membrane_patch_stiffness(racket, patch_radius_m)  # checks the radius
+    if distance_m <= patch_radius_m:
+        return 1.0
+    share = math.log(outer / (distance_m * inner_per_radius)) / math.log(
+        outer / (patch_radius_m * inner_per_radius)
+    )
+    return min(max(share, 0.0), 1.0)
 
 
 def _net(racket: Racket) -> tuple[float, float, float]:

@@ -38,7 +38,7 @@ import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
-from racketdyn.contact import compound_law
+from racketdyn.contact import compound_law, string_bed_law
 from racketdyn.errors import InputError, require_positive
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.system import ImpactSystem, impact_system
@@ -54,7 +54,9 @@ __all__ = [
     "ball_spring",
     "compound_modes",
     "racket_modes",
+    "resting_patch_radius",
     "restitution_damping_ratio",
+    "spring_split",
     "stiffer_frame",
 ]
 
@@ -211,8 +213,42 @@ class CompoundSystem:
         damped = self.frequency[k] * math.sqrt(1.0 - self.damping_ratio[k] ** 2)
         return float(0.5 / damped)
 
+    def load(self, excitation: int | ArrayLike) -> NDArray[np.float64]:
+        """The generalised force of a unit blow: a point's row (an index), or a load vector."""
+        if isinstance(excitation, int | np.integer):
+            return np.asarray(self.rows[int(excitation)], dtype=float)
+        load = np.asarray(excitation, dtype=float)
+        if load.shape != (self.mass.shape[0],):
+            raise InputError(f"a load vector needs {self.mass.shape[0]} coordinates")
+        return load
+
+    def string_blow(self, hammer: int, share: float, ball_fraction: float) -> NDArray[np.float64]:
+        """The load of a unit blow on the strings near the ball, shared through the strings.
+
+        The strings are folded into the ball's spring, so a blow on them is shared out by hand:
+        the part ``share`` that the strings under the ball take (:func:`racketdyn.contact.
+        net_share`) reaches a massless string patch between the ball's spring k_B and the
+        bed's k_G and splits as ``k_B/(k_B + k_G)`` (``ball_fraction``) to the ball and the
+        rest to the frame under it; the remainder ``1 − share`` goes to the frame at the
+        hammer's point.  The parts add up to the blow (momentum is kept).
+
+        Parameters
+        ----------
+        hammer : int
+            Index of the hammer's point.
+        share : float
+            Share of the blow the patch under the ball takes, 0–1.
+        ball_fraction : float
+            k_B/(k_B + k_G), 0–1.
+        """
+        load = (1.0 - share) * self.rows[hammer] + share * (1.0 - ball_fraction) * self.rows[0]
+        if self.with_ball:
+            load = load.copy()
+            load[-1] += share * ball_fraction
+        return np.asarray(load, dtype=float)
+
     def receptance(
-        self, frequency_hz: ArrayLike, excitation: int, response: int
+        self, frequency_hz: ArrayLike, excitation: int | ArrayLike, response: int
     ) -> NDArray[np.complex128]:
         """Receptance between two of the points, ``w_r/F_e`` (m/N), by a direct solve.
 
@@ -223,11 +259,14 @@ class CompoundSystem:
         ----------
         frequency_hz : array_like
             Frequencies, Hz.
-        excitation, response : int
-            Indices of the points (0: the ball's point).
+        excitation : int or array_like
+            Index of the point struck (0: the ball's point), or a load vector
+            (:meth:`string_blow`).
+        response : int
+            Index of the point.
         """
         omega = 2.0 * np.pi * np.atleast_1d(np.asarray(frequency_hz, dtype=float))
-        drive, out = self.rows[excitation], self.rows[response]
+        drive, out = self.load(excitation), self.rows[response]
         values = np.empty(omega.size, dtype=complex)
         for i, w in enumerate(omega):
             matrix = self.stiffness - w**2 * self.mass + 1j * w * self.damping
@@ -238,7 +277,7 @@ class CompoundSystem:
         return values
 
     def impulse_acceleration(
-        self, times: ArrayLike, excitation: int, response: int
+        self, times: ArrayLike, excitation: int | ArrayLike, response: int
     ) -> NDArray[np.float64]:
         """Acceleration at ``response`` after a unit impulse at ``excitation``, m/s² per N·s.
 
@@ -250,13 +289,15 @@ class CompoundSystem:
         ----------
         times : array_like
             Equally spaced times from 0, s.
-        excitation, response : int
-            Indices of the points.
+        excitation : int or array_like
+            Index of the point struck, or a load vector (:meth:`string_blow`).
+        response : int
+            Index of the point.
         """
         return self.blow_acceleration(times, excitation, response, 0.0)
 
     def blow_acceleration(
-        self, times: ArrayLike, excitation: int, response: int, duration_s: float
+        self, times: ArrayLike, excitation: int | ArrayLike, response: int, duration_s: float
     ) -> NDArray[np.float64]:
         """Acceleration at ``response`` after a half-sine blow of unit impulse, m/s² per N·s.
 
@@ -271,8 +312,10 @@ class CompoundSystem:
         ----------
         times : array_like
             Equally spaced times from 0, s.
-        excitation, response : int
-            Indices of the points.
+        excitation : int or array_like
+            Index of the point struck, or a load vector (:meth:`string_blow`).
+        response : int
+            Index of the point.
         duration_s : float
             Length T of the half-sine, s (0: an impulse).
         """
@@ -283,7 +326,7 @@ class CompoundSystem:
         duration = require_positive("blow duration", duration_s, allow_zero=True)
         step = float(t[1] - t[0])
         m_inv = np.linalg.inv(self.mass)
-        drive = m_inv @ self.rows[excitation]
+        drive = m_inv @ self.load(excitation)
         out = self.rows[response] @ np.hstack([-m_inv @ self.stiffness, -m_inv @ self.damping])
         free = np.block(
             [[np.zeros((n, n)), np.eye(n)], [-m_inv @ self.stiffness, -m_inv @ self.damping]]
@@ -321,12 +364,80 @@ class CompoundSystem:
                 state = propagate @ state
         return values
 
+    def modal_parts(
+        self, times: ArrayLike, response: ArrayLike, start_s: float
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """Split a free response into the system's own damped modes, from ``start_s`` on.
+
+        After the blow the response is a sum of the modes' damped oscillations
+        ``e^{σt}(a cos ω_d t + b sin ω_d t)`` (rigid-body motion adds no acceleration), so a
+        least-squares fit on them is exact; the amplitude is ``√(a² + b²)`` at ``start_s``.
+
+        Parameters
+        ----------
+        times : array_like
+            Times of the response, s.
+        response : array_like
+            A response of this system after a blow that ends at ``start_s``.
+        start_s : float
+            When the blow ends, s.
+
+        Returns
+        -------
+        frequency : ndarray (n,)
+            The oscillating modes' frequencies |λ|/2π, Hz.
+        amplitude : ndarray (n,)
+            Their amplitudes at ``start_s``, in the response's unit.
+        parts : ndarray (n, n_times)
+            Each mode's part of the response (0 before ``start_s``).
+        """
+        t = np.asarray(times, dtype=float)
+        values = np.asarray(response, dtype=float)
+        n = self.mass.shape[0]
+        m_inv = np.linalg.inv(self.mass)
+        first_order = np.block(
+            [[np.zeros((n, n)), np.eye(n)], [-m_inv @ self.stiffness, -m_inv @ self.damping]]
+        )
+        lam = np.linalg.eigvals(first_order)
+        lam = np.sort_complex(lam[lam.imag > _RIGID_TOL * max(1.0, float(np.abs(lam).max()))])
+        after = t >= start_s
+        local = t[after] - start_s
+        columns = []
+        for value in lam:
+            decay = np.exp(value.real * local)
+            columns += [decay * np.cos(value.imag * local), decay * np.sin(value.imag * local)]
+        basis = np.column_stack(columns)
+        fit = np.linalg.lstsq(basis, values[after], rcond=None)[0]
+        parts = np.zeros((lam.size, t.size))
+        for k in range(lam.size):
+            parts[k, after] = basis[:, 2 * k : 2 * k + 2] @ fit[2 * k : 2 * k + 2]
+        return np.abs(lam) / (2 * np.pi), np.hypot(fit[0::2], fit[1::2]), parts
+
     def frequency_of(self, name: str) -> float:
         """Frequency of the mode named ``name``, Hz (NaN if there is none)."""
         return next(
             (float(f) for f, n in zip(self.frequency, self.names, strict=True) if n == name),
             math.nan,
         )
+
+
+def resting_patch_radius(racket: Racket) -> float:
+    """Radius of the patch of strings a ball resting on the bed pushes, m: half the larger
+    string spacing (its lowest point sits in a cell of the weave, on the two mains and two
+    crosses around it).  Used to share a hammer's blow on the strings
+    (:meth:`CompoundSystem.string_blow`)."""
+    return 0.5 * max(racket.strings.spacing_m(racket.head))
+
+
+def spring_split(racket: Racket, ball: Ball, spring: BallSpring) -> tuple[float, float]:
+    """The ball's and the bed's parts of the spring at its preload, k_B and k_G (N/m).
+
+    ``1/k = 1/k_B + 1/k_G`` (in series, section 3.4); k_G is the string-bed law's tangent at
+    the preload (:func:`racketdyn.contact.string_bed_law`), k_B what is left.
+    """
+    bed = string_bed_law(racket, ball)
+    k_bed = float(bed.stiffness(bed.deflection(spring.preload_n)))
+    return 1.0 / (1.0 / spring.stiffness - 1.0 / k_bed), k_bed
 
 
 def racket_modes(

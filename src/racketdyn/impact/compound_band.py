@@ -33,7 +33,7 @@ from numpy.typing import ArrayLike
 
 from racketdyn.ball import Ball
 from racketdyn.contact import membrane_patch_radius, membrane_patch_stiffness, string_bed_law
-from racketdyn.impact.compound import BallSpring, racket_modes
+from racketdyn.impact.compound import BallSpring, racket_modes, spring_split
 from racketdyn.impact.hand import Hand
 from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket
@@ -128,14 +128,6 @@ class BedForFrequency:
         }
 
 
-def _ball_stiffness(racket: Racket, ball: Ball, spring: BallSpring) -> float:
-    """The ball's own one-sided tangent at the spring's preload, N/m."""
-    bed = string_bed_law(racket, ball)
-    # k_GB = 1/(1/k_B + 1/k_G): the ball's part of the built-in spring at its preload
-    k_bed = float(bed.stiffness(bed.deflection(spring.preload_n)))
-    return 1.0 / (1.0 / spring.stiffness - 1.0 / k_bed)
-
-
 def ball_mode_band(
     racket: Racket,
     model: ModalModel | None,
@@ -212,7 +204,7 @@ def bed_for_frequency(
     BedForFrequency
     """
     the_ball = ball or Ball()
-    k_ball = _ball_stiffness(racket, the_ball, spring)
+    k_ball, _ = spring_split(racket, the_ball, spring)
 
     def miss(log_bed: float) -> float:
         k = 1.0 / (1.0 / k_ball + 1.0 / math.exp(log_bed))

@@ -7,6 +7,8 @@ The responses come from :mod:`racketdyn.workflows.compound` (computed by
 from __future__ import annotations
 
 import logging
+import math
+from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -92,8 +94,10 @@ def plot_neck_response(
     bending_hz: float,
     label: str = "",
     ax: Axes | None = None,
+    parts: Mapping[str, ArrayLike] | None = None,
+    hand_over_s: float = math.nan,
 ) -> Axes:
-    """The neck's acceleration against time, with the ball mode's and 2-node mode's periods.
+    """The neck's acceleration against time, with the ball mode's and 2-node mode's parts.
 
     Parameters
     ----------
@@ -102,22 +106,37 @@ def plot_neck_response(
     acceleration : array_like
         Acceleration per unit impulse of the hammer's blow, m/s² per N·s.
     ball_hz, bending_hz : float
-        Frequencies of the ball mode and of the 2-node bending mode, Hz (for the label).
+        Frequencies of the ball mode and of the 2-node bending mode, Hz (for the labels).
     label : str
-        Legend label.
+        Legend label of the whole response.
     ax : Axes, optional
         Where to draw.
+    parts : mapping of str to array_like, optional
+        The ``ball`` and ``2-node bending`` parts of the response (drawn thin, so the reader
+        sees which leads).
+    hand_over_s : float
+        When the 2-node mode becomes the larger, s (a dotted line; NaN: none).
     """
     if ax is None:
         _, ax = plt.subplots(figsize=(6.0, 3.6), layout="constrained")
     t_ms = np.asarray(times) * 1e3
-    ax.plot(t_ms, np.asarray(acceleration), lw=0.9, label=label or None)
+    ax.plot(t_ms, np.asarray(acceleration), lw=1.1, color="0.55", label=label or "neck")
+    for name, colour, hz in (("ball", "C0", ball_hz), ("2-node bending", "C1", bending_hz)):
+        if parts is not None and name in parts:
+            ax.plot(
+                t_ms, np.asarray(parts[name]), lw=0.8, color=colour,
+                label=f"{'ball mode' if name == 'ball' else name} {hz:.1f} Hz",
+            )  # fmt: skip
+    if math.isfinite(hand_over_s):
+        ax.axvline(hand_over_s * 1e3, color="0.3", lw=0.7, ls=":")
+        ax.text(
+            hand_over_s * 1e3, 0.03, " 2-node takes over", transform=ax.get_xaxis_transform(),
+            fontsize=7, color="0.3",
+        )  # fmt: skip
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.set_xlabel("time (ms)")
-    ax.set_ylabel("neck acceleration (m/s² per N·s of impulse)")
-    ax.set_title(f"ball mode {ball_hz:.1f} Hz and 2-node bending {bending_hz:.1f} Hz", fontsize=9)
-    if label:
-        ax.legend(fontsize=8)
+    ax.set_ylabel("neck acceleration\n(m/s² per N·s)")
+    ax.legend(fontsize=7, loc="upper right")
     return ax
 
 
@@ -187,7 +206,10 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
     # hold every support)
     support = result.supports[0]
     modes = result.modes[support]
-    figure, ax = plt.subplots(figsize=(4.8, 2.8), layout="constrained")
+    figure, ax = plt.subplots(figsize=(5.6, 3.0), layout="constrained")
+    hand_over = result.hand_over.get(support, {})
+    cycles = float(hand_over.get("ball_cycles", math.nan))
+    blow = result.blow_s.get(support, 0.0)
     plot_neck_response(
         result.times,
         result.neck_acceleration[support],
@@ -195,10 +217,12 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         modes.frequency_of("2-node bending"),
         support,
         ax=ax,
+        parts=result.neck_parts.get(support),
+        hand_over_s=blow + cycles / modes.ball_frequency if 0 < cycles < math.inf else math.nan,
     )
-    away_mm = abs(result.location[0] - result.hammer[0]) * 1e3
-    figure.suptitle(
-        f"Fig. 8c: the neck after a hammer blow {away_mm:.0f} mm from the ball, {support}",
+    away_mm = math.dist(result.location, result.hammer) * 1e3
+    ax.set_title(
+        f"Fig. 8c: the neck after a blow on the strings {away_mm:.0f} mm from the ball ({support})",
         fontsize=9,
     )
     paths = [save_figure(figure, Path(out) / COMPOUND_RESPONSE_FIGURE)]

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
+from racketdyn.contact import net_share
 from racketdyn.errors import InputError, one_of
 from racketdyn.impact.approximate import predict
 from racketdyn.impact.compound import (
@@ -27,6 +28,8 @@ from racketdyn.impact.compound import (
     CompoundSystem,
     ball_spring,
     racket_modes,
+    resting_patch_radius,
+    spring_split,
     stiffer_frame,
 )
 from racketdyn.impact.compound_band import (
@@ -82,10 +85,13 @@ COMPOUND_COLUMNS = (
 """Columns of ``compound.csv``: one row per support × elastic mode of the racket with the ball;
 the last four only on the ball mode (empty elsewhere)."""
 
-HAMMER_OFFSET_M = 0.04
-"""By default the hammer strikes the string face this far from the ball, towards the handle, m
-(the paper: "a point, slightly away from the contact point of the ball"; the ball, 67 mm
-across, shades the strings nearer than its radius, as in ``rig --ball-at``)."""
+HAMMER_OFFSET_M = 0.012
+"""By default the hammer strikes the strings this far from the ball, towards the handle, m
+(the paper: "a point, slightly away from the contact point of the ball"; struck from behind
+the face, where the ball does not cover the strings).  How long the ball mode leads at the
+neck (Fig. 8c) depends steeply on it: the free racket's 2-node mode takes over after ≈ 2.7
+ball cycles at 12 mm, 1.4 at 14 mm, 0.2 at 16 mm; from 18 mm on it leads from the start
+(docs/develop.md, "The ball on the strings").  Give ``--hammer`` where you struck."""
 
 NECK_BELOW_BED_M = 0.03
 """The accelerometer on the frame neck: on the long axis, this far below the string bed, m."""
@@ -173,6 +179,16 @@ class CompoundResult(StepResult):
         Per support: the racket with the ball, and alone.
     checks : dict of str to FrameCheck
         Per support: the frame-stiffness check.
+    blow_share : dict of str to float
+        The hammer's blow shared through the strings: ``net_share`` (the strings under the
+        ball) and ``to_ball``.
+    neck_parts : dict of str to dict of str to ndarray
+        Per support: the ball mode's and the 2-node mode's parts of the neck's response after
+        the blow (``ball``, ``2-node bending``), m/s² per N·s.
+    hand_over : dict of str to dict of str to float
+        Per support: ``ball_to_two_node`` (their amplitudes after the blow) and
+        ``ball_cycles`` (after how many ball-mode cycles the 2-node mode is the larger; 0 if
+        from the start, NaN without a 2-node mode): Fig. 8c's reading.
     band : dict of str to BallModeBand
         Per support: the ball mode over the small-amplitude inputs' spread
         (:mod:`racketdyn.impact.compound_band`).
@@ -212,6 +228,9 @@ class CompoundResult(StepResult):
     modes: dict[str, CompoundSystem] = field(default_factory=dict)
     alone: dict[str, CompoundSystem] = field(default_factory=dict)
     checks: dict[str, FrameCheck] = field(default_factory=dict)
+    blow_share: dict[str, float] = field(default_factory=dict)
+    neck_parts: dict[str, dict[str, NDArray[np.float64]]] = field(default_factory=dict)
+    hand_over: dict[str, dict[str, float]] = field(default_factory=dict)
     band: dict[str, BallModeBand] = field(default_factory=dict)
     paper_bed: dict[str, BedForFrequency] = field(default_factory=dict)
     contact_time: dict[str, list[float]] = field(default_factory=dict)
@@ -323,8 +342,13 @@ def run_compound(
     head = the_racket.head
     if hammer is None:
         strike = (xy[0] - HAMMER_OFFSET_M, xy[1])
-        defaults_used.append(f"hammer: {1e3 * HAMMER_OFFSET_M:.0f} mm from the ball, to the handle")
-        head.check_inside(np.array([strike]), "the hammer point (--point minus 40 mm; --hammer)")
+        defaults_used.append(
+            f"hammer: {1e3 * HAMMER_OFFSET_M:.0f} mm from the ball, to the handle, behind the face"
+        )
+        head.check_inside(
+            np.array([strike]),
+            f"the hammer point (--point minus {1e3 * HAMMER_OFFSET_M:.0f} mm; --hammer)",
+        )
     else:
         values = np.asarray(hammer, dtype=float).ravel()
         if values.size != 2 or not np.all(np.isfinite(values)):
@@ -348,6 +372,9 @@ def run_compound(
         sorted({_APPROXIMATE_SUPPORT[s] for s in checked}),
         modal_model=None,
     )
+    k_ball, k_bed = spring_split(the_racket, the_ball, spring)
+    ball_fraction = k_ball / (k_ball + k_bed)
+    patch = resting_patch_radius(the_racket)
     for i, support in enumerate(checked):
         report(progress, f"modes with the ball, {support}", i, len(checked))
         with_ball = racket_modes(the_racket, model, support, xy, spring, the_ball, the_hand, extra)
@@ -355,8 +382,14 @@ def run_compound(
         result.modes[support], result.alone[support] = with_ball, alone
         blow = float(string_contact_time(the_racket, [strike], _APPROXIMATE_SUPPORT[support])[0])
         result.blow_s[support] = blow
-        result.neck_acceleration[support] = with_ball.blow_acceleration(result.times, 1, 2, blow)
-        result.frf_with_ball[support] = with_ball.receptance(result.frequency, 1, 2)
+        share = net_share(the_racket, patch, math.dist(strike, xy))
+        load = with_ball.string_blow(1, share, ball_fraction)
+        result.blow_share = {"net_share": share, "to_ball": share * ball_fraction}
+        result.neck_acceleration[support] = with_ball.blow_acceleration(result.times, load, 2, blow)
+        result.neck_parts[support], result.hand_over[support] = _hand_over(
+            with_ball, result.times, result.neck_acceleration[support], blow
+        )
+        result.frf_with_ball[support] = with_ball.receptance(result.frequency, load, 2)
         result.frf_alone[support] = alone.receptance(result.frequency, 1, 2)
         if with_ball.ball_mode >= 0:
             shape = (
@@ -408,7 +441,18 @@ def run_compound(
         "hammer_blow": "a half-sine of unit impulse as long as the hammer's contact with the "
         "strings there (racketdyn.rig.hammer.string_contact_time); it acts on the frame under "
         "the point (the strings are folded into the ball's spring)",
+        "hammer_share": {
+            **result.blow_share,
+            "patch_radius_m": patch,
+            "why": "the strings are folded into the ball's spring, so a blow on them is shared "
+            "by hand: the strings under the ball take the share of the string net "
+            "(racketdyn.contact.net_share, a patch of half the larger string spacing: the ball "
+            "rests on the nearest two mains and two crosses), which splits k_B/(k_B + k_G) to "
+            "the ball and the rest to the frame under it; the remainder acts on the frame at "
+            "the hammer's point",
+        },
         "neck_point_m": list(neck),
+        "neck_hand_over": result.hand_over,
         "supports": checked,
         "rigid": rigid,
         "ball_mass_kg": the_ball.mass_kg,
@@ -449,6 +493,31 @@ def run_compound(
         "columns": {"compound.csv": list(COMPOUND_COLUMNS)},
     }
     return finish_run(result, inputs, command_record(command, "compound"), figures)
+
+
+def _hand_over(
+    system: CompoundSystem, times: NDArray[np.float64], response: NDArray[np.float64], blow: float
+) -> tuple[dict[str, NDArray[np.float64]], dict[str, float]]:
+    """The ball mode's and 2-node mode's parts of the neck's response, and when the second
+    overtakes the first (their envelopes after the blow), in ball-mode cycles."""
+    f_ball, f_bend = system.ball_frequency, system.frequency_of("2-node bending")
+    if not (math.isfinite(f_ball) and math.isfinite(f_bend)):
+        return {}, {"ball_to_two_node": math.nan, "ball_cycles": math.nan}
+    frequency, amplitude, parts = system.modal_parts(times, response, blow)
+    k_ball = int(np.argmin(np.abs(frequency - f_ball)))
+    k_bend = int(np.argmin(np.abs(frequency - f_bend)))
+    ratio = float(amplitude[k_ball] / amplitude[k_bend])
+    decay = {
+        k: system.damping_ratio[int(np.argmin(np.abs(system.frequency - frequency[k])))]
+        * 2.0
+        * math.pi
+        * frequency[k]
+        for k in (k_ball, k_bend)
+    }
+    gap = decay[k_ball] - decay[k_bend]
+    cycles = 0.0 if ratio <= 1.0 else (math.log(ratio) / gap * f_ball if gap > 0 else math.inf)
+    named = {"ball": parts[k_ball], "2-node bending": parts[k_bend]}
+    return named, {"ball_to_two_node": ratio, "ball_cycles": cycles}
 
 
 def _frame_frequencies(modes: CompoundSystem, model: ModalModel | None) -> dict[str, float]:

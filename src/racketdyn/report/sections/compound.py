@@ -64,6 +64,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             f"{100 * worst:.0f} %."
         )
         statements.extend(_band_statement(support, record.get("ball_mode_band")))
+        statements.extend(_hand_over_statement(support, record))
         frame = [
             abs(float(s["shift_percent"]))
             for s in alone.values()
@@ -193,3 +194,30 @@ def _band_statement(support: str, bands: object) -> list[str]:
             )
         )
     return [text + "."]
+
+
+def _hand_over_statement(support: str, record: dict[str, Any]) -> list[str]:
+    """Fig. 8c in words: which mode leads at the neck after the blow, and for how long."""
+    hand_over = (record.get("neck_hand_over") or {}).get(support)
+    if not isinstance(hand_over, dict):
+        return []
+    ratio, cycles = number(hand_over, "ball_to_two_node"), number(hand_over, "ball_cycles")
+    if not (math.isfinite(ratio) and math.isfinite(cycles)):
+        return []
+    hammer, point = record.get("hammer_point_m"), record.get("point_m")
+    away = (
+        f" {math.dist(hammer, point) * 1e3:.0f} mm from the ball"
+        if isinstance(hammer, list) and isinstance(point, list)
+        else ""
+    )
+    if ratio <= 1.0:
+        lead = f"the 2-node mode leads from the start ({ratio:.2f}× as large a ball mode)"
+    else:
+        lead = (
+            f"the ball mode leads ({ratio:.1f}× the 2-node mode's amplitude) and the 2-node "
+            f"mode takes over after {cycles:.1f} ball cycles"
+        )
+    return [
+        f"{support}: at the neck, after a blow on the strings{away}, {lead} (the paper, "
+        "Fig. 8c: the ball mode first, the 2-node mode after about two cycles)."
+    ]
