@@ -234,6 +234,7 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         )
     axes[0].set_title("(a) the racket alone", fontsize=9)
     axes[1].set_title("(b) the racket with the ball on the strings", fontsize=9)
+    axes[1].set_ylabel("")  # shared with (a)
     for support in result.supports[:1]:
         f_ball = result.modes[support].ball_frequency
         _mark_mode(axes[1], f_ball, f"ball mode {f_ball:.1f} Hz", "0.5")
