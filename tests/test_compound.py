@@ -539,6 +539,16 @@ def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> No
     plain = run_identify(frfs, rig_frfs / "id_plain", band_hz=(40.0, 850.0))
     assert plain.identification is not None
     assert BALL_MODE_NAME not in plain.identification.model.names
+    # ... but it says that a mode looks like one, and what to give
+    naming = plain.identification.model.metadata["naming"]
+    assert f"the mode at {model.frequency[k]:.1f} Hz moves the frame almost as a rigid" in naming
+    assert "--ball-at x,y" in naming
+    bare = run_identify(
+        rig_frfs / "frf_alone" / "frfs.uff", rig_frfs / "id_alone", band_hz=(40.0, 850.0)
+    )
+    assert bare.identification is not None
+    assert "modes named" in bare.identification.model.metadata["naming"]
+    assert "rigid body" not in bare.identification.model.metadata["naming"]
 
 
 def test_rigid_share_tells_a_ball_mode_from_the_frame_modes() -> None:

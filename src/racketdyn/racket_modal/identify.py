@@ -13,6 +13,7 @@ from dataclasses import replace
 import numpy as np
 
 from racketdyn.measurement.records import FrfSet
+from racketdyn.modal import ModalModel
 from racketdyn.modal.identify import Identification, identify
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.racket_modal.face import face_mapping, looks_like_racket
@@ -178,7 +179,7 @@ def name_if_racket(
             "outline the points fit; give --racket to name them on your racket's head"
         )
     if ball_at is None:
-        return named, sentence
+        return named, sentence + _looks_like_a_ball(named.model, racket)
     names = named.model.names
     if BALL_MODE_NAME in names:
         k = names.index(BALL_MODE_NAME)
@@ -193,4 +194,27 @@ def name_if_racket(
         f"{sentence}; no mode of the ball on the strings found: no mode's frame shape is more "
         f"than {BALL_RIGID_SHARE:.0%} a rigid-body motion (largest {best:.0%}; widen --band or "
         "measure more frame points)"
+    )
+
+
+_SWING_ON_HAND_HZ = 40.0
+"""Below this a nearly rigid frame motion is the racket swinging on the hand and arm (a held
+racket's pitch and heave modes lie at ≈ 3–30 Hz), not a ball on the strings (≈ 80–110 Hz)."""
+
+
+def _looks_like_a_ball(model: ModalModel, racket: Racket) -> str:
+    """A clause for a mode whose frame moves nearly as a rigid body when no ball was declared.
+
+    No elastic mode of a bare racket can (mass orthogonality to the rigid-body modes); a ball
+    or a mass on the strings makes one (section 3.2).  Named as the racket's mode all the same,
+    it pushes every bending mode above it one node too far, so the user is told.
+    """
+    share = np.where(model.frequency >= _SWING_ON_HAND_HZ, rigid_share(model, racket.head), np.nan)
+    if not np.any(np.isfinite(share)) or float(np.nanmax(share)) <= BALL_RIGID_SHARE:
+        return ""
+    k = int(np.nanargmax(share))
+    return (
+        f"; but the mode at {model.frequency[k]:.1f} Hz moves the frame almost as a rigid body "
+        f"({share[k]:.0%}), as a ball or a mass on the strings makes: if one was on, give "
+        "--ball-at x,y to name it (its name here and the bending modes' above it are then off)"
     )
