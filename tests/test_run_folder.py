@@ -125,3 +125,20 @@ def test_a_folder_holding_another_steps_run_is_refused_and_kept(
     assert "racketdyn rig" in message[0]
     assert "--out" in message[0]
     assert _files(out) == before
+
+
+def test_a_step_re_run_under_a_report_says_the_report_is_old(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
+    """A step re-run inside a report's folder (as ``predict --out demo/predict`` after
+    ``demo``) leaves that report telling the old run: the command says so and how to remake
+    it, and leaves the report alone (it is the user's)."""
+    report = tmp_path / "report.html"
+    report.write_text("<html>an earlier report</html>", encoding="utf-8")
+    argv = ["predict", "--grid", "3", "--speed", "10", "--no-figures", "--out"]
+    assert main([*argv, str(tmp_path / "predict")]) == 0
+    printed = " ".join(capsys.readouterr().out.split())
+    assert f"{report} still shows this step's previous run" in printed
+    assert f"racketdyn report {tmp_path} makes it again" in printed
+    assert report.read_text(encoding="utf-8") == "<html>an earlier report</html>"
+    # a folder with no report above says nothing of one
+    assert main([*argv, str(tmp_path / "predict" / "inner")]) == 0
+    assert "still shows" not in capsys.readouterr().out

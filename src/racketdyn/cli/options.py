@@ -309,9 +309,28 @@ def progress_display(console: Console) -> Iterator[Progress]:
 
 
 def print_written(console: Console, paths: Sequence[Any]) -> None:
-    """``wrote PATH`` per file."""
+    """``wrote PATH`` per file, and a line when a report one folder up now tells an old run.
+
+    A step re-run inside a report's folder (``predict --out demo/predict`` after ``demo``)
+    leaves ``demo/report.html`` showing the step's previous run until the report is made
+    again; the report is the user's, so it is named, not removed.
+    """
+    from pathlib import Path
+
+    from racketdyn.workflows.run import REPORT_NAME
+
     for path in paths:
         console.print(f"  wrote {path}")
+    if not paths:
+        return
+    above = Path(paths[0]).parent.parent
+    report = above / REPORT_NAME
+    if report.is_file() and report.stat().st_mtime <= Path(paths[0]).stat().st_mtime:
+        console.print(
+            f"[yellow]{report} still shows this step's previous run: "
+            f"racketdyn report {above} makes it again[/]",
+            soft_wrap=True,
+        )
 
 
 def print_status(console: Console, status: Any, csv_name: str, label: str = "") -> None:
