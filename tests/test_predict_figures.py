@@ -261,6 +261,12 @@ def test_transient_curves_follow_the_run(draw: Any) -> None:
     assert "tangent" in title
     histories = drawn["transient_histories.png"]
     assert any("racket 5 m/s" in t for t in _titles(histories))
+    # the legend sits under the panels, not on the curves (it covered the tip's once)
+    assert all(ax.get_legend() is None for ax in figure.axes)
+    (legend,) = figure.legends
+    labels = [t.get_text() for t in legend.get_texts()]
+    assert len(labels) == len(set(labels))
+    assert any(label.endswith("transient") for label in labels)
 
 
 # --- the printed headline ------------------------------------------------------------------------

@@ -295,14 +295,22 @@ def figure_force_and_contact_time(
     return figure
 
 
-def _legend_below(ax: Axes, fontsize: float = 7, columns: int = 2) -> None:
+def _legend_below(ax: Axes | Sequence[Axes], fontsize: float = 7, columns: int = 2) -> None:
     """The axes' legend moved under the figure, out of the data's way (constrained layout
-    makes room for it)."""
-    handles, labels = ax.get_legend_handles_labels()
-    legend = ax.get_legend()
-    if legend is not None:
-        legend.remove()
-    figure = ax.get_figure()
+    makes room for it).  Several axes share one legend, each label once; a panel's own count of
+    flagged rows is then prefixed by its title."""
+    panels = [ax] if isinstance(ax, Axes) else list(ax)
+    unique: dict[str, Any] = {}
+    for panel in panels:
+        for handle, label in zip(*panel.get_legend_handles_labels(), strict=True):
+            if len(panels) > 1 and label.startswith("flagged"):
+                label = f"{panel.get_title()}: {label}"
+            unique.setdefault(label, handle)
+        legend = panel.get_legend()
+        if legend is not None:
+            legend.remove()
+    handles, labels = list(unique.values()), list(unique)
+    figure = panels[0].get_figure() if panels else None
     if handles and isinstance(figure, Figure):
         # as many columns as the widest entry lets fit across the figure (≈ 0.55 em a character)
         entry_pt = 0.55 * fontsize * max(len(label) for label in labels) + 3.0 * fontsize
@@ -1109,9 +1117,9 @@ def figure_transient_comparison_speed(
             ax.grid(alpha=0.3)
             if row == 0:
                 ax.set_title(_support_style(support)["label"], fontsize=9)
-                _dedupe_legend(ax, 6)
             else:
                 ax.set_xlabel("incoming ball speed (m/s)")
+    _legend_below(list(axes[0, :]), columns=3)
     figure.suptitle(
         "Approximate method (dashed) against the transient simulation (solid); "
         + options.describe(model),
