@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import replace
+from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -197,3 +198,53 @@ def test_fig4_has_a_scale_and_fig5_says_what_black_and_white_mean(
     for ax in fig5.axes:  # the key is beside the panels, not over them
         overlap = Bbox.intersection(key, ax.get_window_extent(renderer))
         assert overlap is None or overlap.width * overlap.height < 1.0
+
+
+def test_the_compound_figures_keep_their_words_inside_and_every_support_visible(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """New-user trial (2026-11-26, second session): Fig. 8a's title ran past both edges of the
+    figure and its y label was cut at the top; with ``--support free,pinned,hand`` the pinned
+    curves (black) lay exactly on the free ones (blue) in Figs 8a and 9, which the legend
+    listed but nobody could see.  Every text lies inside its figure, and curves that coincide
+    are told apart by their line style."""
+    from racketdyn.plotting import compound as drawing
+    from racketdyn.workflows import run_compound
+
+    drawn: list[Figure] = []
+
+    def keep(figure: Figure, path: Path) -> Path:
+        drawn.append(figure)
+        return path
+
+    monkeypatch.setattr(drawing, "save_figure", keep)
+    result = run_compound(tmp_path / "c", supports=("free", "pinned", "hand"))
+    drawing.write_compound_figures(result, tmp_path)
+    assert len(drawn) == 3
+    for figure in drawn:
+        renderer = _renderer(figure)
+        frame = figure.bbox
+        words: list[Text] = [*figure.texts]
+        if figure._suptitle is not None:
+            words.append(figure._suptitle)
+        for ax in figure.axes:
+            words += [ax.title, ax.xaxis.label, ax.yaxis.label, *ax.texts]
+        for legend in _legends(figure):
+            words += legend.get_texts()
+        for text in words:
+            if not (text.get_visible() and text.get_text().strip()):
+                continue
+            box = text.get_window_extent(renderer)
+            inside = Bbox.intersection(box, frame.expanded(1.0, 1.0).frozen())
+            assert inside is not None, text.get_text()
+            assert inside.width * inside.height >= 0.99 * box.width * box.height, text.get_text()
+        for ax in figure.axes:
+            lines = [ln for ln in ax.get_lines() if np.asarray(ln.get_xdata()).size > 2]
+            for i, first in enumerate(lines):
+                for second in lines[i + 1 :]:
+                    a, b = np.asarray(first.get_ydata()), np.asarray(second.get_ydata())
+                    if a.shape == b.shape and np.allclose(a, b, rtol=1e-3):
+                        assert first.get_linestyle() != second.get_linestyle(), (
+                            first.get_label(),
+                            second.get_label(),
+                        )

@@ -172,6 +172,11 @@ SLIPS = {
         lambda tmp: ["twist", "--x", "520", "--no-figures", "--out", str(tmp / "out")],
         ("x=520", "did you give millimetres"),
     ),
+    # trial of 2026-11-26, second session: compound took a 5000 N preload (a 169 kN/m spring)
+    "compound-preload-in-grams": (
+        lambda tmp: ["compound", "--preload", "500", "--no-figures", "--out", str(tmp / "out")],
+        ("--preload 500", "up to 50 N", "did you give grams (gf) (500 g = 4.9 N)"),
+    ),
     "oblique-point-in-mm": (
         lambda tmp: ["oblique", "--point=500,0", "--no-figures", "--out", str(tmp / "out")],
         ("x=500", "did you give millimetres"),

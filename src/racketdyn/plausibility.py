@@ -149,6 +149,7 @@ KM_PER_H = Slip("km/h", "km/h", 1.0 / 3.6)
 MPH = Slip("mph", "mph", 0.44704)
 POUND_FORCE = Slip("pounds", "lb", 4.4482216152605)
 KILOGRAM_FORCE = Slip("kilograms (kgf)", "kg", 9.80665)
+GRAM_FORCE = Slip("grams (gf)", "g", 9.80665e-3)
 KILONEWTON = Slip("kN", "kN", 1e3)
 GIGAPASCAL = Slip("GPa", "GPa", 1e9)
 MEGAPASCAL = Slip("MPa", "MPa", 1e6)
@@ -210,6 +211,13 @@ RANGES: dict[str, Range] = {
     # The arm behind the grip (impact.hand.Hand): Kawazoe's 1 kg at the handle; a whole adult
     # arm is ≈ 3.5 kg (Dempster).  0.2–6 kg spans children to heavy adults.
     "hand_arm_mass_kg": Range("an arm behind the grip weighs", 0.2, 6.0, 0.01, 100.0, "kg", _MASS),
+    # A ball stuck on the strings (compound --preload): its weight (0.57 N) and the press that
+    # sticks it; at 50 N the ball is already ≈ 2 mm into the bed, no longer a small amplitude.
+    # Limits: the weight of a person on the ball (1 kN).  New-user trial of 2026-11-26: 5000 N
+    # was taken and gave a 169 kN/m spring.
+    "preload_n": Range(
+        "a stuck ball presses on the strings with", 0.0, 50.0, 0.0, 1000.0, "N", (GRAM_FORCE,)
+    ),
     # The racket.  Strung rackets on sale weigh 230–400 g (juniors' lighter: allow them);
     # ITF Rules, Appendix II: overall length at most 29.0 in (73.7 cm); adult rackets are
     # ≥ 26 in ≈ 0.66 m, juniors' from 19 in: 0.60 m keeps 25-in juniors' rackets implausible.

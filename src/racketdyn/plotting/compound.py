@@ -46,6 +46,10 @@ COMPOUND_FRF_FIGURE = "compound_frf.png"
 COMPOUND_SHAPE_FIGURE = "compound_shape.png"
 """The ball mode: the frame along its axis against the ball (Fig. 8a)."""
 BALL_COMPARISON_FIGURE = "fig9_frf_alone_and_ball.png"
+
+# the pinned racket's rigid-body motion differs from the free one's only far from the ball, so
+# its curves often lie on the free ones: dashed, so both show (new-user trial, 2026-11-26)
+_LINESTYLE = {"pinned": (0, (4, 2))}
 """``compare --ball-at``: measured FRFs of the racket alone and with the ball (Fig. 9a, 9b)."""
 
 
@@ -78,11 +82,14 @@ def plot_ball_mode_shape(
         _, ax = plt.subplots(figsize=(6.0, 3.6), layout="constrained")
     colour = SUPPORT_STYLE.get(support, {}).get("color", "tab:orange")
     x_mm = np.asarray(axis_x) * 1e3
-    ax.plot(x_mm, np.asarray(frame), color=colour, lw=1.2, label=f"frame, {support}")
+    ax.plot(
+        x_mm, np.asarray(frame), color=colour, lw=1.2, label=f"frame, {support}",
+        linestyle=_LINESTYLE.get(support, "-"),
+    )  # fmt: skip
     ax.plot([ball_x * 1e3], [ball], "o", color=colour, ms=9, mfc="none", label=f"ball, {support}")
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.set_xlabel("x from the butt (mm)")
-    ax.set_ylabel("displacement in the ball mode (ball = 1)")
+    ax.set_ylabel("displacement (ball = 1)")
     ax.legend(fontsize=8)
     return ax
 
@@ -120,11 +127,16 @@ def plot_neck_response(
     if ax is None:
         _, ax = plt.subplots(figsize=(6.0, 3.6), layout="constrained")
     t_ms = np.asarray(times) * 1e3
-    ax.plot(t_ms, np.asarray(acceleration), lw=1.1, color="0.55", label=label or "neck")
+    ax.plot(
+        t_ms, np.asarray(acceleration), lw=1.1, color="0.55",
+        label=f"neck, {label}" if label else "neck",
+    )  # fmt: skip
     for name, colour, hz in (("ball", "C0", ball_hz), ("2-node bending", "C1", bending_hz)):
         if parts is not None and name in parts:
+            part = np.asarray(parts[name], dtype=float)
+            start = int(np.argmax(part != 0.0))  # the parts begin after the blow: no step
             ax.plot(
-                t_ms, np.asarray(parts[name]), lw=0.8, color=colour,
+                t_ms[start:], part[start:], lw=0.8, color=colour,
                 label=f"{'ball mode' if name == 'ball' else name} {hz:.1f} Hz",
             )  # fmt: skip
     if math.isfinite(hand_over_s):
@@ -161,14 +173,15 @@ def plot_compound_frf(
     support : str
         Support (line colour).
     dashed : bool
-        Dashed line (the racket alone).
+        Dashed line (the racket alone); else the support's line style (the pinned racket's
+        curves, which often coincide with the free one's, dashed).
     ax : Axes, optional
         Where to draw.
     """
     if ax is None:
         _, ax = plt.subplots(figsize=(6.0, 3.6), layout="constrained")
     colour = SUPPORT_STYLE.get(support, {}).get("color", "tab:orange")
-    style = {"color": colour, "linestyle": "--" if dashed else "-"}
+    style = {"color": colour, "linestyle": "--" if dashed else _LINESTYLE.get(support, "-")}
     ax.semilogy(np.asarray(frequency), np.abs(np.asarray(receptance)), label=label, lw=1.0, **style)
     ax.set_xlabel("frequency (Hz)")
     ax.set_ylabel("|receptance| hammer → neck (m/N)")
@@ -243,10 +256,8 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
     figure, ax = plt.subplots(figsize=(4.8, 2.6), layout="constrained")
     for support, (frame, ball) in result.ball_shape.items():
         plot_ball_mode_shape(result.axis_x, frame, result.location[0], ball, support, ax=ax)
-    ax.set_title(
-        "Fig. 8a: the ball mode, ball and frame moving against each other through the strings",
-        fontsize=9,
-    )
+    ax.set_title("Fig. 8a: the ball mode, ball and frame against\neach other through the strings",
+                 fontsize=9)  # fmt: skip
     paths.append(save_figure(figure, Path(out) / COMPOUND_SHAPE_FIGURE))
     for path in paths:
         log.info("wrote %s", path)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Callable, Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -41,7 +41,7 @@ from racketdyn.impact.compound_band import (
 )
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.system import TRANSIENT_SUPPORTS
-from racketdyn.io import racket_to_dict
+from racketdyn.io import default_racket, racket_to_dict
 from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket
 from racketdyn.rig.hammer import string_contact_time
@@ -60,8 +60,11 @@ __all__ = [
     "COMPOUND_COLUMNS",
     "CONTACT_SPEEDS_MPS",
     "FRAME_STIFFNESS_FACTOR",
+    "HAMMER_OFFSET_M",
+    "NOT_THE_PAPERS_RACKET",
     "CompoundResult",
     "FrameCheck",
+    "is_papers_racket",
     "run_compound",
 ]
 
@@ -92,6 +95,13 @@ the face, where the ball does not cover the strings).  How long the ball mode le
 neck (Fig. 8c) depends steeply on it: the free racket's 2-node mode takes over after ≈ 2.7
 ball cycles at 12 mm, 1.4 at 14 mm, 0.2 at 16 mm; from 18 mm on it leads from the start
 (docs/develop.md, "The ball on the strings").  Give ``--hammer`` where you struck."""
+
+NOT_THE_PAPERS_RACKET = (
+    "the paper's 103 Hz was measured on its own racket and strings, 360 g and 97 sq in, not on "
+    "this one: no check of it"
+)
+"""Why another racket's ball mode is not held against the paper's 103 Hz (run.json, console,
+report)."""
 
 NECK_BELOW_BED_M = 0.03
 """The accelerometer on the frame neck: on the long axis, this far below the string bed, m."""
@@ -193,7 +203,15 @@ class CompoundResult(StepResult):
         Per support: the ball mode over the small-amplitude inputs' spread
         (:mod:`racketdyn.impact.compound_band`).
     paper_bed : dict of str to BedForFrequency
-        Per support: the bed under the nominal ball that would give the paper's 103 Hz.
+        Per support: the bed under the nominal ball that would give the paper's 103 Hz (only
+        for the paper's racket: empty for another).
+    paper_racket : bool
+        Whether the racket is the paper's (:func:`is_papers_racket`): only then is the ball
+        mode held against the paper's measured 103 Hz.
+    node_line : dict of str to float
+        Per support: where the racket's 2-node mode (without the ball) crosses the long axis
+        nearest the ball, x in m (NaN without a 2-node mode): a blow or a ball near it hardly
+        rings the 2-node mode (Fig. 8c).
     contact_time : dict of str to list of float
         Per support: the approximate method's contact time at :data:`CONTACT_SPEEDS_MPS`, s.
     model : ModalModel or None
@@ -233,6 +251,8 @@ class CompoundResult(StepResult):
     hand_over: dict[str, dict[str, float]] = field(default_factory=dict)
     band: dict[str, BallModeBand] = field(default_factory=dict)
     paper_bed: dict[str, BedForFrequency] = field(default_factory=dict)
+    paper_racket: bool = False
+    node_line: dict[str, float] = field(default_factory=dict)
     contact_time: dict[str, list[float]] = field(default_factory=dict)
     model: ModalModel | None = None
     hand: Hand | None = None
@@ -363,6 +383,7 @@ def run_compound(
         frequency=np.linspace(*FRF_FREQUENCY_HZ[:2], FRF_FREQUENCY_HZ[2]),
     )  # fmt: skip
     result.axis_x = np.linspace(0.0, the_racket.length_m, AXIS_POINTS)
+    result.paper_racket = is_papers_racket(the_racket)
     extra = np.vstack([[strike, neck], np.column_stack([result.axis_x, np.zeros(AXIS_POINTS)])])
     approximate = predict(
         the_racket,
@@ -399,9 +420,11 @@ def run_compound(
         result.band[support] = ball_mode_band(
             the_racket, model, support, xy, spring, the_ball, the_hand
         )
-        result.paper_bed[support] = bed_for_frequency(
-            the_racket, model, support, xy, spring, PAPER_BALL_MODE_HZ, the_ball, the_hand
-        )
+        if result.paper_racket:
+            result.paper_bed[support] = bed_for_frequency(
+                the_racket, model, support, xy, spring, PAPER_BALL_MODE_HZ, the_ball, the_hand
+            )
+        result.node_line[support] = _node_line(alone, result.axis_x, xy[0])
         k = approximate.supports.index(_APPROXIMATE_SUPPORT[support])
         result.contact_time[support] = [float(t) for t in approximate.contact_time[0, :, k]]
         if stiffer is not None:
@@ -439,8 +462,9 @@ def run_compound(
         "hammer_point_m": list(strike),
         "hammer_blow_s": result.blow_s,
         "hammer_blow": "a half-sine of unit impulse as long as the hammer's contact with the "
-        "strings there (racketdyn.rig.hammer.string_contact_time); it acts on the frame under "
-        "the point (the strings are folded into the ball's spring)",
+        "strings there (racketdyn.rig.hammer.string_contact_time), shared through the strings "
+        "between the ball, the frame under it and the frame at the hammer's point as "
+        "hammer_share says",
         "hammer_share": {
             **result.blow_share,
             "patch_radius_m": patch,
@@ -453,6 +477,7 @@ def run_compound(
         },
         "neck_point_m": list(neck),
         "neck_hand_over": result.hand_over,
+        "two_node_node_line_m": result.node_line,
         "supports": checked,
         "rigid": rigid,
         "ball_mass_kg": the_ball.mass_kg,
@@ -483,8 +508,19 @@ def run_compound(
                 "ball (published static stiffness and the per-string law, to the string net "
                 "pushed over the ball's width), ball mass (ITF); racketdyn.impact.compound_band",
                 "paper_hz": PAPER_BALL_MODE_HZ,
-                "paper_inside": result.band[s].holds(PAPER_BALL_MODE_HZ),
-                "bed_for_paper": result.paper_bed[s].as_dict(),
+                "paper_racket": result.paper_racket,
+                **(
+                    {
+                        "paper_inside": result.band[s].holds(PAPER_BALL_MODE_HZ),
+                        "bed_for_paper": result.paper_bed[s].as_dict(),
+                    }
+                    if result.paper_racket
+                    else {
+                        "paper_inside": None,
+                        "bed_for_paper": None,
+                        "paper_note": NOT_THE_PAPERS_RACKET,
+                    }
+                ),
             }
             for s in checked
         },
@@ -493,6 +529,30 @@ def run_compound(
         "columns": {"compound.csv": list(COMPOUND_COLUMNS)},
     }
     return finish_run(result, inputs, command_record(command, "compound"), figures)
+
+
+def is_papers_racket(racket: Racket) -> bool:
+    """Whether ``racket`` is the paper's (the built-in racket, whatever its name): the only one
+    whose ball mode the paper's measured 103 Hz can check (section 3.2)."""
+    built_in = default_racket()
+    return replace(racket, name=built_in.name) == built_in
+
+
+def _node_line(alone: CompoundSystem, axis_x: NDArray[np.float64], ball_x: float) -> float:
+    """Where the racket's 2-node mode crosses the long axis nearest the ball, m (NaN: none).
+
+    The mode's shape at the axis points (``alone.rows[3:]``: after the ball's point, the
+    hammer's and the neck's), its phase taken off, zero crossings interpolated linearly."""
+    if "2-node bending" not in alone.names:
+        return math.nan
+    shape = alone.rows[3:] @ alone.shapes[:, alone.names.index("2-node bending")]
+    shape = np.real(shape * np.exp(-1j * np.angle(shape[np.argmax(np.abs(shape))])))
+    left, right = shape[:-1], shape[1:]
+    at = np.flatnonzero(np.sign(left) * np.sign(right) < 0)
+    if at.size == 0:
+        return math.nan
+    crossings = axis_x[at] + (axis_x[at + 1] - axis_x[at]) * left[at] / (left[at] - right[at])
+    return float(crossings[np.argmin(np.abs(crossings - ball_x))])
 
 
 def _hand_over(

@@ -24,6 +24,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     record = run.record(folder)
     shifts = record.get("frame_mode_shifts")
     shifts = shifts if isinstance(shifts, dict) else {}
+    paper = _papers_racket(record)
     modes, times, statements, glance = [], [], [], []
     for support in dict.fromkeys(r.get("support", "") for r in rows):
         mine = [r for r in rows if r.get("support", "") == support]
@@ -57,11 +58,15 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             worst = max(worst, abs(contact / half - 1.0)) if math.isfinite(contact) else worst
         times.append(tuple(cells))
         f_ball = number(ball, "frequency_hz")
+        where = (
+            f"the paper's new mode at {PAPER_BALL_MODE_HZ:g} Hz is here at {f_ball:.1f} Hz "
+            f"({100 * (f_ball / PAPER_BALL_MODE_HZ - 1):+.0f} %)"
+            if paper
+            else f"the new mode, the ball's, is at {f_ball:.1f} Hz"
+        )
         statements.append(
-            f"{support}: the paper's new mode at {PAPER_BALL_MODE_HZ:g} Hz is here at "
-            f"{f_ball:.1f} Hz ({100 * (f_ball / PAPER_BALL_MODE_HZ - 1):+.0f} %); its half "
-            f"period matches the approximate method's contact time at 5–20 m/s within "
-            f"{100 * worst:.0f} %."
+            f"{support}: {where}; its half period matches the approximate method's contact "
+            f"time at 5–20 m/s within {100 * worst:.0f} %."
         )
         statements.extend(_band_statement(support, record.get("ball_mode_band")))
         statements.extend(_hand_over_statement(support, record))
@@ -78,9 +83,10 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 "added."
             )
         glance.append(
-            f"ball on the strings, {support}: ball mode {f_ball:.1f} Hz (paper "
-            f"{PAPER_BALL_MODE_HZ:g} Hz), half period {half * 1e3:.2f} ms against a contact "
-            f"time of {number(ball, 'contact_time_10_s') * 1e3:.2f} ms at 10 m/s"
+            f"ball on the strings, {support}: ball mode {f_ball:.1f} Hz"
+            + (f" (paper {PAPER_BALL_MODE_HZ:g} Hz)" if paper else "")
+            + f", half period {half * 1e3:.2f} ms against a contact time of "
+            f"{number(ball, 'contact_time_10_s') * 1e3:.2f} ms at 10 m/s"
         )
     checks = []
     for check in record.get("frame_stiffness_check", []) or []:
@@ -150,6 +156,19 @@ def _measured(rows: list[Row]) -> list[str]:
     return [words + "."]
 
 
+def _papers_racket(record: dict[str, Any]) -> bool:
+    """Whether the run's racket is the paper's (run.json ``ball_mode_band``'s
+    ``paper_racket``; a run written before it was recorded is taken as the paper's, the only
+    racket those runs compared with 103 Hz)."""
+    bands = record.get("ball_mode_band")
+    if not isinstance(bands, dict):
+        return True
+    return all(
+        not isinstance(band, dict) or band.get("paper_racket", True) is not False
+        for band in bands.values()
+    )
+
+
 def _spring(record: dict[str, Any]) -> dict[str, str] | None:
     spring = record.get("ball_spring")
     if not isinstance(spring, dict):
@@ -175,12 +194,15 @@ def _band_statement(support: str, bands: object) -> list[str]:
     if not isinstance(band, dict):
         return []
     low, high = (band.get("band_hz") or [math.nan, math.nan])[:2]
-    inside = "holds" if band.get("paper_inside") else "does not hold"
     text = (
         f"{support}: the spread of the small-amplitude inputs (the ball's stiffness, the bed "
         f"under the ball, the ball's mass) puts the ball mode between {fmt(low, '.0f')} and "
-        f"{fmt(high, '.0f')} Hz, which {inside} the paper's {PAPER_BALL_MODE_HZ:g} Hz"
+        f"{fmt(high, '.0f')} Hz"
     )
+    if band.get("paper_racket") is False:
+        return [f"{text} ({band.get('paper_note') or 'the paper measured another racket'})."]
+    inside = "holds" if band.get("paper_inside") else "does not hold"
+    text += f", which {inside} the paper's {PAPER_BALL_MODE_HZ:g} Hz"
     bed = band.get("bed_for_paper")
     if isinstance(bed, dict) and math.isfinite(number(bed, "bed_stiffness_n_per_m")):
         radius = number(bed, "patch_radius_m")
@@ -216,6 +238,13 @@ def _hand_over_statement(support: str, record: dict[str, Any]) -> list[str]:
         lead = (
             f"the ball mode leads ({ratio:.1f}× the 2-node mode's amplitude) and the 2-node "
             f"mode takes over after {cycles:.1f} ball cycles"
+        )
+    node = number(record.get("two_node_node_line_m") or {}, support)
+    if ratio <= 1.0 and math.isfinite(node) and isinstance(point, list):
+        lead += (
+            f"; the 2-node mode's node line crosses the axis at x = {node * 1e3:.0f} mm, "
+            f"{abs(node - point[0]) * 1e3:.0f} mm from the ball, and the ball mode leads with "
+            "the ball and the blow near it"
         )
     return [
         f"{support}: at the neck, after a blow on the strings{away}, {lead} (the paper, "
