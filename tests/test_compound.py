@@ -875,3 +875,70 @@ def test_compound_help_and_run_json_tell_the_hammer_as_it_is(
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))
     assert "acts on the frame under the point" not in record["hammer_blow"]
     assert "hammer_share" in record["hammer_blow"]
+
+
+def test_the_frame_rigidity_statement_can_fail(tmp_path: Path) -> None:
+    """New-user trial (2026-11-26, second session): the page said the paper's "not affected by
+    frame rigidity" holds whatever the numbers (a junior's racket, ball off the node: +3.0 %
+    against ×1.95).  It holds when the ball mode moves by under a tenth of the frame modes'
+    rise, and the page says "does not hold here" otherwise."""
+    from racketdyn.report.folder import RunFolder
+    from racketdyn.report.sections import compound as section
+
+    out = tmp_path / "compound"
+    assert main(["compound", "--support", "free", "--no-figures", "--out", str(out)]) == 0
+    data = section.gather(RunFolder.scan(tmp_path))
+    assert data is not None
+    assert "“not affected by frame rigidity” holds." in " ".join(data["statements"])
+    path = out / "run.json"
+    record = json.loads(path.read_text(encoding="utf-8"))
+    record["frame_stiffness_check"][0]["ball_mode_change_percent"] = 30.0
+    path.write_text(json.dumps(record), encoding="utf-8")
+    data = section.gather(RunFolder.scan(tmp_path))
+    assert data is not None
+    text = " ".join(data["statements"])
+    assert "moves by 30.0 %" in text
+    assert "“not affected by frame rigidity” does not hold here." in text
+
+
+def test_a_measured_ball_mode_is_held_against_the_models_band(tmp_path: Path) -> None:
+    """New-user trial (2026-11-26, second session): the page showed the model's ball mode
+    (85.7 Hz on the trial racket) and the measured one (99.5 Hz, ``compare --ball-at`` on the
+    rig) side by side without a word: for a racket that is not the paper's, the user's own
+    measurement is what the band of the small-amplitude inputs is for."""
+    from racketdyn.report.folder import RunFolder
+    from racketdyn.report.sections import compound as section
+
+    racket = tmp_path / "pro100.toml"
+    racket.write_text(TRIAL_RACKET, encoding="utf-8")
+    argv = ["compound", "--racket", str(racket), "--support", "free", "--no-figures"]
+    assert main([*argv, "--out", str(tmp_path / "compound")]) == 0
+    band = json.loads((tmp_path / "compound" / "run.json").read_text(encoding="utf-8"))[
+        "ball_mode_band"
+    ]["free"]
+    low, high = band["band_hz"]
+    measured = tmp_path / "compare_ball"
+    measured.mkdir()
+
+    def write(ball_hz: float, at: list[float]) -> str:
+        (measured / "ball_comparison.csv").write_text(
+            "mode,frequency_alone_hz,frequency_ball_hz,frequency_shift_percent,damping_alone,"
+            f"damping_ball,mac\nball on the strings,,{ball_hz},,,0.038,\n"
+            "2-node bending,127.99,129.69,1.33,0.0049,0.0080,0.97\n",
+            encoding="utf-8",
+        )
+        record = {"command": ["racketdyn", "compare"], "support": "free", "ball_at_m": at}
+        (measured / "run.json").write_text(json.dumps(record), encoding="utf-8")
+        data = section.gather(RunFolder.scan(tmp_path))
+        assert data is not None
+        return " ".join(data["statements"])
+
+    text = write(99.5, [0.51, 0.0])
+    nominal = band["nominal_hz"]
+    assert "a new mode at 99.5 Hz with the ball, inside the band of the small-amplitude" in text
+    assert f"({low:.0f}–{high:.0f} Hz, free)" in text
+    assert f"{100 * (99.5 / nominal - 1):+.0f} % from the model's {nominal:.1f} Hz" in text
+    assert "outside the band" in write(high + 20.0, [0.51, 0.0])
+    elsewhere = write(99.5, [0.45, 0.0])
+    assert "the ball was at x, y = 450, 0 mm in the test and 510, 0 mm in the model" in elsewhere
+    assert "inside the band" not in elsewhere

@@ -387,3 +387,29 @@ def test_the_truth_section_renders_found_and_missed_modes() -> None:
     assert "against the rig's truth rig/modal_truth_free.json" in html
     assert '<td>2-node bending</td><td class="num">120.00</td>' in html
     assert "on a node at the accelerometer" in html
+
+
+def test_a_mixed_folder_names_which_steps_used_which_racket_and_the_fix(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """New-user trial (2026-11-26, second session): a user who ran rig, predict, compound …
+    with ``--racket`` but ``frf`` and ``contact`` without it (their pages' examples give none)
+    got "its runs used 2 rackets (…; built-in kawazoe_2002.toml)" and no way to tell which
+    steps to run again.  The line names the folders of each racket and says which option the
+    steps that took the built-in racket by default were missing."""
+    from racketdyn.cli import main
+
+    racket = tmp_path / "head_light.toml"
+    racket.write_text(HEAD_LIGHT_RACKET, encoding="utf-8")
+    trial = tmp_path / "trial"
+    common = ["--grid", "2", "--speed", "20", "--support", "free", "--no-figures"]
+    assert main(["predict", "--racket", str(racket), *common, "--out", str(trial / "predict")]) == 0
+    argv = ["compound", "--support", "free", "--no-figures", "--out", str(trial / "compound")]
+    assert main(argv) == 0
+    capsys.readouterr()
+    assert main(["report", str(trial)]) == 2
+    error = " ".join(capsys.readouterr().err.split())
+    assert "Trial 320 g head-light 95 sq in (predict)" in error
+    assert "Kawazoe test racket (360 g, 97 sq in) (compound)" in error
+    assert "the steps in compound took the built-in racket by default" in error
+    assert "again with --racket FILE" in error

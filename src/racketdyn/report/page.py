@@ -78,7 +78,8 @@ def _refuse_mixed_runs(run: RunFolder) -> None:
     that holds several predictions (the page would title one racket and mix the others' files
     in; the new-user trial of issue 13 reported on a folder of two rackets' runs)."""
     rackets: dict[str, str] = {}
-    for record in run.records.values():
+    folders: dict[str, list[str]] = {}
+    for folder, record in run.records.items():
         name = record.get("racket_file")
         if not name:
             continue
@@ -87,11 +88,23 @@ def _refuse_mixed_runs(run: RunFolder) -> None:
         title = described.get("name") if isinstance(described, dict) else None
         if title or key not in rackets:  # a record naming the racket wins over a file name
             rackets[key] = str(title or Path(str(name)).name)
+        folders.setdefault(key, []).append(run.rel(folder) or ".")
     if len(rackets) > 1:
+        by_default = sorted(
+            f for key, names in folders.items() if key.startswith("built-in") for f in names
+        )
+        advice = (
+            f"the steps in {', '.join(by_default)} took the built-in racket by default: run "
+            "them again with --racket FILE, or give the folder of one racket's runs"
+            if by_default
+            else "give the folder of one racket's runs (a demo folder)"
+        )
         raise InputError(
             f"{run.run_dir}: its runs used {len(rackets)} rackets ("
-            + "; ".join(sorted(set(rackets.values())))
-            + "): a report tells one run; give the folder of one racket's runs (a demo folder)"
+            + "; ".join(
+                sorted(f"{rackets[key]} ({', '.join(sorted(folders[key]))})" for key in rackets)
+            )
+            + f"): a report tells one run; {advice}"
         )
     predictions = run.with_file("impact.csv")
     if len(predictions) > 1:

@@ -108,11 +108,13 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         )
         values = [float(m["ratio"]) for m in stiffer if isinstance(m.get("ratio"), int | float)]
         if isinstance(change, int | float) and values:
+            # "not affected": the ball mode moves by under a tenth of the frame modes' rise
+            holds = abs(change) < 10.0 * (min(values) - 1.0)
             statements.append(
                 f"{check.get('support')}: with the frame {factor}× as stiff (same mass) the "
                 f"frame modes rise ×{min(values):.2f}–×{max(values):.2f} while the ball mode "
                 f"moves by {abs(change):.1f} %: the paper's “not affected by frame "
-                "rigidity” holds."
+                f"rigidity” {'holds' if holds else 'does not hold here'}."
             )
     figures = [
         (folder / "compound_shape.png", ""),
@@ -122,7 +124,9 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     measured = run.first("ball_comparison.csv")
     if measured is not None:
         figures.append((measured / "fig9_frf_alone_and_ball.png", ""))
-        statements += _measured(read_csv(measured / "ball_comparison.csv", ("mode",)))
+        statements += _measured(
+            read_csv(measured / "ball_comparison.csv", ("mode",)), run.record(measured), record
+        )
     return {
         "spring": _spring(record),
         "point": ", ".join(fmt(v * 1e3, ".0f") for v in record.get("point_m", []) or []),
@@ -135,8 +139,10 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     }
 
 
-def _measured(rows: list[Row]) -> list[str]:
-    """Statements from ``compare --ball-at``'s ``ball_comparison.csv`` (measured Fig. 9)."""
+def _measured(rows: list[Row], test: dict[str, Any], model: dict[str, Any]) -> list[str]:
+    """Statements from ``compare --ball-at``'s ``ball_comparison.csv`` (measured Fig. 9): the
+    new mode against the model's band of the small-amplitude inputs when the ball sat at the
+    same point in the test (``test``: its run.json) and in the model (``model``: compound's)."""
     ball = [r for r in rows if not r.get("frequency_alone_hz") and r.get("frequency_ball_hz")]
     shifts = [
         abs(number(r, "frequency_shift_percent"))
@@ -145,15 +151,37 @@ def _measured(rows: list[Row]) -> list[str]:
     ]
     if not ball:
         return ["measured (compare --ball-at): no mode of the ball on the strings identified."]
-    words = (
-        f"measured (compare --ball-at): a new mode at {number(ball[0], 'frequency_ball_hz'):.1f}"
-        f" Hz with the ball"
-    )
+    f_measured = number(ball[0], "frequency_ball_hz")
+    words = f"measured (compare --ball-at): a new mode at {f_measured:.1f} Hz with the ball"
+    support = str(test.get("support") or "free")
+    band = (model.get("ball_mode_band") or {}).get(support)
+    at, point = test.get("ball_at_m"), model.get("point_m")
+    if isinstance(band, dict) and isinstance(at, list) and isinstance(point, list):
+        low, high = (band.get("band_hz") or [math.nan, math.nan])[:2]
+        nominal = number(band, "nominal_hz")
+        if math.dist(at, point) <= _SAME_POINT_M:
+            inside = "inside" if low <= f_measured <= high else "outside"
+            words += (
+                f", {inside} the band of the small-amplitude inputs ({fmt(low, '.0f')}–"
+                f"{fmt(high, '.0f')} Hz, {support}) and "
+                f"{100 * (f_measured / nominal - 1):+.0f} % from the model's {nominal:.1f} Hz"
+            )
+        else:
+            words += (
+                f" (not held against the model's band: the ball was at x, y = "
+                f"{at[0] * 1e3:.0f}, {at[1] * 1e3:.0f} mm in the test and "
+                f"{point[0] * 1e3:.0f}, {point[1] * 1e3:.0f} mm in the model)"
+            )
     if shifts:
         words += (
             f"; the {len(shifts)} racket modes paired by MAC move by {max(shifts):.1f} % at most"
         )
     return [words + "."]
+
+
+_SAME_POINT_M = 0.005
+"""A measured ball mode is held against the model's band when the test's ball sat within this
+distance of the model's, m."""
 
 
 def _papers_racket(record: dict[str, Any]) -> bool:
