@@ -22,6 +22,7 @@ from racketdyn.racket_modal.shapes import (
     BALL_RIGID_SHARE,
     classify_modes,
     naming_evidence,
+    outline_rigid_share,
     rigid_share,
 )
 
@@ -179,7 +180,7 @@ def name_if_racket(
             "outline the points fit; give --racket to name them on your racket's head"
         )
     if ball_at is None:
-        return named, sentence + _looks_like_a_ball(named.model, racket)
+        return named, sentence + _looks_like_a_ball(named.model, racket, racket_given)
     names = named.model.names
     if BALL_MODE_NAME in names:
         k = names.index(BALL_MODE_NAME)
@@ -192,8 +193,9 @@ def name_if_racket(
     best = float(np.nanmax(share)) if np.any(np.isfinite(share)) else float("nan")
     return named, (
         f"{sentence}; no mode of the ball on the strings found: no mode's frame shape is more "
-        f"than {BALL_RIGID_SHARE:.0%} a rigid-body motion (largest {best:.0%}; widen --band or "
-        "measure more frame points)"
+        f"than {BALL_RIGID_SHARE:.0%} a rigid-body motion (largest {best:.0%}; "
+        + ("" if racket_given else "give --racket FILE for your racket's head, ")
+        + "widen --band or measure more frame points)"
     )
 
 
@@ -202,19 +204,26 @@ _SWING_ON_HAND_HZ = 40.0
 racket's pitch and heave modes lie at ≈ 3–30 Hz), not a ball on the strings (≈ 80–110 Hz)."""
 
 
-def _looks_like_a_ball(model: ModalModel, racket: Racket) -> str:
+def _looks_like_a_ball(model: ModalModel, racket: Racket, racket_given: bool = True) -> str:
     """A clause for a mode whose frame moves nearly as a rigid body when no ball was declared.
 
     No elastic mode of a bare racket can (mass orthogonality to the rigid-body modes); a ball
     or a mass on the strings makes one (section 3.2).  Named as the racket's mode all the same,
-    it pushes every bending mode above it one node too far, so the user is told.
+    it pushes every bending mode above it one node too far, so the user is told.  Without
+    ``--racket`` the head is the built-in racket's, which the points may fit only loosely
+    (a junior's racket: string points near the throat taken for frame points), so the points'
+    outline is read too (:func:`~racketdyn.racket_modal.shapes.outline_rigid_share`).
     """
-    share = np.where(model.frequency >= _SWING_ON_HAND_HZ, rigid_share(model, racket.head), np.nan)
+    share = rigid_share(model, racket.head)
+    if not racket_given:
+        share = np.fmax(share, outline_rigid_share(model))
+    share = np.where(model.frequency >= _SWING_ON_HAND_HZ, share, np.nan)
     if not np.any(np.isfinite(share)) or float(np.nanmax(share)) <= BALL_RIGID_SHARE:
         return ""
     k = int(np.nanargmax(share))
+    give = "--ball-at x,y" if racket_given else "--ball-at x,y and --racket FILE"
     return (
         f"; but the mode at {model.frequency[k]:.1f} Hz moves the frame almost as a rigid body "
         f"({share[k]:.0%}), as a ball or a mass on the strings makes: if one was on, give "
-        "--ball-at x,y to name it (its name here and the bending modes' above it are then off)"
+        f"{give} to name it (its name here and the bending modes' above it are then off)"
     )

@@ -50,6 +50,7 @@ __all__ = [
     "ball_mode_index",
     "classify_modes",
     "naming_evidence",
+    "outline_rigid_share",
     "rigid_share",
 ]
 
@@ -128,6 +129,37 @@ def rigid_share(model: ModalModel, head: HeadEllipse) -> NDArray[np.float64]:
     if plane.shape[0] < 4 or np.linalg.matrix_rank(plane) < 3:
         return np.full(model.n_modes, np.nan)
     phi = model.mode_shapes[frame]
+    fitted = plane @ np.linalg.lstsq(plane, phi, rcond=None)[0]
+    total = np.sum(phi**2, axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.asarray(np.sum(fitted**2, axis=0) / total, dtype=float)
+
+
+def outline_rigid_share(model: ModalModel) -> NDArray[np.float64]:
+    """Share of each mode's shape on the points' outline that a plane ``a + b x + c y`` explains.
+
+    :func:`rigid_share` without a head: the frame points are the vertices of the convex hull
+    of the face points (x, y) — the hoop and the handle's end, never a string point, whatever
+    the racket — so a racket measured without its head outline (``identify`` without
+    ``--racket``) can still show the nearly rigid frame of a ball on the strings.  NaN when
+    the hull has fewer than four vertices.
+
+    Parameters
+    ----------
+    model : ModalModel
+        Shapes at face points (x, y), m.
+    """
+    from scipy.spatial import ConvexHull, QhullError
+
+    points = np.asarray(model.locations, dtype=float)[:, :2]
+    try:
+        vertices = ConvexHull(points).vertices
+    except (QhullError, ValueError):  # fewer than three points, or all on a line
+        return np.full(model.n_modes, np.nan)
+    plane = np.column_stack([np.ones(vertices.size), points[vertices]])
+    if plane.shape[0] < 4:
+        return np.full(model.n_modes, np.nan)
+    phi = model.mode_shapes[vertices]
     fitted = plane @ np.linalg.lstsq(plane, phi, rcond=None)[0]
     total = np.sum(phi**2, axis=0)
     with np.errstate(invalid="ignore", divide="ignore"):
