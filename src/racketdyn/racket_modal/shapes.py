@@ -125,10 +125,16 @@ def rigid_share(model: ModalModel, head: HeadEllipse) -> NDArray[np.float64]:
         The string bed, to tell string points from frame points.
     """
     frame = head.normalised_radius(model.locations) >= 0.95
-    plane = np.column_stack([np.ones(int(frame.sum())), model.locations[frame]])
+    return _plane_share(model, np.flatnonzero(frame))
+
+
+def _plane_share(model: ModalModel, rows: NDArray[np.intp]) -> NDArray[np.float64]:
+    """Share of each mode's shape at the points ``rows`` that a plane a + b x + c y explains;
+    NaN when those points cannot fix a plane (fewer than four, or all on one line)."""
+    plane = np.column_stack([np.ones(rows.size), model.locations[rows, :2]])
     if plane.shape[0] < 4 or np.linalg.matrix_rank(plane) < 3:
         return np.full(model.n_modes, np.nan)
-    phi = model.mode_shapes[frame]
+    phi = model.mode_shapes[rows]
     fitted = plane @ np.linalg.lstsq(plane, phi, rcond=None)[0]
     total = np.sum(phi**2, axis=0)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -156,14 +162,7 @@ def outline_rigid_share(model: ModalModel) -> NDArray[np.float64]:
         vertices = ConvexHull(points).vertices
     except (QhullError, ValueError):  # fewer than three points, or all on a line
         return np.full(model.n_modes, np.nan)
-    plane = np.column_stack([np.ones(vertices.size), points[vertices]])
-    if plane.shape[0] < 4:
-        return np.full(model.n_modes, np.nan)
-    phi = model.mode_shapes[vertices]
-    fitted = plane @ np.linalg.lstsq(plane, phi, rcond=None)[0]
-    total = np.sum(phi**2, axis=0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.asarray(np.sum(fitted**2, axis=0) / total, dtype=float)
+    return _plane_share(model, np.asarray(vertices, dtype=np.intp))
 
 
 def ball_mode_index(model: ModalModel, head: HeadEllipse) -> int:
