@@ -332,3 +332,16 @@ def test_allow_implausible_on_the_command_line(
     assert main([*argv, "--allow-implausible"]) == 0
     assert main([*_predict(tmp_path, "--ball-mass", "45"), "--allow-implausible"]) == 2
     assert "did you give grams" in capsys.readouterr().err
+
+
+def test_a_value_at_a_printed_end_of_a_range_is_taken() -> None:
+    """New-user trial (2026-11-26, second session): ``tension_n = 147`` (15 kg) was refused
+    with "a string is strung at 147–343 N (15–35 kg)": the range starts at 15 × 9.80665 =
+    147.0998 N and prints as 147.  A value at an end as printed (3 significant figures) is
+    taken; one beyond it still refused."""
+    assert check("tension_n", 147.0, "[strings].tension_n") == 147.0
+    assert check("tension_n", 343.0, "[strings].tension_n") == 343.0
+    with pytest.raises(InputError, match="147–343 N"):
+        check("tension_n", 146.0, "[strings].tension_n")
+    with pytest.raises(InputError, match="up to 75 m/s"):
+        check("ball_speed_mps", 75.6, "--speed")

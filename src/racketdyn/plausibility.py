@@ -131,6 +131,11 @@ class Range:
         return found
 
 
+def _shown(number: float) -> float:
+    """``number`` to the 3 significant figures the messages print it with."""
+    return float(f"{number:.3g}")
+
+
 def _g(number: float) -> str:
     """A number to 3 significant figures, without float noise (5000, not 5e+03)."""
     if 1e3 <= abs(number) < 1e6:
@@ -395,6 +400,8 @@ def check(
     number = float(value)
     if not math.isfinite(number) or spec.low <= number <= spec.high:
         return value
+    if _shown(spec.low) <= _shown(number) <= _shown(spec.high):
+        return value  # at an end of the range as the message prints it (147 N for 15 kgf)
     given = f"{name} {_g(number)}" if name.startswith("-") else f"{name} = {_g(number)}"
     message = f"{given}: {spec.text()}"
     slips = spec.likely_slips(number)
