@@ -107,3 +107,31 @@ def test_hammer_contact_on_the_strings() -> None:
     free = string_contact_time(racket, racket.head.grid(7), "free")
     pinned = string_contact_time(racket, racket.head.grid(7), "pinned")
     np.testing.assert_allclose(pinned, free, rtol=0.02)
+
+
+def test_an_overload_is_found_without_the_hammers_range(free_rig) -> None:
+    """New-user trial (2026-11-26, second session): ``rig --overloads 0.02`` put 17 clipped
+    hits in a test and ``frf`` (no ``--force-range``) rejected 7: a clipped frame pulse
+    (0.4 ms, two samples at 5 kHz) has no three-sample flat top.  Every clipped hit stops at
+    the converter's one rail, so averages sharing the set's largest |force| (to 1e-6) are
+    overloads whatever their pulse; a test without overloads loses none."""
+    locations, nodes = hammer_points(free_rig.racket, n_frame=6, n_strings=8)
+    common = {"double_hit_probability": 0.0, "seed": 9}
+    records = simulate_hammer_test(
+        free_rig, locations, nodes, tuple(locations[3]), nodes[3], overload_probability=0.1,
+        **common,
+    )  # fmt: skip
+    truth = np.array(records.metadata["overload"])
+    assert truth.sum() >= 2
+    estimate = estimate_frfs(records)
+    n = records.force[0].shape[0]
+    found = np.array(
+        [
+            ["force overload" in c.reasons for c in estimate.checks[i * n : (i + 1) * n]]
+            for i in range(len(nodes))
+        ]
+    )
+    np.testing.assert_array_equal(found, truth)
+    at = (tuple(locations[3]), nodes[3])
+    clean = simulate_hammer_test(free_rig, locations, nodes, *at, **common)
+    assert all(c.accepted for c in estimate_frfs(clean).checks)

@@ -39,6 +39,7 @@ from racketdyn.measurement.quality import (
     check_average,
     check_point_starts,
     force_baseline_and_noise,
+    rail_level,
 )
 from racketdyn.measurement.records import (
     ANALYSER_BANDWIDTH_FACTOR,
@@ -145,7 +146,7 @@ def estimate_frfs(
         require_positive("force window", force_window_s)
     if exponential_window_s is not None:
         require_positive("exponential window time constant", exponential_window_s)
-    settings = quality or QualitySettings()
+    settings = rail_level(records.force, quality or QualitySettings())
     dt = records.sampling_interval_s
     time = records.time
     pretrigger = records.pretrigger_samples

@@ -9,7 +9,10 @@ Checks (each named in the reasons it gives):
 ``force overload`` / ``response overload``
     Clipping: three samples or more at the channel's extreme value (within 1e-6 of it), the
     flat top an overloaded amplifier or converter leaves.  A known overload level (the
-    hammer's range) also rejects any force reaching it.
+    hammer's range) also rejects any force reaching it; without one, the force's largest
+    magnitude shared by two averages or more (within 1e-6: a converter's rail, which no two
+    hits reach by chance) is taken as that level (:func:`rail_level`), so that a clipped
+    frame pulse, too short for a three-sample flat top, is rejected too.
 ``double hit``
     A second force pulse: more than one peak standing out of the force record by more than the
     detection level (``max(5 % of the peak, 6 × noise rms)``), whether the second pulse follows
@@ -30,6 +33,7 @@ starts at the first sample above the detection level; windows count from there.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -42,6 +46,7 @@ __all__ = [
     "check_average",
     "check_point_starts",
     "force_baseline_and_noise",
+    "rail_level",
 ]
 
 REASONS = {
@@ -164,6 +169,37 @@ def check_average(
     if above[0] == 0 or above[-1] >= force.size - 1:  # cut by the record's start or end
         reasons.append("trigger")
     return AverageCheck(node, average, not reasons, tuple(reasons), peak, float(start_time))
+
+
+def rail_level(force: Sequence[NDArray[np.float64]], settings: QualitySettings) -> QualitySettings:
+    """The settings with the force channel's rail as its overload level, when the records show
+    one and the hammer's range is not given.
+
+    A clipped hit stops at the converter's one rail: the largest magnitude of the force over
+    every average of every point, shared (within 1e-6 of it) by two averages or more.  No two
+    unclipped hits peak at the same value to that precision.  The new-user trial of
+    2026-11-26 (second session) found 10 of 17 clipped frame pulses (0.4 ms: two samples)
+    accepted for want of a three-sample flat top.
+
+    Parameters
+    ----------
+    force : sequence of ndarray (n_averages, n_samples)
+        The force records of each point, N.
+    settings : QualitySettings
+        The checks' settings; returned as they are when ``overload_level_n`` is set.
+    """
+    if settings.overload_level_n is not None:
+        return settings
+    peaks = np.concatenate(
+        [np.max(np.abs(np.nan_to_num(f)), axis=-1).ravel() for f in force if np.size(f)]
+        or [np.zeros(0)]
+    )
+    if peaks.size < 2:
+        return settings
+    top = float(peaks.max())
+    if top <= 0 or np.count_nonzero(peaks >= top * (1.0 - 1e-6)) < 2:
+        return settings
+    return replace(settings, overload_level_n=top * (1.0 - 1e-6))
 
 
 def check_point_starts(checks: list[AverageCheck], settings: QualitySettings) -> list[AverageCheck]:
