@@ -612,3 +612,29 @@ def test_the_ball_section_says_what_the_papers_103_hz_asks_of_the_inputs(
     )
     cycles = record["neck_hand_over"]["free"]["ball_cycles"]
     assert f"the 2-node mode takes over after {cycles:.1f} ball cycles" in text
+
+
+def test_compare_prints_what_the_hand_changes(
+    run_dir: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """New-user trial (2026-11-26, second session): ``compare`` printed the two mode tables and
+    nothing of the comparison it is named for (its page quotes "the 2-node bending mode drops
+    from 120.0 Hz to 113.2 Hz"); it now prints each MAC pair's shift, damping ratio and MAC,
+    and the first mode's nodes, as comparison.csv and run.json hold them."""
+    frfs = [str(run_dir / "frf_free" / "frfs.uff"), str(run_dir / "frf_hand" / "frfs.uff")]
+    out = tmp_path / "compare"
+    capsys.readouterr()
+    assert main(["compare", *frfs, "--band", "40,850", "--out", str(out)]) == 0
+    printed = " ".join(capsys.readouterr().out.split())
+    with (out / "comparison.csv").open(encoding="utf-8") as handle:
+        rows = list(csv.DictReader(handle))
+    first = next(r for r in rows if r["mode"] == "2-node bending")
+    shift = float(first["frequency_shift_percent"])
+    assert (
+        f"2-node bending: {float(first['frequency_free_hz']):.1f} → "
+        f"{float(first['frequency_hand_hz']):.1f} Hz ({shift:+.1f} %), damping "
+        f"×{float(first['damping_ratio_hand_over_free']):.1f}, MAC {float(first['mac']):.3f}"
+    ) in printed
+    nodes = json.loads((out / "run.json").read_text(encoding="utf-8"))["first_mode_nodes_m"]
+    free = ", ".join(f"{x * 1e3:.0f}" for x in nodes["free"])
+    assert f"first mode's nodes on the axis: free {free} mm" in printed

@@ -215,6 +215,21 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
     assert result.hand is not None
     print_modes(console, result.free)
     print_modes(console, result.hand)
+    comparison = result.comparison
+    if comparison is not None:
+        for row in comparison.rows:
+            console.print(
+                f"{row['mode']}: {row['frequency_free_hz']:.1f} → {row['frequency_hand_hz']:.1f} "
+                f"Hz ({row['frequency_shift_percent']:+.1f} %), damping "
+                f"×{row['damping_ratio_hand_over_free']:.1f}, MAC {row['mac']:.3f}"
+            )
+        nodes = "; ".join(
+            f"{label} {', '.join(f'{x * 1e3:.0f}' for x in found)} mm"
+            for label, found in (("free", comparison.nodes_free), ("hand", comparison.nodes_hand))
+            if len(found)
+        )
+        if nodes:
+            console.print(f"first mode's nodes on the axis: {nodes}")
     opt.print_written(console, result.written)
     return 0
 
