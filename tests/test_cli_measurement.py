@@ -95,3 +95,29 @@ def test_frf_needs_no_geometry_and_says_why_most_averages_were_rejected(
     assert read_frf_uff(tmp_path / "o" / "frfs.uff").nodes == (2,)
     assert main(["contact", str(data), "--out", str(tmp_path / "c")]) == 2
     assert "--geometry" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("option", "value", "words"),
+    [
+        ("--exp-window", "100", "did you give milliseconds (100 ms = 0.1 s)"),
+        ("--force-window", "5", "did you give milliseconds (5 ms = 0.005 s)"),
+    ],
+)
+def test_a_window_in_milliseconds_is_one_line(
+    tests_file: Path,
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    option: str,
+    value: str,
+    words: str,
+) -> None:
+    """New-user trial (2026-11-26, second session): ``frf --exp-window 100`` (meant 100 ms)
+    ran: a 100 s window on a record of a fraction of a second does nothing, and the heavily
+    damped mode of a ball on the strings is then lost.  A window over ten times the record is
+    refused, naming the option and the slip."""
+    assert main(["frf", str(tests_file), option, value, "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1
+    assert f"{option} {value}" in err
+    assert words in err

@@ -177,6 +177,16 @@ SLIPS = {
         lambda tmp: ["compound", "--preload", "500", "--no-figures", "--out", str(tmp / "out")],
         ("--preload 500", "up to 50 N", "did you give grams (gf) (500 g = 4.9 N)"),
     ),
+    # trial of 2026-11-26, second session: offsets in mm blamed "impact point 1", a ball's
+    # point in cm said "give points on the strings", and one point was numbered "--point 1"
+    "twist-offsets-in-mm": (
+        lambda tmp: ["twist", "--offsets=-50,0,50", "--no-figures", "--out", str(tmp / "out")],
+        ("--offsets", "y=-50", "did you give millimetres"),
+    ),
+    "compound-point-in-cm": (
+        lambda tmp: ["compound", "--point=51,0", "--no-figures", "--out", str(tmp / "out")],
+        ("--point at x=51", "did you give centimetres"),
+    ),
     "oblique-point-in-mm": (
         lambda tmp: ["oblique", "--point=500,0", "--no-figures", "--out", str(tmp / "out")],
         ("x=500", "did you give millimetres"),

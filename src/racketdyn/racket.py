@@ -153,17 +153,28 @@ class HeadEllipse:
         outside = np.flatnonzero(~self.contains(xy))
         if outside.size:
             i = int(outside[0])
-            # the points in millimetres (520 for 0.52 m) land on the bed read as mm: say so
-            slip = (
-                "; did you give millimetres? (give metres)"
-                if bool(np.all(self.contains(xy[outside] * 1e-3)))
-                else "; give points on the strings"
+            # points in millimetres (520 for 0.52 m) or centimetres (52) land on the bed read
+            # so: say which
+            slip = next(
+                (
+                    f"; did you give {unit}? (give metres)"
+                    for unit, scale in (("millimetres", 1e-3), ("centimetres", 1e-2))
+                    if bool(np.all(self.contains(xy[outside] * scale)))
+                ),
+                "; give points on the strings",
             )
+            which = f"{name} {i + 1}" if xy.shape[0] > 1 else name
             raise InputError(
-                f"{name} {i + 1} at x={xy[i, 0]:.4f} m, y={xy[i, 1]:.4f} m lies outside the string "
+                f"{which} at x={_g4(xy[i, 0])} m, y={_g4(xy[i, 1])} m lies outside the string "
                 f"bed (ellipse centre x={self.centre_x_m:.4f} m, half-axes "
                 f"{self.half_length_m:.4f} × {self.half_width_m:.4f} m){slip}"
             )
+
+
+def _g4(value: float) -> str:
+    """A coordinate for a message: 4 decimals in metres, as typed when larger (510, not
+    510.0000)."""
+    return f"{value:.4f}" if abs(value) < 10 else f"{value:g}"
 
 
 @dataclass(frozen=True)

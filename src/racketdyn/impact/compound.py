@@ -385,7 +385,7 @@ class CompoundSystem:
         Returns
         -------
         frequency : ndarray (n,)
-            The oscillating modes' frequencies |λ|/2π, Hz.
+            The oscillating modes' frequencies abs(λ)/2π, Hz.
         amplitude : ndarray (n,)
             Their amplitudes at ``start_s``, in the response's unit.
         parts : ndarray (n, n_times)

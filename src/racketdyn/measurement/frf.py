@@ -50,6 +50,10 @@ from racketdyn.measurement.records import (
 
 __all__ = ["FrfEstimate", "estimate_frfs"]
 
+_WINDOW_LIMIT = 10.0
+"""A force or exponential window longer than this many records does nothing: a unit slip
+(milliseconds given as seconds; new-user trial of 2026-11-26, second session)."""
+
 log = logging.getLogger(__name__)
 
 Estimator = Literal["H1", "H2"]
@@ -149,6 +153,17 @@ def estimate_frfs(
     settings = rail_level(records.force, quality or QualitySettings())
     dt = records.sampling_interval_s
     time = records.time
+    record_s = float(time[-1] - time[0]) + dt
+    for option, window in (
+        ("--force-window", force_window_s),
+        ("--exp-window", exponential_window_s),
+    ):
+        if window is not None and window > _WINDOW_LIMIT * record_s:
+            raise InputError(
+                f"{option} {window:g}: a window is given in s, and {window:g} s is over "
+                f"{_WINDOW_LIMIT:g} times the record ({record_s:.3g} s); did you give milliseconds "
+                f"({window:g} ms = {window * 1e-3:g} s)?"
+            )
     pretrigger = records.pretrigger_samples
     exponential = (
         np.ones_like(time) if exponential_window_s is None else np.exp(-time / exponential_window_s)

@@ -145,7 +145,16 @@ def run_twist(
     if len(set(checked)) != len(checked):
         raise InputError(f"--support: name each support once (got {','.join(supports)})")
     used = setup(racket, modal, rigid)
-    used.racket.head.check_inside(np.column_stack([np.full(len(offsets), x), offsets]))
+    head = used.racket.head
+    wide = [y for y in offsets if abs(y - head.centre_y_m) > head.half_width_m]
+    if wide and all(abs(y) >= 1.0 and abs(y * 1e-3) <= head.half_width_m for y in wide):
+        raise InputError(
+            f"--offsets: y={wide[0]:g} m is wider than the string bed (half-width "
+            f"{head.half_width_m:.4f} m); did you give millimetres? (give metres)"
+        )
+    head.check_inside(
+        np.column_stack([np.full(len(offsets), x), offsets]), "impact point (--x, --offsets)"
+    )
     the_hand, hand_defaults = hand_or_default(checked, hand)
     the_ball, ball_defaults = ball_or_default(ball)
     defaults_used = [*used.defaults, *hand_defaults, *ball_defaults, *defaults]
