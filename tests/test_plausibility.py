@@ -4,6 +4,7 @@ refused in one line naming the likely slip; an unusual object goes on when the u
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -62,6 +63,11 @@ def _predict(tmp_path: Path, *extra: str) -> list[str]:
 
 
 # slip -> (arguments given tmp_path, words the one line must hold)
+def _step(*argv: str, figures: bool = True) -> Callable[[Path], list[str]]:
+    """A command line into ``tmp/out`` (without figures where the command draws any)."""
+    return lambda tmp: [*argv, *(["--no-figures"] if figures else []), "--out", str(tmp / "out")]
+
+
 SLIPS = {
     "ball-law-csv-in-mm": (
         lambda tmp: _predict(tmp, "--ball-law", str(_file(tmp, "ball.csv", MM_CSV))),
@@ -174,18 +180,26 @@ SLIPS = {
     ),
     # trial of 2026-11-26, second session: compound took a 5000 N preload (a 169 kN/m spring)
     "compound-preload-in-grams": (
-        lambda tmp: ["compound", "--preload", "500", "--no-figures", "--out", str(tmp / "out")],
+        _step("compound", "--preload", "500"),
         ("--preload 500", "up to 50 N", "did you give grams (gf) (500 g = 4.9 N)"),
     ),
     # trial of 2026-11-26, second session: offsets in mm blamed "impact point 1", a ball's
     # point in cm said "give points on the strings", and one point was numbered "--point 1"
     "twist-offsets-in-mm": (
-        lambda tmp: ["twist", "--offsets=-50,0,50", "--no-figures", "--out", str(tmp / "out")],
+        _step("twist", "--offsets=-50,0,50"),
         ("--offsets", "y=-50", "did you give millimetres"),
     ),
     "compound-point-in-cm": (
-        lambda tmp: ["compound", "--point=51,0", "--no-figures", "--out", str(tmp / "out")],
+        _step("compound", "--point=51,0"),
         ("--point at x=51", "did you give centimetres"),
+    ),
+    "swing-torque-in-n-mm": (
+        _step("swing", "--torque", "56900"),
+        ("--torque 56900", "did you give N·mm (56900 N·mm = 56.9 N·m)"),
+    ),
+    "identify-band-in-khz": (
+        _step("identify", "nothing.uff", "--band", "0.04,0.85", figures=False),
+        ("--band 0.04,0.85", "did you give kHz (0.04–0.85 kHz = 40–850 Hz)"),
     ),
     "oblique-point-in-mm": (
         lambda tmp: ["oblique", "--point=500,0", "--no-figures", "--out", str(tmp / "out")],

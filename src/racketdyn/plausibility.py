@@ -155,6 +155,7 @@ MPH = Slip("mph", "mph", 0.44704)
 POUND_FORCE = Slip("pounds", "lb", 4.4482216152605)
 KILOGRAM_FORCE = Slip("kilograms (kgf)", "kg", 9.80665)
 GRAM_FORCE = Slip("grams (gf)", "g", 9.80665e-3)
+NEWTON_MILLIMETRE = Slip("N·mm", "N·mm", 1e-3)
 KILONEWTON = Slip("kN", "kN", 1e3)
 GIGAPASCAL = Slip("GPa", "GPa", 1e9)
 MEGAPASCAL = Slip("MPa", "MPa", 1e6)
@@ -212,7 +213,9 @@ RANGES: dict[str, Range] = {
         "a racket turns", 15.0, 360.0, 0.0, 360.0, "°", (RADIAN,), None, "from rest to impact"
     ),
     # Shoulder torque: Kawazoe's forehand 56.9 N·m; elite serves model at ≈ 100–150 N·m.
-    "torque_nm": Range("a shoulder gives", 5.0, 250.0, 0.1, 5000.0, "N·m", (), None, "of torque"),
+    "torque_nm": Range(
+        "a shoulder gives", 5.0, 250.0, 0.1, 5000.0, "N·m", (NEWTON_MILLIMETRE,), None, "of torque"
+    ),
     # The arm behind the grip (impact.hand.Hand): Kawazoe's 1 kg at the handle; a whole adult
     # arm is ≈ 3.5 kg (Dempster).  0.2–6 kg spans children to heavy adults.
     "hand_arm_mass_kg": Range("an arm behind the grip weighs", 0.2, 6.0, 0.01, 100.0, "kg", _MASS),

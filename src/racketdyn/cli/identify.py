@@ -101,12 +101,25 @@ def add(commands: Any) -> None:
     p.set_defaults(handler=run_compare)
 
 
+_LOWEST_BAND_TOP_HZ = 10.0
+"""A band ending below this holds no mode of any racket or its hand (new-user trial of
+2026-11-26, second session: ``--band 0.04,0.85`` in kHz said only "no frequency line")."""
+
+
 def _options(args: argparse.Namespace) -> dict[str, Any]:
     band = None if args.band is None else opt.parse_speeds("--band", args.band)
     if band is not None and (len(band) != 2 or band[0] >= band[1]):
         from racketdyn.errors import InputError
 
         raise InputError(f"--band takes two frequencies low,high in Hz (got {args.band!r})")
+    if band is not None and band[1] < _LOWEST_BAND_TOP_HZ:
+        from racketdyn.errors import InputError
+
+        raise InputError(
+            f"--band {args.band}: a racket's modes lie at 80 Hz and above, and the band ends "
+            f"at {band[1]:g} Hz; did you give kHz ({band[0]:g}–{band[1]:g} kHz = "
+            f"{band[0] * 1e3:g}–{band[1] * 1e3:g} Hz)? (give Hz)"
+        )
     return {
         "racket": args.racket,
         "geometry": args.geometry,
