@@ -55,7 +55,7 @@ def run_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     d = tmp_path_factory.mktemp("demo")
     rig = ["--averages", "3", "--double-hits", "0.05", "--overloads", "0.05"]
     rig += ["--response-snr", "50", "--force-snr", "60"]  # the demo's mild noise
-    frf = ["--exp-window", "0.1", "--force-range", "200"]
+    frf = ["--exp-window", "0.1", "--force-window", "0.01", "--force-range", "200"]
     tests = [f"{d}/rig/hammer_free.uff", f"{d}/rig/hammer_hand.uff"]
     frfs = [f"{d}/frf_free/frfs.uff", f"{d}/frf_hand/frfs.uff"]
     measured = d / "measured.csv"  # a ball-cannon test of the built-in racket (made up)

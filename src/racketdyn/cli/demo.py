@@ -62,7 +62,7 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     modal = out / "compare" / "modal_model_free.json"
     faults = ["--double-hits", "0.03", "--overloads", "0.01"]
     noise = ["--response-snr", "50", "--force-snr", "60"]
-    frf_options = ["--exp-window", "0.1", "--force-range", "200"]
+    frf_options = ["--exp-window", "0.1", "--force-window", "0.01", "--force-range", "200"]
     identified = [*r, "--modal", str(modal)]
     result: list[tuple[str, list[str], Callable[[], object]]] = []
 

@@ -102,6 +102,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
             f"[yellow]the points differ in z (3-D): frfs.uff carries no coordinates; give "
             f"--geometry {three_d} to identify for the (x, y, z) points[/]"
         )
+    hint = estimate.force_noise_hint()
+    if hint:
+        console.print(f"[yellow]{hint}[/]")
     if estimate.rejected_points:
         nodes = ", ".join(str(n) for n in estimate.rejected_points)
         console.print(f"[yellow]every average rejected at node(s) {nodes}: no FRF there[/]")

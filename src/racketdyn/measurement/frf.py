@@ -48,7 +48,23 @@ from racketdyn.measurement.records import (
     HammerRecords,
 )
 
-__all__ = ["FrfEstimate", "estimate_frfs"]
+__all__ = [
+    "FORCE_NOISE_RATIO",
+    "FORCE_NOISE_SHARE",
+    "SUGGESTED_FORCE_WINDOW_S",
+    "FrfEstimate",
+    "estimate_frfs",
+]
+
+FORCE_NOISE_RATIO = 0.1
+"""The force's noise over its autospectrum above which a line counts as noisy (H1 low by
+1/(1 + 0.1), 9 %)."""
+FORCE_NOISE_SHARE = 0.05
+"""The share of the band of noisy lines at the median point above which ``frf`` names
+``--force-window``."""
+
+SUGGESTED_FORCE_WINDOW_S = 0.01
+"""The force window ``frf`` suggests, s: over twice the longest string pulse (≈ 4 ms)."""
 
 _WINDOW_LIMIT = 10.0
 """A force or exponential window longer than this many records does nothing: a unit slip
@@ -71,11 +87,41 @@ class FrfEstimate:
         One per average of every point, accepted or not, with the reasons.
     rejected_points : tuple of int
         Nodes whose every average was rejected (left out of ``frfs``).
+    force_noise_share : tuple of float
+        Per FRF: the share of its lines up to the bandwidth where the force's noise (its
+        pre-trigger rms over the windowed record) is over :data:`FORCE_NOISE_RATIO` of the
+        force's autospectrum, biasing H1 low by 9 % or more there.
+    force_noise_share_windowed : tuple of float
+        The same with a force window of :data:`SUGGESTED_FORCE_WINDOW_S` (without a force
+        window: what one would leave; with one, equal to ``force_noise_share``).  The string
+        pulses' spectra fall off above ≈ 1.5/T, so part of the band is noisy with any window.
+    force_window_s : float or None
+        The force window used, s.
     """
 
     frfs: FrfSet | None
     checks: tuple[AverageCheck, ...]
     rejected_points: tuple[int, ...]
+    force_noise_share: tuple[float, ...] = ()
+    force_noise_share_windowed: tuple[float, ...] = ()
+    force_window_s: float | None = None
+
+    def force_noise_hint(self) -> str:
+        """A line naming ``--force-window`` when no force window was given and one would take
+        the force's noise off more than :data:`FORCE_NOISE_SHARE` of the band at the median
+        point; empty otherwise."""
+        if self.force_window_s is not None or not self.force_noise_share:
+            return ""
+        now = float(np.median(self.force_noise_share))
+        windowed = float(np.median(self.force_noise_share_windowed))
+        if now - windowed <= FORCE_NOISE_SHARE:
+            return ""
+        return (
+            f"the force's noise after the pulse is over {FORCE_NOISE_RATIO:.0%} of its spectrum "
+            f"on {now:.0%} of the band at the median point (H1 reads low there; "
+            f"{windowed:.0%} with a force window): give --force-window "
+            f"{SUGGESTED_FORCE_WINDOW_S:g} (s, longer than the longest pulse)"
+        )
 
     def write_quality_csv(self, path: Path) -> None:
         """``node, average, accepted, reasons, peak_force_n``: every average and its verdict."""
@@ -171,6 +217,11 @@ def estimate_frfs(
 
     checks: list[AverageCheck] = []
     values, coherence, counts, kept = [], [], [], []
+    noise_shares: list[float] = []
+    windowed_shares: list[float] = []
+    bandwidth_hz = 1.0 / (ANALYSER_BANDWIDTH_FACTOR * dt)
+    lines = np.fft.rfftfreq(records.n_samples, dt)
+    in_band = (lines > 0) & (lines <= bandwidth_hz)
     for index, node in enumerate(records.nodes):
         force, response = records.force[index], records.response[index]
         verdicts = check_point_starts(
@@ -189,6 +240,8 @@ def estimate_frfs(
             continue
         f = force[accepted].copy()
         r = response[accepted].copy()
+        noise_ff = 0.0  # the force noise's autospectrum, flat: σ² Σ w(t)² dt² per average
+        noise_windowed = 0.0  # the same within the suggested force window
         for row_f, row_r, k in zip(f, r, accepted, strict=True):
             # the quiet samples before the pulse give the offsets: the pre-trigger when the
             # pulse starts on the trigger, else those before the detected pulse (a pre-trigger
@@ -196,9 +249,15 @@ def estimate_frfs(
             start = round(float(verdicts[k].pulse_start_s - time[0]) / dt)
             on_trigger = abs(verdicts[k].pulse_start_s) <= settings.trigger_tolerance_s
             quiet = pretrigger if on_trigger and pretrigger > 0 else max(start - 2, 0)
-            baseline, _ = force_baseline_and_noise(row_f, quiet)
+            baseline, noise = force_baseline_and_noise(row_f, quiet)
+            kept_window = exponential**2
             if force_window_s is not None:
-                row_f[time > verdicts[k].pulse_start_s + force_window_s] = baseline
+                cut = time > verdicts[k].pulse_start_s + force_window_s
+                row_f[cut] = baseline
+                kept_window = np.where(cut, 0.0, kept_window)
+            noise_ff += noise**2 * float(np.sum(kept_window)) * dt**2
+            inside = time <= verdicts[k].pulse_start_s + SUGGESTED_FORCE_WINDOW_S
+            noise_windowed += noise**2 * float(np.sum(kept_window[inside])) * dt**2
             row_f -= baseline
             row_r -= np.mean(row_r[: max(quiet, 1)])
         spectrum_f = np.fft.rfft(f * exponential, axis=1) * dt
@@ -210,13 +269,16 @@ def estimate_frfs(
             h = s_fr / s_ff if estimator == "H1" else s_rr / np.conj(s_fr)
             gamma2 = np.abs(s_fr) ** 2 / (s_ff * s_rr)
         values.append(h)
+        for share, level in ((noise_shares, noise_ff), (windowed_shares, noise_windowed)):
+            noisy = level > FORCE_NOISE_RATIO * s_ff[in_band]
+            share.append(float(np.mean(noisy)) if noisy.size else 0.0)
         coherence.append(np.nan_to_num(gamma2, nan=0.0))
         counts.append(len(accepted))
         kept.append(index)
 
     rejected = tuple(records.nodes[i] for i in range(records.n_points) if i not in kept)
     if not kept:
-        return FrfEstimate(None, tuple(checks), rejected)
+        return FrfEstimate(None, tuple(checks), rejected, (), (), force_window_s)
     frequency = np.asarray(np.fft.rfftfreq(records.n_samples, dt), dtype=float)
     frfs = FrfSet(
         frequency=frequency,
@@ -233,7 +295,9 @@ def estimate_frfs(
         source=records.source,
         metadata={
             "force_window_s": force_window_s,
-            "bandwidth_hz": 1.0 / (ANALYSER_BANDWIDTH_FACTOR * dt),
+            "bandwidth_hz": bandwidth_hz,
         },
     ).with_positive_driving_point()
-    return FrfEstimate(frfs, tuple(checks), rejected)
+    return FrfEstimate(
+        frfs, tuple(checks), rejected, tuple(noise_shares), tuple(windowed_shares), force_window_s
+    )
