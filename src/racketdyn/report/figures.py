@@ -192,7 +192,8 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     ),
     "fig9_frf_alone_and_ball": (
         "Fig. 9",
-        "measured accelerance from the hammer point nearest the ball to the accelerometer, the "
+        "measured accelerance to the accelerometer from the hammer point nearest the ball "
+        "whose FRF the ball mode dominates at its frequency (its node in the title), the "
         "racket alone (left) and with the ball fixed on the strings (right, the racket alone "
         "dashed), identified modes dotted, the ball's labelled (racketdyn compare --ball-at)",
     ),
