@@ -1050,3 +1050,27 @@ def test_fig_9b_strikes_where_the_ball_mode_shows(tmp_path: Path) -> None:
     assert share[chosen] >= 0.9
     distance = np.hypot(*(points - at).T)
     assert all(share[i] < 0.9 for i in np.flatnonzero(distance < distance[chosen]))
+
+
+def test_compound_says_the_spring_is_the_centres_and_when_the_ball_overhangs_the_bed(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """New-user trial (2026-11-26, second session): ``compound --point=0.64,0`` on a racket whose
+    bed ends at 675 mm gave a ball mode with the spring of the bed's centre (12.92 kN/m, as at
+    the centre) and said nothing; at 0.66 the ball reached 18.5 mm past the bed.  The console
+    and run.json say the spring is the centre's away from the centre, and when the ball's edge
+    lies past the bed's."""
+    racket = tmp_path / "pro100.toml"
+    racket.write_text(TRIAL_RACKET, encoding="utf-8")
+    common = ["compound", "--racket", str(racket), "--support", "free", "--no-figures"]
+    said = {}
+    for name, point in (("centre", "0.51,0"), ("near", "0.62,0"), ("over", "0.66,0")):
+        capsys.readouterr()
+        assert main([*common, f"--point={point}", "--out", str(tmp_path / name)]) == 0
+        said[name] = " ".join(capsys.readouterr().out.split())
+        record = json.loads((tmp_path / name / "run.json").read_text(encoding="utf-8"))
+        assert record["ball_overhangs_bed"] is (name == "over")
+    assert "the bed's law at the centre" not in said["centre"]
+    assert "the bed's law at the centre of the face" in said["near"]
+    assert "reaches past the string bed" not in said["near"]
+    assert "reaches past the string bed" in said["over"]

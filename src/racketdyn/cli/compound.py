@@ -94,6 +94,19 @@ def run(args: argparse.Namespace, console: Console) -> int:
         f"{spring.preload_n:g} N: spring {spring.stiffness / 1e3:.2f} kN/m (tangent of F_GB), "
         f"ζ {spring.damping_ratio:.3f} (from e_BG) → {result.out}"
     )
+    if result.off_centre_m > _OFF_CENTRE_M:
+        console.print(
+            f"[yellow]the spring is the bed's law at the centre of the face, "
+            f"{result.off_centre_m * 1e3:.0f} mm from the ball (the bed is stiffer towards the "
+            "frame; the per-point law is not used here)"
+            + (
+                f"; the ball ({ball.diameter_m * 500:.1f} mm in radius) reaches past the string "
+                "bed's edge: it would rest on the frame"
+                if result.overhangs
+                else ""
+            )
+            + "[/]"
+        )
     for support in result.supports:
         modes, alone = result.modes[support], result.alone[support]
         table = Table(title=f"{support}: modes with the ball (and the racket alone)")
@@ -146,6 +159,11 @@ def run(args: argparse.Namespace, console: Console) -> int:
             )
     opt.print_written(console, result.written)
     return 0
+
+
+_OFF_CENTRE_M = 0.01
+"""Beyond this distance of the ball from the bed's centre the console says the spring is the
+centre's, m."""
 
 
 def _needs(bed: BedForFrequency, ball: Ball) -> str:

@@ -208,6 +208,10 @@ class CompoundResult(StepResult):
     paper_racket : bool
         Whether the racket is the paper's (:func:`is_papers_racket`): only then is the ball
         mode held against the paper's measured 103 Hz.
+    overhangs : bool
+        Whether the ball's edge reaches past the string bed's (it would rest on the frame).
+    off_centre_m : float
+        The ball's distance from the bed's centre, m (the spring is the centre's law).
     node_line : dict of str to float
         Per support: where the racket's 2-node mode (without the ball) crosses the long axis
         nearest the ball, x in m (NaN without a 2-node mode): a blow or a ball near it hardly
@@ -253,6 +257,8 @@ class CompoundResult(StepResult):
     paper_bed: dict[str, BedForFrequency] = field(default_factory=dict)
     paper_racket: bool = False
     node_line: dict[str, float] = field(default_factory=dict)
+    overhangs: bool = False
+    off_centre_m: float = 0.0
     contact_time: dict[str, list[float]] = field(default_factory=dict)
     model: ModalModel | None = None
     hand: Hand | None = None
@@ -384,6 +390,10 @@ def run_compound(
     )  # fmt: skip
     result.axis_x = np.linspace(0.0, the_racket.length_m, AXIS_POINTS)
     result.paper_racket = is_papers_racket(the_racket)
+    result.off_centre_m = math.dist(xy, (head.centre_x_m, head.centre_y_m))
+    angles = np.linspace(0.0, 2.0 * math.pi, 72, endpoint=False)
+    rim = np.column_stack([np.cos(angles), np.sin(angles)]) * the_ball.diameter_m / 2 + xy
+    result.overhangs = not bool(np.all(head.contains(rim)))
     extra = np.vstack([[strike, neck], np.column_stack([result.axis_x, np.zeros(AXIS_POINTS)])])
     approximate = predict(
         the_racket,
@@ -476,6 +486,8 @@ def run_compound(
             "the hammer's point",
         },
         "neck_point_m": list(neck),
+        "ball_overhangs_bed": result.overhangs,
+        "spring_law_at": "the centre of the face (contact.compound_law) wherever the ball sits",
         "neck_hand_over": result.hand_over,
         "two_node_node_line_m": result.node_line,
         "supports": checked,
