@@ -592,6 +592,25 @@ def test_a_failed_task_is_retried(
     assert_same_bits(serial_result, result)
 
 
+def test_a_failed_batch_reruns_only_its_unfinished_designs(
+    small_spec: SweepSpec,
+    serial_result: xr.Dataset,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Batches of two: design 2 ends (its part written where it ran), then design 3 fails;
+    the batch was split and both ran again, design 2 for nothing.  Now design 2 is taken
+    from its file and only design 3 is retried."""
+    monkeypatch.setattr(sweep_task, "predict", _fail_design_3(times=1))
+    counting = CountingExecutor()
+    result = run_sweep(small_spec, tmp_path, counting, figures=None, designs_per_task=2)
+    assert counting.submitted.count("design-00002") == 1
+    assert counting.submitted.count("design-00003") == 2
+    assert len(counting.submitted) == 7
+    assert result.attrs["n_failed"] == 0
+    assert_same_bits(serial_result, result)
+
+
 def test_a_task_that_always_fails_is_reported_and_the_rest_kept(
     small_spec: SweepSpec,
     serial_result: xr.Dataset,

@@ -327,6 +327,16 @@ class _Runner:
             self._finished_one()
         tally.longest_s = max(tally.longest_s, batch_s)
 
+    def _on_disk(self, design: Design) -> bool:
+        """Record a design whose part a worker wrote before its batch failed; whether it was."""
+        if _read_part(self.parts_dir / f"{design.task_id}.nc", self.spec, data=False) is None:
+            return False
+        self.tally.ran += 1
+        if self.assembly is not None:
+            self.assembly.add(design)
+        self._finished_one()
+        return True
+
     def _finished_one(self) -> None:
         self.tally.done += 1
         if self.progress is not None:
@@ -334,7 +344,12 @@ class _Runner:
 
     def _failed(self, job: _Job, error: BaseException) -> None:
         if len(job.designs) > 1:  # which design failed? each alone, the attempt unchanged
-            self.queue.extendleft(reversed(job.singles(job.alone)))
+            # a worker on this machine wrote each design of the batch as it ended: those on
+            # disk are done (recorded from their files), only the others run again
+            left = [d for d in job.designs if not (self.write_dir is not None and self._on_disk(d))]
+            self.queue.extendleft(
+                reversed(_Job(tuple(left), job.attempt, job.alone).singles(job.alone))
+            )
             return
         (design,) = job.designs
         if job.attempt <= self.retries:
