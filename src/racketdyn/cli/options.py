@@ -26,6 +26,7 @@ TRANSIENT_SUPPORTS = ("free", "pinned", "hand")  # racketdyn.impact.transient.TR
 ENGINES = ("auto", "compiled", "reference")  # racketdyn.impact.transient.ENGINES
 MODELS = ("approx", "transient", "both")  # racketdyn.workflows.predict.MODELS
 IMPACT_MODELS = ("approx", "transient")  # racketdyn.workflows.swing.IMPACT_MODELS
+STRING_BEDS = ("uniform", "local")  # racketdyn.impact.grid.STRING_BEDS
 DEFAULT_GRID = 9  # racketdyn.workflows.predict.DEFAULT_GRID
 SWING_GRID = 15  # racketdyn.workflows.swing.SWING_GRID
 MAX_GRID = 400  # racketdyn.workflows.predict.MAX_GRID
@@ -113,6 +114,18 @@ def add_hand(parser: argparse.ArgumentParser) -> None:
         type=float,
         metavar="KG",
         help="mass of the arm holding the grip, kg, for --support hand (default 1.0)",
+    )
+
+
+def add_string_bed(parser: argparse.ArgumentParser) -> None:
+    """``--string-bed uniform|local``."""
+    parser.add_argument(
+        "--string-bed",
+        choices=STRING_BEDS,
+        default="uniform",
+        help="the string bed's law over the face: uniform, the face centre's law at every point "
+        "(the paper's method, default); local, each point's own from the lengths of the main and "
+        "cross strings through it (stiffer towards the frame; a law fitted per point)",
     )
 
 

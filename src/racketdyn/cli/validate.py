@@ -27,12 +27,7 @@ def add_measured(p: argparse.ArgumentParser) -> None:
         help="transient model's integrator: auto (default: compiled where numba is installed), "
         "compiled (numba batch) or reference (scipy solve_ivp)",
     )
-    p.add_argument(
-        "--local-string-bed",
-        action="store_true",
-        help="the string bed's law at each point from the lengths of its main and cross strings "
-        "(stiffer near the frame) (default: the face centre's law everywhere)",
-    )
+    opt.add_string_bed(p)
 
 
 def add(commands: Any) -> None:
@@ -83,7 +78,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             ball=ball,
             hand=hand,
             engine=args.engine,
-            local_string_bed=args.local_string_bed,
+            string_bed=args.string_bed,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),

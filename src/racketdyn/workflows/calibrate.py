@@ -25,6 +25,7 @@ from numpy.typing import NDArray
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError
 from racketdyn.impact.calibration import Calibration, calibrate
+from racketdyn.impact.grid import StringBed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import METHODS, Method, ModelInputs
 from racketdyn.io.measured import MeasuredRebound
@@ -108,7 +109,7 @@ def run_calibrate(
     ball: Ball | None = None,
     hand: Hand | None = None,
     engine: str = "auto",
-    local_string_bed: bool = False,
+    string_bed: StringBed = "uniform",
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -133,7 +134,7 @@ def run_calibrate(
         The model fitted.
     leave_one_out : bool
         Refit once per fitted row without it (leave-one-out residuals).
-    modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
+    modal, rigid, ball, hand, engine, string_bed, allow_implausible
         As for :func:`racketdyn.workflows.validate.run_validate`.
     defaults, command, figures, progress
         As for every step.
@@ -145,7 +146,7 @@ def run_calibrate(
     if method not in METHODS:
         raise InputError(f"--model must be one of {', '.join(METHODS)} (got {method!r})")
     inputs, rows, provenance, defaults_used = measured_setup(
-        racket, measured, modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
+        racket, measured, modal, rigid, ball, hand, engine, string_bed, allow_implausible
     )
     held = [int(i) for i in holdout]
     if any(i < 1 or i > len(rows) for i in held):
@@ -190,7 +191,7 @@ def run_calibrate(
         "holdout_rows": held,
         "leave_one_out": leave_one_out,
         "engine": engine,
-        "local_string_bed": local_string_bed,
+        "string_bed": string_bed,
         "n_rows": len(rows),
         "summary": {
             key: record[key]
