@@ -16,7 +16,8 @@ from racketdyn.cli import options as opt
 # Options whose value is text holding numbers (comma-separated lists, pairs)
 NUMBER_LISTS = {"speed", "racket_speed", "offsets", "angles", "point", "band", "pin", "exclude"}
 UNIT = re.compile(
-    r"(?:^|[\s,(])(m/s|rad/s|m|kg|N·m|N/m|N|Hz|s|degrees|dB)(?=[\s,;:)]|$)|dimensionless|a count"
+    r"(?:^|[\s,(])(m/s|rad/s|m|kg|N·m|N·s/m|N/m|N|Hz|s|degrees|dB)(?=[\s,;:)]|$)"
+    r"|dimensionless|a count"
 )
 # What every command taking these spells the same way
 SHARED = {

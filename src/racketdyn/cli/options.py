@@ -107,13 +107,31 @@ def add_ball(parser: argparse.ArgumentParser) -> None:
     )
 
 
+HAND_OPTIONS = ("hand_arm_mass", "hand_stiffness", "hand_damping")
+"""The hand's options (argparse names), for --support hand only."""
+
+
 def add_hand(parser: argparse.ArgumentParser) -> None:
-    """``--hand-arm-mass``."""
+    """``--hand-arm-mass``, ``--hand-stiffness``, ``--hand-damping``."""
     parser.add_argument(
         "--hand-arm-mass",
         type=float,
         metavar="KG",
         help="mass of the arm holding the grip, kg, for --support hand (default 1.0)",
+    )
+    parser.add_argument(
+        "--hand-stiffness",
+        type=float,
+        metavar="N/M",
+        help="total stiffness of the palm and fingers between handle and arm, N/m, for --support "
+        "hand (default 20000; hand-arm data 10000-100000 N/m)",
+    )
+    parser.add_argument(
+        "--hand-damping",
+        type=float,
+        metavar="N·S/M",
+        help="total damping of the palm and fingers between handle and arm, N·s/m, for "
+        "--support hand (default 12; hand-arm data 10-100 N·s/m)",
     )
 
 
@@ -271,8 +289,10 @@ def ball_and_hand(args: argparse.Namespace, supports: Sequence[str]) -> tuple[An
     from racketdyn.errors import InputError
     from racketdyn.workflows.inputs import ball_from, hand_for
 
-    if "hand" not in supports and args.hand_arm_mass is not None:
-        raise InputError("--hand-arm-mass is for --support hand (with --model transient)")
+    given = [name for name in HAND_OPTIONS if getattr(args, name, None) is not None]
+    if "hand" not in supports and given:
+        options = ", ".join("--" + name.replace("_", "-") for name in given)
+        raise InputError(f"{options}: for --support hand (with --model transient) only")
     allow = bool(getattr(args, "allow_implausible", False))
     ball, ball_defaults = ball_from(
         args.ball_mass,
@@ -281,7 +301,13 @@ def ball_and_hand(args: argparse.Namespace, supports: Sequence[str]) -> tuple[An
         allow_implausible=allow,
         e_bg_table=getattr(args, "e_bg_table", None),
     )
-    hand, hand_defaults = hand_for(supports, args.hand_arm_mass, allow_implausible=allow)
+    hand, hand_defaults = hand_for(
+        supports,
+        args.hand_arm_mass,
+        allow_implausible=allow,
+        stiffness_n_per_m=args.hand_stiffness,
+        damping_ns_per_m=args.hand_damping,
+    )
     return ball, hand, [*ball_defaults, *hand_defaults]
 
 

@@ -53,8 +53,10 @@ def add(commands: Any) -> None:
 
 
 def ball_hand(args: argparse.Namespace) -> tuple[Any, Any, list[str]]:
-    """The ball and, with --hand-arm-mass, the hand."""
-    supports = ("hand",) if args.hand_arm_mass is not None else ()
+    """The ball and, with a hand option (--hand-arm-mass, --hand-stiffness, --hand-damping),
+    the hand."""
+    given = any(getattr(args, name) is not None for name in opt.HAND_OPTIONS)
+    supports = ("hand",) if given else ()
     return opt.ball_and_hand(args, supports)
 
 

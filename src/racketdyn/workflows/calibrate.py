@@ -224,16 +224,17 @@ def _racket_holds(calibration: Calibration) -> str:
 def _options(calibration: Calibration) -> str:
     """The command-line options carrying the fitted values racket.toml cannot hold."""
     values = calibration.values
-    parts = []
-    if math.isfinite(values.get("e_bg", math.nan)):
-        parts.append(f"--e-bg {values['e_bg']:.4f}")
-    if math.isfinite(values.get("hand_arm_mass_kg", math.nan)):
-        parts.append(f"--hand-arm-mass {values['hand_arm_mass_kg']:.4f}")
-    hand_only = [n for n in ("hand_stiffness_n_per_m", "hand_damping_ns_per_m") if n in values]
-    text = " ".join(parts) if parts else "none"
-    if hand_only:
-        text += f"; {', '.join(hand_only)}: no option, validate --calibration applies them"
-    return text
+    parts = [
+        f"{option} {values[name]:{spec}}"
+        for name, option, spec in (
+            ("e_bg", "--e-bg", ".4f"),
+            ("hand_arm_mass_kg", "--hand-arm-mass", ".4f"),
+            ("hand_stiffness_n_per_m", "--hand-stiffness", ".5g"),
+            ("hand_damping_ns_per_m", "--hand-damping", ".4g"),
+        )
+        if math.isfinite(values.get(name, math.nan))
+    ]
+    return " ".join(parts) if parts else "none"
 
 
 def _calibrated_files(calibrated: ModelInputs, calibration: Calibration, out: Path) -> list[Path]:
