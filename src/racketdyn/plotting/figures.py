@@ -239,6 +239,8 @@ class FigureOptions:
         parts = [racket, f"eq 10 {self.stiffness_reading} reading"]
         if self.include_string_bed:
             parts.append("string-bed modes charged")
+        if self.string_bed == "local":
+            parts.append("each point's string-bed law")
         if model is None:
             parts.append("rigid racket")
         return "; ".join(parts)
