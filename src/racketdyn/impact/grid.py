@@ -31,6 +31,7 @@ __all__ = [
     "STRING_BEDS",
     "ImpactGrid",
     "StringBed",
+    "check_string_bed",
     "check_supports",
     "impact_grid",
     "point_law",
