@@ -80,7 +80,10 @@ from racketdyn.errors import (
 from racketdyn.impact.approximate import elastic_contact
 from racketdyn.impact.grid import (
     ImpactGrid,
+    StringBed,
+    check_string_bed,
     impact_grid,
+    predict_by_point_law,
     resolve_modal_model,
     support_reduced_mass,
 )
@@ -771,6 +774,7 @@ def predict_transient(
     engine: Engine = "auto",
     hand: Hand | None = None,
     steps_per_contact: int = STEPS_PER_CONTACT,
+    string_bed: StringBed = "uniform",
 ) -> ImpactResult:
     """Simulate every point × speed × support and collect an :class:`ImpactResult`.
 
@@ -809,6 +813,9 @@ def predict_transient(
         The hand and arm of the ``hand`` support.
     steps_per_contact : int
         Steps of the compiled engine over one estimated contact time.
+    string_bed : {"uniform", "local"}
+        ``uniform``: the face centre's law at every point (the paper's); ``local``: each
+        point's own (:func:`racketdyn.impact.grid.predict_by_point_law`).
 
     Returns
     -------
@@ -818,6 +825,14 @@ def predict_transient(
     """
     one_of("engine", engine, ENGINES)
     require_whole("steps_per_contact", steps_per_contact, least=16)
+    check_string_bed(string_bed, law, racket)
+    if string_bed == "local":
+        engine_settings = {"rtol": rtol, "method": method, "engine": engine, "hand": hand}
+        return predict_by_point_law(  # type: ignore[no-any-return]
+            predict_transient, racket, ball, locations, labels, modal_model, include_string_bed,
+            ball_speed=ball_speed, supports=supports, racket_speed=racket_speed,
+            steps_per_contact=steps_per_contact, **engine_settings,
+        )  # fmt: skip
     grid = impact_grid(
         racket, ball, locations, ball_speed, supports, racket_speed, modal_model, labels, law,
         include_string_bed, allowed_supports=TRANSIENT_SUPPORTS, hand=hand,
