@@ -116,8 +116,10 @@ from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket, as_locations
 
 __all__ = [
+    "COMPILED_SCHEME",
     "ENERGY_TERMS",
     "ENGINES",
+    "EXTRAPOLATE",
     "INTEGRATORS",
     "STATUS_NO_SEPARATION",
     "STATUS_SECOND_CONTACT",
@@ -756,6 +758,9 @@ within ≈ 3e-5 m/s, contact time within ≈ 7e-9 s and vibration energy within 
 reference engine (``benchmarks/bench_transient.py``, ``docs/develop.md``)."""
 EXTRAPOLATE = True
 """Default of the compiled engine's Richardson extrapolation (runs at h and 2h)."""
+COMPILED_SCHEME = f"{STEPS_PER_CONTACT} steps per contact, extrapolated from h and 2h"
+"""The compiled engine's default numerics, as a sweep's hash records them (a sweep made with
+another scheme is recomputed, not resumed: the numbers differ at the scheme's accuracy)."""
 
 
 def predict_transient(
