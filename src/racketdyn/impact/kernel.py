@@ -111,25 +111,20 @@ def _law(x: float, kind: int, coefficients: NDArray[np.float64]) -> tuple[float,
         c, n = float(coefficients[0]), float(coefficients[1])
         force = c * x**n
         return force, n * force / x
-    total = 0.0
-    slope = 0.0
-    for i in range(coefficients.size - 1, -1, -1):
+    # Σ c_i x^i and Σ (i + 1) c_i x^i by Horner in x² over the even and the odd terms: four
+    # independent chains of half the length (the law is evaluated once or twice a step)
+    y = x * x
+    even, odd, slope_even, slope_odd = 0.0, 0.0, 0.0, 0.0
+    top = coefficients.size - 1
+    for i in range(top - top % 2, -1, -2):
         c = coefficients[i]
-        total = total * x + c
-        slope = slope * x + (i + 1) * c
-    return total * x, slope
-
-
-@_compiled
-def _energy(x: float, kind: int, coefficients: NDArray[np.float64], exponent: float) -> float:
-    """``∫₀^x F_GB(X) (X/x)^p dX`` (p = exponent; p = 0 is the stored energy), J."""
-    if kind == LAW_POWER:
-        c, n = float(coefficients[0]), float(coefficients[1])
-        return float(c * x ** (n + 1.0) / (n + 1.0 + exponent))
-    total = 0.0
-    for i in range(coefficients.size):
-        total += float(coefficients[i]) * x ** (i + 2.0) / (i + 2.0 + exponent)
-    return total
+        even = even * y + c
+        slope_even = slope_even * y + (i + 1) * c
+    for i in range(top - 1 + top % 2, 0, -2):
+        c = coefficients[i]
+        odd = odd * y + c
+        slope_odd = slope_odd * y + (i + 1) * c
+    return (even + x * odd) * x, slope_even + x * slope_odd
 
 
 @_compiled
@@ -142,15 +137,22 @@ def _unloading_exponent(
         return 0.0
     if kind == LAW_POWER:
         return (float(coefficients[1]) + 1.0) * (1.0 / (e_bg * e_bg) - 1.0)
-    target = e_bg * e_bg * _energy(peak, kind, coefficients, 0.0)
+    terms = np.empty(coefficients.size)  # c_i X_p^(i+2), once (not a power per iteration)
+    power = peak * peak
+    target = 0.0
+    for i in range(coefficients.size):
+        terms[i] = coefficients[i] * power
+        target += terms[i] / (i + 2.0)
+        power *= peak
+    target *= e_bg * e_bg
     p = 0.0
     for _ in range(200):
         value = -target
         slope = 0.0
         for i in range(coefficients.size):
-            term = coefficients[i] * peak ** (i + 2.0)
-            value += term / (i + 2.0 + p)
-            slope -= term / (i + 2.0 + p) ** 2
+            share = terms[i] / (i + 2.0 + p)
+            value += share
+            slope -= share / (i + 2.0 + p)
         step = value / slope
         p -= step
         if abs(step) <= 1e-15 * (1.0 + p):
@@ -223,7 +225,8 @@ def _step_coefficients(
         z = poles[k] * h
         e = np.exp(z)
         decay[k] = e
-        if abs(z) < 0.05:  # series to z⁷ (error < 1e-16); the closed form would cancel here
+        if z.real * z.real + z.imag * z.imag < 0.0025:  # |z| < 0.05: series to z⁷ (error
+            # < 1e-16); the closed form would cancel here
             e1 = 0.0 + 0.0j
             e2 = 0.0 + 0.0j
             term = 1.0 + 0.0j
@@ -345,6 +348,9 @@ def _contact(
         s_re[k], s_im[k] = second[k].real, second[k].imag
         r_re[k], r_im[k] = weighted.real, weighted.imag
         u_re[k], u_im[k] = 0.0, 0.0
+    # the step's constants (the ball's and ρ's updates for a force linear over the step)
+    ball_first, ball_second, ball_mean = h * h / (3.0 * m), h * h / (6.0 * m), h / (2.0 * m)
+    rho_first, rho_second, rho_mean = h * h / 3.0, h * h / 6.0, h / 2.0
     x_b, v_b, rho, rho_dot = 0.0, approach, 0.0, 0.0
     force, force_before, force_earlier = 0.0, 0.0, 0.0  # F at the last three steps
     before, now = 0.0, 0.0  # X at the last two steps
@@ -354,8 +360,8 @@ def _contact(
     steps = 0
     separated = False
     while steps < max_steps:
-        x_pred = x_b + h * v_b - h * h * force / (3.0 * m)
-        rho_pred = rho + h * rho_dot + h * h * force / 3.0
+        x_pred = x_b + h * v_b - ball_first * force
+        rho_pred = rho + h * rho_dot + rho_first * force
         for k in range(n_poles):
             p_re[k] = d_re[k] * u_re[k] - d_im[k] * u_im[k] + f_re[k] * force
             p_im[k] = d_re[k] * u_im[k] + d_im[k] * u_re[k] + f_im[k] * force
@@ -427,10 +433,10 @@ def _contact(
             status = STATUS_CODE_OK
             separated = True
             break
-        x_b = x_pred - h * h * force_new / (6.0 * m)
-        v_b = v_b - h * (force + force_new) / (2.0 * m)
-        rho = rho_pred + h * h * force_new / 6.0
-        rho_dot = rho_dot + h * (force + force_new) / 2.0
+        x_b = x_pred - ball_second * force_new
+        v_b = v_b - ball_mean * (force + force_new)
+        rho = rho_pred + rho_second * force_new
+        rho_dot = rho_dot + rho_mean * (force + force_new)
         for k in range(n_poles):
             u_re[k] = p_re[k] + s_re[k] * force_new
             u_im[k] = p_im[k] + s_im[k] * force_new
