@@ -173,10 +173,13 @@ def _contact_force(
     return force * ratio, slope * ratio + force * exponent * ratio / x
 
 
-NEWTON_ACCEPT = 1e-7
-"""The Newton iteration for the end-of-step compression stops once its correction is below
-this fraction of X_free (then the next one would be below ≈ 1e-17 of it, the iteration
-converging quadratically with a constant α F'' X_free / 2 ≲ 1e-3 at ≥ 64 steps per contact)."""
+NEWTON_ACCEPT = 1e-6
+"""The Newton iteration for the end-of-step compression stops once its correction δ is below
+this fraction of X_free.  The corrected X is then within ≈ 1e-15 of the root (the iteration
+converges quadratically with a constant α F'' X_free / 2 ≲ 1e-3 at ≥ 64 steps per contact),
+and the force taken on the tangent differs from the law's by ½ F'' δ² ≲ 1e-11 of F (F'' X²/F
+≲ 20 on the unloading curves here), far below the scheme's error (≈ 1e-6).  At 1e-7 a step
+cost 1.27 evaluations of the law on average, at 1e-6 1.03 (bench case, 128 steps)."""
 
 
 @_compiled
@@ -189,7 +192,7 @@ def _solve_compression(
     Newton from ``guess``, safeguarded by bisection on [0, X_free].  Once a correction δ is
     below ``NEWTON_ACCEPT · X_free`` the corrected X is returned with the force on the tangent,
     F(x) − F'(x) δ: that pair solves the step's equation exactly and differs from the law's
-    F(X) by ½ F'' δ² (≲ 1e-13 of F), so a step costs one evaluation of the law where the
+    F(X) by ½ F'' δ² (≲ 1e-11 of F), so a step costs one evaluation of the law where the
     predictor is good.
     """
     if free <= 0.0:
@@ -404,8 +407,17 @@ def _contact(
         if not loading and x_new <= 0.0:
             # separation inside the step: shorten it to the crossing (force ramping to zero)
             low, high = 0.0, h
-            value_low, value_high = now, x_new
+            # first guess: the root of the parabola through (before, now, new) in (0, h] (the
+            # line through (now, new) where that has none): two secant steps fewer
             h_cross = h * now / (now - x_new)
+            linear = 0.5 * (x_new - before)
+            curvature = 0.5 * (x_new - 2.0 * now + before)
+            discriminant = linear * linear - 4.0 * curvature * now
+            if linear < 0.0 and discriminant >= 0.0:
+                tau = 2.0 * now / (np.sqrt(discriminant) - linear)
+                if 0.0 < tau <= 1.0:
+                    h_cross = h * tau
+            previous, value_previous = h, x_new
             for _ in range(60):
                 _step_coefficients(poles, h_cross, decay, first, second)
                 x_try = x_b + h_cross * v_b - h_cross * h_cross * force / (3.0 * m)
@@ -415,13 +427,19 @@ def _contact(
                     w_try += weights[k] * (residues[k] * u).real
                 value = x_try - w_try
                 if value > 0.0:
-                    low, value_low = h_cross, value
+                    low = h_cross
                 else:
-                    high, value_high = h_cross, value
+                    high = h_cross
                 if abs(value) <= 1e-13 * peak or high - low <= 1e-14 * h:
                     break
-                h_cross = low + (high - low) * value_low / (value_low - value_high)
-                h_cross = min(max(h_cross, low + 1e-3 * (high - low)), high - 1e-3 * (high - low))
+                # secant through the last two lengths, bisection where it leaves the bracket
+                trial = 0.5 * (low + high)
+                if value != value_previous:
+                    trial = h_cross - value * (h_cross - previous) / (value - value_previous)
+                    if not low < trial < high:
+                        trial = 0.5 * (low + high)
+                previous, value_previous = h_cross, value
+                h_cross = trial
             x_b = x_b + h_cross * v_b - h_cross * h_cross * force / (3.0 * m)
             v_b = v_b - h_cross * force / (2.0 * m)
             rho = rho + h_cross * rho_dot + h_cross * h_cross * force / 3.0
