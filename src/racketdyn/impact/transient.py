@@ -852,9 +852,9 @@ def predict_transient(
         {
             "engine": "compiled",
             "steps_per_contact": steps_per_contact,
-            "extrapolated": extrapolate,
+            "extrapolation": "from h and 2h (Richardson)" if extrapolate else "none",
             "order": (
-                "3 (Richardson on the order-2 scheme, h and 2h)"
+                "3 (1 + n for a power law F = c Xⁿ with n < 1)"
                 if extrapolate
                 else "2 (1 + n for a power law F = c Xⁿ with n < 1)"
             ),
