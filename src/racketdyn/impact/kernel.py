@@ -10,7 +10,9 @@ The scheme is an exponential integrator with the contact force linear over each 
 first-order hold): the racket's linear part is integrated exactly for that force, the ball's
 too, so the only approximation is the force's linear interpolation — second order in the step
 h.  The end-of-step force is implicit, ``X_{n+1} = X_free − α F(X_{n+1})`` with α > 0, solved by
-a safeguarded Newton iteration (unique root because F rises with X).  Events inside a step:
+a safeguarded Newton iteration (unique root because F rises with X) from ``X_free − α F̃`` with
+F̃ the force extrapolated from the last three steps: one correction per step.  Events inside a
+step:
 
 * the turn (X stops rising): the peak X_p is the vertex of the parabola through the last three
   compressions (error O(h³)), the unloading exponent p is solved for it and the step is redone
@@ -19,11 +21,18 @@ a safeguarded Newton iteration (unique root because F rises with X).  Events ins
   the step length, the force ramping to zero), so the state at separation is consistent;
 * reloading past X_p goes back onto F_GB;
 * after separation the ball and the racket move freely (exact for F = 0) for
-  :func:`recontact_horizon`; a compression above ``RECONTACT_TOLERANCE · X_p`` then is a second
-  contact (status ``STATUS_CODE_SECOND_CONTACT``: the vibrating frame caught the ball again).
+  :func:`recontact_horizon`, or until a bound shows the gap can no longer close; a compression
+  above ``RECONTACT_TOLERANCE · X_p`` then is a second contact (status
+  ``STATUS_CODE_SECOND_CONTACT``: the vibrating frame caught the ball again).
 
-Tested against the reference engine (scipy's DOP853 in physical coordinates) and shown to
-converge at order 2 as h halves (``tests/test_kernel.py``).  Without numba the same functions
+By default (``extrapolate``) each contact is run at h and at 2h and the separation states are
+combined as ``y_h + (y_h − y_2h)/3`` (Richardson: the h² term cancels, order ≈ 3), the search
+for a second contact starting from the combined state.  Per impact everything is computed
+alone (no state shared across a batch), so an impact's bits do not depend on its batch.
+
+Tested against the reference engine (scipy's DOP853 in physical coordinates), shown to
+converge at order 2 as h halves without extrapolation and faster with it
+(``tests/test_kernel.py``).  Without numba the same functions
 run as plain Python (correct, ~100× slower); :func:`racketdyn.impact.transient.predict_transient`
 then uses the reference engine instead.
 """
