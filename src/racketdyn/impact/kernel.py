@@ -85,6 +85,12 @@ RELOAD_MARGIN = 1e-9
 RECONTACT_TOLERANCE = 1e-6
 """After separation, a compression above this fraction of X_p is a second contact (both
 engines)."""
+REFINEMENTS = 2
+"""Extrapolated contacts: where the runs at h and 2h disagree (in status, or on the contact time
+by more than a step: they followed different paths) or the extrapolated contact is followed by
+a second one (which may be a dip of the compression the steps were too coarse to follow), the
+step is halved (h/2 against h, then h/4 against h/2) at most this often; runs still apart leave
+the finest run alone."""
 
 
 @_compiled
@@ -506,27 +512,75 @@ def _integrate_one(
         poles, residues, weights, compliance, approach, h, ball_mass, e_bg, kind,
         coefficients, max_deflection, max_steps, modal, state,
     )  # fmt: skip
-    if extrapolate and state[0] == STATUS_CODE_OK:
-        coarse_modal = np.empty_like(modal)
-        coarse = np.empty(8)
-        _contact(
-            poles, residues, weights, compliance, approach, 2.0 * h, ball_mass, e_bg, kind,
-            coefficients, max_deflection, max(max_steps // 2, 1), coarse_modal, coarse,
-        )  # fmt: skip
-        if coarse[0] != STATUS_CODE_OK:
-            state[0] = coarse[0]
-        else:
+    if not extrapolate:
+        if state[0] == STATUS_CODE_OK and _caught_again(
+            poles, residues, weights, compliance, modal, state, h, max_steps
+        ):
+            state[0] = STATUS_CODE_SECOND_CONTACT
+        _write_result(state, kind, coefficients, result)
+        return
+    coarse = np.empty(8)
+    coarse_modal = np.empty_like(modal)
+    _contact(
+        poles, residues, weights, compliance, approach, 2.0 * h, ball_mass, e_bg, kind,
+        coefficients, max_deflection, max(max_steps // 2, 1), coarse_modal, coarse,
+    )  # fmt: skip
+    answer = np.empty(8)
+    answer_modal = np.empty_like(modal)
+    steps = state[7] + coarse[7]
+    finest = h
+    for attempt in range(REFINEMENTS + 1):
+        if (
+            state[0] == STATUS_CODE_OK
+            and coarse[0] == STATUS_CODE_OK
+            and abs(state[1] - coarse[1]) <= finest
+        ):
             for i in range(1, 7):
-                state[i] += (state[i] - coarse[i]) / 3.0
+                answer[i] = state[i] + (state[i] - coarse[i]) / 3.0
             for k in range(modal.size):
-                modal[k] += (modal[k] - coarse_modal[k]) / 3.0
-            if state[2] > max_deflection:
-                state[0] = STATUS_CODE_BEYOND_LAW
-        state[7] += coarse[7]
-    if state[0] == STATUS_CODE_OK and _caught_again(
-        poles, residues, weights, compliance, modal, state, h, max_steps
-    ):
-        state[0] = STATUS_CODE_SECOND_CONTACT
+                answer_modal[k] = modal[k] + (modal[k] - coarse_modal[k]) / 3.0
+            answer[0] = STATUS_CODE_OK
+            if answer[2] > max_deflection:
+                answer[0] = STATUS_CODE_BEYOND_LAW
+            elif _caught_again(
+                poles, residues, weights, compliance, answer_modal, answer, h, max_steps
+            ):
+                answer[0] = STATUS_CODE_SECOND_CONTACT
+            if answer[0] != STATUS_CODE_SECOND_CONTACT:
+                break
+        else:
+            answer[:] = state
+            answer_modal[:] = modal
+            if state[0] != STATUS_CODE_OK and state[0] == coarse[0]:
+                break  # both runs flag the impact alike (beyond the law, no separation)
+            if state[0] == STATUS_CODE_OK and _caught_again(
+                poles, residues, weights, compliance, modal, state, h, max_steps
+            ):
+                answer[0] = STATUS_CODE_SECOND_CONTACT
+        if attempt == REFINEMENTS:
+            break
+        # runs that disagree followed different paths, and a second contact may be a dip of
+        # the compression the steps were too coarse to follow (it separated at the dip before
+        # the frame pressed again): halve the step, compare with the previous run
+        coarse[:] = state
+        coarse_modal[:] = modal
+        finest *= 0.5
+        _contact(
+            poles, residues, weights, compliance, approach, finest, ball_mass, e_bg, kind,
+            coefficients, max_deflection, int(max_steps * h / finest), modal, state,
+        )  # fmt: skip
+        steps += state[7]
+    modal[:] = answer_modal
+    answer[7] = steps
+    _write_result(answer, kind, coefficients, result)
+
+
+@_compiled
+def _write_result(
+    state: NDArray[np.float64], kind: int, coefficients: NDArray[np.float64],
+    result: NDArray[np.float64],
+) -> None:  # fmt: skip
+    """``result`` from a contact's ``state`` (see :func:`_integrate_one`)."""
     result[0] = state[0]
     result[1] = state[1]
     result[2] = _law(state[2], kind, coefficients)[0]
