@@ -758,9 +758,13 @@ within ≈ 3e-5 m/s, contact time within ≈ 7e-9 s and vibration energy within 
 reference engine (``benchmarks/bench_transient.py``, ``docs/develop.md``)."""
 EXTRAPOLATE = True
 """Default of the compiled engine's Richardson extrapolation (runs at h and 2h)."""
-COMPILED_SCHEME = f"{STEPS_PER_CONTACT} steps per contact, extrapolated from h and 2h"
+COMPILED_SCHEME = (
+    f"{STEPS_PER_CONTACT} steps per contact, extrapolated from h and 2h, the step halved where "
+    "they disagree (issue 16)"
+)
 """The compiled engine's default numerics, as a sweep's hash records them (a sweep made with
-another scheme is recomputed, not resumed: the numbers differ at the scheme's accuracy)."""
+another scheme is recomputed, not resumed: the numbers differ at the scheme's accuracy).
+Change it whenever the compiled engine's numbers change."""
 
 
 def predict_transient(
