@@ -336,7 +336,7 @@ def _caught_again(
             w_free += weights[k] * (residues[k] * moving[k]).real
         widest = min(widest, x_free - w_free)
         if x_free - w_free > RECONTACT_TOLERANCE * peak:
-            return -widest / peak
+            return float(-widest / peak)
     return -1.0
 
 
