@@ -307,7 +307,7 @@ def test_the_whole_page_has_no_json_escapes_nor_internal_names(page: str) -> Non
     assert not re.search(r"\\u[0-9a-fA-F]{4}", page)
     assert "write_report" not in page
     assert "Xⁿ" in page  # the transient integrator's order, from predict/run.json
-    assert "steps per contact 400" in _section(page, "transient")  # words, not run.json keys
+    assert "steps per contact 128" in _section(page, "transient")  # words, not run.json keys
 
 
 PERSON = "70 kg, 1.75 m adult"

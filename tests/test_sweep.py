@@ -352,7 +352,7 @@ def test_the_engine_key_chooses_the_transient_engine(
 ) -> None:
     """``[impacts].engine`` reaches predict_transient: the reference engine's numbers are
     predict_transient's with engine="reference" and differ from the compiled engine's by its
-    documented accuracy (≈ 2e-4 m/s at 400 steps per contact), no more."""
+    documented accuracy (≈ 3e-5 m/s, 128 steps per contact extrapolated), no more."""
     specs = {engine: _engine_spec(tmp_path, engine) for engine in ("reference", "compiled")}
     results = {
         engine: run_sweep(spec, tmp_path / engine, SerialExecutor(), figures=None)
@@ -383,6 +383,19 @@ def test_the_engine_key_chooses_the_transient_engine(
     counting = CountingExecutor()
     run_sweep(auto, tmp_path / "compiled", counting, figures=None)
     assert counting.submitted == []  # all resumed
+
+
+def test_the_compiled_scheme_is_in_the_hash(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The compiled engine's numerics (steps, extrapolation: issue 16 changed them) are part
+    of what a transient sweep's numbers depend on, so parts made with another scheme are
+    recomputed, not resumed; the reference engine's hash does not depend on them."""
+    before = {engine: _engine_spec(tmp_path, engine).sha256 for engine in ("compiled", "reference")}
+    monkeypatch.setattr("racketdyn.sweep.spec.COMPILED_SCHEME", "400 steps per contact")
+    after = {engine: _engine_spec(tmp_path, engine).sha256 for engine in ("compiled", "reference")}
+    assert after["compiled"] != before["compiled"]
+    assert after["reference"] == before["reference"]
 
 
 @pytest.mark.parametrize(

@@ -27,8 +27,8 @@ from racketdyn.impact.approximate import STIFFNESS_READINGS, StiffnessReading
 from racketdyn.impact.grid import STRING_BEDS, StringBed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.kernel import NUMBA_AVAILABLE
+from racketdyn.impact.transient import COMPILED_SCHEME, Engine
 from racketdyn.impact.transient import ENGINES as TRANSIENT_ENGINES
-from racketdyn.impact.transient import Engine
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
 from racketdyn.io.racket_file import racket_to_dict as _racket_to_dict
 from racketdyn.racket import (
@@ -365,7 +365,11 @@ class SweepSpec:
         racket["strings"]["load_deflection_file"] = _file_record(
             self.racket.strings.load_deflection_file
         )
-        engine = {"engine": self.transient_engine} if self.method == "transient" else {}
+        engine: dict[str, str] = {}
+        if self.method == "transient":
+            engine["engine"] = self.transient_engine
+            if self.transient_engine == "compiled":  # its numerics changed in issue 16
+                engine["compiled_scheme"] = COMPILED_SCHEME
         return {
             "format": "racketdyn-sweep-spec",
             "schema_version": SPEC_SCHEMA_VERSION,
