@@ -193,3 +193,21 @@ def test_every_impact_command_takes_the_option(
     assert main(args) == 0
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))
     assert record["string_bed"] == "local"
+
+
+def test_local_laws_keep_the_compiled_engines_settings() -> None:
+    """The per-point runs take every setting of the call: with ``extrapolate=False`` (the
+    merge of the two issue-16/15 branches dropped it there once) each point gives what the
+    uniform run with its own law gives without extrapolation."""
+    racket, ball = rd.default_racket(), rd.Ball()
+    near_tip = (racket.head.centre_x_m + racket.head.half_length_m - 0.035, 0.0)
+    local = predict_transient(
+        racket, ball, [near_tip], [20.0], "free", string_bed="local", extrapolate=False
+    )
+    alone = predict_transient(
+        racket, ball, [near_tip], [20.0], "free", law=point_law(racket, ball, near_tip),
+        extrapolate=False,
+    )  # fmt: skip
+    assert local.contact_time[0, 0, 0] == alone.contact_time[0, 0, 0]
+    extrapolated = predict_transient(racket, ball, [near_tip], [20.0], "free", string_bed="local")
+    assert extrapolated.contact_time[0, 0, 0] != local.contact_time[0, 0, 0]
