@@ -59,9 +59,10 @@ FIRST_TASK_TIMEOUT_S = 600.0
 finished so far, at least ``TASK_TIMEOUT_FLOOR_S``; ``FIRST_TASK_TIMEOUT_S`` until one has
 finished."""
 
-SECONDS_PER_IMPACT = {"approximate": 5e-6, "transient": 7e-5}
+SECONDS_PER_IMPACT = {"approximate": 5e-6, "transient": 2e-5}
 """Rough cost of one impact on one core, s, by method (the benchmarks' figures): used only to
-size the tasks (:func:`_designs_per_task`)."""
+size the tasks (:func:`_designs_per_task`).  Transient: 18 µs per impact in a 10,000-impact
+sweep task of ``bench_sweep.py``'s study since issue 16's faster engine (was 70 µs)."""
 TARGET_TASK_S = 0.5
 """A task should take about this long, s: long enough that submitting it, shipping it and
 writing its part cost little beside it, short enough to share the designs out evenly."""
@@ -147,7 +148,9 @@ def _designs_per_task(spec: SweepSpec, n_designs: int, executor: Executor) -> in
     if isinstance(executor, SerialExecutor):
         return 1
     workers = max(1, _in_flight_limit(executor) // 2)
-    per_design = spec.impacts_per_design * SECONDS_PER_IMPACT.get(spec.method, 7e-5)
+    per_design = spec.impacts_per_design * SECONDS_PER_IMPACT.get(
+        spec.method, SECONDS_PER_IMPACT["transient"]
+    )
     by_time = math.ceil(TARGET_TASK_S / per_design)
     by_balance = max(1, n_designs // (4 * workers))
     return max(1, min(by_time, by_balance))
