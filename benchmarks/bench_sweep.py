@@ -26,6 +26,7 @@ import os
 import platform
 import tempfile
 import time
+from contextlib import ExitStack
 from pathlib import Path
 
 import numpy as np
@@ -85,9 +86,17 @@ def time_engine(spec: SweepSpec, kind: str, workers: int, out: Path) -> dict[str
     its workers then), ``tasks`` (submission to last result), ``write`` (part files, summed
     over workers), ``combine`` (sweep.nc), ``busy`` (the tasks' own time summed)."""
     start = time.perf_counter()
-    with make_executor(kind, workers) as executor:  # type: ignore[arg-type]
+    with ExitStack() as stack:  # as the command: the engine closes before combining
+        executor = stack.enter_context(make_executor(kind, workers))  # type: ignore[arg-type]
         started = time.perf_counter() - start
-        run_sweep(spec, out, executor, figures=None, times={"start": started})
+        run_sweep(
+            spec,
+            out,
+            executor,
+            figures=None,
+            times={"start": started},
+            when_tasks_done=stack.close,
+        )
     wall = time.perf_counter() - start
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))
     spent = record["time_s"]
@@ -98,6 +107,7 @@ def time_engine(spec: SweepSpec, kind: str, workers: int, out: Path) -> dict[str
         "tasks": float(spent["tasks"]),
         "write": float(record["part_write_time_s"]),
         "combine": float(spent["combining"]),
+        "shutdown": float(spent.get("shutdown", 0.0)),
         "busy": float(record["task_time_s"]),
         "per_task": float(record["designs_per_task"]),
     }
@@ -154,18 +164,20 @@ def main() -> int:
     serial_s = results["serial"]["wall"]
     print(
         f"{'engine':<26}{'wall s':>7}{'start':>7}{'first':>7}{'tasks':>7}{'write':>7}"
-        f"{'combine':>8}{'busy':>7}{'per task':>9}{'impacts/s':>11}{'vs serial':>10}"
+        f"{'stop':>6}{'combine':>8}{'busy':>7}{'per task':>9}{'impacts/s':>11}{'vs serial':>10}"
     )
     for label, t in results.items():
         print(
             f"{label:<26}{t['wall']:7.2f}{t['start']:7.2f}{t['first']:7.2f}{t['tasks']:7.2f}"
-            f"{t['write']:7.2f}{t['combine']:8.2f}{t['busy']:7.2f}{t['per_task']:9.0f}"
+            f"{t['write']:7.2f}{t['shutdown']:6.2f}{t['combine']:8.2f}{t['busy']:7.2f}{t['per_task']:9.0f}"
             f"{n_impacts / t['wall']:11,.0f}{serial_s / t['wall']:9.2f}×"
         )
     print("wall: the whole sweep, engine start and shutdown included.  start: the engine alone")
     print("(a pool starts its workers with the first task: see first, the first result after")
     print("the first submission).  tasks: first submission to last result.  write: part files,")
-    print("summed over the workers that wrote them.  combine: the parts into sweep.nc.  busy:")
+    print("summed over the workers that wrote them.  stop: the engine's shutdown, before")
+    print("combining (a local Dask scheduler in this process slows it).  combine: the parts into")
+    print("sweep.nc.  busy:")
     print("the tasks' own time summed over workers.  per task: designs per task.")
     print()
     for kind in ("process pool", "local Dask"):

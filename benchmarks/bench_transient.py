@@ -1,13 +1,28 @@
-"""Throughput of the transient impact simulation on one core: compiled engine against scipy.
+"""Throughput of the transient impact simulation on one core, side by side with its accuracy.
 
-Run with ``python benchmarks/bench_transient.py``.  The issue's case: a 68-point × 30-speed ×
-2-support face map (free and pinned) with 8 flexible modes (the built-in beam model with seven
-bending modes and the twisting mode), against the target of 10,000 impacts per second on one
-core after compilation.  The same impacts through the reference engine (one
-``scipy.integrate.solve_ivp`` per impact, DOP853, rtol 1e-10) are timed on a sample, and the
-speed-up and the largest differences between the engines are printed in the same run.  The
-compile time (first call, or numba's on-disk cache) is printed on its own.  Informational:
-the exit status is 0 whatever the timings.
+Run with ``python benchmarks/bench_transient.py``.  The case of issues 5 and 16: a 68-point ×
+30-speed × 2-support face map (free and pinned) with 8 flexible modes (the built-in beam model
+with seven bending modes and the twisting mode).  Each scheme of the compiled engine is timed
+on the whole map (the least CPU time of this process over 7 runs, the schemes taken in turn,
+after compilation: CPU time rather than wall time, as the machine is often shared) and its
+largest differences to the reference engine (one ``scipy.integrate.solve_ivp`` per impact,
+DOP853, rtol 1e-10, also timed in CPU time) are taken on a sample of the map (the same 30
+points at 5 and 40 m/s, both supports, as before issue 16):
+
+* ``before issue 16`` — the baseline: the kernel as it was before issue 16's engine work
+  (``src/racketdyn/impact/kernel.py`` at commit ``BEFORE``, read with ``git show`` and compiled
+  here; skipped when git or that commit is not at hand), at its default 400 steps per contact;
+* ``400 steps, order 2`` — the same scheme through today's kernel (``extrapolate=False``):
+  what the per-step work (predictor, one Newton correction, arrays, free flight) gained;
+* ``128 steps, extrapolated`` — the default since issue 16 (runs at h and 2h, Richardson);
+* ``96 steps, extrapolated`` — one step further down, to show the margin.
+
+The ratio of each scheme's throughput to the baseline's is printed in the same run, the
+kernel's share of the time (the rest is NumPy: step sizes, energies), the issue's target
+(30,000 impacts/s) and whether the differences stayed within the baseline's (to 1e-6 of
+them: the Newton iteration's tolerance moves the last digits).  The compile time (first
+call, or numba's on-disk cache) is printed on its own.  Informational: the exit status is 0
+whatever the timings.
 """
 
 from __future__ import annotations
@@ -26,11 +41,16 @@ for _variable in (
     os.environ[_variable] = "1"
 
 import platform  # noqa: E402
+import subprocess  # noqa: E402
 import time  # noqa: E402
+import types  # noqa: E402
+from pathlib import Path  # noqa: E402
+from typing import Any  # noqa: E402
 
 import numpy as np  # noqa: E402
 
 import racketdyn  # noqa: E402
+from racketdyn.impact import transient  # noqa: E402
 from racketdyn.impact.transient import predict_transient  # noqa: E402
 from racketdyn.io.racket_file import default_racket  # noqa: E402
 from racketdyn.racket_modal.beam import builtin_modal_model  # noqa: E402
@@ -40,9 +60,52 @@ GRID_N = 10
 SPEEDS = np.linspace(5.0, 40.0, 30)
 SUPPORTS = ("free", "pinned")
 N_MODES = 8
-TARGET_PER_S = 10_000
-REPEATS = 3
+TARGET_PER_S = 30_000
+REPEATS = 7
 SAMPLE = 120  # impacts through the reference engine
+BEFORE = "77cbbd4"  # main before issue 16's engine work
+SCHEMES = (  # label, steps per contact, extrapolate
+    ("before issue 16 (400 steps, order 2)", 400, False),
+    ("400 steps, order 2, today's kernel", 400, False),
+    ("128 steps, extrapolated (default)", 128, True),
+    ("96 steps, extrapolated", 96, True),
+)
+FIELDS = (("rebound_speed", "m/s"), ("contact_time", "s"), ("vibration_energy", "J"))
+
+
+def _kernel_before() -> Any:
+    """``integrate_impacts`` of the kernel at commit ``BEFORE`` (None without git or it)."""
+    try:
+        text = subprocess.run(
+            ["git", "show", f"{BEFORE}:src/racketdyn/impact/kernel.py"],
+            cwd=Path(__file__).parent, capture_output=True, text=True, check=True,
+        ).stdout  # fmt: skip
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    module = types.ModuleType("kernel_before")
+    # no on-disk cache for code that has no file
+    exec(compile(text.replace("cache=True, ", ""), "kernel_before", "exec"), module.__dict__)
+
+    def integrate(*args: Any) -> Any:
+        return module.integrate_impacts(*args[:13])  # it had no ``extrapolate``
+
+    return integrate
+
+
+class _KernelClock:
+    """Sums the time spent in the compiled kernel (``integrate_impacts``) while installed."""
+
+    def __init__(self) -> None:
+        self.seconds = 0.0
+        self.original = transient.__dict__["integrate_impacts"]
+        self.inner = self.original
+
+    def __call__(self, *args: Any) -> Any:
+        start = time.process_time()
+        try:
+            return self.inner(*args)
+        finally:
+            self.seconds += time.process_time() - start
 
 
 def main() -> int:
@@ -61,47 +124,86 @@ def main() -> int:
         f"({model.frequency.min():.0f}–{model.frequency.max():.0f} Hz)"
     )
 
-    def compiled() -> racketdyn.ImpactResult:
+    def compiled(where: Any, speeds: Any, steps: int, extrapolate: bool) -> Any:
         return predict_transient(
-            racket, ball, points, SPEEDS, SUPPORTS, modal_model=model, engine="compiled"
-        )
+            racket, ball, where, speeds, SUPPORTS, modal_model=model, engine="compiled",
+            steps_per_contact=steps, extrapolate=extrapolate,
+        )  # fmt: skip
 
     start = time.perf_counter()
-    fast = compiled()
+    compiled(points, SPEEDS, SCHEMES[1][1], SCHEMES[1][2])
     first = time.perf_counter() - start
-    best = float("inf")
-    for _ in range(REPEATS):
-        start = time.perf_counter()
-        fast = compiled()
-        best = min(best, time.perf_counter() - start)
-    rate = n_impacts / best
-    print(f"compiled engine, first call (compile or load cache): {first:8.2f} s")
-    print(
-        f"compiled engine, whole map: {best * 1e3:8.1f} ms = {rate:,.0f} impacts/s "
-        f"(target {TARGET_PER_S:,}: {'met' if rate >= TARGET_PER_S else 'NOT met'})"
-    )
+    print(f"compiled engine, first call (compile or load cache): {first:.2f} s")
+    before = _kernel_before()
+    if before is None:
+        print(f"(git or commit {BEFORE} not at hand: the kernel before issue 16 is skipped)")
 
     rng = np.random.default_rng(1)
     picks = rng.choice(len(points), size=SAMPLE // (2 * len(SUPPORTS)), replace=False)
-    speeds = SPEEDS[[0, -1]]
-    start = time.perf_counter()
+    sample_speeds = SPEEDS[[0, -1]]
+    start = time.process_time()
     reference = predict_transient(
-        racket, ball, points[picks], speeds, SUPPORTS, modal_model=model, engine="reference"
-    )
-    per_reference = (time.perf_counter() - start) / reference.rebound_ratio.size
+        racket, ball, points[picks], sample_speeds, SUPPORTS, modal_model=model,
+        engine="reference",
+    )  # fmt: skip
+    per_reference = (time.process_time() - start) / reference.rebound_ratio.size
     print(
-        f"reference engine (solve_ivp DOP853, rtol 1e-10): {per_reference * 1e3:6.2f} ms per "
-        f"impact = {1 / per_reference:,.0f} impacts/s"
+        f"reference engine (solve_ivp DOP853, rtol 1e-10): {per_reference * 1e3:.1f} ms per "
+        f"impact = {1 / per_reference:,.0f} impacts/s ({reference.rebound_ratio.size} impacts)"
     )
-    print(f"speed-up of the compiled engine: {per_reference * rate:,.0f}×")
-    sample = predict_transient(
-        racket, ball, points[picks], speeds, SUPPORTS, modal_model=model, engine="compiled"
+
+    clock = _KernelClock()
+    transient.__dict__["integrate_impacts"] = clock
+    schemes = [s for s in SCHEMES if before is not None or s is not SCHEMES[0]]
+    least = {label: (float("inf"), 0.0) for label, _, _ in schemes}
+    results: dict[str, Any] = {}
+    try:
+        if before is not None:
+            clock.inner = before
+            compiled(points[:1], SPEEDS[:1], 400, False)  # compile it
+        # round robin, so that the other processes' load falls on every scheme alike
+        for _ in range(REPEATS):
+            for label, steps, extrapolate in schemes:
+                clock.inner = before if label == SCHEMES[0][0] else clock.original
+                clock.seconds = 0.0
+                start = time.process_time()
+                results[label] = compiled(points, SPEEDS, steps, extrapolate)
+                elapsed = time.process_time() - start
+                if elapsed < least[label][0]:
+                    least[label] = (elapsed, clock.seconds)
+        rows = []
+        for label, steps, extrapolate in schemes:
+            clock.inner = before if label == SCHEMES[0][0] else clock.original
+            sample = compiled(points[picks], sample_speeds, steps, extrapolate)
+            ok = (sample.status == "ok") & (reference.status == "ok")
+            worst = [
+                float(np.abs(getattr(sample, name) - getattr(reference, name))[ok].max())
+                for name, _ in FIELDS
+            ]
+            bad = int(np.sum(results[label].status != "ok"))
+            seconds, kernel = least[label]
+            rows.append((label, n_impacts / seconds, seconds, kernel, worst, bad))
+    finally:
+        transient.__dict__["integrate_impacts"] = clock.original
+
+    base_rate, base_worst = rows[0][1], rows[0][4]
+    print()
+    header = "max |compiled − reference|: " + ", ".join(f"{n} ({u})" for n, u in FIELDS)
+    print(f"{'scheme':<40} {'impacts/s':>10} {'× base':>7} {'kernel':>7}   {header}")
+    for label, rate, best, kernel, worst, bad in rows:
+        within = all(w <= b * (1 + 1e-6) for w, b in zip(worst, base_worst, strict=True))
+        print(
+            f"{label:<40} {rate:>10,.0f} {rate / base_rate:>6.2f}× {kernel / best:>6.0%}   "
+            + "  ".join(f"{w:.2e}" for w in worst)
+            + ("" if label == rows[0][0] else ("  (within baseline)" if within else "  (WORSE)"))
+            + (f"  [{bad} impacts with no valid number]" if bad else "")
+        )
+    default_rate = next(row[1] for row in rows if "default" in row[0])
+    print(
+        f"\ndefault scheme: {default_rate:,.0f} impacts/s, target {TARGET_PER_S:,}: "
+        f"{'met' if default_rate >= TARGET_PER_S else 'NOT met'}; "
+        f"{per_reference * default_rate:,.0f}× the reference engine"
     )
-    ok = (sample.status == "ok") & (reference.status == "ok")
-    for name, unit in (("rebound_speed", "m/s"), ("contact_time", "s"), ("vibration_energy", "J")):
-        difference = np.abs(getattr(sample, name) - getattr(reference, name))[ok]
-        print(f"  max |compiled − reference| {name}: {difference.max():.2e} {unit}")
-    print(f"  impacts with no valid number (beyond the law): {int(np.sum(fast.status != 'ok'))}")
     return 0
 
 

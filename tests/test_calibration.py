@@ -314,7 +314,7 @@ def test_the_local_law_changes_the_rebound_near_the_frame_only(start: ModelInput
     630 mm on the axis the stiffer bed lowers the rebound ratio (transient, free: ≈ −0.02)."""
     points = [(0.505, 0.0), (0.45, 0.0), (0.55, 0.0), (0.505, 0.04), (0.63, 0.0)]
     measured = simulate_measurements(start, points, 20.0, sd=0.0)
-    local = replace(start, local_string_bed=True)
+    local = replace(start, string_bed="local")
     for method in ("approx", "transient"):
         face, _ = predict_rows(start, measured, method)  # type: ignore[arg-type]
         each, _ = predict_rows(local, measured, method)  # type: ignore[arg-type]

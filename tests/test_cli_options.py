@@ -16,7 +16,8 @@ from racketdyn.cli import options as opt
 # Options whose value is text holding numbers (comma-separated lists, pairs)
 NUMBER_LISTS = {"speed", "racket_speed", "offsets", "angles", "point", "band", "pin", "exclude"}
 UNIT = re.compile(
-    r"(?:^|[\s,(])(m/s|rad/s|m|kg|N·m|N/m|N|Hz|s|degrees|dB)(?=[\s,;:)]|$)|dimensionless|a count"
+    r"(?:^|[\s,(])(m/s|rad/s|m|kg|N·m|N·s/m|N/m|N|Hz|s|degrees|dB)(?=[\s,;:)]|$)"
+    r"|dimensionless|a count"
 )
 # What every command taking these spells the same way
 SHARED = {
@@ -87,6 +88,7 @@ def test_verbose_before_or_after_the_command() -> None:
 
 
 def test_the_cli_copies_of_library_constants_are_true() -> None:
+    from racketdyn.impact.grid import STRING_BEDS
     from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS
     from racketdyn.racket import SUPPORTS
     from racketdyn.workflows import predict, swing
@@ -94,6 +96,7 @@ def test_the_cli_copies_of_library_constants_are_true() -> None:
     assert tuple(SUPPORTS) == opt.SUPPORTS
     assert tuple(TRANSIENT_SUPPORTS) == opt.TRANSIENT_SUPPORTS
     assert tuple(ENGINES) == opt.ENGINES
+    assert tuple(STRING_BEDS) == opt.STRING_BEDS
     assert predict.MODELS == opt.MODELS
     assert tuple(swing.IMPACT_MODELS) == opt.IMPACT_MODELS
     assert (predict.DEFAULT_GRID, predict.MAX_GRID) == (opt.DEFAULT_GRID, opt.MAX_GRID)

@@ -258,7 +258,11 @@ def test_hand_support_with_the_transient_model(points: Path, tmp_path: Path) -> 
     [
         (["--support", "hand"], "--support hand needs --model transient"),
         (["--model", "both", "--support", "free,hand"], "--support hand needs --model transient"),
-        (["--model", "transient", "--hand-arm-mass", "1"], "--hand-arm-mass is for --support hand"),
+        (["--model", "transient", "--hand-arm-mass", "1"], "--hand-arm-mass: for --support hand"),
+        (
+            ["--model", "transient", "--hand-stiffness", "3e4", "--hand-damping", "20"],
+            "--hand-stiffness, --hand-damping: for --support hand",
+        ),
         (["--engine", "reference"], "--engine is for the transient model"),
         (
             ["--model", "transient", "--stiffness-reading", "tangent"],

@@ -48,7 +48,8 @@ PAPER_LEADS = (
 def run_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """What ``racketdyn demo`` writes, with small settings: rig, FRFs, contact, compare, predict
     (both impact models, as the demo does), swing, twist and oblique impacts, the ball on the
-    strings; and a validation against measured rebounds, which the demo does not run.
+    strings; and a validation and a calibration against measured rebounds, which the demo does
+    not run.
 
     The rig double-hits and overloads now and then, so the quality table has reasons to show.
     """
@@ -86,7 +87,11 @@ def run_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
         ["oblique", "--angles", "0,30", "--out", f"{d}/oblique"],
         ["compound", "--out", f"{d}/compound"],
         ["validate", str(measured), "--out", f"{d}/validate"],
-    ]
+        [
+            "calibrate", str(measured), "--model", "approx", "--fit", "e_bg,frame_damping_scale",
+            "--no-loo", "--out", f"{d}/calibrate",
+        ],
+    ]  # fmt: skip
     for argv in commands:
         assert main(argv) == 0, argv
     return d
@@ -302,7 +307,7 @@ def test_the_whole_page_has_no_json_escapes_nor_internal_names(page: str) -> Non
     assert not re.search(r"\\u[0-9a-fA-F]{4}", page)
     assert "write_report" not in page
     assert "Xⁿ" in page  # the transient integrator's order, from predict/run.json
-    assert "steps per contact 400" in _section(page, "transient")  # words, not run.json keys
+    assert "steps per contact 128" in _section(page, "transient")  # words, not run.json keys
 
 
 PERSON = "70 kg, 1.75 m adult"

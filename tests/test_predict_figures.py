@@ -140,6 +140,12 @@ def test_face_maps_say_the_options(draw: Any) -> None:
     assert "racket 15 m/s" in title
     assert "tangent" in title
     assert "string-bed modes charged" in title
+    assert "string-bed law" not in title  # the paper's one law: nothing to say
+
+
+def test_face_maps_say_each_points_law(draw: Any) -> None:
+    _, drawn = draw(speeds=[20.0], supports=["free"], grid=4, string_bed="local")
+    assert "each point's string-bed law" in drawn["face_maps.png"].get_suptitle()
 
 
 # --- curves against speed, Figs 11-13 and 15 -----------------------------------------------------

@@ -139,6 +139,35 @@ def test_a_local_dask_cluster_from_make_executor(
     assert_same_bits(serial_result, result)
 
 
+def test_the_engine_closes_before_the_parts_are_combined(
+    small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
+) -> None:
+    """A local Dask scheduler runs in this process and slowed combining 2.3× while it lived:
+    the command closes its engine when the tasks are done (``when_tasks_done``), before
+    combining — every part is on disk then and sweep.nc not yet; run.json times it."""
+    seen: list[tuple[int, bool]] = []
+
+    def closing() -> None:
+        seen.append(
+            (len(list((tmp_path / "parts").glob("*.nc"))), (tmp_path / "sweep.nc").exists())
+        )
+
+    result = run_sweep(
+        small_spec, tmp_path, SerialExecutor(), figures=None, when_tasks_done=closing
+    )
+    assert seen == [(len(small_spec.designs), False)]
+    assert_same_bits(serial_result, result)
+    record = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))
+    assert record["time_s"]["shutdown"] >= 0.0
+    # the workflow the command calls passes its own engine's close
+    from racketdyn.workflows import run_sweep_step
+
+    out = tmp_path / "step"
+    run_sweep_step(small_spec, out, engine="dask-local", workers=1, figures=None)
+    record = json.loads((out / "run.json").read_text(encoding="utf-8"))
+    assert "shutdown" in record["time_s"]
+
+
 def test_dataset_layout(small_spec: SweepSpec, serial_result: xr.Dataset) -> None:
     ds = serial_result
     assert ds["rebound_ratio"].dims == ("design", "point", "speed", "racket_speed", "support")
@@ -323,7 +352,7 @@ def test_the_engine_key_chooses_the_transient_engine(
 ) -> None:
     """``[impacts].engine`` reaches predict_transient: the reference engine's numbers are
     predict_transient's with engine="reference" and differ from the compiled engine's by its
-    documented accuracy (≈ 2e-4 m/s at 400 steps per contact), no more."""
+    documented accuracy (≈ 3e-5 m/s, 128 steps per contact extrapolated), no more."""
     specs = {engine: _engine_spec(tmp_path, engine) for engine in ("reference", "compiled")}
     results = {
         engine: run_sweep(spec, tmp_path / engine, SerialExecutor(), figures=None)
@@ -354,6 +383,19 @@ def test_the_engine_key_chooses_the_transient_engine(
     counting = CountingExecutor()
     run_sweep(auto, tmp_path / "compiled", counting, figures=None)
     assert counting.submitted == []  # all resumed
+
+
+def test_the_compiled_scheme_is_in_the_hash(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The compiled engine's numerics (steps, extrapolation: issue 16 changed them) are part
+    of what a transient sweep's numbers depend on, so parts made with another scheme are
+    recomputed, not resumed; the reference engine's hash does not depend on them."""
+    before = {engine: _engine_spec(tmp_path, engine).sha256 for engine in ("compiled", "reference")}
+    monkeypatch.setattr("racketdyn.sweep.spec.COMPILED_SCHEME", "400 steps per contact")
+    after = {engine: _engine_spec(tmp_path, engine).sha256 for engine in ("compiled", "reference")}
+    assert after["compiled"] != before["compiled"]
+    assert after["reference"] == before["reference"]
 
 
 @pytest.mark.parametrize(
@@ -560,6 +602,25 @@ def test_a_failed_task_is_retried(
     assert "retrying" in caplog.text
     assert result.attrs["n_failed"] == 0
     assert not (tmp_path / "failures.json").exists()
+    assert_same_bits(serial_result, result)
+
+
+def test_a_failed_batch_reruns_only_its_unfinished_designs(
+    small_spec: SweepSpec,
+    serial_result: xr.Dataset,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Batches of two: design 2 ends (its part written where it ran), then design 3 fails;
+    the batch was split and both ran again, design 2 for nothing.  Now design 2 is taken
+    from its file and only design 3 is retried."""
+    monkeypatch.setattr(sweep_task, "predict", _fail_design_3(times=1))
+    counting = CountingExecutor()
+    result = run_sweep(small_spec, tmp_path, counting, figures=None, designs_per_task=2)
+    assert counting.submitted.count("design-00002") == 1
+    assert counting.submitted.count("design-00003") == 2
+    assert len(counting.submitted) == 7
+    assert result.attrs["n_failed"] == 0
     assert_same_bits(serial_result, result)
 
 

@@ -118,8 +118,9 @@ def test_rigid_racket_gives_cross_rebound(racket: rd.Racket, ball: rd.Ball) -> N
 
 def test_transient_rigid_racket_gives_cross_rebound(racket: rd.Racket, ball: rd.Ball) -> None:
     # The transient contact returns e_BG of the approach speed for any two masses, so a rigid
-    # racket gives Cross's result too.  Tolerance 2e-5: the compiled engine is second order at
-    # 400 steps per contact (≈ 4e-6 here); the reference engine is good to its rtol.
+    # racket gives Cross's result too.  Tolerance 2e-5: the compiled engine's default (128 steps
+    # per contact, extrapolated) is within ≈ 1e-6 here (4e-6 at the previous 400 steps, order
+    # 2); the reference engine is good to its rtol.
     swing = Swing()
     points = np.array([[0.45, 0.0], [0.55, 0.03]])
     result = predict_swing(

@@ -159,6 +159,10 @@ NEWTON_MILLIMETRE = Slip("N·mm", "N·mm", 1e-3)
 KILONEWTON = Slip("kN", "kN", 1e3)
 GIGAPASCAL = Slip("GPa", "GPa", 1e9)
 MEGAPASCAL = Slip("MPa", "MPa", 1e6)
+KILONEWTON_PER_M = Slip("kN/m", "kN/m", 1e3)
+NEWTON_PER_MM = Slip("N/mm", "N/mm", 1e3)
+KILONEWTON_S_PER_M = Slip("kN·s/m", "kN·s/m", 1e3)
+NEWTON_S_PER_MM = Slip("N·s/mm", "N·s/mm", 1e3)
 KG_CM2 = Slip("kg·cm²", "kg·cm²", 1e-4)
 G_M2 = Slip("g·m²", "g·m²", 1e-3)
 G_CM2 = Slip("g·cm²", "g·cm²", 1e-7)
@@ -225,6 +229,34 @@ RANGES: dict[str, Range] = {
     # was taken and gave a 169 kN/m spring.
     "preload_n": Range(
         "a stuck ball presses on the strings with", 0.0, 50.0, 0.0, 1000.0, "N", (GRAM_FORCE,)
+    ),
+    # The palm and fingers between handle and arm (impact.hand.Hand): the hand–arm driving-point
+    # stiffness normal to the palm is 10⁴–10⁵ N/m at 20–100 Hz (ISO 10068; Gurram, Rakheja and
+    # Brammer 1995), a loose to a crushing grip; 2·10³–5·10⁵ N/m spans it with a margin each
+    # way.  Its resistive part is 10–100 N·s/m: 1–500 N·s/m.  Limits: a spring of 1 N/m holds
+    # nothing, one of 10⁸ N/m is steel; 10⁵ N·s/m would stop the handle dead.  A value in kN/m
+    # or N/mm (20 for 2·10⁴ N/m) is the likely slip.
+    "hand_stiffness_n_per_m": Range(
+        "a hand holds the grip with",
+        2.0e3,
+        5.0e5,
+        1.0,
+        1.0e8,
+        "N/m",
+        (KILONEWTON_PER_M, NEWTON_PER_MM),
+        KILONEWTON_PER_M,
+        "between handle and arm",
+    ),
+    "hand_damping_ns_per_m": Range(
+        "a hand damps the grip with",
+        1.0,
+        500.0,
+        0.0,
+        1.0e5,
+        "N·s/m",
+        (KILONEWTON_S_PER_M, NEWTON_S_PER_MM),
+        None,
+        "between handle and arm",
     ),
     # The racket.  Strung rackets on sale weigh 230–400 g (juniors' lighter: allow them);
     # ITF Rules, Appendix II: overall length at most 29.0 in (73.7 cm); adult rackets are

@@ -92,7 +92,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             ball=ball,
             hand=hand,
             engine=args.engine,
-            local_string_bed=args.local_string_bed,
+            string_bed=args.string_bed,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),

@@ -66,6 +66,7 @@ def add(commands: Any) -> None:
         default=0.0,
         help="racket face speed along the face, m/s, brushing the ball (default 0)",
     )
+    opt.add_string_bed(p)
     opt.add_no_figures(p, "oblique.csv")
     opt.add_out(p)
     p.set_defaults(handler=run)
@@ -100,6 +101,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             racket_speed=args.racket_speed,
             racket_tangential_speed=args.racket_tangential_speed,
             hand=hand,
+            string_bed=args.string_bed,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),

@@ -26,6 +26,7 @@ TRANSIENT_SUPPORTS = ("free", "pinned", "hand")  # racketdyn.impact.transient.TR
 ENGINES = ("auto", "compiled", "reference")  # racketdyn.impact.transient.ENGINES
 MODELS = ("approx", "transient", "both")  # racketdyn.workflows.predict.MODELS
 IMPACT_MODELS = ("approx", "transient")  # racketdyn.workflows.swing.IMPACT_MODELS
+STRING_BEDS = ("uniform", "local")  # racketdyn.impact.grid.STRING_BEDS
 DEFAULT_GRID = 9  # racketdyn.workflows.predict.DEFAULT_GRID
 SWING_GRID = 15  # racketdyn.workflows.swing.SWING_GRID
 MAX_GRID = 400  # racketdyn.workflows.predict.MAX_GRID
@@ -106,13 +107,43 @@ def add_ball(parser: argparse.ArgumentParser) -> None:
     )
 
 
+HAND_OPTIONS = ("hand_arm_mass", "hand_stiffness", "hand_damping")
+"""The hand's options (argparse names), for --support hand only."""
+
+
 def add_hand(parser: argparse.ArgumentParser) -> None:
-    """``--hand-arm-mass``."""
+    """``--hand-arm-mass``, ``--hand-stiffness``, ``--hand-damping``."""
     parser.add_argument(
         "--hand-arm-mass",
         type=float,
         metavar="KG",
         help="mass of the arm holding the grip, kg, for --support hand (default 1.0)",
+    )
+    parser.add_argument(
+        "--hand-stiffness",
+        type=float,
+        metavar="N/M",
+        help="total stiffness of the palm and fingers between handle and arm, N/m, for --support "
+        "hand (default 20000; hand-arm data 10000-100000 N/m)",
+    )
+    parser.add_argument(
+        "--hand-damping",
+        type=float,
+        metavar="N·S/M",
+        help="total damping of the palm and fingers between handle and arm, N·s/m, for "
+        "--support hand (default 12; hand-arm data 10-100 N·s/m)",
+    )
+
+
+def add_string_bed(parser: argparse.ArgumentParser) -> None:
+    """``--string-bed uniform|local``."""
+    parser.add_argument(
+        "--string-bed",
+        choices=STRING_BEDS,
+        default="uniform",
+        help="the string bed's law over the face: uniform, the face centre's law at every point "
+        "(the paper's method, default); local, each point's own from the lengths of the main and "
+        "cross strings through it (stiffer towards the frame; a law fitted per point)",
     )
 
 
@@ -258,8 +289,10 @@ def ball_and_hand(args: argparse.Namespace, supports: Sequence[str]) -> tuple[An
     from racketdyn.errors import InputError
     from racketdyn.workflows.inputs import ball_from, hand_for
 
-    if "hand" not in supports and args.hand_arm_mass is not None:
-        raise InputError("--hand-arm-mass is for --support hand (with --model transient)")
+    given = [name for name in HAND_OPTIONS if getattr(args, name, None) is not None]
+    if "hand" not in supports and given:
+        options = ", ".join("--" + name.replace("_", "-") for name in given)
+        raise InputError(f"{options}: for --support hand (with --model transient) only")
     allow = bool(getattr(args, "allow_implausible", False))
     ball, ball_defaults = ball_from(
         args.ball_mass,
@@ -268,7 +301,13 @@ def ball_and_hand(args: argparse.Namespace, supports: Sequence[str]) -> tuple[An
         allow_implausible=allow,
         e_bg_table=getattr(args, "e_bg_table", None),
     )
-    hand, hand_defaults = hand_for(supports, args.hand_arm_mass, allow_implausible=allow)
+    hand, hand_defaults = hand_for(
+        supports,
+        args.hand_arm_mass,
+        allow_implausible=allow,
+        stiffness_n_per_m=args.hand_stiffness,
+        damping_ns_per_m=args.hand_damping,
+    )
     return ball, hand, [*ball_defaults, *hand_defaults]
 
 

@@ -70,6 +70,7 @@ def add(commands: Any) -> None:
         action="store_true",
         help="charge string-bed modes as vibration loss too (default: off)",
     )
+    opt.add_string_bed(p)
     opt.add_no_figures(p)
     opt.add_out(p)
     p.set_defaults(handler=run)
@@ -102,6 +103,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             grid=args.grid,
             stiffness_reading=args.stiffness_reading,
             include_string_bed=args.include_string_bed,
+            string_bed=args.string_bed,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),

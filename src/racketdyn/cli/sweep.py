@@ -160,7 +160,8 @@ the command says so."""
 
 
 def _where_time_went(record: dict[str, Any]) -> str:
-    """Where the wall time went, from run.json: start, tasks, writing, combining, summary."""
+    """Where the wall time went, from run.json: start, tasks, writing, engine shutdown,
+    combining, summary."""
     spent = record.get("time_s", {})
     parts = [f"start {spent['start']:.1f} s"] if "start" in spent else []
     if "tasks" in spent:
@@ -172,7 +173,11 @@ def _where_time_went(record: dict[str, Any]) -> str:
         parts.append(f"writing parts {record.get('part_write_time_s', 0.0):.1f} s (in the tasks)")
     parts += [
         f"{name} {spent[key]:.1f} s"
-        for name, key in (("combining", "combining"), ("summary", "summary"))
+        for name, key in (
+            ("engine shutdown", "shutdown"),
+            ("combining", "combining"),
+            ("summary", "summary"),
+        )
         if key in spent
     ]
     return ", ".join(parts)

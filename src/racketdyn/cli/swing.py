@@ -55,6 +55,7 @@ def add(commands: Any) -> None:
         help="approx: Kawazoe's approximate method (default); transient: the time-domain model",
     )
     opt.add_grid(p, opt.SWING_GRID)
+    opt.add_string_bed(p)
     opt.add_no_figures(p)
     opt.add_out(p)
     p.set_defaults(handler=run)
@@ -92,6 +93,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             hand=hand,
             allow_implausible=args.allow_implausible,
             grid=args.grid,
+            string_bed=args.string_bed,
             defaults=[*swing_defaults, *defaults],
             command=opt.command_line(args),
             figures=None if args.no_figures else swing_figures,

@@ -43,6 +43,7 @@ def add(commands: Any) -> None:
         help="racket speed towards the ball, m/s (default 0)",
     )
     opt.add_support(p, "free", "free, hand, pinned, or several: free,hand (one line each)")
+    opt.add_string_bed(p)
     opt.add_no_figures(p, "twist.csv")
     opt.add_out(p)
     p.set_defaults(handler=run)
@@ -73,6 +74,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             racket_speed=args.racket_speed,
             supports=supports,
             hand=hand,
+            string_bed=args.string_bed,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),

@@ -27,12 +27,7 @@ def add_measured(p: argparse.ArgumentParser) -> None:
         help="transient model's integrator: auto (default: compiled where numba is installed), "
         "compiled (numba batch) or reference (scipy solve_ivp)",
     )
-    p.add_argument(
-        "--local-string-bed",
-        action="store_true",
-        help="the string bed's law at each point from the lengths of its main and cross strings "
-        "(stiffer near the frame) (default: the face centre's law everywhere)",
-    )
+    opt.add_string_bed(p)
 
 
 def add(commands: Any) -> None:
@@ -58,8 +53,10 @@ def add(commands: Any) -> None:
 
 
 def ball_hand(args: argparse.Namespace) -> tuple[Any, Any, list[str]]:
-    """The ball and, with --hand-arm-mass, the hand."""
-    supports = ("hand",) if args.hand_arm_mass is not None else ()
+    """The ball and, with a hand option (--hand-arm-mass, --hand-stiffness, --hand-damping),
+    the hand."""
+    given = any(getattr(args, name) is not None for name in opt.HAND_OPTIONS)
+    supports = ("hand",) if given else ()
     return opt.ball_and_hand(args, supports)
 
 
@@ -83,7 +80,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             ball=ball,
             hand=hand,
             engine=args.engine,
-            local_string_bed=args.local_string_bed,
+            string_bed=args.string_bed,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),

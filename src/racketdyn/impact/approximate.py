@@ -41,7 +41,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError, one_of
-from racketdyn.impact.grid import impact_grid
+from racketdyn.impact.grid import (
+    StringBed,
+    check_string_bed,
+    impact_grid,
+    predict_by_point_law,
+)
 from racketdyn.impact.result import (
     STATUS_BEYOND_LAW,
     STATUS_OK,
@@ -171,6 +176,7 @@ def predict(
     law: RestoringForce | None = None,
     include_string_bed: bool = False,
     stiffness_reading: StiffnessReading = "period",
+    string_bed: StringBed = "uniform",
 ) -> ImpactResult:
     """Predict contact time, forces, vibration and rebound by the approximate method.
 
@@ -198,7 +204,8 @@ def predict(
     labels : sequence of str, optional
         Point labels (default 1, 2, …).
     law : RestoringForce, optional
-        Compound ball+string law F_GB; default :func:`racketdyn.contact.compound_law`.
+        Compound ball+string law F_GB at every point; default
+        :func:`racketdyn.contact.compound_law` (with ``string_bed="uniform"``).
     include_string_bed : bool
         Charge string-bed (membrane) modes as vibration loss too.  Off by default: the
         compound spring already carries the string bed's deflection (section 3.4), and with the
@@ -207,6 +214,10 @@ def predict(
         the strings twice.
     stiffness_reading : {"period", "tangent"}
         Reading of eq (10), see the module docstring.
+    string_bed : {"uniform", "local"}
+        ``uniform``: one law for the whole face, the centre's (the paper's method);
+        ``local``: each point's own law from the lengths of its main and cross strings
+        (:func:`racketdyn.impact.grid.predict_by_point_law`, stiffer towards the frame).
 
     Returns
     -------
@@ -214,6 +225,13 @@ def predict(
         Arrays shaped ``(n_points, n_speeds, n_supports)``.
     """
     one_of("stiffness_reading", stiffness_reading, STIFFNESS_READINGS)
+    check_string_bed(string_bed, law, racket)
+    if string_bed == "local":
+        grid_options = {"ball_speed": ball_speed, "supports": supports}
+        return predict_by_point_law(  # type: ignore[no-any-return]
+            predict, racket, ball, locations, labels, modal_model, include_string_bed,
+            racket_speed=racket_speed, stiffness_reading=stiffness_reading, **grid_options,
+        )  # fmt: skip
     grid = impact_grid(
         racket,
         ball,

@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError, one_of
+from racketdyn.impact.grid import StringBed, check_string_bed, point_law
 from racketdyn.impact.result import ImpactResult, slug, write_columns
 from racketdyn.impact.transient import TransientImpact, simulate_impact
 from racketdyn.modal.model import ModalModel
@@ -272,6 +273,7 @@ def simulate_histories(
     modal_model: ModalModel | Literal["racket"] | None = "racket",
     law: RestoringForce | None = None,
     include_string_bed: bool = False,
+    string_bed: StringBed = "uniform",
     **options: Any,
 ) -> list[History]:
     """Simulate the impacts at named points, for their time histories.
@@ -294,6 +296,9 @@ def simulate_histories(
         Compound ball+string law.
     include_string_bed : bool
         Keep string-bed modes.
+    string_bed : {"uniform", "local"}
+        ``local``: each point's own string-bed law (:func:`racketdyn.impact.grid.point_law`)
+        instead of ``law``.
     **options
         Further keywords of :func:`simulate_impact` (``hand``, ``rtol``, ``method``).
 
@@ -302,9 +307,12 @@ def simulate_histories(
     list of History
         Points slowest, then supports.
     """
+    check_string_bed(string_bed, law, racket)
     histories = []
     for name, location in points.items():
         xy = np.asarray(location, dtype=float).reshape(2)
+        if string_bed == "local":
+            law = point_law(racket, ball, xy)
         for support in supports:
             impact = simulate_impact(
                 racket,

@@ -8,16 +8,19 @@ approximate method (:mod:`~racketdyn.impact.approximate`) and the transient simu
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass
-from typing import Any, Literal
+import logging
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from typing import Any, Literal, get_args
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball, RestoringForce
-from racketdyn.contact import compound_law
+from racketdyn.contact import compound_law, local_compound_law
 from racketdyn.errors import InputError, one_of, require_speeds
 from racketdyn.impact.hand import Hand
 from racketdyn.modal import ModalModel
@@ -25,12 +28,32 @@ from racketdyn.racket import SUPPORTS, Racket, as_locations
 from racketdyn.racket_modal import modal_model_for
 
 __all__ = [
+    "STRING_BEDS",
     "ImpactGrid",
+    "StringBed",
+    "check_string_bed",
     "check_supports",
     "impact_grid",
+    "point_law",
+    "predict_by_point_law",
     "resolve_modal_model",
+    "status_warnings_held",
     "support_reduced_mass",
 ]
+
+log = logging.getLogger(__name__)
+
+StringBed = Literal["uniform", "local"]
+STRING_BEDS: tuple[str, ...] = get_args(StringBed)
+"""The string bed's law over the face: ``uniform``, the face centre's law at every point (the
+paper's one law, :func:`racketdyn.contact.compound_law`), or ``local``, each point's own from
+the lengths of its main and cross strings (:func:`racketdyn.contact.local_compound_law`)."""
+
+LOCAL_LAW_RECORD = (
+    "per point: ball + local string bed in series (racketdyn.contact.local_compound_law, "
+    "Kawazoe's law per string with the lengths of the main and cross strings through the point)"
+)
+"""What ``inputs["compound_law"]`` says when every point has its own law."""
 
 
 def check_supports(
@@ -133,6 +156,7 @@ class ImpactGrid:
             "racketdyn_version": __version__,
             "method": method,
             **extra,
+            "string_bed": "uniform",
             "ball": {
                 "mass_kg": ball.mass_kg,
                 "diameter_m": ball.diameter_m,
@@ -200,3 +224,135 @@ def impact_grid(
         model=resolve_modal_model(racket, modal_model, include_string_bed),
         law=law or compound_law(racket, ball),
     )
+
+
+class _HoldWarnings(logging.Filter):
+    """Drop WARNING records: the per-call status counts, summed once by the caller."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        return record.levelno != logging.WARNING
+
+
+@contextmanager
+def status_warnings_held(name: str) -> Iterator[None]:
+    """Hold the WARNING records of logger ``name`` (an impact model's per-call status counts)
+    while a caller that calls it many times sums them itself."""
+    logger = logging.getLogger(name)
+    hold = _HoldWarnings()
+    logger.addFilter(hold)
+    try:
+        yield
+    finally:
+        logger.removeFilter(hold)
+
+
+@lru_cache(maxsize=8192)
+def _cached_local_law(racket: Racket, ball: Ball, x: float, y: float) -> RestoringForce:
+    return local_compound_law(racket, ball, (x, y))
+
+
+def point_law(racket: Racket, ball: Ball, location: ArrayLike) -> RestoringForce:
+    """The compound law at one point of the face (:func:`racketdyn.contact.local_compound_law`),
+    cached per racket, ball and point.
+
+    The head is symmetric about its long axis, so a point and its mirror image share one law
+    (the same object): ±y give the same numbers to the last bit.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The racket (head outline, strings) and the ball (diameter, restoring force).
+    location : array_like (2,)
+        Impact point (x, y), m.
+    """
+    x, y = (float(v) for v in np.asarray(location, dtype=float).reshape(2))
+    centre = racket.head.centre_y_m
+    return _cached_local_law(racket, ball, x, centre + abs(y - centre))
+
+
+def predict_by_point_law(
+    predictor: Callable[..., Any],
+    racket: Racket,
+    ball: Ball,
+    locations: ArrayLike,
+    labels: Sequence[str] | None,
+    modal_model: ModalModel | Literal["racket"] | None,
+    include_string_bed: bool,
+    **options: Any,
+) -> Any:
+    """Run an impact model with each point's own string-bed law (``string_bed="local"``).
+
+    The model runs once per run of consecutive points sharing a law (:func:`point_law`), with
+    that law and the modal model resolved once, and the parts are joined in point order
+    (:meth:`racketdyn.impact.result.ImpactResult.concatenate`).  ``inputs`` records
+    ``string_bed = "local"``.
+
+    Parameters
+    ----------
+    predictor : callable
+        :func:`racketdyn.impact.predict` or
+        :func:`racketdyn.impact.transient.predict_transient` (called with ``law`` and
+        ``string_bed="uniform"``).
+    racket, ball, locations, labels, modal_model, include_string_bed, **options
+        As for the predictor (``options`` holds the speeds, supports and the rest).
+    """
+    from racketdyn.impact.result import ImpactResult
+
+    xy = as_locations(locations, "impact points")
+    if xy.shape[0] == 0:
+        raise InputError("impact points: give at least one point")
+    racket.head.check_inside(xy)
+    names = tuple(labels) if labels is not None else tuple(str(i + 1) for i in range(len(xy)))
+    if len(names) != len(xy):
+        raise InputError(f"{len(names)} labels given for {len(xy)} impact points")
+    model = resolve_modal_model(racket, modal_model, include_string_bed)
+    laws = [point_law(racket, ball, point) for point in xy]
+    parts = []
+    start = 0
+    with status_warnings_held(predictor.__module__):  # one count per status, below
+        while start < len(xy):
+            stop = start + 1
+            while stop < len(xy) and laws[stop] is laws[start]:
+                stop += 1
+            parts.append(
+                predictor(
+                    racket,
+                    ball,
+                    xy[start:stop],
+                    labels=names[start:stop],
+                    modal_model=model,
+                    include_string_bed=include_string_bed,
+                    law=laws[start],
+                    string_bed="uniform",
+                    **options,
+                )
+            )
+            start = stop
+    joined = ImpactResult.concatenate(parts)
+    status = np.asarray(joined.status)
+    for message in np.unique(status[status != "ok"]):
+        log.warning(
+            "%d of %d impacts: %s (their results are NaN)",
+            int(np.sum(status == message)), status.size, message,
+        )  # fmt: skip
+    inputs = {**joined.inputs, "string_bed": "local", "compound_law": LOCAL_LAW_RECORD}
+    return replace(joined, inputs=inputs)
+
+
+def check_string_bed(string_bed: str, law: RestoringForce | None, racket: Racket) -> None:
+    """``string_bed`` is one of :data:`STRING_BEDS`; ``local`` takes no ``law`` and needs the
+    strings' construction (InputError)."""
+    one_of("string_bed", string_bed, STRING_BEDS)
+    if string_bed == "local":
+        if law is not None:
+            raise InputError(
+                "string_bed 'local' makes each point's law: give law or string_bed='local', "
+                "not both"
+            )
+        file = racket.strings.load_deflection_file
+        if file is not None:
+            raise InputError(
+                f"--string-bed local needs the strings' construction; the racket's string bed is "
+                f"a measured load-deflection file ({file.name}), a law at one point: use "
+                "--string-bed uniform"
+            )

@@ -18,9 +18,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.ball import Ball, RestoringForce
-from racketdyn.contact import compound_law, local_compound_law
+from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of
 from racketdyn.impact.approximate import predict
+from racketdyn.impact.grid import StringBed, check_string_bed, point_law
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.result import STATUS_OK
 from racketdyn.impact.transient import predict_transient
@@ -76,10 +77,10 @@ class ModelInputs:
         Charge string-bed modes as vibration loss too.
     engine : {"auto", "compiled", "reference"}
         Transient engine.
-    local_string_bed : bool
-        The string bed's law at each impact point from the lengths of its main and cross
-        strings (:func:`racketdyn.contact.local_compound_law`) instead of the face centre's for
-        every point.
+    string_bed : {"uniform", "local"}
+        ``uniform``: the face centre's string-bed law at every point (the paper's); ``local``:
+        each point's own from the lengths of its main and cross strings
+        (:func:`racketdyn.contact.local_compound_law`).
     """
 
     racket: Racket
@@ -90,7 +91,10 @@ class ModelInputs:
     frame_damping_scale: float = 1.0
     include_string_bed: bool = False
     engine: str = "auto"
-    local_string_bed: bool = False
+    string_bed: StringBed = "uniform"
+
+    def __post_init__(self) -> None:
+        check_string_bed(self.string_bed, None, self.racket)
 
     @property
     def effective_racket(self) -> Racket:
@@ -125,15 +129,10 @@ class ModelInputs:
 
     def law(self, location: tuple[float, float] | None = None) -> RestoringForce:
         """Compound ball + string-bed law of :attr:`effective_racket`: the face centre's, or
-        with :attr:`local_string_bed` the one at ``location`` (x, y in m)."""
-        if self.local_string_bed and location is not None:
-            return _local_law(self.effective_racket, self.ball, location)
+        with :attr:`string_bed` ``local`` the one at ``location`` (x, y in m)."""
+        if self.string_bed == "local" and location is not None:
+            return point_law(self.effective_racket, self.ball, location)
         return compound_law(self.effective_racket, self.ball)
-
-
-@lru_cache(maxsize=4096)
-def _local_law(racket: Racket, ball: Ball, location: tuple[float, float]) -> RestoringForce:
-    return local_compound_law(racket, ball, location)
 
 
 def predict_rows(
@@ -163,21 +162,18 @@ def predict_rows(
     ratio = np.full(n, np.nan)
     status = np.full(n, STATUS_OK, dtype=object)
     racket = inputs.effective_racket
-    model, law = inputs.modes(), inputs.law()
-    points = [(float(x), float(y)) for x, y in measured.locations]
+    local = inputs.string_bed == "local"
+    model, law = inputs.modes(), None if local else inputs.law()
     keys = list(
         zip(
             measured.support,
             measured.ball_speed.tolist(),
             measured.racket_speed.tolist(),
-            points if inputs.local_string_bed else [None] * n,
             strict=True,
         )
     )
     for key in dict.fromkeys(keys):
-        support, v_ball, v_racket, point = key
-        if point is not None:
-            law = inputs.law(point)
+        support, v_ball, v_racket = key
         rows = np.array([i for i, k in enumerate(keys) if k == key])
         if method == "approx" and support == "hand":
             status[rows] = NO_HAND_STATUS
@@ -187,6 +183,7 @@ def predict_rows(
             "racket_speed": v_racket,
             "modal_model": model,
             "law": law,
+            "string_bed": inputs.string_bed,
             "include_string_bed": inputs.include_string_bed,
             "labels": [measured.labels[i] for i in rows],
         }

@@ -57,8 +57,7 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Callable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Literal, get_args
@@ -72,7 +71,7 @@ from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_whole
 from racketdyn.impact.approximate import predict
-from racketdyn.impact.grid import resolve_modal_model
+from racketdyn.impact.grid import resolve_modal_model, status_warnings_held
 from racketdyn.impact.result import (
     STATUS_OK,
     ImpactResult,
@@ -457,27 +456,9 @@ def _prepared(
     # string-bed modes kept here: each predictor drops them itself (include_string_bed)
     model = resolve_modal_model(racket, modal_model, include_string_bed=True)
     options = dict(kwargs)
-    if options.get("law") is None:
+    if options.get("law") is None and options.get("string_bed", "uniform") == "uniform":
         options["law"] = compound_law(racket, ball)
     return model, options
-
-
-class _HoldWarnings(logging.Filter):
-    """Drop WARNING records: the per-call status counts, summed once for the whole swing."""
-
-    def filter(self, record: logging.LogRecord) -> bool:
-        return record.levelno != logging.WARNING
-
-
-@contextmanager
-def _status_warnings_held(name: str) -> Iterator[None]:
-    logger = logging.getLogger(name)
-    hold = _HoldWarnings()
-    logger.addFilter(hold)
-    try:
-        yield
-    finally:
-        logger.removeFilter(hold)
 
 
 def predict_swing(
@@ -520,7 +501,8 @@ def predict_swing(
     labels : sequence of str, optional
         Point labels (default 1, 2, …).
     **kwargs
-        Passed to the impact model (``law``, ``include_string_bed``, ``stiffness_reading``,
+        Passed to the impact model (``law``, ``string_bed``, ``include_string_bed``,
+        ``stiffness_reading``,
         ``rtol`` …).
 
     Returns
@@ -577,7 +559,7 @@ def _predict_swing(
     first: ImpactResult | None = None
     for g, speed in enumerate(groups):
         index = np.flatnonzero(inverse == g)
-        with _status_warnings_held(predictor.__module__):
+        with status_warnings_held(predictor.__module__):
             part = predictor(
                 racket,
                 ball,

@@ -80,7 +80,10 @@ from racketdyn.errors import (
 from racketdyn.impact.approximate import elastic_contact
 from racketdyn.impact.grid import (
     ImpactGrid,
+    StringBed,
+    check_string_bed,
     impact_grid,
+    predict_by_point_law,
     resolve_modal_model,
     support_reduced_mass,
 )
@@ -116,8 +119,10 @@ from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket, as_locations
 
 __all__ = [
+    "COMPILED_SCHEME",
     "ENERGY_TERMS",
     "ENGINES",
+    "EXTRAPOLATE",
     "INTEGRATORS",
     "STATUS_NO_SEPARATION",
     "STATUS_SECOND_CONTACT",
@@ -749,10 +754,20 @@ def simulate_impact(
 
 Engine = Literal["auto", "compiled", "reference"]
 ENGINES: tuple[str, ...] = ("auto", "compiled", "reference")
-STEPS_PER_CONTACT = 400
-"""Default steps of the compiled engine over one estimated contact time: rebound speed within
-≈ 2e-4 m/s and contact time within ≈ 2e-5 of the reference engine over the face
-(``tests/test_kernel.py``, ``docs/develop.md``)."""
+STEPS_PER_CONTACT = 128
+"""Default steps of the compiled engine over one estimated contact time, extrapolated from a
+second run at half as many (:data:`EXTRAPOLATE`): over the bench's face map rebound speed
+within ≈ 3e-5 m/s, contact time within ≈ 7e-9 s and vibration energy within ≈ 5e-5 J of the
+reference engine (``benchmarks/bench_transient.py``, ``docs/develop.md``)."""
+EXTRAPOLATE = True
+"""Default of the compiled engine's Richardson extrapolation (runs at h and 2h)."""
+COMPILED_SCHEME = (
+    f"{STEPS_PER_CONTACT} steps per contact, extrapolated from h and 2h, the step halved where "
+    "they disagree (issue 16)"
+)
+"""The compiled engine's default numerics, as a sweep's hash records them (a sweep made with
+another scheme is recomputed, not resumed: the numbers differ at the scheme's accuracy).
+Change it whenever the compiled engine's numbers change."""
 
 
 def predict_transient(
@@ -771,6 +786,8 @@ def predict_transient(
     engine: Engine = "auto",
     hand: Hand | None = None,
     steps_per_contact: int = STEPS_PER_CONTACT,
+    string_bed: StringBed = "uniform",
+    extrapolate: bool = EXTRAPOLATE,
 ) -> ImpactResult:
     """Simulate every point × speed × support and collect an :class:`ImpactResult`.
 
@@ -809,6 +826,12 @@ def predict_transient(
         The hand and arm of the ``hand`` support.
     steps_per_contact : int
         Steps of the compiled engine over one estimated contact time.
+    string_bed : {"uniform", "local"}
+        ``uniform``: the face centre's law at every point (the paper's); ``local``: each
+        point's own (:func:`racketdyn.impact.grid.predict_by_point_law`).
+    extrapolate : bool
+        Compiled engine: also run each contact with half as many steps and extrapolate
+        (Richardson; order ≈ 3 instead of 2 for 1.5× the steps).
 
     Returns
     -------
@@ -818,6 +841,17 @@ def predict_transient(
     """
     one_of("engine", engine, ENGINES)
     require_whole("steps_per_contact", steps_per_contact, least=16)
+    check_string_bed(string_bed, law, racket)
+    if string_bed == "local":
+        engine_settings = {
+            "rtol": rtol, "method": method, "engine": engine, "hand": hand,
+            "extrapolate": extrapolate,
+        }  # fmt: skip
+        return predict_by_point_law(  # type: ignore[no-any-return]
+            predict_transient, racket, ball, locations, labels, modal_model, include_string_bed,
+            ball_speed=ball_speed, supports=supports, racket_speed=racket_speed,
+            steps_per_contact=steps_per_contact, **engine_settings,
+        )  # fmt: skip
     grid = impact_grid(
         racket, ball, locations, ball_speed, supports, racket_speed, modal_model, labels, law,
         include_string_bed, allowed_supports=TRANSIENT_SUPPORTS, hand=hand,
@@ -833,12 +867,19 @@ def predict_transient(
         impact_system(racket, model, s, xy, hand if s == "hand" else None) for s in grid.supports
     ]
     run = _run_compiled if engine == "compiled" else _run_reference
-    out, mode_energy, status, terms = run(grid, systems, ball, rtol, method, steps_per_contact)
+    out, mode_energy, status, terms = run(
+        grid, systems, ball, rtol, method, steps_per_contact, extrapolate
+    )
     settings: dict[str, Any] = (
         {
             "engine": "compiled",
             "steps_per_contact": steps_per_contact,
-            "order": "2 (1 + n for a power law F = c Xⁿ with n < 1)",
+            "extrapolation": "from h and 2h (Richardson)" if extrapolate else "none",
+            "order": (
+                "3 (1 + n for a power law F = c Xⁿ with n < 1)"
+                if extrapolate
+                else "2 (1 + n for a power law F = c Xⁿ with n < 1)"
+            ),
         }
         if engine == "compiled"
         else {"engine": "reference", "method": method, "rtol": rtol}
@@ -938,7 +979,7 @@ def _empty_outputs(
 
 def _run_reference(
     grid: ImpactGrid, systems: list[ImpactSystem], ball: Ball, rtol: float, method: str,
-    steps_per_contact: int,
+    steps_per_contact: int, extrapolate: bool,
 ) -> _Outputs:  # fmt: skip
     """One solve_ivp per impact, in physical coordinates."""
     n_modes = 0 if grid.model is None else grid.model.n_modes
@@ -963,7 +1004,7 @@ def _run_reference(
 
 def _run_compiled(
     grid: ImpactGrid, systems: list[ImpactSystem], ball: Ball, rtol: float, method: str,
-    steps_per_contact: int,
+    steps_per_contact: int, extrapolate: bool,
 ) -> _Outputs:  # fmt: skip
     """All impacts in one call of the numba kernel, then the energies vectorised."""
     n_points, n_speeds, n_supports = grid.shape
@@ -993,7 +1034,7 @@ def _run_compiled(
     kind, coefficients = law_arrays(law.kind, law.coefficients)
     modal, raw = integrate_impacts(
         system_index, approach, step, poles, residues, weights, compliance, m_b, e_bg,
-        kind, coefficients, law.max_deflection_m, 50 * steps_per_contact,
+        kind, coefficients, law.max_deflection_m, 50 * steps_per_contact, extrapolate,
     )  # fmt: skip
     n_modes = 0 if grid.model is None else grid.model.n_modes
     out, mode_energy, status = _empty_outputs(grid.shape, n_modes)

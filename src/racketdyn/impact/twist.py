@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError, require_positive, require_speeds
-from racketdyn.impact.grid import resolve_modal_model
+from racketdyn.impact.grid import StringBed, check_string_bed, point_law, resolve_modal_model
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.result import STATUS_OK
 from racketdyn.impact.transient import simulate_impact
@@ -93,6 +93,7 @@ def twist_curve(
     racket_speed: float = 0.0,
     modal_model: ModalModel | Literal["racket"] | None = "racket",
     hand: Hand | None = None,
+    string_bed: StringBed = "uniform",
 ) -> TwistCurve:
     """Simulate impacts across the face at one x and read the racket's twist at separation.
 
@@ -114,6 +115,9 @@ def twist_curve(
         Flexible modes (None: rigid racket).
     hand : Hand, optional
         The hand and arm of the ``hand`` support.
+    string_bed : {"uniform", "local"}
+        The face centre's string-bed law at every offset (the paper's) or each point's own
+        (:func:`racketdyn.impact.grid.point_law`).
 
     Returns
     -------
@@ -124,6 +128,7 @@ def twist_curve(
     if offsets.ndim != 1 or offsets.size == 0 or not np.all(np.isfinite(offsets)):
         raise InputError("offsets_m: give a row of finite offsets from the long axis, m")
     speed = float(require_speeds("ball speed", ball_speed)[0])
+    check_string_bed(string_bed, None, racket)
     model = resolve_modal_model(racket, modal_model, include_string_bed=False)
     racket.head.check_inside(np.column_stack([np.full(offsets.size, x_m), offsets]))
     n = offsets.size
@@ -134,6 +139,7 @@ def twist_curve(
     for i, y in enumerate(offsets):
         impact = simulate_impact(
             racket, ball, (x_m, y), speed, support, racket_speed, model,
+            law=point_law(racket, ball, (x_m, y)) if string_bed == "local" else None,
             hand=hand if support == "hand" else None,
         )  # fmt: skip
         status[i] = impact.status

@@ -26,6 +26,7 @@ from racketdyn.ball import Ball, RestoringForce
 from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
 from racketdyn.impact.approximate import StiffnessReading
 from racketdyn.impact.comparison import History, ModelComparison
+from racketdyn.impact.grid import StringBed
 from racketdyn.impact.oblique import ObliqueCurve, TangentialContact
 from racketdyn.impact.result import SHOWN_SPEED_MPS, ImpactResult
 from racketdyn.impact.swing import (
@@ -147,6 +148,8 @@ class FigureOptions:
         String-bed modes charged as vibration loss.
     stiffness_reading : {"period", "tangent"}
         Reading of eq 10.
+    string_bed : {"uniform", "local"}
+        The string bed's law over the face (``local``: each point's own, ``law`` unused).
     """
 
     supports: tuple[str, ...] = ("pinned", "free")
@@ -156,6 +159,7 @@ class FigureOptions:
     law: RestoringForce | None = None
     include_string_bed: bool = False
     stiffness_reading: StiffnessReading = "period"
+    string_bed: StringBed = "uniform"
 
     def racket_speed_at(self, speeds: ArrayLike) -> NDArray[np.float64]:
         """Racket speed at each ball speed, m/s: the run's one racket speed, or the run's
@@ -180,6 +184,7 @@ class FigureOptions:
             "law": self.law,
             "include_string_bed": self.include_string_bed,
             "stiffness_reading": self.stiffness_reading,
+            "string_bed": self.string_bed,
         }
 
     def predict(
@@ -234,6 +239,8 @@ class FigureOptions:
         parts = [racket, f"eq 10 {self.stiffness_reading} reading"]
         if self.include_string_bed:
             parts.append("string-bed modes charged")
+        if self.string_bed == "local":
+            parts.append("each point's string-bed law")
         if model is None:
             parts.append("rigid racket")
         return "; ".join(parts)
@@ -1051,6 +1058,7 @@ def figure_transient_comparison_speed(
         "labels": names,
         "law": options.law,
         "include_string_bed": options.include_string_bed,
+        "string_bed": options.string_bed,
         "racket_speed": options.racket_speed_at(speeds),
     }
     points = [marks[n] for n in names]

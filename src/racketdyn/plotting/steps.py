@@ -39,9 +39,10 @@ def figure_options(result: PredictResult) -> FigureOptions:
         speeds=tuple(result.speeds),
         racket_speeds=tuple(result.racket_speed),
         shown_speed=result.speeds[result.shown_speed],
-        law=result.law,
+        law=None if result.string_bed == "local" else result.law,
         include_string_bed=result.include_string_bed,
         stiffness_reading=result.stiffness_reading,
+        string_bed=result.string_bed,
     )
 
 

@@ -311,6 +311,7 @@ def _combine(
         "engine": spec.transient_engine if spec.method == "transient" else "",
         "stiffness_reading": spec.stiffness_reading,
         "include_string_bed": int(spec.include_string_bed),
+        "string_bed": spec.string_bed,
         "rigid": int(spec.rigid),
         "head_centre_x_m": head.centre_x_m,
         "head_centre_y_m": head.centre_y_m,

@@ -59,9 +59,10 @@ FIRST_TASK_TIMEOUT_S = 600.0
 finished so far, at least ``TASK_TIMEOUT_FLOOR_S``; ``FIRST_TASK_TIMEOUT_S`` until one has
 finished."""
 
-SECONDS_PER_IMPACT = {"approximate": 5e-6, "transient": 7e-5}
+SECONDS_PER_IMPACT = {"approximate": 5e-6, "transient": 2e-5}
 """Rough cost of one impact on one core, s, by method (the benchmarks' figures): used only to
-size the tasks (:func:`_designs_per_task`)."""
+size the tasks (:func:`_designs_per_task`).  Transient: 18 µs per impact in a 10,000-impact
+sweep task of ``bench_sweep.py``'s study since issue 16's faster engine (was 70 µs)."""
 TARGET_TASK_S = 0.5
 """A task should take about this long, s: long enough that submitting it, shipping it and
 writing its part cost little beside it, short enough to share the designs out evenly."""
@@ -147,7 +148,9 @@ def _designs_per_task(spec: SweepSpec, n_designs: int, executor: Executor) -> in
     if isinstance(executor, SerialExecutor):
         return 1
     workers = max(1, _in_flight_limit(executor) // 2)
-    per_design = spec.impacts_per_design * SECONDS_PER_IMPACT.get(spec.method, 7e-5)
+    per_design = spec.impacts_per_design * SECONDS_PER_IMPACT.get(
+        spec.method, SECONDS_PER_IMPACT["transient"]
+    )
     by_time = math.ceil(TARGET_TASK_S / per_design)
     by_balance = max(1, n_designs // (4 * workers))
     return max(1, min(by_time, by_balance))
@@ -327,6 +330,16 @@ class _Runner:
             self._finished_one()
         tally.longest_s = max(tally.longest_s, batch_s)
 
+    def _on_disk(self, design: Design) -> bool:
+        """Record a design whose part a worker wrote before its batch failed; whether it was."""
+        if _read_part(self.parts_dir / f"{design.task_id}.nc", self.spec, data=False) is None:
+            return False
+        self.tally.ran += 1
+        if self.assembly is not None:
+            self.assembly.add(design)
+        self._finished_one()
+        return True
+
     def _finished_one(self) -> None:
         self.tally.done += 1
         if self.progress is not None:
@@ -334,7 +347,12 @@ class _Runner:
 
     def _failed(self, job: _Job, error: BaseException) -> None:
         if len(job.designs) > 1:  # which design failed? each alone, the attempt unchanged
-            self.queue.extendleft(reversed(job.singles(job.alone)))
+            # a worker on this machine wrote each design of the batch as it ended: those on
+            # disk are done (recorded from their files), only the others run again
+            left = [d for d in job.designs if not (self.write_dir is not None and self._on_disk(d))]
+            self.queue.extendleft(
+                reversed(_Job(tuple(left), job.attempt, job.alone).singles(job.alone))
+            )
             return
         (design,) = job.designs
         if job.attempt <= self.retries:

@@ -24,10 +24,11 @@ from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError, one_of, require_positive, require_speeds
 from racketdyn.impact.approximate import STIFFNESS_READINGS, StiffnessReading
+from racketdyn.impact.grid import STRING_BEDS, StringBed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.kernel import NUMBA_AVAILABLE
+from racketdyn.impact.transient import COMPILED_SCHEME, Engine
 from racketdyn.impact.transient import ENGINES as TRANSIENT_ENGINES
-from racketdyn.impact.transient import Engine
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
 from racketdyn.io.racket_file import racket_to_dict as _racket_to_dict
 from racketdyn.racket import (
@@ -88,6 +89,10 @@ class SweepSpec:
         two apart.  Only ``auto`` with the approximate method.
     include_string_bed : bool
         Charge string-bed modes as vibration loss too.
+    string_bed : {"uniform", "local"}
+        The string bed's law over the face: the centre's at every point (the paper's, default)
+        or each point's own from its strings' lengths
+        (:func:`racketdyn.impact.grid.predict_by_point_law`; each design's racket's own).
     rigid : bool
         No modal model: a rigid racket.
     threshold_fraction : float
@@ -115,6 +120,7 @@ class SweepSpec:
     stiffness_reading: StiffnessReading = "period"
     engine: Engine = "auto"
     include_string_bed: bool = False
+    string_bed: StringBed = "uniform"
     rigid: bool = False
     threshold_fraction: float = DEFAULT_THRESHOLD_FRACTION
     summary_ball_speed: float | None = None
@@ -162,6 +168,13 @@ class SweepSpec:
                 "[impacts].engine = 'compiled' needs numba (pip install numba); use 'reference'"
             )
         one_of("[impacts].stiffness_reading", self.stiffness_reading, STIFFNESS_READINGS)
+        one_of("[impacts].string_bed", self.string_bed, STRING_BEDS)
+        if self.string_bed == "local" and self.racket.strings.load_deflection_file is not None:
+            raise InputError(
+                "[impacts].string_bed = 'local' needs the strings' construction; the racket's "
+                "string bed is a measured load-deflection file (a law at one point): use "
+                "'uniform'"
+            )
         names = [v.name for v in self.variables]
         for name in names:
             if name in HAND_VARIABLES and "hand" not in supports:
@@ -322,6 +335,7 @@ class SweepSpec:
             method=self.method,
             stiffness_reading=self.stiffness_reading,
             include_string_bed=self.include_string_bed,
+            string_bed=self.string_bed,
             rigid=self.rigid,
             engine=self.transient_engine,
         )
@@ -351,7 +365,11 @@ class SweepSpec:
         racket["strings"]["load_deflection_file"] = _file_record(
             self.racket.strings.load_deflection_file
         )
-        engine = {"engine": self.transient_engine} if self.method == "transient" else {}
+        engine: dict[str, str] = {}
+        if self.method == "transient":
+            engine["engine"] = self.transient_engine
+            if self.transient_engine == "compiled":  # its numerics changed in issue 16
+                engine["compiled_scheme"] = COMPILED_SCHEME
         return {
             "format": "racketdyn-sweep-spec",
             "schema_version": SPEC_SCHEMA_VERSION,
@@ -372,6 +390,7 @@ class SweepSpec:
             **engine,
             "stiffness_reading": self.stiffness_reading,
             "include_string_bed": self.include_string_bed,
+            "string_bed": self.string_bed,
             "rigid": self.rigid,
         }
 

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError, one_of, require_whole
 from racketdyn.impact.approximate import STIFFNESS_READINGS
+from racketdyn.impact.grid import STRING_BEDS
 from racketdyn.impact.transient import ENGINES as TRANSIENT_ENGINES
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_racket, read_toml
 from racketdyn.io.tables import read_load_deflection, read_points
@@ -43,6 +44,7 @@ _IMPACT_KEYS = (
     "engine",
     "stiffness_reading",
     "include_string_bed",
+    "string_bed",
     "rigid",
 )
 _SUMMARY_KEYS = ("threshold_fraction", "ball_speed_mps", "racket_speed_mps")
@@ -160,6 +162,7 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         impacts, "include_string_bed", bool, False, "[impacts].include_string_bed"
     )
     rigid = _get(impacts, "rigid", bool, False, "[impacts].rigid")
+    string_bed = one_of("[impacts].string_bed", impacts.get("string_bed", "uniform"), STRING_BEDS)
     engine = one_of("[impacts].engine", impacts.get("engine", "auto"), TRANSIENT_ENGINES)
 
     table = data.get("variables", {})
@@ -229,6 +232,7 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         stiffness_reading=reading,  # type: ignore[arg-type]  # checked by one_of
         engine=engine,  # type: ignore[arg-type]  # checked by one_of
         include_string_bed=include_string_bed,
+        string_bed=string_bed,  # type: ignore[arg-type]  # checked by one_of
         rigid=rigid,
         threshold_fraction=fraction,
         summary_ball_speed=summary_speeds[0],

@@ -26,6 +26,7 @@ from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of
 from racketdyn.impact.approximate import StiffnessReading, predict
+from racketdyn.impact.grid import StringBed
 from racketdyn.impact.result import (
     STATUS_BEYOND_LAW,
     STATUS_NO_SEPARATION,
@@ -112,6 +113,8 @@ class SweepTask:
         Reading of eq (10).
     include_string_bed : bool
         Charge string-bed modes too.
+    string_bed : {"uniform", "local"}
+        One law for the face (the centre's) or each point's own.
     rigid : bool
         No modal model.
     engine : {"compiled", "reference"}
@@ -132,6 +135,7 @@ class SweepTask:
     include_string_bed: bool
     rigid: bool
     engine: Engine = "compiled"
+    string_bed: StringBed = "uniform"
 
 
 @dataclass(frozen=True, eq=False)
@@ -174,7 +178,7 @@ def _approximate(
     racket: Racket,
     ball: Ball,
     model: ModalModel | None,
-    law: RestoringForce,
+    law: RestoringForce | None,
     task: SweepTask,
 ) -> ImpactResult:
     """Kawazoe's approximate method over points × (ball speed, racket speed) pairs × supports."""
@@ -190,6 +194,7 @@ def _approximate(
         law=law,
         include_string_bed=task.include_string_bed,
         stiffness_reading=task.stiffness_reading,
+        string_bed=task.string_bed,
     )
 
 
@@ -197,7 +202,7 @@ def _transient(
     racket: Racket,
     ball: Ball,
     model: ModalModel | None,
-    law: RestoringForce,
+    law: RestoringForce | None,
     task: SweepTask,
 ) -> ImpactResult:
     """The transient simulation over points × (ball speed, racket speed) pairs × supports.
@@ -219,14 +224,18 @@ def _transient(
         include_string_bed=task.include_string_bed,
         hand=hand,
         engine=task.engine,
+        string_bed=task.string_bed,
     )
 
 
-ImpactMethod = Callable[[Racket, Ball, ModalModel | None, RestoringForce, SweepTask], ImpactResult]
+ImpactMethod = Callable[
+    [Racket, Ball, ModalModel | None, RestoringForce | None, SweepTask], ImpactResult
+]
 METHODS: dict[str, ImpactMethod] = {"approximate": _approximate, "transient": _transient}
 """Impact methods a sweep can run, by name.  Each takes the design's racket, ball, modal model
-(None: rigid), compound law and the task, and returns an :class:`ImpactResult` over points ×
-(ball speed, racket speed) pairs (ball speed slowest) × supports.  The supports each takes are
+(None: rigid), compound law (None with ``string_bed = "local"``: each point's own) and the
+task, and returns an :class:`ImpactResult` over points × (ball speed, racket speed) pairs (ball
+speed slowest) × supports.  The supports each takes are
 in :data:`METHOD_SUPPORTS`."""
 
 
@@ -330,7 +339,7 @@ def run_task(task: SweepTask, attempt: int = 1) -> TaskOutput:
             task.racket, task.ball, task.variables, task.settings
         )
         model = None if task.rigid else _modal_model(racket, file_model_scale)
-        law = _compound_law(racket, ball)
+        law = _compound_law(racket, ball) if task.string_bed == "uniform" else None
         result = METHODS[task.method](racket, ball, model, law, task)
     shape = (
         task.locations.shape[0],

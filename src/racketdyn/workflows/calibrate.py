@@ -25,6 +25,7 @@ from numpy.typing import NDArray
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError
 from racketdyn.impact.calibration import Calibration, calibrate
+from racketdyn.impact.grid import StringBed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import METHODS, Method, ModelInputs
 from racketdyn.io.measured import MeasuredRebound
@@ -108,7 +109,7 @@ def run_calibrate(
     ball: Ball | None = None,
     hand: Hand | None = None,
     engine: str = "auto",
-    local_string_bed: bool = False,
+    string_bed: StringBed = "uniform",
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -133,7 +134,7 @@ def run_calibrate(
         The model fitted.
     leave_one_out : bool
         Refit once per fitted row without it (leave-one-out residuals).
-    modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
+    modal, rigid, ball, hand, engine, string_bed, allow_implausible
         As for :func:`racketdyn.workflows.validate.run_validate`.
     defaults, command, figures, progress
         As for every step.
@@ -145,7 +146,7 @@ def run_calibrate(
     if method not in METHODS:
         raise InputError(f"--model must be one of {', '.join(METHODS)} (got {method!r})")
     inputs, rows, provenance, defaults_used = measured_setup(
-        racket, measured, modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
+        racket, measured, modal, rigid, ball, hand, engine, string_bed, allow_implausible
     )
     held = [int(i) for i in holdout]
     if any(i < 1 or i > len(rows) for i in held):
@@ -190,7 +191,7 @@ def run_calibrate(
         "holdout_rows": held,
         "leave_one_out": leave_one_out,
         "engine": engine,
-        "local_string_bed": local_string_bed,
+        "string_bed": string_bed,
         "n_rows": len(rows),
         "summary": {
             key: record[key]
@@ -223,16 +224,17 @@ def _racket_holds(calibration: Calibration) -> str:
 def _options(calibration: Calibration) -> str:
     """The command-line options carrying the fitted values racket.toml cannot hold."""
     values = calibration.values
-    parts = []
-    if math.isfinite(values.get("e_bg", math.nan)):
-        parts.append(f"--e-bg {values['e_bg']:.4f}")
-    if math.isfinite(values.get("hand_arm_mass_kg", math.nan)):
-        parts.append(f"--hand-arm-mass {values['hand_arm_mass_kg']:.4f}")
-    hand_only = [n for n in ("hand_stiffness_n_per_m", "hand_damping_ns_per_m") if n in values]
-    text = " ".join(parts) if parts else "none"
-    if hand_only:
-        text += f"; {', '.join(hand_only)}: no option, validate --calibration applies them"
-    return text
+    parts = [
+        f"{option} {values[name]:{spec}}"
+        for name, option, spec in (
+            ("e_bg", "--e-bg", ".4f"),
+            ("hand_arm_mass_kg", "--hand-arm-mass", ".4f"),
+            ("hand_stiffness_n_per_m", "--hand-stiffness", ".5g"),
+            ("hand_damping_ns_per_m", "--hand-damping", ".4g"),
+        )
+        if math.isfinite(values.get(name, math.nan))
+    ]
+    return " ".join(parts) if parts else "none"
 
 
 def _calibrated_files(calibrated: ModelInputs, calibration: Calibration, out: Path) -> list[Path]:

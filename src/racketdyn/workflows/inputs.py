@@ -205,7 +205,12 @@ def ball_from(
 
 
 def hand_for(
-    supports: Sequence[str], arm_mass_kg: float | None = None, *, allow_implausible: bool = False
+    supports: Sequence[str],
+    arm_mass_kg: float | None = None,
+    *,
+    allow_implausible: bool = False,
+    stiffness_n_per_m: float | None = None,
+    damping_ns_per_m: float | None = None,
 ) -> tuple[Hand | None, list[str]]:
     """The hand of the ``hand`` support (None without it), with the defaults used.
 
@@ -217,17 +222,41 @@ def hand_for(
         Mass of the arm holding the grip, kg (default 1.0, :class:`~racketdyn.impact.hand.Hand`);
         outside 0.2–6 kg refused unless ``allow_implausible``.
     allow_implausible : bool
-        Take an arm mass outside the plausible range but inside the limits.
+        Take a value outside the plausible range but inside the limits.
+    stiffness_n_per_m : float, optional
+        Total stiffness between handle and arm, N/m (default :class:`Hand`'s 2·10⁴); outside
+        2·10³–5·10⁵ N/m refused unless ``allow_implausible``.
+    damping_ns_per_m : float, optional
+        Total damping between handle and arm, N·s/m (default :class:`Hand`'s 12); outside
+        1–500 N·s/m refused unless ``allow_implausible``.
     """
     if "hand" not in supports:
         return None, []
-    if arm_mass_kg is not None and _positive(arm_mass_kg):
-        check(
-            "hand_arm_mass_kg", arm_mass_kg, "--hand-arm-mass", allow_implausible=allow_implausible
+    given = {
+        "arm_mass_kg": ("hand_arm_mass_kg", "--hand-arm-mass", arm_mass_kg),
+        "stiffness_n_per_m": ("hand_stiffness_n_per_m", "--hand-stiffness", stiffness_n_per_m),
+        "damping_ns_per_m": ("hand_damping_ns_per_m", "--hand-damping", damping_ns_per_m),
+    }
+    fields = {}
+    for field, (key, option, value) in given.items():
+        if value is None:
+            continue
+        if _positive(value):
+            check(key, value, option, allow_implausible=allow_implausible)
+        fields[field] = value
+    hand = Hand(**fields)
+    unset = [
+        f"{words} {number}"
+        for field, words, number in (
+            ("arm_mass_kg", "arm", f"{hand.arm_mass_kg * 1e3:.0f} g (Kawazoe ACMD 2002)"),
+            ("stiffness_n_per_m", "stiffness", f"{hand.stiffness_n_per_m:g} N/m"),
+            ("damping_ns_per_m", "damping", f"{hand.damping_ns_per_m:g} N·s/m"),
         )
-    if arm_mass_kg is None:
-        return Hand(), ["hand: the default hand and arm (1000 g arm, Kawazoe ACMD 2002)"]
-    return Hand(arm_mass_kg=arm_mass_kg), []
+        if field not in fields
+    ]
+    if not unset:
+        return hand, []
+    return hand, [f"hand: the default {', '.join(unset)} (racketdyn.impact.hand.Hand)"]
 
 
 def _positive(value: object) -> bool:

@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike
 from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_finite, require_positive
+from racketdyn.impact.grid import StringBed, check_string_bed, point_law
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.oblique import (
     DEFAULT_TANGENTIAL_CONTACT,
@@ -113,6 +114,7 @@ def run_oblique(
     racket_speed: float = 0.0,
     racket_tangential_speed: float = 0.0,
     hand: Hand | None = None,
+    string_bed: StringBed = "uniform",
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -153,6 +155,9 @@ def run_oblique(
         Racket face speed along the face, m/s.
     hand : Hand, optional
         The hand of the ``hand`` support.
+    string_bed : {"uniform", "local"}
+        The string bed's law: the face centre's (the paper's, default) or the impact point's
+        own (:func:`racketdyn.impact.grid.point_law`).
     allow_implausible : bool
         Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     defaults : sequence of str
@@ -184,6 +189,7 @@ def run_oblique(
     else:
         where = (float(point[0]), float(point[1]))
     used.racket.head.check_inside([where])
+    check_string_bed(string_bed, None, used.racket)
     the_hand, hand_defaults = hand_or_default([the_support], hand)
     base = DEFAULT_TANGENTIAL_CONTACT
     if friction is None or tangential_stiffness is None:
@@ -216,7 +222,11 @@ def run_oblique(
         contact,
         face_speed,
         modal_model=model,
-        law=compound_law(used.racket, the_ball),
+        law=(
+            point_law(used.racket, the_ball, where)
+            if string_bed == "local"
+            else compound_law(used.racket, the_ball)
+        ),
         hand=the_hand,
     )
     out_dir = Path(out)
@@ -252,6 +262,7 @@ def run_oblique(
             "grip_period_s": contact.grip_period(the_ball),
         },
         "rigid": rigid,
+        "string_bed": string_bed,
         "defaults_used": defaults_used,
         "method": "normal impact by the transient simulation (reference engine), tangential "
         "elastic-Coulomb contact on its normal force history (racketdyn.impact.oblique)",

@@ -30,6 +30,7 @@ from racketdyn.impact.comparison import (
     simulate_histories,
     write_histories_csv,
 )
+from racketdyn.impact.grid import StringBed, check_string_bed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.result import shown_speed_index
 from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, predict_transient
@@ -89,6 +90,8 @@ class PredictResult(StepResult):
         Transient engine asked for.
     include_string_bed : bool
         String-bed modes charged as vibration loss.
+    string_bed : {"uniform", "local"}
+        The string bed's law over the face (``law`` is the centre's, used with ``uniform``).
     stiffness_reading : {"period", "tangent"}
         Reading of eq 10 (approximate method).
     rigid : bool
@@ -114,6 +117,7 @@ class PredictResult(StepResult):
     shown_speed: int = 0
     engine: str = "auto"
     include_string_bed: bool = False
+    string_bed: StringBed = "uniform"
     stiffness_reading: Literal["period", "tangent"] = "period"
     rigid: bool = False
     points: str = ""
@@ -204,6 +208,7 @@ def run_predict(
     grid: int | None = None,
     stiffness_reading: Literal["period", "tangent"] | None = None,
     include_string_bed: bool = False,
+    string_bed: StringBed = "uniform",
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -244,6 +249,10 @@ def run_predict(
         Reading of eq 10 (default ``period``); for ``model`` approx or both only.
     include_string_bed : bool
         Charge string-bed modes as vibration loss too.
+    string_bed : {"uniform", "local"}
+        The string bed's law over the face: the face centre's at every point (the paper's,
+        default) or each point's own from its strings' lengths
+        (:func:`racketdyn.impact.grid.predict_by_point_law`), both models.
     allow_implausible : bool
         Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     defaults : sequence of str
@@ -283,6 +292,7 @@ def run_predict(
     defaults_used = [*used.defaults, *ball_defaults, *defaults, *hand_defaults]
     locations, labels, points_source = impact_points(used.racket, points, grid)
     out_dir = Path(out)
+    check_string_bed(string_bed, None, used.racket)
     law = compound_law(used.racket, the_ball)
     result = PredictResult(
         out_dir,
@@ -296,6 +306,7 @@ def run_predict(
         shown_speed=shown_speed_index(speed_list),
         engine=engine,
         include_string_bed=include_string_bed,
+        string_bed=string_bed,
         stiffness_reading=stiffness_reading,
         rigid=rigid,
         points=points_source,
@@ -305,8 +316,9 @@ def run_predict(
         "supports": support_list,
         "racket_speed": np.asarray(racket_speeds),
         "modal_model": used.modal_model,
-        "law": law,
+        "law": None if string_bed == "local" else law,
         "include_string_bed": include_string_bed,
+        "string_bed": string_bed,
     }
     n_impacts = len(locations) * len(speed_list) * len(support_list)
     if model in ("approx", "both"):
@@ -395,6 +407,7 @@ def _transient_part(
         modal_model=options["modal_model"],
         law=options["law"],
         include_string_bed=result.include_string_bed,
+        string_bed=options["string_bed"],
         hand=result.hand,
     )
     result.mode_names = () if transient.modal_model is None else tuple(transient.modal_model.names)

@@ -111,6 +111,7 @@ def run_sweep_step(
             figures=figures,
             task_timeout=task_timeout,
             times={"start": started} if running is not None else None,
+            when_tasks_done=stack.close,
         )
     record = json.loads((out_dir / "run.json").read_text(encoding="utf-8"))
     return SweepResult(

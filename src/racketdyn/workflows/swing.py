@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike
 from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_speeds
+from racketdyn.impact.grid import StringBed, check_string_bed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.result import shown_speed_index
 from racketdyn.impact.swing import (
@@ -250,6 +251,7 @@ def run_swing(
     hand: Hand | None = None,
     allow_implausible: bool = False,
     grid: int | None = None,
+    string_bed: StringBed = "uniform",
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[SwingStepResult, Path], list[Path]] | None = None,
@@ -283,6 +285,9 @@ def run_swing(
         Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     grid : int, optional
         N × N grid over the head (default 15).
+    string_bed : {"uniform", "local"}
+        The string bed's law over the face: the centre's everywhere (the paper's, default) or
+        each point's own (:func:`racketdyn.impact.grid.predict_by_point_law`).
     defaults : sequence of str
         Defaults the caller filled in (ball, swing), added to run.json.
     command : sequence of str, optional
@@ -309,8 +314,13 @@ def run_swing(
     defaults_used = [*used.defaults, *hand_defaults, *swing_defaults, *ball_defaults, *defaults]
     locations = used.racket.head.grid(n)
     labels = [str(i + 1) for i in range(len(locations))]
-    law = compound_law(used.racket, the_ball)
-    options: dict[str, Any] = {"law": law, **({"hand": the_hand} if the_hand is not None else {})}
+    check_string_bed(string_bed, None, used.racket)
+    law = {"law": compound_law(used.racket, the_ball)} if string_bed == "uniform" else {}
+    options: dict[str, Any] = {
+        **law,
+        "string_bed": string_bed,
+        **({"hand": the_hand} if the_hand is not None else {}),
+    }
     chosen = shown_speed_index(speed_list)
     omega = the_swing.angular_speed(used.racket)
     report(progress, f"swing Ω = {omega:.2f} rad/s: {len(locations)} points")

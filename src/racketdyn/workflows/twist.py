@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError, one_of, require_finite, require_positive
+from racketdyn.impact.grid import StringBed, check_string_bed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.impact.twist import TwistCurve, twist_curve
@@ -92,6 +93,7 @@ def run_twist(
     racket_speed: float = 0.0,
     supports: Sequence[str] = ("free",),
     hand: Hand | None = None,
+    string_bed: StringBed = "uniform",
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -124,6 +126,9 @@ def run_twist(
         ``free``, ``pinned``, ``hand`` (one curve each).
     hand : Hand, optional
         The hand of the ``hand`` support.
+    string_bed : {"uniform", "local"}
+        The string bed's law: the face centre's at every offset (the paper's, default) or each
+        point's own (:func:`racketdyn.impact.grid.point_law`).
     allow_implausible : bool
         Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     defaults : sequence of str
@@ -155,6 +160,7 @@ def run_twist(
     head.check_inside(
         np.column_stack([np.full(len(offsets), x), offsets]), "impact point (--x, --offsets)"
     )
+    check_string_bed(string_bed, None, used.racket)
     the_hand, hand_defaults = hand_or_default(checked, hand)
     the_ball, ball_defaults = ball_or_default(ball)
     defaults_used = [*used.defaults, *hand_defaults, *ball_defaults, *defaults]
@@ -174,6 +180,7 @@ def run_twist(
                 racket_speed,
                 used.modal_model,
                 the_hand,
+                string_bed,
             )
         )
     out_dir = Path(out)
@@ -207,6 +214,7 @@ def run_twist(
         "racket_speed_mps": racket_speed,
         "supports": checked,
         "rigid": rigid,
+        "string_bed": string_bed,
         "defaults_used": defaults_used,
         "method": "transient simulation, reference engine (racketdyn.impact.twist."
         "twist_curve): roll and section rotation of the modes at separation",

@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError
 from racketdyn.impact.calibration import PARAMETERS, apply
+from racketdyn.impact.grid import StringBed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import METHODS, ModelInputs, predict_rows
 from racketdyn.impact.transient import ENGINES
@@ -187,11 +188,11 @@ def measured_setup(
     ball: Ball | None,
     hand: Hand | None,
     engine: str,
-    local_string_bed: bool = False,
+    string_bed: StringBed = "uniform",
     allow_implausible: bool = False,
 ) -> tuple[ModelInputs, MeasuredRebound, dict[str, Any], list[str]]:
     """The measured rows (checked on the racket's face) and the model inputs (with
-    ``local_string_bed``, the string-bed law of each point:
+    ``string_bed="local"``, the string-bed law of each point:
     :func:`racketdyn.contact.local_string_bed_law`).
 
     Returns
@@ -236,13 +237,8 @@ def measured_setup(
         the_hand,
         "racket" if follows else (None if rigid else used.modal_model),
         engine=engine,
-        local_string_bed=local_string_bed,
+        string_bed=string_bed,
     )
-    if local_string_bed and used.racket.strings.load_deflection_file is not None:
-        raise InputError(
-            "--local-string-bed needs the strings' construction; the racket's string bed is a "
-            "measured load–deflection file (a law at one point): drop one of them"
-        )
     return inputs, rows, provenance, [*used.defaults, *ball_defaults, *hand_defaults]
 
 
@@ -258,7 +254,7 @@ def run_validate(
     ball: Ball | None = None,
     hand: Hand | None = None,
     engine: str = "auto",
-    local_string_bed: bool = False,
+    string_bed: StringBed = "uniform",
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -287,8 +283,9 @@ def run_validate(
         The hand of ``hand`` rows.
     engine : {"auto", "compiled", "reference"}
         Transient engine.
-    local_string_bed : bool
-        The string bed's law at each point from its strings' lengths (default: the centre's).
+    string_bed : {"uniform", "local"}
+        ``uniform``: the face centre's string-bed law everywhere (the paper's, default);
+        ``local``: each point's from its strings' lengths.
     allow_implausible : bool
         Take measured speeds beyond those of play (:func:`racketdyn.io.read_measured`).
     defaults : sequence of str
@@ -305,7 +302,7 @@ def run_validate(
     ValidateResult
     """
     inputs, rows, provenance, defaults_used = measured_setup(
-        racket, measured, modal, rigid, ball, hand, engine, local_string_bed, allow_implausible
+        racket, measured, modal, rigid, ball, hand, engine, string_bed, allow_implausible
     )
     values: dict[str, float] = {}
     if isinstance(calibration, dict):
@@ -338,7 +335,8 @@ def run_validate(
         },
         "calibrated_values": values,
         "engine": engine,
-        "string_bed_law": _law_words(local_string_bed),
+        "string_bed": string_bed,
+        "string_bed_law": _law_words(string_bed),
         "n_rows": len(rows),
         "measured_column": rows.given,
         "rebound_ratio": "e = (v_out - v_racket) / (v_ball + v_racket)",
@@ -378,9 +376,9 @@ def _rows(result: ValidateResult) -> list[dict[str, Any]]:
     return table
 
 
-def _law_words(local: bool) -> str:
+def _law_words(string_bed: str) -> str:
     """How the string bed's law was taken, for run.json."""
-    if local:
+    if string_bed == "local":
         return (
             "local: Kawazoe's law with the main and cross strings through each point "
             "(racketdyn.contact.local_string_bed_law)"

@@ -18,6 +18,7 @@ from typing import Any
 
 from racketdyn.report.folder import RunFolder
 from racketdyn.report.sections import (
+    calibration,
     compound,
     contact,
     impact,
@@ -85,6 +86,9 @@ SECTIONS: dict[str, Section] = {
     "oblique": Section("Off-centre and oblique impacts", oblique.gather, oblique.HOW_TO_RUN),
     "validation": Section(
         "Predicted against measured rebound", validation.gather, validation.HOW_TO_RUN
+    ),
+    "calibration": Section(
+        "Calibrated against measured rebound", calibration.gather, calibration.HOW_TO_RUN
     ),
     "provenance": Section(
         "Inputs, defaults and versions", provenance.gather, provenance.HOW_TO_RUN
