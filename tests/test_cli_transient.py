@@ -305,3 +305,35 @@ def test_compare_models_needs_the_same_impacts_of_the_two_models(
         compare_models(approximate, other)
     with pytest.raises(InputError, match="quantity must be one of"):
         comparison.difference("stiffness")
+
+
+def test_predict_says_when_the_modal_model_holds_modes_of_unknown_kind(
+    points: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """New-user trial (2026-11-26, second session): the junior's identified model named its
+    string-bed membrane mode (793.6 Hz, 8.7 Hz from a twisting mode) ``mode 4``, kind
+    ``unknown``; ``predict`` took it as a frame mode without a word, and the transient contact
+    at the centre grew from 5.80 to 6.26 ms (the strings' own motion on top of their spring).
+    The console names such modes and what to do."""
+    from dataclasses import replace
+
+    from racketdyn.racket_modal import modal_model_for
+
+    model = modal_model_for(rd.default_racket())
+    kinds = list(model.kinds)
+    k = kinds.index("string-bed")
+    kinds[k] = "unknown"
+    names = list(model.names)
+    names[k] = f"mode {k + 1} ({model.frequency[k]:.1f} Hz)"
+    path = tmp_path / "model.json"
+    replace(model, kinds=tuple(kinds), names=tuple(names)).write_json(path)
+    argv = ["predict", "--modal", str(path), "--points", str(points), "--speed", "20"]
+    capsys.readouterr()
+    assert main([*argv, "--no-figures", "--out", str(tmp_path / "out")]) == 0
+    said = " ".join(capsys.readouterr().out.split())
+    assert f"{names[k]} is of unknown kind: taken as a frame mode" in said
+    assert "--exclude" in said
+    capsys.readouterr()
+    assert main(["predict", "--points", str(points), "--speed", "20", "--no-figures",
+                 "--out", str(tmp_path / "builtin")]) == 0  # fmt: skip
+    assert "unknown kind" not in capsys.readouterr().out
