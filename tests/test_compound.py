@@ -1074,3 +1074,18 @@ def test_compound_says_the_spring_is_the_centres_and_when_the_ball_overhangs_the
     assert "the bed's law at the centre of the face" in said["near"]
     assert "reaches past the string bed" not in said["near"]
     assert "reaches past the string bed" in said["over"]
+
+
+def test_with_the_ball_on_the_node_line_compound_points_at_the_blow(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The hand-over line's advice: the built-in racket's ball already sits 3 mm from the node
+    line, so with a blow 40 mm away the line must point at the blow (``--hammer``), not
+    suggest moving the ball there (it said ``--point=0.508,0``)."""
+    argv = ["compound", "--support", "free", "--hammer", "0.465,0", "--no-figures"]
+    capsys.readouterr()
+    assert main([*argv, "--out", str(tmp_path)]) == 0
+    said = " ".join(capsys.readouterr().out.split())
+    assert "the 2-node mode leads from the start" in said
+    assert "--point=" not in said
+    assert "strike nearer the ball (--hammer)" in said

@@ -161,6 +161,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
     return 0
 
 
+_ON_THE_NODE_LINE_M = 0.005
+"""A ball within this of the 2-node node line sits on it (the paper's racket: 3 mm), m."""
+
 _OFF_CENTRE_M = 0.01
 """Beyond this distance of the ball from the bed's centre the console says the spring is the
 centre's, m."""
@@ -202,10 +205,14 @@ def _hand_over_line(result: CompoundResult, support: str) -> str:
     said += f"the 2-node mode leads from the start (the ball mode {ratio:.2f}× as large)"
     node = result.node_line.get(support, math.nan)
     if math.isfinite(node):
+        off = abs(node - result.location[0])
+        advice = (
+            "the ball sits near it: strike nearer the ball (--hammer)"
+            if off <= _ON_THE_NODE_LINE_M
+            else f"with the ball and the blow near it the ball mode leads (--point={node:.3f},0)"
+        )
         said += (
             f"; the 2-node mode's node line crosses the axis at x = {node * 1e3:.0f} mm, "
-            f"{abs(node - result.location[0]) * 1e3:.0f} mm from the ball: with the ball and the "
-            f"blow near it the ball mode leads, as in the paper's Fig. 8c "
-            f"(--point={node:.3f},0)"
+            f"{off * 1e3:.0f} mm from the ball: {advice}, as in the paper's Fig. 8c"
         )
     return said
