@@ -843,3 +843,48 @@ def test_engine_choices_are_checked() -> None:
     for arguments, message in checks:
         with pytest.raises(rd.InputError, match=message), make_executor(**arguments):
             pass
+
+
+_SCRIPT = """
+import sys
+import racketdyn as rd
+from racketdyn.sweep import SweepSpec, Variable, make_executor, run_sweep
+
+def main(out):
+    racket = rd.default_racket()
+    spec = SweepSpec(racket=racket, ball=rd.Ball(), locations=racket.head.grid(3),
+                     ball_speeds=[10.0], variables=(Variable.scalar("e_bg", [0.80, 0.86]),),
+                     name="guard")
+    with make_executor("process", 1) as executor:
+        data = run_sweep(spec, out, executor, figures=None)
+    print("failed", data.attrs["n_failed"])
+"""
+
+
+@pytest.mark.parametrize("guarded", [False, True])
+def test_a_script_without_the_main_guard_is_refused(tmp_path: Path, guarded: bool) -> None:
+    """A script that starts a process sweep at its top level ran it again in every import by
+    a worker process: three sweeps into one folder, two of them all NaN.  Refused before any
+    process starts, naming the line; under ``if __name__ == "__main__":`` it runs once."""
+    import subprocess
+    import sys
+
+    body = (
+        'if __name__ == "__main__":\n    main(sys.argv[1])\n' if guarded else "main(sys.argv[1])\n"
+    )
+    script = tmp_path / "study.py"
+    script.write_text(_SCRIPT + body, encoding="utf-8")
+    run = subprocess.run(
+        [sys.executable, str(script), str(tmp_path / "out")],
+        capture_output=True, text=True, timeout=300, check=False,
+    )  # fmt: skip
+    if guarded:
+        assert run.returncode == 0, run.stderr
+        assert run.stdout.split() == ["failed", "0"]
+        assert "bootstrapping" not in run.stderr
+    else:
+        assert run.returncode == 1
+        assert f"{script}, line {_SCRIPT.count(chr(10)) + 1}: a sweep on worker" in run.stderr
+        assert 'if __name__ == "__main__":' in run.stderr
+        assert "bootstrapping" not in run.stderr
+        assert not (tmp_path / "out" / "sweep.nc").exists()

@@ -7,14 +7,17 @@ knows nothing of sweeps beyond how many tasks to keep submitted at once.
 
 from __future__ import annotations
 
+import ast
 import logging
 import os
 import signal
+import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
+from types import FrameType
 from typing import Any, Literal, ParamSpec, TypeVar, get_args
 
 from racketdyn.errors import InputError, one_of, require_whole
@@ -277,6 +280,8 @@ def make_executor(
     if kind == "serial":
         yield SerialExecutor()
         return
+    if kind in ("process", "dask-local"):
+        _check_main_guard()
     if kind == "process":
         pool = ProcessPool(workers)
         try:
@@ -341,6 +346,66 @@ def make_executor(
         raise InputError(f"scheduler {scheduler}: cannot connect ({error})") from None
     with client:
         yield _dask_executor(client)
+
+
+def _check_main_guard() -> None:
+    """Refuse local worker processes started from a script's top level.
+
+    Worker processes started by forkserver or spawn import the main script (Python's
+    multiprocessing rule; the forkserver preloads it, :data:`WORKER_PRELOAD`): a script that
+    runs a sweep at its top level, outside ``if __name__ == "__main__":``, runs it again in
+    each import — sweeps whose designs all fail, writing into the same folder as the real one
+    (seen on 2026-11-26: three runs, two of them all NaN, one ``sweep.nc``).  The script's
+    source shows whether the call sits under the guard: no ``<module>`` frame of a file-based
+    ``__main__`` on the stack (the command line, pytest, a notebook) or a call inside the
+    guard is fine.  Our own check because Python's own comes only in the workers, too late.
+
+    Raises
+    ------
+    InputError
+        The call is at the top level of the main script, outside the guard.
+    """
+    main = sys.modules.get("__main__")
+    path = getattr(main, "__file__", None)
+    if not isinstance(path, str) or not os.path.isfile(path):
+        return
+    frame: FrameType | None = sys._getframe(1)
+    while frame is not None and not (
+        frame.f_code.co_name == "<module>" and frame.f_globals.get("__name__") == "__main__"
+    ):
+        frame = frame.f_back
+    if frame is None:
+        return
+    line = frame.f_lineno
+    try:
+        with open(path, encoding="utf-8") as handle:
+            tree = ast.parse(handle.read())
+    except (OSError, SyntaxError, UnicodeDecodeError):
+        return
+    for node in ast.walk(tree):
+        if (
+            isinstance(node, ast.If)
+            and _tests_main(node.test)
+            and node.lineno <= line <= (node.end_lineno or node.lineno)
+        ):
+            return
+    raise InputError(
+        f"{path}, line {line}: a sweep on worker processes is started at the top level of the "
+        "script; each worker imports the script and would run it again: put the code that runs "
+        'the sweep under if __name__ == "__main__":'
+    )
+
+
+def _tests_main(test: ast.expr) -> bool:
+    """Whether an ``if`` test is ``__name__ == "__main__"`` (either way round)."""
+    if not (isinstance(test, ast.Compare) and len(test.ops) == 1):
+        return False
+    if not isinstance(test.ops[0], ast.Eq):
+        return False
+    sides = [test.left, test.comparators[0]]
+    return any(isinstance(x, ast.Name) and x.id == "__name__" for x in sides) and any(
+        isinstance(x, ast.Constant) and x.value == "__main__" for x in sides
+    )
 
 
 def _in_flight_limit(executor: Executor) -> int:
