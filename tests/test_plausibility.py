@@ -236,6 +236,7 @@ def test_a_unit_slip_is_one_line_and_exit_2(
         ("inertia_cg_kgm2 = 0.0131", "inertia_cg_kgm2 = 131", "did you give kg·cm²"),
         ("area_cm2 = 628.0", "area_cm2 = 97", "did you give square inches"),
         ("string_diameter_m = 0.00130", "string_diameter_m = 1.30", "did you give millimetres"),
+        ("string_diameter_m = 0.00130", "string_diameter_m = 17", "a gauge number (gauge 17 ≈ 1.2"),
         ("string_modulus_pa = 5.0e9", "string_modulus_pa = 5.0", "did you give GPa"),
         ("tension_n = 246.0", "tension_n = 25", "did you give kilograms"),
         ("first_bending_hz = 120.0", "first_bending_hz = 754", "did you give rad/s"),
@@ -369,3 +370,17 @@ def test_a_value_at_a_printed_end_of_a_range_is_taken() -> None:
         check("tension_n", 146.0, "[strings].tension_n")
     with pytest.raises(InputError, match="up to 75 m/s"):
         check("ball_speed_mps", 75.6, "--speed")
+
+
+def test_angles_in_radians_are_named(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``oblique --angles 0,0.5,1.0`` (radians) ran as three angles within a degree of the
+    normal (new-user trial, 2026-11-26): one line naming radians and the degrees meant."""
+    assert main(["oblique", "--angles", "0,0.5,1.0", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "did you give radians (--angles=0,28.6,57.3 in degrees)" in err
+    assert "\n" not in err
+    from racketdyn.plausibility import check_degrees
+
+    check_degrees("--angles", [0.0, 15.0, 30.0])  # degrees as written
+    check_degrees("--angles", [0.0, 1.0])  # whole numbers: degrees
+    check_degrees("--angles", [0.5, 1.0], allow_implausible=True)

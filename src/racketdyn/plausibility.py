@@ -402,6 +402,12 @@ RANGES: dict[str, Range] = {
 """Every plausible range, by input key (docs/racket-file.md lists them for the user)."""
 
 
+GAUGE_MM = {15.0: 1.45, 16.0: 1.30, 17.0: 1.20, 18.0: 1.11, 19.0: 0.98}
+"""Tennis string gauges (US) and the middles of their diameter ranges, mm (docs/references.md,
+"Strings": 15 1.41–1.49, 16 1.26–1.34, 17 1.16–1.24, 18 1.06–1.16, 19 0.90–1.06 mm): a gauge
+number typed as a diameter is named (new-user trial, 2026-11-26)."""
+
+
 def check(
     key: str,
     value: float,
@@ -440,6 +446,9 @@ def check(
     given = f"{name} {_g(number)}" if name.startswith("-") else f"{name} = {_g(number)}"
     message = f"{given}: {spec.text()}"
     slips = spec.likely_slips(number)
+    if key == "string_diameter_m" and number in GAUGE_MM:  # a gauge number is no unit
+        slips.append(f"a gauge number (gauge {number:g} ≈ {GAUGE_MM[number]:g} mm = "
+                     f"{GAUGE_MM[number] / 1e3:g} m)")  # fmt: skip
     if slips:
         message += f"; did you give {' or '.join(slips)}?"
     if not spec.limit_low <= number <= spec.limit_high:
@@ -452,6 +461,35 @@ def check(
         raise InputError(f"{message}{sep}{advice}")
     log.warning("%s (taken: allow_implausible)", message)
     return value
+
+
+def check_degrees(name: str, values: Iterable[float], *, allow_implausible: bool = False) -> None:
+    """Refuse angles that read as radians: every one within ±π/2 and one with a fraction.
+
+    Incidence angles in degrees are written 0, 15, 30…; ``0, 0.5, 1.0`` is a quarter turn in
+    radians (new-user trial, 2026-11-26: it ran as three angles within a degree of the normal).
+
+    Parameters
+    ----------
+    name : str
+        How the message names the input (``--angles``).
+    values : iterable of float
+        The angles, degrees.
+    allow_implausible : bool
+        Take them as degrees all the same.
+    """
+    angles = [float(v) for v in values]
+    nonzero = [a for a in angles if a != 0.0 and math.isfinite(a)]
+    if allow_implausible or not nonzero or max(abs(a) for a in nonzero) > math.pi / 2:
+        return
+    if all(a == round(a) for a in nonzero):
+        return
+    degrees = ",".join(f"{math.degrees(a):.3g}" for a in angles)
+    raise InputError(
+        f"{name} {','.join(f'{a:g}' for a in angles)}: every angle within ±1.57 with a fraction "
+        f"— did you give radians ({name}={degrees} in degrees)? {OVERRIDE_OPTION[:1].upper()}"
+        f"{OVERRIDE_OPTION[1:]}"
+    )
 
 
 def check_limits(key: str, value: float, name: str) -> float:

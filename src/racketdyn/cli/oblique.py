@@ -81,6 +81,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.workflows.oblique import SPIN_CAVEAT, run_oblique
 
     angles = opt.parse_numbers("--angles", args.angles, "degrees from the face normal")
+    from racketdyn.plausibility import check_degrees
+
+    check_degrees("--angles", angles, allow_implausible=args.allow_implausible)
     point = opt.parse_point("--point", args.point)
     opt.check_modes(args)
     ball, hand, defaults = opt.ball_and_hand(args, [args.support])
