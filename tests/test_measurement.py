@@ -247,3 +247,25 @@ def test_contact_times_per_point_skip_rejected_averages(tmp_path) -> None:
     estimate.write_quality_csv(tmp_path / "quality.csv")
     assert (tmp_path / "contact.csv").read_text().startswith("node,x_m,y_m,contact_time_mean_s")
     assert len((tmp_path / "quality.csv").read_text().splitlines()) == 1 + 8
+
+
+def test_the_rail_needs_three_hits_or_flat_tops() -> None:
+    """``rail_level``: clipped hits share the converter's rail.  Two unclipped hits that peak
+    at one quantised value of a coarse converter are no rail (review, 2026-11-26); three hits
+    there, or two that stay there two samples each, are."""
+    from racketdyn.measurement.quality import QualitySettings, rail_level
+
+    t = np.arange(200)
+    pulse = np.clip(100.0 * np.sin(np.pi * (t - 50) / 20.0), 0.0, None) * (t >= 50) * (t <= 70)
+    one_peak = np.round(pulse, 0)  # a single-sample top of 100 N
+    settings = QualitySettings()
+    point = np.stack([one_peak, one_peak * 0.5])
+    assert (
+        rail_level([point, np.stack([one_peak, one_peak * 0.7])], settings).overload_level_n is None
+    )
+    three = [np.stack([one_peak, one_peak]), np.stack([one_peak, one_peak * 0.3])]
+    assert rail_level(three, settings).overload_level_n == pytest.approx(100.0, rel=1e-5)
+    flat = np.minimum(pulse, 80.0)  # clipped: several samples at 80 N
+    assert rail_level(
+        [np.stack([flat, flat * 0.5]), np.stack([flat])], settings
+    ).overload_level_n == (pytest.approx(80.0, rel=1e-5))

@@ -176,10 +176,11 @@ def rail_level(force: Sequence[NDArray[np.float64]], settings: QualitySettings) 
     one and the hammer's range is not given.
 
     A clipped hit stops at the converter's one rail: the largest magnitude of the force over
-    every average of every point, shared (within 1e-6 of it) by two averages or more.  No two
-    unclipped hits peak at the same value to that precision.  The new-user trial of
-    2026-11-26 (second session) found 10 of 17 clipped frame pulses (0.4 ms: two samples)
-    accepted for want of a three-sample flat top.
+    every average of every point, shared (within 1e-6 of it) by three averages or more, or by
+    two that each stay there for two samples or more (a flat top).  Two unclipped hits may
+    peak at one quantised value of a coarse converter, but not three, nor with flat tops
+    (review of 2026-11-26).  The new-user trial of 2026-11-26 (second session) found 10 of
+    17 clipped frame pulses (0.4 ms: two samples) accepted for want of a three-sample flat top.
 
     Parameters
     ----------
@@ -190,16 +191,21 @@ def rail_level(force: Sequence[NDArray[np.float64]], settings: QualitySettings) 
     """
     if settings.overload_level_n is not None:
         return settings
-    peaks = np.concatenate(
-        [np.max(np.abs(np.nan_to_num(f)), axis=-1).ravel() for f in force if np.size(f)]
-        or [np.zeros(0)]
-    )
-    if peaks.size < 2:
+    records = [
+        np.abs(np.nan_to_num(np.asarray(f, dtype=float))).reshape(-1, np.shape(f)[-1])
+        for f in force
+        if np.size(f)
+    ]
+    if not records:
         return settings
-    top = float(peaks.max())
-    if top <= 0 or np.count_nonzero(peaks >= top * (1.0 - 1e-6)) < 2:
+    top = max(float(r.max()) for r in records)  # points may have records of other lengths
+    if top <= 0:
         return settings
-    return replace(settings, overload_level_n=top * (1.0 - 1e-6))
+    at_top = np.concatenate([np.count_nonzero(r >= top * (1.0 - 1e-6), axis=-1) for r in records])
+    sharing = at_top[at_top > 0]  # samples at the top, per average that reaches it
+    if sharing.size >= 3 or (sharing.size == 2 and np.all(sharing >= 2)):
+        return replace(settings, overload_level_n=top * (1.0 - 1e-6))
+    return settings
 
 
 def check_point_starts(checks: list[AverageCheck], settings: QualitySettings) -> list[AverageCheck]:
