@@ -861,30 +861,46 @@ def main(out):
 """
 
 
-@pytest.mark.parametrize("guarded", [False, True])
-def test_a_script_without_the_main_guard_is_refused(tmp_path: Path, guarded: bool) -> None:
+@pytest.mark.parametrize(
+    ("body", "runs"),
+    [
+        ("main(sys.argv[1])\n", False),
+        ('if __name__ == "__main__":\n    main(sys.argv[1])\n', True),
+        ('if __name__ == "__main__" and len(sys.argv) > 1:\n    main(sys.argv[1])\n', True),
+        ('if __name__ != "__main__":\n    pass\nelse:\n    main(sys.argv[1])\n', True),
+        ('if __name__ != "__main__":\n    main(sys.argv[1])\n', None),
+        ("if len(sys.argv) > 1:\n    main(sys.argv[1])\n", False),
+    ],
+    ids=["top level", "guarded", "guard and more", "else of !=", "body of !=", "other if"],
+)
+def test_a_script_without_the_main_guard_is_refused(
+    tmp_path: Path, body: str, runs: bool | None
+) -> None:
     """A script that starts a process sweep at its top level ran it again in every import by
     a worker process: three sweeps into one folder, two of them all NaN.  Refused before any
-    process starts, naming the line; under ``if __name__ == "__main__":`` it runs once."""
+    process starts, naming the line; under ``if __name__ == "__main__":`` (alone or in an
+    ``and``, or the ``else`` of ``!=``) it runs once; a sweep only a worker would run never
+    runs here (``runs`` None); another ``if`` is no guard (review, 2026-11-26)."""
     import subprocess
     import sys
 
-    body = (
-        'if __name__ == "__main__":\n    main(sys.argv[1])\n' if guarded else "main(sys.argv[1])\n"
-    )
     script = tmp_path / "study.py"
     script.write_text(_SCRIPT + body, encoding="utf-8")
     run = subprocess.run(
         [sys.executable, str(script), str(tmp_path / "out")],
         capture_output=True, text=True, timeout=300, check=False,
     )  # fmt: skip
-    if guarded:
+    assert "bootstrapping" not in run.stderr
+    if runs is None:
+        assert run.returncode == 0, run.stderr
+        assert run.stdout == ""
+    elif runs:
         assert run.returncode == 0, run.stderr
         assert run.stdout.split() == ["failed", "0"]
-        assert "bootstrapping" not in run.stderr
     else:
         assert run.returncode == 1
-        assert f"{script}, line {_SCRIPT.count(chr(10)) + 1}: a sweep on worker" in run.stderr
+        line = len((_SCRIPT + body).splitlines())  # the call is the script's last line
+        assert f"{script}, line {line}:" in run.stderr
+        assert "a sweep on worker processes is started at the top level" in run.stderr
         assert 'if __name__ == "__main__":' in run.stderr
-        assert "bootstrapping" not in run.stderr
         assert not (tmp_path / "out" / "sweep.nc").exists()

@@ -374,20 +374,17 @@ def _check_main_guard() -> None:
         frame.f_code.co_name == "<module>" and frame.f_globals.get("__name__") == "__main__"
     ):
         frame = frame.f_back
-    if frame is None:
-        return
+    if frame is None or not _same_file(frame.f_code.co_filename, path):
+        return  # e.g. python -m cProfile script.py: the workers import cProfile, not the script
     line = frame.f_lineno
     try:
         with open(path, encoding="utf-8") as handle:
             tree = ast.parse(handle.read())
     except (OSError, SyntaxError, UnicodeDecodeError):
         return
-    for node in ast.walk(tree):
-        if (
-            isinstance(node, ast.If)
-            and _tests_main(node.test)
-            and node.lineno <= line <= (node.end_lineno or node.lineno)
-        ):
+    for node in ast.walk(tree):  # the guarded branch only: the other is what workers run
+        branch = _main_branch(node) if isinstance(node, ast.If) else []
+        if branch and branch[0].lineno <= line <= (branch[-1].end_lineno or branch[-1].lineno):
             return
     raise InputError(
         f"{path}, line {line}: a sweep on worker processes is started at the top level of the "
@@ -396,11 +393,34 @@ def _check_main_guard() -> None:
     )
 
 
-def _tests_main(test: ast.expr) -> bool:
-    """Whether an ``if`` test is ``__name__ == "__main__"`` (either way round)."""
+def _same_file(one: str, other: str) -> bool:
+    try:
+        return os.path.samefile(one, other)
+    except OSError:
+        return False
+
+
+def _main_branch(node: ast.If) -> list[ast.stmt]:
+    """The branch of an ``if`` that runs only as the main script: the body under
+    ``__name__ == "__main__"`` (alone or in an ``and``), the ``else`` under
+    ``__name__ != "__main__"``; none for any other test."""
+    test = node.test
+    if _compares_main(test, ast.Eq) or (
+        isinstance(test, ast.BoolOp)
+        and isinstance(test.op, ast.And)
+        and any(_compares_main(value, ast.Eq) for value in test.values)
+    ):
+        return node.body
+    if _compares_main(test, ast.NotEq):
+        return node.orelse
+    return []
+
+
+def _compares_main(test: ast.expr, op: type[ast.cmpop]) -> bool:
+    """Whether ``test`` is ``__name__ <op> "__main__"`` (either way round)."""
     if not (isinstance(test, ast.Compare) and len(test.ops) == 1):
         return False
-    if not isinstance(test.ops[0], ast.Eq):
+    if not isinstance(test.ops[0], op):
         return False
     sides = [test.left, test.comparators[0]]
     return any(isinstance(x, ast.Name) and x.id == "__name__" for x in sides) and any(
