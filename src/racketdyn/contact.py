@@ -127,7 +127,7 @@ def membrane_patch_stiffness(racket: Racket, patch_radius_m: float) -> float:
 
     (the two ellipses' sums of half-axes; A, B the head's half-axes).  Ours are nearly
     confocal: a finite-difference solution of the same net agrees within 2 % for
-    a = 3–34 mm (``tests/test_compound.py``).  The stiffness grows as the patch widens, and
+    a = 5–34 mm (``tests/test_compound.py``).  The stiffness grows as the patch widens, and
     the linear stretching term of the net only (no elongation of the strings: small X).
 
     Parameters
@@ -166,12 +166,15 @@ def membrane_patch_radius(racket: Racket, stiffness_n_per_m: float) -> float:
 def net_share(racket: Racket, patch_radius_m: float, distance_m: float) -> float:
     """Share of a point force on the string net that a held patch takes, 0–1.
 
-    By reciprocity the force a held patch (radius a, at the centre) takes from a unit force at
-    a point of the net equals the net's deflection there when the patch alone is pushed by a
-    unit: in the net of :func:`membrane_patch_stiffness`, ``ln(Λ/(r κ)) / ln(Λ/(a κ))`` with
-    κ = 1/√T_x + 1/√T_y, r the point's distance from the patch centre (the patch's own circles
-    are the net's level lines in this approximation); 1 on the patch, 0 at the head's edge.
-    The rest of the force goes to the frame through the strings.
+    By reciprocity (Betti) the force a held patch (radius a, at the head's centre) takes from a
+    unit force at a point of the net equals the net's deflection there when the patch alone is
+    displaced by a unit: in the net of :func:`membrane_patch_stiffness`,
+    ``ln(Λ/(r κ)) / ln(Λ/(a κ))`` with κ = 1/√T_x + 1/√T_y, r the point's distance from the
+    patch centre (the patch's own circles are the net's level lines in this approximation);
+    1 on the patch, 0 at the head's edge.  The rest of the force goes to the frame through the
+    strings.  The patch is taken at the centre wherever the ball sits: near the frame the
+    share is over-estimated (an image-method estimate for a ball 35 mm from the rim: 0.82
+    against 0.87; review, 2026-11-26).
 
     Parameters
     ----------

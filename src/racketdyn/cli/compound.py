@@ -132,9 +132,14 @@ def run(args: argparse.Namespace, console: Console) -> int:
             f"{times} ms"
         )
         band, bed = result.band[support], result.paper_bed.get(support)
+        reach = " and ".join(f"{a:.0f}–{b:.0f}" for a, b in band.intervals_hz)
+        gap = (
+            " (a gap where the ball mode crosses a frame mode)"
+            if len(band.intervals_hz) > 1
+            else ""
+        )
         spread = (
-            f"{support}: the small-amplitude inputs' spread puts the ball mode at "
-            f"{band.low_hz:.0f}–{band.high_hz:.0f} Hz"
+            f"{support}: the small-amplitude inputs' spread puts the ball mode at {reach} Hz{gap}"
         )
         if bed is None:
             console.print(f"{spread} ({NOT_THE_PAPERS_RACKET})")
@@ -172,7 +177,7 @@ centre's, m."""
 def _needs(bed: BedForFrequency, ball: Ball) -> str:
     """What the paper's ball mode needs of the bed under the nominal ball, in words."""
     if bed.bed_stiffness_n_per_m != bed.bed_stiffness_n_per_m:
-        return ""
+        return f"; {bed.note}" if bed.note else ""
     words = (
         f"; {bed.frequency_hz:g} Hz needs the bed at {bed.bed_stiffness_n_per_m / 1e3:.0f} kN/m "
         "under the nominal ball"
@@ -193,10 +198,16 @@ def _hand_over_line(result: CompoundResult, support: str) -> str:
     hand_over = result.hand_over.get(support, {})
     ratio = float(hand_over.get("ball_to_two_node", math.nan))
     cycles = float(hand_over.get("ball_cycles", math.nan))
-    if not (math.isfinite(ratio) and math.isfinite(cycles)):
+    if not math.isfinite(ratio) or math.isnan(cycles):
         return ""
     away = math.dist(result.location, result.hammer) * 1e3
     said = f"{support}: at the neck after the blow {away:.0f} mm from the ball "
+    if ratio > 1.0 and math.isinf(cycles):
+        return (
+            f"{said}the ball mode leads ({ratio:.1f}× the 2-node mode) throughout: it decays "
+            "more slowly than the 2-node mode (the paper's Fig. 8c: the 2-node mode after about "
+            "two cycles)"
+        )
     if ratio > 1.0:
         return (
             f"{said}the ball mode leads ({ratio:.1f}× the 2-node mode) and the 2-node mode takes "

@@ -366,7 +366,7 @@ class CompoundSystem:
 
     def modal_parts(
         self, times: ArrayLike, response: ArrayLike, start_s: float
-    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """Split a free response into the system's own damped modes, from ``start_s`` on.
 
         After the blow the response is a sum of the modes' damped oscillations
@@ -390,6 +390,8 @@ class CompoundSystem:
             Their amplitudes at ``start_s``, in the response's unit.
         parts : ndarray (n, n_times)
             Each mode's part of the response (0 before ``start_s``).
+        decay : ndarray (n,)
+            Their decay rates −Re λ, 1/s (the envelope is ``amplitude·e^{−decay·(t − start)}``).
         """
         t = np.asarray(times, dtype=float)
         values = np.asarray(response, dtype=float)
@@ -411,7 +413,7 @@ class CompoundSystem:
         parts = np.zeros((lam.size, t.size))
         for k in range(lam.size):
             parts[k, after] = basis[:, 2 * k : 2 * k + 2] @ fit[2 * k : 2 * k + 2]
-        return np.abs(lam) / (2 * np.pi), np.hypot(fit[0::2], fit[1::2]), parts
+        return np.abs(lam) / (2 * np.pi), np.hypot(fit[0::2], fit[1::2]), parts, -lam.real
 
     def frequency_of(self, name: str) -> float:
         """Frequency of the mode named ``name``, Hz (NaN if there is none)."""

@@ -17,7 +17,9 @@ stiffness under the ball and the ball's mass.  Their spread:
   was stuck, which the paper does not say.
 - **ball mass**: 56.0–59.4 g (ITF).
 
-:func:`ball_mode_band` takes the ball mode at every corner of that box;
+:func:`ball_mode_band` takes the ball mode along the bed's range at every corner of ball
+stiffness and mass (where the ball mode crosses a frame mode it jumps, and the box leaves a
+gap);
 :func:`bed_for_frequency` turns a measured ball mode (the paper's 103 Hz) back into the bed
 stiffness, and the net's patch radius, it needs with the nominal ball.
 """
@@ -26,10 +28,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from itertools import product
+from itertools import pairwise, product
 
+import numpy as np
 import scipy.optimize
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.contact import membrane_patch_radius, membrane_patch_stiffness, string_bed_law
@@ -59,6 +62,10 @@ BED_STATIC_STIFFNESS_N_PER_M = (20e3, 40e3)
 strings")."""
 BALL_MASS_KG = (0.0560, 0.0594)
 """ITF ball mass range, kg."""
+BED_SAMPLES = 13
+"""Bed stiffnesses sampled (geometrically) along the box's bed range at each corner."""
+JUMP_FACTOR = 5.0
+"""A step of the ball mode this many times the median step along the bed's range is a jump."""
 
 
 @dataclass(frozen=True)
@@ -70,11 +77,15 @@ class BallModeBand:
     nominal_hz : float
         The ball mode with the built-in spring, Hz.
     low_hz, high_hz : float
-        Smallest and largest ball mode over the corners of the inputs' box, Hz.
+        Smallest and largest ball mode over the inputs' box, Hz.
     ball_stiffness_n_per_m, bed_stiffness_n_per_m : tuple of float
         The box's ball and bed stiffness ranges, N/m.
     ball_mass_kg : tuple of float
         The box's ball mass range, kg.
+    intervals_hz : tuple of (float, float)
+        The frequencies the box reaches, Hz: one interval, or several where the ball mode
+        jumps as it crosses a frame mode (the mode with the ball's largest energy share
+        changes) and leaves a gap no input gives.
     """
 
     nominal_hz: float
@@ -83,16 +94,20 @@ class BallModeBand:
     ball_stiffness_n_per_m: tuple[float, float]
     bed_stiffness_n_per_m: tuple[float, float]
     ball_mass_kg: tuple[float, float]
+    intervals_hz: tuple[tuple[float, float], ...] = ()
 
     def holds(self, frequency_hz: float) -> bool:
-        """Whether a frequency lies within the band (ends included)."""
-        return self.low_hz <= frequency_hz <= self.high_hz
+        """Whether a frequency lies within the band (ends included) and not in a gap."""
+        if not self.low_hz <= frequency_hz <= self.high_hz:
+            return False
+        return not self.intervals_hz or any(a <= frequency_hz <= b for a, b in self.intervals_hz)
 
     def as_dict(self) -> dict[str, object]:
         """Plain numbers for run.json (SI)."""
         return {
             "nominal_hz": self.nominal_hz,
             "band_hz": [self.low_hz, self.high_hz],
+            "intervals_hz": [list(pair) for pair in self.intervals_hz],
             "ball_stiffness_n_per_m": list(self.ball_stiffness_n_per_m),
             "bed_stiffness_n_per_m": list(self.bed_stiffness_n_per_m),
             "ball_mass_kg": list(self.ball_mass_kg),
@@ -113,18 +128,22 @@ class BedForFrequency:
     patch_radius_m : float
         Radius of the patch of the string net (:func:`membrane_patch_stiffness`) with that
         stiffness, m; NaN when the bed stiffness is NaN or beyond the head.
+    note : str
+        Why the bed stiffness is NaN ("" when it is found).
     """
 
     frequency_hz: float
     bed_stiffness_n_per_m: float
     patch_radius_m: float
+    note: str = ""
 
-    def as_dict(self) -> dict[str, float]:
-        """Plain numbers for run.json (SI; NaN as is)."""
+    def as_dict(self) -> dict[str, object]:
+        """Plain numbers for run.json (SI; NaN as is) and why there is none."""
         return {
             "frequency_hz": self.frequency_hz,
             "bed_stiffness_n_per_m": self.bed_stiffness_n_per_m,
             "patch_radius_m": self.patch_radius_m,
+            "note": self.note,
         }
 
 
@@ -158,22 +177,54 @@ def ball_mode_band(
         min(BED_STATIC_STIFFNESS_N_PER_M[0], k_law),
         max(BED_STATIC_STIFFNESS_N_PER_M[1], net),
     )
-    corners = []
-    for k_b, k_g, m_b in product(BALL_STIFFNESS_N_PER_M, bed, BALL_MASS_KG):
-        trial = replace(spring, stiffness=1.0 / (1.0 / k_b + 1.0 / k_g))
-        modes = racket_modes(
-            racket, model, support, location, trial, replace(the_ball, mass_kg=m_b), hand
-        )
-        corners.append(modes.ball_frequency)
+    # the ball mode along the bed's range at each corner of ball stiffness and mass: monotone
+    # unless the ball mode jumps across a frame mode, which leaves a gap (review, 2026-11-26)
+    beds = np.geomspace(bed[0], bed[1], BED_SAMPLES)
+    intervals = []
+    for k_b, m_b in product(BALL_STIFFNESS_N_PER_M, BALL_MASS_KG):
+        curve = np.array(
+            [
+                racket_modes(
+                    racket, model, support, location,
+                    replace(spring, stiffness=1.0 / (1.0 / k_b + 1.0 / k_g)),
+                    replace(the_ball, mass_kg=m_b), hand,
+                ).ball_frequency
+                for k_g in beds
+            ]
+        )  # fmt: skip
+        intervals += _pieces(curve)
     nominal = racket_modes(racket, model, support, location, spring, the_ball, hand)
+    merged = _merge(intervals)
     return BallModeBand(
         nominal.ball_frequency,
-        min(corners),
-        max(corners),
+        merged[0][0],
+        merged[-1][1],
         BALL_STIFFNESS_N_PER_M,
         bed,
         BALL_MASS_KG,
+        tuple(merged),
     )
+
+
+def _pieces(curve: NDArray[np.float64]) -> list[tuple[float, float]]:
+    """The curve's stretches between jumps: a step more than :data:`JUMP_FACTOR` times the
+    median step (and over 2 % of the frequency) is a jump of the ball mode's identity."""
+    steps = np.abs(np.diff(curve))
+    typical = float(np.median(steps)) if steps.size else 0.0
+    jumps = np.flatnonzero((steps > JUMP_FACTOR * typical) & (steps > 0.02 * curve[:-1]))
+    bounds = [0, *(jumps + 1).tolist(), curve.size]
+    return [(float(curve[a:b].min()), float(curve[a:b].max())) for a, b in pairwise(bounds)]
+
+
+def _merge(intervals: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    """Overlapping intervals joined, in order."""
+    merged: list[tuple[float, float]] = []
+    for low, high in sorted(intervals):
+        if merged and low <= merged[-1][1]:
+            merged[-1] = (merged[-1][0], max(merged[-1][1], high))
+        else:
+            merged.append((low, high))
+    return merged
 
 
 def bed_for_frequency(
@@ -214,6 +265,14 @@ def bed_for_frequency(
 
     low, high = math.log(1e3), math.log(1e7)
     if miss(low) * miss(high) > 0:
-        return BedForFrequency(frequency_hz, math.nan, math.nan)
-    bed = math.exp(scipy.optimize.brentq(miss, low, high, xtol=1e-10))
+        return BedForFrequency(
+            frequency_hz, math.nan, math.nan, "no bed stiffness from 1 kN/m to 10 MN/m gives it"
+        )
+    log_bed = scipy.optimize.brentq(miss, low, high, xtol=1e-10)
+    if abs(miss(log_bed)) > 1e-6 * frequency_hz:  # a sign change across a jump, no root
+        return BedForFrequency(
+            frequency_hz, math.nan, math.nan,
+            "no bed stiffness gives it: the ball mode jumps past it as it crosses a frame mode",
+        )  # fmt: skip
+    bed = math.exp(log_bed)
     return BedForFrequency(frequency_hz, bed, membrane_patch_radius(racket, bed))

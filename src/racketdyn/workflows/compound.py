@@ -198,7 +198,8 @@ class CompoundResult(StepResult):
     hand_over : dict of str to dict of str to float
         Per support: ``ball_to_two_node`` (their amplitudes after the blow) and
         ``ball_cycles`` (after how many ball-mode cycles the 2-node mode is the larger; 0 if
-        from the start, NaN without a 2-node mode): Fig. 8c's reading.
+        from the start, inf if never — the ball mode decays more slowly —, NaN without a
+        2-node mode): Fig. 8c's reading.
     band : dict of str to BallModeBand
         Per support: the ball mode over the small-amplitude inputs' spread
         (:mod:`racketdyn.impact.compound_band`).
@@ -481,8 +482,10 @@ def run_compound(
             "why": "the strings are folded into the ball's spring, so a blow on them is shared "
             "by hand: the strings under the ball take the share of the string net "
             "(racketdyn.contact.net_share, a patch of half the larger string spacing: the ball "
-            "rests on the nearest two mains and two crosses), which splits k_B/(k_B + k_G) to "
-            "the ball and the rest to the frame under it; the remainder acts on the frame at "
+            "rests on the nearest two mains and two crosses; the patch taken at the head's "
+            "centre, so near the frame the share is somewhat high), which splits "
+            "k_B/(k_B + k_G) to the ball and the rest to the frame under it; the remainder acts "
+            "on the frame at "
             "the hammer's point",
         },
         "neck_point_m": list(neck),
@@ -575,18 +578,11 @@ def _hand_over(
     f_ball, f_bend = system.ball_frequency, system.frequency_of("2-node bending")
     if not (math.isfinite(f_ball) and math.isfinite(f_bend)):
         return {}, {"ball_to_two_node": math.nan, "ball_cycles": math.nan}
-    frequency, amplitude, parts = system.modal_parts(times, response, blow)
+    frequency, amplitude, parts, decay = system.modal_parts(times, response, blow)
     k_ball = int(np.argmin(np.abs(frequency - f_ball)))
     k_bend = int(np.argmin(np.abs(frequency - f_bend)))
     ratio = float(amplitude[k_ball] / amplitude[k_bend])
-    decay = {
-        k: system.damping_ratio[int(np.argmin(np.abs(system.frequency - frequency[k])))]
-        * 2.0
-        * math.pi
-        * frequency[k]
-        for k in (k_ball, k_bend)
-    }
-    gap = decay[k_ball] - decay[k_bend]
+    gap = float(decay[k_ball] - decay[k_bend])  # envelopes a·e^(−σ t) cross at ln(ratio)/gap
     cycles = 0.0 if ratio <= 1.0 else (math.log(ratio) / gap * f_ball if gap > 0 else math.inf)
     named = {"ball": parts[k_ball], "2-node bending": parts[k_bend]}
     return named, {"ball_to_two_node": ratio, "ball_cycles": cycles}

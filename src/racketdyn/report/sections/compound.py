@@ -222,17 +222,25 @@ def _band_statement(support: str, bands: object) -> list[str]:
     if not isinstance(band, dict):
         return []
     low, high = (band.get("band_hz") or [math.nan, math.nan])[:2]
+    pieces = [p for p in band.get("intervals_hz") or [] if isinstance(p, list) and len(p) == 2]
+    reach = (
+        f"between {fmt(low, '.0f')} and {fmt(high, '.0f')} Hz"
+        if len(pieces) < 2
+        else " and ".join(f"{fmt(a, '.0f')}–{fmt(b, '.0f')}" for a, b in pieces)
+        + " Hz, with a gap where the ball mode crosses a frame mode"
+    )
     text = (
         f"{support}: the spread of the small-amplitude inputs (the ball's stiffness, the bed "
-        f"under the ball, the ball's mass) puts the ball mode between {fmt(low, '.0f')} and "
-        f"{fmt(high, '.0f')} Hz"
+        f"under the ball, the ball's mass) puts the ball mode {reach}"
     )
     if band.get("paper_racket") is False:
         return [f"{text} ({band.get('paper_note') or 'the paper measured another racket'})."]
     inside = "holds" if band.get("paper_inside") else "does not hold"
     text += f", which {inside} the paper's {PAPER_BALL_MODE_HZ:g} Hz"
     bed = band.get("bed_for_paper")
-    if isinstance(bed, dict) and math.isfinite(number(bed, "bed_stiffness_n_per_m")):
+    if isinstance(bed, dict) and bed.get("note"):
+        text += f"; {bed['note']}"
+    elif isinstance(bed, dict) and math.isfinite(number(bed, "bed_stiffness_n_per_m")):
         radius = number(bed, "patch_radius_m")
         text += (
             f"; with the nominal ball it needs the bed at "
@@ -252,7 +260,7 @@ def _hand_over_statement(support: str, record: dict[str, Any]) -> list[str]:
     if not isinstance(hand_over, dict):
         return []
     ratio, cycles = number(hand_over, "ball_to_two_node"), number(hand_over, "ball_cycles")
-    if not (math.isfinite(ratio) and math.isfinite(cycles)):
+    if not math.isfinite(ratio) or math.isnan(cycles):
         return []
     hammer, point = record.get("hammer_point_m"), record.get("point_m")
     away = (
@@ -262,6 +270,11 @@ def _hand_over_statement(support: str, record: dict[str, Any]) -> list[str]:
     )
     if ratio <= 1.0:
         lead = f"the 2-node mode leads from the start ({ratio:.2f}× as large a ball mode)"
+    elif math.isinf(cycles):
+        lead = (
+            f"the ball mode leads ({ratio:.1f}× the 2-node mode's amplitude) throughout: it "
+            "decays more slowly"
+        )
     else:
         lead = (
             f"the ball mode leads ({ratio:.1f}× the 2-node mode's amplitude) and the 2-node "
