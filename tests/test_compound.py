@@ -427,7 +427,7 @@ def test_the_blow_shared_by_string_blow_is_a_struck_string_patch(racket, spring)
         [(0.49, 0.0), (0.31, 0.0)],
     )  # fmt: skip
     n = system.mass.shape[0]
-    k_b, k_g = spring_split(racket, ball, undamped)
+    k_b, k_g = spring_split(undamped)
     ball_dof = np.eye(n)[-1]
     racket_k = system.stiffness - undamped.stiffness * np.outer(
         ball_dof - system.rows[0], ball_dof - system.rows[0]
@@ -1160,3 +1160,30 @@ def test_with_the_ball_on_the_node_line_compound_points_at_the_blow(
     assert "the 2-node mode leads from the start" in said
     assert "--point=" not in said
     assert "strike nearer the ball (--hammer)" in said
+
+
+def test_compound_takes_the_law_at_the_ball_with_string_bed_local(tmp_path: Path) -> None:
+    """``compound --string-bed local``: the spring is the string bed's law at the ball's point
+    (the trial found the centre's used wherever the ball sat).  At the centre the two are one;
+    120 mm towards the tip the bed is stiffer, so the spring, the ball mode and the approximate
+    method's contact-time drop there go the same way; run.json says which law."""
+    racket, ball = default_racket(), Ball()
+    centre_uniform, centre_local = ball_spring(racket, ball), ball_spring(racket, ball, 5.0, CENTRE)
+    assert centre_local.stiffness == pytest.approx(centre_uniform.stiffness, rel=1e-6)
+    assert centre_local.bed_stiffness == pytest.approx(centre_uniform.bed_stiffness, rel=1e-6)
+    runs = {}
+    for law in ("uniform", "local"):
+        out = tmp_path / law
+        argv = ["compound", "--point=0.625,0", "--support", "free", "--no-figures"]
+        assert main([*argv, "--string-bed", law, "--out", str(out)]) == 0
+        runs[law] = json.loads((out / "run.json").read_text(encoding="utf-8"))
+        with (out / "compound.csv").open(newline="", encoding="utf-8") as handle:
+            row = next(r for r in csv.DictReader(handle) if r["mode"] == BALL_MODE_NAME)
+        runs[law]["row"] = row
+    uniform, local = runs["uniform"], runs["local"]
+    assert local["string_bed"] == "local"
+    assert uniform["string_bed"] == "uniform"
+    assert "ball's point" in local["spring_law_at"]
+    assert local["ball_spring"]["stiffness"] > 1.1 * uniform["ball_spring"]["stiffness"]
+    assert float(local["row"]["frequency_hz"]) > float(uniform["row"]["frequency_hz"])
+    assert float(local["row"]["contact_time_10_s"]) < float(uniform["row"]["contact_time_10_s"])

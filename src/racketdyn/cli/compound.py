@@ -50,6 +50,7 @@ def add(commands: Any) -> None:
         "12 mm from the ball towards the handle); with the ball and the blow near the 2-node "
         "mode's node line the neck shows the ball mode first, as in the paper's Fig. 8c",
     )
+    opt.add_string_bed(p)
     opt.add_no_figures(p, "compound.csv")
     opt.add_out(p)
     p.set_defaults(handler=run)
@@ -80,6 +81,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             hand=hand,
             preload_n=args.preload,
             hammer=opt.parse_point("--hammer", args.hammer),
+            string_bed=args.string_bed,
             defaults=defaults,
             command=opt.command_line(args),
             figures=None if args.no_figures else compound_figures,
@@ -94,19 +96,20 @@ def run(args: argparse.Namespace, console: Console) -> int:
         f"{spring.preload_n:g} N: spring {spring.stiffness / 1e3:.2f} kN/m (tangent of F_GB), "
         f"ζ {spring.damping_ratio:.3f} (from e_BG) → {result.out}"
     )
-    if result.off_centre_m > _OFF_CENTRE_M:
-        console.print(
-            f"[yellow]the spring is the bed's law at the centre of the face, "
+    warnings = []
+    if result.off_centre_m > _OFF_CENTRE_M and spring.location is None:
+        warnings.append(
+            f"the spring is the bed's law at the centre of the face, "
             f"{result.off_centre_m * 1e3:.0f} mm from the ball (the bed is stiffer towards the "
-            "frame; the per-point law is not used here)"
-            + (
-                f"; the ball ({ball.diameter_m * 500:.1f} mm in radius) reaches past the string "
-                "bed's edge: it would rest on the frame"
-                if result.overhangs
-                else ""
-            )
-            + "[/]"
+            "frame: --string-bed local takes the law at the ball)"
         )
+    if result.overhangs:
+        warnings.append(
+            f"the ball ({ball.diameter_m * 500:.1f} mm in radius) reaches past the string bed's "
+            "edge: it would rest on the frame"
+        )
+    if warnings:
+        console.print(f"[yellow]{'; '.join(warnings)}[/]")
     for support in result.supports:
         modes, alone = result.modes[support], result.alone[support]
         table = Table(title=f"{support}: modes with the ball (and the racket alone)")

@@ -38,7 +38,12 @@ import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
-from racketdyn.contact import compound_law, string_bed_law
+from racketdyn.contact import (
+    compound_law,
+    local_compound_law,
+    local_string_bed_law,
+    string_bed_law,
+)
 from racketdyn.errors import InputError, require_positive
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.system import ImpactSystem, impact_system
@@ -86,6 +91,11 @@ class BallSpring:
         Compound deflection at the preload, m.
     source : str
         What the law was.
+    bed_stiffness : float
+        The string bed's part k_G = dF_G/dX at the preload, N/m (k is k_G in series with the
+        ball's k_B: :func:`spring_split`).
+    location : tuple of float or None
+        Where the laws were taken (x, y), m; None: the face centre's laws.
     """
 
     stiffness: float
@@ -93,6 +103,8 @@ class BallSpring:
     preload_n: float
     deflection: float
     source: str
+    bed_stiffness: float
+    location: tuple[float, float] | None = None
 
 
 def restitution_damping_ratio(cor: float) -> float:
@@ -112,7 +124,12 @@ def restitution_damping_ratio(cor: float) -> float:
     return -log_e / math.sqrt(math.pi**2 + log_e**2)
 
 
-def ball_spring(racket: Racket, ball: Ball, preload_n: float = PRELOAD_N) -> BallSpring:
+def ball_spring(
+    racket: Racket,
+    ball: Ball,
+    preload_n: float = PRELOAD_N,
+    location: ArrayLike | None = None,
+) -> BallSpring:
     """The small-amplitude ball–string spring: tangent of F_GB at a preload.
 
     Parameters
@@ -121,13 +138,23 @@ def ball_spring(racket: Racket, ball: Ball, preload_n: float = PRELOAD_N) -> Bal
         String bed and ball laws (:func:`racketdyn.contact.compound_law`, section 3.4).
     preload_n : float
         Force the ball presses on the strings with, N (≥ 0).
+    location : array_like (2,), optional
+        Where the ball sits (x, y), m, for the string bed's law there
+        (:func:`racketdyn.contact.local_compound_law`: stiffer towards the frame); default the
+        face centre's law, the paper's one law.
 
     Returns
     -------
     BallSpring
     """
     preload = require_positive("preload", preload_n, allow_zero=True)
-    law = compound_law(racket, ball)
+    if location is None:
+        law, bed, where = compound_law(racket, ball), string_bed_law(racket, ball), None
+    else:
+        xy = as_locations(location)[0]
+        where = (float(xy[0]), float(xy[1]))
+        law = local_compound_law(racket, ball, where)
+        bed = local_string_bed_law(racket, ball, where)
     deflection = float(law.deflection(preload))
     if not math.isfinite(deflection):
         raise InputError(f"preload {preload:g} N: beyond the compound law's range")
@@ -137,6 +164,8 @@ def ball_spring(racket: Racket, ball: Ball, preload_n: float = PRELOAD_N) -> Bal
         preload,
         deflection,
         law.source,
+        float(bed.stiffness(bed.deflection(preload))),
+        where,
     )
 
 
@@ -431,14 +460,13 @@ def resting_patch_radius(racket: Racket) -> float:
     return 0.5 * max(racket.strings.spacing_m(racket.head))
 
 
-def spring_split(racket: Racket, ball: Ball, spring: BallSpring) -> tuple[float, float]:
+def spring_split(spring: BallSpring) -> tuple[float, float]:
     """The ball's and the bed's parts of the spring at its preload, k_B and k_G (N/m).
 
     ``1/k = 1/k_B + 1/k_G`` (in series, section 3.4); k_G is the string-bed law's tangent at
-    the preload (:func:`racketdyn.contact.string_bed_law`), k_B what is left.
+    the preload (:attr:`BallSpring.bed_stiffness`), k_B what is left.
     """
-    bed = string_bed_law(racket, ball)
-    k_bed = float(bed.stiffness(bed.deflection(spring.preload_n)))
+    k_bed = spring.bed_stiffness
     return 1.0 / (1.0 / spring.stiffness - 1.0 / k_bed), k_bed
 
 

@@ -35,7 +35,7 @@ import scipy.optimize
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
-from racketdyn.contact import membrane_patch_radius, membrane_patch_stiffness, string_bed_law
+from racketdyn.contact import membrane_patch_radius, membrane_patch_stiffness
 from racketdyn.impact.compound import BallSpring, racket_modes, spring_split
 from racketdyn.impact.hand import Hand
 from racketdyn.modal import ModalModel
@@ -170,8 +170,7 @@ def ball_mode_band(
     BallModeBand
     """
     the_ball = ball or Ball()
-    law = string_bed_law(racket, the_ball)
-    k_law = float(law.stiffness(law.deflection(spring.preload_n)))
+    k_law = spring.bed_stiffness  # the per-string law's tangent where the spring was taken
     net = membrane_patch_stiffness(racket, the_ball.diameter_m / 2.0)
     bed = (
         min(BED_STATIC_STIFFNESS_N_PER_M[0], k_law),
@@ -255,7 +254,7 @@ def bed_for_frequency(
     BedForFrequency
     """
     the_ball = ball or Ball()
-    k_ball, _ = spring_split(racket, the_ball, spring)
+    k_ball, _ = spring_split(spring)
 
     def miss(log_bed: float) -> float:
         k = 1.0 / (1.0 / k_ball + 1.0 / math.exp(log_bed))

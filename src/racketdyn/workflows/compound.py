@@ -39,6 +39,7 @@ from racketdyn.impact.compound_band import (
     ball_mode_band,
     bed_for_frequency,
 )
+from racketdyn.impact.grid import STRING_BEDS, StringBed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.system import TRANSIENT_SUPPORTS
 from racketdyn.io import default_racket, racket_to_dict
@@ -304,6 +305,7 @@ def run_compound(
     hand: Hand | None = None,
     preload_n: float = PRELOAD_N,
     hammer: ArrayLike | None = None,
+    string_bed: StringBed = "uniform",
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[CompoundResult, Path], list[Path]] | None = None,
@@ -331,6 +333,9 @@ def run_compound(
         The hand of the ``hand`` support.
     preload_n : float
         Preload of the stuck ball on the strings, N (the spring is F_GB's tangent there).
+    string_bed : {"uniform", "local"}
+        ``uniform``: the face centre's laws wherever the ball sits (the paper's one law);
+        ``local``: the string bed's law at the ball's point (stiffer towards the frame).
     hammer : array_like (2,), optional
         Where the hammer strikes the string face for Figs 8c and 9 (x, y), m (default
         :data:`HAMMER_OFFSET_M` from the ball towards the handle).  Its blow is a half-sine as
@@ -363,7 +368,8 @@ def run_compound(
     the_hand, hand_defaults = hand_or_default(checked, hand)
     the_ball, ball_defaults = ball_or_default(ball)
     defaults_used += [*hand_defaults, *ball_defaults]
-    spring = ball_spring(the_racket, the_ball, preload_n)
+    one_of("string_bed", string_bed, STRING_BEDS)
+    spring = ball_spring(the_racket, the_ball, preload_n, None if string_bed == "uniform" else xy)
     model = used.modal_model
     stiffer = None if model is None else stiffer_frame(model, FRAME_STIFFNESS_FACTOR)
     head = the_racket.head
@@ -403,8 +409,9 @@ def run_compound(
         CONTACT_SPEEDS_MPS,
         sorted({_APPROXIMATE_SUPPORT[s] for s in checked}),
         modal_model=None,
+        string_bed=string_bed,  # the contact time with the law the spring was taken from
     )
-    k_ball, k_bed = spring_split(the_racket, the_ball, spring)
+    k_ball, k_bed = spring_split(spring)
     ball_fraction = k_ball / (k_ball + k_bed)
     patch = resting_patch_radius(the_racket)
     for i, support in enumerate(checked):
@@ -490,7 +497,12 @@ def run_compound(
         },
         "neck_point_m": list(neck),
         "ball_overhangs_bed": result.overhangs,
-        "spring_law_at": "the centre of the face (contact.compound_law) wherever the ball sits",
+        "string_bed": string_bed,
+        "spring_law_at": (
+            "the centre of the face (contact.compound_law) wherever the ball sits"
+            if string_bed == "uniform"
+            else "the ball's point (contact.local_compound_law)"
+        ),
         "neck_hand_over": result.hand_over,
         "two_node_node_line_m": result.node_line,
         "supports": checked,
@@ -507,7 +519,8 @@ def run_compound(
             f"at the preload; its dashpot gives a linear contact the ball's e_BG = "
             f"{the_ball.e_bg:g}",
             "stiffness_n_per_m_at": {
-                f"{f:g} N": ball_spring(the_racket, the_ball, f).stiffness for f in (0.0, 20.0)
+                f"{f:g} N": ball_spring(the_racket, the_ball, f, spring.location).stiffness
+                for f in (0.0, 20.0)
             },
         },
         "contact_speeds_mps": list(CONTACT_SPEEDS_MPS),
