@@ -143,11 +143,7 @@ def membrane_patch_stiffness(racket: Racket, patch_radius_m: float) -> float:
         Stiffness dF/dX at small X, N/m.
     """
     tension, outer, inner_per_radius = _net(racket)
-    if not 0.0 < patch_radius_m < racket.head.half_width_m:
-        raise InputError(
-            f"patch radius {patch_radius_m:g} m: must lie between 0 and the head's half-width "
-            f"{racket.head.half_width_m:g} m"
-        )
+    _check_patch(racket, patch_radius_m)
     return 2.0 * math.pi * tension / math.log(outer / (patch_radius_m * inner_per_radius))
 
 
@@ -190,13 +186,21 @@ def net_share(racket: Racket, patch_radius_m: float, distance_m: float) -> float
     float
     """
     _, outer, inner_per_radius = _net(racket)
-    membrane_patch_stiffness(racket, patch_radius_m)  # checks the radius
+    _check_patch(racket, patch_radius_m)
     if distance_m <= patch_radius_m:
         return 1.0
     share = math.log(outer / (distance_m * inner_per_radius)) / math.log(
         outer / (patch_radius_m * inner_per_radius)
     )
     return min(max(share, 0.0), 1.0)
+
+
+def _check_patch(racket: Racket, patch_radius_m: float) -> None:
+    if not 0.0 < patch_radius_m < racket.head.half_width_m:
+        raise InputError(
+            f"patch radius {patch_radius_m:g} m: must lie between 0 and the head's half-width "
+            f"{racket.head.half_width_m:g} m"
+        )
 
 
 def _net(racket: Racket) -> tuple[float, float, float]:

@@ -414,6 +414,8 @@ def run_compound(
     k_ball, k_bed = spring_split(spring)
     ball_fraction = k_ball / (k_ball + k_bed)
     patch = resting_patch_radius(the_racket)
+    share = net_share(the_racket, patch, math.dist(strike, xy))  # the same for every support
+    result.blow_share = {"net_share": share, "to_ball": share * ball_fraction}
     for i, support in enumerate(checked):
         report(progress, f"modes with the ball, {support}", i, len(checked))
         with_ball = racket_modes(the_racket, model, support, xy, spring, the_ball, the_hand, extra)
@@ -421,9 +423,7 @@ def run_compound(
         result.modes[support], result.alone[support] = with_ball, alone
         blow = float(string_contact_time(the_racket, [strike], _APPROXIMATE_SUPPORT[support])[0])
         result.blow_s[support] = blow
-        share = net_share(the_racket, patch, math.dist(strike, xy))
         load = with_ball.string_blow(1, share, ball_fraction)
-        result.blow_share = {"net_share": share, "to_ball": share * ball_fraction}
         result.neck_acceleration[support] = with_ball.blow_acceleration(result.times, load, 2, blow)
         result.neck_parts[support], result.hand_over[support] = _hand_over(
             with_ball, result.times, result.neck_acceleration[support], blow
