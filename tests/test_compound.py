@@ -1182,3 +1182,15 @@ def test_compound_takes_the_law_at_the_ball_with_string_bed_local(tmp_path: Path
     assert local["ball_spring"]["stiffness"] > 1.1 * uniform["ball_spring"]["stiffness"]
     assert float(local["row"]["frequency_hz"]) > float(uniform["row"]["frequency_hz"])
     assert float(local["row"]["contact_time_10_s"]) < float(uniform["row"]["contact_time_10_s"])
+
+
+def test_the_band_holds_a_local_springs_own_ball_mode_near_the_frame(racket, built_in) -> None:  # type: ignore[no-untyped-def]
+    """Near the tip the local bed law (77.8 kN/m at x = 655 mm) passes the net over the ball's
+    width (69.7 kN/m): the band's bed range must still hold the spring's own bed, so the
+    nominal ball mode lies in the band (it did not: found by a trial on 2026-11-26)."""
+    model, _ = built_in
+    for point in ((0.655, 0.0), (0.36, 0.0), (0.505, 0.105)):
+        local = ball_spring(racket, Ball(), 5.0, point)
+        band = ball_mode_band(racket, model, "free", point, local, Ball())
+        assert band.bed_stiffness_n_per_m[0] <= local.bed_stiffness <= band.bed_stiffness_n_per_m[1]
+        assert band.holds(band.nominal_hz)

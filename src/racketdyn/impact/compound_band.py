@@ -172,9 +172,9 @@ def ball_mode_band(
     the_ball = ball or Ball()
     k_law = spring.bed_stiffness  # the per-string law's tangent where the spring was taken
     net = membrane_patch_stiffness(racket, the_ball.diameter_m / 2.0)
-    bed = (
+    bed = (  # the spring's own bed inside too (a local law near the frame may pass the net's)
         min(BED_STATIC_STIFFNESS_N_PER_M[0], k_law),
-        max(BED_STATIC_STIFFNESS_N_PER_M[1], net),
+        max(BED_STATIC_STIFFNESS_N_PER_M[1], net, k_law),
     )
     # the ball mode along the bed's range at each corner of ball stiffness and mass: monotone
     # unless the ball mode jumps across a frame mode, which leaves a gap (review, 2026-11-26)
