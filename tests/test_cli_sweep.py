@@ -103,3 +103,22 @@ def test_hand_with_the_approximate_method_is_one_line(
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1
     assert "'hand' needs [impacts].method = 'transient'" in err[0]
+
+
+def test_notes_keep_their_brackets_and_a_resumed_run_stops_no_engine(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The coarse-grid note names "[impacts] grid", which the console took for a style and
+    dropped ("give a finer  grid"); a run that resumed every design printed "engine shutdown
+    0.0 s" although no engine ran (a trial of 2026-11-26)."""
+    (tmp_path / "spec.toml").write_text(SPEC)
+    argv = ["sweep", str(tmp_path / "spec.toml"), "--workers", "1", "--no-figures"]
+    out = tmp_path / "out"
+    assert main([*argv, "--out", str(out)]) == 0
+    printed = " ".join(capsys.readouterr().out.split())
+    assert "give a finer [impacts] grid" in printed
+    assert "engine shutdown" in printed
+    assert main([*argv, "--out", str(out)]) == 0  # the same folder again: all resumed
+    printed = " ".join(capsys.readouterr().out.split())
+    assert "2 resumed" in printed
+    assert "engine shutdown" not in printed

@@ -139,10 +139,12 @@ def _run(args: argparse.Namespace, console: Console) -> int:
     for text, count in record["status_counts"].items():
         if text not in ("ok", "task failed") and count:
             console.print(f"[yellow]{count:,} impacts: {text}; their results are NaN[/]")
+    from rich.markup import escape  # a note names "[impacts] grid": text, not a style
+
     for note in record.get("notes", []):
-        console.print(f"[yellow]{note}[/]")
+        console.print(f"[yellow]{escape(note)}[/]")
     for failure in result.failed:
-        console.print(f"[red]{failure['task_id']} failed: {failure['error']}[/]")
+        console.print(f"[red]{escape(failure['task_id'])} failed: {escape(failure['error'])}[/]")
     for name in record["outputs"]:
         console.print(f"  wrote {out / name}")
     if result.failed:

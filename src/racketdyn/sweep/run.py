@@ -226,7 +226,8 @@ def run_sweep(
     if when_tasks_done is not None:
         clock = time.perf_counter()
         when_tasks_done()
-        time_s["shutdown"] = time.perf_counter() - clock
+        if todo:  # an engine ran: its shutdown (nothing to say when every design was resumed)
+            time_s["shutdown"] = time.perf_counter() - clock
     failures = tally.failures
     clock = time.perf_counter()
     dataset = _combine(spec, parts_dir, failures, assembly)
