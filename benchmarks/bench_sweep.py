@@ -40,6 +40,7 @@ from racketdyn.sweep import (
     make_executor,
     run_sweep,
     run_task,
+    start_early,
 )
 
 N_POINTS = 100
@@ -80,6 +81,19 @@ def build_spec(n_designs: int, method: str) -> SweepSpec:
     )
 
 
+def start_dask_forkserver() -> float:
+    """Start the forkserver local Dask forks its workers from and wait until it has imported
+    what it preloads (a first child started and ended); seconds."""
+    import multiprocessing
+
+    clock = time.perf_counter()
+    start_early("dask-local")
+    child = multiprocessing.get_context("forkserver").Process(target=os.getpid)
+    child.start()
+    child.join()
+    return time.perf_counter() - clock
+
+
 def time_engine(spec: SweepSpec, kind: str, workers: int, out: Path) -> dict[str, float]:
     """Wall time of the whole sweep (engine start and shutdown included) and where it went, s:
     ``start`` (the engine), ``first`` (first result after the first submission: a pool starts
@@ -110,6 +124,7 @@ def time_engine(spec: SweepSpec, kind: str, workers: int, out: Path) -> dict[str
         "shutdown": float(spent.get("shutdown", 0.0)),
         "busy": float(record["task_time_s"]),
         "per_task": float(record["designs_per_task"]),
+        "fork": float(record["worker_start_method"] == "fork"),
     }
 
 
@@ -153,6 +168,14 @@ def main() -> int:
     print(f"  impacts ok          {ok:,} of {per_task:,} (the rest NaN with a status code)")
     print()
 
+    # A local Dask cluster forks its workers from a forkserver that imports distributed and
+    # racketdyn once per process (the command starts it while it reads the spec): started
+    # here, before any clock, so that 1 and 2 Dask workers start alike; its time is printed
+    # apart.  A process pool forks its workers from this process (single-threaded here).
+    print(
+        f"forkserver for local Dask (once per process, not in the table): "
+        f"{start_dask_forkserver():.2f} s"
+    )
     results: dict[str, dict[str, float]] = {}
     datasets: dict[str, xr.Dataset] = {}
     with tempfile.TemporaryDirectory(prefix="bench_sweep_") as scratch:
@@ -179,6 +202,11 @@ def main() -> int:
     print("combining (a local Dask scheduler in this process slows it).  combine: the parts into")
     print("sweep.nc.  busy:")
     print("the tasks' own time summed over workers.  per task: designs per task.")
+    forked = all(t["fork"] for label, t in results.items() if label.startswith("process"))
+    print(
+        "process pool workers forked from this process: "
+        f"{'yes' if forked else 'NO (it ran threads: forkserver)'}"
+    )
     print()
     for kind in ("process pool", "local Dask"):
         one, two = results[f"{kind}, 1 worker"]["wall"], results[f"{kind}, 2 workers"]["wall"]

@@ -31,9 +31,9 @@ def test_sweep_command(tmp_path: Path) -> None:
 
 
 def test_workers_on_a_small_sweep(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    """A pool gives the serial numbers (a design computed here while the pool starts, one in
-    the pool); on a sweep this small the command says it does not pay, and where the time
-    went."""
+    """A pool gives the serial numbers (while a forkserver's pool starts, a design computed
+    here, one in the pool); on a sweep this small the command says it does not pay, and where
+    the time went."""
     import json
 
     import xarray as xr
@@ -49,10 +49,13 @@ def test_workers_on_a_small_sweep(tmp_path: Path, capsys: pytest.CaptureFixture[
         printed = " ".join(capsys.readouterr().out.split())
         assert "time: start" in printed
         assert "combining" in printed
-        assert ("--serial is faster" in printed) == (engine[0] == "--workers")
-        if engine[0] == "--workers":  # one design went to the starting pool, one ran here
+        assert ("--serial is as fast or faster" in printed) == (engine[0] == "--workers")
+        if engine[0] == "--workers":
+            # a forked pool is up at once; while a forkserver's pool starts, one design went
+            # to it and one ran here (this process may run threads of earlier tests)
             record = json.loads((out / "run.json").read_text())
-            assert record["ran_in_main_process"] == 1
+            forked = record["worker_start_method"] == "fork"
+            assert record["ran_in_main_process"] == (0 if forked else 1)
     for name in runs["--serial"].data_vars:
         assert runs["--serial"][name].values.tobytes() == runs["--workers"][name].values.tobytes()
 

@@ -904,3 +904,22 @@ def test_a_script_without_the_main_guard_is_refused(
         assert "a sweep on worker processes is started at the top level" in run.stderr
         assert 'if __name__ == "__main__":' in run.stderr
         assert not (tmp_path / "out" / "sweep.nc").exists()
+
+
+def test_a_package_run_with_dash_m_needs_no_guard(tmp_path: Path) -> None:
+    """``python -m package`` runs ``package/__main__.py``, which multiprocessing never imports
+    again in a worker; the check refused it all the same — ``python -m racketdyn.cli sweep
+    --workers 2`` among others (found 2026-11-26, third session)."""
+    import subprocess
+    import sys
+
+    package = tmp_path / "study_package"
+    package.mkdir()
+    (package / "__init__.py").write_text("", encoding="utf-8")
+    (package / "__main__.py").write_text(_SCRIPT + "main(sys.argv[1])\n", encoding="utf-8")
+    run = subprocess.run(
+        [sys.executable, "-m", "study_package", str(tmp_path / "out")],
+        capture_output=True, text=True, timeout=300, check=False, cwd=tmp_path,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split() == ["failed", "0"]

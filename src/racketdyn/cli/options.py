@@ -326,9 +326,14 @@ def command_line(args: argparse.Namespace) -> list[str]:
 
 # --- output -----------------------------------------------------------------------------------
 @contextmanager
-def progress_display(console: Console) -> Iterator[Progress]:
+def progress_display(console: Console, *, thread: bool = True) -> Iterator[Progress]:
     """A ``progress(what, done, total)`` callback drawing one rich progress line (a spinner
-    for ``total == 0``); the line goes when the step ends."""
+    for ``total == 0``); the line goes when the step ends.
+
+    ``thread=False``: no refresh thread — the line is drawn at each update only (the spinner
+    does not turn between them).  For a step that forks worker processes, which is safe only
+    while this process runs a single thread (``racketdyn.sweep.executors``).
+    """
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn
 
     with Progress(
@@ -338,11 +343,14 @@ def progress_display(console: Console) -> Iterator[Progress]:
         MofNCompleteColumn(),
         console=console,
         transient=True,
+        auto_refresh=thread,
     ) as bar:
         task = bar.add_task("", total=None)
 
         def update(what: str, done: int, total: int) -> None:
-            bar.update(task, description=what, completed=done, total=total or None)
+            bar.update(
+                task, description=what, completed=done, total=total or None, refresh=not thread
+            )
 
         yield update
 

@@ -85,7 +85,7 @@ def _run(args: argparse.Namespace, console: Console) -> int:
 
     from racketdyn.errors import InputError
     from racketdyn.plotting.sweep import write_summary_figures as sweep_figures
-    from racketdyn.sweep import load_sweep_spec
+    from racketdyn.sweep import load_sweep_spec, start_early
     from racketdyn.sweep.runner import SECONDS_PER_IMPACT
     from racketdyn.workflows.sweep import run_sweep_step
 
@@ -93,7 +93,6 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         raise InputError(
             f"--task-timeout must be a number of seconds above 0 (got {args.task_timeout})"
         )
-    spec = load_sweep_spec(Path(args.spec))
     if args.serial:
         engine, workers = "serial", None
     elif args.workers is not None:
@@ -104,21 +103,26 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         engine, workers = "dask", None
     else:
         engine, workers = "auto", None
+    start_early(engine)  # a local Dask cluster's forkserver imports while the spec is read
+    spec = load_sweep_spec(Path(args.spec))
     console.print(
         f"{spec.name}: {len(spec.designs)} designs × {spec.impacts_per_design:,} impacts "
         f"= {spec.n_impacts:,} impacts → {args.out}"
     )
     work_s = spec.n_impacts * SECONDS_PER_IMPACT.get(spec.method, max(SECONDS_PER_IMPACT.values()))
-    if engine in ("process", "dask-local") and work_s < WORKERS_PAY_S:
+    if engine in WORKERS_PAY_S and work_s < WORKERS_PAY_S[engine]:
         console.print(
-            f"[yellow]about {work_s:.1f} s of work on one core: starting workers takes longer "
-            "(a second or more each); --serial is faster for a sweep this small[/]"
+            f"about {work_s:.1f} s of work on one core: {_WHY_NOT_PAY[engine]}; --serial is "
+            "as fast or faster for a sweep this small",
+            style="yellow",
+            markup=False,
         )
     if engine.startswith("dask") and not args.verbose:
         import distributed  # noqa: F401  (importing it sets its loggers to INFO: quieten them)
 
         logging.getLogger("distributed").setLevel(logging.WARNING)
-    with opt.progress_display(console) as progress:
+    # no refresh thread: a process pool forks its workers while this process runs one thread
+    with opt.progress_display(console, thread=False) as progress:
         result = run_sweep_step(
             spec,
             args.out,
@@ -156,9 +160,17 @@ def _run(args: argparse.Namespace, console: Console) -> int:
     return 0
 
 
-WORKERS_PAY_S = 2.0
-"""Below this much work on one core (s, estimated), a pool of workers costs more than it saves:
-the command says so."""
+WORKERS_PAY_S = {"process": 0.5, "dask-local": 2.0}
+"""Below this much work on one core (s, estimated), workers save next to nothing or cost more
+than they save: the command says so.  A process pool forks its workers in milliseconds, but
+the last tasks share out unevenly and every part is written and read (README's 3,726-impact
+study: 0.6 s on two workers against 0.5 s serial; 264,060 impacts, about 1.3 s of work: 1.2
+against 1.4 s, 2026-11-26); a local Dask cluster starts in 0.7-0.8 s (its forkserver's imports
+and the scheduler), which a sweep must earn back."""
+_WHY_NOT_PAY = {
+    "process": "too little to share out between workers",
+    "dask-local": "a local Dask cluster takes about a second to start",
+}
 
 
 def _where_time_went(record: dict[str, Any]) -> str:

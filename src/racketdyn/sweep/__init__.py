@@ -57,6 +57,7 @@ from racketdyn.sweep.executors import (
     ProcessPool,
     SerialExecutor,
     make_executor,
+    start_early,
 )
 from racketdyn.sweep.run import SERIAL_IMPACT_LIMIT, run_sweep
 from racketdyn.sweep.runner import SweepInterrupted, TaskTimeoutError, WorkerLostError
@@ -106,6 +107,7 @@ __all__ = [
     "make_executor",
     "run_sweep",
     "run_task",
+    "start_early",
     "summary_metrics",
     "sweep_spec_from_dict",
     "sweet_area_resolution_cm2",

@@ -22,7 +22,14 @@ from typing import Any, Literal, ParamSpec, TypeVar, get_args
 
 from racketdyn.errors import InputError, one_of, require_whole
 
-__all__ = ["ENGINES", "EngineKind", "ProcessPool", "SerialExecutor", "make_executor"]
+__all__ = [
+    "ENGINES",
+    "EngineKind",
+    "ProcessPool",
+    "SerialExecutor",
+    "make_executor",
+    "start_early",
+]
 
 # the package's logger, racketdyn.sweep: the sweep's messages keep one name
 log = logging.getLogger(__package__)
@@ -66,11 +73,30 @@ starts with NumPy, SciPy, numba and racketdyn's impact models loaded, instead of
 them itself (seconds per worker on a loaded machine, paid again by a replaced pool)."""
 
 
-def _start_context() -> Any:
-    """forkserver where available, else spawn: never fork, unsafe in a process with threads.
+def _fork_context() -> Any | None:
+    """The fork start method while it is safe, else None.
 
-    The forkserver preloads the main module (as multiprocessing does by default) and
-    :data:`WORKER_PRELOAD`.  It is started once per process: the preload applies if no
+    Forking copies this process as it is — racketdyn and its libraries already imported, so a
+    worker is ready in milliseconds instead of the second a forkserver takes to import them
+    (most of a 5 s sweep's serial part, ``benchmarks/bench_sweep.py``).  But a fork copies only
+    the thread that forks: a lock another thread holds at that moment (a console, logging, an
+    allocator) stays locked in the child for good.  So fork only while this process runs a
+    single thread; the pool's workers are then started at once (:meth:`ProcessPool._new`),
+    before the pool's own manager thread exists.
+    """
+    import multiprocessing
+
+    if "fork" not in multiprocessing.get_all_start_methods() or threading.active_count() > 1:
+        return None
+    return multiprocessing.get_context("fork")
+
+
+def _start_context() -> Any:
+    """forkserver where available, else spawn: for a process that runs threads (see
+    :func:`_fork_context`).
+
+    The forkserver preloads the main module and :data:`WORKER_PRELOAD`
+    (:func:`_start_forkserver`).  It is started once per process: the preload applies if no
     forkserver runs yet.
     """
     import multiprocessing
@@ -78,8 +104,40 @@ def _start_context() -> Any:
     if "forkserver" not in multiprocessing.get_all_start_methods():
         return multiprocessing.get_context("spawn")
     context = multiprocessing.get_context("forkserver")
-    context.set_forkserver_preload(["__main__", *WORKER_PRELOAD])
+    _start_forkserver(context, ["__main__", *WORKER_PRELOAD])
     return context
+
+
+def _start_forkserver(context: Any, preload: list[str]) -> None:
+    """Start this process's forkserver (if none runs yet) with ``preload``, the main script
+    included.
+
+    Python before 3.13.8 never preloads ``__main__`` in the forkserver, whatever the preload
+    list says (CPython gh-126631, gh-137996: ``forkserver.ensure_running`` looks for a
+    ``main_path`` that ``spawn.get_preparation_data`` has named ``init_main_from_path`` since
+    2013), so each child ran the main script's top level again: the imports of a script that
+    imports xarray cost every local Dask worker 0.3 s more to start (0.39 against 0.08 s, a
+    scratch check of 2026-11-26).  Here the path is passed under the name those versions read;
+    later versions read the other name, and the extra key changes nothing.  Running the
+    script's top level once in the forkserver is what spawn does in every child anyway.
+    """
+    import multiprocessing.forkserver
+    from multiprocessing import spawn
+
+    context.set_forkserver_preload(preload)
+    original = spawn.get_preparation_data
+
+    def with_main_path(name: str) -> dict[str, Any]:
+        data: dict[str, Any] = original(name)
+        if "init_main_from_path" in data:
+            data.setdefault("main_path", data["init_main_from_path"])
+        return data
+
+    spawn.get_preparation_data = with_main_path
+    try:
+        multiprocessing.forkserver.ensure_running()
+    finally:
+        spawn.get_preparation_data = original
 
 
 def _dask_forkserver() -> bool:
@@ -87,15 +145,36 @@ def _dask_forkserver() -> bool:
     :data:`WORKER_PRELOAD` (then a local Dask cluster forks its workers from it instead of
     starting an interpreter that imports them for each); whether there is a forkserver."""
     import multiprocessing
-    import multiprocessing.forkserver
 
     if "forkserver" not in multiprocessing.get_all_start_methods():
         return False
     context = multiprocessing.get_context("forkserver")
-    context.set_forkserver_preload(["__main__", *WORKER_PRELOAD, "distributed"])
     with _workers_ignore_ctrl_c():  # its children start with Ctrl-C ignored
-        multiprocessing.forkserver.ensure_running()
+        _start_forkserver(context, ["__main__", *WORKER_PRELOAD, "distributed"])
     return True
+
+
+def start_early(kind: str) -> None:
+    """Start in the background what an engine will need, while this process goes on (reads
+    the spec, checks the parts on disk).
+
+    For ``dask-local``: the forkserver that imports distributed and racketdyn once and forks
+    the cluster's workers (:func:`_dask_forkserver`; a second or more of imports, on another
+    core meanwhile).  Nothing for the others: a process pool forks its workers in
+    milliseconds (:func:`_fork_context`), a remote cluster is running already.
+
+    Parameters
+    ----------
+    kind : str
+        The engine (:data:`EngineKind`); any other value starts nothing.
+    """
+    if kind == "dask-local":
+        _dask_forkserver()
+
+
+def _method_of(context: Any) -> str:
+    """A multiprocessing context's start method ("" for none)."""
+    return "" if context is None else str(context.get_start_method())
 
 
 def _worker_setup(parent_pid: int) -> None:
@@ -103,11 +182,11 @@ def _worker_setup(parent_pid: int) -> None:
     the main process is gone.
 
     A terminal sends SIGINT to the whole process group: the main process stops the workers and
-    keeps what finished, so the workers ignore it (else each prints a traceback).  A worker's
-    parent is the forkserver, not the main process, and nothing tells it when the main
-    process is killed (SIGKILL): a daemon thread waits on the main process (a pidfd where
-    Linux has them, else polling its pid every second) and ends the worker with it; the
-    forkserver and the resource tracker end once no worker holds their pipes.
+    keeps what finished, so the workers ignore it (else each prints a traceback).  Nothing tells
+    a worker when the main process is killed (SIGKILL; a forkserver's worker is not even its
+    child): a daemon thread waits on the main process (a pidfd where Linux has them, else
+    polling its pid every second) and ends the worker with it; the forkserver and the
+    resource tracker end once no worker holds their pipes.
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     threading.Thread(
@@ -163,7 +242,9 @@ class ProcessPool(Executor):
 
     def __init__(self, workers: int, pool: ProcessPoolExecutor | None = None) -> None:
         self.workers = workers
-        self._context = _start_context() if pool is None else pool._mp_context
+        self._context = None if pool is None else pool._mp_context
+        self.started_at_once = False
+        self.start_method = "" if pool is None else _method_of(pool._mp_context)
         self._pool = self._new() if pool is None else pool
         self.renewals = 0
 
@@ -184,12 +265,23 @@ class ProcessPool(Executor):
         return self.workers
 
     def _new(self) -> ProcessPoolExecutor:
-        return ProcessPoolExecutor(
+        """A fresh pool: forked now while this process runs one thread (its workers ready at
+        once, :attr:`started_at_once`), else started by forkserver with its first task."""
+        forked = _fork_context() if self._context is None else None
+        context = forked or self._context or _start_context()
+        pool = ProcessPoolExecutor(
             max_workers=self.workers,
-            mp_context=self._context,
+            mp_context=context,
             initializer=_worker_setup,
             initargs=(os.getpid(),),
         )
+        self.started_at_once = forked is not None
+        self.start_method = _method_of(context)
+        if forked is not None:
+            # a fork pool forks all its workers on its first submission, before it starts its
+            # manager thread: do it now, while this process still runs one thread
+            pool.submit(os.getpid)
+        return pool
 
     def submit(self, fn: Callable[P, T], /, *args: P.args, **kwargs: P.kwargs) -> Future[T]:
         """Submit ``fn(*args, **kwargs)`` to the current pool.
@@ -253,9 +345,10 @@ def make_executor(
     ----------
     kind : {"serial", "process", "dask-local", "dask"}
         ``serial``: this process (:class:`SerialExecutor`).  ``process``: a local
-        :class:`ProcessPool` of ``workers`` processes (started by forkserver where available,
-        else spawn: never fork, which is unsafe in a process with threads; replaced when a
-        worker dies, killed on an error or Ctrl-C rather than waited for).  ``dask-local``: a
+        :class:`ProcessPool` of ``workers`` processes (forked at once while this process runs
+        a single thread, else started by forkserver where available, else spawn — fork is
+        unsafe in a process with threads; replaced when a worker dies, killed on an error or
+        Ctrl-C rather than waited for).  ``dask-local``: a
         ``dask.distributed.LocalCluster`` of ``workers`` single-threaded worker processes and
         a client to it.  ``dask``: a client to a running
         Dask scheduler at ``scheduler``.  Dask engines use ``Client.get_executor()``; their
@@ -369,6 +462,8 @@ def _check_main_guard() -> None:
     path = getattr(main, "__file__", None)
     if not isinstance(path, str) or not os.path.isfile(path):
         return
+    if str(getattr(getattr(main, "__spec__", None), "name", "")).endswith(".__main__"):
+        return  # python -m package: multiprocessing never imports a package's __main__ again
     frame: FrameType | None = sys._getframe(1)
     while frame is not None and not (
         frame.f_code.co_name == "<module>" and frame.f_globals.get("__name__") == "__main__"

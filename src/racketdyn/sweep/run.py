@@ -191,6 +191,7 @@ def run_sweep(
     tally = _Tally(done=skipped, total=total)
     assembly = _Assembly(spec, parts_dir)
     engine = "none (all resumed)"
+    worker_start = ""
     batch = 0
     if todo:
         with ExitStack() as stack:
@@ -205,6 +206,7 @@ def run_sweep(
                 stack.callback(adopted.shutdown_replacements)
                 executor = adopted
             engine = type(executor).__name__
+            worker_start = str(getattr(executor, "start_method", ""))
             limit = max_in_flight or _in_flight_limit(executor)
             batch = designs_per_task or _designs_per_task(spec, len(todo), executor)
             jobs = [_Job(tuple(todo[i : i + batch])) for i in range(0, len(todo), batch)]
@@ -279,6 +281,9 @@ def run_sweep(
         "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
         "spec_sha256": spec.sha256,
         "engine": engine,
+        # how a process pool started its workers: fork (this process was single-threaded) or
+        # forkserver / spawn (it ran threads); empty for other engines
+        "worker_start_method": worker_start,
         "designs": total,
         "impacts": spec.n_impacts,
         "resumed": skipped,

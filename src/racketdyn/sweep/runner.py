@@ -246,6 +246,7 @@ class _Runner:
         are still starting (forkserver, imports)."""
         return (
             isinstance(self.executor, ProcessPool)
+            and not self.executor.started_at_once  # forked: its workers are up already
             and self.ready_at is None
             and self.tally.pools_replaced == 0
         )

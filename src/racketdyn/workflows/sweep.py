@@ -19,7 +19,7 @@ from typing import Any, Literal
 
 import xarray as xr
 
-from racketdyn.sweep import SweepSpec, load_sweep_spec, make_executor, run_sweep
+from racketdyn.sweep import SweepSpec, load_sweep_spec, make_executor, run_sweep, start_early
 from racketdyn.workflows.run import Progress, StepResult, make_out_folder, report
 
 __all__ = ["SweepResult", "run_sweep_step"]
@@ -87,6 +87,7 @@ def run_sweep_step(
         On Ctrl-C: the workers are stopped and every finished design is kept; run again to
         resume.
     """
+    start_early(engine)  # a local Dask cluster's forkserver imports while the spec is read
     the_spec = spec if isinstance(spec, SweepSpec) else load_sweep_spec(Path(spec))
     executor: AbstractContextManager[Executor | None]
     if engine == "auto":

@@ -1,0 +1,171 @@
+"""How a sweep's engine starts its workers (issue 16, "use every core").
+
+A process pool forks its workers from this process while it runs a single thread (ready in
+milliseconds, racketdyn already imported) and falls back to a forkserver otherwise; a forked
+pool is not helped by the main process while it starts (nothing to wait for).  The forkserver
+imports the main script once instead of in every worker (a CPython bug, worked around in
+``racketdyn.sweep.executors._start_forkserver``).  Each check runs in a fresh interpreter: how
+many threads the test process runs depends on the tests before it.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+import sweep_faults
+
+
+def _python(script: str, tmp_path: Path, *args: str) -> str:
+    """Run ``script`` as a file (its own ``__main__``) in a fresh interpreter; its stdout."""
+    path = tmp_path / "script.py"
+    path.write_text(textwrap.dedent(script), encoding="utf-8")
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("DASK_", "MALLOC_"))}
+    env["PYTHONPATH"] = os.pathsep.join(sys.path)
+    done = subprocess.run(
+        [sys.executable, str(path), *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
+def test_a_pool_forks_while_one_thread_runs_else_uses_a_forkserver(tmp_path: Path) -> None:
+    """Single-threaded: fork, every worker up before any task is submitted.  With a thread
+    running (a progress display, a Dask client), a fork could copy a held lock: forkserver."""
+    out = _python(
+        """
+        import json, threading
+        from racketdyn.sweep import ProcessPool
+
+        def describe(pool):
+            pool.submit(sum, [1, 2]).result()
+            return {"method": pool.start_method, "at_once": pool.started_at_once}
+
+        if __name__ == "__main__":
+            pool = ProcessPool(2)
+            up_before_any_task = len(pool._pool._processes)
+            one = describe(pool)
+            pool.shutdown()
+            stop = threading.Event()
+            other = threading.Thread(target=stop.wait)
+            other.start()
+            pool = ProcessPool(2)
+            two = describe(pool)
+            pool.shutdown()
+            stop.set()
+            other.join()
+            print(json.dumps({"one": one, "up": up_before_any_task, "two": two}))
+        """,
+        tmp_path,
+    )
+    seen = json.loads(out.strip().splitlines()[-1])
+    assert seen["one"] == {"method": "fork", "at_once": True}
+    assert seen["up"] == 2
+    assert seen["two"] == {"method": "forkserver", "at_once": False}
+
+
+def test_a_forked_pool_gives_the_serial_bits_with_no_design_run_here(tmp_path: Path) -> None:
+    """While a forkserver's pool starts (a second), the main process computes designs itself;
+    a forked pool is up at once, so the main process leaves every design to it (it had run
+    one while the workers were long up, three processes on two cores)."""
+    out = _python(
+        f"""
+        import json, sys
+        import racketdyn as rd
+        from racketdyn.sweep import SerialExecutor, make_executor, run_sweep
+        sys.path.insert(0, {str(Path(sweep_faults.__file__).parent)!r})
+        from sweep_faults import small_spec
+
+        if __name__ == "__main__":
+            spec = small_spec(rd.default_racket(), rd.Ball(), "fork")
+            run_sweep(spec, "serial", SerialExecutor(), figures=None)
+            with make_executor("process", 2) as pool:
+                run_sweep(spec, "pool", pool, figures=None, designs_per_task=1)
+            record = json.load(open("pool/run.json"))
+            print(json.dumps({{k: record[k] for k in ("worker_start_method",
+                                                      "ran_in_main_process", "ran")}}))
+        """,
+        tmp_path,
+    )
+    record = json.loads(out.strip().splitlines()[-1])
+    assert record == {"worker_start_method": "fork", "ran_in_main_process": 0, "ran": 6}
+    with (
+        xr.open_dataset(tmp_path / "serial" / "sweep.nc", engine="scipy") as serial,
+        xr.open_dataset(tmp_path / "pool" / "sweep.nc", engine="scipy") as pooled,
+    ):
+        sweep_faults.assert_same_bits(serial.load(), pooled.load())
+
+
+@pytest.mark.parametrize("engine", ["process", "dask-local"])
+def test_the_forkserver_runs_the_main_script_once_not_in_every_worker(
+    engine: str, tmp_path: Path
+) -> None:
+    """Python before 3.13.8 asked the forkserver to preload ``__main__`` and never did: each
+    worker ran the script's top level again (its imports: 0.3 s more per local Dask worker
+    for a script importing xarray).  The script's top level notes each process that runs it;
+    the workers must not be among them."""
+    if engine == "dask-local":
+        pytest.importorskip("distributed")
+    out = _python(
+        f"""
+        import os, threading
+        with open("ran_top_level.txt", "a") as note:
+            note.write(f"{{os.getpid()}}\\n")
+
+        if __name__ == "__main__":
+            import logging
+            from racketdyn.sweep import make_executor
+
+            logging.getLogger("distributed").setLevel(logging.ERROR)
+            stop = threading.Event()  # a thread: the pool takes the forkserver, not fork
+            other = threading.Thread(target=stop.wait)
+            other.start()
+            with make_executor({engine!r}, 2) as executor:
+                pids = {{executor.submit(os.getpid).result() for _ in range(8)}}
+            stop.set()
+            other.join()
+            print(" ".join(map(str, sorted(pids))))
+        """,
+        tmp_path,
+    )
+    workers = {int(pid) for pid in out.strip().splitlines()[-1].split()}
+    ran = [int(line) for line in (tmp_path / "ran_top_level.txt").read_text().split()]
+    assert workers
+    assert not workers & set(ran), (workers, ran)
+    assert len(ran) == 2  # the script itself, and the forkserver's preload
+
+
+def test_the_sweep_command_forks_its_pool(tmp_path: Path) -> None:
+    """The command's progress line drew from a thread of its own, so the pool never forked:
+    each worker started by forkserver, a second or more, and the README's example on two
+    workers was slower than serial."""
+    spec = tmp_path / "spec.toml"
+    spec.write_text(sweep_faults.SMALL_SPEC_TOML, encoding="utf-8")
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("DASK_", "MALLOC_"))}
+    env["PYTHONPATH"] = os.pathsep.join(sys.path)
+    done = subprocess.run(
+        [
+            *(sys.executable, "-m", "racketdyn.cli", "sweep", str(spec)),
+            *("--workers", "2", "--no-figures", "--out", str(tmp_path / "out")),
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr
+    record = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
+    assert record["worker_start_method"] == "fork"
+    assert record["ran_in_main_process"] == 0
