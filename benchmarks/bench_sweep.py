@@ -24,6 +24,7 @@ import json
 import logging
 import os
 import platform
+import shutil
 import tempfile
 import time
 from contextlib import ExitStack
@@ -49,13 +50,19 @@ SPEEDS = np.linspace(5.0, 50.0, 50)
 SUPPORTS = ("free", "pinned")
 LEAD_KG = np.arange(10) * 1e-3  # 0–9 g
 STIFFNESS = np.linspace(0.8, 1.25, 10)
-ENGINES = (
-    ("serial", "serial", 1),
-    ("process pool, 1 worker", "process", 1),
-    ("process pool, 2 workers", "process", 2),
-    ("local Dask, 1 worker", "dask-local", 1),
-    ("local Dask, 2 workers", "dask-local", 2),
-)
+
+
+def engines_in_order(repeat: int) -> list[tuple[str, str, int, int]]:
+    """(label, engine, workers, repeat) in the order run: serial once, then each engine's
+    1- and 2-worker runs alternately, ``repeat`` pairs."""
+    order = [("serial", "serial", 1, 0)]
+    for name, kind in (("process pool", "process"), ("local Dask", "dask-local")):
+        for r in range(repeat):
+            order += [
+                (f"{name}, 1 worker", kind, 1, r),
+                (f"{name}, 2 workers", kind, 2, r),
+            ]
+    return order
 
 
 def build_spec(n_designs: int, method: str) -> SweepSpec:
@@ -81,13 +88,13 @@ def build_spec(n_designs: int, method: str) -> SweepSpec:
     )
 
 
-def start_dask_forkserver() -> float:
-    """Start the forkserver local Dask forks its workers from and wait until it has imported
-    what it preloads (a first child started and ended); seconds."""
+def start_dask_forkserver(method: str) -> float:
+    """Start the forkserver local Dask forks its workers from, as the command does, and wait
+    until it has imported what it preloads (a first child started and ended); seconds."""
     import multiprocessing
 
     clock = time.perf_counter()
-    start_early("dask-local")
+    start_early("dask-local", method)
     child = multiprocessing.get_context("forkserver").Process(target=os.getpid)
     child.start()
     child.join()
@@ -132,6 +139,12 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--designs", type=int, default=100, help="designs (default 100)")
     parser.add_argument(
+        "--repeat",
+        type=int,
+        default=3,
+        help="pairs of 1- and 2-worker runs per engine (default 3): a run varies by ±5 %%",
+    )
+    parser.add_argument(
         "--method", default="approximate", help=f"impact method: {', '.join(METHODS)}"
     )
     args = parser.parse_args()
@@ -174,49 +187,60 @@ def main() -> int:
     # apart.  A process pool forks its workers from this process (single-threaded here).
     print(
         f"forkserver for local Dask (once per process, not in the table): "
-        f"{start_dask_forkserver():.2f} s"
+        f"{start_dask_forkserver(args.method):.2f} s"
     )
-    results: dict[str, dict[str, float]] = {}
-    datasets: dict[str, xr.Dataset] = {}
+    # Serial once, then each engine's 1- and 2-worker runs alternately, ``--repeat`` pairs:
+    # one run on this shared machine varies by ±5 %, as much as the gap to be measured.  The
+    # pools run before Dask: a Dask client leaves a thread in this process, after which a
+    # pool may not fork (it takes the forkserver, as the command would).
+    runs: dict[str, list[dict[str, float]]] = {}
+    same = True
+    reference: xr.Dataset | None = None
     with tempfile.TemporaryDirectory(prefix="bench_sweep_") as scratch:
-        for label, kind, workers in ENGINES:
-            out = Path(scratch) / f"{kind}-{workers}"
-            results[label] = time_engine(spec, kind, workers, out)
+        for label, kind, workers, repeat in engines_in_order(args.repeat):
+            out = Path(scratch) / f"{kind}-{workers}-{repeat}"
+            runs.setdefault(label, []).append(time_engine(spec, kind, workers, out))
             with xr.open_dataset(out / "sweep.nc", engine="scipy") as written:
-                datasets[label] = written.load()
-    serial_s = results["serial"]["wall"]
+                if reference is None:
+                    reference = written.load()
+                else:
+                    same &= all(
+                        reference[name].values.tobytes() == written[name].values.tobytes()
+                        for name in reference.data_vars
+                    )
+            shutil.rmtree(out)
+    serial_s = runs["serial"][0]["wall"]
     print(
-        f"{'engine':<26}{'wall s':>7}{'start':>7}{'first':>7}{'tasks':>7}{'write':>7}"
-        f"{'stop':>6}{'combine':>8}{'busy':>7}{'per task':>9}{'impacts/s':>11}{'vs serial':>10}"
+        f"{'engine (median run)':<26}{'wall s':>7}{'start':>7}{'first':>7}{'tasks':>7}"
+        f"{'write':>7}{'stop':>6}{'combine':>8}{'busy':>7}{'per task':>9}{'impacts/s':>11}"
+        f"{'vs serial':>10}"
     )
-    for label, t in results.items():
+    for label, timed in runs.items():
+        t = sorted(timed, key=lambda run: run["wall"])[len(timed) // 2]
         print(
             f"{label:<26}{t['wall']:7.2f}{t['start']:7.2f}{t['first']:7.2f}{t['tasks']:7.2f}"
-            f"{t['write']:7.2f}{t['shutdown']:6.2f}{t['combine']:8.2f}{t['busy']:7.2f}{t['per_task']:9.0f}"
-            f"{n_impacts / t['wall']:11,.0f}{serial_s / t['wall']:9.2f}×"
+            f"{t['write']:7.2f}{t['shutdown']:6.2f}{t['combine']:8.2f}{t['busy']:7.2f}"
+            f"{t['per_task']:9.0f}{n_impacts / t['wall']:11,.0f}{serial_s / t['wall']:9.2f}×"
         )
     print("wall: the whole sweep, engine start and shutdown included.  start: the engine alone")
     print("(a pool starts its workers with the first task: see first, the first result after")
     print("the first submission).  tasks: first submission to last result.  write: part files,")
     print("summed over the workers that wrote them.  stop: the engine's shutdown, before")
     print("combining (a local Dask scheduler in this process slows it).  combine: the parts into")
-    print("sweep.nc.  busy:")
-    print("the tasks' own time summed over workers.  per task: designs per task.")
-    forked = all(t["fork"] for label, t in results.items() if label.startswith("process"))
+    print("sweep.nc.  busy: the tasks' own time summed over workers.  per task: designs per task.")
+    forked = all(t["fork"] for label, timed in runs.items() if "pool" in label for t in timed)
     print(
         "process pool workers forked from this process: "
         f"{'yes' if forked else 'NO (it ran threads: forkserver)'}"
     )
     print()
     for kind in ("process pool", "local Dask"):
-        one, two = results[f"{kind}, 1 worker"]["wall"], results[f"{kind}, 2 workers"]["wall"]
-        print(f"{kind}: 2 workers vs 1: {one / two:.2f}×")
-    reference = datasets["serial"]
-    same = all(
-        reference[name].values.tobytes() == other[name].values.tobytes()
-        for other in datasets.values()
-        for name in reference.data_vars
-    )
+        one, two = runs[f"{kind}, 1 worker"], runs[f"{kind}, 2 workers"]
+        ratios = sorted(a["wall"] / b["wall"] for a, b in zip(one, two, strict=True))
+        print(
+            f"{kind}: 2 workers vs 1: {ratios[len(ratios) // 2]:.2f}× median of {len(ratios)} "
+            f"pairs (each pair run back to back; {ratios[0]:.2f}–{ratios[-1]:.2f}×)"
+        )
     print()
     print(
         "identical results on every engine and number of workers (bit for bit): "

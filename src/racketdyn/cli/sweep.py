@@ -103,8 +103,8 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         engine, workers = "dask", None
     else:
         engine, workers = "auto", None
-    start_early(engine)  # a local Dask cluster's forkserver imports while the spec is read
     spec = load_sweep_spec(Path(args.spec))
+    start_early(engine, spec.method)  # a local Dask cluster's forkserver imports meanwhile
     console.print(
         f"{spec.name}: {len(spec.designs)} designs × {spec.impacts_per_design:,} impacts "
         f"= {spec.n_impacts:,} impacts → {args.out}"

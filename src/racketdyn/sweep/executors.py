@@ -129,8 +129,9 @@ def _start_forkserver(context: Any, preload: list[str]) -> None:
 
     def with_main_path(name: str) -> dict[str, Any]:
         data: dict[str, Any] = original(name)
-        if "init_main_from_path" in data:
-            data.setdefault("main_path", data["init_main_from_path"])
+        path = data.get("init_main_from_path")
+        if isinstance(path, str) and os.path.isfile(path):  # not "<stdin>": the server would die
+            data.setdefault("main_path", path)
         return data
 
     spawn.get_preparation_data = with_main_path
@@ -140,36 +141,42 @@ def _start_forkserver(context: Any, preload: list[str]) -> None:
         spawn.get_preparation_data = original
 
 
-def _dask_forkserver() -> bool:
+def _dask_forkserver(extra: tuple[str, ...] = ()) -> bool:
     """Start this process's forkserver, if none runs yet, preloading distributed besides
-    :data:`WORKER_PRELOAD` (then a local Dask cluster forks its workers from it instead of
-    starting an interpreter that imports them for each); whether there is a forkserver."""
+    :data:`WORKER_PRELOAD` and ``extra`` (then a local Dask cluster forks its workers from it
+    instead of starting an interpreter that imports them for each); whether there is a
+    forkserver."""
     import multiprocessing
 
     if "forkserver" not in multiprocessing.get_all_start_methods():
         return False
     context = multiprocessing.get_context("forkserver")
     with _workers_ignore_ctrl_c():  # its children start with Ctrl-C ignored
-        _start_forkserver(context, ["__main__", *WORKER_PRELOAD, "distributed"])
+        _start_forkserver(context, ["__main__", *WORKER_PRELOAD, "distributed", *extra])
     return True
 
 
-def start_early(kind: str) -> None:
-    """Start in the background what an engine will need, while this process goes on (reads
-    the spec, checks the parts on disk).
+def start_early(kind: str, method: str | None = None) -> None:
+    """Start in the background what an engine will need, while this process goes on (checks
+    the parts on disk, starts the cluster's scheduler).
 
     For ``dask-local``: the forkserver that imports distributed and racketdyn once and forks
     the cluster's workers (:func:`_dask_forkserver`; a second or more of imports, on another
-    core meanwhile).  Nothing for the others: a process pool forks its workers in
-    milliseconds (:func:`_fork_context`), a remote cluster is running already.
+    core meanwhile) and, for the ``transient`` method, loads numba's compiled kernel
+    (:mod:`racketdyn.sweep._transient_preload`).  Nothing for the others: a process pool
+    forks its workers in milliseconds (:func:`_fork_context`), a remote cluster is running
+    already.  Without this call, :func:`make_executor` starts the forkserver itself, without
+    the kernel.
 
     Parameters
     ----------
     kind : str
         The engine (:data:`EngineKind`); any other value starts nothing.
+    method : str, optional
+        The sweep's impact method.
     """
     if kind == "dask-local":
-        _dask_forkserver()
+        _dask_forkserver(("racketdyn.sweep._transient_preload",) if method == "transient" else ())
 
 
 def _method_of(context: Any) -> str:

@@ -87,8 +87,8 @@ def run_sweep_step(
         On Ctrl-C: the workers are stopped and every finished design is kept; run again to
         resume.
     """
-    start_early(engine)  # a local Dask cluster's forkserver imports while the spec is read
     the_spec = spec if isinstance(spec, SweepSpec) else load_sweep_spec(Path(spec))
+    start_early(engine, the_spec.method)  # a local Dask cluster's forkserver imports meanwhile
     executor: AbstractContextManager[Executor | None]
     if engine == "auto":
         executor = nullcontext(None)
