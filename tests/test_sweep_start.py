@@ -199,3 +199,21 @@ def test_local_dask_workers_of_a_transient_sweep_start_with_the_kernel_loaded(
         tmp_path,
     )
     assert out.strip().splitlines()[-1] == str(loaded)
+
+
+def test_local_dask_workers_sample_for_the_dashboard_sparingly() -> None:
+    """A local cluster's workers sampled their task thread every 10 ms for the dashboard's
+    profile, and more: on two cores, time taken from the tasks (``LOCAL_DASK_QUIET``)."""
+    pytest.importorskip("distributed")
+    import dask
+
+    from racketdyn.sweep import make_executor
+    from racketdyn.sweep.executors import LOCAL_DASK_QUIET
+
+    def settings() -> dict[str, object]:
+        return {key: dask.config.get(key) for key in LOCAL_DASK_QUIET}
+
+    with make_executor("dask-local", 1) as executor:
+        seen = executor.submit(settings).result()
+    assert seen == LOCAL_DASK_QUIET
+    assert seen["distributed.worker.profile.enabled"] is False
