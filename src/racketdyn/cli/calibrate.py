@@ -100,17 +100,19 @@ def run(args: argparse.Namespace, console: Console) -> int:
         )
     cal = result.calibration
     assert cal is not None
-    table = Table(title=f"calibration ({cal.method}, {cal.n_fit} rows fitted) → {result.out}")
+    table = Table(
+        title=opt.plain(f"calibration ({cal.method}, {cal.n_fit} rows fitted) → {result.out}")
+    )
     for column in ("parameter", "start", "fitted", "std. error", "status"):
         table.add_column(column, justify="left" if column in ("parameter", "status") else "right")
     for k, name in enumerate(cal.names):
         ok = cal.identifiable[k]
         table.add_row(
-            name,
+            opt.plain(name),
             f"{cal.start[k]:.5g}",
             f"{cal.value[k]:.5g}" if ok else "–",
             f"{cal.standard_error[k]:.3g}" if ok else "–",
-            "ok" if ok else f"not identifiable: {cal.why[k]}",
+            opt.plain("ok" if ok else f"not identifiable: {cal.why[k]}"),
         )
     console.print(table)
     console.print(

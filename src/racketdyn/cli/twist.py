@@ -81,9 +81,10 @@ def run(args: argparse.Namespace, console: Console) -> int:
             figures=None if args.no_figures else twist_figures,
             progress=progress,
         )
-    console.print(
+    opt.say(
+        console,
         f"twist at x = {args.x * 1e3:.0f} mm, ball {args.speed:g} m/s: {len(offsets)} offsets × "
-        f"{len(supports)} supports → {result.out}"
+        f"{len(supports)} supports → {result.out}",
     )
     table = Table(title="roll angle at separation (°), + turns the +y side away from the ball")
     table.add_column("y (mm)", justify="right")
