@@ -55,7 +55,8 @@ def run(args: argparse.Namespace, console: Console) -> int:
             opt.say(
                 console,
                 f"{label}: contact time on the strings {np.nanmin(times.mean_s[on_bed]) * 1e3:.2f}"
-                f"–{np.nanmax(times.mean_s[on_bed]) * 1e3:.2f} ms over {int(on_bed.sum())} points",
+                f"–{np.nanmax(times.mean_s[on_bed]) * 1e3:.2f} ms over "
+                f"{opt.plural(int(on_bed.sum()), 'point')}",
             )
     opt.print_written(console, result.written)
     return 0

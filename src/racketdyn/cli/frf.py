@@ -84,8 +84,8 @@ def run(args: argparse.Namespace, console: Console) -> int:
     summary = estimate.summary()
     opt.say(
         console,
-        f"{estimate.frfs.n_points} FRFs from {summary['accepted']} of "
-        f"{summary['averages']} averages → {result.out}",
+        f"{opt.plural(estimate.frfs.n_points, 'FRF')} from {summary['accepted']} of "
+        f"{opt.plural(summary['averages'], 'average')} → {result.out}",
     )
     rejected = summary["averages"] - summary["accepted"]
     if 2 * rejected > summary["averages"]:
@@ -98,7 +98,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     else:
         for reason, count in summary.items():
             if reason not in ("averages", "accepted"):
-                opt.say(console, f"{count} averages rejected: {reason}", "yellow")
+                opt.say(console, f"{opt.plural(count, 'average')} rejected: {reason}", "yellow")
     three_d = result.records_metadata.get("three_d_geometry")
     if three_d:
         opt.say(
@@ -112,6 +112,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
         opt.say(console, hint, "yellow")
     if estimate.rejected_points:
         nodes = ", ".join(str(n) for n in estimate.rejected_points)
-        opt.say(console, f"every average rejected at node(s) {nodes}: no FRF there", "yellow")
+        at = opt.noun(len(estimate.rejected_points), "node")
+        opt.say(console, f"every average rejected at {at} {nodes}: no FRF there", "yellow")
     opt.print_written(console, result.written)
     return 0

@@ -141,7 +141,7 @@ def print_modes(console: Console, identification: Identification) -> None:
     model = identification.model
     table = Table(
         title=opt.plain(
-            f"{model.n_modes} modes ({model.support}), "
+            f"{opt.plural(model.n_modes, 'mode')} ({model.support}), "
             f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
         )
     )
@@ -168,7 +168,8 @@ def print_modes(console: Console, identification: Identification) -> None:
     if candidates:
         opt.say(
             console,
-            f"{candidates} candidate poles not taken as modes; each with its reason in "
+            f"{opt.plural(candidates, 'candidate pole')} not taken as modes; each with its "
+            "reason in "
             "dropped_modes.csv",
             "dim",
         )

@@ -348,6 +348,16 @@ def plain(text: object) -> Text:
     return Text(str(text))
 
 
+def noun(count: int, singular: str, plural_form: str | None = None) -> str:
+    """``singular`` for a count of one, else ``plural_form`` (default ``singular + "s"``)."""
+    return singular if count == 1 else plural_form or singular + "s"
+
+
+def plural(count: int, singular: str, plural_form: str | None = None) -> str:
+    """A count with its noun in the number it takes: ``"1 average"``, ``"3 averages"``."""
+    return f"{count} {noun(count, singular, plural_form)}"
+
+
 @contextmanager
 def progress_display(console: Console, *, thread: bool = True) -> Iterator[Progress]:
     """A ``progress(what, done, total)`` callback drawing one rich progress line (a spinner
@@ -414,4 +424,6 @@ def print_status(console: Console, status: Any, csv_name: str, label: str = "") 
         reasons, counts = np.unique(status[bad], return_counts=True)
         for reason, count in zip(reasons, counts, strict=True):
             prefix = f"{label}: " if label else ""
-            say(console, f"{prefix}{count} impacts: {reason}; NaN in {csv_name}", "yellow")
+            say(
+                console, f"{prefix}{plural(count, 'impact')}: {reason}; NaN in {csv_name}", "yellow"
+            )

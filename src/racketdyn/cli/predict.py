@@ -115,8 +115,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
         )
     table = result.result
     console.print(
-        f"[bold]{table.status.size}[/] impacts "
-        f"({table.locations.shape[0]} points × {len(speeds)} speeds × {len(supports)} supports) "
+        f"[bold]{table.status.size}[/] {opt.noun(table.status.size, 'impact')} "
+        f"({opt.plural(table.locations.shape[0], 'point')} × {opt.plural(len(speeds), 'speed')} "
+        f"× {opt.plural(len(supports), 'support')}) "
         f"{'by each model ' if result.comparison is not None else ''}→ {escape(str(result.out))}"
     )
     assert result.racket is not None
@@ -211,11 +212,11 @@ def _flagged(status: Any, csv_name: str) -> tuple[str, str | None]:
 
     bad = status != "ok"
     if not np.any(bad):
-        return f"flagged: none of {status.size} rows in {csv_name}", None
+        return f"flagged: none of {opt.plural(status.size, 'row')} in {csv_name}", None
     reasons, counts = np.unique(status[bad], return_counts=True)
     why = "; ".join(f"{count} {reason}" for reason, count in zip(reasons, counts, strict=True))
     return (
-        f"flagged: {int(bad.sum())} of {status.size} rows in {csv_name} "
+        f"flagged: {int(bad.sum())} of {opt.plural(status.size, 'row')} in {csv_name} "
         f"(see its status column): {why}",
         "yellow",
     )

@@ -146,9 +146,11 @@ def run(args: argparse.Namespace, console: Console) -> int:
         ball = "" if result.ball is None else " with a ball on the strings"
         opt.say(
             console,
-            f"{records.n_points} points × {args.averages} averages on the {support} rig{ball} "
-            f"(accelerometer at node {result.reference_node}), {faults['double_hits']} "
-            f"double hits, {faults['overloads']} overloads → {result.out}",
+            f"{opt.plural(records.n_points, 'point')} × {opt.plural(args.averages, 'average')} "
+            f"on the {support} rig{ball} "
+            f"(accelerometer at node {result.reference_node}), "
+            f"{opt.plural(faults['double_hits'], 'double hit')}, "
+            f"{opt.plural(faults['overloads'], 'overload')} → {result.out}",
         )
         for name, frequency, damping in zip(
             truth.names, truth.frequency, truth.damping_ratio, strict=True

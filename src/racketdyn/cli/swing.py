@@ -105,8 +105,10 @@ def run(args: argparse.Namespace, console: Console) -> int:
     chosen = result.shown_speed
     console.print(  # the count in bold; the description and the folder are data
         f"swing {escape(swing.describe(result.racket))} ({result.impact_model} model, {support}): "
-        f"[bold]{result.swing_result.status.size}[/] impacts "
-        f"({result.swing_result.locations.shape[0]} points × {len(speeds)} speeds) → "
+        f"[bold]{result.swing_result.status.size}[/] "
+        f"{opt.noun(result.swing_result.status.size, 'impact')} "
+        f"({opt.plural(result.swing_result.locations.shape[0], 'point')} × "
+        f"{opt.plural(len(speeds), 'speed')}) → "
         f"{escape(str(result.out))}"
     )
     opt.print_status(console, result.swing_result.status, "swing.csv")

@@ -83,8 +83,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
         )
     opt.say(
         console,
-        f"twist at x = {args.x * 1e3:.0f} mm, ball {args.speed:g} m/s: {len(offsets)} offsets × "
-        f"{len(supports)} supports → {result.out}",
+        f"twist at x = {args.x * 1e3:.0f} mm, ball {args.speed:g} m/s: "
+        f"{opt.plural(len(offsets), 'offset')} × "
+        f"{opt.plural(len(supports), 'support')} → {result.out}",
     )
     table = Table(title="roll angle at separation (°), + turns the +y side away from the ball")
     table.add_column("y (mm)", justify="right")

@@ -87,7 +87,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
             figures=None if args.no_figures else validate_figures,
             progress=progress,
         )
-    table = Table(title=opt.plain(f"{len(result.measured or ())} measured rows → {result.out}"))
+    table = Table(
+        title=opt.plain(f"{opt.plural(len(result.measured or ()), 'measured row')} → {result.out}")
+    )
     for column in (
         "model",
         "compared",
