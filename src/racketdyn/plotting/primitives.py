@@ -35,6 +35,7 @@ __all__ = [
     "QUANTITIES",
     "SWEET_SPOT_STYLE",
     "TWIST_QUANTITIES",
+    "label_contours_in_head",
     "label_lines",
     "mark_flagged_spans",
     "plot_along_axis",
@@ -505,20 +506,111 @@ def plot_contact_map(
     on_bed = racket.head.contains(times.locations) & np.isfinite(times.mean_s)
     x_mm, y_mm = times.locations[on_bed, 0] * 1e3, times.locations[on_bed, 1] * 1e3
     values = times.mean_s[on_bed] * 1e3
+    lines = None
     if on_bed.sum() >= 3:
         triangles = Triangulation(x_mm, y_mm)
         filled = ax.tricontourf(triangles, values, levels=levels, cmap="magma")
         lines = ax.tricontour(
             triangles, values, levels=np.asarray(filled.levels), colors="k", linewidths=0.4
         )
-        ax.clabel(lines, fontsize=6, fmt="%.2f")
         ax.figure.colorbar(filled, ax=ax, label="contact time (ms)", shrink=0.85, format="%.2f")
     ax.plot(x_mm, y_mm, ".", color="w", markersize=3)
     plot_outline(racket, ax)
+    if lines is not None:
+        label_contours_in_head(ax, lines, racket, "%.2f")
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_title(title, fontsize=9)
     return ax
+
+
+CONTOUR_LABEL_POINTS = 6.0
+"""Font size of contour labels, points."""
+_LABEL_ROOM = 1.4
+"""Room kept around a contour label's estimated box: the constrained layout may shrink the axes
+after the labels are placed (a colour bar, tick labels), which makes the labels larger in data
+units."""
+
+
+def label_contours_in_head(ax: Axes, lines: Any, racket: Racket, fmt: str) -> list[float]:
+    """Label each contour level once, inside the string bed and apart from the other labels.
+
+    matplotlib's own placement put several labels on the same spot where the levels crowd
+    (Fig. 7: at the ends of the head, where the contact time falls steeply) and some past the
+    head's outline.  Here each level's label goes at the point of its contour nearest the
+    head's upper-right diagonal whose label box (estimated from the font size, as wide as
+    it is long in every direction, since an inline label turns with its line) lies inside the
+    head and clear of the labels already placed; levels are taken from the innermost out.
+    A level with no such point stays unlabelled (the colour bar still gives it).
+
+    Parameters
+    ----------
+    ax : Axes
+        The map, its outline drawn (limits set, aspect equal), x and y in mm.
+    lines : matplotlib ContourSet
+        The contour lines.
+    racket : Racket
+        Its head bounds the labels.
+    fmt : str
+        Format of a label's value (``"%.2f"``).
+
+    Returns
+    -------
+    list of float
+        The levels labelled.
+    """
+    head = racket.head
+    centre = np.array([head.centre_x_m, head.centre_y_m]) * 1e3
+    half = np.array([head.half_length_m, head.half_width_m]) * 1e3
+    figure = ax.get_figure(root=True)
+    assert isinstance(figure, Figure)
+    box = ax.get_position()
+    width_pt = box.width * figure.get_figwidth() * 72.0
+    height_pt = box.height * figure.get_figheight() * 72.0
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    mm_per_pt = _LABEL_ROOM * max(abs(x1 - x0) / width_pt, abs(y1 - y0) / height_pt)
+    placed: list[tuple[NDArray[np.float64], float]] = []  # (centre, half size), mm
+    chosen: list[tuple[float, float]] = []
+    levels: list[float] = []
+    values = np.asarray(lines.levels, dtype=float)
+    vertices = [
+        np.vstack([np.asarray(seg) for seg in segs if len(seg)]) if any(len(g) for g in segs)
+        else np.empty((0, 2))
+        for segs in lines.allsegs
+    ]  # fmt: skip
+    # innermost first: by the mean distance of the level's contour from the head's centre
+    depth = np.array(
+        [float(np.mean(np.hypot(*((v - centre) / half).T))) if len(v) else np.inf for v in vertices]
+    )
+    for k in np.argsort(depth, kind="stable"):
+        points = vertices[k]
+        if not len(points):
+            continue
+        half_size = 0.5 * mm_per_pt * CONTOUR_LABEL_POINTS * 0.62 * len(fmt % values[k])
+        # the label's square box inside the head: its corners within the ellipse
+        corners = points[:, None, :] + half_size * np.array(
+            [[-1.0, -1.0], [-1.0, 1.0], [1.0, -1.0], [1.0, 1.0]]
+        )
+        rho = np.hypot(*((corners - centre) / half).transpose(2, 0, 1)).max(axis=1)
+        fits = rho < 0.98
+        for where, size in placed:
+            fits &= np.max(np.abs(points - where), axis=1) > size + half_size
+        if not np.any(fits):
+            continue
+        angle = np.arctan2(
+            (points[:, 1] - centre[1]) / half[1], (points[:, 0] - centre[0]) / half[0]
+        )
+        preference = np.abs(np.angle(np.exp(1j * (angle - np.pi / 4))))
+        best = int(np.argmin(np.where(fits, preference, np.inf)))
+        placed.append((points[best], half_size))
+        chosen.append((float(points[best, 0]), float(points[best, 1])))
+        levels.append(float(values[k]))
+    if chosen:
+        ax.clabel(
+            lines, levels=levels, manual=chosen, fontsize=CONTOUR_LABEL_POINTS, fmt=fmt,
+            inline=True,
+        )  # fmt: skip
+    return levels
 
 
 def _face_grid(racket: Racket, n: int = 41) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -1,0 +1,90 @@
+"""Figures left hard to read by earlier sessions (closing notes of issues 13-16): Fig. 7's contour
+labels piled up at the ends of the head, where the contact time falls steeply."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+from matplotlib.transforms import Bbox
+
+import racketdyn as rd
+from racketdyn.measurement.pulse import ContactTimes
+from racketdyn.plotting import figures
+from racketdyn.rig.hammer import hammer_points
+
+
+@pytest.fixture(autouse=True)
+def _close() -> Iterable[None]:
+    yield
+    plt.close("all")
+
+
+def _contact_times(racket: rd.Racket) -> ContactTimes:
+    """The rig's hammer grid with a contact time like the demo's: 3.64 ms at the centre falling
+    to 2.8 ms at the rim, steepest near it (the frame's points: the hammer on the frame)."""
+    locations, nodes = hammer_points(racket)
+    head = racket.head
+    rho = np.hypot(
+        (locations[:, 0] - head.centre_x_m) / head.half_length_m,
+        (locations[:, 1] - head.centre_y_m) / head.half_width_m,
+    )
+    mean = np.where(rho <= 1.0, 3.64e-3 - 0.83e-3 * rho**3, 0.375e-3)
+    n = len(nodes)
+    return ContactTimes(nodes, locations, mean, np.full(n, 3e-6), np.full(n, 10))
+
+
+def _inside_the_head(racket: rd.Racket, x_mm: float, y_mm: float) -> float:
+    head = racket.head
+    return float(
+        np.hypot(
+            (x_mm / 1e3 - head.centre_x_m) / head.half_length_m,
+            (y_mm / 1e3 - head.centre_y_m) / head.half_width_m,
+        )
+    )
+
+
+def _drawn(monkeypatch: pytest.MonkeyPatch) -> list[Figure]:
+    """The figures a writer of ``figures`` saves, kept open instead of written."""
+    drawn: list[Figure] = []
+
+    def keep(figure: Figure, path: Path) -> Path:
+        drawn.append(figure)
+        return path
+
+    monkeypatch.setattr(figures, "save_figure", keep)
+    return drawn
+
+
+def test_fig7_contour_labels_lie_inside_the_head_and_apart(
+    racket: rd.Racket, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    drawn = _drawn(monkeypatch)
+    times = _contact_times(racket)
+    figures.write_contact_figure([times, times], ["free", "hand"], racket, tmp_path)
+    (figure,) = drawn
+    renderer = FigureCanvasAgg(figure).get_renderer()
+    figure.draw(renderer)
+    panels = [ax for ax in figure.axes if ax.get_xlabel()]
+    assert len(panels) == 2
+    for ax in panels:
+        labels = [t for t in ax.texts if t.get_text() and t.get_visible()]
+        assert len(labels) >= 4, "a map needs its levels labelled"
+        boxes = [t.get_window_extent(renderer) for t in labels]
+        for i, first in enumerate(boxes):
+            for second in boxes[i + 1 :]:
+                overlap = Bbox.intersection(first, second)
+                assert overlap is None or overlap.width * overlap.height < 1.0, (
+                    labels[boxes.index(first)].get_text(),
+                    labels[boxes.index(second)].get_text(),
+                )
+        to_data = ax.transData.inverted()
+        for text, box in zip(labels, boxes, strict=True):
+            corners = to_data.transform(box.corners())
+            worst = max(_inside_the_head(racket, x, y) for x, y in corners)
+            assert worst < 1.0, f"label {text.get_text()} reaches past the head ({worst:.2f})"
