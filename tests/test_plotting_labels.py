@@ -1,5 +1,6 @@
 """Figures left hard to read by earlier sessions (closing notes of issues 13-16): Fig. 7's contour
-labels piled up at the ends of the head, where the contact time falls steeply."""
+labels piled up at the ends of the head, where the contact time falls steeply; the labels of
+vertical lines (Figs 6, 13, 15) stood upright above the axes in a tall, mostly empty strip."""
 
 from __future__ import annotations
 
@@ -9,8 +10,10 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
+from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.text import Text
 from matplotlib.transforms import Bbox
 
 import racketdyn as rd
@@ -88,3 +91,39 @@ def test_fig7_contour_labels_lie_inside_the_head_and_apart(
             corners = to_data.transform(box.corners())
             worst = max(_inside_the_head(racket, x, y) for x, y in corners)
             assert worst < 1.0, f"label {text.get_text()} reaches past the head ({worst:.2f})"
+
+
+def _strip_above(figure: Figure, ax: Axes, labels: list[str]) -> tuple[float, float, float]:
+    """How high the labels reach above the axes' top, the gap from their top to the title's
+    foot, and a label line's height, px."""
+    renderer = FigureCanvasAgg(figure).get_renderer()
+    figure.draw(renderer)
+    top = ax.get_window_extent(renderer).y1
+    texts = [t for t in figure.findobj(Text) if t.get_visible() and t.get_text() in labels]
+    assert {t.get_text() for t in texts} == set(labels)
+    reach = max(t.get_window_extent(renderer).y1 for t in texts)
+    title = ax.title.get_window_extent(renderer).y0 if ax.get_title() else reach
+    line = 1.2 * 7.0 * figure.dpi / 72.0  # a 7-point label line
+    return reach - top, title - reach, line
+
+
+def test_fig15_has_no_empty_strip_above_its_axes(
+    racket: rd.Racket, ball: rd.Ball, model: rd.ModalModel
+) -> None:
+    """The two marks' labels stood upright above the axes: a strip a quarter of the figure high
+    (137 px of 560), empty but for two thin words.  They now lie in rows of text."""
+    figure = figures.figure_rebound_along_axis(racket, ball, model)
+    (ax,) = [a for a in figure.axes if a.get_ylabel()]
+    labels = ["centre of percussion (grip)", f"node of {model.names[0]}"]
+    strip, gap, line = _strip_above(figure, ax, labels)
+    assert strip < 3.0 * line, f"{strip:.0f} px above the axes for two labels"
+    assert 0.0 <= gap < line, f"{gap:.0f} px between the labels and the title"
+
+
+def test_fig13_mode_labels_take_rows_not_a_tall_strip(
+    racket: rd.Racket, ball: rd.Ball, model: rd.ModalModel
+) -> None:
+    figure = figures.figure_pulse_spectrum(racket, ball, model)
+    spectrum = figure.axes[1]
+    strip, _, line = _strip_above(figure, spectrum, list(model.names))
+    assert strip < 4.0 * line, f"{strip:.0f} px above the spectrum for {model.n_modes} labels"

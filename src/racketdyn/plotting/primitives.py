@@ -37,6 +37,7 @@ __all__ = [
     "TWIST_QUANTITIES",
     "label_contours_in_head",
     "label_lines",
+    "label_rows",
     "mark_flagged_spans",
     "plot_along_axis",
     "plot_contact_map",
@@ -55,7 +56,6 @@ __all__ = [
     "plot_swing_along_axis",
     "plot_swing_map",
     "plot_twist_curve",
-    "spread",
 ]
 
 QUANTITIES: dict[str, tuple[str, float]] = {
@@ -237,44 +237,6 @@ def plot_frame_amplitude(
     return ax
 
 
-LINE_LABEL_GAP = 1.3
-"""Least distance between the centres of two line labels, in font heights: labels of vertical
-lines closer than that are spread apart."""
-
-
-def spread(
-    positions: ArrayLike, gap: float, low: float = 0.0, high: float = 1.0
-) -> NDArray[np.float64]:
-    """Positions moved apart as little as needed to be ``gap`` from each other, within
-    [low, high], in their given order of size.
-
-    One pass forward pushes each position past the one before, one pass back pulls them under
-    ``high``; the positions keep their order (our own 1-D version of what adjustText does in
-    2-D, which this needs no dependency for).
-
-    Parameters
-    ----------
-    positions : array_like
-        The positions (any unit).
-    gap : float
-        Least distance between neighbours, same unit.
-    low, high : float
-        The range they must stay in.
-    """
-    values = np.asarray(positions, dtype=float)
-    order = np.argsort(values, kind="stable")
-    moved = np.clip(values[order], low, high)
-    for k in range(1, moved.size):
-        moved[k] = max(moved[k], moved[k - 1] + gap)
-    if moved.size:
-        moved[-1] = min(moved[-1], high)
-    for k in range(moved.size - 2, -1, -1):
-        moved[k] = min(moved[k], moved[k + 1] - gap)
-    result: NDArray[np.float64] = np.empty_like(moved)
-    result[order] = np.maximum(moved, low)
-    return result
-
-
 def label_lines(
     ax: Axes,
     marks: Sequence[tuple[float, str, str]],
@@ -284,8 +246,10 @@ def label_lines(
     """Vertical lines at ``x`` with their labels above the axes, out of the data's way.
 
     The labels are the tick labels of a secondary x axis on top (matplotlib places the title
-    above them and the constrained layout makes room), turned upright and spread apart so that
-    no two overlap (:func:`spread`); each in its line's colour.
+    above them and the constrained layout makes room), written across, each centred over its
+    line and in its colour.  A label that would overlap the one before it goes up a row (a
+    larger tick pad): rows of text, not the tall strip that upright labels made (Fig. 15: a
+    quarter of the figure for two labels).
 
     Parameters
     ----------
@@ -310,16 +274,55 @@ def label_lines(
     figure = ax.get_figure(root=True)
     assert isinstance(figure, Figure)
     # the axes' width before layout, with a margin for a legend or colour bar beside it
-    width_pt = 0.7 * ax.get_position().width * figure.get_figwidth() * 72.0
-    gap = LINE_LABEL_GAP * fontsize / width_pt * (high - low)
-    where = spread([x for x, _, _ in marks], gap, min(low, high), max(low, high))
+    width_pt = 0.85 * ax.get_position().width * figure.get_figwidth() * 72.0
+    per_pt = abs(high - low) / width_pt
     top: Any = ax.secondary_xaxis("top")
-    top.set_xticks(where, [label for _, label, _ in marks], rotation=90, fontsize=fontsize)
-    for text, (_, _, colour) in zip(top.get_xticklabels(), marks, strict=True):
-        text.set_color(colour)
+    top.set_xticks([x for x, _, _ in marks], [label for _, label, _ in marks], fontsize=fontsize)
     top.tick_params(length=0, pad=2)
+    texts = top.get_xticklabels()
+    points_per_px = 72.0 / figure.dpi
+    rows = label_rows(
+        [x for x, _, _ in marks],
+        [t.get_window_extent().width * points_per_px * per_pt for t in texts],
+        LABEL_SPACE * fontsize * per_pt,
+    )
+    for tick, text, row, (_, _, colour) in zip(
+        top.xaxis.get_major_ticks(), texts, rows, marks, strict=True
+    ):
+        text.set_color(colour)
+        tick.set_pad(2 + row * LABEL_ROW * fontsize)
     axes: Axes = top
     return axes
+
+
+LABEL_SPACE = 1.0
+"""Least space between two labels on one row, in font sizes."""
+LABEL_ROW = 1.25
+"""Height of a row of labels, in font sizes."""
+
+
+def label_rows(centres: ArrayLike, widths: ArrayLike, space: float) -> list[int]:
+    """The row (0 lowest) of each label centred at ``centres``, ``widths`` wide: the lowest
+    row where it keeps ``space`` from the labels already there, taken from left to right.
+
+    Parameters
+    ----------
+    centres, widths : array_like
+        Each label's centre and width (any one unit).
+    space : float
+        Least gap between two labels on a row, same unit.
+    """
+    centre, width = np.asarray(centres, dtype=float), np.asarray(widths, dtype=float)
+    ends: list[float] = []  # the right end of each row so far
+    rows = [0] * centre.size
+    for k in np.argsort(centre, kind="stable"):
+        left = centre[k] - width[k] / 2
+        row = next((r for r, end in enumerate(ends) if left >= end + space), len(ends))
+        if row == len(ends):
+            ends.append(0.0)
+        ends[row] = centre[k] + width[k] / 2
+        rows[k] = row
+    return rows
 
 
 def plot_along_axis(
