@@ -393,14 +393,17 @@ def plot_outline(racket: Racket, ax: Axes | None = None, **style: Any) -> Axes:
 
 
 def _contour_face(
-    ax: Axes, locations: NDArray[np.float64], values: NDArray[np.float64], label: str, levels: int
-) -> bool:
-    """Filled, labelled contours of values at face points (mm) and a colour bar, the points
-    themselves as dots; where the valid points span no surface (fewer than three, on a line,
-    or one value everywhere) the points coloured by value instead.  Points with no valid value
-    marked with red crosses.  Returns whether any were marked."""
+    ax: Axes, racket: Racket, locations: NDArray[np.float64], values: NDArray[np.float64],
+    *, label: str, levels: int,
+) -> bool:  # fmt: skip
+    """Filled, labelled contours of values at face points (mm), a colour bar and the head's
+    outline, the points themselves as dots; where the valid points span no surface (fewer than
+    three, on a line, or one value everywhere) the points coloured by value instead.  Points
+    with no valid value marked with red crosses.  The contour labels one per level, inside the
+    head and apart (:func:`label_contours_in_head`).  Returns whether any were marked."""
     x_mm, y_mm = locations[:, 0] * 1e3, locations[:, 1] * 1e3
     finite = np.isfinite(values)
+    lines = None
     surface = (
         finite.sum() >= 3 and _spans_a_surface(locations[finite]) and np.ptp(values[finite]) > 0
     )
@@ -410,7 +413,6 @@ def _contour_face(
         lines = ax.tricontour(
             triangles, values[finite], levels=np.asarray(filled.levels), colors="k", linewidths=0.4
         )
-        ax.clabel(lines, fontsize=6, fmt="%.3g")
         ax.figure.colorbar(filled, ax=ax, label=label, shrink=0.85)
         if finite.sum() <= 2000:
             ax.scatter(x_mm[finite], y_mm[finite], s=2, color="k", linewidths=0)
@@ -425,6 +427,9 @@ def _contour_face(
                 ax.annotate(
                     f"{value:.3g}", (x, y), xytext=(3, 3), textcoords="offset points", fontsize=6
                 )
+    plot_outline(racket, ax)
+    if lines is not None:
+        label_contours_in_head(ax, lines, racket, "%.3g")
     if np.all(finite):
         return False
     count = int((~finite).sum())
@@ -454,9 +459,10 @@ def plot_face_map(
     values = _values(result, quantity)[:, speed_index, column]
     valid = np.asarray(result.status)[:, speed_index, column] == STATUS_OK
     values = np.where(valid, values, np.nan)
-    if _contour_face(ax, result.locations, values, QUANTITIES[quantity][0], levels):
+    if _contour_face(
+        ax, racket, result.locations, values, label=QUANTITIES[quantity][0], levels=levels
+    ):
         ax.legend(fontsize=7, loc="lower left")
-    plot_outline(racket, ax)
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_title(
@@ -998,8 +1004,9 @@ def plot_swing_map(
     column = result.support_index(support)
     flagged = np.asarray(result.status)[:, speed_index, column] != STATUS_OK
     values = np.where(flagged, np.nan, result.rebound_speed[:, speed_index, column])
-    _contour_face(ax, result.locations, values, "outgoing ball speed (m/s)", levels)
-    plot_outline(racket, ax)
+    _contour_face(
+        ax, racket, result.locations, values, label="outgoing ball speed (m/s)", levels=levels
+    )
     if spots:
         _mark_sweet_spots(ax, spots, in_plane=True)
     entries = len(ax.get_legend_handles_labels()[1])
