@@ -170,3 +170,27 @@ def test_fig8a_tells_every_support_apart_and_says_which_coincide(
     assert "free and hand coincide" in words
     assert f"{100 * difference:.1f} %" in words
     assert "pinned" not in words.split("coincide")[0]  # the pinned frame is told apart
+
+
+def test_fig9_names_the_ball_mode_off_the_curves(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Fig. 9b's "ball mode 88.7 Hz" ran down its line across the receptance curves."""
+    from racketdyn.plotting import compound as drawing
+    from racketdyn.workflows import run_compound
+    from test_figure_layout import _crosses
+
+    drawn = _drawn(monkeypatch, drawing)
+    result = run_compound(tmp_path / "c", supports=("free", "hand"))
+    drawing.write_compound_figures(result, tmp_path)
+    frf = drawn[1]
+    renderer = FigureCanvasAgg(frf).get_renderer()
+    frf.draw(renderer)
+    name = f"ball mode {result.modes['free'].ball_frequency:.1f} Hz"
+    texts = [t for t in frf.findobj(Text) if t.get_visible() and t.get_text() == name]
+    assert len(texts) == 1
+    box = texts[0].get_window_extent(renderer)
+    curves = [ln for ax in frf.axes for ln in ax.get_lines() if np.asarray(ln.get_xdata()).size > 2]
+    assert curves
+    for line in curves:
+        assert not _crosses(box, line), f"{name!r} lies over {line.get_label()!r}"

@@ -18,7 +18,7 @@ from matplotlib.axes import Axes
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.modal import ModalModel
-from racketdyn.plotting.primitives import SUPPORT_STYLE
+from racketdyn.plotting.primitives import SUPPORT_STYLE, label_lines
 from racketdyn.plotting.render import save_figure
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME
 
@@ -223,19 +223,12 @@ def plot_compound_frf(
 
 
 def _mark_mode(ax: Axes, frequency_hz: float, label: str, colour: str) -> None:
-    """A dotted vertical line at a mode's frequency, labelled along it when ``label``."""
-    ax.axvline(frequency_hz, color=colour, lw=0.6, ls=":")
+    """A dotted vertical line at a mode's frequency, ``label`` (if any) above the axes over it:
+    written along the line it crossed the receptance curves (Fig. 9b)."""
     if label:
-        ax.annotate(
-            label,
-            (frequency_hz, 0.98),
-            xycoords=("data", "axes fraction"),
-            fontsize=8,
-            ha="right",
-            va="top",
-            rotation=90,
-            color=colour,
-        )
+        label_lines(ax, [(frequency_hz, label, colour)], fontsize=7, linewidth=0.6)
+    else:
+        ax.axvline(frequency_hz, color=colour, lw=0.6, ls=":")
 
 
 def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
