@@ -194,3 +194,27 @@ def test_fig9_names_the_ball_mode_off_the_curves(
     assert curves
     for line in curves:
         assert not _crosses(box, line), f"{name!r} lies over {line.get_label()!r}"
+
+
+@pytest.mark.parametrize(
+    ("away_m", "words"),
+    [(0.012, "the 2-node mode takes over after"), (0.03, "the 2-node mode leads from the start")],
+)
+def test_fig8c_says_which_mode_leads(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, away_m: float, words: str
+) -> None:
+    """Fig. 8c marked where the 2-node mode takes over, but said nothing when it led from the
+    start (a blow 18 mm or more from the ball) or never took over: the console did."""
+    from racketdyn.plotting import compound as drawing
+    from racketdyn.racket import landmark_points
+    from racketdyn.workflows import run_compound
+
+    drawn = _drawn(monkeypatch, drawing)
+    x, y = landmark_points(rd.default_racket())["centre"]
+    result = run_compound(tmp_path / "c", supports=("free",), hammer=(x - away_m, y))
+    drawing.write_compound_figures(result, tmp_path)
+    response = drawn[0]
+    said = " ".join(
+        t.get_text() for t in response.findobj(Text) if t.get_visible() and t.get_text()
+    )
+    assert words in " ".join(said.split())

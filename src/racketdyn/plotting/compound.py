@@ -34,6 +34,7 @@ __all__ = [
     "COMPOUND_SHAPE_FIGURE",
     "ball_mode_share",
     "coinciding_supports",
+    "neck_reading",
     "node_showing_ball_mode",
     "plot_ball_mode_shape",
     "plot_compound_frf",
@@ -174,15 +175,40 @@ def plot_neck_response(
             )  # fmt: skip
     if math.isfinite(hand_over_s):
         ax.axvline(hand_over_s * 1e3, color="0.3", lw=0.7, ls=":")
-        ax.text(
-            hand_over_s * 1e3, 0.03, " 2-node takes over", transform=ax.get_xaxis_transform(),
-            fontsize=7, color="0.3",
+        ax.text(  # left of the line: to its right it ran past the axes near the record's end
+            hand_over_s * 1e3, 0.03, "2-node takes over ", transform=ax.get_xaxis_transform(),
+            fontsize=7, color="0.3", ha="right",
         )  # fmt: skip
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.set_xlabel("time (ms)")
     ax.set_ylabel("neck acceleration\n(m/s² per N·s)")
     ax.legend(fontsize=7, loc="upper right")
     return ax
+
+
+def neck_reading(hand_over: Mapping[str, float]) -> str:
+    """Fig. 8c in words: which mode leads at the neck after the blow, and whether and when the
+    2-node mode takes over; empty without a reading.
+
+    Parameters
+    ----------
+    hand_over : mapping of str to float
+        One support's ``ball_to_two_node`` (the modes' amplitudes after the blow, their ratio)
+        and ``ball_cycles`` (when the 2-node mode becomes the larger, in ball-mode cycles: 0
+        from the start, inf never), as :attr:`racketdyn.workflows.CompoundResult.hand_over`.
+    """
+    ratio = float(hand_over.get("ball_to_two_node", math.nan))
+    cycles = float(hand_over.get("ball_cycles", math.nan))
+    if not math.isfinite(ratio) or math.isnan(cycles):
+        return ""
+    if ratio <= 1.0:
+        return f"the 2-node mode leads from the start (the ball mode {ratio:.2f}× as large)"
+    if math.isinf(cycles):
+        return f"the ball mode leads ({ratio:.1f}×) throughout: it decays more slowly"
+    return (
+        f"the ball mode leads ({ratio:.1f}×); the 2-node mode takes over after {cycles:.1f} "
+        "ball cycles"
+    )
 
 
 def plot_compound_frf(
@@ -245,7 +271,7 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
     # hold every support)
     support = result.supports[0]
     modes = result.modes[support]
-    figure, ax = plt.subplots(figsize=(5.6, 3.0), layout="constrained")
+    figure, ax = plt.subplots(figsize=(6.2, 3.0), layout="constrained")
     hand_over = result.hand_over.get(support, {})
     cycles = float(hand_over.get("ball_cycles", math.nan))
     blow = result.blow_s.get(support, 0.0)
@@ -260,8 +286,10 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         hand_over_s=blow + cycles / modes.ball_frequency if 0 < cycles < math.inf else math.nan,
     )
     away_mm = math.dist(result.location, result.hammer) * 1e3
+    reading = neck_reading(hand_over)
     ax.set_title(
-        f"Fig. 8c: the neck after a blow on the strings {away_mm:.0f} mm from the ball ({support})",
+        f"Fig. 8c: the neck after a blow on the strings {away_mm:.0f} mm from the ball ({support})"
+        + (f"\n{reading}" if reading else ""),
         fontsize=9,
     )
     paths = [save_figure(figure, Path(out) / COMPOUND_RESPONSE_FIGURE)]
