@@ -97,6 +97,9 @@ def test_fig7_contour_labels_lie_inside_the_head_and_apart(
     (figure,) = drawn
     assert len([ax for ax in figure.axes if ax.get_xlabel()]) == 2
     _labels_inside_the_head_and_apart(figure, racket)
+    # the top level's contour is a dot at the centre's value: no label on it
+    top = f"{np.nanmax(times.mean_s) * 1e3:.2f}"
+    assert all(t.get_text() != top for ax in figure.axes for t in ax.texts)
 
 
 def test_face_map_labels_lie_inside_the_head_and_apart(

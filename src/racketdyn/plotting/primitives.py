@@ -582,20 +582,23 @@ def label_contours_in_head(ax: Axes, lines: Any, racket: Racket, fmt: str) -> li
     chosen: list[tuple[float, float]] = []
     levels: list[float] = []
     values = np.asarray(lines.levels, dtype=float)
-    vertices = [
-        np.vstack([np.asarray(seg) for seg in segs if len(seg)]) if any(len(g) for g in segs)
-        else np.empty((0, 2))
-        for segs in lines.allsegs
-    ]  # fmt: skip
+    segments = [
+        [np.asarray(seg, dtype=float) for seg in segs if len(seg)] for segs in lines.allsegs
+    ]
     # innermost first: by the mean distance of the level's contour from the head's centre
     depth = np.array(
-        [float(np.mean(np.hypot(*((v - centre) / half).T))) if len(v) else np.inf for v in vertices]
+        [
+            float(np.mean(np.hypot(*((np.vstack(level) - centre) / half).T))) if level else np.inf
+            for level in segments
+        ]
     )
     for k in np.argsort(depth, kind="stable"):
-        points = vertices[k]
-        if not len(points):
-            continue
         half_size = 0.5 * mm_per_pt * CONTOUR_LABEL_POINTS * 0.62 * len(fmt % values[k])
+        # only on a line longer than its label (the extreme levels' contours are mere dots)
+        long = [seg for seg in segments[k] if np.ptp(seg, axis=0).max() > 2.0 * half_size]
+        if not long:
+            continue
+        points = np.vstack(long)
         # the label's square box inside the head: its corners within the ellipse
         corners = points[:, None, :] + half_size * np.array(
             [[-1.0, -1.0], [-1.0, 1.0], [1.0, -1.0], [1.0, 1.0]]
