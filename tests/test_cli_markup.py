@@ -45,13 +45,14 @@ def _racket_named(tmp_path: Path, name: str, file_name: str) -> Path:
     return path
 
 
+@pytest.mark.parametrize("name", ["Pro [prototype]", "Pro [/b]"])
 def test_a_racket_name_and_file_with_brackets_are_printed_whole(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+    name: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    path = _racket_named(tmp_path, "Pro [prototype]", "my[file].toml")
+    path = _racket_named(tmp_path, name, "my[file].toml")
     assert main(["racket", "--racket", str(path)]) == 0
     printed = _printed(capsys)
-    assert "Pro [prototype]" in printed
+    assert name in printed
     assert "my[file].toml" in printed
 
 

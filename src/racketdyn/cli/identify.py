@@ -168,8 +168,8 @@ def print_modes(console: Console, identification: Identification) -> None:
     if candidates:
         opt.say(
             console,
-            f"{opt.plural(candidates, 'candidate pole')} not taken as modes; each with its "
-            "reason in "
+            f"{opt.plural(candidates, 'candidate pole')} not taken as "
+            f"{'a mode' if candidates == 1 else 'modes'}; each with its reason in "
             "dropped_modes.csv",
             "dim",
         )

@@ -16,7 +16,6 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from rich.console import Console
-    from rich.text import Text
 
     from racketdyn.workflows.run import Progress
 
@@ -341,11 +340,12 @@ def say(console: Console, line: str, style: str | None = None, **kwargs: Any) ->
     console.print(line, style=style, markup=False, **kwargs)
 
 
-def plain(text: object) -> Text:
-    """``text`` for a table's title or cell, shown as it is (no markup read in it)."""
-    from rich.text import Text
+def plain(text: object) -> str:
+    """``text`` for a table's title or cell, shown as it is: its markup escaped, so the table's
+    own styles (the title's) still apply."""
+    from rich.markup import escape
 
-    return Text(str(text))
+    return escape(str(text))
 
 
 def noun(count: int, singular: str, plural_form: str | None = None) -> str:
