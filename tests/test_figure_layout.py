@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 import racketdyn as rd
 from racketdyn.impact.swing import Swing, sweet_spots
 from racketdyn.plotting import figures
-from racketdyn.plotting.primitives import spread
+from racketdyn.plotting.primitives import label_rows
 from racketdyn.racket_modal.shapes import axis_nodes
 
 
@@ -108,14 +108,12 @@ def _legends(figure: Figure) -> list[Legend]:
     return [legend for legend in found if legend is not None]
 
 
-def test_spread_moves_labels_apart_in_order_and_in_range() -> None:
-    moved = spread([5.0, 1.0, 1.2, 9.9, 10.0], gap=1.0, low=0.0, high=10.0)
-    assert np.all(np.diff(np.sort(moved)) >= 1.0 - 1e-12)
-    assert np.argsort(moved).tolist() == [1, 2, 0, 3, 4]  # the order kept
-    assert moved.min() >= 0.0
-    assert moved.max() <= 10.0
-    assert moved[0] == 5.0  # a label with room stays where it is
-    np.testing.assert_allclose(spread([3.0], 1.0), [1.0])  # clipped into the range
+def test_label_rows_stack_only_labels_that_would_overlap() -> None:
+    # widths 2: the labels at 0 and 1 overlap, 5 is clear of both, 5.5 overlaps 5 only
+    assert label_rows([1.0, 0.0, 5.0, 5.5], [2.0, 2.0, 2.0, 2.0], space=0.5) == [1, 0, 0, 1]
+    assert label_rows([0.0, 3.0], [2.0, 2.0], space=0.5) == [0, 0]  # 1 apart: room
+    assert label_rows([0.0, 2.2], [2.0, 2.0], space=0.5) == [0, 1]  # 0.2 apart: too close
+    assert label_rows([], [], space=1.0) == []
 
 
 def test_fig6_node_labels_are_off_the_curves_and_apart(

@@ -100,22 +100,27 @@ def run(args: argparse.Namespace, console: Console) -> int:
         )
     cal = result.calibration
     assert cal is not None
-    table = Table(title=f"calibration ({cal.method}, {cal.n_fit} rows fitted) → {result.out}")
+    table = Table(
+        title=opt.plain(
+            f"calibration ({cal.method}, {opt.plural(cal.n_fit, 'row')} fitted) → {result.out}"
+        )
+    )
     for column in ("parameter", "start", "fitted", "std. error", "status"):
         table.add_column(column, justify="left" if column in ("parameter", "status") else "right")
     for k, name in enumerate(cal.names):
         ok = cal.identifiable[k]
         table.add_row(
-            name,
+            opt.plain(name),
             f"{cal.start[k]:.5g}",
             f"{cal.value[k]:.5g}" if ok else "–",
             f"{cal.standard_error[k]:.3g}" if ok else "–",
-            "ok" if ok else f"not identifiable: {cal.why[k]}",
+            opt.plain("ok" if ok else f"not identifiable: {cal.why[k]}"),
         )
     console.print(table)
     console.print(
         f"RMS of the rebound ratio: fit {cal.fit_rms:.4f}, held out {cal.holdout_rms:.4f} "
-        f"({cal.n_holdout} rows), leave-one-out {cal.loo_rms:.4f}; {cal.n_flagged} rows flagged"
+        f"({opt.plural(cal.n_holdout, 'row')}), leave-one-out {cal.loo_rms:.4f}; "
+        f"{opt.plural(cal.n_flagged, 'row')} flagged"
     )
     opt.print_written(console, result.written)
     return 0

@@ -91,10 +91,11 @@ def run(args: argparse.Namespace, console: Console) -> int:
     assert spring is not None
     assert ball is not None
     x, y = result.location
-    console.print(
+    opt.say(
+        console,
         f"ball fixed at x = {x * 1e3:.0f} mm, y = {y * 1e3:.0f} mm on a bed preloaded with "
         f"{spring.preload_n:g} N: spring {spring.stiffness / 1e3:.2f} kN/m (tangent of F_GB), "
-        f"ζ {spring.damping_ratio:.3f} (from e_BG) → {result.out}"
+        f"ζ {spring.damping_ratio:.3f} (from e_BG) → {result.out}",
     )
     warnings = []
     if result.off_centre_m > _OFF_CENTRE_M and spring.location is None:
@@ -109,16 +110,16 @@ def run(args: argparse.Namespace, console: Console) -> int:
             "edge: it would rest on the frame"
         )
     if warnings:
-        console.print(f"[yellow]{'; '.join(warnings)}[/]")
+        opt.say(console, "; ".join(warnings), "yellow")
     for support in result.supports:
         modes, alone = result.modes[support], result.alone[support]
-        table = Table(title=f"{support}: modes with the ball (and the racket alone)")
+        table = Table(title=opt.plain(f"{support}: modes with the ball (and the racket alone)"))
         for column in ("mode", "f (Hz)", "ζ", "ball / frame", "alone (Hz)", "shift"):
             table.add_column(column, justify="left" if column == "mode" else "right")
         for k, name in enumerate(modes.names):
             f_alone = alone.frequency_of(name)
             table.add_row(
-                name,
+                opt.plain(name),
                 f"{modes.frequency[k]:.2f}",
                 f"{modes.damping_ratio[k]:.4f}",
                 f"{modes.ball_to_frame_ratio[k]:.3f}",
@@ -129,10 +130,11 @@ def run(args: argparse.Namespace, console: Console) -> int:
             )
         console.print(table)
         times = ", ".join(f"{t * 1e3:.2f}" for t in result.contact_time[support])
-        console.print(
+        opt.say(
+            console,
             f"{support}: ball mode {modes.ball_frequency:.2f} Hz, half period "
             f"{modes.half_period * 1e3:.2f} ms; approximate contact time at 5, 10, 20 m/s: "
-            f"{times} ms"
+            f"{times} ms",
         )
         band, bed = result.band[support], result.paper_bed.get(support)
         reach = " and ".join(f"{a:.0f}–{b:.0f}" for a, b in band.intervals_hz)
@@ -145,25 +147,27 @@ def run(args: argparse.Namespace, console: Console) -> int:
             f"{support}: the small-amplitude inputs' spread puts the ball mode at {reach} Hz{gap}"
         )
         if bed is None:
-            console.print(f"{spread} ({NOT_THE_PAPERS_RACKET})")
+            opt.say(console, f"{spread} ({NOT_THE_PAPERS_RACKET})")
         else:
-            console.print(
+            opt.say(
+                console,
                 f"{spread} (the paper's {bed.frequency_hz:g} Hz "
-                f"{'inside' if band.holds(bed.frequency_hz) else 'outside'}){_needs(bed, ball)}"
+                f"{'inside' if band.holds(bed.frequency_hz) else 'outside'}){_needs(bed, ball)}",
             )
         hand_over = _hand_over_line(result, support)
         if hand_over:
-            console.print(hand_over)
+            opt.say(console, hand_over)
         check = result.checks.get(support)
         if check is not None:
             frames = ", ".join(
                 f"{name} ×{check.stiffer_frame_hz[name] / f:.2f}"
                 for name, f in check.frame_hz.items()
             )
-            console.print(
+            opt.say(
+                console,
                 f"{support}, frame {check.factor:g}× stiffer (same mass): ball mode "
                 f"{check.ball_hz:.2f} → {check.stiffer_ball_hz:.2f} Hz "
-                f"({100 * check.ball_change:+.2f} %); frame modes {frames}"
+                f"({100 * check.ball_change:+.2f} %); frame modes {frames}",
             )
     opt.print_written(console, result.written)
     return 0

@@ -52,9 +52,11 @@ def run(args: argparse.Namespace, console: Console) -> int:
     for label, times in zip(result.labels, result.tables, strict=True):
         on_bed = result.racket.head.contains(times.locations) & np.isfinite(times.mean_s)
         if np.any(on_bed):
-            console.print(
+            opt.say(
+                console,
                 f"{label}: contact time on the strings {np.nanmin(times.mean_s[on_bed]) * 1e3:.2f}"
-                f"–{np.nanmax(times.mean_s[on_bed]) * 1e3:.2f} ms over {int(on_bed.sum())} points"
+                f"–{np.nanmax(times.mean_s[on_bed]) * 1e3:.2f} ms over "
+                f"{opt.plural(int(on_bed.sum()), 'point')}",
             )
     opt.print_written(console, result.written)
     return 0

@@ -205,5 +205,5 @@ def run(args: argparse.Namespace, console: Console) -> int:
         progress.update(task, description="report")
         report = write_report(out, racket)
         progress.advance(task)
-    console.print(f"demo complete → {report}")
+    opt.say(console, f"demo complete → {report}")
     return 0

@@ -82,31 +82,37 @@ def run(args: argparse.Namespace, console: Console) -> int:
     assert estimate is not None
     assert estimate.frfs is not None
     summary = estimate.summary()
-    console.print(
-        f"{estimate.frfs.n_points} FRFs from {summary['accepted']} of "
-        f"{summary['averages']} averages → {result.out}"
+    opt.say(
+        console,
+        f"{opt.plural(estimate.frfs.n_points, 'FRF')} from {summary['accepted']} of "
+        f"{opt.plural(summary['averages'], 'average')} → {result.out}",
     )
     rejected = summary["averages"] - summary["accepted"]
     if 2 * rejected > summary["averages"]:
-        console.print(
-            f"[yellow]most averages rejected ({rejected} of {summary['averages']}), why: "
-            f"{estimate.rejections()}; every verdict in quality.csv[/]"
+        opt.say(
+            console,
+            f"most averages rejected ({rejected} of {summary['averages']}), why: "
+            f"{estimate.rejections()}; every verdict in quality.csv",
+            "yellow",
         )
     else:
         for reason, count in summary.items():
             if reason not in ("averages", "accepted"):
-                console.print(f"[yellow]{count} averages rejected: {reason}[/]")
+                opt.say(console, f"{opt.plural(count, 'average')} rejected: {reason}", "yellow")
     three_d = result.records_metadata.get("three_d_geometry")
     if three_d:
-        console.print(
-            f"[yellow]the points differ in z (3-D): frfs.uff carries no coordinates; give "
-            f"--geometry {three_d} to identify for the (x, y, z) points[/]"
+        opt.say(
+            console,
+            f"the points differ in z (3-D): frfs.uff carries no coordinates; give "
+            f"--geometry {three_d} to identify for the (x, y, z) points",
+            "yellow",
         )
     hint = estimate.force_noise_hint()
     if hint:
-        console.print(f"[yellow]{hint}[/]")
+        opt.say(console, hint, "yellow")
     if estimate.rejected_points:
         nodes = ", ".join(str(n) for n in estimate.rejected_points)
-        console.print(f"[yellow]every average rejected at node(s) {nodes}: no FRF there[/]")
+        at = opt.noun(len(estimate.rejected_points), "node")
+        opt.say(console, f"every average rejected at {at} {nodes}: no FRF there", "yellow")
     opt.print_written(console, result.written)
     return 0

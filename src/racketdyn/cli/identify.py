@@ -140,8 +140,10 @@ def print_modes(console: Console, identification: Identification) -> None:
 
     model = identification.model
     table = Table(
-        title=f"{model.n_modes} modes ({model.support}), "
-        f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
+        title=opt.plain(
+            f"{opt.plural(model.n_modes, 'mode')} ({model.support}), "
+            f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
+        )
     )
     for column in ("mode", "frequency (Hz)", "damping (%)", "name", "orders stable"):
         table.add_column(column)
@@ -150,32 +152,36 @@ def print_modes(console: Console, identification: Identification) -> None:
             str(k + 1),
             f"{model.frequency[k]:.2f}",
             f"{100 * model.damping_ratio[k]:.3f}",
-            model.names[k],
+            opt.plain(model.names[k]),
             str(int(identification.selected.n_orders[k])),
         )
     console.print(table)
-    console.print(
+    opt.say(
+        console,
         f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
-        f"condition {identification.fit.condition_number:.3g}"
+        f"condition {identification.fit.condition_number:.3g}",
     )
     later = [d for d in identification.dropped_modes if d.stage in ("constants", "edge")]
     for row in later:
-        console.print(f"left out {row.frequency_hz:.2f} Hz: {row.reason}")
+        opt.say(console, f"left out {row.frequency_hz:.2f} Hz: {row.reason}")
     candidates = len(identification.dropped_modes) - len(later)
     if candidates:
-        console.print(
-            f"[dim]{candidates} candidate poles not taken as modes; each with its reason in "
-            "dropped_modes.csv[/]"
+        opt.say(
+            console,
+            f"{opt.plural(candidates, 'candidate pole')} not taken as "
+            f"{'a mode' if candidates == 1 else 'modes'}; each with its reason in "
+            "dropped_modes.csv",
+            "dim",
         )
     if identification.scaling_note:
-        console.print(f"shapes: {identification.scaling_note}")
+        opt.say(console, f"shapes: {identification.scaling_note}")
     if not model.has_locations:
         from racketdyn.workflows.identify import coordinates_note
 
-        console.print(f"[bold]{coordinates_note(model)}[/]")
+        opt.say(console, coordinates_note(model), "bold")
     naming = model.metadata.get("naming")
     if naming:
-        console.print(f"[dim]{naming}[/]")
+        opt.say(console, naming, "dim")
 
 
 def run_identify(args: argparse.Namespace, console: Console) -> int:
@@ -231,10 +237,11 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
     comparison = result.comparison
     if comparison is not None:
         for row in comparison.rows:
-            console.print(
+            opt.say(
+                console,
                 f"{row['mode']}: {row['frequency_free_hz']:.1f} → {row['frequency_hand_hz']:.1f} "
                 f"Hz ({row['frequency_shift_percent']:+.1f} %), damping "
-                f"×{row['damping_ratio_hand_over_free']:.1f}, MAC {row['mac']:.3f}"
+                f"×{row['damping_ratio_hand_over_free']:.1f}, MAC {row['mac']:.3f}",
             )
         nodes = "; ".join(
             f"{label} {', '.join(f'{x * 1e3:.0f}' for x in found)} mm"
@@ -242,7 +249,7 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
             if len(found)
         )
         if nodes:
-            console.print(f"first mode's nodes on the axis: {nodes}")
+            opt.say(console, f"first mode's nodes on the axis: {nodes}")
     opt.print_written(console, result.written)
     return 0
 
@@ -277,17 +284,19 @@ def _run_compare_ball(
     ball = [r for r in result.rows if math.isnan(r["frequency_alone_hz"])]
     frame = [r for r in result.rows if math.isfinite(r["frequency_shift_percent"])]
     if ball:
-        console.print(
+        opt.say(
+            console,
             f"new with the ball: {ball[0]['mode']} at {ball[0]['frequency_ball_hz']:.1f} Hz "
-            f"(ζ = {100 * ball[0]['damping_ball']:.1f} %)"
+            f"(ζ = {100 * ball[0]['damping_ball']:.1f} %)",
         )
     else:
-        console.print("no mode of the ball on the strings identified (see the naming above)")
+        opt.say(console, "no mode of the ball on the strings identified (see the naming above)")
     if frame:
         worst = max(frame, key=lambda r: abs(r["frequency_shift_percent"]))
-        console.print(
+        opt.say(
+            console,
             f"racket modes with the ball: {len(frame)} paired by MAC, the largest shift "
-            f"{worst['frequency_shift_percent']:+.1f} % ({worst['mode']})"
+            f"{worst['frequency_shift_percent']:+.1f} % ({worst['mode']})",
         )
     opt.print_written(console, result.written)
     return 0

@@ -118,10 +118,11 @@ def run(args: argparse.Namespace, console: Console) -> int:
         moving = f", racket {args.racket_speed:g} m/s towards it"
         if args.racket_tangential_speed:
             moving += f" and {args.racket_tangential_speed:g} m/s along the face"
-    console.print(
+    opt.say(
+        console,
         f"oblique impacts at x = {where[0] * 1e3:.0f} mm, y = {where[1] * 1e3:.0f} mm, "
         f"ball {args.speed:g} m/s{moving}, spin {args.spin:g} rad/s, {result.support} → "
-        f"{result.out}"
+        f"{result.out}",
     )
     table = Table(
         title=f"μ = {contact.friction_coefficient:g}, k_t = {contact.stiffness_n_per_m:.3g} N/m"
@@ -137,7 +138,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             "yes" if curve.gripped[i] else "no",
         )
     console.print(table)
-    console.print(f"[yellow]{SPIN_CAVEAT}[/]")
+    opt.say(console, SPIN_CAVEAT, "yellow")
     opt.print_status(console, curve.status, "oblique.csv")
     opt.print_written(console, result.written)
     return 0

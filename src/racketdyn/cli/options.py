@@ -325,6 +325,39 @@ def command_line(args: argparse.Namespace) -> list[str]:
 
 
 # --- output -----------------------------------------------------------------------------------
+# rich reads "[word]" in a printed string as a style and drops it, and raises on "[/word]" with
+# nothing open.  Paths, names and messages are data: they go through `say` (a whole line, no
+# markup read), `plain` (a table title or cell) or `rich.markup.escape` (a line that also styles
+# a part of itself on purpose).
+
+
+def say(console: Console, line: str, style: str | None = None, **kwargs: Any) -> None:
+    """Print ``line`` as it is, in ``style`` (a rich style name such as ``"yellow"``).
+
+    No markup is read in it: a path, a racket name or a message quoting ``[impacts]`` is
+    printed whole.  ``kwargs`` go to :meth:`rich.console.Console.print` (``soft_wrap``).
+    """
+    console.print(line, style=style, markup=False, **kwargs)
+
+
+def plain(text: object) -> str:
+    """``text`` for a table's title or cell, shown as it is: its markup escaped, so the table's
+    own styles (the title's) still apply."""
+    from rich.markup import escape
+
+    return escape(str(text))
+
+
+def noun(count: int, singular: str, plural_form: str | None = None) -> str:
+    """``singular`` for a count of one, else ``plural_form`` (default ``singular + "s"``)."""
+    return singular if count == 1 else plural_form or singular + "s"
+
+
+def plural(count: int, singular: str, plural_form: str | None = None) -> str:
+    """A count with its noun in the number it takes: ``"1 average"``, ``"3 averages"``."""
+    return f"{count} {noun(count, singular, plural_form)}"
+
+
 @contextmanager
 def progress_display(console: Console, *, thread: bool = True) -> Iterator[Progress]:
     """A ``progress(what, done, total)`` callback drawing one rich progress line (a spinner
@@ -338,7 +371,7 @@ def progress_display(console: Console, *, thread: bool = True) -> Iterator[Progr
 
     with Progress(
         SpinnerColumn(),
-        TextColumn("{task.description}"),
+        TextColumn("{task.description}", markup=False),
         BarColumn(),
         MofNCompleteColumn(),
         console=console,
@@ -367,15 +400,17 @@ def print_written(console: Console, paths: Sequence[Any]) -> None:
     from racketdyn.workflows.run import REPORT_NAME
 
     for path in paths:
-        console.print(f"  wrote {path}")
+        say(console, f"  wrote {path}")
     if not paths:
         return
     above = Path(paths[0]).parent.parent
     report = above / REPORT_NAME
     if report.is_file() and report.stat().st_mtime <= Path(paths[0]).stat().st_mtime:
-        console.print(
-            f"[yellow]{report} still shows this step's previous run: "
-            f"racketdyn report {above} makes it again[/]",
+        say(
+            console,
+            f"{report} still shows this step's previous run: racketdyn report {above} makes it "
+            "again",
+            "yellow",
             soft_wrap=True,
         )
 
@@ -389,4 +424,6 @@ def print_status(console: Console, status: Any, csv_name: str, label: str = "") 
         reasons, counts = np.unique(status[bad], return_counts=True)
         for reason, count in zip(reasons, counts, strict=True):
             prefix = f"{label}: " if label else ""
-            console.print(f"[yellow]{prefix}{count} impacts: {reason}; NaN in {csv_name}[/]")
+            say(
+                console, f"{prefix}{plural(count, 'impact')}: {reason}; NaN in {csv_name}", "yellow"
+            )

@@ -79,6 +79,8 @@ def add(commands: Any) -> None:
 
 def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
+    from rich.markup import escape
+
     from racketdyn.plotting.steps import predict_figures
     from racketdyn.workflows.predict import check_supports, run_predict, transient_csv_name
 
@@ -113,9 +115,10 @@ def run(args: argparse.Namespace, console: Console) -> int:
         )
     table = result.result
     console.print(
-        f"[bold]{table.status.size}[/] impacts "
-        f"({table.locations.shape[0]} points × {len(speeds)} speeds × {len(supports)} supports) "
-        f"{'by each model ' if result.comparison is not None else ''}→ {result.out}"
+        f"[bold]{table.status.size}[/] {opt.noun(table.status.size, 'impact')} "
+        f"({opt.plural(table.locations.shape[0], 'point')} × {opt.plural(len(speeds), 'speed')} "
+        f"× {opt.plural(len(supports), 'support')}) "
+        f"{'by each model ' if result.comparison is not None else ''}→ {escape(str(result.out))}"
     )
     assert result.racket is not None
     for label, part, csv_name in (
@@ -124,12 +127,13 @@ def run(args: argparse.Namespace, console: Console) -> int:
     ):
         if part is not None:
             console.print(_headline(part, result.racket, label))
-            console.print(_flagged(part.status, csv_name))
+            flagged, style = _flagged(part.status, csv_name)
+            opt.say(console, flagged, style)
     if result.comparison is not None:
         console.print(_comparison_table(result.comparison, result.shown_speed, result.racket))
     unknown = _unknown_modes(result.modal_model)
     if unknown:
-        console.print(f"[yellow]{unknown}[/]")
+        opt.say(console, unknown, "yellow")
     opt.print_written(console, result.written)
     return 0
 
@@ -169,8 +173,10 @@ def _headline(result: ImpactResult, racket: Racket, label: str) -> Table:
     x, y = result.locations[i] * 1e3
     off = float(np.linalg.norm(result.locations[i] - centre)) * 1e3
     table = Table(
-        title=f"{label} at the face centre: point {result.labels[i]}, x = {x:.0f} mm, "
-        f"y = {y:.0f} mm ({off:.0f} mm from the centre)"
+        title=opt.plain(
+            f"{label} at the face centre: point {result.labels[i]}, x = {x:.0f} mm, "
+            f"y = {y:.0f} mm ({off:.0f} mm from the centre)"
+        )
     )
     for heading in (
         "support",
@@ -195,23 +201,24 @@ def _headline(result: ImpactResult, racket: Racket, label: str) -> Table:
                 f"{result.rebound_ratio[i, s, p]:.3f}" if valid else "–",
                 f"{result.rebound_speed[i, s, p]:.1f}" if valid else "–",
                 f"{result.peak_force[i, s, p]:.0f}" if valid else "–",
-                status,
+                opt.plain(status),
             )
     return table
 
 
-def _flagged(status: Any, csv_name: str) -> str:
-    """How many rows are flagged, by reason."""
+def _flagged(status: Any, csv_name: str) -> tuple[str, str | None]:
+    """How many rows are flagged, by reason, and the line's style (yellow when any is)."""
     import numpy as np
 
     bad = status != "ok"
     if not np.any(bad):
-        return f"flagged: none of {status.size} rows in {csv_name}"
+        return f"flagged: none of {opt.plural(status.size, 'row')} in {csv_name}", None
     reasons, counts = np.unique(status[bad], return_counts=True)
     why = "; ".join(f"{count} {reason}" for reason, count in zip(reasons, counts, strict=True))
     return (
-        f"[yellow]flagged: {int(bad.sum())} of {status.size} rows in {csv_name} "
-        f"(see its status column): {why}[/]"
+        f"flagged: {int(bad.sum())} of {opt.plural(status.size, 'row')} in {csv_name} "
+        f"(see its status column): {why}",
+        "yellow",
     )
 
 
@@ -225,8 +232,10 @@ def _comparison_table(comparison: ModelComparison, speed: int, racket: Racket) -
     i = int(np.argmin(np.linalg.norm(result.locations - centre, axis=1)))
     x, y = result.locations[i] * 1e3
     table = Table(
-        title=f"approximate against transient at {result.ball_speed[speed]:g} m/s "
-        f"(centre: point {result.labels[i]}, x = {x:.0f} mm, y = {y:.0f} mm)"
+        title=opt.plain(
+            f"approximate against transient at {result.ball_speed[speed]:g} m/s "
+            f"(centre: point {result.labels[i]}, x = {x:.0f} mm, y = {y:.0f} mm)"
+        )
     )
     for heading in (
         "support",

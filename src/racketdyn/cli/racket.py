@@ -27,7 +27,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.workflows.inputs import load_racket_input
 
     racket, provenance = load_racket_input(args.racket)
-    table = Table(title=f"{racket.name} ({provenance['racket_file']})")
+    table = Table(title=opt.plain(f"{racket.name} ({provenance['racket_file']})"))
     table.add_column("property")
     table.add_column("value", justify="right")
     table.add_column("unit")
@@ -39,10 +39,10 @@ def run(args: argparse.Namespace, console: Console) -> int:
         table.add_row(DERIVED_LABELS.get(key.rpartition("_")[0], name), text, unit)
     model = modal_model_for(racket)
     for name, frequency in zip(model.names, model.frequency, strict=True):
-        table.add_row(f"mode: {name} ({model.support})", f"{frequency:.1f}", "Hz")
+        table.add_row(opt.plain(f"mode: {name} ({model.support})"), f"{frequency:.1f}", "Hz")
     console.print(table)
     for line in _defaults(args.racket, racket):
-        console.print(line, markup=False)
+        opt.say(console, line)
     return 0
 
 

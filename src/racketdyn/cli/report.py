@@ -37,5 +37,5 @@ def run(args: argparse.Namespace, console: Console) -> int:
         raise InputError(f"{run_dir}: no such folder; give a folder written by racketdyn demo")
     # without --racket the report takes the racket the runs recorded in their run.json
     racket = None if args.racket is None else load_racket_input(args.racket)[0]
-    console.print(f"wrote {write_report(run_dir, racket)}")
+    opt.say(console, f"wrote {write_report(run_dir, racket)}")
     return 0

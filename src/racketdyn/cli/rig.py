@@ -144,21 +144,26 @@ def run(args: argparse.Namespace, console: Console) -> int:
             result.faults[support],
         )
         ball = "" if result.ball is None else " with a ball on the strings"
-        console.print(
-            f"{records.n_points} points × {args.averages} averages on the {support} rig{ball} "
-            f"(accelerometer at node {result.reference_node}), {faults['double_hits']} "
-            f"double hits, {faults['overloads']} overloads → {result.out}"
+        opt.say(
+            console,
+            f"{opt.plural(records.n_points, 'point')} × {opt.plural(args.averages, 'average')} "
+            f"on the {support} rig{ball} "
+            f"(accelerometer at node {result.reference_node}), "
+            f"{opt.plural(faults['double_hits'], 'double hit')}, "
+            f"{opt.plural(faults['overloads'], 'overload')} → {result.out}",
         )
         for name, frequency, damping in zip(
             truth.names, truth.frequency, truth.damping_ratio, strict=True
         ):
             if frequency > 15.0:
-                console.print(f"  {name:24s} {frequency:8.1f} Hz  ζ = {damping * 100:.2f} %")
+                opt.say(console, f"  {name:24s} {frequency:8.1f} Hz  ζ = {damping * 100:.2f} %")
     opt.print_written(console, result.written)
     if result.ball is not None:
         x, y = result.ball["location_m"]
-        console.print(
-            f"[dim]the ball's mode is heavily damped: frf --exp-window 0.1, then identify "
-            f"--ball-at {x:g},{y:g} to name it[/]"
+        opt.say(
+            console,
+            f"the ball's mode is heavily damped: frf --exp-window 0.1, then identify "
+            f"--ball-at {x:g},{y:g} to name it",
+            "dim",
         )
     return 0

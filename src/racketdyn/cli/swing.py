@@ -63,6 +63,7 @@ def add(commands: Any) -> None:
 
 def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
+    from rich.markup import escape
     from rich.table import Table
 
     from racketdyn.plotting.steps import swing_figures
@@ -102,18 +103,21 @@ def run(args: argparse.Namespace, console: Console) -> int:
     assert result.swing_result is not None
     assert result.racket is not None
     chosen = result.shown_speed
-    console.print(
-        f"swing {swing.describe(result.racket)} ({result.impact_model} model, {support}): "
-        f"[bold]{result.swing_result.status.size}[/] impacts "
-        f"({result.swing_result.locations.shape[0]} points × {len(speeds)} speeds) → {result.out}"
+    console.print(  # the count in bold; the description and the folder are data
+        f"swing {escape(swing.describe(result.racket))} ({result.impact_model} model, {support}): "
+        f"[bold]{result.swing_result.status.size}[/] "
+        f"{opt.noun(result.swing_result.status.size, 'impact')} "
+        f"({opt.plural(result.swing_result.locations.shape[0], 'point')} × "
+        f"{opt.plural(len(speeds), 'speed')}) → "
+        f"{escape(str(result.out))}"
     )
     opt.print_status(console, result.swing_result.status, "swing.csv")
-    table = Table(title=f"sweet spots, ball {speeds[chosen]:g} m/s, {support}")
+    table = Table(title=opt.plain(f"sweet spots, ball {speeds[chosen]:g} m/s, {support}"))
     for heading in ("sweet spot", "x (mm)", "on the face", "racket (m/s)", "outgoing (m/s)"):
         table.add_column(heading, justify="left" if heading == "sweet spot" else "right")
     for row in result.spot_rows:
         table.add_row(
-            str(row["name"]),
+            opt.plain(row["name"]),
             f"{row['x_m'] * 1e3:.0f}",
             "yes" if row["on_face"] else "no",
             f"{row['racket_speed_mps']:.1f}",

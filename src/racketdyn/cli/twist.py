@@ -81,9 +81,11 @@ def run(args: argparse.Namespace, console: Console) -> int:
             figures=None if args.no_figures else twist_figures,
             progress=progress,
         )
-    console.print(
-        f"twist at x = {args.x * 1e3:.0f} mm, ball {args.speed:g} m/s: {len(offsets)} offsets × "
-        f"{len(supports)} supports → {result.out}"
+    opt.say(
+        console,
+        f"twist at x = {args.x * 1e3:.0f} mm, ball {args.speed:g} m/s: "
+        f"{opt.plural(len(offsets), 'offset')} × "
+        f"{opt.plural(len(supports), 'support')} → {result.out}",
     )
     table = Table(title="roll angle at separation (°), + turns the +y side away from the ball")
     table.add_column("y (mm)", justify="right")

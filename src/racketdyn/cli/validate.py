@@ -87,7 +87,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
             figures=None if args.no_figures else validate_figures,
             progress=progress,
         )
-    table = Table(title=f"{len(result.measured or ())} measured rows → {result.out}")
+    table = Table(
+        title=opt.plain(f"{opt.plural(len(result.measured or ()), 'measured row')} → {result.out}")
+    )
     for column in (
         "model",
         "compared",
@@ -100,7 +102,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
         table.add_column(column, justify="left" if column == "model" else "right")
     for summary in result.summary.values():
         table.add_row(
-            summary.method,
+            opt.plain(summary.method),
             str(summary.n_compared),
             str(summary.n_flagged),
             f"{summary.rms:.4f}",

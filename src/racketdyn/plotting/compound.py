@@ -18,7 +18,7 @@ from matplotlib.axes import Axes
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.modal import ModalModel
-from racketdyn.plotting.primitives import SUPPORT_STYLE
+from racketdyn.plotting.primitives import SUPPORT_STYLE, label_lines
 from racketdyn.plotting.render import save_figure
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME
 
@@ -28,10 +28,13 @@ if TYPE_CHECKING:
 
 __all__ = [
     "BALL_COMPARISON_FIGURE",
+    "COINCIDE",
     "COMPOUND_FRF_FIGURE",
     "COMPOUND_RESPONSE_FIGURE",
     "COMPOUND_SHAPE_FIGURE",
     "ball_mode_share",
+    "coinciding_supports",
+    "neck_reading",
     "node_showing_ball_mode",
     "plot_ball_mode_shape",
     "plot_compound_frf",
@@ -49,11 +52,16 @@ COMPOUND_FRF_FIGURE = "compound_frf.png"
 COMPOUND_SHAPE_FIGURE = "compound_shape.png"
 """The ball mode: the frame along its axis against the ball (Fig. 8a)."""
 BALL_COMPARISON_FIGURE = "fig9_frf_alone_and_ball.png"
-
-# the pinned racket's rigid-body motion differs from the free one's only far from the ball, so
-# its curves often lie on the free ones: dashed, so both show (new-user trial, 2026-11-26)
-_LINESTYLE = {"pinned": (0, (4, 2))}
 """``compare --ball-at``: measured FRFs of the racket alone and with the ball (Fig. 9a, 9b)."""
+
+# each support its own line and ball marker, so curves lying on each other all show: the pinned
+# racket's rigid-body motion differs from the free one's only far from the ball (new-user trial,
+# 2026-11-26), and the hand hardly acts on the ball mode (free and hand frames within 0.4 %)
+_LINESTYLE = {"free": "-", "pinned": (0, (4, 2)), "hand": "-."}
+_BALL_MARKER = {"free": ("o", 8.0), "pinned": ("s", 11.0), "hand": ("^", 14.0)}
+COINCIDE = 0.01
+"""Frames of two supports whose ball-mode shapes differ by less than this share of the ball's
+displacement lie on one another in Fig. 8a (about a pixel); the figure says so."""
 
 
 def plot_ball_mode_shape(
@@ -89,12 +97,35 @@ def plot_ball_mode_shape(
         x_mm, np.asarray(frame), color=colour, lw=1.2, label=f"frame, {support}",
         linestyle=_LINESTYLE.get(support, "-"),
     )  # fmt: skip
-    ax.plot([ball_x * 1e3], [ball], "o", color=colour, ms=9, mfc="none", label=f"ball, {support}")
+    marker, size = _BALL_MARKER.get(support, ("o", 8.0))
+    ax.plot(
+        [ball_x * 1e3], [ball], marker, color=colour, ms=size, mfc="none", label=f"ball, {support}"
+    )
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("displacement (ball = 1)")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
     return ax
+
+
+def coinciding_supports(result: CompoundResult) -> str:
+    """Words for Fig. 8a naming the supports whose ball-mode frames lie on one another
+    (within :data:`COINCIDE` of the ball's displacement), with the largest difference and
+    their ball-mode frequencies; empty when every frame stands apart."""
+    supports = list(result.ball_shape)
+    words = []
+    for i, first in enumerate(supports):
+        for second in supports[i + 1 :]:
+            (a, ball_a), (b, ball_b) = result.ball_shape[first], result.ball_shape[second]
+            difference = float(np.max(np.abs(np.asarray(a) / ball_a - np.asarray(b) / ball_b)))
+            if difference < COINCIDE:
+                words.append(
+                    f"{first} and {second} coincide: frames within {100 * difference:.1f} %\n"
+                    "of the ball's displacement (ball mode "
+                    f"{result.modes[first].ball_frequency:.2f} and "
+                    f"{result.modes[second].ball_frequency:.2f} Hz)"
+                )
+    return "\n".join(words)
 
 
 def plot_neck_response(
@@ -144,15 +175,40 @@ def plot_neck_response(
             )  # fmt: skip
     if math.isfinite(hand_over_s):
         ax.axvline(hand_over_s * 1e3, color="0.3", lw=0.7, ls=":")
-        ax.text(
-            hand_over_s * 1e3, 0.03, " 2-node takes over", transform=ax.get_xaxis_transform(),
-            fontsize=7, color="0.3",
+        ax.text(  # left of the line: to its right it ran past the axes near the record's end
+            hand_over_s * 1e3, 0.03, "2-node takes over ", transform=ax.get_xaxis_transform(),
+            fontsize=7, color="0.3", ha="right",
         )  # fmt: skip
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.set_xlabel("time (ms)")
     ax.set_ylabel("neck acceleration\n(m/s² per N·s)")
     ax.legend(fontsize=7, loc="upper right")
     return ax
+
+
+def neck_reading(hand_over: Mapping[str, float]) -> str:
+    """Fig. 8c in words: which mode leads at the neck after the blow, and whether and when the
+    2-node mode takes over; empty without a reading.
+
+    Parameters
+    ----------
+    hand_over : mapping of str to float
+        One support's ``ball_to_two_node`` (the modes' amplitudes after the blow, their ratio)
+        and ``ball_cycles`` (when the 2-node mode becomes the larger, in ball-mode cycles: 0
+        from the start, inf never), as :attr:`racketdyn.workflows.CompoundResult.hand_over`.
+    """
+    ratio = float(hand_over.get("ball_to_two_node", math.nan))
+    cycles = float(hand_over.get("ball_cycles", math.nan))
+    if not math.isfinite(ratio) or math.isnan(cycles):
+        return ""
+    if ratio <= 1.0:
+        return f"the 2-node mode leads from the start (the ball mode {ratio:.2f}× as large)"
+    if math.isinf(cycles):
+        return f"the ball mode leads ({ratio:.1f}×) throughout: it decays more slowly"
+    return (
+        f"the ball mode leads ({ratio:.1f}×); the 2-node mode takes over after {cycles:.1f} "
+        "ball cycles"
+    )
 
 
 def plot_compound_frf(
@@ -193,19 +249,12 @@ def plot_compound_frf(
 
 
 def _mark_mode(ax: Axes, frequency_hz: float, label: str, colour: str) -> None:
-    """A dotted vertical line at a mode's frequency, labelled along it when ``label``."""
-    ax.axvline(frequency_hz, color=colour, lw=0.6, ls=":")
+    """A dotted vertical line at a mode's frequency, ``label`` (if any) above the axes over it:
+    written along the line it crossed the receptance curves (Fig. 9b)."""
     if label:
-        ax.annotate(
-            label,
-            (frequency_hz, 0.98),
-            xycoords=("data", "axes fraction"),
-            fontsize=8,
-            ha="right",
-            va="top",
-            rotation=90,
-            color=colour,
-        )
+        label_lines(ax, [(frequency_hz, label, colour)], fontsize=7, linewidth=0.6)
+    else:
+        ax.axvline(frequency_hz, color=colour, lw=0.6, ls=":")
 
 
 def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
@@ -222,7 +271,7 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
     # hold every support)
     support = result.supports[0]
     modes = result.modes[support]
-    figure, ax = plt.subplots(figsize=(5.6, 3.0), layout="constrained")
+    figure, ax = plt.subplots(figsize=(6.2, 3.0), layout="constrained")
     hand_over = result.hand_over.get(support, {})
     cycles = float(hand_over.get("ball_cycles", math.nan))
     blow = result.blow_s.get(support, 0.0)
@@ -237,8 +286,10 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         hand_over_s=blow + cycles / modes.ball_frequency if 0 < cycles < math.inf else math.nan,
     )
     away_mm = math.dist(result.location, result.hammer) * 1e3
+    reading = neck_reading(hand_over)
     ax.set_title(
-        f"Fig. 8c: the neck after a blow on the strings {away_mm:.0f} mm from the ball ({support})",
+        f"Fig. 8c: the neck after a blow on the strings {away_mm:.0f} mm from the ball ({support})"
+        + (f"\n{reading}" if reading else ""),
         fontsize=9,
     )
     paths = [save_figure(figure, Path(out) / COMPOUND_RESPONSE_FIGURE)]
@@ -256,9 +307,12 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         _mark_mode(axes[1], f_ball, f"ball mode {f_ball:.1f} Hz", "0.5")
     figure.suptitle("Fig. 9: receptance hammer → neck without and with the ball", fontsize=10)
     paths.append(save_figure(figure, Path(out) / COMPOUND_FRF_FIGURE))
-    figure, ax = plt.subplots(figsize=(4.8, 2.6), layout="constrained")
+    figure, ax = plt.subplots(figsize=(6.0, 3.0), layout="constrained")
     for support, (frame, ball) in result.ball_shape.items():
         plot_ball_mode_shape(result.axis_x, frame, result.location[0], ball, support, ax=ax)
+    together = coinciding_supports(result)
+    if together:  # where the curves lie on one another, in words: the reader sees one line
+        ax.text(0.02, 0.04, together, transform=ax.transAxes, fontsize=6.5, va="bottom")
     ax.set_title("Fig. 8a: the ball mode, ball and frame against\neach other through the strings",
                  fontsize=9)  # fmt: skip
     paths.append(save_figure(figure, Path(out) / COMPOUND_SHAPE_FIGURE))

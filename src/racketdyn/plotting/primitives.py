@@ -35,7 +35,9 @@ __all__ = [
     "QUANTITIES",
     "SWEET_SPOT_STYLE",
     "TWIST_QUANTITIES",
+    "label_contours_in_head",
     "label_lines",
+    "label_rows",
     "mark_flagged_spans",
     "plot_along_axis",
     "plot_contact_map",
@@ -54,7 +56,6 @@ __all__ = [
     "plot_swing_along_axis",
     "plot_swing_map",
     "plot_twist_curve",
-    "spread",
 ]
 
 QUANTITIES: dict[str, tuple[str, float]] = {
@@ -236,44 +237,6 @@ def plot_frame_amplitude(
     return ax
 
 
-LINE_LABEL_GAP = 1.3
-"""Least distance between the centres of two line labels, in font heights: labels of vertical
-lines closer than that are spread apart."""
-
-
-def spread(
-    positions: ArrayLike, gap: float, low: float = 0.0, high: float = 1.0
-) -> NDArray[np.float64]:
-    """Positions moved apart as little as needed to be ``gap`` from each other, within
-    [low, high], in their given order of size.
-
-    One pass forward pushes each position past the one before, one pass back pulls them under
-    ``high``; the positions keep their order (our own 1-D version of what adjustText does in
-    2-D, which this needs no dependency for).
-
-    Parameters
-    ----------
-    positions : array_like
-        The positions (any unit).
-    gap : float
-        Least distance between neighbours, same unit.
-    low, high : float
-        The range they must stay in.
-    """
-    values = np.asarray(positions, dtype=float)
-    order = np.argsort(values, kind="stable")
-    moved = np.clip(values[order], low, high)
-    for k in range(1, moved.size):
-        moved[k] = max(moved[k], moved[k - 1] + gap)
-    if moved.size:
-        moved[-1] = min(moved[-1], high)
-    for k in range(moved.size - 2, -1, -1):
-        moved[k] = min(moved[k], moved[k + 1] - gap)
-    result: NDArray[np.float64] = np.empty_like(moved)
-    result[order] = np.maximum(moved, low)
-    return result
-
-
 def label_lines(
     ax: Axes,
     marks: Sequence[tuple[float, str, str]],
@@ -283,8 +246,10 @@ def label_lines(
     """Vertical lines at ``x`` with their labels above the axes, out of the data's way.
 
     The labels are the tick labels of a secondary x axis on top (matplotlib places the title
-    above them and the constrained layout makes room), turned upright and spread apart so that
-    no two overlap (:func:`spread`); each in its line's colour.
+    above them and the constrained layout makes room), written across, each centred over its
+    line and in its colour.  A label that would overlap the one before it goes up a row (a
+    larger tick pad): rows of text, not the tall strip that upright labels made (Fig. 15: a
+    quarter of the figure for two labels).
 
     Parameters
     ----------
@@ -309,16 +274,55 @@ def label_lines(
     figure = ax.get_figure(root=True)
     assert isinstance(figure, Figure)
     # the axes' width before layout, with a margin for a legend or colour bar beside it
-    width_pt = 0.7 * ax.get_position().width * figure.get_figwidth() * 72.0
-    gap = LINE_LABEL_GAP * fontsize / width_pt * (high - low)
-    where = spread([x for x, _, _ in marks], gap, min(low, high), max(low, high))
+    width_pt = 0.85 * ax.get_position().width * figure.get_figwidth() * 72.0
+    per_pt = abs(high - low) / width_pt
     top: Any = ax.secondary_xaxis("top")
-    top.set_xticks(where, [label for _, label, _ in marks], rotation=90, fontsize=fontsize)
-    for text, (_, _, colour) in zip(top.get_xticklabels(), marks, strict=True):
-        text.set_color(colour)
+    top.set_xticks([x for x, _, _ in marks], [label for _, label, _ in marks], fontsize=fontsize)
     top.tick_params(length=0, pad=2)
+    texts = top.get_xticklabels()
+    points_per_px = 72.0 / figure.dpi
+    rows = label_rows(
+        [x for x, _, _ in marks],
+        [t.get_window_extent().width * points_per_px * per_pt for t in texts],
+        LABEL_SPACE * fontsize * per_pt,
+    )
+    for tick, text, row, (_, _, colour) in zip(
+        top.xaxis.get_major_ticks(), texts, rows, marks, strict=True
+    ):
+        text.set_color(colour)
+        tick.set_pad(2 + row * LABEL_ROW * fontsize)
     axes: Axes = top
     return axes
+
+
+LABEL_SPACE = 1.0
+"""Least space between two labels on one row, in font sizes."""
+LABEL_ROW = 1.25
+"""Height of a row of labels, in font sizes."""
+
+
+def label_rows(centres: ArrayLike, widths: ArrayLike, space: float) -> list[int]:
+    """The row (0 lowest) of each label centred at ``centres``, ``widths`` wide: the lowest
+    row where it keeps ``space`` from the labels already there, taken from left to right.
+
+    Parameters
+    ----------
+    centres, widths : array_like
+        Each label's centre and width (any one unit).
+    space : float
+        Least gap between two labels on a row, same unit.
+    """
+    centre, width = np.asarray(centres, dtype=float), np.asarray(widths, dtype=float)
+    ends: list[float] = []  # the right end of each row so far
+    rows = [0] * centre.size
+    for k in np.argsort(centre, kind="stable"):
+        left = centre[k] - width[k] / 2
+        row = next((r for r, end in enumerate(ends) if left >= end + space), len(ends))
+        if row == len(ends):
+            ends.append(0.0)
+        ends[row] = centre[k] + width[k] / 2
+        rows[k] = row
+    return rows
 
 
 def plot_along_axis(
@@ -389,14 +393,17 @@ def plot_outline(racket: Racket, ax: Axes | None = None, **style: Any) -> Axes:
 
 
 def _contour_face(
-    ax: Axes, locations: NDArray[np.float64], values: NDArray[np.float64], label: str, levels: int
-) -> bool:
-    """Filled, labelled contours of values at face points (mm) and a colour bar, the points
-    themselves as dots; where the valid points span no surface (fewer than three, on a line,
-    or one value everywhere) the points coloured by value instead.  Points with no valid value
-    marked with red crosses.  Returns whether any were marked."""
+    ax: Axes, racket: Racket, locations: NDArray[np.float64], values: NDArray[np.float64],
+    *, label: str, levels: int,
+) -> bool:  # fmt: skip
+    """Filled, labelled contours of values at face points (mm), a colour bar and the head's
+    outline, the points themselves as dots; where the valid points span no surface (fewer than
+    three, on a line, or one value everywhere) the points coloured by value instead.  Points
+    with no valid value marked with red crosses.  The contour labels one per level, inside the
+    head and apart (:func:`label_contours_in_head`).  Returns whether any were marked."""
     x_mm, y_mm = locations[:, 0] * 1e3, locations[:, 1] * 1e3
     finite = np.isfinite(values)
+    lines = None
     surface = (
         finite.sum() >= 3 and _spans_a_surface(locations[finite]) and np.ptp(values[finite]) > 0
     )
@@ -406,7 +413,6 @@ def _contour_face(
         lines = ax.tricontour(
             triangles, values[finite], levels=np.asarray(filled.levels), colors="k", linewidths=0.4
         )
-        ax.clabel(lines, fontsize=6, fmt="%.3g")
         ax.figure.colorbar(filled, ax=ax, label=label, shrink=0.85)
         if finite.sum() <= 2000:
             ax.scatter(x_mm[finite], y_mm[finite], s=2, color="k", linewidths=0)
@@ -421,6 +427,9 @@ def _contour_face(
                 ax.annotate(
                     f"{value:.3g}", (x, y), xytext=(3, 3), textcoords="offset points", fontsize=6
                 )
+    plot_outline(racket, ax)
+    if lines is not None:
+        label_contours_in_head(ax, lines, racket, "%.3g")
     if np.all(finite):
         return False
     count = int((~finite).sum())
@@ -450,9 +459,10 @@ def plot_face_map(
     values = _values(result, quantity)[:, speed_index, column]
     valid = np.asarray(result.status)[:, speed_index, column] == STATUS_OK
     values = np.where(valid, values, np.nan)
-    if _contour_face(ax, result.locations, values, QUANTITIES[quantity][0], levels):
+    if _contour_face(
+        ax, racket, result.locations, values, label=QUANTITIES[quantity][0], levels=levels
+    ):
         ax.legend(fontsize=7, loc="lower left")
-    plot_outline(racket, ax)
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_title(
@@ -505,20 +515,114 @@ def plot_contact_map(
     on_bed = racket.head.contains(times.locations) & np.isfinite(times.mean_s)
     x_mm, y_mm = times.locations[on_bed, 0] * 1e3, times.locations[on_bed, 1] * 1e3
     values = times.mean_s[on_bed] * 1e3
+    lines = None
     if on_bed.sum() >= 3:
         triangles = Triangulation(x_mm, y_mm)
         filled = ax.tricontourf(triangles, values, levels=levels, cmap="magma")
         lines = ax.tricontour(
             triangles, values, levels=np.asarray(filled.levels), colors="k", linewidths=0.4
         )
-        ax.clabel(lines, fontsize=6, fmt="%.2f")
         ax.figure.colorbar(filled, ax=ax, label="contact time (ms)", shrink=0.85, format="%.2f")
     ax.plot(x_mm, y_mm, ".", color="w", markersize=3)
     plot_outline(racket, ax)
+    if lines is not None:
+        label_contours_in_head(ax, lines, racket, "%.2f")
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_title(title, fontsize=9)
     return ax
+
+
+CONTOUR_LABEL_POINTS = 6.0
+"""Font size of contour labels, points."""
+_LABEL_ROOM = 1.4
+"""Room kept around a contour label's estimated box: the constrained layout may shrink the axes
+after the labels are placed (a colour bar, tick labels), which makes the labels larger in data
+units."""
+
+
+def label_contours_in_head(ax: Axes, lines: Any, racket: Racket, fmt: str) -> list[float]:
+    """Label each contour level once, inside the string bed and apart from the other labels.
+
+    matplotlib's own placement put several labels on the same spot where the levels crowd
+    (Fig. 7: at the ends of the head, where the contact time falls steeply) and some past the
+    head's outline.  Here each level's label goes at the point of its contour nearest the
+    head's upper-right diagonal whose label box (estimated from the font size, as wide as
+    it is long in every direction, since an inline label turns with its line) lies inside the
+    head and clear of the labels already placed; levels are taken from the innermost out.
+    A level with no such point stays unlabelled (the colour bar still gives it).
+
+    Parameters
+    ----------
+    ax : Axes
+        The map, its outline drawn (limits set, aspect equal), x and y in mm.
+    lines : matplotlib ContourSet
+        The contour lines.
+    racket : Racket
+        Its head bounds the labels.
+    fmt : str
+        Format of a label's value (``"%.2f"``).
+
+    Returns
+    -------
+    list of float
+        The levels labelled.
+    """
+    head = racket.head
+    centre = np.array([head.centre_x_m, head.centre_y_m]) * 1e3
+    half = np.array([head.half_length_m, head.half_width_m]) * 1e3
+    figure = ax.get_figure(root=True)
+    assert isinstance(figure, Figure)
+    box = ax.get_position()
+    width_pt = box.width * figure.get_figwidth() * 72.0
+    height_pt = box.height * figure.get_figheight() * 72.0
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    mm_per_pt = _LABEL_ROOM * max(abs(x1 - x0) / width_pt, abs(y1 - y0) / height_pt)
+    placed: list[tuple[NDArray[np.float64], float]] = []  # (centre, half size), mm
+    chosen: list[tuple[float, float]] = []
+    levels: list[float] = []
+    values = np.asarray(lines.levels, dtype=float)
+    segments = [
+        [np.asarray(seg, dtype=float) for seg in segs if len(seg)] for segs in lines.allsegs
+    ]
+    # innermost first: by the mean distance of the level's contour from the head's centre
+    depth = np.array(
+        [
+            float(np.mean(np.hypot(*((np.vstack(level) - centre) / half).T))) if level else np.inf
+            for level in segments
+        ]
+    )
+    for k in np.argsort(depth, kind="stable"):
+        half_size = 0.5 * mm_per_pt * CONTOUR_LABEL_POINTS * 0.62 * len(fmt % values[k])
+        # only on a line longer than its label (the extreme levels' contours are mere dots)
+        long = [seg for seg in segments[k] if np.ptp(seg, axis=0).max() > 2.0 * half_size]
+        if not long:
+            continue
+        points = np.vstack(long)
+        # the label's square box inside the head: its corners within the ellipse
+        corners = points[:, None, :] + half_size * np.array(
+            [[-1.0, -1.0], [-1.0, 1.0], [1.0, -1.0], [1.0, 1.0]]
+        )
+        rho = np.hypot(*((corners - centre) / half).transpose(2, 0, 1)).max(axis=1)
+        fits = rho < 0.98
+        for where, size in placed:
+            fits &= np.max(np.abs(points - where), axis=1) > size + half_size
+        if not np.any(fits):
+            continue
+        angle = np.arctan2(
+            (points[:, 1] - centre[1]) / half[1], (points[:, 0] - centre[0]) / half[0]
+        )
+        preference = np.abs(np.angle(np.exp(1j * (angle - np.pi / 4))))
+        best = int(np.argmin(np.where(fits, preference, np.inf)))
+        placed.append((points[best], half_size))
+        chosen.append((float(points[best, 0]), float(points[best, 1])))
+        levels.append(float(values[k]))
+    if chosen:
+        ax.clabel(
+            lines, levels=levels, manual=chosen, fontsize=CONTOUR_LABEL_POINTS, fmt=fmt,
+            inline=True,
+        )  # fmt: skip
+    return levels
 
 
 def _face_grid(racket: Racket, n: int = 41) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -903,8 +1007,9 @@ def plot_swing_map(
     column = result.support_index(support)
     flagged = np.asarray(result.status)[:, speed_index, column] != STATUS_OK
     values = np.where(flagged, np.nan, result.rebound_speed[:, speed_index, column])
-    _contour_face(ax, result.locations, values, "outgoing ball speed (m/s)", levels)
-    plot_outline(racket, ax)
+    _contour_face(
+        ax, racket, result.locations, values, label="outgoing ball speed (m/s)", levels=levels
+    )
     if spots:
         _mark_sweet_spots(ax, spots, in_plane=True)
     entries = len(ax.get_legend_handles_labels()[1])

@@ -168,7 +168,8 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "compound_shape": (
         "Fig. 8a",
         "the ball mode: the frame's displacement along its long axis (line) against the ball's "
-        "(circle), scaled so the ball's is 1, one colour per support",
+        "(marker), scaled so the ball's is 1, one colour, line style and marker per support; "
+        "supports whose frames lie on one another are named on the figure",
     ),
     "validation_parity": (
         None,
