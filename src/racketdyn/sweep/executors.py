@@ -110,35 +110,41 @@ def _start_context() -> Any:
 
 def _start_forkserver(context: Any, preload: list[str]) -> None:
     """Start this process's forkserver (if none runs yet) with ``preload``, the main script
-    included.
+    first (``"__main__"`` in ``preload``).
 
     Python before 3.13.8 never preloads ``__main__`` in the forkserver, whatever the preload
     list says (CPython gh-126631, gh-137996: ``forkserver.ensure_running`` looks for a
     ``main_path`` that ``spawn.get_preparation_data`` has named ``init_main_from_path`` since
     2013), so each child ran the main script's top level again: the imports of a script that
     imports xarray cost every local Dask worker 0.3 s more to start (0.39 against 0.08 s, a
-    scratch check of 2026-11-26).  Here the path is passed under the name those versions read;
-    later versions read the other name, and the extra key changes nothing.  Running the
-    script's top level once in the forkserver is what spawn does in every child anyway.
+    scratch check of 2026-11-26).  Python's own preload, where it works, runs the script
+    without its ``sys.argv`` and ``sys.path``, which each worker gets before it imports the
+    script: a script reading its arguments, or importing a module beside it, at its top level
+    killed the forkserver.  So ``"__main__"`` is replaced by
+    :mod:`racketdyn.sweep._main_preload`, which sets both from what this process passes it
+    and imports the script as a worker would (a file only, not ``<stdin>``; a script that
+    raises there is left to the workers).  Running the script's top level once in the
+    forkserver is what spawn does in every child anyway.
     """
+    import json
     import multiprocessing.forkserver
     from multiprocessing import spawn
 
-    context.set_forkserver_preload(preload)
-    original = spawn.get_preparation_data
+    from racketdyn.sweep import _main_preload
 
-    def with_main_path(name: str) -> dict[str, Any]:
-        data: dict[str, Any] = original(name)
-        path = data.get("init_main_from_path")
-        if isinstance(path, str) and os.path.isfile(path):  # not "<stdin>": the server would die
-            data.setdefault("main_path", path)
-        return data
-
-    spawn.get_preparation_data = with_main_path
+    data = spawn.get_preparation_data("forkserver")
+    path = data.get("init_main_from_path")
+    main = "__main__" in preload and isinstance(path, str) and os.path.isfile(path)
+    names = [name for name in preload if name != "__main__"]
+    context.set_forkserver_preload([_main_preload.__name__, *names] if main else names)
+    if main:
+        os.environ[_main_preload.ENVIRONMENT] = json.dumps(
+            {"main_path": path, "sys_argv": data["sys_argv"], "sys_path": data["sys_path"]}
+        )
     try:
         multiprocessing.forkserver.ensure_running()
     finally:
-        spawn.get_preparation_data = original
+        os.environ.pop(_main_preload.ENVIRONMENT, None)
 
 
 def _dask_forkserver(extra: tuple[str, ...] = ()) -> bool:
