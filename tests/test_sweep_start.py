@@ -271,8 +271,34 @@ def test_the_forkserver_runs_the_main_script_as_a_worker_would(engine: str, tmp_
         text=True,
         env=env,
         cwd=elsewhere,
-        timeout=120,  # the pool hung for good when its forkserver had died
+        timeout=60,  # the pool hung for good when its forkserver had died
     )
     assert done.returncode == 0, done.stderr
     assert "Traceback" not in done.stderr, done.stderr
     _assert_ran_once_and_not_in_workers(done.stdout, elsewhere / "ran_top_level.txt")
+
+
+@pytest.mark.parametrize("engine", ["process", "dask-local"])
+def test_workers_start_for_a_script_read_from_standard_input(engine: str, tmp_path: Path) -> None:
+    """``python - < study.py`` (a notebook's cell piped to Python, a heredoc): the main
+    module's ``__file__`` is ``<stdin>``, which every worker started by the forkserver tried to
+    run as a file and died — 11 of 12 designs failed (``WorkerLostError``) on a pool started
+    while a thread ran, and a local Dask cluster raised "Nanny failed to start".  Such a
+    script has no file to import: its workers start as for ``python -c``."""
+    if engine == "dask-local":
+        pytest.importorskip("distributed")
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("DASK_", "MALLOC_"))}
+    env["PYTHONPATH"] = os.pathsep.join(sys.path)
+    done = subprocess.run(
+        [sys.executable, "-"],
+        input="import os, threading\n" + _WORKER_PIDS.replace("ENGINE", repr(engine)),
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=60,  # the pool hung for good
+    )
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr, done.stderr
+    workers = {int(pid) for pid in done.stdout.strip().splitlines()[-1].split()}
+    assert workers

@@ -10,6 +10,12 @@ then a pool that failed its tasks or hung, or a local Dask cluster whose nannies
 start.  Here the script's ``sys.argv`` and ``sys.path`` (passed in :data:`ENVIRONMENT` by the
 process that starts the forkserver) are set first, as ``multiprocessing.spawn.prepare`` sets
 them in a worker; a script that still raises is left to each worker, as without a preload.
+
+A script read from standard input (``python - < study.py``) has ``__file__ == "<stdin>"``,
+which each worker tried to run as a file, and died: the pool lost every design, a local Dask
+cluster's nannies failed to start.  No file, nothing to import: the forkserver's own
+``__main__`` takes that name, so that ``multiprocessing.spawn.prepare`` in each worker finds
+the main module in place and, as for ``python -c``, imports none.
 """
 
 from __future__ import annotations
@@ -30,6 +36,9 @@ def _import_main() -> None:
     if not raw:
         return
     data = json.loads(raw)
+    if not os.path.isfile(data["main_path"]):  # "<stdin>": no script to import
+        sys.modules["__main__"].__file__ = data["main_path"]
+        return
     sys.argv = list(data["sys_argv"])
     sys.path = list(data["sys_path"])
     process.current_process()._inheriting = True  # type: ignore[attr-defined]

@@ -122,9 +122,10 @@ def _start_forkserver(context: Any, preload: list[str]) -> None:
     script: a script reading its arguments, or importing a module beside it, at its top level
     killed the forkserver.  So ``"__main__"`` is replaced by
     :mod:`racketdyn.sweep._main_preload`, which sets both from what this process passes it
-    and imports the script as a worker would (a file only, not ``<stdin>``; a script that
-    raises there is left to the workers).  Running the script's top level once in the
-    forkserver is what spawn does in every child anyway.
+    and imports the script as a worker would (a script that raises there is left to the
+    workers; one read from standard input, ``<stdin>``, is no file to import: no worker tries).
+    Running the script's top level once in the forkserver is what spawn does in every child
+    anyway.
     """
     import json
     import multiprocessing.forkserver
@@ -134,7 +135,7 @@ def _start_forkserver(context: Any, preload: list[str]) -> None:
 
     data = spawn.get_preparation_data("forkserver")
     path = data.get("init_main_from_path")
-    main = "__main__" in preload and isinstance(path, str) and os.path.isfile(path)
+    main = "__main__" in preload and isinstance(path, str)
     names = [name for name in preload if name != "__main__"]
     context.set_forkserver_preload([_main_preload.__name__, *names] if main else names)
     if main:
