@@ -125,3 +125,23 @@ def test_notes_keep_their_brackets_and_a_resumed_run_stops_no_engine(
     printed = " ".join(capsys.readouterr().out.split())
     assert "2 resumed" in printed
     assert "engine shutdown" not in printed
+
+
+def test_a_changed_spec_in_the_same_folder_leaves_no_figure_of_the_old_one(
+    tmp_path: Path,
+) -> None:
+    """A second spec run into the folder of the first kept the first's summary figure of a
+    variable it does not have (``summary_tension_n.png`` beside the new spec's results: a
+    new-user trial of 2026-11-26); the files a user put there stay."""
+    (tmp_path / "tension.toml").write_text(SPEC)
+    (tmp_path / "ebg.toml").write_text(
+        SPEC.replace("tension_n = [226.0, 266.0]", "e_bg = [0.8, 0.86]")
+    )
+    out = tmp_path / "out"
+    assert main(["sweep", str(tmp_path / "tension.toml"), "--serial", "--out", str(out)]) == 0
+    assert (out / "summary_tension_n.png").is_file()
+    (out / "my notes.txt").write_text("mine")
+    assert main(["sweep", str(tmp_path / "ebg.toml"), "--serial", "--out", str(out)]) == 0
+    assert (out / "summary_e_bg.png").is_file()
+    assert not (out / "summary_tension_n.png").exists()
+    assert (out / "my notes.txt").read_text() == "mine"

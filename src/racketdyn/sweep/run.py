@@ -169,6 +169,7 @@ def run_sweep(
     if task_timeout is not None and not task_timeout > 0:
         raise InputError(f"task_timeout must be a number of seconds above 0 (got {task_timeout})")
     out = Path(out_dir)
+    previous_outputs = _listed_outputs(out / "run.json")
     parts_dir = out / "parts"
     parts_dir.mkdir(parents=True, exist_ok=True)
     _remove_stale_temporaries(parts_dir)
@@ -305,5 +306,26 @@ def run_sweep(
         "spec": spec.to_dict(),
         "notes": notes,
     }
+    for name in previous_outputs - {p.name for p in written}:  # another spec's figures
+        if (out / name).is_file():
+            (out / name).unlink()
     (out / "run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
     return result
+
+
+def _listed_outputs(run_json: Path) -> set[str]:
+    """The files a previous run's ``run.json`` wrote into its folder (plain names only: never
+    a path elsewhere, nor ``parts/``); none if there is no readable one.  A run of another
+    spec into the folder removes those it does not write again (a figure of a variable the
+    new spec does not have), and leaves every other file alone."""
+    try:
+        listed = json.loads(run_json.read_text(encoding="utf-8"))["outputs"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return set()
+    return {
+        name
+        for name in listed
+        if isinstance(name, str)
+        and Path(name).name == name
+        and name not in ("", ".", "..", "run.json")
+    }
