@@ -231,3 +231,26 @@ def test_workers_exit_when_the_main_process_is_killed(
     for line in alive:  # do not leave them behind for the next test
         os.kill(int(line.split()[0]), signal.SIGKILL)
     assert not alive, f"left running after the main process was killed: {alive}"
+
+
+def test_the_command_says_when_tasks_ran_past_the_task_timeout(tmp_path: Path) -> None:
+    """A ``--task-timeout`` shorter than the tasks made them time out, the pool replaced and
+    the tasks run again — and the command said nothing of it (run.json counted it; a
+    new-user trial of 2026-11-26: the wall time doubled)."""
+    spec = tmp_path / "slow.toml"
+    spec.write_text(SLOW_SPEC.replace("num = 16", "num = 3"), encoding="utf-8")
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("DASK_", "MALLOC_"))}
+    env["PYTHONPATH"] = os.pathsep.join(sys.path)
+    argv = ["sweep", str(spec), "--workers", "1", "--task-timeout", "0.1", "--no-figures"]
+    done = subprocess.run(
+        [sys.executable, str(SCRIPT), *argv, "--out", str(tmp_path / "out")],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+    )
+    record = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
+    assert record["timed_out"] > 0, done.stdout  # the first task had 600 s, the others 0.1 s
+    printed = " ".join(done.stdout.split())
+    assert f"ran again: {record['timed_out']} tasks ran past the task timeout (0.1 s)" in printed
+    assert f"{record['pools_replaced']} process pools replaced" in printed
