@@ -302,3 +302,13 @@ def test_workers_start_for_a_script_read_from_standard_input(engine: str, tmp_pa
     assert "Traceback" not in done.stderr, done.stderr
     workers = {int(pid) for pid in done.stdout.strip().splitlines()[-1].split()}
     assert workers
+
+
+def test_a_pool_never_forks_on_macos(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Forking was chosen wherever fork exists and one Python thread runs — macOS included,
+    where Python itself defaults to spawn since 3.8 (its system libraries, NumPy's Accelerate
+    among them, run threads Python cannot see, and a forked child may crash)."""
+    from racketdyn.sweep.executors import _fork_context
+
+    monkeypatch.setattr(sys, "platform", "darwin")
+    assert _fork_context() is None

@@ -83,10 +83,16 @@ def _fork_context() -> Any | None:
     allocator) stays locked in the child for good.  So fork only while this process runs a
     single thread; the pool's workers are then started at once (:meth:`ProcessPool._new`),
     before the pool's own manager thread exists.
+
+    Never on macOS, whatever the threads: its system libraries (Accelerate, which NumPy's
+    wheels use there, the Objective-C runtime) start threads of their own and a forked child
+    can crash or hang, which is why Python's default there is spawn since 3.8.
     """
     import multiprocessing
 
-    if "fork" not in multiprocessing.get_all_start_methods() or threading.active_count() > 1:
+    if sys.platform == "darwin" or threading.active_count() > 1:
+        return None
+    if "fork" not in multiprocessing.get_all_start_methods():
         return None
     return multiprocessing.get_context("fork")
 
