@@ -413,6 +413,8 @@ def make_executor(
     if kind == "dask-local":
         import dask
 
+        forkserver = _dask_forkserver()
+        held = _HeldCtrlC()
         # Dask's nannies set MALLOC_TRIM_THRESHOLD_ on their workers, which switches off glibc's
         # adaptive mmap threshold: every large temporary array is then mapped and unmapped
         # afresh, and a sweep task runs ≈ 1.7 times slower.  Leave the allocator alone.
@@ -432,14 +434,17 @@ def make_executor(
                     # racketdyn (_dask_forkserver): no interpreter start and imports per worker
                     **(
                         {"distributed.worker.multiprocessing-method": "forkserver"}
-                        if _dask_forkserver()
+                        if forkserver
                         else {}
                     ),
                     "distributed.worker.preload": ["racketdyn.sweep._dask_worker"],
                     **LOCAL_DASK_QUIET,
                 }
             ),
-            _workers_ignore_ctrl_c(),
+            # spawned workers inherit an ignored SIGINT, so this process ignores it while
+            # they start; workers forked from the forkserver ignore it already, and a Ctrl-C
+            # while the cluster starts is held back until it runs (then it closes cleanly)
+            held if forkserver else _workers_ignore_ctrl_c(),
             LocalCluster(  # type: ignore[no-untyped-call]
                 # the scheduler's HTTP server (dashboard if bokeh is installed) on a free port:
                 # with None it still takes 8787, and warns and leaks a socket where that is taken
@@ -451,6 +456,7 @@ def make_executor(
             Client(cluster) as client,  # type: ignore[no-untyped-call]
         ):
             _restore_ctrl_c()
+            held.release()  # a Ctrl-C pressed while the cluster started acts now
             log.info("local Dask cluster: %d workers, dashboard %s", workers, client.dashboard_link)
             yield _dask_executor(client)
         return
@@ -596,6 +602,44 @@ def _workers_ignore_ctrl_c() -> Iterator[None]:
         yield
     finally:
         _restore_ctrl_c()
+
+
+class _HeldCtrlC:
+    """A context that holds a Ctrl-C back while something starts that must not be stopped
+    half-way (a local Dask cluster: interrupted inside its start, it stayed half up, its
+    forked workers and its exit handler printed tracebacks), until :meth:`release`.
+
+    This process ignored SIGINT instead while the cluster started, and a Ctrl-C in those
+    0.1-0.8 s was lost: the sweep ran to its end (a new-user trial, 2026-11-26).  Only in the
+    main thread, where Python runs signal handlers.
+    """
+
+    def __init__(self) -> None:
+        self.pressed = False
+        self._previous: Any = None
+
+    def _note(self, signum: int, frame: FrameType | None) -> None:
+        self.pressed = True
+
+    def __enter__(self) -> _HeldCtrlC:
+        if threading.current_thread() is threading.main_thread():
+            self._previous = signal.signal(signal.SIGINT, self._note)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._restore()
+
+    def _restore(self) -> bool:
+        if self._previous is None:
+            return False
+        signal.signal(signal.SIGINT, self._previous)
+        self._previous = None
+        return True
+
+    def release(self) -> None:
+        """Give Ctrl-C back; raise KeyboardInterrupt if it was pressed meanwhile."""
+        if self._restore() and self.pressed:
+            raise KeyboardInterrupt
 
 
 def _restore_ctrl_c() -> None:
