@@ -145,3 +145,21 @@ def test_a_changed_spec_in_the_same_folder_leaves_no_figure_of_the_old_one(
     assert (out / "summary_e_bg.png").is_file()
     assert not (out / "summary_tension_n.png").exists()
     assert (out / "my notes.txt").read_text() == "mine"
+
+
+@pytest.mark.parametrize("option", ["--workers", "--dask-local"])
+def test_a_worker_count_below_one_is_one_line_naming_the_option(
+    option: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``--dask-local 0`` printed the study's size and the "--serial is faster" advice, then
+    "workers must be a whole number" — without the option's name — after starting a
+    forkserver for nothing (a new-user trial, 2026-11-26)."""
+    (tmp_path / "spec.toml").write_text(SPEC)
+    argv = ["sweep", str(tmp_path / "spec.toml"), option, "0", "--out", str(tmp_path / "o")]
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    err = captured.err.strip().splitlines()
+    assert len(err) == 1
+    assert f"{option} must be a whole number of at least 1 (got 0)" in err[0]
+    assert not (tmp_path / "o").exists()

@@ -83,7 +83,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
 def _run(args: argparse.Namespace, console: Console) -> int:
     from pathlib import Path
 
-    from racketdyn.errors import InputError
+    from racketdyn.errors import InputError, require_whole
     from racketdyn.plotting.sweep import write_summary_figures as sweep_figures
     from racketdyn.sweep import load_sweep_spec, start_early
     from racketdyn.sweep.runner import SECONDS_PER_IMPACT
@@ -93,6 +93,9 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         raise InputError(
             f"--task-timeout must be a number of seconds above 0 (got {args.task_timeout})"
         )
+    for option, count in (("--workers", args.workers), ("--dask-local", args.dask_local)):
+        if count is not None:  # before anything starts or prints
+            require_whole(option, count)
     if args.serial:
         engine, workers = "serial", None
     elif args.workers is not None:
