@@ -489,7 +489,7 @@ def _check_main_guard() -> None:
     """Refuse local worker processes started from a script's top level.
 
     Worker processes started by forkserver or spawn import the main script (Python's
-    multiprocessing rule; the forkserver preloads it, :data:`WORKER_PRELOAD`): a script that
+    multiprocessing rule; the forkserver imports it once, :mod:`._main_preload`): a script that
     runs a sweep at its top level, outside ``if __name__ == "__main__":``, runs it again in
     each import — sweeps whose designs all fail, writing into the same folder as the real one
     (seen on 2026-11-26: three runs, two of them all NaN, one ``sweep.nc``).  The script's
