@@ -343,3 +343,20 @@ def test_ctrl_c_while_a_local_dask_cluster_starts_is_not_lost(
         ran = True
     assert not ran  # stopped before any task
     assert all(cluster.status.name == "closed" for cluster in SpecCluster._instances)
+
+
+def test_run_json_says_how_local_dask_started_its_workers(tmp_path: Path) -> None:
+    """``worker_start_method`` was empty for a local Dask cluster, whose workers the nannies
+    fork from this process's forkserver (a new-user trial, 2026-11-26)."""
+    pytest.importorskip("distributed")
+    import logging
+
+    import racketdyn as rd
+    from racketdyn.sweep import make_executor, run_sweep
+
+    logging.getLogger("distributed").setLevel(logging.ERROR)
+    spec = sweep_faults.small_spec(rd.default_racket(), rd.Ball(), "dask start")
+    with make_executor("dask-local", 1) as executor:
+        run_sweep(spec, tmp_path, executor, figures=None)
+    record = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))
+    assert record["worker_start_method"] == "forkserver"

@@ -458,7 +458,8 @@ def make_executor(
             _restore_ctrl_c()
             held.release()  # a Ctrl-C pressed while the cluster started acts now
             log.info("local Dask cluster: %d workers, dashboard %s", workers, client.dashboard_link)
-            yield _dask_executor(client)
+            # how the nannies start their workers (the "process" engine's start_method)
+            yield _dask_executor(client, "forkserver" if forkserver else "spawn")
         return
     try:
         client = Client(scheduler, timeout="20s")  # type: ignore[no-untyped-call]
@@ -647,8 +648,9 @@ def _restore_ctrl_c() -> None:
         signal.signal(signal.SIGINT, _SAVED_SIGINT.pop())
 
 
-def _dask_executor(client: Any) -> Executor:
-    """``client.get_executor(pure=False)`` that can also stop a hung task's worker."""
+def _dask_executor(client: Any, start_method: str = "") -> Executor:
+    """``client.get_executor(pure=False)`` that can also stop a hung task's worker, and says
+    how its workers were started (``start_method``: "" for a cluster not started here)."""
     from distributed.cfexecutor import ClientExecutor
 
     class DaskExecutor(ClientExecutor):
@@ -658,6 +660,7 @@ def _dask_executor(client: Any) -> Executor:
         def __init__(self, client: Any) -> None:
             super().__init__(client, pure=False)  # type: ignore[no-untyped-call]
             self._keys: dict[Future[Any], str] = {}
+            self.start_method = ""
 
         def submit(self, fn: Any, *args: Any, **kwargs: Any) -> Any:  # type: ignore[override]
             task = self._client.submit(fn, *args, pure=False, **kwargs)
@@ -684,7 +687,9 @@ def _dask_executor(client: Any) -> Executor:
                 except Exception as error:  # no nanny, an older scheduler: abandon it
                     log.warning("could not restart the Dask worker %s: %s", hung, error)
 
-    return DaskExecutor(client)
+    executor = DaskExecutor(client)
+    executor.start_method = start_method
+    return executor
 
 
 def _local_workers(executor: Executor) -> bool:

@@ -283,7 +283,8 @@ def run_sweep(
         "spec_sha256": spec.sha256,
         "engine": engine,
         # how a process pool started its workers: fork (this process was single-threaded) or
-        # forkserver / spawn (it ran threads); empty for other engines
+        # forkserver / spawn (it ran threads); a local Dask cluster: forkserver (spawn where
+        # there is none); empty for this process and a running Dask cluster
         "worker_start_method": worker_start,
         "designs": total,
         "impacts": spec.n_impacts,
