@@ -163,3 +163,27 @@ def test_a_worker_count_below_one_is_one_line_naming_the_option(
     assert len(err) == 1
     assert f"{option} must be a whole number of at least 1 (got 0)" in err[0]
     assert not (tmp_path / "o").exists()
+
+
+def test_another_command_into_a_sweep_folder_is_refused_and_the_sweep_kept(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``racketdyn predict --out STUDY`` on a sweep's folder deleted sweep.nc, summary.csv,
+    the figures and every part (the sweep's run.json named no command, so the folder was
+    taken for a predict run's): a new-user trial, 2026-11-26.  And a sweep into another
+    command's folder must not remove that run's files."""
+    (tmp_path / "spec.toml").write_text(SPEC)
+    study = tmp_path / "study"
+    assert main(["sweep", str(tmp_path / "spec.toml"), "--serial", "--out", str(study)]) == 0
+    kept = sorted(p.name for p in study.rglob("*"))
+    capsys.readouterr()
+    assert main(["predict", "--grid", "3", "--no-figures", "--out", str(study)]) == 2
+    assert "holds a `racketdyn sweep` run" in capsys.readouterr().err
+    assert sorted(p.name for p in study.rglob("*")) == kept
+    predicted = tmp_path / "predicted"
+    assert main(["predict", "--grid", "3", "--no-figures", "--out", str(predicted)]) == 0
+    before = sorted(p.name for p in predicted.rglob("*"))
+    sweep = ["sweep", str(tmp_path / "spec.toml"), "--serial", "--out", str(predicted)]
+    assert main(sweep) == 2
+    assert "holds a `racketdyn predict` run" in capsys.readouterr().err
+    assert sorted(p.name for p in predicted.rglob("*")) == before

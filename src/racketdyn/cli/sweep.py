@@ -135,6 +135,7 @@ def _run(args: argparse.Namespace, console: Console) -> int:
             figures=None if args.no_figures else sweep_figures,
             progress=progress,
             task_timeout=args.task_timeout,
+            command=opt.command_line(args),
         )
     record, out = result.record, result.out
     console.print(

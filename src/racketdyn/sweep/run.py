@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import logging
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import (
     Executor,
     ProcessPoolExecutor,
@@ -97,6 +97,7 @@ def run_sweep(
     designs_per_task: int | None = None,
     times: Mapping[str, float] | None = None,
     when_tasks_done: Callable[[], None] | None = None,
+    command: Sequence[str] | None = None,
 ) -> xr.Dataset:
     """Run a sweep: tasks of designs on an executor, parts on disk, one dataset at the end.
 
@@ -145,6 +146,10 @@ def run_sweep(
         engine the caller owns (``ExitStack.close``): a local Dask cluster's scheduler runs in
         this process's event loop and slowed combining 2.3× while it lived (0.25 against
         0.11 s for 30 designs, a check of 2026-11-26).  Its time is ``time_s["shutdown"]``.
+    command : sequence of str, optional
+        The command as called, for ``run.json`` (default: this function's name).  The other
+        steps read it: ``racketdyn predict --out`` refuses a folder whose ``run.json`` names
+        ``racketdyn sweep`` or ``racketdyn.workflows.sweep``.
 
     Returns
     -------
@@ -279,6 +284,7 @@ def run_sweep(
     record = {
         "format": "racketdyn-sweep-run",
         "racketdyn_version": __version__,
+        "command": [str(part) for part in command or ("python", "racketdyn.sweep.run_sweep")],
         "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
         "spec_sha256": spec.sha256,
         "engine": engine,
@@ -315,12 +321,14 @@ def run_sweep(
 
 
 def _listed_outputs(run_json: Path) -> set[str]:
-    """The files a previous run's ``run.json`` wrote into its folder (plain names only: never
-    a path elsewhere, nor ``parts/``); none if there is no readable one.  A run of another
+    """The files a previous sweep's ``run.json`` wrote into its folder (plain names only:
+    never a path elsewhere, nor ``parts/``); none if there is no readable one, or it is
+    another command's.  A run of another
     spec into the folder removes those it does not write again (a figure of a variable the
     new spec does not have), and leaves every other file alone."""
     try:
-        listed = json.loads(run_json.read_text(encoding="utf-8"))["outputs"]
+        record = json.loads(run_json.read_text(encoding="utf-8"))
+        listed = record["outputs"] if record["format"] == "racketdyn-sweep-run" else []
     except (OSError, ValueError, KeyError, TypeError):
         return set()
     return {
