@@ -187,3 +187,29 @@ def test_another_command_into_a_sweep_folder_is_refused_and_the_sweep_kept(
     assert main(sweep) == 2
     assert "holds a `racketdyn predict` run" in capsys.readouterr().err
     assert sorted(p.name for p in predicted.rglob("*")) == before
+
+
+def test_a_second_sweep_into_a_folder_in_use_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Two sweeps of different specs run at once into one folder both ended with exit 0,
+    and the folder's sweep.nc had 7 of 27 designs NaN as "task failed" (their parts
+    overwritten by the other sweep's) with ``n_failed`` 0 (a new-user trial, 2026-11-26): the
+    sweep took no folder lock, unlike every other command."""
+    import os
+
+    from racketdyn.workflows.run import LOCK_NAME
+
+    (tmp_path / "spec.toml").write_text(SPEC)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / LOCK_NAME).write_text(str(os.getppid()))  # a live process holds the folder
+    argv = ["sweep", str(tmp_path / "spec.toml"), "--serial", "--no-figures", "--out", str(out)]
+    assert main(argv) == 2
+    assert f"another racketdyn run (process {os.getppid()}) is writing into it" in (
+        capsys.readouterr().err
+    )
+    assert not (out / "sweep.nc").exists()
+    (out / LOCK_NAME).unlink()
+    assert main(argv) == 0
+    assert not (out / LOCK_NAME).exists()  # released at the end

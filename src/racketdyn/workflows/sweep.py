@@ -23,6 +23,7 @@ from racketdyn.sweep import SweepSpec, load_sweep_spec, make_executor, run_sweep
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
+    _lock,
     _refuse_other_step,
     command_record,
     make_out_folder,
@@ -111,6 +112,33 @@ def run_sweep_step(
     else:
         executor = make_executor(engine, scheduler=scheduler)
     out_dir = make_out_folder(Path(out))
+    # one sweep at a time in a folder (two overwrote each other's parts, silently)
+    lock = _lock(out_dir)
+    try:
+        dataset = _run(the_spec, out_dir, executor, progress, figures, task_timeout, command)
+    finally:
+        lock.unlink(missing_ok=True)
+    record = json.loads((out_dir / "run.json").read_text(encoding="utf-8"))
+    return SweepResult(
+        out_dir,
+        [out_dir / name for name in record["outputs"] if name != "run.json"],
+        record,
+        dataset=dataset,
+        spec=the_spec,
+        failed=json.loads(dataset.attrs["failed_tasks"]),
+    )
+
+
+def _run(
+    the_spec: SweepSpec,
+    out_dir: Path,
+    executor: AbstractContextManager[Executor | None],
+    progress: Progress | None,
+    figures: Callable[[xr.Dataset, Path], list[Path]] | None,
+    task_timeout: float | None,
+    command: Sequence[str] | None,
+) -> xr.Dataset:
+    """The sweep in its locked folder, on the engine ``executor`` starts."""
     with ExitStack() as stack:
         report(progress, "starting the engine")
         clock = time.perf_counter()
@@ -129,12 +157,4 @@ def run_sweep_step(
             when_tasks_done=stack.close,
             command=command_record(command, "sweep"),
         )
-    record = json.loads((out_dir / "run.json").read_text(encoding="utf-8"))
-    return SweepResult(
-        out_dir,
-        [out_dir / name for name in record["outputs"] if name != "run.json"],
-        record,
-        dataset=dataset,
-        spec=the_spec,
-        failed=json.loads(dataset.attrs["failed_tasks"]),
-    )
+    return dataset
