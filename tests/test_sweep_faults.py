@@ -254,3 +254,28 @@ def test_the_command_says_when_tasks_ran_past_the_task_timeout(tmp_path: Path) -
     printed = " ".join(done.stdout.split())
     assert f"ran again: {record['timed_out']} tasks ran past the task timeout (0.1 s)" in printed
     assert f"{record['pools_replaced']} process pools replaced" in printed
+
+
+# --- a part that goes away under a running sweep ---------------------------------------------
+def test_a_part_gone_when_combining_is_a_failure_not_silent_nan(
+    small_spec: SweepSpec, tmp_path: Path
+) -> None:
+    """A design whose part was gone, or of another spec, when the parts were combined ended
+    NaN with status 3 while ``n_failed`` stayed 0 and nothing was said (two sweeps sharing a
+    folder, a new-user trial of 2026-11-26): it is a failure, with the reason, and a rerun
+    computes it."""
+    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
+    victim = tmp_path / "parts" / "design-00002.nc"
+
+    def lose_a_part(done: int, total: int) -> None:
+        victim.unlink(missing_ok=True)  # after the resume check, before the combine
+
+    result = run_sweep(small_spec, tmp_path, SerialExecutor(), lose_a_part, figures=None)
+    assert result.attrs["n_failed"] == 1
+    failures = json.loads((tmp_path / "failures.json").read_text())
+    assert [f["task_id"] for f in failures] == ["design-00002"]
+    assert "part" in failures[0]["error"]
+    record = json.loads((tmp_path / "run.json").read_text())
+    assert record["failed"] == ["design-00002"]
+    rerun = run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
+    assert rerun.attrs["n_failed"] == 0

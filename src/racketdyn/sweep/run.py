@@ -19,13 +19,14 @@ from concurrent.futures import (
 from contextlib import ExitStack
 from datetime import UTC, datetime
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError, require_whole
 from racketdyn.impact.result import STATUS_OK
+from racketdyn.sweep.design import Design
 from racketdyn.sweep.executors import (
     DEFAULT_WORKERS,
     EngineKind,
@@ -37,6 +38,7 @@ from racketdyn.sweep.executors import (
 from racketdyn.sweep.files import (
     _Assembly,
     _combine,
+    _failure_attrs,
     _read_netcdf,
     _read_part,
     _remove_stale_temporaries,
@@ -239,6 +241,8 @@ def run_sweep(
     failures = tally.failures
     clock = time.perf_counter()
     dataset = _combine(spec, parts_dir, failures, assembly)
+    if _lost_parts(assembly.missing, failures):
+        dataset.attrs.update(_failure_attrs(failures))
     sweep_path = out / "sweep.nc"
     _write_netcdf(dataset, sweep_path)
     time_s["combining"] = time.perf_counter() - clock
@@ -318,6 +322,30 @@ def run_sweep(
             (out / name).unlink()
     (out / "run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
     return result
+
+
+def _lost_parts(missing: Sequence[Design], failures: list[dict[str, Any]]) -> bool:
+    """Record as failed the designs whose part was gone, or another spec's, when the parts
+    were read (deleted during the run, or written over by another sweep in the folder:
+    they were NaN with status 3 and counted nowhere); whether there were any."""
+    failed = {failure["task_id"] for failure in failures}
+    lost = [design for design in missing if design.task_id not in failed]
+    for design in lost:
+        error = (
+            "PartLostError: its part was gone, or of another spec, when the parts were "
+            "combined (deleted, or written by another sweep into this folder?)"
+        )
+        log.error("%s (%s) failed: %s", design.task_id, design.describe(), error)
+        failures.append(
+            {
+                "task_id": design.task_id,
+                "design": dict(design.settings),
+                "attempts": 0,
+                "error": error,
+                "traceback": "",
+            }
+        )
+    return bool(lost)
 
 
 def _listed_outputs(run_json: Path) -> set[str]:
