@@ -125,3 +125,91 @@ def test_notes_keep_their_brackets_and_a_resumed_run_stops_no_engine(
     printed = " ".join(capsys.readouterr().out.split())
     assert "2 resumed" in printed
     assert "engine shutdown" not in printed
+
+
+def test_a_changed_spec_in_the_same_folder_leaves_no_figure_of_the_old_one(
+    tmp_path: Path,
+) -> None:
+    """A second spec run into the folder of the first kept the first's summary figure of a
+    variable it does not have (``summary_tension_n.png`` beside the new spec's results: a
+    new-user trial of 2026-11-26); the files a user put there stay."""
+    (tmp_path / "tension.toml").write_text(SPEC)
+    (tmp_path / "ebg.toml").write_text(
+        SPEC.replace("tension_n = [226.0, 266.0]", "e_bg = [0.8, 0.86]")
+    )
+    out = tmp_path / "out"
+    assert main(["sweep", str(tmp_path / "tension.toml"), "--serial", "--out", str(out)]) == 0
+    assert (out / "summary_tension_n.png").is_file()
+    (out / "my notes.txt").write_text("mine")
+    assert main(["sweep", str(tmp_path / "ebg.toml"), "--serial", "--out", str(out)]) == 0
+    assert (out / "summary_e_bg.png").is_file()
+    assert not (out / "summary_tension_n.png").exists()
+    assert (out / "my notes.txt").read_text() == "mine"
+
+
+@pytest.mark.parametrize("option", ["--workers", "--dask-local"])
+def test_a_worker_count_below_one_is_one_line_naming_the_option(
+    option: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``--dask-local 0`` printed the study's size and the "--serial is faster" advice, then
+    "workers must be a whole number" — without the option's name — after starting a
+    forkserver for nothing (a new-user trial, 2026-11-26)."""
+    (tmp_path / "spec.toml").write_text(SPEC)
+    argv = ["sweep", str(tmp_path / "spec.toml"), option, "0", "--out", str(tmp_path / "o")]
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    err = captured.err.strip().splitlines()
+    assert len(err) == 1
+    assert f"{option} must be a whole number of at least 1 (got 0)" in err[0]
+    assert not (tmp_path / "o").exists()
+
+
+def test_another_command_into_a_sweep_folder_is_refused_and_the_sweep_kept(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``racketdyn predict --out STUDY`` on a sweep's folder deleted sweep.nc, summary.csv,
+    the figures and every part (the sweep's run.json named no command, so the folder was
+    taken for a predict run's): a new-user trial, 2026-11-26.  And a sweep into another
+    command's folder must not remove that run's files."""
+    (tmp_path / "spec.toml").write_text(SPEC)
+    study = tmp_path / "study"
+    assert main(["sweep", str(tmp_path / "spec.toml"), "--serial", "--out", str(study)]) == 0
+    kept = sorted(p.name for p in study.rglob("*"))
+    capsys.readouterr()
+    assert main(["predict", "--grid", "3", "--no-figures", "--out", str(study)]) == 2
+    assert "holds a `racketdyn sweep` run" in capsys.readouterr().err
+    assert sorted(p.name for p in study.rglob("*")) == kept
+    predicted = tmp_path / "predicted"
+    assert main(["predict", "--grid", "3", "--no-figures", "--out", str(predicted)]) == 0
+    before = sorted(p.name for p in predicted.rglob("*"))
+    sweep = ["sweep", str(tmp_path / "spec.toml"), "--serial", "--out", str(predicted)]
+    assert main(sweep) == 2
+    assert "holds a `racketdyn predict` run" in capsys.readouterr().err
+    assert sorted(p.name for p in predicted.rglob("*")) == before
+
+
+def test_a_second_sweep_into_a_folder_in_use_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Two sweeps of different specs run at once into one folder both ended with exit 0,
+    and the folder's sweep.nc had 7 of 27 designs NaN as "task failed" (their parts
+    overwritten by the other sweep's) with ``n_failed`` 0 (a new-user trial, 2026-11-26): the
+    sweep took no folder lock, unlike every other command."""
+    import os
+
+    from racketdyn.workflows.run import LOCK_NAME
+
+    (tmp_path / "spec.toml").write_text(SPEC)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / LOCK_NAME).write_text(str(os.getppid()))  # a live process holds the folder
+    argv = ["sweep", str(tmp_path / "spec.toml"), "--serial", "--no-figures", "--out", str(out)]
+    assert main(argv) == 2
+    assert f"another racketdyn run (process {os.getppid()}) is writing into it" in (
+        capsys.readouterr().err
+    )
+    assert not (out / "sweep.nc").exists()
+    (out / LOCK_NAME).unlink()
+    assert main(argv) == 0
+    assert not (out / LOCK_NAME).exists()  # released at the end

@@ -231,3 +231,51 @@ def test_workers_exit_when_the_main_process_is_killed(
     for line in alive:  # do not leave them behind for the next test
         os.kill(int(line.split()[0]), signal.SIGKILL)
     assert not alive, f"left running after the main process was killed: {alive}"
+
+
+def test_the_command_says_when_tasks_ran_past_the_task_timeout(tmp_path: Path) -> None:
+    """A ``--task-timeout`` shorter than the tasks made them time out, the pool replaced and
+    the tasks run again — and the command said nothing of it (run.json counted it; a
+    new-user trial of 2026-11-26: the wall time doubled)."""
+    spec = tmp_path / "slow.toml"
+    spec.write_text(SLOW_SPEC.replace("num = 16", "num = 3"), encoding="utf-8")
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("DASK_", "MALLOC_"))}
+    env["PYTHONPATH"] = os.pathsep.join(sys.path)
+    argv = ["sweep", str(spec), "--workers", "1", "--task-timeout", "0.1", "--no-figures"]
+    done = subprocess.run(
+        [sys.executable, str(SCRIPT), *argv, "--out", str(tmp_path / "out")],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+    )
+    record = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
+    assert record["timed_out"] > 0, done.stdout  # the first task had 600 s, the others 0.1 s
+    printed = " ".join(done.stdout.split())
+    assert f"ran again: {record['timed_out']} tasks ran past the task timeout (0.1 s)" in printed
+    assert f"{record['pools_replaced']} process pools replaced" in printed
+
+
+# --- a part that goes away under a running sweep ---------------------------------------------
+def test_a_part_gone_when_combining_is_a_failure_not_silent_nan(
+    small_spec: SweepSpec, tmp_path: Path
+) -> None:
+    """A design whose part was gone, or of another spec, when the parts were combined ended
+    NaN with status 3 while ``n_failed`` stayed 0 and nothing was said (two sweeps sharing a
+    folder, a new-user trial of 2026-11-26): it is a failure, with the reason, and a rerun
+    computes it."""
+    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
+    victim = tmp_path / "parts" / "design-00002.nc"
+
+    def lose_a_part(done: int, total: int) -> None:
+        victim.unlink(missing_ok=True)  # after the resume check, before the combine
+
+    result = run_sweep(small_spec, tmp_path, SerialExecutor(), lose_a_part, figures=None)
+    assert result.attrs["n_failed"] == 1
+    failures = json.loads((tmp_path / "failures.json").read_text())
+    assert [f["task_id"] for f in failures] == ["design-00002"]
+    assert "part" in failures[0]["error"]
+    record = json.loads((tmp_path / "run.json").read_text())
+    assert record["failed"] == ["design-00002"]
+    rerun = run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
+    assert rerun.attrs["n_failed"] == 0

@@ -41,6 +41,35 @@ def _python(script: str, tmp_path: Path, *args: str) -> str:
     return done.stdout
 
 
+_WORKER_PIDS = """
+if __name__ == "__main__":
+    import logging
+    from racketdyn.sweep import make_executor
+
+    logging.getLogger("distributed").setLevel(logging.ERROR)
+    stop = threading.Event()  # a thread: the pool takes the forkserver, not fork
+    other = threading.Thread(target=stop.wait)
+    other.start()
+    with make_executor(ENGINE, 2) as executor:
+        pids = {executor.submit(os.getpid).result() for _ in range(8)}
+    stop.set()
+    other.join()
+    print(" ".join(map(str, sorted(pids))))
+"""
+"""A script's guarded part: two workers on ENGINE, started while a thread runs; prints the
+workers' process ids."""
+
+
+def _assert_ran_once_and_not_in_workers(stdout: str, note: Path) -> None:
+    """The script's top level (which notes each process running it in ``note``) ran in the
+    script and once in the forkserver, never in a worker (whose pids ``stdout`` ends with)."""
+    workers = {int(pid) for pid in stdout.strip().splitlines()[-1].split()}
+    ran = [int(line) for line in note.read_text().split()]
+    assert workers
+    assert not workers & set(ran), (workers, ran)
+    assert len(ran) == 2  # the script itself, and the forkserver's preload
+
+
 def test_a_pool_forks_while_one_thread_runs_else_uses_a_forkserver(tmp_path: Path) -> None:
     """Single-threaded: fork, every worker up before any task is submitted.  With a thread
     running (a progress display, a Dask client), a fork could copy a held lock: forkserver."""
@@ -119,32 +148,18 @@ def test_the_forkserver_runs_the_main_script_once_not_in_every_worker(
     if engine == "dask-local":
         pytest.importorskip("distributed")
     out = _python(
-        f"""
-        import os, threading
-        with open("ran_top_level.txt", "a") as note:
-            note.write(f"{{os.getpid()}}\\n")
+        textwrap.dedent(
+            """
+            import os, threading
+            with open("ran_top_level.txt", "a") as note:
+                note.write(f"{os.getpid()}\\n")
 
-        if __name__ == "__main__":
-            import logging
-            from racketdyn.sweep import make_executor
-
-            logging.getLogger("distributed").setLevel(logging.ERROR)
-            stop = threading.Event()  # a thread: the pool takes the forkserver, not fork
-            other = threading.Thread(target=stop.wait)
-            other.start()
-            with make_executor({engine!r}, 2) as executor:
-                pids = {{executor.submit(os.getpid).result() for _ in range(8)}}
-            stop.set()
-            other.join()
-            print(" ".join(map(str, sorted(pids))))
-        """,
+            """
+        )
+        + _WORKER_PIDS.replace("ENGINE", repr(engine)),
         tmp_path,
     )
-    workers = {int(pid) for pid in out.strip().splitlines()[-1].split()}
-    ran = [int(line) for line in (tmp_path / "ran_top_level.txt").read_text().split()]
-    assert workers
-    assert not workers & set(ran), (workers, ran)
-    assert len(ran) == 2  # the script itself, and the forkserver's preload
+    _assert_ran_once_and_not_in_workers(out, tmp_path / "ran_top_level.txt")
 
 
 def test_the_sweep_command_forks_its_pool(tmp_path: Path) -> None:
@@ -217,3 +232,131 @@ def test_local_dask_workers_sample_for_the_dashboard_sparingly() -> None:
         seen = executor.submit(settings).result()
     assert seen == LOCAL_DASK_QUIET
     assert seen["distributed.worker.profile.enabled"] is False
+
+
+@pytest.mark.parametrize("engine", ["process", "dask-local"])
+def test_the_forkserver_runs_the_main_script_as_a_worker_would(engine: str, tmp_path: Path) -> None:
+    """The forkserver ran the main script's top level without the script's ``sys.argv`` and
+    ``sys.path`` (Python gives them to each worker before it imports the script, never to the
+    forkserver): a script that reads its arguments or imports a module beside it at its top
+    level killed the forkserver — a traceback on stderr, then a dead pool (a design failed
+    with ``EOFError``) or "Nanny failed to start".  Run from another folder, with arguments."""
+    if engine == "dask-local":
+        pytest.importorskip("distributed")
+    project = tmp_path / "project"
+    project.mkdir()
+    (project / "helpers.py").write_text("LABEL = 'beside the script'\n", encoding="utf-8")
+    script = project / "study.py"
+    script.write_text(
+        textwrap.dedent(
+            """
+            import os, sys, threading
+            from helpers import LABEL   # a module beside the script
+            OUT = sys.argv[1]           # the script's own argument, read at its top level
+            with open(os.path.join(OUT, "ran_top_level.txt"), "a") as note:
+                note.write(f"{os.getpid()}\\n")
+
+            """
+        )
+        + _WORKER_PIDS.replace("ENGINE", repr(engine)),
+        encoding="utf-8",
+    )
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("DASK_", "MALLOC_"))}
+    env["PYTHONPATH"] = os.pathsep.join(sys.path)
+    done = subprocess.run(
+        [sys.executable, str(script), str(elsewhere)],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=elsewhere,
+        timeout=60,  # the pool hung for good when its forkserver had died
+    )
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr, done.stderr
+    _assert_ran_once_and_not_in_workers(done.stdout, elsewhere / "ran_top_level.txt")
+
+
+@pytest.mark.parametrize("engine", ["process", "dask-local"])
+def test_workers_start_for_a_script_read_from_standard_input(engine: str, tmp_path: Path) -> None:
+    """``python - < study.py`` (a notebook's cell piped to Python, a heredoc): the main
+    module's ``__file__`` is ``<stdin>``, which every worker started by the forkserver tried to
+    run as a file and died — 11 of 12 designs failed (``WorkerLostError``) on a pool started
+    while a thread ran, and a local Dask cluster raised "Nanny failed to start".  Such a
+    script has no file to import: its workers start as for ``python -c``."""
+    if engine == "dask-local":
+        pytest.importorskip("distributed")
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("DASK_", "MALLOC_"))}
+    env["PYTHONPATH"] = os.pathsep.join(sys.path)
+    done = subprocess.run(
+        [sys.executable, "-"],
+        input="import os, threading\n" + _WORKER_PIDS.replace("ENGINE", repr(engine)),
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=60,  # the pool hung for good
+    )
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr, done.stderr
+    workers = {int(pid) for pid in done.stdout.strip().splitlines()[-1].split()}
+    assert workers
+
+
+def test_a_pool_never_forks_on_macos(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Forking was chosen wherever fork exists and one Python thread runs — macOS included,
+    where Python itself defaults to spawn since 3.8 (its system libraries, NumPy's Accelerate
+    among them, run threads Python cannot see, and a forked child may crash)."""
+    from racketdyn.sweep.executors import _fork_context
+
+    monkeypatch.setattr(sys, "platform", "darwin")
+    assert _fork_context() is None
+
+
+def test_ctrl_c_while_a_local_dask_cluster_starts_is_not_lost(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """This process ignored SIGINT while its LocalCluster started (so that spawned workers
+    would inherit the ignore): a Ctrl-C in those 0.1–0.8 s was dropped and the sweep ran to
+    its end (a new-user trial, 2026-11-26: SIGINT 2.2 s after the command started, exit 0
+    after 4.3 s).  The workers come from a forkserver that ignores it already: the Ctrl-C is
+    held back until the cluster runs, then stops it whole (interrupted inside its start, a
+    half-started cluster printed tracebacks of its workers and its exit handler)."""
+    pytest.importorskip("distributed")
+    import signal
+
+    import distributed
+    from distributed.deploy.spec import SpecCluster
+
+    from racketdyn.sweep import make_executor
+
+    original = distributed.LocalCluster.__init__
+
+    def pressed_while_starting(self: object, *args: object, **kwargs: object) -> None:
+        os.kill(os.getpid(), signal.SIGINT)  # the terminal's Ctrl-C, as the cluster starts
+        original(self, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(distributed.LocalCluster, "__init__", pressed_while_starting)
+    ran = False
+    with pytest.raises(KeyboardInterrupt), make_executor("dask-local", 1):
+        ran = True
+    assert not ran  # stopped before any task
+    assert all(cluster.status.name == "closed" for cluster in SpecCluster._instances)
+
+
+def test_run_json_says_how_local_dask_started_its_workers(tmp_path: Path) -> None:
+    """``worker_start_method`` was empty for a local Dask cluster, whose workers the nannies
+    fork from this process's forkserver (a new-user trial, 2026-11-26)."""
+    pytest.importorskip("distributed")
+    import logging
+
+    import racketdyn as rd
+    from racketdyn.sweep import make_executor, run_sweep
+
+    logging.getLogger("distributed").setLevel(logging.ERROR)
+    spec = sweep_faults.small_spec(rd.default_racket(), rd.Ball(), "dask start")
+    with make_executor("dask-local", 1) as executor:
+        run_sweep(spec, tmp_path, executor, figures=None)
+    record = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))
+    assert record["worker_start_method"] == "forkserver"

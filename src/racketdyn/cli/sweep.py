@@ -83,7 +83,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
 def _run(args: argparse.Namespace, console: Console) -> int:
     from pathlib import Path
 
-    from racketdyn.errors import InputError
+    from racketdyn.errors import InputError, require_whole
     from racketdyn.plotting.sweep import write_summary_figures as sweep_figures
     from racketdyn.sweep import load_sweep_spec, start_early
     from racketdyn.sweep.runner import SECONDS_PER_IMPACT
@@ -93,6 +93,9 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         raise InputError(
             f"--task-timeout must be a number of seconds above 0 (got {args.task_timeout})"
         )
+    for option, count in (("--workers", args.workers), ("--dask-local", args.dask_local)):
+        if count is not None:  # before anything starts or prints
+            require_whole(option, count)
     if args.serial:
         engine, workers = "serial", None
     elif args.workers is not None:
@@ -132,6 +135,7 @@ def _run(args: argparse.Namespace, console: Console) -> int:
             figures=None if args.no_figures else sweep_figures,
             progress=progress,
             task_timeout=args.task_timeout,
+            command=opt.command_line(args),
         )
     record, out = result.record, result.out
     console.print(
@@ -140,6 +144,9 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         f"in {record['wall_time_s']:.1f} s"
     )
     console.print(f"  time: {_where_time_went(record)}")
+    restarts = _restarts(record, args.task_timeout)
+    if restarts:
+        console.print(restarts, style="yellow", markup=False)
     for text, count in record["status_counts"].items():
         if text not in ("ok", "task failed") and count:
             console.print(f"[yellow]{count:,} impacts: {text}; their results are NaN[/]")
@@ -195,3 +202,21 @@ def _where_time_went(record: dict[str, Any]) -> str:
         if key in spent
     ]
     return ", ".join(parts)
+
+
+def _restarts(record: dict[str, Any], task_timeout: float | None) -> str:
+    """What ran again, from run.json: tasks past the task timeout, process pools replaced,
+    designs retried after an error ("" if none).  Without it a ``--task-timeout`` shorter
+    than the tasks doubled the wall time without a word (a new-user trial, 2026-11-26)."""
+    said = []
+    if record.get("timed_out"):
+        limit = "" if task_timeout is None else f" ({task_timeout:g} s)"
+        said.append(f"{record['timed_out']} tasks ran past the task timeout{limit}")
+    if record.get("pools_replaced"):
+        said.append(f"{record['pools_replaced']} process pools replaced")
+    if record.get("retried"):
+        said.append(f"{record['retried']} designs retried after an error")
+    if not said:
+        return ""
+    hint = " (see --task-timeout)" if record.get("timed_out") else ""
+    return "ran again: " + "; ".join(said) + hint

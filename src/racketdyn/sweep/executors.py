@@ -83,10 +83,16 @@ def _fork_context() -> Any | None:
     allocator) stays locked in the child for good.  So fork only while this process runs a
     single thread; the pool's workers are then started at once (:meth:`ProcessPool._new`),
     before the pool's own manager thread exists.
+
+    Never on macOS, whatever the threads: its system libraries (Accelerate, which NumPy's
+    wheels use there, the Objective-C runtime) start threads of their own and a forked child
+    can crash or hang, which is why Python's default there is spawn since 3.8.
     """
     import multiprocessing
 
-    if "fork" not in multiprocessing.get_all_start_methods() or threading.active_count() > 1:
+    if sys.platform == "darwin" or threading.active_count() > 1:
+        return None
+    if "fork" not in multiprocessing.get_all_start_methods():
         return None
     return multiprocessing.get_context("fork")
 
@@ -110,35 +116,42 @@ def _start_context() -> Any:
 
 def _start_forkserver(context: Any, preload: list[str]) -> None:
     """Start this process's forkserver (if none runs yet) with ``preload``, the main script
-    included.
+    first (``"__main__"`` in ``preload``).
 
     Python before 3.13.8 never preloads ``__main__`` in the forkserver, whatever the preload
     list says (CPython gh-126631, gh-137996: ``forkserver.ensure_running`` looks for a
     ``main_path`` that ``spawn.get_preparation_data`` has named ``init_main_from_path`` since
     2013), so each child ran the main script's top level again: the imports of a script that
     imports xarray cost every local Dask worker 0.3 s more to start (0.39 against 0.08 s, a
-    scratch check of 2026-11-26).  Here the path is passed under the name those versions read;
-    later versions read the other name, and the extra key changes nothing.  Running the
-    script's top level once in the forkserver is what spawn does in every child anyway.
+    scratch check of 2026-11-26).  Python's own preload, where it works, runs the script
+    without its ``sys.argv`` and ``sys.path``, which each worker gets before it imports the
+    script: a script reading its arguments, or importing a module beside it, at its top level
+    killed the forkserver.  So ``"__main__"`` is replaced by
+    :mod:`racketdyn.sweep._main_preload`, which sets both from what this process passes it
+    and imports the script as a worker would (a script that raises there is left to the
+    workers; one read from standard input, ``<stdin>``, is no file to import: no worker tries).
+    Running the script's top level once in the forkserver is what spawn does in every child
+    anyway.
     """
+    import json
     import multiprocessing.forkserver
     from multiprocessing import spawn
 
-    context.set_forkserver_preload(preload)
-    original = spawn.get_preparation_data
+    from racketdyn.sweep import _main_preload
 
-    def with_main_path(name: str) -> dict[str, Any]:
-        data: dict[str, Any] = original(name)
-        path = data.get("init_main_from_path")
-        if isinstance(path, str) and os.path.isfile(path):  # not "<stdin>": the server would die
-            data.setdefault("main_path", path)
-        return data
-
-    spawn.get_preparation_data = with_main_path
+    data = spawn.get_preparation_data("forkserver")
+    path = data.get("init_main_from_path")
+    main = "__main__" in preload and isinstance(path, str)
+    names = [name for name in preload if name != "__main__"]
+    context.set_forkserver_preload([_main_preload.__name__, *names] if main else names)
+    if main:
+        os.environ[_main_preload.ENVIRONMENT] = json.dumps(
+            {"main_path": path, "sys_argv": data["sys_argv"], "sys_path": data["sys_path"]}
+        )
     try:
         multiprocessing.forkserver.ensure_running()
     finally:
-        spawn.get_preparation_data = original
+        os.environ.pop(_main_preload.ENVIRONMENT, None)
 
 
 def _dask_forkserver(extra: tuple[str, ...] = ()) -> bool:
@@ -400,6 +413,8 @@ def make_executor(
     if kind == "dask-local":
         import dask
 
+        forkserver = _dask_forkserver()
+        held = _HeldCtrlC()
         # Dask's nannies set MALLOC_TRIM_THRESHOLD_ on their workers, which switches off glibc's
         # adaptive mmap threshold: every large temporary array is then mapped and unmapped
         # afresh, and a sweep task runs ≈ 1.7 times slower.  Leave the allocator alone.
@@ -419,14 +434,17 @@ def make_executor(
                     # racketdyn (_dask_forkserver): no interpreter start and imports per worker
                     **(
                         {"distributed.worker.multiprocessing-method": "forkserver"}
-                        if _dask_forkserver()
+                        if forkserver
                         else {}
                     ),
                     "distributed.worker.preload": ["racketdyn.sweep._dask_worker"],
                     **LOCAL_DASK_QUIET,
                 }
             ),
-            _workers_ignore_ctrl_c(),
+            # spawned workers inherit an ignored SIGINT, so this process ignores it while
+            # they start; workers forked from the forkserver ignore it already, and a Ctrl-C
+            # while the cluster starts is held back until it runs (then it closes cleanly)
+            held if forkserver else _workers_ignore_ctrl_c(),
             LocalCluster(  # type: ignore[no-untyped-call]
                 # the scheduler's HTTP server (dashboard if bokeh is installed) on a free port:
                 # with None it still takes 8787, and warns and leaks a socket where that is taken
@@ -438,8 +456,10 @@ def make_executor(
             Client(cluster) as client,  # type: ignore[no-untyped-call]
         ):
             _restore_ctrl_c()
+            held.release()  # a Ctrl-C pressed while the cluster started acts now
             log.info("local Dask cluster: %d workers, dashboard %s", workers, client.dashboard_link)
-            yield _dask_executor(client)
+            # how the nannies start their workers (the "process" engine's start_method)
+            yield _dask_executor(client, "forkserver" if forkserver else "spawn")
         return
     try:
         client = Client(scheduler, timeout="20s")  # type: ignore[no-untyped-call]
@@ -470,7 +490,7 @@ def _check_main_guard() -> None:
     """Refuse local worker processes started from a script's top level.
 
     Worker processes started by forkserver or spawn import the main script (Python's
-    multiprocessing rule; the forkserver preloads it, :data:`WORKER_PRELOAD`): a script that
+    multiprocessing rule; the forkserver imports it once, :mod:`._main_preload`): a script that
     runs a sweep at its top level, outside ``if __name__ == "__main__":``, runs it again in
     each import — sweeps whose designs all fail, writing into the same folder as the real one
     (seen on 2026-11-26: three runs, two of them all NaN, one ``sweep.nc``).  The script's
@@ -585,13 +605,52 @@ def _workers_ignore_ctrl_c() -> Iterator[None]:
         _restore_ctrl_c()
 
 
+class _HeldCtrlC:
+    """A context that holds a Ctrl-C back while something starts that must not be stopped
+    half-way (a local Dask cluster: interrupted inside its start, it stayed half up, its
+    forked workers and its exit handler printed tracebacks), until :meth:`release`.
+
+    This process ignored SIGINT instead while the cluster started, and a Ctrl-C in those
+    0.1-0.8 s was lost: the sweep ran to its end (a new-user trial, 2026-11-26).  Only in the
+    main thread, where Python runs signal handlers.
+    """
+
+    def __init__(self) -> None:
+        self.pressed = False
+        self._previous: Any = None
+
+    def _note(self, signum: int, frame: FrameType | None) -> None:
+        self.pressed = True
+
+    def __enter__(self) -> _HeldCtrlC:
+        if threading.current_thread() is threading.main_thread():
+            self._previous = signal.signal(signal.SIGINT, self._note)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._restore()
+
+    def _restore(self) -> bool:
+        if self._previous is None:
+            return False
+        signal.signal(signal.SIGINT, self._previous)
+        self._previous = None
+        return True
+
+    def release(self) -> None:
+        """Give Ctrl-C back; raise KeyboardInterrupt if it was pressed meanwhile."""
+        if self._restore() and self.pressed:
+            raise KeyboardInterrupt
+
+
 def _restore_ctrl_c() -> None:
     while _SAVED_SIGINT:
         signal.signal(signal.SIGINT, _SAVED_SIGINT.pop())
 
 
-def _dask_executor(client: Any) -> Executor:
-    """``client.get_executor(pure=False)`` that can also stop a hung task's worker."""
+def _dask_executor(client: Any, start_method: str = "") -> Executor:
+    """``client.get_executor(pure=False)`` that can also stop a hung task's worker, and says
+    how its workers were started (``start_method``: "" for a cluster not started here)."""
     from distributed.cfexecutor import ClientExecutor
 
     class DaskExecutor(ClientExecutor):
@@ -601,6 +660,7 @@ def _dask_executor(client: Any) -> Executor:
         def __init__(self, client: Any) -> None:
             super().__init__(client, pure=False)  # type: ignore[no-untyped-call]
             self._keys: dict[Future[Any], str] = {}
+            self.start_method = ""
 
         def submit(self, fn: Any, *args: Any, **kwargs: Any) -> Any:  # type: ignore[override]
             task = self._client.submit(fn, *args, pure=False, **kwargs)
@@ -627,7 +687,9 @@ def _dask_executor(client: Any) -> Executor:
                 except Exception as error:  # no nanny, an older scheduler: abandon it
                     log.warning("could not restart the Dask worker %s: %s", hung, error)
 
-    return DaskExecutor(client)
+    executor = DaskExecutor(client)
+    executor.start_method = start_method
+    return executor
 
 
 def _local_workers(executor: Executor) -> bool:

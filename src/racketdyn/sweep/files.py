@@ -205,12 +205,15 @@ class _Assembly:
         self.reduced = np.full((n_d, n_p, n_u), np.nan)
         self.modes: dict[int, list[tuple[str, float]]] = {}
         self.read: set[int] = set()
+        self.missing: list[Design] = []
+        """Designs whose part was not there, or of another spec, when read."""
 
     def add(self, design: Design) -> None:
         """Read one design's part, if it is there and of this spec."""
         part = _read_part(self.parts_dir / f"{design.task_id}.nc", self.spec, data=True)
         self.read.add(design.index)
         if part is None:
+            self.missing.append(design)
             return
         for name, array in self.arrays.items():
             array[design.index] = part[name]
@@ -321,12 +324,19 @@ def _combine(
         "summary_racket_speed_mps": _summary_speed(
             spec.summary_racket_speed, spec.racket_speeds, False
         ),
+        **_failure_attrs(failures),
+    }
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _failure_attrs(failures: Sequence[dict[str, Any]]) -> dict[str, Any]:
+    """The dataset's ``n_failed`` and ``failed_tasks`` attributes."""
+    return {
         "n_failed": len(failures),
         "failed_tasks": json.dumps(
             [{k: f[k] for k in ("task_id", "design", "error")} for f in failures]
         ),
     }
-    return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
 def _summary_speed(value: float | None, listed: NDArray[np.float64], middle: bool) -> float:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import logging
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import (
     Executor,
     ProcessPoolExecutor,
@@ -19,13 +19,14 @@ from concurrent.futures import (
 from contextlib import ExitStack
 from datetime import UTC, datetime
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError, require_whole
 from racketdyn.impact.result import STATUS_OK
+from racketdyn.sweep.design import Design
 from racketdyn.sweep.executors import (
     DEFAULT_WORKERS,
     EngineKind,
@@ -37,6 +38,7 @@ from racketdyn.sweep.executors import (
 from racketdyn.sweep.files import (
     _Assembly,
     _combine,
+    _failure_attrs,
     _read_netcdf,
     _read_part,
     _remove_stale_temporaries,
@@ -97,6 +99,7 @@ def run_sweep(
     designs_per_task: int | None = None,
     times: Mapping[str, float] | None = None,
     when_tasks_done: Callable[[], None] | None = None,
+    command: Sequence[str] | None = None,
 ) -> xr.Dataset:
     """Run a sweep: tasks of designs on an executor, parts on disk, one dataset at the end.
 
@@ -145,6 +148,10 @@ def run_sweep(
         engine the caller owns (``ExitStack.close``): a local Dask cluster's scheduler runs in
         this process's event loop and slowed combining 2.3× while it lived (0.25 against
         0.11 s for 30 designs, a check of 2026-11-26).  Its time is ``time_s["shutdown"]``.
+    command : sequence of str, optional
+        The command as called, for ``run.json`` (default: this function's name).  The other
+        steps read it: ``racketdyn predict --out`` refuses a folder whose ``run.json`` names
+        ``racketdyn sweep`` or ``racketdyn.workflows.sweep``.
 
     Returns
     -------
@@ -169,6 +176,7 @@ def run_sweep(
     if task_timeout is not None and not task_timeout > 0:
         raise InputError(f"task_timeout must be a number of seconds above 0 (got {task_timeout})")
     out = Path(out_dir)
+    previous_outputs = _listed_outputs(out / "run.json")
     parts_dir = out / "parts"
     parts_dir.mkdir(parents=True, exist_ok=True)
     _remove_stale_temporaries(parts_dir)
@@ -233,6 +241,8 @@ def run_sweep(
     failures = tally.failures
     clock = time.perf_counter()
     dataset = _combine(spec, parts_dir, failures, assembly)
+    if _lost_parts(assembly.missing, failures):
+        dataset.attrs.update(_failure_attrs(failures))
     sweep_path = out / "sweep.nc"
     _write_netcdf(dataset, sweep_path)
     time_s["combining"] = time.perf_counter() - clock
@@ -278,11 +288,13 @@ def run_sweep(
     record = {
         "format": "racketdyn-sweep-run",
         "racketdyn_version": __version__,
+        "command": [str(part) for part in command or ("python", "racketdyn.sweep.run_sweep")],
         "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
         "spec_sha256": spec.sha256,
         "engine": engine,
         # how a process pool started its workers: fork (this process was single-threaded) or
-        # forkserver / spawn (it ran threads); empty for other engines
+        # forkserver / spawn (it ran threads); a local Dask cluster: forkserver (spawn where
+        # there is none); empty for this process and a running Dask cluster
         "worker_start_method": worker_start,
         "designs": total,
         "impacts": spec.n_impacts,
@@ -305,5 +317,52 @@ def run_sweep(
         "spec": spec.to_dict(),
         "notes": notes,
     }
+    for name in previous_outputs - {p.name for p in written}:  # another spec's figures
+        if (out / name).is_file():
+            (out / name).unlink()
     (out / "run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
     return result
+
+
+def _lost_parts(missing: Sequence[Design], failures: list[dict[str, Any]]) -> bool:
+    """Record as failed the designs whose part was gone, or another spec's, when the parts
+    were read (deleted during the run, or written over by another sweep in the folder:
+    they were NaN with status 3 and counted nowhere); whether there were any."""
+    failed = {failure["task_id"] for failure in failures}
+    lost = [design for design in missing if design.task_id not in failed]
+    for design in lost:
+        error = (
+            "PartLostError: its part was gone, or of another spec, when the parts were "
+            "combined (deleted, or written by another sweep into this folder?)"
+        )
+        log.error("%s (%s) failed: %s", design.task_id, design.describe(), error)
+        failures.append(
+            {
+                "task_id": design.task_id,
+                "design": dict(design.settings),
+                "attempts": 0,
+                "error": error,
+                "traceback": "",
+            }
+        )
+    return bool(lost)
+
+
+def _listed_outputs(run_json: Path) -> set[str]:
+    """The files a previous sweep's ``run.json`` wrote into its folder (plain names only:
+    never a path elsewhere, nor ``parts/``); none if there is no readable one, or it is
+    another command's.  A run of another
+    spec into the folder removes those it does not write again (a figure of a variable the
+    new spec does not have), and leaves every other file alone."""
+    try:
+        record = json.loads(run_json.read_text(encoding="utf-8"))
+        listed = record["outputs"] if record["format"] == "racketdyn-sweep-run" else []
+    except (OSError, ValueError, KeyError, TypeError):
+        return set()
+    return {
+        name
+        for name in listed
+        if isinstance(name, str)
+        and Path(name).name == name
+        and name not in ("", ".", "..", "run.json")
+    }

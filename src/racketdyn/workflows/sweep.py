@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import os
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from concurrent.futures import Executor
 from contextlib import AbstractContextManager, ExitStack, nullcontext
 from dataclasses import dataclass, field
@@ -20,7 +20,15 @@ from typing import Any, Literal
 import xarray as xr
 
 from racketdyn.sweep import SweepSpec, load_sweep_spec, make_executor, run_sweep, start_early
-from racketdyn.workflows.run import Progress, StepResult, make_out_folder, report
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    _lock,
+    _refuse_other_step,
+    command_record,
+    make_out_folder,
+    report,
+)
 
 __all__ = ["SweepResult", "run_sweep_step"]
 
@@ -56,6 +64,7 @@ def run_sweep_step(
     figures: Callable[[xr.Dataset, Path], list[Path]] | None = None,
     progress: Progress | None = None,
     task_timeout: float | None = None,
+    command: Sequence[str] | None = None,
 ) -> SweepResult:
     """Run (or resume) a design sweep into ``out``.
 
@@ -80,14 +89,20 @@ def run_sweep_step(
         Seconds before a task counts as hung and runs again elsewhere
         (:func:`racketdyn.sweep.run_sweep`; default: 10 × the longest task so far, at least
         60 s).
+    command : sequence of str, optional
+        The command as called, for run.json.
 
     Raises
     ------
+    InputError
+        ``out`` holds another command's run (its run.json): its files are not replaced.
     racketdyn.sweep.SweepInterrupted
         On Ctrl-C: the workers are stopped and every finished design is kept; run again to
         resume.
     """
     the_spec = spec if isinstance(spec, SweepSpec) else load_sweep_spec(Path(spec))
+    if Path(out).is_dir():  # before any engine starts
+        _refuse_other_step(Path(out), "sweep")
     start_early(engine, the_spec.method)  # a local Dask cluster's forkserver imports meanwhile
     executor: AbstractContextManager[Executor | None]
     if engine == "auto":
@@ -97,6 +112,33 @@ def run_sweep_step(
     else:
         executor = make_executor(engine, scheduler=scheduler)
     out_dir = make_out_folder(Path(out))
+    # one sweep at a time in a folder (two overwrote each other's parts, silently)
+    lock = _lock(out_dir)
+    try:
+        dataset = _run(the_spec, out_dir, executor, progress, figures, task_timeout, command)
+    finally:
+        lock.unlink(missing_ok=True)
+    record = json.loads((out_dir / "run.json").read_text(encoding="utf-8"))
+    return SweepResult(
+        out_dir,
+        [out_dir / name for name in record["outputs"] if name != "run.json"],
+        record,
+        dataset=dataset,
+        spec=the_spec,
+        failed=json.loads(dataset.attrs["failed_tasks"]),
+    )
+
+
+def _run(
+    the_spec: SweepSpec,
+    out_dir: Path,
+    executor: AbstractContextManager[Executor | None],
+    progress: Progress | None,
+    figures: Callable[[xr.Dataset, Path], list[Path]] | None,
+    task_timeout: float | None,
+    command: Sequence[str] | None,
+) -> xr.Dataset:
+    """The sweep in its locked folder, on the engine ``executor`` starts."""
     with ExitStack() as stack:
         report(progress, "starting the engine")
         clock = time.perf_counter()
@@ -113,13 +155,6 @@ def run_sweep_step(
             task_timeout=task_timeout,
             times={"start": started} if running is not None else None,
             when_tasks_done=stack.close,
+            command=command_record(command, "sweep"),
         )
-    record = json.loads((out_dir / "run.json").read_text(encoding="utf-8"))
-    return SweepResult(
-        out_dir,
-        [out_dir / name for name in record["outputs"] if name != "run.json"],
-        record,
-        dataset=dataset,
-        spec=the_spec,
-        failed=json.loads(dataset.attrs["failed_tasks"]),
-    )
+    return dataset
