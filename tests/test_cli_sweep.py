@@ -189,6 +189,28 @@ def test_another_command_into_a_sweep_folder_is_refused_and_the_sweep_kept(
     assert sorted(p.name for p in predicted.rglob("*")) == before
 
 
+def test_a_sweep_folder_without_a_command_is_refused_too(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A folder written by ``run_sweep`` from Python, or by the command before its run.json
+    named it (the trial above), records no command: ``predict --out`` took it for a predict
+    run's and deleted sweep.nc and every part.  The sweep's run.json ``format`` says what it
+    is."""
+    import json
+
+    (tmp_path / "spec.toml").write_text(SPEC)
+    study = tmp_path / "study"
+    assert main(["sweep", str(tmp_path / "spec.toml"), "--serial", "--out", str(study)]) == 0
+    record = json.loads((study / "run.json").read_text(encoding="utf-8"))
+    record.pop("command", None)  # as run_sweep from Python, or an older sweep, wrote it
+    (study / "run.json").write_text(json.dumps(record), encoding="utf-8")
+    kept = sorted(p.name for p in study.rglob("*"))
+    capsys.readouterr()
+    assert main(["predict", "--grid", "3", "--no-figures", "--out", str(study)]) == 2
+    assert "holds a `racketdyn sweep` run" in capsys.readouterr().err
+    assert sorted(p.name for p in study.rglob("*")) == kept
+
+
 def test_a_second_sweep_into_a_folder_in_use_is_refused(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -172,8 +172,13 @@ def _previous_step(folder: Path) -> str | None:
     """The step (``rig``, ``predict``, …) whose run ``folder/run.json`` records, if any."""
     try:
         record = json.loads((folder / RUN_JSON).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if isinstance(record, dict) and record.get("format") == "racketdyn-sweep-run":
+        return "sweep"  # run_sweep from Python, or an older sweep, names no command
+    try:
         command = [str(part) for part in record["command"]]
-    except (OSError, ValueError, KeyError, TypeError):
+    except (KeyError, TypeError):
         return None
     if len(command) >= 2 and Path(command[0]).name == "racketdyn":
         return _COMMAND_OF.get(command[1], command[1])
