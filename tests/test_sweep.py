@@ -923,3 +923,43 @@ def test_a_package_run_with_dash_m_needs_no_guard(tmp_path: Path) -> None:
     )  # fmt: skip
     assert run.returncode == 0, run.stderr
     assert run.stdout.split() == ["failed", "0"]
+
+
+def test_summary_lines_follow_the_axis_and_the_clock_reads_from_twelve(tmp_path: Path) -> None:
+    """Values listed out of order in the spec drew a zig-zag (a line from 266 N back to 226
+    N), and lead at 12, 2, 3 and 10 o'clock put 12 o'clock after 10 on the axis (a new-user
+    trial, 2026-11-26): lines run along the axis, and the clock axis starts at 12."""
+    import matplotlib.pyplot as plt
+
+    racket = rd.default_racket()
+    spec = SweepSpec(
+        racket=racket,
+        ball=rd.Ball(),
+        locations=racket.head.grid(3),
+        ball_speeds=[20.0],
+        variables=(
+            Variable.point_mass(0.005, clock=[12, 2, 3, 10], head=racket.head),
+            Variable.scalar("tension_n", [266.0, 226.0, 246.0]),
+        ),
+        mode="one-at-a-time",
+        name="order",
+    )
+    ds = run_sweep(spec, tmp_path, SerialExecutor(), figures=None)
+    _, (left, right) = plt.subplots(1, 2)
+    plot_centre_rebound(ds, "point_mass", ax=left)
+    plot_centre_rebound(ds, "tension_n", ax=right)
+    for ax in (left, right):
+        for line in ax.get_lines():
+            x = np.asarray(line.get_xdata(), float)
+            assert np.all(np.diff(x) > 0), x
+    clock = np.asarray(left.get_lines()[0].get_xdata(), float)
+    assert clock.tolist() == [0.0, 2.0, 3.0, 10.0]
+    labels = {t.get_text() for t in left.get_xticklabels()}
+    assert {"12", "2", "3", "10"} <= labels
+    # the base design carries no lead: a dotted level per support, not a point at 12 o'clock
+    base = int(np.flatnonzero(ds["varied"].values == "base")[0])
+    assert ds["point_mass_mass_kg"].values[base] == 0.0
+    levels = [line for line in left.get_lines() if line.get_linestyle() == ":"]
+    assert len([line for line in levels if len(line.get_xdata())]) == ds.sizes["support"]
+    assert "without the point mass" in [t.get_text() for t in left.get_legend().get_texts()]
+    plt.close("all")

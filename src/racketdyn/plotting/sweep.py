@@ -8,12 +8,14 @@ from __future__ import annotations
 from pathlib import Path
 
 import matplotlib.pyplot as plt
+import numpy as np
 import xarray as xr
 from matplotlib.axes import Axes
 
 from racketdyn.plotting.primitives import SUPPORT_STYLE
 from racketdyn.plotting.render import save_figure
 from racketdyn.sweep.summary import _variables, axis_label, summary_metrics, variable_designs
+from racketdyn.sweep.variables import POINT_MASS
 
 __all__ = ["plot_centre_rebound", "plot_sweet_area", "write_summary_figures"]
 
@@ -36,17 +38,38 @@ def _plot_metric(
     )
     coord, label, scale = axis_label(dataset, variable)
     x = dataset[coord].values[keep] * scale
+    clock = coord.endswith("_clock")
+    if clock:  # round the clock from 12 (shown as 0 on the axis, labelled 12)
+        x = np.mod(x, 12.0)
+    # a point mass placed by clock or x, y: its designs without the mass (the base of a
+    # one-at-a-time sweep) have a position too, which is no position of a mass — drawn as a
+    # level, not as a point at that position
+    without = np.zeros(x.size, dtype=bool)
+    if _variables(dataset)[variable]["kind"] == POINT_MASS and not coord.endswith("_mass_kg"):
+        without = dataset[f"{variable}_mass_kg"].values[keep] == 0.0
+    order = np.argsort(np.where(without, np.inf, x), kind="stable")
+    with_mass = order[~without[order]]
     for support in metrics["support"].values.tolist():
         style = SUPPORT_STYLE.get(str(support), {})
+        values = metrics[metric].sel(support=support).values
+        color = str(style.get("color", "tab:gray"))
         ax.plot(
-            x,
-            metrics[metric].sel(support=support).values,
-            color=str(style.get("color", "tab:gray")),
+            x[with_mass],
+            values[with_mass],
+            color=color,
             marker=str(style.get("marker", "o")),
             label=str(style.get("label", support)),
             linestyle="-",
             markersize=4,
         )
+        for level in np.unique(values[without]):
+            ax.axhline(level, color=color, linestyle=":", linewidth=1.0)
+    if without.any():
+        what = variable.replace("_", " ")
+        ax.plot([], [], color="0.4", linestyle=":", linewidth=1.0, label=f"without the {what}")
+    if clock:
+        ticks = np.unique(x[with_mass])
+        ax.set_xticks(ticks, [f"{12 if t == 0 else t:g}" for t in ticks])
     ax.set_xlabel(label)
     speeds = f"{metrics.attrs['ball_speed_mps']:g} m/s ball"
     if metrics.attrs["racket_speed_mps"]:
