@@ -78,3 +78,26 @@ def test_one_failed_impact_is_one_impact() -> None:
     console = Console(file=sink, width=400, color_system=None)
     opt.print_status(console, np.array(["ok", "beyond the law"]), "impact.csv")
     assert "1 impact: beyond the law; NaN in impact.csv" in sink.getvalue()
+
+
+def test_library_messages_take_the_number_of_their_count(tmp_path: Path) -> None:
+    """Library messages wrote "missing column(s) x", "node(s) 12", "unknown parameter(s)":
+    one missing column reads "missing column", two "missing columns"."""
+    import racketdyn as rd
+    from racketdyn.io.measured import read_measured
+
+    header = "x_m,y_m,ball_speed_mps,support,rebound_ratio"
+    one = tmp_path / "one.csv"
+    one.write_text(header + "\n0.5,0,20,free,0.4\n", encoding="utf-8")
+    with pytest.raises(rd.InputError) as error:
+        read_measured(one)
+    assert "missing column racket_speed_mps;" in str(error.value)
+    two = tmp_path / "two.csv"
+    two.write_text("x_m,y_m,support,rebound_ratio\n0.5,0,free,0.4\n", encoding="utf-8")
+    with pytest.raises(rd.InputError) as error:
+        read_measured(two)
+    assert "missing columns ball_speed_mps, racket_speed_mps;" in str(error.value)
+    assert "(s)" not in str(error.value)
+    from racketdyn import _grammar
+
+    assert opt.plural is _grammar.plural  # one place for the idea

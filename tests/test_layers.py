@@ -21,6 +21,7 @@ PACKAGE = SRC / "racketdyn"
 LAYERS: dict[str, int] = {
     "racketdyn.__about__": 1,
     "racketdyn._display": 1,
+    "racketdyn._grammar": 1,
     "racketdyn.errors": 1,
     "racketdyn.plausibility": 1,
     "racketdyn.numerics": 1,

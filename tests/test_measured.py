@@ -105,7 +105,7 @@ def test_outgoing_speed_in_km_per_h_is_named(tmp_path: Path) -> None:
             "x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio,outgoing_speed_mps",
             "both found",
         ),
-        ("x_m,y_m,ball_speed_mps,support,rebound_ratio", "missing column(s) racket_speed_mps"),
+        ("x_m,y_m,ball_speed_mps,support,rebound_ratio", "missing column racket_speed_mps"),
         (
             "x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio,outgoing_speed_sd_mps",
             "with rebound_ratio give rebound_ratio_sd",

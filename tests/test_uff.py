@@ -498,5 +498,5 @@ def test_bad_csv_files(tmp_path: Path) -> None:
     geometry.write_text("node,x_m,y_m\n3,0.45,0.0\n7,0.55,0.02\n")
     partial = read_hammer_csv(data, geometry)
     assert np.isnan(partial.locations[2]).all()
-    _raises(data, lambda: partial.require_locations("the map"), "node(s) 12", "--geometry")
+    _raises(data, lambda: partial.require_locations("the map"), "which node 12 lacks", "--geometry")
     assert np.isnan(read_hammer_csv(data).locations).all()

@@ -234,7 +234,7 @@ def test_identify_with_some_coordinates_missing_names_geometry() -> None:
     locations = frfs.locations.copy()
     locations[0] = np.nan
     some = dataclasses.replace(frfs, locations=locations)
-    _one_line_error(lambda: identify(some), "node(s) 1", "--geometry")
+    _one_line_error(lambda: identify(some), "which node 1 lacks", "--geometry")
     no_points = dataclasses.replace(
         frfs, locations=np.full_like(frfs.locations, np.nan), reference_location=(np.nan,) * 2
     )

@@ -14,6 +14,10 @@ from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any
 
+# counts in words, re-exported for the commands (opt.plural, opt.noun)
+from racketdyn._grammar import noun as noun
+from racketdyn._grammar import plural as plural
+
 if TYPE_CHECKING:
     from rich.console import Console
 
@@ -346,16 +350,6 @@ def plain(text: object) -> str:
     from rich.markup import escape
 
     return escape(str(text))
-
-
-def noun(count: int, singular: str, plural_form: str | None = None) -> str:
-    """``singular`` for a count of one, else ``plural_form`` (default ``singular + "s"``)."""
-    return singular if count == 1 else plural_form or singular + "s"
-
-
-def plural(count: int, singular: str, plural_form: str | None = None) -> str:
-    """A count with its noun in the number it takes: ``"1 average"``, ``"3 averages"``."""
-    return f"{count} {noun(count, singular, plural_form)}"
 
 
 @contextmanager

@@ -29,6 +29,7 @@ from typing import cast
 
 import numpy as np
 
+from racketdyn._grammar import noun
 from racketdyn.errors import InputError
 from racketdyn.io.uff import (
     FREQUENCY_RESPONSE,
@@ -228,10 +229,11 @@ def read_frfs(
     missing = [n for n in dict.fromkeys([*nodes, ref]) if n not in coordinates]
     if missing and not require_coordinates:
         log.info(
-            "%s: node(s) %s have no coordinates (FRFs need none; shapes and maps will ask for "
-            "--geometry)",
+            "%s: %s %s %s no coordinates (FRFs need none; shapes and maps will ask for --geometry)",
             path,
+            noun(len(missing), "node"),
             _listed(missing),
+            noun(len(missing), "has", "have"),
         )
         coordinates = {**coordinates, **{n: (np.nan, np.nan, np.nan) for n in missing}}
     elif missing:

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn._grammar import noun
 from racketdyn.errors import InputError
 from racketdyn.plausibility import check_load_deflection
 
@@ -43,7 +44,8 @@ def _read_columns(path: Path, required: tuple[str, ...]) -> dict[str, list[tuple
     missing = [name for name in required if name not in header]
     if missing:
         raise InputError(
-            f"{path}: missing column(s) {', '.join(missing)}; the header must name "
+            f"{path}: missing {noun(len(missing), 'column')} {', '.join(missing)}; "
+            "the header must name "
             f"{', '.join(required)} (found {', '.join(header) or 'nothing'})"
         )
     columns: dict[str, list[tuple[int, str]]] = {name: [] for name in header}

@@ -42,6 +42,7 @@ import pyuff  # type: ignore[import-untyped]
 from numpy.typing import NDArray
 
 from racketdyn.__about__ import __version__
+from racketdyn._grammar import noun, plural
 from racketdyn.errors import InputError
 from racketdyn.io.uff_structure import check_structure
 from racketdyn.measurement.records import (
@@ -685,10 +686,10 @@ def _note_missing(path: Path, nodes: dict[int, tuple[float, float]], wanted: lis
     missing = [n for n in wanted if n not in nodes]
     if missing:
         logger.info(
-            "%s: node(s) %s have no coordinates (FRFs need none; shapes and maps will ask for "
-            "--geometry)",
+            "%s: %s %s no coordinates (FRFs need none; shapes and maps will ask for --geometry)",
             path,
-            ", ".join(map(str, missing[:8])),
+            noun(len(missing), "node") + " " + ", ".join(map(str, missing[:8])),
+            noun(len(missing), "has", "have"),
         )
 
 
@@ -1148,7 +1149,8 @@ def _finite(target: Path, what: str, node: int, values: NDArray[Any]) -> None:
     bad = ~np.isfinite(values)
     if np.any(bad):
         raise InputError(
-            f"{target}: {what} of node {node} has {int(bad.sum())} NaN or infinite value(s); "
+            f"{target}: {what} of node {node} has "
+            f"{plural(int(bad.sum()), 'NaN or infinite value')}; "
             "pyuff would write them as 0 or huge numbers — drop those lines before writing"
         )
 
@@ -1396,7 +1398,8 @@ def _csv_rows(
     missing = [name for name in required if name not in header]
     if missing:
         raise InputError(
-            f"{path}: missing column(s) {', '.join(missing)}; the header must name "
+            f"{path}: missing {noun(len(missing), 'column')} {', '.join(missing)}; "
+            "the header must name "
             f"{', '.join(required)} (found {', '.join(header) or 'nothing'})"
         )
     for number, row in zip(numbers[1:], rows[1:], strict=True):

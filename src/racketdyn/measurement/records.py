@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn._display import html_table, number, shorten, span, words
+from racketdyn._grammar import noun
 from racketdyn.errors import InputError, require_positive
 from racketdyn.numerics import as_locations, as_points
 
@@ -102,7 +103,8 @@ class _PointsAndReference:
         if missing:
             named = ", ".join("the reference" if n == -1 else str(n) for n in missing[:8])
             raise InputError(
-                f"{self.source}: {what} needs node coordinates, which node(s) {named} lack; give "
+                f"{self.source}: {what} needs node coordinates, which "
+                f"{noun(len(missing), 'node')} {named} {noun(len(missing), 'lacks', 'lack')}; give "
                 "them with --geometry FILE (UFF data set 15 or 2411, or CSV node,x_m,y_m in m)"
             )
 

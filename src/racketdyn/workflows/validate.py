@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn._grammar import noun
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError
 from racketdyn.impact.calibration import PARAMETERS, apply
@@ -176,7 +177,9 @@ def load_calibration(path: str | os.PathLike[str]) -> dict[str, float]:
         ) from None
     unknown = [name for name in values if name not in PARAMETERS]
     if unknown:
-        raise InputError(f"--calibration {file}: unknown parameter(s) {', '.join(unknown)}")
+        raise InputError(
+            f"--calibration {file}: unknown {noun(len(unknown), 'parameter')} {', '.join(unknown)}"
+        )
     return values
 
 
