@@ -235,3 +235,24 @@ def test_a_second_sweep_into_a_folder_in_use_is_refused(
     (out / LOCK_NAME).unlink()
     assert main(argv) == 0
     assert not (out / LOCK_NAME).exists()  # released at the end
+
+
+def test_dask_engines_without_distributed_are_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``racketdyn sweep --dask-local 2`` where dask.distributed is not installed (the README's
+    plain ``pip install .``) ended in a ModuleNotFoundError traceback, before the engine's own
+    message could say what to install (found 2026-11-26, third session, in a fresh venv)."""
+    import sys
+
+    monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed: ImportError
+    (tmp_path / "spec.toml").write_text(SPEC)
+    for engine in (["--dask-local", "2"], ["--scheduler", "tcp://127.0.0.1:8786"]):
+        argv = ["sweep", str(tmp_path / "spec.toml"), *engine, "--out", str(tmp_path / "o")]
+        assert main(argv) == 2
+        captured = capsys.readouterr()
+        err = captured.err.strip().splitlines()
+        assert len(err) == 1, captured.err
+        assert "pip install 'racketdyn[dask]'" in err[0]
+        assert engine[0] in err[0]
+        assert not (tmp_path / "o").exists()

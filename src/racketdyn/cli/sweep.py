@@ -106,6 +106,15 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         engine, workers = "dask", None
     else:
         engine, workers = "auto", None
+    if engine.startswith("dask"):
+        try:
+            import distributed  # noqa: F401  (importing it sets its loggers to INFO: see below)
+        except ImportError:
+            option = "--dask-local" if engine == "dask-local" else "--scheduler"
+            raise InputError(
+                f"{option}: the Dask engines need dask.distributed, which is not installed: "
+                "pip install 'racketdyn[dask]' (or use --workers N)"
+            ) from None
     spec = load_sweep_spec(Path(args.spec))
     start_early(engine, spec.method)  # a local Dask cluster's forkserver imports meanwhile
     console.print(
@@ -120,9 +129,7 @@ def _run(args: argparse.Namespace, console: Console) -> int:
             style="yellow",
             markup=False,
         )
-    if engine.startswith("dask") and not args.verbose:
-        import distributed  # noqa: F401  (importing it sets its loggers to INFO: quieten them)
-
+    if engine.startswith("dask") and not args.verbose:  # quieten distributed's INFO loggers
         logging.getLogger("distributed").setLevel(logging.WARNING)
     # no refresh thread: a process pool forks its workers while this process runs one thread
     with opt.progress_display(console, thread=False) as progress:
