@@ -81,11 +81,13 @@ def run(args: argparse.Namespace, console: Console) -> int:
 
 
 def _run(args: argparse.Namespace, console: Console) -> int:
+    import importlib.util
     from pathlib import Path
 
     from racketdyn.errors import InputError, require_whole
     from racketdyn.plotting.sweep import write_summary_figures as sweep_figures
     from racketdyn.sweep import load_sweep_spec, start_early
+    from racketdyn.sweep.executors import DASK_MISSING
     from racketdyn.sweep.runner import SECONDS_PER_IMPACT
     from racketdyn.workflows.sweep import run_sweep_step
 
@@ -106,17 +108,13 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         engine, workers = "dask", None
     else:
         engine, workers = "auto", None
-    if engine.startswith("dask"):
-        try:
-            import distributed  # noqa: F401  (importing it sets its loggers to INFO: see below)
-        except ImportError:
-            option = "--dask-local" if engine == "dask-local" else "--scheduler"
-            raise InputError(
-                f"{option}: the Dask engines need dask.distributed, which is not installed: "
-                "pip install 'racketdyn[dask]' (or use --workers N)"
-            ) from None
+    if engine.startswith("dask") and importlib.util.find_spec("distributed") is None:
+        option = "--dask-local" if engine == "dask-local" else "--scheduler"
+        raise InputError(f"{option}: {DASK_MISSING} (or use --workers N)")
     spec = load_sweep_spec(Path(args.spec))
-    start_early(engine, spec.method)  # a local Dask cluster's forkserver imports meanwhile
+    # a local Dask cluster's forkserver imports racketdyn and distributed meanwhile (this
+    # process imports distributed below); the workflow's own call then finds it running
+    start_early(engine, spec.method)
     console.print(
         f"{spec.name}: {len(spec.designs)} designs × {spec.impacts_per_design:,} impacts "
         f"= {spec.n_impacts:,} impacts → {args.out}"
@@ -129,7 +127,9 @@ def _run(args: argparse.Namespace, console: Console) -> int:
             style="yellow",
             markup=False,
         )
-    if engine.startswith("dask") and not args.verbose:  # quieten distributed's INFO loggers
+    if engine.startswith("dask") and not args.verbose:
+        import distributed  # noqa: F401  (importing it sets its loggers to INFO: quieten them)
+
         logging.getLogger("distributed").setLevel(logging.WARNING)
     # no refresh thread: a process pool forks its workers while this process runs one thread
     with opt.progress_display(console, thread=False) as progress:

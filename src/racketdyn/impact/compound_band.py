@@ -26,6 +26,7 @@ stiffness, and the net's patch radius, it needs with the nominal ball.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, replace
 from itertools import pairwise, product
@@ -139,12 +140,7 @@ class BedForFrequency:
 
     def as_dict(self) -> dict[str, object]:
         """Plain numbers for run.json (SI; NaN as is) and why there is none."""
-        return {
-            "frequency_hz": self.frequency_hz,
-            "bed_stiffness_n_per_m": self.bed_stiffness_n_per_m,
-            "patch_radius_m": self.patch_radius_m,
-            "note": self.note,
-        }
+        return dataclasses.asdict(self)
 
 
 def ball_mode_band(

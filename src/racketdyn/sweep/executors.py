@@ -42,6 +42,8 @@ EngineKind = Literal["serial", "process", "dask-local", "dask"]
 Dask cluster, or a running Dask scheduler."""
 ENGINES: tuple[str, ...] = get_args(EngineKind)
 DEFAULT_WORKERS = 2
+DASK_MISSING = "the Dask engines need dask.distributed: pip install 'racketdyn[dask]'"
+"""What to say when dask.distributed is not installed (the command line says it first)."""
 
 
 class SerialExecutor(Executor):
@@ -407,9 +409,7 @@ def make_executor(
     try:
         from dask.distributed import Client, LocalCluster
     except ImportError:
-        raise InputError(
-            "the Dask engines need dask.distributed: pip install 'racketdyn[dask]'"
-        ) from None
+        raise InputError(DASK_MISSING) from None
     if kind == "dask-local":
         import dask
 
