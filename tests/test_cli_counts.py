@@ -98,6 +98,3 @@ def test_library_messages_take_the_number_of_their_count(tmp_path: Path) -> None
         read_measured(two)
     assert "missing columns ball_speed_mps, racket_speed_mps;" in str(error.value)
     assert "(s)" not in str(error.value)
-    from racketdyn import _grammar
-
-    assert opt.plural is _grammar.plural  # one place for the idea

@@ -256,3 +256,18 @@ def test_dask_engines_without_distributed_are_one_line(
         assert "pip install 'racketdyn[dask]'" in err[0]
         assert engine[0] in err[0]
         assert not (tmp_path / "o").exists()
+
+
+def test_the_sweep_command_prints_bracketed_paths_whole(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``racketdyn sweep --out 'study[v1]'`` printed "→ study" and "wrote study/sweep.nc" (rich
+    read "[v1]" as markup) while it wrote into ``study[v1]``: the other commands were mended
+    in the same session, the sweep command was left (found 2026-11-26, closing review)."""
+    monkeypatch.setenv("COLUMNS", "400")  # one line a message: the paths are long
+    (tmp_path / "spec.toml").write_text(SPEC)
+    for out in (tmp_path / "study[v1]", tmp_path / "o[/b]"):
+        assert main(["sweep", str(tmp_path / "spec.toml"), "--serial", "--out", str(out)]) == 0
+        printed = capsys.readouterr().out
+        assert f"→ {out}\n" in printed
+        assert f"wrote {out / 'sweep.nc'}\n" in printed

@@ -252,7 +252,8 @@ def test_the_command_says_when_tasks_ran_past_the_task_timeout(tmp_path: Path) -
     record = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
     assert record["timed_out"] > 0, done.stdout  # the first task had 600 s, the others 0.1 s
     printed = " ".join(done.stdout.split())
-    assert f"ran again: {record['timed_out']} tasks ran past the task timeout (0.1 s)" in printed
+    tasks = f"{record['timed_out']} task{'s' if record['timed_out'] != 1 else ''}"
+    assert f"ran again: {tasks} ran past the task timeout (0.1 s)" in printed
     assert f"{record['pools_replaced']} process pools replaced" in printed
 
 

@@ -231,7 +231,6 @@ def test_local_dask_workers_sample_for_the_dashboard_sparingly() -> None:
     with make_executor("dask-local", 1) as executor:
         seen = executor.submit(settings).result()
     assert seen == LOCAL_DASK_QUIET
-    assert seen["distributed.worker.profile.enabled"] is False
 
 
 @pytest.mark.parametrize("engine", ["process", "dask-local"])

@@ -86,7 +86,7 @@ def _run(args: argparse.Namespace, console: Console) -> int:
 
     from racketdyn.errors import InputError, require_whole
     from racketdyn.plotting.sweep import write_summary_figures as sweep_figures
-    from racketdyn.sweep import load_sweep_spec, start_early
+    from racketdyn.sweep import load_sweep_spec
     from racketdyn.sweep.executors import DASK_MISSING
     from racketdyn.sweep.runner import SECONDS_PER_IMPACT
     from racketdyn.workflows.sweep import run_sweep_step
@@ -112,20 +112,18 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         option = "--dask-local" if engine == "dask-local" else "--scheduler"
         raise InputError(f"{option}: {DASK_MISSING} (or use --workers N)")
     spec = load_sweep_spec(Path(args.spec))
-    # a local Dask cluster's forkserver imports racketdyn and distributed meanwhile (this
-    # process imports distributed below); the workflow's own call then finds it running
-    start_early(engine, spec.method)
-    console.print(
+    opt.say(
+        console,
         f"{spec.name}: {len(spec.designs)} designs × {spec.impacts_per_design:,} impacts "
-        f"= {spec.n_impacts:,} impacts → {args.out}"
+        f"= {spec.n_impacts:,} impacts → {args.out}",
     )
     work_s = spec.n_impacts * SECONDS_PER_IMPACT.get(spec.method, max(SECONDS_PER_IMPACT.values()))
-    if engine in WORKERS_PAY_S and work_s < WORKERS_PAY_S[engine]:
-        console.print(
-            f"about {work_s:.1f} s of work on one core: {_WHY_NOT_PAY[engine]}; --serial is "
+    if engine in WORKERS_PAY_S and work_s < WORKERS_PAY_S[engine][0]:
+        opt.say(
+            console,
+            f"about {work_s:.1f} s of work on one core: {WORKERS_PAY_S[engine][1]}; --serial is "
             "as fast or faster for a sweep this small",
-            style="yellow",
-            markup=False,
+            "yellow",
         )
     if engine.startswith("dask") and not args.verbose:
         import distributed  # noqa: F401  (importing it sets its loggers to INFO: quieten them)
@@ -150,41 +148,45 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         f"({record['ran']} run, {record['resumed']} resumed) on {record['engine']} "
         f"in {record['wall_time_s']:.1f} s"
     )
-    console.print(f"  time: {_where_time_went(record)}")
+    opt.say(console, f"  time: {_where_time_went(record)}")
     restarts = _restarts(record, args.task_timeout)
     if restarts:
-        console.print(restarts, style="yellow", markup=False)
+        opt.say(console, restarts, "yellow")
     for text, count in record["status_counts"].items():
         if text not in ("ok", "task failed") and count:
-            console.print(f"[yellow]{count:,} impacts: {text}; their results are NaN[/]")
-    from rich.markup import escape  # a note names "[impacts] grid": text, not a style
-
-    for note in record.get("notes", []):
-        console.print(f"[yellow]{escape(note)}[/]")
+            opt.say(
+                console,
+                f"{count:,} {opt.noun(count, 'impact')}: {text}; "
+                f"{opt.noun(count, 'its result is', 'their results are')} NaN",
+                "yellow",
+            )
+    for note in record.get("notes", []):  # a note names "[impacts] grid": text, not a style
+        opt.say(console, note, "yellow")
     for failure in result.failed:
-        console.print(f"[red]{escape(failure['task_id'])} failed: {escape(failure['error'])}[/]")
-    for name in record["outputs"]:
-        console.print(f"  wrote {out / name}")
+        opt.say(console, f"{failure['task_id']} failed: {failure['error']}", "red")
+    opt.print_written(console, [out / name for name in record["outputs"]])
     if result.failed:
-        console.print(
-            f"[red]{len(result.failed)} of {record['designs']} designs failed (NaN, status 3); "
-            f"details in {out / 'failures.json'}; run the same command again to retry them[/]"
+        opt.say(
+            console,
+            f"{len(result.failed)} of {opt.plural(record['designs'], 'design')} failed "
+            "(NaN, status 3); "
+            f"details in {out / 'failures.json'}; run the same command again to retry them",
+            "red",
         )
         return 1
     return 0
 
 
-WORKERS_PAY_S = {"process": 0.5, "dask-local": 2.0}
+WORKERS_PAY_S = {
+    "process": (0.5, "too little to share out between workers"),
+    "dask-local": (2.0, "a local Dask cluster takes about a second to start"),
+}
 """Below this much work on one core (s, estimated), workers save next to nothing or cost more
-than they save: the command says so.  A process pool forks its workers in milliseconds, but
+than they save: the command says so, and why.  A process pool forks its workers in milliseconds, but
 the last tasks share out unevenly and every part is written and read (README's 3,726-impact
 study: 0.6 s on two workers against 0.5 s serial; 264,060 impacts, about 1.3 s of work: 1.2
 against 1.4 s, 2026-11-26); a local Dask cluster starts in 0.7-0.8 s (its forkserver's imports
 and the scheduler), which a sweep must earn back."""
-_WHY_NOT_PAY = {
-    "process": "too little to share out between workers",
-    "dask-local": "a local Dask cluster takes about a second to start",
-}
 
 
 def _where_time_went(record: dict[str, Any]) -> str:
@@ -218,11 +220,11 @@ def _restarts(record: dict[str, Any], task_timeout: float | None) -> str:
     said = []
     if record.get("timed_out"):
         limit = "" if task_timeout is None else f" ({task_timeout:g} s)"
-        said.append(f"{record['timed_out']} tasks ran past the task timeout{limit}")
+        said.append(f"{opt.plural(record['timed_out'], 'task')} ran past the task timeout{limit}")
     if record.get("pools_replaced"):
-        said.append(f"{record['pools_replaced']} process pools replaced")
+        said.append(f"{opt.plural(record['pools_replaced'], 'process pool')} replaced")
     if record.get("retried"):
-        said.append(f"{record['retried']} designs retried after an error")
+        said.append(f"{opt.plural(record['retried'], 'design')} retried after an error")
     if not said:
         return ""
     hint = " (see --task-timeout)" if record.get("timed_out") else ""

@@ -112,13 +112,13 @@ def _start_context() -> Any:
     if "forkserver" not in multiprocessing.get_all_start_methods():
         return multiprocessing.get_context("spawn")
     context = multiprocessing.get_context("forkserver")
-    _start_forkserver(context, ["__main__", *WORKER_PRELOAD])
+    _start_forkserver(context, list(WORKER_PRELOAD))
     return context
 
 
 def _start_forkserver(context: Any, preload: list[str]) -> None:
-    """Start this process's forkserver (if none runs yet) with ``preload``, the main script
-    first (``"__main__"`` in ``preload``).
+    """Start this process's forkserver (if none runs yet) preloading the main script, then
+    the modules ``preload``.
 
     Python before 3.13.8 never preloads ``__main__`` in the forkserver, whatever the preload
     list says (CPython gh-126631, gh-137996: ``forkserver.ensure_running`` looks for a
@@ -128,7 +128,7 @@ def _start_forkserver(context: Any, preload: list[str]) -> None:
     scratch check of 2026-11-26).  Python's own preload, where it works, runs the script
     without its ``sys.argv`` and ``sys.path``, which each worker gets before it imports the
     script: a script reading its arguments, or importing a module beside it, at its top level
-    killed the forkserver.  So ``"__main__"`` is replaced by
+    killed the forkserver.  So instead of ``"__main__"`` the forkserver preloads
     :mod:`racketdyn.sweep._main_preload`, which sets both from what this process passes it
     and imports the script as a worker would (a script that raises there is left to the
     workers; one read from standard input, ``<stdin>``, is no file to import: no worker tries).
@@ -143,9 +143,8 @@ def _start_forkserver(context: Any, preload: list[str]) -> None:
 
     data = spawn.get_preparation_data("forkserver")
     path = data.get("init_main_from_path")
-    main = "__main__" in preload and isinstance(path, str)
-    names = [name for name in preload if name != "__main__"]
-    context.set_forkserver_preload([_main_preload.__name__, *names] if main else names)
+    main = isinstance(path, str)  # None when run with -m, or with no script (python -c)
+    context.set_forkserver_preload([_main_preload.__name__, *preload] if main else preload)
     if main:
         os.environ[_main_preload.ENVIRONMENT] = json.dumps(
             {"main_path": path, "sys_argv": data["sys_argv"], "sys_path": data["sys_path"]}
@@ -167,7 +166,7 @@ def _dask_forkserver(extra: tuple[str, ...] = ()) -> bool:
         return False
     context = multiprocessing.get_context("forkserver")
     with _workers_ignore_ctrl_c():  # its children start with Ctrl-C ignored
-        _start_forkserver(context, ["__main__", *WORKER_PRELOAD, "distributed", *extra])
+        _start_forkserver(context, [*WORKER_PRELOAD, "distributed", *extra])
     return True
 
 
@@ -265,8 +264,6 @@ class ProcessPool(Executor):
     def __init__(self, workers: int, pool: ProcessPoolExecutor | None = None) -> None:
         self.workers = workers
         self._context = None if pool is None else pool._mp_context
-        self.started_at_once = False
-        self.start_method = "" if pool is None else _method_of(pool._mp_context)
         self._pool = self._new() if pool is None else pool
         self.renewals = 0
 
@@ -283,6 +280,16 @@ class ProcessPool(Executor):
         return cls(int(getattr(pool, "_max_workers", DEFAULT_WORKERS)), pool)
 
     @property
+    def start_method(self) -> str:
+        """How the current pool started its workers: ``fork``, ``forkserver`` or ``spawn``."""
+        return _method_of(self._pool._mp_context)
+
+    @property
+    def started_at_once(self) -> bool:
+        """Whether the current pool's workers were forked, all at once, when it was made."""
+        return self.start_method == "fork"
+
+    @property
     def _max_workers(self) -> int:  # read by _in_flight_limit, as for a ProcessPoolExecutor
         return self.workers
 
@@ -297,8 +304,6 @@ class ProcessPool(Executor):
             initializer=_worker_setup,
             initargs=(os.getpid(),),
         )
-        self.started_at_once = forked is not None
-        self.start_method = _method_of(context)
         if forked is not None:
             # a fork pool forks all its workers on its first submission, before it starts its
             # manager thread: do it now, while this process still runs one thread
@@ -617,6 +622,7 @@ class _HeldCtrlC:
 
     def __init__(self) -> None:
         self.pressed = False
+        self._held = False  # not _previous is None: signal.signal gives None for a C handler
         self._previous: Any = None
 
     def _note(self, signum: int, frame: FrameType | None) -> None:
@@ -625,16 +631,17 @@ class _HeldCtrlC:
     def __enter__(self) -> _HeldCtrlC:
         if threading.current_thread() is threading.main_thread():
             self._previous = signal.signal(signal.SIGINT, self._note)
+            self._held = True
         return self
 
     def __exit__(self, *exc: object) -> None:
         self._restore()
 
     def _restore(self) -> bool:
-        if self._previous is None:
+        if not self._held:
             return False
-        signal.signal(signal.SIGINT, self._previous)
-        self._previous = None
+        signal.signal(signal.SIGINT, self._previous or signal.SIG_DFL)
+        self._held = False
         return True
 
     def release(self) -> None:
@@ -657,10 +664,10 @@ def _dask_executor(client: Any, start_method: str = "") -> Executor:
         """A Dask client's executor that knows the Dask task behind each future, so
         :meth:`stop_task` can restart the worker running it (a thread cannot be stopped)."""
 
-        def __init__(self, client: Any) -> None:
+        def __init__(self, client: Any, start_method: str) -> None:
             super().__init__(client, pure=False)  # type: ignore[no-untyped-call]
             self._keys: dict[Future[Any], str] = {}
-            self.start_method = ""
+            self.start_method = start_method
 
         def submit(self, fn: Any, *args: Any, **kwargs: Any) -> Any:  # type: ignore[override]
             task = self._client.submit(fn, *args, pure=False, **kwargs)
@@ -687,9 +694,7 @@ def _dask_executor(client: Any, start_method: str = "") -> Executor:
                 except Exception as error:  # no nanny, an older scheduler: abandon it
                     log.warning("could not restart the Dask worker %s: %s", hung, error)
 
-    executor = DaskExecutor(client)
-    executor.start_method = start_method
-    return executor
+    return DaskExecutor(client, start_method)
 
 
 def _local_workers(executor: Executor) -> bool:

@@ -103,7 +103,6 @@ def run_sweep_step(
     the_spec = spec if isinstance(spec, SweepSpec) else load_sweep_spec(Path(spec))
     if Path(out).is_dir():  # before any engine starts
         _refuse_other_step(Path(out), "sweep")
-    start_early(engine, the_spec.method)  # a local Dask cluster's forkserver imports meanwhile
     executor: AbstractContextManager[Executor | None]
     if engine == "auto":
         executor = nullcontext(None)
@@ -115,6 +114,8 @@ def run_sweep_step(
     # one sweep at a time in a folder (two overwrote each other's parts, silently)
     lock = _lock(out_dir)
     try:
+        # a local Dask cluster's forkserver imports while the cluster's scheduler starts
+        start_early(engine, the_spec.method)
         dataset = _run(the_spec, out_dir, executor, progress, figures, task_timeout, command)
     finally:
         lock.unlink(missing_ok=True)
