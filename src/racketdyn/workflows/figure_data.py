@@ -1,0 +1,1185 @@
+"""What the steps' figures draw, computed with the run's own inputs (issue 23).
+
+A figure only draws: every number it shows is computed here, by the step's workflow, with the
+run's racket, ball, modes and impact options, into a frozen result object that converts to
+xarray (:meth:`to_xarray`) and back (:meth:`from_xarray`).  The step writes them together to
+``figures.nc`` in its run folder (:data:`FIGURES_FILE`, netCDF 3 through xarray's scipy engine,
+SI units in the variable names and ``units`` attributes), so each figure can be redrawn from
+the folder alone (:func:`read_figure_data`).
+
+=========================  =====================================================================
+object                     figures
+=========================  =====================================================================
+:class:`PaperFigures`      predict: the paper's Figs 11–12 (:class:`ImpactCurves` against
+                           speed), 13 (:class:`PulseSpectra`), 14 (:class:`FrameVibration`),
+                           15 (rebound along the axis) and the face maps
+:class:`TransientCurves`   predict ``--model both``: both models against speed
+:class:`SwingAxisCurves`   swing: outgoing speed along the axis for a few swings
+:class:`IdentifiedRebound` compare: Fig. 15 with the identified free and hand-held modes
+=========================  =====================================================================
+
+Each object is one group of variables in ``figures.nc``, its names prefixed with the figure's
+key and ``__`` (netCDF 3 has no groups): ``fig11_12__mean_force_n``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from racketdyn.ball import Ball
+from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
+from racketdyn.impact.result import IMPACT_QUANTITIES, SHOWN_SPEED_MPS, STATUS_OK, ImpactResult
+from racketdyn.impact.swing import ImpactModel, Swing, SwingResult, axis_swings, predict_swing
+from racketdyn.impact.transient import Engine, predict_transient
+from racketdyn.modal.model import ModalModel
+from racketdyn.racket import HeadEllipse, Racket, landmark_points
+from racketdyn.racket_modal.shapes import axis_nodes
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+__all__ = [
+    "AXIS_POINTS",
+    "CURVE_SPEEDS_MPS",
+    "FIGURES_FILE",
+    "FRAME_POINTS",
+    "IDENTIFIED_CASES",
+    "PULSE_FREQUENCY_HZ",
+    "PULSE_SPEEDS_MPS",
+    "PULSE_TIME_S",
+    "SWING_AXIS_POINTS",
+    "TRANSIENT_CURVE_SPEEDS_MPS",
+    "VIBRATION_SPEEDS_MPS",
+    "FigureData",
+    "FrameVibration",
+    "IdentifiedRebound",
+    "ImpactCurves",
+    "PaperFigures",
+    "PulseSpectra",
+    "SwingAxisCurves",
+    "TransientCurves",
+    "describe_options",
+    "identified_rebound",
+    "paper_figures",
+    "racket_speed_at",
+    "read_figure_data",
+    "swing_axis_curves",
+    "transient_curves",
+    "write_figure_data",
+]
+
+FIGURES_FILE = "figures.nc"
+"""The file of a run folder holding what its figures draw."""
+CURVE_SPEEDS_MPS = np.linspace(5.0, 50.0, 46)
+"""Ball speeds of Figs 11–12 (stretched to the run's fastest, the run's speeds added), m/s."""
+VIBRATION_SPEEDS_MPS = (10.0, 20.0, 30.0)
+"""Ball speeds of Fig. 14 when the run gives none, m/s."""
+PULSE_SPEEDS_MPS = (10.0, 20.0, 30.0, 40.0)
+"""Ball speeds of Fig. 13 when the run gives none, m/s."""
+PULSE_TIME_S = np.linspace(-0.5e-3, 7e-3, 751)
+"""Times of Fig. 13's pulses, s from first contact."""
+PULSE_FREQUENCY_HZ = np.linspace(0.0, 1500.0, 1501)
+"""Frequencies of Fig. 13's spectra, Hz."""
+FRAME_POINTS = 121
+"""Points along the frame (butt to tip) of Fig. 14."""
+AXIS_POINTS = 31
+"""Impact points along the long axis of Fig. 15 (5 % of the half-length in from the frame)."""
+TRANSIENT_CURVE_SPEEDS_MPS = np.linspace(5.0, 40.0, 15)
+"""Ball speeds of the approximate-against-transient curves (15 speeds: 3 points × 15 × 2
+supports ≈ 0.7 s with the scipy reference path of the transient model)."""
+SWING_AXIS_POINTS = 41
+"""Points along the long axis of the along-axis swing figure (inset half a step from the frame,
+as :func:`racketdyn.impact.swing.sweet_spots` samples it)."""
+
+_SEP = "__"
+_CURVE_QUANTITIES = ("contact_time", "mean_force", "rebound_ratio", "rebound_speed")
+_FACE_QUANTITIES = ("contact_time", "rebound_ratio", "vibration_energy")
+_QUANTITY = {q.attribute: q for q in IMPACT_QUANTITIES}
+_EMPTY = np.zeros((0, 0, 0))
+_HEAD = ("centre_x_m", "half_length_m", "half_width_m", "centre_y_m")
+
+
+def _array(values: ArrayLike) -> NDArray[np.float64]:
+    return np.asarray(values, dtype=float)
+
+
+def _strings(values: Any) -> tuple[str, ...]:
+    return tuple(str(v) for v in np.asarray(values).ravel())
+
+
+# --- impacts on the points and speeds of a figure ---------------------------------------------
+@dataclass(frozen=True)
+class ImpactCurves:
+    """Impact quantities on a figure's own points × speeds × supports (a slice of an
+    :class:`~racketdyn.impact.result.ImpactResult` holding what curves and maps draw).
+
+    Attributes carry the :class:`ImpactResult` names in SI units; a quantity the figure does not
+    draw is an empty array.  Rows whose ``status`` is not ``ok`` hold NaN, as in the result.
+
+    Attributes
+    ----------
+    locations : ndarray (n_points, 2)
+        Impact points (x, y), m.
+    labels : tuple of str
+        Point labels.
+    ball_speed, racket_speed : ndarray (n_speeds,)
+        Incoming ball speed and racket speed, m/s.
+    supports : tuple of str
+        Supports.
+    status : ndarray of str (n_points, n_speeds, n_supports)
+        ``ok`` or why the numbers are missing.
+    contact_time : ndarray
+        T_c, s.
+    mean_force : ndarray
+        F_MEAN, N.
+    rebound_ratio : ndarray
+        Rebound ratio e, dimensionless.
+    rebound_speed : ndarray
+        Outgoing ball speed, m/s.
+    vibration_energy : ndarray
+        Frame vibration energy after the impact, J.
+    """
+
+    locations: NDArray[np.float64]
+    labels: tuple[str, ...]
+    ball_speed: NDArray[np.float64]
+    racket_speed: NDArray[np.float64]
+    supports: tuple[str, ...]
+    status: NDArray[np.str_]
+    contact_time: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
+    mean_force: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
+    rebound_ratio: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
+    rebound_speed: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
+    vibration_energy: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
+
+    @classmethod
+    def of(
+        cls,
+        result: ImpactResult | SwingResult,
+        quantities: Sequence[str] = _CURVE_QUANTITIES,
+        speeds: Sequence[int] | None = None,
+    ) -> ImpactCurves:
+        """The quantities a figure draws, taken from an impact result.
+
+        Parameters
+        ----------
+        result : ImpactResult or SwingResult
+            The impacts.
+        quantities : sequence of str
+            Attributes to keep (the others empty).
+        speeds : sequence of int, optional
+            Indices of the ball speeds to keep (default all).
+        """
+        s = list(range(result.ball_speed.size)) if speeds is None else list(speeds)
+        return cls(
+            locations=_array(result.locations),
+            labels=tuple(result.labels),
+            ball_speed=_array(result.ball_speed)[s],
+            racket_speed=_array(result.racket_speed)[s],
+            supports=tuple(result.supports),
+            status=np.asarray(result.status, dtype=str)[:, s, :],
+            **{q: _array(getattr(result, q))[:, s, :] for q in quantities},
+        )
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        """``(n_points, n_speeds, n_supports)``."""
+        return (self.locations.shape[0], self.ball_speed.size, len(self.supports))
+
+    def support_index(self, support: str) -> int:
+        """Index of a support on the last axis."""
+        return self.supports.index(support)
+
+    def to_xarray(self) -> xr.Dataset:
+        """The curves as a dataset: dims ``point``, ``ball_speed``, ``support``; variables named
+        as ``impact.csv``'s columns (``contact_time_s`` …) with ``units``, and ``status``."""
+        import xarray as xr
+
+        cell = ("point", "ball_speed", "support")
+        data: dict[str, Any] = {}
+        for attribute in (*_CURVE_QUANTITIES, "vibration_energy"):
+            values = getattr(self, attribute)
+            if values.size:
+                quantity = _QUANTITY[attribute]
+                attrs = {"units": quantity.units, "long_name": quantity.long_name}
+                data[quantity.name] = (cell, values, attrs)
+        data["status"] = (cell, np.asarray(self.status, dtype=str), {"long_name": "impact status"})
+        coords = {
+            "x_m": ("point", self.locations[:, 0], {"units": "m"}),
+            "y_m": ("point", self.locations[:, 1], {"units": "m"}),
+            "label": ("point", list(self.labels)),
+            "ball_speed_mps": ("ball_speed", self.ball_speed, {"units": "m s-1"}),
+            "racket_speed_mps": ("ball_speed", self.racket_speed, {"units": "m s-1"}),
+            "support_name": ("support", list(self.supports)),
+        }
+        return xr.Dataset(data, coords=coords)
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> ImpactCurves:
+        """The curves back from :meth:`to_xarray`'s dataset (read from ``figures.nc``)."""
+        n, s, p = (dataset.sizes.get(d, 0) for d in ("point", "ball_speed", "support"))
+        values = {
+            attribute: _array(dataset[_QUANTITY[attribute].name].values)
+            if _QUANTITY[attribute].name in dataset
+            else _EMPTY
+            for attribute in (*_CURVE_QUANTITIES, "vibration_energy")
+        }
+        status = np.asarray(dataset["status"].values, dtype=str).reshape(n, s, p)
+        return cls(
+            locations=np.column_stack([_array(dataset["x_m"].values), dataset["y_m"].values]),
+            labels=_strings(dataset["label"].values),
+            ball_speed=_array(dataset["ball_speed_mps"].values),
+            racket_speed=_array(dataset["racket_speed_mps"].values),
+            supports=_strings(dataset["support_name"].values),
+            status=status,
+            **values,
+        )
+
+
+# --- Fig. 13 and Fig. 14 --------------------------------------------------------------------
+@dataclass(frozen=True)
+class PulseSpectra:
+    """Paper Fig. 13: the half-sine force at one point and its spectrum, per ball speed.
+
+    Attributes
+    ----------
+    support : str
+        Support of the impacts.
+    location : tuple of float
+        Impact point (x, y), m.
+    ball_speed : ndarray (n_speeds,)
+        Incoming ball speeds, m/s.
+    contact_time, peak_force : ndarray (n_speeds,)
+        T_c, s, and F_MAX, N (NaN where flagged).
+    status : ndarray of str (n_speeds,)
+        Impact status.
+    time : ndarray (n_times,)
+        Time from first contact, s.
+    force : ndarray (n_speeds, n_times)
+        Half-sine force F(t), N (eq 11; NaN for a flagged speed).
+    frequency : ndarray (n_frequencies,)
+        Frequency, Hz.
+    spectrum : ndarray (n_speeds, n_frequencies)
+        |S(f)|, N·s (NaN for a flagged speed).
+    mode_names : tuple of str
+        The modes within the frequency range.
+    mode_frequency : ndarray (n_modes,)
+        Their natural frequencies, Hz.
+    modal : bool
+        The racket has a modal model (False: rigid).
+    description : str
+        The run's options in words, for the title.
+    """
+
+    support: str
+    location: tuple[float, float]
+    ball_speed: NDArray[np.float64]
+    contact_time: NDArray[np.float64]
+    peak_force: NDArray[np.float64]
+    status: NDArray[np.str_]
+    time: NDArray[np.float64]
+    force: NDArray[np.float64]
+    frequency: NDArray[np.float64]
+    spectrum: NDArray[np.float64]
+    mode_names: tuple[str, ...]
+    mode_frequency: NDArray[np.float64]
+    modal: bool
+    description: str
+
+    def drawn(self) -> NDArray[np.bool_]:
+        """Which speeds have a pulse to draw (a finite contact time and status ``ok``)."""
+        return np.asarray(np.isfinite(self.contact_time) & (self.status == STATUS_OK))
+
+    def to_xarray(self) -> xr.Dataset:
+        """Dims ``ball_speed``, ``time``, ``frequency``, ``mode``; ``force_n`` and
+        ``spectrum_n_s``, the pulse's ``contact_time_s``, ``peak_force_n`` and ``status``."""
+        import xarray as xr
+
+        return xr.Dataset(
+            {
+                "contact_time_s": ("ball_speed", self.contact_time, {"units": "s"}),
+                "peak_force_n": ("ball_speed", self.peak_force, {"units": "N"}),
+                "status": ("ball_speed", np.asarray(self.status, dtype=str)),
+                "force_n": (("ball_speed", "time"), self.force, {"units": "N"}),
+                "spectrum_n_s": (("ball_speed", "frequency"), self.spectrum, {"units": "N s"}),
+            },
+            coords={
+                "ball_speed_mps": ("ball_speed", self.ball_speed, {"units": "m s-1"}),
+                "time_s": ("time", self.time, {"units": "s"}),
+                "frequency_hz": ("frequency", self.frequency, {"units": "Hz"}),
+                "mode_name": ("mode", list(self.mode_names)),
+                "mode_frequency_hz": ("mode", self.mode_frequency, {"units": "Hz"}),
+            },
+            attrs={
+                "support": self.support,
+                "x_m": self.location[0],
+                "y_m": self.location[1],
+                "modal": int(self.modal),
+                "description": self.description,
+            },
+        )
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> PulseSpectra:
+        """Back from :meth:`to_xarray`'s dataset."""
+        attrs = dataset.attrs
+        return cls(
+            support=str(attrs["support"]),
+            location=(float(attrs["x_m"]), float(attrs["y_m"])),
+            ball_speed=_array(dataset["ball_speed_mps"].values),
+            contact_time=_array(dataset["contact_time_s"].values),
+            peak_force=_array(dataset["peak_force_n"].values),
+            status=np.asarray(dataset["status"].values, dtype=str),
+            time=_array(dataset["time_s"].values),
+            force=_array(dataset["force_n"].values),
+            frequency=_array(dataset["frequency_hz"].values),
+            spectrum=_array(dataset["spectrum_n_s"].values),
+            mode_names=_strings(dataset["mode_name"].values),
+            mode_frequency=_array(dataset["mode_frequency_hz"].values),
+            modal=bool(int(attrs["modal"])),
+            description=str(attrs["description"]),
+        )
+
+
+@dataclass(frozen=True)
+class FrameVibration:
+    """Paper Fig. 14: one mode's displacement amplitude along the frame after an impact.
+
+    Attributes
+    ----------
+    response_x : ndarray (n_response,)
+        Points along the long axis, x from the butt, m.
+    location : tuple of float
+        Impact point (x, y), m.
+    ball_speed : ndarray (n_speeds,)
+        Incoming ball speeds, m/s.
+    supports : tuple of str
+        Supports.
+    amplitude : ndarray (n_response, n_speeds, n_supports)
+        Displacement amplitude X (eq 12) signed by the mode's shape, m (NaN where flagged).
+    status : ndarray of str (n_speeds, n_supports)
+        Impact status.
+    mode_name : str
+        The mode drawn.
+    description : str
+        The run's options in words, for the title.
+    """
+
+    response_x: NDArray[np.float64]
+    location: tuple[float, float]
+    ball_speed: NDArray[np.float64]
+    supports: tuple[str, ...]
+    amplitude: NDArray[np.float64]
+    status: NDArray[np.str_]
+    mode_name: str
+    description: str = ""
+
+    @classmethod
+    def of(
+        cls, result: ImpactResult, response_x: ArrayLike, mode: int = 0, point: int = 0
+    ) -> FrameVibration:
+        """The amplitude of mode ``mode`` along the axis after the impacts at ``point`` (eq 12).
+
+        Parameters
+        ----------
+        result : ImpactResult
+            Impacts of a flexible racket (with a modal model).
+        response_x : array_like
+            Points along the long axis, m from the butt.
+        mode : int
+            Which mode.
+        point : int
+            Which impact point of the result.
+        """
+        model = result.modal_model
+        if model is None:
+            raise ValueError("a rigid racket (no modal model) does not vibrate")
+        x = _array(response_x)
+        response = np.column_stack([x, np.zeros_like(x)])
+        sign = np.sign(model.mode_shapes_at(response)[:, mode])
+        amplitude = result.displacement_amplitude(response)[:, point, :, :, mode]
+        return cls(
+            response_x=x,
+            location=(float(result.locations[point, 0]), float(result.locations[point, 1])),
+            ball_speed=_array(result.ball_speed),
+            supports=tuple(result.supports),
+            amplitude=np.asarray(sign[:, None, None] * amplitude),
+            status=np.asarray(result.status, dtype=str)[point],
+            mode_name=model.names[mode],
+        )
+
+    def to_xarray(self) -> xr.Dataset:
+        """Dims ``x``, ``ball_speed``, ``support``: ``amplitude_m`` and ``status``."""
+        import xarray as xr
+
+        return xr.Dataset(
+            {
+                "amplitude_m": (
+                    ("x", "ball_speed", "support"),
+                    self.amplitude,
+                    {"units": "m", "long_name": "displacement amplitude (eq 12), signed by shape"},
+                ),
+                "status": (("ball_speed", "support"), np.asarray(self.status, dtype=str)),
+            },
+            coords={
+                "x_m": ("x", self.response_x, {"units": "m"}),
+                "ball_speed_mps": ("ball_speed", self.ball_speed, {"units": "m s-1"}),
+                "support_name": ("support", list(self.supports)),
+            },
+            attrs={
+                "impact_x_m": self.location[0],
+                "impact_y_m": self.location[1],
+                "mode_name": self.mode_name,
+                "description": self.description,
+            },
+        )
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> FrameVibration:
+        """Back from :meth:`to_xarray`'s dataset."""
+        attrs = dataset.attrs
+        return cls(
+            response_x=_array(dataset["x_m"].values),
+            location=(float(attrs["impact_x_m"]), float(attrs["impact_y_m"])),
+            ball_speed=_array(dataset["ball_speed_mps"].values),
+            supports=_strings(dataset["support_name"].values),
+            amplitude=_array(dataset["amplitude_m"].values),
+            status=np.asarray(dataset["status"].values, dtype=str),
+            mode_name=str(attrs["mode_name"]),
+            description=str(attrs["description"]),
+        )
+
+
+# --- datasets of several figures in one file ------------------------------------------------
+def _prefixed(dataset: xr.Dataset, key: str) -> xr.Dataset:
+    """Every name of ``dataset`` (variables, coordinates, dimensions, attributes) prefixed."""
+    names = {name: f"{key}{_SEP}{name}" for name in [*dataset.variables, *dataset.dims]}
+    renamed = dataset.rename(names)
+    renamed.attrs = {f"{key}{_SEP}{name}": value for name, value in dataset.attrs.items()}
+    return renamed
+
+
+def _join(parts: Mapping[str, xr.Dataset]) -> xr.Dataset:
+    """Datasets of several figures as one, each name prefixed with its figure's key."""
+    import xarray as xr
+
+    prefixed = [_prefixed(data, key) for key, data in parts.items()]
+    joined = xr.merge(prefixed, combine_attrs="drop") if prefixed else xr.Dataset()
+    for part in prefixed:
+        joined.attrs.update(part.attrs)
+    return joined
+
+
+def _part(dataset: xr.Dataset, key: str) -> xr.Dataset:
+    """The figure ``key``'s dataset, as :func:`_join` took it in."""
+    start = f"{key}{_SEP}"
+    names = [str(name) for name in dataset.variables if str(name).startswith(start)]
+    if not names:
+        raise KeyError(f"no data of the figure {key!r}")
+    chosen = dataset[[n for n in names if n in dataset.data_vars]]
+    chosen = chosen.assign_coords({n: dataset[n] for n in names if n in dataset.coords})
+    renamed = chosen.rename(
+        {
+            name: str(name)[len(start) :]
+            for name in [*chosen.variables, *chosen.dims]
+            if str(name).startswith(start)
+        }
+    )
+    renamed.attrs = {
+        name[len(start) :]: value for name, value in dataset.attrs.items() if name.startswith(start)
+    }
+    return renamed
+
+
+def _has(dataset: xr.Dataset, key: str) -> bool:
+    return any(str(name).startswith(f"{key}{_SEP}") for name in dataset.variables)
+
+
+def write_figure_data(path: Path, datasets: Sequence[xr.Dataset]) -> Path:
+    """Write the figures' data of a step into one netCDF file (``figures.nc``).
+
+    Parameters
+    ----------
+    path : Path
+        The file (netCDF 3, xarray's scipy engine).
+    datasets : sequence of xarray.Dataset
+        The ``to_xarray()`` of each figure-data object of the step (their names do not clash:
+        each is prefixed with its figures' keys).
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    import xarray as xr
+
+    joined = xr.merge(list(datasets), combine_attrs="drop")
+    for dataset in datasets:
+        joined.attrs.update(dataset.attrs)
+    joined.attrs["title"] = "racketdyn: the data each figure of the run draws"
+    joined.to_netcdf(path, engine="scipy")
+    return Path(path)
+
+
+def read_figure_data(path: Path) -> xr.Dataset:
+    """The dataset of a ``figures.nc`` (:func:`write_figure_data`), loaded.
+
+    Each figure-data class reads its part back with ``from_xarray`` (``PaperFigures.from_xarray(
+    read_figure_data(folder / FIGURES_FILE))``).
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    """
+    import xarray as xr
+
+    with xr.open_dataset(path, engine="scipy") as dataset:
+        return dataset.load()
+
+
+# --- the options in words, and the racket speed at any ball speed --------------------------
+def describe_options(
+    options: Mapping[str, Any], racket_speeds: Sequence[float], racket_speed: float | None = None
+) -> str:
+    """A run's impact options in words, for figure titles.
+
+    Parameters
+    ----------
+    options : mapping
+        Keywords of :func:`racketdyn.impact.predict` (``modal_model``, ``stiffness_reading``,
+        ``include_string_bed``, ``string_bed``).
+    racket_speeds : sequence of float
+        The run's racket speeds, m/s.
+    racket_speed : float, optional
+        The racket speed of a single-speed figure, m/s (default: the run's).
+    """
+    if racket_speed is None:
+        distinct = sorted(set(racket_speeds))
+        moving = len(distinct) > 1 or (distinct and distinct[0] != 0.0)
+        racket = (
+            "racket " + ", ".join(f"{v:g}" for v in racket_speeds) + " m/s"
+            if moving
+            else "racket at rest"
+        )
+    else:
+        racket = f"racket {racket_speed:g} m/s" if racket_speed else "racket at rest"
+    parts = [racket, f"eq 10 {options.get('stiffness_reading') or 'period'} reading"]
+    if options.get("include_string_bed"):
+        parts.append("string-bed modes charged")
+    if options.get("string_bed") == "local":
+        parts.append("each point's string-bed law")
+    if options.get("modal_model") is None:
+        parts.append("rigid racket")
+    return "; ".join(parts)
+
+
+def racket_speed_at(
+    speeds: ArrayLike, run_speeds: Sequence[float], racket_speeds: Sequence[float]
+) -> NDArray[np.float64]:
+    """Racket speed at each ball speed, m/s: the run's one racket speed, or the run's (ball
+    speed, racket speed) pairs interpolated linearly (held beyond their ends).
+
+    Parameters
+    ----------
+    speeds : array_like
+        Ball speeds, m/s.
+    run_speeds, racket_speeds : sequence of float
+        The run's ball speeds and racket speeds (one, or one per ball speed), m/s.
+    """
+    v = _array(speeds)
+    if len(set(racket_speeds)) <= 1 or len(racket_speeds) != len(run_speeds):
+        return np.full(v.shape, racket_speeds[0] if racket_speeds else 0.0)
+    order = np.argsort(run_speeds)
+    return _array(np.interp(v, _array(run_speeds)[order], _array(racket_speeds)[order]))
+
+
+def _curve_speeds(
+    run_speeds: Sequence[float], low: float, high: float, n: int
+) -> NDArray[np.float64]:
+    """A fixed sweep of ball speeds, stretched to the run's fastest, with the run's speeds in."""
+    top = max(high, *run_speeds) if run_speeds else high
+    return np.union1d(np.linspace(low, top, n), _array(run_speeds))
+
+
+def _main_support(supports: Sequence[str]) -> str:
+    """The support of single-support panels: pinned (the paper's hand-held) if run."""
+    return "pinned" if "pinned" in supports else supports[0]
+
+
+def _axis_points(racket: Racket, n: int, inset: float) -> NDArray[np.float64]:
+    head = racket.head
+    x = np.linspace(
+        head.throat_x_m + inset * head.half_length_m, head.tip_x_m - inset * head.half_length_m, n
+    )
+    return np.column_stack([x, np.full_like(x, head.centre_y_m)])
+
+
+# --- predict: the paper's figures ----------------------------------------------------------
+@dataclass(frozen=True)
+class PaperFigures:
+    """What the paper's figures of a ``predict`` run draw (Figs 11–15 and the face maps).
+
+    Attributes
+    ----------
+    racket_name : str
+        The racket's name, for titles.
+    head : HeadEllipse
+        The racket's string bed (the face maps' outline).
+    speed_curves : ImpactCurves
+        Figs 11–12: F_MEAN and T_c at the top, centre and throat against ball speed.
+    run_speeds : ndarray
+        The run's ball speeds, m/s (marked on the curves against speed).
+    pulse : PulseSpectra
+        Fig. 13.
+    frame : FrameVibration or None
+        Fig. 14 (None: a rigid racket, no vibration).
+    axis : ImpactCurves
+        Fig. 15: rebound ratio along the long axis at the shown speed.
+    axis_marks : dict of str to float
+        Fig. 15's marks on the axis (centre of percussion, the first mode's nodes), x in m.
+    face : ImpactCurves
+        The face maps: the run's impacts at the shown speed (rebound ratio, contact time,
+        vibration energy).
+    main_support : str
+        Support of the single-support panels.
+    description, axis_description, face_description : str
+        The run's options in words, for the titles (the latter two with their racket speed).
+    """
+
+    racket_name: str
+    head: HeadEllipse
+    speed_curves: ImpactCurves
+    run_speeds: NDArray[np.float64]
+    pulse: PulseSpectra
+    frame: FrameVibration | None
+    axis: ImpactCurves
+    axis_marks: dict[str, float]
+    face: ImpactCurves
+    main_support: str
+    description: str
+    axis_description: str
+    face_description: str
+
+    def to_xarray(self) -> xr.Dataset:
+        """One dataset, each figure's names prefixed with its key and ``__``: ``fig11_12``,
+        ``fig13``, ``fig14`` (absent for a rigid racket), ``fig15``, ``face_maps``."""
+        curves = self.speed_curves.to_xarray().assign_coords(
+            run_speed_mps=("run_speed", self.run_speeds, {"units": "m s-1"})
+        )
+        curves.attrs = {
+            "racket_name": self.racket_name,
+            "description": self.description,
+            **{f"head_{key}": float(getattr(self.head, key)) for key in _HEAD},
+        }
+        axis = self.axis.to_xarray().assign_coords(
+            mark_name=("mark", list(self.axis_marks)),
+            mark_x_m=("mark", _array(list(self.axis_marks.values())), {"units": "m"}),
+        )
+        axis.attrs = {"description": self.axis_description}
+        face = self.face.to_xarray()
+        face.attrs = {"main_support": self.main_support, "description": self.face_description}
+        parts = {"fig11_12": curves, "fig13": self.pulse.to_xarray()}
+        if self.frame is not None:
+            parts["fig14"] = self.frame.to_xarray()
+        parts |= {"fig15": axis, "face_maps": face}
+        return _join(parts)
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> PaperFigures:
+        """Back from :meth:`to_xarray`'s dataset (or a ``figures.nc`` holding it)."""
+        curves, axis, face = (_part(dataset, k) for k in ("fig11_12", "fig15", "face_maps"))
+        return cls(
+            racket_name=str(curves.attrs["racket_name"]),
+            head=HeadEllipse(**{key: float(curves.attrs[f"head_{key}"]) for key in _HEAD}),
+            speed_curves=ImpactCurves.from_xarray(curves),
+            run_speeds=_array(curves["run_speed_mps"].values),
+            pulse=PulseSpectra.from_xarray(_part(dataset, "fig13")),
+            frame=FrameVibration.from_xarray(_part(dataset, "fig14"))
+            if _has(dataset, "fig14")
+            else None,
+            axis=ImpactCurves.from_xarray(axis),
+            axis_marks={
+                str(name): float(x)
+                for name, x in zip(axis["mark_name"].values, axis["mark_x_m"].values, strict=True)
+            },
+            face=ImpactCurves.from_xarray(face),
+            main_support=str(face.attrs["main_support"]),
+            description=str(curves.attrs["description"]),
+            axis_description=str(axis.attrs["description"]),
+            face_description=str(face.attrs["description"]),
+        )
+
+
+def paper_figures(
+    racket: Racket,
+    ball: Ball,
+    *,
+    speeds: Sequence[float] = (),
+    racket_speeds: Sequence[float] = (0.0,),
+    supports: Sequence[str] = ("pinned", "free"),
+    shown_speed: float = SHOWN_SPEED_MPS,
+    result: ImpactResult | None = None,
+    **options: Any,
+) -> PaperFigures:
+    """Compute what the paper's figures draw, with the run's racket, ball and options.
+
+    The figures that need a grid of their own (curves against speed, the long axis, the tip)
+    get it here, by :func:`racketdyn.impact.predict` with the run's options; the face maps
+    take the run's own impacts.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The run's racket and ball.
+    speeds : sequence of float
+        The run's ball speeds, m/s (none: the figures' own); marked on the curves against
+        speed, the speeds of Figs 13 and 14.
+    racket_speeds : sequence of float
+        The run's racket speeds, m/s: one, or one per speed of ``speeds``.
+    supports : sequence of str
+        Supports to draw (``free``, ``pinned``).
+    shown_speed : float
+        Ball speed of the single-speed figures (face maps, Fig. 15), m/s.
+    result : ImpactResult, optional
+        The run's impacts (approximate method), drawn by the face maps; None: a 25 × 25 grid
+        at ``shown_speed``.
+    **options
+        The run's further keywords of :func:`racketdyn.impact.predict` (``modal_model``,
+        ``law``, ``stiffness_reading``, ``include_string_bed``, ``string_bed`` …), used as
+        they are.
+
+    Returns
+    -------
+    PaperFigures
+    """
+    supports = tuple(supports)
+    model: ModalModel | None = options.get("modal_model")
+
+    def run(
+        points: ArrayLike,
+        at: ArrayLike,
+        on: Sequence[str] = supports,
+        labels: Sequence[str] | None = None,
+    ) -> ImpactResult:
+        racket_speed = racket_speed_at(at, speeds, racket_speeds)
+        return predict(
+            racket, ball, points, at, on, racket_speed=racket_speed, labels=labels, **options
+        )
+
+    marks = landmark_points(racket)
+    names = ["top", "centre", "throat"]
+    curve_speeds = _curve_speeds(
+        speeds, CURVE_SPEEDS_MPS[0], CURVE_SPEEDS_MPS[-1], CURVE_SPEEDS_MPS.size
+    )
+    speed_curves = ImpactCurves.of(
+        run([marks[n] for n in names], curve_speeds, labels=names), ("mean_force", "contact_time")
+    )
+    description = describe_options(options, racket_speeds)
+    main = _main_support(supports)
+    pulse = _pulse_spectra(
+        run([marks["centre"]], _array(speeds or PULSE_SPEEDS_MPS), (main,), ["centre"]),
+        model,
+        description,
+    )
+    frame = None
+    if model is not None and model.n_modes:
+        tip = run([marks["tip"]], _array(speeds or VIBRATION_SPEEDS_MPS), labels=["tip"])
+        along = np.linspace(0.0, racket.length_m, FRAME_POINTS)
+        frame = FrameVibration(
+            **{**FrameVibration.of(tip, along).__dict__, "description": description}
+        )
+    axis_marks = {"centre of percussion (grip)": racket.centre_of_percussion_m()}
+    if model is not None and model.n_modes:
+        head = racket.head
+        nodes = axis_nodes(model, 0, (head.throat_x_m, head.tip_x_m))
+        for k, node in enumerate(nodes, 1):
+            name = model.names[0]
+            axis_marks[f"node of {name}" if nodes.size == 1 else f"node {k} of {name}"] = float(
+                node
+            )
+    axis_racket_speed = float(racket_speed_at([shown_speed], speeds, racket_speeds)[0])
+    if result is None:
+        result = run(racket.head.grid(25), [shown_speed])
+    hits = np.flatnonzero(np.isclose(result.ball_speed, shown_speed))
+    face = ImpactCurves.of(result, _FACE_QUANTITIES, [int(hits[0]) if hits.size else 0])
+    return PaperFigures(
+        racket_name=racket.name,
+        head=racket.head,
+        speed_curves=speed_curves,
+        run_speeds=_array(speeds),
+        pulse=pulse,
+        frame=frame,
+        axis=ImpactCurves.of(run(_axis_points(racket, AXIS_POINTS, 0.05), [shown_speed])),
+        axis_marks=axis_marks,
+        face=face,
+        main_support=main if main in face.supports else face.supports[0],
+        description=description,
+        axis_description=describe_options(options, racket_speeds, axis_racket_speed),
+        face_description=describe_options(options, racket_speeds, float(face.racket_speed[0])),
+    )
+
+
+def _pulse_spectra(
+    result: ImpactResult, model: ModalModel | None, description: str
+) -> PulseSpectra:
+    """Fig. 13's pulses and spectra from the impacts at one point on one support (eq 11)."""
+    time, frequency = PULSE_TIME_S, PULSE_FREQUENCY_HZ
+    contact, peak = result.contact_time[0, :, 0], result.peak_force[0, :, 0]
+    status = np.asarray(result.status, dtype=str)[0, :, 0]
+    force = np.full((contact.size, time.size), np.nan)
+    spectrum = np.full((contact.size, frequency.size), np.nan)
+    for s in range(contact.size):
+        if np.isfinite(contact[s]) and status[s] == STATUS_OK:
+            force[s] = half_sine_force(time, contact[s], peak[s])
+            spectrum[s] = half_sine_spectrum(frequency, contact[s], peak[s])
+    within = (
+        [] if model is None else [k for k, f in enumerate(model.frequency) if f <= frequency[-1]]
+    )
+    return PulseSpectra(
+        support=result.supports[0],
+        location=(float(result.locations[0, 0]), float(result.locations[0, 1])),
+        ball_speed=_array(result.ball_speed),
+        contact_time=_array(contact),
+        peak_force=_array(peak),
+        status=status,
+        time=time,
+        force=force,
+        frequency=frequency,
+        spectrum=spectrum,
+        mode_names=tuple(model.names[k] for k in within) if model is not None else (),
+        mode_frequency=_array([model.frequency[k] for k in within])
+        if model is not None
+        else _array([]),
+        modal=model is not None,
+        description=description,
+    )
+
+
+# --- predict --model both: the two models against speed ---------------------------------------
+@dataclass(frozen=True)
+class TransientCurves:
+    """Rebound ratio and contact time against speed at the centre, tip and throat, by the
+    approximate method and the transient simulation on the same impacts.
+
+    Attributes
+    ----------
+    approximate, transient : ImpactCurves
+        Each model's impacts (``rebound_ratio``, ``contact_time``).
+    run_speeds : ndarray
+        The run's ball speeds, m/s (marked).
+    description : str
+        The run's options in words, for the title.
+    """
+
+    approximate: ImpactCurves
+    transient: ImpactCurves
+    run_speeds: NDArray[np.float64]
+    description: str
+
+    def to_xarray(self) -> xr.Dataset:
+        """One dataset: ``transient_speed_approximate__…`` and ``transient_speed_transient__…``."""
+        approximate = self.approximate.to_xarray().assign_coords(
+            run_speed_mps=("run_speed", self.run_speeds, {"units": "m s-1"})
+        )
+        approximate.attrs = {"description": self.description}
+        return _join(
+            {
+                "transient_speed_approximate": approximate,
+                "transient_speed_transient": self.transient.to_xarray(),
+            }
+        )
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> TransientCurves:
+        """Back from :meth:`to_xarray`'s dataset (or a ``figures.nc`` holding it)."""
+        approximate = _part(dataset, "transient_speed_approximate")
+        return cls(
+            approximate=ImpactCurves.from_xarray(approximate),
+            transient=ImpactCurves.from_xarray(_part(dataset, "transient_speed_transient")),
+            run_speeds=_array(approximate["run_speed_mps"].values),
+            description=str(approximate.attrs["description"]),
+        )
+
+    @staticmethod
+    def in_dataset(dataset: xr.Dataset) -> bool:
+        """Whether a ``figures.nc`` holds these curves."""
+        return _has(dataset, "transient_speed_approximate")
+
+
+def transient_curves(
+    racket: Racket,
+    ball: Ball,
+    *,
+    speeds: Sequence[float] = (),
+    racket_speeds: Sequence[float] = (0.0,),
+    supports: Sequence[str] = ("free", "pinned"),
+    engine: Engine = "auto",
+    **options: Any,
+) -> TransientCurves:
+    """Both impact models at the centre, tip and throat against speed, with the run's options.
+
+    At :data:`TRANSIENT_CURVE_SPEEDS_MPS` (stretched to the run's fastest) and the run's
+    speeds; supports those the approximate method takes (free, pinned).
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The run's racket and ball.
+    speeds, racket_speeds : sequence of float
+        The run's ball speeds and racket speeds (one, or one per speed), m/s.
+    supports : sequence of str
+        Supports.
+    engine : str
+        Transient engine.
+    **options
+        The run's keywords of :func:`racketdyn.impact.predict` (``modal_model``, ``law``,
+        ``include_string_bed``, ``string_bed``, ``stiffness_reading`` …); those the transient
+        model takes too go to :func:`~racketdyn.impact.transient.predict_transient`.
+    """
+    marks = landmark_points(racket)
+    names = ["centre", "tip", "throat"]
+    points = [marks[n] for n in names]
+    at = _curve_speeds(
+        speeds,
+        TRANSIENT_CURVE_SPEEDS_MPS[0],
+        TRANSIENT_CURVE_SPEEDS_MPS[-1],
+        TRANSIENT_CURVE_SPEEDS_MPS.size,
+    )
+    common = {
+        "labels": names,
+        "racket_speed": racket_speed_at(at, speeds, racket_speeds),
+        **{k: v for k, v in options.items() if k != "stiffness_reading"},
+    }
+    approximate = predict(
+        racket,
+        ball,
+        points,
+        at,
+        supports,
+        stiffness_reading=options.get("stiffness_reading") or "period",
+        **common,
+    )
+    transient = predict_transient(racket, ball, points, at, supports, engine=engine, **common)
+    kept = ("rebound_ratio", "contact_time")
+    return TransientCurves(
+        approximate=ImpactCurves.of(approximate, kept),
+        transient=ImpactCurves.of(transient, kept),
+        run_speeds=_array(speeds),
+        description=describe_options(options, racket_speeds),
+    )
+
+
+# --- swing: outgoing speed along the axis ------------------------------------------------------
+@dataclass(frozen=True)
+class SwingAxisCurves:
+    """Outgoing ball speed along the long axis for the racket at rest and a few swings.
+
+    Attributes
+    ----------
+    names : tuple of str
+        Each swing's legend name (:func:`racketdyn.impact.swing.axis_swings`).
+    curves : tuple of ImpactCurves
+        One per swing: points along the axis × the ball speed × the support (``rebound_speed``).
+    ball_speed : float
+        Incoming ball speed, m/s.
+    support : str
+        Support during the impact.
+    model : str
+        Impact model.
+    swing_description : str
+        The run's swing in words.
+    """
+
+    names: tuple[str, ...]
+    curves: tuple[ImpactCurves, ...]
+    ball_speed: float
+    support: str
+    model: str
+    swing_description: str
+
+    def to_xarray(self) -> xr.Dataset:
+        """One dataset: ``swing_axis_<k>__…`` for the k-th swing (its name in attribute
+        ``swing_axis_<k>__name``)."""
+        parts = {}
+        for k, (name, curves) in enumerate(zip(self.names, self.curves, strict=True)):
+            data = curves.to_xarray()
+            data.attrs = {
+                "name": name,
+                "ball_speed_mps": self.ball_speed,
+                "support": self.support,
+                "model": self.model,
+                "swing": self.swing_description,
+            }
+            parts[f"swing_axis_{k}"] = data
+        return _join(parts)
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> SwingAxisCurves:
+        """Back from :meth:`to_xarray`'s dataset (or a ``figures.nc`` holding it)."""
+        parts: list[xr.Dataset] = []
+        while _has(dataset, f"swing_axis_{len(parts)}"):
+            parts.append(_part(dataset, f"swing_axis_{len(parts)}"))
+        first = parts[0].attrs
+        return cls(
+            names=tuple(str(p.attrs["name"]) for p in parts),
+            curves=tuple(ImpactCurves.from_xarray(p) for p in parts),
+            ball_speed=float(first["ball_speed_mps"]),
+            support=str(first["support"]),
+            model=str(first["model"]),
+            swing_description=str(first["swing"]),
+        )
+
+
+def swing_axis_curves(
+    racket: Racket,
+    ball: Ball,
+    swing: Swing,
+    ball_speed: float,
+    support: str,
+    model: ImpactModel = "approximate",
+    modal_model: ModalModel | None = None,
+    **options: Any,
+) -> SwingAxisCurves:
+    """Outgoing ball speed at :data:`SWING_AXIS_POINTS` points on the long axis for the swings
+    of :func:`~racketdyn.impact.swing.axis_swings`, with the run's ball, modes and options.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The run's racket and ball.
+    swing : Swing
+        The run's swing.
+    ball_speed : float
+        Incoming ball speed, m/s.
+    support : str
+        Support during the impact.
+    model : {"approximate", "transient"}
+        Impact model.
+    modal_model : ModalModel or None
+        Flexible modes (None: rigid racket).
+    **options
+        The run's further keywords of the impact model (``law``, ``hand`` …).
+    """
+    head = racket.head
+    step = 2.0 * head.half_length_m / SWING_AXIS_POINTS
+    x = head.throat_x_m + step * (np.arange(SWING_AXIS_POINTS) + 0.5)
+    points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
+    names, curves = [], []
+    for name, each in axis_swings(swing):
+        names.append(name)
+        result = predict_swing(
+            racket, ball, points, [ball_speed], each, support, model, modal_model, **options
+        )
+        curves.append(ImpactCurves.of(result, ("rebound_speed",)))
+    return SwingAxisCurves(
+        names=tuple(names),
+        curves=tuple(curves),
+        ball_speed=float(ball_speed),
+        support=support,
+        model=str(model),
+        swing_description=swing.describe(racket),
+    )
+
+
+# --- compare: Fig. 15 with the identified models -----------------------------------------------
+IDENTIFIED_CASES: tuple[tuple[str, str, str], ...] = (
+    ("pinned", "hand", "hand-held, hand-held modes"),
+    ("pinned", "free", "hand-held, free modes"),
+    ("free", "free", "freely supported, free modes"),
+)
+"""Fig. 15's curves with the identified models: (support, which modes, legend)."""
+
+
+@dataclass(frozen=True)
+class IdentifiedRebound:
+    """Paper Fig. 15 with the identified models: rebound ratio along the long axis.
+
+    Attributes
+    ----------
+    x : ndarray (n_points,)
+        Impact points along the long axis, m from the butt.
+    ball_speed : float
+        Incoming ball speed, m/s.
+    cases : tuple of str
+        Each curve's legend (:data:`IDENTIFIED_CASES`).
+    supports : tuple of str
+        Each curve's support.
+    rebound_ratio : ndarray (n_cases, n_points)
+        Rebound ratio e, dimensionless (NaN where flagged).
+    """
+
+    x: NDArray[np.float64]
+    ball_speed: float
+    cases: tuple[str, ...]
+    supports: tuple[str, ...]
+    rebound_ratio: NDArray[np.float64]
+
+    def to_xarray(self) -> xr.Dataset:
+        """One dataset, names prefixed ``fig15_identified__``: ``rebound_ratio`` on
+        (``case``, ``x``)."""
+        import xarray as xr
+
+        data = xr.Dataset(
+            {"rebound_ratio": (("case", "x"), self.rebound_ratio, {"units": "1"})},
+            coords={
+                "x_m": ("x", self.x, {"units": "m"}),
+                "case_name": ("case", list(self.cases)),
+                "support_name": ("case", list(self.supports)),
+            },
+            attrs={"ball_speed_mps": self.ball_speed},
+        )
+        return _join({"fig15_identified": data})
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> IdentifiedRebound:
+        """Back from :meth:`to_xarray`'s dataset (or a ``figures.nc`` holding it)."""
+        data = _part(dataset, "fig15_identified")
+        return cls(
+            x=_array(data["x_m"].values),
+            ball_speed=float(data.attrs["ball_speed_mps"]),
+            cases=_strings(data["case_name"].values),
+            supports=_strings(data["support_name"].values),
+            rebound_ratio=_array(data["rebound_ratio"].values),
+        )
+
+
+def identified_rebound(
+    racket: Racket, ball: Ball, free: ModalModel, hand: ModalModel, speed: float
+) -> IdentifiedRebound:
+    """Fig. 15 with the identified free and hand-held modes, with the run's ball.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The racket and the run's ball.
+    free, hand : ModalModel
+        The identified modes of the freely supported and of the hand-held racket.
+    speed : float
+        Incoming ball speed, m/s.
+    """
+    points = _axis_points(racket, AXIS_POINTS, 0.05)
+    models = {"free": free, "hand": hand}
+    rows = [
+        predict(racket, ball, points, [speed], (support,), modal_model=models[modes]).rebound_ratio[
+            :, 0, 0
+        ]
+        for support, modes, _ in IDENTIFIED_CASES
+    ]
+    return IdentifiedRebound(
+        x=points[:, 0].copy(),
+        ball_speed=float(speed),
+        cases=tuple(label for _, _, label in IDENTIFIED_CASES),
+        supports=tuple(support for support, _, _ in IDENTIFIED_CASES),
+        rebound_ratio=np.stack(rows),
+    )
+
+
+FigureData = PaperFigures | TransientCurves | SwingAxisCurves | IdentifiedRebound
+"""Any figure-data object a step writes to ``figures.nc``."""
