@@ -91,7 +91,13 @@ def test_swing_writes_its_files(swing_dir: Path, racket: rd.Racket) -> None:
     assert {r["support"] for r in rows} == {"pinned"}
     assert _header(swing_dir / "sweet_spots.csv") == list(SWEET_SPOT_COLUMNS)
     record = json.loads((swing_dir / "run.json").read_text(encoding="utf-8"))
-    written = ["swing.csv", "sweet_spots.csv", "swing_map.png", "swing_along_axis.png"]
+    written = [
+        "swing.csv",
+        "sweet_spots.csv",
+        "figures.nc",
+        "swing_map.png",
+        "swing_along_axis.png",
+    ]
     assert record["outputs"] == [*written, "run.json"]
     for name in written:
         assert (swing_dir / name).stat().st_size > 0, name
@@ -182,7 +188,7 @@ def test_swing_prints_the_sweet_spots(tmp_path: Path, capsys: pytest.CaptureFixt
         assert name in printed
     record = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))
     assert record["swing"]["angular_speed_radps"] == 10.0
-    assert record["outputs"] == ["swing.csv", "sweet_spots.csv", "run.json"]
+    assert record["outputs"] == ["swing.csv", "sweet_spots.csv", "figures.nc", "run.json"]
 
 
 # --- twist ---------------------------------------------------------------------------------------

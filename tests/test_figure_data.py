@@ -74,7 +74,6 @@ def _lines(figure: Figure) -> dict[str, np.ndarray]:
     }
 
 
-@pytest.mark.xfail(strict=True, reason="issue 23: compare's Fig. 15 takes a default Ball()")
 def test_compare_fig15_uses_the_runs_ball(
     frfs: tuple[Path, Path], tmp_path: Path, caught: Drawn
 ) -> None:

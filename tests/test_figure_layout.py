@@ -31,6 +31,7 @@ from racketdyn.impact.swing import Swing, sweet_spots
 from racketdyn.plotting import figures
 from racketdyn.plotting.primitives import label_rows
 from racketdyn.racket_modal.shapes import axis_nodes
+from racketdyn.workflows.figure_data import paper_figures, swing_axis_curves
 
 
 @pytest.fixture(autouse=True)
@@ -140,7 +141,7 @@ def test_fig6_node_labels_are_off_the_curves_and_apart(
 def test_fig13_mode_labels_are_off_the_spectra(
     racket: rd.Racket, ball: rd.Ball, model: rd.ModalModel
 ) -> None:
-    figure = figures.figure_pulse_spectrum(racket, ball, model)
+    figure = figures.figure_pulse_spectrum(paper_figures(racket, ball, modal_model=model))
     renderer = _renderer(figure)
     labels = _texts(figure, list(model.names))
     assert {t.get_text() for t in labels} == set(model.names)
@@ -152,7 +153,7 @@ def test_fig13_mode_labels_are_off_the_spectra(
 def test_fig15_labels_and_legend_are_off_the_curves(
     racket: rd.Racket, ball: rd.Ball, model: rd.ModalModel
 ) -> None:
-    figure = figures.figure_rebound_along_axis(racket, ball, model)
+    figure = figures.figure_rebound_along_axis(paper_figures(racket, ball, modal_model=model))
     renderer = _renderer(figure)
     names = ["centre of percussion (grip)", f"node of {model.names[0]}"]
     labels = _texts(figure, names)
@@ -168,7 +169,8 @@ def test_fig15_labels_and_legend_are_off_the_curves(
 def test_swing_legend_is_off_the_curves(racket: rd.Racket, ball: rd.Ball) -> None:
     swing = Swing()
     spots = sweet_spots(racket, ball, swing, 20.0, "pinned", n_axis=21)
-    figure = figures.figure_swing_along_axis(racket, ball, swing, 20.0, "pinned", spots=spots)
+    curves = swing_axis_curves(racket, ball, swing, 20.0, "pinned")
+    figure = figures.figure_swing_along_axis(curves, spots)
     renderer = _renderer(figure)
     legends = _legends(figure)
     assert legends

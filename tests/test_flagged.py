@@ -222,12 +222,14 @@ def test_fig14_draws_no_vibration_for_flagged_impacts(racket, ball) -> None:
     import matplotlib.pyplot as plt
 
     from racketdyn.plotting.primitives import plot_frame_amplitude
+    from racketdyn.workflows.figure_data import FrameVibration
 
     tip = landmark_points(racket)["tip"]
     result = _stale(predict(racket, ball, [tip], [10.0, 30.0], "pinned"))
     assert result.status[0, 1, 0] == STATUS_VIBRATION_LOSS
     figure, ax = plt.subplots()
-    plot_frame_amplitude(result, np.linspace(0.0, 0.68, 41), 0, "pinned", ax=ax)
+    vibration = FrameVibration.of(result, np.linspace(0.0, 0.68, 41), 0)
+    plot_frame_amplitude(vibration, "pinned", ax=ax)
     drawn = [line.get_label() for line in _finite_lines(ax)]
     assert [label for label in drawn if label.endswith("m/s")] == ["10 m/s"]
     labels = [t.get_text() for t in ax.get_legend().get_texts()]

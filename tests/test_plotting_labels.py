@@ -20,6 +20,7 @@ import racketdyn as rd
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.plotting import figures
 from racketdyn.rig.hammer import hammer_points
+from racketdyn.workflows.figure_data import paper_figures
 
 
 @pytest.fixture(autouse=True)
@@ -107,7 +108,8 @@ def test_face_map_labels_lie_inside_the_head_and_apart(
 ) -> None:
     """predict's face maps labelled their crowded levels towards the tip on top of each other
     (the rebound ratio falls from 0.08 to -0.32 in the last 40 mm)."""
-    _labels_inside_the_head_and_apart(figures.figure_face_maps(racket, ball, model), racket)
+    data = paper_figures(racket, ball, modal_model=model)
+    _labels_inside_the_head_and_apart(figures.figure_face_maps(data), racket)
 
 
 def _strip_above(figure: Figure, ax: Axes, labels: list[str]) -> tuple[float, float, float]:
@@ -129,7 +131,7 @@ def test_fig15_has_no_empty_strip_above_its_axes(
 ) -> None:
     """The two marks' labels stood upright above the axes: a strip a quarter of the figure high
     (137 px of 560), empty but for two thin words.  They now lie in rows of text."""
-    figure = figures.figure_rebound_along_axis(racket, ball, model)
+    figure = figures.figure_rebound_along_axis(paper_figures(racket, ball, modal_model=model))
     (ax,) = [a for a in figure.axes if a.get_ylabel()]
     labels = ["centre of percussion (grip)", f"node of {model.names[0]}"]
     strip, gap, line = _strip_above(figure, ax, labels)
@@ -140,7 +142,7 @@ def test_fig15_has_no_empty_strip_above_its_axes(
 def test_fig13_mode_labels_take_rows_not_a_tall_strip(
     racket: rd.Racket, ball: rd.Ball, model: rd.ModalModel
 ) -> None:
-    figure = figures.figure_pulse_spectrum(racket, ball, model)
+    figure = figures.figure_pulse_spectrum(paper_figures(racket, ball, modal_model=model))
     spectrum = figure.axes[1]
     strip, _, line = _strip_above(figure, spectrum, list(model.names))
     assert strip < 4.0 * line, f"{strip:.0f} px above the spectrum for {model.n_modes} labels"

@@ -14,6 +14,7 @@ from PIL import Image
 import racketdyn as rd
 from racketdyn.plotting import render
 from racketdyn.plotting.figures import FIGURES
+from racketdyn.workflows.figure_data import paper_figures
 
 
 def _figure(title: str = "a figure") -> plt.Figure:
@@ -94,7 +95,8 @@ def test_paper_figures_keep_their_content() -> None:
     try:
         racket = rd.default_racket()
         model = rd.modal_model_for(racket)
-        built = {name: build(racket, rd.Ball(), model) for name, build in FIGURES.items()}
+        data = paper_figures(racket, rd.Ball(), modal_model=model)
+        built = {name: build(data) for name, build in FIGURES.items()}
     finally:
         logging.disable(logging.NOTSET)
     try:

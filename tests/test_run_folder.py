@@ -91,7 +91,7 @@ def test_the_lock_of_an_ended_run_is_taken_over(tmp_path: Path) -> None:
     (out / f"{STAGING_PREFIX}{ended}" / "impact.csv").write_text("half", encoding="utf-8")
     (out / LOCK_NAME).write_text(ended, encoding="utf-8")
     assert main(["predict", *QUICK, "--out", str(out)]) == 0
-    assert sorted(p.name for p in out.iterdir()) == ["impact.csv", "run.json"]
+    assert sorted(p.name for p in out.iterdir()) == ["figures.nc", "impact.csv", "run.json"]
 
 
 def test_the_rig_tests_both_supports_into_one_folder(tmp_path: Path) -> None:

@@ -34,14 +34,14 @@ def test_predict_writes_its_folder_and_returns_the_result(tmp_path: Path) -> Non
     result = run_predict(tmp_path, racket=racket, speeds=[20.0], supports=["free"], grid=3)
 
     assert isinstance(result, PredictResult)
-    assert result.written == [tmp_path / "impact.csv"]
+    assert result.written == [tmp_path / "impact.csv", tmp_path / "figures.nc"]
     assert result.approximate is not None
     assert result.transient is None
     n = len(racket.head.grid(3))
     assert result.approximate.rebound_ratio.shape == (n, 1, 1)
     record = _record(tmp_path)
     assert record == result.record
-    assert record["outputs"] == ["impact.csv", "run.json"]
+    assert record["outputs"] == ["impact.csv", "figures.nc", "run.json"]
     assert record["command"] == ["python", "racketdyn.workflows.predict"]
     assert record["speeds_mps"] == [20.0]
     assert (
@@ -79,6 +79,7 @@ def test_predict_figures_come_from_the_hook_and_are_recorded(tmp_path: Path) -> 
         "impact_transient.csv",
         "transient_histories.csv",
         "comparison.csv",
+        "figures.nc",
         "figure.png",
     ]
     assert _record(tmp_path)["outputs"] == [p.name for p in result.written] + ["run.json"]

@@ -97,6 +97,7 @@ def add(commands: Any) -> None:
         help="with --ball-at: support of both tests, free or hand (default free)",
     )
     opt.add_speed(p, "20", many=False)
+    opt.add_ball(p)
     opt.add_allow_implausible(p)
     p.set_defaults(handler=run_compare)
 
@@ -209,22 +210,40 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.errors import InputError
     from racketdyn.plotting.steps import compare_figures
     from racketdyn.workflows.identify import run_compare as compare
+    from racketdyn.workflows.inputs import ball_from
 
     options = _options(args)
     ball_at = options.pop("ball_at")
+    ball_options = ("ball_mass", "e_bg", "e_bg_table", "ball_law")
     if ball_at is not None:
+        given = [name for name in ball_options if getattr(args, name) is not None]
+        if given:
+            flags = ", ".join("--" + name.replace("_", "-") for name in given)
+            raise InputError(
+                f"{flags}: the ball of the Fig. 15 check of free against hand-held; with "
+                "--ball-at there is no Fig. 15 check"
+            )
         return _run_compare_ball(args, console, ball_at, options)
     if args.support is not None:
         raise InputError(
             "--support: compare takes the support from its two files (free, hand); --support "
             "is for --ball-at (both tests on one support)"
         )
+    ball, ball_defaults = ball_from(
+        args.ball_mass,
+        args.e_bg,
+        args.ball_law,
+        allow_implausible=args.allow_implausible,
+        e_bg_table=args.e_bg_table,
+    )
     with opt.progress_display(console) as progress:
         result = compare(
             args.free,
             args.hand,
             args.out,
             speed=args.speed,
+            ball=ball,
+            defaults=ball_defaults,
             allow_implausible=args.allow_implausible,
             figures=compare_figures,
             progress=progress,

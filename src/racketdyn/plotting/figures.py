@@ -1,8 +1,8 @@
 """The paper's figures for a racket, written as PNG files.
 
-The face maps draw the run's own impacts; the figures that need a grid of their own (curves
-against speed, the long axis, the tip) compute it with the run's options
-(:class:`FigureOptions`: supports, speeds, racket speed, law, eq 10 reading, string bed).
+Every figure only draws: what it shows was computed by the step's workflow with the run's own
+inputs (:mod:`racketdyn.workflows.figure_data`: :class:`PaperFigures`, :class:`TransientCurves`,
+:class:`SwingAxisCurves`, :class:`IdentifiedRebound`, written to the run's ``figures.nc``).
 """
 
 from __future__ import annotations
@@ -10,9 +10,8 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -20,24 +19,11 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
-from racketdyn.ball import Ball, RestoringForce
-from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
-from racketdyn.impact.approximate import StiffnessReading
 from racketdyn.impact.comparison import History, ModelComparison
-from racketdyn.impact.grid import StringBed
 from racketdyn.impact.oblique import ObliqueCurve, TangentialContact
-from racketdyn.impact.result import SHOWN_SPEED_MPS, ImpactResult
-from racketdyn.impact.swing import (
-    ImpactModel,
-    SweetSpot,
-    Swing,
-    SwingResult,
-    axis_swings,
-    predict_swing,
-)
-from racketdyn.impact.transient import predict_transient
+from racketdyn.impact.swing import SweetSpot, SwingResult
 from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FRF_UNITS, FrfSet
@@ -68,23 +54,36 @@ from racketdyn.plotting.primitives import (
     plot_twist_curve,
 )
 from racketdyn.plotting.render import FigureBatch, save_figure
-from racketdyn.racket import Racket, landmark_points
+from racketdyn.racket import Racket
 from racketdyn.racket_modal.shapes import axis_nodes
-from racketdyn.workflows.identify import ModeComparison, compare_modes
+from racketdyn.workflows.figure_data import (
+    SWING_AXIS_POINTS,
+    TRANSIENT_CURVE_SPEEDS_MPS,
+    IdentifiedRebound,
+    PaperFigures,
+    SwingAxisCurves,
+    TransientCurves,
+)
+from racketdyn.workflows.identify import ModeComparison
 
 __all__ = [
     "FIGURES",
+    "IDENTIFIED_STYLES",
     "OBLIQUE_FIGURE",
     "SWING_AXIS_POINTS",
     "SWING_FIGURES",
     "TRANSIENT_CURVE_SPEEDS_MPS",
     "TRANSIENT_FIGURES",
     "TWIST_FIGURE",
-    "FigureOptions",
-    "PaperFigure",
+    "figure_face_maps",
+    "figure_force_and_contact_time",
+    "figure_frame_vibration",
+    "figure_identified_rebound",
     "figure_mode_shapes",
     "figure_node_lines",
     "figure_oblique",
+    "figure_pulse_spectrum",
+    "figure_rebound_along_axis",
     "figure_swing_along_axis",
     "figure_swing_map",
     "figure_transient_comparison_face",
@@ -104,12 +103,6 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-CURVE_SPEEDS_MPS = np.linspace(5.0, 50.0, 46)
-VIBRATION_SPEEDS_MPS = (10.0, 20.0, 30.0)
-REBOUND_SPEED_MPS = SHOWN_SPEED_MPS
-TRANSIENT_CURVE_SPEEDS_MPS = np.linspace(5.0, 40.0, 15)
-"""Ball speeds of the approximate-against-transient curves (15 speeds: 3 points × 15 × 2
-supports ≈ 0.7 s with the scipy reference path of the transient model)."""
 TRANSIENT_FIGURES: dict[str, str] = {
     "face": "transient_comparison_face.png",
     "speed": "transient_comparison_speed.png",
@@ -123,182 +116,42 @@ def _save(figure: Figure, path: Path) -> Path:
     return save_figure(figure, path)
 
 
-@dataclass(frozen=True)
-class FigureOptions:
-    """What a ``predict`` run asked for, for the figures that compute on a grid of their own.
-
-    The defaults are the paper's (both supports, a racket at rest, the period reading of
-    eq 10, string-bed modes not charged); :func:`racketdyn.plotting.steps.predict_figures`
-    fills them from the run (:class:`racketdyn.workflows.PredictResult`).
-
-    Attributes
-    ----------
-    supports : tuple of str
-        Supports to draw (``free``, ``pinned``).
-    speeds : tuple of float
-        The run's incoming ball speeds, m/s (none: the figures' own speeds); marked on the
-        speed axes, the speeds of Figs 13 and 14.
-    racket_speeds : tuple of float
-        The run's racket speeds, m/s: one, or one per speed of ``speeds``.
-    shown_speed : float
-        Ball speed of the single-speed figures (face maps, Fig. 15), m/s.
-    law : RestoringForce or None
-        Compound ball+string law (None: :func:`racketdyn.contact.compound_law`).
-    include_string_bed : bool
-        String-bed modes charged as vibration loss.
-    stiffness_reading : {"period", "tangent"}
-        Reading of eq 10.
-    string_bed : {"uniform", "local"}
-        The string bed's law over the face (``local``: each point's own, ``law`` unused).
-    """
-
-    supports: tuple[str, ...] = ("pinned", "free")
-    speeds: tuple[float, ...] = ()
-    racket_speeds: tuple[float, ...] = (0.0,)
-    shown_speed: float = SHOWN_SPEED_MPS
-    law: RestoringForce | None = None
-    include_string_bed: bool = False
-    stiffness_reading: StiffnessReading = "period"
-    string_bed: StringBed = "uniform"
-
-    def racket_speed_at(self, speeds: ArrayLike) -> NDArray[np.float64]:
-        """Racket speed at each ball speed, m/s: the run's one racket speed, or the run's
-        (ball speed, racket speed) pairs interpolated linearly (held beyond their ends)."""
-        v = np.asarray(speeds, dtype=float)
-        if len(set(self.racket_speeds)) <= 1 or len(self.racket_speeds) != len(self.speeds):
-            return np.full(v.shape, self.racket_speeds[0] if self.racket_speeds else 0.0)
-        order = np.argsort(self.speeds)
-        return np.asarray(
-            np.interp(v, np.asarray(self.speeds)[order], np.asarray(self.racket_speeds)[order]),
-            dtype=float,
-        )
-
-    def main_support(self) -> str:
-        """The support of single-support panels: pinned (the paper's hand-held) if drawn."""
-        return "pinned" if "pinned" in self.supports else self.supports[0]
-
-    def impact_options(self, model: ModalModel | None) -> dict[str, Any]:
-        """Keywords of :func:`racketdyn.impact.predict` but the points, speeds and supports."""
-        return {
-            "modal_model": model,
-            "law": self.law,
-            "include_string_bed": self.include_string_bed,
-            "stiffness_reading": self.stiffness_reading,
-            "string_bed": self.string_bed,
-        }
-
-    def predict(
-        self,
-        racket: Racket,
-        ball: Ball,
-        model: ModalModel | None,
-        points: ArrayLike,
-        speeds: ArrayLike,
-        supports: Sequence[str] | None = None,
-        labels: Sequence[str] | None = None,
-    ) -> ImpactResult:
-        """:func:`racketdyn.impact.predict` with the run's options: its racket speed at each
-        ball speed (:meth:`racket_speed_at`), law, eq 10 reading and string-bed choice.
-
-        Parameters
-        ----------
-        racket, ball, model : Racket, Ball, ModalModel or None
-            The racket, ball and modes (None: rigid).
-        points : array_like
-            Impact locations (x, y), m.
-        speeds : array_like
-            Ball speeds, m/s.
-        supports : sequence of str, optional
-            Supports (default the run's).
-        labels : sequence of str, optional
-            Point labels.
-        """
-        return predict(
-            racket,
-            ball,
-            points,
-            speeds,
-            self.supports if supports is None else supports,
-            racket_speed=self.racket_speed_at(speeds),
-            labels=labels,
-            **self.impact_options(model),
-        )
-
-    def describe(self, model: ModalModel | None, racket_speed: float | None = None) -> str:
-        """The options in words, for titles: racket speed, eq 10 reading, string bed, rigid."""
-        if racket_speed is None:
-            distinct = sorted(set(self.racket_speeds))
-            moving = len(distinct) > 1 or (distinct and distinct[0] != 0.0)
-            racket = (
-                "racket " + ", ".join(f"{v:g}" for v in self.racket_speeds) + " m/s"
-                if moving
-                else "racket at rest"
-            )
-        else:
-            racket = f"racket {racket_speed:g} m/s" if racket_speed else "racket at rest"
-        parts = [racket, f"eq 10 {self.stiffness_reading} reading"]
-        if self.include_string_bed:
-            parts.append("string-bed modes charged")
-        if self.string_bed == "local":
-            parts.append("each point's string-bed law")
-        if model is None:
-            parts.append("rigid racket")
-        return "; ".join(parts)
-
-
-def _curve_speeds(options: FigureOptions, low: float, high: float, n: int) -> NDArray[np.float64]:
-    """A fixed sweep of ball speeds, stretched to the run's fastest, with the run's speeds in."""
-    top = max(high, *options.speeds) if options.speeds else high
-    return np.union1d(np.linspace(low, top, n), np.asarray(options.speeds, dtype=float))
-
-
 def _mark_run_speeds(
-    ax: Axes, speeds: NDArray[np.float64], values: NDArray[np.float64], options: FigureOptions
+    ax: Axes,
+    speeds: NDArray[np.float64],
+    values: NDArray[np.float64],
+    run_speeds: NDArray[np.float64],
 ) -> None:
     """The run's speeds on a curve against speed: markers on the curve's values there."""
-    if not options.speeds:
+    if not run_speeds.size:
         return
-    at = np.isin(speeds, np.asarray(options.speeds, dtype=float))
+    at = np.isin(speeds, run_speeds)
     ax.plot(speeds[at], values[at], "o", color="tab:red", markersize=4, label="the run's speeds")
 
 
-def figure_force_and_contact_time(
-    racket: Racket,
-    ball: Ball,
-    model: ModalModel | None,
-    options: FigureOptions | None = None,
-) -> Figure:
+def figure_force_and_contact_time(data: PaperFigures) -> Figure:
     """Paper Figs 11 and 12: F_MEAN and T_c against speed at the top, centre and throat.
 
     Parameters
     ----------
-    racket, ball : Racket, Ball
-        The racket and ball.
-    model : ModalModel or None
-        The racket's modes (None: rigid).
-    options : FigureOptions, optional
-        The run's supports, racket speed, law and eq 10 reading (default: the paper's); the
-        run's speeds are marked on the curves (a sweep from 5 m/s to 50 m/s or the fastest).
+    data : PaperFigures
+        The run's figure data (:func:`racketdyn.workflows.figure_data.paper_figures`): its
+        ``speed_curves``, with the run's speeds marked.
     """
-    options = options or FigureOptions()
-    marks = landmark_points(racket)
-    names = ["top", "centre", "throat"]
-    speeds = _curve_speeds(
-        options, CURVE_SPEEDS_MPS[0], CURVE_SPEEDS_MPS[-1], CURVE_SPEEDS_MPS.size
-    )
-    result = options.predict(racket, ball, model, [marks[n] for n in names], speeds, labels=names)
+    curves = data.speed_curves
+    names = list(curves.labels)
     figure, axes = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
     for ax, quantity in zip(axes, ("mean_force", "contact_time"), strict=True):
-        plot_speed_curves(result, quantity, names, ax=ax)
+        plot_speed_curves(curves, quantity, names, ax=ax)
         scale = 1e3 if quantity == "contact_time" else 1.0
-        values = np.asarray(getattr(result, quantity), dtype=float) * scale
+        values = np.asarray(getattr(curves, quantity), dtype=float) * scale
         for i in range(len(names)):
-            for p in range(len(options.supports)):
-                _mark_run_speeds(ax, speeds, values[i, :, p], options)
+            for p in range(len(curves.supports)):
+                _mark_run_speeds(ax, curves.ball_speed, values[i, :, p], data.run_speeds)
         _dedupe_legend(ax)
     axes[0].set_title("Fig. 11: equivalent impact force", fontsize=9)
     axes[1].set_title("Fig. 12: contact time", fontsize=9)
-    figure.suptitle(f"{racket.name}: {options.describe(model)}", fontsize=10)
+    figure.suptitle(f"{data.racket_name}: {data.description}", fontsize=10)
     return figure
 
 
@@ -333,27 +186,19 @@ def _dedupe_legend(ax: Axes, fontsize: float = 7) -> None:
     ax.legend(list(unique.values()), list(unique.keys()), fontsize=fontsize)
 
 
-def figure_frame_vibration(
-    racket: Racket,
-    ball: Ball,
-    model: ModalModel | None,
-    options: FigureOptions | None = None,
-) -> Figure:
+def figure_frame_vibration(data: PaperFigures) -> Figure:
     """Paper Fig. 14: first-mode displacement along the frame for an impact at the tip.
+
+    One panel per support of the run; flagged impacts are not drawn and are labelled.
 
     Parameters
     ----------
-    racket, ball : Racket, Ball
-        The racket and ball.
-    model : ModalModel or None
-        The racket's modes (None: rigid, a figure that says there is no vibration).
-    options : FigureOptions, optional
-        The run's speeds (default 10, 20, 30 m/s) with their racket speeds, its supports (one
-        panel each), law and options; flagged impacts are drawn dashed and labelled.
+    data : PaperFigures
+        The run's figure data: its ``frame`` (None: a rigid racket, a figure that says there
+        is no vibration).
     """
-    options = options or FigureOptions(supports=("free", "pinned"))
-    supports = options.supports
-    if model is None or not model.n_modes:
+    frame = data.frame
+    if frame is None:
         figure, ax = plt.subplots(figsize=(6, 2.5), layout="constrained")
         ax.set_axis_off()
         ax.text(
@@ -366,10 +211,7 @@ def figure_frame_vibration(
         )
         figure.suptitle("Fig. 14: frame vibration", fontsize=10)
         return figure
-    speeds = np.asarray(options.speeds or VIBRATION_SPEEDS_MPS, dtype=float)
-    result = options.predict(
-        racket, ball, model, [landmark_points(racket)["tip"]], speeds, supports, labels=["tip"]
-    )
+    supports = frame.supports
     figure, axes = plt.subplots(
         1,
         len(supports),
@@ -378,151 +220,85 @@ def figure_frame_vibration(
         sharey=True,
         squeeze=False,
     )
-    along = np.linspace(0.0, racket.length_m, 121)
     for ax, support in zip(axes[0], supports, strict=True):
-        plot_frame_amplitude(result, along, mode=0, support=support, ax=ax)
+        plot_frame_amplitude(frame, support=support, ax=ax)
     figure.suptitle(
         "Fig. 14: predicted frame vibration just after an impact at the tip (first mode only); "
-        + options.describe(model),
+        + frame.description,
         fontsize=10,
     )
     return figure
 
 
-def figure_rebound_along_axis(
-    racket: Racket,
-    ball: Ball,
-    model: ModalModel | None,
-    options: FigureOptions | None = None,
-) -> Figure:
+def figure_rebound_along_axis(data: PaperFigures) -> Figure:
     """Paper Fig. 15: rebound ratio along the long axis at the shown speed, per support.
 
     Parameters
     ----------
-    racket, ball : Racket, Ball
-        The racket and ball.
-    model : ModalModel or None
-        The racket's modes (None: rigid).
-    options : FigureOptions, optional
-        The run's shown speed (default 20 m/s) and its racket speed, supports, law, options.
+    data : PaperFigures
+        The run's figure data: its ``axis`` curves and ``axis_marks``.
     """
-    options = options or FigureOptions()
-    head = racket.head
-    x = np.linspace(
-        head.throat_x_m + 0.05 * head.half_length_m, head.tip_x_m - 0.05 * head.half_length_m, 31
-    )
-    points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
-    speed = options.shown_speed
-    racket_speed = float(options.racket_speed_at([speed])[0])
-    result = options.predict(racket, ball, model, points, [speed])
-    marks = {"centre of percussion (grip)": racket.centre_of_percussion_m()}
-    if model is not None and model.n_modes:
-        nodes = axis_nodes(model, 0, (head.throat_x_m, head.tip_x_m))
-        for k, node in enumerate(nodes, 1):
-            name = model.names[0]
-            marks[f"node of {name}" if nodes.size == 1 else f"node {k} of {name}"] = float(node)
+    axis = data.axis
     figure, ax = plt.subplots(figsize=(6.5, 5.6), layout="constrained")
-    plot_along_axis(result, "rebound_ratio", 0, ax=ax, marks=marks)
+    plot_along_axis(axis, "rebound_ratio", 0, ax=ax, marks=data.axis_marks)
     _legend_below(ax)
     ax.set_title(
-        f"Fig. 15: predicted rebound ratio, ball at {speed:g} m/s\n"
-        + options.describe(model, racket_speed),
+        f"Fig. 15: predicted rebound ratio, ball at {axis.ball_speed[0]:g} m/s\n"
+        + data.axis_description,
         fontsize=9,
     )
     return figure
 
 
-def figure_face_maps(
-    racket: Racket,
-    ball: Ball,
-    model: ModalModel | None,
-    options: FigureOptions | None = None,
-    result: ImpactResult | None = None,
-) -> Figure:
+def figure_face_maps(data: PaperFigures) -> Figure:
     """Face maps at one speed: rebound ratio (each support), contact time and vibration energy.
+
+    The run's impacts at the shown speed (points, not a contour, where they span no surface).
 
     Parameters
     ----------
-    racket, ball : Racket, Ball
-        The racket and ball.
-    model : ModalModel or None
-        The racket's modes (None: rigid).
-    options : FigureOptions, optional
-        The run's shown speed, supports and options (default: 20 m/s, pinned and free).
-    result : ImpactResult, optional
-        The run's impacts: the maps draw its points at ``options.shown_speed`` (points, not a
-        contour, where they span no surface).  None: a 25 × 25 grid computed here.
+    data : PaperFigures
+        The run's figure data: its ``face`` impacts and ``main_support``.
     """
-    options = options or FigureOptions()
-    if result is None:
-        speed = options.shown_speed
-        result = options.predict(racket, ball, model, racket.head.grid(25), [speed])
-    hits = np.flatnonzero(np.isclose(result.ball_speed, options.shown_speed))
-    s = int(hits[0]) if hits.size else 0
-    main = (
-        options.main_support()
-        if options.main_support() in result.supports
-        else (result.supports[0])
-    )
-    panels = [("rebound_ratio", support) for support in result.supports]
-    panels += [("contact_time", main), ("vibration_energy", main)]
+    face = data.face
+    panels = [("rebound_ratio", support) for support in face.supports]
+    panels += [("contact_time", data.main_support), ("vibration_energy", data.main_support)]
     columns = 2 if len(panels) == 4 else len(panels)
     rows = int(np.ceil(len(panels) / columns))
     figure, axes = plt.subplots(
         rows, columns, figsize=(5 * columns, 3.75 * rows), layout="constrained", squeeze=False
     )
     for ax, (quantity, support) in zip(axes.flat, panels, strict=True):
-        plot_face_map(result, racket, quantity, s, support, ax=ax)
-    racket_speed = float(result.racket_speed[s])
+        plot_face_map(face, data.head, quantity, 0, support, ax=ax)
     figure.suptitle(
-        f"{racket.name}: ball at {result.ball_speed[s]:g} m/s, {len(result.locations)} points; "
-        + options.describe(model, racket_speed),
+        f"{data.racket_name}: ball at {face.ball_speed[0]:g} m/s, {len(face.locations)} points; "
+        + data.face_description,
         fontsize=10,
     )
     return figure
 
 
-def figure_pulse_spectrum(
-    racket: Racket,
-    ball: Ball,
-    model: ModalModel | None,
-    options: FigureOptions | None = None,
-) -> Figure:
+def figure_pulse_spectrum(data: PaperFigures) -> Figure:
     """Paper Fig. 13: the half-sine pulse at the face centre and its spectrum, against speed.
 
     Parameters
     ----------
-    racket, ball : Racket, Ball
-        The racket and ball.
-    model : ModalModel or None
-        The racket's modes (dotted; None: rigid).
-    options : FigureOptions, optional
-        The run's speeds (default 10, 20, 30, 40 m/s) with their racket speeds, its support
-        (pinned if run, else the first), law and options.
+    data : PaperFigures
+        The run's figure data: its ``pulse`` (the modes of the model dotted).
     """
-    options = options or FigureOptions()
-    support = options.main_support()
-    centre = landmark_points(racket)["centre"]
-    speeds = np.asarray(options.speeds or (*VIBRATION_SPEEDS_MPS, 40.0), dtype=float)
-    result = options.predict(racket, ball, model, [centre], speeds, (support,), labels=["centre"])
+    pulse = data.pulse
     figure, axes = plt.subplots(1, 2, figsize=(10, 4.6), layout="constrained")
-    frequency = np.linspace(0.0, 1500.0, 1501)
-    for s, speed in enumerate(result.ball_speed):
-        contact, peak = result.contact_time[0, s, 0], result.peak_force[0, s, 0]
-        if not np.isfinite(contact) or result.status[0, s, 0] != "ok":
-            continue
-        time = np.linspace(-0.5e-3, 7e-3, 751)
-        axes[0].plot(time * 1e3, half_sine_force(time, contact, peak), label=f"{speed:g} m/s")
+    frequency = pulse.frequency
+    for s in np.flatnonzero(pulse.drawn()):
+        speed, contact = pulse.ball_speed[s], pulse.contact_time[s]
+        axes[0].plot(pulse.time * 1e3, pulse.force[s], label=f"{speed:g} m/s")
         axes[1].plot(
-            frequency,
-            half_sine_spectrum(frequency, contact, peak),
-            label=f"{speed:g} m/s: T_c = {contact * 1e3:.2f} ms",
+            frequency, pulse.spectrum[s], label=f"{speed:g} m/s: T_c = {contact * 1e3:.2f} ms"
         )
-    if model is not None:
+    if pulse.modal:
         modes = [
             (float(f), name, "0.4")
-            for name, f in zip(model.names, model.frequency, strict=True)
-            if f <= frequency[-1]
+            for name, f in zip(pulse.mode_names, pulse.mode_frequency, strict=True)
         ]
         axes[1].set_xlim(frequency[0] - 30.0, frequency[-1] + 30.0)
         label_lines(axes[1], modes)
@@ -535,70 +311,45 @@ def figure_pulse_spectrum(
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
     figure.suptitle(
-        f"Fig. 13: half-sine impact force at the face centre ({SUPPORT_STYLE[support]['label']}) "
-        f"and its spectrum; modes of the model dotted\n{options.describe(model)}",
+        "Fig. 13: half-sine impact force at the face centre "
+        f"({SUPPORT_STYLE[pulse.support]['label']}) and its spectrum; modes of the model dotted"
+        f"\n{pulse.description}",
         fontsize=10,
     )
     return figure
 
 
-class PaperFigure(Protocol):
-    """A builder of :data:`FIGURES`: ``build(racket, ball, model, options) -> Figure``."""
-
-    def __call__(
-        self,
-        racket: Racket,
-        ball: Ball,
-        model: ModalModel | None,
-        options: FigureOptions | None = None,
-    ) -> Figure: ...
-
-
-FIGURES: dict[str, PaperFigure] = {
+FIGURES: dict[str, Callable[[PaperFigures], Figure]] = {
     "fig11_12_force_contact_time.png": figure_force_and_contact_time,
     "fig13_pulse_spectrum.png": figure_pulse_spectrum,
     "fig14_frame_vibration.png": figure_frame_vibration,
     "fig15_rebound_along_axis.png": figure_rebound_along_axis,
     "face_maps.png": figure_face_maps,
 }
-"""File name → figure builder."""
+"""File name → figure: each draws its part of a :class:`PaperFigures`."""
 
 
 def write_paper_figures(
-    racket: Racket,
-    ball: Ball,
-    model: ModalModel | None,
+    data: PaperFigures,
     out_dir: Path,
     progress: Callable[[str], None] | None = None,
-    options: FigureOptions | None = None,
-    result: ImpactResult | None = None,
 ) -> list[Path]:
     """Draw every figure in :data:`FIGURES` into ``out_dir``; returns the paths written.
 
     Parameters
     ----------
-    racket, ball : Racket, Ball
-        The racket and ball.
-    model : ModalModel or None
-        The racket's modes (None: rigid).
+    data : PaperFigures
+        What the figures draw (the run's ``PredictResult.paper_figures``).
     out_dir : Path
         Output folder.
     progress : callable, optional
         ``progress(file name)`` before each figure.
-    options : FigureOptions, optional
-        The run's supports, speeds and options (default: the paper's).
-    result : ImpactResult, optional
-        The run's impacts (approximate method), drawn by the face maps.
     """
     batch = FigureBatch()
     for name, build in FIGURES.items():
         if progress is not None:
             progress(name)
-        if name == "face_maps.png":
-            figure = figure_face_maps(racket, ball, model, options, result)
-        else:
-            figure = build(racket, ball, model, options)
-        batch.add(figure, Path(out_dir) / name)
+        batch.add(build(data), Path(out_dir) / name)
     written = batch.render()
     for path in written:
         log.info("wrote %s", path)
@@ -838,24 +589,59 @@ def _plot_axis_nodes(models: Sequence[ModalModel], racket: Racket, ax: Axes) -> 
     _legend_below(ax, columns=len(models) + 1)
 
 
+IDENTIFIED_STYLES: tuple[tuple[str, str, str], ...] = (
+    ("k", "s", "-"),
+    ("k", "s", "--"),
+    ("tab:blue", "D", "-"),
+)
+"""(colour, marker, line style) of each curve of :data:`~racketdyn.workflows.figure_data.
+IDENTIFIED_CASES` in the compare step's Fig. 15."""
+
+
+def figure_identified_rebound(data: IdentifiedRebound) -> Figure:
+    """Paper Fig. 15 with the identified models: rebound ratio along the long axis.
+
+    Parameters
+    ----------
+    data : IdentifiedRebound
+        The compare step's curves (:func:`racketdyn.workflows.figure_data.identified_rebound`,
+        with the run's ball).
+    """
+    figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
+    for k, label in enumerate(data.cases):
+        colour, marker, style = IDENTIFIED_STYLES[k % len(IDENTIFIED_STYLES)]
+        ax.plot(
+            data.x * 1e3,
+            data.rebound_ratio[k],
+            color=colour,
+            marker=marker,
+            markersize=3,
+            linestyle=style,
+            markerfacecolor="none" if style == "--" else colour,
+            label=label,
+        )
+    ax.set_xlabel("impact point, x from the butt (mm)")
+    ax.set_ylabel("rebound ratio e (–)")
+    ax.set_title(f"Fig. 15: identified models, ball at {data.ball_speed:g} m/s", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return figure
+
+
 def write_comparison(
     free: Identification,
     hand: Identification,
     racket: Racket,
-    ball: Ball,
     out_dir: Path,
-    comparison: ModeComparison | None = None,
-    speed: float = REBOUND_SPEED_MPS,
+    comparison: ModeComparison,
+    rebound: IdentifiedRebound,
 ) -> list[Path]:
     """Free against hand-held: frequency/damping figure, Fig. 6 overlay, Fig. 15 check.
 
-    The table (``comparison.csv``) is the compare step's (:func:`racketdyn.workflows.run_compare`);
-    ``comparison`` is its pairing (made here from ``free`` and ``hand`` if not given); ``speed``
-    the incoming ball speed of the Fig. 15 check, m/s.
+    The table (``comparison.csv``), the pairing (``comparison``) and the Fig. 15 curves
+    (``rebound``) are the compare step's (:func:`racketdyn.workflows.run_compare`).
     """
     out = Path(out_dir)
-    if comparison is None:
-        comparison = compare_modes(free, hand, racket)
     rows = comparison.rows
     batch = FigureBatch()
 
@@ -880,35 +666,7 @@ def write_comparison(
     _plot_axis_nodes([free.model, hand.model], racket, ax)
     batch.add(figure, out / "fig6_nodes_free_hand.png")
 
-    head = racket.head
-    x = np.linspace(
-        head.throat_x_m + 0.05 * head.half_length_m, head.tip_x_m - 0.05 * head.half_length_m, 31
-    )
-    points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
-    cases = (
-        ("pinned", hand.model, "hand-held, hand-held modes", "k", "s", "-"),
-        ("pinned", free.model, "hand-held, free modes", "k", "s", "--"),
-        ("free", free.model, "freely supported, free modes", "tab:blue", "D", "-"),
-    )
-    figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
-    for support, model, label, colour, marker, style in cases:
-        result = predict(racket, ball, points, [speed], (support,), modal_model=model)
-        ax.plot(
-            x * 1e3,
-            result.rebound_ratio[:, 0, 0],
-            color=colour,
-            marker=marker,
-            markersize=3,
-            linestyle=style,
-            markerfacecolor="none" if style == "--" else colour,
-            label=label,
-        )
-    ax.set_xlabel("impact point, x from the butt (mm)")
-    ax.set_ylabel("rebound ratio e (–)")
-    ax.set_title(f"Fig. 15: identified models, ball at {speed:g} m/s", fontsize=9)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    batch.add(figure, out / "fig15_identified.png")
+    batch.add(figure_identified_rebound(rebound), out / "fig15_identified.png")
     return batch.render()
 
 
@@ -1018,62 +776,21 @@ def figure_transient_comparison_face(
     return figure
 
 
-def figure_transient_comparison_speed(
-    racket: Racket,
-    ball: Ball,
-    model: ModalModel | None,
-    options: FigureOptions | None = None,
-    **transient_options: Any,
-) -> Figure:
+def figure_transient_comparison_speed(curves: TransientCurves) -> Figure:
     """Rebound ratio and contact time against speed, approximate against transient.
 
-    At the face centre, near the tip and near the throat
-    (:func:`racketdyn.racket.landmark_points`), at :data:`TRANSIENT_CURVE_SPEEDS_MPS` (to the
-    run's fastest) and the run's speeds (marked); one column per support.
+    At the face centre, near the tip and near the throat, one column per support; the run's
+    speeds marked.
 
     Parameters
     ----------
-    racket, ball : Racket, Ball
-        The racket and ball.
-    model : ModalModel or None
-        Modes of both models (None: rigid).
-    options : FigureOptions, optional
-        The run's supports (those the approximate method takes: free, pinned), speeds, racket
-        speed, law, string-bed option and eq 10 reading (default: the paper's).
-    **transient_options
-        Further keywords of :func:`~racketdyn.impact.transient.predict_transient` (engine).
+    curves : TransientCurves
+        Both models' curves (:func:`racketdyn.workflows.figure_data.transient_curves`).
     """
-    options = options or FigureOptions(supports=("free", "pinned"))
-    supports = options.supports
-    marks = landmark_points(racket)
-    names = ["centre", "tip", "throat"]
-    speeds = _curve_speeds(
-        options,
-        TRANSIENT_CURVE_SPEEDS_MPS[0],
-        TRANSIENT_CURVE_SPEEDS_MPS[-1],
-        TRANSIENT_CURVE_SPEEDS_MPS.size,
-    )
-    common: dict[str, Any] = {
-        "modal_model": model,
-        "labels": names,
-        "law": options.law,
-        "include_string_bed": options.include_string_bed,
-        "string_bed": options.string_bed,
-        "racket_speed": options.racket_speed_at(speeds),
-    }
-    points = [marks[n] for n in names]
-    approximate = predict(
-        racket,
-        ball,
-        points,
-        speeds,
-        supports,
-        stiffness_reading=options.stiffness_reading,
-        **common,
-    )
-    transient = predict_transient(
-        racket, ball, points, speeds, supports, **common, **transient_options
-    )
+    approximate, transient = curves.approximate, curves.transient
+    supports = approximate.supports
+    names = list(approximate.labels)
+    speeds = approximate.ball_speed
     figure, axes = plt.subplots(
         2,
         len(supports),
@@ -1089,7 +806,7 @@ def figure_transient_comparison_speed(
         ):
             ax = axes[row, p]
             for i, (name, colour) in enumerate(zip(names, colours, strict=True)):
-                x = marks[name][0]
+                x = approximate.locations[i, 0]
                 for result, style, model_name in (
                     (approximate, "--", "approximate"),
                     (transient, "-", "transient"),
@@ -1109,7 +826,7 @@ def figure_transient_comparison_speed(
                         label=f"{name} ({x * 1e3:.0f} mm), {model_name}",
                     )
                     if style == "-":
-                        _mark_run_speeds(ax, speeds, values * scale, options)
+                        _mark_run_speeds(ax, speeds, values * scale, curves.run_speeds)
             # rows either method flags (vibration loss, second contact …): hatched, counted
             flagged = np.stack(
                 [r.status[: len(names), :, p] != "ok" for r in (approximate, transient)]
@@ -1130,7 +847,7 @@ def figure_transient_comparison_speed(
     _legend_below(list(axes[0, :]), columns=3)
     figure.suptitle(
         "Approximate method (dashed) against the transient simulation (solid); "
-        + options.describe(model),
+        + curves.description,
         fontsize=10,
     )
     return figure
@@ -1220,7 +937,7 @@ def write_transient_figures(
     mode_names: Sequence[str] = (),
     comparison: ModelComparison | None = None,
     speed_index: int = 0,
-    curves: dict[str, Any] | None = None,
+    curves: TransientCurves | None = None,
 ) -> list[Path]:
     """Draw the transient model's figures (:data:`TRANSIENT_FIGURES`) into ``out_dir``.
 
@@ -1238,9 +955,8 @@ def write_transient_figures(
         Both models on the run's impacts: the face map at ``speed_index`` (none: no face map).
     speed_index : int
         Ball speed of the face map.
-    curves : dict, optional
-        Keywords of :func:`figure_transient_comparison_speed` but the racket (``ball``,
-        ``model``, ``options``, ``engine``): the curves against speed (none: no curves).
+    curves : TransientCurves, optional
+        Both models against speed (none: no curves).
 
     Returns
     -------
@@ -1256,7 +972,7 @@ def write_transient_figures(
         figure = figure_transient_comparison_face(comparison, racket, speed_index)
         batch.add(figure, out / TRANSIENT_FIGURES["face"])
     if curves is not None:
-        figure = figure_transient_comparison_speed(racket, **curves)
+        figure = figure_transient_comparison_speed(curves)
         batch.add(figure, out / TRANSIENT_FIGURES["speed"])
     written = batch.render()
     for path in written:
@@ -1271,9 +987,6 @@ TWIST_FIGURE = "twist.png"
 """The figure of ``racketdyn twist``."""
 OBLIQUE_FIGURE = "oblique.png"
 """The figure of ``racketdyn oblique``."""
-SWING_AXIS_POINTS = 41
-"""Points along the long axis of the along-axis swing figure (inset half a step from the frame,
-as :func:`racketdyn.impact.swing.sweet_spots` samples it)."""
 
 
 def figure_swing_map(
@@ -1311,57 +1024,23 @@ def figure_swing_map(
 
 
 def figure_swing_along_axis(
-    racket: Racket,
-    ball: Ball,
-    swing: Swing,
-    ball_speed: float,
-    support: str,
-    model: ImpactModel = "approximate",
-    modal_model: ModalModel | None = None,
-    spots: Mapping[str, SweetSpot] | None = None,
-    **options: Any,
+    curves: SwingAxisCurves, spots: Mapping[str, SweetSpot] | None = None
 ) -> Figure:
     """Outgoing ball speed along the long axis for the racket at rest and a few swings.
 
-    The swings of :func:`axis_swings`, at :data:`SWING_AXIS_POINTS` points on the long axis.
-
     Parameters
     ----------
-    racket, ball : Racket, Ball
-        The racket and ball.
-    swing : Swing
-        The swing of the run.
-    ball_speed : float
-        Incoming ball speed, m/s.
-    support : str
-        Support during the impact.
-    model : {"approximate", "transient"}
-        Impact model.
-    modal_model : ModalModel or None
-        Flexible modes (None: rigid racket).
+    curves : SwingAxisCurves
+        The curves (:func:`racketdyn.workflows.figure_data.swing_axis_curves`).
     spots : mapping of str to SweetSpot, optional
         Sweet spots to mark as vertical lines.
-    **options
-        Further keywords of the impact model (``law``, ``hand``, …).
     """
-    head = racket.head
-    step = 2.0 * head.half_length_m / SWING_AXIS_POINTS
-    x = head.throat_x_m + step * (np.arange(SWING_AXIS_POINTS) + 0.5)
-    points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
-    names, results = [], []
-    for name, each in axis_swings(swing):
-        names.append(name)
-        results.append(
-            predict_swing(
-                racket, ball, points, [ball_speed], each, support, model, modal_model, **options
-            )
-        )
     figure, ax = plt.subplots(figsize=(7.5, 6.0), layout="constrained")
-    plot_swing_along_axis(results, spots, support, ax=ax, names=names)
+    plot_swing_along_axis(list(curves.curves), spots, curves.support, ax=ax, names=curves.names)
     _legend_below(ax)
     figure.suptitle(
-        f"Outgoing ball speed along the long axis, ball {ball_speed:g} m/s, {model} model\n"
-        f"sweet spots for the swing {swing.describe(racket)}",
+        f"Outgoing ball speed along the long axis, ball {curves.ball_speed:g} m/s, "
+        f"{curves.model} model\nsweet spots for the swing {curves.swing_description}",
         fontsize=10,
     )
     return figure
@@ -1370,13 +1049,10 @@ def figure_swing_along_axis(
 def write_swing_figures(
     out_dir: Path,
     racket: Racket,
-    ball: Ball,
     result: SwingResult,
+    axis: SwingAxisCurves,
     spots: Mapping[str, SweetSpot] | None = None,
     speed_index: int = 0,
-    model: ImpactModel = "approximate",
-    modal_model: ModalModel | None = None,
-    **options: Any,
 ) -> list[Path]:
     """Draw the swing's figures (:data:`SWING_FIGURES`) into ``out_dir``.
 
@@ -1384,20 +1060,16 @@ def write_swing_figures(
     ----------
     out_dir : Path
         Output folder.
-    racket, ball : Racket, Ball
-        The racket and ball.
+    racket : Racket
+        The racket.
     result : SwingResult
         Impacts over the face.
+    axis : SwingAxisCurves
+        The outgoing speed along the axis for a few swings.
     spots : mapping of str to SweetSpot, optional
         Sweet spots to mark.
     speed_index : int
-        Ball speed of the map and the along-axis curves.
-    model : {"approximate", "transient"}
-        Impact model of the along-axis curves.
-    modal_model : ModalModel or None
-        Flexible modes of the along-axis curves.
-    **options
-        Further keywords of the impact model (``law``, ``hand``, …).
+        Ball speed of the map.
 
     Returns
     -------
@@ -1405,23 +1077,9 @@ def write_swing_figures(
         The files written.
     """
     out = Path(out_dir)
-    support = result.supports[0]
     batch = FigureBatch()
     batch.add(figure_swing_map(result, racket, spots, speed_index), out / SWING_FIGURES["map"])
-    batch.add(
-        figure_swing_along_axis(
-            racket,
-            ball,
-            result.swing,
-            float(result.ball_speed[speed_index]),
-            support,
-            model,
-            modal_model,
-            spots,
-            **options,
-        ),
-        out / SWING_FIGURES["axis"],
-    )
+    batch.add(figure_swing_along_axis(axis, spots), out / SWING_FIGURES["axis"])
     written = batch.render()
     for path in written:
         log.info("wrote %s", path)

@@ -27,7 +27,8 @@ from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FRF_UNITS, FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import PoleStability, SelectedPoles, Stabilisation
-from racketdyn.racket import Racket
+from racketdyn.racket import HeadEllipse, Racket
+from racketdyn.workflows.figure_data import FrameVibration, ImpactCurves
 
 __all__ = [
     "FLAGGED_STYLE",
@@ -80,7 +81,7 @@ def _axes(ax: Axes | None, size: tuple[float, float] = (5.0, 3.6)) -> Axes:
     return ax
 
 
-def _values(result: ImpactResult, quantity: str) -> NDArray[np.float64]:
+def _values(result: ImpactResult | ImpactCurves, quantity: str) -> NDArray[np.float64]:
     scale = QUANTITIES[quantity][1]
     values = np.asarray(getattr(result, quantity), dtype=float)
     if values.ndim == 2:  # reduced mass: (n, p) -> (n, s, p)
@@ -142,7 +143,10 @@ def mark_flagged_spans(
 
 
 def plot_speed_curves(
-    result: ImpactResult, quantity: str, point_names: Sequence[str], ax: Axes | None = None
+    result: ImpactResult | ImpactCurves,
+    quantity: str,
+    point_names: Sequence[str],
+    ax: Axes | None = None,
 ) -> Axes:
     """A quantity against incoming ball speed for each impact point and support (Figs 11–12).
 
@@ -190,46 +194,48 @@ def plot_speed_curves(
 
 
 def plot_frame_amplitude(
-    result: ImpactResult,
-    response_x_m: NDArray[np.float64],
-    mode: int = 0,
+    vibration: FrameVibration,
     support: str = "pinned",
-    point: int = 0,
     ax: Axes | None = None,
 ) -> Axes:
     """Displacement amplitude of one mode along the frame after an impact (Fig. 14), mm.
 
     Impacts without a valid result (their ``status``) are not drawn: the legend names each
-    with its reason, the panel says how many and is hatched when none is valid (issue 13)."""
+    with its reason, the panel says how many and is hatched when none is valid (issue 13).
+
+    Parameters
+    ----------
+    vibration : FrameVibration
+        The amplitudes along the frame
+        (:meth:`racketdyn.workflows.figure_data.FrameVibration.of`).
+    support : str
+        Which support's impacts.
+    ax : Axes, optional
+        Where to draw (a new figure if None).
+    """
     ax = _axes(ax)
-    response = np.column_stack([response_x_m, np.zeros_like(response_x_m)])
-    shapes = result.modal_model.mode_shapes_at(response)[:, mode] if result.modal_model else None
-    amplitude = result.displacement_amplitude(response)[
-        :, point, :, result.support_index(support), mode
-    ]
-    sign = np.sign(shapes) if shapes is not None else 1.0
-    p = result.support_index(support)
+    response_x_m = vibration.response_x
+    p = vibration.supports.index(support)
     flagged = []
-    for s, speed in enumerate(result.ball_speed):
-        status = str(result.status[point, s, p])
+    for s, speed in enumerate(vibration.ball_speed):
+        status = str(vibration.status[s, p])
         if status == STATUS_OK:
-            ax.plot(response_x_m * 1e3, sign * amplitude[:, s] * 1e3, label=f"{speed:g} m/s")
+            ax.plot(response_x_m * 1e3, vibration.amplitude[:, s, p] * 1e3, label=f"{speed:g} m/s")
         else:  # no curve: the method gives no pulse here (issue 13); the legend says why
             flagged.append(s)
             ax.plot([], [], " ", label=f"{speed:g} m/s: flagged, not drawn ({status})")
     if flagged:
         count = len(flagged)
-        if count == result.ball_speed.size:  # nothing valid in the panel: grey it all
+        if count == vibration.ball_speed.size:  # nothing valid in the panel: grey it all
             ax.axvspan(response_x_m[0] * 1e3, response_x_m[-1] * 1e3, zorder=0, **FLAGGED_STYLE)
     ax.axhline(0.0, color="0.5", linewidth=0.8)
-    ax.axvline(result.locations[point, 0] * 1e3, color="r", linestyle=":", label="impact point")
-    name = result.modal_model.names[mode] if result.modal_model else ""
+    ax.axvline(vibration.location[0] * 1e3, color="r", linestyle=":", label="impact point")
     note = (
-        f"\n{len(flagged)} of {result.ball_speed.size} speeds flagged: no valid vibration"
+        f"\n{len(flagged)} of {vibration.ball_speed.size} speeds flagged: no valid vibration"
         if flagged
         else ""
     )
-    ax.set_title(f"{SUPPORT_STYLE[support]['label']}: {name}{note}", fontsize=9)
+    ax.set_title(f"{SUPPORT_STYLE[support]['label']}: {vibration.mode_name}{note}", fontsize=9)
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("displacement amplitude (mm)")
     ax.grid(alpha=0.3)
@@ -326,7 +332,7 @@ def label_rows(centres: ArrayLike, widths: ArrayLike, space: float) -> list[int]
 
 
 def plot_along_axis(
-    result: ImpactResult,
+    result: ImpactResult | ImpactCurves,
     quantity: str,
     speed_index: int = 0,
     ax: Axes | None = None,
@@ -374,10 +380,14 @@ def plot_along_axis(
     return ax
 
 
-def plot_outline(racket: Racket, ax: Axes | None = None, **style: Any) -> Axes:
-    """The string-bed ellipse and the long axis (x, y in mm)."""
+def _head(racket: Racket | HeadEllipse) -> HeadEllipse:
+    return racket if isinstance(racket, HeadEllipse) else racket.head
+
+
+def plot_outline(racket: Racket | HeadEllipse, ax: Axes | None = None, **style: Any) -> Axes:
+    """The string-bed ellipse and the long axis (x, y in mm) of a racket or its head."""
     ax = _axes(ax)
-    head = racket.head
+    head = _head(racket)
     ax.add_patch(
         Ellipse(
             (head.centre_x_m * 1e3, head.centre_y_m * 1e3),
@@ -393,8 +403,8 @@ def plot_outline(racket: Racket, ax: Axes | None = None, **style: Any) -> Axes:
 
 
 def _contour_face(
-    ax: Axes, racket: Racket, locations: NDArray[np.float64], values: NDArray[np.float64],
-    *, label: str, levels: int,
+    ax: Axes, racket: Racket | HeadEllipse, locations: NDArray[np.float64],
+    values: NDArray[np.float64], *, label: str, levels: int,
 ) -> bool:  # fmt: skip
     """Filled, labelled contours of values at face points (mm), a colour bar and the head's
     outline, the points themselves as dots; where the valid points span no surface (fewer than
@@ -441,8 +451,8 @@ def _contour_face(
 
 
 def plot_face_map(
-    result: ImpactResult,
-    racket: Racket,
+    result: ImpactResult | ImpactCurves,
+    racket: Racket | HeadEllipse,
     quantity: str,
     speed_index: int = 0,
     support: str = "pinned",
@@ -541,7 +551,9 @@ after the labels are placed (a colour bar, tick labels), which makes the labels 
 units."""
 
 
-def label_contours_in_head(ax: Axes, lines: Any, racket: Racket, fmt: str) -> list[float]:
+def label_contours_in_head(
+    ax: Axes, lines: Any, racket: Racket | HeadEllipse, fmt: str
+) -> list[float]:
     """Label each contour level once, inside the string bed and apart from the other labels.
 
     matplotlib's own placement put several labels on the same spot where the levels crowd
@@ -558,7 +570,7 @@ def label_contours_in_head(ax: Axes, lines: Any, racket: Racket, fmt: str) -> li
         The map, its outline drawn (limits set, aspect equal), x and y in mm.
     lines : matplotlib ContourSet
         The contour lines.
-    racket : Racket
+    racket : Racket or HeadEllipse
         Its head bounds the labels.
     fmt : str
         Format of a label's value (``"%.2f"``).
@@ -568,7 +580,7 @@ def label_contours_in_head(ax: Axes, lines: Any, racket: Racket, fmt: str) -> li
     list of float
         The levels labelled.
     """
-    head = racket.head
+    head = _head(racket)
     centre = np.array([head.centre_x_m, head.centre_y_m]) * 1e3
     half = np.array([head.half_length_m, head.half_width_m]) * 1e3
     figure = ax.get_figure(root=True)
@@ -1036,7 +1048,7 @@ def plot_swing_map(
 
 
 def plot_swing_along_axis(
-    results: Sequence[SwingResult],
+    results: Sequence[SwingResult | ImpactCurves],
     spots: Mapping[str, SweetSpot] | None = None,
     support: str | None = None,
     ax: Axes | None = None,
@@ -1048,8 +1060,9 @@ def plot_swing_along_axis(
 
     Parameters
     ----------
-    results : sequence of SwingResult
-        Impacts on points along the long axis, one result per swing.
+    results : sequence of SwingResult or of ImpactCurves
+        Impacts on points along the long axis, one result per swing
+        (:class:`racketdyn.workflows.figure_data.SwingAxisCurves`' curves).
     spots : mapping of str to SweetSpot, optional
         Sweet spots to mark.
     support : str, optional
@@ -1070,7 +1083,12 @@ def plot_swing_along_axis(
         p = result.support_index(chosen)
         order = np.argsort(result.locations[:, 0])
         x_mm = result.locations[order, 0] * 1e3
-        name = names[k] if names is not None else f"Ω = {result.angular_speed_radps:.1f} rad/s"
+        if names is not None:
+            name = names[k]
+        elif isinstance(result, SwingResult):
+            name = f"Ω = {result.angular_speed_radps:.1f} rad/s"
+        else:
+            name = f"swing {k + 1}"
         colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, result.ball_speed.size))
         flagged = np.asarray(result.status)[order, :, p] != STATUS_OK  # (n, s)
         for s, (speed, colour) in enumerate(zip(result.ball_speed, colours, strict=True)):

@@ -12,7 +12,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from racketdyn.plotting.figures import FigureOptions
     from racketdyn.workflows.compound import CompoundResult
     from racketdyn.workflows.contact import ContactResult
     from racketdyn.workflows.frf import FrfResult
@@ -30,25 +29,10 @@ def _quiet(_: str) -> None:
     return None
 
 
-def figure_options(result: PredictResult) -> FigureOptions:
-    """What the run asked for, for the figures that compute on a grid of their own."""
-    from racketdyn.plotting.figures import FigureOptions
-
-    return FigureOptions(
-        supports=tuple(s for s in result.supports if s != "hand"),
-        speeds=tuple(result.speeds),
-        racket_speeds=tuple(result.racket_speed),
-        shown_speed=result.speeds[result.shown_speed],
-        law=None if result.string_bed == "local" else result.law,
-        include_string_bed=result.include_string_bed,
-        stiffness_reading=result.stiffness_reading,
-        string_bed=result.string_bed,
-    )
-
-
 def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], list[Path]]:
     """The paper's figures (approximate method) and the transient model's figures, drawn from
-    the run's impacts or computed with the run's options (:func:`figure_options`)."""
+    what the run computed (its ``paper_figures``, ``transient_curves``, comparison and time
+    histories)."""
 
     def draw(result: PredictResult, out: Path) -> list[Path]:
         from racketdyn.plotting.figures import (
@@ -58,27 +42,15 @@ def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], 
         )
 
         assert result.racket is not None
-        assert result.ball is not None
-        options = figure_options(result)
         written: list[Path] = []
-        if result.approximate is not None:
+        if result.paper_figures is not None:
             written += write_paper_figures(
-                result.racket,
-                result.ball,
-                result.modal_model,
+                result.paper_figures,
                 out,
                 progress=lambda name: status(f"drawing {name} ({len(FIGURES)} figures)"),
-                options=options,
-                result=result.approximate,
             )
         if result.transient is not None:
             status("drawing the transient model's figures")
-            curves = {
-                "ball": result.ball,
-                "model": result.modal_model,
-                "options": options,
-                "engine": result.engine,
-            }
             written += write_transient_figures(
                 out,
                 result.racket,
@@ -86,7 +58,7 @@ def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], 
                 result.mode_names,
                 result.comparison,
                 result.shown_speed,
-                curves if result.comparison is not None else None,
+                result.transient_curves,
             )
         return written
 
@@ -121,17 +93,19 @@ def identify_figures(result: IdentifyResult, out: Path) -> list[Path]:
 
 
 def compare_figures(result: CompareResult, out: Path) -> list[Path]:
-    """Both identifications' figures, the comparison figures and the Fig. 15 check."""
-    from racketdyn.ball import Ball
+    """Both identifications' figures, the comparison figures and the Fig. 15 check (with the
+    run's ball)."""
     from racketdyn.plotting.figures import write_comparison, write_identification
 
     assert result.free is not None
     assert result.hand is not None
     assert result.racket is not None
+    assert result.comparison is not None
+    assert result.rebound is not None
     written = write_identification(result.free, result.racket, out, "free")
     written += write_identification(result.hand, result.racket, out, "hand")
     written += write_comparison(
-        result.free, result.hand, result.racket, Ball(), out, result.comparison, result.speed
+        result.free, result.hand, result.racket, out, result.comparison, result.rebound
     )
     return written
 
@@ -148,18 +122,15 @@ def swing_figures(result: SwingStepResult, out: Path) -> list[Path]:
     from racketdyn.plotting.figures import write_swing_figures
 
     assert result.racket is not None
-    assert result.ball is not None
     assert result.swing_result is not None
+    assert result.axis_curves is not None
     return write_swing_figures(
         out,
         result.racket,
-        result.ball,
         result.swing_result,
+        result.axis_curves,
         result.spots,
         result.shown_speed,
-        result.impact_model,
-        result.modal_model,
-        **result.options,
     )
 
 

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn.ball import Ball
 from racketdyn.errors import InputError, require_speeds
 from racketdyn.impact.result import SHOWN_SPEED_MPS
 from racketdyn.io.frf_layout import read_frfs
@@ -31,7 +32,18 @@ from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
 from racketdyn.racket_modal.identify import name_if_racket
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME, axis_nodes
-from racketdyn.workflows.inputs import RacketInput, ball_location, load_racket_input
+from racketdyn.workflows.figure_data import (
+    FIGURES_FILE,
+    IdentifiedRebound,
+    identified_rebound,
+    write_figure_data,
+)
+from racketdyn.workflows.inputs import (
+    RacketInput,
+    ball_location,
+    ball_or_default,
+    load_racket_input,
+)
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
@@ -430,6 +442,11 @@ class CompareResult(StepResult):
         The modes paired by MAC and the first mode's nodes (``comparison.csv``).
     speed : float
         Incoming ball speed of the Fig. 15 check, m/s.
+    ball : Ball or None
+        The ball of the Fig. 15 check.
+    rebound : IdentifiedRebound or None
+        The Fig. 15 check: rebound ratio along the axis with the identified models and the
+        run's ball (in ``figures.nc``).
     """
 
     free: Identification | None = None
@@ -437,6 +454,8 @@ class CompareResult(StepResult):
     racket: Racket | None = None
     comparison: ModeComparison | None = None
     speed: float = CHECK_SPEED_MPS
+    ball: Ball | None = None
+    rebound: IdentifiedRebound | None = None
 
 
 @run_step
@@ -452,8 +471,10 @@ def run_compare(
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
     speed: float = CHECK_SPEED_MPS,
+    ball: Ball | None = None,
     allow_implausible: bool = False,
     reference: int | None = None,
+    defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[CompareResult, Path], list[Path]] | None = None,
     progress: Progress | None = None,
@@ -473,8 +494,12 @@ def run_compare(
     speed : float
         Incoming ball speed of the paper's Fig. 15 check with the identified models, m/s
         (default 20, the paper's).
+    ball : Ball, optional
+        The ball of the Fig. 15 check (default :class:`~racketdyn.ball.Ball`).
     allow_implausible : bool
         Let a speed beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
+    defaults : sequence of str
+        Defaults the caller filled in for its own inputs (the ball), added to run.json.
     command : sequence of str, optional
         The command as called, for run.json.
     figures : callable, optional
@@ -504,6 +529,12 @@ def run_compare(
     written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
     comparison = compare_modes(found_free, found_hand, the_racket)
     written.append(write_mode_comparison(comparison, out_dir))
+    the_ball, ball_defaults = ball_or_default(ball)
+    report(progress, "Fig. 15 with the identified models")
+    rebound = identified_rebound(
+        the_racket, the_ball, found_free.model, found_hand.model, float(check_speed)
+    )
+    written.append(write_figure_data(out_dir / FIGURES_FILE, [rebound.to_xarray()]))
     result = CompareResult(
         out_dir,
         written,
@@ -512,6 +543,8 @@ def run_compare(
         racket=the_racket,
         comparison=comparison,
         speed=float(check_speed),
+        ball=the_ball,
+        rebound=rebound,
     )
     inputs = {
         "free_file": str(Path(free).resolve()),
@@ -523,6 +556,12 @@ def run_compare(
         "modes_hand": found_hand.model.summary()["modes"],
         "first_mode_nodes_m": _first_mode_nodes(comparison),
         "fig15_ball_speed_mps": float(check_speed),
+        "fig15_ball": {
+            "mass_kg": the_ball.mass_kg,
+            "diameter_m": the_ball.diameter_m,
+            "e_bg": the_ball.e_bg,
+        },
+        "defaults_used": [*ball_defaults, *defaults],
     }
     return finish_run(result, inputs, command_record(command, "compare"), figures)
 

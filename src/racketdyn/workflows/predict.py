@@ -2,7 +2,8 @@
 both, with the time histories and the comparison of the two models.
 
 Writes ``impact.csv`` (``impact_transient.csv`` too with both models), ``transient_histories.csv``,
-``comparison.csv`` and ``run.json``; figures come from the caller's hook.
+``comparison.csv``, ``figures.nc`` (what the figures draw, computed here with the run's inputs:
+:mod:`racketdyn.workflows.figure_data`) and ``run.json``; figures come from the caller's hook.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -33,11 +34,19 @@ from racketdyn.impact.comparison import (
 from racketdyn.impact.grid import StringBed, check_string_bed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.result import shown_speed_index
-from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, predict_transient
+from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, Engine, predict_transient
 from racketdyn.io import racket_to_dict, read_points
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import SUPPORTS, Racket, landmark_points
+from racketdyn.workflows.figure_data import (
+    FIGURES_FILE,
+    PaperFigures,
+    TransientCurves,
+    paper_figures,
+    transient_curves,
+    write_figure_data,
+)
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
     Progress,
@@ -100,6 +109,11 @@ class PredictResult(StepResult):
         What the impact points are (a grid, a file, points given).
     hand : Hand or None
         The hand of the ``hand`` support.
+    paper_figures : PaperFigures or None
+        What the paper's figures draw (Figs 11–15, face maps), with the run's inputs (None
+        without the approximate method).
+    transient_curves : TransientCurves or None
+        Both models against speed (``model="both"``).
     """
 
     racket: Racket | None = None
@@ -122,6 +136,8 @@ class PredictResult(StepResult):
     rigid: bool = False
     points: str = ""
     hand: Hand | None = None
+    paper_figures: PaperFigures | None = None
+    transient_curves: TransientCurves | None = None
 
     @property
     def result(self) -> ImpactResult:
@@ -341,6 +357,7 @@ def run_predict(
     if result.approximate is not None and result.transient is not None:
         result.comparison = compare_models(result.approximate, result.transient)
         result.written.append(result.comparison.write_csv(out_dir / "comparison.csv"))
+    _figure_data(result, options, progress)
     inputs = {
         **used.provenance,
         "racket": racket_to_dict(used.racket),
@@ -356,6 +373,44 @@ def run_predict(
         **_transient_record(result.transient, result.approximate, engine),
     }
     return finish_run(result, inputs, command_record(command, "predict"), figures)
+
+
+def _figure_data(result: PredictResult, options: dict[str, Any], progress: Progress | None) -> None:
+    """What the figures draw, with the run's inputs and options, into ``figures.nc``."""
+    assert result.racket is not None
+    assert result.ball is not None
+    grid: dict[str, Any] = {
+        "speeds": result.speeds,
+        "racket_speeds": result.racket_speed,
+        "supports": tuple(s for s in result.supports if s != "hand"),
+    }
+    impact = {k: v for k, v in options.items() if k not in ("supports", "racket_speed")}
+    datasets = []
+    if result.approximate is not None:
+        report(progress, "computing the figures' curves")
+        result.paper_figures = paper_figures(
+            result.racket,
+            result.ball,
+            **grid,
+            shown_speed=result.speeds[result.shown_speed],
+            result=result.approximate,
+            stiffness_reading=result.stiffness_reading,
+            **impact,
+        )
+        datasets.append(result.paper_figures.to_xarray())
+    if result.comparison is not None:
+        report(progress, "both models against speed")
+        result.transient_curves = transient_curves(
+            result.racket,
+            result.ball,
+            **grid,
+            engine=cast("Engine", result.engine),
+            stiffness_reading=result.stiffness_reading,
+            **impact,
+        )
+        datasets.append(result.transient_curves.to_xarray())
+    if datasets:
+        result.written.append(write_figure_data(result.out / FIGURES_FILE, datasets))
 
 
 def transient_csv_name(model: str) -> str:

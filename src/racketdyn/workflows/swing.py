@@ -43,6 +43,12 @@ from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_speeds
 from racketdyn.racket import SUPPORTS, Racket
+from racketdyn.workflows.figure_data import (
+    FIGURES_FILE,
+    SwingAxisCurves,
+    swing_axis_curves,
+    write_figure_data,
+)
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.predict import MAX_GRID
 from racketdyn.workflows.run import (
@@ -187,6 +193,9 @@ class SwingStepResult(StepResult):
         Index of the speed of the sweet spots and figures.
     options : dict
         Keywords passed to the impact model (law, hand).
+    axis_curves : SwingAxisCurves or None
+        The outgoing speed along the axis for the racket at rest and a few swings, at the
+        shown speed (the along-axis figure; in ``figures.nc``).
     """
 
     swing_result: SwingResult | None = None
@@ -201,6 +210,7 @@ class SwingStepResult(StepResult):
     speeds: list[float] = field(default_factory=list)
     shown_speed: int = 0
     options: dict[str, Any] = field(default_factory=dict)
+    axis_curves: SwingAxisCurves | None = None
 
 
 def _spot_rows(
@@ -363,10 +373,22 @@ def run_swing(
         options=options,
     )
     result.spot_rows = _spot_rows(result, speed_list[chosen], used.modal_model)
+    report(progress, "outgoing speed along the axis for a few swings")
+    result.axis_curves = swing_axis_curves(
+        used.racket,
+        the_ball,
+        the_swing,
+        speed_list[chosen],
+        the_support,
+        impact_model,
+        used.modal_model,
+        **options,
+    )
     computed.write_csv(out_dir / "swing.csv")
     result.written += [
         out_dir / "swing.csv",
         write_rows(out_dir / "sweet_spots.csv", result.spot_rows),
+        write_figure_data(out_dir / FIGURES_FILE, [result.axis_curves.to_xarray()]),
     ]
     inputs = {
         **used.provenance,
