@@ -215,3 +215,95 @@ def test_computation_loads_no_presentation() -> None:
         [sys.executable, "-c", code], capture_output=True, text=True, check=True
     ).stdout.strip()
     assert loaded == "[]", f"importing the computation layer loaded {loaded}"
+
+
+# --- issue 23: the presentation layer draws, it never runs the physics ------------------------
+COMPUTING = ("racketdyn.impact", "racketdyn.rig", "racketdyn.measurement", "racketdyn.workflows")
+"""Packages whose computations plotting/ and report/ must not call (their types and constants
+they may import: a figure draws what the step computed, docs/develop.md "Layers")."""
+PURE_HELPERS = {
+    "racketdyn.impact.result.shown_speed_index",  # which of the run's speeds a table shows
+    "racketdyn.impact.result.invalidate_table",  # NaN in the flagged rows of a table read back
+    "racketdyn.workflows.run.sha256",  # a file's hash, for the provenance table
+}
+"""Functions of those packages that compute no model: allowed in presentation."""
+
+
+def _runtime_imports(path: Path, package: str) -> list[tuple[str, str, int]]:
+    """``(module, name, line)`` of every racketdyn import run at run time (not under
+    ``if TYPE_CHECKING:``); ``name`` is ``""`` for ``import racketdyn.x``."""
+    found: list[tuple[str, str, int]] = []
+
+    def visit(node: ast.AST) -> None:
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.If) and _is_type_checking(child.test):
+                continue
+            if isinstance(child, ast.Import):
+                found.extend((alias.name, "", child.lineno) for alias in child.names)
+            elif isinstance(child, ast.ImportFrom):
+                module = child.module or ""
+                if child.level:
+                    base = package.split(".")
+                    module = ".".join(base[: len(base) - child.level + 1] + [module] * bool(module))
+                found.extend((module, alias.name, child.lineno) for alias in child.names)
+            visit(child)
+
+    visit(ast.parse(path.read_text(encoding="utf-8")))
+    return [(m, n, line) for m, n, line in found if m == "racketdyn" or m.startswith("racketdyn.")]
+
+
+def _computations_imported(path: Path, package: str) -> list[str]:
+    """The computations of :data:`COMPUTING` a module imports at run time: functions (not in
+    :data:`PURE_HELPERS`) and whole modules (a module reaches every computation in it)."""
+    import importlib
+    import inspect
+
+    offenders = []
+    for module, name, line in _runtime_imports(path, package):
+        target = f"{module}.{name}" if name else module
+        if not target.startswith(COMPUTING) or target in PURE_HELPERS:
+            continue
+        if not name or target in MODULES:
+            offenders.append(f"line {line}: module {target}")
+            continue
+        value = getattr(importlib.import_module(module), name)
+        if inspect.isroutine(value) or inspect.ismodule(value):
+            offenders.append(f"line {line}: {target}")
+    return offenders
+
+
+def test_the_computation_reader_sees_the_physics(tmp_path: Path) -> None:
+    source = tmp_path / "probe.py"
+    source.write_text(
+        "from typing import TYPE_CHECKING\n"
+        "from racketdyn.impact import predict\n"
+        "from racketdyn.impact.result import ImpactResult, STATUS_OK, shown_speed_index\n"
+        "from racketdyn.workflows.figure_data import PaperFigures\n"
+        "import racketdyn.rig\n"
+        "if TYPE_CHECKING:\n"
+        "    from racketdyn.impact.transient import predict_transient\n"
+        "def draw():\n"
+        "    from racketdyn.impact.swing import predict_swing\n"
+        "    from racketdyn.workflows.predict import run_predict\n"
+        "    from ..impact.comparison import simulate_histories\n",
+        encoding="utf-8",
+    )
+    assert _computations_imported(source, "racketdyn.plotting") == [
+        "line 2: racketdyn.impact.predict",
+        "line 5: module racketdyn.rig",
+        "line 9: racketdyn.impact.swing.predict_swing",
+        "line 10: racketdyn.workflows.predict.run_predict",
+        "line 11: racketdyn.impact.comparison.simulate_histories",
+    ]
+
+
+@pytest.mark.parametrize(
+    "module", sorted(m for m in MODULES if m.startswith(("racketdyn.plotting", "racketdyn.report")))
+)
+def test_presentation_runs_no_physics(module: str) -> None:
+    """Issue 23: a figure or the report draws what its step computed; it never calls ``predict``,
+    ``predict_transient``, ``predict_swing``, the rig, the measurement chain or a workflow."""
+    path = MODULES[module]
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    offenders = _computations_imported(path, package)
+    assert not offenders, f"{module} imports computations: {offenders}"
