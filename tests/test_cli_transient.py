@@ -87,7 +87,12 @@ def test_transient_writes_the_impact_columns(points: Path, tmp_path: Path) -> No
     assert record["engine"]["requested"] == "auto"
     assert record["engine"]["used"] in ("compiled", "reference")
     assert record["integrator"]["engine"] == record["engine"]["used"]
-    assert set(record["outputs"]) == {"impact.csv", "transient_histories.csv", "run.json"}
+    assert set(record["outputs"]) == {
+        "impact.csv",
+        "transient_histories.csv",
+        "figures.nc",
+        "run.json",
+    }
 
 
 def test_chunks_give_the_same_table(

@@ -7,6 +7,7 @@ from __future__ import annotations
 import logging
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -16,6 +17,7 @@ from matplotlib.figure import Figure
 import racketdyn as rd
 from racketdyn.cli import main
 from racketdyn.plotting import figures as figures_module
+from racketdyn.plotting.primitives import SUPPORT_STYLE
 from racketdyn.plotting.steps import compare_figures
 
 Drawn = dict[str, Figure]
@@ -108,3 +110,221 @@ def test_compare_fig15_uses_the_runs_ball(
         default = rd.predict(racket, rd.Ball(), points, [20.0], (support,), modal_model=model)
         np.testing.assert_allclose(drawn[label], expected.rebound_ratio[:, 0, 0], rtol=1e-12)
         assert not np.allclose(drawn[label], default.rebound_ratio[:, 0, 0], equal_nan=True)
+
+
+# --- predict: every figure redrawn from figures.nc alone -------------------------------------
+def _artists(figure: Figure) -> list[list[np.ndarray]]:
+    """What each axes of a figure draws: its lines' x and y, its collections' points and
+    values (NaN kept), in drawing order."""
+    drawn = []
+    for ax in figure.axes:
+        arrays: list[np.ndarray] = []
+        for line in ax.get_lines():
+            arrays += [np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)]
+        for collection in ax.collections:
+            arrays.append(np.asarray(collection.get_offsets(), float))
+            values = collection.get_array()
+            if values is not None:
+                arrays.append(np.asarray(values, float))
+        drawn.append(arrays)
+    return drawn
+
+
+def _same_drawing(first: Figure, second: Figure) -> None:
+    a, b = _artists(first), _artists(second)
+    assert [len(x) for x in a] == [len(x) for x in b]
+    for left, right in zip(a, b, strict=True):
+        for u, v in zip(left, right, strict=True):
+            np.testing.assert_array_equal(u, v)
+    assert first.get_suptitle() == second.get_suptitle()
+    assert [ax.get_title() for ax in first.axes] == [ax.get_title() for ax in second.axes]
+
+
+def _by_label(figure: Figure, ax_index: int = 0) -> dict[str, np.ndarray]:
+    ax = figure.axes[ax_index]
+    return {str(line.get_label()): np.asarray(line.get_ydata(), float) for line in ax.get_lines()}
+
+
+@pytest.fixture(scope="module")
+def predicted(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, Drawn, Path]]:
+    """A small ``predict --model both`` run with its figures caught, and its folder."""
+    from racketdyn.plotting.steps import predict_figures
+    from racketdyn.workflows import run_predict
+
+    out = tmp_path_factory.mktemp("predict")
+    drawn: Drawn = {}
+    patch = pytest.MonkeyPatch()
+    patch.setattr(figures_module, "FigureBatch", lambda: _Catch(drawn))
+    logging.disable(logging.WARNING)
+    try:
+        result = run_predict(
+            out,
+            model="both",
+            speeds=[10.0, 20.0, 35.0],
+            racket_speed=[0.0, 2.0, 4.0],
+            grid=3,
+            engine="compiled",
+            figures=predict_figures(),
+        )
+    finally:
+        logging.disable(logging.NOTSET)
+        patch.undo()
+    yield result, drawn, out
+    for figure in drawn.values():
+        plt.close(figure)
+
+
+def test_figures_nc_is_listed_and_holds_si_units(predicted: tuple[Any, Drawn, Path]) -> None:
+    import json
+
+    from racketdyn.workflows.figure_data import FIGURES_FILE, read_figure_data
+
+    _, _, out = predicted
+    assert FIGURES_FILE in json.loads((out / "run.json").read_text())["outputs"]
+    data = read_figure_data(out / FIGURES_FILE)
+    assert data["fig11_12__mean_force_n"].attrs["units"] == "N"
+    assert data["fig11_12__contact_time_s"].attrs["units"] == "s"
+    assert data["fig13__spectrum_n_s"].attrs["units"] == "N s"
+    assert data["fig14__amplitude_m"].attrs["units"] == "m"
+    assert data["fig15__rebound_ratio"].attrs["units"] == "1"
+
+
+def test_figure_data_round_trips_through_figures_nc(predicted: tuple[Any, Drawn, Path]) -> None:
+    from dataclasses import fields
+
+    from racketdyn.workflows.figure_data import (
+        FIGURES_FILE,
+        ComparisonMap,
+        PaperFigures,
+        TransientCurves,
+        TransientHistories,
+        read_figure_data,
+    )
+
+    result, _, out = predicted
+    dataset = read_figure_data(out / FIGURES_FILE)
+
+    def same(a: Any, b: Any, where: str) -> None:
+        if hasattr(a, "__dataclass_fields__") and not isinstance(a, rd.racket.HeadEllipse):
+            for f in fields(a):
+                same(getattr(a, f.name), getattr(b, f.name), f"{where}.{f.name}")
+        elif isinstance(a, np.ndarray):
+            assert a.shape == b.shape, where
+            if a.dtype.kind in "US":
+                assert np.array_equal(a, b), where
+            else:
+                np.testing.assert_array_equal(a, b, err_msg=where)
+        else:
+            assert a == b, where
+
+    same(result.paper_figures, PaperFigures.from_xarray(dataset), "paper")
+    same(result.transient_curves, TransientCurves.from_xarray(dataset), "transient")
+    same(result.comparison_map, ComparisonMap.from_xarray(dataset), "comparison map")
+    same(result.transient_histories, TransientHistories.from_xarray(dataset), "histories")
+
+
+def test_each_predict_figure_redrawn_from_figures_nc_alone(
+    predicted: tuple[Any, Drawn, Path],
+) -> None:
+    """Issue 23: every figure the step drew from its data is drawn the same from the file,
+    and its lines are the computed arrays."""
+    from racketdyn.workflows.figure_data import (
+        FIGURES_FILE,
+        ComparisonMap,
+        PaperFigures,
+        TransientCurves,
+        TransientHistories,
+        read_figure_data,
+    )
+
+    result, drawn, out = predicted
+    dataset = read_figure_data(out / FIGURES_FILE)  # the folder's file alone
+    paper = PaperFigures.from_xarray(dataset)
+    curves = TransientCurves.from_xarray(dataset)
+    redrawn = {name: build(paper) for name, build in figures_module.FIGURES.items()}
+    redrawn["transient_comparison_speed.png"] = figures_module.figure_transient_comparison_speed(
+        curves
+    )
+    comparison = ComparisonMap.from_xarray(dataset)
+    redrawn["transient_comparison_face.png"] = figures_module.figure_transient_comparison_face(
+        comparison
+    )
+    histories = TransientHistories.from_xarray(dataset)
+    redrawn["transient_histories.png"] = figures_module.figure_transient_histories(histories)
+    assert set(redrawn) == set(drawn)  # every figure of the step
+    try:
+        for name, figure in redrawn.items():
+            _same_drawing(drawn[name], figure)
+        computed = result.paper_figures
+        # Figs 11-12: F_MEAN and T_c per point and support
+        speed_curves = computed.speed_curves
+        for k, quantity in enumerate(("mean_force", "contact_time")):
+            lines = _by_label(redrawn["fig11_12_force_contact_time.png"], k)
+            scale = 1e3 if quantity == "contact_time" else 1.0
+            for i, name in enumerate(speed_curves.labels):
+                for p, support in enumerate(speed_curves.supports):
+                    label = f"{name}, {SUPPORT_STYLE[support]['label']}"
+                    expected = np.where(
+                        speed_curves.status[i, :, p] == "ok",
+                        getattr(speed_curves, quantity)[i, :, p] * scale,
+                        np.nan,
+                    )
+                    np.testing.assert_array_equal(lines[label], expected)
+        # Fig. 13: each drawn pulse and spectrum
+        pulse = computed.pulse
+        force_lines = list(_by_label(redrawn["fig13_pulse_spectrum.png"], 0).values())
+        spectrum_lines = [
+            line
+            for label, line in _by_label(redrawn["fig13_pulse_spectrum.png"], 1).items()
+            if "T_c" in label
+        ]
+        shown = np.flatnonzero(pulse.drawn())
+        assert len(force_lines) == shown.size
+        for line, s in zip(force_lines, shown, strict=True):
+            np.testing.assert_array_equal(line, pulse.force[s])
+        for line, s in zip(spectrum_lines, shown, strict=True):
+            np.testing.assert_array_equal(line, pulse.spectrum[s])
+        # Fig. 14: amplitude along the frame, mm, each support's panel
+        frame = computed.frame
+        assert frame is not None
+        for p, _support in enumerate(frame.supports):
+            lines = _by_label(redrawn["fig14_frame_vibration.png"], p)
+            for s, speed in enumerate(frame.ball_speed):
+                if frame.status[s, p] == "ok":
+                    np.testing.assert_array_equal(
+                        lines[f"{speed:g} m/s"], frame.amplitude[:, s, p] * 1e3
+                    )
+        # Fig. 15: rebound ratio along the axis, per support
+        axis = computed.axis
+        lines = _by_label(redrawn["fig15_rebound_along_axis.png"])
+        for p, support in enumerate(axis.supports):
+            np.testing.assert_array_equal(
+                lines[SUPPORT_STYLE[support]["label"]],
+                np.where(axis.status[:, 0, p] == "ok", axis.rebound_ratio[:, 0, p], np.nan),
+            )
+        # both models against speed: the transient model's rebound ratio at the centre
+        transient = curves.transient
+        lines = _by_label(redrawn["transient_comparison_speed.png"], 0)
+        label = next(key for key in lines if key.startswith("centre") and "transient" in key)
+        np.testing.assert_array_equal(
+            lines[label],
+            np.where(transient.status[0, :, 0] == "ok", transient.rebound_ratio[0, :, 0], np.nan),
+        )
+        # the face comparison: approximate - transient at the run's points, first support
+        face_ax = redrawn["transient_comparison_face.png"].axes[0]
+        points = face_ax.collections[-1]  # the dots, coloured by the difference
+        finite = np.isfinite(comparison.difference[:, 0])
+        np.testing.assert_array_equal(
+            np.asarray(points.get_array(), float), comparison.difference[finite, 0]
+        )
+        np.testing.assert_array_equal(
+            np.asarray(result.comparison.difference("rebound_ratio"))[:, result.shown_speed, 0],
+            comparison.difference[:, 0],
+        )
+        # the time histories: the contact force of each simulated impact, N
+        force_ax = redrawn["transient_histories.png"].axes[0]
+        first = result.histories[0]
+        np.testing.assert_array_equal(force_ax.get_lines()[0].get_ydata(), first.impact.force_n)
+    finally:
+        for figure in redrawn.values():
+            plt.close(figure)

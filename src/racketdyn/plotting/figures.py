@@ -21,7 +21,6 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from numpy.typing import NDArray
 
-from racketdyn.impact.comparison import History, ModelComparison
 from racketdyn.impact.oblique import ObliqueCurve, TangentialContact
 from racketdyn.impact.swing import SweetSpot, SwingResult
 from racketdyn.impact.twist import TwistCurve
@@ -59,10 +58,12 @@ from racketdyn.racket_modal.shapes import axis_nodes
 from racketdyn.workflows.figure_data import (
     SWING_AXIS_POINTS,
     TRANSIENT_CURVE_SPEEDS_MPS,
+    ComparisonMap,
     IdentifiedRebound,
     PaperFigures,
     SwingAxisCurves,
     TransientCurves,
+    TransientHistories,
 )
 from racketdyn.workflows.identify import ModeComparison
 
@@ -682,19 +683,10 @@ def _support_style(support: str) -> dict[str, str]:
     return {key: str(value) for key, value in style.items()}
 
 
-def _difference_map(
-    comparison: ModelComparison,
-    racket: Racket,
-    quantity: str,
-    speed_index: int,
-    support: str,
-    limit: float,
-    ax: Axes,
-) -> Axes:
-    """Approximate − transient of a quantity over the face, diverging colours around 0."""
-    result = comparison.approximate
-    values = comparison.difference(quantity)[:, speed_index, result.support_index(support)]
-    x_mm, y_mm = result.locations[:, 0] * 1e3, result.locations[:, 1] * 1e3
+def _difference_map(data: ComparisonMap, support: str, limit: float, ax: Axes) -> Axes:
+    """Approximate − transient rebound ratio over the face, diverging colours around 0."""
+    values = data.difference[:, data.supports.index(support)]
+    x_mm, y_mm = data.locations[:, 0] * 1e3, data.locations[:, 1] * 1e3
     finite = np.isfinite(values)
     scale = limit if limit > 0 else 1.0
     if finite.sum() >= 3 and np.ptp(x_mm[finite]) > 0 and np.ptp(y_mm[finite]) > 0:
@@ -737,37 +729,30 @@ def _difference_map(
             textcoords="offset points",
             fontsize=7,
         )
-    plot_outline(racket, ax)
+    plot_outline(data.head, ax)
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("y (mm)")
-    ax.set_title(
-        f"{_support_style(support)['label']}, {result.ball_speed[speed_index]:g} m/s", fontsize=9
-    )
+    ax.set_title(f"{_support_style(support)['label']}, {data.ball_speed:g} m/s", fontsize=9)
     return ax
 
 
-def figure_transient_comparison_face(
-    comparison: ModelComparison, racket: Racket, speed_index: int
-) -> Figure:
+def figure_transient_comparison_face(data: ComparisonMap) -> Figure:
     """Rebound ratio, approximate − transient, over the face at one speed, one panel a support.
 
     Parameters
     ----------
-    comparison : ModelComparison
-        Both models on the same impacts (:func:`racketdyn.impact.comparison.compare_models`).
-    racket : Racket
-        For the head outline.
-    speed_index : int
-        Which ball speed of the comparison.
+    data : ComparisonMap
+        The difference at the run's impacts
+        (:meth:`racketdyn.workflows.figure_data.ComparisonMap.of`).
     """
-    supports = comparison.approximate.supports
-    difference = comparison.difference("rebound_ratio")[:, speed_index, :]
+    supports = data.supports
+    difference = data.difference
     limit = float(np.nanmax(np.abs(difference))) if np.any(np.isfinite(difference)) else 0.0
     figure, axes = plt.subplots(
         1, len(supports), figsize=(4.8 * len(supports), 3.9), layout="constrained", squeeze=False
     )
     for ax, support in zip(axes[0], supports, strict=True):
-        _difference_map(comparison, racket, "rebound_ratio", speed_index, support, limit, ax)
+        _difference_map(data, support, limit, ax)
     figure.suptitle(
         "Rebound ratio: approximate method − transient simulation "
         f"(largest |Δ| {limit:.3f}; red: the approximate method higher)",
@@ -853,7 +838,7 @@ def figure_transient_comparison_speed(curves: TransientCurves) -> Figure:
     return figure
 
 
-def figure_transient_histories(histories: Sequence[History], mode_names: Sequence[str]) -> Figure:
+def figure_transient_histories(histories: TransientHistories) -> Figure:
     """Time histories of simulated impacts: force, displacements, modal coordinates.
 
     One column per impact point, one line per support (modal coordinates: one colour per mode,
@@ -861,53 +846,56 @@ def figure_transient_histories(histories: Sequence[History], mode_names: Sequenc
 
     Parameters
     ----------
-    histories : sequence of History
-        From :func:`racketdyn.impact.comparison.simulate_histories`.
-    mode_names : sequence of str
-        Names of the modes, in the order of the modal coordinates.
+    histories : TransientHistories
+        The run's simulated impacts (:meth:`racketdyn.workflows.figure_data.
+        TransientHistories.of`).
     """
-    points = list(dict.fromkeys(h.point for h in histories))
+    mode_names = histories.mode_names
+    points = list(dict.fromkeys(histories.points))
     figure, axes = plt.subplots(
         3, len(points), figsize=(5.0 * len(points), 8.0), layout="constrained", squeeze=False
     )
     mode_colours = plt.get_cmap("tab10")(np.arange(max(len(mode_names), 1)) % 10)
     for column, point in enumerate(points):
         force_ax, move_ax, modal_ax = axes[:, column]
-        for history in (h for h in histories if h.point == point):
-            impact, style = history.impact, _support_style(history.support)
-            line = _SUPPORT_LINES.get(history.support, "-.")
-            time_ms = impact.time_s * 1e3
-            force_ax.plot(time_ms, impact.force_n, color=style["color"], label=style["label"])
-            move_ax.plot(
-                time_ms,
-                impact.ball_displacement_m * 1e3,
-                color=style["color"],
-                label=f"ball, {history.support}",
+        rows = [k for k, name in enumerate(histories.points) if name == point]
+        for row in rows:
+            support = histories.supports[row]
+            style = _support_style(support)
+            line = _SUPPORT_LINES.get(support, "-.")
+            at = histories.samples(row)
+            time_ms = histories.time[row, at] * 1e3
+            force_ax.plot(
+                time_ms, histories.force[row, at], color=style["color"], label=style["label"]
             )
             move_ax.plot(
                 time_ms,
-                history.face_displacement_m * 1e3,
+                histories.ball_displacement[row, at] * 1e3,
+                color=style["color"],
+                label=f"ball, {support}",
+            )
+            move_ax.plot(
+                time_ms,
+                histories.face_displacement[row, at] * 1e3,
                 color=style["color"],
                 linestyle=":",
-                label=f"racket face, {history.support}",
+                label=f"racket face, {support}",
             )
             for k, name in enumerate(mode_names):
                 modal_ax.plot(
                     time_ms,
-                    impact.modal_coordinates[:, k] * 1e3,
+                    histories.modal_coordinates[row, at, k] * 1e3,
                     color=mode_colours[k],
                     linestyle=line,
-                    label=f"{name}, {history.support}",
+                    label=f"{name}, {support}",
                 )
-        first = next(h for h in histories if h.point == point)
+        first = rows[0]
+        x, y = histories.locations[first]
+        racket_speed = histories.racket_speed[first]
         force_ax.set_title(
-            f"{point}: x = {first.location[0] * 1e3:.0f} mm, y = {first.location[1] * 1e3:.0f} mm, "
-            f"{first.impact.ball_speed_mps:g} m/s"
-            + (
-                f", racket {first.impact.racket_speed_mps:g} m/s"
-                if first.impact.racket_speed_mps
-                else ", racket at rest"
-            ),
+            f"{point}: x = {x * 1e3:.0f} mm, y = {y * 1e3:.0f} mm, "
+            f"{histories.ball_speed[first]:g} m/s"
+            + (f", racket {racket_speed:g} m/s" if racket_speed else ", racket at rest"),
             fontsize=9,
         )
         force_ax.set_ylabel("contact force (N)")
@@ -932,11 +920,8 @@ def figure_transient_histories(histories: Sequence[History], mode_names: Sequenc
 
 def write_transient_figures(
     out_dir: Path,
-    racket: Racket,
-    histories: Sequence[History] = (),
-    mode_names: Sequence[str] = (),
-    comparison: ModelComparison | None = None,
-    speed_index: int = 0,
+    histories: TransientHistories | None = None,
+    comparison: ComparisonMap | None = None,
     curves: TransientCurves | None = None,
 ) -> list[Path]:
     """Draw the transient model's figures (:data:`TRANSIENT_FIGURES`) into ``out_dir``.
@@ -945,16 +930,10 @@ def write_transient_figures(
     ----------
     out_dir : Path
         Output folder.
-    racket : Racket
-        The racket.
-    histories : sequence of History
+    histories : TransientHistories, optional
         Time histories to draw (none: no history figure).
-    mode_names : sequence of str
-        Names of their modes.
-    comparison : ModelComparison, optional
-        Both models on the run's impacts: the face map at ``speed_index`` (none: no face map).
-    speed_index : int
-        Ball speed of the face map.
+    comparison : ComparisonMap, optional
+        Approximate − transient over the face (none: no face map).
     curves : TransientCurves, optional
         Both models against speed (none: no curves).
 
@@ -965,15 +944,12 @@ def write_transient_figures(
     """
     out = Path(out_dir)
     batch = FigureBatch()
-    if histories:
-        figure = figure_transient_histories(histories, mode_names)
-        batch.add(figure, out / TRANSIENT_FIGURES["histories"])
+    if histories is not None and histories.points:
+        batch.add(figure_transient_histories(histories), out / TRANSIENT_FIGURES["histories"])
     if comparison is not None:
-        figure = figure_transient_comparison_face(comparison, racket, speed_index)
-        batch.add(figure, out / TRANSIENT_FIGURES["face"])
+        batch.add(figure_transient_comparison_face(comparison), out / TRANSIENT_FIGURES["face"])
     if curves is not None:
-        figure = figure_transient_comparison_speed(curves)
-        batch.add(figure, out / TRANSIENT_FIGURES["speed"])
+        batch.add(figure_transient_comparison_speed(curves), out / TRANSIENT_FIGURES["speed"])
     written = batch.render()
     for path in written:
         log.info("wrote %s", path)

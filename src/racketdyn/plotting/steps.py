@@ -31,8 +31,8 @@ def _quiet(_: str) -> None:
 
 def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], list[Path]]:
     """The paper's figures (approximate method) and the transient model's figures, drawn from
-    what the run computed (its ``paper_figures``, ``transient_curves``, comparison and time
-    histories)."""
+    what the run computed (its ``paper_figures``, ``transient_curves``, ``comparison_map`` and
+    ``transient_histories``: the data of ``figures.nc``)."""
 
     def draw(result: PredictResult, out: Path) -> list[Path]:
         from racketdyn.plotting.figures import (
@@ -41,7 +41,6 @@ def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], 
             write_transient_figures,
         )
 
-        assert result.racket is not None
         written: list[Path] = []
         if result.paper_figures is not None:
             written += write_paper_figures(
@@ -52,13 +51,7 @@ def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], 
         if result.transient is not None:
             status("drawing the transient model's figures")
             written += write_transient_figures(
-                out,
-                result.racket,
-                result.histories,
-                result.mode_names,
-                result.comparison,
-                result.shown_speed,
-                result.transient_curves,
+                out, result.transient_histories, result.comparison_map, result.transient_curves
             )
         return written
 

@@ -34,6 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
+from racketdyn.impact.comparison import History, ModelComparison
 from racketdyn.impact.result import IMPACT_QUANTITIES, SHOWN_SPEED_MPS, STATUS_OK, ImpactResult
 from racketdyn.impact.swing import ImpactModel, Swing, SwingResult, axis_swings, predict_swing
 from racketdyn.impact.transient import Engine, predict_transient
@@ -56,6 +57,7 @@ __all__ = [
     "SWING_AXIS_POINTS",
     "TRANSIENT_CURVE_SPEEDS_MPS",
     "VIBRATION_SPEEDS_MPS",
+    "ComparisonMap",
     "FigureData",
     "FrameVibration",
     "IdentifiedRebound",
@@ -64,6 +66,7 @@ __all__ = [
     "PulseSpectra",
     "SwingAxisCurves",
     "TransientCurves",
+    "TransientHistories",
     "describe_options",
     "identified_rebound",
     "paper_figures",
@@ -313,8 +316,14 @@ class PulseSpectra:
                 "ball_speed_mps": ("ball_speed", self.ball_speed, {"units": "m s-1"}),
                 "time_s": ("time", self.time, {"units": "s"}),
                 "frequency_hz": ("frequency", self.frequency, {"units": "Hz"}),
-                "mode_name": ("mode", list(self.mode_names)),
-                "mode_frequency_hz": ("mode", self.mode_frequency, {"units": "Hz"}),
+                **(
+                    {
+                        "mode_name": ("mode", list(self.mode_names)),
+                        "mode_frequency_hz": ("mode", self.mode_frequency, {"units": "Hz"}),
+                    }
+                    if self.mode_names
+                    else {}
+                ),
             },
             attrs={
                 "support": self.support,
@@ -340,8 +349,10 @@ class PulseSpectra:
             force=_array(dataset["force_n"].values),
             frequency=_array(dataset["frequency_hz"].values),
             spectrum=_array(dataset["spectrum_n_s"].values),
-            mode_names=_strings(dataset["mode_name"].values),
-            mode_frequency=_array(dataset["mode_frequency_hz"].values),
+            mode_names=_strings(dataset["mode_name"].values) if "mode_name" in dataset else (),
+            mode_frequency=_array(dataset["mode_frequency_hz"].values)
+            if "mode_name" in dataset
+            else _array([]),
             modal=bool(int(attrs["modal"])),
             description=str(attrs["description"]),
         )
@@ -470,7 +481,9 @@ def _join(parts: Mapping[str, xr.Dataset]) -> xr.Dataset:
     import xarray as xr
 
     prefixed = [_prefixed(data, key) for key, data in parts.items()]
-    joined = xr.merge(prefixed, combine_attrs="drop") if prefixed else xr.Dataset()
+    # "override": each variable keeps its own attributes (units); the dataset's are set below
+    joined = xr.merge(prefixed, combine_attrs="override") if prefixed else xr.Dataset()
+    joined.attrs = {}
     for part in prefixed:
         joined.attrs.update(part.attrs)
     return joined
@@ -519,7 +532,8 @@ def write_figure_data(path: Path, datasets: Sequence[xr.Dataset]) -> Path:
     """
     import xarray as xr
 
-    joined = xr.merge(list(datasets), combine_attrs="drop")
+    joined = xr.merge(list(datasets), combine_attrs="override")
+    joined.attrs = {}
     for dataset in datasets:
         joined.attrs.update(dataset.attrs)
     joined.attrs["title"] = "racketdyn: the data each figure of the run draws"
@@ -976,6 +990,251 @@ def transient_curves(
     )
 
 
+# --- predict --model transient|both: the face comparison and the time histories ---------------
+@dataclass(frozen=True)
+class ComparisonMap:
+    """Rebound ratio, approximate method − transient simulation, over the face at one speed.
+
+    Attributes
+    ----------
+    locations : ndarray (n_points, 2)
+        The run's impact points (x, y), m.
+    supports : tuple of str
+        Supports (one panel each).
+    ball_speed : float
+        Incoming ball speed, m/s.
+    difference : ndarray (n_points, n_supports)
+        Approximate − transient rebound ratio, dimensionless (NaN where either is flagged).
+    head : HeadEllipse
+        The racket's string bed (the maps' outline).
+    """
+
+    locations: NDArray[np.float64]
+    supports: tuple[str, ...]
+    ball_speed: float
+    difference: NDArray[np.float64]
+    head: HeadEllipse
+
+    @classmethod
+    def of(cls, comparison: ModelComparison, speed_index: int, head: HeadEllipse) -> ComparisonMap:
+        """The map at one speed of a comparison of the two models on the run's impacts.
+
+        Parameters
+        ----------
+        comparison : ModelComparison
+            Both models on the same impacts.
+        speed_index : int
+            Which ball speed.
+        head : HeadEllipse
+            The racket's string bed.
+        """
+        result = comparison.approximate
+        return cls(
+            locations=_array(result.locations),
+            supports=tuple(result.supports),
+            ball_speed=float(result.ball_speed[speed_index]),
+            difference=_array(comparison.difference("rebound_ratio")[:, speed_index, :]),
+            head=head,
+        )
+
+    def to_xarray(self) -> xr.Dataset:
+        """One dataset, names prefixed ``transient_comparison_face__``: ``difference_rebound_ratio``
+        on (``point``, ``support``)."""
+        import xarray as xr
+
+        data = xr.Dataset(
+            {
+                "difference_rebound_ratio": (
+                    ("point", "support"),
+                    self.difference,
+                    {"units": "1", "long_name": "rebound ratio, approximate - transient"},
+                )
+            },
+            coords={
+                "x_m": ("point", self.locations[:, 0], {"units": "m"}),
+                "y_m": ("point", self.locations[:, 1], {"units": "m"}),
+                "support_name": ("support", list(self.supports)),
+            },
+            attrs={
+                "ball_speed_mps": self.ball_speed,
+                **{f"head_{key}": float(getattr(self.head, key)) for key in _HEAD},
+            },
+        )
+        return _join({"transient_comparison_face": data})
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> ComparisonMap:
+        """Back from :meth:`to_xarray`'s dataset (or a ``figures.nc`` holding it)."""
+        data = _part(dataset, "transient_comparison_face")
+        return cls(
+            locations=np.column_stack([_array(data["x_m"].values), data["y_m"].values]),
+            supports=_strings(data["support_name"].values),
+            ball_speed=float(data.attrs["ball_speed_mps"]),
+            difference=_array(data["difference_rebound_ratio"].values),
+            head=HeadEllipse(**{key: float(data.attrs[f"head_{key}"]) for key in _HEAD}),
+        )
+
+    @staticmethod
+    def in_dataset(dataset: xr.Dataset) -> bool:
+        """Whether a ``figures.nc`` holds the map."""
+        return _has(dataset, "transient_comparison_face")
+
+
+@dataclass(frozen=True)
+class TransientHistories:
+    """Time histories of simulated impacts: force, displacements, modal coordinates.
+
+    One row per impact (point × support); the samples of each row are the first
+    ``n_samples[row]`` (the rest NaN).
+
+    Attributes
+    ----------
+    points : tuple of str
+        Each impact's point name.
+    locations : ndarray (n_impacts, 2)
+        Impact points (x, y), m.
+    supports : tuple of str
+        Each impact's support.
+    ball_speed, racket_speed : ndarray (n_impacts,)
+        Incoming ball speed and racket speed, m/s.
+    n_samples : ndarray of int (n_impacts,)
+        Samples of each impact.
+    time : ndarray (n_impacts, n_samples)
+        Time from first contact, s.
+    force : ndarray (n_impacts, n_samples)
+        Contact force, N.
+    ball_displacement, face_displacement : ndarray (n_impacts, n_samples)
+        Ball and racket-face displacement into the strings, m.
+    modal_coordinates : ndarray (n_impacts, n_samples, n_modes)
+        Modal coordinates, m·√kg.
+    mode_names : tuple of str
+        Names of the modes.
+    """
+
+    points: tuple[str, ...]
+    locations: NDArray[np.float64]
+    supports: tuple[str, ...]
+    ball_speed: NDArray[np.float64]
+    racket_speed: NDArray[np.float64]
+    n_samples: NDArray[np.int64]
+    time: NDArray[np.float64]
+    force: NDArray[np.float64]
+    ball_displacement: NDArray[np.float64]
+    face_displacement: NDArray[np.float64]
+    modal_coordinates: NDArray[np.float64]
+    mode_names: tuple[str, ...]
+
+    @classmethod
+    def of(cls, histories: Sequence[History], mode_names: Sequence[str]) -> TransientHistories:
+        """The histories of :func:`racketdyn.impact.comparison.simulate_histories`, padded.
+
+        Parameters
+        ----------
+        histories : sequence of History
+            The simulated impacts.
+        mode_names : sequence of str
+            Names of their modes.
+        """
+        lengths = np.array([h.impact.time_s.size for h in histories], dtype=np.int64)
+        width = int(lengths.max()) if lengths.size else 0
+        n_modes = len(mode_names)
+
+        def padded(rows: list[NDArray[np.float64]], *tail: int) -> NDArray[np.float64]:
+            out = np.full((len(rows), width, *tail), np.nan)
+            for k, row in enumerate(rows):
+                out[k, : row.shape[0]] = row
+            return out
+
+        return cls(
+            points=tuple(h.point for h in histories),
+            locations=_array([h.location for h in histories]).reshape(-1, 2),
+            supports=tuple(h.support for h in histories),
+            ball_speed=_array([h.impact.ball_speed_mps for h in histories]),
+            racket_speed=_array([h.impact.racket_speed_mps for h in histories]),
+            n_samples=lengths,
+            time=padded([_array(h.impact.time_s) for h in histories]),
+            force=padded([_array(h.impact.force_n) for h in histories]),
+            ball_displacement=padded([_array(h.impact.ball_displacement_m) for h in histories]),
+            face_displacement=padded([_array(h.face_displacement_m) for h in histories]),
+            modal_coordinates=padded(
+                [
+                    _array(h.impact.modal_coordinates).reshape(h.impact.time_s.size, n_modes)
+                    for h in histories
+                ],
+                n_modes,
+            ),
+            mode_names=tuple(mode_names),
+        )
+
+    def samples(self, row: int) -> slice:
+        """The samples of impact ``row``."""
+        return slice(0, int(self.n_samples[row]))
+
+    def to_xarray(self) -> xr.Dataset:
+        """One dataset, names prefixed ``transient_histories__``: dims ``impact``, ``sample``,
+        ``mode``; ``time_s``, ``force_n``, ``ball_displacement_m``, ``face_displacement_m``,
+        ``modal_coordinate_m_sqrt_kg``."""
+        import xarray as xr
+
+        cell = ("impact", "sample")
+        data = xr.Dataset(
+            {
+                "time_s": (cell, self.time, {"units": "s"}),
+                "force_n": (cell, self.force, {"units": "N"}),
+                "ball_displacement_m": (cell, self.ball_displacement, {"units": "m"}),
+                "face_displacement_m": (cell, self.face_displacement, {"units": "m"}),
+                **(
+                    {
+                        "modal_coordinate_m_sqrt_kg": (
+                            (*cell, "mode"),
+                            self.modal_coordinates,
+                            {"units": "m kg0.5"},
+                        )
+                    }
+                    if self.mode_names
+                    else {}
+                ),
+            },
+            coords={
+                "point": ("impact", list(self.points)),
+                "x_m": ("impact", self.locations[:, 0], {"units": "m"}),
+                "y_m": ("impact", self.locations[:, 1], {"units": "m"}),
+                "support_name": ("impact", list(self.supports)),
+                "ball_speed_mps": ("impact", self.ball_speed, {"units": "m s-1"}),
+                "racket_speed_mps": ("impact", self.racket_speed, {"units": "m s-1"}),
+                "n_samples": ("impact", self.n_samples.astype(np.int32)),
+                **({"mode_name": ("mode", list(self.mode_names))} if self.mode_names else {}),
+            },
+        )
+        return _join({"transient_histories": data})
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> TransientHistories:
+        """Back from :meth:`to_xarray`'s dataset (or a ``figures.nc`` holding it)."""
+        data = _part(dataset, "transient_histories")
+        return cls(
+            points=_strings(data["point"].values),
+            locations=np.column_stack([_array(data["x_m"].values), data["y_m"].values]),
+            supports=_strings(data["support_name"].values),
+            ball_speed=_array(data["ball_speed_mps"].values),
+            racket_speed=_array(data["racket_speed_mps"].values),
+            n_samples=np.asarray(data["n_samples"].values, dtype=np.int64),
+            time=_array(data["time_s"].values),
+            force=_array(data["force_n"].values),
+            ball_displacement=_array(data["ball_displacement_m"].values),
+            face_displacement=_array(data["face_displacement_m"].values),
+            modal_coordinates=_array(data["modal_coordinate_m_sqrt_kg"].values)
+            if "mode_name" in data
+            else np.zeros((*data["time_s"].shape, 0)),
+            mode_names=_strings(data["mode_name"].values) if "mode_name" in data else (),
+        )
+
+    @staticmethod
+    def in_dataset(dataset: xr.Dataset) -> bool:
+        """Whether a ``figures.nc`` holds the histories."""
+        return _has(dataset, "transient_histories")
+
+
 # --- swing: outgoing speed along the axis ------------------------------------------------------
 @dataclass(frozen=True)
 class SwingAxisCurves:
@@ -1181,5 +1440,12 @@ def identified_rebound(
     )
 
 
-FigureData = PaperFigures | TransientCurves | SwingAxisCurves | IdentifiedRebound
+FigureData = (
+    PaperFigures
+    | TransientCurves
+    | ComparisonMap
+    | TransientHistories
+    | SwingAxisCurves
+    | IdentifiedRebound
+)
 """Any figure-data object a step writes to ``figures.nc``."""

@@ -41,8 +41,10 @@ from racketdyn.plausibility import check_speeds
 from racketdyn.racket import SUPPORTS, Racket, landmark_points
 from racketdyn.workflows.figure_data import (
     FIGURES_FILE,
+    ComparisonMap,
     PaperFigures,
     TransientCurves,
+    TransientHistories,
     paper_figures,
     transient_curves,
     write_figure_data,
@@ -114,6 +116,11 @@ class PredictResult(StepResult):
         without the approximate method).
     transient_curves : TransientCurves or None
         Both models against speed (``model="both"``).
+    comparison_map : ComparisonMap or None
+        Approximate − transient rebound ratio over the face at the shown speed
+        (``model="both"``).
+    transient_histories : TransientHistories or None
+        The time histories as the figure draws them (``model`` transient or both).
     """
 
     racket: Racket | None = None
@@ -138,6 +145,8 @@ class PredictResult(StepResult):
     hand: Hand | None = None
     paper_figures: PaperFigures | None = None
     transient_curves: TransientCurves | None = None
+    comparison_map: ComparisonMap | None = None
+    transient_histories: TransientHistories | None = None
 
     @property
     def result(self) -> ImpactResult:
@@ -409,6 +418,13 @@ def _figure_data(result: PredictResult, options: dict[str, Any], progress: Progr
             **impact,
         )
         datasets.append(result.transient_curves.to_xarray())
+        result.comparison_map = ComparisonMap.of(
+            result.comparison, result.shown_speed, result.racket.head
+        )
+        datasets.append(result.comparison_map.to_xarray())
+    if result.transient is not None and result.histories:
+        result.transient_histories = TransientHistories.of(result.histories, result.mode_names)
+        datasets.append(result.transient_histories.to_xarray())
     if datasets:
         result.written.append(write_figure_data(result.out / FIGURES_FILE, datasets))
 
