@@ -1,0 +1,104 @@
+"""The numbers ``predict`` writes are those of the code before issue 23's refactor (figures
+computed by the workflows, not the plotting): every CSV cell and run.json number of two small
+runs against the files that code wrote (``tests/data/predict_before_issue23``, its README says
+how they were made and when to write them anew)."""
+
+from __future__ import annotations
+
+import csv
+import json
+import logging
+import math
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from racketdyn.workflows import run_predict
+
+RTOL = 1e-9
+"""Round-off: the CSV files carry nine significant digits."""
+UNRECORDED = {"created_utc", "racketdyn_version", "outputs", "command"}
+"""run.json keys that differ from run to run or by this change's new files (figures.nc)."""
+
+RUNS = {
+    "approx": {"speeds": [10.0, 20.0, 35.0], "racket_speed": [0.0, 2.0, 4.0], "grid": 3},
+    "both": {
+        "model": "both",
+        "speeds": [20.0],
+        "supports": ["free", "pinned"],
+        "grid": 3,
+        "engine": "reference",
+    },
+}
+
+
+REFERENCE = Path(__file__).parent / "data" / "predict_before_issue23"
+
+
+def _number(text: str) -> float | None:
+    try:
+        return float(text)
+    except ValueError:
+        return None
+
+
+def _same(before: Any, after: Any, where: str) -> list[str]:
+    if isinstance(before, dict):
+        missing = [f"{where}.{k}: missing" for k in before if k not in after]
+        return missing + [
+            problem
+            for key, value in before.items()
+            if key not in UNRECORDED and key in after
+            for problem in _same(value, after[key], f"{where}.{key}")
+        ]
+    if isinstance(before, list):
+        if not isinstance(after, list) or len(before) != len(after):
+            return [f"{where}: {before!r} -> {after!r}"]
+        return [
+            p
+            for k, (u, v) in enumerate(zip(before, after, strict=True))
+            for p in _same(u, v, f"{where}[{k}]")
+        ]
+    if isinstance(before, bool) or not isinstance(before, int | float):
+        return [] if isinstance(before, str) else ([] if before == after else [f"{where}"])
+    if isinstance(after, int | float) and (
+        math.isclose(before, after, rel_tol=RTOL, abs_tol=1e-300)
+        or (math.isnan(before) and math.isnan(after))
+    ):
+        return []
+    return [f"{where}: {before!r} -> {after!r}"]
+
+
+@pytest.mark.parametrize("run", sorted(RUNS))
+def test_predict_numbers_are_those_before_the_refactor(run: str, tmp_path: Path) -> None:
+    reference = REFERENCE / run
+    logging.disable(logging.WARNING)
+    try:
+        run_predict(tmp_path, **RUNS[run])  # type: ignore[arg-type]
+    finally:
+        logging.disable(logging.NOTSET)
+    problems: list[str] = []
+    for table in sorted(reference.glob("*.csv")):
+        with table.open(encoding="utf-8") as f:
+            before = list(csv.reader(f))
+        with (tmp_path / table.name).open(encoding="utf-8") as f:
+            after = list(csv.reader(f))
+        assert before[0] == after[0], f"{table.name}: columns changed"
+        assert len(before) == len(after), f"{table.name}: rows changed"
+        for r, (old, new) in enumerate(zip(before[1:], after[1:], strict=True), 1):
+            for column, u, v in zip(before[0], old, new, strict=True):
+                x, y = _number(u), _number(v)
+                if x is None or y is None:
+                    ok = u == v
+                else:
+                    ok = math.isclose(x, y, rel_tol=RTOL, abs_tol=1e-300) or (
+                        math.isnan(x) and math.isnan(y)
+                    )
+                if not ok:
+                    problems.append(f"{table.name} row {r} {column}: {u} -> {v}")
+    record = json.loads((reference / "run.json").read_text(encoding="utf-8"))
+    problems += _same(
+        record, json.loads((tmp_path / "run.json").read_text(encoding="utf-8")), "run.json"
+    )
+    assert not problems, "\n".join(problems[:40])
