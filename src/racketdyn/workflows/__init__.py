@@ -23,6 +23,12 @@ figures come from a hook the caller passes (``figures(result, out) -> paths``), 
 :func:`run_sweep_step`      a design sweep
 ==========================  =========================================================
 
+What each step's figures draw is computed by the step (:mod:`racketdyn.workflows.figure_data`:
+:class:`PaperFigures`, :class:`TransientCurves`, :class:`ComparisonMap`,
+:class:`TransientHistories`, :class:`SwingAxisCurves`, :class:`IdentifiedRebound`, each with
+``to_xarray``/``from_xarray``) and written to its folder's ``figures.nc``
+(:func:`read_figure_data` reads it back).
+
 Example
 -------
 >>> from racketdyn.workflows import run_predict
@@ -42,6 +48,18 @@ if TYPE_CHECKING:
     from racketdyn.workflows.calibrate import CalibrateResult, run_calibrate
     from racketdyn.workflows.compound import CompoundResult, run_compound
     from racketdyn.workflows.contact import ContactResult, run_contact
+    from racketdyn.workflows.figure_data import (
+        ComparisonMap,
+        FrameVibration,
+        IdentifiedRebound,
+        ImpactCurves,
+        PaperFigures,
+        PulseSpectra,
+        SwingAxisCurves,
+        TransientCurves,
+        TransientHistories,
+        read_figure_data,
+    )
     from racketdyn.workflows.frf import FrfResult, run_frf
     from racketdyn.workflows.identify import (
         BallCompareResult,
@@ -61,6 +79,16 @@ if TYPE_CHECKING:
     from racketdyn.workflows.validate import ValidateResult, run_validate
 
 _WHERE = {
+    "ComparisonMap": "figure_data",
+    "FrameVibration": "figure_data",
+    "IdentifiedRebound": "figure_data",
+    "ImpactCurves": "figure_data",
+    "PaperFigures": "figure_data",
+    "PulseSpectra": "figure_data",
+    "SwingAxisCurves": "figure_data",
+    "TransientCurves": "figure_data",
+    "TransientHistories": "figure_data",
+    "read_figure_data": "figure_data",
     "BallCompareResult": "identify",
     "CalibrateResult": "calibrate",
     "ValidateResult": "validate",
@@ -96,18 +124,28 @@ __all__ = [
     "BallCompareResult",
     "CalibrateResult",
     "CompareResult",
+    "ComparisonMap",
     "CompoundResult",
     "ContactResult",
+    "FrameVibration",
     "FrfResult",
+    "IdentifiedRebound",
     "IdentifyResult",
+    "ImpactCurves",
     "ObliqueResult",
+    "PaperFigures",
     "PredictResult",
+    "PulseSpectra",
     "RigResult",
     "StepResult",
     "SweepResult",
+    "SwingAxisCurves",
     "SwingStepResult",
+    "TransientCurves",
+    "TransientHistories",
     "TwistResult",
     "ValidateResult",
+    "read_figure_data",
     "run_calibrate",
     "run_compare",
     "run_compare_ball",
