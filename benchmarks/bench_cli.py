@@ -180,7 +180,7 @@ def _profile(argv: Sequence[str]) -> None:
     import PIL.Image
 
     import racketdyn.plotting.figures as figures
-    from racketdyn.modal.model import ModalModel
+    import racketdyn.workflows.figure_data as figure_data
 
     plotting_wall, plotting_cpu = time.perf_counter() - wall, time.process_time() - cpu
 
@@ -189,9 +189,10 @@ def _profile(argv: Sequence[str]) -> None:
     for name in dir(figures):
         if name.startswith("write_"):
             clock.wrap(figures, name, "figures")
-    for name in ("predict", "predict_transient", "predict_swing"):
-        clock.wrap(figures, name, "computation in figures", inside="figures")
-    clock.wrap(ModalModel, "mode_shapes_at", "computation in figures", inside="figures")
+    # what the figures draw is computed by the steps (issue 23), before the workflows import it
+    for name in ("paper_figures", "transient_curves", "swing_axis_curves", "identified_rebound"):
+        clock.wrap(figure_data, name, "figure data")
+    clock.wrap(figure_data, "write_figure_data", "figures.nc")
     clock.wrap(matplotlib.figure.Figure, "savefig", "savefig", inside="figures")
     png = sys.modules.get("racketdyn.plotting._png")  # one drawing pass instead of savefig
     if png is not None:
@@ -221,15 +222,16 @@ def _profile(argv: Sequence[str]) -> None:
     print(_row("the command", clock.get("command")))
     print(_row("imports while it runs", clock.get("imports"), 4))
     print(_row("figures", clock.get("figures"), 4))
-    print(_row("predictions and shapes inside figures", clock.get("computation in figures"), 6))
     print(_row("drawing: constrained layout", clock.get("layout"), 6))
     print(_row("drawing: Agg", clock.rest("savefig", "layout", "png"), 6))
     print(_row("drawing: PNG encoding and writing", clock.get("png"), 6))
-    building = clock.rest("figures", "computation in figures", "savefig")
+    building = clock.rest("figures", "savefig")
     print(_row("building artists (plot calls, subplots)", building, 6))
     if "report" in clock.wall:
         print(_row("HTML report", clock.get("report"), 4))
-    rest = clock.rest("command", "imports", "figures", "report")
+    print(_row("the figures' data, computed by the steps", clock.get("figure data"), 4))
+    print(_row("figures.nc (xarray, netCDF)", clock.get("figures.nc"), 4))
+    rest = clock.rest("command", "imports", "figures", "report", "figure data", "figures.nc")
     print(_row("computation and the other files", rest, 4))
     for name, wall, cpu, drawing in steps:
         print(
