@@ -46,6 +46,7 @@ if TYPE_CHECKING:
     import xarray as xr
 
 __all__ = [
+    "APPROXIMATE_ONLY",
     "AXIS_POINTS",
     "CURVE_SPEEDS_MPS",
     "FIGURES_FILE",
@@ -100,6 +101,9 @@ SWING_AXIS_POINTS = 41
 """Points along the long axis of the along-axis swing figure (inset half a step from the frame,
 as :func:`racketdyn.impact.swing.sweet_spots` samples it)."""
 
+APPROXIMATE_ONLY = ("stiffness_reading",)
+"""Keywords of :func:`racketdyn.impact.predict` the transient model does not take: the run's
+options less these go to :func:`~racketdyn.impact.transient.predict_transient`."""
 _SEP = "__"
 _CURVE_QUANTITIES = ("contact_time", "mean_force", "rebound_ratio", "rebound_speed")
 _FACE_QUANTITIES = ("contact_time", "rebound_ratio", "vibration_energy")
@@ -954,8 +958,8 @@ def transient_curves(
         Transient engine.
     **options
         The run's keywords of :func:`racketdyn.impact.predict` (``modal_model``, ``law``,
-        ``include_string_bed``, ``string_bed``, ``stiffness_reading`` …); those the transient
-        model takes too go to :func:`~racketdyn.impact.transient.predict_transient`.
+        ``include_string_bed``, ``string_bed``, ``stiffness_reading`` …); all but
+        :data:`APPROXIMATE_ONLY` go to :func:`~racketdyn.impact.transient.predict_transient`.
     """
     marks = landmark_points(racket)
     names = ["centre", "tip", "throat"]
@@ -966,21 +970,21 @@ def transient_curves(
         TRANSIENT_CURVE_SPEEDS_MPS[-1],
         TRANSIENT_CURVE_SPEEDS_MPS.size,
     )
-    common = {
+    common: dict[str, Any] = {
         "labels": names,
         "racket_speed": racket_speed_at(at, speeds, racket_speeds),
-        **{k: v for k, v in options.items() if k != "stiffness_reading"},
     }
-    approximate = predict(
+    approximate = predict(racket, ball, points, at, supports, **common, **options)
+    transient = predict_transient(
         racket,
         ball,
         points,
         at,
         supports,
-        stiffness_reading=options.get("stiffness_reading") or "period",
+        engine=engine,
         **common,
+        **{k: v for k, v in options.items() if k not in APPROXIMATE_ONLY},
     )
-    transient = predict_transient(racket, ball, points, at, supports, engine=engine, **common)
     kept = ("rebound_ratio", "contact_time")
     return TransientCurves(
         approximate=ImpactCurves.of(approximate, kept),
