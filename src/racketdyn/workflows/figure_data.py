@@ -7,25 +7,27 @@ xarray (:meth:`to_xarray`) and back (:meth:`from_xarray`).  The step writes them
 SI units in the variable names and ``units`` attributes), so each figure can be redrawn from
 the folder alone (:func:`read_figure_data`).
 
-=========================  =====================================================================
-object                     figures
-=========================  =====================================================================
-:class:`PaperFigures`      predict: the paper's Figs 11–12 (:class:`ImpactCurves` against
-                           speed), 13 (:class:`PulseSpectra`), 14 (:class:`FrameVibration`),
-                           15 (rebound along the axis) and the face maps
-:class:`TransientCurves`   predict ``--model both``: both models against speed
-:class:`SwingAxisCurves`   swing: outgoing speed along the axis for a few swings
-:class:`IdentifiedRebound` compare: Fig. 15 with the identified free and hand-held modes
-=========================  =====================================================================
+============================  ==================================================================
+object                        figures
+============================  ==================================================================
+:class:`PaperFigures`         predict: the paper's Figs 11–12 (:class:`ImpactCurves` against
+                              speed), 13 (:class:`PulseSpectra`), 14 (:class:`FrameVibration`),
+                              15 (rebound along the axis) and the face maps
+:class:`TransientCurves`      predict ``--model both``: both models against speed
+:class:`ComparisonMap`        predict ``--model both``: approximate − transient over the face
+:class:`TransientHistories`   predict ``--model transient|both``: the simulated time histories
+:class:`SwingAxisCurves`      swing: outgoing speed along the axis for a few swings
+:class:`IdentifiedRebound`    compare: Fig. 15 with the identified free and hand-held modes
+============================  ==================================================================
 
-Each object is one group of variables in ``figures.nc``, its names prefixed with the figure's
+Each figure's variables are a group of ``figures.nc``, their names prefixed with the figure's
 key and ``__`` (netCDF 3 has no groups): ``fig11_12__mean_force_n``.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -810,9 +812,7 @@ def paper_figures(
     if model is not None and model.n_modes:
         tip = run([marks["tip"]], _array(speeds or VIBRATION_SPEEDS_MPS), labels=["tip"])
         along = np.linspace(0.0, racket.length_m, FRAME_POINTS)
-        frame = FrameVibration(
-            **{**FrameVibration.of(tip, along).__dict__, "description": description}
-        )
+        frame = replace(FrameVibration.of(tip, along), description=description)
     axis_marks = {"centre of percussion (grip)": racket.centre_of_percussion_m()}
     if model is not None and model.n_modes:
         head = racket.head
