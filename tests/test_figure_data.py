@@ -110,6 +110,40 @@ def test_compare_fig15_uses_the_runs_ball(
         default = rd.predict(racket, rd.Ball(), points, [20.0], (support,), modal_model=model)
         np.testing.assert_allclose(drawn[label], expected.rebound_ratio[:, 0, 0], rtol=1e-12)
         assert not np.allclose(drawn[label], default.rebound_ratio[:, 0, 0], equal_nan=True)
+    # redrawn from the folder's figures.nc alone: the same lines
+    from racketdyn.workflows.figure_data import FIGURES_FILE, IdentifiedRebound, read_figure_data
+
+    data = IdentifiedRebound.from_xarray(read_figure_data(tmp_path / "compare" / FIGURES_FILE))
+    redrawn = figures_module.figure_identified_rebound(data)
+    try:
+        _same_drawing(caught["fig15_identified.png"], redrawn)
+    finally:
+        plt.close(redrawn)
+
+
+def test_swing_along_axis_redrawn_from_figures_nc(tmp_path: Path, caught: Drawn) -> None:
+    """The swing step's along-axis curves are computed by the step (with the run's ball) and
+    drawn the same from its figures.nc."""
+    from racketdyn.plotting.steps import swing_figures
+    from racketdyn.workflows import run_swing
+    from racketdyn.workflows.figure_data import FIGURES_FILE, SwingAxisCurves, read_figure_data
+
+    ball = rd.Ball(mass_kg=0.0594)
+    logging.disable(logging.WARNING)
+    try:
+        result = run_swing(tmp_path, ball=ball, grid=3, figures=swing_figures)
+    finally:
+        logging.disable(logging.NOTSET)
+    curves = SwingAxisCurves.from_xarray(read_figure_data(tmp_path / FIGURES_FILE))
+    assert result.axis_curves is not None
+    assert curves.names == result.axis_curves.names
+    for read, computed in zip(curves.curves, result.axis_curves.curves, strict=True):
+        np.testing.assert_array_equal(read.rebound_speed, computed.rebound_speed)
+    redrawn = figures_module.figure_swing_along_axis(curves, result.spots)
+    try:
+        _same_drawing(caught["swing_along_axis.png"], redrawn)
+    finally:
+        plt.close(redrawn)
 
 
 # --- predict: every figure redrawn from figures.nc alone -------------------------------------
