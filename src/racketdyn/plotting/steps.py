@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from racketdyn.plotting.figures import FigureOptions
+    from racketdyn.workflows.ball import BallResult
     from racketdyn.workflows.compound import CompoundResult
     from racketdyn.workflows.contact import ContactResult
     from racketdyn.workflows.frf import FrfResult
@@ -161,6 +162,14 @@ def swing_figures(result: SwingStepResult, out: Path) -> list[Path]:
         result.modal_model,
         **result.options,
     )
+
+
+def ball_figures(result: BallResult, out: Path) -> list[Path]:
+    """Force against the ball's flattening, one loop per speed and surface."""
+    from racketdyn.plotting.ball import write_ball_figure
+
+    assert result.bounces is not None
+    return [write_ball_figure(out, result.bounces)]
 
 
 def twist_figures(result: TwistResult, out: Path) -> list[Path]:
