@@ -55,7 +55,9 @@ def test_the_cli_lists_every_parameter() -> None:
 
 def test_rows_are_the_grid_predictions_of_both_models(start: ModelInputs) -> None:
     """Each row's prediction is the one predict/predict_transient give at that impact."""
-    measured = simulate_measurements(start, FACE[:4], [20.0, 20.0, 30.0, 20.0], sd=0.0)
+    # (0.60, 0) is beyond the approximate method since issue 22 (the frame takes > 30 %)
+    points = [FACE[0], FACE[1], FACE[2], FACE[4]]
+    measured = simulate_measurements(start, points, [20.0, 20.0, 30.0, 20.0], sd=0.0)
     racket, model = start.racket, modal_model_for(start.racket)
     for method, function in (("approx", predict), ("transient", predict_transient)):
         rows, status = predict_rows(start, measured, method)  # type: ignore[arg-type]
@@ -310,7 +312,8 @@ def test_the_local_law_is_the_face_law_at_the_centre_and_stiffer_towards_the_fra
 
 
 def test_the_local_law_changes_the_rebound_near_the_frame_only(start: ModelInputs) -> None:
-    """Both models: at the centre nothing changes; within 50 mm of it under 0.002 of ratio; at
+    """Both models: at the centre nothing changes; within 50 mm of it under 0.003 of ratio (0.0022
+    at 55 mm towards the throat, approximate, since issue 22's stiffer ball); at
     630 mm on the axis the stiffer bed lowers the rebound ratio (transient, free: ≈ −0.02)."""
     points = [(0.505, 0.0), (0.45, 0.0), (0.55, 0.0), (0.505, 0.04), (0.63, 0.0)]
     measured = simulate_measurements(start, points, 20.0, sd=0.0)
@@ -319,8 +322,12 @@ def test_the_local_law_changes_the_rebound_near_the_frame_only(start: ModelInput
         face, _ = predict_rows(start, measured, method)  # type: ignore[arg-type]
         each, _ = predict_rows(local, measured, method)  # type: ignore[arg-type]
         assert each[0] == pytest.approx(face[0], abs=1e-12)
-        assert np.all(np.abs(each[1:4] - face[1:4]) < 2e-3)
-        assert each[4] < face[4] - 0.01
+        assert np.all(np.abs(each[1:4] - face[1:4]) < 3e-3)
+        if method == "transient":
+            assert each[4] < face[4] - 0.01
+        else:  # 630 mm is beyond the approximate method since issue 22 (the frame takes > 30 %)
+            assert np.isnan(each[4])
+            assert np.isnan(face[4])
 
 
 def test_the_hand_is_not_identifiable_from_rebound_at_20_mps() -> None:

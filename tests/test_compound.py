@@ -145,13 +145,14 @@ def test_ball_mode_lies_below_the_two_node_mode_ball_against_frame(built_in) -> 
 
 def test_frame_modes_do_not_change_when_the_ball_is_added(racket, spring, built_in) -> None:  # type: ignore[no-untyped-def]
     """Paper: "the natural frequencies of the frame do not change even when the ball is
-    attached" — within 1 % here for every flexible mode (the ball, 16 % of the racket's reduced
-    mass at the centre, sits near the 2-node mode's node)."""
+    attached" — within the paper's frequency resolution, 4.8 Hz, for every flexible mode (the
+    ball, 16 % of the racket's reduced mass at the centre, sits near the 2-node mode's node;
+    with issue 22's bounce-stiff ball the 3-node mode moves most, +3.4 Hz, +1.0 %)."""
     model, modes = built_in
     for support, compound in modes.items():
         alone = racket_modes(racket, model, support, CENTRE, None, Ball(), None)
         for name in model.frame_modes.names:
-            assert compound.frequency_of(name) == pytest.approx(alone.frequency_of(name), rel=0.01)
+            assert compound.frequency_of(name) == pytest.approx(alone.frequency_of(name), abs=4.8)
 
 
 def test_four_times_stiffer_frame_moves_the_ball_mode_a_little(racket, spring, built_in) -> None:  # type: ignore[no-untyped-def]
@@ -247,9 +248,9 @@ def test_a_ball_mode_that_jumps_across_a_frame_mode_leaves_a_gap(racket, spring,
     moved = replace(model, frequency=frequency)
     point = (CENTRE[0] + 0.09, 0.0)
     band = ball_mode_band(racket, moved, "free", point, spring, Ball())
-    assert len(band.intervals_hz) == 2
-    (_, top_low), (bottom_high, _) = band.intervals_hz
-    assert top_low < 90.0 < 110.0 < bottom_high
+    assert len(band.intervals_hz) >= 2
+    assert not any(low <= 110.0 and high >= 90.0 for low, high in band.intervals_hz)
+    assert band.intervals_hz[0][0] < 90.0 < 110.0 < band.intervals_hz[-1][1]
     for wanted in (95.0, 100.0, 103.0):
         assert not band.holds(wanted)
         bed = bed_for_frequency(racket, moved, "free", point, spring, wanted)
@@ -262,12 +263,13 @@ def test_a_ball_mode_that_jumps_across_a_frame_mode_leaves_a_gap(racket, spring,
 
 
 def test_built_in_ball_mode_near_the_papers_103_hz(racket, spring, built_in) -> None:  # type: ignore[no-untyped-def]
-    """The tolerance is the spread of the small-amplitude inputs (ball stiffness from the ITF
-    deformation, the bed under the ball from the published static range and the per-string law
-    up to the net pushed over the ball's width, the ball's mass; docs/develop.md, "The ball on
-    the strings"): the band holds both the model's 88.7 Hz and the paper's 103 Hz.  What 103 Hz
-    asks of the bed with the nominal ball is said, not hidden: ≈ 74 kN/m, the net pushed over a
-    patch slightly wider than the ball (36.5 mm against 33.5 mm in radius)."""
+    """The band is the spread of the small-amplitude inputs (ball stiffness from its bounce,
+    5–7 mm at 7.06 m/s; the bed under the ball from the published static range and the
+    per-string law up to the net pushed over the ball's width; the ball's mass; docs/develop.md,
+    "The ball on the strings"): it holds both the model's 112 Hz and the paper's 103 Hz.  What
+    103 Hz asks of the bed with the nominal (bounce-stiff) ball is said, not hidden: ≈ 24 kN/m,
+    near the softest published static bed (20 kN/m) and softer than the per-string law's
+    30.5 kN/m — a net pushed by a patch of ≈ 2 mm, less than a string spacing."""
     model, modes = built_in
     for support in ("free", "hand"):
         band = ball_mode_band(racket, model, support, CENTRE, spring, Ball())
@@ -281,8 +283,23 @@ def test_built_in_ball_mode_near_the_papers_103_hz(racket, spring, built_in) -> 
         trial = replace(spring, stiffness=1 / (1 / k_ball + 1 / bed.bed_stiffness_n_per_m))
         again = racket_modes(racket, model, support, CENTRE, trial, Ball()).ball_frequency
         assert again == pytest.approx(PAPER_BALL_MODE_HZ, rel=1e-6)
-        assert 60e3 < bed.bed_stiffness_n_per_m < 90e3
-        assert Ball().diameter_m / 2 < bed.patch_radius_m < 0.045
+        assert 20e3 < bed.bed_stiffness_n_per_m < 30e3
+        assert bed.patch_radius_m < 0.005
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 22: the ball law from its bounce (6 mm at 7.06 m/s) puts the paper's ball "
+    "mode at 112 Hz, +9 % against 103 Hz; the paper's glued ball is softer at small amplitude "
+    "than one smooth law stiff enough for the bounce (docs/validation.md). Passes when the "
+    "ball's small-amplitude stiffness is right.",
+)
+def test_the_papers_ball_mode_within_5_percent(built_in) -> None:  # type: ignore[no-untyped-def]
+    """Issue 22: the paper's racket, ball fixed at the string centre: 103 Hz ± 5 % (the
+    paper's 4.8 Hz resolution)."""
+    _, modes = built_in
+    for support in ("free", "hand"):
+        assert modes[support].ball_frequency == pytest.approx(PAPER_BALL_MODE_HZ, rel=0.05)
 
 
 def test_receptance_is_reciprocal(racket, spring) -> None:  # type: ignore[no-untyped-def]
@@ -360,8 +377,10 @@ def test_the_hammer_near_the_two_node_node_shows_the_ball_mode_first(racket, spr
     """Fig. 8c's hand-over depends on where the hammer strikes: the 2-node mode's node line
     crosses the axis 3 mm from the ball, so the nearer the blow to it the less the 2-node mode
     rings at the neck (reciprocity: a blow at a node does not excite the mode).  Measured:
-    ball / 2-node amplitude 0.28 at 40 mm, 0.92 at 10 mm, 3.4 at the ball and 16 at the bare
-    racket's node (the ball shifts the node a little), after a 3.6 ms blow."""
+    ball / 2-node amplitude 0.26 at 40 mm, 0.82 at 10 mm, 2.2 at the ball and 3.6 at the bare
+    racket's node (the ball shifts the node a little), after a 3.6 ms blow (issue 22's
+    bounce-stiff ball: its mode at 112 Hz lies near the 2-node mode's 120 Hz and the two share
+    more of their motion than the old 88.7 Hz mode did: it was 0.28, 0.92, 3.4, 16)."""
     from racketdyn.racket_modal.shapes import axis_nodes
 
     model = modal_model_for(racket)
@@ -379,7 +398,7 @@ def test_the_hammer_near_the_two_node_node_shows_the_ball_mode_first(racket, spr
     ratios += [_ball_and_two_node_at_the_neck(system_points, i, 3.6e-3) for i in (3, 4, 5)]
     assert ratios == sorted(ratios), ratios
     assert ratios[0] < 1.0 < ratios[2]
-    assert ratios[-1] > 10.0, ratios
+    assert ratios[-1] > 3.0, ratios
 
 
 def test_the_nets_share_of_a_blow(racket) -> None:  # type: ignore[no-untyped-def]
@@ -450,6 +469,15 @@ def test_the_blow_shared_by_string_blow_is_a_struck_string_patch(racket, spring)
         assert abs(swapped / explicit - 1.0) > 0.01
 
 
+FIG_8C_XFAIL = pytest.mark.xfail(
+    strict=True,
+    reason="issue 22: with the bounce-stiff ball the ball mode (112 Hz) beats with the 2-node "
+    "mode (120 Hz) and the 2-node mode takes over after 4.3 ball cycles, not the paper's "
+    "'about two'; returns with the ball's small-amplitude stiffness (docs/validation.md)",
+)
+
+
+@FIG_8C_XFAIL
 def test_fig_8c_the_ball_mode_first_the_two_node_mode_after_about_two_cycles(
     tmp_path: Path,
 ) -> None:
@@ -757,12 +785,13 @@ def test_report_section_states_the_papers_claims_in_words(tmp_path: Path) -> Non
     frequency = float(ball["frequency_hz"])
     miss = round(100 * (frequency / 103.0 - 1))
     assert f"at {frequency:.1f} Hz ({miss:+d} %)" in text  # the miss against the paper, stated
-    assert -20 < miss < -5  # docs/develop.md "The ball on the strings": 14 % below, not tuned
+    # issue 22's bounce-stiff ball: 9 % above (the old ITF-plate ball was 14 % below); not tuned
+    assert 5 < miss < 15
     times = [float(ball[f"contact_time_{v}_s"]) for v in (5, 10, 20)]
     worst = max(abs(t / float(ball["half_period_s"]) - 1.0) for t in times)
     assert f"within {100 * worst:.0f} %" in text  # half period against the contact time, 5–20 m/s
     assert worst < 0.15  # the paper: half the ball mode's period is the contact time
-    assert "ball mode moves by 0.5 %" in text
+    assert "ball mode moves by 0.8 %" in text  # 0.5 % with the old soft ball
     assert [row[0] for row in data["times"]] == ["free", "hand"]
     html = render_section("compound", data)
     assert "Half period against contact time" in html
@@ -914,6 +943,7 @@ def test_compound_says_which_mode_leads_at_the_neck_and_where_the_node_line_is(
     assert "takes over after" in said
 
 
+@FIG_8C_XFAIL
 def test_the_built_in_default_blow_reads_like_the_papers_fig_8c(
     capsys: pytest.CaptureFixture[str], tmp_path: Path
 ) -> None:

@@ -145,8 +145,9 @@ def test_mode_energy_vanishes_at_its_node(racket, ball, model, law) -> None:
         return float(model.mode_shapes_at([x, 0.0])[0, 0])
 
     node = brentq(first_mode, racket.head.centre_x_m - 0.05, racket.head.tip_x_m - 0.01, xtol=1e-12)
-    tip = racket.head.tip_x_m - 0.02
+    tip = racket.head.centre_x_m + 0.06  # within the approximate method's vibration share
     result = predict(racket, ball, [[node, 0.0], [tip, 0.0]], [20.0], modal_model=model, law=law)
+    assert np.all(result.status == "ok")
     at_node, at_tip = result.mode_energy[0, 0, :, 0], result.mode_energy[1, 0, :, 0]
     assert np.all(at_node < 1e-12 * at_tip)
     # the other modes still take energy there
@@ -156,7 +157,7 @@ def test_mode_energy_vanishes_at_its_node(racket, ball, model, law) -> None:
 def test_single_mode_energy_closed_form_against_time_integration(racket, ball, linear) -> None:
     # Eq 12's energy ½ φ² |S(ω)|² for an undamped mode driven by the half-sine: integrate
     # q'' + ω² q = φ F(t) through the pulse and compare the energy left (quadrature 1e-10).
-    phi, frequency = 3.0, 150.0
+    phi, frequency = 1.0, 150.0  # (3.0 takes over 30 % of the energy: beyond the method)
     single = _single_mode(racket, phi, frequency)
     result = predict(
         racket,
@@ -167,6 +168,7 @@ def test_single_mode_energy_closed_form_against_time_integration(racket, ball, l
         modal_model=single,
         law=linear,
     )
+    assert result.status[0, 0, 0] == "ok"
     tc, fmax = float(result.contact_time[0, 0, 0]), float(result.peak_force[0, 0, 0])
     omega = 2 * np.pi * frequency
 
@@ -198,7 +200,7 @@ def test_vibration_loss_beyond_e_bg_is_flagged(racket, ball, linear) -> None:
 
 def test_deflection_beyond_the_law_is_flagged(racket, ball, law) -> None:
     result = predict(
-        racket, ball, [racket.head.centre_x_m, 0.0], [20.0, 150.0], modal_model=None, law=law
+        racket, ball, [racket.head.centre_x_m, 0.0], [20.0, 250.0], modal_model=None, law=law
     )
     assert np.all(result.status[:, 0] == "ok")
     assert np.all(result.status[:, 1] == STATUS_BEYOND_LAW)
@@ -209,7 +211,7 @@ def test_contact_time_falls_with_speed(racket, ball, model, law) -> None:
     points = racket.head.grid(6)
     result = predict(racket, ball, points, np.linspace(2, 40, 39), modal_model=model, law=law)
     # flagged rows (vibration loss beyond e_BG near the rim) hold NaN: compare the others
-    assert np.mean(result.status == "ok") > 0.8
+    assert np.mean(result.status == "ok") > 0.6  # the frame over 30 % near the rim (issue 22)
     falls, rises = np.diff(result.contact_time, axis=1), np.diff(result.mean_force, axis=1)
     assert np.all(falls[np.isfinite(falls)] < 0)
     assert np.all(rises[np.isfinite(rises)] > 0)
@@ -217,11 +219,13 @@ def test_contact_time_falls_with_speed(racket, ball, model, law) -> None:
 
 def test_contact_time_in_the_published_range(racket, ball, model, law) -> None:
     # Paper, section 1: contact time ≈ 3–6 ms; docs/references.md: 4–5 ms for ordinary strokes
-    # (ball ≈ 20 m/s on a racket at rest, and 10 m/s more of racket speed).  The built-in laws
-    # must land in the narrower range.
+    # (ball ≈ 20 m/s on a racket at rest), falling with speed: ≈ 3.5 ms in a filmed
+    # professional forehand (Kawazoe with NHK).  At 20 m/s the narrower range, at 30 m/s
+    # between the forehand and the top of the ordinary strokes.
     centre = [racket.head.centre_x_m, 0.0]
     result = predict(racket, ball, centre, [20.0, 30.0], modal_model=model, law=law)
-    assert np.all((result.contact_time > 4e-3) & (result.contact_time < 5.5e-3))
+    assert np.all((result.contact_time[:, 0] > 4e-3) & (result.contact_time[:, 0] < 5e-3))
+    assert np.all((result.contact_time[:, 1] > 3.5e-3) & (result.contact_time[:, 1] < 5e-3))
     # Paper, section 3.1: the grip hardly changes the contact time (reduced masses close).
     free, pinned = result.contact_time[0, 0]
     assert pinned == pytest.approx(free, rel=0.02)
@@ -286,10 +290,18 @@ def test_cor_never_exceeds_e_bg(
     ]
     ball = rd.Ball(e_bg=e_bg)
     result = predict(
-        racket, ball, point, [speed], racket_speed=racket_speed, modal_model=model, law=law
-    )
+        racket, ball, point, [speed], racket_speed=racket_speed, modal_model=model, law=law,
+        vibration_charge="paper",
+    )  # fmt: skip
     ok = result.status == "ok"
     assert np.all((result.cor[ok] >= 0) & (result.cor[ok] <= e_bg + 1e-15))
+    # the coupled charge: energy the frame holds at the turn escapes the strings' loss, so e_r
+    # may pass e_BG (as in the transient model), never 1
+    coupled = predict(
+        racket, ball, point, [speed], racket_speed=racket_speed, modal_model=model, law=law
+    )
+    fine = coupled.status == "ok"
+    assert np.all((coupled.cor[fine] >= 0) & (coupled.cor[fine] <= 1.0))
     assert np.all(np.isnan(result.cor[~ok]))
     # the racket's recoil only takes energy away: e < e_r, and vibration never gives any back
     assert np.all(result.rebound_ratio[ok] < result.cor[ok])

@@ -44,7 +44,10 @@ def test_local_equals_uniform_at_the_centre_and_is_stiffer_towards_the_frame(
     tolerance of tests/test_calibration.py); 30 mm from the frame the shorter strings make the
     bed stiffer: the contact is shorter by 10–20 % (built-in racket, 20 m/s: 11–17 %) and the
     rebound ratio lower (transient 0.002–0.04, approximate 0.001–0.2); 40 mm off the axis the
-    bed is 2 % stiffer, contact 1–4 % shorter, the ratio within 0.005."""
+    bed is 2 % stiffer, contact 1–4 % shorter, the ratio within 0.005.  Since issue 22 (the
+    ball stiffer, the bed a larger share of the contact's compliance) the contact 30 mm from the
+    frame is 16–23 % shorter, and the approximate method gives no number at the tip's and the
+    throat's points (the frame takes over 30 %): it is held where it gives one."""
     predictor, supports = MODELS[model]
     points = _points(racket)
     xy = list(points.values())
@@ -52,16 +55,19 @@ def test_local_equals_uniform_at_the_centre_and_is_stiffer_towards_the_frame(
     local = predictor(racket, ball, xy, [20.0], supports, string_bed="local")
     assert uniform.inputs["string_bed"] == "uniform"
     assert local.inputs["string_bed"] == "local"
-    assert np.all(local.status == "ok")
+    given = (local.status == "ok") & (uniform.status == "ok")
+    if model == "transient":
+        assert np.all(given)
+    assert np.all(given[[0, 4]])
     e_u, e_l = uniform.rebound_ratio[:, 0, :], local.rebound_ratio[:, 0, :]
     t_u, t_l = uniform.contact_time[:, 0, :], local.contact_time[:, 0, :]
     np.testing.assert_allclose(e_l[0], e_u[0], rtol=0, atol=1e-12)
     np.testing.assert_allclose(t_l[0], t_u[0], rtol=1e-9)
-    near_frame = [1, 2, 3]
-    shorter = 1.0 - t_l[near_frame] / t_u[near_frame]
-    assert np.all((shorter > 0.10) & (shorter < 0.20)), shorter
-    assert np.all(e_l[near_frame] < e_u[near_frame])
-    assert np.all(e_u[near_frame] - e_l[near_frame] < (0.05 if model == "transient" else 0.2))
+    near = given[[1, 2, 3], 0, :]
+    shorter = (1.0 - t_l[[1, 2, 3]] / t_u[[1, 2, 3]])[near]
+    assert np.all((shorter > 0.10) & (shorter < 0.25)), shorter
+    drop = (e_u[[1, 2, 3]] - e_l[[1, 2, 3]])[near]
+    assert np.all((drop > 0) & (drop < (0.05 if model == "transient" else 0.2)))
     off = 1.0 - t_l[4] / t_u[4]
     assert np.all((off > 0.01) & (off < 0.04)), off
     np.testing.assert_allclose(e_l[4], e_u[4], atol=5e-3)

@@ -172,7 +172,8 @@ def test_map_is_symmetric_in_y(racket: rd.Racket, ball: rd.Ball) -> None:
     mirror = np.array([index[(round(x, 9), round(-y, 9) + 0.0)] for x, y in points])
     np.testing.assert_array_equal(result.status, result.status[mirror])
     np.testing.assert_allclose(result.rebound_speed, result.rebound_speed[mirror], rtol=1e-9)
-    assert np.sum(result.status == "ok") > 0.8 * result.status.size
+    # since issue 22 the approximate method leaves the throat and the tip (frame over 30 %)
+    assert np.sum(result.status == "ok") > 0.6 * result.status.size
 
 
 def test_centre_of_percussion_closed_form(racket: rd.Racket, ball: rd.Ball) -> None:
@@ -255,7 +256,7 @@ def test_max_outgoing_speed_moves_towards_the_tip(
     speed = [s["max_rebound_speed"].x_m for s in spots]
     assert ratio[0] == ratio[1] == ratio[2]  # the racket at rest: the swing plays no part
     assert speed[0] == pytest.approx(ratio[0], abs=1e-5)
-    assert speed[1] > ratio[1] + 0.02
+    assert speed[1] > ratio[1] + 0.016  # two search steps (19 mm since issue 22's ball)
     assert speed[2] > speed[1]
     # and the maximum is one: no sampled point on the axis does better
     best = spots[2]["max_rebound_speed"]

@@ -25,13 +25,18 @@ from racketdyn.plausibility import check_limits
 
 __all__ = [
     "BALL_LAW_RANGE_RADII",
+    "BOUNCE_COMPRESSION_M",
+    "BOUNCE_SPEED_MPS",
     "ITF_FORWARD_DEFORMATION_M",
     "ITF_FORWARD_LOAD_N",
+    "ITF_REBOUND_COR",
+    "STATIC_WALL_STIFFNESS_N_PER_M",
     "Ball",
     "LawKind",
     "RestoringForce",
     "ball_physical_force",
     "default_ball_law",
+    "dynamic_wall_stiffness",
     "series",
 ]
 
@@ -44,6 +49,14 @@ LAW_KINDS: tuple[str, ...] = get_args(LawKind)
 # between two plates under 80.1 N.  The middle of the range is used.
 ITF_FORWARD_LOAD_N = 80.1
 ITF_FORWARD_DEFORMATION_M = 0.5 * (0.56e-2 + 0.74e-2)
+
+# The ball in a bounce (docs/references.md, "The ball in a bounce"): dropped from 100 in
+# (2.54 m, 7.06 m/s at impact) onto concrete a ball flattens by about 6 mm (Cross, "The physics
+# of tennis", University of Sydney) and rebounds 135–147 cm (ITF Rules, Appendix I): a COR of
+# 0.729–0.761, 0.745 in the middle.  These two numbers set the built-in ball's dynamic law.
+BOUNCE_SPEED_MPS = 7.06
+BOUNCE_COMPRESSION_M = 6.0e-3
+ITF_REBOUND_COR = 0.745
 
 
 @dataclass(frozen=True)
@@ -294,13 +307,16 @@ def ball_physical_force(
     deflection: ArrayLike,
     diameter_m: float = 0.067,
     gauge_pressure_pa: float = BALL_GAUGE_PRESSURE_PA,
+    wall_stiffness_n_per_m: float | None = None,
 ) -> NDArray[np.float64]:
     """The one-sided ball force the default law is fitted to, N for a flattening X in m.
 
     ``F = k₁ X + (p(X) − p₀) A(X)``:
 
-    * ``k₁ X`` — the wall and the initial pressure, from the ITF forward deformation (80.1 N
-      over half of 6.5 mm: the test flattens both sides, the model one).
+    * ``k₁ X`` — the wall and the initial pressure: ``wall_stiffness_n_per_m``, by default the
+      ITF forward deformation's (80.1 N over half of 6.5 mm: the test flattens both sides, the
+      model one), the *static* ball of a slow plate test.  The built-in ball law passes the
+      dynamic wall of a bounce (:func:`dynamic_wall_stiffness`).
     * ``p(X) = p₀ (V₀ / (V₀ − V_cap))^γ`` — the gas compressed adiabatically (γ = 1.4, p₀
       absolute) by the cap of height X cut off the sphere, ``V_cap = π X² (3R − X)/3``.
     * ``A(X)`` — the flat the extra pressure acts on: the cap's base ``π (2RX − X²)`` up to one
@@ -318,35 +334,76 @@ def ball_physical_force(
     cap = np.pi * x**2 * (3.0 * radius - x) / 3.0
     pressure = absolute * (volume / (volume - cap)) ** AIR_HEAT_CAPACITY_RATIO
     area = np.where(x < radius, np.pi * (2.0 * radius * x - x**2), np.pi * radius**2)
-    linear = ITF_FORWARD_LOAD_N / (0.5 * ITF_FORWARD_DEFORMATION_M)
+    linear = (
+        STATIC_WALL_STIFFNESS_N_PER_M if wall_stiffness_n_per_m is None else wall_stiffness_n_per_m
+    )
     return np.asarray(linear * x + (pressure - absolute) * area)
+
+
+STATIC_WALL_STIFFNESS_N_PER_M = ITF_FORWARD_LOAD_N / (0.5 * ITF_FORWARD_DEFORMATION_M)
+"""One-sided secant stiffness of the ITF plate test (80.1 N over half of 6.5 mm), ≈ 24.6 kN/m:
+the ball pressed slowly, not in a bounce."""
+
+
+@lru_cache(maxsize=16)
+def dynamic_wall_stiffness(
+    mass_kg: float = 0.0577,
+    diameter_m: float = 0.067,
+    gauge_pressure_pa: float = BALL_GAUGE_PRESSURE_PA,
+    compression_m: float = BOUNCE_COMPRESSION_M,
+    speed_mps: float = BOUNCE_SPEED_MPS,
+) -> float:
+    """Wall stiffness k₁ of a ball that flattens by ``compression_m`` on a rigid surface at
+    ``speed_mps``, N/m (the ball's own bounce, measured: docs/references.md).
+
+    Solves ``∫₀^{X} F(x) dx = ½ m V²`` for k₁ with F of :func:`ball_physical_force`: the ball's
+    kinetic energy is held in its flattening when it stops.  For the built-in ball (6 mm at
+    7.06 m/s) k₁ ≈ 79 kN/m, 3.2 times the slow ITF plate test's 24.6 kN/m — the dynamic
+    stiffness of a bounce that Haake, Carré and Goodwill (2003) measured above the static one.
+    """
+    x = np.linspace(0.0, compression_m, 401)
+    gas = ball_physical_force(x, diameter_m, gauge_pressure_pa, 0.0)
+    gas_energy = float(np.trapezoid(gas, x))
+    kinetic = 0.5 * mass_kg * speed_mps**2
+    if kinetic <= gas_energy:
+        raise InputError(
+            f"ball bounce: {compression_m * 1e3:g} mm at {speed_mps:g} m/s is softer than the gas "
+            "alone; check the compression (m) and speed (m/s)"
+        )
+    return 2.0 * (kinetic - gas_energy) / compression_m**2
 
 
 @lru_cache(maxsize=16)  # a frozen law; every Ball() would otherwise refit it
 def default_ball_law(
-    diameter_m: float = 0.067, gauge_pressure_pa: float = BALL_GAUGE_PRESSURE_PA
+    diameter_m: float = 0.067,
+    gauge_pressure_pa: float = BALL_GAUGE_PRESSURE_PA,
+    wall_stiffness_n_per_m: float | None = None,
 ) -> RestoringForce:
-    """The ball's one-sided restoring force F_B(X), N for X in m (section 3.4's ball law).
+    """The ball's one-sided restoring force F_B(X) in a bounce, N for X in m (section 3.4).
 
     A degree-9 polynomial fitted, on the relative residual, to :func:`ball_physical_force` over
-    0 to 1.65 ball radii (docs/develop.md, "Ball and string laws"; the fit's largest relative
-    error is ≈ 2.5 %, its rms force residual is recorded).  The ITF wall stiffness sets the law
-    at small flattening; the adiabatic gas sets it at large flattening, where it stiffens
-    steeply: ≈ 1.9 kN at one radius (34 mm), ≈ 9 kN at 1.5 R, ≈ 22 kN at 1.65 R (55 mm).
+    0 to 1.65 ball radii (docs/develop.md, "Ball and string laws"; its rms force residual is
+    recorded).  The wall is the *dynamic* wall of a bounce, ``wall_stiffness_n_per_m`` or by
+    default :func:`dynamic_wall_stiffness` (the built-in ball flattens 6 mm at 7.06 m/s on a
+    rigid surface, Cross; ≈ 79 kN/m); the adiabatic gas sets the law at large flattening, where
+    it stiffens steeply.  The slow ITF plate test (24.6 kN/m one-sided) is a different test:
+    ``wall_stiffness_n_per_m=STATIC_WALL_STIFFNESS_N_PER_M`` gives the static ball, which
+    ``racketdyn ball`` sets beside the ITF limits as a separate check.
 
     Cross (Sports Eng. 1999) shows the wall buckling within the first 200 µs; one smooth
-    loading law is the model's approximation, and impact stiffness rising with speed (Haake,
-    Carré and Goodwill 2003) is what the law's stiffening reproduces (docs/references.md).
+    loading law is the model's approximation (docs/references.md).
     """
+    wall = dynamic_wall_stiffness() if wall_stiffness_n_per_m is None else wall_stiffness_n_per_m
     radius = 0.5 * diameter_m
     top = BALL_LAW_RANGE_RADII * radius
     x = np.linspace(0.0, top, 801)
+    which = "static ITF" if wall == STATIC_WALL_STIFFNESS_N_PER_M else "bounce"
     law = RestoringForce.fit(
         x,
-        ball_physical_force(x, diameter_m, gauge_pressure_pa),
+        ball_physical_force(x, diameter_m, gauge_pressure_pa, wall),
         "polynomial",
         BALL_LAW_DEGREE,
-        "ball, ITF forward deformation + adiabatic gas, one side",
+        f"ball, {which} wall {wall / 1e3:.1f} kN/m + adiabatic gas, one side",
         relative=True,
     )
     return law
@@ -362,25 +419,35 @@ class Ball:
         Mass, kg (ITF: 56.0–59.4 g; default the middle, 57.7 g).
     diameter_m : float
         Diameter, m (ITF type 1 and 2: 6.54–6.86 cm; default the middle, 6.70 cm).
-    e_bg : float
-        Coefficient of restitution of this ball on a head-clamped string bed (Kawazoe; ≈ 0.83,
-        nearly independent of speed and tension), used at every speed unless ``e_bg_table``
-        is given.
+    e_bg : float or None
+        Coefficient of restitution of this ball on a head-clamped string bed, used at every
+        speed unless ``e_bg_table`` is given.  ``None`` (the default): e_BG follows from the
+        ball and the strings at each speed (:func:`racketdyn.contact.ball_string_cor`; the
+        impact models resolve it with :func:`racketdyn.contact.with_ball_string_cor`), ≈ 0.84
+        at 4.4 m/s falling to ≈ 0.82 at 40 m/s on the paper's racket — Kawazoe measured it
+        "almost independent" of speed and tension (≈ 0.83), Haake, Carré and Goodwill (2003)
+        falling with speed.
     restoring_force : RestoringForce
-        One-sided ball law F_B(X) (default: :func:`default_ball_law`).
+        One-sided ball law F_B(X) in a bounce (default: :func:`default_ball_law`).
     e_bg_table : tuple of (float, float)
         Optional e_BG against the relative (approach) speed: ``((speed_mps, e_bg), …)``,
-        speeds rising, interpolated linearly and held at the end values outside the table
-        (Haake, Carré and Goodwill 2003 measured e_BG falling with speed on head-clamped
-        rackets; docs/references.md).  Empty (the default): the constant ``e_bg``, as in the
-        paper.
+        speeds rising, interpolated linearly and held at the end values outside the table.
+        Given, it overrides ``e_bg``.
+    rigid_cor : float
+        The ball's own COR on a rigid surface (ITF rebound test from 100 in: 0.729–0.761; the
+        middle, 0.745), its share of the loss on the strings (:func:`racketdyn.contact.
+        ball_string_cor`).
+    e_bg_source : str
+        How e_BG was set (recorded with results): empty for a given value or table.
     """
 
     mass_kg: float = 0.0577
     diameter_m: float = 0.0670
-    e_bg: float = 0.83
+    e_bg: float | None = None
     restoring_force: RestoringForce = field(default_factory=default_ball_law)
     e_bg_table: tuple[tuple[float, float], ...] = ()
+    rigid_cor: float = ITF_REBOUND_COR
+    e_bg_source: str = ""
 
     def __post_init__(self) -> None:
         require_positive("ball mass_kg", self.mass_kg)
@@ -389,11 +456,13 @@ class Ball:
         # the ITF ranges themselves are checked where a person types them (workflows.inputs)
         check_limits("ball_mass_kg", self.mass_kg, "ball mass_kg")
         check_limits("ball_diameter_m", self.diameter_m, "ball diameter_m")
-        require_range("ball e_bg", self.e_bg, 0.0, 1.0)
-        if self.e_bg == 0:
-            raise InputError(
-                "ball e_bg must be above 0: a ball that does not rebound has no rebound"
-            )
+        require_range("ball rigid_cor", self.rigid_cor, 0.0, 1.0)
+        if self.e_bg is not None:
+            require_range("ball e_bg", self.e_bg, 0.0, 1.0)
+            if self.e_bg == 0:
+                raise InputError(
+                    "ball e_bg must be above 0: a ball that does not rebound has no rebound"
+                )
         if self.e_bg_table:
             table = np.asarray(self.e_bg_table, dtype=float)
             if table.ndim != 2 or table.shape[1] != 2:
@@ -406,23 +475,49 @@ class Ball:
                 raise InputError("ball e_bg_table: every e_bg must be above 0 and at most 1")
 
     @property
+    def e_bg_given(self) -> bool:
+        """Whether e_BG was given (a value or a table) rather than left to ball + strings."""
+        return self.e_bg is not None or bool(self.e_bg_table)
+
+    @property
     def speed_dependent(self) -> bool:
-        """Whether e_BG depends on speed (an ``e_bg_table`` is given)."""
-        return bool(self.e_bg_table)
+        """Whether e_BG depends on speed (a table, given or derived from ball + strings)."""
+        return bool(self.e_bg_table) or self.e_bg is None
 
     def e_bg_at(self, speed: ArrayLike) -> NDArray[np.float64]:
         """e_BG at relative (approach) speeds, m/s: the table's linear interpolation, held at
-        its end values outside it; the constant ``e_bg`` without a table."""
+        its end values outside it; the constant ``e_bg`` without a table.
+
+        Raises
+        ------
+        InputError
+            If e_BG is neither given nor resolved from ball + strings
+            (:func:`racketdyn.contact.with_ball_string_cor`).
+        """
         v = np.asarray(speed, dtype=float)
-        if not self.e_bg_table:
-            return np.full(v.shape, self.e_bg)
-        table = np.asarray(self.e_bg_table, dtype=float)
-        return np.asarray(np.interp(v, table[:, 0], table[:, 1]))
+        if self.e_bg_table:
+            table = np.asarray(self.e_bg_table, dtype=float)
+            return np.asarray(np.interp(v, table[:, 0], table[:, 1]))
+        if self.e_bg is None:
+            raise InputError(
+                "ball e_bg: not given and not yet derived from the ball and the strings; "
+                "resolve it with racketdyn.contact.with_ball_string_cor(racket, ball) or give "
+                "e_bg"
+            )
+        return np.full(v.shape, self.e_bg)
 
     def e_bg_record(self) -> dict[str, object]:
         """How e_BG was set, for run records."""
+        if self.e_bg_source:
+            return {
+                "kind": self.e_bg_source,
+                "table": [list(map(float, row)) for row in self.e_bg_table],
+            }
         if not self.e_bg_table:
-            return {"kind": "constant", "e_bg": self.e_bg}
+            return {
+                "kind": "constant" if self.e_bg is not None else "ball + strings (unresolved)",
+                "e_bg": self.e_bg,
+            }
         return {
             "kind": "table (relative speed m/s, e_BG), linear, held beyond the ends",
             "table": [list(map(float, row)) for row in self.e_bg_table],

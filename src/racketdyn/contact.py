@@ -7,6 +7,8 @@ The compound spring F_GB(X) is the ball's one-sided law and the string bed's law
 from __future__ import annotations
 
 import math
+from dataclasses import replace
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -17,6 +19,12 @@ from racketdyn.io.tables import read_load_deflection
 from racketdyn.racket import Racket
 
 __all__ = [
+    "CROSS_DROP_E_BG",
+    "CROSS_DROP_SPEED_MPS",
+    "E_BG_SPEEDS_MPS",
+    "STRING_BED_COR",
+    "ball_string_cor",
+    "clamped_bounce",
     "compound_law",
     "local_compound_law",
     "local_string_bed_law",
@@ -25,6 +33,7 @@ __all__ = [
     "net_share",
     "string_bed_law",
     "string_tension",
+    "with_ball_string_cor",
 ]
 
 STRING_BED_MAX_DEFLECTION_M = 0.08
@@ -334,4 +343,131 @@ def local_compound_law(
         COMPOUND_DEGREE,
         "ball + local string bed in series",
         relative=True,
+    )
+
+
+# --- the ball's bounce on the strings: e_BG from the ball and the strings ------------------------
+CROSS_DROP_SPEED_MPS = 4.43
+"""A ball dropped 1 m onto a head-clamped string bed meets it at 4.43 m/s and bounces to
+≈ 0.70 m: e_BG ≈ 0.84 (Cross, "The physics of tennis", University of Sydney; docs/references.md,
+"The ball in a bounce")."""
+CROSS_DROP_E_BG = 0.84
+STRING_BED_COR = 0.875
+"""The string bed's own energy return under a ball, as a COR e_S: the share of the energy it
+stores that it gives back is e_S².  Strings struck by a rigid impactor return ≈ 0.97
+(docs/references.md, "Strings"); under a ball they also rub on one another and on the ball's
+cloth.  e_S is what makes the built-in ball (its own COR 0.745 on a rigid surface, ITF) on the
+paper's racket bounce with Cross's e_BG = 0.84 at 4.43 m/s (:func:`ball_string_cor` solved for
+e_S; ``tests/test_ball_bounce.py`` recomputes it): a measurement of a ball on clamped strings,
+not of a racket's rebound.  It then fixes e_BG at every other speed and tension."""
+E_BG_SPEEDS_MPS = (0.5, 1.0, 2.0, 3.0, 4.43, 6.0, 8.0, 10.0, 12.5, 15.0, 20.0, 25.0, 30.0,
+                   35.0, 40.0, 45.0, 50.0, 55.0, 60.0, 65.0, 70.0)  # fmt: skip
+"""Relative speeds at which :func:`with_ball_string_cor` tabulates e_BG, m/s (linear between)."""
+
+
+def clamped_bounce(racket: Racket, ball: Ball, speed: ArrayLike) -> dict[str, NDArray[np.float64]]:
+    """The ball's bounce on the head-clamped string bed at the face centre, at its turn.
+
+    The ball (mass m_B) stops with its kinetic energy ½ m_B V² held by the ball's law and the
+    bed's law in series (section 3.4): the common force F solves
+    ``E_B(X_B(F)) + E_G(X_G(F)) = ½ m_B V²``.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+        The string bed (:func:`string_bed_law`) and the ball's law.
+    speed : array_like
+        Impact speed V, m/s.
+
+    Returns
+    -------
+    dict
+        ``force`` (N), ``ball_compression`` X_B and ``bed_deflection`` X_G (m), and the
+        energies ``ball_energy`` E_B and ``bed_energy`` E_G (J), each shaped like ``speed``;
+        NaN beyond the laws' range.
+    """
+    v = np.asarray(speed, dtype=float)
+    ball_law, bed = ball.restoring_force, string_bed_law(racket, ball)
+    top = min(ball_law.max_force_n, bed.max_force_n)
+    # the stored energy rises with the force: tabulate and invert (monotone)
+    force = np.concatenate([[0.0], np.geomspace(top * 1e-6, top, 2000)])
+    x_b, x_g = ball_law.deflection(force), bed.deflection(force)
+    e_b, e_g = ball_law.energy(x_b), bed.energy(x_g)
+    kinetic = 0.5 * ball.mass_kg * v**2
+    total = e_b + e_g
+    found = np.interp(kinetic, total, force, right=np.nan)
+    f = np.asarray(found)
+    return {
+        "force": f,
+        "ball_compression": np.asarray(ball_law.deflection(f)),
+        "bed_deflection": np.asarray(bed.deflection(f)),
+        "ball_energy": np.asarray(ball_law.energy(ball_law.deflection(f))),
+        "bed_energy": np.asarray(bed.energy(bed.deflection(f))),
+    }
+
+
+def ball_string_cor(
+    racket: Racket, ball: Ball, speed: ArrayLike, string_cor: float = STRING_BED_COR
+) -> NDArray[np.float64]:
+    """e_BG of the ball on the head-clamped string bed at impact speeds, from ball + strings.
+
+    At the turn the ball holds E_B and the bed E_G (:func:`clamped_bounce`).  Each gives back
+    its own share: the ball ``e_B² E_B`` with e_B its COR on a rigid surface (``ball.rigid_cor``,
+    ITF), the bed ``e_S² E_G`` (:data:`STRING_BED_COR`), so
+
+        ``e_BG² = (e_B² E_B + e_S² E_G) / (E_B + E_G)``.
+
+    A stiffer bed (higher tension, a faster impact on the stiffening bed) leaves more of the
+    energy in the lossier ball, so e_BG falls slowly with speed and tension (Haake, Carré and
+    Goodwill 2003; Vallatta, Casolo and Caffi), ≈ 0.84 → 0.82 from 4 to 40 m/s on the paper's
+    racket: "almost independent of speed and tension", as Kawazoe measured.
+
+    Parameters
+    ----------
+    racket, ball : Racket, Ball
+    speed : array_like
+        Impact (relative) speed, m/s.
+    string_cor : float
+        e_S of the bed.
+
+    Returns
+    -------
+    ndarray
+        e_BG, shaped like ``speed``; NaN beyond the laws' range.
+    """
+    bounce = clamped_bounce(racket, ball, speed)
+    e_b, e_g = bounce["ball_energy"], bounce["bed_energy"]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        squared = (ball.rigid_cor**2 * e_b + string_cor**2 * e_g) / (e_b + e_g)
+    return np.asarray(np.sqrt(squared))
+
+
+def with_ball_string_cor(racket: Racket, ball: Ball) -> Ball:
+    """The ball with e_BG resolved: itself if e_BG was given, else a table from ball + strings.
+
+    The table (:data:`E_BG_SPEEDS_MPS`, :func:`ball_string_cor` at the face centre's bed) is what
+    both impact models read at each impact's relative speed (``Ball.e_bg_at``); ``e_bg`` is set
+    to its value at 20 m/s for the few places that take one number.
+    """
+    if ball.e_bg_given:
+        return ball
+    return _resolved(racket, ball)
+
+
+@lru_cache(maxsize=64)  # every impact call resolves its ball; racket and ball are frozen
+def _resolved(racket: Racket, ball: Ball) -> Ball:
+    speeds = np.asarray(E_BG_SPEEDS_MPS)
+    cor = ball_string_cor(racket, ball, speeds)
+    keep = np.isfinite(cor)
+    if not np.any(keep):
+        raise InputError("e_BG from ball + strings: the laws hold no bounce; give --e-bg")
+    table = tuple((float(v), float(e)) for v, e in zip(speeds[keep], cor[keep], strict=True))
+    return replace(
+        ball,
+        e_bg=float(np.interp(20.0, speeds[keep], cor[keep])),
+        e_bg_table=table,
+        e_bg_source=(
+            f"ball + strings: ball COR {ball.rigid_cor:g} on a rigid surface, string bed "
+            f"{STRING_BED_COR:g} (e_BG² = (e_B² E_B + e_S² E_G)/(E_B + E_G)), at the face centre"
+        ),
     )

@@ -22,6 +22,7 @@ from collections.abc import Sequence
 
 from racketdyn.__about__ import __version__
 from racketdyn.cli import (
+    ball,
     calibrate,
     compound,
     contact,
@@ -58,6 +59,7 @@ COMMANDS = (
     validate,
     calibrate,
     racket,
+    ball,
 )
 """The command modules, in the order ``racketdyn --help`` lists them."""
 

@@ -67,6 +67,14 @@ def add(commands: Any) -> None:
         "(default) or the tangent stiffness at peak deflection (the paper's shortcut)",
     )
     p.add_argument(
+        "--vibration-charge",
+        choices=("coupled", "paper"),
+        default="coupled",
+        help="how the approximate method charges the frame's vibration against e_BG: as the "
+        "coupled contact's energy balance gives it (default) or as the paper's section 4.2 "
+        "writes it (to reproduce the paper's figures; docs/validation.md)",
+    )
+    p.add_argument(
         "--include-string-bed",
         action="store_true",
         help="charge string-bed modes as vibration loss too (default: off)",
@@ -105,6 +113,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             points=args.points,
             grid=args.grid,
             stiffness_reading=args.stiffness_reading,
+            vibration_charge=args.vibration_charge,
             include_string_bed=args.include_string_bed,
             string_bed=args.string_bed,
             allow_implausible=args.allow_implausible,
@@ -131,6 +140,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             opt.say(console, flagged, style)
     if result.comparison is not None:
         console.print(_comparison_table(result.comparison, result.shown_speed, result.racket))
+        opt.say(console, *_differ_line(result.comparison))
     unknown = _unknown_modes(result.modal_model)
     if unknown:
         opt.say(console, unknown, "yellow")
@@ -220,6 +230,20 @@ def _flagged(status: Any, csv_name: str) -> tuple[str, str | None]:
         f"(see its status column): {why}",
         "yellow",
     )
+
+
+def _differ_line(comparison: ModelComparison) -> tuple[str, str | None]:
+    """How many rows the two models disagree on by more than MODELS_DIFFER (comparison.csv's
+    ``models_differ``), and the line's style."""
+    from racketdyn.impact.comparison import MODELS_DIFFER
+
+    count = int(comparison.models_differ.sum())
+    text = (
+        f"models differ by more than {MODELS_DIFFER:g} in rebound ratio: "
+        f"{count} of {opt.plural(comparison.models_differ.size, 'row')} (comparison.csv's "
+        "models_differ; trust the transient model there)"
+    )
+    return text, "yellow" if count else None
 
 
 def _comparison_table(comparison: ModelComparison, speed: int, racket: Racket) -> Table:

@@ -27,6 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import least_squares
 
+from racketdyn.contact import with_ball_string_cor
 from racketdyn.errors import InputError
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import Method, ModelInputs, predict_rows
@@ -104,7 +105,7 @@ PARAMETERS: dict[str, Parameter] = {
             "e_bg",
             "1",
             "COR of the ball on the head-clamped strings (a constant e_BG; not with a table)",
-            lambda i: i.ball.e_bg,
+            lambda i: float(with_ball_string_cor(i.racket, i.ball).e_bg_at(20.0)),
             lambda i, v: replace(i, ball=replace(i.ball, e_bg=v)),
             lambda start: (0.3, 0.99),
         ),
@@ -175,7 +176,7 @@ def parse_fit(names: Sequence[str], inputs: ModelInputs) -> list[Parameter]:
         chosen.append(PARAMETERS[name])
     if not chosen or len({p.name for p in chosen}) != len(chosen):
         raise InputError(f"--fit: name each parameter once (got {','.join(names)})")
-    if "e_bg" in names and inputs.ball.speed_dependent:
+    if "e_bg" in names and inputs.ball.e_bg_table and not inputs.ball.e_bg_source:
         raise InputError(
             "--fit e_bg: the ball's e_BG is a table against speed; fit a constant e_BG "
             "(drop --e-bg-table) or leave e_bg out"

@@ -43,12 +43,16 @@ __all__ = [
     "COMPARED",
     "COMPARISON_COLUMNS",
     "HISTORY_COLUMNS",
+    "MODELS_DIFFER",
     "History",
     "ModelComparison",
     "compare_models",
     "simulate_histories",
     "write_histories_csv",
 ]
+
+MODELS_DIFFER = 0.05
+"""|approximate − transient| rebound ratio beyond which a row is flagged ``models_differ``."""
 
 COMPARED: dict[str, str] = {
     "contact_time": "contact_time_s",
@@ -74,6 +78,7 @@ COMPARISON_COLUMNS: tuple[str, ...] = (
     ),
     "status_approx",
     "status_transient",
+    "models_differ",
 )
 """Columns of ``comparison.csv``, one row per point × speed × support (the order of
 ``impact.csv``): the impact's keys, then per quantity of :data:`COMPARED` the approximate
@@ -158,6 +163,13 @@ class ModelComparison:
         return np.asarray((approximate - transient) / scale)
 
     @property
+    def models_differ(self) -> NDArray[np.bool_]:
+        """Rows where the two models' rebound ratios differ by more than :data:`MODELS_DIFFER`
+        (both valid): the approximate method's number is not to be trusted there."""
+        with np.errstate(invalid="ignore"):
+            return np.asarray(np.abs(self.difference("rebound_ratio")) > MODELS_DIFFER)
+
+    @property
     def columns(self) -> dict[str, NDArray[Any]]:
         """The ``comparison.csv`` table: column name → 1-D array (:data:`COMPARISON_COLUMNS`)."""
         keys = self.approximate.columns
@@ -172,6 +184,7 @@ class ModelComparison:
             )
         table["status_approx"] = self.approximate.status.reshape(-1)
         table["status_transient"] = self.transient.status.reshape(-1)
+        table["models_differ"] = self.models_differ.reshape(-1)
         return {name: table[name] for name in COMPARISON_COLUMNS}
 
     def write_csv(self, path: Path) -> Path:

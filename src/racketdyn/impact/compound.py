@@ -43,6 +43,7 @@ from racketdyn.contact import (
     local_compound_law,
     local_string_bed_law,
     string_bed_law,
+    with_ball_string_cor,
 )
 from racketdyn.errors import InputError, require_positive
 from racketdyn.impact.hand import Hand
@@ -61,6 +62,7 @@ __all__ = [
     "racket_modes",
     "resting_patch_radius",
     "restitution_damping_ratio",
+    "small_amplitude_e_bg",
     "spring_split",
     "stiffer_frame",
 ]
@@ -124,6 +126,13 @@ def restitution_damping_ratio(cor: float) -> float:
     return -log_e / math.sqrt(math.pi**2 + log_e**2)
 
 
+def small_amplitude_e_bg(racket: Racket, ball: Ball) -> float:
+    """e_BG of a ball held on the strings at small amplitude: the given e_BG, or ball + strings
+    (:func:`racketdyn.contact.with_ball_string_cor`) at its slowest tabulated speed."""
+    resolved = with_ball_string_cor(racket, ball)
+    return float(resolved.e_bg_at(0.0))
+
+
 def ball_spring(
     racket: Racket,
     ball: Ball,
@@ -160,7 +169,7 @@ def ball_spring(
         raise InputError(f"preload {preload:g} N: beyond the compound law's range")
     return BallSpring(
         float(law.stiffness(deflection)),
-        restitution_damping_ratio(ball.e_bg),
+        restitution_damping_ratio(small_amplitude_e_bg(racket, ball)),
         preload,
         deflection,
         law.source,

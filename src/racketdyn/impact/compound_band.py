@@ -4,10 +4,11 @@ The ball mode (:mod:`racketdyn.impact.compound`) rests on three inputs at small 
 of them measured on the racket at hand: the ball's one-sided stiffness, the string bed's
 stiffness under the ball and the ball's mass.  Their spread:
 
-- **ball**, one-sided: the ITF forward deformation 5.6–7.4 mm at 80.1 N between two plates,
-  halved because only the side on the strings deforms (docs/references.md, "Ball"): 21.6–28.6
-  kN/m.  The ITF test is quasi-static; nothing readable gave the stiffness of a ball stuck on
-  strings and shaken by a hammer.
+- **ball**, one-sided: the wall of the ball's bounce (:func:`racketdyn.ball.
+  dynamic_wall_stiffness`) over the spread of its measurement, 5–7 mm of flattening at
+  7.06 m/s on a rigid surface (Cross's "about 6 mm"; docs/references.md, "The ball in a
+  bounce"): ≈ 58–115 kN/m.  Nothing readable gave the stiffness of a ball stuck on strings and
+  shaken by a hammer (before issue 22 the slow ITF plate test's 21.6–28.6 kN/m stood here).
 - **bed**, under the ball: from the smaller of the published static stiffness of strung beds
   (20 kN/m) and the per-string law the impact model uses (:func:`racketdyn.contact.
   string_bed_law`, only the strings under the ball), to the larger of the published 40 kN/m
@@ -35,7 +36,7 @@ import numpy as np
 import scipy.optimize
 from numpy.typing import ArrayLike, NDArray
 
-from racketdyn.ball import Ball
+from racketdyn.ball import BOUNCE_COMPRESSION_M, Ball, dynamic_wall_stiffness
 from racketdyn.contact import membrane_patch_radius, membrane_patch_stiffness
 from racketdyn.impact.compound import BallSpring, racket_modes, spring_split
 from racketdyn.impact.hand import Hand
@@ -55,9 +56,12 @@ __all__ = [
 
 PAPER_BALL_MODE_HZ = 103.0
 """The paper's ball mode (section 3.2, Fig. 9b), Hz."""
-ITF_LOAD_N = 80.1
-BALL_STIFFNESS_N_PER_M = (ITF_LOAD_N / 3.7e-3, ITF_LOAD_N / 2.8e-3)
-"""One-sided ball stiffness, N/m: the ITF forward deformation 7.4 and 5.6 mm at 80.1 N, halved."""
+BALL_STIFFNESS_N_PER_M = (
+    dynamic_wall_stiffness(compression_m=BOUNCE_COMPRESSION_M + 1e-3),
+    dynamic_wall_stiffness(compression_m=BOUNCE_COMPRESSION_M - 1e-3),
+)
+"""One-sided small-amplitude ball stiffness, N/m: the bounce's wall at 7 and 5 mm of flattening
+at 7.06 m/s (the gas adds nothing at small flattening)."""
 BED_STATIC_STIFFNESS_N_PER_M = (20e3, 40e3)
 """Published static stiffness of strung beds, N/m (docs/references.md, "Ball fixed on the
 strings")."""

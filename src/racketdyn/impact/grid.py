@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball, RestoringForce
-from racketdyn.contact import compound_law, local_compound_law
+from racketdyn.contact import compound_law, local_compound_law, with_ball_string_cor
 from racketdyn.errors import InputError, one_of, require_speeds
 from racketdyn.impact.hand import Hand
 from racketdyn.modal import ModalModel
@@ -134,6 +134,9 @@ class ImpactGrid:
         Modes charged (None: rigid racket).
     law : RestoringForce
         Compound ball+string law F_GB.
+    ball : Ball
+        The ball, its e_BG resolved (:func:`racketdyn.contact.with_ball_string_cor`: given, or
+        from ball + strings).
     """
 
     locations: NDArray[np.float64]
@@ -144,6 +147,7 @@ class ImpactGrid:
     reduced_mass: NDArray[np.float64]
     model: ModalModel | None
     law: RestoringForce
+    ball: Ball
 
     @property
     def shape(self) -> tuple[int, int, int]:
@@ -160,8 +164,8 @@ class ImpactGrid:
             "ball": {
                 "mass_kg": ball.mass_kg,
                 "diameter_m": ball.diameter_m,
-                "e_bg": ball.e_bg,
-                "e_bg_law": ball.e_bg_record(),
+                "e_bg": self.ball.e_bg,
+                "e_bg_law": self.ball.e_bg_record(),
                 "restoring_force": ball.restoring_force.as_dict(),
             },
             "compound_law": self.law.as_dict(),
@@ -223,6 +227,7 @@ def impact_grid(
         ),
         model=resolve_modal_model(racket, modal_model, include_string_bed),
         law=law or compound_law(racket, ball),
+        ball=with_ball_string_cor(racket, ball),
     )
 
 

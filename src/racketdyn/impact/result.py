@@ -30,11 +30,13 @@ __all__ = [
     "OUTCOMES",
     "SHOWN_SPEED_MPS",
     "STATUS_BEYOND_LAW",
+    "STATUS_FROM_TRANSIENT",
     "STATUS_MEANING",
     "STATUS_NO_SEPARATION",
     "STATUS_OK",
     "STATUS_SECOND_CONTACT",
     "STATUS_VIBRATION_LOSS",
+    "STATUS_VIBRATION_SHARE",
     "ImpactResult",
     "Quantity",
     "impact_columns",
@@ -51,6 +53,10 @@ STATUS_VIBRATION_LOSS = "vibration loss exceeds e_BG"
 STATUS_BEYOND_LAW = "deflection beyond the restoring-force law"
 STATUS_NO_SEPARATION = "ball did not leave the strings within the time allowed"
 STATUS_SECOND_CONTACT = "second contact: the vibrating frame caught the ball again"
+STATUS_FROM_TRANSIENT = "transient model's numbers: beyond the approximate method"
+STATUS_VIBRATION_SHARE = (
+    "frame vibration takes over 30 % of the approach energy: beyond the approximate method"
+)
 
 
 @dataclass(frozen=True)
@@ -136,6 +142,18 @@ INVALIDATED: dict[str, tuple[tuple[str, ...], str]] = {
         "but for a small vibration loss; a loss larger than e_BG allows means the frame's "
         "flexibility shapes the contact, so its time, forces, deflection and stiffness are not "
         "the racket's either, and the vibration energy (eq 12) exceeds what the ball brings",
+    ),
+    STATUS_FROM_TRANSIENT: (
+        (),
+        "with --model both, a row the approximate method cannot give carries the transient "
+        "model's numbers (valid, not the approximate method's): nothing is NaN",
+    ),
+    STATUS_VIBRATION_SHARE: (
+        OUTCOMES,
+        "the approximate method forces the frame with the pulse of a rigid racket; where the "
+        "frame takes more than 30 % of the approach energy its motion changes the pulse and the "
+        "method is no longer within 0.015 of the coupled (transient) solution (docs/"
+        "validation.md): its numbers are not given; the transient model's are",
     ),
     STATUS_BEYOND_LAW: (
         OUTCOMES,
@@ -338,6 +356,28 @@ class ImpactResult:
     def impulse(self) -> NDArray[np.float64]:
         """Impulse F_MEAN · T_c = (1 + e_BG) μ V, N·s (eqs 6 and 8)."""
         return np.asarray(self.mean_force * self.contact_time)
+
+    def filled_from(self, transient: ImpactResult) -> ImpactResult:
+        """This (approximate) result with the rows it cannot give taken from ``transient``.
+
+        A row whose status is not ``ok`` here and ``ok`` in ``transient`` (same points, speeds
+        and supports) takes every computed quantity from ``transient`` and the status
+        :data:`STATUS_FROM_TRANSIENT`, so it is marked wherever it is shown.
+        """
+        if self.shape != transient.shape or self.supports != transient.supports:
+            raise ValueError("results differ in points, speeds or supports")
+        take = (self.status != STATUS_OK) & (transient.status == STATUS_OK)
+        if not np.any(take):
+            return self
+        merged: dict[str, Any] = {}
+        for name in (a for a in OUTCOMES if a != "energy_terms"):
+            mine, theirs = getattr(self, name), getattr(transient, name)
+            if mine.shape != theirs.shape:  # mode energies of a different modal model
+                theirs = np.full(mine.shape, np.nan)
+            mask = take.reshape(take.shape + (1,) * (mine.ndim - take.ndim))
+            merged[name] = np.where(mask, theirs, mine)
+        status = np.where(take, STATUS_FROM_TRANSIENT, self.status)
+        return replace(self, status=status, **merged)
 
     @classmethod
     def concatenate(cls, parts: Sequence[ImpactResult]) -> ImpactResult:

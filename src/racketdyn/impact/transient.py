@@ -68,7 +68,7 @@ from scipy.integrate import solve_ivp
 
 from racketdyn._display import number
 from racketdyn.ball import Ball, RestoringForce
-from racketdyn.contact import compound_law
+from racketdyn.contact import compound_law, with_ball_string_cor
 from racketdyn.errors import (
     InputError,
     one_of,
@@ -740,8 +740,9 @@ def simulate_impact(
     law = law or compound_law(racket, ball)
     system = impact_system(racket, model, support, xy, hand if support == "hand" else None)
     reduced = support_reduced_mass(racket, xy, support, hand)[0]
+    ball = with_ball_string_cor(racket, ball)
     e_bg = ball.e_bg
-    if ball.speed_dependent:
+    if ball.speed_dependent or e_bg is None:
         approach = require_speeds("ball speed", ball_speed) + require_speeds(
             "racket speed", racket_speed
         )
@@ -868,7 +869,7 @@ def predict_transient(
     ]
     run = _run_compiled if engine == "compiled" else _run_reference
     out, mode_energy, status, terms = run(
-        grid, systems, ball, rtol, method, steps_per_contact, extrapolate
+        grid, systems, grid.ball, rtol, method, steps_per_contact, extrapolate
     )
     settings: dict[str, Any] = (
         {

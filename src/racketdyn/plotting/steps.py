@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from racketdyn.workflows.ball import BallResult
     from racketdyn.workflows.compound import CompoundResult
     from racketdyn.workflows.contact import ContactResult
     from racketdyn.workflows.frf import FrfResult
@@ -125,6 +126,14 @@ def swing_figures(result: SwingStepResult, out: Path) -> list[Path]:
         result.spots,
         result.shown_speed,
     )
+
+
+def ball_figures(result: BallResult, out: Path) -> list[Path]:
+    """Force against the ball's flattening, one loop per speed and surface."""
+    from racketdyn.plotting.ball import write_ball_figure
+
+    assert result.bounces is not None
+    return [write_ball_figure(out, result.bounces)]
 
 
 def twist_figures(result: TwistResult, out: Path) -> list[Path]:

@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 
 from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball
+from racketdyn.contact import with_ball_string_cor
 from racketdyn.errors import InputError, one_of, require_positive, require_speeds
 from racketdyn.impact.approximate import STIFFNESS_READINGS, StiffnessReading
 from racketdyn.impact.grid import STRING_BEDS, StringBed
@@ -269,7 +270,7 @@ class SweepSpec:
             "grip_m": racket.grip_m,
             "frame_stiffness_scale": 1.0,
             "tension_n": racket.strings.tension_n,
-            "e_bg": self.ball.e_bg,
+            "e_bg": float(with_ball_string_cor(racket, self.ball).e_bg_at(20.0)),
         }
         return (float(base[variable.kind]),)
 

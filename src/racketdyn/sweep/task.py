@@ -33,6 +33,7 @@ from racketdyn.impact.result import (
     STATUS_OK,
     STATUS_SECOND_CONTACT,
     STATUS_VIBRATION_LOSS,
+    STATUS_VIBRATION_SHARE,
     ImpactResult,
 )
 from racketdyn.impact.transient import (
@@ -70,6 +71,7 @@ STATUS_CODES: dict[str, int] = {
     STATUS_FAILED: 3,
     STATUS_NO_SEPARATION: 4,
     STATUS_SECOND_CONTACT: 5,
+    STATUS_VIBRATION_SHARE: 6,
 }
 """Integer codes of the ``status`` variable of a sweep dataset (CF ``flag_values``)."""
 

@@ -29,6 +29,7 @@ from racketdyn.impact.compound import (
     ball_spring,
     racket_modes,
     resting_patch_radius,
+    small_amplitude_e_bg,
     spring_split,
     stiffer_frame,
 )
@@ -517,7 +518,7 @@ def run_compound(
             "why": "a ball stuck on the strings sits on a slightly preloaded bed: the small-"
             "amplitude spring is the tangent dF_GB/dX of the compound ball + string-bed law "
             f"at the preload; its dashpot gives a linear contact the ball's e_BG = "
-            f"{the_ball.e_bg:g}",
+            f"{small_amplitude_e_bg(the_racket, the_ball):.3g}",
             "stiffness_n_per_m_at": {
                 f"{f:g} N": ball_spring(the_racket, the_ball, f, spring.location).stiffness
                 for f in (0.0, 20.0)

@@ -103,7 +103,7 @@ SWING_AXIS_POINTS = 41
 """Points along the long axis of the along-axis swing figure (inset half a step from the frame,
 as :func:`racketdyn.impact.swing.sweet_spots` samples it)."""
 
-APPROXIMATE_ONLY = ("stiffness_reading",)
+APPROXIMATE_ONLY = ("stiffness_reading", "vibration_charge")
 """Keywords of :func:`racketdyn.impact.predict` the transient model does not take: the run's
 options less these go to :func:`~racketdyn.impact.transient.predict_transient`."""
 _SEP = "__"
@@ -591,6 +591,8 @@ def describe_options(
     else:
         racket = f"racket {racket_speed:g} m/s" if racket_speed else "racket at rest"
     parts = [racket, f"eq 10 {options.get('stiffness_reading') or 'period'} reading"]
+    if options.get("vibration_charge") == "paper":
+        parts.append("the paper's vibration charge")
     if options.get("include_string_bed"):
         parts.append("string-bed modes charged")
     if options.get("string_bed") == "local":

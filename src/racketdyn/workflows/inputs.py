@@ -181,7 +181,7 @@ def ball_from(
     kwargs: dict[str, Any] = {}
     for value, key, label in (
         (mass_kg, "mass_kg", "ball mass 57.7 g (ITF middle)"),
-        (e_bg, "e_bg", "e_BG 0.83 (Kawazoe)"),
+        (e_bg, "e_bg", "e_BG from ball + strings"),
     ):
         if value is None:
             defaults.append(label)
@@ -192,7 +192,7 @@ def ball_from(
             kwargs["e_bg_table"] = read_e_bg_table(Path(e_bg_table))
         else:
             kwargs["e_bg_table"] = tuple((float(v), float(e)) for v, e in e_bg_table)
-        defaults.remove("e_BG 0.83 (Kawazoe)")
+        defaults.remove("e_BG from ball + strings")
     if law_file is not None:
         path = Path(law_file)
         deflection, force = read_load_deflection(path)
@@ -200,7 +200,7 @@ def ball_from(
             deflection, force, "polynomial", 3, f"ball, fitted to {path.name}"
         )
     else:
-        defaults.append("ball law: ITF forward deformation + adiabatic gas (one side)")
+        defaults.append("ball law: its bounce (6 mm at 7.06 m/s, Cross) + adiabatic gas (one side)")
     return Ball(**kwargs), defaults
 
 

@@ -105,6 +105,9 @@ class PredictResult(StepResult):
         The string bed's law over the face (``law`` is the centre's, used with ``uniform``).
     stiffness_reading : {"period", "tangent"}
         Reading of eq 10 (approximate method).
+    vibration_charge : {"coupled", "paper"}
+        How the approximate method charges the vibration against e_BG
+        (:func:`racketdyn.impact.approximate.vibration_cor_squared`).
     rigid : bool
         A rigid racket (no modes) was asked for.
     points : str
@@ -140,6 +143,7 @@ class PredictResult(StepResult):
     include_string_bed: bool = False
     string_bed: StringBed = "uniform"
     stiffness_reading: Literal["period", "tangent"] = "period"
+    vibration_charge: Literal["coupled", "paper"] = "coupled"
     rigid: bool = False
     points: str = ""
     hand: Hand | None = None
@@ -232,6 +236,7 @@ def run_predict(
     points: str | os.PathLike[str] | ArrayLike | None = None,
     grid: int | None = None,
     stiffness_reading: Literal["period", "tangent"] | None = None,
+    vibration_charge: Literal["coupled", "paper"] = "coupled",
     include_string_bed: bool = False,
     string_bed: StringBed = "uniform",
     allow_implausible: bool = False,
@@ -272,6 +277,9 @@ def run_predict(
         N × N grid over the head (default 9).
     stiffness_reading : {"period", "tangent"}, optional
         Reading of eq 10 (default ``period``); for ``model`` approx or both only.
+    vibration_charge : {"coupled", "paper"}
+        The approximate method's charge of the vibration against e_BG: as the coupled
+        contact's energy balance gives it (default) or as the paper writes it.
     include_string_bed : bool
         Charge string-bed modes as vibration loss too.
     string_bed : {"uniform", "local"}
@@ -333,6 +341,7 @@ def run_predict(
         include_string_bed=include_string_bed,
         string_bed=string_bed,
         stiffness_reading=stiffness_reading,
+        vibration_charge=vibration_charge,
         rigid=rigid,
         points=points_source,
         hand=the_hand,
@@ -356,16 +365,20 @@ def run_predict(
             labels,
             progress,
             stiffness_reading=stiffness_reading,
+            vibration_charge=vibration_charge,
             **options,
         )
-        result.approximate.write_csv(out_dir / "impact.csv")
-        result.written.append(out_dir / "impact.csv")
     if model in ("transient", "both"):
         report(progress, f"transient model ({engine} engine): {n_impacts} impacts")
         _transient_part(result, locations, labels, progress, options)
     if result.approximate is not None and result.transient is not None:
         result.comparison = compare_models(result.approximate, result.transient)
         result.written.append(result.comparison.write_csv(out_dir / "comparison.csv"))
+        # rows the approximate method cannot give carry the transient's numbers, marked so
+        result.approximate = result.approximate.filled_from(result.transient)
+    if result.approximate is not None:
+        result.approximate.write_csv(out_dir / "impact.csv")
+        result.written.append(out_dir / "impact.csv")
     _figure_data(result, options, progress)
     inputs = {
         **used.provenance,
@@ -404,6 +417,7 @@ def _figure_data(result: PredictResult, options: dict[str, Any], progress: Progr
             shown_speed=result.speeds[result.shown_speed],
             result=result.approximate,
             stiffness_reading=result.stiffness_reading,
+            vibration_charge=result.vibration_charge,
             **impact,
         )
         datasets.append(result.paper_figures.to_xarray())
@@ -415,6 +429,7 @@ def _figure_data(result: PredictResult, options: dict[str, Any], progress: Progr
             **grid,
             engine=cast("Engine", result.engine),
             stiffness_reading=result.stiffness_reading,
+            vibration_charge=result.vibration_charge,
             **impact,
         )
         datasets.append(result.transient_curves.to_xarray())

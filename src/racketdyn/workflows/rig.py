@@ -18,7 +18,11 @@ import numpy as np
 
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError, one_of, require_range
-from racketdyn.impact.compound import PRELOAD_N, restitution_damping_ratio
+from racketdyn.impact.compound import (
+    PRELOAD_N,
+    restitution_damping_ratio,
+    small_amplitude_e_bg,
+)
 from racketdyn.io import racket_to_dict, write_hammer_uff
 from racketdyn.measurement import HammerRecords
 from racketdyn.modal import ModalModel
@@ -188,7 +192,7 @@ def run_rig(
             (float(ball_xy[0]), float(ball_xy[1])),
             the_ball.mass_kg,
             float(law.stiffness(law.deflection(PRELOAD_N))),
-            restitution_damping_ratio(the_ball.e_bg),
+            restitution_damping_ratio(small_amplitude_e_bg(the_racket, the_ball)),
         )
         ball_record = {
             "location_m": list(spring[0]),

@@ -1,0 +1,65 @@
+"""Figure of ``racketdyn ball``: force against the ball's flattening in each bounce."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.axes import Axes
+
+from racketdyn.plotting.render import save_figure
+
+if TYPE_CHECKING:
+    from racketdyn.impact.bounce import BallBounces
+
+__all__ = ["BALL_FIGURE", "draw_ball_loops", "write_ball_figure"]
+
+BALL_FIGURE = "ball_hysteresis.png"
+_TITLES = {
+    "rigid": "rigid surface: the ball's flattening",
+    "strings": "head-clamped strings: ball + bed compression",
+}
+
+
+def draw_ball_loops(bounces: BallBounces, axes: Sequence[Axes] | None = None) -> list[Axes]:
+    """One panel per surface: force (N) against compression (mm), a loop per speed.
+
+    Loading runs up the upper branch and unloading down the lower one; the area between is
+    the energy the bounce loses.  Draws only the arrays ``bounces`` holds.
+    """
+    if axes is None:
+        _, made = plt.subplots(
+            1, len(bounces.surfaces), figsize=(4.6 * len(bounces.surfaces), 3.8), squeeze=False
+        )
+        axes = list(made[0])
+    colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, max(bounces.speeds.size, 1)))
+    for i, (ax, surface) in enumerate(zip(axes, bounces.surfaces, strict=True)):
+        for j, speed in enumerate(bounces.speeds):
+            x, f = bounces.loop_compression[i, j], bounces.loop_force[i, j]
+            if not np.all(np.isfinite(f)):
+                continue
+            ax.plot(
+                x * 1e3,
+                f,
+                color=colours[j],
+                label=f"{speed:g} m/s: COR {bounces.cor[i, j]:.3f}",
+            )
+        ax.set_xlabel("compression (mm)")
+        ax.set_ylabel("force (N)")
+        ax.set_title(_TITLES.get(surface, surface), fontsize=10)
+        ax.legend(fontsize=7, frameon=False)
+        ax.grid(alpha=0.3)
+    return list(axes)
+
+
+def write_ball_figure(out: Path, bounces: BallBounces) -> Path:
+    """Draw :func:`draw_ball_loops` and write :data:`BALL_FIGURE` in ``out``."""
+    figure, made = plt.subplots(
+        1, len(bounces.surfaces), figsize=(4.6 * len(bounces.surfaces), 3.8), squeeze=False
+    )
+    draw_ball_loops(bounces, list(made[0]))
+    figure.tight_layout()
+    return save_figure(figure, Path(out) / BALL_FIGURE)

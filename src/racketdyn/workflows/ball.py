@@ -1,0 +1,157 @@
+"""Step ``ball``: the ball's bounce on a rigid surface and on head-clamped strings (issue 22).
+
+Writes ``ball.csv`` (:data:`racketdyn.impact.bounce.BALL_COLUMNS`), ``ball.nc`` (the bounces
+and their force–compression loops, the data the figure draws) and ``run.json``; the figure
+comes from the caller's hook.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from racketdyn.ball import (
+    BOUNCE_COMPRESSION_M,
+    BOUNCE_SPEED_MPS,
+    ITF_FORWARD_DEFORMATION_M,
+    ITF_FORWARD_LOAD_N,
+    STATIC_WALL_STIFFNESS_N_PER_M,
+    Ball,
+    default_ball_law,
+)
+from racketdyn.contact import STRING_BED_COR
+from racketdyn.impact.bounce import SURFACES, BallBounces, ball_bounces
+from racketdyn.plausibility import check, check_speeds
+from racketdyn.workflows.inputs import RacketInput, ball_or_default, load_racket_input
+from racketdyn.workflows.run import (
+    Progress,
+    StepResult,
+    command_record,
+    finish_run,
+    report,
+    run_step,
+)
+
+__all__ = ["BALL_SPEEDS_MPS", "BallResult", "run_ball"]
+
+BALL_SPEEDS_MPS = (4.43, 7.06, 10.0, 20.0, 30.0, 40.0)
+"""Default speeds: Cross's 1 m drop onto clamped strings, the ITF 100 in drop, then play."""
+
+
+@dataclass
+class BallResult(StepResult):
+    """What :func:`run_ball` computed and wrote.
+
+    Attributes
+    ----------
+    bounces : BallBounces or None
+        The bounces (numbers and loops).
+    static_deformation_m : float
+        The ITF plate test (two plates, 80.1 N) on the static ball law, m: the separate check.
+    tension_n : float
+        String tension of the clamped bed, N.
+    """
+
+    bounces: BallBounces | None = None
+    static_deformation_m: float = float("nan")
+    tension_n: float = float("nan")
+
+
+@run_step
+def run_ball(
+    out: str | os.PathLike[str],
+    *,
+    racket: RacketInput = None,
+    ball: Ball | None = None,
+    speeds: ArrayLike = BALL_SPEEDS_MPS,
+    surfaces: Sequence[str] = SURFACES,
+    tension_n: float | None = None,
+    allow_implausible: bool = False,
+    defaults: Sequence[str] = (),
+    command: Sequence[str] | None = None,
+    figures: Callable[[BallResult, Path], list[Path]] | None = None,
+    progress: Progress | None = None,
+) -> BallResult:
+    """The ball's bounce on each surface at each speed; write the run folder.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    racket : Racket, path or None
+        The racket whose head-clamped strings the ball meets (None: the built-in racket).
+    ball : Ball, optional
+        The ball (default :class:`~racketdyn.ball.Ball`).
+    speeds : array_like
+        Impact speeds, m/s.
+    surfaces : sequence of {"rigid", "strings"}
+        Which surfaces.
+    tension_n : float, optional
+        String tension of the clamped bed, N (default: the racket's).
+    allow_implausible : bool
+        Let speeds and tensions beyond those of play through (:mod:`racketdyn.plausibility`).
+    defaults : sequence of str
+        Defaults the caller filled in (ball), added to run.json.
+    command : sequence of str, optional
+        The command as called, for run.json.
+    figures : callable, optional
+        ``figures(result, out) -> paths`` (none without it).
+    progress : callable, optional
+        ``progress(what, done, total)`` for a progress display.
+    """
+    speed_list = [float(v) for v in np.atleast_1d(np.asarray(speeds, dtype=float))]
+    check_speeds("speeds", speed_list, "ball_speed_mps", allow_implausible)
+    the_racket, provenance = load_racket_input(racket)
+    if tension_n is not None:
+        check("tension_n", tension_n, "tension_n", allow_implausible=allow_implausible)
+        the_racket = replace(the_racket, strings=replace(the_racket.strings, tension_n=tension_n))
+    the_ball, ball_defaults = ball_or_default(ball)
+    report(progress, "bounces", 0, 1)
+    bounces = ball_bounces(the_ball, speed_list, surfaces, the_racket)
+    report(progress, "bounces", 1, 1)
+    static = default_ball_law(
+        the_ball.diameter_m, wall_stiffness_n_per_m=STATIC_WALL_STIFFNESS_N_PER_M
+    )
+    out_dir = Path(out)
+    result = BallResult(
+        out_dir,
+        bounces=bounces,
+        static_deformation_m=2.0 * float(static.deflection(ITF_FORWARD_LOAD_N)),
+        tension_n=the_racket.strings.tension_n,
+    )
+    result.written.append(bounces.write_csv(out_dir / "ball.csv"))
+    bounces.to_xarray().to_netcdf(out_dir / "ball.nc")
+    result.written.append(out_dir / "ball.nc")
+    inputs: dict[str, Any] = {
+        **provenance,
+        "speeds_mps": speed_list,
+        "surfaces": list(bounces.surfaces),
+        "string_tension_n": the_racket.strings.tension_n,
+        "ball": {
+            "mass_kg": the_ball.mass_kg,
+            "diameter_m": the_ball.diameter_m,
+            "rigid_cor": the_ball.rigid_cor,
+            "restoring_force": the_ball.restoring_force.as_dict(),
+            "e_bg_law": bounces.e_bg_record,
+        },
+        "string_bed_cor": STRING_BED_COR,
+        "bounce_the_law_came_from": {
+            "speed_mps": BOUNCE_SPEED_MPS,
+            "compression_m": BOUNCE_COMPRESSION_M,
+        },
+        "itf_plate_test": {
+            "load_n": ITF_FORWARD_LOAD_N,
+            "deformation_m_static_law": result.static_deformation_m,
+            "deformation_m_itf_middle": ITF_FORWARD_DEFORMATION_M,
+            "why": "a slow plate test, not a bounce: the static law (ITF wall + gas) against "
+            "the ITF limits 5.6-7.4 mm, a separate check",
+        },
+        "defaults_used": [*ball_defaults, *defaults],
+    }
+    return finish_run(result, inputs, command_record(command, "ball"), figures)

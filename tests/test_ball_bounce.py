@@ -1,0 +1,257 @@
+"""The ball in a bounce and e_BG from ball + strings, held to measurements (issue 22).
+
+Sources and numbers: docs/references.md, "The ball in a bounce".  The built-in ball's law has
+one parameter from the ball's own bounce (6 mm of flattening at 7.06 m/s on a rigid surface,
+Cross) and its own COR (ITF rebound); the string bed's energy return has one from a ball on
+clamped strings (Cross's 1 m drop, e_BG 0.84).  Everything else below is a prediction held to a
+*different* measurement.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from racketdyn.ball import (
+    BOUNCE_COMPRESSION_M,
+    BOUNCE_SPEED_MPS,
+    ITF_FORWARD_DEFORMATION_M,
+    ITF_FORWARD_LOAD_N,
+    STATIC_WALL_STIFFNESS_N_PER_M,
+    Ball,
+    default_ball_law,
+)
+from racketdyn.contact import (
+    CROSS_DROP_E_BG,
+    CROSS_DROP_SPEED_MPS,
+    STRING_BED_COR,
+    ball_string_cor,
+    clamped_bounce,
+    compound_law,
+    with_ball_string_cor,
+)
+from racketdyn.errors import InputError
+from racketdyn.impact import predict
+from racketdyn.impact.approximate import vibration_cor_squared
+from racketdyn.impact.bounce import BALL_COLUMNS, SURFACES, ball_bounces
+from racketdyn.impact.result import STATUS_VIBRATION_LOSS, STATUS_VIBRATION_SHARE
+from racketdyn.impact.transient import predict_transient, simulate_contact
+from racketdyn.io import default_racket
+from racketdyn.racket import landmark_points
+
+DROP_100_IN_MPS = math.sqrt(2 * 9.81 * 2.54)  # 7.06 m/s
+DROP_1_M_MPS = math.sqrt(2 * 9.81 * 1.0)  # 4.43 m/s
+
+
+@pytest.fixture(scope="module")
+def racket():  # type: ignore[no-untyped-def]
+    return default_racket()
+
+
+def test_the_drop_speeds_are_the_papers_heights() -> None:
+    assert pytest.approx(BOUNCE_SPEED_MPS, abs=0.01) == DROP_100_IN_MPS
+    assert pytest.approx(CROSS_DROP_SPEED_MPS, abs=0.01) == DROP_1_M_MPS
+
+
+def test_rigid_surface_bounce_at_100_in() -> None:
+    """Dropped from 100 in onto a rigid surface (simulated with the transient model's
+    hysteretic contact on an immovable racket): ≈ 6 ± 1 mm of flattening (Cross; the tolerance
+    is his "about 6 mm") and a COR in the ITF rebound band 0.729–0.761.  Both were put into
+    the law; this checks the law's fit, its inversion and the hysteresis carry them through."""
+    ball = Ball()
+    bounce = simulate_contact(
+        ball.mass_kg, ball.rigid_cor, ball.restoring_force, math.inf, DROP_100_IN_MPS
+    )
+    assert bounce.peak_deflection_m == pytest.approx(BOUNCE_COMPRESSION_M, abs=1e-3)
+    assert 0.729 <= bounce.rebound_speed_mps / DROP_100_IN_MPS <= 0.761
+
+
+def test_a_bounce_is_stiffer_than_the_slow_plate_test() -> None:
+    """The ITF plate test (80.1 N, 5.6–7.4 mm between two plates) is slow: the same ball in a
+    bounce is ≈ 3× stiffer (Haake, Carré and Goodwill 2003: dynamic above static).  The
+    static law still meets the ITF test it came from: a separate check of a different test."""
+    bounce, static = (
+        default_ball_law(),
+        default_ball_law(wall_stiffness_n_per_m=STATIC_WALL_STIFFNESS_N_PER_M),
+    )
+    two_sided = 2 * float(static.deflection(ITF_FORWARD_LOAD_N))
+    assert 5.6e-3 <= two_sided <= 7.4e-3
+    assert two_sided == pytest.approx(ITF_FORWARD_DEFORMATION_M, rel=0.02)
+    assert 2.5 < bounce.stiffness(1e-4) / static.stiffness(1e-4) < 4.0
+
+
+def test_head_clamped_strings_at_1_m(racket) -> None:  # type: ignore[no-untyped-def]
+    """Dropped 1 m onto head-clamped strings the ball flattens ≈ 3 mm (Cross; ± 1 mm, his
+    "about 3 mm"): a prediction of the ball and bed laws, not an input.  The built-in ball
+    gives ≈ 2.0 mm — at the soft end of the band; the bed takes the rest (≈ 5 mm)."""
+    bounce = clamped_bounce(racket, Ball(), DROP_1_M_MPS)
+    assert 2.0e-3 <= float(bounce["ball_compression"]) <= 4.0e-3
+    assert float(bounce["bed_deflection"]) > float(bounce["ball_compression"])
+
+
+def test_the_string_beds_energy_return_is_cross_s_drop(racket) -> None:  # type: ignore[no-untyped-def]
+    """STRING_BED_COR is what makes the built-in ball bounce from Cross's 1 m drop with
+    e_BG 0.84 on the paper's racket (recomputed here; to the constant's 3 digits)."""
+    solved = brentq(
+        lambda e: float(ball_string_cor(racket, Ball(), CROSS_DROP_SPEED_MPS, e)) - CROSS_DROP_E_BG,
+        0.5,
+        1.0,
+    )
+    assert solved == pytest.approx(STRING_BED_COR, abs=1e-3)
+    assert STRING_BED_COR < 0.97  # below strings alone under a rigid impactor
+
+
+def test_e_bg_follows_kawazoe_and_haake(racket) -> None:  # type: ignore[no-untyped-def]
+    """e_BG from ball + strings over 10–40 m/s: within Kawazoe's measured 0.8–0.9 ("almost
+    independent of speed and tension"), falling slowly with speed (Haake, Carré and Goodwill
+    2003), and lower at a higher tension (Vallatta, Casolo and Caffi) by little (Kawazoe: no
+    effect within the scatter at 25–65 lb, so less than 0.03)."""
+    speeds = np.array([10.0, 20.0, 30.0, 40.0])
+    cor = ball_string_cor(racket, Ball(), speeds)
+    assert np.all((cor >= 0.80) & (cor <= 0.90))
+    assert np.all(np.diff(cor) < 0)
+    loose = replace(racket, strings=replace(racket.strings, tension_n=25 * 4.448))
+    tight = replace(racket, strings=replace(racket.strings, tension_n=65 * 4.448))
+    low, high = ball_string_cor(loose, Ball(), 20.0), ball_string_cor(tight, Ball(), 20.0)
+    assert 0.0 < float(low - high) < 0.03
+
+
+def test_a_given_e_bg_is_kept_and_an_unresolved_one_is_refused(racket) -> None:  # type: ignore[no-untyped-def]
+    given = Ball(e_bg=0.8)
+    assert with_ball_string_cor(racket, given) is given
+    with pytest.raises(InputError, match="with_ball_string_cor"):
+        Ball().e_bg_at(20.0)
+    resolved = with_ball_string_cor(racket, Ball())
+    assert resolved.e_bg_record()["kind"].startswith("ball + strings")
+    assert float(resolved.e_bg_at(CROSS_DROP_SPEED_MPS)) == pytest.approx(0.84, abs=0.002)
+
+
+def test_transient_on_clamped_strings_returns_the_derived_e_bg(racket) -> None:  # type: ignore[no-untyped-def]
+    ball = with_ball_string_cor(racket, Ball())
+    for speed in (5.0, 20.0):
+        e = float(ball.e_bg_at(speed))
+        run = simulate_contact(ball.mass_kg, e, compound_law(racket, ball), math.inf, speed)
+        assert run.rebound_speed_mps / speed == pytest.approx(e, rel=1e-5)
+
+
+def test_contact_time_at_the_centre_of_a_free_racket(racket) -> None:  # type: ignore[no-untyped-def]
+    """4.0–5.0 ms at 20 m/s (Kawazoe and Cross, measured: 4–5 ms in ordinary strokes) and
+    falling with speed, in both models (the old soft ball gave 5.1–5.6 ms)."""
+    centre = [landmark_points(racket)["centre"]]
+    speeds = [10.0, 20.0, 30.0, 40.0]
+    for model in (predict, predict_transient):
+        result = model(racket, Ball(), centre, speeds, ("free",))
+        times = result.contact_time[0, :, 0]
+        assert 4.0e-3 <= times[1] <= 5.0e-3, model.__name__
+        assert np.all(np.diff(times) < 0), model.__name__
+
+
+def test_the_coupled_charge_limits() -> None:
+    """Both charges agree when the strings lose nothing (e_BG = 1) or the frame holds nothing
+    at the turn; the coupled one charges (1 − e_BG²) E_turn less."""
+    e = np.array([1.0, 0.83, 0.83])
+    vib, turn, rel = np.array([0.2, 0.2, 0.2]), np.array([0.1, 0.0, 0.1]), 1.0
+    paper = vibration_cor_squared(e, vib, turn, rel, "paper")
+    coupled = vibration_cor_squared(e, vib, turn, rel, "coupled")
+    assert coupled[:2] == pytest.approx(paper[:2])
+    assert coupled[2] - paper[2] == pytest.approx((1 - 0.83**2) * 0.1)
+
+
+@pytest.mark.parametrize("first_bending_hz", [120.0, 130.0, 190.0])
+def test_the_approximate_method_is_within_0_015_of_the_transient_where_it_gives_a_number(
+    racket, first_bending_hz
+) -> None:  # type: ignore[no-untyped-def]
+    """Issue 22's protocol: the built-in racket (120 Hz), a flexible (130 Hz) and a stiff
+    (190 Hz) frame; along the long axis and 40 mm off it; 10–40 m/s; free and pinned.  Every
+    row the approximate method gives a number for is within 0.015 of the transient model's
+    rebound ratio (the coupled charge; rows where the frame takes over 30 % of the approach
+    energy are NaN with their status); the paper's charge is further off on the same rows, and
+    the stiff frame leaves most rows with a number."""
+    frame = replace(racket, first_bending_hz=first_bending_hz)
+    head = frame.head
+    xs = np.linspace(head.throat_x_m + 0.015, head.tip_x_m - 0.015, 9)
+    speeds = [10.0, 20.0, 30.0, 40.0]
+    for y in (0.0, 0.04):
+        points = np.column_stack([xs, np.full_like(xs, head.centre_y_m + y)])
+        points = points[head.contains(points)]
+        supports = ("free", "pinned")
+        transient = predict_transient(frame, Ball(), points, speeds, supports)
+        coupled = predict(frame, Ball(), points, speeds, supports)
+        paper = predict(frame, Ball(), points, speeds, supports, vibration_charge="paper")
+        given = (coupled.status == "ok") & (transient.status == "ok")  # a second contact
+        assert set(np.unique(coupled.status)) <= {
+            "ok",
+            STATUS_VIBRATION_SHARE,
+            STATUS_VIBRATION_LOSS,
+        }
+        error = np.abs(coupled.rebound_ratio - transient.rebound_ratio)[given]
+        assert np.all(error <= 0.015)
+        paper_error = np.abs(paper.rebound_ratio - transient.rebound_ratio)[given]
+        assert np.sqrt(np.mean(paper_error**2)) > np.sqrt(np.mean(error**2))
+        if first_bending_hz == 190.0:
+            assert np.mean(given) > 0.85
+        else:
+            assert np.mean(given) > 0.6
+
+
+def test_clamped_contact_lasts_about_5_ms_at_1_m(racket) -> None:  # type: ignore[no-untyped-def]
+    """Cross: the ball dropped 1 m on clamped strings stays ≈ 5 ms (± 0.5 ms, "about")."""
+    bounces = ball_bounces(Ball(), [DROP_1_M_MPS], ("strings",), racket)
+    assert 4.5e-3 <= float(bounces.contact_time[0, 0]) <= 5.5e-3
+    assert float(bounces.cor[0, 0]) == pytest.approx(CROSS_DROP_E_BG, abs=0.002)
+
+
+def test_bounces_table_and_loops(racket) -> None:  # type: ignore[no-untyped-def]
+    bounces = ball_bounces(Ball(), [5.0, 20.0], SURFACES, racket, samples=50)
+    rows = bounces.rows()
+    assert [r["surface"] for r in rows] == ["rigid", "rigid", "strings", "strings"]
+    assert set(rows[0]) == set(BALL_COLUMNS)
+    # the loop's largest force is the peak force; the contact ends unloaded
+    assert np.nanmax(bounces.loop_force, axis=-1) == pytest.approx(bounces.peak_force, rel=0.02)
+    assert np.all(np.abs(bounces.loop_force[..., -1]) < 1e-6 * bounces.peak_force)
+    data = bounces.to_xarray()
+    assert data["cor"].sel(surface="rigid").values == pytest.approx([0.745, 0.745], abs=1e-6)
+    with pytest.raises(InputError, match="racket"):
+        ball_bounces(Ball(), [5.0], ("strings",))
+    with pytest.raises(InputError, match="surfaces"):
+        ball_bounces(Ball(), [5.0], ("grass",), racket)
+    with pytest.raises(InputError, match="above 0"):
+        ball_bounces(Ball(), [0.0], ("rigid",))
+
+
+def test_ball_command_writes_its_files(tmp_path: Path) -> None:
+    from racketdyn.cli import main
+
+    out = tmp_path / "ball"
+    assert main(["ball", "--speed", "4.43,20", "--tension", "220", "--out", str(out)]) == 0
+    names = sorted(p.name for p in out.iterdir())
+    assert names == ["ball.csv", "ball.nc", "ball_hysteresis.png", "run.json"]
+    with (out / "ball.csv").open() as handle:
+        header = handle.readline().strip().split(",")
+    assert tuple(header) == BALL_COLUMNS
+    record = json.loads((out / "run.json").read_text())
+    assert record["string_tension_n"] == 220.0
+
+
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        (["--surface", "grass"], "--surface"),
+        (["--speed", "0"], "--speed"),
+        (["--speed", "90"], "--speed"),
+        (["--tension", "50"], "--tension"),
+    ],
+)
+def test_ball_command_bad_input_is_one_line(tmp_path: Path, capsys, argv, words) -> None:  # type: ignore[no-untyped-def]
+    from racketdyn.cli import main
+
+    assert main(["ball", *argv, "--out", str(tmp_path / "b")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert words in err
