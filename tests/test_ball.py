@@ -6,7 +6,14 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
-from racketdyn.ball import ITF_FORWARD_DEFORMATION_M, ITF_FORWARD_LOAD_N, RestoringForce, series
+from racketdyn.ball import (
+    ITF_FORWARD_DEFORMATION_M,
+    ITF_FORWARD_LOAD_N,
+    STATIC_WALL_STIFFNESS_N_PER_M,
+    RestoringForce,
+    default_ball_law,
+    series,
+)
 from racketdyn.errors import InputError
 
 
@@ -63,10 +70,11 @@ def test_series_deflections_add(law: RestoringForce, racket: rd.Racket, ball: rd
     strings = rd.string_bed_law(racket, ball)
     force = np.linspace(10, 0.95 * law.max_force_n, 20)
     expected = ball.restoring_force.deflection(force) + strings.deflection(force)
-    # the degree-9 relative fit is within 30 µm of the exact series curve over 0–14 kN
-    np.testing.assert_allclose(law.deflection(force), expected, atol=3e-5)
-    # rms force residual below 1e-4 of the range's top force (measured 1.0 N of 13.8 kN)
-    assert law.rms_residual_n < 1e-4 * law.max_force_n
+    # the degree-9 relative fit is within 40 µm of the exact series curve over 0–14 kN
+    # (32 µm with issue 22's bounce-stiff ball, 30 µm before)
+    np.testing.assert_allclose(law.deflection(force), expected, atol=4e-5)
+    # rms force residual below 2e-4 of the range's top force (measured 1.7 N of 13.8 kN)
+    assert law.rms_residual_n < 2e-4 * law.max_force_n
 
 
 def test_softening_law_is_rejected() -> None:
@@ -74,13 +82,17 @@ def test_softening_law_is_rejected() -> None:
         RestoringForce("polynomial", (1.0e4, -1.0e6), 0.02)
 
 
-def test_default_ball_law_meets_the_itf_test(ball: rd.Ball) -> None:
+def test_the_static_ball_law_meets_the_itf_test() -> None:
     # ITF (docs/references.md): 80.1 N flattens the ball by the two-plate forward deformation;
     # one side carries half.  The gas term adds (3π/2)γp X³/R, under 2 % at that small
-    # deflection, so the law passes the ITF point within 2 %.
+    # deflection, so the static law (the plate test's wall) passes the ITF point within 2 %;
+    # the built-in law is the bounce's (issue 22, tests/test_ball_bounce.py).
+    static = rd.Ball(
+        restoring_force=default_ball_law(wall_stiffness_n_per_m=STATIC_WALL_STIFFNESS_N_PER_M)
+    ).restoring_force
     one_side = 0.5 * ITF_FORWARD_DEFORMATION_M
-    assert ball.restoring_force.force(one_side) == pytest.approx(ITF_FORWARD_LOAD_N, rel=0.02)
-    assert ball.restoring_force.force(one_side) > ITF_FORWARD_LOAD_N
+    assert static.force(one_side) == pytest.approx(ITF_FORWARD_LOAD_N, rel=0.02)
+    assert static.force(one_side) > ITF_FORWARD_LOAD_N
 
 
 def test_kawazoe_string_law(racket: rd.Racket, ball: rd.Ball) -> None:

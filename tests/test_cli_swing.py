@@ -135,8 +135,8 @@ def test_swing_csv_equals_a_direct_predict_swing(
     centre = int(np.argmin(np.hypot(x - racket.head.centre_x_m, y)))
     tip = int(np.argmax(x))
     for i in (centre, tip):
-        direct = predict_swing(
-            racket, ball, [(x[i], y[i])], [20.0], Swing(), "pinned", modal_model=model
+        direct = predict_swing(  # the command's ball: e_BG from ball + strings (issue 22)
+            racket, rd.Ball(), [(x[i], y[i])], [20.0], Swing(), "pinned", modal_model=model
         )
         assert float(rows[i]["rebound_speed_mps"]) == pytest.approx(
             direct.rebound_speed[0, 0, 0], rel=CSV_REL
@@ -166,7 +166,9 @@ def test_sweet_spots_csv_names_the_four_sweet_spots(swing_dir: Path) -> None:
     best = spots["max_rebound_speed"]
     value = float(best["value"])
     assert float(best["rebound_speed_mps"]) == pytest.approx(value, rel=RELATION_REL)
-    on_axis = [r for r in _read(swing_dir / "swing.csv") if float(r["y_m"]) == 0.0]
+    on_axis = [  # with a number (the throat and tip are beyond the approximate method)
+        r for r in _read(swing_dir / "swing.csv") if float(r["y_m"]) == 0.0 and r["status"] == "ok"
+    ]
     assert on_axis
     assert all(float(r["rebound_speed_mps"]) <= value * (1 + CSV_REL) for r in on_axis)
     # the swing adds (1 + e) Ω (x + d), growing towards the tip: the best point for the swing

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
+from racketdyn.ball import STATIC_WALL_STIFFNESS_N_PER_M, default_ball_law
 from racketdyn.impact import kernel
 from racketdyn.impact.approximate import predict
 from racketdyn.impact.result import (
@@ -25,6 +26,7 @@ from racketdyn.impact.result import (
     STATUS_OK,
     STATUS_SECOND_CONTACT,
     STATUS_VIBRATION_LOSS,
+    STATUS_VIBRATION_SHARE,
     ImpactResult,
     invalidated_columns,
 )
@@ -32,6 +34,18 @@ from racketdyn.impact.transient import predict_transient, simulate_impact
 from racketdyn.racket import landmark_points
 
 INPUT_COLUMNS = ("point", "x_m", "y_m", "support", "ball_speed_mps", "racket_speed_mps")
+
+
+@pytest.fixture(scope="module")
+def ball() -> rd.Ball:
+    """The speeds and points below were found to give each status with the ball law of issue
+    13 (the ITF plate test's wall) and a given e_BG; they test the flagging, not the ball, so
+    they keep that ball (issue 22 made the built-in ball stiffer; its own flags are tested in
+    tests/test_ball_bounce.py)."""
+    return rd.Ball(
+        e_bg=0.83,
+        restoring_force=default_ball_law(wall_stiffness_n_per_m=STATIC_WALL_STIFFNESS_N_PER_M),
+    )
 
 
 @pytest.fixture(autouse=True)
@@ -63,11 +77,12 @@ def _check_row(result: ImpactResult, row: tuple[int, int, int], status: str) -> 
 
 
 def test_vibration_loss_row_is_nan_in_every_result(racket, ball) -> None:
-    # pinned tip at 30 m/s: eq 12 charges more than e_BG leaves (the demo's Fig. 14 case)
-    tip = landmark_points(racket)["tip"]
-    result = predict(racket, ball, [tip], [10.0, 30.0], "pinned")
+    # pinned tip at 30 m/s: eq 12 charges more than e_BG leaves (the demo's Fig. 14 case; the
+    # paper's charge since issue 22, the coupled one leaves it just positive, beyond 30 %)
+    tip, inside = landmark_points(racket)["tip"], (0.59, 0.0)  # inside: within 30 % (issue 22)
+    result = predict(racket, ball, [inside, tip], [10.0, 30.0], "pinned", vibration_charge="paper")
     assert result.status[0, 0, 0] == STATUS_OK
-    _check_row(result, (0, 1, 0), STATUS_VIBRATION_LOSS)
+    _check_row(result, (1, 1, 0), STATUS_VIBRATION_LOSS)
     assert np.all(np.isfinite([getattr(result, a)[0, 0, 0] for a in OUTCOMES[:5]]))
 
 
@@ -225,16 +240,19 @@ def test_fig14_draws_no_vibration_for_flagged_impacts(racket, ball) -> None:
     from racketdyn.workflows.figure_data import FrameVibration
 
     tip = landmark_points(racket)["tip"]
-    result = _stale(predict(racket, ball, [tip], [10.0, 30.0], "pinned"))
+    result = _stale(predict(racket, ball, [tip], [10.0, 30.0], "pinned", vibration_charge="paper"))
+    # since issue 22 the tip is beyond the approximate method at 10 m/s too (over 30 %)
+    assert result.status[0, 0, 0] == STATUS_VIBRATION_SHARE
     assert result.status[0, 1, 0] == STATUS_VIBRATION_LOSS
     figure, ax = plt.subplots()
     vibration = FrameVibration.of(result, np.linspace(0.0, 0.68, 41), 0)
     plot_frame_amplitude(vibration, "pinned", ax=ax)
     drawn = [line.get_label() for line in _finite_lines(ax)]
-    assert [label for label in drawn if label.endswith("m/s")] == ["10 m/s"]
+    assert [label for label in drawn if label.endswith("m/s")] == []
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     assert any(label.startswith("30 m/s: flagged, not drawn") for label in labels)
-    assert "1 of 2 speeds flagged" in ax.get_title()
+    assert any(label.startswith("10 m/s: flagged, not drawn") for label in labels)
+    assert "2 of 2 speeds flagged" in ax.get_title()
     plt.close(figure)
 
 
@@ -292,7 +310,7 @@ def test_report_reads_a_stale_impact_csv_as_nan(tmp_path, racket, ball) -> None:
     from racketdyn.report.folder import Impacts
 
     tip = landmark_points(racket)["tip"]
-    result = predict(racket, ball, [tip], [10.0, 30.0], "pinned")
+    result = predict(racket, ball, [tip], [10.0, 30.0], "pinned", vibration_charge="paper")
     path = tmp_path / "impact.csv"
     result.write_csv(path)
     lines = path.read_text(encoding="utf-8").splitlines()
@@ -305,7 +323,7 @@ def test_report_reads_a_stale_impact_csv_as_nan(tmp_path, racket, ball) -> None:
     path.write_text("\n".join([lines[0], lines[1], ",".join(cells)]) + "\n", encoding="utf-8")
     table = Impacts.read(path)
     for name in ("contact_time_s", "vibration_energy_j", "peak_force_n"):
-        assert np.isfinite(table[name][0])
+        assert np.isnan(table[name][0])  # the tip at 10 m/s: over 30 % since issue 22
         assert np.isnan(table[name][1])
     assert table["reduced_mass_kg"][1] == pytest.approx(result.reduced_mass[0, 0])
 

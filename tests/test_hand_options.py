@@ -39,7 +39,7 @@ def test_the_options_reach_the_model_and_run_json(tmp_path: Path) -> None:
     header = rows[0].split(",")
     column = header.index("rebound_ratio")
     values = [float(r.split(",")[column]) for r in rows[1:]]
-    np.testing.assert_allclose(values, direct.rebound_ratio[:, 0, 0], rtol=1e-9)
+    np.testing.assert_allclose(values, direct.rebound_ratio[:, 0, 0], rtol=5e-9)  # 9 digits
 
 
 @pytest.mark.parametrize(

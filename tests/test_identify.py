@@ -76,7 +76,7 @@ def test_identified_model_drives_the_prediction(case) -> None:
     identified = rd.predict(racket, rd.Ball(), points, [20.0], modal_model=case["result"].model)
     true = rd.predict(racket, rd.Ball(), points, [20.0], modal_model=case["truth"])
     ok = (identified.status == "ok") & (true.status == "ok")
-    assert ok.mean() > 0.8
+    assert ok.mean() > 0.6  # the rim beyond the approximate method since issue 22 (over 30 %)
     np.testing.assert_allclose(identified.rebound_ratio[ok], true.rebound_ratio[ok], atol=0.01)
 
 

@@ -259,6 +259,12 @@ twisting_hz = 380.0
 """
 
 
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 22: a row where the approximate method's vibration charge would drive the "
+    "ratio negative now takes over 30 % of the approach energy and has no number (status); the "
+    "report's split of negative ratios into recoil and vibration is to be revisited",
+)
 def test_negative_rebound_ratios_at_the_throat_are_not_called_recoil(tmp_path: Path) -> None:
     """New-user trial (issue 13): on a 320 g head-light racket the approximate method gave
     negative rebound ratios at the throat (x = 371 mm at 10 m/s, where the transient simulation

@@ -218,8 +218,14 @@ def test_lead_at_the_tip_raises_rebound_near_the_tip_when_pinned(
     one_at_a_time: tuple[xr.Dataset, Path],
 ) -> None:
     ds, _ = one_at_a_time
-    tip = int(np.argmax(np.where(np.abs(ds["y_m"].values) < 1e-9, ds["x_m"].values, -np.inf)))
     base, lead = design(ds, "base"), design(ds, "point_mass")
+    # the farthest point on the axis the approximate method gives a number for (issue 22: the
+    # last one, near the frame, takes over 30 % of the approach energy)
+    given = (
+        base["rebound_ratio"].isel(speed=0, racket_speed=0).sel(support="pinned").notnull().values
+    )
+    on_axis = (np.abs(ds["y_m"].values) < 1e-9) & given
+    tip = int(np.argmax(np.where(on_axis, ds["x_m"].values, -np.inf)))
     before = float(
         base["rebound_ratio"].isel(point=tip, speed=0, racket_speed=0).sel(support="pinned")
     )
@@ -235,7 +241,7 @@ def test_higher_e_bg_raises_rebound_everywhere(one_at_a_time: tuple[xr.Dataset, 
     ds, _ = one_at_a_time
     base, livelier = design(ds, "base"), design(ds, "e_bg")
     ok = (base["status"] == 0) & (livelier["status"] == 0)
-    assert int(ok.sum()) > 0.9 * ok.size
+    assert int(ok.sum()) > 0.6 * ok.size  # the rim beyond the approximate method (issue 22)
     assert bool((livelier["rebound_ratio"] > base["rebound_ratio"]).where(ok, True).all())
 
 
@@ -246,7 +252,8 @@ def test_a_very_stiff_frame_hardly_vibrates(one_at_a_time: tuple[xr.Dataset, Pat
         stiff["mode_frequency_hz"].values, 100.0 * base["mode_frequency_hz"].values, rtol=1e-9
     )
     energy, reference = stiff["vibration_energy_j"].values, base["vibration_energy_j"].values
-    assert np.all(energy <= reference)
+    both = np.isfinite(energy) & np.isfinite(reference)  # the base's rim: over 30 % (issue 22)
+    assert np.all(energy[both] <= reference[both])
     assert np.nanmax(energy) < 1e-3 * np.nanmax(reference)
 
 

@@ -185,7 +185,9 @@ def test_against_the_approximate_method_with_modes(racket, ball, model) -> None:
     approximate = predict(racket, ball, points, [20.0], "free", modal_model=model)
     transient = predict_transient(racket, ball, points, [20.0], "free", modal_model=model)
     assert np.all(transient.status == STATUS_OK)
-    np.testing.assert_allclose(transient.rebound_ratio, approximate.rebound_ratio, atol=0.1)
+    # 50 mm inside the tip the frame takes over 30 %: no approximate number (issue 22)
+    assert approximate.status[0, 0, 0] == STATUS_OK
+    np.testing.assert_allclose(transient.rebound_ratio[0], approximate.rebound_ratio[0], atol=0.015)
     assert transient.vibration_energy[1, 0, 0] > 10 * transient.vibration_energy[0, 0, 0]
     assert transient.rebound_ratio[1, 0, 0] < transient.rebound_ratio[0, 0, 0]
 

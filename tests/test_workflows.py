@@ -75,10 +75,10 @@ def test_predict_figures_come_from_the_hook_and_are_recorded(tmp_path: Path) -> 
     assert seen == [result]
     assert result.comparison is not None
     assert [p.name for p in result.written] == [
-        "impact.csv",
         "impact_transient.csv",
         "transient_histories.csv",
         "comparison.csv",
+        "impact.csv",  # after the comparison: rows beyond the approximate method filled (issue 22)
         "figures.nc",
         "figure.png",
     ]

@@ -53,7 +53,7 @@ STATUS_VIBRATION_LOSS = "vibration loss exceeds e_BG"
 STATUS_BEYOND_LAW = "deflection beyond the restoring-force law"
 STATUS_NO_SEPARATION = "ball did not leave the strings within the time allowed"
 STATUS_SECOND_CONTACT = "second contact: the vibrating frame caught the ball again"
-STATUS_FROM_TRANSIENT = "transient model's numbers: beyond the approximate method"
+STATUS_FROM_TRANSIENT = "from the transient model: beyond the approximate method"
 STATUS_VIBRATION_SHARE = (
     "frame vibration takes over 30 % of the approach energy: beyond the approximate method"
 )
