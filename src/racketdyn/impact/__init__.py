@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from racketdyn.impact.approximate import elastic_contact_time, predict, tangent_peak_deflection
+    from racketdyn.impact.bounce import BallBounces, ball_bounces
     from racketdyn.impact.calibration import (
         PARAMETERS,
         Calibration,
@@ -54,6 +55,8 @@ if TYPE_CHECKING:
     from racketdyn.impact.twist import TwistCurve, twist_curve
 
 _WHERE = {
+    "BallBounces": "bounce",
+    "ball_bounces": "bounce",
     "BallModeBand": "compound_band",
     "BedForFrequency": "compound_band",
     "ball_mode_band": "compound_band",
@@ -99,6 +102,7 @@ _WHERE = {
 __all__ = [
     "PARAMETERS",
     "TRANSIENT_SUPPORTS",
+    "BallBounces",
     "BallModeBand",
     "BallSpring",
     "BedForFrequency",
@@ -115,6 +119,7 @@ __all__ = [
     "TangentialContact",
     "TransientImpact",
     "TwistCurve",
+    "ball_bounces",
     "ball_mode_band",
     "ball_spring",
     "bed_for_frequency",

@@ -7,6 +7,7 @@ figures come from a hook the caller passes (``figures(result, out) -> paths``), 
 ``progress(what, done, total)`` callback, and they log with :mod:`logging`.
 
 ==========================  =========================================================
+:func:`run_ball`            the ball's bounce on a rigid surface and clamped strings
 :func:`run_rig`             virtual roving-hammer test (UFF)
 :func:`run_frf`             FRFs and quality table from hammer records
 :func:`run_contact`         hammer contact time over the face
@@ -45,6 +46,7 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from racketdyn.workflows.ball import BallResult, run_ball
     from racketdyn.workflows.calibrate import CalibrateResult, run_calibrate
     from racketdyn.workflows.compound import CompoundResult, run_compound
     from racketdyn.workflows.contact import ContactResult, run_contact
@@ -90,6 +92,8 @@ _WHERE = {
     "TransientHistories": "figure_data",
     "read_figure_data": "figure_data",
     "BallCompareResult": "identify",
+    "BallResult": "ball",
+    "run_ball": "ball",
     "CalibrateResult": "calibrate",
     "ValidateResult": "validate",
     "run_calibrate": "calibrate",
@@ -122,6 +126,7 @@ _WHERE = {
 
 __all__ = [
     "BallCompareResult",
+    "BallResult",
     "CalibrateResult",
     "CompareResult",
     "ComparisonMap",
@@ -146,6 +151,7 @@ __all__ = [
     "TwistResult",
     "ValidateResult",
     "read_figure_data",
+    "run_ball",
     "run_calibrate",
     "run_compare",
     "run_compare_ball",
