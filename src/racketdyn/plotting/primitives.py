@@ -5,6 +5,7 @@ Styles are applied inside the functions, never at import.  Units on every axis l
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -364,7 +365,8 @@ def plot_along_axis(
                 color=style["color"],
                 transform=foot,
                 clip_on=False,
-                label=f"{style['label']}: no valid value ({reasons})",
+                # wrapped: the statuses' reasons run wider than the figure (issue 22's)
+                label=textwrap.fill(f"{style['label']}: no valid value ({reasons})", 70),
             )
     order = np.argsort(x_mm)
     mark_flagged_spans(ax, x_mm[order], flagged[order], "points", flagged.size)
