@@ -275,7 +275,7 @@ class PulseSpectra:
     frequency : ndarray (n_frequencies,)
         Frequency, Hz.
     spectrum : ndarray (n_speeds, n_frequencies)
-        |S(f)|, N·s (NaN for a flagged speed).
+        ``|S(f)|``, N·s (NaN for a flagged speed).
     mode_names : tuple of str
         The modes within the frequency range.
     mode_frequency : ndarray (n_modes,)
