@@ -16,7 +16,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
 
 from racketdyn.ball import (
     BOUNCE_COMPRESSION_M,
@@ -30,10 +29,10 @@ from racketdyn.ball import (
 from racketdyn.contact import (
     CROSS_DROP_E_BG,
     CROSS_DROP_SPEED_MPS,
-    STRING_BED_COR,
     ball_string_cor,
     clamped_bounce,
     compound_law,
+    string_bed_cor,
     with_ball_string_cor,
 )
 from racketdyn.errors import InputError
@@ -95,16 +94,11 @@ def test_head_clamped_strings_at_1_m(racket) -> None:  # type: ignore[no-untyped
     assert float(bounce["bed_deflection"]) > float(bounce["ball_compression"])
 
 
-def test_the_string_beds_energy_return_is_cross_s_drop(racket) -> None:  # type: ignore[no-untyped-def]
-    """STRING_BED_COR is what makes the built-in ball bounce from Cross's 1 m drop with
-    e_BG 0.84 on the paper's racket (recomputed here; to the constant's 3 digits)."""
-    solved = brentq(
-        lambda e: float(ball_string_cor(racket, Ball(), CROSS_DROP_SPEED_MPS, e)) - CROSS_DROP_E_BG,
-        0.5,
-        1.0,
-    )
-    assert solved == pytest.approx(STRING_BED_COR, abs=1e-3)
-    assert STRING_BED_COR < 0.97  # below strings alone under a rigid impactor
+def test_the_string_bed_loses_less_than_the_ball_and_more_than_strings_alone() -> None:
+    """e_S, from Cross's 1 m drop on clamped strings (contact.string_bed_cor), lies between
+    the ball's own COR on a rigid surface (0.745, ITF: the ball is the lossier part, Cross:
+    "the strings give back almost all") and the 0.97 of strings struck by a rigid impactor."""
+    assert Ball().rigid_cor < string_bed_cor() < 0.97
 
 
 def test_e_bg_follows_kawazoe_and_haake(racket) -> None:  # type: ignore[no-untyped-def]

@@ -15,36 +15,18 @@ import pytest
 from matplotlib.figure import Figure
 
 import racketdyn as rd
+from figure_catch import Catch, Drawn
 from racketdyn.cli import main
 from racketdyn.plotting import figures as figures_module
 from racketdyn.plotting.primitives import SUPPORT_STYLE
 from racketdyn.plotting.steps import compare_figures
-
-Drawn = dict[str, Figure]
-
-
-class _Catch:
-    """Stands in for FigureBatch: keeps each figure by file name, writes an empty file."""
-
-    def __init__(self, drawn: Drawn) -> None:
-        self.drawn = drawn
-        self.paths: list[Path] = []
-
-    def add(self, figure: Figure, path: Path) -> Path:
-        self.drawn[Path(path).name] = figure
-        Path(path).write_bytes(b"")
-        self.paths.append(Path(path))
-        return Path(path)
-
-    def render(self) -> list[Path]:
-        return list(self.paths)
 
 
 @pytest.fixture
 def caught(monkeypatch: pytest.MonkeyPatch) -> Iterator[Drawn]:
     """The figures the step draws, by file name, as matplotlib objects."""
     drawn: Drawn = {}
-    monkeypatch.setattr(figures_module, "FigureBatch", lambda: _Catch(drawn))
+    monkeypatch.setattr(figures_module, "FigureBatch", lambda: Catch(drawn))
     yield drawn
     for figure in drawn.values():
         plt.close(figure)
@@ -188,7 +170,7 @@ def predicted(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, D
     out = tmp_path_factory.mktemp("predict")
     drawn: Drawn = {}
     patch = pytest.MonkeyPatch()
-    patch.setattr(figures_module, "FigureBatch", lambda: _Catch(drawn))
+    patch.setattr(figures_module, "FigureBatch", lambda: Catch(drawn))
     logging.disable(logging.WARNING)
     try:
         result = run_predict(

@@ -17,30 +17,12 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 import racketdyn as rd
+from figure_catch import Catch, Drawn
 from racketdyn.cli import main
 from racketdyn.plotting import figures as figures_module
 from racketdyn.plotting.steps import predict_figures
 from racketdyn.racket import landmark_points
 from racketdyn.workflows import PredictResult, run_predict
-
-Drawn = dict[str, Figure]
-
-
-class _Catch:
-    """Stands in for FigureBatch: keeps each figure by file name, writes an empty file."""
-
-    def __init__(self, drawn: Drawn) -> None:
-        self.drawn = drawn
-        self.paths: list[Path] = []
-
-    def add(self, figure: Figure, path: Path) -> Path:
-        self.drawn[Path(path).name] = figure
-        Path(path).write_bytes(b"")
-        self.paths.append(Path(path))
-        return Path(path)
-
-    def render(self) -> list[Path]:
-        return list(self.paths)
 
 
 @pytest.fixture
@@ -52,7 +34,7 @@ def draw(
 
     def run(**options: Any) -> tuple[PredictResult, Drawn]:
         drawn: Drawn = {}
-        monkeypatch.setattr(figures_module, "FigureBatch", lambda: _Catch(drawn))
+        monkeypatch.setattr(figures_module, "FigureBatch", lambda: Catch(drawn))
         out = tmp_path / f"run{len(caught)}"
         caught.append(drawn)
         logging.disable(logging.WARNING)  # flagged rows log warnings; not the subject here

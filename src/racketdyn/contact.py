@@ -16,13 +16,13 @@ from numpy.typing import ArrayLike, NDArray
 from racketdyn.ball import Ball, RestoringForce, series
 from racketdyn.errors import InputError
 from racketdyn.io.tables import read_load_deflection
+from racketdyn.numerics import invert_increasing
 from racketdyn.racket import Racket
 
 __all__ = [
     "CROSS_DROP_E_BG",
     "CROSS_DROP_SPEED_MPS",
     "E_BG_SPEEDS_MPS",
-    "STRING_BED_COR",
     "ball_string_cor",
     "clamped_bounce",
     "compound_law",
@@ -31,6 +31,7 @@ __all__ = [
     "membrane_patch_radius",
     "membrane_patch_stiffness",
     "net_share",
+    "string_bed_cor",
     "string_bed_law",
     "string_tension",
     "with_ball_string_cor",
@@ -352,14 +353,6 @@ CROSS_DROP_SPEED_MPS = 4.43
 ≈ 0.70 m: e_BG ≈ 0.84 (Cross, "The physics of tennis", University of Sydney; docs/references.md,
 "The ball in a bounce")."""
 CROSS_DROP_E_BG = 0.84
-STRING_BED_COR = 0.875
-"""The string bed's own energy return under a ball, as a COR e_S: the share of the energy it
-stores that it gives back is e_S².  Strings struck by a rigid impactor return ≈ 0.97
-(docs/references.md, "Strings"); under a ball they also rub on one another and on the ball's
-cloth.  e_S is what makes the built-in ball (its own COR 0.745 on a rigid surface, ITF) on the
-paper's racket bounce with Cross's e_BG = 0.84 at 4.43 m/s (:func:`ball_string_cor` solved for
-e_S; ``tests/test_ball_bounce.py`` recomputes it): a measurement of a ball on clamped strings,
-not of a racket's rebound.  It then fixes e_BG at every other speed and tension."""
 E_BG_SPEEDS_MPS = (0.5, 1.0, 2.0, 3.0, 4.43, 6.0, 8.0, 10.0, 12.5, 15.0, 20.0, 25.0, 30.0,
                    35.0, 40.0, 45.0, 50.0, 55.0, 60.0, 65.0, 70.0)  # fmt: skip
 """Relative speeds at which :func:`with_ball_string_cor` tabulates e_BG, m/s (linear between)."""
@@ -386,34 +379,63 @@ def clamped_bounce(racket: Racket, ball: Ball, speed: ArrayLike) -> dict[str, ND
         energies ``ball_energy`` E_B and ``bed_energy`` E_G (J), each shaped like ``speed``;
         NaN beyond the laws' range.
     """
-    v = np.asarray(speed, dtype=float)
     ball_law, bed = ball.restoring_force, string_bed_law(racket, ball)
+
+    def stored(force: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.asarray(
+            ball_law.energy(ball_law.deflection(force)) + bed.energy(bed.deflection(force))
+        )
+
+    def d_stored(force: NDArray[np.float64]) -> NDArray[np.float64]:
+        # dE/dF = F dX/dF = F / K for each spring of the pair (dE/dX = F)
+        x_b, x_g = ball_law.deflection(force), bed.deflection(force)
+        return np.asarray(force / ball_law.stiffness(x_b) + force / bed.stiffness(x_g))
+
+    kinetic = 0.5 * ball.mass_kg * np.asarray(speed, dtype=float) ** 2
     top = min(ball_law.max_force_n, bed.max_force_n)
-    # the stored energy rises with the force: tabulate and invert (monotone)
-    force = np.concatenate([[0.0], np.geomspace(top * 1e-6, top, 2000)])
-    x_b, x_g = ball_law.deflection(force), bed.deflection(force)
-    e_b, e_g = ball_law.energy(x_b), bed.energy(x_g)
-    kinetic = 0.5 * ball.mass_kg * v**2
-    total = e_b + e_g
-    found = np.interp(kinetic, total, force, right=np.nan)
-    f = np.asarray(found)
+    f = invert_increasing(stored, d_stored, kinetic, top)
+    x_b, x_g = ball_law.deflection(f), bed.deflection(f)
     return {
         "force": f,
-        "ball_compression": np.asarray(ball_law.deflection(f)),
-        "bed_deflection": np.asarray(bed.deflection(f)),
-        "ball_energy": np.asarray(ball_law.energy(ball_law.deflection(f))),
-        "bed_energy": np.asarray(bed.energy(bed.deflection(f))),
+        "ball_compression": np.asarray(x_b),
+        "bed_deflection": np.asarray(x_g),
+        "ball_energy": np.asarray(ball_law.energy(x_b)),
+        "bed_energy": np.asarray(bed.energy(x_g)),
     }
 
 
+@lru_cache(maxsize=1)
+def string_bed_cor() -> float:
+    """The string bed's own energy return under a ball, as a COR e_S (its share e_S² of what
+    it stores comes back), ≈ 0.875.
+
+    Solved so that the built-in ball (its own COR 0.745 on a rigid surface, ITF) on the paper's
+    racket bounces from Cross's 1 m drop with e_BG = 0.84 (:data:`CROSS_DROP_SPEED_MPS`,
+    :data:`CROSS_DROP_E_BG`; :func:`ball_string_cor` solved for e_S): a measurement of a ball on
+    clamped strings, not of a racket's rebound.  It then fixes e_BG at every other speed and
+    tension.  Strings struck by a rigid impactor return ≈ 0.97 (docs/references.md,
+    "Strings"); under a ball they also rub on one another and on the ball's cloth.
+    """
+    from scipy.optimize import brentq
+
+    from racketdyn.io.racket_file import default_racket
+
+    racket, ball = default_racket(), Ball()
+
+    def miss(cor: float) -> float:
+        return float(ball_string_cor(racket, ball, CROSS_DROP_SPEED_MPS, cor)) - CROSS_DROP_E_BG
+
+    return float(brentq(miss, ball.rigid_cor, 1.0, xtol=1e-12))
+
+
 def ball_string_cor(
-    racket: Racket, ball: Ball, speed: ArrayLike, string_cor: float = STRING_BED_COR
+    racket: Racket, ball: Ball, speed: ArrayLike, string_cor: float | None = None
 ) -> NDArray[np.float64]:
     """e_BG of the ball on the head-clamped string bed at impact speeds, from ball + strings.
 
     At the turn the ball holds E_B and the bed E_G (:func:`clamped_bounce`).  Each gives back
     its own share: the ball ``e_B² E_B`` with e_B its COR on a rigid surface (``ball.rigid_cor``,
-    ITF), the bed ``e_S² E_G`` (:data:`STRING_BED_COR`), so
+    ITF), the bed ``e_S² E_G`` (:func:`string_bed_cor`), so
 
         ``e_BG² = (e_B² E_B + e_S² E_G) / (E_B + E_G)``.
 
@@ -427,18 +449,19 @@ def ball_string_cor(
     racket, ball : Racket, Ball
     speed : array_like
         Impact (relative) speed, m/s.
-    string_cor : float
-        e_S of the bed.
+    string_cor : float, optional
+        e_S of the bed (default :func:`string_bed_cor`).
 
     Returns
     -------
     ndarray
         e_BG, shaped like ``speed``; NaN beyond the laws' range.
     """
+    e_s = string_bed_cor() if string_cor is None else string_cor
     bounce = clamped_bounce(racket, ball, speed)
     e_b, e_g = bounce["ball_energy"], bounce["bed_energy"]
     with np.errstate(invalid="ignore", divide="ignore"):
-        squared = (ball.rigid_cor**2 * e_b + string_cor**2 * e_g) / (e_b + e_g)
+        squared = (ball.rigid_cor**2 * e_b + e_s**2 * e_g) / (e_b + e_g)
     return np.asarray(np.sqrt(squared))
 
 
@@ -468,6 +491,7 @@ def _resolved(racket: Racket, ball: Ball) -> Ball:
         e_bg_table=table,
         e_bg_source=(
             f"ball + strings: ball COR {ball.rigid_cor:g} on a rigid surface, string bed "
-            f"{STRING_BED_COR:g} (e_BG² = (e_B² E_B + e_S² E_G)/(E_B + E_G)), at the face centre"
+            f"{string_bed_cor():.4g} (e_BG² = (e_B² E_B + e_S² E_G)/(E_B + E_G)), at the face "
+            "centre"
         ),
     )

@@ -377,12 +377,16 @@ def predict(
             model.frequency, contact_time[..., None], peak_force[..., None]
         )
         mode_energy = 0.5 * (phi[:, None, None, :] * spectrum) ** 2  # ½ A_jjk |S_j(ω_k)|²
-        turn_energy = frame_energy_at_turn(
-            2.0 * np.pi * model.frequency,
-            phi[:, None, None, :],
-            np.where(np.isfinite(contact_time), contact_time, 1.0),
-            np.where(np.isfinite(peak_force), peak_force, 0.0),
-        ).sum(axis=-1)
+        turn_energy = (
+            np.zeros(deflection.shape)  # the paper's charge does not use it
+            if vibration_charge == "paper"
+            else frame_energy_at_turn(
+                2.0 * np.pi * model.frequency,
+                phi[:, None, None, :],
+                np.where(np.isfinite(contact_time), contact_time, 1.0),
+                np.where(np.isfinite(peak_force), peak_force, 0.0),
+            ).sum(axis=-1)
+        )
     vibration_energy = mode_energy.sum(axis=-1)
 
     cor_squared = vibration_cor_squared(

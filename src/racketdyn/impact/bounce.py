@@ -27,9 +27,9 @@ from typing import TYPE_CHECKING, Any, Literal, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from racketdyn.ball import Ball
+from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law, with_ball_string_cor
-from racketdyn.errors import InputError, require_speeds
+from racketdyn.errors import InputError, one_of, require_speeds
 from racketdyn.impact.result import write_columns
 from racketdyn.impact.transient import simulate_contact
 from racketdyn.racket import Racket
@@ -142,14 +142,10 @@ class BallBounces:
 
 
 def _one(
-    surface: str, ball: Ball, racket: Racket | None, speed: float, samples: int
+    surface: str, ball: Ball, law: RestoringForce, speed: float, samples: int
 ) -> tuple[list[float], NDArray[np.float64], NDArray[np.float64]]:
-    """Numbers and loop of one bounce."""
-    if surface == "rigid":
-        law, e = ball.restoring_force, ball.rigid_cor
-    else:
-        assert racket is not None
-        law, e = compound_law(racket, ball), float(ball.e_bg_at(speed))
+    """Numbers and loop of one bounce on ``law`` (the ball's, or ball + strings)."""
+    e = ball.rigid_cor if surface == "rigid" else float(ball.e_bg_at(speed))
     run = simulate_contact(ball.mass_kg, e, law, math.inf, speed)
     if run.status != "ok":
         nan = np.full(samples, np.nan)
@@ -198,16 +194,23 @@ def ball_bounces(
     if np.any(v <= 0):
         raise InputError("speeds: every impact speed must be above 0 m/s")
     names = tuple(dict.fromkeys(surfaces))
-    if not names or any(s not in SURFACES for s in names):
-        raise InputError(f"surfaces: choose from {', '.join(SURFACES)} (got {', '.join(names)})")
+    if not names:
+        raise InputError(f"surfaces: choose from {', '.join(SURFACES)}")
+    for name in names:
+        one_of("surfaces", name, SURFACES)
     if "strings" in names and racket is None:
         raise InputError("surface 'strings' needs the racket whose strings the ball meets")
     resolved = ball if racket is None else with_ball_string_cor(racket, ball)
     table = np.full((5, len(names), v.size), np.nan)
     loops = np.full((2, len(names), v.size, samples), np.nan)
     for i, surface in enumerate(names):
+        # one law per surface (the compound law is a least-squares fit: not once per speed)
+        law = ball.restoring_force
+        if surface == "strings":
+            assert racket is not None  # refused above
+            law = compound_law(racket, ball)
         for j, speed in enumerate(v):
-            numbers, compression, force = _one(surface, resolved, racket, float(speed), samples)
+            numbers, compression, force = _one(surface, resolved, law, float(speed), samples)
             table[:, i, j] = numbers
             loops[0, i, j], loops[1, i, j] = compression, force
     return BallBounces(

@@ -740,13 +740,10 @@ def simulate_impact(
     law = law or compound_law(racket, ball)
     system = impact_system(racket, model, support, xy, hand if support == "hand" else None)
     reduced = support_reduced_mass(racket, xy, support, hand)[0]
-    ball = with_ball_string_cor(racket, ball)
-    e_bg = ball.e_bg
-    if ball.speed_dependent or e_bg is None:
-        approach = require_speeds("ball speed", ball_speed) + require_speeds(
-            "racket speed", racket_speed
-        )
-        e_bg = float(ball.e_bg_at(approach)[0])
+    approach = require_speeds("ball speed", ball_speed) + require_speeds(
+        "racket speed", racket_speed
+    )
+    e_bg = float(with_ball_string_cor(racket, ball).e_bg_at(approach)[0])
     return simulate_system_contact(
         system, 0, ball.mass_kg, e_bg, law, ball_speed, racket_speed, float(reduced),
         rtol, method,

@@ -25,7 +25,7 @@ from racketdyn.ball import (
     Ball,
     default_ball_law,
 )
-from racketdyn.contact import STRING_BED_COR
+from racketdyn.contact import string_bed_cor
 from racketdyn.impact.bounce import SURFACES, BallBounces, ball_bounces
 from racketdyn.plausibility import check, check_speeds
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, load_racket_input
@@ -140,7 +140,7 @@ def run_ball(
             "restoring_force": the_ball.restoring_force.as_dict(),
             "e_bg_law": bounces.e_bg_record,
         },
-        "string_bed_cor": STRING_BED_COR,
+        "string_bed_cor": string_bed_cor(),
         "bounce_the_law_came_from": {
             "speed_mps": BOUNCE_SPEED_MPS,
             "compression_m": BOUNCE_COMPRESSION_M,
