@@ -215,8 +215,8 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
     membrane_omega = np.sqrt(
         3.0
         * (
-            strings.tension_n / spacing_mains / head.half_length_m**2
-            + strings.tension_n / spacing_crosses / head.half_width_m**2
+            strings.bed_tension_n / spacing_mains / head.half_length_m**2
+            + strings.bed_tension_n / spacing_crosses / head.half_width_m**2
         )
         / areal_density
     )

@@ -468,7 +468,8 @@ def rig_model(
     bed_rows[:, membrane] = psi
     bed_mass = bed_rows.T @ (weight[:, None] * bed_rows)
     spacing_mains, spacing_crosses = strings.spacing_m(head)
-    tension_x, tension_y = strings.tension_n / spacing_mains, strings.tension_n / spacing_crosses
+    tension_x = strings.bed_tension_n / spacing_mains
+    tension_y = strings.bed_tension_n / spacing_crosses
     k_membrane = tension_x * dpsi_x.T @ (qw[:, None] * dpsi_x) + tension_y * dpsi_y.T @ (
         qw[:, None] * dpsi_y
     )
