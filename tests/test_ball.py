@@ -99,7 +99,7 @@ def test_kawazoe_string_law(racket: rd.Racket, ball: rd.Ball) -> None:
     # K_s = 2 S0 / L + 3 A E X² / L³ per string (docs/references.md), summed over the strings
     # under the ball: diameter / spacing of mains (L = half-length) and crosses (L = half-width).
     law = rd.string_bed_law(racket, ball)
-    s0, ae = racket.strings.tension_n, racket.strings.axial_stiffness_n
+    s0, ae = racket.strings.bed_tension_n, racket.strings.axial_stiffness_n
     mains_spacing, crosses_spacing = racket.strings.spacing_m(racket.head)
     n_m, n_c = ball.diameter_m / mains_spacing, ball.diameter_m / crosses_spacing
     a, b = racket.head.half_length_m, racket.head.half_width_m

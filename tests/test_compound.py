@@ -177,7 +177,7 @@ def test_the_nets_stiffness_matches_a_finite_difference_net() -> None:
     racket = default_racket()
     head, strings = racket.head, racket.strings
     s_m, s_c = strings.spacing_m(head)
-    t_x, t_y = strings.tension_n / s_m, strings.tension_n / s_c
+    t_x, t_y = strings.bed_tension_n / s_m, strings.bed_tension_n / s_c
     h = 5e-4
     x = np.arange(-head.half_length_m, head.half_length_m + h / 2, h)
     y = np.arange(-head.half_width_m, head.half_width_m + h / 2, h)
@@ -266,10 +266,11 @@ def test_built_in_ball_mode_near_the_papers_103_hz(racket, spring, built_in) -> 
     """The band is the spread of the small-amplitude inputs (ball stiffness from its bounce,
     5–7 mm at 7.06 m/s; the bed under the ball from the published static range and the
     per-string law up to the net pushed over the ball's width; the ball's mass; docs/develop.md,
-    "The ball on the strings"): it holds both the model's 112 Hz and the paper's 103 Hz.  What
+    "The ball on the strings"): it holds both the model's 98.5 Hz and the paper's 103 Hz.  What
     103 Hz asks of the bed with the nominal (bounce-stiff) ball is said, not hidden: ≈ 24 kN/m,
-    near the softest published static bed (20 kN/m) and softer than the per-string law's
-    30.5 kN/m — a net pushed by a patch of ≈ 2 mm, less than a string spacing."""
+    near the softest published static bed (20 kN/m) and a little stiffer than the played bed's
+    per-string law (21.4 kN/m) — a net pushed by a patch of ≈ 7.5 mm, about a string spacing
+    (at the pull tension it was ≈ 2 mm against the law's 30.5 kN/m)."""
     model, modes = built_in
     for support in ("free", "hand"):
         band = ball_mode_band(racket, model, support, CENTRE, spring, Ball())
@@ -284,19 +285,13 @@ def test_built_in_ball_mode_near_the_papers_103_hz(racket, spring, built_in) -> 
         again = racket_modes(racket, model, support, CENTRE, trial, Ball()).ball_frequency
         assert again == pytest.approx(PAPER_BALL_MODE_HZ, rel=1e-6)
         assert 20e3 < bed.bed_stiffness_n_per_m < 30e3
-        assert bed.patch_radius_m < 0.005
+        assert 0.005 < bed.patch_radius_m < 0.010
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 22: the ball law from its bounce (6 mm at 7.06 m/s) puts the paper's ball "
-    "mode at 112 Hz, +9 % against 103 Hz; the paper's glued ball is softer at small amplitude "
-    "than one smooth law stiff enough for the bounce (docs/validation.md). Passes when the "
-    "ball's small-amplitude stiffness is right.",
-)
 def test_the_papers_ball_mode_within_5_percent(built_in) -> None:  # type: ignore[no-untyped-def]
     """Issue 22: the paper's racket, ball fixed at the string centre: 103 Hz ± 5 % (the
-    paper's 4.8 Hz resolution)."""
+    paper's 4.8 Hz resolution).  The bounce-stiff ball on the bed at its pull tension gave
+    112 Hz; on the played bed (30 % of the tension lost, Cross and Bower) 98.5 Hz."""
     _, modes = built_in
     for support in ("free", "hand"):
         assert modes[support].ball_frequency == pytest.approx(PAPER_BALL_MODE_HZ, rel=0.05)
@@ -785,13 +780,14 @@ def test_report_section_states_the_papers_claims_in_words(tmp_path: Path) -> Non
     frequency = float(ball["frequency_hz"])
     miss = round(100 * (frequency / 103.0 - 1))
     assert f"at {frequency:.1f} Hz ({miss:+d} %)" in text  # the miss against the paper, stated
-    # issue 22's bounce-stiff ball: 9 % above (the old ITF-plate ball was 14 % below); not tuned
-    assert 5 < miss < 15
+    # issue 22's bounce-stiff ball on the played bed: 4 % below (on the bed at its pull
+    # tension 9 % above; the old ITF-plate ball 14 % below); not tuned
+    assert -5 <= miss < 0
     times = [float(ball[f"contact_time_{v}_s"]) for v in (5, 10, 20)]
     worst = max(abs(t / float(ball["half_period_s"]) - 1.0) for t in times)
     assert f"within {100 * worst:.0f} %" in text  # half period against the contact time, 5–20 m/s
     assert worst < 0.15  # the paper: half the ball mode's period is the contact time
-    assert "ball mode moves by 0.8 %" in text  # 0.5 % with the old soft ball
+    assert "ball mode moves by 0.6 %" in text  # 0.8 % at the pull tension, 0.5 % old soft ball
     assert [row[0] for row in data["times"]] == ["free", "hand"]
     html = render_section("compound", data)
     assert "Half period against contact time" in html
@@ -886,7 +882,13 @@ def test_another_rackets_ball_mode_is_not_checked_against_the_papers_103_hz(
     assert "the paper's new mode at 103 Hz is here" not in text
     assert "holds the paper's 103 Hz" not in text
     assert "(paper 103 Hz)" not in text
-    assert f"between {low:.0f} and {high:.0f} Hz" in text
+    pieces = band["intervals_hz"]  # on the played bed this racket's band has a gap (a frame mode)
+    reach = (
+        f"between {low:.0f} and {high:.0f} Hz"
+        if len(pieces) < 2
+        else " and ".join(f"{a:.0f}–{b:.0f}" for a, b in pieces)
+    )
+    assert reach in text
     assert "measured on its own racket and strings" in text
 
 
@@ -921,9 +923,11 @@ def test_compound_says_which_mode_leads_at_the_neck_and_where_the_node_line_is(
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))
     node = record["two_node_node_line_m"]["free"]
     assert 0.53 < node < 0.55
-    assert record["neck_hand_over"]["free"]["ball_to_two_node"] < 1.0
-    assert "free: at the neck after the blow 12 mm from the ball the 2-node mode leads" in printed
-    assert f"node line crosses the axis at x = {node * 1e3:.0f} mm" in printed
+    # on the played bed (issue 22, 30 % of the tension lost) the softer ball mode leads at the
+    # bed's centre too (1.7×; at the pull tension the 2-node mode led, 0.8×, and the console
+    # named the node line — cli/compound.py says it whenever the 2-node mode leads)
+    assert record["neck_hand_over"]["free"]["ball_to_two_node"] > 1.0
+    assert "free: at the neck after the blow 12 mm from the ball the ball mode leads" in printed
     # the node line from the model itself, and the paper's picture with the ball on it
     from racketdyn.io import load_racket
 
@@ -1087,7 +1091,11 @@ def test_identify_hints_at_a_ball_on_a_racket_whose_head_is_not_the_built_in_one
     from racketdyn.rig.hammer import hammer_points
 
     path = tmp_path / "junior.toml"
-    path.write_text(JUNIOR_RACKET, encoding="utf-8")
+    # the bed at its pull tension, as the trial ran it: on the played bed (issue 22) one more
+    # mode's outline is nearly a plane (0.81) and the hint's premise is another test's
+    path.write_text(
+        JUNIOR_RACKET.replace("[strings]\n", "[strings]\ntension_loss = 0.0\n"), "utf-8"
+    )
     junior = load_racket(path)
     points, _ = hammer_points(junior)
     ball_at = (0.44, 0.02)
@@ -1128,7 +1136,9 @@ def test_fig_9b_strikes_where_the_ball_mode_shows(tmp_path: Path) -> None:
     from racketdyn.rig.hammer import hammer_points
 
     path = tmp_path / "pro100.toml"
-    path.write_text(TRIAL_RACKET, encoding="utf-8")
+    # the bed at its pull tension, as the trial ran it (on the played bed, issue 22, the nearest
+    # point carries 85 % of the ball mode and the old choice would have shown it)
+    path.write_text(TRIAL_RACKET.replace("[strings]\n", "[strings]\ntension_loss = 0.0\n"), "utf-8")
     racket = load_racket(path)
     at = (0.51, 0.0)
     points, nodes = hammer_points(racket)

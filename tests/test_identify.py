@@ -10,6 +10,7 @@ import pandas as pd
 import pytest
 
 import racketdyn as rd
+from pull_tension import pull_tension_racket
 from racketdyn.cli import main
 from racketdyn.io import write_frf_uff
 from racketdyn.measurement.frf import estimate_frfs
@@ -23,7 +24,7 @@ BAND = (40.0, 850.0)
 
 @pytest.fixture(scope="module", params=["free", "hand"])
 def case(request: pytest.FixtureRequest) -> dict:
-    racket = rd.default_racket()
+    racket = pull_tension_racket()
     rig = rig_model(racket, request.param)
     locations, nodes = hammer_points(racket)
     reference = accelerometer_index(racket, locations)  # the CLI's, on the hoop

@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-import racketdyn as rd
+from pull_tension import pull_tension_racket
 from racketdyn.errors import InputError
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.records import FrfSet
@@ -197,7 +197,7 @@ def test_without_noise_compensation_the_damping_is_biased_high(noisy) -> None:
 
 @pytest.fixture(scope="module")
 def free_rig() -> RigModel:
-    return rig_model(rd.default_racket(), "free")
+    return rig_model(pull_tension_racket(), "free")
 
 
 def test_rig_modes_are_its_modal_truth(free_rig: RigModel) -> None:

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
+from pull_tension import pull_tension_racket
 from racketdyn.errors import InputError
 from racketdyn.measurement import FrfSet
 from racketdyn.modal.residues import fit_modal_constants, mac, mass_normalised_shapes
@@ -16,7 +17,7 @@ BAND = (60.0, 800.0)
 
 @pytest.fixture(scope="module")
 def rig() -> rd.rig.RigModel:
-    return rig_model(rd.default_racket(), "free")
+    return rig_model(pull_tension_racket(), "free")
 
 
 def _frfs(

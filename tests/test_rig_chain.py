@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
+from pull_tension import pull_tension_racket
 from racketdyn.io import read_hammer_uff, write_hammer_uff
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.quality import QualitySettings
@@ -16,7 +17,7 @@ from racketdyn.rig import RigModel, hammer_points, rig_model, simulate_hammer_te
 
 @pytest.fixture(scope="module")
 def free_rig() -> RigModel:
-    return rig_model(rd.default_racket(), "free")
+    return rig_model(pull_tension_racket(), "free")
 
 
 def test_rig_records_through_uff_give_the_rigs_frfs(free_rig, tmp_path: Path) -> None:
@@ -93,7 +94,7 @@ def test_hammer_contact_on_the_strings() -> None:
     racket = rd.default_racket()
     head = racket.head
     centre = [[head.centre_x_m, 0.0]]
-    k = 2 * racket.strings.tension_n * (1 / head.half_length_m + 1 / head.half_width_m)
+    k = 2 * racket.strings.bed_tension_n * (1 / head.half_length_m + 1 / head.half_width_m)
     m_r = racket.reduced_mass(centre, "free")[0]
     mu = HAMMER_MASS_KG * m_r / (HAMMER_MASS_KG + m_r)
     assert string_contact_time(racket, centre)[0] == pytest.approx(

@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
+from pull_tension import pull_tension_racket
 from racketdyn.io import read_hammer_uff
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.modal.identify import identify
@@ -39,7 +40,7 @@ SNR = {"force_snr_db": 50.0, "response_snr_db": 40.0}
 
 @pytest.fixture(scope="module")
 def free_rig() -> RigModel:
-    return rig_model(rd.default_racket(), "free")
+    return rig_model(pull_tension_racket(), "free")
 
 
 def _few_points(rig: RigModel) -> tuple[np.ndarray, tuple[int, ...], int]:
@@ -106,6 +107,7 @@ def test_realistic_rig_round_trips_through_frf_and_identify(tmp_path: Path) -> N
 
     rig = run_rig(
         tmp_path / "rig",
+        racket=pull_tension_racket(),  # modes apart: the 0.05 % frequency check holds for all
         averages=4,
         time_zero="record",
         response_direction=-3,

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
+from pull_tension import pull_tension_racket
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.racket_modal.shapes import axis_nodes, classify_modes
 from racketdyn.rig import hammer_points, rig_model
@@ -13,7 +14,7 @@ from racketdyn.rig import hammer_points, rig_model
 
 @pytest.fixture(scope="module")
 def truths() -> dict[str, rd.ModalModel]:
-    racket = rd.default_racket()
+    racket = pull_tension_racket()
     locations, _ = hammer_points(racket)
     out = {}
     for support in ("free", "hand"):
@@ -27,7 +28,7 @@ def test_names_from_shapes_match_the_rig(truths, support) -> None:
     # The rig names its modes from where their strain energy lies; the shape-only names
     # (mirror symmetry, string/frame amplitude, bending order) must agree for every mode.
     truth = truths[support]
-    names, kinds = classify_modes(truth, rd.default_racket().head)
+    names, kinds = classify_modes(truth, pull_tension_racket().head)
     assert names == truth.names
     assert kinds == truth.kinds
 
@@ -36,7 +37,7 @@ def test_names_above_a_kilohertz_are_right_or_neutral() -> None:
     # issue 12: the rig's 5-node bending mode (1.0 kHz) was named "string-bed membrane 2" and
     # left out of the vibration loss.  Every name given must be the truth's kind; a mode the
     # shape cannot tell is "mode k", kind unknown (charged like a frame mode).
-    racket = rd.default_racket()
+    racket = pull_tension_racket()
     locations, _ = hammer_points(racket)
     truth = rig_model(racket, "free").modal_truth(locations, max_frequency_hz=1900)
     truth = truth.select([k for k, f in enumerate(truth.frequency) if f > 15])

@@ -80,14 +80,14 @@ def string_bed_law(racket: Racket, ball: Ball) -> RestoringForce:
         (spacing_crosses, racket.head.half_width_m),
     ):
         engaged = ball.diameter_m / spacing
-        linear += engaged * 2.0 * strings.tension_n / half_length
+        linear += engaged * 2.0 * strings.bed_tension_n / half_length
         cubic += engaged * strings.axial_stiffness_n / half_length**3
     return RestoringForce(
         "polynomial",
         (linear, 0.0, cubic),
         STRING_BED_MAX_DEFLECTION_M,
         0.0,
-        f"string bed, Kawazoe law at {strings.tension_n:g} N",
+        f"string bed, Kawazoe law at {strings.bed_tension_n:g} N in the bed",
     )
 
 
@@ -96,8 +96,10 @@ def string_tension(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Tension of a main and of a cross string at the centre deflected by X, N.
 
-    ``S = S0 + A E X² / (2 L²)`` with L the string's half-length (the elongation behind the
-    cubic term of :func:`string_bed_law`).  Divide by the string's cross-section for the stress.
+    ``S = S0 + A E X² / (2 L²)`` with S0 the tension in the bed
+    (:attr:`~racketdyn.racket.StringBed.bed_tension_n`) and L the string's half-length (the
+    elongation behind the cubic term of :func:`string_bed_law`).  Divide by the string's
+    cross-section for the stress.
 
     Parameters
     ----------
@@ -114,7 +116,7 @@ def string_tension(
     x = np.asarray(deflection, dtype=float)
     strings = racket.strings
     tensions = [
-        strings.tension_n + strings.axial_stiffness_n * x**2 / (2.0 * half**2)
+        strings.bed_tension_n + strings.axial_stiffness_n * x**2 / (2.0 * half**2)
         for half in (racket.head.half_length_m, racket.head.half_width_m)
     ]
     return np.asarray(tensions[0]), np.asarray(tensions[1])
@@ -217,8 +219,8 @@ def _net(racket: Racket) -> tuple[float, float, float]:
     """√(T_x T_y), Λ and λ/a of :func:`membrane_patch_stiffness`."""
     head, strings = racket.head, racket.strings
     spacing_mains, spacing_crosses = strings.spacing_m(head)
-    root_x = math.sqrt(strings.tension_n / spacing_mains)
-    root_y = math.sqrt(strings.tension_n / spacing_crosses)
+    root_x = math.sqrt(strings.bed_tension_n / spacing_mains)
+    root_y = math.sqrt(strings.bed_tension_n / spacing_crosses)
     outer = head.half_length_m / root_x + head.half_width_m / root_y
     return root_x * root_y, outer, 1.0 / root_x + 1.0 / root_y
 
@@ -318,7 +320,9 @@ def local_string_bed_law(
             half = half_axis * math.sqrt(1.0 - ratio**2)
             near = max(along - (centre - half), radius)
             far = max(centre + half - along, radius)
-            lin, cub = _stretched_string(strings.tension_n, strings.axial_stiffness_n, near, far)
+            lin, cub = _stretched_string(
+                strings.bed_tension_n, strings.axial_stiffness_n, near, far
+            )
             weight = ball.diameter_m / spacing / len(offsets)
             linear += weight * lin
             cubic += weight * cub
@@ -328,7 +332,7 @@ def local_string_bed_law(
         STRING_BED_MAX_DEFLECTION_M,
         0.0,
         f"string bed at x={x:.4f} m, y={y:.4f} m, Kawazoe law per string at "
-        f"{strings.tension_n:g} N",
+        f"{strings.bed_tension_n:g} N in the bed",
     )
 
 

@@ -173,6 +173,7 @@ SQUARE_METRE_AS_CM2 = Slip("m²", "m²", 1e4)
 RAD_PER_S = Slip("rad/s", "rad/s", 1.0 / (2.0 * math.pi))
 KILOHERTZ = Slip("kHz", "kHz", 1e3)
 DEG_PER_S = Slip("degrees per second", "°/s", math.pi / 180.0)
+PER_CENT = Slip("per cent", "%", 0.01)
 RPM = Slip("revolutions per minute", "rpm", 2.0 * math.pi / 60.0)
 RADIAN = Slip("radians", "rad", 180.0 / math.pi)  # as degrees
 
@@ -356,6 +357,18 @@ RANGES: dict[str, Range] = {
         "Pa",
         (GIGAPASCAL, MEGAPASCAL),
         GIGAPASCAL,
+    ),
+    # Tension lost by the played bed: ≈ 30 % just after stringing (Cross and Bower), a few
+    # per cent more over days; 0 for a tension measured in the bed.  Given as 30 (per cent),
+    # it is beyond the limit of a fraction.
+    "tension_loss": Range(
+        "a string bed loses",
+        0.0,
+        0.5,
+        0.0,
+        0.95,
+        "of its pull tension (a fraction)",
+        (PER_CENT,),
     ),
     "mains": Range("a racket has", 12, 22, 2, 60, "main strings"),
     "crosses": Range("a racket has", 14, 24, 2, 60, "cross strings"),

@@ -45,6 +45,11 @@ point on the long axis at the grip (default 70 mm from the butt), free to roll a
 SUPPORTS: tuple[str, ...] = get_args(Support)
 SWINGWEIGHT_AXIS_M = 0.100
 """Swingweight axis, 100 mm from the butt, as racket makers and players quote it."""
+TENSION_LOSS = 0.30
+"""Fraction of the pull tension a string bed has lost when it is played: ≈ 30 % just after
+stringing, measured from the bed's frequency on strung rackets (Cross and Bower,
+docs/references.md, "Strings"); the bed's membrane mode then falls in the 500–700 Hz that
+string-bed meters read."""
 
 KGM2_TO_KGCM2 = 1.0e4
 M2_TO_CM2 = 1.0e4
@@ -248,7 +253,14 @@ class StringBed:
     Parameters
     ----------
     tension_n : float
-        Reference tension of each string, N (the paper's racket: 246 N, 55 lb).
+        Reference (pull) tension of each string on the stringing machine, N (the paper's
+        racket: 246 N, 55 lb).
+    tension_loss : float
+        Fraction of the reference tension the bed has lost by the time the racket is played
+        (stringing losses, frame distortion, stress relaxation): :data:`TENSION_LOSS`, ≈ 30 %
+        just after stringing (Cross and Bower, docs/references.md, "Strings").  0 when
+        ``tension_n`` was measured in the bed (from its frequency, say).  Every law of the bed
+        (its restoring force, its membrane mode) uses :attr:`bed_tension_n`.
     mains, crosses : int
         Number of main strings (running along the racket) and cross strings.
     string_diameter_m : float
@@ -262,6 +274,7 @@ class StringBed:
     """
 
     tension_n: float = 246.0
+    tension_loss: float = TENSION_LOSS
     mains: int = 16
     crosses: int = 19
     string_diameter_m: float = 1.30e-3
@@ -271,12 +284,23 @@ class StringBed:
 
     def __post_init__(self) -> None:
         require_positive("strings.tension_n", self.tension_n)
+        if not 0.0 <= self.tension_loss < 1.0:
+            raise InputError(
+                f"strings.tension_loss = {self.tension_loss:g}: a fraction of the reference "
+                "tension in [0, 1) is needed (0.3 for 30 %; 0 if the tension was measured in "
+                "the bed)"
+            )
         require_positive("strings.string_diameter_m", self.string_diameter_m)
         require_positive("strings.string_modulus_pa", self.string_modulus_pa)
         for name in ("mains", "crosses"):
             require_whole(f"strings.{name}", getattr(self, name))
         if self.mass_kg is not None:
             require_positive("strings.mass_kg", self.mass_kg)
+
+    @property
+    def bed_tension_n(self) -> float:
+        """Tension of each string in the played bed, N: ``tension_n (1 − tension_loss)``."""
+        return self.tension_n * (1.0 - self.tension_loss)
 
     @property
     def axial_stiffness_n(self) -> float:
@@ -347,7 +371,8 @@ class Racket:
             f"length_m={number(self.length_m)}, balance_m={number(self.balance_m)}, "
             f"inertia_cg_kgm2={number(self.inertia_cg_kgm2)}, grip_m={number(self.grip_m)}, "
             f"head {number(self.head.area_m2 * 1e4)} cm², strings {self.strings.mains}×"
-            f"{self.strings.crosses} at {number(self.strings.tension_n)} N, "
+            f"{self.strings.crosses} at {number(self.strings.tension_n)} N "
+            f"({number(self.strings.bed_tension_n)} N in the bed), "
             f"{len(self.point_masses)} point masses>"
         )
 
@@ -363,7 +388,8 @@ class Racket:
             (
                 "strings",
                 f"{self.strings.mains}×{self.strings.crosses} at "
-                f"{number(self.strings.tension_n)} N",
+                f"{number(self.strings.tension_n)} N "
+                f"({number(self.strings.bed_tension_n)} N in the bed)",
             ),
             ("point masses", str(len(self.point_masses))),
         ]
@@ -482,6 +508,7 @@ class Racket:
             "recoil_weight_kgcm2": self.recoil_weight_kgcm2,
             "centre_of_percussion_m": self.centre_of_percussion_m(),
             "head_area_cm2": self.head.area_m2 * 1e4,
+            "bed_tension_n": self.strings.bed_tension_n,
             "reduced_mass_centre_free_kg": float(self.reduced_mass(centre, "free")[0]),
             "reduced_mass_centre_pinned_kg": float(self.reduced_mass(centre, "pinned")[0]),
         }

@@ -57,6 +57,7 @@ _SCHEMA: dict[str, dict[str, type | tuple[type, ...]]] = {
     },
     "strings": {
         "tension_n": float,
+        "tension_loss": float,
         "mains": int,
         "crosses": int,
         "string_diameter_m": float,
@@ -80,6 +81,7 @@ _PLAUSIBLE: dict[str, dict[str, str]] = {
     "head": {key: key for key in _SCHEMA["head"]},
     "strings": {
         "tension_n": "tension_n",
+        "tension_loss": "tension_loss",
         "mains": "mains",
         "crosses": "crosses",
         "string_diameter_m": "string_diameter_m",

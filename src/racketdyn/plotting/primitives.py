@@ -280,8 +280,13 @@ def label_lines(
     low, high = ax.get_xlim()
     figure = ax.get_figure(root=True)
     assert isinstance(figure, Figure)
-    # the axes' width before layout, with a margin for a legend or colour bar beside it
-    width_pt = 0.85 * ax.get_position().width * figure.get_figwidth() * 72.0
+    # the axes' width once laid out (the layout engine run now, so the rows are judged on the
+    # width the figure will have, not the width before layout: issue 22's membrane at 619 Hz
+    # went a fourth row up on the narrower estimate), with a margin for what comes after
+    engine = figure.get_layout_engine()
+    if engine is not None:
+        engine.execute(figure)
+    width_pt = 0.95 * ax.get_position().width * figure.get_figwidth() * 72.0
     per_pt = abs(high - low) / width_pt
     top: Any = ax.secondary_xaxis("top")
     top.set_xticks([x for x, _, _ in marks], [label for _, label, _ in marks], fontsize=fontsize)

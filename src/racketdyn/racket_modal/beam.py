@@ -16,10 +16,11 @@ Derivation (documented in docs/develop.md, "Built-in modal model"):
   scaled so the total equals the racket's roll inertia; uniform GJ is scaled so the first
   flexible twisting mode sits at ``racket.twisting_hz`` (docs/references.md: 361 Hz measured).
 * **String bed.**  The fundamental mode of an elliptic membrane of the strings' mass (4 % of the
-  racket, paper section 2) under the tension per unit width of the mains and crosses
-  (``tension / spacing``), with the trial shape ``ψ = 1 − ρ²`` (ρ the elliptic radius); its
-  Rayleigh quotient ``ω² = 3 (T_x/a² + T_y/b²) / σ`` gives the frequency.  The membrane is not
-  coupled to the frame.
+  racket, paper section 2) under the played bed's tension per unit width of the mains and
+  crosses (``bed tension / spacing``, :attr:`racketdyn.racket.StringBed.bed_tension_n`), with
+  the trial shape ``ψ = 1 − ρ²`` (ρ the elliptic radius); its Rayleigh quotient
+  ``ω² = 3 (T_x/a² + T_y/b²) / σ`` gives the frequency.  The membrane is not coupled to the
+  frame.
 * **Damping.**  The identified damping of a freely supported racket is ≈ 0.5 % of critical;
   the approximate method does not use it (eq 12 gives the amplitude just after the impact).
 
@@ -215,8 +216,8 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
     membrane_omega = np.sqrt(
         3.0
         * (
-            strings.tension_n / spacing_mains / head.half_length_m**2
-            + strings.tension_n / spacing_crosses / head.half_width_m**2
+            strings.bed_tension_n / spacing_mains / head.half_length_m**2
+            + strings.bed_tension_n / spacing_crosses / head.half_width_m**2
         )
         / areal_density
     )

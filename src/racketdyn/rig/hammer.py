@@ -137,7 +137,7 @@ def string_contact_time(
     inside = np.clip(1.0 - xi**2 - eta**2, 0.0, None) + 1e-4  # 1 % of a half-axis at the edge
     main_half = head.half_length_m * np.sqrt(inside + xi**2)  # half-chord along x through y
     cross_half = head.half_width_m * np.sqrt(inside + eta**2)  # half-chord along y through x
-    stiffness = 2.0 * racket.strings.tension_n * (1.0 / main_half + 1.0 / cross_half)
+    stiffness = 2.0 * racket.strings.bed_tension_n * (1.0 / main_half + 1.0 / cross_half)
     reduced = racket.reduced_mass(xy, support)
     mu = hammer_mass_kg * reduced / (hammer_mass_kg + reduced)
     return np.asarray(np.pi * np.sqrt(mu / stiffness))

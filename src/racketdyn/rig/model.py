@@ -26,10 +26,11 @@ String bed
     with the Ritz functions vanish for a linear carried field (integrate by parts: ψ = 0 on the
     edge, ∇²u = 0).  The frame therefore takes part in the string-bed modes through inertia,
     as Cross measured (docs/references.md: string-bed modes 500–600 Hz, one test 615 Hz).
-    For the built-in racket the membrane alone on a rigid frame sits at 725 Hz (the built-in
-    one-term estimate: 739 Hz) and the frame's recoil raises the coupled mode to 772 Hz: the
-    full stringing tension and 4 % string mass put it above Cross's range, as in the built-in
-    model.
+    The tension is the played bed's (``strings.bed_tension_n``: 30 % below the pull tension by
+    default, Cross and Bower).  For the built-in racket the coupled membrane mode is then at
+    600 Hz, in Cross's range, where it veers with the frame's 4-node bending (677 Hz; both
+    modes share frame and bed).  At the pull tension it sat at 772 Hz (725 Hz on a rigid frame;
+    the built-in one-term estimate 739 Hz), above the 4-node bending's 629 Hz.
 Mass
     The frame's mass per unit length is :func:`racketdyn.racket_modal.beam.beam_mass_per_length` for
     the racket's mass, balance and inertia less the strings' share (integrated with the same
@@ -468,7 +469,8 @@ def rig_model(
     bed_rows[:, membrane] = psi
     bed_mass = bed_rows.T @ (weight[:, None] * bed_rows)
     spacing_mains, spacing_crosses = strings.spacing_m(head)
-    tension_x, tension_y = strings.tension_n / spacing_mains, strings.tension_n / spacing_crosses
+    tension_x = strings.bed_tension_n / spacing_mains
+    tension_y = strings.bed_tension_n / spacing_crosses
     k_membrane = tension_x * dpsi_x.T @ (qw[:, None] * dpsi_x) + tension_y * dpsi_y.T @ (
         qw[:, None] * dpsi_y
     )
