@@ -39,7 +39,8 @@ def add(commands: Any) -> None:
         "--tension",
         type=float,
         metavar="N",
-        help="string tension of the clamped bed, N (default: the racket's)",
+        help="string (pull) tension of the clamped bed, N (default: the racket's); the bed "
+        "plays at it less the racket file's tension_loss (default 30 %%)",
     )
     opt.add_no_figures(p, "ball.csv, ball.nc")
     opt.add_out(p)
@@ -81,7 +82,12 @@ def run(args: argparse.Namespace, console: Console) -> int:
             progress=progress,
         )
     assert result.bounces is not None
-    table = Table(title=opt.plain(f"the ball's bounce (strings at {result.tension_n:g} N)"))
+    table = Table(
+        title=opt.plain(
+            f"the ball's bounce (strings at {result.tension_n:g} N, "
+            f"{result.bed_tension_n:.4g} N in the played bed)"
+        )
+    )
     for name, justify in (
         ("surface", "left"),
         ("speed (m/s)", "right"),

@@ -55,12 +55,15 @@ class BallResult(StepResult):
     static_deformation_m : float
         The ITF plate test (two plates, 80.1 N) on the static ball law, m: the separate check.
     tension_n : float
-        String tension of the clamped bed, N.
+        String (pull) tension of the clamped bed, N.
+    bed_tension_n : float
+        The tension in the played bed, N (``tension_n`` less the strings' tension loss).
     """
 
     bounces: BallBounces | None = None
     static_deformation_m: float = float("nan")
     tension_n: float = float("nan")
+    bed_tension_n: float = float("nan")
 
 
 @run_step
@@ -124,6 +127,7 @@ def run_ball(
         bounces=bounces,
         static_deformation_m=2.0 * float(static.deflection(ITF_FORWARD_LOAD_N)),
         tension_n=the_racket.strings.tension_n,
+        bed_tension_n=the_racket.strings.bed_tension_n,
     )
     result.written.append(bounces.write_csv(out_dir / "ball.csv"))
     bounces.to_xarray().to_netcdf(out_dir / "ball.nc")
@@ -133,6 +137,7 @@ def run_ball(
         "speeds_mps": speed_list,
         "surfaces": list(bounces.surfaces),
         "string_tension_n": the_racket.strings.tension_n,
+        "bed_tension_n": the_racket.strings.bed_tension_n,
         "ball": {
             "mass_kg": the_ball.mass_kg,
             "diameter_m": the_ball.diameter_m,
