@@ -30,7 +30,7 @@ from racketdyn.impact.result import (
 from racketdyn.impact.swing import Swing, predict_swing
 from racketdyn.impact.transient import predict_transient, simulate_impact
 from racketdyn.measurement.frf import estimate_frfs
-from synthetic_records import Modes, records_for
+from racketdyn.testing.records import Modes, records_for
 
 # the impact quantities that are dataset variables (the racket speed is a coordinate)
 VARIABLES = [q for q in IMPACT_QUANTITIES if q.attribute != "racket_speed"]

@@ -4,8 +4,8 @@ FRFs another system exported end at its analyser bandwidth: their last line is t
 (not fs/2.56 of a record racketdyn never saw).  A band typed to the round number the file's
 six-digit header rounds (999.997 Hz) is the file's band.  A clear mode in the band's edge
 margin, where the fit puts its computational poles, is not dropped silently: one line names
-it and the option that keeps it.  The oracle is the analytic free bar (``tests/free_beam.py``:
-modes at 65.4, 180.3, 353.5, 584.4 and 873.0 Hz).
+it and the option that keeps it.  The oracle is the analytic free bar
+(:mod:`racketdyn.testing.free_beam`: modes at 65.4, 180.3, 353.5, 584.4 and 873.0 Hz).
 """
 
 from __future__ import annotations
@@ -17,14 +17,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from free_beam import beam_frfs
 from lab_uff import write_lab_uff
 from racketdyn.errors import InputError
 from racketdyn.io.frf_layout import read_frfs
 from racketdyn.modal.identify import default_band, identify
+from racketdyn.testing.free_beam import beam_frfs
 
 POINTS = np.linspace(0.0, 0.8, 9)
-FIFTH_HZ = 873.0353  # the bar's fifth mode (tests/free_beam.py)
+FIFTH_HZ = 873.0353  # the bar's fifth mode (racketdyn.testing.free_beam)
 
 
 def _export(tmp_path: Path, top_hz: float, lines: int, name: str = "export.uff") -> Path:

@@ -15,7 +15,7 @@ from rich.console import Console
 
 from racketdyn.cli import main
 from racketdyn.cli import options as opt
-from synthetic_records import Modes, records_for
+from racketdyn.testing.records import Modes, records_for
 
 MODES = Modes(np.array([120.0, 330.0]), np.array([0.03, 0.02]), np.array([[6.0, 4.0], [-3.0, 2.5]]))
 # "1 <noun>s" for every noun the commands count

@@ -19,7 +19,7 @@ from rich.console import Console
 import racketdyn
 from racketdyn.cli import main
 from racketdyn.cli import options as opt
-from synthetic_records import Modes, records_for
+from racketdyn.testing.records import Modes, records_for
 
 DEFAULT_TOML = Path(racketdyn.__file__).parent / "data" / "kawazoe_2002.toml"
 MODES = Modes(np.array([120.0, 330.0]), np.array([0.03, 0.02]), np.array([[6.0, 4.0], [-3.0, 2.5]]))

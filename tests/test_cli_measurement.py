@@ -12,7 +12,7 @@ import pytest
 
 from racketdyn.cli import main
 from racketdyn.io import read_frf_uff, write_hammer_uff
-from synthetic_records import Modes, records_for
+from racketdyn.testing.records import Modes, records_for
 
 MODES = Modes(np.array([120.0, 330.0]), np.array([0.03, 0.02]), np.array([[6.0, 4.0], [-3.0, 2.5]]))
 

@@ -265,6 +265,42 @@ def test_the_transient_section_shows_the_comparison(run_dir: Path, page: str) ->
     assert "approximate against transient, 20 m/s, free" in page  # at a glance
 
 
+def test_the_transient_section_counts_the_rows_where_the_models_differ(
+    run_dir: Path, tmp_path: Path
+) -> None:
+    """Issue 22: comparison.csv flags rows whose rebound ratios differ by more than 0.05
+    (``models_differ``); the console counted them, the report did not.  Two rows of the free
+    racket at 20 m/s are marked here: the table counts them on their row, at a glance says so."""
+    shutil.copytree(run_dir / "predict", tmp_path / "predict")
+    path = tmp_path / "predict" / "comparison.csv"
+    with path.open(encoding="utf-8") as handle:
+        table = list(csv.DictReader(handle))
+    marked = [
+        i
+        for i, r in enumerate(table)
+        if r["support"] == "free" and float(r["ball_speed_mps"]) == 20
+    ][:2]
+    for i, row in enumerate(table):
+        row["models_differ"] = "True" if i in marked else "False"
+    with path.open("w", encoding="utf-8", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(table[0]))
+        writer.writeheader()
+        writer.writerows(table)
+    text = write_report(tmp_path, racket=rd.default_racket()).read_text(encoding="utf-8")
+    section = _section(text, "transient")
+    assert "points where the models differ by &gt; 0.05 (models_differ)" in section
+    body = section[section.index("<tbody>") : section.index("</tbody>")]
+    counts = {
+        tuple(cells[:2]): cells[-1]
+        for cells in (
+            re.findall(r"<td[^>]*>(.*?)</td>", r) for r in re.findall(r"<tr>(.*?)</tr>", body, re.S)
+        )
+    }
+    assert counts[("free", "20")] == "2"
+    assert sum(int(v) for v in counts.values()) == 2
+    assert f"2 of {len(table)} rows of comparison.csv differ by more than 0.05" in text
+
+
 def test_the_swing_and_oblique_sections_show_their_runs(run_dir: Path, page: str) -> None:
     swing = _section(page, "swing")
     captions = " ".join(re.findall(r"<figcaption>(.*?)</figcaption>", swing, re.S))

@@ -1,6 +1,6 @@
 """Identification on real labs' data (issue 12): any structure, any layout, few points.
 
-The oracle is the analytic free–free Euler–Bernoulli beam (``tests/free_beam.py``): FRFs
+The oracle is the analytic free–free Euler–Bernoulli beam (:mod:`racketdyn.testing.free_beam`): FRFs
 synthesised with 1 % noise and a noise floor, points along x, y or z of the lab frame, with
 and without a driving point, the accelerometer in −z.  Tolerances: frequencies within 0.05 %
 (issue 12; the LSCF poles are unbiased, the spread from the noise is ≈ 0.002 %), damping
@@ -17,13 +17,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from free_beam import beam_frfs
 from lab_uff import write_lab_uff
 from racketdyn.errors import InputError
 from racketdyn.io.frf_layout import read_frfs
 from racketdyn.modal.identify import identify
 from racketdyn.modal.mac import mac
 from racketdyn.racket_modal.face import face_mapping, looks_like_racket
+from racketdyn.testing.free_beam import beam_frfs
 from racketdyn.workflows.identify import run_identify
 from racketdyn.workflows.inputs import setup as racket_setup
 

@@ -38,6 +38,7 @@ LAYERS: dict[str, int] = {
     "racketdyn.impact": 2,
     "racketdyn.rig": 2,
     "racketdyn.sweep": 2,
+    "racketdyn.testing": 2,  # test oracles (known modes) for users' tests; core nouns only
     "racketdyn.workflows": 3,
     "racketdyn.plotting": 4,
     "racketdyn.report": 4,

@@ -9,7 +9,7 @@ from scipy.optimize import least_squares
 from racketdyn.measurement import HammerRecords
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.pulse import contact_time
-from synthetic_records import Modes, half_sine, records_for
+from racketdyn.testing.records import Modes, half_sine, records_for
 
 # Three modes like a racket's (Hz, ζ, modal constants at two points against the reference).
 MODES = Modes(

@@ -1,8 +1,9 @@
 """FRFs with no node coordinates at all (issue 12 item 6): frequencies, damping ratios and
 shapes per node, no shape figures, no racket naming, and predictions refused naming --geometry.
 
-The FRFs are synthesised from a known modal model (the free bar of ``free_beam``) and written to
-a Universal File without data set 15, as a lab exports FRFs without their geometry.
+The FRFs are synthesised from a known modal model (the free bar of
+:mod:`racketdyn.testing.free_beam`) and written to a Universal File without data set 15, as
+a lab exports FRFs without their geometry.
 """
 
 from __future__ import annotations
@@ -13,10 +14,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from free_beam import beam_frfs
 from lab_uff import write_lab_uff
 from racketdyn.errors import InputError
 from racketdyn.modal.model import ModalModel
+from racketdyn.testing.free_beam import beam_frfs
 from racketdyn.workflows.inputs import setup as racket_setup
 
 CASES = {

@@ -12,6 +12,7 @@ import pytest
 
 import racketdyn as rd
 from racketdyn.io import read_frf_uff, write_hammer_uff
+from racketdyn.testing.records import Modes, records_for
 from racketdyn.workflows import (
     FrfResult,
     PredictResult,
@@ -21,7 +22,6 @@ from racketdyn.workflows import (
     run_twist,
 )
 from racketdyn.workflows.run import StepResult
-from synthetic_records import Modes, records_for
 
 
 def _record(out: Path) -> dict[str, object]:

@@ -1,15 +1,46 @@
 """Modal analysis of any structure: models, poles, residues, shapes, MAC and identification.
 
 Nothing here knows what a racket is; what modal results mean for a racket (the built-in beam
-model, mode names from a racket's shapes) is :mod:`racketdyn.racket_modal`.  The identification
-chain is :func:`racketdyn.modal.identify.identify` (imported from its module: it loads the
-pole estimator).
+model, mode names from a racket's shapes) is :mod:`racketdyn.racket_modal`.
+
+The chain, usable on any structure's FRFs (:class:`racketdyn.measurement.FrfSet`):
+
+- :func:`identify` — band, poles, selection, residues, mass normalisation in one call,
+  returning every intermediate result (:class:`Identification`);
+- :func:`stabilisation` and :func:`select_poles` — LSCF poles of every model order and the
+  automatic choice of the physical ones (:class:`Stabilisation`, :class:`SelectedPoles`);
+- :func:`fit_modal_constants` and :func:`mass_normalised_shapes` — LSFD modal constants with
+  residuals, and mode shapes scaled from the driving point (:class:`ModalFit`);
+- :class:`ModalModel`, :func:`mac`, :func:`nodes_along`, :func:`pair_modes`.
+
+The name ``racketdyn.modal.identify`` is the function; its module's other names import as
+before (``from racketdyn.modal.identify import default_band``).  :mod:`racketdyn.testing` has
+structures with known modes to try the chain on.
 """
 
 from __future__ import annotations
 
+from racketdyn.modal.identify import Identification, default_band, identify
 from racketdyn.modal.mac import mac
 from racketdyn.modal.model import ModalModel
+from racketdyn.modal.poles import SelectedPoles, Stabilisation, select_poles, stabilisation
+from racketdyn.modal.residues import ModalFit, fit_modal_constants, mass_normalised_shapes
 from racketdyn.modal.shapes import ModePairing, nodes_along, pair_modes
 
-__all__ = ["ModalModel", "ModePairing", "mac", "nodes_along", "pair_modes"]
+__all__ = [
+    "Identification",
+    "ModalFit",
+    "ModalModel",
+    "ModePairing",
+    "SelectedPoles",
+    "Stabilisation",
+    "default_band",
+    "fit_modal_constants",
+    "identify",
+    "mac",
+    "mass_normalised_shapes",
+    "nodes_along",
+    "pair_modes",
+    "select_poles",
+    "stabilisation",
+]

@@ -80,12 +80,12 @@ class ModalFit:
 
     @property
     def frequency_hz(self) -> NDArray[np.float64]:
-        """Undamped natural frequencies |λ|/2π, Hz."""
+        """Undamped natural frequencies ``|λ|/2π``, Hz."""
         return np.asarray(np.abs(self.poles) / (2 * np.pi))
 
     @property
     def damping_ratio(self) -> NDArray[np.float64]:
-        """Damping ratios −Re λ / |λ|."""
+        """Damping ratios ``−Re λ / |λ|``."""
         return np.asarray(-self.poles.real / np.abs(self.poles))
 
 

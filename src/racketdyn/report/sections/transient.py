@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn.impact.comparison import MODELS_DIFFER
 from racketdyn.impact.result import shown_speed_index
 from racketdyn.report.folder import RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
@@ -56,6 +57,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     e_approx = column("approx_rebound_ratio")
     e_transient = column("transient_rebound_ratio")
     contact = column("relative_difference_contact_time")
+    differ = np.array([str(r.get("models_differ", "")).strip().lower() == "true" for r in rows])
     head = run.head()
     centre_x, centre_y = (
         (head.centre_x_m, head.centre_y_m) if head else (float(np.nanmean(x)), float(np.nanmean(y)))
@@ -90,6 +92,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                     fmt(e_transient[centre], ".3f"),
                     median_contact,
                     str(int(selected.size - finite.size)),
+                    str(int(np.sum(differ[selected]))),
                 )
             )
             if value == chosen and name == support[0] and finite.size:
@@ -99,4 +102,10 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                     f"{fmt(e_transient[centre], '.3f')}; largest |Δ| {largest} at "
                     f"x, y = {where} mm"
                 )
+    if np.any(differ):
+        data["glance"].append(
+            f"{int(np.sum(differ))} of {len(rows)} rows of comparison.csv differ by more than "
+            f"{MODELS_DIFFER:g} in rebound ratio between the two models (models_differ): "
+            "the transient model is the reference there"
+        )
     return data

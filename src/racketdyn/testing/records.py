@@ -66,11 +66,11 @@ def records_for(
     rng = np.random.default_rng(seed)
     fine_dt = dt / OVERSAMPLE
     n_fine = n_samples * OVERSAMPLE
-    t = np.arange(n_fine) * fine_dt - pretrigger_samples * dt
+    t = np.asarray(np.arange(n_fine) * fine_dt - pretrigger_samples * dt, dtype=np.float64)
     # linear convolution: pad until the slowest mode has decayed by 1e-7 (no wrap-around)
     decay_s = np.log(1e7) / np.min(2 * np.pi * modes.frequency * modes.damping_ratio)
     n_pad = 1 << int(np.ceil(np.log2(n_fine + decay_s / fine_dt)))
-    s = 2j * np.pi * np.fft.rfftfreq(n_pad, fine_dt)
+    s = np.asarray(2j * np.pi * np.fft.rfftfreq(n_pad, fine_dt), dtype=np.complex128)
     h = modes.accelerance(s)
     forces, responses = [], []
     for point in range(modes.constants.shape[0]):
