@@ -404,5 +404,5 @@ def test_a_calibration_value_the_model_refuses_names_the_calibration_file(tmp_pa
     )
     damaged = tmp_path / "calibration.json"
     damaged.write_text(json.dumps({"parameters": [{"name": "e_bg", "value": -3.0}]}))
-    with pytest.raises(InputError, match=r"^--calibration .*calibration\.json: .*e_bg"):
+    with pytest.raises(InputError, match=r"^`calibration` .*calibration\.json: .*e_bg"):
         run_validate(tmp_path / "out", measured, calibration=damaged)

@@ -133,6 +133,6 @@ def test_no_rows_and_no_file(tmp_path: Path) -> None:
 def test_a_fast_measured_ball_goes_on_with_allow_implausible(tmp_path: Path) -> None:
     """80 m/s is beyond the speeds of play (75 m/s) but a real cannon can fire it."""
     path = write(tmp_path, "0.5,0,80,0,free,0.4,0.01")
-    with pytest.raises(InputError, match="allow-implausible"):
+    with pytest.raises(InputError, match="allow_implausible"):
         read_measured(path)
     assert read_measured(path, allow_implausible=True).ball_speed[0] == 80.0

@@ -257,7 +257,7 @@ def test_a_derived_swingweight_is_checked(tmp_path: Path) -> None:
 def test_ball_and_hand_from_python() -> None:
     with pytest.raises(InputError, match="did you give grams"):
         ball_from(mass_kg=57.7)
-    with pytest.raises(InputError, match="--allow-implausible"):
+    with pytest.raises(InputError, match="set `allow_implausible`"):
         ball_from(mass_kg=0.045)  # a stage-2 (orange) ball
     assert ball_from(mass_kg=0.045, allow_implausible=True)[0].mass_kg == 0.045
     with pytest.raises(InputError, match="did you give grams"):

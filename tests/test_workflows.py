@@ -86,14 +86,14 @@ def test_predict_figures_come_from_the_hook_and_are_recorded(tmp_path: Path) -> 
 
 
 def test_predict_refuses_bad_input_before_writing(tmp_path: Path) -> None:
-    with pytest.raises(rd.InputError, match="--support hand needs --model transient"):
+    with pytest.raises(rd.InputError, match="`supports` hand needs `model` transient"):
         run_predict(tmp_path / "out", supports=["hand"])
     with pytest.raises(rd.InputError, match="grid"):
         run_predict(tmp_path / "out", grid=0)
     # review of issue 11: these were checked by the CLI only, and ignored from Python
     with pytest.raises(rd.InputError, match="engine"):
         run_predict(tmp_path / "out", model="approx", engine="reference")
-    with pytest.raises(rd.InputError, match="stiffness-reading"):
+    with pytest.raises(rd.InputError, match="`stiffness_reading`"):
         run_predict(tmp_path / "out", model="transient", stiffness_reading="tangent")
     assert not (tmp_path / "out").exists()
 

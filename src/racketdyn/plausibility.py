@@ -40,7 +40,7 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-OVERRIDE_OPTION = "if it is meant, give --allow-implausible (allow_implausible=True in Python)"
+OVERRIDE_OPTION = "if it is meant, set `allow_implausible`"
 """How to go on with an unusual value given as an option or a Python argument."""
 OVERRIDE_FILE = "if the racket really is so, add [checks] allow_implausible = true to the file"
 """How to go on with an unusual value in a racket file."""
@@ -456,7 +456,7 @@ def check(
         return value
     if _shown(spec.low) <= _shown(number) <= _shown(spec.high):
         return value  # at an end of the range as the message prints it (147 N for 15 kgf)
-    given = f"{name} {_g(number)}" if name.startswith("-") else f"{name} = {_g(number)}"
+    given = f"{name} {_g(number)}" if name.startswith(("-", "`")) else f"{name} = {_g(number)}"
     message = f"{given}: {spec.text()}"
     slips = spec.likely_slips(number)
     if key == "string_diameter_m" and number in GAUGE_MM:  # a gauge number is no unit

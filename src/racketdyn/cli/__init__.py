@@ -80,9 +80,14 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def parse(argv: Sequence[str] | None) -> argparse.Namespace:
-    """Parsed arguments, with the command line as given (``argv``) kept for run records."""
-    args = build_parser().parse_args(argv)
+    """Parsed arguments, with the command line as given (``argv``) kept for run records, and
+    the command's parser (``args.parser``: its options name the library's parameters in
+    errors, :func:`racketdyn.cli.options.in_flags`)."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
     args.argv = list(sys.argv[1:] if argv is None else argv)
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    args.parser = commands.choices[args.command]
     return args
 
 
@@ -112,7 +117,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return int(args.handler(args, Console()))
     except InputError as error:
         Console(stderr=True, highlight=False, soft_wrap=True).print(
-            f"racketdyn: error: {error}", markup=False
+            f"racketdyn: error: {opt.in_flags(str(error), args.parser)}", markup=False
         )
         return 2
     except KeyboardInterrupt:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any
@@ -235,6 +236,59 @@ def add_no_figures(parser: argparse.ArgumentParser, what: str = "the CSV files")
 
 
 # --- parsing ----------------------------------------------------------------------------------
+PARAMETER_OPTIONS: dict[str, str] = {
+    "speeds": "speed",
+    "supports": "support",
+    "mass_kg": "ball_mass",  # workflows.inputs.ball_from
+    "arm_mass_kg": "hand_arm_mass",  # workflows.inputs.hand_for
+    "stiffness_n_per_m": "hand_stiffness",
+    "damping_ns_per_m": "hand_damping",
+    "axis_to_butt_m": "axis_to_butt",  # workflows.swing.swing_from
+    "angular_speed_radps": "angular_speed",
+    "torque_nm": "torque",
+    "x_m": "x",  # run_twist
+    "offsets_m": "offsets",
+    "angles_deg": "angles",  # run_oblique
+    "spin_radps": "spin",
+    "method": "model",  # run_calibrate
+    "force_range_n": "force_range",  # run_frf
+    "force_window_s": "force_window",
+    "band_hz": "band",  # run_identify, run_compare
+    "force_snr_db": "force_snr",  # run_rig
+    "response_snr_db": "response_snr",
+    "pretrigger_s": "pretrigger",
+    "response_direction": "accelerometer_direction",
+}
+"""The library's parameter names whose option has another name (``run_predict(speeds=)`` is
+``--speed``); every other parameter is its option's ``dest`` (``racket_speed`` →
+``--racket-speed``)."""
+
+
+def in_flags(message: str, parser: argparse.ArgumentParser) -> str:
+    """An error raised below the CLI, in the command's words: each parameter the library names
+    in backticks (`` `speeds` ``, its convention: docs/develop.md, "Errors name parameters")
+    becomes the command's option (``--speed``); a name no option has loses its backticks.
+
+    Parameters
+    ----------
+    message : str
+        The library's message.
+    parser : ArgumentParser
+        The command's parser.
+    """
+    flags = {
+        action.dest: action.option_strings[-1]
+        for action in parser._actions
+        if action.option_strings and action.option_strings[-1].startswith("--")
+    }
+
+    def flag(match: re.Match[str]) -> str:
+        name = match.group(1)
+        return flags.get(PARAMETER_OPTIONS.get(name, name), name)
+
+    return re.sub(r"`([A-Za-z_][A-Za-z0-9_]*)`", flag, message)
+
+
 def parse_list(name: str, text: str) -> list[str]:
     """Items of a comma-separated list, none empty."""
     from racketdyn.errors import InputError

@@ -171,14 +171,14 @@ def parse_fit(names: Sequence[str], inputs: ModelInputs) -> list[Parameter]:
     for name in names:
         if name not in PARAMETERS:
             raise InputError(
-                f"--fit: {name!r} is not a parameter; choose from {', '.join(PARAMETERS)}"
+                f"`fit`: {name!r} is not a parameter; choose from {', '.join(PARAMETERS)}"
             )
         chosen.append(PARAMETERS[name])
     if not chosen or len({p.name for p in chosen}) != len(chosen):
-        raise InputError(f"--fit: name each parameter once (got {','.join(names)})")
+        raise InputError(f"`fit`: name each parameter once (got {','.join(names)})")
     if "e_bg" in names and inputs.ball.e_bg_table and not inputs.ball.e_bg_source:
         raise InputError(
-            "--fit e_bg: the ball's e_BG is a table against speed; fit a constant e_BG "
+            "`fit` e_bg: the ball's e_BG is a table against speed; fit a constant e_BG "
             "(drop --e-bg-table) or leave e_bg out"
         )
     return chosen
@@ -418,7 +418,7 @@ def calibrate(
     n = len(measured)
     held = sorted({int(i) for i in holdout})
     if any(not 0 <= i < n for i in held):
-        raise InputError(f"--holdout: rows are numbered 1 to {n}")
+        raise InputError(f"`holdout`: rows are numbered 1 to {n}")
     kept = sorted(set(range(n)) - set(held))
     for p in parameters:
         if p.support and p.support not in measured.support:
@@ -431,7 +431,7 @@ def calibrate(
         raise InputError(
             f"calibrate: {len(fitted)} rows left to fit ({len(held)} held out, {len(flagged)} "
             f"without a number from the {method} model), fewer than the {len(parameters)} "
-            "parameters to fit; hold out fewer rows (--holdout), measure more points or fit fewer"
+            "parameters to fit; hold out fewer rows (`holdout`), measure more points or fit fewer"
         )
     result, fitted_inputs = _fit(inputs, parameters, measured.subset(fitted), method)
     result.n_flagged = len(flagged)

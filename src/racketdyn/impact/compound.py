@@ -513,7 +513,7 @@ def racket_modes(
     """
     xy = as_locations(location)
     if xy.shape[0] != 1:
-        raise InputError("--point: give one point x,y for the ball")
+        raise InputError("`point`: give one point x,y for the ball")
     extra = np.asarray(points, dtype=float).reshape(-1, 2)
     frame = None if model is None else model.frame_modes
     system = impact_system(

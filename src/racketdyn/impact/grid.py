@@ -357,7 +357,7 @@ def check_string_bed(string_bed: str, law: RestoringForce | None, racket: Racket
         file = racket.strings.load_deflection_file
         if file is not None:
             raise InputError(
-                f"--string-bed local needs the strings' construction; the racket's string bed is "
+                f"`string_bed` local needs the strings' construction; the racket's string bed is "
                 f"a measured load-deflection file ({file.name}), a law at one point: use "
-                "--string-bed uniform"
+                "`string_bed` uniform"
             )

@@ -90,6 +90,16 @@ def default_band(frfs: FrfSet) -> tuple[float, float]:
     spectral line of FRFs another system exported (they end at its analyser bandwidth, e.g.
     1000 Hz from fs = 2560 Hz), fs / 2.56 of FRFs racketdyn estimated from time records (whose
     lines above it are the anti-alias filter's roll-off; :data:`ANALYSER_BANDWIDTH_FACTOR`).
+
+    Parameters
+    ----------
+    frfs : FrfSet
+        The FRFs to identify.
+
+    Returns
+    -------
+    tuple of float
+        (low, high), Hz.
     """
     return (DEFAULT_LOW_HZ, float(frfs.bandwidth_hz))
 

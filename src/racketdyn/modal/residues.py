@@ -176,6 +176,20 @@ def design_columns(
 def mass_normalised_shapes(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
     """Mass-normalised mode shapes at the FRF points from the driving-point constants, 1/√kg.
 
+    ``φ_i = A_ir / sqrt(A_rr)`` for each mode, with r the driving point (eq 12's residues).
+
+    Parameters
+    ----------
+    frfs : FrfSet
+        The FRFs the constants were fitted to (their driving point, their source for errors).
+    fit : ModalFit
+        The modal constants (:func:`fit_modal_constants`).
+
+    Returns
+    -------
+    ndarray (n_points, n_modes)
+        The shapes, 1/√kg.
+
     Raises
     ------
     InputError

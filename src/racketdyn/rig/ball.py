@@ -66,7 +66,7 @@ def ball_on_strings(
     xy = as_locations(location)
     if xy.shape[0] != 1 or not bool(model.on_string_bed(xy)[0]):
         raise InputError(
-            f"--ball-at {xy[0, 0]:g},{xy[0, 1]:g}: the ball must sit on the string bed"
+            f"`ball_at` {xy[0, 0]:g},{xy[0, 1]:g}: the ball must sit on the string bed"
         )
     m_b = require_positive("ball mass", ball_mass_kg)
     k = require_positive("ball stiffness", stiffness_n_per_m)

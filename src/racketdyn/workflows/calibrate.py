@@ -144,13 +144,13 @@ def run_calibrate(
     CalibrateResult
     """
     if method not in METHODS:
-        raise InputError(f"--model must be one of {', '.join(METHODS)} (got {method!r})")
+        raise InputError(f"`method` must be one of {', '.join(METHODS)} (got {method!r})")
     inputs, rows, provenance, defaults_used = measured_setup(
         racket, measured, modal, rigid, ball, hand, engine, string_bed, allow_implausible
     )
     held = [int(i) for i in holdout]
     if any(i < 1 or i > len(rows) for i in held):
-        raise InputError(f"--holdout: rows are numbered 1 to {len(rows)} (got {held})")
+        raise InputError(f"`holdout`: rows are numbered 1 to {len(rows)} (got {held})")
     held0 = [i - 1 for i in held]
     report(progress, f"fitting {', '.join(fit)} to {len(rows) - len(held)} rows ({method})")
     calibration, calibrated = calibrate(

@@ -351,9 +351,9 @@ def run_compound(
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """
-    checked = [one_of("--support", s, TRANSIENT_SUPPORTS) for s in supports]
+    checked = [one_of("`supports`", s, TRANSIENT_SUPPORTS) for s in supports]
     if not checked or len(set(checked)) != len(checked):
-        raise InputError(f"--support: name each support once (got {','.join(supports)})")
+        raise InputError(f"`supports`: name each support once (got {','.join(supports)})")
     used = setup(racket, modal, rigid)
     the_racket = used.racket
     defaults_used = [*used.defaults, *defaults]
@@ -363,9 +363,9 @@ def run_compound(
     else:
         values = np.asarray(point, dtype=float).ravel()
         if values.size != 2 or not np.all(np.isfinite(values)):
-            raise InputError("--point: give the ball's position as x,y in m, e.g. 0.505,0")
+            raise InputError("`point`: give the ball's position as x,y in m, e.g. 0.505,0")
         xy = (float(values[0]), float(values[1]))
-    the_racket.head.check_inside(np.array([xy]), "--point")
+    the_racket.head.check_inside(np.array([xy]), "`point`")
     the_hand, hand_defaults = hand_or_default(checked, hand)
     the_ball, ball_defaults = ball_or_default(ball)
     defaults_used += [*hand_defaults, *ball_defaults]
@@ -381,14 +381,14 @@ def run_compound(
         )
         head.check_inside(
             np.array([strike]),
-            f"the hammer point (--point minus {1e3 * HAMMER_OFFSET_M:.0f} mm; --hammer)",
+            f"the hammer point (`point` minus {1e3 * HAMMER_OFFSET_M:.0f} mm; `hammer`)",
         )
     else:
         values = np.asarray(hammer, dtype=float).ravel()
         if values.size != 2 or not np.all(np.isfinite(values)):
-            raise InputError("--hammer: give the hammer's point as x,y in m, e.g. 0.495,0")
+            raise InputError("`hammer`: give the hammer's point as x,y in m, e.g. 0.495,0")
         strike = (float(values[0]), float(values[1]))
-        head.check_inside(np.array([strike]), "--hammer")
+        head.check_inside(np.array([strike]), "`hammer`")
     neck = (head.centre_x_m - head.half_length_m - NECK_BELOW_BED_M, 0.0)
     result = CompoundResult(
         Path(out), racket=the_racket, ball=the_ball, spring=spring, location=xy,

@@ -89,7 +89,7 @@ def run_contact(
     """
     names = [Path(t).stem for t in tests] if labels is None else list(labels)
     if len(names) != len(tests):
-        raise InputError(f"--labels: give one label per test file ({len(tests)})")
+        raise InputError(f"`labels`: give one label per test file ({len(tests)})")
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
     result = ContactResult(out_dir, labels=names, racket=the_racket)

@@ -119,7 +119,7 @@ def run_frf(
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """
-    one_of("--estimator", estimator, ESTIMATORS)
+    one_of("`estimator`", estimator, ESTIMATORS)
     records = read_records(tests, geometry)
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
@@ -143,8 +143,8 @@ def run_frf(
         # the run folder is left as it was: the reasons go into the message
         raise InputError(
             f"{tests}: every average of every point was rejected: {estimate.rejections()}; "
-            "see quality.csv and the options of racketdyn frf --help (--force-range, "
-            "--force-window)"
+            "see quality.csv and the force range and window (`force_range_n`, "
+            "`force_window_s`)"
         )
     result.written.append(write_frf_uff(estimate.frfs, out_dir / "frfs.uff"))
     inputs = {

@@ -82,7 +82,7 @@ def _band(band_hz: Sequence[float] | None) -> tuple[float, float] | None:
         return None
     values = [float(v) for v in band_hz]
     if len(values) != 2 or not 0.0 <= values[0] < values[1]:
-        raise InputError(f"--band takes two frequencies low,high in Hz (got {band_hz!r})")
+        raise InputError(f"`band_hz` takes two frequencies low,high in Hz (got {band_hz!r})")
     return (values[0], values[1])
 
 
@@ -507,8 +507,8 @@ def run_compare(
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """
-    (check_speed,) = require_speeds("--speed", [speed])
-    check_speeds("--speed", [check_speed], "ball_speed_mps", allow_implausible)
+    (check_speed,) = require_speeds("`speed`", [speed])
+    check_speeds("`speed`", [check_speed], "ball_speed_mps", allow_implausible)
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
     options = _file_options(geometry, band_hz, max_order, pin_hz, exclude_hz, reference, racket)

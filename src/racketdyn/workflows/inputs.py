@@ -80,7 +80,7 @@ class RacketSetup:
 
 
 def ball_location(ball_at: Sequence[float], racket: Racket) -> tuple[float, float]:
-    """``--ball-at``: where a ball is fixed on the strings (x, y), m, checked to lie on them.
+    """``ball_at``: where a ball is fixed on the strings (x, y), m, checked to lie on them.
 
     Parameters
     ----------
@@ -91,8 +91,8 @@ def ball_location(ball_at: Sequence[float], racket: Racket) -> tuple[float, floa
     """
     values = [float(v) for v in ball_at]
     if len(values) != 2 or not all(math.isfinite(v) for v in values):
-        raise InputError("--ball-at: give the ball's position as x,y in m, e.g. 0.505,0")
-    racket.head.check_inside(np.asarray([values]), "--ball-at")
+        raise InputError("`ball_at`: give the ball's position as x, y in m, e.g. 0.505, 0")
+    racket.head.check_inside(np.asarray([values]), "`ball_at`")
     return values[0], values[1]
 
 
@@ -119,7 +119,7 @@ def setup(
     loaded, provenance = load_racket_input(racket)
     defaults = [BUILT_IN_RACKET] if racket is None else []
     if modal is not None and rigid:
-        raise InputError("give a modal model file (--modal) or a rigid racket, not both")
+        raise InputError("give a modal model file (`modal`) or a rigid racket (`rigid`), not both")
     if isinstance(modal, ModalModel):
         provenance["modal_model_given"] = f"ModalModel object from Python: {modal.source}"
         if with_modes:
@@ -129,7 +129,7 @@ def setup(
     if modal is not None:
         path = Path(modal)
         if not path.is_file():
-            raise InputError(f"--modal {modal}: no such modal model file")
+            raise InputError(f"`modal` {modal}: no such modal model file")
         loaded = replace(loaded, modal_model_file=path)
         provenance["modal_model_file"] = str(path.resolve())
         provenance["modal_model_sha256"] = sha256(path)
@@ -171,12 +171,12 @@ def ball_from(
         Not together with ``e_bg``.
     """
     if e_bg_table is not None and e_bg is not None:
-        raise InputError("give --e-bg (one value) or --e-bg-table (e_BG against speed), not both")
+        raise InputError("give `e_bg` (one value) or `e_bg_table` (e_BG against speed), not both")
     if e_bg is not None and math.isfinite(e_bg) and not 0.0 <= e_bg <= 1.0:
         slip = f"; did you give a percentage ({e_bg:g} % = {e_bg / 100:g})?" if e_bg <= 100 else ""
-        raise InputError(f"--e-bg {e_bg:g}: e_BG is a ratio between 0 and 1 (Kawazoe's 0.83){slip}")
+        raise InputError(f"`e_bg` {e_bg:g}: e_BG is a ratio between 0 and 1 (Kawazoe's 0.83){slip}")
     if mass_kg is not None and _positive(mass_kg):
-        check("ball_mass_kg", mass_kg, "--ball-mass", allow_implausible=allow_implausible)
+        check("ball_mass_kg", mass_kg, "`mass_kg`", allow_implausible=allow_implausible)
     defaults = []
     kwargs: dict[str, Any] = {}
     for value, key, label in (
@@ -233,9 +233,9 @@ def hand_for(
     if "hand" not in supports:
         return None, []
     given = {
-        "arm_mass_kg": ("hand_arm_mass_kg", "--hand-arm-mass", arm_mass_kg),
-        "stiffness_n_per_m": ("hand_stiffness_n_per_m", "--hand-stiffness", stiffness_n_per_m),
-        "damping_ns_per_m": ("hand_damping_ns_per_m", "--hand-damping", damping_ns_per_m),
+        "arm_mass_kg": ("hand_arm_mass_kg", "`arm_mass_kg`", arm_mass_kg),
+        "stiffness_n_per_m": ("hand_stiffness_n_per_m", "`stiffness_n_per_m`", stiffness_n_per_m),
+        "damping_ns_per_m": ("hand_damping_ns_per_m", "`damping_ns_per_m`", damping_ns_per_m),
     }
     fields = {}
     for field, (key, option, value) in given.items():

@@ -169,18 +169,18 @@ def run_oblique(
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """
-    speed = require_positive("--speed", speed)
-    check_speeds("--speed", [speed], "ball_speed_mps", allow_implausible)
-    check_speeds("--racket-speed", [racket_speed], "racket_speed_mps", allow_implausible)
-    angles = [require_finite("--angles", v) for v in np.atleast_1d(angles_deg)]
+    speed = require_positive("`speed`", speed)
+    check_speeds("`speed`", [speed], "ball_speed_mps", allow_implausible)
+    check_speeds("`racket_speed`", [racket_speed], "racket_speed_mps", allow_implausible)
+    angles = [require_finite("`angles_deg`", v) for v in np.atleast_1d(angles_deg)]
     for angle in angles:
         if not -90.0 < angle < 90.0:
             raise InputError(
-                "--angles: each incoming angle must lie strictly between -90 and 90 degrees "
+                "`angles_deg`: each incoming angle must lie strictly between -90 and 90 degrees "
                 f"from the face normal (got {angle:g})"
             )
-    spin = require_finite("--spin", spin_radps)
-    the_support = one_of("--support", support, TRANSIENT_SUPPORTS)
+    spin = require_finite("`spin_radps`", spin_radps)
+    the_support = one_of("`support`", support, TRANSIENT_SUPPORTS)
     used = setup(racket, modal, rigid)
     extra = []
     if point is None:
@@ -204,8 +204,8 @@ def run_oblique(
         ),
         inertia_factor=base.inertia_factor,
     )
-    racket_speed = require_finite("--racket-speed", racket_speed)
-    face_speed = require_finite("--racket-tangential-speed", racket_tangential_speed)
+    racket_speed = require_finite("`racket_speed`", racket_speed)
+    face_speed = require_finite("`racket_tangential_speed`", racket_tangential_speed)
     the_ball, ball_defaults = ball_or_default(ball)
     defaults_used = [*used.defaults, *extra, *hand_defaults, *ball_defaults, *defaults]
     model = used.modal_model

@@ -189,7 +189,7 @@ def impact_points(
         What they are, for run.json.
     """
     if points is not None and grid is not None:
-        raise InputError("give --grid or --points, not both")
+        raise InputError("give `grid` or `points`, not both")
     if isinstance(points, str | os.PathLike):
         locations, labels = read_points(Path(points))
         return locations, labels, f"points file {Path(points).resolve()}"
@@ -198,7 +198,7 @@ def impact_points(
         return array, [str(i + 1) for i in range(len(array))], f"{len(array)} points given"
     n = default_grid if grid is None else grid
     if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_GRID:
-        raise InputError(f"--grid must be a whole number from 1 to {MAX_GRID} (got {n})")
+        raise InputError(f"`grid` must be a whole number from 1 to {MAX_GRID} (got {n})")
     locations = racket.head.grid(n)
     return locations, [str(i + 1) for i in range(len(locations))], f"grid {n} x {n} over the head"
 
@@ -210,12 +210,12 @@ def check_supports(supports: Sequence[str], model: str) -> list[str]:
     for support in supports:
         if support == "hand" and model != "transient":
             raise InputError(
-                "--support hand needs --model transient: the approximate method has no hand "
-                "(its hand-held racket is pinned at the grip: --support pinned)"
+                "`supports` hand needs `model` transient: the approximate method has no hand "
+                "(its hand-held racket is pinned at the grip: `supports` pinned)"
             )
-        checked.append(one_of("--support", support, allowed))
+        checked.append(one_of("`supports`", support, allowed))
     if len(set(checked)) != len(checked):
-        raise InputError(f"--support: name each support once (got {','.join(supports)})")
+        raise InputError(f"`supports`: name each support once (got {','.join(supports)})")
     return checked
 
 
@@ -301,23 +301,23 @@ def run_predict(
     -------
     PredictResult
     """
-    one_of("model", model, MODELS)
+    one_of("`model`", model, MODELS)
     if engine is not None and model == "approx":
-        raise InputError("--engine is for the transient model: add --model transient or both")
+        raise InputError("`engine` is for the transient model: `model` transient or both")
     if stiffness_reading is not None and model == "transient":
         raise InputError(
-            "--stiffness-reading is a choice of the approximate method (eq 10); the transient "
-            "model integrates the contact: drop it, or use --model approx or both"
+            "`stiffness_reading` is a choice of the approximate method (eq 10); the transient "
+            "model integrates the contact: drop it, or use `model` approx or both"
         )
     engine = engine or "auto"
     stiffness_reading = stiffness_reading or "period"
-    one_of("engine", engine, ENGINES)
-    speed_list = [float(v) for v in require_speeds("--speed", speeds)]
-    racket_speeds = [float(v) for v in require_speeds("--racket-speed", racket_speed)]
-    check_speeds("--speed", speed_list, "ball_speed_mps", allow_implausible)
-    check_speeds("--racket-speed", racket_speeds, "racket_speed_mps", allow_implausible)
+    one_of("`engine`", engine, ENGINES)
+    speed_list = [float(v) for v in require_speeds("`speeds`", speeds)]
+    racket_speeds = [float(v) for v in require_speeds("`racket_speed`", racket_speed)]
+    check_speeds("`speeds`", speed_list, "ball_speed_mps", allow_implausible)
+    check_speeds("`racket_speed`", racket_speeds, "racket_speed_mps", allow_implausible)
     if len(racket_speeds) not in (1, len(speed_list)):
-        raise InputError("--racket-speed takes one speed, or one per --speed value")
+        raise InputError("`racket_speed` takes one speed, or one per `speeds` value")
     support_list = check_supports(supports, model)
     used = setup(racket, modal, rigid)
     the_ball, ball_defaults = ball_or_default(ball)

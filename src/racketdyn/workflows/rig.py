@@ -163,22 +163,22 @@ def run_rig(
     """
     supports = [support] if isinstance(support, str) else list(support)
     if not supports or len(set(supports)) < len(supports):
-        raise InputError(f"--support: give free, hand or free,hand (got {','.join(supports)})")
+        raise InputError(f"`supports`: give free, hand or free,hand (got {','.join(supports)})")
     for each in supports:
-        one_of("--support", each, RIG_SUPPORTS)
+        one_of("`supports`", each, RIG_SUPPORTS)
     if isinstance(averages, bool) or not isinstance(averages, int) or averages < 1:
-        raise InputError(f"--averages must be a whole number of at least 1 (got {averages})")
-    require_range("--double-hits", double_hits, 0.0, 1.0)
-    require_range("--overloads", overloads, 0.0, 1.0)
-    for name, snr in (("--force-snr", force_snr_db), ("--response-snr", response_snr_db)):
+        raise InputError(f"`averages` must be a whole number of at least 1 (got {averages})")
+    require_range("`double_hits`", double_hits, 0.0, 1.0)
+    require_range("`overloads`", overloads, 0.0, 1.0)
+    for name, snr in (("`force_snr_db`", force_snr_db), ("`response_snr_db`", response_snr_db)):
         if snr is not None:
             require_range(name, snr, 0.0, 200.0)
-    require_range("--pretrigger", pretrigger_s, 0.0, 0.1)
-    one_of("--time-zero", time_zero, ("pulse", "record"))
-    one_of("--lab-plane", lab_plane, ("xy", "xz"))
-    one_of("--layout", layout, ("roving hammer", "roving accelerometer"))
+    require_range("`pretrigger_s`", pretrigger_s, 0.0, 0.1)
+    one_of("`time_zero`", time_zero, ("pulse", "record"))
+    one_of("`lab_plane`", lab_plane, ("xy", "xz"))
+    one_of("`layout`", layout, ("roving hammer", "roving accelerometer"))
     if response_direction not in (3, -3):
-        raise InputError(f"--accelerometer-direction: give 3 or -3 (got {response_direction})")
+        raise InputError(f"`response_direction`: give 3 or -3 (got {response_direction})")
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
     locations, nodes = hammer_points(the_racket)

@@ -108,11 +108,11 @@ def make_out_folder(out: Path) -> Path:
     out = Path(out)
     for place in (out, *out.parents):
         if place.exists() and not place.is_dir():
-            raise InputError(f"--out {out}: {place} is a file, not a folder; give a folder")
+            raise InputError(f"`out` {out}: {place} is a file, not a folder; give a folder")
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as error:
-        raise InputError(f"--out {out}: cannot create the folder ({error.strerror})") from None
+        raise InputError(f"`out` {out}: cannot create the folder ({error.strerror})") from None
     return out
 
 
@@ -137,8 +137,8 @@ def _lock(folder: Path) -> Path:
             pid = int(text) if text.isdigit() else 0
             if pid and _process_alive(pid):
                 raise InputError(
-                    f"--out {folder}: another racketdyn run (process {pid}) is writing into it; "
-                    f"wait for it to end, or give another --out (if no such run is going on, "
+                    f"`out` {folder}: another racketdyn run (process {pid}) is writing into it; "
+                    f"wait for it to end, or give another `out` (if no such run is going on, "
                     f"delete {lock})"
                 ) from None
             log.warning("%s: taking over the lock of an ended run (process %s)", folder, pid)
@@ -149,7 +149,7 @@ def _lock(folder: Path) -> Path:
         with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
             handle.write(str(os.getpid()))
         return lock
-    raise InputError(f"--out {folder}: cannot take the folder's lock {lock}")
+    raise InputError(f"`out` {folder}: cannot take the folder's lock {lock}")
 
 
 def _previous_outputs(folder: Path) -> list[str]:
@@ -193,8 +193,8 @@ def _refuse_other_step(folder: Path, step: str) -> None:
     previous = _previous_step(folder)
     if previous is not None and previous != step:
         raise InputError(
-            f"--out {folder}: the folder holds a `racketdyn {previous}` run (its run.json), "
-            f"which `{step}` would replace; give another --out for {step}"
+            f"`out` {folder}: the folder holds a `racketdyn {previous}` run (its run.json), "
+            f"which `{step}` would replace; give another `out` for {step}"
         )
 
 

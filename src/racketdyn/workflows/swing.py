@@ -121,33 +121,38 @@ def swing_from(
             "with the racket, 70 kg, 1.75 m adult (Dempster/Winter)"
         )
     else:
-        axis = require_positive("--axis-to-butt", axis_to_butt_m, allow_zero=True)
-        check("axis_to_butt_m", axis, "--axis-to-butt", allow_implausible=allow_implausible)
+        axis = require_positive("`axis_to_butt_m`", axis_to_butt_m, allow_zero=True)
+        check("axis_to_butt_m", axis, "`axis_to_butt_m`", allow_implausible=allow_implausible)
     if angular_speed_radps is not None:
         if torque_nm is not None or swing_angle_deg is not None:
             raise InputError(
-                "give --angular-speed, or --torque and --swing-angle-deg (the constant shoulder "
-                "torque swing), not both"
+                "give `angular_speed_radps`, or `torque_nm` and `swing_angle_deg` (the constant "
+                "shoulder torque swing), not both"
             )
-        omega = require_positive("--angular-speed", angular_speed_radps, allow_zero=True)
-        check("angular_speed_radps", omega, "--angular-speed", allow_implausible=allow_implausible)
+        omega = require_positive("`angular_speed_radps`", angular_speed_radps, allow_zero=True)
+        check(
+            "angular_speed_radps",
+            omega,
+            "`angular_speed_radps`",
+            allow_implausible=allow_implausible,
+        )
         return Swing(axis_to_butt_m=axis, angular_speed_radps=omega), defaults
     if torque_nm is None:
         torque = DEFAULT_TORQUE_NM
         defaults.append(f"shoulder torque {torque:g} N·m (Kawazoe, ACMD 2002)")
     else:
-        torque = require_positive("--torque", torque_nm)
-        check("torque_nm", torque, "--torque", allow_implausible=allow_implausible)
+        torque = require_positive("`torque_nm`", torque_nm)
+        check("torque_nm", torque, "`torque_nm`", allow_implausible=allow_implausible)
     if swing_angle_deg is None:
         angle = DEFAULT_SWING_ANGLE_RAD
         defaults.append("swing angle 90° from rest to impact (assumption: a quarter turn)")
     else:
-        degrees = require_finite("--swing-angle-deg", swing_angle_deg)
+        degrees = require_finite("`swing_angle_deg`", swing_angle_deg)
         if not 0.0 < degrees <= 360.0:
             raise InputError(
-                f"--swing-angle-deg must be more than 0 and at most 360 degrees (got {degrees:g})"
+                f"`swing_angle_deg` must be more than 0 and at most 360 degrees (got {degrees:g})"
             )
-        check("swing_angle_deg", degrees, "--swing-angle-deg", allow_implausible=allow_implausible)
+        check("swing_angle_deg", degrees, "`swing_angle_deg`", allow_implausible=allow_implausible)
         angle = math.radians(degrees)
     defaults.append(
         f"arm {DEFAULT_ARM_MASS_KG * 1e3:.0f} g, radius of gyration "
@@ -161,10 +166,10 @@ def one_support(support: str, transient: bool) -> str:
     """One support, allowed by the impact model."""
     if support == "hand" and not transient:
         raise InputError(
-            "--support hand needs --model transient: the approximate method has no hand "
-            "(its hand-held racket is pinned at the grip: --support pinned)"
+            "`support` hand needs `model` transient: the approximate method has no hand "
+            "(its hand-held racket is pinned at the grip: `support` pinned)"
         )
-    return one_of("--support", support, TRANSIENT_SUPPORTS if transient else SUPPORTS)
+    return one_of("`support`", support, TRANSIENT_SUPPORTS if transient else SUPPORTS)
 
 
 @dataclass
@@ -307,13 +312,13 @@ def run_swing(
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """
-    speed_list = [float(v) for v in require_speeds("--speed", speeds)]
-    check_speeds("--speed", speed_list, "ball_speed_mps", allow_implausible)
-    impact_model = IMPACT_MODELS[one_of("--model", model, tuple(IMPACT_MODELS))]
+    speed_list = [float(v) for v in require_speeds("`speeds`", speeds)]
+    check_speeds("`speeds`", speed_list, "ball_speed_mps", allow_implausible)
+    impact_model = IMPACT_MODELS[one_of("`model`", model, tuple(IMPACT_MODELS))]
     the_support = one_support(support, model == "transient")
     n = SWING_GRID if grid is None else grid
     if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_GRID:
-        raise InputError(f"--grid must be a whole number from 1 to {MAX_GRID} (got {n})")
+        raise InputError(f"`grid` must be a whole number from 1 to {MAX_GRID} (got {n})")
     used = setup(racket, modal, rigid)
     the_hand, hand_defaults = hand_or_default([the_support], hand)
     if swing is None:

@@ -140,25 +140,25 @@ def run_twist(
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """
-    x = require_positive("--x", x_m)
-    offsets = [require_finite("--offsets", v) for v in np.atleast_1d(offsets_m)]
-    speed = require_positive("--speed", speed)
-    racket_speed = require_finite("--racket-speed", racket_speed)
-    check_speeds("--speed", [speed], "ball_speed_mps", allow_implausible)
-    check_speeds("--racket-speed", [racket_speed], "racket_speed_mps", allow_implausible)
-    checked = [one_of("--support", s, TRANSIENT_SUPPORTS) for s in supports]
+    x = require_positive("`x_m`", x_m)
+    offsets = [require_finite("`offsets_m`", v) for v in np.atleast_1d(offsets_m)]
+    speed = require_positive("`speed`", speed)
+    racket_speed = require_finite("`racket_speed`", racket_speed)
+    check_speeds("`speed`", [speed], "ball_speed_mps", allow_implausible)
+    check_speeds("`racket_speed`", [racket_speed], "racket_speed_mps", allow_implausible)
+    checked = [one_of("`supports`", s, TRANSIENT_SUPPORTS) for s in supports]
     if len(set(checked)) != len(checked):
-        raise InputError(f"--support: name each support once (got {','.join(supports)})")
+        raise InputError(f"`supports`: name each support once (got {','.join(supports)})")
     used = setup(racket, modal, rigid)
     head = used.racket.head
     wide = [y for y in offsets if abs(y - head.centre_y_m) > head.half_width_m]
     if wide and all(abs(y) >= 1.0 and abs(y * 1e-3) <= head.half_width_m for y in wide):
         raise InputError(
-            f"--offsets: y={wide[0]:g} m is wider than the string bed (half-width "
+            f"`offsets_m`: y={wide[0]:g} m is wider than the string bed (half-width "
             f"{head.half_width_m:.4f} m); did you give millimetres? (give metres)"
         )
     head.check_inside(
-        np.column_stack([np.full(len(offsets), x), offsets]), "impact point (--x, --offsets)"
+        np.column_stack([np.full(len(offsets), x), offsets]), "impact point (`x_m`, `offsets_m`)"
     )
     check_string_bed(string_bed, None, used.racket)
     the_hand, hand_defaults = hand_or_default(checked, hand)

@@ -169,16 +169,16 @@ def load_calibration(path: str | os.PathLike[str]) -> dict[str, float]:
             str(p["name"]): float(p["value"]) for p in parameters if p.get("value") is not None
         }
     except FileNotFoundError:
-        raise InputError(f"--calibration {file}: no such file") from None
+        raise InputError(f"`calibration` {file}: no such file") from None
     except (OSError, ValueError, KeyError, TypeError) as error:
         raise InputError(
-            f"--calibration {file}: not a calibration.json written by racketdyn calibrate "
+            f"`calibration` {file}: not a calibration.json written by racketdyn calibrate "
             f"({type(error).__name__}: {error})"
         ) from None
     unknown = [name for name in values if name not in PARAMETERS]
     if unknown:
         raise InputError(
-            f"--calibration {file}: unknown {noun(len(unknown), 'parameter')} {', '.join(unknown)}"
+            f"`calibration` {file}: unknown {noun(len(unknown), 'parameter')} {', '.join(unknown)}"
         )
     return values
 
@@ -208,7 +208,7 @@ def measured_setup(
         Defaults used.
     """
     if engine not in ENGINES:
-        raise InputError(f"--engine must be one of {', '.join(ENGINES)} (got {engine!r})")
+        raise InputError(f"`engine` must be one of {', '.join(ENGINES)} (got {engine!r})")
     rows = (
         measured
         if isinstance(measured, MeasuredRebound)
@@ -318,7 +318,7 @@ def run_validate(
     try:
         inputs = apply(inputs, values)
     except InputError as error:  # a value the model refuses: name where it came from
-        source = "calibration" if isinstance(calibration, dict) else f"--calibration {calibration}"
+        source = "calibration" if isinstance(calibration, dict) else f"`calibration` {calibration}"
         raise InputError(f"{source}: {error}") from None
     result = ValidateResult(Path(out), measured=rows, inputs=inputs, calibration=values)
     for method in METHODS:

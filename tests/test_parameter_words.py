@@ -1,0 +1,62 @@
+"""Issue 23: the library speaks Python, the CLI speaks flags.
+
+Errors raised below the CLI name the Python parameter in backticks (`` `speeds` ``); the CLI
+turns each into the command's option (``--speed``), in one place
+(:func:`racketdyn.cli.options.in_flags`).  Before, a Python caller of
+``run_predict(speeds=[-1])`` was told about ``--speed``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from racketdyn.cli import build_parser, main
+from racketdyn.cli.options import in_flags
+from racketdyn.errors import InputError
+from racketdyn.workflows import run_predict
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "python", "flags"),
+    [
+        ({"speeds": [-1.0]}, "`speeds`", ["--speed", "-1"]),
+        ({"racket_speed": [1.0, 2.0], "speeds": [10.0]}, "`racket_speed` takes one speed",
+         ["--speed", "10", "--racket-speed", "1,2"]),
+        ({"supports": ["hand"]}, "`supports` hand needs `model` transient",
+         ["--support", "hand"]),
+        ({"grid": 0}, "`grid` must be a whole number", ["--grid", "0"]),
+        ({"model": "approx", "engine": "compiled"}, "`engine` is for the transient model",
+         ["--engine", "compiled"]),
+    ],
+)  # fmt: skip
+def test_python_hears_its_parameters_and_the_cli_its_flags(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    kwargs: dict[str, object],
+    python: str,
+    flags: list[str],
+) -> None:
+    with pytest.raises(InputError) as caught:
+        run_predict(tmp_path / "py", **kwargs)  # type: ignore[arg-type]
+    message = str(caught.value)
+    assert python in message
+    assert "--" not in message
+    assert main(["predict", *flags, "--no-figures", "--out", str(tmp_path / "cli")]) == 2
+    said = capsys.readouterr().err
+    assert "`" not in said
+    option = flags[0]
+    assert option in said
+
+
+def test_in_flags_maps_names_and_leaves_unknown_ones_plain() -> None:
+    parser = next(
+        a for a in build_parser()._actions if a.__class__.__name__ == "_SubParsersAction"
+    ).choices["predict"]
+    assert (
+        in_flags("`speeds`: bad; `racket_speed` too", parser) == "--speed: bad; --racket-speed too"
+    )
+    assert in_flags("`supports` pinned", parser) == "--support pinned"
+    assert in_flags("`not_an_option` here", parser) == "not_an_option here"
+    assert in_flags("no names", parser) == "no names"
