@@ -301,6 +301,30 @@ def test_the_transient_section_counts_the_rows_where_the_models_differ(
     assert f"2 of {len(table)} rows of comparison.csv differ by more than 0.05" in text
 
 
+def test_rows_filled_from_the_transient_are_not_called_nan(run_dir: Path, tmp_path: Path) -> None:
+    """The demo's page said "Flagged rows (NaN in impact.csv …): 91 × from the transient model":
+    those rows carry the transient model's numbers (``--model both``), not NaN.  They are
+    counted apart, in words that say what they hold."""
+    from racketdyn.impact.result import STATUS_FROM_TRANSIENT
+
+    shutil.copytree(run_dir / "predict", tmp_path / "predict")
+    path = tmp_path / "predict" / "impact.csv"
+    with path.open(encoding="utf-8") as handle:
+        table = list(csv.DictReader(handle))
+    for row in table[:3]:
+        row["status"] = STATUS_FROM_TRANSIENT
+    with path.open("w", encoding="utf-8", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(table[0]))
+        writer.writeheader()
+        writer.writerows(table)
+    text = write_report(tmp_path, racket=rd.default_racket()).read_text(encoding="utf-8")
+    section = _section(text, "vibration")
+    flagged = re.search(r"Flagged rows \(NaN in impact\.csv[^<]*", section)
+    assert flagged is None or STATUS_FROM_TRANSIENT not in flagged.group(0)
+    filled = sum(r["status"] == STATUS_FROM_TRANSIENT for r in table)
+    assert f"{filled} rows the approximate method cannot give carry the transient" in section
+
+
 def test_the_swing_and_oblique_sections_show_their_runs(run_dir: Path, page: str) -> None:
     swing = _section(page, "swing")
     captions = " ".join(re.findall(r"<figcaption>(.*?)</figcaption>", swing, re.S))

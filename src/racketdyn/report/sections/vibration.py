@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from racketdyn.impact.result import STATUS_FROM_TRANSIENT
 from racketdyn.report.folder import RunFolder, to_float
 from racketdyn.report.formatting import fmt
 
@@ -55,10 +56,17 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                         str(int(np.sum(impacts.status[selected] != "ok"))),
                     )
                 )
-        bad = impacts.status != "ok"
+        filled = int(np.sum(impacts.status == STATUS_FROM_TRANSIENT))
+        bad = (impacts.status != "ok") & (impacts.status != STATUS_FROM_TRANSIENT)
         if np.any(bad):
             reasons, counts = np.unique(impacts.status[bad], return_counts=True)
             flagged = [(int(c), str(r)) for r, c in zip(reasons, counts, strict=True)]
     if figure is None and not has_energy:
         return None
-    return {"figure": figure, "energy": has_energy, "rows": rows, "flagged": flagged}
+    return {
+        "figure": figure,
+        "energy": has_energy,
+        "rows": rows,
+        "flagged": flagged,
+        "filled": filled if has_energy else 0,
+    }
