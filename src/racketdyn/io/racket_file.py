@@ -148,6 +148,11 @@ def read_toml(path: Path, what: str) -> dict[str, Any]:
         raise InputError(f"{path}: cannot be read ({error})") from None
     except tomllib.TOMLDecodeError as error:
         raise InputError(f"{path}: malformed TOML ({error})") from None
+    except RecursionError:
+        raise InputError(
+            f"{path}: nested too deeply to be a {what} (arrays or tables within one another "
+            "hundreds of levels down); see docs/racket-file.md for its tables"
+        ) from None
 
 
 def load_racket(path: Path | str, *, allow_implausible: bool = False) -> Racket:

@@ -178,7 +178,12 @@ def run_sweep(
     out = Path(out_dir)
     previous_outputs = _listed_outputs(out / "run.json")
     parts_dir = out / "parts"
-    parts_dir.mkdir(parents=True, exist_ok=True)
+    try:  # before any work: a folder that cannot be written fails every design
+        parts_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise InputError(
+            f"`out` {out}: cannot create the sweep's folder {parts_dir} ({error.strerror})"
+        ) from None
     _remove_stale_temporaries(parts_dir)
     designs = spec.designs
     total = len(designs)

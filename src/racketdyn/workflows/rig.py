@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from racketdyn.ball import Ball
-from racketdyn.errors import InputError, one_of, require_range
+from racketdyn.errors import InputError, one_of, require_range, require_whole
 from racketdyn.impact.compound import (
     PRELOAD_N,
     restitution_damping_ratio,
@@ -163,11 +163,12 @@ def run_rig(
     """
     supports = [support] if isinstance(support, str) else list(support)
     if not supports or len(set(supports)) < len(supports):
-        raise InputError(f"`supports`: give free, hand or free,hand (got {','.join(supports)})")
+        raise InputError(f"`support`: give free, hand or free,hand (got {','.join(supports)})")
     for each in supports:
-        one_of("`supports`", each, RIG_SUPPORTS)
+        one_of("`support`", each, RIG_SUPPORTS)
     if isinstance(averages, bool) or not isinstance(averages, int) or averages < 1:
         raise InputError(f"`averages` must be a whole number of at least 1 (got {averages})")
+    require_whole("`seed`", seed, least=0)  # numpy's generators take no negative seed
     require_range("`double_hits`", double_hits, 0.0, 1.0)
     require_range("`overloads`", overloads, 0.0, 1.0)
     for name, snr in (("`force_snr_db`", force_snr_db), ("`response_snr_db`", response_snr_db)):

@@ -105,13 +105,15 @@ def make_out_folder(out: Path) -> Path:
     InputError
         ``out`` or one of its parents is a file, or the folder cannot be created.
     """
+    if not str(out).strip():
+        raise InputError(f"`out` {str(out)!r}: give the name of the output folder")
     out = Path(out)
-    for place in (out, *out.parents):
-        if place.exists() and not place.is_dir():
-            raise InputError(f"`out` {out}: {place} is a file, not a folder; give a folder")
     try:
+        for place in (out, *out.parents):
+            if place.exists() and not place.is_dir():
+                raise InputError(f"`out` {out}: {place} is a file, not a folder; give a folder")
         out.mkdir(parents=True, exist_ok=True)
-    except OSError as error:
+    except OSError as error:  # a name too long, a read-only file system, no permission
         raise InputError(f"`out` {out}: cannot create the folder ({error.strerror})") from None
     return out
 
@@ -133,23 +135,33 @@ def _lock(folder: Path) -> Path:
         try:
             descriptor = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
         except FileExistsError:
-            text = lock.read_text(encoding="utf-8", errors="replace").strip()
-            pid = int(text) if text.isdigit() else 0
-            if pid and _process_alive(pid):
-                raise InputError(
-                    f"`out` {folder}: another racketdyn run (process {pid}) is writing into it; "
-                    f"wait for it to end, or give another `out` (if no such run is going on, "
-                    f"delete {lock})"
-                ) from None
-            log.warning("%s: taking over the lock of an ended run (process %s)", folder, pid)
-            lock.unlink(missing_ok=True)
-            for stale in folder.glob(f"{STAGING_PREFIX}*"):
-                shutil.rmtree(stale, ignore_errors=True)
+            _take_over(folder, lock)
             continue
+        except OSError as error:  # read-only, no permission: before any work, in one line
+            raise InputError(
+                f"`out` {folder}: cannot write into the folder ({error.strerror}); give a "
+                "folder you can write to"
+            ) from None
         with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
             handle.write(str(os.getpid()))
         return lock
     raise InputError(f"`out` {folder}: cannot take the folder's lock {lock}")
+
+
+def _take_over(folder: Path, lock: Path) -> None:
+    """Refuse a lock a live run holds; remove a dead run's lock and staging folders."""
+    text = lock.read_text(encoding="utf-8", errors="replace").strip()
+    pid = int(text) if text.isdigit() else 0
+    if pid and _process_alive(pid):
+        raise InputError(
+            f"`out` {folder}: another racketdyn run (process {pid}) is writing into it; "
+            f"wait for it to end, or give another `out` (if no such run is going on, "
+            f"delete {lock})"
+        )
+    log.warning("%s: taking over the lock of an ended run (process %s)", folder, pid)
+    lock.unlink(missing_ok=True)
+    for stale in folder.glob(f"{STAGING_PREFIX}*"):
+        shutil.rmtree(stale, ignore_errors=True)
 
 
 def _previous_outputs(folder: Path) -> list[str]:
@@ -159,6 +171,9 @@ def _previous_outputs(folder: Path) -> list[str]:
     except (OSError, ValueError):
         return []
     outputs = record.get("outputs", []) if isinstance(record, dict) else []
+    if not isinstance(outputs, list):  # damaged: list nothing rather than a string's letters
+        log.warning("%s: run.json's outputs is not a list (damaged); replacing none", folder)
+        outputs = []
     names = [str(name).rstrip("/") for name in outputs if isinstance(name, str)]
     # only plain names inside the folder: a damaged record must not reach outside it
     return [name for name in names if name and Path(name).name == name and name != RUN_JSON]
@@ -250,8 +265,14 @@ def run_step(step: Callable[P, S]) -> Callable[P, S]:
     @functools.wraps(step)
     def run(*args: P.args, **kwargs: P.kwargs) -> S:
         bound = signature.bind(*args, **kwargs)
-        folder = Path(bound.arguments["out"])
-        created = not folder.exists()
+        raw = bound.arguments["out"]
+        if not str(raw).strip():
+            make_out_folder(raw)  # refuses it in one line
+        folder = Path(raw)
+        try:
+            created = not folder.exists()
+        except OSError:
+            created = True  # make_out_folder says why in one line
         make_out_folder(folder)
         _refuse_other_step(folder, step_name)
         try:

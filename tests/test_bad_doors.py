@@ -1,0 +1,118 @@
+"""Issue 26, "Tracebacks": output folders and inputs that used to end in a traceback.
+
+Each case is one line on stderr naming the input, exit status 2, and nothing written.  The
+session runs as root, for whom a mode-0555 folder is writable; an unwritable place is made by
+making the lock or the folder's creation fail as the operating system would (EACCES, EROFS).
+"""
+
+from __future__ import annotations
+
+import errno
+import json
+import os
+from pathlib import Path
+
+import pytest
+
+from racketdyn.cli import main
+from racketdyn.errors import InputError
+from racketdyn.io import load_racket
+from racketdyn.workflows import run_predict
+
+
+def _one_line(capsys: pytest.CaptureFixture[str], *words: str) -> str:
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err
+    assert "Traceback" not in err[0]
+    for word in words:
+        assert word in err[0], err[0]
+    return err[0]
+
+
+def test_an_empty_out_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``--out ''`` wrote the run into the current folder (Path('') is '.')."""
+    os.chdir(tmp_path)
+    assert main(["predict", "--grid", "2", "--no-figures", "--out", ""]) == 2
+    _one_line(capsys, "--out")
+    assert not list(tmp_path.iterdir())
+    with pytest.raises(InputError, match="`out`"):
+        run_predict("", grid=2)
+
+
+def test_an_over_long_out_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / ("a" * 300)
+    assert main(["predict", "--grid", "2", "--no-figures", "--out", str(out)]) == 2
+    _one_line(capsys, "--out", "too long")
+
+
+@pytest.mark.parametrize("code", [errno.EACCES, errno.EROFS])
+def test_a_folder_that_cannot_be_written_is_one_line(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    monkeypatch: pytest.MonkeyPatch,
+    code: int,
+) -> None:
+    real_open = os.open
+
+    def refuse(path: object, flags: int, *args: object, **kwargs: object) -> int:
+        if str(path).endswith(".racketdyn.lock"):
+            raise OSError(code, os.strerror(code), str(path))
+        return real_open(path, flags, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(os, "open", refuse)
+    out = tmp_path / "ro"
+    out.mkdir()
+    assert main(["predict", "--grid", "2", "--no-figures", "--out", str(out)]) == 2
+    _one_line(capsys, "--out", os.strerror(code))
+    assert not list(out.iterdir())
+
+
+def test_a_sweep_folder_that_cannot_be_created_is_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    real_mkdir = Path.mkdir
+
+    def refuse(self: Path, *args: object, **kwargs: object) -> None:
+        if self.name == "parts":
+            raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(self))
+        real_mkdir(self, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(Path, "mkdir", refuse)
+    spec = tmp_path / "spec.toml"
+    spec.write_text(
+        'name = "s"\n[impacts]\nball_speeds_mps = [20.0]\ngrid = 2\n'
+        '[variables]\nmass_kg = [0.30, 0.32]\n',
+        encoding="utf-8",
+    )
+    assert main(["sweep", str(spec), "--out", str(tmp_path / "sw")]) == 2
+    _one_line(capsys, "--out", "parts", os.strerror(errno.EACCES))
+
+
+@pytest.mark.parametrize("outputs", [5, "impact.csv", {"a": 1}, None])
+def test_a_damaged_run_json_is_taken_as_damaged(tmp_path: Path, outputs: object) -> None:
+    """A run.json whose ``outputs`` is not a list raised a TypeError after the computation."""
+    out = tmp_path / "p"
+    run_predict(out, grid=2)
+    record = json.loads((out / "run.json").read_text(encoding="utf-8"))
+    record["outputs"] = outputs
+    (out / "run.json").write_text(json.dumps(record), encoding="utf-8")
+    (out / "i").write_text("the user's", encoding="utf-8")  # a string's letters are no outputs
+    run_predict(out, grid=2)
+    assert (out / "i").read_text(encoding="utf-8") == "the user's"
+    assert json.loads((out / "run.json").read_text(encoding="utf-8"))["outputs"]
+
+
+def test_a_negative_seed_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["rig", "--seed", "-1", "--averages", "1", "--out", str(tmp_path / "r")]) == 2
+    _one_line(capsys, "--seed")
+
+
+def test_a_deeply_nested_racket_file_is_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    path = tmp_path / "deep.toml"
+    path.write_text('name = "x"\na = ' + "[" * 3000 + "]" * 3000 + "\n", encoding="utf-8")
+    with pytest.raises(InputError, match="nested"):
+        load_racket(path)
+    assert main(["racket", "--racket", str(path)]) == 2
+    _one_line(capsys, "deep.toml", "nested")
