@@ -81,7 +81,7 @@ def test_a_sweep_folder_that_cannot_be_created_is_one_line(
     spec = tmp_path / "spec.toml"
     spec.write_text(
         'name = "s"\n[impacts]\nball_speeds_mps = [20.0]\ngrid = 2\n'
-        '[variables]\nmass_kg = [0.30, 0.32]\n',
+        "[variables]\nmass_kg = [0.30, 0.32]\n",
         encoding="utf-8",
     )
     assert main(["sweep", str(spec), "--out", str(tmp_path / "sw")]) == 2
@@ -116,3 +116,42 @@ def test_a_deeply_nested_racket_file_is_one_line(
         load_racket(path)
     assert main(["racket", "--racket", str(path)]) == 2
     _one_line(capsys, "deep.toml", "nested")
+
+
+# --- "Absurd numbers accepted as ok": every option gets a range ----------------------------
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        (["oblique", "--spin", "1e9"], ["--spin", "refused even"]),
+        (["oblique", "--spin", "3000"], ["--spin", "rpm"]),  # typed in rpm
+        (["swing", "--angular-speed", "0"], ["--angular-speed", "2–80 rad/s"]),
+        (["predict", "--speed", "20,20", "--grid", "2"], ["--speed", "each ball speed once"]),
+        (["swing", "--speed", "20,20"], ["--speed", "each ball speed once"]),
+        (
+            ["predict", "--model", "transient", "--support", "hand", "--hand-damping", "0",
+             "--speed", "20", "--grid", "2"],
+            ["--hand-damping", "1–500 N·s/m"],
+        ),
+    ],
+)  # fmt: skip
+def test_an_absurd_option_is_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], argv: list[str], words: list[str]
+) -> None:
+    assert main([*argv, "--no-figures", "--out", str(tmp_path / "o")]) == 2
+    _one_line(capsys, *words)
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_ball_speed_twice_with_two_racket_speeds_is_two_cases(tmp_path: Path) -> None:
+    result = run_predict(tmp_path / "p", speeds=[20.0, 20.0], racket_speed=[0.0, 30.0], grid=2)
+    assert result.approximate is not None
+
+
+def test_a_repeated_label_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from racketdyn.workflows import run_rig
+
+    run_rig(tmp_path / "rig", averages=1)
+    test = str(tmp_path / "rig" / "hammer_free.uff")
+    argv = ["contact", test, test, "--labels", "a,a", "--out", str(tmp_path / "c")]
+    assert main(argv) == 2
+    _one_line(capsys, "--labels", "each test once")

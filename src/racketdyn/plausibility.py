@@ -203,13 +203,28 @@ RANGES: dict[str, Range] = {
     # The swing (impact.swing.Swing).  The shoulder lies ≈ 0.6 m behind the butt for a straight
     # arm (Dempster/Winter, 1.75 m adult); a wrist-led swing turns about ≈ 0.1 m: 0–1.2 m covers
     # every stroke.  Angular speeds at impact: ≈ 20–40 rad/s in groundstrokes, up to ≈ 60 rad/s
-    # in serves (racket-head speeds of 30–50 m/s at ≈ 1.1 m from the shoulder); 0–80 rad/s.
-    # Limits: no arm turns a racket at 1000 rad/s or about an axis 3 m away.
+    # in serves (racket-head speeds of 30–50 m/s at ≈ 1.1 m from the shoulder); a blocked volley
+    # turns at a few rad/s: 2–80 rad/s (0 is a racket at rest: predict's racket speed 0, not a
+    # swing).  Limits: no arm turns a racket at 1000 rad/s or about an axis 3 m away.
     "axis_to_butt_m": Range(
         "the swing axis (shoulder) lies", 0.0, 1.2, 0.0, 3.0, "m", _LENGTH, None, "behind the butt"
     ),
     "angular_speed_radps": Range(
-        "rackets turn at", 0.0, 80.0, 0.0, 1000.0, "rad/s", (DEG_PER_S, RPM), None, "at impact"
+        "rackets turn at", 2.0, 80.0, 0.0, 1000.0, "rad/s", (DEG_PER_S, RPM), None, "at impact"
+    ),
+    # Spin of the incoming ball: topspin groundstrokes ≈ 2000–3500 rpm, the heaviest ≈ 5000 rpm
+    # (≈ 520 rad/s); ±600 rad/s covers play, either sense.  Limits: ±10⁴ rad/s (≈ 95 000 rpm)
+    # would tear a ball's cloth; typed in rpm it lands far above the plausible range.
+    "spin_radps": Range(
+        "balls arrive spinning at",
+        -600.0,
+        600.0,
+        -1.0e4,
+        1.0e4,
+        "rad/s",
+        (RPM,),
+        RPM,
+        "(either sense)",
     ),
     # Swing angle from rest to impact (torque model): a blocked volley turns ≈ 15–30°, a
     # groundstroke ≈ 90–180°, a serve up to a turn.  Below 15° the number is most likely radians

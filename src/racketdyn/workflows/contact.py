@@ -90,6 +90,11 @@ def run_contact(
     names = [Path(t).stem for t in tests] if labels is None else list(labels)
     if len(names) != len(tests):
         raise InputError(f"`labels`: give one label per test file ({len(tests)})")
+    if len(set(names)) != len(names):
+        raise InputError(
+            f"`labels`: name each test once (got {', '.join(names)}); their tables would "
+            "overwrite one another"
+        )
     the_racket, provenance = load_racket_input(racket)
     out_dir = Path(out)
     result = ContactResult(out_dir, labels=names, racket=the_racket)

@@ -260,12 +260,13 @@ def hand_for(
 
 
 def _positive(value: object) -> bool:
-    """A finite positive number (others are left to the object's own checks)."""
+    """A finite number of zero or more (others are left to the object's own checks): zero is
+    checked against the plausible range too (``hand_for(damping_ns_per_m=0)`` passed unseen)."""
     try:
         number = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
         return False
-    return number > 0 and math.isfinite(number)
+    return number >= 0 and math.isfinite(number)
 
 
 def ball_or_default(ball: Ball | None) -> tuple[Ball, list[str]]:

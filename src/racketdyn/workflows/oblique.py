@@ -29,7 +29,7 @@ from racketdyn.impact.oblique import (
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
-from racketdyn.plausibility import check_speeds
+from racketdyn.plausibility import check, check_speeds
 from racketdyn.racket import Racket
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
@@ -180,6 +180,7 @@ def run_oblique(
                 f"from the face normal (got {angle:g})"
             )
     spin = require_finite("`spin_radps`", spin_radps)
+    check("spin_radps", spin, "`spin_radps`", allow_implausible=allow_implausible)
     the_support = one_of("`support`", support, TRANSIENT_SUPPORTS)
     used = setup(racket, modal, rigid)
     extra = []

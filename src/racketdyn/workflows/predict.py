@@ -318,6 +318,18 @@ def run_predict(
     check_speeds("`racket_speed`", racket_speeds, "racket_speed_mps", allow_implausible)
     if len(racket_speeds) not in (1, len(speed_list)):
         raise InputError("`racket_speed` takes one speed, or one per `speeds` value")
+    cases = list(
+        zip(
+            speed_list,
+            racket_speeds * len(speed_list) if len(racket_speeds) == 1 else racket_speeds,
+            strict=True,
+        )
+    )
+    if len(set(cases)) != len(cases):
+        raise InputError(
+            f"`speeds`: each ball speed once (with its racket speed); got "
+            f"{', '.join(f'{v:g}' for v in speed_list)}"
+        )
     support_list = check_supports(supports, model)
     used = setup(racket, modal, rigid)
     the_ball, ball_defaults = ball_or_default(ball)

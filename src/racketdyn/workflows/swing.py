@@ -314,6 +314,10 @@ def run_swing(
     """
     speed_list = [float(v) for v in require_speeds("`speeds`", speeds)]
     check_speeds("`speeds`", speed_list, "ball_speed_mps", allow_implausible)
+    if len(set(speed_list)) != len(speed_list):
+        raise InputError(
+            f"`speeds`: each ball speed once (got {', '.join(f'{v:g}' for v in speed_list)})"
+        )
     impact_model = IMPACT_MODELS[one_of("`model`", model, tuple(IMPACT_MODELS))]
     the_support = one_support(support, model == "transient")
     n = SWING_GRID if grid is None else grid
