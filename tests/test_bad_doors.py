@@ -155,3 +155,81 @@ def test_a_repeated_label_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixt
     argv = ["contact", test, test, "--labels", "a,a", "--out", str(tmp_path / "c")]
     assert main(argv) == 2
     _one_line(capsys, "--labels", "each test once")
+
+
+# --- the new-user trial of 2026-11-27 -------------------------------------------------------
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        (["predict", "--grid", "2.5"], ["--grid", "2.5", "--help"]),  # argparse: usage block
+        (["ball", "--tension", "abc"], ["--tension", "abc"]),
+        (["predict", "--speed", "0"], ["--speed", "0 + 0"]),
+        (["predict", "--speed", "-1"], ["--speed", "(got -1)"]),
+        (
+            ["predict", "--model", "transient", "--support", "hand", "--hand-damping", "-1",
+             "--speed", "20"],
+            ["--hand-damping -1", "refused even with --allow-implausible"],
+        ),
+    ],
+)  # fmt: skip
+def test_the_trials_bad_options_are_one_line_in_flags(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], argv: list[str], words: list[str]
+) -> None:
+    try:
+        code = main([*argv, "--out", str(tmp_path / "o")])
+    except SystemExit as raised:  # argparse's own errors exit from the parser
+        code = raised.code
+    assert code == 2
+    line = _one_line(capsys, *words)
+    assert "hand.damping" not in line
+    assert "[" not in line  # no Python list
+
+
+def test_a_fraction_below_one_is_not_called_per_cent(tmp_path: Path) -> None:
+    text = (Path(__file__).parents[1] / "src/racketdyn/data/kawazoe_2002.toml").read_text()
+    path = tmp_path / "r.toml"
+    path.write_text(text.replace("tension_loss = 0.30", "tension_loss = 0.6"), "utf-8")
+    with pytest.raises(InputError) as caught:
+        load_racket(path)
+    assert "per cent" not in str(caught.value)
+    assert str(caught.value).count("pull tension") == 1
+
+
+def test_compound_shows_no_nan_for_a_mode_without_a_ratio(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    argv = ["compound", "--support", "free", "--no-figures", "--out", str(tmp_path / "c")]
+    assert main(argv) == 0
+    rows = [line for line in capsys.readouterr().out.splitlines() if "│" in line]
+    assert any("2-node twisting" in row for row in rows)
+    assert not any("nan" in row.lower() for row in rows)
+
+
+def test_report_refuses_a_racket_the_runs_were_not_computed_on(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The trial of 2026-11-27: ``report --racket paper.toml`` over another racket's runs wrote
+    a page titled with the paper's racket, its properties and outline, exit 0."""
+    from dataclasses import replace
+
+    import racketdyn as rd
+    from racketdyn.io import write_racket_toml
+
+    mine = replace(rd.default_racket(), name="mine", mass_kg=0.32)
+    write_racket_toml(mine, tmp_path / "mine.toml")
+    run_predict(tmp_path / "p", racket=tmp_path / "mine.toml", grid=2)
+    paper = Path(rd.__file__).parent / "data" / "kawazoe_2002.toml"
+    assert main(["report", str(tmp_path / "p"), "--racket", str(paper)]) == 2
+    _one_line(capsys, "--racket", "mass_kg 0.32 against 0.36", "mine")
+    assert main(["report", str(tmp_path / "p"), "--racket", str(tmp_path / "mine.toml")]) == 0
+
+
+def test_a_relative_speed_beyond_the_laws_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The trial of 2026-11-27: ``--speed 60 --racket-speed 40`` (100 m/s relative) ran with rows
+    marked ok from laws that hold to 70 m/s."""
+    argv = ["predict", "--speed", "60", "--racket-speed", "40", "--no-figures"]
+    assert main([*argv, "--out", str(tmp_path / "o")]) == 2
+    _one_line(capsys, "--speed + --racket-speed", "= 100", "70 m/s", "--allow-implausible")
+    assert main([*argv, "--grid", "2", "--allow-implausible", "--out", str(tmp_path / "o")]) == 0

@@ -284,7 +284,7 @@ def test_hand_support_with_the_transient_model(points: Path, tmp_path: Path) -> 
         ),
         (
             ["--model", "transient", "--support", "hand", "--hand-arm-mass", "-1"],
-            "hand.arm_mass_kg must be a finite positive number",
+            "--hand-arm-mass -1: an arm",
         ),
     ],
 )

@@ -280,7 +280,7 @@ def test_speeds_from_python() -> None:
     with pytest.raises(InputError, match=r"did you give km/h \(90 km/h = 25 m/s\)"):
         check_speeds("--speed", [10.0, 90.0])
     check_speeds("--speed", [90.0], allow_implausible=True)
-    with pytest.raises(InputError, match="refused even with allow_implausible"):
+    with pytest.raises(InputError, match="refused even with `allow_implausible`"):
         check_speeds("--speed", [400.0], allow_implausible=True)
 
 

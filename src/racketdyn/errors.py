@@ -77,7 +77,8 @@ def require_speeds(name: str, values: ArrayLike) -> NDArray[np.float64]:
     if speeds.ndim != 1 or speeds.size == 0:
         raise InputError(f"{name}: give one or more speeds in m/s (got {values!r})")
     if not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
-        raise InputError(f"{name} must be finite speeds of zero or more, m/s (got {values!r})")
+        given = ", ".join(f"{v:g}" for v in speeds)
+        raise InputError(f"{name} must be finite speeds of zero or more, m/s (got {given})")
     return speeds
 
 

@@ -19,6 +19,7 @@ import argparse
 import logging
 import sys
 from collections.abc import Sequence
+from typing import NoReturn
 
 from racketdyn.__about__ import __version__
 from racketdyn.cli import (
@@ -64,9 +65,18 @@ COMMANDS = (
 """The command modules, in the order ``racketdyn --help`` lists them."""
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser, its errors one line (argparse prints the whole usage block first):
+    ``racketdyn predict: error: argument --grid: invalid int value: '2.5'`` and exit 2, as
+    every other bad input (``--help`` still shows the usage)."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``racketdyn`` parser with every subcommand."""
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="racketdyn",
         description="Tennis racket impact dynamics: rebound ball speed over the string face "
         f"(Kawazoe's approximate method, and a transient simulation of the contact). {opt.UNITS}",

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from typing import TYPE_CHECKING, Any
 
 from racketdyn.cli import options as opt
@@ -118,11 +119,13 @@ def run(args: argparse.Namespace, console: Console) -> int:
             table.add_column(column, justify="left" if column == "mode" else "right")
         for k, name in enumerate(modes.names):
             f_alone = alone.frequency_of(name)
+            ratio = float(modes.ball_to_frame_ratio[k])
             table.add_row(
                 opt.plain(name),
                 f"{modes.frequency[k]:.2f}",
                 f"{modes.damping_ratio[k]:.4f}",
-                f"{modes.ball_to_frame_ratio[k]:.3f}",
+                # a twisting mode has no frame motion under the ball on the axis: no ratio
+                "–" if math.isnan(ratio) else f"{ratio:.3f}",
                 "–" if f_alone != f_alone else f"{f_alone:.2f}",
                 "new"
                 if f_alone != f_alone

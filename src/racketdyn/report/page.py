@@ -4,6 +4,7 @@ scripts of ``static/`` inline, so the file works offline on its own."""
 from __future__ import annotations
 
 import logging
+import math
 import os
 from dataclasses import dataclass
 from datetime import UTC, datetime
@@ -71,6 +72,35 @@ class _Shown:
     key: str
     title: str
     body: Markup
+
+
+_SAME_RACKET = ("mass_kg", "balance_m", "inertia_cg_kgm2", "head_area_cm2")
+"""Derived properties a given racket must share with the one the runs recorded."""
+
+
+def _refuse_another_racket(run: RunFolder, racket: Racket) -> None:
+    """The racket given for the page must be the one the runs were computed on (the trial of
+    2026-11-27: ``report --racket paper.toml`` over a 305 g racket's runs titled the page with
+    the 360 g racket, its properties and outline, and said nothing)."""
+    given = racket.derived_properties()
+    for folder, record in run.records.items():
+        described = record.get("racket")
+        derived = described.get("derived") if isinstance(described, dict) else None
+        if not isinstance(derived, dict):
+            continue
+        for key in _SAME_RACKET:
+            value = derived.get(key)
+            if isinstance(value, int | float) and not math.isclose(
+                float(value), float(given[key]), rel_tol=1e-6, abs_tol=1e-12
+            ):
+                name = described.get("name", "another racket") if described else "?"
+                where = run.rel(folder)
+                raise InputError(
+                    f"`racket` {racket.name}: the runs in "
+                    f"{run.run_dir if where in ('', '.') else where} were "
+                    f"computed on {name} ({key} {float(value):g} against {float(given[key]):g}); "
+                    "give that racket, or leave `racket` out: the page takes the runs' own"
+                )
 
 
 def _refuse_mixed_runs(run: RunFolder) -> None:
@@ -147,6 +177,8 @@ def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
         raise InputError(f"{run_dir}: not a folder; give the output folder of racketdyn commands")
     run = RunFolder.scan(run_dir, racket)
     _refuse_mixed_runs(run)
+    if racket is not None:
+        _refuse_another_racket(run, racket)
     shown: list[_Shown] = []
     missing = []
     glance: list[str] = []

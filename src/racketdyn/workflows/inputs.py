@@ -260,13 +260,15 @@ def hand_for(
 
 
 def _positive(value: object) -> bool:
-    """A finite number of zero or more (others are left to the object's own checks): zero is
-    checked against the plausible range too (``hand_for(damping_ns_per_m=0)`` passed unseen)."""
+    """A finite number (others are left to the object's own checks): zero and negative values
+    are checked against the range too, so the message names the parameter
+    (``hand_for(damping_ns_per_m=0)`` passed unseen; -1 was refused as
+    ``hand.damping_ns_per_m``)."""
     try:
         number = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
         return False
-    return number >= 0 and math.isfinite(number)
+    return math.isfinite(number)
 
 
 def ball_or_default(ball: Ball | None) -> tuple[Ball, list[str]]:

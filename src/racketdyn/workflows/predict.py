@@ -37,7 +37,7 @@ from racketdyn.impact.result import shown_speed_index
 from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, Engine, predict_transient
 from racketdyn.io import racket_to_dict, read_points
 from racketdyn.modal import ModalModel
-from racketdyn.plausibility import check_speeds
+from racketdyn.plausibility import check, check_speeds
 from racketdyn.racket import SUPPORTS, Racket, landmark_points
 from racketdyn.workflows.figure_data import (
     FIGURES_FILE,
@@ -325,6 +325,18 @@ def run_predict(
             strict=True,
         )
     )
+    if any(v + r <= 0 for v, r in cases):
+        raise InputError(
+            "`speeds`: the ball must reach the strings: ball speed + racket speed above 0 m/s "
+            f"(got {', '.join(f'{v:g} + {r:g}' for v, r in cases if v + r <= 0)})"
+        )
+    for v, r in cases:
+        check(
+            "relative_speed_mps",
+            v + r,
+            f"`speeds` + `racket_speed` ({v:g} + {r:g} m/s) =",
+            allow_implausible=allow_implausible,
+        )
     if len(set(cases)) != len(cases):
         raise InputError(
             f"`speeds`: each ball speed once (with its racket speed); got "
