@@ -233,3 +233,17 @@ def test_a_relative_speed_beyond_the_laws_is_refused(
     assert main([*argv, "--out", str(tmp_path / "o")]) == 2
     _one_line(capsys, "--speed + --racket-speed", "= 100", "70 m/s", "--allow-implausible")
     assert main([*argv, "--grid", "2", "--allow-implausible", "--out", str(tmp_path / "o")]) == 0
+
+
+def test_report_of_a_swinging_racket_does_not_say_at_rest(tmp_path: Path) -> None:
+    """The trial of 2026-11-27: ``predict --speed 25 --racket-speed 28``'s page said the sweet
+    spots were for a "racket at rest" and defined e on a racket at rest."""
+    from racketdyn.report import write_report
+
+    run_predict(tmp_path / "p", speeds=[25.0], racket_speed=[28.0], grid=3)
+    text = write_report(tmp_path / "p").read_text(encoding="utf-8")
+    start = text.index('<section id="rebound">')
+    section = text[start : text.index("</section>", start)]
+    assert "racket at rest." not in section
+    assert "racket moving at 28 m/s" in section
+    assert "relative to the racket" in section

@@ -58,10 +58,22 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         "spots": [],
         "glance": [],
         "plots": {},
+        "conditions": "racket at rest",
     }
     impacts = run.impacts()
     if impacts is None:
         return data if (fig15 or face_maps) else None
+    racket_speeds = sorted(
+        {float(v) for v in impacts["racket_speed_mps"] if math.isfinite(float(v))}
+    )
+    data["conditions"] = (
+        "racket at rest"
+        if not any(racket_speeds)
+        else "racket moving at "
+        + ", ".join(f"{v:g}" for v in racket_speeds)
+        + " m/s at the impact point (its speed paired with each ball speed as in impact.csv; "
+        "the rebound ratio relative to the racket)"
+    )
     derived = run.derived()
     nodes = run.first_mode_nodes()
     head = run.head()
@@ -217,8 +229,13 @@ def _negative_note(impacts: Impacts, record: dict[str, Any] | None = None) -> st
         return None
     x_mm = impacts["x_m"] * 1e3
 
+    y_mm = impacts["y_m"] * 1e3
+
     def span(rows: NDArray[np.bool_]) -> str:
-        return f"x from {x_mm[rows].min():.0f} to {x_mm[rows].max():.0f} mm"
+        return (
+            f"x from {x_mm[rows].min():.0f} to {x_mm[rows].max():.0f} mm, "
+            f"y from {y_mm[rows].min():.0f} to {y_mm[rows].max():.0f} mm"
+        )
 
     rigid = _rigid_rebound_ratio(impacts, record or {})
     vibration = negative & (rigid >= 0)
@@ -226,23 +243,19 @@ def _negative_note(impacts: Impacts, record: dict[str, Any] | None = None) -> st
     words = [f"{int(negative.sum())} of {e.size} impacts have a negative rebound ratio."]
     if recoil.any():
         words.append(
-            f"{int(recoil.sum())} of them ({span(recoil)}) are physics, not an error: the "
-            "racket's reduced mass there is small, the frame recoils and rings, and the ball "
-            "carries on forward, slower, instead of bouncing back (a rigid racket would not "
-            "send it back either); the approximate method charges the frame vibration from a "
-            "rigid-racket pulse (eq 12) and overstates it (≈ 15 % near the tip against the "
-            "transient simulation, docs/develop.md)."
+            f"{int(recoil.sum())} of them ({span(recoil)}) are recoil: the racket's reduced "
+            "mass there is small, so even a rigid racket would not send the ball back "
+            "((e_BG − m_B/M_r)/(1 + m_B/M_r) < 0); the ball carries on forward, slower."
         )
     if vibration.any():
         words.append(
             f"{int(vibration.sum())} of them ({span(vibration)}) are not recoil: a rigid "
             "racket would send the ball back there ((e_BG − m_B/M_r)/(1 + m_B/M_r) > 0); the "
-            "negative value comes from the frame vibration the approximate method charges "
-            "from a rigid-racket pulse (eq 12), which it overstates where the contact lasts "
-            "long against the first mode's period."
+            "frame's vibration takes the difference."
         )
     words.append(
-        "Where the two disagree, trust the transient simulation (racketdyn predict --model "
-        "both compares them)."
+        "Near the frame the ball also reaches the hoop, which neither model includes. Where "
+        "the approximate method and the transient simulation disagree, trust the transient "
+        "simulation (racketdyn predict --model both compares them in comparison.csv)."
     )
     return " ".join(words)
