@@ -88,6 +88,9 @@ def test_face_maps_show_the_run_speed_and_only_its_supports(draw: Any) -> None:
         assert "pinned" not in title
         assert f"{shown:g} m/s" in title
     assert "20 m/s" not in face.get_suptitle()
+    # the trial of 2026-11-27: with --model both the maps showed the approximate method only
+    # and did not say so
+    assert "approximate method" in face.get_suptitle()
 
 
 def test_face_maps_draw_the_runs_points(draw: Any) -> None:

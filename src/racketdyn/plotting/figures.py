@@ -273,7 +273,9 @@ def figure_face_maps(data: PaperFigures) -> Figure:
         plot_face_map(face, data.head, quantity, 0, support, ax=ax)
     figure.suptitle(
         f"{data.racket_name}: ball at {face.ball_speed[0]:g} m/s, {len(face.locations)} points; "
-        + data.face_description,
+        + data.face_description
+        + "\napproximate method (eqs 1–12); with both models run, impact.csv holds the "
+        "transient model's numbers where this map has none",
         fontsize=10,
     )
     return figure
