@@ -13,6 +13,7 @@ import pytest
 
 import racketdyn as rd
 from racketdyn.cli import main
+from racketdyn.errors import InputError
 from racketdyn.report import write_report
 
 NOISY = 0.1 + 0.2  # 0.30000000000000004
@@ -90,6 +91,12 @@ def test_the_racket_is_named_in_words(folder: Path, tmp_path: Path) -> None:
     given = _section(write_report(folder, racket).read_text(encoding="utf-8"), "racket")
     assert "the built-in racket" in given
     assert "write_report" not in given
-    other = dataclasses.replace(racket, name="Test frame 300 g", mass_kg=0.300)
-    mine = _section(write_report(folder, other).read_text(encoding="utf-8"), "racket")
+    # the same frame under another name is the racket the runs used: named as given
+    renamed = dataclasses.replace(racket, name="Test frame, a copy")
+    mine = _section(write_report(folder, renamed).read_text(encoding="utf-8"), "racket")
     assert "the racket given with --racket" in mine
+    # another frame is refused (the trial of 2026-11-27: the page described it over runs
+    # computed on the built-in racket)
+    other = dataclasses.replace(racket, name="Test frame 300 g", mass_kg=0.300)
+    with pytest.raises(InputError, match="computed on Kawazoe test racket"):
+        write_report(folder, other)
