@@ -247,3 +247,43 @@ def test_report_of_a_swinging_racket_does_not_say_at_rest(tmp_path: Path) -> Non
     assert "racket at rest." not in section
     assert "racket moving at 28 m/s" in section
     assert "relative to the racket" in section
+
+
+# --- sweep variables through the plausibility table (issue 26) -------------------------------
+@pytest.mark.parametrize(
+    ("variables", "impacts", "words"),
+    [
+        ("[variables.point_mass]\nmass_kg = [0.0, 5.0]\nclock = 12\n", "", ["mass_kg", "grams"]),
+        ("[variables]\ntension_n = [50.0, 250.0]\n", "", ["tension_n", "pounds"]),
+        ("[variables.point_mass]\nmass_kg = 0.005\nclock = 13\n", "", ["clock", "1 to 12"]),
+        ("[variables]\nmass_kg = [0.30]\n", "", ["ball_speeds_mps", "km/h"]),
+        ("[variables]\ne_bg = [83.0]\n", "", ["e_bg", "per cent"]),
+    ],
+)
+def test_a_sweep_variable_of_another_unit_is_refused(
+    tmp_path: Path, variables: str, impacts: str, words: list[str]
+) -> None:
+    from racketdyn.sweep import load_sweep_spec
+
+    speeds = "[90.0]" if "ball_speeds_mps" in words else "[20.0]"
+    spec = tmp_path / "spec.toml"
+    spec.write_text(
+        f'name = "s"\n[impacts]\nball_speeds_mps = {speeds}\ngrid = 2\n{impacts}{variables}',
+        encoding="utf-8",
+    )
+    with pytest.raises(InputError) as caught:
+        load_sweep_spec(spec)
+    for word in words:
+        assert word in str(caught.value)
+
+
+def test_a_sweep_may_take_an_unusual_value_when_it_says_so(tmp_path: Path) -> None:
+    from racketdyn.sweep import load_sweep_spec
+
+    spec = tmp_path / "spec.toml"
+    spec.write_text(
+        'name = "s"\n[checks]\nallow_implausible = true\n[impacts]\nball_speeds_mps = [80.0]\n'
+        "grid = 2\n[variables]\nmass_kg = [0.30, 0.45]\n",
+        encoding="utf-8",
+    )
+    assert len(load_sweep_spec(spec).designs) == 2

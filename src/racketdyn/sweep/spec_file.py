@@ -23,6 +23,7 @@ from racketdyn.impact.grid import STRING_BEDS
 from racketdyn.impact.transient import ENGINES as TRANSIENT_ENGINES
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_racket, read_toml
 from racketdyn.io.tables import read_load_deflection, read_points
+from racketdyn.plausibility import check
 from racketdyn.racket import SUPPORTS, Racket
 from racketdyn.sweep.spec import DEFAULT_THRESHOLD_FRACTION, MODES, SPEC_SCHEMA_VERSION, SweepSpec
 from racketdyn.sweep.task import METHOD_SUPPORTS, _check_method, _check_supports
@@ -33,7 +34,24 @@ __all__ = ["load_sweep_spec", "sweep_spec_from_dict"]
 SUPPORT = "support"
 POINT_MASS_KEYS = ("mass_kg", "x_m", "y_m", "clock", "label")
 _TOP_KEYS = ("schema_version", "name", "description", "racket", "mode")
-_TABLES = ("ball", "impacts", "variables", "summary")
+_TABLES = ("ball", "impacts", "variables", "summary", "checks")
+_PLAUSIBLE: dict[str, str] = {
+    "mass_kg": "mass_kg",
+    "balance_m": "balance_m",
+    "inertia_cg_kgm2": "inertia_cg_kgm2",
+    "swingweight_kgcm2": "swingweight_kgcm2",
+    "roll_inertia_kgm2": "roll_inertia_kgm2",
+    "twistweight_kgcm2": "twistweight_kgcm2",
+    "grip_m": "grip_m",
+    "tension_n": "tension_n",
+    "hand.arm_mass_kg": "hand_arm_mass_kg",
+    "hand.stiffness_n_per_m": "hand_stiffness_n_per_m",
+    "hand.damping_ns_per_m": "hand_damping_ns_per_m",
+}
+"""The entry of :data:`racketdyn.plausibility.RANGES` each sweep variable's values pass (the
+racket file's and the command options' table: a point mass of 5.0 — grams typed as kg — ran a
+5.36 kg racket, issue 26); ``[checks] allow_implausible = true`` takes an unusual value, as in
+a racket file."""
 _BALL_KEYS = ("mass_kg", "diameter_m", "e_bg", "load_deflection_file")
 _IMPACT_KEYS = (
     "grid",
@@ -103,6 +121,8 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
     if version != SPEC_SCHEMA_VERSION:
         raise InputError(f"schema_version {version!r} is not supported (this racketdyn reads 1)")
     name = _get(data, "name", str, "", "name")
+    checks = _table(data, "checks", ("allow_implausible",))
+    allow = _get(checks, "allow_implausible", bool, False, "[checks].allow_implausible")
     _get(data, "description", str, "", "description")
     mode = one_of("mode", data.get("mode", "full-factorial"), MODES)
     racket_text = _get(data, "racket", str, "builtin", "racket")
@@ -152,6 +172,13 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
     racket_speeds = _value_list(
         "[impacts].racket_speeds_mps", impacts.get("racket_speeds_mps", [0.0])
     )
+    for speeds, key in ((ball_speeds, "ball_speed"), (racket_speeds, "racket_speed")):
+        for number in speeds:
+            if number >= 0:
+                where = f"[impacts].{key}s_mps"
+                check(
+                    f"{key}_mps", float(number), where, allow_implausible=allow, override=_OVERRIDE
+                )
     method = _check_method("[impacts].method", impacts.get("method", "approximate"))
     reading = one_of(
         "[impacts].stiffness_reading",
@@ -179,7 +206,7 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
                     "'hand'; the approximate method holds the racket pinned at the grip: sweep "
                     "grip_m or support instead"
                 )
-            variables.append(Variable.scalar(key, _value_list(where, value)))
+            variables.append(Variable.scalar(key, _plausible(where, key, value, allow)))
             continue
         if key.startswith(("hand", "wrist", "grip_force")):
             raise InputError(
@@ -198,11 +225,14 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
             for i, entry in enumerate(tables):
                 variables.append(
                     _point_mass_from_table(
-                        f"{where}[{i}]" if isinstance(value, list) else where, entry, racket
+                        f"{where}[{i}]" if isinstance(value, list) else where,
+                        entry,
+                        racket,
+                        allow,
                     )
                 )
         elif key in SCALAR_VARIABLES:
-            variables.append(Variable.scalar(key, _value_list(where, value)))
+            variables.append(Variable.scalar(key, _plausible(where, key, value, allow)))
         else:
             raise InputError(
                 f"{where}: unknown variable; allowed: "
@@ -255,7 +285,28 @@ def _flat_hand_keys(table: Mapping[str, Any]) -> dict[str, Any]:
     return flat
 
 
-def _point_mass_from_table(where: str, entry: object, racket: Racket) -> Variable:
+_OVERRIDE = "if it is meant, set [checks] allow_implausible = true in the sweep file"
+
+
+def _check(key: str, number: float, where: str, allow: bool) -> None:
+    check(key, number, where, allow_implausible=allow, override=_OVERRIDE)
+
+
+def _plausible(where: str, key: str, value: object, allow: bool) -> NDArray[np.float64]:
+    """The variable's values, each through the plausibility table (:data:`_PLAUSIBLE`)."""
+    values = _value_list(where, value)
+    if key in _PLAUSIBLE:
+        for number in values:
+            check(
+                _PLAUSIBLE[key], float(number), where, allow_implausible=allow, override=_OVERRIDE
+            )
+    elif key == "e_bg" and np.any((values < 0.0) | (values > 1.0)):
+        slip = "; did you give per cent?" if np.all((values > 1.5) & (values <= 100.0)) else ""
+        raise InputError(f"{where}: e_BG is a ratio between 0 and 1 (Kawazoe's 0.83){slip}")
+    return values
+
+
+def _point_mass_from_table(where: str, entry: object, racket: Racket, allow: bool) -> Variable:
     if not isinstance(entry, dict):
         raise InputError(f"{where} must be a table with mass_kg and x_m (or clock)")
     for key in entry:
@@ -271,6 +322,15 @@ def _point_mass_from_table(where: str, entry: object, racket: Racket) -> Variabl
         for k in ("mass_kg", "x_m", "y_m", "clock")
         if k in entry
     }
+    for k, key in (("mass_kg", "point_mass_kg"), ("x_m", "point_x_m"), ("y_m", "point_y_m")):
+        for number in columns.get(k, ()):
+            _check(key, float(number), f"{where}.{k}", allow)
+    clock = columns.get("clock")
+    if clock is not None and np.any((clock <= 0.0) | (clock > 12.0)):
+        raise InputError(
+            f"{where}.clock: a clock position is an hour from 1 to 12 (12 the tip, 3 and 9 the "
+            f"sides; got {', '.join(f'{c:g}' for c in clock)})"
+        )
     return Variable.point_mass(
         columns["mass_kg"],
         columns.get("x_m"),
