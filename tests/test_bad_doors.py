@@ -287,3 +287,52 @@ def test_a_sweep_may_take_an_unusual_value_when_it_says_so(tmp_path: Path) -> No
         encoding="utf-8",
     )
     assert len(load_sweep_spec(spec).designs) == 2
+
+
+# --- the modal-model JSON checked on read (issue 26) ---------------------------------------
+def _modal_file(tmp_path: Path, change: object) -> Path:
+    import racketdyn as rd
+    from racketdyn.racket_modal import modal_model_for
+
+    data = modal_model_for(rd.default_racket()).to_dict()
+    change(data)  # type: ignore[operator]
+    path = tmp_path / "modes.json"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    return path
+
+
+def _scale_frequencies(data: dict, factor: float) -> None:  # type: ignore[type-arg]
+    for mode in data["modes"]:
+        mode["frequency_hz"] *= factor
+
+
+@pytest.mark.parametrize(
+    ("change", "words"),
+    [
+        (lambda d: d.update(format_version=99), ["format_version 99", "reads 1"]),
+        (lambda d: d["units"].update(locations="mm"), ["units.locations", "'mm'"]),
+        (lambda d: d["modes"][0].update(damping_ratio=2.5), ["damping_ratio 2.5", "per cent"]),
+        (lambda d: _scale_frequencies(d, 2 * 3.141592653589793), ["rad/s", "120 Hz"]),
+        (
+            lambda d: d.update(locations_m=[[x * 1e3, y * 1e3] for x, y in d["locations_m"]]),
+            ["off the racket", "in mm?"],
+        ),
+        (
+            lambda d: d.update(mode_shapes=[[v * 1e4 for v in row] for row in d["mode_shapes"]]),
+            ["1/√kg", "1–30"],
+        ),
+    ],
+)
+def test_a_modal_file_is_checked_like_a_racket_file(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], change: object, words: list[str]
+) -> None:
+    path = _modal_file(tmp_path, change)
+    argv = ["predict", "--modal", str(path), "--grid", "2", "--no-figures"]
+    assert main([*argv, "--out", str(tmp_path / "o")]) == 2
+    _one_line(capsys, "modes.json", *words)
+
+
+def test_a_sound_modal_file_is_read(tmp_path: Path) -> None:
+    path = _modal_file(tmp_path, lambda d: None)
+    assert main(["predict", "--modal", str(path), "--grid", "2", "--no-figures",
+                 "--out", str(tmp_path / "o")]) == 0  # fmt: skip

@@ -10,6 +10,7 @@ measured against a reference point 0 are scaled by the driving-point residue ``r
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -384,6 +385,7 @@ class ModalModel:
             raise InputError(f"{path}: not a racketdyn modal model JSON file ({error})") from None
         if not isinstance(data, dict) or data.get("format") != FORMAT:
             raise InputError(f"{path}: not a racketdyn modal model (format must be {FORMAT!r})")
+        _check_header(path, data)
         try:
             modes = data["modes"]
             shapes = np.array(data["mode_shapes"], dtype=float).reshape(-1, len(modes))
@@ -408,6 +410,46 @@ class ModalModel:
             raise InputError(
                 f"{path}: modal model is missing or has a bad field ({error})"
             ) from None
+
+
+FORMAT_VERSION = 1
+"""The modal-model JSON's version this racketdyn writes and reads."""
+_UNITS = {"frequency": "Hz", "locations": "m"}
+
+
+def _check_header(path: Path, data: dict[str, Any]) -> None:
+    """The file's version, declared units and modes, checked before any number is used
+    (issue 26: rad/s, damping in per cent, mm and version 99 were taken on trust)."""
+    version = data.get("format_version", FORMAT_VERSION)
+    if version != FORMAT_VERSION:
+        raise InputError(
+            f"{path}: format_version {version!r}; this racketdyn reads {FORMAT_VERSION} (write "
+            "the file again with this version, or update racketdyn)"
+        )
+    units = data.get("units", {})
+    if not isinstance(units, dict):
+        raise InputError(f"{path}: units must be a table of unit names (got {units!r})")
+    for key, unit in _UNITS.items():
+        if key in units and units[key] != unit:
+            raise InputError(
+                f"{path}: units.{key} is {units[key]!r}; racketdyn's modal models are in {unit} "
+                "(convert the file's numbers)"
+            )
+    modes = data.get("modes")
+    if not isinstance(modes, list):
+        return  # the read below names the missing field
+    for k, mode in enumerate(modes, 1):
+        if not isinstance(mode, dict):
+            continue
+        f, zeta = mode.get("frequency_hz"), mode.get("damping_ratio")
+        if isinstance(f, int | float) and not (math.isfinite(f) and f > 0):
+            raise InputError(f"{path}: mode {k}: frequency_hz {f!r} must be a positive number")
+        if isinstance(zeta, int | float) and not (math.isfinite(zeta) and 0 <= zeta < 1):
+            slip = f"; did you give per cent ({zeta:g} % = {zeta / 100:g})?" if zeta >= 1 else ""
+            raise InputError(
+                f"{path}: mode {k}: damping_ratio {zeta!r} must be a fraction of critical from "
+                f"0 to 1{slip}"
+            )
 
 
 def _locations(raw: ArrayLike, source: str) -> NDArray[np.float64]:

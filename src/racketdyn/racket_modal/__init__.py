@@ -8,6 +8,11 @@ mode names and kinds from a racket's shapes and the nodes along its long axis
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
+
+from racketdyn.errors import InputError
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import Racket
 from racketdyn.racket_modal.beam import builtin_modal_model, hoop_roll_inertia
@@ -38,5 +43,58 @@ def modal_model_for(racket: Racket) -> ModalModel:
     ModalModel
     """
     if racket.modal_model_file is not None:
-        return ModalModel.read_json(racket.modal_model_file)
+        model = ModalModel.read_json(racket.modal_model_file)
+        check_on_racket(model, racket, str(racket.modal_model_file))
+        return model
     return builtin_modal_model(racket)
+
+
+FIRST_MODE_HZ = (80.0, 250.0)
+"""Where a racket's first bending mode lies (``plausibility.RANGES["first_bending_hz"]``)."""
+SHAPE_LIMIT = 1.0e3
+"""Largest mass-normalised shape value a racket's model may hold, 1/√kg: a racket's are
+≈ 1–30 (a 0.1 kg modal mass gives 3.2); 10³ means grams or a shape in other units."""
+
+
+def check_on_racket(model: ModalModel, racket: Racket, source: str) -> None:
+    """A modal model read for a racket, checked like a racket file (issue 26): its points on
+    the racket (not in mm), its first flexible mode where a racket's is (not in rad/s), its
+    mass-normalised shapes of a racket's size.
+
+    Parameters
+    ----------
+    model : ModalModel
+        The model read.
+    racket : Racket
+        The racket it is for.
+    source : str
+        The file, for messages.
+    """
+    if model.has_locations:
+        xy = np.asarray(model.locations, dtype=float)[:, :2]
+        reach = max(racket.head.half_width_m, 0.05) * 1.2
+        off = (xy[:, 0] < -0.05) | (xy[:, 0] > racket.length_m * 1.1) | (np.abs(xy[:, 1]) > reach)
+        if np.any(off):
+            i = int(np.flatnonzero(off)[0])
+            mm = " (in mm? the file's locations are in m)" if np.abs(xy).max() > 5.0 else ""
+            raise InputError(
+                f"{source}: point {i + 1} at x = {xy[i, 0]:g}, y = {xy[i, 1]:g} m is off the "
+                f"racket (0–{racket.length_m:g} m long, ±{racket.head.half_width_m:g} m at the "
+                f"head){mm}"
+            )
+    flexible = model.frequency[model.frequency > 10.0]
+    lowest = float(flexible.min()) if flexible.size else math.nan
+    low, high = FIRST_MODE_HZ
+    if lowest > high and low <= lowest / (2.0 * math.pi) <= high:
+        raise InputError(
+            f"{source}: its lowest flexible mode is at {lowest:g} Hz, where no racket's first "
+            f"bending mode is ({low:g}–{high:g} Hz); did you give rad/s ({lowest:g} rad/s = "
+            f"{lowest / (2.0 * math.pi):.4g} Hz)? racketdyn's modal models are in Hz"
+        )
+    if model.mass_normalised and model.n_modes:
+        largest = float(np.nanmax(np.abs(model.mode_shapes)))
+        if largest > SHAPE_LIMIT:
+            raise InputError(
+                f"{source}: a mass-normalised shape value of {largest:g} 1/√kg; a racket's are "
+                f"≈ 1–30 (a shape in other units, or a modal mass in grams?)"
+            )
