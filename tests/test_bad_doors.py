@@ -336,3 +336,30 @@ def test_a_sound_modal_file_is_read(tmp_path: Path) -> None:
     path = _modal_file(tmp_path, lambda d: None)
     assert main(["predict", "--modal", str(path), "--grid", "2", "--no-figures",
                  "--out", str(tmp_path / "o")]) == 0  # fmt: skip
+
+
+# --- e_BG tables and load-deflection rows name the file and the line (issue 26) ------------
+@pytest.mark.parametrize(
+    ("option", "rows", "words"),
+    [
+        ("--e-bg-table", "speed_mps,e_bg\n10,0.84\n20,0\n", ["line 3", "e_bg 0"]),
+        ("--e-bg-table", "speed_mps,e_bg\n10,0.84\n10,0.83\n", ["line 3", "repeats"]),
+        ("--e-bg-table", "speed_mps,e_bg\n-5,0.84\n20,0.8\n", ["line 2", "negative"]),
+        ("--ball-law", "deflection_m,force_n\n0.002,100\n0.001,50\n0.004,300\n",
+         ["line 3", "comes after"]),
+        ("--ball-law", "deflection_m,force_n\n0.001,50\n0.001,60\n0.004,300\n",
+         ["line 3", "repeats"]),
+    ],
+)  # fmt: skip
+def test_table_rows_out_of_order_name_the_line(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    option: str,
+    rows: str,
+    words: list[str],
+) -> None:
+    table = tmp_path / "table.csv"
+    table.write_text(rows, encoding="utf-8")
+    argv = ["predict", option, str(table), "--grid", "2", "--no-figures"]
+    assert main([*argv, "--out", str(tmp_path / "o")]) == 2
+    _one_line(capsys, "table.csv", *words)

@@ -134,8 +134,29 @@ def read_load_deflection(path: Path) -> tuple[NDArray[np.float64], NDArray[np.fl
     columns = _read_columns(path, ("deflection_m", "force_n"))
     deflection = _numbers(path, columns, "deflection_m")
     force = _numbers(path, columns, "force_n")
+    _rising(path, columns, "deflection_m", deflection, "a law's deflections")
     check_load_deflection(str(path), deflection, force)
     return deflection, force
+
+
+def _rising(
+    path: Path,
+    columns: dict[str, list[tuple[int, str]]],
+    name: str,
+    values: NDArray[np.float64],
+    what: str,
+) -> None:
+    """Refuse a column that does not rise strictly, naming the file's line (issue 26: unsorted
+    or repeated rows were fitted as given)."""
+    lines = [number for number, _ in columns[name]]
+    for k in range(1, values.size):
+        if values[k] <= values[k - 1]:
+            how = "repeats" if values[k] == values[k - 1] else "comes after"
+            raise InputError(
+                f"{path}: line {lines[k]}: {name} {values[k]:g} {how} {values[k - 1]:g} (line "
+                f"{lines[k - 1]}); {what} must rise from row to row: sort the rows and give "
+                "each value once"
+            )
 
 
 def read_e_bg_table(path: Path) -> tuple[tuple[float, float], ...]:
@@ -157,6 +178,17 @@ def read_e_bg_table(path: Path) -> tuple[tuple[float, float], ...]:
     e_bg = _numbers(path, columns, "e_bg")
     if speed.size < 2:
         raise InputError(f"{path}: an e_BG table needs at least two speeds (got {speed.size})")
+    lines = [number for number, _ in columns["e_bg"]]
+    for k, (v, e) in enumerate(zip(speed, e_bg, strict=True)):
+        if v < 0:
+            raise InputError(f"{path}: line {lines[k]}: speed_mps {v:g} is negative; give m/s ≥ 0")
+        if not 0.0 < e <= 1.0:
+            raise InputError(
+                f"{path}: line {lines[k]}: e_bg {e:g}; the COR of a ball on strings lies above 0 "
+                "(0 is no rebound at all) and at most 1"
+                + (" (a fraction: 0.83, not 83)" if e > 1.0 else "")
+            )
+    _rising(path, columns, "speed_mps", speed, "an e_BG table's speeds")
     if np.any(speed > 340.0):
         raise InputError(
             f"{path}: speed_mps above 340 m/s; give speeds in m/s (km/h divided by 3.6)"
