@@ -363,3 +363,26 @@ def test_table_rows_out_of_order_name_the_line(
     argv = ["predict", option, str(table), "--grid", "2", "--no-figures"]
     assert main([*argv, "--out", str(tmp_path / "o")]) == 2
     _one_line(capsys, "table.csv", *words)
+
+
+# --- absurd samples (issue 26) -------------------------------------------------------------
+def test_an_absurd_hammer_sample_names_the_data_set() -> None:
+    """A sample of 1e300 in a mutated file was taken as data; numpy's overflow warnings leaked
+    to the console."""
+    import dataclasses
+
+    import numpy as np
+
+    from racketdyn.testing import Modes, records_for
+
+    modes = Modes(np.array([150.0]), np.array([0.01]), np.array([[0.5], [0.2]]))
+    good = records_for(modes, n_averages=2)
+    force = [f.copy() for f in good.force]
+    force[1][0, 40] = 1e300
+    with pytest.raises(InputError, match=r"node .*: a force sample of 1e\+300 N"):
+        dataclasses.replace(good, force=tuple(force))
+    # every reader builds HammerRecords (UFF 58, the hammer CSV): the check holds for them all
+    response = [r.copy() for r in good.response]
+    response[0][1, 10] = 1e12
+    with pytest.raises(InputError, match=r"a response sample of 1e\+12"):
+        dataclasses.replace(good, response=tuple(response))

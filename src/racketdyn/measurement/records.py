@@ -109,6 +109,28 @@ class _PointsAndReference:
             )
 
 
+ABSURD_FORCE_N = 1.0e6
+"""A hammer's force sample beyond this (N) is damage or a unit slip: impact hammers are rated to
+≈ 20–50 kN; 1e300 (a mutated file) was taken as data and overflowed the FRFs (issue 26)."""
+ABSURD_RESPONSE = 1.0e9
+"""A response sample beyond this (m/s², m/s or m) is damage: accelerometers for structures
+read up to ≈ 10⁵ m/s²."""
+
+
+def _check_scale(
+    source: str, node: object, what: str, records: NDArray[np.float64], limit: float, unit: str
+) -> None:
+    """Refuse finite samples no transducer gives, naming the data set (non-finite ones are the
+    quality check's: one average is rejected with its reason)."""
+    finite = records[np.isfinite(records)]
+    if finite.size and float(np.max(np.abs(finite))) > limit:
+        worst = float(np.max(np.abs(finite)))
+        raise InputError(
+            f"{source}: node {node}: a {what} sample of {worst:.3g} {unit} (beyond {limit:g}): "
+            "the data set is damaged or not in SI units"
+        )
+
+
 @dataclass(frozen=True, eq=False)
 class HammerRecords(_PointsAndReference):
     """Force and response time records of a roving-hammer test.
@@ -174,6 +196,8 @@ class HammerRecords(_PointsAndReference):
                     f"{self.source}: node {node}: force {f2.shape} and response {r2.shape} must "
                     "have the same (n_averages, n_samples) shape with 8 samples or more"
                 )
+            _check_scale(self.source, node, "force", f2, ABSURD_FORCE_N, "N")
+            _check_scale(self.source, node, "response", r2, ABSURD_RESPONSE, "SI units")
             forces.append(f2)
             responses.append(r2)
         lengths = {f.shape[1] for f in forces}
