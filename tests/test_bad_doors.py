@@ -257,7 +257,7 @@ def test_report_of_a_swinging_racket_does_not_say_at_rest(tmp_path: Path) -> Non
         ("[variables]\ntension_n = [50.0, 250.0]\n", "", ["tension_n", "pounds"]),
         ("[variables.point_mass]\nmass_kg = 0.005\nclock = 13\n", "", ["clock", "1 to 12"]),
         ("[variables]\nmass_kg = [0.30]\n", "", ["ball_speeds_mps", "km/h"]),
-        ("[variables]\ne_bg = [83.0]\n", "", ["e_bg", "per cent"]),
+        ("[variables]\ne_bg = [83.0]\n", "", ["e_bg = 83", "a percentage (83 % = 0.83)"]),
     ],
 )
 def test_a_sweep_variable_of_another_unit_is_refused(

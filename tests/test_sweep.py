@@ -818,7 +818,7 @@ BAD_FILES = [
     (BASE.replace("[0.80, 0.86]", "[0.80, 0.80]"), r"\[variables\]\.e_bg: a value is listed twice"),
     (
         BASE.replace("[0.80, 0.86]", "[0.80, 1.2]"),
-        r"\[variables\]\.e_bg: e_BG is a ratio between 0 and 1",
+        r"\[variables\]\.e_bg = 1\.2: e_BG is a ratio between 0 and 1",
     ),
     (
         BASE + "[summary]\nball_speed_mps = 25.0\n",

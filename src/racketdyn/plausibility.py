@@ -58,11 +58,14 @@ class Slip:
         Its symbol ("g").
     si : float
         One of it in the SI unit of the quantity (1 g = 0.001 kg).
+    least : float
+        The smallest magnitude a person types in this unit (per cent: 1; 0.6 is no 0.6 %).
     """
 
     name: str
     symbol: str
     si: float
+    least: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -122,8 +125,7 @@ class Range:
             return [
                 f"{slip.name} ({_g(value)} {slip.symbol} = {_g(value * slip.si)} {self.unit})"
                 for slip in self.slips
-                if low <= value * slip.si <= high
-                and not (slip is PER_CENT and abs(value) < 1.0)  # 0.6 is no 0.6 % typed
+                if low <= value * slip.si <= high and abs(value) >= slip.least
             ]
 
         found = within(self.low, self.high)
@@ -174,7 +176,7 @@ SQUARE_METRE_AS_CM2 = Slip("m²", "m²", 1e4)
 RAD_PER_S = Slip("rad/s", "rad/s", 1.0 / (2.0 * math.pi))
 KILOHERTZ = Slip("kHz", "kHz", 1e3)
 DEG_PER_S = Slip("degrees per second", "°/s", math.pi / 180.0)
-PER_CENT = Slip("per cent", "%", 0.01)
+PER_CENT = Slip("per cent", "%", 0.01, least=1.0)
 RPM = Slip("revolutions per minute", "rpm", 2.0 * math.pi / 60.0)
 RADIAN = Slip("radians", "rad", 180.0 / math.pi)  # as degrees
 
@@ -537,14 +539,40 @@ def check_limits(key: str, value: float, name: str) -> float:
     return value
 
 
+def check_e_bg(name: str, value: float) -> None:
+    """Refuse an e_BG outside 0–1 in one line, asking about per cent where it looks like one
+    (83 → 0.83; the racket-free ratio has no plausible band narrower than its definition).
+
+    Parameters
+    ----------
+    name : str
+        How the message names the input (`` `e_bg` ``, ``[variables].e_bg``).
+    value : float
+        The value given.
+    """
+    number = float(value)
+    if not math.isfinite(number) or 0.0 <= number <= 1.0:
+        return
+    slip = (
+        f"; did you give a percentage ({_g(number)} % = {_g(number * PER_CENT.si)})?"
+        if PER_CENT.least <= number <= 100.0
+        else ""
+    )
+    raise InputError(f"{name} {_g(number)}: e_BG is a ratio between 0 and 1 (Kawazoe's 0.83){slip}")
+
+
 def check_speeds(
-    name: str, speeds: Iterable[float], key: str = "ball_speed_mps", allow_implausible: bool = False
+    name: str,
+    speeds: Iterable[float],
+    key: str = "ball_speed_mps",
+    allow_implausible: bool = False,
+    override: str = OVERRIDE_OPTION,
 ) -> None:
     """Check speeds (m/s) against the speeds of play (:func:`check`; negative ones are left to
     :func:`racketdyn.errors.require_speeds`)."""
     for speed in speeds:
         if float(speed) >= 0:
-            check(key, speed, name, allow_implausible=allow_implausible)
+            check(key, speed, name, allow_implausible=allow_implausible, override=override)
 
 
 def check_load_deflection(where: str, deflection: Iterable[float], force: Iterable[float]) -> None:

@@ -23,7 +23,7 @@ from racketdyn.impact.grid import STRING_BEDS
 from racketdyn.impact.transient import ENGINES as TRANSIENT_ENGINES
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_racket, read_toml
 from racketdyn.io.tables import read_load_deflection, read_points
-from racketdyn.plausibility import check
+from racketdyn.plausibility import check, check_e_bg, check_speeds
 from racketdyn.racket import SUPPORTS, Racket
 from racketdyn.sweep.spec import DEFAULT_THRESHOLD_FRACTION, MODES, SPEC_SCHEMA_VERSION, SweepSpec
 from racketdyn.sweep.task import METHOD_SUPPORTS, _check_method, _check_supports
@@ -173,12 +173,7 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         "[impacts].racket_speeds_mps", impacts.get("racket_speeds_mps", [0.0])
     )
     for speeds, key in ((ball_speeds, "ball_speed"), (racket_speeds, "racket_speed")):
-        for number in speeds:
-            if number >= 0:
-                where = f"[impacts].{key}s_mps"
-                check(
-                    f"{key}_mps", float(number), where, allow_implausible=allow, override=_OVERRIDE
-                )
+        check_speeds(f"[impacts].{key}s_mps", speeds, f"{key}_mps", allow, _OVERRIDE)
     method = _check_method("[impacts].method", impacts.get("method", "approximate"))
     reading = one_of(
         "[impacts].stiffness_reading",
@@ -297,12 +292,10 @@ def _plausible(where: str, key: str, value: object, allow: bool) -> NDArray[np.f
     values = _value_list(where, value)
     if key in _PLAUSIBLE:
         for number in values:
-            check(
-                _PLAUSIBLE[key], float(number), where, allow_implausible=allow, override=_OVERRIDE
-            )
-    elif key == "e_bg" and np.any((values < 0.0) | (values > 1.0)):
-        slip = "; did you give per cent?" if np.all((values > 1.5) & (values <= 100.0)) else ""
-        raise InputError(f"{where}: e_BG is a ratio between 0 and 1 (Kawazoe's 0.83){slip}")
+            _check(_PLAUSIBLE[key], float(number), where, allow)
+    elif key == "e_bg":
+        for number in values:
+            check_e_bg(f"{where} =", float(number))
     return values
 
 

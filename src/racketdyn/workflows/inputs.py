@@ -21,7 +21,7 @@ from racketdyn.impact.hand import Hand
 from racketdyn.io import default_racket, load_racket, read_e_bg_table, read_load_deflection
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
 from racketdyn.modal import ModalModel
-from racketdyn.plausibility import check
+from racketdyn.plausibility import check, check_e_bg
 from racketdyn.racket import Racket
 from racketdyn.racket_modal import modal_model_for
 from racketdyn.workflows.run import sha256
@@ -172,10 +172,9 @@ def ball_from(
     """
     if e_bg_table is not None and e_bg is not None:
         raise InputError("give `e_bg` (one value) or `e_bg_table` (e_BG against speed), not both")
-    if e_bg is not None and math.isfinite(e_bg) and not 0.0 <= e_bg <= 1.0:
-        slip = f"; did you give a percentage ({e_bg:g} % = {e_bg / 100:g})?" if e_bg <= 100 else ""
-        raise InputError(f"`e_bg` {e_bg:g}: e_BG is a ratio between 0 and 1 (Kawazoe's 0.83){slip}")
-    if mass_kg is not None and _positive(mass_kg):
+    if e_bg is not None:
+        check_e_bg("`e_bg`", e_bg)
+    if mass_kg is not None and _finite(mass_kg):
         check("ball_mass_kg", mass_kg, "`mass_kg`", allow_implausible=allow_implausible)
     defaults = []
     kwargs: dict[str, Any] = {}
@@ -241,7 +240,7 @@ def hand_for(
     for field, (key, option, value) in given.items():
         if value is None:
             continue
-        if _positive(value):
+        if _finite(value):
             check(key, value, option, allow_implausible=allow_implausible)
         fields[field] = value
     hand = Hand(**fields)
@@ -259,7 +258,7 @@ def hand_for(
     return hand, [f"hand: the default {', '.join(unset)} (racketdyn.impact.hand.Hand)"]
 
 
-def _positive(value: object) -> bool:
+def _finite(value: object) -> bool:
     """A finite number (others are left to the object's own checks): zero and negative values
     are checked against the range too, so the message names the parameter
     (``hand_for(damping_ns_per_m=0)`` passed unseen; -1 was refused as

@@ -92,7 +92,7 @@ STAGING_PREFIX = ".racketdyn-staging-"
 """A run writes into ``<out>/.racketdyn-staging-<pid>/`` and moves its files out when it ends."""
 
 
-def make_out_folder(out: Path) -> Path:
+def make_out_folder(out: str | os.PathLike[str]) -> Path:
     """Create the run folder ``out`` (and its parents) or say in one line why it cannot be.
 
     Parameters
@@ -116,6 +116,15 @@ def make_out_folder(out: Path) -> Path:
     except OSError as error:  # a name too long, a read-only file system, no permission
         raise InputError(f"`out` {out}: cannot create the folder ({error.strerror})") from None
     return out
+
+
+def _absent(out: str | os.PathLike[str]) -> bool:
+    """Whether the folder ``out`` is still to be made (a name the system refuses counts as
+    absent: :func:`make_out_folder` then says why in one line)."""
+    try:
+        return not Path(out).exists()
+    except OSError:
+        return True
 
 
 def _process_alive(pid: int) -> bool:
@@ -266,14 +275,8 @@ def run_step(step: Callable[P, S]) -> Callable[P, S]:
     def run(*args: P.args, **kwargs: P.kwargs) -> S:
         bound = signature.bind(*args, **kwargs)
         raw = bound.arguments["out"]
-        if not str(raw).strip():
-            make_out_folder(raw)  # refuses it in one line
-        folder = Path(raw)
-        try:
-            created = not folder.exists()
-        except OSError:
-            created = True  # make_out_folder says why in one line
-        make_out_folder(folder)
+        created = _absent(raw)
+        folder = make_out_folder(raw)  # '' and unwritable places refused in one line
         _refuse_other_step(folder, step_name)
         try:
             lock = _lock(folder)
