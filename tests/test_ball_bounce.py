@@ -39,10 +39,14 @@ from racketdyn.errors import InputError
 from racketdyn.impact import predict
 from racketdyn.impact.approximate import vibration_cor_squared
 from racketdyn.impact.bounce import BALL_COLUMNS, SURFACES, ball_bounces
-from racketdyn.impact.result import STATUS_VIBRATION_LOSS, STATUS_VIBRATION_SHARE
+from racketdyn.impact.result import (
+    STATUS_FRAME_CONTACT,
+    STATUS_VIBRATION_LOSS,
+    STATUS_VIBRATION_SHARE,
+)
 from racketdyn.impact.transient import predict_transient, simulate_contact
 from racketdyn.io import default_racket
-from racketdyn.racket import landmark_points
+from racketdyn.racket import TIP_INSET_M, landmark_points
 
 DROP_100_IN_MPS = math.sqrt(2 * 9.81 * 2.54)  # 7.06 m/s
 DROP_1_M_MPS = math.sqrt(2 * 9.81 * 1.0)  # 4.43 m/s
@@ -170,11 +174,11 @@ def test_the_coupled_charge_limits() -> None:
 
 PLAYED_BED_XFAIL = pytest.mark.xfail(
     strict=True,
-    reason="issue 22, second session: on the played bed (30 % of the pull tension lost) the "
-    "contact is longer and the half-sine charge misses the coupled contact by up to 0.0153 "
-    "(120 Hz, a row at a 29 % vibration share) and 0.027 (190 Hz: the throat at 20-40 m/s, "
-    "f T_c near 1, where the coupled contact lasts 12 % longer than the rigid-racket one; the "
-    "tip at 10 m/s); a hysteretic contact time or the rigid-racket contact's own pulse do not "
+    reason="issue 22: on the played bed (30 % of the pull tension lost) the half-sine charge "
+    "misses the coupled contact of a stiff (190 Hz) frame by up to 0.0194 (third session, the "
+    "line ending 35 mm from the hoop; 0.027 with points 15 mm from it, frame shots): the throat "
+    "at 20-40 m/s, f T_c near 1, where the coupled contact lasts 12 % longer than the "
+    "rigid-racket one; a hysteretic contact time or the rigid-racket contact's own pulse do not "
     "close it (docs/develop.md, issue 22)",
 )
 
@@ -182,7 +186,7 @@ PLAYED_BED_XFAIL = pytest.mark.xfail(
 @pytest.mark.parametrize(
     "first_bending_hz",
     [
-        pytest.param(120.0, marks=PLAYED_BED_XFAIL),
+        120.0,
         130.0,
         pytest.param(190.0, marks=PLAYED_BED_XFAIL),
     ],
@@ -198,7 +202,10 @@ def test_the_approximate_method_is_within_0_015_of_the_transient_where_it_gives_
     the stiff frame leaves most rows with a number."""
     frame = replace(racket, first_bending_hz=first_bending_hz)
     head = frame.head
-    xs = np.linspace(head.throat_x_m + 0.015, head.tip_x_m - 0.015, 9)
+    # from the throat to the tip landmark: nearer the hoop a ball pressed into the strings
+    # meets the frame (a frame shot, which neither model simulates; was 15 mm before frame
+    # shots were marked)
+    xs = np.linspace(head.throat_x_m + TIP_INSET_M, head.tip_x_m - TIP_INSET_M, 9)
     speeds = [10.0, 20.0, 30.0, 40.0]
     for y in (0.0, 0.04):
         points = np.column_stack([xs, np.full_like(xs, head.centre_y_m + y)])
@@ -212,13 +219,14 @@ def test_the_approximate_method_is_within_0_015_of_the_transient_where_it_gives_
             "ok",
             STATUS_VIBRATION_SHARE,
             STATUS_VIBRATION_LOSS,
+            STATUS_FRAME_CONTACT,  # 40 mm off the axis, the ends of the line
         }
         error = np.abs(coupled.rebound_ratio - transient.rebound_ratio)[given]
         assert np.all(error <= 0.015)
         paper_error = np.abs(paper.rebound_ratio - transient.rebound_ratio)[given]
         assert np.sqrt(np.mean(paper_error**2)) > np.sqrt(np.mean(error**2))
         if first_bending_hz == 190.0:
-            assert np.mean(given) > 0.85
+            assert np.mean(given) > 0.75
         else:
             assert np.mean(given) > 0.6
 

@@ -80,6 +80,7 @@ hand.arm_mass_kg = [0.5, 1.5]
 """
 
 
+@pytest.mark.usefixtures("strings_only")  # the hand's machinery at every point of a 3 × 3 grid
 def test_transient_sweep_with_the_hand(tmp_path: Path) -> None:
     import json
 

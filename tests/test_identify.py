@@ -70,6 +70,7 @@ def test_modes_match_the_truth(case) -> None:
     assert found == model.n_modes  # no spurious mode
 
 
+@pytest.mark.usefixtures("strings_only")  # numbers at points by the hoop
 def test_identified_model_drives_the_prediction(case) -> None:
     # The identified model in eq 12 gives the rebound the rig's own modes give (within 0.01).
     racket = case["racket"]

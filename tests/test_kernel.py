@@ -31,7 +31,11 @@ POINTS = np.array([[0.505, 0.0], [0.62, 0.0], [0.55, 0.06], [0.40, -0.04]])
 SPEEDS = [8.0, 25.0, 40.0]
 SUPPORTS = ("free", "pinned", "hand")
 
-pytestmark = pytest.mark.skipif(not kernel.NUMBA_AVAILABLE, reason="numba is not installed")
+pytestmark = [
+    pytest.mark.skipif(not kernel.NUMBA_AVAILABLE, reason="numba is not installed"),
+    # the integrator's order and bits, at points near the hoop: not the hoop's geometry
+    pytest.mark.usefixtures("strings_only"),
+]
 
 
 @pytest.fixture(scope="module")
@@ -243,6 +247,8 @@ def _matrix_points(racket: rd.Racket) -> np.ndarray:
 def matrix(racket, ball, model):
     """The default scheme, the previous default (400 steps, order 2) and the reference engine
     over 4 points × 3 speeds × 3 supports."""
+    from racketdyn.impact.grid import ImpactGrid
+
     points = _matrix_points(racket)
 
     def run(**kwargs):
@@ -250,11 +256,13 @@ def matrix(racket, ball, model):
             racket, ball, points, MATRIX_SPEEDS, MATRIX_SUPPORTS, modal_model=model, **kwargs
         )
 
-    return (
-        run(engine="compiled"),
-        run(engine="compiled", steps_per_contact=400, extrapolate=False),
-        run(engine="reference"),
-    )
+    with pytest.MonkeyPatch.context() as patch:  # strings only (module scope: not the fixture)
+        patch.setattr(ImpactGrid, "reaches_frame", lambda self, x: np.zeros(np.shape(x), bool))
+        return (
+            run(engine="compiled"),
+            run(engine="compiled", steps_per_contact=400, extrapolate=False),
+            run(engine="reference"),
+        )
 
 
 def test_default_scheme_matches_the_reference(matrix) -> None:

@@ -35,6 +35,10 @@ RUNS = {
 
 REFERENCE = Path(__file__).parent / "data" / "predict_before_issue23"
 
+# the reference files were written before frame shots were marked (issue 22, third session):
+# the refactor's numbers are what is held, at every point of the 3 × 3 grid
+pytestmark = pytest.mark.usefixtures("strings_only")
+
 
 def _number(text: str) -> float | None:
     try:

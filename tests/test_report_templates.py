@@ -214,6 +214,7 @@ def test_the_automac_caption_claims_nothing_the_figure_may_not_show() -> None:
     assert "near-zero" not in CAPTIONS["automac"][1]
 
 
+@pytest.mark.usefixtures("strings_only")  # the rim's negative rows: the page's words are tested
 def test_negative_rebound_ratios_are_explained_on_the_page(tmp_path: Path) -> None:
     """Issue 13: negative rebound ratios near the tip are physics, but the page must say what
     they mean and which method to trust there."""

@@ -36,6 +36,7 @@ def _points(racket: rd.Racket) -> dict[str, tuple[float, float]]:
     }
 
 
+@pytest.mark.usefixtures("strings_only")  # the bed 30 mm from the hoop
 @pytest.mark.parametrize("model", list(MODELS))
 def test_local_equals_uniform_at_the_centre_and_is_stiffer_towards_the_frame(
     racket: rd.Racket, ball: rd.Ball, model: str

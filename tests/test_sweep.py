@@ -241,7 +241,8 @@ def test_higher_e_bg_raises_rebound_everywhere(one_at_a_time: tuple[xr.Dataset, 
     ds, _ = one_at_a_time
     base, livelier = design(ds, "base"), design(ds, "e_bg")
     ok = (base["status"] == 0) & (livelier["status"] == 0)
-    assert int(ok.sum()) > 0.6 * ok.size  # the rim beyond the approximate method (issue 22)
+    # the rim: frame shots and rows beyond the approximate method (issue 22)
+    assert int(ok.sum()) > 0.4 * ok.size
     assert bool((livelier["rebound_ratio"] > base["rebound_ratio"]).where(ok, True).all())
 
 

@@ -11,7 +11,7 @@ Units: deflection X in m, force F in N, stiffness K in N/m.
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Literal, get_args
 
@@ -100,6 +100,21 @@ class RestoringForce:
                 f"{self.max_deflection_m * 1e3:.1f} mm: its stiffness dF/dX turns negative; fit a "
                 "lower-degree polynomial or a power law"
             )
+
+    def scaled(self, factor: float) -> RestoringForce:
+        """This law with every force multiplied by ``factor`` (> 0), same range."""
+        require_positive("restoring force scale", factor)
+        coefficients = (
+            (self.coefficients[0] * factor, self.coefficients[1])
+            if self.kind == "power"
+            else tuple(c * factor for c in self.coefficients)
+        )
+        return replace(
+            self,
+            coefficients=coefficients,
+            rms_residual_n=self.rms_residual_n * factor,
+            source=f"{self.source} ×{factor:g}",
+        )
 
     # --- evaluation -------------------------------------------------------------------------
     def force(self, deflection: ArrayLike) -> NDArray[np.float64]:

@@ -399,6 +399,17 @@ RANGES: dict[str, Range] = {
     "strings_mass_kg": Range(
         "a racket's strings weigh", 0.008, 0.025, 1e-3, 0.3, "kg", _MASS, GRAM
     ),
+    # Scatter of a ball-cannon test (issue 24's uncertainty file): impact location ± 10 mm,
+    # ball speed ± 1 m/s are usual (a lab's repeatability); up to 30 mm and 5 m/s plausible.
+    # Limits: a 0.2 m scatter misses the head, a 50 m/s one is not a test.
+    "location_scatter_m": Range(
+        "a ball cannon scatters its impacts by", 0.0, 0.03, 0.0, 0.2, "m", _LENGTH, MILLIMETRE
+    ),
+    "ball_speed_scatter_mps": Range(
+        "a ball cannon scatters its speed by", 0.0, 5.0, 0.0, 50.0, "m/s", _SPEED
+    ),
+    # Factors on a law or a damping (calibration's scales): 0.3–3 plausible; limits 0.01–100.
+    "scale_factor": Range("a scale on a law is", 0.3, 3.0, 0.01, 100.0, "×"),
     # Free modes of rackets on sale: 2-node bending 110–180 Hz (wooden ≈ 100 Hz), 2-node
     # twisting 300–600 Hz (Kawazoe's 361 Hz).
     "first_bending_hz": Range(

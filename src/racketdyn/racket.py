@@ -24,6 +24,7 @@ from racketdyn.numerics import as_locations
 __all__ = [
     "SUPPORTS",
     "SWINGWEIGHT_AXIS_M",
+    "TIP_INSET_M",
     "HeadEllipse",
     "MassProperties",
     "PointMass",
@@ -133,6 +134,47 @@ class HeadEllipse:
     def contains(self, locations: ArrayLike) -> NDArray[np.bool_]:
         """True where a location lies on the string bed (edge included, to 1e-9 relative)."""
         return self.normalised_radius(locations) <= 1.0 + 1e-9
+
+    def distance_to_edge(self, locations: ArrayLike) -> NDArray[np.float64]:
+        """Distance in the plane of the face from each location to the bed's edge (the hoop), m.
+
+        Parameters
+        ----------
+        locations : array_like
+            ``(n, 2)`` points ``(x, y)``, m, on the bed.
+
+        Returns
+        -------
+        ndarray
+            ``(n,)`` shortest distance to the ellipse, m (0 on the edge).
+
+        Notes
+        -----
+        numpy and scipy have no point-to-ellipse distance, hence our own: the nearest of 64
+        parametric angles of the quarter ellipse (by symmetry), refined by Newton steps on the
+        angle ``t`` where ``(a² − b²) sin t cos t − a u sin t + b v cos t = 0`` (the foot of
+        the normal), kept within one sample spacing so that a second root inside the ellipse
+        is never taken.
+        """
+        xy = as_locations(locations)
+        a, b = self.half_length_m, self.half_width_m
+        u = np.abs(xy[:, 0] - self.centre_x_m)[:, None]
+        v = np.abs(xy[:, 1] - self.centre_y_m)[:, None]
+        step = 0.5 * np.pi / 63
+        t = np.linspace(0.0, 0.5 * np.pi, 64)[None, :]
+        nearest = np.argmin((a * np.cos(t) - u) ** 2 + (b * np.sin(t) - v) ** 2, axis=1)
+        t0 = t[0, nearest][:, None]
+        tt = t0.copy()
+        for _ in range(8):
+            s, c = np.sin(tt), np.cos(tt)
+            f = (a * a - b * b) * s * c - a * u * s + b * v * c
+            df = (a * a - b * b) * (c * c - s * s) - a * u * c - b * v * s
+            with np.errstate(divide="ignore", invalid="ignore"):
+                tt = np.where(df != 0.0, tt - f / df, tt)
+            tt = np.clip(tt, np.maximum(t0 - step, 0.0), np.minimum(t0 + step, 0.5 * np.pi))
+        d = np.hypot(a * np.cos(tt) - u, b * np.sin(tt) - v)[:, 0]
+        coarse = np.sqrt(np.min((a * np.cos(t) - u) ** 2 + (b * np.sin(t) - v) ** 2, axis=1))
+        return np.asarray(np.minimum(d, coarse))
 
     def half_width_at(self, x_m: ArrayLike) -> NDArray[np.float64]:
         """Half-width of the string bed at each x (0 outside the head), m."""
@@ -514,10 +556,19 @@ class Racket:
         }
 
 
+TIP_INSET_M = 0.035
+"""How far inside the bed's edge the tip landmark lies, m: a tennis ball's radius (33.5 mm,
+ITF) and 1.5 mm, so that no deflection brings the ball's section in the plane of the strings
+to the hoop there (a ball's section is at most its radius)."""
+
+
 def landmark_points(racket: Racket) -> dict[str, tuple[float, float]]:
     """Named impact points on the long axis: top, centre and throat (Figs 11–12), tip (Fig. 14).
 
-    Top and throat lie three quarters of the half-length from the centre; the tip 90 %.
+    Top and throat lie three quarters of the half-length from the centre; the tip
+    :data:`TIP_INSET_M` inside the bed's edge, the farthest point on the axis where a ball
+    pressed into the strings cannot reach the hoop (the paper's "very end of the string
+    surface"; nearer the hoop an impact is a frame shot, ``STATUS_FRAME_CONTACT``).
 
     Parameters
     ----------
@@ -535,5 +586,5 @@ def landmark_points(racket: Racket) -> dict[str, tuple[float, float]]:
         "top": (xc + 0.75 * a, yc),
         "centre": (xc, yc),
         "throat": (xc - 0.75 * a, yc),
-        "tip": (xc + 0.9 * a, yc),
+        "tip": (xc + max(a - TIP_INSET_M, 0.75 * a), yc),
     }

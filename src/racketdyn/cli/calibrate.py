@@ -17,6 +17,8 @@ PARAMETER_NAMES = (
     "string_stiffness_scale",
     "roll_inertia_kgm2",
     "frame_damping_scale",
+    "first_bending_hz",
+    "ball_stiffness_scale",
     "hand_stiffness_n_per_m",
     "hand_damping_ns_per_m",
     "hand_arm_mass_kg",

@@ -154,6 +154,44 @@ def add_string_bed(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_uncertainty(parser: argparse.ArgumentParser) -> None:
+    """``--uncertainty FILE``, ``--samples N``, ``--seed N``: inputs with their spread."""
+    parser.add_argument(
+        "--uncertainty",
+        metavar="TOML",
+        help="uncertain inputs, one table each (e_bg, first_bending_hz, ball_stiffness_scale, "
+        "location_m, ball_speed_mps, ...: sd = x, range = [low, high] or values = [...]; "
+        "docs/uncertainty.md); each model runs once per sample and every number gets its mean, "
+        "sd and 5-95 %% band (default: none)",
+    )
+    parser.add_argument(
+        "--samples",
+        type=int,
+        default=256,
+        help="quasi-Monte Carlo samples of --uncertainty, a count (scrambled Sobol'; default 256)",
+    )
+    parser.add_argument(
+        "--seed",
+        type=int,
+        default=0,
+        help="seed of the samples, a count (default 0: the same samples every run)",
+    )
+
+
+def uncertainty_from(args: argparse.Namespace) -> Any:
+    """The :class:`~racketdyn.impact.uncertainty.Uncertainty` of the options, or None."""
+    from racketdyn.errors import InputError
+    from racketdyn.impact.uncertainty import Uncertainty
+    from racketdyn.io.uncertainty_file import read_spreads
+
+    if args.uncertainty is None:
+        for name, default in (("samples", 256), ("seed", 0)):
+            if getattr(args, name) != default:
+                raise InputError(f"--{name} is for --uncertainty: give an uncertainty file")
+        return None
+    return Uncertainty(read_spreads(args.uncertainty), samples=args.samples, seed=args.seed)
+
+
 def add_allow_implausible(parser: argparse.ArgumentParser) -> None:
     """``--allow-implausible``: go on with an unusual ball, speed or arm (see plausibility)."""
     parser.add_argument(

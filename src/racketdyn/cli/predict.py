@@ -13,6 +13,7 @@ if TYPE_CHECKING:
 
     from racketdyn.impact.comparison import ModelComparison
     from racketdyn.impact.result import ImpactResult
+    from racketdyn.impact.uncertainty import Sensitivity, UncertainResult
     from racketdyn.modal import ModalModel
     from racketdyn.racket import Racket
 
@@ -80,6 +81,7 @@ def add(commands: Any) -> None:
         help="charge string-bed modes as vibration loss too (default: off)",
     )
     opt.add_string_bed(p)
+    opt.add_uncertainty(p)
     opt.add_no_figures(p)
     opt.add_out(p)
     p.set_defaults(handler=run)
@@ -97,6 +99,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     racket_speed = opt.parse_speeds("--racket-speed", args.racket_speed)
     supports = check_supports(opt.parse_list("--support", args.support), args.model)
     ball, hand, defaults = opt.ball_and_hand(args, supports)
+    uncertainty = opt.uncertainty_from(args)
     with opt.progress_display(console) as progress:
         result = run_predict(
             args.out,
@@ -116,6 +119,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             vibration_charge=args.vibration_charge,
             include_string_bed=args.include_string_bed,
             string_bed=args.string_bed,
+            uncertainty=uncertainty,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),
@@ -135,9 +139,12 @@ def run(args: argparse.Namespace, console: Console) -> int:
         ("transient model", result.transient, transient_csv_name(args.model)),
     ):
         if part is not None:
-            console.print(_headline(part, result.racket, label))
+            band = result.bands.get("approx" if part is result.approximate else "transient")
+            console.print(_headline(part, result.racket, label, band))
             flagged, style = _flagged(part.status, csv_name)
             opt.say(console, flagged, style)
+    if result.sensitivity is not None:
+        opt.say(console, _dominant_line(result.sensitivity), None)
     if result.comparison is not None:
         console.print(_comparison_table(result.comparison, result.shown_speed, result.racket))
         opt.say(console, *_differ_line(result.comparison))
@@ -169,10 +176,12 @@ def _unknown_modes(model: ModalModel | None) -> str:
     )
 
 
-def _headline(result: ImpactResult, racket: Racket, label: str) -> Table:
+def _headline(
+    result: ImpactResult, racket: Racket, label: str, band: UncertainResult | None = None
+) -> Table:
     """Contact time, rebound ratio, outgoing ball speed and peak force at the run's point
     nearest the face centre, per support and speed; a flagged row shows its status, not
-    numbers."""
+    numbers; with an uncertainty the rebound ratio's 90 % band is the caption."""
     import numpy as np
     from rich.table import Table
 
@@ -199,6 +208,16 @@ def _headline(result: ImpactResult, racket: Racket, label: str) -> Table:
         "status",
     ):
         table.add_column(heading)
+    if band is not None:
+        table.caption = opt.plain(
+            f"rebound ratio's 90 % band ({band.uncertainty.samples} samples of "
+            f"{', '.join(x.name for x in band.uncertainty.spreads)}): "
+            + "; ".join(
+                f"{support} {speed:g} m/s {_band(band, (i, s, p))}"
+                for p, support in enumerate(result.supports)
+                for s, speed in enumerate(result.ball_speed)
+            )
+        )
     for p, support in enumerate(result.supports):
         for s, speed in enumerate(result.ball_speed):
             status = str(result.status[i, s, p])
@@ -214,6 +233,28 @@ def _headline(result: ImpactResult, racket: Racket, label: str) -> Table:
                 opt.plain(status),
             )
     return table
+
+
+def _dominant_line(found: Sensitivity) -> str:
+    """The input with the largest total Sobol' index of the rebound ratio at each point."""
+    parts = [
+        f"{label} {found.dominant(p) or 'not known (samples beyond the method)'}"
+        for p, label in enumerate(found.labels)
+    ]
+    return (
+        f"dominant input of the rebound ratio at {found.ball_speed:g} m/s, {found.support} "
+        f"(largest total Sobol' index; sensitivity.csv): {'; '.join(parts)}"
+    )
+
+
+def _band(band: UncertainResult, at: tuple[int, int, int]) -> str:
+    """The rebound ratio's 90 % band, "0.353–0.406", or why there is none."""
+    import numpy as np
+
+    low, high = band.quantile("rebound_ratio", 0.05)[at], band.quantile("rebound_ratio", 0.95)[at]
+    if not (np.isfinite(low) and np.isfinite(high)):
+        return "none: under 90 % of samples valid"
+    return f"{low:.3f}–{high:.3f}"
 
 
 def _flagged(status: Any, csv_name: str) -> tuple[str, str | None]:

@@ -49,6 +49,7 @@ from racketdyn.impact.grid import (
 )
 from racketdyn.impact.result import (
     STATUS_BEYOND_LAW,
+    STATUS_FRAME_CONTACT,
     STATUS_OK,
     STATUS_VIBRATION_LOSS,
     STATUS_VIBRATION_SHARE,
@@ -404,8 +405,14 @@ def predict(
         over = vibration_energy > VIBRATION_SHARE_LIMIT * 0.5 * mu * speed**2
     status[in_range & valid & over] = STATUS_VIBRATION_SHARE
     status[in_range & ~valid] = STATUS_VIBRATION_LOSS
+    status[in_range & grid.reaches_frame(deflection)] = STATUS_FRAME_CONTACT
     status[~in_range] = STATUS_BEYOND_LAW
-    for message in (STATUS_VIBRATION_LOSS, STATUS_VIBRATION_SHARE, STATUS_BEYOND_LAW):
+    for message in (
+        STATUS_VIBRATION_LOSS,
+        STATUS_VIBRATION_SHARE,
+        STATUS_FRAME_CONTACT,
+        STATUS_BEYOND_LAW,
+    ):
         count = int(np.sum(status == message))
         if count:
             log.warning("%d of %d impacts: %s (their results are NaN)", count, status.size, message)

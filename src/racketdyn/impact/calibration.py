@@ -30,7 +30,7 @@ from scipy.optimize import least_squares
 from racketdyn.contact import with_ball_string_cor
 from racketdyn.errors import InputError
 from racketdyn.impact.hand import Hand
-from racketdyn.impact.measured import Method, ModelInputs, predict_rows
+from racketdyn.impact.measured import Method, ModelInputs, first_bending_index, predict_rows
 from racketdyn.io.measured import MeasuredRebound
 
 __all__ = [
@@ -94,6 +94,13 @@ def _set_hand(name: str) -> Callable[[ModelInputs, float], ModelInputs]:
     return lambda inputs, value: replace(inputs, hand=replace(_hand(inputs), **{name: value}))
 
 
+def _first_bending_hz(inputs: ModelInputs) -> float:
+    model = inputs.modes()
+    if model is None:
+        raise InputError("`first_bending_hz`: a rigid racket has no bending mode")
+    return float(model.frequency[first_bending_index(model)])
+
+
 def _factor(low: float, high: float) -> Callable[[float], tuple[float, float]]:
     return lambda start: (start * low, start * high)
 
@@ -132,6 +139,22 @@ PARAMETERS: dict[str, Parameter] = {
             lambda i: i.frame_damping_scale,
             lambda i, v: replace(i, frame_damping_scale=v),
             lambda start: (0.05, 20.0),
+        ),
+        Parameter(
+            "first_bending_hz",
+            "Hz",
+            "the frame's first bending frequency (its shape and the other modes kept)",
+            lambda i: _first_bending_hz(i),
+            lambda i, v: replace(i, first_bending_hz=v),
+            _factor(0.5, 2.0),
+        ),
+        Parameter(
+            "ball_stiffness_scale",
+            "1",
+            "factor on the ball's restoring force in a bounce",
+            lambda i: i.ball_stiffness_scale,
+            lambda i, v: replace(i, ball_stiffness_scale=v),
+            lambda start: (0.3, 3.0),
         ),
         Parameter(
             "hand_stiffness_n_per_m",

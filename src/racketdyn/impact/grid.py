@@ -148,11 +148,37 @@ class ImpactGrid:
     model: ModalModel | None
     law: RestoringForce
     ball: Ball
+    edge_distance: NDArray[np.float64]
 
     @property
     def shape(self) -> tuple[int, int, int]:
         """``(n_points, n_speeds, n_supports)``."""
         return (self.locations.shape[0], self.ball_speed.size, len(self.supports))
+
+    def reaches_frame(self, peak_deflection: NDArray[np.float64]) -> NDArray[np.bool_]:
+        """Where the ball, pressed into the strings, reaches the hoop: a frame shot.
+
+        A ball of radius R whose centre has come X_p towards the racket from first touch
+        (the compound deflection: ball and strings) cuts the plane of the strings in a circle
+        of radius ``sqrt(2 R X_p - X_p²)`` (R at most); where that passes the point's distance
+        to the bed's edge the ball meets the frame.  The plane of the strings is the lowest a
+        frame can stand, so this is a lower bound on frame shots.
+
+        Parameters
+        ----------
+        peak_deflection : ndarray
+            ``(n_points, n_speeds, n_supports)`` peak compound deflection X_p, m (NaN: not
+            known, never marked).
+
+        Returns
+        -------
+        ndarray of bool
+            True where the ball reaches the frame.
+        """
+        radius = 0.5 * self.ball.diameter_m
+        x = np.clip(np.nan_to_num(peak_deflection, nan=0.0), 0.0, radius)
+        section = np.sqrt(2.0 * radius * x - x * x)
+        return np.asarray(section > self.edge_distance[:, None, None])
 
     def inputs(self, ball: Ball, method: str, **extra: Any) -> dict[str, Any]:
         """What produced a result, for ``ImpactResult.inputs`` and run records."""
@@ -228,6 +254,7 @@ def impact_grid(
         model=resolve_modal_model(racket, modal_model, include_string_bed),
         law=law or compound_law(racket, ball),
         ball=with_ball_string_cor(racket, ball),
+        edge_distance=racket.head.distance_to_edge(xy),
     )
 
 

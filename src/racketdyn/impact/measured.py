@@ -34,6 +34,7 @@ __all__ = [
     "METHODS",
     "NO_HAND_STATUS",
     "ModelInputs",
+    "first_bending_index",
     "predict_rows",
 ]
 
@@ -81,6 +82,11 @@ class ModelInputs:
         ``uniform``: the face centre's string-bed law at every point (the paper's); ``local``:
         each point's own from the lengths of its main and cross strings
         (:func:`racketdyn.contact.local_compound_law`).
+    first_bending_hz : float, optional
+        The frame's first bending frequency in place of the modal model's (its shape and the
+        other modes kept): the input a racket file often does not pin down.
+    ball_stiffness_scale : float
+        Factor on the ball's restoring force F_B (ball-to-ball scatter, temperature).
     """
 
     racket: Racket
@@ -92,9 +98,19 @@ class ModelInputs:
     include_string_bed: bool = False
     engine: str = "auto"
     string_bed: StringBed = "uniform"
+    first_bending_hz: float | None = None
+    ball_stiffness_scale: float = 1.0
 
     def __post_init__(self) -> None:
         check_string_bed(self.string_bed, None, self.racket)
+
+    @property
+    def effective_ball(self) -> Ball:
+        """The ball with its restoring force scaled by :attr:`ball_stiffness_scale`."""
+        if self.ball_stiffness_scale == 1.0:
+            return self.ball
+        law = self.ball.restoring_force.scaled(self.ball_stiffness_scale)
+        return replace(self.ball, restoring_force=law)
 
     @property
     def effective_racket(self) -> Racket:
@@ -122,17 +138,32 @@ class ModelInputs:
         if self.modal_model is None:
             return None
         model = _built_in_modes(self.racket) if self.modal_model == "racket" else self.modal_model
+        if self.first_bending_hz is not None:
+            frequency = model.frequency.copy()
+            frequency[first_bending_index(model)] = self.first_bending_hz
+            model = model.with_dynamics(frequency=frequency)
         if self.frame_damping_scale == 1.0:
             return model
         damping = np.minimum(model.damping_ratio * self.frame_damping_scale, MAX_DAMPING_RATIO)
-        return replace(model, damping_ratio=damping)
+        return model.with_dynamics(damping_ratio=damping)
 
     def law(self, location: tuple[float, float] | None = None) -> RestoringForce:
         """Compound ball + string-bed law of :attr:`effective_racket`: the face centre's, or
         with :attr:`string_bed` ``local`` the one at ``location`` (x, y in m)."""
         if self.string_bed == "local" and location is not None:
-            return point_law(self.effective_racket, self.ball, location)
-        return compound_law(self.effective_racket, self.ball)
+            return point_law(self.effective_racket, self.effective_ball, location)
+        return compound_law(self.effective_racket, self.effective_ball)
+
+
+def first_bending_index(model: ModalModel) -> int:
+    """Index of the frame's first bending mode: the lowest ``bending`` mode, else the lowest
+    frame mode (InputError without one)."""
+    order = np.argsort(model.frequency)
+    for kinds in (("bending",), ("bending", "twisting", "other", "unknown")):
+        found = [int(k) for k in order if model.kinds[k] in kinds]
+        if found:
+            return found[0]
+    raise InputError("`first_bending_hz`: the modal model has no frame mode to set")
 
 
 def predict_rows(
@@ -188,12 +219,14 @@ def predict_rows(
             "labels": [measured.labels[i] for i in rows],
         }
         if method == "approx":
-            result = predict(racket, inputs.ball, measured.locations[rows], [v_ball], **options)
+            result = predict(
+                racket, inputs.effective_ball, measured.locations[rows], [v_ball], **options
+            )
         else:
             hand = (inputs.hand or Hand()) if support == "hand" else None
             result = predict_transient(
                 racket,
-                inputs.ball,
+                inputs.effective_ball,
                 measured.locations[rows],
                 [v_ball],
                 engine=inputs.engine,  # type: ignore[arg-type]

@@ -104,6 +104,7 @@ from racketdyn.impact.kernel import _law as kernel_law
 from racketdyn.impact.kernel import _unloading_exponent as kernel_unloading_exponent
 from racketdyn.impact.result import (
     STATUS_BEYOND_LAW,
+    STATUS_FRAME_CONTACT,
     STATUS_NO_SEPARATION,
     STATUS_OK,
     STATUS_SECOND_CONTACT,
@@ -868,6 +869,13 @@ def predict_transient(
     out, mode_energy, status, terms = run(
         grid, systems, grid.ball, rtol, method, steps_per_contact, extrapolate
     )
+    frame = (status == STATUS_OK) & grid.reaches_frame(out["peak_deflection"])
+    status[frame] = STATUS_FRAME_CONTACT
+    if np.any(frame):
+        log.warning(
+            "%d of %d impacts: %s (their results are NaN)",
+            int(frame.sum()), status.size, STATUS_FRAME_CONTACT,
+        )  # fmt: skip
     settings: dict[str, Any] = (
         {
             "engine": "compiled",

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
 from typing import Any, NoReturn
@@ -273,6 +273,26 @@ class ModalModel:
         np.add.at(shapes, inverse, self.mode_shapes)
         shapes /= np.bincount(inverse)[:, None]
         return RBFInterpolator(coordinates[first], shapes, kernel="thin_plate_spline")
+
+    def with_dynamics(
+        self,
+        frequency: ArrayLike | None = None,
+        damping_ratio: ArrayLike | None = None,
+    ) -> ModalModel:
+        """This model with other frequencies or damping ratios, its shapes unchanged.
+
+        The shapes' interpolator, once built, is shared (it depends on the shapes alone):
+        a sampled or calibrated model costs no new spline.
+        """
+        changes: dict[str, Any] = {}
+        if frequency is not None:
+            changes["frequency"] = np.asarray(frequency, dtype=float)
+        if damping_ratio is not None:
+            changes["damping_ratio"] = np.asarray(damping_ratio, dtype=float)
+        model = replace(self, **changes)
+        if "_interpolator" in self.__dict__:
+            model.__dict__["_interpolator"] = self.__dict__["_interpolator"]
+        return model
 
     def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:
         """Mass-normalised mode shapes at any locations, shaped ``(n, n_modes)``, 1/√kg.

@@ -29,6 +29,7 @@ from racketdyn.impact.approximate import StiffnessReading, predict
 from racketdyn.impact.grid import StringBed
 from racketdyn.impact.result import (
     STATUS_BEYOND_LAW,
+    STATUS_FRAME_CONTACT,
     STATUS_NO_SEPARATION,
     STATUS_OK,
     STATUS_SECOND_CONTACT,
@@ -72,6 +73,7 @@ STATUS_CODES: dict[str, int] = {
     STATUS_NO_SEPARATION: 4,
     STATUS_SECOND_CONTACT: 5,
     STATUS_VIBRATION_SHARE: 6,
+    STATUS_FRAME_CONTACT: 7,
 }
 """Integer codes of the ``status`` variable of a sweep dataset (CF ``flag_values``)."""
 

@@ -33,8 +33,16 @@ from racketdyn.impact.comparison import (
 )
 from racketdyn.impact.grid import StringBed, check_string_bed
 from racketdyn.impact.hand import Hand
-from racketdyn.impact.result import shown_speed_index
+from racketdyn.impact.measured import ModelInputs
+from racketdyn.impact.result import STATUS_FROM_TRANSIENT, shown_speed_index, write_columns
 from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, Engine, predict_transient
+from racketdyn.impact.uncertainty import (
+    Sensitivity,
+    UncertainResult,
+    Uncertainty,
+    propagate,
+    sensitivity,
+)
 from racketdyn.io import racket_to_dict, read_points
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_speeds
@@ -124,6 +132,11 @@ class PredictResult(StepResult):
         (``model="both"``).
     transient_histories : TransientHistories or None
         The time histories as the figure draws them (``model`` transient or both).
+    bands : dict
+        With an ``uncertainty``: each model's samples and bands (``approx``, ``transient``).
+    sensitivity : Sensitivity or None
+        With an ``uncertainty``: Sobol' indices at the centre, tip, throat and 40 mm off the
+        axis, at the shown speed and the first support (``sensitivity.csv``).
     """
 
     racket: Racket | None = None
@@ -151,6 +164,8 @@ class PredictResult(StepResult):
     transient_curves: TransientCurves | None = None
     comparison_map: ComparisonMap | None = None
     transient_histories: TransientHistories | None = None
+    bands: dict[str, UncertainResult] = field(default_factory=dict)
+    sensitivity: Sensitivity | None = None
 
     @property
     def result(self) -> ImpactResult:
@@ -239,6 +254,7 @@ def run_predict(
     vibration_charge: Literal["coupled", "paper"] = "coupled",
     include_string_bed: bool = False,
     string_bed: StringBed = "uniform",
+    uncertainty: Uncertainty | None = None,
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -286,6 +302,11 @@ def run_predict(
         The string bed's law over the face: the face centre's at every point (the paper's,
         default) or each point's own from its strings' lengths
         (:func:`racketdyn.impact.grid.predict_by_point_law`), both models.
+    uncertainty : Uncertainty, optional
+        Uncertain inputs: each model run once per sample (:func:`racketdyn.impact.
+        uncertainty.propagate`), the bands written beside the numbers (``<column>_mean``,
+        ``_sd``, ``_p05``, ``_p95``, ``samples_valid``) and every sample in
+        ``uncertainty.nc`` (``uncertainty_transient.nc`` for the transient with both).
     allow_implausible : bool
         Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     defaults : sequence of str
@@ -395,14 +416,25 @@ def run_predict(
     if model in ("transient", "both"):
         report(progress, f"transient model ({engine} engine): {n_impacts} impacts")
         _transient_part(result, locations, labels, progress, options)
+    if uncertainty is not None:
+        model_inputs = ModelInputs(
+            used.racket,
+            the_ball,
+            hand=the_hand,
+            modal_model=used.modal_model,
+            include_string_bed=include_string_bed,
+            engine=engine,
+            string_bed=string_bed,
+        )
+        extra = {"stiffness_reading": stiffness_reading, "vibration_charge": vibration_charge}
+        _bands(result, model_inputs, uncertainty, locations, labels, progress, extra)
     if result.approximate is not None and result.transient is not None:
         result.comparison = compare_models(result.approximate, result.transient)
         result.written.append(result.comparison.write_csv(out_dir / "comparison.csv"))
         # rows the approximate method cannot give carry the transient's numbers, marked so
         result.approximate = result.approximate.filled_from(result.transient)
     if result.approximate is not None:
-        result.approximate.write_csv(out_dir / "impact.csv")
-        result.written.append(out_dir / "impact.csv")
+        _write_table(result, result.approximate, out_dir / "impact.csv")
     _figure_data(result, options, progress)
     inputs = {
         **used.provenance,
@@ -417,8 +449,118 @@ def run_predict(
         **result.result.inputs,
         "model": model,
         **_transient_record(result.transient, result.approximate, engine),
+        "uncertainty": None if uncertainty is None else uncertainty.record(),
     }
     return finish_run(result, inputs, command_record(command, "predict"), figures)
+
+
+def _bands(
+    result: PredictResult,
+    inputs: ModelInputs,
+    uncertainty: Uncertainty,
+    locations: NDArray[np.float64],
+    labels: list[str],
+    progress: Progress | None,
+    approximate_options: dict[str, Any],
+) -> None:
+    """Each model's samples and bands; the transient's table rewritten with its bands."""
+    runs = [("approx", result.approximate), ("transient", result.transient)]
+    for method, nominal in runs:
+        if nominal is None:
+            continue
+        name = "approximate method" if method == "approx" else "transient model"
+        report(progress, f"uncertainty: {uncertainty.samples} samples by the {name}")
+        band = propagate(
+            inputs,
+            locations,
+            result.speeds,
+            uncertainty,
+            method=method,  # type: ignore[arg-type]
+            supports=result.supports,
+            racket_speed=np.asarray(result.racket_speed),
+            labels=labels,
+            options=approximate_options if method == "approx" else None,
+            progress=_sample_progress(progress, name),
+        )
+        result.bands[method] = band
+        both = result.approximate is not None and result.transient is not None
+        file = "uncertainty_transient.nc" if method == "transient" and both else "uncertainty.nc"
+        band.to_xarray().to_netcdf(result.out / file)
+        result.written.append(result.out / file)
+    _sensitivity(result, inputs, uncertainty, progress, approximate_options)
+    if result.transient is not None and "transient" in result.bands:
+        both = result.approximate is not None
+        path = result.out / transient_csv_name("both" if both else "transient")
+        write_columns(path, _with_bands(result.transient, result.bands["transient"]))
+
+
+def _sample_progress(progress: Progress | None, name: str) -> Callable[[int, int], None] | None:
+    if progress is None:
+        return None
+    shown = progress
+    return lambda done, total: shown(name, done, total)
+
+
+SENSITIVITY_SAMPLES = 64
+"""Base samples of the Sobol' indices: n (d + 2) model runs for d inputs (448 for five)."""
+
+
+def _sensitivity(
+    result: PredictResult,
+    inputs: ModelInputs,
+    uncertainty: Uncertainty,
+    progress: Progress | None,
+    approximate_options: dict[str, Any],
+) -> None:
+    """Which input dominates at the landmarks: ``sensitivity.csv``."""
+    assert result.racket is not None
+    marks = landmark_points(result.racket)
+    centre = marks["centre"]
+    points = {
+        "centre": centre,
+        "tip": marks["tip"],
+        "throat": marks["throat"],
+        "40 mm off the axis": (centre[0], centre[1] + 0.04),
+    }
+    method = "approx" if result.approximate is not None else "transient"
+    shown = result.shown_speed
+    report(progress, "uncertainty: which input dominates (Sobol' indices)")
+    result.sensitivity = sensitivity(
+        inputs,
+        points,
+        result.speeds[shown],
+        uncertainty,
+        support=result.supports[0],
+        racket_speed=result.racket_speed[shown if len(result.racket_speed) > 1 else 0],
+        n=SENSITIVITY_SAMPLES,
+        method=method,  # type: ignore[arg-type]
+        options=approximate_options if method == "approx" else None,
+    )
+    path = result.out / "sensitivity.csv"
+    rows = result.sensitivity.rows()
+    write_columns(path, {k: np.asarray(v, dtype=object) for k, v in rows.items()})
+    result.written.append(path)
+
+
+def _with_bands(table: ImpactResult, band: UncertainResult | None) -> dict[str, Any]:
+    columns: dict[str, Any] = dict(table.columns)
+    if band is not None:
+        columns.update({k: np.ravel(v) for k, v in band.band_columns().items()})
+    return columns
+
+
+def _write_table(result: PredictResult, table: ImpactResult, path: Path) -> None:
+    """``impact.csv``: the approximate method's rows with their bands; a row filled from the
+    transient model takes the transient's band."""
+    columns = _with_bands(table, result.bands.get("approx"))
+    other = result.bands.get("transient")
+    if "approx" in result.bands and other is not None:
+        filled = np.ravel(table.status) == STATUS_FROM_TRANSIENT
+        for key, values in _with_bands(table, other).items():
+            if key.endswith(("_mean", "_sd", "_p05", "_p95")) or key == "samples_valid":
+                columns[key] = np.where(filled, values, columns[key])
+    write_columns(path, columns)
+    result.written.append(path)
 
 
 def _figure_data(result: PredictResult, options: dict[str, Any], progress: Progress | None) -> None:

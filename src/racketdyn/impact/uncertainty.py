@@ -1,0 +1,712 @@
+"""Uncertainty: what the inputs do not pin down, carried to every impact's numbers.
+
+An :class:`Uncertainty` names the uncertain inputs (:data:`UNCERTAIN_INPUTS`: the calibration
+parameters of :data:`racketdyn.impact.calibration.PARAMETERS` plus the impact's own location
+and ball speed) with a distribution each (:class:`Spread`: normal about the nominal value,
+uniform over a range, or equally likely values).  :func:`propagate` draws quasi-random samples
+of them (:mod:`scipy.stats.qmc`, Sobol' or Latin hypercube, seeded), runs a model once per
+sample over the whole grid, and returns an :class:`UncertainResult`: every sample's numbers,
+the nominal result, and per impact the mean, standard deviation and the 5 % and 95 %
+quantiles of :data:`BAND_QUANTITIES`.
+
+Location and ball speed are offsets from each impact's nominal value (a ball cannon's scatter),
+the same offset for every point and speed of one sample; the model parameters are absolute
+values (``range = [0.80, 0.88]`` for e_BG).  A sample whose impact the model cannot give (a
+status other than ``ok``, e.g. a location scattered onto the frame) is left out of that
+impact's statistics; where fewer than :data:`MIN_VALID_SHARE` of the samples are valid the
+band is NaN (the method cannot give it) and :attr:`UncertainResult.valid_share` says so.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import warnings
+from collections.abc import Callable, Sequence
+from contextlib import ExitStack
+from dataclasses import dataclass, replace
+from typing import Any, Literal, get_args
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+from scipy.stats import norm, qmc
+
+from racketdyn.errors import InputError, one_of
+from racketdyn.impact.approximate import predict
+from racketdyn.impact.calibration import PARAMETERS
+from racketdyn.impact.grid import status_warnings_held
+from racketdyn.impact.hand import Hand
+from racketdyn.impact.measured import Method, ModelInputs
+from racketdyn.impact.result import STATUS_OK, ImpactResult
+from racketdyn.impact.transient import predict_transient
+from racketdyn.racket import as_locations
+
+__all__ = [
+    "BAND_QUANTITIES",
+    "IMPACT_INPUTS",
+    "MIN_VALID_SHARE",
+    "QUANTILES",
+    "SAMPLERS",
+    "SENSITIVITY_OUTPUTS",
+    "UNCERTAIN_INPUTS",
+    "Sensitivity",
+    "Spread",
+    "UncertainResult",
+    "Uncertainty",
+    "propagate",
+    "sensitivity",
+]
+
+log = logging.getLogger(__name__)
+_approximate_log = "racketdyn.impact.approximate"
+_transient_log = "racketdyn.impact.transient"
+
+Sampler = Literal["sobol", "lhs"]
+SAMPLERS: tuple[str, ...] = get_args(Sampler)
+"""Quasi-Monte Carlo designs: ``sobol`` (scrambled Sobol', best in powers of two) or ``lhs``
+(Latin hypercube)."""
+
+IMPACT_INPUTS: dict[str, str] = {
+    "location_m": "impact-location scatter, m, each direction (x and y apart): an offset",
+    "ball_speed_mps": "ball-speed scatter, m/s: an offset on every nominal speed",
+}
+"""Uncertain inputs of the impact itself (offsets from the nominal impact)."""
+
+UNCERTAIN_INPUTS: tuple[str, ...] = (*PARAMETERS, *IMPACT_INPUTS)
+"""Every name an uncertainty file may hold."""
+
+BAND_QUANTITIES: tuple[str, ...] = (
+    "contact_time",
+    "peak_force",
+    "vibration_energy",
+    "rebound_ratio",
+    "rebound_speed",
+)
+"""The :class:`~racketdyn.impact.result.ImpactResult` attributes given with their bands."""
+
+QUANTILES: tuple[float, ...] = (0.05, 0.95)
+"""The band: 5 % and 95 % quantiles (a 90 % band)."""
+
+MIN_VALID_SHARE = 0.9
+"""Share of an impact's samples that must be valid for its band to be given: fewer, and the
+band would describe only the samples that happened to stay within the method."""
+
+
+@dataclass(frozen=True)
+class Spread:
+    """One uncertain input and its distribution: exactly one of ``sd``, ``bounds``, ``values``.
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`UNCERTAIN_INPUTS`.
+    sd : float, optional
+        Standard deviation of a normal distribution about the nominal value (≥ 0).
+    bounds : (float, float), optional
+        ``(low, high)`` of a uniform distribution (``range`` in the file).
+    values : tuple of float
+        Equally likely values.
+    """
+
+    name: str
+    sd: float | None = None
+    bounds: tuple[float, float] | None = None
+    values: tuple[float, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.name not in UNCERTAIN_INPUTS:
+            raise InputError(
+                f"uncertainty [{self.name}]: not an uncertain input; choose from "
+                f"{', '.join(UNCERTAIN_INPUTS)}"
+            )
+        given = [self.sd is not None, self.bounds is not None, bool(self.values)]
+        if sum(given) != 1:
+            raise InputError(
+                f"uncertainty [{self.name}]: give exactly one of sd = x, range = [low, high] "
+                "or values = [...]"
+            )
+        if self.sd is not None and not (math.isfinite(self.sd) and self.sd >= 0.0):
+            raise InputError(f"uncertainty [{self.name}]: sd must be 0 or more, not {self.sd}")
+        if self.bounds is not None:
+            low, high = self.bounds
+            if not (math.isfinite(low) and math.isfinite(high) and low <= high):
+                raise InputError(
+                    f"uncertainty [{self.name}]: range must be [low, high] with low ≤ high, "
+                    f"not [{low}, {high}]"
+                )
+        if self.values and not all(math.isfinite(v) for v in self.values):
+            raise InputError(f"uncertainty [{self.name}]: values must be finite")
+
+    @property
+    def is_offset(self) -> bool:
+        """True for the impact's own inputs, drawn as offsets from the nominal impact."""
+        return self.name in IMPACT_INPUTS
+
+    @property
+    def dimensions(self) -> int:
+        """Sample dimensions it takes: two for the location (x and y), else one."""
+        return 2 if self.name == "location_m" else 1
+
+    @property
+    def pinned(self) -> bool:
+        """True when the distribution is one value."""
+        if self.sd is not None:
+            return self.sd == 0.0
+        if self.bounds is not None:
+            return self.bounds[0] == self.bounds[1]
+        return len(set(self.values)) == 1
+
+    def draw(self, unit: NDArray[np.float64], nominal: float) -> NDArray[np.float64]:
+        """Values from uniform ``unit`` samples in [0, 1) (inverse distribution function).
+
+        A normal spread is centred on ``nominal`` (0 for an offset); a range and values are
+        taken as given.
+        """
+        centre = 0.0 if self.is_offset else nominal
+        if self.sd is not None:
+            u = np.clip(unit, 1e-12, 1.0 - 1e-12)
+            return np.asarray(centre + self.sd * norm.ppf(u))
+        if self.bounds is not None:
+            low, high = self.bounds
+            return np.asarray(low + (high - low) * unit)
+        table = np.asarray(self.values, dtype=float)
+        index = np.minimum((unit * table.size).astype(int), table.size - 1)
+        return np.asarray(table[index])
+
+    def describe(self) -> str:
+        """The distribution in words, for run records and the report."""
+        if self.sd is not None:
+            return f"normal, sd {self.sd:g}" + (" (offset)" if self.is_offset else "")
+        if self.bounds is not None:
+            return f"uniform {self.bounds[0]:g} to {self.bounds[1]:g}" + (
+                " (offset)" if self.is_offset else ""
+            )
+        return "equally likely " + ", ".join(f"{v:g}" for v in self.values)
+
+
+@dataclass(frozen=True)
+class Uncertainty:
+    """The uncertain inputs and how they are sampled.
+
+    Parameters
+    ----------
+    spreads : tuple of Spread
+        One per uncertain input, each name once.
+    samples : int
+        Number of samples (default 256; Sobol' is balanced at powers of two).
+    seed : int
+        Seed of the scrambled design: the same seed, the same samples.
+    sampler : {"sobol", "lhs"}
+        Quasi-Monte Carlo design.
+    """
+
+    spreads: tuple[Spread, ...]
+    samples: int = 256
+    seed: int = 0
+    sampler: Sampler = "sobol"
+
+    def __post_init__(self) -> None:
+        names = [s.name for s in self.spreads]
+        if len(set(names)) != len(names):
+            raise InputError("uncertainty: name each input once")
+        if not self.spreads:
+            raise InputError("uncertainty: give at least one uncertain input")
+        if isinstance(self.samples, bool) or not isinstance(self.samples, int):
+            raise InputError(f"`samples` must be a whole number, not {self.samples!r}")
+        if not 2 <= self.samples <= 1_000_000:
+            raise InputError(f"`samples` must be 2 to 1,000,000, not {self.samples}")
+        if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
+            raise InputError(f"`seed` must be a whole number ≥ 0, not {self.seed!r}")
+        one_of("sampler", self.sampler, SAMPLERS)
+
+    def unit_samples(self) -> NDArray[np.float64]:
+        """``(samples, dimensions)`` quasi-random points in the unit cube, seeded."""
+        d = sum(s.dimensions for s in self.spreads)
+        engine: qmc.QMCEngine = (
+            qmc.Sobol(d, scramble=True, seed=self.seed)
+            if self.sampler == "sobol"
+            else qmc.LatinHypercube(d, seed=self.seed)
+        )
+        with warnings.catch_warnings():
+            # Sobol' points lose their balance off powers of two: said in the docs, not on
+            # every call
+            warnings.filterwarnings("ignore", "The balance properties", UserWarning)
+            return np.asarray(engine.random(self.samples))
+
+    def record(self) -> dict[str, Any]:
+        """What was sampled, for run.json."""
+        return {
+            "samples": self.samples,
+            "seed": self.seed,
+            "sampler": self.sampler,
+            "inputs": {s.name: s.describe() for s in self.spreads},
+            "band": f"{QUANTILES[0]:.0%}–{QUANTILES[1]:.0%} quantiles",
+            "min_valid_share": MIN_VALID_SHARE,
+        }
+
+
+@dataclass(frozen=True)
+class Draws:
+    """The drawn values: model parameters (absolute) and impact offsets, one row a sample."""
+
+    parameters: dict[str, NDArray[np.float64]]
+    location_offset: NDArray[np.float64]
+    speed_offset: NDArray[np.float64]
+
+    def inputs_table(self) -> dict[str, NDArray[np.float64]]:
+        """Every drawn column by name (location as x and y)."""
+        table = dict(self.parameters)
+        table["location_x_offset_m"] = self.location_offset[:, 0]
+        table["location_y_offset_m"] = self.location_offset[:, 1]
+        table["ball_speed_offset_mps"] = self.speed_offset
+        return table
+
+
+def draw(uncertainty: Uncertainty, inputs: ModelInputs) -> Draws:
+    """The samples of every uncertain input (model parameters about ``inputs``' values)."""
+    unit = uncertainty.unit_samples()
+    n = unit.shape[0]
+    parameters: dict[str, NDArray[np.float64]] = {}
+    location = np.zeros((n, 2))
+    speed = np.zeros(n)
+    column = 0
+    for spread in uncertainty.spreads:
+        block = unit[:, column : column + spread.dimensions]
+        column += spread.dimensions
+        if spread.name == "location_m":
+            location = np.column_stack([spread.draw(block[:, k], 0.0) for k in range(2)])
+        elif spread.name == "ball_speed_mps":
+            speed = spread.draw(block[:, 0], 0.0)
+        else:
+            nominal = PARAMETERS[spread.name].get(inputs)
+            parameters[spread.name] = spread.draw(block[:, 0], nominal)
+    return Draws(parameters, location, speed)
+
+
+@dataclass(frozen=True)
+class UncertainResult:
+    """Every sample's impacts, the nominal impact and the bands.
+
+    Attributes
+    ----------
+    nominal : ImpactResult
+        The impacts at the nominal inputs.
+    samples : dict
+        :data:`BAND_QUANTITIES` attribute → ``(n_samples, n_points, n_speeds, n_supports)``
+        (NaN where that sample's impact is not valid).
+    valid : ndarray of bool
+        ``(n_samples, n_points, n_speeds, n_supports)``: the sample's status is ``ok``.
+    draws : Draws
+        The drawn inputs.
+    uncertainty : Uncertainty
+        What was sampled.
+    method : str
+        ``approx`` or ``transient``.
+    """
+
+    nominal: ImpactResult
+    samples: dict[str, NDArray[np.float64]]
+    valid: NDArray[np.bool_]
+    draws: Draws
+    uncertainty: Uncertainty
+    method: str
+
+    @property
+    def valid_share(self) -> NDArray[np.float64]:
+        """``(n_points, n_speeds, n_supports)`` share of samples the method could give."""
+        return np.asarray(self.valid.mean(axis=0))
+
+    def _given(self) -> NDArray[np.bool_]:
+        return np.asarray(self.valid_share >= MIN_VALID_SHARE)
+
+    def quantile(self, attribute: str, q: float) -> NDArray[np.float64]:
+        """``q`` quantile of a quantity over the valid samples, per impact (NaN where the band
+        is not given)."""
+        values = self.samples[attribute]
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
+            out = np.nanquantile(values, q, axis=0)
+        return np.asarray(np.where(self._given(), out, np.nan))
+
+    def mean(self, attribute: str) -> NDArray[np.float64]:
+        """Mean over the valid samples, per impact (NaN where the band is not given)."""
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", "Mean of empty slice", RuntimeWarning)
+            out = np.nanmean(self.samples[attribute], axis=0)
+        return np.asarray(np.where(self._given(), out, np.nan))
+
+    def sd(self, attribute: str) -> NDArray[np.float64]:
+        """Standard deviation over the valid samples (n − 1), per impact."""
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", "Degrees of freedom", RuntimeWarning)
+            out = np.nanstd(self.samples[attribute], axis=0, ddof=1)
+        return np.asarray(np.where(self._given(), out, np.nan))
+
+    def band_columns(self) -> dict[str, NDArray[np.float64]]:
+        """Per impact, ``<column>_mean``, ``_sd``, ``_p05``, ``_p95`` for every band quantity
+        (columns named after :data:`~racketdyn.impact.result.IMPACT_QUANTITIES`), plus
+        ``samples_valid``; each ``(n_points, n_speeds, n_supports)``."""
+        names = {q.attribute: q.name for q in _quantities()}
+        columns: dict[str, NDArray[np.float64]] = {}
+        for attribute in BAND_QUANTITIES:
+            name = names[attribute]
+            columns[f"{name}_mean"] = self.mean(attribute)
+            columns[f"{name}_sd"] = self.sd(attribute)
+            for q in QUANTILES:
+                columns[f"{name}_p{round(100 * q):02d}"] = self.quantile(attribute, q)
+        columns["samples_valid"] = self.valid_share
+        return columns
+
+    def to_xarray(self) -> xr.Dataset:
+        """The nominal dataset with the bands as ``<name>_mean/_sd/_p05/_p95`` variables and
+        every sample's value on a ``sample`` dimension (``<name>_samples``)."""
+        data = self.nominal.to_xarray()
+        dims = ("point", "speed", "support")
+        units = {q.attribute: (q.name, q.units) for q in _quantities()}
+        for name, values in self.band_columns().items():
+            base = name.rsplit("_", 1)[0]
+            unit = next((u for n, u in units.values() if n == base), "1")
+            data[name] = (dims, values, {"units": unit if name != "samples_valid" else "1"})
+        for attribute in BAND_QUANTITIES:
+            name, unit = units[attribute]
+            data[f"{name}_samples"] = (("sample", *dims), self.samples[attribute], {"units": unit})
+        for column, values in self.draws.inputs_table().items():
+            data[f"drawn_{column}"] = (("sample",), values)
+        data.attrs["uncertainty"] = str(self.uncertainty.record())
+        data.attrs["uncertainty_method"] = self.method
+        return data
+
+
+def _quantities() -> Sequence[Any]:
+    from racketdyn.impact.result import IMPACT_QUANTITIES
+
+    return IMPACT_QUANTITIES
+
+
+def _inside(racket_head: Any, xy: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Points scattered off the bed put back on its edge (where they are frame shots)."""
+    rho = racket_head.normalised_radius(xy)
+    scale = np.where(rho > 1.0 - 1e-9, (1.0 - 1e-9) / np.maximum(rho, 1e-300), 1.0)
+    centre = np.array([racket_head.centre_x_m, racket_head.centre_y_m])
+    return np.asarray(centre + (xy - centre) * scale[:, None])
+
+
+def _sample_inputs(inputs: ModelInputs, draws: Draws, k: int) -> ModelInputs:
+    for name, values in draws.parameters.items():
+        inputs = PARAMETERS[name].set(inputs, float(values[k]))
+    return inputs
+
+
+def _run(
+    method: Method,
+    inputs: ModelInputs,
+    locations: NDArray[np.float64],
+    speeds: NDArray[np.float64],
+    options: dict[str, Any],
+) -> ImpactResult:
+    common = {
+        "modal_model": inputs.modes(),
+        "law": None if inputs.string_bed == "local" else inputs.law(),
+        "string_bed": inputs.string_bed,
+        "include_string_bed": inputs.include_string_bed,
+        **options,
+    }
+    if method == "approx":
+        return predict(inputs.effective_racket, inputs.ball, locations, speeds, **common)
+    hand = (inputs.hand or Hand()) if "hand" in common["supports"] else None
+    return predict_transient(
+        inputs.effective_racket,
+        inputs.ball,
+        locations,
+        speeds,
+        engine=inputs.engine,  # type: ignore[arg-type]
+        hand=hand,
+        **common,
+    )
+
+
+def propagate(
+    inputs: ModelInputs,
+    locations: ArrayLike,
+    ball_speed: ArrayLike,
+    uncertainty: Uncertainty,
+    *,
+    method: Method = "approx",
+    supports: Sequence[str] = ("free",),
+    racket_speed: ArrayLike = 0.0,
+    labels: Sequence[str] | None = None,
+    options: dict[str, Any] | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> UncertainResult:
+    """Carry the uncertain inputs through a model to every impact of a grid.
+
+    Parameters
+    ----------
+    inputs : ModelInputs
+        The nominal racket, ball, hand, modes and scales.
+    locations : array_like, shape (n, 2)
+        Nominal impact points (x, y), m.
+    ball_speed : array_like
+        Nominal ball speeds, m/s.
+    uncertainty : Uncertainty
+        The uncertain inputs and the sampling.
+    method : {"approx", "transient"}
+        The approximate method (eqs 1–12) or the transient simulation.
+    supports : sequence of str
+        Supports, as the model takes them.
+    racket_speed : array_like
+        Racket speed at the impact point, one or one per ball speed, m/s.
+    labels : sequence of str, optional
+        Point labels.
+    options : dict, optional
+        More keyword arguments of the model (e.g. the approximate method's
+        ``stiffness_reading``).
+    progress : callable, optional
+        ``progress(done, total)`` after each sample.
+
+    Returns
+    -------
+    UncertainResult
+    """
+    xy = as_locations(locations, "impact points")
+    speeds = np.atleast_1d(np.asarray(ball_speed, dtype=float))
+    model_options: dict[str, Any] = {
+        "supports": list(supports),
+        "racket_speed": racket_speed,
+        "labels": labels,
+        **(options or {}),
+    }
+    nominal = _run(method, inputs, xy, speeds, model_options)
+    draws = draw(uncertainty, inputs)
+    n = uncertainty.samples
+    samples = {a: np.full((n, *nominal.shape), np.nan) for a in BAND_QUANTITIES}
+    valid = np.zeros((n, *nominal.shape), dtype=bool)
+    head = inputs.racket.head
+    with ExitStack() as stack:
+        for name in (_approximate_log, _transient_log):
+            stack.enter_context(status_warnings_held(name))
+        for k in range(n):
+            sample = _sample_inputs(inputs, draws, k)
+            where = _inside(head, xy + draws.location_offset[k])
+            v = np.maximum(speeds + draws.speed_offset[k], 0.1)
+            result = _run(method, sample, where, v, model_options)
+            ok = np.asarray(result.status) == STATUS_OK
+            valid[k] = ok
+            for attribute in BAND_QUANTITIES:
+                samples[attribute][k] = np.where(ok, getattr(result, attribute), np.nan)
+            if progress is not None:
+                progress(k + 1, n)
+    flagged = int(np.count_nonzero(~valid))
+    log.info("uncertainty: %d samples by the %s model", n, method)
+    if flagged:
+        log.warning(
+            "uncertainty: %d of %d sampled impacts are beyond the %s model (left out of "
+            "their bands; a band with under %.0f %% valid samples is NaN)",
+            flagged, valid.size, method, 100 * MIN_VALID_SHARE,
+        )  # fmt: skip
+    return UncertainResult(
+        nominal=nominal,
+        samples=samples,
+        valid=valid,
+        draws=draws,
+        uncertainty=uncertainty,
+        method=method,
+    )
+
+
+def widened(uncertainty: Uncertainty, name: str, factor: float) -> Uncertainty:
+    """The same uncertainty with one input's spread scaled by ``factor`` about its centre."""
+    spreads = []
+    for s in uncertainty.spreads:
+        if s.name == name:
+            if s.sd is not None:
+                s = replace(s, sd=s.sd * factor)
+            elif s.bounds is not None:
+                mid, half = 0.5 * (s.bounds[0] + s.bounds[1]), 0.5 * (s.bounds[1] - s.bounds[0])
+                s = replace(s, bounds=(mid - factor * half, mid + factor * half))
+        spreads.append(s)
+    return replace(uncertainty, spreads=tuple(spreads))
+
+
+SENSITIVITY_OUTPUTS: tuple[str, ...] = ("rebound_ratio", "contact_time", "vibration_energy")
+"""The quantities whose Sobol' indices :func:`sensitivity` gives."""
+
+
+@dataclass(frozen=True)
+class _Marginal:
+    """One input's distribution as :func:`scipy.stats.sobol_indices` takes it (a ``ppf``)."""
+
+    spread: Spread
+    nominal: float
+
+    def ppf(self, unit: NDArray[np.float64]) -> NDArray[np.float64]:
+        return self.spread.draw(np.asarray(unit, dtype=float), self.nominal)
+
+
+@dataclass(frozen=True)
+class Sensitivity:
+    """Sobol' first-order and total indices of each output to each uncertain input.
+
+    Attributes
+    ----------
+    labels : tuple of str
+        The points (``centre``, ``tip``, …).
+    locations : ndarray
+        ``(n_points, 2)`` the points, m.
+    inputs : tuple of str
+        The uncertain inputs (the location as ``location_m x`` and ``location_m y``).
+    first_order, total_order : ndarray
+        ``(n_outputs, n_points, n_inputs)``; NaN where a sample of that point was not valid
+        (the estimator needs every sample).
+    ball_speed : float
+        Ball speed, m/s.
+    support : str
+        The support.
+    evaluations : int
+        Model runs it took (``n (d + 2)``).
+    """
+
+    labels: tuple[str, ...]
+    locations: NDArray[np.float64]
+    inputs: tuple[str, ...]
+    first_order: NDArray[np.float64]
+    total_order: NDArray[np.float64]
+    ball_speed: float
+    support: str
+    evaluations: int
+
+    def dominant(self, point: int, output: str = "rebound_ratio") -> str:
+        """The input with the largest total index at a point ("" when not known)."""
+        total = self.total_order[SENSITIVITY_OUTPUTS.index(output), point]
+        if not np.all(np.isfinite(total)):
+            return ""
+        return self.inputs[int(np.argmax(total))]
+
+    def rows(self) -> dict[str, list[Any]]:
+        """``sensitivity.csv``: one row per point × output × input."""
+        table: dict[str, list[Any]] = {
+            key: []
+            for key in (
+                "point", "x_m", "y_m", "ball_speed_mps", "support", "output", "input",
+                "first_order", "total_order",
+            )
+        }  # fmt: skip
+        for o, output in enumerate(SENSITIVITY_OUTPUTS):
+            for p, label in enumerate(self.labels):
+                for i, name in enumerate(self.inputs):
+                    values = (
+                        label, self.locations[p, 0], self.locations[p, 1], self.ball_speed,
+                        self.support, output, name, self.first_order[o, p, i],
+                        self.total_order[o, p, i],
+                    )  # fmt: skip
+                    for key, value in zip(table, values, strict=True):
+                        table[key].append(value)
+        return table
+
+
+def sensitivity(
+    inputs: ModelInputs,
+    points: dict[str, tuple[float, float]],
+    ball_speed: float,
+    uncertainty: Uncertainty,
+    *,
+    support: str = "free",
+    racket_speed: float = 0.0,
+    n: int = 64,
+    method: Method = "approx",
+    options: dict[str, Any] | None = None,
+) -> Sensitivity:
+    """Which input dominates: Sobol' first-order and total indices at named points.
+
+    :func:`scipy.stats.sobol_indices` (Saltelli 2010 estimators on a scrambled Sobol'
+    design, seeded with the uncertainty's seed); ``n (d + 2)`` model runs for ``d`` inputs
+    (the location counts twice: x and y).
+
+    Parameters
+    ----------
+    inputs : ModelInputs
+        The nominal inputs.
+    points : dict
+        Label → (x, y), m.
+    ball_speed : float
+        Ball speed, m/s.
+    uncertainty : Uncertainty
+        The uncertain inputs.
+    support : str
+        One support.
+    racket_speed : float
+        Racket speed at the impact point, m/s.
+    n : int
+        Base samples, a power of two.
+    method : {"approx", "transient"}
+        The model.
+    options : dict, optional
+        More keyword arguments of the model.
+
+    Returns
+    -------
+    Sensitivity
+    """
+    from scipy.stats import sobol_indices
+
+    if n < 8 or n & (n - 1):
+        raise InputError(f"`n` for Sobol' indices must be a power of two ≥ 8, not {n}")
+    labels = tuple(points)
+    xy = as_locations(list(points.values()), "sensitivity points")
+    marginals: list[_Marginal] = []
+    names: list[str] = []
+    for spread in uncertainty.spreads:
+        if spread.name == "location_m":
+            marginals += [_Marginal(spread, 0.0), _Marginal(spread, 0.0)]
+            names += ["location_m x", "location_m y"]
+        else:
+            nominal = 0.0 if spread.is_offset else PARAMETERS[spread.name].get(inputs)
+            marginals.append(_Marginal(spread, nominal))
+            names.append(spread.name)
+    model_options = {"supports": [support], "racket_speed": racket_speed, **(options or {})}
+    n_out = len(SENSITIVITY_OUTPUTS) * len(labels)
+    valid = np.ones(len(labels), dtype=bool)
+
+    def run(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        out = np.empty((n_out, x.shape[1]))
+        for k in range(x.shape[1]):
+            sample, offset, speed = inputs, np.zeros(2), ball_speed
+            for value, name in zip(x[:, k], names, strict=True):
+                if name == "location_m x":
+                    offset[0] = value
+                elif name == "location_m y":
+                    offset[1] = value
+                elif name == "ball_speed_mps":
+                    speed = max(ball_speed + value, 0.1)
+                else:
+                    sample = PARAMETERS[name].set(sample, float(value))
+            where = _inside(inputs.racket.head, xy + offset)
+            result = _run(method, sample, where, np.array([speed]), model_options)
+            ok = np.asarray(result.status)[:, 0, 0] == STATUS_OK
+            valid[~ok] = False
+            values = np.stack([getattr(result, a)[:, 0, 0] for a in SENSITIVITY_OUTPUTS])
+            out[:, k] = np.where(ok[None, :], values, 0.0).ravel()
+        return out
+
+    with ExitStack() as stack:
+        for name in (_approximate_log, _transient_log):
+            stack.enter_context(status_warnings_held(name))
+        found = sobol_indices(
+            func=run, n=n, dists=marginals, rng=np.random.default_rng(uncertainty.seed)
+        )
+    shape = (len(SENSITIVITY_OUTPUTS), len(labels), len(names))
+    first = np.asarray(found.first_order).reshape(shape)
+    total = np.asarray(found.total_order).reshape(shape)
+    first[:, ~valid] = np.nan
+    total[:, ~valid] = np.nan
+    return Sensitivity(
+        labels=labels,
+        locations=xy,
+        inputs=tuple(names),
+        first_order=first,
+        total_order=total,
+        ball_speed=float(ball_speed),
+        support=support,
+        evaluations=n * (len(names) + 2),
+    )
