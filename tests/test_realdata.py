@@ -2,11 +2,21 @@
 
 from __future__ import annotations
 
+import logging
+from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
+import pandas as pd
+import pytest
+import pyuff
+
 import realdata
+from racketdyn.cli import main
+from racketdyn.io.frf_layout import read_frfs
 from racketdyn.io.uff import read_hammer_csv
 from racketdyn.measurement.frf import estimate_frfs
+from racketdyn.modal.identify import identify
 
 
 def test_wing_quantised_hits_are_not_double_hits(tmp_path: Path) -> None:
@@ -22,3 +32,45 @@ def test_wing_quantised_hits_are_not_double_hits(tmp_path: Path) -> None:
     assert [c for c in estimate.checks if not c.accepted] == []
     assert estimate.frfs is not None
     assert estimate.frfs.nodes == tuple(range(1, 19))
+
+
+def _raw_frf(path: Path) -> np.ndarray:
+    """The file's one FRF as stored (pyuff, no reading of racketdyn's)."""
+    (dataset,) = [d for d in [pyuff.UFF(str(path)).read_sets(0)] if d["type"] == 58]
+    return np.asarray(dataset["data"], dtype=complex)
+
+
+def test_vtb_conjugate_phase_convention_is_conjugated(tmp_path: Path, caplog) -> None:
+    # vtb_siglab case 2: a SigLab FRF with the conjugate convention (e^{-iωt}; its phase rises
+    # through the resonance), its peak 62 dB above the median line.  It was refused as "the
+    # band may hold no mode above the noise"; conjugated it gives its mode at 192.5 Hz.
+    path = realdata.file("vtb_siglab/vtb_case2.uff.xz", tmp_path)
+    raw = _raw_frf(path)
+    with caplog.at_level(logging.WARNING):
+        frfs = read_frfs(path, require_coordinates=False)
+    assert "conjugated" in caplog.text
+    assert frfs.metadata["conjugated"]
+    np.testing.assert_allclose(frfs.values[0], np.conj(raw))
+    found = identify(frfs).model.frequency
+    expected = identify(replace(frfs, values=np.conj(raw)[None, :])).model.frequency
+    np.testing.assert_allclose(found, expected)
+    assert found == pytest.approx([192.5], abs=0.3)
+
+
+def test_vtb_usual_phase_convention_is_unchanged(tmp_path: Path, caplog) -> None:
+    # case 1, the usual convention (the phase falls through the resonance): read as stored
+    path = realdata.file("vtb_siglab/vtb_case1.uff.xz", tmp_path)
+    with caplog.at_level(logging.WARNING):
+        frfs = read_frfs(path, require_coordinates=False)
+    assert "conjugat" not in caplog.text
+    np.testing.assert_allclose(frfs.values[0], _raw_frf(path))
+    assert identify(frfs).model.frequency == pytest.approx([212.08], abs=0.05)
+
+
+def test_vtb_identify_command_says_it_conjugated(tmp_path: Path, capsys) -> None:
+    path = realdata.file("vtb_siglab/vtb_case2.uff.xz", tmp_path)
+    assert main(["identify", str(path), "--out", str(tmp_path / "out")]) == 0
+    said = capsys.readouterr()
+    assert "conjugated" in said.out + said.err
+    modes = pd.read_csv(tmp_path / "out" / "modes.csv")
+    assert modes["frequency_hz"].to_numpy() == pytest.approx([192.5], abs=0.3)

@@ -174,6 +174,13 @@ def print_modes(console: Console, identification: Identification) -> None:
             "dropped_modes.csv",
             "dim",
         )
+    conjugated = identification.frfs.metadata.get("conjugated")
+    if conjugated:
+        opt.say(
+            console,
+            f"FRFs conjugated: their {conjugated}, the conjugate convention e^(-iωt) of some "
+            "analysers (identification assumes e^(iωt))",
+        )
     if identification.scaling_note:
         opt.say(console, f"shapes: {identification.scaling_note}")
     if not model.has_locations:

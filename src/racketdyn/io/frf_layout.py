@@ -262,7 +262,7 @@ def read_frfs(
     coherence = _coherence(path, every, ref, nodes, first) if layout == "roving hammer" else None
     estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
     bandwidth = _bandwidth_of([by_node[n] for n in nodes])
-    return FrfSet(
+    frfs = FrfSet(
         frequency=first.x * frequency_scale,
         values=values,
         frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
@@ -284,6 +284,7 @@ def read_frfs(
             **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
         },
     )
+    return frfs.with_usual_phase()  # an analyser's e^(-iωt) undone (vtb_siglab's case 2)
 
 
 def read_frf_uff(

@@ -304,7 +304,10 @@ def identify(
       or no driving point at all: every mode kept, shapes unscaled (largest magnitude 1),
       ``model.scaling == "unscaled"``; smaller negative ones leave their mode out.
 
-    Everything left out is in ``selected.dropped_modes`` (``dropped_modes.csv``).
+    Everything left out is in ``selected.dropped_modes`` (``dropped_modes.csv``).  A set whose
+    phase rises through its resonances (the conjugate convention e^{−iωt} of some analysers)
+    is conjugated first (:meth:`~racketdyn.measurement.records.FrfSet.with_usual_phase`,
+    logged, ``frfs.metadata["conjugated"]``).
 
     Parameters
     ----------
@@ -330,6 +333,7 @@ def identify(
     """
     if not np.isnan(frfs.locations).all():  # none: a model without coordinates
         frfs.require_locations("identification (the mode shapes at the points)")
+    frfs = frfs.with_usual_phase()  # a set of the conjugate convention (read_frfs does it too)
     band = _checked_band(frfs, band_hz or default_band(frfs))
     stab = stabilisation(frfs, band, max_order=max_order)
     selected = select_poles(

@@ -1,0 +1,62 @@
+"""FRFs written with the conjugate phase convention (e^{-iωt}) are read back as usual."""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from racketdyn.io import write_frf_uff
+from racketdyn.io.frf_layout import read_frf_uff, read_frfs
+from racketdyn.measurement.frf import estimate_frfs
+from racketdyn.modal.identify import identify
+from racketdyn.testing.records import Modes, records_for
+
+MODES = Modes(
+    frequency=np.array([120.0, 330.0, 560.0]),
+    damping_ratio=np.array([0.03, 0.02, 0.02]),
+    constants=np.array([[6.0, 4.0, 9.0], [-3.0, 2.5, -5.0], [2.0, -3.0, 4.0]]),
+)
+
+
+@pytest.fixture(scope="module")
+def usual():
+    frfs = estimate_frfs(records_for(MODES, n_averages=1)).frfs
+    assert frfs is not None
+    return frfs.band(1.0, frfs.bandwidth_hz)  # no 0 Hz line (finite when written)
+
+
+def test_the_usual_convention_is_left_alone(usual, tmp_path: Path, caplog) -> None:
+    with caplog.at_level(logging.INFO):
+        read = read_frf_uff(write_frf_uff(usual, tmp_path / "usual.uff"))
+    np.testing.assert_allclose(read.values, usual.values, rtol=1e-9)
+    assert "conjugated" not in read.metadata
+    assert "conjugat" not in caplog.text
+    assert usual.phase_direction() < 0  # the phase falls through a resonance
+
+
+@pytest.mark.parametrize("reader", [read_frf_uff, read_frfs])
+def test_the_conjugate_convention_is_conjugated(usual, tmp_path: Path, caplog, reader) -> None:
+    # An analyser with e^{-iωt} (vtb_siglab's case 2): the phase rises through a resonance.
+    # The driving point's imaginary part then reads negative too, so without conjugating the
+    # set was negated as well, and identification saw no mode.
+    conjugate = replace(usual, values=np.conj(usual.values))
+    with caplog.at_level(logging.WARNING):
+        read = reader(write_frf_uff(conjugate, tmp_path / "conjugate.uff"))
+    np.testing.assert_allclose(read.values, usual.values, rtol=1e-9)
+    assert "conjugated" in read.metadata
+    assert "phase rises through the resonances" in caplog.text
+    assert "conjugated" in caplog.text
+    found = identify(read).model.frequency
+    np.testing.assert_allclose(found, MODES.frequency, rtol=2e-3)
+    assert conjugate.phase_direction() > 0
+
+
+def test_identify_conjugates_a_set_built_in_python(usual) -> None:
+    conjugate = replace(usual, values=np.conj(usual.values))
+    found = identify(conjugate)
+    np.testing.assert_allclose(found.model.frequency, MODES.frequency, rtol=2e-3)
+    assert "conjugated" in found.frfs.metadata
