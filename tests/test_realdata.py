@@ -74,3 +74,17 @@ def test_vtb_identify_command_says_it_conjugated(tmp_path: Path, capsys) -> None
     assert "conjugated" in said.out + said.err
     modes = pd.read_csv(tmp_path / "out" / "modes.csv")
     assert modes["frequency_hz"].to_numpy() == pytest.approx([192.5], abs=0.3)
+
+
+def test_meca0062_accelerometers_outside_the_geometry(tmp_path: Path) -> None:
+    # meca0062_aircraft: the geometry (data set 15) holds the 74 hammer points but not the
+    # three fixed accelerometers (nodes 201-203).  It was refused, "needs node coordinates,
+    # which node the reference lacks"; shapes need only the points.
+    path = realdata.file("meca0062_aircraft/meca0062_aircraft_3acc.uff.xz", tmp_path)
+    frfs = read_frfs(path, reference=201)
+    assert np.isnan(frfs.reference_location).all()
+    assert np.isfinite(frfs.locations).all()
+    assert len(frfs.nodes) == 68  # the tail's 6 points along X left out (another direction)
+    model = identify(frfs).model
+    assert model.has_locations
+    assert model.n_modes >= 8

@@ -95,6 +95,9 @@ class _PointsAndReference:
     def require_locations(self, what: str) -> None:
         """InputError naming ``--geometry`` unless every point has coordinates.
 
+        The reference transducer's own position is not needed (shapes, maps and predictions
+        are at the points), and a fixed accelerometer is often not in a lab's geometry.
+
         Parameters
         ----------
         what : str
@@ -105,10 +108,8 @@ class _PointsAndReference:
             for n, row in zip(self.nodes, np.asarray(self.locations), strict=True)
             if np.isnan(row).any()
         ]
-        if np.isnan(np.asarray(self.reference_location, dtype=float)).any():
-            missing.append(-1)
         if missing:
-            named = ", ".join("the reference" if n == -1 else str(n) for n in missing[:8])
+            named = ", ".join(str(n) for n in missing[:8]) + (", …" if len(missing) > 8 else "")
             raise InputError(
                 f"{self.source}: {what} needs node coordinates, which "
                 f"{noun(len(missing), 'node')} {named} {noun(len(missing), 'lacks', 'lack')}; give "
