@@ -13,6 +13,7 @@ import pyuff
 
 import realdata
 from racketdyn.cli import main
+from racketdyn.errors import InputError
 from racketdyn.io.frf_layout import read_frfs
 from racketdyn.io.uff import read_hammer_csv
 from racketdyn.measurement.frf import estimate_frfs
@@ -88,3 +89,16 @@ def test_meca0062_accelerometers_outside_the_geometry(tmp_path: Path) -> None:
     model = identify(frfs).model
     assert model.has_locations
     assert model.n_modes >= 8
+
+
+def test_wing_geometry_in_inches_is_not_called_mm(tmp_path: Path) -> None:
+    # wing_openmodal's geometry as exported: UFF 2411 in inches, no data set 164, spanning 60
+    # units.  The refusal said "likely in mm" (0.06 m); 60 in = 1.52 m is the wing.
+    frfs = realdata.file("pyuff/pyuff_showcase_measurement.uff", tmp_path)
+    nodes = realdata.file("wing_openmodal/wing_openmodal_nodes.uff", tmp_path)
+    with pytest.raises(InputError) as caught:
+        read_frfs(frfs, geometry=nodes, require_coordinates=False)
+    message = str(caught.value)
+    assert "0.06 m if in mm" in message
+    assert "1.52 m if in inches (likely inches" in message
+    assert "likely in mm" not in message
