@@ -258,8 +258,9 @@ class DroppedMode:
     orders_stable : int
         Model orders it was stable in.
     stage : str
-        ``selection`` (the stabilisation diagram's rules), ``edge`` (a clear mode in the
-        band's edge margin; the reason names the option that keeps it) or ``constants`` (what
+        ``selection`` (the stabilisation diagram's rules), ``merged`` (one peak with a kept
+        mode of the same shape; the reason names it), ``edge`` (a clear mode in the band's
+        edge margin; the reason names the option that keeps it) or ``constants`` (what
         the modal constants showed: no peak in the data, not normalisable at the driving
         point).
     reason : str
@@ -874,7 +875,11 @@ def select_poles(
        π × the line spacing: a narrower peak falls between lines), and no more than
        ``dynamic_range_db`` below the strongest mode's (a hammer test resolves 40–60 dB; a
        "mode" further down is the fit's model of a systematic error, e.g. leakage or the
-       window, whose "noise" the white-noise estimate does not see).
+       window, whose "noise" the white-noise estimate does not see).  Two such modes closer
+       than their half-power width (the mean of their ``2ζf``) whose shapes agree (MAC of
+       the clusters' mean shapes ``cluster_mac`` or more) are one peak the fit split in two:
+       the one stable in more orders is kept, the other is dropped as ``merged`` (its reason
+       names the mode kept).
     3. ``exclude_hz`` drops the selected mode nearest each frequency; ``pin_hz`` forces in the
        cluster nearest each frequency even if step 2 left it out (within ``pin_tolerance``,
        relative).  Everything left out is logged with the reason and listed in ``dropped``.
@@ -906,7 +911,8 @@ def select_poles(
     damping_tolerance : float
         Relative damping tolerance of the clustering.
     cluster_mac : float
-        Smallest MAC between two poles of one cluster.
+        Smallest MAC between two poles of one cluster, and between the mean shapes of two
+        modes merged as one peak.
     pin_tolerance : float
         Relative distance within which a pin or an exclusion finds its mode.
     stability : PoleStability
@@ -972,6 +978,7 @@ def select_poles(
         if not reasons[k] and c.peak < floor:
             below = 20 * math.log10(strongest / max(c.peak, 1e-300))
             reasons[k] = f"peak {below:.0f} dB below the strongest mode's"
+    merged = _merge_one_peak(stab, clusters, reasons, cluster_mac)
     accepted = [not r for r in reasons]
     pinned = [False] * len(clusters)
     centres = np.array([c.frequency for c in clusters])
@@ -1017,7 +1024,7 @@ def select_poles(
 
     dropped = []
     dropped_modes = []
-    for c, reason, keep in zip(clusters, reasons, accepted, strict=True):
+    for k, (c, reason, keep) in enumerate(zip(clusters, reasons, accepted, strict=True)):
         if keep:
             continue
         line = f"{c.frequency:.2f} Hz, ζ = {c.damping_ratio:.4f}, {c.n_orders} orders: {reason}"
@@ -1027,7 +1034,7 @@ def select_poles(
                 float(c.frequency),
                 float(c.damping_ratio),
                 int(c.n_orders),
-                "selection",
+                "merged" if k in merged else "selection",
                 reason,
                 peak_to_noise=float(c.peak_to_noise),
             )
@@ -1072,6 +1079,50 @@ def select_poles(
         dropped=tuple(dropped),
         dropped_modes=tuple(dropped_modes),
     )
+
+
+def _merge_one_peak(
+    stab: Stabilisation, clusters: list[_Cluster], reasons: list[str], cluster_mac: float
+) -> set[int]:
+    """Merge accepted neighbours that are one peak; their reasons set, their indices returned.
+
+    Two accepted modes closer than their half-power width (the mean of their ``2 ζ f``) whose
+    shapes agree (MAC of the clusters' mean shapes at least ``cluster_mac``) are one peak that
+    the fit's higher orders split in two: no single-reference test can tell two modes of one
+    shape under one peak apart.  The one stable in more orders is kept (the larger peak on a
+    tie).  Close modes of other shapes (a symmetric structure's pairs) stay apart.
+    """
+    order = sorted((k for k, r in enumerate(reasons) if not r), key=lambda k: clusters[k].frequency)
+    merged: set[int] = set()
+    if len(order) < 2:
+        return merged
+    kept = order[0]
+    for other in order[1:]:
+        a, b = clusters[kept], clusters[other]
+        apart = abs(b.frequency - a.frequency)
+        width = max(a.damping_ratio, 0.0) * a.frequency + max(b.damping_ratio, 0.0) * b.frequency
+        if apart >= width:
+            kept = other
+            continue
+        shapes = mac(_mean_shape(stab, a.members)[:, None], _mean_shape(stab, b.members)[:, None])
+        alike = float(shapes[0, 0])
+        if alike < cluster_mac:
+            kept = other
+            continue
+        if (b.n_orders, b.peak) > (a.n_orders, a.peak):
+            kept, gone = other, kept
+        else:
+            gone = other
+        stay = clusters[kept]
+        reasons[gone] = (
+            f"one peak with the mode at {stay.frequency:.2f} Hz, merged into it: {apart:.2g} "
+            f"Hz apart, within their half-power width {width:.2g} Hz (2ζf), shapes alike (MAC "
+            f"{alike:.2f} ≥ {cluster_mac:g}); kept the one stable in more orders "
+            f"({stay.n_orders} against {clusters[gone].n_orders})"
+        )
+        merged.add(gone)
+        logger.info("%.2f Hz: %s", clusters[gone].frequency, reasons[gone])
+    return merged
 
 
 def _near(centre: float, target: float, tolerance: float) -> bool:
