@@ -406,9 +406,12 @@ class FrfSet(_PointsAndReference):
         delay's phase falls too; only anti-resonances, where |H| is small, rise.  An analyser
         writing ``H e^{−iωt}`` (SigLab, vtb_siglab's case 2) gives the conjugate FRF, whose
         phase rises through its resonances.  The sign does not depend on the FRF's type nor on
-        its sign (a negated FRF turns the same way).
+        its sign (a negated FRF turns the same way).  Only lines up to :attr:`bandwidth_hz`
+        count: above it (racketdyn's own estimates to fs/2) the anti-alias filter has taken the
+        force away and |H| is the response's noise over nothing, large enough to outweigh the
+        resonances.
         """
-        h = self.values[:, self.frequency > 0]
+        h = self.values[:, (self.frequency > 0) & (self.frequency <= self.bandwidth_hz)]
         h = h[:, np.all(np.isfinite(h), axis=0)]
         turns = np.conj(h[:, :-1]) * h[:, 1:]
         weight = float(np.sum(np.abs(turns)))
