@@ -162,7 +162,8 @@ def print_modes(console: Console, identification: Identification) -> None:
         f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
         f"condition {identification.fit.condition_number:.3g}",
     )
-    later = [d for d in identification.dropped_modes if d.stage in ("constants", "edge", "merged")]
+    said = ("constants", "edge", "merged", "unsettled", "line")  # the rest: noise's candidates
+    later = [d for d in identification.dropped_modes if d.stage in said]
     for row in later:
         opt.say(console, f"left out {row.frequency_hz:.2f} Hz: {row.reason}")
     candidates = len(identification.dropped_modes) - len(later)

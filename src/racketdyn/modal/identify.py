@@ -45,6 +45,9 @@ __all__ = [
     "EDGE_CLEAR",
     "EDGE_MARGIN",
     "FIT_GAIN_MIN",
+    "LINE_DAMPING",
+    "LINE_TOLERANCE_HZ",
+    "MAINS_HZ",
     "STRONG_NEGATIVE",
     "Identification",
     "default_band",
@@ -78,6 +81,15 @@ EDGE_CLEAR = 0.1
 naming the option that keeps it) when it is stable in more than three orders and its peak is at
 least this fraction of the median kept mode's (20 dB): the bar's 873 Hz mode 7 Hz below an
 880 Hz top scores ≈ 0.9, edge poles of noise ≤ 0.01 (tests/test_band.py)."""
+MAINS_HZ = (50.0, 60.0)
+"""Mains frequencies whose harmonics an accelerometer's cable picks up (electrical lines)."""
+LINE_TOLERANCE_HZ = 0.1
+"""A dropped candidate this close to a harmonic of :data:`MAINS_HZ` may be an electrical line."""
+LINE_DAMPING = 5e-4
+"""... when its damping ratio is below this (0.05 %): a sine of constant amplitude over the
+record is a pole on the unit circle, ζ ≈ 0 (hum added to synthetic records: ζ ≤ 0.03 %).
+A structure's mode on a harmonic keeps its damping and stays a mode (pyFRF's 900 Hz, 18 × 50
+Hz, ζ 0.11 %, decays in every hit: tests/test_realdata.py)."""
 HEADER_DIGITS_RTOL = 1e-5
 """A band top this far (relative) above the last line is the last line: the UFF header keeps
 the step with 6 significant digits (E13.5), so a 1000 Hz export reads 999.997 Hz."""
@@ -183,6 +195,77 @@ def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]
         )
     rest = tuple(d for d in selected.dropped_modes if all(d is not c for c in clear))
     return replace(selected, dropped_modes=(*rest, *rows))
+
+
+def _harmonics(frequency: float) -> list[str]:
+    """The mains harmonics within :data:`LINE_TOLERANCE_HZ` of ``frequency`` ("5 × 50 Hz")."""
+    found = []
+    for mains in MAINS_HZ:
+        k = round(frequency / mains)
+        if k >= 1 and abs(frequency - k * mains) <= LINE_TOLERANCE_HZ:
+            found.append(f"{k} × {mains:g} Hz")
+    return found
+
+
+def _named_rows(selected: SelectedPoles) -> SelectedPoles:
+    """Dropped candidates that are not noise, named: electrical lines and unsettled clear peaks.
+
+    A candidate left out by the stabilisation rules (stage ``selection``) is
+
+    - likely an electrical ``line`` when it sits on a mains harmonic
+      (:data:`LINE_TOLERANCE_HZ`) with a damping ratio of about zero (:data:`LINE_DAMPING`):
+      it stays out, its row says what it likely is (from FRFs alone the pole of a hammer
+      pulse's spectral zero on a harmonic looks the same: a 1 ms half-sine's at 1500 Hz);
+    - ``unsettled`` when it was stable in too few orders (but more than three) while its peak
+      is at least the median kept mode's and does not overlap a kept mode's (their half-power
+      widths apart): a clear peak whose poles move from order to order (pyFRF's 4128 Hz,
+      10⁵ × the noise, stable in 6 of 60 orders); its row names the ``--pin`` that keeps it.
+    """
+    reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
+    width = 2 * np.maximum(selected.damping_ratio, 0.0) * selected.frequency
+
+    def own(d: DroppedMode) -> float:
+        return 2 * max(d.damping_ratio, 0.0) * d.frequency_hz
+
+    rows: list[DroppedMode] = []
+    for d in selected.dropped_modes:
+        if d.stage != "selection":
+            rows.append(d)
+            continue
+        harmonics = _harmonics(d.frequency_hz)
+        if harmonics and abs(d.damping_ratio) < LINE_DAMPING:
+            rows.append(
+                replace(
+                    d,
+                    stage="line",
+                    reason=(
+                        f"likely an electrical line, not a mode: on the mains harmonic "
+                        f"{' or '.join(harmonics)} with ζ {100 * d.damping_ratio:.3f} % "
+                        f"(< {100 * LINE_DAMPING:g} %: a hum of constant amplitude); "
+                        f"{d.reason}"
+                    ),
+                )
+            )
+        elif (
+            d.reason.startswith("stable in")
+            and d.orders_stable > 3
+            and d.peak_to_noise >= reference
+            and not np.any(np.abs(selected.frequency - d.frequency_hz) < width + own(d))
+        ):
+            rows.append(
+                replace(
+                    d,
+                    stage="unsettled",
+                    reason=(
+                        f"a clear peak ({d.peak_to_noise:.2g} × the noise, the kept modes' "
+                        f"median {reference:.2g}) whose poles move from order to order: "
+                        f"{d.reason}; --pin {d.frequency_hz:.1f} keeps it"
+                    ),
+                )
+            )
+        else:
+            rows.append(d)
+    return replace(selected, dropped_modes=tuple(rows))
 
 
 @dataclass(frozen=True, eq=False)
@@ -339,10 +422,12 @@ def identify(
     selected = select_poles(
         stab, pin_hz=pin_hz, exclude_hz=exclude_hz, edge_margin=EDGE_MARGIN
     )  # raises if none
-    selected = _edge_modes(selected, frfs, band)
+    selected = _named_rows(_edge_modes(selected, frfs, band))
     for row in selected.dropped_modes:
-        if row.stage == "edge":
+        if row.stage in ("edge", "unsettled"):
             log.warning("%.1f Hz left out: %s", row.frequency_hz, row.reason)
+        elif row.stage == "line":
+            log.info("%.2f Hz left out: %s", row.frequency_hz, row.reason)
     fit = fit_modal_constants(frfs, selected.pole, band)
     late: list[DroppedMode] = []
 

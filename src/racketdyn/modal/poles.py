@@ -259,8 +259,10 @@ class DroppedMode:
         Model orders it was stable in.
     stage : str
         ``selection`` (the stabilisation diagram's rules), ``merged`` (one peak with a kept
-        mode of the same shape; the reason names it), ``edge`` (a clear mode in the band's
-        edge margin; the reason names the option that keeps it) or ``constants`` (what
+        mode of the same shape; the reason names it), ``line`` (an electrical line: a mains
+        harmonic with ζ ≈ 0), ``unsettled`` (a clear peak stable in too few orders; the reason
+        names the pin that keeps it), ``edge`` (a clear mode in the band's edge margin; the
+        reason names the option that keeps it) or ``constants`` (what
         the modal constants showed: no peak in the data, not normalisable at the driving
         point).
     reason : str
