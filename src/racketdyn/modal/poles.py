@@ -849,7 +849,9 @@ def select_poles(
     min_peak_to_noise: float = 2.0,
     dynamic_range_db: float = 60.0,
     max_damping_ratio: float = 0.2,
-    edge_margin: float = 0.02,
+    edge_margin: float = 0.0,
+    edge_lines: float = 3.0,
+    edge_widths: float = 1.0,
     bandwidth_tolerance: float = 0.5,
     damping_tolerance: float = 0.3,
     cluster_mac: float = 0.9,
@@ -870,8 +872,11 @@ def select_poles(
        different orders, with agreeing shapes) are joined.
     2. A cluster is a mode if it is stable in at least ``min_fraction`` of the orders
        computed, its median damping ratio lies in ``(0, max_damping_ratio)``, its median
-       frequency lies inside the band by more than ``edge_margin`` of the band's width (the
-       fit puts computational poles at the edges), and its peak stands above the noise: the
+       frequency lies inside the band by more than its edge margin — ``edge_lines`` line
+       spacings and ``edge_widths`` of its own half-power width ``2ζf`` (plus ``edge_margin``
+       of the band's width, none by default): the fit puts computational poles at the edges,
+       and a mode whose peak is cut by the edge is not fitted whole — and its peak stands
+       above the noise: the
        residue over the decay rate, ``|A| / σ``, is at least ``min_peak_to_noise`` times the
        noise of that FRF (``Stabilisation.noise_rms``) in some FRF (σ taken no smaller than
        π × the line spacing: a narrower peak falls between lines), and no more than
@@ -907,7 +912,12 @@ def select_poles(
     max_damping_ratio : float
         Largest damping ratio of a physical mode.
     edge_margin : float
-        Part of the band's width at each end where no mode is accepted (0–0.25).
+        Part of the band's width added to each mode's edge margin (0–0.25; 0 by default: the
+        margin follows the data, not the band's width).
+    edge_lines : float
+        Line spacings in each mode's edge margin (0–1000).
+    edge_widths : float
+        Of the mode's own half-power width ``2ζf`` in its edge margin (0–100).
     bandwidth_tolerance : float
         Frequency tolerance of the clustering, in half-power bandwidths.
     damping_tolerance : float
@@ -940,6 +950,8 @@ def select_poles(
         ("dynamic_range_db", dynamic_range_db, 0.0, 400.0),
         ("max_damping_ratio", max_damping_ratio, 0.0, 1.0),
         ("edge_margin", edge_margin, 0.0, 0.25),
+        ("edge_lines", edge_lines, 0.0, 1000.0),
+        ("edge_widths", edge_widths, 0.0, 100.0),
         ("bandwidth_tolerance", bandwidth_tolerance, 0.0, 10.0),
         ("damping_tolerance", damping_tolerance, 0.0, 10.0),
         ("cluster_mac", cluster_mac, 0.0, 1.0),
@@ -958,10 +970,14 @@ def select_poles(
     tolerances = (bandwidth_tolerance, damping_tolerance, cluster_mac)
     candidates = np.flatnonzero(stab.stability >= int(stability))
     clusters = _cluster(stab, candidates, *tolerances)
-    margin = edge_margin * (high_hz - low_hz)
     need = max(1, math.ceil(min_fraction * n_orders_total))
     reasons: list[str] = []
     for c in clusters:
+        margin = (
+            edge_margin * (high_hz - low_hz)
+            + edge_lines * stab.line_spacing_hz
+            + edge_widths * 2 * max(c.damping_ratio, 0.0) * c.frequency
+        )
         if not 0.0 < c.damping_ratio < max_damping_ratio:
             reasons.append(
                 f"damping ratio {c.damping_ratio:.3g} outside (0, {max_damping_ratio:g})"
