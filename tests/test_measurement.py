@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from scipy.optimize import least_squares
@@ -9,6 +11,7 @@ from scipy.optimize import least_squares
 from racketdyn.measurement import HammerRecords
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.pulse import contact_time
+from racketdyn.measurement.quality import quantisation_step
 from racketdyn.testing.records import Modes, half_sine, records_for
 
 # Three modes like a racket's (Hz, ζ, modal constants at two points against the reference).
@@ -124,6 +127,34 @@ def test_double_hits_are_caught(delay_s: float, pulse_s: float) -> None:
 def test_second_hit_on_the_tail_is_caught() -> None:
     records = records_for(MODES, pulse_s=3e-3, n_averages=1, second_hit=(2.2e-3, 0.6))
     assert "double hit" in estimate_frfs(records).checks[0].reasons
+
+
+def _quantised(records: HammerRecords, step_n: float) -> HammerRecords:
+    """The records with the force rounded to a converter's steps of ``step_n``."""
+    return replace(records, force=tuple(np.round(f / step_n) * step_n for f in records.force))
+
+
+def test_quantised_clean_hits_pass() -> None:
+    # A coarse hammer channel (wing_openmodal: 4.88 mV steps, hits of 15-65 steps): the quiet
+    # force is constant, its robust noise 0, and a one-step flicker stood out of the record by
+    # more than 5 % of the peak: clean hits were double hits.  Here 5 N steps, hits of 17-27
+    # steps, the offset half a step so the quiet force flickers between two steps.
+    records = _quantised(
+        records_for(MODES, n_averages=3, force_noise=0.001, offset_n=2.5, seed=4), 5.0
+    )
+    estimate = estimate_frfs(records)
+    assert [c.reasons for c in estimate.checks] == [()] * 6
+    assert estimate.frfs is not None
+
+
+def test_quantised_double_hit_is_caught() -> None:
+    # the noise floored at the step (6 steps to stand out) still sees a second hit of half the
+    # first on the same coarse channel
+    records = records_for(
+        MODES, n_averages=3, force_noise=0.001, offset_n=2.5, second_hit=(2e-3, 0.5), seed=4
+    )
+    estimate = estimate_frfs(_quantised(records, 5.0))
+    assert all("double hit" in c.reasons for c in estimate.checks)
 
 
 def test_clean_hits_pass_and_clipping_is_caught() -> None:
@@ -269,3 +300,11 @@ def test_the_rail_needs_three_hits_or_flat_tops() -> None:
     assert rail_level(
         [np.stack([flat, flat * 0.5]), np.stack([flat])], settings
     ).overload_level_n == (pytest.approx(80.0, rel=1e-5))
+
+
+def test_quantisation_step_is_the_converters_step() -> None:
+    rng = np.random.default_rng(0)
+    counts = rng.integers(-3, 40, 500)
+    assert quantisation_step(counts * 0.0048828125 + 0.1) == pytest.approx(0.0048828125)
+    assert quantisation_step(rng.normal(0, 1, 8192)) < 1e-5  # unquantised: no floor
+    assert quantisation_step(np.zeros(10)) == 0.0

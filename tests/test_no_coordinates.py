@@ -9,6 +9,7 @@ a lab exports FRFs without their geometry.
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -133,3 +134,48 @@ def test_a_sweep_fails_its_designs_naming_geometry(tmp_path: Path) -> None:
     failures = json.loads((tmp_path / "out" / "failures.json").read_text())
     assert "no node coordinates" in failures[0]["error"]
     assert "--geometry" in failures[0]["error"]
+
+
+def test_a_reference_without_coordinates_is_accepted(tmp_path: Path, capsys) -> None:
+    # Issue 25: coordinates for the hammer points but not for the fixed accelerometer (node
+    # 100 here; meca0062_aircraft's 201-203) were refused ("needs node coordinates, which node
+    # the reference lacks") while a file with no coordinates at all was identified.  Shapes
+    # need only the points.
+    from racketdyn.cli import main
+    from racketdyn.io.frf_layout import read_frfs
+
+    test = beam_frfs([0.0, 0.31, 0.55], 0.05, direction=(1.0, 0.0, 0.0), seed=3)
+    assert test.frfs.reference_node not in test.frfs.nodes
+    nodes = {
+        n: tuple(float(v) for v in xyz)
+        for n, xyz in zip(test.frfs.nodes, test.frfs.locations, strict=True)
+    }
+    records = [
+        (test.frfs.reference_node, 3, n, 3, v)
+        for n, v in zip(test.frfs.nodes, test.frfs.values, strict=True)
+    ]
+    path = write_lab_uff(tmp_path / "frfs.uff", nodes, test.frfs.frequency, records)
+    read = read_frfs(path)  # shapes need coordinates: the points have them
+    np.testing.assert_allclose(read.locations, test.frfs.locations[:, :2])
+    assert np.isnan(read.reference_location).all()
+    out = tmp_path / "run"
+    assert main(["identify", str(path), "--band", "40,1000", "--out", str(out)]) == 0
+    assert "no node coordinates" not in capsys.readouterr().out
+    model = ModalModel.read_json(out / "modal_model.json")
+    assert model.has_locations
+    np.testing.assert_allclose(model.frequency, test.frequency_hz, rtol=5e-4)
+
+
+def test_a_point_without_coordinates_is_named_plainly() -> None:
+    # the reference and node 2 without coordinates: the line named "which node the reference
+    # lacks"; now only the point, which shapes need
+    test = beam_frfs([0.0, 0.31, 0.55], 0.05, direction=(1.0, 0.0, 0.0))
+    locations = test.frfs.locations.copy()
+    locations[1] = np.nan
+    some = replace(test.frfs, locations=locations, reference_location=(np.nan,) * 3)
+    with pytest.raises(InputError) as caught:
+        some.require_locations("the map")
+    assert str(caught.value) == (
+        f"{test.frfs.source}: the map needs node coordinates, which node 2 lacks; give them "
+        "with --geometry FILE (UFF data set 15 or 2411, or CSV node,x_m,y_m in m)"
+    )

@@ -7,6 +7,7 @@ script for which file mimics what.  Issue 12, items 3, 8, 11, 12 and 13.
 
 from __future__ import annotations
 
+import dataclasses
 import random
 import sys
 import time
@@ -77,7 +78,46 @@ def test_coordinates_in_mm_without_164_are_refused(tmp_path: Path) -> None:
     # An OROS-style mesh in mm with no data set 164: a racket 550 "m" long is refused, naming
     # the remedies (data set 164 or --geometry).
     path = _mm_file(tmp_path, with_164=False)
-    _one_line_error(lambda: read_frf_uff(path), str(path), "likely in mm", "164", "--geometry")
+    _one_line_error(lambda: read_frf_uff(path), str(path), "0.35 m if in mm", "164", "--geometry")
+
+
+def _span_file(tmp_path: Path, scale: float) -> Path:
+    """make_fixtures' FRFs with the coordinates multiplied by ``scale`` and no data set 164."""
+    truth = make_fixtures.frfs()
+    path = write_frf_uff(
+        dataclasses.replace(
+            truth,
+            locations=truth.locations * scale,
+            reference_location=tuple(np.asarray(truth.reference_location) * scale),
+        ),
+        tmp_path / f"span{scale:g}.uff",
+    )
+    return path
+
+
+def test_coordinates_in_inches_are_not_called_mm(tmp_path: Path) -> None:
+    # Issue 25: wing_openmodal's geometry spans 60 units (inches, no data set 164); the line
+    # said "likely in mm" (0.06 m) where 60 in (1.52 m) is a structure's size.  Here the
+    # fixture's 0.35 m scaled to 60 units: refused with both readings, inches the likely one.
+    path = _span_file(tmp_path, 60.0 / 0.35)
+    message = _one_line_error(
+        lambda: read_frf_uff(path), "span 60 units", "0.06 m if in mm", "1.52 m if in inches"
+    )
+    assert "likely in mm" not in message
+    assert "likely inches" in message
+
+
+def test_a_span_both_units_fit_claims_neither(tmp_path: Path) -> None:
+    # 350 units: 0.35 m in mm or 8.89 m in inches, both structures tested with a hammer
+    path = _span_file(tmp_path, 1000.0)
+    message = _one_line_error(lambda: read_frf_uff(path), "0.35 m if in mm", "8.89 m if in inches")
+    assert "likely" not in message
+
+
+def test_a_span_only_mm_fits_claims_mm(tmp_path: Path) -> None:
+    # 3500 units: 3.5 m in mm; 88.9 m in inches is more than any hammer test
+    path = _span_file(tmp_path, 10000.0)
+    _one_line_error(lambda: read_frf_uff(path), "3.5 m if in mm", "likely mm")
 
 
 def test_coordinates_in_mm_with_164_are_converted(tmp_path: Path) -> None:

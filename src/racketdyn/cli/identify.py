@@ -162,7 +162,8 @@ def print_modes(console: Console, identification: Identification) -> None:
         f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
         f"condition {identification.fit.condition_number:.3g}",
     )
-    later = [d for d in identification.dropped_modes if d.stage in ("constants", "edge")]
+    said = ("constants", "edge", "merged", "unsettled", "line")  # the rest: noise's candidates
+    later = [d for d in identification.dropped_modes if d.stage in said]
     for row in later:
         opt.say(console, f"left out {row.frequency_hz:.2f} Hz: {row.reason}")
     candidates = len(identification.dropped_modes) - len(later)
@@ -173,6 +174,13 @@ def print_modes(console: Console, identification: Identification) -> None:
             f"{'a mode' if candidates == 1 else 'modes'}; each with its reason in "
             "dropped_modes.csv",
             "dim",
+        )
+    conjugated = identification.frfs.metadata.get("conjugated")
+    if conjugated:
+        opt.say(
+            console,
+            f"FRFs conjugated: their {conjugated}, the conjugate convention e^(-iωt) of some "
+            "analysers (identification assumes e^(iωt))",
         )
     if identification.scaling_note:
         opt.say(console, f"shapes: {identification.scaling_note}")

@@ -149,7 +149,9 @@ def read_frfs(
     require_coordinates : bool
         A point without coordinates is an error naming ``--geometry`` (default: shapes need
         them); False gives it NaN coordinates (FRFs need none;
-        :func:`read_frf_uff`).
+        :func:`read_frf_uff`).  The reference node may lack them either way (its location
+        NaN): shapes are at the points, and a fixed accelerometer is often not in a lab's
+        geometry.
 
     Returns
     -------
@@ -226,7 +228,14 @@ def read_frfs(
                 f"({record.quantity} against {first.quantity} in record 9); give one type"
             )
         _check_same_abscissa(path, first, record, "frequency axis")
-    missing = [n for n in dict.fromkeys([*nodes, ref]) if n not in coordinates]
+    if ref not in coordinates and ref not in nodes and any(n in coordinates for n in nodes):
+        # a fixed accelerometer is often not in the geometry: NaN below
+        log.info(
+            "%s: reference node %d has no coordinates (none needed: shapes are at the points)",
+            path,
+            ref,
+        )
+    missing = [n for n in nodes if n not in coordinates]
     if missing and not require_coordinates:
         log.info(
             "%s: %s %s %s no coordinates (FRFs need none; shapes and maps will ask for --geometry)",
@@ -244,7 +253,7 @@ def read_frfs(
             "them: add data set 15 or pass --geometry FILE"
         )
     xyz = np.asarray([coordinates[n] for n in nodes], dtype=float)
-    reference_xyz = np.asarray(coordinates[ref], dtype=float)
+    reference_xyz = np.asarray(coordinates.get(ref, (np.nan,) * 3), dtype=float)
     z = np.r_[xyz[:, 2], reference_xyz[2]]
     three_d = bool(np.nanmax(z) > np.nanmin(z)) if np.isfinite(z).any() else False
     locations = xyz if three_d else xyz[:, :2]
@@ -262,7 +271,7 @@ def read_frfs(
     coherence = _coherence(path, every, ref, nodes, first) if layout == "roving hammer" else None
     estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
     bandwidth = _bandwidth_of([by_node[n] for n in nodes])
-    return FrfSet(
+    frfs = FrfSet(
         frequency=first.x * frequency_scale,
         values=values,
         frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
@@ -284,6 +293,7 @@ def read_frfs(
             **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
         },
     )
+    return frfs.with_usual_phase()  # an analyser's e^(-iωt) undone (vtb_siglab's case 2)
 
 
 def read_frf_uff(

@@ -212,9 +212,34 @@ def _read_sets(path: Path) -> list[dict[str, Any]]:
 
 
 #: Largest plausible extent of a hammer-tested structure's nodes, m (a racket is 0.7 m; a
-#: car body or a machine frame a few metres).  Coordinates beyond it are taken as mm written
-#: without a data set 164 (680 mm read as 680 m) and refused.
+#: car body or a machine frame a few metres).  Coordinates beyond it were written in another
+#: unit without a data set 164 (680 mm read as 680 m, a 60 in wing as 60 m) and are refused
+#: with what they would be in mm and in inches (:func:`_unit_guess`).
 MAX_EXTENT_M = 20.0
+#: Smallest extent of a structure a roving-hammer test covers with its points, m (a blade, a
+#: racket's throat).  A span that would be smaller in one length unit is not called likely in it.
+MIN_EXTENT_M = 0.1
+#: Length units a geometry written without data set 164 is likely in: name → metres per unit.
+LIKELY_UNITS = {"mm": 1.0e-3, "inches": 0.0254}
+
+
+def _unit_guess(extent: float) -> str:
+    """What a span of ``extent`` units (too large for metres) would be in mm and in inches,
+    and the likely one where only one of them gives a structure's size
+    (:data:`MIN_EXTENT_M`–:data:`MAX_EXTENT_M`): ``"0.06 m if in mm, 1.52 m if in inches
+    (likely inches: …)"``."""
+    sizes = {unit: extent * factor for unit, factor in LIKELY_UNITS.items()}
+    readings = ", ".join(f"{size:.3g} m if in {unit}" for unit, size in sizes.items())
+    fits = [unit for unit, size in sizes.items() if MIN_EXTENT_M <= size <= MAX_EXTENT_M]
+    if len(fits) != 1:
+        return readings
+    others = ", ".join(
+        f"{size:.3g} m {'smaller' if size < MIN_EXTENT_M else 'larger'} than a hammer test's "
+        "structures"
+        for unit, size in sizes.items()
+        if unit != fits[0]
+    )
+    return f"{readings} (likely {fits[0]}: {others})"
 
 
 def _units_of(path: Path, sets: Sequence[dict[str, Any]]) -> _Units:
@@ -337,12 +362,19 @@ def _nodes_xyz_of(
                 if int(code) in systems:
                     frames[int(number)] = systems[int(code)]
         extent = float(np.max(np.ptp(np.c_[x, y, z], axis=0))) if x.size else 0.0
+        if extent > MAX_EXTENT_M and units.length != 1.0:
+            raise InputError(
+                f"{path}: data set {i} ({dset['type']}, nodes): the nodes span {extent:.3g} m "
+                f"in data set 164's length unit, more than the {MAX_EXTENT_M:g} m of any "
+                "structure tested with a hammer; check data set 164, or give the coordinates "
+                "in m with --geometry FILE"
+            )
         if extent > MAX_EXTENT_M:
             raise InputError(
-                f"{path}: data set {i} ({dset['type']}, nodes): the nodes span {extent:g} m, "
-                f"more than the {MAX_EXTENT_M:g} m of any structure tested with a hammer: the "
-                "coordinates are likely in mm; add a data set 164 giving the length unit, or "
-                "give the coordinates in m with --geometry FILE"
+                f"{path}: data set {i} ({dset['type']}, nodes): the nodes span {extent:.4g} "
+                f"units, more than the {MAX_EXTENT_M:g} m of any structure tested with a "
+                f"hammer if they were m: {_unit_guess(extent)}; add a data set 164 giving the "
+                "length unit, or give the coordinates in m with --geometry FILE"
             )
         for number, xi, yi, zi in zip(numbers, x, y, z, strict=True):
             nodes[int(number)] = (float(xi), float(yi), float(zi))

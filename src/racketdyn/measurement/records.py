@@ -25,6 +25,7 @@ log = logging.getLogger(__name__)
 
 __all__ = [
     "ANALYSER_BANDWIDTH_FACTOR",
+    "CONJUGATE_LEVEL",
     "FRF_TYPES",
     "FRF_TYPE_OF_RESPONSE",
     "FRF_UNITS",
@@ -38,6 +39,12 @@ __all__ = [
 ANALYSER_BANDWIDTH_FACTOR = 2.56
 """Sampling rate / usable bandwidth of an analyser's anti-alias filter (the FFT analysers'
 convention): lines above fs/2.56 are filter roll-off."""
+
+CONJUGATE_LEVEL = 0.05
+"""The phase direction (:meth:`FrfSet.phase_direction`) above which a set is taken to be
+written with the conjugate convention.  Measured sets of the usual convention read −0.12 to
+−0.57 (the real exports of tests/realdata.py, racketdyn's estimates), vtb_siglab's conjugate
+case 2 +0.23; a set of noise reads about 0 and is left as it is."""
 
 ResponseType = Literal["acceleration", "velocity", "displacement"]
 RESPONSE_TYPES: tuple[str, ...] = get_args(ResponseType)
@@ -88,6 +95,9 @@ class _PointsAndReference:
     def require_locations(self, what: str) -> None:
         """InputError naming ``--geometry`` unless every point has coordinates.
 
+        The reference transducer's own position is not needed (shapes, maps and predictions
+        are at the points), and a fixed accelerometer is often not in a lab's geometry.
+
         Parameters
         ----------
         what : str
@@ -98,10 +108,8 @@ class _PointsAndReference:
             for n, row in zip(self.nodes, np.asarray(self.locations), strict=True)
             if np.isnan(row).any()
         ]
-        if np.isnan(np.asarray(self.reference_location, dtype=float)).any():
-            missing.append(-1)
         if missing:
-            named = ", ".join("the reference" if n == -1 else str(n) for n in missing[:8])
+            named = ", ".join(str(n) for n in missing[:8]) + (", …" if len(missing) > 8 else "")
             raise InputError(
                 f"{self.source}: {what} needs node coordinates, which "
                 f"{noun(len(missing), 'node')} {named} {noun(len(missing), 'lacks', 'lack')}; give "
@@ -388,6 +396,52 @@ class FrfSet(_PointsAndReference):
         ]
         total = float(np.sum(indicator[usable]))
         return None if total == 0 else (1 if total > 0 else -1)
+
+    def phase_direction(self) -> float:
+        """Which way the phase turns as the frequency rises: < 0 falls (e^{iωt}), > 0 rises.
+
+        The mean of sin Δφ between neighbouring lines, weighted by |H_k| |H_k+1| over every FRF
+        of the set (between −1 and 1; 0 without a usable line).  With the usual convention
+        (a response ``H e^{iωt}``) a mode's phase falls by 180° through its resonance and a
+        delay's phase falls too; only anti-resonances, where |H| is small, rise.  An analyser
+        writing ``H e^{−iωt}`` (SigLab, vtb_siglab's case 2) gives the conjugate FRF, whose
+        phase rises through its resonances.  The sign does not depend on the FRF's type nor on
+        its sign (a negated FRF turns the same way).  Only lines up to :attr:`bandwidth_hz`
+        count: above it (racketdyn's own estimates to fs/2) the anti-alias filter has taken the
+        force away and |H| is the response's noise over nothing, large enough to outweigh the
+        resonances.
+        """
+        h = self.values[:, (self.frequency > 0) & (self.frequency <= self.bandwidth_hz)]
+        h = h[:, np.all(np.isfinite(h), axis=0)]
+        turns = np.conj(h[:, :-1]) * h[:, 1:]
+        weight = float(np.sum(np.abs(turns)))
+        return float(np.sum(turns.imag)) / weight if weight > 0 else 0.0
+
+    def with_usual_phase(self) -> FrfSet:
+        """The set conjugated when its phase rises through the resonances (the conjugate
+        convention e^{−iωt}, :meth:`phase_direction` > :data:`CONJUGATE_LEVEL`).
+
+        Modal identification assumes e^{iωt}: fitted to a conjugate FRF the poles turn the
+        wrong way and no mode is stable.  ``metadata["conjugated"]`` records that it was
+        undone, and a warning is logged.
+        """
+        direction = self.phase_direction()
+        if direction <= CONJUGATE_LEVEL:
+            return self
+        log.warning(
+            "%s: the phase rises through the resonances (mean sin of its step between lines "
+            "%+.2f): the conjugate convention e^(-iwt) of some analysers; every FRF conjugated",
+            self.source,
+            direction,
+        )
+        return replace(
+            self,
+            values=np.conj(self.values),
+            metadata={
+                **self.metadata,
+                "conjugated": f"phase rose through the resonances ({direction:+.2f})",
+            },
+        )
 
     def with_positive_driving_point(self) -> FrfSet:
         """The set negated when its driving point reads with negative modal constants.

@@ -43,8 +43,12 @@ from racketdyn.modal.residues import (
 __all__ = [
     "DEFAULT_LOW_HZ",
     "EDGE_CLEAR",
-    "EDGE_MARGIN",
+    "EDGE_LINES",
+    "EDGE_WIDTHS",
     "FIT_GAIN_MIN",
+    "LINE_DAMPING",
+    "LINE_TOLERANCE_HZ",
+    "MAINS_HZ",
     "STRONG_NEGATIVE",
     "Identification",
     "default_band",
@@ -70,14 +74,37 @@ negative ones (a mode nearly still at the accelerometer, e.g. a string-bed mode 
 leave that mode out of a mass-normalised model."""
 
 
-EDGE_MARGIN = 0.02
-"""Part of the band's width at each end where the fit's computational poles fall and no mode is
-taken (:func:`racketdyn.modal.poles.select_poles`' ``edge_margin``)."""
+EDGE_LINES = 3.0
+"""Line spacings in a mode's edge margin, where the fit's computational poles fall and no mode
+is taken (:func:`racketdyn.modal.poles.select_poles`' ``edge_lines``)."""
+EDGE_WIDTHS = 1.0
+"""Of a mode's own half-power width ``2ζf`` in its edge margin (``edge_widths``): a peak the
+band's edge cuts is not fitted whole.  The margin follows the data, not the band's width: 2 %
+of pff_lms's 40-20,000 Hz (399 Hz) took its 150 Hz mode (tests/test_realdata.py)."""
 EDGE_CLEAR = 0.1
 """A mode dropped in the edge margin is reported as a clear mode (stage ``edge``, one warning
 naming the option that keeps it) when it is stable in more than three orders and its peak is at
 least this fraction of the median kept mode's (20 dB): the bar's 873 Hz mode 7 Hz below an
 880 Hz top scores ≈ 0.9, edge poles of noise ≤ 0.01 (tests/test_band.py)."""
+MAINS_HZ = (50.0, 60.0)
+"""Mains frequencies whose harmonics an accelerometer's cable picks up (electrical lines)."""
+LINE_TOLERANCE_HZ = 0.1
+"""A dropped candidate this close to a harmonic of :data:`MAINS_HZ` may be an electrical line."""
+LINE_DAMPING = 5e-4
+"""... when its damping ratio is below this (0.05 %): a sine of constant amplitude over the
+record is a pole on the unit circle, ζ ≈ 0 (hum added to synthetic records: ζ ≤ 0.03 %).
+A structure's mode on a harmonic keeps its damping and stays a mode (pyFRF's 900 Hz, 18 × 50
+Hz, ζ 0.11 %, decays in every hit: tests/test_realdata.py)."""
+EDGE_SCAN = 0.05
+"""Part of the band's width at each end searched for a clear peak of the data that the fit
+missed: so near an edge of a wide band the LSCF (the band zoomed onto the unit circle, its two
+ends meeting) may find no stable pole at all (pff_lms's 150 Hz over 40-20,000 Hz, the wing's
+13.5 Hz over 5-1000 Hz)."""
+EDGE_PEAK = 10.0
+"""... a clear peak: its summed |H| this many times (20 dB) above the surroundings it rises
+from (prominence), its phase turning by more than 90° across it."""
+EDGE_TRIES = 2
+"""Clear peaks tried at each end (the most prominent), each with one narrower band's fit."""
 HEADER_DIGITS_RTOL = 1e-5
 """A band top this far (relative) above the last line is the last line: the UFF header keeps
 the step with 6 significant digits (E13.5), so a 1000 Hz export reads 999.997 Hz."""
@@ -122,7 +149,8 @@ def _checked_band(frfs: FrfSet, band: tuple[float, float]) -> tuple[float, float
 def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]) -> SelectedPoles:
     """Clear modes dropped in the band's edge margin: one row each, naming what keeps them.
 
-    The edge margin (:data:`EDGE_MARGIN`) keeps the fit's computational poles out; a mode of
+    The edge margin (:data:`EDGE_LINES` line spacings and :data:`EDGE_WIDTHS` of the mode's
+    half-power width) keeps the fit's computational poles out; a mode of
     the data there (stable in more than three orders, peak within 20 dB of the kept modes',
     :data:`EDGE_CLEAR`) is not dropped silently.  Clusters of one peak split by the edge are
     one row (the strongest).  The reason names ``--band LOW,HIGH`` when the FRFs' bandwidth
@@ -131,7 +159,7 @@ def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]
     ``--pin F``.
     """
     low, high = band
-    margin = EDGE_MARGIN * (high - low)
+    spacing = float(frfs.frequency[1] - frfs.frequency[0])
     reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else 0.0
     clear = [
         d
@@ -150,16 +178,17 @@ def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]
             continue
         mode = max(side, key=lambda d: d.peak_to_noise)
         f, zeta = mode.frequency_hz, mode.damping_ratio
-        room = 3 * 2 * zeta * f + 2 * float(frfs.frequency[1] - frfs.frequency[0])
+        margin = EDGE_LINES * spacing + EDGE_WIDTHS * 2 * max(zeta, 0.0) * f
+        room = 3 * 2 * zeta * f + 2 * spacing + margin
         if top:
-            wanted = (f + room - EDGE_MARGIN * low) / (1 - EDGE_MARGIN)
+            wanted = f + room
             edge = f"the band's top {high:g} Hz"
             new = float(np.ceil(wanted / 5.0) * 5.0)
             fits = new <= float(frfs.bandwidth_hz)
             option = f"--band {low:g},{new:g}"
             end = f"the FRFs' bandwidth ends at {float(frfs.bandwidth_hz):.6g} Hz"
         else:
-            wanted = (f - room - EDGE_MARGIN * high) / (1 - EDGE_MARGIN)
+            wanted = f - room
             edge = f"the band's bottom {low:g} Hz"
             new = float(np.floor(wanted / 5.0) * 5.0)
             fits = new >= float(frfs.frequency[0])
@@ -183,6 +212,186 @@ def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]
         )
     rest = tuple(d for d in selected.dropped_modes if all(d is not c for c in clear))
     return replace(selected, dropped_modes=(*rest, *rows))
+
+
+def _missed_peaks(
+    selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float], max_order: int
+) -> SelectedPoles:
+    """Clear peaks of the data near the band's edges that no mode or row explains: one row
+    each (stage ``edge``) naming the ``--band`` that keeps the mode, tried before it is named.
+
+    Over a band many times wider than a mode's distance from its edge the fit may find no
+    stable pole there at all, so :func:`_edge_modes` has nothing to name.  The data are
+    searched instead: within :data:`EDGE_SCAN` of the band's width from each end, peaks of the
+    summed |H| standing :data:`EDGE_PEAK` above their surroundings whose phase (in the FRF
+    where the peak is largest) turns by more than 90° across them, below the FRFs' bandwidth.
+    A peak within a half-power width (or three lines) of a kept mode or of a named row is
+    explained.  For the :data:`EDGE_TRIES` most prominent others at each end a band ten times
+    the peak's distance from the edge is fitted, and a row is written only when a mode comes
+    out there (near a wide band's top, in the anti-alias roll-off or a force's spectral
+    zero, many peaks are noise's: untried or unconfirmed ones are logged at DEBUG).
+    """
+    from scipy.signal import find_peaks
+
+    low, high = band
+    data = frfs.band(low, high)
+    f = data.frequency
+    if f.size < 8:
+        return selected
+    spacing = float(np.median(np.diff(f)))
+    level = np.abs(data.values).sum(axis=0)
+    logs = np.log10(np.maximum(level, np.finfo(float).tiny))
+    found, props = find_peaks(logs, prominence=np.log10(EDGE_PEAK))
+    scan = EDGE_SCAN * (high - low)
+    explained = [
+        (float(fk), 2 * max(float(zk), 0.0) * float(fk))
+        for fk, zk in zip(selected.frequency, selected.damping_ratio, strict=True)
+    ] + [
+        (d.frequency_hz, 2 * max(d.damping_ratio, 0.0) * d.frequency_hz)
+        for d in selected.dropped_modes
+        if d.stage != "selection"
+    ]
+    rows: list[DroppedMode] = []
+    tries = {True: EDGE_TRIES, False: EDGE_TRIES}
+    for index, prominence in sorted(
+        zip(found, props["prominences"], strict=True), key=lambda pair: -pair[1]
+    ):
+        peak = float(f[index])
+        bottom = peak - low < high - peak
+        if scan < min(peak - low, high - peak) or peak > frfs.bandwidth_hz:
+            continue
+        if any(abs(peak - fe) <= max(we, 3 * spacing) for fe, we in explained):
+            continue
+        half = level[index] / np.sqrt(2)
+        left = index
+        while left > 0 and level[left] > half:
+            left -= 1
+        right = index
+        while right < f.size - 1 and level[right] > half:
+            right += 1
+        strongest = int(np.argmax(np.abs(data.values[:, index])))
+        before = data.values[strongest, max(2 * left - index, 0)]
+        after = data.values[strongest, min(2 * right - index, f.size - 1)]
+        if abs(np.angle(after * np.conj(before))) < np.pi / 2:
+            continue
+        if tries[bottom] == 0:
+            log.debug("clear peak at %.1f Hz near the band's edge: not tried", peak)
+            continue
+        tries[bottom] -= 1
+        reach = max(10 * (peak - low if bottom else high - peak), (2 * max_order + 2) * spacing)
+        if bottom:
+            tried = (low, min(float(np.ceil((low + reach) / 5.0) * 5.0), high))
+        else:
+            tried = (max(float(np.floor((high - reach) / 5.0) * 5.0), low), high)
+        mode = _mode_in(frfs, tried, max_order, peak, max(3 * spacing, right - left))
+        if mode is None:
+            log.debug("clear peak at %.1f Hz: no mode over %g–%g Hz either", peak, *tried)
+            continue
+        rows.append(
+            DroppedMode(
+                mode[0],
+                mode[1],
+                0,
+                "edge",
+                f"a clear peak of the data at {peak:.1f} Hz ({20 * prominence:.0f} dB above "
+                f"its surroundings, {peak - low if bottom else high - peak:.3g} Hz from the "
+                f"band's {'bottom' if bottom else 'top'}) where the fit over {low:g}–{high:g} "
+                f"Hz finds no stable pole: too near the edge of so wide a band; --band "
+                f"{tried[0]:g},{tried[1]:g} keeps it (there {mode[0]:.2f} Hz, ζ "
+                f"{100 * mode[1]:.2g} %)",
+            )
+        )
+        explained.append((peak, float(right - left) * spacing))  # one row a peak
+    if not rows:
+        return selected
+    return replace(selected, dropped_modes=(*selected.dropped_modes, *rows))
+
+
+def _mode_in(
+    frfs: FrfSet, band: tuple[float, float], max_order: int, near: float, within: float
+) -> tuple[float, float] | None:
+    """The mode a narrower band gives within ``within`` Hz of ``near`` (frequency, ζ), if any."""
+    try:
+        stab = stabilisation(frfs, band, max_order=max_order)
+        found = select_poles(stab, edge_lines=EDGE_LINES, edge_widths=EDGE_WIDTHS)
+    except InputError:
+        return None
+    close = np.flatnonzero(np.abs(found.frequency - near) <= within)
+    if close.size == 0:
+        return None
+    k = int(close[np.argmin(np.abs(found.frequency[close] - near))])
+    return (float(found.frequency[k]), float(found.damping_ratio[k]))
+
+
+def _harmonics(frequency: float) -> list[str]:
+    """The mains harmonics within :data:`LINE_TOLERANCE_HZ` of ``frequency`` ("5 × 50 Hz")."""
+    found = []
+    for mains in MAINS_HZ:
+        k = round(frequency / mains)
+        if k >= 1 and abs(frequency - k * mains) <= LINE_TOLERANCE_HZ:
+            found.append(f"{k} × {mains:g} Hz")
+    return found
+
+
+def _named_rows(selected: SelectedPoles) -> SelectedPoles:
+    """Dropped candidates that are not noise, named: electrical lines and unsettled clear peaks.
+
+    A candidate left out by the stabilisation rules (stage ``selection``) is
+
+    - likely an electrical ``line`` when it sits on a mains harmonic
+      (:data:`LINE_TOLERANCE_HZ`) with a damping ratio of about zero (:data:`LINE_DAMPING`):
+      it stays out, its row says what it likely is (from FRFs alone the pole of a hammer
+      pulse's spectral zero on a harmonic looks the same: a 1 ms half-sine's at 1500 Hz);
+    - ``unsettled`` when it was stable in too few orders (but more than three) while its peak
+      is at least the median kept mode's and does not overlap a kept mode's (their half-power
+      widths apart): a clear peak whose poles move from order to order (pyFRF's 4128 Hz,
+      10⁵ × the noise, stable in 6 of 60 orders); its row names the ``--pin`` that keeps it.
+    """
+    reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
+    width = 2 * np.maximum(selected.damping_ratio, 0.0) * selected.frequency
+
+    def own(d: DroppedMode) -> float:
+        return 2 * max(d.damping_ratio, 0.0) * d.frequency_hz
+
+    rows: list[DroppedMode] = []
+    for d in selected.dropped_modes:
+        if d.stage != "selection":
+            rows.append(d)
+            continue
+        harmonics = _harmonics(d.frequency_hz)
+        if harmonics and abs(d.damping_ratio) < LINE_DAMPING:
+            rows.append(
+                replace(
+                    d,
+                    stage="line",
+                    reason=(
+                        f"likely an electrical line, not a mode: on the mains harmonic "
+                        f"{' or '.join(harmonics)} with ζ {100 * d.damping_ratio:.3f} % "
+                        f"(< {100 * LINE_DAMPING:g} %: a hum of constant amplitude); "
+                        f"{d.reason}"
+                    ),
+                )
+            )
+        elif (
+            d.reason.startswith("stable in")
+            and d.orders_stable > 3
+            and d.peak_to_noise >= reference
+            and not np.any(np.abs(selected.frequency - d.frequency_hz) < width + own(d))
+        ):
+            rows.append(
+                replace(
+                    d,
+                    stage="unsettled",
+                    reason=(
+                        f"a clear peak ({d.peak_to_noise:.2g} × the noise, the kept modes' "
+                        f"median {reference:.2g}) whose poles move from order to order: "
+                        f"{d.reason}; --pin {d.frequency_hz:.1f} keeps it"
+                    ),
+                )
+            )
+        else:
+            rows.append(d)
+    return replace(selected, dropped_modes=tuple(rows))
 
 
 @dataclass(frozen=True, eq=False)
@@ -304,7 +513,10 @@ def identify(
       or no driving point at all: every mode kept, shapes unscaled (largest magnitude 1),
       ``model.scaling == "unscaled"``; smaller negative ones leave their mode out.
 
-    Everything left out is in ``selected.dropped_modes`` (``dropped_modes.csv``).
+    Everything left out is in ``selected.dropped_modes`` (``dropped_modes.csv``).  A set whose
+    phase rises through its resonances (the conjugate convention e^{−iωt} of some analysers)
+    is conjugated first (:meth:`~racketdyn.measurement.records.FrfSet.with_usual_phase`,
+    logged, ``frfs.metadata["conjugated"]``).
 
     Parameters
     ----------
@@ -330,15 +542,23 @@ def identify(
     """
     if not np.isnan(frfs.locations).all():  # none: a model without coordinates
         frfs.require_locations("identification (the mode shapes at the points)")
+    frfs = frfs.with_usual_phase()  # a set of the conjugate convention (read_frfs does it too)
     band = _checked_band(frfs, band_hz or default_band(frfs))
     stab = stabilisation(frfs, band, max_order=max_order)
     selected = select_poles(
-        stab, pin_hz=pin_hz, exclude_hz=exclude_hz, edge_margin=EDGE_MARGIN
+        stab,
+        pin_hz=pin_hz,
+        exclude_hz=exclude_hz,
+        edge_lines=EDGE_LINES,
+        edge_widths=EDGE_WIDTHS,
     )  # raises if none
-    selected = _edge_modes(selected, frfs, band)
+    selected = _named_rows(_edge_modes(selected, frfs, band))
+    selected = _missed_peaks(selected, frfs, band, max_order)
     for row in selected.dropped_modes:
-        if row.stage == "edge":
+        if row.stage in ("edge", "unsettled"):
             log.warning("%.1f Hz left out: %s", row.frequency_hz, row.reason)
+        elif row.stage == "line":
+            log.info("%.2f Hz left out: %s", row.frequency_hz, row.reason)
     fit = fit_modal_constants(frfs, selected.pole, band)
     late: list[DroppedMode] = []
 

@@ -258,8 +258,11 @@ class DroppedMode:
     orders_stable : int
         Model orders it was stable in.
     stage : str
-        ``selection`` (the stabilisation diagram's rules), ``edge`` (a clear mode in the
-        band's edge margin; the reason names the option that keeps it) or ``constants`` (what
+        ``selection`` (the stabilisation diagram's rules), ``merged`` (one peak with a kept
+        mode of the same shape; the reason names it), ``line`` (an electrical line: a mains
+        harmonic with ζ ≈ 0), ``unsettled`` (a clear peak stable in too few orders; the reason
+        names the pin that keeps it), ``edge`` (a clear mode in the band's edge margin; the
+        reason names the option that keeps it) or ``constants`` (what
         the modal constants showed: no peak in the data, not normalisable at the driving
         point).
     reason : str
@@ -846,7 +849,9 @@ def select_poles(
     min_peak_to_noise: float = 2.0,
     dynamic_range_db: float = 60.0,
     max_damping_ratio: float = 0.2,
-    edge_margin: float = 0.02,
+    edge_margin: float = 0.0,
+    edge_lines: float = 3.0,
+    edge_widths: float = 1.0,
     bandwidth_tolerance: float = 0.5,
     damping_tolerance: float = 0.3,
     cluster_mac: float = 0.9,
@@ -867,14 +872,21 @@ def select_poles(
        different orders, with agreeing shapes) are joined.
     2. A cluster is a mode if it is stable in at least ``min_fraction`` of the orders
        computed, its median damping ratio lies in ``(0, max_damping_ratio)``, its median
-       frequency lies inside the band by more than ``edge_margin`` of the band's width (the
-       fit puts computational poles at the edges), and its peak stands above the noise: the
+       frequency lies inside the band by more than its edge margin — ``edge_lines`` line
+       spacings and ``edge_widths`` of its own half-power width ``2ζf`` (plus ``edge_margin``
+       of the band's width, none by default): the fit puts computational poles at the edges,
+       and a mode whose peak is cut by the edge is not fitted whole — and its peak stands
+       above the noise: the
        residue over the decay rate, ``|A| / σ``, is at least ``min_peak_to_noise`` times the
        noise of that FRF (``Stabilisation.noise_rms``) in some FRF (σ taken no smaller than
        π × the line spacing: a narrower peak falls between lines), and no more than
        ``dynamic_range_db`` below the strongest mode's (a hammer test resolves 40–60 dB; a
        "mode" further down is the fit's model of a systematic error, e.g. leakage or the
-       window, whose "noise" the white-noise estimate does not see).
+       window, whose "noise" the white-noise estimate does not see).  Two such modes closer
+       than their half-power width (the mean of their ``2ζf``) whose shapes agree (MAC of
+       the clusters' mean shapes ``cluster_mac`` or more) are one peak the fit split in two:
+       the one stable in more orders is kept, the other is dropped as ``merged`` (its reason
+       names the mode kept).
     3. ``exclude_hz`` drops the selected mode nearest each frequency; ``pin_hz`` forces in the
        cluster nearest each frequency even if step 2 left it out (within ``pin_tolerance``,
        relative).  Everything left out is logged with the reason and listed in ``dropped``.
@@ -900,13 +912,19 @@ def select_poles(
     max_damping_ratio : float
         Largest damping ratio of a physical mode.
     edge_margin : float
-        Part of the band's width at each end where no mode is accepted (0–0.25).
+        Part of the band's width added to each mode's edge margin (0–0.25; 0 by default: the
+        margin follows the data, not the band's width).
+    edge_lines : float
+        Line spacings in each mode's edge margin (0–1000).
+    edge_widths : float
+        Of the mode's own half-power width ``2ζf`` in its edge margin (0–100).
     bandwidth_tolerance : float
         Frequency tolerance of the clustering, in half-power bandwidths.
     damping_tolerance : float
         Relative damping tolerance of the clustering.
     cluster_mac : float
-        Smallest MAC between two poles of one cluster.
+        Smallest MAC between two poles of one cluster, and between the mean shapes of two
+        modes merged as one peak.
     pin_tolerance : float
         Relative distance within which a pin or an exclusion finds its mode.
     stability : PoleStability
@@ -932,6 +950,8 @@ def select_poles(
         ("dynamic_range_db", dynamic_range_db, 0.0, 400.0),
         ("max_damping_ratio", max_damping_ratio, 0.0, 1.0),
         ("edge_margin", edge_margin, 0.0, 0.25),
+        ("edge_lines", edge_lines, 0.0, 1000.0),
+        ("edge_widths", edge_widths, 0.0, 100.0),
         ("bandwidth_tolerance", bandwidth_tolerance, 0.0, 10.0),
         ("damping_tolerance", damping_tolerance, 0.0, 10.0),
         ("cluster_mac", cluster_mac, 0.0, 1.0),
@@ -950,10 +970,14 @@ def select_poles(
     tolerances = (bandwidth_tolerance, damping_tolerance, cluster_mac)
     candidates = np.flatnonzero(stab.stability >= int(stability))
     clusters = _cluster(stab, candidates, *tolerances)
-    margin = edge_margin * (high_hz - low_hz)
     need = max(1, math.ceil(min_fraction * n_orders_total))
     reasons: list[str] = []
     for c in clusters:
+        margin = (
+            edge_margin * (high_hz - low_hz)
+            + edge_lines * stab.line_spacing_hz
+            + edge_widths * 2 * max(c.damping_ratio, 0.0) * c.frequency
+        )
         if not 0.0 < c.damping_ratio < max_damping_ratio:
             reasons.append(
                 f"damping ratio {c.damping_ratio:.3g} outside (0, {max_damping_ratio:g})"
@@ -972,6 +996,7 @@ def select_poles(
         if not reasons[k] and c.peak < floor:
             below = 20 * math.log10(strongest / max(c.peak, 1e-300))
             reasons[k] = f"peak {below:.0f} dB below the strongest mode's"
+    merged = _merge_one_peak(stab, clusters, reasons, cluster_mac)
     accepted = [not r for r in reasons]
     pinned = [False] * len(clusters)
     centres = np.array([c.frequency for c in clusters])
@@ -1017,7 +1042,7 @@ def select_poles(
 
     dropped = []
     dropped_modes = []
-    for c, reason, keep in zip(clusters, reasons, accepted, strict=True):
+    for k, (c, reason, keep) in enumerate(zip(clusters, reasons, accepted, strict=True)):
         if keep:
             continue
         line = f"{c.frequency:.2f} Hz, ζ = {c.damping_ratio:.4f}, {c.n_orders} orders: {reason}"
@@ -1027,7 +1052,7 @@ def select_poles(
                 float(c.frequency),
                 float(c.damping_ratio),
                 int(c.n_orders),
-                "selection",
+                "merged" if k in merged else "selection",
                 reason,
                 peak_to_noise=float(c.peak_to_noise),
             )
@@ -1072,6 +1097,50 @@ def select_poles(
         dropped=tuple(dropped),
         dropped_modes=tuple(dropped_modes),
     )
+
+
+def _merge_one_peak(
+    stab: Stabilisation, clusters: list[_Cluster], reasons: list[str], cluster_mac: float
+) -> set[int]:
+    """Merge accepted neighbours that are one peak; their reasons set, their indices returned.
+
+    Two accepted modes closer than their half-power width (the mean of their ``2 ζ f``) whose
+    shapes agree (MAC of the clusters' mean shapes at least ``cluster_mac``) are one peak that
+    the fit's higher orders split in two: no single-reference test can tell two modes of one
+    shape under one peak apart.  The one stable in more orders is kept (the larger peak on a
+    tie).  Close modes of other shapes (a symmetric structure's pairs) stay apart.
+    """
+    order = sorted((k for k, r in enumerate(reasons) if not r), key=lambda k: clusters[k].frequency)
+    merged: set[int] = set()
+    if len(order) < 2:
+        return merged
+    kept = order[0]
+    for other in order[1:]:
+        a, b = clusters[kept], clusters[other]
+        apart = abs(b.frequency - a.frequency)
+        width = max(a.damping_ratio, 0.0) * a.frequency + max(b.damping_ratio, 0.0) * b.frequency
+        if apart >= width:
+            kept = other
+            continue
+        shapes = mac(_mean_shape(stab, a.members)[:, None], _mean_shape(stab, b.members)[:, None])
+        alike = float(shapes[0, 0])
+        if alike < cluster_mac:
+            kept = other
+            continue
+        if (b.n_orders, b.peak) > (a.n_orders, a.peak):
+            kept, gone = other, kept
+        else:
+            gone = other
+        stay = clusters[kept]
+        reasons[gone] = (
+            f"one peak with the mode at {stay.frequency:.2f} Hz, merged into it: {apart:.2g} "
+            f"Hz apart, within their half-power width {width:.2g} Hz (2ζf), shapes alike (MAC "
+            f"{alike:.2f} ≥ {cluster_mac:g}); kept the one stable in more orders "
+            f"({stay.n_orders} against {clusters[gone].n_orders})"
+        )
+        merged.add(gone)
+        logger.info("%.2f Hz: %s", clusters[gone].frequency, reasons[gone])
+    return merged
 
 
 def _near(centre: float, target: float, tolerance: float) -> bool:

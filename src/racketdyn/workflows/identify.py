@@ -304,6 +304,7 @@ def run_identify(
         "face_mapping": found.model.metadata.get("face_mapping"),
         "scaling": found.model.scaling,
         "scaling_note": found.scaling_note,
+        "conjugated": found.frfs.metadata.get("conjugated"),
         "coordinates": found.model.has_locations,
         "coordinates_note": coordinates_note(found.model),
         "modes": found.model.summary()["modes"],
