@@ -30,7 +30,7 @@ from typing import cast
 import numpy as np
 
 from racketdyn._grammar import noun
-from racketdyn.errors import InputError
+from racketdyn.errors import InputError, logs_warnings
 from racketdyn.io.uff import (
     FREQUENCY_RESPONSE,
     QUANTITY_CODE,
@@ -126,6 +126,7 @@ def _listed(nodes: list[int]) -> str:
     return ", ".join(map(str, nodes[:8])) + (" …" if len(nodes) > 8 else "")
 
 
+@logs_warnings(log)
 def read_frfs(
     path: Path | str,
     geometry: Path | str | None = None,

@@ -43,7 +43,7 @@ from numpy.typing import NDArray
 
 from racketdyn.__about__ import __version__
 from racketdyn._grammar import noun, plural
-from racketdyn.errors import InputError
+from racketdyn.errors import InputError, logs_warnings, warnings_logged
 from racketdyn.io.uff_structure import check_structure
 from racketdyn.measurement.records import (
     FRF_TYPE_OF_RESPONSE,
@@ -160,9 +160,10 @@ def _as_int(value: Any, default: int = 0) -> int:
 
 @contextlib.contextmanager
 def _quiet_pyuff() -> Iterator[None]:
-    """Keep pyuff's prints (it prints the layouts of some data sets) off the console; logged."""
+    """Keep pyuff's prints (it prints the layouts of some data sets) and warnings (its own and
+    numpy's while it parses a damaged file) off the console; logged."""
     captured = io.StringIO()
-    with contextlib.redirect_stdout(captured):
+    with contextlib.redirect_stdout(captured), warnings_logged(logger, "pyuff"):
         yield
     if captured.getvalue():
         logger.debug("pyuff printed: %s", captured.getvalue())
@@ -749,6 +750,7 @@ def _records_of(path: Path, contents: _Contents, func_type: int) -> list[_Record
     )
 
 
+@logs_warnings(logger)
 def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> HammerRecords:
     """Read the time records of a roving-hammer test from a Universal File.
 
@@ -1447,6 +1449,7 @@ def _csv_setting(path: Path, settings: dict[str, str], key: str, example: str) -
     return settings[key]
 
 
+@logs_warnings(logger)
 def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -> HammerRecords:
     """Read roving-hammer time records from a CSV file and its geometry CSV.
 

@@ -1,0 +1,143 @@
+"""Issue 26, damaged measurement files: warnings off the console, non-finite and absurd values,
+geometry faults, data sets lost silently (and issue 25, item 4: a real export's Nyquist NaN).
+
+Every case was reproduced here before it was fixed.  Files are synthetic (racketdyn's writers,
+edited as a damaged export would be); the real OpenModal wing runs where the shared data are.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import pytest
+
+from racketdyn.cli import main
+from racketdyn.io import read_frf_uff, read_hammer_uff, write_frf_uff, write_hammer_uff
+from test_uff import _frfs, _records
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+
+
+def _lines(path: Path) -> list[str]:
+    return path.read_text(encoding="ascii").splitlines()
+
+
+def _write(path: Path, lines: list[str]) -> Path:
+    path.write_text("\n".join(lines) + "\n", encoding="ascii")
+    return path
+
+
+def _data_sets(lines: list[str]) -> list[tuple[int, int]]:
+    """(opening, closing) line indices of every data set."""
+    delimiters = [i for i, line in enumerate(lines) if line.strip() == "-1"]
+    return list(zip(delimiters[::2], delimiters[1::2], strict=True))
+
+
+def _value_at(line: str, column: int, value: str) -> str:
+    """``line`` (E20.12 values, 4 a line) with value ``column`` (from 0) set to ``value``."""
+    return line[: 20 * column] + value.rjust(20) + line[20 * (column + 1) :]
+
+
+def _one_line(capsys: pytest.CaptureFixture[str], *words: str) -> str:
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err
+    for word in words:
+        assert word in err[0], err[0]
+    return err[0]
+
+
+def _run_cli(*argv: str) -> subprocess.CompletedProcess[str]:
+    """The command in a fresh interpreter, as a user runs it: Python's own warning filters."""
+    env = {**os.environ, "PYTHONPATH": str(SRC)}
+    env.pop("PYTHONWARNINGS", None)
+    return subprocess.run(
+        [sys.executable, "-m", "racketdyn.cli", *argv],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+        check=False,
+    )
+
+
+def _kilonewton_hammer_file(tmp_path: Path, sample: str) -> Path:
+    """Hammer records whose first force record is labelled kN and holds ``sample`` once."""
+    lines = _lines(write_hammer_uff(_records(), tmp_path / "hammer.uff"))
+    opening, _ = next((o, c) for o, c in _data_sets(lines) if lines[o + 1].strip() == "58")
+    label = opening + 10  # record 9: the ordinate's type and units label
+    assert lines[label].split()[:2] == ["13", "0"]
+    assert lines[label].split()[-1] == "N"
+    lines[label] = lines[label].replace("Force                N ", "Force                kN")
+    lines[opening + 15] = _value_at(lines[opening + 15], 3, sample)  # the pulse's rise
+    return _write(tmp_path / "hammer_kn.uff", lines)
+
+
+# --- item 1: numpy's and pyuff's warnings stay off the console ------------------------------
+def test_an_overflowing_sample_leaves_no_warning_on_the_console(tmp_path: Path) -> None:
+    """A force of 1e307 kN overflowed when taken to N: numpy's RuntimeWarning (with the source
+    line) reached the console."""
+    path = _kilonewton_hammer_file(tmp_path, "9.99999999999e+307")
+    run = _run_cli("frf", str(path), "--out", str(tmp_path / "out"))
+    assert "Warning" not in run.stderr, run.stderr
+    assert "Traceback" not in run.stderr, run.stderr
+
+
+def test_pyuffs_warnings_go_to_the_log(
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    capsys: pytest.CaptureFixture[str],
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """pyuff's own warnings (and numpy's inside pyuff) while it reads a file are logged, not
+    shown: the test session turns a warning into an error, so one escaping fails the command."""
+    import numpy as np
+    import pyuff
+
+    real = pyuff.UFF.read_sets
+
+    def warning(self: object, *args: object, **kwargs: object) -> object:
+        warnings.warn("pyuff finds the file odd", UserWarning, stacklevel=1)
+        np.float64(1e308) * np.float64(10.0)  # numpy: overflow encountered in scalar multiply
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(pyuff.UFF, "read_sets", warning)
+    path = write_hammer_uff(_records(), tmp_path / "hammer.uff")
+    caplog.set_level("DEBUG")
+    assert main(["frf", str(path), "--out", str(tmp_path / "out")]) == 0
+    assert "Warning" not in capsys.readouterr().err
+    assert "pyuff finds the file odd" in caplog.text
+    assert "overflow" in caplog.text
+    # the library's readers too (a Python caller's console is kept as clean)
+    frfs = write_frf_uff(_frfs(), tmp_path / "frfs.uff")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        read_frf_uff(frfs)
+        read_hammer_uff(path)
+    assert not caught, [str(w.message) for w in caught]
+
+
+def test_a_warning_while_frfs_are_computed_goes_to_the_log(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    """The FRF-computing boundary (``estimate_frfs``) logs numpy's warnings too."""
+    import numpy as np
+
+    from racketdyn.measurement import frf
+
+    real = frf.check_average
+
+    def overflowing(*args: object, **kwargs: object) -> object:
+        np.float64(1e308) * np.float64(10.0)
+        return real(*args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(frf, "check_average", overflowing)
+    caplog.set_level("DEBUG")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        frf.estimate_frfs(_records())
+    assert not caught, [str(w.message) for w in caught]
+    assert "overflow" in caplog.text
