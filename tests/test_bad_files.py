@@ -141,3 +141,95 @@ def test_a_warning_while_frfs_are_computed_goes_to_the_log(
         frf.estimate_frfs(_records())
     assert not caught, [str(w.message) for w in caught]
     assert "overflow" in caplog.text
+
+
+# --- item 2: non-finite and absurd samples name the data set --------------------------------
+def test_a_sample_overflowing_in_si_units_names_the_data_set(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """1e307 kN is finite in the file and infinite in N: it was taken as data (the average
+    rejected as "non-finite" later) instead of the data set being named."""
+    path = _kilonewton_hammer_file(tmp_path, "9.99999999999e+307")
+    assert main(["frf", str(path), "--out", str(tmp_path / "out")]) == 2
+    _one_line(capsys, "hammer_kn.uff", "data set 2 (58", "response node 3", "load case 1", "kN")
+    assert not (tmp_path / "out").exists()
+
+
+def _frf_file(tmp_path: Path, value: str, line: int, column: int = 0) -> Path:
+    """FRFs (racketdyn's writer) with ``value`` in data line ``line`` of the first FRF
+    (data set 2; -1 its last line, the Nyquist line): columns 0 and 1 are the real and
+    imaginary parts of the line's first frequency, 2 and 3 of its second."""
+    lines = _lines(write_frf_uff(_frfs(), tmp_path / "frfs.uff"))
+    opening, closing = _data_sets(lines)[1]
+    assert lines[opening + 1].strip() == "58"
+    index = closing - 1 if line == -1 else opening + 13 + line
+    lines[index] = _value_at(lines[index], column, value)
+    return _write(tmp_path / "damaged.uff", lines)
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "9.99999999999e+299"])
+def test_a_bad_frf_value_inside_the_band_names_the_data_set(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], value: str
+) -> None:
+    """A NaN, an infinity or 1e300 in the middle of an FRF: the NaN was refused, 1e300 was
+    read as data (identify then overflowed: numpy's warnings and a traceback)."""
+    path = _frf_file(tmp_path, value, 20)
+    assert main(["identify", str(path), "--out", str(tmp_path / "out")]) == 2
+    _one_line(capsys, "damaged.uff", "data set 2 (58", "response node 7", "reference node 3")
+
+
+def test_a_nan_on_the_last_line_drops_that_line(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    """Issue 25, item 4: an export with NaN on the last (Nyquist) line of one record: the line
+    is dropped from every FRF and the log says so; the file is not refused."""
+    truth = _frfs()
+    path = _frf_file(tmp_path, "nan", -1, column=1)
+    caplog.set_level("INFO")
+    frfs = read_frf_uff(path)
+    assert frfs.frequency.size == truth.frequency.size - 1
+    assert frfs.frequency[-1] == truth.frequency[-2]
+    assert frfs.coherence is not None
+    assert frfs.coherence.shape == frfs.values.shape
+    import numpy as np
+
+    np.testing.assert_allclose(frfs.values, truth.values[:, :-1], rtol=1e-11)
+    assert "data set 2 (58" in caplog.text
+    assert "last line" in caplog.text
+    assert "dropped" in caplog.text
+
+
+def test_a_nan_on_the_last_line_of_a_time_record_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A time record has no Nyquist line: its last sample is data like any other."""
+    lines = _lines(write_hammer_uff(_records(), tmp_path / "hammer.uff"))
+    _, closing = next((o, c) for o, c in _data_sets(lines) if lines[o + 1].strip() == "58")
+    lines[closing - 1] = _value_at(lines[closing - 1], 3, "nan")
+    path = _write(tmp_path / "hammer_nan.uff", lines)
+    assert main(["frf", str(path), "--out", str(tmp_path / "out")]) == 2
+    _one_line(capsys, "hammer_nan.uff", "data set 2 (58", "NaN")
+
+
+def test_the_openmodal_wing_is_read_without_its_nyquist_nan(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    """The real OpenModal export (issue 25, item 4): 18 FRFs to 999.997 Hz, record 7's last
+    line NaN as exported.  Read with that line dropped, the rest finite."""
+    import lzma
+
+    import numpy as np
+
+    from realdata import realdata_dir
+
+    folder = realdata_dir() / "wing_openmodal"
+    path = tmp_path / "wing_openmodal_measurements.uff"  # unpacked into the test's folder
+    path.write_bytes(lzma.decompress((folder / "wing_openmodal_measurements.uff.xz").read_bytes()))
+    caplog.set_level("INFO")
+    frfs = read_frf_uff(path, geometry=folder / "wing_openmodal_geometry_m.csv")
+    assert frfs.n_points == 18
+    assert frfs.frequency.size == 4096
+    assert frfs.frequency[-1] == pytest.approx(4095 * 1000.0 / 4096, rel=1e-5)
+    assert np.all(np.isfinite(frfs.values))
+    assert "data set 7 (58" in caplog.text
+    assert "dropped" in caplog.text

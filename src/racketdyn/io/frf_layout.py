@@ -43,6 +43,7 @@ from racketdyn.io.uff import (
     _frf_id_fields,
     _frf_scale,
     _in_global_axes,
+    _in_si,
     _normal_label,
     _read_sets,
     _Record,
@@ -52,7 +53,13 @@ from racketdyn.io.uff import (
     _sign,
     _units_of,
 )
-from racketdyn.measurement.records import FRF_TYPE_OF_RESPONSE, FrfSet, FrfType
+from racketdyn.measurement.records import (
+    ABSURD_FRF,
+    FRF_TYPE_OF_RESPONSE,
+    FRF_UNITS,
+    FrfSet,
+    FrfType,
+)
 
 __all__ = ["LAYOUTS", "read_frf_uff", "read_frfs"]
 
@@ -249,24 +256,47 @@ def read_frfs(
     z = np.r_[xyz[:, 2], reference_xyz[2]]
     three_d = bool(np.nanmax(z) > np.nanmin(z)) if np.isfinite(z).any() else False
     locations = xyz if three_d else xyz[:, :2]
+    frf_type = cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type])
+    frequency_scale = _scale(path, first, "frequency", _normal_label(first.labels[0]), units)
+    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
+    top = None if bandwidth is None else bandwidth / frequency_scale  # in the file's unit
     values = np.asarray(
         [
-            by_node[n].data
-            * _frf_scale(path, by_node[n], response_type, units)
-            * _sign(path, by_node[n], by_node[n].rsp_dir)
-            * _sign(path, by_node[n], by_node[n].ref_dir)
+            _in_si(
+                path,
+                by_node[n],
+                _frf_scale(path, by_node[n], response_type, units)
+                * _sign(path, by_node[n], by_node[n].rsp_dir)
+                * _sign(path, by_node[n], by_node[n].ref_dir),
+                "the FRF's",
+                ABSURD_FRF,
+                FRF_UNITS[frf_type],
+                top,
+            )
             for n in nodes
         ],
         dtype=complex,
     )
-    frequency_scale = _scale(path, first, "frequency", _normal_label(first.labels[0]), units)
+    frequency = first.x * frequency_scale
     coherence = _coherence(path, every, ref, nodes, first) if layout == "roving hammer" else None
+    nyquist = [by_node[n] for n in nodes if by_node[n].nyquist_nan]
+    if coherence is not None and not np.all(np.isfinite(coherence[:, -1])):
+        nyquist.append(by_node[nodes[int(np.argmin(np.isfinite(coherence[:, -1])))]])
+    if nyquist:  # issue 25, item 4: OpenModal writes NaN on one record's Nyquist line
+        log.info(
+            "%s%s: NaN or infinite on the last line, %g Hz (the Nyquist line; some exports write "
+            "it so): that line dropped from every FRF",
+            nyquist[0].where(path),
+            "" if len(nyquist) == 1 else f" and {noun(len(nyquist) - 1, 'another')} ",
+            frequency[-1],
+        )
+        frequency, values = frequency[:-1], values[:, :-1]
+        coherence = None if coherence is None else coherence[:, :-1]
     estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
-    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
     return FrfSet(
-        frequency=first.x * frequency_scale,
+        frequency=frequency,
         values=values,
-        frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
+        frf_type=frf_type,
         nodes=tuple(nodes),
         locations=locations,
         reference_node=ref,

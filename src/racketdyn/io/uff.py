@@ -46,6 +46,8 @@ from racketdyn._grammar import noun, plural
 from racketdyn.errors import InputError, logs_warnings, warnings_logged
 from racketdyn.io.uff_structure import check_structure
 from racketdyn.measurement.records import (
+    ABSURD_FORCE_N,
+    ABSURD_RESPONSE,
     FRF_TYPE_OF_RESPONSE,
     RESPONSE_TYPES,
     FrfSet,
@@ -132,6 +134,7 @@ class _Record:
     even: bool
     data: NDArray[Any]
     ids: tuple[str, ...]
+    nyquist_nan: bool = False  # a spectrum whose last line alone is NaN or infinite
 
     def where(self, path: Path) -> str:
         """The start of a message about this record."""
@@ -454,6 +457,48 @@ def _sign(path: Path, record: _Record, direction: int) -> float:
     return -1.0 if direction < 0 else 1.0
 
 
+def _in_si(
+    path: Path,
+    record: _Record,
+    scale: float,
+    what: str,
+    limit: float,
+    unit: str,
+    top: float | None = None,
+) -> NDArray[Any]:
+    """A record's values times ``scale`` (to SI units, with its direction's sign), refused
+    naming the data set where one overflows or lies beyond ``limit``: a damaged number
+    (1e300 for 1.2) or a wrong units label.  Lines above ``top`` (the analyser's roll-off
+    above the bandwidth racketdyn's own FRFs record) and a spectrum's NaN Nyquist line (which
+    the FRF reader drops) are left as they are."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        values = np.asarray(record.data * scale)
+    checked = values.copy()
+    if record.nyquist_nan:
+        checked[-1] = 0.0
+    if top is not None:
+        checked[record.x > top] = 0.0
+    magnitude = np.abs(checked)
+    bad = ~np.isfinite(magnitude) | (magnitude > limit)
+    if np.any(bad):
+        k = int(np.argmax(bad))
+        labels = [text.strip() for text in record.labels[1:]]
+        labelled = "/".join(text for text in labels if text and text.upper() != "NONE")
+        found = f"{abs(record.data[k]):.3g}{' ' + labelled if labelled else ''}"
+        in_si = f" {unit}" if unit else ""
+        sample = "sample" if record.func_type == TIME_RESPONSE else "line"
+        value = (
+            f"{magnitude[k]:.3g}{in_si}, beyond the {limit:g}{in_si} of any measurement"
+            if np.isfinite(magnitude[k])
+            else f"beyond the largest floating-point number in{in_si or ' SI units'}"
+        )
+        raise InputError(
+            f"{record.where(path)}: {what} {sample} {k + 1} reads {found}, which is {value}: "
+            "the data set is damaged or its units label wrong; export it again"
+        )
+    return values
+
+
 def _abscissa(dset: dict[str, Any]) -> tuple[NDArray[np.float64], float, bool]:
     """Abscissa, its step and whether it is even, exact where racketdyn's ID line 5 holds them.
 
@@ -623,14 +668,21 @@ def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
         )
     if data.size < 2:
         raise InputError(f"{record.where(path)}: a record needs two values or more")
-    bad = ~np.isfinite(data)
-    if np.any(bad):
-        raise InputError(
-            f"{record.where(path)}: {int(bad.sum())} of its values are NaN or infinite (the "
-            f"first at sample {int(np.argmax(bad))}); re-export the record or leave it out"
-        )
     if not np.all(np.isfinite(x)) or (x.size > 1 and np.any(np.diff(x) <= 0)):
         raise InputError(f"{record.where(path)}: the abscissa must rise strictly")
+    bad = ~np.isfinite(data)
+    if np.any(bad):
+        if record.func_type != TIME_RESPONSE and bad[-1] and not np.any(bad[:-1]):
+            # a spectrum's last line is its Nyquist line, which some exports (OpenModal)
+            # write as NaN: the readers of spectra drop it (and say so)
+            return dataclasses.replace(record, nyquist_nan=True)
+        first, count = int(np.argmax(bad)), int(bad.sum())
+        what = "sample" if record.func_type == TIME_RESPONSE else "line"
+        raise InputError(
+            f"{record.where(path)}: {plural(count, 'value')} {noun(count, 'is', 'are')} NaN or "
+            f"infinite (the first at {what} {first + 1} of {data.size}, abscissa "
+            f"{x[first]:g}); re-export the record or leave it out"
+        )
     return record
 
 
@@ -888,8 +940,19 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
             f, r = forces[key], responses[key]
             f_scale = _scale(path, f, "force", _normal_label(f.labels[1]), contents.units)
             r_scale = _scale(path, r, response_type, _normal_label(r.labels[1]), contents.units)
-            rows_f.append(f.data * f_scale * _sign(path, f, f.rsp_dir))
-            rows_r.append(r.data * r_scale * _sign(path, r, r.rsp_dir))
+            rows_f.append(
+                _in_si(path, f, f_scale * _sign(path, f, f.rsp_dir), "force", ABSURD_FORCE_N, "N")
+            )
+            rows_r.append(
+                _in_si(
+                    path,
+                    r,
+                    r_scale * _sign(path, r, r.rsp_dir),
+                    response_type,
+                    ABSURD_RESPONSE,
+                    SI_LABEL[response_type],
+                )
+            )
         force_rows.append(np.asarray(rows_f, dtype=float))
         response_rows.append(np.asarray(rows_r, dtype=float))
     _note_missing(path, contents.nodes, [*nodes, reference_node])
@@ -943,7 +1006,15 @@ def _coherence(
         _check_same_abscissa(path, first, record, "frequency axis")
         if np.iscomplexobj(record.data):
             raise InputError(f"{record.where(path)}: a coherence must be real")
-    return np.asarray([found[n].data for n in nodes], dtype=float)
+    return np.asarray(
+        [_in_si(path, found[n], 1.0, "the coherence's", ABSURD_COHERENCE, "") for n in nodes],
+        dtype=float,
+    )
+
+
+#: A coherence read from a file beyond this is damage (it lies between 0 and 1; a per-cent
+#: coherence, 0–100, passes and only draws wrong).
+ABSURD_COHERENCE = 1.0e3
 
 
 def _bandwidth_of(records: Sequence[_Record]) -> float | None:
