@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from racketdyn.cli import main
+from racketdyn.errors import InputError
 from racketdyn.io import read_frf_uff, read_hammer_uff, write_frf_uff, write_hammer_uff
 from test_uff import _frfs, _records
 
@@ -233,3 +234,79 @@ def test_the_openmodal_wing_is_read_without_its_nyquist_nan(
     assert np.all(np.isfinite(frfs.values))
     assert "data set 7 (58" in caplog.text
     assert "dropped" in caplog.text
+
+
+# --- item 3: geometry faults -----------------------------------------------------------------
+_NODE_12 = "        12         0         0         0  6.00000E-01 -3.00000E-02  0.00000E+00"
+_2411 = [
+    "    -1",
+    "  2411",
+    "        12         0         0        11",
+    "   6.0000000000000000D-01  -3.0000000000000000D-02   0.0000000000000000D+00",
+    "    -1",
+]
+
+
+def _frfs_with_geometry(tmp_path: Path, extra: list[str], into_15: bool) -> Path:
+    """racketdyn's FRF file (data set 15: nodes 7, 3, 12) with lines added to its data set 15
+    (``into_15``) or a data set after it."""
+    lines = _lines(write_frf_uff(_frfs(), tmp_path / "frfs.uff"))
+    assert lines[1].strip() == "15"
+    assert lines[4] == _NODE_12
+    at = 5 if into_15 else 6
+    return _write(tmp_path / "geometry.uff", lines[:at] + extra + lines[at:])
+
+
+@pytest.mark.parametrize(
+    ("extra", "into_15", "words"),
+    [
+        ([_NODE_12.replace("6.00000E-01", "6.50000E-01")], True, ["data set 1 (15"]),
+        ([*_2411[:3], _2411[3].replace("6.0000", "6.5000"), *_2411[4:]], False, ["(2411"]),
+    ],
+)
+def test_a_node_defined_twice_at_two_places_is_refused(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    extra: list[str],
+    into_15: bool,
+    words: list[str],
+) -> None:
+    """Node 12 at x = 0.60 and again at x = 0.65 m: the later one silently won."""
+    path = _frfs_with_geometry(tmp_path, extra, into_15)
+    assert main(["identify", str(path), "--out", str(tmp_path / "out")]) == 2
+    _one_line(capsys, "geometry.uff", "node 12", "0.6, -0.03, 0", "0.65, -0.03, 0", *words)
+
+
+@pytest.mark.parametrize(("extra", "into_15"), [([_NODE_12], True), (_2411, False)])
+def test_a_node_defined_twice_at_one_place_is_read_and_logged(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture, extra: list[str], into_15: bool
+) -> None:
+    import numpy as np
+
+    path = _frfs_with_geometry(tmp_path, extra, into_15)
+    caplog.set_level("INFO")
+    frfs = read_frf_uff(path)
+    np.testing.assert_allclose(frfs.locations, _frfs().locations, rtol=1e-6)
+    assert "node 12" in caplog.text
+    assert "twice" in caplog.text
+
+
+def test_a_geometry_in_mm_without_164_is_one_line_naming_the_file(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Issue 12 refused it; the line wrote ``--geometry FILE`` below the CLI (a parameter is
+    named in backticks there) and said mm for the OpenModal wing's inches (60 in read as
+    60 m): the span in either unit is said."""
+    lines = _lines(write_frf_uff(_frfs(), tmp_path / "frfs.uff"))
+    geometry = lines[:6]
+    for k in (2, 3, 4):  # the nodes in mm
+        node, x, y = geometry[k][:40], float(geometry[k][40:53]), float(geometry[k][53:66])
+        geometry[k] = f"{node}{x * 1e3:13.5E}{y * 1e3:13.5E}{geometry[k][66:]}"
+    nodes = _write(tmp_path / "nodes_mm.uff", geometry)
+    frfs = _write(tmp_path / "frfs_only.uff", lines[6:])
+    assert (
+        main(["identify", str(frfs), "--geometry", str(nodes), "--out", str(tmp_path / "o")]) == 2
+    )
+    _one_line(capsys, "nodes_mm.uff", "data set 1 (15", "150 m", "0.15 m in mm", "3.81 m in inches")
+    with pytest.raises(InputError, match="`geometry`"):
+        read_frf_uff(frfs, geometry=nodes)

@@ -77,7 +77,7 @@ def test_coordinates_in_mm_without_164_are_refused(tmp_path: Path) -> None:
     # An OROS-style mesh in mm with no data set 164: a racket 550 "m" long is refused, naming
     # the remedies (data set 164 or --geometry).
     path = _mm_file(tmp_path, with_164=False)
-    _one_line_error(lambda: read_frf_uff(path), str(path), "likely in mm", "164", "--geometry")
+    _one_line_error(lambda: read_frf_uff(path), str(path), "likely in mm", "164", "`geometry`")
 
 
 def test_coordinates_in_mm_with_164_are_converted(tmp_path: Path) -> None:

@@ -306,6 +306,7 @@ def _nodes_xyz_of(
     global system; a system number no data set 18 defines is taken as the global system.
     """
     nodes: dict[int, tuple[float, float, float]] = {}
+    where: dict[int, str] = {}  # the data set defining each node
     frames: dict[int, _System] = {}
     systems = _systems_of(path, sets, units)
     for i, dset in enumerate(sets, start=1):
@@ -345,12 +346,49 @@ def _nodes_xyz_of(
             raise InputError(
                 f"{path}: data set {i} ({dset['type']}, nodes): the nodes span {extent:g} m, "
                 f"more than the {MAX_EXTENT_M:g} m of any structure tested with a hammer: the "
-                "coordinates are likely in mm; add a data set 164 giving the length unit, or "
-                "give the coordinates in m with --geometry FILE"
+                f"coordinates are likely in mm or inches ({extent * 1e-3:.3g} m in mm, "
+                f"{extent * 0.0254:.3g} m in inches); add a data set 164 giving the length "
+                "unit, or give the coordinates in m with `geometry`"
             )
         for number, xi, yi, zi in zip(numbers, x, y, z, strict=True):
-            nodes[int(number)] = (float(xi), float(yi), float(zi))
+            _define(path, nodes, where, int(number), (float(xi), float(yi), float(zi)), i, dset)
     return nodes, frames
+
+
+def _define(
+    path: Path,
+    nodes: dict[int, tuple[float, float, float]],
+    where: dict[int, str],
+    number: int,
+    xyz: tuple[float, float, float],
+    index: int,
+    dset: dict[str, Any],
+) -> None:
+    """Node ``number`` at ``xyz`` (m) in ``nodes``: a node defined again at the same place is
+    read once (logged), at another place refused naming both (the later one silently won)."""
+    here = f"data set {index} ({dset['type']})"
+    if number in nodes:
+        before = nodes[number]
+        if not np.allclose(xyz, before, rtol=1e-6, atol=1e-9):
+            raise InputError(
+                f"{path}: node {number} is defined twice: at ({_xyz(before)}) m in "
+                f"{where[number]} and at ({_xyz(xyz)}) m in {here}; keep one definition per "
+                "node and export the geometry again"
+            )
+        logger.info(
+            "%s: node %d is defined twice at the same place (%s and %s); read once",
+            path,
+            number,
+            where[number],
+            here,
+        )
+        return
+    nodes[number] = xyz
+    where[number] = here
+
+
+def _xyz(xyz: tuple[float, float, float]) -> str:
+    return ", ".join(f"{v:.6g}" for v in xyz)
 
 
 def _global_direction(path: Path, record: _Record, node: int, code: int, frame: _System) -> int:
