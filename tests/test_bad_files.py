@@ -21,6 +21,7 @@ from racketdyn.io import read_frf_uff, read_hammer_uff, write_frf_uff, write_ham
 from test_uff import _frfs, _records
 
 SRC = Path(__file__).resolve().parents[1] / "src"
+FIXTURES = Path(__file__).parent / "fixtures"
 
 
 def _lines(path: Path) -> list[str]:
@@ -310,3 +311,87 @@ def test_a_geometry_in_mm_without_164_is_one_line_naming_the_file(
     _one_line(capsys, "nodes_mm.uff", "data set 1 (15", "150 m", "0.15 m in mm", "3.81 m in inches")
     with pytest.raises(InputError, match="`geometry`"):
         read_frf_uff(frfs, geometry=nodes)
+
+
+# --- item 4: nothing lost silently ------------------------------------------------------------
+@pytest.mark.parametrize("kind", ["frf", "hammer"])
+def test_a_racketdyn_file_cut_between_data_sets_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], kind: str
+) -> None:
+    """Cut right after a complete data set, a file of FRFs read as fewer points (and one of
+    time records as fewer averages): racketdyn's files say how many data sets they hold."""
+    if kind == "frf":
+        written = write_frf_uff(_frfs(), tmp_path / "whole.uff")
+        command, keep = "identify", 5  # geometry, FRF + coherence of two points: 5 of 7
+    else:
+        written = write_hammer_uff(_records(), tmp_path / "whole.uff")
+        command, keep = "frf", 9  # geometry, 4 averages of force + response: 9 of 13
+    lines = _lines(written)
+    _, closing = _data_sets(lines)[keep - 1]
+    path = _write(tmp_path / "cut.uff", lines[: closing + 1])
+    assert main([command, str(path), "--out", str(tmp_path / "out")]) == 2
+    records = len(_data_sets(lines)) - 1  # the data sets 58 (after the geometry)
+    _one_line(
+        capsys, "cut.uff", f"{keep - 1} of the {records} data sets 58", f"after data set {keep}"
+    )
+
+
+def test_a_file_ending_inside_a_line_after_a_data_set_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Any exporter's file cut while the next data set's opening '    -1' was written: the
+    spaces left after the last complete data set were taken as the file's end."""
+    from racketdyn.errors import InputError
+
+    lines = _lines(FIXTURES / "testlab_like_frf.uff")
+    _, closing = _data_sets(lines)[3]  # the 164, the 15 and the first two FRFs
+    path = tmp_path / "cut.uff"
+    path.write_text("\n".join(lines[: closing + 1]) + "\n   ", encoding="ascii")
+    with pytest.raises(InputError, match=r"cut\.uff: .*ends inside a line after data set 4"):
+        read_frf_uff(path)
+
+
+@pytest.mark.parametrize(
+    ("columns", "junk", "words"),
+    [
+        ((51, 55), "   x", ["record 6", "field 7", "'x'", "response direction"]),  # -3
+        ((0, 5), "   99", ["record 6", "field 1", "function type 99"]),
+        ((41, 51), "        1x", ["record 6", "field 6", "'1x'", "response node"]),
+        ((20, 30), "       2.5", ["record 6", "field 4", "load case"]),
+    ],
+)
+def test_a_damaged_58_header_names_the_field(
+    tmp_path: Path, columns: tuple[int, int], junk: str, words: list[str]
+) -> None:
+    """pyuff reads a damaged optional field of record 6 as 0 (a direction −3 became +, a node
+    0) and racketdyn ignored a data set of an unknown function type: less or other data."""
+    from racketdyn.errors import InputError
+
+    lines = _lines(FIXTURES / "testlab_like_frf.uff")
+    opening, _ = _data_sets(lines)[3]  # the second FRF
+    record6 = opening + 7
+    assert lines[record6].split()[0] == "4"
+    start, end = columns
+    lines[record6] = lines[record6][:start] + junk + lines[record6][end:]
+    path = _write(tmp_path / "damaged.uff", lines)
+    with pytest.raises(InputError) as error:
+        read_frf_uff(path)
+    message = str(error.value)
+    assert "\n" not in message
+    for word in ["damaged.uff", "data set 4 (58", f"line {record6 + 1}", *words]:
+        assert word in message, message
+
+
+def test_a_data_set_not_used_is_said_on_the_console(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A header damaged into another valid number (function type 4 → 0, general) made an FRF
+    vanish without a word on the console: identify now names the data sets it did not use."""
+    lines = _lines(FIXTURES / "testlab_like_frf.uff")
+    opening, _ = _data_sets(lines)[4]  # the third FRF
+    record6 = opening + 7
+    lines[record6] = "    0" + lines[record6][5:]
+    path = _write(tmp_path / "general.uff", lines)
+    assert main(["identify", str(path), "--out", str(tmp_path / "out")]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "not used from the file: data set 5 of another function type" in out, out

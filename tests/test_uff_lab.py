@@ -235,8 +235,13 @@ def test_structural_fuzz_gives_the_numbers_or_a_clean_error(tmp_path: Path) -> N
                 continue
             if _same(got, original):
                 counts["same"] += 1
-            elif what.startswith("truncated after") and _subset(got, original):
-                # a file cut exactly between two data sets is a smaller valid file
+            elif (
+                what.startswith("truncated after")
+                and source.parent == FIXTURES
+                and _subset(got, original)
+            ):
+                # another system's file cut exactly between two data sets is a smaller valid
+                # file; racketdyn's own files say how many records they hold (issue 26)
                 counts["cut between sets"] += 1
             else:
                 raise AssertionError(f"{source.name}, {what}: read without error, other numbers")

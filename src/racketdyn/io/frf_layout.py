@@ -29,9 +29,10 @@ from typing import cast
 
 import numpy as np
 
-from racketdyn._grammar import noun
+from racketdyn._grammar import noun, plural
 from racketdyn.errors import InputError, logs_warnings
 from racketdyn.io.uff import (
+    COHERENCE,
     FREQUENCY_RESPONSE,
     QUANTITY_CODE,
     RESPONSE_OF_CODE,
@@ -165,7 +166,10 @@ def read_frfs(
         Points ordered by node number; ``reference_node`` the reference; locations (x, y, z)
         in the lab's frame, m ((x, y) when every point has the same z); metadata
         ``layout`` (:data:`LAYOUTS`), ``left_out`` (FRFs not against the reference),
-        ``directions`` (node → direction code used) and, for FRFs racketdyn estimated,
+        ``unused_data_sets`` (their data sets' numbers, and those of a reciprocal pair's
+        other FRF), ``ignored_data_sets`` (data sets 58 of other function types than FRF and
+        coherence), ``directions`` (node → direction code used) and, for FRFs racketdyn
+        estimated,
         ``bandwidth_hz`` (fs/2.56; another system's export ends at its bandwidth:
         :attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`).
 
@@ -193,6 +197,14 @@ def read_frfs(
     # the FRFs against the reference, one per point, in the direction most of them share
     mine = [r for r in records if ref in (r.rsp_node, r.ref_node)]
     left_out = len(records) - len(mine)
+    unused = [r.index for r in records if ref not in (r.rsp_node, r.ref_node)]
+    ignored = [r.index for r in every if r.func_type not in (FREQUENCY_RESPONSE, COHERENCE)]
+    if ignored:
+        log.info(
+            "%s: %s of other function types than FRF (4) and coherence (6) ignored",
+            path,
+            plural(len(ignored), "data set"),
+        )
 
     def point_of(r: _Record) -> tuple[int, int]:
         return (r.ref_node, r.ref_dir) if r.rsp_node == ref else (r.rsp_node, r.rsp_dir)
@@ -203,6 +215,7 @@ def read_frfs(
         node, direction = point_of(r)
         if abs(direction) != usual:
             left_out += 1
+            unused.append(r.index)
             continue
         kept = by_node.get(node)
         if kept is None:
@@ -216,6 +229,7 @@ def read_frfs(
         left_out += 1  # both H_ij and H_ji: keep the one with the sensor at the reference
         if r.rsp_node == ref and kept.rsp_node != ref:
             by_node[node] = r
+        unused.append(r.index if by_node[node] is not r else kept.index)
     if left_out:
         log.info(
             "%s: %d FRFs not against reference node %d (or in another direction) left out",
@@ -311,6 +325,8 @@ def read_frfs(
         metadata={
             "layout": layout,
             "left_out": left_out,
+            "unused_data_sets": sorted(unused),
+            "ignored_data_sets": ignored,
             "directions": {int(n): int(point_of(by_node[n])[1]) for n in nodes},
             **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
         },

@@ -212,6 +212,7 @@ def _read_sets(path: Path) -> list[dict[str, Any]]:
                     f"{block.line}) cannot be read (damaged); export the file again"
                 ) from None
             sets.append(cast(dict[str, Any], dset))
+    _check_complete(path, sets)
     return sets
 
 
@@ -1222,6 +1223,42 @@ def _record_set(
     return dset
 
 
+_RECORD_COUNT = re.compile(r"; record (\d+) of (\d+)$")
+
+
+def _numbered(sets: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The data sets 58 with "; record k of n" after the date in ID line 3: a file cut
+    between two data sets is otherwise a smaller valid file (:func:`_check_complete`)."""
+    records = [dset for dset in sets if dset["type"] == 58]
+    for k, dset in enumerate(records, start=1):
+        dset["id3"] = _ascii_line(f"{dset['id3']}; record {k} of {len(records)}")
+    return sets
+
+
+def _check_complete(path: Path, sets: Sequence[dict[str, Any]]) -> None:
+    """Refuse a file racketdyn wrote that holds fewer of its data sets 58 than it wrote.
+
+    Only racketdyn's own files say how many records they hold (ID line 3); another system's
+    file cut exactly between two data sets cannot be told from a smaller file.
+    """
+    counts: list[tuple[int, int]] = []
+    for dset in sets:
+        if dset.get("type") != 58 or not str(dset.get("id1", "")).startswith("racketdyn"):
+            continue
+        match = _RECORD_COUNT.search(str(dset.get("id3", "")).strip())
+        if match:
+            counts.append((int(match.group(1)), int(match.group(2))))
+    totals = {total for _, total in counts}
+    if len(totals) != 1:
+        return  # none, or records of several files put together: nothing to hold them to
+    total = totals.pop()
+    if len(counts) < total:
+        raise InputError(
+            f"{path}: the file holds {len(counts)} of the {total} data sets 58 racketdyn wrote "
+            f"into it: it was cut after data set {len(sets)}; copy or write it again"
+        )
+
+
 def _write_sets(path: Path, sets: Sequence[dict[str, Any]]) -> Path:
     """Write data sets to a fresh file with pyuff.
 
@@ -1355,7 +1392,7 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
                     **common,
                 )
             )
-    return _write_sets(path, sets)
+    return _write_sets(path, _numbered(sets))
 
 
 def write_hammer_uff(
@@ -1470,7 +1507,7 @@ def write_hammer_uff(
                     )
                 )
                 sets[-1]["rsp_dir"], sets[-1]["ref_dir"] = direction, normal
-    return _write_sets(path, sets)
+    return _write_sets(path, _numbered(sets))
 
 
 # --------------------------------------------------------------------------------------------
