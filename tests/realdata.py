@@ -40,3 +40,8 @@ def file(relative: str, tmp_path: Path) -> Path:
         with lzma.open(source) as packed, target.open("wb") as unpacked:
             shutil.copyfileobj(packed, unpacked)
     return target
+
+
+def realdata_dir() -> Path:
+    """The real-data folder, resolved (:func:`folder`; skips when absent)."""
+    return folder().resolve()

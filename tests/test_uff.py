@@ -440,7 +440,8 @@ def test_nan_in_the_data(tmp_path: Path) -> None:
     text = path.read_text()
     assert text.count("1.23450000000e+67") == 1
     path.write_text(text.replace("1.23450000000e+67", "nan".rjust(17)))
-    _raises(path, lambda: read_hammer_uff(path), "data set 6 ", "NaN", "sample 3")
+    # samples counted from 1, as in the file (index 3 is its fourth)
+    _raises(path, lambda: read_hammer_uff(path), "data set 6 ", "NaN", "sample 4 of 256")
 
 
 def test_node_without_coordinates(tmp_path: Path) -> None:

@@ -78,7 +78,7 @@ def test_coordinates_in_mm_without_164_are_refused(tmp_path: Path) -> None:
     # An OROS-style mesh in mm with no data set 164: a racket 550 "m" long is refused, naming
     # the remedies (data set 164 or --geometry).
     path = _mm_file(tmp_path, with_164=False)
-    _one_line_error(lambda: read_frf_uff(path), str(path), "0.35 m if in mm", "164", "--geometry")
+    _one_line_error(lambda: read_frf_uff(path), str(path), "0.35 m if in mm", "164", "`geometry`")
 
 
 def _span_file(tmp_path: Path, scale: float) -> Path:
@@ -275,8 +275,13 @@ def test_structural_fuzz_gives_the_numbers_or_a_clean_error(tmp_path: Path) -> N
                 continue
             if _same(got, original):
                 counts["same"] += 1
-            elif what.startswith("truncated after") and _subset(got, original):
-                # a file cut exactly between two data sets is a smaller valid file
+            elif (
+                what.startswith("truncated after")
+                and source.parent == FIXTURES
+                and _subset(got, original)
+            ):
+                # another system's file cut exactly between two data sets is a smaller valid
+                # file; racketdyn's own files say how many records they hold (issue 26)
                 counts["cut between sets"] += 1
             else:
                 raise AssertionError(f"{source.name}, {what}: read without error, other numbers")

@@ -6,20 +6,32 @@ one line and exits with status 2.  Library users can catch it as a :class:`Value
 
 from __future__ import annotations
 
+import contextlib
+import functools
+import logging
 import math
-from collections.abc import Iterable
+import warnings
+from collections.abc import Callable, Iterable, Iterator
+from typing import ParamSpec, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from racketdyn._display import shorten
+
 __all__ = [
     "InputError",
+    "logs_warnings",
     "one_of",
     "require_finite",
     "require_positive",
     "require_range",
     "require_speeds",
+    "warnings_logged",
 ]
+
+P = ParamSpec("P")
+R = TypeVar("R")
 
 
 class InputError(ValueError):
@@ -88,3 +100,42 @@ def one_of(name: str, value: object, allowed: Iterable[str]) -> str:
     if not isinstance(value, str) or value not in options:
         raise InputError(f"{name} must be one of {', '.join(options)} (got {value!r})")
     return value
+
+
+@contextlib.contextmanager
+def warnings_logged(log: logging.Logger, where: str) -> Iterator[None]:
+    """Warnings raised inside go to ``log`` (info level), not to the console.
+
+    For the boundaries where a user's file meets numpy and pyuff (reading a file, computing
+    FRFs): a damaged file makes numpy warn (``overflow encountered in multiply``) and pyuff
+    warn, which the console showed with a source line, while the input's own check says what
+    is wrong in one line.  Only the warnings raised inside the block are taken (no global
+    filter); each distinct one is logged once, naming ``where``.
+    """
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            yield
+        finally:
+            seen: set[tuple[str, str]] = set()
+            for warning in caught:
+                key = (warning.category.__name__, str(warning.message))
+                if key not in seen:
+                    seen.add(key)
+                    log.info("%s: %s: %s (%s:%d)", where, *key, warning.filename, warning.lineno)
+
+
+def logs_warnings(log: logging.Logger) -> Callable[[Callable[P, R]], Callable[P, R]]:
+    """Decorator: the function runs under :func:`warnings_logged`, named with its first
+    argument (the file it reads, the records it computes from)."""
+
+    def decorate(func: Callable[P, R]) -> Callable[P, R]:
+        @functools.wraps(func)
+        def logged(*args: P.args, **kwargs: P.kwargs) -> R:
+            where = f"{func.__name__}({shorten(str(args[0])) if args else ''})"
+            with warnings_logged(log, where):
+                return func(*args, **kwargs)
+
+        return logged
+
+    return decorate

@@ -11,6 +11,7 @@ from racketdyn.cli.frf import add_geometry
 if TYPE_CHECKING:
     from rich.console import Console
 
+    from racketdyn.measurement.records import FrfSet
     from racketdyn.modal.identify import Identification
 
 
@@ -134,6 +135,32 @@ def _options(args: argparse.Namespace) -> dict[str, Any]:
     }
 
 
+def unused_note(console: Console, frfs: FrfSet) -> None:
+    """One line naming the file's data sets 58 that were not used (nothing dropped silently:
+    a damaged header can turn an FRF into another function type or another node's)."""
+    ignored = frfs.metadata.get("ignored_data_sets") or []
+    unused = frfs.metadata.get("unused_data_sets") or []
+    parts = []
+    if ignored:
+        parts.append(
+            f"{opt.noun(len(ignored), 'data set')} {_listed(ignored)} of another function type "
+            "than FRF (4) or coherence (6)"
+        )
+    if unused:
+        parts.append(
+            f"{opt.noun(len(unused), 'data set')} {_listed(unused)} not against reference node "
+            f"{frfs.reference_node}, in another direction or a reciprocal pair's second"
+        )
+    if parts:
+        opt.say(console, "not used from the file: " + "; ".join(parts), "dim")
+
+
+def _listed(numbers: list[int]) -> str:
+    return ", ".join(map(str, numbers[:8])) + (
+        f" … ({len(numbers)} in all)" if len(numbers) > 8 else ""
+    )
+
+
 def print_modes(console: Console, identification: Identification) -> None:
     """The identified modes as a table, with the fit quality and the modes dropped."""
     import numpy as np
@@ -208,6 +235,7 @@ def run_identify(args: argparse.Namespace, console: Console) -> int:
             **_options(args),
         )
     assert result.identification is not None
+    unused_note(console, result.identification.frfs)
     print_modes(console, result.identification)
     opt.print_written(console, result.written)
     return 0

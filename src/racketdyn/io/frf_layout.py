@@ -29,9 +29,10 @@ from typing import cast
 
 import numpy as np
 
-from racketdyn._grammar import noun
-from racketdyn.errors import InputError
+from racketdyn._grammar import noun, plural
+from racketdyn.errors import InputError, logs_warnings
 from racketdyn.io.uff import (
+    COHERENCE,
     FREQUENCY_RESPONSE,
     QUANTITY_CODE,
     RESPONSE_OF_CODE,
@@ -43,6 +44,7 @@ from racketdyn.io.uff import (
     _frf_id_fields,
     _frf_scale,
     _in_global_axes,
+    _in_si,
     _normal_label,
     _read_sets,
     _Record,
@@ -52,7 +54,13 @@ from racketdyn.io.uff import (
     _sign,
     _units_of,
 )
-from racketdyn.measurement.records import FRF_TYPE_OF_RESPONSE, FrfSet, FrfType
+from racketdyn.measurement.records import (
+    ABSURD_FRF,
+    FRF_TYPE_OF_RESPONSE,
+    FRF_UNITS,
+    FrfSet,
+    FrfType,
+)
 
 __all__ = ["LAYOUTS", "read_frf_uff", "read_frfs"]
 
@@ -126,6 +134,7 @@ def _listed(nodes: list[int]) -> str:
     return ", ".join(map(str, nodes[:8])) + (" …" if len(nodes) > 8 else "")
 
 
+@logs_warnings(log)
 def read_frfs(
     path: Path | str,
     geometry: Path | str | None = None,
@@ -159,7 +168,10 @@ def read_frfs(
         Points ordered by node number; ``reference_node`` the reference; locations (x, y, z)
         in the lab's frame, m ((x, y) when every point has the same z); metadata
         ``layout`` (:data:`LAYOUTS`), ``left_out`` (FRFs not against the reference),
-        ``directions`` (node → direction code used) and, for FRFs racketdyn estimated,
+        ``unused_data_sets`` (their data sets' numbers, and those of a reciprocal pair's
+        other FRF), ``ignored_data_sets`` (data sets 58 of other function types than FRF and
+        coherence), ``directions`` (node → direction code used) and, for FRFs racketdyn
+        estimated,
         ``bandwidth_hz`` (fs/2.56; another system's export ends at its bandwidth:
         :attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`).
 
@@ -187,6 +199,14 @@ def read_frfs(
     # the FRFs against the reference, one per point, in the direction most of them share
     mine = [r for r in records if ref in (r.rsp_node, r.ref_node)]
     left_out = len(records) - len(mine)
+    unused = [r.index for r in records if ref not in (r.rsp_node, r.ref_node)]
+    ignored = [r.index for r in every if r.func_type not in (FREQUENCY_RESPONSE, COHERENCE)]
+    if ignored:
+        log.info(
+            "%s: %s of other function types than FRF (4) and coherence (6) ignored",
+            path,
+            plural(len(ignored), "data set"),
+        )
 
     def point_of(r: _Record) -> tuple[int, int]:
         return (r.ref_node, r.ref_dir) if r.rsp_node == ref else (r.rsp_node, r.rsp_dir)
@@ -197,6 +217,7 @@ def read_frfs(
         node, direction = point_of(r)
         if abs(direction) != usual:
             left_out += 1
+            unused.append(r.index)
             continue
         kept = by_node.get(node)
         if kept is None:
@@ -210,6 +231,7 @@ def read_frfs(
         left_out += 1  # both H_ij and H_ji: keep the one with the sensor at the reference
         if r.rsp_node == ref and kept.rsp_node != ref:
             by_node[node] = r
+        unused.append(r.index if by_node[node] is not r else kept.index)
     if left_out:
         log.info(
             "%s: %d FRFs not against reference node %d (or in another direction) left out",
@@ -257,24 +279,48 @@ def read_frfs(
     z = np.r_[xyz[:, 2], reference_xyz[2]]
     three_d = bool(np.nanmax(z) > np.nanmin(z)) if np.isfinite(z).any() else False
     locations = xyz if three_d else xyz[:, :2]
+    frf_type = cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type])
+    frequency_scale = _scale(path, first, "frequency", _normal_label(first.labels[0]), units)
+    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
+    top = None if bandwidth is None else bandwidth / frequency_scale  # in the file's unit
     values = np.asarray(
         [
-            by_node[n].data
-            * _frf_scale(path, by_node[n], response_type, units)
-            * _sign(path, by_node[n], by_node[n].rsp_dir)
-            * _sign(path, by_node[n], by_node[n].ref_dir)
+            _in_si(
+                path,
+                by_node[n],
+                _frf_scale(path, by_node[n], response_type, units)
+                * _sign(path, by_node[n], by_node[n].rsp_dir)
+                * _sign(path, by_node[n], by_node[n].ref_dir),
+                "the FRF's",
+                ABSURD_FRF,
+                FRF_UNITS[frf_type],
+                top,
+            )
             for n in nodes
         ],
         dtype=complex,
     )
-    frequency_scale = _scale(path, first, "frequency", _normal_label(first.labels[0]), units)
+    frequency = first.x * frequency_scale
     coherence = _coherence(path, every, ref, nodes, first) if layout == "roving hammer" else None
+    nyquist = [by_node[n] for n in nodes if by_node[n].nyquist_nan]
+    if coherence is not None and not np.all(np.isfinite(coherence[:, -1])):
+        nyquist.append(by_node[nodes[int(np.argmin(np.isfinite(coherence[:, -1])))]])
+    if nyquist:  # issue 25, item 4: OpenModal writes NaN on one record's Nyquist line
+        log.info(
+            "%s%s: NaN or infinite on the last line, %g Hz (the Nyquist line; some exports write "
+            "it so): that line dropped from every FRF",
+            nyquist[0].where(path),
+            "" if len(nyquist) == 1 else f" and {noun(len(nyquist) - 1, 'another')} ",
+            frequency[-1],
+        )
+        frequency, values = frequency[:-1], values[:, :-1]
+        coherence = None if coherence is None else coherence[:, :-1]
     estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
     bandwidth = _bandwidth_of([by_node[n] for n in nodes])
     frfs = FrfSet(
-        frequency=first.x * frequency_scale,
+        frequency=frequency,
         values=values,
-        frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type]),
+        frf_type=frf_type,
         nodes=tuple(nodes),
         locations=locations,
         reference_node=ref,
@@ -289,6 +335,8 @@ def read_frfs(
         metadata={
             "layout": layout,
             "left_out": left_out,
+            "unused_data_sets": sorted(unused),
+            "ignored_data_sets": ignored,
             "directions": {int(n): int(point_of(by_node[n])[1]) for n in nodes},
             **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
         },

@@ -43,9 +43,11 @@ from numpy.typing import NDArray
 
 from racketdyn.__about__ import __version__
 from racketdyn._grammar import noun, plural
-from racketdyn.errors import InputError
+from racketdyn.errors import InputError, logs_warnings, warnings_logged
 from racketdyn.io.uff_structure import check_structure
 from racketdyn.measurement.records import (
+    ABSURD_FORCE_N,
+    ABSURD_RESPONSE,
     FRF_TYPE_OF_RESPONSE,
     RESPONSE_TYPES,
     FrfSet,
@@ -132,6 +134,7 @@ class _Record:
     even: bool
     data: NDArray[Any]
     ids: tuple[str, ...]
+    nyquist_nan: bool = False  # a spectrum whose last line alone is NaN or infinite
 
     def where(self, path: Path) -> str:
         """The start of a message about this record."""
@@ -160,9 +163,10 @@ def _as_int(value: Any, default: int = 0) -> int:
 
 @contextlib.contextmanager
 def _quiet_pyuff() -> Iterator[None]:
-    """Keep pyuff's prints (it prints the layouts of some data sets) off the console; logged."""
+    """Keep pyuff's prints (it prints the layouts of some data sets) and warnings (its own and
+    numpy's while it parses a damaged file) off the console; logged."""
     captured = io.StringIO()
-    with contextlib.redirect_stdout(captured):
+    with contextlib.redirect_stdout(captured), warnings_logged(logger, "pyuff"):
         yield
     if captured.getvalue():
         logger.debug("pyuff printed: %s", captured.getvalue())
@@ -208,6 +212,7 @@ def _read_sets(path: Path) -> list[dict[str, Any]]:
                     f"{block.line}) cannot be read (damaged); export the file again"
                 ) from None
             sets.append(cast(dict[str, Any], dset))
+    _check_complete(path, sets)
     return sets
 
 
@@ -327,6 +332,7 @@ def _nodes_xyz_of(
     global system; a system number no data set 18 defines is taken as the global system.
     """
     nodes: dict[int, tuple[float, float, float]] = {}
+    where: dict[int, str] = {}  # the data set defining each node
     frames: dict[int, _System] = {}
     systems = _systems_of(path, sets, units)
     for i, dset in enumerate(sets, start=1):
@@ -374,11 +380,47 @@ def _nodes_xyz_of(
                 f"{path}: data set {i} ({dset['type']}, nodes): the nodes span {extent:.4g} "
                 f"units, more than the {MAX_EXTENT_M:g} m of any structure tested with a "
                 f"hammer if they were m: {_unit_guess(extent)}; add a data set 164 giving the "
-                "length unit, or give the coordinates in m with --geometry FILE"
+                "length unit, or give the coordinates in m with `geometry`"
             )
         for number, xi, yi, zi in zip(numbers, x, y, z, strict=True):
-            nodes[int(number)] = (float(xi), float(yi), float(zi))
+            _define(path, nodes, where, int(number), (float(xi), float(yi), float(zi)), i, dset)
     return nodes, frames
+
+
+def _define(
+    path: Path,
+    nodes: dict[int, tuple[float, float, float]],
+    where: dict[int, str],
+    number: int,
+    xyz: tuple[float, float, float],
+    index: int,
+    dset: dict[str, Any],
+) -> None:
+    """Node ``number`` at ``xyz`` (m) in ``nodes``: a node defined again at the same place is
+    read once (logged), at another place refused naming both (the later one silently won)."""
+    here = f"data set {index} ({dset['type']})"
+    if number in nodes:
+        before = nodes[number]
+        if not np.allclose(xyz, before, rtol=1e-6, atol=1e-9):
+            raise InputError(
+                f"{path}: node {number} is defined twice: at ({_xyz(before)}) m in "
+                f"{where[number]} and at ({_xyz(xyz)}) m in {here}; keep one definition per "
+                "node and export the geometry again"
+            )
+        logger.info(
+            "%s: node %d is defined twice at the same place (%s and %s); read once",
+            path,
+            number,
+            where[number],
+            here,
+        )
+        return
+    nodes[number] = xyz
+    where[number] = here
+
+
+def _xyz(xyz: tuple[float, float, float]) -> str:
+    return ", ".join(f"{v:.6g}" for v in xyz)
 
 
 def _global_direction(path: Path, record: _Record, node: int, code: int, frame: _System) -> int:
@@ -483,6 +525,48 @@ def _sign(path: Path, record: _Record, direction: int) -> float:
             "translations (±1, ±2, ±3) only"
         )
     return -1.0 if direction < 0 else 1.0
+
+
+def _in_si(
+    path: Path,
+    record: _Record,
+    scale: float,
+    what: str,
+    limit: float,
+    unit: str,
+    top: float | None = None,
+) -> NDArray[Any]:
+    """A record's values times ``scale`` (to SI units, with its direction's sign), refused
+    naming the data set where one overflows or lies beyond ``limit``: a damaged number
+    (1e300 for 1.2) or a wrong units label.  Lines above ``top`` (the analyser's roll-off
+    above the bandwidth racketdyn's own FRFs record) and a spectrum's NaN Nyquist line (which
+    the FRF reader drops) are left as they are."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        values = np.asarray(record.data * scale)
+    checked = values.copy()
+    if record.nyquist_nan:
+        checked[-1] = 0.0
+    if top is not None:
+        checked[record.x > top] = 0.0
+    magnitude = np.abs(checked)
+    bad = ~np.isfinite(magnitude) | (magnitude > limit)
+    if np.any(bad):
+        k = int(np.argmax(bad))
+        labels = [text.strip() for text in record.labels[1:]]
+        labelled = "/".join(text for text in labels if text and text.upper() != "NONE")
+        found = f"{abs(record.data[k]):.3g}{' ' + labelled if labelled else ''}"
+        in_si = f" {unit}" if unit else ""
+        sample = "sample" if record.func_type == TIME_RESPONSE else "line"
+        value = (
+            f"{magnitude[k]:.3g}{in_si}, beyond the {limit:g}{in_si} of any measurement"
+            if np.isfinite(magnitude[k])
+            else f"beyond the largest floating-point number in{in_si or ' SI units'}"
+        )
+        raise InputError(
+            f"{record.where(path)}: {what} {sample} {k + 1} reads {found}, which is {value}: "
+            "the data set is damaged or its units label wrong; export it again"
+        )
+    return values
 
 
 def _abscissa(dset: dict[str, Any]) -> tuple[NDArray[np.float64], float, bool]:
@@ -654,14 +738,21 @@ def _record_of(path: Path, index: int, dset: dict[str, Any]) -> _Record:
         )
     if data.size < 2:
         raise InputError(f"{record.where(path)}: a record needs two values or more")
-    bad = ~np.isfinite(data)
-    if np.any(bad):
-        raise InputError(
-            f"{record.where(path)}: {int(bad.sum())} of its values are NaN or infinite (the "
-            f"first at sample {int(np.argmax(bad))}); re-export the record or leave it out"
-        )
     if not np.all(np.isfinite(x)) or (x.size > 1 and np.any(np.diff(x) <= 0)):
         raise InputError(f"{record.where(path)}: the abscissa must rise strictly")
+    bad = ~np.isfinite(data)
+    if np.any(bad):
+        if record.func_type != TIME_RESPONSE and bad[-1] and not np.any(bad[:-1]):
+            # a spectrum's last line is its Nyquist line, which some exports (OpenModal)
+            # write as NaN: the readers of spectra drop it (and say so)
+            return dataclasses.replace(record, nyquist_nan=True)
+        first, count = int(np.argmax(bad)), int(bad.sum())
+        what = "sample" if record.func_type == TIME_RESPONSE else "line"
+        raise InputError(
+            f"{record.where(path)}: {plural(count, 'value')} {noun(count, 'is', 'are')} NaN or "
+            f"infinite (the first at {what} {first + 1} of {data.size}, abscissa "
+            f"{x[first]:g}); re-export the record or leave it out"
+        )
     return record
 
 
@@ -781,6 +872,7 @@ def _records_of(path: Path, contents: _Contents, func_type: int) -> list[_Record
     )
 
 
+@logs_warnings(logger)
 def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> HammerRecords:
     """Read the time records of a roving-hammer test from a Universal File.
 
@@ -918,8 +1010,19 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
             f, r = forces[key], responses[key]
             f_scale = _scale(path, f, "force", _normal_label(f.labels[1]), contents.units)
             r_scale = _scale(path, r, response_type, _normal_label(r.labels[1]), contents.units)
-            rows_f.append(f.data * f_scale * _sign(path, f, f.rsp_dir))
-            rows_r.append(r.data * r_scale * _sign(path, r, r.rsp_dir))
+            rows_f.append(
+                _in_si(path, f, f_scale * _sign(path, f, f.rsp_dir), "force", ABSURD_FORCE_N, "N")
+            )
+            rows_r.append(
+                _in_si(
+                    path,
+                    r,
+                    r_scale * _sign(path, r, r.rsp_dir),
+                    response_type,
+                    ABSURD_RESPONSE,
+                    SI_LABEL[response_type],
+                )
+            )
         force_rows.append(np.asarray(rows_f, dtype=float))
         response_rows.append(np.asarray(rows_r, dtype=float))
     _note_missing(path, contents.nodes, [*nodes, reference_node])
@@ -973,7 +1076,15 @@ def _coherence(
         _check_same_abscissa(path, first, record, "frequency axis")
         if np.iscomplexobj(record.data):
             raise InputError(f"{record.where(path)}: a coherence must be real")
-    return np.asarray([found[n].data for n in nodes], dtype=float)
+    return np.asarray(
+        [_in_si(path, found[n], 1.0, "the coherence's", ABSURD_COHERENCE, "") for n in nodes],
+        dtype=float,
+    )
+
+
+#: A coherence read from a file beyond this is damage (it lies between 0 and 1; a per-cent
+#: coherence, 0–100, passes and only draws wrong).
+ABSURD_COHERENCE = 1.0e3
 
 
 def _bandwidth_of(records: Sequence[_Record]) -> float | None:
@@ -1143,6 +1254,42 @@ def _record_set(
     return dset
 
 
+_RECORD_COUNT = re.compile(r"; record (\d+) of (\d+)$")
+
+
+def _numbered(sets: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The data sets 58 with "; record k of n" after the date in ID line 3: a file cut
+    between two data sets is otherwise a smaller valid file (:func:`_check_complete`)."""
+    records = [dset for dset in sets if dset["type"] == 58]
+    for k, dset in enumerate(records, start=1):
+        dset["id3"] = _ascii_line(f"{dset['id3']}; record {k} of {len(records)}")
+    return sets
+
+
+def _check_complete(path: Path, sets: Sequence[dict[str, Any]]) -> None:
+    """Refuse a file racketdyn wrote that holds fewer of its data sets 58 than it wrote.
+
+    Only racketdyn's own files say how many records they hold (ID line 3); another system's
+    file cut exactly between two data sets cannot be told from a smaller file.
+    """
+    counts: list[tuple[int, int]] = []
+    for dset in sets:
+        if dset.get("type") != 58 or not str(dset.get("id1", "")).startswith("racketdyn"):
+            continue
+        match = _RECORD_COUNT.search(str(dset.get("id3", "")).strip())
+        if match:
+            counts.append((int(match.group(1)), int(match.group(2))))
+    totals = {total for _, total in counts}
+    if len(totals) != 1:
+        return  # none, or records of several files put together: nothing to hold them to
+    total = totals.pop()
+    if len(counts) < total:
+        raise InputError(
+            f"{path}: the file holds {len(counts)} of the {total} data sets 58 racketdyn wrote "
+            f"into it: it was cut after data set {len(sets)}; copy or write it again"
+        )
+
+
 def _write_sets(path: Path, sets: Sequence[dict[str, Any]]) -> Path:
     """Write data sets to a fresh file with pyuff.
 
@@ -1276,7 +1423,7 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
                     **common,
                 )
             )
-    return _write_sets(path, sets)
+    return _write_sets(path, _numbered(sets))
 
 
 def write_hammer_uff(
@@ -1391,7 +1538,7 @@ def write_hammer_uff(
                     )
                 )
                 sets[-1]["rsp_dir"], sets[-1]["ref_dir"] = direction, normal
-    return _write_sets(path, sets)
+    return _write_sets(path, _numbered(sets))
 
 
 # --------------------------------------------------------------------------------------------
@@ -1479,6 +1626,7 @@ def _csv_setting(path: Path, settings: dict[str, str], key: str, example: str) -
     return settings[key]
 
 
+@logs_warnings(logger)
 def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -> HammerRecords:
     """Read roving-hammer time records from a CSV file and its geometry CSV.
 

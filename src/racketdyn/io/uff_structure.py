@@ -175,6 +175,12 @@ def check_structure(path: Path, raw: bytes) -> list[DataSetBlock]:
             f"follows the last data set ({len(blocks)}) outside any data set: the file is "
             "truncated or a '    -1' line is missing; export the file again"
         )
+    if offsets and tail and not tail.endswith((b"\n", b"\r")):
+        raise InputError(
+            f"{path}: the file ends inside a line after data set {len(blocks)}, its last "
+            "complete one: it was cut while being written or copied (the next data set's "
+            "'    -1' begun); copy or export it again"
+        )
     return blocks
 
 
@@ -244,17 +250,21 @@ def _check_58(
         end = _line_end(raw, offset)
         header.append(raw[offset:end].rstrip(b"\r\n"))
         offset = end
+    first_line = lines.at(header_start)
+    _check_record_6(where, header[5], first_line + 5)
+    for k in (8, 9, 10, 11):
+        _check_fixed(where, header[k - 1], first_line + k - 1, k, _RECORDS_8_TO_11, 4)
     record7 = _fields(header[6])
     if len(record7) < 3 or not all(_INTEGER.match(f) for f in record7[:3]):
         raise InputError(
-            f"{where}, line {lines.at(header_start) + 6}: record 7 {_shown(header[6])} must "
+            f"{where}, line {first_line + 6}: record 7 {_shown(header[6])} must "
             "start with the ordinate data type, the number of points and the abscissa spacing; "
             "the header is damaged, export the file again"
         )
     ord_type, n_points, spacing = (int(f) for f in record7[:3])
     if ord_type not in _BYTES_58 or n_points < 0:
         raise InputError(
-            f"{where}, line {lines.at(header_start) + 6}: record 7 gives ordinate data type "
+            f"{where}, line {first_line + 6}: record 7 gives ordinate data type "
             f"{ord_type} and {n_points} points; the type must be 2, 4, 5 or 6; the header is "
             "damaged, export the file again"
         )
@@ -280,6 +290,70 @@ def _check_58(
             f"{where}: holds {count} numbers from line {lines.at(offset)} but its header says "
             f"{n_points} points ({expected} numbers, record 7); a line or a '    -1' line is "
             "missing or extra; export the file again"
+        )
+
+
+#: Record 6 of a data set 58 as pyuff reads it: (width, name) per field, None for a text field
+#: (the entity names).  pyuff reads a field that is not a whole number as 0, silently (a
+#: direction −3 becomes +, a node 0), so the check reads them first.
+_RECORD_6: tuple[tuple[int, str | None], ...] = (
+    (5, "function type"),
+    (10, "function number"),
+    (5, "version"),
+    (10, "load case"),
+    (11, None),
+    (10, "response node"),
+    (4, "response direction"),
+    (11, None),
+    (10, "reference node"),
+    (4, "reference direction"),
+)
+#: Records 8–11 (abscissa, ordinate, denominator, z axis): their four whole numbers.
+_RECORDS_8_TO_11: tuple[tuple[int, str | None], ...] = (
+    (10, "data type"),
+    (5, "length unit exponent"),
+    (5, "force unit exponent"),
+    (5, "temperature unit exponent"),
+)
+#: Function types the format defines (record 6, field 1): 0 general … 4 FRF … 28.
+FUNCTION_TYPES = range(29)
+
+
+def _check_fixed(
+    where: str,
+    line: bytes,
+    line_no: int,
+    record: int,
+    layout: tuple[tuple[int, str | None], ...],
+    required: int,
+) -> list[int]:
+    """The whole numbers of a header record read by pyuff's fixed widths: each a whole number
+    (the first ``required`` ones present), else an error naming the record and the field."""
+    numbers: list[int] = []
+    start = 0
+    for k, (width, name) in enumerate(layout, start=1):
+        text = line[start : start + width].strip()
+        start += width
+        if name is None:
+            continue
+        if _INTEGER.match(text) or (not text and k > required):
+            numbers.append(int(text) if text else 0)
+            continue
+        shown = repr(text.decode("ascii", "replace")) if text else "nothing"
+        raise InputError(
+            f"{where}, line {line_no}: record {record}, field {k} ({name}) reads {shown}, not a "
+            "whole number: the header is damaged; export the file again"
+        )
+    return numbers
+
+
+def _check_record_6(where: str, line: bytes, line_no: int) -> None:
+    function_type = _check_fixed(where, line, line_no, 6, _RECORD_6, 1)[0]
+    if function_type not in FUNCTION_TYPES:
+        raise InputError(
+            f"{where}, line {line_no}: record 6, field 1 gives function type {function_type}, "
+            f"which the format does not define ({FUNCTION_TYPES[0]}–{FUNCTION_TYPES[-1]}): the "
+            "header is damaged; export the file again"
         )
 
 

@@ -31,7 +31,7 @@ from typing import Literal
 
 import numpy as np
 
-from racketdyn.errors import InputError, require_positive
+from racketdyn.errors import InputError, logs_warnings, require_positive
 from racketdyn.measurement.quality import (
     REASONS,
     AverageCheck,
@@ -161,6 +161,7 @@ class FrfEstimate:
         return counts
 
 
+@logs_warnings(log)
 def estimate_frfs(
     records: HammerRecords,
     estimator: Estimator = "H1",

@@ -123,6 +123,11 @@ ABSURD_FORCE_N = 1.0e6
 ABSURD_RESPONSE = 1.0e9
 """A response sample beyond this (m/s², m/s or m) is damage: accelerometers for structures
 read up to ≈ 10⁵ m/s²."""
+ABSURD_FRF = 1.0e9
+"""An FRF value read from a file beyond this (SI units of its type) is damage or a unit slip:
+a 1 g structure's accelerance at a resonance with Q = 1000 is ≈ 10⁶ m/(N·s²), its mobility and
+receptance smaller; a mutated file's 1e300 was taken as data and overflowed identification
+(issue 26).  FRFs racketdyn estimates are not held to it (a force spectrum's null)."""
 
 
 def _check_scale(
