@@ -308,7 +308,16 @@ def test_a_geometry_in_mm_without_164_is_one_line_naming_the_file(
     assert (
         main(["identify", str(frfs), "--geometry", str(nodes), "--out", str(tmp_path / "o")]) == 2
     )
-    _one_line(capsys, "nodes_mm.uff", "data set 1 (15", "150 m", "0.15 m in mm", "3.81 m in inches")
+    # the words of issue 25's unit guess (merged with this branch): "span 150 units",
+    # "0.15 m if in mm", "3.81 m if in inches"
+    _one_line(
+        capsys,
+        "nodes_mm.uff",
+        "data set 1 (15",
+        "150 units",
+        "0.15 m if in mm",
+        "3.81 m if in inches",
+    )
     with pytest.raises(InputError, match="`geometry`"):
         read_frf_uff(frfs, geometry=nodes)
 

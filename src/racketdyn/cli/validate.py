@@ -47,6 +47,7 @@ def add(commands: Any) -> None:
         help="calibration.json from racketdyn calibrate: its identifiable values applied "
         "(default: none, the inputs as given)",
     )
+    opt.add_uncertainty(p)
     opt.add_no_figures(p, "validation.csv")
     opt.add_out(p)
     p.set_defaults(handler=run)
@@ -69,6 +70,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
 
     opt.check_modes(args)
     ball, hand, defaults = ball_hand(args)
+    uncertainty = opt.uncertainty_from(args)
     with opt.progress_display(console) as progress:
         result = run_validate(
             args.out,
@@ -81,6 +83,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             hand=hand,
             engine=args.engine,
             string_bed=args.string_bed,
+            uncertainty=uncertainty,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),
@@ -111,6 +114,15 @@ def run(args: argparse.Namespace, console: Console) -> int:
             f"{summary.rms_speed_percent:.2f}",
         )
     console.print(table)
+    for summary in result.summary.values() if result.bands else ():
+        outside = ", ".join(summary.outside[:10]) + (" …" if len(summary.outside) > 10 else "")
+        opt.say(
+            console,
+            f"{summary.method}: {summary.n_inside} of {summary.n_banded} measured rows inside "
+            f"their predicted 90 % band (median width {summary.median_band_width:.3f})"
+            + (f"; outside: {outside}" if summary.outside else ""),
+            "yellow" if summary.outside else None,
+        )
     for method, status in result.status.items():
         opt.print_status(console, status, "validation.csv", method)
     opt.print_written(console, result.written)

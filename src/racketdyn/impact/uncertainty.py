@@ -37,9 +37,10 @@ from racketdyn.impact.approximate import predict
 from racketdyn.impact.calibration import PARAMETERS
 from racketdyn.impact.grid import status_warnings_held
 from racketdyn.impact.hand import Hand
-from racketdyn.impact.measured import Method, ModelInputs
+from racketdyn.impact.measured import Method, ModelInputs, predict_rows
 from racketdyn.impact.result import STATUS_OK, ImpactResult
 from racketdyn.impact.transient import predict_transient
+from racketdyn.io.measured import MeasuredRebound
 from racketdyn.racket import as_locations
 
 __all__ = [
@@ -50,11 +51,13 @@ __all__ = [
     "SAMPLERS",
     "SENSITIVITY_OUTPUTS",
     "UNCERTAIN_INPUTS",
+    "RowBands",
     "Sensitivity",
     "Spread",
     "UncertainResult",
     "Uncertainty",
     "propagate",
+    "propagate_rows",
     "sensitivity",
 ]
 
@@ -710,3 +713,89 @@ def sensitivity(
         support=support,
         evaluations=n * (len(names) + 2),
     )
+
+
+@dataclass(frozen=True)
+class RowBands:
+    """The 90 % band of the predicted rebound ratio at each measured row, by one model.
+
+    Attributes
+    ----------
+    p05, p95 : ndarray
+        ``(n_rows,)`` 5 % and 95 % quantiles over the valid samples (NaN where fewer than
+        :data:`MIN_VALID_SHARE` of the samples are valid).
+    valid_share : ndarray
+        ``(n_rows,)`` share of samples the model could give.
+    method : str
+        ``approx`` or ``transient``.
+    """
+
+    p05: NDArray[np.float64]
+    p95: NDArray[np.float64]
+    valid_share: NDArray[np.float64]
+    method: str
+
+    def inside(self, measured: NDArray[np.float64]) -> NDArray[np.bool_]:
+        """Rows whose measured value lies in the band (False where there is no band)."""
+        with np.errstate(invalid="ignore"):
+            return np.asarray((measured >= self.p05) & (measured <= self.p95))
+
+    @property
+    def given(self) -> NDArray[np.bool_]:
+        """Rows with a band."""
+        return np.asarray(np.isfinite(self.p05) & np.isfinite(self.p95))
+
+
+def propagate_rows(
+    inputs: ModelInputs,
+    measured: MeasuredRebound,
+    uncertainty: Uncertainty,
+    method: Method,
+    progress: Callable[[int, int], None] | None = None,
+) -> RowBands:
+    """The predicted rebound ratio's band at every measured row (``validate``).
+
+    Each sample moves the model parameters, and offsets every row's location and ball speed
+    as :func:`propagate` does; :func:`racketdyn.impact.measured.predict_rows` predicts the
+    rows.
+
+    Parameters
+    ----------
+    inputs : ModelInputs
+        The nominal inputs.
+    measured : MeasuredRebound
+        The rows.
+    uncertainty : Uncertainty
+        The uncertain inputs.
+    method : {"approx", "transient"}
+        The model.
+    progress : callable, optional
+        ``progress(done, total)`` after each sample.
+
+    Returns
+    -------
+    RowBands
+    """
+    draws = draw(uncertainty, inputs)
+    n = uncertainty.samples
+    values = np.full((n, len(measured)), np.nan)
+    head = inputs.racket.head
+    with ExitStack() as stack:
+        for name in (_approximate_log, _transient_log):
+            stack.enter_context(status_warnings_held(name))
+        for k in range(n):
+            rows = replace(
+                measured,
+                locations=_inside(head, measured.locations + draws.location_offset[k]),
+                ball_speed=np.maximum(measured.ball_speed + draws.speed_offset[k], 0.1),
+            )
+            values[k], _ = predict_rows(_sample_inputs(inputs, draws, k), rows, method)
+            if progress is not None:
+                progress(k + 1, n)
+    valid = np.isfinite(values)
+    share = valid.mean(axis=0)
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
+        low, high = np.nanquantile(values, QUANTILES, axis=0)
+    given = share >= MIN_VALID_SHARE
+    return RowBands(np.where(given, low, np.nan), np.where(given, high, np.nan), share, str(method))

@@ -12,7 +12,7 @@ import json
 import math
 import os
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -27,6 +27,7 @@ from racketdyn.impact.grid import StringBed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import METHODS, ModelInputs, predict_rows
 from racketdyn.impact.transient import ENGINES
+from racketdyn.impact.uncertainty import RowBands, Uncertainty, propagate_rows
 from racketdyn.io import racket_to_dict
 from racketdyn.io.measured import MeasuredRebound, read_measured
 from racketdyn.modal import ModalModel
@@ -43,6 +44,7 @@ from racketdyn.workflows.run import (
 )
 
 __all__ = [
+    "BAND_COLUMNS",
     "VALIDATION_COLUMNS",
     "MethodSummary",
     "ValidateResult",
@@ -73,6 +75,18 @@ VALIDATION_COLUMNS = (
 measured); a row a model flags holds NaN in its predicted and residual columns, its status
 says why.  ``row`` is the row's number in the measured file (1 = first data row)."""
 
+BAND_COLUMNS = (
+    "p05_approx",
+    "p95_approx",
+    "inside_approx",
+    "p05_transient",
+    "p95_transient",
+    "inside_transient",
+)
+"""With an uncertainty, after :data:`VALIDATION_COLUMNS`: each model's 90 % band of the
+predicted rebound ratio and whether the measured value lies in it (empty where the band is
+not given: fewer than 90 % of the samples valid)."""
+
 
 @dataclass(frozen=True)
 class MethodSummary:
@@ -90,6 +104,12 @@ class MethodSummary:
         RMS of predicted − measured outgoing ball speed, m/s.
     rms_speed_percent : float
         RMS of (predicted − measured) / measured outgoing speed, %.
+    n_banded, n_inside : int
+        With an uncertainty: rows with a 90 % band, and rows whose measured value lies in it.
+    median_band_width : float
+        Median width of the 90 % band over the rows with one (NaN without).
+    outside : tuple of str
+        Labels of the rows whose measured value lies outside their band.
     """
 
     method: str
@@ -99,6 +119,10 @@ class MethodSummary:
     bias: float
     rms_speed_mps: float
     rms_speed_percent: float
+    n_banded: int = 0
+    n_inside: int = 0
+    median_band_width: float = math.nan
+    outside: tuple[str, ...] = ()
 
     def as_dict(self) -> dict[str, Any]:
         """For run.json (NaN as null)."""
@@ -149,6 +173,8 @@ class ValidateResult(StepResult):
         Per model.
     calibration : dict of str to float
         The calibrated values applied (empty without ``calibration``).
+    bands : dict of str to RowBands
+        With an uncertainty: per model, the 90 % band at every row.
     """
 
     measured: MeasuredRebound | None = None
@@ -157,6 +183,7 @@ class ValidateResult(StepResult):
     status: dict[str, NDArray[np.str_]] = field(default_factory=dict)
     summary: dict[str, MethodSummary] = field(default_factory=dict)
     calibration: dict[str, float] = field(default_factory=dict)
+    bands: dict[str, RowBands] = field(default_factory=dict)
 
 
 def load_calibration(path: str | os.PathLike[str]) -> dict[str, float]:
@@ -258,6 +285,7 @@ def run_validate(
     hand: Hand | None = None,
     engine: str = "auto",
     string_bed: StringBed = "uniform",
+    uncertainty: Uncertainty | None = None,
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -289,6 +317,9 @@ def run_validate(
     string_bed : {"uniform", "local"}
         ``uniform``: the face centre's string-bed law everywhere (the paper's, default);
         ``local``: each point's from its strings' lengths.
+    uncertainty : Uncertainty, optional
+        Uncertain inputs: each model's 90 % band at every row (:data:`BAND_COLUMNS`), the
+        coverage in the summary, the rows outside their band named.
     allow_implausible : bool
         Take measured speeds beyond those of play (:func:`racketdyn.io.read_measured`).
     defaults : sequence of str
@@ -326,6 +357,11 @@ def run_validate(
         predicted, status = predict_rows(inputs, rows, method)
         result.predicted[method], result.status[method] = predicted, status
         result.summary[method] = summarise(method, rows, predicted)
+        if uncertainty is not None:
+            report(progress, f"{method}: {uncertainty.samples} samples of the uncertain inputs")
+            band = propagate_rows(inputs, rows, uncertainty, method)
+            result.bands[method] = band
+            result.summary[method] = _coverage(result.summary[method], band, rows)
     result.written.append(write_rows(Path(out) / "validation.csv", _rows(result)))
     record = {
         **provenance,
@@ -344,7 +380,10 @@ def run_validate(
         "measured_column": rows.given,
         "rebound_ratio": "e = (v_out - v_racket) / (v_ball + v_racket)",
         "summary": {m: s.as_dict() for m, s in result.summary.items()},
-        "columns": {"validation.csv": list(VALIDATION_COLUMNS)},
+        "columns": {
+            "validation.csv": [*VALIDATION_COLUMNS, *(BAND_COLUMNS if result.bands else ())]
+        },
+        "uncertainty": None if uncertainty is None else uncertainty.record(),
         "defaults_used": [*defaults_used, *defaults],
     }
     return finish_run(result, record, command_record(command, "validate"), figures)
@@ -374,9 +413,36 @@ def _rows(result: ValidateResult) -> list[dict[str, Any]]:
                 "residual_transient": transient - rows.rebound_ratio[i],
                 "status_approx": result.status["approx"][i],
                 "status_transient": result.status["transient"][i],
+                **_band_cells(result, i),
             }
         )
     return table
+
+
+def _band_cells(result: ValidateResult, i: int) -> dict[str, Any]:
+    cells: dict[str, Any] = {}
+    assert result.measured is not None
+    for method, band in result.bands.items():
+        given = bool(band.given[i])
+        inside = bool(band.inside(result.measured.rebound_ratio)[i])
+        cells[f"p05_{method}"] = band.p05[i] if given else None
+        cells[f"p95_{method}"] = band.p95[i] if given else None
+        cells[f"inside_{method}"] = (1 if inside else 0) if given else None
+    return cells
+
+
+def _coverage(summary: MethodSummary, band: RowBands, rows: MeasuredRebound) -> MethodSummary:
+    """The summary with how many measured rows lie in their band, and which do not."""
+    given = band.given
+    inside = band.inside(rows.rebound_ratio)
+    width = (band.p95 - band.p05)[given]
+    return replace(
+        summary,
+        n_banded=int(given.sum()),
+        n_inside=int(inside.sum()),
+        median_band_width=float(np.median(width)) if width.size else math.nan,
+        outside=tuple(rows.labels[i] for i in np.flatnonzero(given & ~inside)),
+    )
 
 
 def _law_words(string_bed: str) -> str:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -10,7 +11,7 @@ from numpy.typing import NDArray
 
 from racketdyn.impact.result import shown_speed_index
 from racketdyn.report.figures import interactive
-from racketdyn.report.folder import Impacts, RunFolder
+from racketdyn.report.folder import Impacts, RunFolder, read_csv
 from racketdyn.report.formatting import fmt
 from racketdyn.report.plots import map_spec
 
@@ -196,7 +197,60 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         )
     data["spots"] = spots
     data["negative"] = _negative_note(impacts, run.record(folder))
+    data["glance"] += _bands(run, impacts, chosen)
     return data
+
+
+def _bands(run: RunFolder, impacts: Impacts, speed: float) -> list[str]:
+    """With ``predict --uncertainty``: the centre's rebound ratio with its 90 % band, one
+    sentence per support at the shown speed, and the dominant input at each point of
+    ``sensitivity.csv``."""
+    if "rebound_ratio_p05" not in impacts.numbers:
+        return []
+    folder = run.predict_dir
+    record = run.record(folder).get("uncertainty") or {}
+    spread = ", ".join(record.get("inputs", {})) if isinstance(record, dict) else ""
+    x, y = run.centre(impacts)
+    lines = []
+    for support in impacts.supports:
+        rows = impacts.rows(speed, support)
+        if not rows.size:
+            continue
+        i = impacts.nearest(rows, x, y)
+        e, low, high = (
+            impacts[k][i] for k in ("rebound_ratio", "rebound_ratio_p05", "rebound_ratio_p95")
+        )
+        band = (
+            f"({low:.3f}–{high:.3f}, 90 %)"
+            if math.isfinite(low) and math.isfinite(high)
+            else "(no band: under 90 % of the samples valid)"
+        )
+        lines.append(
+            f"rebound ratio at the centre, {speed:g} m/s, {support}: "
+            f"{fmt(e, '.3f')} {band}" + (f" — uncertain: {spread}" if spread else "")
+        )
+    sensitivity = folder / "sensitivity.csv" if folder is not None else None
+    if sensitivity is not None and sensitivity.is_file():
+        lines.append(_dominant(sensitivity))
+    return lines
+
+
+def _dominant(path: Path) -> str:
+    """The input with the largest total Sobol' index of the rebound ratio at each point."""
+    best: dict[str, tuple[float, str]] = {}
+    for row in read_csv(path, ("point", "output", "input", "total_order")):
+        if row["output"] != "rebound_ratio":
+            continue
+        value = float(row["total_order"]) if row["total_order"] not in ("", "nan") else math.nan
+        label = row["point"]
+        if not math.isfinite(value):
+            best[label] = (math.inf, "not known (samples beyond the method)")
+        elif label not in best or (best[label][0] != math.inf and value > best[label][0]):
+            best[label] = (value, row["input"])
+    return (
+        "dominant input of the rebound ratio (largest total Sobol' index, sensitivity.csv): "
+        + "; ".join(f"{label} {name}" for label, (_, name) in best.items())
+    )
 
 
 def _rigid_rebound_ratio(impacts: Impacts, record: dict[str, Any]) -> NDArray[np.float64]:
