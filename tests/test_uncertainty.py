@@ -330,3 +330,51 @@ def test_the_report_says_the_band_and_the_dominant_input_in_a_sentence(tmp_path:
     )
     assert "dominant input of the rebound ratio" in glance
     assert "centre e_bg" in glance  # e_BG's 0.08 outweighs 20 Hz of a 120 Hz frame there
+
+
+def test_fig15_carries_its_band_in_figures_nc_and_draws_it(tmp_path: Path) -> None:
+    """The band Fig. 15 shades is in the run folder (figures.nc), read back equal, and holds
+    the nominal curve wherever both are given."""
+    from racketdyn.workflows import run_predict
+    from racketdyn.workflows.figure_data import PaperFigures, read_figure_data
+
+    out = tmp_path / "run"
+    spreads = (Spread("e_bg", bounds=(0.80, 0.88)),)
+    result = run_predict(
+        out, speeds=[20.0], supports=["free"], grid=3, uncertainty=Uncertainty(spreads, 16)
+    )
+    figures = result.paper_figures
+    assert figures is not None
+    assert figures.axis_band is not None
+    back = PaperFigures.from_xarray(read_figure_data(out / "figures.nc"))
+    assert back.axis_band is not None
+    np.testing.assert_array_equal(back.axis_band.p05, figures.axis_band.p05)
+    nominal = figures.axis.rebound_ratio[:, 0, :]
+    given = np.isfinite(figures.axis_band.p05) & np.isfinite(nominal)
+    assert given.sum() > 10
+    assert np.all(figures.axis_band.p05[given] <= nominal[given] + 1e-9)
+    assert np.all(figures.axis_band.p95[given] >= nominal[given] - 1e-9)
+    from racketdyn.plotting.figures import figure_rebound_along_axis
+
+    figure = figure_rebound_along_axis(back)
+    _, labels = figure.axes[0].get_legend_handles_labels()
+    assert any("90 % band (16 samples)" in label for label in labels)
+
+
+def test_the_face_maps_draw_the_band_width_from_figures_nc(tmp_path: Path) -> None:
+    from racketdyn.plotting.figures import figure_face_maps
+    from racketdyn.workflows import run_predict
+    from racketdyn.workflows.figure_data import PaperFigures, read_figure_data
+
+    out = tmp_path / "run"
+    spreads = (Spread("e_bg", bounds=(0.80, 0.88)),)
+    result = run_predict(
+        out, speeds=[20.0], supports=["free"], grid=5, uncertainty=Uncertainty(spreads, 16)
+    )
+    back = PaperFigures.from_xarray(read_figure_data(out / "figures.nc"))
+    width = back.face.rebound_ratio_band_width
+    band = result.bands["approx"]
+    expected = band.quantile("rebound_ratio", 0.95) - band.quantile("rebound_ratio", 0.05)
+    np.testing.assert_array_equal(width, expected)
+    titles = [ax.get_ylabel() for ax in figure_face_maps(back).axes]
+    assert any("90 % band" in title for title in titles)

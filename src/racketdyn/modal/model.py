@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field, replace
-from functools import cached_property
+from functools import cached_property, lru_cache
 from pathlib import Path
 from typing import Any, NoReturn
 
@@ -272,27 +272,21 @@ class ModalModel:
         shapes = np.zeros((first.size, self.n_modes))
         np.add.at(shapes, inverse, self.mode_shapes)
         shapes /= np.bincount(inverse)[:, None]
-        return RBFInterpolator(coordinates[first], shapes, kernel="thin_plate_spline")
+        return _spline(coordinates[first].tobytes(), shapes.tobytes(), shapes.shape)
 
     def with_dynamics(
         self,
         frequency: ArrayLike | None = None,
         damping_ratio: ArrayLike | None = None,
     ) -> ModalModel:
-        """This model with other frequencies or damping ratios, its shapes unchanged.
-
-        The shapes' interpolator, once built, is shared (it depends on the shapes alone):
-        a sampled or calibrated model costs no new spline.
-        """
+        """This model with other frequencies or damping ratios, its shapes unchanged (their
+        spline is the same: built once for any model of these shapes, :func:`_spline`)."""
         changes: dict[str, Any] = {}
         if frequency is not None:
             changes["frequency"] = np.asarray(frequency, dtype=float)
         if damping_ratio is not None:
             changes["damping_ratio"] = np.asarray(damping_ratio, dtype=float)
-        model = replace(self, **changes)
-        if "_interpolator" in self.__dict__:
-            model.__dict__["_interpolator"] = self.__dict__["_interpolator"]
-        return model
+        return replace(self, **changes)
 
     def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:
         """Mass-normalised mode shapes at any locations, shaped ``(n, n_modes)``, 1/√kg.
@@ -435,6 +429,17 @@ class ModalModel:
 FORMAT_VERSION = 1
 """The modal-model JSON's version this racketdyn writes and reads."""
 _UNITS = {"frequency": "Hz", "locations": "m"}
+
+
+@lru_cache(maxsize=64)
+def _spline(points: bytes, values: bytes, shape: tuple[int, int]) -> RBFInterpolator:
+    """The thin-plate spline through ``values`` (``shape``: samples × modes) at ``points``,
+    kept for the same arrays: a model with other frequencies or damping, or the same modes
+    selected again (an uncertainty's samples, a calibration's steps), costs no new spline."""
+    samples = np.frombuffer(values).reshape(shape)
+    return RBFInterpolator(
+        np.frombuffer(points).reshape(shape[0], -1), samples, kernel="thin_plate_spline"
+    )
 
 
 def _check_header(path: Path, data: dict[str, Any]) -> None:

@@ -241,11 +241,13 @@ def figure_rebound_along_axis(data: PaperFigures) -> Figure:
     """
     axis = data.axis
     figure, ax = plt.subplots(figsize=(6.5, 5.6), layout="constrained")
-    plot_along_axis(axis, "rebound_ratio", 0, ax=ax, marks=data.axis_marks)
+    plot_along_axis(axis, "rebound_ratio", 0, ax=ax, marks=data.axis_marks, band=data.axis_band)
     _legend_below(ax)
+    uncertain = "" if data.axis_band is None else f"\nshaded: 90 % band of {data.axis_band.inputs}"
     ax.set_title(
         f"Fig. 15: predicted rebound ratio, ball at {axis.ball_speed[0]:g} m/s\n"
-        + data.axis_description,
+        + data.axis_description
+        + uncertain,
         fontsize=9,
     )
     return figure
@@ -264,7 +266,9 @@ def figure_face_maps(data: PaperFigures) -> Figure:
     face = data.face
     panels = [("rebound_ratio", support) for support in face.supports]
     panels += [("contact_time", data.main_support), ("vibration_energy", data.main_support)]
-    columns = 2 if len(panels) == 4 else len(panels)
+    if face.rebound_ratio_band_width.size:
+        panels += [("rebound_ratio_band_width", support) for support in face.supports]
+    columns = 2 if len(panels) in (4, 6) else min(len(panels), 3)
     rows = int(np.ceil(len(panels) / columns))
     figure, axes = plt.subplots(
         rows, columns, figsize=(5 * columns, 3.75 * rows), layout="constrained", squeeze=False

@@ -29,7 +29,7 @@ from racketdyn.measurement.records import FRF_UNITS, FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import PoleStability, SelectedPoles, Stabilisation
 from racketdyn.racket import HeadEllipse, Racket
-from racketdyn.workflows.figure_data import FrameVibration, ImpactCurves
+from racketdyn.workflows.figure_data import AxisBand, FrameVibration, ImpactCurves
 
 __all__ = [
     "FLAGGED_STYLE",
@@ -69,6 +69,7 @@ QUANTITIES: dict[str, tuple[str, float]] = {
     "vibration_energy": ("vibration energy (J)", 1.0),
     "rebound_speed": ("rebound ball speed (m/s)", 1.0),
     "reduced_mass": ("reduced mass M_r (g)", 1e3),
+    "rebound_ratio_band_width": ("width of the rebound ratio's 90 % band (–)", 1.0),
 }
 SUPPORT_STYLE = {
     "pinned": {"color": "k", "marker": "s", "label": "hand-held (pinned at grip)"},
@@ -343,8 +344,10 @@ def plot_along_axis(
     speed_index: int = 0,
     ax: Axes | None = None,
     marks: dict[str, float] | None = None,
+    band: AxisBand | None = None,
 ) -> Axes:
-    """A quantity along the long axis of the face, one line per support (Fig. 15)."""
+    """A quantity along the long axis of the face, one line per support (Fig. 15), with its
+    90 % band shaded where an uncertainty gave one."""
     ax = _axes(ax)
     values = _values(result, quantity)
     x_mm = result.locations[:, 0] * 1e3
@@ -352,6 +355,16 @@ def plot_along_axis(
     foot = ax.get_xaxis_transform()
     for p, support in enumerate(result.supports):
         style = SUPPORT_STYLE[support]
+        if band is not None:
+            ax.fill_between(
+                x_mm,
+                band.p05[:, p],
+                band.p95[:, p],
+                color=style["color"],
+                alpha=0.18,
+                linewidth=0,
+                label=f"{style['label']}: 90 % band ({band.samples} samples)",
+            )
         ax.plot(
             x_mm,
             np.where(flagged[:, p], np.nan, values[:, speed_index, p]),

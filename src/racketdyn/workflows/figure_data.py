@@ -60,6 +60,7 @@ __all__ = [
     "SWING_AXIS_POINTS",
     "TRANSIENT_CURVE_SPEEDS_MPS",
     "VIBRATION_SPEEDS_MPS",
+    "AxisBand",
     "ComparisonMap",
     "FigureData",
     "FrameVibration",
@@ -70,6 +71,7 @@ __all__ = [
     "SwingAxisCurves",
     "TransientCurves",
     "TransientHistories",
+    "axis_points",
     "describe_options",
     "identified_rebound",
     "paper_figures",
@@ -81,6 +83,8 @@ __all__ = [
 ]
 
 FIGURES_FILE = "figures.nc"
+BAND_WIDTH = "rebound_ratio_band_width"
+"""The face maps' variable of the band's width (``predict --uncertainty``)."""
 """The file of a run folder holding what its figures draw."""
 CURVE_SPEEDS_MPS = np.linspace(5.0, 50.0, 46)
 """Ball speeds of Figs 11–12 (stretched to the run's fastest, the run's speeds added), m/s."""
@@ -153,6 +157,9 @@ class ImpactCurves:
         Outgoing ball speed, m/s.
     vibration_energy : ndarray
         Frame vibration energy after the impact, J.
+    rebound_ratio_band_width : ndarray
+        With an uncertainty: the width of the rebound ratio's 90 % band (p95 − p05), NaN where
+        the band is not given.
     """
 
     locations: NDArray[np.float64]
@@ -166,6 +173,7 @@ class ImpactCurves:
     rebound_ratio: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
     rebound_speed: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
     vibration_energy: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
+    rebound_ratio_band_width: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
 
     @classmethod
     def of(
@@ -218,6 +226,12 @@ class ImpactCurves:
                 quantity = _QUANTITY[attribute]
                 attrs = {"units": quantity.units, "long_name": quantity.long_name}
                 data[quantity.name] = (cell, values, attrs)
+        if self.rebound_ratio_band_width.size:
+            data[BAND_WIDTH] = (
+                cell,
+                self.rebound_ratio_band_width,
+                {"units": "1", "long_name": "width of the rebound ratio's 90 % band (p95 - p05)"},
+            )
         data["status"] = (cell, np.asarray(self.status, dtype=str), {"long_name": "impact status"})
         coords = {
             "x_m": ("point", self.locations[:, 0], {"units": "m"}),
@@ -240,6 +254,8 @@ class ImpactCurves:
             for attribute in (*_CURVE_QUANTITIES, "vibration_energy")
         }
         status = np.asarray(dataset["status"].values, dtype=str).reshape(n, s, p)
+        if BAND_WIDTH in dataset:
+            values["rebound_ratio_band_width"] = _array(dataset[BAND_WIDTH].values)
         return cls(
             locations=np.column_stack([_array(dataset["x_m"].values), dataset["y_m"].values]),
             labels=_strings(dataset["label"].values),
@@ -673,6 +689,8 @@ class PaperFigures:
         Support of the single-support panels.
     description, axis_description, face_description : str
         The run's options in words, for the titles (the latter two with their racket speed).
+    axis_band : AxisBand or None
+        With an uncertainty: Fig. 15's 90 % band of the rebound ratio.
     """
 
     racket_name: str
@@ -688,6 +706,7 @@ class PaperFigures:
     description: str
     axis_description: str
     face_description: str
+    axis_band: AxisBand | None = None
 
     def to_xarray(self) -> xr.Dataset:
         """One dataset, each figure's names prefixed with its key and ``__``: ``fig11_12``,
@@ -705,6 +724,8 @@ class PaperFigures:
             mark_x_m=("mark", _array(list(self.axis_marks.values())), {"units": "m"}),
         )
         axis.attrs = {"description": self.axis_description}
+        if self.axis_band is not None:
+            axis = axis.assign(self.axis_band.variables())
         face = self.face.to_xarray()
         face.attrs = {"main_support": self.main_support, "description": self.face_description}
         parts = {"fig11_12": curves, "fig13": self.pulse.to_xarray()}
@@ -736,7 +757,52 @@ class PaperFigures:
             description=str(curves.attrs["description"]),
             axis_description=str(axis.attrs["description"]),
             face_description=str(face.attrs["description"]),
+            axis_band=AxisBand.from_xarray(axis) if "rebound_ratio_p05" in axis else None,
         )
+
+
+@dataclass(frozen=True)
+class AxisBand:
+    """The 90 % band of the rebound ratio along Fig. 15's axis (``predict --uncertainty``).
+
+    Attributes
+    ----------
+    p05, p95 : ndarray (n_points, n_supports)
+        5 % and 95 % quantiles over the valid samples; NaN where the band is not given.
+    samples : int
+        Samples drawn.
+    inputs : str
+        The uncertain inputs, for the legend.
+    """
+
+    p05: NDArray[np.float64]
+    p95: NDArray[np.float64]
+    samples: int
+    inputs: str
+
+    def variables(self) -> dict[str, Any]:
+        """Fig. 15's band as dataset variables on ``point`` × ``support``."""
+        attrs = {"units": "1", "samples": self.samples, "inputs": self.inputs}
+        return {
+            "rebound_ratio_p05": (("point", "support"), self.p05, attrs),
+            "rebound_ratio_p95": (("point", "support"), self.p95, attrs),
+        }
+
+    @classmethod
+    def from_xarray(cls, dataset: xr.Dataset) -> AxisBand:
+        """Back from :meth:`variables` in a dataset."""
+        low = dataset["rebound_ratio_p05"]
+        return cls(
+            _array(low.values),
+            _array(dataset["rebound_ratio_p95"].values),
+            int(low.attrs["samples"]),
+            str(low.attrs["inputs"]),
+        )
+
+
+def axis_points(racket: Racket) -> NDArray[np.float64]:
+    """Fig. 15's points along the long axis."""
+    return _axis_points(racket, AXIS_POINTS, 0.05)
 
 
 def paper_figures(
@@ -836,7 +902,7 @@ def paper_figures(
         run_speeds=_array(speeds),
         pulse=pulse,
         frame=frame,
-        axis=ImpactCurves.of(run(_axis_points(racket, AXIS_POINTS, 0.05), [shown_speed])),
+        axis=ImpactCurves.of(run(axis_points(racket), [shown_speed])),
         axis_marks=axis_marks,
         face=face,
         main_support=main if main in face.supports else face.supports[0],

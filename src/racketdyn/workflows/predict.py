@@ -11,7 +11,7 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal, cast
 
@@ -49,10 +49,13 @@ from racketdyn.plausibility import check, check_speeds
 from racketdyn.racket import SUPPORTS, Racket, landmark_points
 from racketdyn.workflows.figure_data import (
     FIGURES_FILE,
+    AxisBand,
     ComparisonMap,
+    ImpactCurves,
     PaperFigures,
     TransientCurves,
     TransientHistories,
+    axis_points,
     paper_figures,
     transient_curves,
     write_figure_data,
@@ -416,6 +419,7 @@ def run_predict(
     if model in ("transient", "both"):
         report(progress, f"transient model ({engine} engine): {n_impacts} impacts")
         _transient_part(result, locations, labels, progress, options)
+    model_inputs: ModelInputs | None = None
     if uncertainty is not None:
         model_inputs = ModelInputs(
             used.racket,
@@ -435,7 +439,8 @@ def run_predict(
         result.approximate = result.approximate.filled_from(result.transient)
     if result.approximate is not None:
         _write_table(result, result.approximate, out_dir / "impact.csv")
-    _figure_data(result, options, progress)
+    band = None if uncertainty is None or model_inputs is None else (model_inputs, uncertainty)
+    _figure_data(result, options, progress, band)
     inputs = {
         **used.provenance,
         "racket": racket_to_dict(used.racket),
@@ -563,8 +568,14 @@ def _write_table(result: PredictResult, table: ImpactResult, path: Path) -> None
     result.written.append(path)
 
 
-def _figure_data(result: PredictResult, options: dict[str, Any], progress: Progress | None) -> None:
-    """What the figures draw, with the run's inputs and options, into ``figures.nc``."""
+def _figure_data(
+    result: PredictResult,
+    options: dict[str, Any],
+    progress: Progress | None,
+    band: tuple[ModelInputs, Uncertainty] | None = None,
+) -> None:
+    """What the figures draw, with the run's inputs and options, into ``figures.nc`` (with an
+    uncertainty, Fig. 15's band)."""
     assert result.racket is not None
     assert result.ball is not None
     grid: dict[str, Any] = {
@@ -586,6 +597,12 @@ def _figure_data(result: PredictResult, options: dict[str, Any], progress: Progr
             vibration_charge=result.vibration_charge,
             **impact,
         )
+        if band is not None:
+            result.paper_figures = replace(
+                result.paper_figures,
+                axis_band=_axis_band(result, *band),
+                face=_face_band(result.paper_figures.face, result.bands["approx"], result),
+            )
         datasets.append(result.paper_figures.to_xarray())
     if result.comparison is not None:
         report(progress, "both models against speed")
@@ -608,6 +625,43 @@ def _figure_data(result: PredictResult, options: dict[str, Any], progress: Progr
         datasets.append(result.transient_histories.to_xarray())
     if datasets:
         result.written.append(write_figure_data(result.out / FIGURES_FILE, datasets))
+
+
+def _axis_band(
+    result: PredictResult,
+    inputs: ModelInputs,
+    uncertainty: Uncertainty,
+) -> AxisBand:
+    """Fig. 15's band: the approximate method's samples along the axis at the shown speed."""
+    assert result.racket is not None
+    assert result.paper_figures is not None
+    axis = result.paper_figures.axis
+    extra = {
+        "stiffness_reading": result.stiffness_reading,
+        "vibration_charge": result.vibration_charge,
+    }
+    samples = propagate(
+        inputs,
+        axis_points(result.racket),
+        axis.ball_speed,
+        uncertainty,
+        supports=axis.supports,
+        racket_speed=axis.racket_speed,
+        options=extra,
+    )
+    return AxisBand(
+        samples.quantile("rebound_ratio", 0.05)[:, 0, :],
+        samples.quantile("rebound_ratio", 0.95)[:, 0, :],
+        uncertainty.samples,
+        ", ".join(s.name for s in uncertainty.spreads),
+    )
+
+
+def _face_band(face: ImpactCurves, band: UncertainResult, result: PredictResult) -> ImpactCurves:
+    """The face maps' impacts with the width of their band at the shown speed."""
+    width = band.quantile("rebound_ratio", 0.95) - band.quantile("rebound_ratio", 0.05)
+    shown = result.shown_speed
+    return replace(face, rebound_ratio_band_width=width[:, shown : shown + 1, :])
 
 
 def transient_csv_name(model: str) -> str:
