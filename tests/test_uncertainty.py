@@ -378,3 +378,58 @@ def test_the_face_maps_draw_the_band_width_from_figures_nc(tmp_path: Path) -> No
     np.testing.assert_array_equal(width, expected)
     titles = [ax.get_ylabel() for ax in figure_face_maps(back).axes]
     assert any("90 % band" in title for title in titles)
+
+
+def test_a_racket_file_s_uncertainty_tables_are_checked_and_used(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from importlib import resources
+
+    from racketdyn.io import load_racket
+
+    text = resources.files("racketdyn.data").joinpath("kawazoe_2002.toml").read_text("utf-8")
+    racket = tmp_path / "r.toml"
+    racket.write_text(text + "\n[uncertainty.e_bg]\nrange = [0.80, 0.88]\n", encoding="utf-8")
+    load_racket(racket)
+    out = tmp_path / "run"
+    argv = ["predict", "--racket", str(racket), "--samples", "16", "--grid", "3", "--speed", "20"]
+    assert main([*argv, "--support", "free", "--no-figures", "--out", str(out)]) == 0
+    assert "rebound_ratio_p05" in pd.read_csv(out / "impact.csv")
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text + "\n[uncertainty.e_bg]\nrange = [80, 88]\n", encoding="utf-8")
+    with pytest.raises(InputError, match=r"\[uncertainty\] \[e_bg\] range.*percentage"):
+        load_racket(bad)
+
+
+def test_the_literature_spreads_follow_what_the_racket_file_states(tmp_path: Path) -> None:
+    """A stated first bending frequency is measured (sd 3 Hz); a racket file without one gets
+    the range of rackets on sale (110–180 Hz); a measured load–deflection bed no string scale."""
+    from importlib import resources
+
+    from racketdyn.io.uncertainty_file import literature_for_racket
+
+    built_in = {s.name: s for s in literature_for_racket(None)}
+    assert built_in["first_bending_hz"].sd == 3.0
+    assert built_in["e_bg"].bounds == (0.80, 0.88)
+    text = resources.files("racketdyn.data").joinpath("kawazoe_2002.toml").read_text("utf-8")
+    lines = [line for line in text.splitlines() if not line.startswith("first_bending_hz")]
+    racket = tmp_path / "r.toml"
+    racket.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    unstated = {s.name: s for s in literature_for_racket(racket)}
+    assert unstated["first_bending_hz"].bounds == (110.0, 180.0)
+    assert "string_stiffness_scale" in unstated
+
+
+def test_predict_with_the_literature_spreads_runs_and_names_them(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "run"
+    argv = ["predict", "--uncertainty", "literature", "--samples", "16", "--grid", "3"]
+    assert (
+        main([*argv, "--speed", "20", "--support", "free", "--no-figures", "--out", str(out)]) == 0
+    )
+    record = json.loads((out / "run.json").read_text())
+    assert set(record["uncertainty"]["inputs"]) == {
+        "e_bg", "ball_stiffness_scale", "string_stiffness_scale", "first_bending_hz",
+        "location_m", "ball_speed_mps",
+    }  # fmt: skip

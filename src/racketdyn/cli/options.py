@@ -9,6 +9,7 @@ stays fast.  The copies of the library's constants below are checked against it 
 from __future__ import annotations
 
 import argparse
+import logging
 import math
 import re
 from collections.abc import Callable, Iterator, Sequence
@@ -158,11 +159,13 @@ def add_uncertainty(parser: argparse.ArgumentParser) -> None:
     """``--uncertainty FILE``, ``--samples N``, ``--seed N``: inputs with their spread."""
     parser.add_argument(
         "--uncertainty",
-        metavar="TOML",
+        metavar="TOML|literature",
         help="uncertain inputs, one table each (e_bg, first_bending_hz, ball_stiffness_scale, "
         "location_m, ball_speed_mps, ...: sd = x, range = [low, high] or values = [...]; "
-        "docs/uncertainty.md); each model runs once per sample and every number gets its mean, "
-        "sd and 5-95 %% band (default: none)",
+        "docs/uncertainty.md), or 'literature' for the spreads the literature gives e_BG, the "
+        "ball, the bed, the frame frequency and a ball cannon; each model runs once per sample "
+        "and every number gets its mean, sd and 5-95 %% band (default: the racket file's "
+        "[uncertainty] tables, else none)",
     )
     parser.add_argument(
         "--samples",
@@ -182,14 +185,30 @@ def uncertainty_from(args: argparse.Namespace) -> Any:
     """The :class:`~racketdyn.impact.uncertainty.Uncertainty` of the options, or None."""
     from racketdyn.errors import InputError
     from racketdyn.impact.uncertainty import Uncertainty
-    from racketdyn.io.uncertainty_file import read_spreads
+    from racketdyn.io.uncertainty_file import (
+        LITERATURE,
+        literature_for_racket,
+        racket_spreads,
+        read_spreads,
+    )
 
-    if args.uncertainty is None:
+    if args.uncertainty == LITERATURE:
+        spreads = literature_for_racket(args.racket, bool(getattr(args, "modal", None)))
+    elif args.uncertainty is not None:
+        spreads = read_spreads(args.uncertainty)
+    else:
+        spreads = racket_spreads(args.racket) if getattr(args, "racket", None) else ()
+        if spreads:
+            logging.getLogger(__name__).info("uncertainty: the racket file's [uncertainty]")
+    if not spreads:
         for name, default in (("samples", 256), ("seed", 0)):
             if getattr(args, name) != default:
-                raise InputError(f"--{name} is for --uncertainty: give an uncertainty file")
+                raise InputError(
+                    f"--{name} is for --uncertainty: give an uncertainty file (or a racket file "
+                    "with [uncertainty] tables)"
+                )
         return None
-    return Uncertainty(read_spreads(args.uncertainty), samples=args.samples, seed=args.seed)
+    return Uncertainty(spreads, samples=args.samples, seed=args.seed)
 
 
 def add_allow_implausible(parser: argparse.ArgumentParser) -> None:

@@ -69,7 +69,7 @@ _SCHEMA: dict[str, dict[str, type | tuple[type, ...]]] = {
     "point_masses": {"mass_kg": float, "x_m": float, "y_m": float, "label": str},
     "checks": {"allow_implausible": bool},
 }
-_TOP = {"schema_version", "name", "description", *_SCHEMA}
+_TOP = {"schema_version", "name", "description", "uncertainty", *_SCHEMA}
 _REQUIRED = {
     "racket": ("mass_kg", "length_m", "balance_m"),
     "head": ("centre_x_m", "half_length_m"),
@@ -229,6 +229,15 @@ def racket_from_dict(
     ]
     checks_table = _check_table(f"{path}: [checks]", data.get("checks", {}), "checks")
     allow_implausible = allow_implausible or bool(checks_table.get("allow_implausible", False))
+    if "uncertainty" in data:  # checked here, read by io.uncertainty_file.racket_spreads
+        from racketdyn.io.uncertainty_file import spreads_from_tables
+
+        tables = data["uncertainty"]
+        if not isinstance(tables, dict):
+            raise InputError(
+                f"{path}: [uncertainty] must be a table of tables ([uncertainty.e_bg])"
+            )
+        spreads_from_tables(tables, f"{path}: [uncertainty]", allow_implausible)
     _check_plausible(
         path,
         {

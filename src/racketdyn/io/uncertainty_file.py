@@ -13,6 +13,9 @@ sd = 1.0
 values = [0.5, 1.0, 2.0]  # equally likely
 ```
 
+A racket file may hold the same tables under ``[uncertainty]`` (``[uncertainty.e_bg]`` …):
+:func:`racket_spreads` reads them.
+
 Names are those of :data:`racketdyn.impact.uncertainty.UNCERTAIN_INPUTS`; each table holds
 exactly one of ``sd``, ``range`` or ``values``.  Every number passes the plausibility table
 (:mod:`racketdyn.plausibility`) like a racket file's, and a bad entry is refused in one line
@@ -31,7 +34,13 @@ from racketdyn.errors import InputError
 from racketdyn.impact.uncertainty import UNCERTAIN_INPUTS, Spread
 from racketdyn.io.racket_file import read_toml
 
-__all__ = ["read_spreads", "spreads_from_tables"]
+__all__ = [
+    "LITERATURE",
+    "literature_spreads",
+    "racket_spreads",
+    "read_spreads",
+    "spreads_from_tables",
+]
 
 _PLAUSIBLE: dict[str, str] = {
     "first_bending_hz": "first_bending_hz",
@@ -162,3 +171,87 @@ def read_spreads(path: str | os.PathLike[str]) -> tuple[Spread, ...]:
     checks = tables.get("checks", {})
     allow = bool(checks.get("allow_implausible", False)) if isinstance(checks, dict) else False
     return spreads_from_tables(tables, f"uncertainty file {file.name}", allow)
+
+
+def racket_spreads(path: str | os.PathLike[str]) -> tuple[Spread, ...]:
+    """The ``[uncertainty]`` tables of a racket file (``[uncertainty.e_bg]`` …), empty without.
+
+    Parameters
+    ----------
+    path : path
+        The racket's TOML file.
+
+    Returns
+    -------
+    tuple of Spread
+    """
+    file = Path(path)
+    data = read_toml(file, "racket file")
+    tables = data.get("uncertainty")
+    if tables is None:
+        return ()
+    if not isinstance(tables, dict):
+        raise InputError(f"{file}: [uncertainty] must be a table of tables ([uncertainty.e_bg])")
+    checks = data.get("checks", {})
+    allow = bool(checks.get("allow_implausible", False)) if isinstance(checks, dict) else False
+    return spreads_from_tables(tables, f"{file}: [uncertainty]", allow)
+
+
+LITERATURE = "literature"
+"""The name (``--uncertainty literature``) of :func:`literature_spreads`."""
+
+
+def literature_spreads(frequency_measured: bool, measured_bed: bool = False) -> tuple[Spread, ...]:
+    """What the literature leaves uncertain about any racket, ball and test (docs/references.md).
+
+    - ``e_bg``: uniform 0.80–0.88, the spread of e_BG on head-clamped strings in the
+      literature (Kawazoe's ≈ 0.83 "almost independent" of speed and tension; Cross's 1 m drop
+      ≈ 0.84; Haake, Carré and Goodwill falling with speed).
+    - ``ball_stiffness_scale``: uniform 0.87–1.14, ball to ball: the ITF forward deformation
+      0.56–0.74 cm under 80.1 N about its middle (0.65 cm), stiffness ∝ 1 / deformation.
+    - ``string_stiffness_scale``: uniform 0.86–1.14, the bed's tension 20–40 % below the pull
+      tension (Cross and Bower's ≈ 30 % taken as the nominal: 0.6/0.7 to 0.8/0.7).
+    - ``first_bending_hz``: normal, sd 3 Hz about a measured frequency ("measured ± a few Hz");
+      uniform 110–180 Hz (the free 2-node modes of rackets on sale) when the racket file gives
+      none.
+    - ``location_m``: normal, sd 10 mm each way (a ball cannon's scatter).
+    - ``ball_speed_mps``: normal, sd 0.5 m/s (a ball cannon's repeatability).
+
+    Parameters
+    ----------
+    frequency_measured : bool
+        The racket file states its first bending frequency.
+    measured_bed : bool
+        The string bed is a measured load–deflection file (then no string-stiffness spread:
+        the file is the bed as played).
+
+    Returns
+    -------
+    tuple of Spread
+    """
+    bed = () if measured_bed else (Spread("string_stiffness_scale", bounds=(0.86, 1.14)),)
+    return (
+        Spread("e_bg", bounds=(0.80, 0.88)),
+        Spread("ball_stiffness_scale", bounds=(0.87, 1.14)),
+        *bed,
+        Spread("first_bending_hz", sd=3.0)
+        if frequency_measured
+        else Spread("first_bending_hz", bounds=(110.0, 180.0)),
+        Spread("location_m", sd=0.010),
+        Spread("ball_speed_mps", sd=0.5),
+    )
+
+
+def literature_for_racket(
+    racket: str | os.PathLike[str] | None, modal_file: bool = False
+) -> tuple[Spread, ...]:
+    """:func:`literature_spreads` for a racket file (None: the built-in racket, whose 120 Hz
+    the paper measured), its frequency taken as measured where the file states it or a modal
+    model file is given."""
+    if racket is None:
+        return literature_spreads(True)
+    data = read_toml(Path(racket), "racket file")
+    modal = data.get("modal", {}) if isinstance(data.get("modal"), dict) else {}
+    strings = data.get("strings", {}) if isinstance(data.get("strings"), dict) else {}
+    stated = modal_file or "first_bending_hz" in modal or "file" in modal
+    return literature_spreads(stated, "load_deflection_file" in strings)
