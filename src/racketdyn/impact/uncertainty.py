@@ -757,7 +757,9 @@ def propagate_rows(
 
     Each sample moves the model parameters, and offsets every row's location and ball speed
     as :func:`propagate` does; :func:`racketdyn.impact.measured.predict_rows` predicts the
-    rows.
+    rows.  Where the rows give their measurement's standard deviation
+    (``rebound_ratio_sd``), each sample gets a normal draw of it (seeded), so the band is that
+    of what is measured, not only of the model's number.
 
     Parameters
     ----------
@@ -794,6 +796,10 @@ def propagate_rows(
                 progress(k + 1, n)
     valid = np.isfinite(values)
     share = valid.mean(axis=0)
+    if measured.rebound_ratio_sd is not None:
+        # the band of what is measured: each sample with the row's own measurement noise
+        noise = np.random.default_rng(uncertainty.seed).standard_normal(values.shape)
+        values = values + noise * np.nan_to_num(measured.rebound_ratio_sd)[None, :]
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
         low, high = np.nanquantile(values, QUANTILES, axis=0)
