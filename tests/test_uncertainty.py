@@ -479,3 +479,31 @@ def test_bands_cover_90_percent_of_transient_truths_with_measurement_noise() -> 
     band = propagate_rows(_inputs(), rows, Uncertainty(spreads, 256, seed=1), "transient")
     covered = int(band.inside(truth).sum())
     assert 170 <= covered <= 190, covered  # 179 when written (seed 24 gave 173)
+
+
+def test_calibrate_takes_the_uncertainty_file_s_ranges_as_bounds(tmp_path: Path) -> None:
+    """Rows measured at e_BG 0.90 (approximate method, no noise): fitted within the default
+    bounds e_BG comes back 0.90; bounded by the file's 0.80–0.86 it stops at 0.86, and a start
+    outside the range starts at its middle."""
+    from racketdyn.impact.calibration import bounds_from_spreads, calibrate, simulate_measurements
+
+    head = RACKET.head
+    points = [CENTRE, (head.centre_x_m + 0.04, 0.0), (head.centre_x_m - 0.04, 0.02)]
+    truth = simulate_measurements(
+        ModelInputs(RACKET, Ball(e_bg=0.90)), points, 20.0, sd=0.0, method="approx"
+    )
+    start = ModelInputs(RACKET, Ball(e_bg=0.84))
+    free, _ = calibrate(start, truth, ["e_bg"], method="approx")
+    assert free.value[0] == pytest.approx(0.90, abs=1e-4)
+    limits = bounds_from_spreads(
+        [Spread("e_bg", bounds=(0.80, 0.86)), Spread("location_m", sd=0.01)]
+    )
+    assert limits == {"e_bg": (0.80, 0.86)}
+    bounded, _ = calibrate(start, truth, ["e_bg"], method="approx", bounds=limits)
+    assert bounded.value[0] == pytest.approx(0.86, abs=1e-6)
+    outside, _ = calibrate(
+        ModelInputs(RACKET, Ball(e_bg=0.70)), truth, ["e_bg"], method="approx", bounds=limits
+    )
+    assert outside.value[0] == pytest.approx(0.86, abs=1e-6)
+    with pytest.raises(InputError, match="0 < low < high"):
+        calibrate(start, truth, ["e_bg"], method="approx", bounds={"e_bg": (0.9, 0.8)})

@@ -61,6 +61,7 @@ def add(commands: Any) -> None:
         action="store_true",
         help="skip leave-one-out cross-validation (one refit per row) (default: run it)",
     )
+    opt.add_uncertainty(p, sampled=False)
     opt.add_out(p)
     p.set_defaults(handler=run)
 
@@ -95,6 +96,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             hand=hand,
             engine=args.engine,
             string_bed=args.string_bed,
+            uncertainty=opt.uncertainty_from(args),
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),

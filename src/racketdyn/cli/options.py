@@ -155,8 +155,18 @@ def add_string_bed(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def add_uncertainty(parser: argparse.ArgumentParser) -> None:
-    """``--uncertainty FILE``, ``--samples N``, ``--seed N``: inputs with their spread."""
+def add_uncertainty(parser: argparse.ArgumentParser, sampled: bool = True) -> None:
+    """``--uncertainty FILE``, ``--samples N``, ``--seed N``: inputs with their spread
+    (``sampled`` False: the file alone, whose ranges bound a calibration)."""
+    if not sampled:
+        parser.add_argument(
+            "--uncertainty",
+            metavar="TOML|literature",
+            help="an uncertainty file (docs/uncertainty.md) or 'literature': the ranges (and the "
+            "span of equally likely values) of the fitted parameters bound the fit (default: "
+            "the racket file's [uncertainty] tables, else each parameter's own bounds)",
+        )
+        return
     parser.add_argument(
         "--uncertainty",
         metavar="TOML|literature",
@@ -202,13 +212,15 @@ def uncertainty_from(args: argparse.Namespace) -> Any:
             logging.getLogger(__name__).info("uncertainty: the racket file's [uncertainty]")
     if not spreads:
         for name, default in (("samples", 256), ("seed", 0)):
-            if getattr(args, name) != default:
+            if getattr(args, name, default) != default:
                 raise InputError(
                     f"--{name} is for --uncertainty: give an uncertainty file (or a racket file "
                     "with [uncertainty] tables)"
                 )
         return None
-    return Uncertainty(spreads, samples=args.samples, seed=args.seed)
+    return Uncertainty(
+        spreads, samples=getattr(args, "samples", 256), seed=getattr(args, "seed", 0)
+    )
 
 
 def add_allow_implausible(parser: argparse.ArgumentParser) -> None:

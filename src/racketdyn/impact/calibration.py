@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -39,6 +39,7 @@ __all__ = [
     "Calibration",
     "Parameter",
     "apply",
+    "bounds_from_spreads",
     "calibrate",
     "parse_fit",
     "simulate_measurements",
@@ -411,6 +412,7 @@ def calibrate(
     method: Method = "transient",
     holdout: Sequence[int] = (),
     leave_one_out: bool = False,
+    bounds: Mapping[str, tuple[float, float]] | None = None,
 ) -> tuple[Calibration, ModelInputs]:
     """Fit the named parameters to the measured rebound ratios.
 
@@ -429,6 +431,10 @@ def calibrate(
     leave_one_out : bool
         Also refit once per fitted row without it and predict it (the leave-one-out
         residuals; costs one fit per row).
+    bounds : mapping, optional
+        ``name → (low, high)`` in place of a parameter's own bounds (e.g. an uncertainty
+        file's ranges: :func:`bounds_from_spreads`); a start outside them starts at their
+        middle.
 
     Returns
     -------
@@ -437,7 +443,8 @@ def calibrate(
     ModelInputs
         The inputs with the identifiable fitted values (the others keep their start).
     """
-    parameters = parse_fit(fit, inputs)
+    parameters = [_bounded(p, (bounds or {}).get(p.name)) for p in parse_fit(fit, inputs)]
+    inputs = _start_within(inputs, parameters)
     n = len(measured)
     held = sorted({int(i) for i in holdout})
     if any(not 0 <= i < n for i in held):
@@ -483,6 +490,45 @@ def calibrate(
 def _rms(values: NDArray[np.float64]) -> float:
     finite = values[np.isfinite(values)]
     return float(np.sqrt(np.mean(finite**2))) if finite.size else math.nan
+
+
+def _bounded(parameter: Parameter, given: tuple[float, float] | None) -> Parameter:
+    """The parameter with given bounds (checked: 0 < low < high)."""
+    if given is None:
+        return parameter
+    low, high = float(given[0]), float(given[1])
+    if not (math.isfinite(low) and math.isfinite(high) and 0.0 < low < high):
+        raise InputError(
+            f"`bounds` of {parameter.name}: give 0 < low < high, not [{low:g}, {high:g}]"
+        )
+    return replace(parameter, bounds=lambda start: (low, high))
+
+
+def _start_within(inputs: ModelInputs, parameters: Sequence[Parameter]) -> ModelInputs:
+    """The inputs with every parameter that starts outside its bounds at their middle."""
+    for p in parameters:
+        value = p.get(inputs)
+        low, high = p.bounds(value)
+        if not low <= value <= high:
+            log.info("%s starts at %g, outside [%g, %g]: at their middle", p.name, value, low, high)
+            inputs = p.set(inputs, 0.5 * (low + high))
+    return inputs
+
+
+def bounds_from_spreads(spreads: Sequence[Any]) -> dict[str, tuple[float, float]]:
+    """Calibration bounds from an uncertainty's spreads (:class:`racketdyn.impact.uncertainty.
+    Spread`): a range as it is, equally likely values from the least to the greatest; a normal
+    spread bounds nothing (its centre is the start, not a limit).  The impact's own inputs
+    (location, ball speed) are not calibrated."""
+    found: dict[str, tuple[float, float]] = {}
+    for spread in spreads:
+        if spread.name not in PARAMETERS:
+            continue
+        if spread.bounds is not None and spread.bounds[0] < spread.bounds[1]:
+            found[spread.name] = (float(spread.bounds[0]), float(spread.bounds[1]))
+        elif len(set(spread.values)) > 1:
+            found[spread.name] = (float(min(spread.values)), float(max(spread.values)))
+    return found
 
 
 def _fit(

@@ -24,10 +24,11 @@ from numpy.typing import NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError
-from racketdyn.impact.calibration import Calibration, calibrate
+from racketdyn.impact.calibration import Calibration, bounds_from_spreads, calibrate
 from racketdyn.impact.grid import StringBed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import METHODS, Method, ModelInputs
+from racketdyn.impact.uncertainty import Uncertainty
 from racketdyn.io.measured import MeasuredRebound
 from racketdyn.io.racket_file import load_racket, write_racket_toml
 from racketdyn.modal import ModalModel
@@ -110,6 +111,7 @@ def run_calibrate(
     hand: Hand | None = None,
     engine: str = "auto",
     string_bed: StringBed = "uniform",
+    uncertainty: Uncertainty | None = None,
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -136,6 +138,9 @@ def run_calibrate(
         Refit once per fitted row without it (leave-one-out residuals).
     modal, rigid, ball, hand, engine, string_bed, allow_implausible
         As for :func:`racketdyn.workflows.validate.run_validate`.
+    uncertainty : Uncertainty, optional
+        Its ranges (and the span of equally likely values) bound the fitted parameters
+        (:func:`racketdyn.impact.calibration.bounds_from_spreads`).
     defaults, command, figures, progress
         As for every step.
 
@@ -153,8 +158,15 @@ def run_calibrate(
         raise InputError(f"`holdout`: rows are numbered 1 to {len(rows)} (got {held})")
     held0 = [i - 1 for i in held]
     report(progress, f"fitting {', '.join(fit)} to {len(rows) - len(held)} rows ({method})")
+    limits = {} if uncertainty is None else bounds_from_spreads(uncertainty.spreads)
     calibration, calibrated = calibrate(
-        inputs, rows, fit, method=method, holdout=held0, leave_one_out=leave_one_out
+        inputs,
+        rows,
+        fit,
+        method=method,
+        holdout=held0,
+        leave_one_out=leave_one_out,
+        bounds={name: limits[name] for name in fit if name in limits},
     )
     before, status = calibration.predicted_start, calibration.status_start
     after, status_after = calibration.predicted, calibration.status
