@@ -212,6 +212,15 @@ def test_predict_writes_bands_beside_every_number_and_the_samples(
     assert (table.loc[ok, "rebound_ratio_p95"] >= table.loc[ok, "rebound_ratio"] - 1e-9).all()
     with xr.open_dataset(out / "uncertainty.nc") as data:
         assert data.sizes["sample"] == 16
+        assert set(data["rebound_ratio_p05"].dims) == {"point", "ball_speed", "support"}
+        assert set(data.dims) == {
+            "point",
+            "ball_speed",
+            "support",
+            "sample",
+            "mode",
+            "energy_term",
+        } - (set() if "energy_term" in data.dims else {"energy_term"})
     record = json.loads((out / "run.json").read_text())
     assert record["uncertainty"]["samples"] == 16
 
@@ -507,3 +516,29 @@ def test_calibrate_takes_the_uncertainty_file_s_ranges_as_bounds(tmp_path: Path)
     assert outside.value[0] == pytest.approx(0.86, abs=1e-6)
     with pytest.raises(InputError, match="0 < low < high"):
         calibrate(start, truth, ["e_bg"], method="approx", bounds={"e_bg": (0.9, 0.8)})
+
+
+def test_swing_writes_each_point_s_band_beside_its_numbers(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    spec = tmp_path / "u.toml"
+    spec.write_text("[e_bg]\nrange = [0.80, 0.88]\n")
+    out = tmp_path / "swing"
+    argv = ["swing", "--uncertainty", str(spec), "--samples", "16", "--grid", "5"]
+    assert main([*argv, "--no-figures", "--out", str(out)]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "outgoing speed at the centre" in text
+    assert "90 % band" in text
+    table = pd.read_csv(out / "swing.csv")
+    ok = table["status"] == "ok"
+    assert ok.any()
+    # each row's band holds its own number: the band columns line up with the rows
+    assert (
+        table.loc[ok, "rebound_speed_mps_p05"] <= table.loc[ok, "rebound_speed_mps"] + 1e-9
+    ).all()
+    assert (
+        table.loc[ok, "rebound_speed_mps_p95"] >= table.loc[ok, "rebound_speed_mps"] - 1e-9
+    ).all()
+    assert (table.loc[ok, "rebound_speed_mps_p95"] > table.loc[ok, "rebound_speed_mps_p05"]).all()
+    record = json.loads((out / "run.json").read_text())
+    assert record["uncertainty"]["samples"] == 16

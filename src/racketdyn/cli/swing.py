@@ -56,6 +56,7 @@ def add(commands: Any) -> None:
     )
     opt.add_grid(p, opt.SWING_GRID)
     opt.add_string_bed(p)
+    opt.add_uncertainty(p)
     opt.add_no_figures(p)
     opt.add_out(p)
     p.set_defaults(handler=run)
@@ -95,6 +96,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             allow_implausible=args.allow_implausible,
             grid=args.grid,
             string_bed=args.string_bed,
+            uncertainty=opt.uncertainty_from(args),
             defaults=[*swing_defaults, *defaults],
             command=opt.command_line(args),
             figures=None if args.no_figures else swing_figures,
@@ -126,5 +128,29 @@ def run(args: argparse.Namespace, console: Console) -> int:
             else f"{row['rebound_speed_mps']:.1f}",
         )
     console.print(table)
+    if result.band is not None:
+        opt.say(console, _band_line(result), None)
     opt.print_written(console, result.written)
     return 0
+
+
+def _band_line(result: Any) -> str:
+    """The outgoing speed's 90 % band at the point nearest the face centre."""
+    import numpy as np
+
+    band, racket = result.band, result.racket
+    centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
+    i = int(np.argmin(np.linalg.norm(band.nominal.locations - centre, axis=1)))
+    s = result.shown_speed
+    low = band.quantile("rebound_speed", 0.05)[i, s, 0]
+    high = band.quantile("rebound_speed", 0.95)[i, s, 0]
+    shown = (
+        f"{low:.1f}–{high:.1f} m/s"
+        if np.isfinite(low) and np.isfinite(high)
+        else "none (under 90 % of samples valid)"
+    )
+    return (
+        f"outgoing speed at the centre, ball {result.speeds[s]:g} m/s: "
+        f"{band.nominal.rebound_speed[i, s, 0]:.1f} m/s, 90 % band {shown} "
+        f"({band.uncertainty.samples} samples; swing.csv has every point's)"
+    )

@@ -39,6 +39,7 @@ from racketdyn.impact.grid import status_warnings_held
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import Method, ModelInputs, predict_rows
 from racketdyn.impact.result import STATUS_OK, ImpactResult
+from racketdyn.impact.swing import SwingResult, predict_swing
 from racketdyn.impact.transient import predict_transient
 from racketdyn.io.measured import MeasuredRebound
 from racketdyn.racket import as_locations
@@ -293,8 +294,8 @@ class UncertainResult:
 
     Attributes
     ----------
-    nominal : ImpactResult
-        The impacts at the nominal inputs.
+    nominal : ImpactResult or SwingResult
+        The impacts at the nominal inputs (a swing's with a ``swing`` option).
     samples : dict
         :data:`BAND_QUANTITIES` attribute → ``(n_samples, n_points, n_speeds, n_supports)``
         (NaN where that sample's impact is not valid).
@@ -308,7 +309,7 @@ class UncertainResult:
         ``approx`` or ``transient``.
     """
 
-    nominal: ImpactResult
+    nominal: ImpactResult | SwingResult
     samples: dict[str, NDArray[np.float64]]
     valid: NDArray[np.bool_]
     draws: Draws
@@ -364,8 +365,24 @@ class UncertainResult:
     def to_xarray(self) -> xr.Dataset:
         """The nominal dataset with the bands as ``<name>_mean/_sd/_p05/_p95`` variables and
         every sample's value on a ``sample`` dimension (``<name>_samples``)."""
-        data = self.nominal.to_xarray()
-        dims = ("point", "speed", "support")
+        dims = ("point", "ball_speed", "support")
+        nominal = self.nominal
+        if isinstance(nominal, ImpactResult):
+            data = nominal.to_xarray()
+        else:  # a swing's: its columns on the same dimensions
+            data = xr.Dataset(
+                {
+                    q.name: (dims, getattr(nominal, q.attribute), {"units": q.units})
+                    for q in _quantities()
+                    if np.ndim(getattr(nominal, q.attribute)) == 3
+                },
+                coords={
+                    "x_m": ("point", nominal.locations[:, 0]),
+                    "y_m": ("point", nominal.locations[:, 1]),
+                    "ball_speed_mps": ("ball_speed", nominal.ball_speed),
+                    "support": ("support", list(nominal.supports)),
+                },
+            )
         units = {q.attribute: (q.name, q.units) for q in _quantities()}
         for name, values in self.band_columns().items():
             base = name.rsplit("_", 1)[0]
@@ -407,7 +424,7 @@ def _run(
     locations: NDArray[np.float64],
     speeds: NDArray[np.float64],
     options: dict[str, Any],
-) -> ImpactResult:
+) -> ImpactResult | SwingResult:
     common = {
         "modal_model": inputs.modes(),
         "law": None if inputs.string_bed == "local" else inputs.law(),
@@ -415,12 +432,28 @@ def _run(
         "include_string_bed": inputs.include_string_bed,
         **options,
     }
+    swing = common.pop("swing", None)
+    if swing is not None:  # each point at its own racket speed, Ω (x + d)
+        common.pop("racket_speed", None)
+        if method == "transient":
+            common["engine"] = inputs.engine
+            if "hand" in common["supports"]:
+                common["hand"] = inputs.hand or Hand()
+        return predict_swing(
+            inputs.effective_racket,
+            inputs.effective_ball,
+            locations,
+            speeds,
+            swing,
+            model="approximate" if method == "approx" else "transient",
+            **common,
+        )
     if method == "approx":
-        return predict(inputs.effective_racket, inputs.ball, locations, speeds, **common)
+        return predict(inputs.effective_racket, inputs.effective_ball, locations, speeds, **common)
     hand = (inputs.hand or Hand()) if "hand" in common["supports"] else None
     return predict_transient(
         inputs.effective_racket,
-        inputs.ball,
+        inputs.effective_ball,
         locations,
         speeds,
         engine=inputs.engine,  # type: ignore[arg-type]
@@ -464,7 +497,8 @@ def propagate(
         Point labels.
     options : dict, optional
         More keyword arguments of the model (e.g. the approximate method's
-        ``stiffness_reading``).
+        ``stiffness_reading``); ``swing`` (a :class:`~racketdyn.impact.swing.Swing`) runs
+        :func:`~racketdyn.impact.swing.predict_swing`, each point at its own racket speed.
     progress : callable, optional
         ``progress(done, total)`` after each sample.
 

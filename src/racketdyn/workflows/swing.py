@@ -22,7 +22,8 @@ from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_speeds
 from racketdyn.impact.grid import StringBed, check_string_bed
 from racketdyn.impact.hand import Hand
-from racketdyn.impact.result import shown_speed_index
+from racketdyn.impact.measured import ModelInputs
+from racketdyn.impact.result import shown_speed_index, write_columns
 from racketdyn.impact.swing import (
     DEFAULT_ARM_GYRATION_M,
     DEFAULT_ARM_MASS_KG,
@@ -39,6 +40,7 @@ from racketdyn.impact.swing import (
     sweet_spots,
 )
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
+from racketdyn.impact.uncertainty import UncertainResult, Uncertainty, propagate
 from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_speeds
@@ -184,6 +186,8 @@ class SwingStepResult(StepResult):
         The named sweet spots at the shown speed.
     spot_rows : list of dict
         ``sweet_spots.csv`` rows (:data:`SWEET_SPOT_COLUMNS`).
+    band : UncertainResult or None
+        With an uncertainty: every sample of the swing and the bands.
     racket, ball, swing : Racket, Ball, Swing
         The inputs used.
     modal_model : ModalModel or None
@@ -206,6 +210,7 @@ class SwingStepResult(StepResult):
     swing_result: SwingResult | None = None
     spots: dict[str, SweetSpot] = field(default_factory=dict)
     spot_rows: list[dict[str, Any]] = field(default_factory=list)
+    band: UncertainResult | None = None
     racket: Racket | None = None
     ball: Ball | None = None
     swing: Swing | None = None
@@ -267,6 +272,7 @@ def run_swing(
     allow_implausible: bool = False,
     grid: int | None = None,
     string_bed: StringBed = "uniform",
+    uncertainty: Uncertainty | None = None,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[SwingStepResult, Path], list[Path]] | None = None,
@@ -303,6 +309,10 @@ def run_swing(
     string_bed : {"uniform", "local"}
         The string bed's law over the face: the centre's everywhere (the paper's, default) or
         each point's own (:func:`racketdyn.impact.grid.predict_by_point_law`).
+    uncertainty : Uncertainty, optional
+        Uncertain inputs: the swing run once per sample; ``swing.csv`` gets each number's
+        mean, sd and 90 % band (:func:`racketdyn.impact.uncertainty.propagate`), every sample
+        goes to ``uncertainty.nc``.
     defaults : sequence of str
         Defaults the caller filled in (ball, swing), added to run.json.
     command : sequence of str, optional
@@ -393,7 +403,30 @@ def run_swing(
         used.modal_model,
         **options,
     )
-    computed.write_csv(out_dir / "swing.csv")
+    if uncertainty is None:
+        computed.write_csv(out_dir / "swing.csv")
+    else:
+        report(progress, f"uncertainty: {uncertainty.samples} samples of the swing")
+        result.band = propagate(
+            ModelInputs(
+                used.racket,
+                the_ball,
+                hand=the_hand,
+                modal_model=used.modal_model,
+                string_bed=string_bed,
+            ),
+            locations,
+            speed_list,
+            uncertainty,
+            method=model,
+            supports=[the_support],
+            labels=labels,
+            options={"swing": the_swing},
+        )
+        bands = {k: np.ravel(v) for k, v in result.band.band_columns().items()}
+        write_columns(out_dir / "swing.csv", {**computed.columns, **bands})
+        result.band.to_xarray().to_netcdf(out_dir / "uncertainty.nc")
+        result.written.append(out_dir / "uncertainty.nc")
     result.written += [
         out_dir / "swing.csv",
         write_rows(out_dir / "sweet_spots.csv", result.spot_rows),
@@ -410,6 +443,7 @@ def run_swing(
         "defaults_used": defaults_used,
         **computed.inputs,  # swing (parameters, Ω, inertias), impact model, ball, law, modes
         "angular_speed_radps": omega,
+        "uncertainty": None if uncertainty is None else uncertainty.record(),
         "sweet_spots_at_mps": speed_list[chosen],
         "along_axis_swings": [name for name, _ in axis_swings(the_swing)],
         "columns": {
