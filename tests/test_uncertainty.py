@@ -406,8 +406,11 @@ def test_a_racket_file_s_uncertainty_tables_are_checked_and_used(
     assert "rebound_ratio_p05" in pd.read_csv(out / "impact.csv")
     bad = tmp_path / "bad.toml"
     bad.write_text(text + "\n[uncertainty.e_bg]\nrange = [80, 88]\n", encoding="utf-8")
+    from racketdyn.workflows.inputs import load_racket_input
+
+    load_racket(bad)  # the racket itself reads; its [uncertainty] is checked by every step
     with pytest.raises(InputError, match=r"\[uncertainty\] \[e_bg\] range.*percentage"):
-        load_racket(bad)
+        load_racket_input(bad)
 
 
 def test_the_literature_spreads_follow_what_the_racket_file_states(tmp_path: Path) -> None:

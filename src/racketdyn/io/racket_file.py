@@ -229,15 +229,10 @@ def racket_from_dict(
     ]
     checks_table = _check_table(f"{path}: [checks]", data.get("checks", {}), "checks")
     allow_implausible = allow_implausible or bool(checks_table.get("allow_implausible", False))
-    if "uncertainty" in data:  # checked here, read by io.uncertainty_file.racket_spreads
-        from racketdyn.io.uncertainty_file import spreads_from_tables
-
-        tables = data["uncertainty"]
-        if not isinstance(tables, dict):
-            raise InputError(
-                f"{path}: [uncertainty] must be a table of tables ([uncertainty.e_bg])"
-            )
-        spreads_from_tables(tables, f"{path}: [uncertainty]", allow_implausible)
+    if "uncertainty" in data and not isinstance(data["uncertainty"], dict):
+        # its tables are checked where they are read (io.uncertainty_file.racket_spreads, on
+        # every racket file a step loads: workflows.inputs.load_racket_input)
+        raise InputError(f"{path}: [uncertainty] must be a table of tables ([uncertainty.e_bg])")
     _check_plausible(
         path,
         {

@@ -20,6 +20,7 @@ from racketdyn.errors import InputError
 from racketdyn.impact.hand import Hand
 from racketdyn.io import default_racket, load_racket, read_e_bg_table, read_load_deflection
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
+from racketdyn.io.uncertainty_file import racket_spreads
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_e_bg
 from racketdyn.racket import Racket
@@ -51,6 +52,7 @@ def load_racket_input(racket: RacketInput) -> tuple[Racket, dict[str, Any]]:
         return racket, {"racket_file": f"Racket object {racket.name!r} (given from Python)"}
     path = Path(racket)
     loaded = load_racket(path)
+    racket_spreads(path)  # its [uncertainty] tables checked with the racket, used or not
     return loaded, {"racket_file": str(path.resolve()), "racket_file_sha256": sha256(path)}
 
 
