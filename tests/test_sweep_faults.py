@@ -232,6 +232,39 @@ def test_workers_exit_when_the_main_process_is_killed(
     assert not alive, f"left running after the main process was killed: {alive}"
 
 
+@needs_proc
+def test_a_killed_sweep_costs_only_the_designs_in_flight(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """SIGKILL to the main process mid-study: its store is never read as complete, and the
+    same sweep run again computes only the designs not recorded, to the bits of a run
+    straight through."""
+    process, out, _ = _start(tmp_path)
+    process.kill()
+    process.wait(timeout=30)
+    for line in _wait_until_gone(process.pid, 10):
+        os.kill(int(line.split()[0]), signal.SIGKILL)
+    kept = sweep_faults.designs_done(out)
+    assert 2 <= len(kept) < 16
+    assert not sweep_faults.store_complete(out)
+    with pytest.raises(rd.InputError, match="has not finished"):
+        rd.sweep.open_sweep(out)
+    monkeypatch.setitem(sweep_task.METHODS, "slow", sweep_faults.slow)
+    monkeypatch.setattr(sweep_faults, "SLOW_TASK_S", 0.0)  # in this process: the same numbers
+    spec = rd.sweep.load_sweep_spec(tmp_path / "slow.toml")
+    submitted: list[str] = []
+
+    class Counting(SerialExecutor):
+        def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> Future[Any]:
+            submitted.extend(task.task_id for task in args[0])
+            return super().submit(fn, *args, **kwargs)
+
+    resumed = run_sweep(spec, out, Counting(), figures=None)
+    assert sorted(submitted) == [f"design-{i:05d}" for i in range(16) if i not in kept]
+    straight = run_sweep(spec, tmp_path / "straight", SerialExecutor(), figures=None)
+    assert_same_bits(straight, resumed)
+
+
 def test_the_command_says_when_tasks_ran_past_the_task_timeout(tmp_path: Path) -> None:
     """A ``--task-timeout`` shorter than the tasks made them time out, the pool replaced and
     the tasks run again — and the command said nothing of it (run.json counted it; a

@@ -175,7 +175,7 @@ def summary_metrics(
     )
 
 
-BLOCK_BYTES = 64 * 2**20
+BLOCK_BYTES = 8 * 2**20
 """About this many bytes of results are read at once by :func:`summary_metrics` (whole
 chunks of the store: a block is a whole number of its chunks along ``design``)."""
 
