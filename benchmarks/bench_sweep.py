@@ -157,10 +157,12 @@ def memory_part(method: str) -> None:
         )
     (n1, b1, p1, _), (n2, b2, p2, _) = rows
     slope = ((p2 - b2) - (p1 - b1)) * 2**20 / (n2 - n1)  # bytes per impact
-    projected = (p2 - b2) + slope * (1e8 - n2) / 2**20
+    # a slope within the noise of a few MB (or below zero) is no growth: 10⁸ as 10⁷
+    projected = (p2 - b2) + max(slope, 0.0) * (1e8 - n2) / 2**20
     print(
         f"over the baseline, 10⁷ against 10⁶ impacts: {(p2 - b2) / max(p1 - b1, 1e-9):.2f}× "
         f"for 10× the impacts; slope {slope:.2f} B/impact"
+        + (" (none: the peak does not grow with the designs)" if slope <= 0 else "")
     )
     print(
         f"projected at 10⁸ impacts: {projected:.0f} MB over the baseline "
