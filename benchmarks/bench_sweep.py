@@ -1,13 +1,20 @@
-"""Throughput of a design sweep, ``racketdyn.sweep.run_sweep``, on each engine, in one run.
+"""Throughput and memory of a design sweep, ``racketdyn.sweep.run_sweep``, in one run.
 
 Run with ``python benchmarks/bench_sweep.py``.  A sweep of 1,000,000 impacts — 100 designs
 (lead tape 0–9 g at 12 o'clock × ten frame stiffnesses, so every design builds its own modal
 model) × 100 impact points × 50 ball speeds × 2 supports — by the approximate method, run on
 this process (serial), a local process pool of 1 and 2 workers, and a local Dask cluster of 1
 and 2 single-threaded workers.  Each run starts from an empty folder and includes starting the
-engine, writing every part file and combining them into ``sweep.nc`` (no figures).  Prints
+engine, writing every chunk of the store ``sweep.zarr`` and finishing it (no figures).  Prints
 impacts per second and the ratio against serial, checks that every engine wrote the same
-numbers, and splits one serial task into its steps.
+numbers (the store's contents to the bit), and splits one serial task into its steps.
+
+Memory (issue 28): the peak resident memory of the main process over a whole sweep on a pool
+of two workers, summary included, at 10⁶ and 10⁷ impacts (100 and 1,000 designs of 10⁴
+impacts; ten values of e_BG multiply the designs), against a baseline measured in the same
+process just before each sweep; the slope between the two projects 10⁸ impacts.  Linux only
+(``/proc/self/status``'s VmHWM, reset through ``/proc/self/clear_refs``).  ``--part speed``
+or ``--part memory`` runs one half.
 
 ``python benchmarks/bench_sweep.py --method transient --designs 10`` times the transient
 model (compiled engine) the same way on 100,000 impacts.  Prints, per engine, where the wall
@@ -20,6 +27,7 @@ whatever the timings.
 from __future__ import annotations
 
 import argparse
+import gc
 import json
 import logging
 import os
@@ -39,6 +47,7 @@ from racketdyn.sweep import (
     SweepSpec,
     Variable,
     make_executor,
+    open_sweep,
     run_sweep,
     run_task,
     start_early,
@@ -50,6 +59,11 @@ SPEEDS = np.linspace(5.0, 50.0, 50)
 SUPPORTS = ("free", "pinned")
 LEAD_KG = np.arange(10) * 1e-3  # 0–9 g
 STIFFNESS = np.linspace(0.8, 1.25, 10)
+E_BG = np.linspace(0.80, 0.89, 10)
+OLD_BYTES_PER_IMPACT = 245
+"""The main process's peak over its baseline per impact before the store (parts combined
+into sweep.nc in memory): 233 MB over 187 MB at 10⁶ impacts on a pool of two workers,
+measured 2026-11-28 with this benchmark's study; issue 28 quotes 330 B at 2.2 × 10⁶."""
 
 
 def engines_in_order(repeat: int) -> list[tuple[str, str, int, int]]:
@@ -66,25 +80,94 @@ def engines_in_order(repeat: int) -> list[tuple[str, str, int, int]]:
 
 
 def build_spec(n_designs: int, method: str) -> SweepSpec:
-    """The benchmark sweep: ``n_designs`` designs (at most 100) × 100 points × 50 × 2."""
+    """The benchmark sweep: ``n_designs`` designs (at most 100; 1,000 with e_BG's ten values
+    as a third variable) × 100 points × 50 × 2."""
     racket = racketdyn.default_racket()
     points = racket.head.grid(GRID_N)[:N_POINTS]
     if len(points) != N_POINTS:
         raise SystemExit(f"grid {GRID_N} gives only {len(points)} points; raise GRID_N")
-    n_lead = max(1, min(len(LEAD_KG), n_designs // len(STIFFNESS)))
-    n_stiff = max(1, min(len(STIFFNESS), -(-n_designs // n_lead)))
+    n_e = max(1, min(len(E_BG), n_designs // (len(LEAD_KG) * len(STIFFNESS))))
+    per_e = -(-n_designs // n_e)
+    n_lead = max(1, min(len(LEAD_KG), per_e // len(STIFFNESS)))
+    n_stiff = max(1, min(len(STIFFNESS), -(-per_e // n_lead)))
+    variables = (
+        Variable.point_mass(LEAD_KG[:n_lead], clock=12, head=racket.head),
+        Variable.scalar("frame_stiffness_scale", STIFFNESS[:n_stiff]),
+    )
+    if n_e > 1:
+        variables += (Variable.scalar("e_bg", E_BG[:n_e]),)
     return SweepSpec(
         racket=racket,
         ball=racketdyn.Ball(),
         locations=points,
         ball_speeds=SPEEDS,
         supports=SUPPORTS,
-        variables=(
-            Variable.point_mass(LEAD_KG[:n_lead], clock=12, head=racket.head),
-            Variable.scalar("frame_stiffness_scale", STIFFNESS[:n_stiff]),
-        ),
+        variables=variables,
         method=method,
         name="bench_sweep",
+    )
+
+
+def _status_mb(field: str) -> float:
+    with open("/proc/self/status", encoding="ascii") as status:
+        for line in status:
+            if line.startswith(field + ":"):
+                return int(line.split()[1]) / 1024
+    raise RuntimeError(f"no {field} in /proc/self/status")
+
+
+def peak_memory(spec: SweepSpec, out: Path) -> tuple[float, float, float]:
+    """(baseline, peak, wall): the main process's resident memory just before the sweep and
+    its peak during it (summary included, no figures), MB, on a pool of two workers."""
+    with make_executor("process", 2) as executor:
+        gc.collect()
+        Path("/proc/self/clear_refs").write_text("5", encoding="ascii")  # VmHWM := VmRSS
+        baseline = _status_mb("VmRSS")
+        start = time.perf_counter()
+        run_sweep(spec, out, executor, figures=None)
+        wall = time.perf_counter() - start
+        peak = _status_mb("VmHWM")
+    return baseline, peak, wall
+
+
+def memory_part(method: str) -> None:
+    """Peak memory of the main process at 10⁶ and 10⁷ impacts; 10⁸ projected from the
+    slope."""
+    if not Path("/proc/self/clear_refs").exists():
+        print("memory: needs Linux's /proc/self/clear_refs; skipped")
+        return
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="bench_sweep_memory_") as scratch:
+        for n_designs in (100, 1000):
+            spec = build_spec(n_designs, method)
+            out = Path(scratch) / f"d{n_designs}"
+            baseline, peak, wall = peak_memory(spec, out)
+            rows.append((spec.n_impacts, baseline, peak, wall))
+            shutil.rmtree(out)
+    print("peak resident memory of the main process (pool of 2 workers, summary included)")
+    print(
+        f"{'impacts':>12}{'baseline MB':>13}{'peak MB':>9}{'over MB':>9}{'peak/base':>10}"
+        f"{'B/impact':>9}{'wall s':>8}"
+    )
+    for n, baseline, peak, wall in rows:
+        over = peak - baseline
+        print(
+            f"{n:>12,}{baseline:13.0f}{peak:9.0f}{over:9.1f}{peak / baseline:9.2f}×"
+            f"{over * 2**20 / n:9.1f}{wall:8.1f}"
+        )
+    (n1, b1, p1, _), (n2, b2, p2, _) = rows
+    slope = ((p2 - b2) - (p1 - b1)) * 2**20 / (n2 - n1)  # bytes per impact
+    # a slope within the noise of a few MB (or below zero) is no growth: 10⁸ as 10⁷
+    projected = (p2 - b2) + max(slope, 0.0) * (1e8 - n2) / 2**20
+    print(
+        f"over the baseline, 10⁷ against 10⁶ impacts: {(p2 - b2) / max(p1 - b1, 1e-9):.2f}× "
+        f"for 10× the impacts; slope {slope:.2f} B/impact"
+        + (" (none: the peak does not grow with the designs)" if slope <= 0 else "")
+    )
+    print(
+        f"projected at 10⁸ impacts: {projected:.0f} MB over the baseline "
+        f"({b2 + projected:.0f} MB in all); with sweep.nc combined in memory "
+        f"({OLD_BYTES_PER_IMPACT} B/impact): {OLD_BYTES_PER_IMPACT * 1e8 / 2**30:.1f} GB"
     )
 
 
@@ -104,10 +187,11 @@ def start_dask_forkserver(method: str) -> float:
 def time_engine(spec: SweepSpec, kind: str, workers: int, out: Path) -> dict[str, float]:
     """Wall time of the whole sweep (engine start and shutdown included) and where it went, s:
     ``start`` (the engine), ``first`` (first result after the first submission: a pool starts
-    its workers then), ``tasks`` (submission to last result), ``write`` (part files, summed
-    over workers), ``combine`` (sweep.nc), ``busy`` (the tasks' own time summed)."""
+    its workers then), ``tasks`` (submission to last result), ``write`` (chunks of the store,
+    summed over workers), ``finish`` (finishing the store), ``busy`` (the tasks' own time
+    summed)."""
     start = time.perf_counter()
-    with ExitStack() as stack:  # as the command: the engine closes before combining
+    with ExitStack() as stack:  # as the command: the engine closes before finishing
         executor = stack.enter_context(make_executor(kind, workers))  # type: ignore[arg-type]
         started = time.perf_counter() - start
         run_sweep(
@@ -126,8 +210,8 @@ def time_engine(spec: SweepSpec, kind: str, workers: int, out: Path) -> dict[str
         "start": started,
         "first": float(record["first_result_s"]),
         "tasks": float(spent["tasks"]),
-        "write": float(record["part_write_time_s"]),
-        "combine": float(spent["combining"]),
+        "write": float(record["chunk_write_time_s"]),
+        "finish": float(spent["finishing"]),
         "shutdown": float(spent.get("shutdown", 0.0)),
         "busy": float(record["task_time_s"]),
         "per_task": float(record["designs_per_task"]),
@@ -146,6 +230,12 @@ def main() -> int:
     )
     parser.add_argument(
         "--method", default="approximate", help=f"impact method: {', '.join(METHODS)}"
+    )
+    parser.add_argument(
+        "--part",
+        choices=("both", "speed", "memory"),
+        default="both",
+        help="the engines' speed, the main process's memory, or both (default)",
     )
     args = parser.parse_args()
     # predict logs a warning per task for impacts beyond the restoring-force law (the fastest
@@ -180,6 +270,11 @@ def main() -> int:
     ok = int(np.sum(output.arrays["status"] == 0))
     print(f"  impacts ok          {ok:,} of {per_task:,} (the rest NaN with a status code)")
     print()
+    if args.part in ("both", "memory"):  # before any Dask client leaves threads here
+        memory_part(args.method)
+        print()
+    if args.part == "memory":
+        return 0
 
     # A local Dask cluster forks its workers from a forkserver that imports distributed and
     # racketdyn once per process (the command starts it while it reads the spec): started
@@ -200,34 +295,36 @@ def main() -> int:
         for label, kind, workers, repeat in engines_in_order(args.repeat):
             out = Path(scratch) / f"{kind}-{workers}-{repeat}"
             runs.setdefault(label, []).append(time_engine(spec, kind, workers, out))
-            with xr.open_dataset(out / "sweep.nc", engine="scipy") as written:
+            with open_sweep(out) as written:  # the store's contents, to the bit
                 if reference is None:
                     reference = written.load()
                 else:
                     same &= all(
                         reference[name].values.tobytes() == written[name].values.tobytes()
-                        for name in reference.data_vars
+                        for name in [*reference.data_vars, *reference.coords]
+                        if reference[name].dtype.kind in "fiu"
                     )
             shutil.rmtree(out)
     serial_s = runs["serial"][0]["wall"]
     print(
         f"{'engine (median run)':<26}{'wall s':>7}{'start':>7}{'first':>7}{'tasks':>7}"
-        f"{'write':>7}{'stop':>6}{'combine':>8}{'busy':>7}{'per task':>9}{'impacts/s':>11}"
+        f"{'write':>7}{'stop':>6}{'finish':>8}{'busy':>7}{'per task':>9}{'impacts/s':>11}"
         f"{'vs serial':>10}"
     )
     for label, timed in runs.items():
         t = sorted(timed, key=lambda run: run["wall"])[len(timed) // 2]
         print(
             f"{label:<26}{t['wall']:7.2f}{t['start']:7.2f}{t['first']:7.2f}{t['tasks']:7.2f}"
-            f"{t['write']:7.2f}{t['shutdown']:6.2f}{t['combine']:8.2f}{t['busy']:7.2f}"
+            f"{t['write']:7.2f}{t['shutdown']:6.2f}{t['finish']:8.2f}{t['busy']:7.2f}"
             f"{t['per_task']:9.0f}{n_impacts / t['wall']:11,.0f}{serial_s / t['wall']:9.2f}×"
         )
     print("wall: the whole sweep, engine start and shutdown included.  start: the engine alone")
     print("(a pool starts its workers with the first task: see first, the first result after")
-    print("the first submission).  tasks: first submission to last result.  write: part files,")
-    print("summed over the workers that wrote them.  stop: the engine's shutdown, before")
-    print("combining (a local Dask scheduler in this process slows it).  combine: the parts into")
-    print("sweep.nc.  busy: the tasks' own time summed over workers.  per task: designs per task.")
+    print("the first submission).  tasks: first submission to last result.  write: chunks of")
+    print("the store, summed over the workers that wrote them.  stop: the engine's shutdown,")
+    print("before finishing (a local Dask scheduler in this process slows it).  finish: the")
+    print("store's mode table, status counts and completion mark.  busy: the tasks' own time")
+    print("summed over workers.  per task: designs per task (= per chunk of the store).")
     forked = all(t["fork"] for label, timed in runs.items() if "pool" in label for t in timed)
     print(
         "process pool workers forked from this process: "

@@ -75,6 +75,32 @@ def assert_same_bits(expected: xr.Dataset, actual: xr.Dataset) -> None:
             assert a.tolist() == b.tolist(), name
 
 
+def designs_done(out: Path) -> list[int]:
+    """The designs recorded as done in the sweep store of ``out`` (none before it exists)."""
+    import numpy as np
+    import zarr
+
+    try:
+        records = zarr.open_group(out / "sweep.zarr", mode="r")["records"]["design"]
+        texts = np.asarray(records[:]).tolist()  # type: ignore[index]
+    except (FileNotFoundError, KeyError):
+        return []
+    return [i for i, text in enumerate(texts) if text]
+
+
+def store_complete(out: Path) -> bool:
+    """Whether the sweep store of ``out`` says its run finished."""
+    import zarr
+
+    return bool(zarr.open_group(out / "sweep.zarr", mode="r").attrs.get("sweep_complete"))
+
+
+def chunk_file(out: Path, name: str, design: int, chunk_size: int = 1) -> Path:
+    """The file of array ``name`` of the store in ``out`` holding ``design``."""
+    ndim = 3 if name == "reduced_mass_kg" else 5
+    return out / "sweep.zarr" / name / "c" / str(design // chunk_size) / "/".join("0" * (ndim - 1))
+
+
 def task_ids(work: Any) -> list[str]:
     """Task ids in what a sweep submits: one task or a batch of them."""
     items = work if isinstance(work, list | tuple) else [work]

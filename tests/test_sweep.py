@@ -118,7 +118,7 @@ def test_every_engine_gives_the_same_bits(
     assert_same_bits(serial_result, result)
     assert progress[0] == (0, 6)
     assert progress[-1] == (6, 6)
-    with xr.open_dataset(tmp_path / "sweep.nc", engine="scipy") as written:
+    with sweep.open_sweep(tmp_path) as written:
         assert_same_bits(serial_result, written.load())
 
 
@@ -139,17 +139,18 @@ def test_a_local_dask_cluster_from_make_executor(
     assert_same_bits(serial_result, result)
 
 
-def test_the_engine_closes_before_the_parts_are_combined(
+def test_the_engine_closes_before_the_store_is_finished(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
     """A local Dask scheduler runs in this process and slowed combining 2.3× while it lived:
     the command closes its engine when the tasks are done (``when_tasks_done``), before
-    combining — every part is on disk then and sweep.nc not yet; run.json times it."""
+    the store is finished — every design is in it then and it is not complete yet; run.json
+    times it."""
     seen: list[tuple[int, bool]] = []
 
     def closing() -> None:
         seen.append(
-            (len(list((tmp_path / "parts").glob("*.nc"))), (tmp_path / "sweep.nc").exists())
+            (len(sweep_faults.designs_done(tmp_path)), sweep_faults.store_complete(tmp_path))
         )
 
     result = run_sweep(
@@ -522,8 +523,7 @@ def test_a_rerun_computes_only_missing_designs(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
     run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
-    (tmp_path / "sweep.nc").unlink()
-    (tmp_path / "parts" / "design-00003.nc").unlink()
+    sweep_faults.chunk_file(tmp_path, "cor", 3).unlink()  # design 3's chunk (one design each)
     counting, progress = CountingExecutor(), []
     result = run_sweep(
         small_spec,
@@ -546,30 +546,31 @@ def test_an_interrupted_sweep_resumes(
 
     with pytest.raises(KeyboardInterrupt):
         run_sweep(small_spec, tmp_path, SerialExecutor(), progress=interrupt, figures=None)
-    assert sorted(p.name for p in (tmp_path / "parts").iterdir()) == [
-        "design-00000.nc",
-        "design-00001.nc",
-    ]
+    assert sweep_faults.designs_done(tmp_path) == [0, 1]
+    with pytest.raises(rd.InputError, match="has not finished"):
+        sweep.open_sweep(tmp_path)
     counting = CountingExecutor()
     result = run_sweep(small_spec, tmp_path, counting, figures=None)
     assert counting.submitted == [f"design-{i:05d}" for i in range(2, 6)]
     assert_same_bits(serial_result, result)
 
 
-def test_parts_read_as_they_arrive_combine_as_read_at_the_end(
+def test_chunks_written_in_any_order_give_the_same_store(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
-    """The coordinating process reads parts as tasks end, in any order; the rest at the end."""
-    from racketdyn.sweep import files
+    """Chunks arrive in any order, a chunk's designs in several writes: the same numbers."""
+    from racketdyn.sweep import store
 
-    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
-    assembly = files._Assembly(small_spec, tmp_path / "parts")
-    for design in reversed(small_spec.designs[2:]):
-        assembly.add(design)
-    combined = files._combine(small_spec, tmp_path / "parts", [], assembly)
-    assert_same_bits(files._combine(small_spec, tmp_path / "parts", []), combined)
+    store.create_store(small_spec, tmp_path, designs_per_chunk=4)
+    outputs = {d.index: rd.sweep.run_task(small_spec.task(d)) for d in small_spec.designs}
+    for indices in ([5], [4], [2, 0], [3], [1]):
+        store.write_chunk(tmp_path, small_spec.sha256, indices, [outputs[i] for i in indices])
+    records = store.read_records(tmp_path, small_spec.sha256)
+    store.write_modes(tmp_path, small_spec, records)
+    store.set_complete(tmp_path, small_spec.sha256, True)
+    written = sweep.open_sweep(tmp_path)
     for name in serial_result.data_vars:
-        assert combined[name].values.tobytes() == serial_result[name].values.tobytes()
+        assert written[name].values.tobytes() == serial_result[name].values.tobytes(), name
 
 
 def test_parts_of_another_spec_are_recomputed(small_spec: SweepSpec, tmp_path: Path) -> None:
@@ -914,7 +915,7 @@ def test_a_script_without_the_main_guard_is_refused(
         assert f"{script}, line {line}:" in run.stderr
         assert "a sweep on worker processes is started at the top level" in run.stderr
         assert 'if __name__ == "__main__":' in run.stderr
-        assert not (tmp_path / "out" / "sweep.nc").exists()
+        assert not (tmp_path / "out" / "sweep.zarr").exists()
 
 
 def test_a_package_run_with_dash_m_needs_no_guard(tmp_path: Path) -> None:

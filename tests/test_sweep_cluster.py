@@ -108,7 +108,7 @@ def test_a_sweep_on_a_running_cluster_equals_serial(
     record = json.loads((out / "run.json").read_text())
     assert record["engine"] == "DaskExecutor"
     assert record["ran"] == 6
-    with xr.open_dataset(out / "sweep.nc", engine="scipy") as written:
+    with rd.sweep.open_sweep(out) as written:
         result = written.load()
     for name in serial_result.data_vars:
         assert result[name].values.tobytes() == serial_result[name].values.tobytes(), name

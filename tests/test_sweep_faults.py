@@ -138,9 +138,8 @@ def _start(
             env=env,
             start_new_session=True,
         )
-    parts = out / "parts"
     deadline = time.monotonic() + 120
-    while len(list(parts.glob("design-*.nc"))) < 2:
+    while len(sweep_faults.designs_done(out)) < 2:
         if process.poll() is not None or time.monotonic() > deadline:
             process.kill()
             process.wait()
@@ -196,7 +195,7 @@ def test_ctrl_c_keeps_the_finished_parts_and_says_how_to_resume(
     assert not stderr.strip()  # workers say nothing either
     lines = [line for line in (stdout + stderr).splitlines() if "interrupted" in line]
     assert len(lines) == 1, stdout + stderr
-    kept = len(list((out / "parts").glob("design-*.nc")))
+    kept = len(sweep_faults.designs_done(out))
     assert 2 <= kept < 16
     assert f"{kept} of 16 designs" in lines[0]
     command = "racketdyn " + " ".join(argv)
@@ -233,6 +232,39 @@ def test_workers_exit_when_the_main_process_is_killed(
     assert not alive, f"left running after the main process was killed: {alive}"
 
 
+@needs_proc
+def test_a_killed_sweep_costs_only_the_designs_in_flight(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """SIGKILL to the main process mid-study: its store is never read as complete, and the
+    same sweep run again computes only the designs not recorded, to the bits of a run
+    straight through."""
+    process, out, _ = _start(tmp_path)
+    process.kill()
+    process.wait(timeout=30)
+    for line in _wait_until_gone(process.pid, 10):
+        os.kill(int(line.split()[0]), signal.SIGKILL)
+    kept = sweep_faults.designs_done(out)
+    assert 2 <= len(kept) < 16
+    assert not sweep_faults.store_complete(out)
+    with pytest.raises(rd.InputError, match="has not finished"):
+        rd.sweep.open_sweep(out)
+    monkeypatch.setitem(sweep_task.METHODS, "slow", sweep_faults.slow)
+    monkeypatch.setattr(sweep_faults, "SLOW_TASK_S", 0.0)  # in this process: the same numbers
+    spec = rd.sweep.load_sweep_spec(tmp_path / "slow.toml")
+    submitted: list[str] = []
+
+    class Counting(SerialExecutor):
+        def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> Future[Any]:
+            submitted.extend(task.task_id for task in args[0])
+            return super().submit(fn, *args, **kwargs)
+
+    resumed = run_sweep(spec, out, Counting(), figures=None)
+    assert sorted(submitted) == [f"design-{i:05d}" for i in range(16) if i not in kept]
+    straight = run_sweep(spec, tmp_path / "straight", SerialExecutor(), figures=None)
+    assert_same_bits(straight, resumed)
+
+
 def test_the_command_says_when_tasks_ran_past_the_task_timeout(tmp_path: Path) -> None:
     """A ``--task-timeout`` shorter than the tasks made them time out, the pool replaced and
     the tasks run again — and the command said nothing of it (run.json counted it; a
@@ -257,25 +289,25 @@ def test_the_command_says_when_tasks_ran_past_the_task_timeout(tmp_path: Path) -
     assert f"{record['pools_replaced']} process pools replaced" in printed
 
 
-# --- a part that goes away under a running sweep ---------------------------------------------
-def test_a_part_gone_when_combining_is_a_failure_not_silent_nan(
+# --- a chunk that goes away under a running sweep --------------------------------------------
+def test_a_chunk_gone_when_finishing_is_a_failure_not_silent_nan(
     small_spec: SweepSpec, tmp_path: Path
 ) -> None:
     """A design whose part was gone, or of another spec, when the parts were combined ended
     NaN with status 3 while ``n_failed`` stayed 0 and nothing was said (two sweeps sharing a
     folder, a new-user trial of 2026-11-26): it is a failure, with the reason, and a rerun
-    computes it."""
+    computes it.  The same for a chunk of the store gone before the sweep finishes."""
     run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
-    victim = tmp_path / "parts" / "design-00002.nc"
+    victim = sweep_faults.chunk_file(tmp_path, "status", 2)  # design 2's (one design a chunk)
 
     def lose_a_part(done: int, total: int) -> None:
-        victim.unlink(missing_ok=True)  # after the resume check, before the combine
+        victim.unlink(missing_ok=True)  # after the resume check, before finishing
 
     result = run_sweep(small_spec, tmp_path, SerialExecutor(), lose_a_part, figures=None)
     assert result.attrs["n_failed"] == 1
     failures = json.loads((tmp_path / "failures.json").read_text())
     assert [f["task_id"] for f in failures] == ["design-00002"]
-    assert "part" in failures[0]["error"]
+    assert "chunk" in failures[0]["error"]
     record = json.loads((tmp_path / "run.json").read_text())
     assert record["failed"] == ["design-00002"]
     rerun = run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)

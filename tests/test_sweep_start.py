@@ -18,8 +18,8 @@ import textwrap
 from pathlib import Path
 
 import pytest
-import xarray as xr
 
+import racketdyn as rd
 import sweep_faults
 
 
@@ -131,8 +131,8 @@ def test_a_forked_pool_gives_the_serial_bits_with_no_design_run_here(tmp_path: P
     record = json.loads(out.strip().splitlines()[-1])
     assert record == {"worker_start_method": "fork", "ran_in_main_process": 0, "ran": 6}
     with (
-        xr.open_dataset(tmp_path / "serial" / "sweep.nc", engine="scipy") as serial,
-        xr.open_dataset(tmp_path / "pool" / "sweep.nc", engine="scipy") as pooled,
+        rd.sweep.open_sweep(tmp_path / "serial") as serial,
+        rd.sweep.open_sweep(tmp_path / "pool") as pooled,
     ):
         sweep_faults.assert_same_bits(serial.load(), pooled.load())
 

@@ -17,9 +17,9 @@ def add(commands: Any) -> None:
     p = opt.command(
         commands,
         "sweep",
-        "a design sweep: racket variants × points × speeds (sweep.nc, figures)",
+        "a design sweep: racket variants × points × speeds (sweep.zarr, figures)",
         "A design sweep from a spec TOML (docs/sweep-file.md), its designs computed in tasks "
-        "on the engine chosen: sweep.nc, summary.csv, figures, run.json; Ctrl-C keeps the "
+        "on the engine chosen: sweep.zarr, summary.csv, figures, run.json; Ctrl-C keeps the "
         "finished designs (exit 130) and the same command resumes",
     )
     p.add_argument("spec", help="sweep spec TOML (docs/sweep-file.md)")
@@ -54,7 +54,7 @@ def add(commands: Any) -> None:
         help="seconds a task may run before its worker is stopped and the task run again "
         "elsewhere, s (default: 10 × the longest task so far, at least 60 s)",
     )
-    opt.add_no_figures(p, "sweep.nc")
+    opt.add_no_figures(p, "sweep.zarr")
     p.set_defaults(handler=run)
 
 
@@ -191,7 +191,7 @@ and the scheduler), which a sweep must earn back."""
 
 def _where_time_went(record: dict[str, Any]) -> str:
     """Where the wall time went, from run.json: start, tasks, writing, engine shutdown,
-    combining, summary."""
+    finishing the store, summary."""
     spent = record.get("time_s", {})
     parts = [f"start {spent['start']:.1f} s"] if "start" in spent else []
     if "tasks" in spent:
@@ -200,12 +200,12 @@ def _where_time_went(record: dict[str, Any]) -> str:
             f"tasks {spent['tasks']:.1f} s"
             + (f" (first result after {first:.1f} s)" if first is not None else "")
         )
-        parts.append(f"writing parts {record.get('part_write_time_s', 0.0):.1f} s (in the tasks)")
+        parts.append(f"writing chunks {record.get('chunk_write_time_s', 0.0):.1f} s (in the tasks)")
     parts += [
         f"{name} {spent[key]:.1f} s"
         for name, key in (
             ("engine shutdown", "shutdown"),
-            ("combining", "combining"),
+            ("finishing the store", "finishing"),
             ("summary", "summary"),
         )
         if key in spent

@@ -12,14 +12,16 @@ contact law and calls :func:`racketdyn.impact.predict`, and submits them, a few 
 task when designs are small, to any :class:`concurrent.futures.Executor`:
 :class:`SerialExecutor` in this process, a :class:`ProcessPool` (replaced when a worker dies),
 or Dask through ``dask.distributed.Client.get_executor()``.  :func:`make_executor` builds
-each of these (the ``racketdyn sweep`` command line calls it).  Each finished design is
-written at once to ``out_dir/parts/<task-id>.nc``; a rerun skips the designs whose part
-carries the same spec hash, so an interrupted sweep (Ctrl-C: :class:`SweepInterrupted`)
-resumes.  A failed design is retried once, then recorded (dataset attributes and
-``failures.json``) while the other results are kept; a worker that dies or hangs costs only
-its own design (:class:`WorkerLostError`, :class:`TaskTimeoutError`).  The parts are combined,
-always from the files, into ``out_dir/sweep.nc``: an :mod:`xarray` dataset with dimensions
-``(design, point, speed, racket_speed, support)``, so every engine gives the same file.
+each of these (the ``racketdyn sweep`` command line calls it).  Results go, as each task
+ends, into one chunked Zarr store, ``out_dir/sweep.zarr`` (one chunk per batch of designs,
+written by the worker that computed it): no process holds the whole study.  A rerun skips the
+designs recorded there, so an interrupted sweep (Ctrl-C: :class:`SweepInterrupted`) resumes.
+A failed design is retried once, then recorded (dataset attributes and ``failures.json``)
+while the other results are kept; a worker that dies or hangs costs only its own designs
+(:class:`WorkerLostError`, :class:`TaskTimeoutError`).  :func:`open_sweep` reads the store
+lazily as an :mod:`xarray` dataset with dimensions ``(design, point, speed, racket_speed,
+support)`` — every engine gives the same numbers — and refuses a store whose run has not
+finished.
 
 ``summary.csv`` (:func:`write_summary_csv`) and the summary figures
 (:func:`racketdyn.plotting.sweep.write_summary_figures`, a hook of :func:`run_sweep`) give, for
@@ -42,8 +44,8 @@ The modules follow the data, each importing only those above it:
 - :mod:`~racketdyn.sweep.spec`: :class:`SweepSpec`, its designs, tasks and hash;
 - :mod:`~racketdyn.sweep.spec_file`: the TOML reader, :func:`load_sweep_spec`;
 - :mod:`~racketdyn.sweep.executors`: :class:`SerialExecutor`, :func:`make_executor`;
-- :mod:`~racketdyn.sweep.summary`: metrics and figures from a sweep dataset;
-- :mod:`~racketdyn.sweep.files`: part files and ``sweep.nc``;
+- :mod:`~racketdyn.sweep.store`: the chunked store ``sweep.zarr``, :func:`open_sweep`;
+- :mod:`~racketdyn.sweep.summary`: metrics and figures from a sweep dataset, chunk by chunk;
 - :mod:`~racketdyn.sweep.runner`: the task loop (retries, a lost worker, timeouts, Ctrl-C);
 - :mod:`~racketdyn.sweep.run`: :func:`run_sweep`.
 
@@ -63,6 +65,7 @@ from racketdyn.sweep.run import SERIAL_IMPACT_LIMIT, run_sweep
 from racketdyn.sweep.runner import SweepInterrupted, TaskTimeoutError, WorkerLostError
 from racketdyn.sweep.spec import MODES, SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec, sweep_spec_from_dict
+from racketdyn.sweep.store import open_sweep
 from racketdyn.sweep.summary import (
     factorial_view,
     summary_metrics,
@@ -105,6 +108,7 @@ __all__ = [
     "factorial_view",
     "load_sweep_spec",
     "make_executor",
+    "open_sweep",
     "run_sweep",
     "run_task",
     "start_early",

@@ -99,6 +99,16 @@ def _fork_context() -> Any | None:
     return multiprocessing.get_context("fork")
 
 
+def _release_zarr_threads() -> None:
+    """Stop Zarr's I/O thread in this process (idle between calls; Zarr starts it again on its
+    next call), so that a pool made after this process read or wrote a sweep's store still
+    forks its workers.  Called only between store calls: the main process makes them one at a
+    time, in its one thread."""
+    sync = sys.modules.get("zarr.core.sync")
+    if sync is not None and getattr(sync, "iothread", [None])[0] is not None:
+        sync.cleanup_resources()
+
+
 def _start_context() -> Any:
     """forkserver where available, else spawn: for a process that runs threads (see
     :func:`_fork_context`).
@@ -296,6 +306,8 @@ class ProcessPool(Executor):
     def _new(self) -> ProcessPoolExecutor:
         """A fresh pool: forked now while this process runs one thread (its workers ready at
         once, :attr:`started_at_once`), else started by forkserver with its first task."""
+        if self._context is None:
+            _release_zarr_threads()
         forked = _fork_context() if self._context is None else None
         context = forked or self._context or _start_context()
         pool = ProcessPoolExecutor(

@@ -1,9 +1,10 @@
 """Running a sweep: :func:`run_sweep`, tasks of designs on an executor, parts, retries.
 
-The top of the flow: takes a :class:`~.spec.SweepSpec` (or its file), submits the
-:func:`~.task.run_task` of each design not yet on disk to an executor
-(:mod:`~racketdyn.sweep.executors`), writes and combines the parts
-(:mod:`~racketdyn.sweep.files`), and draws the summary (:mod:`~racketdyn.sweep.summary`).
+The top of the flow: takes a :class:`~.spec.SweepSpec` (or its file), creates or resumes the
+sweep's store (:mod:`~racketdyn.sweep.store`), submits the :func:`~.task.run_task` of each
+design not yet in it to an executor (:mod:`~racketdyn.sweep.executors`) in tasks of one chunk,
+finishes the store (mode table, failures, ``sweep_complete`` last) and draws the summary from
+it chunk by chunk (:mod:`~racketdyn.sweep.summary`).
 """
 
 from __future__ import annotations
@@ -21,8 +22,6 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError, require_whole
 from racketdyn.impact.result import STATUS_OK
@@ -35,15 +34,6 @@ from racketdyn.sweep.executors import (
     _local_workers,
     make_executor,
 )
-from racketdyn.sweep.files import (
-    _Assembly,
-    _combine,
-    _failure_attrs,
-    _read_netcdf,
-    _read_part,
-    _remove_stale_temporaries,
-    _write_netcdf,
-)
 from racketdyn.sweep.runner import (
     SweepInterrupted,
     TaskTimeoutError,
@@ -55,6 +45,21 @@ from racketdyn.sweep.runner import (
 )
 from racketdyn.sweep.spec import SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec
+from racketdyn.sweep.store import (
+    STORE_LAYOUT,
+    STORE_NAME,
+    clear_rows,
+    create_store,
+    done_designs,
+    failure_attrs,
+    open_sweep,
+    read_records,
+    remove_stale_temporaries,
+    set_complete,
+    status_counts,
+    store_info,
+    write_modes,
+)
 from racketdyn.sweep.summary import (
     SWEET_AREA_COARSE_FRACTION,
     sweet_area_resolution_cm2,
@@ -101,16 +106,17 @@ def run_sweep(
     when_tasks_done: Callable[[], None] | None = None,
     command: Sequence[str] | None = None,
 ) -> xr.Dataset:
-    """Run a sweep: tasks of designs on an executor, parts on disk, one dataset at the end.
+    """Run a sweep: tasks of designs on an executor, written into one chunked store.
 
     Parameters
     ----------
     spec : SweepSpec or path
         The sweep, or its TOML file (:func:`load_sweep_spec`).
     out_dir : path
-        Output folder (created): ``parts/<task-id>.nc`` per finished design, ``sweep.nc``,
-        ``run.json``, ``failures.json`` when a task failed for good, ``summary.csv`` and the
-        summary figures.
+        Output folder (created): ``sweep.zarr`` (the results, written as designs finish, one
+        chunk per batch of designs; rerun to resume), ``run.json``, ``failures.json`` when a
+        task failed for good, ``summary.csv`` and the summary figures.  A store of another
+        spec in the folder is replaced.
     executor : concurrent.futures.Executor, optional
         Where tasks run (:func:`make_executor`; a ``dask.distributed`` client's
         ``get_executor()``).  Default: this process for fewer than
@@ -138,16 +144,17 @@ def run_sweep(
         finished); ``math.inf``: never.  Not for :class:`SerialExecutor`, which runs a task
         inside ``submit``.
     designs_per_task : int, optional
-        Designs per task (default: :func:`designs_per_task` — one for serial, else enough for
-        about :data:`TARGET_TASK_S` of work, with at least four tasks per worker).
+        Designs per task and per chunk of a new store (default: one for serial, else enough
+        for about :data:`~racketdyn.sweep.runner.TARGET_TASK_S` of work, with at least four
+        tasks per worker).  A resumed store keeps its chunks: tasks are its chunks.
     times : mapping of str to float, optional
         Seconds spent before this call to add to ``run.json``'s ``time_s`` (the engine's
         start, measured by the caller).
     when_tasks_done : callable, optional
-        Called once every task has ended, before the parts are combined — to shut down an
+        Called once every task has ended, before the store is finished — to shut down an
         engine the caller owns (``ExitStack.close``): a local Dask cluster's scheduler runs in
-        this process's event loop and slowed combining 2.3× while it lived (0.25 against
-        0.11 s for 30 designs, a check of 2026-11-26).  Its time is ``time_s["shutdown"]``.
+        this process's event loop and slowed the old combining step 2.3× while it lived.  Its
+        time is ``time_s["shutdown"]``.
     command : sequence of str, optional
         The command as called, for ``run.json`` (default: this function's name).  The other
         steps read it: ``racketdyn predict --out`` refuses a folder whose ``run.json`` names
@@ -156,7 +163,8 @@ def run_sweep(
     Returns
     -------
     xarray.Dataset
-        The combined results as read back from ``sweep.nc``: impact quantities over
+        The results, opened lazily from ``sweep.zarr`` (:func:`open_sweep`: nothing is read
+        until indexed): impact quantities over
         ``(design, point, speed, racket_speed, support)``; ``reduced_mass_kg`` over
         ``(design, point, support)``; ``mode_frequency_hz`` over ``(design, mode)``; design
         coordinates for every variable and the derived racket properties; attributes recording
@@ -177,17 +185,21 @@ def run_sweep(
         raise InputError(f"task_timeout must be a number of seconds above 0 (got {task_timeout})")
     out = Path(out_dir)
     previous_outputs = _listed_outputs(out / "run.json")
-    parts_dir = out / "parts"
     try:  # before any work: a folder that cannot be written fails every design
-        parts_dir.mkdir(parents=True, exist_ok=True)
+        out.mkdir(parents=True, exist_ok=True)
     except OSError as error:
         raise InputError(
-            f"`out` {out}: cannot create the sweep's folder {parts_dir} ({error.strerror})"
+            f"`out` {out}: cannot create the sweep's folder ({error.strerror})"
         ) from None
-    _remove_stale_temporaries(parts_dir)
+    remove_stale_temporaries(out)
     designs = spec.designs
     total = len(designs)
-    todo = [d for d in designs if _read_part(parts_dir / f"{d.task_id}.nc", spec, False) is None]
+    info = store_info(out)
+    if info is not None and (info.spec_sha256, info.n_designs) != (spec.sha256, total):
+        log.info("%s belongs to another spec or version; it is made anew", out / STORE_NAME)
+        info = None
+    done = done_designs(out, spec)[0] if info is not None else set()
+    todo = [d for d in designs if d.index not in done]
     skipped = total - len(todo)
     log.info(
         "sweep %s: %d designs, %d impacts; %d resumed from %s, %d to run",
@@ -195,17 +207,18 @@ def run_sweep(
         total,
         spec.n_impacts,
         skipped,
-        parts_dir,
+        out / STORE_NAME,
         len(todo),
     )
+    if info is not None:  # from now on the store is not complete until finished again
+        set_complete(out, spec.sha256, False)
     time_s = {**(times or {}), "resume_check": time.perf_counter() - started}
     if progress is not None:
         progress(skipped, total)
     tally = _Tally(done=skipped, total=total)
-    assembly = _Assembly(spec, parts_dir)
     engine = "none (all resumed)"
     worker_start = ""
-    batch = 0
+    chunk = info.designs_per_chunk if info is not None else 0
     if todo:
         with ExitStack() as stack:
             if executor is None:
@@ -221,12 +234,27 @@ def run_sweep(
             engine = type(executor).__name__
             worker_start = str(getattr(executor, "start_method", ""))
             limit = max_in_flight or _in_flight_limit(executor)
-            batch = designs_per_task or _designs_per_task(spec, len(todo), executor)
-            jobs = [_Job(tuple(todo[i : i + batch])) for i in range(0, len(todo), batch)]
+            if info is None:  # a new store: its chunks are this run's batches
+                chunk = designs_per_task or _designs_per_task(spec, len(todo), executor)
+                clock = time.perf_counter()
+                create_store(spec, out, chunk)
+                time_s["store_creation"] = time.perf_counter() - clock
+            elif designs_per_task not in (None, chunk):
+                log.info(
+                    "the store's chunks hold %d designs each: tasks of %d designs, not %d",
+                    chunk,
+                    chunk,
+                    designs_per_task,
+                )
+            by_chunk: dict[int, list[Design]] = {}
+            for design in todo:
+                by_chunk.setdefault(design.index // chunk, []).append(design)
+            jobs = [_Job(tuple(batch)) for batch in by_chunk.values()]
             clock = time.perf_counter()
             runner = _Runner(
                 spec,
-                parts_dir,
+                out,
+                chunk,
                 executor,
                 limit,
                 retries,
@@ -234,7 +262,6 @@ def run_sweep(
                 progress,
                 tally,
                 write_in_worker=_local_workers(executor),
-                assembly=assembly,
             )
             runner.run(jobs)
             time_s["tasks"] = time.perf_counter() - clock
@@ -245,12 +272,13 @@ def run_sweep(
             time_s["shutdown"] = time.perf_counter() - clock
     failures = tally.failures
     clock = time.perf_counter()
-    dataset = _combine(spec, parts_dir, failures, assembly)
-    if _lost_parts(assembly.missing, failures):
-        dataset.attrs.update(_failure_attrs(failures))
-    sweep_path = out / "sweep.nc"
-    _write_netcdf(dataset, sweep_path)
-    time_s["combining"] = time.perf_counter() - clock
+    finished, _ = done_designs(out, spec)
+    _lost_chunks([d for d in designs if d.index not in finished], failures)
+    clear_rows(out, spec.sha256, sorted(d.index for d in designs if d.index not in finished))
+    write_modes(out, spec, read_records(out, spec.sha256))
+    status_count = status_counts(out, spec.sha256)
+    set_complete(out, spec.sha256, True, **failure_attrs(failures))  # last
+    time_s["finishing"] = time.perf_counter() - clock
     failures_path = out / "failures.json"
     if failures:
         failures_path.write_text(json.dumps(failures, indent=2), encoding="utf-8")
@@ -262,19 +290,18 @@ def run_sweep(
         )
     elif failures_path.exists():
         failures_path.unlink()
-    codes, counts = np.unique(dataset["status"].values, return_counts=True)
-    status_counts = {text: int(counts[codes == code].sum()) for text, code in STATUS_CODES.items()}
     for text in STATUS_CODES:
-        if text not in (STATUS_OK, STATUS_FAILED) and status_counts[text]:
+        if text not in (STATUS_OK, STATUS_FAILED) and status_count[text]:
             log.warning(
                 "%d of %d impacts: %s (their results are NaN)",
-                status_counts[text],
+                status_count[text],
                 spec.n_impacts,
                 text,
             )
     clock = time.perf_counter()
-    result = _read_netcdf(sweep_path)
-    written = [sweep_path]
+    result = open_sweep(out)
+    store = out / STORE_NAME
+    written = [store]
     notes = []
     if spec.variables:
         written.append(write_summary_csv(result, out))
@@ -309,16 +336,23 @@ def run_sweep(
         "timed_out": tally.timed_out,
         "pools_replaced": tally.pools_replaced,
         "ran_in_main_process": tally.ran_here,
-        "designs_per_task": batch,
+        "designs_per_task": chunk,
+        "store": {
+            "path": STORE_NAME,
+            "format": "zarr",
+            "zarr_format": 3,
+            "layout": STORE_LAYOUT,
+            "designs_per_chunk": chunk,
+            "chunks": -(-total // chunk),
+        },
         "failed": [f["task_id"] for f in failures],
-        "status_counts": status_counts,
+        "status_counts": status_count,
         "wall_time_s": wall,
         "time_s": time_s,
         "task_time_s": tally.task_seconds,
-        "part_write_time_s": tally.write_seconds,
-        "part_read_time_s": tally.assemble_seconds,
+        "chunk_write_time_s": tally.write_seconds,
         "first_result_s": tally.first_result_s,
-        "outputs": [p.name for p in written] + ["run.json", "parts/"],
+        "outputs": [p.name for p in written] + ["run.json"],
         "spec": spec.to_dict(),
         "notes": notes,
     }
@@ -329,16 +363,16 @@ def run_sweep(
     return result
 
 
-def _lost_parts(missing: Sequence[Design], failures: list[dict[str, Any]]) -> bool:
-    """Record as failed the designs whose part was gone, or another spec's, when the parts
-    were read (deleted during the run, or written over by another sweep in the folder:
-    they were NaN with status 3 and counted nowhere); whether there were any."""
+def _lost_chunks(missing: Sequence[Design], failures: list[dict[str, Any]]) -> bool:
+    """Record as failed the designs not done when the sweep finished that did not fail (their
+    chunk lost a file, or the store was written over by another sweep in the folder: they
+    were NaN with status 3 and counted nowhere); whether there were any."""
     failed = {failure["task_id"] for failure in failures}
     lost = [design for design in missing if design.task_id not in failed]
     for design in lost:
         error = (
-            "PartLostError: its part was gone, or of another spec, when the parts were "
-            "combined (deleted, or written by another sweep into this folder?)"
+            "ChunkLostError: its chunk of the store was gone, or of another spec, when the "
+            "sweep finished (deleted, or written by another sweep into this folder?)"
         )
         log.error("%s (%s) failed: %s", design.task_id, design.describe(), error)
         failures.append(

@@ -2,7 +2,9 @@
 
 :func:`~racketdyn.sweep.run.run_sweep` hands the designs still to compute, grouped into tasks
 (:func:`_designs_per_task`), to a :class:`_Runner`, which keeps a few tasks in flight on the
-executor and writes (or has the workers write) each finished design as a part file.  Faults it
+executor and writes (or has the workers write) each finished batch of designs as one chunk of
+the sweep's store (:mod:`~racketdyn.sweep.store`; a task never spans two chunks, and two tasks
+of one chunk are never in flight at once).  Faults it
 handles: a task that raises (retried, then recorded as failed), a process pool that lost a
 worker (replaced; the designs in flight run again, one at a time, until the one that kills its
 worker is found: :class:`WorkerLostError`), a task past the timeout
@@ -32,8 +34,8 @@ from typing import Any
 
 from racketdyn.sweep.design import Design
 from racketdyn.sweep.executors import ProcessPool, SerialExecutor, _in_flight_limit
-from racketdyn.sweep.files import _Assembly, _read_part, _write_part
 from racketdyn.sweep.spec import SweepSpec
+from racketdyn.sweep.store import STORE_NAME, recorded, write_chunk
 from racketdyn.sweep.task import SweepTask, TaskOutput, run_task
 
 __all__ = [
@@ -81,7 +83,6 @@ class _Tally:
     pools_replaced: int = 0
     task_seconds: float = 0.0
     write_seconds: float = 0.0
-    assemble_seconds: float = 0.0
     ran_here: int = 0
     longest_s: float = 0.0
     first_result_s: float | None = None
@@ -107,7 +108,7 @@ class SweepInterrupted(KeyboardInterrupt):
     total : int
         Designs in the sweep.
     parts_dir : Path
-        Where the finished designs are.
+        Where the finished designs are: the sweep's store (``sweep.zarr``).
     """
 
     def __init__(
@@ -117,14 +118,11 @@ class SweepInterrupted(KeyboardInterrupt):
         self.done, self.total, self.parts_dir, self.spec = done, total, parts_dir, spec
 
     def count_kept(self) -> int:
-        """Designs of this sweep on disk now: a Dask worker may finish a task and write its
-        part after the interruption, until its cluster is closed."""
+        """Designs of this sweep in its store now: a Dask worker may finish a task and write
+        its chunk after the interruption, until its cluster is closed."""
         if self.spec is None:
             return self.done
-        self.done = sum(
-            _read_part(self.parts_dir / f"{d.task_id}.nc", self.spec, data=False) is not None
-            for d in self.spec.designs
-        )
+        self.done = sum(recorded(self.parts_dir.parent, self.spec.sha256))
         return self.done
 
 
@@ -156,21 +154,40 @@ def _designs_per_task(spec: SweepSpec, n_designs: int, executor: Executor) -> in
     return max(1, min(by_time, by_balance))
 
 
+@dataclass(frozen=True)
+class _DesignFailed:
+    """A design of a batch that raised, where it ran (the rest of the batch is kept)."""
+
+    error: BaseException
+    trace: str
+
+
 def _run_batch(
-    tasks: Sequence[SweepTask], attempt: int, sha256: str, parts_dir: str | None
-) -> list[TaskOutput]:
-    """Run tasks one after another where the executor put them; with ``parts_dir``, write each
-    part file there and return the outputs without their arrays (the workers write, in
-    parallel, and nothing large travels back)."""
-    outputs = []
+    tasks: Sequence[SweepTask],
+    attempt: int,
+    sha256: str,
+    out_dir: str | None,
+    indices: Sequence[int] = (),
+) -> list[TaskOutput | _DesignFailed]:
+    """Run tasks (designs of one chunk) one after another where the executor put them; a
+    design that raises is returned as :class:`_DesignFailed` and the others kept.  With
+    ``out_dir``, write the finished ones into the store's chunk there and return them without
+    their arrays (the workers write, in parallel, and nothing large travels back)."""
+    results: list[TaskOutput | _DesignFailed] = []
     for task in tasks:
-        output = run_task(task, attempt)
-        if parts_dir is not None:
-            started = time.perf_counter()
-            _write_part(sha256, task.task_id, task.settings, output, Path(parts_dir))
-            output = replace(output, arrays={}, write_s=time.perf_counter() - started)
-        outputs.append(output)
-    return outputs
+        try:
+            results.append(run_task(task, attempt))
+        except Exception as error:
+            results.append(_DesignFailed(error, "".join(traceback.format_exception(error))))
+    if out_dir is None:
+        return results
+    done = [(i, r) for i, r in zip(indices, results, strict=True) if isinstance(r, TaskOutput)]
+    started = time.perf_counter()
+    write_chunk(Path(out_dir), sha256, [i for i, _ in done], [r for _, r in done])
+    each = (time.perf_counter() - started) / max(1, len(done))
+    return [
+        replace(r, arrays={}, write_s=each) if isinstance(r, TaskOutput) else r for r in results
+    ]
 
 
 class _Runner:
@@ -180,7 +197,8 @@ class _Runner:
     def __init__(
         self,
         spec: SweepSpec,
-        parts_dir: Path,
+        out_dir: Path,
+        designs_per_chunk: int,
         executor: Executor,
         limit: int,
         retries: int,
@@ -188,14 +206,15 @@ class _Runner:
         progress: ProgressCallback | None,
         tally: _Tally,
         write_in_worker: bool,
-        assembly: _Assembly | None = None,
     ) -> None:
-        self.spec, self.parts_dir, self.executor = spec, parts_dir, executor
+        self.spec, self.out_dir, self.executor = spec, out_dir, executor
+        self.chunk_size = designs_per_chunk
         self.limit, self.retries, self.task_timeout = limit, retries, task_timeout
-        self.progress, self.tally, self.assembly = progress, tally, assembly
-        self.write_dir = str(parts_dir) if write_in_worker else None
+        self.progress, self.tally = progress, tally
+        self.write_dir = str(out_dir) if write_in_worker else None
+        self.busy: set[int] = set()  # chunks with a task in flight
         self.queue: deque[_Job] = deque()
-        self.pending: dict[Future[list[TaskOutput]], tuple[_Job, float]] = {}
+        self.pending: dict[Future[list[TaskOutput | _DesignFailed]], tuple[_Job, float]] = {}
         self.started = time.monotonic()
         self.ready_at: float | None = None  # the current pool's first result
 
@@ -216,27 +235,25 @@ class _Runner:
                 )
                 broken: list[_Job] = []
                 for future in finished:
-                    job, _ = self.pending.pop(future)
+                    job, _ = self._pop(future)
                     self._settle(future, job, broken)
                 if broken:
                     self._pool_broke(broken)
                 self._check_timeouts()
         except KeyboardInterrupt:
             lost = self._stop_all()
-            # a worker writes each design of its task as it ends: count those of unfinished
-            # tasks that made it to disk (the workers are stopped by now)
-            kept = self.tally.done + sum(
-                _read_part(self.parts_dir / f"{d.task_id}.nc", self.spec, data=False) is not None
-                for job in lost
-                for d in job.designs
-            )
+            # a worker writes its task's chunk when the task ends: count the designs of
+            # unfinished tasks that made it to disk (the workers are stopped by now)
+            ended = [d.index for job in lost for d in job.designs]
+            kept = self.tally.done + sum(recorded(self.out_dir, self.spec.sha256, ended))
+            store = self.out_dir / STORE_NAME
             log.warning(
                 "sweep interrupted: %d of %d designs are done in %s; run again to resume",
                 kept,
                 self.tally.total,
-                self.parts_dir,
+                store,
             )
-            raise SweepInterrupted(kept, self.tally.total, self.parts_dir, self.spec) from None
+            raise SweepInterrupted(kept, self.tally.total, store, self.spec) from None
         except BaseException:
             self._stop_all()
             raise
@@ -257,29 +274,45 @@ class _Runner:
         after a pool was replaced: a job that kills its process must not kill this one."""
         if not self._starting() or not self.queue or self.queue[0].alone:
             return False
-        job = self.queue.popleft()
+        job = self._next_job()
+        if job is None:
+            return False
         tasks = tuple(self.spec.task(d) for d in job.designs)
-        try:
-            outputs = _run_batch(tasks, job.attempt, self.spec.sha256, None)
-        except Exception as error:
-            self._failed(job, error)
-            return True
+        outputs = _run_batch(tasks, job.attempt, self.spec.sha256, None)
         self.tally.ran_here += len(job.designs)
         self._record(job, outputs, here=True)
         return True
 
+    def _chunk(self, job: _Job) -> int:
+        return job.designs[0].index // self.chunk_size
+
+    def _next_job(self) -> _Job | None:
+        """The first queued job that may start now: none while a job that must run alone is
+        in flight, a job that must run alone only when nothing is, and never a second task
+        of a chunk (two would write it at once)."""
+        if any(j.alone for j, _ in self.pending.values()):
+            return None
+        for k, job in enumerate(self.queue):
+            if job.alone and self.pending:
+                return None
+            if self._chunk(job) not in self.busy:
+                del self.queue[k]
+                return job
+        return None
+
     def _submit(self) -> None:
         # while a fresh pool starts, one task per worker: the rest may run here meanwhile
         limit = max(1, self.limit // 2) if self._starting() else self.limit
-        while self.queue and len(self.pending) < limit:
-            job = self.queue[0]
-            if self.pending and (job.alone or any(j.alone for j, _ in self.pending.values())):
-                return
-            self.queue.popleft()
+        while len(self.pending) < limit and (job := self._next_job()) is not None:
             tasks = tuple(self.spec.task(d) for d in job.designs)
             try:
                 future = self.executor.submit(
-                    _run_batch, tasks, job.attempt, self.spec.sha256, self.write_dir
+                    _run_batch,
+                    tasks,
+                    job.attempt,
+                    self.spec.sha256,
+                    self.write_dir,
+                    [d.index for d in job.designs],
                 )
             except BrokenExecutor:
                 self._pool_broke([job])
@@ -288,8 +321,11 @@ class _Runner:
                 self._failed(job, error)
                 continue
             self.pending[future] = (job, time.monotonic())
+            self.busy.add(self._chunk(job))
 
-    def _settle(self, future: Future[list[TaskOutput]], job: _Job, broken: list[_Job]) -> None:
+    def _settle(
+        self, future: Future[list[TaskOutput | _DesignFailed]], job: _Job, broken: list[_Job]
+    ) -> None:
         if future.cancelled():  # not by us (we drop a future before cancelling it)
             self._failed(job, CancelledError("the executor cancelled the task"))
             return
@@ -301,43 +337,54 @@ class _Runner:
         else:
             self._failed(job, error)
 
-    def _record(self, job: _Job, outputs: Sequence[TaskOutput], here: bool = False) -> None:
+    def _pop(self, future: Future[list[TaskOutput | _DesignFailed]]) -> tuple[_Job, float]:
+        job, submitted = self.pending.pop(future)
+        self.busy.discard(self._chunk(job))
+        return job, submitted
+
+    def _record(
+        self, job: _Job, outputs: Sequence[TaskOutput | _DesignFailed], here: bool = False
+    ) -> None:
         tally = self.tally
         if not here and tally.first_result_s is None:
             tally.first_result_s = time.monotonic() - self.started
         if not here and self.ready_at is None:
             self.ready_at = time.monotonic()
+        finished = [
+            (d, o) for d, o in zip(job.designs, outputs, strict=True) if isinstance(o, TaskOutput)
+        ]
+        if any(o.arrays for _, o in finished):  # the worker could not write them: here
+            started = time.perf_counter()
+            try:
+                write_chunk(
+                    self.out_dir,
+                    self.spec.sha256,
+                    [d.index for d, _ in finished],
+                    [o for _, o in finished],
+                )
+            except Exception as error:
+                self._failed(_Job(tuple(d for d, _ in finished), job.attempt, job.alone), error)
+                finished = []
+            tally.write_seconds += time.perf_counter() - started
         batch_s = 0.0
         for design, output in zip(job.designs, outputs, strict=True):
-            if output.arrays:  # the worker could not write it: write it here
-                started = time.perf_counter()
-                try:
-                    _write_part(
-                        self.spec.sha256, design.task_id, design.settings, output, self.parts_dir
-                    )
-                except Exception as error:
-                    self._failed(_Job((design,), job.attempt), error)
-                    continue
-                tally.write_seconds += time.perf_counter() - started
-            else:
-                tally.write_seconds += output.write_s
+            if isinstance(output, _DesignFailed):
+                self._failed(_Job((design,), job.attempt, job.alone), output.error, output.trace)
+                continue
+            if (design, output) not in finished:
+                continue
+            tally.write_seconds += output.write_s
             tally.ran += 1
             tally.task_seconds += output.elapsed_s
             batch_s += output.elapsed_s + output.write_s
-            if self.assembly is not None:  # read it now, while the workers compute
-                started = time.perf_counter()
-                self.assembly.add(design)
-                tally.assemble_seconds += time.perf_counter() - started
             self._finished_one()
         tally.longest_s = max(tally.longest_s, batch_s)
 
     def _on_disk(self, design: Design) -> bool:
-        """Record a design whose part a worker wrote before its batch failed; whether it was."""
-        if _read_part(self.parts_dir / f"{design.task_id}.nc", self.spec, data=False) is None:
+        """Record a design whose chunk a worker wrote before its batch failed; whether it was."""
+        if not recorded(self.out_dir, self.spec.sha256, [design.index])[0]:
             return False
         self.tally.ran += 1
-        if self.assembly is not None:
-            self.assembly.add(design)
         self._finished_one()
         return True
 
@@ -346,10 +393,10 @@ class _Runner:
         if self.progress is not None:
             self.progress(self.tally.done, self.tally.total)
 
-    def _failed(self, job: _Job, error: BaseException) -> None:
+    def _failed(self, job: _Job, error: BaseException, trace: str | None = None) -> None:
         if len(job.designs) > 1:  # which design failed? each alone, the attempt unchanged
-            # a worker on this machine wrote each design of the batch as it ended: those on
-            # disk are done (recorded from their files), only the others run again
+            # a worker on this machine may have written the batch's chunk before it failed:
+            # the designs recorded there are done, only the others run again
             left = [d for d in job.designs if not (self.write_dir is not None and self._on_disk(d))]
             self.queue.extendleft(
                 reversed(_Job(tuple(left), job.attempt, job.alone).singles(job.alone))
@@ -377,7 +424,7 @@ class _Runner:
                 "design": dict(design.settings),
                 "attempts": job.attempt,
                 "error": f"{type(error).__name__}: {error}",
-                "traceback": "".join(traceback.format_exception(error)),
+                "traceback": trace or "".join(traceback.format_exception(error)),
             }
         )
         self._finished_one()
@@ -386,13 +433,15 @@ class _Runner:
     def _drain(self) -> list[_Job]:
         """Empty ``pending``: record what finished, return the jobs lost with the pool."""
         lost = []
-        for future, (job, _) in self.pending.items():
+        pending = list(self.pending.items())
+        self.pending.clear()
+        self.busy.clear()
+        for future, (job, _) in pending:
             if future.done() and not future.cancelled() and future.exception() is None:
                 self._record(job, future.result())
             else:
                 future.cancel()
                 lost.append(job)
-        self.pending.clear()
         return lost
 
     def _pool_broke(self, broken: list[_Job]) -> None:
@@ -450,7 +499,7 @@ class _Runner:
         self.tally.timed_out += len(late)
         stop_task = getattr(self.executor, "stop_task", None)
         for future, _ in late:
-            del self.pending[future]
+            self._pop(future)
             if stop_task is not None:  # Dask: cancel it and restart its worker
                 stop_task(future)
                 self.ready_at = None  # a restarted worker starts again

@@ -1,9 +1,11 @@
 """Sweep summary: per-design metrics, the designs that show one variable, ``summary.csv``.
 
-The end of the flow: reads a sweep dataset (``sweep.nc``, :func:`~racketdyn.sweep.run_sweep`)
-and nothing else — the rebound ratio at the face centre and the "sweet" face area per design
-and support, ``summary.csv``, and a full factorial's dimensions.  Their plots against each
-variable are presentation: :mod:`racketdyn.plotting.sweep`.
+The end of the flow: reads a sweep dataset (``sweep.zarr`` through
+:func:`~racketdyn.sweep.open_sweep`, or any in memory) and nothing else — the rebound ratio at
+the face centre and the "sweet" face area per design and support, ``summary.csv``, and a full
+factorial's dimensions.  The metrics read the results a block of designs at a time (the
+store's chunks): a study larger than memory is summarised in the memory of a few chunks.
+Their plots against each variable are presentation: :mod:`racketdyn.plotting.sweep`.
 """
 
 from __future__ import annotations
@@ -114,6 +116,7 @@ def summary_metrics(
         dataset.attrs["summary_racket_speed_mps"] if racket_speed is None else racket_speed
     )
     rebound = dataset["rebound_ratio"].sel(speed=speed, racket_speed=swing, method="nearest")
+    rebound = rebound.transpose("design", "point", "support")
     x, y = dataset["x_m"].values, dataset["y_m"].values
     centre = int(
         np.argmin(
@@ -121,21 +124,34 @@ def summary_metrics(
             + (y - dataset.attrs["head_centre_y_m"]) ** 2
         )
     )
-    values = rebound.transpose("design", "point", "support").values
-    with np.errstate(invalid="ignore"):
+    n_designs, n_supports = rebound.shape[0], rebound.shape[2]
+    blocks = [
+        slice(start, min(start + _block(dataset), n_designs))
+        for start in range(0, n_designs, _block(dataset))
+    ]
+    best = np.full(n_supports, -np.inf)  # per support, over every design: first pass
+    for block in blocks:
+        values = np.asarray(rebound[block].values)
         finite = np.where(np.isfinite(values), values, -np.inf)
-        best = finite.max(axis=(0, 1))  # per support
-        threshold = np.where(np.isfinite(best), fraction * best, np.nan)
-        share = np.mean(finite >= threshold, axis=1)  # (design, support)
-    area = share * float(dataset.attrs["head_area_cm2"])
-    failed = np.all(~np.isfinite(values), axis=1)
-    area = np.where(failed, np.nan, area)
+        if finite.size:
+            best = np.maximum(best, finite.max(axis=(0, 1)))
+    threshold = np.where(np.isfinite(best), fraction * best, np.nan)
+    centre_values = np.full((n_designs, n_supports), np.nan)
+    area = np.full((n_designs, n_supports), np.nan)
+    for block in blocks:  # second pass: each design against the threshold
+        values = np.asarray(rebound[block].values)
+        with np.errstate(invalid="ignore"):
+            finite = np.where(np.isfinite(values), values, -np.inf)
+            share = np.mean(finite >= threshold, axis=1)  # (design, support)
+        failed = np.all(~np.isfinite(values), axis=1)
+        area[block] = np.where(failed, np.nan, share * float(dataset.attrs["head_area_cm2"]))
+        centre_values[block] = values[:, centre, :]
     coords = {"design": dataset["design"].values, "support": dataset["support"].values}
     return xr.Dataset(
         {
             "centre_rebound_ratio": (
                 ("design", "support"),
-                values[:, centre, :],
+                centre_values,
                 {"units": "1", "long_name": "rebound ratio at the face centre"},
             ),
             "sweet_area_cm2": (
@@ -157,6 +173,24 @@ def summary_metrics(
             "centre_point_y_m": float(y[centre]),
         },
     )
+
+
+BLOCK_BYTES = 8 * 2**20
+"""About this many bytes of results are read at once by :func:`summary_metrics` (whole
+chunks of the store: a block is a whole number of its chunks along ``design``)."""
+
+
+def _block(dataset: xr.Dataset) -> int:
+    """Designs per block: a whole number of the store's chunks along ``design`` (Dask's, or
+    the Zarr chunk in the variable's encoding; one design in memory) within
+    :data:`BLOCK_BYTES`, at least one chunk."""
+    variable = dataset["rebound_ratio"]
+    if variable.chunks is not None:
+        chunk = int(variable.chunks[0][0])
+    else:
+        chunk = int(variable.encoding.get("preferred_chunks", {}).get("design", 1))
+    per_design = max(1, variable.size // max(1, variable.sizes["design"])) * 8
+    return max(1, chunk) * max(1, BLOCK_BYTES // (max(1, chunk) * per_design))
 
 
 def sweet_area_resolution_cm2(dataset: xr.Dataset) -> float:

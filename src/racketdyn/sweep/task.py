@@ -2,7 +2,7 @@
 
 :class:`SweepTask` is what an executor ships to a worker; :func:`run_task` builds the design
 (:mod:`~racketdyn.sweep.design`), runs an impact method (:data:`METHODS`) and returns a
-:class:`TaskOutput`, which :mod:`~racketdyn.sweep.files` writes as a part file.  The
+:class:`TaskOutput`, which :mod:`~racketdyn.sweep.store` writes into a chunk.  The
 per-process caches of modal models and contact laws live here.
 """
 

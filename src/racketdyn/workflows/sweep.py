@@ -1,6 +1,6 @@
 """Step ``sweep``: a design sweep (racket variants × points × speeds) on an executor.
 
-:func:`racketdyn.sweep.run_sweep` writes the folder itself (parts, ``sweep.nc``, ``summary.csv``,
+:func:`racketdyn.sweep.run_sweep` writes the folder itself (``sweep.zarr``, ``summary.csv``,
 its own ``run.json`` with the engine, counts and timing, and the figures the caller's hook
 draws); this step chooses the executor and returns the record.
 """
@@ -42,7 +42,7 @@ class SweepResult(StepResult):
     Attributes
     ----------
     dataset : xarray.Dataset
-        The combined results (``sweep.nc``).
+        The results, read lazily from ``sweep.zarr`` (:func:`racketdyn.sweep.open_sweep`).
     spec : SweepSpec
         The sweep.
     failed : list of dict
