@@ -70,14 +70,24 @@ def test_a_folder_that_cannot_be_written_is_one_line(
 def test_a_sweep_folder_that_cannot_be_created_is_one_line(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    # the sweep's results go to its store, sweep.zarr (issue 28; was parts/): its folder
+    # cannot be made, as on a read-only disk
     real_mkdir = Path.mkdir
 
     def refuse(self: Path, *args: object, **kwargs: object) -> None:
-        if self.name == "parts":
+        if "sweep.zarr" in self.parts:
             raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(self))
         real_mkdir(self, *args, **kwargs)  # type: ignore[arg-type]
 
+    real_makedirs = os.makedirs
+
+    def refuse_makedirs(name: str, *args: object, **kwargs: object) -> None:
+        if "sweep.zarr" in Path(name).parts:
+            raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(name))
+        real_makedirs(name, *args, **kwargs)  # type: ignore[arg-type]
+
     monkeypatch.setattr(Path, "mkdir", refuse)
+    monkeypatch.setattr(os, "makedirs", refuse_makedirs)
     spec = tmp_path / "spec.toml"
     spec.write_text(
         'name = "s"\n[impacts]\nball_speeds_mps = [20.0]\ngrid = 2\n'
@@ -85,7 +95,7 @@ def test_a_sweep_folder_that_cannot_be_created_is_one_line(
         encoding="utf-8",
     )
     assert main(["sweep", str(spec), "--out", str(tmp_path / "sw")]) == 2
-    _one_line(capsys, "--out", "parts", os.strerror(errno.EACCES))
+    _one_line(capsys, "--out", "sweep.zarr", os.strerror(errno.EACCES))
 
 
 @pytest.mark.parametrize("outputs", [5, "impact.csv", {"a": 1}, None])

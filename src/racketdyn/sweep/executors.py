@@ -107,6 +107,12 @@ def _release_zarr_threads() -> None:
     sync = sys.modules.get("zarr.core.sync")
     if sync is not None and getattr(sync, "iothread", [None])[0] is not None:
         sync.cleanup_resources()
+    # its executor's threads ("asyncio_N") end a moment after it is shut down: on a loaded
+    # machine they were still alive when the pool chose fork or forkserver (a forkserver
+    # pool, and the main process running designs while it started)
+    for thread in threading.enumerate():
+        if thread.name.startswith(("asyncio_", "zarr_io")):
+            thread.join(timeout=2.0)
 
 
 def _start_context() -> Any:

@@ -191,6 +191,12 @@ def run_sweep(
         raise InputError(
             f"`out` {out}: cannot create the sweep's folder ({error.strerror})"
         ) from None
+    try:  # and its store's folder, which every design is written into
+        (out / STORE_NAME).mkdir(exist_ok=True)
+    except OSError as error:
+        raise InputError(
+            f"`out` {out}: cannot create the sweep's store {STORE_NAME} ({error.strerror})"
+        ) from None
     remove_stale_temporaries(out)
     designs = spec.designs
     total = len(designs)
