@@ -20,6 +20,7 @@ from matplotlib.patches import Ellipse
 from matplotlib.tri import Triangulation
 from numpy.typing import ArrayLike, NDArray
 
+from racketdyn._display import case_words
 from racketdyn.impact.oblique import ObliqueCurve
 from racketdyn.impact.result import STATUS_OK, ImpactResult
 from racketdyn.impact.swing import SweetSpot, SwingResult
@@ -495,8 +496,11 @@ def plot_face_map(
         ax.legend(fontsize=7, loc="lower left")
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("y (mm)")
+    racket_speed = float(np.asarray(result.racket_speed, dtype=float)[speed_index])
     ax.set_title(
-        f"{SUPPORT_STYLE[support]['label']}, {result.ball_speed[speed_index]:g} m/s", fontsize=9
+        f"{SUPPORT_STYLE[support]['label']}: "
+        + case_words(float(result.ball_speed[speed_index]), racket_speed),
+        fontsize=9,
     )
     return ax
 

@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.impact.result import invalidate_table
+from racketdyn.impact.result import invalidate_table, shown_speed_index
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.report.figures import Figure, FigureGroup, Layout, embed_png
 from racketdyn.workflows.run import REPORT_NAME
@@ -41,6 +41,7 @@ __all__ = [
     "read_csv",
     "read_json",
     "refuse_mixed_rackets",
+    "shown_case",
     "to_float",
 ]
 
@@ -328,6 +329,13 @@ class Impacts:
         """Row indices at one ball speed (m/s) and support."""
         return np.flatnonzero((self["ball_speed_mps"] == speed) & (self.support == support))
 
+    def racket_speed_at(self, speed: float) -> float:
+        """The racket speed paired with a ball speed (m/s) in the table; 0 without the
+        column."""
+        found = self["racket_speed_mps"][self["ball_speed_mps"] == speed]
+        found = found[np.isfinite(found)]
+        return float(found[0]) if found.size else 0.0
+
     def where(self, row: int) -> str:
         """``x, y`` of a row in mm, for tables."""
         return f"{self['x_m'][row] * 1e3:.0f}, {self['y_m'][row] * 1e3:.0f}"
@@ -605,6 +613,40 @@ def refuse_mixed_rackets(run_dir: Path, records: Mapping[Path, Mapping[str, Any]
             )
             + f"): a report tells one run; {advice}"
         )
+
+
+def shown_case(record: Mapping[str, Any], impacts: Impacts | None = None) -> tuple[float, float]:
+    """The case (ball speed, racket speed; m/s) a prediction's single-case summaries show:
+    its run.json's ``shown_case`` (``predict --show``, or the rule's case), else — a run of an
+    earlier version — the speed rule over the run's speeds.  NaN, NaN when neither says."""
+    shown = record.get("shown_case")
+    if isinstance(shown, Mapping):
+        ball, racket = (to_float(str(shown.get(k, ""))) for k in SHOWN_KEYS)
+        if math.isfinite(ball):
+            return ball, racket if math.isfinite(racket) else 0.0
+    speeds = impacts.speeds if impacts is not None else []
+    listed = _floats(record.get("speeds_mps"))
+    speeds = impacts.speeds if impacts is not None else listed
+    if not speeds:
+        return math.nan, math.nan
+    ball = speeds[shown_speed_index(speeds)]
+    if impacts is not None:
+        return ball, impacts.racket_speed_at(ball)
+    paired = _floats(record.get("racket_speed_mps"))
+    if len(paired) == len(listed):
+        return ball, paired[listed.index(ball)]
+    return ball, paired[0] if paired else 0.0
+
+
+def _floats(values: object) -> list[float]:
+    """The numbers of a run.json list (none for anything else)."""
+    if not isinstance(values, list):
+        return []
+    return [float(v) for v in values if isinstance(v, int | float) and not isinstance(v, bool)]
+
+
+SHOWN_KEYS = ("ball_speed_mps", "racket_speed_mps")
+"""Keys of run.json's ``shown_case``."""
 
 
 def _scan(run_dir: Path) -> tuple[list[Path], dict[Path, dict[str, Any]]]:
