@@ -83,8 +83,8 @@ def test_compare_fig15_uses_the_runs_ball(
     points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
     drawn = _lines(caught["fig15_identified.png"])
     cases = {
-        "hand-held, hand-held modes": ("pinned", result.hand.model),
-        "hand-held, free modes": ("pinned", result.free.model),
+        "pinned at the grip, hand-held modes": ("pinned", result.hand.model),
+        "pinned at the grip, free modes": ("pinned", result.free.model),
         "freely supported, free modes": ("free", result.free.model),
     }
     for label, (support, model) in cases.items():

@@ -53,7 +53,7 @@ from racketdyn.plotting.primitives import (
     plot_twist_curve,
 )
 from racketdyn.plotting.render import FigureBatch, save_figure
-from racketdyn.racket import Racket
+from racketdyn.racket import SUPPORT_NAMES, Racket
 from racketdyn.racket_modal.shapes import axis_nodes
 from racketdyn.workflows.figure_data import (
     SWING_AXIS_POINTS,
@@ -699,7 +699,7 @@ _SUPPORT_LINES = {"free": "-", "pinned": "--", "hand": ":"}
 def _support_style(support: str) -> dict[str, str]:
     style = SUPPORT_STYLE.get(support)
     if style is None:  # the transient model's hand support has no paper style
-        return {**_EXTRA_SUPPORT_STYLE, "label": f"{support}-held (hand and arm model)"}
+        return {**_EXTRA_SUPPORT_STYLE, "label": SUPPORT_NAMES.get(support, support)}
     return {key: str(value) for key, value in style.items()}
 
 

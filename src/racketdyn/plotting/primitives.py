@@ -29,7 +29,7 @@ from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FRF_UNITS, FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import PoleStability, SelectedPoles, Stabilisation
-from racketdyn.racket import HeadEllipse, Racket
+from racketdyn.racket import SUPPORT_NAMES, HeadEllipse, Racket
 from racketdyn.workflows.figure_data import AxisBand, FrameVibration, ImpactCurves
 
 __all__ = [
@@ -73,8 +73,8 @@ QUANTITIES: dict[str, tuple[str, float]] = {
     "rebound_ratio_band_width": ("width of the rebound ratio's 90 % band (–)", 1.0),
 }
 SUPPORT_STYLE = {
-    "pinned": {"color": "k", "marker": "s", "label": "hand-held (pinned at grip)"},
-    "free": {"color": "tab:blue", "marker": "D", "label": "freely supported"},
+    "pinned": {"color": "k", "marker": "s", "label": SUPPORT_NAMES["pinned"]},
+    "free": {"color": "tab:blue", "marker": "D", "label": SUPPORT_NAMES["free"]},
 }
 
 

@@ -13,6 +13,7 @@ from pathlib import Path, PurePath
 from typing import Any, Literal
 
 from racketdyn.impact.result import shown_speed_index
+from racketdyn.racket import SUPPORT_NAMES
 
 __all__ = [
     "CAPTIONS",
@@ -74,8 +75,8 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "fig15_identified": (
         "Fig. 15",
         "rebound ratio along the long axis, ball at {check_speed}, racket at rest, predicted "
-        "with the models identified from {free_file} and {hand_file}: hand-held (pinned at the "
-        "grip) with hand-held modes, hand-held with free modes, free with free modes",
+        "with the models identified from {free_file} and {hand_file}: pinned at the grip with "
+        "the hand-held modes, pinned at the grip with the free modes, free with the free modes",
     ),
     "fig7_contact_time": ("Fig. 7", "contact time of the hammer on the strings, per support"),
     "fig11_12_force_contact_time": (
@@ -260,11 +261,7 @@ class FigureGroup:
     layout: Layout = "stack"
 
 
-SUPPORT_WORDS = {
-    "free": "freely supported",
-    "pinned": "hand-held (pinned at the grip)",
-    "hand": "hand-held (hand and arm model)",
-}
+SUPPORT_WORDS = dict(SUPPORT_NAMES)
 """A support as the captions name it."""
 
 UNKNOWN_WORDS: dict[str, str] = {

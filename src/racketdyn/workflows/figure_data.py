@@ -1528,8 +1528,8 @@ def swing_axis_curves(
 
 # --- compare: Fig. 15 with the identified models -----------------------------------------------
 IDENTIFIED_CASES: tuple[tuple[str, str, str], ...] = (
-    ("pinned", "hand", "hand-held, hand-held modes"),
-    ("pinned", "free", "hand-held, free modes"),
+    ("pinned", "hand", "pinned at the grip, hand-held modes"),
+    ("pinned", "free", "pinned at the grip, free modes"),
     ("free", "free", "freely supported, free modes"),
 )
 """Fig. 15's curves with the identified models: (support, which modes, legend)."""

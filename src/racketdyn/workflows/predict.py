@@ -231,10 +231,16 @@ def check_supports(supports: Sequence[str], model: str) -> list[str]:
     allowed = TRANSIENT_SUPPORTS if model == "transient" else SUPPORTS
     checked = []
     for support in supports:
+        if support == "hand" and model == "both":
+            raise InputError(
+                "`supports` hand with `model` both: the approximate method has no hand (it "
+                "holds the racket pinned at the grip), so the two models cannot be compared "
+                "there; run hand with `model` transient, or compare them on `supports` pinned"
+            )
         if support == "hand" and model != "transient":
             raise InputError(
                 "`supports` hand needs `model` transient: the approximate method has no hand "
-                "(its hand-held racket is pinned at the grip: `supports` pinned)"
+                "(it holds the racket pinned at the grip: `supports` pinned)"
             )
         checked.append(one_of("`supports`", support, allowed))
     if len(set(checked)) != len(checked):
