@@ -154,7 +154,13 @@ def run_calibrate(
     held0 = [i - 1 for i in held]
     report(progress, f"fitting {', '.join(fit)} to {len(rows) - len(held)} rows ({method})")
     calibration, calibrated = calibrate(
-        inputs, rows, fit, method=method, holdout=held0, leave_one_out=leave_one_out
+        inputs,
+        rows,
+        fit,
+        method=method,
+        holdout=held0,
+        leave_one_out=leave_one_out,
+        progress=progress,
     )
     before, status = calibration.predicted_start, calibration.status_start
     after, status_after = calibration.predicted, calibration.status
