@@ -271,7 +271,7 @@ def test_hand_support_with_the_transient_model(points: Path, tmp_path: Path) -> 
     ("extra", "message"),
     [
         (["--support", "hand"], "--support hand needs --model transient"),
-        (["--model", "both", "--support", "free,hand"], "--support hand needs --model transient"),
+        (["--model", "both", "--support", "free,hand"], "--support hand with --model both"),
         (["--model", "transient", "--hand-arm-mass", "1"], "--hand-arm-mass: for --support hand"),
         (
             ["--model", "transient", "--hand-stiffness", "3e4", "--hand-damping", "20"],

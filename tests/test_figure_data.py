@@ -83,8 +83,8 @@ def test_compare_fig15_uses_the_runs_ball(
     points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
     drawn = _lines(caught["fig15_identified.png"])
     cases = {
-        "hand-held, hand-held modes": ("pinned", result.hand.model),
-        "hand-held, free modes": ("pinned", result.free.model),
+        "pinned at the grip, hand-held modes": ("pinned", result.hand.model),
+        "pinned at the grip, free modes": ("pinned", result.free.model),
         "freely supported, free modes": ("free", result.free.model),
     }
     for label, (support, model) in cases.items():
@@ -272,20 +272,22 @@ def test_each_predict_figure_redrawn_from_figures_nc_alone(
         for name, figure in redrawn.items():
             _same_drawing(drawn[name], figure)
         computed = result.paper_figures
-        # Figs 11-12: F_MEAN and T_c per point and support
-        speed_curves = computed.speed_curves
-        for k, quantity in enumerate(("mean_force", "contact_time")):
-            lines = _by_label(redrawn["fig11_12_force_contact_time.png"], k)
-            scale = 1e3 if quantity == "contact_time" else 1.0
-            for i, name in enumerate(speed_curves.labels):
-                for p, support in enumerate(speed_curves.supports):
-                    label = f"{name}, {SUPPORT_STYLE[support]['label']}"
-                    expected = np.where(
-                        speed_curves.status[i, :, p] == "ok",
-                        getattr(speed_curves, quantity)[i, :, p] * scale,
-                        np.nan,
-                    )
-                    np.testing.assert_array_equal(lines[label], expected)
+        # Figs 11-12: F_MEAN and T_c per point and support, a row of panels per racket speed
+        assert computed.speed_curves.racket_speeds == [0.0, 2.0, 4.0]
+        for row, racket_speed in enumerate(computed.speed_curves.racket_speeds):
+            speed_curves = computed.speed_curves.at_racket_speed(racket_speed)
+            for k, quantity in enumerate(("mean_force", "contact_time")):
+                lines = _by_label(redrawn["fig11_12_force_contact_time.png"], 2 * row + k)
+                scale = 1e3 if quantity == "contact_time" else 1.0
+                for i, name in enumerate(speed_curves.labels):
+                    for p, support in enumerate(speed_curves.supports):
+                        label = f"{name}, {SUPPORT_STYLE[support]['label']}"
+                        expected = np.where(
+                            speed_curves.status[i, :, p] == "ok",
+                            getattr(speed_curves, quantity)[i, :, p] * scale,
+                            np.nan,
+                        )
+                        np.testing.assert_array_equal(lines[label], expected)
         # Fig. 13: each drawn pulse and spectrum
         pulse = computed.pulse
         force_lines = list(_by_label(redrawn["fig13_pulse_spectrum.png"], 0).values())

@@ -312,7 +312,7 @@ def test_speed_curves_and_axis_curves_hatch_and_count_flagged_rows(racket, ball)
     assert missing.any()
     figure, ax = plt.subplots()
     plot_along_axis(along, "rebound_ratio", 0, ax=ax)
-    (curve,) = [ln for ln in ax.get_lines() if ln.get_label() == "hand-held (pinned at grip)"]
+    (curve,) = [ln for ln in ax.get_lines() if ln.get_label() == "pinned at the grip"]
     assert np.all(np.isnan(np.asarray(curve.get_ydata())[missing]))
     crosses = [ln for ln in ax.get_lines() if ln.get_marker() == "x"]
     assert crosses

@@ -262,7 +262,8 @@ def test_the_transient_section_shows_the_comparison(run_dir: Path, page: str) ->
     largest = float(np.nanmax([abs(float(r["difference_rebound_ratio"])) for r in free_20]))
     cells = re.findall(r"<td[^>]*>(.*?)</td>", rows[1])
     assert cells[:3] == ["free", "20", f"{largest:.3f}"]
-    assert "approximate against transient, 20 m/s, free" in page  # at a glance
+    # at a glance, the case named by its ball speed, racket speed and support (issue 27)
+    assert "approximate against transient, ball 20 m/s, racket at rest, free" in page
 
 
 def test_the_transient_section_counts_the_rows_where_the_models_differ(
@@ -474,7 +475,7 @@ def test_predict_captions_state_the_run_s_speeds_and_supports(tmp_path: Path) ->
     expected = {
         "fig13_pulse_spectrum": "balls at 25 and 35 m/s, racket at 5 m/s (support in the title)",
         "fig15_rebound_along_axis": "ball at 25 m/s, racket at 5 m/s, freely supported, with",
-        "transient_comparison_face": "one panel per support, ball at 25 m/s;",
+        "transient_comparison_face": "one panel per support, ball at 25 m/s, racket at 5 m/s;",
         "transient_comparison_speed": "(solid), racket at 5 m/s; a curve breaks where",
     }
     for name, words in expected.items():

@@ -13,7 +13,7 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["html_table", "number", "numbers", "shorten", "span", "words"]
+__all__ = ["case_words", "html_table", "number", "numbers", "shorten", "span", "words"]
 
 _MAX_TEXT = 60
 _MAX_ITEMS = 6
@@ -22,6 +22,13 @@ _MAX_ITEMS = 6
 def shorten(text: str, limit: int = _MAX_TEXT) -> str:
     """``text`` cut to ``limit`` characters, with ``…`` where it was cut."""
     return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def case_words(ball_speed: float, racket_speed: float, support: str | None = None) -> str:
+    """One impact case in words, as every headline names it: ``"ball 25 m/s, racket 28 m/s,
+    pinned"``, ``"ball 20 m/s, racket at rest"`` (m/s)."""
+    racket = f"racket {racket_speed:g} m/s" if racket_speed else "racket at rest"
+    return f"ball {ball_speed:g} m/s, {racket}" + (f", {support}" if support else "")
 
 
 def number(value: float) -> str:

@@ -23,6 +23,7 @@ from racketdyn.numerics import as_locations
 
 __all__ = [
     "SUPPORTS",
+    "SUPPORT_NAMES",
     "SWINGWEIGHT_AXIS_M",
     "TIP_INSET_M",
     "HeadEllipse",
@@ -44,6 +45,15 @@ point on the long axis at the grip (default 70 mm from the butt), free to roll a
 """
 
 SUPPORTS: tuple[str, ...] = get_args(Support)
+SUPPORT_NAMES: dict[str, str] = {
+    "free": "freely supported",
+    "pinned": "pinned at the grip",
+    "hand": "hand-held (hand and arm)",
+}
+"""Each support in words, one name each wherever a page, a figure or a table names it:
+``pinned`` is the approximate method's model of a held racket (the paper's "hand-held"),
+``hand`` the transient model's hand and arm and the rig's hand-held test (issue 27: the page
+had called ``pinned`` "hand-held (pinned at grip)" beside the rig's ``hand``)."""
 SWINGWEIGHT_AXIS_M = 0.100
 """Swingweight axis, 100 mm from the butt, as racket makers and players quote it."""
 TENSION_LOSS = 0.30

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from typing import TYPE_CHECKING, Any
 
 from racketdyn.cli import options as opt
@@ -81,7 +82,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             if not item.isdigit():
                 raise InputError(f"--holdout: {item!r} is not a row number (1, 2, …)")
             holdout.append(int(item))
-    with opt.progress_display(console) as progress:
+    with opt.progress_display(console, lines=True) as progress:
         result = run_calibrate(
             args.out,
             args.measured,
@@ -111,6 +112,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     )
     for column in ("parameter", "start", "fitted", "std. error", "status"):
         table.add_column(column, justify="left" if column in ("parameter", "status") else "right")
+    poor = cal.poor_fit
     for k, name in enumerate(cal.names):
         ok = cal.identifiable[k]
         table.add_row(
@@ -118,13 +120,28 @@ def run(args: argparse.Namespace, console: Console) -> int:
             f"{cal.start[k]:.5g}",
             f"{cal.value[k]:.5g}" if ok else "–",
             f"{cal.standard_error[k]:.3g}" if ok else "–",
-            opt.plain("ok" if ok else f"not identifiable: {cal.why[k]}"),
+            opt.plain(
+                ("ok, but the fit is poor" if poor else "ok")
+                if ok
+                else f"not identifiable: {cal.why[k]}"
+            ),
         )
     console.print(table)
-    console.print(
-        f"RMS of the rebound ratio: fit {cal.fit_rms:.4f}, held out {cal.holdout_rms:.4f} "
-        f"({opt.plural(cal.n_holdout, 'row')}), leave-one-out {cal.loo_rms:.4f}; "
-        f"{opt.plural(cal.n_flagged, 'row')} flagged"
+    # only what was run: no "held out nan (0 rows)" (issue 27)
+    parts = [f"fit {cal.fit_rms:.4f}"]
+    if cal.n_holdout:
+        parts.append(f"held out {cal.holdout_rms:.4f} ({opt.plural(cal.n_holdout, 'row')})")
+    if math.isfinite(cal.loo_rms):
+        parts.append(f"leave-one-out {cal.loo_rms:.4f}")
+    opt.say(
+        console,
+        f"RMS of the rebound ratio: {', '.join(parts)}; {opt.plural(cal.n_flagged, 'row')} flagged",
     )
+    if poor:
+        opt.say(
+            console,
+            f"the fit is poor: {poor}; see calibration_rows.csv for the rows that miss",
+            "yellow",
+        )
     opt.print_written(console, result.written)
     return 0

@@ -478,14 +478,23 @@ def plain(text: object) -> str:
 
 
 @contextmanager
-def progress_display(console: Console, *, thread: bool = True) -> Iterator[Progress]:
+def progress_display(
+    console: Console, *, thread: bool = True, lines: bool = False
+) -> Iterator[Progress]:
     """A ``progress(what, done, total)`` callback drawing one rich progress line (a spinner
     for ``total == 0``); the line goes when the step ends.
 
     ``thread=False``: no refresh thread — the line is drawn at each update only (the spinner
     does not turn between them).  For a step that forks worker processes, which is safe only
     while this process runs a single thread (``racketdyn.sweep.executors``).
+
+    ``lines=True``: on a console that is not a terminal (a log, a pipe), where the line is
+    never drawn, each stage is printed as a line, at most one every
+    :data:`PROGRESS_LINE_S` seconds (a long step, issue 27: calibrate ran 29 s without one).
     """
+    if lines and not console.is_terminal:
+        yield _progress_lines(console)
+        return
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn
 
     with Progress(
@@ -505,6 +514,29 @@ def progress_display(console: Console, *, thread: bool = True) -> Iterator[Progr
             )
 
         yield update
+
+
+PROGRESS_LINE_S = 5.0
+"""Seconds between progress lines on a console that is not a terminal."""
+
+
+def _progress_lines(console: Console) -> Progress:
+    """``progress(what, done, total)`` printing a line per stage (the first words of ``what``
+    before a colon), and at most one every :data:`PROGRESS_LINE_S` seconds within one."""
+    import time
+
+    last_stage, last_at = "", -math.inf
+
+    def update(what: str, done: int, total: int) -> None:
+        nonlocal last_stage, last_at
+        stage = what.split(":", 1)[0]
+        now = time.monotonic()
+        if stage == last_stage and now - last_at < PROGRESS_LINE_S:
+            return
+        last_stage, last_at = stage, now
+        say(console, what)
+
+    return update
 
 
 def print_written(console: Console, paths: Sequence[Any]) -> None:

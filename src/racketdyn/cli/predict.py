@@ -55,6 +55,13 @@ def add(commands: Any) -> None:
         help="transient model's integrator: auto (default: compiled where numba is installed), "
         "compiled (numba batch) or reference (scipy solve_ivp)",
     )
+    p.add_argument(
+        "--show",
+        metavar="SPEED[,RACKET_SPEED]",
+        help="the case the face maps, Fig. 15, the time histories, the models' comparison and "
+        "the report's headline show: a ball speed of --speed and, where two share it, its "
+        "racket speed, m/s (default: 20 m/s if run, else the middle ball speed)",
+    )
     opt.add_grid(p, opt.DEFAULT_GRID)
     p.add_argument(
         "--points",
@@ -91,6 +98,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
     from rich.markup import escape
 
+    from racketdyn._display import case_words
     from racketdyn.plotting.steps import predict_figures
     from racketdyn.workflows.predict import check_supports, run_predict, transient_csv_name
 
@@ -100,6 +108,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     supports = check_supports(opt.parse_list("--support", args.support), args.model)
     ball, hand, defaults = opt.ball_and_hand(args, supports)
     uncertainty = opt.uncertainty_from(args)
+    show = None if args.show is None else opt.parse_numbers("--show", args.show, "m/s")
     with opt.progress_display(console) as progress:
         result = run_predict(
             args.out,
@@ -120,6 +129,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             include_string_bed=args.include_string_bed,
             string_bed=args.string_bed,
             uncertainty=uncertainty,
+            show=show,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),
@@ -134,6 +144,15 @@ def run(args: argparse.Namespace, console: Console) -> int:
         f"{'by each model ' if result.comparison is not None else ''}→ {escape(str(result.out))}"
     )
     assert result.racket is not None
+    shown = result.shown_speed
+    case = case_words(
+        result.speeds[shown], result.racket_speed[shown if len(result.racket_speed) > 1 else 0]
+    )
+    opt.say(
+        console,
+        f"shown: {case} (face maps, Fig. 15, time histories, the models' comparison, the "
+        "report's headline; choose with --show)",
+    )
     for label, part, csv_name in (
         ("approximate method", result.approximate, "impact.csv"),
         ("transient model", result.transient, transient_csv_name(args.model)),
@@ -292,13 +311,16 @@ def _comparison_table(comparison: ModelComparison, speed: int, racket: Racket) -
     import numpy as np
     from rich.table import Table
 
+    from racketdyn._display import case_words
+
     result = comparison.approximate
     centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
     i = int(np.argmin(np.linalg.norm(result.locations - centre, axis=1)))
     x, y = result.locations[i] * 1e3
+    case = case_words(float(result.ball_speed[speed]), float(result.racket_speed[speed]))
     table = Table(
         title=opt.plain(
-            f"approximate against transient at {result.ball_speed[speed]:g} m/s "
+            f"approximate against transient, {case} "
             f"(centre: point {result.labels[i]}, x = {x:.0f} mm, y = {y:.0f} mm)"
         )
     )

@@ -27,7 +27,9 @@ def add(commands: Any) -> None:
     )
     opt.add_racket_and_ball(p)
     p.add_argument(
-        "--x", type=float, default=0.52, help="impact position from the butt, m (default 0.52)"
+        "--x",
+        type=float,
+        help="impact position from the butt, m (default: the racket's face centre)",
     )
     p.add_argument(
         "--offsets",
@@ -83,7 +85,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
         )
     opt.say(
         console,
-        f"twist at x = {args.x * 1e3:.0f} mm, ball {args.speed:g} m/s: "
+        f"twist at x = {result.curves[0].x_m * 1e3:.0f} mm, ball {args.speed:g} m/s: "
         f"{opt.plural(len(offsets), 'offset')} × "
         f"{opt.plural(len(supports), 'support')} → {result.out}",
     )

@@ -36,6 +36,7 @@ from racketdyn.io.measured import MeasuredRebound
 __all__ = [
     "NULL_SINGULAR_VALUE",
     "PARAMETERS",
+    "POOR_FIT_P",
     "Calibration",
     "Parameter",
     "apply",
@@ -50,6 +51,10 @@ log = logging.getLogger(__name__)
 NULL_SINGULAR_VALUE = 1e-3
 """Relative singular value of the column-normalised Jacobian below which the parameters of
 that direction cannot be told apart (their correlation is beyond 1 − 5e-7)."""
+
+POOR_FIT_P = 1e-3
+"""A weighted fit is called poor when its χ² is this unlikely under the measured standard
+deviations (:attr:`Calibration.poor_fit`)."""
 
 DIFF_STEP = 1e-3
 """Relative step of the central differences (the compiled engine's results move smoothly at
@@ -248,6 +253,8 @@ class Calibration:
         Rows fitted, held out, and left out because the model gives no number there.
     reduced_chi2 : float
         Weighted RSS / (n − p).
+    degrees_of_freedom : int
+        n − p of ``reduced_chi2``.
     weighted : bool
         Rows weighted by their measured standard deviations.
     method : str
@@ -265,6 +272,9 @@ class Calibration:
         (NaN where the model gives none), dimensionless.
     status_start, status : ndarray of str
         Why a row has no prediction (``ok`` where it has one), with each set of inputs.
+    poor_fit : str or None
+        Why the fit is poor (a weighted fit whose reduced χ² the measured standard deviations
+        make unlikely, p < :data:`POOR_FIT_P`), else None.
     """
 
     names: list[str]
@@ -296,6 +306,28 @@ class Calibration:
     predicted: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     status_start: NDArray[np.str_] = field(default_factory=lambda: np.zeros(0, dtype=str))
     status: NDArray[np.str_] = field(default_factory=lambda: np.zeros(0, dtype=str))
+    degrees_of_freedom: int = 0
+
+    @property
+    def poor_fit(self) -> str | None:
+        """Why the fit is poor, or None: with the rows weighted by their standard deviations,
+        a reduced χ² the χ² distribution of its degrees of freedom puts beyond p =
+        :data:`POOR_FIT_P` (issue 27: χ² 16.8 had been shown beside every status "ok")."""
+        dof = self.degrees_of_freedom
+        if not (self.weighted and dof > 0 and math.isfinite(self.reduced_chi2)):
+            return None
+        from scipy.stats import chi2
+
+        p = float(chi2.sf(self.reduced_chi2 * dof, dof))
+        if p >= POOR_FIT_P:
+            return None
+        said = "p < 0.001" if p < 1e-3 else f"p = {p:.2g}"
+        return (
+            f"reduced χ² {self.reduced_chi2:.3g} on {dof} degrees of freedom ({said}): the "
+            f"residuals are about {math.sqrt(self.reduced_chi2):.2g} × the measured standard "
+            "deviations, so the model (or those deviations) does not describe these "
+            "measurements and the standard errors, which assume it does, are too small"
+        )
 
     @property
     def values(self) -> dict[str, float]:
@@ -358,6 +390,8 @@ class Calibration:
             },
             "weighted_by_sd": self.weighted,
             "reduced_chi2": num(self.reduced_chi2),
+            "degrees_of_freedom": self.degrees_of_freedom,
+            "poor_fit": self.poor_fit,
             "optimiser": {
                 "evaluations": self.evaluations,
                 "success": self.success,
@@ -373,8 +407,14 @@ def _residual_function(
     measured: MeasuredRebound,
     method: Method,
     sd: NDArray[np.float64],
+    progress: Callable[[int], None] | None = None,
 ) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+    calls = [0]
+
     def residual(scaled: NDArray[np.float64]) -> NDArray[np.float64]:
+        calls[0] += 1
+        if progress is not None:
+            progress(calls[0])
         values = scaled * start
         trial = inputs
         for p, v in zip(parameters, values, strict=True):
@@ -413,6 +453,7 @@ def calibrate(
     holdout: Sequence[int] = (),
     leave_one_out: bool = False,
     bounds: Mapping[str, tuple[float, float]] | None = None,
+    progress: Callable[[str, int, int], None] | None = None,
 ) -> tuple[Calibration, ModelInputs]:
     """Fit the named parameters to the measured rebound ratios.
 
@@ -435,6 +476,9 @@ def calibrate(
         ``name → (low, high)`` in place of a parameter's own bounds (e.g. an uncertainty
         file's ranges: :func:`bounds_from_spreads`); a start outside them starts at their
         middle.
+    progress : callable, optional
+        ``progress(what, done, total)``: the fit's model evaluations (total 0: not known
+        ahead) and the leave-one-out refits.
 
     Returns
     -------
@@ -463,7 +507,16 @@ def calibrate(
             f"without a number from the {method} model), fewer than the {len(parameters)} "
             "parameters to fit; hold out fewer rows (`holdout`), measure more points or fit fewer"
         )
-    result, fitted_inputs = _fit(inputs, parameters, measured.subset(fitted), method)
+
+    def evaluations(what: str) -> Callable[[int], None] | None:
+        if progress is None:
+            return None
+        shown = progress
+        return lambda done: shown(f"{what}: model evaluation {done}", done, 0)
+
+    result, fitted_inputs = _fit(
+        inputs, parameters, measured.subset(fitted), method, evaluations("fitting")
+    )
     result.n_flagged = len(flagged)
     result.n_holdout = len(held)
     predicted, status = predict_rows(fitted_inputs, measured, method)
@@ -476,10 +529,12 @@ def calibrate(
     result.residual_holdout = residual[held] if held else np.zeros(0)
     if leave_one_out:
         loo = np.full(n, np.nan)
-        for i in fitted:
+        for k, i in enumerate(fitted, 1):
             others = [j for j in fitted if j != i]
             if len(others) < len(parameters):
                 continue
+            if progress is not None:
+                progress(f"leave-one-out: refit {k} of {len(fitted)}", k - 1, len(fitted))
             _, refit = _fit(inputs, parameters, measured.subset(others), method)
             one, _ = predict_rows(refit, measured.subset([i]), method)
             loo[i] = one[0] - measured.rebound_ratio[i]
@@ -536,15 +591,16 @@ def _fit(
     parameters: Sequence[Parameter],
     measured: MeasuredRebound,
     method: Method,
+    progress: Callable[[int], None] | None = None,
 ) -> tuple[Calibration, ModelInputs]:
     """Fit, and refit the identifiable parameters alone when some are not: a parameter the
     data cannot tell stays at its start, and the others' values and standard errors are those
     of the fit without it."""
-    first, fitted = _fit_once(inputs, parameters, measured, method)
+    first, fitted = _fit_once(inputs, parameters, measured, method, progress)
     keep = [k for k, ok in enumerate(first.identifiable) if ok]
     if len(keep) in (0, len(parameters)):
         return first, fitted
-    second, fitted = _fit(inputs, [parameters[k] for k in keep], measured, method)
+    second, fitted = _fit(inputs, [parameters[k] for k in keep], measured, method, progress)
     p = len(parameters)
     merged_se = np.full(p, np.nan)
     correlation = np.full((p, p), np.nan)
@@ -562,6 +618,7 @@ def _fit(
     first.identifiable, first.why = identifiable, why
     first.evaluations += second.evaluations
     first.reduced_chi2 = second.reduced_chi2
+    first.degrees_of_freedom = second.degrees_of_freedom
     return first, fitted
 
 
@@ -570,6 +627,7 @@ def _fit_once(
     parameters: Sequence[Parameter],
     measured: MeasuredRebound,
     method: Method,
+    progress: Callable[[int], None] | None = None,
 ) -> tuple[Calibration, ModelInputs]:
     """One bounded least-squares fit on these rows, with the statistics at its solution."""
     start = np.array([p.get(inputs) for p in parameters], dtype=float)
@@ -584,7 +642,7 @@ def _fit_once(
         if measured.rebound_ratio_sd is not None
         else np.ones(len(measured))
     )
-    f = _residual_function(inputs, parameters, start, measured, method, sd)
+    f = _residual_function(inputs, parameters, start, measured, method, sd, progress)
     x0 = np.clip(np.ones(start.size), low, high)
     solution = least_squares(
         f, x0, bounds=(low, high), method="trf", diff_step=DIFF_STEP, x_scale=1.0
@@ -669,6 +727,7 @@ def _fit_once(
         n_holdout=0,
         n_flagged=0,
         reduced_chi2=reduced,
+        degrees_of_freedom=max(dof, 0),
         weighted=weighted,
         method=method,
         evaluations=int(solution.nfev),

@@ -28,6 +28,7 @@ __all__ = [
     "INVALIDATED",
     "KEY_COLUMNS",
     "OUTCOMES",
+    "SHOWN_BY_DEFAULT",
     "SHOWN_SPEED_MPS",
     "STATUS_BEYOND_LAW",
     "STATUS_FRAME_CONTACT",
@@ -43,6 +44,7 @@ __all__ = [
     "impact_columns",
     "invalidate_table",
     "invalidated_columns",
+    "shown_case_index",
     "shown_speed_index",
     "slug",
     "summary_rows",
@@ -669,6 +671,62 @@ def shown_speed_index(speeds: ArrayLike) -> int:
     if hit.size:
         return int(hit[0])
     return int(np.argsort(values, kind="stable")[(values.size - 1) // 2])
+
+
+SHOWN_BY_DEFAULT = "default: 20 m/s if run, else the middle ball speed"
+"""How run.json's ``shown_case`` says the case was chosen without ``show``."""
+
+
+def shown_case_index(
+    speeds: ArrayLike, racket_speeds: ArrayLike, show: Sequence[float] | None = None
+) -> int:
+    """Index of the case (ball speed and its racket speed) single-case summaries show.
+
+    Parameters
+    ----------
+    speeds : array_like
+        The run's ball speeds, m/s.
+    racket_speeds : array_like
+        Its racket speeds, m/s: one, or one per ball speed.
+    show : sequence of float, optional
+        ``(ball speed,)`` or ``(ball speed, racket speed)``, m/s, one of the run's cases; by
+        default :func:`shown_speed_index`'s rule.
+
+    Raises
+    ------
+    InputError
+        ``show`` is not one of the run's cases (the cases named), or not one or two numbers.
+    """
+    from racketdyn._display import case_words
+    from racketdyn.errors import InputError
+
+    ball = np.asarray(speeds, dtype=float).reshape(-1)
+    racket = np.broadcast_to(np.asarray(racket_speeds, dtype=float).reshape(-1), ball.shape)
+    if show is None:
+        return shown_speed_index(ball)
+    wanted = [float(v) for v in show]
+    if len(wanted) not in (1, 2):
+        raise InputError(
+            "`show` takes a ball speed and, optionally, its racket speed (m/s); got "
+            + ", ".join(f"{v:g}" for v in wanted)
+        )
+    hit = np.isclose(ball, wanted[0], rtol=0.0, atol=1e-9)
+    if len(wanted) == 2:
+        hit &= np.isclose(racket, wanted[1], rtol=0.0, atol=1e-9)
+    found = np.flatnonzero(hit)
+    if found.size == 1:
+        return int(found[0])
+    cases = ", ".join(
+        case_words(v, r).replace(", racket", " with racket")
+        for v, r in zip(ball, racket, strict=True)
+    )
+    said = ", ".join(f"{v:g}" for v in wanted)
+    why = (
+        "not a case of the run"
+        if not found.size
+        else "two cases have that ball speed: add its racket speed"
+    )
+    raise InputError(f"`show` {said} m/s: {why} ({cases})")
 
 
 def slug(name: str) -> str:

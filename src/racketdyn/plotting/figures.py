@@ -53,7 +53,7 @@ from racketdyn.plotting.primitives import (
     plot_twist_curve,
 )
 from racketdyn.plotting.render import FigureBatch, save_figure
-from racketdyn.racket import Racket
+from racketdyn.racket import SUPPORT_NAMES, Racket
 from racketdyn.racket_modal.shapes import axis_nodes
 from racketdyn.workflows.figure_data import (
     SWING_AXIS_POINTS,
@@ -139,19 +139,33 @@ def figure_force_and_contact_time(data: PaperFigures) -> Figure:
         The run's figure data (:func:`racketdyn.workflows.figure_data.paper_figures`): its
         ``speed_curves``, with the run's speeds marked.
     """
-    curves = data.speed_curves
-    names = list(curves.labels)
-    figure, axes = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
-    for ax, quantity in zip(axes, ("mean_force", "contact_time"), strict=True):
-        plot_speed_curves(curves, quantity, names, ax=ax)
-        scale = 1e3 if quantity == "contact_time" else 1.0
-        values = np.asarray(getattr(curves, quantity), dtype=float) * scale
-        for i in range(len(names)):
-            for p in range(len(curves.supports)):
-                _mark_run_speeds(ax, curves.ball_speed, values[i, :, p], data.run_speeds)
-        _dedupe_legend(ax)
-    axes[0].set_title("Fig. 11: equivalent impact force", fontsize=9)
-    axes[1].set_title("Fig. 12: contact time", fontsize=9)
+    every = data.speed_curves
+    names = list(every.labels)
+    racket_speeds = every.racket_speeds
+    figure, grid = plt.subplots(
+        len(racket_speeds),
+        2,
+        figsize=(10, 4 * len(racket_speeds)),
+        layout="constrained",
+        squeeze=False,
+    )
+    for axes, racket_speed in zip(grid, racket_speeds, strict=True):
+        # one row per racket speed, its curves over the whole speed axis (issue 27)
+        curves = every.at_racket_speed(racket_speed)
+        run_speeds = data.run_speeds
+        if data.run_racket_speeds.size == run_speeds.size:
+            run_speeds = run_speeds[data.run_racket_speeds == racket_speed]
+        racket = f"racket {racket_speed:g} m/s" if racket_speed else "racket at rest"
+        for ax, quantity in zip(axes, ("mean_force", "contact_time"), strict=True):
+            plot_speed_curves(curves, quantity, names, ax=ax)
+            scale = 1e3 if quantity == "contact_time" else 1.0
+            values = np.asarray(getattr(curves, quantity), dtype=float) * scale
+            for i in range(len(names)):
+                for p in range(len(curves.supports)):
+                    _mark_run_speeds(ax, curves.ball_speed, values[i, :, p], run_speeds)
+            _dedupe_legend(ax)
+        axes[0].set_title(f"Fig. 11: equivalent impact force, {racket}", fontsize=9)
+        axes[1].set_title(f"Fig. 12: contact time, {racket}", fontsize=9)
     figure.suptitle(f"{data.racket_name}: {data.description}", fontsize=10)
     return figure
 
@@ -685,7 +699,7 @@ _SUPPORT_LINES = {"free": "-", "pinned": "--", "hand": ":"}
 def _support_style(support: str) -> dict[str, str]:
     style = SUPPORT_STYLE.get(support)
     if style is None:  # the transient model's hand support has no paper style
-        return {**_EXTRA_SUPPORT_STYLE, "label": f"{support}-held (hand and arm model)"}
+        return {**_EXTRA_SUPPORT_STYLE, "label": SUPPORT_NAMES.get(support, support)}
     return {key: str(value) for key, value in style.items()}
 
 

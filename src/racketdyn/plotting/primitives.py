@@ -20,6 +20,7 @@ from matplotlib.patches import Ellipse
 from matplotlib.tri import Triangulation
 from numpy.typing import ArrayLike, NDArray
 
+from racketdyn._display import case_words
 from racketdyn.impact.oblique import ObliqueCurve
 from racketdyn.impact.result import STATUS_OK, ImpactResult
 from racketdyn.impact.swing import SweetSpot, SwingResult
@@ -28,7 +29,7 @@ from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FRF_UNITS, FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import PoleStability, SelectedPoles, Stabilisation
-from racketdyn.racket import HeadEllipse, Racket
+from racketdyn.racket import SUPPORT_NAMES, HeadEllipse, Racket
 from racketdyn.workflows.figure_data import AxisBand, FrameVibration, ImpactCurves
 
 __all__ = [
@@ -72,8 +73,8 @@ QUANTITIES: dict[str, tuple[str, float]] = {
     "rebound_ratio_band_width": ("width of the rebound ratio's 90 % band (–)", 1.0),
 }
 SUPPORT_STYLE = {
-    "pinned": {"color": "k", "marker": "s", "label": "hand-held (pinned at grip)"},
-    "free": {"color": "tab:blue", "marker": "D", "label": "freely supported"},
+    "pinned": {"color": "k", "marker": "s", "label": SUPPORT_NAMES["pinned"]},
+    "free": {"color": "tab:blue", "marker": "D", "label": SUPPORT_NAMES["free"]},
 }
 
 
@@ -495,8 +496,11 @@ def plot_face_map(
         ax.legend(fontsize=7, loc="lower left")
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("y (mm)")
+    racket_speed = float(np.asarray(result.racket_speed, dtype=float)[speed_index])
     ax.set_title(
-        f"{SUPPORT_STYLE[support]['label']}, {result.ball_speed[speed_index]:g} m/s", fontsize=9
+        f"{SUPPORT_STYLE[support]['label']}: "
+        + case_words(float(result.ball_speed[speed_index]), racket_speed),
+        fontsize=9,
     )
     return ax
 

@@ -13,6 +13,7 @@ from pathlib import Path, PurePath
 from typing import Any, Literal
 
 from racketdyn.impact.result import shown_speed_index
+from racketdyn.racket import SUPPORT_NAMES
 
 __all__ = [
     "CAPTIONS",
@@ -74,15 +75,16 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     "fig15_identified": (
         "Fig. 15",
         "rebound ratio along the long axis, ball at {check_speed}, racket at rest, predicted "
-        "with the models identified from {free_file} and {hand_file}: hand-held (pinned at the "
-        "grip) with hand-held modes, hand-held with free modes, free with free modes",
+        "with the models identified from {free_file} and {hand_file}: pinned at the grip with "
+        "the hand-held modes, pinned at the grip with the free modes, free with the free modes",
     ),
     "fig7_contact_time": ("Fig. 7", "contact time of the hammer on the strings, per support"),
     "fig11_12_force_contact_time": (
         "Figs 11 and 12",
         "Fig. 11: equivalent (mean) impact force and Fig. 12: contact time against ball speed "
-        "at the top, centre and throat of the face, for the run's supports; the run's speeds "
-        "are marked, its racket speed and options are in the title; speeds where an impact is "
+        "at the top, centre and throat of the face, for the run's supports, one row of panels "
+        "per racket speed, titled with it ({racket_speed}); the run's speeds are marked on the "
+        "row of their racket speed, its options are in the title; speeds where an impact is "
         "flagged (no valid value) are hatched, crosses at the foot mark each, and the legend "
         "counts them",
     ),
@@ -107,14 +109,14 @@ CAPTIONS: dict[str, tuple[str | None, str]] = {
     ),
     "face_maps": (
         None,
-        "maps over the face at the run's shown speed (in the title): rebound ratio for each "
+        "maps over the face, ball at {shown_speed}, {shown_racket_speed}: rebound ratio for each "
         "support, contact time and vibration energy; red crosses mark impacts with no valid "
         "result, left out of every map; the paper shows the long axis only (Fig. 15)",
     ),
     "transient_comparison_face": (
         None,
         "rebound ratio of the approximate method minus that of the transient simulation over "
-        "the face, one panel per support, ball at {shown_speed}; red where "
+        "the face, one panel per support, ball at {shown_speed}, {shown_racket_speed}; red where "
         "the approximate method predicts more; the paper checks its method against a freely "
         "suspended racket only",
     ),
@@ -259,11 +261,7 @@ class FigureGroup:
     layout: Layout = "stack"
 
 
-SUPPORT_WORDS = {
-    "free": "freely supported",
-    "pinned": "hand-held (pinned at the grip)",
-    "hand": "hand-held (hand and arm model)",
-}
+SUPPORT_WORDS = dict(SUPPORT_NAMES)
 """A support as the captions name it."""
 
 UNKNOWN_WORDS: dict[str, str] = {
@@ -337,13 +335,20 @@ def _predict_words(record: Mapping[str, Any]) -> dict[str, str | None]:
     if not speeds:
         return {}
     shown = shown_speed_index(speeds)
+    ball, at_shown = speeds[shown], None
+    case = record.get("shown_case")  # predict --show, or the rule's case (issue 27)
+    if isinstance(case, Mapping):
+        given = _number(case.get("ball_speed_mps"))
+        ball = ball if given is None else given
+        at_shown = _number(case.get("racket_speed_mps"))
     words: dict[str, str | None] = {
         "speeds": _speeds_words(sorted(speeds)),
-        "shown_speed": f"{speeds[shown]:g} m/s",
+        "shown_speed": f"{ball:g} m/s",
     }
     if racket:
         words["racket_speed"] = _racket_words(racket)
-        at_shown = racket[shown] if len(racket) == len(speeds) else racket[0]
+        if at_shown is None:
+            at_shown = racket[shown] if len(racket) == len(speeds) else racket[0]
         words["shown_racket_speed"] = _racket_words([at_shown])
     supports = record.get("supports")
     if isinstance(supports, list):

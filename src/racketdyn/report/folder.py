@@ -13,6 +13,7 @@ import io
 import json
 import logging
 import math
+import os
 import re
 import shlex
 from collections.abc import Iterable, Mapping, Sequence
@@ -24,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.impact.result import invalidate_table
+from racketdyn.impact.result import invalidate_table, shown_speed_index
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.report.figures import Figure, FigureGroup, Layout, embed_png
 from racketdyn.workflows.run import REPORT_NAME
@@ -34,10 +35,13 @@ __all__ = [
     "Impacts",
     "Row",
     "RunFolder",
+    "StepFolder",
     "damaged",
     "number",
     "read_csv",
     "read_json",
+    "refuse_mixed_rackets",
+    "shown_case",
     "to_float",
 ]
 
@@ -325,6 +329,13 @@ class Impacts:
         """Row indices at one ball speed (m/s) and support."""
         return np.flatnonzero((self["ball_speed_mps"] == speed) & (self.support == support))
 
+    def racket_speed_at(self, speed: float) -> float:
+        """The racket speed paired with a ball speed (m/s) in the table; 0 without the
+        column."""
+        found = self["racket_speed_mps"][self["ball_speed_mps"] == speed]
+        found = found[np.isfinite(found)]
+        return float(found[0]) if found.size else 0.0
+
     def where(self, row: int) -> str:
         """``x, y`` of a row in mm, for tables."""
         return f"{self['x_m'][row] * 1e3:.0f}, {self['y_m'][row] * 1e3:.0f}"
@@ -333,6 +344,309 @@ class Impacts:
         """The row among ``rows`` nearest the point (x, y), m."""
         distance = np.hypot(self["x_m"][rows] - x, self["y_m"][rows] - y)
         return int(rows[int(np.argmin(distance))])
+
+
+STEP_NAMES = (
+    "rig",
+    "frf",
+    "contact",
+    "identify",
+    "compare",
+    "compare_ball",
+    "predict",
+    "swing",
+    "twist",
+    "oblique",
+    "compound",
+    "validate",
+    "calibrate",
+)
+"""The steps the report reads, in the order of the page (``compare_ball`` is ``racketdyn
+compare --ball-at``)."""
+LABELLED = ("frf", "identify")
+"""Steps run once per support: several may be used, each known by its label (``free``,
+``hand``, …: an FRF run's folder name after ``frf_`` or its tests file, an identification's
+support)."""
+
+StepsInput = Mapping[str, str | os.PathLike[str]] | Iterable[tuple[str, str | os.PathLike[str]]]
+"""The folders a report is told to use: ``{"predict": "serve"}`` or ``[("identify", "id_free"),
+("identify", "id_hand")]``; a name is a step of :data:`STEP_NAMES`, or the label of an FRF or
+identify run (``free``); a folder is relative to the report's folder, or absolute."""
+
+
+@dataclass(frozen=True)
+class StepFolder:
+    """A step's folder the report uses.
+
+    Attributes
+    ----------
+    name : str
+        The step's name as ``steps`` takes it: the label of an FRF run (``free``, ``hand``),
+        else the step (``rig``, ``identify``, ``predict``, …).
+    step : str
+        The step that wrote the folder (one of :data:`STEP_NAMES`).
+    label : str
+        An FRF or identify run's label (its support); empty for the other steps.
+    folder : Path
+        The folder.
+    given : bool
+        Named by ``steps``; else found in the report's folder.
+    """
+
+    name: str
+    step: str
+    label: str
+    folder: Path
+    given: bool
+
+
+def _frf_label(folder: Path, record: Mapping[str, Any]) -> str:
+    if folder.name.startswith("frf_"):
+        return folder.name[4:]
+    tests = record.get("tests_file")
+    return Path(str(tests)).stem.removeprefix("hammer_") if tests else folder.name
+
+
+def _recorded_step(record: Mapping[str, Any]) -> str | None:
+    """The step a run.json's command names (as ``workflows.run`` reads it to refuse another
+    step's folder; the report, a presentation module, does not import it)."""
+    command = record.get("command")
+    if not isinstance(command, list) or len(command) < 2:
+        return None
+    first, second = str(command[0]), str(command[1])
+    if Path(first).name == "racketdyn":
+        return second
+    if second.startswith("racketdyn.workflows."):
+        return second.rsplit(".", 1)[-1]
+    return None
+
+
+def _step_of(folder: Path, record: Mapping[str, Any]) -> str | None:
+    """The report's step of a folder by its run.json, None for one the report does not read."""
+    step = _recorded_step(record)
+    if step == "compare" and (folder / "ball_comparison.csv").is_file():
+        return "compare_ball"
+    return step if step in STEP_NAMES else None
+
+
+def _label_of(step: str, folder: Path, record: Mapping[str, Any]) -> str:
+    if step == "frf":
+        return _frf_label(folder, record)
+    if step == "identify":
+        return str(record.get("support") or folder.name)
+    return ""
+
+
+def _compared(folder: Path) -> set[str]:
+    """The supports whose models a compare run's folder holds (``modes_<support>.csv``)."""
+    return {p.stem.removeprefix("modes_") for p in folder.glob("modes_*.csv")}
+
+
+def _rel(run_dir: Path, folder: Path) -> str:
+    try:
+        return folder.relative_to(run_dir).as_posix() or "."
+    except ValueError:
+        return Path(os.path.relpath(folder, run_dir)).as_posix()
+
+
+def _given_steps(
+    run_dir: Path, steps: StepsInput, records: dict[Path, dict[str, Any]]
+) -> list[StepFolder]:
+    """The folders ``steps`` names, each checked: a folder, holding the step named."""
+    pairs = list(steps.items()) if isinstance(steps, Mapping) else list(steps)
+    given: list[StepFolder] = []
+    for pair in pairs:
+        if not (isinstance(pair, tuple) and len(pair) == 2):
+            raise InputError(f"`steps`: {pair!r} is not a pair NAME=FOLDER")
+        name, where = str(pair[0]).strip(), pair[1]
+        said = f"`steps` {name}={os.fspath(where)}"
+        folder = Path(where) if Path(where).is_absolute() else run_dir / where
+        if not folder.is_dir():
+            raise InputError(
+                f"{said}: no folder {folder} (a step's folder, relative to {run_dir} or absolute)"
+            )
+        if folder not in records and (folder / "run.json").is_file():
+            records[folder] = read_json(folder / "run.json")
+        record = records.get(folder)
+        step = None if record is None else _step_of(folder, record)
+        held = (
+            "no run.json"
+            if record is None
+            else f"a {step} run"
+            if step
+            else "no run the report reads"
+        )
+        if name in STEP_NAMES:
+            if record is not None and step != name:
+                raise InputError(f"{said}: {os.fspath(where)} holds {held}, not a {name} run")
+            label = _label_of(name, folder, record or {})
+            given.append(StepFolder(label if name == "frf" else name, name, label, folder, True))
+        elif step in LABELLED:
+            given.append(StepFolder(name if step == "frf" else step, step, name, folder, True))
+        else:
+            known = ", ".join(STEP_NAMES)
+            raise InputError(
+                f"{said}: {os.fspath(where)} holds {held}, and {name} is no step ({known}; "
+                "another word is the label of an FRF or identify run)"
+                + (f"; give {step}={os.fspath(where)}" if step else "")
+            )
+    return given
+
+
+def _choose(
+    run_dir: Path,
+    dirs: list[Path],
+    records: dict[Path, dict[str, Any]],
+    steps: StepsInput | None,
+) -> tuple[list[StepFolder], list[tuple[Path, str]]]:
+    """The step folders a report uses and those it leaves out (with why): the ones ``steps``
+    names, and for every other step the one folder of the report's folder that holds it.
+
+    Raises
+    ------
+    InputError
+        A named folder is missing or holds another step, or a step not named has several
+        folders (several predictions, two FRF runs of one label, …).
+    """
+    given = _given_steps(run_dir, steps or {}, records)
+    keys = [(s.step, s.label) for s in given]
+    for key in keys:
+        if keys.count(key) > 1:
+            twice = [_rel(run_dir, s.folder) for s in given if (s.step, s.label) == key]
+            what = f"{key[0]} run labelled {key[1]}" if key[1] else f"{key[0]} run"
+            raise InputError(f"`steps` names two folders of one {what}: {', '.join(twice)}")
+    chosen = {s.folder for s in given}
+    found: dict[tuple[str, str], list[Path]] = {}
+    left_out: list[tuple[Path, str]] = []
+    for folder in dirs:
+        record = records.get(folder)
+        step = None if record is None or folder in chosen else _step_of(folder, record)
+        if step is None:
+            continue
+        key = (step, _label_of(step, folder, record or {}))
+        if key in keys:
+            named = next(s for s in given if (s.step, s.label) == key)
+            left_out.append((folder, f"{named.name}={_rel(run_dir, named.folder)} given"))
+        else:
+            found.setdefault(key, []).append(folder)
+    # one identified model per support: compare holds the free and hand models of its FRFs
+    compares = [s.folder for s in given if s.step == "compare"] + found.get(("compare", ""), [])
+    covered = {label: folder for folder in compares for label in _compared(folder)}
+    for s in given:
+        if s.step == "identify" and s.label in covered:
+            where = covered[s.label]
+            if where in chosen:
+                raise InputError(
+                    f"`steps` identify={_rel(run_dir, s.folder)} and "
+                    f"compare={_rel(run_dir, where)} both give the {s.label} model; give one"
+                )
+            for folder in found.pop(("compare", ""), []):
+                left_out.append((folder, f"identify={_rel(run_dir, s.folder)} given"))
+            covered = {}
+    for key in [k for k in found if k[0] == "identify" and k[1] in covered]:
+        for folder in found.pop(key):
+            holder = _rel(run_dir, covered[key[1]])
+            left_out.append((folder, f"{holder} holds the {key[1]} model"))
+    for (step, label), folders in found.items():
+        if len(folders) > 1:
+            names = [_rel(run_dir, f) for f in folders]
+            what = (
+                f"{len(folders)} FRF runs labelled {label}"
+                if step == "frf"
+                else f"{len(folders)} {step} runs of {label}"
+                if label
+                else f"{len(folders)} {step} runs"
+            )
+            name = label if step == "frf" else step
+            # runs of several rackets side by side: that is what to say first
+            refuse_mixed_rackets(run_dir, {d: records[d] for d in dirs if d in records})
+            raise InputError(
+                f"{run_dir}: it holds {what} ({', '.join(names)}): a report tells one run; "
+                f"choose one, e.g. `steps` {name}={names[-1]}"
+            )
+    used = given + [
+        StepFolder(label if step == "frf" else step, step, label, folders[0], False)
+        for (step, label), folders in found.items()
+    ]
+    order = {folder: n for n, folder in enumerate(dirs)}
+    used.sort(key=lambda s: (STEP_NAMES.index(s.step), order.get(s.folder, len(order)), s.label))
+    left_out.sort(key=lambda item: order.get(item[0], len(order)))
+    return used, left_out
+
+
+def refuse_mixed_rackets(run_dir: Path, records: Mapping[Path, Mapping[str, Any]]) -> None:
+    """One page tells one racket: refuse runs whose run.json files name several rackets (the
+    page would title one racket and mix the others' files in; the new-user trial of issue 13
+    reported on a folder of two rackets' runs).
+
+    Raises
+    ------
+    InputError
+        The racket of each, by folder, and what to do.
+    """
+    rackets: dict[str, str] = {}
+    folders: dict[str, list[str]] = {}
+    for folder, record in records.items():
+        name = record.get("racket_file")
+        if not name:
+            continue
+        key = str(record.get("racket_file_sha256") or name)
+        described = record.get("racket")
+        title = described.get("name") if isinstance(described, dict) else None
+        if title or key not in rackets:  # a record naming the racket wins over a file name
+            rackets[key] = str(title or Path(str(name)).name)
+        folders.setdefault(key, []).append(_rel(run_dir, folder))
+    if len(rackets) > 1:
+        by_default = sorted(
+            f for key, names in folders.items() if key.startswith("built-in") for f in names
+        )
+        advice = (
+            f"the steps in {', '.join(by_default)} took the built-in racket by default: run "
+            "them again with --racket FILE, or give the folder of one racket's runs"
+            if by_default
+            else "give the folder of one racket's runs (a demo folder)"
+        )
+        raise InputError(
+            f"{run_dir}: its runs used {len(rackets)} rackets ("
+            + "; ".join(
+                sorted(f"{rackets[key]} ({', '.join(sorted(folders[key]))})" for key in rackets)
+            )
+            + f"): a report tells one run; {advice}"
+        )
+
+
+def shown_case(record: Mapping[str, Any], impacts: Impacts | None = None) -> tuple[float, float]:
+    """The case (ball speed, racket speed; m/s) a prediction's single-case summaries show:
+    its run.json's ``shown_case`` (``predict --show``, or the rule's case), else — a run of an
+    earlier version — the speed rule over the run's speeds.  NaN, NaN when neither says."""
+    shown = record.get("shown_case")
+    if isinstance(shown, Mapping):
+        ball, racket = (to_float(str(shown.get(k, ""))) for k in SHOWN_KEYS)
+        if math.isfinite(ball):
+            return ball, racket if math.isfinite(racket) else 0.0
+    speeds = impacts.speeds if impacts is not None else []
+    listed = _floats(record.get("speeds_mps"))
+    speeds = impacts.speeds if impacts is not None else listed
+    if not speeds:
+        return math.nan, math.nan
+    ball = speeds[shown_speed_index(speeds)]
+    if impacts is not None:
+        return ball, impacts.racket_speed_at(ball)
+    paired = _floats(record.get("racket_speed_mps"))
+    if len(paired) == len(listed):
+        return ball, paired[listed.index(ball)]
+    return ball, paired[0] if paired else 0.0
+
+
+def _floats(values: object) -> list[float]:
+    """The numbers of a run.json list (none for anything else)."""
+    if not isinstance(values, list):
+        return []
+    return [float(v) for v in values if isinstance(v, int | float) and not isinstance(v, bool)]
+
+
+SHOWN_KEYS = ("ball_speed_mps", "racket_speed_mps")
+"""Keys of run.json's ``shown_case``."""
 
 
 def _scan(run_dir: Path) -> tuple[list[Path], dict[Path, dict[str, Any]]]:
@@ -362,22 +676,60 @@ class RunFolder:
     racket : Racket or None
         The racket given to :func:`~racketdyn.report.write_report`, if any.
     dirs : list of Path
-        The folder and its sub-folders (hidden ones left out), the folder first.
+        The folders the report reads: the step folders it uses and the folders without a
+        run.json under it (hidden ones left out), the folder first.
     records : dict
-        Each folder's ``run.json``, by folder.
+        Each of those folders' ``run.json``, by folder.
+    steps : list of StepFolder
+        The step folders the report uses, in the order of the page.
+    left_out : list of (Path, str)
+        Step folders under the report's folder it does not use, each with why.
     """
 
     run_dir: Path
     racket: Racket | None
     dirs: list[Path]
     records: dict[Path, dict[str, Any]]
+    steps: list[StepFolder] = field(default_factory=list)
+    left_out: list[tuple[Path, str]] = field(default_factory=list)
     _cache: dict[str, Any] = field(default_factory=dict, repr=False)
 
     @classmethod
-    def scan(cls, run_dir: Path, racket: Racket | None = None) -> RunFolder:
-        """Read ``run_dir``: its sub-folders and every ``run.json``."""
+    def scan(
+        cls, run_dir: Path, racket: Racket | None = None, steps: StepsInput | None = None
+    ) -> RunFolder:
+        """Read ``run_dir``: its sub-folders and every ``run.json``; the step folders to use.
+
+        Parameters
+        ----------
+        run_dir : Path
+            The report's folder.
+        racket : Racket, optional
+            The racket the runs used.
+        steps : mapping or sequence of (name, folder), optional
+            The folders to use for some steps (:data:`StepsInput`); every other step's
+            folder is found under ``run_dir``.
+
+        Raises
+        ------
+        InputError
+            A folder of ``steps`` is missing or holds another step, or a step has several
+            folders under ``run_dir`` and ``steps`` does not choose one.
+        """
+        run_dir = Path(run_dir)
         dirs, records = _scan(run_dir)
-        return cls(run_dir, racket, dirs, records)
+        used, left_out = _choose(run_dir, dirs, records, steps)
+        folders = {s.folder for s in used}
+        kept = [d for d in dirs if d in folders or d not in records]
+        kept += [s.folder for s in used if s.folder not in kept]
+        return cls(
+            run_dir,
+            racket,
+            kept,
+            {d: records[d] for d in kept if d in records},
+            used,
+            left_out,
+        )
 
     def with_file(self, pattern: str) -> list[Path]:
         """Folders holding a file that matches ``pattern``, the run folder first."""
@@ -389,8 +741,20 @@ class RunFolder:
         return found[0] if found else None
 
     def rel(self, path: Path) -> str:
-        """``path`` relative to the run folder, with forward slashes."""
-        return path.relative_to(self.run_dir).as_posix()
+        """``path`` relative to the run folder, with forward slashes (``..`` for a step folder
+        given outside it)."""
+        try:
+            return path.relative_to(self.run_dir).as_posix()
+        except ValueError:
+            return Path(os.path.relpath(path, self.run_dir)).as_posix()
+
+    def label(self, folder: Path) -> str:
+        """The label ``steps`` gave an FRF or identify run's folder, else the run's own."""
+        for s in self.steps:
+            if s.folder == folder and s.label:
+                return s.label
+        record = self.record(folder)
+        return _frf_label(folder, record) if (folder / "quality.csv").is_file() else ""
 
     def record(self, folder: Path | None) -> dict[str, Any]:
         """The run.json of ``folder``; empty if it has none."""
@@ -405,15 +769,7 @@ class RunFolder:
     @property
     def frf_dirs(self) -> list[tuple[str, Path]]:
         """(label, folder) of every ``racketdyn frf`` run."""
-        found = []
-        for folder in self.with_file("quality.csv"):
-            if folder.name.startswith("frf_"):
-                label = folder.name[4:]
-            else:
-                tests = self.record(folder).get("tests_file")
-                label = Path(str(tests)).stem.removeprefix("hammer_") if tests else folder.name
-            found.append((label, folder))
-        return found
+        return [(self.label(folder), folder) for folder in self.with_file("quality.csv")]
 
     @property
     def identifications(self) -> list[tuple[str, Path, str]]:
@@ -425,7 +781,8 @@ class RunFolder:
                 if match is None:
                     continue
                 suffix = match.group(1) or ""
-                support = self.record(folder).get("support")
+                given = next((s.label for s in self.steps if s.folder == folder), "")
+                support = given or self.record(folder).get("support")
                 label = suffix[1:] if suffix else str(support or folder.name)
                 found.append((label, folder, suffix))
         return found

@@ -19,7 +19,7 @@ from markupsafe import Markup
 from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError
 from racketdyn.racket import Racket
-from racketdyn.report.folder import REPORT_NAME, RunFolder
+from racketdyn.report.folder import REPORT_NAME, RunFolder, StepsInput, refuse_mixed_rackets
 from racketdyn.report.sections import SECTIONS
 
 __all__ = ["render_section", "write_report"]
@@ -107,45 +107,19 @@ def _refuse_mixed_runs(run: RunFolder) -> None:
     """One page tells one run: refuse a folder whose run.json files name several rackets, or
     that holds several predictions (the page would title one racket and mix the others' files
     in; the new-user trial of issue 13 reported on a folder of two rackets' runs)."""
-    rackets: dict[str, str] = {}
-    folders: dict[str, list[str]] = {}
-    for folder, record in run.records.items():
-        name = record.get("racket_file")
-        if not name:
-            continue
-        key = str(record.get("racket_file_sha256") or name)
-        described = record.get("racket")
-        title = described.get("name") if isinstance(described, dict) else None
-        if title or key not in rackets:  # a record naming the racket wins over a file name
-            rackets[key] = str(title or Path(str(name)).name)
-        folders.setdefault(key, []).append(run.rel(folder) or ".")
-    if len(rackets) > 1:
-        by_default = sorted(
-            f for key, names in folders.items() if key.startswith("built-in") for f in names
-        )
-        advice = (
-            f"the steps in {', '.join(by_default)} took the built-in racket by default: run "
-            "them again with --racket FILE, or give the folder of one racket's runs"
-            if by_default
-            else "give the folder of one racket's runs (a demo folder)"
-        )
-        raise InputError(
-            f"{run.run_dir}: its runs used {len(rackets)} rackets ("
-            + "; ".join(
-                sorted(f"{rackets[key]} ({', '.join(sorted(folders[key]))})" for key in rackets)
-            )
-            + f"): a report tells one run; {advice}"
-        )
+    refuse_mixed_rackets(run.run_dir, run.records)
     predictions = run.with_file("impact.csv")
-    if len(predictions) > 1:
-        names = ", ".join(run.rel(folder) or "." for folder in predictions)
+    if len(predictions) > 1:  # a folder without run.json holding an impact.csv
+        names = [run.rel(folder) or "." for folder in predictions]
         raise InputError(
-            f"{run.run_dir}: it holds {len(predictions)} predict runs ({names}): a report "
-            "tells one run; give the folder of one of them, or a demo folder"
+            f"{run.run_dir}: it holds {len(predictions)} predict runs ({', '.join(names)}): a "
+            f"report tells one run; choose one, e.g. `steps` predict={names[-1]}"
         )
 
 
-def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
+def write_report(
+    run_dir: Path, racket: Racket | None = None, *, steps: StepsInput | None = None
+) -> Path:
     """Write ``run_dir/report.html``: one self-contained HTML page telling the whole story.
 
     Parameters
@@ -158,6 +132,15 @@ def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
     racket : Racket, optional
         The racket the runs used, for its derived properties and head outline; by default
         read from ``predict/run.json`` (or the rig's run.json).
+    steps : mapping or sequence of (name, folder), optional
+        The folders to use for some steps, e.g. ``{"predict": "serve", "free": "frf_free"}``
+        (a name is a step — ``rig``, ``frf``, ``contact``, ``identify``, ``compare``,
+        ``compare_ball``, ``predict``, ``swing``, ``twist``, ``oblique``, ``compound``,
+        ``validate``, ``calibrate`` — or the label of an FRF or identify run; a folder is
+        relative to ``run_dir``, or absolute).  Every other step's folder is found under
+        ``run_dir`` when it holds one; with both ``identify`` and ``compare`` runs there,
+        compare's models are shown.  :attr:`RunFolder.steps` says which folder each step
+        came from, and the page's provenance too.
 
     Returns
     -------
@@ -169,13 +152,15 @@ def write_report(run_dir: Path, racket: Racket | None = None) -> Path:
     ------
     InputError
         ``run_dir`` is not a folder, holds nothing a racketdyn command wrote, holds a damaged
-        file (named, with the command that wrote it), or holds the runs of several rackets or
-        several predictions (one page tells one run); nothing is written then.
+        file (named, with the command that wrote it), holds the runs of several rackets, or
+        several runs of one step that ``steps`` does not choose between (one page tells one
+        run), or a folder of ``steps`` is missing or holds another step; nothing is written
+        then.
     """
     run_dir = Path(run_dir)
     if not run_dir.is_dir():
         raise InputError(f"{run_dir}: not a folder; give the output folder of racketdyn commands")
-    run = RunFolder.scan(run_dir, racket)
+    run = RunFolder.scan(run_dir, racket, steps)
     _refuse_mixed_runs(run)
     if racket is not None:
         _refuse_another_racket(run, racket)

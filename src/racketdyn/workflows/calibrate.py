@@ -167,6 +167,7 @@ def run_calibrate(
         holdout=held0,
         leave_one_out=leave_one_out,
         bounds={name: limits[name] for name in fit if name in limits},
+        progress=progress,
     )
     before, status = calibration.predicted_start, calibration.status_start
     after, status_after = calibration.predicted, calibration.status

@@ -204,6 +204,56 @@ class ImpactCurves:
             **{q: _array(getattr(result, q))[:, s, :] for q in quantities},
         )
 
+    @classmethod
+    def concatenate(cls, parts: Sequence[ImpactCurves]) -> ImpactCurves:
+        """Curves of the same points and supports one after the other along the speed axis
+        (Figs 11–12: one run of speeds per racket speed)."""
+        first = parts[0]
+        if len(parts) == 1:
+            return first
+
+        def joined(name: str) -> NDArray[Any]:
+            values = [getattr(part, name) for part in parts]
+            return values[0] if not values[0].size else np.concatenate(values, axis=1)
+
+        return replace(
+            first,
+            ball_speed=np.concatenate([part.ball_speed for part in parts]),
+            racket_speed=np.concatenate([part.racket_speed for part in parts]),
+            status=joined("status"),
+            contact_time=joined("contact_time"),
+            mean_force=joined("mean_force"),
+            rebound_ratio=joined("rebound_ratio"),
+            rebound_speed=joined("rebound_speed"),
+            vibration_energy=joined("vibration_energy"),
+            rebound_ratio_band_width=joined("rebound_ratio_band_width"),
+        )
+
+    @property
+    def racket_speeds(self) -> list[float]:
+        """The racket speeds of the curves, m/s, in their order."""
+        return list(dict.fromkeys(float(v) for v in self.racket_speed))
+
+    def at_racket_speed(self, racket_speed: float) -> ImpactCurves:
+        """The curves of one racket speed (m/s): a single racket speed's run of ball speeds."""
+        keep = np.flatnonzero(self.racket_speed == racket_speed)
+
+        def cut(values: NDArray[Any]) -> NDArray[Any]:
+            return values if not values.size else values[:, keep, :]
+
+        return replace(
+            self,
+            ball_speed=self.ball_speed[keep],
+            racket_speed=self.racket_speed[keep],
+            status=cut(self.status),
+            contact_time=cut(self.contact_time),
+            mean_force=cut(self.mean_force),
+            rebound_ratio=cut(self.rebound_ratio),
+            rebound_speed=cut(self.rebound_speed),
+            vibration_energy=cut(self.vibration_energy),
+            rebound_ratio_band_width=cut(self.rebound_ratio_band_width),
+        )
+
     @property
     def shape(self) -> tuple[int, int, int]:
         """``(n_points, n_speeds, n_supports)``."""
@@ -671,7 +721,9 @@ class PaperFigures:
     head : HeadEllipse
         The racket's string bed (the face maps' outline).
     speed_curves : ImpactCurves
-        Figs 11–12: F_MEAN and T_c at the top, centre and throat against ball speed.
+        Figs 11–12: F_MEAN and T_c at the top, centre and throat against ball speed, over the
+        curve speeds once per racket speed of the run (its ``racket_speed`` constant along
+        each: :meth:`ImpactCurves.at_racket_speed`).
     run_speeds : ndarray
         The run's ball speeds, m/s (marked on the curves against speed).
     pulse : PulseSpectra
@@ -691,6 +743,9 @@ class PaperFigures:
         The run's options in words, for the titles (the latter two with their racket speed).
     axis_band : AxisBand or None
         With an uncertainty: Fig. 15's 90 % band of the rebound ratio.
+    run_racket_speeds : ndarray
+        The racket speed of each of ``run_speeds``, m/s (empty: a figures.nc of an earlier
+        version, racket speeds not recorded).
     """
 
     racket_name: str
@@ -707,6 +762,7 @@ class PaperFigures:
     axis_description: str
     face_description: str
     axis_band: AxisBand | None = None
+    run_racket_speeds: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
 
     def to_xarray(self) -> xr.Dataset:
         """One dataset, each figure's names prefixed with its key and ``__``: ``fig11_12``,
@@ -714,6 +770,10 @@ class PaperFigures:
         curves = self.speed_curves.to_xarray().assign_coords(
             run_speed_mps=("run_speed", self.run_speeds, {"units": "m s-1"})
         )
+        if self.run_racket_speeds.size == self.run_speeds.size:
+            curves = curves.assign_coords(
+                run_racket_speed_mps=("run_speed", self.run_racket_speeds, {"units": "m s-1"})
+            )
         curves.attrs = {
             "racket_name": self.racket_name,
             "description": self.description,
@@ -758,6 +818,9 @@ class PaperFigures:
             axis_description=str(axis.attrs["description"]),
             face_description=str(face.attrs["description"]),
             axis_band=AxisBand.from_xarray(axis) if "rebound_ratio_p05" in axis else None,
+            run_racket_speeds=_array(curves["run_racket_speed_mps"].values)
+            if "run_racket_speed_mps" in curves.coords
+            else _EMPTY,
         )
 
 
@@ -813,6 +876,7 @@ def paper_figures(
     racket_speeds: Sequence[float] = (0.0,),
     supports: Sequence[str] = ("pinned", "free"),
     shown_speed: float = SHOWN_SPEED_MPS,
+    shown_racket_speed: float | None = None,
     result: ImpactResult | None = None,
     **options: Any,
 ) -> PaperFigures:
@@ -835,6 +899,9 @@ def paper_figures(
         Supports to draw (``free``, ``pinned``).
     shown_speed : float
         Ball speed of the single-speed figures (face maps, Fig. 15), m/s.
+    shown_racket_speed : float, optional
+        Its racket speed, m/s (default: the run's racket speed at ``shown_speed``); with it
+        the face maps take the run's case of both speeds.
     result : ImpactResult, optional
         The run's impacts (approximate method), drawn by the face maps; None: a 25 × 25 grid
         at ``shown_speed``.
@@ -866,8 +933,26 @@ def paper_figures(
     curve_speeds = _curve_speeds(
         speeds, CURVE_SPEEDS_MPS[0], CURVE_SPEEDS_MPS[-1], CURVE_SPEEDS_MPS.size
     )
-    speed_curves = ImpactCurves.of(
-        run([marks[n] for n in names], curve_speeds, labels=names), ("mean_force", "contact_time")
+    # one set of curves per racket speed, each over the whole speed axis: interpolating the
+    # racket speed between the run's (ball, racket) pairs bent the curves at each (issue 27)
+    racket_list = list(racket_speeds) or [0.0]
+    speed_curves = ImpactCurves.concatenate(
+        [
+            ImpactCurves.of(
+                predict(
+                    racket,
+                    ball,
+                    [marks[n] for n in names],
+                    curve_speeds,
+                    supports,
+                    racket_speed=np.full(curve_speeds.shape, r),
+                    labels=names,
+                    **options,
+                ),
+                ("mean_force", "contact_time"),
+            )
+            for r in dict.fromkeys(racket_list)
+        ]
     )
     description = describe_options(options, racket_speeds)
     main = _main_support(supports)
@@ -890,11 +975,30 @@ def paper_figures(
             axis_marks[f"node of {name}" if nodes.size == 1 else f"node {k} of {name}"] = float(
                 node
             )
-    axis_racket_speed = float(racket_speed_at([shown_speed], speeds, racket_speeds)[0])
+    axis_racket_speed = (
+        float(racket_speed_at([shown_speed], speeds, racket_speeds)[0])
+        if shown_racket_speed is None
+        else float(shown_racket_speed)
+    )
+
+    def at_shown(points: ArrayLike) -> ImpactResult:
+        return predict(
+            racket,
+            ball,
+            points,
+            [shown_speed],
+            supports,
+            racket_speed=[axis_racket_speed],
+            **options,
+        )
+
     if result is None:
-        result = run(racket.head.grid(25), [shown_speed])
-    hits = np.flatnonzero(np.isclose(result.ball_speed, shown_speed))
-    face = ImpactCurves.of(result, _FACE_QUANTITIES, [int(hits[0]) if hits.size else 0])
+        result = at_shown(racket.head.grid(25))
+    hits = np.isclose(result.ball_speed, shown_speed)
+    if shown_racket_speed is not None:
+        hits &= np.isclose(_array(result.racket_speed), axis_racket_speed)
+    found = np.flatnonzero(hits)
+    face = ImpactCurves.of(result, _FACE_QUANTITIES, [int(found[0]) if found.size else 0])
     return PaperFigures(
         racket_name=racket.name,
         head=racket.head,
@@ -902,13 +1006,16 @@ def paper_figures(
         run_speeds=_array(speeds),
         pulse=pulse,
         frame=frame,
-        axis=ImpactCurves.of(run(axis_points(racket), [shown_speed])),
+        axis=ImpactCurves.of(at_shown(axis_points(racket))),
         axis_marks=axis_marks,
         face=face,
         main_support=main if main in face.supports else face.supports[0],
         description=description,
         axis_description=describe_options(options, racket_speeds, axis_racket_speed),
         face_description=describe_options(options, racket_speeds, float(face.racket_speed[0])),
+        run_racket_speeds=_array(racket_speeds)
+        if len(racket_speeds) == len(speeds)
+        else np.full(len(speeds), racket_list[0]),
     )
 
 
@@ -1421,8 +1528,8 @@ def swing_axis_curves(
 
 # --- compare: Fig. 15 with the identified models -----------------------------------------------
 IDENTIFIED_CASES: tuple[tuple[str, str, str], ...] = (
-    ("pinned", "hand", "hand-held, hand-held modes"),
-    ("pinned", "free", "hand-held, free modes"),
+    ("pinned", "hand", "pinned at the grip, hand-held modes"),
+    ("pinned", "free", "pinned at the grip, free modes"),
     ("free", "free", "freely supported, free modes"),
 )
 """Fig. 15's curves with the identified models: (support, which modes, legend)."""

@@ -35,6 +35,7 @@ __all__ = [
     "hand_for",
     "load_racket_input",
     "setup",
+    "single_support",
 ]
 
 RacketInput = Racket | str | os.PathLike[str] | None
@@ -282,3 +283,29 @@ def hand_or_default(supports: Sequence[str], hand: Hand | None) -> tuple[Hand | 
     if "hand" not in supports:
         return None, []
     return hand_for(supports) if hand is None else (hand, [])
+
+
+def single_support(step: str, support: str | Sequence[str], why: str) -> str:
+    """The one support of a step that takes one, or why it takes one (issue 27: ``swing
+    --support free,pinned`` said "must be one of free, pinned").
+
+    Parameters
+    ----------
+    step : str
+        The step, for the message (``swing``).
+    support : str or sequence of str
+        The support given; several (a sequence, or a comma-separated text) are refused.
+    why : str
+        Why the step takes one (what of it is one support's).
+    """
+    given = (
+        [s.strip() for s in support.split(",")]
+        if isinstance(support, str)
+        else [str(s) for s in support]
+    )
+    if len(given) != 1:
+        raise InputError(
+            f"`support` {','.join(given)}: {step} takes one support ({why}); run it once per "
+            "support, each into its own `out`"
+        )
+    return given[0]

@@ -31,7 +31,13 @@ from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_speeds
 from racketdyn.racket import Racket
-from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
+from racketdyn.workflows.inputs import (
+    RacketInput,
+    ball_or_default,
+    hand_or_default,
+    setup,
+    single_support,
+)
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
@@ -181,7 +187,15 @@ def run_oblique(
             )
     spin = require_finite("`spin_radps`", spin_radps)
     check("spin_radps", spin, "`spin_radps`", allow_implausible=allow_implausible)
-    the_support = one_of("`support`", support, TRANSIENT_SUPPORTS)
+    the_support = one_of(
+        "`support`",
+        single_support(
+            "oblique",
+            support,
+            "its outgoing angles and spins, oblique.csv and figure are one support's",
+        ),
+        TRANSIENT_SUPPORTS,
+    )
     used = setup(racket, modal, rigid)
     extra = []
     if point is None:

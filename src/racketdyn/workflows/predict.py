@@ -34,7 +34,12 @@ from racketdyn.impact.comparison import (
 from racketdyn.impact.grid import StringBed, check_string_bed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import ModelInputs
-from racketdyn.impact.result import STATUS_FROM_TRANSIENT, shown_speed_index, write_columns
+from racketdyn.impact.result import (
+    SHOWN_BY_DEFAULT,
+    STATUS_FROM_TRANSIENT,
+    shown_case_index,
+    write_columns,
+)
 from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, Engine, predict_transient
 from racketdyn.impact.uncertainty import (
     Sensitivity,
@@ -226,10 +231,16 @@ def check_supports(supports: Sequence[str], model: str) -> list[str]:
     allowed = TRANSIENT_SUPPORTS if model == "transient" else SUPPORTS
     checked = []
     for support in supports:
+        if support == "hand" and model == "both":
+            raise InputError(
+                "`supports` hand with `model` both: the approximate method has no hand (it "
+                "holds the racket pinned at the grip), so the two models cannot be compared "
+                "there; run hand with `model` transient, or compare them on `supports` pinned"
+            )
         if support == "hand" and model != "transient":
             raise InputError(
                 "`supports` hand needs `model` transient: the approximate method has no hand "
-                "(its hand-held racket is pinned at the grip: `supports` pinned)"
+                "(it holds the racket pinned at the grip: `supports` pinned)"
             )
         checked.append(one_of("`supports`", support, allowed))
     if len(set(checked)) != len(checked):
@@ -258,6 +269,7 @@ def run_predict(
     include_string_bed: bool = False,
     string_bed: StringBed = "uniform",
     uncertainty: Uncertainty | None = None,
+    show: Sequence[float] | None = None,
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -310,6 +322,11 @@ def run_predict(
         uncertainty.propagate`), the bands written beside the numbers (``<column>_mean``,
         ``_sd``, ``_p05``, ``_p95``, ``samples_valid``) and every sample in
         ``uncertainty.nc`` (``uncertainty_transient.nc`` for the transient with both).
+    show : sequence of float, optional
+        The case the single-case summaries show (face maps, Fig. 15, the time histories, the
+        models' comparison map and table, the report's headline): ``(ball speed,)`` or
+        ``(ball speed, racket speed)``, m/s, one of the run's; by default 20 m/s if run,
+        else the middle ball speed.  run.json's ``shown_case`` records it.
     allow_implausible : bool
         Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     defaults : sequence of str
@@ -366,6 +383,8 @@ def run_predict(
             f"`speeds`: each ball speed once (with its racket speed); got "
             f"{', '.join(f'{v:g}' for v in speed_list)}"
         )
+    paired = [r for _, r in cases]
+    shown = shown_case_index(speed_list, paired, show)
     support_list = check_supports(supports, model)
     used = setup(racket, modal, rigid)
     the_ball, ball_defaults = ball_or_default(ball)
@@ -384,7 +403,7 @@ def run_predict(
         speeds=speed_list,
         racket_speed=racket_speeds,
         supports=support_list,
-        shown_speed=shown_speed_index(speed_list),
+        shown_speed=shown,
         engine=engine,
         include_string_bed=include_string_bed,
         string_bed=string_bed,
@@ -455,6 +474,11 @@ def run_predict(
         "model": model,
         **_transient_record(result.transient, result.approximate, engine),
         "uncertainty": None if uncertainty is None else uncertainty.record(),
+        "shown_case": {
+            "ball_speed_mps": speed_list[shown],
+            "racket_speed_mps": paired[shown],
+            "chosen_by": "show" if show is not None else SHOWN_BY_DEFAULT,
+        },
     }
     return finish_run(result, inputs, command_record(command, "predict"), figures)
 
@@ -592,6 +616,9 @@ def _figure_data(
             result.ball,
             **grid,
             shown_speed=result.speeds[result.shown_speed],
+            shown_racket_speed=result.racket_speed[
+                result.shown_speed if len(result.racket_speed) > 1 else 0
+            ],
             result=result.approximate,
             stiffness_reading=result.stiffness_reading,
             vibration_charge=result.vibration_charge,

@@ -51,7 +51,13 @@ from racketdyn.workflows.figure_data import (
     swing_axis_curves,
     write_figure_data,
 )
-from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
+from racketdyn.workflows.inputs import (
+    RacketInput,
+    ball_or_default,
+    hand_or_default,
+    setup,
+    single_support,
+)
 from racketdyn.workflows.predict import MAX_GRID
 from racketdyn.workflows.run import (
     Progress,
@@ -166,10 +172,13 @@ def swing_from(
 
 def one_support(support: str, transient: bool) -> str:
     """One support, allowed by the impact model."""
+    support = single_support(
+        "swing", support, "its sweet spots, swing.csv and figures are one support's"
+    )
     if support == "hand" and not transient:
         raise InputError(
             "`support` hand needs `model` transient: the approximate method has no hand "
-            "(its hand-held racket is pinned at the grip: `support` pinned)"
+            "(it holds the racket pinned at the grip: `support` pinned)"
         )
     return one_of("`support`", support, TRANSIENT_SUPPORTS if transient else SUPPORTS)
 

@@ -24,7 +24,7 @@ from racketdyn.impact.twist import TwistCurve, twist_curve
 from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check_speeds
-from racketdyn.racket import Racket
+from racketdyn.racket import Racket, landmark_points
 from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
     Progress,
@@ -87,7 +87,7 @@ def run_twist(
     modal: ModalModel | str | os.PathLike[str] | None = None,
     rigid: bool = False,
     ball: Ball | None = None,
-    x_m: float = 0.52,
+    x_m: float | None = None,
     offsets_m: ArrayLike = TWIST_OFFSETS_M,
     speed: float = 25.0,
     racket_speed: float = 0.0,
@@ -114,8 +114,9 @@ def run_twist(
         No vibration: a rigid racket.
     ball : Ball, optional
         The ball (default :class:`~racketdyn.ball.Ball`).
-    x_m : float
-        Impact position from the butt, m.
+    x_m : float, optional
+        Impact position from the butt, m (default: the racket's face centre,
+        :func:`racketdyn.racket.landmark_points`).
     offsets_m : array_like
         Offsets y from the long axis, m.
     speed : float
@@ -140,7 +141,7 @@ def run_twist(
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """
-    x = require_positive("`x_m`", x_m)
+    x = None if x_m is None else require_positive("`x_m`", x_m)
     offsets = [require_finite("`offsets_m`", v) for v in np.atleast_1d(offsets_m)]
     speed = require_positive("`speed`", speed)
     racket_speed = require_finite("`racket_speed`", racket_speed)
@@ -151,6 +152,10 @@ def run_twist(
         raise InputError(f"`supports`: name each support once (got {','.join(supports)})")
     used = setup(racket, modal, rigid)
     head = used.racket.head
+    centre: list[str] = []
+    if x is None:  # the given racket's face centre (issue 27: it was the paper racket's 0.52 m)
+        x = float(landmark_points(used.racket)["centre"][0])
+        centre = [f"impact point x: the face centre, {x * 1e3:.0f} mm from the butt"]
     wide = [y for y in offsets if abs(y - head.centre_y_m) > head.half_width_m]
     if wide and all(abs(y) >= 1.0 and abs(y * 1e-3) <= head.half_width_m for y in wide):
         raise InputError(
@@ -163,7 +168,7 @@ def run_twist(
     check_string_bed(string_bed, None, used.racket)
     the_hand, hand_defaults = hand_or_default(checked, hand)
     the_ball, ball_defaults = ball_or_default(ball)
-    defaults_used = [*used.defaults, *hand_defaults, *ball_defaults, *defaults]
+    defaults_used = [*used.defaults, *centre, *hand_defaults, *ball_defaults, *defaults]
     curves = []
     for i, support in enumerate(checked):
         report(

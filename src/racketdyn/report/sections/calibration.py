@@ -106,7 +106,11 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         glance.append(f"calibration: {'; '.join(identified)}")
     if missing:
         glance.append(f"calibration: not identifiable from the rows: {', '.join(missing)}")
+    poor = data.get("poor_fit")  # calibration.json since issue 27
+    if isinstance(poor, str) and poor:
+        glance.append(f"calibration: the fit is poor ({poor.split(':')[0]})")
     return {
+        "poor_fit": poor if isinstance(poor, str) else "",
         "model": _MODELS.get(str(data.get("method")), str(data.get("method", ""))),
         "source": str(record.get("measured_file", "")),
         "n_flagged": fmt(counts.get("flagged_left_out"), ".0f"),

@@ -6,8 +6,8 @@ from typing import Any
 
 import numpy as np
 
-from racketdyn.impact.result import shown_speed_index
-from racketdyn.report.folder import RunFolder
+from racketdyn._display import case_words
+from racketdyn.report.folder import RunFolder, shown_case
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = "racketdyn predict --out DIR/predict"
@@ -50,13 +50,13 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             )
     i0 = impacts.nearest(np.arange(impacts.support.size), x, y)
     glance = []
-    speed = impacts.speeds[shown_speed_index(impacts.speeds)]
+    speed, racket_speed = shown_case(run.record(folder), impacts)
     for support in ("pinned", "free"):
         selected = impacts.rows(speed, support)
         if selected.size:
             i = impacts.nearest(selected, x, y)
             glance.append(
-                f"face centre, {speed:g} m/s, {support}: contact time "
+                f"face centre, {case_words(speed, racket_speed, support)}: contact time "
                 f"{fmt(impacts['contact_time_s'][i] * 1e3, '.2f')} ms, mean force "
                 f"{fmt(impacts['mean_force_n'][i], '.0f')} N, rebound ratio "
                 f"{fmt(impacts['rebound_ratio'][i], '.3f')}"

@@ -134,7 +134,18 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 "unlisted": any(f[2] == "no" for f in files),
             }
         )
+    steps = [
+        (
+            s.name,
+            run.rel(s.folder) or ".",
+            s.label if s.label != s.name else "",
+            "given with --steps" if s.given else "found",
+        )
+        for s in run.steps
+    ]
     return {
+        "steps": steps,
+        "left_out": [(run.rel(folder), why) for folder, why in run.left_out],
         "written": datetime.now(UTC).isoformat(timespec="seconds"),
         "version": __version__,
         "python": platform.python_version(),

@@ -9,9 +9,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn._display import case_words
 from racketdyn.impact.result import shown_speed_index
 from racketdyn.report.figures import interactive
-from racketdyn.report.folder import Impacts, RunFolder, read_csv
+from racketdyn.report.folder import Impacts, RunFolder, read_csv, shown_case
 from racketdyn.report.formatting import fmt
 from racketdyn.report.plots import map_spec
 
@@ -87,7 +88,10 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             if head is None or abs(node - head.centre_x_m) < head.half_length_m:
                 marks.append({"x": round(node * 1e3, 1), "label": f"node ({support})"})
     speeds = impacts.speeds
-    chosen = speeds[shown_speed_index(speeds)]
+    chosen, chosen_racket = shown_case(run.record(folder), impacts)
+    if chosen not in speeds:
+        chosen = speeds[shown_speed_index(speeds)]
+        chosen_racket = impacts.racket_speed_at(chosen)
     if len(speeds) > MAX_MAP_SPEEDS:
         picks = np.unique(np.linspace(0, len(speeds) - 1, MAX_MAP_SPEEDS).round().astype(int))
         speeds = sorted({speeds[i] for i in picks} | {chosen})
@@ -144,14 +148,17 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 )
                 if speed == chosen and support == "pinned":
                     data["glance"].append(
-                        f"highest rebound ratio at {speed:g} m/s, pinned: {e[best]:.3f} at "
+                        f"highest rebound ratio, {case_words(speed, chosen_racket, support)}: "
+                        f"{e[best]:.3f} at "
                         f"x = {impacts['x_m'][best] * 1e3:.0f} mm, "
                         f"y = {impacts['y_m'][best] * 1e3:.0f} mm"
                     )
         values = [r[2] for p in panels for r in p["rows"] if r[2] is not None]
         groups.append(
             {
-                "label": f"{speed:g} m/s",
+                "label": case_words(speed, impacts.racket_speed_at(speed))
+                if np.any(impacts["racket_speed_mps"] != 0)
+                else f"{speed:g} m/s",
                 "range": [min(values), max(values)] if values else [0.0, 1.0],
                 "panels": panels,
             }

@@ -8,9 +8,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn._display import case_words
 from racketdyn.impact.comparison import MODELS_DIFFER
 from racketdyn.impact.result import shown_speed_index
-from racketdyn.report.folder import RunFolder, number, read_csv
+from racketdyn.report.folder import RunFolder, number, read_csv, shown_case
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = "racketdyn predict --model both --out DIR/predict"
@@ -63,7 +64,10 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         (head.centre_x_m, head.centre_y_m) if head else (float(np.nanmean(x)), float(np.nanmean(y)))
     )
     speeds = sorted({float(v) for v in speed if math.isfinite(v)})
-    chosen = speeds[shown_speed_index(speeds)] if speeds else math.nan
+    chosen, chosen_racket = shown_case(record)
+    if chosen not in speeds:
+        chosen = speeds[shown_speed_index(speeds)] if speeds else math.nan
+        chosen_racket = math.nan
     for name in dict.fromkeys(support.tolist()):
         for value in speeds:
             selected = np.flatnonzero((support == name) & (speed == value))
@@ -97,7 +101,13 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             )
             if value == chosen and name == support[0] and finite.size:
                 data["glance"].append(
-                    f"approximate against transient, {value:g} m/s, {name}: rebound ratio at "
+                    "approximate against transient, "
+                    + (
+                        case_words(value, chosen_racket, name)
+                        if math.isfinite(chosen_racket)
+                        else f"ball {value:g} m/s, {name}"
+                    )
+                    + ": rebound ratio at "
                     f"the centre {fmt(e_approx[centre], '.3f')} against "
                     f"{fmt(e_transient[centre], '.3f')}; largest |Δ| {largest} at "
                     f"x, y = {where} mm"
