@@ -545,3 +545,58 @@ def test_swing_writes_each_point_s_band_beside_its_numbers(
     assert (table.loc[ok, "rebound_speed_mps_p95"] > table.loc[ok, "rebound_speed_mps_p05"]).all()
     record = json.loads((out / "run.json").read_text())
     assert record["uncertainty"]["samples"] == 16
+
+
+def test_an_e_bg_spread_keeps_the_ball_s_fall_of_e_bg_with_speed() -> None:
+    """The trial of 2026-11-27: at 60 m/s the nominal rebound ratio was 0.345 and the band of
+    an e_BG spread about it 0.341–0.390 (mean 0.366), because each sample put a constant e_BG
+    in place of e_BG falling with speed.  A spread centred on the nominal e_BG at 20 m/s now
+    centres the band on the nominal at every speed."""
+    from racketdyn.contact import with_ball_string_cor
+
+    e20 = with_ball_string_cor(RACKET, Ball()).e_bg_at(20.0)
+    spread = Spread("e_bg", bounds=(e20 - 0.04, e20 + 0.04))
+    result = propagate(_inputs(), [CENTRE], [10.0, 60.0], Uncertainty((spread,), 64))
+    for s in range(2):
+        nominal = result.nominal.rebound_ratio[0, s, 0]
+        assert result.quantile("rebound_ratio", 0.5)[0, s, 0] == pytest.approx(nominal, abs=3e-3)
+
+
+def test_the_trial_s_loose_ends(tmp_path: Path, caplog: pytest.LogCaptureFixture) -> None:
+    """The trial of 2026-11-27: an e_BG range up to 1.2 was asked about per cent (1.2 % =
+    0.012); 2 samples gave a "90 % band" without a word; ball-speed offsets below zero were
+    clamped to 0.1 m/s and counted valid; 100,000 samples ran out of memory."""
+    path = tmp_path / "u.toml"
+    path.write_text("[e_bg]\nrange = [0.8, 1.2]\n")
+    with pytest.raises(InputError) as caught:
+        read_spreads(path)
+    assert "percentage" not in str(caught.value)
+    with caplog.at_level("WARNING"):
+        propagate(_inputs(), [CENTRE], [20.0], Uncertainty((Spread("e_bg", sd=0.01),), 2))
+    assert "rough 90 % band" in caplog.text
+    below = Uncertainty((Spread("ball_speed_mps", bounds=(-14.0, -12.0)),), 8)
+    result = propagate(_inputs(), [CENTRE], [10.0, 20.0], below, labels=["c"])
+    assert not result.valid[:, 0, 0, 0].any()  # 10 − 12…14 m/s: no impact
+    assert result.valid[:, 0, 1, 0].all()
+    with pytest.raises(InputError, match="65,536"):
+        Uncertainty((Spread("e_bg", sd=0.01),), 100_000)
+
+
+def test_a_racket_file_without_its_frequency_says_the_120_hz_it_runs_at(tmp_path: Path) -> None:
+    """The trial of 2026-11-27: predict ran a racket file without first_bending_hz at the
+    paper's 120 Hz, not among run.json's defaults, and the report showed it as given."""
+    from importlib import resources
+
+    from racketdyn.workflows import run_predict
+
+    text = resources.files("racketdyn.data").joinpath("kawazoe_2002.toml").read_text("utf-8")
+    lines = [line for line in text.splitlines() if not line.startswith("first_bending_hz")]
+    racket = tmp_path / "r.toml"
+    racket.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    out = tmp_path / "run"
+    run_predict(out, racket=racket, speeds=[20.0], grid=2)
+    defaults = json.loads((out / "run.json").read_text())["defaults_used"]
+    assert any("first bending frequency: 120 Hz" in d for d in defaults), defaults
+    run_predict(tmp_path / "stated", speeds=[20.0], grid=2)  # the built-in racket states it
+    stated = json.loads((tmp_path / "stated" / "run.json").read_text())["defaults_used"]
+    assert not any("first bending frequency" in d for d in stated)

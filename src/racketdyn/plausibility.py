@@ -566,7 +566,7 @@ def check_e_bg(name: str, value: float) -> None:
         return
     slip = (
         f"; did you give a percentage ({_g(number)} % = {_g(number * PER_CENT.si)})?"
-        if PER_CENT.least <= number <= 100.0
+        if 10.0 <= number <= 100.0  # per cent is tens (83); 1.2 is no percentage of e_BG
         else ""
     )
     raise InputError(f"{name} {_g(number)}: e_BG is a ratio between 0 and 1 (Kawazoe's 0.83){slip}")

@@ -27,6 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import least_squares
 
+from racketdyn.ball import Ball
 from racketdyn.contact import with_ball_string_cor
 from racketdyn.errors import InputError
 from racketdyn.impact.hand import Hand
@@ -107,6 +108,28 @@ def _first_bending_hz(inputs: ModelInputs) -> float:
     return float(model.frequency[first_bending_index(model)])
 
 
+def _e_bg_at_20(inputs: ModelInputs, value: float) -> Ball:
+    """The ball with e_BG ``value`` at 20 m/s: a constant e_BG replaced; e_BG against speed
+    (derived from ball and strings, or a table given) shifted by the same amount at every
+    speed, so a sample or a fit moves the level and keeps the law's fall with speed (a
+    constant in its place biased the band at high speed: the trial of 2026-11-27, 60 m/s)."""
+    ball = inputs.ball
+    if ball.e_bg is not None and not ball.e_bg_table:
+        return replace(ball, e_bg=value)
+    resolved = with_ball_string_cor(inputs.racket, ball)
+    shift = value - float(resolved.e_bg_at(20.0))
+    table = tuple(
+        (speed, float(min(max(e + shift, 1e-6), 1.0))) for speed, e in resolved.e_bg_table
+    )
+    source = resolved.e_bg_source or "the e_BG table given"
+    return replace(
+        ball,
+        e_bg=value,
+        e_bg_table=table,
+        e_bg_source=f"{source}; shifted {shift:+.4f} (to {value:.4g} at 20 m/s)",
+    )
+
+
 def _factor(low: float, high: float) -> Callable[[float], tuple[float, float]]:
     return lambda start: (start * low, start * high)
 
@@ -117,9 +140,10 @@ PARAMETERS: dict[str, Parameter] = {
         Parameter(
             "e_bg",
             "1",
-            "COR of the ball on the head-clamped strings (a constant e_BG; not with a table)",
+            "COR of the ball on the head-clamped strings at 20 m/s (a constant e_BG given as "
+            "one; else the ball's e_BG against speed shifted to it)",
             lambda i: float(with_ball_string_cor(i.racket, i.ball).e_bg_at(20.0)),
-            lambda i, v: replace(i, ball=replace(i.ball, e_bg=v)),
+            lambda i, v: replace(i, ball=_e_bg_at_20(i, v)),
             lambda start: (0.3, 0.99),
         ),
         Parameter(

@@ -47,6 +47,7 @@ from racketdyn.racket import as_locations
 __all__ = [
     "BAND_QUANTITIES",
     "IMPACT_INPUTS",
+    "MAX_SAMPLES",
     "MIN_VALID_SHARE",
     "QUANTILES",
     "SAMPLERS",
@@ -91,6 +92,13 @@ BAND_QUANTITIES: tuple[str, ...] = (
 
 QUANTILES: tuple[float, ...] = (0.05, 0.95)
 """The band: 5 % and 95 % quantiles (a 90 % band)."""
+
+MAX_SAMPLES = 65_536
+"""Most samples an uncertainty takes: every sample's numbers are kept (for ``uncertainty.nc``),
+5 quantities × 8 bytes per impact and sample."""
+
+ROUGH_SAMPLES = 64
+"""Fewer samples than this give 5 % and 95 % quantiles too rough to quote: said in the log."""
 
 MIN_VALID_SHARE = 0.9
 """Share of an impact's samples that must be valid for its band to be given: fewer, and the
@@ -218,8 +226,11 @@ class Uncertainty:
             raise InputError("uncertainty: give at least one uncertain input")
         if isinstance(self.samples, bool) or not isinstance(self.samples, int):
             raise InputError(f"`samples` must be a whole number, not {self.samples!r}")
-        if not 2 <= self.samples <= 1_000_000:
-            raise InputError(f"`samples` must be 2 to 1,000,000, not {self.samples}")
+        if not 2 <= self.samples <= MAX_SAMPLES:
+            raise InputError(
+                f"`samples` must be 2 to {MAX_SAMPLES:,}, not {self.samples} (every sample's "
+                "numbers are kept: 65,536 samples of the default grid take ≈ 1 GB)"
+            )
         if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
             raise InputError(f"`seed` must be a whole number ≥ 0, not {self.seed!r}")
         one_of("sampler", self.sampler, SAMPLERS)
@@ -508,6 +519,12 @@ def propagate(
     """
     xy = as_locations(locations, "impact points")
     speeds = np.atleast_1d(np.asarray(ball_speed, dtype=float))
+    if uncertainty.samples < ROUGH_SAMPLES:
+        log.warning(
+            "uncertainty: %d samples give a rough 90 %% band (its 5 %% and 95 %% quantiles "
+            "rest on a sample or two); %d or more for numbers to quote",
+            uncertainty.samples, ROUGH_SAMPLES,
+        )  # fmt: skip
     model_options: dict[str, Any] = {
         "supports": list(supports),
         "racket_speed": racket_speed,
@@ -526,9 +543,10 @@ def propagate(
         for k in range(n):
             sample = _sample_inputs(inputs, draws, k)
             where = _inside(head, xy + draws.location_offset[k])
-            v = np.maximum(speeds + draws.speed_offset[k], 0.1)
-            result = _run(method, sample, where, v, model_options)
+            v = speeds + draws.speed_offset[k]
+            result = _run(method, sample, where, np.maximum(v, 0.1), model_options)
             ok = np.asarray(result.status) == STATUS_OK
+            ok[:, v + _racket_speeds(model_options, speeds) <= 0.0, :] = False  # no impact
             valid[k] = ok
             for attribute in BAND_QUANTITIES:
                 samples[attribute][k] = np.where(ok, getattr(result, attribute), np.nan)
@@ -550,6 +568,13 @@ def propagate(
         uncertainty=uncertainty,
         method=method,
     )
+
+
+def _racket_speeds(options: dict[str, Any], speeds: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The racket speed at each ball speed (0 for a swing's, whose racket moves forward)."""
+    if "swing" in options:
+        return np.zeros(speeds.shape)
+    return np.broadcast_to(np.asarray(options.get("racket_speed", 0.0), dtype=float), speeds.shape)
 
 
 def widened(uncertainty: Uncertainty, name: str, factor: float) -> Uncertainty:

@@ -6,6 +6,7 @@ Each builder returns the object together with the sentences ``run.json`` lists u
 
 from __future__ import annotations
 
+import logging
 import math
 import os
 from collections.abc import Sequence
@@ -19,7 +20,7 @@ from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError
 from racketdyn.impact.hand import Hand
 from racketdyn.io import default_racket, load_racket, read_e_bg_table, read_load_deflection
-from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
+from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, read_toml
 from racketdyn.io.uncertainty_file import racket_spreads
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_e_bg
@@ -40,6 +41,8 @@ __all__ = [
 
 RacketInput = Racket | str | os.PathLike[str] | None
 """A racket as a step takes it: an object, a TOML file, or None for the built-in racket."""
+
+log = logging.getLogger(__name__)
 
 BUILT_IN_RACKET = f"racket: built-in {DEFAULT_RACKET_NAME} (Kawazoe's test racket)"
 BUILT_IN_MODES = "modal model: built-in free-free beam model"
@@ -138,11 +141,26 @@ def setup(
         provenance["modal_model_sha256"] = sha256(path)
     elif not rigid and loaded.modal_model_file is None and with_modes:
         defaults.append(BUILT_IN_MODES)
+        if isinstance(racket, str | os.PathLike) and not _states_frequency(Path(racket)):
+            # the trial of 2026-11-27: a racket file without it ran at the paper's 120 Hz
+            # without a word, and the report showed 120 Hz as if it were given
+            defaults.append(
+                f"first bending frequency: {loaded.first_bending_hz:g} Hz, the paper's racket's "
+                "(the racket file gives none; [modal] first_bending_hz, or --uncertainty "
+                "literature for the range of rackets on sale)"
+            )
+            log.warning("%s gives no first bending frequency: %s", racket, defaults[-1])
     model = modal_model_for(loaded) if with_modes and not rigid else None
     if model is not None:
         model.require_locations("a prediction")
         model.require_mass_normalised("a prediction")
     return RacketSetup(loaded, model, provenance, defaults, rigid)
+
+
+def _states_frequency(path: Path) -> bool:
+    """The racket file gives ``[modal] first_bending_hz`` (or a modal model file)."""
+    modal = read_toml(path, "racket file").get("modal", {})
+    return isinstance(modal, dict) and ("first_bending_hz" in modal or "file" in modal)
 
 
 def ball_from(
