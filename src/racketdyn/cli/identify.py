@@ -189,6 +189,8 @@ def print_modes(console: Console, identification: Identification) -> None:
         f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
         f"condition {identification.fit.condition_number:.3g}",
     )
+    for line in model.metadata.get("kept", []):
+        opt.say(console, f"kept {line}")
     said = ("constants", "edge", "merged", "unsettled", "line")  # the rest: noise's candidates
     later = [d for d in identification.dropped_modes if d.stage in said]
     for row in later:

@@ -308,6 +308,7 @@ def run_identify(
         "coordinates": found.model.has_locations,
         "coordinates_note": coordinates_note(found.model),
         "modes": found.model.summary()["modes"],
+        "kept": found.model.metadata.get("kept", []),
         "dropped": found.model.metadata["dropped"],
     }
     return finish_run(result, inputs, command_record(command, "identify"), figures)
