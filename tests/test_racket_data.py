@@ -24,6 +24,7 @@ import pytest
 
 import racketdyn as rd
 from racketdyn.io import load_racket
+from racketdyn.io.uff import write_frf_uff
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.identify import Identification, identify
 from racketdyn.modal.model import ModalModel
@@ -58,8 +59,13 @@ def trial_racket_file(folder: Path) -> Path:
 
 
 @pytest.fixture(scope="module")
-def racket(tmp_path_factory: pytest.TempPathFactory) -> rd.Racket:
-    return load_racket(trial_racket_file(tmp_path_factory.mktemp("racket")))
+def racket_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return trial_racket_file(tmp_path_factory.mktemp("racket"))
+
+
+@pytest.fixture(scope="module")
+def racket(racket_file: Path) -> rd.Racket:
+    return load_racket(racket_file)
 
 
 def measured_frfs(racket: rd.Racket, support: str) -> tuple[FrfSet, ModalModel]:
@@ -95,6 +101,18 @@ def measured_frfs(racket: rd.Racket, support: str) -> tuple[FrfSet, ModalModel]:
 @pytest.fixture(scope="module")
 def measured(racket: rd.Racket) -> dict[str, tuple[FrfSet, ModalModel]]:
     return {support: measured_frfs(racket, support) for support in ("free", "hand")}
+
+
+@pytest.fixture(scope="module")
+def frf_files(
+    measured: dict[str, tuple[FrfSet, ModalModel]], tmp_path_factory: pytest.TempPathFactory
+) -> dict[str, Path]:
+    """The measured FRFs as ``frf`` writes them (``frfs.uff``), one file per support."""
+    folder = tmp_path_factory.mktemp("frfs")
+    return {
+        support: write_frf_uff(frfs, folder / f"frfs_{support}.uff")
+        for support, (frfs, _) in measured.items()
+    }
 
 
 def identified(
@@ -149,3 +167,59 @@ def test_a_clean_peak_stable_in_too_few_orders_is_kept(
     k = nearest(model, 665.1)
     assert found.selected.n_orders[k] < 12
     assert not found.selected.pinned.any()
+
+
+def test_identify_and_compare_give_a_mode_one_name(
+    frf_files: dict[str, Path], racket_file: Path, tmp_path: Path
+) -> None:
+    """(c) ``identify`` of the hand-held FRFs named its modes in order of frequency: the hand
+    damps the 3- and 4-node twisting (ζ 10 and 5 %) out of the identification, so its
+    1074.8 Hz mode was "3-node twisting", its 1398 Hz "4-node", its 1730 Hz "5-node", while
+    ``compare`` named the same modes after their free MAC pairs "5-", "6-" and "7-node
+    twisting" (the truth's).  ``identify --names-from`` the free test's model names them as
+    ``compare`` does, and without it the naming line says the counts may be short and what
+    gives them."""
+    from racketdyn.workflows.identify import run_compare, run_identify
+
+    compared = run_compare(frf_files["free"], frf_files["hand"], tmp_path / "c", racket=racket_file)
+    assert compared.free is not None
+    assert compared.hand is not None
+    free = run_identify(frf_files["free"], tmp_path / "free", racket=racket_file)
+    assert free.identification is not None
+    assert free.identification.model.names == compared.free.model.names
+    hand = run_identify(
+        frf_files["hand"],
+        tmp_path / "hand",
+        support="hand",
+        racket=racket_file,
+        names_from=tmp_path / "free" / "modal_model.json",
+    )
+    assert hand.identification is not None
+    assert hand.identification.model.names == compared.hand.model.names
+    model = hand.identification.model
+    assert model.names[nearest(model, 1074.7)] == "5-node twisting"
+    assert model.names[nearest(model, 1730.4)] == "7-node twisting"
+    alone = run_identify(frf_files["hand"], tmp_path / "alone", support="hand", racket=racket_file)
+    assert alone.identification is not None
+    assert "--names-from" in alone.identification.model.metadata["naming"]
+
+
+def test_a_name_holding_a_frequency_is_not_given_to_another_mode(
+    measured: dict[str, tuple[FrfSet, ModalModel]], racket: rd.Racket
+) -> None:
+    """(c) A free bending mode whose order the shapes could not give is named with its own
+    frequency ("bending mode (838.4 Hz)", as the 4-node bending was before (a)); ``compare``
+    gave that name to its hand-held pair at 799.7 Hz.  The pair is named the same way with
+    its own frequency."""
+    from dataclasses import replace
+
+    from racketdyn.workflows.identify import name_after_pairs
+
+    free = identified(measured, racket, "free").model
+    hand = identified(measured, racket, "hand").model
+    k = nearest(free, 838.5)
+    names = list(free.names)
+    names[k] = f"bending mode ({free.frequency[k]:.1f} Hz)"
+    paired = name_after_pairs(replace(free, names=tuple(names)), hand)
+    j = nearest(hand, 799.6)
+    assert paired.names[j] == f"bending mode ({hand.frequency[j]:.1f} Hz)"
