@@ -223,3 +223,34 @@ def test_a_name_holding_a_frequency_is_not_given_to_another_mode(
     paired = name_after_pairs(replace(free, names=tuple(names)), hand)
     j = nearest(hand, 799.6)
     assert paired.names[j] == f"bending mode ({hand.frequency[j]:.1f} Hz)"
+
+
+def test_the_report_says_a_prediction_took_modes_of_unknown_kind(
+    measured: dict[str, tuple[FrfSet, ModalModel]],
+    racket: rd.Racket,
+    racket_file: Path,
+    tmp_path: Path,
+) -> None:
+    """(d) The trial's identified free model keeps two modes the shapes cannot name (1365 Hz,
+    the truth's 5-node bending coupled with the bed; 1476 Hz, its membrane 4), kind
+    ``unknown``.  ``predict --modal`` takes them as frame modes and says so on the console;
+    the report, built from the same folder, did not say a word.  It says which modes, and
+    what they were taken as, in "Frame vibration" and "At a glance"."""
+    from racketdyn.report import write_report
+    from racketdyn.workflows.predict import run_predict
+
+    model = identified(measured, racket, "free").model
+    unknown = [n for n, kind in zip(model.names, model.kinds, strict=True) if kind == "unknown"]
+    assert unknown  # the trial's 1365 and 1476 Hz modes
+    path = tmp_path / "modal_model.json"
+    model.write_json(path)
+    out = tmp_path / "run"
+    run_predict(
+        out / "predict", racket=racket_file, modal=path, speeds=[20.0], supports=["free"], grid=3
+    )
+    page = " ".join(write_report(out).read_text(encoding="utf-8").split())
+    glance = page.split("At a glance")[1].split("</ul>")[0]
+    for name in unknown:
+        assert name in page.split("Frame vibration")[-1]
+        assert name in glance
+    assert "unknown kind" in glance
