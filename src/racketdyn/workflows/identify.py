@@ -120,7 +120,7 @@ def identify_file(
     reference: int | None = None,
     racket_given: bool = True,
     ball_at: Sequence[float] | None = None,
-    names_from: str | os.PathLike[str] | None = None,
+    names_from: str | os.PathLike[str] | ModalModel | None = None,
 ) -> Identification:
     """Read FRFs (UFF 58, any layout) and identify their modal model.
 
@@ -154,21 +154,23 @@ def identify_file(
     ball_at : sequence of float, optional
         Where a ball was fixed on the strings during the test (x, y), m (``--ball-at``, the
         paper's compound test): its mode is named ``"ball on the strings"``.
-    names_from : path, optional
-        A modal-model JSON of the same racket whose names to give the modes by MAC pair
-        (:func:`racketdyn.racket_modal.identify.name_after`): the free test's
-        ``modal_model.json`` for a hand-held test, as ``compare`` names it
-        (``--names-from``).
+    names_from : path or ModalModel, optional
+        A modal model of the same racket (or its JSON) whose names to give the modes by MAC
+        pair (:func:`racketdyn.racket_modal.identify.name_after`): the free test's for a
+        hand-held test, as ``compare`` names it (``--names-from``).
     """
     ball = None if ball_at is None else ball_location(ball_at, racket)
     reference_model = None
-    if names_from is not None:
+    if isinstance(names_from, ModalModel):
+        reference_model, pairs_in = names_from, f"among the {names_from.support} modes"
+    elif names_from is not None:
         reference_model = ModalModel.read_json(Path(names_from))
-        if not reference_model.has_locations:
-            raise InputError(
-                f"`names_from` {names_from}: a model without node coordinates; its modes "
-                "cannot be paired with these by shape"
-            )
+        pairs_in = f"in {Path(names_from).name}"
+    if reference_model is not None and not reference_model.has_locations:
+        raise InputError(
+            f"`names_from` {names_from}: a model without node coordinates; its modes cannot "
+            "be paired with these by shape"
+        )
     frfs = read_frfs(
         Path(path),
         None if geometry is None else Path(geometry),
@@ -192,9 +194,9 @@ def identify_file(
         renamed = name_after(found.model, reference_model)
         changed = sum(a != b for a, b in zip(renamed.names, found.model.names, strict=True))
         naming += (
-            f"; {changed} named after their MAC pairs in {Path(str(names_from)).name}"
+            f"; {changed} named after their MAC pairs {pairs_in}"
             if changed
-            else f"; as their MAC pairs in {Path(str(names_from)).name} are named"
+            else f"; named as their MAC pairs {pairs_in} are"
         )
         found = replace(found, model=renamed)
     elif support == "hand" and not naming.startswith("modes numbered"):
@@ -532,16 +534,10 @@ def run_compare(
     found_free = identify_file(free, the_racket, "free", **options)
     found_free.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
     report(progress, f"identifying {Path(hand).name}")
-    found_hand = identify_file(hand, the_racket, "hand", **options)
+    # a hand damps some modes out: the hand's modes are named after their free pairs (issue
+    # 13), as identify --names-from names them (issue 25 item 8: one name for one mode)
+    found_hand = identify_file(hand, the_racket, "hand", names_from=found_free.model, **options)
     found_hand.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
-    # a hand damps some modes out: name the hand's modes after their free pairs (issue 13)
-    paired = name_after_pairs(found_free.model, found_hand.model)
-    if paired.names != found_hand.model.names:
-        naming = (
-            f"{paired.metadata.get('naming', '')}; named after their MAC pairs among the free modes"
-        )
-        paired = replace(paired, metadata={**paired.metadata, "naming": naming.lstrip("; ")})
-    found_hand = replace(found_hand, model=paired)
     written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
     comparison = compare_modes(found_free, found_hand, the_racket)
     written.append(write_mode_comparison(comparison, out_dir))
