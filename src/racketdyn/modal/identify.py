@@ -457,33 +457,35 @@ def _clear_peaks(
     poles = np.concatenate([selected.pole, -zeta * omega + 1j * omega * np.sqrt(1 - zeta**2)])
     gains = fit_gain(frfs, fit_modal_constants(frfs, poles, band))[selected.n_modes :]
     keep: list[tuple[DroppedMode, float]] = []
-    named: dict[int, float] = {}
+    named: dict[float, float] = {}  # by frequency: the same clusters after a re-selection
     for d, gain in zip(chosen, gains, strict=True):
         if gain >= CLEAR_PEAK_GAIN:
             keep.append((d, float(gain)))
-        elif gain >= FIT_GAIN_MIN:
-            named[id(d)] = float(gain)
-    rows = []
-    for d in selected.dropped_modes:
-        gain = named.get(id(d))
-        if gain is None:
-            rows.append(d)
-            continue
-        rows.append(
-            replace(
-                d,
-                stage="unsettled",
-                fit_gain=gain,
-                reason=(
-                    f"a peak of the data (the fit near it {gain:.2g} × better with it) whose "
-                    f"poles move from order to order: {d.reason}; --pin {d.frequency_hz:.1f} "
-                    "keeps it"
-                ),
+        elif gain >= FIT_GAIN_MIN and d.stage == "selection":
+            named[round(d.frequency_hz, 6)] = float(gain)
+
+    def relabelled(rows: tuple[DroppedMode, ...]) -> tuple[DroppedMode, ...]:
+        out = []
+        for d in rows:
+            gain = named.get(round(d.frequency_hz, 6)) if d.stage == "selection" else None
+            out.append(
+                d
+                if gain is None
+                else replace(
+                    d,
+                    stage="unsettled",
+                    fit_gain=gain,
+                    reason=(
+                        f"a peak of the data (the fit near it {gain:.2g} × better with it) "
+                        f"whose poles move from order to order: {d.reason}; --pin "
+                        f"{d.frequency_hz:.1f} keeps it"
+                    ),
+                )
             )
-        )
-    selected = replace(selected, dropped_modes=tuple(rows))
+        return tuple(out)
+
     if not keep:
-        return selected, []
+        return replace(selected, dropped_modes=relabelled(selected.dropped_modes)), []
     pins = [d.frequency_hz for d, _ in keep]
     again = select_poles(
         stab,
@@ -496,6 +498,7 @@ def _clear_peaks(
     for f in pin_hz:  # the user's own pins stay pinned, the kept candidates do not
         user[int(np.argmin(np.abs(again.frequency - f)))] = True
     again = _named_rows(_edge_modes(replace(again, pinned=again.pinned & user), frfs, band))
+    again = replace(again, dropped_modes=relabelled(again.dropped_modes))
     lines = [
         f"{d.frequency_hz:.2f} Hz: a peak of the data (the fit near it {gain:.2g} × better with "
         f"it, ≥ {CLEAR_PEAK_GAIN:g}) apart from every mode, though stable in "
