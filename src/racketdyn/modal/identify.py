@@ -413,12 +413,13 @@ def _clear_peaks(
     """Candidates stable in too few orders whose peak the data hold: kept, or named.
 
     A candidate left out only for its orders (stage ``selection`` or ``unsettled``, stable in
-    more than three), further from every kept mode than their mean half-power width (``ζf``
-    each: not one peak with it, as :func:`racketdyn.modal.poles.select_poles` merges) is
-    fitted with the kept modes (one per peak: the one stable in most orders).  With a
-    :func:`fit_gain` of :data:`CLEAR_PEAK_GAIN` or more it is kept, as a pin would keep it
-    (not marked pinned); with :data:`FIT_GAIN_MIN` or more it is an ``unsettled`` row naming
-    the ``--pin`` that keeps it.  A close pair whose lower mode only a few orders resolve (a
+    more than three), further from every kept mode and every row already named (``edge``,
+    ``merged``, ``line``) than their mean half-power width (``ζf`` each: not one peak with it,
+    as :func:`racketdyn.modal.poles.select_poles` merges) is fitted with the kept modes (one
+    per peak: the one stable in most orders).  With a :func:`fit_gain` of
+    :data:`CLEAR_PEAK_GAIN` or more it is kept, as a pin would keep it (not marked pinned);
+    with :data:`FIT_GAIN_MIN` or more it is an ``unsettled`` row naming the ``--pin`` that
+    keeps it.  A close pair whose lower mode only a few orders resolve (a
     twisting mode 14 Hz below a membrane mode) lost that mode, and every mode of its kind
     above it was named a node short (issue 25 item 8).
 
@@ -430,7 +431,15 @@ def _clear_peaks(
     """
     if selected.n_modes == 0:
         return selected, []
-    reach = selected.damping_ratio * selected.frequency
+    # one peak with a kept mode or with a row already named (edge, merged, line) is theirs
+    named_rows = [d for d in selected.dropped_modes if d.stage in ("edge", "merged", "line")]
+    centre = np.concatenate([selected.frequency, [d.frequency_hz for d in named_rows]])
+    reach = np.concatenate(
+        [
+            selected.damping_ratio * selected.frequency,
+            [max(d.damping_ratio, 0.0) * d.frequency_hz for d in named_rows],
+        ]
+    )
     candidates = [
         d
         for d in selected.dropped_modes
@@ -438,9 +447,7 @@ def _clear_peaks(
         and "stable in" in d.reason
         and d.orders_stable > 3
         and 0.0 < d.damping_ratio < 1.0
-        and np.all(
-            np.abs(selected.frequency - d.frequency_hz) >= reach + d.damping_ratio * d.frequency_hz
-        )
+        and np.all(np.abs(centre - d.frequency_hz) >= reach + d.damping_ratio * d.frequency_hz)
     ]
     chosen: list[DroppedMode] = []
     for d in sorted(candidates, key=lambda d: (-d.orders_stable, -d.peak_to_noise)):
