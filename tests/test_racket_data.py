@@ -123,6 +123,14 @@ def identified(
     return found
 
 
+@pytest.fixture(scope="module")
+def found(
+    measured: dict[str, tuple[FrfSet, ModalModel]], racket: rd.Racket
+) -> dict[str, Identification]:
+    """:func:`identified` for both supports, once."""
+    return {support: identified(measured, racket, support) for support in measured}
+
+
 def nearest(model: ModalModel, frequency_hz: float) -> int:
     k = int(np.argmin(np.abs(model.frequency - frequency_hz)))
     assert abs(model.frequency[k] / frequency_hz - 1) < 0.005, (frequency_hz, model.frequency)
@@ -130,7 +138,7 @@ def nearest(model: ModalModel, frequency_hz: float) -> int:
 
 
 def test_the_all_in_phase_membrane_mode_is_named_from_its_shape(
-    measured: dict[str, tuple[FrfSet, ModalModel]], racket: rd.Racket
+    measured: dict[str, tuple[FrfSet, ModalModel]], found: dict[str, Identification]
 ) -> None:
     """(a) The membrane mode (truth 679.2 Hz) was ``mode 4``, kind ``unknown``: its strings
     moved 12.8 times the frame in mean square (between 4 and 40, "the shape does not say"),
@@ -139,7 +147,7 @@ def test_the_all_in_phase_membrane_mode_is_named_from_its_shape(
     (101 times less in mean square): the membrane.  With it named, the 4-node bending above
     it keeps its node count (it was ``bending mode (838.4 Hz)``)."""
     truth = measured["free"][1]
-    model = identified(measured, racket, "free").model
+    model = found["free"].model
     k = nearest(model, truth.frequency[truth.names.index("string-bed membrane")])
     assert (model.names[k], model.kinds[k]) == ("string-bed membrane", "string-bed")
     bending = nearest(model, truth.frequency[truth.names.index("4-node bending")])
@@ -147,7 +155,7 @@ def test_the_all_in_phase_membrane_mode_is_named_from_its_shape(
 
 
 def test_a_clean_peak_stable_in_too_few_orders_is_kept(
-    measured: dict[str, tuple[FrfSet, ModalModel]], racket: rd.Racket
+    measured: dict[str, tuple[FrfSet, ModalModel]], found: dict[str, Identification]
 ) -> None:
     """(b) The 3-node twisting (truth 665.1 Hz, 14 Hz below the membrane) was dropped: stable
     in 10 of 60 orders (< 12), peak 2600 × the noise — below the kept modes' median (3100),
@@ -156,8 +164,8 @@ def test_a_clean_peak_stable_in_too_few_orders_is_kept(
     data hold its peak (the fit near it 5.9 × worse without it; a pole of noise: 1.0): kept,
     and said."""
     truth = measured["free"][1]
-    found = identified(measured, racket, "free")
-    model = found.model
+    free = found["free"]
+    model = free.model
     for name in ("3-node twisting", "4-node twisting", "5-node twisting", "6-node twisting"):
         k = nearest(model, truth.frequency[truth.names.index(name)])
         assert model.names[k] == name
@@ -165,12 +173,12 @@ def test_a_clean_peak_stable_in_too_few_orders_is_kept(
     assert line.startswith("664.8")
     assert "better with it" in line
     k = nearest(model, 665.1)
-    assert found.selected.n_orders[k] < 12
-    assert not found.selected.pinned.any()
+    assert free.selected.n_orders[k] < 12
+    assert not free.selected.pinned.any()
     # a weaker one (the truth's membrane 8, 1893.4 Hz: 6 of 60 orders, the fit 2.1 × better
     # with it) is named with the pin that keeps it; it was a silent row after the re-selection
     # that keeps the 3-node twisting
-    (row,) = [d for d in found.dropped_modes if abs(d.frequency_hz - 1893.4) < 2.0]
+    (row,) = [d for d in free.dropped_modes if abs(d.frequency_hz - 1893.4) < 2.0]
     assert row.stage == "unsettled"
     assert f"--pin {row.frequency_hz:.1f} keeps it" in row.reason
 
@@ -211,7 +219,7 @@ def test_identify_and_compare_give_a_mode_one_name(
 
 
 def test_a_name_holding_a_frequency_is_not_given_to_another_mode(
-    measured: dict[str, tuple[FrfSet, ModalModel]], racket: rd.Racket
+    found: dict[str, Identification],
 ) -> None:
     """(c) A free bending mode whose order the shapes could not give is named with its own
     frequency ("bending mode (838.4 Hz)", as the 4-node bending was before (a)); ``compare``
@@ -221,8 +229,8 @@ def test_a_name_holding_a_frequency_is_not_given_to_another_mode(
 
     from racketdyn.workflows.identify import name_after_pairs
 
-    free = identified(measured, racket, "free").model
-    hand = identified(measured, racket, "hand").model
+    free = found["free"].model
+    hand = found["hand"].model
     k = nearest(free, 838.5)
     names = list(free.names)
     names[k] = f"bending mode ({free.frequency[k]:.1f} Hz)"
@@ -232,10 +240,7 @@ def test_a_name_holding_a_frequency_is_not_given_to_another_mode(
 
 
 def test_the_report_says_a_prediction_took_modes_of_unknown_kind(
-    measured: dict[str, tuple[FrfSet, ModalModel]],
-    racket: rd.Racket,
-    racket_file: Path,
-    tmp_path: Path,
+    found: dict[str, Identification], racket_file: Path, tmp_path: Path
 ) -> None:
     """(d) The trial's identified free model keeps two modes the shapes cannot name (1365 Hz,
     the truth's 5-node bending coupled with the bed; 1476 Hz, its membrane 4), kind
@@ -245,7 +250,7 @@ def test_the_report_says_a_prediction_took_modes_of_unknown_kind(
     from racketdyn.report import write_report
     from racketdyn.workflows.predict import run_predict
 
-    model = identified(measured, racket, "free").model
+    model = found["free"].model
     unknown = [n for n, kind in zip(model.names, model.kinds, strict=True) if kind == "unknown"]
     assert unknown  # the trial's 1365 and 1476 Hz modes
     path = tmp_path / "modal_model.json"
