@@ -71,6 +71,13 @@ def add(commands: Any) -> None:
     p.add_argument("frfs", help="FRFs: UFF 58 (function type 4), e.g. racketdyn frf's frfs.uff")
     opt.add_support(p, "free", "support of the test: free or hand", choices=("free", "hand"))
     _add_options(p)
+    p.add_argument(
+        "--names-from",
+        metavar="FILE",
+        help="a modal-model JSON of the same racket (the free test's modal_model.json for a "
+        "hand-held test): each mode takes the name of its MAC pair of the same kind there, as "
+        "compare names the hand-held modes (default: names from the shapes alone)",
+    )
     p.set_defaults(handler=run_identify)
 
     p = opt.command(
@@ -189,6 +196,8 @@ def print_modes(console: Console, identification: Identification) -> None:
         f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
         f"condition {identification.fit.condition_number:.3g}",
     )
+    for line in model.metadata.get("kept", []):
+        opt.say(console, f"kept {line}")
     said = ("constants", "edge", "merged", "unsettled", "line")  # the rest: noise's candidates
     later = [d for d in identification.dropped_modes if d.stage in said]
     for row in later:
@@ -230,6 +239,7 @@ def run_identify(args: argparse.Namespace, console: Console) -> int:
             args.frfs,
             args.out,
             support=args.support,
+            names_from=args.names_from,
             figures=identify_figures,
             progress=progress,
             **_options(args),

@@ -167,14 +167,14 @@ def run(args: argparse.Namespace, console: Console) -> int:
     if result.comparison is not None:
         console.print(_comparison_table(result.comparison, result.shown_speed, result.racket))
         opt.say(console, *_differ_line(result.comparison))
-    unknown = _unknown_modes(result.modal_model)
+    unknown = unknown_modes_line(result.modal_model)
     if unknown:
         opt.say(console, unknown, "yellow")
     opt.print_written(console, result.written)
     return 0
 
 
-def _unknown_modes(model: ModalModel | None) -> str:
+def unknown_modes_line(model: ModalModel | None) -> str:
     """A line naming the modal model's modes of unknown kind, which the prediction takes as
     frame modes (new-user trial of 2026-11-26: a string-bed mode identified as ``unknown``
     lengthened the transient contact by 8 %, the strings counted twice)."""

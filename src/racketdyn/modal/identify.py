@@ -41,6 +41,7 @@ from racketdyn.modal.residues import (
 )
 
 __all__ = [
+    "CLEAR_PEAK_GAIN",
     "DEFAULT_LOW_HZ",
     "EDGE_CLEAR",
     "EDGE_LINES",
@@ -105,6 +106,13 @@ EDGE_PEAK = 10.0
 from (prominence), its phase turning by more than 90° across it."""
 EDGE_TRIES = 2
 """Clear peaks tried at each end (the most prominent), each with one narrower band's fit."""
+CLEAR_PEAK_GAIN = 3.0
+"""A candidate stable in too few orders (but more than three) and one peak with no kept mode
+is kept when the fit near it, with the kept modes, is at least this many times worse without
+it (:func:`fit_gain`): the data hold its peak, only its poles wander over the orders.  A pole
+of noise scores 1.0; the trial racket's 3-node twisting at 665 Hz, 14 Hz below its membrane,
+stable in 10 of 60 orders, 5.7 (issue 25 item 8).  Between :data:`FIT_GAIN_MIN` and this, the
+candidate is named ``unsettled`` with the ``--pin`` that keeps it."""
 HEADER_DIGITS_RTOL = 1e-5
 """A band top this far (relative) above the last line is the last line: the UFF header keeps
 the step with 6 significant digits (E13.5), so a 1000 Hz export reads 999.997 Hz."""
@@ -394,6 +402,125 @@ def _named_rows(selected: SelectedPoles) -> SelectedPoles:
     return replace(selected, dropped_modes=tuple(rows))
 
 
+def _clear_peaks(
+    selected: SelectedPoles,
+    stab: Stabilisation,
+    frfs: FrfSet,
+    band: tuple[float, float],
+    pin_hz: Sequence[float],
+    exclude_hz: Sequence[float],
+) -> tuple[SelectedPoles, list[str]]:
+    """Candidates stable in too few orders whose peak the data hold: kept, or named.
+
+    A candidate left out only for its orders (stage ``selection`` or ``unsettled``, stable in
+    more than three), further from every kept mode and every row already named (``edge``,
+    ``merged``, ``line``) than their mean half-power width (``ζf`` each: not one peak with it,
+    as :func:`racketdyn.modal.poles.select_poles` merges) is fitted with the kept modes (one
+    per peak: the one stable in most orders).  With a :func:`fit_gain` of
+    :data:`CLEAR_PEAK_GAIN` or more it is kept, as a pin would keep it (not marked pinned);
+    with :data:`FIT_GAIN_MIN` or more it is an ``unsettled`` row naming the ``--pin`` that
+    keeps it.  A close pair whose lower mode only a few orders resolve (a
+    twisting mode 14 Hz below a membrane mode) lost that mode, and every mode of its kind
+    above it was named a node short (issue 25 item 8).
+
+    Returns
+    -------
+    SelectedPoles, list of str
+        The selection (re-run with the kept candidates pinned when there are any) and one line
+        per kept candidate saying why.
+    """
+    if selected.n_modes == 0:
+        return selected, []
+    # one peak with a kept mode or with a row already named (edge, merged, line) is theirs
+    named_rows = [d for d in selected.dropped_modes if d.stage in ("edge", "merged", "line")]
+    centre = np.concatenate([selected.frequency, [d.frequency_hz for d in named_rows]])
+    reach = np.concatenate(
+        [
+            selected.damping_ratio * selected.frequency,
+            [max(d.damping_ratio, 0.0) * d.frequency_hz for d in named_rows],
+        ]
+    )
+    candidates = [
+        d
+        for d in selected.dropped_modes
+        if d.stage in ("selection", "unsettled")
+        and "stable in" in d.reason
+        and d.orders_stable > 3
+        and 0.0 < d.damping_ratio < 1.0
+        and np.all(np.abs(centre - d.frequency_hz) >= reach + d.damping_ratio * d.frequency_hz)
+    ]
+    chosen: list[DroppedMode] = []
+    for d in sorted(candidates, key=lambda d: (-d.orders_stable, -d.peak_to_noise)):
+        own = d.damping_ratio * d.frequency_hz
+        if all(
+            abs(d.frequency_hz - c.frequency_hz) >= own + c.damping_ratio * c.frequency_hz
+            for c in chosen
+        ):
+            chosen.append(d)
+    if not chosen:
+        return selected, []
+    omega = 2 * np.pi * np.array([d.frequency_hz for d in chosen])
+    zeta = np.array([d.damping_ratio for d in chosen])
+    poles = np.concatenate([selected.pole, -zeta * omega + 1j * omega * np.sqrt(1 - zeta**2)])
+    gains = fit_gain(frfs, fit_modal_constants(frfs, poles, band))[selected.n_modes :]
+    keep: list[tuple[DroppedMode, float]] = []
+    named: dict[float, float] = {}  # by frequency: the same clusters after a re-selection
+    for d, gain in zip(chosen, gains, strict=True):
+        if gain >= CLEAR_PEAK_GAIN:
+            keep.append((d, float(gain)))
+        elif gain >= FIT_GAIN_MIN and d.stage == "selection":
+            named[round(d.frequency_hz, 6)] = float(gain)
+
+    def relabelled(rows: tuple[DroppedMode, ...]) -> tuple[DroppedMode, ...]:
+        out = []
+        for d in rows:
+            gain = named.get(round(d.frequency_hz, 6)) if d.stage == "selection" else None
+            out.append(
+                d
+                if gain is None
+                else replace(
+                    d,
+                    stage="unsettled",
+                    fit_gain=gain,
+                    reason=(
+                        f"a peak of the data (the fit near it {gain:.2g} × better with it) "
+                        f"whose poles move from order to order: {d.reason}; --pin "
+                        f"{d.frequency_hz:.1f} keeps it"
+                    ),
+                )
+            )
+        return tuple(out)
+
+    if not keep:
+        return replace(selected, dropped_modes=relabelled(selected.dropped_modes)), []
+    pins = [d.frequency_hz for d, _ in keep]
+    again = select_poles(
+        stab,
+        pin_hz=[*pin_hz, *pins],
+        exclude_hz=exclude_hz,
+        edge_lines=EDGE_LINES,
+        edge_widths=EDGE_WIDTHS,
+    )
+    user = np.zeros(again.n_modes, dtype=bool)
+    for f in pin_hz:  # the user's own pins stay pinned, the kept candidates do not
+        user[int(np.argmin(np.abs(again.frequency - f)))] = True
+    again = _named_rows(_edge_modes(replace(again, pinned=again.pinned & user), frfs, band))
+    again = replace(again, dropped_modes=relabelled(again.dropped_modes))
+    lines = [
+        f"{d.frequency_hz:.2f} Hz: a peak of the data (the fit near it {gain:.2g} × better with "
+        f"it, ≥ {CLEAR_PEAK_GAIN:g}) apart from every mode, though stable in "
+        f"{d.orders_stable} of {stab.orders.size} orders only"
+        for d, gain in keep
+    ]
+    return again, lines
+
+
+def _still(line: str, frequency: NDArray[np.float64]) -> bool:
+    """Whether the kept candidate ``line`` names is still a mode of the model."""
+    f = float(line.split(" Hz")[0])
+    return bool(np.any(np.abs(frequency - f) <= 0.01))
+
+
 @dataclass(frozen=True, eq=False)
 class Identification:
     """Everything an identification produced.
@@ -553,7 +680,10 @@ def identify(
         edge_widths=EDGE_WIDTHS,
     )  # raises if none
     selected = _named_rows(_edge_modes(selected, frfs, band))
+    selected, kept = _clear_peaks(selected, stab, frfs, band, pin_hz, exclude_hz)
     selected = _missed_peaks(selected, frfs, band, max_order)
+    for line in kept:
+        log.warning("kept %s", line)
     for row in selected.dropped_modes:
         if row.stage in ("edge", "unsettled"):
             log.warning("%.1f Hz left out: %s", row.frequency_hz, row.reason)
@@ -661,6 +791,7 @@ def identify(
             "design_condition_number": fit.condition_number,
             "orders_stable": selected.n_orders.tolist(),
             "scaling_note": note,
+            "kept": [line for line in kept if _still(line, selected.frequency)],
             "dropped": [
                 f"{d.frequency_hz:.2f} Hz: {d.reason}"
                 for d in (*selected.dropped_modes, *late)

@@ -9,6 +9,13 @@ Naming, from the shape at the measured points and the racket's head:
   modes 17 and 19): the mode keeps its neutral name ``mode k (f Hz)``, kind ``unknown`` (so
   a prediction charges its vibration energy rather than silently leaving it out), and the
   bending modes above it lose their node count (``bending mode (f Hz)``);
+* **string-bed** also, whatever that ratio, when the mode's symmetric part (even in y) has
+  every string point in phase (:data:`IN_PHASE_SHARE`) and the frame nearly still (the
+  symmetric part's ratio above :data:`CLEAR_STRING_BED_RATIO`): the all-in-phase membrane
+  mode, whose measured shape a twisting mode close by leaks into — odd in y and largest on
+  the hoop (issue 25 item 8: a 305 g racket's membrane at 679 Hz, 14 Hz above its 3-node
+  twisting, scored 12.8 on its whole shape and 101 on its symmetric part); a membrane mode
+  veering with a bending mode shares its frame motion and stays ``unknown``;
 * **twisting** when more than half of the shape's energy is odd in y: points are paired with
   their mirror images across the long axis (within 1 cm) and the odd part (φ(x,y) − φ(x,−y))/2
   compared with the whole;
@@ -44,6 +51,7 @@ __all__ = [
     "BALL_MODE_NAME",
     "BALL_RIGID_SHARE",
     "CLEAR_STRING_BED_RATIO",
+    "IN_PHASE_SHARE",
     "MIRROR_TOLERANCE_M",
     "STRING_BED_RATIO",
     "axis_nodes",
@@ -68,6 +76,11 @@ STRING_BED_RATIO = 4.0
 CLEAR_STRING_BED_RATIO = 40.0
 """Above this ratio a mode is clearly a string-bed mode; between the two the shape does not say
 (–)."""
+IN_PHASE_SHARE = 0.9
+"""Least ``|Σ φ| / Σ |φ|`` over the string points of a mode's symmetric part for its strings to
+move in phase, as in the first membrane mode (–): the rig's membrane modes score 0.99–1.00
+(identified with noise 0.97–1.00), its bending modes 0.1–0.9, its other membrane modes
+≤ 0.5."""
 MIRROR_TOLERANCE_M = 0.01
 """Largest distance between a point and the mirror image of another across y = 0, m."""
 
@@ -226,7 +239,12 @@ def classify_modes(
             even = 0.5 * (phi[pairs[:, 0]] + phi[pairs[:, 1]])
             total = np.sum(odd**2 + even**2)
             odd_fraction = float(np.sum(odd**2) / total) if total > 0 else 0.0
-        if STRING_BED_RATIO * frame < strings <= CLEAR_STRING_BED_RATIO * frame:
+        if odd_fraction <= 0.5 and _in_phase_membrane(phi, pairs, on_strings):
+            counts["string-bed"] += 1
+            n = counts["string-bed"]
+            names.append("string-bed membrane" + (f" {n}" if n > 1 else ""))
+            kinds.append("string-bed")
+        elif STRING_BED_RATIO * frame < strings <= CLEAR_STRING_BED_RATIO * frame:
             unclear = True
             names.append(f"mode {k + 1} ({model.frequency[k]:.1f} Hz)")
             kinds.append("unknown")
@@ -246,6 +264,25 @@ def classify_modes(
             names.append(order if unclear else f"{counts['bending'] + 1}-node bending")
             kinds.append("bending")
     return _unique(names), tuple(kinds)
+
+
+def _in_phase_membrane(
+    phi: NDArray[np.float64], pairs: NDArray[np.int_], on_strings: NDArray[np.bool_]
+) -> bool:
+    """Whether a mode's symmetric part moves every string point in phase with the frame nearly
+    still (:data:`IN_PHASE_SHARE`, :data:`CLEAR_STRING_BED_RATIO`): the first membrane mode,
+    whatever a twisting neighbour (odd in y) added to its measured shape."""
+    if not on_strings.any() or on_strings.all():
+        return False
+    even = np.array(phi, dtype=float)
+    if pairs.size:
+        even[pairs[:, 0]] = even[pairs[:, 1]] = 0.5 * (phi[pairs[:, 0]] + phi[pairs[:, 1]])
+    strings = even[on_strings]
+    spread = float(np.sum(np.abs(strings)))
+    if spread == 0.0 or abs(float(np.sum(strings))) < IN_PHASE_SHARE * spread:
+        return False
+    frame = float(np.mean(even[~on_strings] ** 2))
+    return bool(np.mean(strings**2) > CLEAR_STRING_BED_RATIO * frame)
 
 
 def _unique(names: list[str]) -> tuple[str, ...]:

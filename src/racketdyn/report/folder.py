@@ -760,6 +760,19 @@ class RunFolder:
         """The run.json of ``folder``; empty if it has none."""
         return self.records.get(folder, {}) if folder is not None else {}
 
+    def unknown_modes(self, folder: Path | None) -> list[str]:
+        """Names of the modes of unknown kind in the modal model a step used (its run.json's
+        ``modal_model.modes``): a prediction takes them as frame modes (issue 25 item 8)."""
+        used = self.record(folder).get("modal_model")
+        modes = used.get("modes") if isinstance(used, dict) else None
+        if not isinstance(modes, list):
+            return []
+        return [
+            str(mode.get("name"))
+            for mode in modes
+            if isinstance(mode, dict) and mode.get("kind") == "unknown"
+        ]
+
     # -- what the pipeline wrote --------------------------------------------------------------
     @property
     def predict_dir(self) -> Path | None:

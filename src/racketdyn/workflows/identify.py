@@ -30,7 +30,7 @@ from racketdyn.modal.model import ModalModel
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
-from racketdyn.racket_modal.identify import name_if_racket
+from racketdyn.racket_modal.identify import name_after, name_if_racket
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME, axis_nodes
 from racketdyn.workflows.figure_data import (
     FIGURES_FILE,
@@ -120,6 +120,7 @@ def identify_file(
     reference: int | None = None,
     racket_given: bool = True,
     ball_at: Sequence[float] | None = None,
+    names_from: str | os.PathLike[str] | ModalModel | None = None,
 ) -> Identification:
     """Read FRFs (UFF 58, any layout) and identify their modal model.
 
@@ -153,8 +154,23 @@ def identify_file(
     ball_at : sequence of float, optional
         Where a ball was fixed on the strings during the test (x, y), m (``--ball-at``, the
         paper's compound test): its mode is named ``"ball on the strings"``.
+    names_from : path or ModalModel, optional
+        A modal model of the same racket (or its JSON) whose names to give the modes by MAC
+        pair (:func:`racketdyn.racket_modal.identify.name_after`): the free test's for a
+        hand-held test, as ``compare`` names it (``--names-from``).
     """
     ball = None if ball_at is None else ball_location(ball_at, racket)
+    reference_model = None
+    if isinstance(names_from, ModalModel):
+        reference_model, pairs_in = names_from, f"among the {names_from.support} modes"
+    elif names_from is not None:
+        reference_model = ModalModel.read_json(Path(names_from))
+        pairs_in = f"in {Path(names_from).name}"
+    if reference_model is not None and not reference_model.has_locations:
+        raise InputError(
+            f"`names_from` {names_from}: a model without node coordinates; its modes cannot "
+            "be paired with these by shape"
+        )
     frfs = read_frfs(
         Path(path),
         None if geometry is None else Path(geometry),
@@ -172,8 +188,29 @@ def identify_file(
     found, naming = name_if_racket(found, racket, racket_given, ball)
     if ball is not None and naming.startswith("modes numbered"):
         naming += "; --ball-at unused: the ball's mode is named only among a racket's modes"
+    if reference_model is not None and naming.startswith("modes numbered"):
+        naming += "; --names-from unused: names are given only among a racket's modes"
+    elif reference_model is not None:
+        renamed = name_after(found.model, reference_model)
+        changed = sum(a != b for a, b in zip(renamed.names, found.model.names, strict=True))
+        naming += (
+            f"; {changed} named after their MAC pairs {pairs_in}"
+            if changed
+            else f"; named as their MAC pairs {pairs_in} are"
+        )
+        found = replace(found, model=renamed)
+    elif support == "hand" and not naming.startswith("modes numbered"):
+        naming += HAND_COUNTS
     metadata = {**found.model.metadata, "naming": naming, "layout": frfs.metadata.get("layout")}
     return replace(found, model=replace(found.model, metadata=metadata))
+
+
+HAND_COUNTS = (
+    "; held, a racket's twisting modes are damped (ζ up to 10 %) and may be missed, and the "
+    "node counts above a missed mode are short: --names-from the free test's modal_model.json "
+    "names the modes after their free MAC pairs, as compare does"
+)
+"""What ``identify --support hand`` adds to its naming line without ``--names-from``."""
 
 
 NO_COORDINATES = (
@@ -243,6 +280,7 @@ def run_identify(
     exclude_hz: Sequence[float] = (),
     reference: int | None = None,
     ball_at: Sequence[float] | None = None,
+    names_from: str | os.PathLike[str] | None = None,
     command: Sequence[str] | None = None,
     figures: Callable[[IdentifyResult, Path], list[Path]] | None = None,
     progress: Progress | None = None,
@@ -260,7 +298,7 @@ def run_identify(
     racket : Racket, path or None
         Racket (its head names the modes); None for the built-in racket, whose modes are
         named only when the points lie on its outline.
-    geometry, band_hz, max_order, pin_hz, exclude_hz, reference, ball_at
+    geometry, band_hz, max_order, pin_hz, exclude_hz, reference, ball_at, names_from
         As for :func:`identify_file`.
     command : sequence of str, optional
         The command as called, for run.json.
@@ -284,6 +322,7 @@ def run_identify(
         reference=reference,
         racket_given=racket is not None,
         ball_at=ball_at,
+        names_from=names_from,
     )
     result = IdentifyResult(
         out_dir, write_model(found, out_dir), identification=found, racket=the_racket
@@ -299,6 +338,7 @@ def run_identify(
         "exclude_hz": list(exclude_hz),
         "reference_node": found.frfs.reference_node,
         "ball_at_m": None if ball_at is None else [float(v) for v in ball_at],
+        "names_from": None if names_from is None else str(Path(names_from).resolve()),
         "layout": found.model.metadata.get("layout"),
         "naming": found.model.metadata.get("naming"),
         "face_mapping": found.model.metadata.get("face_mapping"),
@@ -308,6 +348,7 @@ def run_identify(
         "coordinates": found.model.has_locations,
         "coordinates_note": coordinates_note(found.model),
         "modes": found.model.summary()["modes"],
+        "kept": found.model.metadata.get("kept", []),
         "dropped": found.model.metadata["dropped"],
     }
     return finish_run(result, inputs, command_record(command, "identify"), figures)
@@ -332,20 +373,10 @@ class ModeComparison:
     nodes_hand: NDArray[np.float64]
 
 
-NAMED_KINDS = ("bending", "twisting", "string-bed")
-"""Kinds whose names a hand-held mode takes from its free MAC pair (not ``unknown``, whose
-neutral name holds the free mode's frequency)."""
-
-
 def name_after_pairs(free: ModalModel, hand: ModalModel) -> ModalModel:
-    """The hand-held model with each mode named after its MAC pair among the free modes.
-
-    Twisting and bending modes are numbered in order of frequency
-    (:func:`racketdyn.racket_modal.shapes.classify_modes`); a hand damps some of them out of
-    the identification (the trial of issue 13 lost the 3- and 4-node twisting modes, ζ 10 %
-    and 6 %), and the hand's later modes were then named a node or two short.  A pair of the
-    same kind (:func:`racketdyn.modal.shapes.pair_modes`, MAC ≥ 0.6) gives the hand's mode the
-    free mode's name; the others keep theirs, made unique with their frequency.
+    """The hand-held model with each mode named after its MAC pair among the free modes
+    (:func:`racketdyn.racket_modal.identify.name_after`, which ``identify --names-from`` uses
+    too).
 
     Parameters
     ----------
@@ -357,21 +388,7 @@ def name_after_pairs(free: ModalModel, hand: ModalModel) -> ModalModel:
     ModalModel
         ``hand`` with new names (kinds, frequencies and shapes unchanged).
     """
-    if not hand.kinds or not free.kinds:
-        return hand
-    names = list(hand.names)
-    pairing = pair_modes(free, hand)
-    renamed = set()
-    for a, b in zip(pairing.first, pairing.second, strict=True):
-        kind = hand.kinds[b]
-        if kind in NAMED_KINDS and free.kinds[a] == kind:
-            names[b] = free.names[a]
-            renamed.add(int(b))
-    taken = {names[b] for b in renamed}
-    for b, name in enumerate(names):
-        if b not in renamed and name in taken:
-            names[b] = f"{name} ({hand.frequency[b]:.1f} Hz)"
-    return replace(hand, names=tuple(names))
+    return name_after(hand, free)
 
 
 def compare_modes(free: Identification, hand: Identification, racket: Racket) -> ModeComparison:
@@ -517,16 +534,10 @@ def run_compare(
     found_free = identify_file(free, the_racket, "free", **options)
     found_free.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
     report(progress, f"identifying {Path(hand).name}")
-    found_hand = identify_file(hand, the_racket, "hand", **options)
+    # a hand damps some modes out: the hand's modes are named after their free pairs (issue
+    # 13), as identify --names-from names them (issue 25 item 8: one name for one mode)
+    found_hand = identify_file(hand, the_racket, "hand", names_from=found_free.model, **options)
     found_hand.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
-    # a hand damps some modes out: name the hand's modes after their free pairs (issue 13)
-    paired = name_after_pairs(found_free.model, found_hand.model)
-    if paired.names != found_hand.model.names:
-        naming = (
-            f"{paired.metadata.get('naming', '')}; named after their MAC pairs among the free modes"
-        )
-        paired = replace(paired, metadata={**paired.metadata, "naming": naming.lstrip("; ")})
-    found_hand = replace(found_hand, model=paired)
     written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
     comparison = compare_modes(found_free, found_hand, the_racket)
     written.append(write_mode_comparison(comparison, out_dir))

@@ -15,7 +15,8 @@ HOW_TO_RUN = "racketdyn predict --out DIR/predict"
 
 def gather(run: RunFolder) -> dict[str, Any] | None:
     """Fig. 14, and from ``impact.csv`` the vibration energy left in the frame (eq 12): at the
-    centre, the largest and smallest over the face, and the rows flagged."""
+    centre, the largest and smallest over the face, and the rows flagged; the modal model's
+    modes of unknown kind, which the prediction took as frame modes (also "At a glance")."""
     folder = run.predict_dir
     if folder is None:
         return None
@@ -61,12 +62,23 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         if np.any(bad):
             reasons, counts = np.unique(impacts.status[bad], return_counts=True)
             flagged = [(int(c), str(r)) for r, c in zip(reasons, counts, strict=True)]
-    if figure is None and not has_energy:
+    unknown = run.unknown_modes(folder)
+    if figure is None and not has_energy and not unknown:
         return None
+    glance = (
+        [
+            f"modal model: {', '.join(unknown)} of unknown kind, taken as frame "
+            f"mode{'s' if len(unknown) > 1 else ''} (see Frame vibration)"
+        ]
+        if unknown
+        else []
+    )
     return {
         "figure": figure,
         "energy": has_energy,
         "rows": rows,
         "flagged": flagged,
         "filled": filled if has_energy else 0,
+        "unknown": unknown,
+        "glance": glance,
     }
