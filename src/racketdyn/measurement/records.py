@@ -405,15 +405,15 @@ class FrfSet(_PointsAndReference):
     def phase_direction(self) -> float:
         """Which way the phase turns as the frequency rises: < 0 falls (e^{iωt}), > 0 rises.
 
-        The mean of sin Δφ between neighbouring lines, weighted by |H_k| |H_k+1| over every FRF
+        The mean of sin Δφ between neighbouring lines, weighted by ``|H_k| |H_k+1|`` over every FRF
         of the set (between −1 and 1; 0 without a usable line).  With the usual convention
         (a response ``H e^{iωt}``) a mode's phase falls by 180° through its resonance and a
-        delay's phase falls too; only anti-resonances, where |H| is small, rise.  An analyser
+        delay's phase falls too; only anti-resonances, where ``|H|`` is small, rise.  An analyser
         writing ``H e^{−iωt}`` (SigLab, vtb_siglab's case 2) gives the conjugate FRF, whose
         phase rises through its resonances.  The sign does not depend on the FRF's type nor on
         its sign (a negated FRF turns the same way).  Only lines up to :attr:`bandwidth_hz`
         count: above it (racketdyn's own estimates to fs/2) the anti-alias filter has taken the
-        force away and |H| is the response's noise over nothing, large enough to outweigh the
+        force away and ``|H|`` is the response's noise over nothing, large enough to outweigh the
         resonances.
         """
         h = self.values[:, (self.frequency > 0) & (self.frequency <= self.bandwidth_hz)]
