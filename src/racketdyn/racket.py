@@ -172,7 +172,8 @@ class HeadEllipse:
         v = np.abs(xy[:, 1] - self.centre_y_m)[:, None]
         step = 0.5 * np.pi / 63
         t = np.linspace(0.0, 0.5 * np.pi, 64)[None, :]
-        nearest = np.argmin((a * np.cos(t) - u) ** 2 + (b * np.sin(t) - v) ** 2, axis=1)
+        squared = (a * np.cos(t) - u) ** 2 + (b * np.sin(t) - v) ** 2
+        nearest = np.argmin(squared, axis=1)
         t0 = t[0, nearest][:, None]
         tt = t0.copy()
         for _ in range(8):
@@ -183,7 +184,7 @@ class HeadEllipse:
                 tt = np.where(df != 0.0, tt - f / df, tt)
             tt = np.clip(tt, np.maximum(t0 - step, 0.0), np.minimum(t0 + step, 0.5 * np.pi))
         d = np.hypot(a * np.cos(tt) - u, b * np.sin(tt) - v)[:, 0]
-        coarse = np.sqrt(np.min((a * np.cos(t) - u) ** 2 + (b * np.sin(t) - v) ** 2, axis=1))
+        coarse = np.sqrt(squared[np.arange(squared.shape[0]), nearest])
         return np.asarray(np.minimum(d, coarse))
 
     def half_width_at(self, x_m: ArrayLike) -> NDArray[np.float64]:

@@ -38,7 +38,7 @@ from racketdyn.impact.calibration import PARAMETERS
 from racketdyn.impact.grid import status_warnings_held
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import Method, ModelInputs, predict_rows
-from racketdyn.impact.result import STATUS_OK, ImpactResult
+from racketdyn.impact.result import IMPACT_QUANTITIES, STATUS_OK, ImpactResult
 from racketdyn.impact.swing import SwingResult, predict_swing
 from racketdyn.impact.transient import predict_transient
 from racketdyn.io.measured import MeasuredRebound
@@ -362,7 +362,7 @@ class UncertainResult:
         """Per impact, ``<column>_mean``, ``_sd``, ``_p05``, ``_p95`` for every band quantity
         (columns named after :data:`~racketdyn.impact.result.IMPACT_QUANTITIES`), plus
         ``samples_valid``; each ``(n_points, n_speeds, n_supports)``."""
-        names = {q.attribute: q.name for q in _quantities()}
+        names = {q.attribute: q.name for q in IMPACT_QUANTITIES}
         columns: dict[str, NDArray[np.float64]] = {}
         for attribute in BAND_QUANTITIES:
             name = names[attribute]
@@ -384,7 +384,7 @@ class UncertainResult:
             data = xr.Dataset(
                 {
                     q.name: (dims, getattr(nominal, q.attribute), {"units": q.units})
-                    for q in _quantities()
+                    for q in IMPACT_QUANTITIES
                     if np.ndim(getattr(nominal, q.attribute)) == 3
                 },
                 coords={
@@ -394,7 +394,7 @@ class UncertainResult:
                     "support": ("support", list(nominal.supports)),
                 },
             )
-        units = {q.attribute: (q.name, q.units) for q in _quantities()}
+        units = {q.attribute: (q.name, q.units) for q in IMPACT_QUANTITIES}
         for name, values in self.band_columns().items():
             base = name.rsplit("_", 1)[0]
             unit = next((u for n, u in units.values() if n == base), "1")
@@ -407,12 +407,6 @@ class UncertainResult:
         data.attrs["uncertainty"] = str(self.uncertainty.record())
         data.attrs["uncertainty_method"] = self.method
         return data
-
-
-def _quantities() -> Sequence[Any]:
-    from racketdyn.impact.result import IMPACT_QUANTITIES
-
-    return IMPACT_QUANTITIES
 
 
 def _inside(racket_head: Any, xy: NDArray[np.float64]) -> NDArray[np.float64]:
