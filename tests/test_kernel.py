@@ -248,6 +248,7 @@ def matrix(racket, ball, model):
     """The default scheme, the previous default (400 steps, order 2) and the reference engine
     over 4 points × 3 speeds × 3 supports."""
     from racketdyn.impact.grid import ImpactGrid
+    from racketdyn.racket_modal import beam
 
     points = _matrix_points(racket)
 
@@ -258,6 +259,10 @@ def matrix(racket, ball, model):
 
     with pytest.MonkeyPatch.context() as patch:  # strings only (module scope: not the fixture)
         patch.setattr(ImpactGrid, "reaches_frame", lambda self, x: np.zeros(np.shape(x), bool))
+        # the smooth frame, where the tip at 50 m/s is caught again (conftest's smooth_frame;
+        # the frame's shape of issue 22's fourth session lets the ball go)
+        patch.setattr(beam, "frame_mass_per_length", lambda *args, **kwargs: None)
+        model = beam.builtin_modal_model(racket)
         return (
             run(engine="compiled"),
             run(engine="compiled", steps_per_contact=400, extrapolate=False),
@@ -299,6 +304,7 @@ def test_default_scheme_is_no_less_accurate_than_the_previous_one(matrix) -> Non
         assert new <= old, (name, new, old)
 
 
+@pytest.mark.usefixtures("smooth_frame")  # the pulses these numbers were measured on
 def test_extrapolation_raises_the_order(ball) -> None:
     """Extrapolated, halving the step from 32 to 64 to 128 steps per contact divides the worst
     error over three points × two supports by more than 6 (order > 2.6; measured 10.6–16, the

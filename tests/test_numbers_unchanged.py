@@ -1,7 +1,10 @@
 """The numbers ``predict`` writes are those of the code before issue 23's refactor (figures
 computed by the workflows, not the plotting): every CSV cell and run.json number of two small
 runs against the files that code wrote (``tests/data/predict_before_issue23``, its README says
-how they were made and when to write them anew)."""
+how they were made and when to write them anew).
+
+Written anew once since: by the commit giving the built-in frame its shape (issue 22, fourth
+session, "frame's shape" in CHANGELOG.md) — a change of physics, not of the refactor."""
 
 from __future__ import annotations
 

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from itertools import pairwise, product
 
@@ -68,6 +69,8 @@ strings")."""
 BALL_MASS_KG = (0.0560, 0.0594)
 """ITF ball mass range, kg."""
 BED_SAMPLES = 13
+JUMP_BISECTIONS = 12
+"""Halvings locating a jump of the ball mode between two sampled beds (to 1/4096 of the step)."""
 """Bed stiffnesses sampled (geometrically) along the box's bed range at each corner."""
 JUMP_FACTOR = 5.0
 """A step of the ball mode this many times the median step along the bed's range is a jump."""
@@ -181,17 +184,15 @@ def ball_mode_band(
     beds = np.geomspace(bed[0], bed[1], BED_SAMPLES)
     intervals = []
     for k_b, m_b in product(BALL_STIFFNESS_N_PER_M, BALL_MASS_KG):
-        curve = np.array(
-            [
-                racket_modes(
-                    racket, model, support, location,
-                    replace(spring, stiffness=1.0 / (1.0 / k_b + 1.0 / k_g)),
-                    replace(the_ball, mass_kg=m_b), hand,
-                ).ball_frequency
-                for k_g in beds
-            ]
-        )  # fmt: skip
-        intervals += _pieces(curve)
+
+        def ball_hz(k_g: float, k_b: float = k_b, m_b: float = m_b) -> float:
+            return racket_modes(
+                racket, model, support, location,
+                replace(spring, stiffness=1.0 / (1.0 / k_b + 1.0 / k_g)),
+                replace(the_ball, mass_kg=m_b), hand,
+            ).ball_frequency  # fmt: skip
+
+        intervals += _pieces(np.array([ball_hz(k_g) for k_g in beds]), beds, ball_hz)
     nominal = racket_modes(racket, model, support, location, spring, the_ball, hand)
     merged = _merge(intervals)
     return BallModeBand(
@@ -205,14 +206,45 @@ def ball_mode_band(
     )
 
 
-def _pieces(curve: NDArray[np.float64]) -> list[tuple[float, float]]:
+def _pieces(
+    curve: NDArray[np.float64],
+    beds: NDArray[np.float64],
+    ball_hz: Callable[[float], float],
+) -> list[tuple[float, float]]:
     """The curve's stretches between jumps: a step more than :data:`JUMP_FACTOR` times the
-    median step (and over 2 % of the frequency) is a jump of the ball mode's identity."""
+    median step (and over 2 % of the frequency) is a jump of the ball mode's identity.
+
+    Each jump is located by bisection on the bed's stiffness (:data:`JUMP_BISECTIONS` halvings
+    of its logarithm), and the stretches on either side reach the values found there: the
+    sampled ends alone left a nominal ball mode 0.05 Hz past its stretch's end in a gap
+    (issue 22, the frame's shape: the throat's ball mode veering with the 2-node mode)."""
     steps = np.abs(np.diff(curve))
     typical = float(np.median(steps)) if steps.size else 0.0
     jumps = np.flatnonzero((steps > JUMP_FACTOR * typical) & (steps > 0.02 * curve[:-1]))
     bounds = [0, *(jumps + 1).tolist(), curve.size]
-    return [(float(curve[a:b].min()), float(curve[a:b].max())) for a, b in pairwise(bounds)]
+    ends = {int(j): _jump_ends(float(beds[j]), float(beds[j + 1]), curve[j : j + 2], ball_hz)
+            for j in jumps}  # fmt: skip
+    pieces = []
+    for a, b in pairwise(bounds):
+        values = [*curve[a:b], *(ends[a - 1][1:] if a - 1 in ends else ()),
+                  *(ends[b - 1][:1] if b - 1 in ends else ())]  # fmt: skip
+        pieces.append((float(min(values)), float(max(values))))
+    return pieces
+
+
+def _jump_ends(
+    low: float, high: float, values: NDArray[np.float64], ball_hz: Callable[[float], float]
+) -> tuple[float, float]:
+    """The ball mode just before and just after a jump between beds ``low`` and ``high``."""
+    before, after = float(values[0]), float(values[1])
+    for _ in range(JUMP_BISECTIONS):
+        middle = float(np.sqrt(low * high))
+        value = ball_hz(middle)
+        if abs(value - before) <= abs(value - after):
+            low, before = middle, value
+        else:
+            high, after = middle, value
+    return before, after
 
 
 def _merge(intervals: list[tuple[float, float]]) -> list[tuple[float, float]]:

@@ -94,9 +94,11 @@ HAMMER_OFFSET_M = 0.012
 """By default the hammer strikes the strings this far from the ball, towards the handle, m
 (the paper: "a point, slightly away from the contact point of the ball"; struck from behind
 the face, where the ball does not cover the strings).  How long the ball mode leads at the
-neck (Fig. 8c) depends steeply on it: the free racket's 2-node mode takes over after ≈ 2.7
-ball cycles at 12 mm, 1.4 at 14 mm, 0.2 at 16 mm; from 18 mm on it leads from the start
-(docs/develop.md, "The ball on the strings").  Give ``--hammer`` where you struck."""
+neck (Fig. 8c) depends steeply on it: on the built-in frame's shape (issue 22, fourth
+session) the free racket's 2-node mode takes over after ≈ 9.4 ball cycles at 12 mm, 4.1 at
+20 mm, 2.3 at 25 mm, 0.7 at 30 mm; from 40 mm on it leads from the start (the smooth frame:
+2.7 at 12 mm, from 18 mm on; docs/develop.md, "The ball on the strings").  Give ``--hammer``
+where you struck."""
 
 NOT_THE_PAPERS_RACKET = (
     "the paper's 103 Hz was measured on its own racket and strings, 360 g and 97 sq in, not on "
