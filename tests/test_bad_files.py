@@ -404,3 +404,63 @@ def test_a_data_set_not_used_is_said_on_the_console(
     assert main(["identify", str(path), "--out", str(tmp_path / "out")]) == 0
     out = " ".join(capsys.readouterr().out.split())
     assert "not used from the file: data set 5 of another function type" in out, out
+
+
+# --- found by the fuzz test (tests/test_fuzz_readers.py) ---------------------------------------
+def _hammer_csv_lines(tmp_path: Path) -> tuple[list[str], Path]:
+    from racketdyn.io import write_hammer_csv
+
+    path, geometry = write_hammer_csv(_records(), tmp_path / "hammer.csv", tmp_path / "pts.csv")
+    return _lines(path), geometry
+
+
+def test_a_quote_left_open_in_a_hammer_csv_names_its_line(tmp_path: Path) -> None:
+    """A flipped byte made a value ``"0.5``: the csv module read the rest of the file as one
+    field and a ``ValueError: zip() argument 2 is shorter`` came out."""
+    from racketdyn.io import read_hammer_csv
+
+    lines, geometry = _hammer_csv_lines(tmp_path)
+    assert lines[3].startswith("node,")
+    lines[6] = lines[6].replace(",", ',"', 1)
+    path = _write(tmp_path / "quoted.csv", lines)
+    with pytest.raises(InputError, match=r"quoted\.csv: line 7: .*quote") as error:
+        read_hammer_csv(path, geometry)
+    assert "\n" not in str(error.value)
+
+
+def test_a_node_too_large_in_a_hammer_csv_names_its_line(tmp_path: Path) -> None:
+    """A node of 99999999999999999999 raised numpy's ``OverflowError: Python int too large to
+    convert to C long``."""
+    from racketdyn.io import read_hammer_csv
+
+    lines, geometry = _hammer_csv_lines(tmp_path)
+    lines[5] = "99999999999999999999" + lines[5][lines[5].index(",") :]
+    path = _write(tmp_path / "huge_node.csv", lines)
+    with pytest.raises(InputError, match=r"huge_node\.csv: line 6, column node: .*whole number"):
+        read_hammer_csv(path, geometry)
+
+
+@pytest.mark.parametrize(
+    ("reader", "text"),
+    [
+        ("read_points", 'point,x_m,y_m\ncentre,0.5,0\n"throat,0.4,0.01\ntip,0.6,0\n'),
+        ("read_load_deflection", 'deflection_m,force_n\n0.001,50\n0.002,"130\n0.004,330\n'),
+        ("read_e_bg_table", 'speed_mps,e_bg\n10,0.86\n"20,0.82\n30,0.78\n'),
+        (
+            "read_measured",
+            "x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio\n"
+            '0.5,0,20,0,free,0.39\n0.55,0.03,25,0,"pinned,0.30\n0.45,0,20,0,free,0.35\n',
+        ),
+    ],
+)
+def test_a_quote_left_open_in_a_table_names_its_line(
+    tmp_path: Path, reader: str, text: str
+) -> None:
+    """The same open quote in the points, ball-law, e_BG and measured-rebound tables."""
+    import racketdyn.io as io
+
+    path = tmp_path / "table.csv"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(InputError, match=r"table\.csv: line 3: .*quote") as error:
+        getattr(io, reader)(path)
+    assert "\n" not in str(error.value)

@@ -22,7 +22,6 @@ Data sets are counted from 1 in the order of the file in every message.
 from __future__ import annotations
 
 import contextlib
-import csv
 import dataclasses
 import datetime
 import io
@@ -44,6 +43,7 @@ from numpy.typing import NDArray
 from racketdyn.__about__ import __version__
 from racketdyn._grammar import noun, plural
 from racketdyn.errors import InputError, logs_warnings, warnings_logged
+from racketdyn.io.tables import split_csv_line
 from racketdyn.io.uff_structure import check_structure
 from racketdyn.measurement.records import (
     ABSURD_FORCE_N,
@@ -1546,6 +1546,8 @@ def write_hammer_uff(
 # --------------------------------------------------------------------------------------------
 
 CSV_COLUMNS = ("node", "average", "time_s", "force_n", "response")
+_LARGEST_WHOLE = int(np.iinfo(np.int64).max)
+"""A whole-number column beyond this (numpy's int64) is refused naming its line."""
 GEOMETRY_COLUMNS = ("node", "x_m", "y_m")
 
 
@@ -1572,7 +1574,7 @@ def _csv_rows(
             lines.append(line)
     if not lines:
         raise InputError(f"{path}: empty; expected a header with columns {', '.join(required)}")
-    rows = list(csv.reader(lines, skipinitialspace=True))
+    rows = [split_csv_line(path, n, line) for n, line in zip(numbers, lines, strict=True)]
     header = [name.strip() for name in rows[0]]
     missing = [name for name in required if name not in header]
     if missing:
@@ -1604,7 +1606,7 @@ def _csv_column(
     kind = "a whole number" if integer else "a finite number"
     try:
         values = np.asarray(texts, dtype=int if integer else float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an integer beyond int64
         values = None
     if values is not None and (values.size == 0 or bool(np.all(np.isfinite(values)))):
         return values
@@ -1613,7 +1615,7 @@ def _csv_column(
             value = int(text) if integer else float(text)
         except ValueError:
             value = math.nan
-        if not math.isfinite(value):
+        if not math.isfinite(value) or (integer and abs(value) > _LARGEST_WHOLE):
             raise InputError(f"{path}: line {number}, column {name}: {text!r} is not {kind}")
     raise InputError(f"{path}: column {name} must hold {kind} on every line")
 
