@@ -464,3 +464,82 @@ def test_a_quote_left_open_in_a_table_names_its_line(
     with pytest.raises(InputError, match=r"table\.csv: line 3: .*quote") as error:
         getattr(io, reader)(path)
     assert "\n" not in str(error.value)
+
+
+# --- the last point with fewer averages (issue 26, "Silent loss") ------------------------------
+def _last_point_short() -> object:
+    """racketdyn's 3 points × 2 averages with the last point's second average gone, as a file
+    cut between data sets leaves it (the count it held is not in another system's file)."""
+    import dataclasses
+
+    records = _records()
+    return dataclasses.replace(
+        records,
+        force=(*records.force[:2], records.force[2][:1]),
+        response=(*records.response[:2], records.response[2][:1]),
+    )
+
+
+def _said_fewer(message: object) -> None:
+    assert isinstance(message, str), message
+    for word in ["point 12", "last in the file", "1 average", "2 averages", "cut"]:
+        assert word in message, message
+
+
+def test_the_last_point_with_fewer_averages_is_said_uff(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    """A file cut exactly between data sets dropped the last average (13 of 14 hits) without a
+    word: the reader says that the last point has fewer averages than the others."""
+    path = write_hammer_uff(_last_point_short(), tmp_path / "short.uff")  # type: ignore[arg-type]
+    caplog.set_level("WARNING")
+    records = read_hammer_uff(path)
+    assert [len(f) for f in records.force] == [2, 2, 1]
+    _said_fewer(records.metadata.get("fewer_averages"))
+    assert "short.uff" in caplog.text
+    assert "point 12" in caplog.text
+
+
+def test_the_last_point_with_fewer_averages_is_said_csv(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    """The same for a CSV cut at the end of a record (its last average's lines gone)."""
+    from racketdyn.io import read_hammer_csv
+
+    lines, geometry = _hammer_csv_lines(tmp_path)
+    last = [i for i, line in enumerate(lines) if line.startswith("12,2,")]
+    assert last[-1] == len(lines) - 1
+    path = _write(tmp_path / "short.csv", lines[: last[0]])
+    caplog.set_level("WARNING")
+    records = read_hammer_csv(path, geometry)
+    assert [len(f) for f in records.force] == [2, 2, 1]
+    _said_fewer(records.metadata.get("fewer_averages"))
+    assert "short.csv" in caplog.text
+
+
+def test_a_point_in_the_middle_with_fewer_averages_is_not_a_cut(tmp_path: Path) -> None:
+    """A lab leaving out a bad hit at one point is no damaged file: only the last point's
+    shortfall suggests a cut."""
+    import dataclasses
+
+    records = _records()
+    fewer = dataclasses.replace(
+        records,
+        force=(records.force[0], records.force[1][:1], records.force[2]),
+        response=(records.response[0], records.response[1][:1], records.response[2]),
+    )
+    read = read_hammer_uff(write_hammer_uff(fewer, tmp_path / "middle.uff"))
+    assert "fewer_averages" not in read.metadata
+
+
+def test_frf_says_the_last_point_has_fewer_averages(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    path = write_hammer_uff(_last_point_short(), tmp_path / "short.uff")  # type: ignore[arg-type]
+    assert main(["frf", str(path), "--out", str(tmp_path / "out")]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "point 12, the last in the file, has 1 average" in out, out
+    import json
+
+    record = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
+    _said_fewer(record["fewer_averages"])

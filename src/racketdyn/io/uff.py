@@ -873,6 +873,28 @@ def _records_of(path: Path, contents: _Contents, func_type: int) -> list[_Record
 
 
 @logs_warnings(logger)
+def _fewer_averages(path: Path, counts: dict[int, int], last: int) -> str | None:
+    """What to say when the point recorded last holds fewer averages than every other point.
+
+    Issue 26: another system's file cut exactly between two data sets is a smaller valid file,
+    and the hits it lost were the last point's; nothing else betrays the cut.  A point in the
+    middle with fewer averages is a lab's choice (a bad hit left out) and is not said.
+    ``counts`` maps each point to its averages; returns the message (also logged), or None.
+    """
+    others = [n for node, n in counts.items() if node != last]
+    if not others or counts[last] >= min(others):
+        return None
+    low, high = min(others), max(others)
+    usual = f"{low}" if low == high else f"{low}–{high}"
+    message = (
+        f"{path}: hammer point {last}, the last in the file, has "
+        f"{plural(counts[last], 'average')}, the others {usual} {noun(high, 'average')}: the "
+        "file may have been cut after its last complete data set; check that it holds every hit"
+    )
+    logger.warning("%s", message)
+    return message
+
+
 def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> HammerRecords:
     """Read the time records of a roving-hammer test from a Universal File.
 
@@ -1027,6 +1049,10 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         response_rows.append(np.asarray(rows_r, dtype=float))
     _note_missing(path, contents.nodes, [*nodes, reference_node])
     metadata: dict[str, Any] = {"averages": averages}
+    last = max(forces, key=lambda key: max(forces[key].index, responses[key].index))
+    fewer = _fewer_averages(path, dict(zip(nodes, map(len, averages), strict=True)), point_of[last])
+    if fewer:
+        metadata["fewer_averages"] = fewer
     if roving_accelerometer:
         metadata["layout"] = "roving accelerometer"
     depths = [contents.depth[n] for n in [*nodes, reference_node] if n in contents.depth]
@@ -1710,6 +1736,10 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -
         responses.append(np.asarray([response[g] for g in mine]))
     coordinates = {} if geometry_path is None else _read_geometry_csv(Path(geometry_path))
     _note_missing(path, coordinates, [*nodes, reference_node])
+    metadata: dict[str, Any] = {"averages": averages}
+    fewer = _fewer_averages(path, dict(zip(nodes, map(len, averages), strict=True)), int(node[-1]))
+    if fewer:
+        metadata["fewer_averages"] = fewer
     return HammerRecords(
         sampling_interval_s=float(step),
         force=tuple(forces),
@@ -1721,7 +1751,7 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -
         reference_location=_location(coordinates, reference_node),
         pretrigger_s=float(-axis[0]),
         source=str(path),
-        metadata={"averages": averages},
+        metadata=metadata,
     )
 
 
