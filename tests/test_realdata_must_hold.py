@@ -97,6 +97,12 @@ WING_TIME = (
 )
 
 
+def _held(case: str, source: str, modes: str) -> list[Reference]:
+    """The references of one file from ``"f:ζ f:ζ …"`` (Hz, damping ratio)."""
+    pairs = (mode.split(":") for mode in modes.split())
+    return [Reference(case, float(f), float(z), source) for f, z in pairs]
+
+
 def _xfail(reference: Reference, why: str) -> object:
     return pytest.param(reference, marks=pytest.mark.xfail(strict=True, reason=why))
 
@@ -104,35 +110,21 @@ def _xfail(reference: Reference, why: str) -> object:
 REFERENCES = [
     # pyuff showcase, 3 accelerance FRFs, 40-1000 Hz (900.62 Hz: 1.7 × the median, one
     # hammer point's weak feature, develop.md "Issue 25 (real channels)": not listed)
-    *(
-        Reference("pyuff", f, z, "sdypy")
-        for f, z in [
-            (51.518, 0.00060),
-            (142.176, 0.00037),
-            (278.663, 0.00019),
-            (460.395, 0.00019),
-            (687.166, 0.00017),
-            (958.530, 0.00014),
-        ]
+    *_held(
+        "pyuff",
+        "sdypy",
+        "51.518:0.00060 142.176:0.00037 278.663:0.00019 460.395:0.00019 687.166:0.00017 "
+        "958.530:0.00014",
     ),
     Reference("vtb_case1", 212.061, 0.00089, "sdypy"),
     _xfail(Reference("vtb_case1", 34.053, 0.00021, "sdypy"), BELOW_BAND),
     # the wing's FRF export, 40-999.75 Hz (419, 611, 740, 911 Hz: sdypy poles at 0.5-2.8 × the
     # median, no clear peak; 508.79 Hz: sdypy's second pole under the one 509.9 Hz peak)
-    *(
-        Reference("wing_frfs", f, z, "sdypy")
-        for f, z in [
-            (51.608, 0.00118),
-            (124.841, 0.00412),
-            (167.176, 0.00062),
-            (227.775, 0.00879),
-            (326.229, 0.00072),
-            (362.098, 0.00564),
-            (509.932, 0.00233),
-            (679.230, 0.00179),
-            (710.103, 0.00394),
-            (933.434, 0.00450),
-        ]
+    *_held(
+        "wing_frfs",
+        "sdypy",
+        "51.608:0.00118 124.841:0.00412 167.176:0.00062 227.775:0.00879 326.229:0.00072 "
+        "362.098:0.00564 509.932:0.00233 679.230:0.00179 710.103:0.00394 933.434:0.00450",
     ),
     Reference("wing_frfs", 778.022, 0.00202, "sdypy", named=True),
     _xfail(
@@ -141,28 +133,18 @@ REFERENCES = [
         "778 Hz mode racketdyn leaves unsettled and 933 Hz; stable in 19 of 60 orders",
     ),
     _xfail(Reference("wing_frfs", 13.50, 0.00109, "sdypy"), BELOW_BAND),
-    *(
-        Reference("wing_time", f, z, "sdypy")
-        for f, z in [(124.831, 0.00383), (167.189, 0.00056), (227.726, 0.00778)]
-    ),
+    *_held("wing_time", "sdypy", "124.831:0.00383 167.189:0.00056 227.726:0.00778"),
     *(
         _xfail(Reference("wing_time", f, z, "sdypy"), WING_TIME)
         for f, z in [(51.615, 0.00108), (326.293, 0.00038), (362.194, 0.00305)]
     ),
     _xfail(Reference("wing_time", 13.524, 0.00055, "sdypy"), BELOW_BAND),
     # meca0062 against accelerometers 201 and 203, 40-200 Hz, against the lab's PolyMAX
-    *(
-        Reference("meca0062_201", f, z, "lab")
-        for f, z in [
-            (87.852, 0.00551),
-            (89.652, 0.00366),
-            (97.071, 0.00108),
-            (118.013, 0.00424),
-            (125.584, 0.00418),
-            (135.276, 0.00880),
-            (143.372, 0.00657),
-            (166.266, 0.00135),
-        ]
+    *_held(
+        "meca0062_201",
+        "lab",
+        "87.852:0.00551 89.652:0.00366 97.071:0.00108 118.013:0.00424 125.584:0.00418 "
+        "135.276:0.00880 143.372:0.00657 166.266:0.00135",
     ),
     Reference("meca0062_201", 40.122, 0.00398, "lab", named=True),
     _xfail(Reference("meca0062_201", 18.843, 0.00354, "lab"), BELOW_BAND),
@@ -171,15 +153,10 @@ REFERENCES = [
         "against 201 the pair 125.21/125.58 Hz reads as one mode (125.64 Hz); against 203 "
         "both are found (125.41, 125.68 Hz)",
     ),
-    *(
-        Reference("meca0062_203", f, z, "lab")
-        for f, z in [
-            (89.652, 0.00366),
-            (97.071, 0.00108),
-            (118.013, 0.00424),
-            (125.584, 0.00418),
-            (143.372, 0.00657),
-        ]
+    *_held(
+        "meca0062_203",
+        "lab",
+        "89.652:0.00366 97.071:0.00108 118.013:0.00424 125.584:0.00418 143.372:0.00657",
     ),
     *(
         _xfail(
@@ -199,33 +176,18 @@ REFERENCES = [
         for case in ("meca0062_201", "meca0062_203")
     ),
     # pff_lms, 40-20,000 Hz (150.31 Hz at the band's bottom: named, tests/test_realdata.py)
-    *(
-        Reference("pff_lms", f, z, "sdypy")
-        for f, z in [
-            (555.648, 0.00123),
-            (1126.707, 0.00142),
-            (1497.999, 0.00254),
-            (2650.248, 0.00250),
-            (2876.184, 0.00163),
-            (3770.953, 0.00122),
-            (4979.944, 0.00142),
-            (6006.642, 0.00147),
-            (7313.555, 0.00210),
-        ]
+    *_held(
+        "pff_lms",
+        "sdypy",
+        "555.648:0.00123 1126.707:0.00142 1497.999:0.00254 2650.248:0.00250 2876.184:0.00163 "
+        "3770.953:0.00122 4979.944:0.00142 6006.642:0.00147 7313.555:0.00210",
     ),
     # pyFRF, 40-10,000 Hz (1518 and 8336 Hz: sdypy poles at 1.3 and 1.9 × the median)
-    *(
-        Reference("pyfrf", f, z, "sdypy")
-        for f, z in [
-            (810.342, 0.00141),
-            (900.034, 0.00109),
-            (2640.173, 0.00026),
-            (3668.631, 0.00037),
-            (3689.224, 0.00029),
-            (4391.293, 0.00055),
-            (5969.126, 0.00098),
-            (6076.299, 0.00050),
-        ]
+    *_held(
+        "pyfrf",
+        "sdypy",
+        "810.342:0.00141 900.034:0.00109 2640.173:0.00026 3668.631:0.00037 3689.224:0.00029 "
+        "4391.293:0.00055 5969.126:0.00098 6076.299:0.00050",
     ),
     Reference("pyfrf", 4127.6, 0.0005, "decay"),
     _xfail(
