@@ -543,3 +543,20 @@ def test_frf_says_the_last_point_has_fewer_averages(
 
     record = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
     _said_fewer(record["fewer_averages"])
+
+
+def test_an_infinite_step_in_racketdyn_s_id_line_5_leaks_no_warning(tmp_path: Path) -> None:
+    """Found by the fuzz test: ``step inf`` in ID line 5 ("racketdyn abscissa start … step …")
+    made numpy warn "invalid value encountered in multiply" on the console (read_hammer_uff
+    had lost its warnings wrapper to a helper added above it).  The header's step is the
+    record's step when the exact one is no finite number, as when it is no number at all."""
+    lines = _lines(write_hammer_uff(_records(), tmp_path / "hammer.uff"))
+    exact = [i for i, line in enumerate(lines) if "racketdyn abscissa start" in line]
+    assert exact
+    for i in exact:
+        lines[i] = lines[i].split(" step ")[0] + " step inf"
+    path = _write(tmp_path / "inf_step.uff", lines)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        records = read_hammer_uff(path)
+    assert records.sampling_interval_s == pytest.approx(_records().sampling_interval_s, rel=1e-5)

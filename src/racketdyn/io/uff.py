@@ -589,6 +589,8 @@ def _abscissa(dset: dict[str, Any]) -> tuple[NDArray[np.float64], float, bool]:
             start, exact = float(match.group(1)), float(match.group(2))
         except ValueError:
             return x, header_step, even
+        if not (math.isfinite(start) and math.isfinite(exact)):  # damaged: the header's step
+            return x, header_step, even
         if abs(exact - header_step) <= 1e-5 * abs(exact) and abs(start - header_start) <= 1e-5 * (
             abs(start) + abs(exact)
         ):
@@ -872,7 +874,6 @@ def _records_of(path: Path, contents: _Contents, func_type: int) -> list[_Record
     )
 
 
-@logs_warnings(logger)
 def _fewer_averages(path: Path, counts: dict[int, int], last: int) -> str | None:
     """What to say when the point recorded last holds fewer averages than every other point.
 
@@ -895,6 +896,7 @@ def _fewer_averages(path: Path, counts: dict[int, int], last: int) -> str | None
     return message
 
 
+@logs_warnings(logger)
 def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> HammerRecords:
     """Read the time records of a roving-hammer test from a Universal File.
 
