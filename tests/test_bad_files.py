@@ -420,7 +420,7 @@ def test_a_quote_left_open_in_a_hammer_csv_names_its_line(tmp_path: Path) -> Non
     from racketdyn.io import read_hammer_csv
 
     lines, geometry = _hammer_csv_lines(tmp_path)
-    assert lines[3].startswith("node,")
+    assert lines[4].startswith("node,")
     lines[6] = lines[6].replace(",", ',"', 1)
     path = _write(tmp_path / "quoted.csv", lines)
     with pytest.raises(InputError, match=r"quoted\.csv: line 7: .*quote") as error:
@@ -503,10 +503,12 @@ def test_the_last_point_with_fewer_averages_is_said_uff(
 def test_the_last_point_with_fewer_averages_is_said_csv(
     tmp_path: Path, caplog: pytest.LogCaptureFixture
 ) -> None:
-    """The same for a CSV cut at the end of a record (its last average's lines gone)."""
+    """The same for another system's CSV cut at the end of a record (its last average's lines
+    gone; racketdyn's own CSV says how many records it holds and is refused)."""
     from racketdyn.io import read_hammer_csv
 
     lines, geometry = _hammer_csv_lines(tmp_path)
+    lines = [line for line in lines if not line.startswith("# records:")]
     last = [i for i, line in enumerate(lines) if line.startswith("12,2,")]
     assert last[-1] == len(lines) - 1
     path = _write(tmp_path / "short.csv", lines[: last[0]])
@@ -560,3 +562,37 @@ def test_an_infinite_step_in_racketdyn_s_id_line_5_leaks_no_warning(tmp_path: Pa
         warnings.simplefilter("error")
         records = read_hammer_uff(path)
     assert records.sampling_interval_s == pytest.approx(_records().sampling_interval_s, rel=1e-5)
+
+
+@pytest.mark.parametrize("cut", ["between records", "inside the first record"])
+def test_a_racketdyn_hammer_csv_cut_short_is_refused(tmp_path: Path, cut: str) -> None:
+    """Found by the fuzz test: racketdyn's hammer CSV cut between two records read as fewer
+    records, and cut inside its first record as that one shorter record, without a word.  The
+    writer says how many records it holds (``# records: 6``), as its UFFs do."""
+    from racketdyn.io import read_hammer_csv
+
+    lines, geometry = _hammer_csv_lines(tmp_path)
+    assert "# records: 6" in lines
+    header = next(i for i, line in enumerate(lines) if line.startswith("node,"))
+    if cut == "between records":
+        end = next(i for i, line in enumerate(lines) if line.startswith("7,1,"))
+    else:
+        end = header + 100
+    path = _write(tmp_path / "cut.csv", lines[:end])
+    with pytest.raises(InputError) as error:
+        read_hammer_csv(path, geometry)
+    message = str(error.value)
+    assert "\n" not in message
+    held = 2 if cut == "between records" else 1
+    for word in ["cut.csv", f"{held} of its 6 records", f"after line {end}", "# records: 6"]:
+        assert word in message, message
+
+
+def test_a_records_line_that_is_no_count_is_refused(tmp_path: Path) -> None:
+    from racketdyn.io import read_hammer_csv
+
+    lines, geometry = _hammer_csv_lines(tmp_path)
+    lines = [("# records: six" if line == "# records: 6" else line) for line in lines]
+    path = _write(tmp_path / "words.csv", lines)
+    with pytest.raises(InputError, match=r"words\.csv: .*# records: .*whole number"):
+        read_hammer_csv(path, geometry)

@@ -1712,6 +1712,7 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -
     keys = np.column_stack([node, average])[order]
     starts = np.flatnonzero(np.r_[True, np.any(keys[1:] != keys[:-1], axis=1)])
     groups = np.split(order, starts[1:])
+    _check_record_count(path, settings, len(groups), int(line[-1]))
     axis = time[groups[0]]
     if axis.size < 2:
         raise InputError(f"{path}: line {line[groups[0][0]]}: an average needs two samples or more")
@@ -1757,6 +1758,36 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -
     )
 
 
+def _check_record_count(path: Path, settings: dict[str, str], held: int, last_line: int) -> None:
+    """Refuse a hammer CSV holding another number of records than its ``# records: N`` line.
+
+    racketdyn's CSVs say how many (node, average) records they hold, as its UFFs do (ID line
+    3): a file cut between two records, or inside its first, is otherwise a smaller valid
+    file (issue 26's fuzz test).  Another system's CSV without the line is read as it is.
+    """
+    if "records" not in settings:
+        return
+    text = settings["records"]
+    try:
+        written = int(text)
+    except ValueError:
+        raise InputError(
+            f"{path}: '# records: {text}': the count of records must be a whole number; "
+            "correct it or remove the line"
+        ) from None
+    if held < written:
+        raise InputError(
+            f"{path}: holds {held} of its {written} records (node, average): it was cut after "
+            f"line {last_line} ('# records: {written}' says how many were written); copy or "
+            "export it again, or remove that line if records were left out on purpose"
+        )
+    if held > written:
+        raise InputError(
+            f"{path}: holds {held} records (node, average) but its '# records: {written}' line "
+            "says how many were written; correct the line or remove it"
+        )
+
+
 def _read_geometry_csv(path: Path) -> dict[int, tuple[float, float]]:
     _, header, numbers, rows = _csv_rows(path, GEOMETRY_COLUMNS)
     node = _csv_column(path, header, numbers, rows, "node", True)
@@ -1800,6 +1831,7 @@ def write_hammer_csv(
         f"# racketdyn {__version__} hammer records\n"
         f"# reference_node: {records.reference_node}\n"
         f"# response_type: {records.response_type}\n"
+        f"# records: {sum(force.shape[0] for force in records.force)}\n"
         f"{','.join(CSV_COLUMNS)}\n"
     )
     for node, force, response in zip(records.nodes, records.force, records.response, strict=True):
