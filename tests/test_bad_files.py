@@ -596,3 +596,19 @@ def test_a_records_line_that_is_no_count_is_refused(tmp_path: Path) -> None:
     path = _write(tmp_path / "words.csv", lines)
     with pytest.raises(InputError, match=r"words\.csv: .*# records: .*whole number"):
         read_hammer_csv(path, geometry)
+
+
+def test_contact_says_the_last_point_has_fewer_averages(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``contact`` reads the same records as ``frf``: the last point's shortfall is said there
+    too (its mean contact time is then over fewer hits)."""
+    import json
+
+    path = write_hammer_uff(_last_point_short(), tmp_path / "short.uff")  # type: ignore[arg-type]
+    assert main(["contact", str(path), "--out", str(tmp_path / "out")]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "point 12, the last in the file, has 1 average" in out, out
+    record = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
+    (said,) = record["fewer_averages"]
+    _said_fewer(said)
