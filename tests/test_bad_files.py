@@ -612,3 +612,19 @@ def test_contact_says_the_last_point_has_fewer_averages(
     record = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
     (said,) = record["fewer_averages"]
     _said_fewer(said)
+
+
+def test_a_sweep_range_of_absurdly_many_values_is_one_line(tmp_path: Path) -> None:
+    """Found by the fuzz test: ``num = 99999999999999999999`` in a sweep spec's range raised
+    numpy's ``ValueError: Maximum allowed size exceeded`` (and 10⁹ would fill the memory)."""
+    from racketdyn.sweep.spec_file import load_sweep_spec
+
+    for num in ("99999999999999999999", "100001"):
+        path = tmp_path / "sweep.toml"
+        path.write_text(
+            "[impacts]\ngrid = 3\nball_speeds_mps = [20.0]\n\n[variables]\n"
+            f"tension_n = {{ start = 226.0, stop = 266.0, num = {num} }}\n",
+            encoding="utf-8",
+        )
+        with pytest.raises(InputError, match=r"\[variables\]\.tension_n\.num.*1 to 100000"):
+            load_sweep_spec(path)

@@ -49,6 +49,8 @@ from racketdyn.io.uncertainty_file import racket_spreads, read_spreads
 from racketdyn.measurement.records import FrfSet, HammerRecords
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import Racket
+from racketdyn.sweep.spec import SweepSpec
+from racketdyn.sweep.spec_file import load_sweep_spec
 from test_uff import _frfs, _records
 
 FIXTURES = Path(__file__).parent / "fixtures"
@@ -170,6 +172,15 @@ tip,0.60,-0.02
 """
 
 
+def _sweep_spec_text() -> bytes:
+    """docs/sweep-file.md's example (27 designs), as a user would start from it."""
+    text = (RACKET_TOML.parents[3] / "docs" / "sweep-file.md").read_text(encoding="utf-8")
+    return text.split("```toml\n", 1)[1].split("```", 1)[0].encode()
+
+
+SWEEP_SPEC = _sweep_spec_text()
+
+
 def _racket_toml(folder: Path) -> bytes:
     del folder
     return RACKET_TOML.read_bytes() + b"\n[uncertainty.e_bg]\nrange = [0.80, 0.88]\n"
@@ -258,6 +269,10 @@ def _valid_racket(racket: object) -> bool:
     return isinstance(racket, Racket) and racket.mass_kg > 0 and _numbers_finite(racket)
 
 
+def _valid_spec(spec: object) -> bool:
+    return isinstance(spec, SweepSpec) and len(spec.designs) > 0 and _numbers_finite(spec)
+
+
 def _valid_spreads(spreads: object) -> bool:
     return (
         isinstance(spreads, tuple)
@@ -275,6 +290,7 @@ class Reader:
     valid_file: Callable[[Path], bytes]
     read: Callable[[Path, Path], object]  # (the damaged file, a folder of valid companions)
     valid: Callable[[object], bool]
+    heavy: bool = False  # a read of 5-10 ms: fewer mutants
 
 
 def _frfs_only(folder: Path) -> Path:
@@ -306,16 +322,22 @@ def _racket(path: Path) -> object:
 
 
 READERS = [
-    Reader("UFF 58 FRFs", ".uff", _frf_uff, lambda p, _: read_frfs(p), _valid_frfs),
+    Reader("UFF 58 FRFs", ".uff", _frf_uff, lambda p, _: read_frfs(p), _valid_frfs, heavy=True),
     Reader(
         "UFF 58 FRFs (another system's export)",
         ".uff",
         lambda _: _text(FIXTURES / "testlab_like_frf.uff"),
         lambda p, _: read_frf_uff(p),
         _valid_frfs,
+        heavy=True,
     ),
     Reader(
-        "UFF 58 time records", ".uff", _hammer_uff, lambda p, _: read_hammer_uff(p), _valid_records
+        "UFF 58 time records",
+        ".uff",
+        _hammer_uff,
+        lambda p, _: read_hammer_uff(p),
+        _valid_records,
+        heavy=True,
     ),
     Reader(
         "UFF 15 geometry",
@@ -323,6 +345,7 @@ READERS = [
         _geometry_15,
         lambda p, f: read_frfs(_frfs_only(f), geometry=p),
         _valid_frfs,
+        heavy=True,
     ),
     Reader(
         "UFF 2411 geometry",
@@ -330,6 +353,7 @@ READERS = [
         lambda _: GEOMETRY_2411,
         lambda p, f: read_frfs(_frfs_only(f), geometry=p),
         _valid_frfs,
+        heavy=True,
     ),
     Reader("hammer CSV", ".csv", _hammer_csv, lambda p, _: read_hammer_csv(p), _valid_records),
     Reader(
@@ -367,6 +391,14 @@ READERS = [
     Reader("points CSV", ".csv", lambda _: POINTS, lambda p, _: _points(p), _valid_table),
     Reader(
         "modal-model JSON", ".json", _modal_json, lambda p, _: ModalModel.read_json(p), _valid_modal
+    ),
+    Reader(
+        "sweep spec TOML",
+        ".toml",
+        lambda _: SWEEP_SPEC,
+        lambda p, _: load_sweep_spec(p),
+        _valid_spec,
+        heavy=True,
     ),
 ]
 
@@ -461,8 +493,8 @@ machine.  Run on the code before the fixes, this test fails for five of the six 
 A run of 4,000 a reader (the same mutator, outside the suite) found one more: a warning
 leaking from read_hammer_uff (tests/test_bad_files.py)."""
 
-HEAVY = [r for r in READERS if r.suffix == ".uff"]
-LIGHT = [r for r in READERS if r.suffix != ".uff"]
+HEAVY = [r for r in READERS if r.heavy]
+LIGHT = [r for r in READERS if not r.heavy]
 
 
 def _records_in(result: object) -> int | None:
