@@ -31,6 +31,7 @@ from hypothesis import strategies as st
 from racketdyn.errors import InputError
 from racketdyn.impact.uncertainty import Spread
 from racketdyn.io import (
+    default_racket,
     load_racket,
     read_e_bg_table,
     read_frf_uff,
@@ -49,6 +50,7 @@ from racketdyn.io.uncertainty_file import racket_spreads, read_spreads
 from racketdyn.measurement.records import FrfSet, HammerRecords
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import Racket
+from racketdyn.racket_modal import check_on_racket
 from racketdyn.sweep.spec import SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec
 from test_uff import _frfs, _records
@@ -315,6 +317,13 @@ def _points(path: Path) -> tuple[object, ...]:
     return (locations,)
 
 
+def _racket_model(path: Path) -> ModalModel:
+    """A modal model as ``predict --modal`` takes it for the built-in racket."""
+    model = ModalModel.read_json(path)
+    check_on_racket(model, default_racket(), str(path))
+    return model
+
+
 def _racket(path: Path) -> object:
     racket = load_racket(path)
     racket_spreads(path)
@@ -391,6 +400,14 @@ READERS = [
     Reader("points CSV", ".csv", lambda _: POINTS, lambda p, _: _points(p), _valid_table),
     Reader(
         "modal-model JSON", ".json", _modal_json, lambda p, _: ModalModel.read_json(p), _valid_modal
+    ),
+    Reader(
+        "modal-model JSON for a racket",
+        ".json",
+        lambda _: (Path(__file__).parent / "data" / "demo_modal_model_free.json").read_bytes(),
+        lambda p, _: _racket_model(p),
+        _valid_modal,
+        heavy=True,
     ),
     Reader(
         "sweep spec TOML",
@@ -486,12 +503,13 @@ MUTATIONS = st.integers(0, 2**32 - 1).map(_mutations)
 
 HEAVY_EXAMPLES = 50
 LIGHT_EXAMPLES = 250
-"""Mutants per reader: a Universal File read costs 5-10 ms (pyuff), a CSV, TOML or JSON one
-well under 1 ms; the 6 UFF readers × 50 and 8 others × 250 take ≈ 15 s on the loaded 2-core
-machine.  Run on the code before the fixes, this test fails for five of the six CSV readers
-(both crashes); 30 a reader with hypothesis's own draws of kinds and positions found none.
-A run of 4,000 a reader (the same mutator, outside the suite) found one more: a warning
-leaking from read_hammer_uff (tests/test_bad_files.py)."""
+"""Mutants per reader: a Universal File read costs 5-10 ms (pyuff), as do a sweep spec and a
+racket's modal model; a CSV, TOML or JSON table well under 1 ms.  The 8 heavy readers × 50 and
+8 others × 250 take ≈ 15-20 s on the loaded 2-core machine.  Run on the code before the fixes,
+this test fails for five of the six CSV readers (both crashes); 30 a reader with hypothesis's
+own draws of kinds and positions found none.  A run of 3,000-4,000 a reader (the same
+mutator, outside the suite) found two more: a warning leaking from read_hammer_uff and a sweep
+range's huge ``num`` (tests/test_bad_files.py)."""
 
 HEAVY = [r for r in READERS if r.heavy]
 LIGHT = [r for r in READERS if not r.heavy]
