@@ -404,3 +404,227 @@ def test_a_data_set_not_used_is_said_on_the_console(
     assert main(["identify", str(path), "--out", str(tmp_path / "out")]) == 0
     out = " ".join(capsys.readouterr().out.split())
     assert "not used from the file: data set 5 of another function type" in out, out
+
+
+# --- found by the fuzz test (tests/test_fuzz_readers.py) ---------------------------------------
+def _hammer_csv_lines(tmp_path: Path) -> tuple[list[str], Path]:
+    from racketdyn.io import write_hammer_csv
+
+    path, geometry = write_hammer_csv(_records(), tmp_path / "hammer.csv", tmp_path / "pts.csv")
+    return _lines(path), geometry
+
+
+def test_a_quote_left_open_in_a_hammer_csv_names_its_line(tmp_path: Path) -> None:
+    """A flipped byte made a value ``"0.5``: the csv module read the rest of the file as one
+    field and a ``ValueError: zip() argument 2 is shorter`` came out."""
+    from racketdyn.io import read_hammer_csv
+
+    lines, geometry = _hammer_csv_lines(tmp_path)
+    assert lines[4].startswith("node,")
+    lines[6] = lines[6].replace(",", ',"', 1)
+    path = _write(tmp_path / "quoted.csv", lines)
+    with pytest.raises(InputError, match=r"quoted\.csv: line 7: .*quote") as error:
+        read_hammer_csv(path, geometry)
+    assert "\n" not in str(error.value)
+
+
+def test_a_node_too_large_in_a_hammer_csv_names_its_line(tmp_path: Path) -> None:
+    """A node of 99999999999999999999 raised numpy's ``OverflowError: Python int too large to
+    convert to C long``."""
+    from racketdyn.io import read_hammer_csv
+
+    lines, geometry = _hammer_csv_lines(tmp_path)
+    lines[5] = "99999999999999999999" + lines[5][lines[5].index(",") :]
+    path = _write(tmp_path / "huge_node.csv", lines)
+    with pytest.raises(InputError, match=r"huge_node\.csv: line 6, column node: .*whole number"):
+        read_hammer_csv(path, geometry)
+
+
+@pytest.mark.parametrize(
+    ("reader", "text"),
+    [
+        ("read_points", 'point,x_m,y_m\ncentre,0.5,0\n"throat,0.4,0.01\ntip,0.6,0\n'),
+        ("read_load_deflection", 'deflection_m,force_n\n0.001,50\n0.002,"130\n0.004,330\n'),
+        ("read_e_bg_table", 'speed_mps,e_bg\n10,0.86\n"20,0.82\n30,0.78\n'),
+        (
+            "read_measured",
+            "x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio\n"
+            '0.5,0,20,0,free,0.39\n0.55,0.03,25,0,"pinned,0.30\n0.45,0,20,0,free,0.35\n',
+        ),
+    ],
+)
+def test_a_quote_left_open_in_a_table_names_its_line(
+    tmp_path: Path, reader: str, text: str
+) -> None:
+    """The same open quote in the points, ball-law, e_BG and measured-rebound tables."""
+    import racketdyn.io as io
+
+    path = tmp_path / "table.csv"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(InputError, match=r"table\.csv: line 3: .*quote") as error:
+        getattr(io, reader)(path)
+    assert "\n" not in str(error.value)
+
+
+# --- the last point with fewer averages (issue 26, "Silent loss") ------------------------------
+def _last_point_short() -> object:
+    """racketdyn's 3 points × 2 averages with the last point's second average gone, as a file
+    cut between data sets leaves it (the count it held is not in another system's file)."""
+    import dataclasses
+
+    records = _records()
+    return dataclasses.replace(
+        records,
+        force=(*records.force[:2], records.force[2][:1]),
+        response=(*records.response[:2], records.response[2][:1]),
+    )
+
+
+def _said_fewer(message: object) -> None:
+    assert isinstance(message, str), message
+    for word in ["point 12", "last in the file", "1 average", "2 averages", "cut"]:
+        assert word in message, message
+
+
+def test_the_last_point_with_fewer_averages_is_said_uff(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    """A file cut exactly between data sets dropped the last average (13 of 14 hits) without a
+    word: the reader says that the last point has fewer averages than the others."""
+    path = write_hammer_uff(_last_point_short(), tmp_path / "short.uff")  # type: ignore[arg-type]
+    caplog.set_level("WARNING")
+    records = read_hammer_uff(path)
+    assert [len(f) for f in records.force] == [2, 2, 1]
+    _said_fewer(records.metadata.get("fewer_averages"))
+    assert "short.uff" in caplog.text
+    assert "point 12" in caplog.text
+
+
+def test_the_last_point_with_fewer_averages_is_said_csv(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    """The same for another system's CSV cut at the end of a record (its last average's lines
+    gone; racketdyn's own CSV says how many records it holds and is refused)."""
+    from racketdyn.io import read_hammer_csv
+
+    lines, geometry = _hammer_csv_lines(tmp_path)
+    lines = [line for line in lines if not line.startswith("# records:")]
+    last = [i for i, line in enumerate(lines) if line.startswith("12,2,")]
+    assert last[-1] == len(lines) - 1
+    path = _write(tmp_path / "short.csv", lines[: last[0]])
+    caplog.set_level("WARNING")
+    records = read_hammer_csv(path, geometry)
+    assert [len(f) for f in records.force] == [2, 2, 1]
+    _said_fewer(records.metadata.get("fewer_averages"))
+    assert "short.csv" in caplog.text
+
+
+def test_a_point_in_the_middle_with_fewer_averages_is_not_a_cut(tmp_path: Path) -> None:
+    """A lab leaving out a bad hit at one point is no damaged file: only the last point's
+    shortfall suggests a cut."""
+    import dataclasses
+
+    records = _records()
+    fewer = dataclasses.replace(
+        records,
+        force=(records.force[0], records.force[1][:1], records.force[2]),
+        response=(records.response[0], records.response[1][:1], records.response[2]),
+    )
+    read = read_hammer_uff(write_hammer_uff(fewer, tmp_path / "middle.uff"))
+    assert "fewer_averages" not in read.metadata
+
+
+def test_frf_says_the_last_point_has_fewer_averages(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    path = write_hammer_uff(_last_point_short(), tmp_path / "short.uff")  # type: ignore[arg-type]
+    assert main(["frf", str(path), "--out", str(tmp_path / "out")]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "point 12, the last in the file, has 1 average" in out, out
+    import json
+
+    record = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
+    _said_fewer(record["fewer_averages"])
+
+
+def test_an_infinite_step_in_racketdyn_s_id_line_5_leaks_no_warning(tmp_path: Path) -> None:
+    """Found by the fuzz test: ``step inf`` in ID line 5 ("racketdyn abscissa start … step …")
+    made numpy warn "invalid value encountered in multiply" on the console (read_hammer_uff
+    had lost its warnings wrapper to a helper added above it).  The header's step is the
+    record's step when the exact one is no finite number, as when it is no number at all."""
+    lines = _lines(write_hammer_uff(_records(), tmp_path / "hammer.uff"))
+    exact = [i for i, line in enumerate(lines) if "racketdyn abscissa start" in line]
+    assert exact
+    for i in exact:
+        lines[i] = lines[i].split(" step ")[0] + " step inf"
+    path = _write(tmp_path / "inf_step.uff", lines)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        records = read_hammer_uff(path)
+    assert records.sampling_interval_s == pytest.approx(_records().sampling_interval_s, rel=1e-5)
+
+
+@pytest.mark.parametrize("cut", ["between records", "inside the first record"])
+def test_a_racketdyn_hammer_csv_cut_short_is_refused(tmp_path: Path, cut: str) -> None:
+    """Found by the fuzz test: racketdyn's hammer CSV cut between two records read as fewer
+    records, and cut inside its first record as that one shorter record, without a word.  The
+    writer says how many records it holds (``# records: 6``), as its UFFs do."""
+    from racketdyn.io import read_hammer_csv
+
+    lines, geometry = _hammer_csv_lines(tmp_path)
+    assert "# records: 6" in lines
+    header = next(i for i, line in enumerate(lines) if line.startswith("node,"))
+    if cut == "between records":
+        end = next(i for i, line in enumerate(lines) if line.startswith("7,1,"))
+    else:
+        end = header + 100
+    path = _write(tmp_path / "cut.csv", lines[:end])
+    with pytest.raises(InputError) as error:
+        read_hammer_csv(path, geometry)
+    message = str(error.value)
+    assert "\n" not in message
+    held = 2 if cut == "between records" else 1
+    for word in ["cut.csv", f"{held} of its 6 records", f"after line {end}", "# records: 6"]:
+        assert word in message, message
+
+
+def test_a_records_line_that_is_no_count_is_refused(tmp_path: Path) -> None:
+    from racketdyn.io import read_hammer_csv
+
+    lines, geometry = _hammer_csv_lines(tmp_path)
+    lines = [("# records: six" if line == "# records: 6" else line) for line in lines]
+    path = _write(tmp_path / "words.csv", lines)
+    with pytest.raises(InputError, match=r"words\.csv: .*# records: .*whole number"):
+        read_hammer_csv(path, geometry)
+
+
+def test_contact_says_the_last_point_has_fewer_averages(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``contact`` reads the same records as ``frf``: the last point's shortfall is said there
+    too (its mean contact time is then over fewer hits)."""
+    import json
+
+    path = write_hammer_uff(_last_point_short(), tmp_path / "short.uff")  # type: ignore[arg-type]
+    assert main(["contact", str(path), "--out", str(tmp_path / "out")]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "point 12, the last in the file, has 1 average" in out, out
+    record = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
+    (said,) = record["fewer_averages"]
+    _said_fewer(said)
+
+
+def test_a_sweep_range_of_absurdly_many_values_is_one_line(tmp_path: Path) -> None:
+    """Found by the fuzz test: ``num = 99999999999999999999`` in a sweep spec's range raised
+    numpy's ``ValueError: Maximum allowed size exceeded`` (and 10⁹ would fill the memory)."""
+    from racketdyn.sweep.spec_file import load_sweep_spec
+
+    for num in ("99999999999999999999", "100001"):
+        path = tmp_path / "sweep.toml"
+        path.write_text(
+            "[impacts]\ngrid = 3\nball_speeds_mps = [20.0]\n\n[variables]\n"
+            f"tension_n = {{ start = 226.0, stop = 266.0, num = {num} }}\n",
+            encoding="utf-8",
+        )
+        with pytest.raises(InputError, match=r"\[variables\]\.tension_n\.num.*1 to 100000"):
+            load_sweep_spec(path)

@@ -49,6 +49,8 @@ def run(args: argparse.Namespace, console: Console) -> int:
             progress=progress,
         )
     assert result.racket is not None
+    for said in result.fewer_averages:
+        opt.say(console, said, "yellow")
     for label, times in zip(result.labels, result.tables, strict=True):
         on_bed = result.racket.head.contains(times.locations) & np.isfinite(times.mean_s)
         if np.any(on_bed):

@@ -99,6 +99,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
         for reason, count in summary.items():
             if reason not in ("averages", "accepted"):
                 opt.say(console, f"{opt.plural(count, 'average')} rejected: {reason}", "yellow")
+    fewer = result.records_metadata.get("fewer_averages")
+    if fewer:
+        opt.say(console, fewer, "yellow")
     three_d = result.records_metadata.get("three_d_geometry")
     if three_d:
         opt.say(

@@ -18,7 +18,22 @@ from racketdyn._grammar import noun
 from racketdyn.errors import InputError
 from racketdyn.plausibility import check_load_deflection
 
-__all__ = ["read_e_bg_table", "read_load_deflection", "read_points"]
+__all__ = ["read_e_bg_table", "read_load_deflection", "read_points", "split_csv_line"]
+
+
+def split_csv_line(path: Path, number: int, line: str) -> list[str]:
+    """The fields of one CSV line; InputError naming the line for a quote left open.
+
+    Each line is split on its own: read as one stream, a quote opened on one line (a flipped
+    byte, a typing slip) swallowed the rest of the file into one field (issue 26's fuzz test).
+    """
+    try:
+        return next(csv.reader([line], skipinitialspace=True, strict=True), [])
+    except csv.Error as error:
+        raise InputError(
+            f'{path}: line {number}: a quote (") opened and not closed on its line ({error}); '
+            "remove the quote or close it"
+        ) from None
 
 
 def _read_columns(path: Path, required: tuple[str, ...]) -> dict[str, list[tuple[int, str]]]:
@@ -39,7 +54,7 @@ def _read_columns(path: Path, required: tuple[str, ...]) -> dict[str, list[tuple
     ]
     if not lines:
         raise InputError(f"{path}: empty; expected a header with columns {', '.join(required)}")
-    rows = list(csv.reader((line for _, line in lines), skipinitialspace=True))
+    rows = [split_csv_line(path, number, line) for number, line in lines]
     header = [name.strip() for name in rows[0]]
     missing = [name for name in required if name not in header]
     if missing:

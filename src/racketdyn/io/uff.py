@@ -22,7 +22,6 @@ Data sets are counted from 1 in the order of the file in every message.
 from __future__ import annotations
 
 import contextlib
-import csv
 import dataclasses
 import datetime
 import io
@@ -44,6 +43,7 @@ from numpy.typing import NDArray
 from racketdyn.__about__ import __version__
 from racketdyn._grammar import noun, plural
 from racketdyn.errors import InputError, logs_warnings, warnings_logged
+from racketdyn.io.tables import split_csv_line
 from racketdyn.io.uff_structure import check_structure
 from racketdyn.measurement.records import (
     ABSURD_FORCE_N,
@@ -589,6 +589,8 @@ def _abscissa(dset: dict[str, Any]) -> tuple[NDArray[np.float64], float, bool]:
             start, exact = float(match.group(1)), float(match.group(2))
         except ValueError:
             return x, header_step, even
+        if not (math.isfinite(start) and math.isfinite(exact)):  # damaged: the header's step
+            return x, header_step, even
         if abs(exact - header_step) <= 1e-5 * abs(exact) and abs(start - header_start) <= 1e-5 * (
             abs(start) + abs(exact)
         ):
@@ -872,6 +874,28 @@ def _records_of(path: Path, contents: _Contents, func_type: int) -> list[_Record
     )
 
 
+def _fewer_averages(path: Path, counts: dict[int, int], last: int) -> str | None:
+    """What to say when the point recorded last holds fewer averages than every other point.
+
+    Issue 26: another system's file cut exactly between two data sets is a smaller valid file,
+    and the hits it lost were the last point's; nothing else betrays the cut.  A point in the
+    middle with fewer averages is a lab's choice (a bad hit left out) and is not said.
+    ``counts`` maps each point to its averages; returns the message (also logged), or None.
+    """
+    others = [n for node, n in counts.items() if node != last]
+    if not others or counts[last] >= min(others):
+        return None
+    low, high = min(others), max(others)
+    usual = f"{low}" if low == high else f"{low}–{high}"
+    message = (
+        f"{path}: hammer point {last}, the last in the file, has "
+        f"{plural(counts[last], 'average')}, the others {usual} {noun(high, 'average')}: the "
+        "file may have been cut after its last complete data set; check that it holds every hit"
+    )
+    logger.warning("%s", message)
+    return message
+
+
 @logs_warnings(logger)
 def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> HammerRecords:
     """Read the time records of a roving-hammer test from a Universal File.
@@ -1027,6 +1051,10 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         response_rows.append(np.asarray(rows_r, dtype=float))
     _note_missing(path, contents.nodes, [*nodes, reference_node])
     metadata: dict[str, Any] = {"averages": averages}
+    last = max(forces, key=lambda key: max(forces[key].index, responses[key].index))
+    fewer = _fewer_averages(path, dict(zip(nodes, map(len, averages), strict=True)), point_of[last])
+    if fewer:
+        metadata["fewer_averages"] = fewer
     if roving_accelerometer:
         metadata["layout"] = "roving accelerometer"
     depths = [contents.depth[n] for n in [*nodes, reference_node] if n in contents.depth]
@@ -1546,6 +1574,8 @@ def write_hammer_uff(
 # --------------------------------------------------------------------------------------------
 
 CSV_COLUMNS = ("node", "average", "time_s", "force_n", "response")
+_LARGEST_WHOLE = int(np.iinfo(np.int64).max)
+"""A whole-number column beyond this (numpy's int64) is refused naming its line."""
 GEOMETRY_COLUMNS = ("node", "x_m", "y_m")
 
 
@@ -1572,7 +1602,7 @@ def _csv_rows(
             lines.append(line)
     if not lines:
         raise InputError(f"{path}: empty; expected a header with columns {', '.join(required)}")
-    rows = list(csv.reader(lines, skipinitialspace=True))
+    rows = [split_csv_line(path, n, line) for n, line in zip(numbers, lines, strict=True)]
     header = [name.strip() for name in rows[0]]
     missing = [name for name in required if name not in header]
     if missing:
@@ -1604,7 +1634,7 @@ def _csv_column(
     kind = "a whole number" if integer else "a finite number"
     try:
         values = np.asarray(texts, dtype=int if integer else float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an integer beyond int64
         values = None
     if values is not None and (values.size == 0 or bool(np.all(np.isfinite(values)))):
         return values
@@ -1613,7 +1643,7 @@ def _csv_column(
             value = int(text) if integer else float(text)
         except ValueError:
             value = math.nan
-        if not math.isfinite(value):
+        if not math.isfinite(value) or (integer and abs(value) > _LARGEST_WHOLE):
             raise InputError(f"{path}: line {number}, column {name}: {text!r} is not {kind}")
     raise InputError(f"{path}: column {name} must hold {kind} on every line")
 
@@ -1682,6 +1712,7 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -
     keys = np.column_stack([node, average])[order]
     starts = np.flatnonzero(np.r_[True, np.any(keys[1:] != keys[:-1], axis=1)])
     groups = np.split(order, starts[1:])
+    _check_record_count(path, settings, len(groups), int(line[-1]))
     axis = time[groups[0]]
     if axis.size < 2:
         raise InputError(f"{path}: line {line[groups[0][0]]}: an average needs two samples or more")
@@ -1708,6 +1739,10 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -
         responses.append(np.asarray([response[g] for g in mine]))
     coordinates = {} if geometry_path is None else _read_geometry_csv(Path(geometry_path))
     _note_missing(path, coordinates, [*nodes, reference_node])
+    metadata: dict[str, Any] = {"averages": averages}
+    fewer = _fewer_averages(path, dict(zip(nodes, map(len, averages), strict=True)), int(node[-1]))
+    if fewer:
+        metadata["fewer_averages"] = fewer
     return HammerRecords(
         sampling_interval_s=float(step),
         force=tuple(forces),
@@ -1719,8 +1754,38 @@ def read_hammer_csv(path: Path | str, geometry_path: Path | str | None = None) -
         reference_location=_location(coordinates, reference_node),
         pretrigger_s=float(-axis[0]),
         source=str(path),
-        metadata={"averages": averages},
+        metadata=metadata,
     )
+
+
+def _check_record_count(path: Path, settings: dict[str, str], held: int, last_line: int) -> None:
+    """Refuse a hammer CSV holding another number of records than its ``# records: N`` line.
+
+    racketdyn's CSVs say how many (node, average) records they hold, as its UFFs do (ID line
+    3): a file cut between two records, or inside its first, is otherwise a smaller valid
+    file (issue 26's fuzz test).  Another system's CSV without the line is read as it is.
+    """
+    if "records" not in settings:
+        return
+    text = settings["records"]
+    try:
+        written = int(text)
+    except ValueError:
+        raise InputError(
+            f"{path}: '# records: {text}': the count of records must be a whole number; "
+            "correct it or remove the line"
+        ) from None
+    if held < written:
+        raise InputError(
+            f"{path}: holds {held} of its {written} records (node, average): it was cut after "
+            f"line {last_line} ('# records: {written}' says how many were written); copy or "
+            "export it again, or remove that line if records were left out on purpose"
+        )
+    if held > written:
+        raise InputError(
+            f"{path}: holds {held} records (node, average) but its '# records: {written}' line "
+            "says how many were written; correct the line or remove it"
+        )
 
 
 def _read_geometry_csv(path: Path) -> dict[int, tuple[float, float]]:
@@ -1766,6 +1831,7 @@ def write_hammer_csv(
         f"# racketdyn {__version__} hammer records\n"
         f"# reference_node: {records.reference_node}\n"
         f"# response_type: {records.response_type}\n"
+        f"# records: {sum(force.shape[0] for force in records.force)}\n"
         f"{','.join(CSV_COLUMNS)}\n"
     )
     for node, force, response in zip(records.nodes, records.force, records.response, strict=True):

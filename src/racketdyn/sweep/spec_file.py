@@ -25,7 +25,13 @@ from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_r
 from racketdyn.io.tables import read_load_deflection, read_points
 from racketdyn.plausibility import check, check_e_bg, check_speeds
 from racketdyn.racket import SUPPORTS, Racket
-from racketdyn.sweep.spec import DEFAULT_THRESHOLD_FRACTION, MODES, SPEC_SCHEMA_VERSION, SweepSpec
+from racketdyn.sweep.spec import (
+    DEFAULT_THRESHOLD_FRACTION,
+    MAX_DESIGNS,
+    MODES,
+    SPEC_SCHEMA_VERSION,
+    SweepSpec,
+)
 from racketdyn.sweep.task import METHOD_SUPPORTS, _check_method, _check_supports
 from racketdyn.sweep.variables import HAND_VARIABLES, POINT_MASS, SCALAR_VARIABLES, Variable
 
@@ -67,6 +73,9 @@ _IMPACT_KEYS = (
 )
 _SUMMARY_KEYS = ("threshold_fraction", "ball_speed_mps", "racket_speed_mps")
 MAX_GRID = 400
+MAX_RANGE_VALUES = MAX_DESIGNS
+"""Values a range ``{start, stop, num}`` may give: no more than a sweep's designs (a typo's
+10⁹ filled the memory before the design count was checked)."""
 
 
 def load_sweep_spec(path: Path | str) -> SweepSpec:
@@ -381,7 +390,12 @@ def _value_list(where: str, value: object) -> NDArray[np.float64]:
             )
         start = _number(f"{where}.start", value["start"])
         stop = _number(f"{where}.stop", value["stop"])
-        return np.linspace(start, stop, require_whole(f"{where}.num", value["num"]))
+        num = require_whole(f"{where}.num", value["num"])
+        if num > MAX_RANGE_VALUES:
+            raise InputError(
+                f"{where}.num must be a whole number from 1 to {MAX_RANGE_VALUES} (got {num})"
+            )
+        return np.linspace(start, stop, num)
     items = value if isinstance(value, list) else [value]
     if not items:
         raise InputError(f"{where}: give one or more values")

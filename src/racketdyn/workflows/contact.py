@@ -43,11 +43,15 @@ class ContactResult(StepResult):
         A label per test.
     racket : Racket
         The racket (head outline).
+    fewer_averages : list of str
+        What the readers said of a test whose last point holds fewer averages than the
+        others (``HammerRecords.metadata["fewer_averages"]``: a file perhaps cut short).
     """
 
     tables: list[ContactTimes] = field(default_factory=list)
     labels: list[str] = field(default_factory=list)
     racket: Racket | None = None
+    fewer_averages: list[str] = field(default_factory=list)
 
 
 def _slug(label: str) -> str:
@@ -102,6 +106,8 @@ def run_contact(
         report(progress, "contact times", i, len(names))
         records = read_records(test, geometry)
         records.require_locations("the contact-time map")
+        if records.metadata.get("fewer_averages"):
+            result.fewer_averages.append(str(records.metadata["fewer_averages"]))
         times = contact_times(records, estimate_frfs(records).checks)
         path = out_dir / f"contact_{_slug(label)}.csv"
         times.write_csv(path)
@@ -112,5 +118,6 @@ def run_contact(
         "labels": names,
         **provenance,
         "method": CONTACT_METHOD,
+        "fewer_averages": result.fewer_averages,
     }
     return finish_run(result, inputs, command_record(command, "contact"), figures)
