@@ -39,6 +39,7 @@ from racketdyn.impact.grid import status_warnings_held
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import Method, ModelInputs, predict_rows
 from racketdyn.impact.result import IMPACT_QUANTITIES, STATUS_OK, ImpactResult
+from racketdyn.impact.samples import predict_samples
 from racketdyn.impact.swing import SwingResult, predict_swing
 from racketdyn.impact.transient import predict_transient
 from racketdyn.io.measured import MeasuredRebound
@@ -479,6 +480,7 @@ def propagate(
     labels: Sequence[str] | None = None,
     options: dict[str, Any] | None = None,
     progress: Callable[[int, int], None] | None = None,
+    vectorised: bool = True,
 ) -> UncertainResult:
     """Carry the uncertain inputs through a model to every impact of a grid.
 
@@ -505,7 +507,13 @@ def propagate(
         ``stiffness_reading``); ``swing`` (a :class:`~racketdyn.impact.swing.Swing`) runs
         :func:`~racketdyn.impact.swing.predict_swing`, each point at its own racket speed.
     progress : callable, optional
-        ``progress(done, total)`` after each sample.
+        ``progress(done, total)`` after each sample (the approximate method: after each chunk
+        of samples).
+    vectorised : bool
+        Run the approximate method on every sample at once
+        (:func:`racketdyn.impact.samples.predict_samples`: the same numbers to round-off,
+        ≈ 30 times faster) where it can (a ``uniform`` string bed, no ``swing``); False runs
+        it once per sample, as the transient model always is.
 
     Returns
     -------
@@ -528,24 +536,13 @@ def propagate(
     nominal = _run(method, inputs, xy, speeds, model_options)
     draws = draw(uncertainty, inputs)
     n = uncertainty.samples
-    samples = {a: np.full((n, *nominal.shape), np.nan) for a in BAND_QUANTITIES}
-    valid = np.zeros((n, *nominal.shape), dtype=bool)
-    head = inputs.racket.head
+    run = _each_sample
+    if vectorised and method == "approx" and _batches(inputs, model_options):
+        run = _all_samples
     with ExitStack() as stack:
         for name in (_approximate_log, _transient_log):
             stack.enter_context(status_warnings_held(name))
-        for k in range(n):
-            sample = _sample_inputs(inputs, draws, k)
-            where = _inside(head, xy + draws.location_offset[k])
-            v = speeds + draws.speed_offset[k]
-            result = _run(method, sample, where, np.maximum(v, 0.1), model_options)
-            ok = np.asarray(result.status) == STATUS_OK
-            ok[:, v + _racket_speeds(model_options, speeds) <= 0.0, :] = False  # no impact
-            valid[k] = ok
-            for attribute in BAND_QUANTITIES:
-                samples[attribute][k] = np.where(ok, getattr(result, attribute), np.nan)
-            if progress is not None:
-                progress(k + 1, n)
+        samples, valid = run(method, inputs, draws, xy, speeds, model_options, progress)
     flagged = int(np.count_nonzero(~valid))
     log.info("uncertainty: %d samples by the %s model", n, method)
     if flagged:
@@ -562,6 +559,78 @@ def propagate(
         uncertainty=uncertainty,
         method=method,
     )
+
+
+Samples = tuple[dict[str, NDArray[np.float64]], NDArray[np.bool_]]
+"""Every sample's band quantities (NaN where not valid) and where each is valid."""
+
+_BATCHED_OPTIONS = {"supports", "racket_speed", "labels", "stiffness_reading", "vibration_charge"}
+
+
+def _batches(inputs: ModelInputs, options: dict[str, Any]) -> bool:
+    """Whether :func:`racketdyn.impact.samples.predict_samples` takes these runs: one law over
+    the face and no option beyond the grid's, eq (10)'s reading and the vibration charge."""
+    return inputs.string_bed == "uniform" and set(options) <= _BATCHED_OPTIONS
+
+
+def _each_sample(
+    method: Method,
+    inputs: ModelInputs,
+    draws: Draws,
+    xy: NDArray[np.float64],
+    speeds: NDArray[np.float64],
+    options: dict[str, Any],
+    progress: Callable[[int, int], None] | None,
+) -> Samples:
+    """The model once per sample."""
+    n = draws.speed_offset.size
+    shape = (n, xy.shape[0], speeds.size, len(options["supports"]))
+    samples = {a: np.full(shape, np.nan) for a in BAND_QUANTITIES}
+    valid = np.zeros(shape, dtype=bool)
+    for k in range(n):
+        sample = _sample_inputs(inputs, draws, k)
+        where = _inside(inputs.racket.head, xy + draws.location_offset[k])
+        v = speeds + draws.speed_offset[k]
+        result = _run(method, sample, where, np.maximum(v, 0.1), options)
+        ok = np.asarray(result.status) == STATUS_OK
+        ok[:, v + _racket_speeds(options, speeds) <= 0.0, :] = False  # no impact
+        valid[k] = ok
+        for attribute in BAND_QUANTITIES:
+            samples[attribute][k] = np.where(ok, getattr(result, attribute), np.nan)
+        if progress is not None:
+            progress(k + 1, n)
+    return samples, valid
+
+
+def _all_samples(
+    method: Method,
+    inputs: ModelInputs,
+    draws: Draws,
+    xy: NDArray[np.float64],
+    speeds: NDArray[np.float64],
+    options: dict[str, Any],
+    progress: Callable[[int, int], None] | None,
+) -> Samples:
+    """The approximate method on every sample at once (:func:`predict_samples`), the same
+    numbers as :func:`_each_sample` to round-off."""
+    n = draws.speed_offset.size
+    scattered = (xy[None, :, :] + draws.location_offset[:, None, :]).reshape(-1, 2)
+    v = speeds[None, :] + draws.speed_offset[:, None]
+    impacts = predict_samples(
+        inputs,
+        draws.parameters,
+        _inside(inputs.racket.head, scattered).reshape(n, xy.shape[0], 2),
+        np.maximum(v, 0.1),
+        supports=options["supports"],
+        racket_speed=options["racket_speed"],
+        stiffness_reading=options.get("stiffness_reading", "period"),
+        vibration_charge=options.get("vibration_charge", "coupled"),
+        progress=progress,
+    )
+    ok = impacts.status_code == 0  # STATUSES[0]: ok
+    ok &= (v + _racket_speeds(options, speeds)[None, :] > 0.0)[:, None, :, None]  # an impact
+    samples = {a: np.where(ok, getattr(impacts, a), np.nan) for a in BAND_QUANTITIES}
+    return samples, ok
 
 
 def _racket_speeds(options: dict[str, Any], speeds: NDArray[np.float64]) -> NDArray[np.float64]:
