@@ -6,6 +6,7 @@ import json
 from importlib import resources
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -40,3 +41,30 @@ def test_samples_with_uncertainty_none_is_refused_in_one_line(
     argv += ["--uncertainty", "none", "--samples", "16", "--out", str(tmp_path / "run")]
     assert main(argv) != 0
     assert "--uncertainty none" in capsys.readouterr().err
+
+
+def test_sobol_indices_are_given_on_the_valid_samples_where_90_percent_are_valid() -> None:
+    """Before: a point with a single sample beyond the method had no indices (NaN).  Now the
+    Saltelli estimators run on the base samples whose every evaluation is valid, where those
+    are 90 % or more, and the share is said (``valid_share``, ``samples_valid`` in the rows)."""
+    from racketdyn.ball import Ball
+    from racketdyn.impact.measured import ModelInputs
+    from racketdyn.impact.uncertainty import Spread, Uncertainty, sensitivity
+    from racketdyn.io.racket_file import default_racket
+
+    racket = default_racket()
+    x, y = racket.head.centre_x_m, racket.head.centre_y_m
+    points = {"centre": (x, y), "near the edge": (x, y + 0.080), "frame": (x, y + 0.090)}
+    spreads = (Spread("e_bg", bounds=(0.80, 0.88)), Spread("location_m", sd=0.004))
+    found = sensitivity(
+        ModelInputs(racket, Ball()), points, 20.0, Uncertainty(spreads, seed=1), n=128
+    )
+    assert found.valid_share[0] == 1.0
+    assert 0.9 <= found.valid_share[1] < 1.0
+    assert found.valid_share[2] < 0.9
+    assert np.all(np.isfinite(found.total_order[:, :2]))
+    assert np.all(np.isnan(found.total_order[:, 2]))
+    assert found.dominant(1) != ""
+    rows = pd.DataFrame(found.rows())
+    near = rows[rows["point"] == "near the edge"]
+    assert set(near["samples_valid"]) == {found.valid_share[1]}

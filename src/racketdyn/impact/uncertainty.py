@@ -682,14 +682,16 @@ class Sensitivity:
     inputs : tuple of str
         The uncertain inputs (the location as ``location_m x`` and ``location_m y``).
     first_order, total_order : ndarray
-        ``(n_outputs, n_points, n_inputs)``; NaN where a sample of that point was not valid
-        (the estimator needs every sample).
+        ``(n_outputs, n_points, n_inputs)``, on the base samples whose every evaluation is
+        valid; NaN at a point where fewer than :data:`MIN_VALID_SHARE` of them are.
     ball_speed : float
         Ball speed, m/s.
     support : str
         The support.
     evaluations : int
         Model runs it took (``n (d + 2)``).
+    valid_share : ndarray
+        ``(n_points,)`` share of the base samples the indices at each point rest on.
     """
 
     labels: tuple[str, ...]
@@ -700,6 +702,7 @@ class Sensitivity:
     ball_speed: float
     support: str
     evaluations: int
+    valid_share: NDArray[np.float64]
 
     def dominant(self, point: int, output: str = "rebound_ratio") -> str:
         """The input with the largest total index at a point ("" when not known)."""
@@ -714,7 +717,7 @@ class Sensitivity:
             key: []
             for key in (
                 "point", "x_m", "y_m", "ball_speed_mps", "support", "output", "input",
-                "first_order", "total_order",
+                "first_order", "total_order", "samples_valid",
             )
         }  # fmt: skip
         for o, output in enumerate(SENSITIVITY_OUTPUTS):
@@ -723,7 +726,7 @@ class Sensitivity:
                     values = (
                         label, self.locations[p, 0], self.locations[p, 1], self.ball_speed,
                         self.support, output, name, self.first_order[o, p, i],
-                        self.total_order[o, p, i],
+                        self.total_order[o, p, i], self.valid_share[p],
                     )  # fmt: skip
                     for key, value in zip(table, values, strict=True):
                         table[key].append(value)
@@ -744,9 +747,13 @@ def sensitivity(
 ) -> Sensitivity:
     """Which input dominates: Sobol' first-order and total indices at named points.
 
-    :func:`scipy.stats.sobol_indices` (Saltelli 2010 estimators on a scrambled Sobol'
-    design, seeded with the uncertainty's seed); ``n (d + 2)`` model runs for ``d`` inputs
-    (the location counts twice: x and y).
+    Saltelli 2010's estimators on a scrambled Sobol' design, seeded with the uncertainty's
+    seed, as :func:`scipy.stats.sobol_indices` draws and computes them; ``n (d + 2)`` model
+    runs for ``d`` inputs (the location counts twice: x and y), the approximate method's all
+    at once (:func:`racketdyn.impact.samples.predict_samples`).  A base sample with any run
+    beyond the method (a frame shot, say) is left out of that point's indices; where fewer
+    than :data:`MIN_VALID_SHARE` of them are left the point has none (NaN), and
+    :attr:`Sensitivity.valid_share` says on how many they rest.
 
     Parameters
     ----------
@@ -773,12 +780,46 @@ def sensitivity(
     -------
     Sensitivity
     """
-    from scipy.stats import sobol_indices
-
     if n < 8 or n & (n - 1):
         raise InputError(f"`n` for Sobol' indices must be a power of two ≥ 8, not {n}")
     labels = tuple(points)
     xy = as_locations(list(points.values()), "sensitivity points")
+    marginals, names = _marginals(uncertainty, inputs)
+    d = len(names)
+    # Saltelli's design as scipy.stats.sobol_indices draws it: A, B and A with column i of B
+    a, b = _design(n, marginals, np.random.default_rng(uncertainty.seed))
+    ab = np.repeat(a[None, :, :], d, axis=0)
+    ab[np.arange(d), np.arange(d)] = b
+    x = np.concatenate([a, b, *ab], axis=1)  # (d, (d + 2) n)
+    model_options = {"supports": [support], "racket_speed": racket_speed, **(options or {})}
+    with ExitStack() as stack:
+        for name in (_approximate_log, _transient_log):
+            stack.enter_context(status_warnings_held(name))
+        out = _sensitivity_outputs(method, inputs, names, x, xy, ball_speed, model_options)
+    f = out.reshape(*out.shape[:2], d + 2, n)  # (outputs, points, d + 2, n)
+    first, total, share = _saltelli_2010(f[:, :, 0], f[:, :, 1], np.moveaxis(f[:, :, 2:], 2, 0))
+    for label, given in zip(labels, share, strict=True):
+        if given < 1.0:
+            log.info(
+                "sensitivity at %s: %.0f %% of the base samples valid (%s)",
+                label, 100 * given,
+                "indices on those" if given >= MIN_VALID_SHARE else "no indices",
+            )  # fmt: skip
+    return Sensitivity(
+        labels=labels,
+        locations=xy,
+        inputs=tuple(names),
+        first_order=first,
+        total_order=total,
+        ball_speed=float(ball_speed),
+        support=support,
+        evaluations=n * (d + 2),
+        valid_share=share,
+    )
+
+
+def _marginals(uncertainty: Uncertainty, inputs: ModelInputs) -> tuple[list[_Marginal], list[str]]:
+    """Each sampled dimension's distribution and name (the location as x and y)."""
     marginals: list[_Marginal] = []
     names: list[str] = []
     for spread in uncertainty.spreads:
@@ -789,52 +830,79 @@ def sensitivity(
             nominal = 0.0 if spread.is_offset else PARAMETERS[spread.name].get(inputs)
             marginals.append(_Marginal(spread, nominal))
             names.append(spread.name)
-    model_options = {"supports": [support], "racket_speed": racket_speed, **(options or {})}
-    n_out = len(SENSITIVITY_OUTPUTS) * len(labels)
-    valid = np.ones(len(labels), dtype=bool)
+    return marginals, names
 
-    def run(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        out = np.empty((n_out, x.shape[1]))
-        for k in range(x.shape[1]):
-            sample, offset, speed = inputs, np.zeros(2), ball_speed
-            for value, name in zip(x[:, k], names, strict=True):
-                if name == "location_m x":
-                    offset[0] = value
-                elif name == "location_m y":
-                    offset[1] = value
-                elif name == "ball_speed_mps":
-                    speed = max(ball_speed + value, 0.1)
-                else:
-                    sample = PARAMETERS[name].set(sample, float(value))
-            where = _inside(inputs.racket.head, xy + offset)
-            result = _run(method, sample, where, np.array([speed]), model_options)
-            ok = np.asarray(result.status)[:, 0, 0] == STATUS_OK
-            valid[~ok] = False
-            values = np.stack([getattr(result, a)[:, 0, 0] for a in SENSITIVITY_OUTPUTS])
-            out[:, k] = np.where(ok[None, :], values, 0.0).ravel()
-        return out
 
-    with ExitStack() as stack:
-        for name in (_approximate_log, _transient_log):
-            stack.enter_context(status_warnings_held(name))
-        found = sobol_indices(
-            func=run, n=n, dists=marginals, rng=np.random.default_rng(uncertainty.seed)
-        )
-    shape = (len(SENSITIVITY_OUTPUTS), len(labels), len(names))
-    first = np.asarray(found.first_order).reshape(shape)
-    total = np.asarray(found.total_order).reshape(shape)
-    first[:, ~valid] = np.nan
-    total[:, ~valid] = np.nan
-    return Sensitivity(
-        labels=labels,
-        locations=xy,
-        inputs=tuple(names),
-        first_order=first,
-        total_order=total,
-        ball_speed=float(ball_speed),
-        support=support,
-        evaluations=n * (len(names) + 2),
+def _design(
+    n: int, marginals: Sequence[_Marginal], rng: np.random.Generator
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Saltelli's matrices A and B, each ``(d, n)``: a scrambled Sobol' design of 2d
+    dimensions split in two, through each input's inverse distribution function (as
+    :func:`scipy.stats.sobol_indices` draws them)."""
+    d = len(marginals)
+    unit = qmc.Sobol(d=2 * d, seed=rng, bits=64).random(n).T.reshape(2, d, -1)
+    for i, marginal in enumerate(marginals):
+        unit[:, i] = marginal.ppf(unit[:, i])
+    return unit[0], unit[1]
+
+
+def _sensitivity_outputs(
+    method: Method,
+    inputs: ModelInputs,
+    names: Sequence[str],
+    x: NDArray[np.float64],
+    xy: NDArray[np.float64],
+    ball_speed: float,
+    options: dict[str, Any],
+) -> NDArray[np.float64]:
+    """``(n_outputs, n_points, n_columns)`` the outputs at each column of ``x`` (one value
+    per name), NaN where not valid: the columns as samples of :func:`propagate`."""
+    columns = dict(zip(names, x, strict=True))
+    zeros = np.zeros(x.shape[1])
+    draws = Draws(
+        parameters={k: v for k, v in columns.items() if k in PARAMETERS},
+        location_offset=np.column_stack(
+            [columns.get("location_m x", zeros), columns.get("location_m y", zeros)]
+        ),
+        speed_offset=columns.get("ball_speed_mps", zeros),
     )
+    run = _all_samples if method == "approx" and _batches(inputs, options) else _each_sample
+    speeds = np.array([float(ball_speed)])
+    samples, _ = run(method, inputs, draws, xy, speeds, options, None)
+    return np.stack([samples[a][:, :, 0, 0].T for a in SENSITIVITY_OUTPUTS])
+
+
+def _saltelli_2010(
+    f_a: NDArray[np.float64], f_b: NDArray[np.float64], f_ab: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """First-order and total indices ``(n_outputs, n_points, d)`` and each point's share of
+    valid base samples ``(n_points,)``.
+
+    Saltelli et al. 2010's estimators (Table 2 (b) and (f)), as
+    :func:`scipy.stats.sobol_indices` computes them, on the base samples j whose ``f_a``,
+    ``f_b`` and every ``f_ab[i]`` are valid (finite); NaN where fewer than
+    :data:`MIN_VALID_SHARE` are.  ``f_a``, ``f_b``: ``(n_outputs, n_points, n)``; ``f_ab``:
+    ``(d, n_outputs, n_points, n)``.
+    """
+    ok = np.isfinite(f_a) & np.isfinite(f_b) & np.all(np.isfinite(f_ab), axis=0)
+    share = ok.all(axis=0).mean(axis=-1)
+    use = ok & (share >= MIN_VALID_SHARE)[None, :, None]
+    count = use.sum(axis=-1)
+
+    def mean(values: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.asarray(np.where(use, values, 0.0).sum(axis=-1) / count)
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        centre = (0.5 * (mean(f_a) + mean(f_b)))[..., None]
+        a, b, ab = f_a - centre, f_b - centre, f_ab - centre
+        variance = 0.5 * (mean(a**2) + mean(b**2))
+        first = mean(b * (ab - a)) / variance
+        total = 0.5 * mean((a - ab) ** 2) / variance
+    given = share >= MIN_VALID_SHARE
+    # a null variance means null indices (as scipy's); no indices where too few are valid
+    first = np.where(given, np.nan_to_num(first, nan=0.0, posinf=0.0, neginf=0.0), np.nan)
+    total = np.where(given, np.nan_to_num(total, nan=0.0, posinf=0.0, neginf=0.0), np.nan)
+    return np.moveaxis(first, 0, -1), np.moveaxis(total, 0, -1), share
 
 
 @dataclass(frozen=True)
