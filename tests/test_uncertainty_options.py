@@ -68,3 +68,18 @@ def test_sobol_indices_are_given_on_the_valid_samples_where_90_percent_are_valid
     rows = pd.DataFrame(found.rows())
     near = rows[rows["point"] == "near the edge"]
     assert set(near["samples_valid"]) == {found.valid_share[1]}
+
+
+def test_predict_runs_the_transient_samples_on_worker_processes(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    racket = _racket_with_tables(tmp_path)
+    argv = ["predict", "--racket", str(racket), "--grid", "3", "--speed", "20", "--no-figures"]
+    argv += ["--support", "free", "--model", "transient", "--samples", "8"]
+    assert main([*argv, "--workers", "2", "--out", str(tmp_path / "pool")]) == 0
+    assert main([*argv, "--out", str(tmp_path / "here")]) == 0
+    pooled, here = (pd.read_csv(tmp_path / run / "impact.csv") for run in ("pool", "here"))
+    np.testing.assert_allclose(pooled["rebound_ratio_p95"], here["rebound_ratio_p95"])
+    argv = ["predict", "--grid", "3", "--speed", "20", "--no-figures", "--workers", "2"]
+    assert main([*argv, "--out", str(tmp_path / "none")]) != 0
+    assert "--workers" in capsys.readouterr().err

@@ -117,3 +117,30 @@ def test_the_approximate_method_is_not_run_once_per_sample(
     spreads = (Spread("e_bg", bounds=(0.8, 0.88)), Spread("location_m", sd=0.01))
     propagate(ModelInputs(RACKET, Ball()), RACKET.head.grid(5), [20.0], Uncertainty(spreads, 64))
     assert len(calls) == 1
+
+
+def test_the_transient_model_s_samples_run_on_a_process_pool() -> None:
+    """The transient model runs once per sample: on the sweeps' process pool the samples are
+    the same, and the numbers."""
+    from racketdyn.sweep.executors import make_executor
+
+    spreads = (Spread("e_bg", bounds=(0.8, 0.88)), Spread("location_m", sd=0.01))
+    uncertainty = Uncertainty(spreads, samples=8, seed=1)
+    inputs = ModelInputs(RACKET, Ball())
+    points = RACKET.head.grid(3)
+    here = propagate(inputs, points, [20.0], uncertainty, method="transient")
+    done: list[int] = []
+    with make_executor("process", 2) as pool:
+        pooled = propagate(
+            inputs,
+            points,
+            [20.0],
+            uncertainty,
+            method="transient",
+            executor=pool,
+            progress=lambda k, n: done.append(k),
+        )
+    assert done[-1] == 8
+    assert np.array_equal(here.valid, pooled.valid)
+    for name in BAND_QUANTITIES:
+        np.testing.assert_allclose(pooled.samples[name], here.samples[name], rtol=1e-12)

@@ -89,6 +89,13 @@ def add(commands: Any) -> None:
     )
     opt.add_string_bed(p)
     opt.add_uncertainty(p)
+    p.add_argument(
+        "--workers",
+        type=int,
+        metavar="N",
+        help="run the samples of --uncertainty that a model runs one by one (the transient "
+        "model's) on a local pool of N processes, a count (default: this process)",
+    )
     opt.add_no_figures(p)
     opt.add_out(p)
     p.set_defaults(handler=run)
@@ -129,6 +136,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             include_string_bed=args.include_string_bed,
             string_bed=args.string_bed,
             uncertainty=uncertainty,
+            workers=args.workers,
             show=show,
             allow_implausible=args.allow_implausible,
             defaults=defaults,

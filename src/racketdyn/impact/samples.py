@@ -13,7 +13,7 @@ round-off: both run :func:`~racketdyn.impact.approximate.approximate_impacts`.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, fields, replace
 from typing import Any
 
@@ -37,6 +37,7 @@ from racketdyn.impact.calibration import PARAMETERS, shifted_e_bg
 from racketdyn.impact.grid import ball_reaches_frame, resolve_modal_model, support_reduced_mass
 from racketdyn.impact.measured import ModelInputs, first_bending_index
 from racketdyn.modal import ModalModel
+from racketdyn.numerics import one_blas_thread
 from racketdyn.racket import Racket
 
 __all__ = ["ARRAY_PARAMETERS", "SAMPLE_CHUNK", "predict_samples"]
@@ -115,25 +116,31 @@ def predict_samples(
     }
     parts: list[tuple[NDArray[np.intp], ApproximateImpacts]] = []
     done = 0
-    for members in _groups(parameters, total):
-        group = _Group.of(_group_inputs(inputs, parameters, int(members[0])))
-        for chunk in np.array_split(members, -(-members.size // SAMPLE_CHUNK)):
-            values = {name: v[chunk] for name, v in parameters.items()}
-            parts.append((chunk, group.impacts(values, xy[chunk], speeds[chunk], options)))
-            done += chunk.size
-            if progress is not None:
-                progress(done, total)
+    with one_blas_thread():
+        for members, group in _groups(inputs, parameters, total):
+            for chunk in np.array_split(members, -(-members.size // SAMPLE_CHUNK)):
+                values = {name: v[chunk] for name, v in parameters.items()}
+                parts.append((chunk, group.impacts(values, xy[chunk], speeds[chunk], options)))
+                done += chunk.size
+                if progress is not None:
+                    progress(done, total)
     return _joined(parts, total)
 
 
-def _groups(parameters: dict[str, NDArray[np.float64]], total: int) -> list[NDArray[np.intp]]:
-    """Sample indices of each group sharing the values of every grouping parameter."""
+def _groups(
+    inputs: ModelInputs, parameters: dict[str, NDArray[np.float64]], total: int
+) -> Iterator[tuple[NDArray[np.intp], _Group]]:
+    """Sample indices of each group sharing the values of every grouping parameter, and
+    what they share."""
     keys = [np.asarray(v) for name, v in parameters.items() if name not in ARRAY_PARAMETERS]
     if not keys:
-        return [np.arange(total)]
+        yield np.arange(total), _Group.of(inputs)
+        return
     _, inverse = np.unique(np.column_stack(keys), axis=0, return_inverse=True)
     inverse = np.ravel(inverse)
-    return [np.flatnonzero(inverse == g) for g in range(int(inverse.max()) + 1)]
+    for g in range(int(inverse.max()) + 1):
+        members = np.flatnonzero(inverse == g)
+        yield members, _Group.of(_group_inputs(inputs, parameters, int(members[0])))
 
 
 def _group_inputs(

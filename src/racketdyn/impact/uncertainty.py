@@ -22,9 +22,11 @@ from __future__ import annotations
 import logging
 import math
 import warnings
-from collections.abc import Callable, Sequence
-from contextlib import ExitStack
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import Executor, as_completed
+from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass, replace
+from functools import partial
 from typing import Any, Literal, get_args
 
 import numpy as np
@@ -270,6 +272,14 @@ class Draws:
     location_offset: NDArray[np.float64]
     speed_offset: NDArray[np.float64]
 
+    def part(self, index: NDArray[np.intp]) -> Draws:
+        """The draws of the samples at ``index``."""
+        return Draws(
+            {name: values[index] for name, values in self.parameters.items()},
+            self.location_offset[index],
+            self.speed_offset[index],
+        )
+
     def inputs_table(self) -> dict[str, NDArray[np.float64]]:
         """Every drawn column by name (location as x and y)."""
         table = dict(self.parameters)
@@ -481,6 +491,7 @@ def propagate(
     options: dict[str, Any] | None = None,
     progress: Callable[[int, int], None] | None = None,
     vectorised: bool = True,
+    executor: Executor | None = None,
 ) -> UncertainResult:
     """Carry the uncertain inputs through a model to every impact of a grid.
 
@@ -514,6 +525,10 @@ def propagate(
         (:func:`racketdyn.impact.samples.predict_samples`: the same numbers to round-off,
         ≈ 30 times faster) where it can (a ``uniform`` string bed, no ``swing``); False runs
         it once per sample, as the transient model always is.
+    executor : concurrent.futures.Executor, optional
+        Where the samples run when the model runs once per sample (the transient model): in
+        tasks of :data:`SAMPLES_PER_TASK` (a sweep's process pool,
+        :func:`racketdyn.sweep.executors.make_executor`); by default this process.
 
     Returns
     -------
@@ -536,13 +551,14 @@ def propagate(
     nominal = _run(method, inputs, xy, speeds, model_options)
     draws = draw(uncertainty, inputs)
     n = uncertainty.samples
-    run = _each_sample
     if vectorised and method == "approx" and _batches(inputs, model_options):
         run = _all_samples
-    with ExitStack() as stack:
-        for name in (_approximate_log, _transient_log):
-            stack.enter_context(status_warnings_held(name))
-        samples, valid = run(method, inputs, draws, xy, speeds, model_options, progress)
+    elif executor is not None:
+        run = partial(_on_executor, executor)
+    else:
+        run = _each_sample
+    with _statuses_held():
+        samples, valid = run(_Runs(method, inputs, draws, xy, speeds, model_options), progress)
     flagged = int(np.count_nonzero(~valid))
     log.info("uncertainty: %d samples by the %s model", n, method)
     if flagged:
@@ -561,6 +577,18 @@ def propagate(
     )
 
 
+@contextmanager
+def _statuses_held() -> Iterator[None]:
+    """The impact models' per-call status warnings held (the caller sums them)."""
+    with ExitStack() as stack:
+        for name in (_approximate_log, _transient_log):
+            stack.enter_context(status_warnings_held(name))
+        yield
+
+
+SAMPLES_PER_TASK = 4
+"""Samples in one task of an executor (:func:`propagate`'s ``executor``)."""
+
 Samples = tuple[dict[str, NDArray[np.float64]], NDArray[np.bool_]]
 """Every sample's band quantities (NaN where not valid) and where each is valid."""
 
@@ -573,20 +601,39 @@ def _batches(inputs: ModelInputs, options: dict[str, Any]) -> bool:
     return inputs.string_bed == "uniform" and set(options) <= _BATCHED_OPTIONS
 
 
-def _each_sample(
-    method: Method,
-    inputs: ModelInputs,
-    draws: Draws,
-    xy: NDArray[np.float64],
-    speeds: NDArray[np.float64],
-    options: dict[str, Any],
-    progress: Callable[[int, int], None] | None,
-) -> Samples:
+@dataclass(frozen=True)
+class _Runs:
+    """What the samples run: the model, the nominal inputs, the draws and the grid."""
+
+    method: Method
+    inputs: ModelInputs
+    draws: Draws
+    xy: NDArray[np.float64]
+    speeds: NDArray[np.float64]
+    options: dict[str, Any]
+
+    @property
+    def n(self) -> int:
+        """Samples."""
+        return int(self.draws.speed_offset.size)
+
+    def part(self, index: NDArray[np.intp]) -> _Runs:
+        """The runs of the samples at ``index``."""
+        return replace(self, draws=self.draws.part(index))
+
+    def empty(self) -> Samples:
+        """NaN band quantities and no valid sample, ``(n, n_points, n_speeds, n_supports)``."""
+        shape = (self.n, self.xy.shape[0], self.speeds.size, len(self.options["supports"]))
+        return {a: np.full(shape, np.nan) for a in BAND_QUANTITIES}, np.zeros(shape, dtype=bool)
+
+
+def _each_sample(runs: _Runs, progress: Callable[[int, int], None] | None) -> Samples:
     """The model once per sample."""
-    n = draws.speed_offset.size
-    shape = (n, xy.shape[0], speeds.size, len(options["supports"]))
-    samples = {a: np.full(shape, np.nan) for a in BAND_QUANTITIES}
-    valid = np.zeros(shape, dtype=bool)
+    method, inputs, draws, xy, speeds, options = (
+        runs.method, runs.inputs, runs.draws, runs.xy, runs.speeds, runs.options,
+    )  # fmt: skip
+    n = runs.n
+    samples, valid = runs.empty()
     for k in range(n):
         sample = _sample_inputs(inputs, draws, k)
         where = _inside(inputs.racket.head, xy + draws.location_offset[k])
@@ -602,18 +649,39 @@ def _each_sample(
     return samples, valid
 
 
-def _all_samples(
-    method: Method,
-    inputs: ModelInputs,
-    draws: Draws,
-    xy: NDArray[np.float64],
-    speeds: NDArray[np.float64],
-    options: dict[str, Any],
-    progress: Callable[[int, int], None] | None,
+def _samples_task(runs: _Runs) -> Samples:
+    """Some samples once each, in a worker process (its status warnings held too)."""
+    with _statuses_held():
+        return _each_sample(runs, None)
+
+
+def _on_executor(
+    executor: Executor, runs: _Runs, progress: Callable[[int, int], None] | None
 ) -> Samples:
+    """:func:`_each_sample` in tasks of :data:`SAMPLES_PER_TASK` samples on an executor."""
+    n = runs.n
+    samples, valid = runs.empty()
+    parts = np.array_split(np.arange(n), -(-n // SAMPLES_PER_TASK))
+    futures = {executor.submit(_samples_task, runs.part(part)): part for part in parts}
+    done = 0
+    for future in as_completed(futures):
+        part = futures[future]
+        found, valid[part] = future.result()
+        for attribute in BAND_QUANTITIES:
+            samples[attribute][part] = found[attribute]
+        done += part.size
+        if progress is not None:
+            progress(done, n)
+    return samples, valid
+
+
+def _all_samples(runs: _Runs, progress: Callable[[int, int], None] | None) -> Samples:
     """The approximate method on every sample at once (:func:`predict_samples`), the same
     numbers as :func:`_each_sample` to round-off."""
-    n = draws.speed_offset.size
+    inputs, draws, xy, speeds, options = (
+        runs.inputs, runs.draws, runs.xy, runs.speeds, runs.options,
+    )  # fmt: skip
+    n = runs.n
     scattered = (xy[None, :, :] + draws.location_offset[:, None, :]).reshape(-1, 2)
     v = speeds[None, :] + draws.speed_offset[:, None]
     impacts = predict_samples(
@@ -792,9 +860,7 @@ def sensitivity(
     ab[np.arange(d), np.arange(d)] = b
     x = np.concatenate([a, b, *ab], axis=1)  # (d, (d + 2) n)
     model_options = {"supports": [support], "racket_speed": racket_speed, **(options or {})}
-    with ExitStack() as stack:
-        for name in (_approximate_log, _transient_log):
-            stack.enter_context(status_warnings_held(name))
+    with _statuses_held():
         out = _sensitivity_outputs(method, inputs, names, x, xy, ball_speed, model_options)
     f = out.reshape(*out.shape[:2], d + 2, n)  # (outputs, points, d + 2, n)
     first, total, share = _saltelli_2010(f[:, :, 0], f[:, :, 1], np.moveaxis(f[:, :, 2:], 2, 0))
@@ -868,7 +934,7 @@ def _sensitivity_outputs(
     )
     run = _all_samples if method == "approx" and _batches(inputs, options) else _each_sample
     speeds = np.array([float(ball_speed)])
-    samples, _ = run(method, inputs, draws, xy, speeds, options, None)
+    samples, _ = run(_Runs(method, inputs, draws, xy, speeds, options), None)
     return np.stack([samples[a][:, :, 0, 0].T for a in SENSITIVITY_OUTPUTS])
 
 
@@ -972,9 +1038,7 @@ def propagate_rows(
     n = uncertainty.samples
     values = np.full((n, len(measured)), np.nan)
     head = inputs.racket.head
-    with ExitStack() as stack:
-        for name in (_approximate_log, _transient_log):
-            stack.enter_context(status_warnings_held(name))
+    with _statuses_held():
         for k in range(n):
             rows = replace(
                 measured,

@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable, Sequence
+from contextlib import nullcontext
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal, cast
@@ -20,7 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of, require_speeds
+from racketdyn.errors import InputError, one_of, require_speeds, require_whole
 from racketdyn.impact import ImpactResult, predict
 from racketdyn.impact.comparison import (
     COMPARED,
@@ -269,6 +270,7 @@ def run_predict(
     include_string_bed: bool = False,
     string_bed: StringBed = "uniform",
     uncertainty: Uncertainty | None = None,
+    workers: int | None = None,
     show: Sequence[float] | None = None,
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
@@ -322,6 +324,9 @@ def run_predict(
         uncertainty.propagate`), the bands written beside the numbers (``<column>_mean``,
         ``_sd``, ``_p05``, ``_p95``, ``samples_valid``) and every sample in
         ``uncertainty.nc`` (``uncertainty_transient.nc`` for the transient with both).
+    workers : int, optional
+        Worker processes for the samples a model runs one by one (the transient model's): a
+        local pool (:func:`racketdyn.sweep.executors.make_executor`); by default this process.
     show : sequence of float, optional
         The case the single-case summaries show (face maps, Fig. 15, the time histories, the
         models' comparison map and table, the report's headline): ``(ball speed,)`` or
@@ -350,6 +355,10 @@ def run_predict(
             "`stiffness_reading` is a choice of the approximate method (eq 10); the transient "
             "model integrates the contact: drop it, or use `model` approx or both"
         )
+    if workers is not None:
+        require_whole("`workers`", workers)
+        if uncertainty is None:
+            raise InputError("`workers` is for the samples of an `uncertainty`: give one too")
     engine = engine or "auto"
     stiffness_reading = stiffness_reading or "period"
     one_of("`engine`", engine, ENGINES)
@@ -450,7 +459,7 @@ def run_predict(
             string_bed=string_bed,
         )
         extra = {"stiffness_reading": stiffness_reading, "vibration_charge": vibration_charge}
-        _bands(result, model_inputs, uncertainty, locations, labels, progress, extra)
+        _bands(result, model_inputs, uncertainty, (locations, labels), progress, extra, workers)
     if result.approximate is not None and result.transient is not None:
         result.comparison = compare_models(result.approximate, result.transient)
         result.written.append(result.comparison.write_csv(out_dir / "comparison.csv"))
@@ -487,30 +496,37 @@ def _bands(
     result: PredictResult,
     inputs: ModelInputs,
     uncertainty: Uncertainty,
-    locations: NDArray[np.float64],
-    labels: list[str],
+    points: tuple[NDArray[np.float64], list[str]],
     progress: Progress | None,
     approximate_options: dict[str, Any],
+    workers: int | None,
 ) -> None:
-    """Each model's samples and bands; the transient's table rewritten with its bands."""
+    """Each model's samples and bands (the transient's on ``workers`` processes, if given);
+    the transient's table rewritten with its bands."""
+    from racketdyn.sweep.executors import make_executor  # the sweeps' pool, when asked for
+
+    locations, labels = points
     runs = [("approx", result.approximate), ("transient", result.transient)]
     for method, nominal in runs:
         if nominal is None:
             continue
         name = "approximate method" if method == "approx" else "transient model"
         report(progress, f"uncertainty: {uncertainty.samples} samples by the {name}")
-        band = propagate(
-            inputs,
-            locations,
-            result.speeds,
-            uncertainty,
-            method=method,  # type: ignore[arg-type]
-            supports=result.supports,
-            racket_speed=np.asarray(result.racket_speed),
-            labels=labels,
-            options=approximate_options if method == "approx" else None,
-            progress=_sample_progress(progress, name),
-        )
+        pool = make_executor("process", workers) if workers else nullcontext(None)
+        with pool as executor:
+            band = propagate(
+                inputs,
+                locations,
+                result.speeds,
+                uncertainty,
+                method=method,  # type: ignore[arg-type]
+                supports=result.supports,
+                racket_speed=np.asarray(result.racket_speed),
+                labels=labels,
+                options=approximate_options if method == "approx" else None,
+                progress=_sample_progress(progress, name),
+                executor=executor,
+            )
         result.bands[method] = band
         both = result.approximate is not None and result.transient is not None
         file = "uncertainty_transient.nc" if method == "transient" and both else "uncertainty.nc"
