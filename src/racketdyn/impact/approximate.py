@@ -471,7 +471,8 @@ class ApproximateImpacts:
     @property
     def status(self) -> NDArray[np.str_]:
         """``ok`` or why the method gives no number, per impact."""
-        return np.asarray(np.asarray(STATUSES)[self.status_code])
+        # as wide as the longest status present (all ok: two characters an impact)
+        return np.asarray(np.asarray(STATUSES, dtype=object)[self.status_code].astype(str))
 
     def arrays(self) -> dict[str, Any]:
         """The :class:`ImpactResult` fields they fill, by name (the status in words)."""

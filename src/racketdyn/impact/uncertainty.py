@@ -4,8 +4,10 @@ An :class:`Uncertainty` names the uncertain inputs (:data:`UNCERTAIN_INPUTS`: th
 parameters of :data:`racketdyn.impact.calibration.PARAMETERS` plus the impact's own location
 and ball speed) with a distribution each (:class:`Spread`: normal about the nominal value,
 uniform over a range, or equally likely values).  :func:`propagate` draws quasi-random samples
-of them (:mod:`scipy.stats.qmc`, Sobol' or Latin hypercube, seeded), runs a model once per
-sample over the whole grid, and returns an :class:`UncertainResult`: every sample's numbers,
+of them (:mod:`scipy.stats.qmc`, Sobol' or Latin hypercube, seeded), runs a model at every
+sample over the whole grid (the approximate method on all samples at once,
+:mod:`racketdyn.impact.samples`; the transient model once per sample, on an executor if
+given), and returns an :class:`UncertainResult`: every sample's numbers,
 the nominal result, and per impact the mean, standard deviation and the 5 % and 95 %
 quantiles of :data:`BAND_QUANTITIES`.
 
