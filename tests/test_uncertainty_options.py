@@ -83,3 +83,26 @@ def test_predict_runs_the_transient_samples_on_worker_processes(
     argv = ["predict", "--grid", "3", "--speed", "20", "--no-figures", "--workers", "2"]
     assert main([*argv, "--out", str(tmp_path / "none")]) != 0
     assert "--workers" in capsys.readouterr().err
+
+
+def test_swing_and_validate_run_their_samples_on_worker_processes(tmp_path: Path) -> None:
+    """``--workers N`` is predict's, swing's and validate's: the same bands as in one process."""
+    spec = tmp_path / "u.toml"
+    spec.write_text("[e_bg]\nrange = [0.80, 0.88]\n[location_m]\nsd = 0.005\n")
+    swing = ["swing", "--uncertainty", str(spec), "--samples", "8", "--grid", "3", "--no-figures"]
+    measured = tmp_path / "measured.csv"
+    measured.write_text(
+        "x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio\n"
+        "0.50,0.0,20,0,free,0.40\n0.55,0.01,20,0,free,0.35\n"
+    )
+    validate = ["validate", str(measured), "--uncertainty", str(spec), "--samples", "8"]
+    validate += ["--no-figures"]
+    for argv, table, columns in (
+        (swing, "swing.csv", ["rebound_speed_mps_p95"]),
+        (validate, "validation.csv", ["p95_approx", "p95_transient"]),
+    ):
+        runs = (tmp_path / f"{argv[0]}_here", tmp_path / f"{argv[0]}_pool")
+        assert main([*argv, "--out", str(runs[0])]) == 0
+        assert main([*argv, "--workers", "2", "--out", str(runs[1])]) == 0
+        here, pooled = (pd.read_csv(run / table) for run in runs)
+        np.testing.assert_allclose(pooled[columns], here[columns], rtol=1e-12)

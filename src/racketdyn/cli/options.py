@@ -190,6 +190,14 @@ def add_uncertainty(parser: argparse.ArgumentParser, sampled: bool = True) -> No
         default=0,
         help="seed of the samples, a count (default 0: the same samples every run)",
     )
+    parser.add_argument(
+        "--workers",
+        type=int,
+        metavar="N",
+        help="run the samples of --uncertainty that a model runs one by one (the transient "
+        "model's, a swing's, measured rows') on a local pool of N processes, a count "
+        "(default: this process)",
+    )
 
 
 def uncertainty_from(args: argparse.Namespace) -> Any:

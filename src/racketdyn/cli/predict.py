@@ -89,13 +89,6 @@ def add(commands: Any) -> None:
     )
     opt.add_string_bed(p)
     opt.add_uncertainty(p)
-    p.add_argument(
-        "--workers",
-        type=int,
-        metavar="N",
-        help="run the samples of --uncertainty that a model runs one by one (the transient "
-        "model's) on a local pool of N processes, a count (default: this process)",
-    )
     opt.add_no_figures(p)
     opt.add_out(p)
     p.set_defaults(handler=run)

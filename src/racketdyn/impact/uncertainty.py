@@ -29,7 +29,7 @@ from concurrent.futures import Executor, as_completed
 from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass, replace
 from functools import partial
-from typing import Any, Literal, get_args
+from typing import Any, Literal, TypeVar, get_args
 
 import numpy as np
 import xarray as xr
@@ -588,6 +588,8 @@ def _statuses_held() -> Iterator[None]:
         yield
 
 
+T = TypeVar("T")
+
 SAMPLES_PER_TASK = 4
 """Samples in one task of an executor (:func:`propagate`'s ``executor``)."""
 
@@ -651,30 +653,42 @@ def _each_sample(runs: _Runs, progress: Callable[[int, int], None] | None) -> Sa
     return samples, valid
 
 
-def _samples_task(runs: _Runs) -> Samples:
-    """Some samples once each, in a worker process (its status warnings held too)."""
+def _samples_task(runs: _Runs, draws: Draws) -> Samples:
+    """Some samples (``draws``) once each, in a worker process (status warnings held)."""
     with _statuses_held():
-        return _each_sample(runs, None)
+        return _each_sample(replace(runs, draws=draws), None)
 
 
 def _on_executor(
     executor: Executor, runs: _Runs, progress: Callable[[int, int], None] | None
 ) -> Samples:
     """:func:`_each_sample` in tasks of :data:`SAMPLES_PER_TASK` samples on an executor."""
-    n = runs.n
     samples, valid = runs.empty()
+    task = partial(_samples_task, runs)
+    for part, (found, valid[part]) in _in_tasks(executor, task, runs.draws, progress):
+        for attribute in BAND_QUANTITIES:
+            samples[attribute][part] = found[attribute]
+    return samples, valid
+
+
+def _in_tasks(
+    executor: Executor,
+    task: Callable[[Draws], T],
+    draws: Draws,
+    progress: Callable[[int, int], None] | None,
+) -> Iterator[tuple[NDArray[np.intp], T]]:
+    """``task(draws of some samples)`` for every :data:`SAMPLES_PER_TASK` samples on an
+    executor: each part's sample indices and result, as they finish."""
+    n = draws.speed_offset.size
     parts = np.array_split(np.arange(n), -(-n // SAMPLES_PER_TASK))
-    futures = {executor.submit(_samples_task, runs.part(part)): part for part in parts}
+    futures = {executor.submit(task, draws.part(part)): part for part in parts}
     done = 0
     for future in as_completed(futures):
         part = futures[future]
-        found, valid[part] = future.result()
-        for attribute in BAND_QUANTITIES:
-            samples[attribute][part] = found[attribute]
+        yield part, future.result()
         done += part.size
         if progress is not None:
             progress(done, n)
-    return samples, valid
 
 
 def _all_samples(runs: _Runs, progress: Callable[[int, int], None] | None) -> Samples:
@@ -1010,6 +1024,7 @@ def propagate_rows(
     uncertainty: Uncertainty,
     method: Method,
     progress: Callable[[int, int], None] | None = None,
+    executor: Executor | None = None,
 ) -> RowBands:
     """The predicted rebound ratio's band at every measured row (``validate``).
 
@@ -1031,6 +1046,9 @@ def propagate_rows(
         The model.
     progress : callable, optional
         ``progress(done, total)`` after each sample.
+    executor : concurrent.futures.Executor, optional
+        Where the samples run, :data:`SAMPLES_PER_TASK` to a task (a sweep's process pool);
+        by default this process.
 
     Returns
     -------
@@ -1038,6 +1056,36 @@ def propagate_rows(
     """
     draws = draw(uncertainty, inputs)
     n = uncertainty.samples
+    task = partial(_rows_task, inputs, measured, method)
+    if executor is None:
+        values = task(draws, progress)
+    else:
+        values = np.full((n, len(measured)), np.nan)
+        for part, found in _in_tasks(executor, task, draws, progress):
+            values[part] = found
+    valid = np.isfinite(values)
+    share = valid.mean(axis=0)
+    if measured.rebound_ratio_sd is not None:
+        # the band of what is measured: each sample with the row's own measurement noise
+        noise = np.random.default_rng(uncertainty.seed).standard_normal(values.shape)
+        values = values + noise * np.nan_to_num(measured.rebound_ratio_sd)[None, :]
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
+        low, high = np.nanquantile(values, QUANTILES, axis=0)
+    given = share >= MIN_VALID_SHARE
+    return RowBands(np.where(given, low, np.nan), np.where(given, high, np.nan), share, str(method))
+
+
+def _rows_task(
+    inputs: ModelInputs,
+    measured: MeasuredRebound,
+    method: Method,
+    draws: Draws,
+    progress: Callable[[int, int], None] | None = None,
+) -> NDArray[np.float64]:
+    """``(n_samples, n_rows)`` every sample's rebound ratio at the rows (NaN where not valid),
+    here or in a worker process (status warnings held)."""
+    n = draws.speed_offset.size
     values = np.full((n, len(measured)), np.nan)
     head = inputs.racket.head
     with _statuses_held():
@@ -1050,14 +1098,4 @@ def propagate_rows(
             values[k], _ = predict_rows(_sample_inputs(inputs, draws, k), rows, method)
             if progress is not None:
                 progress(k + 1, n)
-    valid = np.isfinite(values)
-    share = valid.mean(axis=0)
-    if measured.rebound_ratio_sd is not None:
-        # the band of what is measured: each sample with the row's own measurement noise
-        noise = np.random.default_rng(uncertainty.seed).standard_normal(values.shape)
-        values = values + noise * np.nan_to_num(measured.rebound_ratio_sd)[None, :]
-    with warnings.catch_warnings():
-        warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
-        low, high = np.nanquantile(values, QUANTILES, axis=0)
-    given = share >= MIN_VALID_SHARE
-    return RowBands(np.where(given, low, np.nan), np.where(given, high, np.nan), share, str(method))
+    return values

@@ -11,7 +11,6 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable, Sequence
-from contextlib import nullcontext
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal, cast
@@ -21,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of, require_speeds, require_whole
+from racketdyn.errors import InputError, one_of, require_speeds
 from racketdyn.impact import ImpactResult, predict
 from racketdyn.impact.comparison import (
     COMPARED,
@@ -70,10 +69,12 @@ from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_def
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
+    check_workers,
     command_record,
     finish_run,
     report,
     run_step,
+    sample_pool,
 )
 
 __all__ = ["DEFAULT_GRID", "MAX_GRID", "MODELS", "PredictResult", "impact_points", "run_predict"]
@@ -355,10 +356,7 @@ def run_predict(
             "`stiffness_reading` is a choice of the approximate method (eq 10); the transient "
             "model integrates the contact: drop it, or use `model` approx or both"
         )
-    if workers is not None:
-        require_whole("`workers`", workers)
-        if uncertainty is None:
-            raise InputError("`workers` is for the samples of an `uncertainty`: give one too")
+    check_workers(workers, uncertainty)
     engine = engine or "auto"
     stiffness_reading = stiffness_reading or "period"
     one_of("`engine`", engine, ENGINES)
@@ -503,8 +501,6 @@ def _bands(
 ) -> None:
     """Each model's samples and bands (the transient's on ``workers`` processes, if given);
     the transient's table rewritten with its bands."""
-    from racketdyn.sweep.executors import make_executor  # the sweeps' pool, when asked for
-
     locations, labels = points
     runs = [("approx", result.approximate), ("transient", result.transient)]
     for method, nominal in runs:
@@ -512,8 +508,7 @@ def _bands(
             continue
         name = "approximate method" if method == "approx" else "transient model"
         report(progress, f"uncertainty: {uncertainty.samples} samples by the {name}")
-        pool = make_executor("process", workers) if workers else nullcontext(None)
-        with pool as executor:
+        with sample_pool(workers) as executor:
             band = propagate(
                 inputs,
                 locations,
