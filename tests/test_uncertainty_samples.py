@@ -144,3 +144,18 @@ def test_the_transient_model_s_samples_run_on_a_process_pool() -> None:
     assert np.array_equal(here.valid, pooled.valid)
     for name in BAND_QUANTITIES:
         np.testing.assert_allclose(pooled.samples[name], here.samples[name], rtol=1e-12)
+
+
+def test_the_transient_model_s_sobol_runs_on_a_process_pool() -> None:
+    from racketdyn.impact.uncertainty import sensitivity
+    from racketdyn.sweep.executors import make_executor
+
+    uncertainty = Uncertainty((Spread("e_bg", bounds=(0.8, 0.88)),), seed=2)
+    inputs = ModelInputs(RACKET, Ball())
+    points = {"centre": (RACKET.head.centre_x_m, RACKET.head.centre_y_m)}
+    here = sensitivity(inputs, points, 20.0, uncertainty, n=8, method="transient")
+    with make_executor("process", 2) as pool:
+        pooled = sensitivity(
+            inputs, points, 20.0, uncertainty, n=8, method="transient", executor=pool
+        )
+    np.testing.assert_allclose(pooled.total_order, here.total_order, rtol=1e-12)

@@ -828,6 +828,7 @@ def sensitivity(
     n: int = 64,
     method: Method = "approx",
     options: dict[str, Any] | None = None,
+    executor: Executor | None = None,
 ) -> Sensitivity:
     """Which input dominates: Sobol' first-order and total indices at named points.
 
@@ -859,6 +860,9 @@ def sensitivity(
         The model.
     options : dict, optional
         More keyword arguments of the model.
+    executor : concurrent.futures.Executor, optional
+        Where the runs go when the model runs them one by one (the transient model), as for
+        :func:`propagate`; by default this process.
 
     Returns
     -------
@@ -877,7 +881,10 @@ def sensitivity(
     x = np.concatenate([a, b, *ab], axis=1)  # (d, (d + 2) n)
     model_options = {"supports": [support], "racket_speed": racket_speed, **(options or {})}
     with _statuses_held():
-        out = _sensitivity_outputs(method, inputs, names, x, xy, ball_speed, model_options)
+        runs = _Runs(
+            method, inputs, _columns_as_draws(names, x), xy, np.array([ball_speed]), model_options
+        )
+        out = _sensitivity_outputs(runs, executor)
     f = out.reshape(*out.shape[:2], d + 2, n)  # (outputs, points, d + 2, n)
     first, total, share = _saltelli_2010(f[:, :, 0], f[:, :, 1], np.moveaxis(f[:, :, 2:], 2, 0))
     for label, given in zip(labels, share, strict=True):
@@ -928,29 +935,28 @@ def _design(
     return unit[0], unit[1]
 
 
-def _sensitivity_outputs(
-    method: Method,
-    inputs: ModelInputs,
-    names: Sequence[str],
-    x: NDArray[np.float64],
-    xy: NDArray[np.float64],
-    ball_speed: float,
-    options: dict[str, Any],
-) -> NDArray[np.float64]:
-    """``(n_outputs, n_points, n_columns)`` the outputs at each column of ``x`` (one value
-    per name), NaN where not valid: the columns as samples of :func:`propagate`."""
+def _columns_as_draws(names: Sequence[str], x: NDArray[np.float64]) -> Draws:
+    """The columns of ``x`` (one row per name) as the samples of :func:`propagate`."""
     columns = dict(zip(names, x, strict=True))
     zeros = np.zeros(x.shape[1])
-    draws = Draws(
+    return Draws(
         parameters={k: v for k, v in columns.items() if k in PARAMETERS},
         location_offset=np.column_stack(
             [columns.get("location_m x", zeros), columns.get("location_m y", zeros)]
         ),
         speed_offset=columns.get("ball_speed_mps", zeros),
     )
-    run = _all_samples if method == "approx" and _batches(inputs, options) else _each_sample
-    speeds = np.array([float(ball_speed)])
-    samples, _ = run(_Runs(method, inputs, draws, xy, speeds, options), None)
+
+
+def _sensitivity_outputs(runs: _Runs, executor: Executor | None) -> NDArray[np.float64]:
+    """``(n_outputs, n_points, n_runs)`` the outputs of every run at one speed and support,
+    NaN where not valid."""
+    if runs.method == "approx" and _batches(runs.inputs, runs.options):
+        samples, _ = _all_samples(runs, None)
+    elif executor is not None:
+        samples, _ = _on_executor(executor, runs, None)
+    else:
+        samples, _ = _each_sample(runs, None)
     return np.stack([samples[a][:, :, 0, 0].T for a in SENSITIVITY_OUTPUTS])
 
 

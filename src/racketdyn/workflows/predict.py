@@ -527,7 +527,7 @@ def _bands(
         file = "uncertainty_transient.nc" if method == "transient" and both else "uncertainty.nc"
         band.to_xarray().to_netcdf(result.out / file)
         result.written.append(result.out / file)
-    _sensitivity(result, inputs, uncertainty, progress, approximate_options)
+    _sensitivity(result, inputs, uncertainty, progress, approximate_options, workers)
     if result.transient is not None and "transient" in result.bands:
         both = result.approximate is not None
         path = result.out / transient_csv_name("both" if both else "transient")
@@ -551,8 +551,10 @@ def _sensitivity(
     uncertainty: Uncertainty,
     progress: Progress | None,
     approximate_options: dict[str, Any],
+    workers: int | None,
 ) -> None:
-    """Which input dominates at the landmarks: ``sensitivity.csv``."""
+    """Which input dominates at the landmarks: ``sensitivity.csv`` (the transient model's runs
+    on ``workers`` processes, if given)."""
     assert result.racket is not None
     marks = landmark_points(result.racket)
     centre = marks["centre"]
@@ -565,17 +567,19 @@ def _sensitivity(
     method = "approx" if result.approximate is not None else "transient"
     shown = result.shown_speed
     report(progress, "uncertainty: which input dominates (Sobol' indices)")
-    result.sensitivity = sensitivity(
-        inputs,
-        points,
-        result.speeds[shown],
-        uncertainty,
-        support=result.supports[0],
-        racket_speed=result.racket_speed[shown if len(result.racket_speed) > 1 else 0],
-        n=SENSITIVITY_SAMPLES,
-        method=method,  # type: ignore[arg-type]
-        options=approximate_options if method == "approx" else None,
-    )
+    with sample_pool(workers if method == "transient" else None) as executor:
+        result.sensitivity = sensitivity(
+            inputs,
+            points,
+            result.speeds[shown],
+            uncertainty,
+            support=result.supports[0],
+            racket_speed=result.racket_speed[shown if len(result.racket_speed) > 1 else 0],
+            n=SENSITIVITY_SAMPLES,
+            method=method,  # type: ignore[arg-type]
+            options=approximate_options if method == "approx" else None,
+            executor=executor,
+        )
     path = result.out / "sensitivity.csv"
     rows = result.sensitivity.rows()
     write_columns(path, {k: np.asarray(v, dtype=object) for k, v in rows.items()})
