@@ -73,7 +73,8 @@ def main() -> None:
         )
         how = "every sample at once" if vectorised else "once per sample    "
         print(
-            f"  {samples:5d} samples, {how}: {wall:6.2f} s wall ({cpu:5.2f} s CPU) = "
+            f"  {samples:5d} samples, {how} (best of {repeats}): {wall:6.2f} s wall "
+            f"({cpu:5.2f} s CPU) = "
             f"{wall / samples * 1e3:5.2f} ms a sample = {wall / samples / nominal:4.2f} × a "
             "nominal prediction"
         )
