@@ -161,21 +161,22 @@ def add_uncertainty(parser: argparse.ArgumentParser, sampled: bool = True) -> No
     if not sampled:
         parser.add_argument(
             "--uncertainty",
-            metavar="TOML|literature",
+            metavar="TOML|literature|none",
             help="an uncertainty file (docs/uncertainty.md) or 'literature': the ranges (and the "
-            "span of equally likely values) of the fitted parameters bound the fit (default: "
-            "the racket file's [uncertainty] tables, else each parameter's own bounds)",
+            "span of equally likely values) of the fitted parameters bound the fit; 'none': "
+            "each parameter's own bounds (default: the racket file's [uncertainty] tables, else "
+            "each parameter's own bounds)",
         )
         return
     parser.add_argument(
         "--uncertainty",
-        metavar="TOML|literature",
+        metavar="TOML|literature|none",
         help="uncertain inputs, one table each (e_bg, first_bending_hz, ball_stiffness_scale, "
         "location_m, ball_speed_mps, ...: sd = x, range = [low, high] or values = [...]; "
         "docs/uncertainty.md), or 'literature' for the spreads the literature gives e_BG, the "
         "ball, the bed, the frame frequency and a ball cannon; each model runs once per sample "
-        "and every number gets its mean, sd and 5-95 %% band (default: the racket file's "
-        "[uncertainty] tables, else none)",
+        "and every number gets its mean, sd and 5-95 %% band; 'none' for no band, whatever "
+        "the racket file holds (default: the racket file's [uncertainty] tables, else none)",
     )
     parser.add_argument(
         "--samples",
@@ -189,34 +190,46 @@ def add_uncertainty(parser: argparse.ArgumentParser, sampled: bool = True) -> No
         default=0,
         help="seed of the samples, a count (default 0: the same samples every run)",
     )
+    parser.add_argument(
+        "--workers",
+        type=int,
+        metavar="N",
+        help="run the samples of --uncertainty that a model runs one by one (the transient "
+        "model's, a swing's, measured rows') on a local pool of N processes, a count "
+        "(default: this process)",
+    )
 
 
 def uncertainty_from(args: argparse.Namespace) -> Any:
     """The :class:`~racketdyn.impact.uncertainty.Uncertainty` of the options, or None."""
     from racketdyn.errors import InputError
-    from racketdyn.impact.uncertainty import Uncertainty
+    from racketdyn.impact.uncertainty import Spread, Uncertainty
     from racketdyn.io.uncertainty_file import (
         LITERATURE,
+        NONE,
         literature_for_racket,
         racket_spreads,
         read_spreads,
     )
 
+    spreads: tuple[Spread, ...] = ()  # --uncertainty none: no band, whatever the racket file
     if args.uncertainty == LITERATURE:
         spreads = literature_for_racket(args.racket, bool(getattr(args, "modal", None)))
-    elif args.uncertainty is not None:
+    elif args.uncertainty not in (None, NONE):
         spreads = read_spreads(args.uncertainty)
-    else:
+    elif args.uncertainty is None:
         spreads = racket_spreads(args.racket) if getattr(args, "racket", None) else ()
         if spreads:
             logging.getLogger(__name__).info("uncertainty: the racket file's [uncertainty]")
     if not spreads:
         for name, default in (("samples", 256), ("seed", 0)):
             if getattr(args, name, default) != default:
-                raise InputError(
-                    f"--{name} is for --uncertainty: give an uncertainty file (or a racket file "
-                    "with [uncertainty] tables)"
+                given = (
+                    "with --uncertainty none nothing is sampled"
+                    if args.uncertainty == NONE
+                    else "give an uncertainty file (or a racket file with [uncertainty] tables)"
                 )
+                raise InputError(f"--{name} is for --uncertainty: {given}")
         return None
     return Uncertainty(
         spreads, samples=getattr(args, "samples", 256), seed=getattr(args, "seed", 0)

@@ -129,6 +129,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             include_string_bed=args.include_string_bed,
             string_bed=args.string_bed,
             uncertainty=uncertainty,
+            workers=args.workers,
             show=show,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
@@ -258,7 +259,8 @@ def _dominant_line(found: Sensitivity) -> str:
     """The input with the largest total Sobol' index of the rebound ratio at each point."""
     parts = [
         f"{label} {found.dominant(p) or 'not known (samples beyond the method)'}"
-        for p, label in enumerate(found.labels)
+        + (f" (on {share:.0%} of the samples)" if found.dominant(p) and share < 1.0 else "")
+        for p, (label, share) in enumerate(zip(found.labels, found.valid_share, strict=True))
     ]
     return (
         f"dominant input of the rebound ratio at {found.ball_speed:g} m/s, {found.support} "

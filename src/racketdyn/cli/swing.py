@@ -97,6 +97,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             grid=args.grid,
             string_bed=args.string_bed,
             uncertainty=opt.uncertainty_from(args),
+            workers=args.workers,
             defaults=[*swing_defaults, *defaults],
             command=opt.command_line(args),
             figures=None if args.no_figures else swing_figures,

@@ -84,6 +84,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             engine=args.engine,
             string_bed=args.string_bed,
             uncertainty=uncertainty,
+            workers=args.workers,
             allow_implausible=args.allow_implausible,
             defaults=defaults,
             command=opt.command_line(args),

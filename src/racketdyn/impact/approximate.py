@@ -33,8 +33,9 @@ For a linear spring both give T_c = π sqrt(μ/k) exactly.  Either way the impul
 from __future__ import annotations
 
 import logging
-from collections.abc import Sequence
-from typing import Literal, get_args
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, fields
+from typing import Any, Literal, get_args
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -61,13 +62,18 @@ from racketdyn.numerics import invert_increasing
 from racketdyn.racket import SUPPORTS, Racket
 
 __all__ = [
+    "STATUSES",
     "STIFFNESS_READINGS",
     "VIBRATION_CHARGES",
     "VIBRATION_SHARE_LIMIT",
+    "ApproximateImpacts",
+    "Shapes",
     "StiffnessReading",
     "VibrationCharge",
+    "approximate_impacts",
     "elastic_contact_time",
     "predict",
+    "shapes_where",
     "tangent_peak_deflection",
     "vibration_cor_squared",
 ]
@@ -346,77 +352,21 @@ def predict(
         law,
         include_string_bed,
     )
-    xy, model, law, reduced = grid.locations, grid.model, grid.law, grid.reduced_mass
-    v_ball, v_racket = grid.ball_speed, grid.racket_speed
-    approach = v_ball + v_racket
-    m_b = ball.mass_kg
-    mu = np.broadcast_to((m_b * reduced / (m_b + reduced))[:, None, :], grid.shape)
-    speed = approach[None, :, None]  # (1, s, 1)
-    e_bg = grid.ball.e_bg_at(speed)  # e_BG at the relative speed (given, or ball + strings)
-    impulse = (1.0 + e_bg) * mu * speed  # eqs (6), (8)
-
-    if stiffness_reading == "period":
-        deflection, contact_time, in_range = elastic_contact(law, mu, speed)
-        deflection = np.where(in_range, deflection, np.nan)
-        contact_time = np.where(in_range, contact_time, np.nan)
-        stiffness = np.pi**2 * mu / contact_time**2  # eq (7) solved for K_GB
-    else:
-        deflection = tangent_peak_deflection(law, impulse / (2.0 * np.sqrt(mu)))
-        in_range = np.isfinite(deflection)
-        safe = np.where(in_range, deflection, 0.0)
-        stiffness = np.where(in_range, law.stiffness(safe), np.nan)
-        contact_time = np.pi * np.sqrt(mu / stiffness)  # eq (7)
-    mean_force = impulse / contact_time  # eqs (8)-(10)
-    peak_force = np.pi * mean_force / 2.0  # eq (11)
-
-    if model is None:
-        mode_energy = np.zeros((*deflection.shape, 0))
-        turn_energy = np.zeros(deflection.shape)
-    else:
-        phi = model.mode_shapes_at(xy)  # (n, m)
-        spectrum = half_sine_spectrum(
-            model.frequency, contact_time[..., None], peak_force[..., None]
-        )
-        mode_energy = 0.5 * (phi[:, None, None, :] * spectrum) ** 2  # ½ A_jjk |S_j(ω_k)|²
-        turn_energy = (
-            np.zeros(deflection.shape)  # the paper's charge does not use it
-            if vibration_charge == "paper"
-            else frame_energy_at_turn(
-                2.0 * np.pi * model.frequency,
-                phi[:, None, None, :],
-                np.where(np.isfinite(contact_time), contact_time, 1.0),
-                np.where(np.isfinite(peak_force), peak_force, 0.0),
-            ).sum(axis=-1)
-        )
-    vibration_energy = mode_energy.sum(axis=-1)
-
-    cor_squared = vibration_cor_squared(
-        e_bg, vibration_energy, turn_energy, 0.5 * mu * speed**2, vibration_charge
+    xy, model, v_ball, v_racket = grid.locations, grid.model, grid.ball_speed, grid.racket_speed
+    speed = (v_ball + v_racket)[None, :, None]  # (1, s, 1)
+    impacts = approximate_impacts(
+        grid.law,
+        ball,
+        grid.reduced_mass[:, None, :],
+        v_ball[None, :, None],
+        v_racket[None, :, None],
+        grid.ball.e_bg_at(speed),  # e_BG at the relative speed (given, or ball + strings)
+        None if model is None else (model.frequency, _shapes_at(model, xy)),
+        grid.reaches_frame,
+        stiffness_reading=stiffness_reading,
+        vibration_charge=vibration_charge,
     )
-    valid = in_range & (cor_squared >= 0.0)
-    cor = np.sqrt(np.where(valid, cor_squared, np.nan))
-    mass_ratio = (m_b / reduced)[:, None, :]
-    rebound_ratio = (cor - mass_ratio) / (1.0 + mass_ratio)
-    rebound_speed = (
-        rebound_ratio * v_ball[None, :, None] + (1.0 + rebound_ratio) * v_racket[None, :, None]
-    )
-    status = np.full(deflection.shape, STATUS_OK, dtype=object)
-    with np.errstate(invalid="ignore"):
-        over = vibration_energy > VIBRATION_SHARE_LIMIT * 0.5 * mu * speed**2
-    status[in_range & valid & over] = STATUS_VIBRATION_SHARE
-    status[in_range & ~valid] = STATUS_VIBRATION_LOSS
-    status[in_range & grid.reaches_frame(deflection)] = STATUS_FRAME_CONTACT
-    status[~in_range] = STATUS_BEYOND_LAW
-    for message in (
-        STATUS_VIBRATION_LOSS,
-        STATUS_VIBRATION_SHARE,
-        STATUS_FRAME_CONTACT,
-        STATUS_BEYOND_LAW,
-    ):
-        count = int(np.sum(status == message))
-        if count:
-            log.warning("%d of %d impacts: %s (their results are NaN)", count, status.size, message)
-
+    _log_statuses(impacts.status)
     inputs = grid.inputs(
         ball,
         "approximate (Kawazoe, eqs 1-12)",
@@ -430,7 +380,179 @@ def predict(
         ball_speed=v_ball,
         racket_speed=v_racket,
         supports=grid.supports,
-        reduced_mass=reduced,
+        reduced_mass=grid.reduced_mass,
+        **impacts.arrays(),
+        modal_model=model,
+        inputs=inputs,
+    )
+
+
+STATUSES: tuple[str, ...] = (
+    STATUS_OK,
+    STATUS_VIBRATION_SHARE,
+    STATUS_VIBRATION_LOSS,
+    STATUS_FRAME_CONTACT,
+    STATUS_BEYOND_LAW,
+)
+"""The approximate method's statuses, by :attr:`ApproximateImpacts.status_code`."""
+
+
+def _log_statuses(status: NDArray[np.str_]) -> None:
+    """One warning per status that left impacts without numbers."""
+    for message in STATUSES[1:]:
+        count = int(np.sum(status == message))
+        if count:
+            log.warning("%d of %d impacts: %s (their results are NaN)", count, status.size, message)
+
+
+Shapes = Callable[[NDArray[np.bool_]], NDArray[np.float64]]
+"""``shapes(needed)``: the mode shapes (1/√kg) at the points of impacts shaped ``(...)``, as
+``(..., n_modes)`` with the speed and support axes 1; a point none of whose impacts is
+``needed`` (frame shots, beyond the law) may be left 0."""
+
+
+def shapes_where(
+    model: ModalModel, points: NDArray[np.float64], wanted: NDArray[np.bool_]
+) -> NDArray[np.float64]:
+    """``(n, n_modes)`` mode shapes at the ``wanted`` of ``(n, 2)`` points, 0 elsewhere, 1/√kg
+    (a spline evaluation costs ≈ 20 µs a point on the built-in racket's 797 samples)."""
+    phi = np.zeros((points.shape[0], model.n_modes))
+    if np.any(wanted):
+        phi[wanted] = model.mode_shapes_at(points[wanted])
+    return phi
+
+
+def _shapes_at(model: ModalModel, xy: NDArray[np.float64]) -> Shapes:
+    """:data:`Shapes` at the grid's ``(n_points, 2)`` points."""
+    return lambda needed: shapes_where(model, xy, np.asarray(needed.any(axis=(1, 2))))[
+        :, None, None, :
+    ]
+
+
+@dataclass(frozen=True)
+class ApproximateImpacts:
+    """The approximate method's numbers for impacts of any shape ``(...)`` (eqs 6–12).
+
+    Attributes
+    ----------
+    stiffness : ndarray
+        K_GB, N/m (eq 7).
+    peak_deflection : ndarray
+        X_p, m.
+    contact_time : ndarray
+        T_c, s.
+    mean_force, peak_force : ndarray
+        F_MEAN and F_MAX, N (eqs 8–11).
+    mode_energy : ndarray
+        ``(..., n_modes)`` vibration energy left in each mode, J (eq 12).
+    vibration_energy : ndarray
+        Their sum, J.
+    cor : ndarray
+        Ball–racket COR e_r.
+    rebound_ratio, rebound_speed : ndarray
+        e_A and the ball's outgoing speed, m/s.
+    status_code : ndarray of int8
+        Index in :data:`STATUSES`: 0 (``ok``) or why the method gives no number
+        (:attr:`status` in words).
+    """
+
+    stiffness: NDArray[np.float64]
+    peak_deflection: NDArray[np.float64]
+    contact_time: NDArray[np.float64]
+    mean_force: NDArray[np.float64]
+    peak_force: NDArray[np.float64]
+    mode_energy: NDArray[np.float64]
+    vibration_energy: NDArray[np.float64]
+    cor: NDArray[np.float64]
+    rebound_ratio: NDArray[np.float64]
+    rebound_speed: NDArray[np.float64]
+    status_code: NDArray[np.int8]
+
+    @property
+    def status(self) -> NDArray[np.str_]:
+        """``ok`` or why the method gives no number, per impact."""
+        # as wide as the longest status present (all ok: two characters an impact)
+        return np.asarray(np.asarray(STATUSES, dtype=object)[self.status_code].astype(str))
+
+    def arrays(self) -> dict[str, Any]:
+        """The :class:`ImpactResult` fields they fill, by name (the status in words)."""
+        out = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "status_code"}
+        return {**out, "status": self.status}
+
+
+def approximate_impacts(
+    law: RestoringForce,
+    ball: Ball,
+    reduced_mass: NDArray[np.float64],
+    ball_speed: NDArray[np.float64],
+    racket_speed: NDArray[np.float64],
+    e_bg: NDArray[np.float64],
+    modes: tuple[NDArray[np.float64], Shapes] | None,
+    reaches_frame: Callable[[NDArray[np.float64]], NDArray[np.bool_]],
+    *,
+    stiffness_reading: StiffnessReading = "period",
+    vibration_charge: VibrationCharge = "coupled",
+) -> ApproximateImpacts:
+    """The approximate method (eqs 1–12) on arrays that broadcast to the impacts' shape.
+
+    :func:`predict` calls it on ``(n_points, n_speeds, n_supports)``; a stack of samples
+    (:func:`racketdyn.impact.samples.predict_samples`) adds a leading sample axis.
+
+    Parameters
+    ----------
+    law : RestoringForce
+        Compound ball+string law F_GB.
+    ball : Ball
+        The ball (its mass, kg).
+    reduced_mass : ndarray
+        Racket's reduced mass M_r at each impact, kg (eq 4).
+    ball_speed, racket_speed : ndarray
+        V_Bo and V_Ro towards each other, m/s.
+    e_bg : ndarray
+        e_BG at each impact's relative speed.
+    modes : (ndarray, callable) or None
+        Natural frequencies (Hz) with a last mode axis broadcasting against
+        ``(..., n_modes)``, and :data:`Shapes`, the mass-normalised shapes at the impact
+        points; None: a rigid racket.
+    reaches_frame : callable
+        ``reaches_frame(peak_deflection)``: where the ball reaches the frame (a frame shot,
+        :meth:`racketdyn.impact.grid.ImpactGrid.reaches_frame`).
+    stiffness_reading, vibration_charge : str
+        As for :func:`predict`.
+
+    Returns
+    -------
+    ApproximateImpacts
+    """
+    speed = ball_speed + racket_speed
+    shape = np.broadcast_shapes(reduced_mass.shape, speed.shape, np.shape(e_bg))
+    m_b = ball.mass_kg
+    mu = np.broadcast_to(m_b * reduced_mass / (m_b + reduced_mass), shape)
+    impulse = (1.0 + e_bg) * mu * speed  # eqs (6), (8)
+    deflection, contact_time, stiffness, in_range, frame = _contact(
+        law, mu, speed, impulse, stiffness_reading, reaches_frame
+    )
+    mean_force = impulse / contact_time  # eqs (8)-(10)
+    peak_force = np.pi * mean_force / 2.0  # eq (11)
+    mode_energy, turn_energy = _vibration(
+        modes, in_range & ~frame, contact_time, peak_force, vibration_charge
+    )
+    vibration_energy = mode_energy.sum(axis=-1)
+    cor_squared = vibration_cor_squared(
+        e_bg, vibration_energy, turn_energy, 0.5 * mu * speed**2, vibration_charge
+    )
+    valid = in_range & (cor_squared >= 0.0)
+    cor = np.sqrt(np.where(valid, cor_squared, np.nan))
+    mass_ratio = m_b / reduced_mass
+    rebound_ratio = (cor - mass_ratio) / (1.0 + mass_ratio)
+    status = np.zeros(deflection.shape, dtype=np.int8)  # STATUSES[0]: ok
+    with np.errstate(invalid="ignore"):
+        over = vibration_energy > VIBRATION_SHARE_LIMIT * 0.5 * mu * speed**2
+    status[in_range & valid & over] = STATUSES.index(STATUS_VIBRATION_SHARE)
+    status[in_range & ~valid] = STATUSES.index(STATUS_VIBRATION_LOSS)
+    status[frame] = STATUSES.index(STATUS_FRAME_CONTACT)
+    status[~in_range] = STATUSES.index(STATUS_BEYOND_LAW)
+    return ApproximateImpacts(
         stiffness=stiffness,
         peak_deflection=deflection,
         contact_time=contact_time,
@@ -440,8 +562,67 @@ def predict(
         vibration_energy=vibration_energy,
         cor=cor,
         rebound_ratio=rebound_ratio,
-        rebound_speed=rebound_speed,
-        status=status.astype(str),
-        modal_model=model,
-        inputs=inputs,
+        rebound_speed=rebound_ratio * ball_speed + (1.0 + rebound_ratio) * racket_speed,
+        status_code=status,
     )
+
+
+def _contact(
+    law: RestoringForce,
+    mu: NDArray[np.float64],
+    speed: NDArray[np.float64],
+    impulse: NDArray[np.float64],
+    stiffness_reading: StiffnessReading,
+    reaches_frame: Callable[[NDArray[np.float64]], NDArray[np.bool_]],
+) -> tuple[
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.bool_],
+    NDArray[np.bool_],
+]:
+    """Peak deflection, contact time, K_GB, whether the law reaches and whether the ball
+    reaches the frame, by eq (10)'s reading.  A frame shot's numbers are not given (NaN): its
+    contact-time quadrature is skipped."""
+    if stiffness_reading == "period":
+        deflection = np.asarray(law.deflection_at_energy(0.5 * mu * speed**2))  # NaN beyond
+        in_range = np.isfinite(deflection)
+        frame = in_range & reaches_frame(deflection)
+        needed = in_range & ~frame
+        contact_time = np.full(deflection.shape, np.nan)
+        contact_time[needed] = elastic_contact_time(law, mu[needed], deflection[needed])
+        stiffness = np.pi**2 * mu / contact_time**2  # eq (7) solved for K_GB
+    else:
+        deflection = tangent_peak_deflection(law, impulse / (2.0 * np.sqrt(mu)))
+        in_range = np.isfinite(deflection)
+        frame = in_range & reaches_frame(deflection)
+        safe = np.where(in_range, deflection, 0.0)
+        stiffness = np.where(in_range, law.stiffness(safe), np.nan)
+        contact_time = np.pi * np.sqrt(mu / stiffness)  # eq (7)
+    return deflection, contact_time, stiffness, in_range, frame
+
+
+def _vibration(
+    modes: tuple[NDArray[np.float64], Shapes] | None,
+    needed: NDArray[np.bool_],
+    contact_time: NDArray[np.float64],
+    peak_force: NDArray[np.float64],
+    vibration_charge: VibrationCharge,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Each mode's energy after the pulse (eq 12) and the frame's energy at the turn, J, where
+    ``needed`` (elsewhere NaN or 0)."""
+    if modes is None:
+        return np.zeros((*contact_time.shape, 0)), np.zeros(contact_time.shape)
+    frequency, shapes = modes
+    phi = shapes(needed)
+    spectrum = half_sine_spectrum(frequency, contact_time[..., None], peak_force[..., None])
+    mode_energy = 0.5 * (phi * spectrum) ** 2  # ½ A_jjk |S_j(ω_k)|²
+    if vibration_charge == "paper":  # the paper's charge does not use it
+        return mode_energy, np.zeros(contact_time.shape)
+    turn_energy = frame_energy_at_turn(
+        2.0 * np.pi * frequency,
+        phi,
+        np.where(np.isfinite(contact_time), contact_time, 1.0),
+        np.where(np.isfinite(peak_force), peak_force, 0.0),
+    ).sum(axis=-1)
+    return mode_energy, turn_energy

@@ -44,6 +44,7 @@ __all__ = [
     "bounds_from_spreads",
     "calibrate",
     "parse_fit",
+    "shifted_e_bg",
     "simulate_measurements",
 ]
 
@@ -114,13 +115,13 @@ def _e_bg_at_20(inputs: ModelInputs, value: float) -> Ball:
     speed, so a sample or a fit moves the level and keeps the law's fall with speed (a
     constant in its place biased the band at high speed: the trial of 2026-11-27, 60 m/s)."""
     ball = inputs.ball
-    if ball.e_bg is not None and not ball.e_bg_table:
+    tables = shifted_e_bg(inputs, np.array([value]))
+    if tables is None:
         return replace(ball, e_bg=value)
+    speeds, shifted = tables
+    table = tuple((float(v), float(e)) for v, e in zip(speeds, shifted[0], strict=True))
     resolved = with_ball_string_cor(inputs.racket, ball)
     shift = value - float(resolved.e_bg_at(20.0))
-    table = tuple(
-        (speed, float(min(max(e + shift, 1e-6), 1.0))) for speed, e in resolved.e_bg_table
-    )
     source = resolved.e_bg_source or "the e_BG table given"
     return replace(
         ball,
@@ -128,6 +129,33 @@ def _e_bg_at_20(inputs: ModelInputs, value: float) -> Ball:
         e_bg_table=table,
         e_bg_source=f"{source}; shifted {shift:+.4f} (to {value:.4g} at 20 m/s)",
     )
+
+
+def shifted_e_bg(
+    inputs: ModelInputs, values: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+    """The ball's e_BG table moved to each of ``values`` at 20 m/s (the ``e_bg`` parameter).
+
+    Parameters
+    ----------
+    inputs : ModelInputs
+        The nominal inputs (their ball's e_BG: a constant, a table, or from ball + strings).
+    values : ndarray
+        ``(k,)`` e_BG at 20 m/s.
+
+    Returns
+    -------
+    (ndarray, ndarray) or None
+        The table's speeds ``(m,)``, m/s, and each value's e_BG at them ``(k, m)`` (held in
+        ``(0, 1]``); None where the ball's e_BG is one constant (each value replaces it).
+    """
+    ball = inputs.ball
+    if ball.e_bg is not None and not ball.e_bg_table:
+        return None
+    resolved = with_ball_string_cor(inputs.racket, ball)
+    table = np.asarray(resolved.e_bg_table, dtype=float)
+    shift = np.asarray(values, dtype=float)[:, None] - float(resolved.e_bg_at(20.0))
+    return table[:, 0], np.clip(table[None, :, 1] + shift, 1e-6, 1.0)
 
 
 def _factor(low: float, high: float) -> Callable[[float], tuple[float, float]]:

@@ -31,6 +31,7 @@ __all__ = [
     "STRING_BEDS",
     "ImpactGrid",
     "StringBed",
+    "ball_reaches_frame",
     "check_string_bed",
     "check_supports",
     "impact_grid",
@@ -175,10 +176,9 @@ class ImpactGrid:
         ndarray of bool
             True where the ball reaches the frame.
         """
-        radius = 0.5 * self.ball.diameter_m
-        x = np.clip(np.nan_to_num(peak_deflection, nan=0.0), 0.0, radius)
-        section = np.sqrt(2.0 * radius * x - x * x)
-        return np.asarray(section > self.edge_distance[:, None, None])
+        return ball_reaches_frame(
+            peak_deflection, 0.5 * self.ball.diameter_m, self.edge_distance[:, None, None]
+        )
 
     def inputs(self, ball: Ball, method: str, **extra: Any) -> dict[str, Any]:
         """What produced a result, for ``ImpactResult.inputs`` and run records."""
@@ -256,6 +256,17 @@ def impact_grid(
         ball=with_ball_string_cor(racket, ball),
         edge_distance=racket.head.distance_to_edge(xy),
     )
+
+
+def ball_reaches_frame(
+    peak_deflection: NDArray[np.float64], radius: float, edge_distance: NDArray[np.float64]
+) -> NDArray[np.bool_]:
+    """Where a ball of ``radius`` (m) pressed ``peak_deflection`` (m, NaN: never marked) into
+    the strings cuts their plane in a circle wider than the point's ``edge_distance`` (m,
+    broadcast against the deflections): :meth:`ImpactGrid.reaches_frame` on any array."""
+    x = np.clip(np.nan_to_num(peak_deflection, nan=0.0), 0.0, radius)
+    section = np.sqrt(2.0 * radius * x - x * x)
+    return np.asarray(section > edge_distance)
 
 
 class _HoldWarnings(logging.Filter):

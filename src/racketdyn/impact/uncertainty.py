@@ -4,8 +4,10 @@ An :class:`Uncertainty` names the uncertain inputs (:data:`UNCERTAIN_INPUTS`: th
 parameters of :data:`racketdyn.impact.calibration.PARAMETERS` plus the impact's own location
 and ball speed) with a distribution each (:class:`Spread`: normal about the nominal value,
 uniform over a range, or equally likely values).  :func:`propagate` draws quasi-random samples
-of them (:mod:`scipy.stats.qmc`, Sobol' or Latin hypercube, seeded), runs a model once per
-sample over the whole grid, and returns an :class:`UncertainResult`: every sample's numbers,
+of them (:mod:`scipy.stats.qmc`, Sobol' or Latin hypercube, seeded), runs a model at every
+sample over the whole grid (the approximate method on all samples at once,
+:mod:`racketdyn.impact.samples`; the transient model once per sample, on an executor if
+given), and returns an :class:`UncertainResult`: every sample's numbers,
 the nominal result, and per impact the mean, standard deviation and the 5 % and 95 %
 quantiles of :data:`BAND_QUANTITIES`.
 
@@ -22,10 +24,12 @@ from __future__ import annotations
 import logging
 import math
 import warnings
-from collections.abc import Callable, Sequence
-from contextlib import ExitStack
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import Executor, as_completed
+from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass, replace
-from typing import Any, Literal, get_args
+from functools import partial
+from typing import Any, Literal, TypeVar, get_args
 
 import numpy as np
 import xarray as xr
@@ -39,6 +43,7 @@ from racketdyn.impact.grid import status_warnings_held
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import Method, ModelInputs, predict_rows
 from racketdyn.impact.result import IMPACT_QUANTITIES, STATUS_OK, ImpactResult
+from racketdyn.impact.samples import predict_samples
 from racketdyn.impact.swing import SwingResult, predict_swing
 from racketdyn.impact.transient import predict_transient
 from racketdyn.io.measured import MeasuredRebound
@@ -269,6 +274,14 @@ class Draws:
     location_offset: NDArray[np.float64]
     speed_offset: NDArray[np.float64]
 
+    def part(self, index: NDArray[np.intp]) -> Draws:
+        """The draws of the samples at ``index``."""
+        return Draws(
+            {name: values[index] for name, values in self.parameters.items()},
+            self.location_offset[index],
+            self.speed_offset[index],
+        )
+
     def inputs_table(self) -> dict[str, NDArray[np.float64]]:
         """Every drawn column by name (location as x and y)."""
         table = dict(self.parameters)
@@ -479,6 +492,8 @@ def propagate(
     labels: Sequence[str] | None = None,
     options: dict[str, Any] | None = None,
     progress: Callable[[int, int], None] | None = None,
+    vectorised: bool = True,
+    executor: Executor | None = None,
 ) -> UncertainResult:
     """Carry the uncertain inputs through a model to every impact of a grid.
 
@@ -505,7 +520,17 @@ def propagate(
         ``stiffness_reading``); ``swing`` (a :class:`~racketdyn.impact.swing.Swing`) runs
         :func:`~racketdyn.impact.swing.predict_swing`, each point at its own racket speed.
     progress : callable, optional
-        ``progress(done, total)`` after each sample.
+        ``progress(done, total)`` after each sample (the approximate method: after each chunk
+        of samples).
+    vectorised : bool
+        Run the approximate method on every sample at once
+        (:func:`racketdyn.impact.samples.predict_samples`: the same numbers to round-off,
+        ≈ 30 times faster) where it can (a ``uniform`` string bed, no ``swing``); False runs
+        it once per sample, as the transient model always is.
+    executor : concurrent.futures.Executor, optional
+        Where the samples run when the model runs once per sample (the transient model): in
+        tasks of :data:`SAMPLES_PER_TASK` (a sweep's process pool,
+        :func:`racketdyn.sweep.executors.make_executor`); by default this process.
 
     Returns
     -------
@@ -528,24 +553,14 @@ def propagate(
     nominal = _run(method, inputs, xy, speeds, model_options)
     draws = draw(uncertainty, inputs)
     n = uncertainty.samples
-    samples = {a: np.full((n, *nominal.shape), np.nan) for a in BAND_QUANTITIES}
-    valid = np.zeros((n, *nominal.shape), dtype=bool)
-    head = inputs.racket.head
-    with ExitStack() as stack:
-        for name in (_approximate_log, _transient_log):
-            stack.enter_context(status_warnings_held(name))
-        for k in range(n):
-            sample = _sample_inputs(inputs, draws, k)
-            where = _inside(head, xy + draws.location_offset[k])
-            v = speeds + draws.speed_offset[k]
-            result = _run(method, sample, where, np.maximum(v, 0.1), model_options)
-            ok = np.asarray(result.status) == STATUS_OK
-            ok[:, v + _racket_speeds(model_options, speeds) <= 0.0, :] = False  # no impact
-            valid[k] = ok
-            for attribute in BAND_QUANTITIES:
-                samples[attribute][k] = np.where(ok, getattr(result, attribute), np.nan)
-            if progress is not None:
-                progress(k + 1, n)
+    if vectorised and method == "approx" and _batches(inputs, model_options):
+        run = _all_samples
+    elif executor is not None:
+        run = partial(_on_executor, executor)
+    else:
+        run = _each_sample
+    with _statuses_held():
+        samples, valid = run(_Runs(method, inputs, draws, xy, speeds, model_options), progress)
     flagged = int(np.count_nonzero(~valid))
     log.info("uncertainty: %d samples by the %s model", n, method)
     if flagged:
@@ -562,6 +577,144 @@ def propagate(
         uncertainty=uncertainty,
         method=method,
     )
+
+
+@contextmanager
+def _statuses_held() -> Iterator[None]:
+    """The impact models' per-call status warnings held (the caller sums them)."""
+    with ExitStack() as stack:
+        for name in (_approximate_log, _transient_log):
+            stack.enter_context(status_warnings_held(name))
+        yield
+
+
+T = TypeVar("T")
+
+SAMPLES_PER_TASK = 4
+"""Samples in one task of an executor (:func:`propagate`'s ``executor``)."""
+
+Samples = tuple[dict[str, NDArray[np.float64]], NDArray[np.bool_]]
+"""Every sample's band quantities (NaN where not valid) and where each is valid."""
+
+_BATCHED_OPTIONS = {"supports", "racket_speed", "labels", "stiffness_reading", "vibration_charge"}
+
+
+def _batches(inputs: ModelInputs, options: dict[str, Any]) -> bool:
+    """Whether :func:`racketdyn.impact.samples.predict_samples` takes these runs: one law over
+    the face and no option beyond the grid's, eq (10)'s reading and the vibration charge."""
+    return inputs.string_bed == "uniform" and set(options) <= _BATCHED_OPTIONS
+
+
+@dataclass(frozen=True)
+class _Runs:
+    """What the samples run: the model, the nominal inputs, the draws and the grid."""
+
+    method: Method
+    inputs: ModelInputs
+    draws: Draws
+    xy: NDArray[np.float64]
+    speeds: NDArray[np.float64]
+    options: dict[str, Any]
+
+    @property
+    def n(self) -> int:
+        """Samples."""
+        return int(self.draws.speed_offset.size)
+
+    def part(self, index: NDArray[np.intp]) -> _Runs:
+        """The runs of the samples at ``index``."""
+        return replace(self, draws=self.draws.part(index))
+
+    def empty(self) -> Samples:
+        """NaN band quantities and no valid sample, ``(n, n_points, n_speeds, n_supports)``."""
+        shape = (self.n, self.xy.shape[0], self.speeds.size, len(self.options["supports"]))
+        return {a: np.full(shape, np.nan) for a in BAND_QUANTITIES}, np.zeros(shape, dtype=bool)
+
+
+def _each_sample(runs: _Runs, progress: Callable[[int, int], None] | None) -> Samples:
+    """The model once per sample."""
+    method, inputs, draws, xy, speeds, options = (
+        runs.method, runs.inputs, runs.draws, runs.xy, runs.speeds, runs.options,
+    )  # fmt: skip
+    n = runs.n
+    samples, valid = runs.empty()
+    for k in range(n):
+        sample = _sample_inputs(inputs, draws, k)
+        where = _inside(inputs.racket.head, xy + draws.location_offset[k])
+        v = speeds + draws.speed_offset[k]
+        result = _run(method, sample, where, np.maximum(v, 0.1), options)
+        ok = np.asarray(result.status) == STATUS_OK
+        ok[:, v + _racket_speeds(options, speeds) <= 0.0, :] = False  # no impact
+        valid[k] = ok
+        for attribute in BAND_QUANTITIES:
+            samples[attribute][k] = np.where(ok, getattr(result, attribute), np.nan)
+        if progress is not None:
+            progress(k + 1, n)
+    return samples, valid
+
+
+def _samples_task(runs: _Runs, draws: Draws) -> Samples:
+    """Some samples (``draws``) once each, in a worker process (status warnings held)."""
+    with _statuses_held():
+        return _each_sample(replace(runs, draws=draws), None)
+
+
+def _on_executor(
+    executor: Executor, runs: _Runs, progress: Callable[[int, int], None] | None
+) -> Samples:
+    """:func:`_each_sample` in tasks of :data:`SAMPLES_PER_TASK` samples on an executor."""
+    samples, valid = runs.empty()
+    task = partial(_samples_task, runs)
+    for part, (found, valid[part]) in _in_tasks(executor, task, runs.draws, progress):
+        for attribute in BAND_QUANTITIES:
+            samples[attribute][part] = found[attribute]
+    return samples, valid
+
+
+def _in_tasks(
+    executor: Executor,
+    task: Callable[[Draws], T],
+    draws: Draws,
+    progress: Callable[[int, int], None] | None,
+) -> Iterator[tuple[NDArray[np.intp], T]]:
+    """``task(draws of some samples)`` for every :data:`SAMPLES_PER_TASK` samples on an
+    executor: each part's sample indices and result, as they finish."""
+    n = draws.speed_offset.size
+    parts = np.array_split(np.arange(n), -(-n // SAMPLES_PER_TASK))
+    futures = {executor.submit(task, draws.part(part)): part for part in parts}
+    done = 0
+    for future in as_completed(futures):
+        part = futures[future]
+        yield part, future.result()
+        done += part.size
+        if progress is not None:
+            progress(done, n)
+
+
+def _all_samples(runs: _Runs, progress: Callable[[int, int], None] | None) -> Samples:
+    """The approximate method on every sample at once (:func:`predict_samples`), the same
+    numbers as :func:`_each_sample` to round-off."""
+    inputs, draws, xy, speeds, options = (
+        runs.inputs, runs.draws, runs.xy, runs.speeds, runs.options,
+    )  # fmt: skip
+    n = runs.n
+    scattered = (xy[None, :, :] + draws.location_offset[:, None, :]).reshape(-1, 2)
+    v = speeds[None, :] + draws.speed_offset[:, None]
+    impacts = predict_samples(
+        inputs,
+        draws.parameters,
+        _inside(inputs.racket.head, scattered).reshape(n, xy.shape[0], 2),
+        np.maximum(v, 0.1),
+        supports=options["supports"],
+        racket_speed=options["racket_speed"],
+        stiffness_reading=options.get("stiffness_reading", "period"),
+        vibration_charge=options.get("vibration_charge", "coupled"),
+        progress=progress,
+    )
+    ok = impacts.status_code == 0  # STATUSES[0]: ok
+    ok &= (v + _racket_speeds(options, speeds)[None, :] > 0.0)[:, None, :, None]  # an impact
+    samples = {a: np.where(ok, getattr(impacts, a), np.nan) for a in BAND_QUANTITIES}
+    return samples, ok
 
 
 def _racket_speeds(options: dict[str, Any], speeds: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -613,14 +766,16 @@ class Sensitivity:
     inputs : tuple of str
         The uncertain inputs (the location as ``location_m x`` and ``location_m y``).
     first_order, total_order : ndarray
-        ``(n_outputs, n_points, n_inputs)``; NaN where a sample of that point was not valid
-        (the estimator needs every sample).
+        ``(n_outputs, n_points, n_inputs)``, on the base samples whose every evaluation is
+        valid; NaN at a point where fewer than :data:`MIN_VALID_SHARE` of them are.
     ball_speed : float
         Ball speed, m/s.
     support : str
         The support.
     evaluations : int
         Model runs it took (``n (d + 2)``).
+    valid_share : ndarray
+        ``(n_points,)`` share of the base samples the indices at each point rest on.
     """
 
     labels: tuple[str, ...]
@@ -631,6 +786,7 @@ class Sensitivity:
     ball_speed: float
     support: str
     evaluations: int
+    valid_share: NDArray[np.float64]
 
     def dominant(self, point: int, output: str = "rebound_ratio") -> str:
         """The input with the largest total index at a point ("" when not known)."""
@@ -645,7 +801,7 @@ class Sensitivity:
             key: []
             for key in (
                 "point", "x_m", "y_m", "ball_speed_mps", "support", "output", "input",
-                "first_order", "total_order",
+                "first_order", "total_order", "samples_valid",
             )
         }  # fmt: skip
         for o, output in enumerate(SENSITIVITY_OUTPUTS):
@@ -654,7 +810,7 @@ class Sensitivity:
                     values = (
                         label, self.locations[p, 0], self.locations[p, 1], self.ball_speed,
                         self.support, output, name, self.first_order[o, p, i],
-                        self.total_order[o, p, i],
+                        self.total_order[o, p, i], self.valid_share[p],
                     )  # fmt: skip
                     for key, value in zip(table, values, strict=True):
                         table[key].append(value)
@@ -672,12 +828,17 @@ def sensitivity(
     n: int = 64,
     method: Method = "approx",
     options: dict[str, Any] | None = None,
+    executor: Executor | None = None,
 ) -> Sensitivity:
     """Which input dominates: Sobol' first-order and total indices at named points.
 
-    :func:`scipy.stats.sobol_indices` (Saltelli 2010 estimators on a scrambled Sobol'
-    design, seeded with the uncertainty's seed); ``n (d + 2)`` model runs for ``d`` inputs
-    (the location counts twice: x and y).
+    Saltelli 2010's estimators on a scrambled Sobol' design, seeded with the uncertainty's
+    seed, as :func:`scipy.stats.sobol_indices` draws and computes them; ``n (d + 2)`` model
+    runs for ``d`` inputs (the location counts twice: x and y), the approximate method's all
+    at once (:func:`racketdyn.impact.samples.predict_samples`).  A base sample with any run
+    beyond the method (a frame shot, say) is left out of that point's indices; where fewer
+    than :data:`MIN_VALID_SHARE` of them are left the point has none (NaN), and
+    :attr:`Sensitivity.valid_share` says on how many they rest.
 
     Parameters
     ----------
@@ -699,17 +860,55 @@ def sensitivity(
         The model.
     options : dict, optional
         More keyword arguments of the model.
+    executor : concurrent.futures.Executor, optional
+        Where the runs go when the model runs them one by one (the transient model), as for
+        :func:`propagate`; by default this process.
 
     Returns
     -------
     Sensitivity
     """
-    from scipy.stats import sobol_indices
-
     if n < 8 or n & (n - 1):
         raise InputError(f"`n` for Sobol' indices must be a power of two ≥ 8, not {n}")
     labels = tuple(points)
     xy = as_locations(list(points.values()), "sensitivity points")
+    marginals, names = _marginals(uncertainty, inputs)
+    d = len(names)
+    # Saltelli's design as scipy.stats.sobol_indices draws it: A, B and A with column i of B
+    a, b = _design(n, marginals, np.random.default_rng(uncertainty.seed))
+    ab = np.repeat(a[None, :, :], d, axis=0)
+    ab[np.arange(d), np.arange(d)] = b
+    x = np.concatenate([a, b, *ab], axis=1)  # (d, (d + 2) n)
+    model_options = {"supports": [support], "racket_speed": racket_speed, **(options or {})}
+    with _statuses_held():
+        runs = _Runs(
+            method, inputs, _columns_as_draws(names, x), xy, np.array([ball_speed]), model_options
+        )
+        out = _sensitivity_outputs(runs, executor)
+    f = out.reshape(*out.shape[:2], d + 2, n)  # (outputs, points, d + 2, n)
+    first, total, share = _saltelli_2010(f[:, :, 0], f[:, :, 1], np.moveaxis(f[:, :, 2:], 2, 0))
+    for label, given in zip(labels, share, strict=True):
+        if given < 1.0:
+            log.info(
+                "sensitivity at %s: %.0f %% of the base samples valid (%s)",
+                label, 100 * given,
+                "indices on those" if given >= MIN_VALID_SHARE else "no indices",
+            )  # fmt: skip
+    return Sensitivity(
+        labels=labels,
+        locations=xy,
+        inputs=tuple(names),
+        first_order=first,
+        total_order=total,
+        ball_speed=float(ball_speed),
+        support=support,
+        evaluations=n * (d + 2),
+        valid_share=share,
+    )
+
+
+def _marginals(uncertainty: Uncertainty, inputs: ModelInputs) -> tuple[list[_Marginal], list[str]]:
+    """Each sampled dimension's distribution and name (the location as x and y)."""
     marginals: list[_Marginal] = []
     names: list[str] = []
     for spread in uncertainty.spreads:
@@ -720,52 +919,78 @@ def sensitivity(
             nominal = 0.0 if spread.is_offset else PARAMETERS[spread.name].get(inputs)
             marginals.append(_Marginal(spread, nominal))
             names.append(spread.name)
-    model_options = {"supports": [support], "racket_speed": racket_speed, **(options or {})}
-    n_out = len(SENSITIVITY_OUTPUTS) * len(labels)
-    valid = np.ones(len(labels), dtype=bool)
+    return marginals, names
 
-    def run(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        out = np.empty((n_out, x.shape[1]))
-        for k in range(x.shape[1]):
-            sample, offset, speed = inputs, np.zeros(2), ball_speed
-            for value, name in zip(x[:, k], names, strict=True):
-                if name == "location_m x":
-                    offset[0] = value
-                elif name == "location_m y":
-                    offset[1] = value
-                elif name == "ball_speed_mps":
-                    speed = max(ball_speed + value, 0.1)
-                else:
-                    sample = PARAMETERS[name].set(sample, float(value))
-            where = _inside(inputs.racket.head, xy + offset)
-            result = _run(method, sample, where, np.array([speed]), model_options)
-            ok = np.asarray(result.status)[:, 0, 0] == STATUS_OK
-            valid[~ok] = False
-            values = np.stack([getattr(result, a)[:, 0, 0] for a in SENSITIVITY_OUTPUTS])
-            out[:, k] = np.where(ok[None, :], values, 0.0).ravel()
-        return out
 
-    with ExitStack() as stack:
-        for name in (_approximate_log, _transient_log):
-            stack.enter_context(status_warnings_held(name))
-        found = sobol_indices(
-            func=run, n=n, dists=marginals, rng=np.random.default_rng(uncertainty.seed)
-        )
-    shape = (len(SENSITIVITY_OUTPUTS), len(labels), len(names))
-    first = np.asarray(found.first_order).reshape(shape)
-    total = np.asarray(found.total_order).reshape(shape)
-    first[:, ~valid] = np.nan
-    total[:, ~valid] = np.nan
-    return Sensitivity(
-        labels=labels,
-        locations=xy,
-        inputs=tuple(names),
-        first_order=first,
-        total_order=total,
-        ball_speed=float(ball_speed),
-        support=support,
-        evaluations=n * (len(names) + 2),
+def _design(
+    n: int, marginals: Sequence[_Marginal], rng: np.random.Generator
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Saltelli's matrices A and B, each ``(d, n)``: a scrambled Sobol' design of 2d
+    dimensions split in two, through each input's inverse distribution function (as
+    :func:`scipy.stats.sobol_indices` draws them)."""
+    d = len(marginals)
+    unit = qmc.Sobol(d=2 * d, seed=rng, bits=64).random(n).T.reshape(2, d, -1)
+    for i, marginal in enumerate(marginals):
+        unit[:, i] = marginal.ppf(unit[:, i])
+    return unit[0], unit[1]
+
+
+def _columns_as_draws(names: Sequence[str], x: NDArray[np.float64]) -> Draws:
+    """The columns of ``x`` (one row per name) as the samples of :func:`propagate`."""
+    columns = dict(zip(names, x, strict=True))
+    zeros = np.zeros(x.shape[1])
+    return Draws(
+        parameters={k: v for k, v in columns.items() if k in PARAMETERS},
+        location_offset=np.column_stack(
+            [columns.get("location_m x", zeros), columns.get("location_m y", zeros)]
+        ),
+        speed_offset=columns.get("ball_speed_mps", zeros),
     )
+
+
+def _sensitivity_outputs(runs: _Runs, executor: Executor | None) -> NDArray[np.float64]:
+    """``(n_outputs, n_points, n_runs)`` the outputs of every run at one speed and support,
+    NaN where not valid."""
+    if runs.method == "approx" and _batches(runs.inputs, runs.options):
+        samples, _ = _all_samples(runs, None)
+    elif executor is not None:
+        samples, _ = _on_executor(executor, runs, None)
+    else:
+        samples, _ = _each_sample(runs, None)
+    return np.stack([samples[a][:, :, 0, 0].T for a in SENSITIVITY_OUTPUTS])
+
+
+def _saltelli_2010(
+    f_a: NDArray[np.float64], f_b: NDArray[np.float64], f_ab: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """First-order and total indices ``(n_outputs, n_points, d)`` and each point's share of
+    valid base samples ``(n_points,)``.
+
+    Saltelli et al. 2010's estimators (Table 2 (b) and (f)), as
+    :func:`scipy.stats.sobol_indices` computes them, on the base samples j whose ``f_a``,
+    ``f_b`` and every ``f_ab[i]`` are valid (finite); NaN where fewer than
+    :data:`MIN_VALID_SHARE` are.  ``f_a``, ``f_b``: ``(n_outputs, n_points, n)``; ``f_ab``:
+    ``(d, n_outputs, n_points, n)``.
+    """
+    ok = np.isfinite(f_a) & np.isfinite(f_b) & np.all(np.isfinite(f_ab), axis=0)
+    share = ok.all(axis=0).mean(axis=-1)
+    use = ok & (share >= MIN_VALID_SHARE)[None, :, None]
+    count = use.sum(axis=-1)
+
+    def mean(values: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.asarray(np.where(use, values, 0.0).sum(axis=-1) / count)
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        centre = (0.5 * (mean(f_a) + mean(f_b)))[..., None]
+        a, b, ab = f_a - centre, f_b - centre, f_ab - centre
+        variance = 0.5 * (mean(a**2) + mean(b**2))
+        first = mean(b * (ab - a)) / variance
+        total = 0.5 * mean((a - ab) ** 2) / variance
+    given = share >= MIN_VALID_SHARE
+    # a null variance means null indices (as scipy's); no indices where too few are valid
+    first = np.where(given, np.nan_to_num(first, nan=0.0, posinf=0.0, neginf=0.0), np.nan)
+    total = np.where(given, np.nan_to_num(total, nan=0.0, posinf=0.0, neginf=0.0), np.nan)
+    return np.moveaxis(first, 0, -1), np.moveaxis(total, 0, -1), share
 
 
 @dataclass(frozen=True)
@@ -805,6 +1030,7 @@ def propagate_rows(
     uncertainty: Uncertainty,
     method: Method,
     progress: Callable[[int, int], None] | None = None,
+    executor: Executor | None = None,
 ) -> RowBands:
     """The predicted rebound ratio's band at every measured row (``validate``).
 
@@ -826,6 +1052,9 @@ def propagate_rows(
         The model.
     progress : callable, optional
         ``progress(done, total)`` after each sample.
+    executor : concurrent.futures.Executor, optional
+        Where the samples run, :data:`SAMPLES_PER_TASK` to a task (a sweep's process pool);
+        by default this process.
 
     Returns
     -------
@@ -833,20 +1062,13 @@ def propagate_rows(
     """
     draws = draw(uncertainty, inputs)
     n = uncertainty.samples
-    values = np.full((n, len(measured)), np.nan)
-    head = inputs.racket.head
-    with ExitStack() as stack:
-        for name in (_approximate_log, _transient_log):
-            stack.enter_context(status_warnings_held(name))
-        for k in range(n):
-            rows = replace(
-                measured,
-                locations=_inside(head, measured.locations + draws.location_offset[k]),
-                ball_speed=np.maximum(measured.ball_speed + draws.speed_offset[k], 0.1),
-            )
-            values[k], _ = predict_rows(_sample_inputs(inputs, draws, k), rows, method)
-            if progress is not None:
-                progress(k + 1, n)
+    task = partial(_rows_task, inputs, measured, method)
+    if executor is None:
+        values = task(draws, progress)
+    else:
+        values = np.full((n, len(measured)), np.nan)
+        for part, found in _in_tasks(executor, task, draws, progress):
+            values[part] = found
     valid = np.isfinite(values)
     share = valid.mean(axis=0)
     if measured.rebound_ratio_sd is not None:
@@ -858,3 +1080,28 @@ def propagate_rows(
         low, high = np.nanquantile(values, QUANTILES, axis=0)
     given = share >= MIN_VALID_SHARE
     return RowBands(np.where(given, low, np.nan), np.where(given, high, np.nan), share, str(method))
+
+
+def _rows_task(
+    inputs: ModelInputs,
+    measured: MeasuredRebound,
+    method: Method,
+    draws: Draws,
+    progress: Callable[[int, int], None] | None = None,
+) -> NDArray[np.float64]:
+    """``(n_samples, n_rows)`` every sample's rebound ratio at the rows (NaN where not valid),
+    here or in a worker process (status warnings held)."""
+    n = draws.speed_offset.size
+    values = np.full((n, len(measured)), np.nan)
+    head = inputs.racket.head
+    with _statuses_held():
+        for k in range(n):
+            rows = replace(
+                measured,
+                locations=_inside(head, measured.locations + draws.location_offset[k]),
+                ball_speed=np.maximum(measured.ball_speed + draws.speed_offset[k], 0.1),
+            )
+            values[k], _ = predict_rows(_sample_inputs(inputs, draws, k), rows, method)
+            if progress is not None:
+                progress(k + 1, n)
+    return values

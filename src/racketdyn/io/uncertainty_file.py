@@ -36,6 +36,7 @@ from racketdyn.io.racket_file import read_toml
 
 __all__ = [
     "LITERATURE",
+    "NONE",
     "literature_spreads",
     "racket_spreads",
     "read_spreads",
@@ -199,6 +200,10 @@ def racket_spreads(path: str | os.PathLike[str]) -> tuple[Spread, ...]:
 
 LITERATURE = "literature"
 """The name (``--uncertainty literature``) of :func:`literature_spreads`."""
+
+NONE = "none"
+"""The name (``--uncertainty none``) of no uncertain input: a racket file's ``[uncertainty]``
+tables left out for one run."""
 
 
 def literature_spreads(frequency_measured: bool, measured_bed: bool = False) -> tuple[Spread, ...]:

@@ -69,10 +69,12 @@ from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_def
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
+    check_workers,
     command_record,
     finish_run,
     report,
     run_step,
+    sample_pool,
 )
 
 __all__ = ["DEFAULT_GRID", "MAX_GRID", "MODELS", "PredictResult", "impact_points", "run_predict"]
@@ -269,6 +271,7 @@ def run_predict(
     include_string_bed: bool = False,
     string_bed: StringBed = "uniform",
     uncertainty: Uncertainty | None = None,
+    workers: int | None = None,
     show: Sequence[float] | None = None,
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
@@ -322,6 +325,9 @@ def run_predict(
         uncertainty.propagate`), the bands written beside the numbers (``<column>_mean``,
         ``_sd``, ``_p05``, ``_p95``, ``samples_valid``) and every sample in
         ``uncertainty.nc`` (``uncertainty_transient.nc`` for the transient with both).
+    workers : int, optional
+        Worker processes for the samples a model runs one by one (the transient model's): a
+        local pool (:func:`racketdyn.sweep.executors.make_executor`); by default this process.
     show : sequence of float, optional
         The case the single-case summaries show (face maps, Fig. 15, the time histories, the
         models' comparison map and table, the report's headline): ``(ball speed,)`` or
@@ -350,6 +356,7 @@ def run_predict(
             "`stiffness_reading` is a choice of the approximate method (eq 10); the transient "
             "model integrates the contact: drop it, or use `model` approx or both"
         )
+    check_workers(workers, uncertainty)
     engine = engine or "auto"
     stiffness_reading = stiffness_reading or "period"
     one_of("`engine`", engine, ENGINES)
@@ -450,7 +457,7 @@ def run_predict(
             string_bed=string_bed,
         )
         extra = {"stiffness_reading": stiffness_reading, "vibration_charge": vibration_charge}
-        _bands(result, model_inputs, uncertainty, locations, labels, progress, extra)
+        _bands(result, model_inputs, uncertainty, (locations, labels), progress, extra, workers)
     if result.approximate is not None and result.transient is not None:
         result.comparison = compare_models(result.approximate, result.transient)
         result.written.append(result.comparison.write_csv(out_dir / "comparison.csv"))
@@ -487,36 +494,40 @@ def _bands(
     result: PredictResult,
     inputs: ModelInputs,
     uncertainty: Uncertainty,
-    locations: NDArray[np.float64],
-    labels: list[str],
+    points: tuple[NDArray[np.float64], list[str]],
     progress: Progress | None,
     approximate_options: dict[str, Any],
+    workers: int | None,
 ) -> None:
-    """Each model's samples and bands; the transient's table rewritten with its bands."""
+    """Each model's samples and bands (the transient's on ``workers`` processes, if given);
+    the transient's table rewritten with its bands."""
+    locations, labels = points
     runs = [("approx", result.approximate), ("transient", result.transient)]
     for method, nominal in runs:
         if nominal is None:
             continue
         name = "approximate method" if method == "approx" else "transient model"
         report(progress, f"uncertainty: {uncertainty.samples} samples by the {name}")
-        band = propagate(
-            inputs,
-            locations,
-            result.speeds,
-            uncertainty,
-            method=method,  # type: ignore[arg-type]
-            supports=result.supports,
-            racket_speed=np.asarray(result.racket_speed),
-            labels=labels,
-            options=approximate_options if method == "approx" else None,
-            progress=_sample_progress(progress, name),
-        )
+        with sample_pool(workers) as executor:
+            band = propagate(
+                inputs,
+                locations,
+                result.speeds,
+                uncertainty,
+                method=method,  # type: ignore[arg-type]
+                supports=result.supports,
+                racket_speed=np.asarray(result.racket_speed),
+                labels=labels,
+                options=approximate_options if method == "approx" else None,
+                progress=_sample_progress(progress, name),
+                executor=executor,
+            )
         result.bands[method] = band
         both = result.approximate is not None and result.transient is not None
         file = "uncertainty_transient.nc" if method == "transient" and both else "uncertainty.nc"
         band.to_xarray().to_netcdf(result.out / file)
         result.written.append(result.out / file)
-    _sensitivity(result, inputs, uncertainty, progress, approximate_options)
+    _sensitivity(result, inputs, uncertainty, progress, approximate_options, workers)
     if result.transient is not None and "transient" in result.bands:
         both = result.approximate is not None
         path = result.out / transient_csv_name("both" if both else "transient")
@@ -540,8 +551,10 @@ def _sensitivity(
     uncertainty: Uncertainty,
     progress: Progress | None,
     approximate_options: dict[str, Any],
+    workers: int | None,
 ) -> None:
-    """Which input dominates at the landmarks: ``sensitivity.csv``."""
+    """Which input dominates at the landmarks: ``sensitivity.csv`` (the transient model's runs
+    on ``workers`` processes, if given)."""
     assert result.racket is not None
     marks = landmark_points(result.racket)
     centre = marks["centre"]
@@ -554,17 +567,19 @@ def _sensitivity(
     method = "approx" if result.approximate is not None else "transient"
     shown = result.shown_speed
     report(progress, "uncertainty: which input dominates (Sobol' indices)")
-    result.sensitivity = sensitivity(
-        inputs,
-        points,
-        result.speeds[shown],
-        uncertainty,
-        support=result.supports[0],
-        racket_speed=result.racket_speed[shown if len(result.racket_speed) > 1 else 0],
-        n=SENSITIVITY_SAMPLES,
-        method=method,  # type: ignore[arg-type]
-        options=approximate_options if method == "approx" else None,
-    )
+    with sample_pool(workers if method == "transient" else None) as executor:
+        result.sensitivity = sensitivity(
+            inputs,
+            points,
+            result.speeds[shown],
+            uncertainty,
+            support=result.supports[0],
+            racket_speed=result.racket_speed[shown if len(result.racket_speed) > 1 else 0],
+            n=SENSITIVITY_SAMPLES,
+            method=method,  # type: ignore[arg-type]
+            options=approximate_options if method == "approx" else None,
+            executor=executor,
+        )
     path = result.out / "sensitivity.csv"
     rows = result.sensitivity.rows()
     write_columns(path, {k: np.asarray(v, dtype=object) for k, v in rows.items()})

@@ -19,6 +19,8 @@ import os
 import platform
 import shutil
 from collections.abc import Callable, Sequence
+from concurrent.futures import Executor
+from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
@@ -27,7 +29,7 @@ from typing import Any, ParamSpec, TypeVar
 import numpy as np
 
 from racketdyn.__about__ import __version__
-from racketdyn.errors import InputError
+from racketdyn.errors import InputError, require_whole
 
 __all__ = [
     "REPORT_NAME",
@@ -391,3 +393,23 @@ def write_rows(path: Path, rows: Sequence[dict[str, Any]]) -> Path:
         for row in rows:
             writer.writerow(_format_cell(v) for v in row.values())
     return Path(path)
+
+
+def check_workers(workers: int | None, uncertainty: object | None) -> None:
+    """``workers`` (a step's worker processes for its uncertainty samples): a count, and only
+    with an ``uncertainty`` (InputError naming them)."""
+    if workers is None:
+        return
+    require_whole("`workers`", workers)
+    if uncertainty is None:
+        raise InputError("`workers` is for the samples of an `uncertainty`: give one too")
+
+
+def sample_pool(workers: int | None) -> AbstractContextManager[Executor | None]:
+    """Where an uncertainty's samples run one by one: a local pool of ``workers`` processes
+    (the sweeps', :func:`racketdyn.sweep.executors.make_executor`), or None, this process."""
+    if not workers:
+        return nullcontext(None)
+    from racketdyn.sweep.executors import make_executor  # the pool, when asked for
+
+    return make_executor("process", workers)

@@ -62,10 +62,12 @@ from racketdyn.workflows.predict import MAX_GRID
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
+    check_workers,
     command_record,
     finish_run,
     report,
     run_step,
+    sample_pool,
     write_rows,
 )
 
@@ -282,6 +284,7 @@ def run_swing(
     grid: int | None = None,
     string_bed: StringBed = "uniform",
     uncertainty: Uncertainty | None = None,
+    workers: int | None = None,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
     figures: Callable[[SwingStepResult, Path], list[Path]] | None = None,
@@ -322,6 +325,9 @@ def run_swing(
         Uncertain inputs: the swing run once per sample; ``swing.csv`` gets each number's
         mean, sd and 90 % band (:func:`racketdyn.impact.uncertainty.propagate`), every sample
         goes to ``uncertainty.nc``.
+    workers : int, optional
+        Worker processes for those samples (a local pool,
+        :func:`racketdyn.sweep.executors.make_executor`); by default this process.
     defaults : sequence of str
         Defaults the caller filled in (ball, swing), added to run.json.
     command : sequence of str, optional
@@ -331,6 +337,7 @@ def run_swing(
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
     """
+    check_workers(workers, uncertainty)
     speed_list = [float(v) for v in require_speeds("`speeds`", speeds)]
     check_speeds("`speeds`", speed_list, "ball_speed_mps", allow_implausible)
     if len(set(speed_list)) != len(speed_list):
@@ -416,22 +423,24 @@ def run_swing(
         computed.write_csv(out_dir / "swing.csv")
     else:
         report(progress, f"uncertainty: {uncertainty.samples} samples of the swing")
-        result.band = propagate(
-            ModelInputs(
-                used.racket,
-                the_ball,
-                hand=the_hand,
-                modal_model=used.modal_model,
-                string_bed=string_bed,
-            ),
-            locations,
-            speed_list,
-            uncertainty,
-            method=model,
-            supports=[the_support],
-            labels=labels,
-            options={"swing": the_swing},
-        )
+        with sample_pool(workers) as executor:
+            result.band = propagate(
+                ModelInputs(
+                    used.racket,
+                    the_ball,
+                    hand=the_hand,
+                    modal_model=used.modal_model,
+                    string_bed=string_bed,
+                ),
+                locations,
+                speed_list,
+                uncertainty,
+                method=model,
+                supports=[the_support],
+                labels=labels,
+                options={"swing": the_swing},
+                executor=executor,
+            )
         bands = {k: np.ravel(v) for k, v in result.band.band_columns().items()}
         write_columns(out_dir / "swing.csv", {**computed.columns, **bands})
         result.band.to_xarray().to_netcdf(out_dir / "uncertainty.nc")

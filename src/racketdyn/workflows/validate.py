@@ -35,10 +35,12 @@ from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_def
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
+    check_workers,
     command_record,
     finish_run,
     report,
     run_step,
+    sample_pool,
     sha256,
     write_rows,
 )
@@ -286,6 +288,7 @@ def run_validate(
     engine: str = "auto",
     string_bed: StringBed = "uniform",
     uncertainty: Uncertainty | None = None,
+    workers: int | None = None,
     allow_implausible: bool = False,
     defaults: Sequence[str] = (),
     command: Sequence[str] | None = None,
@@ -320,6 +323,9 @@ def run_validate(
     uncertainty : Uncertainty, optional
         Uncertain inputs: each model's 90 % band at every row (:data:`BAND_COLUMNS`), the
         coverage in the summary, the rows outside their band named.
+    workers : int, optional
+        Worker processes for the samples (a local pool,
+        :func:`racketdyn.sweep.executors.make_executor`); by default this process.
     allow_implausible : bool
         Take measured speeds beyond those of play (:func:`racketdyn.io.read_measured`).
     defaults : sequence of str
@@ -335,6 +341,7 @@ def run_validate(
     -------
     ValidateResult
     """
+    check_workers(workers, uncertainty)
     inputs, rows, provenance, defaults_used = measured_setup(
         racket, measured, modal, rigid, ball, hand, engine, string_bed, allow_implausible
     )
@@ -359,7 +366,8 @@ def run_validate(
         result.summary[method] = summarise(method, rows, predicted)
         if uncertainty is not None:
             report(progress, f"{method}: {uncertainty.samples} samples of the uncertain inputs")
-            band = propagate_rows(inputs, rows, uncertainty, method)
+            with sample_pool(workers) as executor:
+                band = propagate_rows(inputs, rows, uncertainty, method, executor=executor)
             result.bands[method] = band
             result.summary[method] = _coverage(result.summary[method], band, rows)
     result.written.append(write_rows(Path(out) / "validation.csv", _rows(result)))
