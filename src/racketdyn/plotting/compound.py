@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.modal import ModalModel
 from racketdyn.plotting.primitives import SUPPORT_STYLE, label_lines
+from racketdyn.plotting.registry import file_of
 from racketdyn.plotting.render import save_figure
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME
 
@@ -45,13 +46,13 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-COMPOUND_RESPONSE_FIGURE = "compound_response.png"
+COMPOUND_RESPONSE_FIGURE = file_of("compound_response")
 """The neck's acceleration after the hammer blow, ball on the strings (Fig. 8c)."""
-COMPOUND_FRF_FIGURE = "compound_frf.png"
+COMPOUND_FRF_FIGURE = file_of("compound_frf")
 """Receptance hammer → neck without and with the ball (Fig. 9a, 9b)."""
-COMPOUND_SHAPE_FIGURE = "compound_shape.png"
+COMPOUND_SHAPE_FIGURE = file_of("compound_shape")
 """The ball mode: the frame along its axis against the ball (Fig. 8a)."""
-BALL_COMPARISON_FIGURE = "fig9_frf_alone_and_ball.png"
+BALL_COMPARISON_FIGURE = file_of("fig9_frf_alone_and_ball")
 """``compare --ball-at``: measured FRFs of the racket alone and with the ball (Fig. 9a, 9b)."""
 
 # each support its own line and ball marker, so curves lying on each other all show: the pinned

@@ -1,7 +1,10 @@
-"""The paper's figures for a racket, written as PNG files.
+"""The paper's figures for a racket, and the other figures of the steps.
 
-Every figure only draws: what it shows was computed by the step's workflow with the run's own
-inputs (:mod:`racketdyn.workflows.figure_data`: :class:`PaperFigures`, :class:`TransientCurves`,
+Each figure is listed once, with its file name, caption and report section, in
+:mod:`racketdyn.plotting.registry`, which draws the figures of a step from its result
+(:func:`racketdyn.plotting.registry.write_figures`).  Every figure only draws: what it shows
+was computed by the step's workflow with the run's own inputs
+(:mod:`racketdyn.workflows.figure_data`: :class:`PaperFigures`, :class:`TransientCurves`,
 :class:`SwingAxisCurves`, :class:`IdentifiedRebound`, written to the run's ``figures.nc``).
 """
 
@@ -9,7 +12,7 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -52,6 +55,7 @@ from racketdyn.plotting.primitives import (
     plot_swing_map,
     plot_twist_curve,
 )
+from racketdyn.plotting.registry import entry, file_of
 from racketdyn.plotting.render import FigureBatch, save_figure
 from racketdyn.racket import SUPPORT_NAMES, Racket
 from racketdyn.racket_modal.shapes import axis_nodes
@@ -68,14 +72,9 @@ from racketdyn.workflows.figure_data import (
 from racketdyn.workflows.identify import ModeComparison
 
 __all__ = [
-    "FIGURES",
     "IDENTIFIED_STYLES",
-    "OBLIQUE_FIGURE",
     "SWING_AXIS_POINTS",
-    "SWING_FIGURES",
     "TRANSIENT_CURVE_SPEEDS_MPS",
-    "TRANSIENT_FIGURES",
-    "TWIST_FIGURE",
     "figure_face_maps",
     "figure_force_and_contact_time",
     "figure_frame_vibration",
@@ -95,21 +94,9 @@ __all__ = [
     "write_contact_figure",
     "write_frf_figures",
     "write_identification",
-    "write_oblique_figure",
-    "write_paper_figures",
-    "write_swing_figures",
-    "write_transient_figures",
-    "write_twist_figure",
 ]
 
 log = logging.getLogger(__name__)
-
-TRANSIENT_FIGURES: dict[str, str] = {
-    "face": "transient_comparison_face.png",
-    "speed": "transient_comparison_speed.png",
-    "histories": "transient_histories.png",
-}
-"""The figures of the transient model, by what they show → file name."""
 
 
 def _save(figure: Figure, path: Path) -> Path:
@@ -340,43 +327,6 @@ def figure_pulse_spectrum(data: PaperFigures) -> Figure:
     return figure
 
 
-FIGURES: dict[str, Callable[[PaperFigures], Figure]] = {
-    "fig11_12_force_contact_time.png": figure_force_and_contact_time,
-    "fig13_pulse_spectrum.png": figure_pulse_spectrum,
-    "fig14_frame_vibration.png": figure_frame_vibration,
-    "fig15_rebound_along_axis.png": figure_rebound_along_axis,
-    "face_maps.png": figure_face_maps,
-}
-"""File name → figure: each draws its part of a :class:`PaperFigures`."""
-
-
-def write_paper_figures(
-    data: PaperFigures,
-    out_dir: Path,
-    progress: Callable[[str], None] | None = None,
-) -> list[Path]:
-    """Draw every figure in :data:`FIGURES` into ``out_dir``; returns the paths written.
-
-    Parameters
-    ----------
-    data : PaperFigures
-        What the figures draw (the run's ``PredictResult.paper_figures``).
-    out_dir : Path
-        Output folder.
-    progress : callable, optional
-        ``progress(file name)`` before each figure.
-    """
-    batch = FigureBatch()
-    for name, build in FIGURES.items():
-        if progress is not None:
-            progress(name)
-        batch.add(build(data), Path(out_dir) / name)
-    written = batch.render()
-    for path in written:
-        log.info("wrote %s", path)
-    return written
-
-
 def _point_label(frfs: FrfSet, index: int, centre_index: int) -> str:
     """One label per point, the same in every figure: its node, where it is and what it is."""
     where = ", ".join(f"{1e3 * c:.0f}" for c in frfs.locations[index])
@@ -399,7 +349,10 @@ def write_frf_figures(frfs: FrfSet, racket: Racket, out_dir: Path) -> list[Path]
     centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
     nearest = int(np.argmin(np.linalg.norm(frfs.locations[:, :2] - centre, axis=1)))
     frame = frfs.driving_point if frfs.driving_point is not None else 0
-    for name, index in (("fig2_frf_frame.png", frame), ("fig3_frf_string_centre.png", nearest)):
+    for name, index in (
+        (file_of("fig2_frf_frame"), frame),
+        (file_of("fig3_frf_string_centre"), nearest),
+    ):
         figure, axes = plt.subplots(
             3,
             1,
@@ -436,7 +389,7 @@ def write_contact_figure(
     for ax, table, label in zip(axes[0], tables, labels, strict=True):
         plot_contact_map(table, racket, ax=ax, title=label, levels=levels)
     figure.suptitle("Fig. 7: contact time of the hammer on the strings", fontsize=10)
-    return _save(figure, Path(out_dir) / "fig7_contact_time.png")
+    return _save(figure, Path(out_dir) / file_of("fig7_contact_time"))
 
 
 def _mode_grid(n: int) -> tuple[int, int]:
@@ -526,24 +479,23 @@ def write_identification(
     out = Path(out_dir)
     model, frfs = identification.model, identification.frfs
     racket_modes = any(kind != "unknown" for kind in model.kinds) and model.n_dimensions == 2
-    suffix = f"_{label}" if label else ""
     batch = FigureBatch()
     figure, ax = plt.subplots(figsize=(8, 5), layout="constrained")
     plot_stabilisation(identification.stabilisation, identification.selected, ax=ax, frfs=frfs)
-    batch.add(figure, out / f"stabilisation{suffix}.png")
+    batch.add(figure, out / entry("stabilisation").file_for(label))
 
     if model.locations.shape[0] >= 2 and model.has_locations:
         on = racket if racket_modes else None
         figure = figure_mode_shapes(model, on)
         # mplot3d's projection overflows on the NaN outside the face of some surfaces; harmless
         with np.errstate(over="ignore", invalid="ignore"):  # the state it is drawn under
-            batch.add(figure, out / f"fig4_mode_shapes{suffix}.png")
-        batch.add(figure_node_lines(model, on), out / f"fig5_node_lines{suffix}.png")
+            batch.add(figure, out / entry("fig4_mode_shapes").file_for(label))
+        batch.add(figure_node_lines(model, on), out / entry("fig5_node_lines").file_for(label))
 
     if racket_modes:
         figure, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
         _plot_axis_nodes([model], racket, ax)
-        batch.add(figure, out / f"fig6_nodes{suffix}.png")
+        batch.add(figure, out / entry("fig6_nodes").file_for(label))
 
     fit = identification.fit
     if racket_modes:
@@ -574,12 +526,12 @@ def write_identification(
         ax.set_title(f"node {frfs.nodes[index]}", fontsize=9)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    batch.add(figure, out / f"synthesised_frfs{suffix}.png")
+    batch.add(figure, out / entry("synthesised_frfs").file_for(label))
 
     figure, ax = plt.subplots(figsize=(5.5, 4.5), layout="constrained")
     plot_mac(mac(model.mode_shapes, model.mode_shapes), model.names, model.names, ax=ax)
     ax.set_title("AutoMAC", fontsize=9)
-    batch.add(figure, out / f"automac{suffix}.png")
+    batch.add(figure, out / entry("automac").file_for(label))
     return batch.render()
 
 
@@ -681,13 +633,13 @@ def write_comparison(
         ax.set_xticks(index, names, rotation=30, ha="right", fontsize=8)
         ax.grid(alpha=0.3, axis="y")
     figure.suptitle("Free against hand-held (paired by MAC)", fontsize=10)
-    batch.add(figure, out / "comparison.png")
+    batch.add(figure, out / file_of("comparison"))
 
     figure, ax = plt.subplots(figsize=(7, 4.2), layout="constrained")
     _plot_axis_nodes([free.model, hand.model], racket, ax)
-    batch.add(figure, out / "fig6_nodes_free_hand.png")
+    batch.add(figure, out / file_of("fig6_nodes_free_hand"))
 
-    batch.add(figure_identified_rebound(rebound), out / "fig15_identified.png")
+    batch.add(figure_identified_rebound(rebound), out / file_of("fig15_identified"))
     return batch.render()
 
 
@@ -938,53 +890,7 @@ def figure_transient_histories(histories: TransientHistories) -> Figure:
     return figure
 
 
-def write_transient_figures(
-    out_dir: Path,
-    histories: TransientHistories | None = None,
-    comparison: ComparisonMap | None = None,
-    curves: TransientCurves | None = None,
-) -> list[Path]:
-    """Draw the transient model's figures (:data:`TRANSIENT_FIGURES`) into ``out_dir``.
-
-    Parameters
-    ----------
-    out_dir : Path
-        Output folder.
-    histories : TransientHistories, optional
-        Time histories to draw (none: no history figure).
-    comparison : ComparisonMap, optional
-        Approximate − transient over the face (none: no face map).
-    curves : TransientCurves, optional
-        Both models against speed (none: no curves).
-
-    Returns
-    -------
-    list of Path
-        The files written.
-    """
-    out = Path(out_dir)
-    batch = FigureBatch()
-    if histories is not None and histories.points:
-        batch.add(figure_transient_histories(histories), out / TRANSIENT_FIGURES["histories"])
-    if comparison is not None:
-        batch.add(figure_transient_comparison_face(comparison), out / TRANSIENT_FIGURES["face"])
-    if curves is not None:
-        batch.add(figure_transient_comparison_speed(curves), out / TRANSIENT_FIGURES["speed"])
-    written = batch.render()
-    for path in written:
-        log.info("wrote %s", path)
-    return written
-
-
 # --- the swinging racket, twist and oblique impacts (issue 5) ------------------------------------
-SWING_FIGURES: dict[str, str] = {"map": "swing_map.png", "axis": "swing_along_axis.png"}
-"""The figures of ``racketdyn swing``, by what they show → file name."""
-TWIST_FIGURE = "twist.png"
-"""The figure of ``racketdyn twist``."""
-OBLIQUE_FIGURE = "oblique.png"
-"""The figure of ``racketdyn oblique``."""
-
-
 def figure_swing_map(
     result: SwingResult,
     racket: Racket,
@@ -1042,46 +948,6 @@ def figure_swing_along_axis(
     return figure
 
 
-def write_swing_figures(
-    out_dir: Path,
-    racket: Racket,
-    result: SwingResult,
-    axis: SwingAxisCurves,
-    spots: Mapping[str, SweetSpot] | None = None,
-    speed_index: int = 0,
-) -> list[Path]:
-    """Draw the swing's figures (:data:`SWING_FIGURES`) into ``out_dir``.
-
-    Parameters
-    ----------
-    out_dir : Path
-        Output folder.
-    racket : Racket
-        The racket.
-    result : SwingResult
-        Impacts over the face.
-    axis : SwingAxisCurves
-        The outgoing speed along the axis for a few swings.
-    spots : mapping of str to SweetSpot, optional
-        Sweet spots to mark.
-    speed_index : int
-        Ball speed of the map.
-
-    Returns
-    -------
-    list of Path
-        The files written.
-    """
-    out = Path(out_dir)
-    batch = FigureBatch()
-    batch.add(figure_swing_map(result, racket, spots, speed_index), out / SWING_FIGURES["map"])
-    batch.add(figure_swing_along_axis(axis, spots), out / SWING_FIGURES["axis"])
-    written = batch.render()
-    for path in written:
-        log.info("wrote %s", path)
-    return written
-
-
 def figure_twist(curves: Sequence[TwistCurve]) -> Figure:
     """Roll angle and outgoing ball speed against the offset from the long axis, per support.
 
@@ -1103,21 +969,6 @@ def figure_twist(curves: Sequence[TwistCurve]) -> Figure:
         fontsize=10,
     )
     return figure
-
-
-def write_twist_figure(out_dir: Path, curves: Sequence[TwistCurve]) -> Path:
-    """Draw :func:`figure_twist` into ``out_dir`` (:data:`TWIST_FIGURE`); returns the path.
-
-    Parameters
-    ----------
-    out_dir : Path
-        Output folder.
-    curves : sequence of TwistCurve
-        One per support.
-    """
-    path = _save(figure_twist(curves), Path(out_dir) / TWIST_FIGURE)
-    log.info("wrote %s", path)
-    return path
 
 
 def figure_oblique(
@@ -1150,24 +1001,3 @@ def figure_oblique(
         fontsize=10,
     )
     return figure
-
-
-def write_oblique_figure(
-    out_dir: Path,
-    curve: ObliqueCurve,
-    location: tuple[float, float],
-    support: str,
-    contact: TangentialContact,
-) -> Path:
-    """Draw :func:`figure_oblique` into ``out_dir`` (:data:`OBLIQUE_FIGURE`); returns the path.
-
-    Parameters
-    ----------
-    out_dir : Path
-        Output folder.
-    curve, location, support, contact
-        As for :func:`figure_oblique`.
-    """
-    path = _save(figure_oblique(curve, location, support, contact), Path(out_dir) / OBLIQUE_FIGURE)
-    log.info("wrote %s", path)
-    return path

@@ -15,6 +15,7 @@ from matplotlib.axes import Axes
 from numpy.typing import ArrayLike
 
 from racketdyn.plotting.primitives import plot_outline
+from racketdyn.plotting.registry import file_of
 from racketdyn.plotting.render import save_figure
 
 if TYPE_CHECKING:
@@ -28,11 +29,11 @@ __all__ = [
     "write_validate_figures",
 ]
 
-VALIDATION_PARITY_FIGURE = "validation_parity.png"
+VALIDATION_PARITY_FIGURE = file_of("validation_parity")
 """Predicted against measured rebound ratio, both models, with the 1:1 line."""
-VALIDATION_ALONG_FIGURE = "validation_along_axis.png"
+VALIDATION_ALONG_FIGURE = file_of("validation_along_axis")
 """Measured and predicted rebound ratio against the position along the long axis."""
-VALIDATION_RESIDUAL_FIGURE = "validation_residuals.png"
+VALIDATION_RESIDUAL_FIGURE = file_of("validation_residuals")
 """The transient model's residual (predicted − measured) over the face."""
 
 METHOD_STYLE = {

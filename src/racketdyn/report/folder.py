@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
 from racketdyn.impact.result import invalidate_table, shown_speed_index
+from racketdyn.plotting.registry import file_of
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.report.figures import Figure, FigureGroup, Layout, embed_png
 from racketdyn.workflows.run import REPORT_NAME
@@ -777,7 +778,7 @@ class RunFolder:
     @property
     def predict_dir(self) -> Path | None:
         """The folder of ``racketdyn predict``."""
-        return self.first("impact.csv") or self.first("fig15_rebound_along_axis.png")
+        return self.first("impact.csv") or self.first(file_of("fig15_rebound_along_axis"))
 
     @property
     def frf_dirs(self) -> list[tuple[str, Path]]:
