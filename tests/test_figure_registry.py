@@ -163,3 +163,38 @@ def test_every_file_a_step_writes_is_its_registered_figure(tmp_path: Path) -> No
         written = {p.name for p in result.written if p.suffix == ".png"}
         assert written == {f.file for f in registry.for_step(step)}
         assert all(of_file(name) is not None for name in written)
+
+
+def test_a_new_figure_is_its_draw_function_and_one_entry(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Issue 23's goal: adding a figure touches two files, its draw function and its entry. An
+    entry added here (drawing with a function that exists) is written by predict's hook,
+    captioned and shown in its report section, and listed in the docs, nothing else changed."""
+    from racketdyn.plotting.steps import predict_figures
+    from racketdyn.report.folder import RunFolder
+    from racketdyn.report.sections import impact
+    from racketdyn.workflows import run_predict
+
+    new = registry.FigureEntry(
+        "fig99_new_figure",
+        "predict",
+        "a new figure of the pulse, {speeds}",
+        section="impact",
+        draw="racketdyn.plotting.figures:figure_pulse_spectrum",
+        reads=("paper_figures",),
+    )
+    monkeypatch.setitem(FIGURES, new.id, new)
+    logging.disable(logging.WARNING)
+    try:
+        result = run_predict(tmp_path / "p", speeds=[20.0], grid=3, figures=predict_figures())
+    finally:
+        logging.disable(logging.NOTSET)
+    assert "fig99_new_figure.png" in {path.name for path in result.written}
+    data = impact.gather(RunFolder.scan(tmp_path))
+    assert data is not None
+    shown = [figure for group in data["figures"] for figure in group.figures]
+    assert [f.text for f in shown if f.where.endswith("fig99_new_figure.png")] == [
+        "A new figure of the pulse, 20 m/s."
+    ]
+    assert "`fig99_new_figure.png`" in registry.markdown()

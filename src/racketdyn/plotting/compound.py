@@ -15,11 +15,12 @@ from typing import TYPE_CHECKING
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.modal import ModalModel
 from racketdyn.plotting.primitives import SUPPORT_STYLE, label_lines
-from racketdyn.plotting.registry import file_of
+from racketdyn.plotting.registry import draw, file_of, for_step
 from racketdyn.plotting.render import save_figure
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME
 
@@ -35,6 +36,9 @@ __all__ = [
     "COMPOUND_SHAPE_FIGURE",
     "ball_mode_share",
     "coinciding_supports",
+    "figure_compound_frf",
+    "figure_compound_response",
+    "figure_compound_shape",
     "neck_reading",
     "node_showing_ball_mode",
     "plot_ball_mode_shape",
@@ -258,18 +262,15 @@ def _mark_mode(ax: Axes, frequency_hz: float, label: str, colour: str) -> None:
         ax.axvline(frequency_hz, color=colour, lw=0.6, ls=":")
 
 
-def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
-    """Draw Fig. 8c and Fig. 9 of the run into ``out``; returns the paths.
+def figure_compound_response(result: CompoundResult) -> Figure:
+    """Fig. 8c: the neck's acceleration after a blow on the strings, the first support's (one
+    panel: the page is near its size budget; the CSV and run.json hold every support).
 
     Parameters
     ----------
     result : CompoundResult
-        The step's result.
-    out : Path
-        Output folder.
+        The step's result (its responses, computed by the workflow).
     """
-    # one panel, the first support's (the page is near its size budget; the CSV and run.json
-    # hold every support)
     support = result.supports[0]
     modes = result.modes[support]
     figure, ax = plt.subplots(figsize=(6.2, 3.0), layout="constrained")
@@ -293,7 +294,17 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         + (f"\n{reading}" if reading else ""),
         fontsize=9,
     )
-    paths = [save_figure(figure, Path(out) / COMPOUND_RESPONSE_FIGURE)]
+    return figure
+
+
+def figure_compound_frf(result: CompoundResult) -> Figure:
+    """Fig. 9: receptance hammer → neck without and with the ball, every support.
+
+    Parameters
+    ----------
+    result : CompoundResult
+        The step's result.
+    """
     figure, axes = plt.subplots(1, 2, figsize=(8.0, 2.7), layout="constrained", sharey=True)
     for support in result.supports:
         plot_compound_frf(result.frequency, result.frf_alone[support], support, support, ax=axes[0])
@@ -307,7 +318,17 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         f_ball = result.modes[support].ball_frequency
         _mark_mode(axes[1], f_ball, f"ball mode {f_ball:.1f} Hz", "0.5")
     figure.suptitle("Fig. 9: receptance hammer → neck without and with the ball", fontsize=10)
-    paths.append(save_figure(figure, Path(out) / COMPOUND_FRF_FIGURE))
+    return figure
+
+
+def figure_compound_shape(result: CompoundResult) -> Figure:
+    """Fig. 8a: the ball mode, the frame along its axis against the ball, per support.
+
+    Parameters
+    ----------
+    result : CompoundResult
+        The step's result.
+    """
     figure, ax = plt.subplots(figsize=(6.0, 3.0), layout="constrained")
     for support, (frame, ball) in result.ball_shape.items():
         plot_ball_mode_shape(result.axis_x, frame, result.location[0], ball, support, ax=ax)
@@ -316,7 +337,24 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         ax.text(0.02, 0.04, together, transform=ax.transAxes, fontsize=6.5, va="bottom")
     ax.set_title("Fig. 8a: the ball mode, ball and frame against\neach other through the strings",
                  fontsize=9)  # fmt: skip
-    paths.append(save_figure(figure, Path(out) / COMPOUND_SHAPE_FIGURE))
+    return figure
+
+
+def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
+    """Draw the registry's figures of ``compound`` (Figs 8a, 8c and 9) into ``out``, one after
+    another in this process; returns the paths.
+
+    Parameters
+    ----------
+    result : CompoundResult
+        The step's result.
+    out : Path
+        Output folder.
+    """
+    paths = [
+        save_figure(draw(figure.id, result), Path(out) / figure.file)
+        for figure in for_step("compound")
+    ]
     for path in paths:
         log.info("wrote %s", path)
     return paths

@@ -75,9 +75,12 @@ __all__ = [
     "IDENTIFIED_STYLES",
     "SWING_AXIS_POINTS",
     "TRANSIENT_CURVE_SPEEDS_MPS",
+    "figure_contact_time",
     "figure_face_maps",
     "figure_force_and_contact_time",
     "figure_frame_vibration",
+    "figure_frf_frame",
+    "figure_frf_string_centre",
     "figure_identified_rebound",
     "figure_mode_shapes",
     "figure_node_lines",
@@ -92,7 +95,6 @@ __all__ = [
     "figure_twist",
     "write_comparison",
     "write_contact_figure",
-    "write_frf_figures",
     "write_identification",
 ]
 
@@ -338,42 +340,70 @@ def _point_label(frfs: FrfSet, index: int, centre_index: int) -> str:
     return f"node {frfs.nodes[index]} ({where}) mm" + (": " + ", ".join(roles) if roles else "")
 
 
-def write_frf_figures(frfs: FrfSet, racket: Racket, out_dir: Path) -> list[Path]:
-    """Paper Figs 2–3: the frame driving-point FRF and the FRF at the string-bed centre.
-
-    Each point is labelled the same way in both (:func:`_point_label`): without a driving
-    point Fig. 2 shows the first point and says so; when the driving point is also the point
-    nearest the string-bed centre both figures say both.
-    """
-    batch = FigureBatch()
+def _frf_figure(frfs: FrfSet, racket: Racket, frame_point: bool) -> Figure:
+    """Fig. 2 (``frame_point``) or Fig. 3: one point's FRF, magnitude, phase and coherence."""
     centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
     nearest = int(np.argmin(np.linalg.norm(frfs.locations[:, :2] - centre, axis=1)))
     frame = frfs.driving_point if frfs.driving_point is not None else 0
-    for name, index in (
-        (file_of("fig2_frf_frame"), frame),
-        (file_of("fig3_frf_string_centre"), nearest),
-    ):
-        figure, axes = plt.subplots(
-            3,
-            1,
-            figsize=(6.5, 6),
-            sharex=True,
-            layout="constrained",
-            gridspec_kw={"height_ratios": [2, 1, 1]},
-        )
-        plot_frf(frfs, index, axes=list(axes), label=_point_label(frfs, index, nearest))
-        averages = "" if frfs.n_averages is None else f", {int(frfs.n_averages[index])} averages"
-        figure.suptitle(
-            f"{frfs.frf_type} FRF, {frfs.estimator}{averages} ({frfs.source})", fontsize=9
-        )
-        batch.add(figure, Path(out_dir) / name)
-    return batch.render()
+    index = frame if frame_point else nearest
+    figure, axes = plt.subplots(
+        3,
+        1,
+        figsize=(6.5, 6),
+        sharex=True,
+        layout="constrained",
+        gridspec_kw={"height_ratios": [2, 1, 1]},
+    )
+    plot_frf(frfs, index, axes=list(axes), label=_point_label(frfs, index, nearest))
+    averages = "" if frfs.n_averages is None else f", {int(frfs.n_averages[index])} averages"
+    figure.suptitle(f"{frfs.frf_type} FRF, {frfs.estimator}{averages} ({frfs.source})", fontsize=9)
+    return figure
 
 
-def write_contact_figure(
-    tables: Sequence[ContactTimes], labels: Sequence[str], racket: Racket, out_dir: Path
-) -> Path:
-    """Paper Fig. 7: hammer contact time over the string face, one panel per condition."""
+def figure_frf_frame(frfs: FrfSet, racket: Racket) -> Figure:
+    """Paper Fig. 2: the frame's driving-point FRF (without a driving point, the first point's,
+    and its label says so).
+
+    Parameters
+    ----------
+    frfs : FrfSet
+        The estimated FRFs.
+    racket : Racket
+        The racket (its string-bed centre names the point nearest it).
+    """
+    return _frf_figure(frfs, racket, frame_point=True)
+
+
+def figure_frf_string_centre(frfs: FrfSet, racket: Racket) -> Figure:
+    """Paper Fig. 3: the FRF at the point nearest the string-bed centre.
+
+    Each point is labelled the same way in Figs 2 and 3 (:func:`_point_label`): when the
+    driving point is also the point nearest the centre both figures say both.
+
+    Parameters
+    ----------
+    frfs : FrfSet
+        The estimated FRFs.
+    racket : Racket
+        The racket.
+    """
+    return _frf_figure(frfs, racket, frame_point=False)
+
+
+def figure_contact_time(
+    tables: Sequence[ContactTimes], labels: Sequence[str], racket: Racket
+) -> Figure:
+    """Paper Fig. 7: hammer contact time over the string face, one panel per condition.
+
+    Parameters
+    ----------
+    tables : sequence of ContactTimes
+        Contact times per test (condition).
+    labels : sequence of str
+        A label per table.
+    racket : Racket
+        The racket (its face).
+    """
     figure, axes = plt.subplots(
         1, len(tables), figsize=(4.6 * len(tables), 3.8), layout="constrained", squeeze=False
     )
@@ -389,7 +419,16 @@ def write_contact_figure(
     for ax, table, label in zip(axes[0], tables, labels, strict=True):
         plot_contact_map(table, racket, ax=ax, title=label, levels=levels)
     figure.suptitle("Fig. 7: contact time of the hammer on the strings", fontsize=10)
-    return _save(figure, Path(out_dir) / file_of("fig7_contact_time"))
+    return figure
+
+
+def write_contact_figure(
+    tables: Sequence[ContactTimes], labels: Sequence[str], racket: Racket, out_dir: Path
+) -> Path:
+    """Draw :func:`figure_contact_time` into ``out_dir``; returns the path."""
+    return _save(
+        figure_contact_time(tables, labels, racket), Path(out_dir) / file_of("fig7_contact_time")
+    )
 
 
 def _mode_grid(n: int) -> tuple[int, int]:

@@ -64,7 +64,9 @@ class FigureEntry:
         its step's writer (from the step's objects, not its data alone).
     reads : tuple of str
         The attributes of the step's result (or the keys of the data read back from its folder,
-        :func:`racketdyn.workflows.figure_data.read_step_data`) that ``draw`` takes.
+        :func:`racketdyn.workflows.figure_data.read_step_data`) that ``draw`` takes; a dotted
+        name reaches into one (``"estimate.frfs"``); ``"self"`` is the result itself (a figure
+        of many of its arrays, not drawn from a folder).
     labelled : bool
         The step may write it once per model, ``<id>_<label>.png`` (``compare``: ``_free``,
         ``_hand``).
@@ -102,7 +104,16 @@ class FigureEntry:
         read back from a run folder); None when any is missing (the figure is not drawn)."""
         values = []
         for name in self.reads:
-            value = source.get(name) if isinstance(source, Mapping) else getattr(source, name, None)
+            value: Any = source
+            if name != "self":
+                for part in name.split("."):
+                    value = (
+                        value.get(part)
+                        if isinstance(value, Mapping)
+                        else getattr(value, part, None)
+                    )
+            elif isinstance(source, Mapping):
+                value = None  # data read back from a folder: no step result
             if value is None:
                 return None
             values.append(value)
@@ -112,6 +123,7 @@ class FigureEntry:
 _FIGURES = "racketdyn.plotting.figures"
 _COMPOUND = "racketdyn.plotting.compound"
 _BALL = "racketdyn.plotting.ball"
+_VALIDATE = "racketdyn.plotting.validate"
 
 FIGURES: dict[str, FigureEntry] = {
     e.id: e
@@ -124,6 +136,8 @@ FIGURES: dict[str, FigureEntry] = {
             "phase and coherence",
             paper="Fig. 2",
             section="quality",
+            draw=f"{_FIGURES}:figure_frf_frame",
+            reads=("estimate.frfs", "racket"),
         ),
         FigureEntry(
             "fig3_frf_string_centre",
@@ -131,6 +145,8 @@ FIGURES: dict[str, FigureEntry] = {
             "FRF for an impact at the string-bed centre: magnitude, phase and coherence",
             paper="Fig. 3",
             section="quality",
+            draw=f"{_FIGURES}:figure_frf_string_centre",
+            reads=("estimate.frfs", "racket"),
         ),
         # --- identify (compare: once per model, _free and _hand) --------------------------
         FigureEntry(
@@ -217,6 +233,8 @@ FIGURES: dict[str, FigureEntry] = {
             "contact time of the hammer on the strings, per support",
             paper="Fig. 7",
             section="contact",
+            draw=f"{_FIGURES}:figure_contact_time",
+            reads=("tables", "labels", "racket"),
         ),
         # --- compound ---------------------------------------------------------------------
         FigureEntry(
@@ -227,6 +245,8 @@ FIGURES: dict[str, FigureEntry] = {
             "support; supports whose frames lie on one another are named on the figure",
             paper="Fig. 8a",
             section="compound",
+            draw=f"{_COMPOUND}:figure_compound_shape",
+            reads=("self",),
         ),
         FigureEntry(
             "compound_response",
@@ -236,6 +256,8 @@ FIGURES: dict[str, FigureEntry] = {
             "unit impulse, for the run's first support (linear compound model)",
             paper="Fig. 8c",
             section="compound",
+            draw=f"{_COMPOUND}:figure_compound_response",
+            reads=("self",),
         ),
         FigureEntry(
             "compound_frf",
@@ -244,6 +266,8 @@ FIGURES: dict[str, FigureEntry] = {
             "(left) and with the ball fixed on the strings (right), with the ball mode marked",
             paper="Fig. 9",
             section="compound",
+            draw=f"{_COMPOUND}:figure_compound_frf",
+            reads=("self",),
         ),
         # compare --ball-at, shown beside compound's Fig. 9
         FigureEntry(
@@ -403,6 +427,8 @@ FIGURES: dict[str, FigureEntry] = {
             "predicted against measured rebound ratio, approximate method and transient "
             "simulation, with the 1:1 line; flagged rows are counted in the legend and not drawn",
             section="validation",
+            draw=f"{_VALIDATE}:figure_validation_parity",
+            reads=("measured", "predicted"),
         ),
         FigureEntry(
             "validation_along_axis",
@@ -410,6 +436,8 @@ FIGURES: dict[str, FigureEntry] = {
             "measured rebound ratio (with one standard deviation where measured) and both "
             "models' predictions against the position along the long axis, every measured row",
             section="validation",
+            draw=f"{_VALIDATE}:figure_validation_along_axis",
+            reads=("measured", "predicted"),
         ),
         FigureEntry(
             "validation_residuals",
@@ -417,6 +445,8 @@ FIGURES: dict[str, FigureEntry] = {
             "the transient simulation's residual (predicted − measured rebound ratio) over the "
             "face, one marker per support; flagged rows as crosses",
             section="validation",
+            draw=f"{_VALIDATE}:figure_validation_residuals",
+            reads=("measured", "predicted", "inputs"),
         ),
         # --- ball, sweep: not in the report -----------------------------------------------
         FigureEntry(
@@ -594,7 +624,8 @@ def markdown(section_titles: Mapping[str, str] | None = None) -> str:
             place = (
                 titles.get(e.section, e.section) if e.section else f"not shown: {e.not_in_report}"
             )
-            source = ", ".join(f"`{r}`" for r in e.reads) if e.draw else "the step's writer"
+            read = [f"`{r}`" if r != "self" else "the step's result" for r in e.reads]
+            source = ", ".join(read) if e.draw else "the step's writer"
             text = e.caption.format_map(words).replace("|", "\\|")
             lines.append(f"| {name} | {e.paper or '–'} | {place} | {source} | {text} |")
         lines.append("")

@@ -47,20 +47,16 @@ def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], 
 
 def frf_figures(result: FrfResult, out: Path) -> list[Path]:
     """Paper Figs 2–3."""
-    from racketdyn.plotting.figures import write_frf_figures
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.estimate is not None
-    assert result.estimate.frfs is not None
-    assert result.racket is not None
-    return write_frf_figures(result.estimate.frfs, result.racket, out)
+    return write_figures("frf", result, out)
 
 
 def contact_figures(result: ContactResult, out: Path) -> list[Path]:
     """Paper Fig. 7."""
-    from racketdyn.plotting.figures import write_contact_figure
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.racket is not None
-    return [write_contact_figure(result.tables, result.labels, result.racket, out)]
+    return write_figures("contact", result, out)
 
 
 def identify_figures(result: IdentifyResult, out: Path) -> list[Path]:

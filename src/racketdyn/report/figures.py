@@ -219,8 +219,8 @@ def run_words(record: Mapping[str, Any]) -> dict[str, str]:
 def caption_of(stem: str, record: Mapping[str, Any] | None = None) -> tuple[str | None, str]:
     """(paper figure, what it shows) of a PNG by its file stem, worded from its run's settings.
 
-    The longest matching key of :data:`CAPTIONS` wins; its ``{field}`` are filled in with
-    :func:`run_words` of ``record``.
+    The registry's entry (:data:`racketdyn.plotting.registry.FIGURES`) whose id is the longest
+    start of ``stem`` wins; its ``{field}`` are filled in with :func:`run_words` of ``record``.
 
     Parameters
     ----------
@@ -229,11 +229,11 @@ def caption_of(stem: str, record: Mapping[str, Any] | None = None) -> tuple[str 
     record : mapping, optional
         The run.json of the folder the figure is in.
     """
-    key = next((k for k in sorted(CAPTIONS, key=len, reverse=True) if stem.startswith(k)), None)
+    key = next((k for k in sorted(FIGURES, key=len, reverse=True) if stem.startswith(k)), None)
     if key is None:
         return None, stem.replace("_", " ")
-    paper, what = CAPTIONS[key]
-    return paper, what.format_map(run_words(record or {}))
+    figure = FIGURES[key]
+    return figure.paper, figure.caption.format_map(run_words(record or {}))
 
 
 def embed_png(
