@@ -28,9 +28,8 @@ class Catch:
 
 
 def catch_figures(patch: Any, drawn: Drawn) -> None:
-    """Catch every figure a step draws in a batch (its writer's or the registry's) into
-    ``drawn``; ``patch`` is a ``pytest.MonkeyPatch``."""
-    from racketdyn.plotting import figures, render
+    """Catch every figure a step's hook draws in a batch into ``drawn``; ``patch`` is a
+    ``pytest.MonkeyPatch``."""
+    from racketdyn.plotting import render
 
-    patch.setattr(figures, "FigureBatch", lambda: Catch(drawn))
     patch.setattr(render, "FigureBatch", lambda: Catch(drawn))

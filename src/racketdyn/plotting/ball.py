@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 import matplotlib.pyplot as plt
@@ -12,12 +11,11 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from racketdyn.plotting.registry import file_of
-from racketdyn.plotting.render import save_figure
 
 if TYPE_CHECKING:
     from racketdyn.impact.bounce import BallBounces
 
-__all__ = ["BALL_FIGURE", "draw_ball_loops", "figure_ball_loops", "write_ball_figure"]
+__all__ = ["BALL_FIGURE", "draw_ball_loops", "figure_ball_loops"]
 
 BALL_FIGURE = file_of("ball_hysteresis")
 _TITLES = {
@@ -65,8 +63,3 @@ def figure_ball_loops(bounces: BallBounces) -> Figure:
     draw_ball_loops(bounces, list(made[0]))
     figure.tight_layout()
     return figure
-
-
-def write_ball_figure(out: Path, bounces: BallBounces) -> Path:
-    """Draw :func:`figure_ball_loops` and write :data:`BALL_FIGURE` in ``out``."""
-    return save_figure(figure_ball_loops(bounces), Path(out) / BALL_FIGURE)

@@ -36,6 +36,7 @@ __all__ = [
     "COMPOUND_SHAPE_FIGURE",
     "ball_mode_share",
     "coinciding_supports",
+    "figure_ball_comparison",
     "figure_compound_frf",
     "figure_compound_response",
     "figure_compound_shape",
@@ -44,7 +45,6 @@ __all__ = [
     "plot_ball_mode_shape",
     "plot_compound_frf",
     "plot_neck_response",
-    "write_ball_comparison_figure",
     "write_compound_figures",
 ]
 
@@ -427,7 +427,7 @@ def node_showing_ball_mode(
     return int(candidates[shown[0] if shown else int(np.nanargmax(share))])
 
 
-def write_ball_comparison_figure(result: BallCompareResult, out: Path) -> Path:
+def figure_ball_comparison(result: BallCompareResult) -> Figure:
     """The measured FRFs of the racket alone and with the ball (paper, Figs 9a and 9b).
 
     One FRF from each set: the hammer point nearest the ball that both sets hold and whose FRF
@@ -440,8 +440,6 @@ def write_ball_comparison_figure(result: BallCompareResult, out: Path) -> Path:
     ----------
     result : BallCompareResult
         ``compare --ball-at``'s result.
-    out : Path
-        Output folder.
     """
     assert result.alone is not None
     assert result.with_ball is not None
@@ -487,6 +485,4 @@ def write_ball_comparison_figure(result: BallCompareResult, out: Path) -> Path:
         f"({result.alone.model.support})",
         fontsize=9,
     )
-    path = save_figure(figure, Path(out) / BALL_COMPARISON_FIGURE)
-    log.info("wrote %s", path)
-    return path
+    return figure

@@ -55,8 +55,8 @@ from racketdyn.plotting.primitives import (
     plot_swing_map,
     plot_twist_curve,
 )
-from racketdyn.plotting.registry import entry, file_of
-from racketdyn.plotting.render import FigureBatch, save_figure
+from racketdyn.plotting.registry import file_of
+from racketdyn.plotting.render import save_figure
 from racketdyn.racket import SUPPORT_NAMES, Racket
 from racketdyn.racket_modal.shapes import axis_nodes
 from racketdyn.workflows.figure_data import (
@@ -75,27 +75,33 @@ __all__ = [
     "IDENTIFIED_STYLES",
     "SWING_AXIS_POINTS",
     "TRANSIENT_CURVE_SPEEDS_MPS",
+    "figure_automac",
     "figure_contact_time",
     "figure_face_maps",
+    "figure_first_mode_nodes",
     "figure_force_and_contact_time",
     "figure_frame_vibration",
     "figure_frf_frame",
     "figure_frf_string_centre",
+    "figure_identified_node_lines",
     "figure_identified_rebound",
+    "figure_identified_shapes",
+    "figure_mode_comparison",
     "figure_mode_shapes",
     "figure_node_lines",
+    "figure_nodes_free_hand",
     "figure_oblique",
     "figure_pulse_spectrum",
     "figure_rebound_along_axis",
+    "figure_stabilisation",
     "figure_swing_along_axis",
     "figure_swing_map",
+    "figure_synthesised_frfs",
     "figure_transient_comparison_face",
     "figure_transient_comparison_speed",
     "figure_transient_histories",
     "figure_twist",
-    "write_comparison",
     "write_contact_figure",
-    "write_identification",
 ]
 
 log = logging.getLogger(__name__)
@@ -505,39 +511,86 @@ def figure_node_lines(model: ModalModel, racket: Racket | None) -> Figure:
     return figure
 
 
-def write_identification(
-    identification: Identification, racket: Racket, out_dir: Path, label: str = ""
-) -> list[Path]:
-    """Figures of an identification: stabilisation, Figs 4–6, synthesised FRFs, AutoMAC.
+def _racket_modes(model: ModalModel) -> bool:
+    """Whether the modes are a racket's (named from their shapes, over the face)."""
+    return any(kind != "unknown" for kind in model.kinds) and model.n_dimensions == 2
 
-    A racket's modes (named from their shapes) get the racket's figures (face, outline, the
-    long axis); any other structure gets its own points (a surface over them, the shape along
-    their line, or the points in space) and no Fig. 6.  Shapes known at one point only, or at
-    points without coordinates, get no Figs 4–5.
+
+def figure_stabilisation(identification: Identification) -> Figure:
+    """The stabilisation diagram of an identification, with the selected modes.
+
+    Parameters
+    ----------
+    identification : Identification
+        The step's identification.
     """
-    out = Path(out_dir)
-    model, frfs = identification.model, identification.frfs
-    racket_modes = any(kind != "unknown" for kind in model.kinds) and model.n_dimensions == 2
-    batch = FigureBatch()
     figure, ax = plt.subplots(figsize=(8, 5), layout="constrained")
-    plot_stabilisation(identification.stabilisation, identification.selected, ax=ax, frfs=frfs)
-    batch.add(figure, out / entry("stabilisation").file_for(label))
+    plot_stabilisation(
+        identification.stabilisation, identification.selected, ax=ax, frfs=identification.frfs
+    )
+    return figure
 
-    if model.locations.shape[0] >= 2 and model.has_locations:
-        on = racket if racket_modes else None
-        figure = figure_mode_shapes(model, on)
-        # mplot3d's projection overflows on the NaN outside the face of some surfaces; harmless
-        with np.errstate(over="ignore", invalid="ignore"):  # the state it is drawn under
-            batch.add(figure, out / entry("fig4_mode_shapes").file_for(label))
-        batch.add(figure_node_lines(model, on), out / entry("fig5_node_lines").file_for(label))
 
-    if racket_modes:
-        figure, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
-        _plot_axis_nodes([model], racket, ax)
-        batch.add(figure, out / entry("fig6_nodes").file_for(label))
+def figure_identified_shapes(identification: Identification, racket: Racket) -> Figure | None:
+    """Paper Fig. 4 of an identification (:func:`figure_mode_shapes`): over the racket for a
+    racket's modes, over its own points for any other structure; None for shapes known at one
+    point only, or at points without coordinates.
 
-    fit = identification.fit
-    if racket_modes:
+    Parameters
+    ----------
+    identification : Identification
+        The step's identification.
+    racket : Racket
+        The racket of the run.
+    """
+    model = identification.model
+    if not (model.locations.shape[0] >= 2 and model.has_locations):
+        return None
+    return figure_mode_shapes(model, racket if _racket_modes(model) else None)
+
+
+def figure_identified_node_lines(identification: Identification, racket: Racket) -> Figure | None:
+    """Paper Fig. 5 of an identification (:func:`figure_node_lines`); None as for
+    :func:`figure_identified_shapes`.
+
+    Parameters
+    ----------
+    identification, racket
+        As for :func:`figure_identified_shapes`.
+    """
+    model = identification.model
+    if not (model.locations.shape[0] >= 2 and model.has_locations):
+        return None
+    return figure_node_lines(model, racket if _racket_modes(model) else None)
+
+
+def figure_first_mode_nodes(identification: Identification, racket: Racket) -> Figure | None:
+    """Paper Fig. 6: the first mode along the long axis with its nodes; None for a structure
+    that is not a racket.
+
+    Parameters
+    ----------
+    identification, racket
+        As for :func:`figure_identified_shapes`.
+    """
+    if not _racket_modes(identification.model):
+        return None
+    figure, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
+    _plot_axis_nodes([identification.model], racket, ax)
+    return figure
+
+
+def figure_synthesised_frfs(identification: Identification, racket: Racket) -> Figure:
+    """Measured FRFs against those synthesised from the identified model: the driving point and
+    the point nearest the string-bed centre (a racket's modes) or the worst-fitted point.
+
+    Parameters
+    ----------
+    identification, racket
+        As for :func:`figure_identified_shapes`.
+    """
+    model, frfs, fit = identification.model, identification.frfs, identification.fit
+    if _racket_modes(model):
         centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
         second = int(np.argmin(np.linalg.norm(frfs.locations - centre, axis=1)))
     else:
@@ -565,13 +618,22 @@ def write_identification(
         ax.set_title(f"node {frfs.nodes[index]}", fontsize=9)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    batch.add(figure, out / entry("synthesised_frfs").file_for(label))
+    return figure
 
+
+def figure_automac(identification: Identification) -> Figure:
+    """The AutoMAC of the identified mode shapes.
+
+    Parameters
+    ----------
+    identification : Identification
+        The step's identification.
+    """
+    model = identification.model
     figure, ax = plt.subplots(figsize=(5.5, 4.5), layout="constrained")
     plot_mac(mac(model.mode_shapes, model.mode_shapes), model.names, model.names, ax=ax)
     ax.set_title("AutoMAC", fontsize=9)
-    batch.add(figure, out / entry("automac").file_for(label))
-    return batch.render()
+    return figure
 
 
 def _plot_axis_nodes(models: Sequence[ModalModel], racket: Racket, ax: Axes) -> None:
@@ -640,23 +702,15 @@ def figure_identified_rebound(data: IdentifiedRebound) -> Figure:
     return figure
 
 
-def write_comparison(
-    free: Identification,
-    hand: Identification,
-    racket: Racket,
-    out_dir: Path,
-    comparison: ModeComparison,
-    rebound: IdentifiedRebound,
-) -> list[Path]:
-    """Free against hand-held: frequency/damping figure, Fig. 6 overlay, Fig. 15 check.
+def figure_mode_comparison(comparison: ModeComparison) -> Figure:
+    """Frequency shift and damping ratio of each mode, hand-held against free (paired by MAC).
 
-    The table (``comparison.csv``), the pairing (``comparison``) and the Fig. 15 curves
-    (``rebound``) are the compare step's (:func:`racketdyn.workflows.run_compare`).
+    Parameters
+    ----------
+    comparison : ModeComparison
+        The compare step's pairing (``comparison.csv``).
     """
-    out = Path(out_dir)
     rows = comparison.rows
-    batch = FigureBatch()
-
     figure, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
     names = [row["mode"] for row in rows]
     index = np.arange(len(rows))
@@ -672,14 +726,22 @@ def write_comparison(
         ax.set_xticks(index, names, rotation=30, ha="right", fontsize=8)
         ax.grid(alpha=0.3, axis="y")
     figure.suptitle("Free against hand-held (paired by MAC)", fontsize=10)
-    batch.add(figure, out / file_of("comparison"))
+    return figure
 
+
+def figure_nodes_free_hand(free: Identification, hand: Identification, racket: Racket) -> Figure:
+    """Paper Fig. 6, free against hand-held: the first mode along the long axis of both.
+
+    Parameters
+    ----------
+    free, hand : Identification
+        The two identifications.
+    racket : Racket
+        The racket of the run.
+    """
     figure, ax = plt.subplots(figsize=(7, 4.2), layout="constrained")
     _plot_axis_nodes([free.model, hand.model], racket, ax)
-    batch.add(figure, out / file_of("fig6_nodes_free_hand"))
-
-    batch.add(figure_identified_rebound(rebound), out / file_of("fig15_identified"))
-    return batch.render()
+    return figure
 
 
 # --- the approximate method against the transient simulation (issue 5) --------------------------

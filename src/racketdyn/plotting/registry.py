@@ -70,6 +70,12 @@ class FigureEntry:
     labelled : bool
         The step may write it once per model, ``<id>_<label>.png`` (``compare``: ``_free``,
         ``_hand``).
+    ignore_float_errors : bool
+        Drawn with NumPy's overflow and invalid-value errors ignored (mplot3d's projection
+        overflows on the NaN outside the face of some surfaces; harmless).
+
+    A draw function may return None: the data give no such figure (Figs 4–6 of a structure
+    that is not a racket); the step then writes no file for it.
     """
 
     id: str
@@ -81,6 +87,7 @@ class FigureEntry:
     draw: str = ""
     reads: tuple[str, ...] = ()
     labelled: bool = False
+    ignore_float_errors: bool = False
 
     @property
     def file(self) -> str:
@@ -156,22 +163,8 @@ FIGURES: dict[str, FigureEntry] = {
             "selected modes",
             section="stabilisation",
             labelled=True,
-        ),
-        FigureEntry(
-            "synthesised_frfs",
-            "identify",
-            "measured FRFs against those synthesised from the identified modal model "
-            "(driving point and string-bed centre)",
-            section="stabilisation",
-            labelled=True,
-        ),
-        FigureEntry(
-            "automac",
-            "identify",
-            "AutoMAC of the identified mode shapes: 1 on the diagonal; off it, how alike two "
-            "modes look at the measured points (near 1: the points cannot tell them apart)",
-            section="stabilisation",
-            labelled=True,
+            draw=f"{_FIGURES}:figure_stabilisation",
+            reads=("identification",),
         ),
         FigureEntry(
             "fig4_mode_shapes",
@@ -180,6 +173,9 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 4",
             section="modes",
             labelled=True,
+            draw=f"{_FIGURES}:figure_identified_shapes",
+            reads=("identification", "racket"),
+            ignore_float_errors=True,
         ),
         FigureEntry(
             "fig5_node_lines",
@@ -188,6 +184,8 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 5",
             section="modes",
             labelled=True,
+            draw=f"{_FIGURES}:figure_identified_node_lines",
+            reads=("identification", "racket"),
         ),
         FigureEntry(
             "fig6_nodes",
@@ -196,6 +194,28 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 6",
             section="modes",
             labelled=True,
+            draw=f"{_FIGURES}:figure_first_mode_nodes",
+            reads=("identification", "racket"),
+        ),
+        FigureEntry(
+            "synthesised_frfs",
+            "identify",
+            "measured FRFs against those synthesised from the identified modal model "
+            "(driving point and string-bed centre)",
+            section="stabilisation",
+            labelled=True,
+            draw=f"{_FIGURES}:figure_synthesised_frfs",
+            reads=("identification", "racket"),
+        ),
+        FigureEntry(
+            "automac",
+            "identify",
+            "AutoMAC of the identified mode shapes: 1 on the diagonal; off it, how alike two "
+            "modes look at the measured points (near 1: the points cannot tell them apart)",
+            section="stabilisation",
+            labelled=True,
+            draw=f"{_FIGURES}:figure_automac",
+            reads=("identification",),
         ),
         # --- compare ----------------------------------------------------------------------
         FigureEntry(
@@ -204,6 +224,8 @@ FIGURES: dict[str, FigureEntry] = {
             "frequency shift and damping ratio of each mode, hand-held ({hand_file}) against "
             "free ({free_file}), identified over {band} and paired by MAC",
             section="modes",
+            draw=f"{_FIGURES}:figure_mode_comparison",
+            reads=("comparison",),
         ),
         FigureEntry(
             "fig6_nodes_free_hand",
@@ -213,6 +235,8 @@ FIGURES: dict[str, FigureEntry] = {
             "the hand",
             paper="Fig. 6",
             section="modes",
+            draw=f"{_FIGURES}:figure_nodes_free_hand",
+            reads=("free", "hand", "racket"),
         ),
         FigureEntry(
             "fig15_identified",
@@ -272,7 +296,7 @@ FIGURES: dict[str, FigureEntry] = {
         # compare --ball-at, shown beside compound's Fig. 9
         FigureEntry(
             "fig9_frf_alone_and_ball",
-            "compare",
+            "compare --ball-at",
             "measured accelerance to the accelerometer from the hammer point nearest the ball "
             "whose FRF the ball mode dominates at its frequency (its node in the title), the "
             "racket alone (left) and with the ball fixed on the strings (right, the racket "
@@ -280,6 +304,8 @@ FIGURES: dict[str, FigureEntry] = {
             "--ball-at)",
             paper="Fig. 9",
             section="compound",
+            draw=f"{_COMPOUND}:figure_ball_comparison",
+            reads=("self",),
         ),
         # --- predict: the paper's figures (approximate method) ----------------------------
         FigureEntry(
@@ -555,7 +581,11 @@ def draw(figure: str, source: object) -> Any:
 
 
 def write_figures(
-    step: str, result: object, out: Path, status: Callable[[str], None] | None = None
+    step: str,
+    result: object,
+    out: Path,
+    status: Callable[[str], None] | None = None,
+    label: str = "",
 ) -> list[Path]:
     """Draw every registered figure of ``step`` whose data ``result`` holds into ``out``.
 
@@ -566,33 +596,44 @@ def write_figures(
     ----------
     step : str
         The step (command).
-    result : object
-        Its result (the attributes each entry ``reads``).
+    result : object or mapping
+        Its result (the attributes each entry ``reads``), or a mapping of them.
     out : Path
         The run folder.
     status : callable, optional
         ``status(words)`` before each figure.
+    label : str
+        The model's label of a figure written once per model (``compare``: ``"free"``,
+        ``"hand"``), in its file name.
 
     Returns
     -------
     list of Path
         The files written.
     """
+    from contextlib import nullcontext
+
+    import numpy as np
+
     from racketdyn.plotting import render
 
-    drawn = [(e, data) for e in for_step(step) if e.draw and (data := e.data(result)) is not None]
+    found = [(e, data) for e in for_step(step) if e.draw and (data := e.data(result)) is not None]
+    batch = render.FigureBatch() if len(found) > 1 else None
     paths: list[Path] = []
-    if len(drawn) == 1:
-        found, data = drawn[0]
+    for k, (figure, data) in enumerate(found, 1):
+        name = figure.file_for(label)
         if status is not None:
-            status(f"drawing {found.file}")
-        paths = [render.save_figure(found.drawer()(*data), Path(out) / found.file)]
-    elif drawn:
-        batch = render.FigureBatch()
-        for k, (found, data) in enumerate(drawn, 1):
-            if status is not None:
-                status(f"drawing {found.file} ({k} of {len(drawn)} figures)")
-            batch.add(found.drawer()(*data), Path(out) / found.file)
+            status(f"drawing {name} ({k} of {len(found)} figures)")
+        drawn = figure.drawer()(*data)
+        if drawn is None:
+            continue
+        errors = np.errstate(over="ignore", invalid="ignore")
+        with errors if figure.ignore_float_errors else nullcontext():  # the state it is drawn under
+            if batch is None:
+                paths.append(render.save_figure(drawn, Path(out) / name))
+            else:
+                batch.add(drawn, Path(out) / name)
+    if batch is not None:
         paths = batch.render()
     for path in paths:
         log.info("wrote %s", path)

@@ -61,36 +61,28 @@ def contact_figures(result: ContactResult, out: Path) -> list[Path]:
 
 def identify_figures(result: IdentifyResult, out: Path) -> list[Path]:
     """Stabilisation diagram, Figs 4–6, synthesised FRFs, AutoMAC."""
-    from racketdyn.plotting.figures import write_identification
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.identification is not None
-    assert result.racket is not None
-    return write_identification(result.identification, result.racket, out)
+    return write_figures("identify", result, out)
 
 
 def compare_figures(result: CompareResult, out: Path) -> list[Path]:
-    """Both identifications' figures, the comparison figures and the Fig. 15 check (with the
-    run's ball)."""
-    from racketdyn.plotting.figures import write_comparison, write_identification
+    """Both identifications' figures (``_free``, ``_hand``), the comparison figures and the
+    Fig. 15 check (with the run's ball)."""
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.free is not None
-    assert result.hand is not None
-    assert result.racket is not None
-    assert result.comparison is not None
-    assert result.rebound is not None
-    written = write_identification(result.free, result.racket, out, "free")
-    written += write_identification(result.hand, result.racket, out, "hand")
-    written += write_comparison(
-        result.free, result.hand, result.racket, out, result.comparison, result.rebound
-    )
-    return written
+    written = []
+    for label, identification in (("free", result.free), ("hand", result.hand)):
+        data = {"identification": identification, "racket": result.racket}
+        written += write_figures("identify", data, out, label=label)
+    return written + write_figures("compare", result, out)
 
 
 def compare_ball_figures(result: BallCompareResult, out: Path) -> list[Path]:
     """The FRFs of the racket alone and with the ball (the paper's Figs 9a and 9b)."""
-    from racketdyn.plotting.compound import write_ball_comparison_figure
+    from racketdyn.plotting.registry import write_figures
 
-    return [write_ball_comparison_figure(result, out)]
+    return write_figures("compare --ball-at", result, out)
 
 
 def swing_figures(result: SwingStepResult, out: Path) -> list[Path]:
