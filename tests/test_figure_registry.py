@@ -168,9 +168,11 @@ def test_every_file_a_step_writes_is_its_registered_figure(tmp_path: Path) -> No
 def test_a_new_figure_is_its_draw_function_and_one_entry(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """Issue 23's goal: adding a figure touches two files, its draw function and its entry. An
-    entry added here (drawing with a function that exists) is written by predict's hook,
-    captioned and shown in its report section, and listed in the docs, nothing else changed."""
+    """Issue 23's goal: adding a figure touches two files, its draw function and its entry.
+    Entries added here (drawing with a function that exists) are written by predict's hook,
+    captioned and shown in their report sections — one that lists its figures from the
+    registry, one whose template names its figures (the new one goes at its end) — and listed
+    in the docs, nothing else changed."""
     from racketdyn.plotting.steps import predict_figures
     from racketdyn.report.folder import RunFolder
     from racketdyn.report.sections import impact
@@ -185,6 +187,11 @@ def test_a_new_figure_is_its_draw_function_and_one_entry(
         reads=("paper_figures",),
     )
     monkeypatch.setitem(FIGURES, new.id, new)
+    # and one in a section whose template names its figures one by one: placed at its end
+    slotted = registry.FigureEntry(
+        "fig98_new_map", "predict", "a new map", section="rebound", draw=new.draw, reads=new.reads
+    )
+    monkeypatch.setitem(FIGURES, slotted.id, slotted)
     logging.disable(logging.WARNING)
     try:
         result = run_predict(tmp_path / "p", speeds=[20.0], grid=3, figures=predict_figures())
@@ -198,3 +205,11 @@ def test_a_new_figure_is_its_draw_function_and_one_entry(
         "A new figure of the pulse, 20 m/s."
     ]
     assert "`fig99_new_figure.png`" in registry.markdown()
+    from racketdyn.report import write_report
+
+    page = write_report(tmp_path).read_text(encoding="utf-8")
+    sections = dict(re.findall(r'<section id="([\w-]+)">(.*?)</section>', page, re.S))
+    assert "p/fig99_new_figure.png" in sections["impact"]
+    assert "p/fig98_new_map.png" in sections["rebound"]
+    assert "A new map." in sections["rebound"]
+    assert page.count("p/fig98_new_map.png") == 1
