@@ -38,7 +38,19 @@ extensions = [
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 templates_path = ["_templates"]
-exclude_patterns = ["_build"]
+exclude_patterns = ["_build", "_generated"]
+
+# The list of figures (figures.md includes it) is written from the registry of figures at each
+# build: a new figure is one entry there, no page to edit (issue 23).
+_GENERATED = Path(__file__).parent / "_generated"
+_GENERATED.mkdir(exist_ok=True)
+_SECTIONS = importlib.import_module("racketdyn.report").SECTIONS
+(_GENERATED / "figures.md").write_text(
+    importlib.import_module("racketdyn.plotting.registry").markdown(
+        {key: section.title for key, section in _SECTIONS.items()}
+    ),
+    encoding="utf-8",
+)
 
 # No network, at build or at reading: no intersphinx inventories, no MathJax (a CDN script);
 # formulas are written in Unicode as in the docstrings.

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from matplotlib.figure import Figure
 
@@ -24,3 +25,11 @@ class Catch:
 
     def render(self) -> list[Path]:
         return list(self.paths)
+
+
+def catch_figures(patch: Any, drawn: Drawn) -> None:
+    """Catch every figure a step's hook draws in a batch into ``drawn``; ``patch`` is a
+    ``pytest.MonkeyPatch``."""
+    from racketdyn.plotting import render
+
+    patch.setattr(render, "FigureBatch", lambda: Catch(drawn))

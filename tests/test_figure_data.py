@@ -15,7 +15,7 @@ import pytest
 from matplotlib.figure import Figure
 
 import racketdyn as rd
-from figure_catch import Catch, Drawn
+from figure_catch import Drawn, catch_figures
 from racketdyn.cli import main
 from racketdyn.plotting import figures as figures_module
 from racketdyn.plotting.primitives import SUPPORT_STYLE
@@ -26,7 +26,7 @@ from racketdyn.plotting.steps import compare_figures
 def caught(monkeypatch: pytest.MonkeyPatch) -> Iterator[Drawn]:
     """The figures the step draws, by file name, as matplotlib objects."""
     drawn: Drawn = {}
-    monkeypatch.setattr(figures_module, "FigureBatch", lambda: Catch(drawn))
+    catch_figures(monkeypatch, drawn)
     yield drawn
     for figure in drawn.values():
         plt.close(figure)
@@ -170,7 +170,7 @@ def predicted(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, D
     out = tmp_path_factory.mktemp("predict")
     drawn: Drawn = {}
     patch = pytest.MonkeyPatch()
-    patch.setattr(figures_module, "FigureBatch", lambda: Catch(drawn))
+    catch_figures(patch, drawn)
     logging.disable(logging.WARNING)
     try:
         result = run_predict(
@@ -242,31 +242,15 @@ def test_figure_data_round_trips_through_figures_nc(predicted: tuple[Any, Drawn,
 def test_each_predict_figure_redrawn_from_figures_nc_alone(
     predicted: tuple[Any, Drawn, Path],
 ) -> None:
-    """Issue 23: every figure the step drew from its data is drawn the same from the file,
-    and its lines are the computed arrays."""
-    from racketdyn.workflows.figure_data import (
-        FIGURES_FILE,
-        ComparisonMap,
-        PaperFigures,
-        TransientCurves,
-        TransientHistories,
-        read_figure_data,
-    )
+    """Issue 23: every figure of predict in the registry, drawn from the folder's figures.nc
+    alone, draws the same as the figure the step drew, and its lines are the computed arrays."""
+    from racketdyn.plotting.registry import draw, for_step
+    from racketdyn.workflows.figure_data import read_step_data
 
     result, drawn, out = predicted
-    dataset = read_figure_data(out / FIGURES_FILE)  # the folder's file alone
-    paper = PaperFigures.from_xarray(dataset)
-    curves = TransientCurves.from_xarray(dataset)
-    redrawn = {name: build(paper) for name, build in figures_module.FIGURES.items()}
-    redrawn["transient_comparison_speed.png"] = figures_module.figure_transient_comparison_speed(
-        curves
-    )
-    comparison = ComparisonMap.from_xarray(dataset)
-    redrawn["transient_comparison_face.png"] = figures_module.figure_transient_comparison_face(
-        comparison
-    )
-    histories = TransientHistories.from_xarray(dataset)
-    redrawn["transient_histories.png"] = figures_module.figure_transient_histories(histories)
+    data = read_step_data(out)  # the folder's file alone
+    curves, comparison = data["transient_curves"], data["comparison_map"]
+    redrawn = {figure.file: draw(figure.id, data) for figure in for_step("predict")}
     assert set(redrawn) == set(drawn)  # every figure of the step
     try:
         for name, figure in redrawn.items():

@@ -164,6 +164,22 @@ def test_every_image_is_an_embedded_png(run_dir: Path, page: str) -> None:
             assert image.height > 100
 
 
+def test_every_png_is_a_registered_figure_shown_in_its_section(run_dir: Path, page: str) -> None:
+    """Issue 23: every PNG a step wrote is in the registry of figures, and the page shows it in
+    the section its entry names (the single Fig. 6s: replaced by the free/hand overlay)."""
+    from racketdyn.plotting.registry import of_file
+
+    sections = dict(re.findall(r'<section id="([\w-]+)">(.*?)</section>', page, re.S))
+    for path in sorted(run_dir.rglob("*.png")):
+        figure = of_file(path.name)
+        assert figure is not None, f"{path.name}: not in the registry of figures"
+        if re.fullmatch(r"fig6_nodes_(free|hand)\.png", path.name):
+            continue
+        assert figure.section is not None, f"{path.name}: {figure.not_in_report}"
+        where = path.relative_to(run_dir).as_posix()
+        assert where in sections[figure.section], f"{where} not in section {figure.section}"
+
+
 def test_sections_in_order_and_captions_name_the_paper_figures(page: str) -> None:
     headings = re.findall(r"<h2>(?:<span[^>]*>\d+</span> )?(.*?)</h2>", page)
     expected = [s.title for s in SECTIONS.values()]

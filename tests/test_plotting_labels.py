@@ -159,7 +159,6 @@ def test_fig8a_tells_every_support_apart_and_says_which_coincide(
     from racketdyn.plotting import compound as drawing
     from racketdyn.workflows import run_compound
 
-    drawn = _drawn(monkeypatch, drawing)
     # the ITF-plate ball of before issue 22: its mode (89 Hz) lies well below the 2-node mode,
     # where the hand hardly acts on it; the bounce-stiff ball's 112 Hz mode shares more of the
     # 2-node mode's motion and free and hand differ by 5.6 % (the figure then says so)
@@ -174,8 +173,7 @@ def test_fig8a_tells_every_support_apart_and_says_which_coincide(
         supports=("free", "pinned", "hand"),
         ball=plate_ball,
     )
-    drawing.write_compound_figures(result, tmp_path)
-    shape = drawn[-1]
+    shape = result.plot("compound_shape")  # the registry's figure, drawn from the result
     (ax,) = shape.axes
     frames = [ln for ln in ax.get_lines() if np.asarray(ln.get_xdata()).size > 2]
     balls = [ln for ln in ax.get_lines() if np.asarray(ln.get_xdata()).size == 1]
@@ -196,14 +194,11 @@ def test_fig9_names_the_ball_mode_off_the_curves(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """Fig. 9b's "ball mode 88.7 Hz" ran down its line across the receptance curves."""
-    from racketdyn.plotting import compound as drawing
     from racketdyn.workflows import run_compound
     from test_figure_layout import _crosses
 
-    drawn = _drawn(monkeypatch, drawing)
     result = run_compound(tmp_path / "c", supports=("free", "hand"))
-    drawing.write_compound_figures(result, tmp_path)
-    frf = drawn[1]
+    frf = result.plot("compound_frf")
     renderer = FigureCanvasAgg(frf).get_renderer()
     frf.draw(renderer)
     name = f"ball mode {result.modes['free'].ball_frequency:.1f} Hz"
@@ -227,15 +222,12 @@ def test_fig8c_says_which_mode_leads(
 ) -> None:
     """Fig. 8c marked where the 2-node mode takes over, but said nothing when it led from the
     start (a blow 18 mm or more from the ball) or never took over: the console did."""
-    from racketdyn.plotting import compound as drawing
     from racketdyn.racket import landmark_points
     from racketdyn.workflows import run_compound
 
-    drawn = _drawn(monkeypatch, drawing)
     x, y = landmark_points(rd.default_racket())["centre"]
     result = run_compound(tmp_path / "c", supports=("free",), hammer=(x - away_m, y))
-    drawing.write_compound_figures(result, tmp_path)
-    response = drawn[0]
+    response = result.plot("compound_response")
     said = " ".join(
         t.get_text() for t in response.findobj(Text) if t.get_visible() and t.get_text()
     )

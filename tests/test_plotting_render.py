@@ -13,7 +13,7 @@ from PIL import Image
 
 import racketdyn as rd
 from racketdyn.plotting import render
-from racketdyn.plotting.figures import FIGURES
+from racketdyn.plotting.registry import for_step
 from racketdyn.workflows.figure_data import paper_figures
 
 
@@ -96,7 +96,9 @@ def test_paper_figures_keep_their_content() -> None:
         racket = rd.default_racket()
         model = rd.modal_model_for(racket)
         data = paper_figures(racket, rd.Ball(), modal_model=model)
-        built = {name: build(data) for name, build in FIGURES.items()}
+        built = {
+            e.file: e.drawer()(data) for e in for_step("predict") if e.reads == ("paper_figures",)
+        }
     finally:
         logging.disable(logging.NOTSET)
     try:

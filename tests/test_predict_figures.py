@@ -17,9 +17,8 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 import racketdyn as rd
-from figure_catch import Catch, Drawn
+from figure_catch import Drawn, catch_figures
 from racketdyn.cli import main
-from racketdyn.plotting import figures as figures_module
 from racketdyn.plotting.steps import predict_figures
 from racketdyn.racket import landmark_points
 from racketdyn.workflows import PredictResult, run_predict
@@ -34,7 +33,7 @@ def draw(
 
     def run(**options: Any) -> tuple[PredictResult, Drawn]:
         drawn: Drawn = {}
-        monkeypatch.setattr(figures_module, "FigureBatch", lambda: Catch(drawn))
+        catch_figures(monkeypatch, drawn)
         out = tmp_path / f"run{len(caught)}"
         caught.append(drawn)
         logging.disable(logging.WARNING)  # flagged rows log warnings; not the subject here

@@ -3,21 +3,21 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 
-from racketdyn.plotting.render import save_figure
+from racketdyn.plotting.registry import file_of
 
 if TYPE_CHECKING:
     from racketdyn.impact.bounce import BallBounces
 
-__all__ = ["BALL_FIGURE", "draw_ball_loops", "write_ball_figure"]
+__all__ = ["BALL_FIGURE", "draw_ball_loops", "figure_ball_loops"]
 
-BALL_FIGURE = "ball_hysteresis.png"
+BALL_FIGURE = file_of("ball_hysteresis")
 _TITLES = {
     "rigid": "rigid surface: the ball's flattening",
     "strings": "head-clamped strings: ball + bed compression",
@@ -55,11 +55,11 @@ def draw_ball_loops(bounces: BallBounces, axes: Sequence[Axes] | None = None) ->
     return list(axes)
 
 
-def write_ball_figure(out: Path, bounces: BallBounces) -> Path:
-    """Draw :func:`draw_ball_loops` and write :data:`BALL_FIGURE` in ``out``."""
+def figure_ball_loops(bounces: BallBounces) -> Figure:
+    """:func:`draw_ball_loops` in a figure of its own (the registry's ``ball_hysteresis``)."""
     figure, made = plt.subplots(
         1, len(bounces.surfaces), figsize=(4.6 * len(bounces.surfaces), 3.8), squeeze=False
     )
     draw_ball_loops(bounces, list(made[0]))
     figure.tight_layout()
-    return save_figure(figure, Path(out) / BALL_FIGURE)
+    return figure

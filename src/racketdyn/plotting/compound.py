@@ -15,10 +15,12 @@ from typing import TYPE_CHECKING
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.modal import ModalModel
 from racketdyn.plotting.primitives import SUPPORT_STYLE, label_lines
+from racketdyn.plotting.registry import draw, file_of, for_step
 from racketdyn.plotting.render import save_figure
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME
 
@@ -34,24 +36,27 @@ __all__ = [
     "COMPOUND_SHAPE_FIGURE",
     "ball_mode_share",
     "coinciding_supports",
+    "figure_ball_comparison",
+    "figure_compound_frf",
+    "figure_compound_response",
+    "figure_compound_shape",
     "neck_reading",
     "node_showing_ball_mode",
     "plot_ball_mode_shape",
     "plot_compound_frf",
     "plot_neck_response",
-    "write_ball_comparison_figure",
     "write_compound_figures",
 ]
 
 log = logging.getLogger(__name__)
 
-COMPOUND_RESPONSE_FIGURE = "compound_response.png"
+COMPOUND_RESPONSE_FIGURE = file_of("compound_response")
 """The neck's acceleration after the hammer blow, ball on the strings (Fig. 8c)."""
-COMPOUND_FRF_FIGURE = "compound_frf.png"
+COMPOUND_FRF_FIGURE = file_of("compound_frf")
 """Receptance hammer → neck without and with the ball (Fig. 9a, 9b)."""
-COMPOUND_SHAPE_FIGURE = "compound_shape.png"
+COMPOUND_SHAPE_FIGURE = file_of("compound_shape")
 """The ball mode: the frame along its axis against the ball (Fig. 8a)."""
-BALL_COMPARISON_FIGURE = "fig9_frf_alone_and_ball.png"
+BALL_COMPARISON_FIGURE = file_of("fig9_frf_alone_and_ball")
 """``compare --ball-at``: measured FRFs of the racket alone and with the ball (Fig. 9a, 9b)."""
 
 # each support its own line and ball marker, so curves lying on each other all show: the pinned
@@ -257,18 +262,15 @@ def _mark_mode(ax: Axes, frequency_hz: float, label: str, colour: str) -> None:
         ax.axvline(frequency_hz, color=colour, lw=0.6, ls=":")
 
 
-def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
-    """Draw Fig. 8c and Fig. 9 of the run into ``out``; returns the paths.
+def figure_compound_response(result: CompoundResult) -> Figure:
+    """Fig. 8c: the neck's acceleration after a blow on the strings, the first support's (one
+    panel: the page is near its size budget; the CSV and run.json hold every support).
 
     Parameters
     ----------
     result : CompoundResult
-        The step's result.
-    out : Path
-        Output folder.
+        The step's result (its responses, computed by the workflow).
     """
-    # one panel, the first support's (the page is near its size budget; the CSV and run.json
-    # hold every support)
     support = result.supports[0]
     modes = result.modes[support]
     figure, ax = plt.subplots(figsize=(6.2, 3.0), layout="constrained")
@@ -292,7 +294,17 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         + (f"\n{reading}" if reading else ""),
         fontsize=9,
     )
-    paths = [save_figure(figure, Path(out) / COMPOUND_RESPONSE_FIGURE)]
+    return figure
+
+
+def figure_compound_frf(result: CompoundResult) -> Figure:
+    """Fig. 9: receptance hammer → neck without and with the ball, every support.
+
+    Parameters
+    ----------
+    result : CompoundResult
+        The step's result.
+    """
     figure, axes = plt.subplots(1, 2, figsize=(8.0, 2.7), layout="constrained", sharey=True)
     for support in result.supports:
         plot_compound_frf(result.frequency, result.frf_alone[support], support, support, ax=axes[0])
@@ -306,7 +318,17 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         f_ball = result.modes[support].ball_frequency
         _mark_mode(axes[1], f_ball, f"ball mode {f_ball:.1f} Hz", "0.5")
     figure.suptitle("Fig. 9: receptance hammer → neck without and with the ball", fontsize=10)
-    paths.append(save_figure(figure, Path(out) / COMPOUND_FRF_FIGURE))
+    return figure
+
+
+def figure_compound_shape(result: CompoundResult) -> Figure:
+    """Fig. 8a: the ball mode, the frame along its axis against the ball, per support.
+
+    Parameters
+    ----------
+    result : CompoundResult
+        The step's result.
+    """
     figure, ax = plt.subplots(figsize=(6.0, 3.0), layout="constrained")
     for support, (frame, ball) in result.ball_shape.items():
         plot_ball_mode_shape(result.axis_x, frame, result.location[0], ball, support, ax=ax)
@@ -315,7 +337,24 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
         ax.text(0.02, 0.04, together, transform=ax.transAxes, fontsize=6.5, va="bottom")
     ax.set_title("Fig. 8a: the ball mode, ball and frame against\neach other through the strings",
                  fontsize=9)  # fmt: skip
-    paths.append(save_figure(figure, Path(out) / COMPOUND_SHAPE_FIGURE))
+    return figure
+
+
+def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
+    """Draw the registry's figures of ``compound`` (Figs 8a, 8c and 9) into ``out``, one after
+    another in this process; returns the paths.
+
+    Parameters
+    ----------
+    result : CompoundResult
+        The step's result.
+    out : Path
+        Output folder.
+    """
+    paths = [
+        save_figure(draw(figure.id, result), Path(out) / figure.file)
+        for figure in for_step("compound")
+    ]
     for path in paths:
         log.info("wrote %s", path)
     return paths
@@ -388,7 +427,7 @@ def node_showing_ball_mode(
     return int(candidates[shown[0] if shown else int(np.nanargmax(share))])
 
 
-def write_ball_comparison_figure(result: BallCompareResult, out: Path) -> Path:
+def figure_ball_comparison(result: BallCompareResult) -> Figure:
     """The measured FRFs of the racket alone and with the ball (paper, Figs 9a and 9b).
 
     One FRF from each set: the hammer point nearest the ball that both sets hold and whose FRF
@@ -401,8 +440,6 @@ def write_ball_comparison_figure(result: BallCompareResult, out: Path) -> Path:
     ----------
     result : BallCompareResult
         ``compare --ball-at``'s result.
-    out : Path
-        Output folder.
     """
     assert result.alone is not None
     assert result.with_ball is not None
@@ -448,6 +485,4 @@ def write_ball_comparison_figure(result: BallCompareResult, out: Path) -> Path:
         f"({result.alone.model.support})",
         fontsize=9,
     )
-    path = save_figure(figure, Path(out) / BALL_COMPARISON_FIGURE)
-    log.info("wrote %s", path)
-    return path
+    return figure

@@ -1,7 +1,10 @@
-"""The paper's figures for a racket, written as PNG files.
+"""The paper's figures for a racket, and the other figures of the steps.
 
-Every figure only draws: what it shows was computed by the step's workflow with the run's own
-inputs (:mod:`racketdyn.workflows.figure_data`: :class:`PaperFigures`, :class:`TransientCurves`,
+Each figure is listed once, with its file name, caption and report section, in
+:mod:`racketdyn.plotting.registry`, which draws the figures of a step from its result
+(:func:`racketdyn.plotting.registry.write_figures`).  Every figure only draws: what it shows
+was computed by the step's workflow with the run's own inputs
+(:mod:`racketdyn.workflows.figure_data`: :class:`PaperFigures`, :class:`TransientCurves`,
 :class:`SwingAxisCurves`, :class:`IdentifiedRebound`, written to the run's ``figures.nc``).
 """
 
@@ -9,7 +12,7 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -52,7 +55,8 @@ from racketdyn.plotting.primitives import (
     plot_swing_map,
     plot_twist_curve,
 )
-from racketdyn.plotting.render import FigureBatch, save_figure
+from racketdyn.plotting.registry import file_of
+from racketdyn.plotting.render import save_figure
 from racketdyn.racket import SUPPORT_NAMES, Racket
 from racketdyn.racket_modal.shapes import axis_nodes
 from racketdyn.workflows.figure_data import (
@@ -68,48 +72,39 @@ from racketdyn.workflows.figure_data import (
 from racketdyn.workflows.identify import ModeComparison
 
 __all__ = [
-    "FIGURES",
     "IDENTIFIED_STYLES",
-    "OBLIQUE_FIGURE",
     "SWING_AXIS_POINTS",
-    "SWING_FIGURES",
     "TRANSIENT_CURVE_SPEEDS_MPS",
-    "TRANSIENT_FIGURES",
-    "TWIST_FIGURE",
+    "figure_automac",
+    "figure_contact_time",
     "figure_face_maps",
+    "figure_first_mode_nodes",
     "figure_force_and_contact_time",
     "figure_frame_vibration",
+    "figure_frf_frame",
+    "figure_frf_string_centre",
+    "figure_identified_node_lines",
     "figure_identified_rebound",
+    "figure_identified_shapes",
+    "figure_mode_comparison",
     "figure_mode_shapes",
     "figure_node_lines",
+    "figure_nodes_free_hand",
     "figure_oblique",
     "figure_pulse_spectrum",
     "figure_rebound_along_axis",
+    "figure_stabilisation",
     "figure_swing_along_axis",
     "figure_swing_map",
+    "figure_synthesised_frfs",
     "figure_transient_comparison_face",
     "figure_transient_comparison_speed",
     "figure_transient_histories",
     "figure_twist",
-    "write_comparison",
     "write_contact_figure",
-    "write_frf_figures",
-    "write_identification",
-    "write_oblique_figure",
-    "write_paper_figures",
-    "write_swing_figures",
-    "write_transient_figures",
-    "write_twist_figure",
 ]
 
 log = logging.getLogger(__name__)
-
-TRANSIENT_FIGURES: dict[str, str] = {
-    "face": "transient_comparison_face.png",
-    "speed": "transient_comparison_speed.png",
-    "histories": "transient_histories.png",
-}
-"""The figures of the transient model, by what they show → file name."""
 
 
 def _save(figure: Figure, path: Path) -> Path:
@@ -340,43 +335,6 @@ def figure_pulse_spectrum(data: PaperFigures) -> Figure:
     return figure
 
 
-FIGURES: dict[str, Callable[[PaperFigures], Figure]] = {
-    "fig11_12_force_contact_time.png": figure_force_and_contact_time,
-    "fig13_pulse_spectrum.png": figure_pulse_spectrum,
-    "fig14_frame_vibration.png": figure_frame_vibration,
-    "fig15_rebound_along_axis.png": figure_rebound_along_axis,
-    "face_maps.png": figure_face_maps,
-}
-"""File name → figure: each draws its part of a :class:`PaperFigures`."""
-
-
-def write_paper_figures(
-    data: PaperFigures,
-    out_dir: Path,
-    progress: Callable[[str], None] | None = None,
-) -> list[Path]:
-    """Draw every figure in :data:`FIGURES` into ``out_dir``; returns the paths written.
-
-    Parameters
-    ----------
-    data : PaperFigures
-        What the figures draw (the run's ``PredictResult.paper_figures``).
-    out_dir : Path
-        Output folder.
-    progress : callable, optional
-        ``progress(file name)`` before each figure.
-    """
-    batch = FigureBatch()
-    for name, build in FIGURES.items():
-        if progress is not None:
-            progress(name)
-        batch.add(build(data), Path(out_dir) / name)
-    written = batch.render()
-    for path in written:
-        log.info("wrote %s", path)
-    return written
-
-
 def _point_label(frfs: FrfSet, index: int, centre_index: int) -> str:
     """One label per point, the same in every figure: its node, where it is and what it is."""
     where = ", ".join(f"{1e3 * c:.0f}" for c in frfs.locations[index])
@@ -388,39 +346,70 @@ def _point_label(frfs: FrfSet, index: int, centre_index: int) -> str:
     return f"node {frfs.nodes[index]} ({where}) mm" + (": " + ", ".join(roles) if roles else "")
 
 
-def write_frf_figures(frfs: FrfSet, racket: Racket, out_dir: Path) -> list[Path]:
-    """Paper Figs 2–3: the frame driving-point FRF and the FRF at the string-bed centre.
-
-    Each point is labelled the same way in both (:func:`_point_label`): without a driving
-    point Fig. 2 shows the first point and says so; when the driving point is also the point
-    nearest the string-bed centre both figures say both.
-    """
-    batch = FigureBatch()
+def _frf_figure(frfs: FrfSet, racket: Racket, frame_point: bool) -> Figure:
+    """Fig. 2 (``frame_point``) or Fig. 3: one point's FRF, magnitude, phase and coherence."""
     centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
     nearest = int(np.argmin(np.linalg.norm(frfs.locations[:, :2] - centre, axis=1)))
     frame = frfs.driving_point if frfs.driving_point is not None else 0
-    for name, index in (("fig2_frf_frame.png", frame), ("fig3_frf_string_centre.png", nearest)):
-        figure, axes = plt.subplots(
-            3,
-            1,
-            figsize=(6.5, 6),
-            sharex=True,
-            layout="constrained",
-            gridspec_kw={"height_ratios": [2, 1, 1]},
-        )
-        plot_frf(frfs, index, axes=list(axes), label=_point_label(frfs, index, nearest))
-        averages = "" if frfs.n_averages is None else f", {int(frfs.n_averages[index])} averages"
-        figure.suptitle(
-            f"{frfs.frf_type} FRF, {frfs.estimator}{averages} ({frfs.source})", fontsize=9
-        )
-        batch.add(figure, Path(out_dir) / name)
-    return batch.render()
+    index = frame if frame_point else nearest
+    figure, axes = plt.subplots(
+        3,
+        1,
+        figsize=(6.5, 6),
+        sharex=True,
+        layout="constrained",
+        gridspec_kw={"height_ratios": [2, 1, 1]},
+    )
+    plot_frf(frfs, index, axes=list(axes), label=_point_label(frfs, index, nearest))
+    averages = "" if frfs.n_averages is None else f", {int(frfs.n_averages[index])} averages"
+    figure.suptitle(f"{frfs.frf_type} FRF, {frfs.estimator}{averages} ({frfs.source})", fontsize=9)
+    return figure
 
 
-def write_contact_figure(
-    tables: Sequence[ContactTimes], labels: Sequence[str], racket: Racket, out_dir: Path
-) -> Path:
-    """Paper Fig. 7: hammer contact time over the string face, one panel per condition."""
+def figure_frf_frame(frfs: FrfSet, racket: Racket) -> Figure:
+    """Paper Fig. 2: the frame's driving-point FRF (without a driving point, the first point's,
+    and its label says so).
+
+    Parameters
+    ----------
+    frfs : FrfSet
+        The estimated FRFs.
+    racket : Racket
+        The racket (its string-bed centre names the point nearest it).
+    """
+    return _frf_figure(frfs, racket, frame_point=True)
+
+
+def figure_frf_string_centre(frfs: FrfSet, racket: Racket) -> Figure:
+    """Paper Fig. 3: the FRF at the point nearest the string-bed centre.
+
+    Each point is labelled the same way in Figs 2 and 3 (:func:`_point_label`): when the
+    driving point is also the point nearest the centre both figures say both.
+
+    Parameters
+    ----------
+    frfs : FrfSet
+        The estimated FRFs.
+    racket : Racket
+        The racket.
+    """
+    return _frf_figure(frfs, racket, frame_point=False)
+
+
+def figure_contact_time(
+    tables: Sequence[ContactTimes], labels: Sequence[str], racket: Racket
+) -> Figure:
+    """Paper Fig. 7: hammer contact time over the string face, one panel per condition.
+
+    Parameters
+    ----------
+    tables : sequence of ContactTimes
+        Contact times per test (condition).
+    labels : sequence of str
+        A label per table.
+    racket : Racket
+        The racket (its face).
+    """
     figure, axes = plt.subplots(
         1, len(tables), figsize=(4.6 * len(tables), 3.8), layout="constrained", squeeze=False
     )
@@ -436,7 +425,16 @@ def write_contact_figure(
     for ax, table, label in zip(axes[0], tables, labels, strict=True):
         plot_contact_map(table, racket, ax=ax, title=label, levels=levels)
     figure.suptitle("Fig. 7: contact time of the hammer on the strings", fontsize=10)
-    return _save(figure, Path(out_dir) / "fig7_contact_time.png")
+    return figure
+
+
+def write_contact_figure(
+    tables: Sequence[ContactTimes], labels: Sequence[str], racket: Racket, out_dir: Path
+) -> Path:
+    """Draw :func:`figure_contact_time` into ``out_dir``; returns the path."""
+    return _save(
+        figure_contact_time(tables, labels, racket), Path(out_dir) / file_of("fig7_contact_time")
+    )
 
 
 def _mode_grid(n: int) -> tuple[int, int]:
@@ -513,40 +511,86 @@ def figure_node_lines(model: ModalModel, racket: Racket | None) -> Figure:
     return figure
 
 
-def write_identification(
-    identification: Identification, racket: Racket, out_dir: Path, label: str = ""
-) -> list[Path]:
-    """Figures of an identification: stabilisation, Figs 4–6, synthesised FRFs, AutoMAC.
+def _racket_modes(model: ModalModel) -> bool:
+    """Whether the modes are a racket's (named from their shapes, over the face)."""
+    return any(kind != "unknown" for kind in model.kinds) and model.n_dimensions == 2
 
-    A racket's modes (named from their shapes) get the racket's figures (face, outline, the
-    long axis); any other structure gets its own points (a surface over them, the shape along
-    their line, or the points in space) and no Fig. 6.  Shapes known at one point only, or at
-    points without coordinates, get no Figs 4–5.
+
+def figure_stabilisation(identification: Identification) -> Figure:
+    """The stabilisation diagram of an identification, with the selected modes.
+
+    Parameters
+    ----------
+    identification : Identification
+        The step's identification.
     """
-    out = Path(out_dir)
-    model, frfs = identification.model, identification.frfs
-    racket_modes = any(kind != "unknown" for kind in model.kinds) and model.n_dimensions == 2
-    suffix = f"_{label}" if label else ""
-    batch = FigureBatch()
     figure, ax = plt.subplots(figsize=(8, 5), layout="constrained")
-    plot_stabilisation(identification.stabilisation, identification.selected, ax=ax, frfs=frfs)
-    batch.add(figure, out / f"stabilisation{suffix}.png")
+    plot_stabilisation(
+        identification.stabilisation, identification.selected, ax=ax, frfs=identification.frfs
+    )
+    return figure
 
-    if model.locations.shape[0] >= 2 and model.has_locations:
-        on = racket if racket_modes else None
-        figure = figure_mode_shapes(model, on)
-        # mplot3d's projection overflows on the NaN outside the face of some surfaces; harmless
-        with np.errstate(over="ignore", invalid="ignore"):  # the state it is drawn under
-            batch.add(figure, out / f"fig4_mode_shapes{suffix}.png")
-        batch.add(figure_node_lines(model, on), out / f"fig5_node_lines{suffix}.png")
 
-    if racket_modes:
-        figure, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
-        _plot_axis_nodes([model], racket, ax)
-        batch.add(figure, out / f"fig6_nodes{suffix}.png")
+def figure_identified_shapes(identification: Identification, racket: Racket) -> Figure | None:
+    """Paper Fig. 4 of an identification (:func:`figure_mode_shapes`): over the racket for a
+    racket's modes, over its own points for any other structure; None for shapes known at one
+    point only, or at points without coordinates.
 
-    fit = identification.fit
-    if racket_modes:
+    Parameters
+    ----------
+    identification : Identification
+        The step's identification.
+    racket : Racket
+        The racket of the run.
+    """
+    model = identification.model
+    if not (model.locations.shape[0] >= 2 and model.has_locations):
+        return None
+    return figure_mode_shapes(model, racket if _racket_modes(model) else None)
+
+
+def figure_identified_node_lines(identification: Identification, racket: Racket) -> Figure | None:
+    """Paper Fig. 5 of an identification (:func:`figure_node_lines`); None as for
+    :func:`figure_identified_shapes`.
+
+    Parameters
+    ----------
+    identification, racket
+        As for :func:`figure_identified_shapes`.
+    """
+    model = identification.model
+    if not (model.locations.shape[0] >= 2 and model.has_locations):
+        return None
+    return figure_node_lines(model, racket if _racket_modes(model) else None)
+
+
+def figure_first_mode_nodes(identification: Identification, racket: Racket) -> Figure | None:
+    """Paper Fig. 6: the first mode along the long axis with its nodes; None for a structure
+    that is not a racket.
+
+    Parameters
+    ----------
+    identification, racket
+        As for :func:`figure_identified_shapes`.
+    """
+    if not _racket_modes(identification.model):
+        return None
+    figure, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
+    _plot_axis_nodes([identification.model], racket, ax)
+    return figure
+
+
+def figure_synthesised_frfs(identification: Identification, racket: Racket) -> Figure:
+    """Measured FRFs against those synthesised from the identified model: the driving point and
+    the point nearest the string-bed centre (a racket's modes) or the worst-fitted point.
+
+    Parameters
+    ----------
+    identification, racket
+        As for :func:`figure_identified_shapes`.
+    """
+    model, frfs, fit = identification.model, identification.frfs, identification.fit
+    if _racket_modes(model):
         centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
         second = int(np.argmin(np.linalg.norm(frfs.locations - centre, axis=1)))
     else:
@@ -574,13 +618,22 @@ def write_identification(
         ax.set_title(f"node {frfs.nodes[index]}", fontsize=9)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    batch.add(figure, out / f"synthesised_frfs{suffix}.png")
+    return figure
 
+
+def figure_automac(identification: Identification) -> Figure:
+    """The AutoMAC of the identified mode shapes.
+
+    Parameters
+    ----------
+    identification : Identification
+        The step's identification.
+    """
+    model = identification.model
     figure, ax = plt.subplots(figsize=(5.5, 4.5), layout="constrained")
     plot_mac(mac(model.mode_shapes, model.mode_shapes), model.names, model.names, ax=ax)
     ax.set_title("AutoMAC", fontsize=9)
-    batch.add(figure, out / f"automac{suffix}.png")
-    return batch.render()
+    return figure
 
 
 def _plot_axis_nodes(models: Sequence[ModalModel], racket: Racket, ax: Axes) -> None:
@@ -649,23 +702,15 @@ def figure_identified_rebound(data: IdentifiedRebound) -> Figure:
     return figure
 
 
-def write_comparison(
-    free: Identification,
-    hand: Identification,
-    racket: Racket,
-    out_dir: Path,
-    comparison: ModeComparison,
-    rebound: IdentifiedRebound,
-) -> list[Path]:
-    """Free against hand-held: frequency/damping figure, Fig. 6 overlay, Fig. 15 check.
+def figure_mode_comparison(comparison: ModeComparison) -> Figure:
+    """Frequency shift and damping ratio of each mode, hand-held against free (paired by MAC).
 
-    The table (``comparison.csv``), the pairing (``comparison``) and the Fig. 15 curves
-    (``rebound``) are the compare step's (:func:`racketdyn.workflows.run_compare`).
+    Parameters
+    ----------
+    comparison : ModeComparison
+        The compare step's pairing (``comparison.csv``).
     """
-    out = Path(out_dir)
     rows = comparison.rows
-    batch = FigureBatch()
-
     figure, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
     names = [row["mode"] for row in rows]
     index = np.arange(len(rows))
@@ -681,14 +726,22 @@ def write_comparison(
         ax.set_xticks(index, names, rotation=30, ha="right", fontsize=8)
         ax.grid(alpha=0.3, axis="y")
     figure.suptitle("Free against hand-held (paired by MAC)", fontsize=10)
-    batch.add(figure, out / "comparison.png")
+    return figure
 
+
+def figure_nodes_free_hand(free: Identification, hand: Identification, racket: Racket) -> Figure:
+    """Paper Fig. 6, free against hand-held: the first mode along the long axis of both.
+
+    Parameters
+    ----------
+    free, hand : Identification
+        The two identifications.
+    racket : Racket
+        The racket of the run.
+    """
     figure, ax = plt.subplots(figsize=(7, 4.2), layout="constrained")
     _plot_axis_nodes([free.model, hand.model], racket, ax)
-    batch.add(figure, out / "fig6_nodes_free_hand.png")
-
-    batch.add(figure_identified_rebound(rebound), out / "fig15_identified.png")
-    return batch.render()
+    return figure
 
 
 # --- the approximate method against the transient simulation (issue 5) --------------------------
@@ -938,53 +991,7 @@ def figure_transient_histories(histories: TransientHistories) -> Figure:
     return figure
 
 
-def write_transient_figures(
-    out_dir: Path,
-    histories: TransientHistories | None = None,
-    comparison: ComparisonMap | None = None,
-    curves: TransientCurves | None = None,
-) -> list[Path]:
-    """Draw the transient model's figures (:data:`TRANSIENT_FIGURES`) into ``out_dir``.
-
-    Parameters
-    ----------
-    out_dir : Path
-        Output folder.
-    histories : TransientHistories, optional
-        Time histories to draw (none: no history figure).
-    comparison : ComparisonMap, optional
-        Approximate − transient over the face (none: no face map).
-    curves : TransientCurves, optional
-        Both models against speed (none: no curves).
-
-    Returns
-    -------
-    list of Path
-        The files written.
-    """
-    out = Path(out_dir)
-    batch = FigureBatch()
-    if histories is not None and histories.points:
-        batch.add(figure_transient_histories(histories), out / TRANSIENT_FIGURES["histories"])
-    if comparison is not None:
-        batch.add(figure_transient_comparison_face(comparison), out / TRANSIENT_FIGURES["face"])
-    if curves is not None:
-        batch.add(figure_transient_comparison_speed(curves), out / TRANSIENT_FIGURES["speed"])
-    written = batch.render()
-    for path in written:
-        log.info("wrote %s", path)
-    return written
-
-
 # --- the swinging racket, twist and oblique impacts (issue 5) ------------------------------------
-SWING_FIGURES: dict[str, str] = {"map": "swing_map.png", "axis": "swing_along_axis.png"}
-"""The figures of ``racketdyn swing``, by what they show → file name."""
-TWIST_FIGURE = "twist.png"
-"""The figure of ``racketdyn twist``."""
-OBLIQUE_FIGURE = "oblique.png"
-"""The figure of ``racketdyn oblique``."""
-
-
 def figure_swing_map(
     result: SwingResult,
     racket: Racket,
@@ -1042,46 +1049,6 @@ def figure_swing_along_axis(
     return figure
 
 
-def write_swing_figures(
-    out_dir: Path,
-    racket: Racket,
-    result: SwingResult,
-    axis: SwingAxisCurves,
-    spots: Mapping[str, SweetSpot] | None = None,
-    speed_index: int = 0,
-) -> list[Path]:
-    """Draw the swing's figures (:data:`SWING_FIGURES`) into ``out_dir``.
-
-    Parameters
-    ----------
-    out_dir : Path
-        Output folder.
-    racket : Racket
-        The racket.
-    result : SwingResult
-        Impacts over the face.
-    axis : SwingAxisCurves
-        The outgoing speed along the axis for a few swings.
-    spots : mapping of str to SweetSpot, optional
-        Sweet spots to mark.
-    speed_index : int
-        Ball speed of the map.
-
-    Returns
-    -------
-    list of Path
-        The files written.
-    """
-    out = Path(out_dir)
-    batch = FigureBatch()
-    batch.add(figure_swing_map(result, racket, spots, speed_index), out / SWING_FIGURES["map"])
-    batch.add(figure_swing_along_axis(axis, spots), out / SWING_FIGURES["axis"])
-    written = batch.render()
-    for path in written:
-        log.info("wrote %s", path)
-    return written
-
-
 def figure_twist(curves: Sequence[TwistCurve]) -> Figure:
     """Roll angle and outgoing ball speed against the offset from the long axis, per support.
 
@@ -1103,21 +1070,6 @@ def figure_twist(curves: Sequence[TwistCurve]) -> Figure:
         fontsize=10,
     )
     return figure
-
-
-def write_twist_figure(out_dir: Path, curves: Sequence[TwistCurve]) -> Path:
-    """Draw :func:`figure_twist` into ``out_dir`` (:data:`TWIST_FIGURE`); returns the path.
-
-    Parameters
-    ----------
-    out_dir : Path
-        Output folder.
-    curves : sequence of TwistCurve
-        One per support.
-    """
-    path = _save(figure_twist(curves), Path(out_dir) / TWIST_FIGURE)
-    log.info("wrote %s", path)
-    return path
 
 
 def figure_oblique(
@@ -1150,24 +1102,3 @@ def figure_oblique(
         fontsize=10,
     )
     return figure
-
-
-def write_oblique_figure(
-    out_dir: Path,
-    curve: ObliqueCurve,
-    location: tuple[float, float],
-    support: str,
-    contact: TangentialContact,
-) -> Path:
-    """Draw :func:`figure_oblique` into ``out_dir`` (:data:`OBLIQUE_FIGURE`); returns the path.
-
-    Parameters
-    ----------
-    out_dir : Path
-        Output folder.
-    curve, location, support, contact
-        As for :func:`figure_oblique`.
-    """
-    path = _save(figure_oblique(curve, location, support, contact), Path(out_dir) / OBLIQUE_FIGURE)
-    log.info("wrote %s", path)
-    return path

@@ -1,8 +1,10 @@
 """Figure hooks: what each workflow step draws (the CLI, the demo and Python users pass them).
 
-Each hook has the shape the workflows take, ``hook(result, out) -> paths``, and calls the
-figure writers of :mod:`racketdyn.plotting.figures` (imported when a hook runs: matplotlib is
-loaded only when figures are drawn).  ``status`` shows what is being drawn.
+Each hook has the shape the workflows take, ``hook(result, out) -> paths``: a step whose
+figures are all drawn from its result's data draws the registry's entries of the step
+(:func:`racketdyn.plotting.registry.write_figures`); the others call their writers in
+:mod:`racketdyn.plotting.figures` (imported when a hook runs: matplotlib is loaded only when
+figures are drawn).  ``status`` shows what is being drawn.
 """
 
 from __future__ import annotations
@@ -33,122 +35,82 @@ def _quiet(_: str) -> None:
 def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], list[Path]]:
     """The paper's figures (approximate method) and the transient model's figures, drawn from
     what the run computed (its ``paper_figures``, ``transient_curves``, ``comparison_map`` and
-    ``transient_histories``: the data of ``figures.nc``)."""
+    ``transient_histories``: the data of ``figures.nc``), as the registry lists them."""
 
     def draw(result: PredictResult, out: Path) -> list[Path]:
-        from racketdyn.plotting.figures import (
-            FIGURES,
-            write_paper_figures,
-            write_transient_figures,
-        )
+        from racketdyn.plotting.registry import write_figures
 
-        written: list[Path] = []
-        if result.paper_figures is not None:
-            written += write_paper_figures(
-                result.paper_figures,
-                out,
-                progress=lambda name: status(f"drawing {name} ({len(FIGURES)} figures)"),
-            )
-        if result.transient is not None:
-            status("drawing the transient model's figures")
-            written += write_transient_figures(
-                out, result.transient_histories, result.comparison_map, result.transient_curves
-            )
-        return written
+        return write_figures("predict", result, out, status)
 
     return draw
 
 
 def frf_figures(result: FrfResult, out: Path) -> list[Path]:
     """Paper Figs 2–3."""
-    from racketdyn.plotting.figures import write_frf_figures
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.estimate is not None
-    assert result.estimate.frfs is not None
-    assert result.racket is not None
-    return write_frf_figures(result.estimate.frfs, result.racket, out)
+    return write_figures("frf", result, out)
 
 
 def contact_figures(result: ContactResult, out: Path) -> list[Path]:
     """Paper Fig. 7."""
-    from racketdyn.plotting.figures import write_contact_figure
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.racket is not None
-    return [write_contact_figure(result.tables, result.labels, result.racket, out)]
+    return write_figures("contact", result, out)
 
 
 def identify_figures(result: IdentifyResult, out: Path) -> list[Path]:
     """Stabilisation diagram, Figs 4–6, synthesised FRFs, AutoMAC."""
-    from racketdyn.plotting.figures import write_identification
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.identification is not None
-    assert result.racket is not None
-    return write_identification(result.identification, result.racket, out)
+    return write_figures("identify", result, out)
 
 
 def compare_figures(result: CompareResult, out: Path) -> list[Path]:
-    """Both identifications' figures, the comparison figures and the Fig. 15 check (with the
-    run's ball)."""
-    from racketdyn.plotting.figures import write_comparison, write_identification
+    """Both identifications' figures (``_free``, ``_hand``), the comparison figures and the
+    Fig. 15 check (with the run's ball)."""
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.free is not None
-    assert result.hand is not None
-    assert result.racket is not None
-    assert result.comparison is not None
-    assert result.rebound is not None
-    written = write_identification(result.free, result.racket, out, "free")
-    written += write_identification(result.hand, result.racket, out, "hand")
-    written += write_comparison(
-        result.free, result.hand, result.racket, out, result.comparison, result.rebound
-    )
-    return written
+    written = []
+    for label, identification in (("free", result.free), ("hand", result.hand)):
+        data = {"identification": identification, "racket": result.racket}
+        written += write_figures("identify", data, out, label=label)
+    return written + write_figures("compare", result, out)
 
 
 def compare_ball_figures(result: BallCompareResult, out: Path) -> list[Path]:
     """The FRFs of the racket alone and with the ball (the paper's Figs 9a and 9b)."""
-    from racketdyn.plotting.compound import write_ball_comparison_figure
+    from racketdyn.plotting.registry import write_figures
 
-    return [write_ball_comparison_figure(result, out)]
+    return write_figures("compare --ball-at", result, out)
 
 
 def swing_figures(result: SwingStepResult, out: Path) -> list[Path]:
     """The swing map and the outgoing speed along the axis."""
-    from racketdyn.plotting.figures import write_swing_figures
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.racket is not None
-    assert result.swing_result is not None
-    assert result.axis_curves is not None
-    return write_swing_figures(
-        out,
-        result.racket,
-        result.swing_result,
-        result.axis_curves,
-        result.spots,
-        result.shown_speed,
-    )
+    return write_figures("swing", result, out)
 
 
 def ball_figures(result: BallResult, out: Path) -> list[Path]:
     """Force against the ball's flattening, one loop per speed and surface."""
-    from racketdyn.plotting.ball import write_ball_figure
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.bounces is not None
-    return [write_ball_figure(out, result.bounces)]
+    return write_figures("ball", result, out)
 
 
 def twist_figures(result: TwistResult, out: Path) -> list[Path]:
     """Roll and outgoing speed against offset."""
-    from racketdyn.plotting.figures import write_twist_figure
+    from racketdyn.plotting.registry import write_figures
 
-    return [write_twist_figure(out, result.curves)]
+    return write_figures("twist", result, out)
 
 
 def oblique_figures(result: ObliqueResult, out: Path) -> list[Path]:
     """Outgoing angle and spin against incoming angle."""
-    from racketdyn.plotting.figures import write_oblique_figure
+    from racketdyn.plotting.registry import write_figures
 
-    assert result.curve is not None
-    return [write_oblique_figure(out, result.curve, result.point, result.support, result.contact)]
+    return write_figures("oblique", result, out)
 
 
 def compound_figures(result: CompoundResult, out: Path) -> list[Path]:

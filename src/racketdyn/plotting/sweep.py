@@ -13,6 +13,7 @@ import xarray as xr
 from matplotlib.axes import Axes
 
 from racketdyn.plotting.primitives import SUPPORT_STYLE
+from racketdyn.plotting.registry import entry
 from racketdyn.plotting.render import save_figure
 from racketdyn.sweep.summary import _variables, axis_label, summary_metrics, variable_designs
 from racketdyn.sweep.variables import POINT_MASS
@@ -164,7 +165,7 @@ def write_summary_figures(dataset: xr.Dataset, out_dir: Path | str) -> list[Path
         plot_sweet_area(dataset, variable, ax=right)
         label = axis_label(dataset, variable)[1]  # "tension (N)", never the key "tension_n"
         figure.suptitle(f"{dataset.attrs['title']}: {label}", fontsize=10)
-        path = out / f"summary_{variable}.png"
+        path = out / entry("summary").file_for(variable)
         save_figure(figure, path)
         written.append(path)
     return written

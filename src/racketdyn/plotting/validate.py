@@ -6,39 +6,50 @@ Flagged rows (NaN) are left out of every figure and counted in its title.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from racketdyn.plotting.primitives import plot_outline
+from racketdyn.plotting.registry import draw, file_of, for_step
 from racketdyn.plotting.render import save_figure
 
 if TYPE_CHECKING:
+    from racketdyn.impact.measured import ModelInputs
+    from racketdyn.io.measured import MeasuredRebound
     from racketdyn.workflows.validate import ValidateResult
 
 __all__ = [
     "VALIDATION_ALONG_FIGURE",
     "VALIDATION_PARITY_FIGURE",
     "VALIDATION_RESIDUAL_FIGURE",
+    "figure_validation_along_axis",
+    "figure_validation_parity",
+    "figure_validation_residuals",
     "plot_parity",
     "write_validate_figures",
 ]
 
-VALIDATION_PARITY_FIGURE = "validation_parity.png"
+VALIDATION_PARITY_FIGURE = file_of("validation_parity")
 """Predicted against measured rebound ratio, both models, with the 1:1 line."""
-VALIDATION_ALONG_FIGURE = "validation_along_axis.png"
+VALIDATION_ALONG_FIGURE = file_of("validation_along_axis")
 """Measured and predicted rebound ratio against the position along the long axis."""
-VALIDATION_RESIDUAL_FIGURE = "validation_residuals.png"
+VALIDATION_RESIDUAL_FIGURE = file_of("validation_residuals")
 """The transient model's residual (predicted − measured) over the face."""
 
 METHOD_STYLE = {
     "approx": {"color": "tab:blue", "marker": "o", "label": "approximate method"},
     "transient": {"color": "tab:red", "marker": "s", "label": "transient simulation"},
 }
+
+Predicted = Mapping[str, ArrayLike]
+"""Each model's rebound ratio at the measured rows."""
 
 SUPPORT_MARKER = {"free": "o", "pinned": "s", "hand": "^"}
 """Marker of each support in the residual map (rows at one point overlap otherwise)."""
@@ -87,16 +98,32 @@ def plot_parity(
     return ax
 
 
-def write_validate_figures(result: ValidateResult, out: Path) -> list[Path]:
-    """The three figures of a validate run."""
-    rows = result.measured
-    assert rows is not None
-    assert result.inputs is not None
-    paths = []
-    ax = plot_parity(rows.rebound_ratio, dict(result.predicted))
-    ax.set_title("Predicted against measured rebound ratio", fontsize=10)
-    paths.append(save_figure(ax.figure, out / VALIDATION_PARITY_FIGURE))  # type: ignore[arg-type]
+def figure_validation_parity(measured: MeasuredRebound, predicted: Predicted) -> Figure:
+    """Predicted against measured rebound ratio, both models, with the 1:1 line.
 
+    Parameters
+    ----------
+    measured : MeasuredRebound
+        The measured rows.
+    predicted : mapping of str to array
+        Each model's rebound ratio at the rows.
+    """
+    ax = plot_parity(measured.rebound_ratio, dict(predicted))
+    ax.set_title("Predicted against measured rebound ratio", fontsize=10)
+    figure = ax.get_figure()
+    assert isinstance(figure, Figure)
+    return figure
+
+
+def figure_validation_along_axis(measured: MeasuredRebound, predicted: Predicted) -> Figure:
+    """Measured (± 1 sd) and predicted rebound ratio against x along the long axis.
+
+    Parameters
+    ----------
+    measured, predicted
+        As for :func:`figure_validation_parity`.
+    """
+    rows = measured
     fig, ax = plt.subplots(figsize=(5.6, 3.8))
     x_mm = rows.locations[:, 0] * 1e3
     ax.errorbar(
@@ -107,7 +134,7 @@ def write_validate_figures(result: ValidateResult, out: Path) -> list[Path]:
         ms=5,
         label="measured",
     )
-    for method, values in result.predicted.items():
+    for method, values in predicted.items():
         style = METHOD_STYLE[method]
         ax.scatter(x_mm, values, s=18, facecolors="none", edgecolors=style["color"],
                    marker=style["marker"], label=style["label"])  # fmt: skip
@@ -115,11 +142,25 @@ def write_validate_figures(result: ValidateResult, out: Path) -> list[Path]:
     ax.set_ylabel("rebound ratio")
     ax.set_title("Measured and predicted along the axis (all rows)", fontsize=10)
     ax.legend(fontsize=8)
-    paths.append(save_figure(fig, out / VALIDATION_ALONG_FIGURE))
+    return fig
 
+
+def figure_validation_residuals(
+    measured: MeasuredRebound, predicted: Predicted, inputs: ModelInputs
+) -> Figure:
+    """The transient simulation's residual over the face; flagged rows as crosses.
+
+    Parameters
+    ----------
+    measured, predicted
+        As for :func:`figure_validation_parity` (``predicted["transient"]`` drawn).
+    inputs : ModelInputs
+        The inputs of the predictions (the racket's outline).
+    """
+    rows = measured
     fig, ax = plt.subplots(figsize=(6.0, 3.8))
-    plot_outline(result.inputs.effective_racket, ax=ax)
-    residual = np.asarray(result.predicted["transient"]) - rows.rebound_ratio
+    plot_outline(inputs.effective_racket, ax=ax)
+    residual = np.asarray(predicted["transient"]) - rows.rebound_ratio
     ok = np.isfinite(residual)
     limit = float(np.max(np.abs(residual[ok]))) if np.any(ok) else 1.0
     support = np.asarray(rows.support)
@@ -150,5 +191,14 @@ def write_validate_figures(result: ValidateResult, out: Path) -> list[Path]:
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_title("Residual of the transient simulation", fontsize=10)
-    paths.append(save_figure(fig, out / VALIDATION_RESIDUAL_FIGURE))
+    return fig
+
+
+def write_validate_figures(result: ValidateResult, out: Path) -> list[Path]:
+    """The registry's figures of a validate run (parity, along the axis, residuals), drawn one
+    after another in this process."""
+    paths = [
+        save_figure(draw(figure.id, result), Path(out) / figure.file)
+        for figure in for_step("validate")
+    ]
     return paths

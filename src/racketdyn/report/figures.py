@@ -1,5 +1,6 @@
 """Figures of the report: PNGs embedded as data URIs, each with a caption naming the figure of
-Kawazoe's paper it corresponds to (or saying it has none)."""
+Kawazoe's paper it corresponds to (or saying it has none); captions and places come from the
+registry of figures (:mod:`racketdyn.plotting.registry`)."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from pathlib import Path, PurePath
 from typing import Any, Literal
 
 from racketdyn.impact.result import shown_speed_index
+from racketdyn.plotting.registry import CAPTION_DEFAULTS, FIGURES
 from racketdyn.racket import SUPPORT_NAMES
 
 __all__ = [
@@ -33,177 +35,11 @@ _PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 PAGE_PNG_COLOURS = 256
 """Colours of the palette a figure is embedded with (PNG's largest palette)."""
 
-CAPTIONS: dict[str, tuple[str | None, str]] = {
-    "fig2_frf_frame": (
-        "Fig. 2",
-        "FRF for an impact on the frame at the accelerometer (driving point): magnitude, "
-        "phase and coherence",
-    ),
-    "fig3_frf_string_centre": (
-        "Fig. 3",
-        "FRF for an impact at the string-bed centre: magnitude, phase and coherence",
-    ),
-    "stabilisation": (
-        None,
-        "LSCF stabilisation diagram: poles of every model order against frequency, with the "
-        "selected modes",
-    ),
-    "synthesised_frfs": (
-        None,
-        "measured FRFs against those synthesised from the identified modal model "
-        "(driving point and string-bed centre)",
-    ),
-    "automac": (
-        None,
-        "AutoMAC of the identified mode shapes: 1 on the diagonal; off it, how alike two modes "
-        "look at the measured points (near 1: the points cannot tell them apart)",
-    ),
-    "fig4_mode_shapes": ("Fig. 4", "identified mode shapes in 3-D over the racket"),
-    "fig5_node_lines": ("Fig. 5", "node lines of the identified modes on the string face"),
-    "fig6_nodes_free_hand": (
-        "Fig. 6",
-        "node positions of the first mode along the long axis, free (blue, {free_file}) "
-        "against hand-held (black, {hand_file}), identified over {band}; the grey band is the "
-        "hand",
-    ),
-    "fig6_nodes": ("Fig. 6", "node positions of the first mode along the long axis"),
-    "comparison": (
-        None,
-        "frequency shift and damping ratio of each mode, hand-held ({hand_file}) against free "
-        "({free_file}), identified over {band} and paired by MAC",
-    ),
-    "fig15_identified": (
-        "Fig. 15",
-        "rebound ratio along the long axis, ball at {check_speed}, racket at rest, predicted "
-        "with the models identified from {free_file} and {hand_file}: pinned at the grip with "
-        "the hand-held modes, pinned at the grip with the free modes, free with the free modes",
-    ),
-    "fig7_contact_time": ("Fig. 7", "contact time of the hammer on the strings, per support"),
-    "fig11_12_force_contact_time": (
-        "Figs 11 and 12",
-        "Fig. 11: equivalent (mean) impact force and Fig. 12: contact time against ball speed "
-        "at the top, centre and throat of the face, for the run's supports, one row of panels "
-        "per racket speed, titled with it ({racket_speed}); the run's speeds are marked on the "
-        "row of their racket speed, its options are in the title; speeds where an impact is "
-        "flagged (no valid value) are hatched, crosses at the foot mark each, and the legend "
-        "counts them",
-    ),
-    "fig13_pulse_spectrum": (
-        "Fig. 13",
-        "the half-sine impact force at the face centre and the magnitude of its spectrum for "
-        "balls at {speeds}, {racket_speed} (support in the title), with the modes of the "
-        "model: the faster the ball, the shorter the pulse and the higher its spectrum reaches",
-    ),
-    "fig14_frame_vibration": (
-        "Fig. 14",
-        "predicted first-mode displacement along the frame just after an impact at the tip, "
-        "at the run's speeds, one panel per support; impacts the method flags have no valid "
-        "vibration and are not drawn: the legend names them with their status and each panel "
-        "says how many (hatched when none is valid)",
-    ),
-    "fig15_rebound_along_axis": (
-        "Fig. 15",
-        "predicted rebound ratio along the long axis, ball at {shown_speed}, "
-        "{shown_racket_speed}, {approximate_supports}, with the centre of percussion and the "
-        "node of the first mode",
-    ),
-    "face_maps": (
-        None,
-        "maps over the face, ball at {shown_speed}, {shown_racket_speed}: rebound ratio for each "
-        "support, contact time and vibration energy; red crosses mark impacts with no valid "
-        "result, left out of every map; the paper shows the long axis only (Fig. 15)",
-    ),
-    "transient_comparison_face": (
-        None,
-        "rebound ratio of the approximate method minus that of the transient simulation over "
-        "the face, one panel per support, ball at {shown_speed}, {shown_racket_speed}; red where "
-        "the approximate method predicts more; the paper checks its method against a freely "
-        "suspended racket only",
-    ),
-    "transient_comparison_speed": (
-        None,
-        "rebound ratio and contact time against ball speed at the face centre, near the tip and "
-        "near the throat, approximate method (dashed) against the transient simulation (solid), "
-        "{racket_speed}; a curve breaks where its method flags the impact (vibration loss "
-        "beyond e_BG, a second contact, …): the speeds are hatched at the foot, across the "
-        "whole height where no curve is valid, and the legend counts them",
-    ),
-    "transient_histories": (
-        None,
-        "time histories of the transient simulation at the face centre and near the tip: "
-        "contact force (the approximate method assumes a half-sine, Fig. 13), ball and "
-        "racket-face displacement, and the modal coordinates of the flexible modes",
-    ),
-    "swing_map": (
-        None,
-        "outgoing ball speed over the face of the swinging racket ({swing}), ball at "
-        "{sweet_speed}, {support}, {impact_model} model, with the sweet spots: the centres of "
-        "percussion about the swing axis and about the grip, the node of the first mode, the "
-        "largest rebound ratio (racket at rest) and the largest outgoing speed for the swing; "
-        "crosses mark impacts without a valid number",
-    ),
-    "swing_along_axis": (
-        None,
-        "outgoing ball speed along the long axis, ball at {sweet_speed}, {support}, "
-        "{impact_model} model, for the racket at rest (the setting of the paper's Fig. 15) and "
-        "for {axis_swings}, with the sweet spots of the run's swing ({swing}) as vertical lines",
-    ),
-    "twist": (
-        None,
-        "off-axis impacts at one x: the racket's roll about its long axis at separation (left; "
-        "positive turns the hit side away from the ball) and the outgoing ball speed (right) "
-        "against the offset from the long axis, one line per support",
-    ),
-    "oblique": (
-        None,
-        "oblique impacts at one point: outgoing angle to the face normal (left; dashed: the "
-        "same impact without friction) and outgoing spin (right) against the incoming angle; "
-        "filled markers where the ball gripped the strings, open where it slid throughout; the "
-        "spin depends strongly on the tangential stiffness k_t",
-    ),
-    "compound_response": (
-        "Fig. 8c",
-        "acceleration of the frame neck after a hammer blow on the strings near the ball fixed "
-        "on them (a half-sine as long as the hammer's contact with the strings), per unit "
-        "impulse, for the run's first support (linear compound model)",
-    ),
-    "compound_shape": (
-        "Fig. 8a",
-        "the ball mode: the frame's displacement along its long axis (line) against the ball's "
-        "(marker), scaled so the ball's is 1, one colour, line style and marker per support; "
-        "supports whose frames lie on one another are named on the figure",
-    ),
-    "validation_parity": (
-        None,
-        "predicted against measured rebound ratio, approximate method and transient simulation, "
-        "with the 1:1 line; flagged rows are counted in the legend and not drawn",
-    ),
-    "validation_along_axis": (
-        None,
-        "measured rebound ratio (with one standard deviation where measured) and both models' "
-        "predictions against the position along the long axis, every measured row",
-    ),
-    "validation_residuals": (
-        None,
-        "the transient simulation's residual (predicted − measured rebound ratio) over the face, "
-        "one marker per support; flagged rows as crosses",
-    ),
-    "compound_frf": (
-        "Fig. 9",
-        "receptance from the hammer point on the strings to the frame neck, the racket alone "
-        "(left) and with the ball fixed on the strings (right), with the ball mode marked",
-    ),
-    "fig9_frf_alone_and_ball": (
-        "Fig. 9",
-        "measured accelerance to the accelerometer from the hammer point nearest the ball "
-        "whose FRF the ball mode dominates at its frequency (its node in the title), the "
-        "racket alone (left) and with the ball fixed on the strings (right, the racket alone "
-        "dashed), identified modes dotted, the ball's labelled (racketdyn compare --ball-at)",
-    ),
-}
-"""Caption of every PNG the commands write, by file stem (or its start): (the figure of
-Kawazoe's paper it corresponds to, or None; what it shows, its ``{field}`` the settings its run
-used, from the run.json of its folder: :func:`run_words`)."""
+CAPTIONS: dict[str, tuple[str | None, str]] = {e.id: (e.paper, e.caption) for e in FIGURES.values()}
+"""Caption of every PNG the commands write, by file stem (or its start), from the registry of
+figures (:data:`racketdyn.plotting.registry.FIGURES`): (the figure of Kawazoe's paper it
+corresponds to, or None; what it shows, its ``{field}`` the settings its run used, from the
+run.json of its folder: :func:`run_words`)."""
 
 
 @dataclass(frozen=True)
@@ -264,22 +100,7 @@ class FigureGroup:
 SUPPORT_WORDS = dict(SUPPORT_NAMES)
 """A support as the captions name it."""
 
-UNKNOWN_WORDS: dict[str, str] = {
-    "free_file": "the free FRFs",
-    "hand_file": "the hand-held FRFs",
-    "band": "the band of the run",
-    "check_speed": "20 m/s",  # what compare used before it took --speed
-    "swing": "the run's swing",
-    "sweet_speed": "the run's shown speed",
-    "support": "the run's support",
-    "impact_model": "the run's",
-    "axis_swings": "half, the same and one and a half times the run's swing",
-    "speeds": "the run's speeds",
-    "shown_speed": "the run's shown speed (in the title)",
-    "racket_speed": "the run's racket speed (in the title)",
-    "shown_racket_speed": "the run's racket speed (in the title)",
-    "approximate_supports": "for the run's supports",
-}
+UNKNOWN_WORDS: dict[str, str] = CAPTION_DEFAULTS
 """The words of a caption's ``{field}`` when the run.json does not say (a run of an earlier
 version)."""
 
@@ -398,8 +219,8 @@ def run_words(record: Mapping[str, Any]) -> dict[str, str]:
 def caption_of(stem: str, record: Mapping[str, Any] | None = None) -> tuple[str | None, str]:
     """(paper figure, what it shows) of a PNG by its file stem, worded from its run's settings.
 
-    The longest matching key of :data:`CAPTIONS` wins; its ``{field}`` are filled in with
-    :func:`run_words` of ``record``.
+    The registry's entry (:data:`racketdyn.plotting.registry.FIGURES`) whose id is the longest
+    start of ``stem`` wins; its ``{field}`` are filled in with :func:`run_words` of ``record``.
 
     Parameters
     ----------
@@ -408,11 +229,11 @@ def caption_of(stem: str, record: Mapping[str, Any] | None = None) -> tuple[str 
     record : mapping, optional
         The run.json of the folder the figure is in.
     """
-    key = next((k for k in sorted(CAPTIONS, key=len, reverse=True) if stem.startswith(k)), None)
+    key = next((k for k in sorted(FIGURES, key=len, reverse=True) if stem.startswith(k)), None)
     if key is None:
         return None, stem.replace("_", " ")
-    paper, what = CAPTIONS[key]
-    return paper, what.format_map(run_words(record or {}))
+    figure = FIGURES[key]
+    return figure.paper, figure.caption.format_map(run_words(record or {}))
 
 
 def embed_png(

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
 from racketdyn.impact.result import invalidate_table, shown_speed_index
+from racketdyn.plotting.registry import file_of, in_section, of_file
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.report.figures import Figure, FigureGroup, Layout, embed_png
 from racketdyn.workflows.run import REPORT_NAME
@@ -777,7 +778,7 @@ class RunFolder:
     @property
     def predict_dir(self) -> Path | None:
         """The folder of ``racketdyn predict``."""
-        return self.first("impact.csv") or self.first("fig15_rebound_along_axis.png")
+        return self.first("impact.csv") or self.first(file_of("fig15_rebound_along_axis"))
 
     @property
     def frf_dirs(self) -> list[tuple[str, Path]]:
@@ -902,7 +903,27 @@ class RunFolder:
     def figure(self, path: Path, label: str = "", wide: bool = False) -> Figure | None:
         """The PNG at ``path`` embedded with its caption; None if it is not a PNG."""
         where = f"{label}{' — ' if label else ''}{self.rel(path)}"
+        self._cache.setdefault("embedded", set()).add(path)
         return embed_png(path, where, wide, self.record(path.parent))
+
+    def unplaced(self, section: str) -> FigureGroup | None:
+        """The registry's figures of ``section`` its ``gather`` did not place: each written in
+        the folder of a step some figure of the page was embedded from (a figure added to the
+        registry shows on the page with no section code; issue 23).  Call after every
+        section's ``gather``."""
+        embedded: set[Path] = self._cache.get("embedded", set())
+        folders = {
+            (found.step, path.parent)
+            for path in embedded
+            if (found := of_file(path.name)) is not None
+        }
+        missing = [
+            (folder / figure.file, self.label(folder))
+            for figure in in_section(section)
+            for step, folder in sorted(folders, key=lambda pair: (pair[0], str(pair[1])))
+            if step == figure.step and folder / figure.file not in embedded
+        ]
+        return self.group(missing)
 
     def group(
         self, found: list[tuple[Path, str]], layout: Layout | None = None, wide: bool = False

@@ -19,6 +19,7 @@ from markupsafe import Markup
 from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError
 from racketdyn.racket import Racket
+from racketdyn.report.figures import FigureGroup
 from racketdyn.report.folder import REPORT_NAME, RunFolder, StepsInput, refuse_mixed_rackets
 from racketdyn.report.sections import SECTIONS
 
@@ -65,6 +66,14 @@ def render_section(key: str, data: dict[str, Any]) -> Markup:
     """The HTML of section ``key`` from the data its ``gather`` function returned."""
     template = environment().get_template(f"sections/{key}.html.j2")
     return Markup(template.render(**data))
+
+
+def render_group(group: FigureGroup) -> Markup:
+    """The HTML of a group of figures (the macros' ``group``)."""
+    template = environment().from_string(
+        '{% from "macros.html.j2" import group as g %}{{ g(figures) }}'
+    )
+    return Markup(template.render(figures=group))
 
 
 @dataclass(frozen=True)
@@ -168,12 +177,17 @@ def write_report(
     missing = []
     glance: list[str] = []
     plots: dict[str, list[dict[str, Any]]] = {"maps": [], "frf": []}
+    gathered = {key: section.gather(run) for key, section in SECTIONS.items()}
     for key, section in SECTIONS.items():
-        data = section.gather(run)
+        data = gathered[key]
         if data is None:
             missing.append(section)
             continue
-        shown.append(_Shown(key, section.title, render_section(key, data)))
+        body = render_section(key, data)
+        unplaced = run.unplaced(key)  # registered figures its template does not name
+        if unplaced is not None:
+            body += render_group(unplaced)
+        shown.append(_Shown(key, section.title, Markup(body)))
         glance += data.get("glance", [])
         for kind, specs in data.get("plots", {}).items():
             plots[kind] += specs

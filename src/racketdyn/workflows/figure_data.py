@@ -77,6 +77,7 @@ __all__ = [
     "paper_figures",
     "racket_speed_at",
     "read_figure_data",
+    "read_step_data",
     "swing_axis_curves",
     "transient_curves",
     "write_figure_data",
@@ -628,6 +629,38 @@ def read_figure_data(path: Path) -> xr.Dataset:
 
     with xr.open_dataset(path, engine="scipy") as dataset:
         return dataset.load()
+
+
+def read_step_data(folder: Path) -> dict[str, Any]:
+    """What a run folder's ``figures.nc`` holds, as the figure-data objects of its step, by the
+    name of the step result's attribute that holds each (``paper_figures``,
+    ``transient_curves``, ``comparison_map``, ``transient_histories``, ``axis_curves``,
+    ``rebound``): the ``source`` of :func:`racketdyn.plotting.registry.draw`, which redraws
+    every figure that reads only these from the folder alone.
+
+    Parameters
+    ----------
+    folder : Path
+        A run folder (``predict``, ``swing``, ``compare``); without ``figures.nc``: empty.
+    """
+    path = Path(folder) / FIGURES_FILE
+    if not path.is_file():
+        return {}
+    dataset = read_figure_data(path)
+    found: dict[str, Any] = {}
+    if _has(dataset, "fig11_12"):
+        found["paper_figures"] = PaperFigures.from_xarray(dataset)
+    if TransientCurves.in_dataset(dataset):
+        found["transient_curves"] = TransientCurves.from_xarray(dataset)
+    if ComparisonMap.in_dataset(dataset):
+        found["comparison_map"] = ComparisonMap.from_xarray(dataset)
+    if TransientHistories.in_dataset(dataset):
+        found["transient_histories"] = TransientHistories.from_xarray(dataset)
+    if _has(dataset, "swing_axis_0"):
+        found["axis_curves"] = SwingAxisCurves.from_xarray(dataset)
+    if _has(dataset, "fig15_identified"):
+        found["rebound"] = IdentifiedRebound.from_xarray(dataset)
+    return found
 
 
 # --- the options in words, and the racket speed at any ball speed --------------------------

@@ -76,6 +76,26 @@ class StepResult:
         """Path of the step's ``run.json``."""
         return self.out / RUN_JSON
 
+    def plot(self, figure: str) -> Any:
+        """Draw one of the step's figures from this result, as the step drew it.
+
+        The figure is an id of the registry of figures (:mod:`racketdyn.plotting.registry`,
+        ``"fig15_rebound_along_axis"``, ``"face_maps"``, …) whose data this result holds;
+        matplotlib is imported now (python-control's ``response.plot()``).
+
+        Parameters
+        ----------
+        figure : str
+            The figure's id (or file name).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        from racketdyn.plotting.registry import draw
+
+        return draw(figure, self)
+
 
 R = TypeVar("R", bound=StepResult)
 

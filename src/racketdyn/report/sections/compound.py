@@ -6,6 +6,7 @@ import math
 from typing import Any
 
 from racketdyn.impact.compound_band import PAPER_BALL_MODE_HZ
+from racketdyn.plotting.registry import file_of, in_section
 from racketdyn.report.folder import Row, RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
 
@@ -116,14 +117,11 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 f"moves by {abs(change):.1f} %: the paper's “not affected by frame "
                 f"rigidity” {'holds' if holds else 'does not hold here'}."
             )
-    figures = [
-        (folder / "compound_shape.png", ""),
-        (folder / "compound_response.png", ""),
-        (folder / "compound_frf.png", ""),
-    ]
+    shown = [figure for figure in in_section("compound") if figure.step == "compound"]
+    figures = [(folder / figure.file, "") for figure in shown]
     measured = run.first("ball_comparison.csv")
     if measured is not None:
-        figures.append((measured / "fig9_frf_alone_and_ball.png", ""))
+        figures.append((measured / file_of("fig9_frf_alone_and_ball"), ""))
         statements += _measured(
             read_csv(measured / "ball_comparison.csv", ("mode",)), run.record(measured), record
         )

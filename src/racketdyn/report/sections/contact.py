@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from racketdyn.plotting.registry import file_of
 from racketdyn.report.figures import interactive
 from racketdyn.report.folder import RunFolder, number, read_csv
 from racketdyn.report.plots import map_spec
@@ -20,7 +21,7 @@ HOW_TO_RUN = (
 def gather(run: RunFolder) -> dict[str, Any] | None:
     """Fig. 7, and every ``contact_*.csv``: a summary on the strings and the frame, and the
     contact time at each point on the strings for the interactive map."""
-    folder = run.first("contact_*.csv") or run.first("fig7_contact_time.png")
+    folder = run.first("contact_*.csv") or run.first(file_of("fig7_contact_time"))
     if folder is None:
         return None
     head = run.head()
@@ -71,7 +72,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             for i in keep
         ]
         panels.append({"label": label, "rows": rows_json, "xy": xy[keep]})
-    figure = run.group([(folder / "fig7_contact_time.png", "")])
+    figure = run.group([(folder / file_of("fig7_contact_time"), "")])
     plots = {}
     contact_map = None
     if panels and any(p["rows"] for p in panels):

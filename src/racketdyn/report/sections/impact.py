@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 
 from racketdyn._display import case_words
+from racketdyn.plotting.registry import in_section
 from racketdyn.report.folder import RunFolder, shown_case
 from racketdyn.report.formatting import fmt
 
@@ -19,10 +20,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     folder = run.predict_dir
     if folder is None:
         return None
-    figures = [
-        run.group([(folder / name, "")])
-        for name in ("fig11_12_force_contact_time.png", "fig13_pulse_spectrum.png")
-    ]
+    figures = [run.group([(folder / figure.file, "")]) for figure in in_section("impact")]
     figures = [g for g in figures if g is not None]
     impacts = run.impacts()
     if impacts is None:

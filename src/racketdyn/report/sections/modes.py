@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from racketdyn.plotting.registry import file_of, labelled
 from racketdyn.report.folder import RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
 
@@ -17,20 +18,23 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     if not idents:
         return None
     shapes = run.group(
-        [(folder / f"fig4_mode_shapes{suffix}.png", label) for label, folder, suffix in idents],
+        [
+            (folder / labelled("fig4_mode_shapes", suffix), label)
+            for label, folder, suffix in idents
+        ],
         "plain",
         wide=True,
     )
     node_lines = run.group(
-        [(folder / f"fig5_node_lines{suffix}.png", label) for label, folder, suffix in idents]
+        [(folder / labelled("fig5_node_lines", suffix), label) for label, folder, suffix in idents]
     )
     compare = run.mode_comparison_dir
-    overlay = compare / "fig6_nodes_free_hand.png" if compare else None
+    overlay = compare / file_of("fig6_nodes_free_hand") if compare else None
     if overlay is not None and overlay.is_file():
         nodes = run.group([(overlay, "")])
     else:
         nodes = run.group(
-            [(folder / f"fig6_nodes{suffix}.png", label) for label, folder, suffix in idents],
+            [(folder / labelled("fig6_nodes", suffix), label) for label, folder, suffix in idents],
             "pair",
         )
     pairs: list[tuple[str, ...]] = []
@@ -67,7 +71,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 f"({fmt(number(first, 'frequency_shift_percent'), '+.1f')} %), damping "
                 f"×{fmt(number(first, 'damping_ratio_hand_over_free'), '.1f')} in the hand"
             )
-        comparison = run.group([(compare / "comparison.png", "")])
+        comparison = run.group([(compare / file_of("comparison"), "")])
     if not (shapes or node_lines or nodes or compare):
         return None
     return {

@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from racketdyn.plotting.registry import file_of
 from racketdyn.report.folder import RunFolder, number, read_csv, to_float
 from racketdyn.report.formatting import fmt
 
@@ -68,7 +69,7 @@ def _twist(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
             f"{math.degrees(roll[far]):.1f}° and the ball leaves at {speed[far]:.1f} m/s "
             f"({speed[near]:.1f} m/s on the axis)"
         )
-    return {"figure": run.group([(folder / "twist.png", "")]), "rows": body}
+    return {"figure": run.group([(folder / file_of("twist"), "")]), "rows": body}
 
 
 def _oblique(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
@@ -110,6 +111,6 @@ def _oblique(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
     ]
     return {
         "settings": settings,
-        "figure": run.group([(folder / "oblique.png", "")]),
+        "figure": run.group([(folder / file_of("oblique"), "")]),
         "rows": angle_rows,
     }

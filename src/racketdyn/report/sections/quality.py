@@ -12,6 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
+from racketdyn.plotting.registry import file_of
 from racketdyn.report.figures import interactive
 from racketdyn.report.folder import RunFolder, damaged, number, read_csv
 from racketdyn.report.formatting import finite, fmt, rounded
@@ -111,9 +112,11 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         "coherence": frf["coherence"] if frf else [],
         "coherence_band": frf["band"] if frf else "",
         "frf_plot": frf["figure"] if frf else None,
-        "fig2": run.group([(folder / "fig2_frf_frame.png", label) for label, folder in folders]),
+        "fig2": run.group(
+            [(folder / file_of("fig2_frf_frame"), label) for label, folder in folders]
+        ),
         "fig3": run.group(
-            [(folder / "fig3_frf_string_centre.png", label) for label, folder in folders]
+            [(folder / file_of("fig3_frf_string_centre"), label) for label, folder in folders]
         ),
         "glance": glance,
         "plots": {"frf": [frf["spec"]]} if frf else {},

@@ -11,6 +11,7 @@ from numpy.typing import NDArray
 
 from racketdyn._display import case_words
 from racketdyn.impact.result import shown_speed_index
+from racketdyn.plotting.registry import file_of
 from racketdyn.report.figures import interactive
 from racketdyn.report.folder import Impacts, RunFolder, read_csv, shown_case
 from racketdyn.report.formatting import fmt
@@ -38,20 +39,20 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     """Fig. 15 (predicted and with the identified models), the face maps, and from
     ``impact.csv`` the interactive map and the sweet spots per support and speed."""
     folder = run.predict_dir
-    compare = run.first("fig15_identified.png")
+    compare = run.first(file_of("fig15_identified"))
     if folder is None and compare is None:
         return None
     fig15 = run.group(
         [
             (path, "")
             for path in (
-                folder / "fig15_rebound_along_axis.png" if folder else None,
-                compare / "fig15_identified.png" if compare else None,
+                folder / file_of("fig15_rebound_along_axis") if folder else None,
+                compare / file_of("fig15_identified") if compare else None,
             )
             if path is not None
         ]
     )
-    face_maps = run.group([(folder / "face_maps.png", "")]) if folder is not None else None
+    face_maps = run.group([(folder / file_of("face_maps"), "")]) if folder is not None else None
     data: dict[str, Any] = {
         "fig15": fig15,
         "face_maps": face_maps,

@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from racketdyn.plotting.registry import labelled
 from racketdyn.report.figures import FigureGroup
 from racketdyn.report.folder import RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
@@ -24,7 +25,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         return None
 
     def figures(stem: str) -> FigureGroup | None:
-        return run.group([(f / f"{stem}{s}.png", label) for label, f, s in idents])
+        return run.group([(f / labelled(stem, s), label) for label, f, s in idents])
 
     models = []
     for label, folder, suffix in idents:

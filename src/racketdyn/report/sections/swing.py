@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from racketdyn.plotting.registry import in_section
 from racketdyn.report.folder import RunFolder, number, read_csv
 from racketdyn.report.formatting import finite, fmt
 
@@ -46,9 +47,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     support = record.get("support")
     if model or support:
         facts.append(f"{model or '?'} impact model, {support or '?'}")
-    figures = run.group(
-        [(folder / name, "") for name in ("swing_map.png", "swing_along_axis.png")], "stack"
-    )
+    figures = run.group([(folder / figure.file, "") for figure in in_section("swing")], "stack")
     rows = (
         read_csv(folder / "sweet_spots.csv", ("key", "x_m", "value"))
         if (folder / "sweet_spots.csv").is_file()

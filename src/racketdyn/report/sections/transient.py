@@ -11,6 +11,7 @@ from numpy.typing import NDArray
 from racketdyn._display import case_words
 from racketdyn.impact.comparison import MODELS_DIFFER
 from racketdyn.impact.result import shown_speed_index
+from racketdyn.plotting.registry import in_section
 from racketdyn.report.folder import RunFolder, number, read_csv, shown_case
 from racketdyn.report.formatting import fmt
 
@@ -37,12 +38,8 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         settings = (str(used), steps)
     figures = [
         g
-        for name in (
-            "transient_comparison_face.png",
-            "transient_comparison_speed.png",
-            "transient_histories.png",
-        )
-        if (g := run.group([(folder / name, "")])) is not None
+        for figure in in_section("transient")
+        if (g := run.group([(folder / figure.file, "")])) is not None
     ]
     data: dict[str, Any] = {"settings": settings, "figures": figures, "rows": [], "glance": []}
     rows = read_csv(folder / "comparison.csv", ("x_m", "y_m", "support", "ball_speed_mps"))

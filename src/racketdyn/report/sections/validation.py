@@ -5,12 +5,12 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from racketdyn.plotting.registry import in_section
 from racketdyn.report.folder import RunFolder, read_csv
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = "racketdyn validate MEASURED.csv --racket R.toml --out DIR/validate"
 
-FIGURES = ("validation_parity.png", "validation_along_axis.png", "validation_residuals.png")
 """validate's figures, in the order shown (racketdyn.plotting.validate)."""
 
 _MODELS = {"approx": "approximate method", "transient": "transient simulation"}
@@ -61,6 +61,6 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         "source": str(record.get("measured_file", "")),
         "calibration": calibration,
         "summary": table,
-        "figures": run.group([(folder / name, "") for name in FIGURES]),
+        "figures": run.group([(folder / figure.file, "") for figure in in_section("validation")]),
         "glance": glance,
     }

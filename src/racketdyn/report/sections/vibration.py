@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 
 from racketdyn.impact.result import STATUS_FROM_TRANSIENT
+from racketdyn.plotting.registry import in_section
 from racketdyn.report.folder import RunFolder, to_float
 from racketdyn.report.formatting import fmt
 
@@ -20,7 +21,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     folder = run.predict_dir
     if folder is None:
         return None
-    figure = run.group([(folder / "fig14_frame_vibration.png", "")])
+    figure = run.group([(folder / figure.file, "") for figure in in_section("vibration")])
     impacts = run.impacts()
     ball_mass = to_float(str(run.record(folder).get("ball", {}).get("mass_kg", "")))
     rows = []
