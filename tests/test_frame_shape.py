@@ -153,3 +153,16 @@ def test_the_free_papers_racket_tip_rebounds_positive_at_every_speed(racket: rd.
     tip = np.array([landmark_points(racket)["tip"]])
     free = predict_transient(racket, rd.Ball(), tip, [10.0, 20.0, 30.0, 40.0], supports="free")
     assert np.all(free.rebound_ratio > 0)
+
+
+def test_the_racket_command_says_which_mass_it_took(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from racketdyn.cli import main
+
+    assert main(["racket"]) == 0
+    assert "from the frame's shape" in " ".join(capsys.readouterr().out.split())
+    path = tmp_path / "modern.toml"
+    path.write_text(MODERN, encoding="utf-8")
+    assert main(["racket", "--racket", str(path)]) == 0
+    assert "mass along the racket smooth" in " ".join(capsys.readouterr().out.split())

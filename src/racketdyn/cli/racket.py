@@ -41,9 +41,22 @@ def run(args: argparse.Namespace, console: Console) -> int:
     for name, frequency in zip(model.names, model.frequency, strict=True):
         table.add_row(opt.plain(f"mode: {name} ({model.support})"), f"{frequency:.1f}", "Hz")
     console.print(table)
+    mass_model = model.metadata.get("mass_model")
+    if mass_model is not None:
+        opt.say(console, MASS_MODELS[str(mass_model)])
     for line in _defaults(args.racket, racket):
         opt.say(console, line)
     return 0
+
+
+MASS_MODELS = {
+    "frame": "built-in modes: mass along the racket from the frame's shape (shaft, throat arms, "
+    "hoop and handle, meeting its mass, balance and inertia)",
+    "smooth": "built-in modes: mass along the racket smooth (the frame's shaft, arms, hoop and "
+    "handle cannot meet this racket's mass, balance and inertia with none negative: more mass "
+    "at its ends than they hold)",
+}
+"""The built-in model's mass distribution in words (``metadata["mass_model"]``, issue 22)."""
 
 
 def _defaults(path: Any, racket: Any) -> list[str]:
