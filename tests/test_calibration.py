@@ -406,3 +406,71 @@ def test_a_calibration_value_the_model_refuses_names_the_calibration_file(tmp_pa
     damaged.write_text(json.dumps({"parameters": [{"name": "e_bg", "value": -3.0}]}))
     with pytest.raises(InputError, match=r"^`calibration` .*calibration\.json: .*e_bg"):
         run_validate(tmp_path / "out", measured, calibration=damaged)
+
+
+def test_a_normal_prior_weighs_the_start_against_the_data(start: ModelInputs) -> None:
+    """Issue 24: an uncertainty file's normal spread as a prior about the start.  One e_BG
+    from rows whose truth is 0.80, the start 0.83 (the built-in ball's): a prior far wider than
+    the data's standard error changes nothing; one far narrower keeps the start; one equal to
+    it lands halfway (the linear limit: the precision-weighted mean) with a standard error
+    1/√2 of the data's alone."""
+    truth = apply(start, {"e_bg": 0.80})
+    measured = simulate_measurements(truth, FACE, 20.0, sd=0.005, rng=11)
+    alone, _ = calibrate(start, measured, ["e_bg"])
+    e0, se = PARAMETERS["e_bg"].get(start), float(alone.standard_error[0])
+    wide, _ = calibrate(start, measured, ["e_bg"], priors={"e_bg": 100 * se})
+    assert wide.value[0] == pytest.approx(alone.value[0], abs=0.01 * se)
+    narrow, _ = calibrate(start, measured, ["e_bg"], priors={"e_bg": se / 100})
+    assert narrow.value[0] == pytest.approx(e0, abs=0.01 * abs(e0 - alone.value[0]))
+    equal, _ = calibrate(start, measured, ["e_bg"], priors={"e_bg": se})
+    halfway = 0.5 * (e0 + alone.value[0])
+    assert equal.value[0] == pytest.approx(halfway, abs=0.05 * abs(e0 - alone.value[0]))
+    assert equal.standard_error[0] == pytest.approx(se / math.sqrt(2), rel=0.05)
+    assert equal.as_dict()["parameters"][0]["prior_sd"] == se
+    assert alone.as_dict()["parameters"][0]["prior_sd"] is None
+
+
+def test_a_prior_does_not_make_a_parameter_identifiable(start: ModelInputs) -> None:
+    """The roll inertia from points on the axis: the data cannot tell it, with or without a
+    prior; it stays at its start (the prior's mean), and e_BG is fitted as without."""
+    measured = simulate_measurements(start, AXIS, 20.0, sd=0.005, rng=1)
+    sd = 0.1 * start.racket.roll_inertia_kgm2
+    result, fitted = calibrate(start, measured, FIT, priors={"roll_inertia_kgm2": sd})
+    assert result.identifiable == [True, False]
+    assert fitted.racket.roll_inertia_kgm2 == start.racket.roll_inertia_kgm2
+
+
+def test_priors_need_the_rows_standard_deviations(start: ModelInputs) -> None:
+    measured = simulate_measurements(start, FACE[:3], 20.0, sd=0.0)
+    with pytest.raises(InputError, match="rebound_ratio_sd"):
+        calibrate(start, measured, ["e_bg"], priors={"e_bg": 0.01})
+    with pytest.raises(InputError, match="sd above 0"):
+        calibrate(start, measured, ["e_bg"], priors={"e_bg": -1.0})
+
+
+def test_calibrate_takes_an_uncertainty_files_normal_spread_as_a_prior(
+    tmp_path: Path, start: ModelInputs
+) -> None:
+    """``calibrate --uncertainty``: a normal spread is the fitted parameter's prior (recorded
+    in calibration.json), a range its bounds; rows without a standard deviation leave the
+    prior out and say so."""
+    truth = apply(start, {"e_bg": 0.80})
+    measured = simulate_measurements(truth, FACE[:4], 20.0, sd=0.005, rng=7)
+    header = "point,x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio"
+    rows = [(f"p{i},{x},{y},20,0,free,{float(e)!r}") for i, ((x, y), e) in
+            enumerate(zip(measured.locations, measured.rebound_ratio, strict=True))]  # fmt: skip
+    with_sd = tmp_path / "with_sd.csv"
+    with_sd.write_text(
+        "\n".join([header + ",rebound_ratio_sd", *(r + ",0.005" for r in rows)]) + "\n", "utf-8"
+    )
+    spreads = tmp_path / "u.toml"
+    spreads.write_text("[e_bg]\nsd = 0.01\n", encoding="utf-8")
+    argv = ["calibrate", "--fit", "e_bg", "--no-loo", "--uncertainty", str(spreads)]
+    assert main([*argv[:1], str(with_sd), *argv[1:], "--out", str(tmp_path / "a")]) == 0
+    record = json.loads((tmp_path / "a" / "calibration.json").read_text())
+    assert record["parameters"][0]["prior_sd"] == 0.01
+    bare = tmp_path / "bare.csv"
+    bare.write_text("\n".join([header, *rows]) + "\n", "utf-8")
+    assert main([*argv[:1], str(bare), *argv[1:], "--out", str(tmp_path / "b")]) == 0
+    record = json.loads((tmp_path / "b" / "calibration.json").read_text())
+    assert record["parameters"][0]["prior_sd"] is None

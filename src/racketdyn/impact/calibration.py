@@ -44,6 +44,7 @@ __all__ = [
     "bounds_from_spreads",
     "calibrate",
     "parse_fit",
+    "priors_from_spreads",
     "shifted_e_bg",
     "simulate_measurements",
 ]
@@ -83,6 +84,9 @@ class Parameter:
         ``bounds(start) -> (low, high)``: the fit's bounds from the starting value.
     support : str
         The support whose rows it needs (``hand`` for the hand's parameters), else empty.
+    prior_sd : float or None
+        Standard deviation of a normal prior about the starting value (a normal spread of an
+        uncertainty file, :func:`priors_from_spreads`), in the parameter's unit; None: none.
     """
 
     name: str
@@ -92,6 +96,7 @@ class Parameter:
     set: Callable[[ModelInputs, float], ModelInputs]
     bounds: Callable[[float], tuple[float, float]]
     support: str = ""
+    prior_sd: float | None = None
 
 
 def _hand(inputs: ModelInputs) -> Hand:
@@ -306,7 +311,9 @@ class Calibration:
     reduced_chi2 : float
         Weighted RSS / (n − p).
     degrees_of_freedom : int
-        n − p of ``reduced_chi2``.
+        n − p of ``reduced_chi2`` (n counts the data rows and one row per prior).
+    priors : dict
+        ``name → sd`` of the normal priors the fit took (about each start).
     weighted : bool
         Rows weighted by their measured standard deviations.
     method : str
@@ -359,6 +366,7 @@ class Calibration:
     status_start: NDArray[np.str_] = field(default_factory=lambda: np.zeros(0, dtype=str))
     status: NDArray[np.str_] = field(default_factory=lambda: np.zeros(0, dtype=str))
     degrees_of_freedom: int = 0
+    priors: dict[str, float] = field(default_factory=dict)
 
     @property
     def poor_fit(self) -> str | None:
@@ -415,6 +423,7 @@ class Calibration:
                     "identifiable": ok,
                     "status": "ok" if ok else f"not identifiable: {why}",
                     "best_fit_value": float(v),
+                    "prior_sd": self.priors.get(n),
                 }
                 for n, s, lo, hi, v, se, ok, why in zip(
                     self.names,
@@ -474,9 +483,28 @@ def _residual_function(
         predicted, _ = predict_rows(trial, measured, method)
         r = (predicted - measured.rebound_ratio) / sd
         # a row that turns flagged during the fit weighs as a large miss, not as nothing
-        return np.where(np.isfinite(r), r, 10.0)
+        data = np.where(np.isfinite(r), r, 10.0)
+        return np.concatenate([data, _prior_rows(parameters, values, start)])
 
     return residual
+
+
+def _prior_rows(
+    parameters: Sequence[Parameter], values: NDArray[np.float64], start: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """One residual per parameter with a normal prior: (value − start) / prior sd.
+
+    Least squares with these rows is the maximum of the posterior of a Gaussian likelihood
+    and Gaussian priors (the rows' sd weighting the data), so the standard errors from the
+    whole Jacobian are the posterior's (linearised)."""
+    return np.array(
+        [
+            (v - s0) / p.prior_sd
+            for p, v, s0 in zip(parameters, values, start, strict=True)
+            if p.prior_sd is not None
+        ],
+        dtype=float,
+    )
 
 
 def _jacobian(
@@ -505,6 +533,7 @@ def calibrate(
     holdout: Sequence[int] = (),
     leave_one_out: bool = False,
     bounds: Mapping[str, tuple[float, float]] | None = None,
+    priors: Mapping[str, float] | None = None,
     progress: Callable[[str, int, int], None] | None = None,
 ) -> tuple[Calibration, ModelInputs]:
     """Fit the named parameters to the measured rebound ratios.
@@ -528,6 +557,11 @@ def calibrate(
         ``name → (low, high)`` in place of a parameter's own bounds (e.g. an uncertainty
         file's ranges: :func:`bounds_from_spreads`); a start outside them starts at their
         middle.
+    priors : mapping, optional
+        ``name → sd``: a normal prior about the parameter's start (an uncertainty file's
+        normal spreads: :func:`priors_from_spreads`), the fit the posterior's maximum and its
+        standard errors the posterior's.  Identifiability is judged on the data alone: a
+        parameter the data cannot tell stays at its start (its prior's mean).
     progress : callable, optional
         ``progress(what, done, total)``: the fit's model evaluations (total 0: not known
         ahead) and the leave-one-out refits.
@@ -540,6 +574,12 @@ def calibrate(
         The inputs with the identifiable fitted values (the others keep their start).
     """
     parameters = [_bounded(p, (bounds or {}).get(p.name)) for p in parse_fit(fit, inputs)]
+    parameters = [_with_prior(p, (priors or {}).get(p.name)) for p in parameters]
+    if any(p.prior_sd is not None for p in parameters) and measured.rebound_ratio_sd is None:
+        raise InputError(
+            "calibrate: `priors` need the rows' standard deviations (rebound_ratio_sd) to weigh "
+            "the data against them; give the measured sd or fit without priors"
+        )
     inputs = _start_within(inputs, parameters)
     n = len(measured)
     held = sorted({int(i) for i in holdout})
@@ -571,6 +611,7 @@ def calibrate(
     )
     result.n_flagged = len(flagged)
     result.n_holdout = len(held)
+    result.priors = {p.name: p.prior_sd for p in parameters if p.prior_sd is not None}
     predicted, status = predict_rows(fitted_inputs, measured, method)
     result.predicted_start, result.status_start = start_ratio, start_status
     result.predicted, result.status = predicted, status
@@ -611,6 +652,15 @@ def _bounded(parameter: Parameter, given: tuple[float, float] | None) -> Paramet
     return replace(parameter, bounds=lambda start: (low, high))
 
 
+def _with_prior(parameter: Parameter, sd: float | None) -> Parameter:
+    """The parameter with a normal prior of this sd (checked: finite, above 0)."""
+    if sd is None:
+        return parameter
+    if not (math.isfinite(sd) and sd > 0.0):
+        raise InputError(f"`priors` of {parameter.name}: give an sd above 0, not {sd:g}")
+    return replace(parameter, prior_sd=float(sd))
+
+
 def _start_within(inputs: ModelInputs, parameters: Sequence[Parameter]) -> ModelInputs:
     """The inputs with every parameter that starts outside its bounds at their middle."""
     for p in parameters:
@@ -636,6 +686,17 @@ def bounds_from_spreads(spreads: Sequence[Any]) -> dict[str, tuple[float, float]
         elif len(set(spread.values)) > 1:
             found[spread.name] = (float(min(spread.values)), float(max(spread.values)))
     return found
+
+
+def priors_from_spreads(spreads: Sequence[Any]) -> dict[str, float]:
+    """Calibration priors from an uncertainty's normal spreads: ``name → sd`` about the
+    parameter's start, for the names a calibration fits (a zero sd pins nothing here: a
+    parameter fixed at its value is one not fitted)."""
+    return {
+        spread.name: float(spread.sd)
+        for spread in spreads
+        if spread.name in PARAMETERS and spread.sd is not None and spread.sd > 0.0
+    }
 
 
 def _fit(
@@ -702,12 +763,13 @@ def _fit_once(
     x = solution.x
     r = f(x)
     jac = _jacobian(f, x, low, high)
+    data_jac = jac[: len(measured)]  # identifiability from the data alone, not the priors
     n, p = r.size, x.size
     rss = float(r @ r)
     dof = n - p
     reduced = rss / dof if dof > 0 else math.nan
     s2 = 1.0 if weighted else reduced
-    norms = np.linalg.norm(jac, axis=0)
+    norms = np.linalg.norm(data_jac, axis=0)
     biggest = float(np.max(norms)) if norms.size else 0.0
     inert = norms <= 1e-9 * max(biggest, 1e-300)
     why = ["the data do not change with it" if dead else "" for dead in inert]
@@ -716,7 +778,7 @@ def _fit_once(
     condition = math.inf
     cov = np.full((p, p), np.nan)
     if np.any(live):
-        normalised = jac[:, live] / norms[live]
+        normalised = data_jac[:, live] / norms[live]
         _, singular, vt = np.linalg.svd(normalised, full_matrices=False)
         condition = float(singular[0] / singular[-1]) if singular[-1] > 0 else math.inf
         relative = singular / singular[0]
@@ -760,7 +822,8 @@ def _fit_once(
     fitted_values = {
         prm.name: float(v) for prm, v, ok in zip(parameters, value, identifiable, strict=True) if ok
     }
-    sd_free = np.where(np.isfinite(r), r * sd, np.nan)
+    data_r = r[: len(measured)]  # the prior rows are not the rows' residuals
+    sd_free = np.where(np.isfinite(data_r), data_r * sd, np.nan)
     result = Calibration(
         names=[prm.name for prm in parameters],
         start=start,

@@ -12,6 +12,7 @@ every identifiable value, the ball's and the hand's included.
 from __future__ import annotations
 
 import json
+import logging
 import math
 import os
 from collections.abc import Callable, Sequence
@@ -24,7 +25,12 @@ from numpy.typing import NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError
-from racketdyn.impact.calibration import Calibration, bounds_from_spreads, calibrate
+from racketdyn.impact.calibration import (
+    Calibration,
+    bounds_from_spreads,
+    calibrate,
+    priors_from_spreads,
+)
 from racketdyn.impact.grid import StringBed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import METHODS, Method, ModelInputs
@@ -44,6 +50,8 @@ from racketdyn.workflows.run import (
     write_rows,
 )
 from racketdyn.workflows.validate import measured_setup
+
+log = logging.getLogger(__name__)
 
 __all__ = ["CALIBRATION_ROW_COLUMNS", "CalibrateResult", "run_calibrate"]
 
@@ -140,7 +148,9 @@ def run_calibrate(
         As for :func:`racketdyn.workflows.validate.run_validate`.
     uncertainty : Uncertainty, optional
         Its ranges (and the span of equally likely values) bound the fitted parameters
-        (:func:`racketdyn.impact.calibration.bounds_from_spreads`).
+        (:func:`racketdyn.impact.calibration.bounds_from_spreads`); its normal spreads are
+        priors about the start when the rows carry standard deviations
+        (:func:`racketdyn.impact.calibration.priors_from_spreads`).
     defaults, command, figures, progress
         As for every step.
 
@@ -159,6 +169,15 @@ def run_calibrate(
     held0 = [i - 1 for i in held]
     report(progress, f"fitting {', '.join(fit)} to {len(rows) - len(held)} rows ({method})")
     limits = {} if uncertainty is None else bounds_from_spreads(uncertainty.spreads)
+    priors = {} if uncertainty is None else priors_from_spreads(uncertainty.spreads)
+    priors = {name: priors[name] for name in fit if name in priors}
+    if priors and rows.rebound_ratio_sd is None:
+        log.warning(
+            "calibrate: the normal spreads of %s are not taken as priors: the measured rows "
+            "carry no standard deviation to weigh them against",
+            ", ".join(priors),
+        )
+        priors = {}
     calibration, calibrated = calibrate(
         inputs,
         rows,
@@ -167,6 +186,7 @@ def run_calibrate(
         holdout=held0,
         leave_one_out=leave_one_out,
         bounds={name: limits[name] for name in fit if name in limits},
+        priors=priors,
         progress=progress,
     )
     before, status = calibration.predicted_start, calibration.status_start
