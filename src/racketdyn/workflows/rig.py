@@ -126,7 +126,7 @@ def run_rig(
     double_hits: float = 0.0,
     overloads: float = 0.0,
     seed: int = 1,
-    binary: bool = False,
+    binary: bool = True,
     ball_at: Sequence[float] | None = None,
     ball: Ball | None = None,
     force_snr_db: float | None = None,
@@ -159,7 +159,9 @@ def run_rig(
     seed : int
         Random seed; each support draws from its own stream of it (:func:`support_stream`).
     binary : bool
-        Write binary UFF 58b (default ASCII).
+        Write binary UFF 58b (default; the records' doubles themselves, ≈ 2.4 times smaller
+        than the text form and faster to write); False writes ASCII data sets 58 (12
+        significant digits).
     ball_at : sequence of float, optional
         Fix a ball on the strings at (x, y), m (the paper's section 3.2); its spring is the
         ball's one-sided law's tangent at :data:`~racketdyn.impact.compound.PRELOAD_N` (the
