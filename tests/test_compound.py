@@ -673,7 +673,9 @@ def test_rigid_share_tells_a_ball_mode_from_the_frame_modes() -> None:
         rig = ball_on_strings(rig_model(racket, support), CENTRE, Ball().mass_kg, 24.77e3, 0.059)
         truth = rig.modal_truth(points, max_frequency_hz=850.0)
         share = rigid_share(truth, racket.head)
-        elastic = truth.frequency > 40.0  # the rigid-body and hand modes lie below the band
+        # the racket's own modes: not the suspension's or the hand's (the hand's pitch on the
+        # palm against the arm, 53.8 Hz, moves the frame as a plane too)
+        elastic = np.array([kind != "rigid-body" for kind in truth.kinds])
         k = truth.names.index(BALL_MODE_NAME)
         assert share[k] > BALL_RIGID_SHARE
         others = [share[i] for i in np.flatnonzero(elastic) if i != k]

@@ -96,9 +96,11 @@ def test_racket_names_are_a_step_on_the_general_identification(case) -> None:
 
 
 def test_band_without_modes_is_a_clear_error(case) -> None:
-    # below the first bending mode only the sponge's or hand's rigid-body tail: nothing stable
+    # below the first bending mode, above the hand's pitch on the palm against the arm (53.8 Hz,
+    # ζ 9.5 %: a mode of the held racket since the rig holds it with racketdyn.hand.Hand), only
+    # the tails of the sponge's or hand's modes: nothing stable
     with pytest.raises(rd.InputError, match="no mode found"):
-        identify(case["frfs"], (30.0, 100.0), max_order=8)
+        identify(case["frfs"], (62.0, 105.0), max_order=8)
     with pytest.raises(rd.InputError, match="band"):
         identify_racket(case["frfs"], case["racket"].head, (1500.0, 1510.0))
 

@@ -27,6 +27,7 @@ LAYERS: dict[str, int] = {
     "racketdyn.numerics": 1,
     "racketdyn.racket": 1,
     "racketdyn.ball": 1,
+    "racketdyn.hand": 1,
     "racketdyn.modal.model": 1,
     "racketdyn.measurement.records": 1,
     "racketdyn.data": 1,

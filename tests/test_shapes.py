@@ -21,7 +21,11 @@ def truths() -> dict[str, rd.ModalModel]:
     out = {}
     for support in ("free", "hand"):
         truth = rig_model(racket, support).modal_truth(locations, max_frequency_hz=900)
-        out[support] = truth.select([k for k, f in enumerate(truth.frequency) if f > 15])
+        # the racket's own modes: not the sponge's or the hand's (the hand's pitch on the palm
+        # against the arm lies at 54 Hz since the rig holds the racket with racketdyn.hand.Hand)
+        out[support] = truth.select(
+            [k for k, kind in enumerate(truth.kinds) if kind != "rigid-body"]
+        )
     return out
 
 
@@ -61,8 +65,12 @@ def test_first_mode_nodes_and_the_hand(truths) -> None:
     hand = axis_nodes(truths["hand"], 0, (0.0, 0.68))
     assert free.size == 2
     assert hand.size == 2
+    # with racketdyn.hand.Hand (issue 27: the impact model's hand, palm springs to a 1 kg arm)
+    # the handle node moves 9.3 mm towards the butt (140.5 → 131.2 mm), the face node 2.0 mm;
+    # the rig's earlier hand (springs to a fixed arm) moved the handle node ≈ 2 cm
     assert abs(hand[1] - free[1]) < 0.01  # face node within 10 mm
-    assert abs(hand[0] - free[0]) > 0.01  # handle node moves
+    assert abs(hand[0] - free[0]) > 0.005  # handle node moves
+    assert abs(hand[0] - free[0]) > 3.0 * abs(hand[1] - free[1])
 
 
 def test_free_and_hand_pair_by_mac(truths) -> None:

@@ -40,7 +40,12 @@ def add(commands: Any) -> None:
         help="probability of an overload per hit, 0 to 1, dimensionless (default 0)",
     )
     p.add_argument("--seed", type=int, default=1, help="random seed, a count (default 1)")
-    p.add_argument("--binary", action="store_true", help="write binary UFF 58b (default: ASCII)")
+    p.add_argument(
+        "--ascii",
+        action="store_true",
+        help="write the hammer records as ASCII UFF 58 text, 12 significant digits (default: "
+        "binary UFF 58b, the doubles themselves, about 2.4 times smaller)",
+    )
     p.add_argument(
         "--ball-at",
         metavar="X,Y",
@@ -124,7 +129,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             double_hits=args.double_hits,
             overloads=args.overloads,
             seed=args.seed,
-            binary=args.binary,
+            binary=not args.ascii,
             ball_at=opt.parse_point("--ball-at", args.ball_at),
             force_snr_db=args.force_snr,
             response_snr_db=args.response_snr,

@@ -12,7 +12,8 @@ with coordinates ``q`` chosen by the support (a parameter, never a copy of the c
 * ``pinned``: the two rotations about the grip pivot (the paper's eq 4 with roll) plus the
   flexible modes, which stay those of the model given, as in the approximate method;
 * ``hand``: the ``free`` coordinates plus an arm mass joined to the grip by springs and dashpots
-  (:class:`racketdyn.impact.hand.Hand`).
+  in translation and roll (:class:`racketdyn.hand.Hand`, the rig's hand too; the shoulder,
+  which stores nothing over a contact, is left out).
 
 The flexible modes (mass-normalised, ``q_k`` with unit modal mass) carry no momentum, so for
 ``free`` and ``pinned`` the rigid and modal blocks of ``M`` are uncoupled and ``b_jᵀ M⁻¹ b_j``
@@ -53,6 +54,9 @@ __all__ = [
 ]
 
 TRANSIENT_SUPPORTS: tuple[str, ...] = ("free", "pinned", "hand")
+_TWIST_PROBE_M = 0.010
+"""Half the distance across the handle over which the hand reads the handle's turn, m (the
+rigid roll exactly; a mode's twist from its shapes either side of the axis)."""
 """Supports of the transient model; the approximate method has ``free`` and ``pinned``."""
 
 CoordinateKind = Literal["rigid", "mode", "arm"]
@@ -405,13 +409,25 @@ def impact_system(
         share = 1.0 / len(grip)
         relative = displacement_map(grip)
         relative[:, -1] = -1.0  # the grip's springs pull towards the arm
-        for row in relative:
+        # the handle's turn about the long axis at each grip point, flexible twist included
+        # (the rigid roll's row is exactly 1): the fingers' roll spring and dashpot and the
+        # hand's roll inertia act on it, as in the rig's hand (racketdyn.hand)
+        across = np.array([0.0, _TWIST_PROBE_M])
+        turn = (displacement_map(grip + across) - displacement_map(grip - across)) / (
+            2.0 * _TWIST_PROBE_M
+        )
+        for row, twist in zip(relative, turn, strict=True):
             mass[:-1, :-1] += share * hand.hand_mass_kg * np.outer(row[:-1], row[:-1])
+            mass += share * hand.roll_inertia_kgm2 * np.outer(twist, twist)
             stiffness += share * hand.stiffness_n_per_m * np.outer(row, row)
+            stiffness += share * hand.roll_stiffness_nm_per_rad * np.outer(twist, twist)
             damping += share * hand.damping_ns_per_m * np.outer(row, row)
-        roll = n_rigid - 2  # the roll rotation about the long axis
-        stiffness[roll, roll] += hand.roll_stiffness_nm_per_rad
-        damping[roll, roll] += hand.roll_damping_nms_per_rad
+            damping += share * hand.roll_damping_nms_per_rad * np.outer(twist, twist)
+        # the shoulder (hand.shoulder_stiffness_n_per_m, periods of a good fraction of a
+        # second) stores nothing over a contact of a few milliseconds: left out, the arm is
+        # free beyond the grip and the held system keeps its exact rigid-body motion (the
+        # compiled engine's c_j; a shoulder's slow pole in its place halved the kernel's
+        # convergence order on the axis)
         mass[-1, -1] = hand.arm_mass_kg
         kinds = kinds + _kinds("arm", 1)
         coordinate_names = (*coordinate_names, "arm")

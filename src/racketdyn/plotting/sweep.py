@@ -33,7 +33,7 @@ def _plot_metric(
     if ax is None:
         _, ax = plt.subplots(figsize=(5.0, 3.6), layout="constrained")
     keep = variable_designs(dataset, variable)
-    # the designs compared share one threshold: a fraction of the best among them
+    # each design's own face sets its threshold: the numbers of summary.csv
     metrics = summary_metrics(
         dataset.isel(design=keep), threshold_fraction, ball_speed, racket_speed
     )
@@ -79,8 +79,9 @@ def _plot_metric(
         ax.set_ylabel("rebound ratio e at centre (–)")
         ax.set_title(f"face centre, {speeds}", fontsize=9)
     else:
-        ax.set_ylabel("face area above threshold (cm²)")
-        ax.set_title(f"e ≥ {metrics.attrs['threshold_fraction']:g} × best, {speeds}", fontsize=9)
+        ax.set_ylabel("sweet area (cm²)")
+        fraction = metrics.attrs["threshold_fraction"]
+        ax.set_title(f"e ≥ {fraction:g} × the face's best, {speeds}", fontsize=9)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     return ax
@@ -119,10 +120,10 @@ def plot_sweet_area(
     ball_speed: float | None = None,
     racket_speed: float | None = None,
 ) -> Axes:
-    """Face area with a rebound ratio above the threshold against a variable, per support.
+    """The sweet area against a variable, per support.
 
-    The threshold is a fraction of the best rebound ratio among the designs plotted (see
-    :func:`summary_metrics`).
+    The area of each design's face whose rebound ratio is near the best of that face
+    (:func:`racketdyn.sweep.sweet_area_cm2`): the numbers of ``summary.csv``.
 
     Parameters
     ----------
@@ -133,7 +134,7 @@ def plot_sweet_area(
     ax : matplotlib Axes, optional
         Where to draw (a new figure if None).
     threshold_fraction : float, optional
-        Fraction of the sweep's best rebound ratio (default the spec's).
+        Fraction of each face's best rebound ratio (default the spec's).
     ball_speed, racket_speed : float, optional
         Speeds, m/s (default the spec's summary speeds).
     """

@@ -439,12 +439,21 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
 
 
 def _sample_locations(x: NDArray[np.float64], head: HeadEllipse) -> NDArray[np.float64]:
-    """Beam nodes on the axis, a 1 cm lattice across the head, and two rings on the frame.
+    """Beam nodes on the axis and on the handle's sides, a 1 cm lattice across the head, and
+    two rings on the frame.
+
+    The handle's sides (y = ±:data:`HANDLE_RADIUS_M`, nodes up to the throat) give the twist
+    along the handle, where a hand reads the handle's turn (:class:`racketdyn.hand.Hand`):
+    without them the interpolation took it from the head, half the beam's.
 
     The rings (on the bed's edge and 8 % outside it, every 5°) pin the membrane shape to zero
     on the frame, so the interpolation neither bulges past the edge nor extrapolates onto it.
     """
     points = [np.column_stack([x, np.zeros_like(x)])]
+    # the handle's sides (the hand's grip reads the handle's turn there: racketdyn.hand)
+    handle = x[x <= head.throat_x_m]
+    for side in (-HANDLE_RADIUS_M, HANDLE_RADIUS_M):
+        points.append(np.column_stack([handle, np.full(handle.size, side)]))
     in_head = x[(x > head.throat_x_m) & (x < head.tip_x_m)]
     for xi in in_head:
         half = float(head.half_width_at(xi))

@@ -52,14 +52,15 @@ Free support
     flexible modes stay exactly those of the free–free racket (a real 2–3 Hz sponge moves a
     120 Hz mode by well under 0.1 %).
 Hand support
-    :class:`HandModel`: a hand on the grip.  Its mass (the part of the hand that moves with
-    the handle at the racket's frequencies) is spread evenly over the grip; distributed springs
-    and dashpots from the grip to the arm, in translation and in roll, represent the arm's
-    compliance and the soft tissue's losses.  The arm is not rigid: the springs are soft, so the
-    three hand–racket rigid-body modes lie below 15 Hz (default hand: the racket swinging
-    about the hand at 0.95 Hz, ζ ≈ 4 %; roll and heave at 7.0 and 11.3 Hz, ζ ≈ 0.37 and 0.42),
-    and there is no clamped-handle cantilever mode (20–35 Hz in a vice, absent when hand-held:
-    Kawazoe, section 2).  Defaults and their sources are on :class:`HandModel`.
+    :class:`racketdyn.hand.Hand`, the one hand of every model (the transient impact model's
+    too): its mass (the part of the hand that moves with the handle at the racket's
+    frequencies) spread evenly over the grip, with its roll inertia; distributed springs and
+    dashpots from the grip to an arm of mass ``arm_mass_kg`` (one more DOF, ``dofs["arm"]``),
+    in translation, and to the non-rotating arm in roll; the shoulder's soft spring holds the
+    arm.  The hand–racket rigid-body modes lie below 60 Hz (default hand: 3.5–7 Hz, and the
+    racket pitching on the palm against the arm at ≈ 54 Hz, ζ ≈ 9 %), and there is no
+    clamped-handle cantilever mode (20–35 Hz in a vice, absent when hand-held: Kawazoe,
+    section 2).  Defaults and their sources are on :class:`racketdyn.hand.Hand`.
 Damping
     The racket's own damping is modal: :data:`FRAME_DAMPING_RATIO` (0.5 %, the built-in model's
     value; composite frames measured free are typically 0.3–1 %) on every flexible mode of the
@@ -87,6 +88,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eigh
 
 from racketdyn.errors import InputError, one_of, require_positive
+from racketdyn.hand import Hand
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import Racket, as_locations
 from racketdyn.racket_modal.beam import (
@@ -117,15 +119,6 @@ RigSupport = Literal["free", "hand"]
 RIG_SUPPORTS: tuple[str, ...] = get_args(RigSupport)
 
 FRAME_DAMPING_RATIO = DEFAULT_DAMPING_RATIO
-
-# The hand's defaults, shared with the transient model's lumped hand (racketdyn.impact.hand);
-# sources and how sure they are: HandModel's docstring.
-HAND_GRIP_START_M = 0.010
-HAND_GRIP_END_M = 0.130
-HAND_MASS_KG = 0.06
-HAND_DAMPING_NS_PER_M = 12.0
-HAND_ROLL_STIFFNESS_NM_PER_RAD = 3.0
-HAND_ROLL_DAMPING_NMS_PER_RAD = 0.05
 """Damping ratio of every flexible mode of the free racket (the built-in model's 0.5 %)."""
 SUSPENSION_HZ = (3.0, 2.0, 2.5)
 """Frequencies of the free racket's heave, pitch and roll on the sponge, Hz (assumed)."""
@@ -143,94 +136,8 @@ _GAUSS_LINE = np.polynomial.legendre.leggauss(4)
 _CALIBRATION_TOLERANCE = 1e-7  # eigenvalue noise of the stiff Hermite mesh is ~1e-8
 
 
-@dataclass(frozen=True)
-class HandModel:
-    """A hand holding the grip: mass, and springs and dashpots to the arm spread over the grip.
-
-    Everything is spread evenly over the grip, from ``grip_start_m`` to ``grip_end_m``.  The
-    springs and dashpots join the handle to a fixed arm; the springs are soft (the arm is
-    compliant), so they set the hand–racket rigid-body modes, well below 15 Hz, and leave the
-    racket's flexible modes almost alone, while the dashpots damp them.
-
-    Defaults (for an adult's firm grip; sources and how sure they are):
-
-    * Grip 10–130 mm from the butt: a hand about 85 mm across the palm plus the wrap of thumb
-      and index finger, centred on the paper's 70 mm grip axis (section 3.3).  Assumption.
-    * ``mass_kg = 0.06``: the part of the hand that moves with the handle at 100–400 Hz.  The
-      whole hand is ≈ 0.6 % of body mass (≈ 0.45 kg; Dempster's segment tables as given by
-      Winter, *Biomechanics and Motor Control of Human Movement*, 2009); the apparent mass of a
-      gripping hand–arm falls well below that above ≈ 100 Hz (the ISO 10068 hand–arm impedance
-      data).  The value is chosen within that range so that the bending frequencies drop by a
-      few per cent, as Kawazoe (section 2) and Chadefaux et al. (J. Sports Sci. 2017) report for
-      a held racket; the number itself is an assumption.
-    * ``roll_radius_m = 0.015``: radius of gyration of that mass about the long axis, just
-      outside the handle's own (:data:`racketdyn.racket_modal.beam.HANDLE_RADIUS_M`, 12.5 mm): the
-      skin and palm against the handle.  Assumption; a larger radius pulls the higher twisting
-      modes down strongly (the handle's own roll inertia is small).
-    * ``stiffness_n_per_m = 1000``: total translational stiffness to the arm.  Soft enough to
-      keep the hand–racket rigid-body modes under ≈ 12 Hz; arm stiffnesses at the hand measured
-      in posture-holding tasks are a few hundred to a few thousand N/m (e.g. Mussa-Ivaldi,
-      Hogan and Bizzi, J. Neurosci. 1985).  Only roughly sure.
-    * ``damping_ns_per_m = 12``: total translational damping.  Gives the 2-node mode several
-      times the free racket's damping (Kawazoe: at least twice; docs/references.md) while the
-      rigid-body modes stay under-damped.  The resistive part of the hand–arm driving-point
-      impedance normal to the palm is of order 10–100 N·s/m in the racket's band (ISO 10068;
-      Gurram, Rakheja and Brammer, J. Sound Vib. 1995); the low end is taken because only the
-      dashpot's share across the grip, not the whole arm's impedance, acts here.  Assumption
-      within a published range.
-    * ``roll_stiffness_nm_per_rad = 3``, ``roll_damping_nms_per_rad = 0.05``: the fingers'
-      resistance to the handle turning in the hand.  No published value known to us; chosen so
-      the roll mode is a heavily damped few-hertz mode and the twisting mode's damping rises
-      like the bending modes'.  Assumption.
-
-    Parameters
-    ----------
-    grip_start_m, grip_end_m : float
-        Where the hand covers the handle, m from the butt.
-    mass_kg : float
-        Hand mass moving with the handle, kg.
-    roll_radius_m : float
-        Radius of gyration of that mass about the long axis, m.
-    stiffness_n_per_m : float
-        Total translational stiffness from the grip to the arm, N/m.
-    damping_ns_per_m : float
-        Total translational damping from the grip to the arm, N·s/m.
-    roll_stiffness_nm_per_rad : float
-        Total stiffness against the handle turning about the long axis, N·m/rad.
-    roll_damping_nms_per_rad : float
-        Total damping against the handle turning about the long axis, N·m·s/rad.
-    """
-
-    grip_start_m: float = HAND_GRIP_START_M
-    grip_end_m: float = HAND_GRIP_END_M
-    mass_kg: float = HAND_MASS_KG
-    roll_radius_m: float = 0.015
-    stiffness_n_per_m: float = 1000.0
-    damping_ns_per_m: float = HAND_DAMPING_NS_PER_M
-    roll_stiffness_nm_per_rad: float = HAND_ROLL_STIFFNESS_NM_PER_RAD
-    roll_damping_nms_per_rad: float = HAND_ROLL_DAMPING_NMS_PER_RAD
-
-    def __post_init__(self) -> None:
-        require_positive("hand.grip_start_m", self.grip_start_m, allow_zero=True)
-        require_positive("hand.grip_end_m", self.grip_end_m)
-        if self.grip_end_m <= self.grip_start_m:
-            raise InputError(
-                f"hand.grip_end_m ({self.grip_end_m} m) must lie beyond hand.grip_start_m "
-                f"({self.grip_start_m} m)"
-            )
-        require_positive("hand.mass_kg", self.mass_kg, allow_zero=True)
-        require_positive("hand.roll_radius_m", self.roll_radius_m, allow_zero=True)
-        require_positive("hand.stiffness_n_per_m", self.stiffness_n_per_m)
-        require_positive("hand.damping_ns_per_m", self.damping_ns_per_m, allow_zero=True)
-        require_positive("hand.roll_stiffness_nm_per_rad", self.roll_stiffness_nm_per_rad)
-        require_positive(
-            "hand.roll_damping_nms_per_rad", self.roll_damping_nms_per_rad, allow_zero=True
-        )
-
-    @property
-    def grip_length_m(self) -> float:
-        """Length of handle the hand covers, m."""
-        return self.grip_end_m - self.grip_start_m
+HandModel = Hand
+"""The rig's hand: :class:`racketdyn.hand.Hand`, the one hand (the name kept for old code)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -247,7 +154,7 @@ class RigModel:
         The racket modelled.
     support : {"free", "hand"}
         Its support.
-    hand : HandModel or None
+    hand : Hand or None
         The hand (``support="hand"`` only).
     nodes_x : ndarray, shape (n_nodes,)
         Beam nodes along the long axis, m.
@@ -270,7 +177,7 @@ class RigModel:
 
     racket: Racket
     support: str
-    hand: HandModel | None
+    hand: Hand | None
     nodes_x: NDArray[np.float64]
     membrane_powers: tuple[tuple[int, int], ...]
     mass: NDArray[np.float64]
@@ -301,14 +208,17 @@ class RigModel:
     @property
     def dofs(self) -> dict[str, slice]:
         """Where each kind of DOF sits: ``bending`` (w, w' per node), ``twist``, ``membrane``,
-        and ``ball`` (empty unless a ball is fixed on the strings: :mod:`racketdyn.rig.ball`)."""
+        ``arm`` (the hand's arm: empty on the sponge) and ``ball`` (empty unless a ball is
+        fixed on the strings: :mod:`racketdyn.rig.ball`)."""
         n = self.nodes_x.size
         end = 3 * n + len(self.membrane_powers)
+        arm = end + (0 if self.hand is None else 1)
         return {
             "bending": slice(0, 2 * n),
             "twist": slice(2 * n, 3 * n),
             "membrane": slice(3 * n, end),
-            "ball": slice(end, self.n_dof),
+            "arm": slice(end, arm),
+            "ball": slice(arm, self.n_dof),
         }
 
     def on_string_bed(self, locations: ArrayLike) -> NDArray[np.bool_]:
@@ -416,7 +326,7 @@ class RigModel:
 def rig_model(
     racket: Racket,
     support: RigSupport,
-    hand: HandModel | None = None,
+    hand: Hand | None = None,
     *,
     frame_damping_ratio: float = FRAME_DAMPING_RATIO,
     max_frequency_hz: float = MAX_FREQUENCY_HZ,
@@ -430,9 +340,9 @@ def rig_model(
         (``first_bending_hz``, ``twisting_hz``: the free racket's, strings included).
     support : {"free", "hand"}
         ``free``: on a soft sponge; ``hand``: held by ``hand``.
-    hand : HandModel or None
-        The hand for ``support="hand"`` (None: the default :class:`HandModel`); must be None
-        for ``free``.
+    hand : Hand or None
+        The hand for ``support="hand"`` (None: the default :class:`racketdyn.hand.Hand`); must
+        be None for ``free``.
     frame_damping_ratio : float
         Modal damping ratio of the free racket's flexible modes.
     max_frequency_hz : float
@@ -447,7 +357,7 @@ def rig_model(
     if support == "free" and hand is not None:
         raise InputError("a hand is given but support is 'free'; use support='hand'")
     if support == "hand" and hand is None:
-        hand = HandModel()
+        hand = Hand()
     if not 0.0 <= frame_damping_ratio < 0.2:
         raise InputError(f"frame_damping_ratio must lie in [0, 0.2) (got {frame_damping_ratio!r})")
     require_positive("max_frequency_hz", max_frequency_hz)
@@ -552,9 +462,20 @@ def rig_model(
                 f"hand.grip_end_m ({hand.grip_end_m} m) must lie on the handle, below the "
                 f"string bed's throat end ({head.throat_x_m:.3f} m)"
             )
+        if hand.shoulder_stiffness_n_per_m <= 0:
+            raise InputError(
+                "hand.shoulder_stiffness_n_per_m must be positive on the rig: without the "
+                "shoulder the held racket floats away on its arm (a mode of 0 Hz)"
+            )
         m_support, k_support, c_support = _hand_matrices(hand, x, n_dof)
         label = "hand"
         metadata["hand"] = {k: float(v) for k, v in vars(hand).items()}
+    # the support's own DOFs (the hand's arm) after the racket's
+    extra = m_support.shape[0] - n_dof
+    mass, stiffness, c_racket, k_bend, k_twist, k_strings = (
+        np.pad(matrix, (0, extra))
+        for matrix in (mass, stiffness, c_racket, k_bend, k_twist, k_strings)
+    )
 
     mass_total = mass + m_support
     stiffness_total = stiffness + k_support
@@ -574,7 +495,9 @@ def rig_model(
         )
     # sign convention: the largest displacement over the racket (sampled) positive
     probe = _frame_rows(x, np.concatenate([x, x]), np.repeat([0.0, head.half_width_m], x.size))
-    sampled = np.vstack([probe @ vectors[:n_frame], _bed_centre_row(racket, powers) @ vectors])
+    sampled = np.vstack(
+        [probe @ vectors[:n_frame], _bed_centre_row(racket, powers) @ vectors[:n_dof]]
+    )
     largest = sampled[np.argmax(np.abs(sampled), axis=0), np.arange(vectors.shape[1])]
     vectors = vectors * np.where(largest < 0, -1.0, 1.0)
 
@@ -758,37 +681,63 @@ def _calibrate(
     )
 
 
-def _line_matrix(
-    x: NDArray[np.float64], start: float, end: float, *, bending: bool
-) -> NDArray[np.float64]:
-    """``∫ NᵀN dx`` over [start, end] for the frame's w (bending) or θ (twist) field."""
+def _line_rows(
+    x: NDArray[np.float64], start: float, end: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Gauss points' frame rows (``w`` and ``θ`` at y = 1) over [start, end], and weights."""
     gx, gw = _GAUSS_LINE
     edges = np.unique(np.concatenate([[start, end], x[(x > start) & (x < end)]]))
     xs = (0.5 * (edges[:-1, None] + edges[1:, None]) + 0.5 * np.diff(edges)[:, None] * gx).ravel()
     ws = (0.5 * np.diff(edges)[:, None] * gw).ravel()
-    rows = _frame_rows(x, xs, np.ones_like(xs))
+    return _frame_rows(x, xs, np.ones_like(xs)), ws
+
+
+def _line_matrix(
+    x: NDArray[np.float64], start: float, end: float, *, bending: bool
+) -> NDArray[np.float64]:
+    """``∫ NᵀN dx`` over [start, end] for the frame's w (bending) or θ (twist) field."""
+    rows, ws = _line_rows(x, start, end)
     rows = rows[:, : 2 * x.size] if bending else rows[:, 2 * x.size :]
     return np.asarray(rows.T @ (ws[:, None] * rows))
 
 
+def _line_mean(x: NDArray[np.float64], start: float, end: float) -> NDArray[np.float64]:
+    """``∫ N dx`` over [start, end] for the frame's w field (bending DOFs)."""
+    rows, ws = _line_rows(x, start, end)
+    return np.asarray(ws @ rows[:, : 2 * x.size])
+
+
 def _hand_matrices(
-    hand: HandModel, x: NDArray[np.float64], n_dof: int
+    hand: Hand, x: NDArray[np.float64], n_dof: int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """Mass, stiffness and damping the hand adds (spread evenly over the grip)."""
+    """Mass, stiffness and damping of the hand and arm, ``(n_dof + 1)`` square (the arm last).
+
+    The hand's mass, and its roll inertia, spread evenly over the grip; springs and dashpots
+    ``k/L ∫ (w(x) − a)² dx`` from the grip to the arm's displacement ``a``, and in roll to
+    the non-rotating arm; the arm's mass, and the shoulder's spring on it.
+    """
     n = x.size
     length = hand.grip_length_m
     w_line = _line_matrix(x, hand.grip_start_m, hand.grip_end_m, bending=True) / length
     t_line = _line_matrix(x, hand.grip_start_m, hand.grip_end_m, bending=False) / length
+    w_mean = _line_mean(x, hand.grip_start_m, hand.grip_end_m) / length
+    arm = n_dof
     out = []
-    for translational, rolling in (
-        (hand.mass_kg, hand.mass_kg * hand.roll_radius_m**2),
-        (hand.stiffness_n_per_m, hand.roll_stiffness_nm_per_rad),
-        (hand.damping_ns_per_m, hand.roll_damping_nms_per_rad),
+    for translational, rolling, on_arm in (
+        (hand.hand_mass_kg, hand.roll_inertia_kgm2, hand.arm_mass_kg),
+        (hand.stiffness_n_per_m, hand.roll_stiffness_nm_per_rad, hand.shoulder_stiffness_n_per_m),
+        (hand.damping_ns_per_m, hand.roll_damping_nms_per_rad, 0.0),
     ):
-        matrix = np.zeros((n_dof, n_dof))
+        matrix = np.zeros((n_dof + 1, n_dof + 1))
         matrix[: 2 * n, : 2 * n] = translational * w_line
         matrix[2 * n : 3 * n, 2 * n : 3 * n] = rolling * t_line
+        matrix[arm, arm] = on_arm
         out.append(matrix)
+    for matrix, value in ((out[1], hand.stiffness_n_per_m), (out[2], hand.damping_ns_per_m)):
+        # the grip's springs and dashpots pull the handle towards the arm
+        matrix[: 2 * n, arm] = -value * w_mean
+        matrix[arm, : 2 * n] = -value * w_mean
+        matrix[arm, arm] += value
     return out[0], out[1], out[2]
 
 

@@ -26,8 +26,8 @@ finished.
 ``summary.csv`` (:func:`write_summary_csv`) and the summary figures
 (:func:`racketdyn.plotting.sweep.write_summary_figures`, a hook of :func:`run_sweep`) give, for
 each variable, the rebound ratio at the
-face centre and the area of the face with a rebound ratio above a threshold against the variable,
-per support.
+face centre and the sweet area (:func:`sweet_area_cm2`: the face area whose rebound ratio is
+near the best of the same face) against the variable, per support.
 
 The impact method is a parameter (``SweepSpec.method``, :data:`METHODS`): ``approximate``
 (:func:`racketdyn.impact.predict`) or ``transient``
@@ -67,8 +67,10 @@ from racketdyn.sweep.spec import MODES, SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec, sweep_spec_from_dict
 from racketdyn.sweep.store import open_sweep
 from racketdyn.sweep.summary import (
+    SWEET_AREA_DEFINITION,
     factorial_view,
     summary_metrics,
+    sweet_area_cm2,
     sweet_area_resolution_cm2,
     variable_designs,
     write_summary_csv,
@@ -92,6 +94,7 @@ __all__ = [
     "SCALAR_VARIABLES",
     "SERIAL_IMPACT_LIMIT",
     "STATUS_CODES",
+    "SWEET_AREA_DEFINITION",
     "Design",
     "EngineKind",
     "ProcessPool",
@@ -114,6 +117,7 @@ __all__ = [
     "start_early",
     "summary_metrics",
     "sweep_spec_from_dict",
+    "sweet_area_cm2",
     "sweet_area_resolution_cm2",
     "variable_designs",
     "write_summary_csv",

@@ -62,6 +62,7 @@ from racketdyn.sweep.store import (
 )
 from racketdyn.sweep.summary import (
     SWEET_AREA_COARSE_FRACTION,
+    SWEET_AREA_DEFINITION,
     sweet_area_resolution_cm2,
     write_summary_csv,
 )
@@ -311,6 +312,10 @@ def run_sweep(
     notes = []
     if spec.variables:
         written.append(write_summary_csv(result, out))
+        notes.append(
+            f"sweet_area_cm2 (summary.csv and the summary figures): {SWEET_AREA_DEFINITION}; "
+            f"threshold_fraction {float(result.attrs['threshold_fraction']):g}"
+        )
         step = sweet_area_resolution_cm2(result)
         if step > SWEET_AREA_COARSE_FRACTION * float(result.attrs["head_area_cm2"]):
             notes.append(

@@ -97,8 +97,8 @@ class SweepSpec:
     rigid : bool
         No modal model: a rigid racket.
     threshold_fraction : float
-        Summary: the face area counts where the rebound ratio reaches this fraction of the
-        best of the sweep.
+        Summary: the sweet area counts where the rebound ratio reaches this fraction of the
+        best of the same face (:func:`racketdyn.sweep.sweet_area_cm2`).
     summary_ball_speed, summary_racket_speed : float, optional
         Summary: the speeds the figures show, m/s (default the middle ball speed listed and the
         first racket speed).

@@ -2,15 +2,17 @@
 
 The end of the flow: reads a sweep dataset (``sweep.zarr`` through
 :func:`~racketdyn.sweep.open_sweep`, or any in memory) and nothing else — the rebound ratio at
-the face centre and the "sweet" face area per design and support, ``summary.csv``, and a full
-factorial's dimensions.  The metrics read the results a block of designs at a time (the
-store's chunks): a study larger than memory is summarised in the memory of a few chunks.
+the face centre and the sweet area (:func:`sweet_area_cm2`, the one definition) per design and
+support, ``summary.csv``, and a full factorial's dimensions.  The metrics read the results a
+block of designs at a time (the store's chunks): a study larger than memory is summarised in
+the memory of a few chunks.
 Their plots against each variable are presentation: :mod:`racketdyn.plotting.sweep`.
 """
 
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -24,9 +26,11 @@ if TYPE_CHECKING:
     import xarray as xr
 
 __all__ = [
+    "SWEET_AREA_DEFINITION",
     "axis_label",
     "factorial_view",
     "summary_metrics",
+    "sweet_area_cm2",
     "sweet_area_resolution_cm2",
     "variable_designs",
     "write_summary_csv",
@@ -76,20 +80,68 @@ def variable_designs(dataset: xr.Dataset, variable: str) -> NDArray[np.int_]:
     return np.asarray(keep[np.argsort(axis[keep], kind="stable")])
 
 
+SWEET_AREA_DEFINITION = (
+    "the face area whose rebound ratio is within (1 − threshold_fraction) × |best| of the "
+    "best point of the same face (design, support and speeds): e ≥ threshold_fraction × best "
+    "for a face that rebounds forwards"
+)
+"""What ``sweet_area_cm2`` means, in ``summary.csv``'s attributes, the figures and the docs."""
+
+
+def sweet_area_cm2(
+    rebound_ratio: NDArray[np.floating[Any]] | Sequence[float],
+    head_area_cm2: float,
+    threshold_fraction: float,
+) -> NDArray[np.float64] | float:
+    """The "sweet area" of a face: where its rebound ratio is near its own best, cm².
+
+    The one definition (:data:`SWEET_AREA_DEFINITION`) that ``summary.csv``, the summary
+    figures and :func:`summary_metrics` use: the points whose rebound ratio ``e`` reaches
+    ``best − (1 − threshold_fraction) · |best|``, ``best`` the highest ``e`` of the same face
+    (``threshold_fraction × best`` when the face rebounds forwards), each point standing for an
+    equal share of the string-bed area (exact for a grid, approximate for a points file).  The
+    threshold is the face's own, so the area does not depend on which other designs are
+    compared, and it holds at least the best point: it is never 0 for a face with a number.
+    Points without a number (NaN: a frame shot, a failed impact) count as outside.
+
+    Parameters
+    ----------
+    rebound_ratio : array_like
+        Rebound ratios ``e`` (–) of the face's impact points along the last axis (any leading
+        axes, e.g. design and support, each its own face).
+    head_area_cm2 : float
+        The string-bed area the points cover, cm².
+    threshold_fraction : float
+        In (0, 1]: how near the best a point must be (0.9: within 10 % of the best).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The area, cm² (the leading axes' shape; NaN where a face has no number at all).
+    """
+    values = np.asarray(rebound_ratio, dtype=float)
+    finite = np.isfinite(values)
+    any_finite = finite.any(axis=-1)
+    filled = np.where(finite, values, -np.inf)
+    best = np.where(any_finite, filled.max(axis=-1, initial=-np.inf), np.nan)
+    threshold = best - (1.0 - float(threshold_fraction)) * np.abs(best)
+    with np.errstate(invalid="ignore"):
+        inside = filled >= threshold[..., np.newaxis]
+    area = np.where(any_finite, inside.mean(axis=-1) * float(head_area_cm2), np.nan)
+    return float(area) if area.ndim == 0 else np.asarray(area, dtype=float)
+
+
 def summary_metrics(
     dataset: xr.Dataset,
     threshold_fraction: float | None = None,
     ball_speed: float | None = None,
     racket_speed: float | None = None,
 ) -> xr.Dataset:
-    """Per design and support: rebound ratio at the face centre and the "sweet" face area.
+    """Per design and support: rebound ratio at the face centre, the best, the sweet area.
 
-    The face centre is the impact point nearest the head's centre.  The area counts the
-    points whose rebound ratio reaches ``threshold_fraction`` × the best rebound ratio of the
-    designs in ``dataset`` (all their points, per support: one threshold for the designs
-    compared), each point standing for an equal share of the string-bed area (exact for a
-    grid, approximate for a points file).  The figures compare the designs of one variable
-    (:func:`variable_designs`) and pass only those; ``summary.csv`` compares all.
+    The face centre is the impact point nearest the head's centre.  The sweet area is
+    :func:`sweet_area_cm2` of each design's and support's face: a design's number is the same
+    whichever designs are compared (``summary.csv`` and each variable's figure).
 
     Parameters
     ----------
@@ -103,8 +155,8 @@ def summary_metrics(
     Returns
     -------
     xarray.Dataset
-        ``centre_rebound_ratio`` and ``sweet_area_cm2`` over ``(design, support)``, with the
-        threshold per support and the centre point in the attributes.
+        ``centre_rebound_ratio``, ``best_rebound_ratio`` and ``sweet_area_cm2`` over
+        ``(design, support)``, with the centre point and the definition in the attributes.
     """
     import xarray as xr
 
@@ -116,7 +168,7 @@ def summary_metrics(
         dataset.attrs["summary_racket_speed_mps"] if racket_speed is None else racket_speed
     )
     rebound = dataset["rebound_ratio"].sel(speed=speed, racket_speed=swing, method="nearest")
-    rebound = rebound.transpose("design", "point", "support")
+    rebound = rebound.transpose("design", "support", "point")
     x, y = dataset["x_m"].values, dataset["y_m"].values
     centre = int(
         np.argmin(
@@ -124,28 +176,21 @@ def summary_metrics(
             + (y - dataset.attrs["head_centre_y_m"]) ** 2
         )
     )
-    n_designs, n_supports = rebound.shape[0], rebound.shape[2]
-    blocks = [
-        slice(start, min(start + _block(dataset), n_designs))
-        for start in range(0, n_designs, _block(dataset))
-    ]
-    best = np.full(n_supports, -np.inf)  # per support, over every design: first pass
-    for block in blocks:
-        values = np.asarray(rebound[block].values)
-        finite = np.where(np.isfinite(values), values, -np.inf)
-        if finite.size:
-            best = np.maximum(best, finite.max(axis=(0, 1)))
-    threshold = np.where(np.isfinite(best), fraction * best, np.nan)
+    n_designs, n_supports = rebound.shape[0], rebound.shape[1]
+    head_area = float(dataset.attrs["head_area_cm2"])
     centre_values = np.full((n_designs, n_supports), np.nan)
+    best = np.full((n_designs, n_supports), np.nan)
     area = np.full((n_designs, n_supports), np.nan)
-    for block in blocks:  # second pass: each design against the threshold
-        values = np.asarray(rebound[block].values)
-        with np.errstate(invalid="ignore"):
-            finite = np.where(np.isfinite(values), values, -np.inf)
-            share = np.mean(finite >= threshold, axis=1)  # (design, support)
-        failed = np.all(~np.isfinite(values), axis=1)
-        area[block] = np.where(failed, np.nan, share * float(dataset.attrs["head_area_cm2"]))
-        centre_values[block] = values[:, centre, :]
+    step = _block(dataset)
+    for start in range(0, n_designs, step):  # a block of designs at a time (the store's chunks)
+        block = slice(start, min(start + step, n_designs))
+        values = np.asarray(rebound[block].values, dtype=float)
+        area[block] = sweet_area_cm2(values, head_area, fraction)
+        finite = np.isfinite(values)
+        best[block] = np.where(
+            finite.any(axis=-1), np.where(finite, values, -np.inf).max(axis=-1), np.nan
+        )
+        centre_values[block] = values[:, :, centre]
     coords = {"design": dataset["design"].values, "support": dataset["support"].values}
     return xr.Dataset(
         {
@@ -154,12 +199,18 @@ def summary_metrics(
                 centre_values,
                 {"units": "1", "long_name": "rebound ratio at the face centre"},
             ),
+            "best_rebound_ratio": (
+                ("design", "support"),
+                best,
+                {"units": "1", "long_name": "highest rebound ratio over the face"},
+            ),
             "sweet_area_cm2": (
                 ("design", "support"),
                 area,
                 {
                     "units": "cm2",
-                    "long_name": f"face area with rebound ratio ≥ {fraction:g} × best",
+                    "long_name": f"sweet area: rebound ratio ≥ {fraction:g} × the face's best",
+                    "definition": SWEET_AREA_DEFINITION,
                 },
             ),
         },
@@ -168,7 +219,6 @@ def summary_metrics(
             "ball_speed_mps": speed,
             "racket_speed_mps": swing,
             "threshold_fraction": fraction,
-            "threshold_rebound_ratio": threshold.tolist(),
             "centre_point_x_m": float(x[centre]),
             "centre_point_y_m": float(y[centre]),
         },
