@@ -3,8 +3,9 @@ computed by the workflows, not the plotting): every CSV cell and run.json number
 runs against the files that code wrote (``tests/data/predict_before_issue23``, its README says
 how they were made and when to write them anew).
 
-Written anew once since: by the commit giving the built-in frame its shape (issue 22, fourth
-session, "frame's shape" in CHANGELOG.md) — a change of physics, not of the refactor."""
+Written anew since: by the commit giving the built-in frame its shape (issue 22, fourth
+session, "frame's shape" in CHANGELOG.md) and by the merge of issue 27's one hand (the built-in
+model sampling the handle's sides: ≈ 1e-6) — changes of physics, not of the refactor."""
 
 from __future__ import annotations
 
