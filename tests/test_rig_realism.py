@@ -112,6 +112,7 @@ def test_realistic_rig_round_trips_through_frf_and_identify(tmp_path: Path) -> N
         time_zero="record",
         response_direction=-3,
         driving_point=False,
+        binary=False,  # the text form, read below for its direction codes (binary by default)
         **SNR,
     )
     path = tmp_path / "rig" / "hammer_free.uff"
