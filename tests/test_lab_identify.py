@@ -64,7 +64,7 @@ def test_unscaled_model_is_refused_by_predict_only() -> None:
     assert model.scaling == "unscaled"
     assert "unscaled" in model.to_dict()["units"]["mode_shapes"]
     with pytest.raises(InputError, match=r"unscaled.*measure a driving point"):
-        racket_setup(None, modal=model)
+        racket_setup(None, modal_model=model)
 
 
 def test_not_a_true_driving_point_keeps_every_mode_unscaled() -> None:

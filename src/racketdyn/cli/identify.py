@@ -130,7 +130,6 @@ def _options(args: argparse.Namespace) -> dict[str, Any]:
             f"{band[0] * 1e3:g}–{band[1] * 1e3:g} Hz)? (give Hz)"
         )
     return {
-        "racket": args.racket,
         "geometry": args.geometry,
         "band_hz": band,
         "max_order": args.max_order,
@@ -138,7 +137,6 @@ def _options(args: argparse.Namespace) -> dict[str, Any]:
         "exclude_hz": [] if args.exclude is None else opt.parse_speeds("--exclude", args.exclude),
         "reference": args.reference,
         "ball_at": opt.parse_point("--ball-at", args.ball_at),
-        "command": opt.command_line(args),
     }
 
 
@@ -238,10 +236,9 @@ def run_identify(args: argparse.Namespace, console: Console) -> int:
         result = identify(
             args.frfs,
             args.out,
+            opt.setup_from_args(args, figures=identify_figures, progress=progress),
             support=args.support,
             names_from=args.names_from,
-            figures=identify_figures,
-            progress=progress,
             **_options(args),
         )
     assert result.identification is not None
@@ -256,7 +253,6 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.errors import InputError
     from racketdyn.plotting.steps import compare_figures
     from racketdyn.workflows.identify import run_compare as compare
-    from racketdyn.workflows.inputs import ball_from
 
     options = _options(args)
     ball_at = options.pop("ball_at")
@@ -275,24 +271,13 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
             "--support: compare takes the support from its two files (free, hand); --support "
             "is for --ball-at (both tests on one support)"
         )
-    ball, ball_defaults = ball_from(
-        args.ball_mass,
-        args.e_bg,
-        args.ball_law,
-        allow_implausible=args.allow_implausible,
-        e_bg_table=args.e_bg_table,
-    )
     with opt.progress_display(console) as progress:
         result = compare(
             args.free,
             args.hand,
             args.out,
-            speed=args.speed,
-            ball=ball,
-            defaults=ball_defaults,
-            allow_implausible=args.allow_implausible,
-            figures=compare_figures,
-            progress=progress,
+            opt.setup_from_args(args, figures=compare_figures, progress=progress),
+            speed=opt.one_number("--speed", args.speed),
             **options,
         )
     assert result.free is not None
@@ -336,10 +321,9 @@ def _run_compare_ball(
             args.free,
             args.hand,
             args.out,
+            opt.setup_from_args(args, figures=compare_ball_figures, progress=progress),
             ball_at=ball_at,
             support=args.support or "free",
-            figures=compare_ball_figures,
-            progress=progress,
             **options,
         )
     assert result.alone is not None
