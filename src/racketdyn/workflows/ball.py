@@ -79,8 +79,8 @@ def run_ball(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, ball uses the racket (its strings),
+        the ball and ``allow_implausible``; and the run (command, figures, progress).
     speeds : array_like
         Impact speeds, m/s.
     surfaces : sequence of {"rigid", "strings"}

@@ -112,8 +112,9 @@ def run_calibrate(
     fit : sequence of str
         Parameters to fit (:data:`racketdyn.impact.calibration.PARAMETERS`).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, calibrate uses the racket and its
+        modes, the ball, the hand, the string bed and ``allow_implausible`` (no figures); and
+        the run (command, figures, progress).
     holdout : sequence of int
         Rows held out of the fit, numbered from 1 (the first data row).
     method : {"approx", "transient"}

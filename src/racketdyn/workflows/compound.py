@@ -309,8 +309,8 @@ def run_compound(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, compound uses the racket and its
+        modes, the ball, the hand and the string bed; and the run (command, figures, progress).
     point : array_like (2,), optional
         Where the ball sits (x, y), m (default the centre of the string bed).
     supports : sequence of str

@@ -74,8 +74,8 @@ def run_contact(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, contact uses the racket (its head
+        outline); and the run (command, figures, progress).
     labels : sequence of str, optional
         A label per file (default: the file names' stems).
     geometry : path, optional

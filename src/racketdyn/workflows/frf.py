@@ -95,8 +95,8 @@ def run_frf(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, frf uses the racket (its head outline,
+        for the figures); and the run (command, figures, progress).
     geometry : path, optional
         Node coordinates if not in ``tests``.
     estimator : {"H1", "H2"}

@@ -288,8 +288,9 @@ def run_identify(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, identify uses the racket: its head
+        names the modes; with None, the built-in racket's, named only when the points lie on its
+        outline; and the run (command, figures, progress).
     support : {"free", "hand"}
         Support of the test.
     geometry, band_hz, max_order, pin_hz, exclude_hz, reference, ball_at, names_from
@@ -488,8 +489,8 @@ def run_compare(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, compare uses the racket, the ball of
+        the Fig. 15 check and ``allow_implausible``; and the run (command, figures, progress).
     geometry, band_hz, max_order, pin_hz, exclude_hz, reference
         As for :func:`identify_file`, for both.
     speed : float
@@ -681,8 +682,8 @@ def run_compare_ball(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, compare_ball uses the racket; and the
+        run (command, figures, progress).
     ball_at : sequence of float
         Where the ball sat (x, y), m (``--ball-at``).
     support : {"free", "hand"}

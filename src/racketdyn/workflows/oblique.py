@@ -114,8 +114,9 @@ def run_oblique(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, oblique uses the racket and its modes,
+        the ball, the hand, the string bed (the face centre's law or the impact point's own) and
+        ``allow_implausible``; and the run (command, figures, progress).
     speed : float
         Incoming ball speed, m/s.
     angles_deg : array_like

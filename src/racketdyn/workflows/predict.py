@@ -274,8 +274,9 @@ def run_predict(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, predict uses the racket and its modes,
+        the ball, the hand, the string bed (both models) and ``allow_implausible``; and the run
+        (command, figures, progress).
     speeds : array_like
         Incoming ball speeds, m/s.
     racket_speed : array_like

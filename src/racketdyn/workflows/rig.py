@@ -105,8 +105,8 @@ def run_rig(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, rig uses the racket and the ball of
+        ``ball_at``; and the run (command, figures, progress).
     support : {"free", "hand"} or sequence of them
         On a sponge, or held by a hand; both (``("free", "hand")``) test the racket twice into
         the one folder, as the paper does (``hammer_<support>.uff`` each).

@@ -74,8 +74,9 @@ def run_sweep_step(
     out : path
         Output folder (created if missing); run again to resume.
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, sweep uses the run only (the racket
+        and the rest come from the spec: ``figures(dataset, out)`` draws the summary figures);
+        and the run (command, figures, progress).
     engine : {"auto", "serial", "process", "dask-local", "dask"}
         Where tasks run; ``auto``: this process for a small sweep, else two processes.
     workers : int, optional

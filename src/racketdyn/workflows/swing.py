@@ -279,8 +279,9 @@ def run_swing(
     out : path
         Output folder (created if missing).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, swing uses the racket and its modes,
+        the ball, the hand, the string bed and ``allow_implausible``; and the run (command,
+        figures, progress).
     swing : Swing, optional
         The swing (default: :func:`swing_from` with no arguments, 56.9 N·m over 90°).
     speeds : array_like

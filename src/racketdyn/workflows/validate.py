@@ -282,8 +282,9 @@ def run_validate(
     measured : MeasuredRebound or path
         Measured rebound (a CSV file: :func:`racketdyn.io.read_measured`).
     setup : Setup
-        Racket, modes, ball, hand, string bed, checks and the run
-        (:class:`~racketdyn.workflows.setup.Setup`).
+        Of the :class:`~racketdyn.workflows.setup.Setup`, validate uses the racket and its
+        modes, the ball, the hand (with a ``hand`` row), the string bed and
+        ``allow_implausible``; and the run (command, figures, progress).
     calibration : path or dict, optional
         A ``calibration.json`` (calibrate's output) or ``{name: value}``: its values applied.
     engine : {"auto", "compiled", "reference"}
