@@ -181,7 +181,7 @@ def test_a_clean_peak_stable_in_too_few_orders_is_kept(
     # that keeps the 3-node twisting
     (row,) = [d for d in free.dropped_modes if abs(d.frequency_hz - 1893.4) < 2.0]
     assert row.stage == "unsettled"
-    assert f"--pin {row.frequency_hz:.1f} keeps it" in row.reason
+    assert f"`pin_hz` {row.frequency_hz:.1f} keeps it" in row.reason
 
 
 def test_identify_and_compare_give_a_mode_one_name(
@@ -220,7 +220,7 @@ def test_identify_and_compare_give_a_mode_one_name(
         frf_files["hand"], tmp_path / "alone", support="hand", setup=Setup(racket=racket_file)
     )
     assert alone.identification is not None
-    assert "--names-from" in alone.identification.model.metadata["naming"]
+    assert "`names_from`" in alone.identification.model.metadata["naming"]
 
 
 def test_a_name_holding_a_frequency_is_not_given_to_another_mode(

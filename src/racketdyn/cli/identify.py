@@ -166,8 +166,11 @@ def _listed(numbers: list[int]) -> str:
     )
 
 
-def print_modes(console: Console, identification: Identification) -> None:
-    """The identified modes as a table, with the fit quality and the modes dropped."""
+def print_modes(
+    console: Console, identification: Identification, parser: argparse.ArgumentParser
+) -> None:
+    """The identified modes as a table, with the fit quality and the modes dropped (the
+    library's words for its parameters said as the command's options)."""
     import numpy as np
     from rich.table import Table
 
@@ -199,7 +202,7 @@ def print_modes(console: Console, identification: Identification) -> None:
     said = ("constants", "edge", "merged", "unsettled", "line")  # the rest: noise's candidates
     later = [d for d in identification.dropped_modes if d.stage in said]
     for row in later:
-        opt.say(console, f"left out {row.frequency_hz:.2f} Hz: {row.reason}")
+        opt.say(console, f"left out {row.frequency_hz:.2f} Hz: {opt.in_flags(row.reason, parser)}")
     candidates = len(identification.dropped_modes) - len(later)
     if candidates:
         opt.say(
@@ -224,7 +227,7 @@ def print_modes(console: Console, identification: Identification) -> None:
         opt.say(console, coordinates_note(model), "bold")
     naming = model.metadata.get("naming")
     if naming:
-        opt.say(console, naming, "dim")
+        opt.say(console, opt.in_flags(naming, parser), "dim")
 
 
 def run_identify(args: argparse.Namespace, console: Console) -> int:
@@ -243,7 +246,7 @@ def run_identify(args: argparse.Namespace, console: Console) -> int:
         )
     assert result.identification is not None
     unused_note(console, result.identification.frfs)
-    print_modes(console, result.identification)
+    print_modes(console, result.identification, args.parser)
     opt.print_written(console, result.written)
     return 0
 
@@ -282,8 +285,8 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
         )
     assert result.free is not None
     assert result.hand is not None
-    print_modes(console, result.free)
-    print_modes(console, result.hand)
+    print_modes(console, result.free, args.parser)
+    print_modes(console, result.hand, args.parser)
     comparison = result.comparison
     if comparison is not None:
         for row in comparison.rows:
@@ -328,8 +331,8 @@ def _run_compare_ball(
         )
     assert result.alone is not None
     assert result.with_ball is not None
-    print_modes(console, result.alone)
-    print_modes(console, result.with_ball)
+    print_modes(console, result.alone, args.parser)
+    print_modes(console, result.with_ball, args.parser)
     ball = [r for r in result.rows if math.isnan(r["frequency_alone_hz"])]
     frame = [r for r in result.rows if math.isfinite(r["frequency_shift_percent"])]
     if ball:

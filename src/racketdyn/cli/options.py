@@ -352,7 +352,10 @@ PARAMETER_OPTIONS: dict[str, str] = {
     "method": "model",  # run_calibrate
     "force_range_n": "force_range",  # run_frf
     "force_window_s": "force_window",
-    "band_hz": "band",  # run_identify, run_compare
+    "exponential_window_s": "exp_window",
+    "band_hz": "band",  # run_identify, run_compare; modal.identify's dropped modes
+    "pin_hz": "pin",
+    "exclude_hz": "exclude",
     "force_snr_db": "force_snr",  # run_rig
     "response_snr_db": "response_snr",
     "pretrigger_s": "pretrigger",

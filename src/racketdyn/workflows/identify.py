@@ -184,9 +184,9 @@ def identify_file(
     )
     found, naming = name_if_racket(found, racket, racket_given, ball)
     if ball is not None and naming.startswith("modes numbered"):
-        naming += "; --ball-at unused: the ball's mode is named only among a racket's modes"
+        naming += "; `ball_at` unused: the ball's mode is named only among a racket's modes"
     if reference_model is not None and naming.startswith("modes numbered"):
-        naming += "; --names-from unused: names are given only among a racket's modes"
+        naming += "; `names_from` unused: names are given only among a racket's modes"
     elif reference_model is not None:
         renamed = name_after(found.model, reference_model)
         changed = sum(a != b for a, b in zip(renamed.names, found.model.names, strict=True))
@@ -204,7 +204,7 @@ def identify_file(
 
 HAND_COUNTS = (
     "; held, a racket's twisting modes are damped (ζ up to 10 %) and may be missed, and the "
-    "node counts above a missed mode are short: --names-from the free test's modal_model.json "
+    "node counts above a missed mode are short: `names_from` the free test's modal_model.json "
     "names the modes after their free MAC pairs, as compare does"
 )
 """What ``identify --support hand`` adds to its naming line without ``--names-from``."""
