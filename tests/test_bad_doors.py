@@ -18,6 +18,7 @@ from racketdyn.cli import main
 from racketdyn.errors import InputError
 from racketdyn.io import load_racket
 from racketdyn.workflows import run_predict
+from racketdyn.workflows.setup import Setup
 
 
 def _one_line(capsys: pytest.CaptureFixture[str], *words: str) -> str:
@@ -227,7 +228,7 @@ def test_report_refuses_a_racket_the_runs_were_not_computed_on(
 
     mine = replace(rd.default_racket(), name="mine", mass_kg=0.32)
     write_racket_toml(mine, tmp_path / "mine.toml")
-    run_predict(tmp_path / "p", racket=tmp_path / "mine.toml", grid=2)
+    run_predict(tmp_path / "p", grid=2, setup=Setup(racket=tmp_path / "mine.toml"))
     paper = Path(rd.__file__).parent / "data" / "kawazoe_2002.toml"
     assert main(["report", str(tmp_path / "p"), "--racket", str(paper)]) == 2
     _one_line(capsys, "--racket", "mass_kg 0.32 against 0.36", "mine")

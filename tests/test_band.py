@@ -97,10 +97,10 @@ def test_a_clear_mode_at_the_band_edge_is_named_with_the_option_that_keeps_it(
     edge = [d for d in found.dropped_modes if d.stage == "edge"]
     assert len(edge) == 1  # ... as one row, not the split clusters of one peak
     assert abs(edge[0].frequency_hz - FIFTH_HZ) < 5.0
-    assert "--band" not in edge[0].reason  # the FRFs end at 880 Hz: no band keeps it ...
+    assert "`band_hz`" not in edge[0].reason  # the FRFs end at 880 Hz: no band keeps it ...
     assert "880 Hz" in edge[0].reason
-    pin = float(edge[0].reason.split("--pin ")[1].split()[0])  # ... the pin it names does
-    warned = [r.getMessage() for r in caplog.records if "--pin" in r.getMessage()]
+    pin = float(edge[0].reason.split("`pin_hz` ")[1].split()[0])  # ... the pin it names does
+    warned = [r.getMessage() for r in caplog.records if "`pin_hz`" in r.getMessage()]
     assert len(warned) == 1
     assert "\n" not in warned[0]
     kept = identify(frfs, pin_hz=[pin])
@@ -112,7 +112,7 @@ def test_a_band_set_below_a_clear_mode_names_the_wider_band(tmp_path: Path) -> N
     found = identify(frfs, (40.0, 880.0))
     edge = [d for d in found.dropped_modes if d.stage == "edge"]
     assert len(edge) == 1
-    band = edge[0].reason.split("--band ")[1].split()[0].rstrip(";,.")
+    band = edge[0].reason.split("`band_hz` ")[1].split()[0].rstrip(";,.")
     low, high = (float(v) for v in band.split(","))
     assert low == 40.0
     assert 880.0 < high <= 1000.0
@@ -132,7 +132,7 @@ def test_the_edge_row_reaches_dropped_modes_csv_and_the_console(
     with (out / "dropped_modes.csv").open() as handle:
         rows = [r for r in csv.DictReader(handle) if r["stage"] == "edge"]
     assert len(rows) == 1
-    assert "--pin" in rows[0]["reason"]
+    assert "`pin_hz`" in rows[0]["reason"]  # the library's words in its file
 
 
 def test_noise_at_the_edges_is_not_called_a_mode(tmp_path: Path) -> None:
@@ -148,5 +148,5 @@ def test_no_band_beyond_the_analyser_bandwidth_is_suggested() -> None:
     frfs = replace(test.frfs, metadata={"bandwidth_hz": 880.0})  # fs = 2252.8 Hz
     edge = [d for d in identify(frfs).dropped_modes if d.stage == "edge"]
     assert len(edge) == 1
-    assert "--band" not in edge[0].reason
-    assert "--pin 87" in edge[0].reason
+    assert "`band_hz`" not in edge[0].reason
+    assert "`pin_hz` 87" in edge[0].reason

@@ -157,3 +157,14 @@ def test_workflows_never_load_presentation() -> None:
     assert "matplotlib" not in loaded
     assert not {m for m in loaded if m.startswith(("racketdyn.plotting", "racketdyn.report"))}
     assert not {m for m in loaded if m.startswith("racketdyn.cli")}
+
+
+def test_one_option_has_one_type_in_every_command() -> None:
+    """Issue 23: ``--racket-speed`` was declared three times with two types (text in predict,
+    a float in twist and oblique), ``--speed`` twice; each option is one declaration's type."""
+    kinds: dict[str, set[tuple[object, str]]] = {}
+    for sub in _subparsers().values():
+        for action in sub._actions:
+            if action.option_strings:
+                kinds.setdefault(action.dest, set()).add((action.type, type(action).__name__))
+    assert {dest: kind for dest, kind in kinds.items() if len(kind) > 1} == {}

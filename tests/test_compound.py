@@ -634,7 +634,7 @@ def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> No
     # ... but it says that a mode looks like one, and what to give
     naming = plain.identification.model.metadata["naming"]
     assert f"the mode at {model.frequency[k]:.1f} Hz moves the frame almost as a rigid" in naming
-    assert "--ball-at x,y" in naming
+    assert "`ball_at` x,y" in naming
     bare = run_identify(
         rig_frfs / "frf_alone" / "frfs.uff", rig_frfs / "id_alone", band_hz=(40.0, 850.0)
     )
@@ -1128,8 +1128,8 @@ def test_identify_hints_at_a_ball_on_a_racket_whose_head_is_not_the_built_in_one
     assert np.delete(share, k).max() < BALL_RIGID_SHARE
     hint = _looks_like_a_ball(truth, built_in, racket_given=False)
     assert f"the mode at {truth.frequency[k]:.1f} Hz moves the frame almost as a rigid" in hint
-    assert "--ball-at x,y" in hint
-    assert "--racket FILE" in hint
+    assert "`ball_at` x,y" in hint
+    assert "`racket` (a racket file)" in hint
     assert _looks_like_a_ball(truth, junior, racket_given=True)  # its own head finds it too
     alone = bare.modal_truth(hammer_points(junior)[0], max_frequency_hz=900.0)
     alone = alone.select(np.flatnonzero(alone.frequency > 40.0))

@@ -20,6 +20,7 @@ from racketdyn.cli import main
 from racketdyn.plotting import figures as figures_module
 from racketdyn.plotting.primitives import SUPPORT_STYLE
 from racketdyn.plotting.steps import compare_figures
+from racketdyn.workflows.setup import Setup
 
 
 @pytest.fixture
@@ -69,7 +70,7 @@ def test_compare_fig15_uses_the_runs_ball(
     logging.disable(logging.WARNING)
     try:
         result = run_compare(
-            frfs[0], frfs[1], tmp_path / "compare", ball=heavy, figures=compare_figures
+            frfs[0], frfs[1], tmp_path / "compare", setup=Setup(ball=heavy, figures=compare_figures)
         )
     finally:
         logging.disable(logging.NOTSET)
@@ -113,7 +114,7 @@ def test_swing_along_axis_redrawn_from_figures_nc(tmp_path: Path, caught: Drawn)
     ball = rd.Ball(mass_kg=0.0594)
     logging.disable(logging.WARNING)
     try:
-        result = run_swing(tmp_path, ball=ball, grid=3, figures=swing_figures)
+        result = run_swing(tmp_path, grid=3, setup=Setup(ball=ball, figures=swing_figures))
     finally:
         logging.disable(logging.NOTSET)
     curves = SwingAxisCurves.from_xarray(read_figure_data(tmp_path / FIGURES_FILE))
@@ -180,7 +181,7 @@ def predicted(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, D
             racket_speed=[0.0, 2.0, 4.0],
             grid=3,
             engine="compiled",
-            figures=predict_figures(),
+            setup=Setup(figures=predict_figures()),
         )
     finally:
         logging.disable(logging.NOTSET)

@@ -22,6 +22,7 @@ import pytest
 from racketdyn.plotting import registry
 from racketdyn.plotting.registry import CAPTION_DEFAULTS, FIGURES, of_file
 from racketdyn.report import CAPTIONS, SECTIONS
+from racketdyn.workflows.setup import Setup
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src" / "racketdyn"
@@ -127,7 +128,7 @@ def test_a_result_plots_its_registered_figures(tmp_path: Path) -> None:
 
     logging.disable(logging.WARNING)
     try:
-        result = run_predict(tmp_path, speeds=[20.0], grid=3, figures=None)
+        result = run_predict(tmp_path, speeds=[20.0], grid=3, setup=Setup(figures=None))
     finally:
         logging.disable(logging.NOTSET)
     assert not list(tmp_path.glob("*.png"))
@@ -155,8 +156,10 @@ def test_every_file_a_step_writes_is_its_registered_figure(tmp_path: Path) -> No
 
     logging.disable(logging.WARNING)
     try:
-        twist = run_twist(tmp_path / "twist", offsets_m=[-0.03, 0.0, 0.03], figures=twist_figures)
-        oblique = run_oblique(tmp_path / "oblique", figures=oblique_figures)
+        twist = run_twist(
+            tmp_path / "twist", offsets_m=[-0.03, 0.0, 0.03], setup=Setup(figures=twist_figures)
+        )
+        oblique = run_oblique(tmp_path / "oblique", setup=Setup(figures=oblique_figures))
     finally:
         logging.disable(logging.NOTSET)
     for step, result in (("twist", twist), ("oblique", oblique)):
@@ -194,7 +197,9 @@ def test_a_new_figure_is_its_draw_function_and_one_entry(
     monkeypatch.setitem(FIGURES, slotted.id, slotted)
     logging.disable(logging.WARNING)
     try:
-        result = run_predict(tmp_path / "p", speeds=[20.0], grid=3, figures=predict_figures())
+        result = run_predict(
+            tmp_path / "p", speeds=[20.0], grid=3, setup=Setup(figures=predict_figures())
+        )
     finally:
         logging.disable(logging.NOTSET)
     assert "fig99_new_figure.png" in {path.name for path in result.written}

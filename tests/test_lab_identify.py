@@ -64,7 +64,7 @@ def test_unscaled_model_is_refused_by_predict_only() -> None:
     assert model.scaling == "unscaled"
     assert "unscaled" in model.to_dict()["units"]["mode_shapes"]
     with pytest.raises(InputError, match=r"unscaled.*measure a driving point"):
-        racket_setup(None, modal=model)
+        racket_setup(None, modal_model=model)
 
 
 def test_not_a_true_driving_point_keeps_every_mode_unscaled() -> None:
@@ -291,7 +291,7 @@ def test_a_racket_measured_in_the_lab_x_z_plane_is_named_on_its_face() -> None:
     assert how.startswith(
         f"modes named from their shapes on the head of the built-in {racket.name}"
     )
-    assert "give --racket" in how
+    assert "give `racket`" in how
     _, how = name_if_racket(found, racket, racket_given=True)
     assert how == f"modes named from their shapes on the head of {racket.name}"
     assert named.model.names[0] == "2-node bending"
@@ -351,7 +351,7 @@ def test_another_rackets_points_named_on_the_built_in_head_say_so() -> None:
     found = identify(estimate_frfs(records, exponential_window_s=0.1).frfs, (40.0, 850.0))
     _, how = name_if_racket(found, built_in, racket_given=False)
     assert built_in.name in how
-    assert "give --racket" in how
+    assert "give `racket`" in how
     _, how = name_if_racket(found, own, racket_given=True)
     assert how == "modes named from their shapes on the head of trial 270 g racket"
 

@@ -71,7 +71,7 @@ def test_frfs_without_coordinates_are_identified(tmp_path: Path, case: str, caps
     assert not list(out.glob("fig5*"))
     # predict refuses the model in one line naming --geometry
     with pytest.raises(InputError, match=r"no node coordinates.*--geometry"):
-        racket_setup(None, modal=model)
+        racket_setup(None, modal_model=model)
     assert main(["predict", "--modal", str(out / "modal_model.json"), "--out", str(out / "p")]) == 2
     err = capsys.readouterr().err
     assert "--geometry" in err

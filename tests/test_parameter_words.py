@@ -60,3 +60,31 @@ def test_in_flags_maps_names_and_leaves_unknown_ones_plain() -> None:
     assert in_flags("`supports` pinned", parser) == "--support pinned"
     assert in_flags("`not_an_option` here", parser) == "not_an_option here"
     assert in_flags("no names", parser) == "no names"
+
+
+FLAGS_ALLOWED_BELOW_THE_CLI = {
+    "report/sections/calibration.py": "the report's how-to-run line: a command by nature",
+    "report/sections/contact.py": "the report's how-to-run line: a command by nature",
+    "report/sections/stabilisation.py": "the report's how-to-run line: a command by nature",
+    "plotting/registry.py": "a figure's caption in the report names the command that draws it",
+    "workflows/calibrate.py": "calibration.json's `calibrated_files` says the options carrying "
+    "the fitted values, on purpose (docs/develop.md, 'Errors name parameters')",
+}
+"""Files below the CLI that may write a flag, each with why (issue 23: none may elsewhere)."""
+
+
+def test_no_flag_is_written_below_the_cli_but_where_said() -> None:
+    """Issue 23's grep, ``grep -rn '"--' src/racketdyn | grep -v cli/``, as a test: a string
+    starting with a flag (``"--speed``; matplotlib's dashed line ``"--"`` is none)."""
+    import re
+
+    source = Path(__file__).resolve().parents[1] / "src" / "racketdyn"
+    found = {
+        path.relative_to(source).as_posix()
+        for path in source.rglob("*.py")
+        if path.relative_to(source).parts[0] != "cli"
+        and re.search(r"[\"']--[A-Za-z]", path.read_text(encoding="utf-8"))
+    }
+    assert found <= set(FLAGS_ALLOWED_BELOW_THE_CLI), sorted(
+        found - set(FLAGS_ALLOWED_BELOW_THE_CLI)
+    )

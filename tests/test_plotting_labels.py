@@ -23,6 +23,7 @@ from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.plotting import figures
 from racketdyn.rig.hammer import hammer_points
 from racketdyn.workflows.figure_data import paper_figures
+from racketdyn.workflows.setup import Setup
 
 
 @pytest.fixture(autouse=True)
@@ -169,9 +170,8 @@ def test_fig8a_tells_every_support_apart_and_says_which_coincide(
     # on the bed at its pull tension (as before issue 22: the played bed's 1.1 % is over 1 %)
     result = run_compound(
         tmp_path / "c",
-        racket=pull_tension_racket(),
         supports=("free", "pinned", "hand"),
-        ball=plate_ball,
+        setup=Setup(racket=pull_tension_racket(), ball=plate_ball),
     )
     shape = result.plot("compound_shape")  # the registry's figure, drawn from the result
     (ax,) = shape.axes

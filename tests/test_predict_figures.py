@@ -22,23 +22,24 @@ from racketdyn.cli import main
 from racketdyn.plotting.steps import predict_figures
 from racketdyn.racket import landmark_points
 from racketdyn.workflows import PredictResult, run_predict
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 
 @pytest.fixture
 def draw(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> Iterator[Callable[..., tuple[PredictResult, Drawn]]]:
-    """``draw(**run_predict keywords)`` → (result, figures by file name)."""
+    """``draw(setup=Setup(...), **run_predict keywords)`` → (result, figures by file name)."""
     caught: list[Drawn] = []
 
-    def run(**options: Any) -> tuple[PredictResult, Drawn]:
+    def run(setup: Setup = DEFAULT_SETUP, **options: Any) -> tuple[PredictResult, Drawn]:
         drawn: Drawn = {}
         catch_figures(monkeypatch, drawn)
         out = tmp_path / f"run{len(caught)}"
         caught.append(drawn)
         logging.disable(logging.WARNING)  # flagged rows log warnings; not the subject here
         try:
-            result = run_predict(out, figures=predict_figures(), **options)
+            result = run_predict(out, setup.replace(figures=predict_figures()), **options)
         finally:
             logging.disable(logging.NOTSET)
         return result, drawn
@@ -128,7 +129,7 @@ def test_face_maps_say_the_options(draw: Any) -> None:
 
 
 def test_face_maps_say_each_points_law(draw: Any) -> None:
-    _, drawn = draw(speeds=[20.0], supports=["free"], grid=4, string_bed="local")
+    _, drawn = draw(speeds=[20.0], supports=["free"], grid=4, setup=Setup(string_bed="local"))
     assert "each point's string-bed law" in drawn["face_maps.png"].get_suptitle()
 
 
@@ -225,7 +226,7 @@ def test_frame_vibration_marks_flagged_impacts(draw: Any) -> None:
 
 
 def test_rigid_racket_draws_no_vibration(draw: Any) -> None:
-    _, drawn = draw(speeds=[20.0], supports=["free"], grid=3, rigid=True)
+    _, drawn = draw(speeds=[20.0], supports=["free"], grid=3, setup=Setup(rigid=True))
     figure = drawn.get("fig14_frame_vibration.png")
     if figure is not None:
         assert not any(ax.get_lines() for ax in figure.axes)

@@ -37,6 +37,7 @@ from racketdyn.rig import (
     string_contact_time,
 )
 from racketdyn.rig.hammer import FRAME_PULSE_S
+from racketdyn.workflows.setup import Setup
 
 PAPER_FILE = Path(__file__).parents[1] / "src/racketdyn/data/kawazoe_2002.toml"
 EXPONENTIAL_WINDOW_S = 0.1
@@ -180,7 +181,7 @@ def test_a_clean_peak_stable_in_too_few_orders_is_kept(
     # that keeps the 3-node twisting
     (row,) = [d for d in free.dropped_modes if abs(d.frequency_hz - 1893.4) < 2.0]
     assert row.stage == "unsettled"
-    assert f"--pin {row.frequency_hz:.1f} keeps it" in row.reason
+    assert f"`pin_hz` {row.frequency_hz:.1f} keeps it" in row.reason
 
 
 def test_identify_and_compare_give_a_mode_one_name(
@@ -195,27 +196,31 @@ def test_identify_and_compare_give_a_mode_one_name(
     gives them."""
     from racketdyn.workflows.identify import run_compare, run_identify
 
-    compared = run_compare(frf_files["free"], frf_files["hand"], tmp_path / "c", racket=racket_file)
+    compared = run_compare(
+        frf_files["free"], frf_files["hand"], tmp_path / "c", setup=Setup(racket=racket_file)
+    )
     assert compared.free is not None
     assert compared.hand is not None
-    free = run_identify(frf_files["free"], tmp_path / "free", racket=racket_file)
+    free = run_identify(frf_files["free"], tmp_path / "free", setup=Setup(racket=racket_file))
     assert free.identification is not None
     assert free.identification.model.names == compared.free.model.names
     hand = run_identify(
         frf_files["hand"],
         tmp_path / "hand",
         support="hand",
-        racket=racket_file,
         names_from=tmp_path / "free" / "modal_model.json",
+        setup=Setup(racket=racket_file),
     )
     assert hand.identification is not None
     assert hand.identification.model.names == compared.hand.model.names
     model = hand.identification.model
     assert model.names[nearest(model, 1074.7)] == "5-node twisting"
     assert model.names[nearest(model, 1730.4)] == "7-node twisting"
-    alone = run_identify(frf_files["hand"], tmp_path / "alone", support="hand", racket=racket_file)
+    alone = run_identify(
+        frf_files["hand"], tmp_path / "alone", support="hand", setup=Setup(racket=racket_file)
+    )
     assert alone.identification is not None
-    assert "--names-from" in alone.identification.model.metadata["naming"]
+    assert "`names_from`" in alone.identification.model.metadata["naming"]
 
 
 def test_a_name_holding_a_frequency_is_not_given_to_another_mode(
@@ -257,7 +262,11 @@ def test_the_report_says_a_prediction_took_modes_of_unknown_kind(
     model.write_json(path)
     out = tmp_path / "run"
     run_predict(
-        out / "predict", racket=racket_file, modal=path, speeds=[20.0], supports=["free"], grid=3
+        out / "predict",
+        speeds=[20.0],
+        supports=["free"],
+        grid=3,
+        setup=Setup(racket=racket_file, modal_model=path),
     )
     page = " ".join(write_report(out).read_text(encoding="utf-8").split())
     glance = page.split("At a glance")[1].split("</ul>")[0]

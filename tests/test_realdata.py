@@ -169,7 +169,7 @@ def test_pyfrf_a_peak_far_above_the_noise_is_named_with_the_pin_that_keeps_it(
     if not _near(found.model.frequency, 4120.0, 4135.0):
         (row,) = [d for d in found.dropped_modes if abs(d.frequency_hz - 4128.0) < 5.0]
         assert row.stage == "unsettled"
-        pin = float(row.reason.split("--pin ")[1].split()[0])
+        pin = float(row.reason.split("`pin_hz` ")[1].split()[0])
         found = identify(_pyfrf_frfs(tmp_path), pin_hz=[pin])
     assert _near(found.model.frequency, 4120.0, 4135.0) == [pytest.approx(4127.6, abs=1.0)]
 
@@ -216,7 +216,7 @@ def _kept_or_named(found, frfs: FrfSet, low: float, high: float) -> list[float]:
     named = [d for d in found.dropped_modes if d.stage != "selection"]  # the noise's unnamed
     (row,) = [d for d in named if low < d.frequency_hz < high]
     assert row.stage == "edge"
-    band = row.reason.split("--band ")[1].split()[0].rstrip(";,.)")
+    band = row.reason.split("`band_hz` ")[1].split()[0].rstrip(";,.)")
     again = identify(frfs, tuple(float(v) for v in band.split(",")))  # type: ignore[arg-type]
     return _near(again.model.frequency, low, high)
 

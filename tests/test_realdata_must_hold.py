@@ -234,7 +234,7 @@ def test_a_clear_mode_is_identified_or_named(
             d
             for d in found.dropped_modes
             if abs(d.frequency_hz - f0) <= NAMED_RTOL * f0
-            and ("--band" in d.reason or "--pin" in d.reason)
+            and ("`band_hz`" in d.reason or "`pin_hz`" in d.reason)
         ]
         assert rows, f"{f0} Hz neither identified nor named with an option"
         return

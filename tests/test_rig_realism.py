@@ -33,6 +33,7 @@ from racketdyn.rig import (
     rig_model,
     simulate_hammer_test,
 )
+from racketdyn.workflows.setup import Setup
 
 BAND = (40.0, 850.0)
 SNR = {"force_snr_db": 50.0, "response_snr_db": 40.0}
@@ -107,13 +108,13 @@ def test_realistic_rig_round_trips_through_frf_and_identify(tmp_path: Path) -> N
 
     rig = run_rig(
         tmp_path / "rig",
-        racket=pull_tension_racket(),  # modes apart: the 0.05 % frequency check holds for all
         averages=4,
         time_zero="record",
         response_direction=-3,
         driving_point=False,
         binary=False,  # the text form, read below for its direction codes (binary by default)
         **SNR,
+        setup=Setup(racket=pull_tension_racket()),
     )
     path = tmp_path / "rig" / "hammer_free.uff"
     text = path.read_text()

@@ -37,6 +37,7 @@ from racketdyn.sweep import (
     sweet_area_resolution_cm2,
     variable_designs,
 )
+from racketdyn.workflows.setup import Setup
 
 assert_same_bits = sweep_faults.assert_same_bits
 
@@ -164,7 +165,7 @@ def test_the_engine_closes_before_the_store_is_finished(
     from racketdyn.workflows import run_sweep_step
 
     out = tmp_path / "step"
-    run_sweep_step(small_spec, out, engine="dask-local", workers=1, figures=None)
+    run_sweep_step(small_spec, out, engine="dask-local", workers=1, setup=Setup(figures=None))
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))
     assert "shutdown" in record["time_s"]
 

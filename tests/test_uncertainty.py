@@ -25,6 +25,7 @@ from racketdyn.impact.uncertainty import (
 )
 from racketdyn.io.racket_file import default_racket
 from racketdyn.io.uncertainty_file import read_spreads
+from racketdyn.workflows.setup import Setup
 
 RACKET = default_racket()
 CENTRE = (RACKET.head.centre_x_m, RACKET.head.centre_y_m)
@@ -602,7 +603,7 @@ def test_a_racket_file_without_its_frequency_says_the_120_hz_it_runs_at(tmp_path
     racket = tmp_path / "r.toml"
     racket.write_text("\n".join(lines) + "\n", encoding="utf-8")
     out = tmp_path / "run"
-    run_predict(out, racket=racket, speeds=[20.0], grid=2)
+    run_predict(out, speeds=[20.0], grid=2, setup=Setup(racket=racket))
     defaults = json.loads((out / "run.json").read_text())["defaults_used"]
     assert any("first bending frequency: 120 Hz" in d for d in defaults), defaults
     run_predict(tmp_path / "stated", speeds=[20.0], grid=2)  # the built-in racket states it

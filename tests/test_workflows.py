@@ -22,6 +22,7 @@ from racketdyn.workflows import (
     run_twist,
 )
 from racketdyn.workflows.run import StepResult
+from racketdyn.workflows.setup import Setup
 
 
 def _record(out: Path) -> dict[str, object]:
@@ -31,7 +32,9 @@ def _record(out: Path) -> dict[str, object]:
 
 def test_predict_writes_its_folder_and_returns_the_result(tmp_path: Path) -> None:
     racket = rd.default_racket()
-    result = run_predict(tmp_path, racket=racket, speeds=[20.0], supports=["free"], grid=3)
+    result = run_predict(
+        tmp_path, speeds=[20.0], supports=["free"], grid=3, setup=Setup(racket=racket)
+    )
 
     assert isinstance(result, PredictResult)
     assert result.written == [tmp_path / "impact.csv", tmp_path / "figures.nc"]
@@ -70,7 +73,7 @@ def test_predict_figures_come_from_the_hook_and_are_recorded(tmp_path: Path) -> 
         speeds=[20.0],
         supports=["free"],
         points=[[0.505, 0.0]],
-        figures=hook,
+        setup=Setup(figures=hook),
     )
     assert seen == [result]
     assert result.comparison is not None
@@ -115,7 +118,9 @@ def tests_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 def test_frf_writes_its_folder_and_returns_the_estimate(tests_file: Path, tmp_path: Path) -> None:
-    result = run_frf(tests_file, tmp_path, exponential_window_s=0.1, command=["racketdyn", "frf"])
+    result = run_frf(
+        tests_file, tmp_path, exponential_window_s=0.1, setup=Setup(command=["racketdyn", "frf"])
+    )
 
     assert isinstance(result, FrfResult)
     assert [p.name for p in result.written] == ["quality.csv", "frfs.uff"]
@@ -130,11 +135,13 @@ def test_frf_writes_its_folder_and_returns_the_estimate(tests_file: Path, tmp_pa
 
 
 def test_twist_and_oblique_from_python(tmp_path: Path) -> None:
-    twist = run_twist(tmp_path / "twist", offsets_m=[0.0, 0.04], supports=["free"], rigid=True)
+    twist = run_twist(
+        tmp_path / "twist", offsets_m=[0.0, 0.04], supports=["free"], setup=Setup(rigid=True)
+    )
     assert [p.name for p in twist.written] == ["twist.csv"]
     assert twist.curves[0].roll_angle_rad[0] == pytest.approx(0.0, abs=1e-12)
     assert twist.curves[0].roll_angle_rad[1] > 0.0
-    oblique = run_oblique(tmp_path / "oblique", angles_deg=[0.0, 30.0], rigid=True)
+    oblique = run_oblique(tmp_path / "oblique", angles_deg=[0.0, 30.0], setup=Setup(rigid=True))
     assert oblique.curve is not None
     assert oblique.curve.outgoing_spin_radps.shape == (2,)
     assert _record(tmp_path / "oblique")["outputs"] == ["oblique.csv", "run.json"]
@@ -158,7 +165,7 @@ def test_predict_takes_a_modal_model_object(tmp_path: Path) -> None:
     """Review of issue 11: `modal=` took a file only (a ModalModel raised a raw TypeError)."""
     racket = rd.default_racket()
     model = rd.modal_model_for(racket)
-    by_object = run_predict(tmp_path / "a", modal=model, speeds=[20.0], grid=3)
+    by_object = run_predict(tmp_path / "a", speeds=[20.0], grid=3, setup=Setup(modal_model=model))
     by_default = run_predict(tmp_path / "b", speeds=[20.0], grid=3)
     assert by_object.modal_model is model
     np.testing.assert_array_equal(by_object.result.rebound_ratio, by_default.result.rebound_ratio)
@@ -172,5 +179,7 @@ def test_predict_from_python_refuses_a_speed_in_kmh(tmp_path: Path) -> None:
     with pytest.raises(rd.InputError, match="did you give"):
         run_predict(tmp_path / "out", speeds=[90.0], grid=3)
     assert not (tmp_path / "out").exists()
-    unusual = run_predict(tmp_path / "out", speeds=[80.0], grid=3, allow_implausible=True)
+    unusual = run_predict(
+        tmp_path / "out", speeds=[80.0], grid=3, setup=Setup(allow_implausible=True)
+    )
     assert unusual.result.status.size == 2 * len(unusual.result.locations)

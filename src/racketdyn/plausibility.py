@@ -473,7 +473,7 @@ def check(
     value : float
         The value, in the input's SI unit.
     name : str
-        How the message names the input ("[racket].mass_kg", "--ball-mass").
+        How the message names the input ("[racket].mass_kg", "`mass_kg`").
     allow_implausible : bool
         Take a value outside the plausible range but inside the limits (logged).
     override : str

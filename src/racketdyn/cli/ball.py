@@ -66,20 +66,13 @@ def run(args: argparse.Namespace, console: Console) -> int:
     for name in surfaces:
         if name not in ("rigid", "strings"):
             raise InputError(f"--surface {name!r}: choose rigid, strings or rigid,strings")
-    ball, _, defaults = opt.ball_and_hand(args, ())
     with opt.progress_display(console) as progress:
         result = run_ball(
             args.out,
-            racket=args.racket,
-            ball=ball,
+            opt.setup_from_args(args, figures=ball_figures, progress=progress),
             speeds=speeds,
             surfaces=surfaces,
             tension_n=args.tension,
-            allow_implausible=args.allow_implausible,
-            defaults=defaults,
-            command=opt.command_line(args),
-            figures=None if args.no_figures else ball_figures,
-            progress=progress,
         )
     assert result.bounces is not None
     table = Table(

@@ -7,7 +7,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from racketdyn.cli import options as opt
-from racketdyn.cli.validate import add_measured, ball_hand
+from racketdyn.cli.validate import add_measured, hand_supports
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -74,8 +74,6 @@ def run(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.errors import InputError
     from racketdyn.workflows.calibrate import run_calibrate
 
-    opt.check_modes(args)
-    ball, hand, defaults = ball_hand(args)
     holdout = []
     if args.holdout:
         for item in opt.parse_list("--holdout", args.holdout):
@@ -87,21 +85,12 @@ def run(args: argparse.Namespace, console: Console) -> int:
             args.out,
             args.measured,
             opt.parse_list("--fit", args.fit),
-            racket=args.racket,
+            opt.setup_from_args(args, hand_supports(args), progress=progress),
             holdout=holdout,
             method=args.model,
             leave_one_out=not args.no_loo,
-            modal=args.modal,
-            rigid=args.rigid,
-            ball=ball,
-            hand=hand,
             engine=args.engine,
-            string_bed=args.string_bed,
             uncertainty=opt.uncertainty_from(args),
-            allow_implausible=args.allow_implausible,
-            defaults=defaults,
-            command=opt.command_line(args),
-            progress=progress,
         )
     cal = result.calibration
     assert cal is not None

@@ -68,25 +68,14 @@ def run(args: argparse.Namespace, console: Console) -> int:
     point = opt.parse_point("--point", args.point)
     plausible("preload_n", args.preload, "--preload", allow_implausible=args.allow_implausible)
     supports = opt.parse_list("--support", args.support)
-    opt.check_modes(args)
-    ball, hand, defaults = opt.ball_and_hand(args, supports)
     with opt.progress_display(console) as progress:
         result = run_compound(
             args.out,
-            racket=args.racket,
-            modal=args.modal,
-            rigid=args.rigid,
-            ball=ball,
+            opt.setup_from_args(args, supports, figures=compound_figures, progress=progress),
             point=point,
             supports=supports,
-            hand=hand,
             preload_n=args.preload,
             hammer=opt.parse_point("--hammer", args.hammer),
-            string_bed=args.string_bed,
-            defaults=defaults,
-            command=opt.command_line(args),
-            figures=None if args.no_figures else compound_figures,
-            progress=progress,
         )
     spring, ball = result.spring, result.ball
     assert spring is not None

@@ -41,12 +41,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
         result = run_contact(
             args.tests,
             args.out,
+            opt.setup_from_args(args, figures=contact_figures, progress=progress),
             labels=labels,
             geometry=args.geometry,
-            racket=args.racket,
-            command=opt.command_line(args),
-            figures=contact_figures,
-            progress=progress,
         )
     assert result.racket is not None
     for said in result.fewer_averages:

@@ -54,6 +54,7 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     from racketdyn.workflows.oblique import run_oblique
     from racketdyn.workflows.predict import run_predict
     from racketdyn.workflows.rig import run_rig
+    from racketdyn.workflows.setup import Setup
     from racketdyn.workflows.swing import run_swing
     from racketdyn.workflows.twist import run_twist
 
@@ -66,9 +67,9 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     identified = [*r, "--modal", str(modal)]
     result: list[tuple[str, list[str], Callable[[], object]]] = []
 
-    def step(label: str, argv: list[str], call: Callable[..., object]) -> None:
+    def step(label: str, argv: list[str], call: Callable[..., object], setup: Setup) -> None:
         command = ["racketdyn", *argv]
-        result.append((label, command, partial(call, command=command)))
+        result.append((label, command, partial(call, setup=setup.replace(command=command))))
 
     step(
         "virtual hammer tests, free and hand-held",
@@ -76,13 +77,13 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
         partial(
             run_rig,
             rig,
-            racket=racket,
             support=("free", "hand"),
             double_hits=DOUBLE_HITS,
             overloads=OVERLOADS,
             response_snr_db=RESPONSE_SNR_DB,
             force_snr_db=FORCE_SNR_DB,
         ),
+        Setup(racket=racket),
     )
     for support, folder, label in (("free", free, "free"), ("hand", hand, "hand-held")):
         tests = rig / f"hammer_{support}.uff"
@@ -93,94 +94,59 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
                 run_frf,
                 tests,
                 folder,
-                racket=racket,
                 exponential_window_s=EXP_WINDOW_S,
                 force_range_n=FORCE_RANGE_N,
-                figures=fig.frf_figures,
             ),
+            Setup(racket=racket, figures=fig.frf_figures),
         )
     both = [rig / "hammer_free.uff", rig / "hammer_hand.uff"]
     step(
         "contact times",
         ["contact", *map(str, both), "--labels", "free,hand", *r, "--out", str(out / "contact")],
-        partial(
-            run_contact,
-            both,
-            out / "contact",
-            labels=["free", "hand"],
-            racket=racket,
-            figures=fig.contact_figures,
-        ),
+        partial(run_contact, both, out / "contact", labels=["free", "hand"]),
+        Setup(racket=racket, figures=fig.contact_figures),
     )
     frfs = [free / "frfs.uff", hand / "frfs.uff"]
     step(
         "identification, free against hand-held",
         ["compare", *map(str, frfs), "--band", "40,850", *r, "--out", str(out / "compare")],
-        partial(
-            run_compare,
-            frfs[0],
-            frfs[1],
-            out / "compare",
-            racket=racket,
-            band_hz=BAND_HZ,
-            figures=fig.compare_figures,
-        ),
+        partial(run_compare, frfs[0], frfs[1], out / "compare", band_hz=BAND_HZ),
+        Setup(racket=racket, figures=fig.compare_figures),
     )
     # --model both adds ≈ 2 s with the compiled transient engine, ≈ 10 s with the scipy
     # reference (measured on the 2-core development machine, default 9 × 9 grid)
     step(
         "prediction with the identified free modes, both models",
         ["predict", *identified, "--model", "both", "--out", str(out / "predict")],
-        partial(
-            run_predict,
-            out / "predict",
-            racket=racket,
-            modal=modal,
-            model="both",
-            figures=fig.predict_figures(),
-        ),
+        partial(run_predict, out / "predict", model="both"),
+        Setup(racket=racket, modal_model=modal, figures=fig.predict_figures()),
     )
     # the three below add ≈ 1.5 s together (measured on the 2-core development machine)
     swing = ["--model", "approx", "--support", "pinned", "--speed", "20", "--grid", "9"]
     step(
         "swinging racket: outgoing speed and sweet spots",
         ["swing", *identified, *swing, "--out", str(out / "swing")],
-        partial(
-            run_swing,
-            out / "swing",
-            racket=racket,
-            modal=modal,
-            model="approx",
-            support="pinned",
-            speeds=[20.0],
-            grid=9,
-            figures=fig.swing_figures,
-        ),
+        partial(run_swing, out / "swing", model="approx", support="pinned", speeds=[20.0], grid=9),
+        Setup(racket=racket, modal_model=modal, figures=fig.swing_figures),
     )
     step(
         "twist against offset, free and hand-held",
         ["twist", *identified, "--support", "free,hand", "--out", str(out / "twist")],
-        partial(
-            run_twist,
-            out / "twist",
-            racket=racket,
-            modal=modal,
-            supports=["free", "hand"],
-            figures=fig.twist_figures,
-        ),
+        partial(run_twist, out / "twist", supports=["free", "hand"]),
+        Setup(racket=racket, modal_model=modal, figures=fig.twist_figures),
     )
     step(
         "oblique impacts: outgoing angle and spin",
         ["oblique", *identified, "--out", str(out / "oblique")],
-        partial(
-            run_oblique, out / "oblique", racket=racket, modal=modal, figures=fig.oblique_figures
-        ),
+        partial(run_oblique, out / "oblique"),
+        Setup(racket=racket, modal_model=modal, figures=fig.oblique_figures),
     )
     # the racket's own model, as the section compares its ball mode with the paper's (≈ 3 s)
     step(
         "the ball on the strings",
         ["compound", *r, "--out", str(out / "compound")],
-        partial(run_compound, out / "compound", racket=racket, figures=fig.compound_figures),
+        partial(run_compound, out / "compound"),
+        Setup(racket=racket, figures=fig.compound_figures),
     )
     return result
 

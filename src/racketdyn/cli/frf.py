@@ -68,15 +68,12 @@ def run(args: argparse.Namespace, console: Console) -> int:
         result = run_frf(
             args.tests,
             args.out,
+            opt.setup_from_args(args, figures=frf_figures, progress=progress),
             geometry=args.geometry,
-            racket=args.racket,
             estimator=args.estimator,
             force_window_s=args.force_window,
             exponential_window_s=args.exp_window,
             force_range_n=args.force_range,
-            command=opt.command_line(args),
-            figures=frf_figures,
-            progress=progress,
         )
     estimate = result.estimate
     assert estimate is not None

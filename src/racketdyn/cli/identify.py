@@ -130,7 +130,6 @@ def _options(args: argparse.Namespace) -> dict[str, Any]:
             f"{band[0] * 1e3:g}–{band[1] * 1e3:g} Hz)? (give Hz)"
         )
     return {
-        "racket": args.racket,
         "geometry": args.geometry,
         "band_hz": band,
         "max_order": args.max_order,
@@ -138,7 +137,6 @@ def _options(args: argparse.Namespace) -> dict[str, Any]:
         "exclude_hz": [] if args.exclude is None else opt.parse_speeds("--exclude", args.exclude),
         "reference": args.reference,
         "ball_at": opt.parse_point("--ball-at", args.ball_at),
-        "command": opt.command_line(args),
     }
 
 
@@ -168,8 +166,11 @@ def _listed(numbers: list[int]) -> str:
     )
 
 
-def print_modes(console: Console, identification: Identification) -> None:
-    """The identified modes as a table, with the fit quality and the modes dropped."""
+def print_modes(
+    console: Console, identification: Identification, parser: argparse.ArgumentParser
+) -> None:
+    """The identified modes as a table, with the fit quality and the modes dropped (the
+    library's words for its parameters said as the command's options)."""
     import numpy as np
     from rich.table import Table
 
@@ -201,7 +202,7 @@ def print_modes(console: Console, identification: Identification) -> None:
     said = ("constants", "edge", "merged", "unsettled", "line")  # the rest: noise's candidates
     later = [d for d in identification.dropped_modes if d.stage in said]
     for row in later:
-        opt.say(console, f"left out {row.frequency_hz:.2f} Hz: {row.reason}")
+        opt.say(console, f"left out {row.frequency_hz:.2f} Hz: {opt.in_flags(row.reason, parser)}")
     candidates = len(identification.dropped_modes) - len(later)
     if candidates:
         opt.say(
@@ -226,7 +227,7 @@ def print_modes(console: Console, identification: Identification) -> None:
         opt.say(console, coordinates_note(model), "bold")
     naming = model.metadata.get("naming")
     if naming:
-        opt.say(console, naming, "dim")
+        opt.say(console, opt.in_flags(naming, parser), "dim")
 
 
 def run_identify(args: argparse.Namespace, console: Console) -> int:
@@ -238,15 +239,14 @@ def run_identify(args: argparse.Namespace, console: Console) -> int:
         result = identify(
             args.frfs,
             args.out,
+            opt.setup_from_args(args, figures=identify_figures, progress=progress),
             support=args.support,
             names_from=args.names_from,
-            figures=identify_figures,
-            progress=progress,
             **_options(args),
         )
     assert result.identification is not None
     unused_note(console, result.identification.frfs)
-    print_modes(console, result.identification)
+    print_modes(console, result.identification, args.parser)
     opt.print_written(console, result.written)
     return 0
 
@@ -256,7 +256,6 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.errors import InputError
     from racketdyn.plotting.steps import compare_figures
     from racketdyn.workflows.identify import run_compare as compare
-    from racketdyn.workflows.inputs import ball_from
 
     options = _options(args)
     ball_at = options.pop("ball_at")
@@ -275,30 +274,19 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
             "--support: compare takes the support from its two files (free, hand); --support "
             "is for --ball-at (both tests on one support)"
         )
-    ball, ball_defaults = ball_from(
-        args.ball_mass,
-        args.e_bg,
-        args.ball_law,
-        allow_implausible=args.allow_implausible,
-        e_bg_table=args.e_bg_table,
-    )
     with opt.progress_display(console) as progress:
         result = compare(
             args.free,
             args.hand,
             args.out,
-            speed=args.speed,
-            ball=ball,
-            defaults=ball_defaults,
-            allow_implausible=args.allow_implausible,
-            figures=compare_figures,
-            progress=progress,
+            opt.setup_from_args(args, figures=compare_figures, progress=progress),
+            speed=opt.one_number("--speed", args.speed),
             **options,
         )
     assert result.free is not None
     assert result.hand is not None
-    print_modes(console, result.free)
-    print_modes(console, result.hand)
+    print_modes(console, result.free, args.parser)
+    print_modes(console, result.hand, args.parser)
     comparison = result.comparison
     if comparison is not None:
         for row in comparison.rows:
@@ -336,16 +324,15 @@ def _run_compare_ball(
             args.free,
             args.hand,
             args.out,
+            opt.setup_from_args(args, figures=compare_ball_figures, progress=progress),
             ball_at=ball_at,
             support=args.support or "free",
-            figures=compare_ball_figures,
-            progress=progress,
             **options,
         )
     assert result.alone is not None
     assert result.with_ball is not None
-    print_modes(console, result.alone)
-    print_modes(console, result.with_ball)
+    print_modes(console, result.alone, args.parser)
+    print_modes(console, result.with_ball, args.parser)
     ball = [r for r in result.rows if math.isnan(r["frequency_alone_hz"])]
     frame = [r for r in result.rows if math.isfinite(r["frequency_shift_percent"])]
     if ball:

@@ -54,12 +54,7 @@ def add(commands: Any) -> None:
         type=float,
         help="tangential stiffness k_t of strings and ball, N/m (default 1e4; inf: rigid grip)",
     )
-    p.add_argument(
-        "--racket-speed",
-        type=float,
-        default=0.0,
-        help="racket speed towards the ball, m/s (default 0)",
-    )
+    opt.add_racket_speed(p, many=False)
     p.add_argument(
         "--racket-tangential-speed",
         type=float,
@@ -85,43 +80,33 @@ def run(args: argparse.Namespace, console: Console) -> int:
 
     check_degrees("--angles", angles, allow_implausible=args.allow_implausible)
     point = opt.parse_point("--point", args.point)
-    opt.check_modes(args)
-    ball, hand, defaults = opt.ball_and_hand(args, [args.support])
+    speed = opt.one_number("--speed", args.speed)
+    racket_speed = opt.one_number("--racket-speed", args.racket_speed)
     with opt.progress_display(console) as progress:
         result = run_oblique(
             args.out,
-            racket=args.racket,
-            modal=args.modal,
-            rigid=args.rigid,
-            ball=ball,
-            speed=args.speed,
+            opt.setup_from_args(args, [args.support], figures=oblique_figures, progress=progress),
+            speed=speed,
             angles_deg=angles,
             spin_radps=args.spin,
             point=point,
             support=args.support,
             friction=args.friction,
             tangential_stiffness=args.tangential_stiffness,
-            racket_speed=args.racket_speed,
+            racket_speed=racket_speed,
             racket_tangential_speed=args.racket_tangential_speed,
-            hand=hand,
-            string_bed=args.string_bed,
-            allow_implausible=args.allow_implausible,
-            defaults=defaults,
-            command=opt.command_line(args),
-            figures=None if args.no_figures else oblique_figures,
-            progress=progress,
         )
     curve, contact, where = result.curve, result.contact, result.point
     assert curve is not None
     moving = ""  # the racket's motion is in every number: say it (issue 13)
-    if args.racket_speed or args.racket_tangential_speed:
-        moving = f", racket {args.racket_speed:g} m/s towards it"
+    if racket_speed or args.racket_tangential_speed:
+        moving = f", racket {racket_speed:g} m/s towards it"
         if args.racket_tangential_speed:
             moving += f" and {args.racket_tangential_speed:g} m/s along the face"
     opt.say(
         console,
         f"oblique impacts at x = {where[0] * 1e3:.0f} mm, y = {where[1] * 1e3:.0f} mm, "
-        f"ball {args.speed:g} m/s{moving}, spin {args.spin:g} rad/s, {result.support} → "
+        f"ball {speed:g} m/s{moving}, spin {args.spin:g} rad/s, {result.support} → "
         f"{result.out}",
     )
     table = Table(

@@ -269,15 +269,31 @@ def add_speed(parser: argparse.ArgumentParser, default: str, many: bool = True) 
             "m/s only with --allow-implausible; the contact model holds to 70 m/s of ball + "
             "racket speed)",
         )
-    else:
+    else:  # one type for one option: text, read by `one_number` (issue 23)
         parser.add_argument(
             "--speed",
-            type=float,
+            default=default,
             metavar="M/S",
-            default=float(default),
             help=f"incoming ball speed, m/s (default {default}; above 75 m/s only with "
             "--allow-implausible; the contact model holds to 70 m/s of ball + racket speed)",
         )
+
+
+def add_racket_speed(parser: argparse.ArgumentParser, many: bool = True) -> None:
+    """``--racket-speed``: the racket's speed towards the ball, m/s — one per ball speed
+    (``many``) or one; text either way (read by :func:`parse_speeds` or :func:`one_number`)."""
+    parser.add_argument(
+        "--racket-speed",
+        default="0",
+        metavar="M/S[,M/S...]" if many else "M/S",
+        help=(
+            "racket speed at the impact point towards the ball, m/s: one, or one per speed"
+            if many
+            else "racket speed towards the ball, m/s"
+        )
+        + " (default 0; above 55 m/s only with --allow-implausible; the contact model holds "
+        "to 70 m/s of ball + racket speed)",
+    )
 
 
 def add_support(parser: argparse.ArgumentParser, default: str, text: str, **kw: Any) -> None:
@@ -319,6 +335,7 @@ def add_no_figures(parser: argparse.ArgumentParser, what: str = "the CSV files")
 
 # --- parsing ----------------------------------------------------------------------------------
 PARAMETER_OPTIONS: dict[str, str] = {
+    "modal_model": "modal",  # workflows.setup.Setup
     "speeds": "speed",
     "supports": "support",
     "mass_kg": "ball_mass",  # workflows.inputs.ball_from
@@ -335,7 +352,10 @@ PARAMETER_OPTIONS: dict[str, str] = {
     "method": "model",  # run_calibrate
     "force_range_n": "force_range",  # run_frf
     "force_window_s": "force_window",
-    "band_hz": "band",  # run_identify, run_compare
+    "exponential_window_s": "exp_window",
+    "band_hz": "band",  # run_identify, run_compare; modal.identify's dropped modes
+    "pin_hz": "pin",
+    "exclude_hz": "exclude",
     "force_snr_db": "force_snr",  # run_rig
     "response_snr_db": "response_snr",
     "pretrigger_s": "pretrigger",
@@ -414,6 +434,16 @@ def parse_numbers(name: str, text: str, unit: str) -> list[float]:
     return numbers
 
 
+def one_number(name: str, text: str, unit: str = "m/s") -> float:
+    """One finite number (any sign) from an option's text."""
+    from racketdyn.errors import InputError
+
+    values = parse_numbers(name, text, unit)
+    if len(values) != 1:
+        raise InputError(f"{name} takes one value in {unit} (got {text!r})")
+    return values[0]
+
+
 def parse_point(name: str, text: str | None) -> tuple[float, float] | None:
     """One point ``x,y`` in m (None stays None: the command's default point)."""
     from racketdyn.errors import InputError
@@ -451,6 +481,52 @@ def ball_and_hand(args: argparse.Namespace, supports: Sequence[str]) -> tuple[An
         damping_ns_per_m=getattr(args, "hand_damping", None),
     )
     return ball, hand, [*ball_defaults, *hand_defaults]
+
+
+def setup_from_args(
+    args: argparse.Namespace,
+    supports: Sequence[str] = (),
+    *,
+    figures: Any = None,
+    progress: Progress | None = None,
+    defaults: Sequence[str] = (),
+) -> Any:
+    """The :class:`~racketdyn.workflows.setup.Setup` of a command's options: the one place
+    where options become the set-up's fields (``--modal`` → ``modal_model``, ``--ball-mass``,
+    ``--e-bg``, ``--e-bg-table``, ``--ball-law`` → ``ball``, the hand's options → ``hand``,
+    ``--no-figures`` → no ``figures``).  An option the command lacks leaves its field's default.
+
+    Parameters
+    ----------
+    args : Namespace
+        The parsed options.
+    supports : sequence of str
+        The command's supports (the hand is built for ``hand`` only).
+    figures : callable, optional
+        The command's figure hook, dropped with ``--no-figures``.
+    progress : callable, optional
+        The progress display.
+    defaults : sequence of str
+        Defaults the command filled in itself, said in run.json before the ball's and hand's.
+    """
+    from racketdyn.workflows.setup import Setup
+
+    fields: dict[str, Any] = {"defaults": tuple(defaults)}
+    if hasattr(args, "modal"):
+        check_modes(args)
+        fields.update(modal_model=args.modal, rigid=args.rigid)
+    if hasattr(args, "ball_mass"):
+        ball, hand, ball_defaults = ball_and_hand(args, supports)
+        fields.update(ball=ball, hand=hand, defaults=(*defaults, *ball_defaults))
+    for name in ("racket", "string_bed", "allow_implausible"):
+        if hasattr(args, name):
+            fields[name] = getattr(args, name)
+    return Setup(
+        **fields,
+        command=tuple(command_line(args)),
+        figures=None if getattr(args, "no_figures", False) else figures,
+        progress=progress,
+    )
 
 
 def check_modes(args: argparse.Namespace) -> None:

@@ -29,13 +29,7 @@ def add(commands: Any) -> None:
     )
     opt.add_racket_and_ball(p)
     opt.add_speed(p, "10,20,30")
-    p.add_argument(
-        "--racket-speed",
-        default="0",
-        help="racket speed at the impact point towards the ball, m/s: one, or one per speed "
-        "(default 0; above 55 m/s only with --allow-implausible; the contact model holds to "
-        "70 m/s of ball + racket speed)",
-    )
+    opt.add_racket_speed(p)
     p.add_argument(
         "--model",
         choices=opt.MODELS,
@@ -102,40 +96,33 @@ def run(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.plotting.steps import predict_figures
     from racketdyn.workflows.predict import check_supports, run_predict, transient_csv_name
 
-    opt.check_modes(args)
     speeds = opt.parse_speeds("--speed", args.speed)
     racket_speed = opt.parse_speeds("--racket-speed", args.racket_speed)
     supports = check_supports(opt.parse_list("--support", args.support), args.model)
-    ball, hand, defaults = opt.ball_and_hand(args, supports)
     uncertainty = opt.uncertainty_from(args)
     show = None if args.show is None else opt.parse_numbers("--show", args.show, "m/s")
     with opt.progress_display(console) as progress:
         result = run_predict(
             args.out,
-            racket=args.racket,
-            modal=args.modal,
-            rigid=args.rigid,
-            ball=ball,
+            opt.setup_from_args(
+                args,
+                supports,
+                figures=predict_figures(lambda s: progress(s, 0, 0)),
+                progress=progress,
+            ),
             speeds=speeds,
             racket_speed=racket_speed,
             supports=supports,
             model=args.model,
             engine=args.engine,
-            hand=hand,
             points=args.points,
             grid=args.grid,
             stiffness_reading=args.stiffness_reading,
             vibration_charge=args.vibration_charge,
             include_string_bed=args.include_string_bed,
-            string_bed=args.string_bed,
             uncertainty=uncertainty,
             workers=args.workers,
             show=show,
-            allow_implausible=args.allow_implausible,
-            defaults=defaults,
-            command=opt.command_line(args),
-            figures=None if args.no_figures else predict_figures(lambda s: progress(s, 0, 0)),
-            progress=progress,
         )
     table = result.result
     console.print(

@@ -123,7 +123,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     with opt.progress_display(console) as progress:
         result = run_rig(
             args.out,
-            racket=args.racket,
+            opt.setup_from_args(args, progress=progress),
             support=opt.parse_list("--support", args.support),
             averages=args.averages,
             double_hits=args.double_hits,
@@ -139,8 +139,6 @@ def run(args: argparse.Namespace, console: Console) -> int:
             driving_point=not args.no_driving_point,
             lab_plane=args.lab_plane,
             layout=args.layout.replace("-", " "),
-            command=opt.command_line(args),
-            progress=progress,
         )
     for support in result.supports:
         records, truth, faults = (

@@ -134,13 +134,11 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         result = run_sweep_step(
             spec,
             args.out,
+            opt.setup_from_args(args, figures=sweep_figures, progress=progress),
             engine=engine,  # type: ignore[arg-type]
             workers=workers,
             scheduler=args.scheduler,
-            figures=None if args.no_figures else sweep_figures,
-            progress=progress,
             task_timeout=args.task_timeout,
-            command=opt.command_line(args),
         )
     record, out = result.record, result.out
     console.print(

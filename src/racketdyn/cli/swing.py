@@ -72,8 +72,6 @@ def run(args: argparse.Namespace, console: Console) -> int:
 
     speeds = opt.parse_speeds("--speed", args.speed)
     support = one_support(args.support, args.model == "transient")
-    opt.check_modes(args)
-    ball, hand, defaults = opt.ball_and_hand(args, [support])
     swing, swing_defaults = swing_from(
         args.torque,
         args.swing_angle_deg,
@@ -84,24 +82,20 @@ def run(args: argparse.Namespace, console: Console) -> int:
     with opt.progress_display(console) as progress:
         result = run_swing(
             args.out,
-            racket=args.racket,
-            modal=args.modal,
-            rigid=args.rigid,
-            ball=ball,
+            opt.setup_from_args(
+                args,
+                [support],
+                figures=swing_figures,
+                progress=progress,
+                defaults=swing_defaults,
+            ),
             swing=swing,
             speeds=speeds,
             support=support,
             model=args.model,
-            hand=hand,
-            allow_implausible=args.allow_implausible,
             grid=args.grid,
-            string_bed=args.string_bed,
             uncertainty=opt.uncertainty_from(args),
             workers=args.workers,
-            defaults=[*swing_defaults, *defaults],
-            command=opt.command_line(args),
-            figures=None if args.no_figures else swing_figures,
-            progress=progress,
         )
     assert result.swing_result is not None
     assert result.racket is not None

@@ -38,12 +38,7 @@ def add(commands: Any) -> None:
         "that starts with a minus sign needs the = form: --offsets=-0.05,0,0.05",
     )
     opt.add_speed(p, "25", many=False)
-    p.add_argument(
-        "--racket-speed",
-        type=float,
-        default=0.0,
-        help="racket speed towards the ball, m/s (default 0)",
-    )
+    opt.add_racket_speed(p, many=False)
     opt.add_support(p, "free", "free, hand, pinned, or several: free,hand (one line each)")
     opt.add_string_bed(p)
     opt.add_no_figures(p, "twist.csv")
@@ -61,31 +56,20 @@ def run(args: argparse.Namespace, console: Console) -> int:
 
     offsets = opt.parse_numbers("--offsets", args.offsets, "offsets from the long axis in m")
     supports = opt.parse_list("--support", args.support)
-    opt.check_modes(args)
-    ball, hand, defaults = opt.ball_and_hand(args, supports)
+    speed = opt.one_number("--speed", args.speed)
     with opt.progress_display(console) as progress:
         result = run_twist(
             args.out,
-            racket=args.racket,
-            modal=args.modal,
-            rigid=args.rigid,
-            ball=ball,
+            setup=opt.setup_from_args(args, supports, figures=twist_figures, progress=progress),
             x_m=args.x,
             offsets_m=offsets,
-            speed=args.speed,
-            racket_speed=args.racket_speed,
+            speed=speed,
+            racket_speed=opt.one_number("--racket-speed", args.racket_speed),
             supports=supports,
-            hand=hand,
-            string_bed=args.string_bed,
-            allow_implausible=args.allow_implausible,
-            defaults=defaults,
-            command=opt.command_line(args),
-            figures=None if args.no_figures else twist_figures,
-            progress=progress,
         )
     opt.say(
         console,
-        f"twist at x = {result.curves[0].x_m * 1e3:.0f} mm, ball {args.speed:g} m/s: "
+        f"twist at x = {result.curves[0].x_m * 1e3:.0f} mm, ball {speed:g} m/s: "
         f"{opt.plural(len(offsets), 'offset')} × "
         f"{opt.plural(len(supports), 'support')} → {result.out}",
     )

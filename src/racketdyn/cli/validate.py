@@ -53,12 +53,11 @@ def add(commands: Any) -> None:
     p.set_defaults(handler=run)
 
 
-def ball_hand(args: argparse.Namespace) -> tuple[Any, Any, list[str]]:
-    """The ball and, with a hand option (--hand-arm-mass, --hand-stiffness, --hand-damping),
-    the hand."""
+def hand_supports(args: argparse.Namespace) -> tuple[str, ...]:
+    """``("hand",)`` with a hand option (--hand-arm-mass, --hand-stiffness, --hand-damping):
+    the hand is built; else none (the measured file's supports choose)."""
     given = any(getattr(args, name) is not None for name in opt.HAND_OPTIONS)
-    supports = ("hand",) if given else ()
-    return opt.ball_and_hand(args, supports)
+    return ("hand",) if given else ()
 
 
 def run(args: argparse.Namespace, console: Console) -> int:
@@ -68,28 +67,18 @@ def run(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.plotting.steps import validate_figures
     from racketdyn.workflows.validate import run_validate
 
-    opt.check_modes(args)
-    ball, hand, defaults = ball_hand(args)
     uncertainty = opt.uncertainty_from(args)
     with opt.progress_display(console) as progress:
         result = run_validate(
             args.out,
             args.measured,
-            racket=args.racket,
+            opt.setup_from_args(
+                args, hand_supports(args), figures=validate_figures, progress=progress
+            ),
             calibration=args.calibration,
-            modal=args.modal,
-            rigid=args.rigid,
-            ball=ball,
-            hand=hand,
             engine=args.engine,
-            string_bed=args.string_bed,
             uncertainty=uncertainty,
             workers=args.workers,
-            allow_implausible=args.allow_implausible,
-            defaults=defaults,
-            command=opt.command_line(args),
-            figures=None if args.no_figures else validate_figures,
-            progress=progress,
         )
     table = Table(
         title=opt.plain(f"{opt.plural(len(result.measured or ()), 'measured row')} → {result.out}")

@@ -202,8 +202,8 @@ def estimate_frfs(
     time = records.time
     record_s = float(time[-1] - time[0]) + dt
     for option, window in (
-        ("--force-window", force_window_s),
-        ("--exp-window", exponential_window_s),
+        ("`force_window_s`", force_window_s),
+        ("`exponential_window_s`", exponential_window_s),
     ):
         if window is not None and window > _WINDOW_LIMIT * record_s:
             raise InputError(

@@ -112,7 +112,7 @@ is kept when the fit near it, with the kept modes, is at least this many times w
 it (:func:`fit_gain`): the data hold its peak, only its poles wander over the orders.  A pole
 of noise scores 1.0; the trial racket's 3-node twisting at 665 Hz, 14 Hz below its membrane,
 stable in 10 of 60 orders, 5.7 (issue 25 item 8).  Between :data:`FIT_GAIN_MIN` and this, the
-candidate is named ``unsettled`` with the ``--pin`` that keeps it."""
+candidate is named ``unsettled`` with the ``pin_hz`` that keeps it."""
 HEADER_DIGITS_RTOL = 1e-5
 """A band top this far (relative) above the last line is the last line: the UFF header keeps
 the step with 6 significant digits (E13.5), so a 1000 Hz export reads 999.997 Hz."""
@@ -148,7 +148,7 @@ def _checked_band(frfs: FrfSet, band: tuple[float, float]) -> tuple[float, float
     if not 0 <= low < high <= last:
         raise InputError(
             f"{frfs.source}: band {low:g}–{high:g} Hz must lie within the FRFs' "
-            f"{float(frfs.frequency[0]):g}–{last:.7g} Hz (their last line); give --band "
+            f"{float(frfs.frequency[0]):g}–{last:.7g} Hz (their last line); give `band_hz` "
             f"LOW,HIGH inside it"
         )
     return (low, high)
@@ -161,10 +161,10 @@ def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]
     half-power width) keeps the fit's computational poles out; a mode of
     the data there (stable in more than three orders, peak within 20 dB of the kept modes',
     :data:`EDGE_CLEAR`) is not dropped silently.  Clusters of one peak split by the edge are
-    one row (the strongest).  The reason names ``--band LOW,HIGH`` when the FRFs' bandwidth
+    one row (the strongest).  The reason names ``band_hz`` (low, high) when the FRFs' bandwidth
     (:attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`: lines above it are the
     anti-alias filter's roll-off) reaches far enough to put the mode out of the margin, else
-    ``--pin F``.
+    ``pin_hz`` [F].
     """
     low, high = band
     spacing = float(frfs.frequency[1] - frfs.frequency[0])
@@ -193,19 +193,19 @@ def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]
             edge = f"the band's top {high:g} Hz"
             new = float(np.ceil(wanted / 5.0) * 5.0)
             fits = new <= float(frfs.bandwidth_hz)
-            option = f"--band {low:g},{new:g}"
+            option = f"`band_hz` {low:g},{new:g}"
             end = f"the FRFs' bandwidth ends at {float(frfs.bandwidth_hz):.6g} Hz"
         else:
             wanted = f - room
             edge = f"the band's bottom {low:g} Hz"
             new = float(np.floor(wanted / 5.0) * 5.0)
             fits = new >= float(frfs.frequency[0])
-            option = f"--band {new:g},{high:g}"
+            option = f"`band_hz` {new:g},{high:g}"
             end = f"the FRFs start at {float(frfs.frequency[0]):.6g} Hz"
         keep = (
             f"{option} keeps it"
             if fits
-            else f"{end}: --pin {f:.1f} keeps it (fitted with part of its peak beyond the data)"
+            else f"{end}: `pin_hz` {f:.1f} keeps it (fitted with part of its peak beyond the data)"
         )
         rows.append(
             replace(
@@ -226,7 +226,7 @@ def _missed_peaks(
     selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float], max_order: int
 ) -> SelectedPoles:
     """Clear peaks of the data near the band's edges that no mode or row explains: one row
-    each (stage ``edge``) naming the ``--band`` that keeps the mode, tried before it is named.
+    each (stage ``edge``) naming the ``band_hz`` that keeps the mode, tried before it is named.
 
     Over a band many times wider than a mode's distance from its edge the fit may find no
     stable pole there at all, so :func:`_edge_modes` has nothing to name.  The data are
@@ -304,7 +304,7 @@ def _missed_peaks(
                 f"a clear peak of the data at {peak:.1f} Hz ({20 * prominence:.0f} dB above "
                 f"its surroundings, {peak - low if bottom else high - peak:.3g} Hz from the "
                 f"band's {'bottom' if bottom else 'top'}) where the fit over {low:g}–{high:g} "
-                f"Hz finds no stable pole: too near the edge of so wide a band; --band "
+                f"Hz finds no stable pole: too near the edge of so wide a band; `band_hz` "
                 f"{tried[0]:g},{tried[1]:g} keeps it (there {mode[0]:.2f} Hz, ζ "
                 f"{100 * mode[1]:.2g} %)",
             )
@@ -353,7 +353,7 @@ def _named_rows(selected: SelectedPoles) -> SelectedPoles:
     - ``unsettled`` when it was stable in too few orders (but more than three) while its peak
       is at least the median kept mode's and does not overlap a kept mode's (their half-power
       widths apart): a clear peak whose poles move from order to order (pyFRF's 4128 Hz,
-      10⁵ × the noise, stable in 6 of 60 orders); its row names the ``--pin`` that keeps it.
+      10⁵ × the noise, stable in 6 of 60 orders); its row names the ``pin_hz`` that keeps it.
     """
     reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
     width = 2 * np.maximum(selected.damping_ratio, 0.0) * selected.frequency
@@ -393,7 +393,7 @@ def _named_rows(selected: SelectedPoles) -> SelectedPoles:
                     reason=(
                         f"a clear peak ({d.peak_to_noise:.2g} × the noise, the kept modes' "
                         f"median {reference:.2g}) whose poles move from order to order: "
-                        f"{d.reason}; --pin {d.frequency_hz:.1f} keeps it"
+                        f"{d.reason}; `pin_hz` {d.frequency_hz:.1f} keeps it"
                     ),
                 )
             )
@@ -418,7 +418,7 @@ def _clear_peaks(
     as :func:`racketdyn.modal.poles.select_poles` merges) is fitted with the kept modes (one
     per peak: the one stable in most orders).  With a :func:`fit_gain` of
     :data:`CLEAR_PEAK_GAIN` or more it is kept, as a pin would keep it (not marked pinned);
-    with :data:`FIT_GAIN_MIN` or more it is an ``unsettled`` row naming the ``--pin`` that
+    with :data:`FIT_GAIN_MIN` or more it is an ``unsettled`` row naming the ``pin_hz`` that
     keeps it.  A close pair whose lower mode only a few orders resolve (a
     twisting mode 14 Hz below a membrane mode) lost that mode, and every mode of its kind
     above it was named a node short (issue 25 item 8).
@@ -484,7 +484,7 @@ def _clear_peaks(
                     fit_gain=gain,
                     reason=(
                         f"a peak of the data (the fit near it {gain:.2g} × better with it) "
-                        f"whose poles move from order to order: {d.reason}; --pin "
+                        f"whose poles move from order to order: {d.reason}; `pin_hz` "
                         f"{d.frequency_hz:.1f} keeps it"
                     ),
                 )

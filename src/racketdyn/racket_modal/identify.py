@@ -144,7 +144,7 @@ def name_if_racket(
     model = identification.model
     if not model.has_locations:
         return identification, (
-            "modes numbered: the points have no coordinates (give --geometry to name a "
+            "modes numbered: the points have no coordinates (give `geometry` to name a "
             "racket's modes)"
         )
     face = model.locations
@@ -167,7 +167,7 @@ def name_if_racket(
             )
     if not (racket_given or looks_like_racket(face, racket)):
         return identification, (
-            "modes numbered: the points are not on a racket's outline (give --racket to name "
+            "modes numbered: the points are not on a racket's outline (give `racket` to name "
             "a racket's modes)"
         )
     reason = naming_evidence(identification.model, racket.head)
@@ -179,7 +179,7 @@ def name_if_racket(
     else:  # the default racket: say so, a user's own racket may merely lie near its outline
         sentence = (
             f"modes named from their shapes on the head of the built-in {racket.name}, whose "
-            "outline the points fit; give --racket to name them on your racket's head"
+            "outline the points fit; give `racket` to name them on your racket's head"
         )
     if ball_at is None:
         return named, sentence + _looks_like_a_ball(named.model, racket, racket_given)
@@ -196,8 +196,8 @@ def name_if_racket(
     return named, (
         f"{sentence}; no mode of the ball on the strings found: no mode's frame shape is more "
         f"than {BALL_RIGID_SHARE:.0%} a rigid-body motion (largest {best:.0%}; "
-        + ("" if racket_given else "give --racket FILE for your racket's head, ")
-        + "widen --band or measure more frame points)"
+        + ("" if racket_given else "give `racket` (a racket file) for your racket's head, ")
+        + "widen `band_hz` or measure more frame points)"
     )
 
 
@@ -223,7 +223,7 @@ def _looks_like_a_ball(model: ModalModel, racket: Racket, racket_given: bool = T
     if not np.any(np.isfinite(share)) or float(np.nanmax(share)) <= BALL_RIGID_SHARE:
         return ""
     k = int(np.nanargmax(share))
-    give = "--ball-at x,y" if racket_given else "--ball-at x,y and --racket FILE"
+    give = "`ball_at` x,y" if racket_given else "`ball_at` x,y and `racket` (a racket file)"
     return (
         f"; but the mode at {model.frequency[k]:.1f} Hz moves the frame almost as a rigid body "
         f"({share[k]:.0%}), as a ball or a mass on the strings makes: if one was on, give "

@@ -30,10 +30,14 @@ What each step's figures draw is computed by the step (:mod:`racketdyn.workflows
 ``to_xarray``/``from_xarray``) and written to its folder's ``figures.nc``
 (:func:`read_figure_data` reads it back).
 
+What every step shares — the racket and its modes, the ball, the hand, the string bed, the
+plausibility override, the command, the figure hook and the progress display — travels in one
+frozen :class:`Setup` (:mod:`racketdyn.workflows.setup`), documented there once.
+
 Example
 -------
->>> from racketdyn.workflows import run_predict
->>> result = run_predict("out", speeds=[20.0], grid=3)  # doctest: +SKIP
+>>> from racketdyn.workflows import Setup, run_predict
+>>> result = run_predict("out", Setup(rigid=True), speeds=[20.0], grid=3)  # doctest: +SKIP
 >>> result.written  # doctest: +SKIP
 [PosixPath('out/impact.csv')]
 
@@ -75,6 +79,7 @@ if TYPE_CHECKING:
     from racketdyn.workflows.predict import PredictResult, run_predict
     from racketdyn.workflows.rig import RigResult, run_rig
     from racketdyn.workflows.run import StepResult
+    from racketdyn.workflows.setup import Setup
     from racketdyn.workflows.sweep import SweepResult, run_sweep_step
     from racketdyn.workflows.swing import SwingStepResult, run_swing
     from racketdyn.workflows.twist import TwistResult, run_twist
@@ -107,6 +112,7 @@ _WHERE = {
     "PredictResult": "predict",
     "RigResult": "rig",
     "StepResult": "run",
+    "Setup": "setup",
     "SweepResult": "sweep",
     "SwingStepResult": "swing",
     "TwistResult": "twist",
@@ -142,6 +148,7 @@ __all__ = [
     "PredictResult",
     "PulseSpectra",
     "RigResult",
+    "Setup",
     "StepResult",
     "SweepResult",
     "SwingAxisCurves",

@@ -8,7 +8,7 @@ comes from the caller's hook.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -22,21 +22,18 @@ from racketdyn.ball import (
     ITF_FORWARD_DEFORMATION_M,
     ITF_FORWARD_LOAD_N,
     STATIC_WALL_STIFFNESS_N_PER_M,
-    Ball,
     default_ball_law,
 )
 from racketdyn.contact import string_bed_cor
 from racketdyn.impact.bounce import SURFACES, BallBounces, ball_bounces
 from racketdyn.plausibility import check, check_speeds
-from racketdyn.workflows.inputs import RacketInput, ball_or_default, load_racket_input
+from racketdyn.workflows.inputs import load_racket_input
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
-    command_record,
-    finish_run,
     report,
     run_step,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = ["BALL_SPEEDS_MPS", "BallResult", "run_ball"]
 
@@ -69,17 +66,11 @@ class BallResult(StepResult):
 @run_step
 def run_ball(
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
-    racket: RacketInput = None,
-    ball: Ball | None = None,
     speeds: ArrayLike = BALL_SPEEDS_MPS,
     surfaces: Sequence[str] = SURFACES,
     tension_n: float | None = None,
-    allow_implausible: bool = False,
-    defaults: Sequence[str] = (),
-    command: Sequence[str] | None = None,
-    figures: Callable[[BallResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> BallResult:
     """The ball's bounce on each surface at each speed; write the run folder.
 
@@ -87,37 +78,26 @@ def run_ball(
     ----------
     out : path
         Output folder (created if missing).
-    racket : Racket, path or None
-        The racket whose head-clamped strings the ball meets (None: the built-in racket).
-    ball : Ball, optional
-        The ball (default :class:`~racketdyn.ball.Ball`).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, ball uses the racket (its strings),
+        the ball and ``allow_implausible``; and the run (command, figures, progress).
     speeds : array_like
         Impact speeds, m/s.
     surfaces : sequence of {"rigid", "strings"}
         Which surfaces.
     tension_n : float, optional
         String tension of the clamped bed, N (default: the racket's).
-    allow_implausible : bool
-        Let speeds and tensions beyond those of play through (:mod:`racketdyn.plausibility`).
-    defaults : sequence of str
-        Defaults the caller filled in (ball), added to run.json.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths`` (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
     speed_list = [float(v) for v in np.atleast_1d(np.asarray(speeds, dtype=float))]
-    check_speeds("speeds", speed_list, "ball_speed_mps", allow_implausible)
-    the_racket, provenance = load_racket_input(racket)
+    check_speeds("speeds", speed_list, "ball_speed_mps", setup.allow_implausible)
+    the_racket, provenance = load_racket_input(setup.racket)
     if tension_n is not None:
-        check("tension_n", tension_n, "tension_n", allow_implausible=allow_implausible)
+        check("tension_n", tension_n, "tension_n", allow_implausible=setup.allow_implausible)
         the_racket = replace(the_racket, strings=replace(the_racket.strings, tension_n=tension_n))
-    the_ball, ball_defaults = ball_or_default(ball)
-    report(progress, "bounces", 0, 1)
+    the_ball, ball_defaults = setup.ball_used()
+    report(setup.progress, "bounces", 0, 1)
     bounces = ball_bounces(the_ball, speed_list, surfaces, the_racket)
-    report(progress, "bounces", 1, 1)
+    report(setup.progress, "bounces", 1, 1)
     static = default_ball_law(
         the_ball.diameter_m, wall_stiffness_n_per_m=STATIC_WALL_STIFFNESS_N_PER_M
     )
@@ -157,6 +137,6 @@ def run_ball(
             "why": "a slow plate test, not a bounce: the static law (ITF wall + gas) against "
             "the ITF limits 5.6-7.4 mm, a separate check",
         },
-        "defaults_used": [*ball_defaults, *defaults],
+        "defaults_used": [*ball_defaults, *setup.defaults],
     }
-    return finish_run(result, inputs, command_record(command, "ball"), figures)
+    return setup.finish(result, inputs, "ball")

@@ -15,7 +15,7 @@ import json
 import logging
 import math
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -23,7 +23,6 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from racketdyn.ball import Ball
 from racketdyn.errors import InputError
 from racketdyn.impact.calibration import (
     Calibration,
@@ -31,24 +30,18 @@ from racketdyn.impact.calibration import (
     calibrate,
     priors_from_spreads,
 )
-from racketdyn.impact.grid import StringBed
-from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import METHODS, Method, ModelInputs
 from racketdyn.impact.uncertainty import Uncertainty
 from racketdyn.io.measured import MeasuredRebound
 from racketdyn.io.racket_file import load_racket, write_racket_toml
-from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket
-from racketdyn.workflows.inputs import RacketInput
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
-    command_record,
-    finish_run,
     report,
     run_step,
     write_rows,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 from racketdyn.workflows.validate import measured_setup
 
 log = logging.getLogger(__name__)
@@ -108,23 +101,13 @@ def run_calibrate(
     out: str | os.PathLike[str],
     measured: MeasuredRebound | str | os.PathLike[str],
     fit: Sequence[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
-    racket: RacketInput = None,
     holdout: Sequence[int] = (),
     method: Method = "transient",
     leave_one_out: bool = True,
-    modal: ModalModel | str | os.PathLike[str] | None = None,
-    rigid: bool = False,
-    ball: Ball | None = None,
-    hand: Hand | None = None,
     engine: str = "auto",
-    string_bed: StringBed = "uniform",
     uncertainty: Uncertainty | None = None,
-    allow_implausible: bool = False,
-    defaults: Sequence[str] = (),
-    command: Sequence[str] | None = None,
-    figures: Callable[[CalibrateResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> CalibrateResult:
     """Fit the named parameters to measured rebound and write the run folder.
 
@@ -136,23 +119,23 @@ def run_calibrate(
         Measured rebound (:func:`racketdyn.io.read_measured`).
     fit : sequence of str
         Parameters to fit (:data:`racketdyn.impact.calibration.PARAMETERS`).
-    racket : Racket, path or None
-        The racket measured.
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, calibrate uses the racket and its
+        modes, the ball, the hand, the string bed and ``allow_implausible`` (no figures); and
+        the run (command, figures, progress).
     holdout : sequence of int
         Rows held out of the fit, numbered from 1 (the first data row).
     method : {"approx", "transient"}
         The model fitted.
     leave_one_out : bool
         Refit once per fitted row without it (leave-one-out residuals).
-    modal, rigid, ball, hand, engine, string_bed, allow_implausible
+    engine : {"auto", "compiled", "reference"}
         As for :func:`racketdyn.workflows.validate.run_validate`.
     uncertainty : Uncertainty, optional
         Its ranges (and the span of equally likely values) bound the fitted parameters
         (:func:`racketdyn.impact.calibration.bounds_from_spreads`); its normal spreads are
         priors about the start when the rows carry standard deviations
         (:func:`racketdyn.impact.calibration.priors_from_spreads`).
-    defaults, command, figures, progress
-        As for every step.
 
     Returns
     -------
@@ -160,14 +143,12 @@ def run_calibrate(
     """
     if method not in METHODS:
         raise InputError(f"`method` must be one of {', '.join(METHODS)} (got {method!r})")
-    inputs, rows, provenance, defaults_used = measured_setup(
-        racket, measured, modal, rigid, ball, hand, engine, string_bed, allow_implausible
-    )
+    inputs, rows, provenance, defaults_used = measured_setup(setup, measured, engine)
     held = [int(i) for i in holdout]
     if any(i < 1 or i > len(rows) for i in held):
         raise InputError(f"`holdout`: rows are numbered 1 to {len(rows)} (got {held})")
     held0 = [i - 1 for i in held]
-    report(progress, f"fitting {', '.join(fit)} to {len(rows) - len(held)} rows ({method})")
+    report(setup.progress, f"fitting {', '.join(fit)} to {len(rows) - len(held)} rows ({method})")
     limits = {} if uncertainty is None else bounds_from_spreads(uncertainty.spreads)
     priors = {} if uncertainty is None else priors_from_spreads(uncertainty.spreads)
     priors = {name: priors[name] for name in fit if name in priors}
@@ -187,7 +168,7 @@ def run_calibrate(
         leave_one_out=leave_one_out,
         bounds={name: limits[name] for name in fit if name in limits},
         priors=priors,
-        progress=progress,
+        progress=setup.progress,
     )
     before, status = calibration.predicted_start, calibration.status_start
     after, status_after = calibration.predicted, calibration.status
@@ -224,16 +205,16 @@ def run_calibrate(
         "holdout_rows": held,
         "leave_one_out": leave_one_out,
         "engine": engine,
-        "string_bed": string_bed,
+        "string_bed": setup.string_bed,
         "n_rows": len(rows),
         "summary": {
             key: record[key]
             for key in ("fit_rms", "holdout_rms", "leave_one_out_rms", "rows", "reduced_chi2")
         },
         "columns": {"calibration_rows.csv": list(CALIBRATION_ROW_COLUMNS)},
-        "defaults_used": [*defaults_used, *defaults],
+        "defaults_used": [*defaults_used, *setup.defaults],
     }
-    return finish_run(result, inputs_record, command_record(command, "calibrate"), figures)
+    return setup.finish(result, inputs_record, "calibrate")
 
 
 _IN_RACKET_TOML = {

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -40,23 +40,20 @@ from racketdyn.impact.compound_band import (
     ball_mode_band,
     bed_for_frequency,
 )
-from racketdyn.impact.grid import STRING_BEDS, StringBed
+from racketdyn.impact.grid import STRING_BEDS
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.system import TRANSIENT_SUPPORTS
 from racketdyn.io import default_racket, racket_to_dict
 from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket
 from racketdyn.rig.hammer import string_contact_time
-from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
-    command_record,
-    finish_run,
     report,
     run_step,
     write_rows,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = [
     "COMPOUND_COLUMNS",
@@ -298,21 +295,12 @@ def frame_shifts(with_ball: CompoundSystem, alone: CompoundSystem) -> list[dict[
 @run_step
 def run_compound(
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
-    racket: RacketInput = None,
-    modal: ModalModel | str | os.PathLike[str] | None = None,
-    rigid: bool = False,
-    ball: Ball | None = None,
     point: ArrayLike | None = None,
     supports: Sequence[str] = ("free", "hand"),
-    hand: Hand | None = None,
     preload_n: float = PRELOAD_N,
     hammer: ArrayLike | None = None,
-    string_bed: StringBed = "uniform",
-    defaults: Sequence[str] = (),
-    command: Sequence[str] | None = None,
-    figures: Callable[[CompoundResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> CompoundResult:
     """The linear modes of ball + ball–string spring + racket; write the run folder.
 
@@ -320,45 +308,27 @@ def run_compound(
     ----------
     out : path
         Output folder (created if missing).
-    racket : Racket, path or None
-        Racket object, TOML file, or None for the built-in racket.
-    modal : ModalModel or path, optional
-        Modal model, or its JSON file, replacing the racket's modes.
-    rigid : bool
-        No flexible modes: a rigid racket.
-    ball : Ball, optional
-        The ball (default :class:`~racketdyn.ball.Ball`).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, compound uses the racket and its
+        modes, the ball, the hand and the string bed; and the run (command, figures, progress).
     point : array_like (2,), optional
         Where the ball sits (x, y), m (default the centre of the string bed).
     supports : sequence of str
         ``free``, ``pinned``, ``hand`` (the modes of each).
-    hand : Hand, optional
-        The hand of the ``hand`` support.
     preload_n : float
         Preload of the stuck ball on the strings, N (the spring is F_GB's tangent there).
-    string_bed : {"uniform", "local"}
-        ``uniform``: the face centre's laws wherever the ball sits (the paper's one law);
-        ``local``: the string bed's law at the ball's point (stiffer towards the frame).
     hammer : array_like (2,), optional
         Where the hammer strikes the string face for Figs 8c and 9 (x, y), m (default
         :data:`HAMMER_OFFSET_M` from the ball towards the handle).  Its blow is a half-sine as
         long as the hammer's contact with the strings there
         (:func:`racketdyn.rig.hammer.string_contact_time`, as the virtual rig's).
-    defaults : sequence of str
-        Defaults the caller filled in, added to run.json.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths`` (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
     checked = [one_of("`supports`", s, TRANSIENT_SUPPORTS) for s in supports]
     if not checked or len(set(checked)) != len(checked):
         raise InputError(f"`supports`: name each support once (got {','.join(supports)})")
-    used = setup(racket, modal, rigid)
+    used = setup.racket_setup()
     the_racket = used.racket
-    defaults_used = [*used.defaults, *defaults]
+    defaults_used = [*used.defaults, *setup.defaults]
     if point is None:
         xy = (the_racket.head.centre_x_m, the_racket.head.centre_y_m)
         defaults_used.append("point: the centre of the string bed")
@@ -368,11 +338,13 @@ def run_compound(
             raise InputError("`point`: give the ball's position as x,y in m, e.g. 0.505,0")
         xy = (float(values[0]), float(values[1]))
     the_racket.head.check_inside(np.array([xy]), "`point`")
-    the_hand, hand_defaults = hand_or_default(checked, hand)
-    the_ball, ball_defaults = ball_or_default(ball)
+    the_hand, hand_defaults = setup.hand_used(checked)
+    the_ball, ball_defaults = setup.ball_used()
     defaults_used += [*hand_defaults, *ball_defaults]
-    one_of("string_bed", string_bed, STRING_BEDS)
-    spring = ball_spring(the_racket, the_ball, preload_n, None if string_bed == "uniform" else xy)
+    one_of("string_bed", setup.string_bed, STRING_BEDS)
+    spring = ball_spring(
+        the_racket, the_ball, preload_n, None if setup.string_bed == "uniform" else xy
+    )
     model = used.modal_model
     stiffer = None if model is None else stiffer_frame(model, FRAME_STIFFNESS_FACTOR)
     head = the_racket.head
@@ -412,7 +384,7 @@ def run_compound(
         CONTACT_SPEEDS_MPS,
         sorted({_APPROXIMATE_SUPPORT[s] for s in checked}),
         modal_model=None,
-        string_bed=string_bed,  # the contact time with the law the spring was taken from
+        string_bed=setup.string_bed,  # the contact time with the law the spring was taken from
     )
     k_ball, k_bed = spring_split(spring)
     ball_fraction = k_ball / (k_ball + k_bed)
@@ -420,7 +392,7 @@ def run_compound(
     share = net_share(the_racket, patch, math.dist(strike, xy))  # the same for every support
     result.blow_share = {"net_share": share, "to_ball": share * ball_fraction}
     for i, support in enumerate(checked):
-        report(progress, f"modes with the ball, {support}", i, len(checked))
+        report(setup.progress, f"modes with the ball, {support}", i, len(checked))
         with_ball = racket_modes(the_racket, model, support, xy, spring, the_ball, the_hand, extra)
         alone = racket_modes(the_racket, model, support, xy, None, the_ball, the_hand, extra)
         result.modes[support], result.alone[support] = with_ball, alone
@@ -500,16 +472,16 @@ def run_compound(
         },
         "neck_point_m": list(neck),
         "ball_overhangs_bed": result.overhangs,
-        "string_bed": string_bed,
+        "string_bed": setup.string_bed,
         "spring_law_at": (
             "the centre of the face (contact.compound_law) wherever the ball sits"
-            if string_bed == "uniform"
+            if setup.string_bed == "uniform"
             else "the ball's point (contact.local_compound_law)"
         ),
         "neck_hand_over": result.hand_over,
         "two_node_node_line_m": result.node_line,
         "supports": checked,
-        "rigid": rigid,
+        "rigid": setup.rigid,
         "ball_mass_kg": the_ball.mass_kg,
         "defaults_used": defaults_used,
         "method": "linear modes of ball + ball–string spring + racket (racketdyn.impact."
@@ -559,7 +531,7 @@ def run_compound(
         "hand": None if the_hand is None else asdict(the_hand),
         "columns": {"compound.csv": list(COMPOUND_COLUMNS)},
     }
-    return finish_run(result, inputs, command_record(command, "compound"), figures)
+    return setup.finish(result, inputs, "compound")
 
 
 def is_papers_racket(racket: Racket) -> bool:

@@ -7,7 +7,7 @@ Writes ``contact_<label>.csv`` per test and ``run.json``; the figure comes from 
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -16,15 +16,13 @@ from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.pulse import ContactTimes, contact_times
 from racketdyn.racket import Racket
 from racketdyn.workflows.frf import read_records
-from racketdyn.workflows.inputs import RacketInput, load_racket_input
+from racketdyn.workflows.inputs import load_racket_input
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
-    command_record,
-    finish_run,
     report,
     run_step,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = ["CONTACT_METHOD", "ContactResult", "run_contact"]
 
@@ -62,13 +60,10 @@ def _slug(label: str) -> str:
 def run_contact(
     tests: Sequence[str | os.PathLike[str]],
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
     labels: Sequence[str] | None = None,
     geometry: str | os.PathLike[str] | None = None,
-    racket: RacketInput = None,
-    command: Sequence[str] | None = None,
-    figures: Callable[[ContactResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> ContactResult:
     """Contact time of every hammer hit, per point, for each test; write the run folder.
 
@@ -78,18 +73,13 @@ def run_contact(
         Hammer records, one file per condition (UFF 58 or CSV with ``geometry``).
     out : path
         Output folder (created if missing).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, contact uses the racket (its head
+        outline); and the run (command, figures, progress).
     labels : sequence of str, optional
         A label per file (default: the file names' stems).
     geometry : path, optional
         Node coordinates if not in the files.
-    racket : Racket, path or None
-        Racket (head outline); None for the built-in racket.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths``: Fig. 7 (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
     names = [Path(t).stem for t in tests] if labels is None else list(labels)
     if len(names) != len(tests):
@@ -99,11 +89,11 @@ def run_contact(
             f"`labels`: name each test once (got {', '.join(names)}); their tables would "
             "overwrite one another"
         )
-    the_racket, provenance = load_racket_input(racket)
+    the_racket, provenance = load_racket_input(setup.racket)
     out_dir = Path(out)
     result = ContactResult(out_dir, labels=names, racket=the_racket)
     for i, (label, test) in enumerate(zip(names, tests, strict=True)):
-        report(progress, "contact times", i, len(names))
+        report(setup.progress, "contact times", i, len(names))
         records = read_records(test, geometry)
         records.require_locations("the contact-time map")
         if records.metadata.get("fewer_averages"):
@@ -120,4 +110,4 @@ def run_contact(
         "method": CONTACT_METHOD,
         "fewer_averages": result.fewer_averages,
     }
-    return finish_run(result, inputs, command_record(command, "contact"), figures)
+    return setup.finish(result, inputs, "contact")

@@ -7,7 +7,6 @@ the caller's hook.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal
@@ -20,16 +19,14 @@ from racketdyn.measurement import HammerRecords
 from racketdyn.measurement.frf import FrfEstimate, estimate_frfs
 from racketdyn.measurement.quality import QualitySettings
 from racketdyn.racket import Racket
-from racketdyn.workflows.inputs import RacketInput, load_racket_input
+from racketdyn.workflows.inputs import load_racket_input
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
-    command_record,
-    finish_run,
     report,
     run_step,
     sha256,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = ["ESTIMATORS", "FrfResult", "read_records", "run_frf"]
 
@@ -81,16 +78,13 @@ class FrfResult(StepResult):
 def run_frf(
     tests: str | os.PathLike[str],
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
     geometry: str | os.PathLike[str] | None = None,
-    racket: RacketInput = None,
     estimator: Literal["H1", "H2"] = "H1",
     force_window_s: float | None = None,
     exponential_window_s: float | None = None,
     force_range_n: float | None = None,
-    command: Sequence[str] | None = None,
-    figures: Callable[[FrfResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> FrfResult:
     """Estimate FRFs from hammer records and write the run folder.
 
@@ -100,10 +94,11 @@ def run_frf(
         Hammer records: UFF 58 time records, or CSV (with ``geometry``).
     out : path
         Output folder (created if missing).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, frf uses the racket (its head outline,
+        for the figures); and the run (command, figures, progress).
     geometry : path, optional
         Node coordinates if not in ``tests``.
-    racket : Racket, path or None
-        Racket (head outline for the figures); None for the built-in racket.
     estimator : {"H1", "H2"}
         FRF estimator.
     force_window_s : float, optional
@@ -112,18 +107,12 @@ def run_frf(
         Exponential window time constant τ, s (default: none).
     force_range_n : float, optional
         Hammer channel range, N: reaching it is an overload.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths``: Figs 2–3 (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
     one_of("`estimator`", estimator, ESTIMATORS)
     records = read_records(tests, geometry)
-    the_racket, provenance = load_racket_input(racket)
+    the_racket, provenance = load_racket_input(setup.racket)
     out_dir = Path(out)
-    report(progress, "estimating FRFs")
+    report(setup.progress, "estimating FRFs")
     estimate = estimate_frfs(
         records,
         estimator=estimator,
@@ -169,7 +158,7 @@ def run_frf(
             "(racketdyn.measurement.frf.FrfEstimate)",
         },
     }
-    return finish_run(result, inputs, command_record(command, "frf"), figures)
+    return setup.finish(result, inputs, "frf")
 
 
 def _median(values: tuple[float, ...]) -> float | None:

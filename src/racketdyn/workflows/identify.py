@@ -12,7 +12,7 @@ from __future__ import annotations
 import csv
 import math
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -41,18 +41,15 @@ from racketdyn.workflows.figure_data import (
 from racketdyn.workflows.inputs import (
     RacketInput,
     ball_location,
-    ball_or_default,
     load_racket_input,
 )
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
-    command_record,
-    finish_run,
     report,
     run_step,
     sha256,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = [
     "BALL_COMPARISON_FILE",
@@ -187,9 +184,9 @@ def identify_file(
     )
     found, naming = name_if_racket(found, racket, racket_given, ball)
     if ball is not None and naming.startswith("modes numbered"):
-        naming += "; --ball-at unused: the ball's mode is named only among a racket's modes"
+        naming += "; `ball_at` unused: the ball's mode is named only among a racket's modes"
     if reference_model is not None and naming.startswith("modes numbered"):
-        naming += "; --names-from unused: names are given only among a racket's modes"
+        naming += "; `names_from` unused: names are given only among a racket's modes"
     elif reference_model is not None:
         renamed = name_after(found.model, reference_model)
         changed = sum(a != b for a, b in zip(renamed.names, found.model.names, strict=True))
@@ -207,7 +204,7 @@ def identify_file(
 
 HAND_COUNTS = (
     "; held, a racket's twisting modes are damped (ζ up to 10 %) and may be missed, and the "
-    "node counts above a missed mode are short: --names-from the free test's modal_model.json "
+    "node counts above a missed mode are short: `names_from` the free test's modal_model.json "
     "names the modes after their free MAC pairs, as compare does"
 )
 """What ``identify --support hand`` adds to its naming line without ``--names-from``."""
@@ -270,9 +267,9 @@ class IdentifyResult(StepResult):
 def run_identify(
     frfs: str | os.PathLike[str],
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
     support: str = "free",
-    racket: RacketInput = None,
     geometry: str | os.PathLike[str] | None = None,
     band_hz: Sequence[float] | None = None,
     max_order: int = 60,
@@ -281,9 +278,6 @@ def run_identify(
     reference: int | None = None,
     ball_at: Sequence[float] | None = None,
     names_from: str | os.PathLike[str] | None = None,
-    command: Sequence[str] | None = None,
-    figures: Callable[[IdentifyResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> IdentifyResult:
     """Identify a modal model from FRFs and write the run folder.
 
@@ -293,23 +287,18 @@ def run_identify(
         FRFs, UFF 58 function type 4 (e.g. ``frfs.uff`` of :func:`~racketdyn.workflows.run_frf`).
     out : path
         Output folder (created if missing).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, identify uses the racket: its head
+        names the modes; with None, the built-in racket's, named only when the points lie on its
+        outline; and the run (command, figures, progress).
     support : {"free", "hand"}
         Support of the test.
-    racket : Racket, path or None
-        Racket (its head names the modes); None for the built-in racket, whose modes are
-        named only when the points lie on its outline.
     geometry, band_hz, max_order, pin_hz, exclude_hz, reference, ball_at, names_from
         As for :func:`identify_file`.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths`` (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
-    the_racket, provenance = load_racket_input(racket)
+    the_racket, provenance = load_racket_input(setup.racket)
     out_dir = Path(out)
-    report(progress, f"identifying {Path(frfs).name}")
+    report(setup.progress, f"identifying {Path(frfs).name}")
     found = identify_file(
         frfs,
         the_racket,
@@ -320,7 +309,7 @@ def run_identify(
         pin_hz=pin_hz,
         exclude_hz=exclude_hz,
         reference=reference,
-        racket_given=racket is not None,
+        racket_given=setup.racket is not None,
         ball_at=ball_at,
         names_from=names_from,
     )
@@ -351,7 +340,7 @@ def run_identify(
         "kept": found.model.metadata.get("kept", []),
         "dropped": found.model.metadata["dropped"],
     }
-    return finish_run(result, inputs, command_record(command, "identify"), figures)
+    return setup.finish(result, inputs, "identify")
 
 
 @dataclass(frozen=True)
@@ -481,21 +470,15 @@ def run_compare(
     free: str | os.PathLike[str],
     hand: str | os.PathLike[str],
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
-    racket: RacketInput = None,
     geometry: str | os.PathLike[str] | None = None,
     band_hz: Sequence[float] | None = None,
     max_order: int = 60,
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
     speed: float = CHECK_SPEED_MPS,
-    ball: Ball | None = None,
-    allow_implausible: bool = False,
     reference: int | None = None,
-    defaults: Sequence[str] = (),
-    command: Sequence[str] | None = None,
-    figures: Callable[[CompareResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> CompareResult:
     """Identify free and hand-held FRFs, pair their modes by MAC, write the run folder.
 
@@ -505,35 +488,26 @@ def run_compare(
         FRFs of the freely supported and of the hand-held racket (UFF 58).
     out : path
         Output folder (created if missing).
-    racket : Racket, path or None
-        Racket; None for the built-in racket.
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, compare uses the racket, the ball of
+        the Fig. 15 check and ``allow_implausible``; and the run (command, figures, progress).
     geometry, band_hz, max_order, pin_hz, exclude_hz, reference
         As for :func:`identify_file`, for both.
     speed : float
         Incoming ball speed of the paper's Fig. 15 check with the identified models, m/s
         (default 20, the paper's).
-    ball : Ball, optional
-        The ball of the Fig. 15 check (default :class:`~racketdyn.ball.Ball`).
-    allow_implausible : bool
-        Let a speed beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
-    defaults : sequence of str
-        Defaults the caller filled in for its own inputs (the ball), added to run.json.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths`` (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
     (check_speed,) = require_speeds("`speed`", [speed])
-    check_speeds("`speed`", [check_speed], "ball_speed_mps", allow_implausible)
-    the_racket, provenance = load_racket_input(racket)
+    check_speeds("`speed`", [check_speed], "ball_speed_mps", setup.allow_implausible)
+    the_racket, provenance = load_racket_input(setup.racket)
     out_dir = Path(out)
-    options = _file_options(geometry, band_hz, max_order, pin_hz, exclude_hz, reference, racket)
-    report(progress, f"identifying {Path(free).name}")
+    options = _file_options(
+        geometry, band_hz, max_order, pin_hz, exclude_hz, reference, setup.racket
+    )
+    report(setup.progress, f"identifying {Path(free).name}")
     found_free = identify_file(free, the_racket, "free", **options)
     found_free.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
-    report(progress, f"identifying {Path(hand).name}")
+    report(setup.progress, f"identifying {Path(hand).name}")
     # a hand damps some modes out: the hand's modes are named after their free pairs (issue
     # 13), as identify --names-from names them (issue 25 item 8: one name for one mode)
     found_hand = identify_file(hand, the_racket, "hand", names_from=found_free.model, **options)
@@ -541,8 +515,8 @@ def run_compare(
     written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
     comparison = compare_modes(found_free, found_hand, the_racket)
     written.append(write_mode_comparison(comparison, out_dir))
-    the_ball, ball_defaults = ball_or_default(ball)
-    report(progress, "Fig. 15 with the identified models")
+    the_ball, ball_defaults = setup.ball_used()
+    report(setup.progress, "Fig. 15 with the identified models")
     rebound = identified_rebound(
         the_racket, the_ball, found_free.model, found_hand.model, float(check_speed)
     )
@@ -573,9 +547,9 @@ def run_compare(
             "diameter_m": the_ball.diameter_m,
             "e_bg": the_ball.e_bg,
         },
-        "defaults_used": [*ball_defaults, *defaults],
+        "defaults_used": [*ball_defaults, *setup.defaults],
     }
-    return finish_run(result, inputs, command_record(command, "compare"), figures)
+    return setup.finish(result, inputs, "compare")
 
 
 BALL_COMPARISON_FILE = "ball_comparison.csv"
@@ -684,19 +658,16 @@ def run_compare_ball(
     alone: str | os.PathLike[str],
     with_ball: str | os.PathLike[str],
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
     ball_at: Sequence[float],
     support: str = "free",
-    racket: RacketInput = None,
     geometry: str | os.PathLike[str] | None = None,
     band_hz: Sequence[float] | None = None,
     max_order: int = 60,
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
     reference: int | None = None,
-    command: Sequence[str] | None = None,
-    figures: Callable[[BallCompareResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> BallCompareResult:
     """Identify a racket alone and with a ball fixed on its strings, and compare (Figs 9a, 9b).
 
@@ -710,29 +681,26 @@ def run_compare_ball(
         FRFs of the racket alone and with the ball (UFF 58), both on ``support``.
     out : path
         Output folder (created if missing).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, compare_ball uses the racket; and the
+        run (command, figures, progress).
     ball_at : sequence of float
         Where the ball sat (x, y), m (``--ball-at``).
     support : {"free", "hand"}
         Support of both tests.
-    racket : Racket, path or None
-        Racket; None for the built-in racket.
     geometry, band_hz, max_order, pin_hz, exclude_hz, reference
         As for :func:`identify_file`, for both.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths`` (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
-    the_racket, provenance = load_racket_input(racket)
+    the_racket, provenance = load_racket_input(setup.racket)
     ball = ball_location(ball_at, the_racket)
     out_dir = Path(out)
-    options = _file_options(geometry, band_hz, max_order, pin_hz, exclude_hz, reference, racket)
-    report(progress, f"identifying {Path(alone).name}")
+    options = _file_options(
+        geometry, band_hz, max_order, pin_hz, exclude_hz, reference, setup.racket
+    )
+    report(setup.progress, f"identifying {Path(alone).name}")
     found_alone = identify_file(alone, the_racket, support, **options)
     found_alone.model.require_locations("compare --ball-at (modes paired by MAC)")
-    report(progress, f"identifying {Path(with_ball).name}")
+    report(setup.progress, f"identifying {Path(with_ball).name}")
     found_ball = identify_file(with_ball, the_racket, support, ball_at=ball, **options)
     found_ball.model.require_locations("compare --ball-at (modes paired by MAC)")
     written = write_model(found_alone, out_dir, "_alone") + write_model(
@@ -789,4 +757,4 @@ def run_compare_ball(
         "modes_alone": found_alone.model.summary()["modes"],
         "modes_ball": found_ball.model.summary()["modes"],
     }
-    return finish_run(result, inputs, command_record(command, "compare_ball"), figures)
+    return setup.finish(result, inputs, "compare_ball")

@@ -104,7 +104,7 @@ def ball_location(ball_at: Sequence[float], racket: Racket) -> tuple[float, floa
 
 def setup(
     racket: RacketInput = None,
-    modal: ModalModel | str | os.PathLike[str] | None = None,
+    modal_model: ModalModel | str | os.PathLike[str] | None = None,
     rigid: bool = False,
     *,
     with_modes: bool = True,
@@ -113,19 +113,19 @@ def setup(
 
     Parameters
     ----------
-    racket : Racket, path or None
-        Racket object, TOML file, or None for the built-in racket.
-    modal : ModalModel or path, optional
-        Modal model, or its JSON file (e.g. from identify), replacing the racket's modes.
-    rigid : bool
-        No modes (a rigid racket); excludes ``modal``.
+    racket, modal_model, rigid
+        As :class:`racketdyn.workflows.setup.Setup`'s fields (:meth:`Setup.racket_setup
+        <racketdyn.workflows.setup.Setup.racket_setup>` calls this).
     with_modes : bool
         Build the modal model (False: steps that only need the racket's geometry).
     """
     loaded, provenance = load_racket_input(racket)
     defaults = [BUILT_IN_RACKET] if racket is None else []
+    modal = modal_model
     if modal is not None and rigid:
-        raise InputError("give a modal model file (`modal`) or a rigid racket (`rigid`), not both")
+        raise InputError(
+            "give a modal model file (`modal_model`) or a rigid racket (`rigid`), not both"
+        )
     if isinstance(modal, ModalModel):
         provenance["modal_model_given"] = f"ModalModel object from Python: {modal.source}"
         if with_modes:
@@ -135,7 +135,7 @@ def setup(
     if modal is not None:
         path = Path(modal)
         if not path.is_file():
-            raise InputError(f"`modal` {modal}: no such modal model file")
+            raise InputError(f"`modal_model` {modal}: no such modal model file")
         loaded = replace(loaded, modal_model_file=path)
         provenance["modal_model_file"] = str(path.resolve())
         provenance["modal_model_sha256"] = sha256(path)

@@ -8,18 +8,15 @@ caller's hook.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_finite, require_positive
-from racketdyn.impact.grid import StringBed, check_string_bed, point_law
-from racketdyn.impact.hand import Hand
+from racketdyn.impact.grid import check_string_bed, point_law
 from racketdyn.impact.oblique import (
     DEFAULT_TANGENTIAL_CONTACT,
     ObliqueCurve,
@@ -28,25 +25,18 @@ from racketdyn.impact.oblique import (
 )
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
-from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_speeds
 from racketdyn.racket import Racket
 from racketdyn.workflows.inputs import (
-    RacketInput,
-    ball_or_default,
-    hand_or_default,
-    setup,
     single_support,
 )
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
-    command_record,
-    finish_run,
     report,
     run_step,
     write_rows,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = ["OBLIQUE_ANGLES_DEG", "OBLIQUE_COLUMNS", "SPIN_CAVEAT", "ObliqueResult", "run_oblique"]
 
@@ -105,11 +95,8 @@ class ObliqueResult(StepResult):
 @run_step
 def run_oblique(
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
-    racket: RacketInput = None,
-    modal: ModalModel | str | os.PathLike[str] | None = None,
-    rigid: bool = False,
-    ball: Ball | None = None,
     speed: float = 20.0,
     angles_deg: ArrayLike = OBLIQUE_ANGLES_DEG,
     spin_radps: float = 0.0,
@@ -119,13 +106,6 @@ def run_oblique(
     tangential_stiffness: float | None = None,
     racket_speed: float = 0.0,
     racket_tangential_speed: float = 0.0,
-    hand: Hand | None = None,
-    string_bed: StringBed = "uniform",
-    allow_implausible: bool = False,
-    defaults: Sequence[str] = (),
-    command: Sequence[str] | None = None,
-    figures: Callable[[ObliqueResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> ObliqueResult:
     """Oblique impacts at one point, one per incoming angle; write the run folder.
 
@@ -133,14 +113,10 @@ def run_oblique(
     ----------
     out : path
         Output folder (created if missing).
-    racket : Racket, path or None
-        Racket object, TOML file, or None for the built-in racket.
-    modal : ModalModel or path, optional
-        Modal model, or its JSON file, replacing the racket's modes.
-    rigid : bool
-        No vibration: a rigid racket.
-    ball : Ball, optional
-        The ball (default :class:`~racketdyn.ball.Ball`).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, oblique uses the racket and its modes,
+        the ball, the hand, the string bed (the face centre's law or the impact point's own) and
+        ``allow_implausible``; and the run (command, figures, progress).
     speed : float
         Incoming ball speed, m/s.
     angles_deg : array_like
@@ -159,25 +135,10 @@ def run_oblique(
         Racket speed towards the ball, m/s.
     racket_tangential_speed : float
         Racket face speed along the face, m/s.
-    hand : Hand, optional
-        The hand of the ``hand`` support.
-    string_bed : {"uniform", "local"}
-        The string bed's law: the face centre's (the paper's, default) or the impact point's
-        own (:func:`racketdyn.impact.grid.point_law`).
-    allow_implausible : bool
-        Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
-    defaults : sequence of str
-        Defaults the caller filled in (ball), added to run.json.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths`` (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
     speed = require_positive("`speed`", speed)
-    check_speeds("`speed`", [speed], "ball_speed_mps", allow_implausible)
-    check_speeds("`racket_speed`", [racket_speed], "racket_speed_mps", allow_implausible)
+    check_speeds("`speed`", [speed], "ball_speed_mps", setup.allow_implausible)
+    check_speeds("`racket_speed`", [racket_speed], "racket_speed_mps", setup.allow_implausible)
     angles = [require_finite("`angles_deg`", v) for v in np.atleast_1d(angles_deg)]
     for angle in angles:
         if not -90.0 < angle < 90.0:
@@ -186,7 +147,7 @@ def run_oblique(
                 f"from the face normal (got {angle:g})"
             )
     spin = require_finite("`spin_radps`", spin_radps)
-    check("spin_radps", spin, "`spin_radps`", allow_implausible=allow_implausible)
+    check("spin_radps", spin, "`spin_radps`", allow_implausible=setup.allow_implausible)
     the_support = one_of(
         "`support`",
         single_support(
@@ -196,7 +157,7 @@ def run_oblique(
         ),
         TRANSIENT_SUPPORTS,
     )
-    used = setup(racket, modal, rigid)
+    used = setup.racket_setup()
     extra = []
     if point is None:
         where = (used.racket.head.centre_x_m, used.racket.head.centre_y_m)
@@ -204,8 +165,8 @@ def run_oblique(
     else:
         where = (float(point[0]), float(point[1]))
     used.racket.head.check_inside([where])
-    check_string_bed(string_bed, None, used.racket)
-    the_hand, hand_defaults = hand_or_default([the_support], hand)
+    check_string_bed(setup.string_bed, None, used.racket)
+    the_hand, hand_defaults = setup.hand_used([the_support])
     base = DEFAULT_TANGENTIAL_CONTACT
     if friction is None or tangential_stiffness is None:
         extra.append(
@@ -221,10 +182,10 @@ def run_oblique(
     )
     racket_speed = require_finite("`racket_speed`", racket_speed)
     face_speed = require_finite("`racket_tangential_speed`", racket_tangential_speed)
-    the_ball, ball_defaults = ball_or_default(ball)
-    defaults_used = [*used.defaults, *extra, *hand_defaults, *ball_defaults, *defaults]
+    the_ball, ball_defaults = setup.ball_used()
+    defaults_used = [*used.defaults, *extra, *hand_defaults, *ball_defaults, *setup.defaults]
     model = used.modal_model
-    report(progress, f"oblique impacts at {len(angles)} angles")
+    report(setup.progress, f"oblique impacts at {len(angles)} angles")
     curve = oblique_curve(
         used.racket,
         the_ball,
@@ -239,7 +200,7 @@ def run_oblique(
         modal_model=model,
         law=(
             point_law(used.racket, the_ball, where)
-            if string_bed == "local"
+            if setup.string_bed == "local"
             else compound_law(used.racket, the_ball)
         ),
         hand=the_hand,
@@ -276,8 +237,8 @@ def run_oblique(
             "effective_mass_kg": contact.effective_mass(the_ball),
             "grip_period_s": contact.grip_period(the_ball),
         },
-        "rigid": rigid,
-        "string_bed": string_bed,
+        "rigid": setup.rigid,
+        "string_bed": setup.string_bed,
         "defaults_used": defaults_used,
         "method": "normal impact by the transient simulation (reference engine), tangential "
         "elastic-Coulomb contact on its normal force history (racketdyn.impact.oblique)",
@@ -286,4 +247,4 @@ def run_oblique(
         "caveat": SPIN_CAVEAT,
         "columns": {"oblique.csv": list(OBLIQUE_COLUMNS)},
     }
-    return finish_run(result, inputs, command_record(command, "oblique"), figures)
+    return setup.finish(result, inputs, "oblique")

@@ -65,17 +65,15 @@ from racketdyn.workflows.figure_data import (
     transient_curves,
     write_figure_data,
 )
-from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
     check_workers,
-    command_record,
-    finish_run,
     report,
     run_step,
     sample_pool,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = ["DEFAULT_GRID", "MAX_GRID", "MODELS", "PredictResult", "impact_points", "run_predict"]
 
@@ -253,31 +251,21 @@ def check_supports(supports: Sequence[str], model: str) -> list[str]:
 @run_step
 def run_predict(
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
-    racket: RacketInput = None,
-    modal: ModalModel | str | os.PathLike[str] | None = None,
-    rigid: bool = False,
-    ball: Ball | None = None,
     speeds: ArrayLike = (10.0, 20.0, 30.0),
     racket_speed: ArrayLike = (0.0,),
     supports: Sequence[str] = ("free", "pinned"),
     model: Model = "approx",
     engine: str | None = None,
-    hand: Hand | None = None,
     points: str | os.PathLike[str] | ArrayLike | None = None,
     grid: int | None = None,
     stiffness_reading: Literal["period", "tangent"] | None = None,
     vibration_charge: Literal["coupled", "paper"] = "coupled",
     include_string_bed: bool = False,
-    string_bed: StringBed = "uniform",
     uncertainty: Uncertainty | None = None,
     workers: int | None = None,
     show: Sequence[float] | None = None,
-    allow_implausible: bool = False,
-    defaults: Sequence[str] = (),
-    command: Sequence[str] | None = None,
-    figures: Callable[[PredictResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> PredictResult:
     """Predict impacts over the face and write the run folder.
 
@@ -285,14 +273,10 @@ def run_predict(
     ----------
     out : path
         Output folder (created if missing).
-    racket : Racket, path or None
-        Racket object, TOML file, or None for the built-in racket.
-    modal : ModalModel or path, optional
-        Modal model, or its JSON file, replacing the racket's modes.
-    rigid : bool
-        No vibration: a rigid racket.
-    ball : Ball, optional
-        The ball (default :class:`~racketdyn.ball.Ball`).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, predict uses the racket and its modes,
+        the ball, the hand, the string bed (both models) and ``allow_implausible``; and the run
+        (command, figures, progress).
     speeds : array_like
         Incoming ball speeds, m/s.
     racket_speed : array_like
@@ -303,8 +287,6 @@ def run_predict(
         Kawazoe's approximate method, the transient simulation, or each with their comparison.
     engine : {"auto", "compiled", "reference"}, optional
         Transient integrator (default ``auto``); for ``model`` transient or both only.
-    hand : Hand, optional
-        The hand of the ``hand`` support (default :class:`~racketdyn.impact.hand.Hand`).
     points : path or array, optional
         Impact points (CSV or ``(n, 2)`` in m); excludes ``grid``.
     grid : int, optional
@@ -316,10 +298,6 @@ def run_predict(
         contact's energy balance gives it (default) or as the paper writes it.
     include_string_bed : bool
         Charge string-bed modes as vibration loss too.
-    string_bed : {"uniform", "local"}
-        The string bed's law over the face: the face centre's at every point (the paper's,
-        default) or each point's own from its strings' lengths
-        (:func:`racketdyn.impact.grid.predict_by_point_law`), both models.
     uncertainty : Uncertainty, optional
         Uncertain inputs: each model run once per sample (:func:`racketdyn.impact.
         uncertainty.propagate`), the bands written beside the numbers (``<column>_mean``,
@@ -333,16 +311,6 @@ def run_predict(
         models' comparison map and table, the report's headline): ``(ball speed,)`` or
         ``(ball speed, racket speed)``, m/s, one of the run's; by default 20 m/s if run,
         else the middle ball speed.  run.json's ``shown_case`` records it.
-    allow_implausible : bool
-        Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
-    defaults : sequence of str
-        Defaults the caller filled in for its own inputs (ball, hand), added to run.json.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths``: draws the step's figures (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
 
     Returns
     -------
@@ -362,8 +330,8 @@ def run_predict(
     one_of("`engine`", engine, ENGINES)
     speed_list = [float(v) for v in require_speeds("`speeds`", speeds)]
     racket_speeds = [float(v) for v in require_speeds("`racket_speed`", racket_speed)]
-    check_speeds("`speeds`", speed_list, "ball_speed_mps", allow_implausible)
-    check_speeds("`racket_speed`", racket_speeds, "racket_speed_mps", allow_implausible)
+    check_speeds("`speeds`", speed_list, "ball_speed_mps", setup.allow_implausible)
+    check_speeds("`racket_speed`", racket_speeds, "racket_speed_mps", setup.allow_implausible)
     if len(racket_speeds) not in (1, len(speed_list)):
         raise InputError("`racket_speed` takes one speed, or one per `speeds` value")
     cases = list(
@@ -383,7 +351,7 @@ def run_predict(
             "relative_speed_mps",
             v + r,
             f"`speeds` + `racket_speed` ({v:g} + {r:g} m/s) =",
-            allow_implausible=allow_implausible,
+            allow_implausible=setup.allow_implausible,
         )
     if len(set(cases)) != len(cases):
         raise InputError(
@@ -393,13 +361,13 @@ def run_predict(
     paired = [r for _, r in cases]
     shown = shown_case_index(speed_list, paired, show)
     support_list = check_supports(supports, model)
-    used = setup(racket, modal, rigid)
-    the_ball, ball_defaults = ball_or_default(ball)
-    the_hand, hand_defaults = hand_or_default(support_list, hand)
-    defaults_used = [*used.defaults, *ball_defaults, *defaults, *hand_defaults]
+    used = setup.racket_setup()
+    the_ball, ball_defaults = setup.ball_used()
+    the_hand, hand_defaults = setup.hand_used(support_list)
+    defaults_used = [*used.defaults, *ball_defaults, *setup.defaults, *hand_defaults]
     locations, labels, points_source = impact_points(used.racket, points, grid)
     out_dir = Path(out)
-    check_string_bed(string_bed, None, used.racket)
+    check_string_bed(setup.string_bed, None, used.racket)
     law = compound_law(used.racket, the_ball)
     result = PredictResult(
         out_dir,
@@ -413,10 +381,10 @@ def run_predict(
         shown_speed=shown,
         engine=engine,
         include_string_bed=include_string_bed,
-        string_bed=string_bed,
+        string_bed=setup.string_bed,
         stiffness_reading=stiffness_reading,
         vibration_charge=vibration_charge,
-        rigid=rigid,
+        rigid=setup.rigid,
         points=points_source,
         hand=the_hand,
     )
@@ -424,27 +392,27 @@ def run_predict(
         "supports": support_list,
         "racket_speed": np.asarray(racket_speeds),
         "modal_model": used.modal_model,
-        "law": None if string_bed == "local" else law,
+        "law": None if setup.string_bed == "local" else law,
         "include_string_bed": include_string_bed,
-        "string_bed": string_bed,
+        "string_bed": setup.string_bed,
     }
     n_impacts = len(locations) * len(speed_list) * len(support_list)
     if model in ("approx", "both"):
-        report(progress, f"approximate method: {n_impacts} impacts")
+        report(setup.progress, f"approximate method: {n_impacts} impacts")
         result.approximate = _approximate(
             used.racket,
             the_ball,
             locations,
             speed_list,
             labels,
-            progress,
+            setup.progress,
             stiffness_reading=stiffness_reading,
             vibration_charge=vibration_charge,
             **options,
         )
     if model in ("transient", "both"):
-        report(progress, f"transient model ({engine} engine): {n_impacts} impacts")
-        _transient_part(result, locations, labels, progress, options)
+        report(setup.progress, f"transient model ({engine} engine): {n_impacts} impacts")
+        _transient_part(result, locations, labels, setup.progress, options)
     model_inputs: ModelInputs | None = None
     if uncertainty is not None:
         model_inputs = ModelInputs(
@@ -454,10 +422,12 @@ def run_predict(
             modal_model=used.modal_model,
             include_string_bed=include_string_bed,
             engine=engine,
-            string_bed=string_bed,
+            string_bed=setup.string_bed,
         )
         extra = {"stiffness_reading": stiffness_reading, "vibration_charge": vibration_charge}
-        _bands(result, model_inputs, uncertainty, (locations, labels), progress, extra, workers)
+        _bands(
+            result, model_inputs, uncertainty, (locations, labels), setup.progress, extra, workers
+        )
     if result.approximate is not None and result.transient is not None:
         result.comparison = compare_models(result.approximate, result.transient)
         result.written.append(result.comparison.write_csv(out_dir / "comparison.csv"))
@@ -466,7 +436,7 @@ def run_predict(
     if result.approximate is not None:
         _write_table(result, result.approximate, out_dir / "impact.csv")
     band = None if uncertainty is None or model_inputs is None else (model_inputs, uncertainty)
-    _figure_data(result, options, progress, band)
+    _figure_data(result, options, setup.progress, band)
     inputs = {
         **used.provenance,
         "racket": racket_to_dict(used.racket),
@@ -475,7 +445,7 @@ def run_predict(
         "supports": support_list,
         "points": points_source,
         "n_points": len(locations),
-        "rigid": rigid,
+        "rigid": setup.rigid,
         "defaults_used": defaults_used,
         **result.result.inputs,
         "model": model,
@@ -487,7 +457,7 @@ def run_predict(
             "chosen_by": "show" if show is not None else SHOWN_BY_DEFAULT,
         },
     }
-    return finish_run(result, inputs, command_record(command, "predict"), figures)
+    return setup.finish(result, inputs, "predict")
 
 
 def _bands(

@@ -9,7 +9,7 @@ hammer then skips the points under the ball.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -35,15 +35,13 @@ from racketdyn.rig import (
 )
 from racketdyn.rig.ball import ball_on_strings
 from racketdyn.rig.hammer import FRAME_PULSE_S
-from racketdyn.workflows.inputs import RacketInput, ball_location, load_racket_input
+from racketdyn.workflows.inputs import ball_location, load_racket_input
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
-    command_record,
-    finish_run,
     report,
     run_step,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = ["RIG_SUPPORTS", "RigResult", "run_rig", "support_stream"]
 
@@ -119,8 +117,8 @@ def _stream_words(seed: int, support: str) -> str:
 @run_step
 def run_rig(
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
-    racket: RacketInput = None,
     support: str | Sequence[str] = "free",
     averages: int = 10,
     double_hits: float = 0.0,
@@ -128,7 +126,6 @@ def run_rig(
     seed: int = 1,
     binary: bool = True,
     ball_at: Sequence[float] | None = None,
-    ball: Ball | None = None,
     force_snr_db: float | None = None,
     response_snr_db: float | None = None,
     pretrigger_s: float = 0.01,
@@ -137,9 +134,6 @@ def run_rig(
     driving_point: bool = True,
     lab_plane: str = "xy",
     layout: str = "roving hammer",
-    command: Sequence[str] | None = None,
-    figures: Callable[[RigResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> RigResult:
     """Simulate a roving-hammer test on the virtual rig and write the run folder.
 
@@ -147,8 +141,9 @@ def run_rig(
     ----------
     out : path
         Output folder (created if missing).
-    racket : Racket, path or None
-        Racket object, TOML file, or None for the built-in racket.
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, rig uses the racket and the ball of
+        ``ball_at``; and the run (command, figures, progress).
     support : {"free", "hand"} or sequence of them
         On a sponge, or held by a hand; both (``("free", "hand")``) test the racket twice into
         the one folder, as the paper does (``hammer_<support>.uff`` each).
@@ -166,8 +161,6 @@ def run_rig(
         Fix a ball on the strings at (x, y), m (the paper's section 3.2); its spring is the
         ball's one-sided law's tangent at :data:`~racketdyn.impact.compound.PRELOAD_N` (the
         rig's membrane is the string bed), its dashpot from e_BG.
-    ball : Ball, optional
-        The ball of ``ball_at`` (default :class:`~racketdyn.ball.Ball`).
     force_snr_db, response_snr_db : float, optional
         Hammer and accelerometer noise as a signal-to-noise ratio, dB (each record's peak over
         its noise rms); default: the fixed noise floors of 0.02 N and 0.05 m/s² rms
@@ -193,12 +186,6 @@ def run_rig(
         ``roving accelerometer``: the hammer strikes the reference node (node 10, its pulse
         for every hit) and the accelerometer is moved over the points; by reciprocity the same
         FRFs (the file says it: :func:`~racketdyn.io.write_hammer_uff`'s ``layout``).
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths`` (the rig draws none itself).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
     supports = [support] if isinstance(support, str) else list(support)
     if not supports or len(set(supports)) < len(supports):
@@ -219,13 +206,13 @@ def run_rig(
     one_of("`layout`", layout, ("roving hammer", "roving accelerometer"))
     if response_direction not in (3, -3):
         raise InputError(f"`response_direction`: give 3 or -3 (got {response_direction})")
-    the_racket, provenance = load_racket_input(racket)
+    the_racket, provenance = load_racket_input(setup.racket)
     out_dir = Path(out)
     locations, nodes = hammer_points(the_racket)
     ball_record = None
     spring: tuple[tuple[float, float], float, float, float] | None = None
     if ball_at is not None:
-        the_ball = ball or Ball()
+        the_ball = setup.ball or Ball()
         ball_xy = np.asarray(ball_location(ball_at, the_racket))
         law = the_ball.restoring_force
         spring = (
@@ -268,7 +255,7 @@ def run_rig(
                 if the_racket.head.contains(at_reference)[0]
                 else FRAME_PULSE_S
             )
-        report(progress, f"building the {each} rig and simulating the hammer test")
+        report(setup.progress, f"building the {each} rig and simulating the hammer test")
         model = rig_model(the_racket, "free" if each == "free" else "hand")
         if spring is not None:
             model = ball_on_strings(model, *spring)
@@ -344,4 +331,4 @@ def run_rig(
         "ball_on_strings": ball_record,
         "runs": runs,
     }
-    return finish_run(result, inputs, command_record(command, "rig"), figures)
+    return setup.finish(result, inputs, "rig")

@@ -29,6 +29,7 @@ from racketdyn.workflows.run import (
     make_out_folder,
     report,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = ["SweepResult", "run_sweep_step"]
 
@@ -57,14 +58,12 @@ class SweepResult(StepResult):
 def run_sweep_step(
     spec: SweepSpec | str | os.PathLike[str],
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
     engine: Engine = "auto",
     workers: int | None = None,
     scheduler: str | None = None,
-    figures: Callable[[xr.Dataset, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
     task_timeout: float | None = None,
-    command: Sequence[str] | None = None,
 ) -> SweepResult:
     """Run (or resume) a design sweep into ``out``.
 
@@ -74,23 +73,20 @@ def run_sweep_step(
         The sweep, or its TOML file (docs/sweep-file.md).
     out : path
         Output folder (created if missing); run again to resume.
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, sweep uses the run only (the racket
+        and the rest come from the spec: ``figures(dataset, out)`` draws the summary figures);
+        and the run (command, figures, progress).
     engine : {"auto", "serial", "process", "dask-local", "dask"}
         Where tasks run; ``auto``: this process for a small sweep, else two processes.
     workers : int, optional
         Worker processes for ``process`` and ``dask-local``.
     scheduler : str, optional
         Dask scheduler address for ``dask`` (``tcp://HOST:PORT``).
-    figures : callable, optional
-        ``figures(dataset, out)`` draws the summary figures and returns their paths
-        (:func:`racketdyn.plotting.sweep.write_summary_figures`); none if None.
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     task_timeout : float, optional
         Seconds before a task counts as hung and runs again elsewhere
         (:func:`racketdyn.sweep.run_sweep`; default: 10 × the longest task so far, at least
         60 s).
-    command : sequence of str, optional
-        The command as called, for run.json.
 
     Raises
     ------
@@ -116,7 +112,9 @@ def run_sweep_step(
     try:
         # a local Dask cluster's forkserver imports while the cluster's scheduler starts
         start_early(engine, the_spec.method)
-        dataset = _run(the_spec, out_dir, executor, progress, figures, task_timeout, command)
+        dataset = _run(
+            the_spec, out_dir, executor, setup.progress, setup.figures, task_timeout, setup.command
+        )
     finally:
         lock.unlink(missing_ok=True)
     record = json.loads((out_dir / "run.json").read_text(encoding="utf-8"))

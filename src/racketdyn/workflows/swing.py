@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal
@@ -20,8 +19,7 @@ from numpy.typing import ArrayLike
 from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_speeds
-from racketdyn.impact.grid import StringBed, check_string_bed
-from racketdyn.impact.hand import Hand
+from racketdyn.impact.grid import check_string_bed
 from racketdyn.impact.measured import ModelInputs
 from racketdyn.impact.result import shown_speed_index, write_columns
 from racketdyn.impact.swing import (
@@ -52,24 +50,18 @@ from racketdyn.workflows.figure_data import (
     write_figure_data,
 )
 from racketdyn.workflows.inputs import (
-    RacketInput,
-    ball_or_default,
-    hand_or_default,
-    setup,
     single_support,
 )
 from racketdyn.workflows.predict import MAX_GRID
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
     check_workers,
-    command_record,
-    finish_run,
     report,
     run_step,
     sample_pool,
     write_rows,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = [
     "IMPACT_MODELS",
@@ -270,25 +262,15 @@ def _spot_rows(
 @run_step
 def run_swing(
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
-    racket: RacketInput = None,
-    modal: ModalModel | str | os.PathLike[str] | None = None,
-    rigid: bool = False,
-    ball: Ball | None = None,
     swing: Swing | None = None,
     speeds: ArrayLike = (20.0,),
     support: str = "pinned",
     model: Literal["approx", "transient"] = "approx",
-    hand: Hand | None = None,
-    allow_implausible: bool = False,
     grid: int | None = None,
-    string_bed: StringBed = "uniform",
     uncertainty: Uncertainty | None = None,
     workers: int | None = None,
-    defaults: Sequence[str] = (),
-    command: Sequence[str] | None = None,
-    figures: Callable[[SwingStepResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> SwingStepResult:
     """Impacts over the face of a swinging racket and its sweet spots; write the run folder.
 
@@ -296,14 +278,10 @@ def run_swing(
     ----------
     out : path
         Output folder (created if missing).
-    racket : Racket, path or None
-        Racket object, TOML file, or None for the built-in racket.
-    modal : ModalModel or path, optional
-        Modal model, or its JSON file, replacing the racket's modes.
-    rigid : bool
-        No vibration: a rigid racket.
-    ball : Ball, optional
-        The ball (default :class:`~racketdyn.ball.Ball`).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, swing uses the racket and its modes,
+        the ball, the hand, the string bed and ``allow_implausible``; and the run (command,
+        figures, progress).
     swing : Swing, optional
         The swing (default: :func:`swing_from` with no arguments, 56.9 N·m over 90°).
     speeds : array_like
@@ -312,15 +290,8 @@ def run_swing(
         Support (``hand`` with ``model="transient"``).
     model : {"approx", "transient"}
         Impact model.
-    hand : Hand, optional
-        The hand of the ``hand`` support.
-    allow_implausible : bool
-        Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
     grid : int, optional
         N × N grid over the head (default 15).
-    string_bed : {"uniform", "local"}
-        The string bed's law over the face: the centre's everywhere (the paper's, default) or
-        each point's own (:func:`racketdyn.impact.grid.predict_by_point_law`).
     uncertainty : Uncertainty, optional
         Uncertain inputs: the swing run once per sample; ``swing.csv`` gets each number's
         mean, sd and 90 % band (:func:`racketdyn.impact.uncertainty.propagate`), every sample
@@ -328,18 +299,10 @@ def run_swing(
     workers : int, optional
         Worker processes for those samples (a local pool,
         :func:`racketdyn.sweep.executors.make_executor`); by default this process.
-    defaults : sequence of str
-        Defaults the caller filled in (ball, swing), added to run.json.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths`` (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
     check_workers(workers, uncertainty)
     speed_list = [float(v) for v in require_speeds("`speeds`", speeds)]
-    check_speeds("`speeds`", speed_list, "ball_speed_mps", allow_implausible)
+    check_speeds("`speeds`", speed_list, "ball_speed_mps", setup.allow_implausible)
     if len(set(speed_list)) != len(speed_list):
         raise InputError(
             f"`speeds`: each ball speed once (got {', '.join(f'{v:g}' for v in speed_list)})"
@@ -349,26 +312,32 @@ def run_swing(
     n = SWING_GRID if grid is None else grid
     if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_GRID:
         raise InputError(f"`grid` must be a whole number from 1 to {MAX_GRID} (got {n})")
-    used = setup(racket, modal, rigid)
-    the_hand, hand_defaults = hand_or_default([the_support], hand)
+    used = setup.racket_setup()
+    the_hand, hand_defaults = setup.hand_used([the_support])
     if swing is None:
         the_swing, swing_defaults = swing_from()
     else:
         the_swing, swing_defaults = swing, []
-    the_ball, ball_defaults = ball_or_default(ball)
-    defaults_used = [*used.defaults, *hand_defaults, *swing_defaults, *ball_defaults, *defaults]
+    the_ball, ball_defaults = setup.ball_used()
+    defaults_used = [
+        *used.defaults,
+        *hand_defaults,
+        *swing_defaults,
+        *ball_defaults,
+        *setup.defaults,
+    ]
     locations = used.racket.head.grid(n)
     labels = [str(i + 1) for i in range(len(locations))]
-    check_string_bed(string_bed, None, used.racket)
-    law = {"law": compound_law(used.racket, the_ball)} if string_bed == "uniform" else {}
+    check_string_bed(setup.string_bed, None, used.racket)
+    law = {"law": compound_law(used.racket, the_ball)} if setup.string_bed == "uniform" else {}
     options: dict[str, Any] = {
         **law,
-        "string_bed": string_bed,
+        "string_bed": setup.string_bed,
         **({"hand": the_hand} if the_hand is not None else {}),
     }
     chosen = shown_speed_index(speed_list)
     omega = the_swing.angular_speed(used.racket)
-    report(progress, f"swing Ω = {omega:.2f} rad/s: {len(locations)} points")
+    report(setup.progress, f"swing Ω = {omega:.2f} rad/s: {len(locations)} points")
     computed = predict_swing(
         used.racket,
         the_ball,
@@ -381,7 +350,7 @@ def run_swing(
         labels,
         **options,
     )
-    report(progress, f"sweet spots at {speed_list[chosen]:g} m/s")
+    report(setup.progress, f"sweet spots at {speed_list[chosen]:g} m/s")
     spots = sweet_spots(
         used.racket,
         the_ball,
@@ -408,7 +377,7 @@ def run_swing(
         options=options,
     )
     result.spot_rows = _spot_rows(result, speed_list[chosen], used.modal_model)
-    report(progress, "outgoing speed along the axis for a few swings")
+    report(setup.progress, "outgoing speed along the axis for a few swings")
     result.axis_curves = swing_axis_curves(
         used.racket,
         the_ball,
@@ -422,7 +391,7 @@ def run_swing(
     if uncertainty is None:
         computed.write_csv(out_dir / "swing.csv")
     else:
-        report(progress, f"uncertainty: {uncertainty.samples} samples of the swing")
+        report(setup.progress, f"uncertainty: {uncertainty.samples} samples of the swing")
         with sample_pool(workers) as executor:
             result.band = propagate(
                 ModelInputs(
@@ -430,7 +399,7 @@ def run_swing(
                     the_ball,
                     hand=the_hand,
                     modal_model=used.modal_model,
-                    string_bed=string_bed,
+                    string_bed=setup.string_bed,
                 ),
                 locations,
                 speed_list,
@@ -457,7 +426,7 @@ def run_swing(
         "support": the_support,
         "grid": n,
         "n_points": len(locations),
-        "rigid": rigid,
+        "rigid": setup.rigid,
         "defaults_used": defaults_used,
         **computed.inputs,  # swing (parameters, Ω, inertias), impact model, ball, law, modes
         "angular_speed_radps": omega,
@@ -470,4 +439,4 @@ def run_swing(
             "sweet_spots.csv": list(SWEET_SPOT_COLUMNS),
         },
     }
-    return finish_run(result, inputs, command_record(command, "swing"), figures)
+    return setup.finish(result, inputs, "swing")

@@ -8,33 +8,27 @@ caller's hook.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from racketdyn.ball import Ball
 from racketdyn.errors import InputError, one_of, require_finite, require_positive
-from racketdyn.impact.grid import StringBed, check_string_bed
-from racketdyn.impact.hand import Hand
+from racketdyn.impact.grid import check_string_bed
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.impact.twist import TwistCurve, twist_curve
 from racketdyn.io import racket_to_dict
-from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket, landmark_points
-from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
-    command_record,
-    finish_run,
     report,
     run_step,
     write_rows,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = ["TWIST_COLUMNS", "TWIST_OFFSETS_M", "TwistResult", "run_twist"]
 
@@ -82,23 +76,13 @@ class TwistResult(StepResult):
 @run_step
 def run_twist(
     out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
-    racket: RacketInput = None,
-    modal: ModalModel | str | os.PathLike[str] | None = None,
-    rigid: bool = False,
-    ball: Ball | None = None,
     x_m: float | None = None,
     offsets_m: ArrayLike = TWIST_OFFSETS_M,
     speed: float = 25.0,
     racket_speed: float = 0.0,
     supports: Sequence[str] = ("free",),
-    hand: Hand | None = None,
-    string_bed: StringBed = "uniform",
-    allow_implausible: bool = False,
-    defaults: Sequence[str] = (),
-    command: Sequence[str] | None = None,
-    figures: Callable[[TwistResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> TwistResult:
     """Impacts across the face at one x, one curve per support; write the run folder.
 
@@ -106,14 +90,9 @@ def run_twist(
     ----------
     out : path
         Output folder (created if missing).
-    racket : Racket, path or None
-        Racket object, TOML file, or None for the built-in racket.
-    modal : ModalModel or path, optional
-        Modal model, or its JSON file, replacing the racket's modes.
-    rigid : bool
-        No vibration: a rigid racket.
-    ball : Ball, optional
-        The ball (default :class:`~racketdyn.ball.Ball`).
+    setup : Setup
+        Racket, modes, ball, hand, string bed (the face centre's law or each offset's own),
+        checks and the run (:class:`~racketdyn.workflows.setup.Setup`).
     x_m : float, optional
         Impact position from the butt, m (default: the racket's face centre,
         :func:`racketdyn.racket.landmark_points`).
@@ -125,32 +104,17 @@ def run_twist(
         Racket speed towards the ball, m/s.
     supports : sequence of str
         ``free``, ``pinned``, ``hand`` (one curve each).
-    hand : Hand, optional
-        The hand of the ``hand`` support.
-    string_bed : {"uniform", "local"}
-        The string bed's law: the face centre's at every offset (the paper's, default) or each
-        point's own (:func:`racketdyn.impact.grid.point_law`).
-    allow_implausible : bool
-        Let speeds beyond those of play (75 m/s) through (:mod:`racketdyn.plausibility`).
-    defaults : sequence of str
-        Defaults the caller filled in (ball), added to run.json.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths`` (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)`` for a progress display.
     """
     x = None if x_m is None else require_positive("`x_m`", x_m)
     offsets = [require_finite("`offsets_m`", v) for v in np.atleast_1d(offsets_m)]
     speed = require_positive("`speed`", speed)
     racket_speed = require_finite("`racket_speed`", racket_speed)
-    check_speeds("`speed`", [speed], "ball_speed_mps", allow_implausible)
-    check_speeds("`racket_speed`", [racket_speed], "racket_speed_mps", allow_implausible)
+    check_speeds("`speed`", [speed], "ball_speed_mps", setup.allow_implausible)
+    check_speeds("`racket_speed`", [racket_speed], "racket_speed_mps", setup.allow_implausible)
     checked = [one_of("`supports`", s, TRANSIENT_SUPPORTS) for s in supports]
     if len(set(checked)) != len(checked):
         raise InputError(f"`supports`: name each support once (got {','.join(supports)})")
-    used = setup(racket, modal, rigid)
+    used = setup.racket_setup()
     head = used.racket.head
     centre: list[str] = []
     if x is None:  # the given racket's face centre (issue 27: it was the paper racket's 0.52 m)
@@ -165,14 +129,17 @@ def run_twist(
     head.check_inside(
         np.column_stack([np.full(len(offsets), x), offsets]), "impact point (`x_m`, `offsets_m`)"
     )
-    check_string_bed(string_bed, None, used.racket)
-    the_hand, hand_defaults = hand_or_default(checked, hand)
-    the_ball, ball_defaults = ball_or_default(ball)
-    defaults_used = [*used.defaults, *centre, *hand_defaults, *ball_defaults, *defaults]
+    check_string_bed(setup.string_bed, None, used.racket)
+    the_hand, hand_defaults = setup.hand_used(checked)
+    the_ball, ball_defaults = setup.ball_used()
+    defaults_used = [*used.defaults, *centre, *hand_defaults, *ball_defaults, *setup.defaults]
     curves = []
     for i, support in enumerate(checked):
         report(
-            progress, f"twist against offset, {support} ({len(offsets)} impacts)", i, len(checked)
+            setup.progress,
+            f"twist against offset, {support} ({len(offsets)} impacts)",
+            i,
+            len(checked),
         )
         curves.append(
             twist_curve(
@@ -185,7 +152,7 @@ def run_twist(
                 racket_speed,
                 used.modal_model,
                 the_hand,
-                string_bed,
+                setup.string_bed,
             )
         )
     out_dir = Path(out)
@@ -218,8 +185,8 @@ def run_twist(
         "ball_speed_mps": speed,
         "racket_speed_mps": racket_speed,
         "supports": checked,
-        "rigid": rigid,
-        "string_bed": string_bed,
+        "rigid": setup.rigid,
+        "string_bed": setup.string_bed,
         "defaults_used": defaults_used,
         "method": "transient simulation, reference engine (racketdyn.impact.twist."
         "twist_curve): roll and section rotation of the modes at separation",
@@ -227,4 +194,4 @@ def run_twist(
         "hand": None if the_hand is None else asdict(the_hand),
         "columns": {"twist.csv": list(TWIST_COLUMNS)},
     }
-    return finish_run(result, inputs, command_record(command, "twist"), figures)
+    return setup.finish(result, inputs, "twist")

@@ -11,7 +11,6 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -20,30 +19,23 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn._grammar import noun
-from racketdyn.ball import Ball
 from racketdyn.errors import InputError
 from racketdyn.impact.calibration import PARAMETERS, apply
-from racketdyn.impact.grid import StringBed
-from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import METHODS, ModelInputs, predict_rows
 from racketdyn.impact.transient import ENGINES
 from racketdyn.impact.uncertainty import RowBands, Uncertainty, propagate_rows
 from racketdyn.io import racket_to_dict
 from racketdyn.io.measured import MeasuredRebound, read_measured
-from racketdyn.modal import ModalModel
-from racketdyn.workflows.inputs import RacketInput, ball_or_default, hand_or_default, setup
 from racketdyn.workflows.run import (
-    Progress,
     StepResult,
     check_workers,
-    command_record,
-    finish_run,
     report,
     run_step,
     sample_pool,
     sha256,
     write_rows,
 )
+from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 __all__ = [
     "BAND_COLUMNS",
@@ -213,18 +205,12 @@ def load_calibration(path: str | os.PathLike[str]) -> dict[str, float]:
 
 
 def measured_setup(
-    racket: RacketInput,
+    setup: Setup,
     measured: MeasuredRebound | str | os.PathLike[str],
-    modal: ModalModel | str | os.PathLike[str] | None,
-    rigid: bool,
-    ball: Ball | None,
-    hand: Hand | None,
     engine: str,
-    string_bed: StringBed = "uniform",
-    allow_implausible: bool = False,
 ) -> tuple[ModelInputs, MeasuredRebound, dict[str, Any], list[str]]:
     """The measured rows (checked on the racket's face) and the model inputs (with
-    ``string_bed="local"``, the string-bed law of each point:
+    ``setup.string_bed="local"``, the string-bed law of each point:
     :func:`racketdyn.contact.local_string_bed_law`).
 
     Returns
@@ -241,9 +227,9 @@ def measured_setup(
     rows = (
         measured
         if isinstance(measured, MeasuredRebound)
-        else read_measured(Path(measured), allow_implausible=allow_implausible)
+        else read_measured(Path(measured), allow_implausible=setup.allow_implausible)
     )
-    used = setup(racket, modal, rigid)
+    used = setup.racket_setup()
     outside = np.flatnonzero(~used.racket.head.contains(rows.locations))
     if outside.size:
         i = int(outside[0])
@@ -251,25 +237,27 @@ def measured_setup(
         raise InputError(
             f"{rows.source}: line {rows.lines[i]}: the point x={x:.4f} m, y={y:.4f} m lies "
             f"outside the string bed of {used.racket.name} (give points on its strings, or "
-            "the racket file of the racket measured: --racket)"
+            "the racket file of the racket measured: `racket`)"
         )
-    the_ball, ball_defaults = ball_or_default(ball)
-    the_hand, hand_defaults = hand_or_default(rows.support, hand)
+    the_ball, ball_defaults = setup.ball_used()
+    the_hand, hand_defaults = setup.hand_used(rows.support)
     provenance = dict(used.provenance)
     if not isinstance(measured, MeasuredRebound):
         provenance["measured_file"] = str(Path(measured).resolve())
         provenance["measured_sha256"] = sha256(Path(measured))
     # the built-in model follows the racket (a fitted roll inertia changes its twisting mode)
     follows = (
-        used.modal_model is not None and modal is None and used.racket.modal_model_file is None
+        used.modal_model is not None
+        and setup.modal_model is None
+        and used.racket.modal_model_file is None
     )
     inputs = ModelInputs(
         used.racket,
         the_ball,
         the_hand,
-        "racket" if follows else (None if rigid else used.modal_model),
+        "racket" if follows else (None if setup.rigid else used.modal_model),
         engine=engine,
-        string_bed=string_bed,
+        string_bed=setup.string_bed,
     )
     return inputs, rows, provenance, [*used.defaults, *ball_defaults, *hand_defaults]
 
@@ -278,22 +266,12 @@ def measured_setup(
 def run_validate(
     out: str | os.PathLike[str],
     measured: MeasuredRebound | str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
     *,
-    racket: RacketInput = None,
     calibration: str | os.PathLike[str] | dict[str, float] | None = None,
-    modal: ModalModel | str | os.PathLike[str] | None = None,
-    rigid: bool = False,
-    ball: Ball | None = None,
-    hand: Hand | None = None,
     engine: str = "auto",
-    string_bed: StringBed = "uniform",
     uncertainty: Uncertainty | None = None,
     workers: int | None = None,
-    allow_implausible: bool = False,
-    defaults: Sequence[str] = (),
-    command: Sequence[str] | None = None,
-    figures: Callable[[ValidateResult, Path], list[Path]] | None = None,
-    progress: Progress | None = None,
 ) -> ValidateResult:
     """Predict every measured row by both models and write the run folder.
 
@@ -303,48 +281,27 @@ def run_validate(
         Output folder (created if missing).
     measured : MeasuredRebound or path
         Measured rebound (a CSV file: :func:`racketdyn.io.read_measured`).
-    racket : Racket, path or None
-        The racket measured (object, TOML file, or None for the built-in racket).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, validate uses the racket and its
+        modes, the ball, the hand (with a ``hand`` row), the string bed and
+        ``allow_implausible``; and the run (command, figures, progress).
     calibration : path or dict, optional
         A ``calibration.json`` (calibrate's output) or ``{name: value}``: its values applied.
-    modal : ModalModel or path, optional
-        Modal model replacing the racket's modes.
-    rigid : bool
-        No vibration: a rigid racket.
-    ball : Ball, optional
-        The ball (default :class:`~racketdyn.ball.Ball`).
-    hand : Hand, optional
-        The hand of ``hand`` rows.
     engine : {"auto", "compiled", "reference"}
         Transient engine.
-    string_bed : {"uniform", "local"}
-        ``uniform``: the face centre's string-bed law everywhere (the paper's, default);
-        ``local``: each point's from its strings' lengths.
     uncertainty : Uncertainty, optional
         Uncertain inputs: each model's 90 % band at every row (:data:`BAND_COLUMNS`), the
         coverage in the summary, the rows outside their band named.
     workers : int, optional
         Worker processes for the samples (a local pool,
         :func:`racketdyn.sweep.executors.make_executor`); by default this process.
-    allow_implausible : bool
-        Take measured speeds beyond those of play (:func:`racketdyn.io.read_measured`).
-    defaults : sequence of str
-        Defaults the caller filled in, added to run.json.
-    command : sequence of str, optional
-        The command as called, for run.json.
-    figures : callable, optional
-        ``figures(result, out) -> paths`` (none without it).
-    progress : callable, optional
-        ``progress(what, done, total)``.
 
     Returns
     -------
     ValidateResult
     """
     check_workers(workers, uncertainty)
-    inputs, rows, provenance, defaults_used = measured_setup(
-        racket, measured, modal, rigid, ball, hand, engine, string_bed, allow_implausible
-    )
+    inputs, rows, provenance, defaults_used = measured_setup(setup, measured, engine)
     values: dict[str, float] = {}
     if isinstance(calibration, dict):
         values = {str(k): float(v) for k, v in calibration.items()}
@@ -360,12 +317,14 @@ def run_validate(
         raise InputError(f"{source}: {error}") from None
     result = ValidateResult(Path(out), measured=rows, inputs=inputs, calibration=values)
     for method in METHODS:
-        report(progress, f"{method}: {len(rows)} measured impacts")
+        report(setup.progress, f"{method}: {len(rows)} measured impacts")
         predicted, status = predict_rows(inputs, rows, method)
         result.predicted[method], result.status[method] = predicted, status
         result.summary[method] = summarise(method, rows, predicted)
         if uncertainty is not None:
-            report(progress, f"{method}: {uncertainty.samples} samples of the uncertain inputs")
+            report(
+                setup.progress, f"{method}: {uncertainty.samples} samples of the uncertain inputs"
+            )
             with sample_pool(workers) as executor:
                 band = propagate_rows(inputs, rows, uncertainty, method, executor=executor)
             result.bands[method] = band
@@ -382,8 +341,8 @@ def run_validate(
         },
         "calibrated_values": values,
         "engine": engine,
-        "string_bed": string_bed,
-        "string_bed_law": _law_words(string_bed),
+        "string_bed": setup.string_bed,
+        "string_bed_law": _law_words(setup.string_bed),
         "n_rows": len(rows),
         "measured_column": rows.given,
         "rebound_ratio": "e = (v_out - v_racket) / (v_ball + v_racket)",
@@ -392,9 +351,9 @@ def run_validate(
             "validation.csv": [*VALIDATION_COLUMNS, *(BAND_COLUMNS if result.bands else ())]
         },
         "uncertainty": None if uncertainty is None else uncertainty.record(),
-        "defaults_used": [*defaults_used, *defaults],
+        "defaults_used": [*defaults_used, *setup.defaults],
     }
-    return finish_run(result, record, command_record(command, "validate"), figures)
+    return setup.finish(result, record, "validate")
 
 
 def _rows(result: ValidateResult) -> list[dict[str, Any]]:
