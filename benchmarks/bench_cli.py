@@ -180,6 +180,7 @@ def _profile(argv: Sequence[str]) -> None:
     import PIL.Image
 
     import racketdyn.plotting.figures as figures
+    import racketdyn.plotting.registry as registry
     import racketdyn.workflows.figure_data as figure_data
 
     plotting_wall, plotting_cpu = time.perf_counter() - wall, time.process_time() - cpu
@@ -189,6 +190,8 @@ def _profile(argv: Sequence[str]) -> None:
     for name in dir(figures):
         if name.startswith("write_"):
             clock.wrap(figures, name, "figures")
+    # every step's hook draws through the registry since issue 23 (imported at each call)
+    clock.wrap(registry, "write_figures", "figures")
     # what the figures draw is computed by the steps (issue 23), before the workflows import it
     for name in ("paper_figures", "transient_curves", "swing_axis_curves", "identified_rebound"):
         clock.wrap(figure_data, name, "figure data")
