@@ -88,3 +88,27 @@ def test_no_flag_is_written_below_the_cli_but_where_said() -> None:
     assert found <= set(FLAGS_ALLOWED_BELOW_THE_CLI), sorted(
         found - set(FLAGS_ALLOWED_BELOW_THE_CLI)
     )
+
+
+def test_an_unresolved_e_bg_names_the_parameter_and_the_cli_its_flag(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Issue 23, flags inside sentences: ``with_ball_string_cor`` said "give --e-bg" to a Python
+    caller when the ball and string laws give no bounce at any speed; it names `e_bg`, and the
+    CLI turns that into its option."""
+    import numpy as np
+
+    import racketdyn as rd
+    from racketdyn import contact
+
+    monkeypatch.setattr(contact, "ball_string_cor", lambda racket, ball, speeds: np.full(3, np.nan))
+    ball = rd.Ball(mass_kg=0.0571)  # not one the cache of resolved balls holds
+    with pytest.raises(InputError) as caught:
+        contact.with_ball_string_cor(rd.default_racket(), ball)
+    message = str(caught.value)
+    assert "`e_bg`" in message
+    assert "--" not in message
+    parser = next(
+        a for a in build_parser()._actions if a.__class__.__name__ == "_SubParsersAction"
+    ).choices["predict"]
+    assert "give --e-bg" in in_flags(message, parser)

@@ -487,7 +487,9 @@ def _resolved(racket: Racket, ball: Ball) -> Ball:
     cor = ball_string_cor(racket, ball, speeds)
     keep = np.isfinite(cor)
     if not np.any(keep):
-        raise InputError("e_BG from ball + strings: the laws hold no bounce; give --e-bg")
+        raise InputError(
+            "e_BG from ball + strings: the laws hold no bounce; give `e_bg` (measured)"
+        )
     table = tuple((float(v), float(e)) for v, e in zip(speeds[keep], cor[keep], strict=True))
     return replace(
         ball,
