@@ -244,7 +244,7 @@ def _matrix_points(racket: rd.Racket) -> np.ndarray:
 
 
 @pytest.fixture(scope="module")
-def matrix(racket, ball, model):
+def matrix(racket, ball):
     """The default scheme, the previous default (400 steps, order 2) and the reference engine
     over 4 points × 3 speeds × 3 supports."""
     from racketdyn.impact.grid import ImpactGrid

@@ -429,6 +429,7 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
         support="free",
         source=f"built-in beam model of {racket.name}",
         metadata={
+            # EI of one tube's section (the shaft's); twice that where two tubes run side by side
             "bending_stiffness_nm2": float(bending_stiffness),
             "torsional_stiffness_nm2_per_rad": float(torsional_stiffness),
             "string_mass_kg": float(string_mass),
