@@ -51,10 +51,10 @@ def run(args: argparse.Namespace, console: Console) -> int:
 
 MASS_MODELS = {
     "frame": "built-in modes: mass along the racket from the frame's shape (shaft, throat arms, "
-    "hoop and handle, meeting its mass, balance and inertia)",
-    "smooth": "built-in modes: mass along the racket smooth (the frame's shaft, arms, hoop and "
-    "handle cannot meet this racket's mass, balance and inertia with none negative: more mass "
-    "at its ends than they hold)",
+    "hoop, handle and the head's top, meeting its mass, balance and inertia)",
+    "smooth": "built-in modes: mass along the racket smooth (the frame's shaft, arms, hoop, "
+    "handle and head's top cannot meet this racket's mass, balance and inertia with none "
+    "negative: more mass at its ends than they hold)",
 }
 """The built-in model's mass distribution in words (``metadata["mass_model"]``, issue 22)."""
 

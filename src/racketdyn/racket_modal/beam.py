@@ -6,14 +6,19 @@ Derivation (documented in docs/develop.md, "Built-in modal model"):
   equal length along the long axis.  A frame is a composite tube laid along its centreline: a
   shaft from the butt, two throat arms (:data:`THROAT_LENGTH_M`) and the hoop around the string
   bed, with the handle's pallet and grip on its first :data:`HANDLE_LENGTH_M` and the strings
-  spread over the bed by its width.  The mass per unit length along x is each part's length per
-  unit x (two sides of the hoop, steepest where it turns across the racket at the tip and the
-  throat) times its mass per length.  The four amounts meet the racket's mass, balance point and
-  moment of inertia about it exactly; of the amounts that do, the one closest to a single tube
-  (shaft and arms as heavy per length as the hoop) with none negative is taken.  Where none
-  exists (a racket whose swingweight needs more mass at its ends than the parts can place
-  there), the smooth distribution is used instead: the smallest departure from a uniform racket
-  (least squares) with the same three moments (``metadata["mass_model"]`` says which).  The
+  spread over the bed by its width.  Makers weight a frame at its two ends — in the handle
+  (steel plates and pins, a heavier pallet) and under the bumper guard at the head's top
+  (docs/references.md, "Racket dynamics") — so the head's top (:data:`HEAD_TOP_DEG` either side
+  of 12 o'clock) is a fifth part, extra to the hoop's tube there.  The mass per unit length
+  along x is each part's length per unit x (two sides of the hoop, steepest where it turns
+  across the racket at the tip and the throat) times its mass per length.  The five amounts meet
+  the racket's mass, balance point and moment of inertia about it exactly; of the amounts that
+  do, the one closest to a single tube (shaft and arms as heavy per length as the hoop, nothing
+  extra at the head's top) with none negative is taken: a racket whose swingweight the tube can
+  give carries nothing extra there (the paper's racket), one of today's head-light rackets with
+  a high swingweight carries 25–45 g.  Where no such amounts exist, the smooth distribution is
+  used instead: the smallest departure from a uniform racket (least squares) with the same three
+  moments (``metadata["mass_model"]`` says which).  The
   cubic (Hermite) element reproduces rigid-body motion exactly, so the FE model has exactly
   those rigid-body properties.  Point masses are lumped on the nearest node after the
   stiffnesses are calibrated, so lead tape shifts the frequencies.
@@ -42,6 +47,7 @@ The shape normal to the face at ``(x, y)`` is ``w(x)`` for bending, ``θ(x)·y``
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import combinations
 
 import numpy as np
 from numpy.typing import NDArray
@@ -55,6 +61,7 @@ from racketdyn.racket import HeadEllipse, Racket
 __all__ = [
     "HANDLE_LENGTH_M",
     "HANDLE_RADIUS_M",
+    "HEAD_TOP_DEG",
     "STRING_MASS_FRACTION",
     "THROAT_LENGTH_M",
     "beam_mass_per_length",
@@ -73,6 +80,9 @@ HANDLE_LENGTH_M = 0.19
 THROAT_LENGTH_M = 0.10
 """Length of the throat's two arms below the string bed, m (the open throat of a current frame,
 ≈ 90–110 mm; an assumption of the built-in model, like :data:`HANDLE_LENGTH_M`)."""
+HEAD_TOP_DEG = 60.0
+"""Half-angle of the head's top, the weighted part under the bumper guard, about 12 o'clock, °
+(10 to 2 o'clock, where bumper guards run; an assumption of the built-in model)."""
 THROAT_SPREAD = 0.5
 """Half-spread of the throat arms where they meet the hoop, as a share of the bed's half-width."""
 DEFAULT_DAMPING_RATIO = 0.005
@@ -147,14 +157,17 @@ class _FrameLayout:
         return np.asarray(2.0 * np.abs(np.diff(arc)))
 
     def parts(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Length of shaft, arms (both), hoop (both sides) and handle within each element, m."""
+        """Length of shaft, arms (both), hoop (both sides), handle and the head's top within each
+        element, m."""
         start, join, spread = self.arms
         lo, hi = x[:-1], x[1:]
         arm = np.clip(np.minimum(hi, join) - np.maximum(lo, start), 0.0, None)
         shaft = np.clip(np.minimum(hi, start) - lo, 0.0, None)
         slope = np.hypot(join - start, spread) / max(join - start, 1e-12)
         handle = np.clip(np.minimum(hi, HANDLE_LENGTH_M) - lo, 0.0, None)
-        return np.vstack([shaft, 2.0 * slope * arm, self.hoop_length(x), handle])
+        top = self.head.centre_x_m + self.hoop_axes[0] * np.cos(np.deg2rad(HEAD_TOP_DEG))
+        head_top = self.hoop_length(np.maximum(x, top))
+        return np.vstack([shaft, 2.0 * slope * arm, self.hoop_length(x), handle, head_top])
 
     def tubes(self, x_mid: NDArray[np.float64]) -> NDArray[np.float64]:
         """Frame tubes side by side in each section: 2 in the arms and the hoop, else 1."""
@@ -170,11 +183,12 @@ def frame_mass_per_length(
 ) -> NDArray[np.float64] | None:
     """Mass per unit length of each element from the frame's shape, kg/m (module docstring).
 
-    Four parts, each of a uniform mass per length of its own: the shaft (one tube from the butt
-    to the throat), the two throat arms, the hoop and the handle's pallet and grip (over
-    :data:`HANDLE_LENGTH_M`).  Their four amounts meet the three moments exactly; of the line of
-    amounts that do, the one whose shaft and arms are closest to the hoop's tube (least squares)
-    with no amount negative is taken.
+    Five parts, each of a uniform mass per length of its own: the shaft (one tube from the butt
+    to the throat), the two throat arms, the hoop, the handle's pallet and grip (over
+    :data:`HANDLE_LENGTH_M`) and the head's top (:data:`HEAD_TOP_DEG`), extra to the hoop
+    there.  Their five amounts meet the three moments exactly; of the plane of amounts that do,
+    the one closest to one tube — shaft and arms as heavy per length as the hoop, nothing extra
+    at the head's top (least squares) — with no amount negative is taken.
 
     Parameters
     ----------
@@ -194,7 +208,7 @@ def frame_mass_per_length(
     -------
     ndarray or None
         The density, matching the three targets exactly; None where no non-negative amounts of
-        the four parts meet them (the caller takes :func:`beam_mass_per_length`).
+        the five parts meet them (the caller takes :func:`beam_mass_per_length`).
     """
     x = _nodes(length_m, n_elements)
     parts = _FrameLayout(head, length_m).parts(x) / np.diff(x)
@@ -209,32 +223,56 @@ def frame_mass_per_length(
     return np.asarray(density) if np.all(density > 0) else None
 
 
+ONE_TUBE = np.array(
+    [[1.0, 0.0, -1.0, 0.0, 0.0], [0.0, 1.0, -1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 1.0]]
+)
+"""Departures from one tube of the amounts (shaft, arms, hoop, handle, head's top): shaft and
+arms from the hoop, and anything extra at the head's top."""
+
+
 def _closest_to_one_tube(
     equations: NDArray[np.float64], target: NDArray[np.float64]
 ) -> NDArray[np.float64] | None:
-    """Amounts (shaft, arms, hoop, handle) meeting ``equations @ c = target``, none negative,
-    shaft and arms closest to the hoop; None if no such amounts exist.
+    """Amounts (shaft, arms, hoop, handle, head's top) meeting ``equations @ c = target``, none
+    negative, closest to one tube (:data:`ONE_TUBE`); None if no such amounts exist.
 
-    Three equations in four unknowns leave a line ``c = c0 + s n``; the least-squares point on
-    it is clipped to the interval of ``s`` where every amount is non-negative (a quadratic in
-    one variable: no optimiser needed).
+    A convex quadratic over the amounts that meet the equations, bounded below by zero.  Its
+    minimum lies on a face of that set, where some amounts are zero and the rest solve the
+    equations; the best face is found by trying each set of zero amounts no larger than the
+    plane's dimension — at most 16 small least-squares solves, exact and deterministic (a
+    general optimiser would put its tolerance into the model's numbers).
     """
-    particular = np.linalg.lstsq(equations, target, rcond=None)[0]
-    direction = null_space(equations)
-    if direction.shape[1] != 1:
+    unknowns = equations.shape[1]
+    freedom = unknowns - np.linalg.matrix_rank(equations)
+    best: tuple[float, NDArray[np.float64]] | None = None
+    for count in range(freedom + 1):
+        for zeros in combinations(range(unknowns), count):
+            amounts = _on_face(equations, target, list(zeros))
+            if amounts is None or np.any(amounts < -1e-12):
+                continue
+            departure = float(np.sum((ONE_TUBE @ amounts) ** 2))
+            if best is None or departure < best[0] - 1e-15:
+                best = (departure, np.clip(amounts, 0.0, None))
+    return None if best is None else best[1]
+
+
+def _on_face(
+    equations: NDArray[np.float64], target: NDArray[np.float64], zeros: list[int]
+) -> NDArray[np.float64] | None:
+    """The amounts closest to one tube that meet the equations with ``zeros`` held at zero."""
+    free = [i for i in range(equations.shape[1]) if i not in zeros]
+    reduced = equations[:, free]
+    particular, *_ = np.linalg.lstsq(reduced, target, rcond=None)
+    if not np.allclose(reduced @ particular, target, rtol=1e-10, atol=1e-14):
         return None
-    n = direction[:, 0]
-    spread = np.array([[1.0, 0.0, -1.0, 0.0], [0.0, 1.0, -1.0, 0.0]])
-    best = -float((spread @ particular) @ (spread @ n)) / float((spread @ n) @ (spread @ n))
-    moving = np.abs(n) > 1e-12
-    if np.any(particular[~moving] < 0):
-        return None
-    limits = -particular[moving] / n[moving]
-    lowest = float(np.max(limits[n[moving] > 0], initial=-np.inf))
-    highest = float(np.min(limits[n[moving] < 0], initial=np.inf))
-    if lowest > highest:
-        return None
-    return np.asarray(particular + float(np.clip(best, lowest, highest)) * n)
+    direction = null_space(reduced)
+    amounts = np.zeros(equations.shape[1])
+    if direction.shape[1]:
+        spread = ONE_TUBE[:, free]
+        step, *_ = np.linalg.lstsq(spread @ direction, -spread @ particular, rcond=None)
+        particular = particular + direction @ step
+    amounts[free] = particular
+    return amounts
 
 
 def _section_radius(head: HeadEllipse, x_mid: NDArray[np.float64]) -> NDArray[np.float64]:
