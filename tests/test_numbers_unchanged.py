@@ -5,7 +5,9 @@ how they were made and when to write them anew).
 
 Written anew since: by the commit giving the built-in frame its shape (issue 22, fourth
 session, "frame's shape" in CHANGELOG.md) and by the merge of issue 27's one hand (the built-in
-model sampling the handle's sides: ≈ 1e-6) — changes of physics, not of the refactor."""
+model sampling the handle's sides: ≈ 1e-6), and by the commit adding the frame's head's top
+(issue 22, fifth session: the paper's racket carries nothing there, but its amounts are solved
+another way, 2e-8 in its frequencies) — changes of physics, not of the refactor."""
 
 from __future__ import annotations
 
