@@ -132,8 +132,11 @@ def test_meca0062_a_close_pair_of_other_shapes_stays_two(tmp_path: Path) -> None
     # half-power width, but their shapes differ (MAC 0.85): kept apart, as the lab's PolyMAX
     # keeps 125.21 and 125.58 Hz (src/main.py, `lambda_pole`).  The same test against 202
     # split its 130 Hz peak (129.95 + 130.03 Hz, MAC 0.94): one mode (the lab: 129.95 Hz).
+    # over 40-200 Hz: with the default band from 19.8 Hz (issue 25 item 1) the upper mode is
+    # stable in too few orders, a strict xfail of tests/test_realdata_must_hold.py
     path = realdata.file("meca0062_aircraft/meca0062_aircraft_3acc.uff.xz", tmp_path)
-    pair = _near(identify(read_frfs(path, reference=203)).model.frequency, 124.0, 127.0)
+    pair_frfs = read_frfs(path, reference=203)
+    pair = _near(identify(pair_frfs, (40.0, 200.0)).model.frequency, 124.0, 127.0)
     assert pair == [pytest.approx(125.41, abs=0.1), pytest.approx(125.68, abs=0.1)]
     single = _near(identify(read_frfs(path, reference=202)).model.frequency, 128.0, 132.0)
     assert single == [pytest.approx(129.95, abs=0.3)]

@@ -60,8 +60,24 @@ log = logging.getLogger(__name__)
 
 DEFAULT_LOW_HZ = 40.0
 """Lower band edge by default, Hz: above the rigid-body modes of a light structure on soft
-supports (≤ 15 Hz for a racket on a sponge or in a hand).  Pass ``band_hz`` for a structure
-whose first flexible mode lies lower."""
+supports (≤ 15 Hz for a racket on a sponge or in a hand) and below a racket's first bending
+mode; lower where the data's first flexible mode lies below it (:func:`default_band`)."""
+CLEAR_PEAK = 3.0
+"""A clear peak of the data: its summed |H| this many times the median over the file's band
+(the must-hold references' own definition, tests/test_realdata_must_hold.py)."""
+SUSPENSION_GAP = 5.0
+"""Rigid-body modes on a soft support lie below a fifth of the first flexible mode (the usual
+rule for a free test's suspension, 10–20 %: docs/references.md, "Modal testing") ..."""
+SUSPENSION_MAX_HZ = 10.0
+"""... and below this, Hz (bungees and sponges under a structure a person can lift: 1–3 Hz; a
+hand holding a racket: 3.5–7 Hz).  A clear peak below it with the next one at least
+:data:`SUSPENSION_GAP` times higher is the support's; a clamped structure's first mode (the
+wing's 13.5 Hz, 6.3 times below its second) is the structure's."""
+FIRST_MODE_OCTAVE = 2.0
+"""The default band starts this factor below the first flexible mode's peak: room for its
+half-power width and the edge margin (:data:`EDGE_LINES`, :data:`EDGE_WIDTHS`)."""
+SKIPPED_LINES = 3
+"""Lines at the bottom of a file not searched for peaks (DC and the window's leakage there)."""
 FIT_GAIN_MIN = 1.5
 """A selected pole is a mode of the data when the fit near its frequency (three half-power
 bandwidths either side) is at least this many times worse without it.  A pole where the data
@@ -119,9 +135,18 @@ the step with 6 significant digits (E13.5), so a 1000 Hz export reads 999.997 Hz
 
 
 def default_band(frfs: FrfSet) -> tuple[float, float]:
-    """40 Hz to the FRFs' bandwidth, Hz.
+    """From below the data's first flexible mode (at most 40 Hz) to the FRFs' bandwidth, Hz.
 
-    The bandwidth is :attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`: the last
+    The bottom is :data:`DEFAULT_LOW_HZ` unless the data's first flexible mode lies below it:
+    then :data:`FIRST_MODE_OCTAVE` below its peak (issue 25, item 1: a clear mode below 40 Hz
+    was lost without a word).  The first flexible mode is the lowest clear peak
+    (:data:`CLEAR_PEAK`) of the summed |H| above the support's rigid-body modes — clear peaks
+    below :data:`SUSPENSION_MAX_HZ` and a gap of :data:`SUSPENSION_GAP` (a wing clamped at its
+    root has none; an aircraft frame on bungees shows two near 1 Hz below its 18.8 Hz mode).
+    A racket's first bending mode (≥ 100 Hz) leaves the bottom at 40 Hz, above the hand's
+    modes.
+
+    The top is :attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`: the last
     spectral line of FRFs another system exported (they end at its analyser bandwidth, e.g.
     1000 Hz from fs = 2560 Hz), fs / 2.56 of FRFs racketdyn estimated from time records (whose
     lines above it are the anti-alias filter's roll-off; :data:`ANALYSER_BANDWIDTH_FACTOR`).
@@ -136,7 +161,30 @@ def default_band(frfs: FrfSet) -> tuple[float, float]:
     tuple of float
         (low, high), Hz.
     """
-    return (DEFAULT_LOW_HZ, float(frfs.bandwidth_hz))
+    high = float(frfs.bandwidth_hz)
+    first = _first_flexible_peak(frfs, high)
+    if first is None or first >= DEFAULT_LOW_HZ:
+        return (DEFAULT_LOW_HZ, high)
+    lowest = float(frfs.frequency[min(SKIPPED_LINES, frfs.frequency.size - 1)])
+    return (max(first / FIRST_MODE_OCTAVE, lowest), high)
+
+
+def _first_flexible_peak(frfs: FrfSet, high: float) -> float | None:
+    """The lowest clear peak above the support's rigid-body modes, Hz (None: no clear peak)."""
+    from scipy.signal import find_peaks
+
+    keep = (frfs.frequency <= high) & (np.arange(frfs.frequency.size) >= SKIPPED_LINES)
+    f = frfs.frequency[keep]
+    level = np.abs(frfs.values[:, keep]).sum(axis=0)
+    if f.size < 8 or not np.all(np.isfinite(level)):
+        return None
+    found, _ = find_peaks(level, height=CLEAR_PEAK * float(np.median(level)))
+    peaks = f[found]
+    support = (peaks[:-1] < SUSPENSION_MAX_HZ) & (peaks[1:] / peaks[:-1] >= SUSPENSION_GAP)
+    gaps = np.flatnonzero(support)
+    if gaps.size:
+        peaks = peaks[gaps[-1] + 1 :]
+    return float(peaks[0]) if peaks.size else None
 
 
 def _checked_band(frfs: FrfSet, band: tuple[float, float]) -> tuple[float, float]:
@@ -653,7 +701,8 @@ def identify(
         ``model.has_locations`` False; some without them is an InputError naming
         ``--geometry``); an exponential window recorded on the set is taken off the damping.
     band_hz : tuple of float, optional
-        Band to identify in, Hz (default :func:`default_band`: 40 Hz to the FRFs' bandwidth);
+        Band to identify in, Hz (default :func:`default_band`: from below the data's first
+        flexible mode, at most 40 Hz, to the FRFs' bandwidth);
         a top within the UFF header's 6-digit rounding of the last line is the last line.
     max_order : int
         Highest model order of the stabilisation diagram.

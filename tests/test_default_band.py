@@ -1,0 +1,70 @@
+"""The default band starts below the data's first flexible mode (issue 25, item 1).
+
+A fixed 40 Hz start lost every mode below it without a word: the wing clamped at its root
+(13.5 Hz), the SigLab beam (34 Hz), the aircraft frame on bungees (18.8 Hz; all in
+``tests/test_realdata_must_hold.py``).  The band now starts an octave below the lowest clear
+peak above the support's rigid-body modes, and at 40 Hz where that mode lies above 40 Hz (a
+racket's first bending, ≥ 100 Hz, with the hand's modes below).  The oracle is modal
+superposition of known modes."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from racketdyn.measurement.records import FrfSet
+from racketdyn.modal.identify import DEFAULT_LOW_HZ, default_band, identify
+
+POINTS = 9
+
+
+def _frfs(modes_hz: list[float], top_hz: float = 500.0, lines: int = 2001) -> FrfSet:
+    """Accelerances of points on a line against the first, from modes of known frequency
+    (ζ 0.5 %) whose shapes are cosines along the line (each mode a different one)."""
+    f = np.linspace(0.0, top_hz, lines)
+    w = 2 * np.pi * f
+    s = np.linspace(0.0, 1.0, POINTS)
+    values = np.zeros((POINTS, lines), complex)
+    for k, fk in enumerate(modes_hz):
+        wk = 2 * np.pi * fk
+        shape = np.cos(np.pi * k * s) + 0.3 * (k == 0)
+        values += (
+            -(w**2) * shape[:, None] * shape[0] / (wk**2 - w**2 + 2j * 0.005 * wk * w)[None, :]
+        )
+    rng = np.random.default_rng(1)
+    values += 1e-4 * np.abs(values).max() * (rng.standard_normal(values.shape) + 0j)
+    return FrfSet(
+        frequency=f,
+        values=values,
+        frf_type="accelerance",
+        nodes=tuple(range(1, POINTS + 1)),
+        locations=np.column_stack([s, np.zeros(POINTS)]),
+        reference_node=1,
+        reference_location=(0.0, 0.0),
+        source="synthetic",
+    )
+
+
+def test_a_clamped_structures_first_mode_below_40_hz_is_in_the_band() -> None:
+    frfs = _frfs([13.5, 84.6, 236.9, 464.2])
+    low, _ = default_band(frfs)
+    assert low == pytest.approx(13.5 / 2, abs=2 * float(frfs.frequency[1]))
+    found = identify(frfs)
+    assert np.min(np.abs(found.model.frequency - 13.5)) < 1e-3 * 13.5
+
+
+def test_the_supports_rigid_body_modes_stay_below_the_band() -> None:
+    """A free frame on bungees: suspension at 1.1 Hz, its first flexible mode at 18.8 Hz (a
+    ratio of 17, past the gap of 5): the band starts at 9.4 Hz, above the suspension."""
+    frfs = _frfs([1.1, 18.8, 62.0, 151.0, 290.0])
+    low, _ = default_band(frfs)
+    assert 1.1 * 2 < low == pytest.approx(9.4, abs=2 * float(frfs.frequency[1]))
+    found = identify(frfs)
+    assert np.min(np.abs(found.model.frequency - 18.8)) < 1e-3 * 18.8
+    assert np.all(found.model.frequency > 2.0)
+
+
+def test_a_rackets_band_still_starts_at_40_hz() -> None:
+    """Suspension at 2.5 Hz and the first bending at 120 Hz: above twice 40 Hz, so 40 Hz."""
+    frfs = _frfs([2.5, 120.0, 358.0, 600.0], top_hz=1000.0)
+    assert default_band(frfs) == (DEFAULT_LOW_HZ, 1000.0)
