@@ -173,8 +173,8 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 4",
             section="modes",
             labelled=True,
-            draw=f"{_FIGURES}:figure_identified_shapes",
-            reads=("identification", "racket"),
+            draw=f"{_FIGURES}:figure_mode_shapes",
+            reads=("shape_figures.shapes",),
             ignore_float_errors=True,
         ),
         FigureEntry(
@@ -184,8 +184,8 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 5",
             section="modes",
             labelled=True,
-            draw=f"{_FIGURES}:figure_identified_node_lines",
-            reads=("identification", "racket"),
+            draw=f"{_FIGURES}:figure_node_lines",
+            reads=("shape_figures.shapes",),
         ),
         FigureEntry(
             "fig6_nodes",
@@ -195,7 +195,7 @@ FIGURES: dict[str, FigureEntry] = {
             section="modes",
             labelled=True,
             draw=f"{_FIGURES}:figure_first_mode_nodes",
-            reads=("identification", "racket"),
+            reads=("shape_figures.axis",),
         ),
         FigureEntry(
             "synthesised_frfs",
@@ -215,7 +215,7 @@ FIGURES: dict[str, FigureEntry] = {
             section="stabilisation",
             labelled=True,
             draw=f"{_FIGURES}:figure_automac",
-            reads=("identification",),
+            reads=("shape_figures.automac",),
         ),
         # --- compare ----------------------------------------------------------------------
         FigureEntry(
@@ -235,8 +235,8 @@ FIGURES: dict[str, FigureEntry] = {
             "the hand",
             paper="Fig. 6",
             section="modes",
-            draw=f"{_FIGURES}:figure_nodes_free_hand",
-            reads=("free", "hand", "racket"),
+            draw=f"{_FIGURES}:figure_first_mode_nodes",
+            reads=("nodes_free_hand",),
         ),
         FigureEntry(
             "fig15_identified",

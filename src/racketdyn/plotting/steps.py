@@ -72,8 +72,11 @@ def compare_figures(result: CompareResult, out: Path) -> list[Path]:
     from racketdyn.plotting.registry import write_figures
 
     written = []
-    for label, identification in (("free", result.free), ("hand", result.hand)):
-        data = {"identification": identification, "racket": result.racket}
+    for label, identification, shapes in (
+        ("free", result.free, result.shapes_free),
+        ("hand", result.hand, result.shapes_hand),
+    ):
+        data = {"identification": identification, "racket": result.racket, "shape_figures": shapes}
         written += write_figures("identify", data, out, label=label)
     return written + write_figures("compare", result, out)
 
