@@ -462,14 +462,16 @@ def test_identify_writes_its_shapes_to_figures_nc(frfs: tuple[Path, Path], tmp_p
 def test_a_shape_figure_goes_into_a_users_figure(compared: tuple[Any, Drawn, Path]) -> None:
     """python-control style: the figure-data objects draw into the caller's axes."""
     result, _, _ = compared
-    figure, (left, right) = plt.subplots(1, 2)
+    before = set(plt.get_fignums())
+    figure, (left, middle, right) = plt.subplots(1, 3)
     try:
         assert result.shapes_free.automac.plot(ax=left) is left
-        assert result.nodes_free_hand.plot(ax=right) is right
+        assert result.nodes_free_hand.plot(ax=middle) is middle
+        assert result.rebound.plot(ax=right) is right
         assert left.get_title() == "AutoMAC"
-        assert len(right.get_lines()) >= 2  # free and hand-held
-        assert [ax.figure for ax in (left, right)] == [figure, figure]
-        assert len(plt.get_fignums()) == len(set(plt.get_fignums()))
+        assert len(middle.get_lines()) >= 2  # free and hand-held
+        assert right.get_title().startswith("Fig. 15")
+        assert set(plt.get_fignums()) - before == {figure.number}  # no figure of their own
     finally:
         plt.close(figure)
 

@@ -227,10 +227,12 @@ COMPUTING = (
     "racketdyn.workflows",
     "racketdyn.modal",
     "racketdyn.racket_modal",
+    "racketdyn.sweep",
 )
 """Packages whose computations plotting/ and report/ must not call (their types and constants
 they may import: a figure draws what the step computed, docs/develop.md "Layers"); the modal
-ones since the identified shapes' figures (Figs 4–6, AutoMAC) draw what identify evaluated."""
+ones since the identified shapes' figures (Figs 4–6, AutoMAC) draw what identify evaluated,
+the sweep since its summary figures draw the curves the sweep computed."""
 STILL_EVALUATING = {
     "racketdyn.report.sections.truth": "the rig's truth table evaluates the rig's model at the "
     "identified points and their MAC while the page is written (issue 23, left)",

@@ -96,6 +96,7 @@ __all__ = [
     "figure_twist",
     "plot_automac",
     "plot_axis_nodes",
+    "plot_identified_rebound",
     "write_contact_figure",
 ]
 
@@ -669,7 +670,7 @@ IDENTIFIED_STYLES: tuple[tuple[str, str, str], ...] = (
 IDENTIFIED_CASES` in the compare step's Fig. 15."""
 
 
-def figure_identified_rebound(data: IdentifiedRebound) -> Figure:
+def plot_identified_rebound(data: IdentifiedRebound, ax: Axes | None = None) -> Axes:
     """Paper Fig. 15 with the identified models: rebound ratio along the long axis.
 
     Parameters
@@ -677,8 +678,15 @@ def figure_identified_rebound(data: IdentifiedRebound) -> Figure:
     data : IdentifiedRebound
         The compare step's curves (:func:`racketdyn.workflows.figure_data.identified_rebound`,
         with the run's ball).
+    ax : matplotlib Axes, optional
+        Where to draw (in the caller's figure); a new figure if None.
+
+    Returns
+    -------
+    Axes
     """
-    figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
     for k, label in enumerate(data.cases):
         colour, marker, style = IDENTIFIED_STYLES[k % len(IDENTIFIED_STYLES)]
         ax.plot(
@@ -696,7 +704,23 @@ def figure_identified_rebound(data: IdentifiedRebound) -> Figure:
     ax.set_title(f"Fig. 15: identified models, ball at {data.ball_speed:g} m/s", fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    return figure
+    return ax
+
+
+def figure_identified_rebound(data: IdentifiedRebound, ax: Axes | None = None) -> Figure:
+    """Paper Fig. 15 with the identified models (:func:`plot_identified_rebound`).
+
+    Parameters
+    ----------
+    data, ax
+        As for :func:`plot_identified_rebound`.
+
+    Returns
+    -------
+    Figure
+        The figure it is drawn in.
+    """
+    return _figure_of(plot_identified_rebound(data, ax))
 
 
 def figure_mode_comparison(comparison: ModeComparison) -> Figure:

@@ -131,6 +131,7 @@ _FIGURES = "racketdyn.plotting.figures"
 _COMPOUND = "racketdyn.plotting.compound"
 _BALL = "racketdyn.plotting.ball"
 _VALIDATE = "racketdyn.plotting.validate"
+_SWEEP = "racketdyn.plotting.sweep"
 
 FIGURES: dict[str, FigureEntry] = {
     e.id: e
@@ -494,6 +495,8 @@ FIGURES: dict[str, FigureEntry] = {
             not_in_report="a sweep has its own folder (sweep.zarr, summary.csv); the report "
             "reads the demo's steps only",
             labelled=True,
+            draw=f"{_SWEEP}:figure_summary",
+            reads=("curves",),
         ),
     )
 }

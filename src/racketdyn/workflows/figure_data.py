@@ -49,6 +49,7 @@ from racketdyn.workflows._figure_io import _array, _has, _join, _part, _strings
 
 if TYPE_CHECKING:
     import xarray as xr
+    from matplotlib.axes import Axes
 
 __all__ = [
     "APPROXIMATE_ONLY",
@@ -1550,6 +1551,13 @@ class IdentifiedRebound:
     cases: tuple[str, ...]
     supports: tuple[str, ...]
     rebound_ratio: NDArray[np.float64]
+
+    def plot(self, ax: Axes | None = None) -> Axes:
+        """Draw the curves (into ``ax``, or a new figure); returns the axes
+        (:func:`racketdyn.plotting.figures.plot_identified_rebound`)."""
+        from racketdyn.plotting.figures import plot_identified_rebound
+
+        return plot_identified_rebound(self, ax)
 
     def to_xarray(self) -> xr.Dataset:
         """One dataset, names prefixed ``fig15_identified__``: ``rebound_ratio`` on
