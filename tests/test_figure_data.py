@@ -97,7 +97,7 @@ def test_compare_fig15_uses_the_runs_ball(
     from racketdyn.workflows.figure_data import FIGURES_FILE, IdentifiedRebound, read_figure_data
 
     data = IdentifiedRebound.from_xarray(read_figure_data(tmp_path / "compare" / FIGURES_FILE))
-    redrawn = figures_module.figure_identified_rebound(data)
+    redrawn = data.plot().get_figure()
     try:
         _same_drawing(caught["fig15_identified.png"], redrawn)
     finally:

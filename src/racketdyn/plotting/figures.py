@@ -71,15 +71,12 @@ __all__ = [
     "IDENTIFIED_STYLES",
     "SWING_AXIS_POINTS",
     "TRANSIENT_CURVE_SPEEDS_MPS",
-    "figure_automac",
     "figure_contact_time",
     "figure_face_maps",
-    "figure_first_mode_nodes",
     "figure_force_and_contact_time",
     "figure_frame_vibration",
     "figure_frf_frame",
     "figure_frf_string_centre",
-    "figure_identified_rebound",
     "figure_mode_comparison",
     "figure_mode_shapes",
     "figure_node_lines",
@@ -514,34 +511,6 @@ def figure_stabilisation(identification: Identification) -> Figure:
     return figure
 
 
-def figure_first_mode_nodes(axis: AxisNodes, ax: Axes | None = None) -> Figure:
-    """Paper Fig. 6: the first mode along the long axis with its nodes (one model, or free
-    against hand-held: :func:`plot_axis_nodes`).
-
-    Parameters
-    ----------
-    axis : AxisNodes
-        The curves and nodes (:func:`racketdyn.workflows.shape_figures.axis_node_curves`).
-    ax : matplotlib Axes, optional
-        Where to draw (in the caller's figure); a new figure if None.
-
-    Returns
-    -------
-    Figure
-        The figure of ``ax``.
-    """
-    if ax is None:
-        height = 3.8 if len(axis.supports) == 1 else 4.2
-        _, ax = plt.subplots(figsize=(7, height), layout="constrained")
-    return _figure_of(plot_axis_nodes(axis, ax))
-
-
-def _figure_of(ax: Axes) -> Figure:
-    figure = ax.get_figure()
-    assert isinstance(figure, Figure)
-    return figure
-
-
 def figure_synthesised_frfs(identification: Identification, racket: Racket) -> Figure:
     """Measured FRFs against those synthesised from the identified model: the driving point and
     the point nearest the string-bed centre (a racket's modes) or the worst-fitted point.
@@ -606,24 +575,9 @@ def plot_automac(automac: AutoMac, ax: Axes | None = None) -> Axes:
     return ax
 
 
-def figure_automac(automac: AutoMac, ax: Axes | None = None) -> Figure:
-    """The AutoMAC of the identified mode shapes (:func:`plot_automac`).
-
-    Parameters
-    ----------
-    automac, ax
-        As for :func:`plot_automac`.
-
-    Returns
-    -------
-    Figure
-        The figure it is drawn in.
-    """
-    return _figure_of(plot_automac(automac, ax))
-
-
 def plot_axis_nodes(axis: AxisNodes, ax: Axes | None = None) -> Axes:
-    """Paper Fig. 6: the first mode along the long axis with its nodes, one line per model.
+    """Paper Fig. 6: the first mode along the long axis with its nodes, one line per model
+    (identify's; compare's free against hand-held).
 
     Parameters
     ----------
@@ -637,7 +591,8 @@ def plot_axis_nodes(axis: AxisNodes, ax: Axes | None = None) -> Axes:
     Axes
     """
     if ax is None:
-        _, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
+        height = 3.8 if len(axis.supports) == 1 else 4.2  # room for the legend's second row
+        _, ax = plt.subplots(figsize=(7, height), layout="constrained")
     marks = []
     for k, colour in zip(range(len(axis.supports)), ("tab:blue", "k"), strict=False):
         nodes = axis.nodes_of(k) * 1e3
@@ -705,22 +660,6 @@ def plot_identified_rebound(data: IdentifiedRebound, ax: Axes | None = None) -> 
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     return ax
-
-
-def figure_identified_rebound(data: IdentifiedRebound, ax: Axes | None = None) -> Figure:
-    """Paper Fig. 15 with the identified models (:func:`plot_identified_rebound`).
-
-    Parameters
-    ----------
-    data, ax
-        As for :func:`plot_identified_rebound`.
-
-    Returns
-    -------
-    Figure
-        The figure it is drawn in.
-    """
-    return _figure_of(plot_identified_rebound(data, ax))
 
 
 def figure_mode_comparison(comparison: ModeComparison) -> Figure:

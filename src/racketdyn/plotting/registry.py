@@ -60,8 +60,9 @@ class FigureEntry:
         Why it is not in the report (then ``section`` is None).
     draw : str
         ``"module:function"`` of a function that only draws: ``function(*data) -> Figure``, its
-        arguments the step result's attributes ``reads``; empty for a figure still drawn inside
-        its step's writer (from the step's objects, not its data alone).
+        arguments the step result's attributes ``reads``; a one-panel figure's function may
+        take ``ax`` after them and return it (``function(*data, ax=None) -> Axes``: a user
+        draws it into a figure of their own; the registry saves the axes' figure).
     reads : tuple of str
         The attributes of the step's result (or the keys of the data read back from its folder,
         :func:`racketdyn.workflows.figure_data.read_step_data`) that ``draw`` takes; a dotted
@@ -74,8 +75,9 @@ class FigureEntry:
         Drawn with NumPy's overflow and invalid-value errors ignored (mplot3d's projection
         overflows on the NaN outside the face of some surfaces; harmless).
 
-    A draw function may return None: the data give no such figure (Figs 4–6 of a structure
-    that is not a racket); the step then writes no file for it.
+    A read that is None gives no figure (Figs 4–5 of shapes without coordinates, Fig. 6 of a
+    structure that is not a racket); nor does a draw function that returns None; the step then
+    writes no file for it.
     """
 
     id: str
@@ -195,7 +197,7 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 6",
             section="modes",
             labelled=True,
-            draw=f"{_FIGURES}:figure_first_mode_nodes",
+            draw=f"{_FIGURES}:plot_axis_nodes",
             reads=("shape_figures.axis",),
         ),
         FigureEntry(
@@ -215,7 +217,7 @@ FIGURES: dict[str, FigureEntry] = {
             "modes look at the measured points (near 1: the points cannot tell them apart)",
             section="stabilisation",
             labelled=True,
-            draw=f"{_FIGURES}:figure_automac",
+            draw=f"{_FIGURES}:plot_automac",
             reads=("shape_figures.automac",),
         ),
         # --- compare ----------------------------------------------------------------------
@@ -236,7 +238,7 @@ FIGURES: dict[str, FigureEntry] = {
             "the hand",
             paper="Fig. 6",
             section="modes",
-            draw=f"{_FIGURES}:figure_first_mode_nodes",
+            draw=f"{_FIGURES}:plot_axis_nodes",
             reads=("nodes_free_hand",),
         ),
         FigureEntry(
@@ -248,7 +250,7 @@ FIGURES: dict[str, FigureEntry] = {
             "free modes",
             paper="Fig. 15",
             section="rebound",
-            draw=f"{_FIGURES}:figure_identified_rebound",
+            draw=f"{_FIGURES}:plot_identified_rebound",
             reads=("rebound",),
         ),
         # --- contact ----------------------------------------------------------------------
@@ -580,7 +582,14 @@ def draw(figure: str, source: object) -> Any:
     data = found.data(source)
     if data is None:
         raise ValueError(f"figure {found.id!r} needs {', '.join(found.reads)}: not all given")
-    return found.drawer()(*data)
+    return _figure(found.drawer()(*data))
+
+
+def _figure(drawn: Any) -> Any:
+    """The figure a draw function drew: itself, or the figure of the axes it returned."""
+    from matplotlib.axes import Axes
+
+    return drawn.get_figure(root=True) if isinstance(drawn, Axes) else drawn
 
 
 def write_figures(
@@ -627,7 +636,7 @@ def write_figures(
         name = figure.file_for(label)
         if status is not None:
             status(f"drawing {name} ({k} of {len(found)} figures)")
-        drawn = figure.drawer()(*data)
+        drawn = _figure(figure.drawer()(*data))
         if drawn is None:
             continue
         errors = np.errstate(over="ignore", invalid="ignore")
