@@ -493,3 +493,13 @@ def test_general_shapes_round_trip_through_xarray() -> None:
     np.testing.assert_array_equal(back.line, shapes.line)
     assert back.head is None
     assert back.names == shapes.names
+    # one mode of each figure in the user's own figure
+    figure = plt.figure()
+    try:
+        flat, solid = figure.add_subplot(1, 2, 1), figure.add_subplot(1, 2, 2, projection="3d")
+        assert back.plot(1, ax=flat) is flat
+        assert back.plot(1, ax=solid, kind="3d") is solid
+        assert flat.get_title() == "b, 30 Hz"
+        np.testing.assert_array_equal(flat.get_lines()[0].get_ydata(), shapes.nodes_line_shapes[1])
+    finally:
+        plt.close(figure)

@@ -48,6 +48,7 @@ __all__ = [
     "IdentifiedShapes",
     "Layout",
     "ModeShapes",
+    "Panel",
     "axis_node_curves",
     "identified_shapes",
     "is_racket_model",
@@ -69,6 +70,8 @@ Layout = Literal["racket", "surface", "line", "space"]
 """How a figure shows the shapes: over a racket's face and long axis; over the convex hull of
 points in a plane; along points on one straight line (a beam); at points in space."""
 
+Panel = Literal["node_lines", "3d"]
+"""Which figure's panel :meth:`ModeShapes.plot` draws: Fig. 5's node lines or Fig. 4's shape."""
 _HEAD = ("centre_x_m", "half_length_m", "half_width_m", "centre_y_m")
 
 
@@ -199,7 +202,7 @@ class ModeShapes:
         name = self.names[mode]
         return name if name.endswith(" Hz)") else f"{name}, {self.frequency[mode]:.{decimals}f} Hz"
 
-    def plot(self, mode: int = 0, ax: Axes | None = None, *, kind: str = "node_lines") -> Axes:
+    def plot(self, mode: int = 0, ax: Axes | None = None, *, kind: Panel = "node_lines") -> Axes:
         """Draw one mode: its node lines (Fig. 5, ``kind="node_lines"``) or its shape in 3-D
         (Fig. 4, ``kind="3d"``, ``ax`` a 3-D axes); matplotlib is imported now.
 
