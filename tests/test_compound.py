@@ -1145,10 +1145,10 @@ def test_fig_9b_strikes_where_the_ball_mode_shows(tmp_path: Path) -> None:
     least 90 % of at its frequency (from the identified model; at 55 % the heavily damped mode
     still made no visible peak), as the paper's Fig. 9b shows it."""
     from racketdyn.io import load_racket
-    from racketdyn.plotting.compound import ball_mode_share, node_showing_ball_mode
     from racketdyn.rig import rig_model
     from racketdyn.rig.ball import ball_on_strings
     from racketdyn.rig.hammer import hammer_points
+    from racketdyn.workflows.identify import ball_mode_share, node_showing_ball_mode
 
     path = tmp_path / "pro100.toml"
     # the bed at its pull tension, as the trial ran it (on the played bed, issue 22, the nearest

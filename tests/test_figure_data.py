@@ -5,7 +5,7 @@ alone draws the same lines as the figure the run drew."""
 from __future__ import annotations
 
 import logging
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -97,7 +97,7 @@ def test_compare_fig15_uses_the_runs_ball(
     from racketdyn.workflows.figure_data import FIGURES_FILE, IdentifiedRebound, read_figure_data
 
     data = IdentifiedRebound.from_xarray(read_figure_data(tmp_path / "compare" / FIGURES_FILE))
-    redrawn = figures_module.figure_identified_rebound(data)
+    redrawn = data.plot().get_figure()
     try:
         _same_drawing(caught["fig15_identified.png"], redrawn)
     finally:
@@ -162,6 +162,22 @@ def _by_label(figure: Figure, ax_index: int = 0) -> dict[str, np.ndarray]:
     return {str(line.get_label()): np.asarray(line.get_ydata(), float) for line in ax.get_lines()}
 
 
+def _run_caught(run: Callable[[], Any]) -> tuple[Any, Drawn]:
+    """A step run with the figures its hook draws caught open, by file name (pyplot's warning
+    beyond 20 open figures off: a module's runs keep theirs open side by side)."""
+    drawn: Drawn = {}
+    patch = pytest.MonkeyPatch()
+    catch_figures(patch, drawn)
+    logging.disable(logging.WARNING)
+    try:
+        with plt.rc_context({"figure.max_open_warning": 0}):
+            result = run()
+    finally:
+        logging.disable(logging.NOTSET)
+        patch.undo()
+    return result, drawn
+
+
 @pytest.fixture(scope="module")
 def predicted(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, Drawn, Path]]:
     """A small ``predict --model both`` run with its figures caught, and its folder."""
@@ -169,12 +185,8 @@ def predicted(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, D
     from racketdyn.workflows import run_predict
 
     out = tmp_path_factory.mktemp("predict")
-    drawn: Drawn = {}
-    patch = pytest.MonkeyPatch()
-    catch_figures(patch, drawn)
-    logging.disable(logging.WARNING)
-    try:
-        result = run_predict(
+    result, drawn = _run_caught(
+        lambda: run_predict(
             out,
             model="both",
             speeds=[10.0, 20.0, 35.0],
@@ -183,9 +195,7 @@ def predicted(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, D
             engine="compiled",
             setup=Setup(figures=predict_figures()),
         )
-    finally:
-        logging.disable(logging.NOTSET)
-        patch.undo()
+    )
     yield result, drawn, out
     for figure in drawn.values():
         plt.close(figure)
@@ -331,3 +341,165 @@ def test_each_predict_figure_redrawn_from_figures_nc_alone(
     finally:
         for figure in redrawn.values():
             plt.close(figure)
+
+
+# --- identify and compare: Figs 4-6 and the AutoMAC drawn from what the step evaluated ----------
+@pytest.fixture(scope="module")
+def compared(
+    frfs: tuple[Path, Path], tmp_path_factory: pytest.TempPathFactory
+) -> Iterator[tuple[Any, Drawn, Path]]:
+    """A compare run (free against hand-held) with its figures caught, and its folder."""
+    from racketdyn.workflows.identify import run_compare
+
+    out = tmp_path_factory.mktemp("compare")
+    result, drawn = _run_caught(
+        lambda: run_compare(frfs[0], frfs[1], out, setup=Setup(figures=compare_figures))
+    )
+    for name in [n for n in drawn if not n.startswith(SHAPE_FIGURES)]:
+        plt.close(drawn.pop(name))  # the shapes' figures kept only (pyplot warns beyond 20)
+    yield result, drawn, out
+    for figure in drawn.values():
+        plt.close(figure)
+
+
+SHAPE_FIGURES = ("fig4_mode_shapes", "fig5_node_lines", "fig6_nodes", "automac")
+"""The identified shapes' figures (compare writes them once per model)."""
+
+
+def _same_3d_drawing(first: Figure, second: Figure) -> None:
+    """Fig. 4's panels: the same surfaces (their 3-D vertices), lines and points."""
+
+    def drawn(figure: Figure) -> list[np.ndarray]:
+        arrays = []
+        for ax in figure.axes:
+            for line in ax.get_lines():
+                arrays.append(np.asarray(line.get_data_3d(), float))  # type: ignore[attr-defined]
+            for collection in ax.collections:  # a surface's faces, or a scatter's points
+                faces = getattr(collection, "_faces", None)
+                if faces is None:
+                    points = getattr(collection, "_offsets3d", collection.get_offsets())
+                    arrays.append(np.asarray(points, float))
+                    continue
+                invalid = np.asarray(getattr(collection, "_invalid_vertices", False))
+                padding = np.broadcast_to(invalid, np.shape(faces)[:2])[..., None]
+                arrays.append(np.where(padding, 0.0, np.asarray(faces, float)))
+        return arrays
+
+    a, b = drawn(first), drawn(second)
+    assert len(a) == len(b) > 0
+    for u, v in zip(a, b, strict=True):
+        np.testing.assert_array_equal(u, v)
+    assert first.get_suptitle() == second.get_suptitle()
+    assert [ax.get_title() for ax in first.axes] == [ax.get_title() for ax in second.axes]
+
+
+def test_identified_shapes_redrawn_from_figures_nc_alone(
+    compared: tuple[Any, Drawn, Path],
+) -> None:
+    """Issue 23: Figs 4-6 and the AutoMAC of each model, and Fig. 6 free against hand-held,
+    drawn from the compare folder's figures.nc alone, draw what the step drew; the shapes are
+    the model evaluated by the step (its MAC, its nodes on the axis)."""
+    from racketdyn.modal.residues import mac
+    from racketdyn.plotting.registry import draw
+    from racketdyn.racket_modal.shapes import axis_nodes
+    from racketdyn.workflows.figure_data import read_step_data
+
+    result, drawn, out = compared
+    racket = rd.default_racket()
+
+    def same(name: str, redrawn: Figure) -> None:
+        try:
+            if name.startswith("fig4"):
+                _same_3d_drawing(drawn[name], redrawn)
+            else:
+                _same_drawing(drawn[name], redrawn)
+        finally:
+            plt.close(redrawn)  # one at a time: the step's figures are open
+            plt.close(drawn.pop(name))
+
+    for label, identification in (("free", result.free), ("hand", result.hand)):
+        data = read_step_data(out, label)  # the folder's file alone
+        for figure in SHAPE_FIGURES:
+            same(f"{figure}_{label}.png", draw(figure, data))
+        model = identification.model
+        shapes = data["shape_figures"]
+        np.testing.assert_array_equal(
+            shapes.automac.matrix, mac(model.mode_shapes, model.mode_shapes)
+        )
+        np.testing.assert_array_equal(
+            shapes.axis.nodes_of(0), axis_nodes(model, 0, (0.0, racket.length_m))
+        )
+    same("fig6_nodes_free_hand.png", draw("fig6_nodes_free_hand", read_step_data(out)))
+
+
+def test_identify_writes_its_shapes_to_figures_nc(frfs: tuple[Path, Path], tmp_path: Path) -> None:
+    """identify lists figures.nc in run.json; the shapes read back equal those it evaluated."""
+    import json
+    from dataclasses import fields
+
+    from racketdyn.workflows import run_identify
+    from racketdyn.workflows.figure_data import FIGURES_FILE, read_step_data
+
+    logging.disable(logging.WARNING)
+    try:
+        result = run_identify(frfs[0], tmp_path, setup=Setup(figures=None))
+    finally:
+        logging.disable(logging.NOTSET)
+    assert FIGURES_FILE in json.loads((tmp_path / "run.json").read_text())["outputs"]
+    computed, read = result.shape_figures, read_step_data(tmp_path)["shape_figures"]
+    assert computed.shapes is not None
+    assert computed.shapes.layout_3d == "racket"
+    for part in ("automac", "shapes", "axis"):
+        a, b = getattr(computed, part), getattr(read, part)
+        for f in fields(a):
+            u, v = getattr(a, f.name), getattr(b, f.name)
+            if isinstance(u, np.ndarray):
+                np.testing.assert_array_equal(u, v, err_msg=f"{part}.{f.name}")
+            else:
+                assert u == v, f"{part}.{f.name}"
+
+
+def test_a_shape_figure_goes_into_a_users_figure(compared: tuple[Any, Drawn, Path]) -> None:
+    """python-control style: the figure-data objects draw into the caller's axes."""
+    result, _, _ = compared
+    before = set(plt.get_fignums())
+    figure, (left, middle, right) = plt.subplots(1, 3)
+    try:
+        assert result.shapes_free.automac.plot(ax=left) is left
+        assert result.nodes_free_hand.plot(ax=middle) is middle
+        assert result.rebound.plot(ax=right) is right
+        assert left.get_title() == "AutoMAC"
+        assert len(middle.get_lines()) >= 2  # free and hand-held
+        assert right.get_title().startswith("Fig. 15")
+        assert set(plt.get_fignums()) - before == {figure.number}  # no figure of their own
+    finally:
+        plt.close(figure)
+
+
+def test_general_shapes_round_trip_through_xarray() -> None:
+    """A structure that is not a racket (a beam: a line; points in space) keeps its layout."""
+    from racketdyn.modal.model import ModalModel
+    from racketdyn.workflows.shape_figures import ModeShapes, mode_shapes
+
+    t = np.linspace(0, 1, 11)
+    beam = ModalModel(
+        [10.0, 30.0], [0.01, 0.02], np.column_stack([t, 0.5 * t]),
+        np.column_stack([np.sin(np.pi * t), np.sin(2 * np.pi * t)]), ("a", "b"),
+    )  # fmt: skip
+    shapes = mode_shapes(beam, None)
+    assert (shapes.layout_3d, shapes.layout_nodes) == ("line", "line")
+    back = ModeShapes.from_xarray(shapes.to_xarray())
+    np.testing.assert_array_equal(back.nodes_line_shapes, shapes.nodes_line_shapes)
+    np.testing.assert_array_equal(back.line, shapes.line)
+    assert back.head is None
+    assert back.names == shapes.names
+    # one mode of each figure in the user's own figure
+    figure = plt.figure()
+    try:
+        flat, solid = figure.add_subplot(1, 2, 1), figure.add_subplot(1, 2, 2, projection="3d")
+        assert back.plot(1, ax=flat) is flat
+        assert back.plot(1, ax=solid, kind="3d") is solid
+        assert flat.get_title() == "b, 30 Hz"
+        np.testing.assert_array_equal(flat.get_lines()[0].get_ydata(), shapes.nodes_line_shapes[1])
+    finally:
+        plt.close(figure)

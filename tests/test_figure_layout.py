@@ -32,6 +32,7 @@ from racketdyn.plotting import figures
 from racketdyn.plotting.primitives import label_rows
 from racketdyn.racket_modal.shapes import axis_nodes
 from racketdyn.workflows.figure_data import paper_figures, swing_axis_curves
+from racketdyn.workflows.shape_figures import axis_node_curves, mode_shapes
 
 
 @pytest.fixture(autouse=True)
@@ -123,7 +124,7 @@ def test_fig6_node_labels_are_off_the_curves_and_apart(
     """Two models whose nodes lie 5 mm apart (the demo's 501 and 506 mm)."""
     other = replace(model, support="pinned")
     figure, ax = plt.subplots(figsize=(7, 4.2), layout="constrained")
-    figures._plot_axis_nodes([model, other], racket, ax)
+    figures.plot_axis_nodes(axis_node_curves([model, other], racket), ax)
     renderer = _renderer(figure)
     nodes = axis_nodes(model, 0, (0.0, racket.length_m)) * 1e3
     names = [f"{node:.0f}" for node in nodes] + [f"{node:.0f} mm" for node in nodes]
@@ -183,13 +184,13 @@ def test_swing_legend_is_off_the_curves(racket: rd.Racket, ball: rd.Ball) -> Non
 def test_fig4_has_a_scale_and_fig5_says_what_black_and_white_mean(
     racket: rd.Racket, model: rd.ModalModel
 ) -> None:
-    fig4 = figures.figure_mode_shapes(model, racket)
+    fig4 = figures.figure_mode_shapes(mode_shapes(model, racket))
     panels = [ax for ax in fig4.axes if ax.name == "3d"]
     assert len(panels) == model.n_modes
     for ax in panels:
         assert any(t.get_text() == "100 mm" for t in ax.texts), "no scale bar"
     assert "bar: 100 mm" in fig4.get_suptitle()
-    fig5 = figures.figure_node_lines(model, racket)
+    fig5 = figures.figure_node_lines(mode_shapes(model, racket))
     words = " ".join(t.get_text() for legend in fig5.legends for t in legend.get_texts())
     for word in ("black", "white", "node line"):
         assert word in words

@@ -57,6 +57,12 @@ def test_every_draw_function_is_a_plotting_function_taking_what_the_entry_reads(
     assert len(required) <= len(figure.reads) <= len(positional), figure.id
 
 
+def test_every_figure_is_drawn_by_its_entry() -> None:
+    """Issue 23: ``write_figures`` is the one door; sweep's summaries were drawn by their own
+    writer, outside the registry (an entry without a draw function)."""
+    assert [f.id for f in FIGURES.values() if not f.draw] == []
+
+
 def test_ids_and_files_are_unique_and_found_back_from_a_file_name() -> None:
     files = [f.file for f in FIGURES.values()]
     assert len(set(files)) == len(files)

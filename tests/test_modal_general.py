@@ -123,14 +123,16 @@ def test_pairing_a_model_with_itself(beam) -> None:
 
 def test_general_figures_need_no_racket(beam) -> None:
     from racketdyn.plotting.primitives import plot_mac, plot_mode_3d, plot_node_lines
+    from racketdyn.workflows.shape_figures import mode_shapes
 
     result = beam["result"]
     model = result.model
-    ax = plot_node_lines(model, 0)
+    shapes = mode_shapes(model, None)
+    ax = plot_node_lines(shapes, 0)
     assert ax.get_title().startswith("mode 1 (")
     assert len(ax.lines[-1].get_xdata()) == 2  # the first mode's two nodes
     plt.close(ax.figure)
-    ax = plot_mode_3d(model, 1)
+    ax = plot_mode_3d(shapes, 1)
     plt.close(ax.figure)
     ax = result.stabilisation.plot(result.selected, frfs=result.frfs)
     plt.close(ax.figure)
@@ -141,6 +143,7 @@ def test_general_figures_need_no_racket(beam) -> None:
 def test_general_figures_on_a_surface() -> None:
     # a simply supported 0.4 m × 0.3 m plate sampled on a grid: node lines over its points
     from racketdyn.plotting.primitives import plot_mode_3d, plot_node_lines
+    from racketdyn.workflows.shape_figures import mode_shapes
 
     x, y = np.meshgrid(np.linspace(0, 0.4, 9), np.linspace(0, 0.3, 7), indexing="ij")
     points = np.column_stack([x.ravel(), y.ravel()])
@@ -151,10 +154,10 @@ def test_general_figures_on_a_surface() -> None:
         ]
     )
     model = ModalModel([50.0, 120.0], [0.01, 0.01], points, shapes, ("mode 1", "mode 2"))
-    ax = plot_node_lines(model, 1)
+    ax = plot_node_lines(mode_shapes(model, None), 1)
     assert ax.get_title() == "mode 2, 120 Hz"
     plt.close(ax.figure)
-    ax = plot_mode_3d(model, 1)
+    ax = plot_mode_3d(mode_shapes(model, None), 1)
     plt.close(ax.figure)
 
 
@@ -178,6 +181,7 @@ def test_a_beam_in_space_along_z() -> None:
 def test_figures_of_points_in_space() -> None:
     # points on two faces of a box (not one plane): drawn where they are, coloured by shape
     from racketdyn.plotting.primitives import plot_mode_3d, plot_node_lines
+    from racketdyn.workflows.shape_figures import mode_shapes
 
     u, v = np.meshgrid(np.linspace(0, 0.3, 5), np.linspace(0, 0.2, 4), indexing="ij")
     top = np.column_stack([u.ravel(), v.ravel(), np.zeros(u.size)])
@@ -186,8 +190,8 @@ def test_figures_of_points_in_space() -> None:
     shapes = np.sin(np.pi * points[:, :1] / 0.3) * np.array([[1.0, -1.0]]) + points[:, 1:2]
     model = ModalModel([80.0, 200.0], [0.01, 0.02], points, shapes, ("mode 1", "mode 2"))
     assert model.mode_shapes_at(points[:3]).shape == (3, 2)
-    ax = plot_mode_3d(model, 0)
+    ax = plot_mode_3d(mode_shapes(model, None), 0)
     assert ax.get_title().startswith("mode 1, 80.0 Hz")
     plt.close(ax.figure)
-    ax = plot_node_lines(model, 1)
+    ax = plot_node_lines(mode_shapes(model, None), 1)
     plt.close(ax.figure)

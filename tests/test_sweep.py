@@ -22,7 +22,8 @@ import racketdyn.sweep.task as sweep_task
 import sweep_faults
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.transient import predict_transient
-from racketdyn.plotting.sweep import plot_centre_rebound, plot_sweet_area, write_summary_figures
+from racketdyn.plotting.steps import sweep_figures
+from racketdyn.plotting.sweep import plot_centre_rebound, plot_sweet_area
 from racketdyn.sweep import (
     SerialExecutor,
     SweepSpec,
@@ -37,6 +38,7 @@ from racketdyn.sweep import (
     sweet_area_resolution_cm2,
     variable_designs,
 )
+from racketdyn.sweep.summary import summary_curves
 from racketdyn.workflows.setup import Setup
 
 assert_same_bits = sweep_faults.assert_same_bits
@@ -88,7 +90,7 @@ def one_at_a_time(
         name="physics",
     )
     out = tmp_path_factory.mktemp("physics")
-    return run_sweep(spec, out, SerialExecutor(), figures=write_summary_figures), out
+    return run_sweep(spec, out, SerialExecutor(), figures=sweep_figures), out
 
 
 def design(dataset: xr.Dataset, varied: str) -> xr.Dataset:
@@ -437,7 +439,7 @@ def test_hand_variables_change_the_hand_support_only(
         method="transient",
         name="arm",
     )
-    ds = run_sweep(spec, tmp_path, SerialExecutor(), figures=write_summary_figures)
+    ds = run_sweep(spec, tmp_path, SerialExecutor(), figures=sweep_figures)
     np.testing.assert_array_equal(ds["hand.arm_mass_kg"].values, [0.5, 2.0])
     free = ds["rebound_ratio"].sel(support="free").values
     np.testing.assert_allclose(free[0], free[1], rtol=1e-12)
@@ -455,7 +457,10 @@ def test_hand_variables_change_the_hand_support_only(
     import matplotlib.pyplot as plt
 
     figure, ax = plt.subplots()
-    assert plot_centre_rebound(ds, "hand.arm_mass_kg", ax=ax).get_xlabel() == "arm mass (kg)"
+    assert (
+        plot_centre_rebound(summary_curves(ds, "hand.arm_mass_kg"), ax=ax).get_xlabel()
+        == "arm mass (kg)"
+    )
     plt.close(figure)
 
 
@@ -513,10 +518,44 @@ def test_summary_figures_and_table(one_at_a_time: tuple[xr.Dataset, Path]) -> No
     import matplotlib.pyplot as plt
 
     figure, (left, right) = plt.subplots(1, 2)
-    assert plot_centre_rebound(ds, "point_mass", ax=left) is left
-    assert plot_sweet_area(ds, "e_bg", ax=right) is right
+    assert plot_centre_rebound(summary_curves(ds, "point_mass"), ax=left) is left
+    assert plot_sweet_area(summary_curves(ds, "e_bg"), ax=right) is right
     assert left.get_xlabel() == "point mass (g)"
     plt.close(figure)
+
+
+def test_summary_figure_drawn_through_the_registry_from_the_store(
+    one_at_a_time: tuple[xr.Dataset, Path], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Issue 23: the summary figures are the registry's ``summary`` entry, drawn from the
+    curves the sweep computes; the folder's store alone redraws them the same."""
+    import matplotlib.pyplot as plt
+
+    from racketdyn.plotting import registry, render
+    from racketdyn.sweep import open_sweep
+    from racketdyn.sweep.summary import summary_figures_data
+
+    ds, out = one_at_a_time
+    saved: dict[str, Any] = {}
+    monkeypatch.setattr(
+        render, "save_figure", lambda figure, path: saved.setdefault(path.name, figure) and path
+    )
+    written = sweep_figures(summary_figures_data(ds), out)
+    assert {p.name for p in written} == {
+        f"summary_{v}.png" for v in ("point_mass", "e_bg", "frame_stiffness_scale")
+    }
+    assert all(registry.of_file(p.name) is registry.FIGURES["summary"] for p in written)
+    curves = summary_curves(open_sweep(out), "e_bg")  # the folder alone
+    redrawn = registry.draw("summary", {"curves": curves})
+    try:
+        for drawn_ax, redrawn_ax in zip(saved["summary_e_bg.png"].axes, redrawn.axes, strict=True):
+            for a, b in zip(drawn_ax.get_lines(), redrawn_ax.get_lines(), strict=True):
+                np.testing.assert_array_equal(a.get_xydata(), b.get_xydata())
+        assert saved["summary_e_bg.png"].get_suptitle() == redrawn.get_suptitle()
+    finally:
+        plt.close(redrawn)
+        for figure in saved.values():
+            plt.close(figure)
 
 
 # --- resuming and failures --------------------------------------------------------------------
@@ -959,8 +998,8 @@ def test_summary_lines_follow_the_axis_and_the_clock_reads_from_twelve(tmp_path:
     )
     ds = run_sweep(spec, tmp_path, SerialExecutor(), figures=None)
     _, (left, right) = plt.subplots(1, 2)
-    plot_centre_rebound(ds, "point_mass", ax=left)
-    plot_centre_rebound(ds, "tension_n", ax=right)
+    plot_centre_rebound(summary_curves(ds, "point_mass"), ax=left)
+    plot_centre_rebound(summary_curves(ds, "tension_n"), ax=right)
     for ax in (left, right):
         for line in ax.get_lines():
             x = np.asarray(line.get_xdata(), float)

@@ -18,7 +18,8 @@ import xarray as xr
 
 import racketdyn as rd
 from racketdyn.plotting.primitives import SUPPORT_STYLE
-from racketdyn.plotting.sweep import plot_sweet_area, write_summary_figures
+from racketdyn.plotting.steps import sweep_figures
+from racketdyn.plotting.sweep import plot_sweet_area
 from racketdyn.sweep import (
     SWEET_AREA_DEFINITION,
     SerialExecutor,
@@ -28,6 +29,7 @@ from racketdyn.sweep import (
     summary_metrics,
     sweet_area_cm2,
 )
+from racketdyn.sweep.summary import summary_curves
 
 
 @pytest.fixture(scope="module")
@@ -51,7 +53,7 @@ def swept(
         name="sweet",
     )
     out = tmp_path_factory.mktemp("sweet")
-    return run_sweep(spec, out, SerialExecutor(), figures=write_summary_figures), out
+    return run_sweep(spec, out, SerialExecutor(), figures=sweep_figures), out
 
 
 def _csv_areas(out: Path) -> pd.DataFrame:
@@ -78,7 +80,7 @@ def test_the_csv_and_the_figure_give_one_sweet_area(
     table = _csv_areas(out)
     figure, ax = plt.subplots()
     try:
-        plot_sweet_area(ds, variable, ax=ax)
+        plot_sweet_area(summary_curves(ds, variable), ax=ax)
         lines = {line.get_label(): line for line in ax.get_lines()}
         for support in ds["support"].values:
             line = lines[str(SUPPORT_STYLE[str(support)]["label"])]

@@ -501,3 +501,25 @@ def test_bad_csv_files(tmp_path: Path) -> None:
     assert np.isnan(partial.locations[2]).all()
     _raises(data, lambda: partial.require_locations("the map"), "which node 12 lacks", "--geometry")
     assert np.isnan(read_hammer_csv(data).locations).all()
+
+
+def test_the_cli_names_the_command_for_the_wrong_kind_of_file(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``racketdyn identify`` on a time-record UFF said "read it with read_hammer_uff", a
+    Python function the command-line user cannot call: the CLI says to run ``racketdyn frf``
+    first (and ``frf`` on FRFs, to identify them); the library keeps the Python name."""
+    from racketdyn.cli import main
+
+    frf = write_frf_uff(_frfs(), tmp_path / "frf.uff")
+    hammer = write_hammer_uff(_records(), tmp_path / "h.uff")
+    assert main(["identify", str(hammer), "--out", str(tmp_path / "i")]) == 2
+    said = " ".join(capsys.readouterr().err.split())
+    assert "no FRFs" in said
+    assert "read_hammer_uff" not in said
+    assert "run racketdyn frf on it first" in said
+    assert main(["frf", str(frf), "--out", str(tmp_path / "f")]) == 2
+    said = " ".join(capsys.readouterr().err.split())
+    assert "no time records" in said
+    assert "read_frf_uff" not in said
+    assert "racketdyn identify" in said

@@ -12,7 +12,7 @@ from threadpoolctl import ThreadpoolController  # type: ignore[import-untyped]
 
 from racketdyn.errors import InputError
 
-__all__ = ["as_locations", "as_points", "invert_increasing", "one_blas_thread"]
+__all__ = ["as_locations", "as_points", "invert_increasing", "one_blas_thread", "spans_a_surface"]
 
 Function = Callable[[NDArray[np.float64]], NDArray[np.float64]]
 
@@ -76,6 +76,18 @@ def as_locations(locations: ArrayLike, name: str = "locations") -> NDArray[np.fl
     if not np.all(np.isfinite(array)):
         raise InputError(f"{name} must be finite numbers, without NaN or inf")
     return array
+
+
+def spans_a_surface(locations: NDArray[np.float64]) -> bool:
+    """True if the points do not all lie on one straight line.
+
+    Parameters
+    ----------
+    locations : ndarray (n_points, n_dimensions)
+        The points, m.
+    """
+    centred = locations - locations.mean(axis=0)
+    return bool(np.linalg.matrix_rank(centred, tol=1e-9) >= 2)
 
 
 def as_points(points: ArrayLike, name: str = "points") -> NDArray[np.float64]:

@@ -366,10 +366,21 @@ PARAMETER_OPTIONS: dict[str, str] = {
 ``--racket-speed``)."""
 
 
+LIBRARY_READERS: dict[str, str] = {
+    "read it with `read_hammer_uff`": "run racketdyn frf on it first (it makes the FRFs from "
+    "the time records)",
+    "read it with `read_frf_uff`": "it holds FRFs already: give it to racketdyn identify",
+}
+"""The library's pointers to its readers (:func:`racketdyn.io.uff` names the function in
+backticks), in the command line's words: the command that reads such a file."""
+
+
 def in_flags(message: str, parser: argparse.ArgumentParser) -> str:
     """An error raised below the CLI, in the command's words: each parameter the library names
     in backticks (`` `speeds` ``, its convention: docs/develop.md, "Errors name parameters")
-    becomes the command's option (``--speed``); a name no option has loses its backticks.
+    becomes the command's option (``--speed``); a name no option has loses its backticks; a
+    pointer to a Python reader becomes the command that reads the file
+    (:data:`LIBRARY_READERS`).
 
     Parameters
     ----------
@@ -388,6 +399,8 @@ def in_flags(message: str, parser: argparse.ArgumentParser) -> str:
         name = match.group(1)
         return flags.get(PARAMETER_OPTIONS.get(name, name), name)
 
+    for words, command in LIBRARY_READERS.items():
+        message = message.replace(words, command)
     return re.sub(r"`([A-Za-z_][A-Za-z0-9_]*)`", flag, message)
 
 

@@ -85,7 +85,7 @@ def _run(args: argparse.Namespace, console: Console) -> int:
     from pathlib import Path
 
     from racketdyn.errors import InputError, require_whole
-    from racketdyn.plotting.sweep import write_summary_figures as sweep_figures
+    from racketdyn.plotting.steps import sweep_figures
     from racketdyn.sweep import load_sweep_spec
     from racketdyn.sweep.executors import DASK_MISSING
     from racketdyn.sweep.runner import SECONDS_PER_IMPACT

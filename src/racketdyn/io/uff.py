@@ -863,7 +863,7 @@ def _records_of(path: Path, contents: _Contents, func_type: int) -> list[_Record
         FREQUENCY_RESPONSE: ("FRFs", "read_frf_uff"),
     }
     hint = (
-        f"; read it with {what[other][1]}"
+        f"; read it with `{what[other][1]}`"
         if any(r.func_type == other for r in contents.records)
         else "; export FRFs (function type 4) or the time records of the hammer and the sensor "
         "(1): spectra and PSDs (2, 3, 9, 12) are not read"

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -16,9 +16,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from racketdyn.modal import ModalModel
 from racketdyn.plotting.primitives import SUPPORT_STYLE, label_lines
 from racketdyn.plotting.registry import draw, file_of, for_step
 from racketdyn.plotting.render import save_figure
@@ -34,14 +33,12 @@ __all__ = [
     "COMPOUND_FRF_FIGURE",
     "COMPOUND_RESPONSE_FIGURE",
     "COMPOUND_SHAPE_FIGURE",
-    "ball_mode_share",
     "coinciding_supports",
     "figure_ball_comparison",
     "figure_compound_frf",
     "figure_compound_response",
     "figure_compound_shape",
     "neck_reading",
-    "node_showing_ball_mode",
     "plot_ball_mode_shape",
     "plot_compound_frf",
     "plot_neck_response",
@@ -360,79 +357,13 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
     return paths
 
 
-BALL_MODE_SHOWN = 0.9
-"""Fig. 9b strikes at the nearest point whose accelerance the ball mode carries at least this
-share of at its own frequency (at 55 % the heavily damped mode made no visible peak on the
-new-user trial's racket; at 90 % it does)."""
-
-
-def ball_mode_share(model: ModalModel, reference: int) -> NDArray[np.float64]:
-    """The ball mode's share of each point's accelerance at the ball mode's frequency.
-
-    |term of the ball mode| over |sum of every mode's term|, the terms φ_k(j) φ_k(ref) (−ω²) /
-    (ω_k² − ω² + 2iζ_k ω_k ω) of the model's modes at ω = the ball mode's; NaN without a ball
-    mode.
-
-    Parameters
-    ----------
-    model : ModalModel
-        The racket with the ball (its modes at the test's points).
-    reference : int
-        Row of the accelerometer's point in the model.
-    """
-    if BALL_MODE_NAME not in model.names:
-        return np.full(model.locations.shape[0], np.nan)
-    k = model.names.index(BALL_MODE_NAME)
-    omega = 2.0 * np.pi * model.frequency[k]
-    omega_m = 2.0 * np.pi * model.frequency
-    modal = -(omega**2) / (omega_m**2 - omega**2 + 2j * model.damping_ratio * omega_m * omega)
-    terms = model.mode_shapes * model.mode_shapes[reference] * modal
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.asarray(np.abs(terms[:, k]) / np.abs(terms.sum(axis=1)), dtype=float)
-
-
-def node_showing_ball_mode(
-    model: ModalModel,
-    nodes: Sequence[int],
-    reference_node: int,
-    candidates: Sequence[int],
-    ball_at: tuple[float, float],
-) -> int:
-    """The hammer point of Fig. 9b: the candidate nearest the ball whose accelerance the ball
-    mode carries at least :data:`BALL_MODE_SHOWN` of (:func:`ball_mode_share`), else the one
-    it carries most of; the nearest candidate when the model has no ball mode or no reference.
-
-    Parameters
-    ----------
-    model : ModalModel
-        The racket with the ball, its rows the points ``nodes``.
-    nodes : sequence of int
-        The model's points.
-    reference_node : int
-        The accelerometer's point.
-    candidates : sequence of int
-        The points both tests hold.
-    ball_at : tuple of float
-        Where the ball sits (x, y), m.
-    """
-    rows = [list(nodes).index(n) for n in candidates]
-    where = model.locations[rows, :2]
-    order = np.argsort(np.hypot(*(where - np.asarray(ball_at)).T), kind="stable")
-    if reference_node not in nodes:
-        return int(candidates[int(order[0])])
-    share = ball_mode_share(model, list(nodes).index(reference_node))[rows]
-    if not np.any(np.isfinite(share)):
-        return int(candidates[int(order[0])])
-    shown = [i for i in order if share[i] >= BALL_MODE_SHOWN]
-    return int(candidates[shown[0] if shown else int(np.nanargmax(share))])
-
-
 def figure_ball_comparison(result: BallCompareResult) -> Figure:
     """The measured FRFs of the racket alone and with the ball (paper, Figs 9a and 9b).
 
     One FRF from each set: the hammer point nearest the ball that both sets hold and whose FRF
-    shows the ball mode (:func:`node_showing_ball_mode`; the paper struck the strings slightly
-    away from the ball), against the accelerometer; the identified
+    shows the ball mode (the step's ``shown_node``,
+    :func:`racketdyn.workflows.identify.node_showing_ball_mode`; the paper struck the strings
+    slightly away from the ball), against the accelerometer; the identified
     modes marked, the ball's labelled.  Drawn as accelerance, whose rigid-body part is flat
     (the paper's compliance falls as 1/f² there and hides the ball's heavily damped peak).
 
@@ -445,11 +376,7 @@ def figure_ball_comparison(result: BallCompareResult) -> Figure:
     assert result.with_ball is not None
     alone = result.alone.frfs.as_type("accelerance")
     ball = result.with_ball.frfs.as_type("accelerance")
-    shared = [n for n in ball.nodes if n in alone.nodes]
-    node = node_showing_ball_mode(
-        result.with_ball.model, result.with_ball.frfs.nodes, ball.reference_node, shared,
-        result.ball_at,
-    )  # fmt: skip
+    node = result.shown_node
     i, j = alone.nodes.index(node), ball.nodes.index(node)
     x, y = ball.locations[j, 0], ball.locations[j, 1]
     top = 3.0 * max(

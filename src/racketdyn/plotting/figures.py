@@ -30,8 +30,6 @@ from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FRF_UNITS, FrfSet
 from racketdyn.modal.identify import Identification
-from racketdyn.modal.model import ModalModel
-from racketdyn.modal.residues import mac
 from racketdyn.plotting.primitives import (
     SCALE_BAR_M,
     SUPPORT_STYLE,
@@ -47,8 +45,6 @@ from racketdyn.plotting.primitives import (
     plot_node_lines,
     plot_oblique_curve,
     plot_outline,
-    plot_racket_mode_3d,
-    plot_racket_node_lines,
     plot_speed_curves,
     plot_stabilisation,
     plot_swing_along_axis,
@@ -58,7 +54,6 @@ from racketdyn.plotting.primitives import (
 from racketdyn.plotting.registry import file_of
 from racketdyn.plotting.render import save_figure
 from racketdyn.racket import SUPPORT_NAMES, Racket
-from racketdyn.racket_modal.shapes import axis_nodes
 from racketdyn.workflows.figure_data import (
     SWING_AXIS_POINTS,
     TRANSIENT_CURVE_SPEEDS_MPS,
@@ -70,26 +65,21 @@ from racketdyn.workflows.figure_data import (
     TransientHistories,
 )
 from racketdyn.workflows.identify import ModeComparison
+from racketdyn.workflows.shape_figures import AutoMac, AxisNodes, ModeShapes, is_racket_model
 
 __all__ = [
     "IDENTIFIED_STYLES",
     "SWING_AXIS_POINTS",
     "TRANSIENT_CURVE_SPEEDS_MPS",
-    "figure_automac",
     "figure_contact_time",
     "figure_face_maps",
-    "figure_first_mode_nodes",
     "figure_force_and_contact_time",
     "figure_frame_vibration",
     "figure_frf_frame",
     "figure_frf_string_centre",
-    "figure_identified_node_lines",
-    "figure_identified_rebound",
-    "figure_identified_shapes",
     "figure_mode_comparison",
     "figure_mode_shapes",
     "figure_node_lines",
-    "figure_nodes_free_hand",
     "figure_oblique",
     "figure_pulse_spectrum",
     "figure_rebound_along_axis",
@@ -101,6 +91,9 @@ __all__ = [
     "figure_transient_comparison_speed",
     "figure_transient_histories",
     "figure_twist",
+    "plot_automac",
+    "plot_axis_nodes",
+    "plot_identified_rebound",
     "write_contact_figure",
 ]
 
@@ -443,59 +436,51 @@ def _mode_grid(n: int) -> tuple[int, int]:
     return int(np.ceil(n / columns)), columns
 
 
-def figure_mode_shapes(model: ModalModel, racket: Racket | None) -> Figure:
-    """Paper Fig. 4: each mode shape in 3-D over the racket, with a 100 mm scale bar.
+def figure_mode_shapes(shapes: ModeShapes) -> Figure:
+    """Paper Fig. 4: each mode shape in 3-D over the racket, with a 100 mm scale bar (over its
+    own points for a structure that is not a racket).
 
     Parameters
     ----------
-    model : ModalModel
-        The modes.
-    racket : Racket or None
-        The racket (face and long axis); None for a structure that is not a racket (the shapes
-        over its own points).
+    shapes : ModeShapes
+        The modes evaluated where they are drawn
+        (:func:`racketdyn.workflows.shape_figures.mode_shapes`).
     """
-    rows, columns = _mode_grid(model.n_modes)
+    rows, columns = _mode_grid(shapes.n_modes)
     figure = plt.figure(figsize=(4.2 * columns, 3.2 * rows), layout="constrained")
-    for k in range(model.n_modes):
+    for k in range(shapes.n_modes):
         ax3d = figure.add_subplot(rows, columns, k + 1, projection="3d")
-        if racket is None:
-            plot_mode_3d(model, k, ax=ax3d)
-        else:
-            plot_racket_mode_3d(model, racket, k, ax=ax3d)
-    scaled = "" if model.mass_normalised else ", unscaled"
-    bar = f"; bar: {SCALE_BAR_M * 1e3:.0f} mm" if racket is not None else ""
+        plot_mode_3d(shapes, k, ax=ax3d)
+    scaled = "" if shapes.mass_normalised else ", unscaled"
+    bar = f"; bar: {SCALE_BAR_M * 1e3:.0f} mm" if shapes.layout_3d == "racket" else ""
     figure.suptitle(
-        f"Fig. 4: mode shapes ({model.support}{scaled}), each scaled to the same largest "
+        f"Fig. 4: mode shapes ({shapes.support}{scaled}), each scaled to the same largest "
         f"amplitude{bar}",
         fontsize=10,
     )
     return figure
 
 
-def figure_node_lines(model: ModalModel, racket: Racket | None) -> Figure:
+def figure_node_lines(shapes: ModeShapes) -> Figure:
     """Paper Fig. 5: node lines of each mode on the string face, with a key to black and white.
 
     Parameters
     ----------
-    model : ModalModel
-        The modes.
-    racket : Racket or None
-        The racket (face and outline); None for a structure that is not a racket (the node
-        lines over its own points).
+    shapes : ModeShapes
+        The modes evaluated where they are drawn: over the face and outline of a racket, over
+        its own points for any other structure.
     """
-    rows, columns = _mode_grid(model.n_modes)
+    rows, columns = _mode_grid(shapes.n_modes)
     figure, axes = plt.subplots(
         rows, columns, figsize=(3.2 * columns, 2.6 * rows), layout="constrained", squeeze=False
     )
     for k, ax in enumerate(axes.flat):
-        if k >= model.n_modes:
+        if k >= shapes.n_modes:
             ax.set_axis_off()
-        elif racket is None:
-            plot_node_lines(model, k, ax=ax)
         else:
-            plot_racket_node_lines(model, racket, k, ax=ax)
-    where = "on the string face" if racket is not None else "over the measured points"
-    figure.suptitle(f"Fig. 5: node lines {where} ({model.support})", fontsize=10)
+            plot_node_lines(shapes, k, ax=ax)
+    where = "on the string face" if shapes.layout_nodes == "racket" else "over the measured points"
+    figure.suptitle(f"Fig. 5: node lines {where} ({shapes.support})", fontsize=10)
     figure.legend(
         handles=[
             Patch(facecolor="k", edgecolor="k", label="black: the face moves one way"),
@@ -509,11 +494,6 @@ def figure_node_lines(model: ModalModel, racket: Racket | None) -> Figure:
         title_fontsize=8,
     )
     return figure
-
-
-def _racket_modes(model: ModalModel) -> bool:
-    """Whether the modes are a racket's (named from their shapes, over the face)."""
-    return any(kind != "unknown" for kind in model.kinds) and model.n_dimensions == 2
 
 
 def figure_stabilisation(identification: Identification) -> Figure:
@@ -531,10 +511,9 @@ def figure_stabilisation(identification: Identification) -> Figure:
     return figure
 
 
-def figure_identified_shapes(identification: Identification, racket: Racket) -> Figure | None:
-    """Paper Fig. 4 of an identification (:func:`figure_mode_shapes`): over the racket for a
-    racket's modes, over its own points for any other structure; None for shapes known at one
-    point only, or at points without coordinates.
+def figure_synthesised_frfs(identification: Identification, racket: Racket) -> Figure:
+    """Measured FRFs against those synthesised from the identified model: the driving point and
+    the point nearest the string-bed centre (a racket's modes) or the worst-fitted point.
 
     Parameters
     ----------
@@ -543,54 +522,8 @@ def figure_identified_shapes(identification: Identification, racket: Racket) -> 
     racket : Racket
         The racket of the run.
     """
-    model = identification.model
-    if not (model.locations.shape[0] >= 2 and model.has_locations):
-        return None
-    return figure_mode_shapes(model, racket if _racket_modes(model) else None)
-
-
-def figure_identified_node_lines(identification: Identification, racket: Racket) -> Figure | None:
-    """Paper Fig. 5 of an identification (:func:`figure_node_lines`); None as for
-    :func:`figure_identified_shapes`.
-
-    Parameters
-    ----------
-    identification, racket
-        As for :func:`figure_identified_shapes`.
-    """
-    model = identification.model
-    if not (model.locations.shape[0] >= 2 and model.has_locations):
-        return None
-    return figure_node_lines(model, racket if _racket_modes(model) else None)
-
-
-def figure_first_mode_nodes(identification: Identification, racket: Racket) -> Figure | None:
-    """Paper Fig. 6: the first mode along the long axis with its nodes; None for a structure
-    that is not a racket.
-
-    Parameters
-    ----------
-    identification, racket
-        As for :func:`figure_identified_shapes`.
-    """
-    if not _racket_modes(identification.model):
-        return None
-    figure, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
-    _plot_axis_nodes([identification.model], racket, ax)
-    return figure
-
-
-def figure_synthesised_frfs(identification: Identification, racket: Racket) -> Figure:
-    """Measured FRFs against those synthesised from the identified model: the driving point and
-    the point nearest the string-bed centre (a racket's modes) or the worst-fitted point.
-
-    Parameters
-    ----------
-    identification, racket
-        As for :func:`figure_identified_shapes`.
-    """
     model, frfs, fit = identification.model, identification.frfs, identification.fit
-    if _racket_modes(model):
+    if is_racket_model(model):
         centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
         second = int(np.argmin(np.linalg.norm(frfs.locations - centre, axis=1)))
     else:
@@ -621,46 +554,66 @@ def figure_synthesised_frfs(identification: Identification, racket: Racket) -> F
     return figure
 
 
-def figure_automac(identification: Identification) -> Figure:
-    """The AutoMAC of the identified mode shapes.
+def plot_automac(automac: AutoMac, ax: Axes | None = None) -> Axes:
+    """The AutoMAC of identified mode shapes, with its values.
 
     Parameters
     ----------
-    identification : Identification
-        The step's identification.
+    automac : AutoMac
+        The matrix (:meth:`racketdyn.workflows.shape_figures.AutoMac.of`).
+    ax : matplotlib Axes, optional
+        Where to draw (in the caller's figure); a new figure if None.
+
+    Returns
+    -------
+    Axes
     """
-    model = identification.model
-    figure, ax = plt.subplots(figsize=(5.5, 4.5), layout="constrained")
-    plot_mac(mac(model.mode_shapes, model.mode_shapes), model.names, model.names, ax=ax)
+    if ax is None:
+        _, ax = plt.subplots(figsize=(5.5, 4.5), layout="constrained")
+    plot_mac(automac.matrix, automac.names, automac.names, ax=ax)
     ax.set_title("AutoMAC", fontsize=9)
-    return figure
+    return ax
 
 
-def _plot_axis_nodes(models: Sequence[ModalModel], racket: Racket, ax: Axes) -> None:
-    """Paper Fig. 6: the first mode along the long axis with its nodes, one line per model."""
-    x = np.linspace(0.0, racket.length_m, 341)
+def plot_axis_nodes(axis: AxisNodes, ax: Axes | None = None) -> Axes:
+    """Paper Fig. 6: the first mode along the long axis with its nodes, one line per model
+    (identify's; compare's free against hand-held).
+
+    Parameters
+    ----------
+    axis : AxisNodes
+        The curves and nodes (:func:`racketdyn.workflows.shape_figures.axis_node_curves`).
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure if None.
+
+    Returns
+    -------
+    Axes
+    """
+    if ax is None:
+        height = 3.8 if len(axis.supports) == 1 else 4.2  # room for the legend's second row
+        _, ax = plt.subplots(figsize=(7, height), layout="constrained")
     marks = []
-    for model, colour in zip(models, ("tab:blue", "k"), strict=False):
-        shape = model.mode_shapes_at(np.column_stack([x, np.zeros_like(x)]))[:, 0]
-        shape = shape * np.sign(shape[0])
-        nodes = axis_nodes(model, 0, (0.0, racket.length_m)) * 1e3
+    for k, colour in zip(range(len(axis.supports)), ("tab:blue", "k"), strict=False):
+        nodes = axis.nodes_of(k) * 1e3
         ax.plot(
-            x * 1e3,
-            shape,
+            axis.x * 1e3,
+            axis.shapes[k],
             color=colour,
-            label=f"{model.support}: {model.names[0]}, {model.frequency[0]:.1f} Hz; nodes at "
+            label=f"{axis.supports[k]}: {axis.names[k]}, {axis.frequency[k]:.1f} Hz; nodes at "
             + ", ".join(f"{node:.0f}" for node in nodes)
             + " mm",
         )
         marks += [(float(node), f"{node:.0f}", colour) for node in nodes]
-    ax.axvspan(0, racket.grip_m * 2e3, color="0.9", label="hand")
+    ax.axvspan(0, axis.grip_m * 2e3, color="0.9", label="hand")
     ax.axhline(0, color="0.5", linewidth=0.8)
     label_lines(ax, marks)
     ax.set_xlabel("x from the butt (mm)")
     ax.set_ylabel("mass-normalised shape (1/√kg)")
     ax.set_title("Fig. 6: node positions of the first mode (mm from the butt)", fontsize=9)
     ax.grid(alpha=0.3)
-    _legend_below(ax, columns=len(models) + 1)
+    _legend_below(ax, columns=len(axis.supports) + 1)
+    return ax
 
 
 IDENTIFIED_STYLES: tuple[tuple[str, str, str], ...] = (
@@ -672,7 +625,7 @@ IDENTIFIED_STYLES: tuple[tuple[str, str, str], ...] = (
 IDENTIFIED_CASES` in the compare step's Fig. 15."""
 
 
-def figure_identified_rebound(data: IdentifiedRebound) -> Figure:
+def plot_identified_rebound(data: IdentifiedRebound, ax: Axes | None = None) -> Axes:
     """Paper Fig. 15 with the identified models: rebound ratio along the long axis.
 
     Parameters
@@ -680,8 +633,15 @@ def figure_identified_rebound(data: IdentifiedRebound) -> Figure:
     data : IdentifiedRebound
         The compare step's curves (:func:`racketdyn.workflows.figure_data.identified_rebound`,
         with the run's ball).
+    ax : matplotlib Axes, optional
+        Where to draw (in the caller's figure); a new figure if None.
+
+    Returns
+    -------
+    Axes
     """
-    figure, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
     for k, label in enumerate(data.cases):
         colour, marker, style = IDENTIFIED_STYLES[k % len(IDENTIFIED_STYLES)]
         ax.plot(
@@ -699,7 +659,7 @@ def figure_identified_rebound(data: IdentifiedRebound) -> Figure:
     ax.set_title(f"Fig. 15: identified models, ball at {data.ball_speed:g} m/s", fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    return figure
+    return ax
 
 
 def figure_mode_comparison(comparison: ModeComparison) -> Figure:
@@ -726,21 +686,6 @@ def figure_mode_comparison(comparison: ModeComparison) -> Figure:
         ax.set_xticks(index, names, rotation=30, ha="right", fontsize=8)
         ax.grid(alpha=0.3, axis="y")
     figure.suptitle("Free against hand-held (paired by MAC)", fontsize=10)
-    return figure
-
-
-def figure_nodes_free_hand(free: Identification, hand: Identification, racket: Racket) -> Figure:
-    """Paper Fig. 6, free against hand-held: the first mode along the long axis of both.
-
-    Parameters
-    ----------
-    free, hand : Identification
-        The two identifications.
-    racket : Racket
-        The racket of the run.
-    """
-    figure, ax = plt.subplots(figsize=(7, 4.2), layout="constrained")
-    _plot_axis_nodes([free.model, hand.model], racket, ax)
     return figure
 
 

@@ -27,10 +27,11 @@ from racketdyn.impact.swing import SweetSpot, SwingResult
 from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FRF_UNITS, FrfSet
-from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import PoleStability, SelectedPoles, Stabilisation
+from racketdyn.numerics import spans_a_surface
 from racketdyn.racket import SUPPORT_NAMES, HeadEllipse, Racket
 from racketdyn.workflows.figure_data import AxisBand, FrameVibration, ImpactCurves
+from racketdyn.workflows.shape_figures import ModeShapes
 
 __all__ = [
     "FLAGGED_STYLE",
@@ -52,8 +53,6 @@ __all__ = [
     "plot_node_lines",
     "plot_oblique_curve",
     "plot_outline",
-    "plot_racket_mode_3d",
-    "plot_racket_node_lines",
     "plot_speed_curves",
     "plot_stabilisation",
     "plot_swing_along_axis",
@@ -436,7 +435,7 @@ def _contour_face(
     finite = np.isfinite(values)
     lines = None
     surface = (
-        finite.sum() >= 3 and _spans_a_surface(locations[finite]) and np.ptp(values[finite]) > 0
+        finite.sum() >= 3 and spans_a_surface(locations[finite]) and np.ptp(values[finite]) > 0
     )
     if surface:
         triangles = Triangulation(x_mm[finite], y_mm[finite])
@@ -661,86 +660,36 @@ def label_contours_in_head(
     return levels
 
 
-def _face_grid(racket: Racket, n: int = 41) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    head = racket.head
-    u = np.linspace(-1.0, 1.0, n)
-    xi, eta = np.meshgrid(u, u, indexing="ij")
-    return head.centre_x_m + head.half_length_m * xi, head.centre_y_m + head.half_width_m * eta
-
-
-def _spans_a_surface(locations: NDArray[np.float64]) -> bool:
-    """True if the points do not all lie on one straight line."""
-    centred = locations - locations.mean(axis=0)
-    return bool(np.linalg.matrix_rank(centred, tol=1e-9) >= 2)
-
-
-def _grid_over(
-    locations: NDArray[np.float64], n: int
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
-    """An n × n grid over the points' bounding box, and which nodes lie in their convex hull."""
-    from scipy.spatial import Delaunay
-
-    low, high = locations.min(axis=0), locations.max(axis=0)
-    x, y = np.meshgrid(
-        np.linspace(low[0], high[0], n), np.linspace(low[1], high[1], n), indexing="ij"
-    )
-    hull = Delaunay(locations)
-    inside = hull.find_simplex(np.column_stack([x.ravel(), y.ravel()]), tol=1e-9) >= 0
-    return x, y, inside.reshape(x.shape)
-
-
-def _line_through(locations: NDArray[np.float64], n: int = 101) -> NDArray[np.float64]:
-    """n points from one end of collinear points to the other, m."""
-    centred = locations - locations.mean(axis=0)
-    direction = np.linalg.svd(centred, full_matrices=False)[2][0]
-    along = centred @ direction
-    t = np.linspace(along.min(), along.max(), n)
-    return np.asarray(locations.mean(axis=0) + t[:, None] * direction[None, :])
-
-
-def _mode_title(model: ModalModel, mode: int, decimals: int = 0) -> str:
+def _mode_title(shapes: ModeShapes, mode: int, decimals: int = 0) -> str:
     """The mode's name, with its frequency unless the name holds it ("mode 1 (100.0 Hz)")."""
-    name = model.names[mode]
-    return name if name.endswith(" Hz)") else f"{name}, {model.frequency[mode]:.{decimals}f} Hz"
+    return shapes.title(mode, decimals)
 
 
-def plot_node_lines(
-    model: ModalModel,
-    mode: int,
-    ax: Axes | None = None,
-    *,
-    grid: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
-    inside: NDArray[np.bool_] | None = None,
-) -> Axes:
+def plot_node_lines(shapes: ModeShapes, mode: int, ax: Axes | None = None) -> Axes:
     """Sign of a mode shape over a surface, black and white, node lines between (paper, Fig. 5).
 
-    Works for any structure: by default over the convex hull of the model's points.  Points on
-    one straight line (a beam) give the shape along the line with its nodes marked instead;
-    points in space ``(x, y, z)``, the measured shape over their best-fit plane.
+    Works for any structure, as :func:`racketdyn.workflows.shape_figures.mode_shapes` evaluated
+    it: over a racket's string face with its outline, or over the convex hull of the model's
+    points.  Points on one straight line (a beam) give the shape along the line with its nodes
+    marked instead; points in space ``(x, y, z)``, the measured shape over their best-fit plane.
 
     Parameters
     ----------
-    model : ModalModel
-        The mode shapes.
+    shapes : ModeShapes
+        The modes evaluated where they are drawn.
     mode : int
         Index of the mode (0-based).
     ax : matplotlib Axes, optional
         Where to draw; a new figure if None.
-    grid : tuple of ndarray, optional
-        ``(x, y)`` 2-D arrays of the grid to draw on, m (default 41 × 41 over the points).
-    inside : ndarray of bool, optional
-        Where on the grid to draw (default inside the convex hull of the points).
 
     Returns
     -------
     Axes
     """
     ax = _axes(ax, (3.2, 2.6))
-    locations = model.locations
-    if grid is None and not _spans_a_surface(locations):
-        line = _line_through(locations, 341)
-        along = np.linalg.norm(line - line[0], axis=1)
-        shape = model.mode_shapes_at(line)[:, mode]
+    if shapes.layout_nodes == "line":
+        along = shapes.nodes_along
+        shape = shapes.nodes_line_shapes[mode]
         ax.plot(along * 1e3, shape, color="k")
         ax.axhline(0.0, color="0.5", linewidth=0.8)
         crossing = np.flatnonzero(np.sign(shape[:-1]) * np.sign(shape[1:]) < 0)
@@ -749,98 +698,51 @@ def plot_node_lines(
         )
         ax.plot(nodes * 1e3, np.zeros_like(nodes), "o", color="tab:red", markersize=4)
         ax.set_xlabel("distance along the line (mm)")
-        ax.set_title(_mode_title(model, mode), fontsize=8)
+        ax.set_title(_mode_title(shapes, mode), fontsize=8)
         return ax
-    if grid is None and model.n_dimensions == 3:
+    if shapes.layout_nodes == "space":
         # points in space: the measured shape over the points' best-fit plane
-        centred = locations - locations.mean(axis=0)
-        plane = centred @ np.linalg.svd(centred, full_matrices=False)[2][:2].T
+        plane = shapes.plane
         triangles = Triangulation(plane[:, 0] * 1e3, plane[:, 1] * 1e3)
-        values = model.mode_shapes[:, mode]
+        values = shapes.at_points[:, mode]
         span = float(np.abs(values).max()) + 1.0
         ax.tricontourf(triangles, values, levels=[-span, 0.0, span], colors=["k", "w"])
         ax.tricontour(triangles, values, levels=[0.0], colors="tab:red", linewidths=1.2)
         ax.plot(plane[:, 0] * 1e3, plane[:, 1] * 1e3, ".", color="0.5", markersize=2)
         ax.set_aspect("equal")
-        ax.set_title(_mode_title(model, mode), fontsize=8)
+        ax.set_title(_mode_title(shapes, mode), fontsize=8)
         ax.set_xticks([])
         ax.set_yticks([])
         return ax
-    if grid is None:
-        x, y, hull = _grid_over(locations, 41)
-        inside = hull if inside is None else inside
-    else:
-        x, y = grid
-    points = np.column_stack([x.ravel(), y.ravel()])
-    shape = model.mode_shapes_at(points)[:, mode].reshape(x.shape)
-    if inside is not None:
-        shape = np.where(inside, shape, np.nan)
+    x, y = shapes.nodes_x, shapes.nodes_y
+    shape = shapes.nodes_surface[mode]
     ax.contourf(x * 1e3, y * 1e3, np.sign(shape), levels=[-1.5, 0.0, 1.5], colors=["k", "w"])
     ax.contour(x * 1e3, y * 1e3, shape, levels=[0.0], colors="tab:red", linewidths=1.2)
     ax.set_aspect("equal")
-    ax.set_title(_mode_title(model, mode), fontsize=8)
+    ax.set_title(_mode_title(shapes, mode), fontsize=8)
     ax.set_xticks([])
     ax.set_yticks([])
+    if shapes.head is not None:
+        plot_outline(shapes.head, ax)
     return ax
 
 
-def plot_racket_node_lines(
-    model: ModalModel, racket: Racket, mode: int, ax: Axes | None = None
-) -> Axes:
-    """Node lines of a mode over a racket's string face, with its outline (paper, Fig. 5).
-
-    Parameters
-    ----------
-    model : ModalModel
-        The racket's mode shapes.
-    racket : Racket
-        The racket, for its face and outline.
-    mode : int
-        Index of the mode (0-based).
-    ax : matplotlib Axes, optional
-        Where to draw; a new figure if None.
-
-    Returns
-    -------
-    Axes
-    """
-    x, y = _face_grid(racket)
-    inside = racket.head.contains(np.column_stack([x.ravel(), y.ravel()])).reshape(x.shape)
-    ax = plot_node_lines(model, mode, ax, grid=(x, y), inside=inside)
-    plot_outline(racket, ax)
-    return ax
-
-
-def plot_mode_3d(
-    model: ModalModel,
-    mode: int,
-    ax: Axes | None = None,
-    *,
-    grid: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
-    inside: NDArray[np.bool_] | None = None,
-    line: NDArray[np.float64] | None = None,
-) -> Axes:
+def plot_mode_3d(shapes: ModeShapes, mode: int, ax: Axes | None = None) -> Axes:
     """A mode shape in 3-D (paper, Fig. 4): a surface, a line through it and the measured points.
 
-    Works for any structure: by default the surface spans the convex hull of the model's
-    points; points on one straight line (a beam) give the shape along that line; points in
-    space ``(x, y, z)`` are drawn where they are, coloured by the shape.
+    Works for any structure, as :func:`racketdyn.workflows.shape_figures.mode_shapes` evaluated
+    it: a racket's shape over its string face and along its long axis, with a 100 mm scale bar;
+    a surface over the convex hull of the model's points; points on one straight line (a beam),
+    the shape along that line; points in space ``(x, y, z)`` where they are, coloured by shape.
 
     Parameters
     ----------
-    model : ModalModel
-        The mode shapes.
+    shapes : ModeShapes
+        The modes evaluated where they are drawn.
     mode : int
         Index of the mode (0-based).
     ax : 3-D matplotlib Axes, optional
         Where to draw; a new figure if None.
-    grid : tuple of ndarray, optional
-        ``(x, y)`` 2-D arrays of the surface's grid, m (default 31 × 31 over the points).
-    inside : ndarray of bool, optional
-        Where on the grid to draw the surface (default inside the convex hull of the points).
-    line : ndarray, shape (n, 2) or (n, 3), optional
-        A line to draw the shape along (e.g. a racket's long axis), ``(x, y)`` in m (for
-        ``(x, y, z)`` points: drawn as a grey line).
 
     Returns
     -------
@@ -849,95 +751,52 @@ def plot_mode_3d(
     if ax is None:
         figure = plt.figure(figsize=(4.5, 3.2), layout="constrained")
         ax = figure.add_subplot(projection="3d")
-    locations = model.locations
+    locations = shapes.locations
     ax3d: Any = ax  # a 3-D axes: matplotlib's stubs type it as plain Axes
-    if model.n_dimensions == 3:
+    title = f"{_mode_title(shapes, mode, 1)}, ζ = {100 * shapes.damping_ratio[mode]:.2f} %"
+    if shapes.layout_3d == "space":
         # points in space: each point coloured by its shape value (the measured direction's)
-        values = model.mode_shapes[:, mode]
+        values = shapes.at_points[:, mode]
         limit = max(float(np.abs(values).max()), 1e-12)
         ax3d.scatter(*locations.T, c=values, cmap="coolwarm", vmin=-limit, vmax=limit, s=12)
-        if line is not None:
-            ax3d.plot(*np.asarray(line).T, color="0.6", linewidth=0.8)
-        ax.set_title(
-            f"{_mode_title(model, mode, 1)}, ζ = {100 * model.damping_ratio[mode]:.2f} %",
-            fontsize=8,
-        )
+        ax.set_title(title, fontsize=8)
         extent = np.maximum(np.ptp(locations, axis=0), 1e-3 * np.ptp(locations, axis=0).max())
         ax3d.set_box_aspect(tuple(float(e) for e in extent))
         ax.set_axis_off()
         return ax
-    surface = grid is not None or _spans_a_surface(locations)
-    if line is None and not surface:
-        line = _line_through(locations)
-    scale = 0.08 / max(float(np.abs(model.mode_shapes[:, mode]).max()), 1e-12)
-    if surface:
-        if grid is None:
-            x, y, hull = _grid_over(locations, 31)
-            inside = hull if inside is None else inside
-        else:
-            x, y = grid
-        shape = model.mode_shapes_at(np.column_stack([x.ravel(), y.ravel()]))[:, mode]
-        shape = shape.reshape(x.shape) * scale
-        if inside is not None:
-            shape = np.where(inside, shape, np.nan)
-        ax3d.plot_surface(x, y, shape, cmap="coolwarm", linewidth=0)
-    if line is not None:
-        along = model.mode_shapes_at(line)[:, mode]
+    scale = 0.08 / max(float(np.abs(shapes.at_points[:, mode]).max()), 1e-12)
+    if shapes.layout_3d in ("racket", "surface"):
+        shape = shapes.surface[mode] * scale
+        ax3d.plot_surface(shapes.surface_x, shapes.surface_y, shape, cmap="coolwarm", linewidth=0)
+    if shapes.line.size:
+        line = shapes.line
+        along = shapes.line_shapes[mode]
         ax3d.plot(line[:, 0], line[:, 1], along * scale, color="k")
         ax3d.plot(line[:, 0], line[:, 1], np.zeros(len(line)), color="0.6", linewidth=0.8)
     ax3d.scatter(
         locations[:, 0],
         locations[:, 1],
-        model.mode_shapes[:, mode] * scale,
+        shapes.at_points[:, mode] * scale,
         s=4,
         color="k",
     )
-    ax.set_title(
-        f"{_mode_title(model, mode, 1)}, ζ = {100 * model.damping_ratio[mode]:.2f} %", fontsize=8
-    )
+    ax.set_title(title, fontsize=8)
     extent = np.maximum(np.ptp(locations, axis=0), 1e-3 * np.ptp(locations, axis=0).max())
     ax3d.set_box_aspect((float(extent[0]), float(extent[1]), 0.2))
     ax3d.view_init(elev=25, azim=-60)
     ax.set_axis_off()
+    if shapes.layout_3d == "racket" and shapes.head is not None:
+        half_width = shapes.head.half_width_m
+        ax3d.set_box_aspect((shapes.length_m, 2.4 * half_width, 0.2))
+        # a scale: 100 mm along the long axis from the butt, beside the handle
+        y_bar = -1.1 * half_width
+        ax3d.plot([0.0, SCALE_BAR_M], [y_bar, y_bar], [0.0, 0.0], color="k", linewidth=2.5)
+        ax3d.text(0.0, 1.6 * y_bar, 0.0, f"{SCALE_BAR_M * 1e3:.0f} mm", fontsize=7)
     return ax
 
 
 SCALE_BAR_M = 0.1
 """Length of the scale bar of a racket's 3-D mode shapes, m."""
-
-
-def plot_racket_mode_3d(
-    model: ModalModel, racket: Racket, mode: int, ax: Axes | None = None
-) -> Axes:
-    """A racket's mode shape in 3-D (paper, Fig. 4): over the string face and the long axis.
-
-    Parameters
-    ----------
-    model : ModalModel
-        The racket's mode shapes.
-    racket : Racket
-        The racket, for its face and long axis.
-    mode : int
-        Index of the mode (0-based).
-    ax : 3-D matplotlib Axes, optional
-        Where to draw; a new figure if None.
-
-    Returns
-    -------
-    Axes
-    """
-    x, y = _face_grid(racket, 31)
-    inside = racket.head.contains(np.column_stack([x.ravel(), y.ravel()])).reshape(x.shape)
-    axis_x = np.linspace(0.0, racket.length_m, 101)
-    axis = np.column_stack([axis_x, np.zeros_like(axis_x)])
-    ax = plot_mode_3d(model, mode, ax, grid=(x, y), inside=inside, line=axis)
-    ax3d: Any = ax
-    ax3d.set_box_aspect((racket.length_m, 2.4 * racket.head.half_width_m, 0.2))
-    # a scale: 100 mm along the long axis from the butt, beside the handle
-    y_bar = -1.1 * racket.head.half_width_m
-    ax3d.plot([0.0, SCALE_BAR_M], [y_bar, y_bar], [0.0, 0.0], color="k", linewidth=2.5)
-    ax3d.text(0.0, 1.6 * y_bar, 0.0, f"{SCALE_BAR_M * 1e3:.0f} mm", fontsize=7)
-    return ax
 
 
 def plot_mac(

@@ -60,8 +60,9 @@ class FigureEntry:
         Why it is not in the report (then ``section`` is None).
     draw : str
         ``"module:function"`` of a function that only draws: ``function(*data) -> Figure``, its
-        arguments the step result's attributes ``reads``; empty for a figure still drawn inside
-        its step's writer (from the step's objects, not its data alone).
+        arguments the step result's attributes ``reads``; a one-panel figure's function may
+        take ``ax`` after them and return it (``function(*data, ax=None) -> Axes``: a user
+        draws it into a figure of their own; the registry saves the axes' figure).
     reads : tuple of str
         The attributes of the step's result (or the keys of the data read back from its folder,
         :func:`racketdyn.workflows.figure_data.read_step_data`) that ``draw`` takes; a dotted
@@ -74,8 +75,9 @@ class FigureEntry:
         Drawn with NumPy's overflow and invalid-value errors ignored (mplot3d's projection
         overflows on the NaN outside the face of some surfaces; harmless).
 
-    A draw function may return None: the data give no such figure (Figs 4–6 of a structure
-    that is not a racket); the step then writes no file for it.
+    A read that is None gives no figure (Figs 4–5 of shapes without coordinates, Fig. 6 of a
+    structure that is not a racket); nor does a draw function that returns None; the step then
+    writes no file for it.
     """
 
     id: str
@@ -131,6 +133,7 @@ _FIGURES = "racketdyn.plotting.figures"
 _COMPOUND = "racketdyn.plotting.compound"
 _BALL = "racketdyn.plotting.ball"
 _VALIDATE = "racketdyn.plotting.validate"
+_SWEEP = "racketdyn.plotting.sweep"
 
 FIGURES: dict[str, FigureEntry] = {
     e.id: e
@@ -173,8 +176,8 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 4",
             section="modes",
             labelled=True,
-            draw=f"{_FIGURES}:figure_identified_shapes",
-            reads=("identification", "racket"),
+            draw=f"{_FIGURES}:figure_mode_shapes",
+            reads=("shape_figures.shapes",),
             ignore_float_errors=True,
         ),
         FigureEntry(
@@ -184,8 +187,8 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 5",
             section="modes",
             labelled=True,
-            draw=f"{_FIGURES}:figure_identified_node_lines",
-            reads=("identification", "racket"),
+            draw=f"{_FIGURES}:figure_node_lines",
+            reads=("shape_figures.shapes",),
         ),
         FigureEntry(
             "fig6_nodes",
@@ -194,8 +197,8 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 6",
             section="modes",
             labelled=True,
-            draw=f"{_FIGURES}:figure_first_mode_nodes",
-            reads=("identification", "racket"),
+            draw=f"{_FIGURES}:plot_axis_nodes",
+            reads=("shape_figures.axis",),
         ),
         FigureEntry(
             "synthesised_frfs",
@@ -214,8 +217,8 @@ FIGURES: dict[str, FigureEntry] = {
             "modes look at the measured points (near 1: the points cannot tell them apart)",
             section="stabilisation",
             labelled=True,
-            draw=f"{_FIGURES}:figure_automac",
-            reads=("identification",),
+            draw=f"{_FIGURES}:plot_automac",
+            reads=("shape_figures.automac",),
         ),
         # --- compare ----------------------------------------------------------------------
         FigureEntry(
@@ -235,8 +238,8 @@ FIGURES: dict[str, FigureEntry] = {
             "the hand",
             paper="Fig. 6",
             section="modes",
-            draw=f"{_FIGURES}:figure_nodes_free_hand",
-            reads=("free", "hand", "racket"),
+            draw=f"{_FIGURES}:plot_axis_nodes",
+            reads=("nodes_free_hand",),
         ),
         FigureEntry(
             "fig15_identified",
@@ -247,7 +250,7 @@ FIGURES: dict[str, FigureEntry] = {
             "free modes",
             paper="Fig. 15",
             section="rebound",
-            draw=f"{_FIGURES}:figure_identified_rebound",
+            draw=f"{_FIGURES}:plot_identified_rebound",
             reads=("rebound",),
         ),
         # --- contact ----------------------------------------------------------------------
@@ -494,6 +497,8 @@ FIGURES: dict[str, FigureEntry] = {
             not_in_report="a sweep has its own folder (sweep.zarr, summary.csv); the report "
             "reads the demo's steps only",
             labelled=True,
+            draw=f"{_SWEEP}:figure_summary",
+            reads=("curves",),
         ),
     )
 }
@@ -577,7 +582,14 @@ def draw(figure: str, source: object) -> Any:
     data = found.data(source)
     if data is None:
         raise ValueError(f"figure {found.id!r} needs {', '.join(found.reads)}: not all given")
-    return found.drawer()(*data)
+    return _figure(found.drawer()(*data))
+
+
+def _figure(drawn: Any) -> Any:
+    """The figure a draw function drew: itself, or the figure of the axes it returned."""
+    from matplotlib.axes import Axes
+
+    return drawn.get_figure(root=True) if isinstance(drawn, Axes) else drawn
 
 
 def write_figures(
@@ -624,7 +636,7 @@ def write_figures(
         name = figure.file_for(label)
         if status is not None:
             status(f"drawing {name} ({k} of {len(found)} figures)")
-        drawn = figure.drawer()(*data)
+        drawn = _figure(figure.drawer()(*data))
         if drawn is None:
             continue
         errors = np.errstate(over="ignore", invalid="ignore")

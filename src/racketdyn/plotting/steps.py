@@ -9,11 +9,12 @@ figures are drawn).  ``status`` shows what is being drawn.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from racketdyn.sweep.summary import SummaryCurves
     from racketdyn.workflows.ball import BallResult
     from racketdyn.workflows.compound import CompoundResult
     from racketdyn.workflows.contact import ContactResult
@@ -72,8 +73,11 @@ def compare_figures(result: CompareResult, out: Path) -> list[Path]:
     from racketdyn.plotting.registry import write_figures
 
     written = []
-    for label, identification in (("free", result.free), ("hand", result.hand)):
-        data = {"identification": identification, "racket": result.racket}
+    for label, identification, shapes in (
+        ("free", result.free, result.shapes_free),
+        ("hand", result.hand, result.shapes_hand),
+    ):
+        data = {"identification": identification, "racket": result.racket, "shape_figures": shapes}
         written += write_figures("identify", data, out, label=label)
     return written + write_figures("compare", result, out)
 
@@ -125,3 +129,14 @@ def validate_figures(result: ValidateResult, out: Path) -> list[Path]:
     from racketdyn.plotting.validate import write_validate_figures
 
     return write_validate_figures(result, out)
+
+
+def sweep_figures(curves: Mapping[str, SummaryCurves], out: Path) -> list[Path]:
+    """``summary_<variable>.png`` of each variable: the centre rebound and the sweet area
+    against it (the curves :func:`racketdyn.sweep.run_sweep` computed, by variable)."""
+    from racketdyn.plotting.registry import write_figures
+
+    written = []
+    for variable, data in curves.items():
+        written += write_figures("sweep", {"curves": data}, out, label=variable)
+    return written

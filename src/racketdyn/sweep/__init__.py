@@ -24,10 +24,11 @@ support)`` — every engine gives the same numbers — and refuses a store whose
 finished.
 
 ``summary.csv`` (:func:`write_summary_csv`) and the summary figures
-(:func:`racketdyn.plotting.sweep.write_summary_figures`, a hook of :func:`run_sweep`) give, for
-each variable, the rebound ratio at the
-face centre and the sweet area (:func:`sweet_area_cm2`: the face area whose rebound ratio is
-near the best of the same face) against the variable, per support.
+(the curves of :func:`~racketdyn.sweep.summary.summary_curves`, drawn by the hook
+:func:`racketdyn.plotting.steps.sweep_figures` through the registry of figures) give, for each
+variable, the rebound ratio at the face centre and the sweet area (:func:`sweet_area_cm2`:
+the face area whose rebound ratio is near the best of the same face) against the variable,
+per support.
 
 The impact method is a parameter (``SweepSpec.method``, :data:`METHODS`): ``approximate``
 (:func:`racketdyn.impact.predict`) or ``transient``

@@ -63,6 +63,8 @@ from racketdyn.sweep.store import (
 from racketdyn.sweep.summary import (
     SWEET_AREA_COARSE_FRACTION,
     SWEET_AREA_DEFINITION,
+    SummaryCurves,
+    summary_figures_data,
     sweet_area_resolution_cm2,
     write_summary_csv,
 )
@@ -99,7 +101,7 @@ def run_sweep(
     progress: ProgressCallback | None = None,
     *,
     retries: int = 1,
-    figures: Callable[[xr.Dataset, Path], list[Path]] | None = None,
+    figures: Callable[[Mapping[str, SummaryCurves], Path], list[Path]] | None = None,
     max_in_flight: int | None = None,
     task_timeout: float | None = None,
     designs_per_task: int | None = None,
@@ -132,8 +134,9 @@ def run_sweep(
     retries : int
         Times a failed design is submitted again before it is recorded as failed.
     figures : callable, optional
-        ``figures(dataset, out_dir)`` draws the summary figures and returns their paths (the
-        presentation layer's :func:`racketdyn.plotting.sweep.write_summary_figures`); none
+        ``figures(curves, out_dir)`` draws the summary figures of the curves computed here
+        (:func:`~racketdyn.sweep.summary.summary_figures_data`: by variable) and returns their
+        paths (the presentation layer's :func:`racketdyn.plotting.steps.sweep_figures`); none
         drawn if None.
     max_in_flight : int, optional
         Tasks submitted at once (default: twice the executor's workers; 1 for serial).
@@ -325,7 +328,7 @@ def run_sweep(
             )
             log.warning("%s", notes[-1])
         if figures is not None:
-            written += figures(result, out)
+            written += figures(summary_figures_data(result), out)
     time_s["summary"] = time.perf_counter() - clock
     wall = time.perf_counter() - started + sum((times or {}).values())
     record = {

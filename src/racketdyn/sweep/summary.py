@@ -6,13 +6,15 @@ the face centre and the sweet area (:func:`sweet_area_cm2`, the one definition) 
 support, ``summary.csv``, and a full factorial's dimensions.  The metrics read the results a
 block of designs at a time (the store's chunks): a study larger than memory is summarised in
 the memory of a few chunks.
-Their plots against each variable are presentation: :mod:`racketdyn.plotting.sweep`.
+Their curves against each variable (:func:`summary_curves`) are computed here; drawing them is
+presentation: :mod:`racketdyn.plotting.sweep`.
 """
 
 from __future__ import annotations
 
 import json
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -24,11 +26,15 @@ from racketdyn.sweep.variables import POINT_MASS
 
 if TYPE_CHECKING:
     import xarray as xr
+    from matplotlib.axes import Axes
 
 __all__ = [
     "SWEET_AREA_DEFINITION",
+    "SummaryCurves",
     "axis_label",
     "factorial_view",
+    "summary_curves",
+    "summary_figures_data",
     "summary_metrics",
     "sweet_area_cm2",
     "sweet_area_resolution_cm2",
@@ -335,3 +341,134 @@ def factorial_view(dataset: xr.Dataset) -> xr.Dataset:
     ]
     stacked = dataset.drop_vars(others).set_index(design=axes)
     return stacked.unstack("design")
+
+
+@dataclass(frozen=True)
+class SummaryCurves:
+    """What a variable's summary figure draws (``summary_<variable>.png``): the rebound ratio at
+    the face centre and the sweet area against the variable, one line per support.
+
+    Attributes
+    ----------
+    variable : str
+        The variable.
+    title : str
+        The sweep's title.
+    x_label : str
+        The axis label of the variable ("tension (N)", never the key ``tension_n``).
+    x : ndarray (n_designs,)
+        The variable's value of each design that shows it, in the axis's unit, in order along
+        the axis (a clock round from 12, shown as 0); a point mass's designs without the mass
+        left out (their levels are ``*_without``).
+    clock : bool
+        The axis is a clock position (o'clock).
+    supports : tuple of str
+        The sweep's supports.
+    centre_rebound_ratio, sweet_area_cm2 : ndarray (n_supports, n_designs)
+        The metrics of :func:`summary_metrics` at ``x`` (dimensionless; cm²).
+    centre_without, area_without : ndarray (n_supports, n_levels)
+        Their values for the designs without the point mass, each distinct once (NaN-padded;
+        no columns when every design has it).
+    without : str
+        What those designs are without ("point mass"), empty if none.
+    ball_speed, racket_speed : float
+        The speeds the metrics are read at, m/s.
+    threshold_fraction : float
+        The sweet area's fraction of each face's best rebound ratio.
+    """
+
+    variable: str
+    title: str
+    x_label: str
+    x: NDArray[np.float64]
+    clock: bool
+    supports: tuple[str, ...]
+    centre_rebound_ratio: NDArray[np.float64]
+    sweet_area_cm2: NDArray[np.float64]
+    centre_without: NDArray[np.float64]
+    area_without: NDArray[np.float64]
+    without: str
+    ball_speed: float
+    racket_speed: float
+    threshold_fraction: float
+
+    def plot(self, ax: Axes | None = None) -> Axes:
+        """Draw the rebound ratio at the face centre (into ``ax``, or a new figure); returns the
+        axes (:func:`racketdyn.plotting.sweep.plot_centre_rebound`; its ``plot_sweet_area``
+        draws the other panel)."""
+        from racketdyn.plotting.sweep import plot_centre_rebound
+
+        return plot_centre_rebound(self, ax)
+
+
+def _levels(values: NDArray[np.float64], rows: NDArray[np.bool_]) -> NDArray[np.float64]:
+    """Each support's distinct values on ``rows``, NaN-padded: ``(n_supports, n_levels)``."""
+    levels = [np.unique(v[rows]) for v in values]
+    padded = np.full((len(levels), max((len(u) for u in levels), default=0)), np.nan)
+    for k, found in enumerate(levels):
+        padded[k, : len(found)] = found
+    return padded
+
+
+def summary_curves(
+    dataset: xr.Dataset,
+    variable: str,
+    threshold_fraction: float | None = None,
+    ball_speed: float | None = None,
+    racket_speed: float | None = None,
+) -> SummaryCurves:
+    """The summary figure's curves of one variable: :func:`summary_metrics` of the designs that
+    show it (:func:`variable_designs`), along its axis (:func:`axis_label`).
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep dataset.
+    variable : str
+        The variable.
+    threshold_fraction, ball_speed, racket_speed : float, optional
+        As for :func:`summary_metrics` (default the spec's).
+    """
+    keep = variable_designs(dataset, variable)
+    # each design's own face sets its threshold: the numbers of summary.csv
+    metrics = summary_metrics(
+        dataset.isel(design=keep), threshold_fraction, ball_speed, racket_speed
+    )
+    coord, label, scale = axis_label(dataset, variable)
+    x = dataset[coord].values[keep] * scale
+    clock = coord.endswith("_clock")
+    if clock:  # round the clock from 12 (shown as 0 on the axis, labelled 12)
+        x = np.mod(x, 12.0)
+    # a point mass placed by clock or x, y: its designs without the mass (the base of a
+    # one-at-a-time sweep) have a position too, which is no position of a mass — drawn as a
+    # level, not as a point at that position
+    without = np.zeros(x.size, dtype=bool)
+    if _variables(dataset)[variable]["kind"] == POINT_MASS and not coord.endswith("_mass_kg"):
+        without = dataset[f"{variable}_mass_kg"].values[keep] == 0.0
+    order = np.argsort(np.where(without, np.inf, x), kind="stable")
+    with_mass = order[~without[order]]
+    supports = tuple(str(s) for s in metrics["support"].values.tolist())
+    centre = np.array([metrics["centre_rebound_ratio"].sel(support=s).values for s in supports])
+    area = np.array([metrics["sweet_area_cm2"].sel(support=s).values for s in supports])
+    return SummaryCurves(
+        variable=variable,
+        title=str(dataset.attrs["title"]),
+        x_label=label,
+        x=np.asarray(x[with_mass], dtype=float),
+        clock=clock,
+        supports=supports,
+        centre_rebound_ratio=centre[:, with_mass],
+        sweet_area_cm2=area[:, with_mass],
+        centre_without=_levels(centre, without),
+        area_without=_levels(area, without),
+        without=variable.replace("_", " ") if without.any() else "",
+        ball_speed=float(metrics.attrs["ball_speed_mps"]),
+        racket_speed=float(metrics.attrs["racket_speed_mps"]),
+        threshold_fraction=float(metrics.attrs["threshold_fraction"]),
+    )
+
+
+def summary_figures_data(dataset: xr.Dataset) -> dict[str, SummaryCurves]:
+    """Every variable's :func:`summary_curves` (the spec's speeds and fraction), by variable:
+    what the summary figures draw (the hook of :func:`racketdyn.sweep.run_sweep`)."""
+    return {variable: summary_curves(dataset, variable) for variable in _variables(dataset)}

@@ -18,6 +18,8 @@ object                        figures
 :class:`TransientHistories`   predict ``--model transient|both``: the simulated time histories
 :class:`SwingAxisCurves`      swing: outgoing speed along the axis for a few swings
 :class:`IdentifiedRebound`    compare: Fig. 15 with the identified free and hand-held modes
+``shape_figures``             identify, compare: Figs 4–6 and the AutoMAC
+                              (:mod:`racketdyn.workflows.shape_figures`)
 ============================  ==================================================================
 
 Each figure's variables are a group of ``figures.nc``, their names prefixed with the figure's
@@ -43,9 +45,11 @@ from racketdyn.impact.transient import Engine, predict_transient
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import HeadEllipse, Racket, landmark_points
 from racketdyn.racket_modal.shapes import axis_nodes
+from racketdyn.workflows._figure_io import _array, _has, _join, _part, _strings
 
 if TYPE_CHECKING:
     import xarray as xr
+    from matplotlib.axes import Axes
 
 __all__ = [
     "APPROXIMATE_ONLY",
@@ -111,20 +115,11 @@ as :func:`racketdyn.impact.swing.sweet_spots` samples it)."""
 APPROXIMATE_ONLY = ("stiffness_reading", "vibration_charge")
 """Keywords of :func:`racketdyn.impact.predict` the transient model does not take: the run's
 options less these go to :func:`~racketdyn.impact.transient.predict_transient`."""
-_SEP = "__"
 _CURVE_QUANTITIES = ("contact_time", "mean_force", "rebound_ratio", "rebound_speed")
 _FACE_QUANTITIES = ("contact_time", "rebound_ratio", "vibration_energy")
 _QUANTITY = {q.attribute: q for q in IMPACT_QUANTITIES}
 _EMPTY = np.zeros((0, 0, 0))
 _HEAD = ("centre_x_m", "half_length_m", "half_width_m", "centre_y_m")
-
-
-def _array(values: ArrayLike) -> NDArray[np.float64]:
-    return np.asarray(values, dtype=float)
-
-
-def _strings(values: Any) -> tuple[str, ...]:
-    return tuple(str(v) for v in np.asarray(values).ravel())
 
 
 # --- impacts on the points and speeds of a figure ---------------------------------------------
@@ -541,52 +536,6 @@ class FrameVibration:
 
 
 # --- datasets of several figures in one file ------------------------------------------------
-def _prefixed(dataset: xr.Dataset, key: str) -> xr.Dataset:
-    """Every name of ``dataset`` (variables, coordinates, dimensions, attributes) prefixed."""
-    names = {name: f"{key}{_SEP}{name}" for name in [*dataset.variables, *dataset.dims]}
-    renamed = dataset.rename(names)
-    renamed.attrs = {f"{key}{_SEP}{name}": value for name, value in dataset.attrs.items()}
-    return renamed
-
-
-def _join(parts: Mapping[str, xr.Dataset]) -> xr.Dataset:
-    """Datasets of several figures as one, each name prefixed with its figure's key."""
-    import xarray as xr
-
-    prefixed = [_prefixed(data, key) for key, data in parts.items()]
-    # "override": each variable keeps its own attributes (units); the dataset's are set below
-    joined = xr.merge(prefixed, combine_attrs="override") if prefixed else xr.Dataset()
-    joined.attrs = {}
-    for part in prefixed:
-        joined.attrs.update(part.attrs)
-    return joined
-
-
-def _part(dataset: xr.Dataset, key: str) -> xr.Dataset:
-    """The figure ``key``'s dataset, as :func:`_join` took it in."""
-    start = f"{key}{_SEP}"
-    names = [str(name) for name in dataset.variables if str(name).startswith(start)]
-    if not names:
-        raise KeyError(f"no data of the figure {key!r}")
-    chosen = dataset[[n for n in names if n in dataset.data_vars]]
-    chosen = chosen.assign_coords({n: dataset[n] for n in names if n in dataset.coords})
-    renamed = chosen.rename(
-        {
-            name: str(name)[len(start) :]
-            for name in [*chosen.variables, *chosen.dims]
-            if str(name).startswith(start)
-        }
-    )
-    renamed.attrs = {
-        name[len(start) :]: value for name, value in dataset.attrs.items() if name.startswith(start)
-    }
-    return renamed
-
-
-def _has(dataset: xr.Dataset, key: str) -> bool:
-    return any(str(name).startswith(f"{key}{_SEP}") for name in dataset.variables)
-
-
 def write_figure_data(path: Path, datasets: Sequence[xr.Dataset]) -> Path:
     """Write the figures' data of a step into one netCDF file (``figures.nc``).
 
@@ -631,23 +580,34 @@ def read_figure_data(path: Path) -> xr.Dataset:
         return dataset.load()
 
 
-def read_step_data(folder: Path) -> dict[str, Any]:
+def read_step_data(folder: Path, label: str = "") -> dict[str, Any]:
     """What a run folder's ``figures.nc`` holds, as the figure-data objects of its step, by the
     name of the step result's attribute that holds each (``paper_figures``,
     ``transient_curves``, ``comparison_map``, ``transient_histories``, ``axis_curves``,
-    ``rebound``): the ``source`` of :func:`racketdyn.plotting.registry.draw`, which redraws
-    every figure that reads only these from the folder alone.
+    ``rebound``, ``shape_figures``, ``nodes_free_hand``): the ``source`` of
+    :func:`racketdyn.plotting.registry.draw`, which redraws every figure that reads only these
+    from the folder alone.
 
     Parameters
     ----------
     folder : Path
-        A run folder (``predict``, ``swing``, ``compare``); without ``figures.nc``: empty.
+        A run folder (``predict``, ``swing``, ``identify``, ``compare``); without
+        ``figures.nc``: empty.
+    label : str
+        Of a figure written once per model (compare's ``"free"``, ``"hand"``): that model's
+        ``shape_figures``.
     """
+    from racketdyn.workflows.shape_figures import AxisNodes, IdentifiedShapes
+
     path = Path(folder) / FIGURES_FILE
     if not path.is_file():
         return {}
     dataset = read_figure_data(path)
     found: dict[str, Any] = {}
+    if IdentifiedShapes.in_dataset(dataset, label):
+        found["shape_figures"] = IdentifiedShapes.from_xarray(dataset, label)
+    if _has(dataset, "fig6_free_hand"):
+        found["nodes_free_hand"] = AxisNodes.from_xarray(dataset, "fig6_free_hand")
     if _has(dataset, "fig11_12"):
         found["paper_figures"] = PaperFigures.from_xarray(dataset)
     if TransientCurves.in_dataset(dataset):
@@ -1591,6 +1551,13 @@ class IdentifiedRebound:
     cases: tuple[str, ...]
     supports: tuple[str, ...]
     rebound_ratio: NDArray[np.float64]
+
+    def plot(self, ax: Axes | None = None) -> Axes:
+        """Draw the curves (into ``ax``, or a new figure); returns the axes
+        (:func:`racketdyn.plotting.figures.plot_identified_rebound`)."""
+        from racketdyn.plotting.figures import plot_identified_rebound
+
+        return plot_identified_rebound(self, ax)
 
     def to_xarray(self) -> xr.Dataset:
         """One dataset, names prefixed ``fig15_identified__``: ``rebound_ratio`` on

@@ -50,19 +50,28 @@ from racketdyn.workflows.run import (
     sha256,
 )
 from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
+from racketdyn.workflows.shape_figures import (
+    AxisNodes,
+    IdentifiedShapes,
+    axis_node_curves,
+    identified_shapes,
+)
 
 __all__ = [
     "BALL_COMPARISON_FILE",
+    "BALL_MODE_SHOWN",
     "CHECK_SPEED_MPS",
     "NO_COORDINATES",
     "BallCompareResult",
     "CompareResult",
     "IdentifyResult",
     "ModeComparison",
+    "ball_mode_share",
     "compare_modes",
     "compare_with_ball",
     "coordinates_note",
     "identify_file",
+    "node_showing_ball_mode",
     "run_compare",
     "run_compare_ball",
     "run_identify",
@@ -257,10 +266,14 @@ class IdentifyResult(StepResult):
         Every intermediate result; ``identification.model`` is the modal model.
     racket : Racket
         The racket (head for the figures).
+    shape_figures : IdentifiedShapes or None
+        What Figs 4–6 and the AutoMAC draw, evaluated with the run's model and racket (in
+        ``figures.nc``).
     """
 
     identification: Identification | None = None
     racket: Racket | None = None
+    shape_figures: IdentifiedShapes | None = None
 
 
 @run_step
@@ -313,8 +326,11 @@ def run_identify(
         ball_at=ball_at,
         names_from=names_from,
     )
+    shapes = identified_shapes(found.model, the_racket)
+    written = write_model(found, out_dir)
+    written.append(write_figure_data(out_dir / FIGURES_FILE, [shapes.to_xarray()]))
     result = IdentifyResult(
-        out_dir, write_model(found, out_dir), identification=found, racket=the_racket
+        out_dir, written, identification=found, racket=the_racket, shape_figures=shapes
     )
     inputs = {
         "frfs_file": str(Path(frfs).resolve()),
@@ -454,6 +470,11 @@ class CompareResult(StepResult):
     rebound : IdentifiedRebound or None
         The Fig. 15 check: rebound ratio along the axis with the identified models and the
         run's ball (in ``figures.nc``).
+    shapes_free, shapes_hand : IdentifiedShapes or None
+        What each identification's Figs 4–6 and AutoMAC draw (in ``figures.nc``, ``_free``
+        and ``_hand``).
+    nodes_free_hand : AxisNodes or None
+        Fig. 6 free against hand-held (in ``figures.nc``).
     """
 
     free: Identification | None = None
@@ -463,6 +484,9 @@ class CompareResult(StepResult):
     speed: float = CHECK_SPEED_MPS
     ball: Ball | None = None
     rebound: IdentifiedRebound | None = None
+    shapes_free: IdentifiedShapes | None = None
+    shapes_hand: IdentifiedShapes | None = None
+    nodes_free_hand: AxisNodes | None = None
 
 
 @run_step
@@ -520,7 +544,16 @@ def run_compare(
     rebound = identified_rebound(
         the_racket, the_ball, found_free.model, found_hand.model, float(check_speed)
     )
-    written.append(write_figure_data(out_dir / FIGURES_FILE, [rebound.to_xarray()]))
+    shapes_free = identified_shapes(found_free.model, the_racket)
+    shapes_hand = identified_shapes(found_hand.model, the_racket)
+    nodes_free_hand = axis_node_curves([found_free.model, found_hand.model], the_racket)
+    figure_data = [
+        shapes_free.to_xarray("free"),
+        shapes_hand.to_xarray("hand"),
+        nodes_free_hand.to_xarray("fig6_free_hand"),
+        rebound.to_xarray(),
+    ]
+    written.append(write_figure_data(out_dir / FIGURES_FILE, figure_data))
     result = CompareResult(
         out_dir,
         written,
@@ -531,6 +564,9 @@ def run_compare(
         speed=float(check_speed),
         ball=the_ball,
         rebound=rebound,
+        shapes_free=shapes_free,
+        shapes_hand=shapes_hand,
+        nodes_free_hand=nodes_free_hand,
     )
     inputs = {
         "free_file": str(Path(free).resolve()),
@@ -570,6 +606,8 @@ class BallCompareResult(StepResult):
         Where the ball sat (x, y), m.
     rows : list of dict
         :func:`compare_with_ball`'s rows (``ball_comparison.csv``).
+    shown_node : int
+        The hammer point whose FRFs Fig. 9 shows (:func:`node_showing_ball_mode`).
     """
 
     alone: Identification | None = None
@@ -577,6 +615,7 @@ class BallCompareResult(StepResult):
     racket: Racket | None = None
     ball_at: tuple[float, float] = (math.nan, math.nan)
     rows: list[dict[str, Any]] = field(default_factory=list)
+    shown_node: int = 0
 
 
 def compare_with_ball(alone: Identification, with_ball: Identification) -> list[dict[str, Any]]:
@@ -653,6 +692,73 @@ def compare_with_ball(alone: Identification, with_ball: Identification) -> list[
     return rows
 
 
+BALL_MODE_SHOWN = 0.9
+"""Fig. 9b strikes at the nearest point whose accelerance the ball mode carries at least this
+share of at its own frequency (at 55 % the heavily damped mode made no visible peak on the
+new-user trial's racket; at 90 % it does)."""
+
+
+def ball_mode_share(model: ModalModel, reference: int) -> NDArray[np.float64]:
+    """The ball mode's share of each point's accelerance at the ball mode's frequency.
+
+    |term of the ball mode| over |sum of every mode's term|, the terms φ_k(j) φ_k(ref) (−ω²) /
+    (ω_k² − ω² + 2iζ_k ω_k ω) of the model's modes at ω = the ball mode's; NaN without a ball
+    mode.
+
+    Parameters
+    ----------
+    model : ModalModel
+        The racket with the ball (its modes at the test's points).
+    reference : int
+        Row of the accelerometer's point in the model.
+    """
+    if BALL_MODE_NAME not in model.names:
+        return np.full(model.locations.shape[0], np.nan)
+    k = model.names.index(BALL_MODE_NAME)
+    omega = 2.0 * np.pi * model.frequency[k]
+    omega_m = 2.0 * np.pi * model.frequency
+    modal = -(omega**2) / (omega_m**2 - omega**2 + 2j * model.damping_ratio * omega_m * omega)
+    terms = model.mode_shapes * model.mode_shapes[reference] * modal
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.asarray(np.abs(terms[:, k]) / np.abs(terms.sum(axis=1)), dtype=float)
+
+
+def node_showing_ball_mode(
+    model: ModalModel,
+    nodes: Sequence[int],
+    reference_node: int,
+    candidates: Sequence[int],
+    ball_at: tuple[float, float],
+) -> int:
+    """The hammer point of Fig. 9b: the candidate nearest the ball whose accelerance the ball
+    mode carries at least :data:`BALL_MODE_SHOWN` of (:func:`ball_mode_share`), else the one
+    it carries most of; the nearest candidate when the model has no ball mode or no reference.
+
+    Parameters
+    ----------
+    model : ModalModel
+        The racket with the ball, its rows the points ``nodes``.
+    nodes : sequence of int
+        The model's points.
+    reference_node : int
+        The accelerometer's point.
+    candidates : sequence of int
+        The points both tests hold.
+    ball_at : tuple of float
+        Where the ball sits (x, y), m.
+    """
+    rows = [list(nodes).index(n) for n in candidates]
+    where = model.locations[rows, :2]
+    order = np.argsort(np.hypot(*(where - np.asarray(ball_at)).T), kind="stable")
+    if reference_node not in nodes:
+        return int(candidates[int(order[0])])
+    share = ball_mode_share(model, list(nodes).index(reference_node))[rows]
+    if not np.any(np.isfinite(share)):
+        return int(candidates[int(order[0])])
+    shown = [i for i in order if share[i] >= BALL_MODE_SHOWN]
+    return int(candidates[shown[0] if shown else int(np.nanargmax(share))])
+
+
 @run_step
 def run_compare_ball(
     alone: str | os.PathLike[str],
@@ -721,6 +827,10 @@ def run_compare_ball(
                 }
             )
     written.append(table)
+    shared = [n for n in found_ball.frfs.nodes if n in found_alone.frfs.nodes]
+    shown = node_showing_ball_mode(
+        found_ball.model, found_ball.frfs.nodes, found_ball.frfs.reference_node, shared, ball
+    )
     result = BallCompareResult(
         out_dir,
         written,
@@ -729,6 +839,7 @@ def run_compare_ball(
         racket=the_racket,
         ball_at=ball,
         rows=rows,
+        shown_node=shown,
     )
     ball_rows = [r for r in rows if r["mode"] == BALL_MODE_NAME]
     shifts = [

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import os
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import Executor
 from contextlib import AbstractContextManager, ExitStack, nullcontext
 from dataclasses import dataclass, field
@@ -20,6 +20,7 @@ from typing import Any, Literal
 import xarray as xr
 
 from racketdyn.sweep import SweepSpec, load_sweep_spec, make_executor, run_sweep, start_early
+from racketdyn.sweep.summary import SummaryCurves
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
@@ -75,7 +76,8 @@ def run_sweep_step(
         Output folder (created if missing); run again to resume.
     setup : Setup
         Of the :class:`~racketdyn.workflows.setup.Setup`, sweep uses the run only (the racket
-        and the rest come from the spec: ``figures(dataset, out)`` draws the summary figures);
+        and the rest come from the spec: ``figures(curves, out)`` draws the summary figures,
+        :func:`racketdyn.plotting.steps.sweep_figures`);
         and the run (command, figures, progress).
     engine : {"auto", "serial", "process", "dask-local", "dask"}
         Where tasks run; ``auto``: this process for a small sweep, else two processes.
@@ -133,7 +135,7 @@ def _run(
     out_dir: Path,
     executor: AbstractContextManager[Executor | None],
     progress: Progress | None,
-    figures: Callable[[xr.Dataset, Path], list[Path]] | None,
+    figures: Callable[[Mapping[str, SummaryCurves], Path], list[Path]] | None,
     task_timeout: float | None,
     command: Sequence[str] | None,
 ) -> xr.Dataset:
