@@ -135,6 +135,12 @@ def test_a_deeply_nested_racket_file_is_one_line(
     [
         (["oblique", "--spin", "1e9"], ["--spin", "refused even"]),
         (["oblique", "--spin", "3000"], ["--spin", "rpm"]),  # typed in rpm
+        # fifth session's scan of every numeric option: μ 1e9 raised a RuntimeError after the
+        # tangential model's 10 000 grip/slide phases; a face sliding at 1e9 m/s ran as ok
+        (["oblique", "--friction", "1e9"], ["--friction", "refused even"]),
+        (["oblique", "--friction", "3"], ["--friction", "up to 1;"]),
+        (["oblique", "--racket-tangential-speed", "1e9"], ["--racket-tangential-speed"]),
+        (["oblique", "--racket-tangential-speed=-1e9"], ["--racket-tangential-speed"]),
         (["swing", "--angular-speed", "0"], ["--angular-speed", "2–80 rad/s"]),
         (["predict", "--speed", "20,20", "--grid", "2"], ["--speed", "each ball speed once"]),
         (["swing", "--speed", "20,20"], ["--speed", "each ball speed once"]),

@@ -109,7 +109,8 @@ class Range:
         """The plausible range in words: "a strung racket weighs 0.23–0.4 kg (230–400 g)"."""
 
         def span(low: float, high: float, unit: str) -> str:
-            return f"up to {_g(high)} {unit}" if low == 0 else f"{_g(low)}–{_g(high)} {unit}"
+            words = f"up to {_g(high)}" if low == 0 else f"{_g(low)}–{_g(high)}"
+            return f"{words} {unit}" if unit else words  # a dimensionless input: no unit
 
         words = f"{self.says} {span(self.low, self.high, self.unit)}"
         if self.field_unit is not None:
@@ -234,6 +235,13 @@ RANGES: dict[str, Range] = {
         (RPM,),
         RPM,
         "(either sense)",
+    ),
+    # Ball–string friction (impact.oblique.TangentialContact): Cross measured μ ≈ 0.4 for a ball
+    # sliding on strings (the default; docs/references.md); felt on nylon or polyester stays
+    # below 1.  Limits: 10 — a thousand-fold μ (typed 1e9) ran the tangential model into its
+    # 10 000 grip/slide phases (the fifth session's scan of every option).
+    "friction_coefficient": Range(
+        "the ball–string friction coefficient (μ) is", 0.0, 1.0, 0.0, 10.0, ""
     ),
     # Swing angle from rest to impact (torque model): a blocked volley turns ≈ 15–30°, a
     # groundstroke ≈ 90–180°, a serve up to a turn.  Below 15° the number is most likely radians

@@ -182,6 +182,18 @@ def run_oblique(
     )
     racket_speed = require_finite("`racket_speed`", racket_speed)
     face_speed = require_finite("`racket_tangential_speed`", racket_tangential_speed)
+    # either sense along the face: its size against the speeds rackets are swung at
+    check_speeds(
+        "`racket_tangential_speed`", [abs(face_speed)], "racket_speed_mps", setup.allow_implausible
+    )
+    if friction is not None:
+        friction = require_finite("`friction`", friction)
+        check(
+            "friction_coefficient",
+            friction,
+            "`friction`",
+            allow_implausible=setup.allow_implausible,
+        )
     the_ball, ball_defaults = setup.ball_used()
     defaults_used = [*used.defaults, *extra, *hand_defaults, *ball_defaults, *setup.defaults]
     model = used.modal_model
