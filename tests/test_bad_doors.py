@@ -159,6 +159,26 @@ def test_an_absurd_option_is_one_line(
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.parametrize(
+    ("value", "words"),
+    [("nan", ["--force-range", "finite"]), ("inf", ["--force-range", "finite"]),
+     ("1e9", ["--force-range", "refused even"]), ("2e6", ["--force-range", "N"])],
+)  # fmt: skip
+def test_an_absurd_hammer_range_is_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], value: str, words: list[str]
+) -> None:
+    """The fifth session's scan: ``frf --force-range`` took NaN (no overload ever found),
+    inf and 1e9 N (a gigatonne-force hammer) without a word."""
+    from racketdyn.workflows import run_rig
+
+    run_rig(tmp_path / "rig", averages=1)
+    argv = ["frf", str(tmp_path / "rig" / "hammer_free.uff"), f"--force-range={value}"]
+    assert main([*argv, "--out", str(tmp_path / "o")]) == 2
+    _one_line(capsys, *words)
+    if value == "2e6":  # a 2 MN channel: unusual, not impossible
+        assert main([*argv, "--allow-implausible", "--out", str(tmp_path / "o")]) == 0
+
+
 def test_a_ball_speed_twice_with_two_racket_speeds_is_two_cases(tmp_path: Path) -> None:
     result = run_predict(tmp_path / "p", speeds=[20.0, 20.0], racket_speed=[0.0, 30.0], grid=2)
     assert result.approximate is not None

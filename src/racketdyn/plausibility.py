@@ -236,6 +236,12 @@ RANGES: dict[str, Range] = {
         RPM,
         "(either sense)",
     ),
+    # The hammer's force channel (frf --force-range): a modal hammer's range runs from ≈ 200 N
+    # (a small tip) to ≈ 20 kN (a sledge); 10 N–100 kN spans them.  Limits: 0.1 N–10 MN —
+    # beyond, no hammer (1e9 N ran; the fifth session's scan of every option).
+    "force_range_n": Range(
+        "a hammer's force channel measures", 10.0, 1.0e5, 0.1, 1.0e7, "N", (), None, "at most"
+    ),
     # Ball–string friction (impact.oblique.TangentialContact): Cross measured μ ≈ 0.4 for a ball
     # sliding on strings (the default; docs/references.md); felt on nylon or polyester stays
     # below 1.  Limits: 10 — a thousand-fold μ (typed 1e9) ran the tangential model into its

@@ -236,16 +236,22 @@ def uncertainty_from(args: argparse.Namespace) -> Any:
     )
 
 
-def add_allow_implausible(parser: argparse.ArgumentParser) -> None:
-    """``--allow-implausible``: go on with an unusual ball, speed or arm (see plausibility)."""
+def add_allow_implausible(parser: argparse.ArgumentParser, what: str | None = None) -> None:
+    """``--allow-implausible``: go on with an unusual ball, speed or arm (see plausibility);
+    ``what`` replaces the list of options it applies to (frf: the hammer's range)."""
     parser.add_argument(
         "--allow-implausible",
         action="store_true",
-        help="take a --ball-mass, --speed, --racket-speed or --hand-arm-mass outside the ranges "
-        "of play (ball 56.0-59.4 g, ITF; ball speeds up to 75 m/s, racket 55 m/s; arm 0.2-6 kg) "
-        "for an object "
-        "meant to be unusual; a value in the wrong unit (57.7 for kg) is refused still; a "
-        "racket file allows itself with [checks] allow_implausible = true (default: off)",
+        help=(
+            "take a --ball-mass, --speed, --racket-speed or --hand-arm-mass outside the ranges "
+            "of play (ball 56.0-59.4 g, ITF; ball speeds up to 75 m/s, racket 55 m/s; arm "
+            "0.2-6 kg)"
+            if what is None
+            else f"take {what}"
+        )
+        + " for an object meant to be unusual; a value in the wrong unit (57.7 for kg) is "
+        "refused still; a racket file allows itself with [checks] allow_implausible = true "
+        "(default: off)",
     )
 
 

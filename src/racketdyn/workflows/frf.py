@@ -13,11 +13,12 @@ from typing import Any, Literal
 
 import numpy as np
 
-from racketdyn.errors import InputError, one_of
+from racketdyn.errors import InputError, one_of, require_positive
 from racketdyn.io import read_hammer_csv, read_hammer_uff, write_frf_uff
 from racketdyn.measurement import HammerRecords
 from racketdyn.measurement.frf import FrfEstimate, estimate_frfs
 from racketdyn.measurement.quality import QualitySettings
+from racketdyn.plausibility import check
 from racketdyn.racket import Racket
 from racketdyn.workflows.inputs import load_racket_input
 from racketdyn.workflows.run import (
@@ -96,7 +97,8 @@ def run_frf(
         Output folder (created if missing).
     setup : Setup
         Of the :class:`~racketdyn.workflows.setup.Setup`, frf uses the racket (its head outline,
-        for the figures); and the run (command, figures, progress).
+        for the figures) and ``allow_implausible`` (the hammer's range); and the run (command,
+        figures, progress).
     geometry : path, optional
         Node coordinates if not in ``tests``.
     estimator : {"H1", "H2"}
@@ -106,9 +108,18 @@ def run_frf(
     exponential_window_s : float, optional
         Exponential window time constant τ, s (default: none).
     force_range_n : float, optional
-        Hammer channel range, N: reaching it is an overload.
+        Hammer channel range, N: reaching it is an overload (finite, positive; 10–100 000 N
+        unless ``setup.allow_implausible``).
     """
     one_of("`estimator`", estimator, ESTIMATORS)
+    if force_range_n is not None:
+        force_range_n = require_positive("`force_range_n`", force_range_n)
+        check(
+            "force_range_n",
+            force_range_n,
+            "`force_range_n`",
+            allow_implausible=setup.allow_implausible,
+        )
     records = read_records(tests, geometry)
     the_racket, provenance = load_racket_input(setup.racket)
     out_dir = Path(out)
