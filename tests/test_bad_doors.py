@@ -179,6 +179,35 @@ def test_an_absurd_hammer_range_is_one_line(
         assert main([*argv, "--allow-implausible", "--out", str(tmp_path / "o")]) == 0
 
 
+@pytest.mark.parametrize(
+    ("option", "words"),
+    [("--band=nan,500", ["--band", "finite", "Hz"]),
+     ("--band=-5,500", ["--band", "frequencies", "Hz"]),
+     ("--pin=nan", ["--pin", "finite", "Hz"]),
+     ("--exclude=-5", ["--exclude", "frequencies", "Hz"]),
+     ("--pin=1e9", ["--pin:", "outside the band"]),
+     ("--max-order=0", ["--max-order", "at least 1"])],
+)  # fmt: skip
+def test_identifys_bad_numbers_name_their_option_and_unit(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], option: str, words: list[str]
+) -> None:
+    """The fifth session's scan: ``--band nan,500`` was "finite speeds of zero or more, m/s"
+    (frequencies read by the speeds' parser), and ``--max-order 0`` and ``--pin 1e9`` named
+    the library's ``max_order`` and ``pin_hz`` instead of their options."""
+    from racketdyn.workflows import run_frf, run_rig
+
+    run_rig(tmp_path / "rig", averages=1)
+    run_frf(tmp_path / "rig" / "hammer_free.uff", tmp_path / "frf")
+    assert (
+        main(["identify", str(tmp_path / "frf" / "frfs.uff"), option, "--out", str(tmp_path / "o")])
+        == 2
+    )
+    line = _one_line(capsys, *words)
+    assert "m/s" not in line
+    assert "_hz" not in line
+    assert "max_order" not in line
+
+
 def test_a_ball_speed_twice_with_two_racket_speeds_is_two_cases(tmp_path: Path) -> None:
     result = run_predict(tmp_path / "p", speeds=[20.0, 20.0], racket_speed=[0.0, 30.0], grid=2)
     assert result.approximate is not None

@@ -116,7 +116,7 @@ _LOWEST_BAND_TOP_HZ = 10.0
 
 
 def _options(args: argparse.Namespace) -> dict[str, Any]:
-    band = None if args.band is None else opt.parse_speeds("--band", args.band)
+    band = None if args.band is None else opt.parse_frequencies("--band", args.band)
     if band is not None and (len(band) != 2 or band[0] >= band[1]):
         from racketdyn.errors import InputError
 
@@ -133,8 +133,10 @@ def _options(args: argparse.Namespace) -> dict[str, Any]:
         "geometry": args.geometry,
         "band_hz": band,
         "max_order": args.max_order,
-        "pin_hz": [] if args.pin is None else opt.parse_speeds("--pin", args.pin),
-        "exclude_hz": [] if args.exclude is None else opt.parse_speeds("--exclude", args.exclude),
+        "pin_hz": [] if args.pin is None else opt.parse_frequencies("--pin", args.pin),
+        "exclude_hz": []
+        if args.exclude is None
+        else opt.parse_frequencies("--exclude", args.exclude),
         "reference": args.reference,
         "ball_at": opt.parse_point("--ball-at", args.ball_at),
     }

@@ -437,6 +437,17 @@ def parse_speeds(name: str, text: str) -> list[float]:
     return [float(v) for v in require_speeds(name, speeds)]
 
 
+def parse_frequencies(name: str, text: str) -> list[float]:
+    """Frequencies (Hz, finite, ≥ 0) from a comma-separated list (``--band``, ``--pin``)."""
+    from racketdyn.errors import InputError
+
+    values = parse_numbers(name, text, "Hz")
+    if any(v < 0 for v in values):
+        given = ", ".join(f"{v:g}" for v in values)
+        raise InputError(f"{name} must be frequencies of zero or more, Hz (got {given})")
+    return values
+
+
 def parse_numbers(name: str, text: str, unit: str) -> list[float]:
     """Finite numbers (any sign) from a comma-separated list."""
     from racketdyn.errors import InputError
@@ -448,7 +459,7 @@ def parse_numbers(name: str, text: str, unit: str) -> list[float]:
         except ValueError:
             raise InputError(f"{name}: {item!r} is not a number ({unit})") from None
         if not math.isfinite(number):
-            raise InputError(f"{name} must be a finite number (got {item!r})")
+            raise InputError(f"{name} must be a finite number, {unit} (got {item!r})")
         numbers.append(number)
     return numbers
 

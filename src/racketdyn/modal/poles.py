@@ -466,7 +466,7 @@ def stabilisation(
         tolerances out of range.
     """
     data = _combine(frfs)
-    max_order = require_whole("max_order", max_order)
+    max_order = require_whole("`max_order`", max_order)
     order_step = require_whole("order_step", order_step)
     for name, value in (
         ("frequency_tolerance", frequency_tolerance),
@@ -963,8 +963,8 @@ def select_poles(
     if stability not in tuple(PoleStability):
         raise InputError(f"stability must be a PoleStability (got {stability!r})")
     low_hz, high_hz = stab.band_hz
-    pins = _frequencies("pin_hz", pin_hz, stab.band_hz)
-    excludes = _frequencies("exclude_hz", exclude_hz, stab.band_hz)
+    pins = _frequencies("`pin_hz`", pin_hz, stab.band_hz)
+    excludes = _frequencies("`exclude_hz`", exclude_hz, stab.band_hz)
     n_orders_total = int(stab.orders.size)
 
     tolerances = (bandwidth_tolerance, damping_tolerance, cluster_mac)
