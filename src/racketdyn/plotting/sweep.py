@@ -63,8 +63,16 @@ def _plot_metric(
             linestyle="-",
             markersize=4,
         )
+        if f"{metric}_p05" in metrics:  # a sweep with an uncertainty: its 5-95 % band
+            low = metrics[f"{metric}_p05"].sel(support=support).values
+            high = metrics[f"{metric}_p95"].sel(support=support).values
+            ax.fill_between(
+                x[with_mass], low[with_mass], high[with_mass], color=color, alpha=0.2, lw=0
+            )
         for level in np.unique(values[without]):
             ax.axhline(level, color=color, linestyle=":", linewidth=1.0)
+    if f"{metric}_p05" in metrics:
+        ax.fill_between([], [], [], color="0.4", alpha=0.2, lw=0, label="5-95 % band")
     if without.any():
         what = variable.replace("_", " ")
         ax.plot([], [], color="0.4", linestyle=":", linewidth=1.0, label=f"without the {what}")

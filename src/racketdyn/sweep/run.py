@@ -89,7 +89,8 @@ or failed for good) and the number of tasks."""
 
 SERIAL_IMPACT_LIMIT = 50_000
 """Below this many impacts to compute, ``run_sweep(executor=None)`` runs in this process;
-above it, in a pool of two processes."""
+above it, in a pool of two processes (with an uncertainty its samples count too:
+:attr:`SweepSpec.work_per_design`)."""
 
 
 def run_sweep(
@@ -229,7 +230,7 @@ def run_sweep(
     if todo:
         with ExitStack() as stack:
             if executor is None:
-                small = len(todo) * spec.impacts_per_design < SERIAL_IMPACT_LIMIT
+                small = len(todo) * spec.work_per_design < SERIAL_IMPACT_LIMIT
                 kind: EngineKind = "serial" if small else "process"
                 clock = time.perf_counter()
                 executor = stack.enter_context(make_executor(kind, DEFAULT_WORKERS))
@@ -365,6 +366,7 @@ def run_sweep(
         "first_result_s": tally.first_result_s,
         "outputs": [p.name for p in written] + ["run.json"],
         "spec": spec.to_dict(),
+        "uncertainty": spec.uncertainty_record(),
         "notes": notes,
     }
     for name in previous_outputs - {p.name for p in written}:  # another spec's figures

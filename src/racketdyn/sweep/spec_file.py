@@ -21,8 +21,10 @@ from racketdyn.errors import InputError, one_of, require_whole
 from racketdyn.impact.approximate import STIFFNESS_READINGS
 from racketdyn.impact.grid import STRING_BEDS
 from racketdyn.impact.transient import ENGINES as TRANSIENT_ENGINES
+from racketdyn.impact.uncertainty import Uncertainty
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_racket, read_toml
 from racketdyn.io.tables import read_load_deflection, read_points
+from racketdyn.io.uncertainty_file import spreads_from_tables
 from racketdyn.plausibility import check, check_e_bg, check_speeds
 from racketdyn.racket import SUPPORTS, Racket
 from racketdyn.sweep.spec import (
@@ -40,7 +42,7 @@ __all__ = ["load_sweep_spec", "sweep_spec_from_dict"]
 SUPPORT = "support"
 POINT_MASS_KEYS = ("mass_kg", "x_m", "y_m", "clock", "label")
 _TOP_KEYS = ("schema_version", "name", "description", "racket", "mode")
-_TABLES = ("ball", "impacts", "variables", "summary", "checks")
+_TABLES = ("ball", "impacts", "variables", "summary", "checks", "uncertainty")
 _PLAUSIBLE: dict[str, str] = {
     "mass_kg": "mass_kg",
     "balance_m": "balance_m",
@@ -252,6 +254,12 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         None if key not in summary else _number(f"[summary].{key}", summary[key])
         for key in ("ball_speed_mps", "racket_speed_mps")
     ]
+    uncertainty = None
+    if "uncertainty" in data:
+        tables = data["uncertainty"]
+        if not isinstance(tables, dict):
+            raise InputError("[uncertainty] must be a table of tables ([uncertainty.e_bg] …)")
+        uncertainty = Uncertainty(spreads_from_tables(tables, "[uncertainty]", allow))
     return SweepSpec(
         racket=racket,
         ball=ball,
@@ -273,6 +281,8 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         summary_racket_speed=summary_speeds[1],
         name=name or "sweep",
         racket_source=racket_source,
+        uncertainty=uncertainty,
+        uncertainty_source="" if uncertainty is None else "[uncertainty] of the sweep spec",
     )
 
 
