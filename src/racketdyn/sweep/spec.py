@@ -258,20 +258,27 @@ class SweepSpec:
 
     def _check_uncertainty(self, uncertainty: Uncertainty) -> None:
         """Spreads the designs can take: none that replaces a swept value, each drawable on
-        the base design (a rigid racket has no bending mode, a measured bed no scale)."""
+        the base design (a rigid racket has no bending mode, a measured bed no scale); a
+        message names the table where it came from (the spec's, or ``--uncertainty FILE``)."""
+        source = self.uncertainty_source
+        from_spec = not source or source.startswith("[uncertainty]")
+
+        def where(name: str) -> str:
+            return f"[uncertainty.{name}]" if from_spec else f"{source.split(' (')[0]} [{name}]"
+
         swept = {v.kind for v in self.variables}
         for spread in uncertainty.spreads:
             clash = sorted(swept & set(_SWEPT_INPUTS.get(spread.name, ())))
             if clash and spread.sd is None:
                 raise InputError(
-                    f"[uncertainty.{spread.name}]: a range or values replace the swept "
-                    f"{clash[0]} in every design; give sd = x (a spread about each design's "
-                    "value) or leave it out"
+                    f"{where(spread.name)}: a range or values replace the swept {clash[0]} in "
+                    "every design; give sd = x (a spread about each design's value) or leave "
+                    "it out"
                 )
             if spread.name == "first_bending_hz" and self.rigid:
                 raise InputError(
-                    "[uncertainty.first_bending_hz]: a rigid racket ([impacts] rigid = true) has "
-                    "no bending mode; leave it out or drop rigid"
+                    f"{where(spread.name)}: a rigid racket ([impacts] rigid = true) has no "
+                    "bending mode; leave it out or drop rigid"
                 )
         try:
             inputs = task_inputs(self.task(self.designs[0]))
@@ -279,7 +286,8 @@ class SweepSpec:
             if any(s.name == "string_stiffness_scale" for s in uncertainty.spreads):
                 _ = PARAMETERS["string_stiffness_scale"].set(inputs, 1.01).effective_racket
         except InputError as error:
-            raise InputError(f"[uncertainty]: {error}") from None
+            table = "[uncertainty]" if from_spec else source.split(" (")[0]
+            raise InputError(f"{table}: {error}") from None
 
     def _check_design(self, settings: tuple[tuple[str, float], ...]) -> None:
         racket, _, _ = build_design(self.racket, self.ball, self.variables, settings)

@@ -437,7 +437,10 @@ def task_inputs(task: SweepTask) -> ModelInputs:
     racket, ball, file_model_scale = build_design(
         task.racket, task.ball, task.variables, task.settings
     )
-    model = None if task.rigid else _modal_model(racket, file_model_scale)
+    # one BLAS thread, as in run_task: the cached model is built the same here (several
+    # threads round the beam's solve apart, and a serial sweep reuses this process's cache)
+    with _blas_controller().limit(limits=1, user_api="blas"):
+        model = None if task.rigid else _modal_model(racket, file_model_scale)
     return _inputs(task, racket, ball, model)
 
 
