@@ -130,6 +130,11 @@ def _sweep(racket: Racket, points: NDArray[np.float64], alone_s: float) -> None:
         f"{spent['256 samples'] / n:5.2f} s a design against {alone_s:5.2f} s for propagate "
         f"alone ({spent['256 samples'] / n / alone_s:4.2f} ×)"
     )
+    added = (spent["256 samples"] - spent["nominal"]) / n
+    print(
+        f"  the samples' share: {added:5.2f} s a design = {added / alone_s:4.2f} × propagate "
+        "alone (the rest: the nominal sweep's own cost)"
+    )
 
 
 if __name__ == "__main__":

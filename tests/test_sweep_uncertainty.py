@@ -204,7 +204,9 @@ def test_the_spec_s_uncertainty_and_the_command_line_over_it(tmp_path: Path) -> 
     spec = tmp_path / "spec.toml"
     spec.write_text(SPEC, encoding="utf-8")
     assert main(_argv(spec, tmp_path / "a", "--samples", "8")) == 0
-    record = json.loads((tmp_path / "a" / "run.json").read_text())["uncertainty"]
+    run = json.loads((tmp_path / "a" / "run.json").read_text())
+    assert any("8 samples a design give a rough" in note for note in run["notes"])
+    record = run["uncertainty"]
     assert record["source"] == "[uncertainty] of the sweep spec"
     assert record["inputs"] == {"e_bg": "normal, sd 0.02"}
     assert record["samples"] == 8
@@ -271,3 +273,21 @@ def test_bad_uncertainty_input_is_one_line_naming_it(
 def test_a_spread_the_designs_cannot_take_is_refused_in_python(spec: SweepSpec) -> None:
     with pytest.raises(InputError, match=r"\[uncertainty.e_bg\]: a range"):
         replace(spec, uncertainty=Uncertainty((Spread("e_bg", bounds=(0.8, 0.88)),)))
+
+
+def test_a_sweep_without_an_uncertainty_loads_no_more_modules() -> None:
+    """Every worker process imports the sweep: the uncertainty's modules (xarray, scipy.stats:
+    ≈ 1 s) are imported when a sweep has an uncertainty, not before (with them at the top,
+    a local Dask cluster's Ctrl-C test failed 2 runs in 3 with a tornado traceback)."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, racketdyn.sweep.runner, racketdyn.sweep.spec_file, racketdyn.cli.sweep\n"
+        "print(sorted(m for m in ('xarray', 'scipy.stats', 'racketdyn.impact.uncertainty')"
+        " if m in sys.modules))"
+    )
+    found = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout.strip()
+    assert found == "[]"

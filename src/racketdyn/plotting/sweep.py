@@ -102,7 +102,8 @@ def plot_centre_rebound(
     ball_speed: float | None = None,
     racket_speed: float | None = None,
 ) -> Axes:
-    """Rebound ratio at the face centre against a variable, one line per support.
+    """Rebound ratio at the face centre against a variable, one line per support (with an
+    uncertainty, its 5-95 % band shaded: ``centre_rebound_ratio_p05/_p95``).
 
     Parameters
     ----------
@@ -128,7 +129,8 @@ def plot_sweet_area(
     ball_speed: float | None = None,
     racket_speed: float | None = None,
 ) -> Axes:
-    """The sweet area against a variable, per support.
+    """The sweet area against a variable, per support (with an uncertainty, its 5-95 % band
+    shaded where given: ``sweet_area_cm2_p05/_p95``).
 
     The area of each design's face whose rebound ratio is near the best of that face
     (:func:`racketdyn.sweep.sweet_area_cm2`): the numbers of ``summary.csv``.

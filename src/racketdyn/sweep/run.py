@@ -311,6 +311,14 @@ def run_sweep(
     store = out / STORE_NAME
     written = [store]
     notes = []
+    if spec.uncertainty is not None and spec.uncertainty.samples < _rough_samples():
+        # the tasks hold propagate's own warning back: said once here
+        notes.append(
+            f"{spec.uncertainty.samples} samples a design give a rough 90 % band (its 5 % and "
+            f"95 % quantiles rest on a sample or two); {_rough_samples()} or more for numbers to "
+            "quote"
+        )
+        log.warning("%s", notes[-1])
     if spec.variables:
         written.append(write_summary_csv(result, out))
         notes.append(
@@ -374,6 +382,14 @@ def run_sweep(
             (out / name).unlink()
     (out / "run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
     return result
+
+
+def _rough_samples() -> int:
+    """:data:`racketdyn.impact.uncertainty.ROUGH_SAMPLES`, imported when a sweep has an
+    uncertainty (the module loads xarray and scipy.stats: ≈ 1 s a process)."""
+    from racketdyn.impact.uncertainty import ROUGH_SAMPLES
+
+    return ROUGH_SAMPLES
 
 
 def _lost_chunks(missing: Sequence[Design], failures: list[dict[str, Any]]) -> bool:

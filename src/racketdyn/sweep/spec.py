@@ -15,7 +15,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Any, Literal, get_args
+from typing import TYPE_CHECKING, Any, Literal, get_args
 
 import numpy as np
 from numpy.typing import NDArray
@@ -25,13 +25,11 @@ from racketdyn.ball import Ball
 from racketdyn.contact import with_ball_string_cor
 from racketdyn.errors import InputError, one_of, require_positive, require_speeds
 from racketdyn.impact.approximate import STIFFNESS_READINGS, StiffnessReading
-from racketdyn.impact.calibration import PARAMETERS
 from racketdyn.impact.grid import STRING_BEDS, StringBed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.kernel import NUMBA_AVAILABLE
 from racketdyn.impact.transient import COMPILED_SCHEME, Engine
 from racketdyn.impact.transient import ENGINES as TRANSIENT_ENGINES
-from racketdyn.impact.uncertainty import Uncertainty, draw
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME
 from racketdyn.io.racket_file import racket_to_dict as _racket_to_dict
 from racketdyn.racket import (
@@ -45,6 +43,9 @@ from racketdyn.racket_modal.beam import beam_mass_per_length
 from racketdyn.sweep.design import Design, build_design, build_hand
 from racketdyn.sweep.task import SweepTask, _check_method, _check_supports, task_inputs
 from racketdyn.sweep.variables import HAND_VARIABLES, POINT_MASS, Variable
+
+if TYPE_CHECKING:  # imported when a sweep has an uncertainty: xarray and scipy.stats cost ≈ 1 s
+    from racketdyn.impact.uncertainty import Uncertainty
 
 __all__ = ["MODES", "SweepSpec"]
 
@@ -260,6 +261,9 @@ class SweepSpec:
         """Spreads the designs can take: none that replaces a swept value, each drawable on
         the base design (a rigid racket has no bending mode, a measured bed no scale); a
         message names the table where it came from (the spec's, or ``--uncertainty FILE``)."""
+        from racketdyn.impact.calibration import PARAMETERS
+        from racketdyn.impact.uncertainty import draw
+
         source = self.uncertainty_source
         from_spec = not source or source.startswith("[uncertainty]")
 

@@ -21,10 +21,8 @@ from racketdyn.errors import InputError, one_of, require_whole
 from racketdyn.impact.approximate import STIFFNESS_READINGS
 from racketdyn.impact.grid import STRING_BEDS
 from racketdyn.impact.transient import ENGINES as TRANSIENT_ENGINES
-from racketdyn.impact.uncertainty import Uncertainty
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, default_racket, load_racket, read_toml
 from racketdyn.io.tables import read_load_deflection, read_points
-from racketdyn.io.uncertainty_file import spreads_from_tables
 from racketdyn.plausibility import check, check_e_bg, check_speeds
 from racketdyn.racket import SUPPORTS, Racket
 from racketdyn.sweep.spec import (
@@ -256,6 +254,9 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
     ]
     uncertainty = None
     if "uncertainty" in data:
+        from racketdyn.impact.uncertainty import Uncertainty
+        from racketdyn.io.uncertainty_file import spreads_from_tables
+
         tables = data["uncertainty"]
         if not isinstance(tables, dict):
             raise InputError("[uncertainty] must be a table of tables ([uncertainty.e_bg] …)")

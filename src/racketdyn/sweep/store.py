@@ -125,14 +125,13 @@ def _chunked_variables(
 
 CHUNKED = tuple(_chunked_variables())
 """The arrays written chunk by chunk (the impact quantities, ``status``, ``reduced_mass_kg``;
-with an uncertainty, :data:`BANDED` too)."""
-BANDED = tuple(band_variables())
-"""The bands a sweep with an uncertainty adds (group attribute ``bands`` 1)."""
+with an uncertainty, the bands of :func:`~racketdyn.sweep.task.band_variables` too)."""
 
 
 def _chunked_names(group: zarr.Group) -> tuple[str, ...]:
-    """The arrays of this store written chunk by chunk."""
-    return CHUNKED + (BANDED if group.attrs.get("bands") else ())
+    """The arrays of this store written chunk by chunk (the bands where the group attribute
+    ``bands`` is 1)."""
+    return CHUNKED + (tuple(band_variables()) if group.attrs.get("bands") else ())
 
 
 # --- creating ---------------------------------------------------------------------------------

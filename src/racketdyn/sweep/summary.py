@@ -20,7 +20,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.impact.uncertainty import MIN_VALID_SHARE
 from racketdyn.sweep.variables import POINT_MASS
 
 if TYPE_CHECKING:
@@ -248,6 +247,8 @@ def _bands(
     """The bands of the metrics (a sweep with an uncertainty): the centre's rebound ratio
     (its impact's quantiles), the best rebound ratio and the sweet area (each sample's face's
     quantiles, computed in the tasks), their valid shares and a note where a band is NaN."""
+    from racketdyn.impact.uncertainty import MIN_VALID_SHARE
+
     at = {"speed": speed, "racket_speed": swing}
 
     def read(name: str, **where: int) -> NDArray[np.float64]:

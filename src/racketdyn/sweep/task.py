@@ -17,7 +17,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,7 +28,6 @@ from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of
 from racketdyn.impact.approximate import StiffnessReading, predict
 from racketdyn.impact.grid import StringBed
-from racketdyn.impact.measured import ModelInputs
 from racketdyn.impact.result import (
     IMPACT_QUANTITIES,
     STATUS_BEYOND_LAW,
@@ -45,19 +44,15 @@ from racketdyn.impact.transient import (
     Engine,
     predict_transient,
 )
-from racketdyn.impact.uncertainty import (
-    BAND_QUANTITIES,
-    MIN_VALID_SHARE,
-    QUANTILES,
-    UncertainResult,
-    Uncertainty,
-    propagate,
-)
 from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket
 from racketdyn.racket_modal import builtin_modal_model
 from racketdyn.sweep.design import build_design, build_hand
 from racketdyn.sweep.variables import Variable
+
+if TYPE_CHECKING:  # imported when a sweep has an uncertainty: xarray and scipy.stats cost ≈ 1 s
+    from racketdyn.impact.measured import ModelInputs
+    from racketdyn.impact.uncertainty import UncertainResult, Uncertainty
 
 __all__ = [
     "METHODS",
@@ -409,6 +404,8 @@ _PREDICT_LOGS = (
 
 def _inputs(task: SweepTask, racket: Racket, ball: Ball, model: ModalModel | None) -> ModelInputs:
     """The design's inputs as :func:`racketdyn.impact.uncertainty.propagate` takes them."""
+    from racketdyn.impact.measured import ModelInputs
+
     hand = build_hand(task.variables, task.settings) if "hand" in task.supports else None
     return ModelInputs(
         racket=racket,
@@ -445,11 +442,6 @@ def task_inputs(task: SweepTask) -> ModelInputs:
 
 
 _FACE_DIMS = ("design", "speed", "racket_speed", "support")
-_BAND_NAMES = tuple(
-    next(q.name for q in IMPACT_QUANTITIES if q.attribute == attribute)
-    for attribute in BAND_QUANTITIES
-)
-"""The store's names of the quantities given with bands (as ``band_columns`` names them)."""
 _FACE_METRICS = {
     "best_rebound_ratio": ("1", "highest rebound ratio over the face"),
     "sweet_area_cm2": ("cm2", "sweet area (racketdyn.sweep.sweet_area_cm2)"),
@@ -468,8 +460,11 @@ def band_variables() -> dict[str, tuple[bool, str, str]]:
     ``face_samples_valid``, the share of samples whose face counts (valid at 90 % of the
     points the nominal face gives).
     """
+    from racketdyn.impact.uncertainty import BAND_QUANTITIES, QUANTILES
+
+    names = {q.attribute: q.name for q in IMPACT_QUANTITIES}  # as band_columns names them
     out: dict[str, tuple[bool, str, str]] = {}
-    for name in _BAND_NAMES:
+    for name in (names[attribute] for attribute in BAND_QUANTITIES):
         units, long_name = _IMPACT_VARIABLES[name][1:]
         for stat, what in (("mean", "mean"), ("sd", "standard deviation")):
             out[f"{name}_{stat}"] = (True, units, f"{what} over the samples: {long_name}")
@@ -495,6 +490,8 @@ def _bands(task: SweepTask, inputs: ModelInputs, nominal: ImpactResult) -> dict[
     """The design's bands (:func:`band_variables`): its samples by
     :func:`~racketdyn.impact.uncertainty.propagate` (the approximate method's all at once),
     here in the task."""
+    from racketdyn.impact.uncertainty import propagate
+
     assert task.uncertainty is not None
     n_b, n_r = task.ball_speeds.size, task.racket_speeds.size
     found = propagate(
@@ -524,6 +521,7 @@ def _face_bands(
     95 % quantiles over the samples whose face counts — valid at :data:`MIN_VALID_SHARE` of
     the points the nominal face gives — NaN where fewer than :data:`MIN_VALID_SHARE` of the
     samples count; shaped ``(n_speeds, n_racket_speeds, n_supports)``."""
+    from racketdyn.impact.uncertainty import MIN_VALID_SHARE, QUANTILES
     from racketdyn.sweep.summary import sweet_area_cm2  # the one definition
 
     rebound = found.samples["rebound_ratio"]  # (samples, points, pairs, supports)
