@@ -282,12 +282,7 @@ def test_a_sweep_without_an_uncertainty_loads_no_more_modules() -> None:
     import subprocess
     import sys
 
-    code = (
-        "import sys, racketdyn.sweep.runner, racketdyn.sweep.spec_file, racketdyn.cli.sweep\n"
-        "print(sorted(m for m in ('xarray', 'scipy.stats', 'racketdyn.impact.uncertainty')"
-        " if m in sys.modules))"
-    )
-    found = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, check=True
-    ).stdout.strip()
-    assert found == "[]"
+    heavy = ("xarray", "scipy.stats", "racketdyn.impact.uncertainty")
+    imports = "racketdyn.sweep.runner, racketdyn.sweep.spec_file, racketdyn.cli.sweep"
+    code = f"import sys, {imports}; print([m for m in {heavy!r} if m in sys.modules])"
+    assert subprocess.check_output([sys.executable, "-c", code], text=True).strip() == "[]"
