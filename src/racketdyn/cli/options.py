@@ -155,9 +155,16 @@ def add_string_bed(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def add_uncertainty(parser: argparse.ArgumentParser, sampled: bool = True) -> None:
+def add_uncertainty(
+    parser: argparse.ArgumentParser,
+    sampled: bool = True,
+    workers: bool = True,
+    tables: str = "the racket file",
+) -> None:
     """``--uncertainty FILE``, ``--samples N``, ``--seed N``: inputs with their spread
-    (``sampled`` False: the file alone, whose ranges bound a calibration)."""
+    (``sampled`` False: the file alone, whose ranges bound a calibration; ``workers`` False:
+    no ``--workers`` for the samples, a command whose ``--workers`` is its own; ``tables``:
+    the file whose ``[uncertainty]`` tables are the default)."""
     if not sampled:
         parser.add_argument(
             "--uncertainty",
@@ -176,7 +183,7 @@ def add_uncertainty(parser: argparse.ArgumentParser, sampled: bool = True) -> No
         "docs/uncertainty.md), or 'literature' for the spreads the literature gives e_BG, the "
         "ball, the bed, the frame frequency and a ball cannon; each model runs once per sample "
         "and every number gets its mean, sd and 5-95 %% band; 'none' for no band, whatever "
-        "the racket file holds (default: the racket file's [uncertainty] tables, else none)",
+        f"{tables} holds (default: {tables}'s [uncertainty] tables, else none)",
     )
     parser.add_argument(
         "--samples",
@@ -190,6 +197,8 @@ def add_uncertainty(parser: argparse.ArgumentParser, sampled: bool = True) -> No
         default=0,
         help="seed of the samples, a count (default 0: the same samples every run)",
     )
+    if not workers:
+        return
     parser.add_argument(
         "--workers",
         type=int,

@@ -11,6 +11,8 @@ from racketdyn.cli import options as opt
 if TYPE_CHECKING:
     from rich.console import Console
 
+    from racketdyn.sweep import SweepSpec
+
 
 def add(commands: Any) -> None:
     """Register the command."""
@@ -54,6 +56,7 @@ def add(commands: Any) -> None:
         help="seconds a task may run before its worker is stopped and the task run again "
         "elsewhere, s (default: 10 × the longest task so far, at least 60 s)",
     )
+    opt.add_uncertainty(p, workers=False, tables="the sweep spec")
     opt.add_no_figures(p, "sweep.zarr")
     p.set_defaults(handler=run)
 
@@ -111,13 +114,23 @@ def _run(args: argparse.Namespace, console: Console) -> int:
     if engine.startswith("dask") and importlib.util.find_spec("distributed") is None:
         option = "--dask-local" if engine == "dask-local" else "--scheduler"
         raise InputError(f"{option}: {DASK_MISSING} (or use --workers N)")
-    spec = load_sweep_spec(Path(args.spec))
+    spec = _with_uncertainty(load_sweep_spec(Path(args.spec)), args)
+    sampled = (
+        ""
+        if spec.uncertainty is None
+        else f", each with {spec.uncertainty.samples} samples of "
+        f"{', '.join(x.name for x in spec.uncertainty.spreads)} ({spec.uncertainty_source})"
+    )
     opt.say(
         console,
         f"{spec.name}: {len(spec.designs)} designs × {spec.impacts_per_design:,} impacts "
-        f"= {spec.n_impacts:,} impacts → {args.out}",
+        f"= {spec.n_impacts:,} impacts{sampled} → {args.out}",
     )
-    work_s = spec.n_impacts * SECONDS_PER_IMPACT.get(spec.method, max(SECONDS_PER_IMPACT.values()))
+    work_s = (
+        len(spec.designs)
+        * spec.work_per_design
+        * SECONDS_PER_IMPACT.get(spec.method, max(SECONDS_PER_IMPACT.values()))
+    )
     if engine in WORKERS_PAY_S and work_s < WORKERS_PAY_S[engine][0]:
         opt.say(
             console,
@@ -147,6 +160,8 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         f"in {record['wall_time_s']:.1f} s"
     )
     opt.say(console, f"  time: {_where_time_went(record)}")
+    if spec.uncertainty is not None and result.dataset is not None:
+        opt.say(console, _base_band(result.dataset))
     restarts = _restarts(record, args.task_timeout)
     if restarts:
         opt.say(console, restarts, "yellow")
@@ -173,6 +188,55 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         )
         return 1
     return 0
+
+
+def _with_uncertainty(spec: SweepSpec, args: argparse.Namespace) -> SweepSpec:
+    """The spec with the uncertainty of the options: ``--uncertainty FILE`` (or
+    ``literature``) over the spec's ``[uncertainty]``, ``none`` without one; ``--samples`` and
+    ``--seed`` for either."""
+    from dataclasses import replace
+
+    from racketdyn.errors import InputError
+    from racketdyn.io.uncertainty_file import LITERATURE
+
+    if args.uncertainty is None:
+        if spec.uncertainty is None:
+            for name, default in (("samples", 256), ("seed", 0)):
+                if getattr(args, name) != default:
+                    raise InputError(
+                        f"--{name} is for --uncertainty: give an uncertainty file (or a sweep "
+                        "spec with [uncertainty] tables)"
+                    )
+            return spec
+        return replace(
+            spec, uncertainty=replace(spec.uncertainty, samples=args.samples, seed=args.seed)
+        )
+    built_in = spec.racket_source.startswith("built-in")
+    racket = None if built_in or args.uncertainty != LITERATURE else spec.racket_source
+    found = opt.uncertainty_from(argparse.Namespace(**{**vars(args), "racket": racket}))
+    source = "" if found is None else f"--uncertainty {args.uncertainty}"
+    if spec.uncertainty is not None and found is not None:
+        source += " (over the spec's [uncertainty])"
+    return replace(spec, uncertainty=found, uncertainty_source=source)
+
+
+def _base_band(dataset: Any) -> str:
+    """The first design's rebound ratio at the face centre with its 90 % band (or why it has
+    none), at the summary speeds and the first support."""
+    from racketdyn.sweep import summary_metrics
+
+    metrics = summary_metrics(dataset.isel(design=[0])).isel(design=0, support=0)
+    value, low, high = (
+        float(metrics[name])
+        for name in ("centre_rebound_ratio", *(f"centre_rebound_ratio_{q}" for q in ("p05", "p95")))
+    )
+    where = (
+        f"rebound ratio at the centre, design 0, {metrics.attrs['ball_speed_mps']:g} m/s, "
+        f"{metrics['support'].item()}"
+    )
+    if low == low and high == high:
+        return f"  {where}: {value:.3f} ({low:.3f}–{high:.3f}, 90 %)"
+    return f"  {where}: {value:.3f}; {metrics['band_note'].item() or 'no band'}"
 
 
 WORKERS_PAY_S = {

@@ -494,6 +494,7 @@ def propagate(
     progress: Callable[[int, int], None] | None = None,
     vectorised: bool = True,
     executor: Executor | None = None,
+    nominal: ImpactResult | SwingResult | None = None,
 ) -> UncertainResult:
     """Carry the uncertain inputs through a model to every impact of a grid.
 
@@ -531,6 +532,9 @@ def propagate(
         Where the samples run when the model runs once per sample (the transient model): in
         tasks of :data:`SAMPLES_PER_TASK` (a sweep's process pool,
         :func:`racketdyn.sweep.executors.make_executor`); by default this process.
+    nominal : ImpactResult or SwingResult, optional
+        The impacts at the nominal inputs when the caller has them already (a sweep's task
+        computes them as it would without an uncertainty): not run again.
 
     Returns
     -------
@@ -550,7 +554,8 @@ def propagate(
         "labels": labels,
         **(options or {}),
     }
-    nominal = _run(method, inputs, xy, speeds, model_options)
+    if nominal is None:
+        nominal = _run(method, inputs, xy, speeds, model_options)
     draws = draw(uncertainty, inputs)
     n = uncertainty.samples
     if vectorised and method == "approx" and _batches(inputs, model_options):

@@ -37,8 +37,13 @@ def _plot_metric(curves: SummaryCurves, metric: str, ax: Axes | None) -> Axes:
             linestyle="-",
             markersize=4,
         )
+        if metric in curves.bands:  # a sweep with an uncertainty: its 5-95 % band
+            low, high = curves.bands[metric]
+            ax.fill_between(curves.x, low[k], high[k], color=color, alpha=0.2, lw=0)
         for level in levels[k][np.isfinite(levels[k])]:
             ax.axhline(level, color=color, linestyle=":", linewidth=1.0)
+    if metric in curves.bands:
+        ax.fill_between([], [], [], color="0.4", alpha=0.2, lw=0, label="5-95 % band")
     if curves.without:
         ax.plot(
             [], [], color="0.4", linestyle=":", linewidth=1.0, label=f"without the {curves.without}"
@@ -62,7 +67,8 @@ def _plot_metric(curves: SummaryCurves, metric: str, ax: Axes | None) -> Axes:
 
 
 def plot_centre_rebound(curves: SummaryCurves, ax: Axes | None = None) -> Axes:
-    """Rebound ratio at the face centre against a variable, one line per support.
+    """Rebound ratio at the face centre against a variable, one line per support (with an
+    uncertainty, its 5-95 % band shaded: ``curves.bands``).
 
     Parameters
     ----------
@@ -79,7 +85,8 @@ def plot_centre_rebound(curves: SummaryCurves, ax: Axes | None = None) -> Axes:
 
 
 def plot_sweet_area(curves: SummaryCurves, ax: Axes | None = None) -> Axes:
-    """The sweet area against a variable, per support.
+    """The sweet area against a variable, per support (with an uncertainty, its 5-95 % band
+    shaded where given).
 
     The area of each design's face whose rebound ratio is near the best of that face
     (:func:`racketdyn.sweep.sweet_area_cm2`): the numbers of ``summary.csv``.

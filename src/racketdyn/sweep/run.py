@@ -91,7 +91,8 @@ or failed for good) and the number of tasks."""
 
 SERIAL_IMPACT_LIMIT = 50_000
 """Below this many impacts to compute, ``run_sweep(executor=None)`` runs in this process;
-above it, in a pool of two processes."""
+above it, in a pool of two processes (with an uncertainty its samples count too:
+:attr:`SweepSpec.work_per_design`)."""
 
 
 def run_sweep(
@@ -232,7 +233,7 @@ def run_sweep(
     if todo:
         with ExitStack() as stack:
             if executor is None:
-                small = len(todo) * spec.impacts_per_design < SERIAL_IMPACT_LIMIT
+                small = len(todo) * spec.work_per_design < SERIAL_IMPACT_LIMIT
                 kind: EngineKind = "serial" if small else "process"
                 clock = time.perf_counter()
                 executor = stack.enter_context(make_executor(kind, DEFAULT_WORKERS))
@@ -313,6 +314,14 @@ def run_sweep(
     store = out / STORE_NAME
     written = [store]
     notes = []
+    if spec.uncertainty is not None and spec.uncertainty.samples < _rough_samples():
+        # the tasks hold propagate's own warning back: said once here
+        notes.append(
+            f"{spec.uncertainty.samples} samples a design give a rough 90 % band (its 5 % and "
+            f"95 % quantiles rest on a sample or two); {_rough_samples()} or more for numbers to "
+            "quote"
+        )
+        log.warning("%s", notes[-1])
     if spec.variables:
         written.append(write_summary_csv(result, out))
         notes.append(
@@ -368,6 +377,7 @@ def run_sweep(
         "first_result_s": tally.first_result_s,
         "outputs": [p.name for p in written] + ["run.json"],
         "spec": spec.to_dict(),
+        "uncertainty": spec.uncertainty_record(),
         "notes": notes,
     }
     for name in previous_outputs - {p.name for p in written}:  # another spec's figures
@@ -375,6 +385,14 @@ def run_sweep(
             (out / name).unlink()
     (out / "run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
     return result
+
+
+def _rough_samples() -> int:
+    """:data:`racketdyn.impact.uncertainty.ROUGH_SAMPLES`, imported when a sweep has an
+    uncertainty (the module loads xarray and scipy.stats: ≈ 1 s a process)."""
+    from racketdyn.impact.uncertainty import ROUGH_SAMPLES
+
+    return ROUGH_SAMPLES
 
 
 def _lost_chunks(missing: Sequence[Design], failures: list[dict[str, Any]]) -> bool:

@@ -146,7 +146,7 @@ def _designs_per_task(spec: SweepSpec, n_designs: int, executor: Executor) -> in
     if isinstance(executor, SerialExecutor):
         return 1
     workers = max(1, _in_flight_limit(executor) // 2)
-    per_design = spec.impacts_per_design * SECONDS_PER_IMPACT.get(
+    per_design = spec.work_per_design * SECONDS_PER_IMPACT.get(
         spec.method, SECONDS_PER_IMPACT["transient"]
     )
     by_time = math.ceil(TARGET_TASK_S / per_design)

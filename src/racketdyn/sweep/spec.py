@@ -15,7 +15,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Any, Literal, get_args
+from typing import TYPE_CHECKING, Any, Literal, get_args
 
 import numpy as np
 from numpy.typing import NDArray
@@ -41,17 +41,34 @@ from racketdyn.racket import (
 )
 from racketdyn.racket_modal.beam import beam_mass_per_length
 from racketdyn.sweep.design import Design, build_design, build_hand
-from racketdyn.sweep.task import SweepTask, _check_method, _check_supports
+from racketdyn.sweep.task import SweepTask, _check_method, _check_supports, task_inputs
 from racketdyn.sweep.variables import HAND_VARIABLES, POINT_MASS, Variable
+
+if TYPE_CHECKING:  # imported when a sweep has an uncertainty: xarray and scipy.stats cost ≈ 1 s
+    from racketdyn.impact.uncertainty import Uncertainty
 
 __all__ = ["MODES", "SweepSpec"]
 
 SweepMode = Literal["full-factorial", "one-at-a-time"]
 MODES: tuple[str, ...] = get_args(SweepMode)
 MAX_DESIGNS = 100_000
+SAMPLE_COST = {"approximate": 0.25, "transient": 1.0}
+"""A sample's cost in nominal impacts, by method: the approximate method's samples run at once
+(≈ 0.25 of a nominal prediction a sample, docs/uncertainty.md "Speed"), the transient
+model's once each."""
 SPEC_SCHEMA_VERSION = 1
 DEFAULT_THRESHOLD_FRACTION = 0.9
 _EXCLUSIVE = (("inertia_cg_kgm2", "swingweight_kgcm2"), ("roll_inertia_kgm2", "twistweight_kgcm2"))
+_SWEPT_INPUTS: dict[str, tuple[str, ...]] = {
+    "e_bg": ("e_bg",),
+    "first_bending_hz": ("frame_stiffness_scale",),
+    "roll_inertia_kgm2": ("roll_inertia_kgm2", "twistweight_kgcm2"),
+    "hand_stiffness_n_per_m": ("hand.stiffness_n_per_m",),
+    "hand_damping_ns_per_m": ("hand.damping_ns_per_m",),
+    "hand_arm_mass_kg": ("hand.arm_mass_kg",),
+}
+"""The sweep variables whose value each uncertain input's ``range`` or ``values`` would replace
+(absolute values, the same in every design)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,6 +123,16 @@ class SweepSpec:
         Free text.
     racket_source : str
         Where the base racket came from, for the record.
+    uncertainty : Uncertainty, optional
+        Uncertain inputs: each design's impacts get their mean, sd and 5–95 % band over the
+        samples (:func:`racketdyn.impact.uncertainty.propagate` inside the design's task), and
+        its face its best rebound ratio's and sweet area's band (docs/uncertainty.md, "Sweeps
+        with uncertainty").  A normal spread (``sd``) is about each design's own value; a
+        ``range`` or ``values`` of an input the sweep varies is refused (it would replace the
+        design's value).  None (default): the nominal numbers alone, as without.
+    uncertainty_source : str
+        Where the uncertainty came from (``[uncertainty]`` of the spec, ``--uncertainty FILE``),
+        for the record.
     """
 
     racket: Racket
@@ -128,6 +155,8 @@ class SweepSpec:
     summary_racket_speed: float | None = None
     name: str = "sweep"
     racket_source: str = f"built-in {DEFAULT_RACKET_NAME}"
+    uncertainty: Uncertainty | None = None
+    uncertainty_source: str = ""
 
     def __post_init__(self) -> None:
         locations = as_locations(self.locations, "[impacts].points")
@@ -225,6 +254,44 @@ class SweepSpec:
                 self._check_design(design.settings)
             except InputError as error:
                 raise InputError(f"[variables]: design {design.describe()}: {error}") from None
+        if self.uncertainty is not None:
+            self._check_uncertainty(self.uncertainty)
+
+    def _check_uncertainty(self, uncertainty: Uncertainty) -> None:
+        """Spreads the designs can take: none that replaces a swept value, each drawable on
+        the base design (a rigid racket has no bending mode, a measured bed no scale); a
+        message names the table where it came from (the spec's, or ``--uncertainty FILE``)."""
+        from racketdyn.impact.calibration import PARAMETERS
+        from racketdyn.impact.uncertainty import draw
+
+        source = self.uncertainty_source
+        from_spec = not source or source.startswith("[uncertainty]")
+
+        def where(name: str) -> str:
+            return f"[uncertainty.{name}]" if from_spec else f"{source.split(' (')[0]} [{name}]"
+
+        swept = {v.kind for v in self.variables}
+        for spread in uncertainty.spreads:
+            clash = sorted(swept & set(_SWEPT_INPUTS.get(spread.name, ())))
+            if clash and spread.sd is None:
+                raise InputError(
+                    f"{where(spread.name)}: a range or values replace the swept {clash[0]} in "
+                    "every design; give sd = x (a spread about each design's value) or leave "
+                    "it out"
+                )
+            if spread.name == "first_bending_hz" and self.rigid:
+                raise InputError(
+                    f"{where(spread.name)}: a rigid racket ([impacts] rigid = true) has no "
+                    "bending mode; leave it out or drop rigid"
+                )
+        try:
+            inputs = task_inputs(self.task(self.designs[0]))
+            draw(uncertainty, inputs)
+            if any(s.name == "string_stiffness_scale" for s in uncertainty.spreads):
+                _ = PARAMETERS["string_stiffness_scale"].set(inputs, 1.01).effective_racket
+        except InputError as error:
+            table = "[uncertainty]" if from_spec else source.split(" (")[0]
+            raise InputError(f"{table}: {error}") from None
 
     def _check_design(self, settings: tuple[tuple[str, float], ...]) -> None:
         racket, _, _ = build_design(self.racket, self.ball, self.variables, settings)
@@ -315,6 +382,16 @@ class SweepSpec:
             * len(self.supports)
         )
 
+    @property
+    def work_per_design(self) -> float:
+        """A design's work in nominal impacts: :attr:`impacts_per_design`, and with an
+        uncertainty its samples too (:data:`SAMPLE_COST` of a nominal impact each), to size
+        the tasks and choose the engine."""
+        if self.uncertainty is None:
+            return float(self.impacts_per_design)
+        cost = SAMPLE_COST.get(self.method, 1.0)
+        return self.impacts_per_design * (1.0 + cost * self.uncertainty.samples)
+
     def task(self, design: Design) -> SweepTask:
         """The picklable task that computes one design.
 
@@ -339,6 +416,8 @@ class SweepSpec:
             string_bed=self.string_bed,
             rigid=self.rigid,
             engine=self.transient_engine,
+            uncertainty=self.uncertainty,
+            threshold_fraction=self.threshold_fraction,
         )
 
     # --- record -----------------------------------------------------------------------------
@@ -393,7 +472,38 @@ class SweepSpec:
             "include_string_bed": self.include_string_bed,
             "string_bed": self.string_bed,
             "rigid": self.rigid,
+            **self._uncertainty_dict(),
         }
+
+    def _uncertainty_dict(self) -> dict[str, Any]:
+        """The uncertainty as the results depend on it (nothing without one: a sweep without
+        keeps its hash); the sweet area's band depends on the threshold too."""
+        if self.uncertainty is None:
+            return {}
+        u = self.uncertainty
+        return {
+            "uncertainty": {
+                "samples": u.samples,
+                "seed": u.seed,
+                "sampler": u.sampler,
+                "spreads": [
+                    {
+                        "name": s.name,
+                        "sd": s.sd,
+                        "range": None if s.bounds is None else list(s.bounds),
+                        "values": list(s.values),
+                    }
+                    for s in u.spreads
+                ],
+                "threshold_fraction": self.threshold_fraction,
+            }
+        }
+
+    def uncertainty_record(self) -> dict[str, Any] | None:
+        """What was sampled and where it came from, for run.json (None: no uncertainty)."""
+        if self.uncertainty is None:
+            return None
+        return {**self.uncertainty.record(), "source": self.uncertainty_source}
 
     @cached_property
     def sha256(self) -> str:

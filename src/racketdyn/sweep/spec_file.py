@@ -40,7 +40,7 @@ __all__ = ["load_sweep_spec", "sweep_spec_from_dict"]
 SUPPORT = "support"
 POINT_MASS_KEYS = ("mass_kg", "x_m", "y_m", "clock", "label")
 _TOP_KEYS = ("schema_version", "name", "description", "racket", "mode")
-_TABLES = ("ball", "impacts", "variables", "summary", "checks")
+_TABLES = ("ball", "impacts", "variables", "summary", "checks", "uncertainty")
 _PLAUSIBLE: dict[str, str] = {
     "mass_kg": "mass_kg",
     "balance_m": "balance_m",
@@ -252,6 +252,15 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         None if key not in summary else _number(f"[summary].{key}", summary[key])
         for key in ("ball_speed_mps", "racket_speed_mps")
     ]
+    uncertainty = None
+    if "uncertainty" in data:
+        from racketdyn.impact.uncertainty import Uncertainty
+        from racketdyn.io.uncertainty_file import spreads_from_tables
+
+        tables = data["uncertainty"]
+        if not isinstance(tables, dict):
+            raise InputError("[uncertainty] must be a table of tables ([uncertainty.e_bg] …)")
+        uncertainty = Uncertainty(spreads_from_tables(tables, "[uncertainty]", allow))
     return SweepSpec(
         racket=racket,
         ball=ball,
@@ -273,6 +282,8 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
         summary_racket_speed=summary_speeds[1],
         name=name or "sweep",
         racket_source=racket_source,
+        uncertainty=uncertainty,
+        uncertainty_source="" if uncertainty is None else "[uncertainty] of the sweep spec",
     )
 
 

@@ -40,7 +40,14 @@ from racketdyn.__about__ import __version__
 from racketdyn.errors import InputError
 from racketdyn.sweep.design import build_design
 from racketdyn.sweep.spec import SweepSpec
-from racketdyn.sweep.task import _IMPACT_VARIABLES, STATUS_CODES, STATUS_FAILED, TaskOutput
+from racketdyn.sweep.task import (
+    _FACE_DIMS,
+    _IMPACT_VARIABLES,
+    STATUS_CODES,
+    STATUS_FAILED,
+    TaskOutput,
+    band_variables,
+)
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -76,8 +83,11 @@ _DERIVED = {
 }
 
 
-def _chunked_variables() -> dict[str, tuple[tuple[str, ...], str, Any, dict[str, Any]]]:
-    """Every array written chunk by chunk: name → (dims, dtype, fill value, attributes)."""
+def _chunked_variables(
+    bands: bool = False,
+) -> dict[str, tuple[tuple[str, ...], str, Any, dict[str, Any]]]:
+    """Every array written chunk by chunk: name → (dims, dtype, fill value, attributes); with
+    ``bands`` (a sweep with an uncertainty) the bands too (:func:`~.task.band_variables`)."""
     variables: dict[str, tuple[tuple[str, ...], str, Any, dict[str, Any]]] = {}
     for name, (_, units, long_name) in _IMPACT_VARIABLES.items():
         variables[name] = (
@@ -102,11 +112,26 @@ def _chunked_variables() -> dict[str, tuple[tuple[str, ...], str, Any, dict[str,
         np.nan,
         {"units": "kg", "long_name": "reduced mass of the racket at the impact point (eq 4)"},
     )
+    if bands:
+        for name, (per_impact, units, long_name) in band_variables().items():
+            variables[name] = (
+                _IMPACT_DIMS if per_impact else _FACE_DIMS,
+                "float64",
+                np.nan,
+                {"units": units, "long_name": long_name},
+            )
     return variables
 
 
 CHUNKED = tuple(_chunked_variables())
-"""The arrays written chunk by chunk (the impact quantities, ``status``, ``reduced_mass_kg``)."""
+"""The arrays written chunk by chunk (the impact quantities, ``status``, ``reduced_mass_kg``;
+with an uncertainty, the bands of :func:`~racketdyn.sweep.task.band_variables` too)."""
+
+
+def _chunked_names(group: zarr.Group) -> tuple[str, ...]:
+    """The arrays of this store written chunk by chunk (the bands where the group attribute
+    ``bands`` is 1)."""
+    return CHUNKED + (tuple(band_variables()) if group.attrs.get("bands") else ())
 
 
 # --- creating ---------------------------------------------------------------------------------
@@ -185,6 +210,12 @@ def _attributes(spec: SweepSpec) -> dict[str, Any]:
         "n_failed": 0,
         "failed_tasks": "[]",
         "sweep_complete": 0,
+        "bands": int(spec.uncertainty is not None),
+        **(
+            {}
+            if spec.uncertainty is None
+            else {"uncertainty": json.dumps(spec.uncertainty_record())}
+        ),
     }
 
 
@@ -216,7 +247,9 @@ def create_store(spec: SweepSpec, out: Path, designs_per_chunk: int) -> None:
         "support": len(spec.supports),
     }
     coordinates = " ".join(_coordinate_names(spec))
-    for name, (dims, dtype, fill, attrs) in _chunked_variables().items():
+    for name, (dims, dtype, fill, attrs) in _chunked_variables(
+        spec.uncertainty is not None
+    ).items():
         shape = tuple(sizes[d] for d in dims)
         group.create_array(
             name,
@@ -364,7 +397,7 @@ def recorded(out: Path, sha256: str, indices: Sequence[int] | None = None) -> li
 def _chunk_keys(group: zarr.Group, path: Path, chunk: int) -> list[Path]:
     """The files of one chunk of every chunked array of the store at ``path``."""
     files = []
-    for name in CHUNKED:
+    for name in _chunked_names(group):
         array = _array(group, name)
         key = array.metadata.encode_chunk_key((chunk,) + (0,) * (array.ndim - 1))
         files.append(path / name / key)
@@ -425,7 +458,7 @@ def write_chunk(
     texts = np.asarray(records[lo:hi], dtype=object)
     rows = [i - lo for i in indices]
     kept = [r for r in range(hi - lo) if texts[r] and r not in rows]
-    for name in CHUNKED:
+    for name in _chunked_names(group):
         array = _writable(group, name)
         if kept:
             block = np.asarray(array[lo:hi])
@@ -467,7 +500,7 @@ def clear_rows(out: Path, sha256: str, indices: Sequence[int]) -> None:
     for chunk, rows in by_chunk.items():
         if not any(f.is_file() for f in files_of[chunk]):
             continue  # never written: fill values already
-        for name in (RECORDS, *CHUNKED):
+        for name in (RECORDS, *_chunked_names(group)):
             array = records if name == RECORDS else _writable(group, name)
             lo, hi = chunk * size, min((chunk + 1) * size, array.shape[0])
             block = np.asarray(array[lo:hi], dtype=object if name == RECORDS else array.dtype)

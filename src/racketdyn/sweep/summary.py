@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -163,6 +163,9 @@ def summary_metrics(
     xarray.Dataset
         ``centre_rebound_ratio``, ``best_rebound_ratio`` and ``sweet_area_cm2`` over
         ``(design, support)``, with the centre point and the definition in the attributes.
+        A sweep with an uncertainty adds each metric's ``_p05`` and ``_p95``,
+        ``centre_samples_valid``, ``face_samples_valid`` and ``band_note`` (why a band is
+        NaN: under 90 % of the samples valid).
     """
     import xarray as xr
 
@@ -198,6 +201,11 @@ def summary_metrics(
         )
         centre_values[block] = values[:, :, centre]
     coords = {"design": dataset["design"].values, "support": dataset["support"].values}
+    bands = {}
+    if "rebound_ratio_p05" in dataset:
+        bands = _bands(dataset, centre, speed, swing)
+        if fraction != float(dataset.attrs["threshold_fraction"]):  # the tasks' threshold
+            bands = {k: v for k, v in bands.items() if not k.startswith("sweet_area")}
     return xr.Dataset(
         {
             "centre_rebound_ratio": (
@@ -219,6 +227,7 @@ def summary_metrics(
                     "definition": SWEET_AREA_DEFINITION,
                 },
             ),
+            **bands,
         },
         coords=coords,
         attrs={
@@ -229,6 +238,59 @@ def summary_metrics(
             "centre_point_y_m": float(y[centre]),
         },
     )
+
+
+BAND_NOTE = (
+    "5-95 % quantiles over the samples of the sweep's uncertainty; NaN where fewer than 90 % "
+    "of the samples are valid (band_note says how many)"
+)
+"""What the ``_p05``/``_p95`` metrics mean, in the metrics' attributes."""
+
+
+def _bands(
+    dataset: xr.Dataset, centre: int, speed: float, swing: float
+) -> dict[str, tuple[tuple[str, str], NDArray[Any], dict[str, str]]]:
+    """The bands of the metrics (a sweep with an uncertainty): the centre's rebound ratio
+    (its impact's quantiles), the best rebound ratio and the sweet area (each sample's face's
+    quantiles, computed in the tasks), their valid shares and a note where a band is NaN."""
+    from racketdyn.impact.uncertainty import MIN_VALID_SHARE
+
+    at = {"speed": speed, "racket_speed": swing}
+
+    def read(name: str, **where: int) -> NDArray[np.float64]:
+        values = dataset[name].sel(at, method="nearest").isel(where)
+        return np.asarray(values.transpose("design", "support").values, dtype=float)
+
+    out: dict[str, tuple[tuple[str, str], NDArray[Any], dict[str, str]]] = {}
+    dims = ("design", "support")
+    for q in ("p05", "p95"):
+        out[f"centre_rebound_ratio_{q}"] = (
+            dims,
+            read(f"rebound_ratio_{q}", point=centre),
+            {"units": "1", "band": BAND_NOTE},
+        )
+    centre_share = read("samples_valid", point=centre)
+    face_share = read("face_samples_valid")
+    for metric, units in (("best_rebound_ratio", "1"), ("sweet_area_cm2", "cm2")):
+        for q in ("p05", "p95"):
+            out[f"{metric}_{q}"] = (
+                dims,
+                read(f"{metric}_{q}"),
+                {"units": units, "band": BAND_NOTE},
+            )
+    out["centre_samples_valid"] = (dims, centre_share, {"units": "1"})
+    out["face_samples_valid"] = (dims, face_share, {"units": "1"})
+    notes = np.full(centre_share.shape, "", dtype=object)
+    for index in np.ndindex(notes.shape):
+        missing = [
+            f"{share[index]:.0%} of the samples valid {where}"
+            for share, where in ((centre_share, "at the centre"), (face_share, "over the face"))
+            if not share[index] >= MIN_VALID_SHARE
+        ]
+        if missing:
+            notes[index] = "no band: " + ", ".join(missing) + " (a band needs 90 %)"
+    out["band_note"] = (dims, notes, {})
+    return out
 
 
 BLOCK_BYTES = 8 * 2**20
@@ -375,6 +437,10 @@ class SummaryCurves:
         The speeds the metrics are read at, m/s.
     threshold_fraction : float
         The sweet area's fraction of each face's best rebound ratio.
+    bands : dict of str to (ndarray, ndarray)
+        With an uncertainty (issue 24), each metric's 5 and 95 % quantiles at ``x``,
+        ``(n_supports, n_designs)`` each (NaN where fewer than 90 % of its samples are valid);
+        empty without one.
     """
 
     variable: str
@@ -391,6 +457,7 @@ class SummaryCurves:
     ball_speed: float
     racket_speed: float
     threshold_fraction: float
+    bands: dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]] = field(default_factory=dict)
 
     def plot(self, ax: Axes | None = None) -> Axes:
         """Draw the rebound ratio at the face centre (into ``ax``, or a new figure); returns the
@@ -450,6 +517,18 @@ def summary_curves(
     supports = tuple(str(s) for s in metrics["support"].values.tolist())
     centre = np.array([metrics["centre_rebound_ratio"].sel(support=s).values for s in supports])
     area = np.array([metrics["sweet_area_cm2"].sel(support=s).values for s in supports])
+    bands = {
+        metric: (
+            np.array([metrics[f"{metric}_p05"].sel(support=s).values for s in supports])[
+                :, with_mass
+            ],
+            np.array([metrics[f"{metric}_p95"].sel(support=s).values for s in supports])[
+                :, with_mass
+            ],
+        )
+        for metric in ("centre_rebound_ratio", "sweet_area_cm2")
+        if f"{metric}_p05" in metrics
+    }
     return SummaryCurves(
         variable=variable,
         title=str(dataset.attrs["title"]),
@@ -465,6 +544,7 @@ def summary_curves(
         ball_speed=float(metrics.attrs["ball_speed_mps"]),
         racket_speed=float(metrics.attrs["racket_speed_mps"]),
         threshold_fraction=float(metrics.attrs["threshold_fraction"]),
+        bands=bands,
     )
 
 

@@ -11,12 +11,13 @@ from __future__ import annotations
 import logging
 import math
 import time
+import warnings
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,6 +29,7 @@ from racketdyn.errors import InputError, one_of
 from racketdyn.impact.approximate import StiffnessReading, predict
 from racketdyn.impact.grid import StringBed
 from racketdyn.impact.result import (
+    IMPACT_QUANTITIES,
     STATUS_BEYOND_LAW,
     STATUS_FRAME_CONTACT,
     STATUS_NO_SEPARATION,
@@ -48,6 +50,10 @@ from racketdyn.racket_modal import builtin_modal_model
 from racketdyn.sweep.design import build_design, build_hand
 from racketdyn.sweep.variables import Variable
 
+if TYPE_CHECKING:  # imported when a sweep has an uncertainty: xarray and scipy.stats cost ≈ 1 s
+    from racketdyn.impact.measured import ModelInputs
+    from racketdyn.impact.uncertainty import UncertainResult, Uncertainty
+
 __all__ = [
     "METHODS",
     "METHOD_SUPPORTS",
@@ -55,7 +61,9 @@ __all__ = [
     "STATUS_FAILED",
     "SweepTask",
     "TaskOutput",
+    "band_variables",
     "run_task",
+    "task_inputs",
 ]
 
 METHOD_SUPPORTS: dict[str, tuple[str, ...]] = {
@@ -123,6 +131,11 @@ class SweepTask:
         No modal model.
     engine : {"compiled", "reference"}
         Engine of the transient method (resolved: never ``auto``).
+    uncertainty : Uncertainty, optional
+        Uncertain inputs: the design's samples run in the task and its bands are returned
+        beside the nominal numbers (:func:`band_variables`).
+    threshold_fraction : float
+        The sweet area's threshold, for its band (with an uncertainty).
     """
 
     task_id: str
@@ -140,6 +153,8 @@ class SweepTask:
     rigid: bool
     engine: Engine = "compiled"
     string_bed: StringBed = "uniform"
+    uncertainty: Uncertainty | None = None
+    threshold_fraction: float = 0.9
 
 
 @dataclass(frozen=True, eq=False)
@@ -345,6 +360,11 @@ def run_task(task: SweepTask, attempt: int = 1) -> TaskOutput:
         model = None if task.rigid else _modal_model(racket, file_model_scale)
         law = _compound_law(racket, ball) if task.string_bed == "uniform" else None
         result = METHODS[task.method](racket, ball, model, law, task)
+        bands = (
+            {}
+            if task.uncertainty is None
+            else _bands(task, _inputs(task, racket, ball, model), result)
+        )
     shape = (
         task.locations.shape[0],
         task.ball_speeds.size,
@@ -362,6 +382,7 @@ def run_task(task: SweepTask, attempt: int = 1) -> TaskOutput:
         unknown = sorted(set(result.status[status < 0].tolist()))
         raise RuntimeError(f"{task.task_id}: unknown impact status {unknown}")
     arrays["status"] = status.reshape(shape)
+    arrays.update(bands)
     used = result.modal_model
     return TaskOutput(
         task_id=task.task_id,
@@ -374,7 +395,164 @@ def run_task(task: SweepTask, attempt: int = 1) -> TaskOutput:
     )
 
 
-_PREDICT_LOGS = ("racketdyn.impact.approximate", "racketdyn.impact.transient")
+_PREDICT_LOGS = (
+    "racketdyn.impact.approximate",
+    "racketdyn.impact.transient",
+    "racketdyn.impact.uncertainty",
+)
+
+
+def _inputs(task: SweepTask, racket: Racket, ball: Ball, model: ModalModel | None) -> ModelInputs:
+    """The design's inputs as :func:`racketdyn.impact.uncertainty.propagate` takes them."""
+    from racketdyn.impact.measured import ModelInputs
+
+    hand = build_hand(task.variables, task.settings) if "hand" in task.supports else None
+    return ModelInputs(
+        racket=racket,
+        ball=ball,
+        hand=hand,
+        modal_model=model,
+        include_string_bed=task.include_string_bed,
+        engine=task.engine,
+        string_bed=task.string_bed,
+    )
+
+
+def task_inputs(task: SweepTask) -> ModelInputs:
+    """The nominal inputs of a task's design (racket, ball, modes, hand), as
+    :func:`racketdyn.impact.uncertainty.propagate` takes them.
+
+    Parameters
+    ----------
+    task : SweepTask
+        The design's task.
+
+    Returns
+    -------
+    ModelInputs
+    """
+    racket, ball, file_model_scale = build_design(
+        task.racket, task.ball, task.variables, task.settings
+    )
+    # one BLAS thread, as in run_task: the cached model is built the same here (several
+    # threads round the beam's solve apart, and a serial sweep reuses this process's cache)
+    with _blas_controller().limit(limits=1, user_api="blas"):
+        model = None if task.rigid else _modal_model(racket, file_model_scale)
+    return _inputs(task, racket, ball, model)
+
+
+_FACE_DIMS = ("design", "speed", "racket_speed", "support")
+_FACE_METRICS = {
+    "best_rebound_ratio": ("1", "highest rebound ratio over the face"),
+    "sweet_area_cm2": ("cm2", "sweet area (racketdyn.sweep.sweet_area_cm2)"),
+}
+
+
+def band_variables() -> dict[str, tuple[bool, str, str]]:
+    """The arrays a task adds with an uncertainty: name → (per impact, units, long name).
+
+    Per impact (over ``(design, point, speed, racket_speed, support)``), as
+    :meth:`racketdyn.impact.uncertainty.UncertainResult.band_columns` names them:
+    ``<quantity>_mean``, ``_sd``, ``_p05``, ``_p95`` of contact time, peak force, vibration
+    energy, rebound ratio and outgoing speed, and ``samples_valid``.  Per face (over
+    ``(design, speed, racket_speed, support)``): ``best_rebound_ratio_p05/_p95`` and
+    ``sweet_area_cm2_p05/_p95``, each sample's face metric's quantiles, and
+    ``face_samples_valid``, the share of samples whose face counts (valid at 90 % of the
+    points the nominal face gives).
+    """
+    from racketdyn.impact.uncertainty import BAND_QUANTITIES, QUANTILES
+
+    names = {q.attribute: q.name for q in IMPACT_QUANTITIES}  # as band_columns names them
+    out: dict[str, tuple[bool, str, str]] = {}
+    for name in (names[attribute] for attribute in BAND_QUANTITIES):
+        units, long_name = _IMPACT_VARIABLES[name][1:]
+        for stat, what in (("mean", "mean"), ("sd", "standard deviation")):
+            out[f"{name}_{stat}"] = (True, units, f"{what} over the samples: {long_name}")
+        for q in QUANTILES:
+            out[f"{name}_p{round(100 * q):02d}"] = (True, units, f"{q:.0%} quantile: {long_name}")
+    out["samples_valid"] = (True, "1", "share of the samples the method could give")
+    for metric, (units, long_name) in _FACE_METRICS.items():
+        for q in QUANTILES:
+            out[f"{metric}_p{round(100 * q):02d}"] = (
+                False,
+                units,
+                f"{q:.0%} quantile: {long_name}",
+            )
+    out["face_samples_valid"] = (
+        False,
+        "1",
+        "share of the samples valid at 90 % of the points the nominal face gives",
+    )
+    return out
+
+
+def _bands(task: SweepTask, inputs: ModelInputs, nominal: ImpactResult) -> dict[str, NDArray[Any]]:
+    """The design's bands (:func:`band_variables`): its samples by
+    :func:`~racketdyn.impact.uncertainty.propagate` (the approximate method's all at once),
+    here in the task."""
+    from racketdyn.impact.uncertainty import propagate
+
+    assert task.uncertainty is not None
+    n_b, n_r = task.ball_speeds.size, task.racket_speeds.size
+    found = propagate(
+        inputs,
+        task.locations,
+        np.repeat(task.ball_speeds, n_r),
+        task.uncertainty,
+        method="approx" if task.method == "approximate" else "transient",
+        supports=task.supports,
+        racket_speed=np.tile(task.racket_speeds, n_b),
+        options={"stiffness_reading": task.stiffness_reading}
+        if task.method == "approximate"
+        else None,
+        nominal=nominal,
+    )
+    shape = (task.locations.shape[0], n_b, n_r, len(task.supports))
+    arrays = {k: v.reshape(shape) for k, v in found.band_columns().items()}
+    arrays.update(_face_bands(task, found, nominal))
+    return arrays
+
+
+def _face_bands(
+    task: SweepTask, found: UncertainResult, nominal: ImpactResult
+) -> dict[str, NDArray[np.float64]]:
+    """Each sample's best rebound ratio and sweet area over the face (points it cannot give
+    count as outside, as :func:`~racketdyn.sweep.sweet_area_cm2` counts them), their 5 % and
+    95 % quantiles over the samples whose face counts — valid at :data:`MIN_VALID_SHARE` of
+    the points the nominal face gives — NaN where fewer than :data:`MIN_VALID_SHARE` of the
+    samples count; shaped ``(n_speeds, n_racket_speeds, n_supports)``."""
+    from racketdyn.impact.uncertainty import MIN_VALID_SHARE, QUANTILES
+    from racketdyn.sweep.summary import sweet_area_cm2  # the one definition
+
+    rebound = found.samples["rebound_ratio"]  # (samples, points, pairs, supports)
+    nominal_ok = np.asarray(nominal.status) == STATUS_OK
+    # a sample's face counts where it gives 90 % of the points the nominal face gives (a
+    # location offset moves edge points onto the frame: those count as outside)
+    given_points = np.sum(found.valid & nominal_ok[None], axis=1)
+    face_ok = given_points >= MIN_VALID_SHARE * np.sum(nominal_ok, axis=0)[None]
+    share = face_ok.mean(axis=0)
+    faces = np.moveaxis(rebound, 1, -1)  # (samples, pairs, supports, points)
+    finite = np.isfinite(faces)
+    metrics = {
+        "best_rebound_ratio": np.where(
+            finite.any(axis=-1), np.where(finite, faces, -np.inf).max(axis=-1), np.nan
+        ),
+        "sweet_area_cm2": np.asarray(
+            sweet_area_cm2(faces, task.racket.head.area_m2 * 1e4, task.threshold_fraction)
+        ),
+    }
+    shape = (task.ball_speeds.size, task.racket_speeds.size, len(task.supports))
+    given = share >= MIN_VALID_SHARE
+    out: dict[str, NDArray[np.float64]] = {}
+    for metric, values in metrics.items():
+        kept = np.where(face_ok, values, np.nan)
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
+            quantiles = np.nanquantile(kept, QUANTILES, axis=0)
+        for q, value in zip(QUANTILES, quantiles, strict=True):
+            out[f"{metric}_p{round(100 * q):02d}"] = np.where(given, value, np.nan).reshape(shape)
+    out["face_samples_valid"] = share.reshape(shape)
+    return out
 
 
 @contextmanager
