@@ -79,7 +79,7 @@ def test_a_poor_fit_is_said(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
     chi2 = record["reduced_chi2"]
     assert chi2 > 10
     assert f"the fit is poor: reduced χ² {chi2:.3g}" in out
-    assert "ok, but the fit is poor" in out  # the parameter's status says it too
+    assert "ok, poor fit" in out  # the parameter's status says it too (short: 80 columns)
     assert record["poor_fit"].startswith("reduced χ²")
     from racketdyn.report import write_report
 
@@ -95,3 +95,26 @@ def test_a_good_fit_is_not_called_poor(tmp_path: Path, capsys: pytest.CaptureFix
     assert "poor" not in out
     record = json.loads((tmp_path / "cal" / "calibration.json").read_text(encoding="utf-8"))
     assert record["poor_fit"] is None
+
+
+def test_the_table_fits_80_columns_with_whole_names(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """At 80 columns the parameter column cut ``hand_stiffness_n_per_m`` to
+    ``hand_stiffness_n_pe…`` (the name a user types into --fit) and the status cell wrapped a
+    not-identifiable reason over three lines (issue 27, "console wrapping")."""
+    monkeypatch.setenv("COLUMNS", "80")
+    path = _measured(tmp_path, sd=0.01, scatter=0.01)
+    capsys.readouterr()
+    fit = "e_bg,first_bending_hz,hand_stiffness_n_per_m"
+    argv = ["calibrate", str(path), "--model", "approx", "--fit", fit, "--no-loo"]
+    assert main([*argv, "--out", str(tmp_path / "cal")]) == 0
+    out = capsys.readouterr().out
+    table = [line for line in out.splitlines() if line.startswith(("│", "┃"))]
+    assert all(len(line) <= 80 for line in table)
+    rows = [line for line in table if "hand_stiffness" in line]
+    assert len(rows) == 1
+    assert "hand_stiffness_n_per_m" in rows[0]
+    assert all(line.count("│") == 6 for line in table if line.startswith("│"))  # one line a row
+    words = " ".join(out.split())
+    assert "hand_stiffness_n_per_m: not identifiable: the data do not change with it" in words

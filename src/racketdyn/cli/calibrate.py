@@ -99,9 +99,14 @@ def run(args: argparse.Namespace, console: Console) -> int:
             f"calibration ({cal.method}, {opt.plural(cal.n_fit, 'row')} fitted) → {result.out}"
         )
     )
-    for column in ("parameter", "start", "fitted", "std. error", "status"):
-        table.add_column(column, justify="left" if column in ("parameter", "status") else "right")
+    # the name a user types into --fit is never cut, a row is one line: the status cell says
+    # one phrase and the reasons follow the table (80 columns, issue 27)
+    table.add_column("parameter", justify="left", no_wrap=True)
+    for column in ("start", "fitted", "std. error"):
+        table.add_column(column, justify="right", no_wrap=True)
+    table.add_column("status", justify="left", no_wrap=True)
     poor = cal.poor_fit
+    reasons = []
     for k, name in enumerate(cal.names):
         ok = cal.identifiable[k]
         table.add_row(
@@ -109,13 +114,13 @@ def run(args: argparse.Namespace, console: Console) -> int:
             f"{cal.start[k]:.5g}",
             f"{cal.value[k]:.5g}" if ok else "–",
             f"{cal.standard_error[k]:.3g}" if ok else "–",
-            opt.plain(
-                ("ok, but the fit is poor" if poor else "ok")
-                if ok
-                else f"not identifiable: {cal.why[k]}"
-            ),
+            ("ok, poor fit" if poor else "ok") if ok else "not identifiable",
         )
+        if not ok:
+            reasons.append(f"{name}: not identifiable: {cal.why[k]}")
     console.print(table)
+    for reason in reasons:
+        opt.say(console, reason, "yellow")
     # only what was run: no "held out nan (0 rows)" (issue 27)
     parts = [f"fit {cal.fit_rms:.4f}"]
     if cal.n_holdout:
