@@ -351,3 +351,19 @@ def test_predict_says_when_the_modal_model_holds_modes_of_unknown_kind(
     assert main(["predict", "--points", str(points), "--speed", "20", "--no-figures",
                  "--out", str(tmp_path / "builtin")]) == 0  # fmt: skip
     assert "unknown kind" not in capsys.readouterr().out
+
+
+def test_predicts_comparison_table_cuts_no_word_at_80_columns(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``predict --model both`` at 80 columns printed the heading "T_c transient (ms)" as
+    "T_c transie…" (issue 27, "console wrapping")."""
+    monkeypatch.setenv("COLUMNS", "80")
+    argv = ["predict", "--model", "both", "--grid", "3", "--speed", "20", "--no-figures"]
+    assert main([*argv, "--out", str(tmp_path / "p")]) == 0
+    out = capsys.readouterr().out
+    assert "…" not in out
+    assert "transient" in out
+    for line in out.splitlines():  # a table cropped at 80 columns loses its right border
+        if line.startswith(("│", "┃", "┏", "┡", "└")):
+            assert line[-1] in "│┃┓┩┘", line

@@ -317,10 +317,8 @@ def _comparison_table(comparison: ModelComparison, speed: int, racket: Racket) -
         "support",
         "e approx",
         "e transient",
-        "T_c approx (ms)",
-        "T_c transient (ms)",
-        "largest |Δe| on the face",
-        "at x, y (mm)",
+        "T_c (ms) approx / transient",
+        "largest |Δe| on the face (at x, y mm)",
     ):
         table.add_column(heading)
     e_a, e_t = comparison.values("rebound_ratio")
@@ -333,16 +331,14 @@ def _comparison_table(comparison: ModelComparison, speed: int, racket: Racket) -
             where = (
                 f"{result.locations[worst, 0] * 1e3:.0f}, {result.locations[worst, 1] * 1e3:.0f}"
             )
-            largest = f"{column[worst]:.3f}"
+            largest = f"{column[worst]:.3f} ({where})"
         else:
-            largest, where = "–", "–"
+            largest = "–"
         table.add_row(
             support,
             f"{e_a[i, speed, p]:.3f}",
             f"{e_t[i, speed, p]:.3f}",
-            f"{t_a[i, speed, p] * 1e3:.2f}",
-            f"{t_t[i, speed, p] * 1e3:.2f}",
+            f"{t_a[i, speed, p] * 1e3:.2f} / {t_t[i, speed, p] * 1e3:.2f}",
             largest,
-            where,
         )
     return table
