@@ -63,7 +63,7 @@ DEFAULT_LOW_HZ = 40.0
 supports (≤ 15 Hz for a racket on a sponge or in a hand) and below a racket's first bending
 mode; lower where the data's first flexible mode lies below it (:func:`default_band`)."""
 CLEAR_PEAK = 3.0
-"""A clear peak of the data: its summed |H| this many times the median over the file's band
+"""A clear peak of the data: its summed ``|H|`` this many times the median over the file's band
 (the must-hold references' own definition, tests/test_realdata_must_hold.py)."""
 SUSPENSION_GAP = 5.0
 """Rigid-body modes on a soft support lie below a fifth of the first flexible mode (the usual
@@ -118,7 +118,7 @@ missed: so near an edge of a wide band the LSCF (the band zoomed onto the unit c
 ends meeting) may find no stable pole at all (pff_lms's 150 Hz over 40-20,000 Hz, the wing's
 13.5 Hz over 5-1000 Hz)."""
 EDGE_PEAK = 10.0
-"""... a clear peak: its summed |H| this many times (20 dB) above the surroundings it rises
+"""... a clear peak: its summed ``|H|`` this many times (20 dB) above the surroundings it rises
 from (prominence), its phase turning by more than 90° across it."""
 EDGE_TRIES = 2
 """Clear peaks tried at each end (the most prominent), each with one narrower band's fit."""
@@ -140,7 +140,7 @@ def default_band(frfs: FrfSet) -> tuple[float, float]:
     The bottom is :data:`DEFAULT_LOW_HZ` unless the data's first flexible mode lies below it:
     then :data:`FIRST_MODE_OCTAVE` below its peak (issue 25, item 1: a clear mode below 40 Hz
     was lost without a word).  The first flexible mode is the lowest clear peak
-    (:data:`CLEAR_PEAK`) of the summed |H| above the support's rigid-body modes — clear peaks
+    (:data:`CLEAR_PEAK`) of the summed ``|H|`` above the support's rigid-body modes — clear peaks
     below :data:`SUSPENSION_MAX_HZ` and a gap of :data:`SUSPENSION_GAP` (a wing clamped at its
     root has none; an aircraft frame on bungees shows two near 1 Hz below its 18.8 Hz mode).
     A racket's first bending mode (≥ 100 Hz) leaves the bottom at 40 Hz, above the hand's
@@ -279,7 +279,7 @@ def _missed_peaks(
     Over a band many times wider than a mode's distance from its edge the fit may find no
     stable pole there at all, so :func:`_edge_modes` has nothing to name.  The data are
     searched instead: within :data:`EDGE_SCAN` of the band's width from each end, peaks of the
-    summed |H| standing :data:`EDGE_PEAK` above their surroundings whose phase (in the FRF
+    summed ``|H|`` standing :data:`EDGE_PEAK` above their surroundings whose phase (in the FRF
     where the peak is largest) turns by more than 90° across them, below the FRFs' bandwidth.
     A peak within a half-power width (or three lines) of a kept mode or of a named row is
     explained.  For the :data:`EDGE_TRIES` most prominent others at each end a band ten times
