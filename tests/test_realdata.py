@@ -66,7 +66,9 @@ def test_vtb_usual_phase_convention_is_unchanged(tmp_path: Path, caplog) -> None
         frfs = read_frfs(path, require_coordinates=False)
     assert "conjugat" not in caplog.text
     np.testing.assert_allclose(frfs.values[0], _raw_frf(path))
-    assert identify(frfs).model.frequency == pytest.approx([212.08], abs=0.05)
+    # 34.05 Hz since the default band starts below 40 Hz and the evidence is the peak's
+    # whatever its constant's phase (issue 25 items 1 and 7, fifth session)
+    assert identify(frfs).model.frequency == pytest.approx([34.05, 212.08], abs=0.05)
 
 
 def test_vtb_identify_command_says_it_conjugated(tmp_path: Path, capsys) -> None:
@@ -187,7 +189,10 @@ def test_clean_peaks_stable_in_few_orders_are_kept(tmp_path: Path) -> None:
     found = identify(_pyfrf_frfs(tmp_path)).model
     assert _near(found.frequency, 3000.0, 3015.0) == [pytest.approx(3007.34, abs=1.0)]
     assert _near(found.frequency, 4120.0, 4135.0) == [pytest.approx(4127.6, abs=1.0)]
-    assert [line.split(" Hz")[0] for line in found.metadata["kept"]] == ["3007.66", "4127.69"]
+    kept = [line.split(" Hz")[0] for line in found.metadata["kept"]]
+    assert {"3007.66", "4127.69"} <= set(kept)  # and 8682.65, 9295.85: peaks 4 × their
+    # surroundings whose phase (123°, a sensor away from the hammer) no real constant fits
+    assert all("a peak of the data" in line for line in found.metadata["kept"])
     path = realdata.file("meca0062_aircraft/meca0062_aircraft_3acc.uff.xz", tmp_path)
     found = identify(read_frfs(path, reference=203)).model
     assert _near(found.frequency, 104.0, 106.0) == [pytest.approx(105.18, abs=0.05)]
