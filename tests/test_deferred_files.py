@@ -4,15 +4,13 @@ one is raised after every queued figure is written."""
 
 from __future__ import annotations
 
-import logging
 from pathlib import Path
 
 import pytest
 
-import racketdyn as rd
+from figure_catch import default_paper_figures
 from racketdyn.plotting.registry import write_figures
 from racketdyn.plotting.steps import identify_figures, predict_figures
-from racketdyn.workflows.figure_data import paper_figures
 from racketdyn.workflows.run import (
     WRITES_PENDING,
     StepResult,
@@ -62,14 +60,8 @@ def test_an_error_in_a_deferred_file_comes_after_the_figures(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, workers: str
 ) -> None:
     monkeypatch.setenv("RACKETDYN_FIGURE_WORKERS", workers)
-    logging.disable(logging.WARNING)
-    try:
-        racket = rd.default_racket()
-        data = paper_figures(racket, rd.Ball(), modal_model=rd.modal_model_for(racket))
-    finally:
-        logging.disable(logging.NOTSET)
     result = _Predicted(tmp_path)
-    result.paper_figures = data
+    result.paper_figures = default_paper_figures()
 
     def fails() -> None:
         raise OSError("disk full")

@@ -4,7 +4,6 @@ without xarray asking dask for its scheduler (issue 27's speed: that question im
 
 from __future__ import annotations
 
-import logging
 import subprocess
 import sys
 from pathlib import Path
@@ -12,17 +11,12 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-import racketdyn as rd
-from racketdyn.workflows.figure_data import paper_figures, write_figure_data
+from figure_catch import default_paper_figures
+from racketdyn.workflows.figure_data import write_figure_data
 
 
 def _datasets() -> list[xr.Dataset]:
-    logging.disable(logging.WARNING)
-    try:
-        racket = rd.default_racket()
-        data = paper_figures(racket, rd.Ball(), modal_model=rd.modal_model_for(racket))
-    finally:
-        logging.disable(logging.NOTSET)
+    data = default_paper_figures()
     odd = xr.Dataset(  # what the other steps' data hold: strings, NaN, bools, attributes
         {
             "odd_name": ("odd_point", np.array(["free", "hand", "pinned"])),
