@@ -275,6 +275,7 @@ def _profile(argv: Sequence[str]) -> None:
 
     clock = _Clock()
     clock.wrap(builtins, "__import__", "imports")
+    clock.wrap(builtins, "__import__", "imports while drawing", inside="figures")
     for name in dir(figures):
         if name.startswith("write_"):
             clock.wrap(figures, name, "figures")
@@ -286,10 +287,16 @@ def _profile(argv: Sequence[str]) -> None:
     # imported by name into the steps; since issue 27 written inside write_figures (deferred)
     import racketdyn.workflows.identify as identify_step
     import racketdyn.workflows.predict as predict_step
+    import racketdyn.workflows.run as run_module
 
-    for owner in (figure_data, predict_step, identify_step):
-        clock.wrap(owner, "write_figure_data", "figures.nc")
-        clock.wrap(owner, "write_figure_data", "figures.nc while drawing", inside="figures")
+    for owner, name in (
+        (figure_data, "write_figure_data"),
+        (predict_step, "write_figure_data"),
+        (identify_step, "write_figure_data"),
+        (run_module, "write_pending"),  # predict's and identify's: to_xarray and the file
+    ):
+        clock.wrap(owner, name, "figures.nc")
+        clock.wrap(owner, name, "figures.nc while drawing", inside="figures")
     clock.wrap(matplotlib.figure.Figure, "savefig", "savefig", inside="figures")
     png = sys.modules.get("racketdyn.plotting._png")  # one drawing pass instead of savefig
     if png is not None:
@@ -318,6 +325,11 @@ def _profile(argv: Sequence[str]) -> None:
     print(_row("importing the figures (matplotlib), done lazily", (plotting_wall, plotting_cpu)))
     print(_row("the command", clock.get("command")))
     print(_row("imports while it runs", clock.get("imports"), 4))
+    print(
+        _row(
+            "of which inside the figures (counted there too)", clock.get("imports while drawing"), 6
+        )
+    )
     nested = "figures.nc while drawing"
     print(_row("figures (figures.nc apart)", clock.rest("figures", nested), 4))
     print(_row("drawing: constrained layout", clock.get("layout"), 6))
@@ -330,8 +342,9 @@ def _profile(argv: Sequence[str]) -> None:
     print(_row("the figures' data, computed by the steps", clock.get("figure data"), 4))
     print(_row("figures.nc (xarray, netCDF)", clock.get("figures.nc"), 4))
     nc = clock.rest("figures.nc", nested)  # written outside the figures
-    rest = clock.rest("command", "imports", "figures", "report", "figure data")
-    rest = (rest[0] - nc[0], rest[1] - nc[1])
+    outside = clock.rest("imports", "imports while drawing")  # the others are in the figures'
+    rest = clock.rest("command", "figures", "report", "figure data")
+    rest = (rest[0] - nc[0] - outside[0], rest[1] - nc[1] - outside[1])
     print(_row("computation and the other files", rest, 4))
     for name, wall, cpu, drawing in steps:
         print(
