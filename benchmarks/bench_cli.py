@@ -9,7 +9,13 @@ and its ratio to the target (≤ 1 meets it). A benchmark prints; it does not as
 
 Run: ``python benchmarks/bench_cli.py`` (≈ 3–4 min; ``--repeat N`` for the short commands,
 ``--demo-repeat N`` for the demo, ``--skip-demo`` to make the FRFs with ``rig`` + ``frf``
-instead, as the demo does, and leave the demo out).
+instead, as the demo does, and leave the demo out). The commands run this checkout's ``src``
+(first on ``PYTHONPATH``), whatever racketdyn the environment has installed.
+
+``--baseline REV`` (a git revision of this repository, or a folder holding a racketdyn
+``src``) runs each short command of that version too, in turn with this one (A B A B …), and
+prints both and the ratio this/baseline of their medians and of each pair: the old path in
+the same run, on the same machine load (issue 27's speed work: ``--baseline 733f5c0``).
 
 ``--profile`` runs predict, identify and the demo once each in a fresh process with timers
 around the steps instead (wall and CPU time), every figure drawn in that process, and prints
@@ -24,6 +30,7 @@ import functools
 import os
 import resource
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -50,8 +57,19 @@ def racketdyn_script() -> str:
     return found
 
 
-def timed(argv: Sequence[str]) -> tuple[float, float]:
-    """Run ``racketdyn argv`` once; its wall time and CPU time (user + system), s."""
+SRC = Path(__file__).resolve().parents[1] / "src"
+"""This checkout's sources: what the commands run (before any installed racketdyn)."""
+
+
+def _env(src: Path = SRC) -> dict[str, str]:
+    """The environment of a command: ``src`` first on ``PYTHONPATH``, a fixed width."""
+    path = os.pathsep.join(p for p in (str(src), os.environ.get("PYTHONPATH", "")) if p)
+    return {**os.environ, "COLUMNS": "100", "PYTHONPATH": path}
+
+
+def timed(argv: Sequence[str], src: Path = SRC) -> tuple[float, float]:
+    """Run ``racketdyn argv`` once (the racketdyn of ``src``); its wall time and CPU time
+    (user + system, with its helper processes), s."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     subprocess.run(
@@ -59,7 +77,7 @@ def timed(argv: Sequence[str]) -> tuple[float, float]:
         check=True,
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
-        env={**os.environ, "COLUMNS": "100"},
+        env=_env(src),
     )
     wall = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -89,6 +107,76 @@ def line(name: str, wall: float, cpu: float, target: float) -> str:
     )
 
 
+def _load() -> str:
+    return " ".join(f"{v:.2f}" for v in os.getloadavg())
+
+
+def paired(name: str, argv: Sequence[str], repeats: int, fresh_out: Path, baseline: Path) -> None:
+    """Run ``argv`` of this checkout (A) and of ``baseline`` (B) in turn, ``repeats`` times
+    each after one warm-up of each; print the medians and minima and the ratios A/B."""
+    runs: dict[str, list[tuple[float, float]]] = {"A": [], "B": []}
+    load = _load()
+    for k in range(repeats + 1):
+        for which, src in (("A", SRC), ("B", baseline)):
+            out = ["--out", str(fresh_out / f"{which}{k}")]
+            result = timed([*argv, *out], src)
+            if k:  # the first of each warms the caches
+                runs[which].append(result)
+    walls = {w: [r[0] for r in runs[w]] for w in runs}
+    cpus = {w: [r[1] for r in runs[w]] for w in runs}
+    pairs = sorted(a / b for a, b in zip(walls["A"], walls["B"], strict=True))
+    print(f"{name}  ({repeats} runs each, load average {load} before, {_load()} after)")
+    for which, label in (("A", "this checkout"), ("B", f"baseline {baseline}")):
+        wall, cpu = statistics.median(walls[which]), statistics.median(cpus[which])
+        print(
+            f"  {label:<40s} wall median {wall:6.2f} s (min {min(walls[which]):6.2f})  "
+            f"CPU median {cpu:6.2f} s"
+        )
+    print(
+        f"  ratio this/baseline: wall of medians "
+        f"{statistics.median(walls['A']) / statistics.median(walls['B']):5.2f}, pairs "
+        f"{pairs[0]:.2f}–{statistics.median(pairs):.2f}–{pairs[-1]:.2f} (min–median–max); "
+        f"CPU of medians {statistics.median(cpus['A']) / statistics.median(cpus['B']):5.2f}",
+        flush=True,
+    )
+
+
+def baseline_src(revision: str, work: Path) -> Path:
+    """The ``src`` of ``revision``: a folder holding one as it is, else the revision of this
+    repository exported there (``git archive``)."""
+    given = Path(revision)
+    if (given / "racketdyn").is_dir():
+        return given
+    if (given / "src" / "racketdyn").is_dir():
+        return given / "src"
+    archive = subprocess.run(
+        ["git", "-C", str(SRC.parent), "archive", revision, "src"],
+        check=True,
+        capture_output=True,
+    ).stdout
+    subprocess.run(["tar", "-x", "-C", str(work)], input=archive, check=True)
+    return work / "src"
+
+
+def compare(repeats: int, revision: str) -> None:
+    """This checkout against ``revision``: ``predict`` with defaults and ``identify`` on the
+    demo's 69 FRFs, paired runs."""
+    print(f"racketdyn CLI against {revision}, {os.cpu_count()} cores, {repeats} paired runs")
+    with tempfile.TemporaryDirectory() as folder:
+        work = Path(folder)
+        (work / "baseline").mkdir()
+        baseline = baseline_src(revision, work / "baseline")
+        paired("racketdyn predict (defaults)", ["predict"], repeats, work / "predict", baseline)
+        frfs = make_frfs(work)
+        paired(
+            "racketdyn identify (69 FRFs)",
+            ["identify", str(frfs), *DEMO_BAND],
+            repeats,
+            work / "identify",
+            baseline,
+        )
+
+
 def make_frfs(work: Path) -> Path:
     """The demo's free-free FRFs (69 points) by the demo's own rig and frf steps."""
     script = racketdyn_script()
@@ -97,7 +185,7 @@ def make_frfs(work: Path) -> Path:
         ["rig", "--support", "free", *DEMO_FAULTS, "--out", str(rig)],
         ["frf", str(rig / "hammer_free.uff"), *DEMO_FRF, "--out", str(frf)],
     ):
-        subprocess.run([script, *argv], check=True, stdout=subprocess.DEVNULL)
+        subprocess.run([script, *argv], check=True, stdout=subprocess.DEVNULL, env=_env())
     return frf / "frfs.uff"
 
 
@@ -187,6 +275,7 @@ def _profile(argv: Sequence[str]) -> None:
 
     clock = _Clock()
     clock.wrap(builtins, "__import__", "imports")
+    clock.wrap(builtins, "__import__", "imports while drawing", inside="figures")
     for name in dir(figures):
         if name.startswith("write_"):
             clock.wrap(figures, name, "figures")
@@ -195,7 +284,19 @@ def _profile(argv: Sequence[str]) -> None:
     # what the figures draw is computed by the steps (issue 23), before the workflows import it
     for name in ("paper_figures", "transient_curves", "swing_axis_curves", "identified_rebound"):
         clock.wrap(figure_data, name, "figure data")
-    clock.wrap(figure_data, "write_figure_data", "figures.nc")
+    # imported by name into the steps; since issue 27 written inside write_figures (deferred)
+    import racketdyn.workflows.identify as identify_step
+    import racketdyn.workflows.predict as predict_step
+    import racketdyn.workflows.run as run_module
+
+    for owner, name in (
+        (figure_data, "write_figure_data"),
+        (predict_step, "write_figure_data"),
+        (identify_step, "write_figure_data"),
+        (run_module, "write_pending"),  # predict's and identify's: to_xarray and the file
+    ):
+        clock.wrap(owner, name, "figures.nc")
+        clock.wrap(owner, name, "figures.nc while drawing", inside="figures")
     clock.wrap(matplotlib.figure.Figure, "savefig", "savefig", inside="figures")
     png = sys.modules.get("racketdyn.plotting._png")  # one drawing pass instead of savefig
     if png is not None:
@@ -224,17 +325,26 @@ def _profile(argv: Sequence[str]) -> None:
     print(_row("importing the figures (matplotlib), done lazily", (plotting_wall, plotting_cpu)))
     print(_row("the command", clock.get("command")))
     print(_row("imports while it runs", clock.get("imports"), 4))
-    print(_row("figures", clock.get("figures"), 4))
+    print(
+        _row(
+            "of which inside the figures (counted there too)", clock.get("imports while drawing"), 6
+        )
+    )
+    nested = "figures.nc while drawing"
+    print(_row("figures (figures.nc apart)", clock.rest("figures", nested), 4))
     print(_row("drawing: constrained layout", clock.get("layout"), 6))
     print(_row("drawing: Agg", clock.rest("savefig", "layout", "png"), 6))
     print(_row("drawing: PNG encoding and writing", clock.get("png"), 6))
-    building = clock.rest("figures", "savefig")
+    building = clock.rest("figures", "savefig", nested)
     print(_row("building artists (plot calls, subplots)", building, 6))
     if "report" in clock.wall:
         print(_row("HTML report", clock.get("report"), 4))
     print(_row("the figures' data, computed by the steps", clock.get("figure data"), 4))
     print(_row("figures.nc (xarray, netCDF)", clock.get("figures.nc"), 4))
-    rest = clock.rest("command", "imports", "figures", "report", "figure data", "figures.nc")
+    nc = clock.rest("figures.nc", nested)  # written outside the figures
+    outside = clock.rest("imports", "imports while drawing")  # the others are in the figures'
+    rest = clock.rest("command", "figures", "report", "figure data")
+    rest = (rest[0] - nc[0] - outside[0], rest[1] - nc[1] - outside[1])
     print(_row("computation and the other files", rest, 4))
     for name, wall, cpu, drawing in steps:
         print(
@@ -260,7 +370,7 @@ def profile(which: str) -> None:
             code = f"import sys; sys.path.insert(0, {here!r}); import bench_cli; "
             code += f"bench_cli._profile({argv!r})"
             # every figure drawn in the profiled process (no helper process), to see it all
-            env = {**os.environ, "RACKETDYN_FIGURE_WORKERS": "0"}
+            env = {**_env(), "RACKETDYN_FIGURE_WORKERS": "0"}
             subprocess.run([sys.executable, "-c", code], check=True, env=env)
 
 
@@ -278,9 +388,17 @@ def main() -> None:
         choices=["all", "predict", "identify", "demo"],
         help="where the time goes (timers around the steps) instead of the benchmark",
     )
+    parser.add_argument(
+        "--baseline",
+        metavar="REV",
+        help="also run predict and identify of this git revision (or src folder), in turn "
+        "with this checkout, and print the ratios",
+    )
     args = parser.parse_args()
     if args.profile:
         profile(args.profile)
+    elif args.baseline:
+        compare(max(args.repeat, 5), args.baseline)
     else:
         benchmark(args.repeat, args.demo_repeat, args.skip_demo)
 

@@ -33,3 +33,19 @@ def catch_figures(patch: Any, drawn: Drawn) -> None:
     from racketdyn.plotting import render
 
     patch.setattr(render, "FigureBatch", lambda: Catch(drawn))
+
+
+def default_paper_figures() -> Any:
+    """The paper figures' data of the built-in racket and ball (``predict``'s defaults), its
+    warnings about flagged impacts silenced."""
+    import logging
+
+    import racketdyn as rd
+    from racketdyn.workflows.figure_data import paper_figures
+
+    logging.disable(logging.WARNING)
+    try:
+        racket = rd.default_racket()
+        return paper_figures(racket, rd.Ball(), modal_model=rd.modal_model_for(racket))
+    finally:
+        logging.disable(logging.NOTSET)

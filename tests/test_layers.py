@@ -242,6 +242,7 @@ PURE_HELPERS = {
     "racketdyn.impact.result.shown_speed_index",  # which of the run's speeds a table shows
     "racketdyn.impact.result.invalidate_table",  # NaN in the flagged rows of a table read back
     "racketdyn.workflows.run.sha256",  # a file's hash, for the provenance table
+    "racketdyn.workflows.run.write_pending",  # the step's computed data into its files
     "racketdyn.workflows.shape_figures.is_racket_model",  # whether modes have racket names
 }
 MODAL = ("racketdyn.modal", "racketdyn.racket_modal")

@@ -3,7 +3,12 @@ bytes as this one; errors and warnings come back; the paper's figures keep their
 
 from __future__ import annotations
 
+import argparse
 import logging
+import os
+import signal
+import subprocess
+import sys
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -12,7 +17,8 @@ import pytest
 from PIL import Image
 
 import racketdyn as rd
-from racketdyn.plotting import render
+from racketdyn.cli import options as opt
+from racketdyn.plotting import helper, render
 from racketdyn.plotting.registry import for_step
 from racketdyn.workflows.figure_data import paper_figures
 
@@ -126,3 +132,31 @@ def test_no_helper_when_told(monkeypatch: pytest.MonkeyPatch) -> None:
     assert render.start_helper() is False
     monkeypatch.setenv("RACKETDYN_FIGURE_WORKERS", "1")
     assert render.start_helper() is True
+
+
+def test_starting_the_helper_loads_no_matplotlib_here() -> None:
+    code = (
+        "import sys; from racketdyn.plotting.helper import start_helper; start_helper(); "
+        "print('matplotlib' in sys.modules)"
+    )
+    env = {**os.environ, "RACKETDYN_FIGURE_WORKERS": "1"}
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env
+    )
+    assert out.stdout.split() == ["False"]
+
+
+def test_a_helper_never_given_a_figure_is_stopped_at_once() -> None:
+    worker = helper.Worker()  # a step that failed before its figures: no wait for its imports
+    worker.close()
+    assert worker.process.returncode == -signal.SIGKILL
+
+
+@pytest.mark.parametrize("no_figures", [False, True])
+def test_a_command_starts_the_helper_unless_no_figures(
+    monkeypatch: pytest.MonkeyPatch, no_figures: bool
+) -> None:
+    started: list[bool] = []
+    monkeypatch.setattr(helper, "start_helper", lambda: started.append(True) or True)
+    opt.start_figure_helper(argparse.Namespace(no_figures=no_figures))
+    assert started == ([] if no_figures else [True])

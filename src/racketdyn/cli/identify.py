@@ -237,6 +237,7 @@ def run_identify(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.plotting.steps import identify_figures
     from racketdyn.workflows.identify import run_identify as identify
 
+    opt.start_figure_helper(args)  # six figures: the helper imports while we identify
     with opt.progress_display(console) as progress:
         result = identify(
             args.frfs,

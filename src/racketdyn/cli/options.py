@@ -348,6 +348,16 @@ def add_no_figures(parser: argparse.ArgumentParser, what: str = "the CSV files")
     )
 
 
+def start_figure_helper(args: argparse.Namespace) -> None:
+    """Start the figure helper process now, unless ``--no-figures``: for a command that draws
+    several figures, so that the helper imports matplotlib while the step computes
+    (:func:`racketdyn.plotting.helper.start_helper`; matplotlib is not imported here)."""
+    if not getattr(args, "no_figures", False):
+        from racketdyn.plotting.helper import start_helper
+
+        start_helper()
+
+
 # --- parsing ----------------------------------------------------------------------------------
 PARAMETER_OPTIONS: dict[str, str] = {
     "modal_model": "modal",  # workflows.setup.Setup

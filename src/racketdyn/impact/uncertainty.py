@@ -29,12 +29,10 @@ from concurrent.futures import Executor, as_completed
 from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass, replace
 from functools import partial
-from typing import Any, Literal, TypeVar, get_args
+from typing import TYPE_CHECKING, Any, Literal, TypeVar, get_args
 
 import numpy as np
-import xarray as xr
 from numpy.typing import ArrayLike, NDArray
-from scipy.stats import norm, qmc
 
 from racketdyn.errors import InputError, one_of
 from racketdyn.impact.approximate import predict
@@ -48,6 +46,10 @@ from racketdyn.impact.swing import SwingResult, predict_swing
 from racketdyn.impact.transient import predict_transient
 from racketdyn.io.measured import MeasuredRebound
 from racketdyn.racket import as_locations
+
+if TYPE_CHECKING:  # imported where used: scipy.stats and xarray cost ≈ 0.5 s a run without them
+    import xarray as xr
+    from scipy.stats import qmc
 
 __all__ = [
     "BAND_QUANTITIES",
@@ -182,6 +184,8 @@ class Spread:
         """
         centre = 0.0 if self.is_offset else nominal
         if self.sd is not None:
+            from scipy.stats import norm
+
             u = np.clip(unit, 1e-12, 1.0 - 1e-12)
             return np.asarray(centre + self.sd * norm.ppf(u))
         if self.bounds is not None:
@@ -242,6 +246,8 @@ class Uncertainty:
 
     def unit_samples(self) -> NDArray[np.float64]:
         """``(samples, dimensions)`` quasi-random points in the unit cube, seeded."""
+        from scipy.stats import qmc
+
         d = sum(s.dimensions for s in self.spreads)
         engine: qmc.QMCEngine = (
             qmc.Sobol(d, scramble=True, seed=self.seed)
@@ -389,6 +395,8 @@ class UncertainResult:
     def to_xarray(self) -> xr.Dataset:
         """The nominal dataset with the bands as ``<name>_mean/_sd/_p05/_p95`` variables and
         every sample's value on a ``sample`` dimension (``<name>_samples``)."""
+        import xarray as xr
+
         dims = ("point", "ball_speed", "support")
         nominal = self.nominal
         if isinstance(nominal, ImpactResult):
@@ -933,6 +941,8 @@ def _design(
     """Saltelli's matrices A and B, each ``(d, n)``: a scrambled Sobol' design of 2d
     dimensions split in two, through each input's inverse distribution function (as
     :func:`scipy.stats.sobol_indices` draws them)."""
+    from scipy.stats import qmc
+
     d = len(marginals)
     unit = qmc.Sobol(d=2 * d, seed=rng, bits=64).random(n).T.reshape(2, d, -1)
     for i, marginal in enumerate(marginals):

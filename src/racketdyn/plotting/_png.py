@@ -1,6 +1,6 @@
 """Draw a matplotlib figure once and write it as a PNG: the work of one figure file.
 
-This module imports no racketdyn module: the helper process of :mod:`racketdyn.plotting.render`
+This module imports no racketdyn module: the helper process of :mod:`racketdyn.plotting.helper`
 loads it by its file path, so that it starts with matplotlib alone.
 
 ``Figure.savefig`` with a layout engine draws the figure twice (once with drawing switched off,

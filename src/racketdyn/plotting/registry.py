@@ -602,7 +602,9 @@ def write_figures(
     """Draw every registered figure of ``step`` whose data ``result`` holds into ``out``.
 
     Several figures are drawn as one batch (:class:`racketdyn.plotting.render.FigureBatch`:
-    in a helper process while the next is built); one alone is saved here.
+    in a helper process while the next is built); one alone is saved here. With a batch, the
+    step's deferred files (``result.pending``, :func:`racketdyn.workflows.run.defer_file`) are
+    written once every figure is queued, while the helper draws.
 
     Parameters
     ----------
@@ -628,6 +630,7 @@ def write_figures(
     import numpy as np
 
     from racketdyn.plotting import render
+    from racketdyn.workflows.run import write_pending
 
     found = [(e, data) for e in for_step(step) if e.draw and (data := e.data(result)) is not None]
     batch = render.FigureBatch() if len(found) > 1 else None
@@ -646,6 +649,11 @@ def write_figures(
             else:
                 batch.add(drawn, Path(out) / name)
     if batch is not None:
+        try:  # the step's deferred files, while the helper process draws
+            write_pending(result)
+        except Exception:
+            batch.render()  # every queued figure finished before the step's error goes up
+            raise
         paths = batch.render()
     for path in paths:
         log.info("wrote %s", path)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 if TYPE_CHECKING:
     from racketdyn.sweep.summary import SummaryCurves
@@ -27,10 +27,20 @@ if TYPE_CHECKING:
     from racketdyn.workflows.validate import ValidateResult
 
 Status = Callable[[str], None]
+Hook = TypeVar("Hook", bound=Callable[..., list[Path]])
 
 
 def _quiet(_: str) -> None:
     return None
+
+
+def _writes_pending(hook: Hook) -> Hook:
+    """Mark a hook that writes the step's deferred files itself, while its figures are drawn
+    (:data:`racketdyn.workflows.run.WRITES_PENDING`: ``write_figures`` does)."""
+    from racketdyn.workflows.run import WRITES_PENDING
+
+    setattr(hook, WRITES_PENDING, True)
+    return hook
 
 
 def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], list[Path]]:
@@ -43,7 +53,7 @@ def predict_figures(status: Status = _quiet) -> Callable[[PredictResult, Path], 
 
         return write_figures("predict", result, out, status)
 
-    return draw
+    return _writes_pending(draw)
 
 
 def frf_figures(result: FrfResult, out: Path) -> list[Path]:
@@ -65,6 +75,9 @@ def identify_figures(result: IdentifyResult, out: Path) -> list[Path]:
     from racketdyn.plotting.registry import write_figures
 
     return write_figures("identify", result, out)
+
+
+_writes_pending(identify_figures)
 
 
 def compare_figures(result: CompareResult, out: Path) -> list[Path]:

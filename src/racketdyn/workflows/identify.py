@@ -45,6 +45,7 @@ from racketdyn.workflows.inputs import (
 )
 from racketdyn.workflows.run import (
     StepResult,
+    defer_file,
     report,
     run_step,
     sha256,
@@ -328,10 +329,11 @@ def run_identify(
     )
     shapes = identified_shapes(found.model, the_racket)
     written = write_model(found, out_dir)
-    written.append(write_figure_data(out_dir / FIGURES_FILE, [shapes.to_xarray()]))
     result = IdentifyResult(
         out_dir, written, identification=found, racket=the_racket, shape_figures=shapes
     )
+    data_file = out_dir / FIGURES_FILE  # written while the figures are drawn
+    defer_file(result, data_file, lambda: write_figure_data(data_file, [shapes.to_xarray()]))
     inputs = {
         "frfs_file": str(Path(frfs).resolve()),
         "frfs_sha256": sha256(Path(frfs)),

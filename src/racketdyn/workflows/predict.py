@@ -13,7 +13,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Literal, cast
+from typing import TYPE_CHECKING, Any, Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -69,11 +69,15 @@ from racketdyn.workflows.run import (
     Progress,
     StepResult,
     check_workers,
+    defer_file,
     report,
     run_step,
     sample_pool,
 )
 from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["DEFAULT_GRID", "MAX_GRID", "MODELS", "PredictResult", "impact_points", "run_predict"]
 
@@ -593,7 +597,7 @@ def _figure_data(
         "supports": tuple(s for s in result.supports if s != "hand"),
     }
     impact = {k: v for k, v in options.items() if k not in ("supports", "racket_speed")}
-    datasets = []
+    datasets: list[Callable[[], xr.Dataset]] = []  # each figure-data object's to_xarray
     if result.approximate is not None:
         report(progress, "computing the figures' curves")
         result.paper_figures = paper_figures(
@@ -615,7 +619,7 @@ def _figure_data(
                 axis_band=_axis_band(result, *band),
                 face=_face_band(result.paper_figures.face, result.bands["approx"], result),
             )
-        datasets.append(result.paper_figures.to_xarray())
+        datasets.append(result.paper_figures.to_xarray)
     if result.comparison is not None:
         report(progress, "both models against speed")
         result.transient_curves = transient_curves(
@@ -627,16 +631,17 @@ def _figure_data(
             vibration_charge=result.vibration_charge,
             **impact,
         )
-        datasets.append(result.transient_curves.to_xarray())
+        datasets.append(result.transient_curves.to_xarray)
         result.comparison_map = ComparisonMap.of(
             result.comparison, result.shown_speed, result.racket.head
         )
-        datasets.append(result.comparison_map.to_xarray())
+        datasets.append(result.comparison_map.to_xarray)
     if result.transient is not None and result.histories:
         result.transient_histories = TransientHistories.of(result.histories, result.mode_names)
-        datasets.append(result.transient_histories.to_xarray())
-    if datasets:
-        result.written.append(write_figure_data(result.out / FIGURES_FILE, datasets))
+        datasets.append(result.transient_histories.to_xarray)
+    if datasets:  # written while the figures are drawn (xarray's import is most of it)
+        path = result.out / FIGURES_FILE
+        defer_file(result, path, lambda: write_figure_data(path, [data() for data in datasets]))
 
 
 def _axis_band(

@@ -33,13 +33,16 @@ from racketdyn.errors import InputError, require_whole
 
 __all__ = [
     "REPORT_NAME",
+    "WRITES_PENDING",
     "FigureHook",
     "Progress",
     "StepResult",
+    "defer_file",
     "finish_run",
     "make_out_folder",
     "run_step",
     "sha256",
+    "write_pending",
     "write_rows",
     "write_run_json",
 ]
@@ -65,11 +68,16 @@ class StepResult:
         Data files and figures written, in order (``run.json`` not included).
     record : dict
         The content of ``run.json`` (empty until the step has finished).
+    pending : list of callable
+        Files listed in ``written`` but not yet written (:func:`defer_file`): each writes its
+        file when called; :func:`finish_run` writes them, or the figure hook while its figures
+        are drawn in the helper process (:func:`write_pending`).
     """
 
     out: Path
     written: list[Path] = field(default_factory=list)
     record: dict[str, Any] = field(default_factory=dict)
+    pending: list[Callable[[], object]] = field(default_factory=list, repr=False, compare=False)
 
     @property
     def run_json(self) -> Path:
@@ -101,6 +109,43 @@ R = TypeVar("R", bound=StepResult)
 
 FigureHook = Callable[[R, Path], list[Path]]
 """A caller's figure drawer: ``hook(result, out)`` draws into ``out`` and returns the paths."""
+
+WRITES_PENDING = "writes_pending"
+"""The attribute (True) of a figure hook that calls :func:`write_pending` itself, once its
+figures are on their way to the helper process: the step's deferred files are written while
+they are drawn. Any other hook is called after them (it may read them)."""
+
+
+def defer_file(result: StepResult, path: Path, write: Callable[[], object]) -> None:
+    """List ``path`` in ``result.written`` now and write it later (``write()``, before
+    ``run.json``; :func:`write_pending`): a file no figure reads from the folder, written while
+    the figures are drawn.
+
+    Parameters
+    ----------
+    result : StepResult
+        The step's result.
+    path : Path
+        The file.
+    write : callable
+        Writes it.
+    """
+    result.written.append(Path(path))
+    result.pending.append(write)
+
+
+def write_pending(result: object) -> None:
+    """Write the deferred files of ``result`` (:func:`defer_file`), if it has any; each once.
+
+    Parameters
+    ----------
+    result : object
+        A step's result (anything else: nothing to write).
+    """
+    pending = getattr(result, "pending", None)
+    while isinstance(pending, list) and pending:
+        pending.pop(0)()
+
 
 Progress = Callable[[str, int, int], None]
 """A caller's progress display: ``progress(what, done, total)``; ``total == 0`` announces a
@@ -381,11 +426,15 @@ def finish_run(
     command: Sequence[str],
     figures: Callable[[R, Path], list[Path]] | None,
 ) -> R:
-    """Draw the caller's figures (if any), then write run.json listing every file; returns
-    ``result`` with ``written`` and ``record`` filled in."""
+    """Write the deferred files and draw the caller's figures (if any; a hook marked
+    :data:`WRITES_PENDING` writes the files while its figures are drawn), then write run.json
+    listing every file; returns ``result`` with ``written`` and ``record`` filled in."""
+    if figures is None or not getattr(figures, WRITES_PENDING, False):
+        write_pending(result)
     if figures is not None:
         drawn = figures(result, result.out)
         result.written += [path for path in drawn if path not in result.written]
+    write_pending(result)  # a hook that drew nothing
     result.record = write_run_json(result.out, command, inputs, result.written)
     return result
 
