@@ -137,3 +137,16 @@ def test_a_progress_line_describing_a_bracketed_name_does_not_raise() -> None:
     console, _ = _console()
     with opt.progress_display(console, thread=False) as progress:
         progress("figure [/b].png", 0, 0)
+
+
+def test_a_long_racket_path_is_printed_whole(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The file's path sat in the table's title, folded at 80 columns mid-name ("my[fil" /
+    "e].toml"): under pytest-xdist's longer temporary folders the test above failed."""
+    monkeypatch.setenv("COLUMNS", "80")
+    deep = tmp_path / ("a_folder_with_a_rather_long_name_" * 2) / "and_another_one"
+    deep.mkdir(parents=True)
+    path = _racket_named(deep, "Pro", "my[file].toml")
+    assert main(["racket", "--racket", str(path)]) == 0
+    assert str(path) in _printed(capsys)

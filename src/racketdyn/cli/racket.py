@@ -27,7 +27,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.workflows.inputs import load_racket_input
 
     racket, provenance = load_racket_input(args.racket)
-    table = Table(title=opt.plain(f"{racket.name} ({provenance['racket_file']})"))
+    # the file on a line of its own, never folded (a long path in the title was, mid-name)
+    opt.say(console, f"racket file: {provenance['racket_file']}", soft_wrap=True)
+    table = Table(title=opt.plain(racket.name))
     table.add_column("property")
     table.add_column("value", justify="right")
     table.add_column("unit")

@@ -859,10 +859,10 @@ def fit_gain(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
 
     Over the lines within three half-power bandwidths (``6 ζ f``, at least five lines) of the
     mode, every FRF: ``‖residual + the mode's term‖ / ‖residual‖``, the residual the smaller
-    of the fit's and that of the best complex multiple of the mode's term in each FRF (the
-    peak's evidence whatever the phase of its constant).  A mode of the data scores its peak
-    over the misfit (tens to thousands); a pole that fits noise about 1; a pole with no line
-    near it ``inf`` (nothing to judge by).
+    of the fit's and that of the best real constants turned by one phase common to every FRF
+    (the peak's evidence whatever the phase a delay gives its constants).  A mode of the data
+    scores its peak over the misfit (tens to thousands); a pole that fits noise about 1; a
+    pole with no line near it ``inf`` (nothing to judge by).
 
     Parameters
     ----------
@@ -887,10 +887,15 @@ def fit_gain(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
             continue
         term = design_columns(frfs, fit.poles[k : k + 1], fit.frequency[near])[:, 0]
         without = residual[:, near] + fit.constants[:, k, None] * term[None, :]
-        # the evidence is the peak's, not the real constant's: each FRF's best complex multiple
-        # of the mode's term (a mode whose peak the analyser's delay or a neighbour turns off
-        # ±90° — pyFRF's 7092 Hz at 168° — fits no real constant, yet is in the data)
-        best = (without @ term.conj()) / max(float(np.vdot(term, term).real), 1e-300)
+        # the evidence is the peak's, not the real constant's: real constants turned by one
+        # phase common to every FRF (a mode whose peak the analyser's delay turns off ±90° —
+        # pyFRF's 7092 Hz at 168° — fits no real constant, yet is in the data; one phase, not
+        # one per FRF, so that noise gains no more freedom than a delay gives).  With
+        # a_j = <term, FRF_j>, the best phase is ½ arg Σ a_j² (closed form)
+        norm2 = max(float(np.vdot(term, term).real), 1e-300)
+        projection = without @ term.conj()
+        turn = np.exp(0.5j * np.angle(np.sum(projection**2)))
+        best = turn * np.real(projection / turn) / norm2
         misfit = float(np.linalg.norm(without - best[:, None] * term[None, :]))
         misfit = min(misfit, float(np.linalg.norm(residual[:, near])))
         gains[k] = float(np.linalg.norm(without)) / max(misfit, 1e-300)
