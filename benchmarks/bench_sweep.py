@@ -9,12 +9,18 @@ engine, writing every chunk of the store ``sweep.zarr`` and finishing it (no fig
 impacts per second and the ratio against serial, checks that every engine wrote the same
 numbers (the store's contents to the bit), and splits one serial task into its steps.
 
-Memory (issue 28): the peak resident memory of the main process over a whole sweep on a pool
-of two workers, summary included, at 10⁶ and 10⁷ impacts (100 and 1,000 designs of 10⁴
-impacts; ten values of e_BG multiply the designs), against a baseline measured in the same
-process just before each sweep; the slope between the two projects 10⁸ impacts.  Linux only
-(``/proc/self/status``'s VmHWM, reset through ``/proc/self/clear_refs``).  ``--part speed``
-or ``--part memory`` runs one half.
+Memory (issue 28): the peak resident memory of the main process and of each worker over a
+whole sweep on two workers (a process pool, or ``--memory-engine dask-local``), summary
+included, at 10⁶ and 10⁷ impacts (100 and 1,000 designs of 10⁴ impacts; ten values of e_BG
+multiply the designs), against baselines measured in the same run just before each sweep;
+the slope between the two projects 10⁸ impacts.  Then reading from the 10⁷-impact store: one
+design's map and one point across all designs, opened afresh each time (median of 5).  Linux
+only (``/proc/PID/status``'s VmHWM, reset through ``/proc/PID/clear_refs``).  ``--part
+speed`` or ``--part memory`` runs one half.
+
+``--scheduler ADDRESS`` adds two runs on a running Dask cluster to the speed part (its chunks
+written by the main process, then with ``shared_store``, the workers writing them) and to the
+check of the bits.
 
 ``python benchmarks/bench_sweep.py --method transient --designs 10`` times the transient
 model (compiled engine) the same way on 100,000 impacts.  Prints, per engine, where the wall
@@ -66,9 +72,15 @@ into sweep.nc in memory): 233 MB over 187 MB at 10⁶ impacts on a pool of two w
 measured 2026-11-28 with this benchmark's study; issue 28 quotes 330 B at 2.2 × 10⁶."""
 
 
-def engines_in_order(repeat: int) -> list[tuple[str, str, int, int]]:
+CLUSTER_MAIN, CLUSTER_SHARED = "cluster, main writes", "cluster, shared store"
+"""The labels of the runs on a running cluster (``--scheduler``): workers 0 and 1."""
+
+
+def engines_in_order(repeat: int, cluster: bool = False) -> list[tuple[str, str, int, int]]:
     """(label, engine, workers, repeat) in the order run: serial once, then each engine's
-    1- and 2-worker runs alternately, ``repeat`` pairs."""
+    1- and 2-worker runs alternately, ``repeat`` pairs; with ``cluster``, runs on a running
+    cluster with the main process writing the chunks (workers 0) and the workers (1),
+    alternately."""
     order = [("serial", "serial", 1, 0)]
     for name, kind in (("process pool", "process"), ("local Dask", "dask-local")):
         for r in range(repeat):
@@ -76,6 +88,8 @@ def engines_in_order(repeat: int) -> list[tuple[str, str, int, int]]:
                 (f"{name}, 1 worker", kind, 1, r),
                 (f"{name}, 2 workers", kind, 2, r),
             ]
+    for r in range(repeat if cluster else 0):
+        order += [(CLUSTER_MAIN, "dask", 0, r), (CLUSTER_SHARED, "dask", 1, r)]
     return order
 
 
@@ -108,43 +122,93 @@ def build_spec(n_designs: int, method: str) -> SweepSpec:
     )
 
 
-def _status_mb(field: str) -> float:
-    with open("/proc/self/status", encoding="ascii") as status:
+def _status_mb(field: str, pid: int | str = "self") -> float:
+    with open(f"/proc/{pid}/status", encoding="ascii") as status:
         for line in status:
             if line.startswith(field + ":"):
                 return int(line.split()[1]) / 1024
     raise RuntimeError(f"no {field} in /proc/self/status")
 
 
-def peak_memory(spec: SweepSpec, out: Path) -> tuple[float, float, float]:
-    """(baseline, peak, wall): the main process's resident memory just before the sweep and
-    its peak during it (summary included, no figures), MB, on a pool of two workers."""
-    with make_executor("process", 2) as executor:
+def _worker_pids(executor: object) -> list[int]:
+    """The worker processes of a process pool or a Dask client's executor."""
+    pool = getattr(executor, "_pool", None)
+    if pool is not None:
+        return sorted(pool._processes)
+    client = getattr(executor, "_client", None)
+    return sorted(client.run(os.getpid).values()) if client is not None else []
+
+
+def _reset_peak(pid: int | str) -> float:
+    """Reset a process's peak resident memory to its current one (VmHWM := VmRSS); MB."""
+    Path(f"/proc/{pid}/clear_refs").write_text("5", encoding="ascii")
+    return _status_mb("VmRSS", pid)
+
+
+def peak_memory(spec: SweepSpec, out: Path, kind: str) -> tuple[float, ...]:
+    """(baseline, peak, wall, worker baselines…, worker peaks…): the main process's resident
+    memory just before the sweep and its peak during it (summary included, no figures), MB,
+    then each worker's, on two workers of the engine ``kind``."""
+    with make_executor(kind, 2) as executor:  # type: ignore[arg-type]
+        pids = _worker_pids(executor)
         gc.collect()
-        Path("/proc/self/clear_refs").write_text("5", encoding="ascii")  # VmHWM := VmRSS
-        baseline = _status_mb("VmRSS")
+        worker_base = [_reset_peak(pid) for pid in pids]
+        baseline = _reset_peak("self")
         start = time.perf_counter()
         run_sweep(spec, out, executor, figures=None)
         wall = time.perf_counter() - start
         peak = _status_mb("VmHWM")
-    return baseline, peak, wall
+        worker_peak = [_status_mb("VmHWM", pid) for pid in pids]
+    return (baseline, peak, wall, *worker_base, *worker_peak)
 
 
-def memory_part(method: str) -> None:
-    """Peak memory of the main process at 10⁶ and 10⁷ impacts; 10⁸ projected from the
-    slope."""
+def read_times(out: Path, repeat: int = 5) -> dict[str, float]:
+    """Seconds to read from a finished store, each opened afresh (median of ``repeat``): one
+    design's map of the rebound ratio (one chunk), every quantity of that design, and one
+    point's rebound ratio across all designs (a slice of every chunk)."""
+    with open_sweep(out) as probe:
+        design, point = probe.sizes["design"] // 2 + 1, probe.sizes["point"] // 2
+    reads = {
+        "one design's map (rebound_ratio)": lambda d: d["rebound_ratio"].isel(design=design),
+        "one design, every quantity": lambda d: d.isel(design=design),
+        "one point across all designs (rebound_ratio)": lambda d: d["rebound_ratio"].isel(
+            point=point
+        ),
+    }
+    times: dict[str, float] = {}
+    for name, read in reads.items():
+        runs = []
+        for _ in range(repeat):
+            start = time.perf_counter()
+            with open_sweep(out) as dataset:
+                read(dataset).load()
+            runs.append(time.perf_counter() - start)
+        times[name] = sorted(runs)[repeat // 2]
+    return times
+
+
+def memory_part(method: str, kind: str = "process") -> None:
+    """Peak memory of the main process and each worker at 10⁶ and 10⁷ impacts; 10⁸
+    projected from the slope; then reads from the 10⁷-impact store."""
     if not Path("/proc/self/clear_refs").exists():
         print("memory: needs Linux's /proc/self/clear_refs; skipped")
         return
     rows = []
+    workers = []
+    reads: dict[str, float] = {}
     with tempfile.TemporaryDirectory(prefix="bench_sweep_memory_") as scratch:
         for n_designs in (100, 1000):
             spec = build_spec(n_designs, method)
             out = Path(scratch) / f"d{n_designs}"
-            baseline, peak, wall = peak_memory(spec, out)
+            baseline, peak, wall, *each = peak_memory(spec, out, kind)
             rows.append((spec.n_impacts, baseline, peak, wall))
+            half = len(each) // 2
+            workers.append((spec.n_impacts, each[:half], each[half:]))
+            if n_designs == 1000:
+                reads = read_times(out)
             shutil.rmtree(out)
-    print("peak resident memory of the main process (pool of 2 workers, summary included)")
+    engine = "pool" if kind == "process" else kind
+    print(f"peak resident memory of the main process ({engine} of 2 workers, summary included)")
     print(
         f"{'impacts':>12}{'baseline MB':>13}{'peak MB':>9}{'over MB':>9}{'peak/base':>10}"
         f"{'B/impact':>9}{'wall s':>8}"
@@ -169,6 +233,36 @@ def memory_part(method: str) -> None:
         f"({b2 + projected:.0f} MB in all); with sweep.nc combined in memory "
         f"({OLD_BYTES_PER_IMPACT} B/impact): {OLD_BYTES_PER_IMPACT * 1e8 / 2**30:.1f} GB"
     )
+    print(
+        f"main process within 1 GB at 10⁷ impacts: {'yes' if p2 < 1024 else 'NO'} "
+        f"({p2:.0f} MB in all)"
+    )
+    print()
+    print(f"peak resident memory of each worker ({engine} of 2), over its own baseline")
+    print(f"{'impacts':>12}  " + "  ".join(f"{'worker ' + str(k + 1):>24}" for k in range(2)))
+    for n, base, peaks in workers:
+        cells = [
+            f"{b:5.0f} → {p:5.0f} MB (+{p - b:5.1f})" for b, p in zip(base, peaks, strict=True)
+        ]
+        print(f"{n:>12,}  " + "  ".join(f"{c:>24}" for c in cells))
+    (_, b1s, p1s), (_, b2s, p2s) = workers
+    over1 = max(p - b for b, p in zip(b1s, p1s, strict=True))
+    over2 = max(p - b for b, p in zip(b2s, p2s, strict=True))
+    w_slope = (over2 - over1) * 2**20 / (n2 - n1)
+    print(
+        f"largest worker growth, 10⁷ against 10⁶ impacts: {over2:.1f} against {over1:.1f} MB; "
+        f"slope {w_slope:.2f} B/impact → 10⁸ projected "
+        f"{over2 + max(w_slope, 0.0) * (1e8 - n2) / 2**20:.0f} MB over a worker's baseline"
+    )
+    print()
+    print(f"reading from the {n2:,}-impact store (opened afresh each time, median of 5)")
+    for name, seconds in reads.items():
+        print(f"  {name:<46}{seconds:7.3f} s")
+    quick = all(v < 1.0 for k, v in reads.items() if "every quantity" not in k)
+    print(
+        "one design's map and one point across all designs under a second: "
+        + ("yes" if quick else "NO")
+    )
 
 
 def start_dask_forkserver(method: str) -> float:
@@ -184,15 +278,23 @@ def start_dask_forkserver(method: str) -> float:
     return time.perf_counter() - clock
 
 
-def time_engine(spec: SweepSpec, kind: str, workers: int, out: Path) -> dict[str, float]:
+def time_engine(
+    spec: SweepSpec, kind: str, workers: int, out: Path, scheduler: str | None = None
+) -> dict[str, float]:
     """Wall time of the whole sweep (engine start and shutdown included) and where it went, s:
     ``start`` (the engine), ``first`` (first result after the first submission: a pool starts
     its workers then), ``tasks`` (submission to last result), ``write`` (chunks of the store,
     summed over workers), ``finish`` (finishing the store), ``busy`` (the tasks' own time
-    summed)."""
+    summed).  ``kind`` "dask": the cluster at ``scheduler``, the workers writing the chunks
+    (``shared_store``) if ``workers`` is 1, else the main process."""
     start = time.perf_counter()
     with ExitStack() as stack:  # as the command: the engine closes before finishing
-        executor = stack.enter_context(make_executor(kind, workers))  # type: ignore[arg-type]
+        engine = (
+            make_executor("dask", scheduler=scheduler)
+            if kind == "dask"
+            else make_executor(kind, workers)  # type: ignore[arg-type]
+        )
+        executor = stack.enter_context(engine)
         started = time.perf_counter() - start
         run_sweep(
             spec,
@@ -201,6 +303,7 @@ def time_engine(spec: SweepSpec, kind: str, workers: int, out: Path) -> dict[str
             figures=None,
             times={"start": started},
             when_tasks_done=stack.close,
+            shared_store=kind == "dask" and workers == 1,
         )
     wall = time.perf_counter() - start
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))
@@ -230,6 +333,18 @@ def main() -> int:
     )
     parser.add_argument(
         "--method", default="approximate", help=f"impact method: {', '.join(METHODS)}"
+    )
+    parser.add_argument(
+        "--memory-engine",
+        choices=("process", "dask-local"),
+        default="process",
+        help="the two workers of the memory part (default: a process pool)",
+    )
+    parser.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="also run the speed part's study on this running Dask cluster, its chunks "
+        "written by the main process and then by the workers (shared_store)",
     )
     parser.add_argument(
         "--part",
@@ -271,7 +386,7 @@ def main() -> int:
     print(f"  impacts ok          {ok:,} of {per_task:,} (the rest NaN with a status code)")
     print()
     if args.part in ("both", "memory"):  # before any Dask client leaves threads here
-        memory_part(args.method)
+        memory_part(args.method, args.memory_engine)
         print()
     if args.part == "memory":
         return 0
@@ -292,9 +407,10 @@ def main() -> int:
     same = True
     reference: xr.Dataset | None = None
     with tempfile.TemporaryDirectory(prefix="bench_sweep_") as scratch:
-        for label, kind, workers, repeat in engines_in_order(args.repeat):
+        for label, kind, workers, repeat in engines_in_order(args.repeat, bool(args.scheduler)):
             out = Path(scratch) / f"{kind}-{workers}-{repeat}"
-            runs.setdefault(label, []).append(time_engine(spec, kind, workers, out))
+            timed = time_engine(spec, kind, workers, out, args.scheduler)
+            runs.setdefault(label, []).append(timed)
             with open_sweep(out) as written:  # the store's contents, to the bit
                 if reference is None:
                     reference = written.load()
@@ -337,6 +453,16 @@ def main() -> int:
         print(
             f"{kind}: 2 workers vs 1: {ratios[len(ratios) // 2]:.2f}× median of {len(ratios)} "
             f"pairs (each pair run back to back; {ratios[0]:.2f}–{ratios[-1]:.2f}×)"
+        )
+    if args.scheduler:
+        ratios = sorted(
+            a["wall"] / b["wall"]
+            for a, b in zip(runs[CLUSTER_MAIN], runs[CLUSTER_SHARED], strict=True)
+        )
+        print(
+            f"running cluster: the workers writing their chunks (shared store) vs the main "
+            f"process writing them: {ratios[len(ratios) // 2]:.2f}× median of {len(ratios)} "
+            f"pairs ({ratios[0]:.2f}–{ratios[-1]:.2f}×)"
         )
     print()
     print(

@@ -63,6 +63,9 @@ def test_the_store_has_one_chunk_per_batch_and_is_read_lazily(
         "layout": STORE_LAYOUT,
         "designs_per_chunk": 4,
         "chunks": 2,
+        "shared_store": False,
+        "chunk_writer": "main process",  # serial: this process is the worker
+        "chunk_writes": {"workers": 0, "main_process": 2},
     }
     assert "sweep.zarr" in record["outputs"]
 
@@ -197,3 +200,47 @@ def test_two_tasks_of_one_chunk_never_run_at_once(
     assert executor.most == 1
     assert result.attrs["n_failed"] == 0
     assert_same_bits(serial_result, result)
+
+
+class ElsewhereFirst(Executor):
+    """Threads standing for remote Dask workers; the first chunk's task runs on a "node"
+    that does not see this run's store (it is handed another run's token)."""
+
+    def __init__(self) -> None:
+        self.inner = ThreadPoolExecutor(2)
+        self.first = True
+
+    def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> Future[Any]:
+        if self.first:
+            self.first = False
+            args = (*args[:-1], "another run")
+        return self.inner.submit(fn, *args, **kwargs)
+
+    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
+        self.inner.shutdown(wait, cancel_futures=cancel_futures)
+
+
+def test_a_worker_that_does_not_see_the_store_sends_its_results_to_be_written(
+    small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
+) -> None:
+    """``shared_store``: a worker that does not see this run's store (one that joined the
+    cluster later, without the shared path; a task of an earlier run) writes nothing there and
+    sends its results back; the main process writes them.  run.json says who wrote."""
+    with ElsewhereFirst() as executor:
+        result = run_sweep(
+            small_spec, tmp_path, executor, figures=None, designs_per_task=2, shared_store=True
+        )
+    assert_same_bits(serial_result, result)
+    store = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))["store"]
+    assert store["chunk_writer"] == "workers and main process"
+    assert store["chunk_writes"] == {"workers": 2, "main_process": 1}
+
+
+def test_without_a_shared_store_remote_workers_write_nothing(
+    small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
+) -> None:
+    with ThreadPoolExecutor(2) as executor:  # not this machine's pool: "remote" workers
+        result = run_sweep(small_spec, tmp_path, executor, figures=None, designs_per_task=2)
+    assert_same_bits(serial_result, result)
+    store = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))["store"]
+    assert (store["shared_store"], store["chunk_writer"]) == (False, "main process")

@@ -50,6 +50,13 @@ def add(commands: Any) -> None:
         help="a running Dask scheduler to use (default: none)",
     )
     p.add_argument(
+        "--shared-store",
+        action="store_true",
+        help="--out is on a path every Dask worker can write, the same path on each: the "
+        "--scheduler cluster's workers write their own chunks of sweep.zarr (default: this "
+        "process writes them from the results sent back; workers on this machine always write)",
+    )
+    p.add_argument(
         "--task-timeout",
         type=float,
         metavar="S",
@@ -152,6 +159,7 @@ def _run(args: argparse.Namespace, console: Console) -> int:
             workers=workers,
             scheduler=args.scheduler,
             task_timeout=args.task_timeout,
+            shared_store=args.shared_store,
         )
     record, out = result.record, result.out
     console.print(
@@ -262,7 +270,11 @@ def _where_time_went(record: dict[str, Any]) -> str:
             f"tasks {spent['tasks']:.1f} s"
             + (f" (first result after {first:.1f} s)" if first is not None else "")
         )
-        parts.append(f"writing chunks {record.get('chunk_write_time_s', 0.0):.1f} s (in the tasks)")
+        writer = {"workers": "by the workers", "main process": "by this process"}.get(
+            record.get("store", {}).get("chunk_writer", "workers"),
+            "by the workers and this process",
+        )
+        parts.append(f"writing chunks {record.get('chunk_write_time_s', 0.0):.1f} s ({writer})")
     parts += [
         f"{name} {spent[key]:.1f} s"
         for name, key in (

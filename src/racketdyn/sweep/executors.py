@@ -715,6 +715,25 @@ def _dask_executor(client: Any, start_method: str = "") -> Executor:
     return DaskExecutor(client, start_method)
 
 
+def on_each_worker(executor: Executor, fn: Callable[..., T], *args: Any) -> dict[str, T]:
+    """``fn(*args)`` run on each worker of a Dask executor now connected, by worker address
+    (``Client.run``); nothing for any other executor.
+
+    Parameters
+    ----------
+    executor : Executor
+        The executor (:func:`make_executor`).
+    fn : callable
+        A function importable on the workers (not a lambda), which should not raise.
+    *args
+        Its arguments.
+    """
+    client = getattr(executor, "_client", None)
+    if client is None:
+        return {}
+    return dict(client.run(fn, *args))
+
+
 def _local_workers(executor: Executor) -> bool:
     """Whether the executor's workers run on this machine (and see its files): then each
     worker writes its own part files, in parallel, and only small records travel back."""

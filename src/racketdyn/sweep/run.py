@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import logging
+import secrets
 import time
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import (
@@ -33,6 +34,7 @@ from racketdyn.sweep.executors import (
     _in_flight_limit,
     _local_workers,
     make_executor,
+    on_each_worker,
 )
 from racketdyn.sweep.runner import (
     SweepInterrupted,
@@ -58,6 +60,7 @@ from racketdyn.sweep.store import (
     set_complete,
     status_counts,
     store_info,
+    store_seen,
     write_modes,
 )
 from racketdyn.sweep.summary import (
@@ -109,6 +112,7 @@ def run_sweep(
     times: Mapping[str, float] | None = None,
     when_tasks_done: Callable[[], None] | None = None,
     command: Sequence[str] | None = None,
+    shared_store: bool = False,
 ) -> xr.Dataset:
     """Run a sweep: tasks of designs on an executor, written into one chunked store.
 
@@ -164,6 +168,14 @@ def run_sweep(
         The command as called, for ``run.json`` (default: this function's name).  The other
         steps read it: ``racketdyn predict --out`` refuses a folder whose ``run.json`` names
         ``racketdyn sweep`` or ``racketdyn.workflows.sweep``.
+    shared_store : bool
+        ``out_dir`` is on a path every worker can write, mounted at the same absolute path
+        on each (a cluster's shared file system): the workers of a remote Dask cluster write
+        their own chunks, as workers on this machine always do.  Checked on each worker
+        connected when the run starts; a worker that joins later and does not see the store
+        sends its results back and this process writes them.  Default: this process writes
+        the chunks of a remote cluster's workers from the results they send back.
+        ``run.json`` records which (``store.chunk_writer``, ``store.chunk_writes``).
 
     Returns
     -------
@@ -181,6 +193,8 @@ def run_sweep(
     SweepInterrupted
         On Ctrl-C (a :class:`KeyboardInterrupt`): the workers are stopped, every finished
         design is on disk; run again to resume.
+    InputError
+        With ``shared_store``, a worker that does not see the store or cannot write there.
     """
     started = time.perf_counter()
     if not isinstance(spec, SweepSpec):
@@ -257,6 +271,11 @@ def run_sweep(
                     chunk,
                     designs_per_task,
                 )
+            token = secrets.token_hex(8)  # the store this run's workers may write
+            set_complete(out, spec.sha256, False, run_token=token)
+            local = _local_workers(executor)
+            if shared_store and not local:
+                _check_shared(executor, out, spec.sha256, token)
             by_chunk: dict[int, list[Design]] = {}
             for design in todo:
                 by_chunk.setdefault(design.index // chunk, []).append(design)
@@ -272,7 +291,8 @@ def run_sweep(
                 task_timeout,
                 progress,
                 tally,
-                write_in_worker=_local_workers(executor),
+                write_in_worker=local or shared_store,
+                token=token,
             )
             runner.run(jobs)
             time_s["tasks"] = time.perf_counter() - clock
@@ -288,7 +308,7 @@ def run_sweep(
     clear_rows(out, spec.sha256, sorted(d.index for d in designs if d.index not in finished))
     write_modes(out, spec, read_records(out, spec.sha256))
     status_count = status_counts(out, spec.sha256)
-    set_complete(out, spec.sha256, True, **failure_attrs(failures))  # last
+    set_complete(out, spec.sha256, True, run_token="", **failure_attrs(failures))  # last
     time_s["finishing"] = time.perf_counter() - clock
     failures_path = out / "failures.json"
     if failures:
@@ -367,6 +387,14 @@ def run_sweep(
             "layout": STORE_LAYOUT,
             "designs_per_chunk": chunk,
             "chunks": -(-total // chunk),
+            "shared_store": shared_store,
+            # who wrote this run's chunks: the workers, this process, or both (a worker that
+            # did not see the store; a pool's start, when this process computes too)
+            "chunk_writer": _chunk_writer(tally),
+            "chunk_writes": {
+                "workers": tally.chunks_by_workers,
+                "main_process": tally.chunks_by_main,
+            },
         },
         "failed": [f["task_id"] for f in failures],
         "status_counts": status_count,
@@ -385,6 +413,40 @@ def run_sweep(
             (out / name).unlink()
     (out / "run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
     return result
+
+
+def _check_shared(executor: Executor, out: Path, sha256: str, token: str) -> None:
+    """Refuse ``shared_store`` when a connected Dask worker does not see the store in ``out``
+    or cannot write there."""
+    path = str(out.resolve())
+    unseen = {
+        w: why
+        for w, why in on_each_worker(executor, store_seen, path, sha256, token).items()
+        if why
+    }
+    if unseen:
+        worker, why = next(iter(unseen.items()))
+        workers = "worker does" if len(unseen) == 1 else "workers do"
+        raise InputError(
+            f"`shared_store`: {len(unseen)} Dask {workers} "
+            f"not see this run's store at {path} ({worker}, {why}); mount the output folder at "
+            "the same path on every worker, or run without `shared_store` (this process then "
+            "writes each chunk)"
+        )
+    log.info("shared store: the Dask workers write their own chunks of %s", path)
+
+
+def _chunk_writer(tally: _Tally) -> str:
+    """Who wrote this run's chunks: ``workers``, ``main process``, both, or ``none``."""
+    who = [
+        name
+        for name, count in (
+            ("workers", tally.chunks_by_workers),
+            ("main process", tally.chunks_by_main),
+        )
+        if count
+    ]
+    return " and ".join(who) or "none"
 
 
 def _rough_samples() -> int:

@@ -35,7 +35,7 @@ from typing import Any
 from racketdyn.sweep.design import Design
 from racketdyn.sweep.executors import ProcessPool, SerialExecutor, _in_flight_limit
 from racketdyn.sweep.spec import SweepSpec
-from racketdyn.sweep.store import STORE_NAME, recorded, write_chunk
+from racketdyn.sweep.store import STORE_NAME, StoreNotSeenError, recorded, write_chunk
 from racketdyn.sweep.task import SweepTask, TaskOutput, run_task
 
 __all__ = [
@@ -84,6 +84,8 @@ class _Tally:
     task_seconds: float = 0.0
     write_seconds: float = 0.0
     ran_here: int = 0
+    chunks_by_workers: int = 0
+    chunks_by_main: int = 0
     longest_s: float = 0.0
     first_result_s: float | None = None
     failures: list[dict[str, Any]] = field(default_factory=list)
@@ -168,11 +170,15 @@ def _run_batch(
     sha256: str,
     out_dir: str | None,
     indices: Sequence[int] = (),
+    token: str | None = None,
 ) -> list[TaskOutput | _DesignFailed]:
     """Run tasks (designs of one chunk) one after another where the executor put them; a
     design that raises is returned as :class:`_DesignFailed` and the others kept.  With
     ``out_dir``, write the finished ones into the store's chunk there and return them without
-    their arrays (the workers write, in parallel, and nothing large travels back)."""
+    their arrays (the workers write, in parallel, and nothing large travels back) — unless
+    this process does not see the store of the run ``token`` there (a Dask worker without
+    the shared path, :class:`~.store.StoreNotSeenError`): then with their arrays, for the
+    main process to write."""
     results: list[TaskOutput | _DesignFailed] = []
     for task in tasks:
         try:
@@ -183,7 +189,11 @@ def _run_batch(
         return results
     done = [(i, r) for i, r in zip(indices, results, strict=True) if isinstance(r, TaskOutput)]
     started = time.perf_counter()
-    write_chunk(Path(out_dir), sha256, [i for i, _ in done], [r for _, r in done])
+    try:
+        write_chunk(Path(out_dir), sha256, [i for i, _ in done], [r for _, r in done], token)
+    except StoreNotSeenError as error:
+        log.warning("the main process writes these designs: %s", error)
+        return results
     each = (time.perf_counter() - started) / max(1, len(done))
     return [
         replace(r, arrays={}, write_s=each) if isinstance(r, TaskOutput) else r for r in results
@@ -206,12 +216,16 @@ class _Runner:
         progress: ProgressCallback | None,
         tally: _Tally,
         write_in_worker: bool,
+        token: str | None = None,
     ) -> None:
         self.spec, self.out_dir, self.executor = spec, out_dir, executor
         self.chunk_size = designs_per_chunk
         self.limit, self.retries, self.task_timeout = limit, retries, task_timeout
         self.progress, self.tally = progress, tally
-        self.write_dir = str(out_dir) if write_in_worker else None
+        # an absolute path: a remote worker's working folder is its own
+        self.write_dir = str(out_dir.resolve()) if write_in_worker else None
+        self.token = token
+        self.in_main = isinstance(executor, SerialExecutor)  # its "worker" is this process
         self.busy: set[int] = set()  # chunks with a task in flight
         self.queue: deque[_Job] = deque()
         self.pending: dict[Future[list[TaskOutput | _DesignFailed]], tuple[_Job, float]] = {}
@@ -313,6 +327,7 @@ class _Runner:
                     self.spec.sha256,
                     self.write_dir,
                     [d.index for d in job.designs],
+                    self.token,
                 )
             except BrokenExecutor:
                 self._pool_broke([job])
@@ -365,7 +380,13 @@ class _Runner:
             except Exception as error:
                 self._failed(_Job(tuple(d for d, _ in finished), job.attempt, job.alone), error)
                 finished = []
+            else:
+                tally.chunks_by_main += 1
             tally.write_seconds += time.perf_counter() - started
+        elif finished and (here or self.in_main):
+            tally.chunks_by_main += 1
+        elif finished:
+            tally.chunks_by_workers += 1
         batch_s = 0.0
         for design, output in zip(job.designs, outputs, strict=True):
             if isinstance(output, _DesignFailed):

@@ -2,10 +2,11 @@
 
 :func:`~racketdyn.sweep.run.run_sweep` creates the store before the first task (every array's
 shape, coordinates and attributes; no data), and each finished batch of designs is written
-into its own chunk along ``design`` — by the worker that computed it when the worker shares
-this machine's disk, else by the main process — so no process ever holds more than a chunk of
-results.  Readers open it lazily (:func:`open_sweep`, ``xr.open_zarr``): the summary and the
-figures read it chunk by chunk.
+into its own chunk along ``design`` — by the worker that computed it when the worker sees
+the store (a worker on this machine; a remote Dask worker when the store is on a path every
+worker can write, ``run_sweep(shared_store=True)``), else by the main process — so no process
+ever holds more than a chunk of results.  Readers open it lazily (:func:`open_sweep`,
+``xr.open_zarr``): the summary and the figures read it chunk by chunk.
 
 What makes it safe to resume and to read:
 
@@ -17,6 +18,10 @@ What makes it safe to resume and to read:
   again);
 - a batch that completes a chunk already partly done reads the chunk first and keeps the done
   designs (only one task per chunk is in flight at a time);
+- a worker writes only into the store of the run that sent it its task: the group attribute
+  ``run_token`` (a random text set when a run starts, cleared when it finishes) must equal the
+  task's, so a worker that sees another folder at the same path (a node's own disk), or a
+  task left over from an earlier run, never writes there (:class:`StoreNotSeenError`);
 - the group attribute ``sweep_complete`` is 0 from the moment a run starts writing and becomes
   1 last, once every design has ended and the mode table and failures are written: a store of
   an interrupted run is never read as complete (:func:`open_sweep` refuses it).
@@ -53,7 +58,7 @@ if TYPE_CHECKING:
     import xarray as xr
     import zarr
 
-__all__ = ["STORE_LAYOUT", "STORE_NAME", "SWEEP_FORMAT", "open_sweep"]
+__all__ = ["STORE_LAYOUT", "STORE_NAME", "SWEEP_FORMAT", "StoreNotSeenError", "open_sweep"]
 
 # the package's logger, racketdyn.sweep: the sweep's messages keep one name
 log = logging.getLogger(__package__)
@@ -63,6 +68,8 @@ STORE_NAME = "sweep.zarr"
 """The store's folder in a sweep's output folder."""
 STORE_LAYOUT = "zarr-3, one chunk per design batch, records/design written last"
 """What ``run.json`` records as the store's layout (``store.layout``)."""
+RUN_TOKEN = "run_token"
+"""The group attribute naming the run that writes the store ("" once it has finished)."""
 RECORDS = "records"
 """The sub-group holding ``design``: per design, "" until it is done, then a JSON text."""
 
@@ -364,6 +371,57 @@ def _writable(group: zarr.Group, name: str) -> zarr.Array[Any]:
     return _array(group, name).with_config({"write_empty_chunks": True})
 
 
+class StoreNotSeenError(RuntimeError):
+    """A worker does not see this run's store at the path it was given (no store there,
+    another sweep's, or another run's): the main process writes the chunk instead."""
+
+
+def _group_for_run(path: Path, sha256: str, token: str) -> zarr.Group:
+    """The store at ``path`` opened for writing, if it is the one of the run ``token``.
+
+    Raises
+    ------
+    StoreNotSeenError
+        No store there, another spec's, or another run's (a node's own disk mounted at the
+        same path; a task left over from an earlier run).
+    """
+    try:
+        group = _open_group(path, sha256)
+    except (OSError, RuntimeError, KeyError, ValueError) as error:  # zarr: not found, …
+        raise StoreNotSeenError(f"{path}: {type(error).__name__}: {error}") from None
+    if group.attrs.get(RUN_TOKEN) != token:
+        raise StoreNotSeenError(f"{path} is not the store of this run (another run's token)")
+    return group
+
+
+def store_seen(out: str, sha256: str, token: str) -> str:
+    """Whether this process sees the store of run ``token`` in ``out`` and can write into its
+    folder: "" if so, else why not.  Run on each Dask worker before a run whose workers are
+    to write the store (``shared_store``).
+
+    Parameters
+    ----------
+    out : str
+        The sweep's folder, an absolute path.
+    sha256 : str
+        The spec's hash.
+    token : str
+        The run's token (the store's ``run_token`` attribute).
+    """
+    import socket
+    import tempfile
+
+    try:
+        _group_for_run(store_path(Path(out)), sha256, token)
+        with tempfile.NamedTemporaryFile(dir=store_path(Path(out)), prefix=".probe."):
+            pass
+    except StoreNotSeenError as error:
+        return f"{socket.gethostname()}: {error}"
+    except OSError as error:
+        return f"{socket.gethostname()}: cannot write in {store_path(Path(out))} ({error})"
+    return ""
+
+
 def set_complete(out: Path, sha256: str, complete: bool, **attrs: Any) -> None:
     """Set ``sweep_complete`` (and other attributes, written with it)."""
     group = _open_group(store_path(out), sha256)
@@ -438,16 +496,19 @@ def write_chunk(
     sha256: str,
     indices: Sequence[int],
     outputs: Sequence[TaskOutput],
+    token: str | None = None,
 ) -> None:
     """Write finished designs (all in one chunk) into the store, then their records.
 
     The chunk's designs done before and not among these are read first and kept; the rows
     of designs not done are the fill values (NaN, status 3).  Called where the designs ran
     when that process sees the store, else in the main process; one call per chunk at a
-    time (the runner never has two tasks of one chunk in flight)."""
+    time (the runner never has two tasks of one chunk in flight).  With ``token`` (a
+    worker's call), only into the store of that run, else :class:`StoreNotSeenError`."""
     if not outputs:
         return
-    group = _open_group(store_path(Path(out)), sha256)
+    path = store_path(Path(out))
+    group = _open_group(path, sha256) if token is None else _group_for_run(path, sha256, token)
     size = int(_array(group, "status").chunks[0])
     n_designs = int(_array(group, "status").shape[0])
     chunk = indices[0] // size

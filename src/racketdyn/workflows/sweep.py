@@ -65,6 +65,7 @@ def run_sweep_step(
     workers: int | None = None,
     scheduler: str | None = None,
     task_timeout: float | None = None,
+    shared_store: bool = False,
 ) -> SweepResult:
     """Run (or resume) a design sweep into ``out``.
 
@@ -89,11 +90,16 @@ def run_sweep_step(
         Seconds before a task counts as hung and runs again elsewhere
         (:func:`racketdyn.sweep.run_sweep`; default: 10 × the longest task so far, at least
         60 s).
+    shared_store : bool
+        ``out`` is on a path every Dask worker can write, at the same absolute path: a
+        ``dask`` cluster's workers write their own chunks of ``sweep.zarr`` (checked on each
+        worker; default: this process writes them; :func:`racketdyn.sweep.run_sweep`).
 
     Raises
     ------
     InputError
-        ``out`` holds another command's run (its run.json): its files are not replaced.
+        ``out`` holds another command's run (its run.json): its files are not replaced; with
+        ``shared_store``, a Dask worker that does not see the store.
     racketdyn.sweep.SweepInterrupted
         On Ctrl-C: the workers are stopped and every finished design is kept; run again to
         resume.
@@ -115,7 +121,14 @@ def run_sweep_step(
         # a local Dask cluster's forkserver imports while the cluster's scheduler starts
         start_early(engine, the_spec.method)
         dataset = _run(
-            the_spec, out_dir, executor, setup.progress, setup.figures, task_timeout, setup.command
+            the_spec,
+            out_dir,
+            executor,
+            setup.progress,
+            setup.figures,
+            task_timeout,
+            setup.command,
+            shared_store,
         )
     finally:
         lock.unlink(missing_ok=True)
@@ -138,6 +151,7 @@ def _run(
     figures: Callable[[Mapping[str, SummaryCurves], Path], list[Path]] | None,
     task_timeout: float | None,
     command: Sequence[str] | None,
+    shared_store: bool,
 ) -> xr.Dataset:
     """The sweep in its locked folder, on the engine ``executor`` starts."""
     with ExitStack() as stack:
@@ -157,5 +171,6 @@ def _run(
             times={"start": started} if running is not None else None,
             when_tasks_done=stack.close,
             command=command_record(command, "sweep"),
+            shared_store=shared_store,
         )
     return dataset
