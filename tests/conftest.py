@@ -84,3 +84,21 @@ def smooth_frame(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     measured._built_in_modes.cache_clear()
     yield
     measured._built_in_modes.cache_clear()
+
+
+# Tests that start whole sweeps, clusters or commands in other processes and signal them
+# (Ctrl-C, SIGKILL, a cluster's scheduler and workers) run one after another on one
+# pytest-xdist worker (``--dist loadgroup``): two of them at once put a pool, a local Dask
+# cluster and their deadlines on two cores together (three of them failed so once, none alone).
+PROCESS_TESTS = {
+    "test_sweep_faults.py",
+    "test_sweep_cluster.py",
+    "test_sweep_start.py",
+    "test_cli_interrupt.py",
+}
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    for item in items:
+        if item.path.name in PROCESS_TESTS:
+            item.add_marker(pytest.mark.xdist_group("processes"))
