@@ -208,6 +208,19 @@ def test_identifys_bad_numbers_name_their_option_and_unit(
     assert "max_order" not in line
 
 
+def test_more_worker_processes_than_the_machine_holds_is_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The fifth session's scan: ``predict --workers 100000`` with an uncertainty ran (a
+    transient one would have forked a process a task)."""
+    spread = tmp_path / "u.toml"
+    spread.write_text("[e_bg]\nrange = [0.80, 0.88]\n", encoding="utf-8")
+    argv = ["predict", "--grid", "2", "--no-figures", "--uncertainty", str(spread)]
+    assert main([*argv, "--workers", "100000", "--out", str(tmp_path / "o")]) == 2
+    _one_line(capsys, "--workers", "100000", "cores")
+    assert not (tmp_path / "o").exists()
+
+
 def test_a_ball_speed_twice_with_two_racket_speeds_is_two_cases(tmp_path: Path) -> None:
     result = run_predict(tmp_path / "p", speeds=[20.0, 20.0], racket_speed=[0.0, 30.0], grid=2)
     assert result.approximate is not None

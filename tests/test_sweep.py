@@ -889,7 +889,7 @@ def test_engine_choices_are_checked() -> None:
     checks = [
         ({"kind": "threads"}, "engine must be one of serial, process"),
         ({"kind": "dask"}, "needs a scheduler address"),
-        ({"kind": "process", "workers": 0}, "workers must be a whole number"),
+        ({"kind": "process", "workers": 0}, "`workers` must be a whole number"),
         ({"kind": "process", "scheduler": "tcp://127.0.0.1:8786"}, "for the dask engine only"),
     ]
     for arguments, message in checks:

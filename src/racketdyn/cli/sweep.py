@@ -94,10 +94,10 @@ def _run(args: argparse.Namespace, console: Console) -> int:
     import importlib.util
     from pathlib import Path
 
-    from racketdyn.errors import InputError, require_whole
+    from racketdyn.errors import InputError
     from racketdyn.plotting.steps import sweep_figures
     from racketdyn.sweep import load_sweep_spec
-    from racketdyn.sweep.executors import DASK_MISSING
+    from racketdyn.sweep.executors import DASK_MISSING, check_local_workers
     from racketdyn.sweep.runner import SECONDS_PER_IMPACT
     from racketdyn.workflows.sweep import run_sweep_step
 
@@ -107,7 +107,7 @@ def _run(args: argparse.Namespace, console: Console) -> int:
         )
     for option, count in (("--workers", args.workers), ("--dask-local", args.dask_local)):
         if count is not None:  # before anything starts or prints
-            require_whole(option, count)
+            check_local_workers(option, count)
     if args.serial:
         engine, workers = "serial", None
     elif args.workers is not None:

@@ -42,6 +42,25 @@ EngineKind = Literal["serial", "process", "dask-local", "dask"]
 Dask cluster, or a running Dask scheduler."""
 ENGINES: tuple[str, ...] = get_args(EngineKind)
 DEFAULT_WORKERS = 2
+PROCESSES_PER_CORE = 4
+"""Local worker processes allowed per core: more only thrash the machine (a transient sample
+or a sweep's task each take a core while they run)."""
+
+
+def check_local_workers(name: str, count: int) -> int:
+    """``count`` worker processes on this machine: a whole number from 1 to
+    :data:`PROCESSES_PER_CORE` a core (InputError naming ``name`` otherwise)."""
+    count = require_whole(name, count)
+    cores = os.cpu_count() or 1
+    limit = PROCESSES_PER_CORE * cores
+    if count > limit:
+        raise InputError(
+            f"{name} {count}: more worker processes than this machine runs side by side "
+            f"({cores} cores, at most {limit}); give at most {cores}, one a core"
+        )
+    return count
+
+
 DASK_MISSING = "the Dask engines need dask.distributed: pip install 'racketdyn[dask]'"
 """What to say when dask.distributed is not installed (the command line says it first)."""
 
@@ -409,7 +428,10 @@ def make_executor(
         The executor.  The Dask client and a local cluster are closed on exit.
     """
     one_of("engine", kind, ENGINES)
-    require_whole("workers", workers)
+    if kind in ("process", "dask-local"):
+        check_local_workers("`workers`", workers)
+    else:
+        require_whole("`workers`", workers)
     if kind == "dask":
         if not scheduler:
             raise InputError("the dask engine needs a scheduler address, e.g. tcp://HOST:8786")

@@ -29,7 +29,7 @@ from typing import Any, ParamSpec, TypeVar
 import numpy as np
 
 from racketdyn.__about__ import __version__
-from racketdyn.errors import InputError, require_whole
+from racketdyn.errors import InputError
 
 __all__ = [
     "REPORT_NAME",
@@ -469,7 +469,9 @@ def check_workers(workers: int | None, uncertainty: object | None) -> None:
     with an ``uncertainty`` (InputError naming them)."""
     if workers is None:
         return
-    require_whole("`workers`", workers)
+    from racketdyn.sweep.executors import check_local_workers  # the pool's own limit
+
+    check_local_workers("`workers`", workers)
     if uncertainty is None:
         raise InputError("`workers` is for the samples of an `uncertainty`: give one too")
 
