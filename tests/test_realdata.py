@@ -260,3 +260,17 @@ def test_wing_a_first_mode_at_13_5_hz_is_kept_or_named(tmp_path: Path) -> None:
     assert frfs is not None
     found = identify(frfs, (5.0, 999.997))
     assert _kept_or_named(found, frfs, 12.0, 15.0) == [pytest.approx(13.52, abs=0.1)]
+
+
+def test_a_left_out_gain_never_reads_as_its_threshold(tmp_path: Path) -> None:
+    # the wing's 610.6 Hz pole scores 1.49: it printed "only 1.5 × better with it (< 1.5)"
+    frfs = read_frfs(
+        realdata.file("wing_openmodal/wing_openmodal_measurements.uff.xz", tmp_path),
+        geometry=realdata.file("wing_openmodal/wing_openmodal_geometry_m.csv", tmp_path),
+    )
+    rows = [d for d in identify(frfs).dropped_modes if d.reason.startswith("no peak")]
+    assert rows
+    for row in rows:
+        shown = float(row.reason.split("only ")[1].split(" ×")[0])
+        assert shown < 1.5, row.reason
+        assert shown == pytest.approx(row.fit_gain, abs=0.01)

@@ -750,8 +750,9 @@ def identify(
             _dropped(
                 selected,
                 int(k),
-                f"no peak in the data: the fit near it is only {gain[k]:.2g} × better with it "
-                f"(< {FIT_GAIN_MIN:g})",
+                # cut, not rounded, to two decimals: 1.49 never reads as the threshold's 1.5
+                f"no peak in the data: the fit near it is only "
+                f"{np.floor(gain[k] * 100) / 100:.2f} × better with it (< {FIT_GAIN_MIN:g})",
                 gain=gain[k],
             )
         )
