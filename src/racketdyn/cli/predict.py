@@ -262,7 +262,7 @@ def _band(band: UncertainResult, at: tuple[int, int, int]) -> str:
 
     low, high = band.quantile("rebound_ratio", 0.05)[at], band.quantile("rebound_ratio", 0.95)[at]
     if not (np.isfinite(low) and np.isfinite(high)):
-        return "none: under 90 % of samples valid"
+        return f"none: {band.band_note(*at) or 'no valid sample'}"
     return f"{low:.3f}–{high:.3f}"
 
 

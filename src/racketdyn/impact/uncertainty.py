@@ -13,10 +13,16 @@ quantiles of :data:`BAND_QUANTITIES`.
 
 Location and ball speed are offsets from each impact's nominal value (a ball cannon's scatter),
 the same offset for every point and speed of one sample; the model parameters are absolute
-values (``range = [0.80, 0.88]`` for e_BG).  A sample whose impact the model cannot give (a
-status other than ``ok``, e.g. a location scattered onto the frame) is left out of that
-impact's statistics; where fewer than :data:`MIN_VALID_SHARE` of the samples are valid the
-band is NaN (the method cannot give it) and :attr:`UncertainResult.valid_share` says so.
+values (``range = [0.80, 0.88]`` for e_BG).  A sample whose location the scatter puts onto
+the frame (:data:`~racketdyn.impact.result.STATUS_FRAME_CONTACT`) is a frame shot: an outcome,
+not a failure of the method — a lab keeps only the string impacts and says how many hit the
+frame — so the band is over the samples that hit the strings and
+:attr:`UncertainResult.frame_shot_share` says how many did not; where more than
+:data:`MAX_FRAME_SHOT_SHARE` of them hit the frame the band is NaN (it would describe another
+point).  A string impact the model cannot give (any other status than ``ok``) is left out of
+that impact's statistics; where fewer than :data:`MIN_VALID_SHARE` of the string impacts are
+valid the band is NaN (the method cannot give it) and :attr:`UncertainResult.valid_share` says
+so.
 """
 
 from __future__ import annotations
@@ -35,12 +41,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.errors import InputError, one_of
-from racketdyn.impact.approximate import predict
+from racketdyn.impact.approximate import STATUSES, predict
 from racketdyn.impact.calibration import PARAMETERS
 from racketdyn.impact.grid import status_warnings_held
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import Method, ModelInputs, predict_rows
-from racketdyn.impact.result import IMPACT_QUANTITIES, STATUS_OK, ImpactResult
+from racketdyn.impact.result import (
+    IMPACT_QUANTITIES,
+    STATUS_FRAME_CONTACT,
+    STATUS_OK,
+    ImpactResult,
+)
 from racketdyn.impact.samples import predict_samples
 from racketdyn.impact.swing import SwingResult, predict_swing
 from racketdyn.impact.transient import predict_transient
@@ -54,6 +65,7 @@ if TYPE_CHECKING:  # imported where used: scipy.stats and xarray cost ≈ 0.5 s 
 __all__ = [
     "BAND_QUANTITIES",
     "IMPACT_INPUTS",
+    "MAX_FRAME_SHOT_SHARE",
     "MAX_SAMPLES",
     "MIN_VALID_SHARE",
     "QUANTILES",
@@ -108,8 +120,13 @@ ROUGH_SAMPLES = 64
 """Fewer samples than this give 5 % and 95 % quantiles too rough to quote: said in the log."""
 
 MIN_VALID_SHARE = 0.9
-"""Share of an impact's samples that must be valid for its band to be given: fewer, and the
-band would describe only the samples that happened to stay within the method."""
+"""Share of an impact's string impacts (samples not on the frame) that must be valid for its
+band to be given: fewer, and the band would describe only the samples that happened to stay
+within the method."""
+
+MAX_FRAME_SHOT_SHARE = 0.5
+"""Largest share of an impact's samples that may hit the frame for its band to be given: where
+most shots aimed at a point hit the frame, the few string impacts describe another point."""
 
 
 @dataclass(frozen=True)
@@ -331,6 +348,9 @@ class UncertainResult:
         (NaN where that sample's impact is not valid).
     valid : ndarray of bool
         ``(n_samples, n_points, n_speeds, n_supports)``: the sample's status is ``ok``.
+    frame_shot : ndarray of bool
+        The same shape: the sample's location is on the frame (a frame shot: an outcome, left
+        out of the band, counted by :attr:`frame_shot_share`).
     draws : Draws
         The drawn inputs.
     uncertainty : Uncertainty
@@ -342,17 +362,38 @@ class UncertainResult:
     nominal: ImpactResult | SwingResult
     samples: dict[str, NDArray[np.float64]]
     valid: NDArray[np.bool_]
+    frame_shot: NDArray[np.bool_]
     draws: Draws
     uncertainty: Uncertainty
     method: str
 
     @property
+    def frame_shot_share(self) -> NDArray[np.float64]:
+        """``(n_points, n_speeds, n_supports)`` share of samples that hit the frame."""
+        return np.asarray(self.frame_shot.mean(axis=0))
+
+    @property
     def valid_share(self) -> NDArray[np.float64]:
-        """``(n_points, n_speeds, n_supports)`` share of samples the method could give."""
-        return np.asarray(self.valid.mean(axis=0))
+        """``(n_points, n_speeds, n_supports)`` share of the string impacts (samples not on
+        the frame) the method could give; 0 where every sample hit the frame."""
+        strings = np.sum(~self.frame_shot, axis=0)
+        return np.asarray(np.sum(self.valid, axis=0) / np.maximum(strings, 1))
 
     def _given(self) -> NDArray[np.bool_]:
-        return np.asarray(self.valid_share >= MIN_VALID_SHARE)
+        return np.asarray(
+            (self.valid_share >= MIN_VALID_SHARE) & (self.frame_shot_share <= MAX_FRAME_SHOT_SHARE)
+        )
+
+    def band_note(self, *at: int) -> str:
+        """Why the impact at ``at`` (point, speed, support) has no band; "" where it has."""
+        if self.frame_shot_share[at] > MAX_FRAME_SHOT_SHARE:
+            return f"{self.frame_shot_share[at]:.0%} of the shots aimed here hit the frame"
+        if self.valid_share[at] < MIN_VALID_SHARE:
+            return (
+                f"{self.valid_share[at]:.0%} of the string impacts within the method "
+                f"(under {MIN_VALID_SHARE:.0%})"
+            )
+        return ""
 
     def quantile(self, attribute: str, q: float) -> NDArray[np.float64]:
         """``q`` quantile of a quantity over the valid samples, per impact (NaN where the band
@@ -380,7 +421,8 @@ class UncertainResult:
     def band_columns(self) -> dict[str, NDArray[np.float64]]:
         """Per impact, ``<column>_mean``, ``_sd``, ``_p05``, ``_p95`` for every band quantity
         (columns named after :data:`~racketdyn.impact.result.IMPACT_QUANTITIES`), plus
-        ``samples_valid``; each ``(n_points, n_speeds, n_supports)``."""
+        ``samples_valid`` (:attr:`valid_share`) and ``frame_shot_share``; each
+        ``(n_points, n_speeds, n_supports)``."""
         names = {q.attribute: q.name for q in IMPACT_QUANTITIES}
         columns: dict[str, NDArray[np.float64]] = {}
         for attribute in BAND_QUANTITIES:
@@ -390,6 +432,7 @@ class UncertainResult:
             for q in QUANTILES:
                 columns[f"{name}_p{round(100 * q):02d}"] = self.quantile(attribute, q)
         columns["samples_valid"] = self.valid_share
+        columns["frame_shot_share"] = self.frame_shot_share
         return columns
 
     def to_xarray(self) -> xr.Dataset:
@@ -419,7 +462,7 @@ class UncertainResult:
         for name, values in self.band_columns().items():
             base = name.rsplit("_", 1)[0]
             unit = next((u for n, u in units.values() if n == base), "1")
-            data[name] = (dims, values, {"units": unit if name != "samples_valid" else "1"})
+            data[name] = (dims, values, {"units": unit})  # "1" for the shares
         for attribute in BAND_QUANTITIES:
             name, unit = units[attribute]
             data[f"{name}_samples"] = (("sample", *dims), self.samples[attribute], {"units": unit})
@@ -573,23 +616,39 @@ def propagate(
     else:
         run = _each_sample
     with _statuses_held():
-        samples, valid = run(_Runs(method, inputs, draws, xy, speeds, model_options), progress)
-    flagged = int(np.count_nonzero(~valid))
+        samples, valid, frame = run(
+            _Runs(method, inputs, draws, xy, speeds, model_options), progress
+        )
     log.info("uncertainty: %d samples by the %s model", n, method)
-    if flagged:
-        log.warning(
-            "uncertainty: %d of %d sampled impacts are beyond the %s model (left out of "
-            "their bands; a band with under %.0f %% valid samples is NaN)",
-            flagged, valid.size, method, 100 * MIN_VALID_SHARE,
-        )  # fmt: skip
+    _log_left_out(valid, frame, method)
     return UncertainResult(
         nominal=nominal,
         samples=samples,
         valid=valid,
+        frame_shot=frame,
         draws=draws,
         uncertainty=uncertainty,
         method=method,
     )
+
+
+def _log_left_out(valid: NDArray[np.bool_], frame: NDArray[np.bool_], method: str) -> None:
+    """Say how many sampled impacts hit the frame and how many are beyond the model."""
+    shots = int(np.count_nonzero(frame))
+    beyond = int(np.count_nonzero(~valid & ~frame))
+    if shots:
+        log.info(
+            "uncertainty: %d of %d sampled impacts hit the frame (frame shots: left out of "
+            "their bands and counted in frame_shot_share; a band with over %.0f %% of them is "
+            "NaN)",
+            shots, valid.size, 100 * MAX_FRAME_SHOT_SHARE,
+        )  # fmt: skip
+    if beyond:
+        log.warning(
+            "uncertainty: %d of %d sampled string impacts are beyond the %s model (left out "
+            "of their bands; a band with under %.0f %% of its string impacts valid is NaN)",
+            beyond, valid.size - shots, method, 100 * MIN_VALID_SHARE,
+        )  # fmt: skip
 
 
 @contextmanager
@@ -606,8 +665,9 @@ T = TypeVar("T")
 SAMPLES_PER_TASK = 4
 """Samples in one task of an executor (:func:`propagate`'s ``executor``)."""
 
-Samples = tuple[dict[str, NDArray[np.float64]], NDArray[np.bool_]]
-"""Every sample's band quantities (NaN where not valid) and where each is valid."""
+Samples = tuple[dict[str, NDArray[np.float64]], NDArray[np.bool_], NDArray[np.bool_]]
+"""Every sample's band quantities (NaN where not valid), where each is valid and where each is
+a frame shot."""
 
 _BATCHED_OPTIONS = {"supports", "racket_speed", "labels", "stiffness_reading", "vibration_charge"}
 
@@ -639,9 +699,11 @@ class _Runs:
         return replace(self, draws=self.draws.part(index))
 
     def empty(self) -> Samples:
-        """NaN band quantities and no valid sample, ``(n, n_points, n_speeds, n_supports)``."""
+        """NaN band quantities, no valid sample and no frame shot,
+        ``(n, n_points, n_speeds, n_supports)``."""
         shape = (self.n, self.xy.shape[0], self.speeds.size, len(self.options["supports"]))
-        return {a: np.full(shape, np.nan) for a in BAND_QUANTITIES}, np.zeros(shape, dtype=bool)
+        nothing = np.zeros(shape, dtype=bool)
+        return {a: np.full(shape, np.nan) for a in BAND_QUANTITIES}, nothing, nothing.copy()
 
 
 def _each_sample(runs: _Runs, progress: Callable[[int, int], None] | None) -> Samples:
@@ -650,7 +712,7 @@ def _each_sample(runs: _Runs, progress: Callable[[int, int], None] | None) -> Sa
         runs.method, runs.inputs, runs.draws, runs.xy, runs.speeds, runs.options,
     )  # fmt: skip
     n = runs.n
-    samples, valid = runs.empty()
+    samples, valid, frame = runs.empty()
     for k in range(n):
         sample = _sample_inputs(inputs, draws, k)
         where = _inside(inputs.racket.head, xy + draws.location_offset[k])
@@ -659,11 +721,12 @@ def _each_sample(runs: _Runs, progress: Callable[[int, int], None] | None) -> Sa
         ok = np.asarray(result.status) == STATUS_OK
         ok[:, v + _racket_speeds(options, speeds) <= 0.0, :] = False  # no impact
         valid[k] = ok
+        frame[k] = np.asarray(result.status) == STATUS_FRAME_CONTACT
         for attribute in BAND_QUANTITIES:
             samples[attribute][k] = np.where(ok, getattr(result, attribute), np.nan)
         if progress is not None:
             progress(k + 1, n)
-    return samples, valid
+    return samples, valid, frame
 
 
 def _samples_task(runs: _Runs, draws: Draws) -> Samples:
@@ -676,12 +739,12 @@ def _on_executor(
     executor: Executor, runs: _Runs, progress: Callable[[int, int], None] | None
 ) -> Samples:
     """:func:`_each_sample` in tasks of :data:`SAMPLES_PER_TASK` samples on an executor."""
-    samples, valid = runs.empty()
+    samples, valid, frame = runs.empty()
     task = partial(_samples_task, runs)
-    for part, (found, valid[part]) in _in_tasks(executor, task, runs.draws, progress):
+    for part, (found, valid[part], frame[part]) in _in_tasks(executor, task, runs.draws, progress):
         for attribute in BAND_QUANTITIES:
             samples[attribute][part] = found[attribute]
-    return samples, valid
+    return samples, valid, frame
 
 
 def _in_tasks(
@@ -727,7 +790,7 @@ def _all_samples(runs: _Runs, progress: Callable[[int, int], None] | None) -> Sa
     ok = impacts.status_code == 0  # STATUSES[0]: ok
     ok &= (v + _racket_speeds(options, speeds)[None, :] > 0.0)[:, None, :, None]  # an impact
     samples = {a: np.where(ok, getattr(impacts, a), np.nan) for a in BAND_QUANTITIES}
-    return samples, ok
+    return samples, ok, impacts.status_code == STATUSES.index(STATUS_FRAME_CONTACT)
 
 
 def _racket_speeds(options: dict[str, Any], speeds: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -967,11 +1030,11 @@ def _sensitivity_outputs(runs: _Runs, executor: Executor | None) -> NDArray[np.f
     """``(n_outputs, n_points, n_runs)`` the outputs of every run at one speed and support,
     NaN where not valid."""
     if runs.method == "approx" and _batches(runs.inputs, runs.options):
-        samples, _ = _all_samples(runs, None)
+        samples, _, _ = _all_samples(runs, None)
     elif executor is not None:
-        samples, _ = _on_executor(executor, runs, None)
+        samples, _, _ = _on_executor(executor, runs, None)
     else:
-        samples, _ = _each_sample(runs, None)
+        samples, _, _ = _each_sample(runs, None)
     return np.stack([samples[a][:, :, 0, 0].T for a in SENSITIVITY_OUTPUTS])
 
 

@@ -454,7 +454,8 @@ def band_variables() -> dict[str, tuple[bool, str, str]]:
     Per impact (over ``(design, point, speed, racket_speed, support)``), as
     :meth:`racketdyn.impact.uncertainty.UncertainResult.band_columns` names them:
     ``<quantity>_mean``, ``_sd``, ``_p05``, ``_p95`` of contact time, peak force, vibration
-    energy, rebound ratio and outgoing speed, and ``samples_valid``.  Per face (over
+    energy, rebound ratio and outgoing speed, ``samples_valid`` and ``frame_shot_share``.
+    Per face (over
     ``(design, speed, racket_speed, support)``): ``best_rebound_ratio_p05/_p95`` and
     ``sweet_area_cm2_p05/_p95``, each sample's face metric's quantiles, and
     ``face_samples_valid``, the share of samples whose face counts (valid at 90 % of the
@@ -470,7 +471,8 @@ def band_variables() -> dict[str, tuple[bool, str, str]]:
             out[f"{name}_{stat}"] = (True, units, f"{what} over the samples: {long_name}")
         for q in QUANTILES:
             out[f"{name}_p{round(100 * q):02d}"] = (True, units, f"{q:.0%} quantile: {long_name}")
-    out["samples_valid"] = (True, "1", "share of the samples the method could give")
+    out["samples_valid"] = (True, "1", "share of the string impacts the method could give")
+    out["frame_shot_share"] = (True, "1", "share of the samples that hit the frame")
     for metric, (units, long_name) in _FACE_METRICS.items():
         for q in QUANTILES:
             out[f"{metric}_p{round(100 * q):02d}"] = (

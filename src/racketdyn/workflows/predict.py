@@ -305,7 +305,7 @@ def run_predict(
     uncertainty : Uncertainty, optional
         Uncertain inputs: each model run once per sample (:func:`racketdyn.impact.
         uncertainty.propagate`), the bands written beside the numbers (``<column>_mean``,
-        ``_sd``, ``_p05``, ``_p95``, ``samples_valid``) and every sample in
+        ``_sd``, ``_p05``, ``_p95``, ``samples_valid``, ``frame_shot_share``) and every sample in
         ``uncertainty.nc`` (``uncertainty_transient.nc`` for the transient with both).
     workers : int, optional
         Worker processes for the samples a model runs one by one (the transient model's): a
@@ -567,6 +567,9 @@ def _with_bands(table: ImpactResult, band: UncertainResult | None) -> dict[str, 
     return columns
 
 
+_SHARES = ("samples_valid", "frame_shot_share")
+
+
 def _write_table(result: PredictResult, table: ImpactResult, path: Path) -> None:
     """``impact.csv``: the approximate method's rows with their bands; a row filled from the
     transient model takes the transient's band."""
@@ -575,7 +578,7 @@ def _write_table(result: PredictResult, table: ImpactResult, path: Path) -> None
     if "approx" in result.bands and other is not None:
         filled = np.ravel(table.status) == STATUS_FROM_TRANSIENT
         for key, values in _with_bands(table, other).items():
-            if key.endswith(("_mean", "_sd", "_p05", "_p95")) or key == "samples_valid":
+            if key.endswith(("_mean", "_sd", "_p05", "_p95")) or key in _SHARES:
                 columns[key] = np.where(filled, values, columns[key])
     write_columns(path, columns)
     result.written.append(path)
