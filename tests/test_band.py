@@ -127,8 +127,11 @@ def test_the_edge_row_reaches_dropped_modes_csv_and_the_console(
 
     out = tmp_path / "o"
     assert main(["identify", str(_edge_case(tmp_path)), "--out", str(out)]) == 0
-    printed = capsys.readouterr().out
-    assert "--pin 873." in " ".join(printed.split())
+    printed = " ".join(capsys.readouterr().out.split())
+    assert "--pin 873." in printed
+    # why the band is what it is, said under the table (its bottom and its top)
+    assert "band 40–" in printed
+    assert "the FRFs' bandwidth (their last line)" in printed
     with (out / "dropped_modes.csv").open() as handle:
         rows = [r for r in csv.DictReader(handle) if r["stage"] == "edge"]
     assert len(rows) == 1

@@ -85,3 +85,28 @@ def test_a_peak_turned_off_ninety_degrees_is_still_a_mode() -> None:
     values = frfs.values + 2.0 * shape[:, None] * turned[None, :]
     found = identify(replace(frfs, values=values))
     assert np.min(np.abs(found.model.frequency - 260.0)) < 1e-3 * 260.0
+
+
+@pytest.mark.parametrize(
+    ("modes_hz", "band_hz", "words"),
+    [
+        ([1.1, 18.8, 62.0, 151.0, 290.0], None, ["an octave below", "18.8 Hz", "suspension"]),
+        ([13.5, 84.6, 236.9, 464.2], None, ["an octave below", "13.5 Hz"]),
+        ([2.5, 120.0, 358.0, 600.0], None, ["from 40 Hz", "120 Hz", "above 40 Hz"]),
+        ([2.5, 120.0, 358.0, 600.0], (80.0, 450.0), ["given"]),
+    ],
+)
+def test_the_identification_says_why_its_band_starts_where_it_does(
+    modes_hz: list[float], band_hz: tuple[float, float] | None, words: list[str]
+) -> None:
+    """A user who sees "6.71–999.75 Hz" over the table was not told why 6.71 (the new-user
+    trial's wing): ``band_note`` says what set the bottom and the top, in modal words (no
+    racket's), and the run's metadata keeps it."""
+    frfs = _frfs(modes_hz, top_hz=1000.0 if modes_hz[1] == 120.0 else 500.0)
+    found = identify(frfs, band_hz=band_hz)
+    note = found.band_note
+    for word in words:
+        assert word in note, note
+    assert ("bandwidth" in note) == (band_hz is None)
+    assert "racket" not in note
+    assert found.model.metadata["band_note"] == note

@@ -25,7 +25,8 @@ def _add_options(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--band",
         metavar="LOW,HIGH",
-        help="frequency band low,high, Hz (default 40 Hz to the FRFs' bandwidth: the last "
+        help="frequency band low,high, Hz (default from 40 Hz, or an octave below the data's "
+        "first clear peak where that lies below 40 Hz, to the FRFs' bandwidth: the last "
         "line of an exported file, fs/2.56 of FRFs racketdyn estimated)",
     )
     p.add_argument(
@@ -194,6 +195,9 @@ def print_modes(
             str(int(identification.selected.n_orders[k])),
         )
     console.print(table)
+    note = identification.band_note
+    band = f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
+    opt.say(console, f"band {band}: " + ("as given (--band)" if note == "given" else note))
     opt.say(
         console,
         f"median fit error {np.median(identification.fit.error):.2%}, design matrix "

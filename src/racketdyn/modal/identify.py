@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.measurement.records import FrfSet
+from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import (
     DroppedMode,
@@ -161,30 +161,54 @@ def default_band(frfs: FrfSet) -> tuple[float, float]:
     tuple of float
         (low, high), Hz.
     """
+    return _default_band(frfs)[0]
+
+
+def _default_band(frfs: FrfSet) -> tuple[tuple[float, float], str]:
+    """:func:`default_band` and why it is that band, in words (:attr:`Identification.band_note`)."""
     high = float(frfs.bandwidth_hz)
-    first = _first_flexible_peak(frfs, high)
+    top = f"to {high:.6g} Hz, the FRFs' bandwidth" + (
+        f" (fs/{ANALYSER_BANDWIDTH_FACTOR:g} of the time records)"
+        if high < float(frfs.frequency[-1])
+        else " (their last line)"
+    )
+    first, suspension = _first_flexible_peak(frfs, high)
     if first is None or first >= DEFAULT_LOW_HZ:
-        return (DEFAULT_LOW_HZ, high)
+        seen = (
+            "no clear peak in the data"
+            if first is None
+            else f"the data's first clear peak, {first:.3g} Hz, lies above {DEFAULT_LOW_HZ:g} Hz"
+        )
+        return (DEFAULT_LOW_HZ, high), f"from {DEFAULT_LOW_HZ:g} Hz ({seen}) {top}"
     lowest = float(frfs.frequency[min(SKIPPED_LINES, frfs.frequency.size - 1)])
-    return (max(first / FIRST_MODE_OCTAVE, lowest), high)
+    low = max(first / FIRST_MODE_OCTAVE, lowest)
+    why = f"an octave below the data's first clear peak, {first:.3g} Hz"
+    if suspension:
+        why += f", above {suspension} suspension peak{'s' * (suspension > 1)} under " + (
+            f"{SUSPENSION_MAX_HZ:g} Hz"
+        )
+    if low > first / FIRST_MODE_OCTAVE:
+        why += f"; the lowest line used, {SKIPPED_LINES} lines up"
+    return (low, high), f"from {low:.3g} Hz ({why}) {top}"
 
 
-def _first_flexible_peak(frfs: FrfSet, high: float) -> float | None:
-    """The lowest clear peak above the support's rigid-body modes, Hz (None: no clear peak)."""
+def _first_flexible_peak(frfs: FrfSet, high: float) -> tuple[float | None, int]:
+    """The lowest clear peak above the support's rigid-body modes, Hz (None: no clear peak),
+    and how many clear peaks below it were taken as the support's."""
     from scipy.signal import find_peaks
 
     keep = (frfs.frequency <= high) & (np.arange(frfs.frequency.size) >= SKIPPED_LINES)
     f = frfs.frequency[keep]
     level = np.abs(frfs.values[:, keep]).sum(axis=0)
     if f.size < 8 or not np.all(np.isfinite(level)):
-        return None
+        return None, 0
     found, _ = find_peaks(level, height=CLEAR_PEAK * float(np.median(level)))
     peaks = f[found]
     support = (peaks[:-1] < SUSPENSION_MAX_HZ) & (peaks[1:] / peaks[:-1] >= SUSPENSION_GAP)
     gaps = np.flatnonzero(support)
-    if gaps.size:
-        peaks = peaks[gaps[-1] + 1 :]
-    return float(peaks[0]) if peaks.size else None
+    below = int(gaps[-1] + 1) if gaps.size else 0
+    peaks = peaks[below:]
+    return (float(peaks[0]) if peaks.size else None), below
 
 
 def _checked_band(frfs: FrfSet, band: tuple[float, float]) -> tuple[float, float]:
@@ -588,6 +612,9 @@ class Identification:
         Modal constants, residuals, synthesised FRFs and the fit error of every FRF.
     band_hz : tuple of float
         Band used, Hz.
+    band_note : str
+        Why the band is what it is: given, or what set the default's bottom and top
+        (:func:`default_band`).
     scaling_note : str
         How the shapes were scaled and, when they could not be mass-normalised or the
         driving point's sign was reversed, why (empty for a plain mass-normalised model).
@@ -599,6 +626,7 @@ class Identification:
     selected: SelectedPoles
     fit: ModalFit
     band_hz: tuple[float, float]
+    band_note: str = ""
     scaling_note: str = ""
 
     @property
@@ -719,7 +747,11 @@ def identify(
     if not np.isnan(frfs.locations).all():  # none: a model without coordinates
         frfs.require_locations("identification (the mode shapes at the points)")
     frfs = frfs.with_usual_phase()  # a set of the conjugate convention (read_frfs does it too)
-    band = _checked_band(frfs, band_hz or default_band(frfs))
+    if band_hz is None:
+        default, band_note = _default_band(frfs)
+        band = _checked_band(frfs, default)
+    else:
+        band, band_note = _checked_band(frfs, band_hz), "given"
     stab = stabilisation(frfs, band, max_order=max_order)
     selected = select_poles(
         stab,
@@ -832,6 +864,7 @@ def identify(
         source=f"identified from {frfs.source}",
         metadata={
             "band_hz": list(band),
+            "band_note": band_note,
             "max_order": max_order,
             "exponential_window_s": frfs.exponential_window_s,
             "nodes": list(frfs.nodes),
@@ -852,7 +885,7 @@ def identify(
     )
     log.info("identified %d modes in %g–%g Hz", model.n_modes, *band)
     selected = replace(selected, dropped=dropped, dropped_modes=(*selected.dropped_modes, *late))
-    return Identification(model, frfs, stab, selected, fit, band, note)
+    return Identification(model, frfs, stab, selected, fit, band, band_note, note)
 
 
 def fit_gain(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:

@@ -148,7 +148,7 @@ def identify_file(
     geometry : path, optional
         Node coordinates if not in the file.
     band_hz : (low, high), optional
-        Band, Hz (default 40 Hz to the FRFs' bandwidth:
+        Band, Hz (default from below the first clear peak, at most 40 Hz, to the FRFs' bandwidth:
         :func:`racketdyn.modal.identify.default_band`).
     max_order : int
         Highest model order.
