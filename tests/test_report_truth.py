@@ -10,6 +10,7 @@ import pytest
 import racketdyn as rd
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.modal.identify import identify
+from racketdyn.modal.mac import mac
 from racketdyn.report.sections.truth import compare_with_truth, glance_line
 from racketdyn.rig import accelerometer_index, hammer_points, rig_model, simulate_hammer_test
 
@@ -75,3 +76,30 @@ def test_glance_counts_modes_outside_the_band_apart(rig_test) -> None:
     line = glance_line("free", rows, missed)
     expected = f"free: {len(rows)} of the rig's {in_band} modes in the band found"
     assert line == f"{expected}, {above} more outside it"
+
+
+def test_a_mode_is_paired_with_the_truth_mode_of_its_shape_not_the_first_near_it(
+    rig_test,
+) -> None:
+    """A new user's report paired an identified 1667.5 Hz mode with the truth's 1624.4 Hz
+    string-bed membrane (within 3 %, MAC 0.000) and then said the truth's 1667.5 Hz 5-node
+    bending was "not found".  Pairing by frequency in the truth's order took the first truth
+    mode within 3 %; now pairs are taken by shape (MAC) over every pair within 3 %, and a pair
+    whose shapes differ (MAC under 0.5) is none."""
+    _found, truth, reference = rig_test
+    flexible = [k for k in range(truth.n_modes) if truth.kinds[k] != "rigid-body"]
+    # two truth modes of different shapes; the identified model holds only the upper one, at
+    # 2.5 % above the lower one's frequency (inside the 3 % window of both)
+    lower, upper = flexible[1], flexible[2]
+    assert abs(float(mac(truth.mode_shapes[:, [lower]], truth.mode_shapes[:, [upper]])[0, 0])) < 0.5
+    moved = truth.frequency.copy()
+    moved[upper] = 1.025 * moved[lower]
+    fake = replace(
+        replace(truth, frequency=moved).select([upper]), metadata={"band_hz": [40.0, 2500.0]}
+    )
+    truth_near = replace(truth, frequency=moved)
+    rows, missed = compare_with_truth(fake, truth_near, reference, [])
+    paired = {r[0]: float(r[7]) for r in rows}
+    assert paired == {truth.names[upper]: pytest.approx(1.0, abs=1e-9)}
+    row = next(m for m in missed if m[0] == truth.names[lower])
+    assert "MAC" in row[2]

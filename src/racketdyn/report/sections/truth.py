@@ -24,7 +24,10 @@ HOW_TO_RUN = (
     "racketdyn identify DIR/frf_free/frfs.uff --out DIR/identify"
 )
 FREQUENCY_WINDOW = 0.03
-"""An identified mode within 3 % of a truth mode's frequency may be it (the best MAC wins)."""
+"""An identified mode within 3 % of a truth mode's frequency may be it (pairs by MAC)."""
+MIN_PAIR_MAC = 0.5
+"""An identified mode whose shape's MAC with a truth mode's is below this is not that mode,
+however near its frequency."""
 NODE_AT_ACCELEROMETER = 0.05
 """A truth mode whose shape at the accelerometer is below 5 % of its largest at the points is
 on a node there (the identification's weak driving point, :mod:`racketdyn.modal.identify`)."""
@@ -68,27 +71,15 @@ def compare_with_truth(
         if reference_m is not None and two_d
         else None
     )
-    used: set[int] = set()
+    pairs, scores, unlike = _pairs(found, truth, truth_at)
     rows: list[tuple[str, ...]] = []
     missed: list[tuple[str, str, str]] = []
     for k in range(truth.n_modes):
         if truth.kinds[k] == "rigid-body":
             continue
         f, zeta, name = float(truth.frequency[k]), float(truth.damping_ratio[k]), truth.names[k]
-        near = [
-            j
-            for j in range(found.n_modes)
-            if j not in used and abs(found.frequency[j] / f - 1) < FREQUENCY_WINDOW
-        ]
-        if near:
-            scores = {
-                j: float(mac(found.mode_shapes[:, [j]], truth_at[:, [k]])[0, 0])
-                if truth_at is not None
-                else float("nan")
-                for j in near
-            }
-            j = max(near, key=lambda i: (np.nan_to_num(scores[i]), -abs(found.frequency[i] - f)))
-            used.add(j)
+        if k in pairs:
+            j = pairs[k]
             rows.append(
                 (
                     name,
@@ -98,7 +89,22 @@ def compare_with_truth(
                     fmt(100 * zeta, ".3f"),
                     fmt(100 * found.damping_ratio[j], ".3f"),
                     fmt(100 * (found.damping_ratio[j] / zeta - 1), "+.1f"),
-                    fmt(scores[j], ".3f"),
+                    fmt(scores[k, j], ".3f"),
+                )
+            )
+            continue
+        if k in unlike:
+            j = unlike[k]
+            missed.append(
+                (
+                    name,
+                    fmt(f, ".1f"),
+                    f"not found: the mode identified at {found.frequency[j]:.1f} Hz is near it "
+                    + (
+                        f"but of another shape (MAC {scores[k, j]:.2f})"
+                        if np.isfinite(scores[k, j])
+                        else "but nearer another truth mode (no shapes to tell them apart)"
+                    ),
                 )
             )
             continue
@@ -126,6 +132,42 @@ def compare_with_truth(
         why = f"dropped: {min(reasons)[1]}" if reasons else "not found: no stable pole near it"
         missed.append((name, fmt(f, ".1f"), why))
     return rows, missed
+
+
+def _pairs(
+    found: ModalModel, truth: ModalModel, truth_at: Any
+) -> tuple[dict[int, int], Any, dict[int, int]]:
+    """Truth mode → identified mode, the MAC of every pair, and the truth modes whose only
+    identified neighbour is of another shape.
+
+    Over every pair within :data:`FREQUENCY_WINDOW`, the assignment of largest summed MAC
+    (:func:`scipy.optimize.linear_sum_assignment`; the nearer frequency breaks ties, and alone
+    decides without shapes); a pair under :data:`MIN_PAIR_MAC` is no pair."""
+    from scipy.optimize import linear_sum_assignment
+
+    flexible = [k for k in range(truth.n_modes) if truth.kinds[k] != "rigid-body"]
+    ratio = np.abs(found.frequency[None, :] / truth.frequency[:, None] - 1)
+    near = ratio < FREQUENCY_WINDOW
+    near[[k for k in range(truth.n_modes) if k not in flexible]] = False
+    if truth_at is not None:
+        scores = np.asarray(mac(found.mode_shapes, truth_at), dtype=float).T  # (truth, found)
+    else:
+        scores = np.full(near.shape, np.nan)
+    merit = np.where(near, np.nan_to_num(scores, nan=1.0) - ratio, -1e6)
+    rows, cols = linear_sum_assignment(merit, maximize=True)
+    pairs: dict[int, int] = {}
+    unlike: dict[int, int] = {}
+    for k, j in zip(rows.tolist(), cols.tolist(), strict=True):
+        if not near[k, j]:
+            continue
+        if truth_at is not None and scores[k, j] < MIN_PAIR_MAC:
+            unlike[k] = j
+        else:
+            pairs[k] = j
+    for k in flexible:  # near an identified mode that is another truth mode's
+        if k not in pairs and k not in unlike and near[k].any():
+            unlike[k] = int(np.argmin(np.where(near[k], ratio[k], np.inf)))
+    return pairs, scores, unlike
 
 
 def glance_line(label: str, rows: list[tuple[str, ...]], missed: list[tuple[str, str, str]]) -> str:
