@@ -70,8 +70,37 @@ class _Parser(argparse.ArgumentParser):
     ``racketdyn predict: error: argument --grid: invalid int value: '2.5'`` and exit 2, as
     every other bad input (``--help`` still shows the usage)."""
 
+    given: Sequence[str] = ()
+    """The command line being parsed (for the hint of :func:`_dash_value_hint`)."""
+
     def error(self, message: str) -> NoReturn:
+        if message.endswith("expected one argument"):
+            message += _dash_value_hint(message, self.given)
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+    def unrecognised(self, extras: Sequence[str]) -> NoReturn:
+        """Refuse arguments this command does not take, with the option each is nearest to."""
+        import difflib
+
+        options = [s for a in self._actions for s in a.option_strings if s.startswith("--")]
+        words = []
+        for extra in extras:
+            name = extra.split("=", 1)[0]
+            near = difflib.get_close_matches(name, options, n=1, cutoff=0.6)
+            hint = f" (did you mean {near[0]}?)" if name.startswith("-") and near else ""
+            words.append(f"{extra}{hint}")
+        self.error(f"unrecognized arguments: {' '.join(words)}")
+
+
+def _dash_value_hint(message: str, given: Sequence[str]) -> str:
+    """For ``argument --offsets: expected one argument`` where the next word starts with '-'
+    (a list of numbers whose first is negative, read as an option): it goes after '='."""
+    option = message.removeprefix("argument ").split(":", 1)[0].split("/")[-1].strip()
+    words = list(given)
+    for i, word in enumerate(words[:-1]):
+        if word == option and words[i + 1].startswith("-"):
+            return f"; a value that starts with '-' goes after '=': {option}={words[i + 1]}"
+    return ""
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -94,10 +123,15 @@ def parse(argv: Sequence[str] | None) -> argparse.Namespace:
     the command's parser (``args.parser``: its options name the library's parameters in
     errors, :func:`racketdyn.cli.options.in_flags`)."""
     parser = build_parser()
-    args = parser.parse_args(argv)
-    args.argv = list(sys.argv[1:] if argv is None else argv)
+    _Parser.given = list(sys.argv[1:] if argv is None else argv)
+    args, extras = parser.parse_known_args(argv)
     commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-    args.parser = commands.choices[args.command]
+    command = commands.choices[args.command]
+    if extras:  # said by the command's parser: its options, its --help
+        assert isinstance(command, _Parser)
+        command.unrecognised(extras)
+    args.argv = list(sys.argv[1:] if argv is None else argv)
+    args.parser = command
     return args
 
 

@@ -630,8 +630,8 @@ def progress_display(
     never drawn, each stage is printed as a line, at most one every
     :data:`PROGRESS_LINE_S` seconds (a long step, issue 27: calibrate ran 29 s without one).
     """
-    if lines and not console.is_terminal:
-        yield _progress_lines(console)
+    if not console.is_terminal:  # the line is never drawn; ending it printed an empty line
+        yield _progress_lines(console) if lines else _no_progress
         return
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn
 
@@ -652,6 +652,10 @@ def progress_display(
             )
 
         yield update
+
+
+def _no_progress(what: str, done: int, total: int) -> None:
+    """The progress of a step on a console that is not a terminal, without ``lines``."""
 
 
 PROGRESS_LINE_S = 5.0
