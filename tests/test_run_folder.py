@@ -142,3 +142,23 @@ def test_a_step_re_run_under_a_report_says_the_report_is_old(tmp_path: Path, cap
     # a folder with no report above says nothing of one
     assert main([*argv, str(tmp_path / "predict" / "inner")]) == 0
     assert "still shows" not in capsys.readouterr().out
+
+
+def test_a_new_folder_beside_a_report_is_not_said_to_be_in_it(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
+    """A new user's report, made with ``--steps`` over their step folders, was then said to
+    "still show this step's previous run" after every new folder beside it (a sweep, another
+    predict) — folders it never showed — and the advised ``racketdyn report .`` failed (two
+    predict runs there).  The page now records the folders it shows: a new folder says
+    nothing, a shown one says so with the ``--steps`` the page was made with."""
+    from racketdyn.report import write_report
+
+    argv = ["predict", "--grid", "3", "--speed", "10", "--no-figures", "--out"]
+    assert main([*argv, str(tmp_path / "first")]) == 0
+    write_report(tmp_path, steps=[("predict", "first")])
+    capsys.readouterr()
+    assert main([*argv, str(tmp_path / "second")]) == 0  # never in the page
+    assert "still shows" not in capsys.readouterr().out
+    assert main([*argv, str(tmp_path / "first")]) == 0  # the page's own predict folder
+    printed = " ".join(capsys.readouterr().out.split())
+    assert "still shows this step's previous run" in printed
+    assert f"racketdyn report {tmp_path} --steps predict=first makes it again" in printed

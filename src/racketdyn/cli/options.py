@@ -696,16 +696,32 @@ def print_written(console: Console, paths: Sequence[Any]) -> None:
         say(console, f"  wrote {path}")
     if not paths:
         return
-    above = Path(paths[0]).parent.parent
+    step = Path(paths[0]).parent
+    above = step.parent
     report = above / REPORT_NAME
     if report.is_file() and report.stat().st_mtime <= Path(paths[0]).stat().st_mtime:
+        shown, given = _report_steps(report)
+        if shown is not None and step.name not in shown:
+            return  # a folder the page never showed
+        again = f"racketdyn report {above}" + (f" --steps {given}" if given else "")
         say(
             console,
-            f"{report} still shows this step's previous run: racketdyn report {above} makes it "
-            "again",
+            f"{report} still shows this step's previous run: {again} makes it again",
             "yellow",
             soft_wrap=True,
         )
+
+
+def _report_steps(report: Any) -> tuple[list[str] | None, str]:
+    """The step folders a report page shows (None: a page that does not say, made before it
+    did) and the ``--steps`` it was made with, from its ``racketdyn-steps`` meta lines."""
+    import re
+
+    head = report.read_text(encoding="utf-8", errors="replace")[:4000]
+    shown = re.search(r'<meta name="racketdyn-steps" content="([^"]*)">', head)
+    given = re.search(r'<meta name="racketdyn-steps-given" content="([^"]*)">', head)
+    folders = None if shown is None else [s for s in shown.group(1).split(",") if s]
+    return folders, "" if given is None else given.group(1)
 
 
 def print_status(console: Console, status: Any, csv_name: str, label: str = "") -> None:

@@ -34,7 +34,7 @@ DERIVED_LABELS: dict[str, str] = {
     "centre_of_percussion": "centre of percussion, pivot at the grip",
     "head_area": "head (string-bed) area",
     "bed_tension": "string tension in the played bed (pull tension less its loss)",
-    "reduced_mass_centre_free": "reduced mass at the face centre, free (eq 4)",
+    "reduced_mass_centre_free": "reduced mass at the face centre, free: 1/(1/M + b²/I_G)",
     "reduced_mass_centre_pinned": "reduced mass at the face centre, pinned at the grip (eq 4)",
 }
 """Labels of the racket's derived properties in the racket section, by key without its unit."""

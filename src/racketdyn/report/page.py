@@ -203,6 +203,10 @@ def write_report(
         version=__version__,
         created=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
         folder=run_dir.name or run_dir.resolve().name,
+        step_folders=",".join(_relative(s.folder, run_dir) for s in run.steps),
+        steps_given=",".join(
+            f"{s.name}={_relative(s.folder, run_dir)}" for s in run.steps if s.given
+        ),
         glance=glance,
         sections=shown,
         missing=missing,
@@ -221,6 +225,15 @@ def write_report(
         partial.unlink(missing_ok=True)
     log.info("wrote %s (%d sections)", path, len(shown))
     return path
+
+
+def _relative(folder: Path, run_dir: Path) -> str:
+    """A step folder as the page records it (``racketdyn-steps``): relative to the report's
+    folder, ``.`` for the folder itself."""
+    try:
+        return folder.resolve().relative_to(run_dir.resolve()).as_posix() or "."
+    except ValueError:
+        return folder.resolve().as_posix()
 
 
 def _racket_name(run: RunFolder) -> str:
