@@ -159,3 +159,16 @@ def test_steps_from_the_command_line_name_the_option(
     error = " ".join(capsys.readouterr().err.split())
     assert "--steps" in error
     assert "NAME=FOLDER" in error
+
+
+def test_a_step_the_report_has_no_section_for_is_said_left_out(tmp_path: Path) -> None:
+    """A new user's ``ball`` run beside their steps was neither shown nor listed as left out:
+    the page kept silent about a folder of theirs."""
+    assert main(["ball", "--speed", "10", "--out", str(tmp_path / "ball")]) == 0
+    argv = ["predict", "--grid", "3", "--speed", "20", "--no-figures"]
+    assert main([*argv, "--out", str(tmp_path / "predict")]) == 0
+    run = RunFolder.scan(tmp_path)
+    assert [run.rel(s.folder) for s in run.steps] == ["predict"]
+    assert [(run.rel(f), why) for f, why in run.left_out] == [
+        ("ball", "the report has no section for `ball` runs (its ball.csv and figure stand alone)")
+    ]

@@ -364,6 +364,12 @@ STEP_NAMES = (
 )
 """The steps the report reads, in the order of the page (``compare_ball`` is ``racketdyn
 compare --ball-at``)."""
+NOT_REPORTED = {
+    "ball": "its ball.csv and figure stand alone",
+    "sweep": "its summary.csv and figures stand alone",
+}
+"""Commands whose runs the report has no section for, and where their results are: such a
+folder is listed as left out, not passed over in silence."""
 LABELLED = ("frf", "identify")
 """Steps run once per support: several may be used, each known by its label (``free``,
 ``hand``, …: an FRF run's folder name after ``frf_`` or its tests file, an identification's
@@ -523,6 +529,10 @@ def _choose(
         record = records.get(folder)
         step = None if record is None or folder in chosen else _step_of(folder, record)
         if step is None:
+            other = None if record is None else _recorded_step(record)
+            if other in NOT_REPORTED:
+                why = f"the report has no section for `{other}` runs ({NOT_REPORTED[other]})"
+                left_out.append((folder, why))
             continue
         key = (step, _label_of(step, folder, record or {}))
         if key in keys:
