@@ -106,5 +106,18 @@ def run(args: argparse.Namespace, console: Console) -> int:
         f"{result.static_deformation_m * 1e3:.2f} mm (ITF limits 5.6-7.4 mm): a different "
         "test from a bounce",
     )
+    rigid = [row for row in result.bounces.rows() if row["surface"] == "rigid"]
+    if rigid and max(row["speed_mps"] for row in rigid) > _ITF_DROP_MPS:
+        opt.say(
+            console,
+            f"the ball's own COR on a rigid surface is one number, {rigid[0]['cor']:.3f} (the "
+            f"ITF rebound test at {_ITF_DROP_MPS:g} m/s), at every speed: measured balls lose "
+            "more at higher speeds (docs/references.md, 'Ball and strings'), so above it the "
+            "rigid COR here is an upper bound",
+        )
     opt.print_written(console, result.written)
     return 0
+
+
+_ITF_DROP_MPS = 7.06
+"""The ITF rebound test's impact speed (a drop from 100 in), where the ball's COR is set."""
