@@ -92,7 +92,7 @@ def test_a_peak_turned_off_ninety_degrees_is_still_a_mode() -> None:
     [
         ([1.1, 18.8, 62.0, 151.0, 290.0], None, ["an octave below", "18.8 Hz", "suspension"]),
         ([13.5, 84.6, 236.9, 464.2], None, ["an octave below", "13.5 Hz"]),
-        ([2.5, 120.0, 358.0, 600.0], None, ["from 40 Hz", "120 Hz", "above 40 Hz"]),
+        ([2.5, 120.0, 358.0, 600.0], None, ["from 40 Hz", "no clear peak in the data below"]),
         ([2.5, 120.0, 358.0, 600.0], (80.0, 450.0), ["given"]),
     ],
 )
