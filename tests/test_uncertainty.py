@@ -324,6 +324,22 @@ def test_sobol_indices_match_the_rigid_rebound_by_quadrature() -> None:
         assert found.first_order[o, 0, k] == pytest.approx(first[k], abs=0.05), (k, first)
         assert found.total_order[o, 0, k] == pytest.approx(total[k], abs=0.05), (k, total)
     assert found.dominant(0) == ("e_bg" if total[0] > total[1] else "roll_inertia_kgm2")
+    # each index's 90 % interval (bootstrap of the base samples) holds it and the exact value,
+    # and is wider on fewer samples
+    assert found.first_order_ci is not None
+    assert found.total_order_ci is not None
+    coarse = sensitivity(inputs, {"off": point}, 20.0, Uncertainty(spreads, seed=5), n=32)
+    assert coarse.first_order_ci is not None
+    assert coarse.total_order_ci is not None
+    for k in range(2):
+        for estimate, ci, exact, rough in (
+            (found.first_order, found.first_order_ci, first, coarse.first_order_ci),
+            (found.total_order, found.total_order_ci, total, coarse.total_order_ci),
+        ):
+            low, high = ci[0, o, 0, k], ci[1, o, 0, k]
+            assert low <= estimate[o, 0, k] <= high
+            assert low <= exact[k] <= high, (k, low, exact[k], high)
+            assert rough[1, o, 0, k] - rough[0, o, 0, k] > high - low
 
 
 def test_validate_gives_each_row_its_band_counts_coverage_and_names_the_row_outside(

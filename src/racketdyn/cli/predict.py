@@ -248,6 +248,7 @@ def _dominant_line(found: Sensitivity) -> str:
     parts = [
         f"{label} {found.dominant(p) or 'not known (samples beyond the method)'}"
         + (f" (on {share:.0%} of the samples)" if found.dominant(p) and share < 1.0 else "")
+        + (f", not told from {', '.join(found.rivals(p))}" if found.rivals(p) else "")
         for p, (label, share) in enumerate(zip(found.labels, found.valid_share, strict=True))
     ]
     return (

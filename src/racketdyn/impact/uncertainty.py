@@ -852,6 +852,11 @@ class Sensitivity:
         Model runs it took (``n (d + 2)``).
     valid_share : ndarray
         ``(n_points,)`` share of the base samples the indices at each point rest on.
+    first_order_ci, total_order_ci : ndarray, optional
+        ``(2, n_outputs, n_points, n_inputs)``: each index's 90 % confidence interval (low,
+        high) from its base samples (:data:`SENSITIVITY_BOOTSTRAP`); an index whose interval
+        holds 0 is not told from none, one whose intervals overlap another's not told from
+        it.
     """
 
     labels: tuple[str, ...]
@@ -863,6 +868,8 @@ class Sensitivity:
     support: str
     evaluations: int
     valid_share: NDArray[np.float64]
+    first_order_ci: NDArray[np.float64] | None = None
+    total_order_ci: NDArray[np.float64] | None = None
 
     def dominant(self, point: int, output: str = "rebound_ratio") -> str:
         """The input with the largest total index at a point ("" when not known)."""
@@ -871,22 +878,40 @@ class Sensitivity:
             return ""
         return self.inputs[int(np.argmax(total))]
 
+    def rivals(self, point: int, output: str = "rebound_ratio") -> tuple[str, ...]:
+        """The inputs :meth:`dominant`'s total index is not told from: their 90 % intervals
+        reach into its interval (none without intervals)."""
+        if self.total_order_ci is None or not self.dominant(point, output):
+            return ()
+        o = SENSITIVITY_OUTPUTS.index(output)
+        top = int(np.argmax(self.total_order[o, point]))
+        low = self.total_order_ci[0, o, point, top]
+        high = self.total_order_ci[1, o, point]
+        return tuple(name for i, name in enumerate(self.inputs) if i != top and high[i] >= low)
+
     def rows(self) -> dict[str, list[Any]]:
         """``sensitivity.csv``: one row per point × output × input."""
         table: dict[str, list[Any]] = {
             key: []
             for key in (
                 "point", "x_m", "y_m", "ball_speed_mps", "support", "output", "input",
-                "first_order", "total_order", "samples_valid",
+                "first_order", "first_order_p05", "first_order_p95",
+                "total_order", "total_order_p05", "total_order_p95", "samples_valid",
             )
         }  # fmt: skip
+        blank = np.full((2, *self.first_order.shape), np.nan)
+        first_ci = blank if self.first_order_ci is None else self.first_order_ci
+        total_ci = blank if self.total_order_ci is None else self.total_order_ci
         for o, output in enumerate(SENSITIVITY_OUTPUTS):
             for p, label in enumerate(self.labels):
                 for i, name in enumerate(self.inputs):
+                    at = (o, p, i)
                     values = (
                         label, self.locations[p, 0], self.locations[p, 1], self.ball_speed,
-                        self.support, output, name, self.first_order[o, p, i],
-                        self.total_order[o, p, i], self.valid_share[p],
+                        self.support, output, name,
+                        self.first_order[at], first_ci[(0, *at)], first_ci[(1, *at)],
+                        self.total_order[at], total_ci[(0, *at)], total_ci[(1, *at)],
+                        self.valid_share[p],
                     )  # fmt: skip
                     for key, value in zip(table, values, strict=True):
                         table[key].append(value)
@@ -963,6 +988,7 @@ def sensitivity(
         out = _sensitivity_outputs(runs, executor)
     f = out.reshape(*out.shape[:2], d + 2, n)  # (outputs, points, d + 2, n)
     first, total, share = _saltelli_2010(f[:, :, 0], f[:, :, 1], np.moveaxis(f[:, :, 2:], 2, 0))
+    first_ci, total_ci = _bootstrap_indices(f, uncertainty.seed)
     for label, given in zip(labels, share, strict=True):
         if given < 1.0:
             log.info(
@@ -980,7 +1006,47 @@ def sensitivity(
         support=support,
         evaluations=n * (d + 2),
         valid_share=share,
+        first_order_ci=np.where(np.isnan(first)[None], np.nan, first_ci),
+        total_order_ci=np.where(np.isnan(total)[None], np.nan, total_ci),
     )
+
+
+SENSITIVITY_BOOTSTRAP = 499
+"""Resamples of the base samples for the indices' 90 % confidence intervals (percentile
+bootstrap, :func:`scipy.stats.bootstrap`)."""
+
+
+def _bootstrap_indices(
+    f: NDArray[np.float64], seed: int | None
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """90 % intervals ``(2, n_outputs, n_points, d)`` of the first-order and total indices,
+    resampling the base samples j of ``f`` ``(n_outputs, n_points, d + 2, n)`` (A, B and every
+    A_B^i of one j together)."""
+    from scipy.stats import bootstrap
+
+    columns = tuple(f[:, :, k] for k in range(f.shape[2]))
+
+    def statistic(*arrays: NDArray[np.float64], axis: int = -1) -> NDArray[np.float64]:
+        # (n_outputs, n_points, [resamples,] n) each; the indices with the resamples last
+        first, total, _ = _saltelli_2010(arrays[0], arrays[1], np.stack(arrays[2:]))
+        both = np.stack([first, total])  # (2, n_outputs, n_points, [resamples,] d)
+        return both if arrays[0].ndim == 3 else np.moveaxis(both, -2, -1)
+
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore")  # NaN where a point has no indices; degenerate ones
+        found = bootstrap(
+            columns,
+            statistic,
+            paired=True,
+            vectorized=True,
+            n_resamples=SENSITIVITY_BOOTSTRAP,
+            confidence_level=0.9,
+            method="percentile",
+            random_state=np.random.default_rng(seed),
+            axis=-1,
+        )
+    low, high = found.confidence_interval  # (2, n_outputs, n_points, d) each
+    return np.stack([low[0], high[0]]), np.stack([low[1], high[1]])
 
 
 def _marginals(uncertainty: Uncertainty, inputs: ModelInputs) -> tuple[list[_Marginal], list[str]]:
@@ -1052,7 +1118,7 @@ def _saltelli_2010(
     """
     ok = np.isfinite(f_a) & np.isfinite(f_b) & np.all(np.isfinite(f_ab), axis=0)
     share = ok.all(axis=0).mean(axis=-1)
-    use = ok & (share >= MIN_VALID_SHARE)[None, :, None]
+    use = ok & (share >= MIN_VALID_SHARE)[None, ..., None]
     count = use.sum(axis=-1)
 
     def mean(values: NDArray[np.float64]) -> NDArray[np.float64]:
