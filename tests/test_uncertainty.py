@@ -663,3 +663,24 @@ def test_a_racket_file_without_its_frequency_says_the_120_hz_it_runs_at(tmp_path
     run_predict(tmp_path / "stated", speeds=[20.0], grid=2)  # the built-in racket states it
     stated = json.loads((tmp_path / "stated" / "run.json").read_text())["defaults_used"]
     assert not any("first bending frequency" in d for d in stated)
+
+
+def test_the_reports_dominant_input_names_the_inputs_it_is_not_told_from(tmp_path: Path) -> None:
+    """As the console does: where another input's total-index interval reaches the dominant
+    one's, the page says the dominant one is not told from it."""
+    from racketdyn.report.sections.rebound import _dominant
+
+    rows = [
+        "point,output,input,total_order,total_order_p05,total_order_p95",
+        "centre,rebound_ratio,e_bg,0.55,0.45,0.66",
+        "centre,rebound_ratio,first_bending_hz,0.47,0.37,0.58",
+        "centre,rebound_ratio,location_m x,0.02,0.00,0.04",
+        "tip,rebound_ratio,e_bg,0.90,0.85,0.95",
+        "tip,rebound_ratio,first_bending_hz,0.10,0.05,0.15",
+        "tip,rebound_ratio,location_m x,0.01,0.00,0.02",
+    ]
+    path = tmp_path / "sensitivity.csv"
+    path.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    line = _dominant(path)
+    assert "centre e_bg, not told from first_bending_hz" in line
+    assert "tip e_bg;" in line or line.endswith("tip e_bg")

@@ -244,21 +244,37 @@ def _bands(run: RunFolder, impacts: Impacts, speed: float) -> list[str]:
 
 
 def _dominant(path: Path) -> str:
-    """The input with the largest total Sobol' index of the rebound ratio at each point."""
-    best: dict[str, tuple[float, str]] = {}
+    """The input with the largest total Sobol' index of the rebound ratio at each point, and
+    the inputs whose 90 % interval reaches its interval (not told from it), where the file
+    gives the intervals."""
+    by_point: dict[str, list[tuple[float, str, float, float]]] = {}
     for row in read_csv(path, ("point", "output", "input", "total_order")):
         if row["output"] != "rebound_ratio":
             continue
-        value = float(row["total_order"]) if row["total_order"] not in ("", "nan") else math.nan
-        label = row["point"]
-        if not math.isfinite(value):
-            best[label] = (math.inf, "not known (samples beyond the method)")
-        elif label not in best or (best[label][0] != math.inf and value > best[label][0]):
-            best[label] = (value, row["input"])
+        value, low, high = (
+            _float(row.get(key)) for key in ("total_order", "total_order_p05", "total_order_p95")
+        )
+        by_point.setdefault(row["point"], []).append((value, row["input"], low, high))
+    parts = []
+    for label, entries in by_point.items():
+        if not all(math.isfinite(value) for value, *_ in entries):
+            parts.append(f"{label} not known (samples beyond the method)")
+            continue
+        value, name, low, _ = max(entries)
+        rivals = [n for v, n, _, h in entries if n != name and math.isfinite(h) and h >= low]
+        parts.append(f"{label} {name}" + (f", not told from {', '.join(rivals)}" if rivals else ""))
     return (
         "dominant input of the rebound ratio (largest total Sobol' index, sensitivity.csv): "
-        + "; ".join(f"{label} {name}" for label, (_, name) in best.items())
+        + "; ".join(parts)
     )
+
+
+def _float(text: str | None) -> float:
+    """A CSV cell as a number (NaN for an empty cell, ``nan`` or a column the file lacks)."""
+    try:
+        return float(text) if text not in (None, "") else math.nan
+    except ValueError:
+        return math.nan
 
 
 def _rigid_rebound_ratio(impacts: Impacts, record: dict[str, Any]) -> NDArray[np.float64]:
