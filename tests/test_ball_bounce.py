@@ -263,7 +263,7 @@ def test_ball_command_writes_its_files(tmp_path: Path) -> None:
     out = tmp_path / "ball"
     assert main(["ball", "--speed", "4.43,20", "--tension", "220", "--out", str(out)]) == 0
     names = sorted(p.name for p in out.iterdir())
-    assert names == ["ball.csv", "ball.nc", "ball_hysteresis.png", "run.json"]
+    assert names == ["ball.csv", "ball.nc", "ball_hysteresis.png", "figures.nc", "run.json"]
     with (out / "ball.csv").open() as handle:
         header = handle.readline().strip().split(",")
     assert tuple(header) == BALL_COLUMNS

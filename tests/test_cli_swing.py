@@ -204,7 +204,7 @@ def test_twist_writes_its_files_with_mirror_symmetry(twist_dir: Path) -> None:
     assert all(r["status"] == "ok" for r in rows)
     assert (twist_dir / "twist.png").stat().st_size > 0
     record = json.loads((twist_dir / "run.json").read_text(encoding="utf-8"))
-    assert record["outputs"] == ["twist.csv", "twist.png", "run.json"]
+    assert record["outputs"] == ["twist.csv", "figures.nc", "twist.png", "run.json"]
     assert record["supports"] == ["free", "hand"]
     # the built-in racket is symmetric about its long axis: roll odd, outgoing speed even in y
     # (reference engine, rtol 1e-10; test_twist.py holds the library to 1e-9)
@@ -241,7 +241,7 @@ def test_oblique_writes_its_files_and_obeys_its_kinematics(
     assert [float(r["incoming_angle_deg"]) for r in rows] == [0.0, 20.0, 40.0]
     assert (oblique_dir / "oblique.png").stat().st_size > 0
     record = json.loads((oblique_dir / "run.json").read_text(encoding="utf-8"))
-    assert record["outputs"] == ["oblique.csv", "oblique.png", "run.json"]
+    assert record["outputs"] == ["oblique.csv", "figures.nc", "oblique.png", "run.json"]
     assert "tangential stiffness" in record["caveat"]
     contact = record["tangential_contact"]
     ball = rd.Ball()

@@ -15,8 +15,7 @@ import pytest
 from matplotlib.figure import Figure
 
 import racketdyn as rd
-from figure_catch import Drawn, catch_figures
-from racketdyn.cli import main
+from figure_catch import Drawn, catch_figures, rig_frfs, same_3d_drawing, same_drawing
 from racketdyn.plotting import figures as figures_module
 from racketdyn.plotting.primitives import SUPPORT_STYLE
 from racketdyn.plotting.steps import compare_figures
@@ -36,18 +35,7 @@ def caught(monkeypatch: pytest.MonkeyPatch) -> Iterator[Drawn]:
 @pytest.fixture(scope="module")
 def frfs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
     """FRFs of the virtual rig, free and hand-held (few averages, no faults)."""
-    d = tmp_path_factory.mktemp("frfs")
-    commands = [
-        ["rig", "--support", "free,hand", "--averages", "2", "--out", f"{d}/rig"],
-        ["frf", f"{d}/rig/hammer_free.uff", "--out", f"{d}/frf_free"],
-        ["frf", f"{d}/rig/hammer_hand.uff", "--out", f"{d}/frf_hand"],
-    ]
-    logging.disable(logging.WARNING)
-    try:
-        for argv in commands:
-            assert main(argv) == 0, argv
-    finally:
-        logging.disable(logging.NOTSET)
+    d = rig_frfs(tmp_path_factory.mktemp("frfs"))
     return d / "frf_free" / "frfs.uff", d / "frf_hand" / "frfs.uff"
 
 
@@ -99,7 +87,7 @@ def test_compare_fig15_uses_the_runs_ball(
     data = IdentifiedRebound.from_xarray(read_figure_data(tmp_path / "compare" / FIGURES_FILE))
     redrawn = data.plot().get_figure()
     try:
-        _same_drawing(caught["fig15_identified.png"], redrawn)
+        same_drawing(caught["fig15_identified.png"], redrawn)
     finally:
         plt.close(redrawn)
 
@@ -124,39 +112,12 @@ def test_swing_along_axis_redrawn_from_figures_nc(tmp_path: Path, caught: Drawn)
         np.testing.assert_array_equal(read.rebound_speed, computed.rebound_speed)
     redrawn = figures_module.figure_swing_along_axis(curves, result.spots)
     try:
-        _same_drawing(caught["swing_along_axis.png"], redrawn)
+        same_drawing(caught["swing_along_axis.png"], redrawn)
     finally:
         plt.close(redrawn)
 
 
 # --- predict: every figure redrawn from figures.nc alone -------------------------------------
-def _artists(figure: Figure) -> list[list[np.ndarray]]:
-    """What each axes of a figure draws: its lines' x and y, its collections' points and
-    values (NaN kept), in drawing order."""
-    drawn = []
-    for ax in figure.axes:
-        arrays: list[np.ndarray] = []
-        for line in ax.get_lines():
-            arrays += [np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)]
-        for collection in ax.collections:
-            arrays.append(np.asarray(collection.get_offsets(), float))
-            values = collection.get_array()
-            if values is not None:
-                arrays.append(np.asarray(values, float))
-        drawn.append(arrays)
-    return drawn
-
-
-def _same_drawing(first: Figure, second: Figure) -> None:
-    a, b = _artists(first), _artists(second)
-    assert [len(x) for x in a] == [len(x) for x in b]
-    for left, right in zip(a, b, strict=True):
-        for u, v in zip(left, right, strict=True):
-            np.testing.assert_array_equal(u, v)
-    assert first.get_suptitle() == second.get_suptitle()
-    assert [ax.get_title() for ax in first.axes] == [ax.get_title() for ax in second.axes]
-
-
 def _by_label(figure: Figure, ax_index: int = 0) -> dict[str, np.ndarray]:
     ax = figure.axes[ax_index]
     return {str(line.get_label()): np.asarray(line.get_ydata(), float) for line in ax.get_lines()}
@@ -265,7 +226,7 @@ def test_each_predict_figure_redrawn_from_figures_nc_alone(
     assert set(redrawn) == set(drawn)  # every figure of the step
     try:
         for name, figure in redrawn.items():
-            _same_drawing(drawn[name], figure)
+            same_drawing(drawn[name], figure)
         computed = result.paper_figures
         # Figs 11-12: F_MEAN and T_c per point and support, a row of panels per racket speed
         assert computed.speed_curves.racket_speeds == [0.0, 2.0, 4.0]
@@ -366,33 +327,6 @@ SHAPE_FIGURES = ("fig4_mode_shapes", "fig5_node_lines", "fig6_nodes", "automac")
 """The identified shapes' figures (compare writes them once per model)."""
 
 
-def _same_3d_drawing(first: Figure, second: Figure) -> None:
-    """Fig. 4's panels: the same surfaces (their 3-D vertices), lines and points."""
-
-    def drawn(figure: Figure) -> list[np.ndarray]:
-        arrays = []
-        for ax in figure.axes:
-            for line in ax.get_lines():
-                arrays.append(np.asarray(line.get_data_3d(), float))  # type: ignore[attr-defined]
-            for collection in ax.collections:  # a surface's faces, or a scatter's points
-                faces = getattr(collection, "_faces", None)
-                if faces is None:
-                    points = getattr(collection, "_offsets3d", collection.get_offsets())
-                    arrays.append(np.asarray(points, float))
-                    continue
-                invalid = np.asarray(getattr(collection, "_invalid_vertices", False))
-                padding = np.broadcast_to(invalid, np.shape(faces)[:2])[..., None]
-                arrays.append(np.where(padding, 0.0, np.asarray(faces, float)))
-        return arrays
-
-    a, b = drawn(first), drawn(second)
-    assert len(a) == len(b) > 0
-    for u, v in zip(a, b, strict=True):
-        np.testing.assert_array_equal(u, v)
-    assert first.get_suptitle() == second.get_suptitle()
-    assert [ax.get_title() for ax in first.axes] == [ax.get_title() for ax in second.axes]
-
-
 def test_identified_shapes_redrawn_from_figures_nc_alone(
     compared: tuple[Any, Drawn, Path],
 ) -> None:
@@ -410,9 +344,9 @@ def test_identified_shapes_redrawn_from_figures_nc_alone(
     def same(name: str, redrawn: Figure) -> None:
         try:
             if name.startswith("fig4"):
-                _same_3d_drawing(drawn[name], redrawn)
+                same_3d_drawing(drawn[name], redrawn)
             else:
-                _same_drawing(drawn[name], redrawn)
+                same_drawing(drawn[name], redrawn)
         finally:
             plt.close(redrawn)  # one at a time: the step's figures are open
             plt.close(drawn.pop(name))

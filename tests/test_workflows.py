@@ -123,14 +123,14 @@ def test_frf_writes_its_folder_and_returns_the_estimate(tests_file: Path, tmp_pa
     )
 
     assert isinstance(result, FrfResult)
-    assert [p.name for p in result.written] == ["quality.csv", "frfs.uff"]
+    assert [p.name for p in result.written] == ["quality.csv", "frfs.uff", "figures.nc"]
     assert result.estimate is not None
     assert result.estimate.frfs is not None
     assert read_frf_uff(tmp_path / "frfs.uff").nodes == result.estimate.frfs.nodes == (1, 2)
     record = _record(tmp_path)
     assert record["command"] == ["racketdyn", "frf"]
     assert record["exponential_window_s"] == 0.1
-    assert record["outputs"] == ["quality.csv", "frfs.uff", "run.json"]
+    assert record["outputs"] == ["quality.csv", "frfs.uff", "figures.nc", "run.json"]
     assert not list(tmp_path.glob("*.png"))  # no hook, no figures
 
 
@@ -138,13 +138,13 @@ def test_twist_and_oblique_from_python(tmp_path: Path) -> None:
     twist = run_twist(
         tmp_path / "twist", offsets_m=[0.0, 0.04], supports=["free"], setup=Setup(rigid=True)
     )
-    assert [p.name for p in twist.written] == ["twist.csv"]
+    assert [p.name for p in twist.written] == ["twist.csv", "figures.nc"]
     assert twist.curves[0].roll_angle_rad[0] == pytest.approx(0.0, abs=1e-12)
     assert twist.curves[0].roll_angle_rad[1] > 0.0
     oblique = run_oblique(tmp_path / "oblique", angles_deg=[0.0, 30.0], setup=Setup(rigid=True))
     assert oblique.curve is not None
     assert oblique.curve.outgoing_spin_radps.shape == (2,)
-    assert _record(tmp_path / "oblique")["outputs"] == ["oblique.csv", "run.json"]
+    assert _record(tmp_path / "oblique")["outputs"] == ["oblique.csv", "figures.nc", "run.json"]
 
 
 def test_every_workflow_parameter_is_described() -> None:

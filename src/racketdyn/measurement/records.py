@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal, get_args
 
@@ -34,6 +35,7 @@ __all__ = [
     "FrfType",
     "HammerRecords",
     "ResponseType",
+    "SummedFrf",
 ]
 
 ANALYSER_BANDWIDTH_FACTOR = 2.56
@@ -259,6 +261,26 @@ class HammerRecords(_PointsAndReference):
         return np.asarray(np.arange(self.n_samples) * self.sampling_interval_s - self.pretrigger_s)
 
 
+@dataclass(frozen=True)
+class SummedFrf:
+    """The magnitudes of a set of FRFs summed over its points, Σ|H|, over a band (the curve
+    beside the stabilisation diagram; :meth:`FrfSet.summed`).
+
+    Attributes
+    ----------
+    frequency : ndarray (n_freq,)
+        Frequency lines, Hz.
+    magnitude : ndarray (n_freq,)
+        Σ|H| over the points, in the units of ``frf_type`` (:data:`FRF_UNITS`).
+    frf_type : str
+        The FRFs' type.
+    """
+
+    frequency: NDArray[np.float64]
+    magnitude: NDArray[np.float64]
+    frf_type: FrfType
+
+
 @dataclass(frozen=True, eq=False)
 class FrfSet(_PointsAndReference):
     """Frequency response functions of hammer points against one reference.
@@ -479,6 +501,23 @@ class FrfSet(_PointsAndReference):
             frequency=self.frequency[keep],
             values=self.values[:, keep],
             coherence=None if self.coherence is None else self.coherence[:, keep],
+        )
+
+    def summed(self, low_hz: float, high_hz: float) -> SummedFrf:
+        """Σ|H| over the points between two frequencies (inclusive), Hz."""
+        band = self.band(low_hz, high_hz)
+        return SummedFrf(band.frequency, np.abs(band.values).sum(axis=0), band.frf_type)
+
+    def at_points(self, indices: Sequence[int]) -> FrfSet:
+        """The FRFs of some points only (by index, in the order given)."""
+        keep = np.asarray(indices, dtype=int)
+        return replace(
+            self,
+            values=self.values[keep],
+            nodes=tuple(self.nodes[k] for k in keep),
+            locations=self.locations[keep],
+            coherence=None if self.coherence is None else self.coherence[keep],
+            n_averages=None if self.n_averages is None else self.n_averages[keep],
         )
 
     def as_type(self, frf_type: str) -> FrfSet:

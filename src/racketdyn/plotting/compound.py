@@ -24,8 +24,8 @@ from racketdyn.plotting.render import save_figure
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME
 
 if TYPE_CHECKING:
-    from racketdyn.workflows.compound import CompoundResult
-    from racketdyn.workflows.identify import BallCompareResult
+    from racketdyn.workflows.compound import CompoundFigures, CompoundResult
+    from racketdyn.workflows.frf_figures import BallFrfs
 
 __all__ = [
     "BALL_COMPARISON_FIGURE",
@@ -110,7 +110,7 @@ def plot_ball_mode_shape(
     return ax
 
 
-def coinciding_supports(result: CompoundResult) -> str:
+def coinciding_supports(result: CompoundFigures) -> str:
     """Words for Fig. 8a naming the supports whose ball-mode frames lie on one another
     (within :data:`COINCIDE` of the ball's displacement), with the largest difference and
     their ball-mode frequencies; empty when every frame stands apart."""
@@ -124,8 +124,8 @@ def coinciding_supports(result: CompoundResult) -> str:
                 words.append(
                     f"{first} and {second} coincide: frames within {100 * difference:.1f} %\n"
                     "of the ball's displacement (ball mode "
-                    f"{result.modes[first].ball_frequency:.2f} and "
-                    f"{result.modes[second].ball_frequency:.2f} Hz)"
+                    f"{result.ball_frequency_hz[first]:.2f} and "
+                    f"{result.ball_frequency_hz[second]:.2f} Hz)"
                 )
     return "\n".join(words)
 
@@ -259,17 +259,17 @@ def _mark_mode(ax: Axes, frequency_hz: float, label: str, colour: str) -> None:
         ax.axvline(frequency_hz, color=colour, lw=0.6, ls=":")
 
 
-def figure_compound_response(result: CompoundResult) -> Figure:
+def figure_compound_response(result: CompoundFigures) -> Figure:
     """Fig. 8c: the neck's acceleration after a blow on the strings, the first support's (one
     panel: the page is near its size budget; the CSV and run.json hold every support).
 
     Parameters
     ----------
-    result : CompoundResult
-        The step's result (its responses, computed by the workflow).
+    result : CompoundFigures
+        What the step computed for its figures (its responses).
     """
     support = result.supports[0]
-    modes = result.modes[support]
+    ball_hz = result.ball_frequency_hz[support]
     figure, ax = plt.subplots(figsize=(6.2, 3.0), layout="constrained")
     hand_over = result.hand_over.get(support, {})
     cycles = float(hand_over.get("ball_cycles", math.nan))
@@ -277,12 +277,12 @@ def figure_compound_response(result: CompoundResult) -> Figure:
     plot_neck_response(
         result.times,
         result.neck_acceleration[support],
-        modes.ball_frequency,
-        modes.frequency_of("2-node bending"),
+        ball_hz,
+        result.two_node_frequency_hz[support],
         support,
         ax=ax,
         parts=result.neck_parts.get(support),
-        hand_over_s=blow + cycles / modes.ball_frequency if 0 < cycles < math.inf else math.nan,
+        hand_over_s=blow + cycles / ball_hz if 0 < cycles < math.inf else math.nan,
     )
     away_mm = math.dist(result.location, result.hammer) * 1e3
     reading = neck_reading(hand_over)
@@ -294,13 +294,13 @@ def figure_compound_response(result: CompoundResult) -> Figure:
     return figure
 
 
-def figure_compound_frf(result: CompoundResult) -> Figure:
+def figure_compound_frf(result: CompoundFigures) -> Figure:
     """Fig. 9: receptance hammer → neck without and with the ball, every support.
 
     Parameters
     ----------
-    result : CompoundResult
-        The step's result.
+    result : CompoundFigures
+        What the step computed for its figures.
     """
     figure, axes = plt.subplots(1, 2, figsize=(8.0, 2.7), layout="constrained", sharey=True)
     for support in result.supports:
@@ -312,19 +312,19 @@ def figure_compound_frf(result: CompoundResult) -> Figure:
     axes[1].set_title("(b) the racket with the ball on the strings", fontsize=9)
     axes[1].set_ylabel("")  # shared with (a)
     for support in result.supports[:1]:
-        f_ball = result.modes[support].ball_frequency
+        f_ball = result.ball_frequency_hz[support]
         _mark_mode(axes[1], f_ball, f"ball mode {f_ball:.1f} Hz", "0.5")
     figure.suptitle("Fig. 9: receptance hammer → neck without and with the ball", fontsize=10)
     return figure
 
 
-def figure_compound_shape(result: CompoundResult) -> Figure:
+def figure_compound_shape(result: CompoundFigures) -> Figure:
     """Fig. 8a: the ball mode, the frame along its axis against the ball, per support.
 
     Parameters
     ----------
-    result : CompoundResult
-        The step's result.
+    result : CompoundFigures
+        What the step computed for its figures.
     """
     figure, ax = plt.subplots(figsize=(6.0, 3.0), layout="constrained")
     for support, (frame, ball) in result.ball_shape.items():
@@ -357,7 +357,7 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
     return paths
 
 
-def figure_ball_comparison(result: BallCompareResult) -> Figure:
+def figure_ball_comparison(data: BallFrfs) -> Figure:
     """The measured FRFs of the racket alone and with the ball (paper, Figs 9a and 9b).
 
     One FRF from each set: the hammer point nearest the ball that both sets hold and whose FRF
@@ -369,33 +369,30 @@ def figure_ball_comparison(result: BallCompareResult) -> Figure:
 
     Parameters
     ----------
-    result : BallCompareResult
-        ``compare --ball-at``'s result.
+    data : BallFrfs
+        What ``compare --ball-at`` chose to draw
+        (:func:`racketdyn.workflows.frf_figures.ball_frfs`).
     """
-    assert result.alone is not None
-    assert result.with_ball is not None
-    alone = result.alone.frfs.as_type("accelerance")
-    ball = result.with_ball.frfs.as_type("accelerance")
-    node = result.shown_node
-    i, j = alone.nodes.index(node), ball.nodes.index(node)
-    x, y = ball.locations[j, 0], ball.locations[j, 1]
-    top = 3.0 * max(
-        [*result.with_ball.model.frequency[:2], *result.alone.model.frequency[:1], 100.0]
-    )
+    alone, ball = data.alone, data.with_ball
+    node = alone.nodes[0]
+    x, y = ball.locations[0, 0], ball.locations[0, 1]
+    top = 3.0 * max([*data.with_ball_hz[:2], *data.alone_hz[:1], 100.0])
     figure, axes = plt.subplots(1, 2, figsize=(8.0, 2.8), layout="constrained", sharey=True)
-    for ax, frfs, row in ((axes[0], alone, i), (axes[1], ball, j)):
+    for ax, frfs in ((axes[0], alone), (axes[1], ball)):
         keep = (frfs.frequency > 0) & (frfs.frequency <= top)
-        ax.semilogy(frfs.frequency[keep], np.abs(frfs.values[row, keep]), lw=0.9, color="tab:blue")
+        ax.semilogy(frfs.frequency[keep], np.abs(frfs.values[0, keep]), lw=0.9, color="tab:blue")
         ax.set_xlabel("frequency (Hz)")
     keep = (alone.frequency > 0) & (alone.frequency <= top)
     axes[1].semilogy(
-        alone.frequency[keep], np.abs(alone.values[i, keep]), lw=0.7, color="0.6", ls="--",
+        alone.frequency[keep], np.abs(alone.values[0, keep]), lw=0.7, color="0.6", ls="--",
         label="racket alone",
     )  # fmt: skip
     axes[0].set_ylabel("|accelerance| (m/(N·s²))", fontsize=8)
-    for ax, identification in ((axes[0], result.alone), (axes[1], result.with_ball)):
-        model = identification.model
-        for f, name in zip(model.frequency, model.names, strict=True):
+    for ax, frequency, names in (
+        (axes[0], data.alone_hz, data.alone_names),
+        (axes[1], data.with_ball_hz, data.with_ball_names),
+    ):
+        for f, name in zip(frequency, names, strict=True):
             if f > top:
                 continue
             if name == BALL_MODE_NAME:
@@ -408,8 +405,8 @@ def figure_ball_comparison(result: BallCompareResult) -> Figure:
     figure.suptitle(
         f"Fig. 9: hammer at node {node} (x = {1e3 * x:.0f} mm, y = {1e3 * y:.0f} mm) → "
         f"accelerometer, ball at "
-        f"x = {1e3 * result.ball_at[0]:.0f} mm, y = {1e3 * result.ball_at[1]:.0f} mm "
-        f"({result.alone.model.support})",
+        f"x = {1e3 * data.ball_at[0]:.0f} mm, y = {1e3 * data.ball_at[1]:.0f} mm "
+        f"({data.support})",
         fontsize=9,
     )
     return figure

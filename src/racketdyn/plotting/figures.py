@@ -29,7 +29,6 @@ from racketdyn.impact.swing import SweetSpot, SwingResult
 from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FRF_UNITS, FrfSet
-from racketdyn.modal.identify import Identification
 from racketdyn.plotting.primitives import (
     SCALE_BAR_M,
     SUPPORT_STYLE,
@@ -64,8 +63,9 @@ from racketdyn.workflows.figure_data import (
     TransientCurves,
     TransientHistories,
 )
+from racketdyn.workflows.frf_figures import FitFigures, FrfPoints
 from racketdyn.workflows.identify import ModeComparison
-from racketdyn.workflows.shape_figures import AutoMac, AxisNodes, ModeShapes, is_racket_model
+from racketdyn.workflows.shape_figures import AutoMac, AxisNodes, ModeShapes
 
 __all__ = [
     "IDENTIFIED_STYLES",
@@ -339,12 +339,10 @@ def _point_label(frfs: FrfSet, index: int, centre_index: int) -> str:
     return f"node {frfs.nodes[index]} ({where}) mm" + (": " + ", ".join(roles) if roles else "")
 
 
-def _frf_figure(frfs: FrfSet, racket: Racket, frame_point: bool) -> Figure:
+def _frf_figure(points: FrfPoints, frame_point: bool) -> Figure:
     """Fig. 2 (``frame_point``) or Fig. 3: one point's FRF, magnitude, phase and coherence."""
-    centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
-    nearest = int(np.argmin(np.linalg.norm(frfs.locations[:, :2] - centre, axis=1)))
-    frame = frfs.driving_point if frfs.driving_point is not None else 0
-    index = frame if frame_point else nearest
+    frfs = points.frfs
+    index = points.frame if frame_point else points.centre
     figure, axes = plt.subplots(
         3,
         1,
@@ -353,27 +351,25 @@ def _frf_figure(frfs: FrfSet, racket: Racket, frame_point: bool) -> Figure:
         layout="constrained",
         gridspec_kw={"height_ratios": [2, 1, 1]},
     )
-    plot_frf(frfs, index, axes=list(axes), label=_point_label(frfs, index, nearest))
+    plot_frf(frfs, index, axes=list(axes), label=_point_label(frfs, index, points.centre))
     averages = "" if frfs.n_averages is None else f", {int(frfs.n_averages[index])} averages"
     figure.suptitle(f"{frfs.frf_type} FRF, {frfs.estimator}{averages} ({frfs.source})", fontsize=9)
     return figure
 
 
-def figure_frf_frame(frfs: FrfSet, racket: Racket) -> Figure:
+def figure_frf_frame(points: FrfPoints) -> Figure:
     """Paper Fig. 2: the frame's driving-point FRF (without a driving point, the first point's,
     and its label says so).
 
     Parameters
     ----------
-    frfs : FrfSet
-        The estimated FRFs.
-    racket : Racket
-        The racket (its string-bed centre names the point nearest it).
+    points : FrfPoints
+        The FRFs of the points drawn (:func:`racketdyn.workflows.frf_figures.frf_points`).
     """
-    return _frf_figure(frfs, racket, frame_point=True)
+    return _frf_figure(points, frame_point=True)
 
 
-def figure_frf_string_centre(frfs: FrfSet, racket: Racket) -> Figure:
+def figure_frf_string_centre(points: FrfPoints) -> Figure:
     """Paper Fig. 3: the FRF at the point nearest the string-bed centre.
 
     Each point is labelled the same way in Figs 2 and 3 (:func:`_point_label`): when the
@@ -381,12 +377,10 @@ def figure_frf_string_centre(frfs: FrfSet, racket: Racket) -> Figure:
 
     Parameters
     ----------
-    frfs : FrfSet
-        The estimated FRFs.
-    racket : Racket
-        The racket.
+    points : FrfPoints
+        The FRFs of the points drawn (:func:`racketdyn.workflows.frf_figures.frf_points`).
     """
-    return _frf_figure(frfs, racket, frame_point=False)
+    return _frf_figure(points, frame_point=False)
 
 
 def figure_contact_time(
@@ -496,53 +490,44 @@ def figure_node_lines(shapes: ModeShapes) -> Figure:
     return figure
 
 
-def figure_stabilisation(identification: Identification) -> Figure:
+def figure_stabilisation(data: FitFigures) -> Figure:
     """The stabilisation diagram of an identification, with the selected modes.
 
     Parameters
     ----------
-    identification : Identification
-        The step's identification.
+    data : FitFigures
+        What the step's identification draws (:func:`racketdyn.workflows.frf_figures.fit_figures`).
     """
     figure, ax = plt.subplots(figsize=(8, 5), layout="constrained")
-    plot_stabilisation(
-        identification.stabilisation, identification.selected, ax=ax, frfs=identification.frfs
-    )
+    plot_stabilisation(data.stabilisation, data.selected, ax=ax, frfs=data.summed)
     return figure
 
 
-def figure_synthesised_frfs(identification: Identification, racket: Racket) -> Figure:
+def figure_synthesised_frfs(data: FitFigures) -> Figure:
     """Measured FRFs against those synthesised from the identified model: the driving point and
     the point nearest the string-bed centre (a racket's modes) or the worst-fitted point.
 
     Parameters
     ----------
-    identification : Identification
-        The step's identification.
-    racket : Racket
-        The racket of the run.
+    data : FitFigures
+        What the step's identification draws (:func:`racketdyn.workflows.frf_figures.fit_figures`).
     """
-    model, frfs, fit = identification.model, identification.frfs, identification.fit
-    if is_racket_model(model):
-        centre = np.array([racket.head.centre_x_m, racket.head.centre_y_m])
-        second = int(np.argmin(np.linalg.norm(frfs.locations - centre, axis=1)))
-    else:
-        second = int(np.argmax(fit.error))  # the worst-fitted point
-    picks = sorted({frfs.driving_point or 0, second})
+    drawn = data.synthesised
+    frfs, frequency = drawn.frfs, drawn.frequency
     figure, axes = plt.subplots(
-        1, len(picks), figsize=(5.5 * len(picks), 4), layout="constrained", squeeze=False
+        1, frfs.n_points, figsize=(5.5 * frfs.n_points, 4), layout="constrained", squeeze=False
     )
-    band = (frfs.frequency >= fit.frequency[0]) & (frfs.frequency <= fit.frequency[-1])
-    for ax, index in zip(axes[0], picks, strict=True):
+    band = (frfs.frequency >= frequency[0]) & (frfs.frequency <= frequency[-1])
+    for ax, index in zip(axes[0], range(frfs.n_points), strict=True):
         ax.semilogy(frfs.frequency, np.abs(frfs.values[index]), color="0.6", label="measured")
         ax.semilogy(
-            fit.frequency,
-            np.abs(fit.synthesised[index]),
+            frequency,
+            np.abs(drawn.synthesised[index]),
             "--",
             color="tab:red",
-            label=f"synthesised (error {fit.error[index]:.1%})",
+            label=f"synthesised (error {drawn.error[index]:.1%})",
         )
-        ax.set_xlim(0, float(fit.frequency[-1]) * 1.05)
+        ax.set_xlim(0, float(frequency[-1]) * 1.05)
         ax.set_ylim(
             np.abs(frfs.values[index, band]).min() / 3, np.abs(frfs.values[index]).max() * 3
         )

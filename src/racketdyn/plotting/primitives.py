@@ -26,7 +26,7 @@ from racketdyn.impact.result import STATUS_OK, ImpactResult
 from racketdyn.impact.swing import SweetSpot, SwingResult
 from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
-from racketdyn.measurement.records import FRF_UNITS, FrfSet
+from racketdyn.measurement.records import FRF_UNITS, FrfSet, SummedFrf
 from racketdyn.modal.poles import PoleStability, SelectedPoles, Stabilisation
 from racketdyn.numerics import spans_a_surface
 from racketdyn.racket import SUPPORT_NAMES, HeadEllipse, Racket
@@ -1161,7 +1161,7 @@ def plot_stabilisation(
     stab: Stabilisation,
     selected: SelectedPoles | None = None,
     ax: Axes | None = None,
-    frfs: FrfSet | None = None,
+    frfs: FrfSet | SummedFrf | None = None,
 ) -> Axes:
     """The stabilisation diagram: model order against pole frequency, marker by stability.
 
@@ -1173,8 +1173,9 @@ def plot_stabilisation(
         Modes to mark with vertical lines (pinned ones solid).
     ax : matplotlib Axes, optional
         Where to draw; a new figure if None.
-    frfs : FrfSet, optional
-        FRFs whose summed magnitude ``Σ|H|`` to draw on a twin log axis (over the band).
+    frfs : FrfSet or SummedFrf, optional
+        FRFs whose summed magnitude ``Σ|H|`` to draw on a twin log axis (over the band), or
+        that sum (:meth:`FrfSet.summed`).
 
     Returns
     -------
@@ -1184,10 +1185,10 @@ def plot_stabilisation(
     """
     ax = _axes(ax, (7.0, 4.5))
     if frfs is not None:
-        band = frfs.band(*stab.band_hz)
+        summed = frfs if isinstance(frfs, SummedFrf) else frfs.summed(*stab.band_hz)
         twin = ax.twinx()
-        twin.semilogy(band.frequency, np.abs(band.values).sum(axis=0), color="0.4", lw=0.7)
-        twin.set_ylabel(f"Σ|H| ({FRF_UNITS[band.frf_type]})", color="0.4")
+        twin.semilogy(summed.frequency, summed.magnitude, color="0.4", lw=0.7)
+        twin.set_ylabel(f"Σ|H| ({FRF_UNITS[summed.frf_type]})", color="0.4")
         twin.tick_params(axis="y", colors="0.4")
         ax.set_zorder(twin.get_zorder() + 1)
         ax.patch.set_visible(False)

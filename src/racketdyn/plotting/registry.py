@@ -66,8 +66,8 @@ class FigureEntry:
     reads : tuple of str
         The attributes of the step's result (or the keys of the data read back from its folder,
         :func:`racketdyn.workflows.figure_data.read_step_data`) that ``draw`` takes; a dotted
-        name reaches into one (``"estimate.frfs"``); ``"self"`` is the result itself (a figure
-        of many of its arrays, not drawn from a folder).
+        name reaches into one (``"inputs.effective_racket"``). Every one is in the step's run
+        folder: the figure redraws from the folder alone (``tests/test_redraw_from_folder.py``).
     labelled : bool
         The step may write it once per model, ``<id>_<label>.png`` (``compare``: ``_free``,
         ``_hand``).
@@ -114,15 +114,10 @@ class FigureEntry:
         values = []
         for name in self.reads:
             value: Any = source
-            if name != "self":
-                for part in name.split("."):
-                    value = (
-                        value.get(part)
-                        if isinstance(value, Mapping)
-                        else getattr(value, part, None)
-                    )
-            elif isinstance(source, Mapping):
-                value = None  # data read back from a folder: no step result
+            for part in name.split("."):
+                value = (
+                    value.get(part) if isinstance(value, Mapping) else getattr(value, part, None)
+                )
             if value is None:
                 return None
             values.append(value)
@@ -147,7 +142,7 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 2",
             section="quality",
             draw=f"{_FIGURES}:figure_frf_frame",
-            reads=("estimate.frfs", "racket"),
+            reads=("frf_points",),
         ),
         FigureEntry(
             "fig3_frf_string_centre",
@@ -156,7 +151,7 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 3",
             section="quality",
             draw=f"{_FIGURES}:figure_frf_string_centre",
-            reads=("estimate.frfs", "racket"),
+            reads=("frf_points",),
         ),
         # --- identify (compare: once per model, _free and _hand) --------------------------
         FigureEntry(
@@ -167,7 +162,7 @@ FIGURES: dict[str, FigureEntry] = {
             section="stabilisation",
             labelled=True,
             draw=f"{_FIGURES}:figure_stabilisation",
-            reads=("identification",),
+            reads=("fit_figures",),
         ),
         FigureEntry(
             "fig4_mode_shapes",
@@ -208,7 +203,7 @@ FIGURES: dict[str, FigureEntry] = {
             section="stabilisation",
             labelled=True,
             draw=f"{_FIGURES}:figure_synthesised_frfs",
-            reads=("identification", "racket"),
+            reads=("fit_figures",),
         ),
         FigureEntry(
             "automac",
@@ -273,7 +268,7 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 8a",
             section="compound",
             draw=f"{_COMPOUND}:figure_compound_shape",
-            reads=("self",),
+            reads=("figure_data",),
         ),
         FigureEntry(
             "compound_response",
@@ -284,7 +279,7 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 8c",
             section="compound",
             draw=f"{_COMPOUND}:figure_compound_response",
-            reads=("self",),
+            reads=("figure_data",),
         ),
         FigureEntry(
             "compound_frf",
@@ -294,7 +289,7 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 9",
             section="compound",
             draw=f"{_COMPOUND}:figure_compound_frf",
-            reads=("self",),
+            reads=("figure_data",),
         ),
         # compare --ball-at, shown beside compound's Fig. 9
         FigureEntry(
@@ -308,7 +303,7 @@ FIGURES: dict[str, FigureEntry] = {
             paper="Fig. 9",
             section="compound",
             draw=f"{_COMPOUND}:figure_ball_comparison",
-            reads=("self",),
+            reads=("ball_frfs",),
         ),
         # --- predict: the paper's figures (approximate method) ----------------------------
         FigureEntry(
@@ -475,7 +470,7 @@ FIGURES: dict[str, FigureEntry] = {
             "face, one marker per support; flagged rows as crosses",
             section="validation",
             draw=f"{_VALIDATE}:figure_validation_residuals",
-            reads=("measured", "predicted", "inputs"),
+            reads=("measured", "predicted", "inputs.effective_racket"),
         ),
         # --- ball, sweep: not in the report -----------------------------------------------
         FigureEntry(
@@ -685,8 +680,7 @@ def markdown(section_titles: Mapping[str, str] | None = None) -> str:
             place = (
                 titles.get(e.section, e.section) if e.section else f"not shown: {e.not_in_report}"
             )
-            read = [f"`{r}`" if r != "self" else "the step's result" for r in e.reads]
-            source = ", ".join(read) if e.draw else "the step's writer"
+            source = ", ".join(f"`{r}`" for r in e.reads) if e.draw else "the step's writer"
             text = e.caption.format_map(words).replace("|", "\\|")
             lines.append(f"| {name} | {e.paper or '–'} | {place} | {source} | {text} |")
         lines.append("")

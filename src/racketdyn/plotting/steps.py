@@ -86,11 +86,11 @@ def compare_figures(result: CompareResult, out: Path) -> list[Path]:
     from racketdyn.plotting.registry import write_figures
 
     written = []
-    for label, identification, shapes in (
-        ("free", result.free, result.shapes_free),
-        ("hand", result.hand, result.shapes_hand),
+    for label, fits, shapes in (
+        ("free", result.fit_free, result.shapes_free),
+        ("hand", result.fit_hand, result.shapes_hand),
     ):
-        data = {"identification": identification, "racket": result.racket, "shape_figures": shapes}
+        data = {"fit_figures": fits, "shape_figures": shapes}
         written += write_figures("identify", data, out, label=label)
     return written + write_figures("compare", result, out)
 

@@ -21,8 +21,8 @@ from racketdyn.plotting.registry import draw, file_of, for_step
 from racketdyn.plotting.render import save_figure
 
 if TYPE_CHECKING:
-    from racketdyn.impact.measured import ModelInputs
     from racketdyn.io.measured import MeasuredRebound
+    from racketdyn.racket import Racket
     from racketdyn.workflows.validate import ValidateResult
 
 __all__ = [
@@ -146,7 +146,7 @@ def figure_validation_along_axis(measured: MeasuredRebound, predicted: Predicted
 
 
 def figure_validation_residuals(
-    measured: MeasuredRebound, predicted: Predicted, inputs: ModelInputs
+    measured: MeasuredRebound, predicted: Predicted, racket: Racket
 ) -> Figure:
     """The transient simulation's residual over the face; flagged rows as crosses.
 
@@ -154,12 +154,12 @@ def figure_validation_residuals(
     ----------
     measured, predicted
         As for :func:`figure_validation_parity` (``predicted["transient"]`` drawn).
-    inputs : ModelInputs
-        The inputs of the predictions (the racket's outline).
+    racket : Racket
+        The racket of the predictions (its outline; ``ModelInputs.effective_racket``).
     """
     rows = measured
     fig, ax = plt.subplots(figsize=(6.0, 3.8))
-    plot_outline(inputs.effective_racket, ax=ax)
+    plot_outline(racket, ax=ax)
     residual = np.asarray(predicted["transient"]) - rows.rebound_ratio
     ok = np.isfinite(residual)
     limit = float(np.max(np.abs(residual[ok]))) if np.any(ok) else 1.0

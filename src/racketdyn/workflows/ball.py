@@ -27,6 +27,7 @@ from racketdyn.ball import (
 from racketdyn.contact import string_bed_cor
 from racketdyn.impact.bounce import SURFACES, BallBounces, ball_bounces
 from racketdyn.plausibility import check, check_speeds
+from racketdyn.workflows.figure_data import defer_figure_data
 from racketdyn.workflows.inputs import load_racket_input
 from racketdyn.workflows.run import (
     StepResult,
@@ -112,6 +113,7 @@ def run_ball(
     result.written.append(bounces.write_csv(out_dir / "ball.csv"))
     bounces.to_xarray().to_netcdf(out_dir / "ball.nc")
     result.written.append(out_dir / "ball.nc")
+    defer_figure_data(result, {"bounces": bounces})
     inputs: dict[str, Any] = {
         **provenance,
         "speeds_mps": speed_list,

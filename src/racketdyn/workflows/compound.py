@@ -47,6 +47,7 @@ from racketdyn.io import default_racket, racket_to_dict
 from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket
 from racketdyn.rig.hammer import string_contact_time
+from racketdyn.workflows.figure_data import defer_figure_data
 from racketdyn.workflows.run import (
     StepResult,
     report,
@@ -242,6 +243,8 @@ class CompoundResult(StepResult):
     ball_shape : dict of str to tuple of (ndarray, float)
         Per support: the ball mode's frame displacement along the axis and the ball's, scaled
         so the ball's is 1 (real parts after removing the ball's phase; Fig. 8a).
+    figure_data : CompoundFigures or None
+        What the figures draw (in ``figures.nc``).
     """
 
     racket: Racket | None = None
@@ -274,6 +277,73 @@ class CompoundResult(StepResult):
     frf_with_ball: dict[str, NDArray[np.complex128]] = field(default_factory=dict)
     axis_x: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     ball_shape: dict[str, tuple[NDArray[np.float64], float]] = field(default_factory=dict)
+    figure_data: CompoundFigures | None = None
+
+
+@dataclass(frozen=True)
+class CompoundFigures:
+    """What the compound step's figures (Figs 8a, 8c, 9) draw: the step's computed responses and
+    the modes' frequencies they mark (in ``figures.nc``).
+
+    Attributes
+    ----------
+    supports : tuple of str
+        Supports, in order.
+    location, hammer : tuple of float
+        Where the ball sits and the hammer strikes (x, y), m.
+    times : ndarray
+        Times of the neck responses, s.
+    neck_acceleration, neck_parts, blow_s, hand_over
+        As :class:`CompoundResult`'s, per support.
+    frequency : ndarray
+        Frequencies of the FRFs, Hz.
+    frf_alone, frf_with_ball : dict of str to ndarray
+        Per support: receptance hammer → neck without and with the ball, m/N (complex).
+    axis_x : ndarray
+        Points along the long axis of the ball mode's shape, m.
+    ball_shape : dict of str to tuple of (ndarray, float)
+        Per support: the ball mode's frame displacement along the axis and the ball's.
+    ball_frequency_hz, two_node_frequency_hz : dict of str to float
+        Per support: the ball mode's and the 2-node bending mode's frequencies with the ball,
+        Hz (NaN without a 2-node mode).
+    """
+
+    supports: tuple[str, ...]
+    location: tuple[float, float]
+    hammer: tuple[float, float]
+    times: NDArray[np.float64]
+    neck_acceleration: dict[str, NDArray[np.float64]]
+    neck_parts: dict[str, dict[str, NDArray[np.float64]]]
+    blow_s: dict[str, float]
+    hand_over: dict[str, dict[str, float]]
+    frequency: NDArray[np.float64]
+    frf_alone: dict[str, NDArray[np.complex128]]
+    frf_with_ball: dict[str, NDArray[np.complex128]]
+    axis_x: NDArray[np.float64]
+    ball_shape: dict[str, tuple[NDArray[np.float64], float]]
+    ball_frequency_hz: dict[str, float]
+    two_node_frequency_hz: dict[str, float]
+
+    @classmethod
+    def of(cls, result: CompoundResult) -> CompoundFigures:
+        """The figures' data of a compound result."""
+        return cls(
+            tuple(result.supports),
+            result.location,
+            result.hammer,
+            result.times,
+            result.neck_acceleration,
+            result.neck_parts,
+            result.blow_s,
+            result.hand_over,
+            result.frequency,
+            result.frf_alone,
+            result.frf_with_ball,
+            result.axis_x,
+            result.ball_shape,
+            {s: float(m.ball_frequency) for s, m in result.modes.items()},
+            {s: m.frequency_of("2-node bending") for s, m in result.modes.items()},
+        )
 
 
 def frame_shifts(with_ball: CompoundSystem, alone: CompoundSystem) -> list[dict[str, Any]]:
@@ -448,6 +518,8 @@ def run_compound(
                 }
             )
     result.written.append(write_rows(result.out / "compound.csv", rows))
+    result.figure_data = CompoundFigures.of(result)
+    defer_figure_data(result, {"figure_data": result.figure_data})
     inputs = {
         **used.provenance,
         "racket": racket_to_dict(the_racket),

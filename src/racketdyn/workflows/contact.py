@@ -15,6 +15,7 @@ from racketdyn.errors import InputError
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.pulse import ContactTimes, contact_times
 from racketdyn.racket import Racket
+from racketdyn.workflows.figure_data import defer_figure_data
 from racketdyn.workflows.frf import read_records
 from racketdyn.workflows.inputs import load_racket_input
 from racketdyn.workflows.run import (
@@ -103,6 +104,9 @@ def run_contact(
         times.write_csv(path)
         result.written.append(path)
         result.tables.append(times)
+    defer_figure_data(
+        result, {"tables": result.tables, "labels": result.labels, "racket": the_racket}
+    )
     inputs = {
         "tests_files": [str(Path(t).resolve()) for t in tests],
         "labels": names,

@@ -23,12 +23,17 @@ object                        figures
 ============================  ==================================================================
 
 Each figure's variables are a group of ``figures.nc``, their names prefixed with the figure's
-key and ``__`` (netCDF 3 has no groups): ``fig11_12__mean_force_n``.
+key and ``__`` (netCDF 3 has no groups): ``fig11_12__mean_force_n``.  Every other step's
+figures read objects it computed, stored in its ``figures.nc`` as they are
+(:func:`defer_figure_data`, :func:`racketdyn.workflows._figure_io.store`: the FRFs of Figs 2–3
+and the fits of :mod:`racketdyn.workflows.frf_figures`, compound's ``CompoundFigures``, the
+swing map's impacts, twist's and oblique's curves, validate's rows, the ball's bounces);
+:func:`read_step_data` reads every one back, so each figure redraws from its folder alone.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -45,7 +50,8 @@ from racketdyn.impact.transient import Engine, predict_transient
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import HeadEllipse, Racket, landmark_points
 from racketdyn.racket_modal.shapes import axis_nodes
-from racketdyn.workflows._figure_io import _array, _has, _join, _part, _strings
+from racketdyn.workflows._figure_io import _array, _has, _join, _part, _strings, store, stored
+from racketdyn.workflows.run import StepResult, defer_file
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -76,6 +82,7 @@ __all__ = [
     "TransientCurves",
     "TransientHistories",
     "axis_points",
+    "defer_figure_data",
     "describe_options",
     "identified_rebound",
     "paper_figures",
@@ -595,24 +602,28 @@ def read_figure_data(path: Path) -> xr.Dataset:
 
 
 def read_step_data(folder: Path, label: str = "") -> dict[str, Any]:
-    """What a run folder's ``figures.nc`` holds, as the figure-data objects of its step, by the
+    """What a run folder holds for its figures, as the figure-data objects of its step, by the
     name of the step result's attribute that holds each (``paper_figures``,
     ``transient_curves``, ``comparison_map``, ``transient_histories``, ``axis_curves``,
-    ``rebound``, ``shape_figures``, ``nodes_free_hand``): the ``source`` of
-    :func:`racketdyn.plotting.registry.draw`, which redraws every figure that reads only these
-    from the folder alone.
+    ``rebound``, ``shape_figures``, ``nodes_free_hand``, and the objects a step stores as they
+    are, :func:`defer_figure_data`): the ``source`` of :func:`racketdyn.plotting.registry.draw`,
+    which redraws every figure of the folder from it alone (``tests/test_redraw_from_folder.py``).
 
     Parameters
     ----------
     folder : Path
-        A run folder (``predict``, ``swing``, ``identify``, ``compare``); without
-        ``figures.nc``: empty.
+        A run folder of any step; without ``figures.nc`` (nor a sweep's store): empty.
     label : str
         Of a figure written once per model (compare's ``"free"``, ``"hand"``): that model's
-        ``shape_figures``.
+        data; of a sweep's summary (``summary_<variable>.png``): the variable, whose curves are
+        read from the folder's store (:func:`racketdyn.sweep.summary.summary_curves`).
     """
+    from racketdyn.sweep.store import STORE_NAME, open_sweep
+    from racketdyn.sweep.summary import summary_curves
     from racketdyn.workflows.shape_figures import AxisNodes, IdentifiedShapes
 
+    if label and (Path(folder) / STORE_NAME).is_dir():  # a sweep: its store holds the curves
+        return {"curves": summary_curves(open_sweep(Path(folder)), label)}
     path = Path(folder) / FIGURES_FILE
     if not path.is_file():
         return {}
@@ -634,7 +645,33 @@ def read_step_data(folder: Path, label: str = "") -> dict[str, Any]:
         found["axis_curves"] = SwingAxisCurves.from_xarray(dataset)
     if _has(dataset, "fig15_identified"):
         found["rebound"] = IdentifiedRebound.from_xarray(dataset)
-    return found
+    return {**stored(dataset, label), **found}
+
+
+def defer_figure_data(
+    result: StepResult,
+    objects: Mapping[str, Any],
+    datasets: Sequence[Callable[[], xr.Dataset]] = (),
+) -> None:
+    """List the step's ``figures.nc`` and write it while the figures are drawn
+    (:func:`racketdyn.workflows.run.defer_file`): the objects its figures read, stored as they
+    are (:func:`racketdyn.workflows._figure_io.store`), beside the figure-data objects'.
+
+    Parameters
+    ----------
+    result : StepResult
+        The step's result (its ``out`` is the run folder).
+    objects : mapping of str to object
+        Name (the attribute of the step's result a figure ``reads``) → object.
+    datasets : sequence of callable
+        The ``to_xarray`` of the step's figure-data objects.
+    """
+    path = result.out / FIGURES_FILE
+
+    def write() -> Path:
+        return write_figure_data(path, [store(objects), *(data() for data in datasets)])
+
+    defer_file(result, path, write)
 
 
 # --- the options in words, and the racket speed at any ball speed --------------------------

@@ -20,6 +20,8 @@ from racketdyn.measurement.frf import FrfEstimate, estimate_frfs
 from racketdyn.measurement.quality import QualitySettings
 from racketdyn.plausibility import check
 from racketdyn.racket import Racket
+from racketdyn.workflows.figure_data import defer_figure_data
+from racketdyn.workflows.frf_figures import FrfPoints, frf_points
 from racketdyn.workflows.inputs import load_racket_input
 from racketdyn.workflows.run import (
     StepResult,
@@ -68,11 +70,14 @@ class FrfResult(StepResult):
     records_metadata : dict
         What the reader said of the records (``three_d_geometry``: the file whose points
         differ in z, read without coordinates).
+    frf_points : FrfPoints or None
+        The FRFs Figs 2–3 draw (in ``figures.nc``).
     """
 
     estimate: FrfEstimate | None = None
     racket: Racket | None = None
     records_metadata: dict[str, Any] = field(default_factory=dict)
+    frf_points: FrfPoints | None = None
 
 
 @run_step
@@ -147,6 +152,8 @@ def run_frf(
             "`force_window_s`)"
         )
     result.written.append(write_frf_uff(estimate.frfs, out_dir / "frfs.uff"))
+    result.frf_points = frf_points(estimate.frfs, the_racket)
+    defer_figure_data(result, {"frf_points": result.frf_points})
     inputs = {
         "tests_file": str(Path(tests).resolve()),
         "tests_sha256": sha256(Path(tests)),

@@ -32,12 +32,15 @@ from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
 from racketdyn.racket_modal.identify import name_after, name_if_racket
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME, axis_nodes
+from racketdyn.workflows._figure_io import store
 from racketdyn.workflows.figure_data import (
     FIGURES_FILE,
     IdentifiedRebound,
+    defer_figure_data,
     identified_rebound,
     write_figure_data,
 )
+from racketdyn.workflows.frf_figures import BallFrfs, FitFigures, ball_frfs, fit_figures
 from racketdyn.workflows.inputs import (
     RacketInput,
     ball_location,
@@ -45,7 +48,6 @@ from racketdyn.workflows.inputs import (
 )
 from racketdyn.workflows.run import (
     StepResult,
-    defer_file,
     report,
     run_step,
     sha256,
@@ -270,11 +272,14 @@ class IdentifyResult(StepResult):
     shape_figures : IdentifiedShapes or None
         What Figs 4–6 and the AutoMAC draw, evaluated with the run's model and racket (in
         ``figures.nc``).
+    fit_figures : FitFigures or None
+        What the stabilisation diagram and the synthesised FRFs draw (in ``figures.nc``).
     """
 
     identification: Identification | None = None
     racket: Racket | None = None
     shape_figures: IdentifiedShapes | None = None
+    fit_figures: FitFigures | None = None
 
 
 @run_step
@@ -329,11 +334,16 @@ def run_identify(
     )
     shapes = identified_shapes(found.model, the_racket)
     written = write_model(found, out_dir)
+    fits = fit_figures(found, the_racket)
     result = IdentifyResult(
-        out_dir, written, identification=found, racket=the_racket, shape_figures=shapes
+        out_dir,
+        written,
+        identification=found,
+        racket=the_racket,
+        shape_figures=shapes,
+        fit_figures=fits,
     )
-    data_file = out_dir / FIGURES_FILE  # written while the figures are drawn
-    defer_file(result, data_file, lambda: write_figure_data(data_file, [shapes.to_xarray()]))
+    defer_figure_data(result, {"fit_figures": fits}, [shapes.to_xarray])
     inputs = {
         "frfs_file": str(Path(frfs).resolve()),
         "frfs_sha256": sha256(Path(frfs)),
@@ -477,6 +487,9 @@ class CompareResult(StepResult):
         and ``_hand``).
     nodes_free_hand : AxisNodes or None
         Fig. 6 free against hand-held (in ``figures.nc``).
+    fit_free, fit_hand : FitFigures or None
+        What each identification's stabilisation diagram and synthesised FRFs draw (in
+        ``figures.nc``, ``_free`` and ``_hand``).
     """
 
     free: Identification | None = None
@@ -489,6 +502,8 @@ class CompareResult(StepResult):
     shapes_free: IdentifiedShapes | None = None
     shapes_hand: IdentifiedShapes | None = None
     nodes_free_hand: AxisNodes | None = None
+    fit_free: FitFigures | None = None
+    fit_hand: FitFigures | None = None
 
 
 @run_step
@@ -549,11 +564,15 @@ def run_compare(
     shapes_free = identified_shapes(found_free.model, the_racket)
     shapes_hand = identified_shapes(found_hand.model, the_racket)
     nodes_free_hand = axis_node_curves([found_free.model, found_hand.model], the_racket)
+    fit_free, fit_hand = fit_figures(found_free, the_racket), fit_figures(found_hand, the_racket)
     figure_data = [
         shapes_free.to_xarray("free"),
         shapes_hand.to_xarray("hand"),
         nodes_free_hand.to_xarray("fig6_free_hand"),
         rebound.to_xarray(),
+        store({"comparison": comparison}),
+        store({"fit_figures": fit_free}, "free"),
+        store({"fit_figures": fit_hand}, "hand"),
     ]
     written.append(write_figure_data(out_dir / FIGURES_FILE, figure_data))
     result = CompareResult(
@@ -569,6 +588,8 @@ def run_compare(
         shapes_free=shapes_free,
         shapes_hand=shapes_hand,
         nodes_free_hand=nodes_free_hand,
+        fit_free=fit_free,
+        fit_hand=fit_hand,
     )
     inputs = {
         "free_file": str(Path(free).resolve()),
@@ -610,6 +631,8 @@ class BallCompareResult(StepResult):
         :func:`compare_with_ball`'s rows (``ball_comparison.csv``).
     shown_node : int
         The hammer point whose FRFs Fig. 9 shows (:func:`node_showing_ball_mode`).
+    ball_frfs : BallFrfs or None
+        What Fig. 9 draws (in ``figures.nc``).
     """
 
     alone: Identification | None = None
@@ -618,6 +641,7 @@ class BallCompareResult(StepResult):
     ball_at: tuple[float, float] = (math.nan, math.nan)
     rows: list[dict[str, Any]] = field(default_factory=list)
     shown_node: int = 0
+    ball_frfs: BallFrfs | None = None
 
 
 def compare_with_ball(alone: Identification, with_ball: Identification) -> list[dict[str, Any]]:
@@ -842,7 +866,9 @@ def run_compare_ball(
         ball_at=ball,
         rows=rows,
         shown_node=shown,
+        ball_frfs=ball_frfs(found_alone, found_ball, shown, ball),
     )
+    defer_figure_data(result, {"ball_frfs": result.ball_frfs})
     ball_rows = [r for r in rows if r["mode"] == BALL_MODE_NAME]
     shifts = [
         abs(r["frequency_shift_percent"])

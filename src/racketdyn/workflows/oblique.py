@@ -27,6 +27,7 @@ from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
 from racketdyn.plausibility import check, check_speeds
 from racketdyn.racket import Racket
+from racketdyn.workflows.figure_data import defer_figure_data
 from racketdyn.workflows.inputs import (
     single_support,
 )
@@ -233,6 +234,9 @@ def run_oblique(
         support=the_support,
         contact=contact,
         racket=used.racket,
+    )
+    defer_figure_data(
+        result, {"curve": curve, "point": where, "support": the_support, "contact": contact}
     )
     inputs = {
         **used.provenance,

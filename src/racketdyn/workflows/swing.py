@@ -43,6 +43,7 @@ from racketdyn.io import racket_to_dict
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_speeds
 from racketdyn.racket import SUPPORTS, Racket
+from racketdyn.workflows._figure_io import store
 from racketdyn.workflows.figure_data import (
     FIGURES_FILE,
     SwingAxisCurves,
@@ -417,7 +418,20 @@ def run_swing(
     result.written += [
         out_dir / "swing.csv",
         write_rows(out_dir / "sweet_spots.csv", result.spot_rows),
-        write_figure_data(out_dir / FIGURES_FILE, [result.axis_curves.to_xarray()]),
+        write_figure_data(
+            out_dir / FIGURES_FILE,
+            [
+                result.axis_curves.to_xarray(),
+                store(
+                    {
+                        "swing_result": computed,
+                        "racket": used.racket,
+                        "spots": spots,
+                        "shown_speed": chosen,
+                    }
+                ),
+            ],
+        ),
     ]
     inputs = {
         **used.provenance,

@@ -22,6 +22,7 @@ from racketdyn.impact.twist import TwistCurve, twist_curve
 from racketdyn.io import racket_to_dict
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket, landmark_points
+from racketdyn.workflows.figure_data import defer_figure_data
 from racketdyn.workflows.run import (
     StepResult,
     report,
@@ -176,6 +177,7 @@ def run_twist(
         racket=used.racket,
         offsets=offsets,
     )
+    defer_figure_data(result, {"curves": curves})
     model = used.modal_model
     inputs = {
         **used.provenance,

@@ -26,6 +26,7 @@ from racketdyn.impact.transient import ENGINES
 from racketdyn.impact.uncertainty import RowBands, Uncertainty, propagate_rows
 from racketdyn.io import racket_to_dict
 from racketdyn.io.measured import MeasuredRebound, read_measured
+from racketdyn.workflows.figure_data import defer_figure_data
 from racketdyn.workflows.run import (
     StepResult,
     check_workers,
@@ -330,6 +331,14 @@ def run_validate(
             result.bands[method] = band
             result.summary[method] = _coverage(result.summary[method], band, rows)
     result.written.append(write_rows(Path(out) / "validation.csv", _rows(result)))
+    defer_figure_data(
+        result,
+        {
+            "measured": rows,
+            "predicted": result.predicted,
+            "inputs": {"effective_racket": inputs.effective_racket},
+        },
+    )
     record = {
         **provenance,
         "racket": racket_to_dict(inputs.effective_racket),
