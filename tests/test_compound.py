@@ -609,14 +609,16 @@ def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> No
     frequency (without --ball-at the ball mode took the name "2-node bending" and every bending
     mode above it one node too many)."""
     from racketdyn.modal import ModalModel
-    from racketdyn.workflows import run_identify
+    from racketdyn.workflows import IdentifyOptions, run_identify
+
+    band_850 = IdentifyOptions(band_hz=(40.0, 850.0))
 
     truth = ModalModel.read_json(rig_frfs / "rig_ball" / "modal_truth_free.json")
     f_true = float(truth.frequency[truth.names.index(BALL_MODE_NAME)])
     record = json.loads((rig_frfs / "rig_ball" / "run.json").read_text(encoding="utf-8"))
     assert record["ball_on_strings"]["location_m"] == list(CENTRE)
     frfs = rig_frfs / "frf_ball" / "frfs.uff"
-    found = run_identify(frfs, rig_frfs / "id", band_hz=(40.0, 850.0), ball_at=CENTRE)
+    found = run_identify(frfs, rig_frfs / "id", options=band_850, ball_at=CENTRE)
     assert found.identification is not None
     model = found.identification.model
     k = model.names.index(BALL_MODE_NAME)
@@ -628,7 +630,7 @@ def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> No
     record = json.loads((rig_frfs / "id" / "run.json").read_text(encoding="utf-8"))
     assert record["ball_at_m"] == list(CENTRE)
     # the same data without --ball-at: no mode is the ball's (the name needs the test's word)
-    plain = run_identify(frfs, rig_frfs / "id_plain", band_hz=(40.0, 850.0))
+    plain = run_identify(frfs, rig_frfs / "id_plain", options=band_850)
     assert plain.identification is not None
     assert BALL_MODE_NAME not in plain.identification.model.names
     # ... but it says that a mode looks like one, and what to give
@@ -636,7 +638,7 @@ def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> No
     assert f"the mode at {model.frequency[k]:.1f} Hz moves the frame almost as a rigid" in naming
     assert "`ball_at` x,y" in naming
     bare = run_identify(
-        rig_frfs / "frf_alone" / "frfs.uff", rig_frfs / "id_alone", band_hz=(40.0, 850.0)
+        rig_frfs / "frf_alone" / "frfs.uff", rig_frfs / "id_alone", options=band_850
     )
     assert bare.identification is not None
     assert "modes named" in bare.identification.model.metadata["naming"]

@@ -24,7 +24,7 @@ from racketdyn.modal.identify import identify
 from racketdyn.modal.mac import mac
 from racketdyn.racket_modal.face import face_mapping, looks_like_racket
 from racketdyn.testing.free_beam import beam_frfs
-from racketdyn.workflows.identify import run_identify
+from racketdyn.workflows.identify import IdentifyOptions, run_identify
 from racketdyn.workflows.inputs import setup as racket_setup
 
 BAND = (40.0, 1000.0)
@@ -154,7 +154,7 @@ def test_points_along_y_run_through_the_workflow(tmp_path: Path) -> None:
     }
     records = [(1, 3, n, 3, v) for n, v in zip(test.frfs.nodes, test.frfs.values, strict=True)]
     path = write_lab_uff(tmp_path / "y.uff", nodes, test.frfs.frequency, records)
-    result = run_identify(path, tmp_path / "out", band_hz=(40, 950))
+    result = run_identify(path, tmp_path / "out", options=IdentifyOptions(band_hz=(40, 950)))
     assert result.identification is not None
     model = result.identification.model
     assert model.names[0].startswith("mode 1")

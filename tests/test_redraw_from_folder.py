@@ -16,6 +16,7 @@ import pytest
 
 from figure_catch import Drawn, catch_figures, rig_frfs, same_3d_drawing, same_drawing
 from racketdyn.plotting import registry
+from racketdyn.workflows.identify import IdentifyOptions
 from racketdyn.workflows.setup import Setup
 
 
@@ -82,7 +83,12 @@ def _compare_ball(out: Path, rig: Path) -> Any:
     frfs = run_frf(rig / "rig_ball" / "hammer_free.uff", rig / "frf_ball", exponential_window_s=0.1)
     alone = rig / "frf_free" / "frfs.uff"
     return run_compare_ball(
-        alone, frfs.out / "frfs.uff", out, _setup("compare_ball"), ball_at=CENTRE, band_hz=BAND
+        alone,
+        frfs.out / "frfs.uff",
+        out,
+        _setup("compare_ball"),
+        IdentifyOptions(band_hz=BAND),
+        ball_at=CENTRE,
     )
 
 

@@ -29,7 +29,7 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A lab's folder of step folders, run one by one (small settings, no figures where a
     step allows it)."""
     from racketdyn.workflows.frf import run_frf
-    from racketdyn.workflows.identify import run_compare, run_identify
+    from racketdyn.workflows.identify import IdentifyOptions, run_compare, run_identify
     from racketdyn.workflows.rig import run_rig
 
     d = tmp_path_factory.mktemp("lab")
@@ -37,9 +37,17 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Path:
     for support in ("free", "hand"):
         run_frf(d / "rig" / f"hammer_{support}.uff", d / f"frf_{support}")
         run_identify(
-            d / f"frf_{support}" / "frfs.uff", d / f"id_{support}", support=support, band_hz=BAND
+            d / f"frf_{support}" / "frfs.uff",
+            d / f"id_{support}",
+            options=IdentifyOptions(band_hz=BAND),
+            support=support,
         )
-    run_compare(d / "frf_free" / "frfs.uff", d / "frf_hand" / "frfs.uff", d / "cmp", band_hz=BAND)
+    run_compare(
+        d / "frf_free" / "frfs.uff",
+        d / "frf_hand" / "frfs.uff",
+        d / "cmp",
+        options=IdentifyOptions(band_hz=BAND),
+    )
     common = ["--grid", "3", "--support", "free", "--no-figures"]
     assert main(["predict", *common, "--speed", "20", "--out", str(d / "predict")]) == 0
     argv = ["predict", *common, "--speed", "25,3", "--racket-speed", "28,42"]

@@ -154,7 +154,7 @@ def test_a_racket_measured_in_the_lab_x_z_plane_round_trips(tmp_path: Path) -> N
     import pyuff
 
     from racketdyn.workflows.frf import run_frf
-    from racketdyn.workflows.identify import identify_file
+    from racketdyn.workflows.identify import IdentifyOptions, identify_file
     from racketdyn.workflows.rig import run_rig
 
     rig = run_rig(tmp_path / "rig", averages=3, lab_plane="xz")
@@ -173,8 +173,7 @@ def test_a_racket_measured_in_the_lab_x_z_plane_round_trips(tmp_path: Path) -> N
         tmp_path / "frf" / "frfs.uff",
         rd.default_racket(),
         "free",
-        geometry=path,
-        band_hz=(40.0, 850.0),
+        IdentifyOptions(geometry=path, band_hz=(40.0, 850.0)),
         racket_given=False,
     )
     model = found.model

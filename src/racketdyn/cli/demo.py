@@ -50,7 +50,7 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     from racketdyn.workflows.compound import run_compound
     from racketdyn.workflows.contact import run_contact
     from racketdyn.workflows.frf import run_frf
-    from racketdyn.workflows.identify import run_compare
+    from racketdyn.workflows.identify import IdentifyOptions, run_compare
     from racketdyn.workflows.oblique import run_oblique
     from racketdyn.workflows.predict import run_predict
     from racketdyn.workflows.rig import run_rig
@@ -110,7 +110,9 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     step(
         "identification, free against hand-held",
         ["compare", *map(str, frfs), "--band", "40,850", *r, "--out", str(out / "compare")],
-        partial(run_compare, frfs[0], frfs[1], out / "compare", band_hz=BAND_HZ),
+        partial(
+            run_compare, frfs[0], frfs[1], out / "compare", options=IdentifyOptions(band_hz=BAND_HZ)
+        ),
         Setup(racket=racket, figures=fig.compare_figures),
     )
     # --model both adds ≈ 2 s with the compiled transient engine, ≈ 10 s with the scipy

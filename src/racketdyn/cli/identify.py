@@ -13,6 +13,7 @@ if TYPE_CHECKING:
 
     from racketdyn.measurement.records import FrfSet
     from racketdyn.modal.identify import Identification
+    from racketdyn.workflows.identify import IdentifyOptions
 
 
 def _add_options(p: argparse.ArgumentParser) -> None:
@@ -116,7 +117,10 @@ _LOWEST_BAND_TOP_HZ = 10.0
 2026-11-26, second session: ``--band 0.04,0.85`` in kHz said only "no frequency line")."""
 
 
-def _options(args: argparse.Namespace) -> dict[str, Any]:
+def _options(args: argparse.Namespace) -> tuple[IdentifyOptions, tuple[float, float] | None]:
+    """The identification's options from the command line (one place), and ``--ball-at``."""
+    from racketdyn.workflows.identify import IdentifyOptions
+
     band = None if args.band is None else opt.parse_frequencies("--band", args.band)
     if band is not None and (len(band) != 2 or band[0] >= band[1]):
         from racketdyn.errors import InputError
@@ -130,17 +134,15 @@ def _options(args: argparse.Namespace) -> dict[str, Any]:
             f"at {band[1]:g} Hz; did you give kHz ({band[0]:g}–{band[1]:g} kHz = "
             f"{band[0] * 1e3:g}–{band[1] * 1e3:g} Hz)? (give Hz)"
         )
-    return {
-        "geometry": args.geometry,
-        "band_hz": band,
-        "max_order": args.max_order,
-        "pin_hz": [] if args.pin is None else opt.parse_frequencies("--pin", args.pin),
-        "exclude_hz": []
-        if args.exclude is None
-        else opt.parse_frequencies("--exclude", args.exclude),
-        "reference": args.reference,
-        "ball_at": opt.parse_point("--ball-at", args.ball_at),
-    }
+    options = IdentifyOptions(
+        geometry=args.geometry,
+        band_hz=band,
+        max_order=args.max_order,
+        pin_hz=() if args.pin is None else opt.parse_frequencies("--pin", args.pin),
+        exclude_hz=() if args.exclude is None else opt.parse_frequencies("--exclude", args.exclude),
+        reference=args.reference,
+    )
+    return options, opt.parse_point("--ball-at", args.ball_at)
 
 
 def unused_note(console: Console, frfs: FrfSet) -> None:
@@ -241,15 +243,17 @@ def run_identify(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.plotting.steps import identify_figures
     from racketdyn.workflows.identify import run_identify as identify
 
+    options, ball_at = _options(args)
     opt.start_figure_helper(args)  # six figures: the helper imports while we identify
     with opt.progress_display(console) as progress:
         result = identify(
             args.frfs,
             args.out,
             opt.setup_from_args(args, figures=identify_figures, progress=progress),
+            options,
             support=args.support,
+            ball_at=ball_at,
             names_from=args.names_from,
-            **_options(args),
         )
     assert result.identification is not None
     unused_note(console, result.identification.frfs)
@@ -264,8 +268,7 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
     from racketdyn.plotting.steps import compare_figures
     from racketdyn.workflows.identify import run_compare as compare
 
-    options = _options(args)
-    ball_at = options.pop("ball_at")
+    options, ball_at = _options(args)
     ball_options = ("ball_mass", "e_bg", "e_bg_table", "ball_law")
     if ball_at is not None:
         given = [name for name in ball_options if getattr(args, name) is not None]
@@ -287,8 +290,8 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
             args.hand,
             args.out,
             opt.setup_from_args(args, figures=compare_figures, progress=progress),
+            options,
             speed=opt.one_number("--speed", args.speed),
-            **options,
         )
     assert result.free is not None
     assert result.hand is not None
@@ -318,7 +321,7 @@ def _run_compare_ball(
     args: argparse.Namespace,
     console: Console,
     ball_at: tuple[float, float],
-    options: dict[str, Any],
+    options: IdentifyOptions,
 ) -> int:
     """``compare --ball-at``: the racket alone against the racket with a ball (Figs 9a, 9b)."""
     import math
@@ -332,9 +335,9 @@ def _run_compare_ball(
             args.hand,
             args.out,
             opt.setup_from_args(args, figures=compare_ball_figures, progress=progress),
+            options,
             ball_at=ball_at,
             support=args.support or "free",
-            **options,
         )
     assert result.alone is not None
     assert result.with_ball is not None

@@ -70,6 +70,7 @@ if TYPE_CHECKING:
     from racketdyn.workflows.identify import (
         BallCompareResult,
         CompareResult,
+        IdentifyOptions,
         IdentifyResult,
         run_compare,
         run_compare_ball,
@@ -107,6 +108,7 @@ _WHERE = {
     "CompoundResult": "compound",
     "ContactResult": "contact",
     "FrfResult": "frf",
+    "IdentifyOptions": "identify",
     "IdentifyResult": "identify",
     "ObliqueResult": "oblique",
     "PredictResult": "predict",
@@ -141,6 +143,7 @@ __all__ = [
     "FrameVibration",
     "FrfResult",
     "IdentifiedRebound",
+    "IdentifyOptions",
     "IdentifyResult",
     "ImpactCurves",
     "ObliqueResult",

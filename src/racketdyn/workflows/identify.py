@@ -42,7 +42,6 @@ from racketdyn.workflows.figure_data import (
 )
 from racketdyn.workflows.frf_figures import BallFrfs, FitFigures, ball_frfs, fit_figures
 from racketdyn.workflows.inputs import (
-    RacketInput,
     ball_location,
     load_racket_input,
 )
@@ -64,9 +63,11 @@ __all__ = [
     "BALL_COMPARISON_FILE",
     "BALL_MODE_SHOWN",
     "CHECK_SPEED_MPS",
+    "DEFAULT_IDENTIFY",
     "NO_COORDINATES",
     "BallCompareResult",
     "CompareResult",
+    "IdentifyOptions",
     "IdentifyResult",
     "ModeComparison",
     "ball_mode_share",
@@ -86,47 +87,63 @@ CHECK_SPEED_MPS = SHOWN_SPEED_MPS
 """Default incoming ball speed of ``compare``'s Fig. 15 check, m/s (the paper's 20 m/s)."""
 
 
-def _band(band_hz: Sequence[float] | None) -> tuple[float, float] | None:
-    if band_hz is None:
-        return None
-    values = [float(v) for v in band_hz]
-    if len(values) != 2 or not 0.0 <= values[0] < values[1]:
-        raise InputError(f"`band_hz` takes two frequencies low,high in Hz (got {band_hz!r})")
-    return (values[0], values[1])
+@dataclass(frozen=True)
+class IdentifyOptions:
+    """How FRFs are read and identified: what ``identify``, ``compare`` and ``compare
+    --ball-at`` share (each of a step's identifications takes the same).
+
+    Attributes
+    ----------
+    geometry : path, optional
+        Node coordinates if not in the file (UFF 15/2411, or CSV node,x_m,y_m in m).
+    band_hz : (low, high), optional
+        Band, Hz (default from below the first clear peak, at most 40 Hz, to the FRFs'
+        bandwidth: :func:`racketdyn.modal.identify.default_band`).
+    max_order : int
+        Highest model order.
+    pin_hz, exclude_hz : sequence of float
+        Modes forced in or left out, by approximate frequency, Hz.
+    reference : int, optional
+        Reference node when the file has several.
+    """
+
+    geometry: str | os.PathLike[str] | None = None
+    band_hz: Sequence[float] | None = None
+    max_order: int = 60
+    pin_hz: Sequence[float] = ()
+    exclude_hz: Sequence[float] = ()
+    reference: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.band_hz is not None:
+            values = [float(v) for v in self.band_hz]
+            if len(values) != 2 or not 0.0 <= values[0] < values[1]:
+                raise InputError(
+                    f"`band_hz` takes two frequencies low,high in Hz (got {self.band_hz!r})"
+                )
+            object.__setattr__(self, "band_hz", (values[0], values[1]))
+        object.__setattr__(self, "pin_hz", tuple(float(v) for v in self.pin_hz))
+        object.__setattr__(self, "exclude_hz", tuple(float(v) for v in self.exclude_hz))
+
+    def record(self) -> dict[str, Any]:
+        """What run.json keeps of them (the band used is the identification's own)."""
+        return {
+            "max_order": self.max_order,
+            "pin_hz": list(self.pin_hz),
+            "exclude_hz": list(self.exclude_hz),
+        }
 
 
-def _file_options(
-    geometry: str | os.PathLike[str] | None,
-    band_hz: Sequence[float] | None,
-    max_order: int,
-    pin_hz: Sequence[float],
-    exclude_hz: Sequence[float],
-    reference: int | None,
-    racket: RacketInput,
-) -> dict[str, Any]:
-    """The :func:`identify_file` options two identifications of one step share."""
-    return {
-        "geometry": geometry,
-        "band_hz": band_hz,
-        "max_order": max_order,
-        "pin_hz": pin_hz,
-        "exclude_hz": exclude_hz,
-        "reference": reference,
-        "racket_given": racket is not None,
-    }
+DEFAULT_IDENTIFY = IdentifyOptions()
+"""The options of an identification the user says nothing of."""
 
 
 def identify_file(
     path: str | os.PathLike[str],
     racket: Racket,
     support: str,
+    options: IdentifyOptions = DEFAULT_IDENTIFY,
     *,
-    geometry: str | os.PathLike[str] | None = None,
-    band_hz: Sequence[float] | None = None,
-    max_order: int = 60,
-    pin_hz: Sequence[float] = (),
-    exclude_hz: Sequence[float] = (),
-    reference: int | None = None,
     racket_given: bool = True,
     ball_at: Sequence[float] | None = None,
     names_from: str | os.PathLike[str] | ModalModel | None = None,
@@ -147,17 +164,8 @@ def identify_file(
         The racket the points may belong to (its head names the modes).
     support : str
         ``free`` or ``hand``, recorded on the model.
-    geometry : path, optional
-        Node coordinates if not in the file.
-    band_hz : (low, high), optional
-        Band, Hz (default from below the first clear peak, at most 40 Hz, to the FRFs' bandwidth:
-        :func:`racketdyn.modal.identify.default_band`).
-    max_order : int
-        Highest model order.
-    pin_hz, exclude_hz : sequence of float
-        Modes forced in or left out, by approximate frequency, Hz.
-    reference : int, optional
-        Reference node when the file has several (``--reference``).
+    options : IdentifyOptions
+        Geometry, band, model order, pins and exclusions, reference node.
     racket_given : bool
         True when the user named the racket (then its modes are named whatever the points).
     ball_at : sequence of float, optional
@@ -182,16 +190,17 @@ def identify_file(
         )
     frfs = read_frfs(
         Path(path),
-        None if geometry is None else Path(geometry),
-        reference,
+        None if options.geometry is None else Path(options.geometry),
+        options.reference,
         require_coordinates=False,  # none at all: a model without coordinates; some: refused
     )
+    band = options.band_hz
     found = identify(
         frfs,
-        _band(band_hz),
-        max_order=max_order,
-        pin_hz=list(pin_hz),
-        exclude_hz=list(exclude_hz),
+        None if band is None else (band[0], band[1]),
+        max_order=options.max_order,
+        pin_hz=list(options.pin_hz),
+        exclude_hz=list(options.exclude_hz),
         support=support,
     )
     found, naming = name_if_racket(found, racket, racket_given, ball)
@@ -287,14 +296,9 @@ def run_identify(
     frfs: str | os.PathLike[str],
     out: str | os.PathLike[str],
     setup: Setup = DEFAULT_SETUP,
+    options: IdentifyOptions = DEFAULT_IDENTIFY,
     *,
     support: str = "free",
-    geometry: str | os.PathLike[str] | None = None,
-    band_hz: Sequence[float] | None = None,
-    max_order: int = 60,
-    pin_hz: Sequence[float] = (),
-    exclude_hz: Sequence[float] = (),
-    reference: int | None = None,
     ball_at: Sequence[float] | None = None,
     names_from: str | os.PathLike[str] | None = None,
 ) -> IdentifyResult:
@@ -310,9 +314,11 @@ def run_identify(
         Of the :class:`~racketdyn.workflows.setup.Setup`, identify uses the racket: its head
         names the modes; with None, the built-in racket's, named only when the points lie on its
         outline; and the run (command, figures, progress).
+    options : IdentifyOptions
+        How the FRFs are read and identified.
     support : {"free", "hand"}
         Support of the test.
-    geometry, band_hz, max_order, pin_hz, exclude_hz, reference, ball_at, names_from
+    ball_at, names_from
         As for :func:`identify_file`.
     """
     the_racket, provenance = load_racket_input(setup.racket)
@@ -322,12 +328,7 @@ def run_identify(
         frfs,
         the_racket,
         support,
-        geometry=geometry,
-        band_hz=band_hz,
-        max_order=max_order,
-        pin_hz=pin_hz,
-        exclude_hz=exclude_hz,
-        reference=reference,
+        options,
         racket_given=setup.racket is not None,
         ball_at=ball_at,
         names_from=names_from,
@@ -350,9 +351,7 @@ def run_identify(
         **provenance,
         "support": support,
         "band_hz": list(found.band_hz),
-        "max_order": max_order,
-        "pin_hz": list(pin_hz),
-        "exclude_hz": list(exclude_hz),
+        **options.record(),
         "reference_node": found.frfs.reference_node,
         "ball_at_m": None if ball_at is None else [float(v) for v in ball_at],
         "names_from": None if names_from is None else str(Path(names_from).resolve()),
@@ -512,14 +511,9 @@ def run_compare(
     hand: str | os.PathLike[str],
     out: str | os.PathLike[str],
     setup: Setup = DEFAULT_SETUP,
+    options: IdentifyOptions = DEFAULT_IDENTIFY,
     *,
-    geometry: str | os.PathLike[str] | None = None,
-    band_hz: Sequence[float] | None = None,
-    max_order: int = 60,
-    pin_hz: Sequence[float] = (),
-    exclude_hz: Sequence[float] = (),
     speed: float = CHECK_SPEED_MPS,
-    reference: int | None = None,
 ) -> CompareResult:
     """Identify free and hand-held FRFs, pair their modes by MAC, write the run folder.
 
@@ -532,8 +526,8 @@ def run_compare(
     setup : Setup
         Of the :class:`~racketdyn.workflows.setup.Setup`, compare uses the racket, the ball of
         the Fig. 15 check and ``allow_implausible``; and the run (command, figures, progress).
-    geometry, band_hz, max_order, pin_hz, exclude_hz, reference
-        As for :func:`identify_file`, for both.
+    options : IdentifyOptions
+        How both sets of FRFs are read and identified.
     speed : float
         Incoming ball speed of the paper's Fig. 15 check with the identified models, m/s
         (default 20, the paper's).
@@ -542,16 +536,16 @@ def run_compare(
     check_speeds("`speed`", [check_speed], "ball_speed_mps", setup.allow_implausible)
     the_racket, provenance = load_racket_input(setup.racket)
     out_dir = Path(out)
-    options = _file_options(
-        geometry, band_hz, max_order, pin_hz, exclude_hz, reference, setup.racket
-    )
+    given = setup.racket is not None
     report(setup.progress, f"identifying {Path(free).name}")
-    found_free = identify_file(free, the_racket, "free", **options)
+    found_free = identify_file(free, the_racket, "free", options, racket_given=given)
     found_free.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
     report(setup.progress, f"identifying {Path(hand).name}")
     # a hand damps some modes out: the hand's modes are named after their free pairs (issue
     # 13), as identify --names-from names them (issue 25 item 8: one name for one mode)
-    found_hand = identify_file(hand, the_racket, "hand", names_from=found_free.model, **options)
+    found_hand = identify_file(
+        hand, the_racket, "hand", options, racket_given=given, names_from=found_free.model
+    )
     found_hand.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
     written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
     comparison = compare_modes(found_free, found_hand, the_racket)
@@ -596,7 +590,7 @@ def run_compare(
         "hand_file": str(Path(hand).resolve()),
         **provenance,
         "band_hz": list(found_free.band_hz),
-        "max_order": max_order,
+        **options.record(),
         "modes_free": found_free.model.summary()["modes"],
         "modes_hand": found_hand.model.summary()["modes"],
         "first_mode_nodes_m": _first_mode_nodes(comparison),
@@ -791,15 +785,10 @@ def run_compare_ball(
     with_ball: str | os.PathLike[str],
     out: str | os.PathLike[str],
     setup: Setup = DEFAULT_SETUP,
+    options: IdentifyOptions = DEFAULT_IDENTIFY,
     *,
     ball_at: Sequence[float],
     support: str = "free",
-    geometry: str | os.PathLike[str] | None = None,
-    band_hz: Sequence[float] | None = None,
-    max_order: int = 60,
-    pin_hz: Sequence[float] = (),
-    exclude_hz: Sequence[float] = (),
-    reference: int | None = None,
 ) -> BallCompareResult:
     """Identify a racket alone and with a ball fixed on its strings, and compare (Figs 9a, 9b).
 
@@ -816,24 +805,24 @@ def run_compare_ball(
     setup : Setup
         Of the :class:`~racketdyn.workflows.setup.Setup`, compare_ball uses the racket; and the
         run (command, figures, progress).
+    options : IdentifyOptions
+        How both sets of FRFs are read and identified.
     ball_at : sequence of float
         Where the ball sat (x, y), m (``--ball-at``).
     support : {"free", "hand"}
         Support of both tests.
-    geometry, band_hz, max_order, pin_hz, exclude_hz, reference
-        As for :func:`identify_file`, for both.
     """
     the_racket, provenance = load_racket_input(setup.racket)
     ball = ball_location(ball_at, the_racket)
     out_dir = Path(out)
-    options = _file_options(
-        geometry, band_hz, max_order, pin_hz, exclude_hz, reference, setup.racket
-    )
+    given = setup.racket is not None
     report(setup.progress, f"identifying {Path(alone).name}")
-    found_alone = identify_file(alone, the_racket, support, **options)
+    found_alone = identify_file(alone, the_racket, support, options, racket_given=given)
     found_alone.model.require_locations("compare --ball-at (modes paired by MAC)")
     report(setup.progress, f"identifying {Path(with_ball).name}")
-    found_ball = identify_file(with_ball, the_racket, support, ball_at=ball, **options)
+    found_ball = identify_file(
+        with_ball, the_racket, support, options, racket_given=given, ball_at=ball
+    )
     found_ball.model.require_locations("compare --ball-at (modes paired by MAC)")
     written = write_model(found_alone, out_dir, "_alone") + write_model(
         found_ball, out_dir, "_ball"
@@ -882,7 +871,7 @@ def run_compare_ball(
         "support": support,
         "ball_at_m": list(ball),
         "band_hz": list(found_alone.band_hz),
-        "max_order": max_order,
+        **options.record(),
         "naming_with_ball": found_ball.model.metadata.get("naming"),
         "ball_mode": (
             {
