@@ -684,3 +684,19 @@ def test_the_reports_dominant_input_names_the_inputs_it_is_not_told_from(tmp_pat
     line = _dominant(path)
     assert "centre e_bg, not told from first_bending_hz" in line
     assert "tip e_bg;" in line or line.endswith("tip e_bg")
+
+
+def test_a_point_without_indices_says_its_shots_hit_the_frame() -> None:
+    """A new user's tip and throat had no Sobol' indices under 10 mm of scatter, said as
+    "samples beyond the method": their base samples' runs hit the frame."""
+    from racketdyn.impact.uncertainty import sensitivity
+
+    head = RACKET.head
+    side = (head.centre_x_m, head.centre_y_m + head.half_width_m - 0.030)
+    spreads = (Spread("e_bg", bounds=(0.80, 0.88)), Spread("location_m", sd=0.01))
+    found = sensitivity(_inputs(), {"centre": CENTRE, "side": side}, 20.0, Uncertainty(spreads))
+    assert found.why_none(0) == ""
+    assert found.frame_share is not None
+    assert found.frame_share[1] > 0.5
+    assert "onto the frame" in found.why_none(1)
+    assert found.rows()["samples_frame_shot"][-1] == found.frame_share[1]

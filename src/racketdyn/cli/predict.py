@@ -246,7 +246,7 @@ def _headline(
 def _dominant_line(found: Sensitivity) -> str:
     """The input with the largest total Sobol' index of the rebound ratio at each point."""
     parts = [
-        f"{label} {found.dominant(p) or 'not known (samples beyond the method)'}"
+        f"{label} {found.dominant(p) or f'not known ({found.why_none(p)})'}"
         + (f" (on {share:.0%} of the samples)" if found.dominant(p) and share < 1.0 else "")
         + (f", not told from {', '.join(found.rivals(p))}" if found.rivals(p) else "")
         for p, (label, share) in enumerate(zip(found.labels, found.valid_share, strict=True))

@@ -857,6 +857,8 @@ class Sensitivity:
         high) from its base samples (:data:`SENSITIVITY_BOOTSTRAP`); an index whose interval
         holds 0 is not told from none, one whose intervals overlap another's not told from
         it.
+    frame_share : ndarray, optional
+        ``(n_points,)`` share of the base samples with a frame shot among their runs.
     """
 
     labels: tuple[str, ...]
@@ -870,6 +872,17 @@ class Sensitivity:
     valid_share: NDArray[np.float64]
     first_order_ci: NDArray[np.float64] | None = None
     total_order_ci: NDArray[np.float64] | None = None
+    frame_share: NDArray[np.float64] | None = None
+
+    def why_none(self, point: int) -> str:
+        """Why a point has no indices: its base samples' frame shots, or runs beyond the
+        method ("" where it has them)."""
+        if self.valid_share[point] >= MIN_VALID_SHARE:
+            return ""
+        shots = 0.0 if self.frame_share is None else float(self.frame_share[point])
+        if shots > 1.0 - MIN_VALID_SHARE:
+            return f"{shots:.0%} of its base samples scatter a shot onto the frame"
+        return "samples beyond the method"
 
     def dominant(self, point: int, output: str = "rebound_ratio") -> str:
         """The input with the largest total index at a point ("" when not known)."""
@@ -897,6 +910,7 @@ class Sensitivity:
                 "point", "x_m", "y_m", "ball_speed_mps", "support", "output", "input",
                 "first_order", "first_order_p05", "first_order_p95",
                 "total_order", "total_order_p05", "total_order_p95", "samples_valid",
+                "samples_frame_shot",
             )
         }  # fmt: skip
         blank = np.full((2, *self.first_order.shape), np.nan)
@@ -912,6 +926,7 @@ class Sensitivity:
                         self.first_order[at], first_ci[(0, *at)], first_ci[(1, *at)],
                         self.total_order[at], total_ci[(0, *at)], total_ci[(1, *at)],
                         self.valid_share[p],
+                        np.nan if self.frame_share is None else self.frame_share[p],
                     )  # fmt: skip
                     for key, value in zip(table, values, strict=True):
                         table[key].append(value)
@@ -985,8 +1000,10 @@ def sensitivity(
         runs = _Runs(
             method, inputs, _columns_as_draws(names, x), xy, np.array([ball_speed]), model_options
         )
-        out = _sensitivity_outputs(runs, executor)
+        out, frame = _sensitivity_outputs(runs, executor)
     f = out.reshape(*out.shape[:2], d + 2, n)  # (outputs, points, d + 2, n)
+    # a base sample with a frame shot among its d + 2 runs
+    frame_share = frame.reshape(frame.shape[0], d + 2, n).any(axis=1).mean(axis=-1)
     first, total, share = _saltelli_2010(f[:, :, 0], f[:, :, 1], np.moveaxis(f[:, :, 2:], 2, 0))
     first_ci, total_ci = _bootstrap_indices(f, uncertainty.seed)
     for label, given in zip(labels, share, strict=True):
@@ -1006,6 +1023,7 @@ def sensitivity(
         support=support,
         evaluations=n * (d + 2),
         valid_share=share,
+        frame_share=frame_share,
         first_order_ci=np.where(np.isnan(first)[None], np.nan, first_ci),
         total_order_ci=np.where(np.isnan(total)[None], np.nan, total_ci),
     )
@@ -1092,16 +1110,19 @@ def _columns_as_draws(names: Sequence[str], x: NDArray[np.float64]) -> Draws:
     )
 
 
-def _sensitivity_outputs(runs: _Runs, executor: Executor | None) -> NDArray[np.float64]:
+def _sensitivity_outputs(
+    runs: _Runs, executor: Executor | None
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """``(n_outputs, n_points, n_runs)`` the outputs of every run at one speed and support,
-    NaN where not valid."""
+    NaN where not valid, and ``(n_points, n_runs)`` where a run is a frame shot."""
     if runs.method == "approx" and _batches(runs.inputs, runs.options):
-        samples, _, _ = _all_samples(runs, None)
+        samples, _, frame = _all_samples(runs, None)
     elif executor is not None:
-        samples, _, _ = _on_executor(executor, runs, None)
+        samples, _, frame = _on_executor(executor, runs, None)
     else:
-        samples, _, _ = _each_sample(runs, None)
-    return np.stack([samples[a][:, :, 0, 0].T for a in SENSITIVITY_OUTPUTS])
+        samples, _, frame = _each_sample(runs, None)
+    outputs = np.stack([samples[a][:, :, 0, 0].T for a in SENSITIVITY_OUTPUTS])
+    return outputs, np.asarray(frame[:, :, 0, 0].T)
 
 
 def _saltelli_2010(

@@ -248,9 +248,11 @@ def _dominant(path: Path) -> str:
     the inputs whose 90 % interval reaches its interval (not told from it), where the file
     gives the intervals."""
     by_point: dict[str, list[tuple[float, str, float, float]]] = {}
+    on_frame: dict[str, float] = {}
     for row in read_csv(path, ("point", "output", "input", "total_order")):
         if row["output"] != "rebound_ratio":
             continue
+        on_frame[row["point"]] = _float(row.get("samples_frame_shot"))
         value, low, high = (
             _float(row.get(key)) for key in ("total_order", "total_order_p05", "total_order_p95")
         )
@@ -258,7 +260,13 @@ def _dominant(path: Path) -> str:
     parts = []
     for label, entries in by_point.items():
         if not all(math.isfinite(value) for value, *_ in entries):
-            parts.append(f"{label} not known (samples beyond the method)")
+            shots = on_frame.get(label, math.nan)
+            why = (
+                f"{shots:.0%} of its base samples scatter a shot onto the frame"
+                if shots > 0.1
+                else "samples beyond the method"
+            )
+            parts.append(f"{label} not known ({why})")
             continue
         value, name, low, _ = max(entries)
         rivals = [n for v, n, _, h in entries if n != name and math.isfinite(h) and h >= low]
