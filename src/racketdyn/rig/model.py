@@ -47,8 +47,8 @@ Mass
     mass per length times the section's half-width squared, is put on the hoop as in the
     built-in model).  Point masses sit at their exact ``(x, y)`` on the frame, added after
     calibration so lead tape moves the frequencies.  On the frame's shape the paper racket's
-    3-node bending is 355.7 Hz, 5.3 Hz below its 2-node twisting (325.4 Hz on the smooth
-    frame): two peaks 2.2 of the rig records' 2.44 Hz lines apart, each 1.8 Hz wide (ζf).
+    3-node bending is 355.7 Hz (325.4 Hz on the smooth frame), 5.3 Hz below its 2-node
+    twisting: two peaks 2.2 of the rig records' 2.44 Hz lines apart, each 1.8 Hz wide (ζf).
 Stiffness (calibration)
     EI ∝ the frame's tubes per section (two side by side in the throat arms and the hoop, one
     elsewhere; uniform on the smooth fallback) and uniform GJ, found by fixed-point iteration
