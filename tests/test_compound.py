@@ -607,7 +607,11 @@ def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> No
     (measured 0.04 %: the records are the truth's modes plus noise; 0.5 % is the issue's bound)
     and named as the truth names it, and every other mode named as the truth's mode nearest in
     frequency (without --ball-at the ball mode took the name "2-node bending" and every bending
-    mode above it one node too many)."""
+    mode above it one node too many).  A mode that is one peak with its neighbour (the truth's
+    two closer than the sum of their half-power half-widths ζf, the rule by which identify
+    merges) has no one right name and is left out of that check: on the rig's frame shape
+    (issue 22, sixth session) the ball rig's bed mode, 661.6 Hz, sits 0.7 Hz from the 3-node
+    twisting, 662.3 Hz, and the one mode fitted there mixes the two."""
     from racketdyn.modal import ModalModel
     from racketdyn.workflows import IdentifyOptions, run_identify
 
@@ -623,9 +627,16 @@ def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> No
     model = found.identification.model
     k = model.names.index(BALL_MODE_NAME)
     assert model.frequency[k] == pytest.approx(f_true, rel=0.005)
+    half_width = truth.damping_ratio * truth.frequency
+    checked = 0
     for f, name in zip(model.frequency, model.names, strict=True):
         nearest = int(np.argmin(np.abs(truth.frequency - f)))
+        apart = np.abs(truth.frequency - truth.frequency[nearest])
+        if np.any((apart > 0.0) & (apart < half_width + half_width[nearest])):
+            continue  # one peak with its neighbour
+        checked += 1
         assert name == truth.names[nearest], f"{f:.1f} Hz"
+    assert checked >= 4  # the 2-node bending, the ball, the 2-node twisting, the 3-node bending
     assert "ball on the strings at x = 505 mm" in model.metadata["naming"]
     record = json.loads((rig_frfs / "id" / "run.json").read_text(encoding="utf-8"))
     assert record["ball_at_m"] == list(CENTRE)
@@ -689,9 +700,12 @@ def test_rigid_share_tells_a_ball_mode_from_the_frame_modes() -> None:
 
 def test_compare_the_racket_alone_against_the_racket_with_the_ball(rig_frfs: Path, capsys) -> None:  # type: ignore[no-untyped-def]
     """Figs 9a and 9b: racketdyn compare --ball-at puts the ball's new mode first and pairs every
-    frame mode below 700 Hz with the racket alone's by MAC (paper: "the natural frequencies of
+    frame mode below 600 Hz with the racket alone's by MAC (paper: "the natural frequencies of
     the frame do not change": the rig's 2-node bending and twisting modes within 0.1 %, its
-    3-node bending +1.2 %, the ball acting above its own resonance there)."""
+    3-node bending +2.8 %, the ball acting above its own resonance there).  On the rig's frame
+    shape (issue 22, sixth session) the ball rig's bed mode (661.6 Hz) sits 0.7 Hz from the
+    3-node twisting (662.3 Hz), which the records (lines 4.9 Hz apart) cannot resolve: the
+    3-node twisting is no longer paired (it was within 0.1 %, MAC 0.61 on the smooth frame)."""
     out = rig_frfs / "compare_ball"
     argv = [
         "compare",
@@ -709,14 +723,9 @@ def test_compare_the_racket_alone_against_the_racket_with_the_ball(rig_frfs: Pat
     truth = json.loads((rig_frfs / "rig_ball" / "run.json").read_text(encoding="utf-8"))
     assert truth["ball_on_strings"] is not None
     paired = {r["mode"]: r for r in rows[1:] if r["mac"]}
-    for name in ("2-node bending", "2-node twisting", "3-node twisting"):
-        assert abs(float(paired[name]["frequency_shift_percent"])) < 0.1
     for name in ("2-node bending", "2-node twisting"):
+        assert abs(float(paired[name]["frequency_shift_percent"])) < 0.1
         assert float(paired[name]["mac"]) > 0.99
-    # the 3-node twisting's shape with the ball: 0.999 before the frame's shape (issue 22); with
-    # it the ball rig's 634 Hz bed mode is stable in 10 of 60 orders, dropped, and its part of
-    # the FRFs leaks into the 662 Hz fit (MAC 0.61) — identification's side, left in develop.md
-    assert float(paired["3-node twisting"]["mac"]) > 0.5
     assert abs(float(paired["3-node bending"]["frequency_shift_percent"])) < 3.0
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))
     assert record["ball_at_m"] == list(CENTRE)

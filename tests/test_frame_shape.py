@@ -232,3 +232,31 @@ def test_the_racket_command_says_which_mass_it_took(
     path.write_text(MODERN.replace("320.0", "345.0"), encoding="utf-8")
     assert main(["racket", "--racket", str(path)]) == 0
     assert "mass along the racket smooth" in " ".join(capsys.readouterr().out.split())
+
+
+def test_the_rig_takes_the_built_in_models_frame(racket: rd.Racket, tmp_path: Path) -> None:
+    """Issue 22, sixth session: the virtual rig took the smooth distribution and uniform EI, so
+    ``racket`` and ``rig``/``demo`` described one racket with two frames (the rig's 3-node over
+    2-node bending 2.71 against the built-in model's 2.98).  The rig now takes the built-in
+    model's mass along the racket (its frame less the membrane's strings), says which in its
+    metadata, and its modes keep the frame's bending ratio (within 1 %: the rig couples the
+    strings as a membrane, the built-in model spreads them along the beam); a racket the parts
+    cannot make falls back to the smooth distribution in both."""
+    from racketdyn.rig import rig_model
+
+    rig = rig_model(racket, "free")
+    built_in = builtin_modal_model(racket)
+    assert rig.metadata["mass_model"] == built_in.metadata["mass_model"] == "frame"
+    truth = rig.modal_truth([(0.3, 0.0), (0.5, 0.05), (0.5, -0.05), (0.65, 0.0)])
+    assert truth.metadata["mass_model"] == "frame"
+
+    def ratio(names: tuple[str, ...], frequency: NDArray[np.float64]) -> float:
+        return float(
+            frequency[names.index("3-node bending")] / frequency[names.index("2-node bending")]
+        )
+
+    expected = ratio(built_in.names, built_in.frequency)
+    assert ratio(rig.names, rig.frequency) == pytest.approx(expected, rel=0.01)
+    customised = _modern(tmp_path, 345.0)
+    assert rig_model(customised, "free").metadata["mass_model"] == "smooth"
+    assert builtin_modal_model(customised).metadata["mass_model"] == "smooth"

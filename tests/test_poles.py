@@ -215,9 +215,13 @@ def free_rig() -> RigModel:
 
 
 def test_rig_modes_are_its_modal_truth(free_rig: RigModel) -> None:
-    # 24 points (10 on the frame, 14 on the strings), reference on the hoop off the long axis
+    # 26 points (12 on the frame, 14 on the strings), reference on the hoop off the long axis
     # so bending, twisting and membrane modes all show; accelerance, 0.5 Hz lines, 1 % noise.
-    locations, nodes = hammer_points(free_rig.racket, n_frame=10, n_strings=14)
+    # On the frame's shape (issue 22, sixth session) the 10-point frame's hoop points each sit
+    # near a node of one mode (the 4-node bending at 0.5 σ at the old reference); 12 frame
+    # points put one at (0.381, −0.091) m where the weakest of the six peaks is 37 σ, and the
+    # band reaches 850 Hz for the membrane, now 806.8 Hz (772 on the smooth frame).
+    locations, nodes = hammer_points(free_rig.racket, n_frame=12, n_strings=14)
     reference = 9
     lines = np.arange(40.0, 900.25, 0.5)
     values = free_rig.frf(locations[reference : reference + 1], locations, lines)[0]
@@ -232,7 +236,7 @@ def test_rig_modes_are_its_modal_truth(free_rig: RigModel) -> None:
         reference_node=nodes[reference],
         reference_location=tuple(locations[reference]),
     )
-    band = (60.0, 800.0)
+    band = (60.0, 850.0)
     truth = free_rig.modal_truth(locations)
     inside = (truth.frequency > band[0]) & (truth.frequency < band[1])
     frequency, damping = truth.frequency[inside], truth.damping_ratio[inside]
@@ -268,11 +272,14 @@ def test_window_shift_is_removed_analytic() -> None:
 
 
 def test_window_shift_is_removed_through_the_measurement_chain(free_rig: RigModel) -> None:
-    # Hammer records of ten frame points on the rig, estimated with an exponential window of
+    # Hammer records of twelve frame points on the rig, estimated with an exponential window of
     # τ = 0.1 s (it adds 1/(τω) = 1.3 % to the 2-node mode's 0.5 %): the damping comes back
     # within 5 % of the rig's truth, every flexible mode in 60–800 Hz found, nothing else.
-    locations, nodes = hammer_points(free_rig.racket, n_frame=10, n_strings=5)
-    frame, reference = slice(0, 10), 9
+    # Twelve, with the reference at (0.381, −0.091) m: on the frame's shape (issue 22, sixth
+    # session) the ten-point layout's reference sat on a node of the 4-node bending (624 Hz),
+    # whose damping then came back 8 % off (the previous test).
+    locations, nodes = hammer_points(free_rig.racket, n_frame=12, n_strings=5)
+    frame, reference = slice(0, 12), 9
     records = simulate_hammer_test(
         free_rig,
         locations[frame],

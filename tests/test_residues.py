@@ -12,7 +12,15 @@ from racketdyn.measurement import FrfSet
 from racketdyn.modal.residues import fit_modal_constants, mac, mass_normalised_shapes
 from racketdyn.rig import accelerometer_index, hammer_points, rig_model
 
-BAND = (60.0, 800.0)
+BAND = (60.0, 735.0)
+"""The rig's modes from the 2-node bending to the 3-node twisting (663 Hz), the band's top midway
+to the membrane (806.8 Hz on the frame's shape, issue 22's sixth session).  On the smooth frame
+the band ran to 800 Hz and held the membrane (772 Hz); now a top of 800 Hz leaves the membrane
+7 Hz above it, where the two residual terms cannot stand in for it (constants off by up to
+0.9 % of the largest, 0.5 % allowed), and a top of 850 Hz puts the 4-node twisting (897 Hz) 47 Hz
+above (median fit error 1.5 %) and the membrane in, which the accelerometer sees at 6 % of its
+largest amplitude: its mass-normalised shape comes back 5.4 % off with 1 % noise (the
+identification tests exempt such a mode from the 5 %: ``tests/test_identify.py``)."""
 
 
 @pytest.fixture(scope="module")

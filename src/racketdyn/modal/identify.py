@@ -50,6 +50,7 @@ __all__ = [
     "LINE_DAMPING",
     "LINE_TOLERANCE_HZ",
     "MAINS_HZ",
+    "ONE_PEAK_LINES",
     "STRONG_NEGATIVE",
     "Identification",
     "default_band",
@@ -122,6 +123,12 @@ EDGE_PEAK = 10.0
 from (prominence), its phase turning by more than 90° across it."""
 EDGE_TRIES = 2
 """Clear peaks tried at each end (the most prominent), each with one narrower band's fit."""
+
+ONE_PEAK_LINES = 3
+"""Line spacings within which two poles are one peak however small their fitted damping (an
+edge fragment's is often a third of the mode's): the edge scan's and the clear peaks' rule,
+beside the half-power widths."""
+
 CLEAR_PEAK_GAIN = 3.0
 """A candidate stable in too few orders (but more than three) and one peak with no kept mode
 is kept when the fit near it, with the kept modes, is at least this many times worse without
@@ -339,7 +346,7 @@ def _missed_peaks(
         bottom = peak - low < high - peak
         if scan < min(peak - low, high - peak) or peak > frfs.bandwidth_hz:
             continue
-        if any(abs(peak - fe) <= max(we, 3 * spacing) for fe, we in explained):
+        if any(abs(peak - fe) <= max(we, ONE_PEAK_LINES * spacing) for fe, we in explained):
             continue
         half = level[index] / np.sqrt(2)
         left = index
@@ -412,7 +419,7 @@ def _harmonics(frequency: float) -> list[str]:
     return found
 
 
-def _named_rows(selected: SelectedPoles) -> SelectedPoles:
+def _named_rows(selected: SelectedPoles, spacing_hz: float) -> SelectedPoles:
     """Dropped candidates that are not noise, named: electrical lines and unsettled clear peaks.
 
     A candidate left out by the stabilisation rules (stage ``selection``) is
@@ -422,12 +429,21 @@ def _named_rows(selected: SelectedPoles) -> SelectedPoles:
       it stays out, its row says what it likely is (from FRFs alone the pole of a hammer
       pulse's spectral zero on a harmonic looks the same: a 1 ms half-sine's at 1500 Hz);
     - ``unsettled`` when it was stable in too few orders (but more than three) while its peak
-      is at least the median kept mode's and does not overlap a kept mode's (their half-power
-      widths apart): a clear peak whose poles move from order to order (pyFRF's 4128 Hz,
-      10⁵ × the noise, stable in 6 of 60 orders); its row names the ``pin_hz`` that keeps it.
+      is at least the median kept mode's and does not overlap a kept mode's or a named row's
+      (their half-power widths and :data:`ONE_PEAK_LINES` lines of ``spacing_hz`` apart): a
+      clear peak whose poles move from order to order (pyFRF's 4128 Hz, 10⁵ × the noise,
+      stable in 6 of 60 orders); its row names the ``pin_hz`` that keeps it.
     """
     reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
-    width = 2 * np.maximum(selected.damping_ratio, 0.0) * selected.frequency
+    named = [d for d in selected.dropped_modes if d.stage != "selection"]
+    centre = np.concatenate([selected.frequency, [d.frequency_hz for d in named]])
+    width = 2 * np.concatenate(
+        [
+            np.maximum(selected.damping_ratio, 0.0) * selected.frequency,
+            [max(d.damping_ratio, 0.0) * d.frequency_hz for d in named],
+        ]
+    )
+    one_peak = ONE_PEAK_LINES * spacing_hz
 
     def own(d: DroppedMode) -> float:
         return 2 * max(d.damping_ratio, 0.0) * d.frequency_hz
@@ -455,7 +471,7 @@ def _named_rows(selected: SelectedPoles) -> SelectedPoles:
             d.reason.startswith("stable in")
             and d.orders_stable > 3
             and d.peak_to_noise >= reference
-            and not np.any(np.abs(selected.frequency - d.frequency_hz) < width + own(d))
+            and not np.any(np.abs(centre - d.frequency_hz) < np.maximum(width + own(d), one_peak))
         ):
             rows.append(
                 replace(
@@ -486,8 +502,9 @@ def _clear_peaks(
     A candidate left out only for its orders (stage ``selection`` or ``unsettled``, stable in
     more than three), further from every kept mode and every row already named (``edge``,
     ``merged``, ``line``) than their mean half-power width (``ζf`` each: not one peak with it,
-    as :func:`racketdyn.modal.poles.select_poles` merges) is fitted with the kept modes (one
-    per peak: the one stable in most orders).  With a :func:`fit_gain` of
+    as :func:`racketdyn.modal.poles.select_poles` merges) and than :data:`ONE_PEAK_LINES` line
+    spacings (an edge row's fitted damping may be a third of its mode's) is fitted with the
+    kept modes (one per peak: the one stable in most orders).  With a :func:`fit_gain` of
     :data:`CLEAR_PEAK_GAIN` or more it is kept, as a pin would keep it (not marked pinned);
     with :data:`FIT_GAIN_MIN` or more it is an ``unsettled`` row naming the ``pin_hz`` that
     keeps it.  A close pair whose lower mode only a few orders resolve (a
@@ -511,6 +528,8 @@ def _clear_peaks(
             [max(d.damping_ratio, 0.0) * d.frequency_hz for d in named_rows],
         ]
     )
+    spacing = _spacing(frfs)
+    one_peak = ONE_PEAK_LINES * spacing
     candidates = [
         d
         for d in selected.dropped_modes
@@ -518,7 +537,10 @@ def _clear_peaks(
         and "stable in" in d.reason
         and d.orders_stable > 3
         and 0.0 < d.damping_ratio < 1.0
-        and np.all(np.abs(centre - d.frequency_hz) >= reach + d.damping_ratio * d.frequency_hz)
+        and np.all(
+            np.abs(centre - d.frequency_hz)
+            >= np.maximum(reach + d.damping_ratio * d.frequency_hz, one_peak)
+        )
     ]
     chosen: list[DroppedMode] = []
     for d in sorted(candidates, key=lambda d: (-d.orders_stable, -d.peak_to_noise)):
@@ -575,7 +597,9 @@ def _clear_peaks(
     user = np.zeros(again.n_modes, dtype=bool)
     for f in pin_hz:  # the user's own pins stay pinned, the kept candidates do not
         user[int(np.argmin(np.abs(again.frequency - f)))] = True
-    again = _named_rows(_edge_modes(replace(again, pinned=again.pinned & user), frfs, band))
+    again = _named_rows(
+        _edge_modes(replace(again, pinned=again.pinned & user), frfs, band), spacing
+    )
     again = replace(again, dropped_modes=relabelled(again.dropped_modes))
     lines = [
         f"{d.frequency_hz:.2f} Hz: a peak of the data (the fit near it {gain:.2g} × better with "
@@ -584,6 +608,11 @@ def _clear_peaks(
         for d, gain in keep
     ]
     return again, lines
+
+
+def _spacing(frfs: FrfSet) -> float:
+    """The FRFs' line spacing (the median step), Hz."""
+    return float(np.median(np.diff(frfs.frequency)))
 
 
 def _still(line: str, frequency: NDArray[np.float64]) -> bool:
@@ -759,7 +788,7 @@ def identify(
         edge_lines=EDGE_LINES,
         edge_widths=EDGE_WIDTHS,
     )  # raises if none
-    selected = _named_rows(_edge_modes(selected, frfs, band))
+    selected = _named_rows(_edge_modes(selected, frfs, band), _spacing(frfs))
     selected, kept = _clear_peaks(selected, stab, frfs, band, pin_hz, exclude_hz)
     selected = _missed_peaks(selected, frfs, band, max_order)
     for line in kept:

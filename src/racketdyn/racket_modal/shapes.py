@@ -16,6 +16,17 @@ Naming, from the shape at the measured points and the racket's head:
   the hoop (issue 25 item 8: a 305 g racket's membrane at 679 Hz, 14 Hz above its 3-node
   twisting, scored 12.8 on its whole shape and 101 on its symmetric part); a membrane mode
   veering with a bending mode shares its frame motion and stays ``unknown``;
+* in between (4–40), the bed's own motion decides where it is clear: the frame's motion under
+  the bed, ``w(x) + θ(x)·y``, is fitted to the hoop's points (cubics in x, :func:`bed_own_motion`)
+  and taken off the string points' shape.  A mode whose strings follow the frame in phase,
+  their own motion less than :data:`BED_OWN_RATIO` (18) times the carried motion in mean
+  square, is the frame's: the bed, driven below its own frequency, amplifies the frame's
+  motion (the rig's pull-tension 4-node bending on the frame's shape: 7.3 free, 4.1 held,
+  20 % and 15 % of its strain energy in the strings).  A mode whose frame moves against its
+  strings (it recoils), their own motion more than 18 times the carried, is the bed's (the
+  rig's pull-tension membrane: 24 and 28, 78 % and 82 % in the strings).  The played bed's
+  veering pairs, their strain energy shared 44–56 % either way, score 10 and 13 against and
+  39 and 104 in phase: they stay ``unknown``;
 * **twisting** when more than half of the shape's energy is odd in y: points are paired with
   their mirror images across the long axis (within 1 cm) and the odd part (φ(x,y) − φ(x,−y))/2
   compared with the whole;
@@ -40,6 +51,8 @@ whose frame shape is most nearly a plane ``a + b x + c y`` is the ball mode when
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -50,12 +63,16 @@ from racketdyn.racket import HeadEllipse
 __all__ = [
     "BALL_MODE_NAME",
     "BALL_RIGID_SHARE",
+    "BED_OWN_RATIO",
     "CLEAR_STRING_BED_RATIO",
+    "HOOP_DEGREE",
+    "HOOP_REACH",
     "IN_PHASE_SHARE",
     "MIRROR_TOLERANCE_M",
     "STRING_BED_RATIO",
     "axis_nodes",
     "ball_mode_index",
+    "bed_own_motion",
     "classify_modes",
     "naming_evidence",
     "outline_rigid_share",
@@ -83,6 +100,17 @@ move in phase, as in the first membrane mode (–): the rig's membrane modes sco
 ≤ 0.5."""
 MIRROR_TOLERANCE_M = 0.01
 """Largest distance between a point and the mirror image of another across y = 0, m."""
+BED_OWN_RATIO = 18.0
+"""Mean square of the strings' own motion (their shape less the frame's carried under them)
+over the carried motion's that parts a frame mode the bed follows in phase (below) from a bed
+mode its frame recoils against (above) (–): the rig's pull-tension 4-node bending scores 7.3
+and 4.1, its membrane 24 and 28; the played bed's veering pairs 10–13 (frame against) and
+39–104 (in phase), left unnamed (module docstring)."""
+HOOP_DEGREE = 3
+"""Degree in x of the polynomials ``w(x)`` and ``θ(x)`` fitted to the hoop's points (–)."""
+HOOP_REACH = 1.5
+"""Frame points within this elliptic radius of the bed (–, the bed's edge at 1) are the hoop's,
+those further out the throat's and the handle's."""
 
 
 def _mirror_pairs(locations: NDArray[np.float64]) -> NDArray[np.int_]:
@@ -121,6 +149,61 @@ def naming_evidence(model: ModalModel, head: HeadEllipse) -> str:
     if not on_strings.any() or on_strings.all():
         missing.append("points on both the strings and the frame (for string-bed modes)")
     return "no " + " nor ".join(missing) if missing else ""
+
+
+def bed_own_motion(
+    model: ModalModel, head: HeadEllipse
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """How much each mode's strings move on their own, and whether with their frame or against.
+
+    The frame's motion under the bed, ``w(x) + θ(x)·y`` with ``w`` and ``θ`` polynomials of
+    degree :data:`HOOP_DEGREE` in x, is fitted (least squares) to the shape at the hoop's points
+    (elliptic radius from 0.95 to :data:`HOOP_REACH`) and carried to the string points (radius
+    < 0.95); the strings' own motion is their shape less that.
+
+    Parameters
+    ----------
+    model : ModalModel
+        Shapes at face points (x, y), m.
+    head : HeadEllipse
+        The string bed.
+
+    Returns
+    -------
+    ratio, correlation : ndarray, shape (n_modes,)
+        Mean square of the strings' own motion over the carried motion's (–), and the
+        correlation of the two over the string points (−1 … 1: positive when the strings move
+        with the frame).  NaN for every mode when the hoop's points cannot fix the fit (too few,
+        or not on both sides of the long axis) or no point is on the strings.
+    """
+    nan = np.full(model.n_modes, np.nan)
+    if model.n_dimensions != 2 or model.n_modes == 0:
+        return nan, nan.copy()
+    rho = head.normalised_radius(model.locations)
+    on_strings = rho < 0.95
+    hoop = (rho >= 0.95) & (rho < HOOP_REACH)
+
+    def basis(xy: NDArray[np.float64]) -> NDArray[np.float64]:
+        t = (xy[:, 0] - head.centre_x_m) / head.half_length_m
+        powers = np.column_stack([t**p for p in range(HOOP_DEGREE + 1)])
+        across = (xy[:, 1] - head.centre_y_m) / head.half_width_m
+        return np.column_stack([powers, powers * across[:, None]])
+
+    fit = basis(model.locations[hoop])
+    if (
+        not on_strings.any()
+        or fit.shape[0] <= fit.shape[1]
+        or (np.linalg.matrix_rank(fit) < fit.shape[1])
+    ):
+        return nan, nan.copy()
+    coefficients = np.linalg.lstsq(fit, model.mode_shapes[hoop], rcond=None)[0]
+    carried = basis(model.locations[on_strings]) @ coefficients
+    own = model.mode_shapes[on_strings] - carried
+    square_own, square_carried = np.sum(own**2, axis=0), np.sum(carried**2, axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = square_own / square_carried
+        correlation = np.sum(own * carried, axis=0) / np.sqrt(square_own * square_carried)
+    return np.asarray(ratio, dtype=float), np.asarray(correlation, dtype=float)
 
 
 def rigid_share(model: ModalModel, head: HeadEllipse) -> NDArray[np.float64]:
@@ -225,6 +308,14 @@ def classify_modes(
     counts = {"bending": 0, "twisting": 0, "string-bed": 0}
     unclear = False
     ball = -1 if ball_at is None else ball_mode_index(model, head)
+    # the strings' own motion from the symmetric part (even in y) of a mode mostly even: a
+    # twisting neighbour's leak, odd and carried by the frame, would read as the frame's
+    even = model.mode_shapes.copy()
+    if pairs.size:
+        mean = 0.5 * (shapes[pairs[:, 0]] + shapes[pairs[:, 1]])
+        even[pairs[:, 0]], even[pairs[:, 1]] = mean, mean
+    own_ratio, own_correlation = bed_own_motion(model, head)
+    even_ratio, even_correlation = bed_own_motion(replace(model, mode_shapes=even), head)
     for k in range(model.n_modes):
         if k == ball:
             names.append(BALL_MODE_NAME)
@@ -239,16 +330,27 @@ def classify_modes(
             even = 0.5 * (phi[pairs[:, 0]] + phi[pairs[:, 1]])
             total = np.sum(odd**2 + even**2)
             odd_fraction = float(np.sum(odd**2) / total) if total > 0 else 0.0
-        if odd_fraction <= 0.5 and _in_phase_membrane(phi, pairs, on_strings):
+        unclear_ratio = STRING_BED_RATIO * frame < strings <= CLEAR_STRING_BED_RATIO * frame
+        # in the unclear band, the strings' own motion against the frame's (module docstring)
+        ratio, correlation = (
+            (even_ratio[k], even_correlation[k])
+            if odd_fraction <= 0.5
+            else (own_ratio[k], own_correlation[k])
+        )
+        bed_follows = correlation > 0 and ratio < BED_OWN_RATIO
+        frame_recoils = correlation < 0 and ratio > BED_OWN_RATIO
+        if (odd_fraction <= 0.5 and _in_phase_membrane(phi, pairs, on_strings)) or (
+            unclear_ratio and frame_recoils
+        ):
             counts["string-bed"] += 1
             n = counts["string-bed"]
             names.append("string-bed membrane" + (f" {n}" if n > 1 else ""))
             kinds.append("string-bed")
-        elif STRING_BED_RATIO * frame < strings <= CLEAR_STRING_BED_RATIO * frame:
+        elif unclear_ratio and not bed_follows:
             unclear = True
             names.append(f"mode {k + 1} ({model.frequency[k]:.1f} Hz)")
             kinds.append("unknown")
-        elif strings > STRING_BED_RATIO * frame:
+        elif strings > STRING_BED_RATIO * frame and not unclear_ratio:
             counts["string-bed"] += 1
             n = counts["string-bed"]
             names.append("string-bed membrane" + (f" {n}" if n > 1 else ""))

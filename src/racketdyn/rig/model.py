@@ -28,23 +28,33 @@ String bed
     as Cross measured (docs/references.md: string-bed modes 500–600 Hz, one test 615 Hz).
     The tension is the played bed's (``strings.bed_tension_n``: 30 % below the pull tension by
     default, Cross and Bower).  For the built-in racket the coupled membrane mode is then at
-    600 Hz, in Cross's range, where it veers with the frame's 4-node bending (677 Hz; both
-    modes share frame and bed).  At the pull tension it sat at 772 Hz (725 Hz on a rigid frame;
-    the built-in one-term estimate 739 Hz), above the 4-node bending's 629 Hz.
+    586 Hz, in Cross's range, where it veers with the frame's 4-node bending (721 Hz; both
+    modes share frame and bed, their strain energy 55/45 and 44/56 in strings/frame).  At the
+    pull tension it sits at 806.8 Hz (725 Hz on a rigid frame; the built-in one-term estimate
+    739 Hz), above the 4-node bending's 624.4 Hz.  (On the smooth frame the rig had before
+    issue 22's sixth session: 600 and 677 Hz played, 772 and 629 Hz at the pull tension.)
 Mass
-    The frame's mass per unit length is :func:`racketdyn.racket_modal.beam.beam_mass_per_length`
-    (the smooth distribution: the rig does not take the built-in model's frame shape of issue
-    22's fourth session — with it the paper racket's 3-node bending, 358 Hz, sits 3 Hz from its
-    2-node twisting and the identification tests' truths are to be derived anew) for
-    the racket's mass, balance and inertia less the strings' share (integrated with the same
-    quadrature that builds the membrane), so the assembled frame + strings have the racket's
-    mass, balance, pitch inertia and roll inertia exactly (the roll inertia per unit length is
-    put on the hoop as in the built-in model).  Point masses sit at their exact ``(x, y)`` on
-    the frame, added after calibration so lead tape moves the frequencies.
+    The frame's mass per unit length is the built-in model's,
+    :func:`racketdyn.racket_modal.beam.mass_along`: the frame's shape (shaft, throat arms, hoop,
+    handle and the head's top, :func:`~racketdyn.racket_modal.beam.frame_mass_per_length`) where
+    its parts meet the frame's mass, balance and inertia with none negative, else the smooth
+    distribution (:func:`~racketdyn.racket_modal.beam.beam_mass_per_length`); which one is
+    ``metadata["mass_model"]`` (``"frame"`` or ``"smooth"``), as in the built-in model.  Its
+    targets are the racket's mass, balance and inertia less the strings' share (integrated
+    with the same quadrature that builds the membrane; no string mass is spread along the
+    beam: the membrane carries it), so the assembled frame + strings have the racket's mass,
+    balance, pitch inertia and roll inertia exactly (the roll inertia per unit length, ∝ the
+    mass per length times the section's half-width squared, is put on the hoop as in the
+    built-in model).  Point masses sit at their exact ``(x, y)`` on the frame, added after
+    calibration so lead tape moves the frequencies.  On the frame's shape the paper racket's
+    3-node bending is 355.7 Hz (325.4 Hz on the smooth frame), 5.3 Hz below its 2-node
+    twisting: two peaks 2.2 of the rig records' 2.44 Hz lines apart, each 1.8 Hz wide (ζf).
 Stiffness (calibration)
-    Uniform EI and GJ, found by fixed-point iteration so that the free racket's first bending
-    mode sits at ``racket.first_bending_hz`` and its first twisting mode at
-    ``racket.twisting_hz`` *with the strings coupled in* (the built-in model's targets).
+    EI ∝ the frame's tubes per section (two side by side in the throat arms and the hoop, one
+    elsewhere; uniform on the smooth fallback) and uniform GJ, found by fixed-point iteration
+    so that the free racket's first bending mode sits at ``racket.first_bending_hz`` and its
+    first twisting mode at ``racket.twisting_hz`` *with the strings coupled in* (the built-in
+    model's targets); ``metadata["bending_stiffness_nm2"]`` is one tube's EI.
 Free support
     The racket on a soft sponge (paper, section 2).  Modelled as an ideal soft suspension: a
     stiffness ``M R Ω² Rᵀ M`` on the mass-orthonormal rigid-body modes ``R`` (heave, pitch,
@@ -98,7 +108,7 @@ from racketdyn.racket_modal.beam import (
     _bending_matrices,
     _section_radius,
     _torsion_matrices,
-    beam_mass_per_length,
+    mass_along,
 )
 
 __all__ = [
@@ -172,7 +182,8 @@ class RigModel:
         Mode names (``"2-node bending"`` …) and kinds (``bending``, ``twisting``,
         ``string-bed``, ``other`` for the support's rigid-body modes).
     metadata : dict
-        Calibrated stiffnesses, string mass, support parameters.
+        Calibrated stiffnesses, string mass, the frame's mass model (``mass_model``: ``"frame"``
+        or ``"smooth"``, as the built-in model's), support parameters.
     """
 
     racket: Racket
@@ -393,12 +404,11 @@ def rig_model(
     first = racket.mass_kg * racket.balance_m - weight @ qx
     second = racket.inertia_cg_kgm2 + racket.mass_kg * racket.balance_m**2 - weight @ qx**2
     frame_balance = first / frame_mass
-    density = beam_mass_per_length(
-        racket.length_m,
-        frame_mass,
-        frame_balance,
-        second - frame_mass * frame_balance**2,
-        N_ELEMENTS,
+    frame_inertia = second - frame_mass * frame_balance**2
+    # the built-in model's frame (its shape, else the smooth fallback); the strings are the
+    # membrane's, so none is spread along the beam here
+    density, tubes = mass_along(
+        racket.length_m, head, (frame_mass, frame_balance, frame_inertia), 0.0
     )
     mid, step = 0.5 * (x[:-1] + x[1:]), np.diff(x)
     frame_roll = racket.roll_inertia_kgm2 - weight @ qy**2
@@ -409,7 +419,7 @@ def rig_model(
         )
     roll_density = density * _section_radius(head, mid) ** 2
     roll_density *= frame_roll / np.sum(roll_density * step)
-    kb_unit, mb = _bending_matrices(x, density)
+    kb_unit, mb = _bending_matrices(x, density, tubes)
     kt_unit, mt = _torsion_matrices(x, roll_density)
 
     mass = bed_mass.copy()
@@ -446,6 +456,7 @@ def rig_model(
         "bending_stiffness_nm2": float(ei),
         "torsional_stiffness_nm2_per_rad": float(gj),
         "string_mass_kg": string_mass,
+        "mass_model": "smooth" if tubes is None else "frame",
         "string_tension_per_width_n_per_m": [float(tension_x), float(tension_y)],
         "frame_damping_ratio": float(frame_damping_ratio),
         "max_frequency_hz": float(max_frequency_hz),
