@@ -43,9 +43,19 @@ def _predict(out: Path, rig: Path) -> Any:
     from racketdyn.plotting.steps import predict_figures
     from racketdyn.workflows import run_predict
 
+    from racketdyn.impact.uncertainty import Spread, Uncertainty
+
     figures = predict_figures()
+    # with an uncertainty: Fig. 15's band, the face maps' band width and the sensitivity figure
+    spread = Uncertainty((Spread("e_bg", bounds=(0.80, 0.88)),), samples=8)
     return run_predict(
-        out, Setup(figures=figures), model="both", speeds=[10.0, 20.0], grid=3, engine="compiled"
+        out,
+        Setup(figures=figures),
+        model="both",
+        speeds=[10.0, 20.0],
+        grid=3,
+        engine="compiled",
+        uncertainty=spread,
     )
 
 

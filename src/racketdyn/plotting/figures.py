@@ -255,6 +255,63 @@ def figure_rebound_along_axis(data: PaperFigures) -> Figure:
     return figure
 
 
+def figure_sensitivity(data: Any) -> Figure:
+    """Which input dominates the rebound ratio at the run's named points: Sobol' total indices
+    (bars) and first-order ones (dark), with their 90 % intervals.
+
+    Parameters
+    ----------
+    data : racketdyn.impact.uncertainty.Sensitivity
+        The run's indices (``sensitivity.csv``'s numbers).
+    """
+    output = "rebound_ratio"
+    o = ("rebound_ratio", "contact_time", "vibration_energy").index(output)
+    n = len(data.labels)
+    columns = 2 if n > 1 else 1
+    rows = int(np.ceil(n / columns))
+    figure, axes = plt.subplots(
+        rows, columns, figsize=(5.2 * columns, 0.9 + 0.38 * len(data.inputs) * rows + 0.6),
+        layout="constrained", squeeze=False,
+    )  # fmt: skip
+    for p, label in enumerate(data.labels):
+        ax = axes.flat[p]
+        ax.set_title(f"{label} ({data.locations[p, 0] * 1e3:.0f}, "
+                     f"{data.locations[p, 1] * 1e3:.0f} mm)", fontsize=8)  # fmt: skip
+        total, first = data.total_order[o, p], data.first_order[o, p]
+        ax.set_xlim(0.0, 1.05)
+        ax.tick_params(axis="x", labelsize=7)
+        if not np.all(np.isfinite(total)):
+            why = data.why_none(p) if hasattr(data, "why_none") else "samples beyond the method"
+            ax.text(0.5, 0.5, f"no indices:\n{why}", ha="center", va="center", fontsize=7,
+                    transform=ax.transAxes, wrap=True)  # fmt: skip
+            ax.set_yticks([])
+            continue
+        order = np.argsort(total)
+        y = np.arange(order.size)
+        ax.barh(y, total[order], color="0.75", label="total")
+        ax.barh(y, first[order], height=0.4, color="0.25", label="first order")
+        for ci, colour in ((data.total_order_ci, "0.45"), (data.first_order_ci, "0.1")):
+            if ci is not None:
+                low, high = ci[0, o, p][order], ci[1, o, p][order]
+                ax.errorbar(
+                    (low + high) / 2, y, xerr=(high - low) / 2, fmt="none", ecolor=colour,
+                    elinewidth=0.8, capsize=2,
+                )  # fmt: skip
+        ax.set_yticks(y, [data.inputs[i] for i in order], fontsize=7)
+    for ax in axes.flat[n:]:
+        ax.set_visible(False)
+    for ax in axes[-1]:
+        ax.set_xlabel("Sobol' index of the rebound ratio", fontsize=8)
+    axes.flat[0].legend(fontsize=7, loc="lower right")
+    figure.suptitle(
+        f"which input dominates the rebound ratio: ball at {data.ball_speed:g} m/s, "
+        f"{data.support}; Sobol' total (light) and first-order (dark) indices, 90 % intervals "
+        f"({data.evaluations} model runs)",
+        fontsize=8,
+    )
+    return figure
+
+
 def figure_face_maps(data: PaperFigures) -> Figure:
     """Face maps at one speed: rebound ratio (each support), contact time and vibration energy.
 

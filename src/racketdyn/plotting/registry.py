@@ -356,6 +356,18 @@ FIGURES: dict[str, FigureEntry] = {
             reads=("paper_figures",),
         ),
         FigureEntry(
+            "sensitivity",
+            "predict",
+            "which uncertain input dominates the rebound ratio at the face centre, tip, throat "
+            "and 40 mm off the axis, ball at {shown_speed}: Sobol' total indices (light bars: "
+            "the share of the variance an input takes part in) and first-order ones (dark: its "
+            "own share), each with its 90 % interval; an interval reaching 0 is not told from no "
+            "effect (with --uncertainty; sensitivity.csv holds the numbers)",
+            section="rebound",
+            draw=f"{_FIGURES}:figure_sensitivity",
+            reads=("sensitivity",),
+        ),
+        FigureEntry(
             "face_maps",
             "predict",
             "maps over the face, ball at {shown_speed}, {shown_racket_speed}: rebound ratio for "

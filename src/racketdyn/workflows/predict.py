@@ -12,6 +12,7 @@ import os
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
+from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, cast
 
@@ -52,6 +53,7 @@ from racketdyn.io import racket_to_dict, read_points
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_speeds
 from racketdyn.racket import SUPPORTS, Racket, landmark_points
+from racketdyn.workflows._figure_io import store
 from racketdyn.workflows.figure_data import (
     FIGURES_FILE,
     AxisBand,
@@ -642,6 +644,8 @@ def _figure_data(
     if result.transient is not None and result.histories:
         result.transient_histories = TransientHistories.of(result.histories, result.mode_names)
         datasets.append(result.transient_histories.to_xarray)
+    if result.sensitivity is not None:
+        datasets.append(partial(store, {"sensitivity": result.sensitivity}))
     if datasets:  # written while the figures are drawn (xarray's import is most of it)
         path = result.out / FIGURES_FILE
         defer_file(result, path, lambda: write_figure_data(path, [data() for data in datasets]))
