@@ -40,10 +40,9 @@ def _setup(step: str) -> Setup:
 
 
 def _predict(out: Path, rig: Path) -> Any:
+    from racketdyn.impact.uncertainty import Spread, Uncertainty
     from racketdyn.plotting.steps import predict_figures
     from racketdyn.workflows import run_predict
-
-    from racketdyn.impact.uncertainty import Spread, Uncertainty
 
     figures = predict_figures()
     # with an uncertainty: Fig. 15's band, the face maps' band width and the sensitivity figure
