@@ -667,23 +667,38 @@ def test_a_racket_file_without_its_frequency_says_the_120_hz_it_runs_at(tmp_path
 
 def test_the_reports_dominant_input_names_the_inputs_it_is_not_told_from(tmp_path: Path) -> None:
     """As the console does: where another input's total-index interval reaches the dominant
-    one's, the page says the dominant one is not told from it."""
+    one's, the page says the dominant one is not told from it; a point without indices says
+    why.  Through ``sensitivity.csv`` as ``Sensitivity.rows`` writes it."""
+    from racketdyn.impact.result import write_columns
+    from racketdyn.impact.uncertainty import Sensitivity
     from racketdyn.report.sections.rebound import _dominant
 
-    rows = [
-        "point,output,input,total_order,total_order_p05,total_order_p95",
-        "centre,rebound_ratio,e_bg,0.55,0.45,0.66",
-        "centre,rebound_ratio,first_bending_hz,0.47,0.37,0.58",
-        "centre,rebound_ratio,location_m x,0.02,0.00,0.04",
-        "tip,rebound_ratio,e_bg,0.90,0.85,0.95",
-        "tip,rebound_ratio,first_bending_hz,0.10,0.05,0.15",
-        "tip,rebound_ratio,location_m x,0.01,0.00,0.02",
-    ]
+    total = np.full((3, 3, 3), 0.01)
+    total[0, 0] = [0.55, 0.47, 0.02]  # centre: e_bg, first_bending_hz overlapping, location
+    total[0, 1] = [0.90, 0.10, 0.01]  # tip: e_bg clear of the others
+    total[:, 2] = np.nan  # throat: no indices, its shots on the frame
+    spread = np.array([0.1, 0.1, 0.02])
+    found = Sensitivity(
+        labels=("centre", "tip", "throat"),
+        locations=np.zeros((3, 2)),
+        inputs=("e_bg", "first_bending_hz", "location_m x"),
+        first_order=total.copy(),
+        total_order=total,
+        ball_speed=20.0,
+        support="free",
+        evaluations=320,
+        valid_share=np.array([1.0, 1.0, 0.3]),
+        total_order_ci=np.stack([total - spread, total + spread]),
+        frame_share=np.array([0.0, 0.0, 0.7]),
+    )
+    assert found.rivals(0) == ("first_bending_hz",)
+    assert found.rivals(1) == ()
     path = tmp_path / "sensitivity.csv"
-    path.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    write_columns(path, {k: np.asarray(v, dtype=object) for k, v in found.rows().items()})
     line = _dominant(path)
-    assert "centre e_bg, not told from first_bending_hz" in line
-    assert "tip e_bg;" in line or line.endswith("tip e_bg")
+    assert "centre e_bg, not told from first_bending_hz;" in line
+    assert "tip e_bg;" in line
+    assert line.endswith("throat not known (70% of its base samples scatter a shot onto the frame)")
 
 
 def test_a_point_without_indices_says_its_shots_hit_the_frame() -> None:

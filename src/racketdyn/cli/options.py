@@ -717,7 +717,8 @@ def _report_steps(report: Any) -> tuple[list[str] | None, str]:
     did) and the ``--steps`` it was made with, from its ``racketdyn-steps`` meta lines."""
     import re
 
-    head = report.read_text(encoding="utf-8", errors="replace")[:4000]
+    with report.open(encoding="utf-8", errors="replace") as page:
+        head = page.read(4000)  # the meta lines, not the ≈ 2 MB of figures
     shown = re.search(r'<meta name="racketdyn-steps" content="([^"]*)">', head)
     given = re.search(r'<meta name="racketdyn-steps-given" content="([^"]*)">', head)
     folders = None if shown is None else [s for s in shown.group(1).split(",") if s]

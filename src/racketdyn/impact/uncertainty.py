@@ -859,6 +859,8 @@ class Sensitivity:
         it.
     frame_share : ndarray, optional
         ``(n_points,)`` share of the base samples with a frame shot among their runs.
+    outputs : tuple of str
+        The outputs along the indices' first axis (:data:`SENSITIVITY_OUTPUTS`).
     """
 
     labels: tuple[str, ...]
@@ -873,6 +875,7 @@ class Sensitivity:
     first_order_ci: NDArray[np.float64] | None = None
     total_order_ci: NDArray[np.float64] | None = None
     frame_share: NDArray[np.float64] | None = None
+    outputs: tuple[str, ...] = SENSITIVITY_OUTPUTS
 
     def why_none(self, point: int) -> str:
         """Why a point has no indices: its base samples' frame shots, or runs beyond the
@@ -886,7 +889,7 @@ class Sensitivity:
 
     def dominant(self, point: int, output: str = "rebound_ratio") -> str:
         """The input with the largest total index at a point ("" when not known)."""
-        total = self.total_order[SENSITIVITY_OUTPUTS.index(output), point]
+        total = self.total_order[self.outputs.index(output), point]
         if not np.all(np.isfinite(total)):
             return ""
         return self.inputs[int(np.argmax(total))]
@@ -896,7 +899,7 @@ class Sensitivity:
         reach into its interval (none without intervals)."""
         if self.total_order_ci is None or not self.dominant(point, output):
             return ()
-        o = SENSITIVITY_OUTPUTS.index(output)
+        o = self.outputs.index(output)
         top = int(np.argmax(self.total_order[o, point]))
         low = self.total_order_ci[0, o, point, top]
         high = self.total_order_ci[1, o, point]
@@ -910,14 +913,15 @@ class Sensitivity:
                 "point", "x_m", "y_m", "ball_speed_mps", "support", "output", "input",
                 "first_order", "first_order_p05", "first_order_p95",
                 "total_order", "total_order_p05", "total_order_p95", "samples_valid",
-                "samples_frame_shot",
+                "samples_frame_shot", "dominant", "not_told_from_dominant", "note",
             )
         }  # fmt: skip
         blank = np.full((2, *self.first_order.shape), np.nan)
         first_ci = blank if self.first_order_ci is None else self.first_order_ci
         total_ci = blank if self.total_order_ci is None else self.total_order_ci
-        for o, output in enumerate(SENSITIVITY_OUTPUTS):
+        for o, output in enumerate(self.outputs):
             for p, label in enumerate(self.labels):
+                top, rivals = self.dominant(p, output), self.rivals(p, output)
                 for i, name in enumerate(self.inputs):
                     at = (o, p, i)
                     values = (
@@ -927,6 +931,7 @@ class Sensitivity:
                         self.total_order[at], total_ci[(0, *at)], total_ci[(1, *at)],
                         self.valid_share[p],
                         np.nan if self.frame_share is None else self.frame_share[p],
+                        name == top, name in rivals, self.why_none(p),
                     )  # fmt: skip
                     for key, value in zip(table, values, strict=True):
                         table[key].append(value)
@@ -1134,8 +1139,8 @@ def _saltelli_2010(
     Saltelli et al. 2010's estimators (Table 2 (b) and (f)), as
     :func:`scipy.stats.sobol_indices` computes them, on the base samples j whose ``f_a``,
     ``f_b`` and every ``f_ab[i]`` are valid (finite); NaN where fewer than
-    :data:`MIN_VALID_SHARE` are.  ``f_a``, ``f_b``: ``(n_outputs, n_points, n)``; ``f_ab``:
-    ``(d, n_outputs, n_points, n)``.
+    :data:`MIN_VALID_SHARE` are.  ``f_a``, ``f_b``: ``(n_outputs, n_points, …, n)``; ``f_ab``:
+    ``(d, n_outputs, n_points, …, n)`` (``…``: the bootstrap's resamples, or nothing).
     """
     ok = np.isfinite(f_a) & np.isfinite(f_b) & np.all(np.isfinite(f_ab), axis=0)
     share = ok.all(axis=0).mean(axis=-1)

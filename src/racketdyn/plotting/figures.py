@@ -264,8 +264,7 @@ def figure_sensitivity(data: Any) -> Figure:
     data : racketdyn.impact.uncertainty.Sensitivity
         The run's indices (``sensitivity.csv``'s numbers).
     """
-    output = "rebound_ratio"
-    o = ("rebound_ratio", "contact_time", "vibration_energy").index(output)
+    o = data.outputs.index("rebound_ratio")
     n = len(data.labels)
     columns = 2 if n > 1 else 1
     rows = int(np.ceil(n / columns))
@@ -281,8 +280,8 @@ def figure_sensitivity(data: Any) -> Figure:
         ax.set_xlim(0.0, 1.05)
         ax.tick_params(axis="x", labelsize=7)
         if not np.all(np.isfinite(total)):
-            why = data.why_none(p) if hasattr(data, "why_none") else "samples beyond the method"
-            ax.text(0.5, 0.5, f"no indices:\n{why}", ha="center", va="center", fontsize=7,
+            why = f"no indices:\n{data.why_none(p)}"
+            ax.text(0.5, 0.5, why, ha="center", va="center", fontsize=7,
                     transform=ax.transAxes, wrap=True)  # fmt: skip
             ax.set_yticks([])
             continue

@@ -106,6 +106,9 @@ over the carried motion's that parts a frame mode the bed follows in phase (belo
 mode its frame recoils against (above) (–): the rig's pull-tension 4-node bending scores 7.3
 and 4.1, its membrane 24 and 28; the played bed's veering pairs 10–13 (frame against) and
 39–104 (in phase), left unnamed (module docstring)."""
+ON_STRINGS = 0.95
+"""Elliptic radius (the bed's edge at 1) below which a point is on the strings, at or above
+which it is on the frame (–)."""
 HOOP_DEGREE = 3
 """Degree in x of the polynomials ``w(x)`` and ``θ(x)`` fitted to the hoop's points (–)."""
 HOOP_REACH = 1.5
@@ -142,7 +145,7 @@ def naming_evidence(model: ModalModel, head: HeadEllipse) -> str:
     """
     if model.n_dimensions != 2:
         return "the points are not on the racket's face (x, y)"
-    on_strings = head.normalised_radius(model.locations) < 0.95
+    on_strings = head.normalised_radius(model.locations) < ON_STRINGS
     missing = []
     if _mirror_pairs(model.locations).shape[0] < 2:
         missing.append("points mirrored across the long axis (for twisting)")
@@ -158,8 +161,8 @@ def bed_own_motion(
 
     The frame's motion under the bed, ``w(x) + θ(x)·y`` with ``w`` and ``θ`` polynomials of
     degree :data:`HOOP_DEGREE` in x, is fitted (least squares) to the shape at the hoop's points
-    (elliptic radius from 0.95 to :data:`HOOP_REACH`) and carried to the string points (radius
-    < 0.95); the strings' own motion is their shape less that.
+    (elliptic radius from :data:`ON_STRINGS` to :data:`HOOP_REACH`) and carried to the string
+    points (radius below it); the strings' own motion is their shape less that.
 
     Parameters
     ----------
@@ -180,8 +183,8 @@ def bed_own_motion(
     if model.n_dimensions != 2 or model.n_modes == 0:
         return nan, nan.copy()
     rho = head.normalised_radius(model.locations)
-    on_strings = rho < 0.95
-    hoop = (rho >= 0.95) & (rho < HOOP_REACH)
+    on_strings = rho < ON_STRINGS
+    hoop = (rho >= ON_STRINGS) & (rho < HOOP_REACH)
 
     def basis(xy: NDArray[np.float64]) -> NDArray[np.float64]:
         t = (xy[:, 0] - head.centre_x_m) / head.half_length_m
@@ -220,7 +223,7 @@ def rigid_share(model: ModalModel, head: HeadEllipse) -> NDArray[np.float64]:
     head : HeadEllipse
         The string bed, to tell string points from frame points.
     """
-    frame = head.normalised_radius(model.locations) >= 0.95
+    frame = head.normalised_radius(model.locations) >= ON_STRINGS
     return _plane_share(model, np.flatnonzero(frame))
 
 
@@ -302,7 +305,7 @@ def classify_modes(
         ``other`` for the ball, ``unknown`` where the shape does not say).
     """
     locations, shapes = model.locations, model.mode_shapes
-    on_strings = head.normalised_radius(locations) < 0.95
+    on_strings = head.normalised_radius(locations) < ON_STRINGS
     pairs = _mirror_pairs(locations)
     names, kinds = [], []
     counts = {"bending": 0, "twisting": 0, "string-bed": 0}

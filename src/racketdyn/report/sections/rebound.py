@@ -244,45 +244,31 @@ def _bands(run: RunFolder, impacts: Impacts, speed: float) -> list[str]:
 
 
 def _dominant(path: Path) -> str:
-    """The input with the largest total Sobol' index of the rebound ratio at each point, and
-    the inputs whose 90 % interval reaches its interval (not told from it), where the file
-    gives the intervals."""
-    by_point: dict[str, list[tuple[float, str, float, float]]] = {}
-    on_frame: dict[str, float] = {}
+    """The input with the largest total Sobol' index of the rebound ratio at each point, the
+    inputs it is not told from and why a point has none, as ``sensitivity.csv`` says them
+    (:meth:`racketdyn.impact.uncertainty.Sensitivity.rows`; a file of an earlier racketdyn,
+    without those columns: the largest total index alone)."""
+    parts: dict[str, str] = {}
+    best: dict[str, float] = {}
+    rivals: dict[str, list[str]] = {}
     for row in read_csv(path, ("point", "output", "input", "total_order")):
         if row["output"] != "rebound_ratio":
             continue
-        on_frame[row["point"]] = _float(row.get("samples_frame_shot"))
-        value, low, high = (
-            _float(row.get(key)) for key in ("total_order", "total_order_p05", "total_order_p95")
+        label, total = row["point"], float(row["total_order"] or "nan")
+        if row.get("note") or (row.get("note") is None and not math.isfinite(total)):
+            parts[label] = f"{label} not known ({row.get('note') or 'samples beyond the method'})"
+        elif row.get("dominant") == "True" or (
+            row.get("dominant") is None and total > best.get(label, -math.inf)
+        ):
+            parts[label], best[label] = f"{label} {row['input']}", total
+        if row.get("not_told_from_dominant") == "True":
+            rivals.setdefault(label, []).append(row["input"])
+    return "dominant input of the rebound ratio (largest total Sobol' index, sensitivity.csv): " + (
+        "; ".join(
+            text + (f", not told from {', '.join(rivals[label])}" if label in rivals else "")
+            for label, text in parts.items()
         )
-        by_point.setdefault(row["point"], []).append((value, row["input"], low, high))
-    parts = []
-    for label, entries in by_point.items():
-        if not all(math.isfinite(value) for value, *_ in entries):
-            shots = on_frame.get(label, math.nan)
-            why = (
-                f"{shots:.0%} of its base samples scatter a shot onto the frame"
-                if shots > 0.1
-                else "samples beyond the method"
-            )
-            parts.append(f"{label} not known ({why})")
-            continue
-        value, name, low, _ = max(entries)
-        rivals = [n for v, n, _, h in entries if n != name and math.isfinite(h) and h >= low]
-        parts.append(f"{label} {name}" + (f", not told from {', '.join(rivals)}" if rivals else ""))
-    return (
-        "dominant input of the rebound ratio (largest total Sobol' index, sensitivity.csv): "
-        + "; ".join(parts)
     )
-
-
-def _float(text: str | None) -> float:
-    """A CSV cell as a number (NaN for an empty cell, ``nan`` or a column the file lacks)."""
-    try:
-        return float(text) if text not in (None, "") else math.nan
-    except ValueError:
-        return math.nan
 
 
 def _rigid_rebound_ratio(impacts: Impacts, record: dict[str, Any]) -> NDArray[np.float64]:
