@@ -20,6 +20,8 @@ from racketdyn.cli import options as opt
 if TYPE_CHECKING:
     from rich.console import Console
 
+    from racketdyn.racket import Racket
+
 DOUBLE_HITS, OVERLOADS = 0.03, 0.01  # probabilities per hit: a real test has a few bad hits
 # mild measurement noise, each record's peak over its noise rms (issue 12): identification
 # stays within 0.004 % in frequency and 0.3 % in damping (free, 40–850 Hz; docs/develop.md)
@@ -173,12 +175,12 @@ def run(args: argparse.Namespace, console: Console) -> int:
         progress.update(task, description="report")
         report = write_report(out, racket)
         progress.advance(task)
-    _say_unknown_modes(console, out / "compare" / "modal_model_free.json")
+    _say_unknown_modes(console, out / "compare" / "modal_model_free.json", racket)
     opt.say(console, f"demo complete → {report}")
     return 0
 
 
-def _say_unknown_modes(console: Console, modal: Path) -> None:
+def _say_unknown_modes(console: Console, modal: Path, racket: Racket) -> None:
     """The line ``predict`` prints for the identified model's modes of unknown kind, which the
     demo's predict, swing, twist and oblique take as frame modes (issue 25 item 8: on the
     played bed the built-in racket's membrane veers with its 4-node bending and the shapes
@@ -188,7 +190,7 @@ def _say_unknown_modes(console: Console, modal: Path) -> None:
 
     if not modal.is_file():
         return
-    line = unknown_modes_line(ModalModel.read_json(modal))
+    line = unknown_modes_line(ModalModel.read_json(modal), racket)
     if line:
         opt.say(
             console, f"the identified free model (predict, swing, twist, oblique): {line}", "yellow"

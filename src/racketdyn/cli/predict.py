@@ -156,17 +156,22 @@ def run(args: argparse.Namespace, console: Console) -> int:
     if result.comparison is not None:
         console.print(_comparison_table(result.comparison, result.shown_speed, result.racket))
         opt.say(console, *_differ_line(result.comparison))
-    unknown = unknown_modes_line(result.modal_model)
+    unknown = unknown_modes_line(result.modal_model, result.racket)
     if unknown:
         opt.say(console, unknown, "yellow")
     opt.print_written(console, result.written)
     return 0
 
 
-def unknown_modes_line(model: ModalModel | None) -> str:
+def unknown_modes_line(model: ModalModel | None, racket: Racket) -> str:
     """A line naming the modal model's modes of unknown kind, which the prediction takes as
     frame modes (new-user trial of 2026-11-26: a string-bed mode identified as ``unknown``
-    lengthened the transient contact by 8 %, the strings counted twice)."""
+    lengthened the transient contact by 8 %, the strings counted twice).  Where the model has
+    hoop and string points the prediction takes the frame's motion under the bed (issue 22,
+    seventh session), and a string-bed mode among them counts only through the frame it moves;
+    without them the strings may count twice, and the line says how to avoid it."""
+    from racketdyn.racket_modal.shapes import SHAPES_FRAME_UNDER_BED, frame_under_bed
+
     if model is None:
         return ""
     found = [
@@ -176,11 +181,20 @@ def unknown_modes_line(model: ModalModel | None) -> str:
         return ""
     listed = ", ".join(found)
     verb = "is" if len(found) == 1 else "are"
+    head = f"{listed} {verb} of unknown kind: taken as a frame mode"
+    if frame_under_bed(model, racket.head).metadata["shapes_on_strings"] == (
+        SHAPES_FRAME_UNDER_BED
+    ):
+        return (
+            f"{head}, with the frame's motion under the bed at the strings (fitted to the "
+            "hoop's points; the strings' own give is the ball-string law's), so a string-bed "
+            "mode among them is charged only for the frame it moves"
+        )
     return (
-        f"{listed} {verb} of unknown kind: taken as a frame mode (vibration charged, and in the "
-        "transient simulation moving the face under the ball); if the strings make it, they "
-        "count twice: identify with --racket so its shape names it, or leave it out "
-        "(identify --exclude HZ)"
+        f"{head} (vibration charged, and in the transient simulation moving the face under the "
+        "ball); the model has no hoop and string points to take the frame's motion under the "
+        "bed from, so if the strings make it, they count twice: identify with --racket so its "
+        "shape names it, or leave it out (identify --exclude HZ)"
     )
 
 

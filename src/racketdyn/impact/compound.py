@@ -46,6 +46,7 @@ from racketdyn.contact import (
     with_ball_string_cor,
 )
 from racketdyn.errors import InputError, require_positive
+from racketdyn.impact.grid import resolve_modal_model
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.system import ImpactSystem, impact_system
 from racketdyn.modal import ModalModel
@@ -497,7 +498,8 @@ def racket_modes(
         Mass properties.
     model : ModalModel or None
         The racket's flexible modes (mass-normalised); string-bed modes are left out (module
-        docstring); None for a rigid racket.
+        docstring), and a measured model's shapes on the strings are the frame's motion under
+        the bed (:func:`racketdyn.impact.grid.resolve_modal_model`); None for a rigid racket.
     support : {"free", "pinned", "hand"}
         Support (:func:`racketdyn.impact.system.impact_system`).
     location : array_like (2,)
@@ -515,7 +517,7 @@ def racket_modes(
     if xy.shape[0] != 1:
         raise InputError("`point`: give one point x,y for the ball")
     extra = np.asarray(points, dtype=float).reshape(-1, 2)
-    frame = None if model is None else model.frame_modes
+    frame = resolve_modal_model(racket, model, include_string_bed=False)
     system = impact_system(
         racket, frame, support, np.vstack([xy, extra]), hand if support == "hand" else None
     )

@@ -26,6 +26,7 @@ from racketdyn.impact.hand import Hand
 from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket, as_locations
 from racketdyn.racket_modal import modal_model_for
+from racketdyn.racket_modal.shapes import frame_under_bed
 
 __all__ = [
     "STRING_BEDS",
@@ -90,7 +91,10 @@ def resolve_modal_model(
     :func:`racketdyn.impact.approximate.predict` for why).  Rigid-body modes (a sponge's or a
     hand's, in the rig's modal truth) are always dropped: the reduced mass of the support
     already carries the rigid-body motion, and a 2 Hz mode charged as vibration would take
-    the whole impulse (trial of 2026-11-23: every row flagged).
+    the whole impulse (trial of 2026-11-23: every row flagged).  At points on the strings a
+    measured model's shapes are the frame's motion under the bed
+    (:func:`racketdyn.racket_modal.shapes.frame_under_bed`): the strings' own give is the
+    ball-string law's.
     """
     if isinstance(modal_model, str):
         if modal_model != "racket":
@@ -102,6 +106,8 @@ def resolve_modal_model(
         model = modal_model
     if model is not None:
         model = model.flexible_modes if include_string_bed else model.frame_modes
+        if model.n_dimensions == 2:
+            model = frame_under_bed(model, racket.head)
     return model
 
 
@@ -195,8 +201,17 @@ class ImpactGrid:
                 "restoring_force": ball.restoring_force.as_dict(),
             },
             "compound_law": self.law.as_dict(),
-            "modal_model": None if self.model is None else self.model.summary(),
+            "modal_model": None if self.model is None else modal_record(self.model),
         }
+
+
+def modal_record(model: ModalModel) -> dict[str, Any]:
+    """A charged model's run record: its summary and what its shapes on the strings are
+    (:func:`racketdyn.racket_modal.shapes.frame_under_bed`)."""
+    record = model.summary()
+    if "shapes_on_strings" in model.metadata:
+        record["shapes_on_strings"] = model.metadata["shapes_on_strings"]
+    return record
 
 
 def impact_grid(

@@ -57,6 +57,7 @@ from scipy.special import ellipeinc
 from racketdyn.errors import InputError
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import HeadEllipse, Racket
+from racketdyn.racket_modal.shapes import SHAPES_FRAME_MODEL
 
 __all__ = [
     "HANDLE_LENGTH_M",
@@ -473,6 +474,9 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
             "string_mass_kg": float(string_mass),
             "mass_model": "smooth" if tubes is None else "frame",
             "elements": N_ELEMENTS,
+            # the beam's deflection is the frame's at every point, the strings' own give is
+            # the ball-string law's: nothing to take off (racket_modal.shapes.frame_under_bed)
+            "shapes_on_strings": SHAPES_FRAME_MODEL,
         },
     )
 

@@ -784,6 +784,14 @@ class RunFolder:
             if isinstance(mode, dict) and mode.get("kind") == "unknown"
         ]
 
+    def shapes_under_bed(self, folder: Path | None) -> bool:
+        """Whether the modal model a step charged took the frame's motion under the bed at the
+        string points (its run.json's ``modal_model.shapes_on_strings``; issue 22)."""
+        from racketdyn.racket_modal.shapes import SHAPES_FRAME_UNDER_BED
+
+        used = self.record(folder).get("modal_model")
+        return isinstance(used, dict) and used.get("shapes_on_strings") == SHAPES_FRAME_UNDER_BED
+
     # -- what the pipeline wrote --------------------------------------------------------------
     @property
     def predict_dir(self) -> Path | None:

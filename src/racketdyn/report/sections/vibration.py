@@ -77,6 +77,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     return {
         "figure": figure,
         "energy": has_energy,
+        "under_bed": run.shapes_under_bed(folder),
         "rows": rows,
         "flagged": flagged,
         "filled": filled if has_energy else 0,
