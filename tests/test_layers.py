@@ -233,10 +233,7 @@ COMPUTING = (
 they may import: a figure draws what the step computed, docs/develop.md "Layers"); the modal
 ones since the identified shapes' figures (Figs 4–6, AutoMAC) draw what identify evaluated,
 the sweep since its summary figures draw the curves the sweep computed."""
-STILL_EVALUATING = {
-    "racketdyn.report.sections.truth": "the rig's truth table evaluates the rig's model at the "
-    "identified points and their MAC while the page is written (issue 23, left)",
-}
+STILL_EVALUATING: dict[str, str] = {}
 """Presentation modules that still evaluate a modal model, and why: the debt, in one place."""
 PURE_HELPERS = {
     "racketdyn.impact.result.shown_speed_index",  # which of the run's speeds a table shows

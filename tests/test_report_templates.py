@@ -369,6 +369,9 @@ def test_the_truth_section_renders_found_and_missed_modes() -> None:
     html = render_section(
         "truth",
         {
+            "notes": [
+                "hand: no compare/truth_comparison_hand.csv beside compare/modal_model_hand.json"
+            ],
             "blocks": [
                 {
                     "label": "free",
@@ -390,12 +393,13 @@ def test_the_truth_section_renders_found_and_missed_modes() -> None:
                         ("string-bed membrane 3", "1236.5", "on a node at the accelerometer")
                     ],
                 }
-            ]
+            ],
         },
     )
     assert "against the rig's truth rig/modal_truth_free.json" in html
     assert '<td>2-node bending</td><td class="num">120.00</td>' in html
     assert "on a node at the accelerometer" in html
+    assert "<p>hand: no compare/truth_comparison_hand.csv beside" in html
 
 
 def test_a_mixed_folder_names_which_steps_used_which_racket_and_the_fix(

@@ -10,6 +10,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from racketdyn.plotting.primitives import axes_grid
 from racketdyn.plotting.registry import file_of
 
 if TYPE_CHECKING:
@@ -29,12 +30,23 @@ def draw_ball_loops(bounces: BallBounces, axes: Sequence[Axes] | None = None) ->
 
     Loading runs up the upper branch and unloading down the lower one; the area between is
     the energy the bounce loses.  Draws only the arrays ``bounces`` holds.
+
+    Parameters
+    ----------
+    bounces : BallBounces
+        The bounces the step computed.
+    axes : sequence of Axes, optional
+        One per surface to draw into; default a figure of its own
+        (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
+
+    Returns
+    -------
+    list of Axes
     """
-    if axes is None:
-        _, made = plt.subplots(
-            1, len(bounces.surfaces), figsize=(4.6 * len(bounces.surfaces), 3.8), squeeze=False
-        )
-        axes = list(made[0])
+    _, made = axes_grid(
+        axes, 1, len(bounces.surfaces), figsize=(4.6 * len(bounces.surfaces), 3.8), squeeze=False
+    )
+    axes = list(made[0])
     colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, max(bounces.speeds.size, 1)))
     for i, (ax, surface) in enumerate(zip(axes, bounces.surfaces, strict=True)):
         for j, speed in enumerate(bounces.speeds):
@@ -55,11 +67,23 @@ def draw_ball_loops(bounces: BallBounces, axes: Sequence[Axes] | None = None) ->
     return list(axes)
 
 
-def figure_ball_loops(bounces: BallBounces) -> Figure:
-    """:func:`draw_ball_loops` in a figure of its own (the registry's ``ball_hysteresis``)."""
-    figure, made = plt.subplots(
-        1, len(bounces.surfaces), figsize=(4.6 * len(bounces.surfaces), 3.8), squeeze=False
+def figure_ball_loops(bounces: BallBounces, axes: Sequence[Axes] | None = None) -> Figure:
+    """:func:`draw_ball_loops` in a figure of its own (the registry's ``ball_hysteresis``), or
+    in the caller's ``axes``.
+
+    Parameters
+    ----------
+    bounces : BallBounces
+        The bounces the step computed.
+    axes : sequence of Axes, optional
+        One per surface to draw into, their figure, size and layout the caller's (not tightened
+        here); default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an
+        error if not that many).
+    """
+    figure, made = axes_grid(
+        axes, 1, len(bounces.surfaces), figsize=(4.6 * len(bounces.surfaces), 3.8), squeeze=False
     )
     draw_ball_loops(bounces, list(made[0]))
-    figure.tight_layout()
+    if axes is None:
+        figure.tight_layout()
     return figure

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -18,7 +18,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
-from racketdyn.plotting.primitives import SUPPORT_STYLE, label_lines
+from racketdyn.plotting.primitives import SUPPORT_STYLE, axes_grid, label_lines
 from racketdyn.plotting.registry import draw, file_of, for_step
 from racketdyn.plotting.render import save_figure
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME
@@ -294,26 +294,30 @@ def figure_compound_response(result: CompoundFigures) -> Figure:
     return figure
 
 
-def figure_compound_frf(result: CompoundFigures) -> Figure:
+def figure_compound_frf(result: CompoundFigures, axes: Sequence[Axes] | None = None) -> Figure:
     """Fig. 9: receptance hammer → neck without and with the ball, every support.
 
     Parameters
     ----------
     result : CompoundFigures
         What the step computed for its figures.
+    axes : sequence of Axes, optional
+        Two ((a) alone, (b) with the ball) to draw into, their figure, size and layout the caller's;
+        default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if
+        not that many).
     """
-    figure, axes = plt.subplots(1, 2, figsize=(8.0, 2.7), layout="constrained", sharey=True)
+    figure, grid = axes_grid(axes, 1, 2, figsize=(8.0, 2.7), layout="constrained", sharey=True)
     for support in result.supports:
-        plot_compound_frf(result.frequency, result.frf_alone[support], support, support, ax=axes[0])
+        plot_compound_frf(result.frequency, result.frf_alone[support], support, support, ax=grid[0])
         plot_compound_frf(
-            result.frequency, result.frf_with_ball[support], support, support, ax=axes[1]
+            result.frequency, result.frf_with_ball[support], support, support, ax=grid[1]
         )
-    axes[0].set_title("(a) the racket alone", fontsize=9)
-    axes[1].set_title("(b) the racket with the ball on the strings", fontsize=9)
-    axes[1].set_ylabel("")  # shared with (a)
+    grid[0].set_title("(a) the racket alone", fontsize=9)
+    grid[1].set_title("(b) the racket with the ball on the strings", fontsize=9)
+    grid[1].set_ylabel("")  # shared with (a)
     for support in result.supports[:1]:
         f_ball = result.ball_frequency_hz[support]
-        _mark_mode(axes[1], f_ball, f"ball mode {f_ball:.1f} Hz", "0.5")
+        _mark_mode(grid[1], f_ball, f"ball mode {f_ball:.1f} Hz", "0.5")
     figure.suptitle("Fig. 9: receptance hammer → neck without and with the ball", fontsize=10)
     return figure
 
@@ -357,7 +361,7 @@ def write_compound_figures(result: CompoundResult, out: Path) -> list[Path]:
     return paths
 
 
-def figure_ball_comparison(data: BallFrfs) -> Figure:
+def figure_ball_comparison(data: BallFrfs, axes: Sequence[Axes] | None = None) -> Figure:
     """The measured FRFs of the racket alone and with the ball (paper, Figs 9a and 9b).
 
     One FRF from each set: the hammer point nearest the ball that both sets hold and whose FRF
@@ -372,25 +376,29 @@ def figure_ball_comparison(data: BallFrfs) -> Figure:
     data : BallFrfs
         What ``compare --ball-at`` chose to draw
         (:func:`racketdyn.workflows.frf_figures.ball_frfs`).
+    axes : sequence of Axes, optional
+        Two ((a) alone, (b) with the ball) to draw into, their figure, size and layout the caller's;
+        default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if
+        not that many).
     """
     alone, ball = data.alone, data.with_ball
     node = alone.nodes[0]
     x, y = ball.locations[0, 0], ball.locations[0, 1]
     top = 3.0 * max([*data.with_ball_hz[:2], *data.alone_hz[:1], 100.0])
-    figure, axes = plt.subplots(1, 2, figsize=(8.0, 2.8), layout="constrained", sharey=True)
-    for ax, frfs in ((axes[0], alone), (axes[1], ball)):
+    figure, grid = axes_grid(axes, 1, 2, figsize=(8.0, 2.8), layout="constrained", sharey=True)
+    for ax, frfs in ((grid[0], alone), (grid[1], ball)):
         keep = (frfs.frequency > 0) & (frfs.frequency <= top)
         ax.semilogy(frfs.frequency[keep], np.abs(frfs.values[0, keep]), lw=0.9, color="tab:blue")
         ax.set_xlabel("frequency (Hz)")
     keep = (alone.frequency > 0) & (alone.frequency <= top)
-    axes[1].semilogy(
+    grid[1].semilogy(
         alone.frequency[keep], np.abs(alone.values[0, keep]), lw=0.7, color="0.6", ls="--",
         label="racket alone",
     )  # fmt: skip
-    axes[0].set_ylabel("|accelerance| (m/(N·s²))", fontsize=8)
+    grid[0].set_ylabel("|accelerance| (m/(N·s²))", fontsize=8)
     for ax, frequency, names in (
-        (axes[0], data.alone_hz, data.alone_names),
-        (axes[1], data.with_ball_hz, data.with_ball_names),
+        (grid[0], data.alone_hz, data.alone_names),
+        (grid[1], data.with_ball_hz, data.with_ball_names),
     ):
         for f, name in zip(frequency, names, strict=True):
             if f > top:
@@ -399,9 +407,9 @@ def figure_ball_comparison(data: BallFrfs) -> Figure:
                 _mark_mode(ax, f, f"{name} {f:.1f} Hz", "tab:red")
             else:
                 _mark_mode(ax, f, "", "0.7")
-    axes[0].set_title("(a) the racket alone", fontsize=9)
-    axes[1].set_title("(b) with the ball on the strings", fontsize=9)
-    axes[1].legend(fontsize=8, loc="lower right")
+    grid[0].set_title("(a) the racket alone", fontsize=9)
+    grid[1].set_title("(b) with the ball on the strings", fontsize=9)
+    grid[1].legend(fontsize=8, loc="lower right")
     figure.suptitle(
         f"Fig. 9: hammer at node {node} (x = {1e3 * x:.0f} mm, y = {1e3 * y:.0f} mm) → "
         f"accelerometer, ball at "

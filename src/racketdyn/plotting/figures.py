@@ -32,6 +32,7 @@ from racketdyn.measurement.records import FRF_UNITS, FrfSet
 from racketdyn.plotting.primitives import (
     SCALE_BAR_M,
     SUPPORT_STYLE,
+    axes_grid,
     label_lines,
     mark_flagged_spans,
     plot_along_axis,
@@ -118,7 +119,7 @@ def _mark_run_speeds(
     ax.plot(speeds[at], values[at], "o", color="tab:red", markersize=4, label="the run's speeds")
 
 
-def figure_force_and_contact_time(data: PaperFigures) -> Figure:
+def figure_force_and_contact_time(data: PaperFigures, axes: Sequence[Axes] | None = None) -> Figure:
     """Paper Figs 11 and 12: F_MEAN and T_c against speed at the top, centre and throat.
 
     Parameters
@@ -126,25 +127,30 @@ def figure_force_and_contact_time(data: PaperFigures) -> Figure:
     data : PaperFigures
         The run's figure data (:func:`racketdyn.workflows.figure_data.paper_figures`): its
         ``speed_curves``, with the run's speeds marked.
+    axes : sequence of Axes, optional
+        Two per racket speed of the curves (a row each: force, contact time) to draw into, their
+        figure, size and layout the caller's; default a figure of its own
+        (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
     """
     every = data.speed_curves
     names = list(every.labels)
     racket_speeds = every.racket_speeds
-    figure, grid = plt.subplots(
+    figure, grid = axes_grid(
+        axes,
         len(racket_speeds),
         2,
         figsize=(10, 4 * len(racket_speeds)),
         layout="constrained",
         squeeze=False,
     )
-    for axes, racket_speed in zip(grid, racket_speeds, strict=True):
+    for pair, racket_speed in zip(grid, racket_speeds, strict=True):
         # one row per racket speed, its curves over the whole speed axis (issue 27)
         curves = every.at_racket_speed(racket_speed)
         run_speeds = data.run_speeds
         if data.run_racket_speeds.size == run_speeds.size:
             run_speeds = run_speeds[data.run_racket_speeds == racket_speed]
         racket = f"racket {racket_speed:g} m/s" if racket_speed else "racket at rest"
-        for ax, quantity in zip(axes, ("mean_force", "contact_time"), strict=True):
+        for ax, quantity in zip(pair, ("mean_force", "contact_time"), strict=True):
             plot_speed_curves(curves, quantity, names, ax=ax)
             scale = 1e3 if quantity == "contact_time" else 1.0
             values = np.asarray(getattr(curves, quantity), dtype=float) * scale
@@ -152,8 +158,8 @@ def figure_force_and_contact_time(data: PaperFigures) -> Figure:
                 for p in range(len(curves.supports)):
                     _mark_run_speeds(ax, curves.ball_speed, values[i, :, p], run_speeds)
             _dedupe_legend(ax)
-        axes[0].set_title(f"Fig. 11: equivalent impact force, {racket}", fontsize=9)
-        axes[1].set_title(f"Fig. 12: contact time, {racket}", fontsize=9)
+        pair[0].set_title(f"Fig. 11: equivalent impact force, {racket}", fontsize=9)
+        pair[1].set_title(f"Fig. 12: contact time, {racket}", fontsize=9)
     figure.suptitle(f"{data.racket_name}: {data.description}", fontsize=10)
     return figure
 
@@ -189,7 +195,7 @@ def _dedupe_legend(ax: Axes, fontsize: float = 7) -> None:
     ax.legend(list(unique.values()), list(unique.keys()), fontsize=fontsize)
 
 
-def figure_frame_vibration(data: PaperFigures) -> Figure:
+def figure_frame_vibration(data: PaperFigures, axes: Sequence[Axes] | None = None) -> Figure:
     """Paper Fig. 14: first-mode displacement along the frame for an impact at the tip.
 
     One panel per support of the run; flagged impacts are not drawn and are labelled.
@@ -199,10 +205,14 @@ def figure_frame_vibration(data: PaperFigures) -> Figure:
     data : PaperFigures
         The run's figure data: its ``frame`` (None: a rigid racket, a figure that says there
         is no vibration).
+    axes : sequence of Axes, optional
+        One per support of the run (one for a rigid racket) to draw into, their figure, size and
+        layout the caller's; default a figure of its own
+        (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
     """
     frame = data.frame
     if frame is None:
-        figure, ax = plt.subplots(figsize=(6, 2.5), layout="constrained")
+        figure, ax = axes_grid(axes, 1, 1, figsize=(6, 2.5), layout="constrained")
         ax.set_axis_off()
         ax.text(
             0.5,
@@ -215,7 +225,8 @@ def figure_frame_vibration(data: PaperFigures) -> Figure:
         figure.suptitle("Fig. 14: frame vibration", fontsize=10)
         return figure
     supports = frame.supports
-    figure, axes = plt.subplots(
+    figure, grid = axes_grid(
+        axes,
         1,
         len(supports),
         figsize=(5 * len(supports), 4),
@@ -223,7 +234,7 @@ def figure_frame_vibration(data: PaperFigures) -> Figure:
         sharey=True,
         squeeze=False,
     )
-    for ax, support in zip(axes[0], supports, strict=True):
+    for ax, support in zip(grid[0], supports, strict=True):
         plot_frame_amplitude(frame, support=support, ax=ax)
     figure.suptitle(
         "Fig. 14: predicted frame vibration just after an impact at the tip (first mode only); "
@@ -255,7 +266,7 @@ def figure_rebound_along_axis(data: PaperFigures) -> Figure:
     return figure
 
 
-def figure_sensitivity(data: Any) -> Figure:
+def figure_sensitivity(data: Any, axes: Sequence[Axes] | None = None) -> Figure:
     """Which input dominates the rebound ratio at the run's named points: Sobol' total indices
     (bars) and first-order ones (dark), with their 90 % intervals.
 
@@ -263,17 +274,21 @@ def figure_sensitivity(data: Any) -> Figure:
     ----------
     data : racketdyn.impact.uncertainty.Sensitivity
         The run's indices (``sensitivity.csv``'s numbers).
+    axes : sequence of Axes, optional
+        One per named point, two to a row (a last odd one hidden) to draw into, their figure, size
+        and layout the caller's; default a figure of its own
+        (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
     """
     o = data.outputs.index("rebound_ratio")
     n = len(data.labels)
     columns = 2 if n > 1 else 1
     rows = int(np.ceil(n / columns))
-    figure, axes = plt.subplots(
-        rows, columns, figsize=(5.2 * columns, 0.9 + 0.38 * len(data.inputs) * rows + 0.6),
+    figure, grid = axes_grid(
+        axes, rows, columns, figsize=(5.2 * columns, 0.9 + 0.38 * len(data.inputs) * rows + 0.6),
         layout="constrained", squeeze=False,
     )  # fmt: skip
     for p, label in enumerate(data.labels):
-        ax = axes.flat[p]
+        ax = grid.flat[p]
         ax.set_title(f"{label} ({data.locations[p, 0] * 1e3:.0f}, "
                      f"{data.locations[p, 1] * 1e3:.0f} mm)", fontsize=8)  # fmt: skip
         total, first = data.total_order[o, p], data.first_order[o, p]
@@ -297,11 +312,11 @@ def figure_sensitivity(data: Any) -> Figure:
                     elinewidth=0.8, capsize=2,
                 )  # fmt: skip
         ax.set_yticks(y, [data.inputs[i] for i in order], fontsize=7)
-    for ax in axes.flat[n:]:
+    for ax in grid.flat[n:]:
         ax.set_visible(False)
-    for ax in axes[-1]:
+    for ax in grid[-1]:
         ax.set_xlabel("Sobol' index of the rebound ratio", fontsize=8)
-    axes.flat[0].legend(fontsize=7, loc="lower right")
+    grid.flat[0].legend(fontsize=7, loc="lower right")
     figure.suptitle(
         f"which input dominates the rebound ratio: ball at {data.ball_speed:g} m/s, "
         f"{data.support}; Sobol' total (light) and first-order (dark) indices, 90 % intervals "
@@ -311,7 +326,7 @@ def figure_sensitivity(data: Any) -> Figure:
     return figure
 
 
-def figure_face_maps(data: PaperFigures) -> Figure:
+def figure_face_maps(data: PaperFigures, axes: Sequence[Axes] | None = None) -> Figure:
     """Face maps at one speed: rebound ratio (each support), contact time and vibration energy.
 
     The run's impacts at the shown speed (points, not a contour, where they span no surface).
@@ -320,6 +335,11 @@ def figure_face_maps(data: PaperFigures) -> Figure:
     ----------
     data : PaperFigures
         The run's figure data: its ``face`` impacts and ``main_support``.
+    axes : sequence of Axes, optional
+        One per map (rebound ratio per support, contact time, vibration energy, and the band's width
+        per support with an uncertainty), two or three to a row to draw into, their figure, size and
+        layout the caller's; default a figure of its own
+        (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
     """
     face = data.face
     panels = [("rebound_ratio", support) for support in face.supports]
@@ -328,10 +348,10 @@ def figure_face_maps(data: PaperFigures) -> Figure:
         panels += [("rebound_ratio_band_width", support) for support in face.supports]
     columns = 2 if len(panels) in (4, 6) else min(len(panels), 3)
     rows = int(np.ceil(len(panels) / columns))
-    figure, axes = plt.subplots(
-        rows, columns, figsize=(5 * columns, 3.75 * rows), layout="constrained", squeeze=False
+    figure, grid = axes_grid(
+        axes, rows, columns, figsize=(5 * columns, 3.75 * rows), layout="constrained", squeeze=False
     )
-    for ax, (quantity, support) in zip(axes.flat, panels, strict=True):
+    for ax, (quantity, support) in zip(grid.flat, panels, strict=True):
         plot_face_map(face, data.head, quantity, 0, support, ax=ax)
     figure.suptitle(
         f"{data.racket_name}: ball at {face.ball_speed[0]:g} m/s, {len(face.locations)} points; "
@@ -343,21 +363,25 @@ def figure_face_maps(data: PaperFigures) -> Figure:
     return figure
 
 
-def figure_pulse_spectrum(data: PaperFigures) -> Figure:
+def figure_pulse_spectrum(data: PaperFigures, axes: Sequence[Axes] | None = None) -> Figure:
     """Paper Fig. 13: the half-sine pulse at the face centre and its spectrum, against speed.
 
     Parameters
     ----------
     data : PaperFigures
         The run's figure data: its ``pulse`` (the modes of the model dotted).
+    axes : sequence of Axes, optional
+        Two (the pulse, its spectrum) to draw into, their figure, size and layout the caller's;
+        default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if
+        not that many).
     """
     pulse = data.pulse
-    figure, axes = plt.subplots(1, 2, figsize=(10, 4.6), layout="constrained")
+    figure, grid = axes_grid(axes, 1, 2, figsize=(10, 4.6), layout="constrained")
     frequency = pulse.frequency
     for s in np.flatnonzero(pulse.drawn()):
         speed, contact = pulse.ball_speed[s], pulse.contact_time[s]
-        axes[0].plot(pulse.time * 1e3, pulse.force[s], label=f"{speed:g} m/s")
-        axes[1].plot(
+        grid[0].plot(pulse.time * 1e3, pulse.force[s], label=f"{speed:g} m/s")
+        grid[1].plot(
             frequency, pulse.spectrum[s], label=f"{speed:g} m/s: T_c = {contact * 1e3:.2f} ms"
         )
     if pulse.modal:
@@ -365,13 +389,13 @@ def figure_pulse_spectrum(data: PaperFigures) -> Figure:
             (float(f), name, "0.4")
             for name, f in zip(pulse.mode_names, pulse.mode_frequency, strict=True)
         ]
-        axes[1].set_xlim(frequency[0] - 30.0, frequency[-1] + 30.0)
-        label_lines(axes[1], modes)
-    axes[0].set_xlabel("time from first contact (ms)")
-    axes[0].set_ylabel("impact force F(t) (N)")
-    axes[1].set_xlabel("frequency (Hz)")
-    axes[1].set_ylabel("|S(f)| (N·s)")
-    for ax in axes:
+        grid[1].set_xlim(frequency[0] - 30.0, frequency[-1] + 30.0)
+        label_lines(grid[1], modes)
+    grid[0].set_xlabel("time from first contact (ms)")
+    grid[0].set_ylabel("impact force F(t) (N)")
+    grid[1].set_xlabel("frequency (Hz)")
+    grid[1].set_ylabel("|S(f)| (N·s)")
+    for ax in grid:
         ax.grid(alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
@@ -395,11 +419,12 @@ def _point_label(frfs: FrfSet, index: int, centre_index: int) -> str:
     return f"node {frfs.nodes[index]} ({where}) mm" + (": " + ", ".join(roles) if roles else "")
 
 
-def _frf_figure(points: FrfPoints, frame_point: bool) -> Figure:
+def _frf_figure(points: FrfPoints, frame_point: bool, axes: Sequence[Axes] | None) -> Figure:
     """Fig. 2 (``frame_point``) or Fig. 3: one point's FRF, magnitude, phase and coherence."""
     frfs = points.frfs
     index = points.frame if frame_point else points.centre
-    figure, axes = plt.subplots(
+    figure, grid = axes_grid(
+        axes,
         3,
         1,
         figsize=(6.5, 6),
@@ -407,13 +432,13 @@ def _frf_figure(points: FrfPoints, frame_point: bool) -> Figure:
         layout="constrained",
         gridspec_kw={"height_ratios": [2, 1, 1]},
     )
-    plot_frf(frfs, index, axes=list(axes), label=_point_label(frfs, index, points.centre))
+    plot_frf(frfs, index, axes=list(grid), label=_point_label(frfs, index, points.centre))
     averages = "" if frfs.n_averages is None else f", {int(frfs.n_averages[index])} averages"
     figure.suptitle(f"{frfs.frf_type} FRF, {frfs.estimator}{averages} ({frfs.source})", fontsize=9)
     return figure
 
 
-def figure_frf_frame(points: FrfPoints) -> Figure:
+def figure_frf_frame(points: FrfPoints, axes: Sequence[Axes] | None = None) -> Figure:
     """Paper Fig. 2: the frame's driving-point FRF (without a driving point, the first point's,
     and its label says so).
 
@@ -421,11 +446,15 @@ def figure_frf_frame(points: FrfPoints) -> Figure:
     ----------
     points : FrfPoints
         The FRFs of the points drawn (:func:`racketdyn.workflows.frf_figures.frf_points`).
+    axes : sequence of Axes, optional
+        Three (magnitude, phase, coherence) to draw into, their figure, size and layout the
+        caller's; default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an
+        error if not that many).
     """
-    return _frf_figure(points, frame_point=True)
+    return _frf_figure(points, True, axes)
 
 
-def figure_frf_string_centre(points: FrfPoints) -> Figure:
+def figure_frf_string_centre(points: FrfPoints, axes: Sequence[Axes] | None = None) -> Figure:
     """Paper Fig. 3: the FRF at the point nearest the string-bed centre.
 
     Each point is labelled the same way in Figs 2 and 3 (:func:`_point_label`): when the
@@ -435,12 +464,19 @@ def figure_frf_string_centre(points: FrfPoints) -> Figure:
     ----------
     points : FrfPoints
         The FRFs of the points drawn (:func:`racketdyn.workflows.frf_figures.frf_points`).
+    axes : sequence of Axes, optional
+        Three (magnitude, phase, coherence) to draw into, their figure, size and layout the
+        caller's; default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an
+        error if not that many).
     """
-    return _frf_figure(points, frame_point=False)
+    return _frf_figure(points, False, axes)
 
 
 def figure_contact_time(
-    tables: Sequence[ContactTimes], labels: Sequence[str], racket: Racket
+    tables: Sequence[ContactTimes],
+    labels: Sequence[str],
+    racket: Racket,
+    axes: Sequence[Axes] | None = None,
 ) -> Figure:
     """Paper Fig. 7: hammer contact time over the string face, one panel per condition.
 
@@ -452,9 +488,12 @@ def figure_contact_time(
         A label per table.
     racket : Racket
         The racket (its face).
+    axes : sequence of Axes, optional
+        One per table to draw into, their figure, size and layout the caller's; default a figure of
+        its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
     """
-    figure, axes = plt.subplots(
-        1, len(tables), figsize=(4.6 * len(tables), 3.8), layout="constrained", squeeze=False
+    figure, grid = axes_grid(
+        axes, 1, len(tables), figsize=(4.6 * len(tables), 3.8), layout="constrained", squeeze=False
     )
     finite = (
         np.concatenate(
@@ -465,7 +504,7 @@ def figure_contact_time(
     levels = (
         np.linspace(finite.min(), finite.max(), 11) if finite.size and np.ptp(finite) > 0 else 10
     )
-    for ax, table, label in zip(axes[0], tables, labels, strict=True):
+    for ax, table, label in zip(grid[0], tables, labels, strict=True):
         plot_contact_map(table, racket, ax=ax, title=label, levels=levels)
     figure.suptitle("Fig. 7: contact time of the hammer on the strings", fontsize=10)
     return figure
@@ -511,7 +550,7 @@ def figure_mode_shapes(shapes: ModeShapes) -> Figure:
     return figure
 
 
-def figure_node_lines(shapes: ModeShapes) -> Figure:
+def figure_node_lines(shapes: ModeShapes, axes: Sequence[Axes] | None = None) -> Figure:
     """Paper Fig. 5: node lines of each mode on the string face, with a key to black and white.
 
     Parameters
@@ -519,12 +558,21 @@ def figure_node_lines(shapes: ModeShapes) -> Figure:
     shapes : ModeShapes
         The modes evaluated where they are drawn: over the face and outline of a racket, over
         its own points for any other structure.
+    axes : sequence of Axes, optional
+        One per mode, three to a row (the last row's spare ones turned off) to draw into, their
+        figure, size and layout the caller's; default a figure of its own
+        (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
     """
     rows, columns = _mode_grid(shapes.n_modes)
-    figure, axes = plt.subplots(
-        rows, columns, figsize=(3.2 * columns, 2.6 * rows), layout="constrained", squeeze=False
+    figure, grid = axes_grid(
+        axes,
+        rows,
+        columns,
+        figsize=(3.2 * columns, 2.6 * rows),
+        layout="constrained",
+        squeeze=False,
     )
-    for k, ax in enumerate(axes.flat):
+    for k, ax in enumerate(grid.flat):
         if k >= shapes.n_modes:
             ax.set_axis_off()
         else:
@@ -559,7 +607,7 @@ def figure_stabilisation(data: FitFigures) -> Figure:
     return figure
 
 
-def figure_synthesised_frfs(data: FitFigures) -> Figure:
+def figure_synthesised_frfs(data: FitFigures, axes: Sequence[Axes] | None = None) -> Figure:
     """Measured FRFs against those synthesised from the identified model: the driving point and
     the point nearest the string-bed centre (a racket's modes) or the worst-fitted point.
 
@@ -567,14 +615,23 @@ def figure_synthesised_frfs(data: FitFigures) -> Figure:
     ----------
     data : FitFigures
         What the step's identification draws (:func:`racketdyn.workflows.frf_figures.fit_figures`).
+    axes : sequence of Axes, optional
+        One per drawn point to draw into, their figure, size and layout the caller's; default a
+        figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that
+        many).
     """
     drawn = data.synthesised
     frfs, frequency = drawn.frfs, drawn.frequency
-    figure, axes = plt.subplots(
-        1, frfs.n_points, figsize=(5.5 * frfs.n_points, 4), layout="constrained", squeeze=False
+    figure, grid = axes_grid(
+        axes,
+        1,
+        frfs.n_points,
+        figsize=(5.5 * frfs.n_points, 4),
+        layout="constrained",
+        squeeze=False,
     )
     band = (frfs.frequency >= frequency[0]) & (frfs.frequency <= frequency[-1])
-    for ax, index in zip(axes[0], range(frfs.n_points), strict=True):
+    for ax, index in zip(grid[0], range(frfs.n_points), strict=True):
         ax.semilogy(frfs.frequency, np.abs(frfs.values[index]), color="0.6", label="measured")
         ax.semilogy(
             frequency,
@@ -703,27 +760,33 @@ def plot_identified_rebound(data: IdentifiedRebound, ax: Axes | None = None) -> 
     return ax
 
 
-def figure_mode_comparison(comparison: ModeComparison) -> Figure:
+def figure_mode_comparison(
+    comparison: ModeComparison, axes: Sequence[Axes] | None = None
+) -> Figure:
     """Frequency shift and damping ratio of each mode, hand-held against free (paired by MAC).
 
     Parameters
     ----------
     comparison : ModeComparison
         The compare step's pairing (``comparison.csv``).
+    axes : sequence of Axes, optional
+        Two (frequency shift, damping ratio) to draw into, their figure, size and layout the
+        caller's; default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an
+        error if not that many).
     """
     rows = comparison.rows
-    figure, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
+    figure, grid = axes_grid(axes, 1, 2, figsize=(11, 4), layout="constrained")
     names = [row["mode"] for row in rows]
     index = np.arange(len(rows))
-    axes[0].bar(index, [row["frequency_shift_percent"] for row in rows], color="tab:blue")
-    axes[0].set_ylabel("frequency shift, hand-held vs free (%)")
-    axes[1].bar(index - 0.2, [100 * row["damping_free"] for row in rows], 0.4, label="free")
-    axes[1].bar(
+    grid[0].bar(index, [row["frequency_shift_percent"] for row in rows], color="tab:blue")
+    grid[0].set_ylabel("frequency shift, hand-held vs free (%)")
+    grid[1].bar(index - 0.2, [100 * row["damping_free"] for row in rows], 0.4, label="free")
+    grid[1].bar(
         index + 0.2, [100 * row["damping_hand"] for row in rows], 0.4, label="hand-held", color="k"
     )
-    axes[1].set_ylabel("damping ratio (%)")
-    axes[1].legend(fontsize=8)
-    for ax in axes:
+    grid[1].set_ylabel("damping ratio (%)")
+    grid[1].legend(fontsize=8)
+    for ax in grid:
         ax.set_xticks(index, names, rotation=30, ha="right", fontsize=8)
         ax.grid(alpha=0.3, axis="y")
     figure.suptitle("Free against hand-held (paired by MAC)", fontsize=10)
@@ -795,7 +858,9 @@ def _difference_map(data: ComparisonMap, support: str, limit: float, ax: Axes) -
     return ax
 
 
-def figure_transient_comparison_face(data: ComparisonMap) -> Figure:
+def figure_transient_comparison_face(
+    data: ComparisonMap, axes: Sequence[Axes] | None = None
+) -> Figure:
     """Rebound ratio, approximate − transient, over the face at one speed, one panel a support.
 
     Parameters
@@ -803,14 +868,22 @@ def figure_transient_comparison_face(data: ComparisonMap) -> Figure:
     data : ComparisonMap
         The difference at the run's impacts
         (:meth:`racketdyn.workflows.figure_data.ComparisonMap.of`).
+    axes : sequence of Axes, optional
+        One per support to draw into, their figure, size and layout the caller's; default a figure
+        of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
     """
     supports = data.supports
     difference = data.difference
     limit = float(np.nanmax(np.abs(difference))) if np.any(np.isfinite(difference)) else 0.0
-    figure, axes = plt.subplots(
-        1, len(supports), figsize=(4.8 * len(supports), 3.9), layout="constrained", squeeze=False
+    figure, grid = axes_grid(
+        axes,
+        1,
+        len(supports),
+        figsize=(4.8 * len(supports), 3.9),
+        layout="constrained",
+        squeeze=False,
     )
-    for ax, support in zip(axes[0], supports, strict=True):
+    for ax, support in zip(grid[0], supports, strict=True):
         _difference_map(data, support, limit, ax)
     figure.suptitle(
         "Rebound ratio: approximate method − transient simulation "
@@ -820,7 +893,9 @@ def figure_transient_comparison_face(data: ComparisonMap) -> Figure:
     return figure
 
 
-def figure_transient_comparison_speed(curves: TransientCurves) -> Figure:
+def figure_transient_comparison_speed(
+    curves: TransientCurves, axes: Sequence[Axes] | None = None
+) -> Figure:
     """Rebound ratio and contact time against speed, approximate against transient.
 
     At the face centre, near the tip and near the throat, one column per support; the run's
@@ -830,12 +905,17 @@ def figure_transient_comparison_speed(curves: TransientCurves) -> Figure:
     ----------
     curves : TransientCurves
         Both models' curves (:func:`racketdyn.workflows.figure_data.transient_curves`).
+    axes : sequence of Axes, optional
+        Two rows (rebound ratio, contact time) of one per support to draw into, their figure, size
+        and layout the caller's; default a figure of its own
+        (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
     """
     approximate, transient = curves.approximate, curves.transient
     supports = approximate.supports
     names = list(approximate.labels)
     speeds = approximate.ball_speed
-    figure, axes = plt.subplots(
+    figure, grid = axes_grid(
+        axes,
         2,
         len(supports),
         figsize=(5.0 * len(supports), 7.0),
@@ -848,7 +928,7 @@ def figure_transient_comparison_speed(curves: TransientCurves) -> Figure:
         for row, (quantity, label, scale) in enumerate(
             (("rebound_ratio", "rebound ratio e (–)", 1.0), ("contact_time", "T_c (ms)", 1e3))
         ):
-            ax = axes[row, p]
+            ax = grid[row, p]
             for i, (name, colour) in enumerate(zip(names, colours, strict=True)):
                 x = approximate.locations[i, 0]
                 for result, style, model_name in (
@@ -888,7 +968,7 @@ def figure_transient_comparison_speed(curves: TransientCurves) -> Figure:
                 ax.set_title(_support_style(support)["label"], fontsize=9)
             else:
                 ax.set_xlabel("incoming ball speed (m/s)")
-    _legend_below(list(axes[0, :]), columns=3)
+    _legend_below(list(grid[0, :]), columns=3)
     figure.suptitle(
         "Approximate method (dashed) against the transient simulation (solid); "
         + curves.description,
@@ -897,7 +977,9 @@ def figure_transient_comparison_speed(curves: TransientCurves) -> Figure:
     return figure
 
 
-def figure_transient_histories(histories: TransientHistories) -> Figure:
+def figure_transient_histories(
+    histories: TransientHistories, axes: Sequence[Axes] | None = None
+) -> Figure:
     """Time histories of simulated impacts: force, displacements, modal coordinates.
 
     One column per impact point, one line per support (modal coordinates: one colour per mode,
@@ -908,15 +990,19 @@ def figure_transient_histories(histories: TransientHistories) -> Figure:
     histories : TransientHistories
         The run's simulated impacts (:meth:`racketdyn.workflows.figure_data.
         TransientHistories.of`).
+    axes : sequence of Axes, optional
+        Three rows (force, displacements, modal coordinates) of one per impact point to draw into,
+        their figure, size and layout the caller's; default a figure of its own
+        (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
     """
     mode_names = histories.mode_names
     points = list(dict.fromkeys(histories.points))
-    figure, axes = plt.subplots(
-        3, len(points), figsize=(5.0 * len(points), 8.0), layout="constrained", squeeze=False
+    figure, grid = axes_grid(
+        axes, 3, len(points), figsize=(5.0 * len(points), 8.0), layout="constrained", squeeze=False
     )
     mode_colours = plt.get_cmap("tab10")(np.arange(max(len(mode_names), 1)) % 10)
     for column, point in enumerate(points):
-        force_ax, move_ax, modal_ax = axes[:, column]
+        force_ax, move_ax, modal_ax = grid[:, column]
         rows = [k for k, name in enumerate(histories.points) if name == point]
         for row in rows:
             support = histories.supports[row]
@@ -1035,7 +1121,7 @@ def figure_swing_along_axis(
     return figure
 
 
-def figure_twist(curves: Sequence[TwistCurve]) -> Figure:
+def figure_twist(curves: Sequence[TwistCurve], axes: Sequence[Axes] | None = None) -> Figure:
     """Roll angle and outgoing ball speed against the offset from the long axis, per support.
 
     Parameters
@@ -1043,11 +1129,15 @@ def figure_twist(curves: Sequence[TwistCurve]) -> Figure:
     curves : sequence of TwistCurve
         One per support, at the same x and ball speed
         (:func:`racketdyn.impact.twist.twist_curve`).
+    axes : sequence of Axes, optional
+        Two (roll angle, outgoing speed) to draw into, their figure, size and layout the caller's;
+        default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if
+        not that many).
     """
-    figure, axes = plt.subplots(1, 2, figsize=(10.0, 4.0), layout="constrained")
+    figure, grid = axes_grid(axes, 1, 2, figsize=(10.0, 4.0), layout="constrained")
     for curve in curves:
-        plot_twist_curve(curve, "roll_angle_rad", ax=axes[0])
-        plot_twist_curve(curve, "rebound_speed_mps", ax=axes[1])
+        plot_twist_curve(curve, "roll_angle_rad", ax=grid[0])
+        plot_twist_curve(curve, "rebound_speed_mps", ax=grid[1])
     first = curves[0]
     figure.suptitle(
         f"Off-axis impacts at x = {first.x_m * 1e3:.0f} mm, ball {first.ball_speed_mps:g} m/s"
@@ -1063,6 +1153,7 @@ def figure_oblique(
     location: tuple[float, float],
     support: str,
     contact: TangentialContact,
+    axes: Sequence[Axes] | None = None,
 ) -> Figure:
     """Outgoing angle and spin against the incoming angle (oblique impacts at one point).
 
@@ -1076,10 +1167,14 @@ def figure_oblique(
         Support condition of the normal impact.
     contact : TangentialContact
         The tangential contact used (μ, k_t), for the title.
+    axes : sequence of Axes, optional
+        Two (outgoing angle, spin) to draw into, their figure, size and layout the caller's; default
+        a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that
+        many).
     """
-    figure, axes = plt.subplots(1, 2, figsize=(10.0, 4.0), layout="constrained")
-    plot_oblique_curve(curve, "outgoing_angle_deg", ax=axes[0])
-    plot_oblique_curve(curve, "outgoing_spin_radps", ax=axes[1])
+    figure, grid = axes_grid(axes, 1, 2, figsize=(10.0, 4.0), layout="constrained")
+    plot_oblique_curve(curve, "outgoing_angle_deg", ax=grid[0])
+    plot_oblique_curve(curve, "outgoing_spin_radps", ax=grid[1])
     stiffness = "rigid grip" if contact.rigid else f"k_t = {contact.stiffness_n_per_m:.3g} N/m"
     figure.suptitle(
         f"Oblique impacts at x = {location[0] * 1e3:.0f} mm, y = {location[1] * 1e3:.0f} mm, "

@@ -21,6 +21,7 @@ from matplotlib.tri import Triangulation
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn._display import case_words
+from racketdyn.errors import InputError
 from racketdyn.impact.oblique import ObliqueCurve
 from racketdyn.impact.result import STATUS_OK, ImpactResult
 from racketdyn.impact.swing import SweetSpot, SwingResult
@@ -39,6 +40,7 @@ __all__ = [
     "QUANTITIES",
     "SWEET_SPOT_STYLE",
     "TWIST_QUANTITIES",
+    "axes_grid",
     "label_contours_in_head",
     "label_lines",
     "label_rows",
@@ -81,6 +83,55 @@ def _axes(ax: Axes | None, size: tuple[float, float] = (5.0, 3.6)) -> Axes:
     if ax is None:
         _, ax = plt.subplots(figsize=size, layout="constrained")
     return ax
+
+
+def axes_grid(
+    axes: Sequence[Axes] | None, rows: int, columns: int, **subplots: Any
+) -> tuple[Figure, Any]:
+    """The figure and axes a figure of several panels draws into: new ones, or the caller's.
+
+    Parameters
+    ----------
+    axes : sequence of Axes or None
+        The caller's axes, ``rows × columns`` of them in row order (a grid from
+        :func:`matplotlib.pyplot.subplots` too): their figure, size, layout and shared axes are
+        the caller's.  None: a new figure, ``plt.subplots(rows, columns, **subplots)``.
+    rows, columns : int
+        The panels.
+    **subplots
+        :func:`matplotlib.pyplot.subplots`'s options of a new figure (``figsize``, ``layout``,
+        ``sharey``, ``squeeze``, …).
+
+    Returns
+    -------
+    (Figure, Axes or ndarray of Axes)
+        The figure (the caller's axes' own) and the axes shaped as ``plt.subplots`` shapes them
+        (``squeeze``).
+
+    Raises
+    ------
+    InputError
+        ``axes`` is not ``rows × columns`` matplotlib Axes.
+    """
+    if axes is None:
+        return plt.subplots(rows, columns, **subplots)
+    given = list(np.ravel(np.asarray(axes, dtype=object)))
+    if len(given) != rows * columns:
+        raise InputError(
+            f"`axes` takes {rows * columns} matplotlib Axes ({rows} × {columns}) for this "
+            f"figure, got {len(given)}"
+        )
+    if not all(isinstance(a, Axes) for a in given):
+        kinds = sorted({type(a).__name__ for a in given if not isinstance(a, Axes)})
+        raise InputError(f"`axes` takes matplotlib Axes, got {', '.join(kinds)}")
+    figure = given[0].get_figure(root=True)
+    if not isinstance(figure, Figure):
+        raise InputError("`axes` must belong to a matplotlib figure")
+    grid = np.empty((rows, columns), dtype=object)
+    grid.flat[:] = given
+    if not subplots.get("squeeze", True):
+        return figure, grid
+    return figure, grid.item() if grid.size == 1 else grid.squeeze()
 
 
 def _values(result: ImpactResult | ImpactCurves, quantity: str) -> NDArray[np.float64]:

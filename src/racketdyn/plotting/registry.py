@@ -570,7 +570,7 @@ def in_section(section: str) -> Iterator[FigureEntry]:
     return (e for e in FIGURES.values() if e.section == section)
 
 
-def draw(figure: str, source: object) -> Any:
+def draw(figure: str, source: object, **options: Any) -> Any:
     """Draw one registered figure from a step's result or from a run folder's data.
 
     Parameters
@@ -580,6 +580,10 @@ def draw(figure: str, source: object) -> Any:
     source : object or mapping
         A step's result (``PredictResult``, …), or the mapping
         :func:`racketdyn.workflows.figure_data.read_step_data` reads from a run folder.
+    **options
+        The draw function's own keywords: ``axes=`` of the caller for a figure of several
+        panels, ``ax=`` for one of a single panel (the draw function's documentation says
+        which).
 
     Returns
     -------
@@ -589,7 +593,7 @@ def draw(figure: str, source: object) -> Any:
     data = found.data(source)
     if data is None:
         raise ValueError(f"figure {found.id!r} needs {', '.join(found.reads)}: not all given")
-    return _figure(found.drawer()(*data))
+    return _figure(found.drawer()(*data, **options))
 
 
 def _figure(drawn: Any) -> Any:

@@ -8,12 +8,14 @@ the spec's speeds and fraction); this module only draws them.  The figure is the
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from racketdyn.plotting.primitives import SUPPORT_STYLE
+from racketdyn.plotting.primitives import SUPPORT_STYLE, axes_grid
 from racketdyn.sweep.summary import SummaryCurves
 
 __all__ = ["figure_summary", "plot_centre_rebound", "plot_sweet_area"]
@@ -103,7 +105,7 @@ def plot_sweet_area(curves: SummaryCurves, ax: Axes | None = None) -> Axes:
     return _plot_metric(curves, "sweet_area_cm2", ax)
 
 
-def figure_summary(curves: SummaryCurves) -> Figure:
+def figure_summary(curves: SummaryCurves, axes: Sequence[Axes] | None = None) -> Figure:
     """``summary_<variable>.png``: the centre rebound (left) and the sweet area (right) against
     the variable.
 
@@ -111,8 +113,12 @@ def figure_summary(curves: SummaryCurves) -> Figure:
     ----------
     curves : SummaryCurves
         The variable's curves.
+    axes : sequence of Axes, optional
+        Two (centre rebound, sweet area) to draw into, their figure, size and layout the caller's;
+        default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if
+        not that many).
     """
-    figure, (left, right) = plt.subplots(1, 2, figsize=(9.0, 3.6), layout="constrained")
+    figure, (left, right) = axes_grid(axes, 1, 2, figsize=(9.0, 3.6), layout="constrained")
     plot_centre_rebound(curves, ax=left)
     plot_sweet_area(curves, ax=right)
     figure.suptitle(f"{curves.title}: {curves.x_label}", fontsize=10)

@@ -3,7 +3,9 @@
 ``identify`` writes ``modes.csv``, ``modal_model.json`` (what ``predict --modal`` takes),
 ``modes.uff`` (UFF 55), ``fit_quality.csv`` and ``run.json``.  ``compare`` writes the same per
 support (suffixes ``_free``, ``_hand``), ``comparison.csv`` (modes paired by MAC) and ``run.json``
-(with the first mode's nodes along the axis, ``first_mode_nodes_m``).
+(with the first mode's nodes along the axis, ``first_mode_nodes_m``).  When the FRFs come from
+the virtual rig, each identification is held against the rig's truth in
+``truth_comparison<label>.csv`` (:mod:`racketdyn.workflows.truth`).
 Figures come from the caller's hook.
 """
 
@@ -58,6 +60,7 @@ from racketdyn.workflows.shape_figures import (
     axis_node_curves,
     identified_shapes,
 )
+from racketdyn.workflows.truth import TRUTH_FILES, write_truth_comparisons
 
 __all__ = [
     "BALL_COMPARISON_FILE",
@@ -335,6 +338,8 @@ def run_identify(
     )
     shapes = identified_shapes(found.model, the_racket)
     written = write_model(found, out_dir)
+    truth_written, truth_files = write_truth_comparisons(out_dir, (found, frfs, ""))
+    written += truth_written
     fits = fit_figures(found, the_racket)
     result = IdentifyResult(
         out_dir,
@@ -366,6 +371,7 @@ def run_identify(
         "modes": found.model.summary()["modes"],
         "kept": found.model.metadata.get("kept", []),
         "dropped": found.model.metadata["dropped"],
+        TRUTH_FILES: truth_files,
     }
     return setup.finish(result, inputs, "identify")
 
@@ -548,6 +554,10 @@ def run_compare(
     )
     found_hand.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
     written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
+    truth_written, truth_files = write_truth_comparisons(
+        out_dir, (found_free, free, "_free"), (found_hand, hand, "_hand")
+    )
+    written += truth_written
     comparison = compare_modes(found_free, found_hand, the_racket)
     written.append(write_mode_comparison(comparison, out_dir))
     the_ball, ball_defaults = setup.ball_used()
@@ -601,6 +611,7 @@ def run_compare(
             "e_bg": the_ball.e_bg,
         },
         "defaults_used": [*ball_defaults, *setup.defaults],
+        TRUTH_FILES: truth_files,
     }
     return setup.finish(result, inputs, "compare")
 
@@ -827,6 +838,10 @@ def run_compare_ball(
     written = write_model(found_alone, out_dir, "_alone") + write_model(
         found_ball, out_dir, "_ball"
     )
+    truth_written, truth_files = write_truth_comparisons(
+        out_dir, (found_alone, alone, "_alone"), (found_ball, with_ball, "_ball")
+    )
+    written += truth_written
     rows = compare_with_ball(found_alone, found_ball)
     table = out_dir / BALL_COMPARISON_FILE
     with table.open("w", newline="", encoding="utf-8") as handle:
@@ -884,5 +899,6 @@ def run_compare_ball(
         "largest_frame_mode_shift_percent": max(shifts) if shifts else None,
         "modes_alone": found_alone.model.summary()["modes"],
         "modes_ball": found_ball.model.summary()["modes"],
+        TRUTH_FILES: truth_files,
     }
     return setup.finish(result, inputs, "compare_ball")

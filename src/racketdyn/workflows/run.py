@@ -84,7 +84,7 @@ class StepResult:
         """Path of the step's ``run.json``."""
         return self.out / RUN_JSON
 
-    def plot(self, figure: str) -> Any:
+    def plot(self, figure: str, **options: Any) -> Any:
         """Draw one of the step's figures from this result, as the step drew it.
 
         The figure is an id of the registry of figures (:mod:`racketdyn.plotting.registry`,
@@ -95,6 +95,9 @@ class StepResult:
         ----------
         figure : str
             The figure's id (or file name).
+        **options
+            The figure's draw function's keywords (``axes=`` of your own for a figure of
+            several panels, ``ax=`` for one of a single panel).
 
         Returns
         -------
@@ -102,7 +105,7 @@ class StepResult:
         """
         from racketdyn.plotting.registry import draw
 
-        return draw(figure, self)
+        return draw(figure, self, **options)
 
 
 R = TypeVar("R", bound=StepResult)
