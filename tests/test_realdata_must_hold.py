@@ -140,7 +140,7 @@ REFERENCES = [
     # 13.5 Hz 6.7 Hz above the band's bottom of 6.7-1000 Hz: named with the `band_hz` keeping it
     Reference("wing_frfs", 13.50, 0.00109, "sdypy", named=True),
     # the wing's time records against their own ringing (sdypy: 0.108, 0.383, 0.056, 0.778,
-    # 0.038, 0.305 %; the lab's FRF export: 0.118, 0.412, 0.062, 0.879, 0.072, 0.564 %)
+    # 0.038, 0.305 %; sdypy on the lab's FRF export: 0.118, 0.412, 0.062, 0.879, 0.072, 0.564 %)
     *_held(
         "wing_time",
         "decay",
@@ -223,9 +223,15 @@ REFERENCES = [
 ]
 
 
-def _name(reference: object) -> str:
+def _plain(reference: object) -> Reference:
+    """The reference of a plain or an ``xfail`` parameter."""
     ref = reference.values[0] if hasattr(reference, "values") else reference  # type: ignore[attr-defined]
     assert isinstance(ref, Reference)
+    return ref
+
+
+def _name(reference: object) -> str:
+    ref = _plain(reference)
     return f"{ref.case}-{ref.frequency_hz:g}Hz"
 
 
@@ -307,7 +313,7 @@ def _decay_damping(records: HammerRecords, frequency_hz: float) -> float:
 def test_the_wing_records_ring_as_their_references_say(tmp_path: Path) -> None:
     """The ``decay`` references of the wing's time records are the records' own ringing."""
     records = _wing_records(tmp_path)
-    for reference in (r.values[0] if hasattr(r, "values") else r for r in REFERENCES):  # type: ignore[attr-defined]
+    for reference in map(_plain, REFERENCES):
         if reference.case == "wing_time" and reference.source == "decay":
             decay = _decay_damping(records, reference.frequency_hz)
             assert decay == pytest.approx(reference.damping_ratio, rel=0.02), reference

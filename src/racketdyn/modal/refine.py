@@ -3,13 +3,14 @@
 When a mode's half-power width ``2ζf`` (in the data: an exponential window's share
 included) is under one line spacing, one or two lines stand on its peak and the damping lies in
 how high they stand over the skirts.  The LSCF of :mod:`~racketdyn.modal.poles` fits the
-linearised error ``N − H d``, whose weight ``|d|²`` is smallest at the poles: exactly the lines
-that hold the damping count least, and such a pole wanders over the orders (vtb_siglab's
-34.05 Hz, 2ζf = 0.014 Hz under a 0.3125 Hz line: stable in 5 of 60 orders, ζ 0.033 % against
-sdypy-EMA's 0.021 %).  Here the FRFs' own error is minimised instead, over
-:data:`REFINE_LINES` lines either side of the mode: every FRF ``H_o ≈ Σ_k (r_ok / (iω − λ_k) +
-s_ok / (iω − λ_k*)) + c_o + d_o iω`` with the modes in that window, complex constants solved
-linearly for given poles (variable projection) and the poles by nonlinear least squares
+linearised error ``N − H d``, the FRFs' own error weighted by ``|d|²``, which is smallest at
+the poles: the lines that hold the damping count least.  Where its poles then wander over the
+orders its damping is not to be trusted (vtb_siglab's 34.05 Hz, 2ζf = 0.014 Hz under a
+0.3125 Hz line: stable in 5 of 60 orders, ζ 0.033 % against sdypy-EMA's 0.021 %).  Here the
+FRFs' own error is minimised instead, over :data:`REFINE_LINES` lines either side of the
+mode, every FRF ``H_o ≈ Σ_k (r_ok/(iω − λ_k) + s_ok/(iω − λ_k*)) + c_o + d_o iω`` with the
+modes in that window (the slope's ``iω`` scaled by the window's first line): complex constants
+solved linearly for given poles (variable projection), the poles by nonlinear least squares
 (``scipy.optimize.least_squares``).  The DFT of a ringing cut at the record's end is a pole
 term at the same λ near its peak (leakage scales the constant, not the pole), so the local
 model holds for unwindowed, truncated records too.
@@ -43,15 +44,16 @@ REFINE_LINES = 10
 SETTLED_FRACTION = 0.2
 """... and stable in fewer than this share of the orders (:func:`~racketdyn.modal.poles.
 select_poles`' ``min_fraction``; kept as a clear peak or pinned): a narrow mode the LSCF settles
-keeps its pole (on synthetic truncated ringing, 2ζf a twentieth of a line, it is within 5 %
-where the local fit is within 11 %, and pyuff's six narrow modes agree with sdypy-EMA's)."""
+keeps its pole (on synthetic truncated ringing, 2ζf a twentieth of a line, with 5 %
+multiplicative noise, it was within 5 % where the local fit was within 11 %; pyuff's six
+narrow modes agree with sdypy-EMA's)."""
 MOVE_LINES = 0.5
 """A refined frequency further than this many lines from the LSCF's is not taken (the fit
 went to another feature): the LSCF pole is kept."""
 
 
 def refine_narrow_poles(frfs: FrfSet, selected: SelectedPoles) -> tuple[SelectedPoles, list[str]]:
-    """The selection with every narrow mode's frequency and damping refined (module docstring).
+    """The selection with every unsettled narrow mode's pole refined (module docstring).
 
     Parameters
     ----------
