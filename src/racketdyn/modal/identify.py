@@ -31,6 +31,7 @@ from racketdyn.modal.poles import (
     select_poles,
     stabilisation,
 )
+from racketdyn.modal.refine import MOVE_LINES, refine_narrow_poles
 from racketdyn.modal.residues import (
     WEAK_DRIVING_POINT,
     ModalFit,
@@ -615,10 +616,14 @@ def _spacing(frfs: FrfSet) -> float:
     return float(np.median(np.diff(frfs.frequency)))
 
 
-def _still(line: str, frequency: NDArray[np.float64]) -> bool:
-    """Whether the kept candidate ``line`` names is still a mode of the model."""
+def _still(line: str, frequency: NDArray[np.float64], spacing_hz: float) -> bool:
+    """Whether the mode ``line`` names (its first frequency) is still a mode of the model.
+
+    Within half a line: a narrow mode's refined frequency may move that far
+    (:data:`racketdyn.modal.refine.MOVE_LINES`).
+    """
     f = float(line.split(" Hz")[0])
-    return bool(np.any(np.abs(frequency - f) <= 0.01))
+    return bool(np.any(np.abs(frequency - f) <= max(0.01, MOVE_LINES * spacing_hz)))
 
 
 @dataclass(frozen=True, eq=False)
@@ -744,6 +749,10 @@ def identify(
       or no driving point at all: every mode kept, shapes unscaled (largest magnitude 1),
       ``model.scaling == "unscaled"``; smaller negative ones leave their mode out.
 
+    A mode narrower than one line whose LSCF poles do not settle over the orders gets its
+    frequency and damping from a local fit of its peak
+    (:func:`racketdyn.modal.refine.refine_narrow_poles`; logged, ``metadata["refined"]``).
+
     Everything left out is in ``selected.dropped_modes`` (``dropped_modes.csv``).  A set whose
     phase rises through its resonances (the conjugate convention e^{−iωt} of some analysers)
     is conjugated first (:meth:`~racketdyn.measurement.records.FrfSet.with_usual_phase`,
@@ -791,6 +800,9 @@ def identify(
     selected = _named_rows(_edge_modes(selected, frfs, band), _spacing(frfs))
     selected, kept = _clear_peaks(selected, stab, frfs, band, pin_hz, exclude_hz)
     selected = _missed_peaks(selected, frfs, band, max_order)
+    selected, refined = refine_narrow_poles(frfs, selected)
+    for line in refined:
+        log.info("refined %s", line)
     for line in kept:
         log.warning("kept %s", line)
     for row in selected.dropped_modes:
@@ -902,7 +914,10 @@ def identify(
             "design_condition_number": fit.condition_number,
             "orders_stable": selected.n_orders.tolist(),
             "scaling_note": note,
-            "kept": [line for line in kept if _still(line, selected.frequency)],
+            "kept": [line for line in kept if _still(line, selected.frequency, _spacing(frfs))],
+            "refined": [
+                line for line in refined if _still(line, selected.frequency, _spacing(frfs))
+            ],
             "dropped": [
                 f"{d.frequency_hz:.2f} Hz: {d.reason}"
                 for d in (*selected.dropped_modes, *late)
