@@ -140,3 +140,27 @@ def test_the_compound_ball_mode_on_the_truth_is_the_beam_models() -> None:
         for model in (_truth("free"), builtin_modal_model(racket))
     ]
     assert ball_hz[0] == pytest.approx(ball_hz[1], rel=0.01)
+
+
+def test_predict_says_how_a_mode_of_unknown_kind_is_charged() -> None:
+    """With hoop and string points, a mode of unknown kind is charged for the frame it moves;
+    without them the line still says the strings may count twice and how to avoid it."""
+    from dataclasses import replace
+
+    from racketdyn.cli.predict import unknown_modes_line
+
+    racket = _racket()
+    truth = _truth("free").frame_modes
+    kinds = tuple("unknown" if k == 0 else kind for k, kind in enumerate(truth.kinds))
+    unknown = replace(truth, kinds=kinds)
+    said = unknown_modes_line(unknown, racket)
+    assert said.startswith(f"{truth.names[0]} is of unknown kind: taken as a frame mode")
+    assert "the frame's motion under the bed" in said
+    assert "count twice" not in said
+    on_axis = np.abs(unknown.locations[:, 1]) < 1e-9
+    line = replace(
+        unknown, locations=unknown.locations[on_axis], mode_shapes=unknown.mode_shapes[on_axis]
+    )
+    said = unknown_modes_line(line, racket)
+    assert "count twice" in said
+    assert "identify --exclude HZ" in said
