@@ -102,3 +102,21 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     for item in items:
         if item.path.name in PROCESS_TESTS:
             item.add_marker(pytest.mark.xdist_group("processes"))
+        elif _has_module_fixture(item):
+            item.add_marker(pytest.mark.xdist_group(item.path.name))
+
+
+def _has_module_fixture(item: pytest.Item) -> bool:
+    """Whether the test uses a module-scoped fixture of its own module (a rig, FRFs, an
+    identification, a demo-like folder): its module's tests then run on one pytest-xdist
+    worker, so that the fixture is computed once, not once per worker (``--dist loadgroup``
+    spread them: the report test's 39 s folder, the lab's 22 s chain and four more were
+    computed twice each on two workers)."""
+    info = getattr(item, "_fixtureinfo", None)
+    if info is None:
+        return False
+    return any(
+        definition.scope == "module" and definition.baseid.endswith(item.path.name)
+        for definitions in info.name2fixturedefs.values()
+        for definition in definitions
+    )
