@@ -205,3 +205,17 @@ def test_mode_shapes_as_uff55(model: rd.ModalModel, tmp_path: Path) -> None:
         assert record["freq"] == pytest.approx(model.frequency[k], rel=1e-5)
         assert record["modal_damp_vis"] == pytest.approx(model.damping_ratio[k], rel=1e-5)
         np.testing.assert_allclose(record["r3"], model.mode_shapes[:, k], rtol=1e-5, atol=1e-9)
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_builtin_model_whatever_the_blas_threads(racket: rd.Racket, threads: int) -> None:
+    # The beam's eigenproblems are solved on one BLAS thread: the model is the same to the
+    # last digit whatever threads the caller's BLAS has (a sweep's tasks run on one each, a
+    # single run on all the machine's cores; OpenBLAS's answer depends on their number).
+    from threadpoolctl import threadpool_limits  # type: ignore[import-untyped]
+
+    reference = rd.builtin_modal_model(racket)
+    with threadpool_limits(limits=threads, user_api="blas"):
+        model = rd.builtin_modal_model(racket)
+    np.testing.assert_array_equal(model.frequency, reference.frequency)
+    np.testing.assert_array_equal(model.mode_shapes, reference.mode_shapes)

@@ -7,7 +7,10 @@ Written anew since: by the commit giving the built-in frame its shape (issue 22,
 session, "frame's shape" in CHANGELOG.md) and by the merge of issue 27's one hand (the built-in
 model sampling the handle's sides: ≈ 1e-6), and by the commit adding the frame's head's top
 (issue 22, fifth session: the paper's racket carries nothing there, but its amounts are solved
-another way, 2e-8 in its frequencies) — changes of physics, not of the refactor."""
+another way, 2e-8 in its frequencies), and by the commit solving the built-in model's
+eigenproblems on one BLAS thread (issue 27: 1e-8 in its 3-node frequency, the files' numbers
+in their ninth digit; before, they were two threads' on the machine that wrote them) — changes
+of physics or of round-off, not of the refactor."""
 
 from __future__ import annotations
 

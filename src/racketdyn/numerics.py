@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -12,7 +13,14 @@ from threadpoolctl import ThreadpoolController  # type: ignore[import-untyped]
 
 from racketdyn.errors import InputError
 
-__all__ = ["as_locations", "as_points", "invert_increasing", "one_blas_thread", "spans_a_surface"]
+__all__ = [
+    "as_locations",
+    "as_points",
+    "find_peaks",
+    "invert_increasing",
+    "one_blas_thread",
+    "spans_a_surface",
+]
 
 Function = Callable[[NDArray[np.float64]], NDArray[np.float64]]
 
@@ -131,3 +139,73 @@ def one_blas_thread() -> Iterator[None]:
     thousand points, 800 × 3 each) cost twice the CPU time split over threads."""
     with _blas().limit(limits=1, user_api="blas"):
         yield
+
+
+def find_peaks(
+    values: ArrayLike, *, height: float | None = None, prominence: float | None = None
+) -> tuple[NDArray[np.intp], dict[str, NDArray[Any]]]:
+    """``scipy.signal.find_peaks(values, height=, prominence=)`` with scalar conditions: the
+    same peaks and properties, without importing :mod:`scipy.signal` (which brings
+    :mod:`scipy.stats`: ≈ 0.35 s of CPU, a tenth of ``racketdyn identify``).
+
+    A peak is a sample (the middle of a flat top, rounded down) higher than its neighbours;
+    its prominence is its height above the higher of the lowest points either side before a
+    higher sample (or NaN, or the end). ``tests/test_numerics.py`` holds it to SciPy's.
+
+    Parameters
+    ----------
+    values : array_like, 1-D
+        The signal.
+    height : float, optional
+        Keep peaks at least this high (property ``peak_heights``).
+    prominence : float, optional
+        Keep peaks at least this prominent (properties ``prominences``, ``left_bases``,
+        ``right_bases``).
+
+    Returns
+    -------
+    peaks : ndarray of int
+        Indices of the peaks kept, rising.
+    properties : dict
+        The properties of the conditions given, of the peaks kept.
+    """
+    x = np.asarray(values, dtype=np.float64)
+    if x.ndim != 1:
+        raise ValueError("`values` must be a 1-D array")
+    # runs of equal samples (each NaN a run of its own); a peak is a run above both neighbours
+    peaks = np.zeros(0, dtype=np.intp)
+    if x.size >= 3:
+        starts = np.flatnonzero(np.r_[True, x[1:] != x[:-1]])
+        ends = np.r_[starts[1:] - 1, x.size - 1]
+        top = x[starts]
+        inner = np.arange(1, max(top.size - 1, 1))
+        rising = (top[inner - 1] < top[inner]) & (top[inner + 1] < top[inner])
+        peaks = ((starts[inner] + ends[inner]) // 2)[rising].astype(np.intp)
+    properties: dict[str, NDArray[Any]] = {}
+    if height is not None:
+        heights = x[peaks]
+        keep = height <= heights
+        peaks, properties = peaks[keep], {"peak_heights": heights[keep]}
+    if prominence is not None:
+        found = np.empty(peaks.size)
+        left_bases = np.empty(peaks.size, dtype=np.intp)
+        right_bases = np.empty(peaks.size, dtype=np.intp)
+        for k, peak in enumerate(peaks):
+            higher = np.flatnonzero(~(x <= x[peak]))  # a higher sample or NaN ends a side
+            after = int(np.searchsorted(higher, peak))
+            first = int(higher[after - 1]) + 1 if after > 0 else 0
+            stop = int(higher[after]) if after < higher.size else x.size
+            left, right = x[first : peak + 1], x[peak:stop]
+            # the lowest point nearest the peak each side (SciPy's walks away from the peak)
+            left_bases[k] = first + left.size - 1 - int(np.argmin(left[::-1]))
+            right_bases[k] = peak + int(np.argmin(right))
+            found[k] = x[peak] - max(float(left.min()), float(right.min()))
+        keep = prominence <= found
+        peaks = peaks[keep]
+        properties = {name: value[keep] for name, value in properties.items()}
+        properties |= {
+            "prominences": found[keep],
+            "left_bases": left_bases[keep],
+            "right_bases": right_bases[keep],
+        }
+    return peaks, properties

@@ -240,11 +240,12 @@ def print_modes(
 
 def run_identify(args: argparse.Namespace, console: Console) -> int:
     """Run ``identify``."""
+    # six figures: the helper imports matplotlib while we import the library and identify
+    opt.start_figure_helper(args)
     from racketdyn.plotting.steps import identify_figures
     from racketdyn.workflows.identify import run_identify as identify
 
     options, ball_at = _options(args)
-    opt.start_figure_helper(args)  # six figures: the helper imports while we identify
     with opt.progress_display(console) as progress:
         result = identify(
             args.frfs,

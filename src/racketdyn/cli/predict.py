@@ -90,13 +90,14 @@ def add(commands: Any) -> None:
 
 def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
+    # five figures or more: the helper imports matplotlib while we import the library and compute
+    opt.start_figure_helper(args)
     from rich.markup import escape
 
     from racketdyn._display import case_words
     from racketdyn.plotting.steps import predict_figures
     from racketdyn.workflows.predict import check_supports, run_predict, transient_csv_name
 
-    opt.start_figure_helper(args)  # five figures or more: the helper imports while we compute
     speeds = opt.parse_speeds("--speed", args.speed)
     racket_speed = opt.parse_speeds("--racket-speed", args.racket_speed)
     supports = check_supports(opt.parse_list("--support", args.support), args.model)

@@ -24,7 +24,6 @@ from racketdyn.impact.approximate import predict
 from racketdyn.impact.grid import StringBed, check_string_bed, point_law
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.result import STATUS_OK
-from racketdyn.impact.transient import predict_transient
 from racketdyn.io.measured import MeasuredRebound
 from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket
@@ -223,6 +222,8 @@ def predict_rows(
                 racket, inputs.effective_ball, measured.locations[rows], [v_ball], **options
             )
         else:
+            from racketdyn.impact.transient import predict_transient  # numba: only if it runs
+
             hand = (inputs.hand or Hand()) if support == "hand" else None
             result = predict_transient(
                 racket,

@@ -79,7 +79,6 @@ from racketdyn.impact.result import (
     summary_rows,
     write_columns,
 )
-from racketdyn.impact.transient import predict_transient
 from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket, as_locations
 from racketdyn.racket_modal.shapes import axis_nodes
@@ -442,7 +441,17 @@ class SwingResult:
 
 
 Predictor = Callable[..., ImpactResult]
-PREDICTORS: dict[str, Predictor] = {"approximate": predict, "transient": predict_transient}
+
+
+def _predict_transient(*args: Any, **kwargs: Any) -> ImpactResult:
+    """:func:`racketdyn.impact.transient.predict_transient`, imported when a swing runs it: the
+    transient model brings numba (≈ 0.2 s), which an approximate run never needs."""
+    from racketdyn.impact.transient import predict_transient
+
+    return predict_transient(*args, **kwargs)
+
+
+PREDICTORS: dict[str, Predictor] = {"approximate": predict, "transient": _predict_transient}
 """The impact models a swing can use, by name."""
 
 

@@ -54,6 +54,11 @@ __all__ = [
 ]
 
 TRANSIENT_SUPPORTS: tuple[str, ...] = ("free", "pinned", "hand")
+Engine = Literal["auto", "compiled", "reference"]
+ENGINES: tuple[str, ...] = ("auto", "compiled", "reference")
+"""The transient model's integrators (:func:`racketdyn.impact.transient.predict_transient`);
+here, beside its supports, so that a caller checking its options need not import the model
+(and numba with it)."""
 _TWIST_PROBE_M = 0.010
 """Half the distance across the handle over which the hand reads the handle's turn, m (the
 rigid roll exactly; a mode's twist from its shapes either side of the axis)."""

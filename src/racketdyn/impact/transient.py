@@ -111,7 +111,9 @@ from racketdyn.impact.result import (
     ImpactResult,
 )
 from racketdyn.impact.system import (
+    ENGINES,
     TRANSIENT_SUPPORTS,
+    Engine,
     ImpactSystem,
     impact_system,
     point_system,
@@ -129,6 +131,7 @@ __all__ = [
     "STATUS_SECOND_CONTACT",
     "STEPS_PER_CONTACT",
     "TRANSIENT_SUPPORTS",
+    "Engine",
     "TransientImpact",
     "predict_transient",
     "simulate_contact",
@@ -751,8 +754,6 @@ def simulate_impact(
     )  # fmt: skip
 
 
-Engine = Literal["auto", "compiled", "reference"]
-ENGINES: tuple[str, ...] = ("auto", "compiled", "reference")
 STEPS_PER_CONTACT = 128
 """Default steps of the compiled engine over one estimated contact time, extrapolated from a
 second run at half as many (:data:`EXTRAPOLATE`): over the bench's face map rebound speed

@@ -54,7 +54,6 @@ from racketdyn.impact.result import (
 )
 from racketdyn.impact.samples import predict_samples
 from racketdyn.impact.swing import SwingResult, predict_swing
-from racketdyn.impact.transient import predict_transient
 from racketdyn.io.measured import MeasuredRebound
 from racketdyn.racket import as_locations
 
@@ -519,6 +518,8 @@ def _run(
         )
     if method == "approx":
         return predict(inputs.effective_racket, inputs.effective_ball, locations, speeds, **common)
+    from racketdyn.impact.transient import predict_transient  # numba: only where it runs
+
     hand = (inputs.hand or Hand()) if "hand" in common["supports"] else None
     return predict_transient(
         inputs.effective_racket,

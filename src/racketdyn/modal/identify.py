@@ -40,6 +40,7 @@ from racketdyn.modal.residues import (
     mass_normalised_shapes,
     unscaled_shapes,
 )
+from racketdyn.numerics import find_peaks  # scipy.signal's, without its import (≈ 0.35 s)
 
 __all__ = [
     "CLEAR_PEAK_GAIN",
@@ -202,8 +203,6 @@ def _default_band(frfs: FrfSet) -> tuple[tuple[float, float], str]:
 def _first_flexible_peak(frfs: FrfSet, high: float) -> tuple[float | None, int]:
     """The lowest clear peak above the support's rigid-body modes, Hz (None: no clear peak),
     and how many clear peaks below it were taken as the support's."""
-    from scipy.signal import find_peaks
-
     keep = (frfs.frequency <= high) & (np.arange(frfs.frequency.size) >= SKIPPED_LINES)
     f = frfs.frequency[keep]
     level = np.abs(frfs.values[:, keep]).sum(axis=0)
@@ -318,8 +317,6 @@ def _missed_peaks(
     out there (near a wide band's top, in the anti-alias roll-off or a force's spectral
     zero, many peaks are noise's: untried or unconfirmed ones are logged at DEBUG).
     """
-    from scipy.signal import find_peaks
-
     low, high = band
     data = frfs.band(low, high)
     f = data.frequency

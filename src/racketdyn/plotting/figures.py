@@ -14,7 +14,7 @@ import logging
 import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -24,11 +24,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from numpy.typing import NDArray
 
-from racketdyn.impact.oblique import ObliqueCurve, TangentialContact
-from racketdyn.impact.swing import SweetSpot, SwingResult
-from racketdyn.impact.twist import TwistCurve
-from racketdyn.measurement.pulse import ContactTimes
-from racketdyn.measurement.records import FRF_UNITS, FrfSet
+from racketdyn.measurement.records import FRF_UNITS
 from racketdyn.plotting.primitives import (
     SCALE_BAR_M,
     SUPPORT_STYLE,
@@ -64,9 +60,17 @@ from racketdyn.workflows.figure_data import (
     TransientCurves,
     TransientHistories,
 )
-from racketdyn.workflows.frf_figures import FitFigures, FrfPoints
-from racketdyn.workflows.identify import ModeComparison
-from racketdyn.workflows.shape_figures import AutoMac, AxisNodes, ModeShapes
+
+if TYPE_CHECKING:  # what the figures draw is given to them: its modules are the callers'
+    # (racketdyn.impact.oblique imports the transient model and numba, ≈ 0.2 s of a `predict`)
+    from racketdyn.impact.oblique import ObliqueCurve, TangentialContact
+    from racketdyn.impact.swing import SweetSpot, SwingResult
+    from racketdyn.impact.twist import TwistCurve
+    from racketdyn.measurement.pulse import ContactTimes
+    from racketdyn.measurement.records import FrfSet
+    from racketdyn.workflows.frf_figures import FitFigures, FrfPoints
+    from racketdyn.workflows.identify import ModeComparison
+    from racketdyn.workflows.shape_figures import AutoMac, AxisNodes, ModeShapes
 
 __all__ = [
     "IDENTIFIED_STYLES",

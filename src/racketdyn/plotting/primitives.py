@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import textwrap
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import matplotlib
 
@@ -22,10 +22,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn._display import case_words
 from racketdyn.errors import InputError
-from racketdyn.impact.oblique import ObliqueCurve
 from racketdyn.impact.result import STATUS_OK, ImpactResult
 from racketdyn.impact.swing import SweetSpot, SwingResult
-from racketdyn.impact.twist import TwistCurve
 from racketdyn.measurement.pulse import ContactTimes
 from racketdyn.measurement.records import FRF_UNITS, FrfSet, SummedFrf
 from racketdyn.modal.poles import PoleStability, SelectedPoles, Stabilisation
@@ -33,6 +31,10 @@ from racketdyn.numerics import spans_a_surface
 from racketdyn.racket import SUPPORT_NAMES, HeadEllipse, Racket
 from racketdyn.workflows.figure_data import AxisBand, FrameVibration, ImpactCurves
 from racketdyn.workflows.shape_figures import ModeShapes
+
+if TYPE_CHECKING:  # drawn, not made here; their modules import the transient model and numba
+    from racketdyn.impact.oblique import ObliqueCurve
+    from racketdyn.impact.twist import TwistCurve
 
 __all__ = [
     "FLAGGED_STYLE",

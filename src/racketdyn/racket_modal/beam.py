@@ -56,6 +56,7 @@ from scipy.special import ellipeinc
 
 from racketdyn.errors import InputError
 from racketdyn.modal.model import ModalModel
+from racketdyn.numerics import one_blas_thread
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.racket_modal.shapes import SHAPES_FRAME_MODEL
 
@@ -375,8 +376,15 @@ def _torsion_matrices(
 def _flexible_modes(
     stiffness: NDArray[np.float64], mass: NDArray[np.float64], n_rigid: int, n_modes: int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Lowest flexible eigenpairs (ω², mass-normalised vectors) of a free structure."""
-    values, vectors = eigh(stiffness, mass, subset_by_index=[0, n_rigid + n_modes - 1])
+    """Lowest flexible eigenpairs (ω², mass-normalised vectors) of a free structure.
+
+    On one BLAS thread: OpenBLAS splits this small problem (138 × 138) over its threads for
+    no gain (on a loaded two-core machine 0.4 s a solve against 1 ms on one thread), and the
+    last digits of its answer depend on how many it has; on one, the model is the same on
+    every machine, in a sweep's tasks (one thread each) as in a single run.
+    """
+    with one_blas_thread():
+        values, vectors = eigh(stiffness, mass, subset_by_index=[0, n_rigid + n_modes - 1])
     return values[n_rigid:], vectors[:, n_rigid:]
 
 

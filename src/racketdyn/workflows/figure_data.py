@@ -43,10 +43,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
-from racketdyn.impact.comparison import History, ModelComparison
 from racketdyn.impact.result import IMPACT_QUANTITIES, SHOWN_SPEED_MPS, STATUS_OK, ImpactResult
 from racketdyn.impact.swing import ImpactModel, Swing, SwingResult, axis_swings, predict_swing
-from racketdyn.impact.transient import Engine, predict_transient
+from racketdyn.impact.system import Engine
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import HeadEllipse, Racket, landmark_points
 from racketdyn.racket_modal.shapes import axis_nodes
@@ -56,6 +55,11 @@ from racketdyn.workflows.run import StepResult, defer_file
 if TYPE_CHECKING:
     import xarray as xr
     from matplotlib.axes import Axes
+
+    from racketdyn.impact.comparison import History, ModelComparison
+
+# the transient model (with numba, ≈ 0.2 s) is imported where its curves are computed: a run
+# of the approximate method alone never needs it
 
 __all__ = [
     "APPROXIMATE_ONLY",
@@ -1193,6 +1197,8 @@ def transient_curves(
         "labels": names,
         "racket_speed": racket_speed_at(at, speeds, racket_speeds),
     }
+    from racketdyn.impact.transient import predict_transient
+
     approximate = predict(racket, ball, points, at, supports, **common, **options)
     transient = predict_transient(
         racket,

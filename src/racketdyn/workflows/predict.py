@@ -23,15 +23,6 @@ from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_speeds
 from racketdyn.impact import ImpactResult, predict
-from racketdyn.impact.comparison import (
-    COMPARED,
-    HISTORY_COLUMNS,
-    History,
-    ModelComparison,
-    compare_models,
-    simulate_histories,
-    write_histories_csv,
-)
 from racketdyn.impact.grid import StringBed, check_string_bed
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import ModelInputs
@@ -41,7 +32,7 @@ from racketdyn.impact.result import (
     shown_case_index,
     write_columns,
 )
-from racketdyn.impact.transient import ENGINES, TRANSIENT_SUPPORTS, Engine, predict_transient
+from racketdyn.impact.system import ENGINES, TRANSIENT_SUPPORTS, Engine
 from racketdyn.impact.uncertainty import (
     Sensitivity,
     UncertainResult,
@@ -80,6 +71,11 @@ from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 if TYPE_CHECKING:
     import xarray as xr
+
+    from racketdyn.impact.comparison import History, ModelComparison
+
+# The transient model (racketdyn.impact.transient, .comparison) is imported where it runs: with
+# numba it costs ≈ 0.2 s, a tenth of `predict`'s default run, which is the approximate method's.
 
 __all__ = ["DEFAULT_GRID", "MAX_GRID", "MODELS", "PredictResult", "impact_points", "run_predict"]
 
@@ -435,6 +431,8 @@ def run_predict(
             result, model_inputs, uncertainty, (locations, labels), setup.progress, extra, workers
         )
     if result.approximate is not None and result.transient is not None:
+        from racketdyn.impact.comparison import compare_models
+
         result.comparison = compare_models(result.approximate, result.transient)
         result.written.append(result.comparison.write_csv(out_dir / "comparison.csv"))
         # rows the approximate method cannot give carry the transient's numbers, marked so
@@ -707,6 +705,8 @@ def _transient_part(
     progress: Progress | None,
     options: dict[str, Any],
 ) -> None:
+    from racketdyn.impact.comparison import simulate_histories, write_histories_csv
+
     assert result.racket is not None
     assert result.ball is not None
     hand = {} if result.hand is None else {"hand": result.hand}
@@ -786,6 +786,8 @@ def _transient(
 ) -> ImpactResult:
     """The transient model, in chunks of points sized to about half a second with progress
     reported (the first chunk is timed to size the others: the engines differ a thousandfold)."""
+    from racketdyn.impact.transient import predict_transient
+
     per_point = len(speeds) * len(options["supports"])
     total = len(locations) * per_point
 
@@ -816,6 +818,8 @@ def _transient_record(
     """What run.json says about the transient model: engine, integrator, its outputs."""
     if transient is None:
         return {}
+    from racketdyn.impact.comparison import COMPARED, HISTORY_COLUMNS
+
     inputs = transient.inputs
     integrator = inputs.get("integrator")
     used = integrator.get("engine") if isinstance(integrator, dict) else None
