@@ -17,7 +17,13 @@ from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.modal.identify import identify
 from racketdyn.modal.residues import mac
 from racketdyn.racket_modal.identify import identify_racket, name_racket_modes
-from racketdyn.rig import accelerometer_index, hammer_points, rig_model, simulate_hammer_test
+from racketdyn.rig import (
+    Acquisition,
+    accelerometer_index,
+    hammer_points,
+    rig_model,
+    simulate_hammer_test,
+)
 
 BAND = (40.0, 850.0)
 
@@ -110,10 +116,11 @@ def test_identify_and_compare_commands(tmp_path: Path, racket: rd.Racket) -> Non
     racket = rd.default_racket()
     locations, nodes = hammer_points(racket, n_frame=12, n_strings=20)
     files = []
+    four = Acquisition(n_averages=4)
     for support in ("free", "hand"):
         rig = rig_model(racket, support)
         records = simulate_hammer_test(
-            rig, locations, nodes, tuple(locations[5]), nodes[5], n_averages=4, seed=3
+            rig, locations, nodes, tuple(locations[5]), nodes[5], acquisition=four, seed=3
         )
         path = tmp_path / f"{support}.uff"
         write_frf_uff(estimate_frfs(records, exponential_window_s=0.1).frfs, path)

@@ -270,7 +270,7 @@ def test_a_racket_measured_in_the_lab_x_z_plane_is_named_on_its_face() -> None:
     import racketdyn as rd
     from racketdyn.measurement.frf import estimate_frfs
     from racketdyn.racket_modal.identify import name_if_racket
-    from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test
+    from racketdyn.rig import Acquisition, hammer_points, rig_model, simulate_hammer_test
 
     racket = rd.default_racket()
     locations, nodes = hammer_points(racket, n_frame=12, n_strings=20)
@@ -280,7 +280,7 @@ def test_a_racket_measured_in_the_lab_x_z_plane_is_named_on_its_face() -> None:
         nodes,
         tuple(locations[5]),
         nodes[5],
-        n_averages=4,
+        acquisition=Acquisition(n_averages=4),
         seed=3,
     )
     frfs = estimate_frfs(records, exponential_window_s=0.1).frfs
@@ -338,15 +338,15 @@ def test_another_rackets_points_named_on_the_built_in_head_say_so() -> None:
     import racketdyn as rd
     from racketdyn.measurement.frf import estimate_frfs
     from racketdyn.racket_modal.identify import name_if_racket
-    from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test
+    from racketdyn.rig import Acquisition, hammer_points, rig_model, simulate_hammer_test
 
     built_in = rd.default_racket()
     head = replace(built_in.head, half_width_m=0.123, half_length_m=0.175, centre_x_m=0.499)
     own = replace(built_in, name="trial 270 g racket", mass_kg=0.270, head=head)
     locations, nodes = hammer_points(own, n_frame=12, n_strings=20)
     records = simulate_hammer_test(
-        rig_model(own, "free"), locations, nodes, tuple(locations[5]), nodes[5], n_averages=4,
-        seed=3,
+        rig_model(own, "free"), locations, nodes, tuple(locations[5]), nodes[5],
+        acquisition=Acquisition(n_averages=4), seed=3,
     )  # fmt: skip
     found = identify(estimate_frfs(records, exponential_window_s=0.1).frfs, (40.0, 850.0))
     _, how = name_if_racket(found, built_in, racket_given=False)

@@ -41,7 +41,7 @@ from racketdyn.modal.poles import (
     stabilisation,
 )
 from racketdyn.plotting.primitives import plot_stabilisation
-from racketdyn.rig import RigModel, hammer_points, rig_model, simulate_hammer_test
+from racketdyn.rig import Acquisition, RigModel, hammer_points, rig_model, simulate_hammer_test
 
 # A five-mode structure with a close pair: 520 and 530 Hz are one half-power bandwidth apart
 # at ζ = 1 % and two at 0.5 %.
@@ -286,8 +286,7 @@ def test_window_shift_is_removed_through_the_measurement_chain(free_rig: RigMode
         nodes[frame],
         tuple(locations[reference]),
         nodes[reference],
-        n_averages=4,
-        n_samples=4096,
+        acquisition=Acquisition(n_averages=4, n_samples=4096),
         seed=3,
     )
     frfs = estimate_frfs(records, exponential_window_s=0.1).frfs

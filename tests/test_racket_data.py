@@ -36,6 +36,10 @@ from racketdyn.modal.identify import ONE_PEAK_LINES, Identification, identify
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket_modal.identify import name_if_racket
 from racketdyn.rig import (
+    Acquisition,
+    HammerBlows,
+    HammerFaults,
+    SensorNoise,
     accelerometer_index,
     hammer_points,
     rig_model,
@@ -93,10 +97,9 @@ def measured_frfs(racket: rd.Racket, support: str) -> tuple[FrfSet, ModalModel]:
         nodes,
         (float(locations[reference, 0]), float(locations[reference, 1])),
         nodes[reference],
-        n_averages=10,
-        pulse_duration_s=durations,
-        force_snr_db=50.0,
-        response_snr_db=40.0,
+        acquisition=Acquisition(n_averages=10),
+        blows=HammerBlows(pulse_duration_s=tuple(durations)),
+        noise=SensorNoise(force_snr_db=50.0, response_snr_db=40.0),
         seed=1,
     )
     from racketdyn.measurement.frf import estimate_frfs
@@ -316,12 +319,10 @@ def test_a_fragment_of_a_named_edge_mode_is_not_named_again(racket: rd.Racket) -
         nodes,
         (float(locations[reference, 0]), float(locations[reference, 1])),
         nodes[reference],
-        n_averages=10,
-        pulse_duration_s=durations,
-        force_snr_db=60.0,
-        response_snr_db=50.0,
-        double_hit_probability=0.03,
-        overload_probability=0.01,
+        acquisition=Acquisition(n_averages=10),
+        blows=HammerBlows(pulse_duration_s=tuple(durations)),
+        noise=SensorNoise(force_snr_db=60.0, response_snr_db=50.0),
+        faults=HammerFaults(double_hit_probability=0.03, overload_probability=0.01),
         seed=1,
     )
     from racketdyn.measurement.frf import estimate_frfs

@@ -15,6 +15,7 @@ Oracles and their sources:
 from __future__ import annotations
 
 import dataclasses
+from typing import Any
 
 import numpy as np
 import pytest
@@ -25,7 +26,17 @@ from pull_tension import pull_tension_racket
 from racketdyn.errors import InputError
 from racketdyn.impact import predict
 from racketdyn.measurement.records import HammerRecords
-from racketdyn.rig import HandModel, RigModel, hammer_points, rig_model, simulate_hammer_test
+from racketdyn.rig import (
+    Acquisition,
+    HammerBlows,
+    HammerFaults,
+    HandModel,
+    RigModel,
+    SensorNoise,
+    hammer_points,
+    rig_model,
+    simulate_hammer_test,
+)
 
 FS = 5000.0  # the paper's 200 µs sampling
 PASSBAND = FS / 2.56
@@ -239,10 +250,8 @@ def test_noise_free_record_gives_the_analytic_frf(free: RigModel, racket: rd.Rac
         [nodes[i] for i in chosen],
         reference,
         nodes[10],
-        n_averages=1,
-        n_samples=n,
-        force_noise_n=0.0,
-        acceleration_noise_ms2=0.0,
+        acquisition=Acquisition(n_averages=1, n_samples=n),
+        noise=SensorNoise(force_noise_n=0.0, acceleration_noise_ms2=0.0),
         seed=2,
     )
     frequency = np.fft.rfftfreq(n, 1 / FS)
@@ -262,8 +271,9 @@ def test_reciprocity_of_simulated_frfs(free: RigModel, racket: rd.Racket) -> Non
     # accelerometer at i.  Same pulse length at both (1 ms), 10 averages with noise: the H1
     # estimates agree within 1 % at the resonances (high SNR) and 3 % (median) over the band.
     i, j = (0.62, 0.09), (0.52, -0.04)  # a frame point, a string point
-    ij = simulate_hammer_test(free, [i], [1], j, 2, pulse_duration_s=1e-3, seed=10)
-    ji = simulate_hammer_test(free, [j], [2], i, 1, pulse_duration_s=1e-3, seed=11)
+    blows = HammerBlows(pulse_duration_s=1e-3)
+    ij = simulate_hammer_test(free, [i], [1], j, 2, blows=blows, seed=10)
+    ji = simulate_hammer_test(free, [j], [2], i, 1, blows=blows, seed=11)
 
     def h1(records: HammerRecords) -> NDArray[np.complex128]:
         f = np.fft.rfft(records.force[0], axis=1)
@@ -289,12 +299,10 @@ def test_faults_are_where_the_metadata_says(free: RigModel, racket: rd.Racket) -
         nodes,
         tuple(points[1]),
         nodes[1],
-        n_averages=10,
-        double_hit_probability=0.4,
-        overload_probability=0.3,
-        overload_level_n=level,
-        force_noise_n=0.0,
-        acceleration_noise_ms2=0.0,
+        faults=HammerFaults(
+            double_hit_probability=0.4, overload_probability=0.3, overload_level_n=level
+        ),
+        noise=SensorNoise(force_noise_n=0.0, acceleration_noise_ms2=0.0),
         seed=5,
     )
     meta = records.metadata
@@ -362,9 +370,13 @@ def test_bad_input_is_refused(free: RigModel, racket: rd.Racket) -> None:
     with pytest.raises(InputError, match="node"):
         simulate_hammer_test(free, points, [1], (0.6, 0.0), 1)
     with pytest.raises(InputError, match="overload_level_n"):
-        simulate_hammer_test(free, points, [1, 2], (0.6, 0.0), 1, overload_level_n=50.0)
+        simulate_hammer_test(
+            free, points, [1, 2], (0.6, 0.0), 1, faults=HammerFaults(overload_level_n=50.0)
+        )
     with pytest.raises(InputError, match="too short"):
-        simulate_hammer_test(free, points, [1, 2], (0.6, 0.0), 1, n_samples=60)
+        simulate_hammer_test(
+            free, points, [1, 2], (0.6, 0.0), 1, acquisition=Acquisition(n_samples=60)
+        )
 
 
 @pytest.mark.parametrize("gap_m", [0.003, 0.005, 0.010, 0.030])
@@ -414,3 +426,47 @@ def test_the_rigs_modal_truth_predicts_like_its_flexible_modes(
     without = predict(racket, rd.Ball(), centre, 20.0, support, modal_model=flexible)
     assert list(with_rigid.status) == ["ok"]
     np.testing.assert_allclose(with_rigid.rebound_ratio, without.rebound_ratio, rtol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("build", "field"),
+    [
+        (lambda: Acquisition(n_averages=0), "n_averages"),
+        (lambda: Acquisition(sampling_interval_s=-1.0), "sampling_interval_s"),
+        (lambda: Acquisition(n_samples=4), "n_samples"),
+        (lambda: Acquisition(pretrigger_s=-0.01), "pretrigger_s"),
+        (lambda: Acquisition(oversampling=1), "oversampling"),
+        (lambda: HammerBlows(frame_pulse_s=0.0), "frame_pulse_s"),
+        (lambda: HammerBlows(string_pulse_s=float("nan")), "string_pulse_s"),
+        (lambda: HammerBlows(pulse_duration_s=(1e-3, -1e-3)), "pulse_duration_s"),
+        (lambda: HammerBlows(peak_force_n=(60.0, 20.0)), "peak_force_n"),
+        (lambda: SensorNoise(force_noise_n=-0.1), "force_noise_n"),
+        (lambda: SensorNoise(acceleration_noise_ms2=-0.1), "acceleration_noise_ms2"),
+        (lambda: SensorNoise(force_snr_db=-3.0), "force_snr_db"),
+        (lambda: SensorNoise(response_snr_db=300.0), "response_snr_db"),
+        (lambda: HammerFaults(double_hit_probability=1.5), "double_hit_probability"),
+        (lambda: HammerFaults(double_hit_gap_s=(3e-3, 1e-3)), "double_hit_gap_s"),
+        (lambda: HammerFaults(double_hit_ratio=(0.0, 0.5)), "double_hit_ratio"),
+        (lambda: HammerFaults(overload_probability=-0.1), "overload_probability"),
+        (lambda: HammerFaults(overload_level_n=0.0), "overload_level_n"),
+        (lambda: HammerFaults(overload_factor=(0.9, 2.0)), "overload_factor"),
+    ],
+)  # fmt: skip
+def test_hammer_settings_name_the_field_they_refuse(build: Any, field: str) -> None:
+    """Issue 23: each settings object checks its fields when built, in one line naming it."""
+    with pytest.raises(InputError, match=field) as caught:
+        build()
+    assert "\n" not in str(caught.value)
+
+
+def test_hammer_settings_default_to_the_rig_and_are_frozen() -> None:
+    acquisition = Acquisition(n_averages=np.int64(3))  # type: ignore[arg-type]
+    assert type(acquisition.n_averages) is int
+    assert acquisition.pretrigger_samples == 50
+    blows = HammerBlows(pulse_duration_s=np.array([1e-3, 2e-3]))  # type: ignore[arg-type]
+    assert blows.pulse_duration_s == (1e-3, 2e-3)
+    assert hash(blows) == hash(HammerBlows(pulse_duration_s=(1e-3, 2e-3)))
+    assert HammerFaults().longest_extra_s == 0.0
+    assert HammerFaults(double_hit_probability=0.1).longest_extra_s == 3e-3
+    with pytest.raises(AttributeError):
+        SensorNoise().force_noise_n = 1.0  # type: ignore[misc]

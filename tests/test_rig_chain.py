@@ -12,7 +12,14 @@ from pull_tension import pull_tension_racket
 from racketdyn.io import read_hammer_uff, write_hammer_uff
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.quality import QualitySettings
-from racketdyn.rig import RigModel, hammer_points, rig_model, simulate_hammer_test
+from racketdyn.rig import (
+    HammerFaults,
+    RigModel,
+    SensorNoise,
+    hammer_points,
+    rig_model,
+    simulate_hammer_test,
+)
 
 
 @pytest.fixture(scope="module")
@@ -60,8 +67,7 @@ def test_quality_checks_find_the_rigs_faults(free_rig) -> None:
         nodes,
         tuple(locations[3]),
         nodes[3],
-        double_hit_probability=0.2,
-        overload_probability=0.1,
+        faults=HammerFaults(double_hit_probability=0.2, overload_probability=0.1),
         seed=9,
     )
     estimate = estimate_frfs(records, quality=QualitySettings(overload_level_n=200.0))
@@ -117,10 +123,9 @@ def test_an_overload_is_found_without_the_hammers_range(free_rig) -> None:
     the converter's one rail, so averages sharing the set's largest |force| (to 1e-6) are
     overloads whatever their pulse; a test without overloads loses none."""
     locations, nodes = hammer_points(free_rig.racket, n_frame=6, n_strings=8)
-    common = {"double_hit_probability": 0.0, "seed": 9}
     records = simulate_hammer_test(
-        free_rig, locations, nodes, tuple(locations[3]), nodes[3], overload_probability=0.1,
-        **common,
+        free_rig, locations, nodes, tuple(locations[3]), nodes[3],
+        faults=HammerFaults(overload_probability=0.1), seed=9,
     )  # fmt: skip
     truth = np.array(records.metadata["overload"])
     assert truth.sum() >= 2
@@ -134,7 +139,7 @@ def test_an_overload_is_found_without_the_hammers_range(free_rig) -> None:
     )
     np.testing.assert_array_equal(found, truth)
     at = (tuple(locations[3]), nodes[3])
-    clean = simulate_hammer_test(free_rig, locations, nodes, *at, **common)
+    clean = simulate_hammer_test(free_rig, locations, nodes, *at, seed=9)
     assert all(c.accepted for c in estimate_frfs(clean).checks)
 
 
@@ -148,7 +153,9 @@ def test_frf_says_when_the_force_noise_needs_a_force_window(free_rig) -> None:
     default force channel, it is silent."""
     locations, nodes = hammer_points(free_rig.racket, n_frame=6, n_strings=8)
     at = (tuple(locations[3]), nodes[3])
-    noisy = simulate_hammer_test(free_rig, locations, nodes, *at, force_snr_db=50.0, seed=4)
+    noisy = simulate_hammer_test(
+        free_rig, locations, nodes, *at, noise=SensorNoise(force_snr_db=50.0), seed=4
+    )
     estimate = estimate_frfs(noisy, exponential_window_s=0.1)
     assert "--force-window 0.01" in estimate.force_noise_hint()
     windowed = estimate_frfs(noisy, exponential_window_s=0.1, force_window_s=0.01)

@@ -33,6 +33,7 @@ from racketdyn.modal.mac import mac
 from racketdyn.modal.model import ModalModel
 from racketdyn.rig import (
     RigModel,
+    SensorNoise,
     accelerometer_index,
     hammer_points,
     rig_model,
@@ -77,7 +78,13 @@ def _errors(
 def test_noise_given_as_snr_is_that_snr(free_rig: RigModel) -> None:
     locations, nodes, ref = _few_points(free_rig)
     records = simulate_hammer_test(
-        free_rig, locations[:3], nodes[:3], tuple(locations[ref]), nodes[ref], seed=2, **SNR
+        free_rig,
+        locations[:3],
+        nodes[:3],
+        tuple(locations[ref]),
+        nodes[ref],
+        seed=2,
+        noise=SensorNoise(**SNR),
     )
     before = records.pretrigger_samples - 5  # the pre-trigger holds noise only
     for channel, snr in ((records.force, 50.0), (records.response, 40.0)):
@@ -93,9 +100,9 @@ def test_snr_noise_lowers_coherence_and_damping_is_found_within_its_tolerance(
     locations, nodes, ref = _few_points(free_rig)
     truth = free_rig.modal_truth(locations, max_frequency_hz=BAND[1])
     found = {}
-    for label, noise in (("floor", {}), ("snr", SNR)):
+    for label, noise in (("floor", SensorNoise()), ("snr", SensorNoise(**SNR))):
         records = simulate_hammer_test(
-            free_rig, locations, nodes, tuple(locations[ref]), nodes[ref], seed=3, **noise
+            free_rig, locations, nodes, tuple(locations[ref]), nodes[ref], seed=3, noise=noise
         )
         estimate = estimate_frfs(records, exponential_window_s=0.1)
         frfs = estimate.frfs

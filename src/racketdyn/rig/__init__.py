@@ -1,7 +1,8 @@
 """The virtual test rig: a racket model that stands in for a real one in a roving-hammer test.
 
 :func:`rig_model` builds the structure (beam frame, coupled string bed, free or hand-held) and
-its modal truth; :func:`simulate_hammer_test` makes the records a roving-hammer test would give.
+its modal truth; :func:`simulate_hammer_test` makes the records a roving-hammer test would give,
+set by :class:`Acquisition`, :class:`HammerBlows`, :class:`SensorNoise` and :class:`HammerFaults`.
 
 Submodules are imported when first used (SPEC 1): importing one of them, or this package,
 does not load the others.
@@ -14,6 +15,10 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from racketdyn.rig.hammer import (
+        Acquisition,
+        HammerBlows,
+        HammerFaults,
+        SensorNoise,
         accelerometer_index,
         anti_alias_filter,
         hammer_points,
@@ -23,6 +28,10 @@ if TYPE_CHECKING:
     from racketdyn.rig.model import HandModel, RigModel, RigSupport, rig_model
 
 _WHERE = {
+    "Acquisition": "hammer",
+    "HammerBlows": "hammer",
+    "HammerFaults": "hammer",
+    "SensorNoise": "hammer",
     "HandModel": "model",
     "RigModel": "model",
     "RigSupport": "model",
@@ -35,9 +44,13 @@ _WHERE = {
 }
 
 __all__ = [
+    "Acquisition",
+    "HammerBlows",
+    "HammerFaults",
     "HandModel",
     "RigModel",
     "RigSupport",
+    "SensorNoise",
     "accelerometer_index",
     "anti_alias_filter",
     "hammer_points",

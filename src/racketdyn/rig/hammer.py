@@ -34,13 +34,17 @@ What is simulated, and how:
 
 The record's time origin is the start of the (first) pulse; ``pretrigger_s`` (rounded to whole
 samples) is recorded before it.
+
+The settings named above are fields of four frozen objects that :func:`simulate_hammer_test`
+takes: :class:`Acquisition`, :class:`HammerBlows`, :class:`SensorNoise` and :class:`HammerFaults`.
 """
 
 from __future__ import annotations
 
 import logging
 from collections.abc import Sequence
-from typing import Any
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -51,10 +55,17 @@ from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, HammerRecor
 from racketdyn.racket import Racket, as_locations
 from racketdyn.rig.model import RigModel
 
+if TYPE_CHECKING:
+    from racketdyn.modal.model import ModalModel
+
 __all__ = [
     "ANALYSER_BANDWIDTH_FACTOR",
     "FRAME_PULSE_S",
     "STRING_PULSE_S",
+    "Acquisition",
+    "HammerBlows",
+    "HammerFaults",
+    "SensorNoise",
     "accelerometer_index",
     "anti_alias_filter",
     "hammer_points",
@@ -240,6 +251,160 @@ def hammer_points(
     return locations, tuple(range(1, locations.shape[0] + 1))
 
 
+def _check_range(name: str, bounds: tuple[float, float], *, allow_zero: bool = False) -> None:
+    low, high = (float(b) for b in bounds)
+    require_positive(f"{name} (low)", low, allow_zero=allow_zero)
+    require_positive(f"{name} (high)", high)
+    if high < low:
+        raise InputError(f"{name} must be (low, high) with low ≤ high (got {bounds!r})")
+
+
+@dataclass(frozen=True)
+class Acquisition:
+    """How the analyser records each hit: averages, sampling and the pre-trigger.
+
+    Parameters
+    ----------
+    n_averages : int
+        Hits per point, a count (at least 1).
+    sampling_interval_s : float
+        Sampling period, s (the paper: 200 µs).
+    n_samples : int
+        Samples per record, a count (at least 8).
+    pretrigger_s : float
+        Time recorded before the pulse starts, s (rounded to whole samples).
+    oversampling : int
+        Fine-grid factor for the anti-alias filtering and decimation, a count (at least 2).
+    """
+
+    n_averages: int = 10
+    sampling_interval_s: float = 2.0e-4
+    n_samples: int = 2048
+    pretrigger_s: float = 0.01
+    oversampling: int = 8
+
+    def __post_init__(self) -> None:
+        for name, least in (("n_averages", 1), ("n_samples", 8), ("oversampling", 2)):
+            object.__setattr__(self, name, require_whole(name, getattr(self, name), least))
+        dt = require_positive("sampling_interval_s", self.sampling_interval_s)
+        object.__setattr__(self, "sampling_interval_s", dt)
+        pretrigger = require_positive("pretrigger_s", self.pretrigger_s, allow_zero=True)
+        object.__setattr__(self, "pretrigger_s", pretrigger)
+
+    @property
+    def pretrigger_samples(self) -> int:
+        """Samples recorded before the pulse (``pretrigger_s`` rounded to whole samples)."""
+        return round(self.pretrigger_s / self.sampling_interval_s)
+
+
+@dataclass(frozen=True)
+class HammerBlows:
+    """The hammer's normal hits: the half-sine pulse lengths and the range of peak forces.
+
+    Parameters
+    ----------
+    frame_pulse_s, string_pulse_s : float
+        Half-sine length on the frame and inside the string bed, s.
+    pulse_duration_s : float, sequence of float or None
+        One half-sine length per point (or one for all), s, instead of the frame/string rule.
+    peak_force_n : tuple of float
+        Range (low, high) of the peak force of a normal hit, N (uniform per average).
+    """
+
+    frame_pulse_s: float = FRAME_PULSE_S
+    string_pulse_s: float = STRING_PULSE_S
+    pulse_duration_s: float | tuple[float, ...] | None = None
+    peak_force_n: tuple[float, float] = (20.0, 60.0)
+
+    def __post_init__(self) -> None:
+        if self.pulse_duration_s is None:
+            require_positive("frame_pulse_s", self.frame_pulse_s)
+            require_positive("string_pulse_s", self.string_pulse_s)
+        else:
+            lengths = np.asarray(self.pulse_duration_s, dtype=float)
+            if lengths.ndim > 1 or not np.all(np.isfinite(lengths) & (lengths > 0)):
+                raise InputError("pulse_duration_s must be positive lengths in s, one per point")
+            held = float(lengths) if lengths.ndim == 0 else tuple(lengths.tolist())
+            object.__setattr__(self, "pulse_duration_s", held)
+        _check_range("peak_force_n", self.peak_force_n)
+        object.__setattr__(self, "peak_force_n", tuple(self.peak_force_n))
+
+
+@dataclass(frozen=True)
+class SensorNoise:
+    """White noise of the force and acceleration channels, added after the anti-alias filter.
+
+    Parameters
+    ----------
+    force_noise_n : float
+        Force sensor noise, N rms.
+    acceleration_noise_ms2 : float
+        Accelerometer noise, m/s² rms.
+    force_snr_db, response_snr_db : float, optional
+        Noise of the force and response channels as a signal-to-noise ratio, dB (0 to 200):
+        each record's noise rms is its noiseless peak × 10^(−SNR/20) (so a weak response far
+        from the accelerometer is noisier relative to its modes, as on a real test).  Given,
+        it replaces ``force_noise_n`` / ``acceleration_noise_ms2``.
+    """
+
+    force_noise_n: float = 0.02
+    acceleration_noise_ms2: float = 0.05
+    force_snr_db: float | None = None
+    response_snr_db: float | None = None
+
+    def __post_init__(self) -> None:
+        require_positive("force_noise_n", self.force_noise_n, allow_zero=True)
+        require_positive("acceleration_noise_ms2", self.acceleration_noise_ms2, allow_zero=True)
+        for name in ("force_snr_db", "response_snr_db"):
+            if getattr(self, name) is not None:
+                require_range(name, getattr(self, name), 0.0, 200.0)
+
+
+@dataclass(frozen=True)
+class HammerFaults:
+    """The hits a careless hand gives: double hits and overloads, and the force channel's range.
+
+    Parameters
+    ----------
+    double_hit_probability : float
+        Chance that an average gets a second pulse, 0 to 1.
+    double_hit_gap_s : tuple of float
+        Range of the gap from the end of the first pulse to the start of the second, s.
+    double_hit_ratio : tuple of float
+        Range of the second pulse's peak as a fraction of the first's, dimensionless.
+    overload_probability : float
+        Chance that an average is struck too hard, 0 to 1.
+    overload_level_n : float
+        Force channel range, N: the recorded force clips at ± this.
+    overload_factor : tuple of float
+        Range of the peak of an overloading hit, as a multiple of ``overload_level_n`` (above 1).
+    """
+
+    double_hit_probability: float = 0.0
+    double_hit_gap_s: tuple[float, float] = (0.5e-3, 3.0e-3)
+    double_hit_ratio: tuple[float, float] = (0.2, 0.6)
+    overload_probability: float = 0.0
+    overload_level_n: float = 200.0
+    overload_factor: tuple[float, float] = (1.2, 2.0)
+
+    def __post_init__(self) -> None:
+        require_positive("overload_level_n", self.overload_level_n)
+        _check_range("overload_factor", self.overload_factor)
+        if self.overload_factor[0] <= 1.0:
+            raise InputError(f"overload_factor must exceed 1 (got {self.overload_factor!r})")
+        for name in ("double_hit_probability", "overload_probability"):
+            require_range(name, getattr(self, name), 0.0, 1.0)
+        _check_range("double_hit_gap_s", self.double_hit_gap_s, allow_zero=True)
+        _check_range("double_hit_ratio", self.double_hit_ratio)
+        for name in ("double_hit_gap_s", "double_hit_ratio", "overload_factor"):
+            object.__setattr__(self, name, tuple(getattr(self, name)))
+
+    @property
+    def longest_extra_s(self) -> float:
+        """How much a double hit can add after the first pulse's end, s (0 without them)."""
+        return float(self.double_hit_gap_s[1]) if self.double_hit_probability > 0 else 0.0
+
+
 def simulate_hammer_test(
     model: RigModel,
     points: ArrayLike,
@@ -247,25 +412,10 @@ def simulate_hammer_test(
     reference_location: tuple[float, float],
     reference_node: int,
     *,
-    n_averages: int = 10,
-    sampling_interval_s: float = 2.0e-4,
-    n_samples: int = 2048,
-    pretrigger_s: float = 0.01,
-    frame_pulse_s: float = FRAME_PULSE_S,
-    string_pulse_s: float = STRING_PULSE_S,
-    pulse_duration_s: ArrayLike | None = None,
-    peak_force_n: tuple[float, float] = (20.0, 60.0),
-    force_noise_n: float = 0.02,
-    acceleration_noise_ms2: float = 0.05,
-    force_snr_db: float | None = None,
-    response_snr_db: float | None = None,
-    double_hit_probability: float = 0.0,
-    double_hit_gap_s: tuple[float, float] = (0.5e-3, 3.0e-3),
-    double_hit_ratio: tuple[float, float] = (0.2, 0.6),
-    overload_probability: float = 0.0,
-    overload_level_n: float = 200.0,
-    overload_factor: tuple[float, float] = (1.2, 2.0),
-    oversampling: int = 8,
+    acquisition: Acquisition = Acquisition(),
+    blows: HammerBlows = HammerBlows(),
+    noise: SensorNoise = SensorNoise(),
+    faults: HammerFaults = HammerFaults(),
     seed: int | np.random.Generator | None = None,
 ) -> HammerRecords:
     """Simulate a roving-hammer test on the rig (see the module docstring for the physics).
@@ -282,43 +432,14 @@ def simulate_hammer_test(
         Accelerometer location (x, y), m.
     reference_node : int
         Its node number.
-    n_averages : int
-        Hits per point.
-    sampling_interval_s : float
-        Sampling period, s (the paper: 200 µs).
-    n_samples : int
-        Samples per record.
-    pretrigger_s : float
-        Time recorded before the pulse starts, s (rounded to whole samples).
-    frame_pulse_s, string_pulse_s : float
-        Half-sine length on the frame and inside the string bed, s.
-    pulse_duration_s : array_like or None
-        One half-sine length per point, s, instead of the frame/string rule.
-    peak_force_n : tuple of float
-        Range of the peak force of a normal hit, N (uniform per average).
-    force_noise_n : float
-        Force sensor noise, N rms (white, after the anti-alias filter).
-    acceleration_noise_ms2 : float
-        Accelerometer noise, m/s² rms.
-    force_snr_db, response_snr_db : float, optional
-        Noise of the force and response channels as a signal-to-noise ratio, dB: each record's
-        noise rms is its noiseless peak × 10^(−SNR/20) (so a weak response far from the
-        accelerometer is noisier relative to its modes, as on a real test).  Given, it replaces
-        ``force_noise_n`` / ``acceleration_noise_ms2``.
-    double_hit_probability : float
-        Chance that an average gets a second pulse.
-    double_hit_gap_s : tuple of float
-        Range of the gap from the end of the first pulse to the start of the second, s.
-    double_hit_ratio : tuple of float
-        Range of the second pulse's peak as a fraction of the first's.
-    overload_probability : float
-        Chance that an average is struck too hard.
-    overload_level_n : float
-        Force channel range, N: the recorded force clips at ± this.
-    overload_factor : tuple of float
-        Range of the peak of an overloading hit, as a multiple of ``overload_level_n``.
-    oversampling : int
-        Fine-grid factor for the anti-alias filtering and decimation (at least 2).
+    acquisition : Acquisition
+        Averages, sampling interval (s), samples, pre-trigger (s) and oversampling.
+    blows : HammerBlows
+        Pulse lengths (s) and the range of peak forces (N) of the normal hits.
+    noise : SensorNoise
+        Noise of the force (N rms) and acceleration (m/s² rms) channels, or their SNRs (dB).
+    faults : HammerFaults
+        Double hits and overloads, and the force channel's range (N).
     seed : int, numpy Generator or None
         Random seed or generator (None: fresh entropy).
 
@@ -327,170 +448,30 @@ def simulate_hammer_test(
     HammerRecords
         ``response_type="acceleration"`` (m/s²), force in N, with the truth in ``metadata``.
     """
-    xy = as_locations(points, "hammer points")
-    n_points = xy.shape[0]
-    node_list = [int(n) for n in nodes]
-    if len(node_list) != n_points or len(set(node_list)) != n_points:
-        raise InputError(
-            f"hammer test: give one different node number per point ({n_points} points, "
-            f"{len(node_list)} nodes)"
-        )
-    reference = as_locations(reference_location, "reference location")
-    settings = _check_settings(
-        n_averages, n_samples, oversampling, peak_force_n, overload_level_n, overload_factor
-    )
-    dt = require_positive("sampling_interval_s", sampling_interval_s)
-    for name, value in (
-        ("double_hit_probability", double_hit_probability),
-        ("overload_probability", overload_probability),
-    ):
-        require_range(name, value, 0.0, 1.0)
-    require_positive("force_noise_n", force_noise_n, allow_zero=True)
-    require_positive("acceleration_noise_ms2", acceleration_noise_ms2, allow_zero=True)
-    for name, snr in (("force_snr_db", force_snr_db), ("response_snr_db", response_snr_db)):
-        if snr is not None:
-            require_range(name, snr, 0.0, 200.0)
-    _check_range("double_hit_gap_s", double_hit_gap_s, allow_zero=True)
-    _check_range("double_hit_ratio", double_hit_ratio)
-    n_pre = round(require_positive("pretrigger_s", pretrigger_s, allow_zero=True) / dt)
-
+    xy, node_list, reference = _check_points(points, nodes, reference_location)
     on_bed = model.on_string_bed(xy)
-    if pulse_duration_s is None:
-        require_positive("frame_pulse_s", frame_pulse_s)
-        require_positive("string_pulse_s", string_pulse_s)
-        durations = np.where(on_bed, string_pulse_s, frame_pulse_s)
-    else:
-        durations = np.broadcast_to(np.asarray(pulse_duration_s, dtype=float), (n_points,))
-        if not np.all(np.isfinite(durations) & (durations > 0)):
-            raise InputError("pulse_duration_s must be positive lengths in s, one per point")
-    q = settings["oversampling"]
-    fine_dt = dt / q
-    if np.min(durations) < 4 * fine_dt:
-        raise InputError(
-            f"hammer pulses of {np.min(durations) * 1e3:.3g} ms are shorter than 4 fine samples "
-            f"({4 * fine_dt * 1e3:.3g} ms); raise oversampling or the pulse length"
-        )
-    longest = np.max(durations) * (2 if double_hit_probability > 0 else 1) + (
-        double_hit_gap_s[1] if double_hit_probability > 0 else 0.0
-    )
-    if (settings["n_samples"] - n_pre) * dt <= longest:
-        raise InputError(
-            f"hammer test: {(settings['n_samples'] - n_pre) * dt:.4g} s recorded after the "
-            f"trigger is too short for pulses of up to {longest * 1e3:.3g} ms"
-        )
-
+    durations = _pulse_durations(blows, on_bed)
+    _check_together(acquisition, blows, faults, durations)
     rng = np.random.default_rng(seed)
-    taps = anti_alias_filter(dt, q)
-    margin = (taps.size // 2) // q + 2  # output samples computed beyond each end
-    n_out = settings["n_samples"]
-    n_fine = (n_out + 2 * margin) * q
-    hit = (margin + n_pre) * q  # fine index of t = 0
-    pick = (margin + np.arange(n_out)) * q
-
-    phi_ref = model.mode_shapes_at(reference)[0]
-    coefficients = model.mode_shapes_at(xy) * phi_ref  # φ_p φ_ref, (n_points, n_modes)
-    unit_response = np.zeros((n_points, n_fine - hit))
-    for duration in np.unique(durations):
-        group = np.flatnonzero(durations == duration)
-        unit_response[group] = _half_sine_acceleration(
-            model, float(duration), fine_dt, n_fine - hit, coefficients[group]
-        )
-
-    n_avg = settings["n_averages"]
+    grid = _FineGrid.of(acquisition)
+    unit_response = _unit_responses(model, xy, reference, durations, grid)
+    truth: dict[str, list[list[Any]]] = {key: [] for key in _TRUTH_KEYS}
     forces, responses = [], []
-    truth: dict[str, list[list[Any]]] = {
-        "peak_force_n": [],
-        "double_hit": [],
-        "double_hit_gap_s": [],
-        "double_hit_ratio": [],
-        "overload": [],
-    }
-    for p in range(n_points):
-        duration = float(durations[p])
-        pulse = _half_sine(duration, fine_dt, n_fine - hit)
-        peaks = rng.uniform(*peak_force_n, n_avg)
-        overloaded = rng.random(n_avg) < overload_probability
-        peaks[overloaded] = overload_level_n * rng.uniform(*overload_factor, overloaded.sum())
-        doubled = rng.random(n_avg) < double_hit_probability
-        gaps = np.where(doubled, rng.uniform(*double_hit_gap_s, n_avg), np.nan)
-        ratios = np.where(doubled, rng.uniform(*double_hit_ratio, n_avg), np.nan)
-        force_fine = np.zeros((n_avg, n_fine))
-        response_fine = np.zeros((n_avg, n_fine))
-        force_fine[:, hit:] = peaks[:, None] * pulse
-        response_fine[:, hit:] = peaks[:, None] * unit_response[p]
-        for a in np.flatnonzero(doubled):
-            shift = round((duration + gaps[a]) / fine_dt)
-            gaps[a] = shift * fine_dt - duration  # on the fine grid
-            second = ratios[a] * peaks[a]
-            force_fine[a, hit + shift :] += second * pulse[: pulse.size - shift]
-            response_fine[a, hit + shift :] += second * unit_response[p, : pulse.size - shift]
-        both = oaconvolve(np.vstack([force_fine, response_fine]), taps[None, :], "same", axes=1)
-        force_clean, response_clean = both[:n_avg, pick], both[n_avg:, pick]
-        force = force_clean + _noise_rms(force_clean, force_snr_db, force_noise_n)[
-            :, None
-        ] * rng.standard_normal((n_avg, n_out))
-        response = response_clean + _noise_rms(
-            response_clean, response_snr_db, acceleration_noise_ms2
-        )[:, None] * rng.standard_normal((n_avg, n_out))
-        clipped = np.any(np.abs(force) >= overload_level_n, axis=1)
-        force = np.clip(force, -overload_level_n, overload_level_n)
+    for duration, unit in zip(durations, unit_response, strict=True):  # point by point
+        force, response = _strike(rng, float(duration), unit, grid, (blows, noise, faults), truth)
         forces.append(force)
         responses.append(response)
-        truth["peak_force_n"].append(peaks.tolist())
-        truth["double_hit"].append(doubled.tolist())
-        truth["double_hit_gap_s"].append(
-            [float(g) if d else None for g, d in zip(gaps, doubled, strict=True)]
-        )
-        truth["double_hit_ratio"].append(
-            [float(r) if d else None for r, d in zip(ratios, doubled, strict=True)]
-        )
-        truth["overload"].append(clipped.tolist())
-
-    fs = 1.0 / dt
-    truth_points = xy
-    if not np.any(np.all(np.isclose(xy, reference), axis=1)):
-        truth_points = np.vstack([xy, reference])
-    if truth_points.shape[0] < 3:  # a ModalModel needs three: add the butt and the tip
-        ends = np.array([[0.0, 0.0], [model.racket.length_m, 0.0]])
-        fresh = [e for e in ends if not np.any(np.all(np.isclose(truth_points, e), axis=1))]
-        truth_points = np.vstack([truth_points, *fresh])
-    modal_truth = model.modal_truth(truth_points, max_frequency_hz=fs / 2)
-    metadata: dict[str, Any] = {
-        "rig": {
-            "support": model.support,
-            "racket": model.racket.name,
-            "n_averages": n_avg,
-            "oversampling": q,
-            "frame_pulse_s": frame_pulse_s,
-            "string_pulse_s": string_pulse_s,
-            "peak_force_n": list(peak_force_n),
-            "force_noise_n": force_noise_n,
-            "acceleration_noise_ms2": acceleration_noise_ms2,
-            "force_snr_db": force_snr_db,
-            "response_snr_db": response_snr_db,
-            "double_hit_probability": double_hit_probability,
-            "overload_probability": overload_probability,
-            "overload_level_n": overload_level_n,
-            "seed": seed if isinstance(seed, int) else None,
-        },
-        "anti_alias": {
-            "passband_hz": fs / ANALYSER_BANDWIDTH_FACTOR,
-            "stopband_hz": fs - fs / ANALYSER_BANDWIDTH_FACTOR,
-            "attenuation_db": FILTER_ATTENUATION_DB,
-            "taps": int(taps.size),
-        },
-        "pulse_duration_s": durations.tolist(),
-        "on_string_bed": on_bed.tolist(),
-        **truth,
-        "modal_truth": modal_truth.to_dict(),
-    }
+    metadata = _metadata(model, acquisition, blows, noise, faults, seed, grid, durations, on_bed)
+    metadata.update(truth)
+    metadata["modal_truth"] = _modal_truth(model, xy, reference, acquisition).to_dict()
     logger.info(
         "rig: %d points × %d averages × %d samples simulated (%s support)",
-        n_points,
-        n_avg,
-        n_out,
+        xy.shape[0],
+        acquisition.n_averages,
+        acquisition.n_samples,
         model.support,
     )
+    dt = acquisition.sampling_interval_s
     return HammerRecords(
         sampling_interval_s=dt,
         force=tuple(forces),
@@ -500,10 +481,287 @@ def simulate_hammer_test(
         locations=xy,
         reference_node=int(reference_node),
         reference_location=(float(reference[0, 0]), float(reference[0, 1])),
-        pretrigger_s=n_pre * dt,
+        pretrigger_s=acquisition.pretrigger_samples * dt,
         source=f"racketdyn virtual rig: {model.racket.name}, {model.support} support",
         metadata=metadata,
     )
+
+
+_TRUTH_KEYS = ("peak_force_n", "double_hit", "double_hit_gap_s", "double_hit_ratio", "overload")
+
+
+def _check_points(
+    points: ArrayLike, nodes: Sequence[int], reference_location: tuple[float, float]
+) -> tuple[NDArray[np.float64], list[int], NDArray[np.float64]]:
+    """The hammer points, their node numbers (one different each) and the reference, checked."""
+    xy = as_locations(points, "hammer points")
+    n_points = xy.shape[0]
+    node_list = [int(n) for n in nodes]
+    if len(node_list) != n_points or len(set(node_list)) != n_points:
+        raise InputError(
+            f"hammer test: give one different node number per point ({n_points} points, "
+            f"{len(node_list)} nodes)"
+        )
+    return xy, node_list, as_locations(reference_location, "reference location")
+
+
+def _pulse_durations(blows: HammerBlows, on_bed: NDArray[np.bool_]) -> NDArray[np.float64]:
+    """Half-sine length at each point, s: the frame/string rule, or the lengths given."""
+    if blows.pulse_duration_s is None:
+        return np.where(on_bed, blows.string_pulse_s, blows.frame_pulse_s)
+    return np.broadcast_to(np.asarray(blows.pulse_duration_s, dtype=float), on_bed.shape)
+
+
+def _check_together(
+    acquisition: Acquisition,
+    blows: HammerBlows,
+    faults: HammerFaults,
+    durations: NDArray[np.float64],
+) -> None:
+    """Refuse normal hits that would clip, and pulses the fine grid or the record cannot hold."""
+    if blows.peak_force_n[1] >= faults.overload_level_n:
+        raise InputError(
+            f"peak_force_n (up to {blows.peak_force_n[1]} N) must stay below overload_level_n "
+            f"({faults.overload_level_n} N): normal hits would clip"
+        )
+    dt = acquisition.sampling_interval_s
+    fine_dt = dt / acquisition.oversampling
+    if np.min(durations) < 4 * fine_dt:
+        raise InputError(
+            f"hammer pulses of {np.min(durations) * 1e3:.3g} ms are shorter than 4 fine samples "
+            f"({4 * fine_dt * 1e3:.3g} ms); raise oversampling or the pulse length"
+        )
+    doubled = faults.double_hit_probability > 0
+    longest = np.max(durations) * (2 if doubled else 1) + faults.longest_extra_s
+    after = (acquisition.n_samples - acquisition.pretrigger_samples) * dt
+    if after <= longest:
+        raise InputError(
+            f"hammer test: {after:.4g} s recorded after the trigger is too short for pulses of "
+            f"up to {longest * 1e3:.3g} ms"
+        )
+
+
+@dataclass(frozen=True)
+class _FineGrid:
+    """The oversampled grid a point's averages are computed on, and the filter that decimates it."""
+
+    taps: NDArray[np.float64]
+    fine_dt: float
+    n_averages: int
+    n_out: int
+    n_fine: int
+    hit: int  # fine index of t = 0
+    pick: NDArray[np.intp]  # fine indices of the record's samples
+
+    @classmethod
+    def of(cls, acquisition: Acquisition) -> _FineGrid:
+        q = acquisition.oversampling
+        taps = anti_alias_filter(acquisition.sampling_interval_s, q)
+        margin = (taps.size // 2) // q + 2  # output samples computed beyond each end
+        n_out = acquisition.n_samples
+        return cls(
+            taps=taps,
+            fine_dt=acquisition.sampling_interval_s / q,
+            n_averages=acquisition.n_averages,
+            n_out=n_out,
+            n_fine=(n_out + 2 * margin) * q,
+            hit=(margin + acquisition.pretrigger_samples) * q,
+            pick=(margin + np.arange(n_out)) * q,
+        )
+
+    @property
+    def n_after(self) -> int:
+        """Fine samples from t = 0 to the grid's end."""
+        return self.n_fine - self.hit
+
+
+def _unit_responses(
+    model: RigModel,
+    xy: NDArray[np.float64],
+    reference: NDArray[np.float64],
+    durations: NDArray[np.float64],
+    grid: _FineGrid,
+) -> NDArray[np.float64]:
+    """Acceleration at the reference for a unit half-sine at each point, on the fine grid."""
+    phi_ref = model.mode_shapes_at(reference)[0]
+    coefficients = model.mode_shapes_at(xy) * phi_ref  # φ_p φ_ref, (n_points, n_modes)
+    unit_response = np.zeros((xy.shape[0], grid.n_after))
+    for duration in np.unique(durations):
+        group = np.flatnonzero(durations == duration)
+        unit_response[group] = _half_sine_acceleration(
+            model, float(duration), grid.fine_dt, grid.n_after, coefficients[group]
+        )
+    return unit_response
+
+
+@dataclass
+class _Hits:
+    """One point's averages as drawn: peak forces, overloads and double hits."""
+
+    peaks: NDArray[np.float64]
+    doubled: NDArray[np.bool_]
+    gaps: NDArray[np.float64]  # s, NaN where single
+    ratios: NDArray[np.float64]  # NaN where single
+
+    def record(self, truth: dict[str, list[list[Any]]], clipped: NDArray[np.bool_]) -> None:
+        """Append this point's row to each list of the metadata's truth."""
+        truth["peak_force_n"].append(self.peaks.tolist())
+        truth["double_hit"].append(self.doubled.tolist())
+        truth["double_hit_gap_s"].append(
+            [float(g) if d else None for g, d in zip(self.gaps, self.doubled, strict=True)]
+        )
+        truth["double_hit_ratio"].append(
+            [float(r) if d else None for r, d in zip(self.ratios, self.doubled, strict=True)]
+        )
+        truth["overload"].append(clipped.tolist())
+
+
+def _strike(
+    rng: np.random.Generator,
+    duration: float,
+    unit_response: NDArray[np.float64],
+    grid: _FineGrid,
+    settings: tuple[HammerBlows, SensorNoise, HammerFaults],
+    truth: dict[str, list[list[Any]]],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """One point's averages: draw the hits, record them, and append their truth to ``truth``.
+
+    Returns the force (N) and acceleration (m/s²) records, shaped ``(n_averages, n_samples)``.
+    """
+    blows, noise, faults = settings
+    pulse = _half_sine(duration, grid.fine_dt, grid.n_after)
+    hits = _draw_hits(rng, grid.n_averages, blows, faults)
+    force_fine, response_fine = _fine_records(hits, duration, pulse, unit_response, grid)
+    force, response, clipped = _acquire(rng, force_fine, response_fine, grid, noise, faults)
+    hits.record(truth, clipped)
+    return force, response
+
+
+def _draw_hits(
+    rng: np.random.Generator, n_avg: int, blows: HammerBlows, faults: HammerFaults
+) -> _Hits:
+    """Draw one point's peaks, overloads and double hits (in this order: the seed's stream)."""
+    peaks = rng.uniform(*blows.peak_force_n, n_avg)
+    overloaded = rng.random(n_avg) < faults.overload_probability
+    peaks[overloaded] = faults.overload_level_n * rng.uniform(
+        *faults.overload_factor, overloaded.sum()
+    )
+    doubled = rng.random(n_avg) < faults.double_hit_probability
+    gaps = np.where(doubled, rng.uniform(*faults.double_hit_gap_s, n_avg), np.nan)
+    ratios = np.where(doubled, rng.uniform(*faults.double_hit_ratio, n_avg), np.nan)
+    return _Hits(peaks, doubled, gaps, ratios)
+
+
+def _fine_records(
+    hits: _Hits,
+    duration: float,
+    pulse: NDArray[np.float64],
+    unit_response: NDArray[np.float64],
+    grid: _FineGrid,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Force and acceleration of each average on the fine grid, second pulses added.
+
+    A double hit's gap is moved onto the fine grid (``hits.gaps`` is updated to it).
+    """
+    n_avg, hit = hits.peaks.size, grid.hit
+    force_fine = np.zeros((n_avg, grid.n_fine))
+    response_fine = np.zeros((n_avg, grid.n_fine))
+    force_fine[:, hit:] = hits.peaks[:, None] * pulse
+    response_fine[:, hit:] = hits.peaks[:, None] * unit_response
+    for a in np.flatnonzero(hits.doubled):
+        shift = round((duration + hits.gaps[a]) / grid.fine_dt)
+        hits.gaps[a] = shift * grid.fine_dt - duration  # on the fine grid
+        second = hits.ratios[a] * hits.peaks[a]
+        force_fine[a, hit + shift :] += second * pulse[: pulse.size - shift]
+        response_fine[a, hit + shift :] += second * unit_response[: pulse.size - shift]
+    return force_fine, response_fine
+
+
+def _acquire(
+    rng: np.random.Generator,
+    force_fine: NDArray[np.float64],
+    response_fine: NDArray[np.float64],
+    grid: _FineGrid,
+    noise: SensorNoise,
+    faults: HammerFaults,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
+    """Filter, decimate, add the sensors' noise (force first) and clip the force channel.
+
+    Returns the force and acceleration records and which averages clipped.
+    """
+    n_avg = force_fine.shape[0]
+    both = oaconvolve(np.vstack([force_fine, response_fine]), grid.taps[None, :], "same", axes=1)
+    force_clean, response_clean = both[:n_avg, grid.pick], both[n_avg:, grid.pick]
+    shape = (n_avg, grid.n_out)
+    force = force_clean + _noise_rms(force_clean, noise.force_snr_db, noise.force_noise_n)[
+        :, None
+    ] * rng.standard_normal(shape)
+    response = response_clean + _noise_rms(
+        response_clean, noise.response_snr_db, noise.acceleration_noise_ms2
+    )[:, None] * rng.standard_normal(shape)
+    level = faults.overload_level_n
+    clipped = np.any(np.abs(force) >= level, axis=1)
+    return np.clip(force, -level, level), response, clipped
+
+
+def _modal_truth(
+    model: RigModel,
+    xy: NDArray[np.float64],
+    reference: NDArray[np.float64],
+    acquisition: Acquisition,
+) -> ModalModel:
+    """The rig's modes to the Nyquist frequency at the points, the reference (and the ends)."""
+    truth_points = xy
+    if not np.any(np.all(np.isclose(xy, reference), axis=1)):
+        truth_points = np.vstack([xy, reference])
+    if truth_points.shape[0] < 3:  # a ModalModel needs three: add the butt and the tip
+        ends = np.array([[0.0, 0.0], [model.racket.length_m, 0.0]])
+        fresh = [e for e in ends if not np.any(np.all(np.isclose(truth_points, e), axis=1))]
+        truth_points = np.vstack([truth_points, *fresh])
+    fs = 1.0 / acquisition.sampling_interval_s
+    return model.modal_truth(truth_points, max_frequency_hz=fs / 2)
+
+
+def _metadata(
+    model: RigModel,
+    acquisition: Acquisition,
+    blows: HammerBlows,
+    noise: SensorNoise,
+    faults: HammerFaults,
+    seed: int | np.random.Generator | None,
+    grid: _FineGrid,
+    durations: NDArray[np.float64],
+    on_bed: NDArray[np.bool_],
+) -> dict[str, Any]:
+    """The records' metadata before the truth of the hits: the rig's settings and filter."""
+    fs = 1.0 / acquisition.sampling_interval_s
+    return {
+        "rig": {
+            "support": model.support,
+            "racket": model.racket.name,
+            "n_averages": acquisition.n_averages,
+            "oversampling": acquisition.oversampling,
+            "frame_pulse_s": blows.frame_pulse_s,
+            "string_pulse_s": blows.string_pulse_s,
+            "peak_force_n": list(blows.peak_force_n),
+            "force_noise_n": noise.force_noise_n,
+            "acceleration_noise_ms2": noise.acceleration_noise_ms2,
+            "force_snr_db": noise.force_snr_db,
+            "response_snr_db": noise.response_snr_db,
+            "double_hit_probability": faults.double_hit_probability,
+            "overload_probability": faults.overload_probability,
+            "overload_level_n": faults.overload_level_n,
+            "seed": seed if isinstance(seed, int) else None,
+        },
+        "anti_alias": {
+            "passband_hz": fs / ANALYSER_BANDWIDTH_FACTOR,
+            "stopband_hz": fs - fs / ANALYSER_BANDWIDTH_FACTOR,
+            "attenuation_db": FILTER_ATTENUATION_DB,
+            "taps": int(grid.taps.size),
+        },
+        "pulse_duration_s": durations.tolist(),
+        "on_string_bed": on_bed.tolist(),
+    }
 
 
 def _noise_rms(
@@ -574,42 +832,3 @@ def _half_sine_acceleration(
     return np.asarray(
         (displacement[:, 2:] - 2 * displacement[:, 1:-1] + displacement[:, :-2]) / dt**2
     )
-
-
-def _check_range(name: str, bounds: tuple[float, float], *, allow_zero: bool = False) -> None:
-    low, high = (float(b) for b in bounds)
-    require_positive(f"{name} (low)", low, allow_zero=allow_zero)
-    require_positive(f"{name} (high)", high)
-    if high < low:
-        raise InputError(f"{name} must be (low, high) with low ≤ high (got {bounds!r})")
-
-
-def _check_settings(
-    n_averages: int,
-    n_samples: int,
-    oversampling: int,
-    peak_force_n: tuple[float, float],
-    overload_level_n: float,
-    overload_factor: tuple[float, float],
-) -> dict[str, int]:
-    for name, value, least in (
-        ("n_averages", n_averages, 1),
-        ("n_samples", n_samples, 8),
-        ("oversampling", oversampling, 2),
-    ):
-        require_whole(name, value, least)
-    _check_range("peak_force_n", peak_force_n)
-    require_positive("overload_level_n", overload_level_n)
-    if peak_force_n[1] >= overload_level_n:
-        raise InputError(
-            f"peak_force_n (up to {peak_force_n[1]} N) must stay below overload_level_n "
-            f"({overload_level_n} N): normal hits would clip"
-        )
-    _check_range("overload_factor", overload_factor)
-    if overload_factor[0] <= 1.0:
-        raise InputError(f"overload_factor must exceed 1 (got {overload_factor!r})")
-    return {
-        "n_averages": int(n_averages),
-        "n_samples": int(n_samples),
-        "oversampling": int(oversampling),
-    }

@@ -27,6 +27,10 @@ from racketdyn.io import racket_to_dict, write_hammer_uff
 from racketdyn.measurement import HammerRecords
 from racketdyn.modal import ModalModel
 from racketdyn.rig import (
+    Acquisition,
+    HammerBlows,
+    HammerFaults,
+    SensorNoise,
     accelerometer_index,
     hammer_points,
     rig_model,
@@ -243,6 +247,9 @@ def run_rig(
         nodes = tuple(n for n, keep in zip(nodes, struck, strict=True) if keep)
     on_bed = the_racket.head.contains(locations)
     result = RigResult(out_dir, supports=supports, reference_node=reference_node, ball=ball_record)
+    acquisition = Acquisition(n_averages=averages, pretrigger_s=pretrigger_s)
+    noise = SensorNoise(force_snr_db=force_snr_db, response_snr_db=response_snr_db)
+    hammer_faults = HammerFaults(double_hit_probability=double_hits, overload_probability=overloads)
     runs: dict[str, dict[str, Any]] = {}
     for each in supports:
         durations = np.full(len(nodes), FRAME_PULSE_S)
@@ -265,13 +272,10 @@ def run_rig(
             nodes,
             reference_location,
             reference_node,
-            n_averages=averages,
-            pretrigger_s=pretrigger_s,
-            double_hit_probability=double_hits,
-            overload_probability=overloads,
-            pulse_duration_s=durations,
-            force_snr_db=force_snr_db,
-            response_snr_db=response_snr_db,
+            acquisition=acquisition,
+            blows=HammerBlows(pulse_duration_s=tuple(durations.tolist())),
+            noise=noise,
+            faults=hammer_faults,
             seed=np.random.default_rng(support_stream(seed, each)),
         )
         if time_zero == "record":  # t = 0 at the first sample: the pulse pretrigger_s into it
