@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError, one_of, require_range, require_whole
@@ -26,6 +27,7 @@ from racketdyn.impact.compound import (
 from racketdyn.io import racket_to_dict, write_hammer_uff
 from racketdyn.measurement import HammerRecords
 from racketdyn.modal import ModalModel
+from racketdyn.racket import Racket
 from racketdyn.rig import (
     Acquisition,
     HammerBlows,
@@ -212,56 +214,21 @@ def run_rig(
         raise InputError(f"`response_direction`: give 3 or -3 (got {response_direction})")
     the_racket, provenance = load_racket_input(setup.racket)
     out_dir = Path(out)
-    locations, nodes = hammer_points(the_racket)
-    ball_record = None
-    spring: tuple[tuple[float, float], float, float, float] | None = None
+    spring, ball_record, under_ball = None, None, None
     if ball_at is not None:
         the_ball = setup.ball or Ball()
-        ball_xy = np.asarray(ball_location(ball_at, the_racket))
-        law = the_ball.restoring_force
-        spring = (
-            (float(ball_xy[0]), float(ball_xy[1])),
-            the_ball.mass_kg,
-            float(law.stiffness(law.deflection(PRELOAD_N))),
-            restitution_damping_ratio(small_amplitude_e_bg(the_racket, the_ball)),
-        )
-        ball_record = {
-            "location_m": list(spring[0]),
-            "mass_kg": spring[1],
-            "stiffness_n_per_m": spring[2],
-            "damping_ratio": spring[3],
-            "preload_n": PRELOAD_N,
-            "spring": "the ball's own one-sided law, tangent at the preload (the rig's "
-            "membrane is the string bed); dashpot from e_BG",
-        }
-        # the hammer cannot strike the strings under the ball
-        free_of_ball = np.hypot(*(locations - ball_xy).T) > 0.5 * the_ball.diameter_m
-        locations = locations[free_of_ball]
-        nodes = tuple(n for n, keep in zip(nodes, free_of_ball, strict=True) if keep)
-    reference = accelerometer_index(the_racket, locations)
-    reference_location = (float(locations[reference, 0]), float(locations[reference, 1]))
-    reference_node = nodes[reference]
-    if not driving_point:  # the hammer skips the accelerometer's node
-        struck = np.arange(len(nodes)) != reference
-        locations = locations[struck]
-        nodes = tuple(n for n, keep in zip(nodes, struck, strict=True) if keep)
-    on_bed = the_racket.head.contains(locations)
+        spring, ball_record = _ball_spring(the_racket, the_ball, ball_at)
+        under_ball = (spring[0], the_ball.diameter_m)
+    locations, nodes, reference_location, reference_node = _struck_points(
+        the_racket, under_ball, driving_point
+    )
     result = RigResult(out_dir, supports=supports, reference_node=reference_node, ball=ball_record)
     acquisition = Acquisition(n_averages=averages, pretrigger_s=pretrigger_s)
     noise = SensorNoise(force_snr_db=force_snr_db, response_snr_db=response_snr_db)
     hammer_faults = HammerFaults(double_hit_probability=double_hits, overload_probability=overloads)
     runs: dict[str, dict[str, Any]] = {}
     for each in supports:
-        durations = np.full(len(nodes), FRAME_PULSE_S)
-        contact_support = "free" if each == "free" else "pinned"
-        durations[on_bed] = string_contact_time(the_racket, locations[on_bed], contact_support)
-        if layout == "roving accelerometer":  # every hit on the reference node (the hoop)
-            at_reference = np.asarray([reference_location])
-            durations[:] = (
-                string_contact_time(the_racket, at_reference, contact_support)[0]
-                if the_racket.head.contains(at_reference)[0]
-                else FRAME_PULSE_S
-            )
+        durations = _pulse_lengths(the_racket, locations, each, layout, reference_location)
         report(setup.progress, f"building the {each} rig and simulating the hammer test")
         model = rig_model(the_racket, "free" if each == "free" else "hand")
         if spring is not None:
@@ -299,10 +266,7 @@ def run_rig(
         )
         truth_path = out_dir / f"modal_truth_{each}.json"
         truth.write_json(truth_path)
-        faults = {
-            "double_hits": int(sum(sum(row) for row in records.metadata.get("double_hit", []))),
-            "overloads": int(sum(sum(row) for row in records.metadata.get("overload", []))),
-        }
+        faults = _fault_counts(records)
         result.written += [tests, truth_path]
         result.records[each] = records
         result.truth[each] = truth
@@ -336,3 +300,91 @@ def run_rig(
         "runs": runs,
     }
     return setup.finish(result, inputs, "rig")
+
+
+_Spring = tuple[tuple[float, float], float, float, float]
+"""The ball on the strings as :func:`~racketdyn.rig.ball.ball_on_strings` takes it: location
+(x, y) in m, mass in kg, spring stiffness in N/m, damping ratio."""
+
+
+def _ball_spring(the_racket: Racket, the_ball: Ball, ball_at: Sequence[float]) -> tuple[
+    _Spring, dict[str, Any]
+]:  # fmt: skip
+    """The ball fixed on the strings at ``ball_at``: its spring, and its record for run.json."""
+    ball_xy = np.asarray(ball_location(ball_at, the_racket))
+    law = the_ball.restoring_force
+    spring = (
+        (float(ball_xy[0]), float(ball_xy[1])),
+        the_ball.mass_kg,
+        float(law.stiffness(law.deflection(PRELOAD_N))),
+        restitution_damping_ratio(small_amplitude_e_bg(the_racket, the_ball)),
+    )
+    record = {
+        "location_m": list(spring[0]),
+        "mass_kg": spring[1],
+        "stiffness_n_per_m": spring[2],
+        "damping_ratio": spring[3],
+        "preload_n": PRELOAD_N,
+        "spring": "the ball's own one-sided law, tangent at the preload (the rig's "
+        "membrane is the string bed); dashpot from e_BG",
+    }
+    return spring, record
+
+
+def _struck_points(
+    the_racket: Racket,
+    under_ball: tuple[tuple[float, float], float] | None,
+    driving_point: bool,
+) -> tuple[NDArray[np.float64], tuple[int, ...], tuple[float, float], int]:
+    """The points the hammer strikes, their nodes, and the accelerometer's location and node.
+
+    The rig's grid (:func:`~racketdyn.rig.hammer_points`) less the points under the ball
+    (``under_ball``: its centre, m, and diameter, m) and, without ``driving_point``, the
+    accelerometer's node.
+    """
+    locations, nodes = hammer_points(the_racket)
+    if under_ball is not None:  # the hammer cannot strike the strings under the ball
+        centre, diameter_m = under_ball
+        free_of_ball = np.hypot(*(locations - np.asarray(centre)).T) > 0.5 * diameter_m
+        locations = locations[free_of_ball]
+        nodes = tuple(n for n, keep in zip(nodes, free_of_ball, strict=True) if keep)
+    reference = accelerometer_index(the_racket, locations)
+    reference_location = (float(locations[reference, 0]), float(locations[reference, 1]))
+    reference_node = nodes[reference]
+    if not driving_point:  # the hammer skips the accelerometer's node
+        struck = np.arange(len(nodes)) != reference
+        locations = locations[struck]
+        nodes = tuple(n for n, keep in zip(nodes, struck, strict=True) if keep)
+    return locations, nodes, reference_location, reference_node
+
+
+def _pulse_lengths(
+    the_racket: Racket,
+    locations: NDArray[np.float64],
+    support: str,
+    layout: str,
+    reference_location: tuple[float, float],
+) -> NDArray[np.float64]:
+    """Half-sine length of each hit, s: the plastic tip's on the frame, the string contact
+    time on the bed (free, or pinned for the hand); every hit's at the reference node for a
+    roving accelerometer."""
+    on_bed = the_racket.head.contains(locations)
+    durations = np.full(len(locations), FRAME_PULSE_S)
+    contact_support = "free" if support == "free" else "pinned"
+    durations[on_bed] = string_contact_time(the_racket, locations[on_bed], contact_support)
+    if layout == "roving accelerometer":  # every hit on the reference node (the hoop)
+        at_reference = np.asarray([reference_location])
+        durations[:] = (
+            string_contact_time(the_racket, at_reference, contact_support)[0]
+            if the_racket.head.contains(at_reference)[0]
+            else FRAME_PULSE_S
+        )
+    return durations
+
+
+def _fault_counts(records: HammerRecords) -> dict[str, int]:
+    """How many averages were double hits and overloads (from the records' truth)."""
+    return {
+        "double_hits": int(sum(sum(row) for row in records.metadata.get("double_hit", []))),
+        "overloads": int(sum(sum(row) for row in records.metadata.get("overload", []))),
+    }
