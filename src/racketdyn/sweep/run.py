@@ -79,9 +79,11 @@ if TYPE_CHECKING:
     import xarray as xr
 
 __all__ = [
+    "DEFAULT_TASKS",
     "SERIAL_IMPACT_LIMIT",
     "ProgressCallback",
     "SweepInterrupted",
+    "TaskOptions",
     "TaskTimeoutError",
     "WorkerLostError",
     "run_sweep",
@@ -100,21 +102,61 @@ above it, in a pool of two processes (with an uncertainty its samples count too:
 :attr:`SweepSpec.work_per_design`)."""
 
 
+@dataclass(frozen=True)
+class TaskOptions:
+    """How :func:`run_sweep` runs its tasks and who writes their chunks (checked when the run
+    starts).
+
+    Attributes
+    ----------
+    retries : int
+        Times a failed design is submitted again before it is recorded as failed.
+    max_in_flight : int, optional
+        Tasks submitted at once (default: twice the executor's workers; 1 for serial).
+    task_timeout : float, optional
+        Seconds a task may take from its submission before it counts as hung: its worker is
+        stopped (a process pool is replaced; a Dask worker restarted through its nanny)
+        and the task runs again elsewhere, as a failed attempt (:class:`TaskTimeoutError`).
+        Default: 10 × the longest task finished so far, at least 60 s (600 s until one has
+        finished); ``math.inf``: never.  Not for :class:`SerialExecutor`, which runs a task
+        inside ``submit``.
+    designs_per_task : int, optional
+        Designs per task and per chunk of a new store (default: one for serial, else enough
+        for about :data:`~racketdyn.sweep.runner.TARGET_TASK_S` of work, with at least four
+        tasks per worker).  A resumed store keeps its chunks: tasks are its chunks.
+    shared_store : bool
+        The sweep's folder is on a path every worker can write, mounted at the same absolute
+        path on each (a cluster's shared file system): the workers of a remote Dask cluster
+        write their own chunks, as workers on this machine always do.  Checked on each worker
+        connected when the run starts; a worker that joins later and does not see the store
+        sends its results back and this process writes them.  Default: this process writes
+        the chunks of a remote cluster's workers from the results they send back.
+        ``run.json`` records which (``store.chunk_writer``, ``store.chunk_writes``).
+    """
+
+    retries: int = 1
+    max_in_flight: int | None = None
+    task_timeout: float | None = None
+    designs_per_task: int | None = None
+    shared_store: bool = False
+
+
+DEFAULT_TASKS = TaskOptions()
+"""One retry, tasks in flight, timeout and designs per task chosen by the run, this process
+writing a remote cluster's chunks."""
+
+
 def run_sweep(
     spec: SweepSpec | str | Path,
     out_dir: str | Path,
     executor: Executor | None = None,
     progress: ProgressCallback | None = None,
     *,
-    retries: int = 1,
+    options: TaskOptions = DEFAULT_TASKS,
     figures: Callable[[Mapping[str, SummaryCurves], Path], list[Path]] | None = None,
-    max_in_flight: int | None = None,
-    task_timeout: float | None = None,
-    designs_per_task: int | None = None,
     times: Mapping[str, float] | None = None,
     when_tasks_done: Callable[[], None] | None = None,
     command: Sequence[str] | None = None,
-    shared_store: bool = False,
 ) -> xr.Dataset:
     """Run a sweep: tasks of designs on an executor, written into one chunked store.
 
@@ -138,26 +180,14 @@ def run_sweep(
     progress : callable, optional
         ``progress(done, total)`` (designs) after the resumed ones are counted and after each
         design ends.
-    retries : int
-        Times a failed design is submitted again before it is recorded as failed.
+    options : TaskOptions
+        How the tasks run: retries, tasks in flight, timeout, designs per task, and who writes
+        their chunks (:class:`TaskOptions`; default: :data:`DEFAULT_TASKS`).
     figures : callable, optional
         ``figures(curves, out_dir)`` draws the summary figures of the curves computed here
         (:func:`~racketdyn.sweep.summary.summary_figures_data`: by variable) and returns their
         paths (the presentation layer's :func:`racketdyn.plotting.steps.sweep_figures`); none
         drawn if None.
-    max_in_flight : int, optional
-        Tasks submitted at once (default: twice the executor's workers; 1 for serial).
-    task_timeout : float, optional
-        Seconds a task may take from its submission before it counts as hung: its worker is
-        stopped (a process pool is replaced; a Dask worker restarted through its nanny)
-        and the task runs again elsewhere, as a failed attempt (:class:`TaskTimeoutError`).
-        Default: 10 × the longest task finished so far, at least 60 s (600 s until one has
-        finished); ``math.inf``: never.  Not for :class:`SerialExecutor`, which runs a task
-        inside ``submit``.
-    designs_per_task : int, optional
-        Designs per task and per chunk of a new store (default: one for serial, else enough
-        for about :data:`~racketdyn.sweep.runner.TARGET_TASK_S` of work, with at least four
-        tasks per worker).  A resumed store keeps its chunks: tasks are its chunks.
     times : mapping of str to float, optional
         Seconds spent before this call to add to ``run.json``'s ``time_s`` (the engine's
         start, measured by the caller).
@@ -170,14 +200,6 @@ def run_sweep(
         The command as called, for ``run.json`` (default: this function's name).  The other
         steps read it: ``racketdyn predict --out`` refuses a folder whose ``run.json`` names
         ``racketdyn sweep`` or ``racketdyn.workflows.sweep``.
-    shared_store : bool
-        ``out_dir`` is on a path every worker can write, mounted at the same absolute path
-        on each (a cluster's shared file system): the workers of a remote Dask cluster write
-        their own chunks, as workers on this machine always do.  Checked on each worker
-        connected when the run starts; a worker that joins later and does not see the store
-        sends its results back and this process writes them.  Default: this process writes
-        the chunks of a remote cluster's workers from the results they send back.
-        ``run.json`` records which (``store.chunk_writer``, ``store.chunk_writes``).
 
     Returns
     -------
@@ -196,12 +218,14 @@ def run_sweep(
         On Ctrl-C (a :class:`KeyboardInterrupt`): the workers are stopped, every finished
         design is on disk; run again to resume.
     InputError
-        With ``shared_store``, a worker that does not see the store or cannot write there.
+        A negative or fractional ``options.retries``, an ``options.task_timeout`` not above 0;
+        with ``options.shared_store``, a worker that does not see the store or cannot write
+        there.
     """
     started = time.perf_counter()
     if not isinstance(spec, SweepSpec):
         spec = load_sweep_spec(Path(spec))
-    _check_run_options(retries, task_timeout)
+    _check_run_options(options)
     out = Path(out_dir)
     previous_outputs = _listed_outputs(out / "run.json")
     _make_folders(out)
@@ -209,29 +233,22 @@ def run_sweep(
     if progress is not None:
         progress(run.skipped, run.total)
     if run.todo:
-        run.run_tasks(
-            executor,
-            progress,
-            retries=retries,
-            max_in_flight=max_in_flight,
-            task_timeout=task_timeout,
-            designs_per_task=designs_per_task,
-            shared_store=shared_store,
-        )
+        run.run_tasks(executor, progress, options)
     run.shut_down(when_tasks_done)
     run.finish_store()
     _record_failures(out, run.failures, run.total)
     _warn_of_statuses(run.status_count, spec.n_impacts)
     result, written, notes = run.summarise(figures)
-    run.write_record(command, shared_store, written, notes, previous_outputs)
+    run.write_record(command, options.shared_store, written, notes, previous_outputs)
     return result
 
 
-def _check_run_options(retries: int, task_timeout: float | None) -> None:
+def _check_run_options(options: TaskOptions) -> None:
     """Refuse a negative or fractional ``retries`` and a ``task_timeout`` not above 0."""
-    require_whole("retries", retries, least=0)
-    if task_timeout is not None and not task_timeout > 0:
-        raise InputError(f"task_timeout must be a number of seconds above 0 (got {task_timeout})")
+    require_whole("retries", options.retries, least=0)
+    timeout = options.task_timeout
+    if timeout is not None and not timeout > 0:
+        raise InputError(f"task_timeout must be a number of seconds above 0 (got {timeout})")
 
 
 def _make_folders(out: Path) -> None:
@@ -326,26 +343,18 @@ class _SweepRun:
         )
 
     def run_tasks(
-        self,
-        executor: Executor | None,
-        progress: ProgressCallback | None,
-        *,
-        retries: int,
-        max_in_flight: int | None,
-        task_timeout: float | None,
-        designs_per_task: int | None,
-        shared_store: bool,
+        self, executor: Executor | None, progress: ProgressCallback | None, options: TaskOptions
     ) -> None:
         """Run the designs still to run, in tasks of one chunk, on ``executor`` (or an engine
         started here and shut down once they have ended)."""
         with ExitStack() as stack:
             executor = self._start_engine(stack, executor)
-            limit = max_in_flight or _in_flight_limit(executor)
-            self._create_or_keep_store(executor, designs_per_task)
+            limit = options.max_in_flight or _in_flight_limit(executor)
+            self._create_or_keep_store(executor, options.designs_per_task)
             token = secrets.token_hex(8)  # the store this run's workers may write
             set_complete(self.out, self.spec.sha256, False, run_token=token)
             local = _local_workers(executor)
-            if shared_store and not local:
+            if options.shared_store and not local:
                 _check_shared(executor, self.out, self.spec.sha256, token)
             jobs = self._plan_tasks()
             clock = time.perf_counter()
@@ -355,11 +364,11 @@ class _SweepRun:
                 self.chunk,
                 executor,
                 limit,
-                retries,
-                task_timeout,
+                options.retries,
+                options.task_timeout,
                 progress,
                 self.tally,
-                write_in_worker=local or shared_store,
+                write_in_worker=local or options.shared_store,
                 token=token,
             )
             runner.run(jobs)
