@@ -51,6 +51,7 @@ import racketdyn
 from racketdyn.sweep import (
     METHODS,
     SweepSpec,
+    TaskOptions,
     Variable,
     make_executor,
     open_sweep,
@@ -300,10 +301,10 @@ def time_engine(
             spec,
             out,
             executor,
+            options=TaskOptions(shared_store=kind == "dask" and workers == 1),
             figures=None,
             times={"start": started},
             when_tasks_done=stack.close,
-            shared_store=kind == "dask" and workers == 1,
         )
     wall = time.perf_counter() - start
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))

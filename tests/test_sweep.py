@@ -27,6 +27,7 @@ from racketdyn.plotting.sweep import plot_centre_rebound, plot_sweet_area
 from racketdyn.sweep import (
     SerialExecutor,
     SweepSpec,
+    TaskOptions,
     Variable,
     build_design,
     build_hand,
@@ -665,7 +666,9 @@ def test_a_failed_batch_reruns_only_its_unfinished_designs(
     from its file and only design 3 is retried."""
     monkeypatch.setattr(sweep_task, "predict", _fail_design_3(times=1))
     counting = CountingExecutor()
-    result = run_sweep(small_spec, tmp_path, counting, figures=None, designs_per_task=2)
+    result = run_sweep(
+        small_spec, tmp_path, counting, options=TaskOptions(designs_per_task=2), figures=None
+    )
     assert counting.submitted.count("design-00002") == 1
     assert counting.submitted.count("design-00003") == 2
     assert len(counting.submitted) == 7

@@ -25,7 +25,7 @@ import xarray as xr
 import racketdyn as rd
 import racketdyn.sweep.task as sweep_task
 import sweep_faults
-from racketdyn.sweep import SerialExecutor, SweepSpec, make_executor, run_sweep
+from racketdyn.sweep import SerialExecutor, SweepSpec, TaskOptions, make_executor, run_sweep
 from terminal import popen_as_from_a_terminal
 
 SCRIPT = Path(sweep_faults.__file__)
@@ -87,7 +87,13 @@ def test_a_hung_task_is_retried_elsewhere(
     started = time.perf_counter()
     with make_executor(engine, 2) as inner:  # type: ignore[arg-type]
         executor = Sabotaged(inner, sweep_faults.hang_once, marker, "design-00001")
-        result = run_sweep(small_spec, tmp_path / "out", executor, figures=None, task_timeout=3.0)
+        result = run_sweep(
+            small_spec,
+            tmp_path / "out",
+            executor,
+            options=TaskOptions(task_timeout=3.0),
+            figures=None,
+        )
     assert Path(marker).exists()  # a task did hang
     assert time.perf_counter() - started < 120  # not the hour it slept
     assert result.attrs["n_failed"] == 0
@@ -98,7 +104,13 @@ def test_a_hung_task_is_retried_elsewhere(
 
 def test_the_task_timeout_is_checked(small_spec: SweepSpec, tmp_path: Path) -> None:
     with pytest.raises(rd.InputError, match="task_timeout"):
-        run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None, task_timeout=-1.0)
+        run_sweep(
+            small_spec,
+            tmp_path,
+            SerialExecutor(),
+            options=TaskOptions(task_timeout=-1.0),
+            figures=None,
+        )
 
 
 # --- signals to a sweep run as a command -----------------------------------------------------

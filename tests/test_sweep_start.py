@@ -113,7 +113,7 @@ def test_a_forked_pool_gives_the_serial_bits_with_no_design_run_here(tmp_path: P
         f"""
         import json, sys
         import racketdyn as rd
-        from racketdyn.sweep import SerialExecutor, make_executor, run_sweep
+        from racketdyn.sweep import SerialExecutor, TaskOptions, make_executor, run_sweep
         sys.path.insert(0, {str(Path(sweep_faults.__file__).parent)!r})
         from sweep_faults import small_spec
 
@@ -121,7 +121,8 @@ def test_a_forked_pool_gives_the_serial_bits_with_no_design_run_here(tmp_path: P
             spec = small_spec(rd.default_racket(), rd.Ball(), "fork")
             run_sweep(spec, "serial", SerialExecutor(), figures=None)
             with make_executor("process", 2) as pool:
-                run_sweep(spec, "pool", pool, figures=None, designs_per_task=1)
+                one_a_task = TaskOptions(designs_per_task=1)
+                run_sweep(spec, "pool", pool, options=one_a_task, figures=None)
             record = json.load(open("pool/run.json"))
             print(json.dumps({{k: record[k] for k in ("worker_start_method",
                                                       "ran_in_main_process", "ran")}}))

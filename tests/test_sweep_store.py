@@ -22,6 +22,7 @@ import sweep_faults
 from racketdyn.sweep import (
     SerialExecutor,
     SweepSpec,
+    TaskOptions,
     make_executor,
     open_sweep,
     run_sweep,
@@ -30,6 +31,12 @@ from racketdyn.sweep import (
 from racketdyn.sweep.store import STORE_LAYOUT
 
 assert_same_bits = sweep_faults.assert_same_bits
+
+
+def _serial_sweep(spec: SweepSpec, out: Path, designs_per_task: int) -> xr.Dataset:
+    """``spec`` run in this process into ``out``, in tasks (chunks) of ``designs_per_task``."""
+    options = TaskOptions(designs_per_task=designs_per_task)
+    return run_sweep(spec, out, SerialExecutor(), options=options, figures=None)
 
 
 class CountingExecutor(SerialExecutor):
@@ -46,7 +53,7 @@ class CountingExecutor(SerialExecutor):
 def test_the_store_has_one_chunk_per_batch_and_is_read_lazily(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
-    result = run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None, designs_per_task=4)
+    result = _serial_sweep(small_spec, tmp_path, designs_per_task=4)
     assert not (tmp_path / "sweep.nc").exists()
     # what run_sweep returns is read from the store when indexed, not held in memory
     assert not result["rebound_ratio"].variable._in_memory
@@ -109,7 +116,7 @@ def test_a_store_is_not_complete_while_its_run_is_not(
 def test_a_lost_chunk_costs_only_its_designs(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
-    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None, designs_per_task=2)
+    _serial_sweep(small_spec, tmp_path, designs_per_task=2)
     sweep_faults.chunk_file(tmp_path, "reduced_mass_kg", 2, chunk_size=2).unlink()
     counting = CountingExecutor()
     result = run_sweep(small_spec, tmp_path, counting, figures=None)
@@ -119,7 +126,7 @@ def test_a_lost_chunk_costs_only_its_designs(
 
 
 def test_another_spec_replaces_the_store(small_spec: SweepSpec, tmp_path: Path) -> None:
-    run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None, designs_per_task=4)
+    _serial_sweep(small_spec, tmp_path, designs_per_task=4)
     changed = replace(small_spec, ball_speeds=np.array([10.0, 26.0]))
     counting = CountingExecutor()
     result = run_sweep(changed, tmp_path, counting, figures=None)
@@ -133,7 +140,7 @@ def test_the_summary_is_read_chunk_by_chunk(
     small_spec: SweepSpec, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """The summary metrics of a store read one chunk at a time equal those read at once."""
-    result = run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None, designs_per_task=2)
+    result = _serial_sweep(small_spec, tmp_path, designs_per_task=2)
     at_once = summary_metrics(result)
     monkeypatch.setattr(summary, "BLOCK_BYTES", 1)  # a block is one chunk
     assert summary._block(result) == 2
@@ -195,7 +202,11 @@ def test_two_tasks_of_one_chunk_never_run_at_once(
     at once would each keep only their own designs."""
     with Overlaps(chunk_size=3) as executor:
         result = run_sweep(
-            small_spec, tmp_path, executor, figures=None, designs_per_task=3, max_in_flight=4
+            small_spec,
+            tmp_path,
+            executor,
+            options=TaskOptions(max_in_flight=4, designs_per_task=3),
+            figures=None,
         )
     assert executor.most == 1
     assert result.attrs["n_failed"] == 0
@@ -228,7 +239,11 @@ def test_a_worker_that_does_not_see_the_store_sends_its_results_to_be_written(
     sends its results back; the main process writes them.  run.json says who wrote."""
     with ElsewhereFirst() as executor:
         result = run_sweep(
-            small_spec, tmp_path, executor, figures=None, designs_per_task=2, shared_store=True
+            small_spec,
+            tmp_path,
+            executor,
+            options=TaskOptions(designs_per_task=2, shared_store=True),
+            figures=None,
         )
     assert_same_bits(serial_result, result)
     store = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))["store"]
@@ -240,7 +255,9 @@ def test_without_a_shared_store_remote_workers_write_nothing(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
     with ThreadPoolExecutor(2) as executor:  # not this machine's pool: "remote" workers
-        result = run_sweep(small_spec, tmp_path, executor, figures=None, designs_per_task=2)
+        result = run_sweep(
+            small_spec, tmp_path, executor, options=TaskOptions(designs_per_task=2), figures=None
+        )
     assert_same_bits(serial_result, result)
     store = json.loads((tmp_path / "run.json").read_text(encoding="utf-8"))["store"]
     assert (store["shared_store"], store["chunk_writer"]) == (False, "main process")

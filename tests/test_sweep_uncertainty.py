@@ -24,7 +24,14 @@ from racketdyn.impact.measured import ModelInputs
 from racketdyn.impact.uncertainty import Spread, Uncertainty, propagate
 from racketdyn.numerics import one_blas_thread
 from racketdyn.racket_modal import builtin_modal_model
-from racketdyn.sweep import SerialExecutor, SweepSpec, build_design, make_executor, run_sweep
+from racketdyn.sweep import (
+    SerialExecutor,
+    SweepSpec,
+    TaskOptions,
+    build_design,
+    make_executor,
+    run_sweep,
+)
 from racketdyn.sweep.task import band_variables, run_task
 
 assert_same_bits = sweep_faults.assert_same_bits
@@ -154,7 +161,11 @@ def test_one_and_two_workers_give_the_same_bits(
     for workers in (1, 2):
         with make_executor("process", workers) as executor:
             found = run_sweep(
-                spec, tmp_path / str(workers), executor, figures=None, designs_per_task=2
+                spec,
+                tmp_path / str(workers),
+                executor,
+                options=TaskOptions(designs_per_task=2),
+                figures=None,
             )
         assert_same_bits(banded, found.load())
 

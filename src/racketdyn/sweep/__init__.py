@@ -48,7 +48,7 @@ The modules follow the data, each importing only those above it:
 - :mod:`~racketdyn.sweep.store`: the chunked store ``sweep.zarr``, :func:`open_sweep`;
 - :mod:`~racketdyn.sweep.summary`: metrics and figures from a sweep dataset, chunk by chunk;
 - :mod:`~racketdyn.sweep.runner`: the task loop (retries, a lost worker, timeouts, Ctrl-C);
-- :mod:`~racketdyn.sweep.run`: :func:`run_sweep`.
+- :mod:`~racketdyn.sweep.run`: :func:`run_sweep`, its :class:`TaskOptions`.
 
 Everything public is importable from :mod:`racketdyn.sweep` itself.
 """
@@ -62,7 +62,7 @@ from racketdyn.sweep.executors import (
     make_executor,
     start_early,
 )
-from racketdyn.sweep.run import SERIAL_IMPACT_LIMIT, run_sweep
+from racketdyn.sweep.run import DEFAULT_TASKS, SERIAL_IMPACT_LIMIT, TaskOptions, run_sweep
 from racketdyn.sweep.runner import SweepInterrupted, TaskTimeoutError, WorkerLostError
 from racketdyn.sweep.spec import MODES, SweepSpec
 from racketdyn.sweep.spec_file import load_sweep_spec, sweep_spec_from_dict
@@ -87,6 +87,7 @@ from racketdyn.sweep.task import (
 from racketdyn.sweep.variables import HAND_VARIABLES, SCALAR_VARIABLES, Variable
 
 __all__ = [
+    "DEFAULT_TASKS",
     "ENGINES",
     "HAND_VARIABLES",
     "METHODS",
@@ -103,6 +104,7 @@ __all__ = [
     "SweepInterrupted",
     "SweepSpec",
     "SweepTask",
+    "TaskOptions",
     "TaskOutput",
     "TaskTimeoutError",
     "Variable",

@@ -19,6 +19,7 @@ from concurrent.futures import (
     ProcessPoolExecutor,
 )
 from contextlib import ExitStack
+from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -50,6 +51,7 @@ from racketdyn.sweep.spec_file import load_sweep_spec
 from racketdyn.sweep.store import (
     STORE_LAYOUT,
     STORE_NAME,
+    StoreInfo,
     clear_rows,
     create_store,
     done_designs,
@@ -77,9 +79,11 @@ if TYPE_CHECKING:
     import xarray as xr
 
 __all__ = [
+    "DEFAULT_TASKS",
     "SERIAL_IMPACT_LIMIT",
     "ProgressCallback",
     "SweepInterrupted",
+    "TaskOptions",
     "TaskTimeoutError",
     "WorkerLostError",
     "run_sweep",
@@ -98,21 +102,61 @@ above it, in a pool of two processes (with an uncertainty its samples count too:
 :attr:`SweepSpec.work_per_design`)."""
 
 
+@dataclass(frozen=True)
+class TaskOptions:
+    """How :func:`run_sweep` runs its tasks and who writes their chunks (checked when the run
+    starts).
+
+    Attributes
+    ----------
+    retries : int
+        Times a failed design is submitted again before it is recorded as failed.
+    max_in_flight : int, optional
+        Tasks submitted at once (default: twice the executor's workers; 1 for serial).
+    task_timeout : float, optional
+        Seconds a task may take from its submission before it counts as hung: its worker is
+        stopped (a process pool is replaced; a Dask worker restarted through its nanny)
+        and the task runs again elsewhere, as a failed attempt (:class:`TaskTimeoutError`).
+        Default: 10 × the longest task finished so far, at least 60 s (600 s until one has
+        finished); ``math.inf``: never.  Not for :class:`SerialExecutor`, which runs a task
+        inside ``submit``.
+    designs_per_task : int, optional
+        Designs per task and per chunk of a new store (default: one for serial, else enough
+        for about :data:`~racketdyn.sweep.runner.TARGET_TASK_S` of work, with at least four
+        tasks per worker).  A resumed store keeps its chunks: tasks are its chunks.
+    shared_store : bool
+        The sweep's folder is on a path every worker can write, mounted at the same absolute
+        path on each (a cluster's shared file system): the workers of a remote Dask cluster
+        write their own chunks, as workers on this machine always do.  Checked on each worker
+        connected when the run starts; a worker that joins later and does not see the store
+        sends its results back and this process writes them.  Default: this process writes
+        the chunks of a remote cluster's workers from the results they send back.
+        ``run.json`` records which (``store.chunk_writer``, ``store.chunk_writes``).
+    """
+
+    retries: int = 1
+    max_in_flight: int | None = None
+    task_timeout: float | None = None
+    designs_per_task: int | None = None
+    shared_store: bool = False
+
+
+DEFAULT_TASKS = TaskOptions()
+"""One retry, tasks in flight, timeout and designs per task chosen by the run, this process
+writing a remote cluster's chunks."""
+
+
 def run_sweep(
     spec: SweepSpec | str | Path,
     out_dir: str | Path,
     executor: Executor | None = None,
     progress: ProgressCallback | None = None,
     *,
-    retries: int = 1,
+    options: TaskOptions = DEFAULT_TASKS,
     figures: Callable[[Mapping[str, SummaryCurves], Path], list[Path]] | None = None,
-    max_in_flight: int | None = None,
-    task_timeout: float | None = None,
-    designs_per_task: int | None = None,
     times: Mapping[str, float] | None = None,
     when_tasks_done: Callable[[], None] | None = None,
     command: Sequence[str] | None = None,
-    shared_store: bool = False,
 ) -> xr.Dataset:
     """Run a sweep: tasks of designs on an executor, written into one chunked store.
 
@@ -136,26 +180,14 @@ def run_sweep(
     progress : callable, optional
         ``progress(done, total)`` (designs) after the resumed ones are counted and after each
         design ends.
-    retries : int
-        Times a failed design is submitted again before it is recorded as failed.
+    options : TaskOptions
+        How the tasks run: retries, tasks in flight, timeout, designs per task, and who writes
+        their chunks (:class:`TaskOptions`; default: :data:`DEFAULT_TASKS`).
     figures : callable, optional
         ``figures(curves, out_dir)`` draws the summary figures of the curves computed here
         (:func:`~racketdyn.sweep.summary.summary_figures_data`: by variable) and returns their
         paths (the presentation layer's :func:`racketdyn.plotting.steps.sweep_figures`); none
         drawn if None.
-    max_in_flight : int, optional
-        Tasks submitted at once (default: twice the executor's workers; 1 for serial).
-    task_timeout : float, optional
-        Seconds a task may take from its submission before it counts as hung: its worker is
-        stopped (a process pool is replaced; a Dask worker restarted through its nanny)
-        and the task runs again elsewhere, as a failed attempt (:class:`TaskTimeoutError`).
-        Default: 10 × the longest task finished so far, at least 60 s (600 s until one has
-        finished); ``math.inf``: never.  Not for :class:`SerialExecutor`, which runs a task
-        inside ``submit``.
-    designs_per_task : int, optional
-        Designs per task and per chunk of a new store (default: one for serial, else enough
-        for about :data:`~racketdyn.sweep.runner.TARGET_TASK_S` of work, with at least four
-        tasks per worker).  A resumed store keeps its chunks: tasks are its chunks.
     times : mapping of str to float, optional
         Seconds spent before this call to add to ``run.json``'s ``time_s`` (the engine's
         start, measured by the caller).
@@ -168,14 +200,6 @@ def run_sweep(
         The command as called, for ``run.json`` (default: this function's name).  The other
         steps read it: ``racketdyn predict --out`` refuses a folder whose ``run.json`` names
         ``racketdyn sweep`` or ``racketdyn.workflows.sweep``.
-    shared_store : bool
-        ``out_dir`` is on a path every worker can write, mounted at the same absolute path
-        on each (a cluster's shared file system): the workers of a remote Dask cluster write
-        their own chunks, as workers on this machine always do.  Checked on each worker
-        connected when the run starts; a worker that joins later and does not see the store
-        sends its results back and this process writes them.  Default: this process writes
-        the chunks of a remote cluster's workers from the results they send back.
-        ``run.json`` records which (``store.chunk_writer``, ``store.chunk_writes``).
 
     Returns
     -------
@@ -194,17 +218,43 @@ def run_sweep(
         On Ctrl-C (a :class:`KeyboardInterrupt`): the workers are stopped, every finished
         design is on disk; run again to resume.
     InputError
-        With ``shared_store``, a worker that does not see the store or cannot write there.
+        A negative or fractional ``options.retries``, an ``options.task_timeout`` not above 0;
+        with ``options.shared_store``, a worker that does not see the store or cannot write
+        there.
     """
     started = time.perf_counter()
     if not isinstance(spec, SweepSpec):
         spec = load_sweep_spec(Path(spec))
-    require_whole("retries", retries, least=0)
-    if task_timeout is not None and not task_timeout > 0:
-        raise InputError(f"task_timeout must be a number of seconds above 0 (got {task_timeout})")
+    _check_run_options(options)
     out = Path(out_dir)
     previous_outputs = _listed_outputs(out / "run.json")
-    try:  # before any work: a folder that cannot be written fails every design
+    _make_folders(out)
+    run = _SweepRun.open_or_resume(spec, out, started, times or {})
+    if progress is not None:
+        progress(run.skipped, run.total)
+    if run.todo:
+        run.run_tasks(executor, progress, options)
+    run.shut_down(when_tasks_done)
+    run.finish_store()
+    _record_failures(out, run.failures, run.total)
+    _warn_of_statuses(run.status_count, spec.n_impacts)
+    result, written, notes = run.summarise(figures)
+    run.write_record(command, options.shared_store, written, notes, previous_outputs)
+    return result
+
+
+def _check_run_options(options: TaskOptions) -> None:
+    """Refuse a negative or fractional ``retries`` and a ``task_timeout`` not above 0."""
+    require_whole("retries", options.retries, least=0)
+    timeout = options.task_timeout
+    if timeout is not None and not timeout > 0:
+        raise InputError(f"task_timeout must be a number of seconds above 0 (got {timeout})")
+
+
+def _make_folders(out: Path) -> None:
+    """Create the sweep's folder and its store's, before any work: a folder that cannot be
+    written fails every design."""
+    try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as error:
         raise InputError(
@@ -216,100 +266,278 @@ def run_sweep(
         raise InputError(
             f"`out` {out}: cannot create the sweep's store {STORE_NAME} ({error.strerror})"
         ) from None
-    remove_stale_temporaries(out)
-    designs = spec.designs
-    total = len(designs)
-    info = store_info(out)
-    if info is not None and (info.spec_sha256, info.n_designs) != (spec.sha256, total):
-        log.info("%s belongs to another spec or version; it is made anew", out / STORE_NAME)
-        info = None
-    done = done_designs(out, spec)[0] if info is not None else set()
-    todo = [d for d in designs if d.index not in done]
-    skipped = total - len(todo)
-    log.info(
-        "sweep %s: %d designs, %d impacts; %d resumed from %s, %d to run",
-        spec.name,
-        total,
-        spec.n_impacts,
-        skipped,
-        out / STORE_NAME,
-        len(todo),
-    )
-    if info is not None:  # from now on the store is not complete until finished again
-        set_complete(out, spec.sha256, False)
-    time_s = {**(times or {}), "resume_check": time.perf_counter() - started}
-    if progress is not None:
-        progress(skipped, total)
-    tally = _Tally(done=skipped, total=total)
-    engine = "none (all resumed)"
-    worker_start = ""
-    chunk = info.designs_per_chunk if info is not None else 0
-    if todo:
+
+
+@dataclass
+class _SweepRun:
+    """One call of :func:`run_sweep` in its folder, step by step: the store it resumed (None:
+    made anew), the designs still to run, their tally, the engine, the designs per chunk and
+    the seconds of each step (``run.json``'s ``time_s``)."""
+
+    spec: SweepSpec
+    out: Path
+    started: float
+    times: Mapping[str, float]
+    info: StoreInfo | None
+    todo: list[Design]
+    time_s: dict[str, float]
+    tally: _Tally
+    chunk: int
+    engine: str = "none (all resumed)"
+    worker_start: str = ""
+    status_count: dict[str, int] = field(default_factory=dict)
+
+    @property
+    def total(self) -> int:
+        """The spec's designs."""
+        return self.tally.total
+
+    @property
+    def skipped(self) -> int:
+        """The designs resumed from the store."""
+        return self.total - len(self.todo)
+
+    @property
+    def failures(self) -> list[dict[str, Any]]:
+        """The designs failed for good (with those whose chunk was lost, once finished)."""
+        return self.tally.failures
+
+    @classmethod
+    def open_or_resume(
+        cls, spec: SweepSpec, out: Path, started: float, times: Mapping[str, float]
+    ) -> _SweepRun:
+        """The run of ``spec`` into ``out``: the designs already in its store are resumed (none
+        if the store is another spec's), and the store is not complete until finished again."""
+        remove_stale_temporaries(out)
+        designs = spec.designs
+        total = len(designs)
+        info = store_info(out)
+        if info is not None and (info.spec_sha256, info.n_designs) != (spec.sha256, total):
+            log.info("%s belongs to another spec or version; it is made anew", out / STORE_NAME)
+            info = None
+        done = done_designs(out, spec)[0] if info is not None else set()
+        todo = [d for d in designs if d.index not in done]
+        skipped = total - len(todo)
+        log.info(
+            "sweep %s: %d designs, %d impacts; %d resumed from %s, %d to run",
+            spec.name,
+            total,
+            spec.n_impacts,
+            skipped,
+            out / STORE_NAME,
+            len(todo),
+        )
+        if info is not None:  # from now on the store is not complete until finished again
+            set_complete(out, spec.sha256, False)
+        time_s = {**times, "resume_check": time.perf_counter() - started}
+        return cls(
+            spec,
+            out,
+            started,
+            times,
+            info,
+            todo,
+            time_s,
+            _Tally(done=skipped, total=total),
+            chunk=info.designs_per_chunk if info is not None else 0,
+        )
+
+    def run_tasks(
+        self, executor: Executor | None, progress: ProgressCallback | None, options: TaskOptions
+    ) -> None:
+        """Run the designs still to run, in tasks of one chunk, on ``executor`` (or an engine
+        started here and shut down once they have ended)."""
         with ExitStack() as stack:
-            if executor is None:
-                small = len(todo) * spec.work_per_design < SERIAL_IMPACT_LIMIT
-                kind: EngineKind = "serial" if small else "process"
-                clock = time.perf_counter()
-                executor = stack.enter_context(make_executor(kind, DEFAULT_WORKERS))
-                time_s["start"] = time_s.get("start", 0.0) + time.perf_counter() - clock
-            elif isinstance(executor, ProcessPoolExecutor):
-                adopted = ProcessPool.adopt(executor)
-                stack.callback(adopted.shutdown_replacements)
-                executor = adopted
-            engine = type(executor).__name__
-            worker_start = str(getattr(executor, "start_method", ""))
-            limit = max_in_flight or _in_flight_limit(executor)
-            if info is None:  # a new store: its chunks are this run's batches
-                chunk = designs_per_task or _designs_per_task(spec, len(todo), executor)
-                clock = time.perf_counter()
-                create_store(spec, out, chunk)
-                time_s["store_creation"] = time.perf_counter() - clock
-            elif designs_per_task not in (None, chunk):
-                log.info(
-                    "the store's chunks hold %d designs each: tasks of %d designs, not %d",
-                    chunk,
-                    chunk,
-                    designs_per_task,
-                )
+            executor = self._start_engine(stack, executor)
+            limit = options.max_in_flight or _in_flight_limit(executor)
+            self._create_or_keep_store(executor, options.designs_per_task)
             token = secrets.token_hex(8)  # the store this run's workers may write
-            set_complete(out, spec.sha256, False, run_token=token)
+            set_complete(self.out, self.spec.sha256, False, run_token=token)
             local = _local_workers(executor)
-            if shared_store and not local:
-                _check_shared(executor, out, spec.sha256, token)
-            by_chunk: dict[int, list[Design]] = {}
-            for design in todo:
-                by_chunk.setdefault(design.index // chunk, []).append(design)
-            jobs = [_Job(tuple(batch)) for batch in by_chunk.values()]
+            if options.shared_store and not local:
+                _check_shared(executor, self.out, self.spec.sha256, token)
+            jobs = self._plan_tasks()
             clock = time.perf_counter()
             runner = _Runner(
-                spec,
-                out,
-                chunk,
+                self.spec,
+                self.out,
+                self.chunk,
                 executor,
                 limit,
-                retries,
-                task_timeout,
+                options.retries,
+                options.task_timeout,
                 progress,
-                tally,
-                write_in_worker=local or shared_store,
+                self.tally,
+                write_in_worker=local or options.shared_store,
                 token=token,
             )
             runner.run(jobs)
-            time_s["tasks"] = time.perf_counter() - clock
-    if when_tasks_done is not None:
+            self.time_s["tasks"] = time.perf_counter() - clock
+
+    def _start_engine(self, stack: ExitStack, executor: Executor | None) -> Executor:
+        """``executor``, or this process or a pool of two (by the work to do) started on
+        ``stack``; a process pool passed in is taken over (its replacements shut down on
+        ``stack``)."""
+        if executor is None:
+            small = len(self.todo) * self.spec.work_per_design < SERIAL_IMPACT_LIMIT
+            kind: EngineKind = "serial" if small else "process"
+            clock = time.perf_counter()
+            executor = stack.enter_context(make_executor(kind, DEFAULT_WORKERS))
+            self.time_s["start"] = self.time_s.get("start", 0.0) + time.perf_counter() - clock
+        elif isinstance(executor, ProcessPoolExecutor):
+            adopted = ProcessPool.adopt(executor)
+            stack.callback(adopted.shutdown_replacements)
+            executor = adopted
+        self.engine = type(executor).__name__
+        self.worker_start = str(getattr(executor, "start_method", ""))
+        return executor
+
+    def _create_or_keep_store(self, executor: Executor, designs_per_task: int | None) -> None:
+        """Create the store, its chunks this run's tasks; a resumed store keeps its chunks."""
+        if self.info is None:  # a new store: its chunks are this run's batches
+            self.chunk = designs_per_task or _designs_per_task(self.spec, len(self.todo), executor)
+            clock = time.perf_counter()
+            create_store(self.spec, self.out, self.chunk)
+            self.time_s["store_creation"] = time.perf_counter() - clock
+        elif designs_per_task not in (None, self.chunk):
+            log.info(
+                "the store's chunks hold %d designs each: tasks of %d designs, not %d",
+                self.chunk,
+                self.chunk,
+                designs_per_task,
+            )
+
+    def _plan_tasks(self) -> list[_Job]:
+        """The designs still to run, one task a chunk of the store."""
+        by_chunk: dict[int, list[Design]] = {}
+        for design in self.todo:
+            by_chunk.setdefault(design.index // self.chunk, []).append(design)
+        return [_Job(tuple(batch)) for batch in by_chunk.values()]
+
+    def shut_down(self, when_tasks_done: Callable[[], None] | None) -> None:
+        """Call the caller's ``when_tasks_done``, timed as ``shutdown`` when an engine ran."""
+        if when_tasks_done is not None:
+            clock = time.perf_counter()
+            when_tasks_done()
+            if self.todo:  # an engine ran: its shutdown (nothing to say when all were resumed)
+                self.time_s["shutdown"] = time.perf_counter() - clock
+
+    def finish_store(self) -> None:
+        """Record the designs whose chunk was lost as failed, clear the rows of every design not
+        done, write the mode table, count the statuses and mark the store complete (last)."""
+        spec, out = self.spec, self.out
         clock = time.perf_counter()
-        when_tasks_done()
-        if todo:  # an engine ran: its shutdown (nothing to say when every design was resumed)
-            time_s["shutdown"] = time.perf_counter() - clock
-    failures = tally.failures
-    clock = time.perf_counter()
-    finished, _ = done_designs(out, spec)
-    _lost_chunks([d for d in designs if d.index not in finished], failures)
-    clear_rows(out, spec.sha256, sorted(d.index for d in designs if d.index not in finished))
-    write_modes(out, spec, read_records(out, spec.sha256))
-    status_count = status_counts(out, spec.sha256)
-    set_complete(out, spec.sha256, True, run_token="", **failure_attrs(failures))  # last
-    time_s["finishing"] = time.perf_counter() - clock
+        finished, _ = done_designs(out, spec)
+        missing = [d for d in spec.designs if d.index not in finished]
+        _lost_chunks(missing, self.failures)
+        clear_rows(out, spec.sha256, sorted(d.index for d in missing))
+        write_modes(out, spec, read_records(out, spec.sha256))
+        self.status_count = status_counts(out, spec.sha256)
+        set_complete(out, spec.sha256, True, run_token="", **failure_attrs(self.failures))  # last
+        self.time_s["finishing"] = time.perf_counter() - clock
+
+    def summarise(
+        self, figures: Callable[[Mapping[str, SummaryCurves], Path], list[Path]] | None
+    ) -> tuple[xr.Dataset, list[Path], list[str]]:
+        """The results opened from the store, the files written (the store, ``summary.csv``,
+        the figures) and the notes for ``run.json`` (each also logged as a warning but the
+        sweet area's definition)."""
+        spec, out = self.spec, self.out
+        clock = time.perf_counter()
+        result = open_sweep(out)
+        written = [out / STORE_NAME]
+        notes = _uncertainty_notes(spec)
+        if spec.variables:
+            written.append(write_summary_csv(result, out))
+            notes += _sweet_area_notes(result)
+            if figures is not None:
+                written += figures(summary_figures_data(result), out)
+        self.time_s["summary"] = time.perf_counter() - clock
+        return result, written, notes
+
+    def write_record(
+        self,
+        command: Sequence[str] | None,
+        shared_store: bool,
+        written: list[Path],
+        notes: list[str],
+        previous_outputs: set[str],
+    ) -> None:
+        """Write ``run.json``, after removing the files of a previous run's ``run.json`` that
+        this run did not write again (another spec's figures)."""
+        record = self._record(command, shared_store, written, notes)
+        for name in previous_outputs - {p.name for p in written}:  # another spec's figures
+            if (self.out / name).is_file():
+                (self.out / name).unlink()
+        (self.out / "run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
+
+    def _record(
+        self,
+        command: Sequence[str] | None,
+        shared_store: bool,
+        written: list[Path],
+        notes: list[str],
+    ) -> dict[str, Any]:
+        """``run.json``: the run, its engine, its tally and where its time went."""
+        spec, tally = self.spec, self.tally
+        wall = time.perf_counter() - self.started + sum(self.times.values())
+        return {
+            "format": "racketdyn-sweep-run",
+            "racketdyn_version": __version__,
+            "command": [str(part) for part in command or ("python", "racketdyn.sweep.run_sweep")],
+            "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
+            "spec_sha256": spec.sha256,
+            "engine": self.engine,
+            # how a process pool started its workers: fork (this process was single-threaded)
+            # or forkserver / spawn (it ran threads); a local Dask cluster: forkserver (spawn
+            # where there is none); empty for this process and a running Dask cluster
+            "worker_start_method": self.worker_start,
+            "designs": self.total,
+            "impacts": spec.n_impacts,
+            "resumed": self.skipped,
+            "ran": tally.ran,
+            "retried": tally.retried,
+            "timed_out": tally.timed_out,
+            "pools_replaced": tally.pools_replaced,
+            "ran_in_main_process": tally.ran_here,
+            "designs_per_task": self.chunk,
+            "store": self._store_record(shared_store),
+            "failed": [f["task_id"] for f in self.failures],
+            "status_counts": self.status_count,
+            "wall_time_s": wall,
+            "time_s": self.time_s,
+            "task_time_s": tally.task_seconds,
+            "chunk_write_time_s": tally.write_seconds,
+            "first_result_s": tally.first_result_s,
+            "outputs": [p.name for p in written] + ["run.json"],
+            "spec": spec.to_dict(),
+            "uncertainty": spec.uncertainty_record(),
+            "notes": notes,
+        }
+
+    def _store_record(self, shared_store: bool) -> dict[str, Any]:
+        """``run.json``'s ``store``: its path, format, chunks, and who wrote them."""
+        return {
+            "path": STORE_NAME,
+            "format": "zarr",
+            "zarr_format": 3,
+            "layout": STORE_LAYOUT,
+            "designs_per_chunk": self.chunk,
+            "chunks": -(-self.total // self.chunk),
+            "shared_store": shared_store,
+            # who wrote this run's chunks: the workers, this process, or both (a worker that
+            # did not see the store; a pool's start, when this process computes too)
+            "chunk_writer": _chunk_writer(self.tally),
+            "chunk_writes": {
+                "workers": self.tally.chunks_by_workers,
+                "main_process": self.tally.chunks_by_main,
+            },
+        }
+
+
+def _record_failures(out: Path, failures: list[dict[str, Any]], total: int) -> None:
+    """Write ``failures.json`` when designs failed for good (and say so), else remove an old
+    one."""
     failures_path = out / "failures.json"
     if failures:
         failures_path.write_text(json.dumps(failures, indent=2), encoding="utf-8")
@@ -321,98 +549,49 @@ def run_sweep(
         )
     elif failures_path.exists():
         failures_path.unlink()
+
+
+def _warn_of_statuses(status_count: Mapping[str, int], n_impacts: int) -> None:
+    """Warn of the impacts of each status other than ok and failed (their results are NaN)."""
     for text in STATUS_CODES:
         if text not in (STATUS_OK, STATUS_FAILED) and status_count[text]:
             log.warning(
                 "%d of %d impacts: %s (their results are NaN)",
                 status_count[text],
-                spec.n_impacts,
+                n_impacts,
                 text,
             )
-    clock = time.perf_counter()
-    result = open_sweep(out)
-    store = out / STORE_NAME
-    written = [store]
-    notes = []
-    if spec.uncertainty is not None and spec.uncertainty.samples < _rough_samples():
-        # the tasks hold propagate's own warning back: said once here
+
+
+def _uncertainty_notes(spec: SweepSpec) -> list[str]:
+    """A note (and a warning) when the spec's uncertainty has too few samples for its band."""
+    if spec.uncertainty is None or spec.uncertainty.samples >= _rough_samples():
+        return []
+    # the tasks hold propagate's own warning back: said once here
+    note = (
+        f"{spec.uncertainty.samples} samples a design give a rough 90 % band (its 5 % and "
+        f"95 % quantiles rest on a sample or two); {_rough_samples()} or more for numbers to "
+        "quote"
+    )
+    log.warning("%s", note)
+    return [note]
+
+
+def _sweet_area_notes(result: xr.Dataset) -> list[str]:
+    """The sweet area's definition, and a note (and a warning) when its steps are coarse."""
+    notes = [
+        f"sweet_area_cm2 (summary.csv and the summary figures): {SWEET_AREA_DEFINITION}; "
+        f"threshold_fraction {float(result.attrs['threshold_fraction']):g}"
+    ]
+    step = sweet_area_resolution_cm2(result)
+    if step > SWEET_AREA_COARSE_FRACTION * float(result.attrs["head_area_cm2"]):
         notes.append(
-            f"{spec.uncertainty.samples} samples a design give a rough 90 % band (its 5 % and "
-            f"95 % quantiles rest on a sample or two); {_rough_samples()} or more for numbers to "
-            "quote"
+            f"the sweet area is counted in steps of {step:.1f} cm² (one of "
+            f"{result.sizes['point']} impact points): designs closer than that look the "
+            "same; give a finer [impacts] grid"
         )
         log.warning("%s", notes[-1])
-    if spec.variables:
-        written.append(write_summary_csv(result, out))
-        notes.append(
-            f"sweet_area_cm2 (summary.csv and the summary figures): {SWEET_AREA_DEFINITION}; "
-            f"threshold_fraction {float(result.attrs['threshold_fraction']):g}"
-        )
-        step = sweet_area_resolution_cm2(result)
-        if step > SWEET_AREA_COARSE_FRACTION * float(result.attrs["head_area_cm2"]):
-            notes.append(
-                f"the sweet area is counted in steps of {step:.1f} cm² (one of "
-                f"{result.sizes['point']} impact points): designs closer than that look the "
-                "same; give a finer [impacts] grid"
-            )
-            log.warning("%s", notes[-1])
-        if figures is not None:
-            written += figures(summary_figures_data(result), out)
-    time_s["summary"] = time.perf_counter() - clock
-    wall = time.perf_counter() - started + sum((times or {}).values())
-    record = {
-        "format": "racketdyn-sweep-run",
-        "racketdyn_version": __version__,
-        "command": [str(part) for part in command or ("python", "racketdyn.sweep.run_sweep")],
-        "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
-        "spec_sha256": spec.sha256,
-        "engine": engine,
-        # how a process pool started its workers: fork (this process was single-threaded) or
-        # forkserver / spawn (it ran threads); a local Dask cluster: forkserver (spawn where
-        # there is none); empty for this process and a running Dask cluster
-        "worker_start_method": worker_start,
-        "designs": total,
-        "impacts": spec.n_impacts,
-        "resumed": skipped,
-        "ran": tally.ran,
-        "retried": tally.retried,
-        "timed_out": tally.timed_out,
-        "pools_replaced": tally.pools_replaced,
-        "ran_in_main_process": tally.ran_here,
-        "designs_per_task": chunk,
-        "store": {
-            "path": STORE_NAME,
-            "format": "zarr",
-            "zarr_format": 3,
-            "layout": STORE_LAYOUT,
-            "designs_per_chunk": chunk,
-            "chunks": -(-total // chunk),
-            "shared_store": shared_store,
-            # who wrote this run's chunks: the workers, this process, or both (a worker that
-            # did not see the store; a pool's start, when this process computes too)
-            "chunk_writer": _chunk_writer(tally),
-            "chunk_writes": {
-                "workers": tally.chunks_by_workers,
-                "main_process": tally.chunks_by_main,
-            },
-        },
-        "failed": [f["task_id"] for f in failures],
-        "status_counts": status_count,
-        "wall_time_s": wall,
-        "time_s": time_s,
-        "task_time_s": tally.task_seconds,
-        "chunk_write_time_s": tally.write_seconds,
-        "first_result_s": tally.first_result_s,
-        "outputs": [p.name for p in written] + ["run.json"],
-        "spec": spec.to_dict(),
-        "uncertainty": spec.uncertainty_record(),
-        "notes": notes,
-    }
-    for name in previous_outputs - {p.name for p in written}:  # another spec's figures
-        if (out / name).is_file():
-            (out / name).unlink()
-    (out / "run.json").write_text(json.dumps(record, indent=2), encoding="utf-8")
-    return result
+    return notes
 
 
 def _check_shared(executor: Executor, out: Path, sha256: str, token: str) -> None:

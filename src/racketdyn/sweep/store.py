@@ -4,7 +4,7 @@
 shape, coordinates and attributes; no data), and each finished batch of designs is written
 into its own chunk along ``design`` — by the worker that computed it when the worker sees
 the store (a worker on this machine; a remote Dask worker when the store is on a path every
-worker can write, ``run_sweep(shared_store=True)``), else by the main process — so no process
+worker can write, ``TaskOptions(shared_store=True)``), else by the main process — so no process
 ever holds more than a chunk of results.  Readers open it lazily (:func:`open_sweep`,
 ``xr.open_zarr``): the summary and the figures read it chunk by chunk.
 

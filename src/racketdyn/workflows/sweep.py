@@ -19,7 +19,14 @@ from typing import Any, Literal
 
 import xarray as xr
 
-from racketdyn.sweep import SweepSpec, load_sweep_spec, make_executor, run_sweep, start_early
+from racketdyn.sweep import (
+    SweepSpec,
+    TaskOptions,
+    load_sweep_spec,
+    make_executor,
+    run_sweep,
+    start_early,
+)
 from racketdyn.sweep.summary import SummaryCurves
 from racketdyn.workflows.run import (
     Progress,
@@ -126,9 +133,8 @@ def run_sweep_step(
             executor,
             setup.progress,
             setup.figures,
-            task_timeout,
+            TaskOptions(task_timeout=task_timeout, shared_store=shared_store),
             setup.command,
-            shared_store,
         )
     finally:
         lock.unlink(missing_ok=True)
@@ -149,9 +155,8 @@ def _run(
     executor: AbstractContextManager[Executor | None],
     progress: Progress | None,
     figures: Callable[[Mapping[str, SummaryCurves], Path], list[Path]] | None,
-    task_timeout: float | None,
+    options: TaskOptions,
     command: Sequence[str] | None,
-    shared_store: bool,
 ) -> xr.Dataset:
     """The sweep in its locked folder, on the engine ``executor`` starts."""
     with ExitStack() as stack:
@@ -166,11 +171,10 @@ def _run(
             progress=None
             if progress is None
             else lambda done, total: progress("designs", done, total),
+            options=options,
             figures=figures,
-            task_timeout=task_timeout,
             times={"start": started} if running is not None else None,
             when_tasks_done=stack.close,
             command=command_record(command, "sweep"),
-            shared_store=shared_store,
         )
     return dataset
