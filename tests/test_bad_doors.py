@@ -21,6 +21,27 @@ from racketdyn.workflows import run_predict
 from racketdyn.workflows.setup import Setup
 
 
+@pytest.fixture(scope="module")
+def hammer_test(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """One rig's hammer records (one average a point), shared by the tests that only read them
+    (each had run the rig itself: 3-4 s a case)."""
+    from racketdyn.workflows import run_rig
+
+    folder = tmp_path_factory.mktemp("rig")
+    run_rig(folder, averages=1)
+    return folder / "hammer_free.uff"
+
+
+@pytest.fixture(scope="module")
+def frfs(hammer_test: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The FRFs of :func:`hammer_test`'s records."""
+    from racketdyn.workflows import run_frf
+
+    folder = tmp_path_factory.mktemp("frf")
+    run_frf(hammer_test, folder)
+    return folder / "frfs.uff"
+
+
 def _one_line(capsys: pytest.CaptureFixture[str], *words: str) -> str:
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1, err
@@ -165,14 +186,15 @@ def test_an_absurd_option_is_one_line(
      ("1e9", ["--force-range", "refused even"]), ("2e6", ["--force-range", "N"])],
 )  # fmt: skip
 def test_an_absurd_hammer_range_is_one_line(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str], value: str, words: list[str]
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    hammer_test: Path,
+    value: str,
+    words: list[str],
 ) -> None:
     """The fifth session's scan: ``frf --force-range`` took NaN (no overload ever found),
     inf and 1e9 N (a gigatonne-force hammer) without a word."""
-    from racketdyn.workflows import run_rig
-
-    run_rig(tmp_path / "rig", averages=1)
-    argv = ["frf", str(tmp_path / "rig" / "hammer_free.uff"), f"--force-range={value}"]
+    argv = ["frf", str(hammer_test), f"--force-range={value}"]
     assert main([*argv, "--out", str(tmp_path / "o")]) == 2
     _one_line(capsys, *words)
     if value == "2e6":  # a 2 MN channel: unusual, not impossible
@@ -189,19 +211,16 @@ def test_an_absurd_hammer_range_is_one_line(
      ("--max-order=0", ["--max-order", "at least 1"])],
 )  # fmt: skip
 def test_identifys_bad_numbers_name_their_option_and_unit(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str], option: str, words: list[str]
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    frfs: Path,
+    option: str,
+    words: list[str],
 ) -> None:
     """The fifth session's scan: ``--band nan,500`` was "finite speeds of zero or more, m/s"
     (frequencies read by the speeds' parser), and ``--max-order 0`` and ``--pin 1e9`` named
     the library's ``max_order`` and ``pin_hz`` instead of their options."""
-    from racketdyn.workflows import run_frf, run_rig
-
-    run_rig(tmp_path / "rig", averages=1)
-    run_frf(tmp_path / "rig" / "hammer_free.uff", tmp_path / "frf")
-    assert (
-        main(["identify", str(tmp_path / "frf" / "frfs.uff"), option, "--out", str(tmp_path / "o")])
-        == 2
-    )
+    assert main(["identify", str(frfs), option, "--out", str(tmp_path / "o")]) == 2
     line = _one_line(capsys, *words)
     assert "m/s" not in line
     assert "_hz" not in line
@@ -226,11 +245,10 @@ def test_a_ball_speed_twice_with_two_racket_speeds_is_two_cases(tmp_path: Path) 
     assert result.approximate is not None
 
 
-def test_a_repeated_label_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    from racketdyn.workflows import run_rig
-
-    run_rig(tmp_path / "rig", averages=1)
-    test = str(tmp_path / "rig" / "hammer_free.uff")
+def test_a_repeated_label_is_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], hammer_test: Path
+) -> None:
+    test = str(hammer_test)
     argv = ["contact", test, test, "--labels", "a,a", "--out", str(tmp_path / "c")]
     assert main(argv) == 2
     _one_line(capsys, "--labels", "each test once")

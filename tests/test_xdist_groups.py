@@ -44,6 +44,8 @@ def test_a_group_runs_on_one_worker(tmp_path: Path) -> None:
             "no:randomly",
             "-p",
             "no:cacheprovider",
+            "-p",
+            "no:hypothesispytest",  # its import is most of the workers' start
             str(tmp_path / "test_grouped.py"),
         ],
         capture_output=True,
