@@ -105,9 +105,9 @@ def resolve_modal_model(
     else:
         model = modal_model
     if model is not None:
-        model = model.flexible_modes if include_string_bed else model.frame_modes
-        if model.n_dimensions == 2:
-            model = frame_under_bed(model, racket.head)
+        model = frame_under_bed(
+            model.flexible_modes if include_string_bed else model.frame_modes, racket.head
+        )
     return model
 
 
