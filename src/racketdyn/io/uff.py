@@ -1061,7 +1061,7 @@ class _HammerLayout:
     and the accelerometer moved, the response node (by reciprocity H_ij = H_ji the same data;
     the hammer node is then the reference)."""
     roving_accelerometer: bool
-    response_type: str
+    response_type: ResponseType
 
     def keys_at(self, node: int) -> list[_Key]:
         """The averages of one point, in load-case order."""
