@@ -1056,8 +1056,7 @@ def select_poles(
     merged = _merge_one_peak(stab, clusters, reasons, rules.cluster_mac)
     # step 3: the user's exclusions and pins
     accepted = [not r for r in reasons]
-    centres = np.array([c.frequency for c in clusters])
-    _exclude(centres, excludes, accepted, reasons, rules.pin_tolerance)
+    _exclude(clusters, excludes, accepted, reasons, rules.pin_tolerance)
     pinned = _pin(clusters, pins, accepted, reasons, rules.pin_tolerance)
     dropped, dropped_modes = _dropped(clusters, reasons, accepted, merged)
     kept = sorted(
@@ -1112,13 +1111,14 @@ def _reasons(stab: Stabilisation, clusters: list[_Cluster], rules: SelectionRule
 
 
 def _exclude(
-    centres: NDArray[np.float64],
+    clusters: list[_Cluster],
     excludes: NDArray[np.float64],
     accepted: list[bool],
     reasons: list[str],
     tolerance: float,
 ) -> None:
     """Drop the accepted mode nearest each exclusion (within ``tolerance``, relative)."""
+    centres = np.array([c.frequency for c in clusters])
     for f in excludes:
         near = [k for k in range(len(centres)) if accepted[k] and _near(centres[k], f, tolerance)]
         if not near:
