@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from racketdyn.io.uff import _record_set, _write_sets
+from racketdyn.io.uff import _Axes, _Ends, _record_set, _write_sets
 
 
 def write_lab_uff(
@@ -46,16 +46,12 @@ def write_lab_uff(
         sets = []
     for k, (rsp, rsp_dir, ref, ref_dir, values) in enumerate(frfs, start=1):
         dset = _record_set(
-            func_type=4,
-            load_case=0,
-            rsp_node=rsp,
-            ref_node=ref,
-            x=frequency,
-            data=values,
-            abscissa="frequency",
-            ordinate="acceleration",
-            denominator="force",
-            ids=(f"H {rsp}:{rsp_dir} / {ref}:{ref_dir}",),
+            4,
+            _Ends(rsp, ref),
+            _Axes("frequency", "acceleration", "force"),
+            frequency,
+            values,
+            (f"H {rsp}:{rsp_dir} / {ref}:{ref_dir}",),
             binary=False,
             number=k,
         )

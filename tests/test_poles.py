@@ -35,6 +35,7 @@ from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.poles import (
     PoleStability,
     SelectedPoles,
+    SelectionRules,
     Stabilisation,
     mac,
     select_poles,
@@ -389,7 +390,9 @@ def test_exclude_and_pin(noisy_stab: Stabilisation, caplog: pytest.LogCaptureFix
     assert any("excluded by the user" in d for d in without.dropped)
     # a rule strict enough to drop every mode: the pinned ones come back, flagged, logged
     with caplog.at_level(logging.INFO, logger="racketdyn.modal.poles"):
-        strict = select_poles(noisy_stab, pin_hz=[530.0, 105.0], min_fraction=1.0)
+        strict = select_poles(
+            noisy_stab, pin_hz=[530.0, 105.0], rules=SelectionRules(min_fraction=1.0)
+        )
     np.testing.assert_allclose(strict.frequency, [105.0, 530.0], rtol=FREQUENCY_TOLERANCE)
     assert strict.pinned.all()
     assert "despite" in caplog.text
@@ -465,7 +468,9 @@ def test_bad_inputs_are_input_errors(noisy) -> None:
     with pytest.raises(InputError, match="every FRF is zero"):
         stabilisation(replace(frfs, values=np.zeros_like(frfs.values)), BAND)
     with pytest.raises(InputError, match="min_fraction"):
-        select_poles(stabilisation(frfs, BAND, max_order=10), min_fraction=2.0)
+        select_poles(
+            stabilisation(frfs, BAND, max_order=10), rules=SelectionRules(min_fraction=2.0)
+        )
 
 
 def test_band_past_the_lines_is_cut_and_logged(noisy, caplog: pytest.LogCaptureFixture) -> None:

@@ -24,10 +24,12 @@ from __future__ import annotations
 
 import logging
 from collections import Counter
+from dataclasses import dataclass
 from pathlib import Path
 from typing import cast
 
 import numpy as np
+from numpy.typing import NDArray
 
 from racketdyn._grammar import noun, plural
 from racketdyn.errors import InputError, logs_warnings
@@ -52,6 +54,7 @@ from racketdyn.io.uff import (
     _records_of,
     _scale,
     _sign,
+    _Units,
     _units_of,
 )
 from racketdyn.measurement.records import (
@@ -196,10 +199,49 @@ def read_frfs(
     for record in records:
         _check(path, record)
     ref, layout = _choose_reference(path, records, reference)
-    # the FRFs against the reference, one per point, in the direction most of them share
-    mine = [r for r in records if ref in (r.rsp_node, r.ref_node)]
-    left_out = len(records) - len(mine)
-    unused = [r.index for r in records if ref not in (r.rsp_node, r.ref_node)]
+    ignored = _ignored(path, every)
+    points = _one_per_point(path, records, ref)
+    nodes = sorted(points.by_node)
+    chosen = [points.by_node[n] for n in nodes]
+    response_type = _check_alike(path, chosen)
+    coordinates = _with_point_coordinates(
+        path, coordinates, ref, nodes, geometry, require_coordinates=require_coordinates
+    )
+    locations, reference_location = _locations(coordinates, nodes, ref)
+    frf_type = cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type])
+    frequency, values = _values_in_si(path, chosen, frf_type, units)
+    first = chosen[0]
+    coherence = _coherence(path, every, ref, nodes, first) if layout == "roving hammer" else None
+    frequency, values, coherence = _without_nyquist(path, chosen, frequency, values, coherence)
+    estimator, tau, averages = _frf_id_fields(chosen)
+    bandwidth = _bandwidth_of(chosen)
+    frfs = FrfSet(
+        frequency=frequency,
+        values=values,
+        frf_type=frf_type,
+        nodes=tuple(nodes),
+        locations=locations,
+        reference_node=ref,
+        reference_location=reference_location,
+        coherence=coherence,
+        n_averages=averages,
+        exponential_window_s=tau,
+        estimator=estimator,
+        source=str(path),
+        metadata={
+            "layout": layout,
+            "left_out": points.left_out,
+            "unused_data_sets": sorted(points.unused),
+            "ignored_data_sets": ignored,
+            "directions": {int(n): int(_point_of(points.by_node[n], ref)[1]) for n in nodes},
+            **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
+        },
+    )
+    return frfs.with_usual_phase()  # an analyser's e^(-iωt) undone (vtb_siglab's case 2)
+
+
+def _ignored(path: Path, every: list[_Record]) -> list[int]:
+    """The data sets 58 of other function types than FRF and coherence (logged)."""
     ignored = [r.index for r in every if r.func_type not in (FREQUENCY_RESPONSE, COHERENCE)]
     if ignored:
         log.info(
@@ -207,14 +249,40 @@ def read_frfs(
             path,
             plural(len(ignored), "data set"),
         )
+    return ignored
 
-    def point_of(r: _Record) -> tuple[int, int]:
-        return (r.ref_node, r.ref_dir) if r.rsp_node == ref else (r.rsp_node, r.rsp_dir)
 
-    usual = Counter(abs(point_of(r)[1]) for r in mine).most_common(1)[0][0]
+def _point_of(record: _Record, ref: int) -> tuple[int, int]:
+    """The point an FRF against the reference node measures: its other node and direction."""
+    if record.rsp_node == ref:
+        return record.ref_node, record.ref_dir
+    return record.rsp_node, record.rsp_dir
+
+
+@dataclass(frozen=True)
+class _Points:
+    """The FRF of each point against the reference, and what was left out."""
+
+    by_node: dict[int, _Record]
+    left_out: int
+    """FRFs not against the reference, in another direction, or a reciprocal pair's other."""
+    unused: list[int]
+    """Their data sets' numbers."""
+
+
+def _one_per_point(path: Path, records: list[_Record], ref: int) -> _Points:
+    """The FRFs against the reference, one per point, in the direction most of them share.
+
+    Of a reciprocal pair (both H_ij and H_ji) the one with the sensor at the reference is kept;
+    the same FRF twice is an InputError.  What is left out is logged.
+    """
+    mine = [r for r in records if ref in (r.rsp_node, r.ref_node)]
+    left_out = len(records) - len(mine)
+    unused = [r.index for r in records if ref not in (r.rsp_node, r.ref_node)]
+    usual = Counter(abs(_point_of(r, ref)[1]) for r in mine).most_common(1)[0][0]
     by_node: dict[int, _Record] = {}
     for r in mine:
-        node, direction = point_of(r)
+        node, direction = _point_of(r, ref)
         if abs(direction) != usual:
             left_out += 1
             unused.append(r.index)
@@ -239,17 +307,33 @@ def read_frfs(
             left_out,
             ref,
         )
-    nodes = sorted(by_node)
-    first = by_node[nodes[0]]
-    response_type = RESPONSE_OF_CODE[first.quantity]
-    for node in nodes[1:]:
-        record = by_node[node]
+    return _Points(by_node, left_out, unused)
+
+
+def _check_alike(path: Path, chosen: list[_Record]) -> str:
+    """The response type the chosen FRFs share; they must share it and the frequency axis."""
+    first = chosen[0]
+    for record in chosen[1:]:
         if record.quantity != first.quantity:
             raise InputError(
                 f"{path}: data sets {first.index} and {record.index} are FRFs of different types "
                 f"({record.quantity} against {first.quantity} in record 9); give one type"
             )
         _check_same_abscissa(path, first, record, "frequency axis")
+    return RESPONSE_OF_CODE[first.quantity]
+
+
+def _with_point_coordinates(
+    path: Path,
+    coordinates: dict[int, tuple[float, float, float]],
+    ref: int,
+    nodes: list[int],
+    geometry: Path | str | None,
+    *,
+    require_coordinates: bool,
+) -> dict[int, tuple[float, float, float]]:
+    """The coordinates, every point's there: NaN for those without (logged) when none are
+    required, else an InputError naming ``--geometry``.  The reference may lack them."""
     if ref not in coordinates and ref not in nodes and any(n in coordinates for n in nodes):
         # a fixed accelerometer is often not in the geometry: NaN below
         log.info(
@@ -266,82 +350,81 @@ def read_frfs(
             _listed(missing),
             noun(len(missing), "has", "have"),
         )
-        coordinates = {**coordinates, **{n: (np.nan, np.nan, np.nan) for n in missing}}
-    elif missing:
+        return {**coordinates, **{n: (np.nan, np.nan, np.nan) for n in missing}}
+    if missing:
         where = "" if geometry is None else f" or {geometry}"
         raise InputError(
             f"{path}: node{'s' if len(missing) > 1 else ''} {_listed(missing)} ha"
             f"{'ve' if len(missing) > 1 else 's'} no coordinates in {path}{where}; shapes need "
             "them: add data set 15 or pass --geometry FILE"
         )
+    return coordinates
+
+
+def _locations(
+    coordinates: dict[int, tuple[float, float, float]], nodes: list[int], ref: int
+) -> tuple[NDArray[np.float64], tuple[float, ...]]:
+    """The points' and the reference's locations: (x, y, z), or (x, y) when all share one z."""
     xyz = np.asarray([coordinates[n] for n in nodes], dtype=float)
     reference_xyz = np.asarray(coordinates.get(ref, (np.nan,) * 3), dtype=float)
     z = np.r_[xyz[:, 2], reference_xyz[2]]
     three_d = bool(np.nanmax(z) > np.nanmin(z)) if np.isfinite(z).any() else False
     locations = xyz if three_d else xyz[:, :2]
-    frf_type = cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type])
+    reference = tuple(float(v) for v in (reference_xyz if three_d else reference_xyz[:2]))
+    return locations, reference
+
+
+def _values_in_si(
+    path: Path, chosen: list[_Record], frf_type: FrfType, units: _Units
+) -> tuple[NDArray[np.float64], NDArray[np.complex128]]:
+    """The frequency axis (Hz) and the FRFs in SI units, their direction signs applied."""
+    first = chosen[0]
+    response_type = RESPONSE_OF_CODE[first.quantity]
     frequency_scale = _scale(path, first, "frequency", _normal_label(first.labels[0]), units)
-    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
+    bandwidth = _bandwidth_of(chosen)
     top = None if bandwidth is None else bandwidth / frequency_scale  # in the file's unit
     values = np.asarray(
         [
             _in_si(
                 path,
-                by_node[n],
-                _frf_scale(path, by_node[n], response_type, units)
-                * _sign(path, by_node[n], by_node[n].rsp_dir)
-                * _sign(path, by_node[n], by_node[n].ref_dir),
+                record,
+                _frf_scale(path, record, response_type, units)
+                * _sign(path, record, record.rsp_dir)
+                * _sign(path, record, record.ref_dir),
                 "the FRF's",
                 ABSURD_FRF,
                 FRF_UNITS[frf_type],
                 top,
             )
-            for n in nodes
+            for record in chosen
         ],
         dtype=complex,
     )
-    frequency = first.x * frequency_scale
-    coherence = _coherence(path, every, ref, nodes, first) if layout == "roving hammer" else None
-    nyquist = [by_node[n] for n in nodes if by_node[n].nyquist_nan]
+    return first.x * frequency_scale, values
+
+
+def _without_nyquist(
+    path: Path,
+    chosen: list[_Record],
+    frequency: NDArray[np.float64],
+    values: NDArray[np.complex128],
+    coherence: NDArray[np.float64] | None,
+) -> tuple[NDArray[np.float64], NDArray[np.complex128], NDArray[np.float64] | None]:
+    """Frequency, FRFs and coherence without the last line if some record has NaN or inf
+    there (issue 25, item 4: OpenModal writes NaN on one record's Nyquist line; logged)."""
+    nyquist = [r for r in chosen if r.nyquist_nan]
     if coherence is not None and not np.all(np.isfinite(coherence[:, -1])):
-        nyquist.append(by_node[nodes[int(np.argmin(np.isfinite(coherence[:, -1])))]])
-    if nyquist:  # issue 25, item 4: OpenModal writes NaN on one record's Nyquist line
-        log.info(
-            "%s%s: NaN or infinite on the last line, %g Hz (the Nyquist line; some exports write "
-            "it so): that line dropped from every FRF",
-            nyquist[0].where(path),
-            "" if len(nyquist) == 1 else f" and {noun(len(nyquist) - 1, 'another')} ",
-            frequency[-1],
-        )
-        frequency, values = frequency[:-1], values[:, :-1]
-        coherence = None if coherence is None else coherence[:, :-1]
-    estimator, tau, averages = _frf_id_fields([by_node[n] for n in nodes])
-    bandwidth = _bandwidth_of([by_node[n] for n in nodes])
-    frfs = FrfSet(
-        frequency=frequency,
-        values=values,
-        frf_type=frf_type,
-        nodes=tuple(nodes),
-        locations=locations,
-        reference_node=ref,
-        reference_location=tuple(
-            float(v) for v in (reference_xyz if three_d else reference_xyz[:2])
-        ),
-        coherence=coherence,
-        n_averages=averages,
-        exponential_window_s=tau,
-        estimator=estimator,
-        source=str(path),
-        metadata={
-            "layout": layout,
-            "left_out": left_out,
-            "unused_data_sets": sorted(unused),
-            "ignored_data_sets": ignored,
-            "directions": {int(n): int(point_of(by_node[n])[1]) for n in nodes},
-            **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
-        },
+        nyquist.append(chosen[int(np.argmin(np.isfinite(coherence[:, -1])))])
+    if not nyquist:
+        return frequency, values, coherence
+    log.info(
+        "%s%s: NaN or infinite on the last line, %g Hz (the Nyquist line; some exports write "
+        "it so): that line dropped from every FRF",
+        nyquist[0].where(path),
+        "" if len(nyquist) == 1 else f" and {noun(len(nyquist) - 1, 'another')} ",
+        frequency[-1],
     )
-    return frfs.with_usual_phase()  # an analyser's e^(-iωt) undone (vtb_siglab's case 2)
+    return frequency[:-1], values[:, :-1], None if coherence is None else coherence[:, :-1]
 
 
 def read_frf_uff(

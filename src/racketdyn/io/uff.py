@@ -933,8 +933,59 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
     ignored = len(contents.records) - len(records)
     if ignored:
         logger.info("%s: %d data sets 58 that are not time records ignored", path, ignored)
-    forces: dict[tuple[int, int], _Record] = {}
-    responses: dict[tuple[int, int], _Record] = {}
+    forces, responses = _channels(path, records)
+    layout = _hammer_layout(path, forces, responses)
+    x, step = _time_axis(path, records)
+    time_scale = _scale(
+        path, records[0], "time", _normal_label(records[0].labels[0]), contents.units
+    )
+    nodes = sorted(set(layout.point_of.values()))
+    averages = [layout.cases_at(node) for node in nodes]
+    rows = [_point_in_si(path, (forces, responses), layout, n, contents.units) for n in nodes]
+    _note_missing(path, contents.nodes, [*nodes, layout.reference_node])
+    metadata: dict[str, Any] = {"averages": averages}
+    last = max(forces, key=lambda key: max(forces[key].index, responses[key].index))
+    counts = dict(zip(nodes, map(len, averages), strict=True))
+    fewer = _fewer_averages(path, counts, layout.point_of[last])
+    if fewer:
+        metadata["fewer_averages"] = fewer
+    if layout.roving_accelerometer:
+        metadata["layout"] = "roving accelerometer"
+    if _three_d(path, contents, [*nodes, layout.reference_node]):
+        metadata["three_d_geometry"] = str(path)
+        contents = dataclasses.replace(contents, nodes={})
+    locations = [_location(contents.nodes, n) for n in nodes]
+    reference_location = _location(contents.nodes, layout.reference_node)
+    return HammerRecords(
+        sampling_interval_s=float(step * time_scale),
+        force=tuple(f for f, _ in rows),
+        response=tuple(r for _, r in rows),
+        response_type=layout.response_type,
+        nodes=tuple(nodes),
+        locations=np.asarray(locations, dtype=float),
+        reference_node=layout.reference_node,
+        reference_location=reference_location,
+        pretrigger_s=float(-x[0] * time_scale),
+        source=str(path),
+        metadata=metadata,
+    )
+
+
+_Key = tuple[int, int]
+"""An average of a hammer test: (hammer node, load case)."""
+
+
+def _channels(
+    path: Path, records: list[_Record]
+) -> tuple[dict[_Key, _Record], dict[_Key, _Record]]:
+    """The force and the response record of every average, by (hammer node, load case).
+
+    Raises an InputError for a complex record, an ordinate that is neither, two records of one
+    channel and average, no force or no response channel, a response naming no hammer node,
+    and an average missing one of its two records.
+    """
+    forces: dict[_Key, _Record] = {}
+    responses: dict[_Key, _Record] = {}
     unreferenced: list[_Record] = []  # responses naming no hammer node (reference node 0)
     for record in records:
         if np.iscomplexobj(record.data):
@@ -959,6 +1010,18 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
                 f"case {key[1]}; give each average its own load case number"
             )
         table[key] = record
+    _check_channels(path, forces, responses, unreferenced)
+    return forces, responses
+
+
+def _check_channels(
+    path: Path,
+    forces: dict[_Key, _Record],
+    responses: dict[_Key, _Record],
+    unreferenced: list[_Record],
+) -> None:
+    """A force and a response channel, every response naming its hammer node, every average
+    with both records."""
     if not forces:
         raise InputError(
             f"{path}: no force channel: no time record has ordinate type 13 (excitation force) "
@@ -985,6 +1048,36 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
             f"{present.where(path)}: hammer node {key[0]}, average (load case) {key[1]} has no "
             f"{missing} record; export both channels of every average or leave the average out"
         )
+
+
+@dataclass(frozen=True)
+class _HammerLayout:
+    """Who moved in a hammer test: the reference node, the point of each average and the
+    response type measured."""
+
+    reference_node: int
+    point_of: dict[_Key, int]
+    """The point of each average: the hammer node (roving hammer), or, with one hammer node
+    and the accelerometer moved, the response node (by reciprocity H_ij = H_ji the same data;
+    the hammer node is then the reference)."""
+    roving_accelerometer: bool
+    response_type: ResponseType
+
+    def keys_at(self, node: int) -> list[_Key]:
+        """The averages of one point, in load-case order."""
+        return sorted(
+            (key for key in self.point_of if self.point_of[key] == node), key=lambda k: k[1]
+        )
+
+    def cases_at(self, node: int) -> list[int]:
+        """The load cases of one point's averages, ascending."""
+        return [case for _, case in self.keys_at(node)]
+
+
+def _hammer_layout(
+    path: Path, forces: dict[_Key, _Record], responses: dict[_Key, _Record]
+) -> _HammerLayout:
+    """Roving hammer or roving accelerometer; one response node and one response type."""
     first_response = next(iter(responses.values()))
     response_type = RESPONSE_OF_CODE[first_response.quantity]
     reference_node = first_response.rsp_node
@@ -992,9 +1085,6 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
     roving_accelerometer = (
         len({r.rsp_node for r in responses.values()}) > 1 and len(hammer_nodes) == 1
     )
-    # the point of each average: the hammer node (roving hammer), or, with one hammer node
-    # and the accelerometer moved, the response node (by reciprocity H_ij = H_ji the same
-    # data; the hammer node is then the reference)
     point_of = {key: key[0] for key in forces}
     if roving_accelerometer:
         reference_node = next(iter(hammer_nodes))
@@ -1012,6 +1102,12 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
                 f"responses ({response_type} and {RESPONSE_OF_CODE[record.quantity]}); give one "
                 "response type"
             )
+    return _HammerLayout(reference_node, point_of, roving_accelerometer, response_type)
+
+
+def _time_axis(path: Path, records: list[_Record]) -> tuple[NDArray[np.float64], float]:
+    """The records' common time axis and step, in the file's unit: two samples or more, evenly
+    spaced."""
     first = records[0]
     for record in records[1:]:
         _check_same_abscissa(path, first, record, "length and sampling")
@@ -1023,66 +1119,51 @@ def read_hammer_uff(path: Path | str, geometry: Path | str | None = None) -> Ham
         and np.max(np.abs(np.diff(x) - step)) > 1e-5 * np.max(np.abs(x)) + 1e-9 * step
     ):
         raise InputError(f"{first.where(path)}: the samples must be evenly spaced in time")
-    time_scale = _scale(path, first, "time", _normal_label(first.labels[0]), contents.units)
-    nodes = sorted(set(point_of.values()))
-    force_rows, response_rows, averages = [], [], []
-    for node in nodes:
-        keys = sorted((key for key in forces if point_of[key] == node), key=lambda k: k[1])
-        averages.append([case for _, case in keys])
-        rows_f, rows_r = [], []
-        for key in keys:
-            f, r = forces[key], responses[key]
-            f_scale = _scale(path, f, "force", _normal_label(f.labels[1]), contents.units)
-            r_scale = _scale(path, r, response_type, _normal_label(r.labels[1]), contents.units)
-            rows_f.append(
-                _in_si(path, f, f_scale * _sign(path, f, f.rsp_dir), "force", ABSURD_FORCE_N, "N")
-            )
-            rows_r.append(
-                _in_si(
-                    path,
-                    r,
-                    r_scale * _sign(path, r, r.rsp_dir),
-                    response_type,
-                    ABSURD_RESPONSE,
-                    SI_LABEL[response_type],
-                )
-            )
-        force_rows.append(np.asarray(rows_f, dtype=float))
-        response_rows.append(np.asarray(rows_r, dtype=float))
-    _note_missing(path, contents.nodes, [*nodes, reference_node])
-    metadata: dict[str, Any] = {"averages": averages}
-    last = max(forces, key=lambda key: max(forces[key].index, responses[key].index))
-    fewer = _fewer_averages(path, dict(zip(nodes, map(len, averages), strict=True)), point_of[last])
-    if fewer:
-        metadata["fewer_averages"] = fewer
-    if roving_accelerometer:
-        metadata["layout"] = "roving accelerometer"
-    depths = [contents.depth[n] for n in [*nodes, reference_node] if n in contents.depth]
-    if depths and max(depths) > min(depths):
-        # (x, y, z) points: time records and FRFs are (x, y); rather no coordinates than
-        # points squashed onto x–y.  identify reads the lab's (x, y, z) from this file.
-        logger.warning(
-            "%s: the points differ in z (3-D geometry): the records are read without "
-            "coordinates; give this file to identify as --geometry for the (x, y, z) points",
-            path,
+    return x, step
+
+
+def _point_in_si(
+    path: Path,
+    channels: tuple[dict[_Key, _Record], dict[_Key, _Record]],
+    layout: _HammerLayout,
+    node: int,
+    units: _Units,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """One point's force (N) and response records (SI units of the response type), one row
+    per average, each average's force then its response checked."""
+    forces, responses = channels
+    kind = layout.response_type
+    rows_f, rows_r = [], []
+    for key in layout.keys_at(node):
+        f, r = forces[key], responses[key]
+        f_scale = _scale(path, f, "force", _normal_label(f.labels[1]), units)
+        r_scale = _scale(path, r, kind, _normal_label(r.labels[1]), units)
+        rows_f.append(
+            _in_si(path, f, f_scale * _sign(path, f, f.rsp_dir), "force", ABSURD_FORCE_N, "N")
         )
-        metadata["three_d_geometry"] = str(path)
-        contents = dataclasses.replace(contents, nodes={})
-    locations = [_location(contents.nodes, n) for n in nodes]
-    reference_location = _location(contents.nodes, reference_node)
-    return HammerRecords(
-        sampling_interval_s=float(step * time_scale),
-        force=tuple(force_rows),
-        response=tuple(response_rows),
-        response_type=response_type,
-        nodes=tuple(nodes),
-        locations=np.asarray(locations, dtype=float),
-        reference_node=reference_node,
-        reference_location=reference_location,
-        pretrigger_s=float(-x[0] * time_scale),
-        source=str(path),
-        metadata=metadata,
+        rows_r.append(
+            _in_si(
+                path, r, r_scale * _sign(path, r, r.rsp_dir), kind, ABSURD_RESPONSE, SI_LABEL[kind]
+            )
+        )
+    return np.asarray(rows_f, dtype=float), np.asarray(rows_r, dtype=float)
+
+
+def _three_d(path: Path, contents: _Contents, nodes: list[int]) -> bool:
+    """Whether the nodes differ in z (logged): then the records are read without coordinates.
+
+    (x, y, z) points: time records and FRFs are (x, y); rather no coordinates than points
+    squashed onto x–y.  identify reads the lab's (x, y, z) from this file.
+    """
+    depths = [contents.depth[n] for n in nodes if n in contents.depth]
+    if not (depths and max(depths) > min(depths)):
+        return False
+    logger.warning(
+        "%s: the points differ in z (3-D geometry): the records are read without "
+        "coordinates; give this file to identify as --geometry for the (x, y, z) points",
+        path,
     )
+    return True
 
 
 def _coherence(
@@ -1231,40 +1312,58 @@ def _geometry_set(
     }
 
 
+@dataclass(frozen=True)
+class _Ends:
+    """The nodes a data set 58 joins (records 6's response and reference nodes) and its load
+    case (the average number of a time record, 0 for an FRF)."""
+
+    rsp_node: int
+    ref_node: int
+    load_case: int = 0
+
+
+@dataclass(frozen=True)
+class _Axes:
+    """What a data set 58's axes hold: the abscissa's quantity (``frequency``, ``time``), the
+    ordinate's (None: a coherence, no unit) and the ordinate's denominator (``force`` for an
+    FRF; None: none)."""
+
+    abscissa: str
+    ordinate: str | None
+    denominator: str | None = None
+
+
 def _record_set(
-    *,
     func_type: int,
-    load_case: int,
-    rsp_node: int,
-    ref_node: int,
+    ends: _Ends,
+    axes: _Axes,
     x: NDArray[np.float64],
     data: NDArray[Any],
-    abscissa: str,
-    ordinate: str | None,
-    denominator: str | None,
     ids: Sequence[str],
+    *,
     binary: bool,
     number: int,
 ) -> dict[str, Any]:
     """A pyuff dictionary for one data set 58, SI units labelled."""
     even = _is_even(x)
+    ordinate, denominator = axes.ordinate, axes.denominator
     dset: dict[str, Any] = {
         "type": 58,
         "binary": int(binary),
         "func_type": func_type,
         "func_id": number,
         "ver_num": 0,
-        "load_case_id": load_case,
+        "load_case_id": ends.load_case,
         "rsp_ent_name": "NONE",
-        "rsp_node": rsp_node,
+        "rsp_node": ends.rsp_node,
         "rsp_dir": DIRECTION,
         "ref_ent_name": "NONE",
-        "ref_node": ref_node,
+        "ref_node": ends.ref_node,
         "ref_dir": DIRECTION,
         "abscissa_spacing": int(even),
-        "abscissa_spec_data_type": QUANTITY_CODE[abscissa],
-        "abscissa_axis_lab": abscissa.capitalize(),
-        "abscissa_axis_units_lab": SI_LABEL[abscissa],
+        "abscissa_spec_data_type": QUANTITY_CODE[axes.abscissa],
+        "abscissa_axis_lab": axes.abscissa.capitalize(),
+        "abscissa_axis_units_lab": SI_LABEL[axes.abscissa],
         "ordinate_spec_data_type": QUANTITY_CODE[ordinate] if ordinate else 0,
         "ordinate_axis_lab": (ordinate or "coherence").capitalize(),
         "ordinate_axis_units_lab": SI_LABEL[ordinate] if ordinate else "NONE",
@@ -1420,35 +1519,31 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
             date,
             f"hammer node {node} to reference node {frfs.reference_node}; {frfs.source}",
         ]
-        common = {"load_case": 0, "rsp_node": frfs.reference_node, "ref_node": node}
+        ends = _Ends(frfs.reference_node, node)
         sets.append(
             _record_set(
-                func_type=FREQUENCY_RESPONSE,
-                x=frequency,
-                data=np.asarray(frfs.values[i], dtype=complex),
-                abscissa="frequency",
-                ordinate=response,
-                denominator="force",
-                ids=ids,
+                FREQUENCY_RESPONSE,
+                ends,
+                _Axes("frequency", response, "force"),
+                frequency,
+                np.asarray(frfs.values[i], dtype=complex),
+                ids,
                 binary=binary,
                 number=len(sets),
-                **common,
             )
         )
         if frfs.coherence is not None:
             _finite(path, "the coherence", node, frfs.coherence[i])
             sets.append(
                 _record_set(
-                    func_type=COHERENCE,
-                    x=frequency,
-                    data=np.asarray(frfs.coherence[i], dtype=float),
-                    abscissa="frequency",
-                    ordinate=None,
-                    denominator=None,
-                    ids=[f"racketdyn {__version__} coherence", ids[1], date, ids[3]],
+                    COHERENCE,
+                    ends,
+                    _Axes("frequency", None),
+                    frequency,
+                    np.asarray(frfs.coherence[i], dtype=float),
+                    [f"racketdyn {__version__} coherence", ids[1], date, ids[3]],
                     binary=binary,
                     number=len(sets),
-                    **common,
                 )
             )
     return _write_sets(path, _numbered(sets))
@@ -1546,16 +1641,12 @@ def write_hammer_uff(
             ):
                 sets.append(
                     _record_set(
-                        func_type=TIME_RESPONSE,
-                        load_case=case,
-                        rsp_node=rsp_node,
-                        ref_node=hammer,
-                        x=time,
-                        data=np.asarray(data, dtype=float),
-                        abscissa="time",
-                        ordinate=channel,
-                        denominator=None,
-                        ids=[
+                        TIME_RESPONSE,
+                        _Ends(rsp_node, hammer, load_case=case),
+                        _Axes("time", channel),
+                        time,
+                        np.asarray(data, dtype=float),
+                        [
                             f"racketdyn {__version__} hammer test, {channel}",
                             records.source or "NONE",
                             date,

@@ -8,7 +8,8 @@ The chain, usable on any structure's FRFs (:class:`racketdyn.measurement.FrfSet`
 - :func:`identify` — band, poles, selection, residues, mass normalisation in one call,
   returning every intermediate result (:class:`Identification`);
 - :func:`stabilisation` and :func:`select_poles` — LSCF poles of every model order and the
-  automatic choice of the physical ones (:class:`Stabilisation`, :class:`SelectedPoles`);
+  automatic choice of the physical ones by :class:`SelectionRules` (:class:`Stabilisation`,
+  :class:`SelectedPoles`);
 - :func:`fit_modal_constants` and :func:`mass_normalised_shapes` — LSFD modal constants with
   residuals, and mode shapes scaled from the driving point (:class:`ModalFit`);
 - :class:`ModalModel`, :func:`mac`, :func:`nodes_along`, :func:`pair_modes`.
@@ -23,7 +24,13 @@ from __future__ import annotations
 from racketdyn.modal.identify import Identification, default_band, identify
 from racketdyn.modal.mac import mac
 from racketdyn.modal.model import ModalModel
-from racketdyn.modal.poles import SelectedPoles, Stabilisation, select_poles, stabilisation
+from racketdyn.modal.poles import (
+    SelectedPoles,
+    SelectionRules,
+    Stabilisation,
+    select_poles,
+    stabilisation,
+)
 from racketdyn.modal.residues import ModalFit, fit_modal_constants, mass_normalised_shapes
 from racketdyn.modal.shapes import ModePairing, nodes_along, pair_modes
 
@@ -33,6 +40,7 @@ __all__ = [
     "ModalModel",
     "ModePairing",
     "SelectedPoles",
+    "SelectionRules",
     "Stabilisation",
     "default_band",
     "fit_modal_constants",

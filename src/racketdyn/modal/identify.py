@@ -17,6 +17,7 @@ import logging
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -27,6 +28,7 @@ from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import (
     DroppedMode,
     SelectedPoles,
+    SelectionRules,
     Stabilisation,
     select_poles,
     stabilisation,
@@ -53,6 +55,7 @@ __all__ = [
     "LINE_TOLERANCE_HZ",
     "MAINS_HZ",
     "ONE_PEAK_LINES",
+    "SELECTION",
     "STRONG_NEGATIVE",
     "Identification",
     "default_band",
@@ -101,6 +104,9 @@ EDGE_WIDTHS = 1.0
 """Of a mode's own half-power width ``2ζf`` in its edge margin (``edge_widths``): a peak the
 band's edge cuts is not fitted whole.  The margin follows the data, not the band's width: 2 %
 of pff_lms's 40-20,000 Hz (399 Hz) took its 150 Hz mode (tests/test_realdata.py)."""
+SELECTION = SelectionRules(edge_lines=EDGE_LINES, edge_widths=EDGE_WIDTHS)
+"""The rules of the automatic pole selection here (:func:`racketdyn.modal.poles.select_poles`):
+the default ones with the edge margin of :data:`EDGE_LINES` and :data:`EDGE_WIDTHS`."""
 EDGE_CLEAR = 0.1
 """A mode dropped in the edge margin is reported as a clear mode (stage ``edge``, one warning
 naming the option that keeps it) when it is stable in more than three orders and its peak is at
@@ -397,7 +403,7 @@ def _mode_in(
     """The mode a narrower band gives within ``within`` Hz of ``near`` (frequency, ζ), if any."""
     try:
         stab = stabilisation(frfs, band, max_order=max_order)
-        found = select_poles(stab, edge_lines=EDGE_LINES, edge_widths=EDGE_WIDTHS)
+        found = select_poles(stab, rules=SELECTION)
     except InputError:
         return None
     close = np.flatnonzero(np.abs(found.frequency - near) <= within)
@@ -589,8 +595,7 @@ def _clear_peaks(
         stab,
         pin_hz=[*pin_hz, *pins],
         exclude_hz=exclude_hz,
-        edge_lines=EDGE_LINES,
-        edge_widths=EDGE_WIDTHS,
+        rules=SELECTION,
     )
     user = np.zeros(again.n_modes, dtype=bool)
     for f in pin_hz:  # the user's own pins stay pinned, the kept candidates do not
@@ -787,107 +792,18 @@ def identify(
     else:
         band, band_note = _checked_band(frfs, band_hz), "given"
     stab = stabilisation(frfs, band, max_order=max_order)
-    selected = select_poles(
-        stab,
-        pin_hz=pin_hz,
-        exclude_hz=exclude_hz,
-        edge_lines=EDGE_LINES,
-        edge_widths=EDGE_WIDTHS,
-    )  # raises if none
-    selected = _named_rows(_edge_modes(selected, frfs, band), _spacing(frfs))
-    selected, kept = _clear_peaks(selected, stab, frfs, band, pin_hz, exclude_hz)
-    selected = _missed_peaks(selected, frfs, band, max_order)
-    selected, refined = refine_narrow_poles(frfs, selected)
-    for line in refined:
-        log.info("refined %s", line)
-    for line in kept:
-        log.warning("kept %s", line)
-    for row in selected.dropped_modes:
-        if row.stage in ("edge", "unsettled"):
-            log.warning("%.1f Hz left out: %s", row.frequency_hz, row.reason)
-        elif row.stage == "line":
-            log.info("%.2f Hz left out: %s", row.frequency_hz, row.reason)
-    fit = fit_modal_constants(frfs, selected.pole, band)
-    late: list[DroppedMode] = []
-
-    gain = fit_gain(frfs, fit)
-    real = (gain >= FIT_GAIN_MIN) | selected.pinned
-    if not real.any():
-        real = gain == gain.max()  # the best of them rather than nothing: select_poles chose
-    for k in np.flatnonzero(~real):
-        late.append(
-            _dropped(
-                selected,
-                int(k),
-                # cut, not rounded, to two decimals: 1.49 never reads as the threshold's 1.5
-                f"no peak in the data: the fit near it is only "
-                f"{np.floor(gain[k] * 100) / 100:.2f} × better with it (< {FIT_GAIN_MIN:g})",
-                gain=gain[k],
-            )
-        )
-    if not real.all():
-        selected, gain = selected.select(real), gain[real]
-        fit = fit_modal_constants(frfs, selected.pole, band)
-
-    scaling, note = "unscaled", ""
-    driving = frfs.driving_point
-    if driving is None:
-        note = (
-            f"no driving point (no FRF at the reference node {frfs.reference_node}): shapes "
-            "unscaled; strike the reference node too for mass-normalised shapes"
-        )
-    else:
-        ratio = fit.constants[driving] / np.abs(fit.constants).max(axis=0)
-        clear = np.abs(ratio) >= WEAK_DRIVING_POINT
-        if clear.any() and np.all(ratio[clear] < 0):
-            frfs = replace(
-                frfs, values=-frfs.values, metadata={**frfs.metadata, "sign_reversed": True}
-            )
-            fit = fit_modal_constants(frfs, selected.pole, band)
-            ratio = -ratio
-            note = (
-                f"every mode's driving-point constant (node {frfs.reference_node}) was "
-                "negative: the response is measured against the hammer (a sensor in −z or "
-                "opposite sign conventions); the FRFs are taken with the opposite sign"
-            )
-        at_driving = fit.constants[driving]
-        kept_scale = float(at_driving[clear & (ratio > 0)].max(initial=0.0))
-        strong = clear & (ratio < 0) & (-at_driving >= STRONG_NEGATIVE * kept_scale)
-        if kept_scale > 0 and strong.any():
-            negative = ", ".join(f"{f:.1f}" for f in selected.frequency[strong])
-            note = (
-                f"node {frfs.reference_node} is not a true driving point: modes at {negative} "
-                "Hz have clearly negative constants there (φ_r² cannot be), so the hammer and "
-                "the sensor differ in direction or place; every mode kept, shapes unscaled"
-            )
-        elif not clear.any():
-            note = (
-                f"every mode is weak at the driving point (node {frfs.reference_node}): shapes "
-                "unscaled; move the accelerometer where the modes move"
-            )
-        else:
-            scaling = "mass"
-            on_node = ratio <= 0
-            for k in np.flatnonzero(on_node):
-                late.append(
-                    _dropped(
-                        selected,
-                        int(k),
-                        "on a node at the accelerometer (driving-point constant "
-                        f"{ratio[k]:.2g} of its largest): cannot be mass-normalised; move the "
-                        "accelerometer off its node",
-                        gain=gain[k],
-                        ratio=ratio[k],
-                    )
-                )
-            if on_node.any():
-                selected = selected.select(~on_node)
-                fit = fit_modal_constants(frfs, selected.pole, band)
+    selected, kept, refined = _selected_poles(stab, frfs, band, pin_hz, exclude_hz, max_order)
+    fitted, no_peak = _with_peaks_only(frfs, selected, band)
+    scaled = _scaled(fitted, band)
+    fitted, note = scaled.fitted, scaled.note
+    late = [*no_peak, *scaled.on_node]
     for row in late:
         log.warning("%.2f Hz left out: %s", row.frequency_hz, row.reason)
     if note:
-        log.warning("%s: %s", frfs.source, note)
-    shapes = mass_normalised_shapes(frfs, fit) if scaling == "mass" else unscaled_shapes(fit)
+        log.warning("%s: %s", fitted.frfs.source, note)
+    frfs, selected, fit = fitted.frfs, fitted.selected, fitted.fit
+    mass = scaled.scaling == "mass"
+    shapes = mass_normalised_shapes(frfs, fit) if mass else unscaled_shapes(fit)
     names = tuple(f"mode {k + 1} ({f:.1f} Hz)" for k, f in enumerate(selected.frequency))
     dropped = (*selected.dropped, *(f"{d.frequency_hz:.2f} Hz: {d.reason}" for d in late))
     model = ModalModel(
@@ -903,29 +819,200 @@ def identify(
             "band_hz": list(band),
             "band_note": band_note,
             "max_order": max_order,
-            "exponential_window_s": frfs.exponential_window_s,
-            "nodes": list(frfs.nodes),
-            "reference_node": frfs.reference_node,
-            "directions": frfs.metadata.get("directions") or {},
-            "fit_error_median": float(np.median(fit.error)),
-            "design_condition_number": fit.condition_number,
-            "orders_stable": selected.n_orders.tolist(),
-            "scaling_note": note,
-            "kept": [line for line in kept if _still(line, selected.frequency, _spacing(frfs))],
-            "refined": [
-                line for line in refined if _still(line, selected.frequency, _spacing(frfs))
-            ],
-            "dropped": [
-                f"{d.frequency_hz:.2f} Hz: {d.reason}"
-                for d in (*selected.dropped_modes, *late)
-                if d.stage == "constants" or d.orders_stable > 3
-            ],
+            **_fit_record(fitted, note),
+            **_left_out_record(fitted, kept, refined, late),
         },
-        scaling=scaling,
+        scaling=scaled.scaling,
     )
     log.info("identified %d modes in %g–%g Hz", model.n_modes, *band)
     selected = replace(selected, dropped=dropped, dropped_modes=(*selected.dropped_modes, *late))
     return Identification(model, frfs, stab, selected, fit, band, band_note, note)
+
+
+def _selected_poles(
+    stab: Stabilisation,
+    frfs: FrfSet,
+    band: tuple[float, float],
+    pin_hz: Sequence[float],
+    exclude_hz: Sequence[float],
+    max_order: int,
+) -> tuple[SelectedPoles, list[str], list[str]]:
+    """The poles selected, and the clear peaks kept and the narrow modes refined (logged).
+
+    The automatic selection (raises if it finds none), the edge's clear modes and electrical
+    lines named, clear peaks stable in too few orders kept, peaks the fit missed found, narrow
+    modes refined.
+    """
+    selected = select_poles(stab, pin_hz, exclude_hz, rules=SELECTION)  # raises if none
+    selected = _named_rows(_edge_modes(selected, frfs, band), _spacing(frfs))
+    selected, kept = _clear_peaks(selected, stab, frfs, band, pin_hz, exclude_hz)
+    selected = _missed_peaks(selected, frfs, band, max_order)
+    selected, refined = refine_narrow_poles(frfs, selected)
+    for line in refined:
+        log.info("refined %s", line)
+    for line in kept:
+        log.warning("kept %s", line)
+    for row in selected.dropped_modes:
+        if row.stage in ("edge", "unsettled"):
+            log.warning("%.1f Hz left out: %s", row.frequency_hz, row.reason)
+        elif row.stage == "line":
+            log.info("%.2f Hz left out: %s", row.frequency_hz, row.reason)
+    return selected, kept, refined
+
+
+@dataclass(frozen=True, eq=False)
+class _Fitted:
+    """The FRFs, the poles kept and their modal constants, with each mode's fit gain."""
+
+    frfs: FrfSet
+    selected: SelectedPoles
+    fit: ModalFit
+    gain: NDArray[np.float64]
+
+    def keeping(self, modes: NDArray[np.bool_], band: tuple[float, float]) -> _Fitted:
+        """Only some modes, their constants fitted again."""
+        selected = self.selected.select(modes)
+        fit = fit_modal_constants(self.frfs, selected.pole, band)
+        return _Fitted(self.frfs, selected, fit, self.gain[modes])
+
+
+def _with_peaks_only(
+    frfs: FrfSet, selected: SelectedPoles, band: tuple[float, float]
+) -> tuple[_Fitted, list[DroppedMode]]:
+    """The modal constants of the poles with a peak in the data (:data:`FIT_GAIN_MIN`, or
+    pinned), and the rows of those without."""
+    fit = fit_modal_constants(frfs, selected.pole, band)
+    gain = fit_gain(frfs, fit)
+    real = (gain >= FIT_GAIN_MIN) | selected.pinned
+    if not real.any():
+        real = gain == gain.max()  # the best of them rather than nothing: select_poles chose
+    no_peak = [
+        _dropped(
+            selected,
+            int(k),
+            # cut, not rounded, to two decimals: 1.49 never reads as the threshold's 1.5
+            f"no peak in the data: the fit near it is only "
+            f"{np.floor(gain[k] * 100) / 100:.2f} × better with it (< {FIT_GAIN_MIN:g})",
+            gain=gain[k],
+        )
+        for k in np.flatnonzero(~real)
+    ]
+    fitted = _Fitted(frfs, selected, fit, gain)
+    return (fitted if real.all() else fitted.keeping(real, band)), no_peak
+
+
+@dataclass(frozen=True, eq=False)
+class _Scaled:
+    """How the shapes are scaled (``mass`` or ``unscaled``) and why, with the modes left out
+    on a node at the accelerometer."""
+
+    fitted: _Fitted
+    scaling: str
+    note: str
+    on_node: tuple[DroppedMode, ...] = ()
+
+
+def _scaled(fitted: _Fitted, band: tuple[float, float]) -> _Scaled:
+    """Mass-normalisable from the driving point, or unscaled and why (:func:`identify`)."""
+    frfs = fitted.frfs
+    driving = frfs.driving_point
+    if driving is None:
+        return _Scaled(
+            fitted,
+            "unscaled",
+            f"no driving point (no FRF at the reference node {frfs.reference_node}): shapes "
+            "unscaled; strike the reference node too for mass-normalised shapes",
+        )
+    ratio = fitted.fit.constants[driving] / np.abs(fitted.fit.constants).max(axis=0)
+    clear = np.abs(ratio) >= WEAK_DRIVING_POINT
+    note = ""
+    if clear.any() and np.all(ratio[clear] < 0):
+        fitted, ratio = _sign_reversed(fitted, band), -ratio
+        note = (
+            f"every mode's driving-point constant (node {frfs.reference_node}) was "
+            "negative: the response is measured against the hammer (a sensor in −z or "
+            "opposite sign conventions); the FRFs are taken with the opposite sign"
+        )
+    at_driving = fitted.fit.constants[driving]
+    kept_scale = float(at_driving[clear & (ratio > 0)].max(initial=0.0))
+    strong = clear & (ratio < 0) & (-at_driving >= STRONG_NEGATIVE * kept_scale)
+    if kept_scale > 0 and strong.any():
+        negative = ", ".join(f"{f:.1f}" for f in fitted.selected.frequency[strong])
+        note = (
+            f"node {frfs.reference_node} is not a true driving point: modes at {negative} "
+            "Hz have clearly negative constants there (φ_r² cannot be), so the hammer and "
+            "the sensor differ in direction or place; every mode kept, shapes unscaled"
+        )
+        return _Scaled(fitted, "unscaled", note)
+    if not clear.any():
+        note = (
+            f"every mode is weak at the driving point (node {frfs.reference_node}): shapes "
+            "unscaled; move the accelerometer where the modes move"
+        )
+        return _Scaled(fitted, "unscaled", note)
+    return _mass_normalisable(fitted, ratio, note, band)
+
+
+def _sign_reversed(fitted: _Fitted, band: tuple[float, float]) -> _Fitted:
+    """The FRFs taken with the opposite sign (measured against the hammer), fitted again."""
+    frfs = fitted.frfs
+    frfs = replace(frfs, values=-frfs.values, metadata={**frfs.metadata, "sign_reversed": True})
+    fit = fit_modal_constants(frfs, fitted.selected.pole, band)
+    return _Fitted(frfs, fitted.selected, fit, fitted.gain)
+
+
+def _mass_normalisable(
+    fitted: _Fitted, ratio: NDArray[np.float64], note: str, band: tuple[float, float]
+) -> _Scaled:
+    """Mass-normalised shapes, the modes on a node at the accelerometer (a driving-point
+    constant ``ratio`` of their largest ≤ 0) left out."""
+    on_node = ratio <= 0
+    rows = tuple(
+        _dropped(
+            fitted.selected,
+            int(k),
+            "on a node at the accelerometer (driving-point constant "
+            f"{ratio[k]:.2g} of its largest): cannot be mass-normalised; move the "
+            "accelerometer off its node",
+            gain=fitted.gain[k],
+            ratio=ratio[k],
+        )
+        for k in np.flatnonzero(on_node)
+    )
+    if on_node.any():
+        fitted = fitted.keeping(~on_node, band)
+    return _Scaled(fitted, "mass", note, rows)
+
+
+def _fit_record(fitted: _Fitted, note: str) -> dict[str, Any]:
+    """The model's metadata on the data and the fit."""
+    frfs = fitted.frfs
+    return {
+        "exponential_window_s": frfs.exponential_window_s,
+        "nodes": list(frfs.nodes),
+        "reference_node": frfs.reference_node,
+        "directions": frfs.metadata.get("directions") or {},
+        "fit_error_median": float(np.median(fitted.fit.error)),
+        "design_condition_number": fitted.fit.condition_number,
+        "orders_stable": fitted.selected.n_orders.tolist(),
+        "scaling_note": note,
+    }
+
+
+def _left_out_record(
+    fitted: _Fitted, kept: list[str], refined: list[str], late: list[DroppedMode]
+) -> dict[str, Any]:
+    """The model's metadata on what was kept, refined and dropped (substantial drops only)."""
+    frequency, spacing = fitted.selected.frequency, _spacing(fitted.frfs)
+    return {
+        "kept": [line for line in kept if _still(line, frequency, spacing)],
+        "refined": [line for line in refined if _still(line, frequency, spacing)],
+        "dropped": [
+            f"{d.frequency_hz:.2f} Hz: {d.reason}"
+            for d in (*fitted.selected.dropped_modes, *late)
+            if d.stage == "constants" or d.orders_stable > 3
+        ],
+    }
 
 
 def fit_gain(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:

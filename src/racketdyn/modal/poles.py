@@ -97,9 +97,11 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
 __all__ = [
+    "DEFAULT_SELECTION",
     "DroppedMode",
     "PoleStability",
     "SelectedPoles",
+    "SelectionRules",
     "Stabilisation",
     "mac",
     "select_poles",
@@ -469,93 +471,37 @@ def stabilisation(
     data = _combine(frfs)
     max_order = require_whole("`max_order`", max_order)
     order_step = require_whole("order_step", order_step)
-    for name, value in (
-        ("frequency_tolerance", frequency_tolerance),
-        ("damping_tolerance", damping_tolerance),
-        ("min_mac", min_mac),
-    ):
-        if not (isinstance(value, int | float) and 0.0 < value < 1.0):
-            raise InputError(f"{name} must lie strictly between 0 and 1 (got {value!r})")
-    if weighting not in ("uniform", "rms"):
-        raise InputError(f"weighting must be 'uniform' or 'rms' (got {weighting!r})")
-    tau = data.exponential_window_s
-    if tau is not None and not (math.isfinite(tau) and tau > 0):
-        raise InputError(f"{data.source}: exponential window τ must be positive (got {tau!r})")
-
+    tolerances = (frequency_tolerance, damping_tolerance, min_mac)
+    _check_stabilisation_options(tolerances, weighting, data)
     band = _band(data, band_hz, max_order)
-    frequency = band.frequency
-    n_lines = frequency.size
-    values = band.values
-    scale = np.ones(band.n_points)
-    if weighting == "rms":
-        rms = np.sqrt(np.mean(np.abs(values) ** 2, axis=1))
-        scale = np.where(rms > 0, 1.0 / np.where(rms > 0, rms, 1.0), 0.0)
-        values = values * scale[:, None]
-
-    span = frequency[-1] - frequency[0]
-    time_step = 1.0 / (span * n_lines / (n_lines - 1))
-    spacing = np.diff(frequency)
-    even = bool(np.allclose(spacing, span / (n_lines - 1), rtol=1e-6, atol=0.0))
-    theta = 2 * np.pi * (frequency - frequency[0]) * time_step
-    omega_0 = 2 * np.pi * frequency[0]
-
+    values, scale = _weighted(band.values, weighting)
+    domain = _ZDomain.of(band.frequency, data.exponential_window_s)
     orders = np.arange(max_order, 0, -order_step)[::-1]
     logger.debug(
         "LSCF: %d FRFs × %d lines, %.1f–%.1f Hz, orders %d–%d",
         band.n_points,
-        n_lines,
-        frequency[0],
-        frequency[-1],
+        domain.n_lines,
+        domain.low_hz,
+        domain.high_hz,
         orders[0],
         orders[-1],
     )
-
-    shift = 0.0 if tau is None else 1.0 / tau
-
-    def to_pole(z: NDArray[np.complex128]) -> NDArray[np.complex128]:
-        angle = np.mod(np.angle(z), 2 * np.pi)
-        measured = (np.log(np.maximum(np.abs(z), 1e-300)) + 1j * angle) / time_step
-        measured += 1j * omega_0
-        return np.asarray(measured + shift)
-
-    def accept(z: NDArray[np.complex128]) -> NDArray[np.bool_]:
-        f_n = np.abs(to_pole(z)) / (2 * np.pi)
-        # |z| > e^−2π: half-power bandwidth under twice the band (wider cannot be fitted)
-        inside = (np.abs(z) < 1.0) & (np.abs(z) > np.exp(-2 * np.pi))
-        return np.asarray(inside & (f_n >= frequency[0]) & (f_n <= frequency[-1]))
-
-    order_list, pole_list, residue_list = [], [], []
     # One BLAS thread: a few hundred small products and solves, which OpenBLAS splits over
     # its threads for nothing but their hand-offs (the demo's 69 FRFs: 0.06 s on one thread,
     # 1–3 s on two threads of a busy two-core machine; the same numbers).
     with one_blas_thread():
-        equations = _normal_equations(values, theta, int(orders[-1]), even=even)
-        fits = _poles_by_order(equations, orders, accept, compensate=noise_compensation)
-        for order, (z, residues_z) in zip(orders, fits, strict=True):
-            pole = to_pole(z)
-            index = np.argsort(np.abs(pole))
-            order_list.append(np.full(z.size, order))
-            pole_list.append(pole[index])
-            residue_list.append(residues_z[:, index] / (z[index] * time_step))
-    order_flat = np.concatenate(order_list).astype(int)
-    pole_flat = np.concatenate(pole_list).astype(complex)
-    residues = np.concatenate(residue_list, axis=1)
+        equations = _normal_equations(values, domain.theta, int(orders[-1]), even=domain.even)
+        order_flat, pole_flat, residues = _poles_of_orders(
+            equations, orders, domain, compensate=noise_compensation
+        )
+    unscale = np.where(scale > 0, scale, 1.0)
     if weighting == "rms":
-        residues = residues / np.where(scale > 0, scale, 1.0)[:, None]
+        residues = residues / unscale[:, None]
     frequency_flat = np.abs(pole_flat) / (2 * np.pi)
     damping_flat = -pole_flat.real / np.abs(pole_flat)
-    stability = _classify(
-        order_flat,
-        orders,
-        frequency_flat,
-        damping_flat,
-        residues,
-        frequency_tolerance,
-        damping_tolerance,
-        min_mac,
-    )
+    stability = _classify(order_flat, orders, frequency_flat, damping_flat, residues, *tolerances)
     return Stabilisation(
-        band_hz=(float(frequency[0]), float(frequency[-1])),
+        band_hz=(domain.low_hz, domain.high_hz),
         orders=orders,
         order=order_flat,
         pole=pole_flat,
@@ -566,20 +512,121 @@ def stabilisation(
         frequency_tolerance=float(frequency_tolerance),
         damping_tolerance=float(damping_tolerance),
         min_mac=float(min_mac),
-        noise_rms=np.sqrt(equations.noise_variance) / np.where(scale > 0, scale, 1.0),
-        line_spacing_hz=float(span / (n_lines - 1)),
-        time_step_s=float(time_step),
+        noise_rms=np.sqrt(equations.noise_variance) / unscale,
+        line_spacing_hz=domain.line_spacing_hz,
+        time_step_s=domain.time_step,
         frf_type=data.frf_type,
-        exponential_window_s=tau,
+        exponential_window_s=data.exponential_window_s,
         nodes=data.nodes,
         source=data.source,
         metadata={
-            "lines": int(n_lines),
+            "lines": domain.n_lines,
             "weighting": weighting,
             "noise_compensation": bool(noise_compensation),
-            "evenly_spaced": even,
+            "evenly_spaced": domain.even,
         },
     )
+
+
+def _check_stabilisation_options(
+    tolerances: tuple[float, float, float], weighting: str, data: FrfSet
+) -> None:
+    """Tolerances strictly between 0 and 1, a known weighting, a positive window τ."""
+    names = ("frequency_tolerance", "damping_tolerance", "min_mac")
+    for name, value in zip(names, tolerances, strict=True):
+        if not (isinstance(value, int | float) and 0.0 < value < 1.0):
+            raise InputError(f"{name} must lie strictly between 0 and 1 (got {value!r})")
+    if weighting not in ("uniform", "rms"):
+        raise InputError(f"weighting must be 'uniform' or 'rms' (got {weighting!r})")
+    tau = data.exponential_window_s
+    if tau is not None and not (math.isfinite(tau) and tau > 0):
+        raise InputError(f"{data.source}: exponential window τ must be positive (got {tau!r})")
+
+
+def _weighted(
+    values: NDArray[np.complex128], weighting: str
+) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
+    """The FRFs as fitted and the scale of each (``rms``: unit rms over the band; else 1)."""
+    scale = np.ones(values.shape[0])
+    if weighting == "rms":
+        rms = np.sqrt(np.mean(np.abs(values) ** 2, axis=1))
+        scale = np.where(rms > 0, 1.0 / np.where(rms > 0, rms, 1.0), 0.0)
+        values = values * scale[:, None]
+    return values, scale
+
+
+@dataclass(frozen=True)
+class _ZDomain:
+    """The band zoomed onto the unit circle (module docstring, "The estimator")."""
+
+    low_hz: float
+    high_hz: float
+    omega_0: float
+    """2π f_0, rad/s."""
+    n_lines: int
+    time_step: float
+    """Δt = 1 / (F δf), s."""
+    line_spacing_hz: float
+    even: bool
+    """The lines are evenly spaced (then ``θ_f = 2πf/F`` exactly)."""
+    theta: NDArray[np.float64]
+    """θ_f = 2π (f − f_0) Δt of each line."""
+    shift: float
+    """1/τ of the exponential window, added back to every pole (0 without a window)."""
+
+    @classmethod
+    def of(cls, frequency: NDArray[np.float64], tau: float | None) -> _ZDomain:
+        """The mapping of the band's lines ``frequency`` (Hz), for a window τ (s) or none."""
+        n_lines = frequency.size
+        span = frequency[-1] - frequency[0]
+        time_step = 1.0 / (span * n_lines / (n_lines - 1))
+        spacing = np.diff(frequency)
+        return cls(
+            low_hz=float(frequency[0]),
+            high_hz=float(frequency[-1]),
+            omega_0=float(2 * np.pi * frequency[0]),
+            n_lines=int(n_lines),
+            time_step=float(time_step),
+            line_spacing_hz=float(span / (n_lines - 1)),
+            even=bool(np.allclose(spacing, span / (n_lines - 1), rtol=1e-6, atol=0.0)),
+            theta=2 * np.pi * (frequency - frequency[0]) * time_step,
+            shift=0.0 if tau is None else 1.0 / tau,
+        )
+
+    def to_pole(self, z: NDArray[np.complex128]) -> NDArray[np.complex128]:
+        """The poles λ = ln(z)/Δt + iω_0 (rad/s) of roots z, the window's shift removed."""
+        angle = np.mod(np.angle(z), 2 * np.pi)
+        measured = (np.log(np.maximum(np.abs(z), 1e-300)) + 1j * angle) / self.time_step
+        measured += 1j * self.omega_0
+        return np.asarray(measured + self.shift)
+
+    def accept(self, z: NDArray[np.complex128]) -> NDArray[np.bool_]:
+        """Roots kept: stable, not too wide, with their natural frequency in the band."""
+        f_n = np.abs(self.to_pole(z)) / (2 * np.pi)
+        # |z| > e^−2π: half-power bandwidth under twice the band (wider cannot be fitted)
+        inside = (np.abs(z) < 1.0) & (np.abs(z) > np.exp(-2 * np.pi))
+        return np.asarray(inside & (f_n >= self.low_hz) & (f_n <= self.high_hz))
+
+
+def _poles_of_orders(
+    equations: _NormalEquations,
+    orders: NDArray[np.int_],
+    domain: _ZDomain,
+    *,
+    compensate: bool,
+) -> tuple[NDArray[np.int_], NDArray[np.complex128], NDArray[np.complex128]]:
+    """The poles of every order, flat (order, then ascending |λ|), with their residues."""
+    order_list, pole_list, residue_list = [], [], []
+    fits = _poles_by_order(equations, orders, domain.accept, compensate=compensate)
+    for order, (z, residues_z) in zip(orders, fits, strict=True):
+        pole = domain.to_pole(z)
+        index = np.argsort(np.abs(pole))
+        order_list.append(np.full(z.size, order))
+        pole_list.append(pole[index])
+        residue_list.append(residues_z[:, index] / (z[index] * domain.time_step))
+    order_flat = np.concatenate(order_list).astype(int)
+    pole_flat = np.concatenate(pole_list).astype(complex)
+    return order_flat, pole_flat, np.concatenate(residue_list, axis=1)
 
 
 @dataclass(frozen=True)
@@ -845,25 +892,99 @@ class _Cluster:
     peak_to_noise: float
 
 
+@dataclass(frozen=True)
+class SelectionRules:
+    """The rules by which :func:`select_poles` tells the physical modes (its steps 1–3).
+
+    Every rule is checked when the rules are made (InputError naming it).
+
+    Attributes
+    ----------
+    min_fraction : float
+        Smallest share of the computed orders a mode must be stable in (0–1).
+    min_peak_to_noise : float
+        Smallest ratio of a mode's peak (largest over the FRFs) to that FRF's noise rms.
+    dynamic_range_db : float
+        Largest distance of a mode's peak below the strongest mode's, dB.
+    max_damping_ratio : float
+        Largest damping ratio of a physical mode.
+    edge_margin : float
+        Part of the band's width added to each mode's edge margin (0–0.25; 0 by default: the
+        margin follows the data, not the band's width).
+    edge_lines : float
+        Line spacings in each mode's edge margin (0–1000).
+    edge_widths : float
+        Of the mode's own half-power width ``2ζf`` in its edge margin (0–100).
+    bandwidth_tolerance : float
+        Frequency tolerance of the clustering, in half-power bandwidths.
+    damping_tolerance : float
+        Relative damping tolerance of the clustering.
+    cluster_mac : float
+        Smallest MAC between two poles of one cluster, and between the mean shapes of two
+        modes merged as one peak.
+    pin_tolerance : float
+        Relative distance within which a pin or an exclusion finds its mode.
+    stability : PoleStability
+        Least stability class of the poles clustered.
+    """
+
+    min_fraction: float = 0.2
+    min_peak_to_noise: float = 2.0
+    dynamic_range_db: float = 60.0
+    max_damping_ratio: float = 0.2
+    edge_margin: float = 0.0
+    edge_lines: float = 3.0
+    edge_widths: float = 1.0
+    bandwidth_tolerance: float = 0.5
+    damping_tolerance: float = 0.3
+    cluster_mac: float = 0.9
+    pin_tolerance: float = 0.05
+    stability: PoleStability = PoleStability.DAMPING
+
+    _RANGES: ClassVar[tuple[tuple[str, float, float], ...]] = (
+        ("min_fraction", 0.0, 1.0),
+        ("min_peak_to_noise", 0.0, 1e6),
+        ("dynamic_range_db", 0.0, 400.0),
+        ("max_damping_ratio", 0.0, 1.0),
+        ("edge_margin", 0.0, 0.25),
+        ("edge_lines", 0.0, 1000.0),
+        ("edge_widths", 0.0, 100.0),
+        ("bandwidth_tolerance", 0.0, 10.0),
+        ("damping_tolerance", 0.0, 10.0),
+        ("cluster_mac", 0.0, 1.0),
+        ("pin_tolerance", 0.0, 1.0),
+    )
+
+    def __post_init__(self) -> None:
+        for name, low, high in self._RANGES:
+            value = getattr(self, name)
+            if not (
+                isinstance(value, int | float) and math.isfinite(value) and low <= value <= high
+            ):
+                raise InputError(f"{name} must lie between {low:g} and {high:g} (got {value!r})")
+        if self.stability not in tuple(PoleStability):
+            raise InputError(f"stability must be a PoleStability (got {self.stability!r})")
+
+    @property
+    def tolerances(self) -> tuple[float, float, float]:
+        """The clustering's: bandwidth, damping and shape (MAC) tolerances."""
+        return (self.bandwidth_tolerance, self.damping_tolerance, self.cluster_mac)
+
+
+DEFAULT_SELECTION = SelectionRules()
+"""The rules :func:`select_poles` follows unless given others."""
+
+
 def select_poles(
     stab: Stabilisation,
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
     *,
-    min_fraction: float = 0.2,
-    min_peak_to_noise: float = 2.0,
-    dynamic_range_db: float = 60.0,
-    max_damping_ratio: float = 0.2,
-    edge_margin: float = 0.0,
-    edge_lines: float = 3.0,
-    edge_widths: float = 1.0,
-    bandwidth_tolerance: float = 0.5,
-    damping_tolerance: float = 0.3,
-    cluster_mac: float = 0.9,
-    pin_tolerance: float = 0.05,
-    stability: PoleStability = PoleStability.DAMPING,
+    rules: SelectionRules = DEFAULT_SELECTION,
 ) -> SelectedPoles:
     """Pick the physical modes from a stabilisation diagram, automatically.
+
+    The names below are the fields of ``rules`` (:class:`SelectionRules`).
 
     1. The poles of class ``stability`` or better (default: stable in frequency and damping
        from one order to the next; the shape is checked here, over all the orders) are
@@ -908,32 +1029,8 @@ def select_poles(
         Approximate frequencies of modes to keep whatever the automatic rules say, Hz.
     exclude_hz : sequence of float
         Approximate frequencies of modes to leave out, Hz.
-    min_fraction : float
-        Smallest share of the computed orders a mode must be stable in (0–1).
-    min_peak_to_noise : float
-        Smallest ratio of a mode's peak (largest over the FRFs) to that FRF's noise rms.
-    dynamic_range_db : float
-        Largest distance of a mode's peak below the strongest mode's, dB.
-    max_damping_ratio : float
-        Largest damping ratio of a physical mode.
-    edge_margin : float
-        Part of the band's width added to each mode's edge margin (0–0.25; 0 by default: the
-        margin follows the data, not the band's width).
-    edge_lines : float
-        Line spacings in each mode's edge margin (0–1000).
-    edge_widths : float
-        Of the mode's own half-power width ``2ζf`` in its edge margin (0–100).
-    bandwidth_tolerance : float
-        Frequency tolerance of the clustering, in half-power bandwidths.
-    damping_tolerance : float
-        Relative damping tolerance of the clustering.
-    cluster_mac : float
-        Smallest MAC between two poles of one cluster, and between the mean shapes of two
-        modes merged as one peak.
-    pin_tolerance : float
-        Relative distance within which a pin or an exclusion finds its mode.
-    stability : PoleStability
-        Least stability class of the poles clustered.
+    rules : SelectionRules
+        The rules of steps 1–3 (default :data:`DEFAULT_SELECTION`).
 
     Returns
     -------
@@ -945,82 +1042,108 @@ def select_poles(
     InputError
         No mode found — a band with no mode above the noise, or pure noise: the message says
         what was dropped and why — a pin with no stable pole near it, a pin and an exclusion
-        on the same mode, or parameters out of range.
+        on the same mode, or pins or exclusions outside the band.
     """
     if not isinstance(stab, Stabilisation):
         raise InputError("select_poles needs the Stabilisation that stabilisation() returns")
-    checks = (
-        ("min_fraction", min_fraction, 0.0, 1.0),
-        ("min_peak_to_noise", min_peak_to_noise, 0.0, 1e6),
-        ("dynamic_range_db", dynamic_range_db, 0.0, 400.0),
-        ("max_damping_ratio", max_damping_ratio, 0.0, 1.0),
-        ("edge_margin", edge_margin, 0.0, 0.25),
-        ("edge_lines", edge_lines, 0.0, 1000.0),
-        ("edge_widths", edge_widths, 0.0, 100.0),
-        ("bandwidth_tolerance", bandwidth_tolerance, 0.0, 10.0),
-        ("damping_tolerance", damping_tolerance, 0.0, 10.0),
-        ("cluster_mac", cluster_mac, 0.0, 1.0),
-        ("pin_tolerance", pin_tolerance, 0.0, 1.0),
-    )
-    for name, value, low, high in checks:
-        if not (isinstance(value, int | float) and math.isfinite(value) and low <= value <= high):
-            raise InputError(f"{name} must lie between {low:g} and {high:g} (got {value!r})")
-    if stability not in tuple(PoleStability):
-        raise InputError(f"stability must be a PoleStability (got {stability!r})")
-    low_hz, high_hz = stab.band_hz
     pins = _frequencies("`pin_hz`", pin_hz, stab.band_hz)
     excludes = _frequencies("`exclude_hz`", exclude_hz, stab.band_hz)
-    n_orders_total = int(stab.orders.size)
+    # step 1: clusters of stable poles
+    candidates = np.flatnonzero(stab.stability >= int(rules.stability))
+    clusters = _cluster(stab, candidates, *rules.tolerances)
+    # step 2: the rules, the dynamic range, one peak
+    reasons = _reasons(stab, clusters, rules)
+    merged = _merge_one_peak(stab, clusters, reasons, rules.cluster_mac)
+    # step 3: the user's exclusions and pins
+    accepted = [not r for r in reasons]
+    _exclude(clusters, excludes, accepted, reasons, rules.pin_tolerance)
+    pinned = _pin(clusters, pins, accepted, reasons, rules.pin_tolerance)
+    dropped, dropped_modes = _dropped(clusters, reasons, accepted, merged)
+    kept = sorted(
+        (k for k in range(len(clusters)) if accepted[k]), key=lambda k: clusters[k].frequency
+    )
+    if not kept:
+        raise _no_mode(stab, clusters, dropped)
+    logger.info(
+        "selected %d modes (%s Hz); %d clusters of stable poles dropped",
+        len(kept),
+        ", ".join(f"{clusters[k].frequency:.1f}" for k in kept),
+        len(dropped),
+    )
+    chosen = [clusters[k] for k in kept]
+    pinned_kept = np.array([pinned[k] for k in kept], dtype=bool)
+    return _selected(stab, chosen, pinned_kept, (tuple(dropped), tuple(dropped_modes)))
 
-    tolerances = (bandwidth_tolerance, damping_tolerance, cluster_mac)
-    candidates = np.flatnonzero(stab.stability >= int(stability))
-    clusters = _cluster(stab, candidates, *tolerances)
-    need = max(1, math.ceil(min_fraction * n_orders_total))
+
+def _reasons(stab: Stabilisation, clusters: list[_Cluster], rules: SelectionRules) -> list[str]:
+    """Why each cluster is not a mode by the rules of step 2 (empty: it is one)."""
+    low_hz, high_hz = stab.band_hz
+    n_orders_total = int(stab.orders.size)
+    need = max(1, math.ceil(rules.min_fraction * n_orders_total))
     reasons: list[str] = []
     for c in clusters:
         margin = (
-            edge_margin * (high_hz - low_hz)
-            + edge_lines * stab.line_spacing_hz
-            + edge_widths * 2 * max(c.damping_ratio, 0.0) * c.frequency
+            rules.edge_margin * (high_hz - low_hz)
+            + rules.edge_lines * stab.line_spacing_hz
+            + rules.edge_widths * 2 * max(c.damping_ratio, 0.0) * c.frequency
         )
-        if not 0.0 < c.damping_ratio < max_damping_ratio:
+        if not 0.0 < c.damping_ratio < rules.max_damping_ratio:
             reasons.append(
-                f"damping ratio {c.damping_ratio:.3g} outside (0, {max_damping_ratio:g})"
+                f"damping ratio {c.damping_ratio:.3g} outside (0, {rules.max_damping_ratio:g})"
             )
         elif not low_hz + margin <= c.frequency <= high_hz - margin:
             reasons.append(f"within {margin:.3g} Hz of the band's edge")
         elif c.n_orders < need:
             reasons.append(f"stable in {c.n_orders} of {n_orders_total} orders (< {need})")
-        elif c.peak_to_noise < min_peak_to_noise:
-            reasons.append(f"peak {c.peak_to_noise:.2g} × the noise (< {min_peak_to_noise:g})")
+        elif c.peak_to_noise < rules.min_peak_to_noise:
+            reasons.append(
+                f"peak {c.peak_to_noise:.2g} × the noise (< {rules.min_peak_to_noise:g})"
+            )
         else:
             reasons.append("")
     strongest = max((c.peak for c, r in zip(clusters, reasons, strict=True) if not r), default=0.0)
-    floor = strongest * 10 ** (-dynamic_range_db / 20)
+    floor = strongest * 10 ** (-rules.dynamic_range_db / 20)
     for k, c in enumerate(clusters):
         if not reasons[k] and c.peak < floor:
             below = 20 * math.log10(strongest / max(c.peak, 1e-300))
             reasons[k] = f"peak {below:.0f} dB below the strongest mode's"
-    merged = _merge_one_peak(stab, clusters, reasons, cluster_mac)
-    accepted = [not r for r in reasons]
-    pinned = [False] * len(clusters)
-    centres = np.array([c.frequency for c in clusters])
+    return reasons
 
+
+def _exclude(
+    clusters: list[_Cluster],
+    excludes: NDArray[np.float64],
+    accepted: list[bool],
+    reasons: list[str],
+    tolerance: float,
+) -> None:
+    """Drop the accepted mode nearest each exclusion (within ``tolerance``, relative)."""
+    centres = np.array([c.frequency for c in clusters])
     for f in excludes:
-        near = [
-            k for k in range(len(clusters)) if accepted[k] and _near(centres[k], f, pin_tolerance)
-        ]
+        near = [k for k in range(len(centres)) if accepted[k] and _near(centres[k], f, tolerance)]
         if not near:
-            logger.warning("exclude %g Hz: no selected mode within %g %%", f, 100 * pin_tolerance)
+            logger.warning("exclude %g Hz: no selected mode within %g %%", f, 100 * tolerance)
             continue
         k = min(near, key=lambda j: abs(centres[j] - f))
         accepted[k] = False
         reasons[k] = f"excluded by the user ({f:g} Hz)"
+
+
+def _pin(
+    clusters: list[_Cluster],
+    pins: NDArray[np.float64],
+    accepted: list[bool],
+    reasons: list[str],
+    tolerance: float,
+) -> list[bool]:
+    """Force in the cluster nearest each pin (within ``tolerance``); which ones are pinned."""
+    centres = np.array([c.frequency for c in clusters])
+    pinned = [False] * len(clusters)
     for f in pins:
         near = [
             k
             for k in range(len(clusters))
-            if _near(centres[k], f, pin_tolerance) and 0.0 < clusters[k].damping_ratio < 1.0
+            if _near(centres[k], f, tolerance) and 0.0 < clusters[k].damping_ratio < 1.0
         ]
         if not near:
             nearest = (
@@ -1030,7 +1153,7 @@ def select_poles(
                 else ""
             )
             raise InputError(
-                f"pinned {f:g} Hz: no stable pole within {100 * pin_tolerance:g} % of it"
+                f"pinned {f:g} Hz: no stable pole within {100 * tolerance:g} % of it"
                 f"{nearest}; raise max_order, widen the band or lower the stability class"
             )
         k = min(near, key=lambda j: abs(centres[j] - f))
@@ -1044,7 +1167,13 @@ def select_poles(
             )
         pinned[k] = True
         accepted[k] = True
+    return pinned
 
+
+def _dropped(
+    clusters: list[_Cluster], reasons: list[str], accepted: list[bool], merged: set[int]
+) -> tuple[list[str], list[DroppedMode]]:
+    """What was left out, as lines and as rows (logged; clusters of ≤ 3 poles at DEBUG)."""
     dropped = []
     dropped_modes = []
     for k, (c, reason, keep) in enumerate(zip(clusters, reasons, accepted, strict=True)):
@@ -1064,43 +1193,50 @@ def select_poles(
         )
         # clusters of one to three poles are the noise's: logged at DEBUG only
         (logger.info if c.n_orders > 3 else logger.debug)("dropped %s", line)
-    kept = sorted(
-        (k for k in range(len(clusters)) if accepted[k]), key=lambda k: clusters[k].frequency
+    return dropped, dropped_modes
+
+
+def _no_mode(stab: Stabilisation, clusters: list[_Cluster], dropped: list[str]) -> InputError:
+    """The error when no mode is left: the first substantial clusters dropped, and why.
+
+    ``dropped`` lines up with ``clusters`` here: every cluster was dropped.
+    """
+    low_hz, high_hz = stab.band_hz
+    substantial = [d for d, c in zip(dropped, clusters, strict=True) if c.n_orders > 3]
+    detail = "; ".join(substantial[:4]) if substantial else "no pole is stable over orders"
+    return InputError(
+        f"no mode found between {low_hz:.1f} and {high_hz:.1f} Hz ({detail}). The band may "
+        "hold no mode above the noise; widen the band, raise max_order or pin a mode"
     )
-    if not kept:
-        substantial = [
-            d for d, c, a in zip(dropped, clusters, accepted, strict=True) if c.n_orders > 3
-        ]
-        detail = "; ".join(substantial[:4]) if substantial else "no pole is stable over orders"
-        raise InputError(
-            f"no mode found between {low_hz:.1f} and {high_hz:.1f} Hz ({detail}). The band may "
-            "hold no mode above the noise; widen the band, raise max_order or pin a mode"
-        )
-    logger.info(
-        "selected %d modes (%s Hz); %d clusters of stable poles dropped",
-        len(kept),
-        ", ".join(f"{clusters[k].frequency:.1f}" for k in kept),
-        len(dropped),
-    )
-    frequency = np.array([clusters[k].frequency for k in kept])
-    zeta = np.array([clusters[k].damping_ratio for k in kept])
+
+
+def _selected(
+    stab: Stabilisation,
+    chosen: list[_Cluster],
+    pinned: NDArray[np.bool_],
+    left_out: tuple[tuple[str, ...], tuple[DroppedMode, ...]],
+) -> SelectedPoles:
+    """The modes of the chosen clusters (medians, spreads, the representative's residues) and
+    what was left out (``dropped``, ``dropped_modes``)."""
+    frequency = np.array([c.frequency for c in chosen])
+    zeta = np.array([c.damping_ratio for c in chosen])
     omega = 2 * np.pi * frequency
     return SelectedPoles(
         frequency=frequency,
         damping_ratio=zeta,
         pole=np.asarray(-zeta * omega + 1j * omega * np.sqrt(1 - zeta**2)),
-        n_orders=np.array([clusters[k].n_orders for k in kept], dtype=int),
-        frequency_spread_hz=np.array([np.std(stab.frequency[clusters[k].members]) for k in kept]),
-        damping_spread=np.array([np.std(stab.damping_ratio[clusters[k].members]) for k in kept]),
-        peak_to_noise=np.array([clusters[k].peak_to_noise for k in kept]),
-        residues=stab.residues[:, [clusters[k].representative for k in kept]],
-        pinned=np.array([pinned[k] for k in kept], dtype=bool),
+        n_orders=np.array([c.n_orders for c in chosen], dtype=int),
+        frequency_spread_hz=np.array([np.std(stab.frequency[c.members]) for c in chosen]),
+        damping_spread=np.array([np.std(stab.damping_ratio[c.members]) for c in chosen]),
+        peak_to_noise=np.array([c.peak_to_noise for c in chosen]),
+        residues=stab.residues[:, [c.representative for c in chosen]],
+        pinned=pinned,
         band_hz=stab.band_hz,
         exponential_window_s=stab.exponential_window_s,
-        n_orders_computed=n_orders_total,
+        n_orders_computed=int(stab.orders.size),
         nodes=stab.nodes,
-        dropped=tuple(dropped),
-        dropped_modes=tuple(dropped_modes),
+        dropped=left_out[0],
+        dropped_modes=left_out[1],
     )
 
 

@@ -42,8 +42,8 @@ REFINE_LINES = 10
 """Lines either side of a narrow mode fitted: its skirts, enough for the two background terms
 (a constant and a slope for the modes outside) and every mode inside."""
 SETTLED_FRACTION = 0.2
-"""... and stable in fewer than this share of the orders (:func:`~racketdyn.modal.poles.
-select_poles`' ``min_fraction``; kept as a clear peak or pinned): a narrow mode the LSCF settles
+"""... and stable in fewer than this share of the orders (:class:`~racketdyn.modal.poles.
+SelectionRules`' ``min_fraction``; kept as a clear peak or pinned): a narrow mode the LSCF settles
 keeps its pole (on synthetic truncated ringing, 2ζf a twentieth of a line, with 5 %
 multiplicative noise, it was within 5 % where the local fit was within 11 %; pyuff's six
 narrow modes agree with sdypy-EMA's)."""

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -34,6 +34,9 @@ from racketdyn.sweep.spec import (
 )
 from racketdyn.sweep.task import METHOD_SUPPORTS, _check_method, _check_supports
 from racketdyn.sweep.variables import HAND_VARIABLES, POINT_MASS, SCALAR_VARIABLES, Variable
+
+if TYPE_CHECKING:
+    from racketdyn.impact.uncertainty import Uncertainty
 
 __all__ = ["load_sweep_spec", "sweep_spec_from_dict"]
 
@@ -121,6 +124,63 @@ def sweep_spec_from_dict(
 
 
 def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSpec:
+    """The spec from parsed TOML, table by table (:func:`sweep_spec_from_dict`)."""
+    _check_top_level(data)
+    name = _get(data, "name", str, "", "name")
+    checks = _table(data, "checks", ("allow_implausible",))
+    allow = _get(checks, "allow_implausible", bool, False, "[checks].allow_implausible")
+    _get(data, "description", str, "", "description")
+    mode = one_of("mode", data.get("mode", "full-factorial"), MODES)
+    racket, racket_source = _racket_of(data, base)
+    ball = _ball_of(_table(data, "ball", _BALL_KEYS), base)
+
+    impacts = _table(data, "impacts", _IMPACT_KEYS)
+    locations, labels = _impact_points(impacts, base, racket)
+    ball_speeds, racket_speeds = _impact_speeds(impacts, allow)
+    method = _check_method("[impacts].method", impacts.get("method", "approximate"))
+    reading = one_of(
+        "[impacts].stiffness_reading",
+        impacts.get("stiffness_reading", "period"),
+        STIFFNESS_READINGS,
+    )
+    include_string_bed = _get(
+        impacts, "include_string_bed", bool, False, "[impacts].include_string_bed"
+    )
+    rigid = _get(impacts, "rigid", bool, False, "[impacts].rigid")
+    string_bed = one_of("[impacts].string_bed", impacts.get("string_bed", "uniform"), STRING_BEDS)
+    engine = one_of("[impacts].engine", impacts.get("engine", "auto"), TRANSIENT_ENGINES)
+
+    variables, supports = _variables_of(data, method, racket, allow)
+    fraction, summary_ball_speed, summary_racket_speed = _summary_of(data)
+    uncertainty = _uncertainty_of(data, allow)
+    return SweepSpec(
+        racket=racket,
+        ball=ball,
+        locations=locations,
+        labels=labels,
+        ball_speeds=ball_speeds,
+        racket_speeds=racket_speeds,
+        supports=supports,
+        variables=variables,
+        mode=mode,  # type: ignore[arg-type]  # checked by one_of
+        method=method,
+        stiffness_reading=reading,  # type: ignore[arg-type]  # checked by one_of
+        engine=engine,  # type: ignore[arg-type]  # checked by one_of
+        include_string_bed=include_string_bed,
+        string_bed=string_bed,  # type: ignore[arg-type]  # checked by one_of
+        rigid=rigid,
+        threshold_fraction=fraction,
+        summary_ball_speed=summary_ball_speed,
+        summary_racket_speed=summary_racket_speed,
+        name=name or "sweep",
+        racket_source=racket_source,
+        uncertainty=uncertainty,
+        uncertainty_source="" if uncertainty is None else "[uncertainty] of the sweep spec",
+    )
+
+
+def _check_top_level(data: Mapping[str, Any]) -> None:
+    """Only known top-level keys and tables, and the schema version this racketdyn reads."""
     for key in data:
         if key not in _TOP_KEYS + _TABLES:
             raise InputError(
@@ -129,19 +189,19 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
     version = data.get("schema_version", SPEC_SCHEMA_VERSION)
     if version != SPEC_SCHEMA_VERSION:
         raise InputError(f"schema_version {version!r} is not supported (this racketdyn reads 1)")
-    name = _get(data, "name", str, "", "name")
-    checks = _table(data, "checks", ("allow_implausible",))
-    allow = _get(checks, "allow_implausible", bool, False, "[checks].allow_implausible")
-    _get(data, "description", str, "", "description")
-    mode = one_of("mode", data.get("mode", "full-factorial"), MODES)
+
+
+def _racket_of(data: Mapping[str, Any], base: Path) -> tuple[Racket, str]:
+    """The racket (built-in or a racket file relative to ``base``) and where it came from."""
     racket_text = _get(data, "racket", str, "builtin", "racket")
     if racket_text in ("builtin", "built-in"):
-        racket, racket_source = default_racket(), f"built-in {DEFAULT_RACKET_NAME}"
-    else:
-        racket_path = base / racket_text
-        racket, racket_source = load_racket(racket_path), str(racket_path)
+        return default_racket(), f"built-in {DEFAULT_RACKET_NAME}"
+    racket_path = base / racket_text
+    return load_racket(racket_path), str(racket_path)
 
-    ball_table = _table(data, "ball", _BALL_KEYS)
+
+def _ball_of(ball_table: Mapping[str, Any], base: Path) -> Ball:
+    """The ``[ball]`` table's ball, its load–deflection law fitted from its file if given."""
     ball_args: dict[str, Any] = {
         k: _number(f"[ball].{k}", ball_table[k])
         for k in ("mass_kg", "diameter_m", "e_bg")
@@ -156,25 +216,31 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
             deflection, force, "polynomial", 3, f"ball, fitted to {law_file.name}"
         )
     try:
-        ball = Ball(**ball_args)
+        return Ball(**ball_args)
     except InputError as error:
         raise InputError(f"[ball]: {error}") from None
 
-    impacts = _table(data, "impacts", _IMPACT_KEYS)
+
+def _impact_points(
+    impacts: Mapping[str, Any], base: Path, racket: Racket
+) -> tuple[NDArray[np.float64], tuple[str, ...]]:
+    """The impact locations (``[impacts].points`` file or ``grid``) and their labels."""
     if "grid" in impacts and "points" in impacts:
         raise InputError("[impacts]: give grid or points, not both")
-    labels: tuple[str, ...] = ()
     if "points" in impacts:
         points_path = base / _get(impacts, "points", str, "", "[impacts].points")
         locations, point_labels = read_points(points_path)
-        labels = tuple(point_labels)
-    else:
-        grid = _get(impacts, "grid", int, 9, "[impacts].grid")
-        if not 1 <= grid <= MAX_GRID:
-            raise InputError(
-                f"[impacts].grid must be a whole number from 1 to {MAX_GRID} (got {grid})"
-            )
-        locations = racket.head.grid(grid)
+        return locations, tuple(point_labels)
+    grid = _get(impacts, "grid", int, 9, "[impacts].grid")
+    if not 1 <= grid <= MAX_GRID:
+        raise InputError(f"[impacts].grid must be a whole number from 1 to {MAX_GRID} (got {grid})")
+    return racket.head.grid(grid), ()
+
+
+def _impact_speeds(
+    impacts: Mapping[str, Any], allow: bool
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The ball and racket speeds of ``[impacts]``, m/s, each checked to be plausible."""
     if "ball_speeds_mps" not in impacts:
         raise InputError("[impacts].ball_speeds_mps is missing; it is required")
     ball_speeds = _value_list("[impacts].ball_speeds_mps", impacts["ball_speeds_mps"])
@@ -183,19 +249,14 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
     )
     for speeds, key in ((ball_speeds, "ball_speed"), (racket_speeds, "racket_speed")):
         check_speeds(f"[impacts].{key}s_mps", speeds, f"{key}_mps", allow, _OVERRIDE)
-    method = _check_method("[impacts].method", impacts.get("method", "approximate"))
-    reading = one_of(
-        "[impacts].stiffness_reading",
-        impacts.get("stiffness_reading", "period"),
-        STIFFNESS_READINGS,
-    )
-    include_string_bed = _get(
-        impacts, "include_string_bed", bool, False, "[impacts].include_string_bed"
-    )
-    rigid = _get(impacts, "rigid", bool, False, "[impacts].rigid")
-    string_bed = one_of("[impacts].string_bed", impacts.get("string_bed", "uniform"), STRING_BEDS)
-    engine = one_of("[impacts].engine", impacts.get("engine", "auto"), TRANSIENT_ENGINES)
+    return ball_speeds, racket_speeds
 
+
+def _variables_of(
+    data: Mapping[str, Any], method: str, racket: Racket, allow: bool
+) -> tuple[tuple[Variable, ...], tuple[str, ...]]:
+    """The ``[variables]`` swept (hand parameters for the transient method only) and the
+    supports (``support`` is a list of supports, not a variable)."""
     table = data.get("variables", {})
     if not isinstance(table, dict):
         raise InputError("[variables] must be a table of variables")
@@ -218,12 +279,7 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
                 f"{', '.join(HAND_VARIABLES)} (transient method, support 'hand')"
             )
         if key == SUPPORT:
-            items = value if isinstance(value, list) else [value]
-            allowed = METHOD_SUPPORTS[method]
-            if not items or not all(isinstance(s, str) for s in items):
-                raise InputError(f"{where} must be a list of {', '.join(allowed)}")
-            _check_supports(where, items, method)
-            supports = tuple(items)
+            supports = _supports_of(where, value, method)
         elif key == POINT_MASS:
             tables = value if isinstance(value, list) else [value]
             for i, entry in enumerate(tables):
@@ -242,49 +298,45 @@ def _spec_from_dict(data: Mapping[str, Any], base: Path, source: str) -> SweepSp
                 f"{where}: unknown variable; allowed: "
                 f"{', '.join([POINT_MASS, SUPPORT, *SCALAR_VARIABLES, *HAND_VARIABLES])}"
             )
+    return tuple(variables), supports
 
+
+def _supports_of(where: str, value: object, method: str) -> tuple[str, ...]:
+    """``[variables].support``: one support or a list, each one the method can run."""
+    items = value if isinstance(value, list) else [value]
+    allowed = METHOD_SUPPORTS[method]
+    if not items or not all(isinstance(s, str) for s in items):
+        raise InputError(f"{where} must be a list of {', '.join(allowed)}")
+    _check_supports(where, items, method)
+    return tuple(items)
+
+
+def _summary_of(data: Mapping[str, Any]) -> tuple[float, float | None, float | None]:
+    """``[summary]``: the threshold fraction and the ball and racket speeds summarised (None:
+    the summary's default)."""
     summary = _table(data, "summary", _SUMMARY_KEYS)
     fraction = _number(
         "[summary].threshold_fraction",
         summary.get("threshold_fraction", DEFAULT_THRESHOLD_FRACTION),
     )
-    summary_speeds = [
+    ball_speed, racket_speed = (
         None if key not in summary else _number(f"[summary].{key}", summary[key])
         for key in ("ball_speed_mps", "racket_speed_mps")
-    ]
-    uncertainty = None
-    if "uncertainty" in data:
-        from racketdyn.impact.uncertainty import Uncertainty
-        from racketdyn.io.uncertainty_file import spreads_from_tables
-
-        tables = data["uncertainty"]
-        if not isinstance(tables, dict):
-            raise InputError("[uncertainty] must be a table of tables ([uncertainty.e_bg] …)")
-        uncertainty = Uncertainty(spreads_from_tables(tables, "[uncertainty]", allow))
-    return SweepSpec(
-        racket=racket,
-        ball=ball,
-        locations=locations,
-        labels=labels,
-        ball_speeds=ball_speeds,
-        racket_speeds=racket_speeds,
-        supports=supports,
-        variables=tuple(variables),
-        mode=mode,  # type: ignore[arg-type]  # checked by one_of
-        method=method,
-        stiffness_reading=reading,  # type: ignore[arg-type]  # checked by one_of
-        engine=engine,  # type: ignore[arg-type]  # checked by one_of
-        include_string_bed=include_string_bed,
-        string_bed=string_bed,  # type: ignore[arg-type]  # checked by one_of
-        rigid=rigid,
-        threshold_fraction=fraction,
-        summary_ball_speed=summary_speeds[0],
-        summary_racket_speed=summary_speeds[1],
-        name=name or "sweep",
-        racket_source=racket_source,
-        uncertainty=uncertainty,
-        uncertainty_source="" if uncertainty is None else "[uncertainty] of the sweep spec",
     )
+    return fraction, ball_speed, racket_speed
+
+
+def _uncertainty_of(data: Mapping[str, Any], allow: bool) -> Uncertainty | None:
+    """The ``[uncertainty]`` tables' spreads, or None without them."""
+    if "uncertainty" not in data:
+        return None
+    from racketdyn.impact.uncertainty import Uncertainty
+    from racketdyn.io.uncertainty_file import spreads_from_tables
+
+    tables = data["uncertainty"]
+    if not isinstance(tables, dict):
+        raise InputError("[uncertainty] must be a table of tables ([uncertainty.e_bg] …)")
+    return Uncertainty(spreads_from_tables(tables, "[uncertainty]", allow))
 
 
 def _flat_hand_keys(table: Mapping[str, Any]) -> dict[str, Any]:
