@@ -11,11 +11,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from figure_catch import default_paper_figures, same_drawing
+import racketdyn as rd
+from figure_catch import default_paper_figures, same_3d_drawing, same_drawing
 from racketdyn.errors import InputError
 from racketdyn.plotting import figures
 from racketdyn.plotting.primitives import axes_grid
 from racketdyn.workflows.identify import ModeComparison
+from racketdyn.workflows.shape_figures import mode_shapes
 
 
 @pytest.fixture(scope="module")
@@ -109,6 +111,27 @@ def test_the_registry_passes_the_callers_axes_on(paper: Any) -> None:
     same_drawing(draw("fig13_pulse_spectrum", {"paper_figures": paper}), mine)
 
 
+def test_fig4_draws_into_the_callers_3d_axes_what_it_draws_alone(
+    racket: rd.Racket, model: rd.ModalModel
+) -> None:
+    """Fig. 4's panels are 3-D: the caller's axes must be too (one per mode), else a one-line
+    error naming ``axes``."""
+    shapes = mode_shapes(model, racket)
+    n = shapes.n_modes
+    alone = figures.figure_mode_shapes(shapes)
+    mine = plt.figure()
+    panels = [mine.add_subplot(1, n, k + 1, projection="3d") for k in range(n)]
+    drawn = figures.figure_mode_shapes(shapes, axes=panels)
+    assert drawn is mine
+    assert drawn.get_suptitle() == alone.get_suptitle()
+    same_3d_drawing(alone, drawn)
+    with pytest.raises(InputError, match=rf"^`axes` takes {n} matplotlib Axes \(1 × {n}\)"):
+        figures.figure_mode_shapes(shapes, axes=panels[:-1])
+    _, flat = plt.subplots(1, n)
+    with pytest.raises(InputError, match=r"^`axes` takes 3-D matplotlib Axes \(projection='3d'\)"):
+        figures.figure_mode_shapes(shapes, axes=list(flat))
+
+
 ONE_PANEL = "one panel: its primitive takes `ax` (the figure function adds the figure's title)"
 NO_AXES = {
     "stabilisation": ONE_PANEL + ": plot_stabilisation",
@@ -120,8 +143,6 @@ NO_AXES = {
     "validation_parity": ONE_PANEL + ": plot_parity",
     "validation_along_axis": "one panel drawn in the figure function itself",
     "validation_residuals": "one panel drawn in the figure function itself",
-    "fig4_mode_shapes": "3-D panels (projection='3d') made one by one: the caller's axes would "
-    "have to be 3-D, more than a count to check",
 }
 """Registered figures whose draw function takes neither ``ax`` nor ``axes``, and why."""
 

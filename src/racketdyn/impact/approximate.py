@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError, one_of
 from racketdyn.impact.grid import (
+    ImpactGrid,
     StringBed,
     check_string_bed,
     impact_grid,
@@ -262,6 +263,9 @@ def vibration_cor_squared(
     return np.asarray(e2 - charged / np.asarray(relative_energy, dtype=float))
 
 
+# 13 parameters: the paper's inputs of an impact and the method's readings, each documented
+# once here and taken by name by the CLI, the workflows and predict_by_point_law; no object
+# of them reads better for callers
 def predict(
     racket: Racket,
     ball: Ball,
@@ -352,6 +356,17 @@ def predict(
         law,
         include_string_bed,
     )
+    return _predict_on(grid, ball, stiffness_reading, include_string_bed, vibration_charge)
+
+
+def _predict_on(
+    grid: ImpactGrid,
+    ball: Ball,
+    stiffness_reading: StiffnessReading,
+    include_string_bed: bool,
+    vibration_charge: VibrationCharge,
+) -> ImpactResult:
+    """:func:`predict` on its checked grid: eqs 1–12 at every point, speed and support."""
     xy, model, v_ball, v_racket = grid.locations, grid.model, grid.ball_speed, grid.racket_speed
     speed = (v_ball + v_racket)[None, :, None]  # (1, s, 1)
     impacts = approximate_impacts(

@@ -276,6 +276,7 @@ class History:
         return np.asarray(self.impact.ball_displacement_m - self.impact.deflection_m)
 
 
+# 10 parameters and **options: simulate_impact's, taken by name, for named points
 def simulate_histories(
     racket: Racket,
     ball: Ball,

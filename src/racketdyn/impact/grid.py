@@ -214,6 +214,8 @@ def modal_record(model: ModalModel) -> dict[str, Any]:
     return record
 
 
+# 12 parameters: predict's inputs of an impact as it takes them, plus the model's allowed
+# supports and its hand; no object of them reads better for its callers (predict, predict_transient)
 def impact_grid(
     racket: Racket,
     ball: Ball,

@@ -834,24 +834,43 @@ def _check_angle(angle_deg: float) -> float:
     return angle
 
 
-def _nan_impact(
-    speed: float,
-    angle: float,
-    spin: float,
-    racket_speed: float,
-    face_speed: float,
-    normal: TransientImpact,
-) -> ObliqueImpact:
+@dataclass(frozen=True)
+class _Incoming:
+    """An oblique impact's incoming state: the ball's speed (m/s), angle to the face normal
+    (degrees) and spin (rad/s); the racket's speed along the normal and the face's along t̂
+    (m/s)."""
+
+    speed: float
+    angle: float
+    spin: float
+    racket_speed: float
+    face_speed: float
+
+    @property
+    def normal_speed(self) -> float:
+        """The ball's speed along the normal, ``V cos θ``, m/s."""
+        return self.speed * math.cos(math.radians(self.angle))
+
+    @property
+    def tangential_speed(self) -> float:
+        """The ball's speed along t̂, ``V sin θ``, m/s."""
+        return self.speed * math.sin(math.radians(self.angle))
+
+
+def _nan_impact(incoming: _Incoming, normal: TransientImpact) -> ObliqueImpact:
     log.warning(
-        "oblique impact at %.3g m/s, %.3g°: %s (results are NaN)", speed, angle, normal.status
+        "oblique impact at %.3g m/s, %.3g°: %s (results are NaN)",
+        incoming.speed,
+        incoming.angle,
+        normal.status,
     )
     nan = math.nan
     return ObliqueImpact(
-        speed,
-        angle,
-        spin,
-        racket_speed,
-        face_speed,
+        incoming.speed,
+        incoming.angle,
+        incoming.spin,
+        incoming.racket_speed,
+        incoming.face_speed,
         nan,
         nan,
         nan,
@@ -863,21 +882,15 @@ def _nan_impact(
 
 
 def _combine(
-    speed: float,
-    angle: float,
-    spin: float,
-    racket_speed: float,
-    face_speed: float,
-    normal: TransientImpact,
-    tangential: TangentialImpact,
+    incoming: _Incoming, normal: TransientImpact, tangential: TangentialImpact
 ) -> ObliqueImpact:
     v_n, v_t = normal.rebound_speed_mps, tangential.outgoing_tangential_speed_mps
     return ObliqueImpact(
-        ball_speed_mps=speed,
-        incoming_angle_deg=angle,
-        incoming_spin_radps=spin,
-        racket_speed_mps=racket_speed,
-        racket_tangential_speed_mps=face_speed,
+        ball_speed_mps=incoming.speed,
+        incoming_angle_deg=incoming.angle,
+        incoming_spin_radps=incoming.spin,
+        racket_speed_mps=incoming.racket_speed,
+        racket_tangential_speed_mps=incoming.face_speed,
         normal_speed_mps=v_n,
         tangential_speed_mps=v_t,
         outgoing_angle_deg=math.degrees(math.atan2(v_t, v_n)),
@@ -888,6 +901,8 @@ def _combine(
     )
 
 
+# 10 parameters and **kwargs: the ball's incoming state and the racket's motion, each one the
+# paper's quantity and a CLI option of `oblique`; no object of them reads better for callers
 def simulate_oblique(
     racket: Racket,
     ball: Ball,
@@ -939,28 +954,32 @@ def simulate_oblique(
     ObliqueImpact
         NaN outputs (and ``status`` saying why) when the normal impact has no valid result.
     """
-    speed = require_positive("ball speed", ball_speed, allow_zero=True)
-    angle = _check_angle(angle_deg)
-    spin = require_finite("spin", spin_radps)
-    face_speed = require_finite("racket tangential speed", racket_tangential_speed)
-    v_racket = require_finite("racket speed", racket_speed)
-    theta = math.radians(angle)
+    incoming = _Incoming(
+        require_positive("ball speed", ball_speed, allow_zero=True),
+        _check_angle(angle_deg),
+        require_finite("spin", spin_radps),
+        face_speed=require_finite("racket tangential speed", racket_tangential_speed),
+        racket_speed=require_finite("racket speed", racket_speed),
+    )
     normal = simulate_impact(
-        racket, ball, location, speed * math.cos(theta), support, v_racket, **kwargs
+        racket, ball, location, incoming.normal_speed, support, incoming.racket_speed, **kwargs
     )
     if normal.status != STATUS_OK:
-        return _nan_impact(speed, angle, spin, v_racket, face_speed, normal)
-    part = simulate_tangential(
-        NormalForce.from_impact(normal),
-        ball,
-        speed * math.sin(theta),
-        spin,
-        tangential,
-        face_speed,
+        return _nan_impact(incoming, normal)
+    force = NormalForce.from_impact(normal)
+    return _combine(incoming, normal, _tangential_part(force, ball, incoming, tangential))
+
+
+def _tangential_part(
+    force: NormalForce, ball: Ball, incoming: _Incoming, contact: TangentialContact
+) -> TangentialImpact:
+    """:func:`simulate_tangential` of the incoming state along the normal force history."""
+    return simulate_tangential(
+        force, ball, incoming.tangential_speed, incoming.spin, contact, incoming.face_speed
     )
-    return _combine(speed, angle, spin, v_racket, face_speed, normal, part)
 
 
+# 10 parameters and **kwargs: those of simulate_oblique, angles and spins as arrays
 def oblique_curve(
     racket: Racket,
     ball: Ball,
@@ -995,6 +1014,34 @@ def oblique_curve(
         Arrays of the broadcast shape.
     """
     speed = require_positive("ball speed", ball_speed, allow_zero=True)
+    angles, spins = _incoming_grid(angles_deg, spins_radps)
+    face_speed = require_finite("racket tangential speed", racket_tangential_speed)
+    v_racket = require_finite("racket speed", racket_speed)
+
+    normals: dict[float, tuple[TransientImpact, NormalForce | None]] = {}
+    impacts = []
+    for angle, spin in zip(angles.flat, spins.flat, strict=True):
+        incoming = _Incoming(speed, float(angle), float(spin), v_racket, face_speed)
+        if incoming.normal_speed not in normals:  # ±θ share one normal impact
+            normal = simulate_impact(
+                racket, ball, location, incoming.normal_speed, support, v_racket, **kwargs
+            )
+            force = NormalForce.from_impact(normal) if normal.status == STATUS_OK else None
+            normals[incoming.normal_speed] = (normal, force)
+        normal, force = normals[incoming.normal_speed]
+        if force is None:
+            impacts.append(_nan_impact(incoming, normal))
+        else:
+            impacts.append(
+                _combine(incoming, normal, _tangential_part(force, ball, incoming, tangential))
+            )
+    return _curve(speed, angles, spins, impacts)
+
+
+def _incoming_grid(
+    angles_deg: ArrayLike, spins_radps: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The incoming angles and spins broadcast together, each checked."""
     try:
         angles, spins = np.broadcast_arrays(
             np.asarray(angles_deg, dtype=float), np.asarray(spins_radps, dtype=float)
@@ -1009,51 +1056,37 @@ def oblique_curve(
     for angle, spin in zip(angles.flat, spins.flat, strict=True):
         _check_angle(float(angle))
         require_finite("spin", float(spin))
-    face_speed = require_finite("racket tangential speed", racket_tangential_speed)
-    v_racket = require_finite("racket speed", racket_speed)
+    return angles, spins
 
-    normals: dict[float, tuple[TransientImpact, NormalForce | None]] = {}
-    out = {
-        name: np.full(angles.shape, np.nan)
-        for name in (
-            "outgoing_angle_deg",
-            "outgoing_spin_radps",
-            "normal_speed_mps",
-            "tangential_speed_mps",
-            "grip_time_s",
-            "tangential_impulse_ns",
-            "friction_loss_j",
-        )
-    }
-    gripped = np.zeros(angles.shape, dtype=bool)
-    status = np.full(angles.shape, STATUS_OK, dtype=object)
-    for index in np.ndindex(angles.shape):
-        angle, spin = float(angles[index]), float(spins[index])
-        theta = math.radians(angle)
-        normal_speed = speed * math.cos(theta)
-        if normal_speed not in normals:
-            normal = simulate_impact(
-                racket, ball, location, normal_speed, support, v_racket, **kwargs
-            )
-            force = NormalForce.from_impact(normal) if normal.status == STATUS_OK else None
-            normals[normal_speed] = (normal, force)
-        normal, force = normals[normal_speed]
-        if force is None:
-            impact = _nan_impact(speed, angle, spin, v_racket, face_speed, normal)
-        else:
-            part = simulate_tangential(
-                force, ball, speed * math.sin(theta), spin, tangential, face_speed
-            )
-            impact = _combine(speed, angle, spin, v_racket, face_speed, normal, part)
-        status[index] = impact.status
-        gripped[index] = impact.gripped
-        for name, array in out.items():
-            array[index] = getattr(impact, name)
+
+_CURVE_VALUES = (
+    "outgoing_angle_deg",
+    "outgoing_spin_radps",
+    "normal_speed_mps",
+    "tangential_speed_mps",
+    "grip_time_s",
+    "tangential_impulse_ns",
+    "friction_loss_j",
+)
+"""The :class:`ObliqueImpact` values an :class:`ObliqueCurve` gives at every angle × spin."""
+
+
+def _curve(
+    speed: float,
+    angles: NDArray[np.float64],
+    spins: NDArray[np.float64],
+    impacts: list[ObliqueImpact],
+) -> ObliqueCurve:
+    """The curve of the impacts, one per incoming angle × spin (in their flat order)."""
+
+    def values(name: str, dtype: Any) -> NDArray[Any]:
+        return np.array([getattr(i, name) for i in impacts], dtype=dtype).reshape(angles.shape)
+
     return ObliqueCurve(
         ball_speed_mps=speed,
         incoming_angle_deg=np.array(angles, dtype=float),
         incoming_spin_radps=np.array(spins, dtype=float),
-        gripped=gripped,
-        status=status.astype(str),
-        **out,
+        gripped=values("gripped", bool),
+        status=values("status", object).astype(str),
+        **{name: values(name, float) for name in _CURVE_VALUES},
     )

@@ -532,6 +532,8 @@ def _run(
     )
 
 
+# 13 parameters: the grid of impacts as predict takes it, and how the samples run; each a
+# keyword the workflows and the sweep's tasks pass by name, none of them a group of its own
 def propagate(
     inputs: ModelInputs,
     locations: ArrayLike,
@@ -594,12 +596,7 @@ def propagate(
     """
     xy = as_locations(locations, "impact points")
     speeds = np.atleast_1d(np.asarray(ball_speed, dtype=float))
-    if uncertainty.samples < ROUGH_SAMPLES:
-        log.warning(
-            "uncertainty: %d samples give a rough 90 %% band (its 5 %% and 95 %% quantiles "
-            "rest on a sample or two); %d or more for numbers to quote",
-            uncertainty.samples, ROUGH_SAMPLES,
-        )  # fmt: skip
+    _warn_if_rough(uncertainty.samples)
     model_options: dict[str, Any] = {
         "supports": list(supports),
         "racket_speed": racket_speed,
@@ -609,18 +606,10 @@ def propagate(
     if nominal is None:
         nominal = _run(method, inputs, xy, speeds, model_options)
     draws = draw(uncertainty, inputs)
-    n = uncertainty.samples
-    if vectorised and method == "approx" and _batches(inputs, model_options):
-        run = _all_samples
-    elif executor is not None:
-        run = partial(_on_executor, executor)
-    else:
-        run = _each_sample
+    runs = _Runs(method, inputs, draws, xy, speeds, model_options)
     with _statuses_held():
-        samples, valid, frame = run(
-            _Runs(method, inputs, draws, xy, speeds, model_options), progress
-        )
-    log.info("uncertainty: %d samples by the %s model", n, method)
+        samples, valid, frame = _sampler(runs, vectorised, executor)(runs, progress)
+    log.info("uncertainty: %d samples by the %s model", uncertainty.samples, method)
     _log_left_out(valid, frame, method)
     return UncertainResult(
         nominal=nominal,
@@ -631,6 +620,28 @@ def propagate(
         uncertainty=uncertainty,
         method=method,
     )
+
+
+def _warn_if_rough(samples: int) -> None:
+    """Warn that fewer than :data:`ROUGH_SAMPLES` samples give a rough band."""
+    if samples < ROUGH_SAMPLES:
+        log.warning(
+            "uncertainty: %d samples give a rough 90 %% band (its 5 %% and 95 %% quantiles "
+            "rest on a sample or two); %d or more for numbers to quote",
+            samples, ROUGH_SAMPLES,
+        )  # fmt: skip
+
+
+def _sampler(
+    runs: _Runs, vectorised: bool, executor: Executor | None
+) -> Callable[[_Runs, Callable[[int, int], None] | None], Samples]:
+    """How :func:`propagate` runs the samples: all at once (the approximate method where it
+    batches), on the executor, or one by one here."""
+    if vectorised and runs.method == "approx" and _batches(runs.inputs, runs.options):
+        return _all_samples
+    if executor is not None:
+        return partial(_on_executor, executor)
+    return _each_sample
 
 
 def _log_left_out(valid: NDArray[np.bool_], frame: NDArray[np.bool_], method: str) -> None:

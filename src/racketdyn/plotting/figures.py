@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -24,6 +24,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from numpy.typing import NDArray
 
+from racketdyn.errors import InputError
 from racketdyn.measurement.records import FRF_UNITS
 from racketdyn.plotting.primitives import (
     SCALE_BAR_M,
@@ -529,7 +530,7 @@ def _mode_grid(n: int) -> tuple[int, int]:
     return int(np.ceil(n / columns)), columns
 
 
-def figure_mode_shapes(shapes: ModeShapes) -> Figure:
+def figure_mode_shapes(shapes: ModeShapes, axes: Sequence[Axes] | None = None) -> Figure:
     """Paper Fig. 4: each mode shape in 3-D over the racket, with a 100 mm scale bar (over its
     own points for a structure that is not a racket).
 
@@ -538,11 +539,13 @@ def figure_mode_shapes(shapes: ModeShapes) -> Figure:
     shapes : ModeShapes
         The modes evaluated where they are drawn
         (:func:`racketdyn.workflows.shape_figures.mode_shapes`).
+    axes : sequence of 3-D Axes, optional
+        One per mode, each made with ``projection="3d"`` (:mod:`mpl_toolkits.mplot3d`), to draw
+        into, their figure, size and layout the caller's; default a figure of its own, three
+        panels to a row (an error if not one 3-D Axes per mode).
     """
-    rows, columns = _mode_grid(shapes.n_modes)
-    figure = plt.figure(figsize=(4.2 * columns, 3.2 * rows), layout="constrained")
-    for k in range(shapes.n_modes):
-        ax3d = figure.add_subplot(rows, columns, k + 1, projection="3d")
+    figure, panels = _mode_panels_3d(shapes.n_modes, axes)
+    for k, ax3d in enumerate(panels):
         plot_mode_3d(shapes, k, ax=ax3d)
     scaled = "" if shapes.mass_normalised else ", unscaled"
     bar = f"; bar: {SCALE_BAR_M * 1e3:.0f} mm" if shapes.layout_3d == "racket" else ""
@@ -552,6 +555,25 @@ def figure_mode_shapes(shapes: ModeShapes) -> Figure:
         fontsize=10,
     )
     return figure
+
+
+def _mode_panels_3d(n: int, axes: Sequence[Axes] | None) -> tuple[Figure, Iterable[Axes]]:
+    """Fig. 4's figure and its ``n`` 3-D panels: the caller's (checked: one per mode, each 3-D),
+    or a new figure's, three to a row, each made as it is drawn."""
+    if axes is None:
+        rows, columns = _mode_grid(n)
+        figure = plt.figure(figsize=(4.2 * columns, 3.2 * rows), layout="constrained")
+        made = (figure.add_subplot(rows, columns, k + 1, projection="3d") for k in range(n))
+        return figure, made
+    figure, grid = axes_grid(axes, 1, n, squeeze=False)
+    flat = [ax for ax in grid.flat if isinstance(ax, Axes)]
+    plain = [k + 1 for k, ax in enumerate(flat) if ax.name != "3d"]
+    if plain:
+        raise InputError(
+            "`axes` takes 3-D matplotlib Axes (projection='3d') for this figure; not 3-D: "
+            f"panel {', '.join(map(str, plain))}"
+        )
+    return figure, flat
 
 
 def figure_node_lines(shapes: ModeShapes, axes: Sequence[Axes] | None = None) -> Figure:

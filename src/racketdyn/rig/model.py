@@ -344,6 +344,9 @@ def rig_model(
 ) -> RigModel:
     """Build the rig's model of a racket on a support (see the module docstring).
 
+    Steps: string bed, frame and matrices; EI and GJ calibrated on the bare racket, then the
+    point masses; the racket's modal damping; the support; the real modes, signed and named.
+
     Parameters
     ----------
     racket : Racket
@@ -364,167 +367,55 @@ def rig_model(
     RigModel
         Matrices, DOF map and modes (ascending frequency).
     """
-    one_of("support", support, RIG_SUPPORTS)
-    if support == "free" and hand is not None:
-        raise InputError("a hand is given but support is 'free'; use support='hand'")
-    if support == "hand" and hand is None:
-        hand = Hand()
-    if not 0.0 <= frame_damping_ratio < 0.2:
-        raise InputError(f"frame_damping_ratio must lie in [0, 0.2) (got {frame_damping_ratio!r})")
-    require_positive("max_frequency_hz", max_frequency_hz)
-
-    x = np.linspace(0.0, racket.length_m, N_ELEMENTS + 1)
-    n_nodes = x.size
-    n_frame = 3 * n_nodes
-    powers = tuple((a, d - a) for d in range(MEMBRANE_DEGREE + 1) for a in range(d, -1, -1))
-    n_dof = n_frame + len(powers)
-    bending, twist = slice(0, 2 * n_nodes), slice(2 * n_nodes, n_frame)
-    membrane = slice(n_frame, n_dof)
-
-    # --- the string bed: quadrature, mass and membrane stiffness --------------------------
-    head, strings = racket.head, racket.strings
-    string_mass = float(strings.mass_kg or STRING_MASS_FRACTION * racket.mass_kg)
-    qx, qy, qw = _bed_quadrature(racket, x)
-    sigma = string_mass / qw.sum()  # areal density, the quadrature's mass exactly m_s
-    weight = sigma * qw
-    bed_rows = np.zeros((qx.size, n_dof))
-    bed_rows[:, :n_frame] = _frame_rows(x, qx, qy)
-    psi, dpsi_x, dpsi_y = _membrane_functions(racket, powers, np.column_stack([qx, qy]))
-    bed_rows[:, membrane] = psi
-    bed_mass = bed_rows.T @ (weight[:, None] * bed_rows)
-    spacing_mains, spacing_crosses = strings.spacing_m(head)
-    tension_x = strings.bed_tension_n / spacing_mains
-    tension_y = strings.bed_tension_n / spacing_crosses
-    k_membrane = tension_x * dpsi_x.T @ (qw[:, None] * dpsi_x) + tension_y * dpsi_y.T @ (
-        qw[:, None] * dpsi_y
-    )
-
-    # --- the frame: mass per length for the racket less the strings -----------------------
-    frame_mass = racket.mass_kg - string_mass
-    first = racket.mass_kg * racket.balance_m - weight @ qx
-    second = racket.inertia_cg_kgm2 + racket.mass_kg * racket.balance_m**2 - weight @ qx**2
-    frame_balance = first / frame_mass
-    frame_inertia = second - frame_mass * frame_balance**2
-    # the built-in model's frame (its shape, else the smooth fallback); the strings are the
-    # membrane's, so none is spread along the beam here
-    density, tubes = mass_along(
-        racket.length_m, head, (frame_mass, frame_balance, frame_inertia), 0.0
-    )
-    mid, step = 0.5 * (x[:-1] + x[1:]), np.diff(x)
-    frame_roll = racket.roll_inertia_kgm2 - weight @ qy**2
-    if frame_roll <= 0:
-        raise InputError(
-            f"racket: roll inertia {racket.roll_inertia_kgm2} kg·m² is less than the string "
-            f"bed's own ({weight @ qy**2:.3g} kg·m²); check roll_inertia / twistweight"
-        )
-    roll_density = density * _section_radius(head, mid) ** 2
-    roll_density *= frame_roll / np.sum(roll_density * step)
-    kb_unit, mb = _bending_matrices(x, density, tubes)
-    kt_unit, mt = _torsion_matrices(x, roll_density)
-
-    mass = bed_mass.copy()
-    mass[bending, bending] += mb
-    mass[twist, twist] += mt
-    k_bend = np.zeros((n_dof, n_dof))
-    k_bend[bending, bending] = kb_unit
-    k_twist = np.zeros((n_dof, n_dof))
-    k_twist[twist, twist] = kt_unit
-    k_strings = np.zeros((n_dof, n_dof))
-    k_strings[membrane, membrane] = k_membrane
+    hand = _checked_hand(support, hand, frame_damping_ratio, max_frequency_hz)
+    mesh = _Mesh(np.linspace(0.0, racket.length_m, N_ELEMENTS + 1))
+    bed = _string_bed(racket, mesh)
+    parts = _racket_matrices(racket, mesh, bed)
 
     # --- calibration on the bare racket (strings in, point masses out), held on the sponge --
-    k_suspension, _ = _suspension(mass, x, n_dof)
-    ei, gj = _calibrate(racket, mass, k_bend, k_twist, k_strings + k_suspension)
-    stiffness = ei * k_bend + gj * k_twist + k_strings
-
-    for p in racket.point_masses:
-        row = np.zeros(n_dof)
-        row[:n_frame] = _frame_rows(x, np.array([p.x_m]), np.array([p.y_m]))[0]
-        mass += p.mass_kg * np.outer(row, row)
+    k_suspension, _ = _suspension(parts.mass, mesh.x, mesh.n_dof)
+    ei, gj = _calibrate(
+        racket, parts.mass, parts.k_bend, parts.k_twist, parts.k_strings + k_suspension
+    )
+    stiffness = ei * parts.k_bend + gj * parts.k_twist + parts.k_strings
+    mass = _with_point_masses(racket, parts.mass, mesh)
 
     # --- the free racket's own damping (modal) and the support ------------------------------
-    k_suspension, c_suspension = _suspension(mass, x, n_dof)
-    free_omega2, free_vectors = eigh(stiffness + k_suspension, mass)
-    flexible = _support_share(free_vectors, k_suspension, free_omega2) < 0.5
-    phi_f, omega_f = free_vectors[:, flexible], np.sqrt(free_omega2[flexible])
-    mphi = mass @ phi_f
-    c_racket = mphi @ np.diag(2 * frame_damping_ratio * omega_f) @ mphi.T
-
+    suspension = _suspension(mass, mesh.x, mesh.n_dof)
+    c_racket = _racket_damping(mass, stiffness, suspension[0], frame_damping_ratio)
+    held = _on_sponge(suspension, mass) if hand is None else _in_hand(hand, racket, mesh)
     metadata: dict[str, Any] = {
         "elements": N_ELEMENTS,
-        "membrane_functions": len(powers),
+        "membrane_functions": len(mesh.powers),
         "bending_stiffness_nm2": float(ei),
         "torsional_stiffness_nm2_per_rad": float(gj),
-        "string_mass_kg": string_mass,
-        "mass_model": "smooth" if tubes is None else "frame",
-        "string_tension_per_width_n_per_m": [float(tension_x), float(tension_y)],
+        "string_mass_kg": bed.mass_kg,
+        "mass_model": "smooth" if parts.tubes is None else "frame",
+        "string_tension_per_width_n_per_m": [float(t) for t in bed.tension_per_width],
         "frame_damping_ratio": float(frame_damping_ratio),
         "max_frequency_hz": float(max_frequency_hz),
+        **held.metadata,
     }
-    if support == "free":
-        k_support, c_support, m_support = k_suspension, c_suspension, np.zeros_like(mass)
-        label = "suspension"
-        metadata["suspension_hz"] = list(SUSPENSION_HZ)
-        metadata["suspension_damping_ratio"] = SUSPENSION_DAMPING_RATIO
-    else:
-        assert hand is not None
-        if hand.grip_end_m >= head.throat_x_m or hand.grip_end_m > racket.length_m:
-            raise InputError(
-                f"hand.grip_end_m ({hand.grip_end_m} m) must lie on the handle, below the "
-                f"string bed's throat end ({head.throat_x_m:.3f} m)"
-            )
-        if hand.shoulder_stiffness_n_per_m <= 0:
-            raise InputError(
-                "hand.shoulder_stiffness_n_per_m must be positive on the rig: without the "
-                "shoulder the held racket floats away on its arm (a mode of 0 Hz)"
-            )
-        m_support, k_support, c_support = _hand_matrices(hand, x, n_dof)
-        label = "hand"
-        metadata["hand"] = {k: float(v) for k, v in vars(hand).items()}
     # the support's own DOFs (the hand's arm) after the racket's
-    extra = m_support.shape[0] - n_dof
+    extra = held.mass.shape[0] - mesh.n_dof
     mass, stiffness, c_racket, k_bend, k_twist, k_strings = (
         np.pad(matrix, (0, extra))
-        for matrix in (mass, stiffness, c_racket, k_bend, k_twist, k_strings)
+        for matrix in (mass, stiffness, c_racket, parts.k_bend, parts.k_twist, parts.k_strings)
     )
-
-    mass_total = mass + m_support
-    stiffness_total = stiffness + k_support
-    damping_total = c_racket + c_support
-    omega2, vectors = eigh(stiffness_total, mass_total)
-    keep = omega2 <= (2 * np.pi * max_frequency_hz) ** 2
-    omega2, vectors = omega2[keep], vectors[:, keep]
-    if np.any(omega2 <= 0):
-        raise InputError(f"rig model ({support}): a mode has no stiffness; check the support")
-    omega = np.sqrt(omega2)
-    zeta = np.einsum("ik,ij,jk->k", vectors, damping_total, vectors) / (2 * omega)
-    if np.any(zeta >= 1.0):
-        k = int(np.argmax(zeta))
-        raise InputError(
-            f"rig model ({support}): the mode at {omega[k] / (2 * np.pi):.2f} Hz is over-damped "
-            f"(damping ratio {zeta[k]:.2f}); lower the support's damping or raise its stiffness"
-        )
-    # sign convention: the largest displacement over the racket (sampled) positive
-    probe = _frame_rows(x, np.concatenate([x, x]), np.repeat([0.0, head.half_width_m], x.size))
-    sampled = np.vstack(
-        [probe @ vectors[:n_frame], _bed_centre_row(racket, powers) @ vectors[:n_dof]]
+    mass_total = mass + held.mass
+    stiffness_total = stiffness + held.stiffness
+    damping_total = c_racket + held.damping
+    omega2, vectors, zeta = _real_modes(
+        (mass_total, stiffness_total, damping_total), max_frequency_hz, support
     )
-    largest = sampled[np.argmax(np.abs(sampled), axis=0), np.arange(vectors.shape[1])]
-    vectors = vectors * np.where(largest < 0, -1.0, 1.0)
-
-    shares = np.vstack(
-        [
-            np.einsum("ik,ij,jk->k", vectors, ei * k_bend, vectors),
-            np.einsum("ik,ij,jk->k", vectors, gj * k_twist, vectors),
-            np.einsum("ik,ij,jk->k", vectors, k_strings, vectors),
-            np.einsum("ik,ij,jk->k", vectors, k_support, vectors),
-        ]
-    )
-    names, kinds = _name_modes(np.argmax(shares, axis=0), label)
+    vectors = _signed_modes(vectors, racket, mesh)
+    shares = _strain_energy(vectors, (ei * k_bend, gj * k_twist, k_strings, held.stiffness))
+    names, kinds = _name_modes(np.argmax(shares, axis=0), held.label)
     metadata["strain_energy_shares"] = {
-        "order": ["bending", "twisting", "string-bed", label],
+        "order": ["bending", "twisting", "string-bed", held.label],
         "values": (shares / omega2).T.round(6).tolist(),
     }
+    omega, x, powers = np.sqrt(omega2), mesh.x, mesh.powers
     logger.debug("rig model (%s): %d modes up to %.0f Hz", support, omega.size, max_frequency_hz)
     return RigModel(
         racket=racket,
@@ -542,6 +433,252 @@ def rig_model(
         kinds=kinds,
         metadata=metadata,
     )
+
+
+# --- the steps of rig_model ----------------------------------------------------------------
+
+
+def _checked_hand(
+    support: str, hand: Hand | None, frame_damping_ratio: float, max_frequency_hz: float
+) -> Hand | None:
+    """The hand of the support (the default one for ``hand``, None for ``free``), the other
+    inputs checked."""
+    one_of("support", support, RIG_SUPPORTS)
+    if support == "free" and hand is not None:
+        raise InputError("a hand is given but support is 'free'; use support='hand'")
+    if support == "hand" and hand is None:
+        hand = Hand()
+    if not 0.0 <= frame_damping_ratio < 0.2:
+        raise InputError(f"frame_damping_ratio must lie in [0, 0.2) (got {frame_damping_ratio!r})")
+    require_positive("max_frequency_hz", max_frequency_hz)
+    return hand
+
+
+@dataclass(frozen=True)
+class _Mesh:
+    """The racket's DOFs: beam nodes along the long axis (``w, w'`` then ``θ`` at each node),
+    then the Ritz coordinates of the membrane's functions (powers ``(a, b)``)."""
+
+    x: NDArray[np.float64]
+    powers: tuple[tuple[int, int], ...] = tuple(
+        (a, d - a) for d in range(MEMBRANE_DEGREE + 1) for a in range(d, -1, -1)
+    )
+
+    @property
+    def n_frame(self) -> int:
+        """The frame's DOFs (three per node)."""
+        return 3 * self.x.size
+
+    @property
+    def n_dof(self) -> int:
+        """The racket's DOFs: the frame's and the membrane's."""
+        return self.n_frame + len(self.powers)
+
+
+@dataclass(frozen=True)
+class _StringBed:
+    """The string bed on the mesh: its mass (kg) and mass matrix (every DOF), the membrane's
+    stiffness (its Ritz coordinates), tension per width along x and y (N/m), and the mass
+    quadrature's points (m) and weights (kg)."""
+
+    mass_kg: float
+    mass: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    tension_per_width: tuple[float, float]
+    qx: NDArray[np.float64]
+    qy: NDArray[np.float64]
+    weight: NDArray[np.float64]
+
+
+def _string_bed(racket: Racket, mesh: _Mesh) -> _StringBed:
+    """The string bed: quadrature, mass and membrane stiffness."""
+    head, strings, x = racket.head, racket.strings, mesh.x
+    string_mass = float(strings.mass_kg or STRING_MASS_FRACTION * racket.mass_kg)
+    qx, qy, qw = _bed_quadrature(racket, x)
+    sigma = string_mass / qw.sum()  # areal density, the quadrature's mass exactly m_s
+    weight = sigma * qw
+    bed_rows = np.zeros((qx.size, mesh.n_dof))
+    bed_rows[:, : mesh.n_frame] = _frame_rows(x, qx, qy)
+    psi, dpsi_x, dpsi_y = _membrane_functions(racket, mesh.powers, np.column_stack([qx, qy]))
+    bed_rows[:, mesh.n_frame :] = psi
+    bed_mass = bed_rows.T @ (weight[:, None] * bed_rows)
+    spacing_mains, spacing_crosses = strings.spacing_m(head)
+    tension_x = strings.bed_tension_n / spacing_mains
+    tension_y = strings.bed_tension_n / spacing_crosses
+    k_membrane = tension_x * dpsi_x.T @ (qw[:, None] * dpsi_x) + tension_y * dpsi_y.T @ (
+        qw[:, None] * dpsi_y
+    )
+    return _StringBed(string_mass, bed_mass, k_membrane, (tension_x, tension_y), qx, qy, weight)
+
+
+@dataclass(frozen=True)
+class _RacketMatrices:
+    """The bare racket's mass (frame and string bed), unit-EI bending and unit-GJ torsion
+    stiffness, the strings' stiffness (all on the racket's DOFs) and the frame's tubes per
+    section (None: the smooth mass model)."""
+
+    mass: NDArray[np.float64]
+    k_bend: NDArray[np.float64]
+    k_twist: NDArray[np.float64]
+    k_strings: NDArray[np.float64]
+    tubes: NDArray[np.float64] | None
+
+
+def _racket_matrices(racket: Racket, mesh: _Mesh, bed: _StringBed) -> _RacketMatrices:
+    """The frame's mass per length for the racket less the strings, and the racket's matrices."""
+    head, x, weight = racket.head, mesh.x, bed.weight
+    frame_mass = racket.mass_kg - bed.mass_kg
+    first = racket.mass_kg * racket.balance_m - float(weight @ bed.qx)
+    second = (
+        racket.inertia_cg_kgm2 + racket.mass_kg * racket.balance_m**2 - float(weight @ bed.qx**2)
+    )
+    frame_balance = first / frame_mass
+    frame_inertia = second - frame_mass * frame_balance**2
+    # the built-in model's frame (its shape, else the smooth fallback); the strings are the
+    # membrane's, so none is spread along the beam here
+    density, tubes = mass_along(
+        racket.length_m, head, (frame_mass, frame_balance, frame_inertia), 0.0
+    )
+    mid, step = 0.5 * (x[:-1] + x[1:]), np.diff(x)
+    frame_roll = racket.roll_inertia_kgm2 - weight @ bed.qy**2
+    if frame_roll <= 0:
+        raise InputError(
+            f"racket: roll inertia {racket.roll_inertia_kgm2} kg·m² is less than the string "
+            f"bed's own ({weight @ bed.qy**2:.3g} kg·m²); check roll_inertia / twistweight"
+        )
+    roll_density = density * _section_radius(head, mid) ** 2
+    roll_density *= frame_roll / np.sum(roll_density * step)
+    kb_unit, mb = _bending_matrices(x, density, tubes)
+    kt_unit, mt = _torsion_matrices(x, roll_density)
+
+    n_nodes, n_dof = x.size, mesh.n_dof
+    bending, twist = slice(0, 2 * n_nodes), slice(2 * n_nodes, mesh.n_frame)
+    membrane = slice(mesh.n_frame, n_dof)
+    mass = bed.mass.copy()
+    mass[bending, bending] += mb
+    mass[twist, twist] += mt
+    k_bend = np.zeros((n_dof, n_dof))
+    k_bend[bending, bending] = kb_unit
+    k_twist = np.zeros((n_dof, n_dof))
+    k_twist[twist, twist] = kt_unit
+    k_strings = np.zeros((n_dof, n_dof))
+    k_strings[membrane, membrane] = bed.stiffness
+    return _RacketMatrices(mass, k_bend, k_twist, k_strings, tubes)
+
+
+def _with_point_masses(
+    racket: Racket, mass: NDArray[np.float64], mesh: _Mesh
+) -> NDArray[np.float64]:
+    """The mass matrix with the racket's point masses at their exact ``(x, y)`` on the frame."""
+    mass = mass.copy()
+    for p in racket.point_masses:
+        row = np.zeros(mesh.n_dof)
+        row[: mesh.n_frame] = _frame_rows(mesh.x, np.array([p.x_m]), np.array([p.y_m]))[0]
+        mass += p.mass_kg * np.outer(row, row)
+    return mass
+
+
+def _racket_damping(
+    mass: NDArray[np.float64],
+    stiffness: NDArray[np.float64],
+    k_suspension: NDArray[np.float64],
+    damping_ratio: float,
+) -> NDArray[np.float64]:
+    """The free racket's own damping ``C_r = M Φ diag(2ζω) Φᵀ M`` on its flexible modes."""
+    free_omega2, free_vectors = eigh(stiffness + k_suspension, mass)
+    flexible = _support_share(free_vectors, k_suspension, free_omega2) < 0.5
+    phi_f, omega_f = free_vectors[:, flexible], np.sqrt(free_omega2[flexible])
+    mphi = mass @ phi_f
+    return np.asarray(mphi @ np.diag(2 * damping_ratio * omega_f) @ mphi.T)
+
+
+@dataclass(frozen=True)
+class _Held:
+    """The support's name in the mode names, its mass, stiffness and damping (the racket's DOFs
+    and its own after them) and its entries of the model's metadata."""
+
+    label: str
+    mass: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    metadata: dict[str, Any]
+
+
+def _on_sponge(
+    suspension: tuple[NDArray[np.float64], NDArray[np.float64]], mass: NDArray[np.float64]
+) -> _Held:
+    """The free support: the suspension's stiffness and damping, no mass of its own."""
+    k_suspension, c_suspension = suspension
+    metadata = {
+        "suspension_hz": list(SUSPENSION_HZ),
+        "suspension_damping_ratio": SUSPENSION_DAMPING_RATIO,
+    }
+    return _Held("suspension", np.zeros_like(mass), k_suspension, c_suspension, metadata)
+
+
+def _in_hand(hand: Hand, racket: Racket, mesh: _Mesh) -> _Held:
+    """The hand support: the hand's and arm's matrices (the hand checked against the racket)."""
+    head = racket.head
+    if hand.grip_end_m >= head.throat_x_m or hand.grip_end_m > racket.length_m:
+        raise InputError(
+            f"hand.grip_end_m ({hand.grip_end_m} m) must lie on the handle, below the "
+            f"string bed's throat end ({head.throat_x_m:.3f} m)"
+        )
+    if hand.shoulder_stiffness_n_per_m <= 0:
+        raise InputError(
+            "hand.shoulder_stiffness_n_per_m must be positive on the rig: without the "
+            "shoulder the held racket floats away on its arm (a mode of 0 Hz)"
+        )
+    m_support, k_support, c_support = _hand_matrices(hand, mesh.x, mesh.n_dof)
+    metadata = {"hand": {k: float(v) for k, v in vars(hand).items()}}
+    return _Held("hand", m_support, k_support, c_support, metadata)
+
+
+def _real_modes(
+    matrices: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+    max_frequency_hz: float,
+    support: str,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """``ω²``, the mass-normalised vectors and the modal damping ratios ``φᵀCφ / (2ω)`` of the
+    real modes of ``(M, K, C)`` up to ``max_frequency_hz``."""
+    mass, stiffness, damping = matrices
+    omega2, vectors = eigh(stiffness, mass)
+    keep = omega2 <= (2 * np.pi * max_frequency_hz) ** 2
+    omega2, vectors = omega2[keep], vectors[:, keep]
+    if np.any(omega2 <= 0):
+        raise InputError(f"rig model ({support}): a mode has no stiffness; check the support")
+    omega = np.sqrt(omega2)
+    zeta = np.einsum("ik,ij,jk->k", vectors, damping, vectors) / (2 * omega)
+    if np.any(zeta >= 1.0):
+        k = int(np.argmax(zeta))
+        raise InputError(
+            f"rig model ({support}): the mode at {omega[k] / (2 * np.pi):.2f} Hz is over-damped "
+            f"(damping ratio {zeta[k]:.2f}); lower the support's damping or raise its stiffness"
+        )
+    return omega2, vectors, zeta
+
+
+def _signed_modes(vectors: NDArray[np.float64], racket: Racket, mesh: _Mesh) -> NDArray[np.float64]:
+    """The sign convention: the largest displacement over the racket (sampled) positive."""
+    x = mesh.x
+    probe = _frame_rows(
+        x, np.concatenate([x, x]), np.repeat([0.0, racket.head.half_width_m], x.size)
+    )
+    sampled = np.vstack(
+        [
+            probe @ vectors[: mesh.n_frame],
+            _bed_centre_row(racket, mesh.powers) @ vectors[: mesh.n_dof],
+        ]
+    )
+    largest = sampled[np.argmax(np.abs(sampled), axis=0), np.arange(vectors.shape[1])]
+    return np.asarray(vectors * np.where(largest < 0, -1.0, 1.0))
+
+
+def _strain_energy(
+    vectors: NDArray[np.float64], stiffnesses: tuple[NDArray[np.float64], ...]
+) -> NDArray[np.float64]:
+    """``φᵀKφ`` of each mode in each stiffness (bending, twisting, strings, support), (4, n)."""
+    return np.vstack([np.einsum("ik,ij,jk->k", vectors, k, vectors) for k in stiffnesses])
 
 
 # --- pieces --------------------------------------------------------------------------------

@@ -44,6 +44,7 @@ from racketdyn.sweep.runner import (
     _designs_per_task,
     _Job,
     _Runner,
+    _Schedule,
     _Tally,
 )
 from racketdyn.sweep.spec import SweepSpec
@@ -363,9 +364,7 @@ class _SweepRun:
                 self.out,
                 self.chunk,
                 executor,
-                limit,
-                options.retries,
-                options.task_timeout,
+                _Schedule(limit, options.retries, options.task_timeout),
                 progress,
                 self.tally,
                 write_in_worker=local or options.shared_store,

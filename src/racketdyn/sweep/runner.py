@@ -200,6 +200,17 @@ def _run_batch(
     ]
 
 
+@dataclass(frozen=True)
+class _Schedule:
+    """How the runner submits its tasks: at most ``limit`` in flight, a failed design
+    submitted again ``retries`` times, a task past ``task_timeout`` seconds from its submission
+    stopped (None: never)."""
+
+    limit: int
+    retries: int
+    task_timeout: float | None
+
+
 class _Runner:
     """Submits the jobs (at most ``limit`` at once), records each design as it ends, retries
     failures, replaces a pool that lost a worker, stops tasks past the timeout."""
@@ -210,9 +221,7 @@ class _Runner:
         out_dir: Path,
         designs_per_chunk: int,
         executor: Executor,
-        limit: int,
-        retries: int,
-        task_timeout: float | None,
+        schedule: _Schedule,
         progress: ProgressCallback | None,
         tally: _Tally,
         write_in_worker: bool,
@@ -220,7 +229,8 @@ class _Runner:
     ) -> None:
         self.spec, self.out_dir, self.executor = spec, out_dir, executor
         self.chunk_size = designs_per_chunk
-        self.limit, self.retries, self.task_timeout = limit, retries, task_timeout
+        self.limit, self.retries = schedule.limit, schedule.retries
+        self.task_timeout = schedule.task_timeout
         self.progress, self.tally = progress, tally
         # an absolute path: a remote worker's working folder is its own
         self.write_dir = str(out_dir.resolve()) if write_in_worker else None

@@ -83,6 +83,8 @@ class BeamTest:
     shapes: NDArray[np.float64]  # at the FRF points, mass-normalised, (n_points, n_modes)
 
 
+# 13 parameters: a test's knobs, each set alone by keyword in the tests (the bar's line, its
+# modes, the transducers, the noise, the axis); grouping them would only wrap the keywords
 def beam_frfs(
     s: NDArray[np.float64] | list[float],
     reference_s: float,
@@ -132,25 +134,9 @@ def beam_frfs(
     f_n = natural_frequencies(n_modes)
     zeta = np.broadcast_to(np.asarray(damping_ratio, float), f_n.shape).copy()
     phi = mode_shapes(s, n_modes)
-    phi_ref = mode_shapes(np.array([reference_s]), n_modes)[0]
-    rigid = rigid_shapes(s) @ rigid_shapes(np.array([reference_s]))[0]
     frequency = np.linspace(0.0, top_hz, lines)
-    w = 2 * np.pi * frequency
-    wn = 2 * np.pi * f_n
-    modal = (phi * phi_ref)[:, None, :] * (
-        -(w[:, None] ** 2) / (wn**2 - w[:, None] ** 2 + 2j * zeta * wn * w[:, None])
-    )[None]
-    values = modal.sum(-1) + rigid[:, None]  # rigid body: accelerance 1/m_eff at every line
-    values = values * sensor_sign
-    scale = np.abs(values).max(axis=1, keepdims=True)
-    values = values * (
-        1
-        + noise
-        * (rng.standard_normal(values.shape) + 1j * rng.standard_normal(values.shape))
-        / np.sqrt(2)
-    ) + floor * scale * (
-        rng.standard_normal(values.shape) + 1j * rng.standard_normal(values.shape)
-    ) / np.sqrt(2)
+    values = _accelerances(s, reference_s, phi, (f_n, zeta), frequency) * sensor_sign
+    values = _with_noise(values, rng, noise, floor)
     d = np.asarray(direction, float) / np.linalg.norm(direction)
     locations = np.asarray(origin, float) + s[:, None] * d
     nodes = tuple(range(1, s.size + 1))
@@ -168,3 +154,45 @@ def beam_frfs(
         metadata={"roving": roving},
     )
     return BeamTest(frfs, f_n, zeta, phi)
+
+
+def _accelerances(
+    s: NDArray[np.float64],
+    reference_s: float,
+    phi: NDArray[np.float64],
+    modes: tuple[NDArray[np.float64], NDArray[np.float64]],
+    frequency: NDArray[np.float64],
+) -> NDArray[np.complex128]:
+    """The exact accelerances at ``s`` against ``reference_s``: the flexible modes (shapes
+    ``phi`` at ``s``, frequencies and damping ratios ``modes``) plus the rigid body."""
+    f_n, zeta = modes
+    n_modes = f_n.size
+    phi_ref = mode_shapes(np.array([reference_s]), n_modes)[0]
+    rigid = rigid_shapes(s) @ rigid_shapes(np.array([reference_s]))[0]
+    w = 2 * np.pi * frequency
+    wn = 2 * np.pi * f_n
+    modal = (phi * phi_ref)[:, None, :] * (
+        -(w[:, None] ** 2) / (wn**2 - w[:, None] ** 2 + 2j * zeta * wn * w[:, None])
+    )[None]
+    return np.asarray(modal.sum(-1) + rigid[:, None])  # rigid body: 1/m_eff at every line
+
+
+def _with_noise(
+    values: NDArray[np.complex128], rng: np.random.Generator, noise: float, floor: float
+) -> NDArray[np.complex128]:
+    """Relative complex Gaussian noise on every line, plus a floor relative to each FRF's
+    largest magnitude."""
+    scale = np.abs(values).max(axis=1, keepdims=True)
+    return np.asarray(
+        values
+        * (
+            1
+            + noise
+            * (rng.standard_normal(values.shape) + 1j * rng.standard_normal(values.shape))
+            / np.sqrt(2)
+        )
+        + floor
+        * scale
+        * (rng.standard_normal(values.shape) + 1j * rng.standard_normal(values.shape))
+        / np.sqrt(2)
+    )

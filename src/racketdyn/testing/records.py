@@ -45,6 +45,8 @@ def half_sine(
     )
 
 
+# 12 parameters: a test's knobs (the acquisition, the faults, the seed), each set alone by
+# keyword in the tests; grouping them would only wrap the keywords
 def records_for(
     modes: Modes,
     pulse_s: float = 1.0e-3,
