@@ -17,7 +17,7 @@ import pytest
 from racketdyn.cli import main
 from racketdyn.errors import InputError
 from racketdyn.io import load_racket
-from racketdyn.workflows import run_predict
+from racketdyn.workflows import PredictOptions, run_predict
 from racketdyn.workflows.setup import Setup
 
 
@@ -25,10 +25,10 @@ from racketdyn.workflows.setup import Setup
 def hammer_test(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """One rig's hammer records (one average a point), shared by the tests that only read them
     (each had run the rig itself: 3-4 s a case)."""
-    from racketdyn.workflows import run_rig
+    from racketdyn.workflows import RigOptions, run_rig
 
     folder = tmp_path_factory.mktemp("rig")
-    run_rig(folder, averages=1)
+    run_rig(folder, options=RigOptions(averages=1))
     return folder / "hammer_free.uff"
 
 
@@ -58,7 +58,7 @@ def test_an_empty_out_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[s
     _one_line(capsys, "--out")
     assert not list(tmp_path.iterdir())
     with pytest.raises(InputError, match="`out`"):
-        run_predict("", grid=2)
+        run_predict("", options=PredictOptions(grid=2))
 
 
 def test_an_over_long_out_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -124,12 +124,12 @@ def test_a_sweep_folder_that_cannot_be_created_is_one_line(
 def test_a_damaged_run_json_is_taken_as_damaged(tmp_path: Path, outputs: object) -> None:
     """A run.json whose ``outputs`` is not a list raised a TypeError after the computation."""
     out = tmp_path / "p"
-    run_predict(out, grid=2)
+    run_predict(out, options=PredictOptions(grid=2))
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))
     record["outputs"] = outputs
     (out / "run.json").write_text(json.dumps(record), encoding="utf-8")
     (out / "i").write_text("the user's", encoding="utf-8")  # a string's letters are no outputs
-    run_predict(out, grid=2)
+    run_predict(out, options=PredictOptions(grid=2))
     assert (out / "i").read_text(encoding="utf-8") == "the user's"
     assert json.loads((out / "run.json").read_text(encoding="utf-8"))["outputs"]
 
@@ -241,7 +241,10 @@ def test_more_worker_processes_than_the_machine_holds_is_one_line(
 
 
 def test_a_ball_speed_twice_with_two_racket_speeds_is_two_cases(tmp_path: Path) -> None:
-    result = run_predict(tmp_path / "p", speeds=[20.0, 20.0], racket_speed=[0.0, 30.0], grid=2)
+    result = run_predict(
+        tmp_path / "p",
+        options=PredictOptions(speeds=[20.0, 20.0], racket_speed=[0.0, 30.0], grid=2),
+    )
     assert result.approximate is not None
 
 
@@ -314,7 +317,9 @@ def test_report_refuses_a_racket_the_runs_were_not_computed_on(
 
     mine = replace(rd.default_racket(), name="mine", mass_kg=0.32)
     write_racket_toml(mine, tmp_path / "mine.toml")
-    run_predict(tmp_path / "p", grid=2, setup=Setup(racket=tmp_path / "mine.toml"))
+    run_predict(
+        tmp_path / "p", setup=Setup(racket=tmp_path / "mine.toml"), options=PredictOptions(grid=2)
+    )
     paper = Path(rd.__file__).parent / "data" / "kawazoe_2002.toml"
     assert main(["report", str(tmp_path / "p"), "--racket", str(paper)]) == 2
     _one_line(capsys, "--racket", "mass_kg 0.32 against 0.36", "mine")
@@ -337,7 +342,7 @@ def test_report_of_a_swinging_racket_does_not_say_at_rest(tmp_path: Path) -> Non
     spots were for a "racket at rest" and defined e on a racket at rest."""
     from racketdyn.report import write_report
 
-    run_predict(tmp_path / "p", speeds=[25.0], racket_speed=[28.0], grid=3)
+    run_predict(tmp_path / "p", options=PredictOptions(speeds=[25.0], racket_speed=[28.0], grid=3))
     text = write_report(tmp_path / "p").read_text(encoding="utf-8")
     start = text.index('<section id="rebound">')
     section = text[start : text.index("</section>", start)]

@@ -590,11 +590,11 @@ def test_rig_ball_adds_one_mode_and_keeps_the_frame_modes() -> None:
 def rig_frfs(tmp_path_factory):  # type: ignore[no-untyped-def]
     """The rig's free racket alone and with a ball at the centre, through ``frf`` (3 averages,
     exponential window 0.1 s: the ball mode's 4 % damping needs the window to stay stable)."""
-    from racketdyn.workflows import run_frf, run_rig
+    from racketdyn.workflows import RigOptions, run_frf, run_rig
 
     base = tmp_path_factory.mktemp("rig_ball")
-    run_rig(base / "rig_ball", ball_at=CENTRE, averages=3, support="free")
-    run_rig(base / "rig_alone", averages=3, support="free")
+    run_rig(base / "rig_ball", options=RigOptions(ball_at=CENTRE, averages=3, support="free"))
+    run_rig(base / "rig_alone", options=RigOptions(averages=3, support="free"))
     for name in ("ball", "alone"):
         run_frf(
             base / f"rig_{name}" / "hammer_free.uff", base / f"frf_{name}", exponential_window_s=0.1

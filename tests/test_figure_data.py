@@ -143,18 +143,20 @@ def _run_caught(run: Callable[[], Any]) -> tuple[Any, Drawn]:
 def predicted(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, Drawn, Path]]:
     """A small ``predict --model both`` run with its figures caught, and its folder."""
     from racketdyn.plotting.steps import predict_figures
-    from racketdyn.workflows import run_predict
+    from racketdyn.workflows import PredictOptions, run_predict
 
     out = tmp_path_factory.mktemp("predict")
     result, drawn = _run_caught(
         lambda: run_predict(
             out,
-            model="both",
-            speeds=[10.0, 20.0, 35.0],
-            racket_speed=[0.0, 2.0, 4.0],
-            grid=3,
-            engine="compiled",
             setup=Setup(figures=predict_figures()),
+            options=PredictOptions(
+                model="both",
+                speeds=[10.0, 20.0, 35.0],
+                racket_speed=[0.0, 2.0, 4.0],
+                grid=3,
+                engine="compiled",
+            ),
         )
     )
     yield result, drawn, out

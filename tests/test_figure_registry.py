@@ -129,12 +129,14 @@ def test_a_result_plots_its_registered_figures(tmp_path: Path) -> None:
     """``result.plot(id)`` (python-control style) draws the registry's figure from the result;
     the same figure drawn from the folder's data alone draws the same lines."""
     from racketdyn.plotting.registry import draw
-    from racketdyn.workflows import run_predict
+    from racketdyn.workflows import PredictOptions, run_predict
     from racketdyn.workflows.figure_data import read_step_data
 
     logging.disable(logging.WARNING)
     try:
-        result = run_predict(tmp_path, speeds=[20.0], grid=3, setup=Setup(figures=None))
+        result = run_predict(
+            tmp_path, setup=Setup(figures=None), options=PredictOptions(speeds=[20.0], grid=3)
+        )
     finally:
         logging.disable(logging.NOTSET)
     assert not list(tmp_path.glob("*.png"))
@@ -185,7 +187,7 @@ def test_a_new_figure_is_its_draw_function_and_one_entry(
     from racketdyn.plotting.steps import predict_figures
     from racketdyn.report.folder import RunFolder
     from racketdyn.report.sections import impact
-    from racketdyn.workflows import run_predict
+    from racketdyn.workflows import PredictOptions, run_predict
 
     new = registry.FigureEntry(
         "fig99_new_figure",
@@ -204,7 +206,9 @@ def test_a_new_figure_is_its_draw_function_and_one_entry(
     logging.disable(logging.WARNING)
     try:
         result = run_predict(
-            tmp_path / "p", speeds=[20.0], grid=3, setup=Setup(figures=predict_figures())
+            tmp_path / "p",
+            setup=Setup(figures=predict_figures()),
+            options=PredictOptions(speeds=[20.0], grid=3),
         )
     finally:
         logging.disable(logging.NOTSET)

@@ -23,7 +23,7 @@ from typing import Any
 
 import pytest
 
-from racketdyn.workflows import run_predict
+from racketdyn.workflows import PredictOptions, run_predict
 
 RTOL = 1e-9
 """Round-off: the CSV files carry nine significant digits."""
@@ -88,7 +88,7 @@ def test_predict_numbers_are_those_before_the_refactor(run: str, tmp_path: Path)
     reference = REFERENCE / run
     logging.disable(logging.WARNING)
     try:
-        run_predict(tmp_path, **RUNS[run])  # type: ignore[arg-type]
+        run_predict(tmp_path, options=PredictOptions(**RUNS[run]))  # type: ignore[arg-type]
     finally:
         logging.disable(logging.NOTSET)
     problems: list[str] = []

@@ -15,7 +15,7 @@ import pytest
 from racketdyn.cli import build_parser, main
 from racketdyn.cli.options import in_flags
 from racketdyn.errors import InputError
-from racketdyn.workflows import run_predict
+from racketdyn.workflows import PredictOptions, run_predict
 
 
 @pytest.mark.parametrize(
@@ -39,7 +39,7 @@ def test_python_hears_its_parameters_and_the_cli_its_flags(
     flags: list[str],
 ) -> None:
     with pytest.raises(InputError) as caught:
-        run_predict(tmp_path / "py", **kwargs)  # type: ignore[arg-type]
+        run_predict(tmp_path / "py", options=PredictOptions(**kwargs))  # type: ignore[arg-type]
     message = str(caught.value)
     assert python in message
     assert "--" not in message

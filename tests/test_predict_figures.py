@@ -21,7 +21,7 @@ from figure_catch import Drawn, catch_figures
 from racketdyn.cli import main
 from racketdyn.plotting.steps import predict_figures
 from racketdyn.racket import landmark_points
-from racketdyn.workflows import PredictResult, run_predict
+from racketdyn.workflows import PredictOptions, PredictResult, run_predict
 from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 
@@ -29,7 +29,7 @@ from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 def draw(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> Iterator[Callable[..., tuple[PredictResult, Drawn]]]:
-    """``draw(setup=Setup(...), **run_predict keywords)`` → (result, figures by file name)."""
+    """``draw(setup=Setup(...), **PredictOptions fields)`` → (result, figures by file name)."""
     caught: list[Drawn] = []
 
     def run(setup: Setup = DEFAULT_SETUP, **options: Any) -> tuple[PredictResult, Drawn]:
@@ -39,7 +39,9 @@ def draw(
         caught.append(drawn)
         logging.disable(logging.WARNING)  # flagged rows log warnings; not the subject here
         try:
-            result = run_predict(out, setup.replace(figures=predict_figures()), **options)
+            result = run_predict(
+                out, setup.replace(figures=predict_figures()), PredictOptions(**options)
+            )
         finally:
             logging.disable(logging.NOTSET)
         return result, drawn

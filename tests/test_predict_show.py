@@ -22,7 +22,7 @@ from racketdyn.cli import main
 from racketdyn.errors import InputError
 from racketdyn.report import write_report
 from racketdyn.workflows.figure_data import FIGURES_FILE, PaperFigures, read_figure_data
-from racketdyn.workflows.predict import run_predict
+from racketdyn.workflows.predict import PredictOptions, run_predict
 
 SERVE = {"speeds": [25.0, 3.0], "racket_speed": [28.0, 42.0], "grid": 3}
 
@@ -30,7 +30,7 @@ SERVE = {"speeds": [25.0, 3.0], "racket_speed": [28.0, 42.0], "grid": 3}
 @pytest.fixture(scope="module")
 def chosen(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("show") / "predict"
-    run_predict(out, **SERVE, show=(25.0, 28.0))
+    run_predict(out, options=PredictOptions(**SERVE, show=(25.0, 28.0)))
     return out
 
 
@@ -49,7 +49,7 @@ def test_show_chooses_the_case_and_run_json_records_it(chosen: Path) -> None:
 
 
 def test_without_show_the_rule_s_case_is_recorded(tmp_path: Path) -> None:
-    result = run_predict(tmp_path / "p", **SERVE)
+    result = run_predict(tmp_path / "p", options=PredictOptions(**SERVE))
     assert result.shown_speed == 1  # no 20 m/s: the middle speed, the lower of two
     record = json.loads((tmp_path / "p" / "run.json").read_text(encoding="utf-8"))
     assert record["shown_case"]["ball_speed_mps"] == 3.0
@@ -69,7 +69,7 @@ def test_a_show_not_run_is_one_line_naming_the_cases(
     tmp_path: Path, show: tuple[float, ...], words: str
 ) -> None:
     with pytest.raises(InputError) as error:
-        run_predict(tmp_path / "p", **SERVE, show=show)
+        run_predict(tmp_path / "p", options=PredictOptions(**SERVE, show=show))
     message = str(error.value)
     assert words in message
     assert "\n" not in message

@@ -271,7 +271,7 @@ def test_the_report_says_a_prediction_took_modes_of_unknown_kind(
     the report, built from the same folder, did not say a word.  It says which modes, and
     what they were taken as, in "Frame vibration" and "At a glance"."""
     from racketdyn.report import write_report
-    from racketdyn.workflows.predict import run_predict
+    from racketdyn.workflows.predict import PredictOptions, run_predict
 
     model = found["free"].model
     unknown = [n for n, kind in zip(model.names, model.kinds, strict=True) if kind == "unknown"]
@@ -281,10 +281,8 @@ def test_the_report_says_a_prediction_took_modes_of_unknown_kind(
     out = tmp_path / "run"
     run_predict(
         out / "predict",
-        speeds=[20.0],
-        supports=["free"],
-        grid=3,
         setup=Setup(racket=racket_file, modal_model=path),
+        options=PredictOptions(speeds=[20.0], supports=["free"], grid=3),
     )
     page = " ".join(write_report(out).read_text(encoding="utf-8").split())
     glance = page.split("At a glance")[1].split("</ul>")[0]

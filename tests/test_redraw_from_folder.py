@@ -42,7 +42,7 @@ def _setup(step: str) -> Setup:
 def _predict(out: Path, rig: Path) -> Any:
     from racketdyn.impact.uncertainty import Spread, Uncertainty
     from racketdyn.plotting.steps import predict_figures
-    from racketdyn.workflows import run_predict
+    from racketdyn.workflows import PredictOptions, run_predict
 
     figures = predict_figures()
     # with an uncertainty: Fig. 15's band, the face maps' band width and the sensitivity figure
@@ -50,11 +50,9 @@ def _predict(out: Path, rig: Path) -> Any:
     return run_predict(
         out,
         Setup(figures=figures),
-        model="both",
-        speeds=[10.0, 20.0],
-        grid=3,
-        engine="compiled",
-        uncertainty=spread,
+        PredictOptions(
+            model="both", speeds=[10.0, 20.0], grid=3, engine="compiled", uncertainty=spread
+        ),
     )
 
 
@@ -85,10 +83,10 @@ def _compare(out: Path, rig: Path) -> Any:
 
 
 def _compare_ball(out: Path, rig: Path) -> Any:
-    from racketdyn.workflows import run_compare_ball, run_frf, run_rig
+    from racketdyn.workflows import RigOptions, run_compare_ball, run_frf, run_rig
 
     # the rig's free racket with a ball at the centre (the window keeps the ball mode stable)
-    run_rig(rig / "rig_ball", averages=2, support="free", ball_at=CENTRE)
+    run_rig(rig / "rig_ball", options=RigOptions(averages=2, support="free", ball_at=CENTRE))
     frfs = run_frf(rig / "rig_ball" / "hammer_free.uff", rig / "frf_ball", exponential_window_s=0.1)
     alone = rig / "frf_free" / "frfs.uff"
     return run_compare_ball(
@@ -114,9 +112,9 @@ def _twist(out: Path, rig: Path) -> Any:
 
 
 def _oblique(out: Path, rig: Path) -> Any:
-    from racketdyn.workflows import run_oblique
+    from racketdyn.workflows import ObliqueOptions, run_oblique
 
-    return run_oblique(out, _setup("oblique"), angles_deg=[0.0, 30.0])
+    return run_oblique(out, _setup("oblique"), ObliqueOptions(angles_deg=[0.0, 30.0]))
 
 
 def _compound(out: Path, rig: Path) -> Any:

@@ -30,10 +30,10 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Path:
     step allows it)."""
     from racketdyn.workflows.frf import run_frf
     from racketdyn.workflows.identify import IdentifyOptions, run_compare, run_identify
-    from racketdyn.workflows.rig import run_rig
+    from racketdyn.workflows.rig import RigOptions, run_rig
 
     d = tmp_path_factory.mktemp("lab")
-    run_rig(d / "rig", support=("free", "hand"), averages=2, binary=True)
+    run_rig(d / "rig", options=RigOptions(support=("free", "hand"), averages=2, binary=True))
     for support in ("free", "hand"):
         run_frf(d / "rig" / f"hammer_{support}.uff", d / f"frf_{support}")
         run_identify(

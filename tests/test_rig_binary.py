@@ -11,11 +11,11 @@ import numpy as np
 from racketdyn.cli import main
 from racketdyn.io import read_hammer_uff
 from racketdyn.measurement.frf import estimate_frfs
-from racketdyn.workflows.rig import run_rig
+from racketdyn.workflows.rig import RigOptions, run_rig
 
 
 def test_the_rig_writes_binary_uff_by_default(tmp_path: Path) -> None:
-    result = run_rig(tmp_path, averages=1, support="hand", seed=3)
+    result = run_rig(tmp_path, options=RigOptions(averages=1, support="hand", seed=3))
     path = tmp_path / "hammer_hand.uff"
     text = path.read_bytes()
     assert b"    58b" in text

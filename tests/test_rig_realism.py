@@ -132,17 +132,19 @@ def test_snr_noise_lowers_coherence_and_damping_is_found_within_its_tolerance(
 def test_realistic_rig_round_trips_through_frf_and_identify(tmp_path: Path) -> None:
     # −z accelerometer, t = 0 at the record's start (pulse 10 ms in), no driving point, noise
     from racketdyn.workflows.frf import run_frf
-    from racketdyn.workflows.rig import run_rig
+    from racketdyn.workflows.rig import RigOptions, run_rig
 
     rig = run_rig(
         tmp_path / "rig",
-        averages=4,
-        time_zero="record",
-        response_direction=-3,
-        driving_point=False,
-        binary=False,  # the text form, read below for its direction codes (binary by default)
-        **SNR,
-        setup=Setup(racket=pull_tension_racket()),
+        Setup(racket=pull_tension_racket()),
+        RigOptions(
+            averages=4,
+            time_zero="record",
+            response_direction=-3,
+            driving_point=False,
+            binary=False,  # the text form, read below for its direction codes (binary by default)
+            **SNR,
+        ),
     )
     path = tmp_path / "rig" / "hammer_free.uff"
     text = path.read_text()
@@ -183,9 +185,9 @@ def test_a_racket_measured_in_the_lab_x_z_plane_round_trips(tmp_path: Path) -> N
 
     from racketdyn.workflows.frf import run_frf
     from racketdyn.workflows.identify import IdentifyOptions, identify_file
-    from racketdyn.workflows.rig import run_rig
+    from racketdyn.workflows.rig import RigOptions, run_rig
 
-    rig = run_rig(tmp_path / "rig", averages=3, lab_plane="xz")
+    rig = run_rig(tmp_path / "rig", options=RigOptions(averages=3, lab_plane="xz"))
     path = tmp_path / "rig" / "hammer_free.uff"
     geometry = pyuff.UFF(str(path)).read_sets(0)  # data set 15 comes first
     assert np.ptp(geometry["z"]) > 0.2
@@ -224,9 +226,9 @@ def test_a_roving_accelerometer_test_round_trips(tmp_path: Path) -> None:
     import pyuff
 
     from racketdyn.workflows.frf import run_frf
-    from racketdyn.workflows.rig import run_rig
+    from racketdyn.workflows.rig import RigOptions, run_rig
 
-    rig = run_rig(tmp_path / "rig", averages=2, layout="roving accelerometer")
+    rig = run_rig(tmp_path / "rig", options=RigOptions(averages=2, layout="roving accelerometer"))
     records = rig.records["free"]
     assert set(records.metadata["pulse_duration_s"]) == {0.4e-3}  # every hit on the hoop
     path = tmp_path / "rig" / "hammer_free.uff"

@@ -11,14 +11,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from racketdyn.workflows.rig import run_rig, support_stream
+from racketdyn.workflows.rig import RigOptions, run_rig, support_stream
 
 FAULTS = {"averages": 2, "double_hits": 0.3, "overloads": 0.3, "seed": 7}
 
 
 @pytest.fixture(scope="module")
 def both(tmp_path_factory: pytest.TempPathFactory) -> object:
-    return run_rig(tmp_path_factory.mktemp("both"), support=("free", "hand"), **FAULTS)
+    return run_rig(
+        tmp_path_factory.mktemp("both"), options=RigOptions(support=("free", "hand"), **FAULTS)
+    )
 
 
 def _pattern(result: object, support: str) -> np.ndarray:
@@ -42,7 +44,7 @@ def test_the_supports_draw_their_own_faults(both: object) -> None:
 
 
 def test_each_stream_is_reproducible_alone(both: object, tmp_path: Path) -> None:
-    alone = run_rig(tmp_path, support="hand", **FAULTS)
+    alone = run_rig(tmp_path, options=RigOptions(support="hand", **FAULTS))
     np.testing.assert_array_equal(_pattern(alone, "hand"), _pattern(both, "hand"))
     assert alone.faults["hand"] == both.faults["hand"]  # type: ignore[attr-defined]
 

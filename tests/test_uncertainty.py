@@ -407,13 +407,16 @@ def test_the_report_says_the_band_and_the_dominant_input_in_a_sentence(tmp_path:
 def test_fig15_carries_its_band_in_figures_nc_and_draws_it(tmp_path: Path) -> None:
     """The band Fig. 15 shades is in the run folder (figures.nc), read back equal, and holds
     the nominal curve wherever both are given."""
-    from racketdyn.workflows import run_predict
+    from racketdyn.workflows import PredictOptions, run_predict
     from racketdyn.workflows.figure_data import PaperFigures, read_figure_data
 
     out = tmp_path / "run"
     spreads = (Spread("e_bg", bounds=(0.80, 0.88)),)
     result = run_predict(
-        out, speeds=[20.0], supports=["free"], grid=3, uncertainty=Uncertainty(spreads, 16)
+        out,
+        options=PredictOptions(
+            speeds=[20.0], supports=["free"], grid=3, uncertainty=Uncertainty(spreads, 16)
+        ),
     )
     figures = result.paper_figures
     assert figures is not None
@@ -435,13 +438,16 @@ def test_fig15_carries_its_band_in_figures_nc_and_draws_it(tmp_path: Path) -> No
 
 def test_the_face_maps_draw_the_band_width_from_figures_nc(tmp_path: Path) -> None:
     from racketdyn.plotting.figures import figure_face_maps
-    from racketdyn.workflows import run_predict
+    from racketdyn.workflows import PredictOptions, run_predict
     from racketdyn.workflows.figure_data import PaperFigures, read_figure_data
 
     out = tmp_path / "run"
     spreads = (Spread("e_bg", bounds=(0.80, 0.88)),)
     result = run_predict(
-        out, speeds=[20.0], supports=["free"], grid=5, uncertainty=Uncertainty(spreads, 16)
+        out,
+        options=PredictOptions(
+            speeds=[20.0], supports=["free"], grid=5, uncertainty=Uncertainty(spreads, 16)
+        ),
     )
     back = PaperFigures.from_xarray(read_figure_data(out / "figures.nc"))
     width = back.face.rebound_ratio_band_width
@@ -650,17 +656,19 @@ def test_a_racket_file_without_its_frequency_says_the_120_hz_it_runs_at(tmp_path
     paper's 120 Hz, not among run.json's defaults, and the report showed it as given."""
     from importlib import resources
 
-    from racketdyn.workflows import run_predict
+    from racketdyn.workflows import PredictOptions, run_predict
 
     text = resources.files("racketdyn.data").joinpath("kawazoe_2002.toml").read_text("utf-8")
     lines = [line for line in text.splitlines() if not line.startswith("first_bending_hz")]
     racket = tmp_path / "r.toml"
     racket.write_text("\n".join(lines) + "\n", encoding="utf-8")
     out = tmp_path / "run"
-    run_predict(out, speeds=[20.0], grid=2, setup=Setup(racket=racket))
+    run_predict(out, setup=Setup(racket=racket), options=PredictOptions(speeds=[20.0], grid=2))
     defaults = json.loads((out / "run.json").read_text())["defaults_used"]
     assert any("first bending frequency: 120 Hz" in d for d in defaults), defaults
-    run_predict(tmp_path / "stated", speeds=[20.0], grid=2)  # the built-in racket states it
+    run_predict(
+        tmp_path / "stated", options=PredictOptions(speeds=[20.0], grid=2)
+    )  # the built-in racket states it
     stated = json.loads((tmp_path / "stated" / "run.json").read_text())["defaults_used"]
     assert not any("first bending frequency" in d for d in stated)
 

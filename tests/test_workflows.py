@@ -15,6 +15,8 @@ from racketdyn.io import read_frf_uff, write_hammer_uff
 from racketdyn.testing.records import Modes, records_for
 from racketdyn.workflows import (
     FrfResult,
+    ObliqueOptions,
+    PredictOptions,
     PredictResult,
     run_frf,
     run_oblique,
@@ -33,7 +35,9 @@ def _record(out: Path) -> dict[str, object]:
 def test_predict_writes_its_folder_and_returns_the_result(tmp_path: Path) -> None:
     racket = rd.default_racket()
     result = run_predict(
-        tmp_path, speeds=[20.0], supports=["free"], grid=3, setup=Setup(racket=racket)
+        tmp_path,
+        setup=Setup(racket=racket),
+        options=PredictOptions(speeds=[20.0], supports=["free"], grid=3),
     )
 
     assert isinstance(result, PredictResult)
@@ -69,11 +73,10 @@ def test_predict_figures_come_from_the_hook_and_are_recorded(tmp_path: Path) -> 
 
     result = run_predict(
         tmp_path,
-        model="both",
-        speeds=[20.0],
-        supports=["free"],
-        points=[[0.505, 0.0]],
         setup=Setup(figures=hook),
+        options=PredictOptions(
+            model="both", speeds=[20.0], supports=["free"], points=[[0.505, 0.0]]
+        ),
     )
     assert seen == [result]
     assert result.comparison is not None
@@ -90,14 +93,16 @@ def test_predict_figures_come_from_the_hook_and_are_recorded(tmp_path: Path) -> 
 
 def test_predict_refuses_bad_input_before_writing(tmp_path: Path) -> None:
     with pytest.raises(rd.InputError, match="`supports` hand needs `model` transient"):
-        run_predict(tmp_path / "out", supports=["hand"])
+        run_predict(tmp_path / "out", options=PredictOptions(supports=["hand"]))
     with pytest.raises(rd.InputError, match="grid"):
-        run_predict(tmp_path / "out", grid=0)
+        run_predict(tmp_path / "out", options=PredictOptions(grid=0))
     # review of issue 11: these were checked by the CLI only, and ignored from Python
     with pytest.raises(rd.InputError, match="engine"):
-        run_predict(tmp_path / "out", model="approx", engine="reference")
+        run_predict(tmp_path / "out", options=PredictOptions(model="approx", engine="reference"))
     with pytest.raises(rd.InputError, match="`stiffness_reading`"):
-        run_predict(tmp_path / "out", model="transient", stiffness_reading="tangent")
+        run_predict(
+            tmp_path / "out", options=PredictOptions(model="transient", stiffness_reading="tangent")
+        )
     assert not (tmp_path / "out").exists()
 
 
@@ -141,7 +146,9 @@ def test_twist_and_oblique_from_python(tmp_path: Path) -> None:
     assert [p.name for p in twist.written] == ["twist.csv", "figures.nc"]
     assert twist.curves[0].roll_angle_rad[0] == pytest.approx(0.0, abs=1e-12)
     assert twist.curves[0].roll_angle_rad[1] > 0.0
-    oblique = run_oblique(tmp_path / "oblique", angles_deg=[0.0, 30.0], setup=Setup(rigid=True))
+    oblique = run_oblique(
+        tmp_path / "oblique", Setup(rigid=True), ObliqueOptions(angles_deg=[0.0, 30.0])
+    )
     assert oblique.curve is not None
     assert oblique.curve.outgoing_spin_radps.shape == (2,)
     assert _record(tmp_path / "oblique")["outputs"] == ["oblique.csv", "figures.nc", "run.json"]
@@ -165,8 +172,12 @@ def test_predict_takes_a_modal_model_object(tmp_path: Path) -> None:
     """Review of issue 11: `modal=` took a file only (a ModalModel raised a raw TypeError)."""
     racket = rd.default_racket()
     model = rd.modal_model_for(racket)
-    by_object = run_predict(tmp_path / "a", speeds=[20.0], grid=3, setup=Setup(modal_model=model))
-    by_default = run_predict(tmp_path / "b", speeds=[20.0], grid=3)
+    by_object = run_predict(
+        tmp_path / "a",
+        setup=Setup(modal_model=model),
+        options=PredictOptions(speeds=[20.0], grid=3),
+    )
+    by_default = run_predict(tmp_path / "b", options=PredictOptions(speeds=[20.0], grid=3))
     assert by_object.modal_model is model
     np.testing.assert_array_equal(by_object.result.rebound_ratio, by_default.result.rebound_ratio)
     record = json.loads((tmp_path / "a" / "run.json").read_text(encoding="utf-8"))
@@ -177,9 +188,11 @@ def test_predict_from_python_refuses_a_speed_in_kmh(tmp_path: Path) -> None:
     """Issue 13: `run_predict(speeds=[90])` (km/h typed) ran with every row NaN; the CLI
     refused it, Python did not."""
     with pytest.raises(rd.InputError, match="did you give"):
-        run_predict(tmp_path / "out", speeds=[90.0], grid=3)
+        run_predict(tmp_path / "out", options=PredictOptions(speeds=[90.0], grid=3))
     assert not (tmp_path / "out").exists()
     unusual = run_predict(
-        tmp_path / "out", speeds=[80.0], grid=3, setup=Setup(allow_implausible=True)
+        tmp_path / "out",
+        setup=Setup(allow_implausible=True),
+        options=PredictOptions(speeds=[80.0], grid=3),
     )
     assert unusual.result.status.size == 2 * len(unusual.result.locations)

@@ -54,8 +54,8 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     from racketdyn.workflows.frf import run_frf
     from racketdyn.workflows.identify import IdentifyOptions, run_compare
     from racketdyn.workflows.oblique import run_oblique
-    from racketdyn.workflows.predict import run_predict
-    from racketdyn.workflows.rig import run_rig
+    from racketdyn.workflows.predict import PredictOptions, run_predict
+    from racketdyn.workflows.rig import RigOptions, run_rig
     from racketdyn.workflows.setup import Setup
     from racketdyn.workflows.swing import run_swing
     from racketdyn.workflows.twist import run_twist
@@ -79,11 +79,13 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
         partial(
             run_rig,
             rig,
-            support=("free", "hand"),
-            double_hits=DOUBLE_HITS,
-            overloads=OVERLOADS,
-            response_snr_db=RESPONSE_SNR_DB,
-            force_snr_db=FORCE_SNR_DB,
+            options=RigOptions(
+                support=("free", "hand"),
+                double_hits=DOUBLE_HITS,
+                overloads=OVERLOADS,
+                response_snr_db=RESPONSE_SNR_DB,
+                force_snr_db=FORCE_SNR_DB,
+            ),
         ),
         Setup(racket=racket),
     )
@@ -122,7 +124,7 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     step(
         "prediction with the identified free modes, both models",
         ["predict", *identified, "--model", "both", "--out", str(out / "predict")],
-        partial(run_predict, out / "predict", model="both"),
+        partial(run_predict, out / "predict", options=PredictOptions(model="both")),
         Setup(racket=racket, modal_model=modal, figures=fig.predict_figures()),
     )
     # the three below add ≈ 1.5 s together (measured on the 2-core development machine)

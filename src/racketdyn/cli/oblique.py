@@ -73,7 +73,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     from rich.table import Table
 
     from racketdyn.plotting.steps import oblique_figures
-    from racketdyn.workflows.oblique import SPIN_CAVEAT, run_oblique
+    from racketdyn.workflows.oblique import SPIN_CAVEAT, ObliqueOptions, run_oblique
 
     angles = opt.parse_numbers("--angles", args.angles, "degrees from the face normal")
     from racketdyn.plausibility import check_degrees
@@ -86,15 +86,17 @@ def run(args: argparse.Namespace, console: Console) -> int:
         result = run_oblique(
             args.out,
             opt.setup_from_args(args, [args.support], figures=oblique_figures, progress=progress),
-            speed=speed,
-            angles_deg=angles,
-            spin_radps=args.spin,
-            point=point,
-            support=args.support,
-            friction=args.friction,
-            tangential_stiffness=args.tangential_stiffness,
-            racket_speed=racket_speed,
-            racket_tangential_speed=args.racket_tangential_speed,
+            ObliqueOptions(
+                speed=speed,
+                angles_deg=angles,
+                spin_radps=args.spin,
+                point=point,
+                support=args.support,
+                friction=args.friction,
+                tangential_stiffness=args.tangential_stiffness,
+                racket_speed=racket_speed,
+                racket_tangential_speed=args.racket_tangential_speed,
+            ),
         )
     curve, contact, where = result.curve, result.contact, result.point
     assert curve is not None

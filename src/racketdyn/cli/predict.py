@@ -96,7 +96,12 @@ def run(args: argparse.Namespace, console: Console) -> int:
 
     from racketdyn._display import case_words
     from racketdyn.plotting.steps import predict_figures
-    from racketdyn.workflows.predict import check_supports, run_predict, transient_csv_name
+    from racketdyn.workflows.predict import (
+        PredictOptions,
+        check_supports,
+        run_predict,
+        transient_csv_name,
+    )
 
     speeds = opt.parse_speeds("--speed", args.speed)
     racket_speed = opt.parse_speeds("--racket-speed", args.racket_speed)
@@ -112,19 +117,21 @@ def run(args: argparse.Namespace, console: Console) -> int:
                 figures=predict_figures(lambda s: progress(s, 0, 0)),
                 progress=progress,
             ),
-            speeds=speeds,
-            racket_speed=racket_speed,
-            supports=supports,
-            model=args.model,
-            engine=args.engine,
-            points=args.points,
-            grid=args.grid,
-            stiffness_reading=args.stiffness_reading,
-            vibration_charge=args.vibration_charge,
-            include_string_bed=args.include_string_bed,
-            uncertainty=uncertainty,
-            workers=args.workers,
-            show=show,
+            PredictOptions(
+                speeds=speeds,
+                racket_speed=racket_speed,
+                supports=supports,
+                model=args.model,
+                engine=args.engine,
+                points=args.points,
+                grid=args.grid,
+                stiffness_reading=args.stiffness_reading,
+                vibration_charge=args.vibration_charge,
+                include_string_bed=args.include_string_bed,
+                uncertainty=uncertainty,
+                workers=args.workers,
+                show=show,
+            ),
         )
     table = result.result
     console.print(

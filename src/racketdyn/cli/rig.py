@@ -118,12 +118,11 @@ def add(commands: Any) -> None:
 
 def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
-    from racketdyn.workflows.rig import run_rig
+    from racketdyn.workflows.rig import RigOptions, run_rig
 
     with opt.progress_display(console) as progress:
-        result = run_rig(
-            args.out,
-            opt.setup_from_args(args, progress=progress),
+        setup = opt.setup_from_args(args, progress=progress)
+        options = RigOptions(
             support=opt.parse_list("--support", args.support),
             averages=args.averages,
             double_hits=args.double_hits,
@@ -140,6 +139,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             lab_plane=args.lab_plane,
             layout=args.layout.replace("-", " "),
         )
+        result = run_rig(args.out, setup, options)
     for support in result.supports:
         records, truth, faults = (
             result.records[support],

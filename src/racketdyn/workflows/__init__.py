@@ -36,8 +36,9 @@ frozen :class:`Setup` (:mod:`racketdyn.workflows.setup`), documented there once.
 
 Example
 -------
->>> from racketdyn.workflows import Setup, run_predict
->>> result = run_predict("out", Setup(rigid=True), speeds=[20.0], grid=3)  # doctest: +SKIP
+>>> from racketdyn.workflows import PredictOptions, Setup, run_predict
+>>> options = PredictOptions(speeds=[20.0], grid=3)
+>>> result = run_predict("out", Setup(rigid=True), options)  # doctest: +SKIP
 >>> result.written  # doctest: +SKIP
 [PosixPath('out/impact.csv')]
 
@@ -76,9 +77,9 @@ if TYPE_CHECKING:
         run_compare_ball,
         run_identify,
     )
-    from racketdyn.workflows.oblique import ObliqueResult, run_oblique
-    from racketdyn.workflows.predict import PredictResult, run_predict
-    from racketdyn.workflows.rig import RigResult, run_rig
+    from racketdyn.workflows.oblique import ObliqueOptions, ObliqueResult, run_oblique
+    from racketdyn.workflows.predict import PredictOptions, PredictResult, run_predict
+    from racketdyn.workflows.rig import RigOptions, RigResult, run_rig
     from racketdyn.workflows.run import StepResult
     from racketdyn.workflows.setup import Setup
     from racketdyn.workflows.sweep import SweepResult, run_sweep_step
@@ -110,8 +111,11 @@ _WHERE = {
     "FrfResult": "frf",
     "IdentifyOptions": "identify",
     "IdentifyResult": "identify",
+    "ObliqueOptions": "oblique",
     "ObliqueResult": "oblique",
+    "PredictOptions": "predict",
     "PredictResult": "predict",
+    "RigOptions": "rig",
     "RigResult": "rig",
     "StepResult": "run",
     "Setup": "setup",
@@ -146,10 +150,13 @@ __all__ = [
     "IdentifyOptions",
     "IdentifyResult",
     "ImpactCurves",
+    "ObliqueOptions",
     "ObliqueResult",
     "PaperFigures",
+    "PredictOptions",
     "PredictResult",
     "PulseSpectra",
+    "RigOptions",
     "RigResult",
     "Setup",
     "StepResult",

@@ -374,6 +374,12 @@ def run_compound(
 ) -> CompoundResult:
     """The linear modes of ball + ball–string spring + racket; write the run folder.
 
+    The steps: the ball's and the hammer's points (:func:`_ball_point`, :func:`_hammer_point`),
+    the ball's spring, where the responses are taken (:func:`_place`), the approximate
+    method's contact times, each support's modes and responses (:func:`_support_modes`),
+    then ``compound.csv`` (:func:`_compound_rows`) and run.json (:func:`_blow_record`,
+    :func:`_modes_record`).
+
     Parameters
     ----------
     out : path
@@ -399,15 +405,7 @@ def run_compound(
     used = setup.racket_setup()
     the_racket = used.racket
     defaults_used = [*used.defaults, *setup.defaults]
-    if point is None:
-        xy = (the_racket.head.centre_x_m, the_racket.head.centre_y_m)
-        defaults_used.append("point: the centre of the string bed")
-    else:
-        values = np.asarray(point, dtype=float).ravel()
-        if values.size != 2 or not np.all(np.isfinite(values)):
-            raise InputError("`point`: give the ball's position as x,y in m, e.g. 0.505,0")
-        xy = (float(values[0]), float(values[1]))
-    the_racket.head.check_inside(np.array([xy]), "`point`")
+    xy = _ball_point(the_racket, point, defaults_used)
     the_hand, hand_defaults = setup.hand_used(checked)
     the_ball, ball_defaults = setup.ball_used()
     defaults_used += [*hand_defaults, *ball_defaults]
@@ -417,36 +415,15 @@ def run_compound(
     )
     model = used.modal_model
     stiffer = None if model is None else stiffer_frame(model, FRAME_STIFFNESS_FACTOR)
+    strike = _hammer_point(the_racket, xy, hammer, defaults_used)
     head = the_racket.head
-    if hammer is None:
-        strike = (xy[0] - HAMMER_OFFSET_M, xy[1])
-        defaults_used.append(
-            f"hammer: {1e3 * HAMMER_OFFSET_M:.0f} mm from the ball, to the handle, behind the face"
+    result = _place(
+        CompoundResult(
+            Path(out), racket=the_racket, ball=the_ball, spring=spring, location=xy,
+            supports=checked, model=model, hand=the_hand, hammer=strike,
+            neck=(head.centre_x_m - head.half_length_m - NECK_BELOW_BED_M, 0.0),
         )
-        head.check_inside(
-            np.array([strike]),
-            f"the hammer point (`point` minus {1e3 * HAMMER_OFFSET_M:.0f} mm; `hammer`)",
-        )
-    else:
-        values = np.asarray(hammer, dtype=float).ravel()
-        if values.size != 2 or not np.all(np.isfinite(values)):
-            raise InputError("`hammer`: give the hammer's point as x,y in m, e.g. 0.495,0")
-        strike = (float(values[0]), float(values[1]))
-        head.check_inside(np.array([strike]), "`hammer`")
-    neck = (head.centre_x_m - head.half_length_m - NECK_BELOW_BED_M, 0.0)
-    result = CompoundResult(
-        Path(out), racket=the_racket, ball=the_ball, spring=spring, location=xy,
-        supports=checked, model=model, hand=the_hand, hammer=strike, neck=neck,
-        times=np.arange(0.0, RESPONSE_TIME_S, RESPONSE_STEP_S),
-        frequency=np.linspace(*FRF_FREQUENCY_HZ[:2], FRF_FREQUENCY_HZ[2]),
     )  # fmt: skip
-    result.axis_x = np.linspace(0.0, the_racket.length_m, AXIS_POINTS)
-    result.paper_racket = is_papers_racket(the_racket)
-    result.off_centre_m = math.dist(xy, (head.centre_x_m, head.centre_y_m))
-    angles = np.linspace(0.0, 2.0 * math.pi, 72, endpoint=False)
-    rim = np.column_stack([np.cos(angles), np.sin(angles)]) * the_ball.diameter_m / 2 + xy
-    result.overhangs = not bool(np.all(head.contains(rim)))
-    extra = np.vstack([[strike, neck], np.column_stack([result.axis_x, np.zeros(AXIS_POINTS)])])
     approximate = predict(
         the_racket,
         the_ball,
@@ -463,45 +440,145 @@ def run_compound(
     result.blow_share = {"net_share": share, "to_ball": share * ball_fraction}
     for i, support in enumerate(checked):
         report(setup.progress, f"modes with the ball, {support}", i, len(checked))
-        with_ball = racket_modes(the_racket, model, support, xy, spring, the_ball, the_hand, extra)
-        alone = racket_modes(the_racket, model, support, xy, None, the_ball, the_hand, extra)
-        result.modes[support], result.alone[support] = with_ball, alone
-        blow = float(string_contact_time(the_racket, [strike], _APPROXIMATE_SUPPORT[support])[0])
-        result.blow_s[support] = blow
-        load = with_ball.string_blow(1, share, ball_fraction)
-        result.neck_acceleration[support] = with_ball.blow_acceleration(result.times, load, 2, blow)
-        result.neck_parts[support], result.hand_over[support] = _hand_over(
-            with_ball, result.times, result.neck_acceleration[support], blow
-        )
-        result.frf_with_ball[support] = with_ball.receptance(result.frequency, load, 2)
-        result.frf_alone[support] = alone.receptance(result.frequency, 1, 2)
-        if with_ball.ball_mode >= 0:
-            shape = (
-                with_ball.shapes[:, with_ball.ball_mode] / with_ball.shapes[-1, with_ball.ball_mode]
-            )
-            result.ball_shape[support] = (np.real(with_ball.rows[3:] @ shape), 1.0)
-        result.band[support] = ball_mode_band(
-            the_racket, model, support, xy, spring, the_ball, the_hand
-        )
-        if result.paper_racket:
-            result.paper_bed[support] = bed_for_frequency(
-                the_racket, model, support, xy, spring, PAPER_BALL_MODE_HZ, the_ball, the_hand
-            )
-        result.node_line[support] = _node_line(alone, result.axis_x, xy[0])
+        _support_modes(result, support, ball_fraction, stiffer)
         k = approximate.supports.index(_APPROXIMATE_SUPPORT[support])
         result.contact_time[support] = [float(t) for t in approximate.contact_time[0, :, k]]
-        if stiffer is not None:
-            harder = racket_modes(the_racket, stiffer, support, xy, spring, the_ball, the_hand)
-            result.checks[support] = FrameCheck(
-                support,
-                FRAME_STIFFNESS_FACTOR,
-                with_ball.ball_frequency,
-                harder.ball_frequency,
-                _frame_frequencies(with_ball, model),
-                _frame_frequencies(harder, model),
-            )
+    result.written.append(write_rows(result.out / "compound.csv", _compound_rows(result)))
+    result.figure_data = CompoundFigures.of(result)
+    defer_figure_data(result, {"figure_data": result.figure_data})
+    inputs = {
+        **used.provenance,
+        "racket": racket_to_dict(the_racket),
+        **_blow_record(result, patch, setup.string_bed),
+        "supports": checked,
+        "rigid": setup.rigid,
+        "ball_mass_kg": the_ball.mass_kg,
+        "defaults_used": defaults_used,
+        **_modes_record(result, the_racket, the_ball),
+    }
+    return setup.finish(result, inputs, "compound")
+
+
+def _ball_point(the_racket: Racket, point: ArrayLike | None, defaults_used: list[str]) -> tuple[
+    float, float
+]:  # fmt: skip
+    """Where the ball sits (x, y), m: ``point``, or the bed's centre (said in
+    ``defaults_used``); refused outside the head."""
+    if point is None:
+        xy = (the_racket.head.centre_x_m, the_racket.head.centre_y_m)
+        defaults_used.append("point: the centre of the string bed")
+    else:
+        values = np.asarray(point, dtype=float).ravel()
+        if values.size != 2 or not np.all(np.isfinite(values)):
+            raise InputError("`point`: give the ball's position as x,y in m, e.g. 0.505,0")
+        xy = (float(values[0]), float(values[1]))
+    the_racket.head.check_inside(np.array([xy]), "`point`")
+    return xy
+
+
+def _hammer_point(
+    the_racket: Racket,
+    xy: tuple[float, float],
+    hammer: ArrayLike | None,
+    defaults_used: list[str],
+) -> tuple[float, float]:
+    """Where the hammer strikes (x, y), m: ``hammer``, or :data:`HAMMER_OFFSET_M` from the
+    ball at ``xy`` towards the handle (said in ``defaults_used``); refused outside the head."""
+    head = the_racket.head
+    if hammer is None:
+        strike = (xy[0] - HAMMER_OFFSET_M, xy[1])
+        defaults_used.append(
+            f"hammer: {1e3 * HAMMER_OFFSET_M:.0f} mm from the ball, to the handle, behind the face"
+        )
+        head.check_inside(
+            np.array([strike]),
+            f"the hammer point (`point` minus {1e3 * HAMMER_OFFSET_M:.0f} mm; `hammer`)",
+        )
+    else:
+        values = np.asarray(hammer, dtype=float).ravel()
+        if values.size != 2 or not np.all(np.isfinite(values)):
+            raise InputError("`hammer`: give the hammer's point as x,y in m, e.g. 0.495,0")
+        strike = (float(values[0]), float(values[1]))
+        head.check_inside(np.array([strike]), "`hammer`")
+    return strike
+
+
+def _place(result: CompoundResult) -> CompoundResult:
+    """``result`` with the times, frequencies and axis points of its responses, whether its
+    racket is the paper's, and where its ball sits on the bed (off the centre, overhanging)."""
+    the_racket, the_ball = _racket_and_ball(result)
+    head, xy = the_racket.head, result.location
+    result.times = np.arange(0.0, RESPONSE_TIME_S, RESPONSE_STEP_S)
+    result.frequency = np.linspace(*FRF_FREQUENCY_HZ[:2], FRF_FREQUENCY_HZ[2])
+    result.axis_x = np.linspace(0.0, the_racket.length_m, AXIS_POINTS)
+    result.paper_racket = is_papers_racket(the_racket)
+    result.off_centre_m = math.dist(xy, (head.centre_x_m, head.centre_y_m))
+    angles = np.linspace(0.0, 2.0 * math.pi, 72, endpoint=False)
+    rim = np.column_stack([np.cos(angles), np.sin(angles)]) * the_ball.diameter_m / 2 + xy
+    result.overhangs = not bool(np.all(head.contains(rim)))
+    return result
+
+
+def _racket_and_ball(result: CompoundResult) -> tuple[Racket, Ball]:
+    """The result's racket and ball (set by :func:`run_compound` before any step uses them)."""
+    assert result.racket is not None
+    assert result.ball is not None
+    return result.racket, result.ball
+
+
+def _support_modes(
+    result: CompoundResult, support: str, ball_fraction: float, stiffer: ModalModel | None
+) -> None:
+    """One support's modes with the ball and without, the neck's response and the FRFs after
+    the hammer's blow (``ball_fraction`` of the strings' share to the ball), the ball mode's
+    shape, its band and the bed for the paper's frequency, the 2-node node line and, with
+    ``stiffer`` (the racket with a stiffer frame), the frame check: into ``result``."""
+    the_racket, the_ball = _racket_and_ball(result)
+    model, xy, spring, the_hand = result.model, result.location, result.spring, result.hand
+    assert spring is not None
+    extra = np.vstack(
+        [[result.hammer, result.neck], np.column_stack([result.axis_x, np.zeros(AXIS_POINTS)])]
+    )
+    with_ball = racket_modes(the_racket, model, support, xy, spring, the_ball, the_hand, extra)
+    alone = racket_modes(the_racket, model, support, xy, None, the_ball, the_hand, extra)
+    result.modes[support], result.alone[support] = with_ball, alone
+    blow = float(string_contact_time(the_racket, [result.hammer], _APPROXIMATE_SUPPORT[support])[0])
+    result.blow_s[support] = blow
+    load = with_ball.string_blow(1, result.blow_share["net_share"], ball_fraction)
+    result.neck_acceleration[support] = with_ball.blow_acceleration(result.times, load, 2, blow)
+    result.neck_parts[support], result.hand_over[support] = _hand_over(
+        with_ball, result.times, result.neck_acceleration[support], blow
+    )
+    result.frf_with_ball[support] = with_ball.receptance(result.frequency, load, 2)
+    result.frf_alone[support] = alone.receptance(result.frequency, 1, 2)
+    if with_ball.ball_mode >= 0:
+        shape = with_ball.shapes[:, with_ball.ball_mode] / with_ball.shapes[-1, with_ball.ball_mode]
+        result.ball_shape[support] = (np.real(with_ball.rows[3:] @ shape), 1.0)
+    result.band[support] = ball_mode_band(
+        the_racket, model, support, xy, spring, the_ball, the_hand
+    )
+    if result.paper_racket:
+        result.paper_bed[support] = bed_for_frequency(
+            the_racket, model, support, xy, spring, PAPER_BALL_MODE_HZ, the_ball, the_hand
+        )
+    result.node_line[support] = _node_line(alone, result.axis_x, xy[0])
+    if stiffer is not None:
+        harder = racket_modes(the_racket, stiffer, support, xy, spring, the_ball, the_hand)
+        result.checks[support] = FrameCheck(
+            support,
+            FRAME_STIFFNESS_FACTOR,
+            with_ball.ball_frequency,
+            harder.ball_frequency,
+            _frame_frequencies(with_ball, model),
+            _frame_frequencies(harder, model),
+        )
+
+
+def _compound_rows(result: CompoundResult) -> list[dict[str, Any]]:
+    """``compound.csv``'s rows (:data:`COMPOUND_COLUMNS`): each support's elastic modes with
+    the ball, the contact times on the ball mode."""
     rows = []
-    for support in checked:
+    for support in result.supports:
         modes = result.modes[support]
         for k, name in enumerate(modes.names):
             ball_mode = k == modes.ball_mode
@@ -517,14 +594,15 @@ def run_compound(
                     **dict(zip(COMPOUND_COLUMNS[-3:], times, strict=True)),
                 }
             )
-    result.written.append(write_rows(result.out / "compound.csv", rows))
-    result.figure_data = CompoundFigures.of(result)
-    defer_figure_data(result, {"figure_data": result.figure_data})
-    inputs = {
-        **used.provenance,
-        "racket": racket_to_dict(the_racket),
-        "point_m": list(xy),
-        "hammer_point_m": list(strike),
+    return rows
+
+
+def _blow_record(result: CompoundResult, patch: float, string_bed: str) -> dict[str, Any]:
+    """run.json's points, the hammer's blow and how it is shared (``patch``: the resting
+    patch's radius, m), the spring's law and the neck's readings."""
+    return {
+        "point_m": list(result.location),
+        "hammer_point_m": list(result.hammer),
         "hammer_blow_s": result.blow_s,
         "hammer_blow": "a half-sine of unit impulse as long as the hammer's contact with the "
         "strings there (racketdyn.rig.hammer.string_contact_time), shared through the strings "
@@ -542,20 +620,25 @@ def run_compound(
             "on the frame at "
             "the hammer's point",
         },
-        "neck_point_m": list(neck),
+        "neck_point_m": list(result.neck),
         "ball_overhangs_bed": result.overhangs,
-        "string_bed": setup.string_bed,
+        "string_bed": string_bed,
         "spring_law_at": (
             "the centre of the face (contact.compound_law) wherever the ball sits"
-            if setup.string_bed == "uniform"
+            if string_bed == "uniform"
             else "the ball's point (contact.local_compound_law)"
         ),
         "neck_hand_over": result.hand_over,
         "two_node_node_line_m": result.node_line,
-        "supports": checked,
-        "rigid": setup.rigid,
-        "ball_mass_kg": the_ball.mass_kg,
-        "defaults_used": defaults_used,
+    }
+
+
+def _modes_record(result: CompoundResult, the_racket: Racket, the_ball: Ball) -> dict[str, Any]:
+    """run.json's method, the ball's spring, the modes and their checks, the racket's modal
+    model and hand, and the columns."""
+    spring, model, checked = result.spring, result.model, result.supports
+    assert spring is not None
+    return {
         "method": "linear modes of ball + ball–string spring + racket (racketdyn.impact."
         "compound): the racket's rigid body and flexible modes (string-bed modes left out: the "
         "spring carries the strings), complex eigenvalues of the damped system",
@@ -575,35 +658,38 @@ def run_compound(
         "ball_mode_hz": {s: result.modes[s].ball_frequency for s in checked},
         "frame_mode_shifts": {s: frame_shifts(result.modes[s], result.alone[s]) for s in checked},
         "frame_stiffness_check": [c.as_dict() for c in result.checks.values()],
-        "ball_mode_band": {
-            s: {
-                **result.band[s].as_dict(),
-                "why": "the ball mode at the corners of the small-amplitude inputs' spread: "
-                "ball one-sided stiffness (ITF forward deformation, halved), the bed under the "
-                "ball (published static stiffness and the per-string law, to the string net "
-                "pushed over the ball's width), ball mass (ITF); racketdyn.impact.compound_band",
-                "paper_hz": PAPER_BALL_MODE_HZ,
-                "paper_racket": result.paper_racket,
-                **(
-                    {
-                        "paper_inside": result.band[s].holds(PAPER_BALL_MODE_HZ),
-                        "bed_for_paper": result.paper_bed[s].as_dict(),
-                    }
-                    if result.paper_racket
-                    else {
-                        "paper_inside": None,
-                        "bed_for_paper": None,
-                        "paper_note": NOT_THE_PAPERS_RACKET,
-                    }
-                ),
-            }
-            for s in checked
-        },
+        "ball_mode_band": {s: _band_record(result, s) for s in checked},
         "modal_model": None if model is None else model.summary(),
-        "hand": None if the_hand is None else asdict(the_hand),
+        "hand": None if result.hand is None else asdict(result.hand),
         "columns": {"compound.csv": list(COMPOUND_COLUMNS)},
     }
-    return setup.finish(result, inputs, "compound")
+
+
+def _band_record(result: CompoundResult, support: str) -> dict[str, Any]:
+    """run.json's ball-mode band of one support, held against the paper's 103 Hz only on the
+    paper's racket."""
+    band = result.band[support]
+    return {
+        **band.as_dict(),
+        "why": "the ball mode at the corners of the small-amplitude inputs' spread: "
+        "ball one-sided stiffness (ITF forward deformation, halved), the bed under the "
+        "ball (published static stiffness and the per-string law, to the string net "
+        "pushed over the ball's width), ball mass (ITF); racketdyn.impact.compound_band",
+        "paper_hz": PAPER_BALL_MODE_HZ,
+        "paper_racket": result.paper_racket,
+        **(
+            {
+                "paper_inside": band.holds(PAPER_BALL_MODE_HZ),
+                "bed_for_paper": result.paper_bed[support].as_dict(),
+            }
+            if result.paper_racket
+            else {
+                "paper_inside": None,
+                "bed_for_paper": None,
+                "paper_note": NOT_THE_PAPERS_RACKET,
+            }
+        ),
+    }
 
 
 def is_papers_racket(racket: Racket) -> bool:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -39,7 +40,15 @@ from racketdyn.workflows.run import (
 )
 from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
-__all__ = ["OBLIQUE_ANGLES_DEG", "OBLIQUE_COLUMNS", "SPIN_CAVEAT", "ObliqueResult", "run_oblique"]
+__all__ = [
+    "DEFAULT_OBLIQUE",
+    "OBLIQUE_ANGLES_DEG",
+    "OBLIQUE_COLUMNS",
+    "SPIN_CAVEAT",
+    "ObliqueOptions",
+    "ObliqueResult",
+    "run_oblique",
+]
 
 OBLIQUE_ANGLES_DEG = (0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0)
 """Default incoming angles to the face normal, degrees."""
@@ -93,31 +102,17 @@ class ObliqueResult(StepResult):
     racket: Racket | None = None
 
 
-@run_step
-def run_oblique(
-    out: str | os.PathLike[str],
-    setup: Setup = DEFAULT_SETUP,
-    *,
-    speed: float = 20.0,
-    angles_deg: ArrayLike = OBLIQUE_ANGLES_DEG,
-    spin_radps: float = 0.0,
-    point: tuple[float, float] | None = None,
-    support: str = "free",
-    friction: float | None = None,
-    tangential_stiffness: float | None = None,
-    racket_speed: float = 0.0,
-    racket_tangential_speed: float = 0.0,
-) -> ObliqueResult:
-    """Oblique impacts at one point, one per incoming angle; write the run folder.
+@dataclass(frozen=True)
+class ObliqueOptions:
+    """The oblique impacts: the ball's arrival, the point and support, the tangential contact
+    and the racket's motion.
 
-    Parameters
+    The fields are the words the library's errors name in backticks (`` `speed` ``), which
+    the CLI turns into its flags (:func:`racketdyn.cli.options.in_flags`); they are checked
+    when :func:`run_oblique` runs.
+
+    Attributes
     ----------
-    out : path
-        Output folder (created if missing).
-    setup : Setup
-        Of the :class:`~racketdyn.workflows.setup.Setup`, oblique uses the racket and its modes,
-        the ball, the hand, the string bed (the face centre's law or the impact point's own) and
-        ``allow_implausible``; and the run (command, figures, progress).
     speed : float
         Incoming ball speed, m/s.
     angles_deg : array_like
@@ -137,64 +132,65 @@ def run_oblique(
     racket_tangential_speed : float
         Racket face speed along the face, m/s.
     """
-    speed = require_positive("`speed`", speed)
-    check_speeds("`speed`", [speed], "ball_speed_mps", setup.allow_implausible)
-    check_speeds("`racket_speed`", [racket_speed], "racket_speed_mps", setup.allow_implausible)
-    angles = [require_finite("`angles_deg`", v) for v in np.atleast_1d(angles_deg)]
-    for angle in angles:
-        if not -90.0 < angle < 90.0:
-            raise InputError(
-                "`angles_deg`: each incoming angle must lie strictly between -90 and 90 degrees "
-                f"from the face normal (got {angle:g})"
-            )
-    spin = require_finite("`spin_radps`", spin_radps)
-    check("spin_radps", spin, "`spin_radps`", allow_implausible=setup.allow_implausible)
+
+    speed: float = 20.0
+    angles_deg: ArrayLike = OBLIQUE_ANGLES_DEG
+    spin_radps: float = 0.0
+    point: tuple[float, float] | None = None
+    support: str = "free"
+    friction: float | None = None
+    tangential_stiffness: float | None = None
+    racket_speed: float = 0.0
+    racket_tangential_speed: float = 0.0
+
+
+DEFAULT_OBLIQUE = ObliqueOptions()
+"""20 m/s at 0–60° without spin, at the face centre of a free racket at rest, μ 0.4, k_t 1e4."""
+
+
+@run_step
+def run_oblique(
+    out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
+    options: ObliqueOptions = DEFAULT_OBLIQUE,
+) -> ObliqueResult:
+    """Oblique impacts at one point, one per incoming angle; write the run folder.
+
+    The steps: the options checked (:func:`_incoming`, :func:`_racket_motion`), the point
+    and the tangential contact (:func:`_impact_point`, :func:`_tangential_contact`), the
+    impacts (:func:`~racketdyn.impact.oblique.oblique_curve`), ``oblique.csv``
+    (:func:`_oblique_rows`) and run.json.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, oblique uses the racket and its modes,
+        the ball, the hand, the string bed (the face centre's law or the impact point's own) and
+        ``allow_implausible``; and the run (command, figures, progress).
+    options : ObliqueOptions
+        The ball's speed, angles and spin, the point, support, tangential contact and the
+        racket's motion.
+    """
+    allow = setup.allow_implausible
+    speed, angles, spin = _incoming(options, allow)
     the_support = one_of(
         "`support`",
         single_support(
             "oblique",
-            support,
+            options.support,
             "its outgoing angles and spins, oblique.csv and figure are one support's",
         ),
         TRANSIENT_SUPPORTS,
     )
     used = setup.racket_setup()
-    extra = []
-    if point is None:
-        where = (used.racket.head.centre_x_m, used.racket.head.centre_y_m)
-        extra.append("impact point: the face centre")
-    else:
-        where = (float(point[0]), float(point[1]))
-    used.racket.head.check_inside([where])
+    extra: list[str] = []
+    where = _impact_point(used.racket, options.point, extra)
     check_string_bed(setup.string_bed, None, used.racket)
     the_hand, hand_defaults = setup.hand_used([the_support])
-    base = DEFAULT_TANGENTIAL_CONTACT
-    if friction is None or tangential_stiffness is None:
-        extra.append(
-            "tangential contact: μ 0.4 (Cross), k_t 1e4 N/m, ball inertia 0.55 m_B R² "
-            "(racketdyn.impact.oblique)"
-        )
-    contact = TangentialContact(
-        friction_coefficient=base.friction_coefficient if friction is None else friction,
-        stiffness_n_per_m=(
-            base.stiffness_n_per_m if tangential_stiffness is None else tangential_stiffness
-        ),
-        inertia_factor=base.inertia_factor,
-    )
-    racket_speed = require_finite("`racket_speed`", racket_speed)
-    face_speed = require_finite("`racket_tangential_speed`", racket_tangential_speed)
-    # either sense along the face: its size against the speeds rackets are swung at
-    check_speeds(
-        "`racket_tangential_speed`", [abs(face_speed)], "racket_speed_mps", setup.allow_implausible
-    )
-    if friction is not None:
-        friction = require_finite("`friction`", friction)
-        check(
-            "friction_coefficient",
-            friction,
-            "`friction`",
-            allow_implausible=setup.allow_implausible,
-        )
+    contact = _tangential_contact(options.friction, options.tangential_stiffness, extra)
+    racket_speed, face_speed = _racket_motion(options, allow)
     the_ball, ball_defaults = setup.ball_used()
     defaults_used = [*used.defaults, *extra, *hand_defaults, *ball_defaults, *setup.defaults]
     model = used.modal_model
@@ -219,16 +215,9 @@ def run_oblique(
         hand=the_hand,
     )
     out_dir = Path(out)
-    rows = [
-        {
-            "ball_speed_mps": curve.ball_speed_mps,
-            **{name: getattr(curve, name)[i] for name in OBLIQUE_COLUMNS[1:]},
-        }
-        for i in range(curve.incoming_angle_deg.size)
-    ]
     result = ObliqueResult(
         out_dir,
-        [write_rows(out_dir / "oblique.csv", rows)],
+        [write_rows(out_dir / "oblique.csv", _oblique_rows(curve))],
         curve=curve,
         point=where,
         support=the_support,
@@ -264,3 +253,82 @@ def run_oblique(
         "columns": {"oblique.csv": list(OBLIQUE_COLUMNS)},
     }
     return setup.finish(result, inputs, "oblique")
+
+
+def _incoming(options: ObliqueOptions, allow_implausible: bool) -> tuple[float, list[float], float]:
+    """The incoming ball speed (m/s), angles (degrees, each in (-90, 90)) and spin (rad/s),
+    checked, the racket's speed towards the ball too (each within play unless
+    ``allow_implausible``)."""
+    speed = require_positive("`speed`", options.speed)
+    check_speeds("`speed`", [speed], "ball_speed_mps", allow_implausible)
+    check_speeds("`racket_speed`", [options.racket_speed], "racket_speed_mps", allow_implausible)
+    angles = [require_finite("`angles_deg`", v) for v in np.atleast_1d(options.angles_deg)]
+    for angle in angles:
+        if not -90.0 < angle < 90.0:
+            raise InputError(
+                "`angles_deg`: each incoming angle must lie strictly between -90 and 90 degrees "
+                f"from the face normal (got {angle:g})"
+            )
+    spin = require_finite("`spin_radps`", options.spin_radps)
+    check("spin_radps", spin, "`spin_radps`", allow_implausible=allow_implausible)
+    return speed, angles, spin
+
+
+def _impact_point(
+    the_racket: Racket, point: tuple[float, float] | None, defaults_used: list[str]
+) -> tuple[float, float]:
+    """The impact point (x, y), m: ``point``, or the face centre (said in ``defaults_used``);
+    refused outside the head."""
+    if point is None:
+        where = (the_racket.head.centre_x_m, the_racket.head.centre_y_m)
+        defaults_used.append("impact point: the face centre")
+    else:
+        where = (float(point[0]), float(point[1]))
+    the_racket.head.check_inside([where])
+    return where
+
+
+def _tangential_contact(
+    friction: float | None, tangential_stiffness: float | None, defaults_used: list[str]
+) -> TangentialContact:
+    """The tangential contact: μ and k_t as given, else the defaults' (said in
+    ``defaults_used``)."""
+    base = DEFAULT_TANGENTIAL_CONTACT
+    if friction is None or tangential_stiffness is None:
+        defaults_used.append(
+            "tangential contact: μ 0.4 (Cross), k_t 1e4 N/m, ball inertia 0.55 m_B R² "
+            "(racketdyn.impact.oblique)"
+        )
+    return TangentialContact(
+        friction_coefficient=base.friction_coefficient if friction is None else friction,
+        stiffness_n_per_m=(
+            base.stiffness_n_per_m if tangential_stiffness is None else tangential_stiffness
+        ),
+        inertia_factor=base.inertia_factor,
+    )
+
+
+def _racket_motion(options: ObliqueOptions, allow_implausible: bool) -> tuple[float, float]:
+    """The racket's speed towards the ball and along the face, m/s, checked (within play
+    unless ``allow_implausible``); then the friction coefficient, if given."""
+    racket_speed = require_finite("`racket_speed`", options.racket_speed)
+    face_speed = require_finite("`racket_tangential_speed`", options.racket_tangential_speed)
+    # either sense along the face: its size against the speeds rackets are swung at
+    check_speeds(
+        "`racket_tangential_speed`", [abs(face_speed)], "racket_speed_mps", allow_implausible
+    )
+    if options.friction is not None:
+        friction = require_finite("`friction`", options.friction)
+        check("friction_coefficient", friction, "`friction`", allow_implausible=allow_implausible)
+    return racket_speed, face_speed
+
+
+def _oblique_rows(curve: ObliqueCurve) -> list[dict[str, Any]]:
+    """``oblique.csv``'s rows (:data:`OBLIQUE_COLUMNS`), one per incoming angle."""
+    return [
+        {
+            "ball_speed_mps": curve.ball_speed_mps,
+            **{name: getattr(curve, name)[i] for name in OBLIQUE_COLUMNS[1:]},
+        }
+        for i in range(curve.incoming_angle_deg.size)
+    ]

@@ -77,7 +77,16 @@ if TYPE_CHECKING:
 # The transient model (racketdyn.impact.transient, .comparison) is imported where it runs: with
 # numba it costs ≈ 0.2 s, a tenth of `predict`'s default run, which is the approximate method's.
 
-__all__ = ["DEFAULT_GRID", "MAX_GRID", "MODELS", "PredictResult", "impact_points", "run_predict"]
+__all__ = [
+    "DEFAULT_GRID",
+    "DEFAULT_PREDICT",
+    "MAX_GRID",
+    "MODELS",
+    "PredictOptions",
+    "PredictResult",
+    "impact_points",
+    "run_predict",
+]
 
 Model = Literal["approx", "transient", "both"]
 MODELS: tuple[Model, ...] = ("approx", "transient", "both")
@@ -250,35 +259,17 @@ def check_supports(supports: Sequence[str], model: str) -> list[str]:
     return checked
 
 
-@run_step
-def run_predict(
-    out: str | os.PathLike[str],
-    setup: Setup = DEFAULT_SETUP,
-    *,
-    speeds: ArrayLike = (10.0, 20.0, 30.0),
-    racket_speed: ArrayLike = (0.0,),
-    supports: Sequence[str] = ("free", "pinned"),
-    model: Model = "approx",
-    engine: str | None = None,
-    points: str | os.PathLike[str] | ArrayLike | None = None,
-    grid: int | None = None,
-    stiffness_reading: Literal["period", "tangent"] | None = None,
-    vibration_charge: Literal["coupled", "paper"] = "coupled",
-    include_string_bed: bool = False,
-    uncertainty: Uncertainty | None = None,
-    workers: int | None = None,
-    show: Sequence[float] | None = None,
-) -> PredictResult:
-    """Predict impacts over the face and write the run folder.
+@dataclass(frozen=True)
+class PredictOptions:
+    """The impacts to predict and how: the cases (speeds, supports, points), the model and its
+    choices, the uncertainty and the case shown.
 
-    Parameters
+    The fields are the words the library's errors name in backticks (`` `speeds` ``), which
+    the CLI turns into its flags (:func:`racketdyn.cli.options.in_flags`); they are checked
+    when :func:`run_predict` runs.
+
+    Attributes
     ----------
-    out : path
-        Output folder (created if missing).
-    setup : Setup
-        Of the :class:`~racketdyn.workflows.setup.Setup`, predict uses the racket and its modes,
-        the ball, the hand, the string bed (both models) and ``allow_implausible``; and the run
-        (command, figures, progress).
     speeds : array_like
         Incoming ball speeds, m/s.
     racket_speed : array_like
@@ -313,11 +304,124 @@ def run_predict(
         models' comparison map and table, the report's headline): ``(ball speed,)`` or
         ``(ball speed, racket speed)``, m/s, one of the run's; by default 20 m/s if run,
         else the middle ball speed.  run.json's ``shown_case`` records it.
+    """
+
+    speeds: ArrayLike = (10.0, 20.0, 30.0)
+    racket_speed: ArrayLike = (0.0,)
+    supports: Sequence[str] = ("free", "pinned")
+    model: Model = "approx"
+    engine: str | None = None
+    points: str | os.PathLike[str] | ArrayLike | None = None
+    grid: int | None = None
+    stiffness_reading: Literal["period", "tangent"] | None = None
+    vibration_charge: Literal["coupled", "paper"] = "coupled"
+    include_string_bed: bool = False
+    uncertainty: Uncertainty | None = None
+    workers: int | None = None
+    show: Sequence[float] | None = None
+
+
+DEFAULT_PREDICT = PredictOptions()
+"""The approximate method at 10, 20 and 30 m/s on a racket at rest, free and pinned, over a
+9 × 9 grid."""
+
+
+@run_step
+def run_predict(
+    out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
+    options: PredictOptions = DEFAULT_PREDICT,
+) -> PredictResult:
+    """Predict impacts over the face and write the run folder.
+
+    The steps: the options checked (:func:`_model_choices`, :func:`_impact_cases`,
+    :func:`check_supports`), the points (:func:`impact_points`), each model's impacts
+    (:func:`_run_models`), their bands (:func:`_bands`), the comparison and ``impact.csv``
+    (:func:`_compare_and_write`), what the figures draw (:func:`_figure_data`) and run.json.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, predict uses the racket and its modes,
+        the ball, the hand, the string bed (both models) and ``allow_implausible``; and the run
+        (command, figures, progress).
+    options : PredictOptions
+        The speeds, supports and points, the model and its choices, the uncertainty and the
+        case shown.
 
     Returns
     -------
     PredictResult
     """
+    engine, stiffness_reading = _model_choices(options)
+    speed_list, racket_speeds, paired = _impact_cases(
+        options.speeds, options.racket_speed, setup.allow_implausible
+    )
+    shown = shown_case_index(speed_list, paired, options.show)
+    support_list = check_supports(options.supports, options.model)
+    used = setup.racket_setup()
+    the_ball, ball_defaults = setup.ball_used()
+    the_hand, hand_defaults = setup.hand_used(support_list)
+    defaults_used = [*used.defaults, *ball_defaults, *setup.defaults, *hand_defaults]
+    locations, labels, points_source = impact_points(used.racket, options.points, options.grid)
+    check_string_bed(setup.string_bed, None, used.racket)
+    law = compound_law(used.racket, the_ball)
+    result = PredictResult(
+        Path(out), racket=used.racket, ball=the_ball, modal_model=used.modal_model, law=law,
+        speeds=speed_list, racket_speed=racket_speeds, supports=support_list, shown_speed=shown,
+        engine=engine, include_string_bed=options.include_string_bed,
+        string_bed=setup.string_bed, stiffness_reading=stiffness_reading,
+        vibration_charge=options.vibration_charge, rigid=setup.rigid, points=points_source,
+        hand=the_hand,
+    )  # fmt: skip
+    run_options: dict[str, Any] = {
+        "supports": support_list,
+        "racket_speed": np.asarray(racket_speeds),
+        "modal_model": used.modal_model,
+        "law": None if setup.string_bed == "local" else law,
+        "include_string_bed": options.include_string_bed,
+        "string_bed": setup.string_bed,
+    }
+    _run_models(result, options.model, (locations, labels), run_options, setup.progress)
+    band = None
+    if options.uncertainty is not None:
+        band = (_sample_inputs(result), options.uncertainty)
+        extra = {
+            "stiffness_reading": stiffness_reading,
+            "vibration_charge": result.vibration_charge,
+        }
+        _bands(result, *band, (locations, labels), setup.progress, extra, options.workers)
+    _compare_and_write(result)
+    _figure_data(result, run_options, setup.progress, band)
+    inputs = {
+        **used.provenance,
+        "racket": racket_to_dict(used.racket),
+        "speeds_mps": speed_list,
+        "racket_speed_mps": racket_speeds,
+        "supports": support_list,
+        "points": points_source,
+        "n_points": len(locations),
+        "rigid": setup.rigid,
+        "defaults_used": defaults_used,
+        **result.result.inputs,
+        "model": options.model,
+        **_transient_record(result.transient, result.approximate, engine),
+        "uncertainty": None if options.uncertainty is None else options.uncertainty.record(),
+        "shown_case": {
+            "ball_speed_mps": speed_list[shown],
+            "racket_speed_mps": paired[shown],
+            "chosen_by": "show" if options.show is not None else SHOWN_BY_DEFAULT,
+        },
+    }
+    return setup.finish(result, inputs, "predict")
+
+
+def _model_choices(options: PredictOptions) -> tuple[str, Literal["period", "tangent"]]:
+    """The model's choices checked against it: the transient engine and the reading of eq 10,
+    defaults filled in (``auto``, ``period``); the workers against the uncertainty."""
+    model, engine, stiffness_reading = options.model, options.engine, options.stiffness_reading
     one_of("`model`", model, MODELS)
     if engine is not None and model == "approx":
         raise InputError("`engine` is for the transient model: `model` transient or both")
@@ -326,14 +430,23 @@ def run_predict(
             "`stiffness_reading` is a choice of the approximate method (eq 10); the transient "
             "model integrates the contact: drop it, or use `model` approx or both"
         )
-    check_workers(workers, uncertainty)
+    check_workers(options.workers, options.uncertainty)
     engine = engine or "auto"
     stiffness_reading = stiffness_reading or "period"
     one_of("`engine`", engine, ENGINES)
+    return engine, stiffness_reading
+
+
+def _impact_cases(
+    speeds: ArrayLike, racket_speed: ArrayLike, allow_implausible: bool
+) -> tuple[list[float], list[float], list[float]]:
+    """The ball speeds, the racket speeds as given (one, or one per ball speed) and the racket
+    speed paired with each ball speed, m/s: each case once, the ball reaching the strings,
+    within play (unless ``allow_implausible``)."""
     speed_list = [float(v) for v in require_speeds("`speeds`", speeds)]
     racket_speeds = [float(v) for v in require_speeds("`racket_speed`", racket_speed)]
-    check_speeds("`speeds`", speed_list, "ball_speed_mps", setup.allow_implausible)
-    check_speeds("`racket_speed`", racket_speeds, "racket_speed_mps", setup.allow_implausible)
+    check_speeds("`speeds`", speed_list, "ball_speed_mps", allow_implausible)
+    check_speeds("`racket_speed`", racket_speeds, "racket_speed_mps", allow_implausible)
     if len(racket_speeds) not in (1, len(speed_list)):
         raise InputError("`racket_speed` takes one speed, or one per `speeds` value")
     cases = list(
@@ -353,115 +466,75 @@ def run_predict(
             "relative_speed_mps",
             v + r,
             f"`speeds` + `racket_speed` ({v:g} + {r:g} m/s) =",
-            allow_implausible=setup.allow_implausible,
+            allow_implausible=allow_implausible,
         )
     if len(set(cases)) != len(cases):
         raise InputError(
             f"`speeds`: each ball speed once (with its racket speed); got "
             f"{', '.join(f'{v:g}' for v in speed_list)}"
         )
-    paired = [r for _, r in cases]
-    shown = shown_case_index(speed_list, paired, show)
-    support_list = check_supports(supports, model)
-    used = setup.racket_setup()
-    the_ball, ball_defaults = setup.ball_used()
-    the_hand, hand_defaults = setup.hand_used(support_list)
-    defaults_used = [*used.defaults, *ball_defaults, *setup.defaults, *hand_defaults]
-    locations, labels, points_source = impact_points(used.racket, points, grid)
-    out_dir = Path(out)
-    check_string_bed(setup.string_bed, None, used.racket)
-    law = compound_law(used.racket, the_ball)
-    result = PredictResult(
-        out_dir,
-        racket=used.racket,
-        ball=the_ball,
-        modal_model=used.modal_model,
-        law=law,
-        speeds=speed_list,
-        racket_speed=racket_speeds,
-        supports=support_list,
-        shown_speed=shown,
-        engine=engine,
-        include_string_bed=include_string_bed,
-        string_bed=setup.string_bed,
-        stiffness_reading=stiffness_reading,
-        vibration_charge=vibration_charge,
-        rigid=setup.rigid,
-        points=points_source,
-        hand=the_hand,
-    )
-    options: dict[str, Any] = {
-        "supports": support_list,
-        "racket_speed": np.asarray(racket_speeds),
-        "modal_model": used.modal_model,
-        "law": None if setup.string_bed == "local" else law,
-        "include_string_bed": include_string_bed,
-        "string_bed": setup.string_bed,
-    }
-    n_impacts = len(locations) * len(speed_list) * len(support_list)
+    return speed_list, racket_speeds, [r for _, r in cases]
+
+
+def _run_models(
+    result: PredictResult,
+    model: Model,
+    points: tuple[NDArray[np.float64], list[str]],
+    run_options: dict[str, Any],
+    progress: Progress | None,
+) -> None:
+    """The approximate method's impacts at ``points`` (locations, labels) and the transient
+    model's, as ``model`` asks, into ``result``."""
+    assert result.racket is not None
+    assert result.ball is not None
+    locations, labels = points
+    n_impacts = len(locations) * len(result.speeds) * len(result.supports)
     if model in ("approx", "both"):
-        report(setup.progress, f"approximate method: {n_impacts} impacts")
+        report(progress, f"approximate method: {n_impacts} impacts")
         result.approximate = _approximate(
-            used.racket,
-            the_ball,
+            result.racket,
+            result.ball,
             locations,
-            speed_list,
+            result.speeds,
             labels,
-            setup.progress,
-            stiffness_reading=stiffness_reading,
-            vibration_charge=vibration_charge,
-            **options,
+            progress,
+            stiffness_reading=result.stiffness_reading,
+            vibration_charge=result.vibration_charge,
+            **run_options,
         )
     if model in ("transient", "both"):
-        report(setup.progress, f"transient model ({engine} engine): {n_impacts} impacts")
-        _transient_part(result, locations, labels, setup.progress, options)
-    model_inputs: ModelInputs | None = None
-    if uncertainty is not None:
-        model_inputs = ModelInputs(
-            used.racket,
-            the_ball,
-            hand=the_hand,
-            modal_model=used.modal_model,
-            include_string_bed=include_string_bed,
-            engine=engine,
-            string_bed=setup.string_bed,
-        )
-        extra = {"stiffness_reading": stiffness_reading, "vibration_charge": vibration_charge}
-        _bands(
-            result, model_inputs, uncertainty, (locations, labels), setup.progress, extra, workers
-        )
+        report(progress, f"transient model ({result.engine} engine): {n_impacts} impacts")
+        _transient_part(result, locations, labels, progress, run_options)
+
+
+def _sample_inputs(result: PredictResult) -> ModelInputs:
+    """The inputs each sample of an uncertainty varies: the result's racket, ball, hand,
+    modes, string bed and engine."""
+    assert result.racket is not None
+    assert result.ball is not None
+    return ModelInputs(
+        result.racket,
+        result.ball,
+        hand=result.hand,
+        modal_model=result.modal_model,
+        include_string_bed=result.include_string_bed,
+        engine=result.engine,
+        string_bed=result.string_bed,
+    )
+
+
+def _compare_and_write(result: PredictResult) -> None:
+    """With both models, their comparison (``comparison.csv``) and the approximate method's
+    rows it cannot give filled from the transient's; then ``impact.csv``."""
     if result.approximate is not None and result.transient is not None:
         from racketdyn.impact.comparison import compare_models
 
         result.comparison = compare_models(result.approximate, result.transient)
-        result.written.append(result.comparison.write_csv(out_dir / "comparison.csv"))
+        result.written.append(result.comparison.write_csv(result.out / "comparison.csv"))
         # rows the approximate method cannot give carry the transient's numbers, marked so
         result.approximate = result.approximate.filled_from(result.transient)
     if result.approximate is not None:
-        _write_table(result, result.approximate, out_dir / "impact.csv")
-    band = None if uncertainty is None or model_inputs is None else (model_inputs, uncertainty)
-    _figure_data(result, options, setup.progress, band)
-    inputs = {
-        **used.provenance,
-        "racket": racket_to_dict(used.racket),
-        "speeds_mps": speed_list,
-        "racket_speed_mps": racket_speeds,
-        "supports": support_list,
-        "points": points_source,
-        "n_points": len(locations),
-        "rigid": setup.rigid,
-        "defaults_used": defaults_used,
-        **result.result.inputs,
-        "model": model,
-        **_transient_record(result.transient, result.approximate, engine),
-        "uncertainty": None if uncertainty is None else uncertainty.record(),
-        "shown_case": {
-            "ball_speed_mps": speed_list[shown],
-            "racket_speed_mps": paired[shown],
-            "chosen_by": "show" if show is not None else SHOWN_BY_DEFAULT,
-        },
-    }
-    return setup.finish(result, inputs, "predict")
+        _write_table(result, result.approximate, result.out / "impact.csv")
 
 
 def _bands(

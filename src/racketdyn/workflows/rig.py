@@ -43,13 +43,14 @@ from racketdyn.rig.ball import ball_on_strings
 from racketdyn.rig.hammer import FRAME_PULSE_S
 from racketdyn.workflows.inputs import ball_location, load_racket_input
 from racketdyn.workflows.run import (
+    Progress,
     StepResult,
     report,
     run_step,
 )
 from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
-__all__ = ["RIG_SUPPORTS", "RigResult", "run_rig", "support_stream"]
+__all__ = ["DEFAULT_RIG", "RIG_SUPPORTS", "RigOptions", "RigResult", "run_rig", "support_stream"]
 
 RIG_SUPPORTS = ("free", "hand")
 
@@ -120,36 +121,17 @@ def _stream_words(seed: int, support: str) -> str:
     return f"numpy.random.default_rng(SeedSequence({seed}, spawn_key=({key},)))"
 
 
-@run_step
-def run_rig(
-    out: str | os.PathLike[str],
-    setup: Setup = DEFAULT_SETUP,
-    *,
-    support: str | Sequence[str] = "free",
-    averages: int = 10,
-    double_hits: float = 0.0,
-    overloads: float = 0.0,
-    seed: int = 1,
-    binary: bool = True,
-    ball_at: Sequence[float] | None = None,
-    force_snr_db: float | None = None,
-    response_snr_db: float | None = None,
-    pretrigger_s: float = 0.01,
-    time_zero: str = "pulse",
-    response_direction: int = 3,
-    driving_point: bool = True,
-    lab_plane: str = "xy",
-    layout: str = "roving hammer",
-) -> RigResult:
-    """Simulate a roving-hammer test on the virtual rig and write the run folder.
+@dataclass(frozen=True)
+class RigOptions:
+    """How the virtual hammer test is run: supports, hits, faults, noise, and how the file is
+    written.
 
-    Parameters
+    The fields are the words the library's errors name in backticks (`` `averages` ``), which
+    the CLI turns into its flags (:func:`racketdyn.cli.options.in_flags`); they are checked
+    when :func:`run_rig` runs.
+
+    Attributes
     ----------
-    out : path
-        Output folder (created if missing).
-    setup : Setup
-        Of the :class:`~racketdyn.workflows.setup.Setup`, rig uses the racket and the ball of
-        ``ball_at``; and the run (command, figures, progress).
     support : {"free", "hand"} or sequence of them
         On a sponge, or held by a hand; both (``("free", "hand")``) test the racket twice into
         the one folder, as the paper does (``hammer_<support>.uff`` each).
@@ -193,113 +175,195 @@ def run_rig(
         for every hit) and the accelerometer is moved over the points; by reciprocity the same
         FRFs (the file says it: :func:`~racketdyn.io.write_hammer_uff`'s ``layout``).
     """
+
+    support: str | Sequence[str] = "free"
+    averages: int = 10
+    double_hits: float = 0.0
+    overloads: float = 0.0
+    seed: int = 1
+    binary: bool = True
+    ball_at: Sequence[float] | None = None
+    force_snr_db: float | None = None
+    response_snr_db: float | None = None
+    pretrigger_s: float = 0.01
+    time_zero: str = "pulse"
+    response_direction: int = 3
+    driving_point: bool = True
+    lab_plane: str = "xy"
+    layout: str = "roving hammer"
+
+
+DEFAULT_RIG = RigOptions()
+"""A free racket, 10 hits per point, no faults, the fixed noise floors, a binary file."""
+
+
+@dataclass(frozen=True)
+class _TestPoints:
+    """Where the hammer strikes (``locations``, ``nodes``) and where the accelerometer sits."""
+
+    locations: NDArray[np.float64]
+    nodes: tuple[int, ...]
+    reference_location: tuple[float, float]
+    reference_node: int
+
+
+@run_step
+def run_rig(
+    out: str | os.PathLike[str],
+    setup: Setup = DEFAULT_SETUP,
+    options: RigOptions = DEFAULT_RIG,
+) -> RigResult:
+    """Simulate a roving-hammer test on the virtual rig and write the run folder.
+
+    The options checked, the ball's spring and the struck points found, each support tested
+    (:func:`_test_support`) and run.json written.
+
+    Parameters
+    ----------
+    out : path
+        Output folder (created if missing).
+    setup : Setup
+        Of the :class:`~racketdyn.workflows.setup.Setup`, rig uses the racket and the ball of
+        ``ball_at``; and the run (command, figures, progress).
+    options : RigOptions
+        Supports, hits per point, faults, seed, noise, and how the file is written.
+    """
+    supports = _check_options(options)
+    the_racket, provenance = load_racket_input(setup.racket)
+    spring, ball_record, under_ball = None, None, None
+    if options.ball_at is not None:
+        the_ball = setup.ball or Ball()
+        spring, ball_record = _ball_spring(the_racket, the_ball, options.ball_at)
+        under_ball = (spring[0], the_ball.diameter_m)
+    points = _TestPoints(*_struck_points(the_racket, under_ball, options.driving_point))
+    result = RigResult(
+        Path(out), supports=supports, reference_node=points.reference_node, ball=ball_record
+    )
+    runs = {
+        each: _test_support(result, the_racket, each, points, spring, options, setup.progress)
+        for each in supports
+    }
+    inputs = {
+        **provenance,
+        "racket": racket_to_dict(the_racket),
+        "supports": supports,
+        "reference_node": points.reference_node,
+        "reference_location_m": points.reference_location,
+        "driving_point": options.driving_point,
+        "accelerometer_direction": options.response_direction,
+        "force_snr_db": options.force_snr_db,
+        "response_snr_db": options.response_snr_db,
+        "pretrigger_s": options.pretrigger_s,
+        "time_zero": options.time_zero,
+        "lab_plane": options.lab_plane,
+        "layout": options.layout,
+        "n_points": len(points.nodes),
+        "averages": options.averages,
+        "double_hit_probability": options.double_hits,
+        "overload_probability": options.overloads,
+        "seed": options.seed,
+        "ball_on_strings": ball_record,
+        "runs": runs,
+    }
+    return setup.finish(result, inputs, "rig")
+
+
+def _check_options(options: RigOptions) -> list[str]:
+    """Refuse options out of range (named by their field, as the CLI translates them); the
+    supports as a list."""
+    support = options.support
     supports = [support] if isinstance(support, str) else list(support)
     if not supports or len(set(supports)) < len(supports):
         raise InputError(f"`support`: give free, hand or free,hand (got {','.join(supports)})")
     for each in supports:
         one_of("`support`", each, RIG_SUPPORTS)
+    averages = options.averages
     if isinstance(averages, bool) or not isinstance(averages, int) or averages < 1:
         raise InputError(f"`averages` must be a whole number of at least 1 (got {averages})")
-    require_whole("`seed`", seed, least=0)  # numpy's generators take no negative seed
-    require_range("`double_hits`", double_hits, 0.0, 1.0)
-    require_range("`overloads`", overloads, 0.0, 1.0)
-    for name, snr in (("`force_snr_db`", force_snr_db), ("`response_snr_db`", response_snr_db)):
+    require_whole("`seed`", options.seed, least=0)  # numpy's generators take no negative seed
+    require_range("`double_hits`", options.double_hits, 0.0, 1.0)
+    require_range("`overloads`", options.overloads, 0.0, 1.0)
+    snrs = (
+        ("`force_snr_db`", options.force_snr_db),
+        ("`response_snr_db`", options.response_snr_db),
+    )
+    for name, snr in snrs:
         if snr is not None:
             require_range(name, snr, 0.0, 200.0)
-    require_range("`pretrigger_s`", pretrigger_s, 0.0, 0.1)
-    one_of("`time_zero`", time_zero, ("pulse", "record"))
-    one_of("`lab_plane`", lab_plane, ("xy", "xz"))
-    one_of("`layout`", layout, ("roving hammer", "roving accelerometer"))
-    if response_direction not in (3, -3):
-        raise InputError(f"`response_direction`: give 3 or -3 (got {response_direction})")
-    the_racket, provenance = load_racket_input(setup.racket)
-    out_dir = Path(out)
-    spring, ball_record, under_ball = None, None, None
-    if ball_at is not None:
-        the_ball = setup.ball or Ball()
-        spring, ball_record = _ball_spring(the_racket, the_ball, ball_at)
-        under_ball = (spring[0], the_ball.diameter_m)
-    locations, nodes, reference_location, reference_node = _struck_points(
-        the_racket, under_ball, driving_point
+    require_range("`pretrigger_s`", options.pretrigger_s, 0.0, 0.1)
+    one_of("`time_zero`", options.time_zero, ("pulse", "record"))
+    one_of("`lab_plane`", options.lab_plane, ("xy", "xz"))
+    one_of("`layout`", options.layout, ("roving hammer", "roving accelerometer"))
+    if options.response_direction not in (3, -3):
+        raise InputError(f"`response_direction`: give 3 or -3 (got {options.response_direction})")
+    return supports
+
+
+def _test_support(
+    result: RigResult,
+    the_racket: Racket,
+    support: str,
+    points: _TestPoints,
+    spring: _Spring | None,
+    options: RigOptions,
+    progress: Progress | None,
+) -> dict[str, Any]:
+    """One support's hammer test: simulated, its UFF and modal truth written into ``result``;
+    its record for run.json's ``runs``."""
+    durations = _pulse_lengths(
+        the_racket, points.locations, support, options.layout, points.reference_location
     )
-    result = RigResult(out_dir, supports=supports, reference_node=reference_node, ball=ball_record)
-    acquisition = Acquisition(n_averages=averages, pretrigger_s=pretrigger_s)
-    noise = SensorNoise(force_snr_db=force_snr_db, response_snr_db=response_snr_db)
-    hammer_faults = HammerFaults(double_hit_probability=double_hits, overload_probability=overloads)
-    runs: dict[str, dict[str, Any]] = {}
-    for each in supports:
-        durations = _pulse_lengths(the_racket, locations, each, layout, reference_location)
-        report(setup.progress, f"building the {each} rig and simulating the hammer test")
-        model = rig_model(the_racket, "free" if each == "free" else "hand")
-        if spring is not None:
-            model = ball_on_strings(model, *spring)
-        records = simulate_hammer_test(
-            model,
-            locations,
-            nodes,
-            reference_location,
-            reference_node,
-            acquisition=acquisition,
-            blows=HammerBlows(pulse_duration_s=tuple(durations.tolist())),
-            noise=noise,
-            faults=hammer_faults,
-            seed=np.random.default_rng(support_stream(seed, each)),
-        )
-        if time_zero == "record":  # t = 0 at the first sample: the pulse pretrigger_s into it
-            records = replace(
-                records,
-                pretrigger_s=0.0,
-                metadata={**records.metadata, "pulse_at_s": records.pretrigger_s},
-            )
-        tests = write_hammer_uff(
+    report(progress, f"building the {support} rig and simulating the hammer test")
+    model = rig_model(the_racket, "free" if support == "free" else "hand")
+    if spring is not None:
+        model = ball_on_strings(model, *spring)
+    records = simulate_hammer_test(
+        model,
+        points.locations,
+        points.nodes,
+        points.reference_location,
+        points.reference_node,
+        acquisition=Acquisition(n_averages=options.averages, pretrigger_s=options.pretrigger_s),
+        blows=HammerBlows(pulse_duration_s=tuple(durations.tolist())),
+        noise=SensorNoise(
+            force_snr_db=options.force_snr_db, response_snr_db=options.response_snr_db
+        ),
+        faults=HammerFaults(
+            double_hit_probability=options.double_hits, overload_probability=options.overloads
+        ),
+        seed=np.random.default_rng(support_stream(options.seed, support)),
+    )
+    if options.time_zero == "record":  # t = 0 at the first sample: the pulse pretrigger_s into it
+        records = replace(
             records,
-            out_dir / f"hammer_{each}.uff",
-            binary=binary,
-            response_direction=response_direction,
-            plane=lab_plane,
-            layout=layout,
+            pretrigger_s=0.0,
+            metadata={**records.metadata, "pulse_at_s": records.pretrigger_s},
         )
-        extra = [] if driving_point else [list(reference_location)]
-        truth_locations = np.vstack([locations, *extra, [0.0, 0.0], [the_racket.length_m, 0.0]])
-        truth = model.modal_truth(
-            truth_locations, max_frequency_hz=0.5 / records.sampling_interval_s
-        )
-        truth_path = out_dir / f"modal_truth_{each}.json"
-        truth.write_json(truth_path)
-        faults = _fault_counts(records)
-        result.written += [tests, truth_path]
-        result.records[each] = records
-        result.truth[each] = truth
-        result.faults[each] = faults
-        runs[each] = {
-            **faults,
-            "random_stream": _stream_words(seed, each),
-            "rig": records.metadata.get("rig"),
-            "anti_alias": records.metadata.get("anti_alias"),
-        }
-    inputs = {
-        **provenance,
-        "racket": racket_to_dict(the_racket),
-        "supports": supports,
-        "reference_node": reference_node,
-        "reference_location_m": reference_location,
-        "driving_point": driving_point,
-        "accelerometer_direction": response_direction,
-        "force_snr_db": force_snr_db,
-        "response_snr_db": response_snr_db,
-        "pretrigger_s": pretrigger_s,
-        "time_zero": time_zero,
-        "lab_plane": lab_plane,
-        "layout": layout,
-        "n_points": len(nodes),
-        "averages": averages,
-        "double_hit_probability": double_hits,
-        "overload_probability": overloads,
-        "seed": seed,
-        "ball_on_strings": ball_record,
-        "runs": runs,
+    out_dir = result.out
+    tests = write_hammer_uff(
+        records,
+        out_dir / f"hammer_{support}.uff",
+        binary=options.binary,
+        response_direction=options.response_direction,
+        plane=options.lab_plane,
+        layout=options.layout,
+    )
+    extra = [] if options.driving_point else [list(points.reference_location)]
+    truth_locations = np.vstack([points.locations, *extra, [0.0, 0.0], [the_racket.length_m, 0.0]])
+    truth = model.modal_truth(truth_locations, max_frequency_hz=0.5 / records.sampling_interval_s)
+    truth_path = out_dir / f"modal_truth_{support}.json"
+    truth.write_json(truth_path)
+    faults = _fault_counts(records)
+    result.written += [tests, truth_path]
+    result.records[support] = records
+    result.truth[support] = truth
+    result.faults[support] = faults
+    return {
+        **faults,
+        "random_stream": _stream_words(options.seed, support),
+        "rig": records.metadata.get("rig"),
+        "anti_alias": records.metadata.get("anti_alias"),
     }
-    return setup.finish(result, inputs, "rig")
 
 
 _Spring = tuple[tuple[float, float], float, float, float]

@@ -14,12 +14,13 @@ from pathlib import Path
 from typing import Any, Literal
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
 from racketdyn.errors import InputError, one_of, require_finite, require_positive, require_speeds
-from racketdyn.impact.grid import check_string_bed
+from racketdyn.impact.grid import StringBed, check_string_bed
+from racketdyn.impact.hand import Hand
 from racketdyn.impact.measured import ModelInputs
 from racketdyn.impact.result import shown_speed_index, write_columns
 from racketdyn.impact.swing import (
@@ -55,6 +56,7 @@ from racketdyn.workflows.inputs import (
 )
 from racketdyn.workflows.predict import MAX_GRID
 from racketdyn.workflows.run import (
+    Progress,
     StepResult,
     check_workers,
     report,
@@ -275,6 +277,11 @@ def run_swing(
 ) -> SwingStepResult:
     """Impacts over the face of a swinging racket and its sweet spots; write the run folder.
 
+    The steps: the options checked (:func:`_ball_speeds`, :func:`_grid_size`), the impacts
+    over the face, the sweet spots and the along-axis curves (:func:`_swing_curves`), the
+    bands of an uncertainty (:func:`_write_bands`), the tables and ``figures.nc``
+    (:func:`_write_tables`), run.json.
+
     Parameters
     ----------
     out : path
@@ -302,71 +309,21 @@ def run_swing(
         :func:`racketdyn.sweep.executors.make_executor`); by default this process.
     """
     check_workers(workers, uncertainty)
-    speed_list = [float(v) for v in require_speeds("`speeds`", speeds)]
-    check_speeds("`speeds`", speed_list, "ball_speed_mps", setup.allow_implausible)
-    if len(set(speed_list)) != len(speed_list):
-        raise InputError(
-            f"`speeds`: each ball speed once (got {', '.join(f'{v:g}' for v in speed_list)})"
-        )
+    speed_list = _ball_speeds(speeds, setup.allow_implausible)
     impact_model = IMPACT_MODELS[one_of("`model`", model, tuple(IMPACT_MODELS))]
     the_support = one_support(support, model == "transient")
-    n = SWING_GRID if grid is None else grid
-    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_GRID:
-        raise InputError(f"`grid` must be a whole number from 1 to {MAX_GRID} (got {n})")
+    n = _grid_size(grid)
     used = setup.racket_setup()
     the_hand, hand_defaults = setup.hand_used([the_support])
-    if swing is None:
-        the_swing, swing_defaults = swing_from()
-    else:
-        the_swing, swing_defaults = swing, []
+    the_swing, swing_defaults = swing_from() if swing is None else (swing, [])
     the_ball, ball_defaults = setup.ball_used()
-    defaults_used = [
-        *used.defaults,
-        *hand_defaults,
-        *swing_defaults,
-        *ball_defaults,
-        *setup.defaults,
-    ]
+    defaults_used = [*used.defaults, *hand_defaults, *swing_defaults, *ball_defaults]
+    defaults_used += setup.defaults
     locations = used.racket.head.grid(n)
     labels = [str(i + 1) for i in range(len(locations))]
-    check_string_bed(setup.string_bed, None, used.racket)
-    law = {"law": compound_law(used.racket, the_ball)} if setup.string_bed == "uniform" else {}
-    options: dict[str, Any] = {
-        **law,
-        "string_bed": setup.string_bed,
-        **({"hand": the_hand} if the_hand is not None else {}),
-    }
-    chosen = shown_speed_index(speed_list)
-    omega = the_swing.angular_speed(used.racket)
-    report(setup.progress, f"swing Ω = {omega:.2f} rad/s: {len(locations)} points")
-    computed = predict_swing(
-        used.racket,
-        the_ball,
-        locations,
-        speed_list,
-        the_swing,
-        the_support,
-        impact_model,
-        used.modal_model,
-        labels,
-        **options,
-    )
-    report(setup.progress, f"sweet spots at {speed_list[chosen]:g} m/s")
-    spots = sweet_spots(
-        used.racket,
-        the_ball,
-        the_swing,
-        speed_list[chosen],
-        the_support,
-        impact_model,
-        used.modal_model,
-        **options,
-    )
-    out_dir = Path(out)
+    options = _impact_options(setup.string_bed, used.racket, the_ball, the_hand)
     result = SwingStepResult(
-        out_dir,
-        swing_result=computed,
-        spots=spots,
+        Path(out),
         racket=used.racket,
         ball=the_ball,
         swing=the_swing,
@@ -374,65 +331,20 @@ def run_swing(
         impact_model=impact_model,
         support=the_support,
         speeds=speed_list,
-        shown_speed=chosen,
+        shown_speed=shown_speed_index(speed_list),
         options=options,
     )
-    result.spot_rows = _spot_rows(result, speed_list[chosen], used.modal_model)
-    report(setup.progress, "outgoing speed along the axis for a few swings")
-    result.axis_curves = swing_axis_curves(
-        used.racket,
-        the_ball,
-        the_swing,
-        speed_list[chosen],
-        the_support,
-        impact_model,
-        used.modal_model,
-        **options,
-    )
+    omega = the_swing.angular_speed(used.racket)
+    report(setup.progress, f"swing Ω = {omega:.2f} rad/s: {len(locations)} points")
+    computed = _swing_curves(result, locations, labels, setup.progress)
     if uncertainty is None:
-        computed.write_csv(out_dir / "swing.csv")
+        computed.write_csv(result.out / "swing.csv")
     else:
         report(setup.progress, f"uncertainty: {uncertainty.samples} samples of the swing")
-        with sample_pool(workers) as executor:
-            result.band = propagate(
-                ModelInputs(
-                    used.racket,
-                    the_ball,
-                    hand=the_hand,
-                    modal_model=used.modal_model,
-                    string_bed=setup.string_bed,
-                ),
-                locations,
-                speed_list,
-                uncertainty,
-                method=model,
-                supports=[the_support],
-                labels=labels,
-                options={"swing": the_swing},
-                executor=executor,
-            )
-        bands = {k: np.ravel(v) for k, v in result.band.band_columns().items()}
-        write_columns(out_dir / "swing.csv", {**computed.columns, **bands})
-        result.band.to_xarray().to_netcdf(out_dir / "uncertainty.nc")
-        result.written.append(out_dir / "uncertainty.nc")
-    result.written += [
-        out_dir / "swing.csv",
-        write_rows(out_dir / "sweet_spots.csv", result.spot_rows),
-        write_figure_data(
-            out_dir / FIGURES_FILE,
-            [
-                result.axis_curves.to_xarray(),
-                store(
-                    {
-                        "swing_result": computed,
-                        "racket": used.racket,
-                        "spots": spots,
-                        "shown_speed": chosen,
-                    }
-                ),
-            ],
-        ),
-    ]
+        result.band = _sample_band(result, (locations, labels), uncertainty, model, workers)
+        _write_bands(result, computed, result.band)
+    _write_tables(result, computed)
+    chosen = result.shown_speed
     inputs = {
         **used.provenance,
         "racket": racket_to_dict(used.racket),
@@ -454,3 +366,138 @@ def run_swing(
         },
     }
     return setup.finish(result, inputs, "swing")
+
+
+def _ball_speeds(speeds: ArrayLike, allow_implausible: bool) -> list[float]:
+    """The incoming ball speeds, m/s: each once, within play (unless ``allow_implausible``)."""
+    speed_list = [float(v) for v in require_speeds("`speeds`", speeds)]
+    check_speeds("`speeds`", speed_list, "ball_speed_mps", allow_implausible)
+    if len(set(speed_list)) != len(speed_list):
+        raise InputError(
+            f"`speeds`: each ball speed once (got {', '.join(f'{v:g}' for v in speed_list)})"
+        )
+    return speed_list
+
+
+def _grid_size(grid: int | None) -> int:
+    """N of the N × N grid over the head (default :data:`SWING_GRID`)."""
+    n = SWING_GRID if grid is None else grid
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_GRID:
+        raise InputError(f"`grid` must be a whole number from 1 to {MAX_GRID} (got {n})")
+    return n
+
+
+def _impact_options(
+    string_bed: StringBed, the_racket: Racket, the_ball: Ball, the_hand: Hand | None
+) -> dict[str, Any]:
+    """The impact model's keywords: the face centre's law (a uniform bed), the bed, the hand
+    (if any); the bed's law checked for the racket."""
+    check_string_bed(string_bed, None, the_racket)
+    law = {"law": compound_law(the_racket, the_ball)} if string_bed == "uniform" else {}
+    return {
+        **law,
+        "string_bed": string_bed,
+        **({"hand": the_hand} if the_hand is not None else {}),
+    }
+
+
+def _swing_curves(
+    result: SwingStepResult,
+    locations: NDArray[np.float64],
+    labels: list[str],
+    progress: Progress | None,
+) -> SwingResult:
+    """The impacts at ``locations`` on the swinging racket (returned and kept in ``result``),
+    then at the shown speed the sweet spots, their table and the outgoing speed along the
+    axis for a few swings."""
+    assert result.racket is not None
+    assert result.ball is not None
+    assert result.swing is not None
+    speed = result.speeds[result.shown_speed]
+    how = (result.support, result.impact_model, result.modal_model)
+    the_racket, the_ball, the_swing = result.racket, result.ball, result.swing
+    computed = predict_swing(
+        the_racket, the_ball, locations, result.speeds, the_swing, *how, labels, **result.options
+    )
+    result.swing_result = computed
+    report(progress, f"sweet spots at {speed:g} m/s")
+    result.spots = sweet_spots(the_racket, the_ball, the_swing, speed, *how, **result.options)
+    result.spot_rows = _spot_rows(result, speed, result.modal_model)
+    report(progress, "outgoing speed along the axis for a few swings")
+    result.axis_curves = swing_axis_curves(
+        the_racket, the_ball, the_swing, speed, *how, **result.options
+    )
+    return computed
+
+
+def _sample_band(
+    result: SwingStepResult,
+    points: tuple[NDArray[np.float64], list[str]],
+    uncertainty: Uncertainty,
+    method: Literal["approx", "transient"],
+    workers: int | None,
+) -> UncertainResult:
+    """The swing at ``points`` (locations, labels) once per sample of ``uncertainty``, on
+    ``workers`` processes: every sample and the bands."""
+    assert result.racket is not None
+    assert result.ball is not None
+    locations, labels = points
+    inputs_of_samples = ModelInputs(
+        result.racket,
+        result.ball,
+        hand=result.options.get("hand"),
+        modal_model=result.modal_model,
+        string_bed=result.options["string_bed"],
+    )
+    with sample_pool(workers) as executor:
+        return propagate(
+            inputs_of_samples,
+            locations,
+            result.speeds,
+            uncertainty,
+            method=method,
+            supports=[result.support],
+            labels=labels,
+            options={"swing": result.swing},
+            executor=executor,
+        )
+
+
+def _write_bands(result: SwingStepResult, computed: SwingResult, band: UncertainResult) -> None:
+    """``swing.csv`` with each number's band beside it, and every sample in
+    ``uncertainty.nc``."""
+    out_dir = result.out
+    bands = {k: np.ravel(v) for k, v in band.band_columns().items()}
+    write_columns(out_dir / "swing.csv", {**computed.columns, **bands})
+    band.to_xarray().to_netcdf(out_dir / "uncertainty.nc")
+    result.written.append(out_dir / "uncertainty.nc")
+
+
+def _write_tables(result: SwingStepResult, computed: SwingResult) -> None:
+    """Write ``sweet_spots.csv`` and ``figures.nc``; list them in ``result.written`` after
+    ``swing.csv`` (written already, with or without bands)."""
+    out_dir = result.out
+    result.written += [
+        out_dir / "swing.csv",
+        write_rows(out_dir / "sweet_spots.csv", result.spot_rows),
+        write_figure_data(
+            out_dir / FIGURES_FILE,
+            [
+                _axis_curves(result).to_xarray(),
+                store(
+                    {
+                        "swing_result": computed,
+                        "racket": result.racket,
+                        "spots": result.spots,
+                        "shown_speed": result.shown_speed,
+                    }
+                ),
+            ],
+        ),
+    ]
+
+
+def _axis_curves(result: SwingStepResult) -> SwingAxisCurves:
+    """The result's along-axis curves (computed by :func:`_swing_curves`)."""
+    assert result.axis_curves is not None
+    return result.axis_curves

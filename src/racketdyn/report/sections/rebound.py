@@ -12,7 +12,8 @@ from numpy.typing import NDArray
 from racketdyn._display import case_words
 from racketdyn.impact.result import shown_speed_index
 from racketdyn.plotting.registry import file_of
-from racketdyn.report.figures import interactive
+from racketdyn.racket import HeadEllipse
+from racketdyn.report.figures import Figure, FigureGroup, interactive
 from racketdyn.report.folder import Impacts, RunFolder, read_csv, shown_case
 from racketdyn.report.formatting import fmt
 from racketdyn.report.plots import map_spec
@@ -37,22 +38,17 @@ FIELDS = [
 
 def gather(run: RunFolder) -> dict[str, Any] | None:
     """Fig. 15 (predicted and with the identified models), the face maps, and from
-    ``impact.csv`` the interactive map and the sweet spots per support and speed."""
+    ``impact.csv`` the interactive map and the sweet spots per support and speed.
+
+    The steps: the figures (:func:`_figures`), the conditions of the impacts
+    (:func:`_conditions`), the speeds of the map (:func:`_map_speeds`), each speed's panels
+    and sweet spots (:func:`_speed_group`), the map (:func:`_map`), the spots named on the
+    axis (:func:`_axis_spots`), the note on negative rebound ratios and the bands."""
     folder = run.predict_dir
     compare = run.first(file_of("fig15_identified"))
     if folder is None and compare is None:
         return None
-    fig15 = run.group(
-        [
-            (path, "")
-            for path in (
-                folder / file_of("fig15_rebound_along_axis") if folder else None,
-                compare / file_of("fig15_identified") if compare else None,
-            )
-            if path is not None
-        ]
-    )
-    face_maps = run.group([(folder / file_of("face_maps"), "")]) if folder is not None else None
+    fig15, face_maps = _figures(run, folder, compare)
     data: dict[str, Any] = {
         "fig15": fig15,
         "face_maps": face_maps,
@@ -66,104 +62,31 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     impacts = run.impacts()
     if impacts is None:
         return data if (fig15 or face_maps) else None
-    racket_speeds = sorted(
-        {float(v) for v in impacts["racket_speed_mps"] if math.isfinite(float(v))}
-    )
-    data["conditions"] = (
-        "racket at rest"
-        if not any(racket_speeds)
-        else "racket moving at "
-        + ", ".join(f"{v:g}" for v in racket_speeds)
-        + " m/s at the impact point (its speed paired with each ball speed as in impact.csv; "
-        "the rebound ratio relative to the racket)"
-    )
-    derived = run.derived()
+    data["conditions"] = _conditions(impacts)
+    cop = run.derived().get("centre_of_percussion_m")
     nodes = run.first_mode_nodes()
     head = run.head()
-    marks = []
-    cop = derived.get("centre_of_percussion_m")
-    if isinstance(cop, int | float):
-        marks.append({"x": round(cop * 1e3, 1), "label": "CoP"})
-    for support, values in nodes.items():
-        for node in values:
-            if head is None or abs(node - head.centre_x_m) < head.half_length_m:
-                marks.append({"x": round(node * 1e3, 1), "label": f"node ({support})"})
-    speeds = impacts.speeds
-    chosen, chosen_racket = shown_case(run.record(folder), impacts)
-    if chosen not in speeds:
-        chosen = speeds[shown_speed_index(speeds)]
-        chosen_racket = impacts.racket_speed_at(chosen)
-    if len(speeds) > MAX_MAP_SPEEDS:
-        picks = np.unique(np.linspace(0, len(speeds) - 1, MAX_MAP_SPEEDS).round().astype(int))
-        speeds = sorted({speeds[i] for i in picks} | {chosen})
-    groups = []
+    marks = _marks(cop, nodes, head)
+    speeds, chosen, chosen_racket = _map_speeds(run, folder, impacts)
+    groups: list[dict[str, Any]] = []
+    all_xy: list[NDArray[np.float64]] = []
+    sweet: list[_SweetRow] = []
     thinned = False
-    all_xy = []
-    sweet = []
-    e = impacts["rebound_ratio"]
     for speed in speeds:
-        panels: list[dict[str, Any]] = []
-        for support in impacts.supports:
-            selected = impacts.rows(speed, support)
-            if selected.size > MAX_MAP_POINTS:
-                selected = selected[:: math.ceil(selected.size / MAX_MAP_POINTS)]
-                thinned = True
-            rows = [
-                [
-                    round(float(impacts["x_m"][i]) * 1e3, 1),
-                    round(float(impacts["y_m"][i]) * 1e3, 1),
-                    *(
-                        None if not math.isfinite(v) else float(f"{v:.5g}")
-                        for v in (
-                            e[i],
-                            impacts["contact_time_s"][i] * 1e3,
-                            impacts["rebound_speed_mps"][i],
-                            impacts["vibration_energy_j"][i],
-                            impacts["reduced_mass_kg"][i] * 1e3,
-                        )
-                    ),
-                    "" if impacts.status[i] == "ok" else str(impacts.status[i]),
-                ]
-                for i in selected
+        group, xy, rows, thin = _speed_group(run, impacts, speed)
+        groups.append(group)
+        all_xy += xy
+        sweet += [row for row, _ in rows]
+        thinned = thinned or thin
+        if speed == chosen:
+            data["glance"] += [
+                f"highest rebound ratio, {case_words(speed, chosen_racket, support)}: "
+                f"{impacts['rebound_ratio'][best]:.3f} at "
+                f"x = {impacts['x_m'][best] * 1e3:.0f} mm, "
+                f"y = {impacts['y_m'][best] * 1e3:.0f} mm"
+                for (support, *_), best in rows
+                if support == "pinned"
             ]
-            panels.append({"label": support, "rows": rows})
-            all_xy.append(np.column_stack([impacts["x_m"][selected], impacts["y_m"][selected]]))
-            # only valid rows name a best or a quietest point (issue 13)
-            finite = selected[np.isfinite(e[selected]) & (impacts.status[selected] == "ok")]
-            if finite.size:
-                best = int(finite[np.argmax(e[finite])])
-                x, y = run.centre(impacts)
-                centre = impacts.nearest(selected, x, y)
-                calm = impacts["vibration_energy_j"]
-                calm_rows = finite[np.isfinite(calm[finite])]
-                quiet = int(calm_rows[np.argmin(calm[calm_rows])]) if calm_rows.size else None
-                sweet.append(
-                    (
-                        support,
-                        f"{speed:g}",
-                        f"{e[best]:.3f}",
-                        impacts.where(best),
-                        fmt(e[centre], ".3f"),
-                        "–" if quiet is None else impacts.where(quiet),
-                    )
-                )
-                if speed == chosen and support == "pinned":
-                    data["glance"].append(
-                        f"highest rebound ratio, {case_words(speed, chosen_racket, support)}: "
-                        f"{e[best]:.3f} at "
-                        f"x = {impacts['x_m'][best] * 1e3:.0f} mm, "
-                        f"y = {impacts['y_m'][best] * 1e3:.0f} mm"
-                    )
-        values = [r[2] for p in panels for r in p["rows"] if r[2] is not None]
-        groups.append(
-            {
-                "label": case_words(speed, impacts.racket_speed_at(speed))
-                if np.any(impacts["racket_speed_mps"] != 0)
-                else f"{speed:g} m/s",
-                "range": [min(values), max(values)] if values else [0.0, 1.0],
-                "panels": panels,
-            }
-        )
     spec = map_spec(
         head,
         "map-rebound",
@@ -176,8 +99,175 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         "max",
     )
     data["plots"] = {"maps": [spec]}
+    data["map"] = _map(thinned)
+    order = {support: n for n, support in enumerate(impacts.supports)}
+    sweet.sort(key=lambda row: (order[row[0]], float(row[1])))
+    data["sweet"] = sweet
+    data["spots"] = _axis_spots(cop, nodes)
+    data["negative"] = _negative_note(impacts, run.record(folder))
+    data["glance"] += _bands(run, impacts, chosen)
+    return data
+
+
+def _figures(
+    run: RunFolder, folder: Path | None, compare: Path | None
+) -> tuple[FigureGroup | None, FigureGroup | None]:
+    """Fig. 15's group (predicted, and with the identified models) and the face maps'."""
+    fig15 = run.group(
+        [
+            (path, "")
+            for path in (
+                folder / file_of("fig15_rebound_along_axis") if folder else None,
+                compare / file_of("fig15_identified") if compare else None,
+            )
+            if path is not None
+        ]
+    )
+    face_maps = run.group([(folder / file_of("face_maps"), "")]) if folder is not None else None
+    return fig15, face_maps
+
+
+def _conditions(impacts: Impacts) -> str:
+    """The racket's motion in the impacts: at rest, or its speeds at the impact point."""
+    racket_speeds = sorted(
+        {float(v) for v in impacts["racket_speed_mps"] if math.isfinite(float(v))}
+    )
+    return (
+        "racket at rest"
+        if not any(racket_speeds)
+        else "racket moving at "
+        + ", ".join(f"{v:g}" for v in racket_speeds)
+        + " m/s at the impact point (its speed paired with each ball speed as in impact.csv; "
+        "the rebound ratio relative to the racket)"
+    )
+
+
+def _marks(
+    cop: Any, nodes: dict[str, list[float]], head: HeadEllipse | None
+) -> list[dict[str, Any]]:
+    """The map's lines on the axis: the centre of percussion ``cop`` (m) and the first-mode
+    ``nodes`` of each support on the head (m)."""
+    marks = []
+    if isinstance(cop, int | float):
+        marks.append({"x": round(cop * 1e3, 1), "label": "CoP"})
+    for support, values in nodes.items():
+        for node in values:
+            if head is None or abs(node - head.centre_x_m) < head.half_length_m:
+                marks.append({"x": round(node * 1e3, 1), "label": f"node ({support})"})
+    return marks
+
+
+def _map_speeds(
+    run: RunFolder, folder: Path | None, impacts: Impacts
+) -> tuple[list[float], float, float]:
+    """The map's ball speeds (at most :data:`MAX_MAP_SPEEDS`, the shown one kept), the shown
+    ball speed and its racket speed."""
+    speeds = impacts.speeds
+    chosen, chosen_racket = shown_case(run.record(folder), impacts)
+    if chosen not in speeds:
+        chosen = speeds[shown_speed_index(speeds)]
+        chosen_racket = impacts.racket_speed_at(chosen)
+    if len(speeds) > MAX_MAP_SPEEDS:
+        picks = np.unique(np.linspace(0, len(speeds) - 1, MAX_MAP_SPEEDS).round().astype(int))
+        speeds = sorted({speeds[i] for i in picks} | {chosen})
+    return speeds, chosen, chosen_racket
+
+
+_SweetRow = tuple[str, str, str, str, str, str]
+"""A row of the sweet-spot table: support, speed, best rebound ratio and where, the centre's,
+and the quietest point."""
+
+
+def _speed_group(
+    run: RunFolder, impacts: Impacts, speed: float
+) -> tuple[dict[str, Any], list[NDArray[np.float64]], list[tuple[_SweetRow, int]], bool]:
+    """One ball speed of the map: its group of panels (one per support), the points drawn,
+    each support's sweet-spot row with its best row of ``impacts``, and whether points were
+    thinned."""
+    e = impacts["rebound_ratio"]
+    panels: list[dict[str, Any]] = []
+    all_xy: list[NDArray[np.float64]] = []
+    sweet: list[tuple[_SweetRow, int]] = []
+    thinned = False
+    for support in impacts.supports:
+        selected = impacts.rows(speed, support)
+        if selected.size > MAX_MAP_POINTS:
+            selected = selected[:: math.ceil(selected.size / MAX_MAP_POINTS)]
+            thinned = True
+        panels.append({"label": support, "rows": _panel_rows(impacts, selected)})
+        all_xy.append(np.column_stack([impacts["x_m"][selected], impacts["y_m"][selected]]))
+        # only valid rows name a best or a quietest point (issue 13)
+        finite = selected[np.isfinite(e[selected]) & (impacts.status[selected] == "ok")]
+        if finite.size:
+            sweet.append(_sweet_row(run, impacts, selected, finite, (support, speed)))
+    values = [r[2] for p in panels for r in p["rows"] if r[2] is not None]
+    group = {
+        "label": case_words(speed, impacts.racket_speed_at(speed))
+        if np.any(impacts["racket_speed_mps"] != 0)
+        else f"{speed:g} m/s",
+        "range": [min(values), max(values)] if values else [0.0, 1.0],
+        "panels": panels,
+    }
+    return group, all_xy, sweet, thinned
+
+
+def _panel_rows(impacts: Impacts, selected: NDArray[np.intp]) -> list[list[Any]]:
+    """The map's points of ``selected`` rows: x, y (mm), the :data:`FIELDS` numbers (None if
+    not finite) and the status (empty if ok)."""
+    e = impacts["rebound_ratio"]
+    return [
+        [
+            round(float(impacts["x_m"][i]) * 1e3, 1),
+            round(float(impacts["y_m"][i]) * 1e3, 1),
+            *(
+                None if not math.isfinite(v) else float(f"{v:.5g}")
+                for v in (
+                    e[i],
+                    impacts["contact_time_s"][i] * 1e3,
+                    impacts["rebound_speed_mps"][i],
+                    impacts["vibration_energy_j"][i],
+                    impacts["reduced_mass_kg"][i] * 1e3,
+                )
+            ),
+            "" if impacts.status[i] == "ok" else str(impacts.status[i]),
+        ]
+        for i in selected
+    ]
+
+
+def _sweet_row(
+    run: RunFolder,
+    impacts: Impacts,
+    selected: NDArray[np.intp],
+    finite: NDArray[np.intp],
+    case: tuple[str, float],
+) -> tuple[_SweetRow, int]:
+    """The sweet-spot row of one ``case`` (support, ball speed) and its best row: the highest
+    rebound ratio of the valid rows ``finite`` and where, the centre's (nearest of
+    ``selected``), and the quietest valid row."""
+    support, speed = case
+    e = impacts["rebound_ratio"]
+    best = int(finite[np.argmax(e[finite])])
+    x, y = run.centre(impacts)
+    centre = impacts.nearest(selected, x, y)
+    calm = impacts["vibration_energy_j"]
+    calm_rows = finite[np.isfinite(calm[finite])]
+    quiet = int(calm_rows[np.argmin(calm[calm_rows])]) if calm_rows.size else None
+    row = (
+        support,
+        f"{speed:g}",
+        f"{e[best]:.3f}",
+        impacts.where(best),
+        fmt(e[centre], ".3f"),
+        "–" if quiet is None else impacts.where(quiet),
+    )
+    return row, best
+
+
+def _map(thinned: bool) -> Figure:
+    """The interactive map's figure (points ``thinned`` for the page or not)."""
     notes = " (points thinned for the page)" if thinned else ""
-    data["map"] = interactive(
+    return interactive(
         "map-rebound",
         "map",
         None,
@@ -188,9 +278,11 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         "only (Fig. 15)",
         "impact.csv",
     )
-    order = {support: n for n, support in enumerate(impacts.supports)}
-    sweet.sort(key=lambda row: (order[row[0]], float(row[1])))
-    data["sweet"] = sweet
+
+
+def _axis_spots(cop: Any, nodes: dict[str, list[float]]) -> list[str]:
+    """The spots on the axis in words: the centre of percussion ``cop`` (m), the least shock
+    to the hand, and each support's first-mode ``nodes`` (m), the least vibration."""
     spots = []
     if isinstance(cop, int | float):
         spots.append(
@@ -203,10 +295,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             + ", ".join(f"x = {v * 1e3:.0f} mm" for v in values)
             + " — the least vibration"
         )
-    data["spots"] = spots
-    data["negative"] = _negative_note(impacts, run.record(folder))
-    data["glance"] += _bands(run, impacts, chosen)
-    return data
+    return spots
 
 
 def _bands(run: RunFolder, impacts: Impacts, speed: float) -> list[str]:
