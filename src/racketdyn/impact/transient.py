@@ -430,6 +430,8 @@ class _Equations:
     """
 
     system: ImpactSystem
+    n: int
+    """Number of the racket's coordinates q."""
     b: NDArray[np.float64]
     """b_j, the force input at the impact point."""
     ball_mass: float
@@ -447,14 +449,9 @@ class _Equations:
         b = system.force_input[point]
         mass_inv = np.linalg.inv(system.mass)
         return cls(
-            system, b, ball_mass, mass_inv @ b, mass_inv @ system.damping,
+            system, system.n_coordinates, b, ball_mass, mass_inv @ b, mass_inv @ system.damping,
             mass_inv @ system.stiffness,
         )  # fmt: skip
-
-    @property
-    def n(self) -> int:
-        """Number of the racket's coordinates q."""
-        return self.system.n_coordinates
 
     def deflection(self, y: NDArray[np.float64]) -> float:
         """Compression X = x_B − b_jᵀ q."""
