@@ -463,6 +463,16 @@ class _Equations:
         n = self.n
         return float(y[1] - self.b @ y[2 + n : 2 + 2 * n])
 
+    def histories(
+        self, time: NDArray[np.float64], states: NDArray[np.float64], force: NDArray[np.float64]
+    ) -> _Histories:
+        """The time histories from the states (one column per sample) and the force."""
+        n = self.n
+        compression = states[0] - self.b @ states[2 : 2 + n]
+        return _Histories(
+            time, force, states[0], compression, states[2 : 2 + n][self.system.mode_index].T
+        )
+
     def rhs(self, force: Callable[[float], float]) -> Callable[[float, Any], NDArray[np.float64]]:
         """dy/dt with the contact force ``force(X)``."""
         n, m_b, deflection = self.n, self.ball_mass, self.deflection
@@ -539,10 +549,7 @@ class _Phases:
     """The state there (see :class:`_Equations`)."""
     peak: float
     """X_max, m."""
-    time: NDArray[np.float64]
-    history: NDArray[np.float64]
-    """The state at ``time``, one column per sample."""
-    force: NDArray[np.float64]
+    histories: _Histories
 
 
 def _phase_law(
@@ -607,10 +614,10 @@ def _integrate_phases(
             break
         else:  # reload past the old peak along F_GB
             loading = True
-    return _Phases(
-        status, t0, y0, peak, np.concatenate(times), np.concatenate(states, axis=1),
-        np.concatenate(forces),
-    )  # fmt: skip
+    histories = equations.histories(
+        np.concatenate(times), np.concatenate(states, axis=1), np.concatenate(forces)
+    )
+    return _Phases(status, t0, y0, peak, histories)
 
 
 def _solve_phase(
@@ -648,12 +655,7 @@ def _reference_result(
     setting: _ImpactSetting, mu: float, point: int, equations: _Equations, phases: _Phases
 ) -> TransientImpact:
     """The :class:`TransientImpact` of an integrated contact (NaN numbers unless it is ok)."""
-    system, n = equations.system, equations.n
-    histories = _Histories(
-        phases.time, phases.force, phases.history[0],
-        phases.history[0] - equations.b @ phases.history[2 : 2 + n],
-        phases.history[2 : 2 + n][system.mode_index].T,
-    )  # fmt: skip
+    system, n, histories = equations.system, equations.n, phases.histories
     if phases.status != STATUS_OK:
         v_in, v_r, m_r = setting.speeds_and_mass()
         log.warning("transient impact at %.3g m/s: %s (results are NaN)", v_in + v_r, phases.status)
