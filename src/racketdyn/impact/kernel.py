@@ -40,7 +40,7 @@ then uses the reference engine instead.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any, TypeVar, cast
+from typing import Any, NamedTuple, TypeVar, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -67,11 +67,19 @@ try:  # numba is a dependency; the plain path is kept for platforms without a wh
     def _compiled(function: F) -> F:
         return cast(F, numba.njit(cache=True, nogil=True, error_model="numpy")(function))
 
+    def _inlined(function: F) -> F:
+        """A step of a kernel, compiled into its caller (numba IR inlining: a call per contact
+        of a helper with arrays for arguments cost the kernel 1-2 %, measured)."""
+        into_caller = numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+        return cast(F, into_caller(function))
+
 except ImportError:  # pragma: no cover - exercised only without numba
     NUMBA_AVAILABLE = False
 
     def _compiled(function: F) -> F:
         return function
+
+    _inlined = _compiled
 
 
 STATUS_CODE_OK = 0
@@ -268,6 +276,7 @@ def _step_coefficients(
         second[k] = e2
 
 
+# 11 parameters: the end state's scalars, as tests/test_kernel.py passes them
 @_compiled
 def _steps_until_apart(
     poles: NDArray[np.complex128], residues: NDArray[np.complex128],
@@ -302,11 +311,45 @@ def _steps_until_apart(
     return never if steps > 1e18 else int(steps)
 
 
+class _Receptance(NamedTuple):
+    """The racket at one impact point in pole–residue form (one row of a batch's systems)."""
+
+    poles: NDArray[np.complex128]
+    """λ_k, 1/s."""
+    residues: NDArray[np.complex128]
+    """r_k, s/kg."""
+    weights: NDArray[np.float64]
+    """2 for a complex pole standing for its conjugate too, 1 for a real pole, 0 for padding."""
+    compliance: float
+    """c = 1/M_r, 1/kg."""
+
+
+class _Spring(NamedTuple):
+    """The hysteretic compound spring of one impact."""
+
+    e_bg: float
+    """COR of the ball on head-clamped strings (sets the unloading curves)."""
+    kind: int
+    """``LAW_POLYNOMIAL`` or ``LAW_POWER``."""
+    coefficients: NDArray[np.float64]
+    """The loading law's coefficients, SI."""
+    max_deflection: float
+    """End of the law's range, m."""
+
+
+class _Propagators(NamedTuple):
+    """Per pole over one step: e^{λh} and the first-order hold's two integrals (see
+    :func:`_step_coefficients`)."""
+
+    decay: NDArray[np.complex128]
+    first: NDArray[np.complex128]
+    second: NDArray[np.complex128]
+
+
 @_compiled
 def _caught_again(
-    poles: NDArray[np.complex128], residues: NDArray[np.complex128],
-    weights: NDArray[np.float64], compliance: float, modal: NDArray[np.complex128],
-    state: NDArray[np.float64], h: float, max_steps: int,
+    racket: _Receptance, modal: NDArray[np.complex128], state: NDArray[np.float64], h: float,
+    max_steps: int,
 ) -> float:  # fmt: skip
     """Free flight after separation: does the vibrating frame catch the ball up again?
 
@@ -315,6 +358,7 @@ def _caught_again(
     can no longer close.  ``state`` is the separation's (see :func:`_contact`).  Returns −1
     when it does not, else the widest gap before it did, as a fraction of X_p.
     """
+    poles, residues, weights, compliance = racket
     t, peak, x_b, v_b, rho, rho_dot = state[1], state[2], state[3], state[4], state[5], state[6]
     n_check = min(int(np.ceil(recontact_horizon(poles, weights, t) / h)), max_steps)
     n_check = min(n_check, _steps_until_apart(poles, residues, weights, compliance,
@@ -340,33 +384,21 @@ def _caught_again(
     return -1.0
 
 
-@_compiled
-def _contact(
-    poles: NDArray[np.complex128], residues: NDArray[np.complex128],
-    weights: NDArray[np.float64], compliance: float, approach: float, h: float,
-    ball_mass: float, e_bg: float, kind: int, coefficients: NDArray[np.float64],
-    max_deflection: float, max_steps: int, modal: NDArray[np.complex128],
-    state: NDArray[np.float64],
-) -> None:  # fmt: skip
-    """One contact at step h, in the frame where the racket starts at rest, first touch to
-    separation.  Fills ``modal`` with u_k at the end and ``state`` with: status, time t, X_max,
-    x_B, ball velocity, ρ, ρ̇, steps taken.
-
-    The modal part is kept as real and imaginary arrays (``work`` rows), so the per-pole
-    update of each step is plain arithmetic over contiguous arrays; the propagators e^{λh}
-    and the two hold integrals are computed once per contact.
-    """
-    n_poles = poles.size
-    decay = np.empty(n_poles, np.complex128)
-    first = np.empty(n_poles, np.complex128)
-    second = np.empty(n_poles, np.complex128)
+@_inlined
+def _step_arrays(
+    racket: _Receptance, ball_mass: float, h: float, propagators: _Propagators,
+    work: NDArray[np.float64],
+) -> float:  # fmt: skip
+    """Fill ``propagators`` for the step h and ``work``'s rows (real and imaginary parts of
+    e^{λh}, of the two hold integrals, of weight_k r_k, and u_k = 0); return α, the compliance
+    of the end-of-step equation ``X + α F = X_free``."""
+    poles, residues, weights, compliance = racket
+    decay, first, second = propagators
     _step_coefficients(poles, h, decay, first, second)
-    work = np.empty((12, n_poles))
     d_re, d_im, f_re, f_im, s_re, s_im = work[0], work[1], work[2], work[3], work[4], work[5]
-    r_re, r_im, u_re, u_im, p_re, p_im = work[6], work[7], work[8], work[9], work[10], work[11]
-    m = ball_mass
-    alpha = h * h / 6.0 * (1.0 / m + compliance)
-    for k in range(n_poles):
+    r_re, r_im, u_re, u_im = work[6], work[7], work[8], work[9]
+    alpha = h * h / 6.0 * (1.0 / ball_mass + compliance)
+    for k in range(poles.size):
         weighted = weights[k] * residues[k]
         alpha += (weighted * second[k]).real
         d_re[k], d_im[k] = decay[k].real, decay[k].imag
@@ -374,7 +406,136 @@ def _contact(
         s_re[k], s_im[k] = second[k].real, second[k].imag
         r_re[k], r_im[k] = weighted.real, weighted.imag
         u_re[k], u_im[k] = 0.0, 0.0
+    return alpha
+
+
+@_inlined
+def _peak_at_turn(before: float, now: float, x_new: float) -> float:
+    """X_p where X turned inside the last step: the vertex of the parabola through the last
+    three compressions (error O(h³)), at least each of them."""
+    curvature = 0.5 * (x_new - 2.0 * now + before)
+    slope = 0.5 * (x_new - before)
+    peak = now
+    if curvature < 0.0:
+        tau = -slope / (2.0 * curvature)
+        if -1.0 <= tau <= 1.0:
+            peak = now - slope * slope / (4.0 * curvature)
+    return max(peak, now, x_new)
+
+
+@_inlined
+def _ramp(
+    racket: _Receptance, ball_mass: float, length: float,
+    start: tuple[float, float, float, float], force: float, work: NDArray[np.float64],
+    propagators: _Propagators, modal: NDArray[np.complex128],
+) -> tuple[float, float, float, float]:  # fmt: skip
+    """x_B, v_B, ρ and ρ̇ after a step of ``length`` from ``start`` (the same four) with the
+    force ramping from ``force`` to zero; u_k into ``modal`` (``propagators`` for that length,
+    u_k at the start in ``work``'s rows 8 and 9)."""
+    x_b, v_b, rho, rho_dot = start
+    m = ball_mass
+    u_re, u_im = work[8], work[9]
+    decay, first = propagators.decay, propagators.first
+    for k in range(decay.size):
+        modal[k] = decay[k] * complex(u_re[k], u_im[k]) + first[k] * force
+    return (
+        x_b + length * v_b - length * length * force / (3.0 * m),
+        v_b - length * force / (2.0 * m),
+        rho + length * rho_dot + length * length * force / 3.0,
+        rho_dot + length * force / 2.0,
+    )
+
+
+@_inlined
+def _crossing_guess(h: float, before: float, now: float, x_new: float) -> float:
+    """First guess of the step's length to X = 0: the root of the parabola through (before,
+    now, new) in (0, h] (the line through (now, new) where that has none): two secant steps
+    fewer."""
+    h_cross = h * now / (now - x_new)
+    linear = 0.5 * (x_new - before)
+    curvature = 0.5 * (x_new - 2.0 * now + before)
+    discriminant = linear * linear - 4.0 * curvature * now
+    if linear < 0.0 and discriminant >= 0.0:
+        tau = 2.0 * now / (np.sqrt(discriminant) - linear)
+        if 0.0 < tau <= 1.0:
+            h_cross = h * tau
+    return h_cross
+
+
+@_inlined
+def _crossing_length(
+    racket: _Receptance, ball_mass: float, h: float, start: tuple[float, float, float, float],
+    force: float, peak: float, compressions: tuple[float, float, float],
+    work: NDArray[np.float64], propagators: _Propagators,
+) -> float:  # fmt: skip
+    """Separation inside the step: its length to the crossing X = 0, the force ramping to zero.
+
+    Secant on the length from :func:`_crossing_guess`, bisection where it leaves the bracket;
+    each trial takes the compression at the end of :func:`_ramp`'s step (u_k not kept).
+    ``compressions`` are X before, now and at the end of the full step; ``start``, ``work``
+    and ``propagators`` as for :func:`_ramp`, which ``propagators`` are left for (those of
+    the last length tried).
+    """
+    poles, residues, weights, compliance = racket
+    decay, first, second = propagators
+    x_b, v_b, rho, rho_dot = start
+    u_re, u_im = work[8], work[9]
+    m = ball_mass
+    before, now, x_new = compressions
+    low, high = 0.0, h
+    h_cross = _crossing_guess(h, before, now, x_new)
+    previous, value_previous = h, x_new
+    for _ in range(60):
+        _step_coefficients(poles, h_cross, decay, first, second)
+        x_try = x_b + h_cross * v_b - h_cross * h_cross * force / (3.0 * m)
+        w_try = compliance * (rho + h_cross * rho_dot + h_cross * h_cross * force / 3.0)
+        for k in range(poles.size):
+            u = decay[k] * complex(u_re[k], u_im[k]) + first[k] * force
+            w_try += weights[k] * (residues[k] * u).real
+        value = x_try - w_try
+        if value > 0.0:
+            low = h_cross
+        else:
+            high = h_cross
+        if abs(value) <= 1e-13 * peak or high - low <= 1e-14 * h:
+            break
+        # secant through the last two lengths, bisection where it leaves the bracket
+        trial = 0.5 * (low + high)
+        if value != value_previous:
+            trial = h_cross - value * (h_cross - previous) / (value - value_previous)
+            if not low < trial < high:
+                trial = 0.5 * (low + high)
+        previous, value_previous = h_cross, value
+        h_cross = trial
+    return h_cross
+
+
+@_compiled
+def _contact(
+    racket: _Receptance, spring: _Spring, ball_mass: float, approach: float, h: float,
+    max_steps: int, modal: NDArray[np.complex128], state: NDArray[np.float64],
+) -> None:  # fmt: skip
+    """One contact at step h, in the frame where the racket starts at rest, first touch to
+    separation.  Fills ``modal`` with u_k at the end and ``state`` with: status, time t, X_max,
+    x_B, ball velocity, ρ, ρ̇, steps taken.
+
+    The modal part is kept as real and imaginary arrays (``work`` rows), so the per-pole
+    update of each step is plain arithmetic over contiguous arrays; the propagators e^{λh}
+    and the two hold integrals are computed once per contact (:func:`_step_arrays`).
+    """
+    poles, compliance = racket.poles, racket.compliance
+    n_poles = poles.size
+    e_bg, kind, coefficients, max_deflection = spring
+    propagators = _Propagators(
+        np.empty(n_poles, np.complex128), np.empty(n_poles, np.complex128),
+        np.empty(n_poles, np.complex128),
+    )  # fmt: skip
+    work = np.empty((12, n_poles))
+    alpha = _step_arrays(racket, ball_mass, h, propagators, work)
+    d_re, d_im, f_re, f_im, s_re, s_im = work[0], work[1], work[2], work[3], work[4], work[5]
+    r_re, r_im, u_re, u_im, p_re, p_im = work[6], work[7], work[8], work[9], work[10], work[11]
     # the step's constants (the ball's and ρ's updates for a force linear over the step)
+    m = ball_mass
     ball_first, ball_second, ball_mean = h * h / (3.0 * m), h * h / (6.0 * m), h / (2.0 * m)
     rho_first, rho_second, rho_mean = h * h / 3.0, h * h / 6.0, h / 2.0
     x_b, v_b, rho, rho_dot = 0.0, approach, 0.0, 0.0
@@ -401,16 +562,8 @@ def _contact(
         x_new, force_new = _solve_compression(
             free, alpha, guess, loading, peak, exponent, kind, coefficients
         )
-        if loading and steps > 0 and x_new < now:
-            # turned inside the step: the peak is the vertex of the parabola (before, now, new)
-            curvature = 0.5 * (x_new - 2.0 * now + before)
-            slope = 0.5 * (x_new - before)
-            peak = now
-            if curvature < 0.0:
-                tau = -slope / (2.0 * curvature)
-                if -1.0 <= tau <= 1.0:
-                    peak = now - slope * slope / (4.0 * curvature)
-            peak = max(peak, now, x_new)
+        if loading and steps > 0 and x_new < now:  # turned inside the step
+            peak = _peak_at_turn(before, now, x_new)
             if peak > max_deflection:
                 status = STATUS_CODE_BEYOND_LAW
                 break
@@ -429,46 +582,11 @@ def _contact(
             )
         if not loading and x_new <= 0.0:
             # separation inside the step: shorten it to the crossing (force ramping to zero)
-            low, high = 0.0, h
-            # first guess: the root of the parabola through (before, now, new) in (0, h] (the
-            # line through (now, new) where that has none): two secant steps fewer
-            h_cross = h * now / (now - x_new)
-            linear = 0.5 * (x_new - before)
-            curvature = 0.5 * (x_new - 2.0 * now + before)
-            discriminant = linear * linear - 4.0 * curvature * now
-            if linear < 0.0 and discriminant >= 0.0:
-                tau = 2.0 * now / (np.sqrt(discriminant) - linear)
-                if 0.0 < tau <= 1.0:
-                    h_cross = h * tau
-            previous, value_previous = h, x_new
-            for _ in range(60):
-                _step_coefficients(poles, h_cross, decay, first, second)
-                x_try = x_b + h_cross * v_b - h_cross * h_cross * force / (3.0 * m)
-                w_try = compliance * (rho + h_cross * rho_dot + h_cross * h_cross * force / 3.0)
-                for k in range(n_poles):
-                    u = decay[k] * complex(u_re[k], u_im[k]) + first[k] * force
-                    w_try += weights[k] * (residues[k] * u).real
-                value = x_try - w_try
-                if value > 0.0:
-                    low = h_cross
-                else:
-                    high = h_cross
-                if abs(value) <= 1e-13 * peak or high - low <= 1e-14 * h:
-                    break
-                # secant through the last two lengths, bisection where it leaves the bracket
-                trial = 0.5 * (low + high)
-                if value != value_previous:
-                    trial = h_cross - value * (h_cross - previous) / (value - value_previous)
-                    if not low < trial < high:
-                        trial = 0.5 * (low + high)
-                previous, value_previous = h_cross, value
-                h_cross = trial
-            x_b = x_b + h_cross * v_b - h_cross * h_cross * force / (3.0 * m)
-            v_b = v_b - h_cross * force / (2.0 * m)
-            rho = rho + h_cross * rho_dot + h_cross * h_cross * force / 3.0
-            rho_dot = rho_dot + h_cross * force / 2.0
-            for k in range(n_poles):
-                modal[k] = decay[k] * complex(u_re[k], u_im[k]) + first[k] * force
+            start = (x_b, v_b, rho, rho_dot)
+            h_cross = _crossing_length(racket, m, h, start, force, peak, (before, now, x_new),
+                                       work, propagators)  # fmt: skip
+            x_b, v_b, rho, rho_dot = _ramp(racket, m, h_cross, start, force, work, propagators,
+                                           modal)  # fmt: skip
             t += h_cross
             steps += 1
             status = STATUS_CODE_OK
@@ -500,10 +618,8 @@ def _contact(
 
 @_compiled
 def _integrate_one(
-    poles: NDArray[np.complex128], residues: NDArray[np.complex128],
-    weights: NDArray[np.float64], compliance: float, approach: float, h: float,
-    ball_mass: float, e_bg: float, kind: int, coefficients: NDArray[np.float64],
-    max_deflection: float, max_steps: int, extrapolate: bool, modal: NDArray[np.complex128],
+    racket: _Receptance, spring: _Spring, ball_mass: float, approach: float, h: float,
+    max_steps: int, extrapolate: bool, modal: NDArray[np.complex128],
     result: NDArray[np.float64],
 ) -> None:  # fmt: skip
     """One impact, in the frame where the racket starts at rest.  Fills ``modal`` with u_k
@@ -516,25 +632,16 @@ def _integrate_one(
     free flight that looks for a second contact then starts from the extrapolated state.
     """
     state = np.empty(8)
-    _contact(
-        poles, residues, weights, compliance, approach, h, ball_mass, e_bg, kind,
-        coefficients, max_deflection, max_steps, modal, state,
-    )  # fmt: skip
+    _contact(racket, spring, ball_mass, approach, h, max_steps, modal, state)
     if not extrapolate:
-        if (
-            state[0] == STATUS_CODE_OK
-            and _caught_again(poles, residues, weights, compliance, modal, state, h, max_steps)
-            >= 0.0
-        ):
+        if state[0] == STATUS_CODE_OK and _caught_again(racket, modal, state, h, max_steps) >= 0.0:
             state[0] = STATUS_CODE_SECOND_CONTACT
-        _write_result(state, kind, coefficients, result)
+        _write_result(state, spring.kind, spring.coefficients, result)
         return
     coarse = np.empty(8)
     coarse_modal = np.empty_like(modal)
-    _contact(
-        poles, residues, weights, compliance, approach, 2.0 * h, ball_mass, e_bg, kind,
-        coefficients, max_deflection, max(max_steps // 2, 1), coarse_modal, coarse,
-    )  # fmt: skip
+    _contact(racket, spring, ball_mass, approach, 2.0 * h, max(max_steps // 2, 1), coarse_modal,
+             coarse)  # fmt: skip
     answer = np.empty(8)
     answer_modal = np.empty_like(modal)
     steps = state[7] + coarse[7]
@@ -545,18 +652,12 @@ def _integrate_one(
             and coarse[0] == STATUS_CODE_OK
             and abs(state[1] - coarse[1]) <= finest
         ):
-            for i in range(1, 7):
-                answer[i] = state[i] + (state[i] - coarse[i]) / 3.0
-            for k in range(modal.size):
-                answer_modal[k] = modal[k] + (modal[k] - coarse_modal[k]) / 3.0
-            answer[0] = STATUS_CODE_OK
+            _richardson(state, coarse, modal, coarse_modal, answer, answer_modal)
             gap = -1.0
-            if answer[2] > max_deflection:
+            if answer[2] > spring.max_deflection:
                 answer[0] = STATUS_CODE_BEYOND_LAW
             else:
-                gap = _caught_again(
-                    poles, residues, weights, compliance, answer_modal, answer, h, max_steps
-                )
+                gap = _caught_again(racket, answer_modal, answer, h, max_steps)
                 if gap >= 0.0:
                     answer[0] = STATUS_CODE_SECOND_CONTACT
             if gap < 0.0 or gap >= DIP_GAP:
@@ -568,8 +669,7 @@ def _integrate_one(
                 break  # both runs flag the impact alike (beyond the law, no separation)
             if (
                 state[0] == STATUS_CODE_OK
-                and _caught_again(poles, residues, weights, compliance, modal, state, h, max_steps)
-                >= 0.0
+                and _caught_again(racket, modal, state, h, max_steps) >= 0.0
             ):
                 answer[0] = STATUS_CODE_SECOND_CONTACT
         if attempt == REFINEMENTS:
@@ -580,14 +680,27 @@ def _integrate_one(
         coarse[:] = state
         coarse_modal[:] = modal
         finest *= 0.5
-        _contact(
-            poles, residues, weights, compliance, approach, finest, ball_mass, e_bg, kind,
-            coefficients, max_deflection, int(max_steps * h / finest), modal, state,
-        )  # fmt: skip
+        _contact(racket, spring, ball_mass, approach, finest, int(max_steps * h / finest), modal,
+                 state)  # fmt: skip
         steps += state[7]
     modal[:] = answer_modal
     answer[7] = steps
-    _write_result(answer, kind, coefficients, result)
+    _write_result(answer, spring.kind, spring.coefficients, result)
+
+
+@_inlined
+def _richardson(
+    fine: NDArray[np.float64], coarse: NDArray[np.float64], fine_modal: NDArray[np.complex128],
+    coarse_modal: NDArray[np.complex128], answer: NDArray[np.float64],
+    answer_modal: NDArray[np.complex128],
+) -> None:  # fmt: skip
+    """``answer`` (status ok) and ``answer_modal`` from runs at h and 2h: ``y_h + (y_h − y_2h)/3``
+    for the time, X_max, ball, ρ, ρ̇ and u_k (the steps are left to the caller)."""
+    for i in range(1, 7):
+        answer[i] = fine[i] + (fine[i] - coarse[i]) / 3.0
+    for k in range(fine_modal.size):
+        answer_modal[k] = fine_modal[k] + (fine_modal[k] - coarse_modal[k]) / 3.0
+    answer[0] = STATUS_CODE_OK
 
 
 @_compiled
@@ -615,11 +728,14 @@ def _integrate_batch(
     max_deflection: float, max_steps: int, extrapolate: bool, modal: NDArray[np.complex128],
     result: NDArray[np.float64],
 ) -> None:  # fmt: skip
+    # 16 parameters: the batch's arrays as integrate_impacts passes them (numba's entry point,
+    # called positionally by tests/test_kernel.py); each impact gets them grouped
     for i in range(approach.size):
         s = system_index[i]
+        racket = _Receptance(poles[s], residues[s], weights[s], compliance[s])
+        spring = _Spring(e_bg[i], kind, coefficients, max_deflection)
         _integrate_one(
-            poles[s], residues[s], weights[s], compliance[s], approach[i], step[i], ball_mass,
-            e_bg[i], kind, coefficients, max_deflection, max_steps, extrapolate, modal[i],
+            racket, spring, ball_mass, approach[i], step[i], max_steps, extrapolate, modal[i],
             result[i],
         )  # fmt: skip
 
@@ -639,7 +755,7 @@ def integrate_impacts(
     max_deflection: float,
     max_steps: int,
     extrapolate: bool = True,
-) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
+) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:  # 14: the batch's arrays, positional
     """Integrate a batch of impacts from first contact to separation.
 
     Parameters

@@ -300,7 +300,7 @@ def simulate_contact(
     damping_ratio: ArrayLike = (),
     rtol: float = 1e-10,
     method: Integrator = "DOP853",
-) -> TransientImpact:
+) -> TransientImpact:  # 11 parameters: public, called positionally (kept as they are)
     """Integrate one normal impact on a reduced mass with flexible modes (reference engine).
 
     Parameters
@@ -409,40 +409,76 @@ def simulate_system_contact(
     v_in, v_r = _check_contact_inputs(ball_mass, e_bg, ball_speed, racket_speed, rtol, method)
     m_b = float(ball_mass)
     approach = v_in + v_r
-    b = system.force_input[point]
-    n = system.n_coordinates
-    rigid = system.rigid_basis()
-    rigid_modal = rigid.T @ b
+    equations = _Equations.of(system, point, m_b)
+    rigid_modal = system.rigid_basis().T @ equations.b
     compliance = float(rigid_modal @ rigid_modal)
     m_r = (
         (1.0 / compliance if compliance > 0 else math.inf) if reduced_mass is None else reduced_mass
     )
-    mass_inv = np.linalg.inv(system.mass)
-    input_acc = mass_inv @ b
-    damping_acc = mass_inv @ system.damping
-    stiffness_acc = mass_inv @ system.stiffness
-    loading_force = _scalar_force(law)
-
-    # scales for the absolute tolerances and the time allowed
     mu = m_b / (1.0 + m_b * compliance)
-    peak_estimate, time_estimate, _ = elastic_contact(law, mu, approach)
-    elastic_peak, t_estimate = float(peak_estimate), float(time_estimate)
-    impulse_scale = 2.0 * mu * approach
-    speed_scale = np.maximum(np.abs(input_acc) * impulse_scale, 1e-6 * approach)
-    omega_max = float(np.sqrt(np.abs(np.linalg.eigvals(stiffness_acc)).max(initial=0.0)))
-    length_scale = speed_scale * (min(t_estimate, 1.0 / omega_max) if omega_max > 0 else t_estimate)
-    scale = np.concatenate(
-        [[elastic_peak, approach], length_scale, speed_scale, [0.5 * mu * approach**2]]
-    )
-    atol = 1e-2 * rtol * scale  # the scales are generous: 1 % of them
+    solver = _solver(equations, law, mu, approach, rtol, method)
+    phases = _integrate_phases(equations, law, e_bg, approach, solver)
+    setting = _ImpactSetting(v_in, v_r, m_b, e_bg, law, m_r)
+    return _reference_result(setting, mu, point, equations, phases)
 
-    def deflection(y: NDArray[np.float64]) -> float:
-        return float(y[0] - b @ y[2 : 2 + n])
 
-    def deflection_rate(y: NDArray[np.float64]) -> float:
-        return float(y[1] - b @ y[2 + n : 2 + 2 * n])
+@dataclass(frozen=True, eq=False)
+class _Equations:
+    """The ball on the spring against ``M q̈ + C q̇ + K q = b_j F`` as first-order ODEs.
 
-    def make_rhs(force: Callable[[float], float]) -> Callable[[float, Any], NDArray[np.float64]]:
+    State ``y``: ball x_B, v_B; q; q̇; the damping loss ∫ q̇ᵀ C q̇ dt (+: into the strings).
+    """
+
+    system: ImpactSystem
+    n: int
+    """Number of the racket's coordinates q."""
+    b: NDArray[np.float64]
+    """b_j, the force input at the impact point."""
+    ball_mass: float
+    """m_B, kg."""
+    input_acc: NDArray[np.float64]
+    """M⁻¹ b_j."""
+    damping_acc: NDArray[np.float64]
+    """M⁻¹ C."""
+    stiffness_acc: NDArray[np.float64]
+    """M⁻¹ K."""
+
+    @classmethod
+    def of(cls, system: ImpactSystem, point: int, ball_mass: float) -> _Equations:
+        """``M⁻¹ b_j``, ``M⁻¹ C`` and ``M⁻¹ K`` of the racket at impact point ``point``."""
+        b = system.force_input[point]
+        mass_inv = np.linalg.inv(system.mass)
+        return cls(
+            system, system.n_coordinates, b, ball_mass, mass_inv @ b, mass_inv @ system.damping,
+            mass_inv @ system.stiffness,
+        )  # fmt: skip
+
+    def deflection(self, y: NDArray[np.float64]) -> float:
+        """Compression X = x_B − b_jᵀ q."""
+        n = self.n
+        return float(y[0] - self.b @ y[2 : 2 + n])
+
+    def deflection_rate(self, y: NDArray[np.float64]) -> float:
+        """Ẋ = v_B − b_jᵀ q̇."""
+        n = self.n
+        return float(y[1] - self.b @ y[2 + n : 2 + 2 * n])
+
+    def histories(
+        self, time: NDArray[np.float64], states: NDArray[np.float64], force: NDArray[np.float64]
+    ) -> _Histories:
+        """The time histories from the states (one column per sample) and the force."""
+        n = self.n
+        compression = states[0] - self.b @ states[2 : 2 + n]
+        return _Histories(
+            time, force, states[0], compression, states[2 : 2 + n][self.system.mode_index].T
+        )
+
+    def rhs(self, force: Callable[[float], float]) -> Callable[[float, Any], NDArray[np.float64]]:
+        """dy/dt with the contact force ``force(X)``."""
+        n, m_b, deflection = self.n, self.ball_mass, self.deflection
+        input_acc, damping_acc, stiffness_acc = self.input_acc, self.damping_acc, self.stiffness_acc
+        damping = self.system.damping
+
         def rhs(t: float, y: NDArray[np.float64]) -> NDArray[np.float64]:
             f = force(deflection(y))
             q, q_dot = y[2 : 2 + n], y[2 + n : 2 + 2 * n]
@@ -451,109 +487,200 @@ def simulate_system_contact(
             dy[1] = -f / m_b
             dy[2 : 2 + n] = q_dot
             dy[2 + n : 2 + 2 * n] = input_acc * f - damping_acc @ q_dot - stiffness_acc @ q
-            dy[-1] = float(q_dot @ system.damping @ q_dot)
+            dy[-1] = float(q_dot @ damping @ q_dot)
             return dy
 
         return rhs
 
-    def event(fn: Callable[[NDArray[np.float64]], float], direction: float) -> Any:
-        def wrapped(t: float, y: NDArray[np.float64]) -> float:
-            return fn(y)
 
-        wrapped.terminal = True  # type: ignore[attr-defined]
-        wrapped.direction = direction  # type: ignore[attr-defined]
-        return wrapped
+@dataclass(frozen=True)
+class _Solver:
+    """solve_ivp's settings for one impact, and the time it may take."""
 
-    turn = event(deflection_rate, -1.0)
-    beyond = event(lambda y: deflection(y) - law.max_deflection_m, 1.0)
-    separation = event(deflection, -1.0)
+    method: Integrator
+    rtol: float
+    atol: NDArray[np.float64]
+    t_estimate: float
+    """Estimated contact time, s (the histories' sampling and the time allowed)."""
 
+    def settings(self) -> dict[str, Any]:
+        """The keywords of :func:`scipy.integrate.solve_ivp`."""
+        return {"method": self.method, "rtol": self.rtol, "atol": self.atol}
+
+
+def _solver(
+    equations: _Equations, law: RestoringForce, mu: float, approach: float, rtol: float,
+    method: Integrator,
+) -> _Solver:  # fmt: skip
+    """Absolute tolerances from the scales of each state (1 % of generous scales) and the
+    elastic contact time estimate."""
+    peak_estimate, time_estimate, _ = elastic_contact(law, mu, approach)
+    elastic_peak, t_estimate = float(peak_estimate), float(time_estimate)
+    impulse_scale = 2.0 * mu * approach
+    speed_scale = np.maximum(np.abs(equations.input_acc) * impulse_scale, 1e-6 * approach)
+    eigenvalues = np.linalg.eigvals(equations.stiffness_acc)
+    omega_max = float(np.sqrt(np.abs(eigenvalues).max(initial=0.0)))
+    length_scale = speed_scale * (min(t_estimate, 1.0 / omega_max) if omega_max > 0 else t_estimate)
+    scale = np.concatenate(
+        [[elastic_peak, approach], length_scale, speed_scale, [0.5 * mu * approach**2]]
+    )
+    return _Solver(method, rtol, 1e-2 * rtol * scale, t_estimate)
+
+
+def _event(fn: Callable[[NDArray[np.float64]], float], direction: float) -> Any:
+    """A terminal solve_ivp event where ``fn(y)`` crosses zero in ``direction``."""
+
+    def wrapped(t: float, y: NDArray[np.float64]) -> float:
+        return fn(y)
+
+    wrapped.terminal = True  # type: ignore[attr-defined]
+    wrapped.direction = direction  # type: ignore[attr-defined]
+    return wrapped
+
+
+@dataclass(frozen=True, eq=False)
+class _Phases:
+    """The contact integrated phase by phase: how it ended, its end state and its histories."""
+
+    status: str
+    t_end: float
+    """Time of the last event (separation when ok), s."""
+    y_end: NDArray[np.float64]
+    """The state there (see :class:`_Equations`)."""
+    peak: float
+    """X_max, m."""
+    histories: _Histories
+
+
+def _phase_law(
+    equations: _Equations, law: RestoringForce, e_bg: float, peak: float, loading: bool
+) -> tuple[Callable[[float], float], list[Any]]:
+    """Force and events of a phase: F_GB with the turn and the law's end while ``loading``,
+    ``F_GB (X/X_p)^p`` with separation and reloading past X_p while unloading."""
+    loading_force = _scalar_force(law)
+    deflection = equations.deflection
+    if loading:
+        turn = _event(equations.deflection_rate, -1.0)
+        beyond = _event(lambda y: deflection(y) - law.max_deflection_m, 1.0)
+        return loading_force, [turn, beyond]
+    exponent = unloading_exponent(law, e_bg, peak)
+
+    def force(x: float, _p: float = exponent, _xp: float = peak) -> float:
+        return loading_force(x) * (x / _xp) ** _p if x > 0.0 else 0.0
+
+    def past_peak(y: NDArray[np.float64], _xp: float = peak) -> float:
+        return deflection(y) - _xp * (1.0 + RELOAD_MARGIN)
+
+    return force, [_event(deflection, -1.0), _event(past_peak, 1.0)]
+
+
+def _integrate_phases(
+    equations: _Equations, law: RestoringForce, e_bg: float, approach: float, solver: _Solver
+) -> _Phases:
+    """The contact from first touch, phase by phase (loading, unloading, …), each ending on an
+    event: the turn (Ẋ = 0), separation (X = 0), reloading past X_p or the law's end."""
     # state: ball x, v; q; q̇; damping loss.  +: into the strings; racket at rest at first.
-    y0 = np.zeros(3 + 2 * n)
+    y0 = np.zeros(3 + 2 * equations.n)
     y0[1] = approach
     t0, peak, loading, status = 0.0, 0.0, True, STATUS_NO_SEPARATION
-    t_allowed = 50.0 * t_estimate
     times: list[NDArray[np.float64]] = []
     states: list[NDArray[np.float64]] = []
     forces: list[NDArray[np.float64]] = []
     for _ in range(_MAX_PHASES):
-        if loading:
-            force = loading_force
-            events = [turn, beyond]
-        else:
-            exponent = unloading_exponent(law, e_bg, peak)
-
-            def force(x: float, _p: float = exponent, _xp: float = peak) -> float:
-                return loading_force(x) * (x / _xp) ** _p if x > 0.0 else 0.0
-
-            def past_peak(y: NDArray[np.float64], _xp: float = peak) -> float:
-                return deflection(y) - _xp * (1.0 + RELOAD_MARGIN)
-
-            reload = event(past_peak, 1.0)
-            events = [separation, reload]
-        solution: Any = solve_ivp(
-            make_rhs(force),
-            (t0, t_allowed),
-            y0,
-            method=method,
-            rtol=rtol,
-            atol=atol,
-            events=events,
-            dense_output=True,
-        )
-        if not solution.success:
-            raise RuntimeError(f"transient impact: the integrator failed ({solution.message})")
-        t_end = float(solution.t[-1])
-        n_samples = max(int(np.ceil(_HISTORY_SAMPLES * (t_end - t0) / t_estimate)), 4)
-        t_phase = np.linspace(t0, t_end, n_samples)
-        y_phase = solution.sol(t_phase)
-        y_phase[:, -1] = solution.y[:, -1]
+        force, events = _phase_law(equations, law, e_bg, peak, loading)
+        solution = _solve_phase(equations, force, events, t0, y0, solver)
+        t_phase, y_phase = _sample_phase(solution, t0, solver.t_estimate)
         times.append(t_phase)
         states.append(y_phase)
-        forces.append(np.array([force(deflection(y)) for y in y_phase.T]))
+        forces.append(np.array([force(equations.deflection(y)) for y in y_phase.T]))
         hit = [len(t) > 0 for t in solution.t_events]
         if solution.status != 1 or not any(hit):
             break  # out of time
         which = hit.index(True)
         t0, y0 = float(solution.t_events[which][0]), np.array(solution.y_events[which][0])
         if loading and which == 0:  # turn: start unloading from the new peak
-            peak, loading = deflection(y0), False
+            peak, loading = equations.deflection(y0), False
         elif loading:  # beyond the law's range
             status = STATUS_BEYOND_LAW
             break
         elif which == 0:  # separation
             status = STATUS_OK
-            solver = {"method": method, "rtol": rtol, "atol": atol}
-            if _caught_again(make_rhs(_no_force), deflection, y0, t0, peak, system, solver):
+            free_flight = equations.rhs(_no_force)
+            settings = solver.settings()
+            if _caught_again(
+                free_flight, equations.deflection, y0, t0, peak, equations.system, settings
+            ):
                 status = STATUS_SECOND_CONTACT
             break
         else:  # reload past the old peak along F_GB
             loading = True
+    histories = equations.histories(
+        np.concatenate(times), np.concatenate(states, axis=1), np.concatenate(forces)
+    )
+    return _Phases(status, t0, y0, peak, histories)
 
-    time = np.concatenate(times)
-    history = np.concatenate(states, axis=1)
-    force_history = np.concatenate(forces)
-    q_history = history[2 : 2 + n][system.mode_index].T
-    compression = history[0] - b @ history[2 : 2 + n]
-    n_modes = system.mode_index.size
-    if status != STATUS_OK:
-        log.warning("transient impact at %.3g m/s: %s (results are NaN)", approach, status)
+
+def _solve_phase(
+    equations: _Equations, force: Callable[[float], float], events: list[Any], t0: float,
+    y0: NDArray[np.float64], solver: _Solver,
+) -> Any:  # fmt: skip
+    """One phase from ``(t0, y0)`` to its first event, within 50 estimated contact times."""
+    solution: Any = solve_ivp(
+        equations.rhs(force),
+        (t0, 50.0 * solver.t_estimate),
+        y0,
+        events=events,
+        dense_output=True,
+        **solver.settings(),
+    )
+    if not solution.success:
+        raise RuntimeError(f"transient impact: the integrator failed ({solution.message})")
+    return solution
+
+
+def _sample_phase(
+    solution: Any, t0: float, t_estimate: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """A phase's times and states on ``_HISTORY_SAMPLES`` per estimated contact time (the
+    damping loss at the end taken from the solver's last step)."""
+    t_end = float(solution.t[-1])
+    n_samples = max(int(np.ceil(_HISTORY_SAMPLES * (t_end - t0) / t_estimate)), 4)
+    t_phase = np.linspace(t0, t_end, n_samples)
+    y_phase = solution.sol(t_phase)
+    y_phase[:, -1] = solution.y[:, -1]
+    return t_phase, y_phase
+
+
+def _reference_result(
+    setting: _ImpactSetting, mu: float, point: int, equations: _Equations, phases: _Phases
+) -> TransientImpact:
+    """The :class:`TransientImpact` of an integrated contact (NaN numbers unless it is ok)."""
+    system, n, histories = equations.system, equations.n, phases.histories
+    if phases.status != STATUS_OK:
+        v_in, v_r, m_r = setting.speeds_and_mass()
+        log.warning("transient impact at %.3g m/s: %s (results are NaN)", v_in + v_r, phases.status)
         nan = math.nan
         return TransientImpact(
-            v_in, v_r, m_r, mu, nan, nan, nan, nan, nan, nan, nan, nan, nan,
-            np.full(n_modes, nan), nan, nan, nan, nan, status,
-            time, force_history, history[0], compression, q_history, nan,
+            v_in, v_r, m_r, mu, nan, nan, nan, nan, nan, nan, nan, nan,
+            nan, np.full(system.mode_index.size, nan), nan, nan, nan, nan, phases.status,
+            histories.time, histories.force, histories.ball_displacement, histories.compression,
+            histories.modal_coordinates, nan,
         )  # fmt: skip
-    q_end, q_dot_end = y0[2 : 2 + n], y0[2 + n : 2 + 2 * n]
+    y_end = phases.y_end
+    q_end, q_dot_end = y_end[2 : 2 + n], y_end[2 + n : 2 + 2 * n]
     rigid_energy, mode_energy, support_energy = system.energies(q_end, q_dot_end)
-    point_velocity = float(system.rigid_point_velocity(q_dot_end)[point])
-    impact = _assemble(
-        v_in, v_r, m_b, e_bg, law, m_r, point_velocity, float(y0[1]), t0, peak,
-        float(rigid_energy), mode_energy, float(support_energy), float(y0[-1]),
-        time, force_history, history[0], compression, q_history,
-    )  # fmt: skip
+    end = _RestFrameEnd(
+        point_velocity=float(system.rigid_point_velocity(q_dot_end)[point]),
+        ball_velocity=float(y_end[1]),
+        contact_time=phases.t_end,
+        peak=phases.peak,
+        rigid_energy=float(rigid_energy),
+        mode_energy=mode_energy,
+        support_energy=float(support_energy),
+        damping_loss=float(y_end[-1]),
+    )
     return replace(
-        impact,
+        _assemble(setting, end, histories),
         coordinate_names=system.coordinate_names,
         final_displacement=np.array(q_end),
         final_velocity=np.array(q_dot_end),
@@ -594,35 +721,92 @@ def _caught_again(
     return bool(len(solution.t_events[0]))
 
 
-def _lab_numbers(
-    v_in: ArrayLike, v_r: ArrayLike, m_b: float, e_bg: ArrayLike, law: RestoringForce,
-    m_r: ArrayLike, point_velocity_rest: ArrayLike, ball_velocity_rest: ArrayLike,
-    contact_time: ArrayLike, peak: ArrayLike, rigid_energy_rest: ArrayLike,
-    mode_energy: ArrayLike, support_energy: ArrayLike, damping_loss: ArrayLike | None,
-) -> dict[str, NDArray[np.float64]]:  # fmt: skip
+@dataclass(frozen=True, eq=False)
+class _ImpactSetting:
+    """What impacts start from, lab frame (arrays broadcast together in the compiled engine)."""
+
+    v_in: ArrayLike
+    """Incoming ball speed, m/s."""
+    v_r: ArrayLike
+    """Speed of the impact point towards the ball, m/s."""
+    m_b: float
+    """Ball mass, kg."""
+    e_bg: ArrayLike
+    """COR of the ball on head-clamped strings."""
+    law: RestoringForce
+    """Compound law F_GB."""
+    m_r: ArrayLike
+    """Reduced mass M_r for the ``cor`` column, kg (inf: clamped head)."""
+
+    def speeds_and_mass(self) -> tuple[float, float, float]:
+        """v_in, v_r and M_r of a single impact, as floats."""
+        return (
+            float(np.asarray(self.v_in)),
+            float(np.asarray(self.v_r)),
+            float(np.asarray(self.m_r)),
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class _RestFrameEnd:
+    """Impacts' end states at separation, in the frame where the racket was at rest before."""
+
+    point_velocity: ArrayLike
+    """Impact point's velocity from the racket's rigid-body motion, m/s."""
+    ball_velocity: ArrayLike
+    """Ball velocity, m/s (+ into the strings)."""
+    contact_time: ArrayLike
+    """s."""
+    peak: ArrayLike
+    """Largest compression X_max, m."""
+    rigid_energy: ArrayLike
+    """Rigid-body kinetic energy of the racket body, J."""
+    mode_energy: ArrayLike
+    """Vibration energy per mode (modes on the last axis), J."""
+    support_energy: ArrayLike
+    """Energy held by the hand and arm, J."""
+    damping_loss: ArrayLike | None
+    """Energy lost to damping, J; None: what the other terms of the balance leave."""
+
+
+@dataclass(frozen=True, eq=False)
+class _Histories:
+    """One impact's time histories from first contact (see :class:`TransientImpact`)."""
+
+    time: NDArray[np.float64]
+    force: NDArray[np.float64]
+    ball_displacement: NDArray[np.float64]
+    compression: NDArray[np.float64]
+    modal_coordinates: NDArray[np.float64]
+
+
+def _lab_numbers(setting: _ImpactSetting, end: _RestFrameEnd) -> dict[str, NDArray[np.float64]]:
     """The lab-frame numbers of impacts from their rest-frame end states (both engines).
 
-    Arrays broadcast together; ``mode_energy`` has the modes on its last axis;
-    ``point_velocity_rest`` is the impact point's velocity from the racket's rigid-body motion.
-    With ``damping_loss=None`` (compiled engine) the damping loss is what the other terms of
-    the energy balance leave; the reference engine integrates it.
+    With ``end.damping_loss=None`` (compiled engine) the damping loss is what the other terms
+    of the energy balance leave; the reference engine integrates it.
     """
+    m_b, law = setting.m_b, setting.law
     v_in, v_r, m_r, v_point, v_out_rest, t_c, x_max = (
         np.asarray(x, dtype=float)
-        for x in (v_in, v_r, m_r, point_velocity_rest, ball_velocity_rest, contact_time, peak)
-    )
-    modes = np.asarray(mode_energy, dtype=float)
+        for x in (
+            setting.v_in, setting.v_r, setting.m_r, end.point_velocity, end.ball_velocity,
+            end.contact_time, end.peak,
+        )
+    )  # fmt: skip
+    modes = np.asarray(end.mode_energy, dtype=float)
     approach = v_in + v_r
     impulse = m_b * (approach - v_out_rest)
     rebound = v_r - v_out_rest  # lab, + away from the strings
     rebound_ratio = (rebound - v_r) / approach
     mass_ratio = np.where(np.isinf(m_r), 0.0, m_b / m_r)
-    hysteresis = (1.0 - np.asarray(e_bg, dtype=float) ** 2) * np.asarray(law.energy(x_max))
+    hysteresis = (1.0 - np.asarray(setting.e_bg, dtype=float) ** 2) * np.asarray(law.energy(x_max))
     vibration = modes.sum(axis=-1)
+    damping_loss = end.damping_loss
     if damping_loss is None:
         damping_loss = (
-            0.5 * m_b * (approach**2 - v_out_rest**2) - np.asarray(rigid_energy_rest)
-            - vibration - np.asarray(support_energy) - hysteresis
+            0.5 * m_b * (approach**2 - v_out_rest**2) - np.asarray(end.rigid_energy)
+            - vibration - np.asarray(end.support_energy) - hysteresis
         )  # fmt: skip
     mu = m_b / (1.0 + mass_ratio)
     return {
@@ -639,50 +823,43 @@ def _lab_numbers(
         "vibration_energy": vibration,
         "hysteresis_loss": hysteresis,
         "damping_loss": np.asarray(damping_loss, dtype=float),
-        "racket_energy": np.asarray(rigid_energy_rest, dtype=float),
+        "racket_energy": np.asarray(end.rigid_energy, dtype=float),
         "stiffness": np.pi**2 * mu / t_c**2,
     }
 
 
 def _assemble(
-    v_in: float, v_r: float, m_b: float, e_bg: float, law: RestoringForce, m_r: float,
-    point_velocity_rest: float, ball_velocity_rest: float, contact_time: float, peak: float,
-    rigid_energy_rest: float, mode_energy: NDArray[np.float64], support_energy: float,
-    damping_loss: float | None, time: NDArray[np.float64], force: NDArray[np.float64],
-    ball_displacement: NDArray[np.float64], compression: NDArray[np.float64],
-    modal_coordinates: NDArray[np.float64],
-) -> TransientImpact:  # fmt: skip
+    setting: _ImpactSetting, end: _RestFrameEnd, histories: _Histories
+) -> TransientImpact:
     """One impact's :class:`TransientImpact` from its rest-frame end state."""
-    n = _lab_numbers(
-        v_in, v_r, m_b, e_bg, law, m_r, point_velocity_rest, ball_velocity_rest, contact_time,
-        peak, rigid_energy_rest, mode_energy, support_energy, damping_loss,
-    )  # fmt: skip
+    n = _lab_numbers(setting, end)
+    v_in, v_r, m_r = setting.speeds_and_mass()
     return TransientImpact(
         ball_speed_mps=v_in,
         racket_speed_mps=v_r,
         reduced_mass_kg=m_r,
         mu_kg=float(n["mu"]),
-        contact_time_s=contact_time,
+        contact_time_s=float(n["contact_time"]),
         peak_force_n=float(n["peak_force"]),
         mean_force_n=float(n["mean_force"]),
         impulse_ns=float(n["impulse"]),
-        peak_deflection_m=peak,
+        peak_deflection_m=float(n["peak_deflection"]),
         rebound_speed_mps=float(n["rebound_speed"]),
         racket_velocity_mps=float(n["racket_velocity"]),
         rebound_ratio=float(n["rebound_ratio"]),
         cor=float(n["cor"]),
-        mode_energy_j=np.asarray(mode_energy, dtype=float),
+        mode_energy_j=np.asarray(end.mode_energy, dtype=float),
         vibration_energy_j=float(n["vibration_energy"]),
         hysteresis_loss_j=float(n["hysteresis_loss"]),
         damping_loss_j=float(n["damping_loss"]),
         racket_energy_j=float(n["racket_energy"]),
         status=STATUS_OK,
-        time_s=time,
-        force_n=force,
-        ball_displacement_m=ball_displacement,
-        deflection_m=compression,
-        modal_coordinates=modal_coordinates,
-        support_energy_j=support_energy,
+        time_s=histories.time,
+        force_n=histories.force,
+        ball_displacement_m=histories.ball_displacement,
+        deflection_m=histories.compression,
+        modal_coordinates=histories.modal_coordinates,
+        support_energy_j=float(np.asarray(end.support_energy)),
     )
 
 
@@ -700,7 +877,7 @@ def simulate_impact(
     rtol: float = 1e-10,
     method: Integrator = "DOP853",
     hand: Hand | None = None,
-) -> TransientImpact:
+) -> TransientImpact:  # 12 parameters: public, called positionally (kept as they are)
     """Simulate a normal impact of the ball at one point of the racket face (reference engine).
 
     Parameters
@@ -788,7 +965,7 @@ def predict_transient(
     steps_per_contact: int = STEPS_PER_CONTACT,
     string_bed: StringBed = "uniform",
     extrapolate: bool = EXTRAPOLATE,
-) -> ImpactResult:
+) -> ImpactResult:  # 17 keywords: the public API's, each a documented option and CLI flag
     """Simulate every point × speed × support and collect an :class:`ImpactResult`.
 
     The arrays are those of :func:`racketdyn.impact.predict`, so ``write_csv`` writes the same
@@ -858,49 +1035,30 @@ def predict_transient(
     )  # fmt: skip
     if hand is not None and "hand" not in grid.supports:
         raise InputError("a hand is given but no support is 'hand'; add support 'hand'")
-    if engine == "auto":
-        engine = "compiled" if NUMBA_AVAILABLE else "reference"
-    if engine == "compiled" and not NUMBA_AVAILABLE:
-        raise InputError("engine 'compiled' needs numba (pip install numba); use 'reference'")
-    xy, model, law = grid.locations, grid.model, grid.law
+    engine = _resolve_engine(engine)
     systems = [
-        impact_system(racket, model, s, xy, hand if s == "hand" else None) for s in grid.supports
+        impact_system(racket, grid.model, s, grid.locations, hand if s == "hand" else None)
+        for s in grid.supports
     ]
     run = _run_compiled if engine == "compiled" else _run_reference
-    out, mode_energy, status, terms = run(
-        grid, systems, grid.ball, rtol, method, steps_per_contact, extrapolate
-    )
-    frame = (status == STATUS_OK) & grid.reaches_frame(out["peak_deflection"])
-    status[frame] = STATUS_FRAME_CONTACT
-    if np.any(frame):
-        log.warning(
-            "%d of %d impacts: %s (their results are NaN)",
-            int(frame.sum()), status.size, STATUS_FRAME_CONTACT,
-        )  # fmt: skip
-    settings: dict[str, Any] = (
-        {
-            "engine": "compiled",
-            "steps_per_contact": steps_per_contact,
-            "extrapolation": "from h and 2h (Richardson)" if extrapolate else "none",
-            "order": (
-                "3 (1 + n for a power law F = c Xⁿ with n < 1)"
-                if extrapolate
-                else "2 (1 + n for a power law F = c Xⁿ with n < 1)"
-            ),
-        }
-        if engine == "compiled"
-        else {"engine": "reference", "method": method, "rtol": rtol}
-    )
+    outputs = run(grid, systems, grid.ball, rtol, method, steps_per_contact, extrapolate)
+    _flag_frame_shots(grid, outputs)
     inputs = grid.inputs(
         ball,
         "transient",
-        integrator=settings,
+        integrator=_integrator_settings(engine, rtol, method, steps_per_contact, extrapolate),
         hysteresis="F_un = F_GB(X) (X/X_p)^p, p from e_BG",
         include_string_bed=include_string_bed,
         hand=None if "hand" not in grid.supports else asdict(hand or Hand()),
     )
+    return _impact_result(grid, outputs, inputs)
+
+
+def _impact_result(grid: ImpactGrid, outputs: _Outputs, inputs: dict[str, Any]) -> ImpactResult:
+    """The :class:`ImpactResult` of the grid's simulated impacts."""
+    out, mode_energy, status, terms = outputs
     return ImpactResult(
-        locations=xy,
+        locations=grid.locations,
         labels=grid.labels,
         ball_speed=grid.ball_speed,
         racket_speed=grid.racket_speed,
@@ -908,11 +1066,50 @@ def predict_transient(
         reduced_mass=grid.reduced_mass,
         mode_energy=mode_energy,
         status=status.astype(str),
-        modal_model=model,
+        modal_model=grid.model,
         inputs=inputs,
         energy_terms=terms,
         **out,
     )
+
+
+def _resolve_engine(engine: Engine) -> Engine:
+    """``auto``: compiled when numba is installed; ``compiled`` without numba is an error."""
+    if engine == "auto":
+        engine = "compiled" if NUMBA_AVAILABLE else "reference"
+    if engine == "compiled" and not NUMBA_AVAILABLE:
+        raise InputError("engine 'compiled' needs numba (pip install numba); use 'reference'")
+    return engine
+
+
+def _flag_frame_shots(grid: ImpactGrid, outputs: _Outputs) -> None:
+    """Mark the impacts whose ball reaches the frame (``STATUS_FRAME_CONTACT``), in place."""
+    out, _, status, _ = outputs
+    frame = (status == STATUS_OK) & grid.reaches_frame(out["peak_deflection"])
+    status[frame] = STATUS_FRAME_CONTACT
+    if np.any(frame):
+        log.warning(
+            "%d of %d impacts: %s (their results are NaN)",
+            int(frame.sum()), status.size, STATUS_FRAME_CONTACT,
+        )  # fmt: skip
+
+
+def _integrator_settings(
+    engine: Engine, rtol: float, method: str, steps_per_contact: int, extrapolate: bool
+) -> dict[str, Any]:
+    """The engine's numerics as the run record shows them."""
+    if engine != "compiled":
+        return {"engine": "reference", "method": method, "rtol": rtol}
+    return {
+        "engine": "compiled",
+        "steps_per_contact": steps_per_contact,
+        "extrapolation": "from h and 2h (Richardson)" if extrapolate else "none",
+        "order": (
+            "3 (1 + n for a power law F = c Xⁿ with n < 1)"
+            if extrapolate
+            else "2 (1 + n for a power law F = c Xⁿ with n < 1)"
+        ),
+    }
 
 
 _FIELDS = (
@@ -1076,9 +1273,11 @@ def _run_compiled(
     ok = code == STATUS_CODE_OK
     with np.errstate(invalid="ignore", divide="ignore"):
         numbers = _lab_numbers(
-            v_in, v_r, m_b, e_bg, law, reduced, point_velocity, raw[:, 4], raw[:, 1],
-            raw[:, 3],
-            rigid_energy, modes, support_energy, None,
+            _ImpactSetting(v_in, v_r, m_b, e_bg, law, reduced),
+            _RestFrameEnd(
+                point_velocity, raw[:, 4], raw[:, 1], raw[:, 3], rigid_energy, modes,
+                support_energy, None,
+            ),
         )  # fmt: skip
     for name in _FIELDS:
         out[name] = np.where(ok, numbers[name], np.nan).reshape(grid.shape)
