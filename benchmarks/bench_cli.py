@@ -304,9 +304,9 @@ def _profile(argv: Sequence[str]) -> None:
     clock.wrap(matplotlib.layout_engine.ConstrainedLayoutEngine, "execute", "layout", "savefig")
     clock.wrap(PIL.Image.Image, "save", "png", inside="savefig")
     if argv[0] == "demo":
-        import racketdyn.html_report
+        import racketdyn.report  # the demo imports write_report from it when it runs
 
-        clock.wrap(racketdyn.html_report, "write_report", "report")
+        clock.wrap(racketdyn.report, "write_report", "report")
     clock.wrap(cli, "main", "command")
     steps: list[tuple[str, float, float, float]] = []
     run_step = getattr(cli, "_run_step", None)  # the demo's steps (cli.py of 2026-11)
