@@ -107,7 +107,7 @@ class ObliqueOptions:
     """The oblique impacts: the ball's arrival, the point and support, the tangential contact
     and the racket's motion.
 
-    The fields are the words the library's errors name in backticks (`` `speed` ``), which
+    The fields are the words the library's errors name in backticks (``speed``), which
     the CLI turns into its flags (:func:`racketdyn.cli.options.in_flags`); they are checked
     when :func:`run_oblique` runs.
 

@@ -264,7 +264,7 @@ class PredictOptions:
     """The impacts to predict and how: the cases (speeds, supports, points), the model and its
     choices, the uncertainty and the case shown.
 
-    The fields are the words the library's errors name in backticks (`` `speeds` ``), which
+    The fields are the words the library's errors name in backticks (``speeds``), which
     the CLI turns into its flags (:func:`racketdyn.cli.options.in_flags`); they are checked
     when :func:`run_predict` runs.
 

@@ -126,7 +126,7 @@ class RigOptions:
     """How the virtual hammer test is run: supports, hits, faults, noise, and how the file is
     written.
 
-    The fields are the words the library's errors name in backticks (`` `averages` ``), which
+    The fields are the words the library's errors name in backticks (``averages``), which
     the CLI turns into its flags (:func:`racketdyn.cli.options.in_flags`); they are checked
     when :func:`run_rig` runs.
 
