@@ -28,6 +28,7 @@ from racketdyn.racket import (
 
 __all__ = [
     "DEFAULT_RACKET_NAME",
+    "check_racket",
     "default_racket",
     "load_racket",
     "racket_to_dict",
@@ -195,6 +196,55 @@ def _check_plausible(
                         allow_implausible=allow_implausible,
                         override=OVERRIDE_FILE,
                     )
+
+
+def check_racket(racket: Racket, *, allow_implausible: bool = False) -> None:
+    """A racket built in Python against the plausible ranges a racket file meets.
+
+    A racket file is checked as it is read (:func:`load_racket`); a :class:`Racket` made in
+    Python is checked here, number by number, against the same :data:`racketdyn.plausibility.
+    RANGES`: a tension typed in lbf, a mass in grams or a length in mm is refused in one line
+    naming the field and the likely slip.
+
+    Parameters
+    ----------
+    racket : Racket
+        The racket.
+    allow_implausible : bool
+        Take values outside the plausible ranges (but inside the limits), logged.
+
+    Raises
+    ------
+    InputError
+        The first field outside its range, named as ``racket.<field>``.
+    """
+    head, strings = racket.head, racket.strings
+    fields: list[tuple[str, str, float | None]] = [
+        *((key, key, getattr(racket, key)) for key in _RACKET_FIELDS),
+        *((key, f"head.{key}", getattr(head, key)) for key in _PLAUSIBLE["head"]
+          if hasattr(head, key)),
+        *((key, f"strings.{key}", getattr(strings, key)) for key in _STRING_FIELDS),
+        ("strings_mass_kg", "strings.mass_kg", strings.mass_kg),
+        ("first_bending_hz", "first_bending_hz", racket.first_bending_hz),
+        ("twisting_hz", "twisting_hz", racket.twisting_hz),
+    ]  # fmt: skip
+    for mass in racket.point_masses:
+        fields += [
+            ("point_mass_kg", "point_masses.mass_kg", mass.mass_kg),
+            ("point_x_m", "point_masses.x_m", mass.x_m),
+            ("point_y_m", "point_masses.y_m", mass.y_m),
+        ]
+    for key, name, value in fields:
+        if value is not None:
+            check(key, value, f"`racket.{name}`", allow_implausible=allow_implausible)
+
+
+_RACKET_FIELDS = ("mass_kg", "length_m", "balance_m", "inertia_cg_kgm2", "roll_inertia_kgm2",
+                  "grip_m")  # fmt: skip
+"""The :class:`Racket` fields a racket file's ``[racket]`` table sets directly."""
+_STRING_FIELDS = ("tension_n", "tension_loss", "mains", "crosses", "string_diameter_m",
+                  "string_modulus_pa")  # fmt: skip
+"""The :class:`StringBed` fields checked under their own names."""
 
 
 def racket_from_dict(

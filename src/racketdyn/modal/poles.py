@@ -1044,6 +1044,11 @@ def select_poles(
         what was dropped and why — a pin with no stable pole near it, a pin and an exclusion
         on the same mode, or pins or exclusions outside the band.
     """
+    if not isinstance(rules, SelectionRules):
+        raise TypeError(
+            f"select_poles: `rules` must be a SelectionRules (got {type(rules).__name__}); "
+            "give SelectionRules(min_fraction=..., ...)"
+        )
     if not isinstance(stab, Stabilisation):
         raise InputError("select_poles needs the Stabilisation that stabilisation() returns")
     pins = _frequencies("`pin_hz`", pin_hz, stab.band_hz)

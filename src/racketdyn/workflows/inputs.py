@@ -20,7 +20,7 @@ from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError
 from racketdyn.impact.hand import Hand
 from racketdyn.io import default_racket, load_racket, read_e_bg_table, read_load_deflection
-from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, read_toml
+from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, check_racket, read_toml
 from racketdyn.io.uncertainty_file import racket_spreads
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_e_bg
@@ -48,11 +48,17 @@ BUILT_IN_RACKET = f"racket: built-in {DEFAULT_RACKET_NAME} (Kawazoe's test racke
 BUILT_IN_MODES = "modal model: built-in free-free beam model"
 
 
-def load_racket_input(racket: RacketInput) -> tuple[Racket, dict[str, Any]]:
-    """The racket and its provenance (``racket_file`` and, for a file, its SHA-256)."""
+def load_racket_input(
+    racket: RacketInput, *, allow_implausible: bool = False
+) -> tuple[Racket, dict[str, Any]]:
+    """The racket and its provenance (``racket_file`` and, for a file, its SHA-256).
+
+    A :class:`Racket` given from Python meets the checks a racket file meets
+    (:func:`racketdyn.io.racket_file.check_racket`; ``allow_implausible`` as the setup's)."""
     if racket is None:
         return default_racket(), {"racket_file": f"built-in {DEFAULT_RACKET_NAME}"}
     if isinstance(racket, Racket):
+        check_racket(racket, allow_implausible=allow_implausible)
         return racket, {"racket_file": f"Racket object {racket.name!r} (given from Python)"}
     path = Path(racket)
     loaded = load_racket(path)
@@ -108,6 +114,7 @@ def setup(
     rigid: bool = False,
     *,
     with_modes: bool = True,
+    allow_implausible: bool = False,
 ) -> RacketSetup:
     """Load the racket, attach a modal model file if given, and build its modes.
 
@@ -118,8 +125,10 @@ def setup(
         <racketdyn.workflows.setup.Setup.racket_setup>` calls this).
     with_modes : bool
         Build the modal model (False: steps that only need the racket's geometry).
+    allow_implausible : bool
+        Take a racket given from Python with values outside the plausible ranges.
     """
-    loaded, provenance = load_racket_input(racket)
+    loaded, provenance = load_racket_input(racket, allow_implausible=allow_implausible)
     defaults = [BUILT_IN_RACKET] if racket is None else []
     modal = modal_model
     if modal is not None and rigid:

@@ -430,6 +430,13 @@ def _model_choices(options: PredictOptions) -> tuple[str, Literal["period", "tan
             "`stiffness_reading` is a choice of the approximate method (eq 10); the transient "
             "model integrates the contact: drop it, or use `model` approx or both"
         )
+    if options.uncertainty is not None and not isinstance(options.uncertainty, Uncertainty):
+        raise TypeError(
+            "run_predict: `uncertainty` must be an Uncertainty (got "
+            f"{type(options.uncertainty).__name__}); build one from a file with "
+            "racketdyn.impact.uncertainty.Uncertainty(racketdyn.io.uncertainty_file."
+            "read_spreads(path), samples=256)"
+        )
     check_workers(options.workers, options.uncertainty)
     engine = engine or "auto"
     stiffness_reading = stiffness_reading or "period"

@@ -9,6 +9,7 @@ included, which is why the record is written after the hook).
 from __future__ import annotations
 
 import csv
+import dataclasses
 import functools
 import hashlib
 import inspect
@@ -324,6 +325,45 @@ P = ParamSpec("P")
 S = TypeVar("S", bound=StepResult)
 
 
+def _bind(
+    name: str, signature: inspect.Signature, args: Any, kwargs: dict[str, Any]
+) -> inspect.BoundArguments:
+    """The step's arguments bound, each object parameter checked against its default's type.
+
+    A keyword the step does not take that is a field of one of its options objects (the
+    keywords ``run_predict`` took before its options moved into ``PredictOptions``) is named
+    with that object; an options object in another's place is named with both.
+
+    Raises
+    ------
+    TypeError
+        Naming the step, the parameter and the object to give.
+    """
+    objects: dict[str, type[Any]] = {
+        key: type(p.default)
+        for key, p in signature.parameters.items()
+        if dataclasses.is_dataclass(p.default) and not isinstance(p.default, type)
+    }
+    try:
+        bound = signature.bind(*args, **kwargs)
+    except TypeError as error:
+        hint = ""
+        for key, kind in objects.items():
+            fields = {f.name for f in dataclasses.fields(kind)}  # a dataclass: from its default
+            unknown = sorted(set(kwargs) & fields - set(signature.parameters))
+            if unknown:
+                hint = f"; give it as `{key}`={kind.__name__}({unknown[0]}=...)"
+        raise TypeError(f"{name}: {error}{hint}") from None
+    for key, kind in objects.items():
+        value = bound.arguments.get(key)
+        if value is not None and not isinstance(value, kind):
+            raise TypeError(
+                f"{name}: `{key}` must be a {kind.__name__} (got {type(value).__name__}); "
+                f"call {name}(out, setup, options) with a Setup and its options object"
+            )
+    return bound
+
+
 def run_step(step: Callable[P, S]) -> Callable[P, S]:
     """Run a step into a fresh copy of its folder, so the folder holds one whole run.
 
@@ -343,7 +383,7 @@ def run_step(step: Callable[P, S]) -> Callable[P, S]:
 
     @functools.wraps(step)
     def run(*args: P.args, **kwargs: P.kwargs) -> S:
-        bound = signature.bind(*args, **kwargs)
+        bound = _bind(step.__name__, signature, args, kwargs)
         raw = bound.arguments["out"]
         created = _absent(raw)
         folder = make_out_folder(raw)  # '' and unwritable places refused in one line

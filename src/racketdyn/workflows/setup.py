@@ -103,7 +103,13 @@ class Setup:
         with_modes : bool
             Build the modal model (False: steps that only need the racket's geometry).
         """
-        return setup(self.racket, self.modal_model, self.rigid, with_modes=with_modes)
+        return setup(
+            self.racket,
+            self.modal_model,
+            self.rigid,
+            with_modes=with_modes,
+            allow_implausible=self.allow_implausible,
+        )
 
     def ball_used(self) -> tuple[Ball, list[str]]:
         """``ball``, or the default ball with the defaults it fills in."""

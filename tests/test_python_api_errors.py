@@ -1,0 +1,90 @@
+"""A Python caller's slips name the function, the parameter and the object to use (new-user
+trial of the Python API, 2026-11-27, eighth session: each reproduced first)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import racketdyn as rd
+from racketdyn.errors import InputError
+from racketdyn.io.racket_file import default_racket
+from racketdyn.workflows import (
+    PredictOptions,
+    RigOptions,
+    Setup,
+    run_oblique,
+    run_predict,
+    run_rig,
+)
+
+
+@pytest.mark.parametrize(
+    ("step", "keyword", "options"),
+    [
+        (run_predict, {"speeds": [20.0]}, "PredictOptions"),
+        (run_rig, {"averages": 4}, "RigOptions"),
+        (run_oblique, {"spin_radps": 100.0}, "ObliqueOptions"),
+    ],
+)
+def test_an_old_keyword_names_the_step_and_its_options_object(
+    tmp_path: Path, step: object, keyword: dict[str, object], options: str
+) -> None:
+    with pytest.raises(TypeError) as caught:
+        step(tmp_path / "out", Setup(), **keyword)  # type: ignore[operator]
+    name = next(iter(keyword))
+    message = str(caught.value)
+    assert step.__name__ in message  # type: ignore[attr-defined]
+    assert f"{options}({name}=" in message
+    assert not (tmp_path / "out").exists()
+
+
+def test_options_in_the_setups_place_are_named(tmp_path: Path) -> None:
+    with pytest.raises(TypeError) as caught:
+        run_predict(tmp_path / "out", PredictOptions(speeds=[20.0]))  # type: ignore[arg-type]
+    message = str(caught.value)
+    for word in ("run_predict", "`setup`", "Setup", "PredictOptions"):
+        assert word in message
+    with pytest.raises(TypeError, match=r"`options`.*PredictOptions.*RigOptions"):
+        run_predict(tmp_path / "out", Setup(), RigOptions())  # type: ignore[arg-type]
+    assert not (tmp_path / "out").exists()
+
+
+def test_an_uncertainty_given_as_a_file_name_says_what_to_build(tmp_path: Path) -> None:
+    options = PredictOptions(speeds=[20.0], uncertainty="unc.toml")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match=r"`uncertainty`.*Uncertainty.*read_spreads"):
+        run_predict(tmp_path / "out", Setup(), options)
+
+
+def test_selection_rules_of_the_wrong_type_are_named() -> None:
+    from racketdyn.modal import select_poles
+
+    with pytest.raises(TypeError, match=r"`rules`.*SelectionRules"):
+        select_poles(None, rules={"min_fraction": 0.5})  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(
+    ("change", "words"),
+    [
+        (lambda r: replace(r, strings=replace(r.strings, tension_n=52.0)), "tension_n"),
+        (lambda r: replace(r, mass_kg=300.0), "mass_kg"),
+    ],
+)
+def test_a_racket_built_in_python_meets_the_file_checks(
+    tmp_path: Path, change: object, words: str
+) -> None:
+    """A tension in lbf or a mass in grams is refused from Python as from a racket file."""
+    racket = change(default_racket())  # type: ignore[operator]
+    with pytest.raises(InputError, match=words):
+        run_predict(tmp_path / "out", Setup(racket=racket), PredictOptions(speeds=[20.0]))
+    allowed = Setup(racket=change(default_racket()), allow_implausible=True)  # type: ignore[operator]
+    if words == "tension_n":  # plausible limits hold it; the override takes it
+        result = run_predict(tmp_path / "ok", allowed, PredictOptions(speeds=[20.0]))
+        assert np.isfinite(result.approximate.rebound_ratio).any()
+
+
+def test_the_built_in_racket_from_python_passes() -> None:
+    rd.workflows.inputs.setup(default_racket(), allow_implausible=False)
