@@ -88,3 +88,17 @@ def test_a_racket_built_in_python_meets_the_file_checks(
 
 def test_the_built_in_racket_from_python_passes() -> None:
     rd.workflows.inputs.setup(default_racket(), allow_implausible=False)
+
+
+def test_only_the_runs_own_impacts_are_counted_on_the_console(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    """The figures' own impacts (the paper's curves, the axis) were counted too: "76 of 276
+    impacts …" beside the run's 138."""
+    import logging
+
+    with caplog.at_level(logging.WARNING):
+        run_predict(tmp_path / "out", Setup(), PredictOptions(speeds=[20.0]))
+    counts = [r.getMessage() for r in caplog.records if "(their results are NaN)" in r.getMessage()]
+    assert counts
+    assert all(" of 138 impacts: " in message for message in counts), counts

@@ -83,7 +83,7 @@ def add(commands: Any) -> None:
     )
     opt.add_string_bed(p)
     opt.add_uncertainty(p)
-    opt.add_no_figures(p)
+    opt.add_no_figures(p, "the CSV files, figures.nc (the figures' data)")
     opt.add_out(p)
     p.set_defaults(handler=run)
 
