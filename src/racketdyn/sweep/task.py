@@ -8,12 +8,10 @@ per-process caches of modal models and contact laws live here.
 
 from __future__ import annotations
 
-import logging
 import math
 import time
 import warnings
-from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
@@ -38,6 +36,7 @@ from racketdyn.impact.result import (
     STATUS_VIBRATION_LOSS,
     STATUS_VIBRATION_SHARE,
     ImpactResult,
+    impact_warnings_quiet,
 )
 from racketdyn.impact.transient import (
     TRANSIENT_SUPPORTS,
@@ -353,7 +352,7 @@ def run_task(task: SweepTask, attempt: int = 1) -> TaskOutput:
     # differently with their number, and a Dask worker runs one thread where this process may
     # run several; pinned, every engine gives the same bits.  Parallelism is across tasks.
     started = time.perf_counter()
-    with _blas_controller().limit(limits=1, user_api="blas"), _quiet(*_PREDICT_LOGS):
+    with _blas_controller().limit(limits=1, user_api="blas"), impact_warnings_quiet():
         racket, ball, file_model_scale = build_design(
             task.racket, task.ball, task.variables, task.settings
         )
@@ -393,13 +392,6 @@ def run_task(task: SweepTask, attempt: int = 1) -> TaskOutput:
         attempt=attempt,
         elapsed_s=time.perf_counter() - started,
     )
-
-
-_PREDICT_LOGS = (
-    "racketdyn.impact.approximate",
-    "racketdyn.impact.transient",
-    "racketdyn.impact.uncertainty",
-)
 
 
 def _inputs(task: SweepTask, racket: Racket, ball: Ball, model: ModalModel | None) -> ModelInputs:
@@ -555,22 +547,3 @@ def _face_bands(
             out[f"{metric}_p{round(100 * q):02d}"] = np.where(given, value, np.nan).reshape(shape)
     out["face_samples_valid"] = share.reshape(shape)
     return out
-
-
-@contextmanager
-def _quiet(*logger_names: str) -> Iterator[None]:
-    """Drop loggers' warnings for a while: predict warns once per call (predict_transient once
-    per impact) about impacts whose results are NaN; a sweep counts them from the status codes
-    and warns once instead (and not from worker processes whose logging nobody configured)."""
-
-    def below_error(record: logging.LogRecord) -> bool:
-        return record.levelno >= logging.ERROR
-
-    loggers = [logging.getLogger(name) for name in logger_names]
-    for logger in loggers:
-        logger.addFilter(below_error)
-    try:
-        yield
-    finally:
-        for logger in loggers:
-            logger.removeFilter(below_error)

@@ -34,9 +34,7 @@ swing map's impacts, twist's and oblique's curves, validate's rows, the ball's b
 from __future__ import annotations
 
 import functools
-import logging
-from collections.abc import Callable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ParamSpec, TypeVar
@@ -46,7 +44,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
-from racketdyn.impact.result import IMPACT_QUANTITIES, SHOWN_SPEED_MPS, STATUS_OK, ImpactResult
+from racketdyn.impact.result import (
+    IMPACT_QUANTITIES,
+    SHOWN_SPEED_MPS,
+    STATUS_OK,
+    ImpactResult,
+    impact_warnings_quiet,
+)
 from racketdyn.impact.swing import ImpactModel, Swing, SwingResult, axis_swings, predict_swing
 from racketdyn.impact.system import Engine
 from racketdyn.modal.model import ModalModel
@@ -682,44 +686,17 @@ def defer_figure_data(
 
 
 # --- the figures' own impacts are not the run's ------------------------------------------
-_STATUS_LOGGERS = tuple(
-    f"racketdyn.impact.{name}" for name in ("approximate", "grid", "swing", "transient")
-)
-"""The loggers that count a run's impacts without numbers, by status (one warning each)."""
-
-
-class _NoStatusCounts(logging.Filter):
-    def filter(self, record: logging.LogRecord) -> bool:
-        return not str(record.msg).endswith("(their results are NaN)")
-
-
-@contextmanager
-def _statuses_not_counted() -> Iterator[None]:
-    """The impacts computed for a figure (the paper's curves, the long axis) are not the run's:
-    their status counts stay off the console, which counts the run's own impacts (new-user
-    trial of 2026-11-27: "76 of 276 impacts …" beside a run of 138).  The figures show their
-    own statuses (hatched, left out)."""
-    quiet = _NoStatusCounts()
-    loggers = [logging.getLogger(name) for name in _STATUS_LOGGERS]
-    for logger in loggers:
-        logger.addFilter(quiet)
-    try:
-        yield
-    finally:
-        for logger in loggers:
-            logger.removeFilter(quiet)
-
-
 _P = ParamSpec("_P")
 _R = TypeVar("_R")
 
 
 def _figure_impacts(function: Callable[_P, _R]) -> Callable[_P, _R]:
-    """Compute a figure's data with its impacts' status counts off the console."""
+    """Compute a figure's data with its impacts' warnings off the console (the figure marks
+    its own; :func:`racketdyn.impact.result.impact_warnings_quiet`)."""
 
     @functools.wraps(function)
     def computed(*args: _P.args, **kwargs: _P.kwargs) -> _R:
-        with _statuses_not_counted():
+        with impact_warnings_quiet():
             return function(*args, **kwargs)
 
     return computed
