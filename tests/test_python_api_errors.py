@@ -102,3 +102,29 @@ def test_only_the_runs_own_impacts_are_counted_on_the_console(
     counts = [r.getMessage() for r in caplog.records if "(their results are NaN)" in r.getMessage()]
     assert counts
     assert all(" of 138 impacts: " in message for message in counts), counts
+
+
+def test_one_support_as_a_string_and_one_shown_speed_as_a_number(tmp_path: Path) -> None:
+    """As ``rd.predict`` takes them: ``supports="free"`` was read letter by letter ("got 'f'")
+    and ``show=20.0`` was a TypeError in ``impact/result.py``."""
+    result = run_predict(
+        tmp_path / "out", Setup(), PredictOptions(speeds=[10.0, 20.0], supports="free", show=20.0)
+    )
+    assert list(result.approximate.supports) == ["free"]
+    assert result.shown_speed == 1
+
+
+def test_an_oblique_point_of_one_number_is_one_line(tmp_path: Path) -> None:
+    from racketdyn.workflows import ObliqueOptions, run_oblique
+
+    with pytest.raises(InputError, match="`point`"):
+        run_oblique(tmp_path / "out", Setup(), ObliqueOptions(point=(0.505,)))  # type: ignore[arg-type]
+
+
+def test_selection_rules_name_their_field_and_refuse_a_zero_damping_limit() -> None:
+    from racketdyn.modal import SelectionRules
+
+    with pytest.raises(InputError, match="`max_damping_ratio`"):
+        SelectionRules(max_damping_ratio=0.0)
+    with pytest.raises(InputError, match="`min_fraction` must be a number"):
+        SelectionRules(min_fraction="0.5")  # type: ignore[arg-type]

@@ -682,7 +682,7 @@ SHOWN_BY_DEFAULT = "default: 20 m/s if run, else the middle ball speed"
 
 
 def shown_case_index(
-    speeds: ArrayLike, racket_speeds: ArrayLike, show: Sequence[float] | None = None
+    speeds: ArrayLike, racket_speeds: ArrayLike, show: float | Sequence[float] | None = None
 ) -> int:
     """Index of the case (ball speed and its racket speed) single-case summaries show.
 
@@ -692,8 +692,9 @@ def shown_case_index(
         The run's ball speeds, m/s.
     racket_speeds : array_like
         Its racket speeds, m/s: one, or one per ball speed.
-    show : sequence of float, optional
-        ``(ball speed,)`` or ``(ball speed, racket speed)``, m/s, one of the run's cases; by
+    show : float or sequence of float, optional
+        ``ball speed``, ``(ball speed,)`` or ``(ball speed, racket speed)``, m/s, one of the
+        run's cases; by
         default :func:`shown_speed_index`'s rule.
 
     Raises
@@ -708,7 +709,7 @@ def shown_case_index(
     racket = np.broadcast_to(np.asarray(racket_speeds, dtype=float).reshape(-1), ball.shape)
     if show is None:
         return shown_speed_index(ball)
-    wanted = [float(v) for v in show]
+    wanted = [float(v) for v in np.atleast_1d(np.asarray(show, dtype=float))]  # 20.0 or (20.0,)
     if len(wanted) not in (1, 2):
         raise InputError(
             "`show` takes a ball speed and, optionally, its racket speed (m/s); got "

@@ -958,10 +958,12 @@ class SelectionRules:
     def __post_init__(self) -> None:
         for name, low, high in self._RANGES:
             value = getattr(self, name)
-            if not (
-                isinstance(value, int | float) and math.isfinite(value) and low <= value <= high
-            ):
-                raise InputError(f"{name} must lie between {low:g} and {high:g} (got {value!r})")
+            if not isinstance(value, int | float) or isinstance(value, bool):
+                raise InputError(f"`{name}` must be a number (got {value!r})")
+            if not (math.isfinite(value) and low <= value <= high):
+                raise InputError(f"`{name}` must lie between {low:g} and {high:g} (got {value!r})")
+        if self.max_damping_ratio == 0:
+            raise InputError("`max_damping_ratio` must be above 0: 0 keeps no mode")
         if self.stability not in tuple(PoleStability):
             raise InputError(f"stability must be a PoleStability (got {self.stability!r})")
 

@@ -283,7 +283,10 @@ def _impact_point(
         where = (the_racket.head.centre_x_m, the_racket.head.centre_y_m)
         defaults_used.append("impact point: the face centre")
     else:
-        where = (float(point[0]), float(point[1]))
+        flat = np.asarray(point, dtype=float).reshape(-1)
+        if flat.size != 2:
+            raise InputError(f"`point` is the impact point (x, y), m: two numbers (got {point!r})")
+        where = (float(flat[0]), float(flat[1]))
     the_racket.head.check_inside([where])
     return where
 

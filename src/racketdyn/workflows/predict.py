@@ -274,8 +274,8 @@ class PredictOptions:
         Incoming ball speeds, m/s.
     racket_speed : array_like
         Racket speed at the impact point towards the ball, m/s: one, or one per speed.
-    supports : sequence of str
-        ``free``, ``pinned``; ``hand`` with ``model="transient"`` only.
+    supports : str or sequence of str
+        ``free``, ``pinned``; ``hand`` with ``model="transient"`` only (one as a string).
     model : {"approx", "transient", "both"}
         Kawazoe's approximate method, the transient simulation, or each with their comparison.
     engine : {"auto", "compiled", "reference"}, optional
@@ -308,7 +308,7 @@ class PredictOptions:
 
     speeds: ArrayLike = (10.0, 20.0, 30.0)
     racket_speed: ArrayLike = (0.0,)
-    supports: Sequence[str] = ("free", "pinned")
+    supports: str | Sequence[str] = ("free", "pinned")
     model: Model = "approx"
     engine: str | None = None
     points: str | os.PathLike[str] | ArrayLike | None = None
@@ -318,7 +318,7 @@ class PredictOptions:
     include_string_bed: bool = False
     uncertainty: Uncertainty | None = None
     workers: int | None = None
-    show: Sequence[float] | None = None
+    show: float | Sequence[float] | None = None
 
 
 DEFAULT_PREDICT = PredictOptions()
@@ -360,7 +360,10 @@ def run_predict(
         options.speeds, options.racket_speed, setup.allow_implausible
     )
     shown = shown_case_index(speed_list, paired, options.show)
-    support_list = check_supports(options.supports, options.model)
+    supports = options.supports  # one as a string, as rd.predict takes it
+    support_list = check_supports(
+        [supports] if isinstance(supports, str) else supports, options.model
+    )
     used = setup.racket_setup()
     the_ball, ball_defaults = setup.ball_used()
     the_hand, hand_defaults = setup.hand_used(support_list)
