@@ -209,7 +209,7 @@ def mass_normalised_shapes(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
         listed = ", ".join(f"{f:.1f} Hz" for f in fit.frequency_hz[weak])
         raise InputError(
             f"{frfs.source}: the driving-point modal constant is not positive for {listed}; move "
-            "the accelerometer off that mode's node, or leave the mode out (--exclude)"
+            "the accelerometer off that mode's node, or leave the mode out (`exclude_hz`)"
         )
     weak = np.flatnonzero(at_reference < WEAK_DRIVING_POINT * np.abs(fit.constants).max(axis=0))
     for k in weak:
