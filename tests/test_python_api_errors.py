@@ -128,3 +128,22 @@ def test_selection_rules_name_their_field_and_refuse_a_zero_damping_limit() -> N
         SelectionRules(max_damping_ratio=0.0)
     with pytest.raises(InputError, match="`min_fraction` must be a number"):
         SelectionRules(min_fraction="0.5")  # type: ignore[arg-type]
+
+
+def test_a_run_folder_that_is_not_there_is_named(tmp_path: Path) -> None:
+    """``read_step_data("predcit")`` returned {} and the draw then said "not all given"."""
+    from racketdyn.workflows.figure_data import read_step_data
+
+    with pytest.raises(InputError, match="predcit"):
+        read_step_data(tmp_path / "predcit")
+    assert read_step_data(tmp_path) == {}  # a folder without figures.nc: nothing to draw
+
+
+def test_an_unknown_figure_id_names_the_results_own(tmp_path: Path) -> None:
+    """``result.plot("fig15")`` listed all 34 ids of every step."""
+    result = run_predict(tmp_path / "out", Setup(), PredictOptions(speeds=[20.0]))
+    with pytest.raises(KeyError) as caught:
+        result.plot("fig15")
+    message = str(caught.value)
+    assert "fig15_rebound_along_axis" in message
+    assert "stabilisation" not in message  # identify's, not this result's

@@ -589,11 +589,24 @@ def draw(figure: str, source: object, **options: Any) -> Any:
     -------
     matplotlib.figure.Figure
     """
+    if figure.removesuffix(".png") not in FIGURES:
+        _unknown(figure, source)
     found = entry(figure)
     data = found.data(source)
     if data is None:
         raise ValueError(f"figure {found.id!r} needs {', '.join(found.reads)}: not all given")
     return _figure(found.drawer()(*data, **options))
+
+
+def _unknown(figure: str, source: object) -> None:
+    """Refuse an unknown figure id, naming the ids this source can draw and the closest."""
+    import difflib
+
+    here = [e.id for e in FIGURES.values() if e.draw and e.data(source) is not None]
+    close = difflib.get_close_matches(figure, here or list(FIGURES), n=1, cutoff=0.3)
+    close = close or [i for i in here if i.startswith(figure)][:1]
+    hint = f"; did you mean {close[0]!r}?" if close else ""
+    raise KeyError(f"no figure {figure!r}{hint} (this result draws {', '.join(here) or 'none'})")
 
 
 def _figure(drawn: Any) -> Any:

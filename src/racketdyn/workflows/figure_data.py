@@ -43,6 +43,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
+from racketdyn.errors import InputError
 from racketdyn.impact import half_sine_force, half_sine_spectrum, predict
 from racketdyn.impact.result import (
     IMPACT_QUANTITIES,
@@ -624,6 +625,11 @@ def read_step_data(folder: Path, label: str = "") -> dict[str, Any]:
     ----------
     folder : Path
         A run folder of any step; without ``figures.nc`` (nor a sweep's store): empty.
+
+    Raises
+    ------
+    InputError
+        ``folder`` is not a folder.
     label : str
         Of a figure written once per model (compare's ``"free"``, ``"hand"``): that model's
         data; of a sweep's summary (``summary_<variable>.png``): the variable, whose curves are
@@ -633,6 +639,8 @@ def read_step_data(folder: Path, label: str = "") -> dict[str, Any]:
     from racketdyn.sweep.summary import summary_curves
     from racketdyn.workflows.shape_figures import AxisNodes, IdentifiedShapes
 
+    if not Path(folder).is_dir():
+        raise InputError(f"{folder}: no such run folder")
     if label and (Path(folder) / STORE_NAME).is_dir():  # a sweep: its store holds the curves
         return {"curves": summary_curves(open_sweep(Path(folder)), label)}
     path = Path(folder) / FIGURES_FILE
