@@ -95,6 +95,10 @@ PROCESS_TESTS = {
     "test_sweep_cluster.py",
     "test_sweep_start.py",
     "test_cli_interrupt.py",
+    # a pytest with two xdist workers of its own: 2 s alone, 10-49 s when it started last,
+    # beside both workers of the suite, where it was the suite's tail (a one-test unit is sent
+    # after the groups); in this group it runs early, on the group's worker
+    "test_xdist_groups.py",
 }
 
 
