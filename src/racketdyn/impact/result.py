@@ -694,8 +694,7 @@ def shown_case_index(
         Its racket speeds, m/s: one, or one per ball speed.
     show : float or sequence of float, optional
         ``ball speed``, ``(ball speed,)`` or ``(ball speed, racket speed)``, m/s, one of the
-        run's cases; by
-        default :func:`shown_speed_index`'s rule.
+        run's cases; by default :func:`shown_speed_index`'s rule.
 
     Raises
     ------

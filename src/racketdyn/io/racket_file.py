@@ -202,9 +202,9 @@ def check_racket(racket: Racket, *, allow_implausible: bool = False) -> None:
     """A racket built in Python against the plausible ranges a racket file meets.
 
     A racket file is checked as it is read (:func:`load_racket`); a :class:`Racket` made in
-    Python is checked here, number by number, against the same :data:`racketdyn.plausibility.
-    RANGES`: a tension typed in lbf, a mass in grams or a length in mm is refused in one line
-    naming the field and the likely slip.
+    Python is checked here against the same table of keys (``_PLAUSIBLE``), read from the
+    racket's objects instead of the file's tables: a tension typed in lbf, a mass in grams or a
+    length in mm is refused in one line naming the field and the likely slip.
 
     Parameters
     ----------
@@ -218,33 +218,24 @@ def check_racket(racket: Racket, *, allow_implausible: bool = False) -> None:
     InputError
         The first field outside its range, named as ``racket.<field>``.
     """
-    head, strings = racket.head, racket.strings
-    fields: list[tuple[str, str, float | None]] = [
-        *((key, key, getattr(racket, key)) for key in _RACKET_FIELDS),
-        *((key, f"head.{key}", getattr(head, key)) for key in _PLAUSIBLE["head"]
-          if hasattr(head, key)),
-        *((key, f"strings.{key}", getattr(strings, key)) for key in _STRING_FIELDS),
-        ("strings_mass_kg", "strings.mass_kg", strings.mass_kg),
-        ("first_bending_hz", "first_bending_hz", racket.first_bending_hz),
-        ("twisting_hz", "twisting_hz", racket.twisting_hz),
-    ]  # fmt: skip
-    for mass in racket.point_masses:
-        fields += [
-            ("point_mass_kg", "point_masses.mass_kg", mass.mass_kg),
-            ("point_x_m", "point_masses.x_m", mass.x_m),
-            ("point_y_m", "point_masses.y_m", mass.y_m),
-        ]
-    for key, name, value in fields:
-        if value is not None:
-            check(key, value, f"`racket.{name}`", allow_implausible=allow_implausible)
-
-
-_RACKET_FIELDS = ("mass_kg", "length_m", "balance_m", "inertia_cg_kgm2", "roll_inertia_kgm2",
-                  "grip_m")  # fmt: skip
-"""The :class:`Racket` fields a racket file's ``[racket]`` table sets directly."""
-_STRING_FIELDS = ("tension_n", "tension_loss", "mains", "crosses", "string_diameter_m",
-                  "string_modulus_pa")  # fmt: skip
-"""The :class:`StringBed` fields checked under their own names."""
+    objects: dict[str, list[tuple[str, object]]] = {
+        "racket": [("", racket)],
+        "head": [("head.", racket.head)],
+        "strings": [("strings.", racket.strings)],
+        "modal": [("", racket)],
+        "point_masses": [("point_masses.", mass) for mass in racket.point_masses],
+    }
+    for kind, keys in _PLAUSIBLE.items():
+        for prefix, owner in objects[kind]:
+            for key, ranged in keys.items():
+                value = getattr(owner, key, None)  # the file's derived keys are no fields
+                if value is not None:
+                    check(
+                        ranged,
+                        value,
+                        f"`racket.{prefix}{key}`",
+                        allow_implausible=allow_implausible,
+                    )
 
 
 def racket_from_dict(

@@ -625,15 +625,15 @@ def read_step_data(folder: Path, label: str = "") -> dict[str, Any]:
     ----------
     folder : Path
         A run folder of any step; without ``figures.nc`` (nor a sweep's store): empty.
+    label : str
+        Of a figure written once per model (compare's ``"free"``, ``"hand"``): that model's
+        data; of a sweep's summary (``summary_<variable>.png``): the variable, whose curves are
+        read from the folder's store (:func:`racketdyn.sweep.summary.summary_curves`).
 
     Raises
     ------
     InputError
         ``folder`` is not a folder.
-    label : str
-        Of a figure written once per model (compare's ``"free"``, ``"hand"``): that model's
-        data; of a sweep's summary (``summary_<variable>.png``): the variable, whose curves are
-        read from the folder's store (:func:`racketdyn.sweep.summary.summary_curves`).
     """
     from racketdyn.sweep.store import STORE_NAME, open_sweep
     from racketdyn.sweep.summary import summary_curves

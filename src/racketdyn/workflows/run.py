@@ -325,10 +325,25 @@ P = ParamSpec("P")
 S = TypeVar("S", bound=StepResult)
 
 
+def _object_parameters(signature: inspect.Signature) -> dict[str, type[Any]]:
+    """The step's parameters whose default is a dataclass object (``setup``, ``options``), by
+    name, with that default's type."""
+    return {
+        key: type(p.default)
+        for key, p in signature.parameters.items()
+        if dataclasses.is_dataclass(p.default) and not isinstance(p.default, type)
+    }
+
+
 def _bind(
-    name: str, signature: inspect.Signature, args: Any, kwargs: dict[str, Any]
+    name: str,
+    signature: inspect.Signature,
+    objects: dict[str, type[Any]],
+    args: Any,
+    kwargs: dict[str, Any],
 ) -> inspect.BoundArguments:
-    """The step's arguments bound, each object parameter checked against its default's type.
+    """The step's arguments bound, each of ``objects`` (:func:`_object_parameters`) checked
+    against its default's type.
 
     A keyword the step does not take that is a field of one of its options objects (the
     keywords ``run_predict`` took before its options moved into ``PredictOptions``) is named
@@ -339,18 +354,13 @@ def _bind(
     TypeError
         Naming the step, the parameter and the object to give.
     """
-    objects: dict[str, type[Any]] = {
-        key: type(p.default)
-        for key, p in signature.parameters.items()
-        if dataclasses.is_dataclass(p.default) and not isinstance(p.default, type)
-    }
     try:
         bound = signature.bind(*args, **kwargs)
     except TypeError as error:
         hint = ""
         for key, kind in objects.items():
-            fields = {f.name for f in dataclasses.fields(kind)}  # a dataclass: from its default
-            unknown = sorted(set(kwargs) & fields - set(signature.parameters))
+            fields = {f.name for f in dataclasses.fields(kind)}
+            unknown = sorted((set(kwargs) - set(signature.parameters)) & fields)
             if unknown:
                 hint = f"; give it as `{key}`={kind.__name__}({unknown[0]}=...)"
         raise TypeError(f"{name}: {error}{hint}") from None
@@ -378,12 +388,13 @@ def run_step(step: Callable[P, S]) -> Callable[P, S]:
     with one line, before any work: nothing of another step is ever replaced.
     """
     signature = inspect.signature(step)
+    objects = _object_parameters(signature)
     step_name = step.__name__.removeprefix("run_")
     step_name = _COMMAND_OF.get(step_name, step_name)
 
     @functools.wraps(step)
     def run(*args: P.args, **kwargs: P.kwargs) -> S:
-        bound = _bind(step.__name__, signature, args, kwargs)
+        bound = _bind(step.__name__, signature, objects, args, kwargs)
         raw = bound.arguments["out"]
         created = _absent(raw)
         folder = make_out_folder(raw)  # '' and unwritable places refused in one line
