@@ -326,3 +326,33 @@ def test_a_chunk_gone_when_finishing_is_a_failure_not_silent_nan(
     assert record["failed"] == ["design-00002"]
     rerun = run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
     assert rerun.attrs["n_failed"] == 0
+
+
+def test_a_task_cancelled_before_its_result_is_gathered_ends_its_future_quietly() -> None:
+    """A Ctrl-C of a local Dask sweep under load printed distributed's traceback (CI of the
+    eighth session): a task finished, then the closing client cancelled it before
+    ``cfexecutor._cascade_future`` gathered its result, and the FutureCancelledError raised
+    there went to tornado, which logs it with its traceback.  racketdyn's cascade takes it as
+    the task cancelled."""
+    import asyncio
+    from concurrent.futures import Future
+
+    from distributed.cfexecutor import _cascade_future as distributeds
+    from distributed.client import FutureCancelledError
+
+    from racketdyn.sweep import executors
+
+    class CancelledWhileGathered:
+        status = "cancelled"
+
+        async def _result(self, raiseit: bool = True) -> object:
+            raise FutureCancelledError("task", reason="closing")
+
+    async def cascade(function: Any, future: Future[Any]) -> None:
+        await function(CancelledWhileGathered(), future)
+
+    with pytest.raises(FutureCancelledError):  # distributed's own: into the event loop
+        asyncio.run(cascade(distributeds, Future()))
+    quiet: Future[Any] = Future()
+    asyncio.run(cascade(executors._cascade_future, quiet))
+    assert quiet.cancelled()

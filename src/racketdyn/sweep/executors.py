@@ -695,6 +695,25 @@ def _restore_ctrl_c() -> None:
         signal.signal(signal.SIGINT, _SAVED_SIGINT.pop())
 
 
+async def _cascade_future(task: Any, future: Future[Any]) -> None:
+    """Pass a Dask task's outcome to its concurrent future, as ``distributed.cfexecutor``'s
+    ``_cascade_future`` does, and a task cancelled between finishing and the gathering of its
+    result (the client closed by a Ctrl-C or a timeout) as cancelled.
+
+    There distributed's cascade raises ``FutureCancelledError`` into the event loop, which
+    tornado logs with its traceback on the console (an interrupted local Dask sweep under load:
+    seen in CI, 2026-11-27).  Written here because distributed's cannot be told so.
+    """
+    from distributed.cfexecutor import _cascade_future as cascade
+    from distributed.client import FutureCancelledError
+
+    try:
+        await cascade(task, future)
+    except FutureCancelledError:
+        if future.cancel():
+            future.set_running_or_notify_cancel()  # wakes wait() and as_completed()
+
+
 def _dask_executor(client: Any, start_method: str = "") -> Executor:
     """``client.get_executor(pure=False)`` that can also stop a hung task's worker, and says
     how its workers were started (``start_method``: "" for a cluster not started here)."""
@@ -712,9 +731,22 @@ def _dask_executor(client: Any, start_method: str = "") -> Executor:
         def submit(self, fn: Any, *args: Any, **kwargs: Any) -> Any:  # type: ignore[override]
             task = self._client.submit(fn, *args, pure=False, **kwargs)
             self._futures.add(task)
-            future: Future[Any] = self._wrap_future(task)  # type: ignore[no-untyped-call]
+            future: Future[Any] = self._wrap_future(task)
             self._keys[future] = task.key
             future.add_done_callback(lambda done: self._keys.pop(done, None))
+            return future
+
+        def _wrap_future(self, task: Any) -> Future[Any]:
+            """``ClientExecutor._wrap_future`` with :func:`_cascade_future`: cancelling the
+            concurrent future cancels the task, the task's outcome ends the future."""
+            future: Future[Any] = Future()
+
+            def cancel_task(done: Future[Any]) -> None:
+                if done.cancelled() and task.status != "cancelled":
+                    task.cancel()
+
+            future.add_done_callback(cancel_task)
+            self._client.loop.add_callback(_cascade_future, task, future)
             return future
 
         def stop_task(self, future: Future[Any]) -> None:
