@@ -163,16 +163,21 @@ REFERENCES = [
     ),
     _xfail(
         Reference("meca0062_201", 40.122, 0.00398, "lab"),
-        "found at 40.164 Hz, 0.105 % above the lab's 40.122 Hz (a third of a 0.125 Hz line): "
-        "the lab's pole 0.5 Hz below it is left out ('no peak in the data' at 39.68 Hz); "
-        "against 201 alone sdypy gives 40.080 Hz (0.105 % below), all three accelerometers in "
-        "one LSCF 40.145 Hz: the lab's poly-reference PolyMAX separates the pair, one "
-        "reference does not place it within 0.1 %",
+        "found at 40.164 Hz, 0.105 % above the lab's 40.122 Hz (a third of a 0.125 Hz line). "
+        "The data hold two poles here: a local fit of the 204 FRFs (all three accelerometers) "
+        "with one pole lands at 40.17-40.18 Hz (error 13.6 %), with two at 39.68 and 40.165 Hz "
+        "(4.7 %; racketdyn drops 39.68 Hz as 'no peak in the data'). The lab's pole is its "
+        "PolyMAX's at orders 20-40 (its setting on these FRFs, real coefficients over 0-200 Hz, "
+        "Δt = 1/512 s: 40.125 Hz, 0.40 %), which at orders 60-84 gives 40.161 Hz, 0.29 %, as "
+        "racketdyn does; sdypy against 201 40.080 Hz",
     ),
     _xfail(
         Reference("meca0062_201", 125.214, 0.00396, "lab"),
         "against 201 the pair 125.21/125.58 Hz reads as one mode (125.63 Hz), as in sdypy's "
-        "LSCF on the same FRFs (125.56 Hz, 40 of 60 orders, no second pole)",
+        "LSCF on the same FRFs (125.56 Hz, 40 of 60 orders, no second pole); the accelerometers "
+        "see the two differently (the second singular value of the 68 × 3 FRFs peaks at "
+        "125.375 Hz, the first at 125.25 Hz) and a poly-reference LSCF of all three separates "
+        "them (125.22 Hz 0.37 %, 125.60 Hz 0.40 %; a prototype, not in racketdyn)",
     ),
     *_held("meca0062_203", "lab", "89.652:0.00366 97.071:0.00108 118.013:0.00424 143.372:0.00657"),
     _xfail(
@@ -181,15 +186,18 @@ REFERENCES = [
         "(< 12; over 40-200 Hz both were found): its fit gain 3.7 would keep it, but it lies "
         "1.7 lines from 125.41 Hz, one peak by its width; their LSCF shapes differ (MAC 0.82), "
         "yet keeping neighbours of another shape keeps fragments of the rig racket's 4-node "
-        "bending too (822.6 or 849.0 Hz beside 838.5 Hz: tests/test_racket_data.py fails)",
+        "bending too (822.6 or 849.0 Hz beside 838.5 Hz: tests/test_racket_data.py fails); a "
+        "poly-reference LSCF of all three accelerometers separates the pair (125.60 Hz, 0.40 %)",
     ),
     *(
         _xfail(
             Reference(case, 105.200, 0.00048, "lab"),
-            "damping 0.086 % (201), 0.084 % (203) against the lab's 0.048 %: every other "
-            "estimate on these FRFs agrees with racketdyn (sdypy's LSCF against 201 0.084 %, a "
-            "local fit of the peak 0.084 %, all three accelerometers in one LSCF 0.078 %; "
-            "2ζf 0.18 Hz, 1.4 lines): the lab's poly-reference value is not reproduced",
+            "damping 0.086 % (201), 0.084 % (203) against the lab's 0.048 %: the lab's value "
+            "is its PolyMAX's at orders 20-40 (its setting on these FRFs: median 0.048 %), "
+            "which at orders 60-84 gives 0.084 %; every estimate that settles agrees with "
+            "racketdyn (sdypy against 201 0.084 %, a local fit of the peak 0.081-0.084 %, all "
+            "three accelerometers in one LSCF 0.078 %, a poly-reference LSCF 0.083 %; 2ζf "
+            "0.18 Hz, 1.4 lines)",
         )
         for case in ("meca0062_201", "meca0062_203")
     ),
@@ -198,8 +206,10 @@ REFERENCES = [
             Reference(case, 129.952, 0.00673, "lab"),
             "damping 0.86 % (201), 0.83 % (203) against the lab's 0.67 % (+23-28 %); sdypy's "
             "LSCF on the same FRFs 0.79 % and 0.71 %, all three accelerometers in one LSCF "
-            "0.84-0.86 %: neighbours 4.4 and 5.3 Hz away (three half-power widths) and the lab's "
-            "poly-reference value reproduced by none",
+            "0.84-0.86 %, a poly-reference LSCF 0.84 %, the lab's own setting on these FRFs "
+            "1.05 % (orders 20-40) and 0.83 % (60-84; the file lacks its 6 tail FRFs along x): "
+            "neighbours 4.4 and 5.3 Hz away (three half-power widths), the lab's value "
+            "reproduced by none",
         )
         for case in ("meca0062_201", "meca0062_203")
     ),
