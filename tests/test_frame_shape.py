@@ -213,7 +213,9 @@ def test_the_tip_keeps_more_of_the_ball_than_with_the_smooth_frame(
     "+0.008 / -0.008 / -0.021 / -0.032 at 10-40 m/s with the frame's shape (was -0.035 to "
     "-0.089): the 2-node mode still takes 20-23 % of the ball's energy there; no published "
     "energy share at a free racket's tip was readable to say whether the frame or the issue's "
-    "'positive at 10-40 m/s' is off (docs/develop.md, issue 22)",
+    "'positive at 10-40 m/s' is off; Cross (1997) measured a dead spot about 5 cm from the tip "
+    "of a handle-clamped racket where a dropped ball barely bounces (docs/references.md, "
+    "'Rebound'; docs/develop.md, issue 22)",
 )
 def test_the_free_papers_racket_tip_rebounds_positive_at_every_speed(racket: rd.Racket) -> None:
     tip = np.array([landmark_points(racket)["tip"]])
