@@ -41,6 +41,7 @@ from racketdyn.impact.system import point_system
 from racketdyn.io import default_racket
 from racketdyn.racket_modal import modal_model_for
 from racketdyn.workflows.compound import COMPOUND_COLUMNS
+from racketdyn.workflows.rig import _ball_spring
 
 CENTRE = (0.505, 0.0)  # centre of the built-in racket's string bed, m
 
@@ -559,23 +560,27 @@ def test_compound_bad_input_is_one_line(tmp_path: Path, capsys, argv, words) -> 
 
 # --- the virtual rig with the ball (racketdyn rig --ball-at) --------------------------------
 def test_rig_ball_adds_one_mode_and_keeps_the_frame_modes() -> None:
-    """The rig's ball: one new mode below the 2-node mode with the ball against the strings;
-    the free racket's frame modes stay within 3 % (ball near the 2-node mode's node; the
-    3-node and 4-node modes rise a little, the ball acting above its own resonance)."""
+    """The rig's ball: one new mode below the 2-node mode with the ball against the strings,
+    and the dip's own far above the band (the strings under the ball against their tension:
+    ≈ 4.8 kHz); the free racket's frame modes stay within 3 % (ball near the 2-node mode's
+    node; the 3-node and 4-node modes rise a little, the ball acting above its own
+    resonance)."""
     from racketdyn.rig import rig_model
     from racketdyn.rig.ball import BALL_MODE_NAME as RIG_BALL
-    from racketdyn.rig.ball import ball_on_strings
+    from racketdyn.rig.ball import DIP_MODE_NAME, ball_on_strings
 
     racket = default_racket()
     bare = rig_model(racket, "free")
     ball = Ball()
-    with_ball = ball_on_strings(bare, CENTRE, ball.mass_kg, 24.65e3, 0.059)
-    assert with_ball.n_modes == bare.n_modes + 1
+    with_ball = ball_on_strings(bare, _ball_spring(racket, ball, CENTRE)[0])
+    assert with_ball.n_modes == bare.n_modes + 2
+    assert with_ball.frequency[with_ball.names.index(DIP_MODE_NAME)] > 3000.0
     k = with_ball.names.index(RIG_BALL)
     assert with_ball.frequency[k] < with_ball.frequency[with_ball.names.index("2-node bending")]
     # Fig. 8a: ball and frame move against each other (the frame's w + θy under the ball)
     row = with_ball.displacement_rows([CENTRE])[0]
     row[with_ball.dofs["membrane"]] = 0.0
+    row[with_ball.dofs["patch"]] = 0.0
     assert with_ball.modes[-1, k] * (row @ with_ball.modes[:, k]) < 0
     for name in ("2-node bending", "3-node bending", "2-node twisting"):
         f0 = bare.frequency[bare.names.index(name)]
@@ -609,9 +614,11 @@ def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> No
     frequency (without --ball-at the ball mode took the name "2-node bending" and every bending
     mode above it one node too many).  A mode that is one peak with its neighbour (the truth's
     two closer than the sum of their half-power half-widths ζf, the rule by which identify
-    merges) has no one right name and is left out of that check: on the rig's frame shape
-    (issue 22, sixth session) the ball rig's bed mode, 661.6 Hz, sits 0.7 Hz from the 3-node
-    twisting, 662.3 Hz, and the one mode fitted there mixes the two."""
+    merges) has no one right name and is left out of that check, and a mode of the family of
+    the one not found (bending, twisting) above it is checked for its family only (its nodes
+    counted one short): with the ball on its patch of strings (issue 22, "one ball on one
+    bed") the 3-node bending, 361.6 Hz, sits 0.6 Hz from the 2-node twisting, 361.0 Hz, and
+    the 3-node twisting is named the 2-node twisting."""
     from racketdyn.modal import ModalModel
     from racketdyn.workflows import IdentifyOptions, run_identify
 
@@ -628,15 +635,20 @@ def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> No
     k = model.names.index(BALL_MODE_NAME)
     assert model.frequency[k] == pytest.approx(f_true, rel=0.005)
     half_width = truth.damping_ratio * truth.frequency
-    checked = 0
+    checked, lost = 0, set()
     for f, name in zip(model.frequency, model.names, strict=True):
         nearest = int(np.argmin(np.abs(truth.frequency - f)))
         apart = np.abs(truth.frequency - truth.frequency[nearest])
-        if np.any((apart > 0.0) & (apart < half_width + half_width[nearest])):
-            continue  # one peak with its neighbour
+        one_peak = (apart > 0.0) & (apart < half_width + half_width[nearest])
+        if np.any(one_peak):  # one peak with its neighbour: the family of the one not found
+            lost |= {_family(truth.names[j]) for j in [nearest, *np.flatnonzero(one_peak)]}
+            continue
         checked += 1
+        if _family(name) in lost:  # its nodes counted one short above the lost mode
+            assert _family(name) == _family(truth.names[nearest]), f"{f:.1f} Hz"
+            continue
         assert name == truth.names[nearest], f"{f:.1f} Hz"
-    assert checked >= 4  # the 2-node bending, the ball, the 2-node twisting, the 3-node bending
+    assert checked >= 4  # the 2-node bending, the ball, the 4-node bending, the membrane
     assert "ball on the strings at x = 505 mm" in model.metadata["naming"]
     record = json.loads((rig_frfs / "id" / "run.json").read_text(encoding="utf-8"))
     assert record["ball_at_m"] == list(CENTRE)
@@ -654,6 +666,11 @@ def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> No
     assert bare.identification is not None
     assert "modes named" in bare.identification.model.metadata["naming"]
     assert "rigid body" not in bare.identification.model.metadata["naming"]
+
+
+def _family(name: str) -> str:
+    """``bending``, ``twisting`` … of a mode's name (``3-node twisting`` → ``twisting``)."""
+    return name.split(" (")[0].split()[-1]
 
 
 def test_rigid_share_tells_a_ball_mode_from_the_frame_modes() -> None:
@@ -683,7 +700,7 @@ def test_rigid_share_tells_a_ball_mode_from_the_frame_modes() -> None:
     )
     assert rigid_share(toy, racket.head) == pytest.approx([1.0, 0.0], abs=1e-12)
     for support in ("free", "hand"):
-        rig = ball_on_strings(rig_model(racket, support), CENTRE, Ball().mass_kg, 24.77e3, 0.059)
+        rig = ball_on_strings(rig_model(racket, support), _ball_spring(racket, Ball(), CENTRE)[0])
         truth = rig.modal_truth(points, max_frequency_hz=850.0)
         share = rigid_share(truth, racket.head)
         # the racket's own modes: not the suspension's or the hand's (the hand's pitch on the
@@ -701,11 +718,12 @@ def test_rigid_share_tells_a_ball_mode_from_the_frame_modes() -> None:
 def test_compare_the_racket_alone_against_the_racket_with_the_ball(rig_frfs: Path, capsys) -> None:  # type: ignore[no-untyped-def]
     """Figs 9a and 9b: racketdyn compare --ball-at puts the ball's new mode first and pairs every
     frame mode below 600 Hz with the racket alone's by MAC (paper: "the natural frequencies of
-    the frame do not change": the rig's 2-node bending and twisting modes within 0.1 %, its
-    3-node bending +2.8 %, the ball acting above its own resonance there).  On the rig's frame
-    shape (issue 22, sixth session) the ball rig's bed mode (661.6 Hz) sits 0.7 Hz from the
-    3-node twisting (662.3 Hz), which the records (lines 4.9 Hz apart) cannot resolve: the
-    3-node twisting is no longer paired (it was within 0.1 %, MAC 0.61 on the smooth frame)."""
+    the frame do not change": the rig's 2-node bending and 3-node twisting within 0.1 %).
+    With the ball on its patch of strings (issue 22, "one ball on one bed") the 3-node bending
+    rises 5.9 Hz, the ball acting above its own resonance there, onto the 2-node twisting
+    (361.6 and 361.0 Hz), which the records (lines 2.4 Hz apart) cannot part: the one mode
+    fitted there mixes the two and neither is paired; the played bed's veering pair (586 and
+    721 Hz alone, 639 and 778 Hz with the ball) pairs by MAC > 0.9."""
     out = rig_frfs / "compare_ball"
     argv = [
         "compare",
@@ -723,10 +741,9 @@ def test_compare_the_racket_alone_against_the_racket_with_the_ball(rig_frfs: Pat
     truth = json.loads((rig_frfs / "rig_ball" / "run.json").read_text(encoding="utf-8"))
     assert truth["ball_on_strings"] is not None
     paired = {r["mode"]: r for r in rows[1:] if r["mac"]}
-    for name in ("2-node bending", "2-node twisting"):
+    for name in ("2-node bending", "3-node twisting"):
         assert abs(float(paired[name]["frequency_shift_percent"])) < 0.1
         assert float(paired[name]["mac"]) > 0.99
-    assert abs(float(paired["3-node bending"]["frequency_shift_percent"])) < 3.0
     record = json.loads((out / "run.json").read_text(encoding="utf-8"))
     assert record["ball_at_m"] == list(CENTRE)
     ball_hz = float(rows[0]["frequency_ball_hz"])
@@ -781,7 +798,7 @@ def test_rig_with_a_ball_says_how_to_identify_it(tmp_path: Path, capsys) -> None
                  "--out", str(tmp_path / "rig")]) == 0  # fmt: skip
     printed = " ".join(capsys.readouterr().out.split())
     assert "ball on the strings" in printed
-    assert "identify --ball-at 0.505,0" in printed
+    assert "identify --ball-at 0.505,0 --band 40,850" in printed
 
 
 def test_rig_ball_off_the_strings_is_one_line(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
@@ -1129,7 +1146,7 @@ def test_identify_hints_at_a_ball_on_a_racket_whose_head_is_not_the_built_in_one
     points = points[~under]
     built_in = default_racket()
     bare = rig_model(junior, "free")
-    rig = ball_on_strings(bare, ball_at, Ball().mass_kg, 24.65e3, 0.059)
+    rig = ball_on_strings(bare, _ball_spring(junior, Ball(), ball_at)[0])
     truth = rig.modal_truth(points, max_frequency_hz=900.0)
     truth = truth.select(np.flatnonzero(truth.frequency > 40.0))
     k = truth.names.index(BALL_MODE_NAME)
@@ -1170,7 +1187,7 @@ def test_fig_9b_strikes_where_the_ball_mode_shows(tmp_path: Path) -> None:
     points, nodes = hammer_points(racket)
     keep = np.hypot(*(points - at).T) >= Ball().diameter_m / 2  # the hammer skips these
     points, kept = points[keep], [n for n, k in zip(nodes, keep, strict=True) if k]
-    rig = ball_on_strings(rig_model(racket, "free"), at, Ball().mass_kg, 24.65e3, 0.059)
+    rig = ball_on_strings(rig_model(racket, "free"), _ball_spring(racket, Ball(), at)[0])
     truth = rig.modal_truth(points, max_frequency_hz=900.0)
     truth = truth.select(np.flatnonzero(truth.frequency > 40.0))
     share = ball_mode_share(truth, kept.index(10))

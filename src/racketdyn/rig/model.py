@@ -110,6 +110,7 @@ from racketdyn.racket_modal.beam import (
     _torsion_matrices,
     mass_along,
 )
+from racketdyn.rig.patch import BallPatch
 
 __all__ = [
     "FRAME_DAMPING_RATIO",
@@ -184,6 +185,9 @@ class RigModel:
     metadata : dict
         Calibrated stiffnesses, string mass, the frame's mass model (``mass_model``: ``"frame"``
         or ``"smooth"``, as the built-in model's), support parameters.
+    patch : BallPatch or None
+        Where a ball fixed on the strings presses the membrane (its own Ritz function,
+        ``dofs["patch"]``: :mod:`racketdyn.rig.patch`); None without a ball.
     """
 
     racket: Racket
@@ -200,6 +204,7 @@ class RigModel:
     names: tuple[str, ...]
     kinds: tuple[str, ...]
     metadata: dict[str, Any] = field(default_factory=dict)
+    patch: BallPatch | None = None
 
     @property
     def n_dof(self) -> int:
@@ -219,17 +224,20 @@ class RigModel:
     @property
     def dofs(self) -> dict[str, slice]:
         """Where each kind of DOF sits: ``bending`` (w, w' per node), ``twist``, ``membrane``,
-        ``arm`` (the hand's arm: empty on the sponge) and ``ball`` (empty unless a ball is
-        fixed on the strings: :mod:`racketdyn.rig.ball`)."""
+        ``arm`` (the hand's arm: empty on the sponge), ``patch`` (the membrane's dip under a
+        ball's patch) and ``ball`` (both empty unless a ball is fixed on the strings:
+        :mod:`racketdyn.rig.ball`)."""
         n = self.nodes_x.size
         end = 3 * n + len(self.membrane_powers)
         arm = end + (0 if self.hand is None else 1)
+        patch = arm + (0 if self.patch is None else 1)
         return {
             "bending": slice(0, 2 * n),
             "twist": slice(2 * n, 3 * n),
             "membrane": slice(3 * n, end),
             "arm": slice(end, arm),
-            "ball": slice(arm, self.n_dof),
+            "patch": slice(arm, patch),
+            "ball": slice(patch, self.n_dof),
         }
 
     def on_string_bed(self, locations: ArrayLike) -> NDArray[np.bool_]:
@@ -239,8 +247,8 @@ class RigModel:
     def displacement_rows(self, locations: ArrayLike) -> NDArray[np.float64]:
         """Rows mapping the DOFs to the normal displacement at each location, ``(n, n_dof)``.
 
-        ``w(x) + θ(x)·y`` everywhere, plus ``Σ q_j ψ_j`` inside the string bed.  Raises
-        InputError for a location off the racket.
+        ``w(x) + θ(x)·y`` everywhere, plus ``Σ q_j ψ_j`` (and a ball's patch function, if
+        any) inside the string bed.  Raises InputError for a location off the racket.
         """
         xy = as_locations(locations)
         racket = self.racket
@@ -261,6 +269,8 @@ class RigModel:
             psi, _, _ = _membrane_functions(racket, self.membrane_powers, xy[bed])
             membrane = self.dofs["membrane"]
             rows[np.ix_(bed, np.arange(membrane.start, membrane.stop))] = psi
+        if self.patch is not None:
+            rows[:, self.dofs["patch"].start] = self.patch.values(racket.head, xy)
         return rows
 
     def mode_shapes_at(self, locations: ArrayLike) -> NDArray[np.float64]:

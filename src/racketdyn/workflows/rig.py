@@ -18,9 +18,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.ball import Ball
+from racketdyn.contact import membrane_patch_radius
 from racketdyn.errors import InputError, one_of, require_range, require_whole
 from racketdyn.impact.compound import (
     PRELOAD_N,
+    ball_spring,
     restitution_damping_ratio,
     small_amplitude_e_bg,
 )
@@ -39,7 +41,7 @@ from racketdyn.rig import (
     simulate_hammer_test,
     string_contact_time,
 )
-from racketdyn.rig.ball import ball_on_strings
+from racketdyn.rig.ball import StuckBall, ball_on_strings
 from racketdyn.rig.hammer import FRAME_PULSE_S
 from racketdyn.workflows.inputs import ball_location, load_racket_input
 from racketdyn.workflows.run import (
@@ -148,7 +150,9 @@ class RigOptions:
     ball_at : sequence of float, optional
         Fix a ball on the strings at (x, y), m (the paper's section 3.2); its spring is the
         ball's one-sided law's tangent at :data:`~racketdyn.impact.compound.PRELOAD_N` (the
-        rig's membrane is the string bed), its dashpot from e_BG.
+        rig's membrane is the string bed), its dashpot from e_BG, and it presses the patch
+        of strings where the string net is as stiff as the string bed's law at that preload
+        (:func:`~racketdyn.contact.membrane_patch_radius`).
     force_snr_db, response_snr_db : float, optional
         Hammer and accelerometer noise as a signal-to-noise ratio, dB (each record's peak over
         its noise rms); default: the fixed noise floors of 0.02 N and 0.05 m/s² rms
@@ -234,7 +238,7 @@ def run_rig(
     if options.ball_at is not None:
         the_ball = setup.ball or Ball()
         spring, ball_record = _ball_spring(the_racket, the_ball, options.ball_at)
-        under_ball = (spring[0], the_ball.diameter_m)
+        under_ball = (spring.location, the_ball.diameter_m)
     points = _TestPoints(*_struck_points(the_racket, under_ball, options.driving_point))
     result = RigResult(
         Path(out), supports=supports, reference_node=points.reference_node, ball=ball_record
@@ -304,7 +308,7 @@ def _test_support(
     the_racket: Racket,
     support: str,
     points: _TestPoints,
-    spring: _Spring | None,
+    spring: StuckBall | None,
     options: RigOptions,
     progress: Progress | None,
 ) -> dict[str, Any]:
@@ -316,7 +320,7 @@ def _test_support(
     report(progress, f"building the {support} rig and simulating the hammer test")
     model = rig_model(the_racket, "free" if support == "free" else "hand")
     if spring is not None:
-        model = ball_on_strings(model, *spring)
+        model = ball_on_strings(model, spring)
     records = simulate_hammer_test(
         model,
         points.locations,
@@ -366,31 +370,42 @@ def _test_support(
     }
 
 
-_Spring = tuple[tuple[float, float], float, float, float]
-"""The ball on the strings as :func:`~racketdyn.rig.ball.ball_on_strings` takes it: location
-(x, y) in m, mass in kg, spring stiffness in N/m, damping ratio."""
+def _ball_spring(
+    the_racket: Racket, the_ball: Ball, ball_at: Sequence[float]
+) -> tuple[StuckBall, dict[str, Any]]:
+    """The ball fixed on the strings at ``ball_at``, and its record for run.json.
 
-
-def _ball_spring(the_racket: Racket, the_ball: Ball, ball_at: Sequence[float]) -> tuple[
-    _Spring, dict[str, Any]
-]:  # fmt: skip
-    """The ball fixed on the strings at ``ball_at``: its spring, and its record for run.json."""
+    Its patch: where the string net (:func:`~racketdyn.contact.membrane_patch_stiffness`) is
+    as stiff as the string bed's law at the preload (the law ``compound`` puts under the
+    ball), so that the rig and ``compound`` hold the ball on one bed.
+    """
     ball_xy = np.asarray(ball_location(ball_at, the_racket))
     law = the_ball.restoring_force
-    spring = (
+    bed = ball_spring(the_racket, the_ball).bed_stiffness
+    patch = membrane_patch_radius(the_racket, bed)
+    if not np.isfinite(patch):
+        raise InputError(
+            f"`ball_at`: the string bed's law ({bed / 1e3:.1f} kN/m at the centre) is stiffer "
+            "than the string net under any patch inside the head; check the racket's strings"
+        )
+    spring = StuckBall(
         (float(ball_xy[0]), float(ball_xy[1])),
         the_ball.mass_kg,
         float(law.stiffness(law.deflection(PRELOAD_N))),
         restitution_damping_ratio(small_amplitude_e_bg(the_racket, the_ball)),
+        patch,
     )
     record = {
-        "location_m": list(spring[0]),
-        "mass_kg": spring[1],
-        "stiffness_n_per_m": spring[2],
-        "damping_ratio": spring[3],
+        "location_m": list(spring.location),
+        "mass_kg": spring.mass_kg,
+        "stiffness_n_per_m": spring.stiffness_n_per_m,
+        "damping_ratio": spring.damping_ratio,
         "preload_n": PRELOAD_N,
-        "spring": "the ball's own one-sided law, tangent at the preload (the rig's "
-        "membrane is the string bed); dashpot from e_BG",
+        "patch_radius_m": patch,
+        "bed_stiffness_n_per_m": bed,
+        "spring": "the ball's own one-sided law, tangent at the preload, on the membrane's "
+        "patch where the string net is as stiff as the string bed's law at the preload; "
+        "dashpot from e_BG",
     }
     return spring, record
 
