@@ -147,3 +147,12 @@ def test_an_unknown_figure_id_names_the_results_own(tmp_path: Path) -> None:
     message = str(caught.value)
     assert "fig15_rebound_along_axis" in message
     assert "stabilisation" not in message  # identify's, not this result's
+
+
+def test_identify_names_rules_of_the_wrong_type_before_computing() -> None:
+    from racketdyn.modal import identify
+    from racketdyn.testing import beam_frfs
+
+    test = beam_frfs(np.linspace(0.0, 0.8, 3), reference_s=0.0)
+    with pytest.raises(TypeError, match=r"identify: `rules`.*SelectionRules"):
+        identify(test.frfs, rules={"min_fraction": 0.5})  # type: ignore[arg-type]

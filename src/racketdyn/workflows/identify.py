@@ -12,6 +12,7 @@ Figures come from the caller's hook.
 from __future__ import annotations
 
 import csv
+import dataclasses
 import math
 import os
 from collections.abc import Sequence
@@ -27,8 +28,9 @@ from racketdyn.errors import InputError, require_speeds
 from racketdyn.impact.result import SHOWN_SPEED_MPS
 from racketdyn.io.frf_layout import read_frfs
 from racketdyn.io.uff import write_modes_uff
-from racketdyn.modal.identify import Identification, identify
+from racketdyn.modal.identify import SELECTION, Identification, identify
 from racketdyn.modal.model import ModalModel
+from racketdyn.modal.poles import SelectionRules, require_rules
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
@@ -108,6 +110,10 @@ class IdentifyOptions:
         Modes forced in or left out, by approximate frequency, Hz.
     reference : int, optional
         Reference node when the file has several.
+    rules : SelectionRules
+        The rules of the automatic pole selection (default
+        :data:`racketdyn.modal.identify.SELECTION`); Python only, the command line has no
+        option for them.  Other rules are recorded in run.json (``selection_rules``).
     """
 
     geometry: str | os.PathLike[str] | None = None
@@ -116,8 +122,10 @@ class IdentifyOptions:
     pin_hz: Sequence[float] = ()
     exclude_hz: Sequence[float] = ()
     reference: int | None = None
+    rules: SelectionRules = SELECTION
 
     def __post_init__(self) -> None:
+        require_rules("IdentifyOptions", self.rules)
         if self.band_hz is not None:
             values = [float(v) for v in self.band_hz]
             if len(values) != 2 or not 0.0 <= values[0] < values[1]:
@@ -130,11 +138,15 @@ class IdentifyOptions:
 
     def record(self) -> dict[str, Any]:
         """What run.json keeps of them (the band used is the identification's own)."""
-        return {
+        recorded: dict[str, Any] = {
             "max_order": self.max_order,
             "pin_hz": list(self.pin_hz),
             "exclude_hz": list(self.exclude_hz),
         }
+        if self.rules != SELECTION:  # the default's run.json as before
+            rules = dataclasses.asdict(self.rules)
+            recorded["selection_rules"] = {**rules, "stability": self.rules.stability.name}
+        return recorded
 
 
 DEFAULT_IDENTIFY = IdentifyOptions()
@@ -205,6 +217,7 @@ def identify_file(
         pin_hz=list(options.pin_hz),
         exclude_hz=list(options.exclude_hz),
         support=support,
+        rules=options.rules,
     )
     found, naming = name_if_racket(found, racket, racket_given, ball)
     if ball is not None and naming.startswith("modes numbered"):
