@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.ball import Ball
-from racketdyn.errors import InputError, require_speeds
+from racketdyn.errors import InputError, require_numbers, require_speeds
 from racketdyn.impact.result import SHOWN_SPEED_MPS
 from racketdyn.io.frf_layout import read_frfs
 from racketdyn.io.uff import write_modes_uff
@@ -107,7 +107,8 @@ class IdentifyOptions:
     max_order : int
         Highest model order.
     pin_hz, exclude_hz : sequence of float
-        Modes forced in or left out, by approximate frequency, Hz.
+        Modes forced in or left out, by approximate frequency, Hz (one number, or one text
+        ``"600,700"`` as the command line spells them; ``band_hz`` too, ``"40,1000"``).
     reference : int, optional
         Reference node when the file has several.
     rules : SelectionRules
@@ -127,14 +128,15 @@ class IdentifyOptions:
     def __post_init__(self) -> None:
         require_rules("IdentifyOptions", self.rules)
         if self.band_hz is not None:
-            values = [float(v) for v in self.band_hz]
+            values = require_numbers("`band_hz`", self.band_hz, "Hz")
             if len(values) != 2 or not 0.0 <= values[0] < values[1]:
                 raise InputError(
                     f"`band_hz` takes two frequencies low,high in Hz (got {self.band_hz!r})"
                 )
             object.__setattr__(self, "band_hz", (values[0], values[1]))
-        object.__setattr__(self, "pin_hz", tuple(float(v) for v in self.pin_hz))
-        object.__setattr__(self, "exclude_hz", tuple(float(v) for v in self.exclude_hz))
+        for name in ("pin_hz", "exclude_hz"):  # as the command line spells them too: "600,700"
+            values = require_numbers(f"`{name}`", getattr(self, name), "Hz")
+            object.__setattr__(self, name, tuple(values))
 
     def record(self) -> dict[str, Any]:
         """What run.json keeps of them (the band used is the identification's own)."""

@@ -12,11 +12,16 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 from numpy.typing import ArrayLike
 
 from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of, require_finite, require_positive
+from racketdyn.errors import (
+    InputError,
+    one_of,
+    require_finite,
+    require_numbers,
+    require_positive,
+)
 from racketdyn.impact.grid import check_string_bed, point_law
 from racketdyn.impact.oblique import (
     DEFAULT_TANGENTIAL_CONTACT,
@@ -116,7 +121,8 @@ class ObliqueOptions:
     speed : float
         Incoming ball speed, m/s.
     angles_deg : array_like
-        Incoming angles to the face normal, degrees, each in (-90, 90).
+        Incoming angles to the face normal, degrees, each in (-90, 90) (or one text
+        ``"0,30"``, as the command line spells them; ``point`` too, ``"0.505,0"``).
     spin_radps : float
         Incoming spin, rad/s (+ = the sense of rolling along the face).
     point : (x, y), optional
@@ -262,7 +268,8 @@ def _incoming(options: ObliqueOptions, allow_implausible: bool) -> tuple[float, 
     speed = require_positive("`speed`", options.speed)
     check_speeds("`speed`", [speed], "ball_speed_mps", allow_implausible)
     check_speeds("`racket_speed`", [options.racket_speed], "racket_speed_mps", allow_implausible)
-    angles = [require_finite("`angles_deg`", v) for v in np.atleast_1d(options.angles_deg)]
+    # a sequence, one angle, or the command line's "0,30"
+    angles = require_numbers("`angles_deg`", options.angles_deg, "degrees from the face normal")
     for angle in angles:
         if not -90.0 < angle < 90.0:
             raise InputError(
@@ -283,10 +290,10 @@ def _impact_point(
         where = (the_racket.head.centre_x_m, the_racket.head.centre_y_m)
         defaults_used.append("impact point: the face centre")
     else:
-        flat = np.asarray(point, dtype=float).reshape(-1)
-        if flat.size != 2:
+        flat = require_numbers("`point`", point, "x,y in m")  # or the command line's "0.505,0"
+        if len(flat) != 2:
             raise InputError(f"`point` is the impact point (x, y), m: two numbers (got {point!r})")
-        where = (float(flat[0]), float(flat[1]))
+        where = (flat[0], flat[1])
     the_racket.head.check_inside([where])
     return where
 

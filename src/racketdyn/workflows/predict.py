@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of, require_speeds
+from racketdyn.errors import InputError, one_of, require_speeds, require_words
 from racketdyn.impact import ImpactResult, predict
 from racketdyn.impact.grid import StringBed, check_string_bed
 from racketdyn.impact.hand import Hand
@@ -271,11 +271,13 @@ class PredictOptions:
     Attributes
     ----------
     speeds : array_like
-        Incoming ball speeds, m/s.
+        Incoming ball speeds, m/s (or one text ``"10,20"``, as the command line spells them;
+        the same for ``racket_speed``, ``supports`` and ``show``).
     racket_speed : array_like
         Racket speed at the impact point towards the ball, m/s: one, or one per speed.
     supports : str or sequence of str
-        ``free``, ``pinned``; ``hand`` with ``model="transient"`` only (one as a string).
+        ``free``, ``pinned``; ``hand`` with ``model="transient"`` only (one as a string, or
+        ``"free,pinned"``).
     model : {"approx", "transient", "both"}
         Kawazoe's approximate method, the transient simulation, or each with their comparison.
     engine : {"auto", "compiled", "reference"}, optional
@@ -360,10 +362,8 @@ def run_predict(
         options.speeds, options.racket_speed, setup.allow_implausible
     )
     shown = shown_case_index(speed_list, paired, options.show)
-    supports = options.supports  # one as a string, as rd.predict takes it
-    support_list = check_supports(
-        [supports] if isinstance(supports, str) else supports, options.model
-    )
+    # one as a string, as rd.predict takes it, or several as the command line spells them
+    support_list = check_supports(require_words("`supports`", options.supports), options.model)
     used = setup.racket_setup()
     the_ball, ball_defaults = setup.ball_used()
     the_hand, hand_defaults = setup.hand_used(support_list)
