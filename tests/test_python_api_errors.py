@@ -218,3 +218,51 @@ def test_oblique_options_take_the_command_lines_spelling(tmp_path: Path) -> None
     assert result.curve is not None
     np.testing.assert_array_equal(result.curve.incoming_angle_deg, [0.0, 30.0])
     assert result.point == (0.505, 0.0)
+
+
+@pytest.mark.parametrize(
+    ("options", "python", "flags", "flag"),
+    [
+        ({"friction": -0.4}, "`friction`", ["--friction=-0.4"], "--friction"),
+        ({"friction": "x"}, "`friction`", ["--friction=nan"], "--friction"),
+        (
+            {"tangential_stiffness": -1e4},
+            "`tangential_stiffness`",
+            ["--tangential-stiffness=-1e4"],
+            "--tangential-stiffness",
+        ),
+    ],
+)
+def test_oblique_contact_errors_name_the_parameter_and_the_cli_its_flag(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    options: dict[str, object],
+    python: str,
+    flags: list[str],
+    flag: str,
+) -> None:
+    """``ObliqueOptions(friction=-0.4)`` said "friction coefficient must be …", which names
+    neither the parameter nor the option (new-user trial, 2026-11-27, eighth session)."""
+    from racketdyn.cli import main
+    from racketdyn.workflows import ObliqueOptions
+
+    with pytest.raises(InputError) as caught:
+        run_oblique(tmp_path / "py", Setup(), ObliqueOptions(**options))  # type: ignore[arg-type]
+    message = str(caught.value)
+    assert python in message
+    assert "--" not in message
+    assert main(["oblique", *flags, "--no-figures", "--out", str(tmp_path / "cli")]) == 2
+    said = capsys.readouterr().err
+    assert flag in said
+    assert "`" not in said
+
+
+@pytest.mark.parametrize(
+    ("field", "value"),
+    [("friction_coefficient", -0.4), ("stiffness_n_per_m", -1e4), ("inertia_factor", 0.0)],
+)
+def test_a_tangential_contact_names_its_field(field: str, value: float) -> None:
+    from racketdyn.impact.oblique import TangentialContact
+
+    with pytest.raises(InputError, match=f"`{field}`"):
+        TangentialContact(**{field: value})

@@ -141,6 +141,8 @@ __all__ = [
     "TangentialContact",
     "TangentialImpact",
     "oblique_curve",
+    "require_friction",
+    "require_tangential_stiffness",
     "simulate_oblique",
     "simulate_tangential",
 ]
@@ -159,6 +161,36 @@ _MAX_PHASES = 10_000
 
 
 # --- inputs --------------------------------------------------------------------------------------
+def require_friction(name: str, value: object) -> float:
+    """The ball–string friction coefficient μ, a finite number ≥ 0, else InputError naming
+    ``name`` (the caller's parameter) and the fix."""
+    try:
+        mu = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        mu = math.nan
+    if isinstance(value, bool) or not math.isfinite(mu) or mu < 0:
+        raise InputError(
+            f"{name} is the ball–string friction coefficient μ: give a number of 0 or more "
+            f"(got {value!r}; 0.4 is the order Cross measured)"
+        )
+    return mu
+
+
+def require_tangential_stiffness(name: str, value: object) -> float:
+    """The tangential stiffness k_t, N/m, above 0 (``inf``: the rigid grip), else InputError
+    naming ``name`` (the caller's parameter) and the fix."""
+    try:
+        stiffness = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        stiffness = math.nan
+    if isinstance(value, bool) or math.isnan(stiffness) or stiffness <= 0:
+        raise InputError(
+            f"{name} is the tangential stiffness k_t of strings and ball: give a number above "
+            f"0 in N/m, or inf for a rigid grip (got {value!r}; 1e4 N/m by default)"
+        )
+    return stiffness
+
+
 @dataclass(frozen=True)
 class TangentialContact:
     """The elastic–Coulomb tangential contact of ball and strings.
@@ -184,22 +216,12 @@ class TangentialContact:
     inertia_factor: float = 0.55
 
     def __post_init__(self) -> None:
-        require_positive("friction coefficient", self.friction_coefficient, allow_zero=True)
-        try:
-            stiffness = float(self.stiffness_n_per_m)
-        except (TypeError, ValueError):
-            raise InputError(
-                f"tangential stiffness must be a number in N/m (got {self.stiffness_n_per_m!r})"
-            ) from None
-        if math.isnan(stiffness) or stiffness <= 0:
-            raise InputError(
-                "tangential stiffness must be positive, N/m (inf for a rigid grip) "
-                f"(got {self.stiffness_n_per_m!r})"
-            )
-        require_range("ball inertia factor I/(m R²)", self.inertia_factor, 0.0, 2.0 / 3.0)
+        require_friction("`friction_coefficient`", self.friction_coefficient)
+        require_tangential_stiffness("`stiffness_n_per_m`", self.stiffness_n_per_m)
+        require_range("`inertia_factor` I/(m R²)", self.inertia_factor, 0.0, 2.0 / 3.0)
         if self.inertia_factor == 0:
             raise InputError(
-                "ball inertia factor I/(m R²) must be above 0 (0.55 for a tennis ball, 2/3 for "
+                "`inertia_factor` I/(m R²) must be above 0 (0.55 for a tennis ball, 2/3 for "
                 "a thin shell)"
             )
 

@@ -28,6 +28,8 @@ from racketdyn.impact.oblique import (
     ObliqueCurve,
     TangentialContact,
     oblique_curve,
+    require_friction,
+    require_tangential_stiffness,
 )
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
@@ -195,7 +197,7 @@ def run_oblique(
     where = _impact_point(used.racket, options.point, extra)
     check_string_bed(setup.string_bed, None, used.racket)
     the_hand, hand_defaults = setup.hand_used([the_support])
-    contact = _tangential_contact(options.friction, options.tangential_stiffness, extra)
+    contact = _tangential_contact(options, allow, extra)
     racket_speed, face_speed = _racket_motion(options, allow)
     the_ball, ball_defaults = setup.ball_used()
     defaults_used = [*used.defaults, *extra, *hand_defaults, *ball_defaults, *setup.defaults]
@@ -299,10 +301,19 @@ def _impact_point(
 
 
 def _tangential_contact(
-    friction: float | None, tangential_stiffness: float | None, defaults_used: list[str]
+    options: ObliqueOptions, allow_implausible: bool, defaults_used: list[str]
 ) -> TangentialContact:
-    """The tangential contact: μ and k_t as given, else the defaults' (said in
+    """The tangential contact: μ and k_t as given, checked and named as the options name them
+    (μ within play unless ``allow_implausible``), else the defaults' (said in
     ``defaults_used``)."""
+    friction, tangential_stiffness = options.friction, options.tangential_stiffness
+    if friction is not None:
+        friction = require_friction("`friction`", friction)
+        check("friction_coefficient", friction, "`friction`", allow_implausible=allow_implausible)
+    if tangential_stiffness is not None:
+        tangential_stiffness = require_tangential_stiffness(
+            "`tangential_stiffness`", tangential_stiffness
+        )
     base = DEFAULT_TANGENTIAL_CONTACT
     if friction is None or tangential_stiffness is None:
         defaults_used.append(
@@ -320,16 +331,13 @@ def _tangential_contact(
 
 def _racket_motion(options: ObliqueOptions, allow_implausible: bool) -> tuple[float, float]:
     """The racket's speed towards the ball and along the face, m/s, checked (within play
-    unless ``allow_implausible``); then the friction coefficient, if given."""
+    unless ``allow_implausible``)."""
     racket_speed = require_finite("`racket_speed`", options.racket_speed)
     face_speed = require_finite("`racket_tangential_speed`", options.racket_tangential_speed)
     # either sense along the face: its size against the speeds rackets are swung at
     check_speeds(
         "`racket_tangential_speed`", [abs(face_speed)], "racket_speed_mps", allow_implausible
     )
-    if options.friction is not None:
-        friction = require_finite("`friction`", options.friction)
-        check("friction_coefficient", friction, "`friction`", allow_implausible=allow_implausible)
     return racket_speed, face_speed
 
 
