@@ -96,7 +96,7 @@ def require_words(name: str, value: str | Iterable[str]) -> list[str]:
     return words
 
 
-def require_numbers(name: str, value: str | float | Iterable[float], unit: str) -> list[float]:
+def require_numbers(name: str, value: object, unit: str) -> list[float]:
     """Finite numbers (any sign) of a list option as Python or the command line gives them:
     one number, a sequence of them or one text of comma-separated numbers (``"40,1000"``);
     else InputError naming ``name`` and the ``unit``."""

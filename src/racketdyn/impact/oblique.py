@@ -120,7 +120,7 @@ import logging
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -132,6 +132,9 @@ from racketdyn.errors import InputError, require_finite, require_positive, requi
 from racketdyn.impact.result import STATUS_OK
 from racketdyn.impact.transient import TransientImpact, simulate_impact
 from racketdyn.racket import Racket
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = [
     "DEFAULT_TANGENTIAL_CONTACT",
@@ -596,6 +599,51 @@ class ObliqueCurve:
     tangential_impulse_ns: NDArray[np.float64]
     friction_loss_j: NDArray[np.float64]
     status: NDArray[np.str_]
+
+    _LABELS: ClassVar[dict[str, tuple[str, str]]] = {
+        "incoming_angle_deg": ("degree", "incoming angle to the face normal"),
+        "incoming_spin_radps": ("rad s-1", "incoming spin (+: rolling along the face)"),
+        "outgoing_angle_deg": ("degree", "outgoing angle to the face normal"),
+        "outgoing_spin_radps": ("rad s-1", "outgoing spin"),
+        "normal_speed_mps": ("m s-1", "outgoing speed away from the face"),
+        "tangential_speed_mps": ("m s-1", "outgoing speed along the face"),
+        "grip_time_s": ("s", "time of the first grip (NaN: never)"),
+        "tangential_impulse_ns": ("N s", "tangential impulse"),
+        "friction_loss_j": ("J", "friction loss"),
+    }
+    """Units (UDUNITS) and long names of the curve's arrays in :meth:`to_xarray`."""
+
+    def to_xarray(self) -> xr.Dataset:
+        """The curve as an :class:`xarray.Dataset`: one ``impact`` per incoming angle × spin
+        (the rows of oblique.csv, in C order of the broadcast shape).
+
+        Coordinates ``incoming_angle_deg`` and ``incoming_spin_radps`` on ``impact``; every
+        other array a variable with ``units`` and ``long_name`` (``gripped``; ``status``, ``ok``
+        or why the row is NaN); the attribute ``ball_speed_mps``.
+
+        Returns
+        -------
+        xarray.Dataset
+            Writable as netCDF.
+        """
+        import xarray as xr
+
+        def labelled(name: str) -> tuple[str, NDArray[Any], dict[str, str]]:
+            units, long_name = self._LABELS[name]
+            values = np.ravel(getattr(self, name))
+            return ("impact", values, {"units": units, "long_name": long_name})
+
+        incoming = ("incoming_angle_deg", "incoming_spin_radps")
+        data: dict[str, Any] = {
+            name: labelled(name) for name in self._LABELS if name not in incoming
+        }
+        data["gripped"] = ("impact", np.ravel(self.gripped), {"long_name": "the ball gripped"})
+        data["status"] = ("impact", np.ravel(self.status), {"long_name": "ok, or why NaN"})
+        return xr.Dataset(
+            data,
+            coords={name: labelled(name) for name in incoming},
+            attrs={"ball_speed_mps": float(self.ball_speed_mps)},
+        )
 
 
 # --- the tangential integration ------------------------------------------------------------------

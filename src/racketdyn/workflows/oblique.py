@@ -10,7 +10,7 @@ from __future__ import annotations
 import os
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from numpy.typing import ArrayLike
 
@@ -46,6 +46,9 @@ from racketdyn.workflows.run import (
     write_rows,
 )
 from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = [
     "DEFAULT_OBLIQUE",
@@ -107,6 +110,34 @@ class ObliqueResult(StepResult):
     support: str = "free"
     contact: TangentialContact = field(default_factory=lambda: DEFAULT_TANGENTIAL_CONTACT)
     racket: Racket | None = None
+
+    def to_xarray(self) -> xr.Dataset:
+        """The run's oblique impacts as one :class:`xarray.Dataset`.
+
+        The curve's dataset (:meth:`~racketdyn.impact.oblique.ObliqueCurve.to_xarray`: one
+        ``impact`` per incoming angle, outgoing angles, spins, speeds, grip, friction loss,
+        status) with the run's own coordinates — the point ``x_m``, ``y_m`` and the
+        ``support`` — and the tangential contact used as attributes
+        (``friction_coefficient``, ``tangential_stiffness_n_per_m``, ``inertia_factor``).
+
+        Returns
+        -------
+        xarray.Dataset
+            Writable as netCDF.
+        """
+        if self.curve is None:
+            raise ValueError("no oblique impacts in this result: run_oblique makes them")
+        dataset = self.curve.to_xarray().assign_coords(
+            x_m=((), self.point[0], {"units": "m", "long_name": "impact point along the axis"}),
+            y_m=((), self.point[1], {"units": "m", "long_name": "impact point across it"}),
+            support=((), self.support, {"long_name": "support condition"}),
+        )
+        dataset.attrs |= {
+            "friction_coefficient": float(self.contact.friction_coefficient),
+            "tangential_stiffness_n_per_m": float(self.contact.stiffness_n_per_m),
+            "inertia_factor": float(self.contact.inertia_factor),
+        }
+        return dataset
 
 
 @dataclass(frozen=True)
