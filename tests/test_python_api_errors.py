@@ -259,3 +259,15 @@ def test_a_tangential_contact_names_its_field(field: str, value: float) -> None:
 
     with pytest.raises(InputError, match=f"`{field}`"):
         TangentialContact(**{field: value})
+
+
+def test_a_racket_built_in_python_is_checked_by_the_public_check() -> None:
+    """``rd.predict`` trusts its caller (as numpy does: sweeps, uncertainty samples and tests
+    build unusual rackets on purpose); the check the steps run is public and says so, a
+    300 kg racket named by its field."""
+    import racketdyn.io as rio
+
+    with pytest.raises(InputError, match="mass_kg"):
+        rio.check_racket(replace(default_racket(), mass_kg=300.0))
+    rio.check_racket(default_racket())
+    assert "check_racket" in (rd.predict.__doc__ or "")
