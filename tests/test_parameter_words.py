@@ -175,3 +175,30 @@ def test_a_non_positive_driving_point_constant_names_exclude_hz_and_the_cli_its_
     assert "--" not in message
     parser = command_parser("identify")
     assert "(--exclude)" in in_flags(message, parser)
+
+
+def test_the_consoles_log_lines_name_the_commands_options() -> None:
+    """Log records below the CLI name parameters in backticks (``shapes and maps will ask for
+    `geometry` ``, io/uff.py, io/frf_layout.py): the console's log lines say the command's
+    option, as its errors do (issue 23's leftover: flags inside sentences)."""
+    import logging
+
+    from racketdyn.cli import _InFlags
+
+    record = logging.LogRecord(
+        "racketdyn.io.uff", logging.INFO, __file__, 1, "%s: shapes will ask for `geometry`",
+        ("frfs.uff",), None,
+    )  # fmt: skip
+    line = _InFlags(command_parser("identify")).format(record)
+    assert line == "INFO racketdyn.io.uff: frfs.uff: shapes will ask for --geometry"
+
+
+def test_the_frf_hint_names_the_parameter_and_the_cli_its_flag() -> None:
+    parser = command_parser("frf")
+    assert in_flags("give `force_window_s` 0.01 (s)", parser) == "give --force-window 0.01 (s)"
+    assert in_flags("drop the ball's `e_bg_table`", command_parser("calibrate")) == (
+        "drop the ball's --e-bg-table"
+    )
+    assert in_flags("choose one with `reference` (its node)", command_parser("identify")) == (
+        "choose one with --reference (its node)"
+    )

@@ -153,7 +153,7 @@ INVALIDATED: dict[str, tuple[tuple[str, ...], str]] = {
     ),
     STATUS_FROM_TRANSIENT: (
         (),
-        "with --model both, a row the approximate method cannot give carries the transient "
+        "when both models run, a row the approximate method cannot give carries the transient "
         "model's numbers (valid, not the approximate method's): nothing is NaN",
     ),
     STATUS_VIBRATION_SHARE: (

@@ -251,8 +251,8 @@ HAND_COUNTS = (
 
 NO_COORDINATES = (
     "no node coordinates: frequencies, damping ratios and the shapes by node only; no shape "
-    "figures, no node lines, no racket naming, and predict refuses the model; --geometry FILE "
-    "(UFF data set 15 or 2411, or CSV node,x_m,y_m in m) adds them"
+    "figures, no node lines, no racket naming, and predict refuses the model; a file of "
+    "coordinates as `geometry` (UFF data set 15 or 2411, or CSV node,x_m,y_m in m) adds them"
 )
 """What an identification from FRFs without coordinates gives and lacks (console, run.json)."""
 
