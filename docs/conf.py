@@ -117,10 +117,9 @@ def constants(packages: list[str]) -> dict[str, str]:
             and not inspect.isroutine(getattr(module, name))
             and not inspect.ismodule(getattr(module, name))
         ]
-        submodules = [package] + [
+        submodules = [package] + [  # a module listed (not a package) has none
             info.name
-            for info in pkgutil.walk_packages(module.__path__, prefix=f"{package}.")
-            if hasattr(module, "__path__")
+            for info in pkgutil.walk_packages(getattr(module, "__path__", []), f"{package}.")
         ]
         for name in data:
             obj = getattr(module, name)

@@ -192,3 +192,38 @@ def test_user_docs_read_as_a_manual(path: Path) -> None:
     assert not found, (
         f"{name} reads as a log (history goes to CHANGELOG.md, docs/develop.md): {found}"
     )
+
+
+def test_every_public_figure_function_is_in_the_api_reference() -> None:
+    """``figure_mode_shapes`` (Fig. 4, a draw function the registry and docs/figures.md name)
+    was on no API page (new-user trial of the Python API, 2026-11-27, eighth session).  Every
+    draw function of the registry of figures, every figure hook of
+    :mod:`racketdyn.plotting.steps` and every public ``figure_*``/``plot_*`` function of a
+    plotting module is in the ``__all__`` of a package or module the API reference lists."""
+    from racketdyn.plotting.registry import FIGURES
+
+    documented = {
+        id(getattr(module, name))
+        for module in map(importlib.import_module, api_packages())
+        for name in getattr(module, "__all__", [])
+    }
+    wanted = {entry.draw for entry in FIGURES.values() if entry.draw}
+    plotting = importlib.import_module("racketdyn.plotting")
+    for info in pkgutil.iter_modules(plotting.__path__, prefix="racketdyn.plotting."):
+        if info.name.rpartition(".")[2].startswith("_"):
+            continue
+        module = importlib.import_module(info.name)
+        wanted |= {
+            f"{info.name}:{name}"
+            for name, obj in vars(module).items()
+            if inspect.isfunction(obj)
+            and obj.__module__ == info.name
+            and not name.startswith("_")
+            and (name.startswith(("figure_", "plot_")) or info.name.endswith(".steps"))
+        }
+    missing = []
+    for target in sorted(wanted):
+        module_name, _, name = target.partition(":")
+        if id(getattr(importlib.import_module(module_name), name)) not in documented:
+            missing.append(target)
+    assert not missing, f"add to a listed module's __all__ (docs/api/index.rst): {missing}"

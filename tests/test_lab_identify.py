@@ -134,13 +134,13 @@ def test_layouts_are_read_against_one_reference_with_z_kept(tmp_path: Path, layo
 
 def test_several_references_need_a_choice(tmp_path: Path) -> None:
     path = _write(tmp_path, "mimo.uff", "mimo")
-    with pytest.raises(InputError, match=r"several references \(nodes 1, 9.*--reference NODE"):
+    with pytest.raises(InputError, match=r"several references \(nodes 1, 9.*`reference`"):
         read_frfs(path)
     frfs = read_frfs(path, reference=9)
     assert frfs.reference_node == 9
     assert frfs.n_points == 9
     assert frfs.metadata["left_out"] == 9
-    with pytest.raises(InputError, match="--reference 42: no FRF"):
+    with pytest.raises(InputError, match="`reference` 42: no FRF"):
         read_frfs(path, reference=42)
 
 
@@ -308,7 +308,7 @@ def test_several_references_on_the_command_line(tmp_path: Path, capsys) -> None:
 
     path = _write(tmp_path, "mimo.uff", "mimo")
     assert main(["identify", str(path), "--band", "40,950", "--out", str(tmp_path / "a")]) == 2
-    assert "--reference NODE" in capsys.readouterr().err
+    assert "choose one with --reference (its node)" in capsys.readouterr().err
     assert not (tmp_path / "a").exists()
     out = tmp_path / "b"
     assert (
@@ -397,3 +397,33 @@ def test_one_reader_path_for_frfs(tmp_path: Path) -> None:
     assert by_uff.metadata["layout"] == "roving accelerometer"
     written = write_frf_uff(_frfs(), tmp_path / "frf.uff")
     assert read_frfs(written).coherence is not None
+
+
+def test_the_workflows_options_carry_selection_rules(tmp_path: Path) -> None:
+    """``IdentifyOptions(rules=)`` reaches the selection of ``run_identify`` (Python only: the
+    command line has no option for them) and run.json records rules other than the default
+    (new-user trial of the Python API, 2026-11-27, eighth session).  An edge margin of a
+    quarter of the 40–950 Hz band keeps the free bar's analytic modes in 267.5–722.5 Hz."""
+    from racketdyn.modal import SelectionRules
+    from racketdyn.testing import natural_frequencies
+
+    s = np.linspace(0.0, 0.8, 9)
+    test = beam_frfs(s, 0.0, lines=2001, top_hz=1000.0)
+    nodes = {
+        n: (float(p[0]), float(p[1]), 0.0)
+        for n, p in zip(test.frfs.nodes, test.frfs.locations, strict=True)
+    }
+    records = [(1, 3, n, 3, v) for n, v in zip(test.frfs.nodes, test.frfs.values, strict=True)]
+    path = write_lab_uff(tmp_path / "bar.uff", nodes, test.frfs.frequency, records)
+    rules = SelectionRules(edge_margin=0.25)
+    options = IdentifyOptions(band_hz=(40, 950), rules=rules)
+    result = run_identify(path, tmp_path / "out", options=options)
+    assert result.identification is not None
+    truth = natural_frequencies(5)
+    inside = truth[(truth > 267.5) & (truth < 722.5)]
+    np.testing.assert_allclose(result.identification.model.frequency, inside, rtol=2e-3)
+    recorded = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))
+    assert "edge_margin" in json.dumps(recorded)
+    assert "selection_rules" not in IdentifyOptions().record()
+    with pytest.raises(TypeError, match=r"IdentifyOptions: `rules`.*SelectionRules"):
+        IdentifyOptions(rules={"edge_margin": 0.25})  # type: ignore[arg-type]

@@ -63,7 +63,7 @@ def test_frfs_without_coordinates_are_identified(tmp_path: Path, case: str, caps
         np.testing.assert_allclose(model.mode_shapes, test.shapes, rtol=0.05, atol=0.03)
     record = json.loads((out / "run.json").read_text())
     assert record["coordinates"] is False
-    assert "--geometry" in record["coordinates_note"]
+    assert "`geometry`" in record["coordinates_note"]  # the CLI prints it as --geometry
     assert record["naming"].startswith("modes numbered")
     assert (out / "dropped_modes.csv").is_file()
     assert (out / "modes.csv").is_file()
@@ -176,6 +176,6 @@ def test_a_point_without_coordinates_is_named_plainly() -> None:
     with pytest.raises(InputError) as caught:
         some.require_locations("the map")
     assert str(caught.value) == (
-        f"{test.frfs.source}: the map needs node coordinates, which node 2 lacks; give them "
-        "with --geometry FILE (UFF data set 15 or 2411, or CSV node,x_m,y_m in m)"
+        f"{test.frfs.source}: the map needs node coordinates, which node 2 lacks; give the "
+        "file of coordinates as `geometry` (UFF data set 15 or 2411, or CSV node,x_m,y_m in m)"
     )

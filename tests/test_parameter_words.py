@@ -8,7 +8,9 @@ turns each into the command's option (``--speed``), in one place
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
+from typing import cast
 
 import pytest
 
@@ -50,10 +52,16 @@ def test_python_hears_its_parameters_and_the_cli_its_flags(
     assert option in said
 
 
+def command_parser(command: str) -> argparse.ArgumentParser:
+    """The parser of one ``racketdyn`` command."""
+    subparsers = next(
+        a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)
+    )
+    return cast("argparse.ArgumentParser", subparsers.choices[command])
+
+
 def test_in_flags_maps_names_and_leaves_unknown_ones_plain() -> None:
-    parser = next(
-        a for a in build_parser()._actions if a.__class__.__name__ == "_SubParsersAction"
-    ).choices["predict"]
+    parser = command_parser("predict")
     assert (
         in_flags("`speeds`: bad; `racket_speed` too", parser) == "--speed: bad; --racket-speed too"
     )
@@ -108,9 +116,7 @@ def test_an_unresolved_e_bg_names_the_parameter_and_the_cli_its_flag(
     message = str(caught.value)
     assert "`e_bg`" in message
     assert "--" not in message
-    parser = next(
-        a for a in build_parser()._actions if a.__class__.__name__ == "_SubParsersAction"
-    ).choices["predict"]
+    parser = command_parser("predict")
     assert "give --e-bg" in in_flags(message, parser)
 
 
@@ -144,3 +150,55 @@ def test_the_modal_core_names_no_command_line_option() -> None:
             and not (path.name == "model.py" and "--geometry" in node.value)
         ]
     assert not found, found
+
+
+def test_a_non_positive_driving_point_constant_names_exclude_hz_and_the_cli_its_flag() -> None:
+    """``mass_normalised_shapes`` refused a mode with a non-positive driving-point constant
+    naming ``--exclude`` to a Python caller (new-user trial of the Python API, 2026-11-27,
+    eighth session): it names `exclude_hz`, which identify's parser turns into its option."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    from racketdyn.modal import fit_modal_constants, mass_normalised_shapes
+    from racketdyn.testing import beam_frfs
+
+    test = beam_frfs(np.linspace(0.0, 0.8, 5), reference_s=0.0)
+    omega = 2 * np.pi * np.array([65.4, 180.3])
+    fit = fit_modal_constants(test.frfs, -0.008 * omega + 1j * omega, (40.0, 250.0))
+    constants = fit.constants.copy()
+    constants[test.frfs.driving_point, 1] = -abs(constants[test.frfs.driving_point, 1])
+    with pytest.raises(InputError) as caught:
+        mass_normalised_shapes(test.frfs, replace(fit, constants=constants))
+    message = str(caught.value)
+    assert "`exclude_hz`" in message
+    assert "--" not in message
+    parser = command_parser("identify")
+    assert "(--exclude)" in in_flags(message, parser)
+
+
+def test_the_consoles_log_lines_name_the_commands_options() -> None:
+    """Log records below the CLI name parameters in backticks (``shapes and maps will ask for
+    `geometry` ``, io/uff.py, io/frf_layout.py): the console's log lines say the command's
+    option, as its errors do (issue 23's leftover: flags inside sentences)."""
+    import logging
+
+    from racketdyn.cli import _InFlags
+
+    record = logging.LogRecord(
+        "racketdyn.io.uff", logging.INFO, __file__, 1, "%s: shapes will ask for `geometry`",
+        ("frfs.uff",), None,
+    )  # fmt: skip
+    line = _InFlags(command_parser("identify")).format(record)
+    assert line == "INFO racketdyn.io.uff: frfs.uff: shapes will ask for --geometry"
+
+
+def test_the_frf_hint_names_the_parameter_and_the_cli_its_flag() -> None:
+    parser = command_parser("frf")
+    assert in_flags("give `force_window_s` 0.01 (s)", parser) == "give --force-window 0.01 (s)"
+    assert in_flags("drop the ball's `e_bg_table`", command_parser("calibrate")) == (
+        "drop the ball's --e-bg-table"
+    )
+    assert in_flags("choose one with `reference` (its node)", command_parser("identify")) == (
+        "choose one with --reference (its node)"
+    )

@@ -147,3 +147,127 @@ def test_an_unknown_figure_id_names_the_results_own(tmp_path: Path) -> None:
     message = str(caught.value)
     assert "fig15_rebound_along_axis" in message
     assert "stabilisation" not in message  # identify's, not this result's
+
+
+def test_identify_names_rules_of_the_wrong_type_before_computing() -> None:
+    from racketdyn.modal import identify
+    from racketdyn.testing import beam_frfs
+
+    test = beam_frfs(np.linspace(0.0, 0.8, 3), reference_s=0.0)
+    with pytest.raises(TypeError, match=r"identify: `rules`.*SelectionRules"):
+        identify(test.frfs, rules={"min_fraction": 0.5})  # type: ignore[arg-type]
+
+
+def test_rig_options_take_the_command_lines_spelling(tmp_path: Path) -> None:
+    """``RigOptions(support="free,hand")`` and ``layout="roving-accelerometer"``, as the
+    command line spells them, were refused from Python (``support must be one of free, hand
+    (got 'free,hand')``); both are taken, and written in one spelling."""
+    import json
+
+    options = RigOptions(support="free,hand", averages=1, layout="roving-accelerometer")
+    result = run_rig(tmp_path / "rig", Setup(), options)
+    assert result.supports == ["free", "hand"]
+    record = json.loads((tmp_path / "rig" / "run.json").read_text(encoding="utf-8"))
+    assert record["layout"] == "roving accelerometer"
+    with pytest.raises(InputError, match=r"`support`.*once"):
+        run_rig(tmp_path / "twice", Setup(), RigOptions(support=("free", "free")))
+
+
+@pytest.mark.parametrize(
+    ("options", "field", "given"),
+    [
+        ({"pin_hz": "600"}, "pin_hz", (600.0,)),
+        ({"pin_hz": 600.0}, "pin_hz", (600.0,)),
+        ({"exclude_hz": "600,700.5"}, "exclude_hz", (600.0, 700.5)),
+        ({"band_hz": "40,1000"}, "band_hz", (40.0, 1000.0)),
+    ],
+)
+def test_identify_options_take_the_command_lines_spelling(
+    options: dict[str, object], field: str, given: tuple[float, ...]
+) -> None:
+    """``IdentifyOptions(pin_hz="600")`` pinned 6, 0 and 0 Hz (the text read letter by
+    letter); ``pin_hz=600.0`` and ``band_hz="40,1000"`` were bare TypeError/ValueError."""
+    from racketdyn.workflows.identify import IdentifyOptions
+
+    assert getattr(IdentifyOptions(**options), field) == given  # type: ignore[arg-type]
+
+
+def test_identify_options_name_what_is_not_a_frequency() -> None:
+    from racketdyn.workflows.identify import IdentifyOptions
+
+    with pytest.raises(InputError, match=r"`pin_hz`: 'x' is not a number"):
+        IdentifyOptions(pin_hz="600,x")
+
+
+def test_predict_options_take_the_command_lines_spelling(tmp_path: Path) -> None:
+    """``PredictOptions(supports="free,pinned", speeds="10,20")``: the command line's
+    spelling, refused before (``supports must be one of …``)."""
+    options = PredictOptions(speeds="10,20", supports="free,pinned", grid=3)  # type: ignore[arg-type]
+    result = run_predict(tmp_path / "out", Setup(figures=None), options)
+    assert list(result.approximate.supports) == ["free", "pinned"]
+    assert list(result.speeds) == [10.0, 20.0]
+
+
+def test_oblique_options_take_the_command_lines_spelling(tmp_path: Path) -> None:
+    """``ObliqueOptions(angles_deg="0,30", point="0.505,0")``, the command line's spelling,
+    was read as one angle ``'0,30'`` ("must be a number") and refused as a point."""
+    from racketdyn.workflows import ObliqueOptions
+
+    options = ObliqueOptions(angles_deg="0,30", point="0.505,0")  # type: ignore[arg-type]
+    result = run_oblique(tmp_path / "out", Setup(figures=None), options)
+    assert result.curve is not None
+    np.testing.assert_array_equal(result.curve.incoming_angle_deg, [0.0, 30.0])
+    assert result.point == (0.505, 0.0)
+
+
+@pytest.mark.parametrize(
+    ("options", "command_line"),
+    [
+        ({"friction": -0.4}, "--friction=-0.4"),
+        ({"friction": "x"}, "--friction=nan"),
+        ({"tangential_stiffness": -1e4}, "--tangential-stiffness=-1e4"),
+    ],
+)
+def test_oblique_contact_errors_name_the_parameter_and_the_cli_its_flag(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    options: dict[str, object],
+    command_line: str,
+) -> None:
+    """``ObliqueOptions(friction=-0.4)`` said "friction coefficient must be …", which names
+    neither the parameter nor the option (new-user trial, 2026-11-27, eighth session)."""
+    from racketdyn.cli import main
+    from racketdyn.workflows import ObliqueOptions
+
+    with pytest.raises(InputError) as caught:
+        run_oblique(tmp_path / "py", Setup(), ObliqueOptions(**options))  # type: ignore[arg-type]
+    message = str(caught.value)
+    assert f"`{next(iter(options))}`" in message
+    assert "--" not in message
+    assert main(["oblique", command_line, "--no-figures", "--out", str(tmp_path / "cli")]) == 2
+    said = capsys.readouterr().err
+    assert command_line.split("=")[0] in said
+    assert "`" not in said
+
+
+@pytest.mark.parametrize(
+    ("field", "value"),
+    [("friction_coefficient", -0.4), ("stiffness_n_per_m", -1e4), ("inertia_factor", 0.0)],
+)
+def test_a_tangential_contact_names_its_field(field: str, value: float) -> None:
+    from racketdyn.impact.oblique import TangentialContact
+
+    with pytest.raises(InputError, match=f"`{field}`"):
+        TangentialContact(**{field: value})
+
+
+def test_a_racket_built_in_python_is_checked_by_the_public_check() -> None:
+    """``rd.predict`` trusts its caller (as numpy does: sweeps, uncertainty samples and tests
+    build unusual rackets on purpose); the check the steps run is public and says so, a
+    300 kg racket named by its field."""
+    import racketdyn.io as rio
+
+    with pytest.raises(InputError, match="mass_kg"):
+        rio.check_racket(replace(default_racket(), mass_kg=300.0))
+    rio.check_racket(default_racket())
+    assert "check_racket" in (rd.predict.__doc__ or "")

@@ -157,7 +157,7 @@ def test_frf_says_when_the_force_noise_needs_a_force_window(free_rig) -> None:
         free_rig, locations, nodes, *at, noise=SensorNoise(force_snr_db=50.0), seed=4
     )
     estimate = estimate_frfs(noisy, exponential_window_s=0.1)
-    assert "--force-window 0.01" in estimate.force_noise_hint()
+    assert "`force_window_s` 0.01" in estimate.force_noise_hint()  # frf prints --force-window
     windowed = estimate_frfs(noisy, exponential_window_s=0.1, force_window_s=0.01)
     assert np.median(windowed.force_noise_share) < np.median(estimate.force_noise_share) - 0.05
     assert windowed.force_noise_share == pytest.approx(estimate.force_noise_share_windowed, abs=0.1)

@@ -317,7 +317,7 @@ def test_lab_file_with_geometry_in_a_separate_file(tmp_path: Path) -> None:
     assert np.isnan(bare.locations).all()
     assert not bare.has_locations
     np.testing.assert_allclose(bare.force[2], records.force[2], rtol=ASCII_RTOL)
-    _raises(data, lambda: bare.require_locations("the map"), "the map", "--geometry")
+    _raises(data, lambda: bare.require_locations("the map"), "the map", "`geometry`")
 
 
 def test_lab_file_with_geometry_in_a_csv_file(tmp_path: Path) -> None:
@@ -451,7 +451,7 @@ def test_node_without_coordinates(tmp_path: Path) -> None:
     records = read_hammer_uff(path)
     assert np.isnan(records.locations[2]).all()
     np.testing.assert_array_equal(records.locations[:2], LOCATIONS[:2])
-    _raises(path, lambda: records.require_locations("the map"), "12", "--geometry")
+    _raises(path, lambda: records.require_locations("the map"), "12", "`geometry`")
     # written again, the node without coordinates is left out of data set 15
     again = read_hammer_uff(write_hammer_uff(records, path.with_name("again.uff")))
     np.testing.assert_array_equal(again.locations, records.locations)
@@ -499,7 +499,7 @@ def test_bad_csv_files(tmp_path: Path) -> None:
     geometry.write_text("node,x_m,y_m\n3,0.45,0.0\n7,0.55,0.02\n")
     partial = read_hammer_csv(data, geometry)
     assert np.isnan(partial.locations[2]).all()
-    _raises(data, lambda: partial.require_locations("the map"), "which node 12 lacks", "--geometry")
+    _raises(data, lambda: partial.require_locations("the map"), "which node 12 lacks", "`geometry`")
     assert np.isnan(read_hammer_csv(data).locations).all()
 
 

@@ -148,11 +148,11 @@ def test_a_driving_point_without_coordinates_is_named_once(
     # ("nodes 2, 2 have no coordinates").
     path = _with_record6(FIXTURES / "h1_unlabelled_frf.uff", tmp_path, [(2, 3, 2)])
     _one_line_error(
-        lambda: read_frfs(path), "node 2 has no coordinates", "--geometry"
-    )  # where a step needs them
+        lambda: read_frfs(path), "node 2 has no coordinates", "`geometry`"
+    )  # where a step needs them: the parameter (the CLI says --geometry)
     # identify takes the lone driving point without coordinates (issue 12 item 6) and says so
     assert main(["identify", str(path), "--out", str(tmp_path / "out")]) == 0
-    assert "--geometry FILE" in " ".join(capsys.readouterr().out.split())
+    assert "a file of coordinates as --geometry" in " ".join(capsys.readouterr().out.split())
 
 
 def test_spectra_and_psds_are_refused_naming_what_to_export(tmp_path: Path) -> None:
@@ -234,7 +234,7 @@ def test_identify_with_some_coordinates_missing_names_geometry() -> None:
     locations = frfs.locations.copy()
     locations[0] = np.nan
     some = dataclasses.replace(frfs, locations=locations)
-    _one_line_error(lambda: identify(some), "which node 1 lacks", "--geometry")
+    _one_line_error(lambda: identify(some), "which node 1 lacks", "`geometry`")
     no_points = dataclasses.replace(
         frfs, locations=np.full_like(frfs.locations, np.nan), reference_location=(np.nan,) * 2
     )

@@ -24,9 +24,11 @@ __all__ = [
     "logs_warnings",
     "one_of",
     "require_finite",
+    "require_numbers",
     "require_positive",
     "require_range",
     "require_speeds",
+    "require_words",
     "warnings_logged",
 ]
 
@@ -80,8 +82,49 @@ def require_whole(name: str, value: object, least: int = 1) -> int:
     return int(value)
 
 
+def require_words(name: str, value: str | Iterable[str]) -> list[str]:
+    """The words of a list option as Python or the command line gives them: a sequence of
+    words, or one text of comma-separated words (``"free,hand"``, the command line's spelling),
+    none empty; else InputError naming ``name``."""
+    items = value.split(",") if isinstance(value, str) else list(value)
+    words = [item.strip() if isinstance(item, str) else item for item in items]
+    if not words or not all(isinstance(word, str) and word for word in words):
+        raise InputError(
+            f"{name} must be words, a sequence of them or one text of comma-separated words, "
+            f"none empty (got {value!r})"
+        )
+    return words
+
+
+def require_numbers(name: str, value: object, unit: str) -> list[float]:
+    """Finite numbers (any sign) of a list option as Python or the command line gives them:
+    one number, a sequence of them or one text of comma-separated numbers (``"40,1000"``);
+    else InputError naming ``name`` and the ``unit``."""
+    if isinstance(value, str):
+        items: list[object] = list(require_words(name, value))
+    elif isinstance(value, int | float | np.integer | np.floating):
+        items = [value]
+    else:
+        items = list(np.ravel(np.asarray(value, dtype=object)))
+    numbers = []
+    for item in items:
+        try:
+            if isinstance(item, bool):
+                raise TypeError
+            number = float(item)  # type: ignore[arg-type]
+        except (TypeError, ValueError):
+            raise InputError(f"{name}: {item!r} is not a number ({unit})") from None
+        if not math.isfinite(number):
+            raise InputError(f"{name} must be a finite number, {unit} (got {item!r})")
+        numbers.append(number)
+    return numbers
+
+
 def require_speeds(name: str, values: ArrayLike) -> NDArray[np.float64]:
-    """Return speeds (m/s) as a non-empty 1-D float array of finite values ≥ 0, else InputError."""
+    """Return speeds (m/s) as a non-empty 1-D float array of finite values ≥ 0, else InputError;
+    one text of comma-separated speeds (``"10,20"``, the command line's spelling) is read."""
+    if isinstance(values, str):
+        values = require_numbers(name, values, "m/s")
     try:
         speeds = np.atleast_1d(np.asarray(values, dtype=float))
     except (TypeError, ValueError):

@@ -135,6 +135,18 @@ def parse(argv: Sequence[str] | None) -> argparse.Namespace:
     return args
 
 
+class _InFlags(logging.Formatter):
+    """The library's log records in the command's words: a parameter it names in backticks
+    becomes the command's option (:func:`racketdyn.cli.options.in_flags`), as in its errors."""
+
+    def __init__(self, parser: argparse.ArgumentParser) -> None:
+        super().__init__("%(levelname)s %(name)s: %(message)s")
+        self.parser = parser
+
+    def format(self, record: logging.LogRecord) -> str:
+        return opt.in_flags(super().format(record), self.parser)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``racketdyn`` command.
 
@@ -149,9 +161,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         Exit status: 0, 1 (a sweep with failed designs), 2 (bad input), 130 (Ctrl-C).
     """
     args = parse(argv)
-    logging.basicConfig(
-        level=logging.INFO if args.verbose else logging.ERROR,
-        format="%(levelname)s %(name)s: %(message)s",
+    console_log = logging.StreamHandler()
+    console_log.setFormatter(_InFlags(args.parser))
+    logging.basicConfig(  # no handler added when logging is set up already (a test's)
+        level=logging.INFO if args.verbose else logging.ERROR, handlers=[console_log]
     )
     from rich.console import Console
 

@@ -110,7 +110,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
         )
     hint = estimate.force_noise_hint()
     if hint:
-        opt.say(console, hint, "yellow")
+        opt.say(console, opt.in_flags(hint, args.parser), "yellow")
     if estimate.rejected_points:
         nodes = ", ".join(str(n) for n in estimate.rejected_points)
         at = opt.noun(len(estimate.rejected_points), "node")

@@ -232,7 +232,7 @@ def print_modes(
     if not model.has_locations:
         from racketdyn.workflows.identify import coordinates_note
 
-        opt.say(console, coordinates_note(model), "bold")
+        opt.say(console, opt.in_flags(coordinates_note(model), parser), "bold")
     naming = model.metadata.get("naming")
     if naming:
         opt.say(console, opt.in_flags(naming, parser), "dim")

@@ -430,15 +430,10 @@ def in_flags(message: str, parser: argparse.ArgumentParser) -> str:
 
 
 def parse_list(name: str, text: str) -> list[str]:
-    """Items of a comma-separated list, none empty."""
-    from racketdyn.errors import InputError
+    """Items of a comma-separated list, none empty (:func:`racketdyn.errors.require_words`)."""
+    from racketdyn.errors import require_words
 
-    items = [item.strip() for item in text.split(",")]
-    if not all(items):
-        raise InputError(
-            f"{name} must be a comma-separated list without empty items (got {text!r})"
-        )
-    return items
+    return require_words(name, text)
 
 
 def parse_speeds(name: str, text: str) -> list[float]:
@@ -468,19 +463,11 @@ def parse_frequencies(name: str, text: str) -> list[float]:
 
 
 def parse_numbers(name: str, text: str, unit: str) -> list[float]:
-    """Finite numbers (any sign) from a comma-separated list."""
-    from racketdyn.errors import InputError
+    """Finite numbers (any sign) from a comma-separated list
+    (:func:`racketdyn.errors.require_numbers`)."""
+    from racketdyn.errors import require_numbers
 
-    numbers = []
-    for item in parse_list(name, text):
-        try:
-            number = float(item)
-        except ValueError:
-            raise InputError(f"{name}: {item!r} is not a number ({unit})") from None
-        if not math.isfinite(number):
-            raise InputError(f"{name} must be a finite number, {unit} (got {item!r})")
-        numbers.append(number)
-    return numbers
+    return require_numbers(name, text, unit)
 
 
 def one_number(name: str, text: str, unit: str = "m/s") -> float:

@@ -144,7 +144,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
             response_direction=args.accelerometer_direction,
             driving_point=not args.no_driving_point,
             lab_plane=args.lab_plane,
-            layout=args.layout.replace("-", " "),
+            layout=args.layout,
         )
         result = run_rig(args.out, setup, options)
     for support in result.supports:

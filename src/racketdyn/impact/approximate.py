@@ -288,7 +288,10 @@ def predict(
     Parameters
     ----------
     racket : Racket
-        Mass properties, head and strings.
+        Mass properties, head and strings, taken as given: a library function trusts its
+        caller, as numpy does (sweeps, uncertainty samples and tests build unusual rackets on
+        purpose).  The workflow steps check a racket against the racket file's plausible
+        ranges; check one built in Python with :func:`racketdyn.io.check_racket`.
     ball : Ball
         Ball mass, e_BG and restoring force.
     locations : array_like, shape (n, 2)

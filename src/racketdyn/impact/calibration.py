@@ -265,7 +265,7 @@ def parse_fit(names: Sequence[str], inputs: ModelInputs) -> list[Parameter]:
     if "e_bg" in names and inputs.ball.e_bg_table and not inputs.ball.e_bg_source:
         raise InputError(
             "`fit` e_bg: the ball's e_BG is a table against speed; fit a constant e_BG "
-            "(drop --e-bg-table) or leave e_bg out"
+            "(drop the ball's `e_bg_table`) or leave e_bg out"
         )
     return chosen
 

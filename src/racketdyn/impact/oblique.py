@@ -120,7 +120,7 @@ import logging
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -133,6 +133,9 @@ from racketdyn.impact.result import STATUS_OK
 from racketdyn.impact.transient import TransientImpact, simulate_impact
 from racketdyn.racket import Racket
 
+if TYPE_CHECKING:
+    import xarray as xr
+
 __all__ = [
     "DEFAULT_TANGENTIAL_CONTACT",
     "NormalForce",
@@ -141,6 +144,8 @@ __all__ = [
     "TangentialContact",
     "TangentialImpact",
     "oblique_curve",
+    "require_friction",
+    "require_tangential_stiffness",
     "simulate_oblique",
     "simulate_tangential",
 ]
@@ -159,6 +164,36 @@ _MAX_PHASES = 10_000
 
 
 # --- inputs --------------------------------------------------------------------------------------
+def require_friction(name: str, value: object) -> float:
+    """The ball–string friction coefficient μ, a finite number ≥ 0, else InputError naming
+    ``name`` (the caller's parameter) and the fix."""
+    try:
+        mu = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        mu = math.nan
+    if isinstance(value, bool) or not math.isfinite(mu) or mu < 0:
+        raise InputError(
+            f"{name} is the ball–string friction coefficient μ: give a number of 0 or more "
+            f"(got {value!r}; 0.4 is the order Cross measured)"
+        )
+    return mu
+
+
+def require_tangential_stiffness(name: str, value: object) -> float:
+    """The tangential stiffness k_t, N/m, above 0 (``inf``: the rigid grip), else InputError
+    naming ``name`` (the caller's parameter) and the fix."""
+    try:
+        stiffness = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        stiffness = math.nan
+    if isinstance(value, bool) or math.isnan(stiffness) or stiffness <= 0:
+        raise InputError(
+            f"{name} is the tangential stiffness k_t of strings and ball: give a number above "
+            f"0 in N/m, or inf for a rigid grip (got {value!r}; 1e4 N/m by default)"
+        )
+    return stiffness
+
+
 @dataclass(frozen=True)
 class TangentialContact:
     """The elastic–Coulomb tangential contact of ball and strings.
@@ -184,22 +219,12 @@ class TangentialContact:
     inertia_factor: float = 0.55
 
     def __post_init__(self) -> None:
-        require_positive("friction coefficient", self.friction_coefficient, allow_zero=True)
-        try:
-            stiffness = float(self.stiffness_n_per_m)
-        except (TypeError, ValueError):
-            raise InputError(
-                f"tangential stiffness must be a number in N/m (got {self.stiffness_n_per_m!r})"
-            ) from None
-        if math.isnan(stiffness) or stiffness <= 0:
-            raise InputError(
-                "tangential stiffness must be positive, N/m (inf for a rigid grip) "
-                f"(got {self.stiffness_n_per_m!r})"
-            )
-        require_range("ball inertia factor I/(m R²)", self.inertia_factor, 0.0, 2.0 / 3.0)
+        require_friction("`friction_coefficient`", self.friction_coefficient)
+        require_tangential_stiffness("`stiffness_n_per_m`", self.stiffness_n_per_m)
+        require_range("`inertia_factor` I/(m R²)", self.inertia_factor, 0.0, 2.0 / 3.0)
         if self.inertia_factor == 0:
             raise InputError(
-                "ball inertia factor I/(m R²) must be above 0 (0.55 for a tennis ball, 2/3 for "
+                "`inertia_factor` I/(m R²) must be above 0 (0.55 for a tennis ball, 2/3 for "
                 "a thin shell)"
             )
 
@@ -574,6 +599,51 @@ class ObliqueCurve:
     tangential_impulse_ns: NDArray[np.float64]
     friction_loss_j: NDArray[np.float64]
     status: NDArray[np.str_]
+
+    _LABELS: ClassVar[dict[str, tuple[str, str]]] = {
+        "incoming_angle_deg": ("degree", "incoming angle to the face normal"),
+        "incoming_spin_radps": ("rad s-1", "incoming spin (+: rolling along the face)"),
+        "outgoing_angle_deg": ("degree", "outgoing angle to the face normal"),
+        "outgoing_spin_radps": ("rad s-1", "outgoing spin"),
+        "normal_speed_mps": ("m s-1", "outgoing speed away from the face"),
+        "tangential_speed_mps": ("m s-1", "outgoing speed along the face"),
+        "grip_time_s": ("s", "time of the first grip (NaN: never)"),
+        "tangential_impulse_ns": ("N s", "tangential impulse"),
+        "friction_loss_j": ("J", "friction loss"),
+    }
+    """Units (UDUNITS) and long names of the curve's arrays in :meth:`to_xarray`."""
+
+    def to_xarray(self) -> xr.Dataset:
+        """The curve as an :class:`xarray.Dataset`: one ``impact`` per incoming angle × spin
+        (the rows of oblique.csv, in C order of the broadcast shape).
+
+        Coordinates ``incoming_angle_deg`` and ``incoming_spin_radps`` on ``impact``; every
+        other array a variable with ``units`` and ``long_name`` (``gripped``; ``status``, ``ok``
+        or why the row is NaN); the attribute ``ball_speed_mps``.
+
+        Returns
+        -------
+        xarray.Dataset
+            Writable as netCDF.
+        """
+        import xarray as xr
+
+        def labelled(name: str) -> tuple[str, NDArray[Any], dict[str, str]]:
+            units, long_name = self._LABELS[name]
+            values = np.ravel(getattr(self, name))
+            return ("impact", values, {"units": units, "long_name": long_name})
+
+        incoming = ("incoming_angle_deg", "incoming_spin_radps")
+        data: dict[str, Any] = {
+            name: labelled(name) for name in self._LABELS if name not in incoming
+        }
+        data["gripped"] = ("impact", np.ravel(self.gripped), {"long_name": "the ball gripped"})
+        data["status"] = ("impact", np.ravel(self.status), {"long_name": "ok, or why NaN"})
+        return xr.Dataset(
+            data,
+            coords={name: labelled(name) for name in incoming},
+            attrs={"ball_speed_mps": float(self.ball_speed_mps)},
+        )
 
 
 # --- the tangential integration ------------------------------------------------------------------

@@ -153,7 +153,7 @@ INVALIDATED: dict[str, tuple[tuple[str, ...], str]] = {
     ),
     STATUS_FROM_TRANSIENT: (
         (),
-        "with --model both, a row the approximate method cannot give carries the transient "
+        "when both models run, a row the approximate method cannot give carries the transient "
         "model's numbers (valid, not the approximate method's): nothing is NaN",
     ),
     STATUS_VIBRATION_SHARE: (
@@ -702,13 +702,13 @@ def shown_case_index(
         ``show`` is not one of the run's cases (the cases named), or not one or two numbers.
     """
     from racketdyn._display import case_words
-    from racketdyn.errors import InputError
+    from racketdyn.errors import InputError, require_numbers
 
     ball = np.asarray(speeds, dtype=float).reshape(-1)
     racket = np.broadcast_to(np.asarray(racket_speeds, dtype=float).reshape(-1), ball.shape)
     if show is None:
         return shown_speed_index(ball)
-    wanted = [float(v) for v in np.atleast_1d(np.asarray(show, dtype=float))]  # 20.0 or (20.0,)
+    wanted = require_numbers("`show`", show, "m/s")  # 20.0, (20.0,) or the command line's "20,5"
     if len(wanted) not in (1, 2):
         raise InputError(
             "`show` takes a ball speed and, optionally, its racket speed (m/s); got "

@@ -974,7 +974,9 @@ def predict_transient(
     Parameters
     ----------
     racket, ball : Racket, Ball
-        As for :func:`simulate_impact`.
+        As for :func:`simulate_impact`; the racket taken as given, as by
+        :func:`racketdyn.impact.predict` (check one built in Python with
+        :func:`racketdyn.io.check_racket`).
     locations : array_like, shape (n, 2)
         Impact points (x, y), m.
     ball_speed : array_like, shape (s,)

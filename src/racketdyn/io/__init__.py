@@ -3,6 +3,7 @@
 from racketdyn.io.frf_layout import read_frf_uff, read_frfs
 from racketdyn.io.measured import MeasuredRebound, read_measured
 from racketdyn.io.racket_file import (
+    check_racket,
     default_racket,
     load_racket,
     racket_to_dict,
@@ -20,6 +21,7 @@ from racketdyn.io.uff import (
 
 __all__ = [
     "MeasuredRebound",
+    "check_racket",
     "default_racket",
     "load_racket",
     "racket_to_dict",

@@ -114,7 +114,7 @@ def _choose_reference(path: Path, records: list[_Record], reference: int | None)
     if reference is not None:
         if reference not in reach:
             raise InputError(
-                f"{path}: --reference {reference}: no FRF has node {reference} as its response "
+                f"{path}: `reference` {reference}: no FRF has node {reference} as its response "
                 f"or excitation node (references found: {_listed(sorted(responses))} respond, "
                 f"{_listed(sorted(hammers))} excite)"
             )
@@ -128,7 +128,7 @@ def _choose_reference(path: Path, records: list[_Record], reference: int | None)
     if len(best) > 1:
         raise InputError(
             f"{path}: the FRFs have several references (nodes {_listed(best)} each reach "
-            f"{most} points); choose one with --reference NODE"
+            f"{most} points); choose one with `reference` (its node)"
         )
     return best[0], layout
 
@@ -344,7 +344,7 @@ def _with_point_coordinates(
     missing = [n for n in nodes if n not in coordinates]
     if missing and not require_coordinates:
         log.info(
-            "%s: %s %s %s no coordinates (FRFs need none; shapes and maps will ask for --geometry)",
+            "%s: %s %s %s no coordinates (FRFs need none; shapes and maps will ask for `geometry`)",
             path,
             noun(len(missing), "node"),
             _listed(missing),
@@ -356,7 +356,7 @@ def _with_point_coordinates(
         raise InputError(
             f"{path}: node{'s' if len(missing) > 1 else ''} {_listed(missing)} ha"
             f"{'ve' if len(missing) > 1 else 's'} no coordinates in {path}{where}; shapes need "
-            "them: add data set 15 or pass --geometry FILE"
+            "them: add data set 15 or give the file of coordinates as `geometry`"
         )
     return coordinates
 

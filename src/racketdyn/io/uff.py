@@ -373,7 +373,7 @@ def _nodes_xyz_of(
                 f"{path}: data set {i} ({dset['type']}, nodes): the nodes span {extent:.3g} m "
                 f"in data set 164's length unit, more than the {MAX_EXTENT_M:g} m of any "
                 "structure tested with a hammer; check data set 164, or give the coordinates "
-                "in m with --geometry FILE"
+                "in m in a file given as `geometry`"
             )
         if extent > MAX_EXTENT_M:
             raise InputError(
@@ -811,7 +811,7 @@ def _note_missing(path: Path, nodes: dict[int, tuple[float, float]], wanted: lis
     missing = [n for n in wanted if n not in nodes]
     if missing:
         logger.info(
-            "%s: %s %s no coordinates (FRFs need none; shapes and maps will ask for --geometry)",
+            "%s: %s %s no coordinates (FRFs need none; shapes and maps will ask for `geometry`)",
             path,
             noun(len(missing), "node") + " " + ", ".join(map(str, missing[:8])),
             noun(len(missing), "has", "have"),

@@ -61,7 +61,7 @@ FORCE_NOISE_RATIO = 0.1
 1/(1 + 0.1), 9 %)."""
 FORCE_NOISE_SHARE = 0.05
 """The share of the band of noisy lines at the median point above which ``frf`` names
-``--force-window``."""
+``force_window_s`` (the CLI's ``--force-window``)."""
 
 SUGGESTED_FORCE_WINDOW_S = 0.01
 """The force window ``frf`` suggests, s: over twice the longest string pulse (≈ 4 ms)."""
@@ -107,7 +107,7 @@ class FrfEstimate:
     force_window_s: float | None = None
 
     def force_noise_hint(self) -> str:
-        """A line naming ``--force-window`` when no force window was given and one would take
+        """A line naming ``force_window_s`` when no force window was given and one would take
         the force's noise off more than :data:`FORCE_NOISE_SHARE` of the band at the median
         point; empty otherwise."""
         if self.force_window_s is not None or not self.force_noise_share:
@@ -119,7 +119,7 @@ class FrfEstimate:
         return (
             f"the force's noise after the pulse is over {FORCE_NOISE_RATIO:.0%} of its spectrum "
             f"on {now:.0%} of the band at the median point (H1 reads low there; "
-            f"{windowed:.0%} with a force window): give --force-window "
+            f"{windowed:.0%} with a force window): give `force_window_s` "
             f"{SUGGESTED_FORCE_WINDOW_S:g} (s, longer than the longest pulse)"
         )
 

@@ -95,7 +95,8 @@ class _PointsAndReference:
         )
 
     def require_locations(self, what: str) -> None:
-        """InputError naming ``--geometry`` unless every point has coordinates.
+        """InputError naming ``geometry`` (the CLI's ``--geometry``) unless every point has
+        coordinates.
 
         The reference transducer's own position is not needed (shapes, maps and predictions
         are at the points), and a fixed accelerometer is often not in a lab's geometry.
@@ -115,7 +116,8 @@ class _PointsAndReference:
             raise InputError(
                 f"{self.source}: {what} needs node coordinates, which "
                 f"{noun(len(missing), 'node')} {named} {noun(len(missing), 'lacks', 'lack')}; give "
-                "them with --geometry FILE (UFF data set 15 or 2411, or CSV node,x_m,y_m in m)"
+                "the file of coordinates as `geometry` (UFF data set 15 or 2411, or CSV "
+                "node,x_m,y_m in m)"
             )
 
 

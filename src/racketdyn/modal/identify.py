@@ -30,6 +30,7 @@ from racketdyn.modal.poles import (
     SelectedPoles,
     SelectionRules,
     Stabilisation,
+    require_rules,
     select_poles,
     stabilisation,
 )
@@ -105,8 +106,9 @@ EDGE_WIDTHS = 1.0
 band's edge cuts is not fitted whole.  The margin follows the data, not the band's width: 2 %
 of pff_lms's 40-20,000 Hz (399 Hz) took its 150 Hz mode (tests/test_realdata.py)."""
 SELECTION = SelectionRules(edge_lines=EDGE_LINES, edge_widths=EDGE_WIDTHS)
-"""The rules of the automatic pole selection here (:func:`racketdyn.modal.poles.select_poles`):
-the default ones with the edge margin of :data:`EDGE_LINES` and :data:`EDGE_WIDTHS`."""
+"""The rules of the automatic pole selection here (:func:`racketdyn.modal.poles.select_poles`)
+unless :func:`identify` is given others: the default ones with the edge margin of
+:data:`EDGE_LINES` and :data:`EDGE_WIDTHS`."""
 EDGE_CLEAR = 0.1
 """A mode dropped in the edge margin is reported as a clear mode (stage ``edge``, one warning
 naming the option that keeps it) when it is stable in more than three orders and its peak is at
@@ -238,11 +240,14 @@ def _checked_band(frfs: FrfSet, band: tuple[float, float]) -> tuple[float, float
     return (low, high)
 
 
-def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]) -> SelectedPoles:
+def _edge_modes(
+    selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float], rules: SelectionRules
+) -> SelectedPoles:
     """Clear modes dropped in the band's edge margin: one row each, naming what keeps them.
 
-    The edge margin (:data:`EDGE_LINES` line spacings and :data:`EDGE_WIDTHS` of the mode's
-    half-power width) keeps the fit's computational poles out; a mode of
+    The edge margin (the ``rules``' ``edge_lines`` line spacings and ``edge_widths`` of the
+    mode's half-power width, :data:`EDGE_LINES` and :data:`EDGE_WIDTHS` by default, and their
+    ``edge_margin`` of the band's width) keeps the fit's computational poles out; a mode of
     the data there (stable in more than three orders, peak within 20 dB of the kept modes',
     :data:`EDGE_CLEAR`) is not dropped silently.  Clusters of one peak split by the edge are
     one row (the strongest).  The reason names ``band_hz`` (low, high) when the FRFs' bandwidth
@@ -270,7 +275,11 @@ def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]
             continue
         mode = max(side, key=lambda d: d.peak_to_noise)
         f, zeta = mode.frequency_hz, mode.damping_ratio
-        margin = EDGE_LINES * spacing + EDGE_WIDTHS * 2 * max(zeta, 0.0) * f
+        margin = (
+            rules.edge_margin * (high - low)
+            + rules.edge_lines * spacing
+            + rules.edge_widths * 2 * max(zeta, 0.0) * f
+        )
         room = 3 * 2 * zeta * f + 2 * spacing + margin
         if top:
             wanted = f + room
@@ -306,8 +315,19 @@ def _edge_modes(selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float]
     return replace(selected, dropped_modes=(*rest, *rows))
 
 
+@dataclass(frozen=True)
+class _Choices:
+    """The caller's say in the selection (:func:`identify`'s parameters): the modes pinned and
+    excluded, the rules and the highest model order, for every selection made here."""
+
+    pin_hz: Sequence[float]
+    exclude_hz: Sequence[float]
+    rules: SelectionRules
+    max_order: int
+
+
 def _missed_peaks(
-    selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float], max_order: int
+    selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float], choices: _Choices
 ) -> SelectedPoles:
     """Clear peaks of the data near the band's edges that no mode or row explains: one row
     each (stage ``edge``) naming the ``band_hz`` that keeps the mode, tried before it is named.
@@ -368,12 +388,14 @@ def _missed_peaks(
             log.debug("clear peak at %.1f Hz near the band's edge: not tried", peak)
             continue
         tries[bottom] -= 1
-        reach = max(10 * (peak - low if bottom else high - peak), (2 * max_order + 2) * spacing)
+        reach = max(
+            10 * (peak - low if bottom else high - peak), (2 * choices.max_order + 2) * spacing
+        )
         if bottom:
             tried = (low, min(float(np.ceil((low + reach) / 5.0) * 5.0), high))
         else:
             tried = (max(float(np.floor((high - reach) / 5.0) * 5.0), low), high)
-        mode = _mode_in(frfs, tried, max_order, peak, max(3 * spacing, right - left))
+        mode = _mode_in(frfs, tried, choices, peak, max(3 * spacing, right - left))
         if mode is None:
             log.debug("clear peak at %.1f Hz: no mode over %g–%g Hz either", peak, *tried)
             continue
@@ -398,12 +420,12 @@ def _missed_peaks(
 
 
 def _mode_in(
-    frfs: FrfSet, band: tuple[float, float], max_order: int, near: float, within: float
+    frfs: FrfSet, band: tuple[float, float], choices: _Choices, near: float, within: float
 ) -> tuple[float, float] | None:
     """The mode a narrower band gives within ``within`` Hz of ``near`` (frequency, ζ), if any."""
     try:
-        stab = stabilisation(frfs, band, max_order=max_order)
-        found = select_poles(stab, rules=SELECTION)
+        stab = stabilisation(frfs, band, max_order=choices.max_order)
+        found = select_poles(stab, rules=choices.rules)
     except InputError:
         return None
     close = np.flatnonzero(np.abs(found.frequency - near) <= within)
@@ -498,8 +520,7 @@ def _clear_peaks(
     stab: Stabilisation,
     frfs: FrfSet,
     band: tuple[float, float],
-    pin_hz: Sequence[float],
-    exclude_hz: Sequence[float],
+    choices: _Choices,
 ) -> tuple[SelectedPoles, list[str]]:
     """Candidates stable in too few orders whose peak the data hold: kept, or named.
 
@@ -593,15 +614,15 @@ def _clear_peaks(
     pins = [d.frequency_hz for d, _ in keep]
     again = select_poles(
         stab,
-        pin_hz=[*pin_hz, *pins],
-        exclude_hz=exclude_hz,
-        rules=SELECTION,
+        pin_hz=[*choices.pin_hz, *pins],
+        exclude_hz=choices.exclude_hz,
+        rules=choices.rules,
     )
     user = np.zeros(again.n_modes, dtype=bool)
-    for f in pin_hz:  # the user's own pins stay pinned, the kept candidates do not
+    for f in choices.pin_hz:  # the user's own pins stay pinned, the kept candidates do not
         user[int(np.argmin(np.abs(again.frequency - f)))] = True
     again = _named_rows(
-        _edge_modes(replace(again, pinned=again.pinned & user), frfs, band), spacing
+        _edge_modes(replace(again, pinned=again.pinned & user), frfs, band, choices.rules), spacing
     )
     again = replace(again, dropped_modes=relabelled(again.dropped_modes))
     lines = [
@@ -731,6 +752,8 @@ def identify(
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
     support: str = "free",
+    *,
+    rules: SelectionRules = SELECTION,
 ) -> Identification:
     """Identify a modal model of any structure from a set of FRFs against one reference.
 
@@ -777,12 +800,31 @@ def identify(
         Modes to force in or leave out, by approximate frequency, Hz.
     support : str
         Support the structure was tested on (``free``, ``hand`` …), recorded on the model.
+    rules : SelectionRules
+        The rules of the automatic pole selection (default :data:`SELECTION`, equal to
+        :data:`racketdyn.modal.poles.DEFAULT_SELECTION`), followed by every selection made here
+        (:func:`racketdyn.modal.poles.select_poles`).
 
     Returns
     -------
     Identification
-        The model's modes are named ``"mode k (f Hz)"``, of kind ``unknown``.
+        The model's modes are named ``"mode k (f Hz)"``, of kind ``unknown``; its
+        ``model`` is a :class:`~racketdyn.modal.model.ModalModel` that the impact models take
+        as it is (``modal_model=``) once its shapes are mass-normalised and at coordinates of
+        the racket's face (docs/modal.md, "From FRFs to a model the impact models use").
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from racketdyn.modal import SelectionRules, identify
+    >>> from racketdyn.testing import beam_frfs
+    >>> test = beam_frfs(np.linspace(0.0, 0.8, 9), reference_s=0.0, noise=0.01, seed=1)
+    >>> rules = SelectionRules(min_fraction=0.5)  # stable in half the orders at least
+    >>> model = identify(test.frfs, band_hz=(40.0, 1000.0), rules=rules).model
+    >>> np.round(model.frequency, 1)
+    array([ 65.4, 180.3, 353.5, 584.4, 873. ])
     """
+    require_rules("identify", rules)
     if not np.isnan(frfs.locations).all():  # none: a model without coordinates
         frfs.require_locations("identification (the mode shapes at the points)")
     frfs = frfs.with_usual_phase()  # a set of the conjugate convention (read_frfs does it too)
@@ -792,7 +834,8 @@ def identify(
     else:
         band, band_note = _checked_band(frfs, band_hz), "given"
     stab = stabilisation(frfs, band, max_order=max_order)
-    selected, kept, refined = _selected_poles(stab, frfs, band, pin_hz, exclude_hz, max_order)
+    choices = _Choices(pin_hz, exclude_hz, rules, max_order)
+    selected, kept, refined = _selected_poles(stab, frfs, band, choices)
     fitted, no_peak = _with_peaks_only(frfs, selected, band)
     scaled = _scaled(fitted, band)
     fitted, note = scaled.fitted, scaled.note
@@ -830,12 +873,7 @@ def identify(
 
 
 def _selected_poles(
-    stab: Stabilisation,
-    frfs: FrfSet,
-    band: tuple[float, float],
-    pin_hz: Sequence[float],
-    exclude_hz: Sequence[float],
-    max_order: int,
+    stab: Stabilisation, frfs: FrfSet, band: tuple[float, float], choices: _Choices
 ) -> tuple[SelectedPoles, list[str], list[str]]:
     """The poles selected, and the clear peaks kept and the narrow modes refined (logged).
 
@@ -843,10 +881,12 @@ def _selected_poles(
     lines named, clear peaks stable in too few orders kept, peaks the fit missed found, narrow
     modes refined.
     """
-    selected = select_poles(stab, pin_hz, exclude_hz, rules=SELECTION)  # raises if none
-    selected = _named_rows(_edge_modes(selected, frfs, band), _spacing(frfs))
-    selected, kept = _clear_peaks(selected, stab, frfs, band, pin_hz, exclude_hz)
-    selected = _missed_peaks(selected, frfs, band, max_order)
+    selected = select_poles(
+        stab, choices.pin_hz, choices.exclude_hz, rules=choices.rules
+    )  # raises if none
+    selected = _named_rows(_edge_modes(selected, frfs, band, choices.rules), _spacing(frfs))
+    selected, kept = _clear_peaks(selected, stab, frfs, band, choices)
+    selected = _missed_peaks(selected, frfs, band, choices)
     selected, refined = refine_narrow_poles(frfs, selected)
     for line in refined:
         log.info("refined %s", line)

@@ -104,6 +104,7 @@ __all__ = [
     "SelectionRules",
     "Stabilisation",
     "mac",
+    "require_rules",
     "select_poles",
     "stabilisation",
 ]
@@ -328,7 +329,9 @@ class SelectedPoles:
     damping_ratio : ndarray, shape (n_modes,)
         Damping ratios (median), the exponential window's share removed.
     pole : ndarray, complex, shape (n_modes,)
-        ``λ = −ζω + iω√(1 − ζ²)``, rad/s, from the two above.
+        ``λ = −ζω + iω√(1 − ζ²)``, rad/s, from the two above: the structure's poles, the
+        window's share removed — what :func:`~racketdyn.modal.residues.fit_modal_constants`
+        takes.
     n_orders : ndarray of int, shape (n_modes,)
         Number of model orders in which each mode was fully stable.
     frequency_spread_hz : ndarray, shape (n_modes,)
@@ -345,8 +348,9 @@ class SelectedPoles:
     band_hz : tuple of float
         The band of the stabilisation, Hz.
     exponential_window_s : float or None
-        τ of the FRFs' exponential window, s.  The poles in the windowed FRFs are
-        :attr:`windowed_pole`: use those to fit residues to the windowed FRFs.
+        τ of the FRFs' exponential window, s.  The windowed FRFs show the poles moved by
+        −1/τ (:attr:`windowed_pole`); :func:`~racketdyn.modal.residues.fit_modal_constants`
+        takes the structure's :attr:`pole` and moves them itself.
     n_orders_computed : int
         Number of orders in the stabilisation diagram.
     nodes : tuple of int
@@ -401,7 +405,13 @@ class SelectedPoles:
 
     @property
     def windowed_pole(self) -> NDArray[np.complex128]:
-        """The poles as they are in the exponentially windowed FRFs (``λ − 1/τ``), rad/s."""
+        """The poles as the exponentially windowed FRFs show them (``λ − 1/τ``), rad/s.
+
+        What a fit of the windowed data sees (the LSCF's :attr:`residues` are at these poles).
+        Not for :func:`~racketdyn.modal.residues.fit_modal_constants`: it takes the
+        structure's :attr:`pole` and moves them by the window the FRFs record, so these would
+        be moved twice.  Without a window, :attr:`pole`.
+        """
         if self.exponential_window_s is None:
             return self.pole
         return np.asarray(self.pole - 1.0 / self.exponential_window_s)
@@ -977,6 +987,17 @@ DEFAULT_SELECTION = SelectionRules()
 """The rules :func:`select_poles` follows unless given others."""
 
 
+def require_rules(caller: str, rules: object) -> SelectionRules:
+    """``rules`` if it is a :class:`SelectionRules`, else a TypeError naming ``caller``'s
+    parameter and what to build (a dict of rules is the likely slip)."""
+    if not isinstance(rules, SelectionRules):
+        raise TypeError(
+            f"{caller}: `rules` must be a SelectionRules (got {type(rules).__name__}); "
+            "give SelectionRules(min_fraction=..., ...)"
+        )
+    return rules
+
+
 def select_poles(
     stab: Stabilisation,
     pin_hz: Sequence[float] = (),
@@ -1046,11 +1067,7 @@ def select_poles(
         what was dropped and why — a pin with no stable pole near it, a pin and an exclusion
         on the same mode, or pins or exclusions outside the band.
     """
-    if not isinstance(rules, SelectionRules):
-        raise TypeError(
-            f"select_poles: `rules` must be a SelectionRules (got {type(rules).__name__}); "
-            "give SelectionRules(min_fraction=..., ...)"
-        )
+    require_rules("select_poles", rules)
     if not isinstance(stab, Stabilisation):
         raise InputError("select_poles needs the Stabilisation that stabilisation() returns")
     pins = _frequencies("`pin_hz`", pin_hz, stab.band_hz)

@@ -99,7 +99,11 @@ def fit_modal_constants(
     frfs : FrfSet
         The FRFs (any frf_type; the exponential window, if recorded, is accounted for).
     poles : array_like, complex
-        Poles of the structure λ = −σ + iω_d, rad/s (one per mode, upper half plane).
+        Poles of the structure λ = −σ + iω_d, rad/s (one per mode, upper half plane):
+        :attr:`SelectedPoles.pole <racketdyn.modal.poles.SelectedPoles.pole>`, not its
+        ``windowed_pole``.  With an exponential window τ recorded on ``frfs``, each is moved to
+        λ − 1/τ here, as the windowed FRFs hold it (module docstring); the constants are the
+        structure's.
     band_hz : tuple of float, optional
         Frequency band to fit, Hz (default: every line above 0 Hz).
 

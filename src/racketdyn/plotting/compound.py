@@ -221,7 +221,7 @@ def plot_compound_frf(
     dashed: bool = False,
     ax: Axes | None = None,
 ) -> Axes:
-    """|receptance| against frequency (log scale).
+    """The receptance's magnitude against frequency (log scale).
 
     Parameters
     ----------

@@ -89,6 +89,7 @@ __all__ = [
     "figure_oblique",
     "figure_pulse_spectrum",
     "figure_rebound_along_axis",
+    "figure_sensitivity",
     "figure_stabilisation",
     "figure_swing_along_axis",
     "figure_swing_map",
@@ -745,8 +746,8 @@ IDENTIFIED_STYLES: tuple[tuple[str, str, str], ...] = (
     ("k", "s", "--"),
     ("tab:blue", "D", "-"),
 )
-"""(colour, marker, line style) of each curve of :data:`~racketdyn.workflows.figure_data.
-IDENTIFIED_CASES` in the compare step's Fig. 15."""
+"""(colour, marker, line style) of each curve of
+:data:`~racketdyn.workflows.figure_data.IDENTIFIED_CASES` in the compare step's Fig. 15."""
 
 
 def plot_identified_rebound(data: IdentifiedRebound, ax: Axes | None = None) -> Axes:

@@ -26,6 +26,22 @@ if TYPE_CHECKING:
     from racketdyn.workflows.twist import TwistResult
     from racketdyn.workflows.validate import ValidateResult
 
+__all__ = [
+    "ball_figures",
+    "compare_ball_figures",
+    "compare_figures",
+    "compound_figures",
+    "contact_figures",
+    "frf_figures",
+    "identify_figures",
+    "oblique_figures",
+    "predict_figures",
+    "sweep_figures",
+    "swing_figures",
+    "twist_figures",
+    "validate_figures",
+]
+
 Status = Callable[[str], None]
 Hook = TypeVar("Hook", bound=Callable[..., list[Path]])
 

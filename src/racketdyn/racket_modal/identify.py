@@ -15,7 +15,8 @@ import numpy as np
 
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal import ModalModel
-from racketdyn.modal.identify import Identification, identify
+from racketdyn.modal.identify import SELECTION, Identification, identify
+from racketdyn.modal.poles import SelectionRules
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.racket import HeadEllipse, Racket
 from racketdyn.racket_modal.face import face_mapping, looks_like_racket
@@ -70,6 +71,8 @@ def identify_racket(
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
     support: str = "free",
+    *,
+    rules: SelectionRules = SELECTION,
 ) -> Identification:
     """Identify a racket's modal model from its FRFs and name the modes the racket way.
 
@@ -90,10 +93,15 @@ def identify_racket(
         Modes to force in or leave out, by approximate frequency, Hz.
     support : str
         Support the racket was tested on (``free``, ``hand``), recorded on the model.
+    rules : SelectionRules
+        The rules of the automatic pole selection
+        (:func:`racketdyn.modal.identify.identify`'s).
 
     Returns
     -------
     Identification
+        Its ``model`` is what the impact models take (``modal_model=``): mass-normalised
+        shapes at the points of the racket's face, named the racket way.
     """
     identification = identify(
         frfs,
@@ -102,6 +110,7 @@ def identify_racket(
         pin_hz=pin_hz,
         exclude_hz=exclude_hz,
         support=support,
+        rules=rules,
     )
     return name_racket_modes(identification, racket)
 

@@ -97,6 +97,7 @@ __all__ = [
     "defer_figure_data",
     "describe_options",
     "identified_rebound",
+    "joined_figure_data",
     "paper_figures",
     "racket_speed_at",
     "read_figure_data",
@@ -571,6 +572,19 @@ def write_figure_data(path: Path, datasets: Sequence[xr.Dataset]) -> Path:
     Path
         ``path``.
     """
+    _write_netcdf3(joined_figure_data(datasets), Path(path))
+    return Path(path)
+
+
+def joined_figure_data(datasets: Sequence[xr.Dataset]) -> xr.Dataset:
+    """The figures' data of a step as one dataset, as ``figures.nc`` holds it
+    (:func:`write_figure_data`).
+
+    Parameters
+    ----------
+    datasets : sequence of xarray.Dataset
+        The ``to_xarray()`` of each figure-data object of the step.
+    """
     import xarray as xr
 
     joined = xr.merge(list(datasets), combine_attrs="override")
@@ -578,8 +592,7 @@ def write_figure_data(path: Path, datasets: Sequence[xr.Dataset]) -> Path:
     for dataset in datasets:
         joined.attrs.update(dataset.attrs)
     joined.attrs["title"] = "racketdyn: the data each figure of the run draws"
-    _write_netcdf3(joined, Path(path))
-    return Path(path)
+    return joined
 
 
 def _write_netcdf3(dataset: xr.Dataset, path: Path) -> None:

@@ -12,6 +12,7 @@ Figures come from the caller's hook.
 from __future__ import annotations
 
 import csv
+import dataclasses
 import math
 import os
 from collections.abc import Sequence
@@ -23,12 +24,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.ball import Ball
-from racketdyn.errors import InputError, require_speeds
+from racketdyn.errors import InputError, require_numbers, require_speeds
 from racketdyn.impact.result import SHOWN_SPEED_MPS
 from racketdyn.io.frf_layout import read_frfs
 from racketdyn.io.uff import write_modes_uff
-from racketdyn.modal.identify import Identification, identify
+from racketdyn.modal.identify import SELECTION, Identification, identify
 from racketdyn.modal.model import ModalModel
+from racketdyn.modal.poles import SelectionRules, require_rules
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
@@ -105,9 +107,14 @@ class IdentifyOptions:
     max_order : int
         Highest model order.
     pin_hz, exclude_hz : sequence of float
-        Modes forced in or left out, by approximate frequency, Hz.
+        Modes forced in or left out, by approximate frequency, Hz (one number, or one text
+        ``"600,700"`` as the command line spells them; ``band_hz`` too, ``"40,1000"``).
     reference : int, optional
         Reference node when the file has several.
+    rules : SelectionRules
+        The rules of the automatic pole selection (default
+        :data:`racketdyn.modal.identify.SELECTION`); Python only, the command line has no
+        option for them.  Other rules are recorded in run.json (``selection_rules``).
     """
 
     geometry: str | os.PathLike[str] | None = None
@@ -116,25 +123,32 @@ class IdentifyOptions:
     pin_hz: Sequence[float] = ()
     exclude_hz: Sequence[float] = ()
     reference: int | None = None
+    rules: SelectionRules = SELECTION
 
     def __post_init__(self) -> None:
+        require_rules("IdentifyOptions", self.rules)
         if self.band_hz is not None:
-            values = [float(v) for v in self.band_hz]
+            values = require_numbers("`band_hz`", self.band_hz, "Hz")
             if len(values) != 2 or not 0.0 <= values[0] < values[1]:
                 raise InputError(
                     f"`band_hz` takes two frequencies low,high in Hz (got {self.band_hz!r})"
                 )
             object.__setattr__(self, "band_hz", (values[0], values[1]))
-        object.__setattr__(self, "pin_hz", tuple(float(v) for v in self.pin_hz))
-        object.__setattr__(self, "exclude_hz", tuple(float(v) for v in self.exclude_hz))
+        for name in ("pin_hz", "exclude_hz"):  # as the command line spells them too: "600,700"
+            values = require_numbers(f"`{name}`", getattr(self, name), "Hz")
+            object.__setattr__(self, name, tuple(values))
 
     def record(self) -> dict[str, Any]:
         """What run.json keeps of them (the band used is the identification's own)."""
-        return {
+        recorded: dict[str, Any] = {
             "max_order": self.max_order,
             "pin_hz": list(self.pin_hz),
             "exclude_hz": list(self.exclude_hz),
         }
+        if self.rules != SELECTION:  # the default's run.json as before
+            rules = dataclasses.asdict(self.rules)
+            recorded["selection_rules"] = {**rules, "stability": self.rules.stability.name}
+        return recorded
 
 
 DEFAULT_IDENTIFY = IdentifyOptions()
@@ -205,6 +219,7 @@ def identify_file(
         pin_hz=list(options.pin_hz),
         exclude_hz=list(options.exclude_hz),
         support=support,
+        rules=options.rules,
     )
     found, naming = name_if_racket(found, racket, racket_given, ball)
     if ball is not None and naming.startswith("modes numbered"):
@@ -236,8 +251,8 @@ HAND_COUNTS = (
 
 NO_COORDINATES = (
     "no node coordinates: frequencies, damping ratios and the shapes by node only; no shape "
-    "figures, no node lines, no racket naming, and predict refuses the model; --geometry FILE "
-    "(UFF data set 15 or 2411, or CSV node,x_m,y_m in m) adds them"
+    "figures, no node lines, no racket naming, and predict refuses the model; a file of "
+    "coordinates as `geometry` (UFF data set 15 or 2411, or CSV node,x_m,y_m in m) adds them"
 )
 """What an identification from FRFs without coordinates gives and lacks (console, run.json)."""
 

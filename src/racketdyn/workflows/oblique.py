@@ -10,19 +10,26 @@ from __future__ import annotations
 import os
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
 from numpy.typing import ArrayLike
 
 from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of, require_finite, require_positive
+from racketdyn.errors import (
+    InputError,
+    one_of,
+    require_finite,
+    require_numbers,
+    require_positive,
+)
 from racketdyn.impact.grid import check_string_bed, point_law
 from racketdyn.impact.oblique import (
     DEFAULT_TANGENTIAL_CONTACT,
     ObliqueCurve,
     TangentialContact,
     oblique_curve,
+    require_friction,
+    require_tangential_stiffness,
 )
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.io import racket_to_dict
@@ -39,6 +46,9 @@ from racketdyn.workflows.run import (
     write_rows,
 )
 from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = [
     "DEFAULT_OBLIQUE",
@@ -101,6 +111,34 @@ class ObliqueResult(StepResult):
     contact: TangentialContact = field(default_factory=lambda: DEFAULT_TANGENTIAL_CONTACT)
     racket: Racket | None = None
 
+    def to_xarray(self) -> xr.Dataset:
+        """The run's oblique impacts as one :class:`xarray.Dataset`.
+
+        The curve's dataset (:meth:`~racketdyn.impact.oblique.ObliqueCurve.to_xarray`: one
+        ``impact`` per incoming angle, outgoing angles, spins, speeds, grip, friction loss,
+        status) with the run's own coordinates — the point ``x_m``, ``y_m`` and the
+        ``support`` — and the tangential contact used as attributes
+        (``friction_coefficient``, ``tangential_stiffness_n_per_m``, ``inertia_factor``).
+
+        Returns
+        -------
+        xarray.Dataset
+            Writable as netCDF.
+        """
+        if self.curve is None:
+            raise ValueError("no oblique impacts in this result: run_oblique makes them")
+        dataset = self.curve.to_xarray().assign_coords(
+            x_m=((), self.point[0], {"units": "m", "long_name": "impact point along the axis"}),
+            y_m=((), self.point[1], {"units": "m", "long_name": "impact point across it"}),
+            support=((), self.support, {"long_name": "support condition"}),
+        )
+        dataset.attrs |= {
+            "friction_coefficient": float(self.contact.friction_coefficient),
+            "tangential_stiffness_n_per_m": float(self.contact.stiffness_n_per_m),
+            "inertia_factor": float(self.contact.inertia_factor),
+        }
+        return dataset
+
 
 @dataclass(frozen=True)
 class ObliqueOptions:
@@ -116,7 +154,8 @@ class ObliqueOptions:
     speed : float
         Incoming ball speed, m/s.
     angles_deg : array_like
-        Incoming angles to the face normal, degrees, each in (-90, 90).
+        Incoming angles to the face normal, degrees, each in (-90, 90) (or one text
+        ``"0,30"``, as the command line spells them; ``point`` too, ``"0.505,0"``).
     spin_radps : float
         Incoming spin, rad/s (+ = the sense of rolling along the face).
     point : (x, y), optional
@@ -189,7 +228,7 @@ def run_oblique(
     where = _impact_point(used.racket, options.point, extra)
     check_string_bed(setup.string_bed, None, used.racket)
     the_hand, hand_defaults = setup.hand_used([the_support])
-    contact = _tangential_contact(options.friction, options.tangential_stiffness, extra)
+    contact = _tangential_contact(options, allow, extra)
     racket_speed, face_speed = _racket_motion(options, allow)
     the_ball, ball_defaults = setup.ball_used()
     defaults_used = [*used.defaults, *extra, *hand_defaults, *ball_defaults, *setup.defaults]
@@ -262,7 +301,8 @@ def _incoming(options: ObliqueOptions, allow_implausible: bool) -> tuple[float, 
     speed = require_positive("`speed`", options.speed)
     check_speeds("`speed`", [speed], "ball_speed_mps", allow_implausible)
     check_speeds("`racket_speed`", [options.racket_speed], "racket_speed_mps", allow_implausible)
-    angles = [require_finite("`angles_deg`", v) for v in np.atleast_1d(options.angles_deg)]
+    # a sequence, one angle, or the command line's "0,30"
+    angles = require_numbers("`angles_deg`", options.angles_deg, "degrees from the face normal")
     for angle in angles:
         if not -90.0 < angle < 90.0:
             raise InputError(
@@ -283,19 +323,28 @@ def _impact_point(
         where = (the_racket.head.centre_x_m, the_racket.head.centre_y_m)
         defaults_used.append("impact point: the face centre")
     else:
-        flat = np.asarray(point, dtype=float).reshape(-1)
-        if flat.size != 2:
+        flat = require_numbers("`point`", point, "x,y in m")  # or the command line's "0.505,0"
+        if len(flat) != 2:
             raise InputError(f"`point` is the impact point (x, y), m: two numbers (got {point!r})")
-        where = (float(flat[0]), float(flat[1]))
+        where = (flat[0], flat[1])
     the_racket.head.check_inside([where])
     return where
 
 
 def _tangential_contact(
-    friction: float | None, tangential_stiffness: float | None, defaults_used: list[str]
+    options: ObliqueOptions, allow_implausible: bool, defaults_used: list[str]
 ) -> TangentialContact:
-    """The tangential contact: μ and k_t as given, else the defaults' (said in
+    """The tangential contact: μ and k_t as given, checked and named as the options name them
+    (μ within play unless ``allow_implausible``), else the defaults' (said in
     ``defaults_used``)."""
+    friction, tangential_stiffness = options.friction, options.tangential_stiffness
+    if friction is not None:
+        friction = require_friction("`friction`", friction)
+        check("friction_coefficient", friction, "`friction`", allow_implausible=allow_implausible)
+    if tangential_stiffness is not None:
+        tangential_stiffness = require_tangential_stiffness(
+            "`tangential_stiffness`", tangential_stiffness
+        )
     base = DEFAULT_TANGENTIAL_CONTACT
     if friction is None or tangential_stiffness is None:
         defaults_used.append(
@@ -313,16 +362,13 @@ def _tangential_contact(
 
 def _racket_motion(options: ObliqueOptions, allow_implausible: bool) -> tuple[float, float]:
     """The racket's speed towards the ball and along the face, m/s, checked (within play
-    unless ``allow_implausible``); then the friction coefficient, if given."""
+    unless ``allow_implausible``)."""
     racket_speed = require_finite("`racket_speed`", options.racket_speed)
     face_speed = require_finite("`racket_tangential_speed`", options.racket_tangential_speed)
     # either sense along the face: its size against the speeds rackets are swung at
     check_speeds(
         "`racket_tangential_speed`", [abs(face_speed)], "racket_speed_mps", allow_implausible
     )
-    if options.friction is not None:
-        friction = require_finite("`friction`", options.friction)
-        check("friction_coefficient", friction, "`friction`", allow_implausible=allow_implausible)
     return racket_speed, face_speed
 
 

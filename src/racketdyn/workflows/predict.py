@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.contact import compound_law
-from racketdyn.errors import InputError, one_of, require_speeds
+from racketdyn.errors import InputError, one_of, require_speeds, require_words
 from racketdyn.impact import ImpactResult, predict
 from racketdyn.impact.grid import StringBed, check_string_bed
 from racketdyn.impact.hand import Hand
@@ -54,6 +54,7 @@ from racketdyn.workflows.figure_data import (
     TransientCurves,
     TransientHistories,
     axis_points,
+    joined_figure_data,
     paper_figures,
     transient_curves,
     write_figure_data,
@@ -193,6 +194,88 @@ class PredictResult(StepResult):
         assert result is not None
         return result
 
+    def to_xarray(self) -> xr.Dataset:
+        """Everything the run computed as one :class:`xarray.Dataset`.
+
+        Each model's impacts (:meth:`~racketdyn.impact.result.ImpactResult.to_xarray`: the
+        dimensions ``point``, ``ball_speed``, ``support``, ``mode``), with an ``uncertainty``
+        their bands and samples (:meth:`~racketdyn.impact.uncertainty.UncertainResult.
+        to_xarray`'s variables beyond the impacts'), stacked on a ``model`` dimension
+        (``approximate``, ``transient``: the models run), whose coordinates ``method`` and
+        ``inputs`` hold each model's own attributes; a variable only one model has
+        (``energy_balance_j``, the transient's) keeps its dimensions and names its ``model``
+        in an attribute.  Beside them, the figures' data as ``figures.nc`` holds them (each
+        figure's names prefixed with its key, ``fig11_12__…``: the paper's curves, the
+        transient time histories, the comparison map, the sensitivity).  Values are the
+        result's as they are (NaN where a status says why).
+
+        Returns
+        -------
+        xarray.Dataset
+            Writable as netCDF (``engine="scipy"``, as ``figures.nc``).
+        """
+        import xarray as xr
+
+        runs = (("approximate", "approx"), ("transient", "transient"))
+        parts = {
+            name: _impacts_with_band(impacts, self.bands.get(key))
+            for name, key in runs
+            if (impacts := getattr(self, name)) is not None
+        }
+        if not parts:
+            raise ValueError("no impacts in this result: run_predict makes them")
+        names = (set(map(str, part.data_vars)) for part in parts.values())
+        common = sorted(set.intersection(*names))
+        stacked = xr.concat(
+            [part[common] for part in parts.values()],
+            dim="model",
+            coords="minimal",
+            compat="equals",
+            join="exact",
+            combine_attrs="drop_conflicts",
+        ).assign_coords(
+            model=("model", list(parts), {"long_name": "impact model"}),
+            method=("model", [part.attrs.get("method", "") for part in parts.values()]),
+            inputs=("model", [part.attrs.get("inputs", "") for part in parts.values()]),
+        )
+        for name, part in parts.items():
+            for variable in set(part.data_vars) - set(common):
+                stacked[variable] = part[variable].assign_attrs(model=name)
+        figures = joined_figure_data([data() for data in self._figure_parts()])
+        merged = xr.merge([stacked, figures], combine_attrs="override")
+        merged.attrs = {**figures.attrs, **stacked.attrs}
+        merged.attrs["title"] = "racketdyn predict: the impacts and the data of its figures"
+        return merged
+
+    def _figure_parts(self) -> list[Callable[[], xr.Dataset]]:
+        """The ``to_xarray`` of each figure-data object the run computed (``figures.nc``'s
+        parts, in its order), the sensitivity stored as it is."""
+        objects = (
+            self.paper_figures,
+            self.transient_curves,
+            self.comparison_map,
+            self.transient_histories,
+        )
+        parts: list[Callable[[], xr.Dataset]] = [
+            data.to_xarray for data in objects if data is not None
+        ]
+        if self.sensitivity is not None:
+            parts.append(partial(store, {"sensitivity": self.sensitivity}))
+        return parts
+
+
+def _impacts_with_band(impacts: ImpactResult, band: UncertainResult | None) -> xr.Dataset:
+    """A model's impacts as a dataset, with its band's variables the impacts have not (the
+    bands, the samples, the draws) and the uncertainty's record."""
+    dataset = impacts.to_xarray()
+    if band is None:
+        return dataset
+    banded = band.to_xarray()
+    extra = [name for name in banded.data_vars if name not in dataset]
+    dataset = dataset.assign({str(name): banded[name].variable for name in extra})
+    dataset.attrs["uncertainty"] = banded.attrs["uncertainty"]
+    return dataset
+
 
 def impact_points(
     racket: Racket,
@@ -271,11 +354,13 @@ class PredictOptions:
     Attributes
     ----------
     speeds : array_like
-        Incoming ball speeds, m/s.
+        Incoming ball speeds, m/s (or one text ``"10,20"``, as the command line spells them;
+        the same for ``racket_speed``, ``supports`` and ``show``).
     racket_speed : array_like
         Racket speed at the impact point towards the ball, m/s: one, or one per speed.
     supports : str or sequence of str
-        ``free``, ``pinned``; ``hand`` with ``model="transient"`` only (one as a string).
+        ``free``, ``pinned``; ``hand`` with ``model="transient"`` only (one as a string, or
+        ``"free,pinned"``).
     model : {"approx", "transient", "both"}
         Kawazoe's approximate method, the transient simulation, or each with their comparison.
     engine : {"auto", "compiled", "reference"}, optional
@@ -360,10 +445,8 @@ def run_predict(
         options.speeds, options.racket_speed, setup.allow_implausible
     )
     shown = shown_case_index(speed_list, paired, options.show)
-    supports = options.supports  # one as a string, as rd.predict takes it
-    support_list = check_supports(
-        [supports] if isinstance(supports, str) else supports, options.model
-    )
+    # one as a string, as rd.predict takes it, or several as the command line spells them
+    support_list = check_supports(require_words("`supports`", options.supports), options.model)
     used = setup.racket_setup()
     the_ball, ball_defaults = setup.ball_used()
     the_hand, hand_defaults = setup.hand_used(support_list)
@@ -683,7 +766,6 @@ def _figure_data(
         "supports": tuple(s for s in result.supports if s != "hand"),
     }
     impact = {k: v for k, v in options.items() if k not in ("supports", "racket_speed")}
-    datasets: list[Callable[[], xr.Dataset]] = []  # each figure-data object's to_xarray
     if result.approximate is not None:
         report(progress, "computing the figures' curves")
         result.paper_figures = paper_figures(
@@ -705,7 +787,6 @@ def _figure_data(
                 axis_band=_axis_band(result, *band),
                 face=_face_band(result.paper_figures.face, result.bands["approx"], result),
             )
-        datasets.append(result.paper_figures.to_xarray)
     if result.comparison is not None:
         report(progress, "both models against speed")
         result.transient_curves = transient_curves(
@@ -717,16 +798,12 @@ def _figure_data(
             vibration_charge=result.vibration_charge,
             **impact,
         )
-        datasets.append(result.transient_curves.to_xarray)
         result.comparison_map = ComparisonMap.of(
             result.comparison, result.shown_speed, result.racket.head
         )
-        datasets.append(result.comparison_map.to_xarray)
     if result.transient is not None and result.histories:
         result.transient_histories = TransientHistories.of(result.histories, result.mode_names)
-        datasets.append(result.transient_histories.to_xarray)
-    if result.sensitivity is not None:
-        datasets.append(partial(store, {"sensitivity": result.sensitivity}))
+    datasets = result._figure_parts()
     if datasets:  # written while the figures are drawn (xarray's import is most of it)
         path = result.out / FIGURES_FILE
         defer_file(result, path, lambda: write_figure_data(path, [data() for data in datasets]))

@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.contact import membrane_patch_radius
-from racketdyn.errors import InputError, one_of, require_range, require_whole
+from racketdyn.errors import InputError, one_of, require_range, require_whole, require_words
 from racketdyn.impact.compound import (
     PRELOAD_N,
     ball_spring,
@@ -135,8 +135,9 @@ class RigOptions:
     Attributes
     ----------
     support : {"free", "hand"} or sequence of them
-        On a sponge, or held by a hand; both (``("free", "hand")``) test the racket twice into
-        the one folder, as the paper does (``hammer_<support>.uff`` each).
+        On a sponge, or held by a hand; both (``("free", "hand")``, or ``"free,hand"`` as the
+        command line spells it) test the racket twice into the one folder, as the paper does
+        (``hammer_<support>.uff`` each).
     averages : int
         Hits per point.
     double_hits, overloads : float
@@ -175,9 +176,10 @@ class RigOptions:
         reads the records without coordinates and ``identify --geometry hammer_<support>.uff``
         takes the (x, y, z) points and maps them onto the face.
     layout : {"roving hammer", "roving accelerometer"}
-        ``roving accelerometer``: the hammer strikes the reference node (node 10, its pulse
-        for every hit) and the accelerometer is moved over the points; by reciprocity the same
-        FRFs (the file says it: :func:`~racketdyn.io.write_hammer_uff`'s ``layout``).
+        ``roving accelerometer`` (or the command line's ``roving-accelerometer``): the hammer
+        strikes the reference node (node 10, its pulse for every hit) and the accelerometer is
+        moved over the points; by reciprocity the same FRFs (the file says it:
+        :func:`~racketdyn.io.write_hammer_uff`'s ``layout``).
     """
 
     support: str | Sequence[str] = "free"
@@ -232,7 +234,8 @@ def run_rig(
     options : RigOptions
         Supports, hits per point, faults, seed, noise, and how the file is written.
     """
-    supports = _check_options(options)
+    options = _checked(options)
+    supports = list(options.support)
     the_racket, provenance = load_racket_input(setup.racket)
     spring, ball_record, under_ball = None, None, None
     if options.ball_at is not None:
@@ -272,13 +275,18 @@ def run_rig(
     return setup.finish(result, inputs, "rig")
 
 
-def _check_options(options: RigOptions) -> list[str]:
+def _checked(options: RigOptions) -> RigOptions:
     """Refuse options out of range (named by their field, as the CLI translates them); the
-    supports as a list."""
-    support = options.support
-    supports = [support] if isinstance(support, str) else list(support)
-    if not supports or len(set(supports)) < len(supports):
-        raise InputError(f"`support`: give free, hand or free,hand (got {','.join(supports)})")
+    options in one spelling: the supports a tuple, the layout in words (the command line's
+    ``"free,hand"`` and ``roving-accelerometer`` taken from Python too)."""
+    supports = require_words("`support`", options.support)
+    if len(set(supports)) < len(supports):
+        raise InputError(
+            f"`support`: name each support once, free, hand or both (got {','.join(supports)})"
+        )
+    layout: object = options.layout
+    if isinstance(layout, str):
+        layout = layout.replace("-", " ")  # the command line's roving-accelerometer
     for each in supports:
         one_of("`support`", each, RIG_SUPPORTS)
     averages = options.averages
@@ -297,10 +305,10 @@ def _check_options(options: RigOptions) -> list[str]:
     require_range("`pretrigger_s`", options.pretrigger_s, 0.0, 0.1)
     one_of("`time_zero`", options.time_zero, ("pulse", "record"))
     one_of("`lab_plane`", options.lab_plane, ("xy", "xz"))
-    one_of("`layout`", options.layout, ("roving hammer", "roving accelerometer"))
+    layout = one_of("`layout`", layout, ("roving hammer", "roving accelerometer"))
     if options.response_direction not in (3, -3):
         raise InputError(f"`response_direction`: give 3 or -3 (got {options.response_direction})")
-    return supports
+    return replace(options, support=tuple(supports), layout=layout)
 
 
 def _test_support(
