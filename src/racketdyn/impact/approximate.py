@@ -43,6 +43,7 @@ stiffening law's peaked pulse gives; docs/validation.md).
 
 from __future__ import annotations
 
+import functools
 import logging
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, fields
@@ -108,11 +109,35 @@ not measured above it)."""
 VibrationCharge = Literal["coupled", "paper"]
 VIBRATION_CHARGES: tuple[str, ...] = get_args(VibrationCharge)
 
-# Gauss–Legendre nodes for the contact-time integral in θ (X = X_p sin θ): the integrand is
-# smooth in θ, so 48 nodes give the half period to round-off for polynomial laws.
-_NODES, _WEIGHTS = np.polynomial.legendre.leggauss(48)
-_THETA = 0.25 * np.pi * (_NODES + 1.0)
-_THETA_WEIGHTS = 0.25 * np.pi * _WEIGHTS
+_CONTACT_NODES = 48
+"""Gauss–Legendre nodes for the contact-time integral in θ (X = X_p sin θ): the integrand is
+smooth in θ, so 48 nodes give the half period to round-off for polynomial laws."""
+
+
+@functools.cache
+def _legendre_nodes(
+    count: int,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """θ nodes on [0, π/2], their weights, and the ``(count, count)`` matrix taking dt/dθ at
+    the nodes to t(θ) = ∫₀^θ (dt/dθ') dθ' at each node: the Legendre series through the nodes
+    integrated (numpy's legint).  Own code because scipy's cumulative rules need sampled end
+    points, where dt/dθ is 0/0."""
+    legendre = np.polynomial.legendre
+    nodes, weights = legendre.leggauss(count)
+    # the series' coefficients by the nodes' discrete orthogonality: (2k + 1)/2 Σ w P_k g
+    vander = legendre.legvander(nodes, count - 1)
+    series = (np.arange(count) + 0.5)[:, None] * vander.T * weights
+    cumulative = legendre.legvander(nodes, count) @ legendre.legint(series, lbnd=-1, axis=0)
+    return 0.25 * np.pi * (nodes + 1.0), 0.25 * np.pi * weights, 0.25 * np.pi * cumulative
+
+
+def _contact_rate(
+    law: RestoringForce, mu: ArrayLike, peak: ArrayLike, theta: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Deflection X = X_p sin θ and dt/dθ of the elastic contact at the nodes θ, ``(..., n)``."""
+    mu_, x_p = (np.asarray(a, dtype=float)[..., None] for a in (mu, peak))
+    x = x_p * np.sin(theta)
+    return x, x_p * np.cos(theta) / np.sqrt(2.0 * (law.energy(x_p) - law.energy(x)) / mu_)
 
 
 def elastic_contact_time(
@@ -134,10 +159,9 @@ def elastic_contact_time(
     peak : array_like
         Peak deflection X_p > 0, m.
     """
-    mu_, x_p = (np.asarray(a, dtype=float)[..., None] for a in (mu, peak))
-    x = x_p * np.sin(_THETA)
-    integrand = x_p * np.cos(_THETA) / np.sqrt(2.0 * (law.energy(x_p) - law.energy(x)) / mu_)
-    return np.asarray(2.0 * np.sum(integrand * _THETA_WEIGHTS, axis=-1))
+    theta, weights, _ = _legendre_nodes(_CONTACT_NODES)
+    _, rate = _contact_rate(law, mu, peak, theta)
+    return np.asarray(2.0 * np.sum(rate * weights, axis=-1))
 
 
 def elastic_contact(
@@ -201,21 +225,11 @@ def tangent_peak_deflection(law: RestoringForce, target: ArrayLike) -> NDArray[n
         ) from None
 
 
-# The contact's own pulse at the same nodes: t(θ) = ∫₀^θ (dt/dθ') dθ' at each node from the
-# Legendre series through the nodes (numpy's legint), a fixed (48, 48) matrix.  Own code because
-# scipy's cumulative rules need sampled end points, where dt/dθ is 0/0.
-_CUMULATIVE = (
-    0.25
-    * np.pi
-    * (
-        np.polynomial.legendre.legvander(_NODES, _NODES.size)
-        @ np.polynomial.legendre.legint(
-            np.linalg.inv(np.polynomial.legendre.legvander(_NODES, _NODES.size - 1)),
-            lbnd=-1,
-            axis=0,
-        )
-    )
-)
+_CYCLES_RESOLVED = 32.0
+"""Cycles of a mode over the contact (f T_c) that :data:`_CONTACT_NODES` resolve in
+:func:`contact_spectra`; beyond, more nodes.  Measured against 512 nodes on the built-in law
+at 40 m/s: 48 nodes to 3e-7 (relative) up to f T_c = 40 and 75 % off at 50, 64 nodes to 2e-5 at
+60, 96 nodes to 1e-9 at 80 (a 100 × stiffer frame's 2-node mode sits at f T_c ≈ 54)."""
 
 
 def contact_spectra(
@@ -243,17 +257,26 @@ def contact_spectra(
         ``|S(ω)| / J`` over the pulse and ``|∫₀^{T_c/2} F e^{−iωt} dt| / J`` to its turn,
         J the pulse's impulse (both 1 at ω = 0, ½ for the turn).
     """
-    mu_, x_p = (np.asarray(a, dtype=float)[..., None] for a in (mu, peak))
-    x = x_p * np.sin(_THETA)
-    rate = x_p * np.cos(_THETA) / np.sqrt(2.0 * (law.energy(x_p) - law.energy(x)) / mu_)
-    time = rate @ _CUMULATIVE.T  # (..., nodes)
-    turn = np.sum(rate * _THETA_WEIGHTS, axis=-1, keepdims=True)  # T_c / 2
-    weight = (rate * law.force(x) * _THETA_WEIGHTS)[..., None, :]  # F dt at each node
-    impulse = 2.0 * np.sum(weight, axis=-1)
     w = np.asarray(omega, dtype=float)[..., None]
+    count = _nodes_for(np.max(w, initial=0.0) * elastic_contact_time(law, mu, peak) / (2 * np.pi))
+    theta, weights, cumulative = _legendre_nodes(count)
+    x, rate = _contact_rate(law, mu, peak, theta)
+    time = rate @ cumulative.T  # (..., nodes)
+    turn = np.sum(rate * weights, axis=-1, keepdims=True)  # T_c / 2
+    weight = (rate * law.force(x) * weights)[..., None, :]  # F dt at each node
+    impulse = 2.0 * np.sum(weight, axis=-1)
     whole = 2.0 * np.sum(weight * np.cos(w * (turn[..., None] - time[..., None, :])), axis=-1)
     to_turn = np.sum(weight * np.exp(-1j * w * time[..., None, :]), axis=-1)
     return np.abs(whole) / impulse, np.abs(to_turn) / impulse
+
+
+def _nodes_for(cycles: ArrayLike) -> int:
+    """Nodes resolving a mode of ``cycles`` (f T_c, the most of an array) in the contact's
+    pulse: :data:`_CONTACT_NODES` up to :data:`_CYCLES_RESOLVED`, then 1.5 per cycle, by 16."""
+    most = float(np.max(np.nan_to_num(np.asarray(cycles, dtype=float)), initial=0.0))
+    if most <= _CYCLES_RESOLVED:
+        return _CONTACT_NODES
+    return int(16 * np.ceil(1.5 * most / 16))
 
 
 def vibration_cor_squared(
