@@ -72,9 +72,10 @@ def add(commands: Any) -> None:
         "--vibration-charge",
         choices=("coupled", "paper"),
         default="coupled",
-        help="how the approximate method charges the frame's vibration against e_BG: as the "
-        "coupled contact's energy balance gives it (default) or as the paper's section 4.2 "
-        "writes it (to reproduce the paper's figures; docs/validation.md)",
+        help="how the approximate method charges the frame's vibration against e_BG: the "
+        "contact's own pulse, charged as the coupled contact's energy and momentum balances "
+        "give it (default), or eq 12's half sine as the paper's section 4.2 writes it (to "
+        "reproduce the paper's figures; docs/validation.md)",
     )
     p.add_argument(
         "--include-string-bed",

@@ -28,10 +28,22 @@ Two readings are offered (``stiffness_reading``):
 
 For a linear spring both give T_c = π sqrt(μ/k) exactly.  Either way the impulse is
 (1 + e_BG) μ V (eqs 6, 8) and F_MAX = π F_MEAN / 2 (eq 11).
+
+The vibration charge (``vibration_charge``).  ``"paper"`` is eq 12 as written: the half sine's
+spectrum, its energy taken from e_BG².  ``"coupled"`` (default) takes, for the spectrum, the
+contact's own pulse — the mass μ on F_GB, the elastic contact whose half period is eq 7's T_c
+in the period reading (:func:`contact_spectra`; for a linear law, eq 11's half sine) — and
+charges it by the coupled contact's balances of energy and momentum
+(:func:`vibration_cor_squared`).  Against the transient model over issue 22's protocol (frames
+of 120, 130 and 190 Hz, along the axis and 40 mm off it, 10–40 m/s, free and pinned) the worst
+row is 0.0033 / 0.0041 / 0.0042 (the half sine with the energy balance alone: 0.010 / 0.006 /
+0.017, under-charging a stiff frame's throat, where f₁ T_c ≈ 0.9 and the mode takes what the
+stiffening law's peaked pulse gives; docs/validation.md).
 """
 
 from __future__ import annotations
 
+import functools
 import logging
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, fields
@@ -72,6 +84,7 @@ __all__ = [
     "StiffnessReading",
     "VibrationCharge",
     "approximate_impacts",
+    "contact_spectra",
     "elastic_contact_time",
     "predict",
     "shapes_where",
@@ -88,16 +101,43 @@ VIBRATION_SHARE_LIMIT = 0.30
 the approximate method to give a number.  Measured (2026-11-26, docs/validation.md): over the
 built-in racket at 120, 130, 160 and 190 Hz, along the long axis and 40 mm off it, 10–40 m/s,
 free and pinned, every one of the 430 rows (of 551) at or below 30 % was within 0.013 of the
-transient model's rebound ratio with the coupled charge, and rows above it up to 0.28 off: there
-the frame's motion reshapes the pulse the method assumes."""
+transient model's rebound ratio with the half-sine coupled charge, and rows above it up to 0.28
+off.  With the contact's own pulse and the momentum balance (2026-11-27, the axis ending at the
+tip landmark): the 496 rows at or below 30 % within 0.0042 and the 16 from 30 to 40 % within
+0.0042 as well; kept at 30 % (the paper's charge, and rows the transient does not give, are
+not measured above it)."""
 VibrationCharge = Literal["coupled", "paper"]
 VIBRATION_CHARGES: tuple[str, ...] = get_args(VibrationCharge)
 
-# Gauss–Legendre nodes for the contact-time integral in θ (X = X_p sin θ): the integrand is
-# smooth in θ, so 48 nodes give the half period to round-off for polynomial laws.
-_NODES, _WEIGHTS = np.polynomial.legendre.leggauss(48)
-_THETA = 0.25 * np.pi * (_NODES + 1.0)
-_THETA_WEIGHTS = 0.25 * np.pi * _WEIGHTS
+_CONTACT_NODES = 48
+"""Gauss–Legendre nodes for the contact-time integral in θ (X = X_p sin θ): the integrand is
+smooth in θ, so 48 nodes give the half period to round-off for polynomial laws."""
+
+
+@functools.cache
+def _legendre_nodes(
+    count: int,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """θ nodes on [0, π/2], their weights, and the ``(count, count)`` matrix taking dt/dθ at
+    the nodes to t(θ) = ∫₀^θ (dt/dθ') dθ' at each node: the Legendre series through the nodes
+    integrated (numpy's legint).  Own code because scipy's cumulative rules need sampled end
+    points, where dt/dθ is 0/0."""
+    legendre = np.polynomial.legendre
+    nodes, weights = legendre.leggauss(count)
+    # the series' coefficients by the nodes' discrete orthogonality: (2k + 1)/2 Σ w P_k g
+    vander = legendre.legvander(nodes, count - 1)
+    series = (np.arange(count) + 0.5)[:, None] * vander.T * weights
+    cumulative = legendre.legvander(nodes, count) @ legendre.legint(series, lbnd=-1, axis=0)
+    return 0.25 * np.pi * (nodes + 1.0), 0.25 * np.pi * weights, 0.25 * np.pi * cumulative
+
+
+def _contact_rate(
+    law: RestoringForce, mu: ArrayLike, peak: ArrayLike, theta: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Deflection X = X_p sin θ and dt/dθ of the elastic contact at the nodes θ, ``(..., n)``."""
+    mu_, x_p = (np.asarray(a, dtype=float)[..., None] for a in (mu, peak))
+    x = x_p * np.sin(theta)
+    return x, x_p * np.cos(theta) / np.sqrt(2.0 * (law.energy(x_p) - law.energy(x)) / mu_)
 
 
 def elastic_contact_time(
@@ -119,10 +159,9 @@ def elastic_contact_time(
     peak : array_like
         Peak deflection X_p > 0, m.
     """
-    mu_, x_p = (np.asarray(a, dtype=float)[..., None] for a in (mu, peak))
-    x = x_p * np.sin(_THETA)
-    integrand = x_p * np.cos(_THETA) / np.sqrt(2.0 * (law.energy(x_p) - law.energy(x)) / mu_)
-    return np.asarray(2.0 * np.sum(integrand * _THETA_WEIGHTS, axis=-1))
+    theta, weights, _ = _legendre_nodes(_CONTACT_NODES)
+    _, rate = _contact_rate(law, mu, peak, theta)
+    return np.asarray(2.0 * np.sum(rate * weights, axis=-1))
 
 
 def elastic_contact(
@@ -186,43 +225,58 @@ def tangent_peak_deflection(law: RestoringForce, target: ArrayLike) -> NDArray[n
         ) from None
 
 
-_NEAR_RESONANCE = 1e-4
-"""|1 − ω/a| below which :func:`frame_energy_at_turn` takes its closed form's limit at ω = a."""
+_CYCLES_RESOLVED = 32.0
+"""Cycles of a mode over the contact (f T_c) that :data:`_CONTACT_NODES` resolve in
+:func:`contact_spectra`; beyond, more nodes.  Measured against 512 nodes on the built-in law
+at 40 m/s: 48 nodes to 3e-7 (relative) up to f T_c = 40 and 75 % off at 50, 64 nodes to 2e-5 at
+60, 96 nodes to 1e-9 at 80 (a 100 × stiffer frame's 2-node mode sits at f T_c ≈ 54)."""
 
 
-def frame_energy_at_turn(
-    omega: ArrayLike, shapes: ArrayLike, contact_time: ArrayLike, peak_force: ArrayLike
-) -> NDArray[np.float64]:
-    """Energy held by the frame's modes when the half-sine pulse peaks (t = T_c/2), J per mode.
+def contact_spectra(
+    law: RestoringForce, mu: ArrayLike, peak: ArrayLike, omega: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The elastic contact's own pulse at each mode, per unit impulse: whole and to the turn.
 
-    A mode ``q̈ + ω² q = φ F(t)`` starting at rest holds ``½ |∫₀ᵗ φ F(τ) e^{−iωτ} dτ|²`` at
-    time t (kinetic + strain energy); at t = T_c it is eq 12's ``½ φ² |S(ω)|²``.  Here t is
-    the middle of the pulse, where the ball–string spring is most compressed.  In closed form,
-    with ``a = π / T_c``,
-
-        ``∫₀^{T_c/2} sin(aτ) e^{−iωτ} dτ = (a − iω e^{−iωT_c/2}) / (a² − ω²)``,
-
-    and its limit ``1/(2a) − iπ/(4a)`` where ω = a (a 2-node mode near 120 Hz meets a 4.2 ms
-    pulse there); the error of taking the limit within :data:`_NEAR_RESONANCE` is of that order.
+    The mass μ on the law F(X) from first touch to the peak deflection X_p and back (the
+    contact whose duration is eq 7's T_c in the period reading): ``dt/dθ`` as in
+    :func:`elastic_contact_time` and the force ``F(X_p sin θ)``; the pulse is symmetric about
+    its turn T_c/2.  For a linear law it is eq 11's half sine.
 
     Parameters
     ----------
-    omega : array_like (m,)
+    law : RestoringForce
+        Loading curve F(X).
+    mu, peak : array_like (...)
+        Two-body mass μ (kg) and peak deflection X_p (m).
+    omega : array_like (..., m)
         Natural angular frequencies, rad/s.
-    shapes : array_like (..., m)
-        Mode shapes at the impact point, 1/√kg.
-    contact_time, peak_force : array_like (...)
-        T_c (s) and F_MAX (N) of each impact.
+
+    Returns
+    -------
+    whole, to_turn : ndarray (..., m)
+        ``|S(ω)| / J`` over the pulse and ``|∫₀^{T_c/2} F e^{−iωt} dt| / J`` to its turn,
+        J the pulse's impulse (both 1 at ω = 0, ½ for the turn).
     """
-    tc = np.asarray(contact_time, dtype=float)[..., None]
-    a = np.pi / tc
-    w = np.asarray(omega, dtype=float)
-    near = np.abs(1.0 - w / a) < _NEAR_RESONANCE
-    with np.errstate(divide="ignore", invalid="ignore"):
-        general = (a - 1j * w * np.exp(-0.5j * w * tc)) / (a**2 - w**2)
-    limit = (0.5 - 0.25j * np.pi) / a
-    partial = np.asarray(peak_force, dtype=float)[..., None] * np.where(near, limit, general)
-    return np.asarray(0.5 * (np.asarray(shapes) * np.abs(partial)) ** 2)
+    w = np.asarray(omega, dtype=float)[..., None]
+    count = _nodes_for(np.max(w, initial=0.0) * elastic_contact_time(law, mu, peak) / (2 * np.pi))
+    theta, weights, cumulative = _legendre_nodes(count)
+    x, rate = _contact_rate(law, mu, peak, theta)
+    time = rate @ cumulative.T  # (..., nodes)
+    turn = np.sum(rate * weights, axis=-1, keepdims=True)  # T_c / 2
+    weight = (rate * law.force(x) * weights)[..., None, :]  # F dt at each node
+    impulse = 2.0 * np.sum(weight, axis=-1)
+    whole = 2.0 * np.sum(weight * np.cos(w * (turn[..., None] - time[..., None, :])), axis=-1)
+    to_turn = np.sum(weight * np.exp(-1j * w * time[..., None, :]), axis=-1)
+    return np.abs(whole) / impulse, np.abs(to_turn) / impulse
+
+
+def _nodes_for(cycles: ArrayLike) -> int:
+    """Nodes resolving a mode of ``cycles`` (f T_c, the most of an array) in the contact's
+    pulse: :data:`_CONTACT_NODES` up to :data:`_CYCLES_RESOLVED`, then 1.5 per cycle, by 16."""
+    most = float(np.max(np.nan_to_num(np.asarray(cycles, dtype=float)), initial=0.0))
+    if most <= _CYCLES_RESOLVED:
+        return _CONTACT_NODES
+    return int(16 * np.ceil(1.5 * most / 16))
 
 
 def vibration_cor_squared(
@@ -234,33 +288,44 @@ def vibration_cor_squared(
 ) -> NDArray[np.float64]:
     """The ball–racket COR squared, e_r², after the frame's vibration is charged (section 4.2).
 
+    The energies are those of a pulse of eq 8's impulse ``(1 + e_BG) μ V``.
+
     ``paper``: ``e_r² = e_BG² − E_vib / E_rel`` — the whole approach energy
     ``E_rel = ½ μ V²`` passes through the ball–string spring and loses its share 1 − e_BG², and
     the vibration is taken on top.
 
-    ``coupled`` (default): the ball–string loss is a hysteresis of the spring: it takes
-    1 − e_BG² of what the spring holds at its turn, and at the turn the frame holds
-    ``E_turn`` (:func:`frame_energy_at_turn`) that never passed through it, so
+    ``coupled`` (default): the coupled contact's two balances.  Energy: the ball–string loss is
+    a hysteresis of the spring, 1 − e_BG² of what it holds at its turn, and at the turn the
+    frame holds ``E_turn`` that never passed through it (the transient model's
+    ``½ μ V² e_r² = E_rel − (1 − e_BG²) E_spring(turn) − E_vib`` with
+    ``E_spring(turn) = E_rel − E_turn``).  Momentum: the pulse's impulse is the ball's change of
+    momentum, ``(1 + e_r) μ V`` (the modes carry none), not ``(1 + e_BG) μ V``, and the modes'
+    energies go with its square.  With ``k = (E_vib − (1 − e_BG²) E_turn) / (E_rel (1 + e_BG)²)``
+    the two give ``e_r² + k (1 + e_r)² = e_BG²``, whose root is
 
-        ``e_r² = e_BG² − (E_vib − (1 − e_BG²) E_turn) / E_rel``.
-
-    This is the energy balance of the coupled contact (the transient model's
-    ``½ μ V² e_r² = E_rel − (1 − e_BG²) E_spring(turn) − E_vib``), with the spring's energy at
-    the turn ``E_rel − E_turn``.  The paper's form over-charges by ``(1 − e_BG²) E_turn``: at the
-    throat of a flexible racket ≈ 0.03 of rebound ratio (docs/validation.md).
+        ``e_r = (sqrt(e_BG² (1 + k) − k) − k) / (1 + k)``.
 
     Parameters
     ----------
     e_bg, vibration_energy, turn_energy, relative_energy : array_like
         e_BG, E_vib at separation (J), E_turn (J) and E_rel (J), broadcast together.
     charge : {"coupled", "paper"}
+
+    Returns
+    -------
+    ndarray
+        e_r², negative where no e_r ≥ 0 balances the charge (``coupled``: e_r's sign times
+        e_r²).
     """
     one_of("vibration_charge", charge, VIBRATION_CHARGES)
-    e2 = np.asarray(e_bg, dtype=float) ** 2
-    charged = np.asarray(vibration_energy, dtype=float)
-    if charge == "coupled":
-        charged = charged - (1.0 - e2) * np.asarray(turn_energy, dtype=float)
-    return np.asarray(e2 - charged / np.asarray(relative_energy, dtype=float))
+    e = np.asarray(e_bg, dtype=float)
+    vibration, relative = (np.asarray(a, dtype=float) for a in (vibration_energy, relative_energy))
+    if charge == "paper":
+        return np.asarray(e**2 - vibration / relative)
+    charged = vibration - (1.0 - e**2) * np.asarray(turn_energy, dtype=float)
+    k = charged / (relative * (1.0 + e) ** 2)
+    cor = (np.sqrt(np.maximum(e**2 * (1.0 + k) - k, 0.0)) - k) / (1.0 + k)
+    return np.asarray(np.sign(cor) * cor**2)
 
 
 # 13 parameters: the paper's inputs of an impact and the method's readings, each documented
@@ -326,8 +391,9 @@ def predict(
         (:func:`racketdyn.impact.grid.predict_by_point_law`, stiffer towards the frame).
     vibration_charge : {"coupled", "paper"}
         How the vibration is charged against e_BG (:func:`vibration_cor_squared`): ``coupled``
-        (default) as the coupled contact's energy balance gives it, ``paper`` as section 4.2
-        writes it (to reproduce the paper's figures).
+        (default) the contact's own pulse (:func:`contact_spectra`) charged as the coupled
+        contact's energy and momentum balances give it, ``paper`` eq 12's half sine as
+        section 4.2 writes it (to reproduce the paper's figures).
 
     Returns
     -------
@@ -552,15 +618,24 @@ def approximate_impacts(
     )
     mean_force = impulse / contact_time  # eqs (8)-(10)
     peak_force = np.pi * mean_force / 2.0  # eq (11)
-    mode_energy, turn_energy = _vibration(
-        modes, in_range & ~frame, contact_time, peak_force, vibration_charge
+    # the contact's own pulse reaches E(X_p) = ½ μ V², the period reading's peak deflection
+    peak = (
+        deflection
+        if stiffness_reading == "period"
+        else np.asarray(law.deflection_at_energy(0.5 * mu * speed**2))
     )
-    vibration_energy = mode_energy.sum(axis=-1)
+    pulse = _Pulse(law, mu, peak, impulse, in_range & ~frame, contact_time, peak_force)
+    mode_energy, turn_energy = _vibration(modes, pulse, vibration_charge)
     cor_squared = vibration_cor_squared(
-        e_bg, vibration_energy, turn_energy, 0.5 * mu * speed**2, vibration_charge
+        e_bg, mode_energy.sum(axis=-1), turn_energy, 0.5 * mu * speed**2, vibration_charge
     )
     valid = in_range & (cor_squared >= 0.0)
     cor = np.sqrt(np.where(valid, cor_squared, np.nan))
+    if vibration_charge == "coupled":  # the pulse's impulse is (1 + e_r) μ V
+        mode_energy = (
+            mode_energy * np.where(valid, ((1.0 + cor) / (1.0 + e_bg)) ** 2, 1.0)[..., None]
+        )
+    vibration_energy = mode_energy.sum(axis=-1)
     mass_ratio = m_b / reduced_mass
     rebound_ratio = (cor - mass_ratio) / (1.0 + mass_ratio)
     status = np.zeros(deflection.shape, dtype=np.int8)  # STATUSES[0]: ok
@@ -620,27 +695,42 @@ def _contact(
     return deflection, contact_time, stiffness, in_range, frame
 
 
+@dataclass(frozen=True)
+class _Pulse:
+    """Impacts' pulses, shaped ``(...)``: the contact (law, μ, peak deflection X_p) with eq 8's
+    impulse, given where ``needed``, and eq 11's half sine of the same impulse (T_c, F_MAX)."""
+
+    law: RestoringForce
+    mu: NDArray[np.float64]
+    peak: NDArray[np.float64]
+    impulse: NDArray[np.float64]
+    needed: NDArray[np.bool_]
+    contact_time: NDArray[np.float64]
+    peak_force: NDArray[np.float64]
+
+
 def _vibration(
     modes: tuple[NDArray[np.float64], Shapes] | None,
-    needed: NDArray[np.bool_],
-    contact_time: NDArray[np.float64],
-    peak_force: NDArray[np.float64],
+    pulse: _Pulse,
     vibration_charge: VibrationCharge,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Each mode's energy after the pulse (eq 12) and the frame's energy at the turn, J, where
-    ``needed`` (elsewhere NaN or 0)."""
+    """Each mode's energy after a pulse of eq 8's impulse and the frame's energy at the turn, J,
+    where the pulse is ``needed`` (elsewhere NaN or 0): eq 12's half sine for the paper's
+    charge, the contact's own pulse (:func:`contact_spectra`) for the coupled one."""
+    shape = pulse.contact_time.shape
     if modes is None:
-        return np.zeros((*contact_time.shape, 0)), np.zeros(contact_time.shape)
+        return np.zeros((*shape, 0)), np.zeros(shape)
     frequency, shapes = modes
-    phi = shapes(needed)
-    spectrum = half_sine_spectrum(frequency, contact_time[..., None], peak_force[..., None])
-    mode_energy = 0.5 * (phi * spectrum) ** 2  # ½ A_jjk |S_j(ω_k)|²
-    if vibration_charge == "paper":  # the paper's charge does not use it
-        return mode_energy, np.zeros(contact_time.shape)
-    turn_energy = frame_energy_at_turn(
-        2.0 * np.pi * frequency,
-        phi,
-        np.where(np.isfinite(contact_time), contact_time, 1.0),
-        np.where(np.isfinite(peak_force), peak_force, 0.0),
-    ).sum(axis=-1)
-    return mode_energy, turn_energy
+    phi = shapes(pulse.needed)
+    if vibration_charge == "paper":  # eq 12; the paper's charge does not use the turn
+        spectrum = half_sine_spectrum(
+            frequency, pulse.contact_time[..., None], pulse.peak_force[..., None]
+        )
+        return 0.5 * (phi * spectrum) ** 2, np.zeros(shape)
+    omega = np.broadcast_to(2.0 * np.pi * np.asarray(frequency), (*shape, phi.shape[-1]))
+    whole, to_turn = (np.full(omega.shape, np.nan) for _ in range(2))
+    at = pulse.needed & np.isfinite(pulse.peak)  # tangent reading: E(X_p) within the law
+    whole[at], to_turn[at] = contact_spectra(pulse.law, pulse.mu[at], pulse.peak[at], omega[at])
+    impulse = pulse.impulse[..., None]
+    mode_energy = 0.5 * (phi * impulse * whole) ** 2
+    return mode_energy, np.sum(0.5 * (phi * impulse * to_turn) ** 2, axis=-1)

@@ -17,7 +17,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.__about__ import __version__
 from racketdyn._display import html_table, numbers, shorten, span, words
-from racketdyn.impact.spectrum import half_sine_spectrum
 from racketdyn.modal.model import ModalModel
 
 if TYPE_CHECKING:
@@ -436,18 +435,19 @@ class ImpactResult:
         """Vibration displacement amplitude per mode just after the impact (eq 12), m.
 
         ``X_ijk = |A_ijk| |S_j(ω_k)| / ω_k`` with ``A_ijk = φ_ik φ_jk``: the free vibration of
-        mode k left by the half-sine pulse at impact point j, seen at response point i.
+        mode k left by the pulse at impact point j, seen at response point i.  Taken from the
+        energy the mode holds, ``E_jk = ½ φ_jk² |S_j(ω_k)|²``, as ``|φ_ik| sqrt(2 E_jk) / ω_k``:
+        eq 12's half sine under the paper's charge, the contact's own pulse under the coupled
+        one (:func:`racketdyn.impact.approximate.vibration_cor_squared`).
 
         Returns an array shaped ``(n_response, n_points, n_speeds, n_supports, n_modes)``.
         """
         if self.modal_model is None:
             raise ValueError("a rigid racket (no modal model) does not vibrate")
         model = self.modal_model
-        constants = np.abs(model.modal_constants(response, self.locations))  # (r, n, m)
-        spectrum = half_sine_spectrum(
-            model.frequency, self.contact_time[..., None], self.peak_force[..., None]
-        )  # (n, s, p, m)
-        return np.asarray(constants[:, :, None, None, :] * spectrum[None] / model.omega)
+        shapes = np.abs(model.mode_shapes_at(response))
+        velocity = np.sqrt(2.0 * self.mode_energy)  # |φ_jk S_j(ω_k)|, (n, s, p, m)
+        return np.asarray(shapes[:, None, None, None, :] * velocity[None] / model.omega)
 
     @property
     def columns(self) -> dict[str, NDArray[Any]]:

@@ -372,8 +372,9 @@ class PredictOptions:
     stiffness_reading : {"period", "tangent"}, optional
         Reading of eq 10 (default ``period``); for ``model`` approx or both only.
     vibration_charge : {"coupled", "paper"}
-        The approximate method's charge of the vibration against e_BG: as the coupled
-        contact's energy balance gives it (default) or as the paper writes it.
+        The approximate method's charge of the vibration against e_BG: the contact's own
+        pulse, as the coupled contact's energy and momentum balances give it (default), or
+        eq 12's half sine as the paper writes it.
     include_string_bed : bool
         Charge string-bed modes as vibration loss too.
     uncertainty : Uncertainty, optional
