@@ -12,7 +12,11 @@ from scipy.optimize import brentq
 import racketdyn as rd
 from racketdyn.impact import half_sine_spectrum, predict
 from racketdyn.impact.approximate import contact_spectra, elastic_contact_time
-from racketdyn.impact.result import STATUS_BEYOND_LAW, STATUS_VIBRATION_LOSS
+from racketdyn.impact.result import (
+    STATUS_BEYOND_LAW,
+    STATUS_VIBRATION_LOSS,
+    STATUS_VIBRATION_SHARE,
+)
 
 LINEAR_K = 2.0e4  # N/m
 
@@ -212,6 +216,32 @@ def test_vibration_loss_beyond_e_bg_is_flagged(racket, ball, linear) -> None:
     assert np.all(np.isnan(result.contact_time))
 
 
+@pytest.mark.parametrize("modal_mass", [3e-3, 1e-3, 3e-4, 1e-4])
+@pytest.mark.parametrize("frequency", [600.0, 1000.0, 2000.0])
+def test_the_coupled_charge_creates_no_energy(racket, ball, law, modal_mass, frequency) -> None:
+    """Energy is conserved: the ball's rebound and the frame's vibration never hold more than
+    the approach energy ½ μ V² (``e_r² ½ μ V² + E_vib ≤ ½ μ V²``, so e_r ≤ 1).  A mode as soft
+    as the strings and several cycles over the contact holds at the turn more than the
+    approach brought, beyond the rigid racket's pulse the method assumes: NaN with the
+    vibration-share status.  Before: 1 kHz and 0.3 g gave e_r = 1.19 and a rebound ratio of
+    0.64 marked ``ok`` (the transient model: 0.46)."""
+    soft = _single_mode(racket, 1.0 / np.sqrt(modal_mass), frequency)
+    result = predict(racket, ball, [racket.head.centre_x_m, 0.0], [10.0, 20.0, 40.0],
+                     modal_model=soft, law=law)  # fmt: skip
+    mu = (
+        ball.mass_kg
+        * result.reduced_mass[:, None, :]
+        / (ball.mass_kg + result.reduced_mass[:, None, :])
+    )
+    approach = 0.5 * mu * result.ball_speed[None, :, None] ** 2
+    ok = result.status == "ok"
+    assert np.all(result.cor[ok] ** 2 * approach[ok] + result.vibration_energy[ok] <= approach[ok])
+    assert set(np.unique(result.status[~ok])) <= {STATUS_VIBRATION_SHARE, STATUS_VIBRATION_LOSS}
+    if (frequency, modal_mass) == (1000.0, 3e-4):
+        assert np.all(result.status == STATUS_VIBRATION_SHARE)
+    assert np.all(np.isnan(result.cor[~ok]))
+
+
 def test_deflection_beyond_the_law_is_flagged(racket, ball, law) -> None:
     result = predict(
         racket, ball, [racket.head.centre_x_m, 0.0], [20.0, 250.0], modal_model=None, law=law
@@ -323,10 +353,12 @@ def test_cor_never_exceeds_e_bg(
 
 
 def test_string_bed_modes_are_excluded_unless_asked(racket, ball, model, law) -> None:
+    # 10 m/s: from 20 m/s the membrane mode holds over 30 % of the approach energy at the
+    # contact's turn, beyond the approximate method (test_the_coupled_charge_creates_no_energy)
     centre = [racket.head.centre_x_m, 0.0]
-    without = predict(racket, ball, centre, [30.0], modal_model=model, law=law)
+    without = predict(racket, ball, centre, [10.0], modal_model=model, law=law)
     with_bed = predict(
-        racket, ball, centre, [30.0], modal_model=model, law=law, include_string_bed=True
+        racket, ball, centre, [10.0], modal_model=model, law=law, include_string_bed=True
     )
     assert "string-bed membrane" not in without.modal_model.names
     assert with_bed.vibration_energy[0, 0, 0] > without.vibration_energy[0, 0, 0]
