@@ -47,6 +47,7 @@ def command(
     """A subcommand with ``-v``; the description ends with the units note."""
     parser: argparse.ArgumentParser = commands.add_parser(
         name,
+        allow_abbrev=False,  # one spelling per option: --angle is no --angles
         help=help_text,
         description=f"{description or help_text[0].upper() + help_text[1:]}. {UNITS}",
     )
@@ -389,6 +390,26 @@ PARAMETER_OPTIONS: dict[str, str] = {
 """The library's parameter names whose option has another name (``run_predict(speeds=)`` is
 ``--speed``); every other parameter is its option's ``dest`` (``racket_speed`` →
 ``--racket-speed``)."""
+
+
+SAME_CONCEPT: tuple[tuple[str, ...], ...] = (
+    # where on the face: oblique's impact point, predict's CSV of points, a ball fixed on the
+    # strings (rig, identify, compare, compound), twist's point on the long axis
+    ("--point", "--points", "--ball-at", "--x"),
+    ("--speed", "--ball-speed"),  # the ball's speed; --ball-speed in swing, oblique, twist before
+)
+"""Options that name one concept in different commands, each group in the order to suggest:
+an unknown option of a group is told the first other one the command has (the new-user
+trial of 2026-11-27: ``compound --ball-at`` was told "did you mean --ball-law?")."""
+
+
+def same_concept(name: str, options: Sequence[str]) -> list[str]:
+    """The command's option (of ``options``) for the concept another command calls ``name``
+    (:data:`SAME_CONCEPT`), as a list of one, or an empty list."""
+    for group in SAME_CONCEPT:
+        if name in group:
+            return [other for other in group if other != name and other in options][:1]
+    return []
 
 
 LIBRARY_READERS: dict[str, str] = {
