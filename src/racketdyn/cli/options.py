@@ -416,6 +416,7 @@ LIBRARY_READERS: dict[str, str] = {
     "read it with `read_hammer_uff`": "run racketdyn frf on it first (it makes the FRFs from "
     "the time records)",
     "read it with `read_frf_uff`": "it holds FRFs already: give it to racketdyn identify",
+    "as `write_modes_uff` writes it": "as racketdyn identify and compare write it (modes*.uff)",
 }
 """The library's pointers to its readers (:func:`racketdyn.io.uff` names the function in
 backticks), in the command line's words: the command that reads such a file."""
