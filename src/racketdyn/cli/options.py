@@ -9,6 +9,7 @@ stays fast.  The copies of the library's constants below are checked against it 
 from __future__ import annotations
 
 import argparse
+import functools
 import logging
 import math
 import re
@@ -552,7 +553,8 @@ def setup_from_args(
     """The :class:`~racketdyn.workflows.setup.Setup` of a command's options: the one place
     where options become the set-up's fields (``--modal`` → ``modal_model``, ``--ball-mass``,
     ``--e-bg``, ``--e-bg-table``, ``--ball-law`` → ``ball``, the hand's options → ``hand``,
-    ``--no-figures`` → no ``figures``).  An option the command lacks leaves its field's default.
+    ``--no-figures`` → no ``figures``; ``words``: the command's flags for the library's parameter
+    names in run.json, :func:`in_flags`).  An option the command lacks leaves its field's default.
 
     Parameters
     ----------
@@ -579,11 +581,13 @@ def setup_from_args(
     for name in ("racket", "string_bed", "allow_implausible"):
         if hasattr(args, name):
             fields[name] = getattr(args, name)
+    parser = getattr(args, "parser", None)  # set by `racketdyn.cli.parse`
     return Setup(
         **fields,
         command=tuple(command_line(args)),
         figures=None if getattr(args, "no_figures", False) else figures,
         progress=progress,
+        words=None if parser is None else functools.partial(in_flags, parser=parser),
     )
 
 
