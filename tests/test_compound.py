@@ -543,8 +543,9 @@ def test_compound_command_writes_its_files(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("argv", "words"),
     [
-        (["--point=0.9,0"], "--point"),
-        (["--point", "0.5"], "--point"),
+        (["--ball-at=0.9,0"], "--ball-at"),
+        (["--ball-at", "0.5"], "--ball-at"),
+        (["--ball-at=0.5,0", "--point=0.5,0"], "give --ball-at alone"),
         (["--support", "moon"], "--support"),
         (["--preload", "-1"], "--preload -1"),
         # new-user trial (2026-11-26, second session): 5000 N was taken (a 169 kN/m spring)
@@ -980,7 +981,7 @@ def test_compound_says_which_mode_leads_at_the_neck_and_where_the_node_line_is(
     assert node == pytest.approx(float(nodes[0]), abs=1e-3)
     on_node = tmp_path / "on_node"
     argv = ["compound", "--racket", str(out.parent / "pro100.toml"), "--support", "free",
-            f"--point={node:.3f},0", "--no-figures", "--out", str(on_node)]  # fmt: skip
+            f"--ball-at={node:.3f},0", "--no-figures", "--out", str(on_node)]  # fmt: skip
     capsys.readouterr()
     assert main(argv) == 0
     said = " ".join(capsys.readouterr().out.split())
@@ -1217,7 +1218,7 @@ def test_compound_says_the_spring_is_the_centres_and_when_the_ball_overhangs_the
     said = {}
     for name, point in (("centre", "0.51,0"), ("near", "0.62,0"), ("over", "0.66,0")):
         capsys.readouterr()
-        assert main([*common, f"--point={point}", "--out", str(tmp_path / name)]) == 0
+        assert main([*common, f"--ball-at={point}", "--out", str(tmp_path / name)]) == 0
         said[name] = " ".join(capsys.readouterr().out.split())
         record = json.loads((tmp_path / name / "run.json").read_text(encoding="utf-8"))
         assert record["ball_overhangs_bed"] is (name == "over")
@@ -1232,13 +1233,13 @@ def test_with_the_ball_on_the_node_line_compound_points_at_the_blow(
 ) -> None:
     """The hand-over line's advice: the built-in racket's ball already sits 3 mm from the node
     line, so with a blow 40 mm away the line must point at the blow (``--hammer``), not
-    suggest moving the ball there (it said ``--point=0.508,0``)."""
+    suggest moving the ball there (it said ``--point=0.508,0``, now ``--ball-at``)."""
     argv = ["compound", "--support", "free", "--hammer", "0.465,0", "--no-figures"]
     capsys.readouterr()
     assert main([*argv, "--out", str(tmp_path)]) == 0
     said = " ".join(capsys.readouterr().out.split())
     assert "the 2-node mode leads from the start" in said
-    assert "--point=" not in said
+    assert "--ball-at=" not in said
     assert "strike nearer the ball (--hammer)" in said
 
 
@@ -1254,7 +1255,7 @@ def test_compound_takes_the_law_at_the_ball_with_string_bed_local(tmp_path: Path
     runs = {}
     for law in ("uniform", "local"):
         out = tmp_path / law
-        argv = ["compound", "--point=0.625,0", "--support", "free", "--no-figures"]
+        argv = ["compound", "--ball-at=0.625,0", "--support", "free", "--no-figures"]
         assert main([*argv, "--string-bed", law, "--out", str(out)]) == 0
         runs[law] = json.loads((out / "run.json").read_text(encoding="utf-8"))
         with (out / "compound.csv").open(newline="", encoding="utf-8") as handle:
@@ -1279,3 +1280,23 @@ def test_the_band_holds_a_local_springs_own_ball_mode_near_the_frame(racket, bui
         band = ball_mode_band(racket, model, "free", point, local, Ball())
         assert band.bed_stiffness_n_per_m[0] <= local.bed_stiffness <= band.bed_stiffness_n_per_m[1]
         assert band.holds(band.nominal_hz)
+
+
+def test_compound_names_the_balls_place_as_rig_and_identify_do(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """New-user trial (2026-11-27, ninth session): ``compound --ball-at 0.51,0``, rig's word for
+    a ball fixed on the strings, was told "did you mean --ball-law?".  compound takes
+    ``--ball-at`` (one name for one option across commands); ``--point``, its documented old
+    name, still works and says it is now ``--ball-at``."""
+    common = ["compound", "--support", "free", "--no-figures"]
+    assert main([*common, "--ball-at", "0.53,0", "--out", str(tmp_path / "new")]) == 0
+    assert "--point" not in capsys.readouterr().out
+    assert main([*common, "--point=0.53,0", "--out", str(tmp_path / "old")]) == 0
+    said = " ".join(capsys.readouterr().out.split())
+    assert "--point is now --ball-at" in said
+    new, old = (
+        json.loads((tmp_path / name / "run.json").read_text(encoding="utf-8"))
+        for name in ("new", "old")
+    )
+    assert new["point_m"] == old["point_m"] == pytest.approx([0.53, 0.0])

@@ -227,3 +227,90 @@ def test_every_public_figure_function_is_in_the_api_reference() -> None:
         if id(getattr(importlib.import_module(module_name), name)) not in documented:
             missing.append(target)
     assert not missing, f"add to a listed module's __all__ (docs/api/index.rst): {missing}"
+
+
+def test_the_racket_page_shows_what_racket_prints(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """New-user trial (2026-11-27, ninth session): racket.md's sample output lacked four lines
+    the command prints (pitch inertia about the grip, head area, played-bed tension, free
+    reduced mass); the page's sample is the command's output, line for line."""
+    monkeypatch.setenv("COLUMNS", "104")
+    assert main(["racket"]) == 0
+    printed = [line.rstrip() for line in capsys.readouterr().out.splitlines() if line.strip()]
+    text = (DOCS / "commands" / "racket.md").read_text(encoding="utf-8")
+    (sample,) = re.findall(r"```text\n(.*?)```", text, flags=re.DOTALL)
+    assert [line.rstrip() for line in sample.splitlines() if line.strip()] == printed
+
+
+LARGE_HEAD = """schema_version = 1
+name = "102 sq in"
+[racket]
+mass_kg = 0.285
+length_m = 0.685
+balance_m = 0.335
+swingweight_kgcm2 = 315.0
+grip_m = 0.070
+[head]
+centre_x_m = 0.510
+half_length_m = 0.170
+area_cm2 = 658.06
+[strings]
+tension_n = 220.0
+mains = 16
+crosses = 19
+[modal]
+first_bending_hz = 165.0
+"""
+"""The new-user trial's racket of 2026-11-27 (ninth session): 102 sq in, 285 g."""
+
+
+def test_the_readmes_frame_shots_are_the_default_grids(tmp_path: Path) -> None:
+    """New-user trial (2026-11-27, ninth session): the README said frame shots are "the default
+    grid's outer ring"; on a 102 sq in head points of a second ring along the sides (x = 623
+    mm, y = ±55 mm, 37 mm inside the edge across y) were frame shots too, their nearest edge
+    closer than straight across.  The README's count is the default grid's, on both rackets,
+    and every frame shot lies within a ball's radius of the nearest edge."""
+    import logging
+
+    import numpy as np
+
+    from racketdyn.impact.result import STATUS_FRAME_CONTACT
+    from racketdyn.workflows import PredictOptions, Setup, run_predict
+
+    readme = " ".join((DOCS.parent / "README.md").read_text(encoding="utf-8").split())
+    claim = re.search(r"(\d+) of the default grid's (\d+) points", readme)
+    assert claim, "the README's frame-shot sentence"
+    (tmp_path / "large.toml").write_text(LARGE_HEAD, encoding="utf-8")
+    logging.disable(logging.WARNING)
+    try:
+        for racket in (None, tmp_path / "large.toml"):
+            result = run_predict(
+                tmp_path / str(racket is None),
+                Setup(racket=racket),
+                PredictOptions(speeds=[15.0, 25.0], racket_speed=[10.0]),
+            ).result
+            shots = (np.asarray(result.status) == STATUS_FRAME_CONTACT).any(axis=(1, 2))
+            head = (rd.load_racket(racket) if racket else rd.default_racket()).head
+            edge = head.distance_to_edge(result.locations)
+            assert (int(shots.sum()), shots.size) == (int(claim[1]), int(claim[2])), racket
+            assert edge[shots].max() < 0.5 * rd.Ball().diameter_m < edge[~shots].min()
+    finally:
+        logging.disable(logging.NOTSET)
+
+
+def test_the_report_page_says_how_frf_runs_are_labelled() -> None:
+    """New-user trial (2026-11-27, ninth session): an FRF run made on the side
+    (``extra/frf_free_nowin``) showed on the page as ``free_nowin``, a label the docs never
+    explained; report.md says how a label is made, with the report's own labels."""
+    from racketdyn.report.folder import _frf_label
+
+    page = " ".join((DOCS / "commands" / "report.md").read_text(encoding="utf-8").split())
+    for folder, record, label in (
+        ("extra/frf_free_nowin", {}, "free_nowin"),
+        ("frf_free", {}, "free"),
+        ("hand_test", {"tests_file": "lab/hammer_hand.uff"}, "hand"),
+    ):
+        assert _frf_label(Path(folder), record) == label
+        assert f"`{label}`" in page, label
+    assert "`extra/frf_free_nowin`" in page

@@ -442,3 +442,13 @@ def test_general_shapes_round_trip_through_xarray() -> None:
         np.testing.assert_array_equal(flat.get_lines()[0].get_ydata(), shapes.nodes_line_shapes[1])
     finally:
         plt.close(figure)
+
+
+def test_read_step_data_is_a_name_of_the_workflows_package() -> None:
+    """New-user trial (2026-11-27, ninth session): ``racketdyn.workflows.read_step_data`` was
+    an AttributeError beside ``read_figure_data``; both are the package's names."""
+    import racketdyn.workflows as workflows
+    from racketdyn.workflows import figure_data
+
+    assert workflows.read_step_data is figure_data.read_step_data
+    assert "read_step_data" in workflows.__all__

@@ -303,9 +303,8 @@ def test_speed_curves_and_axis_curves_hatch_and_count_flagged_rows(racket, ball)
             assert np.all(np.isnan(y[flagged[i, :, p]]))
             assert np.all(np.isfinite(y[~flagged[i, :, p]]))
     hatched = [patch.get_label() for patch in ax.patches if patch.get_hatch()]
-    assert f"flagged, no valid value: {int(flagged.sum())} of {flagged.size} impacts (hatched)" in (
-        hatched
-    )
+    count = f"{int(flagged.sum())} of these curves' {flagged.size} impacts"
+    assert f"flagged, no valid value: {count} (hatched)" in hatched
     plt.close(figure)
 
     x = np.linspace(0.45, 0.65, 9)
@@ -320,7 +319,8 @@ def test_speed_curves_and_axis_curves_hatch_and_count_flagged_rows(racket, ball)
     assert crosses
     assert all(ln.get_transform() != ax.transData for ln in crosses)  # not at e = 0
     hatched = [patch.get_label() for patch in ax.patches if patch.get_hatch()]
-    assert f"flagged, no valid value: {int(missing.sum())} of 9 points (hatched)" in hatched
+    count = f"{int(missing.sum())} of these curves' 9 points"
+    assert f"flagged, no valid value: {count} (hatched)" in hatched
     plt.close(figure)
 
 
@@ -385,10 +385,8 @@ def test_swing_figures_hatch_and_count_flagged_rows(racket, ball) -> None:
     assert crosses
     assert all(ln.get_transform() != ax.transData for ln in crosses)  # at the foot, no value
     hatched = [patch.get_label() for patch in ax.patches if patch.get_hatch()]
-    assert (
-        f"flagged, no valid value: {int(flagged.sum())} of {flagged.size} impacts (hatched)"
-        in hatched
-    )
+    count = f"{int(flagged.sum())} of these curves' {flagged.size} impacts"
+    assert f"flagged, no valid value: {count} (hatched)" in hatched
     plt.close(figure)
 
     swung = results[2]

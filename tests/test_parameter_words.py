@@ -202,3 +202,34 @@ def test_the_frf_hint_names_the_parameter_and_the_cli_its_flag() -> None:
     assert in_flags("choose one with `reference` (its node)", command_parser("identify")) == (
         "choose one with --reference (its node)"
     )
+
+
+def test_run_json_speaks_the_words_of_whoever_ran_the_step(tmp_path: Path) -> None:
+    """New-user trial (2026-11-27, ninth session): frf's force-noise hint in run.json (shown
+    in the report's provenance table) said "give `force_window_s` 0.01" to a user of the
+    command, whose console said ``--force-window``.  A command's run.json says its flags (the
+    console's translation, :func:`in_flags`); a Python call's keeps the parameter's name."""
+    import json
+
+    import racketdyn as rd
+    from racketdyn.io import write_hammer_uff
+    from racketdyn.rig import hammer_points, rig_model, simulate_hammer_test
+    from racketdyn.workflows import run_frf
+
+    rig = rig_model(rd.default_racket(), "free")
+    locations, nodes = hammer_points(rig.racket, n_frame=2, n_strings=6)
+    records = simulate_hammer_test(
+        rig, locations, nodes, tuple(locations[0]), nodes[0], seed=2
+    )  # the rig's default noise: 0.02 N rms on the force
+    tests = write_hammer_uff(records, tmp_path / "hammer.uff")
+    assert main(["frf", str(tests), "--out", str(tmp_path / "cli")]) == 0
+    run_frf(tests, tmp_path / "py")
+    hints = {
+        how: json.loads((tmp_path / how / "run.json").read_text(encoding="utf-8"))["force_noise"][
+            "hint"
+        ]
+        for how in ("cli", "py")
+    }
+    assert "give --force-window 0.01" in hints["cli"]
+    assert "`" not in hints["cli"]
+    assert "give `force_window_s` 0.01" in hints["py"]

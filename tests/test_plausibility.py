@@ -190,8 +190,8 @@ SLIPS = {
         ("--offsets", "y=-50", "did you give millimetres"),
     ),
     "compound-point-in-cm": (
-        _step("compound", "--point=51,0"),
-        ("--point at x=51", "did you give centimetres"),
+        _step("compound", "--ball-at=51,0"),
+        ("--ball-at at x=51", "did you give centimetres"),
     ),
     "swing-torque-in-n-mm": (
         _step("swing", "--torque", "56900"),

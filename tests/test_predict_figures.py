@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import csv
 import logging
+import re
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -358,3 +359,28 @@ def test_predict_headline_gives_the_outgoing_speed_of_a_serve(
     outgoing = (1.0 + row["rebound_ratio"]) * 40.0
     assert 40.0 < outgoing < 80.0
     assert f"{outgoing:.1f}" in out
+
+
+def test_force_and_contact_time_count_their_own_curves_impacts(draw: Any) -> None:
+    """New-user trial (2026-11-27, ninth session): Figs 11–12's legend said "86 of 276 impacts"
+    flagged while the console said 142 of 276 rows of impact.csv: the figure counts its own
+    sweep over ball speed (three points × its speeds × the supports), the same denominator by
+    coincidence.  The legend says whose impacts it counts, with the curves' own count."""
+    result, drawn = draw(speeds=[30.0], supports=["free", "pinned"], grid=5)
+    figure = drawn["fig11_12_force_contact_time.png"]
+    assert result.paper_figures is not None
+    curves = result.paper_figures.speed_curves
+    hatched = {
+        patch.get_label()
+        for ax in figure.axes
+        for patch in ax.patches
+        if patch.get_hatch() and not patch.get_label().startswith("_")
+    }
+    assert hatched, "the top's impacts are flagged (the frame takes over 30 %)"
+    (label,) = hatched
+    match = re.fullmatch(r"flagged, no valid value: (\d+) of these curves' (\d+) impacts.*", label)
+    assert match, label
+    flagged = np.asarray(curves.status)[: len(curves.labels)] != "ok"  # the three points
+    assert (int(match[1]), int(match[2])) == (int(flagged.sum()), flagged.size)
+    assert result.approximate is not None
+    assert flagged.size != np.asarray(result.approximate.status).size  # not the run's rows

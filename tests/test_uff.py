@@ -523,3 +523,61 @@ def test_the_cli_names_the_command_for_the_wrong_kind_of_file(
     assert "no time records" in said
     assert "read_frf_uff" not in said
     assert "racketdyn identify" in said
+
+
+@pytest.fixture
+def modes_uff(tmp_path: Path) -> Path:
+    """What identify and compare write: ``modes_free.uff`` (UFF 55) beside
+    ``modal_model_free.json``."""
+    from racketdyn.io import write_modes_uff
+    from racketdyn.modal import ModalModel
+
+    model = ModalModel.read_json(Path(__file__).parent / "data" / "demo_modal_model_free.json")
+    model.write_json(tmp_path / "modal_model_free.json")
+    return write_modes_uff(model, tmp_path / "modes_free.uff")
+
+
+def test_a_modal_model_uff_given_as_the_modal_model_names_the_json_beside(
+    modes_uff: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """New-user trial (2026-11-27, ninth session): ``predict --modal compare/modes_free.uff``
+    said "not a racketdyn modal model JSON file (Extra data: line 2 column 5 (char 11))": the
+    error names what the file is (UFF 55 mode shapes, as identify and compare write) and the
+    JSON beside it to give instead."""
+    from racketdyn.cli import main
+    from racketdyn.workflows import PredictOptions, run_predict
+    from racketdyn.workflows.setup import Setup
+
+    argv = ["predict", "--modal", str(modes_uff), "--no-figures", "--out", str(tmp_path / "p")]
+    assert main(argv) == 2
+    said = " ".join(capsys.readouterr().err.split())
+    assert "Extra data" not in said
+    assert "--modal" in said
+    assert "mode shapes (UFF data set 55)" in said
+    assert "racketdyn identify and compare write" in said
+    assert f"give {tmp_path / 'modal_model_free.json'}" in said
+    with pytest.raises(InputError) as caught:  # a Python caller hears its own words
+        run_predict(tmp_path / "py", Setup(modal_model=modes_uff), PredictOptions(grid=3))
+    assert "`modal_model`" in str(caught.value)
+    assert "`write_modes_uff`" in str(caught.value)
+    (tmp_path / "modal_model_free.json").unlink()
+    assert main(argv) == 2
+    said = " ".join(capsys.readouterr().err.split())
+    assert "give the modal_model*.json" in said
+
+
+def test_identify_on_a_modal_model_uff_says_it_holds_mode_shapes_not_frfs(
+    modes_uff: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """New-user trial (2026-11-27, ninth session): ``identify compare/modes_free.uff`` (its own
+    UFF 55 output) was told to "export FRFs … spectra and PSDs … are not read": it is told the
+    file is a modal model (mode shapes), not FRFs, and where the model's JSON is."""
+    from racketdyn.cli import main
+
+    for command in ("identify", "frf"):
+        assert main([command, str(modes_uff), "--out", str(tmp_path / command)]) == 2
+        said = " ".join(capsys.readouterr().err.split())
+        assert "spectra and PSDs" not in said, command
+        assert "mode shapes (UFF data set 55)" in said, command
+        assert "a modal model, as racketdyn identify and compare write" in said, command
+        assert "modal_model_free.json" in said, command

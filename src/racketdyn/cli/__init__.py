@@ -82,11 +82,19 @@ class _Parser(argparse.ArgumentParser):
         """Refuse arguments this command does not take, with the option each is nearest to."""
         import difflib
 
-        options = [s for a in self._actions for s in a.option_strings if s.startswith("--")]
+        options = [
+            s
+            for a in self._actions
+            if a.help != argparse.SUPPRESS  # an old name kept working is not suggested
+            for s in a.option_strings
+            if s.startswith("--")
+        ]
         words = []
         for extra in extras:
             name = extra.split("=", 1)[0]
-            near = difflib.get_close_matches(name, options, n=1, cutoff=0.6)
+            near = opt.same_concept(name, options) or difflib.get_close_matches(
+                name, options, n=1, cutoff=0.6
+            )
             hint = f" (did you mean {near[0]}?)" if name.startswith("-") and near else ""
             words.append(f"{extra}{hint}")
         self.error(f"unrecognized arguments: {' '.join(words)}")
@@ -107,6 +115,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The ``racketdyn`` parser with every subcommand."""
     parser = _Parser(
         prog="racketdyn",
+        allow_abbrev=False,  # one spelling per option: a prefix is an unknown option
         description="Tennis racket impact dynamics: rebound ball speed over the string face "
         f"(Kawazoe's approximate method, and a transient simulation of the contact). {opt.UNITS}",
     )

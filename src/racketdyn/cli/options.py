@@ -9,6 +9,7 @@ stays fast.  The copies of the library's constants below are checked against it 
 from __future__ import annotations
 
 import argparse
+import functools
 import logging
 import math
 import re
@@ -47,6 +48,7 @@ def command(
     """A subcommand with ``-v``; the description ends with the units note."""
     parser: argparse.ArgumentParser = commands.add_parser(
         name,
+        allow_abbrev=False,  # one spelling per option: --angle is no --angles
         help=help_text,
         description=f"{description or help_text[0].upper() + help_text[1:]}. {UNITS}",
     )
@@ -391,10 +393,31 @@ PARAMETER_OPTIONS: dict[str, str] = {
 ``--racket-speed``)."""
 
 
+SAME_CONCEPT: tuple[tuple[str, ...], ...] = (
+    # where on the face: oblique's impact point, predict's CSV of points, a ball fixed on the
+    # strings (rig, identify, compare, compound), twist's point on the long axis
+    ("--point", "--points", "--ball-at", "--x"),
+    ("--speed", "--ball-speed"),  # the ball's speed; --ball-speed in swing, oblique, twist before
+)
+"""Options that name one concept in different commands, each group in the order to suggest:
+an unknown option of a group is told the first other one the command has (the new-user
+trial of 2026-11-27: ``compound --ball-at`` was told "did you mean --ball-law?")."""
+
+
+def same_concept(name: str, options: Sequence[str]) -> list[str]:
+    """The command's option (of ``options``) for the concept another command calls ``name``
+    (:data:`SAME_CONCEPT`), as a list of one, or an empty list."""
+    for group in SAME_CONCEPT:
+        if name in group:
+            return [other for other in group if other != name and other in options][:1]
+    return []
+
+
 LIBRARY_READERS: dict[str, str] = {
     "read it with `read_hammer_uff`": "run racketdyn frf on it first (it makes the FRFs from "
     "the time records)",
     "read it with `read_frf_uff`": "it holds FRFs already: give it to racketdyn identify",
+    "as `write_modes_uff` writes it": "as racketdyn identify and compare write it (modes*.uff)",
 }
 """The library's pointers to its readers (:func:`racketdyn.io.uff` names the function in
 backticks), in the command line's words: the command that reads such a file."""
@@ -530,7 +553,8 @@ def setup_from_args(
     """The :class:`~racketdyn.workflows.setup.Setup` of a command's options: the one place
     where options become the set-up's fields (``--modal`` → ``modal_model``, ``--ball-mass``,
     ``--e-bg``, ``--e-bg-table``, ``--ball-law`` → ``ball``, the hand's options → ``hand``,
-    ``--no-figures`` → no ``figures``).  An option the command lacks leaves its field's default.
+    ``--no-figures`` → no ``figures``; ``words``: the command's flags for the library's parameter
+    names in run.json, :func:`in_flags`).  An option the command lacks leaves its field's default.
 
     Parameters
     ----------
@@ -557,11 +581,13 @@ def setup_from_args(
     for name in ("racket", "string_bed", "allow_implausible"):
         if hasattr(args, name):
             fields[name] = getattr(args, name)
+    parser = getattr(args, "parser", None)  # set by `racketdyn.cli.parse`
     return Setup(
         **fields,
         command=tuple(command_line(args)),
         figures=None if getattr(args, "no_figures", False) else figures,
         progress=progress,
+        words=None if parser is None else functools.partial(in_flags, parser=parser),
     )
 
 

@@ -862,12 +862,18 @@ def _records_of(path: Path, contents: _Contents, func_type: int) -> list[_Record
         TIME_RESPONSE: ("time records", "read_hammer_uff"),
         FREQUENCY_RESPONSE: ("FRFs", "read_frf_uff"),
     }
-    hint = (
-        f"; read it with `{what[other][1]}`"
-        if any(r.func_type == other for r in contents.records)
-        else "; export FRFs (function type 4) or the time records of the hammer and the sensor "
-        "(1): spectra and PSDs (2, 3, 9, 12) are not read"
-    )
+    if any(r.func_type == other for r in contents.records):
+        hint = f"; read it with `{what[other][1]}`"
+    elif MODE_SHAPES in contents.types:
+        beside = model_json_beside(path)
+        hint = f"; {mode_shapes_words(what[func_type][0])}" + (
+            f"; its modal model's JSON is {beside}" if beside else ""
+        )
+    else:
+        hint = (
+            "; export FRFs (function type 4) or the time records of the hammer and the sensor "
+            "(1): spectra and PSDs (2, 3, 9, 12) are not read"
+        )
     raise InputError(
         f"{path}: no {what[func_type][0]} (data set 58, function type {func_type}): the file "
         f"holds {_describe_types(contents)}{hint}"
@@ -1957,6 +1963,43 @@ def write_hammer_csv(
     return path, geometry_path
 
 
+MODE_SHAPES = 55
+"""Data set of a normal mode's shape (:func:`write_modes_uff`)."""
+MODES_FILE = re.compile(r"modes(?P<label>[\w-]*)\.uff")
+"""Name of the mode-shape UFF an identification writes (``workflows.identify.write_model``)
+beside its model's JSON, ``modal_model<label>.json``."""
+
+
+def model_json_beside(path: Path) -> Path | None:
+    """The racketdyn modal-model JSON written beside a mode-shape UFF (``modes_free.uff`` →
+    ``modal_model_free.json``, as :data:`MODES_FILE` says), if it is there."""
+    match = MODES_FILE.fullmatch(Path(path).name)
+    beside = None if match is None else Path(path).with_name(f"modal_model{match['label']}.json")
+    return beside if beside is not None and beside.is_file() else None
+
+
+def mode_shapes_words(instead: str) -> str:
+    """What a file of mode shapes is, given where ``instead`` was wanted (FRFs, a model's
+    JSON): its data set, and who writes such files (`write_modes_uff`, in backticks: the CLI
+    names its commands, ``cli.options.LIBRARY_READERS``)."""
+    return (
+        f"it holds mode shapes (UFF data set {MODE_SHAPES}): a modal model, as "
+        f"`write_modes_uff` writes it, not {instead}"
+    )
+
+
+def holds_mode_shapes(path: Path) -> bool:
+    """A Universal File whose data sets are mode shapes (55) and no functions (58): a modal
+    model exported for other programs, never a racketdyn model's JSON (read by its structure
+    alone, :func:`racketdyn.io.uff_structure.check_structure`; a damaged file is not one)."""
+    try:
+        blocks = check_structure(Path(path), Path(path).read_bytes())
+    except (InputError, OSError):
+        return False
+    types = {block.type for block in blocks}
+    return MODE_SHAPES in types and 58 not in types
+
+
 def write_modes_uff(
     model: ModalModel, path: Path | str, nodes: Sequence[int] | None = None
 ) -> Path:
@@ -2020,7 +2063,7 @@ def write_modes_uff(
         _finite(target, f"mode {k + 1} shape", k + 1, shape)
         sets.append(
             {
-                "type": 55,
+                "type": MODE_SHAPES,
                 "id1": _ascii_line(f"racketdyn {__version__} {model.names[k]}"),
                 "id2": _ascii_line(f"{model.support} support; {model.source}"),
                 "id3": _ascii_line(f"{scaling}, {where}"),

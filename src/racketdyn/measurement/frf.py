@@ -116,9 +116,11 @@ class FrfEstimate:
         windowed = float(np.median(self.force_noise_share_windowed))
         if now - windowed <= FORCE_NOISE_SHARE:
             return ""
+        top = None if self.frfs is None else self.frfs.metadata.get("bandwidth_hz")
+        band = "the band" if top is None else f"the band up to {top:.0f} Hz"
         return (
             f"the force's noise after the pulse is over {FORCE_NOISE_RATIO:.0%} of its spectrum "
-            f"on {now:.0%} of the band at the median point (H1 reads low there; "
+            f"on {now:.0%} of {band} at the median point (H1 reads low there; "
             f"{windowed:.0%} with a force window): give `force_window_s` "
             f"{SUGGESTED_FORCE_WINDOW_S:g} (s, longer than the longest pulse)"
         )

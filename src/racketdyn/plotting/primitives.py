@@ -178,7 +178,8 @@ def mark_flagged_spans(
     what : str
         What a row is, in the legend ("impacts").
     total : int
-        Rows drawn in all, for "N of M".
+        Rows of the curves in all, for "N of these curves' M" (the figure's own rows, which
+        a sweep over speed makes other than the run's).
     """
     flagged = np.asarray(flagged, dtype=bool).reshape(len(x), -1)
     anywhere = np.asarray(flagged.any(axis=1), dtype=bool)
@@ -187,7 +188,10 @@ def mark_flagged_spans(
     everywhere = np.asarray(flagged.all(axis=1), dtype=bool)
     edges = np.concatenate([[x[0]], 0.5 * (x[1:] + x[:-1]), [x[-1]]])
     width = 0.01 * float(np.ptp(x) or 1.0)
-    label = f"flagged, no valid value: {int(flagged.sum())} of {total} {what} (hatched)"
+    # the curves' own rows (a figure's sweep over speed is not the run's impacts: the trial of
+    # 2026-11-27 read "86 of 276" against the console's 142 of the run's 276)
+    count = f"{int(flagged.sum())} of these curves' {total} {what}"
+    label = f"flagged, no valid value: {count} (hatched)"
     for mask, top in ((anywhere & ~everywhere, 0.06), (everywhere, 1.0)):
         for first, last in _runs(mask):
             low, high = float(edges[first]), float(edges[last + 1])

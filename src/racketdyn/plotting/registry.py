@@ -314,7 +314,8 @@ FIGURES: dict[str, FigureEntry] = {
             "panels per racket speed, titled with it ({racket_speed}); the run's speeds are "
             "marked on the row of their racket speed, its options are in the title; speeds where "
             "an impact is flagged (no valid value) are hatched, crosses at the foot mark each, "
-            "and the legend counts them",
+            "and the legend counts them among the curves' own impacts (the three points × the "
+            "curves' speeds × the supports: not the run's rows, which the console counts)",
             paper="Figs 11 and 12",
             section="impact",
             draw=f"{_FIGURES}:figure_force_and_contact_time",

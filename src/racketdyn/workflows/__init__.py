@@ -28,7 +28,8 @@ What each step's figures draw is computed by the step (:mod:`racketdyn.workflows
 :class:`PaperFigures`, :class:`TransientCurves`, :class:`ComparisonMap`,
 :class:`TransientHistories`, :class:`SwingAxisCurves`, :class:`IdentifiedRebound`, each with
 ``to_xarray``/``from_xarray``) and written to its folder's ``figures.nc``
-(:func:`read_figure_data` reads it back).
+(:func:`read_figure_data` reads it back; :func:`read_step_data` gives a folder's figure data,
+which :func:`racketdyn.plotting.registry.draw` redraws).
 
 What every step shares — the racket and its modes, the ball, the hand, the string bed, the
 plausibility override, the command, the figure hook and the progress display — travels in one
@@ -66,6 +67,7 @@ if TYPE_CHECKING:
         TransientCurves,
         TransientHistories,
         read_figure_data,
+        read_step_data,
     )
     from racketdyn.workflows.frf import FrfResult, run_frf
     from racketdyn.workflows.identify import (
@@ -98,6 +100,7 @@ _WHERE = {
     "TransientCurves": "figure_data",
     "TransientHistories": "figure_data",
     "read_figure_data": "figure_data",
+    "read_step_data": "figure_data",
     "BallCompareResult": "identify",
     "BallResult": "ball",
     "run_ball": "ball",
@@ -168,6 +171,7 @@ __all__ = [
     "TwistResult",
     "ValidateResult",
     "read_figure_data",
+    "read_step_data",
     "run_ball",
     "run_calibrate",
     "run_compare",

@@ -367,7 +367,7 @@ def run_compound(
     out: str | os.PathLike[str],
     setup: Setup = DEFAULT_SETUP,
     *,
-    point: ArrayLike | None = None,
+    ball_at: ArrayLike | None = None,
     supports: Sequence[str] = ("free", "hand"),
     preload_n: float = PRELOAD_N,
     hammer: ArrayLike | None = None,
@@ -387,8 +387,10 @@ def run_compound(
     setup : Setup
         Of the :class:`~racketdyn.workflows.setup.Setup`, compound uses the racket and its
         modes, the ball, the hand and the string bed; and the run (command, figures, progress).
-    point : array_like (2,), optional
-        Where the ball sits (x, y), m (default the centre of the string bed).
+    ball_at : array_like (2,), optional
+        Where the ball sits (x, y), m (default the centre of the string bed); the name
+        :class:`~racketdyn.workflows.RigOptions` and :func:`run_compare_ball
+        <racketdyn.workflows.identify.run_compare_ball>` give a ball on the strings.
     supports : sequence of str
         ``free``, ``pinned``, ``hand`` (the modes of each).
     preload_n : float
@@ -405,7 +407,7 @@ def run_compound(
     used = setup.racket_setup()
     the_racket = used.racket
     defaults_used = [*used.defaults, *setup.defaults]
-    xy = _ball_point(the_racket, point, defaults_used)
+    xy = _ball_point(the_racket, ball_at, defaults_used)
     the_hand, hand_defaults = setup.hand_used(checked)
     the_ball, ball_defaults = setup.ball_used()
     defaults_used += [*hand_defaults, *ball_defaults]
@@ -459,20 +461,20 @@ def run_compound(
     return setup.finish(result, inputs, "compound")
 
 
-def _ball_point(the_racket: Racket, point: ArrayLike | None, defaults_used: list[str]) -> tuple[
+def _ball_point(the_racket: Racket, ball_at: ArrayLike | None, defaults_used: list[str]) -> tuple[
     float, float
 ]:  # fmt: skip
-    """Where the ball sits (x, y), m: ``point``, or the bed's centre (said in
+    """Where the ball sits (x, y), m: ``ball_at``, or the bed's centre (said in
     ``defaults_used``); refused outside the head."""
-    if point is None:
+    if ball_at is None:
         xy = (the_racket.head.centre_x_m, the_racket.head.centre_y_m)
-        defaults_used.append("point: the centre of the string bed")
+        defaults_used.append("ball_at: the centre of the string bed")
     else:
-        values = np.asarray(point, dtype=float).ravel()
+        values = np.asarray(ball_at, dtype=float).ravel()
         if values.size != 2 or not np.all(np.isfinite(values)):
-            raise InputError("`point`: give the ball's position as x,y in m, e.g. 0.505,0")
+            raise InputError("`ball_at`: give the ball's position as x,y in m, e.g. 0.505,0")
         xy = (float(values[0]), float(values[1]))
-    the_racket.head.check_inside(np.array([xy]), "`point`")
+    the_racket.head.check_inside(np.array([xy]), "`ball_at`")
     return xy
 
 
@@ -492,7 +494,7 @@ def _hammer_point(
         )
         head.check_inside(
             np.array([strike]),
-            f"the hammer point (`point` minus {1e3 * HAMMER_OFFSET_M:.0f} mm; `hammer`)",
+            f"the hammer point (`ball_at` minus {1e3 * HAMMER_OFFSET_M:.0f} mm; `hammer`)",
         )
     else:
         values = np.asarray(hammer, dtype=float).ravel()

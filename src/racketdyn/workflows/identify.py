@@ -267,6 +267,7 @@ def write_model(identification: Identification, out: Path, label: str = "") -> l
     ``fit_quality<label>.csv`` (x, y[, z] as the FRFs' points, empty without coordinates) and
     ``dropped_modes<label>.csv`` of one identification; returns the paths."""
     model = identification.model
+    # modes<label>.uff beside modal_model<label>.json: io.uff.MODES_FILE, model_json_beside
     paths = [out / f"modes{label}.csv", out / f"modal_model{label}.json", out / f"modes{label}.uff"]
     identification.write_modes_csv(paths[0])
     model.write_json(paths[1])

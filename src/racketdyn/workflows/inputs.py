@@ -21,6 +21,7 @@ from racketdyn.errors import InputError
 from racketdyn.impact.hand import Hand
 from racketdyn.io import default_racket, load_racket, read_e_bg_table, read_load_deflection
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, check_racket, read_toml
+from racketdyn.io.uff import holds_mode_shapes, mode_shapes_words, model_json_beside
 from racketdyn.io.uncertainty_file import racket_spreads
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_e_bg
@@ -145,6 +146,7 @@ def setup(
         path = Path(modal)
         if not path.is_file():
             raise InputError(f"`modal_model` {modal}: no such modal model file")
+        _refuse_mode_shapes(path)
         loaded = replace(loaded, modal_model_file=path)
         provenance["modal_model_file"] = str(path.resolve())
         provenance["modal_model_sha256"] = sha256(path)
@@ -164,6 +166,19 @@ def setup(
         model.require_locations("a prediction")
         model.require_mass_normalised("a prediction")
     return RacketSetup(loaded, model, provenance, defaults, rigid)
+
+
+def _refuse_mode_shapes(path: Path) -> None:
+    """A mode-shape UFF given as the modal model (identify's ``modes.uff`` for its
+    ``modal_model.json``; the new-user trial of 2026-11-27 was told "Extra data: line 2
+    column 5"): said what it is, and the JSON to give."""
+    if not holds_mode_shapes(path):
+        return
+    beside = model_json_beside(path)
+    give = f"give {beside}" if beside else "give the modal_model*.json written with it"
+    raise InputError(
+        f"`modal_model` {path}: {mode_shapes_words('a racketdyn modal model JSON file')}; {give}"
+    )
 
 
 def _states_frequency(path: Path) -> bool:

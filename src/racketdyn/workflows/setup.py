@@ -77,6 +77,12 @@ class Setup:
         ``figures(result, out) -> paths`` (none without it).
     progress : callable, optional
         ``progress(what, done, total)`` for a progress display.
+    words : callable, optional
+        ``words(text) -> text``: run.json's texts (a hint, a note) in the caller's words.  The
+        library names its parameters in backticks (`` `force_window_s` ``); the command line
+        gives its own translation (:func:`racketdyn.cli.options.in_flags` with the command's
+        parser: ``--force-window``), as it does for the errors and log lines it prints, so the
+        report shows the command's words (default: the library's).
     """
 
     racket: RacketInput = None
@@ -90,6 +96,7 @@ class Setup:
     command: Sequence[str] | None = None
     figures: FigureHook | None = None
     progress: Progress | None = None
+    words: Callable[[str], str] | None = None
 
     def replace(self, **changes: Any) -> Setup:
         """A copy with ``changes`` (field names as keywords)."""
@@ -138,7 +145,19 @@ class Setup:
         step : str
             The step's name, for a Python call's command record.
         """
+        if self.words is not None:
+            inputs = _in_words(inputs, self.words)
         return finish_run(result, inputs, command_record(self.command, step), self.figures)
+
+
+def _in_words(value: Any, words: Callable[[str], str]) -> Any:
+    """``value`` (run.json's inputs: tables, lists, texts) with every text that names a
+    parameter in backticks put in ``words``."""
+    if isinstance(value, dict):
+        return {key: _in_words(item, words) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_in_words(item, words) for item in value]
+    return words(value) if isinstance(value, str) and "`" in value else value
 
 
 DEFAULT_SETUP = Setup()
