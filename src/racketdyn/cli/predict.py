@@ -216,6 +216,7 @@ def _headline(
     import numpy as np
     from rich.table import Table
 
+    from racketdyn.impact.result import is_valid
     from racketdyn.racket import landmark_points
 
     centre = np.asarray(landmark_points(racket)["centre"])
@@ -252,7 +253,7 @@ def _headline(
     for p, support in enumerate(result.supports):
         for s, speed in enumerate(result.ball_speed):
             status = str(result.status[i, s, p])
-            valid = status == "ok"
+            valid = bool(is_valid(status))  # a row filled from the transient model holds numbers
             table.add_row(
                 support,
                 f"{speed:g}",

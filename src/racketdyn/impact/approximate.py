@@ -83,6 +83,7 @@ __all__ = [
     "Shapes",
     "StiffnessReading",
     "VibrationCharge",
+    "approach_energy",
     "approximate_impacts",
     "contact_spectra",
     "elastic_contact_time",
@@ -106,6 +107,35 @@ off.  With the contact's own pulse and the momentum balance (2026-11-27, the axi
 tip landmark): the 496 rows at or below 30 % within 0.0042 and the 16 from 30 to 40 % within
 0.0042 as well; kept at 30 % (the paper's charge, and rows the transient does not give, are
 not measured above it)."""
+
+
+def approach_energy(
+    ball_mass: float, reduced_mass: ArrayLike, speed: ArrayLike
+) -> NDArray[np.float64]:
+    """The approach energy ``½ μ V²`` of ball and racket, J: the energy of their motion
+    towards each other, which the impact may turn into rebound, losses and vibration; the
+    energy :data:`VIBRATION_SHARE_LIMIT` and the report's vibration share are shares of.
+
+    Parameters
+    ----------
+    ball_mass : float
+        m_B, kg.
+    reduced_mass : array_like
+        The racket's reduced mass M_r at the impact point, kg (eq 4).
+    speed : array_like
+        The relative speed V = V_Bo + V_Ro (ball and racket towards each other), m/s.
+
+    Returns
+    -------
+    ndarray
+        ``½ μ V²`` with ``μ = m_B M_r / (m_B + M_r)`` (the pair's reduced mass, whose
+        natural period is eq 7's contact time).
+    """
+    reduced = np.asarray(reduced_mass, dtype=float)
+    mu = ball_mass * reduced / (ball_mass + reduced)
+    return np.asarray(0.5 * mu * np.asarray(speed, dtype=float) ** 2)
+
+
 VibrationCharge = Literal["coupled", "paper"]
 VIBRATION_CHARGES: tuple[str, ...] = get_args(VibrationCharge)
 
@@ -640,7 +670,7 @@ def approximate_impacts(
     rebound_ratio = (cor - mass_ratio) / (1.0 + mass_ratio)
     status = np.zeros(deflection.shape, dtype=np.int8)  # STATUSES[0]: ok
     with np.errstate(invalid="ignore"):
-        over = vibration_energy > VIBRATION_SHARE_LIMIT * 0.5 * mu * speed**2
+        over = vibration_energy > VIBRATION_SHARE_LIMIT * approach_energy(m_b, reduced_mass, speed)
     status[in_range & valid & over] = STATUSES.index(STATUS_VIBRATION_SHARE)
     status[in_range & ~valid] = STATUSES.index(STATUS_VIBRATION_LOSS)
     status[frame] = STATUSES.index(STATUS_FRAME_CONTACT)

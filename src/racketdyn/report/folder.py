@@ -16,7 +16,7 @@ import math
 import os
 import re
 import shlex
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -345,6 +345,15 @@ class Impacts:
         """The row among ``rows`` nearest the point (x, y), m."""
         distance = np.hypot(self["x_m"][rows] - x, self["y_m"][rows] - y)
         return int(rows[int(np.argmin(distance))])
+
+    def cases(self, x: float, y: float) -> Iterator[tuple[str, float, NDArray[np.intp], int]]:
+        """Each support and ball speed with rows: ``(support, speed, rows, row nearest (x, y))``
+        (m), supports in the table's order, speeds ascending."""
+        for support in self.supports:
+            for speed in self.speeds:
+                selected = self.rows(speed, support)
+                if selected.size:
+                    yield support, speed, selected, self.nearest(selected, x, y)
 
 
 STEP_NAMES = (

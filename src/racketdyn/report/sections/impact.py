@@ -28,24 +28,18 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             return None
         return {"figures": figures, "centre": None, "rows": [], "glance": []}
     x, y = run.centre(impacts)
-    rows = []
-    for support in impacts.supports:
-        for speed in impacts.speeds:
-            selected = impacts.rows(speed, support)
-            if not selected.size:
-                continue
-            i = impacts.nearest(selected, x, y)
-            rows.append(
-                (
-                    support,
-                    f"{speed:g}",
-                    fmt(impacts["contact_time_s"][i] * 1e3, ".2f"),
-                    fmt(impacts["mean_force_n"][i], ".0f"),
-                    fmt(impacts["peak_force_n"][i], ".0f"),
-                    fmt(impacts["peak_deflection_m"][i] * 1e3, ".1f"),
-                    fmt(impacts["stiffness_n_per_m"][i] / 1e3, ".1f"),
-                )
-            )
+    rows = [
+        (
+            support,
+            f"{speed:g}",
+            fmt(impacts["contact_time_s"][i] * 1e3, ".2f"),
+            fmt(impacts["mean_force_n"][i], ".0f"),
+            fmt(impacts["peak_force_n"][i], ".0f"),
+            fmt(impacts["peak_deflection_m"][i] * 1e3, ".1f"),
+            fmt(impacts["stiffness_n_per_m"][i] / 1e3, ".1f"),
+        )
+        for support, speed, _, i in impacts.cases(x, y)
+    ]
     i0 = impacts.nearest(np.arange(impacts.support.size), x, y)
     glance = []
     speed, racket_speed = shown_case(run.record(folder), impacts)
