@@ -23,7 +23,7 @@ import racketdyn as rd
 from racketdyn.cli import main
 from racketdyn.impact.result import STATUS_FROM_TRANSIENT, STATUS_OK, summary_rows
 from racketdyn.report.folder import RunFolder
-from racketdyn.report.sections import rebound, vibration
+from racketdyn.report.sections import impact, rebound, vibration
 
 SPEEDS = (15.0, 25.0)
 RACKET_SPEED = 10.0
@@ -111,6 +111,29 @@ def test_the_largest_vibration_counts_rows_filled_from_the_transient(
         (line,) = [r for r in data["rows"] if r[1] == f"{speed:g}"]
         assert line[4] == f"{float(row['vibration_energy_j']):.3g} (transient model)"
         assert line[5] == _where(row)
+
+
+def test_the_centre_s_headline_names_the_model_of_a_filled_row(
+    predicted: Path, tmp_path: Path
+) -> None:
+    """The face centre's contact time and rebound ratio "At a glance" from a filled row say
+    which model gave them."""
+    out = tmp_path / "run"
+    shutil.copytree(predicted, out)
+    run = RunFolder.scan(out)
+    impacts = run.impacts()
+    assert impacts is not None
+    x, y = run.centre(impacts)
+    path = out / "predict" / "impact.csv"
+    rows = _rows(path)
+    for speed in impacts.speeds:
+        rows[impacts.nearest(impacts.rows(speed, "pinned"), x, y)]["status"] = STATUS_FROM_TRANSIENT
+    _write(path, rows)
+    data = impact.gather(RunFolder.scan(out))
+    assert data is not None
+    (line,) = data["glance"]
+    assert line.startswith("face centre")
+    assert line.endswith("(transient model)")
 
 
 def test_the_vibration_share_is_of_the_approach_energy(predicted: Path) -> None:

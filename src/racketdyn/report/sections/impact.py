@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 
 from racketdyn._display import case_words
+from racketdyn.impact.result import model_note
 from racketdyn.plotting.registry import in_section
 from racketdyn.report.folder import RunFolder, shown_case
 from racketdyn.report.formatting import fmt
@@ -51,7 +52,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 f"face centre, {case_words(speed, racket_speed, support)}: contact time "
                 f"{fmt(impacts['contact_time_s'][i] * 1e3, '.2f')} ms, mean force "
                 f"{fmt(impacts['mean_force_n'][i], '.0f')} N, rebound ratio "
-                f"{fmt(impacts['rebound_ratio'][i], '.3f')}"
+                f"{fmt(impacts['rebound_ratio'][i], '.3f')}{model_note(impacts.status[i])}"
             )
             break
     return {
