@@ -187,3 +187,15 @@ def test_the_console_headline_shows_a_row_filled_from_the_transient() -> None:
     text = console.export_text()
     assert f"{float(result.rebound_ratio[0, 0, 0]):.3f}" in text
     assert "from the transient model" in text
+
+
+def test_the_console_does_not_call_filled_rows_flagged() -> None:
+    """``predict --model both`` printed "flagged: 96 of … rows (see its status column): … 64
+    from the transient model: beyond the approximate method", rows that hold numbers."""
+    from racketdyn.cli.predict import _flagged
+
+    status = np.array([STATUS_OK, STATUS_FROM_TRANSIENT, STATUS_FROM_TRANSIENT])
+    line, style = _flagged(status, "impact.csv")
+    assert line.startswith("flagged: none of 3 rows in impact.csv")
+    assert "2 filled from the transient model" in line
+    assert style is None
