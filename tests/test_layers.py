@@ -238,6 +238,12 @@ STILL_EVALUATING: dict[str, str] = {}
 PURE_HELPERS = {
     "racketdyn.impact.result.shown_speed_index",  # which of the run's speeds a table shows
     "racketdyn.impact.result.invalidate_table",  # NaN in the flagged rows of a table read back
+    "racketdyn.impact.result.is_valid",  # which rows of a table hold numbers (ok or filled)
+    "racketdyn.impact.result.extreme_row",  # the valid row of a headline's highest/lowest value
+    "racketdyn.impact.result.model_note",  # "(transient model)" after a filled row's number
+    # the approach energy ½ μ V² of a row's own masses and speeds: the one definition the 30 %
+    # rule and the report's vibration share use (arithmetic on the file's numbers, no model)
+    "racketdyn.impact.approximate.approach_energy",
     "racketdyn.workflows.run.sha256",  # a file's hash, for the provenance table
     "racketdyn.workflows.run.write_pending",  # the step's computed data into its files
     "racketdyn.workflows.shape_figures.is_racket_model",  # whether modes have racket names

@@ -216,6 +216,7 @@ def _headline(
     import numpy as np
     from rich.table import Table
 
+    from racketdyn.impact.result import is_valid
     from racketdyn.racket import landmark_points
 
     centre = np.asarray(landmark_points(racket)["centre"])
@@ -252,7 +253,7 @@ def _headline(
     for p, support in enumerate(result.supports):
         for s, speed in enumerate(result.ball_speed):
             status = str(result.status[i, s, p])
-            valid = status == "ok"
+            valid = bool(is_valid(status))  # a row filled from the transient model holds numbers
             table.add_row(
                 support,
                 f"{speed:g}",
@@ -291,17 +292,26 @@ def _band(band: UncertainResult, at: tuple[int, int, int]) -> str:
 
 
 def _flagged(status: Any, csv_name: str) -> tuple[str, str | None]:
-    """How many rows are flagged, by reason, and the line's style (yellow when any is)."""
+    """How many rows are flagged (without numbers), by reason, and the line's style (yellow
+    when any is); the rows filled from the transient model, which hold numbers, apart."""
     import numpy as np
 
-    bad = status != "ok"
+    from racketdyn.impact.result import STATUS_FROM_TRANSIENT, is_valid
+
+    filled = int(np.count_nonzero(status == STATUS_FROM_TRANSIENT))
+    also = (
+        f"; {filled} filled from the transient model (valid, marked so in its status column)"
+        if filled
+        else ""
+    )
+    bad = ~is_valid(status)
     if not np.any(bad):
-        return f"flagged: none of {opt.plural(status.size, 'row')} in {csv_name}", None
+        return f"flagged: none of {opt.plural(status.size, 'row')} in {csv_name}{also}", None
     reasons, counts = np.unique(status[bad], return_counts=True)
     why = "; ".join(f"{count} {reason}" for reason, count in zip(reasons, counts, strict=True))
     return (
         f"flagged: {int(bad.sum())} of {opt.plural(status.size, 'row')} in {csv_name} "
-        f"(see its status column): {why}",
+        f"(see its status column): {why}{also}",
         "yellow",
     )
 

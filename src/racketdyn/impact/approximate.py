@@ -83,6 +83,7 @@ __all__ = [
     "Shapes",
     "StiffnessReading",
     "VibrationCharge",
+    "approach_energy",
     "approximate_impacts",
     "contact_spectra",
     "elastic_contact_time",
@@ -110,6 +111,35 @@ the same share (2026-11-27, review): single modes of 600–2000 Hz and 0.3–10 
 membrane mode charged (``include_string_bed``), 10–40 m/s, free and pinned, within 0.0113 of
 the transient model up to 30 % at the turn, 0.024 from 30 to 50 %, 0.058 from 80 to 100 %;
 beyond 100 % e_r passed 1 (energy from nowhere, rebound ratios up to 0.96 off)."""
+
+
+def approach_energy(
+    ball_mass: float, reduced_mass: ArrayLike, speed: ArrayLike
+) -> NDArray[np.float64]:
+    """The approach energy ``½ μ V²`` of ball and racket, J: the energy of their motion
+    towards each other, which the impact may turn into rebound, losses and vibration; the
+    energy :data:`VIBRATION_SHARE_LIMIT` and the report's vibration share are shares of.
+
+    Parameters
+    ----------
+    ball_mass : float
+        m_B, kg.
+    reduced_mass : array_like
+        The racket's reduced mass M_r at the impact point, kg (eq 4).
+    speed : array_like
+        The relative speed V = V_Bo + V_Ro (ball and racket towards each other), m/s.
+
+    Returns
+    -------
+    ndarray
+        ``½ μ V²`` with ``μ = m_B M_r / (m_B + M_r)`` (the pair's reduced mass, whose
+        natural period is eq 7's contact time).
+    """
+    reduced = np.asarray(reduced_mass, dtype=float)
+    mu = ball_mass * reduced / (ball_mass + reduced)
+    return np.asarray(0.5 * mu * np.asarray(speed, dtype=float) ** 2)
+
+
 VibrationCharge = Literal["coupled", "paper"]
 VIBRATION_CHARGES: tuple[str, ...] = get_args(VibrationCharge)
 
@@ -646,7 +676,7 @@ def approximate_impacts(
     # than the approach energy at the turn would give e_r > 1, energy from nowhere
     frame_energy = np.maximum(vibration_energy, turn_energy)
     with np.errstate(invalid="ignore"):
-        over = frame_energy > VIBRATION_SHARE_LIMIT * 0.5 * mu * speed**2
+        over = frame_energy > VIBRATION_SHARE_LIMIT * approach_energy(m_b, reduced_mass, speed)
     status[in_range & valid & over] = STATUSES.index(STATUS_VIBRATION_SHARE)
     status[in_range & ~valid] = STATUSES.index(STATUS_VIBRATION_LOSS)
     status[frame] = STATUSES.index(STATUS_FRAME_CONTACT)

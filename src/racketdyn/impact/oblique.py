@@ -585,6 +585,9 @@ class ObliqueCurve:
         Tangential impulse (N·s) and friction loss (J).
     status : ndarray of str
         ``ok`` or why a row is NaN.
+    racket_speed_mps : float
+        The racket's speed towards the ball at the point, m/s (0: at rest), so that every
+        figure and table of the curve names it beside the ball's.
     """
 
     ball_speed_mps: float
@@ -599,6 +602,7 @@ class ObliqueCurve:
     tangential_impulse_ns: NDArray[np.float64]
     friction_loss_j: NDArray[np.float64]
     status: NDArray[np.str_]
+    racket_speed_mps: float = 0.0
 
     _LABELS: ClassVar[dict[str, tuple[str, str]]] = {
         "incoming_angle_deg": ("degree", "incoming angle to the face normal"),
@@ -619,7 +623,7 @@ class ObliqueCurve:
 
         Coordinates ``incoming_angle_deg`` and ``incoming_spin_radps`` on ``impact``; every
         other array a variable with ``units`` and ``long_name`` (``gripped``; ``status``, ``ok``
-        or why the row is NaN); the attribute ``ball_speed_mps``.
+        or why the row is NaN); the attributes ``ball_speed_mps`` and ``racket_speed_mps``.
 
         Returns
         -------
@@ -642,7 +646,10 @@ class ObliqueCurve:
         return xr.Dataset(
             data,
             coords={name: labelled(name) for name in incoming},
-            attrs={"ball_speed_mps": float(self.ball_speed_mps)},
+            attrs={
+                "ball_speed_mps": float(self.ball_speed_mps),
+                "racket_speed_mps": float(self.racket_speed_mps),
+            },
         )
 
 
@@ -1105,7 +1112,7 @@ def oblique_curve(
             impacts.append(
                 _combine(incoming, normal, _tangential_part(force, ball, incoming, tangential))
             )
-    return _curve(speed, angles, spins, impacts)
+    return _curve((speed, v_racket), angles, spins, impacts)
 
 
 def _incoming_grid(
@@ -1142,18 +1149,20 @@ _CURVE_VALUES = (
 
 
 def _curve(
-    speed: float,
+    speeds: tuple[float, float],
     angles: NDArray[np.float64],
     spins: NDArray[np.float64],
     impacts: list[ObliqueImpact],
 ) -> ObliqueCurve:
-    """The curve of the impacts, one per incoming angle × spin (in their flat order)."""
+    """The curve of the impacts, one per incoming angle × spin (in their flat order), of a
+    ball and a racket at ``speeds`` (m/s)."""
 
     def values(name: str, dtype: Any) -> NDArray[Any]:
         return np.array([getattr(i, name) for i in impacts], dtype=dtype).reshape(angles.shape)
 
     return ObliqueCurve(
-        ball_speed_mps=speed,
+        ball_speed_mps=speeds[0],
+        racket_speed_mps=float(speeds[1]),
         incoming_angle_deg=np.array(angles, dtype=float),
         incoming_spin_radps=np.array(spins, dtype=float),
         gripped=values("gripped", bool),

@@ -25,6 +25,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "CSV_COLUMNS",
+    "FROM_TRANSIENT_NOTE",
     "IMPACT_LOGGERS",
     "IMPACT_QUANTITIES",
     "INVALIDATED",
@@ -41,12 +42,16 @@ __all__ = [
     "STATUS_SECOND_CONTACT",
     "STATUS_VIBRATION_LOSS",
     "STATUS_VIBRATION_SHARE",
+    "VALID_STATUSES",
     "ImpactResult",
     "Quantity",
+    "extreme_row",
     "impact_columns",
     "impact_warnings_quiet",
     "invalidate_table",
     "invalidated_columns",
+    "is_valid",
+    "model_note",
     "shown_case_index",
     "shown_speed_index",
     "slug",
@@ -199,6 +204,69 @@ STATUS_MEANING = (
     "stay)"
 )
 """What the ``status`` column and variable hold."""
+
+
+VALID_STATUSES: tuple[str, ...] = (STATUS_OK, STATUS_FROM_TRANSIENT)
+"""Statuses of rows whose numbers are results: the method's own (``ok``) and, with both
+models, the transient model's in a row the approximate method cannot give (valid, marked
+so)."""
+
+FROM_TRANSIENT_NOTE = "(transient model)"
+"""What a number taken from a row filled from the transient model says after it."""
+
+
+def is_valid(status: ArrayLike) -> NDArray[np.bool_]:
+    """Which rows hold results (:data:`VALID_STATUSES`), element-wise.
+
+    Parameters
+    ----------
+    status : array_like of str
+        Rows' statuses.
+    """
+    return np.isin(np.asarray(status, dtype=str), VALID_STATUSES)
+
+
+def model_note(status: str) -> str:
+    """`` (transient model)`` for a number of a row filled from the transient model, else
+    empty: the words after every number a headline or table picks from such a row."""
+    return f" {FROM_TRANSIENT_NOTE}" if str(status) == STATUS_FROM_TRANSIENT else ""
+
+
+def extreme_row(
+    values: ArrayLike,
+    status: ArrayLike,
+    rows: ArrayLike | None = None,
+    *,
+    smallest: bool = False,
+) -> int | None:
+    """The row of the largest (or smallest) value among the valid rows: the one rule for
+    every "highest", "best", "largest", "quietest" and sweet-spot number a headline, table or
+    console gives (new-user trial, ninth session: rows filled from the transient model were
+    passed over, and a lower number called the face's highest).
+
+    Parameters
+    ----------
+    values, status : array_like
+        One number and one status per row (flat, or the same shape: flattened alike).
+    rows : array_like of int, optional
+        The flat indices to choose among; by default all.
+    smallest : bool
+        The smallest value instead of the largest.
+
+    Returns
+    -------
+    int or None
+        The flat index of the row (the first of equal values), None when no row of ``rows``
+        is valid (:data:`VALID_STATUSES`) with a finite value.
+    """
+    value = np.asarray(values, dtype=float).reshape(-1)
+    among = np.arange(value.size) if rows is None else np.asarray(rows, dtype=np.intp)
+    state = np.asarray(status, dtype=str).reshape(-1)[among]
+    usable = among[is_valid(state) & np.isfinite(value[among])]
+    if not usable.size:
+        return None
+    pick = np.argmin if smallest else np.argmax
+    return int(usable[int(pick(value[usable]))])
 
 
 def invalidated_columns(status: str) -> tuple[str, ...]:
@@ -600,7 +668,8 @@ def summary_rows(result: Any) -> list[tuple[str, str]]:
         ``status``, ``rebound_ratio``, ``modal_model`` and ``inputs``.
     """
     n, s, p = result.shape
-    flagged = int(np.count_nonzero(result.status != STATUS_OK))
+    flagged = int(np.count_nonzero(~is_valid(result.status)))
+    filled = int(np.count_nonzero(result.status == STATUS_FROM_TRANSIENT))
     model = result.modal_model
     rows = [
         ("shape", f"{n} points × {s} ball speeds × {p} supports"),
@@ -610,9 +679,11 @@ def summary_rows(result: Any) -> list[tuple[str, str]]:
         ("supports", words(result.supports)),
         ("method", shorten(str(result.inputs.get("method", "?")))),
         ("modes", "none (rigid)" if model is None else f"{model.frequency.size}"),
-        ("rebound ratio", span(result.rebound_ratio[result.status == STATUS_OK])),
-        ("flagged", f"{flagged} of {result.status.size} not ok"),
+        ("rebound ratio", span(result.rebound_ratio[is_valid(result.status)])),
+        ("flagged", f"{flagged} of {result.status.size} without numbers"),
     ]
+    if filled:
+        rows.insert(-1, ("from the transient model", f"{filled} of {result.status.size}"))
     return rows
 
 

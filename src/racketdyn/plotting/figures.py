@@ -24,6 +24,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from numpy.typing import NDArray
 
+from racketdyn._display import case_words
 from racketdyn.errors import InputError
 from racketdyn.measurement.records import FRF_UNITS
 from racketdyn.plotting.primitives import (
@@ -1205,7 +1206,8 @@ def figure_oblique(
     stiffness = "rigid grip" if contact.rigid else f"k_t = {contact.stiffness_n_per_m:.3g} N/m"
     figure.suptitle(
         f"Oblique impacts at x = {location[0] * 1e3:.0f} mm, y = {location[1] * 1e3:.0f} mm, "
-        f"ball {curve.ball_speed_mps:g} m/s, {support}: μ = {contact.friction_coefficient:g}, "
+        f"{case_words(curve.ball_speed_mps, curve.racket_speed_mps, support)}: "
+        f"μ = {contact.friction_coefficient:g}, "
         f"{stiffness} (spin depends strongly on k_t)",
         fontsize=10,
     )

@@ -16,7 +16,7 @@ import math
 import os
 import re
 import shlex
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -346,6 +346,15 @@ class Impacts:
         distance = np.hypot(self["x_m"][rows] - x, self["y_m"][rows] - y)
         return int(rows[int(np.argmin(distance))])
 
+    def cases(self, x: float, y: float) -> Iterator[tuple[str, float, NDArray[np.intp], int]]:
+        """Each support and ball speed with rows: ``(support, speed, rows, row nearest (x, y))``
+        (m), supports in the table's order, speeds ascending."""
+        for support in self.supports:
+            for speed in self.speeds:
+                selected = self.rows(speed, support)
+                if selected.size:
+                    yield support, speed, selected, self.nearest(selected, x, y)
+
 
 STEP_NAMES = (
     "rig",
@@ -436,12 +445,25 @@ def _step_of(folder: Path, record: Mapping[str, Any]) -> str | None:
     return step if step in STEP_NAMES else None
 
 
+BALL_LABEL = "ball"
+"""The label of the model of the racket with the ball on its strings: an ``identify
+--ball-at`` run's, and ``compare --ball-at``'s ``modes_ball.csv``."""
+
+
 def _label_of(step: str, folder: Path, record: Mapping[str, Any]) -> str:
     if step == "frf":
         return _frf_label(folder, record)
     if step == "identify":
+        # the ball on the strings (identify --ball-at): not its support's racket model
+        if record.get("ball_at_m"):
+            return BALL_LABEL
         return str(record.get("support") or folder.name)
     return ""
+
+
+def _model_words(label: str) -> str:
+    """A model's label in words: the ball-on-strings model, else the support's."""
+    return "ball-on-strings" if label == BALL_LABEL else label
 
 
 def _compared(folder: Path) -> set[str]:
@@ -540,24 +562,31 @@ def _choose(
             left_out.append((folder, f"{named.name}={_rel(run_dir, named.folder)} given"))
         else:
             found.setdefault(key, []).append(folder)
-    # one identified model per support: compare holds the free and hand models of its FRFs
-    compares = [s.folder for s in given if s.step == "compare"] + found.get(("compare", ""), [])
+    # one identified model per support: compare holds the free and hand models of its FRFs,
+    # compare --ball-at the ball-on-strings model (with the racket alone's)
+    compares = [
+        *(s.folder for s in given if s.step in ("compare", "compare_ball")),
+        *found.get(("compare", ""), []),
+        *found.get(("compare_ball", ""), []),
+    ]
     covered = {label: folder for folder in compares for label in _compared(folder)}
     for s in given:
         if s.step == "identify" and s.label in covered:
             where = covered[s.label]
+            holder = _step_of(where, records.get(where, {})) or "compare"
             if where in chosen:
                 raise InputError(
                     f"`steps` identify={_rel(run_dir, s.folder)} and "
-                    f"compare={_rel(run_dir, where)} both give the {s.label} model; give one"
+                    f"{holder}={_rel(run_dir, where)} both give the "
+                    f"{_model_words(s.label)} model; give one"
                 )
-            for folder in found.pop(("compare", ""), []):
+            for folder in found.pop((holder, ""), []):
                 left_out.append((folder, f"identify={_rel(run_dir, s.folder)} given"))
-            covered = {}
+            covered = {k: v for k, v in covered.items() if v != where}
     for key in [k for k in found if k[0] == "identify" and k[1] in covered]:
         for folder in found.pop(key):
             holder = _rel(run_dir, covered[key[1]])
-            left_out.append((folder, f"{holder} holds the {key[1]} model"))
+            left_out.append((folder, f"{holder} holds the {_model_words(key[1])} model"))
     for (step, label), folders in found.items():
         if len(folders) > 1:
             names = [_rel(run_dir, f) for f in folders]
@@ -797,6 +826,19 @@ class RunFolder:
     def predict_dir(self) -> Path | None:
         """The folder of ``racketdyn predict``."""
         return self.first("impact.csv") or self.first(file_of("fig15_rebound_along_axis"))
+
+    @property
+    def ball_identification(self) -> Path | None:
+        """The folder of the ``identify --ball-at`` run the report uses (the model of the racket
+        with the ball on its strings), if any."""
+        return next(
+            (
+                s.folder
+                for s in self.steps
+                if s.step == "identify" and self.record(s.folder).get("ball_at_m")
+            ),
+            None,
+        )
 
     @property
     def frf_dirs(self) -> list[tuple[str, Path]]:

@@ -70,6 +70,7 @@ SPIN_CAVEAT = (
 
 OBLIQUE_COLUMNS = (
     "ball_speed_mps",
+    "racket_speed_mps",
     "incoming_angle_deg",
     "incoming_spin_radps",
     "outgoing_angle_deg",
@@ -377,7 +378,8 @@ def _oblique_rows(curve: ObliqueCurve) -> list[dict[str, Any]]:
     return [
         {
             "ball_speed_mps": curve.ball_speed_mps,
-            **{name: getattr(curve, name)[i] for name in OBLIQUE_COLUMNS[1:]},
+            "racket_speed_mps": curve.racket_speed_mps,
+            **{name: getattr(curve, name)[i] for name in OBLIQUE_COLUMNS[2:]},
         }
         for i in range(curve.incoming_angle_deg.size)
     ]

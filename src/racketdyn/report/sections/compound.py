@@ -7,6 +7,7 @@ from typing import Any
 
 from racketdyn.impact.compound_band import PAPER_BALL_MODE_HZ
 from racketdyn.plotting.registry import file_of, in_section
+from racketdyn.racket_modal.shapes import BALL_MODE_NAME
 from racketdyn.report.folder import Row, RunFolder, number, read_csv
 from racketdyn.report.formatting import fmt
 
@@ -120,10 +121,17 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     shown = [figure for figure in in_section("compound") if figure.step == "compound"]
     figures = [(folder / figure.file, "") for figure in shown]
     measured = run.first("ball_comparison.csv")
+    identified = run.ball_identification
     if measured is not None:
         figures.append((measured / file_of("fig9_frf_alone_and_ball"), ""))
         statements += _measured(
             read_csv(measured / "ball_comparison.csv", ("mode",)), run.record(measured), record
+        )
+    elif identified is not None:
+        statements += _identified(
+            read_csv(identified / "modes.csv", ("frequency_hz", "name")),
+            run.record(identified),
+            record,
         )
     return {
         "spring": _spring(record),
@@ -149,8 +157,33 @@ def _measured(rows: list[Row], test: dict[str, Any], model: dict[str, Any]) -> l
     ]
     if not ball:
         return ["measured (compare --ball-at): no mode of the ball on the strings identified."]
-    f_measured = number(ball[0], "frequency_ball_hz")
-    words = f"measured (compare --ball-at): a new mode at {f_measured:.1f} Hz with the ball"
+    words = _against_band(number(ball[0], "frequency_ball_hz"), "compare --ball-at", test, model)
+    if shifts:
+        words += (
+            f"; the {len(shifts)} racket modes paired by MAC move by {max(shifts):.1f} % at most"
+        )
+    return [words + "."]
+
+
+def _identified(rows: list[Row], test: dict[str, Any], model: dict[str, Any]) -> list[str]:
+    """The statement from an ``identify --ball-at`` run's ``modes.csv`` (no ``compare
+    --ball-at``): its mode named the ball on the strings against the model's band."""
+    ball = [r for r in rows if r.get("name") == BALL_MODE_NAME]
+    if not ball:
+        return [
+            f"measured (identify --ball-at): no mode named “{BALL_MODE_NAME}” among the modes "
+            "identified."
+        ]
+    return [_against_band(number(ball[0], "frequency_hz"), "identify --ball-at", test, model) + "."]
+
+
+def _against_band(
+    f_measured: float, command: str, test: dict[str, Any], model: dict[str, Any]
+) -> str:
+    """The measured ball mode (Hz) of a ``command`` run, held against the model's band of the
+    small-amplitude inputs when the ball sat at the same point in the test (``test``: its
+    run.json) and in the model (``model``: compound's)."""
+    words = f"measured ({command}): a new mode at {f_measured:.1f} Hz with the ball"
     support = str(test.get("support") or "free")
     band = (model.get("ball_mode_band") or {}).get(support)
     at, point = test.get("ball_at_m"), model.get("point_m")
@@ -170,11 +203,7 @@ def _measured(rows: list[Row], test: dict[str, Any], model: dict[str, Any]) -> l
                 f"{at[0] * 1e3:.0f}, {at[1] * 1e3:.0f} mm in the test and "
                 f"{point[0] * 1e3:.0f}, {point[1] * 1e3:.0f} mm in the model)"
             )
-    if shifts:
-        words += (
-            f"; the {len(shifts)} racket modes paired by MAC move by {max(shifts):.1f} % at most"
-        )
-    return [words + "."]
+    return words
 
 
 _SAME_POINT_M = 0.005

@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 
 from racketdyn._display import case_words
+from racketdyn.impact.result import model_note
 from racketdyn.plotting.registry import in_section
 from racketdyn.report.folder import RunFolder, shown_case
 from racketdyn.report.formatting import fmt
@@ -28,24 +29,18 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             return None
         return {"figures": figures, "centre": None, "rows": [], "glance": []}
     x, y = run.centre(impacts)
-    rows = []
-    for support in impacts.supports:
-        for speed in impacts.speeds:
-            selected = impacts.rows(speed, support)
-            if not selected.size:
-                continue
-            i = impacts.nearest(selected, x, y)
-            rows.append(
-                (
-                    support,
-                    f"{speed:g}",
-                    fmt(impacts["contact_time_s"][i] * 1e3, ".2f"),
-                    fmt(impacts["mean_force_n"][i], ".0f"),
-                    fmt(impacts["peak_force_n"][i], ".0f"),
-                    fmt(impacts["peak_deflection_m"][i] * 1e3, ".1f"),
-                    fmt(impacts["stiffness_n_per_m"][i] / 1e3, ".1f"),
-                )
-            )
+    rows = [
+        (
+            support,
+            f"{speed:g}",
+            fmt(impacts["contact_time_s"][i] * 1e3, ".2f"),
+            fmt(impacts["mean_force_n"][i], ".0f"),
+            fmt(impacts["peak_force_n"][i], ".0f"),
+            fmt(impacts["peak_deflection_m"][i] * 1e3, ".1f"),
+            fmt(impacts["stiffness_n_per_m"][i] / 1e3, ".1f"),
+        )
+        for support, speed, _, i in impacts.cases(x, y)
+    ]
     i0 = impacts.nearest(np.arange(impacts.support.size), x, y)
     glance = []
     speed, racket_speed = shown_case(run.record(folder), impacts)
@@ -57,7 +52,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 f"face centre, {case_words(speed, racket_speed, support)}: contact time "
                 f"{fmt(impacts['contact_time_s'][i] * 1e3, '.2f')} ms, mean force "
                 f"{fmt(impacts['mean_force_n'][i], '.0f')} N, rebound ratio "
-                f"{fmt(impacts['rebound_ratio'][i], '.3f')}"
+                f"{fmt(impacts['rebound_ratio'][i], '.3f')}{model_note(impacts.status[i])}"
             )
             break
     return {

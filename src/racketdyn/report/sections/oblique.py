@@ -8,8 +8,9 @@ from typing import Any
 
 import numpy as np
 
+from racketdyn._display import case_words
 from racketdyn.plotting.registry import file_of
-from racketdyn.report.folder import RunFolder, number, read_csv, to_float
+from racketdyn.report.folder import Row, RunFolder, number, read_csv, to_float
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = (
@@ -81,7 +82,7 @@ def _oblique(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
             "mu": fmt(contact.get("friction_coefficient"), "g"),
             "k_t": fmt(contact.get("stiffness_n_per_m"), ".3g"),
             "half_period": fmt(to_float(str(contact.get("grip_period_s"))) * 0.5e3, ".2f"),
-            "speed": fmt(record.get("ball_speed_mps"), "g"),
+            "speed": case_words(*_speeds(record)),
             "point": ", ".join(fmt(v * 1e3, ".0f") for v in record.get("point_m", [])),
             "support": str(record.get("support", "?")),
         }
@@ -89,12 +90,14 @@ def _oblique(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
     usable = [r for r in rows if r.get("status") == "ok"]
     if usable:
         shown = min(usable, key=lambda r: abs(abs(number(r, "incoming_angle_deg")) - 30))
+        ball, racket = _speeds(record, shown)
         glance.append(
-            f"oblique impact at {number(shown, 'incoming_angle_deg'):g}°, ball "
-            f"{number(shown, 'ball_speed_mps'):g} m/s, {record.get('support', '?')}: "
+            f"oblique impact at {number(shown, 'incoming_angle_deg'):g}°, "
+            f"{case_words(ball, racket, str(record.get('support', '?')))}: "
             f"leaves at {number(shown, 'outgoing_angle_deg'):.1f}° with "
-            f"{number(shown, 'outgoing_spin_radps'):.0f} rad/s of spin (the spin "
-            "depends strongly on the tangential stiffness k_t)"
+            f"{number(shown, 'outgoing_spin_radps'):.0f} rad/s of spin (a lossless grip: "
+            "the upper end of the model's range; the spin depends strongly on the tangential "
+            "stiffness k_t)"
         )
     angle_rows = [
         (
@@ -114,3 +117,15 @@ def _oblique(run: RunFolder, folder: Path, glance: list[str]) -> dict[str, Any]:
         "figure": run.group([(folder / file_of("oblique"), "")]),
         "rows": angle_rows,
     }
+
+
+def _speeds(record: dict[str, Any], row: Row | None = None) -> tuple[float, float]:
+    """The ball's and the racket's speeds (m/s) of an oblique run: a row of oblique.csv's,
+    else its run.json's (a racket at rest when neither says: a run of an earlier version)."""
+    ball = number(row, "ball_speed_mps") if row is not None else math.nan
+    racket = number(row, "racket_speed_mps") if row is not None else math.nan
+    if not math.isfinite(ball):
+        ball = to_float(str(record.get("ball_speed_mps", "")))
+    if not math.isfinite(racket):
+        racket = to_float(str(record.get("racket_speed_mps", "")))
+    return ball, racket if math.isfinite(racket) else 0.0

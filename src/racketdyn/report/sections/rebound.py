@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn._display import case_words
-from racketdyn.impact.result import shown_speed_index
+from racketdyn.impact.result import extreme_row, model_note, shown_speed_index
 from racketdyn.plotting.registry import file_of
 from racketdyn.racket import HeadEllipse
 from racketdyn.report.figures import Figure, FigureGroup, interactive
@@ -83,7 +83,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 f"highest rebound ratio, {case_words(speed, chosen_racket, support)}: "
                 f"{impacts['rebound_ratio'][best]:.3f} at "
                 f"x = {impacts['x_m'][best] * 1e3:.0f} mm, "
-                f"y = {impacts['y_m'][best] * 1e3:.0f} mm"
+                f"y = {impacts['y_m'][best] * 1e3:.0f} mm{model_note(impacts.status[best])}"
                 for (support, *_), best in rows
                 if support == "pinned"
             ]
@@ -184,7 +184,6 @@ def _speed_group(
     """One ball speed of the map: its group of panels (one per support), the points drawn,
     each support's sweet-spot row with its best row of ``impacts``, and whether points were
     thinned."""
-    e = impacts["rebound_ratio"]
     panels: list[dict[str, Any]] = []
     all_xy: list[NDArray[np.float64]] = []
     sweet: list[tuple[_SweetRow, int]] = []
@@ -196,10 +195,9 @@ def _speed_group(
             thinned = True
         panels.append({"label": support, "rows": _panel_rows(impacts, selected)})
         all_xy.append(np.column_stack([impacts["x_m"][selected], impacts["y_m"][selected]]))
-        # only valid rows name a best or a quietest point (issue 13)
-        finite = selected[np.isfinite(e[selected]) & (impacts.status[selected] == "ok")]
-        if finite.size:
-            sweet.append(_sweet_row(run, impacts, selected, finite, (support, speed)))
+        found = _sweet_row(run, impacts, selected, (support, speed))
+        if found is not None:
+            sweet.append(found)
     values = [r[2] for p in panels for r in p["rows"] if r[2] is not None]
     group = {
         "label": case_words(speed, impacts.racket_speed_at(speed))
@@ -236,30 +234,27 @@ def _panel_rows(impacts: Impacts, selected: NDArray[np.intp]) -> list[list[Any]]
 
 
 def _sweet_row(
-    run: RunFolder,
-    impacts: Impacts,
-    selected: NDArray[np.intp],
-    finite: NDArray[np.intp],
-    case: tuple[str, float],
-) -> tuple[_SweetRow, int]:
+    run: RunFolder, impacts: Impacts, selected: NDArray[np.intp], case: tuple[str, float]
+) -> tuple[_SweetRow, int] | None:
     """The sweet-spot row of one ``case`` (support, ball speed) and its best row: the highest
-    rebound ratio of the valid rows ``finite`` and where, the centre's (nearest of
-    ``selected``), and the quietest valid row."""
+    rebound ratio of the valid rows of ``selected`` (the approximate method's and those filled
+    from the transient model, marked so) and where, the centre's (nearest of ``selected``), and
+    the quietest valid row; None when no row is valid."""
     support, speed = case
-    e = impacts["rebound_ratio"]
-    best = int(finite[np.argmax(e[finite])])
+    e, status = impacts["rebound_ratio"], impacts.status
+    best = extreme_row(e, status, selected)
+    if best is None:
+        return None
     x, y = run.centre(impacts)
     centre = impacts.nearest(selected, x, y)
-    calm = impacts["vibration_energy_j"]
-    calm_rows = finite[np.isfinite(calm[finite])]
-    quiet = int(calm_rows[np.argmin(calm[calm_rows])]) if calm_rows.size else None
+    quiet = extreme_row(impacts["vibration_energy_j"], status, selected, smallest=True)
     row = (
         support,
         f"{speed:g}",
-        f"{e[best]:.3f}",
+        f"{e[best]:.3f}{model_note(status[best])}",
         impacts.where(best),
-        fmt(e[centre], ".3f"),
-        "–" if quiet is None else impacts.where(quiet),
+        fmt(e[centre], ".3f") + model_note(status[centre]),
+        "–" if quiet is None else impacts.where(quiet) + model_note(status[quiet]),
     )
     return row, best
 

@@ -5,10 +5,12 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
-from racketdyn.impact.result import STATUS_FROM_TRANSIENT
+from racketdyn.impact.approximate import approach_energy
+from racketdyn.impact.result import STATUS_FROM_TRANSIENT, extreme_row, is_valid, model_note
 from racketdyn.plotting.registry import in_section
-from racketdyn.report.folder import RunFolder, to_float
+from racketdyn.report.folder import Impacts, RunFolder, to_float
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = "racketdyn predict --out DIR/predict"
@@ -16,50 +18,23 @@ HOW_TO_RUN = "racketdyn predict --out DIR/predict"
 
 def gather(run: RunFolder) -> dict[str, Any] | None:
     """Fig. 14, and from ``impact.csv`` the vibration energy left in the frame (eq 12): at the
-    centre, the largest and smallest over the face, and the rows flagged; the modal model's
-    modes of unknown kind, which the prediction took as frame modes (also "At a glance")."""
+    centre, the largest and smallest over the face (every valid row, those filled from the
+    transient model marked so), and the rows flagged; the modal model's modes of unknown kind,
+    which the prediction took as frame modes (also "At a glance")."""
     folder = run.predict_dir
     if folder is None:
         return None
     figure = run.group([(folder / figure.file, "") for figure in in_section("vibration")])
     impacts = run.impacts()
     ball_mass = to_float(str(run.record(folder).get("ball", {}).get("mass_kg", "")))
-    rows = []
+    rows: list[tuple[str, ...]] = []
     flagged: list[tuple[int, str]] = []
+    filled = 0
     has_energy = impacts is not None and "vibration_energy_j" in impacts.numbers
     if impacts is not None and has_energy:
-        x, y = run.centre(impacts)
-        energy = impacts["vibration_energy_j"]
-        for support in impacts.supports:
-            for speed in impacts.speeds:
-                selected = impacts.rows(speed, support)
-                if not selected.size:
-                    continue
-                i = impacts.nearest(selected, x, y)
-                # a flagged row's energy is not a valid result (issue 13): never the largest
-                valid = np.isfinite(energy[selected]) & (impacts.status[selected] == "ok")
-                finite = selected[valid]
-                largest = int(finite[np.argmax(energy[finite])]) if finite.size else None
-                smallest = int(finite[np.argmin(energy[finite])]) if finite.size else None
-                incoming = 0.5 * ball_mass * speed**2
-                rows.append(
-                    (
-                        support,
-                        f"{speed:g}",
-                        *(
-                            (fmt(energy[i], ".3g"), fmt(100 * energy[i] / incoming, ".2g"))
-                            if impacts.status[i] == "ok"
-                            else (f"flagged: {impacts.status[i]}", "–")
-                        ),
-                        "–" if largest is None else f"{energy[largest]:.3g}",
-                        "–" if largest is None else impacts.where(largest),
-                        "–" if smallest is None else f"{energy[smallest]:.3g}",
-                        "–" if smallest is None else impacts.where(smallest),
-                        str(int(np.sum(impacts.status[selected] != "ok"))),
-                    )
-                )
+        rows = _rows(run, impacts, ball_mass)
         filled = int(np.sum(impacts.status == STATUS_FROM_TRANSIENT))
-        bad = (impacts.status != "ok") & (impacts.status != STATUS_FROM_TRANSIENT)
+        bad = ~is_valid(impacts.status)
         if np.any(bad):
             reasons, counts = np.unique(impacts.status[bad], return_counts=True)
             flagged = [(int(c), str(r)) for r, c in zip(reasons, counts, strict=True)]
@@ -80,7 +55,56 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         "under_bed": run.shapes_under_bed(folder),
         "rows": rows,
         "flagged": flagged,
-        "filled": filled if has_energy else 0,
+        "filled": filled,
         "unknown": unknown,
         "glance": glance,
+        "share_of": SHARE_OF,
     }
+
+
+SHARE_OF = "of the approach energy"
+"""What the vibration's share is of: the approach energy ½ μ V² of ball and racket
+(:func:`~racketdyn.impact.approximate.approach_energy`), as the 30 % validity rule's."""
+
+
+def _rows(run: RunFolder, impacts: Impacts, ball_mass: float) -> list[tuple[str, ...]]:
+    """One row per support and speed: the energy at the centre and its share of the approach
+    energy, the largest and the smallest over the face and where, the rows flagged."""
+    x, y = run.centre(impacts)
+    energy, status = impacts["vibration_energy_j"], impacts.status
+    approach = approach_energy(
+        ball_mass,
+        impacts["reduced_mass_kg"],
+        impacts["ball_speed_mps"] + np.nan_to_num(impacts["racket_speed_mps"]),
+    )
+    rows: list[tuple[str, ...]] = []
+    for support, speed, selected, i in impacts.cases(x, y):
+        # a flagged row's energy is not a valid result (issue 13): never the largest
+        largest = extreme_row(energy, status, selected)
+        smallest = extreme_row(energy, status, selected, smallest=True)
+        rows.append(
+            (
+                support,
+                f"{speed:g}",
+                *(
+                    (
+                        fmt(energy[i], ".3g") + model_note(status[i]),
+                        fmt(100 * energy[i] / approach[i], ".2g"),
+                    )
+                    if is_valid(status[i])
+                    else (f"flagged: {status[i]}", "–")
+                ),
+                *_at(impacts, energy, largest),
+                *_at(impacts, energy, smallest),
+                str(int(np.sum(~is_valid(status[selected])))),
+            )
+        )
+    return rows
+
+
+def _at(impacts: Impacts, energy: NDArray[np.float64], row: int | None) -> tuple[str, str]:
+    """A row's energy (marked when filled from the transient model) and where; dashes for
+    none."""
+    if row is None:
+        return "–", "–"
+    return f"{energy[row]:.3g}{model_note(impacts.status[row])}", impacts.where(row)
