@@ -113,7 +113,13 @@ EDGE_CLEAR = 0.1
 """A mode dropped in the edge margin is reported as a clear mode (stage ``edge``, one warning
 naming the option that keeps it) when it is stable in more than three orders and its peak is at
 least this fraction of the median kept mode's (20 dB): the bar's 873 Hz mode 7 Hz below an
-880 Hz top scores ≈ 0.9, edge poles of noise ≤ 0.01 (tests/test_band.py)."""
+880 Hz top scores ≈ 0.9, edge poles of noise ≤ 0.01 (tests/test_band.py).  A pole on the
+flank of a mode beyond the band may score as a mode does (the trial racket's 846 Hz, 70 Hz
+below its 917.6 Hz mode: 0.10; its 1929 Hz on the fall of its 1856 Hz mode: 0.25): the data
+must also peak there (:func:`_data_peak`, tests/test_edge_hints.py)."""
+WITHIN_RTOL = 1e-3
+"""A band an edge row names keeps its mode when the fit over it finds one this close (0.1 %):
+the trial racket's 846.19 Hz edge pole had none within 3 % over the wider band."""
 MAINS_HZ = (50.0, 60.0)
 """Mains frequencies whose harmonics an accelerometer's cable picks up (electrical lines)."""
 LINE_TOLERANCE_HZ = 0.1
@@ -240,12 +246,27 @@ def _checked_band(frfs: FrfSet, band: tuple[float, float]) -> tuple[float, float
     return (low, high)
 
 
+def _data_peak(frfs: FrfSet, frequency: float, damping_ratio: float) -> bool:
+    """Whether the summed ``|H|`` (every line, the band's and beyond) peaks at ``frequency``.
+
+    A local maximum within the mode's half half-power width ``ζf`` (at least
+    :data:`ONE_PEAK_LINES` line spacings: an edge fragment's fitted damping may be a third of
+    its mode's).  The pole the LSCF puts in the edge margin for the flank of a mode beyond the
+    band has none: the data rise or fall straight through it (the trial racket's 846 Hz, on the
+    rise to its 917.6 Hz mode; its 1929 Hz, on its 1855.9 Hz mode's fall), however stable the
+    pole and large its fitted peak.
+    """
+    found, _ = find_peaks(np.abs(frfs.values).sum(axis=0))
+    reach = max(max(damping_ratio, 0.0) * frequency, ONE_PEAK_LINES * _spacing(frfs))
+    return bool(np.any(np.abs(frfs.frequency[found] - frequency) <= reach))
+
+
 def _edge_modes(
-    selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float], rules: SelectionRules
+    selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float], choices: _Choices
 ) -> SelectedPoles:
     """Clear modes dropped in the band's edge margin: one row each, naming what keeps them.
 
-    The edge margin (the ``rules``' ``edge_lines`` line spacings and ``edge_widths`` of the
+    The edge margin (the ``choices``' rules' ``edge_lines`` line spacings and ``edge_widths`` of the
     mode's half-power width, :data:`EDGE_LINES` and :data:`EDGE_WIDTHS` by default, and their
     ``edge_margin`` of the band's width) keeps the fit's computational poles out; a mode of
     the data there (stable in more than three orders, peak within 20 dB of the kept modes',
@@ -253,12 +274,15 @@ def _edge_modes(
     one row (the strongest).  The reason names ``band_hz`` (low, high) when the FRFs' bandwidth
     (:attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`: lines above it are the
     anti-alias filter's roll-off) reaches far enough to put the mode out of the margin, else
-    ``pin_hz`` [F].
+    ``pin_hz`` [F].  A hint is only given where following it keeps a mode: the data must peak
+    there (:func:`_data_peak`), and a band named is fitted first (the row then holds the mode
+    it gives, else it names the pin).
     """
+    rules = choices.rules
     low, high = band
     spacing = float(frfs.frequency[1] - frfs.frequency[0])
     reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else 0.0
-    clear = [
+    strong = [
         d
         for d in selected.dropped_modes
         if d.stage == "selection"
@@ -266,6 +290,17 @@ def _edge_modes(
         and d.orders_stable > 3
         and d.peak_to_noise >= EDGE_CLEAR * reference
     ]
+    clear = [d for d in strong if _data_peak(frfs, d.frequency_hz, d.damping_ratio)]
+    flanks = {
+        id(d): replace(d, reason=f"{d.reason}; no peak of the data there (a flank's pole)")
+        for d in strong
+        if all(d is not c for c in clear)
+    }
+    if flanks:
+        selected = replace(
+            selected,
+            dropped_modes=tuple(flanks.get(id(d), d) for d in selected.dropped_modes),
+        )
     if not clear:
         return selected
     rows: list[DroppedMode] = []
@@ -295,11 +330,17 @@ def _edge_modes(
             fits = new >= float(frfs.frequency[0])
             option = f"`band_hz` {new:g},{high:g}"
             end = f"the FRFs start at {float(frfs.frequency[0]):.6g} Hz"
-        keep = (
-            f"{option} keeps it"
-            if fits
-            else f"{end}: `pin_hz` {f:.1f} keeps it (fitted with part of its peak beyond the data)"
-        )
+        tried = (min(low, new), max(high, new))
+        there = _mode_in(frfs, tried, choices, f, WITHIN_RTOL * f) if fits else None
+        if there is not None:
+            mode = replace(mode, frequency_hz=there[0], damping_ratio=there[1])
+            keep = f"{option} keeps it"
+        elif fits:
+            keep = f"`pin_hz` {f:.1f} keeps it ({option} does not: the fit there finds no mode)"
+        else:
+            keep = (
+                f"{end}: `pin_hz` {f:.1f} keeps it (fitted with part of its peak beyond the data)"
+            )
         rows.append(
             replace(
                 mode,
@@ -622,7 +663,7 @@ def _clear_peaks(
     for f in choices.pin_hz:  # the user's own pins stay pinned, the kept candidates do not
         user[int(np.argmin(np.abs(again.frequency - f)))] = True
     again = _named_rows(
-        _edge_modes(replace(again, pinned=again.pinned & user), frfs, band, choices.rules), spacing
+        _edge_modes(replace(again, pinned=again.pinned & user), frfs, band, choices), spacing
     )
     again = replace(again, dropped_modes=relabelled(again.dropped_modes))
     lines = [
@@ -884,7 +925,7 @@ def _selected_poles(
     selected = select_poles(
         stab, choices.pin_hz, choices.exclude_hz, rules=choices.rules
     )  # raises if none
-    selected = _named_rows(_edge_modes(selected, frfs, band, choices.rules), _spacing(frfs))
+    selected = _named_rows(_edge_modes(selected, frfs, band, choices), _spacing(frfs))
     selected, kept = _clear_peaks(selected, stab, frfs, band, choices)
     selected = _missed_peaks(selected, frfs, band, choices)
     selected, refined = refine_narrow_poles(frfs, selected)

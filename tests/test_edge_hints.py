@@ -1,0 +1,67 @@
+"""An edge row's hint keeps a mode of the data (issue 25: nothing spurious named a mode).
+
+The LSCF models the flank of a mode beyond the band's top with a pole in the edge margin,
+stable over several orders with a large fitted peak-to-noise.  The trial racket's band
+40-850 Hz named 846.19 Hz "a clear mode ... `band_hz` 40,890 keeps it" where its rig has no
+mode between 697.75 and 917.65 Hz; the wider band gave none there.  The oracle is the
+analytic free bar (:mod:`racketdyn.testing.free_beam`): a hint names a frequency within
+0.1 % of one of its modes, and the option it names keeps that mode, or there is no hint.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+import numpy as np
+import pytest
+
+from racketdyn.modal.identify import identify
+from racketdyn.testing.free_beam import beam_frfs, natural_frequencies
+
+POINTS = np.linspace(0.0, 0.8, 9)
+TRUE_HZ = natural_frequencies(5)  # 65.4, 180.3, 353.5, 584.4, 873.0 Hz
+WITHIN = 1e-3  # 0.1 %: an identified mode of this bar is within 0.05 % (tests/test_band.py)
+
+
+def _option(reason: str) -> dict[str, object]:
+    """The keyword the hint names first: band_hz (low, high) or pin_hz [f]."""
+    band, pin = reason.find("`band_hz` "), reason.find("`pin_hz` ")
+    if band >= 0 and not 0 <= pin < band:
+        text = reason.split("`band_hz` ")[1].split()[0].rstrip(";,.")
+        low, high = (float(v) for v in text.split(","))
+        return {"band_hz": (low, high)}
+    return {"pin_hz": [float(reason.split("`pin_hz` ")[1].split()[0])]}
+
+
+@pytest.mark.parametrize("top_hz", [570.0, 850.0])
+def test_the_flank_of_a_mode_above_the_band_is_no_clear_mode(top_hz: float) -> None:
+    # 40-850 Hz stops 23 Hz below the bar's 873 Hz mode (40-570 Hz 14 Hz below its 584 Hz):
+    # the rising flank gave an edge pole at 848.7 Hz (569.9 Hz) and "`band_hz` 40,895 keeps it"
+    frfs = beam_frfs(POINTS, 0.0, top_hz=1000.0, lines=801).frfs
+    found = identify(frfs, (40.0, top_hz))
+    assert any("a flank's pole" in d.reason for d in found.dropped_modes)  # said, no option
+    for row in (d for d in found.dropped_modes if d.stage == "edge"):
+        f = row.frequency_hz
+        assert np.min(np.abs(TRUE_HZ - f)) < WITHIN * f, row.reason
+        kept = identify(frfs, **_option(row.reason))  # type: ignore[arg-type]
+        assert np.min(np.abs(kept.model.frequency - f)) < WITHIN * f, row.reason
+
+
+def test_a_band_whose_fit_misses_the_mode_names_the_pin(monkeypatch: pytest.MonkeyPatch) -> None:
+    # the wider band is fitted before it is named; where its fit finds no mode there (a weak
+    # mode stable in too few orders over it) the row names the pin, which keeps the peak
+    module = importlib.import_module("racketdyn.modal.identify")  # the package's name: a function
+    frfs = beam_frfs(POINTS, 0.0, top_hz=1000.0, lines=801).frfs
+    named = [d for d in identify(frfs, (40.0, 880.0)).dropped_modes if d.stage == "edge"]
+    assert len(named) == 1
+    assert "`band_hz` 40," in named[0].reason  # the wider band keeps the bar's 873 Hz mode
+    monkeypatch.setattr(module, "_mode_in", lambda *args: None)
+    edge = [d for d in identify(frfs, (40.0, 880.0)).dropped_modes if d.stage == "edge"]
+    assert len(edge) == 1
+    assert "`pin_hz`" in edge[0].reason
+    option = _option(edge[0].reason)
+    assert "pin_hz" in option
+    kept = identify(frfs, (40.0, 880.0), **option)  # type: ignore[arg-type]
+    f = edge[0].frequency_hz
+    assert np.min(np.abs(kept.model.frequency - f)) < WITHIN * f
+    assert np.min(np.abs(TRUE_HZ - f)) < WITHIN * f
