@@ -233,3 +233,17 @@ def test_run_json_speaks_the_words_of_whoever_ran_the_step(tmp_path: Path) -> No
     assert "give --force-window 0.01" in hints["cli"]
     assert "`" not in hints["cli"]
     assert "give `force_window_s` 0.01" in hints["py"]
+
+
+def test_the_demos_steps_speak_their_commands_words(tmp_path: Path) -> None:
+    """``racketdyn demo`` is a command: each step's run.json says its notes (frf's force-noise
+    hint) in the words of the command it stands for (``--force-window``), as the step run on
+    its own would, not the library's (`` `force_window_s` ``) — the report shows them."""
+    from racketdyn.cli.demo import steps
+
+    for label, command, call in steps(tmp_path, None):
+        setup = call.keywords["setup"]  # type: ignore[attr-defined]
+        assert setup.words is not None, label
+        if command[1] == "frf":
+            said = setup.words("give `force_window_s` 0.01")
+            assert said == "give --force-window 0.01", label

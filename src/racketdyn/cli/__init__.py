@@ -127,6 +127,13 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def command_parser(parser: argparse.ArgumentParser, name: str) -> argparse.ArgumentParser:
+    """The parser of the command ``name`` among ``parser``'s subcommands."""
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    found: argparse.ArgumentParser = commands.choices[name]
+    return found
+
+
 def parse(argv: Sequence[str] | None) -> argparse.Namespace:
     """Parsed arguments, with the command line as given (``argv``) kept for run records, and
     the command's parser (``args.parser``: its options name the library's parameters in
@@ -134,8 +141,7 @@ def parse(argv: Sequence[str] | None) -> argparse.Namespace:
     parser = build_parser()
     _Parser.given = list(sys.argv[1:] if argv is None else argv)
     args, extras = parser.parse_known_args(argv)
-    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-    command = commands.choices[args.command]
+    command = command_parser(parser, args.command)
     if extras:  # said by the command's parser: its options, its --help
         assert isinstance(command, _Parser)
         command.unrecognised(extras)

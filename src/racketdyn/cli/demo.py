@@ -69,9 +69,17 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     identified = [*r, "--modal", str(modal)]
     result: list[tuple[str, list[str], Callable[[], object]]] = []
 
+    from racketdyn.cli import build_parser, command_parser
+    from racketdyn.cli.options import in_flags
+
+    parser = build_parser()
+
     def step(label: str, argv: list[str], call: Callable[..., object], setup: Setup) -> None:
         command = ["racketdyn", *argv]
-        result.append((label, command, partial(call, setup=setup.replace(command=command))))
+        # run.json's notes in the words of the command the step stands for, as on its own
+        words = partial(in_flags, parser=command_parser(parser, argv[0]))
+        setup = setup.replace(command=command, words=words)
+        result.append((label, command, partial(call, setup=setup)))
 
     step(
         "virtual hammer tests, free and hand-held",
