@@ -69,15 +69,33 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     identified = [*r, "--modal", str(modal)]
     result: list[tuple[str, list[str], Callable[[], object]]] = []
 
-    from racketdyn.cli import build_parser, command_parser
-    from racketdyn.cli.options import in_flags
+    from racketdyn.cli import compound as compound_command
+    from racketdyn.cli import contact as contact_command
+    from racketdyn.cli import frf as frf_command
+    from racketdyn.cli import identify as identify_command
+    from racketdyn.cli import oblique as oblique_command
+    from racketdyn.cli import predict as predict_command
+    from racketdyn.cli import rig as rig_command
+    from racketdyn.cli import swing as swing_command
+    from racketdyn.cli import twist as twist_command
+    from racketdyn.cli.options import in_flags, parser_of
 
-    parser = build_parser()
+    modules = {
+        "rig": rig_command,
+        "frf": frf_command,
+        "contact": contact_command,
+        "compare": identify_command,
+        "predict": predict_command,
+        "swing": swing_command,
+        "twist": twist_command,
+        "oblique": oblique_command,
+        "compound": compound_command,
+    }
 
     def step(label: str, argv: list[str], call: Callable[..., object], setup: Setup) -> None:
         command = ["racketdyn", *argv]
         # run.json's notes in the words of the command the step stands for, as on its own
-        words = partial(in_flags, parser=command_parser(parser, argv[0]))
+        words = partial(in_flags, parser=parser_of(modules[argv[0]], argv[0]))
         setup = setup.replace(command=command, words=words)
         result.append((label, command, partial(call, setup=setup)))
 

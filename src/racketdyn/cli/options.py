@@ -56,6 +56,16 @@ def command(
     return parser
 
 
+def parser_of(module: Any, name: str) -> argparse.ArgumentParser:
+    """The parser of the command ``name`` that ``module`` (a command module: its ``add``)
+    registers, built alone: a command's options without the whole ``racketdyn`` parser (the
+    demo's steps name their notes in each command's words, :func:`in_flags`)."""
+    commands = argparse.ArgumentParser(allow_abbrev=False).add_subparsers()
+    module.add(commands)
+    found: argparse.ArgumentParser = commands.choices[name]
+    return found
+
+
 def add_verbose(parser: argparse.ArgumentParser, subcommand: bool = False) -> None:
     """``-v/--verbose``: log each step's stages (before or after the command name)."""
     parser.add_argument(
