@@ -501,7 +501,8 @@ def predict_swing(
     swing : Swing
         The swing (torque model or angular speed).
     supports : str or sequence of str
-        Support conditions during the impact (default ``pinned``: the hand-held model).
+        Support conditions during the impact (default ``pinned``: the hand-held model); one
+        text of comma-separated names too.
     model : {"approximate", "transient"}
         Impact model: :func:`racketdyn.impact.predict` or
         :func:`racketdyn.impact.transient.predict_transient`.
