@@ -76,6 +76,7 @@ from racketdyn.impact.result import (
     STATUS_OK,
     ImpactResult,
     impact_columns,
+    status_text,
     summary_rows,
     write_columns,
 )
@@ -594,7 +595,7 @@ def _predict_swing(
             merged[name][index] = np.asarray(getattr(part, name))
     assert first is not None
     assert reduced is not None
-    merged["status"] = merged["status"].astype(str)
+    merged["status"] = status_text(merged["status"])
 
     inputs = dict(first.inputs)
     inputs["swing"] = {
