@@ -370,13 +370,21 @@ def figure_face_maps(data: PaperFigures, axes: Sequence[Axes] | None = None) -> 
     return figure
 
 
+_CHARGED, _NOT_CHARGED = "0.3", "0.7"
+"""Fig. 13's dotted lines: a mode the prediction charges, and a string-bed mode it does not."""
+
+_CHARGED_WORDS = "modes the prediction charges"
+_NOT_CHARGED_WORDS = "the string bed's modes: for reference, not charged"
+
+
 def figure_pulse_spectrum(data: PaperFigures, axes: Sequence[Axes] | None = None) -> Figure:
     """Paper Fig. 13: the half-sine pulse at the face centre and its spectrum, against speed.
 
     Parameters
     ----------
     data : PaperFigures
-        The run's figure data: its ``pulse`` (the modes of the model dotted).
+        The run's figure data: its ``pulse`` (the modes the prediction charges dotted, the
+        string bed's it does not charge dotted in a lighter grey, for reference).
     axes : sequence of Axes, optional
         Two (the pulse, its spectrum) to draw into, their figure, size and layout the caller's;
         default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if
@@ -393,11 +401,16 @@ def figure_pulse_spectrum(data: PaperFigures, axes: Sequence[Axes] | None = None
         )
     if pulse.modal:
         modes = [
-            (float(f), name, "0.4")
-            for name, f in zip(pulse.mode_names, pulse.mode_frequency, strict=True)
+            (float(f), name, _CHARGED if charged else _NOT_CHARGED)
+            for name, f, charged in zip(
+                pulse.mode_names, pulse.mode_frequency, pulse.mode_charged, strict=True
+            )
         ]
         grid[1].set_xlim(frequency[0] - 30.0, frequency[-1] + 30.0)
         label_lines(grid[1], modes)
+        for colour, words in ((_CHARGED, _CHARGED_WORDS), (_NOT_CHARGED, _NOT_CHARGED_WORDS)):
+            if any(mark[2] == colour for mark in modes):
+                grid[1].plot([], [], color=colour, linestyle=":", linewidth=1.0, label=words)
     grid[0].set_xlabel("time from first contact (ms)")
     grid[0].set_ylabel("impact force F(t) (N)")
     grid[1].set_xlabel("frequency (Hz)")
@@ -408,7 +421,7 @@ def figure_pulse_spectrum(data: PaperFigures, axes: Sequence[Axes] | None = None
             ax.legend(fontsize=7)
     figure.suptitle(
         "Fig. 13: half-sine impact force at the face centre "
-        f"({SUPPORT_STYLE[pulse.support]['label']}) and its spectrum; modes of the model dotted"
+        f"({SUPPORT_STYLE[pulse.support]['label']}) and its spectrum; the racket's modes dotted"
         f"\n{pulse.description}",
         fontsize=10,
     )

@@ -325,9 +325,10 @@ FIGURES: dict[str, FigureEntry] = {
             "fig13_pulse_spectrum",
             "predict",
             "the half-sine impact force at the face centre and the magnitude of its spectrum for "
-            "balls at {speeds}, {racket_speed} (support in the title), with the modes of the "
-            "model: the faster the ball, the shorter the pulse and the higher its spectrum "
-            "reaches",
+            "balls at {speeds}, {racket_speed} (support in the title), with the modes the "
+            "prediction charges (dark, dotted) and the string bed's it does not charge (light, "
+            "for reference): the faster the ball, the shorter the pulse and the higher its "
+            "spectrum reaches",
             paper="Fig. 13",
             section="impact",
             draw=f"{_FIGURES}:figure_pulse_spectrum",
