@@ -311,6 +311,41 @@ def test_transient_curves_follow_the_run(draw: Any) -> None:
     assert any(label.endswith("transient") for label in labels)
 
 
+def test_transient_histories_legend_leaves_the_curves_clear(draw: Any) -> None:
+    """New-user trial (2026-11-27, ninth session): with eight modes the modal coordinates'
+    legends held 16 entries each (each mode with each support) and covered the curves.  One
+    legend under the figure names the largest modes and the supports' line styles and sums up
+    the rest (every curve stays drawn, every number in transient_histories.csv)."""
+    racket = rd.default_racket()
+    setup = Setup(modal_model=rd.builtin_modal_model(racket, n_bending=7))
+    result, drawn = draw(setup, model="both", speeds=[25.0], supports=["free", "pinned"], grid=2)
+    histories = result.transient_histories
+    n_modes = len(histories.mode_names)
+    assert n_modes >= 8
+    figure = drawn["transient_histories.png"]
+    figure.canvas.draw()
+    renderer = figure.canvas.get_renderer()  # type: ignore[attr-defined]
+    modal = [ax for ax in figure.axes if ax.get_ylabel().startswith("modal coordinate")]
+    assert len(modal) == 2
+    (legend,) = figure.legends
+    texts = [t.get_text() for t in legend.get_texts()]
+    assert len(texts) <= 7
+    assert texts[-2:] == ["free", "pinned"]
+    for ax in modal:
+        curves = [line for line in ax.get_lines() if len(line.get_xdata())]
+        assert len(curves) == 2 * n_modes  # every mode of every support still drawn
+        assert ax.get_legend() is None
+        assert not legend.get_window_extent(renderer).overlaps(ax.get_window_extent(renderer))
+    # the modes named are the largest; the others summed up with the largest of their peaks
+    peaks = np.nanmax(np.abs(histories.modal_coordinates), axis=(0, 1))
+    named = [k for k, name in enumerate(histories.mode_names) if name in texts]
+    rest = [k for k in range(n_modes) if k not in named]
+    assert named
+    assert min(peaks[named]) >= max(peaks[rest])
+    largest = 1e3 * max(peaks[rest])
+    assert f"{len(rest)} more modes (largest peak {largest:.2g} mm·√kg)" in texts
+
+
 # --- the printed headline ------------------------------------------------------------------------
 
 

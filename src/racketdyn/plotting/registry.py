@@ -408,7 +408,9 @@ FIGURES: dict[str, FigureEntry] = {
             "predict",
             "time histories of the transient simulation at the face centre and near the tip: "
             "contact force (the approximate method assumes a half-sine, Fig. 13), ball and "
-            "racket-face displacement, and the modal coordinates of the flexible modes",
+            "racket-face displacement, and the modal coordinates of the flexible modes (the "
+            "largest named in the legend under the figure, the others grey and summed up in one "
+            "entry; every mode's in transient_histories.csv)",
             section="transient",
             draw=f"{_FIGURES}:figure_transient_histories",
             reads=("transient_histories",),
