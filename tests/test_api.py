@@ -265,3 +265,34 @@ def test_core_objects_have_short_reprs(
     assert "120 Hz" in model._repr_html_()
     assert "0.36 kg" in racket._repr_html_()
     assert f"{records.n_samples}" in records._repr_html_()
+
+
+def test_a_copy_of_the_status_array_keeps_any_status_written_into_it(
+    racket: rd.Racket, ball: rd.Ball
+) -> None:
+    """New-user trial (2026-11-27, ninth session): ``np.asarray(result.status).copy()`` of an
+    all-``ok`` result was two characters wide (``<U2``), so a longer status written into it was
+    cut short without a word ("from the transient model: …" became "fr") and the row, filled
+    with valid numbers, turned NaN.  Every impact result's statuses are as wide as the longest
+    status any model gives."""
+    from dataclasses import replace
+
+    from racketdyn.impact.result import INVALIDATED, STATUS_FROM_TRANSIENT
+
+    centre = [(racket.head.centre_x_m, 0.0)]
+    longest = max((STATUS_OK, *INVALIDATED), key=len)
+    swing = Swing(angular_speed_radps=20.0)
+    for made in (
+        rd.predict(racket, ball, centre, [20.0], "free"),
+        predict_transient(racket, ball, centre, [20.0], "free", engine="reference"),
+        predict_swing(racket, ball, centre, [20.0], swing, "free"),
+    ):
+        assert np.all(made.status == STATUS_OK)
+        status = np.asarray(made.status).copy()
+        status[0, 0, 0] = longest
+        assert status[0, 0, 0] == longest
+        status[0, 0, 0] = STATUS_FROM_TRANSIENT
+        if isinstance(made, ImpactResult):  # a filled row keeps its numbers, marked
+            filled = replace(made, status=status)
+            assert filled.status[0, 0, 0] == STATUS_FROM_TRANSIENT
+            assert np.isfinite(filled.rebound_ratio[0, 0, 0])

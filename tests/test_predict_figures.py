@@ -5,6 +5,7 @@ read), then their axes, titles, line labels and data are checked against the run
 from __future__ import annotations
 
 import csv
+import json
 import logging
 import re
 from collections.abc import Callable, Iterator
@@ -22,7 +23,7 @@ from figure_catch import Drawn, catch_figures
 from racketdyn.cli import main
 from racketdyn.plotting.steps import predict_figures
 from racketdyn.racket import landmark_points
-from racketdyn.workflows import PredictOptions, PredictResult, run_predict
+from racketdyn.workflows import PredictOptions, PredictResult, PulseSpectra, run_predict
 from racketdyn.workflows.setup import DEFAULT_SETUP, Setup
 
 
@@ -237,6 +238,50 @@ def test_rigid_racket_draws_no_vibration(draw: Any) -> None:
         assert any("rigid" in text for text in texts)
 
 
+def _spectrum_modes(figure: Figure) -> dict[str, Any]:
+    """Fig. 13's modes: each label over the spectrum → its dotted line's colour."""
+    spectrum = figure.axes[1]
+    (top,) = spectrum.child_axes  # label_lines' secondary axis
+    names = [t.get_text() for t in top.get_xticklabels()]
+    lines = [
+        line
+        for line in spectrum.get_lines()
+        if line.get_linestyle() == ":" and len(line.get_xdata())
+    ]
+    return {name: line.get_color() for name, line in zip(names, lines, strict=True)}
+
+
+def test_pulse_spectrum_says_which_modes_the_prediction_charges(draw: Any) -> None:
+    """New-user trial (2026-11-27, ninth session): Fig. 13 drew the string bed's membranes as
+    "modes of the model" while the report's "Modes the prediction used" listed only the
+    frame's.  The charged modes and the string bed's (for reference, not charged) are drawn
+    apart, and the legend says which is which."""
+    result, drawn = draw(speeds=[20.0], supports=["free"], grid=2)
+    figure = drawn["fig13_pulse_spectrum.png"]
+    pulse = result.paper_figures.pulse
+    used = json.loads((result.out / "run.json").read_text(encoding="utf-8"))["modal_model"]
+    charged = {name for name, c in zip(pulse.mode_names, pulse.mode_charged, strict=True) if c}
+    assert charged == {m["name"] for m in used["modes"]}  # the report's list, the same modes
+    assert set(pulse.mode_names) - charged == {"string-bed membrane"}
+    colours = _spectrum_modes(figure)
+    assert colours["string-bed membrane"] != colours["2-node bending"]
+    assert len({colours[name] for name in charged}) == 1
+    legend = [t.get_text() for t in figure.axes[1].get_legend().get_texts()]
+    assert "modes the prediction charges" in legend
+    assert "the string bed's modes: for reference, not charged" in legend
+    assert "modes of the model" not in figure.get_suptitle()
+    # a figures.nc written before: read as a run charges them by default
+    older = pulse.to_xarray().drop_vars("mode_charged")
+    assert list(PulseSpectra.from_xarray(older).mode_charged) == list(pulse.mode_charged)
+    # with the string bed's modes charged, every mode is drawn as charged
+    result, drawn = draw(speeds=[20.0], supports=["free"], grid=2, include_string_bed=True)
+    assert all(result.paper_figures.pulse.mode_charged)
+    legend = [
+        t.get_text() for t in drawn["fig13_pulse_spectrum.png"].axes[1].get_legend().get_texts()
+    ]
+    assert not any("not charged" in text for text in legend)
+
+
 # --- the transient model's figures ---------------------------------------------------------------
 
 
@@ -264,6 +309,41 @@ def test_transient_curves_follow_the_run(draw: Any) -> None:
     labels = [t.get_text() for t in legend.get_texts()]
     assert len(labels) == len(set(labels))
     assert any(label.endswith("transient") for label in labels)
+
+
+def test_transient_histories_legend_leaves_the_curves_clear(draw: Any) -> None:
+    """New-user trial (2026-11-27, ninth session): with eight modes the modal coordinates'
+    legends held 16 entries each (each mode with each support) and covered the curves.  One
+    legend under the figure names the largest modes and the supports' line styles and sums up
+    the rest (every curve stays drawn, every number in transient_histories.csv)."""
+    racket = rd.default_racket()
+    setup = Setup(modal_model=rd.builtin_modal_model(racket, n_bending=7))
+    result, drawn = draw(setup, model="both", speeds=[25.0], supports=["free", "pinned"], grid=2)
+    histories = result.transient_histories
+    n_modes = len(histories.mode_names)
+    assert n_modes >= 8
+    figure = drawn["transient_histories.png"]
+    figure.canvas.draw()
+    renderer = figure.canvas.get_renderer()  # type: ignore[attr-defined]
+    modal = [ax for ax in figure.axes if ax.get_ylabel().startswith("modal coordinate")]
+    assert len(modal) == 2
+    (legend,) = figure.legends
+    texts = [t.get_text() for t in legend.get_texts()]
+    assert len(texts) <= 7
+    assert texts[-2:] == ["free", "pinned"]
+    for ax in modal:
+        curves = [line for line in ax.get_lines() if len(line.get_xdata())]
+        assert len(curves) == 2 * n_modes  # every mode of every support still drawn
+        assert ax.get_legend() is None
+        assert not legend.get_window_extent(renderer).overlaps(ax.get_window_extent(renderer))
+    # the modes named are the largest; the others summed up with the largest of their peaks
+    peaks = np.nanmax(np.abs(histories.modal_coordinates), axis=(0, 1))
+    named = [k for k, name in enumerate(histories.mode_names) if name in texts]
+    rest = [k for k in range(n_modes) if k not in named]
+    assert named
+    assert min(peaks[named]) >= max(peaks[rest])
+    largest = 1e3 * max(peaks[rest])
+    assert f"{len(rest)} more modes (largest peak {largest:.2g} mm·√kg)" in texts
 
 
 # --- the printed headline ------------------------------------------------------------------------

@@ -162,7 +162,7 @@ def test_summaries_of_a_result_count_rows_filled_from_the_transient() -> None:
     """``repr`` and the notebook table give the rebound ratios of every valid row."""
     racket = rd.default_racket()
     result = rd.predict(racket, rd.Ball(), [(0.45, 0.0), (0.50, 0.0)], [20.0], ["pinned"])
-    status = np.asarray(result.status, dtype=object)
+    status = np.asarray(result.status).copy()
     e = np.asarray(result.rebound_ratio).copy()
     status[0, 0, 0] = STATUS_FROM_TRANSIENT
     e[0, 0, 0] = float(np.nanmax(e)) + 0.1
@@ -180,7 +180,7 @@ def test_the_console_headline_shows_a_row_filled_from_the_transient() -> None:
 
     racket = rd.default_racket()
     result = rd.predict(racket, rd.Ball(), [(racket.head.centre_x_m, 0.0)], [20.0], ["pinned"])
-    status = np.asarray(result.status, dtype=object)
+    status = np.asarray(result.status).copy()
     status[0, 0, 0] = STATUS_FROM_TRANSIENT
     console = Console(width=300, record=True)
     console.print(_headline(replace(result, status=status), racket, "approximate method"))

@@ -88,3 +88,43 @@ def test_twist_defaults_to_the_given_racket_s_face_centre(
     assert record["x_m"] == pytest.approx(centre)
     assert f"twist at x = {centre * 1e3:.0f} mm" in out
     assert any("face centre" in d for d in record["defaults_used"])
+
+
+def test_library_functions_take_the_command_lines_comma_separated_supports(
+    tmp_path: Path,
+) -> None:
+    """New-user trial (2026-11-27, ninth session): ``PredictOptions(supports="free,pinned")``
+    took the command line's spelling while ``rd.predict(..., supports="free,pinned")`` read one
+    support named "free,pinned" ("must be one of free, pinned"), ``run_compound`` and
+    ``run_twist`` read a text letter by letter, ``simulate_histories``, ``propagate`` and
+    ``SweepSpec`` likewise."""
+    import racketdyn as rd
+    from racketdyn.impact.comparison import simulate_histories
+    from racketdyn.impact.samples import ModelInputs
+    from racketdyn.impact.swing import Swing, predict_swing
+    from racketdyn.impact.transient import predict_transient
+    from racketdyn.impact.uncertainty import Spread, Uncertainty, propagate
+    from racketdyn.sweep.spec import SweepSpec
+    from racketdyn.workflows import Setup, run_compound, run_twist
+
+    racket, ball = rd.default_racket(), rd.Ball()
+    point = [(racket.head.centre_x_m, 0.0)]
+    both = ("free", "pinned")
+    assert rd.predict(racket, ball, point, [20.0], "free, pinned").supports == both
+    transient = predict_transient(racket, ball, point, [20.0], "free,pinned", engine="reference")
+    assert transient.supports == both
+    swung = predict_swing(racket, ball, point, [20.0], Swing(), supports="free,pinned")
+    assert swung.supports == both
+    history = simulate_histories(racket, ball, {"centre": point[0]}, 20.0, "free,hand")
+    assert [h.support for h in history] == ["free", "hand"]
+    spread = Uncertainty((Spread("e_bg", bounds=(0.82, 0.86)),), samples=8)
+    banded = propagate(ModelInputs(racket, ball), point, [20.0], spread, supports="free,pinned")
+    assert banded.nominal.supports == both
+    sweep = SweepSpec(racket=racket, ball=ball, locations=point, ball_speeds=[20.0],
+                      supports="free,pinned")  # type: ignore[arg-type]  # fmt: skip
+    assert sweep.supports == both
+    quiet = Setup()  # no figures
+    compound = run_compound(tmp_path / "c", quiet, supports="free,hand")
+    assert compound.supports == ["free", "hand"]
+    twist = run_twist(tmp_path / "t", quiet, offsets_m=[0.0], supports="free,hand")
+    assert [curve.support for curve in twist.curves] == ["free", "hand"]

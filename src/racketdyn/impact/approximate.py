@@ -398,7 +398,8 @@ def predict(
     ball_speed : array_like, shape (s,)
         Incoming ball speed V_Bo towards the strings, m/s.
     supports : str or sequence of {"free", "pinned"}
-        Support conditions (eq 4 for ``pinned``).
+        Support conditions (eq 4 for ``pinned``); one text of one or several comma-separated
+        names too (``"free,pinned"``, as the command line and the options objects take them).
     racket_speed : float or array_like, shape (s,)
         Speed of the racket's impact point towards the ball before impact, m/s (the paper's
         V_Ro with the sign making it add to the ball's).

@@ -33,9 +33,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.errors import InputError, one_of
-from racketdyn.impact.grid import StringBed, check_string_bed, point_law
+from racketdyn.impact.grid import StringBed, check_string_bed, check_supports, point_law
 from racketdyn.impact.result import ImpactResult, slug, write_columns
-from racketdyn.impact.transient import TransientImpact, simulate_impact
+from racketdyn.impact.transient import TRANSIENT_SUPPORTS, TransientImpact, simulate_impact
 from racketdyn.modal.model import ModalModel
 from racketdyn.racket import Racket
 
@@ -282,7 +282,7 @@ def simulate_histories(
     ball: Ball,
     points: Mapping[str, ArrayLike],
     ball_speed: float,
-    supports: Sequence[str],
+    supports: str | Sequence[str],
     racket_speed: float = 0.0,
     modal_model: ModalModel | Literal["racket"] | None = "racket",
     law: RestoringForce | None = None,
@@ -300,8 +300,8 @@ def simulate_histories(
         Named impact points, m.
     ball_speed : float
         Incoming ball speed, m/s.
-    supports : sequence of str
-        Support conditions, each simulated.
+    supports : str or sequence of str
+        Support conditions, each simulated (one text of comma-separated names too).
     racket_speed : float
         Speed of the impact point towards the ball, m/s.
     modal_model : ModalModel, None or "racket"
@@ -322,12 +322,13 @@ def simulate_histories(
         Points slowest, then supports.
     """
     check_string_bed(string_bed, law, racket)
+    support_names = check_supports(supports, TRANSIENT_SUPPORTS)
     histories = []
     for name, location in points.items():
         xy = np.asarray(location, dtype=float).reshape(2)
         if string_bed == "local":
             law = point_law(racket, ball, xy)
-        for support in supports:
+        for support in support_names:
             impact = simulate_impact(
                 racket,
                 ball,

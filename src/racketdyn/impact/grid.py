@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball, RestoringForce
 from racketdyn.contact import compound_law, local_compound_law, with_ball_string_cor
-from racketdyn.errors import InputError, one_of, require_speeds
+from racketdyn.errors import InputError, one_of, require_speeds, require_words
 from racketdyn.impact.hand import Hand
 from racketdyn.modal import ModalModel
 from racketdyn.racket import SUPPORTS, Racket, as_locations
@@ -61,11 +61,14 @@ LOCAL_LAW_RECORD = (
 def check_supports(
     supports: Sequence[str] | str, allowed: Sequence[str] = SUPPORTS
 ) -> tuple[str, ...]:
-    """Support names as a tuple: one string or a sequence, each known, each once (InputError).
+    """Support names as a tuple: a sequence, or one text of one or several comma-separated
+    names (``"free,pinned"``, the command line's spelling, as the options objects take it),
+    each known, each once (InputError).
 
     ``allowed`` is the impact model's supports (the transient model adds ``hand``).
     """
-    names = (supports,) if isinstance(supports, str) else tuple(supports)
+    given = require_words("support", supports) if isinstance(supports, str) else supports
+    names = tuple(given)
     if not names:
         raise InputError(f"support: give at least one of {', '.join(allowed)}")
     for name in names:

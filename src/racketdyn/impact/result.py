@@ -34,6 +34,7 @@ __all__ = [
     "SHOWN_BY_DEFAULT",
     "SHOWN_SPEED_MPS",
     "STATUS_BEYOND_LAW",
+    "STATUS_DTYPE",
     "STATUS_FRAME_CONTACT",
     "STATUS_FROM_TRANSIENT",
     "STATUS_MEANING",
@@ -55,6 +56,7 @@ __all__ = [
     "shown_case_index",
     "shown_speed_index",
     "slug",
+    "status_text",
     "summary_rows",
     "write_columns",
 ]
@@ -213,6 +215,18 @@ so)."""
 
 FROM_TRANSIENT_NOTE = "(transient model)"
 """What a number taken from a row filled from the transient model says after it."""
+
+STATUS_DTYPE = np.dtype(f"<U{max(len(status) for status in (STATUS_OK, *INVALIDATED))}")
+"""Text as wide as the longest status an impact model gives (85 characters)."""
+
+
+def status_text(status: ArrayLike) -> NDArray[np.str_]:
+    """Statuses as text at least :data:`STATUS_DTYPE` wide, so that a copy keeps any status
+    written into it: numpy's text arrays are as wide as their longest element, and an
+    all-``ok`` result's two-character copy cut "from the transient model: …" to "fr" without
+    a word (the row, filled with valid numbers, then turned NaN)."""
+    text = np.asarray(status, dtype=str)
+    return text if text.itemsize >= STATUS_DTYPE.itemsize else text.astype(STATUS_DTYPE)
 
 
 def is_valid(status: ArrayLike) -> NDArray[np.bool_]:
@@ -427,6 +441,7 @@ class ImpactResult:
     def __post_init__(self) -> None:
         # the one place a flagged row's results become NaN (issue 13): every producer and
         # every copy (concatenate, replace, swing) goes through here
+        object.__setattr__(self, "status", status_text(self.status))
         for attribute, value in _invalidate(self).items():
             object.__setattr__(self, attribute, value)
 

@@ -34,7 +34,12 @@ from racketdyn.impact.approximate import (
     shapes_where,
 )
 from racketdyn.impact.calibration import PARAMETERS, shifted_e_bg
-from racketdyn.impact.grid import ball_reaches_frame, resolve_modal_model, support_reduced_mass
+from racketdyn.impact.grid import (
+    ball_reaches_frame,
+    check_supports,
+    resolve_modal_model,
+    support_reduced_mass,
+)
 from racketdyn.impact.measured import ModelInputs, first_bending_index
 from racketdyn.modal import ModalModel
 from racketdyn.numerics import one_blas_thread
@@ -68,7 +73,7 @@ def predict_samples(
     locations: ArrayLike,
     ball_speed: ArrayLike,
     *,
-    supports: Sequence[str] = ("free",),
+    supports: str | Sequence[str] = ("free",),
     racket_speed: ArrayLike = 0.0,
     stiffness_reading: StiffnessReading = "period",
     vibration_charge: VibrationCharge = "coupled",
@@ -89,8 +94,8 @@ def predict_samples(
         ``(n_samples, n_points, 2)`` each sample's impact points on the bed (x, y), m.
     ball_speed : array_like
         ``(n_samples, n_speeds)`` each sample's ball speeds, m/s (> 0).
-    supports : sequence of {"free", "pinned"}
-        Supports.
+    supports : str or sequence of {"free", "pinned"}
+        Supports (one text of comma-separated names too).
     racket_speed : array_like
         Racket speed at the impact point, one or one per ball speed, m/s.
     stiffness_reading, vibration_charge : str
@@ -111,7 +116,7 @@ def predict_samples(
     speeds = np.asarray(ball_speed, dtype=float)
     total = xy.shape[0]
     options = {
-        "supports": tuple(supports),
+        "supports": check_supports(supports),
         "racket_speed": np.broadcast_to(np.asarray(racket_speed, dtype=float), speeds.shape[1:]),
         "stiffness_reading": stiffness_reading,
         "vibration_charge": vibration_charge,

@@ -76,6 +76,7 @@ from racketdyn.impact.result import (
     STATUS_OK,
     ImpactResult,
     impact_columns,
+    status_text,
     summary_rows,
     write_columns,
 )
@@ -501,7 +502,8 @@ def predict_swing(
     swing : Swing
         The swing (torque model or angular speed).
     supports : str or sequence of str
-        Support conditions during the impact (default ``pinned``: the hand-held model).
+        Support conditions during the impact (default ``pinned``: the hand-held model); one
+        text of comma-separated names too.
     model : {"approximate", "transient"}
         Impact model: :func:`racketdyn.impact.predict` or
         :func:`racketdyn.impact.transient.predict_transient`.
@@ -593,7 +595,7 @@ def _predict_swing(
             merged[name][index] = np.asarray(getattr(part, name))
     assert first is not None
     assert reduced is not None
-    merged["status"] = merged["status"].astype(str)
+    merged["status"] = status_text(merged["status"])
 
     inputs = dict(first.inputs)
     inputs["swing"] = {

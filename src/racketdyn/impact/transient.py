@@ -982,7 +982,7 @@ def predict_transient(
     ball_speed : array_like, shape (s,)
         Incoming ball speeds, m/s.
     supports : str or sequence of {"free", "pinned", "hand"}
-        Support conditions.
+        Support conditions (one text of comma-separated names too, ``"free,hand"``).
     racket_speed : float or array_like, shape (s,)
         Speed of the impact point towards the ball, m/s (one, or one per ball speed).
     modal_model : ModalModel, None or "racket"

@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeVar, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from racketdyn.errors import InputError, one_of
+from racketdyn.errors import InputError, one_of, require_words
 from racketdyn.impact.approximate import STATUSES, predict
 from racketdyn.impact.calibration import PARAMETERS
 from racketdyn.impact.grid import status_warnings_held
@@ -541,7 +541,7 @@ def propagate(
     uncertainty: Uncertainty,
     *,
     method: Method = "approx",
-    supports: Sequence[str] = ("free",),
+    supports: str | Sequence[str] = ("free",),
     racket_speed: ArrayLike = 0.0,
     labels: Sequence[str] | None = None,
     options: dict[str, Any] | None = None,
@@ -564,8 +564,8 @@ def propagate(
         The uncertain inputs and the sampling.
     method : {"approx", "transient"}
         The approximate method (eqs 1–12) or the transient simulation.
-    supports : sequence of str
-        Supports, as the model takes them.
+    supports : str or sequence of str
+        Supports, as the model takes them (one text of comma-separated names too).
     racket_speed : array_like
         Racket speed at the impact point, one or one per ball speed, m/s.
     labels : sequence of str, optional
@@ -598,7 +598,7 @@ def propagate(
     speeds = np.atleast_1d(np.asarray(ball_speed, dtype=float))
     _warn_if_rough(uncertainty.samples)
     model_options: dict[str, Any] = {
-        "supports": list(supports),
+        "supports": require_words("supports", supports),
         "racket_speed": racket_speed,
         "labels": labels,
         **(options or {}),

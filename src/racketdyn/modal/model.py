@@ -25,7 +25,7 @@ from racketdyn._display import html_table, number, numbers, shorten, words
 from racketdyn.errors import InputError
 from racketdyn.numerics import as_points
 
-__all__ = ["ModalModel"]
+__all__ = ["ModalModel", "kind_from_name"]
 
 FORMAT = "racketdyn-modal-model"
 MODE_KINDS = ("bending", "twisting", "string-bed", "rigid-body", "other", "unknown")
@@ -40,7 +40,9 @@ SCALINGS = ("mass", "unscaled")
 1, no unit: the test had no usable driving point)."""
 
 
-def _kind_from_name(name: str) -> str:
+def kind_from_name(name: str) -> str:
+    """A mode's kind as its name says it, where no kind is given: ``string-bed`` (a name with
+    "string" or "membrane"), ``rigid-body``, else ``other``."""
     lower = name.lower()
     if "string" in lower or "membrane" in lower:
         return "string-bed"
@@ -120,7 +122,7 @@ class ModalModel:
         object.__setattr__(self, "mode_shapes", shapes)
         object.__setattr__(self, "locations", locations)
         object.__setattr__(self, "names", tuple(self.names))
-        kinds = tuple(self.kinds) or tuple(_kind_from_name(n) for n in self.names)
+        kinds = tuple(self.kinds) or tuple(kind_from_name(n) for n in self.names)
         if len(kinds) != frequency.size or not set(kinds) <= set(MODE_KINDS):
             raise InputError(
                 f"modal model ({self.source}): one kind per mode, each one of "

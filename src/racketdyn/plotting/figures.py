@@ -370,13 +370,21 @@ def figure_face_maps(data: PaperFigures, axes: Sequence[Axes] | None = None) -> 
     return figure
 
 
+_CHARGED, _NOT_CHARGED = "0.3", "0.7"
+"""Fig. 13's dotted lines: a mode the prediction charges, and a string-bed mode it does not."""
+
+_CHARGED_WORDS = "modes the prediction charges"
+_NOT_CHARGED_WORDS = "the string bed's modes: for reference, not charged"
+
+
 def figure_pulse_spectrum(data: PaperFigures, axes: Sequence[Axes] | None = None) -> Figure:
     """Paper Fig. 13: the half-sine pulse at the face centre and its spectrum, against speed.
 
     Parameters
     ----------
     data : PaperFigures
-        The run's figure data: its ``pulse`` (the modes of the model dotted).
+        The run's figure data: its ``pulse`` (the modes the prediction charges dotted, the
+        string bed's it does not charge dotted in a lighter grey, for reference).
     axes : sequence of Axes, optional
         Two (the pulse, its spectrum) to draw into, their figure, size and layout the caller's;
         default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an error if
@@ -393,11 +401,16 @@ def figure_pulse_spectrum(data: PaperFigures, axes: Sequence[Axes] | None = None
         )
     if pulse.modal:
         modes = [
-            (float(f), name, "0.4")
-            for name, f in zip(pulse.mode_names, pulse.mode_frequency, strict=True)
+            (float(f), name, _CHARGED if charged else _NOT_CHARGED)
+            for name, f, charged in zip(
+                pulse.mode_names, pulse.mode_frequency, pulse.mode_charged, strict=True
+            )
         ]
         grid[1].set_xlim(frequency[0] - 30.0, frequency[-1] + 30.0)
         label_lines(grid[1], modes)
+        for colour, words in ((_CHARGED, _CHARGED_WORDS), (_NOT_CHARGED, _NOT_CHARGED_WORDS)):
+            if any(mark[2] == colour for mark in modes):
+                grid[1].plot([], [], color=colour, linestyle=":", linewidth=1.0, label=words)
     grid[0].set_xlabel("time from first contact (ms)")
     grid[0].set_ylabel("impact force F(t) (N)")
     grid[1].set_xlabel("frequency (Hz)")
@@ -408,7 +421,7 @@ def figure_pulse_spectrum(data: PaperFigures, axes: Sequence[Axes] | None = None
             ax.legend(fontsize=7)
     figure.suptitle(
         "Fig. 13: half-sine impact force at the face centre "
-        f"({SUPPORT_STYLE[pulse.support]['label']}) and its spectrum; modes of the model dotted"
+        f"({SUPPORT_STYLE[pulse.support]['label']}) and its spectrum; the racket's modes dotted"
         f"\n{pulse.description}",
         fontsize=10,
     )
@@ -1005,13 +1018,52 @@ def figure_transient_comparison_speed(
     return figure
 
 
+_NAMED_MODES = 4
+"""The modal coordinates' legend names at most this many modes, the largest."""
+
+_NAMED_SHARE = 0.05
+"""… each peaking at this share of the largest peak or more; the rest are drawn grey and
+summed up in one entry (the trial racket's 8 modes × 2 supports made 16 entries over the
+curves; every number is in transient_histories.csv)."""
+
+_SMALL_MODES = "0.7"
+"""The colour of the modes the legend does not name."""
+
+
+def _largest_modes(peaks: NDArray[np.float64]) -> list[int]:
+    """The modes the legend names, largest first, from each mode's largest |q|
+    (:data:`_NAMED_MODES`, :data:`_NAMED_SHARE`)."""
+    order = [int(k) for k in np.argsort(-peaks, kind="stable")]
+    return [k for k in order[:_NAMED_MODES] if peaks[k] >= _NAMED_SHARE * peaks[order[0]]]
+
+
+def _modal_legend(
+    ax: Axes, histories: TransientHistories, peaks: NDArray[np.float64], colours: Any
+) -> list[int]:
+    """The modal coordinates' legend entries, as empty lines in ``ax``: the largest modes in
+    their colours, the others in one grey entry with their largest peak (``peaks``: each
+    mode's, m·√kg), and each support's line style.  Returns the modes named."""
+    named = _largest_modes(peaks)
+    for k in named:
+        ax.plot([], [], color=colours[k], label=histories.mode_names[k])
+    rest = [k for k in range(peaks.size) if k not in named]
+    if rest:
+        largest = float(np.max(peaks[rest])) * 1e3
+        label = f"{len(rest)} more modes (largest peak {largest:.2g} mm·√kg)"
+        ax.plot([], [], color=_SMALL_MODES, label=label)
+    for support in dict.fromkeys(histories.supports):
+        ax.plot([], [], color="0.2", linestyle=_SUPPORT_LINES.get(support, "-."), label=support)
+    return named
+
+
 def figure_transient_histories(
     histories: TransientHistories, axes: Sequence[Axes] | None = None
 ) -> Figure:
     """Time histories of simulated impacts: force, displacements, modal coordinates.
 
     One column per impact point, one line per support (modal coordinates: one colour per mode,
-    one line style per support).
+    one line style per support; their legend, under the figure, names the largest modes and
+    sums up the rest, drawn grey: :func:`_modal_legend`).
 
     Parameters
     ----------
@@ -1029,6 +1081,10 @@ def figure_transient_histories(
         axes, 3, len(points), figsize=(5.0 * len(points), 8.0), layout="constrained", squeeze=False
     )
     mode_colours = plt.get_cmap("tab10")(np.arange(max(len(mode_names), 1)) % 10)
+    named: list[int] = []
+    if mode_names:  # each mode's largest |q| over every impact drawn, m·√kg
+        peaks = np.nanmax(np.abs(histories.modal_coordinates), axis=(0, 1))
+        named = _modal_legend(grid[2, 0], histories, peaks, mode_colours)
     for column, point in enumerate(points):
         force_ax, move_ax, modal_ax = grid[:, column]
         rows = [k for k, name in enumerate(histories.points) if name == point]
@@ -1058,9 +1114,9 @@ def figure_transient_histories(
                 modal_ax.plot(
                     time_ms,
                     histories.modal_coordinates[row, at, k] * 1e3,
-                    color=mode_colours[k],
+                    color=mode_colours[k] if k in named else _SMALL_MODES,
                     linestyle=line,
-                    label=f"{name}, {support}",
+                    label=f"_{name}, {support}",  # the legend is _modal_legend's
                 )
         first = rows[0]
         x, y = histories.locations[first]
@@ -1079,10 +1135,12 @@ def figure_transient_histories(
             modal_ax.text(
                 0.5, 0.5, "rigid racket: no modes", ha="center", transform=modal_ax.transAxes
             )
-        for ax in (force_ax, move_ax, modal_ax):
+        modal_ax.grid(alpha=0.3)
+        for ax in (force_ax, move_ax):
             ax.grid(alpha=0.3)
-            if ax.get_legend_handles_labels()[0]:
-                ax.legend(fontsize=6)
+            ax.legend(fontsize=6)
+    if mode_names:  # under the figure: beside or on the panels it covered the curves
+        _legend_below(grid[2, 0], fontsize=7, columns=4)
     figure.suptitle(
         "Transient simulation: contact force, ball and racket-face displacement (dotted) and "
         "modal coordinates",

@@ -325,9 +325,10 @@ FIGURES: dict[str, FigureEntry] = {
             "fig13_pulse_spectrum",
             "predict",
             "the half-sine impact force at the face centre and the magnitude of its spectrum for "
-            "balls at {speeds}, {racket_speed} (support in the title), with the modes of the "
-            "model: the faster the ball, the shorter the pulse and the higher its spectrum "
-            "reaches",
+            "balls at {speeds}, {racket_speed} (support in the title), with the modes the "
+            "prediction charges (dark, dotted) and the string bed's it does not charge (light, "
+            "for reference): the faster the ball, the shorter the pulse and the higher its "
+            "spectrum reaches",
             paper="Fig. 13",
             section="impact",
             draw=f"{_FIGURES}:figure_pulse_spectrum",
@@ -407,7 +408,9 @@ FIGURES: dict[str, FigureEntry] = {
             "predict",
             "time histories of the transient simulation at the face centre and near the tip: "
             "contact force (the approximate method assumes a half-sine, Fig. 13), ball and "
-            "racket-face displacement, and the modal coordinates of the flexible modes",
+            "racket-face displacement, and the modal coordinates of the flexible modes (the "
+            "largest named in the legend under the figure, the others grey and summed up in one "
+            "entry; every mode's in transient_histories.csv)",
             section="transient",
             draw=f"{_FIGURES}:figure_transient_histories",
             reads=("transient_histories",),

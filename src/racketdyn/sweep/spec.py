@@ -23,7 +23,7 @@ from numpy.typing import NDArray
 from racketdyn.__about__ import __version__
 from racketdyn.ball import Ball
 from racketdyn.contact import with_ball_string_cor
-from racketdyn.errors import InputError, one_of, require_positive, require_speeds
+from racketdyn.errors import InputError, one_of, require_positive, require_speeds, require_words
 from racketdyn.impact.approximate import STIFFNESS_READINGS, StiffnessReading
 from racketdyn.impact.grid import STRING_BEDS, StringBed
 from racketdyn.impact.hand import Hand
@@ -89,7 +89,8 @@ class SweepSpec:
         Racket speeds at the impact point towards the ball (swing), m/s; each is combined with
         each ball speed.
     supports : sequence of str
-        Support conditions (``free``, ``pinned``; ``hand`` with the transient method).
+        Support conditions (``free``, ``pinned``; ``hand`` with the transient method); one
+        text of comma-separated names too (``"free,pinned"``).
     variables : sequence of Variable
         The swept variables.
     mode : {"full-factorial", "one-at-a-time"}
@@ -181,8 +182,9 @@ class SweepSpec:
         object.__setattr__(self, "ball_speeds", ball_speeds)
         object.__setattr__(self, "racket_speeds", racket_speeds)
         _check_method("[impacts].method", self.method)
-        given: object = self.supports  # a lone name is accepted too
-        supports = (given,) if isinstance(given, str) else tuple(self.supports)
+        given: object = self.supports  # a text of one or several comma-separated names too
+        named = require_words("supports", given) if isinstance(given, str) else self.supports
+        supports = tuple(named)
         _check_supports("[variables].support", supports, self.method)
         object.__setattr__(self, "supports", supports)
         object.__setattr__(self, "variables", tuple(self.variables))

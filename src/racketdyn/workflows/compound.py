@@ -48,6 +48,7 @@ from racketdyn.modal import ModalModel
 from racketdyn.racket import Racket
 from racketdyn.rig.hammer import string_contact_time
 from racketdyn.workflows.figure_data import defer_figure_data
+from racketdyn.workflows.inputs import supports_named
 from racketdyn.workflows.run import (
     StepResult,
     report,
@@ -368,7 +369,7 @@ def run_compound(
     setup: Setup = DEFAULT_SETUP,
     *,
     ball_at: ArrayLike | None = None,
-    supports: Sequence[str] = ("free", "hand"),
+    supports: str | Sequence[str] = ("free", "hand"),
     preload_n: float = PRELOAD_N,
     hammer: ArrayLike | None = None,
 ) -> CompoundResult:
@@ -401,9 +402,7 @@ def run_compound(
         long as the hammer's contact with the strings there
         (:func:`racketdyn.rig.hammer.string_contact_time`, as the virtual rig's).
     """
-    checked = [one_of("`supports`", s, TRANSIENT_SUPPORTS) for s in supports]
-    if not checked or len(set(checked)) != len(checked):
-        raise InputError(f"`supports`: name each support once (got {','.join(supports)})")
+    checked = supports_named(supports, TRANSIENT_SUPPORTS)
     used = setup.racket_setup()
     the_racket = used.racket
     defaults_used = [*used.defaults, *setup.defaults]

@@ -54,7 +54,7 @@ from racketdyn.impact.result import (
 )
 from racketdyn.impact.swing import ImpactModel, Swing, SwingResult, axis_swings, predict_swing
 from racketdyn.impact.system import Engine
-from racketdyn.modal.model import ModalModel
+from racketdyn.modal.model import ModalModel, kind_from_name
 from racketdyn.racket import HeadEllipse, Racket, landmark_points
 from racketdyn.racket_modal.shapes import axis_nodes
 from racketdyn.workflows._figure_io import _array, _has, _join, _part, _strings, store, stored
@@ -359,9 +359,14 @@ class PulseSpectra:
     spectrum : ndarray (n_speeds, n_frequencies)
         ``|S(f)|``, N·s (NaN for a flagged speed).
     mode_names : tuple of str
-        The modes within the frequency range.
+        The flexible modes of the run's model within the frequency range.
     mode_frequency : ndarray (n_modes,)
         Their natural frequencies, Hz.
+    mode_charged : ndarray of bool (n_modes,)
+        Which of them the prediction charges (run.json's ``modal_model``, the report's "Modes
+        the prediction used"); the others are the string bed's, left out unless
+        ``include_string_bed`` (their vibration is in the ball–string law), drawn for
+        reference.
     modal : bool
         The racket has a modal model (False: rigid).
     description : str
@@ -380,6 +385,7 @@ class PulseSpectra:
     spectrum: NDArray[np.float64]
     mode_names: tuple[str, ...]
     mode_frequency: NDArray[np.float64]
+    mode_charged: NDArray[np.bool_]
     modal: bool
     description: str
 
@@ -408,6 +414,8 @@ class PulseSpectra:
                     {
                         "mode_name": ("mode", list(self.mode_names)),
                         "mode_frequency_hz": ("mode", self.mode_frequency, {"units": "Hz"}),
+                        # netCDF 3 has no boolean
+                        "mode_charged": ("mode", self.mode_charged.astype(np.int8)),
                     }
                     if self.mode_names
                     else {}
@@ -441,9 +449,19 @@ class PulseSpectra:
             mode_frequency=_array(dataset["mode_frequency_hz"].values)
             if "mode_name" in dataset
             else _array([]),
+            mode_charged=_charged(dataset),
             modal=bool(int(attrs["modal"])),
             description=str(attrs["description"]),
         )
+
+
+def _charged(dataset: xr.Dataset) -> NDArray[np.bool_]:
+    """Fig. 13's ``mode_charged`` back; from a figures.nc written before it, as a run charges
+    them by default (``include_string_bed`` False): all but the modes named the string bed's."""
+    if "mode_charged" in dataset:
+        return np.asarray(dataset["mode_charged"].values, dtype=bool)
+    names = _strings(dataset["mode_name"].values) if "mode_name" in dataset else ()
+    return np.array([kind_from_name(name) != "string-bed" for name in names], dtype=bool)
 
 
 @dataclass(frozen=True)
@@ -1126,9 +1144,12 @@ def _pulse_spectra(
         if np.isfinite(contact[s]) and status[s] == STATUS_OK:
             force[s] = half_sine_force(time, contact[s], peak[s])
             spectrum[s] = half_sine_spectrum(frequency, contact[s], peak[s])
+    # the run's flexible modes: those charged (the result's own) and the string bed's
+    shown = None if model is None else model.flexible_modes
     within = (
-        [] if model is None else [k for k, f in enumerate(model.frequency) if f <= frequency[-1]]
+        [] if shown is None else [k for k, f in enumerate(shown.frequency) if f <= frequency[-1]]
     )
+    charged = () if result.modal_model is None else result.modal_model.names
     return PulseSpectra(
         support=result.supports[0],
         location=(float(result.locations[0, 0]), float(result.locations[0, 1])),
@@ -1140,10 +1161,13 @@ def _pulse_spectra(
         force=force,
         frequency=frequency,
         spectrum=spectrum,
-        mode_names=tuple(model.names[k] for k in within) if model is not None else (),
-        mode_frequency=_array([model.frequency[k] for k in within])
-        if model is not None
+        mode_names=tuple(shown.names[k] for k in within) if shown is not None else (),
+        mode_frequency=_array([shown.frequency[k] for k in within])
+        if shown is not None
         else _array([]),
+        mode_charged=np.array([shown.names[k] in charged for k in within], dtype=bool)
+        if shown is not None
+        else np.zeros(0, dtype=bool),
         modal=model is not None,
         description=description,
     )

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from racketdyn.ball import Ball, RestoringForce
-from racketdyn.errors import InputError
+from racketdyn.errors import InputError, one_of, require_words
 from racketdyn.impact.hand import Hand
 from racketdyn.io import default_racket, load_racket, read_e_bg_table, read_load_deflection
 from racketdyn.io.racket_file import DEFAULT_RACKET_NAME, check_racket, read_toml
@@ -38,6 +38,7 @@ __all__ = [
     "load_racket_input",
     "setup",
     "single_support",
+    "supports_named",
 ]
 
 RacketInput = Racket | str | os.PathLike[str] | None
@@ -325,6 +326,17 @@ def hand_or_default(supports: Sequence[str], hand: Hand | None) -> tuple[Hand | 
     if "hand" not in supports:
         return None, []
     return hand_for(supports) if hand is None else (hand, [])
+
+
+def supports_named(supports: str | Sequence[str], allowed: Sequence[str]) -> list[str]:
+    """A step's supports as Python or the command line gives them: a sequence of names, or
+    one text of comma-separated names (``"free,hand"``, as the options objects take it), each
+    of ``allowed``, each once; else InputError naming `supports`."""
+    words = require_words("`supports`", supports)
+    checked = [one_of("`supports`", word, allowed) for word in words]
+    if len(set(checked)) != len(checked):
+        raise InputError(f"`supports`: name each support once (got {','.join(words)})")
+    return checked
 
 
 def single_support(step: str, support: str | Sequence[str], why: str) -> str:

@@ -59,6 +59,7 @@ from racketdyn.workflows.figure_data import (
     transient_curves,
     write_figure_data,
 )
+from racketdyn.workflows.inputs import supports_named
 from racketdyn.workflows.run import (
     Progress,
     StepResult,
@@ -320,11 +321,11 @@ def impact_points(
     return locations, [str(i + 1) for i in range(len(locations))], f"grid {n} x {n} over the head"
 
 
-def check_supports(supports: Sequence[str], model: str) -> list[str]:
-    """The supports, each allowed by the model(s) asked for, each named once."""
-    allowed = TRANSIENT_SUPPORTS if model == "transient" else SUPPORTS
-    checked = []
-    for support in supports:
+def check_supports(supports: str | Sequence[str], model: str) -> list[str]:
+    """The supports (a sequence, or one text of comma-separated names), each allowed by the
+    model(s) asked for, each named once."""
+    words = require_words("`supports`", supports)
+    for support in words:
         if support == "hand" and model == "both":
             raise InputError(
                 "`supports` hand with `model` both: the approximate method has no hand (it "
@@ -336,10 +337,7 @@ def check_supports(supports: Sequence[str], model: str) -> list[str]:
                 "`supports` hand needs `model` transient: the approximate method has no hand "
                 "(it holds the racket pinned at the grip: `supports` pinned)"
             )
-        checked.append(one_of("`supports`", support, allowed))
-    if len(set(checked)) != len(checked):
-        raise InputError(f"`supports`: name each support once (got {','.join(supports)})")
-    return checked
+    return supports_named(words, TRANSIENT_SUPPORTS if model == "transient" else SUPPORTS)
 
 
 @dataclass(frozen=True)
@@ -447,7 +445,7 @@ def run_predict(
     )
     shown = shown_case_index(speed_list, paired, options.show)
     # one as a string, as rd.predict takes it, or several as the command line spells them
-    support_list = check_supports(require_words("`supports`", options.supports), options.model)
+    support_list = check_supports(options.supports, options.model)
     used = setup.racket_setup()
     the_ball, ball_defaults = setup.ball_used()
     the_hand, hand_defaults = setup.hand_used(support_list)

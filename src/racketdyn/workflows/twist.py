@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from racketdyn.errors import InputError, one_of, require_finite, require_positive
+from racketdyn.errors import InputError, require_finite, require_positive
 from racketdyn.impact.grid import check_string_bed
 from racketdyn.impact.transient import TRANSIENT_SUPPORTS
 from racketdyn.impact.twist import TwistCurve, twist_curve
@@ -23,6 +23,7 @@ from racketdyn.io import racket_to_dict
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket, landmark_points
 from racketdyn.workflows.figure_data import defer_figure_data
+from racketdyn.workflows.inputs import supports_named
 from racketdyn.workflows.run import (
     StepResult,
     report,
@@ -83,7 +84,7 @@ def run_twist(
     offsets_m: ArrayLike = TWIST_OFFSETS_M,
     speed: float = 25.0,
     racket_speed: float = 0.0,
-    supports: Sequence[str] = ("free",),
+    supports: str | Sequence[str] = ("free",),
 ) -> TwistResult:
     """Impacts across the face at one x, one curve per support; write the run folder.
 
@@ -112,9 +113,7 @@ def run_twist(
     racket_speed = require_finite("`racket_speed`", racket_speed)
     check_speeds("`speed`", [speed], "ball_speed_mps", setup.allow_implausible)
     check_speeds("`racket_speed`", [racket_speed], "racket_speed_mps", setup.allow_implausible)
-    checked = [one_of("`supports`", s, TRANSIENT_SUPPORTS) for s in supports]
-    if len(set(checked)) != len(checked):
-        raise InputError(f"`supports`: name each support once (got {','.join(supports)})")
+    checked = supports_named(supports, TRANSIENT_SUPPORTS)
     used = setup.racket_setup()
     head = used.racket.head
     centre: list[str] = []
