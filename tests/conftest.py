@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import pytest
@@ -35,6 +37,35 @@ def model(racket: rd.Racket) -> rd.ModalModel:
 @pytest.fixture(scope="session")
 def law(racket: rd.Racket, ball: rd.Ball) -> rd.RestoringForce:
     return rd.compound_law(racket, ball)
+
+
+@pytest.fixture(scope="session")
+def rig_frf_tree(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
+    """The virtual rig's hammer tests, free and hand-held, and their FRFs
+    (``figure_catch.rig_frfs``), built once for the whole run and shared by the modules that
+    read them (``test_truth_comparison``, ``test_figure_data``, ``test_redraw_from_folder``:
+    three builds of ≈ 10 s each before).  A test may add a folder of its own name beside them
+    and change nothing else.  Under pytest-xdist the workers share the run's temporary folder;
+    the first to come builds the tree under a lock, the others wait and read it (``filelock``
+    is not a dependency, and one ``fcntl`` lock on one file is all this needs)."""
+    from figure_catch import rig_frfs
+
+    if os.environ.get("PYTEST_XDIST_WORKER") is None:
+        yield rig_frfs(tmp_path_factory.mktemp("rig_frfs"))
+        return
+    import fcntl
+
+    shared = tmp_path_factory.getbasetemp().parent  # the run's folder, above each worker's
+    tree, done = shared / "rig_frfs", shared / "rig_frfs.done"
+    with (shared / "rig_frfs.lock").open("w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            if not done.exists():
+                rig_frfs(tree)
+                done.touch()
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+    yield tree
 
 
 @pytest.fixture(scope="module")

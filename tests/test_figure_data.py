@@ -15,7 +15,7 @@ import pytest
 from matplotlib.figure import Figure
 
 import racketdyn as rd
-from figure_catch import Drawn, catch_figures, rig_frfs, same_3d_drawing, same_drawing
+from figure_catch import Drawn, catch_figures, same_3d_drawing, same_drawing
 from racketdyn.plotting import figures as figures_module
 from racketdyn.plotting.primitives import SUPPORT_STYLE
 from racketdyn.plotting.steps import compare_figures
@@ -33,9 +33,10 @@ def caught(monkeypatch: pytest.MonkeyPatch) -> Iterator[Drawn]:
 
 
 @pytest.fixture(scope="module")
-def frfs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
-    """FRFs of the virtual rig, free and hand-held (few averages, no faults)."""
-    d = rig_frfs(tmp_path_factory.mktemp("frfs"))
+def frfs(rig_frf_tree: Path) -> tuple[Path, Path]:
+    """FRFs of the virtual rig, free and hand-held (few averages, no faults; the run's shared
+    tree)."""
+    d = rig_frf_tree
     return d / "frf_free" / "frfs.uff", d / "frf_hand" / "frfs.uff"
 
 

@@ -14,16 +14,17 @@ from typing import Any
 import matplotlib.pyplot as plt
 import pytest
 
-from figure_catch import Drawn, catch_figures, rig_frfs, same_3d_drawing, same_drawing
+from figure_catch import Drawn, catch_figures, same_3d_drawing, same_drawing
 from racketdyn.plotting import registry
 from racketdyn.workflows.identify import IdentifyOptions
 from racketdyn.workflows.setup import Setup
 
 
 @pytest.fixture(scope="module")
-def rig(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The virtual rig's hammer tests, free and hand-held, and their FRFs (few averages)."""
-    return rig_frfs(tmp_path_factory.mktemp("rig"))
+def rig(rig_frf_tree: Path) -> Path:
+    """The virtual rig's hammer tests, free and hand-held, and their FRFs (few averages; the
+    run's shared tree: the steps write beside their own folder, not into it)."""
+    return rig_frf_tree
 
 
 CENTRE = (0.505, 0.0)
@@ -86,8 +87,11 @@ def _compare_ball(out: Path, rig: Path) -> Any:
     from racketdyn.workflows import RigOptions, run_compare_ball, run_frf, run_rig
 
     # the rig's free racket with a ball at the centre (the window keeps the ball mode stable)
-    run_rig(rig / "rig_ball", options=RigOptions(averages=2, support="free", ball_at=CENTRE))
-    frfs = run_frf(rig / "rig_ball" / "hammer_free.uff", rig / "frf_ball", exponential_window_s=0.1)
+    ball = out.parent
+    run_rig(ball / "rig_ball", options=RigOptions(averages=2, support="free", ball_at=CENTRE))
+    frfs = run_frf(
+        ball / "rig_ball" / "hammer_free.uff", ball / "frf_ball", exponential_window_s=0.1
+    )
     alone = rig / "frf_free" / "frfs.uff"
     return run_compare_ball(
         alone,

@@ -13,7 +13,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from figure_catch import rig_frfs
 from racketdyn.modal.model import ModalModel
 from racketdyn.report import render_section
 from racketdyn.report.folder import RunFolder
@@ -24,11 +23,12 @@ from racketdyn.workflows.truth import TRUTH_COLUMNS, TRUTH_FILES, rig_truth_of
 
 
 @pytest.fixture(scope="module")
-def tree(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """rig, frf_free, frf_hand (few averages) and ``identify`` of the free FRFs, no figures."""
+def tree(rig_frf_tree: Path) -> Path:
+    """rig, frf_free, frf_hand (few averages; the run's shared tree) and ``identify`` of the
+    free FRFs, no figures."""
     from racketdyn.workflows import run_identify
 
-    folder = rig_frfs(tmp_path_factory.mktemp("truth"))
+    folder = rig_frf_tree
     logging.disable(logging.WARNING)
     try:
         run_identify(folder / "frf_free" / "frfs.uff", folder / "identify")

@@ -585,13 +585,7 @@ def _unit_responses(
     """Acceleration at the reference for a unit half-sine at each point, on the fine grid."""
     phi_ref = model.mode_shapes_at(reference)[0]
     coefficients = model.mode_shapes_at(xy) * phi_ref  # φ_p φ_ref, (n_points, n_modes)
-    unit_response = np.zeros((xy.shape[0], grid.n_after))
-    for duration in np.unique(durations):
-        group = np.flatnonzero(durations == duration)
-        unit_response[group] = _half_sine_acceleration(
-            model, float(duration), grid.fine_dt, grid.n_after, coefficients[group]
-        )
-    return unit_response
+    return _half_sine_acceleration(model, durations, grid.fine_dt, grid.n_after, coefficients)
 
 
 @dataclass
@@ -791,12 +785,13 @@ def _half_sine(duration: float, dt: float, n: int) -> NDArray[np.float64]:
 
 def _half_sine_acceleration(
     model: RigModel,
-    duration: float,
+    durations: NDArray[np.float64],
     dt: float,
     n: int,
     coefficients: NDArray[np.float64],
 ) -> NDArray[np.float64]:
-    """Acceleration for a unit half-sine, ``Σ_k c_k a_k(t)``, at ``n`` samples from t = 0.
+    """Acceleration for a unit half-sine of each set's duration, ``Σ_k c_k a_k(t)``, at ``n``
+    samples from t = 0.
 
     Each mode ``q̈ + 2ζωq̇ + ω²q = sin(Ωt)`` from rest has the displacement whose Laplace
     transform is ``1 / ((s − iΩ)(s − s₁)(s − s₂))`` (imaginary part); its residues give
@@ -805,30 +800,48 @@ def _half_sine_acceleration(
     acceleration averaged over a triangle of half-width dt (the second difference of the exact
     displacement over dt²), the same weighting :func:`_half_sine` gives the force: a first
     anti-alias stage (``sinc²``) that the fine grid needs, as an analogue filter would be.
+    The modes' ``e^{s₁t}`` do not depend on T and are computed once for every duration (they
+    were most of a rig's run when computed again for each of its ≈ 30 durations).
 
-    Returns an array ``(n_sets, n)`` for ``coefficients`` shaped ``(n_sets, n_modes)``.
+    Returns an array ``(n_sets, n)`` for ``durations`` shaped ``(n_sets,)`` and
+    ``coefficients`` shaped ``(n_sets, n_modes)``.
     """
     omega, zeta = model.omega, model.damping_ratio
-    big = np.pi / duration
     s1 = omega * (-zeta + 1j * np.sqrt(1 - zeta**2))
+    groups = [(float(d), np.flatnonzero(durations == d)) for d in np.unique(durations)]
+    displacement = np.zeros((coefficients.shape[0], n + 2))  # from t = -dt to n dt
+    for start in range(0, n + 1, _CHUNK):
+        t = (start + np.arange(min(_CHUNK, n + 1 - start))) * dt
+        e1 = np.exp(np.outer(t, s1))
+        for duration, group in groups:
+            terms = _half_sine_terms(s1, duration, t, e1)
+            displacement[group, 1 + start : 1 + start + t.size] = coefficients[group] @ terms.T
+    return np.asarray(
+        (displacement[:, 2:] - 2 * displacement[:, 1:-1] + displacement[:, :-2]) / dt**2
+    )
+
+
+def _half_sine_terms(
+    s1: NDArray[np.complex128],
+    duration: float,
+    t: NDArray[np.floating[Any]],
+    e1: NDArray[np.complex128],
+) -> NDArray[np.float64]:
+    """Each mode's displacement ``q(t)`` for a unit half-sine of ``duration`` (the residues of
+    :func:`_half_sine_acceleration`), shaped ``(t.size, n_modes)``; ``e1`` is ``e^{s₁t}``."""
     s2 = np.conj(s1)
+    big = np.pi / duration
     iw = 1j * big
     forced = 1 / ((iw - s1) * (iw - s2))
     b1 = 1 / ((s1 - iw) * (s1 - s2))
     b2 = 1 / ((s2 - iw) * (s2 - s1))
     after1, after2 = b1 * (1 + np.exp(-s1 * duration)), b2 * (1 + np.exp(-s2 * duration))
-    displacement = np.zeros((coefficients.shape[0], n + 2))  # from t = -dt to n dt
-    for start in range(0, n + 1, _CHUNK):
-        t = (start + np.arange(min(_CHUNK, n + 1 - start))) * dt
-        e1 = np.exp(np.outer(t, s1))
-        e2 = np.conj(e1)
-        during = t[:, None] <= duration
-        terms = np.where(
+    e2 = np.conj(e1)
+    during = t[:, None] <= duration
+    return np.asarray(
+        np.where(
             during,
             forced * np.exp(iw * t)[:, None] + b1 * e1 + b2 * e2,
             after1 * e1 + after2 * e2,
         ).imag
-        displacement[:, 1 + start : 1 + start + t.size] = coefficients @ terms.T
-    return np.asarray(
-        (displacement[:, 2:] - 2 * displacement[:, 1:-1] + displacement[:, :-2]) / dt**2
     )
