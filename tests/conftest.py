@@ -50,10 +50,13 @@ def rig_frf_tree(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
     is not a dependency, and one ``fcntl`` lock on one file is all this needs)."""
     from figure_catch import rig_frfs
 
-    if os.environ.get("PYTEST_XDIST_WORKER") is None:
+    try:
+        import fcntl
+    except ImportError:  # not POSIX (Windows): each worker builds its own tree
+        fcntl = None  # type: ignore[assignment]
+    if os.environ.get("PYTEST_XDIST_WORKER") is None or fcntl is None:
         yield rig_frfs(tmp_path_factory.mktemp("rig_frfs"))
         return
-    import fcntl
 
     shared = tmp_path_factory.getbasetemp().parent  # the run's folder, above each worker's
     tree, done = shared / "rig_frfs", shared / "rig_frfs.done"
