@@ -21,6 +21,7 @@ import racketdyn as rd
 import racketdyn.impact as impact
 import racketdyn.io as rio
 import racketdyn.modal as modal
+from lab_rackets import LAB_RACKET_102
 from racketdyn.cli import build_parser, main
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
@@ -243,28 +244,6 @@ def test_the_racket_page_shows_what_racket_prints(
     assert [line.rstrip() for line in sample.splitlines() if line.strip()] == printed
 
 
-LARGE_HEAD = """schema_version = 1
-name = "102 sq in"
-[racket]
-mass_kg = 0.285
-length_m = 0.685
-balance_m = 0.335
-swingweight_kgcm2 = 315.0
-grip_m = 0.070
-[head]
-centre_x_m = 0.510
-half_length_m = 0.170
-area_cm2 = 658.06
-[strings]
-tension_n = 220.0
-mains = 16
-crosses = 19
-[modal]
-first_bending_hz = 165.0
-"""
-"""The new-user trial's racket of 2026-11-27 (ninth session): 102 sq in, 285 g."""
-
-
 def test_the_readmes_frame_shots_are_the_default_grids(tmp_path: Path) -> None:
     """New-user trial (2026-11-27, ninth session): the README said frame shots are "the default
     grid's outer ring"; on a 102 sq in head points of a second ring along the sides (x = 623
@@ -281,7 +260,7 @@ def test_the_readmes_frame_shots_are_the_default_grids(tmp_path: Path) -> None:
     readme = " ".join((DOCS.parent / "README.md").read_text(encoding="utf-8").split())
     claim = re.search(r"(\d+) of the default grid's (\d+) points", readme)
     assert claim, "the README's frame-shot sentence"
-    (tmp_path / "large.toml").write_text(LARGE_HEAD, encoding="utf-8")
+    (tmp_path / "large.toml").write_text(LAB_RACKET_102, encoding="utf-8")
     logging.disable(logging.WARNING)
     try:
         for racket in (None, tmp_path / "large.toml"):

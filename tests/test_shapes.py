@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
+from lab_rackets import LAB_RACKET_102
 from pull_tension import pull_tension_racket
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.racket_modal.shapes import (
@@ -170,31 +171,6 @@ def test_the_strings_own_motion_parts_the_frames_mode_from_the_beds(truths) -> N
     assert kinds[bending] == "unknown"
 
 
-TRIAL_RACKET = """schema_version = 1
-name = "Trial9 285g 102sqin"
-
-[racket]
-mass_kg = 0.285
-length_m = 0.685
-balance_m = 0.335
-swingweight_kgcm2 = 315.0
-grip_m = 0.070
-
-[head]
-centre_x_m = 0.510
-half_length_m = 0.170
-area_cm2 = 658.06
-
-[strings]
-tension_n = 220.0
-mains = 16
-crosses = 19
-
-[modal]
-first_bending_hz = 165.0
-"""
-
-
 def test_an_odd_veering_pair_is_not_named_string_bed_by_its_recoil(tmp_path) -> None:
     """Issue 25 (ninth-session trial): a 285 g, 102 sq in racket's twisting modes above 1.4 kHz
     veer with the bed's odd membrane modes (strain energy twist/strings 45/55 at 1469.3 Hz,
@@ -207,7 +183,7 @@ def test_an_odd_veering_pair_is_not_named_string_bed_by_its_recoil(tmp_path) -> 
     from racketdyn.io import load_racket
 
     path = tmp_path / "trial.toml"
-    path.write_text(TRIAL_RACKET)
+    path.write_text(LAB_RACKET_102)
     racket = load_racket(path)
     locations, _ = hammer_points(racket)
     truth = rig_model(racket, "free").modal_truth(locations, max_frequency_hz=1900)

@@ -1,0 +1,26 @@
+"""Racket files of the new-user trials, shared by the tests that reproduce their findings."""
+
+LAB_RACKET_102 = """schema_version = 1
+name = "Trial9 285g 102sqin"
+
+[racket]
+mass_kg = 0.285
+length_m = 0.685
+balance_m = 0.335
+swingweight_kgcm2 = 315.0
+grip_m = 0.070
+
+[head]
+centre_x_m = 0.510
+half_length_m = 0.170
+area_cm2 = 658.06
+
+[strings]
+tension_n = 220.0
+mains = 16
+crosses = 19
+
+[modal]
+first_bending_hz = 165.0
+"""
+"""The ninth session's new-user trial racket: 285 g, 102 sq in, 165 Hz, 220 N."""
