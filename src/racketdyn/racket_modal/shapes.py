@@ -179,7 +179,7 @@ MEMBRANE_MAC = 0.7
 """Least MAC of a string-bed mode's own motion (its strings' shape less the frame's carried
 under them) with one of the bed's own modes for the mode to take that mode's nodal lines as
 its name (–): the rig's membrane modes to 2.1 kHz score 0.83–1.00 at the hammer points, its
-5-node bending's strings 0.52."""
+5-node bending's strings 0.51."""
 FRAME_MAC = 0.8
 """Least MAC of a bending (twisting) mode's frame shape with one of the frame's own bending
 (twisting) modes for the mode to take that mode's node count (–; :class:`ReferenceShapes`)."""
