@@ -58,9 +58,10 @@ from racketdyn.errors import InputError
 from racketdyn.modal.model import ModalModel
 from racketdyn.numerics import one_blas_thread
 from racketdyn.racket import HeadEllipse, Racket
-from racketdyn.racket_modal.shapes import SHAPES_FRAME_MODEL
+from racketdyn.racket_modal.shapes import SHAPES_FRAME_MODEL, ReferenceShapes, sign_changes
 
 __all__ = [
+    "FRAME_REFERENCE_MODES",
     "HANDLE_LENGTH_M",
     "HANDLE_RADIUS_M",
     "HEAD_TOP_DEG",
@@ -71,6 +72,7 @@ __all__ = [
     "frame_mass_per_length",
     "hoop_roll_inertia",
     "mass_along",
+    "reference_shapes",
 ]
 
 STRING_MASS_FRACTION = 0.04
@@ -388,6 +390,35 @@ def _flexible_modes(
     return values[n_rigid:], vectors[:, n_rigid:]
 
 
+@dataclass(frozen=True)
+class _BeamFrame:
+    """The built-in beam's nodes (m), mass per length (kg/m), tubes per element (None:
+    uniform EI), roll inertia per length (kg·m), the node nearest each point mass, and the
+    strings' mass (kg)."""
+
+    x: NDArray[np.float64]
+    density: NDArray[np.float64]
+    tubes: NDArray[np.float64] | None
+    roll_density: NDArray[np.float64]
+    nearest: list[int]
+    string_mass_kg: float
+
+
+def _beam_frame(racket: Racket) -> _BeamFrame:
+    """The built-in beam of a racket: its mass along the racket (:func:`mass_along`) and its
+    roll inertia per length, the section's mass on the hoop, scaled to the racket's roll
+    inertia."""
+    x = _nodes(racket.length_m, N_ELEMENTS)
+    string_mass = float(racket.strings.mass_kg or STRING_MASS_FRACTION * racket.mass_kg)
+    targets = (racket.mass_kg, racket.balance_m, racket.inertia_cg_kgm2)
+    density, tubes = mass_along(racket.length_m, racket.head, targets, string_mass)
+    mid, step = 0.5 * (x[:-1] + x[1:]), np.diff(x)
+    roll_density = density * _section_radius(racket.head, mid) ** 2
+    roll_density *= racket.roll_inertia_kgm2 / np.sum(roll_density * step)
+    nearest = [int(np.argmin(np.abs(x - p.x_m))) for p in racket.point_masses]
+    return _BeamFrame(x, density, tubes, roll_density, nearest, string_mass)
+
+
 def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
     """The built-in free–free modal model of a racket (see the module docstring).
 
@@ -404,12 +435,9 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
         ``n_bending`` bending modes, one twisting mode and the string-bed mode, sampled on the
         beam's nodes along the axis and across the head.
     """
-    x = _nodes(racket.length_m, N_ELEMENTS)
-    string_mass = racket.strings.mass_kg or STRING_MASS_FRACTION * racket.mass_kg
-    targets = (racket.mass_kg, racket.balance_m, racket.inertia_cg_kgm2)
-    density, tubes = mass_along(racket.length_m, racket.head, targets, string_mass)
-    mid, step = 0.5 * (x[:-1] + x[1:]), np.diff(x)
-    nearest = [int(np.argmin(np.abs(x - p.x_m))) for p in racket.point_masses]
+    frame = _beam_frame(racket)
+    x, density, tubes, nearest = frame.x, frame.density, frame.tubes, frame.nearest
+    string_mass = frame.string_mass_kg
 
     # Stiffnesses are calibrated on the racket as described (without point masses): the targets
     # are its measured frequencies; lead tape then shifts the modes, as it would on the racket.
@@ -422,9 +450,7 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
     bending_omega = np.sqrt(omega2 * bending_stiffness)
     bending_shapes = vectors[0::2, :]  # displacement DOFs, mass-normalised
 
-    roll_density = density * _section_radius(racket.head, mid) ** 2
-    roll_density *= racket.roll_inertia_kgm2 / np.sum(roll_density * step)
-    t_stiffness, t_inertia = _torsion_matrices(x, roll_density)
+    t_stiffness, t_inertia = _torsion_matrices(x, frame.roll_density)
     bare_t_omega2, _ = _flexible_modes(t_stiffness, t_inertia, 1, 1)
     torsional_stiffness = (2 * np.pi * racket.twisting_hz) ** 2 / bare_t_omega2[0]
     for node, p in zip(nearest, racket.point_masses, strict=True):
@@ -486,6 +512,51 @@ def builtin_modal_model(racket: Racket, n_bending: int = 2) -> ModalModel:
             # the ball-string law's: nothing to take off (racket_modal.shapes.frame_under_bed)
             "shapes_on_strings": SHAPES_FRAME_MODEL,
         },
+    )
+
+
+FRAME_REFERENCE_MODES = 8
+"""How many of the frame's own bending and twisting modes :func:`reference_shapes` gives
+(2- to 9-node bending, 2- to 9-node twisting)."""
+
+
+def reference_shapes(racket: Racket) -> ReferenceShapes:
+    """What a racket's measured modes are named against
+    (:func:`racketdyn.racket_modal.shapes.classify_modes`).
+
+    The frame's own bending modes ``w(x)`` and twisting modes ``θ(x)`` (the built-in model's
+    beam: its mass along the racket, its tubes, the point masses; the strings' mass on the
+    beam, no membrane), each with its node count from its sign changes along the racket
+    (n-node bending: n sign changes of ``w`` from butt to tip; n-node twisting: n − 1 of
+    ``θ``, the long axis being a nodal line too), and the bed's tensions for its own modes.
+
+    Parameters
+    ----------
+    racket : Racket
+        The racket.
+
+    Returns
+    -------
+    ReferenceShapes
+    """
+    frame = _beam_frame(racket)
+    stiffness, mass = _bending_matrices(frame.x, frame.density, frame.tubes)
+    t_stiffness, t_inertia = _torsion_matrices(frame.x, frame.roll_density)
+    for node, p in zip(frame.nearest, racket.point_masses, strict=True):
+        mass[2 * node, 2 * node] += p.mass_kg
+        t_inertia[node, node] += p.mass_kg * p.y_m**2
+    bending = _flexible_modes(stiffness, mass, 2, FRAME_REFERENCE_MODES)[1][0::2, :]
+    twisting = _flexible_modes(t_stiffness, t_inertia, 1, FRAME_REFERENCE_MODES)[1]
+    head, strings = racket.head, racket.strings
+    spacing_mains, spacing_crosses = strings.spacing_m(head)
+    return ReferenceShapes(
+        bed_stiffness_ratio=(spacing_mains / head.half_width_m**2)
+        / (spacing_crosses / head.half_length_m**2),
+        frame_x=frame.x,
+        bending=bending,
+        twisting=twisting,
+        bending_nodes=tuple(sign_changes(bending[:, k]) for k in range(bending.shape[1])),
+        twisting_nodes=tuple(sign_changes(twisting[:, k]) + 1 for k in range(twisting.shape[1])),
     )
 
 

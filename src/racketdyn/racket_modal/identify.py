@@ -19,6 +19,7 @@ from racketdyn.modal.identify import SELECTION, Identification, identify
 from racketdyn.modal.poles import SelectionRules
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.racket import HeadEllipse, Racket
+from racketdyn.racket_modal.beam import reference_shapes
 from racketdyn.racket_modal.face import face_mapping, looks_like_racket
 from racketdyn.racket_modal.shapes import (
     BALL_MODE_NAME,
@@ -48,7 +49,10 @@ def name_racket_modes(
     identification : Identification
         From :func:`racketdyn.modal.identify.identify` on a racket's FRFs.
     racket : Racket or HeadEllipse
-        The racket (or its string bed), to tell string points from frame points.
+        The racket (or its string bed), to tell string points from frame points; a racket
+        also gives its frame's own modes and its bed's tensions, which the modes' node counts
+        and nodal lines are read against
+        (:func:`racketdyn.racket_modal.beam.reference_shapes`).
     ball_at : tuple of float, optional
         Where a ball was fixed on the strings (x, y), m (the paper's compound test): its mode
         is named ``"ball on the strings"`` (:func:`~racketdyn.racket_modal.shapes.classify_modes`).
@@ -59,7 +63,8 @@ def name_racket_modes(
         Names ``"2-node bending"``, ``"2-node twisting"``, ``"string-bed membrane"`` … and
         kinds ``bending``, ``twisting``, ``string-bed``.
     """
-    names, kinds = classify_modes(identification.model, _head(racket), ball_at)
+    reference = reference_shapes(racket) if isinstance(racket, Racket) else None
+    names, kinds = classify_modes(identification.model, _head(racket), ball_at, reference)
     return identification.renamed(names, kinds)
 
 

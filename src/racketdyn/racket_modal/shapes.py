@@ -26,7 +26,12 @@ Naming, from the shape at the measured points and the racket's head:
   strings (it recoils), their own motion more than 18 times the carried, is the bed's (the
   rig's pull-tension membrane: 24 and 28, 78 % and 82 % in the strings).  The played bed's
   veering pairs, their strain energy shared 44–56 % either way, score 10 and 13 against and
-  39 and 104 in phase: they stay ``unknown``.  The recoil names only a mode mostly even in y:
+  39 and 104 in phase: they stay ``unknown``.  The recoil must be clear, the correlation below
+  −:data:`RECOIL_CORRELATION`: the built-in racket's 6-node bending at 1796 Hz moves its strings
+  21.5 times the carried but hardly against it (−0.14), and the lab racket's veering pair at
+  917.7/993.0 Hz (the 4-node bending and the (1, 0) membrane, 51 and 55 % of their strain
+  energy in the strings) scores 14.4 at −0.02 (``unknown``: the shapes cannot say) and 22.6
+  at −0.57 (the membrane).  The recoil names only a mode mostly even in y:
   a twisting mode veering with an odd membrane mode (a 285 g racket's above 1.4 kHz, strain
   energy twist/strings 56/44 and 61/39, their partners 45/55 and 41/59) moves its strings
   15-26 times its frame in mean square, their own motion 200-750 times the hoop's carried
@@ -34,14 +39,28 @@ Naming, from the shape at the measured points and the racket's head:
 * **twisting** when more than half of the shape's energy is odd in y: points are paired with
   their mirror images across the long axis (within 1 cm) and the odd part (φ(x,y) − φ(x,−y))/2
   compared with the whole;
-* **bending** otherwise.  A free or hand-held racket (no clamp) has its bending modes in the
-  order of their nodes, so the n-th bending mode in frequency is "(n+1)-node bending" — the
-  first is the paper's "2-node bending".  Counting sign changes along the axis would need
-  points out to the butt and the tip, where nodes of the higher modes sit; :func:`axis_nodes`
-  gives the node positions for the figures (paper, Figs 6 and 15).
+* **bending** otherwise.
 
-Twisting and string-bed modes are numbered in order of frequency ("2-node twisting",
-"3-node twisting", …; "string-bed membrane", "string-bed membrane 2", …).
+A name says the mode's shape, not its rank among the modes found, so a mode missed does not
+shift the names above it (issue 25 item 8, tenth session):
+
+* a bending (twisting) mode takes the node count of the racket's own frame mode its frame shape
+  matches best, MAC ≥ :data:`FRAME_MAC` — the symmetric part at the frame points against the
+  frame's ``w(x)``, the twist ``(φ(x, y) − φ(x, −y)) / 2y`` at mirrored frame points against its
+  ``θ(x)`` (:class:`ReferenceShapes`, from :func:`racketdyn.racket_modal.beam.reference_shapes`:
+  an n-node bending has n sign changes of ``w`` from butt to tip, an n-node twisting n − 1 of
+  ``θ``).  The points do not reach the butt, where the outer node of the higher modes sits, so
+  the count is read against whole shapes rather than counted.  Without a frame model or a
+  match, the n-th bending mode in frequency is "(n+1)-node bending" (a free or hand-held racket
+  has its bending modes in the order of their nodes) and the twisting modes likewise;
+  :func:`axis_nodes` gives the node positions for the figures (paper, Figs 6 and 15);
+* a string-bed mode is named by the nodal lines of the bed's own mode (on a still frame,
+  :func:`bed_modes`) that its strings' own motion matches best, MAC ≥ :data:`MEMBRANE_MAC`
+  (:func:`membrane_names`, :func:`membrane_name`): "string-bed membrane" (all in phase),
+  "string-bed membrane (1, 0)" (one nodal line across the bed), "(0, 1)" (one along it), …;
+  "string-bed membrane (f Hz)" where none matches.
+
+The virtual rig names its truth the same way (:mod:`racketdyn.rig.model`).
 
 A ball fixed on the strings (the paper's compound test, section 3.2, ``ball_at``) adds one mode
 in which ball and frame push against each other through the strings (:data:`BALL_MODE_NAME`).
@@ -55,7 +74,8 @@ whose frame shape is most nearly a plane ``a + b x + c y`` is the ball mode when
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
 from weakref import WeakKeyDictionary
 
 import numpy as np
@@ -68,25 +88,34 @@ from racketdyn.racket import HeadEllipse
 __all__ = [
     "BALL_MODE_NAME",
     "BALL_RIGID_SHARE",
+    "BED_DEGREE",
     "BED_OWN_RATIO",
     "CLEAR_STRING_BED_RATIO",
+    "FRAME_MAC",
     "HOOP_DEGREE",
     "HOOP_REACH",
     "IN_PHASE_SHARE",
+    "MEMBRANE_MAC",
     "MIRROR_TOLERANCE_M",
+    "RECOIL_CORRELATION",
     "SHAPES_AS_MEASURED",
     "SHAPES_FRAME_MODEL",
     "SHAPES_FRAME_UNDER_BED",
     "SHAPES_ON_STRINGS",
     "STRING_BED_RATIO",
+    "ReferenceShapes",
     "axis_nodes",
     "ball_mode_index",
+    "bed_modes",
     "bed_own_motion",
     "classify_modes",
     "frame_under_bed",
+    "membrane_name",
+    "membrane_names",
     "naming_evidence",
     "outline_rigid_share",
     "rigid_share",
+    "sign_changes",
 ]
 
 BALL_MODE_NAME = "ball on the strings"
@@ -134,6 +163,292 @@ SHAPES_ON_STRINGS = (SHAPES_FRAME_MODEL, SHAPES_FRAME_UNDER_BED, SHAPES_AS_MEASU
 HOOP_REACH = 1.5
 """Frame points within this elliptic radius of the bed (–, the bed's edge at 1) are the hoop's,
 those further out the throat's and the handle's."""
+RECOIL_CORRELATION = 0.5
+"""Least negative correlation of the strings' own motion with the frame's carried under them
+for a frame to recoil against its strings (–, :func:`bed_own_motion`): the rig's pull-tension
+membrane scores below −0.5 free and held; the built-in racket's 6-node bending at 1796 Hz,
+71 % of its strain energy in the frame, −0.14 (its strings' own motion 21.5 times the
+carried), and was named a membrane by the recoil rule without it."""
+BED_DEGREE = 6
+"""Highest degree of the polynomials multiplying ``1 − ρ²`` in the string bed's own modes on a
+still frame (:func:`bed_modes`; 28 functions: the first twelve modes' shapes settled)."""
+BED_MODES = 12
+"""How many of the bed's own modes a measured membrane mode is matched against (–): the
+hammer grid's 44 string points tell them apart; higher ones would alias."""
+MEMBRANE_MAC = 0.7
+"""Least MAC of a string-bed mode's own motion (its strings' shape less the frame's carried
+under them) with one of the bed's own modes for the mode to take that mode's nodal lines as
+its name (–): the rig's membrane modes to 2.1 kHz score 0.83–1.00 at the hammer points, its
+5-node bending's strings 0.51."""
+FRAME_MAC = 0.8
+"""Least MAC of a bending (twisting) mode's frame shape with one of the frame's own bending
+(twisting) modes for the mode to take that mode's node count (–; :class:`ReferenceShapes`)."""
+NODE_LEVEL = 0.05
+"""Samples smaller than this share of a shape's largest magnitude are taken as on a node when
+counting sign changes (–): a node sampled exactly would otherwise count twice or not at all."""
+
+
+def sign_changes(values: NDArray[np.float64], level: float = NODE_LEVEL) -> int:
+    """How often a sampled shape changes sign along its samples, the ones smaller than
+    ``level`` times the largest magnitude left out (on a node).
+
+    Parameters
+    ----------
+    values : ndarray
+        The shape at points in order along a line.
+    level : float
+        Share of the largest magnitude below which a sample is taken as on a node (–).
+    """
+    values = np.asarray(values, dtype=float)
+    scale = float(np.max(np.abs(values))) if values.size else 0.0
+    if scale == 0.0:
+        return 0
+    kept = values[np.abs(values) > level * scale]
+    return int(np.count_nonzero(np.diff(np.sign(kept)) != 0))
+
+
+def membrane_name(across: int, along: int) -> str:
+    """A string-bed mode's name from its nodal lines: ``"string-bed membrane"`` for the mode
+    whose strings all move in phase, else ``"string-bed membrane (m, n)"`` with m the nodal
+    lines met walking along the long axis (lines across the bed) and n those met walking
+    across it (lines along the bed)."""
+    if (across, along) == (0, 0):
+        return "string-bed membrane"
+    return f"string-bed membrane ({across}, {along})"
+
+
+def _bed_powers(degree: int) -> tuple[tuple[int, int], ...]:
+    return tuple((a, d - a) for d in range(degree + 1) for a in range(d, -1, -1))
+
+
+def _bed_basis(
+    powers: tuple[tuple[int, int], ...], xi: NDArray[np.float64], eta: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Ritz functions ``(1 − ξ² − η²) ξ^p η^q`` and their ξ and η derivatives, ``(n, n_psi)``."""
+    bubble = 1.0 - xi**2 - eta**2
+    psi, d_xi, d_eta = [], [], []
+    for p, q in powers:
+        mono = xi**p * eta**q
+        psi.append(bubble * mono)
+        d_xi.append(bubble * p * xi ** max(p - 1, 0) * eta**q - 2.0 * xi * mono)
+        d_eta.append(bubble * q * xi**p * eta ** max(q - 1, 0) - 2.0 * eta * mono)
+    return np.column_stack(psi), np.column_stack(d_xi), np.column_stack(d_eta)
+
+
+@lru_cache(maxsize=32)
+def _bed_reference(
+    stiffness_ratio: float,
+) -> tuple[NDArray[np.float64], tuple[tuple[int, int], ...]]:
+    """The bed's own modes on a still frame: Ritz coefficients ``(n_psi, BED_MODES)`` and each
+    mode's nodal lines (across, along)."""
+    from scipy.linalg import eigh
+
+    radius, weight = np.polynomial.legendre.leggauss(2 * BED_DEGREE)
+    radius, weight = 0.5 * (radius + 1.0), 0.5 * weight
+    n_angles = 4 * (BED_DEGREE + 3)
+    angle = np.arange(n_angles) * 2.0 * np.pi / n_angles
+    r, t = np.meshgrid(radius, angle)
+    area = (np.outer(np.full(n_angles, 2.0 * np.pi / n_angles), weight) * r).ravel()
+    xi, eta = (r * np.cos(t)).ravel(), (r * np.sin(t)).ravel()
+    powers = _bed_powers(BED_DEGREE)
+    psi, d_xi, d_eta = _bed_basis(powers, xi, eta)
+    mass = psi.T @ (area[:, None] * psi)
+    stiffness = d_xi.T @ (area[:, None] * d_xi) + stiffness_ratio * d_eta.T @ (
+        area[:, None] * d_eta
+    )
+    _, vectors = eigh(stiffness, mass, subset_by_index=[0, BED_MODES - 1])
+    return vectors, tuple(_nodal_lines(powers, vectors[:, k]) for k in range(BED_MODES))
+
+
+def _nodal_lines(
+    powers: tuple[tuple[int, int], ...], coefficients: NDArray[np.float64]
+) -> tuple[int, int]:
+    """Sign changes of a bed shape walking along the long axis and across it (through the
+    centre, or 0.4 of the half-width (half-length) off it where the shape is odd across it)."""
+    grid = np.linspace(-1.0, 1.0, 41)
+    gx, gy = np.meshgrid(grid, grid)
+    inside = gx**2 + gy**2 < 0.98
+    gx, gy = gx[inside], gy[inside]
+
+    def shape(xi: NDArray[np.float64], eta: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.asarray(_bed_basis(powers, xi, eta)[0] @ coefficients)
+
+    values = shape(gx, gy)
+    scale = float(np.max(np.abs(values)))
+    odd_across = float(np.max(np.abs(values + shape(gx, -gy)))) < 1e-6 * scale
+    odd_along = float(np.max(np.abs(values + shape(-gx, gy)))) < 1e-6 * scale
+    walk = np.linspace(-0.99, 0.99, 397)
+    off = 0.4 if odd_across else 0.0
+    reach = np.sqrt(1.0 - off**2)
+    across = sign_changes(shape(reach * walk, np.full_like(walk, off)))
+    off = 0.4 if odd_along else 0.0
+    reach = np.sqrt(1.0 - off**2)
+    along = sign_changes(shape(np.full_like(walk, off), reach * walk))
+    return across, along
+
+
+def bed_modes(
+    head: HeadEllipse, locations: NDArray[np.float64], stiffness_ratio: float | None = None
+) -> tuple[NDArray[np.float64], tuple[tuple[int, int], ...]]:
+    """The string bed's own modes on a still frame at points on the strings, and their nodal
+    lines.
+
+    A membrane on the head's ellipse, fixed at its edge, of even areal density and tension per
+    unit width ``T_x`` (mains) and ``T_y`` (crosses): Ritz functions ``(1 − ξ² − η²) ξ^p η^q``
+    of degree up to :data:`BED_DEGREE` in the coordinates scaled by the half-axes.  Its shapes
+    depend on the tensions only through ``(T_y/b²) / (T_x/a²)``.
+
+    Parameters
+    ----------
+    head : HeadEllipse
+        The string bed.
+    locations : ndarray, shape (n, 2)
+        Points on the strings, m.
+    stiffness_ratio : float, optional
+        ``(T_y/b²) / (T_x/a²)`` (–); None for an even tension, ``(a/b)²``.
+
+    Returns
+    -------
+    shapes : ndarray, shape (n, BED_MODES)
+        The first :data:`BED_MODES` modes at the points (unscaled).
+    lines : tuple of (int, int)
+        Each mode's nodal lines (across the bed, along it): :func:`membrane_name`.
+    """
+    ratio = (
+        (head.half_length_m / head.half_width_m) ** 2
+        if stiffness_ratio is None
+        else stiffness_ratio
+    )
+    coefficients, lines = _bed_reference(round(float(ratio), 6))
+    xy = np.asarray(locations, dtype=float)
+    xi = (xy[:, 0] - head.centre_x_m) / head.half_length_m
+    eta = (xy[:, 1] - head.centre_y_m) / head.half_width_m
+    return _bed_basis(_bed_powers(BED_DEGREE), xi, eta)[0] @ coefficients, lines
+
+
+def membrane_names(
+    own: NDArray[np.float64],
+    locations: NDArray[np.float64],
+    head: HeadEllipse,
+    stiffness_ratio: float | None = None,
+) -> tuple[list[str | None], NDArray[np.float64]]:
+    """Each mode's name from the bed's own mode its strings' own motion matches.
+
+    Parameters
+    ----------
+    own : ndarray, shape (n_points, n_modes)
+        The strings' own motion at points on the strings (a mode's shape there less the
+        frame's carried under them).
+    locations : ndarray, shape (n_points, 2)
+        The points, m.
+    head : HeadEllipse
+        The string bed.
+    stiffness_ratio : float, optional
+        :func:`bed_modes`'.
+
+    Returns
+    -------
+    names : list of str or None
+        :func:`membrane_name` of the best match, None where no MAC reaches
+        :data:`MEMBRANE_MAC`.
+    mac : ndarray, shape (n_modes,)
+        The best MAC.
+    """
+    reference, lines = bed_modes(head, locations, stiffness_ratio)
+    own = np.asarray(own, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mac = (reference.T @ own) ** 2 / (
+            np.sum(reference**2, axis=0)[:, None] * np.sum(own**2, axis=0)[None, :]
+        )
+    mac = np.nan_to_num(mac)
+    best = np.argmax(mac, axis=0)
+    score = mac[best, np.arange(own.shape[1])]
+    names: list[str | None] = [
+        membrane_name(*lines[b]) if m >= MEMBRANE_MAC else None
+        for b, m in zip(best, score, strict=True)
+    ]
+    return names, score
+
+
+@dataclass(frozen=True, eq=False)
+class ReferenceShapes:
+    """What a racket's measured modes are named against: its bed's tensions and its frame's own
+    bending and twisting modes (:func:`racketdyn.racket_modal.beam.reference_shapes`).
+
+    Parameters
+    ----------
+    bed_stiffness_ratio : float or None
+        ``(T_y/b²) / (T_x/a²)`` of the bed (:func:`bed_modes`); None for an even tension.
+    frame_x : ndarray or None
+        Nodes along the long axis, m (None: no frame model; bending and twisting are then
+        numbered in order of frequency).
+    bending, twisting : ndarray, shape (n_nodes, k)
+        The frame's bending ``w(x)`` and twisting ``θ(x)`` shapes on the nodes.
+    bending_nodes, twisting_nodes : tuple of int
+        Each one's node count as its name says it ("n-node bending").
+    """
+
+    bed_stiffness_ratio: float | None = None
+    frame_x: NDArray[np.float64] | None = None
+    bending: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 0)))
+    twisting: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 0)))
+    bending_nodes: tuple[int, ...] = ()
+    twisting_nodes: tuple[int, ...] = ()
+
+
+def _frame_counts(
+    model: ModalModel, head: HeadEllipse, reference: ReferenceShapes, pairs: NDArray[np.int_]
+) -> tuple[list[int | None], list[int | None]]:
+    """Each mode's bending and twisting node counts from its frame shape's best MAC with the
+    frame's own modes (None below :data:`FRAME_MAC` or without a frame model)."""
+    n = model.n_modes
+    none: list[int | None] = [None] * n
+    if reference.frame_x is None or model.n_dimensions != 2:
+        return none, list(none)
+    frame = head.normalised_radius(model.locations) >= ON_STRINGS
+    x, y = model.locations[:, 0], model.locations[:, 1]
+    shapes = model.mode_shapes
+    # the even part at the frame points (a point and its mirror image averaged)
+    even = shapes.copy()
+    if pairs.size:
+        mean = 0.5 * (shapes[pairs[:, 0]] + shapes[pairs[:, 1]])
+        even[pairs[:, 0]], even[pairs[:, 1]] = mean, mean
+    rows = np.flatnonzero(frame)
+    bending = _best_counts(
+        even[rows],
+        _on_nodes(reference.frame_x, reference.bending, x[rows]),
+        reference.bending_nodes,
+    )
+    twisting = list(none)
+    twisted = pairs[frame[pairs[:, 0]]] if pairs.size else pairs
+    if twisted.shape[0] >= 2:
+        odd = 0.5 * (shapes[twisted[:, 0]] - shapes[twisted[:, 1]]) / y[twisted[:, 0], None]
+        twisting = _best_counts(
+            odd,
+            _on_nodes(reference.frame_x, reference.twisting, x[twisted[:, 0]]),
+            reference.twisting_nodes,
+        )
+    return bending, twisting
+
+
+def _on_nodes(
+    nodes: NDArray[np.float64], shapes: NDArray[np.float64], x: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    return np.column_stack([np.interp(x, nodes, shapes[:, k]) for k in range(shapes.shape[1])])
+
+
+def _best_counts(
+    measured: NDArray[np.float64], reference: NDArray[np.float64], counts: tuple[int, ...]
+) -> list[int | None]:
+    if reference.size == 0:
+        return [None] * measured.shape[1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mac = (reference.T @ measured) ** 2 / (
+            np.sum(reference**2, axis=0)[:, None] * np.sum(measured**2, axis=0)[None, :]
+        )
+    mac = np.nan_to_num(mac)
+    best = np.argmax(mac, axis=0)
+    return [counts[b] if mac[b, k] >= FRAME_MAC else None for k, b in enumerate(best)]
 
 
 def _mirror_pairs(locations: NDArray[np.float64]) -> NDArray[np.int_]:
@@ -373,7 +688,10 @@ def ball_mode_index(model: ModalModel, head: HeadEllipse) -> int:
 
 
 def classify_modes(
-    model: ModalModel, head: HeadEllipse, ball_at: tuple[float, float] | None = None
+    model: ModalModel,
+    head: HeadEllipse,
+    ball_at: tuple[float, float] | None = None,
+    reference: ReferenceShapes | None = None,
 ) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """Names and kinds of a racket's modes from their shapes (see the module docstring).
 
@@ -387,6 +705,11 @@ def classify_modes(
         Where a ball was fixed on the strings during the test (x, y), m: one mode is then
         named :data:`BALL_MODE_NAME` (kind ``other``) if its frame shape shows it
         (:func:`ball_mode_index`).
+    reference : ReferenceShapes, optional
+        The racket's bed tensions and frame modes
+        (:func:`racketdyn.racket_modal.beam.reference_shapes`): bending and twisting modes take
+        their node counts from them; without it (or below :data:`FRAME_MAC`) they are
+        numbered in order of frequency, and the bed's own modes are those of an even tension.
 
     Returns
     -------
@@ -409,6 +732,9 @@ def classify_modes(
         even[pairs[:, 0]], even[pairs[:, 1]] = mean, mean
     own_ratio, own_correlation = bed_own_motion(model, head)
     even_ratio, even_correlation = bed_own_motion(replace(model, mode_shapes=even), head)
+    reference = reference or ReferenceShapes()
+    membrane = _membrane_names(model, head, reference)
+    bending_nodes, twisting_nodes = _frame_counts(model, head, reference, pairs)
     for k in range(model.n_modes):
         if k == ball:
             names.append(BALL_MODE_NAME)
@@ -433,34 +759,58 @@ def classify_modes(
         bed_follows = correlation > 0 and ratio < BED_OWN_RATIO
         # drawn from even modes: an odd mode's carried motion is the hoop's twist θ(x)·y, which
         # both members of an odd veering pair leave small beside their strings (module docstring)
-        frame_recoils = odd_fraction <= 0.5 and correlation < 0 and ratio > BED_OWN_RATIO
-        if (odd_fraction <= 0.5 and _in_phase_membrane(phi, pairs, on_strings)) or (
-            unclear_ratio and frame_recoils
+        frame_recoils = (
+            odd_fraction <= 0.5 and correlation < -RECOIL_CORRELATION and ratio > BED_OWN_RATIO
+        )
+        if (
+            (odd_fraction <= 0.5 and _in_phase_membrane(phi, pairs, on_strings))
+            or (unclear_ratio and frame_recoils)
+            or (strings > STRING_BED_RATIO * frame and not unclear_ratio)
         ):
-            counts["string-bed"] += 1
-            n = counts["string-bed"]
-            names.append("string-bed membrane" + (f" {n}" if n > 1 else ""))
+            names.append(membrane[k] or f"string-bed membrane ({model.frequency[k]:.1f} Hz)")
             kinds.append("string-bed")
         elif unclear_ratio and not bed_follows:
             unclear = True
             names.append(f"mode {k + 1} ({model.frequency[k]:.1f} Hz)")
             kinds.append("unknown")
-        elif strings > STRING_BED_RATIO * frame and not unclear_ratio:
-            counts["string-bed"] += 1
-            n = counts["string-bed"]
-            names.append("string-bed membrane" + (f" {n}" if n > 1 else ""))
-            kinds.append("string-bed")
         elif odd_fraction > 0.5:
             counts["twisting"] += 1
-            names.append(f"{counts['twisting'] + 1}-node twisting")
+            nodes = twisting_nodes[k]
+            names.append(f"{counts['twisting'] + 1 if nodes is None else nodes}-node twisting")
             kinds.append("twisting")
         else:
             counts["bending"] += 1
+            nodes = bending_nodes[k]
             # after a mode the shape could not name, the bending order is no longer known
-            order = f"bending mode ({model.frequency[k]:.1f} Hz)"
-            names.append(order if unclear else f"{counts['bending'] + 1}-node bending")
+            if nodes is not None:
+                names.append(f"{nodes}-node bending")
+            elif unclear:
+                names.append(f"bending mode ({model.frequency[k]:.1f} Hz)")
+            else:
+                names.append(f"{counts['bending'] + 1}-node bending")
             kinds.append("bending")
     return _unique(names), tuple(kinds)
+
+
+def _membrane_names(
+    model: ModalModel, head: HeadEllipse, reference: ReferenceShapes
+) -> list[str | None]:
+    """Each mode's name from the bed's own mode its strings' own motion matches
+    (:func:`membrane_names`; the shape at the string points as it is where the hoop's points
+    cannot fix the frame's motion under the bed)."""
+    fitted = _carried_under_bed(model, head)
+    if fitted is None:
+        if model.n_dimensions != 2:
+            return [None] * model.n_modes
+        on_strings = head.normalised_radius(model.locations) < ON_STRINGS
+        if not on_strings.any():
+            return [None] * model.n_modes
+        own = model.mode_shapes[on_strings]
+    else:
+        on_strings, carried = fitted
+        own = model.mode_shapes[on_strings] - carried
+    names, _ = membrane_names(own, model.locations[on_strings], head, reference.bed_stiffness_ratio)
+    return names
 
 
 def _in_phase_membrane(

@@ -110,6 +110,7 @@ from racketdyn.racket_modal.beam import (
     _torsion_matrices,
     mass_along,
 )
+from racketdyn.racket_modal.shapes import membrane_names, sign_changes
 from racketdyn.rig.patch import BallPatch
 
 __all__ = [
@@ -420,7 +421,7 @@ def rig_model(
     )
     vectors = _signed_modes(vectors, racket, mesh)
     shares = _strain_energy(vectors, (ei * k_bend, gj * k_twist, k_strings, held.stiffness))
-    names, kinds = _name_modes(np.argmax(shares, axis=0), held.label)
+    names, kinds = _name_modes(shares, _ModeShapes(vectors, mesh, racket, bed), held.label)
     metadata["strain_energy_shares"] = {
         "order": ["bending", "twisting", "string-bed", held.label],
         "values": (shares / omega2).T.round(6).tolist(),
@@ -899,25 +900,79 @@ def _hand_matrices(
     return out[0], out[1], out[2]
 
 
+@dataclass(frozen=True)
+class _ModeShapes:
+    """The rig's mode vectors with what reads their shapes: the mesh, the racket, the bed."""
+
+    vectors: NDArray[np.float64]
+    mesh: _Mesh
+    racket: Racket
+    bed: _StringBed
+
+    def bending_nodes(self, k: int) -> int:
+        """Sign changes of ``w`` along the beam, butt to tip: n-node bending."""
+        return sign_changes(self.vectors[0 : 2 * self.mesh.x.size : 2, k])
+
+    def twisting_nodes(self, k: int) -> int:
+        """Sign changes of ``θ`` along the beam, plus the long axis: n-node twisting."""
+        n = self.mesh.x.size
+        return sign_changes(self.vectors[2 * n : 3 * n, k]) + 1
+
+    def membrane_names(self) -> list[str | None]:
+        """Each mode's name from the bed's own mode its Ritz part (the strings' own motion)
+        matches (:func:`racketdyn.racket_modal.shapes.membrane_names`), read on a lattice
+        over the bed."""
+        head = self.racket.head
+        grid = np.linspace(-0.95, 0.95, 39)
+        gx, gy = np.meshgrid(grid, grid)
+        inside = gx**2 + gy**2 < 0.95**2
+        xy = np.column_stack(
+            [
+                head.centre_x_m + head.half_length_m * gx[inside],
+                head.centre_y_m + head.half_width_m * gy[inside],
+            ]
+        )
+        psi = _membrane_functions(self.racket, self.mesh.powers, xy)[0]
+        own = psi @ self.vectors[self.mesh.n_frame : self.mesh.n_dof]
+        tension_x, tension_y = self.bed.tension_per_width
+        ratio = (tension_y / head.half_width_m**2) / (tension_x / head.half_length_m**2)
+        return membrane_names(own, xy, head, ratio)[0]
+
+
 def _name_modes(
-    dominant: NDArray[np.intp], support_label: str
+    shares: NDArray[np.float64], shapes: _ModeShapes, support_label: str
 ) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """Names and kinds from each mode's largest strain energy (bending, twist, strings, support)."""
-    counts = [0, 0, 0, 0]
+    """Names and kinds: the kind from each mode's largest strain energy (bending, twist,
+    strings, support), the name from its shape — node counts along the beam, the bed's own
+    mode its strings' own motion matches — as identification names them
+    (:func:`racketdyn.racket_modal.shapes.classify_modes`).  Of two string-bed modes of one
+    bed shape (a veering pair: the trial racket's 917.7 and 993.0 Hz share the (1, 0)
+    membrane and the 4-node bending, their strain energy 51 and 55 % in the strings) the one
+    with more of its strain energy in the strings is the membrane, the other the frame's
+    mode it veers with."""
+    dominant = np.argmax(shares, axis=0)
+    membrane = shapes.membrane_names()
+    for name in {m for m, d in zip(membrane, dominant, strict=True) if d == 2 and m}:
+        sharing = [k for k, d in enumerate(dominant) if d == 2 and membrane[k] == name]
+        kept = max(sharing, key=lambda k: shares[2, k] / shares[:, k].sum())
+        for k in sharing:
+            if k != kept:
+                dominant[k] = int(np.argmax(shares[:2, k]))
+    counts = 0
     names, kinds = [], []
-    for d in dominant:
-        counts[d] += 1
-        c = counts[d]
+    for k, d in enumerate(dominant):
         if d == 0:
-            names.append(f"{c + 1}-node bending")
+            names.append(f"{shapes.bending_nodes(k)}-node bending")
             kinds.append("bending")
         elif d == 1:
-            names.append(f"{c + 1}-node twisting")
+            names.append(f"{shapes.twisting_nodes(k)}-node twisting")
             kinds.append("twisting")
         elif d == 2:
-            names.append("string-bed membrane" if c == 1 else f"string-bed membrane {c}")
+            frequency = np.sqrt(shares[:, k].sum()) / (2 * np.pi)
+            names.append(membrane[k] or f"string-bed membrane ({frequency:.1f} Hz)")
             kinds.append("string-bed")
         else:
-            names.append(f"{support_label} rigid-body {c}")
+            counts += 1
+            names.append(f"{support_label} rigid-body {counts}")
             kinds.append("rigid-body")
     return tuple(names), tuple(kinds)
