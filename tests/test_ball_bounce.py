@@ -180,6 +180,33 @@ def test_the_coupled_charge_limits() -> None:
     assert vibration_cor_squared(0.5, 5.0, 0.0, 1.0) < 0.0
 
 
+def test_on_a_rigid_racket_the_forces_are_the_elastic_contacts_and_the_papers_are_eq_11(
+    racket,
+) -> None:  # type: ignore[no-untyped-def]
+    """A rigid racket (no modes): the coupled charge's contact is the elastic one — X_p where
+    the spring holds ½ μ V², F_MAX = F_GB(X_p), F_MEAN T_c = (1 + e_BG) μ V (eq 8, e_r = e_BG).
+    The paper's charge keeps eq 11's half sine, F_MAX = π F_MEAN / 2, of the same impulse."""
+    points, speeds = [landmark_points(racket)["centre"]], [10.0, 30.0]
+    rigid = predict(racket, Ball(), points, speeds, ("free",), modal_model=None)
+    paper = predict(
+        racket, Ball(), points, speeds, ("free",), modal_model=None, vibration_charge="paper"
+    )
+    law = compound_law(racket, Ball())
+    m_b, m_r = Ball().mass_kg, rigid.reduced_mass[0, 0]
+    mu = m_b * m_r / (m_b + m_r)
+    held = 0.5 * mu * np.asarray(speeds) ** 2
+    deflection = rigid.peak_deflection[0, :, 0]
+    assert law.energy(deflection) == pytest.approx(held, rel=1e-9)
+    assert rigid.peak_force[0, :, 0] == pytest.approx(law.force(deflection), rel=1e-12)
+    impulse = (1.0 + rigid.cor[0, :, 0]) * mu * np.asarray(speeds)
+    assert rigid.cor[0, :, 0] == pytest.approx(ball_string_cor(racket, Ball(), speeds))
+    for result in (rigid, paper):
+        assert result.mean_force[0, :, 0] * result.contact_time[0, :, 0] == pytest.approx(impulse)
+    assert paper.peak_force == pytest.approx(np.pi * paper.mean_force / 2.0)
+    # the stiffening spring's pulse is peaked: its peak above the half sine's of one impulse
+    assert np.all(rigid.peak_force > 1.1 * paper.peak_force)
+
+
 @pytest.mark.parametrize(
     "first_bending_hz",
     [120.0, 130.0, 190.0],
@@ -216,6 +243,7 @@ def test_the_approximate_method_is_within_0_015_of_the_transient_where_it_gives_
         }
         error = np.abs(coupled.rebound_ratio - transient.rebound_ratio)[given]
         assert np.all(error <= 0.015)
+        _forces_meet_the_transients(coupled, transient, given)
         both = given & (paper.status == "ok")  # the paper's charge leaves rows beyond 30 %
         paper_error = np.abs(paper.rebound_ratio - transient.rebound_ratio)[both]
         error_on_both = np.abs(coupled.rebound_ratio - transient.rebound_ratio)[both]
@@ -224,6 +252,29 @@ def test_the_approximate_method_is_within_0_015_of_the_transient_where_it_gives_
             assert np.mean(given) > 0.75
         else:
             assert np.mean(given) > 0.6
+
+
+def _forces_meet_the_transients(coupled, transient, given) -> None:  # type: ignore[no-untyped-def]
+    """The coupled charge's contact against the transient model's, row by row: the peak force
+    and deflection where the spring holds the approach energy less the frame's at the turn
+    (measured over the protocol's 370 rows: 0.05–2.3 % and 0.05–1.8 % high; eq 11's half sine
+    of eq 8's impulse was 3–22 % low in force, the rigid racket's X_p up to 8.5 % deep), and
+    the impulse F_MEAN T_c = (1 + e_r) μ V, the ball's change of momentum (within 0.4 %; eq 8's
+    (1 + e_BG) μ V was up to 11 % high).  F_MEAN itself stays 4–17 % high: eq 7's elastic T_c
+    is 4–14 % short of the hysteretic contact's (docs/validation.md, "The forces")."""
+    pairs = {
+        "peak_force": (coupled.peak_force, transient.peak_force, -0.005, 0.025),
+        "peak_deflection": (coupled.peak_deflection, transient.peak_deflection, 0.0, 0.025),
+        "impulse": (
+            coupled.mean_force * coupled.contact_time,
+            transient.mean_force * transient.contact_time,
+            -0.005,
+            0.005,
+        ),
+    }
+    for name, (ours, theirs, low, high) in pairs.items():
+        ratio = (ours / theirs - 1.0)[given]
+        assert np.all((ratio >= low) & (ratio <= high)), (name, ratio.min(), ratio.max())
 
 
 @CROSS_DROP_XFAIL
