@@ -29,11 +29,15 @@ Two readings are offered (``stiffness_reading``):
 For a linear spring both give T_c = π sqrt(μ/k) exactly.  The tangent reading, and the
 period reading under the paper's charge, take the impulse (1 + e_BG) μ V (eqs 6, 8) and
 F_MAX = π F_MEAN / 2 (eq 11).  The period reading under the coupled charge (the default) takes
-the forces from the charge's own balances (:func:`_coupled_forces`): the impulse is the
-rebound's, (1 + e_r) μ V, so F_MEAN = (1 + e_r) μ V / T_c, and the spring, holding the approach
-energy less the frame's at the turn, is pressed to X_p and pushes F_MAX = F_GB(X_p) — the
-transient model's peak force within 2.3 % over issue 22's protocol, where eq 11's half sine
-was up to 22 % low (a stiffening spring's pulse is peaked; docs/validation.md, "The forces").
+the contact from the charge's own balances (:func:`_coupled_contact`): the spring, holding
+the approach energy less the frame's at the turn, is pressed to X_p and pushes
+F_MAX = F_GB(X_p); it loads along F_GB and unloads along its hysteresis, which sets T_c
+(:func:`hysteretic_contact_time`, longer than eq 7's elastic half period); the impulse is the
+rebound's, (1 + e_r) μ V, so F_MEAN = (1 + e_r) μ V / T_c.  On a rigid racket this is the
+transient model's contact to round-off; over issue 22's protocol its peak force within
+2.3 % and its T_c within −8.8 … +0.4 %, where eq 11's half sine was up to 22 % low and eq 7's
+T_c up to 14 % short (docs/validation.md, "The contact: time and forces").  K_GB = π² μ / T_c²
+either way.
 
 The vibration charge (``vibration_charge``).  ``"paper"`` is eq 12 as written: the half sine's
 spectrum, its energy taken from e_BG².  ``"coupled"`` (default) takes, for the spectrum, the
@@ -202,6 +206,40 @@ def elastic_contact_time(
     theta, weights, _ = _legendre_nodes(_CONTACT_NODES)
     _, rate = _contact_rate(law, mu, peak, theta)
     return np.asarray(2.0 * np.sum(rate * weights, axis=-1))
+
+
+def hysteretic_contact_time(
+    law: RestoringForce, mu: ArrayLike, peak: ArrayLike, e_bg: ArrayLike
+) -> NDArray[np.float64]:
+    """Duration of a contact of mass μ that loads along F_GB to X_p and unloads along the
+    transient model's hysteresis ``F_GB(X) (X/X_p)^p``, which gives back e_BG² of E_GB(X_p), s.
+
+    ``T_c = ∫₀^{X_p} dX / sqrt(2 (E(X_p) − E(X)) / μ) + ∫₀^{X_p} dX / sqrt(2 (E_un(X_p) −
+    E_un(X)) / μ)``: the loading half of :func:`elastic_contact_time` and the unloading on the
+    softer curve (:meth:`~racketdyn.ball.RestoringForce.unloading_energy`), both in
+    ``X = X_p sin θ`` with Gauss–Legendre quadrature.  On a rigid racket it is the transient
+    model's contact time; for e_BG = 1, the elastic one.
+
+    Parameters
+    ----------
+    law : RestoringForce
+        Loading curve F_GB(X).
+    mu : array_like
+        Two-body mass, kg.
+    peak : array_like
+        Peak deflection X_p > 0, m.
+    e_bg : array_like
+        COR of the spring's hysteresis (e_BG), broadcast against ``peak``.
+    """
+    theta, weights, _ = _legendre_nodes(_CONTACT_NODES)
+    mu_, x_p = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (mu, peak)))
+    x, loading = _contact_rate(law, mu_, x_p, theta)
+    e = np.broadcast_to(np.asarray(e_bg, dtype=float), x_p.shape)
+    p = law.unloading_exponent(x_p, e)[..., None]
+    held = law.unloading_energy(x_p[..., None], x_p[..., None], p)
+    left = np.maximum(held - law.unloading_energy(x, x_p[..., None], p), 0.0)
+    unloading = x_p[..., None] * np.cos(theta) / np.sqrt(2.0 * left / mu_[..., None])
+    return np.asarray(np.sum((loading + unloading) * weights, axis=-1))
 
 
 def elastic_contact(
@@ -677,10 +715,14 @@ def approximate_impacts(
         scale = np.where(valid, ((1.0 + cor) / (1.0 + e_bg)) ** 2, 1.0)
         mode_energy, turn_energy = mode_energy * scale[..., None], turn_energy * scale
         if stiffness_reading == "period":  # the tangent reading is the paper's shortcut
-            deflection, mean_force, peak_force = _coupled_forces(
-                law, mu * speed, 0.5 * mu * speed**2 - turn_energy, cor, contact_time, valid
+            coupled = _coupled_contact(law, mu, speed, turn_energy, (e_bg, cor, valid))
+            deflection, contact_time, mean_force, peak_force = (
+                np.where(valid, new, old)
+                for new, old in zip(
+                    coupled, (pulse.peak, contact_time, mean_force, peak_force), strict=True
+                )
             )
-            deflection = np.where(valid, deflection, pulse.peak)
+            stiffness = np.pi**2 * mu / contact_time**2  # eq (7) solved for K_GB
     vibration_energy = mode_energy.sum(axis=-1)
     mass_ratio = m_b / reduced_mass
     rebound_ratio = (cor - mass_ratio) / (1.0 + mass_ratio)
@@ -709,47 +751,47 @@ def approximate_impacts(
     )
 
 
-def _coupled_forces(
+def _coupled_contact(
     law: RestoringForce,
-    momentum: NDArray[np.float64],
-    held: NDArray[np.float64],
-    cor: NDArray[np.float64],
-    contact_time: NDArray[np.float64],
-    valid: NDArray[np.bool_],
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """X_p, F_MEAN and F_MAX of the coupled charge's contact, where ``valid`` (else NaN).
+    mu: NDArray[np.float64],
+    speed: NDArray[np.float64],
+    turn_energy: NDArray[np.float64],
+    balance: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]],
+) -> tuple[NDArray[np.float64], ...]:
+    """X_p, T_c, F_MEAN and F_MAX of the coupled charge's contact, where valid (else NaN).
 
     The balances that charge the vibration also say what the ball–string spring does: at the
-    turn it holds the approach energy less the frame's, ``held`` = ``½ μ V² − E_turn``, so it
-    is pressed to ``X_p = E_GB⁻¹(held)`` and pushes ``F_MAX = F_GB(X_p)``; the ball's impulse is
-    the rebound's, ``(1 + e_r) μ V`` (eq 8 with e_r for e_BG), so ``F_MEAN = (1 + e_r) μ V /
-    T_c``.  On a rigid racket (``E_turn = 0``, e_r = e_BG) the elastic contact's own peak and
-    eq 8.  Measured against the transient model over issue 22's protocol (370 rows): F_MAX
-    0.05–2.3 % high (eq 11's ``π F_MEAN / 2`` was 3–22 % low: the stiffening spring's pulse
-    is peaked), X_p within 1.8 % (was up to 8.5 % high), the impulse within 0.4 % (was up to
-    11 % high), F_MEAN 4–17 % high (was 4–27 %; what is left is eq 7's elastic T_c, 4–14 %
-    short of the hysteretic contact's).
+    turn it holds the approach energy less the frame's, ``½ μ V² − E_turn``, so it is pressed
+    to ``X_p = E_GB⁻¹(½ μ V² − E_turn)`` and pushes ``F_MAX = F_GB(X_p)``; it loads along F_GB
+    and unloads along its hysteresis (:func:`hysteretic_contact_time`, with e_BG), which sets
+    T_c; the ball's impulse is the rebound's, ``(1 + e_r) μ V`` (eq 8 with e_r for e_BG), so
+    ``F_MEAN = (1 + e_r) μ V / T_c``.  On a rigid racket (``E_turn = 0``, e_r = e_BG) the
+    transient model's contact.  Measured against the transient model over issue 22's protocol
+    (370 rows; docs/validation.md, "The contact: time and forces"): F_MAX 0.05–2.3 % high (eq 11's
+    ``π F_MEAN / 2`` was 3–22 % low: the stiffening spring's pulse is peaked), X_p within
+    1.8 % (was up to 8.5 % high), the impulse within 0.4 % (was up to 11 % high), T_c
+    −8.8 … +0.4 % (median −1.3 %; eq 7's elastic half period was 4–14 % short).
 
     Parameters
     ----------
     law : RestoringForce
         F_GB.
-    momentum : ndarray
-        μ V, kg·m/s.
-    held : ndarray
-        The spring's energy at the turn, J.
-    cor, contact_time : ndarray
-        e_r and T_c, s.
-    valid : ndarray of bool
-        Where e_r is given.
+    mu, speed : ndarray
+        μ, kg, and V, m/s.
+    turn_energy : ndarray
+        E_turn, the frame's energy at the turn, J.
+    balance : (ndarray, ndarray, ndarray of bool)
+        e_BG, e_r and where e_r is given.
     """
-    safe = np.where(valid & (held > 0.0), held, np.nan)
-    deflection = np.asarray(law.deflection_at_energy(safe), dtype=float)
+    e_bg, cor, valid = balance
+    held = np.where(valid, 0.5 * mu * speed**2 - turn_energy, np.nan)
+    deflection = np.asarray(law.deflection_at_energy(np.where(held > 0.0, held, np.nan)))
     at = np.isfinite(deflection)
-    peak_force = np.full(deflection.shape, np.nan)
+    contact_time, peak_force = (np.full(deflection.shape, np.nan) for _ in range(2))
+    e = np.broadcast_to(e_bg, deflection.shape)
+    contact_time[at] = hysteretic_contact_time(law, mu[at], deflection[at], e[at])
     peak_force[at] = law.force(deflection[at])
-    mean_force = np.where(valid, (1.0 + cor) * momentum / contact_time, np.nan)
-    return deflection, mean_force, peak_force
+    return deflection, contact_time, (1.0 + cor) * mu * speed / contact_time, peak_force
 
 
 def _contact(
