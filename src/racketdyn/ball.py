@@ -166,13 +166,15 @@ class RestoringForce:
         kinds; the three arguments broadcast.
         """
         x, x_p, p = (np.asarray(a, dtype=float) for a in (deflection, peak, exponent))
+        scale = np.abs(x / x_p) ** p  # one power a point; the orders by multiplication
         if self.kind == "power":
             c, n = self.coefficients
-            return np.asarray(c * np.abs(x) ** (n + 1.0 + p) / ((n + 1.0 + p) * x_p**p))
+            return np.asarray(scale * c * np.abs(x) ** (n + 1.0) / (n + 1.0 + p))
+        # Σ c_k X^(k+1) / (k + 1 + p) = X² Σ c_k X^(k−1) / (k + 1 + p), by Horner
         total = np.zeros(np.broadcast_shapes(x.shape, x_p.shape, p.shape))
-        for order, c in enumerate(self.coefficients, start=1):
-            total = total + c * x ** (order + 1.0 + p) / ((order + 1.0 + p) * x_p**p)
-        return np.asarray(total)
+        for order in range(len(self.coefficients), 0, -1):
+            total = total * x + self.coefficients[order - 1] / (order + 1.0 + p)
+        return np.asarray(scale * x**2 * total)
 
     def unloading_exponent(self, peak: ArrayLike, cor: ArrayLike) -> NDArray[np.float64]:
         """Exponent p of the unloading curve ``F(X) (X/X_p)^p`` that gives back cor² of the

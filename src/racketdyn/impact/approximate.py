@@ -693,8 +693,10 @@ def approximate_impacts(
     m_b = ball.mass_kg
     mu = np.broadcast_to(m_b * reduced_mass / (m_b + reduced_mass), shape)
     impulse = (1.0 + e_bg) * mu * speed  # eqs (6), (8)
+    # the coupled charge's period reading times its own contact (_coupled_contact)
+    elastic = vibration_charge == "paper" or stiffness_reading == "tangent"
     deflection, contact_time, stiffness, in_range, frame = _contact(
-        law, mu, speed, impulse, stiffness_reading, reaches_frame
+        law, (mu, speed, impulse), stiffness_reading, reaches_frame, elastic
     )
     mean_force = impulse / contact_time  # eqs (8)-(10)
     peak_force = np.pi * mean_force / 2.0  # eq (11)
@@ -796,11 +798,10 @@ def _coupled_contact(
 
 def _contact(
     law: RestoringForce,
-    mu: NDArray[np.float64],
-    speed: NDArray[np.float64],
-    impulse: NDArray[np.float64],
+    impact: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
     stiffness_reading: StiffnessReading,
     reaches_frame: Callable[[NDArray[np.float64]], NDArray[np.bool_]],
+    elastic: bool = True,
 ) -> tuple[
     NDArray[np.float64],
     NDArray[np.float64],
@@ -809,15 +810,18 @@ def _contact(
     NDArray[np.bool_],
 ]:
     """Peak deflection, contact time, K_GB, whether the law reaches and whether the ball
-    reaches the frame, by eq (10)'s reading.  A frame shot's numbers are not given (NaN): its
-    contact-time quadrature is skipped."""
+    reaches the frame, by eq (10)'s reading, for the impacts' ``(μ, V, impulse)``.  A frame
+    shot's numbers are not given (NaN): its contact-time quadrature is skipped, as is every
+    row's in the period reading unless ``elastic`` (eq 7's half period wanted)."""
+    mu, speed, impulse = impact
     if stiffness_reading == "period":
         deflection = np.asarray(law.deflection_at_energy(0.5 * mu * speed**2))  # NaN beyond
         in_range = np.isfinite(deflection)
         frame = in_range & reaches_frame(deflection)
         needed = in_range & ~frame
         contact_time = np.full(deflection.shape, np.nan)
-        contact_time[needed] = elastic_contact_time(law, mu[needed], deflection[needed])
+        if elastic:
+            contact_time[needed] = elastic_contact_time(law, mu[needed], deflection[needed])
         stiffness = np.pi**2 * mu / contact_time**2  # eq (7) solved for K_GB
     else:
         deflection = tangent_peak_deflection(law, impulse / (2.0 * np.sqrt(mu)))
