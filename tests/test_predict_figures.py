@@ -189,6 +189,24 @@ def test_pulse_spectrum_is_at_the_run_speeds_and_support(draw: Any) -> None:
     assert "freely supported" in figure.get_suptitle()
 
 
+def test_the_pulse_of_fig_13_carries_the_impacts_impulse(draw: Any) -> None:
+    """Fig. 13 draws eq 11's half sine of the row's impulse F_MEAN T_c (the rebound's with the
+    coupled charge), not of its F_MAX: the coupled charge's F_MAX is the spring's force at the
+    turn, above a half sine's of one impulse (a stiffening spring's pulse is peaked)."""
+    result, _ = draw(speeds=[15.0, 25.0], supports=["free"], grid=3)
+    pulse, impacts = result.paper_figures.pulse, result.approximate
+    assert impacts is not None
+    at = int(np.argmin(np.hypot(*(impacts.locations - np.asarray(pulse.location)).T)))
+    assert np.allclose(impacts.locations[at], pulse.location)
+    impulse = impacts.impulse[at, :, 0]
+    drawn = pulse.drawn()
+    assert drawn.any()
+    area = np.trapezoid(pulse.force, pulse.time, axis=-1)
+    np.testing.assert_allclose(area[drawn], impulse[drawn], rtol=1e-3)
+    np.testing.assert_allclose(pulse.spectrum[:, 0][drawn], impulse[drawn], rtol=1e-3)
+    assert np.all(impacts.peak_force[at, :, 0][drawn] > 1.05 * pulse.peak_force[drawn])
+
+
 def test_rebound_along_axis_at_the_shown_speed_and_run_supports(draw: Any) -> None:
     _, drawn = draw(speeds=[30.0, 40.0, 50.0], supports=["pinned"], grid=3, racket_speed=[5.0])
     figure = drawn["fig15_rebound_along_axis.png"]

@@ -156,6 +156,57 @@ class RestoringForce:
         integral = np.asarray(self.coefficients) / (orders + 1.0)
         return np.asarray(np.polynomial.polynomial.polyval(x, (0.0, 0.0, *integral)))
 
+    def unloading_energy(
+        self, deflection: ArrayLike, peak: ArrayLike, exponent: ArrayLike
+    ) -> NDArray[np.float64]:
+        """Energy ∫₀ˣ F(s) (s/X_p)^p ds under the unloading curve from a peak X_p, J.
+
+        The hysteresis of the transient model (:func:`racketdyn.impact.transient.
+        unloading_exponent`): the spring unloads along ``F(X) (X/X_p)^p``.  Closed form for both
+        kinds; the three arguments broadcast.
+        """
+        x, x_p, p = (np.asarray(a, dtype=float) for a in (deflection, peak, exponent))
+        scale = np.abs(x / x_p) ** p  # one power a point; the orders by multiplication
+        if self.kind == "power":
+            c, n = self.coefficients
+            return np.asarray(scale * c * np.abs(x) ** (n + 1.0) / (n + 1.0 + p))
+        # Σ c_k X^(k+1) / (k + 1 + p) = X² Σ c_k X^(k−1) / (k + 1 + p), by Horner
+        total = np.zeros(np.broadcast_shapes(x.shape, x_p.shape, p.shape))
+        for order in range(len(self.coefficients), 0, -1):
+            total = total * x + self.coefficients[order - 1] / (order + 1.0 + p)
+        return np.asarray(scale * x**2 * total)
+
+    def unloading_exponent(self, peak: ArrayLike, cor: ArrayLike) -> NDArray[np.float64]:
+        """Exponent p of the unloading curve ``F(X) (X/X_p)^p`` that gives back cor² of the
+        energy stored at the peak X_p: ``∫₀^{X_p} F (X/X_p)^p dX = cor² E(X_p)``.
+
+        The transient model's hysteresis (:func:`racketdyn.impact.transient.unloading_exponent`
+        solves it per impact inside its compiled kernel, which cannot call this method); here
+        on arrays.  Closed form for a power law; for a polynomial, Newton from p = 0, which
+        rises monotonically to the root (the left side is convex and falling in p).
+
+        Parameters
+        ----------
+        peak : array_like
+            X_p > 0, m.
+        cor : array_like
+            The spring's COR, 0 < cor ≤ 1 (1: p = 0), broadcast against ``peak``.
+        """
+        x_p, e = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (peak, cor)))
+        if self.kind == "power":
+            return np.asarray((self.coefficients[1] + 1.0) * (1.0 / e**2 - 1.0))
+        orders = np.arange(2.0, len(self.coefficients) + 2.0)
+        terms = np.asarray(self.coefficients) * x_p[..., None] ** orders  # c_i X_p^(i+2)
+        target = e**2 * np.sum(terms / orders, axis=-1)
+        p = np.zeros(x_p.shape)
+        for _ in range(100):
+            share = terms / (orders + p[..., None])
+            step = (np.sum(share, axis=-1) - target) / -np.sum(share / (orders + p[..., None]), -1)
+            p = p - step
+            if not np.any(np.abs(step) > 1e-15 * (1.0 + p)):
+                break
+        return np.asarray(np.where(e >= 1.0, 0.0, p))
+
     @property
     def max_force_n(self) -> float:
         """Force at the end of the valid range, N."""

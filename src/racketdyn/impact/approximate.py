@@ -26,8 +26,18 @@ Two readings are offered (``stiffness_reading``):
     laws at the face centre: 9 % at 10 m/s, 24 % at 20 m/s, 34 % at 30 m/s against the exact
     elastic contact time) and F_MAX high; kept to reproduce the paper's figures.
 
-For a linear spring both give T_c = π sqrt(μ/k) exactly.  Either way the impulse is
-(1 + e_BG) μ V (eqs 6, 8) and F_MAX = π F_MEAN / 2 (eq 11).
+For a linear spring both give T_c = π sqrt(μ/k) exactly.  The tangent reading, and the
+period reading under the paper's charge, take the impulse (1 + e_BG) μ V (eqs 6, 8) and
+F_MAX = π F_MEAN / 2 (eq 11).  The period reading under the coupled charge (the default) takes
+the contact from the charge's own balances (:func:`_coupled_contact`): the spring, holding
+the approach energy less the frame's at the turn, is pressed to X_p and pushes
+F_MAX = F_GB(X_p); it loads along F_GB and unloads along its hysteresis, which sets T_c
+(:func:`hysteretic_contact_time`, longer than eq 7's elastic half period); the impulse is the
+rebound's, (1 + e_r) μ V, so F_MEAN = (1 + e_r) μ V / T_c.  On a rigid racket this is the
+transient model's contact to round-off; over issue 22's protocol its peak force within
+2.3 % and its T_c within −8.8 … +0.4 %, where eq 11's half sine was up to 22 % low and eq 7's
+T_c up to 14 % short (docs/validation.md, "The contact: time and forces").  K_GB = π² μ / T_c²
+either way.
 
 The vibration charge (``vibration_charge``).  ``"paper"`` is eq 12 as written: the half sine's
 spectrum, its energy taken from e_BG².  ``"coupled"`` (default) takes, for the spectrum, the
@@ -196,6 +206,40 @@ def elastic_contact_time(
     theta, weights, _ = _legendre_nodes(_CONTACT_NODES)
     _, rate = _contact_rate(law, mu, peak, theta)
     return np.asarray(2.0 * np.sum(rate * weights, axis=-1))
+
+
+def hysteretic_contact_time(
+    law: RestoringForce, mu: ArrayLike, peak: ArrayLike, e_bg: ArrayLike
+) -> NDArray[np.float64]:
+    """Duration of a contact of mass μ that loads along F_GB to X_p and unloads along the
+    transient model's hysteresis ``F_GB(X) (X/X_p)^p``, which gives back e_BG² of E_GB(X_p), s.
+
+    ``T_c = ∫₀^{X_p} dX / sqrt(2 (E(X_p) − E(X)) / μ) + ∫₀^{X_p} dX / sqrt(2 (E_un(X_p) −
+    E_un(X)) / μ)``: the loading half of :func:`elastic_contact_time` and the unloading on the
+    softer curve (:meth:`~racketdyn.ball.RestoringForce.unloading_energy`), both in
+    ``X = X_p sin θ`` with Gauss–Legendre quadrature.  On a rigid racket it is the transient
+    model's contact time; for e_BG = 1, the elastic one.
+
+    Parameters
+    ----------
+    law : RestoringForce
+        Loading curve F_GB(X).
+    mu : array_like
+        Two-body mass, kg.
+    peak : array_like
+        Peak deflection X_p > 0, m.
+    e_bg : array_like
+        COR of the spring's hysteresis (e_BG), broadcast against ``peak``.
+    """
+    theta, weights, _ = _legendre_nodes(_CONTACT_NODES)
+    mu_, x_p = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (mu, peak)))
+    x, loading = _contact_rate(law, mu_, x_p, theta)
+    e = np.broadcast_to(np.asarray(e_bg, dtype=float), x_p.shape)
+    p = law.unloading_exponent(x_p, e)[..., None]
+    held = law.unloading_energy(x_p[..., None], x_p[..., None], p)
+    left = np.maximum(held - law.unloading_energy(x, x_p[..., None], p), 0.0)
+    unloading = x_p[..., None] * np.cos(theta) / np.sqrt(2.0 * left / mu_[..., None])
+    return np.asarray(np.sum((loading + unloading) * weights, axis=-1))
 
 
 def elastic_contact(
@@ -561,7 +605,8 @@ class ApproximateImpacts:
     contact_time : ndarray
         T_c, s.
     mean_force, peak_force : ndarray
-        F_MEAN and F_MAX, N (eqs 8–11).
+        F_MEAN and F_MAX, N (eqs 8–11; with the coupled charge in the period reading, the
+        rebound's impulse over T_c and the spring's force at the turn).
     mode_energy : ndarray
         ``(..., n_modes)`` vibration energy left in each mode, J (eq 12).
     vibration_energy : ndarray
@@ -648,8 +693,10 @@ def approximate_impacts(
     m_b = ball.mass_kg
     mu = np.broadcast_to(m_b * reduced_mass / (m_b + reduced_mass), shape)
     impulse = (1.0 + e_bg) * mu * speed  # eqs (6), (8)
+    # the coupled charge's period reading times its own contact (_coupled_contact)
+    elastic = vibration_charge == "paper" or stiffness_reading == "tangent"
     deflection, contact_time, stiffness, in_range, frame = _contact(
-        law, mu, speed, impulse, stiffness_reading, reaches_frame
+        law, (mu, speed, impulse), stiffness_reading, reaches_frame, elastic
     )
     mean_force = impulse / contact_time  # eqs (8)-(10)
     peak_force = np.pi * mean_force / 2.0  # eq (11)
@@ -669,6 +716,15 @@ def approximate_impacts(
     if vibration_charge == "coupled":  # the pulse's impulse is (1 + e_r) μ V
         scale = np.where(valid, ((1.0 + cor) / (1.0 + e_bg)) ** 2, 1.0)
         mode_energy, turn_energy = mode_energy * scale[..., None], turn_energy * scale
+        if stiffness_reading == "period":  # the tangent reading is the paper's shortcut
+            coupled = _coupled_contact(law, mu, speed, turn_energy, (e_bg, cor, valid))
+            deflection, contact_time, mean_force, peak_force = (
+                np.where(valid, new, old)
+                for new, old in zip(
+                    coupled, (pulse.peak, contact_time, mean_force, peak_force), strict=True
+                )
+            )
+            stiffness = np.pi**2 * mu / contact_time**2  # eq (7) solved for K_GB
     vibration_energy = mode_energy.sum(axis=-1)
     mass_ratio = m_b / reduced_mass
     rebound_ratio = (cor - mass_ratio) / (1.0 + mass_ratio)
@@ -697,13 +753,55 @@ def approximate_impacts(
     )
 
 
-def _contact(
+def _coupled_contact(
     law: RestoringForce,
     mu: NDArray[np.float64],
     speed: NDArray[np.float64],
-    impulse: NDArray[np.float64],
+    turn_energy: NDArray[np.float64],
+    balance: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]],
+) -> tuple[NDArray[np.float64], ...]:
+    """X_p, T_c, F_MEAN and F_MAX of the coupled charge's contact, where valid (else NaN).
+
+    The balances that charge the vibration also say what the ball–string spring does: at the
+    turn it holds the approach energy less the frame's, ``½ μ V² − E_turn``, so it is pressed
+    to ``X_p = E_GB⁻¹(½ μ V² − E_turn)`` and pushes ``F_MAX = F_GB(X_p)``; it loads along F_GB
+    and unloads along its hysteresis (:func:`hysteretic_contact_time`, with e_BG), which sets
+    T_c; the ball's impulse is the rebound's, ``(1 + e_r) μ V`` (eq 8 with e_r for e_BG), so
+    ``F_MEAN = (1 + e_r) μ V / T_c``.  On a rigid racket (``E_turn = 0``, e_r = e_BG) the
+    transient model's contact.  Measured against the transient model over issue 22's protocol
+    (370 rows; docs/validation.md, "The contact: time and forces"): F_MAX 0.05–2.3 % high (eq 11's
+    ``π F_MEAN / 2`` was 3–22 % low: the stiffening spring's pulse is peaked), X_p within
+    1.8 % (was up to 8.5 % high), the impulse within 0.4 % (was up to 11 % high), T_c
+    −8.8 … +0.4 % (median −1.3 %; eq 7's elastic half period was 4–14 % short).
+
+    Parameters
+    ----------
+    law : RestoringForce
+        F_GB.
+    mu, speed : ndarray
+        μ, kg, and V, m/s.
+    turn_energy : ndarray
+        E_turn, the frame's energy at the turn, J.
+    balance : (ndarray, ndarray, ndarray of bool)
+        e_BG, e_r and where e_r is given.
+    """
+    e_bg, cor, valid = balance
+    held = np.where(valid, 0.5 * mu * speed**2 - turn_energy, np.nan)
+    deflection = np.asarray(law.deflection_at_energy(np.where(held > 0.0, held, np.nan)))
+    at = np.isfinite(deflection)
+    contact_time, peak_force = (np.full(deflection.shape, np.nan) for _ in range(2))
+    e = np.broadcast_to(e_bg, deflection.shape)
+    contact_time[at] = hysteretic_contact_time(law, mu[at], deflection[at], e[at])
+    peak_force[at] = law.force(deflection[at])
+    return deflection, contact_time, (1.0 + cor) * mu * speed / contact_time, peak_force
+
+
+def _contact(
+    law: RestoringForce,
+    impact: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
     stiffness_reading: StiffnessReading,
     reaches_frame: Callable[[NDArray[np.float64]], NDArray[np.bool_]],
+    elastic: bool = True,
 ) -> tuple[
     NDArray[np.float64],
     NDArray[np.float64],
@@ -712,15 +810,18 @@ def _contact(
     NDArray[np.bool_],
 ]:
     """Peak deflection, contact time, K_GB, whether the law reaches and whether the ball
-    reaches the frame, by eq (10)'s reading.  A frame shot's numbers are not given (NaN): its
-    contact-time quadrature is skipped."""
+    reaches the frame, by eq (10)'s reading, for the impacts' ``(μ, V, impulse)``.  A frame
+    shot's numbers are not given (NaN): its contact-time quadrature is skipped, as is every
+    row's in the period reading unless ``elastic`` (eq 7's half period wanted)."""
+    mu, speed, impulse = impact
     if stiffness_reading == "period":
         deflection = np.asarray(law.deflection_at_energy(0.5 * mu * speed**2))  # NaN beyond
         in_range = np.isfinite(deflection)
         frame = in_range & reaches_frame(deflection)
         needed = in_range & ~frame
         contact_time = np.full(deflection.shape, np.nan)
-        contact_time[needed] = elastic_contact_time(law, mu[needed], deflection[needed])
+        if elastic:
+            contact_time[needed] = elastic_contact_time(law, mu[needed], deflection[needed])
         stiffness = np.pi**2 * mu / contact_time**2  # eq (7) solved for K_GB
     else:
         deflection = tangent_peak_deflection(law, impulse / (2.0 * np.sqrt(mu)))

@@ -114,7 +114,7 @@ IMPACT_QUANTITIES: tuple[Quantity, ...] = (
     ),
     Quantity("contact_time", "contact_time_s", "s", "contact time T_c (eq 7)"),
     Quantity("mean_force", "mean_force_n", "N", "equivalent force F_MEAN (eqs 8-10)"),
-    Quantity("peak_force", "peak_force_n", "N", "peak force F_MAX (eq 11)"),
+    Quantity("peak_force", "peak_force_n", "N", "peak force F_MAX (the spring's at the turn)"),
     Quantity(
         "vibration_energy", "vibration_energy_j", "J", "frame vibration energy after impact (eq 12)"
     ),
@@ -389,7 +389,9 @@ class ImpactResult:
     contact_time : ndarray
         T_c, s (eq 7).
     mean_force, peak_force : ndarray
-        F_MEAN (eqs 8–10) and F_MAX = π F_MEAN / 2 (eq 11), N.
+        F_MEAN = impulse / T_c (eqs 8–10) and F_MAX, N: eq 11's π F_MEAN / 2 under the
+        paper's charge; under the coupled charge (the approximate method's default) the
+        spring's force at the turn, as the transient model's.
     mode_energy : ndarray (…, n_modes)
         Vibration energy per mode after the impact, J.
     vibration_energy : ndarray
@@ -452,7 +454,9 @@ class ImpactResult:
 
     @property
     def impulse(self) -> NDArray[np.float64]:
-        """Impulse F_MEAN · T_c = (1 + e_BG) μ V, N·s (eqs 6 and 8)."""
+        """Impulse F_MEAN · T_c, N·s: the ball's change of momentum — (1 + e_r) μ V with the
+        coupled charge (eq 8 with the rebound's COR), (1 + e_BG) μ V with the paper's (eqs 6
+        and 8)."""
         return np.asarray(self.mean_force * self.contact_time)
 
     def filled_from(self, transient: ImpactResult) -> ImpactResult:

@@ -89,7 +89,7 @@ _IMPACT_VARIABLES: dict[str, tuple[str, str, str]] = {
     "stiffness_n_per_m": ("stiffness", "N m-1", "compound ball+string stiffness K_GB (eqs 9-10)"),
     "contact_time_s": ("contact_time", "s", "contact time T_c (eq 7)"),
     "mean_force_n": ("mean_force", "N", "equivalent force F_MEAN (eqs 8-10)"),
-    "peak_force_n": ("peak_force", "N", "peak force F_MAX (eq 11)"),
+    "peak_force_n": ("peak_force", "N", "peak force F_MAX (the spring's at the turn)"),
     "vibration_energy_j": ("vibration_energy", "J", "frame vibration energy after impact (eq 12)"),
     "cor": ("cor", "1", "ball-racket coefficient of restitution e_r"),
     "rebound_ratio": ("rebound_ratio", "1", "rebound ratio e"),

@@ -347,7 +347,9 @@ class PulseSpectra:
     ball_speed : ndarray (n_speeds,)
         Incoming ball speeds, m/s.
     contact_time, peak_force : ndarray (n_speeds,)
-        T_c, s, and F_MAX, N (NaN where flagged).
+        T_c, s, and the half sine's peak π F_MEAN / 2, N (eq 11; NaN where flagged) — the
+        impact's own F_MAX with the paper's charge, below it with the coupled charge, whose
+        F_MAX is the spring's force at the turn.
     status : ndarray of str (n_speeds,)
         Impact status.
     time : ndarray (n_times,)
@@ -1136,7 +1138,9 @@ def _pulse_spectra(
 ) -> PulseSpectra:
     """Fig. 13's pulses and spectra from the impacts at one point on one support (eq 11)."""
     time, frequency = PULSE_TIME_S, PULSE_FREQUENCY_HZ
-    contact, peak = result.contact_time[0, :, 0], result.peak_force[0, :, 0]
+    # eq 11's half sine of the row's impulse F_MEAN T_c (the coupled charge's F_MAX is the
+    # spring's force at the turn, above the half sine's: the stiffening spring's pulse peaks)
+    contact, peak = result.contact_time[0, :, 0], np.pi * result.mean_force[0, :, 0] / 2.0
     status = np.asarray(result.status, dtype=str)[0, :, 0]
     force = np.full((contact.size, time.size), np.nan)
     spectrum = np.full((contact.size, frequency.size), np.nan)
