@@ -34,7 +34,9 @@ swing map's impacts, twist's and oblique's curves, validate's rows, the ball's b
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Mapping, Sequence
+import sys
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ParamSpec, TypeVar
@@ -574,24 +576,64 @@ class FrameVibration:
 
 
 # --- datasets of several figures in one file ------------------------------------------------
-def write_figure_data(path: Path, datasets: Sequence[xr.Dataset]) -> Path:
+def write_figure_data(
+    path: Path, datasets: Sequence[xr.Dataset | Callable[[], xr.Dataset]]
+) -> Path:
     """Write the figures' data of a step into one netCDF file (``figures.nc``).
 
     Parameters
     ----------
     path : Path
         The file (netCDF 3, xarray's scipy engine).
-    datasets : sequence of xarray.Dataset
+    datasets : sequence of xarray.Dataset or callable
         The ``to_xarray()`` of each figure-data object of the step (their names do not clash:
-        each is prefixed with its figures' keys).
+        each is prefixed with its figures' keys), or the ``to_xarray`` itself (a callable
+        without arguments): made here, where xarray is spared importing dask (≈ 0.4 s, see
+        :func:`_no_dask_arrays`).
 
     Returns
     -------
     Path
         ``path``.
     """
-    _write_netcdf3(joined_figure_data(datasets), Path(path))
+    with _no_dask_arrays():
+        made = [data() if callable(data) else data for data in datasets]
+        _write_netcdf3(joined_figure_data(made), Path(path))
     return Path(path)
+
+
+@contextmanager
+def _no_dask_arrays() -> Iterator[None]:
+    """Tell xarray, while this runs, that no array is dask's, when none can be: ``dask.array``
+    is not imported in this process.
+
+    xarray asks of every array it wraps whether it is a dask array, and to ask it imports
+    ``dask.array`` (≈ 0.4 s CPU, most of it for nothing in ``predict`` and ``identify``; there
+    is no switch). Its answer is kept in a cache of duck-array modules, which holds here the
+    answer xarray gives where dask is not installed; the cache is left as it was after, so a
+    dask array made later is known as one. Another thread making dask arrays for xarray while
+    a figures.nc is written would have them taken as plain arrays; no racketdyn step does.
+    """
+    try:
+        from packaging.version import Version
+        from xarray.namedarray import pycompat
+
+        cache = pycompat._cached_duck_array_modules
+        absent = object.__new__(pycompat.DuckArrayModule)
+        absent.module, absent.type, absent.available = None, (), False
+        absent.version = Version("0.0.0")
+    except (ImportError, AttributeError):  # another xarray: it imports dask as it likes
+        yield
+        return
+    if "dask.array" in sys.modules or "dask" in cache:
+        yield
+        return
+    cache["dask"] = absent
+    try:
+        yield
+    finally:
+        if cache.get("dask") is absent:
+            del cache["dask"]
 
 
 def joined_figure_data(datasets: Sequence[xr.Dataset]) -> xr.Dataset:
@@ -719,7 +761,7 @@ def defer_figure_data(
     path = result.out / FIGURES_FILE
 
     def write() -> Path:
-        return write_figure_data(path, [store(objects), *(data() for data in datasets)])
+        return write_figure_data(path, [functools.partial(store, objects), *datasets])
 
     defer_file(result, path, write)
 
