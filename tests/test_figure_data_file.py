@@ -65,20 +65,22 @@ def test_writing_figures_nc_imports_no_dask_distributed(tmp_path: Path) -> None:
     assert _printed(code, tmp_path) == ["False"]
 
 
-def test_writing_figures_nc_imports_no_dask_array(tmp_path: Path) -> None:
-    """xarray imports ``dask.array`` at its first Variable only to ask whether an array is
-    dask's (≈ 0.4 s of ``predict`` and ``identify``); a step's figures.nc is built and written
-    without it, and xarray knows dask's arrays again after."""
+def test_writing_figures_nc_imports_no_dask(tmp_path: Path) -> None:
+    """xarray imports ``dask.array`` at its first Variable, and ``dask`` to encode text, only to
+    ask whether an array is dask's (≈ 0.5 s of ``predict`` and ``identify``); a step's
+    figures.nc is built and written without them, and xarray knows dask's arrays again after."""
     code = (
         "import sys, numpy as np, xarray as xr; "
         "from racketdyn.workflows.figure_data import write_figure_data; "
         "data = lambda: xr.Dataset({'a': ('x', np.arange(3.0))}); "
         "write_figure_data(sys.argv[1], [data]); "
-        "print('dask.array' in sys.modules); "
+        "print('dask.array' in sys.modules, 'dask' in sys.modules); "
         "import dask.array as da; "
-        "print(xr.DataArray(da.zeros(3), dims='x').chunks is not None)"
+        "from xarray.namedarray.pycompat import is_chunked_array; "
+        "print(xr.DataArray(da.zeros(3), dims='x').chunks is not None, "
+        "is_chunked_array(da.zeros(3)))"
     )
-    assert _printed(code, tmp_path) == ["False", "True"]
+    assert _printed(code, tmp_path) == ["False", "False", "True", "True"]
 
 
 def _same(dataset: xr.Dataset) -> xr.Dataset:

@@ -604,36 +604,48 @@ def write_figure_data(
 
 @contextmanager
 def _no_dask_arrays() -> Iterator[None]:
-    """Tell xarray, while this runs, that no array is dask's, when none can be: ``dask.array``
-    is not imported in this process.
+    """Tell xarray, while this runs, that no array is dask's, when none can be: ``dask`` (or
+    ``dask.array``) is not imported in this process.
 
     xarray asks of every array it wraps whether it is a dask array, and to ask it imports
-    ``dask.array`` (≈ 0.4 s CPU, most of it for nothing in ``predict`` and ``identify``; there
-    is no switch). Its answer is kept in a cache of duck-array modules, which holds here the
-    answer xarray gives where dask is not installed; the cache is left as it was after, so a
-    dask array made later is known as one. Another thread making dask arrays for xarray while
-    a figures.nc is written would have them taken as plain arrays; no racketdyn step does.
+    ``dask.array`` (at its first Variable) and ``dask`` (to encode text): ≈ 0.5 s CPU of
+    ``predict`` and ``identify``, for nothing, with no switch. Its answers come from its cache
+    of duck-array modules and from ``is_dask_collection``, which give here the answers xarray
+    gives where dask is not installed; both are put back after, so a dask array made later is
+    known as one. Another thread making dask arrays for xarray while a figures.nc is written
+    would have them taken as plain arrays; no racketdyn step does.
     """
     try:
         from packaging.version import Version
         from xarray.namedarray import pycompat
+        from xarray.namedarray import utils as named_utils
 
         cache = pycompat._cached_duck_array_modules
         absent = object.__new__(pycompat.DuckArrayModule)
         absent.module, absent.type, absent.available = None, (), False
         absent.version = Version("0.0.0")
+        collection = named_utils.is_dask_collection
     except (ImportError, AttributeError):  # another xarray: it imports dask as it likes
         yield
         return
-    if "dask.array" in sys.modules or "dask" in cache:
-        yield
-        return
-    cache["dask"] = absent
+    arrays = "dask.array" not in sys.modules and "dask" not in cache
+    collections = "dask" not in sys.modules
+    if arrays:
+        cache["dask"] = absent
+    if collections:
+        named_utils.is_dask_collection = _no_dask_collection  # type: ignore[assignment]
     try:
         yield
     finally:
-        if cache.get("dask") is absent:
+        if arrays and cache.get("dask") is absent:
             del cache["dask"]
+        if collections and named_utils.is_dask_collection is _no_dask_collection:
+            named_utils.is_dask_collection = collection
+
+
+def _no_dask_collection(value: object) -> bool:
+    """xarray's ``is_dask_collection`` where dask is not imported (:func:`_no_dask_arrays`)."""
+    return False
 
 
 def joined_figure_data(datasets: Sequence[xr.Dataset]) -> xr.Dataset:
