@@ -34,7 +34,9 @@ swing map's impacts, twist's and oblique's curves, validate's rows, the ball's b
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Mapping, Sequence
+import sys
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ParamSpec, TypeVar
@@ -576,24 +578,76 @@ class FrameVibration:
 
 
 # --- datasets of several figures in one file ------------------------------------------------
-def write_figure_data(path: Path, datasets: Sequence[xr.Dataset]) -> Path:
+def write_figure_data(
+    path: Path, datasets: Sequence[xr.Dataset | Callable[[], xr.Dataset]]
+) -> Path:
     """Write the figures' data of a step into one netCDF file (``figures.nc``).
 
     Parameters
     ----------
     path : Path
         The file (netCDF 3, xarray's scipy engine).
-    datasets : sequence of xarray.Dataset
+    datasets : sequence of xarray.Dataset or callable
         The ``to_xarray()`` of each figure-data object of the step (their names do not clash:
-        each is prefixed with its figures' keys).
+        each is prefixed with its figures' keys), or the ``to_xarray`` itself (a callable
+        without arguments): made here, where xarray is spared importing dask (≈ 0.4 s, see
+        :func:`_no_dask_arrays`).
 
     Returns
     -------
     Path
         ``path``.
     """
-    _write_netcdf3(joined_figure_data(datasets), Path(path))
+    with _no_dask_arrays():
+        made = [data() if callable(data) else data for data in datasets]
+        _write_netcdf3(joined_figure_data(made), Path(path))
     return Path(path)
+
+
+@contextmanager
+def _no_dask_arrays() -> Iterator[None]:
+    """Tell xarray, while this runs, that no array is dask's, when none can be: ``dask`` (or
+    ``dask.array``) is not imported in this process.
+
+    xarray asks of every array it wraps whether it is a dask array, and to ask it imports
+    ``dask.array`` (at its first Variable) and ``dask`` (to encode text): ≈ 0.5 s CPU of
+    ``predict`` and ``identify``, for nothing, with no switch. Its answers come from its cache
+    of duck-array modules and from ``is_dask_collection``, which give here the answers xarray
+    gives where dask is not installed; both are put back after, so a dask array made later is
+    known as one. Another thread making dask arrays for xarray while a figures.nc is written
+    would have them taken as plain arrays; no racketdyn step does.
+    """
+    try:
+        from packaging.version import Version
+        from xarray.namedarray import pycompat
+        from xarray.namedarray import utils as named_utils
+
+        cache = pycompat._cached_duck_array_modules
+        absent = object.__new__(pycompat.DuckArrayModule)
+        absent.module, absent.type, absent.available = None, (), False
+        absent.version = Version("0.0.0")
+        collection = named_utils.is_dask_collection
+    except (ImportError, AttributeError):  # another xarray: it imports dask as it likes
+        yield
+        return
+    arrays = "dask.array" not in sys.modules and "dask" not in cache
+    collections = "dask" not in sys.modules
+    if arrays:
+        cache["dask"] = absent
+    if collections:
+        named_utils.is_dask_collection = _no_dask_collection  # type: ignore[assignment]
+    try:
+        yield
+    finally:
+        if arrays and cache.get("dask") is absent:
+            del cache["dask"]
+        if collections and named_utils.is_dask_collection is _no_dask_collection:
+            named_utils.is_dask_collection = collection
+
+
+def _no_dask_collection(value: object) -> bool:
+    """xarray's ``is_dask_collection`` where dask is not imported (:func:`_no_dask_arrays`)."""
+    return False
 
 
 def joined_figure_data(datasets: Sequence[xr.Dataset]) -> xr.Dataset:
@@ -721,7 +775,7 @@ def defer_figure_data(
     path = result.out / FIGURES_FILE
 
     def write() -> Path:
-        return write_figure_data(path, [store(objects), *(data() for data in datasets)])
+        return write_figure_data(path, [functools.partial(store, objects), *datasets])
 
     defer_file(result, path, write)
 

@@ -15,10 +15,11 @@ import csv
 import dataclasses
 import math
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
+from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -63,6 +64,9 @@ from racketdyn.workflows.shape_figures import (
     identified_shapes,
 )
 from racketdyn.workflows.truth import TRUTH_FILES, write_truth_comparisons
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = [
     "BALL_COMPARISON_FILE",
@@ -585,14 +589,14 @@ def run_compare(
     shapes_hand = identified_shapes(found_hand.model, the_racket)
     nodes_free_hand = axis_node_curves([found_free.model, found_hand.model], the_racket)
     fit_free, fit_hand = fit_figures(found_free, the_racket), fit_figures(found_hand, the_racket)
-    figure_data = [
-        shapes_free.to_xarray("free"),
-        shapes_hand.to_xarray("hand"),
-        nodes_free_hand.to_xarray("fig6_free_hand"),
-        rebound.to_xarray(),
-        store({"comparison": comparison}),
-        store({"fit_figures": fit_free}, "free"),
-        store({"fit_figures": fit_hand}, "hand"),
+    figure_data: list[Callable[[], xr.Dataset]] = [  # made while written (no dask import)
+        partial(shapes_free.to_xarray, "free"),
+        partial(shapes_hand.to_xarray, "hand"),
+        partial(nodes_free_hand.to_xarray, "fig6_free_hand"),
+        rebound.to_xarray,
+        partial(store, {"comparison": comparison}),
+        partial(store, {"fit_figures": fit_free}, "free"),
+        partial(store, {"fit_figures": fit_hand}, "hand"),
     ]
     written.append(write_figure_data(out_dir / FIGURES_FILE, figure_data))
     result = CompareResult(

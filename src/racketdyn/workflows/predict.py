@@ -805,7 +805,7 @@ def _figure_data(
     datasets = result._figure_parts()
     if datasets:  # written while the figures are drawn (xarray's import is most of it)
         path = result.out / FIGURES_FILE
-        defer_file(result, path, lambda: write_figure_data(path, [data() for data in datasets]))
+        defer_file(result, path, lambda: write_figure_data(path, datasets))
 
 
 def _axis_band(
