@@ -227,13 +227,18 @@ def test_single_mode_energy_closed_form_against_time_integration(
     assert result.mode_energy[0, 0, 0, 0] == pytest.approx(energy * impulse_ratio**2, rel=1e-8)
 
 
-def test_vibration_loss_beyond_e_bg_is_flagged(racket, ball, linear) -> None:
-    # A mode so compliant that its energy exceeds what e_BG leaves: no number that looks valid.
+@pytest.mark.parametrize(
+    ("charge", "status"), [("paper", STATUS_VIBRATION_LOSS), ("coupled", STATUS_VIBRATION_SHARE)]
+)
+def test_vibration_loss_beyond_e_bg_is_flagged(racket, ball, linear, charge, status) -> None:
+    # A mode so compliant that its energy exceeds what e_BG leaves: no number that looks valid,
+    # and the status in the charge's own words
     huge = _single_mode(racket, 60.0, 80.0)
     result = predict(
-        racket, ball, [racket.head.centre_x_m, 0.0], [30.0], modal_model=huge, law=linear
-    )
-    assert np.all(result.status == STATUS_VIBRATION_LOSS)
+        racket, ball, [racket.head.centre_x_m, 0.0], [30.0], modal_model=huge, law=linear,
+        vibration_charge=charge,
+    )  # fmt: skip
+    assert np.all(result.status == status)
     assert np.all(np.isnan(result.cor))
     assert np.all(np.isnan(result.rebound_speed))
     # the vibration energy exceeds what the ball brings: not reported either (issue 13)
@@ -241,15 +246,20 @@ def test_vibration_loss_beyond_e_bg_is_flagged(racket, ball, linear) -> None:
     assert np.all(np.isnan(result.contact_time))
 
 
-@pytest.mark.parametrize("modal_mass", [3e-3, 1e-3, 3e-4, 1e-4])
-@pytest.mark.parametrize("frequency", [600.0, 1000.0, 2000.0])
+@pytest.mark.parametrize("modal_mass", [3e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5])
+@pytest.mark.parametrize("frequency", [100.0, 200.0, 600.0, 1000.0, 2000.0])
 def test_the_coupled_charge_creates_no_energy(racket, ball, law, modal_mass, frequency) -> None:
     """Energy is conserved: the ball's rebound and the frame's vibration never hold more than
     the approach energy ½ μ V² (``e_r² ½ μ V² + E_vib ≤ ½ μ V²``, so e_r ≤ 1).  A mode as soft
     as the strings and several cycles over the contact holds at the turn more than the
     approach brought, beyond the rigid racket's pulse the method assumes: NaN with the
     vibration-share status.  Before: 1 kHz and 0.3 g gave e_r = 1.19 and a rebound ratio of
-    0.64 marked ``ok`` (the transient model: 0.46)."""
+    0.64 marked ``ok`` (the transient model: 0.46).
+
+    A row the coupled balances cannot close (no e_r ≥ 0: a heavy slow mode, or a light one
+    holding at the turn many times the approach energy, k ≤ −1) is the same case — the frame
+    holds over 30 % of the approach energy — and says so; before, it said "vibration loss
+    exceeds e_BG", the paper's charge's words (100 Hz at 30 g, 1 kHz at 0.03 g)."""
     soft = _single_mode(racket, 1.0 / np.sqrt(modal_mass), frequency)
     result = predict(racket, ball, [racket.head.centre_x_m, 0.0], [10.0, 20.0, 40.0],
                      modal_model=soft, law=law)  # fmt: skip
@@ -261,7 +271,7 @@ def test_the_coupled_charge_creates_no_energy(racket, ball, law, modal_mass, fre
     approach = 0.5 * mu * result.ball_speed[None, :, None] ** 2
     ok = result.status == "ok"
     assert np.all(result.cor[ok] ** 2 * approach[ok] + result.vibration_energy[ok] <= approach[ok])
-    assert set(np.unique(result.status[~ok])) <= {STATUS_VIBRATION_SHARE, STATUS_VIBRATION_LOSS}
+    assert set(np.unique(result.status[~ok])) <= {STATUS_VIBRATION_SHARE}
     if (frequency, modal_mass) == (1000.0, 3e-4):
         assert np.all(result.status == STATUS_VIBRATION_SHARE)
     assert np.all(np.isnan(result.cor[~ok]))

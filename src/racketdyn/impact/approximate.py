@@ -735,7 +735,10 @@ def approximate_impacts(
     with np.errstate(invalid="ignore"):
         over = frame_energy > VIBRATION_SHARE_LIMIT * approach_energy(m_b, reduced_mass, speed)
     status[in_range & valid & over] = STATUSES.index(STATUS_VIBRATION_SHARE)
-    status[in_range & ~valid] = STATUSES.index(STATUS_VIBRATION_LOSS)
+    # no e_r ≥ 0 closes the balances: the paper's charge's vibration beyond e_BG²; under the
+    # coupled charge the frame holding over the share limit, which says why
+    beyond = STATUS_VIBRATION_LOSS if vibration_charge == "paper" else STATUS_VIBRATION_SHARE
+    status[in_range & ~valid] = STATUSES.index(beyond)
     status[frame] = STATUSES.index(STATUS_FRAME_CONTACT)
     status[~in_range] = STATUSES.index(STATUS_BEYOND_LAW)
     return ApproximateImpacts(
