@@ -70,7 +70,11 @@ def add(commands: Any) -> None:
         "modal_model.json (what predict --modal takes), modes.uff, fit_quality.csv, figures, "
         "run.json",
     )
-    p.add_argument("frfs", help="FRFs: UFF 58 (function type 4), e.g. racketdyn frf's frfs.uff")
+    p.add_argument(
+        "frfs",
+        help="FRFs: UFF 58 (function type 4), e.g. racketdyn frf's frfs.uff, or an FRF table "
+        "(CSV: file,node,x_m,y_m,z_m,direction) of FRFs exported one text file per point",
+    )
     opt.add_support(p, "free", "support of the test: free or hand", choices=("free", "hand"))
     _add_options(p)
     p.add_argument(

@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 
 from racketdyn._grammar import noun, plural
 from racketdyn.errors import InputError, logs_warnings
+from racketdyn.io.frf_table import is_frf_table, read_frf_table
 from racketdyn.io.uff import (
     COHERENCE,
     FREQUENCY_RESPONSE,
@@ -151,7 +152,9 @@ def read_frfs(
     ----------
     path : Path or str
         Universal File with data sets 58/58b of function type 4 (complex FRFs) and node
-        coordinates (data set 15 or 2411, with data set 164's length unit).
+        coordinates (data set 15 or 2411, with data set 164's length unit); or an FRF table,
+        a CSV file listing FRFs exported one text file per point
+        (:func:`racketdyn.io.frf_table.read_frf_table`).
     geometry : Path or str, optional
         A second Universal File with node coordinates; its nodes take precedence.
     reference : int, optional
@@ -185,6 +188,12 @@ def read_frfs(
         reference that is in no FRF; a point without coordinates (naming ``--geometry``).
     """
     path = Path(path)
+    if is_frf_table(path):
+        if geometry is not None:
+            raise InputError(
+                f"{path}: an FRF table holds the points' coordinates; give no `geometry`"
+            )
+        return read_frf_table(path, reference)
     sets = _read_sets(path)
     units = _units_of(path, sets)
     coordinates, frames = _coordinates(path, sets, units, geometry)
