@@ -488,3 +488,40 @@ def test_an_absurd_hammer_sample_names_the_data_set() -> None:
     response[0][1, 10] = 1e12
     with pytest.raises(InputError, match=r"a response sample of 1e\+12"):
         dataclasses.replace(good, response=tuple(response))
+
+
+def test_a_folder_given_as_the_racket_file_says_so(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`--racket <folder>` printed "[Errno 21] Is a directory" with no fix (new-user trial,
+    eleventh session)."""
+    assert main(["racket", "--racket", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "is a folder; give a racket file (.toml)" in err
+    assert "Errno" not in err
+
+
+def test_a_compressed_universal_file_is_named_compressed(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A ``.uff.xz`` (or gzip) file was "not a Universal File": say it is compressed and how
+    to read it (new-user trial, eleventh session)."""
+    import lzma
+
+    packed = tmp_path / "test.uff.xz"
+    packed.write_bytes(lzma.compress(b"    -1\n   151\n" + b"x\n" * 20 + b"    -1\n"))
+    assert main(["identify", str(packed), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "compressed (xz)" in err
+    assert "decompress it first" in err
+
+
+def test_a_misspelt_support_lists_every_support_some_command_takes(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`predict --support hnad` listed only free and pinned, though `hand` exists (with the
+    transient model): the message says so (new-user trial, eleventh session)."""
+    assert main(["predict", "--support", "hnad", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "free, pinned" in err
+    assert "hand" in err

@@ -121,3 +121,35 @@ def test_a_window_in_milliseconds_is_one_line(
     assert len(err.strip().splitlines()) == 1
     assert f"{option} {value}" in err
     assert words in err
+
+
+def test_forces_in_volts_are_one_line_naming_the_file(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Hits whose median peak is under a newton are a force channel in volts (the wing's
+    OpenModal records: 0.07–0.10 "N", quality.csv and the FRFs in the wrong unit with nothing
+    saying so; new-user trial, eleventh session): refused in one line naming the file and
+    the likely unit; `--allow-implausible` takes them as they are."""
+    from racketdyn.io import write_hammer_csv
+
+    records = records_for(MODES, n_averages=2)
+    peak = max(float(np.abs(f).max()) for f in records.force)
+    volts = dataclasses.replace(
+        records,
+        force=tuple(f * (0.08 / peak) for f in records.force),
+        response=tuple(r * (0.08 / peak) for r in records.response),
+    )
+    data, _ = write_hammer_csv(volts, tmp_path / "h.csv", tmp_path / "g.csv")
+    assert main(["frf", str(data), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1
+    assert str(data) in err[0]
+    assert "volts" in err[0]
+    assert "--allow-implausible" in err[0]
+    assert not (tmp_path / "o" / "frfs.uff").exists()
+    args = ["frf", str(data), "--out", str(tmp_path / "o"), "--allow-implausible"]
+    assert main(args) == 0
+    assert (tmp_path / "o" / "frfs.uff").exists()
+    # the FRFs of the same test in newtons are accepted as they are
+    data, _ = write_hammer_csv(records, tmp_path / "n.csv", tmp_path / "gn.csv")
+    assert main(["frf", str(data), "--out", str(tmp_path / "n")]) == 0

@@ -1356,3 +1356,13 @@ def test_compound_names_the_balls_place_as_rig_and_identify_do(
         for name in ("new", "old")
     )
     assert new["point_m"] == old["point_m"] == pytest.approx([0.53, 0.0])
+
+
+def test_the_console_gives_the_springs_damping_in_per_cent(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """compound printed ζ as a ratio ("ζ 0.0125") where every other command prints per cent
+    (new-user trial, eleventh session)."""
+    assert main(["compound", "--support", "free", "--no-figures", "--out", str(tmp_path)]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert re.search(r"ζ \d+\.\d\d % \(from e_BG\)", out)

@@ -165,3 +165,15 @@ def test_exports_of_other_lines_are_refused(tmp_path: Path) -> None:
 def test_an_frf_table_takes_no_geometry(tmp_path: Path) -> None:
     with pytest.raises(InputError, match="give no `geometry`"):
         read_frfs(_table(tmp_path), geometry=tmp_path / "g.uff")
+
+
+def test_a_structure_not_a_racket_is_not_said_to_be_free(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """identify headed a cantilevered wing's table "(free)", the racket test's default
+    support (new-user trial, eleventh session): a structure that is not a racket's face gets
+    no support word."""
+    assert main(["identify", str(_table(tmp_path, "+x")), "--out", str(tmp_path / "o")]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "2 modes, " in out
+    assert "(free)" not in out

@@ -226,7 +226,7 @@ def test_the_spec_s_uncertainty_and_the_command_line_over_it(tmp_path: Path) -> 
     assert main(_argv(spec, tmp_path / "b", "--uncertainty", str(other), "--seed", "3")) == 0
     record = json.loads((tmp_path / "b" / "run.json").read_text())["uncertainty"]
     assert record["source"].startswith(f"--uncertainty {other}")
-    assert record["inputs"] == {"ball_speed_mps": "normal, sd 1 (offset)"}
+    assert record["inputs"] == {"ball_speed_mps": "normal, sd 1 m/s (offset)"}
     assert (record["samples"], record["seed"]) == (256, 3)
     with rd.sweep.open_sweep(tmp_path / "b") as found:
         assert json.loads(found.attrs["uncertainty"])["inputs"] == record["inputs"]

@@ -723,3 +723,15 @@ def test_a_point_without_indices_says_its_shots_hit_the_frame() -> None:
     assert found.frame_share[1] > 0.5
     assert "onto the frame" in found.why_none(1)
     assert found.rows()["samples_frame_shot"][-1] == found.frame_share[1]
+
+
+def test_each_spread_is_described_with_its_unit() -> None:
+    """run.json and the report described spreads without units ("first bending … sd 3",
+    "location … sd 0.01": new-user trial, eleventh session); the unit follows the input's name,
+    none for the dimensionless ones."""
+    assert Spread("first_bending_hz", sd=3.0).describe() == "normal, sd 3 Hz"
+    assert Spread("location_m", sd=0.01).describe() == "normal, sd 0.01 m (offset)"
+    assert Spread("ball_speed_mps", bounds=(-1.0, 1.0)).describe() == (
+        "uniform -1 to 1 m/s (offset)"
+    )
+    assert Spread("e_bg", bounds=(0.8, 0.88)).describe() == "uniform 0.8 to 0.88"

@@ -242,6 +242,23 @@ RANGES: dict[str, Range] = {
     "force_range_n": Range(
         "a hammer's force channel measures", 10.0, 1.0e5, 0.1, 1.0e7, "N", (), None, "at most"
     ),
+    # The hammer's hits (frf: the median peak force of the accepted averages): a modal hammer on
+    # a racket or a lab structure strikes with ≈ 10 N (a light tap with a small tip) to a few
+    # kN; under 1 N a hit hardly stands above a hammer's noise.  Forces read in volts — the
+    # channel before the hammer's sensitivity, ≈ 2.25 mV/N for a common modal hammer (1 V ≈
+    # 444 N) — peak at 0.01–1: the wing's OpenModal records, 0.07–0.10 "N" (new-user trial,
+    # eleventh session).  Limits: 1e-9 N (nothing measured) to 10 MN (no hammer).
+    "hammer_peak_force_n": Range(
+        "a modal hammer's hits peak at",
+        1.0,
+        1.0e5,
+        1.0e-9,
+        1.0e7,
+        "N",
+        (Slip("volts of a 2.25 mV/N hammer", "V", 1.0 / 2.25e-3),),
+        None,
+        "(the median hit)",
+    ),
     # Ball–string friction (impact.oblique.TangentialContact): Cross measured μ ≈ 0.4 for a ball
     # sliding on strings (the default; docs/references.md); felt on nylon or polyester stays
     # below 1.  Limits: 10 — a thousand-fold μ (typed 1e9) ran the tangential model into its

@@ -104,7 +104,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
         console,
         f"ball fixed at x = {x * 1e3:.0f} mm, y = {y * 1e3:.0f} mm on a bed preloaded with "
         f"{spring.preload_n:g} N: spring {spring.stiffness / 1e3:.2f} kN/m (tangent of F_GB), "
-        f"ζ {spring.damping_ratio:.3f} (from e_BG) → {result.out}",
+        f"ζ {spring.damping_ratio * 100:.2f} % (from e_BG) → {result.out}",
     )
     warnings = []
     if result.off_centre_m > _OFF_CENTRE_M and spring.location is None:

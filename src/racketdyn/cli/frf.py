@@ -55,7 +55,9 @@ def add(commands: Any) -> None:
         type=float,
         help="hammer channel range, N: reaching it is an overload (default: flat tops only)",
     )
-    opt.add_allow_implausible(p, "a --force-range outside 10-100000 N")
+    opt.add_allow_implausible(
+        p, "a --force-range outside 10-100000 N, or hits whose median peak is under 1 N (volts)"
+    )
     opt.add_out(p)
     p.set_defaults(handler=run)
 

@@ -184,9 +184,13 @@ def print_modes(
     from rich.table import Table
 
     model = identification.model
+    # the support is a racket test's word (free or hand); a beam or a wing is supported as
+    # its lab says, which the file does not
+    numbered = str(model.metadata.get("naming", "")).startswith("modes numbered")
+    support = "" if numbered else f" ({model.support})"
     table = Table(
         title=opt.plain(
-            f"{opt.plural(model.n_modes, 'mode')} ({model.support}), "
+            f"{opt.plural(model.n_modes, 'mode')}{support}, "
             f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
         )
     )

@@ -108,6 +108,7 @@ def resolve_modal_model(
     else:
         model = modal_model
     if model is not None:
+        model.require_mass_normalised("an impact model")  # vibration energy needs 1/√kg
         model = frame_under_bed(
             model.flexible_modes if include_string_bed else model.frame_modes, racket.head
         )

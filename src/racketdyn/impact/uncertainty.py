@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeVar, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from racketdyn._grammar import unit_of
 from racketdyn.errors import InputError, one_of, require_words
 from racketdyn.impact.approximate import STATUSES, predict
 from racketdyn.impact.calibration import PARAMETERS
@@ -213,13 +214,14 @@ class Spread:
 
     def describe(self) -> str:
         """The distribution in words, for run records and the report."""
+        unit = unit_of(self.name)
+        units = f" {unit}" if unit else ""  # e_bg and the scales are dimensionless
+        offset = " (offset)" if self.is_offset else ""
         if self.sd is not None:
-            return f"normal, sd {self.sd:g}" + (" (offset)" if self.is_offset else "")
+            return f"normal, sd {self.sd:g}{units}{offset}"
         if self.bounds is not None:
-            return f"uniform {self.bounds[0]:g} to {self.bounds[1]:g}" + (
-                " (offset)" if self.is_offset else ""
-            )
-        return "equally likely " + ", ".join(f"{v:g}" for v in self.values)
+            return f"uniform {self.bounds[0]:g} to {self.bounds[1]:g}{units}{offset}"
+        return "equally likely " + ", ".join(f"{v:g}" for v in self.values) + units
 
 
 @dataclass(frozen=True)

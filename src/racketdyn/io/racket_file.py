@@ -141,6 +141,8 @@ def read_toml(path: Path, what: str) -> dict[str, Any]:
     what : str
         What it should be, for the message ("racket file", "sweep spec file").
     """
+    if Path(path).is_dir():
+        raise InputError(f"{path}: is a folder; give a {what} (.toml)")
     try:
         return tomllib.loads(Path(path).read_text(encoding="utf-8"))
     except FileNotFoundError:

@@ -172,6 +172,15 @@ def _quiet_pyuff() -> Iterator[None]:
         logger.debug("pyuff printed: %s", captured.getvalue())
 
 
+_COMPRESSED = (
+    (b"\xfd7zXZ\x00", "xz", "unxz"),
+    (b"\x1f\x8b", "gzip", "gunzip"),
+    (b"BZh", "bzip2", "bunzip2"),
+    (b"PK\x03\x04", "zip", "unzip"),
+)
+"""Magic numbers of compressed files a lab may hand over, their names and a tool that opens them."""
+
+
 def _read_sets(path: Path) -> list[dict[str, Any]]:
     """All data sets of a Universal File as pyuff dictionaries; InputError on anything wrong."""
     if not path.exists():
@@ -184,6 +193,12 @@ def _read_sets(path: Path) -> list[dict[str, Any]]:
         raise InputError(f"{path}: cannot be read ({error.strerror})") from None
     if not raw.strip():
         raise InputError(f"{path}: empty; expected a Universal File of data sets 15 and 58")
+    for magic, kind, tool in _COMPRESSED:
+        if raw.startswith(magic):
+            raise InputError(
+                f"{path}: compressed ({kind}), not a Universal File; decompress it first "
+                f"({tool} {path.name})"
+            )
     blocks = check_structure(path, raw)
     if not blocks:
         raise InputError(

@@ -1021,8 +1021,10 @@ def _scaled(fitted: _Fitted, band: tuple[float, float]) -> _Scaled:
         negative = ", ".join(f"{f:.1f}" for f in fitted.selected.frequency[strong])
         note = (
             f"node {frfs.reference_node} is not a true driving point: modes at {negative} "
-            "Hz have clearly negative constants there (φ_r² cannot be), so the hammer and "
-            "the sensor differ in direction or place; every mode kept, shapes unscaled"
+            "Hz have clearly negative constants there (φ_r² cannot be): the hammer and the "
+            "sensor differ in direction or place, or those modes are mis-fitted (two close "
+            "modes fitted as a wrong pair: a narrower `band_hz` round them tells); every mode "
+            "kept, shapes unscaled"
         )
         return _Scaled(fitted, "unscaled", note)
     if not clear.any():

@@ -395,7 +395,11 @@ def figure_pulse_spectrum(data: PaperFigures, axes: Sequence[Axes] | None = None
     frequency = pulse.frequency
     for s in np.flatnonzero(pulse.drawn()):
         speed, contact = pulse.ball_speed[s], pulse.contact_time[s]
-        grid[0].plot(pulse.time * 1e3, pulse.force[s], label=f"{speed:g} m/s")
+        grid[0].plot(
+            pulse.time * 1e3,
+            pulse.force[s],
+            label=f"{speed:g} m/s: peak {pulse.half_sine_peak[s]:.0f} N",
+        )
         grid[1].plot(
             frequency, pulse.spectrum[s], label=f"{speed:g} m/s: T_c = {contact * 1e3:.2f} ms"
         )
@@ -412,7 +416,7 @@ def figure_pulse_spectrum(data: PaperFigures, axes: Sequence[Axes] | None = None
             if any(mark[2] == colour for mark in modes):
                 grid[1].plot([], [], color=colour, linestyle=":", linewidth=1.0, label=words)
     grid[0].set_xlabel("time from first contact (ms)")
-    grid[0].set_ylabel("impact force F(t) (N)")
+    grid[0].set_ylabel("half-sine force F(t), eq 11 (N)")
     grid[1].set_xlabel("frequency (Hz)")
     grid[1].set_ylabel("|S(f)| (N·s)")
     for ax in grid:
@@ -420,9 +424,9 @@ def figure_pulse_spectrum(data: PaperFigures, axes: Sequence[Axes] | None = None
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
     figure.suptitle(
-        "Fig. 13: half-sine impact force at the face centre "
+        "Fig. 13: eq 11's half sine of the impact's impulse at the face centre "
         f"({SUPPORT_STYLE[pulse.support]['label']}) and its spectrum; the racket's modes dotted"
-        f"\n{pulse.description}",
+        f"\n{pulse.description}; the contact's own peak F_MAX is impact.csv's peak_force_n",
         fontsize=10,
     )
     return figure

@@ -324,7 +324,8 @@ FIGURES: dict[str, FigureEntry] = {
         FigureEntry(
             "fig13_pulse_spectrum",
             "predict",
-            "the half-sine impact force at the face centre and the magnitude of its spectrum for "
+            "eq 11's half sine of the impact's impulse at the face centre (peak π F_MEAN/2; the "
+            "contact's own peak F_MAX is impact.csv's) and the magnitude of its spectrum for "
             "balls at {speeds}, {racket_speed} (support in the title), with the modes the "
             "prediction charges (dark, dotted) and the string bed's it does not charge (light, "
             "for reference): the faster the ball, the shorter the pulse and the higher its "

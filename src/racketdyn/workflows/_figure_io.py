@@ -15,6 +15,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from racketdyn._grammar import unit_of
+
 if TYPE_CHECKING:
     import xarray as xr
 
@@ -78,29 +80,6 @@ def _has(dataset: xr.Dataset, key: str) -> bool:
 # --- a step's result objects as they are: any dataclass of arrays and plain values ------------
 _STORED = "stored"
 """The attribute (``<key>__stored``) holding a stored object's structure as JSON."""
-_UNITS = {
-    "_m": "m",
-    "_s": "s",
-    "_hz": "Hz",
-    "_mps": "m/s",
-    "_rad": "rad",
-    "_radps": "rad/s",
-    "_deg": "degree",
-    "_n": "N",
-    "_ns": "N s",
-    "_j": "J",
-    "_kg": "kg",
-    "_kgm2": "kg m2",
-    "_n_per_m": "N/m",
-    "_s_per_m": "s/m",
-}
-"""Units by the ending of a field's name (the glossary's ``x_m``, ``contact_time_s``), SI; the
-longest ending that matches wins."""
-
-
-def _units_of(name: str) -> str | None:
-    endings = [end for end in _UNITS if name.endswith(end)]
-    return _UNITS[max(endings, key=len)] if endings else None
 
 
 def _class_name(value: object) -> str:
@@ -167,7 +146,7 @@ class _Encoder:
             stored = value.astype(float)  # netCDF 3 has no 64-bit integers; exact below 2**53
         name = f"{self.key}{path}"
         dims = tuple(f"{name}{_SEP}d{k}" for k in range(stored.ndim))
-        units = _units_of(path.rsplit(_SEP, 1)[-1])
+        units = unit_of(path.rsplit(_SEP, 1)[-1])
         self.variables[name] = (dims, stored, {"units": units} if units else {})
         return {"t": "a", "dtype": value.dtype.str, "shape": list(value.shape), "var": name}
 

@@ -348,10 +348,10 @@ class PulseSpectra:
         Impact point (x, y), m.
     ball_speed : ndarray (n_speeds,)
         Incoming ball speeds, m/s.
-    contact_time, peak_force : ndarray (n_speeds,)
+    contact_time, half_sine_peak : ndarray (n_speeds,)
         T_c, s, and the half sine's peak π F_MEAN / 2, N (eq 11; NaN where flagged) — the
         impact's own F_MAX with the paper's charge, below it with the coupled charge, whose
-        F_MAX is the spring's force at the turn.
+        F_MAX (impact.csv's ``peak_force_n``) is the spring's force at the turn.
     status : ndarray of str (n_speeds,)
         Impact status.
     time : ndarray (n_times,)
@@ -381,7 +381,7 @@ class PulseSpectra:
     location: tuple[float, float]
     ball_speed: NDArray[np.float64]
     contact_time: NDArray[np.float64]
-    peak_force: NDArray[np.float64]
+    half_sine_peak: NDArray[np.float64]
     status: NDArray[np.str_]
     time: NDArray[np.float64]
     force: NDArray[np.float64]
@@ -399,13 +399,14 @@ class PulseSpectra:
 
     def to_xarray(self) -> xr.Dataset:
         """Dims ``ball_speed``, ``time``, ``frequency``, ``mode``; ``force_n`` and
-        ``spectrum_n_s``, the pulse's ``contact_time_s``, ``peak_force_n`` and ``status``."""
+        ``spectrum_n_s``, the pulse's ``contact_time_s``, ``half_sine_peak_force_n`` and
+        ``status``."""
         import xarray as xr
 
         return xr.Dataset(
             {
                 "contact_time_s": ("ball_speed", self.contact_time, {"units": "s"}),
-                "peak_force_n": ("ball_speed", self.peak_force, {"units": "N"}),
+                "half_sine_peak_force_n": ("ball_speed", self.half_sine_peak, {"units": "N"}),
                 "status": ("ball_speed", np.asarray(self.status, dtype=str)),
                 "force_n": (("ball_speed", "time"), self.force, {"units": "N"}),
                 "spectrum_n_s": (("ball_speed", "frequency"), self.spectrum, {"units": "N s"}),
@@ -443,7 +444,7 @@ class PulseSpectra:
             location=(float(attrs["x_m"]), float(attrs["y_m"])),
             ball_speed=_array(dataset["ball_speed_mps"].values),
             contact_time=_array(dataset["contact_time_s"].values),
-            peak_force=_array(dataset["peak_force_n"].values),
+            half_sine_peak=_array(dataset["half_sine_peak_force_n"].values),
             status=np.asarray(dataset["status"].values, dtype=str),
             time=_array(dataset["time_s"].values),
             force=_array(dataset["force_n"].values),
@@ -1213,7 +1214,7 @@ def _pulse_spectra(
         location=(float(result.locations[0, 0]), float(result.locations[0, 1])),
         ball_speed=_array(result.ball_speed),
         contact_time=_array(contact),
-        peak_force=_array(peak),
+        half_sine_peak=_array(peak),
         status=status,
         time=time,
         force=force,
@@ -1792,16 +1793,23 @@ def identified_rebound(
     """
     points = _axis_points(racket, AXIS_POINTS, 0.05)
     models = {"free": free, "hand": hand}
+    # a model whose shapes lost their scaling (no usable driving point) charges the frame in
+    # no unit: its curves are NaN and their legends say why, not drawn as a rigid racket's
     rows = [
         predict(racket, ball, points, [speed], (support,), modal_model=models[modes]).rebound_ratio[
             :, 0, 0
         ]
+        if models[modes].mass_normalised
+        else np.full(len(points), np.nan)
         for support, modes, _ in IDENTIFIED_CASES
     ]
     return IdentifiedRebound(
         x=points[:, 0].copy(),
         ball_speed=float(speed),
-        cases=tuple(label for _, _, label in IDENTIFIED_CASES),
+        cases=tuple(
+            label if models[modes].mass_normalised else f"{label}: unscaled shapes, not drawn"
+            for _, modes, label in IDENTIFIED_CASES
+        ),
         supports=tuple(support for support, _, _ in IDENTIFIED_CASES),
         rebound_ratio=np.stack(rows),
     )

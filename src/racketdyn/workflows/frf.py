@@ -80,6 +80,22 @@ class FrfResult(StepResult):
     frf_points: FrfPoints | None = None
 
 
+def _check_hits(tests: object, estimate: FrfEstimate, allow_implausible: bool) -> None:
+    """Refuse forces whose accepted hits peak where no modal hammer's do (forces in volts):
+    the FRFs and the shapes' scale would be in the wrong unit, with nothing saying so."""
+    peaks = [c.peak_force_n for c in estimate.checks if c.accepted]
+    if peaks:
+        check(
+            "hammer_peak_force_n",
+            float(np.median(peaks)),
+            f"{tests}: the accepted hits' median peak force",
+            allow_implausible=allow_implausible,
+            override="scale the force channel to newtons (by the hammer's sensitivity), or "
+            "take the forces as they are with `allow_implausible` (frequencies and damping do "
+            "not depend on the force's unit; the FRFs' and the shapes' scale do)",
+        )
+
+
 @run_step
 def run_frf(
     tests: str | os.PathLike[str],
@@ -137,6 +153,7 @@ def run_frf(
         quality=QualitySettings(overload_level_n=force_range_n),
     )
     estimate.write_quality_csv(out_dir / "quality.csv")
+    _check_hits(tests, estimate, setup.allow_implausible)
     result = FrfResult(
         out_dir,
         [out_dir / "quality.csv"],

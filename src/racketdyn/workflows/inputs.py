@@ -333,6 +333,12 @@ def supports_named(supports: str | Sequence[str], allowed: Sequence[str]) -> lis
     one text of comma-separated names (``"free,hand"``, as the options objects take it), each
     of ``allowed``, each once; else InputError naming `supports`."""
     words = require_words("`supports`", supports)
+    every = ("free", "pinned", "hand")
+    for word in words:
+        if word not in every:  # a misspelt name: say every support, and which this step takes
+            others = [s for s in every if s not in allowed]
+            more = f" ({', '.join(others)} where the step takes it)" if others else ""
+            raise InputError(f"`supports` must be one of {', '.join(allowed)}{more} (got {word!r})")
     checked = [one_of("`supports`", word, allowed) for word in words]
     if len(set(checked)) != len(checked):
         raise InputError(f"`supports`: name each support once (got {','.join(words)})")
