@@ -153,3 +153,23 @@ def test_forces_in_volts_are_one_line_naming_the_file(
     # the FRFs of the same test in newtons are accepted as they are
     data, _ = write_hammer_csv(records, tmp_path / "n.csv", tmp_path / "gn.csv")
     assert main(["frf", str(data), "--out", str(tmp_path / "n")]) == 0
+
+
+def test_one_hit_a_point_gives_no_coherence_and_says_so(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """With one average a point the coherence is 1 by definition: it was written as measured
+    (the wing's time records, one hit a point: 1.000 everywhere; new-user trial, eleventh
+    session).  Now no coherence, and the console says why."""
+    records = records_for(MODES, pulse_s=3e-3, n_averages=1, second_hit=None)
+    records = dataclasses.replace(
+        records,
+        locations=np.array([[0.505, 0.0], [0.55, 0.03]]),
+        reference_location=(0.505, 0.0),
+    )
+    path = tmp_path / "one.uff"
+    write_hammer_uff(records, path)
+    assert main(["frf", str(path), "--exp-window", "0.1", "--out", str(tmp_path / "o")]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "one average a point: no coherence" in out
+    assert read_frf_uff(tmp_path / "o" / "frfs.uff").coherence is None

@@ -144,8 +144,8 @@ def run(args: argparse.Namespace, console: Console) -> int:
         opt.say(
             console,
             f"{support}: ball mode {modes.ball_frequency:.2f} Hz, half period "
-            f"{modes.half_period * 1e3:.2f} ms; approximate contact time at 5, 10, 20 m/s: "
-            f"{times} ms",
+            f"{modes.half_period * 1e3:.2f} ms; approximate contact time on a rigid racket "
+            f"at 5, 10, 20 m/s (predict's is the flexing frame's, a little longer): {times} ms",
         )
         band, bed = result.band[support], result.paper_bed.get(support)
         reach = " and ".join(f"{a:.0f}–{b:.0f}" for a, b in band.intervals_hz)

@@ -99,6 +99,13 @@ def run(args: argparse.Namespace, console: Console) -> int:
         for reason, count in summary.items():
             if reason not in ("averages", "accepted"):
                 opt.say(console, f"{opt.plural(count, 'average')} rejected: {reason}", "yellow")
+    if estimate.frfs.coherence is None:
+        opt.say(
+            console,
+            "one average a point: no coherence (with one average it is 1 by definition); "
+            "several hits a point measure it",
+            "yellow",
+        )
     fewer = result.records_metadata.get("fewer_averages")
     if fewer:
         opt.say(console, fewer, "yellow")

@@ -291,7 +291,8 @@ def estimate_frfs(
         locations=records.locations[kept],
         reference_node=records.reference_node,
         reference_location=records.reference_location,
-        coherence=np.array(coherence),
+        # one average a point: γ² = 1 by definition, no measure of anything
+        coherence=np.array(coherence) if max(counts) > 1 else None,
         n_averages=np.array(counts),
         exponential_window_s=exponential_window_s,
         estimator=estimator,

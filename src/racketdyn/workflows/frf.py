@@ -22,7 +22,7 @@ from racketdyn.plausibility import check
 from racketdyn.racket import Racket
 from racketdyn.workflows.figure_data import defer_figure_data
 from racketdyn.workflows.frf_figures import FrfPoints, frf_points
-from racketdyn.workflows.inputs import load_racket_input
+from racketdyn.workflows.inputs import load_racket_input, with_racket_of_run
 from racketdyn.workflows.run import (
     StepResult,
     report,
@@ -142,7 +142,9 @@ def run_frf(
             allow_implausible=setup.allow_implausible,
         )
     records = read_records(tests, geometry)
+    setup, from_run = with_racket_of_run(setup, tests)
     the_racket, provenance = load_racket_input(setup.racket)
+    provenance |= from_run
     out_dir = Path(out)
     report(setup.progress, "estimating FRFs")
     estimate = estimate_frfs(

@@ -49,6 +49,7 @@ from racketdyn.workflows.frf_figures import BallFrfs, FitFigures, ball_frfs, fit
 from racketdyn.workflows.inputs import (
     ball_location,
     load_racket_input,
+    with_racket_of_run,
 )
 from racketdyn.workflows.run import (
     StepResult,
@@ -344,7 +345,9 @@ def run_identify(
     ball_at, names_from
         As for :func:`identify_file`.
     """
+    setup, from_run = with_racket_of_run(setup, frfs)
     the_racket, provenance = load_racket_input(setup.racket)
+    provenance |= from_run
     out_dir = Path(out)
     report(setup.progress, f"identifying {Path(frfs).name}")
     found = identify_file(
@@ -560,7 +563,9 @@ def run_compare(
     """
     (check_speed,) = require_speeds("`speed`", [speed])
     check_speeds("`speed`", [check_speed], "ball_speed_mps", setup.allow_implausible)
+    setup, from_run = with_racket_of_run(setup, free)
     the_racket, provenance = load_racket_input(setup.racket)
+    provenance |= from_run
     out_dir = Path(out)
     given = setup.racket is not None
     report(setup.progress, f"identifying {Path(free).name}")
@@ -843,7 +848,9 @@ def run_compare_ball(
     support : {"free", "hand"}
         Support of both tests.
     """
+    setup, from_run = with_racket_of_run(setup, alone)
     the_racket, provenance = load_racket_input(setup.racket)
+    provenance |= from_run
     ball = ball_location(ball_at, the_racket)
     out_dir = Path(out)
     given = setup.racket is not None

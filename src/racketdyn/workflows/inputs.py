@@ -6,13 +6,14 @@ Each builder returns the object together with the sentences ``run.json`` lists u
 
 from __future__ import annotations
 
+import json
 import logging
 import math
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -29,6 +30,9 @@ from racketdyn.racket import Racket
 from racketdyn.racket_modal import modal_model_for
 from racketdyn.workflows.run import sha256
 
+if TYPE_CHECKING:
+    from racketdyn.workflows.setup import Setup
+
 __all__ = [
     "RacketInput",
     "RacketSetup",
@@ -39,6 +43,7 @@ __all__ = [
     "setup",
     "single_support",
     "supports_named",
+    "with_racket_of_run",
 ]
 
 RacketInput = Racket | str | os.PathLike[str] | None
@@ -66,6 +71,46 @@ def load_racket_input(
     loaded = load_racket(path)
     racket_spreads(path)  # its [uncertainty] tables checked with the racket, used or not
     return loaded, {"racket_file": str(path.resolve()), "racket_file_sha256": sha256(path)}
+
+
+def with_racket_of_run(
+    setup: Setup, source: str | os.PathLike[str]
+) -> tuple[Setup, dict[str, str]]:
+    """``setup`` with the racket of the run that wrote ``source`` when it names none.
+
+    A step reading another step's file (``frf`` a rig's records, ``identify`` an frf run's
+    FRFs) takes the racket file that run's ``run.json`` names, when that file is still there
+    with the same SHA-256: the lab's chain keeps its racket without ``--racket`` at every
+    step (a chain of a rig run with its racket file and an ``frf`` run that took the built-in
+    racket was refused by ``report`` as "2 rackets": new-user trial, eleventh session).
+
+    Returns
+    -------
+    Setup, dict
+        The setup (unchanged when it names a racket or the run names none) and, when the
+        racket came from the run, ``{"racket_from_run": <its run.json>}`` for run.json.
+    """
+    if setup.racket is not None:
+        return setup, {}
+    record = Path(source).parent / "run.json"
+    try:
+        data = json.loads(record.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return setup, {}
+    name = data.get("racket_file") if isinstance(data, dict) else None
+    digest = data.get("racket_file_sha256") if isinstance(data, dict) else None
+    if not isinstance(name, str) or not isinstance(digest, str) or not Path(name).is_file():
+        return setup, {}
+    if sha256(Path(name)) != digest:
+        log.warning(
+            "%s names the racket file %s, which has changed since: the built-in racket is "
+            "used; give --racket to choose",
+            record,
+            name,
+        )
+        return setup, {}
+    log.info("racket: %s, as %s names it", name, record)
+    return setup.replace(racket=Path(name)), {"racket_from_run": str(record.resolve())}
 
 
 @dataclass(frozen=True)
