@@ -70,7 +70,7 @@ def test_each_single_reference_reads_the_close_pair_as_one_mode() -> None:
 
 
 def test_plscf_recovers_both_poles_of_the_pair_noise_free() -> None:
-    selected = select_poles(poly_stabilisation(_references(), BAND, 60))
+    selected = select_poles(poly_stabilisation(_references(), BAND, 30))
     assert selected.n_modes == 3
     np.testing.assert_allclose(selected.frequency, FREQUENCY_HZ, rtol=1e-6)
     np.testing.assert_allclose(selected.damping_ratio, DAMPING, rtol=1e-3)
@@ -80,7 +80,7 @@ def test_plscf_residues_per_reference_are_the_models_shapes_and_participations()
     """LSFD per reference with the shared poles gives ``ψ_k φ_jk``: shapes (MAC > 0.999) and the
     ratio of the references' participations."""
     frfs = _references()
-    selected = select_poles(poly_stabilisation(frfs, BAND, 60))
+    selected = select_poles(poly_stabilisation(frfs, BAND, 30))
     constants = [fit_modal_constants(s, selected.pole, BAND).constants for s in frfs.sets]
     for j, c in enumerate(constants):
         for k in range(3):
@@ -94,7 +94,7 @@ def test_plscf_holds_the_pair_under_two_percent_noise(seed: int) -> None:
     """2 % complex noise per line (about 2,400 lines in the band): measured errors ≤ 8.5e-6 in
     frequency and ≤ 0.43 % in damping over seeds 0–9; held at a tenth of the real-data must-hold's
     tolerances (0.1 % and 20 %): 1e-4 and 2 %."""
-    selected = select_poles(poly_stabilisation(_references(0.02, seed), BAND, 60))
+    selected = select_poles(poly_stabilisation(_references(0.02, seed), BAND, 30))
     assert selected.n_modes == 3, selected.frequency
     np.testing.assert_allclose(selected.frequency, FREQUENCY_HZ, rtol=1e-4)
     np.testing.assert_allclose(selected.damping_ratio, DAMPING, rtol=0.02)
