@@ -130,7 +130,8 @@ def _choose_reference(path: Path, records: list[_Record], reference: int | None)
     if len(best) > 1:
         raise InputError(
             f"{path}: the FRFs have several references (nodes {_listed(best)} each reach "
-            f"{most} points); choose one with `reference` (its node)"
+            f"{most} points); choose one with `reference` (its node), or 'all' to use them "
+            "together"
         )
     return best[0], layout
 

@@ -297,19 +297,16 @@ def _poles_at(
         beta = -y / np.sqrt(n_lines)
     else:
         beta = -np.einsum("rk,koj->roj", equations.inverse_h[: m + 1, : m + 1], y)
-    residues = np.zeros((n_r * n_o, z.size), dtype=complex)
+    # at every root at once: D(z_k), D'(z_k), their null vectors, N_o(z_k) v
     powers = np.arange(m + 1)
-    for k, zk in enumerate(z):
-        zr = zk**powers
-        d_value = np.einsum("r,rij->ij", zr, blocks)
-        d_slope = np.einsum("r,rij->ij", powers[1:] * zk ** (powers[1:] - 1), blocks[1:])
-        left, _, right_h = np.linalg.svd(d_value)
-        u, v = left[:, -1], right_h[-1].conj()
-        denominator = u.conj() @ d_slope @ v
-        if denominator == 0:
-            denominator = np.finfo(float).tiny
-        shape = np.einsum("r,roj,j->o", zr, beta, v)  # N_o(z_k) v
-        participation = u.conj() / denominator
-        residue = np.outer(participation, shape) / (zk * domain.time_step)  # (n_r, n_o)
-        residues[:, k] = residue.reshape(-1)
+    zr = z[:, None] ** powers  # (K, m + 1)
+    d_value = np.einsum("kr,rij->kij", zr, blocks)
+    d_slope = np.einsum("kr,rij->kij", powers[1:] * zr[:, :-1], blocks[1:])
+    left, _, right_h = np.linalg.svd(d_value)
+    u, v = left[:, :, -1], right_h[:, -1, :].conj()  # (K, n_r): left and right null vectors
+    denominator = np.einsum("ki,kij,kj->k", u.conj(), d_slope, v)
+    denominator = np.where(denominator == 0, np.finfo(float).tiny, denominator)
+    shape = np.einsum("kr,roj,kj->ko", zr, beta, v)  # N_o(z_k) v
+    participation = u.conj() / (denominator * z * domain.time_step)[:, None]
+    residues = (participation[:, :, None] * shape[:, None, :]).reshape(z.size, n_r * n_o).T
     return pole, residues
