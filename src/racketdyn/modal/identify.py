@@ -959,6 +959,8 @@ def identify(
     order = model.metadata["references"]
     sets = [frfs] if references is None else [frfs, *(references.against(r) for r in order[1:])]
     participation = _participation(fit, [s.with_usual_phase() for s in sets], band)
+    if frfs.metadata.get("sign_reversed"):  # the others as read, against the set as read
+        participation[1:] *= -1
     return Identification(
         model, frfs, stab, selected, fit, band, band_note, note, tuple(order), participation
     )
