@@ -17,6 +17,12 @@ shapes) in the 40–1,000 Hz band, against sdypy-EMA's ``get_poles`` + ``select_
 (true frequencies given) + ``get_constants`` on the same arrays (its reading not counted).
 Target: racketdyn ≥ 5× faster.
 
+Third part (issue 25): the poly-reference LSCF against the scalar one on the same data — the
+rig's 69 FRFs against three references (points 9, 0 and 40, 1 % noise each) — at
+``identify``'s default orders (pLSCF matrix orders 1–30, the scalar LSCF 1–60): one reference,
+the three fitted with one scalar denominator, the three with the pLSCF; times and accuracy
+against the truth.  The single-reference path is the first part's, unchanged.
+
 BLAS threads: one by default (``OPENBLAS_NUM_THREADS`` etc. set before numpy is imported,
 unless already set): the work is many small matrices, for which extra BLAS threads cost more
 than they give.  Run: ``python benchmarks/bench_poles.py``.  Informational: the exit status is
@@ -76,16 +82,17 @@ def best_of(function: Callable[[], Any], repeats: int) -> tuple[float, Any]:
     return min(times), result
 
 
-def rig_frfs() -> tuple[FrfSet, Truth]:
-    """69 accelerance FRFs of the free rig with 1 % complex noise, and the truth."""
+def rig_frfs(reference: int = REFERENCE, seed: int = 1) -> tuple[FrfSet, Truth]:
+    """69 accelerance FRFs of the free rig against hammer point ``reference`` with 1 % complex
+    noise, and the truth (modes with their peaks against ``reference``)."""
     racket = rd.default_racket()
     model = rig_model(racket, "free")
     locations, nodes = hammer_points(racket, n_frame=24, n_strings=45)
     band_top = 1.0 / SAMPLING_S / 2.56
     lines = np.arange(N_SAMPLES // 2 + 1) / (N_SAMPLES * SAMPLING_S)
     lines = lines[lines <= band_top]
-    values = model.frf(locations[REFERENCE : REFERENCE + 1], locations, lines)[0]
-    rng = np.random.default_rng(1)
+    values = model.frf(locations[reference : reference + 1], locations, lines)[0]
+    rng = np.random.default_rng(seed)
     sigma = NOISE * float(np.abs(values).max())
     noise = rng.normal(size=values.shape) + 1j * rng.normal(size=values.shape)
     frfs = FrfSet(
@@ -94,14 +101,14 @@ def rig_frfs() -> tuple[FrfSet, Truth]:
         frf_type="accelerance",
         nodes=nodes,
         locations=locations,
-        reference_node=nodes[REFERENCE],
-        reference_location=tuple(locations[REFERENCE]),
+        reference_node=nodes[reference],
+        reference_location=tuple(locations[reference]),
         source="virtual rig, free, 69 points",
     )
     modes = model.modal_truth(locations)
     inside = (modes.frequency > BAND_LOW_HZ * 1.05) & (modes.frequency < 0.98 * lines[-1])
     shapes = modes.mode_shapes[:, inside]
-    peaks = np.abs(shapes * shapes[REFERENCE]).max(axis=0) / (2 * modes.damping_ratio[inside])
+    peaks = np.abs(shapes * shapes[reference]).max(axis=0) / (2 * modes.damping_ratio[inside])
     truth = Truth(modes.frequency[inside], modes.damping_ratio[inside], peaks / sigma)
     return frfs, truth
 
@@ -314,6 +321,55 @@ def main_export() -> None:
         )
 
 
+POLY_REFERENCES = (REFERENCE, 0, 40)
+POLY_MAX_ORDER = 30  # racketdyn.modal.polyreference.DEFAULT_MAX_ORDER, identify's default
+SCALAR_MAX_ORDER = 60  # identify's default against one reference
+
+
+def main_poly() -> None:
+    """The pLSCF of three references against the scalar LSCF on the same FRFs (issue 25)."""
+    from racketdyn.measurement.records import FrfReferences
+    from racketdyn.modal.polyreference import poly_stabilisation
+
+    logging.disable(logging.WARNING)
+    made = [rig_frfs(r, seed=1 + k) for k, r in enumerate(POLY_REFERENCES)]
+    sets = FrfReferences(tuple(frfs for frfs, _ in made))
+    truth = made[0][1]
+    # a mode counts as strong if some reference sees it 5 × above the noise
+    strongest = np.max([t.peak_to_noise for _, t in made], axis=0)
+    truth = Truth(truth.frequency, truth.damping_ratio, strongest)
+    band = (BAND_LOW_HZ, float(sets.frequency[-1]))
+    print(
+        f"\npoly-reference: {len(sets.nodes)} points × {len(sets.sets)} references "
+        f"{list(POLY_REFERENCES)} (hammer points), {band[0]:.0f}–{band[1]:.0f} Hz"
+    )
+    runs = (
+        (
+            f"scalar LSCF, one reference, orders 1–{SCALAR_MAX_ORDER}",
+            lambda: stabilisation(sets.sets[0], band, max_order=SCALAR_MAX_ORDER),
+        ),
+        (
+            f"scalar LSCF, three references, orders 1–{SCALAR_MAX_ORDER}",
+            lambda: stabilisation(list(sets.sets), band, max_order=SCALAR_MAX_ORDER),
+        ),
+        (
+            f"pLSCF, three references, matrix orders 1–{POLY_MAX_ORDER}",
+            lambda: poly_stabilisation(sets, band, POLY_MAX_ORDER),
+        ),
+    )
+    first = 0.0
+    for label, run in runs:
+        stab_s, stab = best_of(run, repeats=3)
+        select_s, selected = best_of(lambda st=stab: select_poles(st), repeats=3)
+        first = first or stab_s + select_s
+        print(
+            f"  {label:48s} {stab_s * 1e3:8.1f} ms + selection {select_s * 1e3:6.1f} ms "
+            f"({(stab_s + select_s) / first:4.1f}× the first)"
+        )
+        print(f"    {errors(selected.frequency, selected.damping_ratio, truth)}")
+
+
 if __name__ == "__main__":
     main()
     main_export()
+    main_poly()

@@ -151,6 +151,64 @@ def test_several_references_need_a_choice(tmp_path: Path) -> None:
         read_frfs(path, reference=42)
 
 
+def test_every_reference_is_read_as_one_object_on_shared_points(tmp_path: Path) -> None:
+    path = _write(tmp_path, "mimo.uff", "mimo")
+    both = read_frfs(path, reference="all")
+    assert both.references == (1, 9)
+    for one in both.sets:
+        alone = read_frfs(path, reference=one.reference_node)
+        assert one.nodes == alone.nodes
+        np.testing.assert_array_equal(one.values, alone.values)
+    assert read_frfs(path, reference=[9, 1]).references == (9, 1)
+    assert read_frfs(path, reference=(9,)).references == (9,)
+    with pytest.raises(InputError, match=r"`reference` 42: no FRF"):
+        read_frfs(path, reference=[1, 42])
+    with pytest.raises(InputError, match="`reference` must be a node"):
+        read_frfs(path, reference="every")  # type: ignore[call-overload]
+
+
+def test_identify_from_every_reference_keeps_their_participations(tmp_path: Path) -> None:
+    """Two driving points of a free beam (nodes 1 and 9, its ends, 1 % noise): the beam's
+    frequencies within the must-hold's 0.1 % (measured: 2.3e-4 at 65.4 Hz, 25 Hz above the
+    band's bottom, ≤ 2e-5 above), shapes from the first reference, mass-normalised, and
+    reference 9's participation in each mode φ_9/φ_1 = ±1 of the beam's own shapes (LSFD per
+    reference with the shared poles; 2 %: the constants' noise)."""
+    truth = beam_frfs(
+        np.linspace(0.0, 0.8, 9), 0.0, direction=(0.0, 0.0, 1.0), lines=2001, top_hz=1000.0
+    )
+    both = read_frfs(_write(tmp_path, "mimo.uff", "mimo"), reference="all")
+    found = identify(both, (40.0, 950.0))
+    assert found.references == (1, 9)
+    assert found.model.scaling == "mass"
+    np.testing.assert_allclose(found.model.frequency, truth.frequency_hz, rtol=1e-3)
+    assert found.participation is not None
+    np.testing.assert_allclose(found.participation[0], 1.0)
+    np.testing.assert_allclose(
+        found.participation[1], truth.shapes[-1] / truth.shapes[0], rtol=0.02
+    )
+
+
+def test_identify_command_takes_all_or_a_list_of_references(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from racketdyn.cli import main
+
+    path = _write(tmp_path, "mimo.uff", "mimo")
+    for given, expected in (("all", [1, 9]), ("9,1", [9, 1]), ("9", [9])):
+        out = tmp_path / given.replace(",", "_")
+        code = main(
+            ["identify", str(path), "--band", "40,950", "--reference", given, "--out", str(out)]
+        )
+        assert code == 0
+        console = capsys.readouterr().out
+        run = json.loads((out / "run.json").read_text())
+        assert run["references"] == expected
+        said = "references 1, 9 together" in console or "references 9, 1 together" in console
+        assert said == (len(expected) > 1), console
+    assert main(["identify", str(path), "--reference", "1;9", "--out", str(tmp_path / "x")]) == 2
+    assert "--reference must be a node number" in capsys.readouterr().err
+
+
 def test_points_along_y_run_through_the_workflow(tmp_path: Path) -> None:
     # issue 12 item 5: points along y crashed with LinAlgError and left a half-written folder
     s = np.linspace(0.0, 0.8, 9)

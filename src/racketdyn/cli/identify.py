@@ -33,8 +33,8 @@ def _add_options(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--max-order",
         type=int,
-        default=60,
-        help="highest model order of the stabilisation diagram, a count (default 60)",
+        help="highest model order of the stabilisation diagram, a count (default 60; 30 with "
+        "several references)",
     )
     p.add_argument(
         "--pin", help="force modes in, by approximate frequency, Hz: 120,330 (default: none)"
@@ -44,11 +44,12 @@ def _add_options(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--reference",
-        type=int,
         metavar="NODE",
         help="reference node, a node number (dimensionless), when the file has FRFs against "
-        "several (default: the one node every FRF shares, else the one reaching the most "
-        "points)",
+        "several; 'all' or nodes separated by commas (201,203) identify from those "
+        "references together, a poly-reference LSCF that tells apart close modes the "
+        "references see differently (default: the one node every FRF shares, else the one "
+        "reaching the most points)",
     )
     p.add_argument(
         "--ball-at",
@@ -149,7 +150,18 @@ def _options(args: argparse.Namespace) -> tuple[IdentifyOptions, tuple[float, fl
     return options, opt.parse_point("--ball-at", args.ball_at)
 
 
-def unused_note(console: Console, frfs: FrfSet) -> None:
+def references_note(console: Console, identification: Identification) -> None:
+    """One line saying which references the poles came from, when there were several."""
+    references = identification.references
+    if len(references) > 1:
+        opt.say(
+            console,
+            f"references {', '.join(map(str, references))} together (poly-reference LSCF); "
+            f"shapes from reference {references[0]}",
+        )
+
+
+def unused_note(console: Console, frfs: FrfSet, references: tuple[int, ...] = ()) -> None:
     """One line naming the file's data sets 58 that were not used (nothing dropped silently:
     a damaged header can turn an FRF into another function type or another node's)."""
     ignored = frfs.metadata.get("ignored_data_sets") or []
@@ -161,9 +173,14 @@ def unused_note(console: Console, frfs: FrfSet) -> None:
             "than FRF (4) or coherence (6)"
         )
     if unused:
+        against = (
+            f"references {', '.join(map(str, references))}"
+            if len(references) > 1
+            else f"reference node {frfs.reference_node}"
+        )
         parts.append(
-            f"{opt.noun(len(unused), 'data set')} {_listed(unused)} not against reference node "
-            f"{frfs.reference_node}, in another direction or a reciprocal pair's second"
+            f"{opt.noun(len(unused), 'data set')} {_listed(unused)} not against {against}, in "
+            "another direction or a reciprocal pair's second"
         )
     if parts:
         opt.say(console, "not used from the file: " + "; ".join(parts), "dim")
@@ -265,7 +282,8 @@ def run_identify(args: argparse.Namespace, console: Console) -> int:
             names_from=args.names_from,
         )
     assert result.identification is not None
-    unused_note(console, result.identification.frfs)
+    references_note(console, result.identification)
+    unused_note(console, result.identification.frfs, result.identification.references)
     print_modes(console, result.identification, args.parser)
     opt.print_written(console, result.written)
     return 0

@@ -24,9 +24,10 @@ from __future__ import annotations
 
 import logging
 from collections import Counter
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import cast
+from typing import Literal, cast, overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -62,11 +63,12 @@ from racketdyn.measurement.records import (
     ABSURD_FRF,
     FRF_TYPE_OF_RESPONSE,
     FRF_UNITS,
+    FrfReferences,
     FrfSet,
     FrfType,
 )
 
-__all__ = ["LAYOUTS", "read_frf_uff", "read_frfs"]
+__all__ = ["LAYOUTS", "ReferenceChoice", "read_frf_uff", "read_frfs", "reference_choice"]
 
 log = logging.getLogger(__name__)
 
@@ -129,7 +131,8 @@ def _choose_reference(path: Path, records: list[_Record], reference: int | None)
     if len(best) > 1:
         raise InputError(
             f"{path}: the FRFs have several references (nodes {_listed(best)} each reach "
-            f"{most} points); choose one with `reference` (its node)"
+            f"{most} points); choose one with `reference` (its node), or 'all' to use them "
+            "together"
         )
     return best[0], layout
 
@@ -138,15 +141,83 @@ def _listed(nodes: list[int]) -> str:
     return ", ".join(map(str, nodes[:8])) + (" …" if len(nodes) > 8 else "")
 
 
-@logs_warnings(log)
+ReferenceChoice = int | Literal["all"] | tuple[int, ...] | None
+"""What ``reference`` may be: a node, every reference (``"all"``), some nodes, or the default."""
+
+
+def reference_choice(value: object) -> ReferenceChoice:
+    """``reference`` as :func:`read_frfs` takes it, from a node, ``"all"``, a sequence of nodes
+    or their text as the command line spells it (``"201"``, ``"201,203"``, ``"all"``).
+
+    Raises
+    ------
+    InputError
+        Anything else, or a node listed twice (one line naming ``reference``).
+    """
+    if value is None or value == "all":
+        return cast(ReferenceChoice, value)
+    if isinstance(value, int | np.integer) and not isinstance(value, bool):
+        return int(value)
+    parts: list[object]
+    if isinstance(value, str):
+        parts = [p.strip() for p in value.split(",")]
+    elif isinstance(value, Sequence | np.ndarray):
+        parts = list(value)
+    else:
+        parts = [value]
+    try:
+        nodes = tuple(int(str(p)) for p in parts)
+    except ValueError:
+        nodes = ()
+    if not nodes or any(isinstance(p, bool | float) for p in parts):
+        raise InputError(
+            f"`reference` must be a node number, node numbers separated by commas or 'all' "
+            f"(got {value!r})"
+        )
+    if len(set(nodes)) != len(nodes):
+        raise InputError(f"`reference` lists a node twice (got {value!r}); give each once")
+    return nodes[0] if len(nodes) == 1 and isinstance(value, str) else nodes
+
+
+@overload
 def read_frfs(
     path: Path | str,
     geometry: Path | str | None = None,
     reference: int | None = None,
     *,
     require_coordinates: bool = True,
-) -> FrfSet:
-    """Read the FRFs of a file against one reference node, whatever moved during the test.
+) -> FrfSet: ...
+
+
+@overload
+def read_frfs(
+    path: Path | str,
+    geometry: Path | str | None = None,
+    reference: Literal["all"] | Sequence[int] = ...,
+    *,
+    require_coordinates: bool = True,
+) -> FrfReferences: ...
+
+
+@overload
+def read_frfs(
+    path: Path | str,
+    geometry: Path | str | None = None,
+    reference: int | Literal["all"] | Sequence[int] | None = None,
+    *,
+    require_coordinates: bool = True,
+) -> FrfSet | FrfReferences: ...
+
+
+@logs_warnings(log)
+def read_frfs(
+    path: Path | str,
+    geometry: Path | str | None = None,
+    reference: int | Literal["all"] | Sequence[int] | None = None,
+    *,
+    require_coordinates: bool = True,
+) -> FrfSet | FrfReferences:
+    """Read the FRFs of a file against one reference node, or against several together.
 
     Parameters
     ----------
@@ -157,10 +228,14 @@ def read_frfs(
         (:func:`racketdyn.io.frf_table.read_frf_table`).
     geometry : Path or str, optional
         A second Universal File with node coordinates; its nodes take precedence.
-    reference : int, optional
+    reference : int, "all" or sequence of int, optional
         The reference node (a node every FRF used has at one end).  Default: the only
         response node (roving hammer), the only excitation node (roving accelerometer), or
-        the node reaching the most points when one node does.
+        the node reaching the most points when one node does.  ``"all"``: every reference of
+        a file of several (the response nodes when fewer than the excitation nodes, else the
+        excitation nodes), or a sequence of reference nodes: an
+        :class:`~racketdyn.measurement.records.FrfReferences` of the points every reference
+        reaches (the others left out, logged), for a poly-reference identification.
     require_coordinates : bool
         A point without coordinates is an error naming ``--geometry`` (default: shapes need
         them); False gives it NaN coordinates (FRFs need none;
@@ -170,7 +245,7 @@ def read_frfs(
 
     Returns
     -------
-    FrfSet
+    FrfSet or FrfReferences
         Points ordered by node number; ``reference_node`` the reference; locations (x, y, z)
         in the lab's frame, m ((x, y) when every point has the same z); metadata
         ``layout`` (:data:`LAYOUTS`), ``left_out`` (FRFs not against the reference),
@@ -179,19 +254,26 @@ def read_frfs(
         coherence), ``directions`` (node → direction code used) and, for FRFs racketdyn
         estimated,
         ``bandwidth_hz`` (fs/2.56; another system's export ends at its bandwidth:
-        :attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`).
+        :attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`).  With several
+        references, one such set per reference, in the order given (``"all"``: ascending).
 
     Raises
     ------
     InputError
         As :func:`read_frf_uff`, and: several references with none chosen; a
-        reference that is in no FRF; a point without coordinates (naming ``--geometry``).
+        reference that is in no FRF; a point without coordinates (naming ``--geometry``);
+        references that share no point.
     """
     path = Path(path)
     if is_frf_table(path):
         if geometry is not None:
             raise InputError(
                 f"{path}: an FRF table holds the points' coordinates; give no `geometry`"
+            )
+        if reference is not None and not isinstance(reference, int):
+            raise InputError(
+                f"{path}: an FRF table has one reference (its 'reference' row); give no "
+                f"`reference` or its node, not {reference!r}"
             )
         return read_frf_table(path, reference)
     sets = _read_sets(path)
@@ -207,14 +289,83 @@ def read_frfs(
     records = _records_of(path, contents, FREQUENCY_RESPONSE)  # an error naming what it holds
     for record in records:
         _check(path, record)
-    ref, layout = _choose_reference(path, records, reference)
+    file = _File(path, every, records, units, coordinates, geometry, require_coordinates)
+    if reference is None or isinstance(reference, int | np.integer):
+        ref, layout = _choose_reference(
+            path, records, None if reference is None else int(reference)
+        )
+        return _against(file, ref, layout)
+    refs = _references(path, records, reference)
+    layout = _choose_reference(path, records, refs[0])[1]
+    against = [_against(file, ref, layout) for ref in refs]
+    shared = sorted(set.intersection(*(set(s.nodes) for s in against)))
+    if not shared:
+        raise InputError(
+            f"{path}: references {_listed(refs)} reach no point in common; read them one at a "
+            "time (`reference` a node)"
+        )
+    for one in against:
+        if len(shared) < one.n_points:
+            log.info(
+                "%s: %s reached by reference %d but not by every reference left out",
+                path,
+                plural(one.n_points - len(shared), "point"),
+                one.reference_node,
+            )
+    return FrfReferences(tuple(s.at_points([s.nodes.index(n) for n in shared]) for s in against))
+
+
+@dataclass(frozen=True)
+class _File:
+    """What one reading of a file gives every reference's set."""
+
+    path: Path
+    every: list[_Record]
+    records: list[_Record]
+    units: _Units
+    coordinates: dict[int, tuple[float, float, float]]
+    geometry: Path | str | None
+    require_coordinates: bool
+
+
+def _references(path: Path, records: list[_Record], reference: str | Sequence[int]) -> list[int]:
+    """The reference nodes of ``"all"`` or of a sequence of nodes (each checked)."""
+    if isinstance(reference, str):
+        if reference != "all":
+            raise InputError(
+                f"{path}: `reference` must be a node, a list of nodes or 'all' (got {reference!r})"
+            )
+        responses = sorted({r.rsp_node for r in records})
+        hammers = sorted({r.ref_node for r in records})
+        return responses if len(responses) <= len(hammers) else hammers
+    try:
+        refs = [int(r) for r in reference]
+    except (TypeError, ValueError):
+        raise InputError(
+            f"{path}: `reference` must be a node, a list of nodes or 'all' (got {reference!r})"
+        ) from None
+    if not refs or len(set(refs)) != len(refs):
+        raise InputError(f"{path}: `reference` lists no node, or one twice (got {refs})")
+    for ref in refs:
+        _choose_reference(path, records, ref)  # an error naming the file's references
+    return refs
+
+
+def _against(file: _File, ref: int, layout: str) -> FrfSet:
+    """The FRF set of a file's points against one reference node."""
+    path, every, records, units = file.path, file.every, file.records, file.units
     ignored = _ignored(path, every)
     points = _one_per_point(path, records, ref)
     nodes = sorted(points.by_node)
     chosen = [points.by_node[n] for n in nodes]
     response_type = _check_alike(path, chosen)
     coordinates = _with_point_coordinates(
-        path, coordinates, ref, nodes, geometry, require_coordinates=require_coordinates
+        path,
+        file.coordinates,
+        ref,
+        nodes,
+        file.geometry,
+        require_coordinates=file.require_coordinates,
     )
     locations, reference_location = _locations(coordinates, nodes, ref)
     frf_type = cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type])

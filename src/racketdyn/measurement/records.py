@@ -31,6 +31,7 @@ __all__ = [
     "FRF_TYPE_OF_RESPONSE",
     "FRF_UNITS",
     "RESPONSE_TYPES",
+    "FrfReferences",
     "FrfSet",
     "FrfType",
     "HammerRecords",
@@ -545,4 +546,112 @@ class FrfSet(_PointsAndReference):
             estimator=self.estimator,
             source=self.source,
             metadata=dict(self.metadata),
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class FrfReferences:
+    """FRFs of the same points against several references (a poly-reference test).
+
+    A roving-hammer test with several fixed accelerometers, or a roving accelerometer with
+    several hammer nodes, measures one FRF set per reference on the same points and lines;
+    this holds them together so that an identification can use them all at once
+    (:func:`racketdyn.modal.polyreference.poly_stabilisation`).
+
+    Parameters
+    ----------
+    sets : tuple of FrfSet
+        One set per reference, each against its own ``reference_node``: the same nodes in
+        the same order, the same frequency lines, FRF type and exponential window.
+
+    Raises
+    ------
+    InputError
+        No set; two sets against one reference; sets on other points, lines, types or
+        windows than the first.
+    """
+
+    sets: tuple[FrfSet, ...]
+
+    def __post_init__(self) -> None:
+        sets = tuple(self.sets)
+        if not sets or not all(isinstance(s, FrfSet) for s in sets):
+            raise InputError("FrfReferences needs one FrfSet per reference (got none)")
+        first = sets[0]
+        references = [s.reference_node for s in sets]
+        if len(set(references)) != len(references):
+            raise InputError(f"FrfReferences: a reference given twice ({references})")
+        for other in sets[1:]:
+            what = f"the set against reference {other.reference_node}"
+            if other.nodes != first.nodes:
+                raise InputError(
+                    f"{what} is on other points than the set against {first.reference_node}; "
+                    "keep the points they share (FrfSet.at_points)"
+                )
+            if other.frequency.shape != first.frequency.shape or not np.allclose(
+                other.frequency, first.frequency, rtol=1e-9, atol=0.0
+            ):
+                raise InputError(
+                    f"{what} is on other frequency lines than the set against "
+                    f"{first.reference_node}; resample them onto one axis"
+                )
+            if other.frf_type != first.frf_type:
+                raise InputError(
+                    f"{what} is {other.frf_type}, not {first.frf_type}; convert with "
+                    "FrfSet.as_type first"
+                )
+            if other.exponential_window_s != first.exponential_window_s:
+                raise InputError(
+                    f"{what} has another exponential window than the set against "
+                    f"{first.reference_node}; their poles differ, fit them apart"
+                )
+        object.__setattr__(self, "sets", sets)
+
+    @property
+    def references(self) -> tuple[int, ...]:
+        """The reference node of each set."""
+        return tuple(s.reference_node for s in self.sets)
+
+    @property
+    def nodes(self) -> tuple[int, ...]:
+        """The points' nodes (shared by every set)."""
+        return self.sets[0].nodes
+
+    @property
+    def frequency(self) -> NDArray[np.float64]:
+        """The frequency lines, Hz."""
+        return self.sets[0].frequency
+
+    @property
+    def values(self) -> NDArray[np.complex128]:
+        """Every FRF, shaped (n_references, n_points, n_freq)."""
+        return np.stack([s.values for s in self.sets])
+
+    @property
+    def source(self) -> str:
+        """Where the FRFs came from."""
+        return self.sets[0].source
+
+    @property
+    def shape_reference(self) -> FrfSet:
+        """The set a model's shapes are taken from: the first with a driving point (an FRF at
+        its own reference node, so the shapes can be mass-normalised), else the first."""
+        return next((s for s in self.sets if s.driving_point is not None), self.sets[0])
+
+    def against(self, reference: int) -> FrfSet:
+        """The set against one reference node."""
+        if reference not in self.references:
+            raise InputError(
+                f"`reference` {reference}: no set against it (references {list(self.references)})"
+            )
+        return self.sets[self.references.index(reference)]
+
+    def band(self, low_hz: float, high_hz: float) -> FrfReferences:
+        """Every set between two frequencies (inclusive), Hz."""
+        return FrfReferences(tuple(s.band(low_hz, high_hz) for s in self.sets))
+
+    def __repr__(self) -> str:
+        return (
+            f"FrfReferences({len(self.sets)} references {list(self.references)}, "
+            f"{len(self.nodes)} points, {self.frequency.size} lines, {self.sets[0].frf_type})"
         )

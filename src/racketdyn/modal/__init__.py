@@ -9,7 +9,8 @@ The chain, usable on any structure's FRFs (:class:`racketdyn.measurement.FrfSet`
   returning every intermediate result (:class:`Identification`);
 - :func:`stabilisation` and :func:`select_poles` — LSCF poles of every model order and the
   automatic choice of the physical ones by :class:`SelectionRules` (:class:`Stabilisation`,
-  :class:`SelectedPoles`);
+  :class:`SelectedPoles`); :func:`poly_stabilisation` — the poly-reference LSCF of FRFs
+  against several references (:class:`racketdyn.measurement.records.FrfReferences`);
 - :func:`fit_modal_constants` and :func:`mass_normalised_shapes` — LSFD modal constants with
   residuals, and mode shapes scaled from the driving point (:class:`ModalFit`);
 - :class:`ModalModel`, :func:`mac`, :func:`nodes_along`, :func:`pair_modes`.
@@ -31,6 +32,7 @@ from racketdyn.modal.poles import (
     select_poles,
     stabilisation,
 )
+from racketdyn.modal.polyreference import poly_stabilisation
 from racketdyn.modal.residues import ModalFit, fit_modal_constants, mass_normalised_shapes
 from racketdyn.modal.shapes import ModePairing, nodes_along, pair_modes
 
@@ -49,6 +51,7 @@ __all__ = [
     "mass_normalised_shapes",
     "nodes_along",
     "pair_modes",
+    "poly_stabilisation",
     "select_poles",
     "stabilisation",
 ]

@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfSet
+from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfReferences, FrfSet
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import (
     DroppedMode,
@@ -34,6 +34,7 @@ from racketdyn.modal.poles import (
     select_poles,
     stabilisation,
 )
+from racketdyn.modal.polyreference import DEFAULT_MAX_ORDER, poly_stabilisation
 from racketdyn.modal.refine import MOVE_LINES, refine_narrow_poles
 from racketdyn.modal.residues import (
     WEAK_DRIVING_POINT,
@@ -365,6 +366,14 @@ class _Choices:
     exclude_hz: Sequence[float]
     rules: SelectionRules
     max_order: int
+    references: FrfReferences | None = None
+    """Several references: every fit made here is the poly-reference LSCF of them all."""
+
+    def stabilisation(self, frfs: FrfSet, band: tuple[float, float]) -> Stabilisation:
+        """The poles of a band: the pLSCF of the references, else the LSCF of ``frfs``."""
+        if self.references is not None:
+            return poly_stabilisation(self.references, band, self.max_order)
+        return stabilisation(frfs, band, max_order=self.max_order)
 
 
 def _missed_peaks(
@@ -465,7 +474,7 @@ def _mode_in(
 ) -> tuple[float, float] | None:
     """The mode a narrower band gives within ``within`` Hz of ``near`` (frequency, ζ), if any."""
     try:
-        stab = stabilisation(frfs, band, max_order=choices.max_order)
+        stab = choices.stabilisation(frfs, band)
         found = select_poles(stab, rules=choices.rules)
     except InputError:
         return None
@@ -715,6 +724,15 @@ class Identification:
     scaling_note : str
         How the shapes were scaled and, when they could not be mass-normalised or the
         driving point's sign was reversed, why (empty for a plain mass-normalised model).
+    references : tuple of int
+        The reference nodes whose FRFs the poles came from (one: the single-reference LSCF;
+        several: the poly-reference LSCF, :mod:`racketdyn.modal.polyreference`).  ``frfs``
+        is the set against the first, whose modal constants give the shapes.
+    participation : ndarray, shape (n_references, n_modes)
+        Each reference's participation in each mode relative to the shape reference's (1 for
+        it): the least-squares factor ``l`` with which its LSFD modal constants (the same
+        poles) are ``l`` times the shape reference's; NaN where a mode's constants are all
+        zero.  One row of ones for a single reference.
     """
 
     model: ModalModel
@@ -725,6 +743,8 @@ class Identification:
     band_hz: tuple[float, float]
     band_note: str = ""
     scaling_note: str = ""
+    references: tuple[int, ...] = ()
+    participation: NDArray[np.float64] | None = None
 
     @property
     def dropped_modes(self) -> tuple[DroppedMode, ...]:
@@ -787,16 +807,16 @@ class Identification:
 
 
 def identify(
-    frfs: FrfSet,
+    frfs: FrfSet | FrfReferences,
     band_hz: tuple[float, float] | None = None,
-    max_order: int = 60,
+    max_order: int | None = None,
     pin_hz: Sequence[float] = (),
     exclude_hz: Sequence[float] = (),
     support: str = "free",
     *,
     rules: SelectionRules = SELECTION,
 ) -> Identification:
-    """Identify a modal model of any structure from a set of FRFs against one reference.
+    """Identify a modal model of any structure from its FRFs against one reference or several.
 
     Any number of FRFs (one is enough for frequencies and damping ratios).  What the modal
     constants show decides what is kept and how the shapes are scaled:
@@ -824,10 +844,20 @@ def identify(
     is conjugated first (:meth:`~racketdyn.measurement.records.FrfSet.with_usual_phase`,
     logged, ``frfs.metadata["conjugated"]``).
 
+    Against several references (an
+    :class:`~racketdyn.measurement.records.FrfReferences`, e.g. ``read_frfs(path,
+    reference="all")``) the poles come from the poly-reference LSCF of them all
+    (:func:`racketdyn.modal.polyreference.poly_stabilisation`), which tells apart close modes
+    that the references see differently; the shapes come from one reference's modal
+    constants (the first with a driving point, else the first:
+    :attr:`~racketdyn.measurement.records.FrfReferences.shape_reference`), and every
+    reference's participation is kept (``participation``).
+
     Parameters
     ----------
-    frfs : FrfSet
-        FRFs of the points against one reference (2-D or 3-D locations, every point and the
+    frfs : FrfSet or FrfReferences
+        FRFs of the points against one reference, or against several (2-D or 3-D locations,
+        every point and the
         reference with coordinates, or none: a model without coordinates,
         ``model.has_locations`` False; some without them is an InputError naming
         ``--geometry``); an exponential window recorded on the set is taken off the damping.
@@ -835,8 +865,11 @@ def identify(
         Band to identify in, Hz (default :func:`default_band`: from below the data's first
         flexible mode, at most 40 Hz, to the FRFs' bandwidth);
         a top within the UFF header's 6-digit rounding of the last line is the last line.
-    max_order : int
-        Highest model order of the stabilisation diagram.
+    max_order : int, optional
+        Highest model order of the stabilisation diagram: the denominator's degree.  Default
+        60 against one reference; 30 against several
+        (:data:`racketdyn.modal.polyreference.DEFAULT_MAX_ORDER`: each order brings one pole
+        per reference, and higher orders split modes into fragments).
     pin_hz, exclude_hz : sequence of float
         Modes to force in or leave out, by approximate frequency, Hz.
     support : str
@@ -866,6 +899,11 @@ def identify(
     array([ 65.4, 180.3, 353.5, 584.4, 873. ])
     """
     require_rules("identify", rules)
+    references = _references(frfs)
+    if references is not None:
+        frfs = references.shape_reference
+    elif isinstance(frfs, FrfReferences):
+        frfs = frfs.sets[0]
     if not np.isnan(frfs.locations).all():  # none: a model without coordinates
         frfs.require_locations("identification (the mode shapes at the points)")
     frfs = frfs.with_usual_phase()  # a set of the conjugate convention (read_frfs does it too)
@@ -874,10 +912,12 @@ def identify(
         band = _checked_band(frfs, default)
     else:
         band, band_note = _checked_band(frfs, band_hz), "given"
-    stab = stabilisation(frfs, band, max_order=max_order)
-    choices = _Choices(pin_hz, exclude_hz, rules, max_order)
+    if max_order is None:
+        max_order = 60 if references is None else DEFAULT_MAX_ORDER
+    choices = _Choices(pin_hz, exclude_hz, rules, max_order, references)
+    stab = choices.stabilisation(frfs, band)
     selected, kept, refined = _selected_poles(stab, frfs, band, choices)
-    fitted, no_peak = _with_peaks_only(frfs, selected, band)
+    fitted, no_peak = _with_peaks_only(frfs, selected, band, references)
     scaled = _scaled(fitted, band)
     fitted, note = scaled.fitted, scaled.note
     late = [*no_peak, *scaled.on_node]
@@ -903,6 +943,12 @@ def identify(
             "band_hz": list(band),
             "band_note": band_note,
             "max_order": max_order,
+            "references": [frfs.reference_node]
+            if references is None
+            else [
+                frfs.reference_node,
+                *(r for r in references.references if r != frfs.reference_node),
+            ],
             **_fit_record(fitted, note),
             **_left_out_record(fitted, kept, refined, late),
         },
@@ -910,7 +956,42 @@ def identify(
     )
     log.info("identified %d modes in %g–%g Hz", model.n_modes, *band)
     selected = replace(selected, dropped=dropped, dropped_modes=(*selected.dropped_modes, *late))
-    return Identification(model, frfs, stab, selected, fit, band, band_note, note)
+    order = model.metadata["references"]
+    sets = [frfs] if references is None else [frfs, *(references.against(r) for r in order[1:])]
+    participation = _participation(fit, [s.with_usual_phase() for s in sets], band)
+    if frfs.metadata.get("sign_reversed"):  # the others as read, against the set as read
+        participation[1:] *= -1
+    return Identification(
+        model, frfs, stab, selected, fit, band, band_note, note, tuple(order), participation
+    )
+
+
+def _references(frfs: FrfSet | FrfReferences) -> FrfReferences | None:
+    """Several references to fit together, or None (one set, or references of one set)."""
+    if isinstance(frfs, FrfReferences):
+        if len(frfs.sets) > 1:
+            return FrfReferences(tuple(s.with_usual_phase() for s in frfs.sets))
+        return None
+    if not isinstance(frfs, FrfSet):
+        raise InputError(
+            f"identify: `frfs` must be an FrfSet or FrfReferences (got {type(frfs).__name__}); "
+            "read them with racketdyn.io.read_frfs"
+        )
+    return None
+
+
+def _participation(
+    fit: ModalFit, sets: Sequence[FrfSet], band: tuple[float, float]
+) -> NDArray[np.float64]:
+    """Each set's modal constants (the same poles) as a factor of the first's, per mode."""
+    shapes = fit.constants  # (n_points, n_modes), the first set's
+    norm = np.sum(shapes**2, axis=0)
+    rows = [np.ones(shapes.shape[1])]
+    for other in sets[1:]:
+        constants = fit_modal_constants(other, fit.poles, band).constants
+        with np.errstate(invalid="ignore", divide="ignore"):
+            rows.append(np.where(norm > 0, np.sum(shapes * constants, axis=0) / norm, np.nan))
+    return np.asarray(rows, dtype=float)
 
 
 def _selected_poles(
@@ -958,12 +1039,20 @@ class _Fitted:
 
 
 def _with_peaks_only(
-    frfs: FrfSet, selected: SelectedPoles, band: tuple[float, float]
+    frfs: FrfSet,
+    selected: SelectedPoles,
+    band: tuple[float, float],
+    references: FrfReferences | None = None,
 ) -> tuple[_Fitted, list[DroppedMode]]:
     """The modal constants of the poles with a peak in the data (:data:`FIT_GAIN_MIN`, or
-    pinned), and the rows of those without."""
+    pinned), and the rows of those without.  Against several references a mode has a peak
+    if the FRFs of any reference hold it (its best gain over them)."""
     fit = fit_modal_constants(frfs, selected.pole, band)
     gain = fit_gain(frfs, fit)
+    for other in () if references is None else references.sets:
+        if other.reference_node != frfs.reference_node:
+            other_fit = fit_modal_constants(other, selected.pole, band)
+            gain = np.maximum(gain, fit_gain(other, other_fit))
     real = (gain >= FIT_GAIN_MIN) | selected.pinned
     if not real.any():
         real = gain == gain.max()  # the best of them rather than nothing: select_poles chose

@@ -677,16 +677,8 @@ def _normal_equations(
     if even:
         rows = s_stack / np.sqrt(n_lines)
     else:
-        r_matrix = np.exp(1j * np.outer(theta, lags)).sum(axis=0)[lag]
-        try:
-            inverse = np.tril(np.linalg.inv(np.linalg.cholesky(r_matrix)))
-        except np.linalg.LinAlgError:
-            raise InputError(
-                "the FRF lines are too unevenly spaced for this model order; resample them "
-                "onto an even grid or lower max_order"
-            ) from None
-        inverse_h = inverse.conj().T
-        rows = (inverse @ s_stack.reshape(n + 1, -1)).reshape(n + 1, n_o, n + 1)
+        r_matrix, inverse_h = _uneven_r(theta, lags, lag)
+        rows = (inverse_h.conj().T @ s_stack.reshape(n + 1, -1)).reshape(n + 1, n_o, n + 1)
     rows = np.ascontiguousarray(rows)
 
     # The reduced matrix of every order (module docstring): one rank-n_o update per order.
@@ -700,16 +692,12 @@ def _normal_equations(
     # is exponential with mean 6σ², median 6σ² ln 2); the total is capped by the smallest
     # eigenvalue of the whitened reduced matrix at the highest order, which is the noise
     # variance times (1 − (n+1)/F) up to the Marchenko–Pastur lower edge of its fluctuation.
-    second = values[:, 2:] - 2 * values[:, 1:-1] + values[:, :-2]
-    per_frf = np.median(np.abs(second) ** 2, axis=1) / (6 * np.log(2))
+    per_frf = second_difference_noise(values)
     total = float(per_frf.sum())
-    dof = n_lines - n - 1
-    ratio = (n + 1) / (n_o * dof)
-    if ratio < 0.25 and total > 0:
+    if total > 0:
         top = reduced[n]
         whitened = top / n_lines if inverse_h is None else inverse_h.conj().T @ top @ inverse_h
-        smallest = float(np.linalg.eigvalsh(whitened)[0])
-        bound = max(smallest, 0.0) / (dof / n_lines) / (1 - np.sqrt(ratio)) ** 2
+        bound = noise_bound(whitened, n_lines, n, n_o)
         if bound < total:
             per_frf = per_frf * (bound / total)
     return _NormalEquations(
@@ -720,6 +708,41 @@ def _normal_equations(
         noise_variance=np.asarray(per_frf, dtype=float),
         n_lines=n_lines,
     )
+
+
+def _uneven_r(
+    theta: NDArray[np.float64], lags: NDArray[np.int_], lag: NDArray[np.int_]
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """``R = ΓᴴΓ`` of unevenly spaced lines and ``L⁻ᴴ`` of its Cholesky factor ``R = LLᴴ``."""
+    r_matrix = np.exp(1j * np.outer(theta, lags)).sum(axis=0)[lag]
+    try:
+        inverse = np.tril(np.linalg.inv(np.linalg.cholesky(r_matrix)))
+    except np.linalg.LinAlgError:
+        raise InputError(
+            "the FRF lines are too unevenly spaced for this model order; resample them "
+            "onto an even grid or lower max_order"
+        ) from None
+    return np.asarray(r_matrix), np.asarray(inverse.conj().T)
+
+
+def second_difference_noise(values: NDArray[np.complex128]) -> NDArray[np.float64]:
+    """Noise variance per line of each FRF (along the last axis) from its second differences:
+    a robust median (``|Δ²e|²`` of complex white noise is exponential with mean 6σ², median
+    6σ² ln 2)."""
+    second = values[..., 2:] - 2 * values[..., 1:-1] + values[..., :-2]
+    return np.asarray(np.median(np.abs(second) ** 2, axis=-1) / (6 * np.log(2)))
+
+
+def noise_bound(whitened: NDArray[np.complex128], n_lines: int, n: int, n_outputs: int) -> float:
+    """The largest total noise variance the whitened reduced matrix at order n allows (inf when
+    too few lines per unknown to tell): its smallest eigenvalue is the noise variance times
+    (1 − (n+1)/F) up to the Marchenko–Pastur lower edge of its fluctuation."""
+    dof = n_lines - n - 1
+    ratio = (n + 1) / (n_outputs * dof)
+    if ratio >= 0.25:
+        return math.inf
+    smallest = float(np.linalg.eigvalsh(whitened)[0])
+    return max(smallest, 0.0) / (dof / n_lines) / (1 - math.sqrt(ratio)) ** 2
 
 
 def _poles_by_order(

@@ -19,7 +19,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from functools import partial
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -27,11 +27,13 @@ from numpy.typing import NDArray
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError, require_numbers, require_speeds
 from racketdyn.impact.result import SHOWN_SPEED_MPS
-from racketdyn.io.frf_layout import read_frfs
+from racketdyn.io.frf_layout import ReferenceChoice, read_frfs, reference_choice
 from racketdyn.io.uff import write_modes_uff
+from racketdyn.measurement.records import FrfReferences, FrfSet
 from racketdyn.modal.identify import SELECTION, Identification, identify
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import SelectionRules, require_rules
+from racketdyn.modal.polyreference import DEFAULT_MAX_ORDER
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import Racket
@@ -109,13 +111,16 @@ class IdentifyOptions:
     band_hz : (low, high), optional
         Band, Hz (default from below the first clear peak, at most 40 Hz, to the FRFs'
         bandwidth: :func:`racketdyn.modal.identify.default_band`).
-    max_order : int
-        Highest model order.
+    max_order : int, optional
+        Highest model order (default 60 against one reference, 30 against several:
+        :func:`racketdyn.modal.identify.identify`).
     pin_hz, exclude_hz : sequence of float
         Modes forced in or left out, by approximate frequency, Hz (one number, or one text
         ``"600,700"`` as the command line spells them; ``band_hz`` too, ``"40,1000"``).
-    reference : int, optional
-        Reference node when the file has several.
+    reference : int, "all" or sequence of int, optional
+        Reference node when the file has several; ``"all"`` or several nodes (``"201,203"``
+        as the command line spells them) identify from those references together
+        (:func:`racketdyn.io.frf_layout.read_frfs`, the poly-reference LSCF).
     rules : SelectionRules
         The rules of the automatic pole selection (default
         :data:`racketdyn.modal.identify.SELECTION`); Python only, the command line has no
@@ -124,14 +129,15 @@ class IdentifyOptions:
 
     geometry: str | os.PathLike[str] | None = None
     band_hz: Sequence[float] | None = None
-    max_order: int = 60
+    max_order: int | None = None
     pin_hz: Sequence[float] = ()
     exclude_hz: Sequence[float] = ()
-    reference: int | None = None
+    reference: ReferenceChoice | str | Sequence[int] = None
     rules: SelectionRules = SELECTION
 
     def __post_init__(self) -> None:
         require_rules("IdentifyOptions", self.rules)
+        object.__setattr__(self, "reference", reference_choice(self.reference))
         if self.band_hz is not None:
             values = require_numbers("`band_hz`", self.band_hz, "Hz")
             if len(values) != 2 or not 0.0 <= values[0] < values[1]:
@@ -145,8 +151,10 @@ class IdentifyOptions:
 
     def record(self) -> dict[str, Any]:
         """What run.json keeps of them (the band used is the identification's own)."""
+        several = self.reference == "all" or isinstance(self.reference, tuple)
+        default = DEFAULT_MAX_ORDER if several else 60
         recorded: dict[str, Any] = {
-            "max_order": self.max_order,
+            "max_order": default if self.max_order is None else self.max_order,
             "pin_hz": list(self.pin_hz),
             "exclude_hz": list(self.exclude_hz),
         }
@@ -213,7 +221,7 @@ def identify_file(
     frfs = read_frfs(
         Path(path),
         None if options.geometry is None else Path(options.geometry),
-        options.reference,
+        cast(ReferenceChoice, options.reference),
         require_coordinates=False,  # none at all: a model without coordinates; some: refused
     )
     band = options.band_hz
@@ -242,7 +250,16 @@ def identify_file(
         found = replace(found, model=renamed)
     elif support == "hand" and not naming.startswith("modes numbered"):
         naming += HAND_COUNTS
-    metadata = {**found.model.metadata, "naming": naming, "layout": frfs.metadata.get("layout")}
+    layout = (frfs if isinstance(frfs, FrfSet) else frfs.sets[0]).metadata.get("layout")
+    metadata = {**found.model.metadata, "naming": naming, "layout": layout}
+    if isinstance(frfs, FrfReferences):  # the data sets no reference used
+        unused = set.intersection(*(set(s.metadata.get("unused_data_sets", [])) for s in frfs.sets))
+        found = replace(
+            found,
+            frfs=replace(
+                found.frfs, metadata={**found.frfs.metadata, "unused_data_sets": sorted(unused)}
+            ),
+        )
     return replace(found, model=replace(found.model, metadata=metadata))
 
 
@@ -380,7 +397,9 @@ def run_identify(
         "support": support,
         "band_hz": list(found.band_hz),
         **options.record(),
+        "max_order": found.model.metadata["max_order"],
         "reference_node": found.frfs.reference_node,
+        "references": list(found.references),
         "ball_at_m": None if ball_at is None else [float(v) for v in ball_at],
         "names_from": None if names_from is None else str(Path(names_from).resolve()),
         "layout": found.model.metadata.get("layout"),
