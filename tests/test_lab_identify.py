@@ -519,3 +519,29 @@ def test_compares_fig_15_draws_no_curve_of_an_unscaled_model(racket: rd.Racket) 
     assert np.all(np.isnan(data.rebound_ratio[unscaled[0]]))
     others = np.delete(data.rebound_ratio, unscaled[0], axis=0)
     assert np.isfinite(others).any(axis=1).all()
+
+
+def test_damping_under_one_line_of_half_power_width_is_said(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    """A lab's 1 Hz lines and ζ 0.013–0.068 % (pyuff's showcase): the half-power width 2ζf is
+    a fraction of a line, and the damping was printed as any other (new-user trial, eleventh
+    session).  Now each mode's width in lines, and a console line naming those under one."""
+    coarse = beam_frfs(POINTS[20], 0.0, damping_ratio=0.0005, lines=1251)  # 1 Hz lines
+    fine = beam_frfs(POINTS[20], 0.0)  # ζ 0.8 %, 0.25 Hz lines
+    narrow = identify(coarse.frfs, BAND)
+    assert np.all(narrow.half_power_lines < 1.0)
+    assert np.all(identify(fine.frfs, BAND).half_power_lines > 1.0)
+    from racketdyn.cli import main
+    from racketdyn.io import write_frf_uff
+
+    path = tmp_path / "coarse.uff"
+    flat = replace(
+        coarse.frfs,
+        locations=coarse.frfs.locations[:, :2],
+        reference_location=coarse.frfs.reference_location[:2],
+    )
+    write_frf_uff(flat, path)
+    assert main(["identify", str(path), "--out", str(tmp_path / "o")]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "the half-power width 2ζf is under one line (1 Hz)" in out

@@ -230,6 +230,16 @@ def print_modes(
         f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
         f"condition {identification.fit.condition_number:.3g}",
     )
+    narrow = identification.half_power_lines < 1.0
+    if narrow.any():
+        spacing = float(np.median(np.diff(identification.frfs.frequency)))
+        at = ", ".join(f"{f:.1f}" for f in model.frequency[narrow])
+        opt.say(
+            console,
+            f"damping at {at} Hz: the half-power width 2ζf is under one line ({spacing:.3g} Hz), "
+            "so the lines do not resolve it; the fit's value, for a longer record to confirm",
+            "yellow",
+        )
     for line in model.metadata.get("kept", []):
         opt.say(console, f"kept {line}")
     said = ("constants", "edge", "merged", "unsettled", "line")  # the rest: noise's candidates
