@@ -479,9 +479,10 @@ def test_a_racket_s_second_support_reuses_its_bare_racket(
     """Every support of one racket starts from the same bare racket: EI and GJ calibrated by a
     fixed-point search of eigenvalue solves, and its modal damping (one more solve) — most of a
     model's build, and ``rig --support free,hand`` built it twice.  The second support now
-    solves only its own eigenproblem, and its model is bit for bit the one built afresh; a
-    frame of other matrices (the smooth distribution, conftest's ``smooth_frame``) is a new bare
-    racket, calibrated anew, not the remembered one."""
+    solves only its own eigenproblem, a second rig of the same support none, and the models
+    are bit for bit those built afresh; a frame of other matrices (the smooth distribution,
+    conftest's ``smooth_frame``) is a new bare racket, calibrated anew, not the remembered
+    one."""
     from collections import OrderedDict
 
     from racketdyn.racket_modal import beam
@@ -506,7 +507,12 @@ def test_a_racket_s_second_support_reuses_its_bare_racket(
     hand = rig_model(racket, "hand")
     assert first >= 3  # the calibration's solves (≥ 1), the damping's, the support's
     assert len(solves) - first == 1  # the hand's own
+    solved = len(solves)
+    same = rig_model(racket, "hand")
+    assert len(solves) == solved  # the same racket on the same support: solved before
     again = fresh("hand")
+    for name in ("frequency", "damping_ratio", "modes"):
+        np.testing.assert_array_equal(getattr(same, name), getattr(again, name), err_msg=name)
     for name in ("frequency", "damping_ratio", "modes", "mass", "stiffness", "damping"):
         np.testing.assert_array_equal(getattr(hand, name), getattr(again, name), err_msg=name)
     assert hand.metadata == again.metadata

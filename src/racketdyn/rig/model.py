@@ -455,9 +455,10 @@ def rig_model(
 _REMEMBERED: OrderedDict[bytes, Any] = OrderedDict()
 _REMEMBERED_LOCK = threading.Lock()
 _REMEMBER_AT_MOST = 16
-"""The bare racket's calibration and damping of the last few rackets: every support of a
-racket (``rig --support free,hand``), and every rig of one racket in a process, start from the
-same bare racket, whose eigenvalue solves are most of a model's build."""
+"""The bare racket's calibration and damping, and the supported racket's eigenproblem, of the
+last few rackets: every support of a racket (``rig --support free,hand``), and every rig of one
+racket in a process, start from the same bare racket, and a rig of the same racket on the same
+support solves the same eigenproblem; these solves are most of a model's build."""
 
 
 def _remembered(kind: str, args: tuple[Any, ...], compute: Callable[[], Any]) -> Any:
@@ -695,9 +696,10 @@ def _real_modes(
     support: str,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """``ω²``, the mass-normalised vectors and the modal damping ratios ``φᵀCφ / (2ω)`` of the
-    real modes of ``(M, K, C)`` up to ``max_frequency_hz``."""
+    real modes of ``(M, K, C)`` up to ``max_frequency_hz`` (the eigenproblem's solution
+    remembered for the same matrices)."""
     mass, stiffness, damping = matrices
-    omega2, vectors = eigh(stiffness, mass)
+    omega2, vectors = _remembered("modes", (stiffness, mass), lambda: eigh(stiffness, mass))
     keep = omega2 <= (2 * np.pi * max_frequency_hz) ** 2
     omega2, vectors = omega2[keep], vectors[:, keep]
     if np.any(omega2 <= 0):
