@@ -4,6 +4,7 @@ alone draws the same lines as the figure the run drew."""
 
 from __future__ import annotations
 
+import functools
 import logging
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -40,57 +41,18 @@ def frfs(rig_frf_tree: Path) -> tuple[Path, Path]:
     return d / "frf_free" / "frfs.uff", d / "frf_hand" / "frfs.uff"
 
 
+@functools.cache
+def heavy_ball() -> rd.Ball:
+    """A ball heavier than the default, for the compare run (its Fig. 15 must be this ball's)."""
+    return rd.Ball(mass_kg=0.0594, e_bg=0.78)
+
+
 def _lines(figure: Figure) -> dict[str, np.ndarray]:
     """The drawn lines of a one-axes figure by legend label: their y data."""
     (ax,) = [a for a in figure.axes if a.get_lines()]
     return {
         str(line.get_label()): np.asarray(line.get_ydata(), dtype=float) for line in ax.get_lines()
     }
-
-
-def test_compare_fig15_uses_the_runs_ball(
-    frfs: tuple[Path, Path], tmp_path: Path, caught: Drawn
-) -> None:
-    """The compare step's Fig. 15 predicted with a default ``Ball()`` whatever ball the run
-    used (issue 23): a heavier ball must change the curves, and they must be that ball's."""
-    from racketdyn.workflows.identify import run_compare
-
-    heavy = rd.Ball(mass_kg=0.0594, e_bg=0.78)
-    logging.disable(logging.WARNING)
-    try:
-        result = run_compare(
-            frfs[0], frfs[1], tmp_path / "compare", setup=Setup(ball=heavy, figures=compare_figures)
-        )
-    finally:
-        logging.disable(logging.NOTSET)
-    assert result.free is not None
-    assert result.hand is not None
-    racket = rd.default_racket()
-    head = racket.head
-    x = np.linspace(
-        head.throat_x_m + 0.05 * head.half_length_m, head.tip_x_m - 0.05 * head.half_length_m, 31
-    )
-    points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
-    drawn = _lines(caught["fig15_identified.png"])
-    cases = {
-        "pinned at the grip, hand-held modes": ("pinned", result.hand.model),
-        "pinned at the grip, free modes": ("pinned", result.free.model),
-        "freely supported, free modes": ("free", result.free.model),
-    }
-    for label, (support, model) in cases.items():
-        expected = rd.predict(racket, heavy, points, [20.0], (support,), modal_model=model)
-        default = rd.predict(racket, rd.Ball(), points, [20.0], (support,), modal_model=model)
-        np.testing.assert_allclose(drawn[label], expected.rebound_ratio[:, 0, 0], rtol=1e-12)
-        assert not np.allclose(drawn[label], default.rebound_ratio[:, 0, 0], equal_nan=True)
-    # redrawn from the folder's figures.nc alone: the same lines
-    from racketdyn.workflows.figure_data import FIGURES_FILE, IdentifiedRebound, read_figure_data
-
-    data = IdentifiedRebound.from_xarray(read_figure_data(tmp_path / "compare" / FIGURES_FILE))
-    redrawn = data.plot().get_figure()
-    try:
-        same_drawing(caught["fig15_identified.png"], redrawn)
-    finally:
-        plt.close(redrawn)
 
 
 def test_swing_along_axis_redrawn_from_figures_nc(tmp_path: Path, caught: Drawn) -> None:
@@ -315,15 +277,17 @@ def test_each_predict_figure_redrawn_from_figures_nc_alone(
 def compared(
     frfs: tuple[Path, Path], tmp_path_factory: pytest.TempPathFactory
 ) -> Iterator[tuple[Any, Drawn, Path]]:
-    """A compare run (free against hand-held) with its figures caught, and its folder."""
+    """A compare run (free against hand-held) with a heavier ball than the default (Fig. 15
+    must be that ball's) and its figures caught, and its folder: one run for the shapes'
+    tests and Fig. 15's (each had run compare, ≈ 10 s a run on a quiet machine)."""
     from racketdyn.workflows.identify import run_compare
 
     out = tmp_path_factory.mktemp("compare")
-    result, drawn = _run_caught(
-        lambda: run_compare(frfs[0], frfs[1], out, setup=Setup(figures=compare_figures))
-    )
-    for name in [n for n in drawn if not n.startswith(SHAPE_FIGURES)]:
-        plt.close(drawn.pop(name))  # the shapes' figures kept only (pyplot warns beyond 20)
+    setup = Setup(ball=heavy_ball(), figures=compare_figures)
+    result, drawn = _run_caught(lambda: run_compare(frfs[0], frfs[1], out, setup=setup))
+    kept = (*SHAPE_FIGURES, "fig15_identified")
+    for name in [n for n in drawn if not n.startswith(kept)]:
+        plt.close(drawn.pop(name))  # the figures the tests read kept only (pyplot warns beyond 20)
     yield result, drawn, out
     for figure in drawn.values():
         plt.close(figure)
@@ -331,6 +295,43 @@ def compared(
 
 SHAPE_FIGURES = ("fig4_mode_shapes", "fig5_node_lines", "fig6_nodes", "automac")
 """The identified shapes' figures (compare writes them once per model)."""
+
+
+def test_compare_fig15_uses_the_runs_ball(compared: tuple[Any, Drawn, Path]) -> None:
+    """The compare step's Fig. 15 predicted with a default ``Ball()`` whatever ball the run
+    used (issue 23): a heavier ball must change the curves, and they must be that ball's (the
+    module's compare run, ``compared``, is made with that ball)."""
+    result, caught, out = compared
+    heavy = heavy_ball()
+    assert result.free is not None
+    assert result.hand is not None
+    racket = rd.default_racket()
+    head = racket.head
+    x = np.linspace(
+        head.throat_x_m + 0.05 * head.half_length_m, head.tip_x_m - 0.05 * head.half_length_m, 31
+    )
+    points = np.column_stack([x, np.full_like(x, head.centre_y_m)])
+    drawn = _lines(caught["fig15_identified.png"])
+    cases = {
+        "pinned at the grip, hand-held modes": ("pinned", result.hand.model),
+        "pinned at the grip, free modes": ("pinned", result.free.model),
+        "freely supported, free modes": ("free", result.free.model),
+    }
+    for label, (support, model) in cases.items():
+        expected = rd.predict(racket, heavy, points, [20.0], (support,), modal_model=model)
+        default = rd.predict(racket, rd.Ball(), points, [20.0], (support,), modal_model=model)
+        np.testing.assert_allclose(drawn[label], expected.rebound_ratio[:, 0, 0], rtol=1e-12)
+        assert not np.allclose(drawn[label], default.rebound_ratio[:, 0, 0], equal_nan=True)
+    # redrawn from the folder's figures.nc alone: the same lines
+    from racketdyn.workflows.figure_data import FIGURES_FILE, IdentifiedRebound, read_figure_data
+
+    data = IdentifiedRebound.from_xarray(read_figure_data(out / FIGURES_FILE))
+    redrawn = data.plot().get_figure()
+    try:
+        same_drawing(caught["fig15_identified.png"], redrawn)
+    finally:
+        plt.close(redrawn)
+        plt.close(caught.pop("fig15_identified.png"))
 
 
 def test_identified_shapes_redrawn_from_figures_nc_alone(

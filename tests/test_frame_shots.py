@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from numpy.typing import NDArray
 
 import racketdyn as rd
 from racketdyn.impact.approximate import predict
@@ -19,14 +20,31 @@ from racketdyn.racket import TIP_INSET_M, HeadEllipse, landmark_points
 
 
 def test_the_distance_to_the_hoop_is_the_ellipse_s_nearest_point() -> None:
-    """Against a brute-force search over 2 million points of the ellipse (spacing 0.5 µm)."""
+    """Against a brute-force search over 2 million points of the ellipse (spacing 0.5 µm).
+
+    The search is exact over that grid without measuring every point's distance: every 100th
+    point first (spacing ≤ 52 µm), then every point within one coarse step of each coarse
+    point no farther than the coarse minimum plus a coarse step.  The distance is 1-Lipschitz
+    along the edge and the fine minimum lies within half a coarse arc of a coarse point, so
+    that point is one of these and the fine minimum lies in the windows searched: the same
+    minimum as the full scan's, which took ≈ 15–30 s."""
     head = HeadEllipse(0.5, 0.165, 0.125)
     rng = np.random.default_rng(7)
     radius, angle = np.sqrt(rng.random(200)), rng.random(200) * 2 * np.pi
     points = np.column_stack([0.5 + 0.165 * radius * np.cos(angle), 0.125 * radius * np.sin(angle)])
     t = np.linspace(0.0, 2.0 * np.pi, 2_000_001)
     edge = np.column_stack([0.5 + 0.165 * np.cos(t), 0.125 * np.sin(t)])
-    brute = np.array([np.min(np.hypot(*(edge - p).T)) for p in points])
+    step = 100
+    coarse = np.arange(0, t.size, step)
+    chord = float(np.max(np.hypot(*np.diff(edge[coarse], axis=0).T)))
+
+    def nearest(p: NDArray[np.float64]) -> float:
+        far = np.hypot(*(edge[coarse] - p).T)
+        near = coarse[far <= far.min() + chord]
+        window = np.unique(np.clip(near[:, None] + np.arange(-step, step + 1), 0, t.size - 1))
+        return float(np.min(np.hypot(*(edge[window] - p).T)))
+
+    brute = np.array([nearest(p) for p in points])
     np.testing.assert_allclose(head.distance_to_edge(points), brute, atol=1e-9)
     # the axes: the half-width at the centre, the inset at the tip
     assert head.distance_to_edge([(0.5, 0.0)])[0] == pytest.approx(0.125, abs=1e-12)

@@ -32,6 +32,7 @@ from racketdyn.rig import (
     HammerFaults,
     HandModel,
     RigModel,
+    RigSupport,
     SensorNoise,
     hammer_points,
     rig_model,
@@ -470,3 +471,54 @@ def test_hammer_settings_default_to_the_rig_and_are_frozen() -> None:
     assert HammerFaults(double_hit_probability=0.1).longest_extra_s == 3e-3
     with pytest.raises(AttributeError):
         SensorNoise().force_noise_n = 1.0  # type: ignore[misc]
+
+
+def test_a_racket_s_second_support_reuses_its_bare_racket(
+    racket: rd.Racket, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Every support of one racket starts from the same bare racket: EI and GJ calibrated by a
+    fixed-point search of eigenvalue solves, and its modal damping (one more solve) — most of a
+    model's build, and ``rig --support free,hand`` built it twice.  The second support now
+    solves only its own eigenproblem, a second rig of the same support none, and the models
+    are bit for bit those built afresh; a frame of other matrices (the smooth distribution,
+    conftest's ``smooth_frame``) is a new bare racket, calibrated anew, not the remembered
+    one."""
+    from collections import OrderedDict
+
+    from racketdyn.racket_modal import beam
+    from racketdyn.rig import model as rig_module
+
+    def fresh(support: RigSupport) -> RigModel:
+        with monkeypatch.context() as patch:
+            patch.setattr(rig_module, "_REMEMBERED", OrderedDict())
+            return rig_model(racket, support)
+
+    solves: list[int] = []
+    from scipy.linalg import eigh
+
+    def counted(*args: Any, **kwargs: Any) -> Any:
+        solves.append(1)
+        return eigh(*args, **kwargs)
+
+    monkeypatch.setattr(rig_module, "_REMEMBERED", OrderedDict())
+    monkeypatch.setattr(rig_module, "eigh", counted)
+    rig_model(racket, "free")
+    first = len(solves)
+    hand = rig_model(racket, "hand")
+    assert first >= 3  # the calibration's solves (≥ 1), the damping's, the support's
+    assert len(solves) - first == 1  # the hand's own
+    solved = len(solves)
+    same = rig_model(racket, "hand")
+    assert len(solves) == solved  # the same racket on the same support: solved before
+    again = fresh("hand")
+    for name in ("frequency", "damping_ratio", "modes"):
+        np.testing.assert_array_equal(getattr(same, name), getattr(again, name), err_msg=name)
+    for name in ("frequency", "damping_ratio", "modes", "mass", "stiffness", "damping"):
+        np.testing.assert_array_equal(getattr(hand, name), getattr(again, name), err_msg=name)
+    assert hand.metadata == again.metadata
+    monkeypatch.setattr(beam, "frame_mass_per_length", lambda *args, **kwargs: None)
+    smooth = rig_model(racket, "free")
+    assert smooth.metadata["mass_model"] == "smooth"
+    ei = "bending_stiffness_nm2"
+    assert smooth.metadata[ei] != hand.metadata[ei]
+    assert smooth.metadata[ei] == fresh("free").metadata[ei]

@@ -89,7 +89,11 @@ first (``w, w'`` at each node, then ``θ`` at each node), then the Ritz coordina
 
 from __future__ import annotations
 
+import hashlib
 import logging
+import threading
+from collections import OrderedDict
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Literal, get_args
 
@@ -448,6 +452,41 @@ def rig_model(
 
 # --- the steps of rig_model ----------------------------------------------------------------
 
+_REMEMBERED: OrderedDict[bytes, Any] = OrderedDict()
+_REMEMBERED_LOCK = threading.Lock()
+_REMEMBER_AT_MOST = 16
+"""The bare racket's calibration and damping, and the supported racket's eigenproblem, of the
+last few rackets: every support of a racket (``rig --support free,hand``), and every rig of one
+racket in a process, start from the same bare racket, and a rig of the same racket on the same
+support solves the same eigenproblem; these solves are most of a model's build."""
+
+
+def _remembered(kind: str, args: tuple[Any, ...], compute: Callable[[], Any]) -> Any:
+    """``compute()``, or what it returned before for inputs of the same content.
+
+    The key is a hash of ``kind`` and every argument's bytes (arrays with their dtype and
+    shape, numbers by ``repr``): the same matrices give the same result, whatever built them
+    (a frame patched in a test, another racket of equal parts).  Treat the result as read-only.
+    """
+    digest = hashlib.blake2b(kind.encode(), digest_size=20)
+    for arg in args:
+        if isinstance(arg, np.ndarray):
+            digest.update(f"{arg.dtype.str}{arg.shape}".encode())
+            digest.update(np.ascontiguousarray(arg).data)
+        else:
+            digest.update(repr(arg).encode())
+    key = digest.digest()
+    with _REMEMBERED_LOCK:
+        if key in _REMEMBERED:
+            _REMEMBERED.move_to_end(key)
+            return _REMEMBERED[key]
+    value = compute()
+    with _REMEMBERED_LOCK:
+        _REMEMBERED[key] = value
+        while len(_REMEMBERED) > _REMEMBER_AT_MOST:
+            _REMEMBERED.popitem(last=False)
+    return value
+
 
 def _checked_hand(
     support: str, hand: Hand | None, frame_damping_ratio: float, max_frequency_hz: float
@@ -595,12 +634,18 @@ def _racket_damping(
     k_suspension: NDArray[np.float64],
     damping_ratio: float,
 ) -> NDArray[np.float64]:
-    """The free racket's own damping ``C_r = M Φ diag(2ζω) Φᵀ M`` on its flexible modes."""
-    free_omega2, free_vectors = eigh(stiffness + k_suspension, mass)
-    flexible = _support_share(free_vectors, k_suspension, free_omega2) < 0.5
-    phi_f, omega_f = free_vectors[:, flexible], np.sqrt(free_omega2[flexible])
-    mphi = mass @ phi_f
-    return np.asarray(mphi @ np.diag(2 * damping_ratio * omega_f) @ mphi.T)
+    """The free racket's own damping ``C_r = M Φ diag(2ζω) Φᵀ M`` on its flexible modes
+    (remembered for the same matrices: a copy of the first computation's)."""
+
+    def computed() -> NDArray[np.float64]:
+        free_omega2, free_vectors = eigh(stiffness + k_suspension, mass)
+        flexible = _support_share(free_vectors, k_suspension, free_omega2) < 0.5
+        phi_f, omega_f = free_vectors[:, flexible], np.sqrt(free_omega2[flexible])
+        mphi = mass @ phi_f
+        return np.asarray(mphi @ np.diag(2 * damping_ratio * omega_f) @ mphi.T)
+
+    args = (mass, stiffness, k_suspension, damping_ratio)
+    return np.array(_remembered("damping", args, computed))
 
 
 @dataclass(frozen=True)
@@ -651,9 +696,10 @@ def _real_modes(
     support: str,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """``ω²``, the mass-normalised vectors and the modal damping ratios ``φᵀCφ / (2ω)`` of the
-    real modes of ``(M, K, C)`` up to ``max_frequency_hz``."""
+    real modes of ``(M, K, C)`` up to ``max_frequency_hz`` (the eigenproblem's solution
+    remembered for the same matrices)."""
     mass, stiffness, damping = matrices
-    omega2, vectors = eigh(stiffness, mass)
+    omega2, vectors = _remembered("modes", (stiffness, mass), lambda: eigh(stiffness, mass))
     keep = omega2 <= (2 * np.pi * max_frequency_hz) ** 2
     omega2, vectors = omega2[keep], vectors[:, keep]
     if np.any(omega2 <= 0):
@@ -815,29 +861,39 @@ def _calibrate(
     k_twist: NDArray[np.float64],
     k_fixed: NDArray[np.float64],
 ) -> tuple[float, float]:
-    """EI and GJ putting the free racket's first bending and twisting modes on their targets."""
-    target_b = 2 * np.pi * racket.first_bending_hz
-    target_t = 2 * np.pi * racket.twisting_hz
-    ei, gj = 100.0, 100.0
-    n_search = 12  # the lowest modes: 3 suspension + 2-node bending + twisting among them
-    for _ in range(60):
-        stiffness = ei * k_bend + gj * k_twist + k_fixed
-        omega2, vectors = eigh(stiffness, mass, subset_by_index=[0, n_search - 1])
-        energy_b = np.einsum("ik,ij,jk->k", vectors, ei * k_bend, vectors) / omega2
-        energy_t = np.einsum("ik,ij,jk->k", vectors, gj * k_twist, vectors) / omega2
-        bend = np.flatnonzero(energy_b > 0.5)
-        tors = np.flatnonzero(energy_t > 0.5)
-        if bend.size == 0 or tors.size == 0:
-            ei, gj = ei * 4.0 if bend.size == 0 else ei, gj * 4.0 if tors.size == 0 else gj
-            continue
-        ratio_b = target_b**2 / omega2[bend[0]]
-        ratio_t = target_t**2 / omega2[tors[0]]
-        ei, gj = ei * ratio_b, gj * ratio_t
-        if abs(ratio_b - 1) < _CALIBRATION_TOLERANCE and abs(ratio_t - 1) < _CALIBRATION_TOLERANCE:
-            return float(ei), float(gj)
-    raise InputError(  # pragma: no cover - the fixed point converges for any physical racket
-        f"rig model of {racket.name}: the stiffness calibration did not converge"
-    )
+    """EI and GJ putting the free racket's first bending and twisting modes on their targets
+    (remembered for the same targets and matrices)."""
+
+    def search() -> tuple[float, float]:
+        target_b = 2 * np.pi * racket.first_bending_hz
+        target_t = 2 * np.pi * racket.twisting_hz
+        ei, gj = 100.0, 100.0
+        n_search = 12  # the lowest modes: 3 suspension + 2-node bending + twisting among them
+        for _ in range(60):
+            stiffness = ei * k_bend + gj * k_twist + k_fixed
+            omega2, vectors = eigh(stiffness, mass, subset_by_index=[0, n_search - 1])
+            energy_b = np.einsum("ik,ij,jk->k", vectors, ei * k_bend, vectors) / omega2
+            energy_t = np.einsum("ik,ij,jk->k", vectors, gj * k_twist, vectors) / omega2
+            bend = np.flatnonzero(energy_b > 0.5)
+            tors = np.flatnonzero(energy_t > 0.5)
+            if bend.size == 0 or tors.size == 0:
+                ei, gj = ei * 4.0 if bend.size == 0 else ei, gj * 4.0 if tors.size == 0 else gj
+                continue
+            ratio_b = target_b**2 / omega2[bend[0]]
+            ratio_t = target_t**2 / omega2[tors[0]]
+            ei, gj = ei * ratio_b, gj * ratio_t
+            if (
+                abs(ratio_b - 1) < _CALIBRATION_TOLERANCE
+                and abs(ratio_t - 1) < _CALIBRATION_TOLERANCE
+            ):
+                return float(ei), float(gj)
+        raise InputError(  # pragma: no cover - the fixed point converges for any physical racket
+            f"rig model of {racket.name}: the stiffness calibration did not converge"
+        )
+
+    args = (racket.first_bending_hz, racket.twisting_hz, mass, k_bend, k_twist, k_fixed)
+    ei, gj = _remembered("calibrate", args, search)
+    return ei, gj
 
 
 def _line_rows(
