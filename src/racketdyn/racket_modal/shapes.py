@@ -35,7 +35,27 @@ Naming, from the shape at the measured points and the racket's head:
   a twisting mode veering with an odd membrane mode (a 285 g racket's above 1.4 kHz, strain
   energy twist/strings 56/44 and 61/39, their partners 45/55 and 41/59) moves its strings
   15-26 times its frame in mean square, their own motion 200-750 times the hoop's carried
-  twist, whichever part holds more energy: such a pair stays ``unknown`` too;
+  twist, whichever part holds more energy: the recoil does not name them;
+* in between too, a mode neither following nor recoiling is the frame's when its frame's shape
+  matches one of the frame's own modes (:data:`FRAME_MAC`) better than its strings' own motion
+  matches one of the bed's (:func:`membrane_names`; eleventh session): above the bed's own
+  frequency a frame mode's bed moves against its frame without recoiling (the 300 g, 100 sq in
+  trial racket's 4- and 5-node bending at 845.6 and 1435.2 Hz, 75 and 62 % of their strain
+  energy in the frame: strings 4.8 and 13 times the frame in mean square, their own motion 5
+  and 24 times the carried at −0.5, frames 0.955 and 0.949 against beds 0.78 and 0.80; its
+  6- and 7-node twisting likewise), and they were ``unknown``.  Of the modes then given one
+  frame name, the one whose strings move least against its frame in mean square keeps it and
+  the others take the bed's name their strings match (``unknown`` where none does): the
+  members of a veering pair share both shapes, and the one moving its strings less holds more
+  of its energy in the frame (the trial racket's 1484.7/1512.1 Hz, 6-node twisting and (1, 1)
+  membrane, 16.4 against 16.9; its 1835.2/1879.9 Hz, 7-node twisting and (2, 1), 12 against
+  22; the 285 g racket's 1469.3/1493.7 Hz, 26 and 15, the (1, 1) and the 6-node twisting).  A
+  mode whose strings match the bed at least as well stays ``unknown``, and
+  :func:`naming_reasons` says what both shapes matched (the built-in racket's played-bed pair
+  at 586 and 721 Hz: beds 1.00 and 0.99, frames 0.82 and 0.91).  A veering pair's member
+  identified without its partner carries some of the partner's shape: the 305 g racket's
+  1522.1 Hz (the truth's (2, 0) membrane, 52 % strings, its partner at 1422.3 Hz not found)
+  matches the 5-node bending at 0.96 and the bed at 0.73 and takes the bending's name;
 * **twisting** when more than half of the shape's energy is odd in y: points are paired with
   their mirror images across the long axis (within 1 cm) and the odd part (φ(x,y) − φ(x,−y))/2
   compared with the whole;
