@@ -24,3 +24,25 @@ crosses = 19
 first_bending_hz = 165.0
 """
 """The ninth session's new-user trial racket: 285 g, 102 sq in, 165 Hz, 220 N."""
+
+TRIAL_RACKET_100 = """schema_version = 1
+name = "Trial 300g 100sqin"
+
+[racket]
+mass_kg = 0.300
+length_m = 0.685
+balance_m = 0.325
+swingweight_kgcm2 = 320.0
+
+[head]
+centre_x_m = 0.505
+half_length_m = 0.165
+area_cm2 = 645.16
+
+[strings]
+tension_n = 235.0
+
+[modal]
+first_bending_hz = 145.0
+"""
+"""The eleventh session's new-user trial racket: 300 g, 100 sq in, 145 Hz, 235 N."""

@@ -147,13 +147,16 @@ def test_identify_and_compare_commands(tmp_path: Path, racket: rd.Racket) -> Non
     assert table[1].startswith("2-node bending")
     shift = float(table[1].split(",")[3])
     assert -10 < shift < 0  # slightly lower when held
-    # pure data: pandas reads one row per mode pair, the nodes are in run.json (issue 13)
+    # pure data: pandas reads one row per mode pair and one per mode left without a pair
+    # (its partner's columns empty, a note), the nodes are in run.json (issue 13)
     record = json.loads((compared / "run.json").read_text())
     pairs = pd.read_csv(compared / "comparison.csv")
-    assert len(pairs) == len(table) - 1 <= len(record["modes_free"])
+    paired = pairs["mac"].notna()
+    assert len(pairs) == len(table) - 1
+    assert len(pairs) + paired.sum() == len(record["modes_free"]) + len(record["modes_hand"])
     assert pairs["mode"].iloc[0] == "2-node bending"
     assert pairs["frequency_free_hz"].dtype == float
-    assert pairs["mac"].notna().all()
+    assert (pairs["note"].isna() == paired).all()
     assert not any(line.startswith("#") for line in table)
     nodes = record["first_mode_nodes_m"]
     assert set(nodes) == {"free", "hand"}

@@ -418,7 +418,11 @@ def test_another_rackets_points_named_on_the_built_in_head_say_so() -> None:
     assert built_in.name in how
     assert "give `racket`" in how
     _, how = name_if_racket(found, own, racket_given=True)
-    assert how == "modes named from their shapes on the head of trial 270 g racket"
+    # then why each mode left unknown is so (eleventh session): here a mode whose hoop has
+    # too few points to fit the frame's motion under the bed
+    said, _, unknown = how.partition("; unknown: ")
+    assert said == "modes named from their shapes on the head of trial 270 g racket"
+    assert "the hoop's points cannot fix the frame's motion under the bed" in unknown
 
 
 def test_modes_uff_keeps_z_and_says_unscaled(tmp_path: Path) -> None:

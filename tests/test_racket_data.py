@@ -81,9 +81,17 @@ def racket(racket_file: Path) -> rd.Racket:
     return load_racket(racket_file)
 
 
-def measured_frfs(racket: rd.Racket, support: str) -> tuple[FrfSet, ModalModel]:
+def measured_frfs(
+    racket: rd.Racket,
+    support: str,
+    noise: SensorNoise | None = None,
+    averages: int = 10,
+    windows_s: tuple[float | None, float | None] = (None, EXPONENTIAL_WINDOW_S),
+) -> tuple[FrfSet, ModalModel]:
     """The rig's FRFs of ``support`` as ``rig --response-snr 40 --force-snr 50`` then ``frf
-    --exp-window 0.1`` give them (same points, pulses, seed), and the rig's modal truth."""
+    --exp-window 0.1`` give them (same points, pulses, seed), and the rig's modal truth;
+    ``noise`` (default those SNRs; ``SensorNoise()``: the rig's own), ``averages`` and the
+    force and exponential windows (s) as ``rig`` and ``frf`` take them."""
     locations, nodes = hammer_points(racket)
     reference = accelerometer_index(racket, locations)
     durations = np.full(len(nodes), FRAME_PULSE_S)
@@ -97,14 +105,17 @@ def measured_frfs(racket: rd.Racket, support: str) -> tuple[FrfSet, ModalModel]:
         nodes,
         (float(locations[reference, 0]), float(locations[reference, 1])),
         nodes[reference],
-        acquisition=Acquisition(n_averages=10),
+        acquisition=Acquisition(n_averages=averages),
         blows=HammerBlows(pulse_duration_s=tuple(durations)),
-        noise=SensorNoise(force_snr_db=50.0, response_snr_db=40.0),
+        noise=SensorNoise(force_snr_db=50.0, response_snr_db=40.0) if noise is None else noise,
         seed=1,
     )
     from racketdyn.measurement.frf import estimate_frfs
 
-    frfs = estimate_frfs(records, exponential_window_s=EXPONENTIAL_WINDOW_S).frfs
+    force_window, exponential_window = windows_s
+    frfs = estimate_frfs(
+        records, force_window_s=force_window, exponential_window_s=exponential_window
+    ).frfs
     assert frfs is not None
     truth = model.modal_truth(locations, max_frequency_hz=0.5 / records.sampling_interval_s)
     return frfs, truth.select([k for k, f in enumerate(truth.frequency) if f > 15.0])
@@ -277,8 +288,16 @@ def test_the_report_says_a_prediction_took_modes_of_unknown_kind(
     from racketdyn.workflows.predict import PredictOptions, run_predict
 
     model = found["free"].model
+    # the trial's 1522.1 Hz mode (the truth's (2, 0) membrane veering with the 5-node bending,
+    # 52/48 strings/frame in strain energy, its partner not identified) was ``unknown``; since
+    # the eleventh session its frame's shape names it (docs/develop.md): left unknown here, as
+    # identify named it then, for the report to say
+    k = nearest(model, 1522.1)
+    names, kinds = list(model.names), list(model.kinds)
+    names[k], kinds[k] = f"mode {k + 1} (1522.1 Hz)", "unknown"
+    model = replace(model, names=tuple(names), kinds=tuple(kinds))
     unknown = [n for n, kind in zip(model.names, model.kinds, strict=True) if kind == "unknown"]
-    assert unknown  # the trial's 1522.1 Hz mode
+    assert unknown
     path = tmp_path / "modal_model.json"
     model.write_json(path)
     out = tmp_path / "run"

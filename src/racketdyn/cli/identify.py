@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from typing import TYPE_CHECKING, Any
 
 from racketdyn.cli import options as opt
@@ -337,6 +338,13 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
     comparison = result.comparison
     if comparison is not None:
         for row in comparison.rows:
+            if row["note"]:
+                free_hz = row["frequency_free_hz"]
+                support, frequency = (
+                    ("hand", row["frequency_hand_hz"]) if math.isnan(free_hz) else ("free", free_hz)
+                )
+                opt.say(console, f"{row['mode']} ({support}, {frequency:.1f} Hz): {row['note']}")
+                continue
             opt.say(
                 console,
                 f"{row['mode']}: {row['frequency_free_hz']:.1f} → {row['frequency_hand_hz']:.1f} "

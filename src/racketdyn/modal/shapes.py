@@ -15,7 +15,11 @@ from racketdyn.modal.mac import mac
 from racketdyn.modal.model import ModalModel
 from racketdyn.numerics import as_points
 
-__all__ = ["ModePairing", "nodes_along", "pair_modes"]
+__all__ = ["UNNAMED_KINDS", "ModePairing", "nodes_along", "pair_modes"]
+
+UNNAMED_KINDS = ("unknown", "other")
+"""Kinds that say nothing of a mode's shape (:data:`racketdyn.modal.model.MODE_KINDS`): a mode
+of one of these may pair with a mode of any kind (:func:`pair_modes`)."""
 
 
 def nodes_along(model: ModalModel, points: ArrayLike, mode: int) -> NDArray[np.float64]:
@@ -69,12 +73,21 @@ class ModePairing:
     mac: tuple[float, ...]
 
 
-def pair_modes(first: ModalModel, second: ModalModel, minimum_mac: float = 0.6) -> ModePairing:
+def pair_modes(
+    first: ModalModel,
+    second: ModalModel,
+    minimum_mac: float = 0.6,
+    matrix: NDArray[np.float64] | None = None,
+) -> ModePairing:
     """Pair the modes of two models measured on the same points by their MAC.
 
     Greedy on the MAC matrix (largest first), each mode used once; pairs under ``minimum_mac``
-    are left unpaired.  Shapes are compared at the first model's locations (the second model is
-    interpolated there).
+    are left unpaired, and so are two modes whose kinds both say what they are and differ (a
+    bending mode never pairs with a string-bed mode, whatever their MAC: a mode veering with
+    another shares much of its shape at the points; only :data:`UNNAMED_KINDS` pair with any
+    kind).  So a mode pairs with the mode of its own kind that its shape matches best, however
+    far the support moved its frequency.  Shapes are compared at the first model's locations
+    (the second model is interpolated there).
 
     Parameters
     ----------
@@ -82,13 +95,17 @@ def pair_modes(first: ModalModel, second: ModalModel, minimum_mac: float = 0.6) 
         The two models (e.g. one structure on two supports).
     minimum_mac : float
         Smallest MAC that makes a pair (–).
+    matrix : ndarray, shape (first.n_modes, second.n_modes), optional
+        The MAC of each two modes, where the caller compares them otherwise (e.g. on some
+        of the points only); default the MAC over every point.
 
     Returns
     -------
     ModePairing
         The pairs, in order of the first model's modes.
     """
-    matrix = mac(first.mode_shapes, second.mode_shapes_at(first.locations))
+    if matrix is None:
+        matrix = mac(first.mode_shapes, second.mode_shapes_at(first.locations))
     pairs: list[tuple[int, int, float]] = []
     used_a: set[int] = set()
     used_b: set[int] = set()
@@ -96,7 +113,7 @@ def pair_modes(first: ModalModel, second: ModalModel, minimum_mac: float = 0.6) 
         a, b = np.unravel_index(flat, matrix.shape)
         if matrix[a, b] < minimum_mac:
             break
-        if a in used_a or b in used_b:
+        if a in used_a or b in used_b or not _same_kind(first.kinds[a], second.kinds[b]):
             continue
         pairs.append((int(a), int(b), float(matrix[a, b])))
         used_a.add(int(a))
@@ -105,3 +122,8 @@ def pair_modes(first: ModalModel, second: ModalModel, minimum_mac: float = 0.6) 
     return ModePairing(
         tuple(p[0] for p in pairs), tuple(p[1] for p in pairs), tuple(p[2] for p in pairs)
     )
+
+
+def _same_kind(first: str, second: str) -> bool:
+    """Whether two modes' kinds allow a pair: equal, or one of them says nothing."""
+    return first == second or first in UNNAMED_KINDS or second in UNNAMED_KINDS

@@ -819,7 +819,7 @@ def figure_mode_comparison(
         caller's; default a figure of its own (:func:`racketdyn.plotting.primitives.axes_grid`: an
         error if not that many).
     """
-    rows = comparison.rows
+    rows = [row for row in comparison.rows if np.isfinite(row["mac"])]  # the pairs
     figure, grid = axes_grid(axes, 1, 2, figsize=(11, 4), layout="constrained")
     names = [row["mode"] for row in rows]
     index = np.arange(len(rows))

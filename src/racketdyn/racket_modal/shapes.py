@@ -35,7 +35,27 @@ Naming, from the shape at the measured points and the racket's head:
   a twisting mode veering with an odd membrane mode (a 285 g racket's above 1.4 kHz, strain
   energy twist/strings 56/44 and 61/39, their partners 45/55 and 41/59) moves its strings
   15-26 times its frame in mean square, their own motion 200-750 times the hoop's carried
-  twist, whichever part holds more energy: such a pair stays ``unknown`` too;
+  twist, whichever part holds more energy: the recoil does not name them;
+* in between too, a mode neither following nor recoiling is the frame's when its frame's shape
+  matches one of the frame's own modes (:data:`FRAME_MAC`) better than its strings' own motion
+  matches one of the bed's (:func:`membrane_names`; eleventh session): above the bed's own
+  frequency a frame mode's bed moves against its frame without recoiling (the 300 g, 100 sq in
+  trial racket's 4- and 5-node bending at 845.6 and 1435.2 Hz, 75 and 62 % of their strain
+  energy in the frame: strings 4.8 and 13 times the frame in mean square, their own motion 5
+  and 24 times the carried at −0.5, frames 0.955 and 0.949 against beds 0.78 and 0.80; its
+  6- and 7-node twisting likewise), and they were ``unknown``.  Of the modes then given one
+  frame name, the one whose strings move least against its frame in mean square keeps it and
+  the others take the bed's name their strings match (``unknown`` where none does): the
+  members of a veering pair share both shapes, and the one moving its strings less holds more
+  of its energy in the frame (the trial racket's 1484.7/1512.1 Hz, 6-node twisting and (1, 1)
+  membrane, 16.4 against 16.9; its 1835.2/1879.9 Hz, 7-node twisting and (2, 1), 12 against
+  22; the 285 g racket's 1469.3/1493.7 Hz, 26 and 15, the (1, 1) and the 6-node twisting).  A
+  mode whose strings match the bed at least as well stays ``unknown``, and
+  :func:`naming_reasons` says what both shapes matched (the built-in racket's played-bed pair
+  at 586 and 721 Hz: beds 1.00 and 0.99, frames 0.82 and 0.91).  A veering pair's member
+  identified without its partner carries some of the partner's shape: the 305 g racket's
+  1522.1 Hz (the truth's (2, 0) membrane, 52 % strings, its partner at 1422.3 Hz not found)
+  matches the 5-node bending at 0.96 and the bed at 0.73 and takes the bending's name;
 * **twisting** when more than half of the shape's energy is odd in y: points are paired with
   their mirror images across the long axis (within 1 cm) and the odd part (φ(x,y) − φ(x,−y))/2
   compared with the whole;
@@ -113,6 +133,7 @@ __all__ = [
     "membrane_name",
     "membrane_names",
     "naming_evidence",
+    "naming_reasons",
     "outline_rigid_share",
     "rigid_share",
     "sign_changes",
@@ -396,13 +417,17 @@ class ReferenceShapes:
     twisting_nodes: tuple[int, ...] = ()
 
 
+_Counts = list[tuple[int | None, float]]
+
+
 def _frame_counts(
     model: ModalModel, head: HeadEllipse, reference: ReferenceShapes, pairs: NDArray[np.int_]
-) -> tuple[list[int | None], list[int | None]]:
+) -> tuple[_Counts, _Counts]:
     """Each mode's bending and twisting node counts from its frame shape's best MAC with the
-    frame's own modes (None below :data:`FRAME_MAC` or without a frame model)."""
+    frame's own modes (None below :data:`FRAME_MAC` or without a frame model), with that MAC
+    (NaN without a frame model)."""
     n = model.n_modes
-    none: list[int | None] = [None] * n
+    none: _Counts = [(None, float("nan"))] * n
     if reference.frame_x is None or model.n_dimensions != 2:
         return none, list(none)
     frame = head.normalised_radius(model.locations) >= ON_STRINGS
@@ -439,16 +464,19 @@ def _on_nodes(
 
 def _best_counts(
     measured: NDArray[np.float64], reference: NDArray[np.float64], counts: tuple[int, ...]
-) -> list[int | None]:
+) -> _Counts:
     if reference.size == 0:
-        return [None] * measured.shape[1]
+        return [(None, float("nan"))] * measured.shape[1]
     with np.errstate(invalid="ignore", divide="ignore"):
         mac = (reference.T @ measured) ** 2 / (
             np.sum(reference**2, axis=0)[:, None] * np.sum(measured**2, axis=0)[None, :]
         )
     mac = np.nan_to_num(mac)
     best = np.argmax(mac, axis=0)
-    return [counts[b] if mac[b, k] >= FRAME_MAC else None for k, b in enumerate(best)]
+    return [
+        (counts[b] if mac[b, k] >= FRAME_MAC else None, float(mac[b, k]))
+        for k, b in enumerate(best)
+    ]
 
 
 def _mirror_pairs(locations: NDArray[np.float64]) -> NDArray[np.int_]:
@@ -717,10 +745,44 @@ def classify_modes(
         Names (``"2-node bending"`` …) and kinds (``bending``, ``twisting``, ``string-bed``,
         ``other`` for the ball, ``unknown`` where the shape does not say).
     """
+    names, kinds, _ = _classify(model, head, ball_at, reference)
+    return names, kinds
+
+
+def naming_reasons(
+    model: ModalModel,
+    head: HeadEllipse,
+    ball_at: tuple[float, float] | None = None,
+    reference: ReferenceShapes | None = None,
+) -> tuple[str, ...]:
+    """Why each mode :func:`classify_modes` leaves ``unknown`` is so ("" for a named mode).
+
+    Parameters
+    ----------
+    model, head, ball_at, reference
+        As :func:`classify_modes`.
+
+    Returns
+    -------
+    tuple of str
+        One clause per mode, e.g. "its strings move 16 times its frame in mean square, their
+        own motion matches the bed's (1, 1) mode (MAC 0.90) as well as its frame the 6-node
+        twisting (0.86)".
+    """
+    return _classify(model, head, ball_at, reference)[2]
+
+
+def _classify(
+    model: ModalModel,
+    head: HeadEllipse,
+    ball_at: tuple[float, float] | None,
+    reference: ReferenceShapes | None,
+) -> tuple[tuple[str, ...], tuple[str, ...], tuple[str, ...]]:
+    """Names, kinds and the reasons for each ``unknown`` (:func:`classify_modes`)."""
     locations, shapes = model.locations, model.mode_shapes
     on_strings = head.normalised_radius(locations) < ON_STRINGS
     pairs = _mirror_pairs(locations)
-    names, kinds = [], []
+    names, kinds, reasons = [], [], []
     counts = {"bending": 0, "twisting": 0, "string-bed": 0}
     unclear = False
     ball = -1 if ball_at is None else ball_mode_index(model, head)
@@ -733,9 +795,16 @@ def classify_modes(
     own_ratio, own_correlation = bed_own_motion(model, head)
     even_ratio, even_correlation = bed_own_motion(replace(model, mode_shapes=even), head)
     reference = reference or ReferenceShapes()
-    membrane = _membrane_names(model, head, reference)
+    membrane, membrane_mac = _membrane_names(model, head, reference)
+    bed_lines = [
+        "the bed's own mode" if name is None else f"the bed's {name.removeprefix('string-bed ')}"
+        for name in membrane
+    ]
     bending_nodes, twisting_nodes = _frame_counts(model, head, reference, pairs)
+    square_ratio = np.full(model.n_modes, np.inf)
+    from_band: list[int] = []  # frame modes named in the unclear band by their frame shape
     for k in range(model.n_modes):
+        reasons.append("")
         if k == ball:
             names.append(BALL_MODE_NAME)
             kinds.append("other")
@@ -743,6 +812,8 @@ def classify_modes(
         phi = shapes[:, k]
         strings = np.mean(phi[on_strings] ** 2) if on_strings.any() else 0.0
         frame = np.mean(phi[~on_strings] ** 2) if (~on_strings).any() else np.inf
+        if frame > 0:
+            square_ratio[k] = strings / frame
         odd_fraction = 0.0
         if pairs.size:
             odd = 0.5 * (phi[pairs[:, 0]] - phi[pairs[:, 1]])
@@ -762,6 +833,11 @@ def classify_modes(
         frame_recoils = (
             odd_fraction <= 0.5 and correlation < -RECOIL_CORRELATION and ratio > BED_OWN_RATIO
         )
+        kind = "twisting" if odd_fraction > 0.5 else "bending"
+        nodes, frame_mac = (twisting_nodes if kind == "twisting" else bending_nodes)[k]
+        # the frame's shape says more than the strings': the frame matches one of its own modes
+        # better than the strings' own motion matches one of the bed's (module docstring)
+        frame_says = nodes is not None and frame_mac > np.nan_to_num(membrane_mac[k])
         if (
             (odd_fraction <= 0.5 and _in_phase_membrane(phi, pairs, on_strings))
             or (unclear_ratio and frame_recoils)
@@ -769,48 +845,118 @@ def classify_modes(
         ):
             names.append(membrane[k] or f"string-bed membrane ({model.frequency[k]:.1f} Hz)")
             kinds.append("string-bed")
-        elif unclear_ratio and not bed_follows:
+            continue
+        if unclear_ratio and not bed_follows and not frame_says:
             unclear = True
             names.append(f"mode {k + 1} ({model.frequency[k]:.1f} Hz)")
             kinds.append("unknown")
-        elif odd_fraction > 0.5:
-            counts["twisting"] += 1
-            nodes = twisting_nodes[k]
+            reasons[k] = _unknown_reason(
+                float(strings / frame),
+                ratio,
+                correlation,
+                (bed_lines[k], membrane_mac[k]),
+                (nodes, kind, frame_mac),
+            )
+            continue
+        if unclear_ratio and not bed_follows:
+            from_band.append(k)
+        counts[kind] += 1
+        if kind == "twisting":
             names.append(f"{counts['twisting'] + 1 if nodes is None else nodes}-node twisting")
-            kinds.append("twisting")
+        # after a mode the shape could not name, the bending order is no longer known
+        elif nodes is not None:
+            names.append(f"{nodes}-node bending")
+        elif unclear:
+            names.append(f"bending mode ({model.frequency[k]:.1f} Hz)")
         else:
-            counts["bending"] += 1
-            nodes = bending_nodes[k]
-            # after a mode the shape could not name, the bending order is no longer known
-            if nodes is not None:
-                names.append(f"{nodes}-node bending")
-            elif unclear:
-                names.append(f"bending mode ({model.frequency[k]:.1f} Hz)")
-            else:
-                names.append(f"{counts['bending'] + 1}-node bending")
-            kinds.append("bending")
-    return _unique(names), tuple(kinds)
+            names.append(f"{counts['bending'] + 1}-node bending")
+        kinds.append(kind)
+    _one_mode_a_frame_name(names, kinds, reasons, from_band, square_ratio, membrane, model)
+    return _unique(names), tuple(kinds), tuple(reasons)
+
+
+def _unknown_reason(
+    square_ratio: float,
+    own_ratio: float,
+    correlation: float,
+    bed: tuple[str, float],
+    frame: tuple[int | None, str, float],
+) -> str:
+    """Why a mode in the unclear band (strings 4-40 times the frame) stays ``unknown``."""
+    head = f"its strings move {square_ratio:.0f} times its frame in mean square"
+    if not np.isfinite(own_ratio):
+        return head + " and the hoop's points cannot fix the frame's motion under the bed"
+    nodes, kind, frame_mac = frame
+    said = (
+        f"its frame matches the {nodes}-node {kind} ({frame_mac:.2f})"
+        if nodes is not None
+        else (
+            f"its frame matches none of the frame's own {kind} modes"
+            + ("" if np.isnan(frame_mac) else f" (best MAC {frame_mac:.2f})")
+        )
+    )
+    return (
+        f"{head}, their own motion {own_ratio:.0f} times the carried at correlation "
+        f"{correlation:+.2f} (neither a bed following its frame, in phase and under "
+        f"{BED_OWN_RATIO:.0f} times, nor a frame recoiling, over {BED_OWN_RATIO:.0f} times at "
+        f"{-RECOIL_CORRELATION:+.1f} or below), their own motion matches {bed[0]} (MAC "
+        f"{np.nan_to_num(bed[1]):.2f}) at least as well as {said}: a veering pair the shapes "
+        "at the points cannot part"
+    )
+
+
+def _one_mode_a_frame_name(
+    names: list[str],
+    kinds: list[str],
+    reasons: list[str],
+    from_band: list[int],
+    square_ratio: NDArray[np.float64],
+    membrane: list[str | None],
+    model: ModalModel,
+) -> None:
+    """Of modes given one frame name where one of them was named in the unclear band by its
+    frame's shape, the one moving its strings least against its frame (mean square) keeps it:
+    the two members of a veering pair share the frame's and the bed's shapes, and the one
+    whose strings move less holds more of its energy in the frame.  The others (of the band)
+    take the bed's name their strings' own motion matches, or stay ``unknown``."""
+    for name in {names[k] for k in from_band}:
+        sharing = [k for k, n in enumerate(names) if n == name]
+        if len(sharing) < 2:
+            continue
+        kept = min(sharing, key=lambda k: square_ratio[k])
+        for k in sharing:
+            if k == kept or k not in from_band:
+                continue
+            bed = membrane[k]
+            if bed is not None:
+                names[k], kinds[k] = bed, "string-bed"
+                continue
+            names[k], kinds[k] = f"mode {k + 1} ({model.frequency[k]:.1f} Hz)", "unknown"
+            reasons[k] = (
+                f"its frame matches the {name} as the mode at {model.frequency[kept]:.1f} Hz "
+                "does, which moves its strings less, and its strings match none of the bed's "
+                "own modes"
+            )
 
 
 def _membrane_names(
     model: ModalModel, head: HeadEllipse, reference: ReferenceShapes
-) -> list[str | None]:
+) -> tuple[list[str | None], NDArray[np.float64]]:
     """Each mode's name from the bed's own mode its strings' own motion matches
     (:func:`membrane_names`; the shape at the string points as it is where the hoop's points
     cannot fix the frame's motion under the bed)."""
     fitted = _carried_under_bed(model, head)
     if fitted is None:
         if model.n_dimensions != 2:
-            return [None] * model.n_modes
+            return [None] * model.n_modes, np.full(model.n_modes, np.nan)
         on_strings = head.normalised_radius(model.locations) < ON_STRINGS
         if not on_strings.any():
-            return [None] * model.n_modes
+            return [None] * model.n_modes, np.full(model.n_modes, np.nan)
         own = model.mode_shapes[on_strings]
     else:
         on_strings, carried = fitted
         own = model.mode_shapes[on_strings] - carried
-    names, _ = membrane_names(own, model.locations[on_strings], head, reference.bed_stiffness_ratio)
-    return names
+    return membrane_names(own, model.locations[on_strings], head, reference.bed_stiffness_ratio)
 
 
 def _in_phase_membrane(

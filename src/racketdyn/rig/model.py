@@ -1005,7 +1005,10 @@ def _name_modes(
     bed shape (a veering pair: the trial racket's 917.7 and 993.0 Hz share the (1, 0)
     membrane and the 4-node bending, their strain energy 51 and 55 % in the strings) the one
     with more of its strain energy in the strings is the membrane, the other the frame's
-    mode it veers with."""
+    mode it veers with.  Likewise of two frame modes of one node count (the trial racket's
+    1484.7 and 1512.1 Hz, the 6-node twisting and the (1, 1) membrane mixed, 51 and 50 % of
+    their strain energy in the twist) the one with more of it in the frame keeps the count and
+    the other is the membrane its strings match, where no other mode has that name."""
     dominant = np.argmax(shares, axis=0)
     membrane = shapes.membrane_names()
     for name in {m for m, d in zip(membrane, dominant, strict=True) if d == 2 and m}:
@@ -1014,6 +1017,18 @@ def _name_modes(
         for k in sharing:
             if k != kept:
                 dominant[k] = int(np.argmax(shares[:2, k]))
+    counted = {
+        k: (int(d), shapes.bending_nodes(k) if d == 0 else shapes.twisting_nodes(k))
+        for k, d in enumerate(dominant)
+        if d in (0, 1)
+    }
+    for count in set(counted.values()):
+        sharing = [k for k, c in counted.items() if c == count]
+        kept = max(sharing, key=lambda k: shares[count[0], k] / shares[:, k].sum())
+        for k in sharing:
+            taken = {membrane[j] for j, d in enumerate(dominant) if d == 2}
+            if k != kept and membrane[k] is not None and membrane[k] not in taken:
+                dominant[k] = 2
     counts = 0
     names, kinds = [], []
     for k, d in enumerate(dominant):

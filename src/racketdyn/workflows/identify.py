@@ -36,8 +36,8 @@ from racketdyn.modal.poles import SelectionRules, require_rules
 from racketdyn.modal.polyreference import DEFAULT_MAX_ORDER
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.plausibility import check_speeds
-from racketdyn.racket import Racket
-from racketdyn.racket_modal.identify import name_after, name_if_racket
+from racketdyn.racket import HeadEllipse, Racket
+from racketdyn.racket_modal.identify import name_after, name_if_racket, pair_racket_modes
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME, axis_nodes
 from racketdyn.workflows._figure_io import store
 from racketdyn.workflows.figure_data import (
@@ -240,7 +240,7 @@ def identify_file(
     if reference_model is not None and naming.startswith("modes numbered"):
         naming += "; `names_from` unused: names are given only among a racket's modes"
     elif reference_model is not None:
-        renamed = name_after(found.model, reference_model)
+        renamed = name_after(found.model, reference_model, racket.head)
         changed = sum(a != b for a, b in zip(renamed.names, found.model.names, strict=True))
         naming += (
             f"; {changed} named after their MAC pairs {pairs_in}"
@@ -427,7 +427,9 @@ class ModeComparison:
     rows : list of dict
         One per pair: ``mode`` (the free mode's name), ``frequency_free_hz``,
         ``frequency_hand_hz``, ``frequency_shift_percent``, ``damping_free``, ``damping_hand``,
-        ``damping_ratio_hand_over_free``, ``mac``.
+        ``damping_ratio_hand_over_free``, ``mac``, ``note`` (empty); and one per mode of
+        either model left without a pair, its partner's columns NaN and ``note`` saying so
+        (:data:`UNPAIRED_NOTE`); in order of frequency.
     nodes_free, nodes_hand : ndarray
         Nodes of the first mode along the long axis, m from the butt.
     """
@@ -437,7 +439,9 @@ class ModeComparison:
     nodes_hand: NDArray[np.float64]
 
 
-def name_after_pairs(free: ModalModel, hand: ModalModel) -> ModalModel:
+def name_after_pairs(
+    free: ModalModel, hand: ModalModel, head: HeadEllipse | None = None
+) -> ModalModel:
     """The hand-held model with each mode named after its MAC pair among the free modes
     (:func:`racketdyn.racket_modal.identify.name_after`, which ``identify --names-from`` uses
     too).
@@ -446,17 +450,31 @@ def name_after_pairs(free: ModalModel, hand: ModalModel) -> ModalModel:
     ----------
     free, hand : ModalModel
         The freely supported and the hand-held models (names and kinds from their shapes).
+    head : HeadEllipse, optional
+        The string bed (frame modes pair on the frame's points).
 
     Returns
     -------
     ModalModel
         ``hand`` with new names (kinds, frequencies and shapes unchanged).
     """
-    return name_after(hand, free)
+    return name_after(hand, free, head)
+
+
+UNPAIRED_NOTE = (
+    "no {other} mode of its kind with a MAC of {minimum} or more: not in the {other} data, or "
+    "its shape changed"
+)
+"""``comparison.csv``'s ``note`` of a mode left without a pair (``{other}``: the other
+support)."""
 
 
 def compare_modes(free: Identification, hand: Identification, racket: Racket) -> ModeComparison:
     """Pair the free and hand-held modes by MAC and find the first mode's nodes on the axis.
+
+    The pairs are :func:`racketdyn.racket_modal.identify.pair_racket_modes`' (a mode pairs
+    only with a mode of its own kind where both kinds are known, a frame mode on the frame's
+    points); every mode left without a pair is a row too.
 
     Parameters
     ----------
@@ -465,40 +483,76 @@ def compare_modes(free: Identification, hand: Identification, racket: Racket) ->
     racket : Racket
         The racket (its length bounds the axis searched for nodes).
     """
-    pairing = pair_modes(free.model, hand.model)
+    pairing = pair_racket_modes(free.model, hand.model, racket.head, MINIMUM_PAIR_MAC)
+    nan = math.nan
     rows: list[dict[str, Any]] = []
     for a, b, value in zip(pairing.first, pairing.second, pairing.mac, strict=True):
         fa, fb = free.model.frequency[a], hand.model.frequency[b]
         za, zb = free.model.damping_ratio[a], hand.model.damping_ratio[b]
-        rows.append(
-            {
-                "mode": free.model.names[a],
-                "frequency_free_hz": fa,
-                "frequency_hand_hz": fb,
-                "frequency_shift_percent": 100 * (fb / fa - 1),
-                "damping_free": za,
-                "damping_hand": zb,
-                "damping_ratio_hand_over_free": zb / za,
-                "mac": value,
-            }
-        )
+        rows.append(_comparison_row(free.model.names[a], (fa, fb), (za, zb), value, ""))
+    for model, paired, other in (
+        (free.model, pairing.first, "hand-held"),
+        (hand.model, pairing.second, "free"),
+    ):
+        note = UNPAIRED_NOTE.format(other=other, minimum=MINIMUM_PAIR_MAC)
+        for k in sorted(set(range(model.n_modes)) - set(paired)):
+            f, z = float(model.frequency[k]), float(model.damping_ratio[k])
+            frequencies, dampings = (
+                ((f, nan), (z, nan)) if model is free.model else ((nan, f), (nan, z))
+            )
+            rows.append(_comparison_row(model.names[k], frequencies, dampings, nan, note))
+    rows.sort(key=lambda r: np.nanmin([r["frequency_free_hz"], r["frequency_hand_hz"]]))
     axis = (0.0, racket.length_m)
     return ModeComparison(rows, axis_nodes(free.model, 0, axis), axis_nodes(hand.model, 0, axis))
 
 
+MINIMUM_PAIR_MAC = 0.6
+"""Least MAC of a free and a hand-held mode for ``compare`` to pair them (–;
+:func:`racketdyn.modal.shapes.pair_modes`' default)."""
+
+
+def _comparison_row(
+    mode: str,
+    frequency_hz: tuple[float, float],
+    damping: tuple[float, float],
+    mac_value: float,
+    note: str,
+) -> dict[str, Any]:
+    """One row of ``comparison.csv``: free and hand-held frequencies and damping ratios (NaN
+    where a mode has no pair)."""
+    (fa, fb), (za, zb) = frequency_hz, damping
+    return {
+        "mode": mode,
+        "frequency_free_hz": fa,
+        "frequency_hand_hz": fb,
+        "frequency_shift_percent": 100 * (fb / fa - 1),
+        "damping_free": za,
+        "damping_hand": zb,
+        "damping_ratio_hand_over_free": zb / za,
+        "mac": mac_value,
+        "note": note,
+    }
+
+
 def write_mode_comparison(comparison: ModeComparison, out: Path) -> Path:
-    """``comparison.csv``: the pairs of :func:`compare_modes`, one row per pair and nothing
-    else (the first mode's nodes go into run.json as ``first_mode_nodes_m``)."""
+    """``comparison.csv``: the pairs of :func:`compare_modes` and the modes left without one,
+    one row each and nothing else (the first mode's nodes go into run.json as
+    ``first_mode_nodes_m``); a number a mode without a pair has not is left empty."""
     table = out / "comparison.csv"
     rows = comparison.rows
     with table.open("w", newline="", encoding="utf-8") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]) if rows else ["mode"])
         writer.writeheader()
         for row in rows:
-            writer.writerow(
-                {k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()}
-            )
+            writer.writerow({k: _cell(v) for k, v in row.items()})
     return table
+
+
+def _cell(value: Any) -> Any:
+    """A value of ``comparison.csv``: floats to 6 significant digits, NaN empty."""
+    if not isinstance(value, float):
+        return value
+    return "" if math.isnan(value) else f"{value:.6g}"
 
 
 def _first_mode_nodes(comparison: ModeComparison) -> dict[str, list[float]]:

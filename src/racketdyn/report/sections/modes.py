@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from racketdyn.plotting.registry import file_of, labelled
@@ -55,6 +56,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 fmt(100 * number(r, "damping_hand"), ".3f"),
                 fmt(number(r, "damping_ratio_hand_over_free"), ".2f"),
                 fmt(number(r, "mac"), ".3f"),
+                r.get("note") or "",
             )
             for r in rows
         ]
@@ -62,8 +64,9 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             (support, ", ".join(f"{v * 1e3:.0f}" for v in values))
             for support, values in run.first_mode_nodes().items()
         ]
-        if rows:
-            first = rows[0]
+        paired = [r for r in rows if math.isfinite(number(r, "mac"))]
+        if paired:
+            first = paired[0]
             glance.append(
                 f"{first.get('mode', 'first mode')}: "
                 f"{fmt(number(first, 'frequency_free_hz'), '.1f')} Hz "
