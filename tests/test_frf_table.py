@@ -79,6 +79,8 @@ def test_the_table_gives_the_lab_frame_frfs_in_si(tmp_path: Path) -> None:
     assert frfs.frf_type == "accelerance"
     assert frfs.metadata["layout"] == "roving hammer"
     np.testing.assert_allclose(frfs.locations[:, 2], Z_M)
+    # the reference row names point 2 with no coordinates: it is that point
+    np.testing.assert_allclose(frfs.reference_location, frfs.locations[1])
     expected = np.array([_accelerance(z, 0.2) for z in Z_M])
     scale = np.abs(expected).max()
     # the sensor pointed -x: the stored values were negated, the table's signs undo it (to the

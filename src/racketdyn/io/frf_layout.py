@@ -49,6 +49,7 @@ from racketdyn.io.uff import (
     _frf_scale,
     _in_global_axes,
     _in_si,
+    _locations,
     _normal_label,
     _read_sets,
     _Record,
@@ -519,19 +520,6 @@ def _with_point_coordinates(
             "them: add data set 15 or give the file of coordinates as `geometry`"
         )
     return coordinates
-
-
-def _locations(
-    coordinates: dict[int, tuple[float, float, float]], nodes: list[int], ref: int
-) -> tuple[NDArray[np.float64], tuple[float, ...]]:
-    """The points' and the reference's locations: (x, y, z), or (x, y) when all share one z."""
-    xyz = np.asarray([coordinates[n] for n in nodes], dtype=float)
-    reference_xyz = np.asarray(coordinates.get(ref, (np.nan,) * 3), dtype=float)
-    z = np.r_[xyz[:, 2], reference_xyz[2]]
-    three_d = bool(np.nanmax(z) > np.nanmin(z)) if np.isfinite(z).any() else False
-    locations = xyz if three_d else xyz[:, :2]
-    reference = tuple(float(v) for v in (reference_xyz if three_d else reference_xyz[:2]))
-    return locations, reference
 
 
 def _values_in_si(

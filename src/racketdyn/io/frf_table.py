@@ -38,8 +38,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.io.uff import UNIT_SCALE
-from racketdyn.measurement.records import ABSURD_FRF, FRF_TYPE_OF_RESPONSE, FrfSet, FrfType
+from racketdyn.io.uff import UNIT_SCALE, _locations, _normal_label
+from racketdyn.measurement.records import (
+    ABSURD_FRF,
+    FRF_TYPE_OF_RESPONSE,
+    FrfSet,
+    FrfType,
+    same_lines,
+)
 
 __all__ = ["COLUMNS", "is_frf_table", "read_frf_table", "read_text_frf"]
 
@@ -76,7 +82,7 @@ def is_frf_table(path: Path) -> bool:
 
 def _unit(path: Path, label: str, quantities: tuple[str, ...]) -> tuple[str, float]:
     """The quantity and SI factor of a units label such as ``m/s²`` or ``g``."""
-    key = label.strip().lower().replace(" ", "").replace("²", "^2").replace("s2", "s^2")
+    key = _normal_label(label) or ""
     for quantity in quantities:
         if key in UNIT_SCALE[quantity]:
             return quantity, UNIT_SCALE[quantity][key]
@@ -303,14 +309,11 @@ def read_frf_table(path: Path | str, reference: int | None = None) -> FrfSet:
                 f"{table}: {row.file} holds {frf.response} per force, {points[0].file} "
                 f"{first.response}; one FRF type a test"
             )
-        if frf.frequency.shape != first.frequency.shape or not np.allclose(
-            frf.frequency, first.frequency, rtol=1e-9, atol=0.0
-        ):
+        if not same_lines(frf.frequency, first.frequency):
             raise InputError(f"{table}: {row.file}'s lines are not {points[0].file}'s")
-    xyz = np.asarray([r.xyz for r in points])
-    reference_xyz = np.asarray(fixed.xyz)
-    z = np.r_[xyz[:, 2], reference_xyz[2]]
-    three_d = bool(np.nanmax(z) > np.nanmin(z))
+    # the reference at a point's node is that point (its row's coordinates may be empty)
+    coordinates = {fixed.node: fixed.xyz, **{r.node: r.xyz for r in points}}
+    locations, reference_location = _locations(coordinates, [r.node for r in points], fixed.node)
     return FrfSet(
         frequency=first.frequency,
         values=np.asarray(
@@ -318,11 +321,9 @@ def read_frf_table(path: Path | str, reference: int | None = None) -> FrfSet:
         ),
         frf_type=cast(FrfType, FRF_TYPE_OF_RESPONSE[first.response]),
         nodes=tuple(r.node for r in points),
-        locations=xyz if three_d else xyz[:, :2],
+        locations=locations,
         reference_node=fixed.node,
-        reference_location=tuple(
-            float(v) for v in (reference_xyz if three_d else reference_xyz[:2])
-        ),
+        reference_location=reference_location,
         source=str(table),
         metadata={
             "layout": "roving hammer",

@@ -493,6 +493,19 @@ def _in_global_axes(
     return out
 
 
+def _locations(
+    coordinates: dict[int, tuple[float, float, float]], nodes: list[int], ref: int
+) -> tuple[NDArray[np.float64], tuple[float, ...]]:
+    """The points' and the reference's locations: (x, y, z), or (x, y) when all share one z."""
+    xyz = np.asarray([coordinates[n] for n in nodes], dtype=float)
+    reference_xyz = np.asarray(coordinates.get(ref, (np.nan,) * 3), dtype=float)
+    z = np.r_[xyz[:, 2], reference_xyz[2]]
+    three_d = bool(np.nanmax(z) > np.nanmin(z)) if np.isfinite(z).any() else False
+    locations = xyz if three_d else xyz[:, :2]
+    reference = tuple(float(v) for v in (reference_xyz if three_d else reference_xyz[:2]))
+    return locations, reference
+
+
 def _normal_label(label: Any) -> str | None:
     """A units label in lower case without spaces, or None where the record gives none."""
     text = str(label or "").strip().lower().replace(" ", "")

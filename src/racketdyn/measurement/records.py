@@ -37,6 +37,8 @@ __all__ = [
     "HammerRecords",
     "ResponseType",
     "SummedFrf",
+    "check_fit_together",
+    "same_lines",
 ]
 
 ANALYSER_BANDWIDTH_FACTOR = 2.56
@@ -549,6 +551,41 @@ class FrfSet(_PointsAndReference):
         )
 
 
+def same_lines(a: NDArray[np.float64], b: NDArray[np.float64]) -> bool:
+    """Whether two frequency axes are the same lines (to 1e-9 relative)."""
+    return a.shape == b.shape and bool(np.allclose(a, b, rtol=1e-9, atol=0.0))
+
+
+def check_fit_together(first: FrfSet, other: FrfSet, what: str, against: str) -> None:
+    """InputError unless ``other`` has ``first``'s frequency lines, FRF type and exponential
+    window: FRFs that one fit takes together (their poles are one set only then).
+
+    Parameters
+    ----------
+    first, other : FrfSet
+        The sets.
+    what, against : str
+        How the message names ``other`` and ``first``.
+    """
+    if not same_lines(other.frequency, first.frequency):
+        raise InputError(
+            f"{what} ({other.source or 'no source'}: {other.frequency.size} lines, "
+            f"{other.frequency[0]:g}–{other.frequency[-1]:g} Hz) is on a different frequency "
+            f"axis from {against} ({first.frequency.size} lines, {first.frequency[0]:g}–"
+            f"{first.frequency[-1]:g} Hz); resample them onto one axis"
+        )
+    if other.frf_type != first.frf_type:
+        raise InputError(
+            f"{what} is {other.frf_type}, {against} {first.frf_type}; convert with "
+            "FrfSet.as_type first"
+        )
+    if other.exponential_window_s != first.exponential_window_s:
+        raise InputError(
+            f"{what} has exponential window τ = {other.exponential_window_s} s, {against} "
+            f"τ = {first.exponential_window_s} s; their poles differ, fit them apart"
+        )
+
+
 @dataclass(frozen=True, eq=False)
 class FrfReferences:
     """FRFs of the same points against several references (a poly-reference test).
@@ -588,23 +625,7 @@ class FrfReferences:
                     f"{what} is on other points than the set against {first.reference_node}; "
                     "keep the points they share (FrfSet.at_points)"
                 )
-            if other.frequency.shape != first.frequency.shape or not np.allclose(
-                other.frequency, first.frequency, rtol=1e-9, atol=0.0
-            ):
-                raise InputError(
-                    f"{what} is on other frequency lines than the set against "
-                    f"{first.reference_node}; resample them onto one axis"
-                )
-            if other.frf_type != first.frf_type:
-                raise InputError(
-                    f"{what} is {other.frf_type}, not {first.frf_type}; convert with "
-                    "FrfSet.as_type first"
-                )
-            if other.exponential_window_s != first.exponential_window_s:
-                raise InputError(
-                    f"{what} has another exponential window than the set against "
-                    f"{first.reference_node}; their poles differ, fit them apart"
-                )
+            check_fit_together(first, other, what, f"the set against {first.reference_node}")
         object.__setattr__(self, "sets", sets)
 
     @property

@@ -89,7 +89,7 @@ from numpy.typing import NDArray
 from scipy.cluster.hierarchy import fcluster, linkage
 
 from racketdyn.errors import InputError, require_whole
-from racketdyn.measurement.records import FrfSet
+from racketdyn.measurement.records import FrfSet, check_fit_together
 from racketdyn.modal.mac import mac
 from racketdyn.numerics import one_blas_thread
 
@@ -507,24 +507,9 @@ def stabilisation(
     unscale = np.where(scale > 0, scale, 1.0)
     if weighting == "rms":
         residues = residues / unscale[:, None]
-    frequency_flat = np.abs(pole_flat) / (2 * np.pi)
-    damping_flat = -pole_flat.real / np.abs(pole_flat)
-    stability = _classify(order_flat, orders, frequency_flat, damping_flat, residues, *tolerances)
     return Stabilisation(
-        band_hz=(domain.low_hz, domain.high_hz),
-        orders=orders,
-        order=order_flat,
-        pole=pole_flat,
-        frequency=frequency_flat,
-        damping_ratio=damping_flat,
-        residues=residues,
-        stability=stability,
-        frequency_tolerance=float(frequency_tolerance),
-        damping_tolerance=float(damping_tolerance),
-        min_mac=float(min_mac),
+        **diagram_fields(domain, orders, order_flat, pole_flat, residues, tolerances),
         noise_rms=np.sqrt(equations.noise_variance) / unscale,
-        line_spacing_hz=domain.line_spacing_hz,
-        time_step_s=domain.time_step,
         frf_type=data.frf_type,
         exponential_window_s=data.exponential_window_s,
         nodes=data.nodes,
@@ -536,6 +521,37 @@ def stabilisation(
             "evenly_spaced": domain.even,
         },
     )
+
+
+def diagram_fields(
+    domain: _ZDomain,
+    orders: NDArray[np.int_],
+    order: NDArray[np.int_],
+    pole: NDArray[np.complex128],
+    residues: NDArray[np.complex128],
+    tolerances: tuple[float, float, float],
+) -> dict[str, Any]:
+    """The fields of a :class:`Stabilisation` that its poles and settings give (frequency,
+    damping ratio, each pole's stability among its neighbours), whatever fitted the poles:
+    the scalar LSCF here and the poly-reference one (:mod:`racketdyn.modal.polyreference`)."""
+    magnitude = np.abs(pole)
+    frequency = magnitude / (2 * np.pi)
+    damping = -pole.real / np.where(magnitude > 0, magnitude, 1.0)  # a pole at 0 Hz: ζ 0
+    return {
+        "band_hz": (domain.low_hz, domain.high_hz),
+        "orders": orders,
+        "order": order.astype(int),
+        "pole": pole,
+        "frequency": frequency,
+        "damping_ratio": damping,
+        "residues": residues,
+        "stability": _classify(order, orders, frequency, damping, residues, *tolerances),
+        "frequency_tolerance": float(tolerances[0]),
+        "damping_tolerance": float(tolerances[1]),
+        "min_mac": float(tolerances[2]),
+        "line_spacing_hz": domain.line_spacing_hz,
+        "time_step_s": domain.time_step,
+    }
 
 
 def _check_stabilisation_options(
@@ -1538,26 +1554,7 @@ def _combine(frfs: FrfSet | Sequence[FrfSet]) -> FrfSet:
         raise InputError("stabilisation needs an FrfSet or a sequence of FrfSets")
     first = sets[0]
     for k, other in enumerate(sets[1:], start=2):
-        same_axis = other.frequency.shape == first.frequency.shape and np.allclose(
-            other.frequency, first.frequency, rtol=1e-9, atol=0.0
-        )
-        if not same_axis:
-            raise InputError(
-                f"FRF set {k} ({other.source or 'no source'}: {other.frequency.size} lines, "
-                f"{other.frequency[0]:g}–{other.frequency[-1]:g} Hz) is on a different frequency "
-                f"axis from set 1 ({first.frequency.size} lines, {first.frequency[0]:g}–"
-                f"{first.frequency[-1]:g} Hz); resample them onto one axis"
-            )
-        if other.frf_type != first.frf_type:
-            raise InputError(
-                f"FRF set {k} is {other.frf_type}, set 1 is {first.frf_type}; convert with "
-                "FrfSet.as_type first"
-            )
-        if other.exponential_window_s != first.exponential_window_s:
-            raise InputError(
-                f"FRF set {k} has exponential window τ = {other.exponential_window_s} s, set 1 "
-                f"τ = {first.exponential_window_s} s; their poles differ, fit them apart"
-            )
+        check_fit_together(first, other, f"FRF set {k}", "set 1")
     if len(sets) == 1:
         return first
     return FrfSet(

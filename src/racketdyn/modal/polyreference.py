@@ -60,9 +60,9 @@ from racketdyn.modal.poles import (
     Stabilisation,
     _band,
     _check_stabilisation_options,
-    _classify,
     _uneven_r,
     _ZDomain,
+    diagram_fields,
     noise_bound,
     second_difference_noise,
 )
@@ -151,25 +151,10 @@ def poly_stabilisation(
     )
     pole_flat = np.concatenate([p for p, _ in fits]).astype(complex)
     residues = np.concatenate([r for _, r in fits], axis=1)
-    frequency = np.abs(pole_flat) / (2 * np.pi)
-    damping = -pole_flat.real / np.where(np.abs(pole_flat) > 0, np.abs(pole_flat), 1.0)
-    stability = _classify(order_flat, orders, frequency, damping, residues, *tolerances)
     noise = np.sqrt(equations.noise_variance).T.reshape(-1)  # (n_r · n_o,), reference-major
     return Stabilisation(
-        band_hz=(domain.low_hz, domain.high_hz),
-        orders=orders,
-        order=order_flat.astype(int),
-        pole=pole_flat,
-        frequency=frequency,
-        damping_ratio=damping,
-        residues=residues,
-        stability=stability,
-        frequency_tolerance=float(frequency_tolerance),
-        damping_tolerance=float(damping_tolerance),
-        min_mac=float(min_mac),
+        **diagram_fields(domain, orders, order_flat, pole_flat, residues, tolerances),
         noise_rms=noise,
-        line_spacing_hz=domain.line_spacing_hz,
-        time_step_s=domain.time_step,
         frf_type=first.frf_type,
         exponential_window_s=first.exponential_window_s,
         nodes=tuple(n for _ in range(n_refs) for n in references.nodes),

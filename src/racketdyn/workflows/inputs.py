@@ -26,9 +26,9 @@ from racketdyn.io.uff import holds_mode_shapes, mode_shapes_words, model_json_be
 from racketdyn.io.uncertainty_file import racket_spreads
 from racketdyn.modal import ModalModel
 from racketdyn.plausibility import check, check_e_bg
-from racketdyn.racket import Racket
+from racketdyn.racket import SUPPORT_NAMES, Racket
 from racketdyn.racket_modal import modal_model_for
-from racketdyn.workflows.run import sha256
+from racketdyn.workflows.run import RUN_JSON, sha256
 
 if TYPE_CHECKING:
     from racketdyn.workflows.setup import Setup
@@ -92,7 +92,7 @@ def with_racket_of_run(
     """
     if setup.racket is not None:
         return setup, {}
-    record = Path(source).parent / "run.json"
+    record = Path(source).parent / RUN_JSON
     try:
         data = json.loads(record.read_text(encoding="utf-8"))
     except (OSError, ValueError):
@@ -378,7 +378,7 @@ def supports_named(supports: str | Sequence[str], allowed: Sequence[str]) -> lis
     one text of comma-separated names (``"free,hand"``, as the options objects take it), each
     of ``allowed``, each once; else InputError naming `supports`."""
     words = require_words("`supports`", supports)
-    every = ("free", "pinned", "hand")
+    every = tuple(SUPPORT_NAMES)  # every support some step takes
     for word in words:
         if word not in every:  # a misspelt name: say every support, and which this step takes
             others = [s for s in every if s not in allowed]
