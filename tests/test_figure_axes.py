@@ -141,6 +141,7 @@ NO_AXES = {
     "swing_map": ONE_PANEL + ": plot_swing_map",
     "swing_along_axis": ONE_PANEL + ": plot_swing_along_axis",
     "validation_parity": ONE_PANEL + ": plot_parity",
+    "calibration_parity": ONE_PANEL + ": plot_parity",
     "validation_along_axis": "one panel drawn in the figure function itself",
     "validation_residuals": "one panel drawn in the figure function itself",
 }

@@ -139,6 +139,22 @@ def _validate(out: Path, rig: Path) -> Any:
     return run_validate(out, measured, _setup("validate"))
 
 
+def _calibrate(out: Path, rig: Path) -> Any:
+    from racketdyn.workflows import run_calibrate
+
+    measured = out.parent / "measured.csv"  # made up, with standard deviations, one row off
+    measured.write_text(
+        "x_m,y_m,ball_speed_mps,racket_speed_mps,support,rebound_ratio,rebound_ratio_sd\n"
+        "0.50,0,20,0,free,0.39,0.005\n0.55,0,20,0,free,0.33,0.005\n"
+        "0.45,0,20,0,free,0.36,0.005\n0.50,0.05,20,0,free,0.30,0.005\n",
+        encoding="utf-8",
+    )
+    return run_calibrate(
+        out, measured, ["e_bg"], _setup("calibrate"), holdout=[2], method="approx",
+        leave_one_out=False,
+    )  # fmt: skip
+
+
 def _ball(out: Path, rig: Path) -> Any:
     from racketdyn.workflows import run_ball
 
@@ -167,6 +183,7 @@ RUNS: dict[str, Callable[[Path, Path], Any]] = {
     "oblique": _oblique,
     "compound": _compound,
     "validate": _validate,
+    "calibrate": _calibrate,
     "ball": _ball,
     "sweep": _sweep,
 }

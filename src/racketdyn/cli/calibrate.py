@@ -63,6 +63,7 @@ def add(commands: Any) -> None:
         help="skip leave-one-out cross-validation (one refit per row) (default: run it)",
     )
     opt.add_uncertainty(p, sampled=False)
+    opt.add_no_figures(p, "calibration.json, calibration_rows.csv")
     opt.add_out(p)
     p.set_defaults(handler=run)
 
@@ -72,6 +73,8 @@ def run(args: argparse.Namespace, console: Console) -> int:
     from rich.table import Table
 
     from racketdyn.errors import InputError
+    from racketdyn.impact.measured import OUTLIER_LIMIT, outlier_labels
+    from racketdyn.plotting.steps import calibrate_figures
     from racketdyn.workflows.calibrate import run_calibrate
 
     holdout = []
@@ -85,7 +88,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
             args.out,
             args.measured,
             opt.parse_list("--fit", args.fit),
-            opt.setup_from_args(args, hand_supports(args), progress=progress),
+            opt.setup_from_args(
+                args, hand_supports(args), figures=calibrate_figures, progress=progress
+            ),
             holdout=holdout,
             method=args.model,
             leave_one_out=not args.no_loo,
@@ -131,6 +136,14 @@ def run(args: argparse.Namespace, console: Console) -> int:
         console,
         f"RMS of the rebound ratio: {', '.join(parts)}; {opt.plural(cal.n_flagged, 'row')} flagged",
     )
+    named = outlier_labels(result.measured, result.standardised) if result.measured else ()
+    if named:
+        opt.say(
+            console,
+            f"{opt.plural(len(named), 'row')} beyond ±{OUTLIER_LIMIT:g} standard deviations "
+            f"after: {', '.join(named)} (z_after in calibration_rows.csv)",
+            "yellow",
+        )
     if poor:
         opt.say(
             console,

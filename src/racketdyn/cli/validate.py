@@ -64,6 +64,7 @@ def run(args: argparse.Namespace, console: Console) -> int:
     """Run the command."""
     from rich.table import Table
 
+    from racketdyn.impact.measured import OUTLIER_LIMIT
     from racketdyn.plotting.steps import validate_figures
     from racketdyn.workflows.validate import run_validate
 
@@ -113,6 +114,16 @@ def run(args: argparse.Namespace, console: Console) -> int:
             + (f"; outside: {outside}" if summary.outside else ""),
             "yellow" if summary.outside else None,
         )
+    for method in result.standardised:
+        named = result.outliers(method)
+        if named:
+            shown = ", ".join(named[:10]) + (" …" if len(named) > 10 else "")
+            opt.say(
+                console,
+                f"{method}: {opt.plural(len(named), 'row')} beyond ±{OUTLIER_LIMIT:g} standard "
+                f"deviations: {shown} (z_{method} in validation.csv)",
+                "yellow",
+            )
     for method, status in result.status.items():
         opt.print_status(console, status, "validation.csv", method)
     opt.print_written(console, result.written)

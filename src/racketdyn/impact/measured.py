@@ -32,9 +32,14 @@ from racketdyn.racket_modal import modal_model_for
 __all__ = [
     "METHODS",
     "NO_HAND_STATUS",
+    "OUTLIER_LIMIT",
     "ModelInputs",
     "first_bending_index",
+    "outlier_labels",
+    "outlier_rank",
+    "outliers",
     "predict_rows",
+    "standardised_residuals",
 ]
 
 Method = Literal["approx", "transient"]
@@ -42,6 +47,14 @@ METHODS: tuple[Method, ...] = ("approx", "transient")
 
 NO_HAND_STATUS = "hand support: the approximate method has no hand"
 """Status of a ``hand`` row under the approximate method (its held racket is ``pinned``)."""
+
+OUTLIER_LIMIT = 3.0
+"""A row is an outlier when its standardised residual (:func:`standardised_residuals`) is
+beyond ± this: three standard deviations, the usual rule (a normal residual passes it once in
+370 rows)."""
+
+ROBUST_SD_PER_MAD = 1.4826
+"""Standard deviation of a normal sample per its median absolute deviation."""
 
 MAX_DAMPING_RATIO = 0.5
 """Largest modal damping ratio a scaled damping reaches (the modal model takes < 1)."""
@@ -238,3 +251,69 @@ def predict_rows(
         status[rows] = np.asarray(result.status)[:, 0, 0]
     ratio[status != STATUS_OK] = np.nan
     return ratio, status.astype(str)
+
+
+def standardised_residuals(
+    measured: MeasuredRebound, predicted: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Each row's residual (predicted − measured rebound ratio) in standard deviations.
+
+    With the rows' measured standard deviations, z = (e_pred − e_meas) / sd: how far the model
+    misses in the measurement's own scatter, so a model biased by more than that scatter puts
+    every row beyond :data:`OUTLIER_LIMIT` (it is the model that misses, and the figure says
+    so).  Without them (or at a row whose sd is not positive), z = (r − median r) / (1.4826 ×
+    MAD), the median absolute deviation of the residuals about their median: a row off the
+    others' pattern.
+
+    Parameters
+    ----------
+    measured : MeasuredRebound
+        The rows (their ``rebound_ratio`` and ``rebound_ratio_sd``).
+    predicted : ndarray (n,)
+        The model's rebound ratio at each row (NaN where it gives none).
+
+    Returns
+    -------
+    ndarray (n,)
+        z per row; NaN where the prediction is NaN, or where no spread is known (fewer than
+        three finite residuals, or all equal, without the rows' sd).
+    """
+    residual = np.asarray(predicted, dtype=float) - measured.rebound_ratio
+    z = np.full(residual.shape, np.nan)
+    finite = np.isfinite(residual)
+    sd = measured.rebound_ratio_sd
+    has_sd = np.zeros(residual.shape, bool) if sd is None else np.isfinite(sd) & (sd > 0)
+    mine = finite & has_sd
+    if sd is not None:
+        z[mine] = residual[mine] / sd[mine]
+    rest = finite & ~has_sd
+    if np.count_nonzero(finite) >= 3 and np.any(rest):
+        centre = float(np.median(residual[finite]))
+        spread = ROBUST_SD_PER_MAD * float(np.median(np.abs(residual[finite] - centre)))
+        if spread > 0:
+            z[rest] = (residual[rest] - centre) / spread
+    return z
+
+
+def outliers(z: NDArray[np.float64]) -> NDArray[np.bool_]:
+    """Rows whose standardised residual is beyond ± :data:`OUTLIER_LIMIT` (NaN: not one)."""
+    with np.errstate(invalid="ignore"):
+        return np.asarray(np.abs(z) > OUTLIER_LIMIT)
+
+
+def outlier_rank(z: NDArray[np.float64]) -> NDArray[np.int64]:
+    """Each row's rank among the outliers: 1 the worst (largest |z|), 2 the next, …; 0 for a row
+    that is not one."""
+    rows = np.flatnonzero(outliers(z))
+    rows = rows[np.argsort(-np.abs(z[rows]), kind="stable")]
+    rank = np.zeros(np.shape(z), dtype=np.int64)
+    rank[rows] = np.arange(1, rows.size + 1)
+    return rank
+
+
+def outlier_labels(measured: MeasuredRebound, z: NDArray[np.float64]) -> tuple[str, ...]:
+    """Labels of the rows beyond ± :data:`OUTLIER_LIMIT`, the worst first
+    (:meth:`~racketdyn.io.measured.MeasuredRebound.row_label`)."""
+    rank = outlier_rank(z)
+    rows = np.flatnonzero(rank)
+    return tuple(measured.row_label(int(i)) for i in rows[np.argsort(rank[rows])])

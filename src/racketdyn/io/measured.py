@@ -128,6 +128,12 @@ class MeasuredRebound:
     def __len__(self) -> int:
         return int(self.rebound_ratio.size)
 
+    def row_label(self, i: int) -> str:
+        """Row ``i``'s (0-based) name: its point's label, with its row number (1 = the first
+        data row) when the point is measured more than once: ``C (row 7)``."""
+        label = self.labels[i]
+        return label if self.labels.count(label) == 1 else f"{label} (row {i + 1})"
+
     def __repr__(self) -> str:
         supports = ",".join(sorted(set(self.support)))
         sd = "with" if self.rebound_ratio_sd is not None else "without"

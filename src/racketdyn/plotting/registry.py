@@ -466,10 +466,12 @@ FIGURES: dict[str, FigureEntry] = {
             "validation_parity",
             "validate",
             "predicted against measured rebound ratio, approximate method and transient "
-            "simulation, with the 1:1 line; flagged rows are counted in the legend and not drawn",
+            "simulation, with the 1:1 line and the measured standard deviations as error bars; "
+            "rows beyond ±3 standard deviations (standardised residual, validation.csv's z "
+            "columns) are named; flagged rows are counted in the legend and not drawn",
             section="validation",
             draw=f"{_VALIDATE}:figure_validation_parity",
-            reads=("measured", "predicted"),
+            reads=("measured", "predicted", "outlier_rank"),
         ),
         FigureEntry(
             "validation_along_axis",
@@ -488,6 +490,19 @@ FIGURES: dict[str, FigureEntry] = {
             section="validation",
             draw=f"{_VALIDATE}:figure_validation_residuals",
             reads=("measured", "predicted", "inputs.effective_racket"),
+        ),
+        # --- calibrate --------------------------------------------------------------------
+        FigureEntry(
+            "calibration_parity",
+            "calibrate",
+            "the rebound ratio before and after calibration against the measured, with the 1:1 "
+            "line and the measured standard deviations as error bars; the rows held out of the "
+            "fit ringed; rows beyond ±3 standard deviations after (calibration_rows.csv's "
+            "z_after) are named; flagged rows are counted in the legend and not drawn",
+            not_in_report="the report's calibration section gives the fitted values and the "
+            "RMS; validate --calibration draws the calibrated model against the rows",
+            draw=f"{_VALIDATE}:figure_calibration_parity",
+            reads=("measured", "parity_predicted", "parity_outliers", "held_out"),
         ),
         # --- ball, sweep: not in the report -----------------------------------------------
         FigureEntry(

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, TypeVar
 if TYPE_CHECKING:
     from racketdyn.sweep.summary import SummaryCurves
     from racketdyn.workflows.ball import BallResult
+    from racketdyn.workflows.calibrate import CalibrateResult
     from racketdyn.workflows.compound import CompoundResult
     from racketdyn.workflows.contact import ContactResult
     from racketdyn.workflows.frf import FrfResult
@@ -28,6 +29,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "ball_figures",
+    "calibrate_figures",
     "compare_ball_figures",
     "compare_figures",
     "compound_figures",
@@ -151,6 +153,13 @@ def compound_figures(result: CompoundResult, out: Path) -> list[Path]:
     from racketdyn.plotting.compound import write_compound_figures
 
     return write_compound_figures(result, out)
+
+
+def calibrate_figures(result: CalibrateResult, out: Path) -> list[Path]:
+    """Before and after calibration against measured (1:1 line, error bars, outliers named)."""
+    from racketdyn.plotting.validate import write_calibrate_figures
+
+    return write_calibrate_figures(result, out)
 
 
 def validate_figures(result: ValidateResult, out: Path) -> list[Path]:

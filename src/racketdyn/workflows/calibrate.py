@@ -3,7 +3,9 @@
 Writes ``calibration.json`` (:meth:`racketdyn.impact.calibration.Calibration.as_dict`: values,
 standard errors, identifiability, correlation, fit / held-out / leave-one-out RMS),
 ``calibration_rows.csv`` (each measured row: fitted or held out, measured, predicted before and
-after, residual, leave-one-out residual), the calibrated inputs as files the other commands
+after, residual, leave-one-out residual, the residual in standard deviations), the
+figure's data (``figures.nc``: the rows before and after, for ``calibration_parity.png``), the
+calibrated inputs as files the other commands
 take — ``racket.toml`` (roll inertia, string bed scaled; with ``modal.json`` when the frame
 damping was fitted) — and ``run.json``.  ``validate --calibration calibration.json`` applies
 every identifiable value, the ball's and the hand's included.
@@ -30,11 +32,18 @@ from racketdyn.impact.calibration import (
     calibrate,
     priors_from_spreads,
 )
-from racketdyn.impact.measured import METHODS, Method, ModelInputs
+from racketdyn.impact.measured import (
+    METHODS,
+    Method,
+    ModelInputs,
+    outlier_rank,
+    standardised_residuals,
+)
 from racketdyn.impact.uncertainty import Uncertainty
 from racketdyn.io.measured import MeasuredRebound
 from racketdyn.io.racket_file import load_racket, write_racket_toml
 from racketdyn.racket import Racket
+from racketdyn.workflows.figure_data import defer_figure_data
 from racketdyn.workflows.run import (
     StepResult,
     report,
@@ -58,15 +67,18 @@ CALIBRATION_ROW_COLUMNS = (
     "support",
     "role",
     "measured",
+    "measured_sd",
     "predicted_before",
     "predicted_after",
     "residual_after",
     "residual_leave_one_out",
+    "z_after",
     "status",
 )
 """Columns of ``calibration_rows.csv``: ``role`` is ``fitted``, ``held out`` or ``flagged``
 (the model gives no number there at the start); rebound ratios, residual = predicted −
-measured."""
+measured; ``z_after`` the residual after in standard deviations
+(:func:`racketdyn.impact.measured.standardised_residuals`: beyond ± 3 an outlier)."""
 
 
 @dataclass
@@ -85,6 +97,9 @@ class CalibrateResult(StepResult):
         Predicted rebound ratio per row before and after.
     holdout : list of int
         Held-out rows, 0-based.
+    standardised : ndarray
+        Each row's residual after, in standard deviations
+        (:func:`racketdyn.impact.measured.standardised_residuals`).
     """
 
     calibration: Calibration | None = None
@@ -94,6 +109,32 @@ class CalibrateResult(StepResult):
     before: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     after: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     holdout: list[int] = field(default_factory=list)
+    standardised: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+
+    def roles(self) -> NDArray[np.str_]:
+        """Each row's role: ``fitted``, ``held out`` or ``flagged`` (no number at the start)."""
+        role = np.where(np.isfinite(self.before), "fitted", "flagged").astype(object)
+        role[self.holdout] = "held out"
+        return np.asarray(role, dtype=str)
+
+    @property
+    def parity_predicted(self) -> dict[str, NDArray[np.float64]]:
+        """What the parity figure draws: the rebound ratio ``before`` and ``after`` at every row
+        (NaN where flagged)."""
+        return {"before": self.before, "after": self.after}
+
+    @property
+    def parity_outliers(self) -> dict[str, NDArray[np.int64]]:
+        """Each row's rank among the outliers ``after`` (1 the worst; 0 not one): what the
+        figure names."""
+        return {"after": outlier_rank(self.standardised)}
+
+    @property
+    def held_out(self) -> NDArray[np.bool_]:
+        """Which rows were held out of the fit."""
+        mask = np.zeros(self.after.shape, bool)
+        mask[self.holdout] = True
+        return mask
 
 
 @run_step
@@ -121,8 +162,8 @@ def run_calibrate(
         Parameters to fit (:data:`racketdyn.impact.calibration.PARAMETERS`).
     setup : Setup
         Of the :class:`~racketdyn.workflows.setup.Setup`, calibrate uses the racket and its
-        modes, the ball, the hand, the string bed and ``allow_implausible`` (no figures); and
-        the run (command, figures, progress).
+        modes, the ball, the hand, the string bed and ``allow_implausible``; and the run
+        (command, figures: ``calibration_parity.png``, progress).
     holdout : sequence of int
         Rows held out of the fit, numbered from 1 (the first data row).
     method : {"approx", "transient"}
@@ -182,6 +223,16 @@ def run_calibrate(
         before=before,
         after=after,
         holdout=held0,
+        standardised=standardised_residuals(rows, after),
+    )
+    defer_figure_data(
+        result,
+        {
+            "measured": rows,
+            "parity_predicted": result.parity_predicted,
+            "parity_outliers": result.parity_outliers,
+            "held_out": result.held_out,
+        },
     )
     record = calibration.as_dict()
     files = _calibrated_files(calibrated, calibration, out_dir)
@@ -290,13 +341,11 @@ def _rows(
     assert rows is not None
     assert calibration is not None
     loo = calibration.loo if calibration.loo.size else np.full(len(rows), np.nan)
+    sd = rows.rebound_ratio_sd
+    roles = result.roles()
     table = []
     for i in range(len(rows)):
-        role = (
-            "held out"
-            if i in result.holdout
-            else ("flagged" if not math.isfinite(result.before[i]) else "fitted")
-        )
+        role = roles[i]
         table.append(
             {
                 "row": i + 1,
@@ -308,10 +357,12 @@ def _rows(
                 "support": rows.support[i],
                 "role": role,
                 "measured": rows.rebound_ratio[i],
+                "measured_sd": None if sd is None else sd[i],
                 "predicted_before": result.before[i],
                 "predicted_after": result.after[i],
                 "residual_after": result.after[i] - rows.rebound_ratio[i],
                 "residual_leave_one_out": loo[i],
+                "z_after": result.standardised[i],
                 "status": status_after[i] if status_after[i] != "ok" else status[i],
             }
         )

@@ -21,7 +21,14 @@ from numpy.typing import NDArray
 from racketdyn._grammar import noun
 from racketdyn.errors import InputError
 from racketdyn.impact.calibration import PARAMETERS, apply
-from racketdyn.impact.measured import METHODS, ModelInputs, predict_rows
+from racketdyn.impact.measured import (
+    METHODS,
+    ModelInputs,
+    outlier_labels,
+    outlier_rank,
+    predict_rows,
+    standardised_residuals,
+)
 from racketdyn.impact.transient import ENGINES
 from racketdyn.impact.uncertainty import RowBands, Uncertainty, propagate_rows
 from racketdyn.io import racket_to_dict
@@ -65,10 +72,14 @@ VALIDATION_COLUMNS = (
     "residual_transient",
     "status_approx",
     "status_transient",
+    "z_approx",
+    "z_transient",
 )
 """Columns of ``validation.csv``: rebound ratios (measured, predicted, residual = predicted −
 measured); a row a model flags holds NaN in its predicted and residual columns, its status
-says why.  ``row`` is the row's number in the measured file (1 = first data row)."""
+says why; ``z_*`` the residual in standard deviations
+(:func:`racketdyn.impact.measured.standardised_residuals`: beyond ± 3 an outlier).
+``row`` is the row's number in the measured file (1 = first data row)."""
 
 BAND_COLUMNS = (
     "p05_approx",
@@ -170,6 +181,10 @@ class ValidateResult(StepResult):
         The calibrated values applied (empty without ``calibration``).
     bands : dict of str to RowBands
         With an uncertainty: per model, the 90 % band at every row.
+    standardised : dict of str to ndarray
+        Per model: each row's residual in standard deviations
+        (:func:`racketdyn.impact.measured.standardised_residuals`); the outliers are beyond
+        ± :data:`racketdyn.impact.measured.OUTLIER_LIMIT`.
     """
 
     measured: MeasuredRebound | None = None
@@ -179,6 +194,18 @@ class ValidateResult(StepResult):
     summary: dict[str, MethodSummary] = field(default_factory=dict)
     calibration: dict[str, float] = field(default_factory=dict)
     bands: dict[str, RowBands] = field(default_factory=dict)
+    standardised: dict[str, NDArray[np.float64]] = field(default_factory=dict)
+
+    @property
+    def outlier_rank(self) -> dict[str, NDArray[np.int64]]:
+        """Per model, each row's rank among its outliers (1 the worst; 0 not one): what the
+        parity figure names."""
+        return {method: outlier_rank(z) for method, z in self.standardised.items()}
+
+    def outliers(self, method: str) -> tuple[str, ...]:
+        """The labels of one model's outlying rows (|z| beyond the limit), worst first."""
+        assert self.measured is not None
+        return outlier_labels(self.measured, self.standardised[method])
 
 
 def load_calibration(path: str | os.PathLike[str]) -> dict[str, float]:
@@ -322,6 +349,7 @@ def run_validate(
         predicted, status = predict_rows(inputs, rows, method)
         result.predicted[method], result.status[method] = predicted, status
         result.summary[method] = summarise(method, rows, predicted)
+        result.standardised[method] = standardised_residuals(rows, predicted)
         if uncertainty is not None:
             report(
                 setup.progress, f"{method}: {uncertainty.samples} samples of the uncertain inputs"
@@ -336,6 +364,7 @@ def run_validate(
         {
             "measured": rows,
             "predicted": result.predicted,
+            "outlier_rank": result.outlier_rank,
             "inputs": {"effective_racket": inputs.effective_racket},
         },
     )
@@ -389,6 +418,8 @@ def _rows(result: ValidateResult) -> list[dict[str, Any]]:
                 "residual_transient": transient - rows.rebound_ratio[i],
                 "status_approx": result.status["approx"][i],
                 "status_transient": result.status["transient"][i],
+                "z_approx": result.standardised["approx"][i],
+                "z_transient": result.standardised["transient"][i],
                 **_band_cells(result, i),
             }
         )
