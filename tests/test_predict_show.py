@@ -192,3 +192,39 @@ def test_two_cases_at_one_ball_speed_stay_apart_in_the_report(tmp_path: Path) ->
     for (support, racket_speed), value in centre.items():
         words = "racket at rest" if racket_speed == 0 else f"racket {racket_speed:g}"
         assert re.search(rf"{support} 20, {words} \S+ \S+, \S+ {value:.3f}", sweet), sweet
+
+
+def test_the_models_curves_against_speed_take_each_racket_speed_whole() -> None:
+    """The approximate-against-transient curves against speed interpolated the racket speed
+    between the run's (ball, racket) pairs, as Figs 11–12 did: one set per racket speed now."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from racketdyn.ball import Ball
+    from racketdyn.io.racket_file import default_racket
+    from racketdyn.plotting.figures import figure_transient_comparison_speed
+    from racketdyn.workflows.figure_data import TransientCurves, transient_curves
+
+    curves = transient_curves(
+        default_racket(),
+        Ball(),
+        speeds=SERVE["speeds"],
+        racket_speeds=SERVE["racket_speed"],
+        supports=("free",),
+        engine="compiled",
+    )
+    for part in (curves.approximate, curves.transient):
+        assert sorted(set(part.racket_speed.tolist())) == [28.0, 42.0]
+        at_28 = part.ball_speed[part.racket_speed == 28.0]
+        at_42 = part.ball_speed[part.racket_speed == 42.0]
+        assert at_28.tolist() == at_42.tolist()
+        assert at_28.min() <= 3.0
+        assert at_28.max() >= 25.0
+    assert curves.run_racket_speeds.tolist() == [28.0, 42.0]
+    back = TransientCurves.from_xarray(curves.to_xarray())
+    assert back.run_racket_speeds.tolist() == [28.0, 42.0]
+    np.testing.assert_array_equal(back.transient.racket_speed, curves.transient.racket_speed)
+    figure = figure_transient_comparison_speed(back)
+    titles = [ax.get_title() for ax in figure.axes if ax.get_title()]
+    assert any("racket 28 m/s" in t for t in titles), titles
+    assert any("racket 42 m/s" in t for t in titles), titles
