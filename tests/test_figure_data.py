@@ -244,14 +244,20 @@ def test_each_predict_figure_redrawn_from_figures_nc_alone(
                 lines[SUPPORT_STYLE[support]["label"]],
                 np.where(axis.status[:, 0, p] == "ok", axis.rebound_ratio[:, 0, p], np.nan),
             )
-        # both models against speed: the transient model's rebound ratio at the centre
-        transient = curves.transient
-        lines = _by_label(redrawn["transient_comparison_speed.png"], 0)
-        label = next(key for key in lines if key.startswith("centre") and "transient" in key)
-        np.testing.assert_array_equal(
-            lines[label],
-            np.where(transient.status[0, :, 0] == "ok", transient.rebound_ratio[0, :, 0], np.nan),
-        )
+        # both models against speed: the transient model's rebound ratio at the centre, two
+        # rows of panels (rebound ratio, contact time) per racket speed, each over every speed
+        assert curves.transient.racket_speeds == [0.0, 2.0, 4.0]
+        n_supports = len(curves.transient.supports)
+        for k, racket_speed in enumerate(curves.transient.racket_speeds):
+            transient = curves.transient.at_racket_speed(racket_speed)
+            lines = _by_label(redrawn["transient_comparison_speed.png"], 2 * k * n_supports)
+            label = next(key for key in lines if key.startswith("centre") and "transient" in key)
+            np.testing.assert_array_equal(
+                lines[label],
+                np.where(
+                    transient.status[0, :, 0] == "ok", transient.rebound_ratio[0, :, 0], np.nan
+                ),
+            )
         # the face comparison: approximate - transient at the run's points, first support
         face_ax = redrawn["transient_comparison_face.png"].axes[0]
         points = face_ax.collections[-1]  # the dots, coloured by the difference
