@@ -253,14 +253,32 @@ def identify_file(
     layout = (frfs if isinstance(frfs, FrfSet) else frfs.sets[0]).metadata.get("layout")
     metadata = {**found.model.metadata, "naming": naming, "layout": layout}
     if isinstance(frfs, FrfReferences):  # the data sets no reference used
-        unused = set.intersection(*(set(s.metadata.get("unused_data_sets", [])) for s in frfs.sets))
         found = replace(
             found,
-            frfs=replace(
-                found.frfs, metadata={**found.frfs.metadata, "unused_data_sets": sorted(unused)}
-            ),
+            frfs=replace(found.frfs, metadata={**found.frfs.metadata, **_unused_by_all(frfs)}),
         )
     return replace(found, model=replace(found.model, metadata=metadata))
+
+
+def _unused_by_all(frfs: FrfReferences) -> dict[str, Any]:
+    """The data sets no reference used, by why (:func:`racketdyn.io.read_frfs`' metadata keys
+    ``unused_data_sets``, ``not_against_reference``, ``other_direction``,
+    ``reciprocal_second``): a data set against another of the references is used."""
+    metas = [s.metadata for s in frfs.sets]
+    unused = set.intersection(*(set(m.get("unused_data_sets", [])) for m in metas))
+    out: dict[str, Any] = {"unused_data_sets": sorted(unused)}
+    turned = [m["other_direction"] for m in metas if m.get("other_direction")]
+    if turned:
+        out["other_direction"] = {
+            **turned[0],
+            "nodes": sorted({n for t in turned for n in t["nodes"]}),
+            "data_sets": sorted({d for t in turned for d in t["data_sets"]} & unused),
+        }
+    second = {d for m in metas for d in m.get("reciprocal_second", [])} & unused
+    out["reciprocal_second"] = sorted(second)
+    apart = set(out.get("other_direction", {}).get("data_sets", [])) | second
+    out["not_against_reference"] = sorted(unused - apart)
+    return out
 
 
 HAND_COUNTS = (
