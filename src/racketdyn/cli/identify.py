@@ -386,6 +386,8 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
         )
         if nodes:
             opt.say(console, f"first mode's nodes on the axis: {nodes}")
+    if result.not_a_racket:
+        opt.say(console, f"compare: {result.not_a_racket}")
     opt.print_written(console, result.written)
     return 0
 
