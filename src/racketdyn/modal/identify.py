@@ -717,10 +717,13 @@ def _close_pairs(
     fitted to the FRFs' own lines around it (:func:`racketdyn.modal.refine.fit_poles`, over
     :data:`PAIR_WIDTHS` of the broader pole's half-power width either side, refitted while that
     widens), started from the mode and the neighbour least like it in damping.  The two are
-    taken, in place of the mode and its kept neighbours, when their shapes differ (MAC under
-    ``cluster_mac``: one mode split in two has one shape) and each holds a peak of the data
-    over the whole band (:func:`fit_gain` :data:`CLEAR_PEAK_GAIN` or more, fitted with every
-    other mode kept); else the selection stays as it is.
+    taken, in place of the mode and its kept neighbours, when they stay one peak, their shapes
+    are unlike (MAC under :data:`PAIR_MAC`: one mode split in two has one shape) and each holds
+    a peak of the data over the whole band (:func:`fit_gain` :data:`CLEAR_PEAK_GAIN` or more,
+    fitted with every other mode kept); else the selection stays as it is, and a weaker mode
+    of the two between :data:`FIT_GAIN_MIN` and :data:`CLEAR_PEAK_GAIN` is an ``unsettled``
+    row naming the ``band_hz`` that keeps it (:func:`_weak_of_pair`; ``narrower`` False: not
+    tried, as in that band's own fit).
 
     Returns
     -------
@@ -904,8 +907,8 @@ def _with_pair(
     """The selection of ``rest`` with a fitted pair added in place of mode ``k`` (and the
     neighbours ``rest`` leaves out): the first with mode ``k``'s orders, spreads and peak, the
     second with the orders and peak of the neighbour it started from (``second``) and no
-    spreads (NaN: no cluster of its own); the local fit's constants as their residues, in
-    order of frequency."""
+    spreads (NaN: no cluster of its own), pinned if mode ``k`` was; the local fit's constants
+    as their residues, in order of frequency."""
     frequency, zeta, constants = pair
     omega = 2 * np.pi * frequency
     pole = -zeta * omega + 1j * omega * np.sqrt(1 - zeta**2)
@@ -923,7 +926,7 @@ def _with_pair(
         damping_spread=two(selected.damping_spread, np.nan),
         peak_to_noise=two(selected.peak_to_noise, second[1]),
         residues=np.concatenate([selected.residues[:, rest], constants], axis=1),
-        pinned=np.concatenate([selected.pinned[rest], [False, False]]),
+        pinned=np.concatenate([selected.pinned[rest], [selected.pinned[k], False]]),
     )
     return merged.select(np.argsort(merged.frequency, kind="stable"))
 
