@@ -717,13 +717,15 @@ def _close_pairs(
     fitted to the FRFs' own lines around it (:func:`racketdyn.modal.refine.fit_poles`, over
     :data:`PAIR_WIDTHS` of the broader pole's half-power width either side, refitted while that
     widens), started from the mode and the neighbour least like it in damping.  The two are
-    taken, in place of the mode and its kept neighbours, when they stay one peak, their shapes
-    are unlike (MAC under :data:`PAIR_MAC`: one mode split in two has one shape) and each holds
-    a peak of the data over the whole band (:func:`fit_gain` :data:`CLEAR_PEAK_GAIN` or more,
-    fitted with every other mode kept); else the selection stays as it is, and a weaker mode
-    of the two between :data:`FIT_GAIN_MIN` and :data:`CLEAR_PEAK_GAIN` is an ``unsettled``
-    row naming the ``band_hz`` that keeps it (:func:`_weak_of_pair`; ``narrower`` False: not
-    tried, as in that band's own fit).
+    taken, in place of the mode and every kept mode within one peak of it or of them, when they
+    stay one peak, their shapes are unlike (MAC under :data:`PAIR_MAC`: one mode split in two
+    has one shape) and each holds a peak of the data over the whole band (:func:`fit_gain`,
+    fitted with every other mode kept, :data:`FIT_GAIN_MIN` or more for one within one peak of
+    a mode the selection kept, :data:`CLEAR_PEAK_GAIN` for one it left out); else the selection
+    stays as it is, and a weaker mode of the two between :data:`FIT_GAIN_MIN` and
+    :data:`CLEAR_PEAK_GAIN` that no kept mode stands for is an ``unsettled`` row naming the
+    ``band_hz`` that keeps it (:func:`_weak_of_pair`; ``narrower`` False: not tried, as in
+    that band's own fit).
 
     Returns
     -------
@@ -761,14 +763,35 @@ def _close_pairs(
             continue
         rest = np.ones(selected.n_modes, dtype=bool)
         rest[[k, *kept]] = False
+        # a mode kept within one peak of the pair found is one of the pair: replaced too
+        reach = selected.damping_ratio[:, None] * selected.frequency[:, None] + zeta * frequency
+        found_again = [
+            int(j)
+            for j in np.flatnonzero(rest)
+            if np.any(np.abs(selected.frequency[j] - frequency) < reach[j])
+        ]
+        kept += found_again
+        rest[kept] = False
         omega = 2 * np.pi * frequency
         poles = -zeta * omega + 1j * omega * np.sqrt(1 - zeta**2)
         fit = fit_modal_constants(frfs, np.concatenate([selected.pole[rest], poles]), band)
         gains = fit_gain(frfs, fit)[-2:]
-        if not np.all(gains >= CLEAR_PEAK_GAIN):
+        # a mode the selection kept needs a peak of the data, one it left out a clear peak: the
+        # first stands for mode k, the second for a kept mode if it started from one or the
+        # selection kept it apart from mode k (found again by the fit)
+        kept_second = bool(found_again) or any(
+            np.isclose(other[0], selected.frequency[j]) for j in kept
+        )
+        needed = np.array([FIT_GAIN_MIN, FIT_GAIN_MIN if kept_second else CLEAR_PEAK_GAIN])
+        if not np.all(gains >= needed):
             log.debug("close pair at %.2f Hz: the local fit's gains %s", fk, gains)
             weak = int(np.argmin(gains))
-            if gains[1 - weak] >= CLEAR_PEAK_GAIN and gains[weak] >= FIT_GAIN_MIN and narrower:
+            if (
+                gains[1 - weak] >= needed[1 - weak]
+                and gains[weak] >= FIT_GAIN_MIN
+                and narrower
+                and needed[weak] == CLEAR_PEAK_GAIN
+            ):
                 row = _weak_of_pair(frfs, band, choices, (fk, agree), pair, gains)
                 selected = replace(selected, dropped_modes=(*selected.dropped_modes, row))
             continue
@@ -776,12 +799,13 @@ def _close_pairs(
             f"{selected.frequency[j]:.2f} Hz ζ {100 * selected.damping_ratio[j]:.3g} %"
             for j in sorted([k, *kept])
         )
+        low, high = np.argsort(frequency)
         lines.append(
-            f"{frequency[0]:.2f} Hz (ζ {100 * zeta[0]:.3g} %) and {frequency[1]:.2f} Hz "
-            f"(ζ {100 * zeta[1]:.3g} %): two modes under one peak (shapes' MAC "
-            f"{agree:.2f}, the fit near each {gains[0]:.3g} and {gains[1]:.3g} × better with "
-            f"it) that the fit over {band[0]:g}–{band[1]:g} Hz did not part, fitted on their "
-            f"own lines (the selection had {was})"
+            f"{frequency[low]:.2f} Hz (ζ {100 * zeta[low]:.3g} %) and {frequency[high]:.2f} Hz "
+            f"(ζ {100 * zeta[high]:.3g} %): two modes under one peak (shapes' MAC "
+            f"{agree:.2f}, the fit near each {gains[low]:.3g} and {gains[high]:.3g} × better "
+            f"with it) fitted on their own lines; the fit over {band[0]:g}–{band[1]:g} Hz "
+            f"had {was}"
         )
         selected = _with_pair(selected, rest, k, pair, other[2:])
         tried.extend(float(f) for f in frequency)
