@@ -139,10 +139,26 @@ PROCESS_TESTS = {
 @pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups into the test ids
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     for item in items:
+        if _takes_costly_fixture(item):
+            item.add_marker(pytest.mark.slow)
         if item.path.name in PROCESS_TESTS:
             item.add_marker(pytest.mark.xdist_group("processes"))
         elif _has_module_fixture(item):
             item.add_marker(pytest.mark.xdist_group(item.path.name))
+
+
+def _takes_costly_fixture(item: pytest.Item) -> bool:
+    """Whether the test takes a fixture marked :func:`costly.costly` (then it is ``slow``)."""
+    from costly import COSTLY
+
+    info = getattr(item, "_fixtureinfo", None)
+    if info is None:
+        return False
+    return any(
+        getattr(definition.func, COSTLY, False)
+        for definitions in info.name2fixturedefs.values()
+        for definition in definitions
+    )
 
 
 def _has_module_fixture(item: pytest.Item) -> bool:

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 
+from costly import costly
 from racketdyn.cli import main
 from racketdyn.errors import InputError
 from racketdyn.io import load_racket
@@ -33,6 +34,7 @@ def hammer_test(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.fixture(scope="module")
+@costly
 def frfs(hammer_test: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The FRFs of :func:`hammer_test`'s records."""
     from racketdyn.workflows import run_frf
@@ -185,6 +187,7 @@ def test_an_absurd_option_is_one_line(
     [("nan", ["--force-range", "finite"]), ("inf", ["--force-range", "finite"]),
      ("1e9", ["--force-range", "refused even"]), ("2e6", ["--force-range", "N"])],
 )  # fmt: skip
+@pytest.mark.slow
 def test_an_absurd_hammer_range_is_one_line(
     tmp_path: Path,
     capsys: pytest.CaptureFixture[str],

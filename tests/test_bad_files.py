@@ -79,6 +79,7 @@ def _kilonewton_hammer_file(tmp_path: Path, sample: str) -> Path:
 
 
 # --- item 1: numpy's and pyuff's warnings stay off the console ------------------------------
+@pytest.mark.slow
 def test_an_overflowing_sample_leaves_no_warning_on_the_console(tmp_path: Path) -> None:
     """A force of 1e307 kN overflowed when taken to N: numpy's RuntimeWarning (with the source
     line) reached the console."""
@@ -391,6 +392,7 @@ def test_a_damaged_58_header_names_the_field(
         assert word in message, message
 
 
+@pytest.mark.slow
 def test_a_data_set_not_used_is_said_on_the_console(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -534,6 +536,7 @@ def test_a_point_in_the_middle_with_fewer_averages_is_not_a_cut(tmp_path: Path) 
     assert "fewer_averages" not in read.metadata
 
 
+@pytest.mark.slow
 def test_frf_says_the_last_point_has_fewer_averages(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -76,6 +76,7 @@ def test_a_band_to_1000_hz_is_the_file_whose_header_reads_999_997(tmp_path: Path
         identify(frfs, (65.0, 1005.0))
 
 
+@pytest.mark.slow
 def test_the_command_line_takes_band_65_1000(tmp_path: Path) -> None:
     from racketdyn.cli import main
 
@@ -120,6 +121,7 @@ def test_a_band_set_below_a_clear_mode_names_the_wider_band(tmp_path: Path) -> N
     assert np.min(np.abs(wider.model.frequency - FIFTH_HZ)) < 5e-4 * FIFTH_HZ
 
 
+@pytest.mark.slow
 def test_the_edge_row_reaches_dropped_modes_csv_and_the_console(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -56,6 +56,7 @@ def test_no_held_out_rows_is_not_nan(tmp_path: Path, capsys: pytest.CaptureFixtu
     assert "RMS of the rebound ratio: fit" in out
 
 
+@pytest.mark.slow
 def test_progress_lines_name_the_fit_and_the_refits(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -97,6 +98,7 @@ def test_a_good_fit_is_not_called_poor(tmp_path: Path, capsys: pytest.CaptureFix
     assert record["poor_fit"] is None
 
 
+@pytest.mark.slow
 def test_the_table_fits_80_columns_with_whole_names(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:

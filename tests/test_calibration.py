@@ -110,6 +110,7 @@ def test_exact_data_give_back_the_truth(
     assert fitted.ball.e_bg == pytest.approx(0.80, rel=2e-4)
 
 
+@pytest.mark.slow
 def test_synthetic_truth_within_two_standard_errors(
     start: ModelInputs, truth: tuple[ModelInputs, dict[str, float]]
 ) -> None:
@@ -173,6 +174,7 @@ def test_bad_fits_are_one_line(start: ModelInputs) -> None:
         calibrate(table, measured, ["e_bg"])
 
 
+@pytest.mark.slow
 def test_validate_and_calibrate_commands(tmp_path: Path, start: ModelInputs) -> None:
     """calibrate writes calibration.json and a racket.toml predict reads; validate with the
     calibration fits the data it was fitted on better than without."""

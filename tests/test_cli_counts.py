@@ -39,6 +39,7 @@ def test_plural() -> None:
     assert opt.plural(1, "FRF") == "1 FRF"
 
 
+@pytest.mark.slow
 def test_frf_says_one_average_rejected(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     from racketdyn.io import write_hammer_csv
 

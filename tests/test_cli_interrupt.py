@@ -21,6 +21,7 @@ needs_proc = pytest.mark.skipif(not hasattr(os, "killpg"), reason="needs POSIX s
 
 
 @needs_proc
+@pytest.mark.slow
 def test_ctrl_c_in_a_step_is_one_line_and_leaves_the_folder_as_it_was(tmp_path: Path) -> None:
     out = tmp_path / "rig"
     out.mkdir()

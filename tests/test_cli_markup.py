@@ -78,6 +78,7 @@ def test_an_input_error_quoting_brackets_is_one_whole_line(
     ids=lambda argv: argv[0],
 )
 @pytest.mark.parametrize("folder", ["out[draft]", "o[/b]"])
+@pytest.mark.slow
 def test_an_output_folder_with_brackets_is_printed_whole(
     argv: list[str], folder: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -89,6 +90,7 @@ def test_an_output_folder_with_brackets_is_printed_whole(
     assert f"wrote {out}{'/'}" in printed
 
 
+@pytest.mark.slow
 def test_frf_prints_its_input_and_output_paths_whole(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

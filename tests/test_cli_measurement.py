@@ -74,6 +74,7 @@ def test_bad_tests_file_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixtur
     assert "no such file" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_frf_needs_no_geometry_and_says_why_most_averages_were_rejected(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -123,6 +124,7 @@ def test_a_window_in_milliseconds_is_one_line(
     assert words in err
 
 
+@pytest.mark.slow
 def test_forces_in_volts_are_one_line_naming_the_file(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

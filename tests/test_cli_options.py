@@ -121,6 +121,7 @@ def test_importing_the_cli_loads_no_numerical_library() -> None:
     assert not HEAVY & _loaded_after("import racketdyn.cli; racketdyn.cli.build_parser()")
 
 
+@pytest.mark.slow
 def test_the_approximate_method_and_the_figures_load_no_transient_model() -> None:
     """``predict``'s default run (the approximate method) and its figures need neither the
     transient model nor numba (≈ 0.2 s of the run): they are imported where the model runs."""
@@ -129,6 +130,7 @@ def test_the_approximate_method_and_the_figures_load_no_transient_model() -> Non
     assert not {"numba", "racketdyn.impact.transient", "racketdyn.impact.comparison"} & loaded
 
 
+@pytest.mark.slow
 def test_importing_racketdyn_is_light_and_names_load_on_use() -> None:
     assert not HEAVY & _loaded_after("import racketdyn")
     loaded = _loaded_after("import racketdyn as rd; rd.Ball")
@@ -146,6 +148,7 @@ def test_lazy_names_resolve() -> None:
         rd.nothing  # noqa: B018
 
 
+@pytest.mark.slow
 def test_workflows_never_load_presentation() -> None:
     modules = ", ".join(
         f"racketdyn.workflows.{m}"

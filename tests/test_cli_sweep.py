@@ -30,6 +30,7 @@ def test_sweep_command(tmp_path: Path) -> None:
     assert (out / "run.json").is_file()
 
 
+@pytest.mark.slow
 def test_workers_on_a_small_sweep(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """A pool gives the serial numbers (while a forkserver's pool starts, a design computed
     here, one in the pool); on a sweep this small the command says it does not pay, and where
@@ -128,6 +129,7 @@ def test_notes_keep_their_brackets_and_a_resumed_run_stops_no_engine(
     assert "engine shutdown" not in printed
 
 
+@pytest.mark.slow
 def test_a_changed_spec_in_the_same_folder_leaves_no_figure_of_the_old_one(
     tmp_path: Path,
 ) -> None:
@@ -259,6 +261,7 @@ def test_dask_engines_without_distributed_are_one_line(
         assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.slow
 def test_the_sweep_command_prints_bracketed_paths_whole(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:

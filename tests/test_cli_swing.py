@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
+from costly import costly
 from racketdyn.cli import main
 from racketdyn.impact.result import CSV_COLUMNS
 from racketdyn.impact.swing import (
@@ -55,6 +56,7 @@ def _header(path: Path) -> list[str]:
 
 
 @pytest.fixture(scope="module")
+@costly
 def swing_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The default swing (56.9 N·m over 90°, pinned, approximate model) at 20 m/s, with figures."""
     out = tmp_path_factory.mktemp("run") / "swing"
@@ -63,6 +65,7 @@ def swing_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.fixture(scope="module")
+@costly
 def twist_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("run") / "twist"
     argv = ["twist", "--support", "free,hand", f"--offsets={OFFSETS}", "--out", str(out)]
@@ -71,6 +74,7 @@ def twist_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.fixture(scope="module")
+@costly
 def oblique_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("run") / "oblique"
     assert main(["oblique", "--angles", ANGLES, "--out", str(out)]) == 0
@@ -78,6 +82,7 @@ def oblique_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 # --- swing ---------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_swing_writes_its_files(swing_dir: Path, racket: rd.Racket) -> None:
     header = _header(swing_dir / "swing.csv")
     assert header[: len(CSV_COLUMNS)] == list(CSV_COLUMNS)
@@ -182,6 +187,7 @@ def test_sweet_spots_csv_names_the_four_sweet_spots(swing_dir: Path) -> None:
         assert float(row["racket_speed_mps"]) == pytest.approx(expected, rel=RELATION_REL)
 
 
+@pytest.mark.slow
 def test_swing_prints_the_sweet_spots(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     argv = ["swing", "--grid", "3", "--angular-speed", "10", "--no-figures"]
     assert main([*argv, "--out", str(tmp_path)]) == 0
@@ -194,6 +200,7 @@ def test_swing_prints_the_sweet_spots(tmp_path: Path, capsys: pytest.CaptureFixt
 
 
 # --- twist ---------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_twist_writes_its_files_with_mirror_symmetry(twist_dir: Path) -> None:
     assert _header(twist_dir / "twist.csv") == list(TWIST_COLUMNS)
     rows = _read(twist_dir / "twist.csv")

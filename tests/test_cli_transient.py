@@ -185,6 +185,7 @@ def test_the_approximate_method_holds_at_the_face_centre(both: Path) -> None:
 
 
 @pytest.mark.parametrize("engine", ["reference", "compiled"])
+@pytest.mark.slow
 def test_on_a_rigid_racket_both_models_agree(engine: str, points: Path, tmp_path: Path) -> None:
     """No modes: a two-body impact with COR e_BG, which the approximate method has exactly and
     the transient hysteresis returns by construction; the rebound ratios agree to the

@@ -21,6 +21,7 @@ import math
 import numpy as np
 import pytest
 
+from costly import costly
 from lab_rackets import TRIAL_RACKET_100
 from racketdyn.io import load_racket
 from racketdyn.io.uff import write_frf_uff
@@ -38,6 +39,7 @@ TRUTHS: dict[str, ModalModel] = {}
 
 
 @pytest.fixture(scope="module")
+@costly
 def compared(tmp_path_factory: pytest.TempPathFactory) -> CompareResult:
     """``compare`` of the trial racket's free and hand-held FRFs from the rig, its folder (the
     rig's truths in :data:`TRUTHS`)."""
@@ -69,6 +71,7 @@ def _at(rows: list[dict[str, str]], column: str, frequency_hz: float) -> dict[st
     return found[0]
 
 
+@pytest.mark.slow
 def test_compare_pairs_a_mode_only_with_a_mode_of_its_kind(compared: CompareResult) -> None:
     """The free 5-node bending veers with the bed's (2, 0) membrane (1383 Hz, 38 % of its
     strain energy in the strings); held, the two part (1294.5 Hz, 13 %; the membrane 1411.2

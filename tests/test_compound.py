@@ -15,6 +15,7 @@ import pytest
 import scipy.sparse
 import scipy.sparse.linalg
 
+from costly import costly
 from racketdyn.ball import Ball
 from racketdyn.cli import main
 from racketdyn.contact import (
@@ -181,6 +182,7 @@ def test_four_times_stiffer_frame_moves_the_ball_mode_a_little(racket, spring, b
             assert ratio == pytest.approx(2.0, rel=0.03)
 
 
+@pytest.mark.slow
 def test_the_nets_stiffness_matches_a_finite_difference_net() -> None:
     """The closed form of :func:`membrane_patch_stiffness` (exact for confocal ellipses) against
     a finite-difference solution of ``T_x w_xx + T_y w_yy = 0`` on the head with the patch held
@@ -532,6 +534,7 @@ def test_modal_parts_add_up_to_the_response(racket, spring) -> None:  # type: ig
 
 
 # --- the command ----------------------------------------------------------------------------
+@pytest.mark.slow
 def test_compound_command_writes_its_files(tmp_path: Path) -> None:
     out = tmp_path / "compound"
     assert main(["compound", "--out", str(out)]) == 0
@@ -580,6 +583,7 @@ def test_compound_bad_input_is_one_line(tmp_path: Path, capsys, argv, words) -> 
 
 
 # --- the virtual rig with the ball (racketdyn rig --ball-at) --------------------------------
+@pytest.mark.slow
 def test_rig_ball_adds_one_mode_and_keeps_the_frame_modes() -> None:
     """The rig's ball: one new mode below the 2-node mode with the ball against the strings,
     and the dip's own far above the band (the strings under the ball against their tension:
@@ -613,6 +617,7 @@ def test_rig_ball_adds_one_mode_and_keeps_the_frame_modes() -> None:
 
 
 @pytest.fixture(scope="module")
+@costly
 def rig_frfs(tmp_path_factory):  # type: ignore[no-untyped-def]
     """The rig's free racket alone and with a ball at the centre, through ``frf`` (3 averages,
     exponential window 0.1 s: the ball mode's 4 % damping needs the window to stay stable)."""
@@ -628,6 +633,7 @@ def rig_frfs(tmp_path_factory):  # type: ignore[no-untyped-def]
     return base
 
 
+@pytest.mark.slow
 def test_rig_with_ball_round_trip_identifies_the_ball_mode(rig_frfs: Path) -> None:
     """rig --ball-at → frf → identify --ball-at: the ball mode within 0.5 % of the rig's truth
     (measured 0.04 %: the records are the truth's modes plus noise; 0.5 % is the issue's bound)
@@ -694,6 +700,7 @@ def _family(name: str) -> str:
     return name.split(" (")[0].split()[-1]
 
 
+@pytest.mark.slow
 def test_rigid_share_tells_a_ball_mode_from_the_frame_modes() -> None:
     """A plane a + b x + c y on the frame scores 1, a shape with no plane part 0; the rig's
     modal truth with the ball scores its ball mode above BALL_RIGID_SHARE and every frame
@@ -736,6 +743,7 @@ def test_rigid_share_tells_a_ball_mode_from_the_frame_modes() -> None:
         )
 
 
+@pytest.mark.slow
 def test_compare_the_racket_alone_against_the_racket_with_the_ball(rig_frfs: Path, capsys) -> None:  # type: ignore[no-untyped-def]
     """Figs 9a and 9b: racketdyn compare --ball-at puts the ball's new mode first and pairs every
     frame mode below 600 Hz with the racket alone's by MAC (paper: "the natural frequencies of
@@ -815,6 +823,7 @@ def test_ball_at_bad_input_is_one_line(rig_frfs, tmp_path, capsys, command, word
     assert "\n" not in err
 
 
+@pytest.mark.slow
 def test_rig_with_a_ball_says_how_to_identify_it(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
     assert main(["rig", "--ball-at", "0.505,0", "--support", "free", "--averages", "1",
                  "--out", str(tmp_path / "rig")]) == 0  # fmt: skip
@@ -830,6 +839,7 @@ def test_rig_ball_off_the_strings_is_one_line(tmp_path: Path, capsys) -> None:  
     assert "\n" not in err
 
 
+@pytest.mark.slow
 def test_report_section_states_the_papers_claims_in_words(tmp_path: Path) -> None:
     from racketdyn.report.folder import RunFolder
     from racketdyn.report.page import render_section
@@ -906,6 +916,7 @@ twisting_hz = 385.0
 
 
 @pytest.fixture(scope="module")
+@costly
 def trial_compound(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, str]:
     """``compound`` on the trial's 300 g racket: its folder and what it printed."""
     import contextlib
@@ -920,6 +931,7 @@ def trial_compound(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, str]
     return folder / "compound", " ".join(printed.getvalue().split())
 
 
+@pytest.mark.slow
 def test_another_rackets_ball_mode_is_not_checked_against_the_papers_103_hz(
     trial_compound: tuple[Path, str],
 ) -> None:
@@ -1172,6 +1184,7 @@ allow_implausible = true
 """
 
 
+@pytest.mark.slow
 def test_identify_hints_at_a_ball_on_a_racket_whose_head_is_not_the_built_in_one(
     tmp_path: Path,
 ) -> None:
@@ -1222,6 +1235,7 @@ def test_identify_hints_at_a_ball_on_a_racket_whose_head_is_not_the_built_in_one
     assert _looks_like_a_ball(alone, built_in, racket_given=False) == ""
 
 
+@pytest.mark.slow
 def test_fig_9b_strikes_where_the_ball_mode_shows(tmp_path: Path) -> None:
     """New-user trial (2026-11-26, second session): ``compare --ball-at`` on the trial racket
     drew Fig. 9b from the hammer point nearest the ball (node 32, 55 mm across), where the
@@ -1260,6 +1274,7 @@ def test_fig_9b_strikes_where_the_ball_mode_shows(tmp_path: Path) -> None:
     assert all(share[i] < 0.9 for i in np.flatnonzero(distance < distance[chosen]))
 
 
+@pytest.mark.slow
 def test_compound_says_the_spring_is_the_centres_and_when_the_ball_overhangs_the_bed(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -1299,6 +1314,7 @@ def test_with_the_ball_on_the_node_line_compound_points_at_the_blow(
     assert "strike nearer the ball (--hammer)" in said
 
 
+@pytest.mark.slow
 def test_compound_takes_the_law_at_the_ball_with_string_bed_local(tmp_path: Path) -> None:
     """``compound --string-bed local``: the spring is the string bed's law at the ball's point
     (the trial found the centre's used wherever the ball sat).  At the centre the two are one;
@@ -1338,6 +1354,7 @@ def test_the_band_holds_a_local_springs_own_ball_mode_near_the_frame(racket, bui
         assert band.holds(band.nominal_hz)
 
 
+@pytest.mark.slow
 def test_compound_names_the_balls_place_as_rig_and_identify_do(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -56,6 +56,7 @@ class _Predicted(StepResult):
 
 
 @pytest.mark.parametrize("workers", ["0", "1"])
+@pytest.mark.slow
 def test_an_error_in_a_deferred_file_comes_after_the_figures(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, workers: str
 ) -> None:

@@ -19,6 +19,7 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.records import HammerRecords
@@ -46,6 +47,7 @@ def _with_hum(records: HammerRecords, hz: float, level: float) -> HammerRecords:
     return replace(records, response=tuple(response))
 
 
+@pytest.mark.slow
 def test_a_mains_harmonic_is_named_an_electrical_line(tmp_path: Path) -> None:
     records = records_for(MODES, n_averages=5, n_samples=4096, dt=2e-4, response_noise=1e-4)
     frfs = estimate_frfs(_with_hum(records, 250.0, 0.01)).frfs
@@ -61,6 +63,7 @@ def test_a_mains_harmonic_is_named_an_electrical_line(tmp_path: Path) -> None:
         assert any(row["stage"] == "line" for row in csv.DictReader(handle))
 
 
+@pytest.mark.slow
 def test_without_a_hum_no_line_is_named() -> None:
     records = records_for(MODES, n_averages=5, n_samples=4096, dt=2e-4, response_noise=1e-4)
     frfs = estimate_frfs(records).frfs

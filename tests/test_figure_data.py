@@ -16,6 +16,7 @@ import pytest
 from matplotlib.figure import Figure
 
 import racketdyn as rd
+from costly import costly
 from figure_catch import Drawn, catch_figures, same_3d_drawing, same_drawing
 from racketdyn.plotting import figures as figures_module
 from racketdyn.plotting.primitives import SUPPORT_STYLE
@@ -34,6 +35,7 @@ def caught(monkeypatch: pytest.MonkeyPatch) -> Iterator[Drawn]:
 
 
 @pytest.fixture(scope="module")
+@costly
 def frfs(rig_frf_tree: Path) -> tuple[Path, Path]:
     """FRFs of the virtual rig, free and hand-held (few averages, no faults; the run's shared
     tree)."""
@@ -55,6 +57,7 @@ def _lines(figure: Figure) -> dict[str, np.ndarray]:
     }
 
 
+@pytest.mark.slow
 def test_swing_along_axis_redrawn_from_figures_nc(tmp_path: Path, caught: Drawn) -> None:
     """The swing step's along-axis curves are computed by the step (with the run's ball) and
     drawn the same from its figures.nc."""
@@ -103,6 +106,7 @@ def _run_caught(run: Callable[[], Any]) -> tuple[Any, Drawn]:
 
 
 @pytest.fixture(scope="module")
+@costly
 def predicted(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, Drawn, Path]]:
     """A small ``predict --model both`` run with its figures caught, and its folder."""
     from racketdyn.plotting.steps import predict_figures
@@ -127,6 +131,7 @@ def predicted(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, D
         plt.close(figure)
 
 
+@pytest.mark.slow
 def test_figures_nc_is_listed_and_holds_si_units(predicted: tuple[Any, Drawn, Path]) -> None:
     import json
 
@@ -176,6 +181,7 @@ def test_figure_data_round_trips_through_figures_nc(predicted: tuple[Any, Drawn,
     same(result.transient_histories, TransientHistories.from_xarray(dataset), "histories")
 
 
+@pytest.mark.slow
 def test_each_predict_figure_redrawn_from_figures_nc_alone(
     predicted: tuple[Any, Drawn, Path],
 ) -> None:
@@ -244,14 +250,20 @@ def test_each_predict_figure_redrawn_from_figures_nc_alone(
                 lines[SUPPORT_STYLE[support]["label"]],
                 np.where(axis.status[:, 0, p] == "ok", axis.rebound_ratio[:, 0, p], np.nan),
             )
-        # both models against speed: the transient model's rebound ratio at the centre
-        transient = curves.transient
-        lines = _by_label(redrawn["transient_comparison_speed.png"], 0)
-        label = next(key for key in lines if key.startswith("centre") and "transient" in key)
-        np.testing.assert_array_equal(
-            lines[label],
-            np.where(transient.status[0, :, 0] == "ok", transient.rebound_ratio[0, :, 0], np.nan),
-        )
+        # both models against speed: the transient model's rebound ratio at the centre, two
+        # rows of panels (rebound ratio, contact time) per racket speed, each over every speed
+        assert curves.transient.racket_speeds == [0.0, 2.0, 4.0]
+        n_supports = len(curves.transient.supports)
+        for k, racket_speed in enumerate(curves.transient.racket_speeds):
+            transient = curves.transient.at_racket_speed(racket_speed)
+            lines = _by_label(redrawn["transient_comparison_speed.png"], 2 * k * n_supports)
+            label = next(key for key in lines if key.startswith("centre") and "transient" in key)
+            np.testing.assert_array_equal(
+                lines[label],
+                np.where(
+                    transient.status[0, :, 0] == "ok", transient.rebound_ratio[0, :, 0], np.nan
+                ),
+            )
         # the face comparison: approximate - transient at the run's points, first support
         face_ax = redrawn["transient_comparison_face.png"].axes[0]
         points = face_ax.collections[-1]  # the dots, coloured by the difference
@@ -274,6 +286,7 @@ def test_each_predict_figure_redrawn_from_figures_nc_alone(
 
 # --- identify and compare: Figs 4-6 and the AutoMAC drawn from what the step evaluated ----------
 @pytest.fixture(scope="module")
+@costly
 def compared(
     frfs: tuple[Path, Path], tmp_path_factory: pytest.TempPathFactory
 ) -> Iterator[tuple[Any, Drawn, Path]]:
@@ -297,6 +310,7 @@ SHAPE_FIGURES = ("fig4_mode_shapes", "fig5_node_lines", "fig6_nodes", "automac")
 """The identified shapes' figures (compare writes them once per model)."""
 
 
+@pytest.mark.slow
 def test_compare_fig15_uses_the_runs_ball(compared: tuple[Any, Drawn, Path]) -> None:
     """The compare step's Fig. 15 predicted with a default ``Ball()`` whatever ball the run
     used (issue 23): a heavier ball must change the curves, and they must be that ball's (the
@@ -334,6 +348,7 @@ def test_compare_fig15_uses_the_runs_ball(compared: tuple[Any, Drawn, Path]) -> 
         plt.close(caught.pop("fig15_identified.png"))
 
 
+@pytest.mark.slow
 def test_identified_shapes_redrawn_from_figures_nc_alone(
     compared: tuple[Any, Drawn, Path],
 ) -> None:
@@ -373,6 +388,7 @@ def test_identified_shapes_redrawn_from_figures_nc_alone(
     same("fig6_nodes_free_hand.png", draw("fig6_nodes_free_hand", read_step_data(out)))
 
 
+@pytest.mark.slow
 def test_identify_writes_its_shapes_to_figures_nc(frfs: tuple[Path, Path], tmp_path: Path) -> None:
     """identify lists figures.nc in run.json; the shapes read back equal those it evaluated."""
     import json

@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 import xarray as xr
 
 from figure_catch import default_paper_figures
@@ -55,6 +56,7 @@ def test_figures_nc_has_the_bytes_of_to_netcdf(tmp_path: Path) -> None:
         assert str(back["odd_name"].values[1]) == "hand"
 
 
+@pytest.mark.slow
 def test_writing_figures_nc_imports_no_dask_distributed(tmp_path: Path) -> None:
     code = (
         "import sys, numpy as np, xarray as xr; "
@@ -65,6 +67,7 @@ def test_writing_figures_nc_imports_no_dask_distributed(tmp_path: Path) -> None:
     assert _printed(code, tmp_path) == ["False"]
 
 
+@pytest.mark.slow
 def test_writing_figures_nc_imports_no_dask(tmp_path: Path) -> None:
     """xarray imports ``dask.array`` at its first Variable, and ``dask`` to encode text, only to
     ask whether an array is dask's (≈ 0.5 s of ``predict`` and ``identify``); a step's

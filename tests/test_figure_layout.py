@@ -139,6 +139,7 @@ def test_fig6_node_labels_are_off_the_curves_and_apart(
     _off_the_curves(figure, renderer, shown)
 
 
+@pytest.mark.slow
 def test_fig13_mode_labels_are_off_the_spectra(
     racket: rd.Racket, ball: rd.Ball, model: rd.ModalModel
 ) -> None:
@@ -151,6 +152,7 @@ def test_fig13_mode_labels_are_off_the_spectra(
     _off_the_curves(figure, renderer, {t.get_text(): b for t, b in zip(labels, boxes, strict=True)})
 
 
+@pytest.mark.slow
 def test_fig15_labels_and_legend_are_off_the_curves(
     racket: rd.Racket, ball: rd.Ball, model: rd.ModalModel
 ) -> None:
@@ -201,6 +203,7 @@ def test_fig4_has_a_scale_and_fig5_says_what_black_and_white_mean(
         assert overlap is None or overlap.width * overlap.height < 1.0
 
 
+@pytest.mark.slow
 def test_the_compound_figures_keep_their_words_inside_and_every_support_visible(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -110,6 +110,7 @@ def test_the_docs_name_only_registered_figures_and_list_the_registry() -> None:
     assert "{" not in tables  # every run's setting in words
 
 
+@pytest.mark.slow
 def test_importing_the_registry_loads_no_matplotlib() -> None:
     code = (
         "import sys, racketdyn.plotting.registry, racketdyn.report.figures; "
@@ -157,6 +158,7 @@ def test_a_result_plots_its_registered_figures(tmp_path: Path) -> None:
         result.plot("fig99")
 
 
+@pytest.mark.slow
 def test_every_file_a_step_writes_is_its_registered_figure(tmp_path: Path) -> None:
     """The hooks of the steps drawn from their data write exactly the registry's files."""
     from racketdyn.plotting.steps import oblique_figures, twist_figures
@@ -176,6 +178,7 @@ def test_every_file_a_step_writes_is_its_registered_figure(tmp_path: Path) -> No
         assert all(of_file(name) is not None for name in written)
 
 
+@pytest.mark.slow
 def test_a_new_figure_is_its_draw_function_and_one_entry(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

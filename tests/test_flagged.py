@@ -179,6 +179,7 @@ def test_every_status_is_in_the_table() -> None:
 DEMO_MODEL = Path(__file__).parent / "data" / "demo_modal_model_free.json"
 
 
+@pytest.mark.slow
 def test_tip_jump_is_a_second_contact(ball) -> None:
     """Issue 13: T_c at the tip, pinned, fell from 7.46 to 5.56 ms between 37.5 and 38.75 m/s
     (the demo's identified free modes) while the rebound stayed smooth.  Cause: at 37.5 m/s the
@@ -227,6 +228,7 @@ def _check_one_turn_to_second_contact(racket, ball, model, speeds) -> None:
         assert np.isnan(after.rebound_ratio[0, 1, 0])
 
 
+@pytest.mark.slow
 def test_pull_tension_racket_tip_turns_to_a_second_contact(ball) -> None:
     racket = pull_tension_racket()
     # the same on the built-in modal model (the turn lies between 35 and 36 m/s today)

@@ -236,6 +236,7 @@ def test_the_racket_command_says_which_mass_it_took(
     assert "mass along the racket smooth" in " ".join(capsys.readouterr().out.split())
 
 
+@pytest.mark.slow
 def test_the_rig_takes_the_built_in_models_frame(racket: rd.Racket, tmp_path: Path) -> None:
     """Issue 22, sixth session: the virtual rig took the smooth distribution and uniform EI, so
     ``racket`` and ``rig``/``demo`` described one racket with two frames (the rig's 3-node over

@@ -169,6 +169,7 @@ def test_an_frf_table_takes_no_geometry(tmp_path: Path) -> None:
         read_frfs(_table(tmp_path), geometry=tmp_path / "g.uff")
 
 
+@pytest.mark.slow
 def test_a_structure_not_a_racket_is_not_said_to_be_free(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

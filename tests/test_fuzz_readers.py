@@ -599,8 +599,8 @@ def _fuzz_test(readers: list[Reader], examples: int, name: str) -> Callable[...,
 test_every_damaged_universal_file_reads_valid_or_is_one_input_error = _fuzz_test(
     HEAVY, HEAVY_EXAMPLES, "test_every_damaged_universal_file_reads_valid_or_is_one_input_error"
 )
-test_every_damaged_table_reads_valid_or_is_one_input_error = _fuzz_test(
-    LIGHT, LIGHT_EXAMPLES, "test_every_damaged_table_reads_valid_or_is_one_input_error"
+test_every_damaged_table_reads_valid_or_is_one_input_error = pytest.mark.slow(
+    _fuzz_test(LIGHT, LIGHT_EXAMPLES, "test_every_damaged_table_reads_valid_or_is_one_input_error")
 )
 
 

@@ -10,6 +10,7 @@ import pandas as pd
 import pytest
 
 import racketdyn as rd
+from costly import costly
 from pull_tension import pull_tension_racket
 from racketdyn.cli import main
 from racketdyn.io import write_frf_uff
@@ -29,6 +30,7 @@ BAND = (40.0, 850.0)
 
 
 @pytest.fixture(scope="module", params=["free", "hand"])
+@costly
 def case(request: pytest.FixtureRequest) -> dict:
     racket = pull_tension_racket()
     rig = rig_model(racket, request.param)
@@ -48,6 +50,7 @@ def case(request: pytest.FixtureRequest) -> dict:
     }
 
 
+@pytest.mark.slow
 def test_modes_match_the_truth(case) -> None:
     # Issue 4: frequency within 0.2 %, damping within 10 % (the 0.1 s exponential window taken
     # off), MAC ≥ 0.98, mass-normalised shapes within 5 %, names as the rig's.  Every truth mode

@@ -359,6 +359,7 @@ def test_single_support_string(racket, ball, law) -> None:
     racket_speed=st.floats(0.0, 30.0),
     e_bg=st.floats(0.5, 0.95),
 )
+@pytest.mark.slow
 def test_cor_never_exceeds_e_bg(
     racket, model, law, radius, angle, speed, racket_speed, e_bg
 ) -> None:

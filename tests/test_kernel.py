@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
+from costly import costly
 from pull_tension import pull_tension_racket
 from racketdyn.ball import STATIC_WALL_STIFFNESS_N_PER_M, default_ball_law
 from racketdyn.impact import kernel
@@ -56,6 +57,7 @@ def law(racket: rd.Racket, ball: rd.Ball) -> rd.RestoringForce:
 
 
 @pytest.fixture(scope="module")
+@costly
 def both(racket, ball, model):
     kwargs = {"modal_model": model, "racket_speed": 3.0}
     compiled = predict_transient(
@@ -67,6 +69,7 @@ def both(racket, ball, model):
     return compiled, reference
 
 
+@pytest.mark.slow
 def test_engines_agree(both) -> None:
     """Every support, point and speed: rebound speed within 5e-4 m/s (≈ 1e-5 of the approach
     speed), contact time within 3e-5 (a review measured 1.6e-5 at the tip, held), peak force
@@ -125,6 +128,7 @@ def test_linear_spring_rigid_racket_half_period(racket) -> None:
 
 
 @pytest.mark.parametrize("speed", [5.0, 20.0, 40.0])
+@pytest.mark.slow
 def test_clamped_head_returns_e_bg(ball, law, speed) -> None:
     """No racket motion (zero compliance, no modes): the ball leaves at e_BG of its speed, to
     1e-5 (the hysteresis law is built for it; the residue is the second-order error)."""

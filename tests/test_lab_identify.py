@@ -42,6 +42,7 @@ POINTS = {
 @pytest.mark.parametrize("axis", ["x", "y", "z"])
 @pytest.mark.parametrize("n_points", [1, 3, 20])
 @pytest.mark.parametrize("driving", [True, False])
+@pytest.mark.slow
 def test_free_beam_frequencies_and_damping(axis: str, n_points: int, driving: bool) -> None:
     s = np.asarray(POINTS[n_points])
     # without a driving point the accelerometer sits at 0.05 m, where no hammer struck
@@ -151,6 +152,7 @@ def test_several_references_need_a_choice(tmp_path: Path) -> None:
         read_frfs(path, reference=42)
 
 
+@pytest.mark.slow
 def test_every_reference_is_read_as_one_object_on_shared_points(tmp_path: Path) -> None:
     path = _write(tmp_path, "mimo.uff", "mimo")
     both = read_frfs(path, reference="all")
@@ -188,6 +190,7 @@ def test_identify_from_every_reference_keeps_their_participations(tmp_path: Path
     )
 
 
+@pytest.mark.slow
 def test_identify_command_takes_all_or_a_list_of_references(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -329,6 +332,7 @@ def test_a_pole_with_no_peak_in_the_data_scores_about_one() -> None:
     assert gain[5] < 1.1
 
 
+@pytest.mark.slow
 def test_a_racket_measured_in_the_lab_x_z_plane_is_named_on_its_face() -> None:
     from dataclasses import replace
 
@@ -368,6 +372,7 @@ def test_a_racket_measured_in_the_lab_x_z_plane_is_named_on_its_face() -> None:
     assert how.startswith("modes numbered")
 
 
+@pytest.mark.slow
 def test_several_references_on_the_command_line(tmp_path: Path, capsys) -> None:
     from racketdyn.cli import main
 
@@ -393,6 +398,7 @@ def test_fig2_and_fig3_label_one_point_alike() -> None:
     assert _point_label(test.frfs, 1, 0) == "node 2 (400, 0, 0) mm"
 
 
+@pytest.mark.slow
 def test_another_rackets_points_named_on_the_built_in_head_say_so() -> None:
     """New-user trial (issue 13): ``identify`` without ``--racket`` on the FRFs of a 270 g,
     105 sq in racket named its modes on the built-in racket's head (its points lie near that
@@ -525,6 +531,7 @@ def test_compares_fig_15_draws_no_curve_of_an_unscaled_model(racket: rd.Racket) 
     assert np.isfinite(others).any(axis=1).all()
 
 
+@pytest.mark.slow
 def test_damping_under_one_line_of_half_power_width_is_said(
     capsys: pytest.CaptureFixture[str], tmp_path: Path
 ) -> None:

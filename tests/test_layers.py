@@ -178,6 +178,7 @@ def test_imports_only_go_down(module: str) -> None:
     assert not upward, f"{module} ({LAYER_NAMES[own]}) imports a higher layer: {upward}"
 
 
+@pytest.mark.slow
 def test_no_import_circle() -> None:
     graph: dict[str, set[str]] = {}
     for module, path in MODULES.items():
@@ -205,6 +206,7 @@ def test_modal_core_knows_no_racket() -> None:
     assert not offenders, offenders
 
 
+@pytest.mark.slow
 def test_computation_loads_no_presentation() -> None:
     code = (
         "import sys; import racketdyn.modal, racketdyn.impact, racketdyn.measurement, "

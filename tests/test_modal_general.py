@@ -140,6 +140,7 @@ def test_general_figures_need_no_racket(beam) -> None:
     plt.close(ax.figure)
 
 
+@pytest.mark.slow
 def test_general_figures_on_a_surface() -> None:
     # a simply supported 0.4 m × 0.3 m plate sampled on a grid: node lines over its points
     from racketdyn.plotting.primitives import plot_mode_3d, plot_node_lines

@@ -41,6 +41,7 @@ def _file(tmp_path: Path, points: list[float], reference_m: float):
 
 
 @pytest.mark.parametrize("case", list(CASES))
+@pytest.mark.slow
 def test_frfs_without_coordinates_are_identified(tmp_path: Path, case: str, capsys) -> None:
     from racketdyn.cli import main
 
@@ -136,6 +137,7 @@ def test_a_sweep_fails_its_designs_naming_geometry(tmp_path: Path) -> None:
     assert "--geometry" in failures[0]["error"]
 
 
+@pytest.mark.slow
 def test_a_reference_without_coordinates_is_accepted(tmp_path: Path, capsys) -> None:
     # Issue 25: coordinates for the hammer points but not for the fixed accelerometer (node
     # 100 here; meca0062_aircraft's 201-203) were refused ("needs node coordinates, which node

@@ -93,6 +93,7 @@ def _same(before: Any, after: Any, where: str) -> list[str]:
 
 
 @pytest.mark.parametrize("run", sorted(RUNS))
+@pytest.mark.slow
 def test_predict_numbers_are_those_before_the_refactor(run: str, tmp_path: Path) -> None:
     reference = REFERENCE / run
     logging.disable(logging.WARNING)

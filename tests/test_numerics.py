@@ -30,6 +30,7 @@ def _same(values: np.ndarray, **conditions: float) -> None:
     height=st.one_of(st.none(), st.floats(0, 4)),
     prominence=st.one_of(st.none(), st.floats(0, 4)),
 )
+@pytest.mark.slow
 def test_find_peaks_is_scipys(
     values: list[float], height: float | None, prominence: float | None
 ) -> None:

@@ -41,6 +41,7 @@ def smooth_model(racket: rd.Racket, smooth_frame: None) -> rd.ModalModel:
     return builtin_modal_model(racket)
 
 
+@pytest.mark.slow
 def test_the_rig_and_the_compound_system_hold_the_racket_alike(
     racket: rd.Racket, smooth_model: rd.ModalModel
 ) -> None:
@@ -68,6 +69,7 @@ def test_the_rig_and_the_compound_system_hold_the_racket_alike(
     np.testing.assert_allclose(low, pitch, rtol=0.01)
 
 
+@pytest.mark.slow
 def test_a_hand_changes_both_alike(racket: rd.Racket, smooth_model: rd.ModalModel) -> None:
     model = smooth_model
     firm = Hand(damping_ns_per_m=30.0, roll_damping_nms_per_rad=0.1)

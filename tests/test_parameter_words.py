@@ -204,6 +204,7 @@ def test_the_frf_hint_names_the_parameter_and_the_cli_its_flag() -> None:
     )
 
 
+@pytest.mark.slow
 def test_run_json_speaks_the_words_of_whoever_ran_the_step(tmp_path: Path) -> None:
     """New-user trial (2026-11-27, ninth session): frf's force-noise hint in run.json (shown
     in the report's provenance table) said "give `force_window_s` 0.01" to a user of the

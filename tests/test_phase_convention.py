@@ -62,6 +62,7 @@ def test_identify_conjugates_a_set_built_in_python(usual) -> None:
     assert "conjugated" in found.frfs.metadata
 
 
+@pytest.mark.slow
 def test_lines_beyond_the_analyser_bandwidth_do_not_turn_the_phase() -> None:
     # FRFs racketdyn estimated run to fs/2; above fs/2.56 the anti-alias filter has taken the
     # force away while the response's noise stays, so |H| there is noise over nothing, large,

@@ -106,6 +106,7 @@ def test_fig7_contour_labels_lie_inside_the_head_and_apart(
     assert all(t.get_text() != top for ax in figure.axes for t in ax.texts)
 
 
+@pytest.mark.slow
 def test_face_map_labels_lie_inside_the_head_and_apart(
     racket: rd.Racket, ball: rd.Ball, model: rd.ModalModel
 ) -> None:
@@ -190,6 +191,7 @@ def test_fig8a_tells_every_support_apart_and_says_which_coincide(
     assert "pinned" not in words.split("coincide")[0]  # the pinned frame is told apart
 
 
+@pytest.mark.slow
 def test_fig9_names_the_ball_mode_off_the_curves(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -40,6 +40,7 @@ def _pixels(path: Path) -> np.ndarray:
         return np.asarray(image.convert("RGB"))
 
 
+@pytest.mark.slow
 def test_one_drawing_pass_gives_the_pixels_of_savefig(tmp_path: Path) -> None:
     _figure().savefig(tmp_path / "savefig.png", dpi=render._png.DPI)
     render.save_figure(_figure(), tmp_path / "fast.png")  # a twin: drawing changes a figure
@@ -49,6 +50,7 @@ def test_one_drawing_pass_gives_the_pixels_of_savefig(tmp_path: Path) -> None:
         assert image.mode == "RGB"  # opaque: no alpha channel written
 
 
+@pytest.mark.slow
 def test_the_helper_process_writes_the_same_bytes(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

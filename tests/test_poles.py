@@ -25,6 +25,8 @@ import numpy as np
 import pytest
 from numpy.typing import NDArray
 
+from costly import costly
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
@@ -211,6 +213,7 @@ def test_without_noise_compensation_the_damping_is_biased_high(noisy) -> None:
 
 
 @pytest.fixture(scope="module")
+@costly
 def free_rig() -> RigModel:
     return rig_model(pull_tension_racket(), "free")
 
@@ -330,6 +333,7 @@ def _dense_lscf_poles(stab: Stabilisation, frfs: FrfSet, order: int) -> NDArray[
     return np.sort_complex(pole[keep])
 
 
+@pytest.mark.slow
 def test_every_order_equals_a_fresh_solve(noisy) -> None:
     frfs = noisy[0]
     full = stabilisation(frfs, BAND, max_order=50, noise_compensation=False)

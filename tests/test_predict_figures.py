@@ -108,6 +108,7 @@ def test_face_maps_draw_the_runs_points(draw: Any) -> None:
         assert {tuple(np.round(p * 1e3, 3)) for p in points} <= drawn_points
 
 
+@pytest.mark.slow
 def test_face_maps_of_points_on_a_line_are_points_not_a_contour(draw: Any) -> None:
     points = np.array([[0.45, 0.0], [0.505, 0.0], [0.56, 0.0]])  # collinear: no triangles
     _, drawn = draw(speeds=[20.0], supports=["free"], points=points)
@@ -132,6 +133,7 @@ def test_face_maps_say_the_options(draw: Any) -> None:
     assert "string-bed law" not in title  # the paper's one law: nothing to say
 
 
+@pytest.mark.slow
 def test_face_maps_say_each_points_law(draw: Any) -> None:
     _, drawn = draw(speeds=[20.0], supports=["free"], grid=4, setup=Setup(string_bed="local"))
     assert "each point's string-bed law" in drawn["face_maps.png"].get_suptitle()
@@ -140,6 +142,7 @@ def test_face_maps_say_each_points_law(draw: Any) -> None:
 # --- curves against speed, Figs 11-13 and 15 -----------------------------------------------------
 
 
+@pytest.mark.slow
 def test_force_and_contact_time_follow_the_stiffness_reading(draw: Any) -> None:
     _, period = draw(speeds=[20.0], supports=["free"], grid=3)
     _, tangent = draw(speeds=[20.0], supports=["free"], grid=3, stiffness_reading="tangent")
@@ -171,6 +174,7 @@ def test_force_and_contact_time_show_the_run_supports_and_speeds(draw: Any) -> N
     assert "racket 10 m/s" in figure.get_suptitle()
 
 
+@pytest.mark.slow
 def test_force_curves_use_the_run_racket_speed(draw: Any) -> None:
     _, rest = draw(speeds=[20.0], supports=["free"], grid=3)
     _, moving = draw(speeds=[20.0], supports=["free"], grid=3, racket_speed=[15.0])
@@ -181,6 +185,7 @@ def test_force_curves_use_the_run_racket_speed(draw: Any) -> None:
     assert not np.allclose(at_rest, on_the_move, equal_nan=True)
 
 
+@pytest.mark.slow
 def test_pulse_spectrum_is_at_the_run_speeds_and_support(draw: Any) -> None:
     _, drawn = draw(speeds=[15.0, 25.0], supports=["free"], grid=3)
     figure = drawn["fig13_pulse_spectrum.png"]
@@ -189,6 +194,7 @@ def test_pulse_spectrum_is_at_the_run_speeds_and_support(draw: Any) -> None:
     assert "freely supported" in figure.get_suptitle()
 
 
+@pytest.mark.slow
 def test_the_pulse_of_fig_13_carries_the_impacts_impulse(draw: Any) -> None:
     """Fig. 13 draws eq 11's half sine of the row's impulse F_MEAN T_c (the rebound's with the
     coupled charge), not of its F_MAX: the coupled charge's F_MAX is the spring's force at the
@@ -243,6 +249,7 @@ def test_rebound_along_axis_at_the_shown_speed_and_run_supports(draw: Any) -> No
     assert "racket 5 m/s" in title
 
 
+@pytest.mark.slow
 def test_rebound_along_axis_follows_the_string_bed_option(draw: Any) -> None:
     _, off = draw(speeds=[20.0], supports=["free"], grid=3)
     _, on = draw(speeds=[20.0], supports=["free"], grid=3, include_string_bed=True)
@@ -295,6 +302,7 @@ def _spectrum_modes(figure: Figure) -> dict[str, Any]:
     return {name: line.get_color() for name, line in zip(names, lines, strict=True)}
 
 
+@pytest.mark.slow
 def test_pulse_spectrum_says_which_modes_the_prediction_charges(draw: Any) -> None:
     """New-user trial (2026-11-27, ninth session): Fig. 13 drew the string bed's membranes as
     "modes of the model" while the report's "Modes the prediction used" listed only the
@@ -355,6 +363,7 @@ def test_transient_curves_follow_the_run(draw: Any) -> None:
     assert any(label.endswith("transient") for label in labels)
 
 
+@pytest.mark.slow
 def test_transient_histories_legend_leaves_the_curves_clear(draw: Any) -> None:
     """New-user trial (2026-11-27, ninth session): with eight modes the modal coordinates'
     legends held 16 entries each (each mode with each support) and covered the curves.  One
@@ -485,6 +494,7 @@ def test_predict_headline_gives_the_outgoing_speed_of_a_serve(
     assert f"{outgoing:.1f}" in out
 
 
+@pytest.mark.slow
 def test_force_and_contact_time_count_their_own_curves_impacts(draw: Any) -> None:
     """New-user trial (2026-11-27, ninth session): Figs 11–12's legend said "86 of 276 impacts"
     flagged while the console said 142 of 276 rows of impact.csv: the figure counts its own

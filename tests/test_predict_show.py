@@ -11,6 +11,7 @@ physics): they now draw one set of curves per racket speed, each panel titled wi
 
 from __future__ import annotations
 
+import csv
 import json
 import re
 from pathlib import Path
@@ -155,3 +156,75 @@ def test_the_models_table_names_its_case(
     assert main([*argv, "--out", str(tmp_path / "both")]) == 0
     console = " ".join(capsys.readouterr().out.split())
     assert "approximate against transient, ball 3 m/s, racket 42 m/s" in console
+
+
+def _page_tables(page: Path) -> list[str]:
+    """The report's tables as text, one string each."""
+    import html
+
+    text = page.read_text(encoding="utf-8")
+    tables = re.findall(r"<table.*?</table>", text, re.S)
+    return [re.sub(r"\s+", " ", html.unescape(re.sub(r"<[^>]+>", " ", t))) for t in tables]
+
+
+def test_two_cases_at_one_ball_speed_stay_apart_in_the_report(tmp_path: Path) -> None:
+    """Two cases sharing a ball speed (``--speed 20,20 --racket-speed 0,30``) were merged into
+    one row per support in the report's tables and maps: its rows were keyed by ball speed."""
+    out = tmp_path / "predict"
+    options = PredictOptions(speeds=[20.0, 20.0], racket_speed=[0.0, 30.0], grid=3)
+    run_predict(out, options=options)
+    tables = _page_tables(write_report(out))
+    contact = next(t for t in tables if "contact time (ms)" in t and "support" in t)
+    for support in ("free", "pinned"):
+        assert f"{support} 20, racket at rest " in contact
+        assert f"{support} 20, racket 30 " in contact
+    sweet = next(t for t in tables if "highest rebound ratio" in t)
+    # the centre's rebound ratio of each case, as impact.csv has it (the centre at 505, 0 mm)
+    with (out / "impact.csv").open(encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    centre = {
+        (row["support"], float(row["racket_speed_mps"])): float(row["rebound_ratio"])
+        for row in rows
+        if abs(float(row["x_m"]) - 0.505) < 1e-9 and abs(float(row["y_m"])) < 1e-9
+    }
+    assert len(centre) == 4
+    assert len(set(centre.values())) == 4  # the cases differ
+    for (support, racket_speed), value in centre.items():
+        words = "racket at rest" if racket_speed == 0 else f"racket {racket_speed:g}"
+        assert re.search(rf"{support} 20, {words} \S+ \S+, \S+ {value:.3f}", sweet), sweet
+
+
+def test_the_models_curves_against_speed_take_each_racket_speed_whole() -> None:
+    """The approximate-against-transient curves against speed interpolated the racket speed
+    between the run's (ball, racket) pairs, as Figs 11–12 did: one set per racket speed now."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from racketdyn.ball import Ball
+    from racketdyn.io.racket_file import default_racket
+    from racketdyn.plotting.figures import figure_transient_comparison_speed
+    from racketdyn.workflows.figure_data import TransientCurves, transient_curves
+
+    curves = transient_curves(
+        default_racket(),
+        Ball(),
+        speeds=SERVE["speeds"],
+        racket_speeds=SERVE["racket_speed"],
+        supports=("free",),
+        engine="compiled",
+    )
+    for part in (curves.approximate, curves.transient):
+        assert sorted(set(part.racket_speed.tolist())) == [28.0, 42.0]
+        at_28 = part.ball_speed[part.racket_speed == 28.0]
+        at_42 = part.ball_speed[part.racket_speed == 42.0]
+        assert at_28.tolist() == at_42.tolist()
+        assert at_28.min() <= 3.0
+        assert at_28.max() >= 25.0
+    assert curves.run_racket_speeds.tolist() == [28.0, 42.0]
+    back = TransientCurves.from_xarray(curves.to_xarray())
+    assert back.run_racket_speeds.tolist() == [28.0, 42.0]
+    np.testing.assert_array_equal(back.transient.racket_speed, curves.transient.racket_speed)
+    figure = figure_transient_comparison_speed(back)
+    titles = [ax.get_title() for ax in figure.axes if ax.get_title()]
+    assert any("racket 28 m/s" in t for t in titles), titles
+    assert any("racket 42 m/s" in t for t in titles), titles

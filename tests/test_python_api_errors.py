@@ -158,6 +158,7 @@ def test_identify_names_rules_of_the_wrong_type_before_computing() -> None:
         identify(test.frfs, rules={"min_fraction": 0.5})  # type: ignore[arg-type]
 
 
+@pytest.mark.slow
 def test_rig_options_take_the_command_lines_spelling(tmp_path: Path) -> None:
     """``RigOptions(support="free,hand")`` and ``layout="roving-accelerometer"``, as the
     command line spells them, were refused from Python (``support must be one of free, hand

@@ -29,6 +29,7 @@ import numpy as np
 import pytest
 
 import racketdyn as rd
+from costly import costly
 from lab_rackets import TRIAL_RACKET_100
 from racketdyn.io import load_racket
 from racketdyn.io.uff import write_frf_uff
@@ -125,6 +126,7 @@ def measured_frfs(
 
 
 @pytest.fixture(scope="module")
+@costly
 def measured(racket: rd.Racket) -> dict[str, tuple[FrfSet, ModalModel]]:
     return {support: measured_frfs(racket, support) for support in ("free", "hand")}
 
@@ -150,6 +152,7 @@ def identified(
 
 
 @pytest.fixture(scope="module")
+@costly
 def found(
     measured: dict[str, tuple[FrfSet, ModalModel]], racket: rd.Racket
 ) -> dict[str, Identification]:
@@ -163,6 +166,7 @@ def nearest(model: ModalModel, frequency_hz: float) -> int:
     return k
 
 
+@pytest.mark.slow
 def test_the_all_in_phase_membrane_mode_is_named_from_its_shape(
     measured: dict[str, tuple[FrfSet, ModalModel]], found: dict[str, Identification]
 ) -> None:
@@ -218,6 +222,7 @@ def test_a_clean_peak_stable_in_too_few_orders_is_kept(
     assert f"`pin_hz` {row.frequency_hz:.1f} keeps it" in row.reason
 
 
+@pytest.mark.slow
 def test_identify_and_compare_give_a_mode_one_name(
     frf_files: dict[str, Path], racket_file: Path, tmp_path: Path
 ) -> None:
@@ -317,6 +322,7 @@ def test_the_report_says_a_prediction_took_modes_of_unknown_kind(
     assert "unknown kind" in glance
 
 
+@pytest.mark.slow
 def test_a_fragment_of_a_named_edge_mode_is_not_named_again(racket: rd.Racket) -> None:
     """(b) found by the demo on this racket (``demo --racket``: noise 50/60 dB, 3 % double hits,
     1 % overloads, ``--band 40,850``): the 4-node bending (838.1 Hz) sits in the band's edge

@@ -44,6 +44,7 @@ def _rig_like_run(folder: Path) -> tuple[Path, Path]:
     return racket, tests
 
 
+@pytest.mark.slow
 def test_frf_and_identify_take_the_racket_the_rig_ran(tmp_path: Path) -> None:
     racket, tests = _rig_like_run(tmp_path / "lab")
     assert main(["frf", str(tests), "--exp-window", "0.1", "--out", str(tmp_path / "frf")]) == 0
@@ -56,6 +57,7 @@ def test_frf_and_identify_take_the_racket_the_rig_ran(tmp_path: Path) -> None:
     assert found["racket_file"] == str(racket.resolve())
 
 
+@pytest.mark.slow
 def test_a_racket_given_wins_and_a_changed_file_is_not_taken(
     tmp_path: Path, caplog: pytest.LogCaptureFixture
 ) -> None:

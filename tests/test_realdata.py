@@ -21,6 +21,7 @@ from racketdyn.measurement.records import FrfSet, HammerRecords
 from racketdyn.modal.identify import identify
 
 
+@pytest.mark.slow
 def test_wing_quantised_hits_are_not_double_hits(tmp_path: Path) -> None:
     # wing_openmodal's time records: one clean hit a point, 2 kHz, volts, the hammer quantised
     # in 4.88 mV steps (hits of 15-65 steps).  13 of the 18 hits, the driving point among them,
@@ -71,6 +72,7 @@ def test_vtb_usual_phase_convention_is_unchanged(tmp_path: Path, caplog) -> None
     assert identify(frfs).model.frequency == pytest.approx([34.05, 212.08], abs=0.05)
 
 
+@pytest.mark.slow
 def test_vtb_identify_command_says_it_conjugated(tmp_path: Path, capsys) -> None:
     path = realdata.file("vtb_siglab/vtb_case2.uff.xz", tmp_path)
     assert main(["identify", str(path), "--out", str(tmp_path / "out")]) == 0
@@ -80,6 +82,7 @@ def test_vtb_identify_command_says_it_conjugated(tmp_path: Path, capsys) -> None
     assert modes["frequency_hz"].to_numpy() == pytest.approx([192.5], abs=0.3)
 
 
+@pytest.mark.slow
 def test_meca0062_accelerometers_outside_the_geometry(tmp_path: Path) -> None:
     # meca0062_aircraft: the geometry (data set 15) holds the 74 hammer points but not the
     # three fixed accelerometers (nodes 201-203).  It was refused, "needs node coordinates,
@@ -111,6 +114,7 @@ def _near(values: np.ndarray, low: float, high: float) -> list[float]:
     return [float(v) for v in values if low < v < high]
 
 
+@pytest.mark.slow
 def test_meca0062_one_peak_is_one_mode(tmp_path: Path) -> None:
     # meca0062_aircraft against accelerometer 201: one peak at 143.4 Hz (the FRFs' summed
     # magnitude has one maximum, 143.5 Hz, half-power width ≈ 1.9 Hz) was given as two modes,
@@ -129,6 +133,7 @@ def test_meca0062_one_peak_is_one_mode(tmp_path: Path) -> None:
     assert "MAC" in merged[0].reason
 
 
+@pytest.mark.slow
 def test_meca0062_a_close_pair_of_other_shapes_stays_two(tmp_path: Path) -> None:
     # against accelerometer 203 two modes 0.27 Hz apart at 125.4 and 125.7 Hz, inside their
     # half-power width, but their shapes differ (MAC 0.85): kept apart, as the lab's PolyMAX
@@ -163,6 +168,7 @@ def _pyfrf_frfs(tmp_path: Path) -> FrfSet:
     return frfs
 
 
+@pytest.mark.slow
 def test_pyfrf_a_peak_far_above_the_noise_is_named_with_the_pin_that_keeps_it(
     tmp_path: Path,
 ) -> None:
@@ -179,6 +185,7 @@ def test_pyfrf_a_peak_far_above_the_noise_is_named_with_the_pin_that_keeps_it(
     assert _near(found.model.frequency, 4120.0, 4135.0) == [pytest.approx(4127.6, abs=1.0)]
 
 
+@pytest.mark.slow
 def test_clean_peaks_stable_in_few_orders_are_kept(tmp_path: Path) -> None:
     # Issue 25 item 8 (b): a candidate stable in too few orders, apart from every kept mode,
     # whose peak the data hold (the fit near it ≥ 3 × worse without it) is kept and said.
@@ -198,6 +205,7 @@ def test_clean_peaks_stable_in_few_orders_are_kept(tmp_path: Path) -> None:
     assert _near(found.frequency, 104.0, 106.0) == [pytest.approx(105.18, abs=0.05)]
 
 
+@pytest.mark.slow
 def test_pyfrf_modes_on_mains_harmonics_stay_modes(tmp_path: Path) -> None:
     # 900.0 Hz (18 × 50 Hz) and 2640.2 Hz (44 × 60 Hz) are the struck part's modes, not
     # electrical lines: each decays in every hit's record (log decrement ζ ≈ 0.16 % and
@@ -229,6 +237,7 @@ def _kept_or_named(found, frfs: FrfSet, low: float, high: float) -> list[float]:
     return _near(again.model.frequency, low, high)
 
 
+@pytest.mark.slow
 def test_pff_the_first_mode_of_a_wide_band_is_kept_or_named(tmp_path: Path) -> None:
     # pff_lms, default band 40-20,000 Hz: a clear mode at 150 Hz (the FRF's peak 428 against
     # ≈ 15 around it, coherence 1.000, a 180° phase turn) was lost without a word: the edge
@@ -240,6 +249,7 @@ def test_pff_the_first_mode_of_a_wide_band_is_kept_or_named(tmp_path: Path) -> N
     assert _kept_or_named(found, frfs, 145.0, 155.0) == [pytest.approx(150.31, abs=0.3)]
 
 
+@pytest.mark.slow
 def test_pff_a_mode_110_hz_above_the_bottom_is_not_in_the_edge_margin(tmp_path: Path) -> None:
     # over 40-10,000 Hz the 150 Hz mode is stable in 13 orders, 110 Hz (280 lines, 70 of its
     # half-power widths) above the bottom; 2 % of the band's width (199 Hz) left it out
@@ -247,6 +257,7 @@ def test_pff_a_mode_110_hz_above_the_bottom_is_not_in_the_edge_margin(tmp_path: 
     assert _near(found.model.frequency, 145.0, 155.0) == [pytest.approx(150.31, abs=0.3)]
 
 
+@pytest.mark.slow
 def test_wing_a_first_mode_at_13_5_hz_is_kept_or_named(tmp_path: Path) -> None:
     # wing_openmodal's time records (2 kHz, FRFs to fs/2), --band 5,999.997: the first bending
     # mode at 13.5 Hz (summed |H| 1.1e4 against ≈ 300 around it) was lost without a word, as
@@ -262,6 +273,7 @@ def test_wing_a_first_mode_at_13_5_hz_is_kept_or_named(tmp_path: Path) -> None:
     assert _kept_or_named(found, frfs, 12.0, 15.0) == [pytest.approx(13.52, abs=0.1)]
 
 
+@pytest.mark.slow
 def test_a_left_out_gain_never_reads_as_its_threshold(tmp_path: Path) -> None:
     # the wing's 610.6 Hz pole scores 1.49: it printed "only 1.5 × better with it (< 1.5)"
     frfs = read_frfs(

@@ -309,6 +309,7 @@ def identified(tmp_path_factory: pytest.TempPathFactory) -> Callable[[str], Iden
 
 
 @pytest.mark.parametrize("reference", REFERENCES, ids=[_name(r) for r in REFERENCES])
+@pytest.mark.slow
 def test_a_clear_mode_is_identified_or_named(
     reference: Reference, identified: Callable[[str], Identification]
 ) -> None:
@@ -368,6 +369,7 @@ def _decay_damping(records: HammerRecords, frequency_hz: float) -> float:
     return float(np.median(found))
 
 
+@pytest.mark.slow
 def test_the_wing_records_ring_as_their_references_say(tmp_path: Path) -> None:
     """The ``decay`` references of the wing's time records are the records' own ringing."""
     records = _wing_records(tmp_path)

@@ -241,6 +241,7 @@ def _redrawn(out: Path, names: list[str]) -> dict[str, Any]:
         for s in sorted({e.step for e in registry.FIGURES.values()})
     ],
 )
+@pytest.mark.slow
 def test_every_figure_redrawn_from_its_folder_alone(
     step: str, rig: Path, tmp_path: Path, caught: Drawn
 ) -> None:

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 
+from costly import costly
 from racketdyn.report.folder import RunFolder
 from racketdyn.report.sections import compound
 
@@ -36,6 +37,7 @@ BALL_MODES = (
 
 
 @pytest.fixture
+@costly
 def lab(tmp_path: Path) -> Path:
     """id_free and id_ball: identify runs of the free racket, the second with the ball."""
     _step(

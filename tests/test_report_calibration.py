@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from costly import costly
 from racketdyn.cli import main
 from racketdyn.report import SECTIONS, write_report
 
@@ -23,6 +24,7 @@ MEASURED = (
 
 
 @pytest.fixture(scope="module")
+@costly
 def folder(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A calibrate run by the approximate method on a rigid racket (fast: no beam model to
     rebuild per roll inertia): e_BG and the roll inertia identifiable, the frame damping not
@@ -60,6 +62,7 @@ def test_the_section_is_listed() -> None:
     assert list(SECTIONS).index("calibration") == list(SECTIONS).index("validation") + 1
 
 
+@pytest.mark.slow
 def test_identified_values_with_their_errors_in_the_page_units(folder: Path, section: str) -> None:
     data = json.loads((folder / "cal" / "calibration.json").read_text(encoding="utf-8"))
     by_name = {p["name"]: p for p in data["parameters"]}

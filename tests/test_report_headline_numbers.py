@@ -126,8 +126,8 @@ def test_the_centre_s_headline_names_the_model_of_a_filled_row(
     x, y = run.centre(impacts)
     path = out / "predict" / "impact.csv"
     rows = _rows(path)
-    for speed in impacts.speeds:
-        rows[impacts.nearest(impacts.rows(speed, "pinned"), x, y)]["status"] = STATUS_FROM_TRANSIENT
+    for case in impacts.case_list:
+        rows[impacts.nearest(impacts.rows(case, "pinned"), x, y)]["status"] = STATUS_FROM_TRANSIENT
     _write(path, rows)
     data = impact.gather(RunFolder.scan(out))
     assert data is not None
@@ -147,7 +147,7 @@ def test_the_vibration_share_is_of_the_approach_energy(predicted: Path) -> None:
     m_b = float(run.record(run.predict_dir)["ball"]["mass_kg"])
     x, y = run.centre(impacts)
     for speed in SPEEDS:
-        i = impacts.nearest(impacts.rows(speed, "pinned"), x, y)
+        i = impacts.nearest(impacts.rows((speed, RACKET_SPEED), "pinned"), x, y)
         assert impacts.status[i] == STATUS_OK
         reduced = impacts["reduced_mass_kg"][i]
         mu = m_b * reduced / (m_b + reduced)

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 
+from costly import costly
 from racketdyn.cli import main
 from racketdyn.errors import InputError
 from racketdyn.report import write_report
@@ -25,6 +26,7 @@ BAND = (40.0, 850.0)
 
 
 @pytest.fixture(scope="module")
+@costly
 def lab(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A lab's folder of step folders, run one by one (small settings, no figures where a
     step allows it)."""
@@ -62,6 +64,7 @@ def _text(html: str) -> list[str]:
     return [line.strip() for line in re.sub(r"<[^>]+>", "", html).splitlines() if line.strip()]
 
 
+@pytest.mark.slow
 def test_two_predictions_are_refused_naming_steps(
     lab: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -169,6 +172,7 @@ def test_steps_from_the_command_line_name_the_option(
     assert "NAME=FOLDER" in error
 
 
+@pytest.mark.slow
 def test_a_step_the_report_has_no_section_for_is_said_left_out(tmp_path: Path) -> None:
     """A new user's ``ball`` run beside their steps was neither shown nor listed as left out:
     the page kept silent about a folder of theirs."""

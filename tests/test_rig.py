@@ -22,6 +22,7 @@ import pytest
 from numpy.typing import NDArray
 
 import racketdyn as rd
+from costly import costly
 from pull_tension import pull_tension_racket
 from racketdyn.errors import InputError
 from racketdyn.impact import predict
@@ -44,6 +45,7 @@ PASSBAND = FS / 2.56
 
 
 @pytest.fixture(scope="module")
+@costly
 def free(racket: rd.Racket) -> RigModel:
     return rig_model(racket, "free")
 
@@ -151,6 +153,7 @@ def test_hand_has_no_cantilever_mode(hand: RigModel) -> None:
     assert np.all(hand.frequency[~rigid] > 60.0)
 
 
+@pytest.mark.slow
 def test_modal_damping_approximation_is_close_for_the_hand(hand: RigModel) -> None:
     # The rig uses real modes with ζ = φᵀCφ/2ω; the full non-proportional (M, C, K) gives
     # complex modes.  For the lightly damped, well-separated 2-node mode they must agree to
@@ -236,6 +239,7 @@ def test_modal_truth_is_the_models_modes(free: RigModel, racket: rd.Racket) -> N
     )
 
 
+@pytest.mark.slow
 def test_noise_free_record_gives_the_analytic_frf(free: RigModel, racket: rd.Racket) -> None:
     # One average, no noise, a record long enough (3.3 s, > 12 time constants of the 2-node
     # mode) for the response to die out: the plain FFT ratio must be the modal FRF
@@ -381,6 +385,7 @@ def test_bad_input_is_refused(free: RigModel, racket: rd.Racket) -> None:
 
 
 @pytest.mark.parametrize("gap_m", [0.003, 0.005, 0.010, 0.030])
+@pytest.mark.slow
 def test_hammer_points_stay_on_a_racket_whose_head_nears_the_tip(
     racket: rd.Racket, gap_m: float
 ) -> None:
@@ -473,6 +478,7 @@ def test_hammer_settings_default_to_the_rig_and_are_frozen() -> None:
         SensorNoise().force_noise_n = 1.0  # type: ignore[misc]
 
 
+@pytest.mark.slow
 def test_a_racket_s_second_support_reuses_its_bare_racket(
     racket: rd.Racket, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -47,6 +47,7 @@ def _junior(tmp_path: Path) -> Racket:
 
 @pytest.mark.parametrize("which", ["built-in", "junior"])
 @pytest.mark.parametrize("support", ["free", "hand"])
+@pytest.mark.slow
 def test_the_rigs_ball_mode_is_compounds(which: str, support: str, tmp_path: Path) -> None:
     """The rig's ball mode within :data:`BALL_MODE_TOLERANCE` of ``compound``'s, the ball at
     the bed's centre (where ``compound``'s law is taken), and its damping within
@@ -68,6 +69,7 @@ def test_the_rigs_ball_mode_is_compounds(which: str, support: str, tmp_path: Pat
     assert rig.damping_ratio[k] == pytest.approx(expected_zeta, rel=DAMPING_TOLERANCE)
 
 
+@pytest.mark.slow
 def test_the_dip_under_a_patch_is_the_nets() -> None:
     """The rig's membrane with the dip, pressed by a rigid patch with the frame held, against
     the string net's exact stiffness (:func:`~racketdyn.contact.membrane_patch_stiffness`) for
@@ -114,6 +116,7 @@ def test_a_patch_off_the_bed_is_one_line() -> None:
         BallPatch((0.505, 0.0), 0.2).values(head, [(0.505, 0.0)])
 
 
+@pytest.mark.slow
 def test_the_dips_own_mode_is_named_only_when_the_rig_keeps_it() -> None:
     """The dip's own mode (≈ 4.8 kHz on the built-in racket) is ``strings under the ball``;
     on a rig that keeps modes only to 3 kHz no other mode takes its name."""

@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from racketdyn.cli import main
 from racketdyn.io import read_hammer_uff
@@ -14,6 +15,7 @@ from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.workflows.rig import RigOptions, run_rig
 
 
+@pytest.mark.slow
 def test_the_rig_writes_binary_uff_by_default(tmp_path: Path) -> None:
     result = run_rig(tmp_path, options=RigOptions(averages=1, support="hand", seed=3))
     path = tmp_path / "hammer_hand.uff"
@@ -30,6 +32,7 @@ def test_the_rig_writes_binary_uff_by_default(tmp_path: Path) -> None:
     assert estimate_frfs(back, exponential_window_s=0.1).frfs.n_points == len(written.nodes)
 
 
+@pytest.mark.slow
 def test_ascii_keeps_the_text_form(tmp_path: Path) -> None:
     assert main(["rig", "--averages", "1", "--ascii", "--out", str(tmp_path)]) == 0
     path = tmp_path / "hammer_free.uff"

@@ -116,6 +116,7 @@ def test_hammer_contact_on_the_strings() -> None:
     np.testing.assert_allclose(pinned, free, rtol=0.02)
 
 
+@pytest.mark.slow
 def test_an_overload_is_found_without_the_hammers_range(free_rig) -> None:
     """New-user trial (2026-11-26, second session): ``rig --overloads 0.02`` put 17 clipped
     hits in a test and ``frf`` (no ``--force-range``) rejected 7: a clipped frame pulse
@@ -143,6 +144,7 @@ def test_an_overload_is_found_without_the_hammers_range(free_rig) -> None:
     assert all(c.accepted for c in estimate_frfs(clean).checks)
 
 
+@pytest.mark.slow
 def test_frf_says_when_the_force_noise_needs_a_force_window(free_rig) -> None:
     """New-user trial (2026-11-26, second session): with ``rig --force-snr 50`` and no force
     window the junior's FRFs identified with a median fit error of 58–92 % (5 % with

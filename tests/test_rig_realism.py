@@ -94,6 +94,7 @@ def test_noise_given_as_snr_is_that_snr(free_rig: RigModel) -> None:
         assert np.median(measured) == pytest.approx(snr, abs=1.0)
 
 
+@pytest.mark.slow
 def test_snr_noise_lowers_coherence_and_damping_is_found_within_its_tolerance(
     free_rig: RigModel,
 ) -> None:
@@ -129,6 +130,7 @@ def test_snr_noise_lowers_coherence_and_damping_is_found_within_its_tolerance(
     assert dz.max() > 2 * dz_floor.max()  # the damping is no longer recovered exactly
 
 
+@pytest.mark.slow
 def test_realistic_rig_round_trips_through_frf_and_identify(tmp_path: Path) -> None:
     # −z accelerometer, t = 0 at the record's start (pulse 10 ms in), no driving point, noise
     from racketdyn.workflows.frf import run_frf
@@ -176,6 +178,7 @@ def test_realistic_rig_round_trips_through_frf_and_identify(tmp_path: Path) -> N
         assert mac(found.mode_shapes[:, [k]], shapes_truth[:, [j]])[0, 0] > 0.95
 
 
+@pytest.mark.slow
 def test_a_racket_measured_in_the_lab_x_z_plane_round_trips(tmp_path: Path) -> None:
     # --lab-plane xz: points (x, 0, y), normal along y (codes ±2).  frf reads the records
     # without coordinates (rather none than points squashed onto x–y: z dropped silently
@@ -218,6 +221,7 @@ def test_a_racket_measured_in_the_lab_x_z_plane_round_trips(tmp_path: Path) -> N
     np.testing.assert_allclose(np.sort(model.locations[:, 0]), np.sort(points[:, 0]), atol=1e-3)
 
 
+@pytest.mark.slow
 def test_a_roving_accelerometer_test_round_trips(tmp_path: Path) -> None:
     # --layout roving-accelerometer: the hammer on the reference node (its 0.4 ms frame pulse
     # for every hit), the accelerometer moved over the points; the file says so (force records

@@ -30,6 +30,7 @@ def _pattern(result: object, support: str) -> np.ndarray:
     )
 
 
+@pytest.mark.slow
 def test_the_supports_draw_their_own_faults(both: object) -> None:
     free, hand = _pattern(both, "free"), _pattern(both, "hand")
     assert free.size == hand.size
@@ -43,6 +44,7 @@ def test_the_supports_draw_their_own_faults(both: object) -> None:
     assert faults["free"] != faults["hand"]
 
 
+@pytest.mark.slow
 def test_each_stream_is_reproducible_alone(both: object, tmp_path: Path) -> None:
     alone = run_rig(tmp_path, options=RigOptions(support="hand", **FAULTS))
     np.testing.assert_array_equal(_pattern(alone, "hand"), _pattern(both, "hand"))

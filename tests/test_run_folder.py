@@ -21,6 +21,7 @@ def _files(folder: Path) -> dict[str, bytes]:
     return {p.name: p.read_bytes() for p in sorted(folder.iterdir()) if p.is_file()}
 
 
+@pytest.mark.slow
 def test_a_second_run_leaves_only_its_own_files(tmp_path: Path) -> None:
     out = tmp_path / "out"
     assert main(["predict", *QUICK, "--model", "both", "--out", str(out)]) == 0
@@ -94,6 +95,7 @@ def test_the_lock_of_an_ended_run_is_taken_over(tmp_path: Path) -> None:
     assert sorted(p.name for p in out.iterdir()) == ["figures.nc", "impact.csv", "run.json"]
 
 
+@pytest.mark.slow
 def test_the_rig_tests_both_supports_into_one_folder(tmp_path: Path) -> None:
     out = tmp_path / "rig"
     argv = ["rig", "--support", "free,hand", "--averages", "1", "--out", str(out)]
@@ -110,6 +112,7 @@ def test_the_rig_tests_both_supports_into_one_folder(tmp_path: Path) -> None:
     assert {p.name for p in out.iterdir()} == set(record["outputs"])
 
 
+@pytest.mark.slow
 def test_a_folder_holding_another_steps_run_is_refused_and_kept(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

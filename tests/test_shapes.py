@@ -37,6 +37,7 @@ def truths() -> dict[str, rd.ModalModel]:
 
 
 @pytest.mark.parametrize("support", ["free", "hand"])
+@pytest.mark.slow
 def test_names_from_shapes_match_the_rig(truths, support) -> None:
     # The rig names its modes from where their strain energy lies; the shape-only names
     # (mirror symmetry, string/frame amplitude, bending order) must agree for every mode.
@@ -172,6 +173,7 @@ def test_the_strings_own_motion_parts_the_frames_mode_from_the_beds(truths) -> N
     assert kinds[bending] == "unknown"
 
 
+@pytest.mark.slow
 def test_an_odd_veering_pair_is_not_named_string_bed_by_its_recoil(tmp_path) -> None:
     """Issue 25 (ninth-session trial): a 285 g, 102 sq in racket's twisting modes above 1.4 kHz
     veer with the bed's odd membrane modes (strain energy twist/strings 45/55 at 1469.3 Hz,
@@ -217,6 +219,7 @@ def lab_racket(tmp_path_factory: pytest.TempPathFactory) -> rd.Racket:
     return _racket_of(LAB_RACKET_102, tmp_path_factory.mktemp("lab"))
 
 
+@pytest.mark.slow
 def test_a_missed_membrane_does_not_shift_the_names_above_it(lab_racket: rd.Racket) -> None:
     """Issue 25 item 8 (tenth session): string-bed modes were numbered by their rank among the
     membranes found, so with membranes missed (the trial's `--force-window` run found none
@@ -310,6 +313,7 @@ def trial_racket(tmp_path_factory: pytest.TempPathFactory) -> rd.Racket:
     return _racket_of(TRIAL_RACKET_100, tmp_path_factory.mktemp("trial11"))
 
 
+@pytest.mark.slow
 def test_the_rig_gives_one_name_to_one_mode(trial_racket: rd.Racket) -> None:
     """Issue 25 item 8 (eleventh-session trial): the 300 g racket's 6-node twisting veers with
     the bed's (1, 1) membrane (1484.7 and 1512.1 Hz, 51 and 50 % of their strain energy in

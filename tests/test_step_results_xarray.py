@@ -30,6 +30,7 @@ def both(tmp_path_factory: pytest.TempPathFactory):  # type: ignore[no-untyped-d
     return run_predict(out, Setup(), options)
 
 
+@pytest.mark.slow
 def test_a_predict_result_is_one_dataset_of_both_models(both, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     dataset = _round_trip(both.to_xarray(), tmp_path / "predict.nc")
     assert list(dataset["model"].values) == ["approximate", "transient"]

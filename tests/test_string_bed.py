@@ -192,6 +192,7 @@ def test_predict_command_records_the_choice(tmp_path: Path) -> None:
         ("oblique", ["--angles", "0,30"]),
     ],
 )
+@pytest.mark.slow
 def test_every_impact_command_takes_the_option(
     tmp_path: Path, command: str, extra: list[str]
 ) -> None:

@@ -20,6 +20,7 @@ import racketdyn as rd
 import racketdyn.sweep as sweep
 import racketdyn.sweep.task as sweep_task
 import sweep_faults
+from costly import costly
 from racketdyn.impact.hand import Hand
 from racketdyn.impact.transient import predict_transient
 from racketdyn.plotting.steps import sweep_figures
@@ -73,6 +74,7 @@ def cluster() -> Iterator[LocalCluster]:
 
 
 @pytest.fixture(scope="module")
+@costly
 def one_at_a_time(
     racket: rd.Racket, ball: rd.Ball, tmp_path_factory: pytest.TempPathFactory
 ) -> tuple[xr.Dataset, Path]:
@@ -102,6 +104,7 @@ def design(dataset: xr.Dataset, varied: str) -> xr.Dataset:
 
 # --- engines ----------------------------------------------------------------------------------
 @pytest.mark.parametrize("engine", ["process", "dask"])
+@pytest.mark.slow
 def test_every_engine_gives_the_same_bits(
     engine: str,
     small_spec: SweepSpec,
@@ -126,6 +129,7 @@ def test_every_engine_gives_the_same_bits(
         assert_same_bits(serial_result, written.load())
 
 
+@pytest.mark.slow
 def test_a_local_dask_cluster_from_make_executor(
     small_spec: SweepSpec,
     serial_result: xr.Dataset,
@@ -143,6 +147,7 @@ def test_a_local_dask_cluster_from_make_executor(
     assert_same_bits(serial_result, result)
 
 
+@pytest.mark.slow
 def test_the_engine_closes_before_the_store_is_finished(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -219,6 +224,7 @@ def test_default_engine_is_serial_for_small_sweeps(small_spec: SweepSpec, tmp_pa
 
 
 # --- physics ----------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_lead_at_the_tip_raises_rebound_near_the_tip_when_pinned(
     one_at_a_time: tuple[xr.Dataset, Path],
 ) -> None:
@@ -360,6 +366,7 @@ def _engine_spec(tmp_path: Path, engine: str) -> SweepSpec:
     return load_sweep_spec(path)
 
 
+@pytest.mark.slow
 def test_the_engine_key_chooses_the_transient_engine(
     racket: rd.Racket, ball: rd.Ball, tmp_path: Path
 ) -> None:
@@ -560,6 +567,7 @@ def test_summary_figure_drawn_through_the_registry_from_the_store(
 
 
 # --- resuming and failures --------------------------------------------------------------------
+@pytest.mark.slow
 def test_a_rerun_computes_only_missing_designs(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -578,6 +586,7 @@ def test_a_rerun_computes_only_missing_designs(
     assert_same_bits(serial_result, result)
 
 
+@pytest.mark.slow
 def test_an_interrupted_sweep_resumes(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -614,6 +623,7 @@ def test_chunks_written_in_any_order_give_the_same_store(
         assert written[name].values.tobytes() == serial_result[name].values.tobytes(), name
 
 
+@pytest.mark.slow
 def test_parts_of_another_spec_are_recomputed(small_spec: SweepSpec, tmp_path: Path) -> None:
     run_sweep(small_spec, tmp_path, SerialExecutor(), figures=None)
     changed = replace(small_spec, ball_speeds=np.array([10.0, 26.0]))
@@ -637,6 +647,7 @@ def _fail_design_3(times: int) -> Callable[..., rd.ImpactResult]:
     return flaky
 
 
+@pytest.mark.slow
 def test_a_failed_task_is_retried(
     small_spec: SweepSpec,
     serial_result: xr.Dataset,
@@ -928,6 +939,7 @@ def main(out):
     ],
     ids=["top level", "guarded", "guard and more", "else of !=", "body of !=", "other if"],
 )
+@pytest.mark.slow
 def test_a_script_without_the_main_guard_is_refused(
     tmp_path: Path, body: str, runs: bool | None
 ) -> None:
@@ -961,6 +973,7 @@ def test_a_script_without_the_main_guard_is_refused(
         assert not (tmp_path / "out" / "sweep.zarr").exists()
 
 
+@pytest.mark.slow
 def test_a_package_run_with_dash_m_needs_no_guard(tmp_path: Path) -> None:
     """``python -m package`` runs ``package/__main__.py``, which multiprocessing never imports
     again in a worker; the check refused it all the same — ``python -m racketdyn.cli sweep

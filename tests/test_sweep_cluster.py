@@ -109,6 +109,7 @@ def scheduler(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
                 _stop(process)
 
 
+@pytest.mark.slow
 def test_a_sweep_on_a_running_cluster_equals_serial(
     scheduler: str, small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -152,6 +153,7 @@ def test_the_cluster_has_two_workers_each_with_its_own_memory_limit(scheduler: s
     assert len(set(pids.values())) == 2
 
 
+@pytest.mark.slow
 def test_with_a_shared_store_the_remote_workers_write_their_own_chunks(
     scheduler: str, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -176,6 +178,7 @@ def _private_mounts() -> bool:
 
 
 @pytest.mark.skipif(not _private_mounts(), reason="needs unshare -rm (user mount namespaces)")
+@pytest.mark.slow
 def test_a_worker_that_does_not_see_the_shared_store_is_named(
     scheduler: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -48,6 +48,7 @@ assert_same_bits = sweep_faults.assert_same_bits
 
 
 # --- a worker that dies ----------------------------------------------------------------------
+@pytest.mark.slow
 def test_a_dead_worker_costs_only_its_tasks(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -63,6 +64,7 @@ def test_a_dead_worker_costs_only_its_tasks(
     assert record["ran"] == 6
 
 
+@pytest.mark.slow
 def test_a_task_that_always_kills_its_worker_fails_alone(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -80,6 +82,7 @@ def test_a_task_that_always_kills_its_worker_fails_alone(
 
 # --- a worker that hangs ---------------------------------------------------------------------
 @pytest.mark.parametrize("engine", ["process", "dask-local"])
+@pytest.mark.slow
 def test_a_hung_task_is_retried_elsewhere(
     engine: str, small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -194,6 +197,7 @@ needs_proc = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="ne
 
 @needs_proc
 @pytest.mark.parametrize("engine", [("--workers", "2"), ("--dask-local", "2")])
+@pytest.mark.slow
 def test_ctrl_c_keeps_the_finished_parts_and_says_how_to_resume(
     engine: tuple[str, ...], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -233,6 +237,7 @@ def test_ctrl_c_keeps_the_finished_parts_and_says_how_to_resume(
 
 @needs_proc
 @pytest.mark.parametrize("engine", [("--workers", "2"), ("--dask-local", "2")])
+@pytest.mark.slow
 def test_workers_exit_when_the_main_process_is_killed(
     engine: tuple[str, ...], tmp_path: Path
 ) -> None:
@@ -247,6 +252,7 @@ def test_workers_exit_when_the_main_process_is_killed(
 
 
 @needs_proc
+@pytest.mark.slow
 def test_a_killed_sweep_costs_only_the_designs_in_flight(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -279,6 +285,7 @@ def test_a_killed_sweep_costs_only_the_designs_in_flight(
     assert_same_bits(straight, resumed)
 
 
+@pytest.mark.slow
 def test_the_command_says_when_tasks_ran_past_the_task_timeout(tmp_path: Path) -> None:
     """A ``--task-timeout`` shorter than the tasks made them time out, the pool replaced and
     the tasks run again — and the command said nothing of it (run.json counted it; a
@@ -304,6 +311,7 @@ def test_the_command_says_when_tasks_ran_past_the_task_timeout(tmp_path: Path) -
 
 
 # --- a chunk that goes away under a running sweep --------------------------------------------
+@pytest.mark.slow
 def test_a_chunk_gone_when_finishing_is_a_failure_not_silent_nan(
     small_spec: SweepSpec, tmp_path: Path
 ) -> None:

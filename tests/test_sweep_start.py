@@ -70,6 +70,7 @@ def _assert_ran_once_and_not_in_workers(stdout: str, note: Path) -> None:
     assert len(ran) == 2  # the script itself, and the forkserver's preload
 
 
+@pytest.mark.slow
 def test_a_pool_forks_while_one_thread_runs_else_uses_a_forkserver(tmp_path: Path) -> None:
     """Single-threaded: fork, every worker up before any task is submitted.  With a thread
     running (a progress display, a Dask client), a fork could copy a held lock: forkserver."""
@@ -105,6 +106,7 @@ def test_a_pool_forks_while_one_thread_runs_else_uses_a_forkserver(tmp_path: Pat
     assert seen["two"] == {"method": "forkserver", "at_once": False}
 
 
+@pytest.mark.slow
 def test_a_forked_pool_gives_the_serial_bits_with_no_design_run_here(tmp_path: Path) -> None:
     """While a forkserver's pool starts (a second), the main process computes designs itself;
     a forked pool is up at once, so the main process leaves every design to it (it had run
@@ -139,6 +141,7 @@ def test_a_forked_pool_gives_the_serial_bits_with_no_design_run_here(tmp_path: P
 
 
 @pytest.mark.parametrize("engine", ["process", "dask-local"])
+@pytest.mark.slow
 def test_the_forkserver_runs_the_main_script_once_not_in_every_worker(
     engine: str, tmp_path: Path
 ) -> None:
@@ -163,6 +166,7 @@ def test_the_forkserver_runs_the_main_script_once_not_in_every_worker(
     _assert_ran_once_and_not_in_workers(out, tmp_path / "ran_top_level.txt")
 
 
+@pytest.mark.slow
 def test_the_sweep_command_forks_its_pool(tmp_path: Path) -> None:
     """The command's progress line drew from a thread of its own, so the pool never forked:
     each worker started by forkserver, a second or more, and the README's example on two
@@ -188,6 +192,7 @@ def test_the_sweep_command_forks_its_pool(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize(("method", "loaded"), [("transient", True), ("approximate", False)])
+@pytest.mark.slow
 def test_local_dask_workers_of_a_transient_sweep_start_with_the_kernel_loaded(
     method: str, loaded: bool, tmp_path: Path
 ) -> None:
@@ -217,6 +222,7 @@ def test_local_dask_workers_of_a_transient_sweep_start_with_the_kernel_loaded(
     assert out.strip().splitlines()[-1] == str(loaded)
 
 
+@pytest.mark.slow
 def test_local_dask_workers_sample_for_the_dashboard_sparingly() -> None:
     """A local cluster's workers sampled their task thread every 10 ms for the dashboard's
     profile, and more: on two cores, time taken from the tasks (``LOCAL_DASK_QUIET``)."""
@@ -235,6 +241,7 @@ def test_local_dask_workers_sample_for_the_dashboard_sparingly() -> None:
 
 
 @pytest.mark.parametrize("engine", ["process", "dask-local"])
+@pytest.mark.slow
 def test_the_forkserver_runs_the_main_script_as_a_worker_would(engine: str, tmp_path: Path) -> None:
     """The forkserver ran the main script's top level without the script's ``sys.argv`` and
     ``sys.path`` (Python gives them to each worker before it imports the script, never to the
@@ -279,6 +286,7 @@ def test_the_forkserver_runs_the_main_script_as_a_worker_would(engine: str, tmp_
 
 
 @pytest.mark.parametrize("engine", ["process", "dask-local"])
+@pytest.mark.slow
 def test_workers_start_for_a_script_read_from_standard_input(engine: str, tmp_path: Path) -> None:
     """``python - < study.py`` (a notebook's cell piped to Python, a heredoc): the main
     module's ``__file__`` is ``<stdin>``, which every worker started by the forkserver tried to
@@ -345,6 +353,7 @@ def test_ctrl_c_while_a_local_dask_cluster_starts_is_not_lost(
     assert all(cluster.status.name == "closed" for cluster in SpecCluster._instances)
 
 
+@pytest.mark.slow
 def test_run_json_says_how_local_dask_started_its_workers(tmp_path: Path) -> None:
     """``worker_start_method`` was empty for a local Dask cluster, whose workers the nannies
     fork from this process's forkserver (a new-user trial, 2026-11-26)."""

@@ -50,6 +50,7 @@ class CountingExecutor(SerialExecutor):
         return super().submit(fn, *args, **kwargs)
 
 
+@pytest.mark.slow
 def test_the_store_has_one_chunk_per_batch_and_is_read_lazily(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -77,6 +78,7 @@ def test_the_store_has_one_chunk_per_batch_and_is_read_lazily(
     assert "sweep.zarr" in record["outputs"]
 
 
+@pytest.mark.slow
 def test_one_two_workers_and_dask_write_the_same_store(
     small_spec: SweepSpec, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:

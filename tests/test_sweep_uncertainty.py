@@ -58,6 +58,7 @@ def banded(spec: SweepSpec, tmp_path_factory: pytest.TempPathFactory) -> xr.Data
     return run_sweep(spec, tmp_path_factory.mktemp("banded"), SerialExecutor(), figures=None)
 
 
+@pytest.mark.slow
 def test_without_an_uncertainty_the_sweep_is_as_before_and_the_nominal_numbers_stay(
     spec: SweepSpec, banded: xr.Dataset, serial_result: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -74,6 +75,7 @@ def test_without_an_uncertainty_the_sweep_is_as_before_and_the_nominal_numbers_s
     assert set(band_variables()) <= set(banded.data_vars)
 
 
+@pytest.mark.slow
 def test_pinned_spreads_collapse_the_band_onto_the_nominal(spec: SweepSpec, tmp_path: Path) -> None:
     pinned = Uncertainty(
         (Spread("e_bg", sd=0.0), Spread("first_bending_hz", sd=0.0), Spread("location_m", sd=0.0)),
@@ -155,6 +157,7 @@ def test_a_transient_design_s_band_is_propagate_on_that_design_alone(
     )
 
 
+@pytest.mark.slow
 def test_one_and_two_workers_give_the_same_bits(
     spec: SweepSpec, banded: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -178,6 +181,7 @@ def test_a_task_returns_the_bands_not_the_samples(spec: SweepSpec) -> None:
     assert set(band_variables()) <= set(output.arrays)
 
 
+@pytest.mark.slow
 def test_the_summary_gives_the_bands_or_says_why_not(
     spec: SweepSpec, banded: xr.Dataset, tmp_path: Path
 ) -> None:
@@ -211,6 +215,7 @@ def _argv(spec: Path, out: Path, *more: str) -> list[str]:
     return ["sweep", str(spec), "--out", str(out), "--serial", "--no-figures", *more]
 
 
+@pytest.mark.slow
 def test_the_spec_s_uncertainty_and_the_command_line_over_it(tmp_path: Path) -> None:
     spec = tmp_path / "spec.toml"
     spec.write_text(SPEC, encoding="utf-8")
@@ -286,6 +291,7 @@ def test_a_spread_the_designs_cannot_take_is_refused_in_python(spec: SweepSpec) 
         replace(spec, uncertainty=Uncertainty((Spread("e_bg", bounds=(0.8, 0.88)),)))
 
 
+@pytest.mark.slow
 def test_a_sweep_without_an_uncertainty_loads_no_more_modules() -> None:
     """Every worker process imports the sweep: the uncertainty's modules (xarray, scipy.stats:
     ≈ 1 s) are imported when a sweep has an uncertainty, not before (with them at the top,

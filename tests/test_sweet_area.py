@@ -17,6 +17,7 @@ import pytest
 import xarray as xr
 
 import racketdyn as rd
+from costly import costly
 from racketdyn.plotting.primitives import SUPPORT_STYLE
 from racketdyn.plotting.steps import sweep_figures
 from racketdyn.plotting.sweep import plot_sweet_area
@@ -33,6 +34,7 @@ from racketdyn.sweep.summary import summary_curves
 
 
 @pytest.fixture(scope="module")
+@costly
 def swept(
     racket: rd.Racket, ball: rd.Ball, tmp_path_factory: pytest.TempPathFactory
 ) -> tuple[xr.Dataset, Path]:
@@ -60,6 +62,7 @@ def _csv_areas(out: Path) -> pd.DataFrame:
     return pd.read_csv(out / "summary.csv", index_col="design")
 
 
+@pytest.mark.slow
 def test_an_ordinary_racket_has_a_sweet_area(swept: tuple[xr.Dataset, Path]) -> None:
     ds, out = swept
     table = _csv_areas(out)

@@ -242,6 +242,7 @@ def test_first_mode_node_of_a_uniform_racket(ball: rd.Ball) -> None:
 
 
 @pytest.mark.parametrize("support", ["free", "pinned"])
+@pytest.mark.slow
 def test_max_outgoing_speed_moves_towards_the_tip(
     racket: rd.Racket, ball: rd.Ball, model, support: str
 ) -> None:

@@ -166,6 +166,7 @@ def test_elastic_contact_time_matches_the_period_reading(racket, law) -> None:
 
 
 @pytest.mark.parametrize("location", [CENTRE, NEAR_TIP])
+@pytest.mark.slow
 def test_converged_in_the_integrator_tolerance(racket, ball, model, location) -> None:
     """Tightening rtol ×100 (1e-10 → 1e-12) moves the results by less than 1e-7 relative."""
     loose = simulate_impact(racket, ball, location, 20.0, modal_model=model, rtol=1e-10)

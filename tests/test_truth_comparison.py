@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from costly import costly
 from racketdyn.modal.model import ModalModel
 from racketdyn.report import render_section
 from racketdyn.report.folder import RunFolder
@@ -23,6 +24,7 @@ from racketdyn.workflows.truth import TRUTH_COLUMNS, TRUTH_FILES, rig_truth_of
 
 
 @pytest.fixture(scope="module")
+@costly
 def tree(rig_frf_tree: Path) -> Path:
     """rig, frf_free, frf_hand (few averages; the run's shared tree) and ``identify`` of the
     free FRFs, no figures."""
@@ -42,6 +44,7 @@ def _table(path: Path) -> list[dict[str, str]]:
         return list(csv.DictReader(handle))
 
 
+@pytest.mark.slow
 def test_identify_writes_the_comparison_with_the_rigs_truth(tree: Path) -> None:
     table = tree / "identify" / "truth_comparison.csv"
     record = json.loads((tree / "identify" / "run.json").read_text(encoding="utf-8"))

@@ -90,6 +90,7 @@ def test_the_same_seed_gives_the_same_samples_and_another_seed_others() -> None:
     assert not np.array_equal(first.samples["rebound_ratio"], other.samples["rebound_ratio"])
 
 
+@pytest.mark.slow
 def test_bands_cover_about_90_percent_of_cases_drawn_from_the_same_inputs() -> None:
     """Synthetic truth: 200 impacts at inputs drawn at random (not the quasi-random samples)
     from the stated spreads; the predicted 90 % band must hold 85–95 % of them (binomial sd
@@ -281,6 +282,7 @@ def test_samples_without_an_uncertainty_file_is_refused(
     assert "--samples is for --uncertainty" in err[0]
 
 
+@pytest.mark.slow
 def test_sobol_indices_match_the_rigid_rebound_by_quadrature() -> None:
     """A rigid racket 40 mm off the axis: e = (e_BG − m/M_r) / (1 + m/M_r) (eqs 4–6, no
     vibration), with M_r from the racket's inertia about its long axis.  With e_BG uniform on
@@ -501,6 +503,7 @@ def test_the_literature_spreads_follow_what_the_racket_file_states(tmp_path: Pat
     assert "string_stiffness_scale" in unstated
 
 
+@pytest.mark.slow
 def test_predict_with_the_literature_spreads_runs_and_names_them(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -516,6 +519,7 @@ def test_predict_with_the_literature_spreads_runs_and_names_them(
     }  # fmt: skip
 
 
+@pytest.mark.slow
 def test_bands_cover_90_percent_of_transient_truths_with_measurement_noise() -> None:
     """The issue's check: synthetic truth by the transient model at inputs drawn at random
     from the stated spreads, plus measurement noise (sd 0.005, the rows' stated sd); the
@@ -590,6 +594,7 @@ def test_calibrate_takes_the_uncertainty_file_s_ranges_as_bounds(tmp_path: Path)
         calibrate(start, truth, ["e_bg"], method="approx", bounds={"e_bg": (0.9, 0.8)})
 
 
+@pytest.mark.slow
 def test_swing_writes_each_point_s_band_beside_its_numbers(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

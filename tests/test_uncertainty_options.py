@@ -70,6 +70,7 @@ def test_sobol_indices_are_given_on_the_valid_samples_where_90_percent_are_valid
     assert set(near["samples_valid"]) == {found.valid_share[1]}
 
 
+@pytest.mark.slow
 def test_predict_runs_the_transient_samples_on_worker_processes(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -85,6 +86,7 @@ def test_predict_runs_the_transient_samples_on_worker_processes(
     assert "--workers" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_swing_and_validate_run_their_samples_on_worker_processes(tmp_path: Path) -> None:
     """``--workers N`` is predict's, swing's and validate's: the same bands as in one process."""
     spec = tmp_path / "u.toml"

@@ -14,6 +14,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 MODULE = """
 import os
 
@@ -29,6 +31,7 @@ def test_where(k):
 """
 
 
+@pytest.mark.slow
 def test_a_group_runs_on_one_worker(tmp_path: Path) -> None:
     (tmp_path / "test_grouped.py").write_text(MODULE, encoding="utf-8")
     done = subprocess.run(

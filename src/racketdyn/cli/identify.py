@@ -163,28 +163,56 @@ def references_note(console: Console, identification: Identification) -> None:
 
 
 def unused_note(console: Console, frfs: FrfSet, references: tuple[int, ...] = ()) -> None:
-    """One line naming the file's data sets 58 that were not used (nothing dropped silently:
-    a damaged header can turn an FRF into another function type or another node's)."""
-    ignored = frfs.metadata.get("ignored_data_sets") or []
-    unused = frfs.metadata.get("unused_data_sets") or []
+    """One line naming the file's data sets 58 that were not used, by why (nothing dropped
+    silently: a damaged header can turn an FRF into another function type or another node's)."""
+    meta = frfs.metadata
+    ignored = meta.get("ignored_data_sets") or []
+    unused = meta.get("unused_data_sets") or []
     parts = []
     if ignored:
         parts.append(
             f"{opt.noun(len(ignored), 'data set')} {_listed(ignored)} of another function type "
             "than FRF (4) or coherence (6)"
         )
-    if unused:
-        against = (
-            f"references {', '.join(map(str, references))}"
-            if len(references) > 1
-            else f"reference node {frfs.reference_node}"
-        )
-        parts.append(
-            f"{opt.noun(len(unused), 'data set')} {_listed(unused)} not against {against}, in "
-            "another direction or a reciprocal pair's second"
-        )
+    against = (
+        f"references {', '.join(map(str, references))}"
+        if len(references) > 1
+        else f"reference node {frfs.reference_node}"
+    )
+    if "not_against_reference" not in meta:  # an FRF set built before the reasons were kept
+        if unused:
+            parts.append(
+                f"{opt.noun(len(unused), 'data set')} {_listed(unused)} not against {against}, "
+                "in another direction or a reciprocal pair's second"
+            )
+    else:
+        parts += _unused_by_kind(meta, against)
     if parts:
         opt.say(console, "not used from the file: " + "; ".join(parts), "dim")
+
+
+def _unused_by_kind(meta: dict[str, Any], against: str) -> list[str]:
+    """The left-out data sets by why: not against the reference, another direction (its
+    points named), a reciprocal pair's second."""
+    parts = []
+    other = meta.get("not_against_reference") or []
+    if other:
+        parts.append(f"{opt.noun(len(other), 'data set')} {_listed(other)} not against {against}")
+    turned = meta.get("other_direction")
+    if turned:
+        nodes = turned["nodes"]
+        parts.append(
+            f"{opt.plural(len(nodes), 'point')} struck along {turned['direction']} (nodes "
+            f"{_listed(nodes)}) while the others are along {turned['usual']}: left out, a mode "
+            f"shape here has one direction (data sets {_listed(turned['data_sets'])})"
+        )
+    second = meta.get("reciprocal_second") or []
+    if second:
+        parts.append(
+            f"{opt.noun(len(second), 'data set')} {_listed(second)}: a reciprocal pair's second "
+            "(the one with the sensor at the reference kept)"
+        )
+    return parts
 
 
 def _listed(numbers: list[int]) -> str:
@@ -358,6 +386,8 @@ def run_compare(args: argparse.Namespace, console: Console) -> int:
         )
         if nodes:
             opt.say(console, f"first mode's nodes on the axis: {nodes}")
+    if result.not_a_racket:
+        opt.say(console, f"compare: {result.not_a_racket}")
     opt.print_written(console, result.written)
     return 0
 

@@ -27,7 +27,7 @@ from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Literal, cast, overload
+from typing import Any, Literal, cast, overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -393,6 +393,7 @@ def _against(file: _File, ref: int, layout: str) -> FrfSet:
             "layout": layout,
             "left_out": points.left_out,
             "unused_data_sets": sorted(points.unused),
+            **points.unused_by_kind(ref),
             "ignored_data_sets": ignored,
             "directions": {int(n): int(_point_of(points.by_node[n], ref)[1]) for n in nodes},
             **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
@@ -429,6 +430,36 @@ class _Points:
     """FRFs not against the reference, in another direction, or a reciprocal pair's other."""
     unused: list[int]
     """Their data sets' numbers."""
+    usual: int = 3
+    """The direction most points share (1, 2, 3: x, y, z), the one kept."""
+    other_direction: tuple[_Record, ...] = ()
+    """The FRFs against the reference in another direction (left out: a shape has one)."""
+    reciprocal: tuple[int, ...] = ()
+    """The data sets left out as a reciprocal pair's second."""
+
+    def unused_by_kind(self, ref: int) -> dict[str, Any]:
+        """What was left out, by why (``run.json`` and identify's console line): the data sets
+        not against the reference, the points of another direction (named with it) and the
+        reciprocal pairs' seconds."""
+        other = set(self.unused) - set(self.reciprocal)
+        other -= {r.index for r in self.other_direction}
+        out: dict[str, Any] = {
+            "not_against_reference": sorted(other),
+            "reciprocal_second": sorted(self.reciprocal),
+        }
+        if self.other_direction:
+            directions = sorted({abs(_point_of(r, ref)[1]) for r in self.other_direction})
+            out["other_direction"] = {
+                "usual": AXIS_NAMES.get(self.usual, str(self.usual)),
+                "direction": ", ".join(AXIS_NAMES.get(d, str(d)) for d in directions),
+                "nodes": sorted({_point_of(r, ref)[0] for r in self.other_direction}),
+                "data_sets": sorted(r.index for r in self.other_direction),
+            }
+        return out
+
+
+AXIS_NAMES = {1: "x", 2: "y", 3: "z"}
+"""UFF's direction codes (their magnitude) by name."""
 
 
 def _one_per_point(path: Path, records: list[_Record], ref: int) -> _Points:
@@ -442,11 +473,14 @@ def _one_per_point(path: Path, records: list[_Record], ref: int) -> _Points:
     unused = [r.index for r in records if ref not in (r.rsp_node, r.ref_node)]
     usual = Counter(abs(_point_of(r, ref)[1]) for r in mine).most_common(1)[0][0]
     by_node: dict[int, _Record] = {}
+    other_direction: list[_Record] = []
+    reciprocal: list[int] = []
     for r in mine:
         node, direction = _point_of(r, ref)
         if abs(direction) != usual:
             left_out += 1
             unused.append(r.index)
+            other_direction.append(r)
             continue
         kept = by_node.get(node)
         if kept is None:
@@ -461,6 +495,7 @@ def _one_per_point(path: Path, records: list[_Record], ref: int) -> _Points:
         if r.rsp_node == ref and kept.rsp_node != ref:
             by_node[node] = r
         unused.append(r.index if by_node[node] is not r else kept.index)
+        reciprocal.append(unused[-1])
     if left_out:
         log.info(
             "%s: %d FRFs not against reference node %d (or in another direction) left out",
@@ -468,7 +503,7 @@ def _one_per_point(path: Path, records: list[_Record], ref: int) -> _Points:
             left_out,
             ref,
         )
-    return _Points(by_node, left_out, unused)
+    return _Points(by_node, left_out, unused, usual, tuple(other_direction), tuple(reciprocal))
 
 
 def _check_alike(path: Path, chosen: list[_Record]) -> str:

@@ -57,6 +57,7 @@ from racketdyn.workflows.figure_data import (
     TRANSIENT_CURVE_SPEEDS_MPS,
     ComparisonMap,
     IdentifiedRebound,
+    ImpactCurves,
     PaperFigures,
     SwingAxisCurves,
     TransientCurves,
@@ -943,33 +944,64 @@ def figure_transient_comparison_speed(
 ) -> Figure:
     """Rebound ratio and contact time against speed, approximate against transient.
 
-    At the face centre, near the tip and near the throat, one column per support; the run's
-    speeds marked.
+    At the face centre, near the tip and near the throat, one column per support and two rows
+    (rebound ratio, contact time) per racket speed of the curves; the run's speeds marked.
 
     Parameters
     ----------
     curves : TransientCurves
         Both models' curves (:func:`racketdyn.workflows.figure_data.transient_curves`).
     axes : sequence of Axes, optional
-        Two rows (rebound ratio, contact time) of one per support to draw into, their figure, size
-        and layout the caller's; default a figure of its own
+        Two rows (rebound ratio, contact time) per racket speed of one per support to draw
+        into, their figure, size and layout the caller's; default a figure of its own
         (:func:`racketdyn.plotting.primitives.axes_grid`: an error if not that many).
     """
-    approximate, transient = curves.approximate, curves.transient
-    supports = approximate.supports
-    names = list(approximate.labels)
-    speeds = approximate.ball_speed
+    supports = curves.approximate.supports
+    racket_speeds = curves.approximate.racket_speeds
     figure, grid = axes_grid(
         axes,
-        2,
+        2 * len(racket_speeds),
         len(supports),
-        figsize=(5.0 * len(supports), 7.0),
+        figsize=(5.0 * len(supports), 7.0 * len(racket_speeds)),
         layout="constrained",
         squeeze=False,
         sharex=True,
     )
+    for k, racket_speed in enumerate(racket_speeds):
+        run_speeds = curves.run_speeds
+        if curves.run_racket_speeds.size == run_speeds.size:
+            run_speeds = run_speeds[curves.run_racket_speeds == racket_speed]
+        racket = f"racket {racket_speed:g} m/s" if racket_speed else "racket at rest"
+        block = grid[2 * k : 2 * k + 2, :]
+        _comparison_against_speed(
+            block,
+            curves.approximate.at_racket_speed(racket_speed),
+            curves.transient.at_racket_speed(racket_speed),
+            run_speeds,
+        )
+        for p, support in enumerate(supports):
+            title = _support_style(support)["label"]
+            block[0, p].set_title(title if len(racket_speeds) == 1 else f"{title}, {racket}",
+                                  fontsize=9)  # fmt: skip
+    _legend_below(list(grid[0, :]), columns=3)
+    figure.suptitle(
+        "Approximate method (dashed) against the transient simulation (solid); "
+        + curves.description,
+        fontsize=10,
+    )
+    return figure
+
+
+def _comparison_against_speed(
+    grid: Any, approximate: ImpactCurves, transient: ImpactCurves, run_speeds: NDArray[np.float64]
+) -> None:
+    """One racket speed's two rows (rebound ratio, contact time) × supports of
+    :func:`figure_transient_comparison_speed`."""
+    supports = approximate.supports
+    names = list(approximate.labels)
+    speeds = approximate.ball_speed
     colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, len(names)))
-    for p, support in enumerate(supports):
+    for p in range(len(supports)):
         for row, (quantity, label, scale) in enumerate(
             (("rebound_ratio", "rebound ratio e (–)", 1.0), ("contact_time", "T_c (ms)", 1e3))
         ):
@@ -995,7 +1027,7 @@ def figure_transient_comparison_speed(
                         label=f"{name} ({x * 1e3:.0f} mm), {model_name}",
                     )
                     if style == "-":
-                        _mark_run_speeds(ax, speeds, values * scale, curves.run_speeds)
+                        _mark_run_speeds(ax, speeds, values * scale, run_speeds)
             # rows either method flags (vibration loss, second contact …): hatched, counted
             flagged = np.stack(
                 [r.status[: len(names), :, p] != "ok" for r in (approximate, transient)]
@@ -1009,17 +1041,8 @@ def figure_transient_comparison_speed(
             )
             ax.set_ylabel(label)
             ax.grid(alpha=0.3)
-            if row == 0:
-                ax.set_title(_support_style(support)["label"], fontsize=9)
-            else:
+            if row == 1:
                 ax.set_xlabel("incoming ball speed (m/s)")
-    _legend_below(list(grid[0, :]), columns=3)
-    figure.suptitle(
-        "Approximate method (dashed) against the transient simulation (solid); "
-        + curves.description,
-        fontsize=10,
-    )
-    return figure
 
 
 _NAMED_MODES = 4

@@ -499,8 +499,7 @@ FIGURES: dict[str, FigureEntry] = {
             "line and the measured standard deviations as error bars; the rows held out of the "
             "fit ringed; rows beyond ±3 standard deviations after (calibration_rows.csv's "
             "z_after) are named; flagged rows are counted in the legend and not drawn",
-            not_in_report="the report's calibration section gives the fitted values and the "
-            "RMS; validate --calibration draws the calibrated model against the rows",
+            section="calibration",
             draw=f"{_VALIDATE}:figure_calibration_parity",
             reads=("measured", "parity_predicted", "parity_outliers", "held_out"),
         ),

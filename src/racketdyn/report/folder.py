@@ -264,6 +264,10 @@ def _grid_size(record: Mapping[str, Any]) -> int | None:
     return None
 
 
+Case = tuple[float, float]
+"""An impact case: (ball speed, racket speed), m/s."""
+
+
 @dataclass(frozen=True)
 class Impacts:
     """``impact.csv``: numeric columns as arrays, support and status as strings."""
@@ -326,9 +330,39 @@ class Impacts:
         """Supports in the order of the table."""
         return list(dict.fromkeys(self.support.tolist()))
 
-    def rows(self, speed: float, support: str) -> NDArray[np.intp]:
-        """Row indices at one ball speed (m/s) and support."""
-        return np.flatnonzero((self["ball_speed_mps"] == speed) & (self.support == support))
+    @property
+    def racket_speeds(self) -> NDArray[np.float64]:
+        """Each row's racket speed, m/s (0 without the column, or where it is empty)."""
+        return np.nan_to_num(self["racket_speed_mps"], nan=0.0)
+
+    @property
+    def case_list(self) -> list[Case]:
+        """The table's cases, (ball speed, racket speed) in m/s, ascending: a run may pair one
+        ball speed with several racket speeds (``--speed 20,20 --racket-speed 0,30``)."""
+        pairs = zip(self["ball_speed_mps"].tolist(), self.racket_speeds.tolist(), strict=True)
+        return sorted({(float(b), float(r)) for b, r in pairs})
+
+    @property
+    def moving(self) -> bool:
+        """Whether any row's racket moves (the cases are then named with their racket speed)."""
+        return bool(np.any(self.racket_speeds != 0))
+
+    def case_cell(self, case: Case) -> str:
+        """A case in a table's "ball speed (m/s)" cell: ``20``, or — when the run's cases have
+        several racket speeds — ``20, racket 30`` and ``20, racket at rest``."""
+        ball, racket = case
+        if len({r for _, r in self.case_list}) < 2:
+            return f"{ball:g}"
+        return f"{ball:g}, " + (f"racket {racket:g}" if racket else "racket at rest")
+
+    def rows(self, case: Case, support: str) -> NDArray[np.intp]:
+        """Row indices of one case (ball speed, racket speed; m/s) and support."""
+        ball, racket = case
+        return np.flatnonzero(
+            (self["ball_speed_mps"] == ball)
+            & (self.racket_speeds == racket)
+            & (self.support == support)
+        )
 
     def racket_speed_at(self, speed: float) -> float:
         """The racket speed paired with a ball speed (m/s) in the table; 0 without the
@@ -346,14 +380,14 @@ class Impacts:
         distance = np.hypot(self["x_m"][rows] - x, self["y_m"][rows] - y)
         return int(rows[int(np.argmin(distance))])
 
-    def cases(self, x: float, y: float) -> Iterator[tuple[str, float, NDArray[np.intp], int]]:
-        """Each support and ball speed with rows: ``(support, speed, rows, row nearest (x, y))``
-        (m), supports in the table's order, speeds ascending."""
+    def cases(self, x: float, y: float) -> Iterator[tuple[str, Case, NDArray[np.intp], int]]:
+        """Each support and case with rows: ``(support, case, rows, row nearest (x, y))`` (m),
+        supports in the table's order, cases ascending (:attr:`case_list`)."""
         for support in self.supports:
-            for speed in self.speeds:
-                selected = self.rows(speed, support)
+            for case in self.case_list:
+                selected = self.rows(case, support)
                 if selected.size:
-                    yield support, speed, selected, self.nearest(selected, x, y)
+                    yield support, case, selected, self.nearest(selected, x, y)
 
 
 STEP_NAMES = (

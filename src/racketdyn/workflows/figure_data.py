@@ -1246,18 +1246,27 @@ class TransientCurves:
         The run's ball speeds, m/s (marked).
     description : str
         The run's options in words, for the title.
+    run_racket_speeds : ndarray
+        The racket speed paired with each of ``run_speeds``, m/s (empty: one racket speed for
+        all); the curves hold one run of ball speeds per racket speed
+        (:meth:`ImpactCurves.at_racket_speed`).
     """
 
     approximate: ImpactCurves
     transient: ImpactCurves
     run_speeds: NDArray[np.float64]
     description: str
+    run_racket_speeds: NDArray[np.float64] = field(default_factory=lambda: _EMPTY)
 
     def to_xarray(self) -> xr.Dataset:
         """One dataset: ``transient_speed_approximate__…`` and ``transient_speed_transient__…``."""
         approximate = self.approximate.to_xarray().assign_coords(
             run_speed_mps=("run_speed", self.run_speeds, {"units": "m s-1"})
         )
+        if self.run_racket_speeds.size == self.run_speeds.size:
+            approximate = approximate.assign_coords(
+                run_racket_speed_mps=("run_speed", self.run_racket_speeds, {"units": "m s-1"})
+            )
         approximate.attrs = {"description": self.description}
         return _join(
             {
@@ -1270,11 +1279,13 @@ class TransientCurves:
     def from_xarray(cls, dataset: xr.Dataset) -> TransientCurves:
         """Back from :meth:`to_xarray`'s dataset (or a ``figures.nc`` holding it)."""
         approximate = _part(dataset, "transient_speed_approximate")
+        paired = approximate.coords.get("run_racket_speed_mps")
         return cls(
             approximate=ImpactCurves.from_xarray(approximate),
             transient=ImpactCurves.from_xarray(_part(dataset, "transient_speed_transient")),
             run_speeds=_array(approximate["run_speed_mps"].values),
             description=str(approximate.attrs["description"]),
+            run_racket_speeds=_EMPTY if paired is None else _array(paired.values),
         )
 
     @staticmethod
@@ -1323,29 +1334,35 @@ def transient_curves(
         TRANSIENT_CURVE_SPEEDS_MPS[-1],
         TRANSIENT_CURVE_SPEEDS_MPS.size,
     )
+    # one run of ball speeds per racket speed, each over the whole axis (as Figs 11–12):
+    # interpolating the racket speed between the run's (ball, racket) pairs bent the curves
+    racket_list = list(dict.fromkeys(float(r) for r in racket_speeds)) or [0.0]
     common: dict[str, Any] = {
         "labels": names,
-        "racket_speed": racket_speed_at(at, speeds, racket_speeds),
+        "racket_speed": np.repeat(racket_list, at.size),
     }
+    every = np.tile(at, len(racket_list))
     from racketdyn.impact.transient import predict_transient
 
-    approximate = predict(racket, ball, points, at, supports, **common, **options)
+    approximate = predict(racket, ball, points, every, supports, **common, **options)
     transient = predict_transient(
         racket,
         ball,
         points,
-        at,
+        every,
         supports,
         engine=engine,
         **common,
         **{k: v for k, v in options.items() if k not in APPROXIMATE_ONLY},
     )
     kept = ("rebound_ratio", "contact_time")
+    paired = _array(racket_speeds) if len(racket_speeds) == len(speeds) else _EMPTY
     return TransientCurves(
         approximate=ImpactCurves.of(approximate, kept),
         transient=ImpactCurves.of(transient, kept),
         run_speeds=_array(speeds),
         description=describe_options(options, racket_speeds),
+        run_racket_speeds=paired,
     )
 
 

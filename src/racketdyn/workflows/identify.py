@@ -37,6 +37,7 @@ from racketdyn.modal.polyreference import DEFAULT_MAX_ORDER
 from racketdyn.modal.shapes import pair_modes
 from racketdyn.plausibility import check_speeds
 from racketdyn.racket import HeadEllipse, Racket
+from racketdyn.racket_modal.face import looks_like_racket
 from racketdyn.racket_modal.identify import name_after, name_if_racket, pair_racket_modes
 from racketdyn.racket_modal.shapes import BALL_MODE_NAME, axis_nodes
 from racketdyn.workflows._figure_io import store
@@ -253,14 +254,32 @@ def identify_file(
     layout = (frfs if isinstance(frfs, FrfSet) else frfs.sets[0]).metadata.get("layout")
     metadata = {**found.model.metadata, "naming": naming, "layout": layout}
     if isinstance(frfs, FrfReferences):  # the data sets no reference used
-        unused = set.intersection(*(set(s.metadata.get("unused_data_sets", [])) for s in frfs.sets))
         found = replace(
             found,
-            frfs=replace(
-                found.frfs, metadata={**found.frfs.metadata, "unused_data_sets": sorted(unused)}
-            ),
+            frfs=replace(found.frfs, metadata={**found.frfs.metadata, **_unused_by_all(frfs)}),
         )
     return replace(found, model=replace(found.model, metadata=metadata))
+
+
+def _unused_by_all(frfs: FrfReferences) -> dict[str, Any]:
+    """The data sets no reference used, by why (:func:`racketdyn.io.read_frfs`' metadata keys
+    ``unused_data_sets``, ``not_against_reference``, ``other_direction``,
+    ``reciprocal_second``): a data set against another of the references is used."""
+    metas = [s.metadata for s in frfs.sets]
+    unused = set.intersection(*(set(m.get("unused_data_sets", [])) for m in metas))
+    out: dict[str, Any] = {"unused_data_sets": sorted(unused)}
+    turned = [m["other_direction"] for m in metas if m.get("other_direction")]
+    if turned:
+        out["other_direction"] = {
+            **turned[0],
+            "nodes": sorted({n for t in turned for n in t["nodes"]}),
+            "data_sets": sorted({d for t in turned for d in t["data_sets"]} & unused),
+        }
+    second = {d for m in metas for d in m.get("reciprocal_second", [])} & unused
+    out["reciprocal_second"] = sorted(second)
+    apart = set(out.get("other_direction", {}).get("data_sets", [])) | second
+    out["not_against_reference"] = sorted(unused - apart)
+    return out
 
 
 HAND_COUNTS = (
@@ -469,7 +488,30 @@ UNPAIRED_NOTE = (
 support)."""
 
 
-def compare_modes(free: Identification, hand: Identification, racket: Racket) -> ModeComparison:
+def on_racket_face(free: ModalModel, hand: ModalModel, racket: Racket, racket_given: bool) -> str:
+    """Why the identified models are not a racket's face ("" when they are): compare then
+    leaves out what only a racket has (the nodes on its long axis, Figs 6 and 15).
+
+    A model on a racket's face holds face (x, y) locations (3-D lab points on one plane are
+    mapped onto the face when they are a racket's: :func:`racketdyn.racket_modal.identify.
+    name_if_racket`), on the racket's outline or of a racket the user named."""
+    for model in (free, hand):
+        if model.n_dimensions != 2:
+            return (
+                "not a racket's face (points in space): no nodes on the long axis, Fig. 6 or "
+                "Fig. 15"
+            )
+        if not (racket_given or looks_like_racket(model.locations, racket)):
+            return (
+                "not a racket's face (the points are off its outline; give `racket` for your "
+                "racket's): no nodes on the long axis, Fig. 6 or Fig. 15"
+            )
+    return ""
+
+
+def compare_modes(
+    free: Identification, hand: Identification, racket: Racket | None
+) -> ModeComparison:
     """Pair the free and hand-held modes by MAC and find the first mode's nodes on the axis.
 
     The pairs are :func:`racketdyn.racket_modal.identify.pair_racket_modes`' (a mode pairs
@@ -480,10 +522,15 @@ def compare_modes(free: Identification, hand: Identification, racket: Racket) ->
     ----------
     free, hand : Identification
         The two identifications.
-    racket : Racket
-        The racket (its length bounds the axis searched for nodes).
+    racket : Racket or None
+        The racket (its head tells frame from string points; its length bounds the axis
+        searched for nodes); None for a structure that is not a racket's face
+        (:func:`on_racket_face`): the modes are paired by MAC over every point and no nodes
+        are sought.
     """
-    pairing = pair_racket_modes(free.model, hand.model, racket.head, MINIMUM_PAIR_MAC)
+    pairing = pair_racket_modes(
+        free.model, hand.model, None if racket is None else racket.head, MINIMUM_PAIR_MAC
+    )
     nan = math.nan
     rows: list[dict[str, Any]] = []
     for a, b, value in zip(pairing.first, pairing.second, pairing.mac, strict=True):
@@ -502,6 +549,8 @@ def compare_modes(free: Identification, hand: Identification, racket: Racket) ->
             )
             rows.append(_comparison_row(model.names[k], frequencies, dampings, nan, note))
     rows.sort(key=lambda r: np.nanmin([r["frequency_free_hz"], r["frequency_hand_hz"]]))
+    if racket is None:
+        return ModeComparison(rows, np.zeros(0), np.zeros(0))
     axis = (0.0, racket.length_m)
     return ModeComparison(rows, axis_nodes(free.model, 0, axis), axis_nodes(hand.model, 0, axis))
 
@@ -591,6 +640,9 @@ class CompareResult(StepResult):
     fit_free, fit_hand : FitFigures or None
         What each identification's stabilisation diagram and synthesised FRFs draw (in
         ``figures.nc``, ``_free`` and ``_hand``).
+    not_a_racket : str
+        Why the models are not a racket's face and what was left out for it
+        (:func:`on_racket_face`); "" for a racket's.
     """
 
     free: Identification | None = None
@@ -605,6 +657,7 @@ class CompareResult(StepResult):
     nodes_free_hand: AxisNodes | None = None
     fit_free: FitFigures | None = None
     fit_hand: FitFigures | None = None
+    not_a_racket: str = ""
 
 
 @run_step
@@ -656,22 +709,29 @@ def run_compare(
         out_dir, (found_free, free, "_free"), (found_hand, hand, "_hand")
     )
     written += truth_written
-    comparison = compare_modes(found_free, found_hand, the_racket)
+    faces = on_racket_face(found_free.model, found_hand.model, the_racket, given)
+    comparison = compare_modes(found_free, found_hand, the_racket if not faces else None)
     written.append(write_mode_comparison(comparison, out_dir))
     the_ball, ball_defaults = setup.ball_used()
-    report(setup.progress, "Fig. 15 with the identified models")
-    rebound = identified_rebound(
-        the_racket, the_ball, found_free.model, found_hand.model, float(check_speed)
-    )
+    rebound, nodes_free_hand = None, None
+    if not faces:
+        report(setup.progress, "Fig. 15 with the identified models")
+        rebound = identified_rebound(
+            the_racket, the_ball, found_free.model, found_hand.model, float(check_speed)
+        )
+        nodes_free_hand = axis_node_curves([found_free.model, found_hand.model], the_racket)
     shapes_free = identified_shapes(found_free.model, the_racket)
     shapes_hand = identified_shapes(found_hand.model, the_racket)
-    nodes_free_hand = axis_node_curves([found_free.model, found_hand.model], the_racket)
     fit_free, fit_hand = fit_figures(found_free, the_racket), fit_figures(found_hand, the_racket)
     figure_data: list[Callable[[], xr.Dataset]] = [  # made while written (no dask import)
         partial(shapes_free.to_xarray, "free"),
         partial(shapes_hand.to_xarray, "hand"),
-        partial(nodes_free_hand.to_xarray, "fig6_free_hand"),
-        rebound.to_xarray,
+        *(
+            []
+            if nodes_free_hand is None
+            else [partial(nodes_free_hand.to_xarray, "fig6_free_hand")]
+        ),
+        *([] if rebound is None else [rebound.to_xarray]),
         partial(store, {"comparison": comparison}),
         partial(store, {"fit_figures": fit_free}, "free"),
         partial(store, {"fit_figures": fit_hand}, "hand"),
@@ -692,6 +752,7 @@ def run_compare(
         nodes_free_hand=nodes_free_hand,
         fit_free=fit_free,
         fit_hand=fit_hand,
+        not_a_racket=faces,
     )
     inputs = {
         "free_file": str(Path(free).resolve()),
@@ -702,6 +763,9 @@ def run_compare(
         "modes_free": found_free.model.summary()["modes"],
         "modes_hand": found_hand.model.summary()["modes"],
         "first_mode_nodes_m": _first_mode_nodes(comparison),
+        "racket_parts": faces
+        or "the first mode's nodes on the long axis, Fig. 6 free against "
+        "hand-held and Fig. 15 with the identified models",
         "fig15_ball_speed_mps": float(check_speed),
         "fig15_ball": {
             "mass_kg": the_ball.mass_kg,

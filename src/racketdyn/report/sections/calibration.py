@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from racketdyn.plotting.registry import in_section
 from racketdyn.report.folder import RunFolder, read_json
 from racketdyn.report.formatting import LABELS, UNITS, finite, fmt, split_unit, unit_symbol
 
@@ -123,6 +124,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         "errors": errors,
         "string_bed": str(record.get("string_bed", "uniform")),
         "glance": glance,
+        "figures": run.group([(folder / f.file, "") for f in in_section("calibration")]),
     }
 
 

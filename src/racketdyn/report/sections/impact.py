@@ -32,20 +32,20 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     rows = [
         (
             support,
-            f"{speed:g}",
+            impacts.case_cell(case),
             fmt(impacts["contact_time_s"][i] * 1e3, ".2f"),
             fmt(impacts["mean_force_n"][i], ".0f"),
             fmt(impacts["peak_force_n"][i], ".0f"),
             fmt(impacts["peak_deflection_m"][i] * 1e3, ".1f"),
             fmt(impacts["stiffness_n_per_m"][i] / 1e3, ".1f"),
         )
-        for support, speed, _, i in impacts.cases(x, y)
+        for support, case, _, i in impacts.cases(x, y)
     ]
     i0 = impacts.nearest(np.arange(impacts.support.size), x, y)
     glance = []
     speed, racket_speed = shown_case(run.record(folder), impacts)
     for support in ("pinned", "free"):
-        selected = impacts.rows(speed, support)
+        selected = impacts.rows((speed, racket_speed), support)
         if selected.size:
             i = impacts.nearest(selected, x, y)
             glance.append(

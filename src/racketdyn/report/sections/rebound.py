@@ -14,7 +14,7 @@ from racketdyn.impact.result import extreme_row, model_note, shown_speed_index
 from racketdyn.plotting.registry import file_of
 from racketdyn.racket import HeadEllipse
 from racketdyn.report.figures import Figure, FigureGroup, interactive
-from racketdyn.report.folder import Impacts, RunFolder, read_csv, shown_case
+from racketdyn.report.folder import Case, Impacts, RunFolder, read_csv, shown_case
 from racketdyn.report.formatting import fmt
 from racketdyn.report.plots import map_spec
 
@@ -23,7 +23,8 @@ HOW_TO_RUN = "racketdyn predict --out DIR/predict"
 MAX_MAP_POINTS = 2500
 """Points per speed and support in the interactive map; more are thinned."""
 MAX_MAP_SPEEDS = 7
-"""Ball speeds in the interactive map; more are thinned (the shown speed is kept)."""
+"""Cases (ball and racket speed) in the interactive map; more are thinned (the shown case is
+kept)."""
 FIELDS = [
     ("x", "mm", 0),
     ("y", "mm", 0),
@@ -41,8 +42,8 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     ``impact.csv`` the interactive map and the sweet spots per support and speed.
 
     The steps: the figures (:func:`_figures`), the conditions of the impacts
-    (:func:`_conditions`), the speeds of the map (:func:`_map_speeds`), each speed's panels
-    and sweet spots (:func:`_speed_group`), the map (:func:`_map`), the spots named on the
+    (:func:`_conditions`), the cases of the map (:func:`_map_cases`), each case's panels
+    and sweet spots (:func:`_case_group`), the map (:func:`_map`), the spots named on the
     axis (:func:`_axis_spots`), the note on negative rebound ratios and the bands."""
     folder = run.predict_dir
     compare = run.first(file_of("fig15_identified"))
@@ -67,20 +68,20 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     nodes = run.first_mode_nodes()
     head = run.head()
     marks = _marks(cop, nodes, head)
-    speeds, chosen, chosen_racket = _map_speeds(run, folder, impacts)
+    cases, chosen = _map_cases(run, folder, impacts)
     groups: list[dict[str, Any]] = []
     all_xy: list[NDArray[np.float64]] = []
-    sweet: list[_SweetRow] = []
+    sweet: list[tuple[int, _SweetRow]] = []
     thinned = False
-    for speed in speeds:
-        group, xy, rows, thin = _speed_group(run, impacts, speed)
+    for n, case in enumerate(cases):
+        group, xy, rows, thin = _case_group(run, impacts, case)
         groups.append(group)
         all_xy += xy
-        sweet += [row for row, _ in rows]
+        sweet += [(n, row) for row, _ in rows]
         thinned = thinned or thin
-        if speed == chosen:
+        if case == chosen:
             data["glance"] += [
-                f"highest rebound ratio, {case_words(speed, chosen_racket, support)}: "
+                f"highest rebound ratio, {case_words(*chosen, support)}: "
                 f"{impacts['rebound_ratio'][best]:.3f} at "
                 f"x = {impacts['x_m'][best] * 1e3:.0f} mm, "
                 f"y = {impacts['y_m'][best] * 1e3:.0f} mm{model_note(impacts.status[best])}"
@@ -93,7 +94,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
         groups,
         FIELDS,
         2,
-        speeds.index(chosen),
+        cases.index(chosen),
         np.vstack(all_xy),
         marks,
         "max",
@@ -101,8 +102,8 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
     data["plots"] = {"maps": [spec]}
     data["map"] = _map(thinned)
     order = {support: n for n, support in enumerate(impacts.supports)}
-    sweet.sort(key=lambda row: (order[row[0]], float(row[1])))
-    data["sweet"] = sweet
+    sweet.sort(key=lambda item: (order[item[1][0]], item[0]))
+    data["sweet"] = [row for _, row in sweet]
     data["spots"] = _axis_spots(cop, nodes)
     data["negative"] = _negative_note(impacts, run.record(folder))
     data["glance"] += _bands(run, impacts, chosen)
@@ -157,20 +158,18 @@ def _marks(
     return marks
 
 
-def _map_speeds(
-    run: RunFolder, folder: Path | None, impacts: Impacts
-) -> tuple[list[float], float, float]:
-    """The map's ball speeds (at most :data:`MAX_MAP_SPEEDS`, the shown one kept), the shown
-    ball speed and its racket speed."""
-    speeds = impacts.speeds
-    chosen, chosen_racket = shown_case(run.record(folder), impacts)
-    if chosen not in speeds:
-        chosen = speeds[shown_speed_index(speeds)]
-        chosen_racket = impacts.racket_speed_at(chosen)
-    if len(speeds) > MAX_MAP_SPEEDS:
-        picks = np.unique(np.linspace(0, len(speeds) - 1, MAX_MAP_SPEEDS).round().astype(int))
-        speeds = sorted({speeds[i] for i in picks} | {chosen})
-    return speeds, chosen, chosen_racket
+def _map_cases(run: RunFolder, folder: Path | None, impacts: Impacts) -> tuple[list[Case], Case]:
+    """The map's cases, (ball speed, racket speed) in m/s (at most :data:`MAX_MAP_SPEEDS`, the
+    shown one kept), and the shown case."""
+    cases = impacts.case_list
+    chosen = shown_case(run.record(folder), impacts)
+    if chosen not in cases:
+        speeds = [ball for ball, _ in cases]
+        chosen = cases[shown_speed_index(speeds)]
+    if len(cases) > MAX_MAP_SPEEDS:
+        picks = np.unique(np.linspace(0, len(cases) - 1, MAX_MAP_SPEEDS).round().astype(int))
+        cases = sorted({cases[i] for i in picks} | {chosen})
+    return cases, chosen
 
 
 _SweetRow = tuple[str, str, str, str, str, str]
@@ -178,31 +177,29 @@ _SweetRow = tuple[str, str, str, str, str, str]
 and the quietest point."""
 
 
-def _speed_group(
-    run: RunFolder, impacts: Impacts, speed: float
+def _case_group(
+    run: RunFolder, impacts: Impacts, case: Case
 ) -> tuple[dict[str, Any], list[NDArray[np.float64]], list[tuple[_SweetRow, int]], bool]:
-    """One ball speed of the map: its group of panels (one per support), the points drawn,
-    each support's sweet-spot row with its best row of ``impacts``, and whether points were
-    thinned."""
+    """One case of the map (ball speed, racket speed; m/s): its group of panels (one per
+    support), the points drawn, each support's sweet-spot row with its best row of
+    ``impacts``, and whether points were thinned."""
     panels: list[dict[str, Any]] = []
     all_xy: list[NDArray[np.float64]] = []
     sweet: list[tuple[_SweetRow, int]] = []
     thinned = False
     for support in impacts.supports:
-        selected = impacts.rows(speed, support)
+        selected = impacts.rows(case, support)
         if selected.size > MAX_MAP_POINTS:
             selected = selected[:: math.ceil(selected.size / MAX_MAP_POINTS)]
             thinned = True
         panels.append({"label": support, "rows": _panel_rows(impacts, selected)})
         all_xy.append(np.column_stack([impacts["x_m"][selected], impacts["y_m"][selected]]))
-        found = _sweet_row(run, impacts, selected, (support, speed))
+        found = _sweet_row(run, impacts, selected, (support, case))
         if found is not None:
             sweet.append(found)
     values = [r[2] for p in panels for r in p["rows"] if r[2] is not None]
     group = {
-        "label": case_words(speed, impacts.racket_speed_at(speed))
-        if np.any(impacts["racket_speed_mps"] != 0)
-        else f"{speed:g} m/s",
+        "label": case_words(*case) if impacts.moving else f"{case[0]:g} m/s",
         "range": [min(values), max(values)] if values else [0.0, 1.0],
         "panels": panels,
     }
@@ -234,13 +231,13 @@ def _panel_rows(impacts: Impacts, selected: NDArray[np.intp]) -> list[list[Any]]
 
 
 def _sweet_row(
-    run: RunFolder, impacts: Impacts, selected: NDArray[np.intp], case: tuple[str, float]
+    run: RunFolder, impacts: Impacts, selected: NDArray[np.intp], case: tuple[str, Case]
 ) -> tuple[_SweetRow, int] | None:
-    """The sweet-spot row of one ``case`` (support, ball speed) and its best row: the highest
-    rebound ratio of the valid rows of ``selected`` (the approximate method's and those filled
-    from the transient model, marked so) and where, the centre's (nearest of ``selected``), and
-    the quietest valid row; None when no row is valid."""
-    support, speed = case
+    """The sweet-spot row of one support and case (ball speed, racket speed) and its best row:
+    the highest rebound ratio of the valid rows of ``selected`` (the approximate method's and
+    those filled from the transient model, marked so) and where, the centre's (nearest of
+    ``selected``), and the quietest valid row; None when no row is valid."""
+    support, speeds = case
     e, status = impacts["rebound_ratio"], impacts.status
     best = extreme_row(e, status, selected)
     if best is None:
@@ -250,7 +247,7 @@ def _sweet_row(
     quiet = extreme_row(impacts["vibration_energy_j"], status, selected, smallest=True)
     row = (
         support,
-        f"{speed:g}",
+        impacts.case_cell(speeds),
         f"{e[best]:.3f}{model_note(status[best])}",
         impacts.where(best),
         fmt(e[centre], ".3f") + model_note(status[centre]),
@@ -293,10 +290,10 @@ def _axis_spots(cop: Any, nodes: dict[str, list[float]]) -> list[str]:
     return spots
 
 
-def _bands(run: RunFolder, impacts: Impacts, speed: float) -> list[str]:
+def _bands(run: RunFolder, impacts: Impacts, case: Case) -> list[str]:
     """With ``predict --uncertainty``: the centre's rebound ratio with its 90 % band, one
-    sentence per support at the shown speed, and the dominant input at each point of
-    ``sensitivity.csv``."""
+    sentence per support at the shown case (ball speed, racket speed; m/s), and the dominant
+    input at each point of ``sensitivity.csv``."""
     if "rebound_ratio_p05" not in impacts.numbers:
         return []
     folder = run.predict_dir
@@ -305,7 +302,7 @@ def _bands(run: RunFolder, impacts: Impacts, speed: float) -> list[str]:
     x, y = run.centre(impacts)
     lines = []
     for support in impacts.supports:
-        rows = impacts.rows(speed, support)
+        rows = impacts.rows(case, support)
         if not rows.size:
             continue
         i = impacts.nearest(rows, x, y)
@@ -318,7 +315,7 @@ def _bands(run: RunFolder, impacts: Impacts, speed: float) -> list[str]:
             else "(no band: under 90 % of the samples valid)"
         )
         lines.append(
-            f"rebound ratio at the centre, {speed:g} m/s, {support}: "
+            f"rebound ratio at the centre, {case_words(*case, support)}: "
             f"{fmt(e, '.3f')} {band}" + (f" — uncertain: {spread}" if spread else "")
         )
     sensitivity = folder / "sensitivity.csv" if folder is not None else None

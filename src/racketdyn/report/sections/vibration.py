@@ -78,14 +78,14 @@ def _rows(run: RunFolder, impacts: Impacts, ball_mass: float) -> list[tuple[str,
         impacts["ball_speed_mps"] + np.nan_to_num(impacts["racket_speed_mps"]),
     )
     rows: list[tuple[str, ...]] = []
-    for support, speed, selected, i in impacts.cases(x, y):
+    for support, case, selected, i in impacts.cases(x, y):
         # a flagged row's energy is not a valid result (issue 13): never the largest
         largest = extreme_row(energy, status, selected)
         smallest = extreme_row(energy, status, selected, smallest=True)
         rows.append(
             (
                 support,
-                f"{speed:g}",
+                impacts.case_cell(case),
                 *(
                     (
                         fmt(energy[i], ".3g") + model_note(status[i]),
