@@ -368,6 +368,7 @@ def test_a_fragment_of_a_named_edge_mode_is_not_named_again(racket: rd.Racket) -
     assert not np.any(np.abs(found.model.frequency - named[0].frequency_hz) < lines)
 
 
+@pytest.mark.slow  # a rig's hammer test and its FRFs, simulated (≈ 3 s each)
 @pytest.mark.parametrize(
     ("noise", "windows_s"),
     [
@@ -431,6 +432,7 @@ def test_a_close_pair_of_the_held_racket_is_parted_with_the_default_band(
         assert abs(zeta / truth.damping_ratio[k] - 1) < 0.2, (zeta, truth.damping_ratio[k])
 
 
+@pytest.mark.slow  # a rig's hammer test and its FRFs, simulated (≈ 3 s)
 def test_a_pair_the_selection_parted_is_not_fitted_twice(tmp_path: Path) -> None:
     """The paper's file with mass 300 g, area 645 cm² and first bending 145 Hz (the brief's
     racket; held, its 2-node twisting 354.53 Hz, ζ 3.9 %, and 3-node bending 371.42 Hz, ζ
