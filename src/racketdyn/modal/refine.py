@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -32,7 +33,14 @@ from scipy.optimize import least_squares
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.poles import SelectedPoles
 
-__all__ = ["MOVE_LINES", "NARROW_LINES", "REFINE_LINES", "SETTLED_FRACTION", "refine_narrow_poles"]
+__all__ = [
+    "MOVE_LINES",
+    "NARROW_LINES",
+    "REFINE_LINES",
+    "SETTLED_FRACTION",
+    "fit_poles",
+    "refine_narrow_poles",
+]
 
 log = logging.getLogger(__name__)
 
@@ -74,7 +82,7 @@ def refine_narrow_poles(frfs: FrfSet, selected: SelectedPoles) -> tuple[Selected
     zeta = selected.damping_ratio.copy()
     lines: list[str] = []
     for k in np.flatnonzero(_narrow(selected, spacing, shift)):
-        refined = _local_fit(frfs, selected, int(k), spacing, shift)
+        refined = _local_fit(frfs, selected, int(k), spacing)
         if refined is None:
             continue
         frequency[k], zeta[k] = refined
@@ -101,21 +109,50 @@ def _narrow(selected: SelectedPoles, spacing: float, shift: float) -> NDArray[np
 
 
 def _local_fit(
-    frfs: FrfSet, selected: SelectedPoles, k: int, spacing: float, shift: float
+    frfs: FrfSet, selected: SelectedPoles, k: int, spacing: float
 ) -> tuple[float, float] | None:
     """Frequency and damping of mode ``k`` from the FRFs' lines around it, or None (kept)."""
     centre = float(selected.frequency[k])
-    near = np.abs(frfs.frequency - centre) <= REFINE_LINES * spacing
     inside = np.flatnonzero(np.abs(selected.frequency - centre) <= REFINE_LINES * spacing)
+    found = fit_poles(
+        frfs,
+        selected.frequency[inside],
+        selected.damping_ratio[inside],
+        (centre - REFINE_LINES * spacing, centre + REFINE_LINES * spacing),
+    )
+    if found is None:
+        return None
+    frequency, zeta, _, improved = found
+    j = int(np.flatnonzero(inside == k)[0])
+    moved, z = (float(frequency[j]) - centre) / spacing, float(zeta[j])
+    if abs(moved) > MOVE_LINES or not 0 < z < 1 or not improved:
+        log.debug("narrow mode at %.2f Hz: the local fit not taken", centre)
+        return None
+    return float(frequency[j]), z
+
+
+def fit_poles(
+    frfs: FrfSet,
+    frequency_hz: NDArray[np.float64],
+    damping_ratio: NDArray[np.float64],
+    window_hz: tuple[float, float],
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128], bool] | None:
+    """The poles of the FRFs' lines in ``window_hz`` by the local fit (module docstring),
+    started from ``frequency_hz`` and ``damping_ratio``: frequencies (Hz), damping ratios, the
+    constants ``r_ok`` of every FRF (one column a pole) and whether the fit improved on its
+    start; None where the window holds too few lines or the fit fails."""
+    spacing = float(np.median(np.diff(frfs.frequency)))
+    shift = 1.0 / frfs.exponential_window_s if frfs.exponential_window_s else 0.0
+    near = (frfs.frequency >= window_hz[0]) & (frfs.frequency <= window_hz[1])
     s = 2j * np.pi * frfs.frequency[near]
     data = frfs.values[:, near].T
-    n = inside.size
+    n = len(frequency_hz)
     if s.size < 2 * (2 * n + 2):
         return None
-    start = np.concatenate([np.zeros(n), np.log(np.maximum(selected.damping_ratio[inside], 1e-9))])
-    base = selected.frequency[inside]
+    start = np.concatenate([np.zeros(n), np.log(np.maximum(damping_ratio, 1e-9))])
+    base = np.asarray(frequency_hz, dtype=float)
 
-    def residual(x: NDArray[np.float64]) -> NDArray[np.float64]:
+    def constants(x: NDArray[np.float64]) -> tuple[NDArray[np.complex128], NDArray[Any]]:
         omega = 2 * np.pi * (base + x[:n] * spacing)
         z = np.exp(x[n:])
         pole = -z * omega + 1j * omega * np.sqrt(np.maximum(1 - z**2, 0.0)) - shift
@@ -124,7 +161,10 @@ def _local_fit(
         )
         scale = np.linalg.norm(columns, axis=0)
         solution, *_ = np.linalg.lstsq(columns / scale, data, rcond=None)
-        error = data - (columns / scale) @ solution
+        return data - (columns / scale) @ solution, (solution / scale[:, None])[:n].T
+
+    def residual(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        error = constants(x)[0]
         return np.concatenate([error.real.ravel(), error.imag.ravel()])
 
     before = float(np.linalg.norm(residual(start)))
@@ -132,11 +172,7 @@ def _local_fit(
         found = least_squares(residual, start)
     except (ValueError, np.linalg.LinAlgError):
         return None
-    j = int(np.flatnonzero(inside == k)[0])
-    moved, z = float(found.x[j]), float(np.exp(found.x[n + j]))
     if not (found.success and np.all(np.isfinite(found.x))):
         return None
-    if abs(moved) > MOVE_LINES or not 0 < z < 1 or np.linalg.norm(found.fun) >= before:
-        log.debug("narrow mode at %.2f Hz: the local fit not taken", centre)
-        return None
-    return centre + moved * spacing, z
+    improved = bool(np.linalg.norm(found.fun) < before)
+    return base + found.x[:n] * spacing, np.exp(found.x[n:]), constants(found.x)[1], improved
