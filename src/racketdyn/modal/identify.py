@@ -158,6 +158,7 @@ PAIR_WIDTHS = 3.0
 """Half-width of a close pair's local fit, in the broader pole's half-power widths ``2ζf``
 (refitted while the fit widens it): a broad mode under a narrow one is held by its skirts."""
 PAIR_TRIES = 3
+"""Local fits of one close pair at most, each over the window the one before gives."""
 PAIR_BAND = 2.5
 """A close pair's weaker mode is tried on the band from the bottom to this many times its
 frequency, before it is named: fewer modes in the band, more orders for each."""
@@ -165,7 +166,6 @@ PAIR_MAC = 0.5
 """Largest MAC of a close pair's two shapes: under one peak two modes are told apart by their
 shapes alone, so they must be clearly unlike (the hand-held racket's bending and twisting
 0.00; one mode's peak split by the local fit into two poles of like damping 0.61-0.79)."""
-"""Local fits of one close pair at most, each over the window the one before gives."""
 HEADER_DIGITS_RTOL = 1e-5
 """A band top this far (relative) above the last line is the last line: the UFF header keeps
 the step with 6 significant digits (E13.5), so a 1000 Hz export reads 999.997 Hz."""
