@@ -364,3 +364,35 @@ def test_a_task_cancelled_before_its_result_is_gathered_ends_its_future_quietly(
     quiet: Future[Any] = Future()
     asyncio.run(cascade(executors._cascade_future, quiet))
     assert quiet.cancelled()
+
+
+def test_an_interrupted_cluster_keeps_its_cancelled_tasks_off_the_console() -> None:
+    """CI (twelfth session): after Ctrl-C on a local Dask sweep the scheduler in this process
+    printed "ERROR distributed.scheduler: Couldn't gather keys … 'forgotten'" and the client
+    "Couldn't gather 1 keys, rescheduling" for a task the sweep had just cancelled (the test
+    above, 1 run in a few).  Those loggers go quiet at the interrupt, unless -v shows
+    distributed's info, and are set back when the cluster has closed."""
+    import logging
+
+    from racketdyn.sweep.executors import (
+        INTERRUPT_LOGGERS,
+        _LoggerLevels,
+        quiet_interrupted_cluster,
+    )
+
+    top = logging.getLogger("distributed")
+    before = top.level
+    try:
+        top.setLevel(logging.WARNING)
+        with _LoggerLevels(INTERRUPT_LOGGERS):
+            quiet_interrupted_cluster()
+            for name in ("distributed.scheduler", "distributed.client"):
+                assert not logging.getLogger(name).isEnabledFor(logging.ERROR)
+        for name in INTERRUPT_LOGGERS:
+            assert logging.getLogger(name).isEnabledFor(logging.ERROR)
+        top.setLevel(logging.INFO)  # -v: the user asked to see it
+        with _LoggerLevels(INTERRUPT_LOGGERS):
+            quiet_interrupted_cluster()
+            assert logging.getLogger("distributed.scheduler").isEnabledFor(logging.ERROR)
+    finally:
+        top.setLevel(before)

@@ -14,7 +14,7 @@ import signal
 import sys
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
 from types import FrameType
@@ -460,10 +460,12 @@ def make_executor(
 
         forkserver = _dask_forkserver()
         held = _HeldCtrlC()
+        levels = _LoggerLevels(INTERRUPT_LOGGERS)
         # Dask's nannies set MALLOC_TRIM_THRESHOLD_ on their workers, which switches off glibc's
         # adaptive mmap threshold: every large temporary array is then mapped and unmapped
         # afresh, and a sweep task runs ≈ 1.7 times slower.  Leave the allocator alone.
         with (
+            levels,  # set back after the cluster closed (quiet_interrupted_cluster)
             dask.config.set(
                 {
                     "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
@@ -510,8 +512,47 @@ def make_executor(
         client = Client(scheduler, timeout="20s")  # type: ignore[no-untyped-call]
     except (OSError, TimeoutError, ValueError) as error:
         raise InputError(f"scheduler {scheduler}: cannot connect ({error})") from None
-    with client:
+    with _LoggerLevels(INTERRUPT_LOGGERS), client:
         yield _dask_executor(client)
+
+
+INTERRUPT_LOGGERS = (
+    "distributed.scheduler",
+    "distributed.client",
+    "distributed.core",
+    "distributed.batched",
+    "distributed.nanny",
+    "distributed.worker",
+)
+"""The loggers of distributed's parts in this process (a local cluster's scheduler, the
+client) that report the tasks a Ctrl-C cancelled while it closes."""
+
+
+def quiet_interrupted_cluster() -> None:
+    """After a Ctrl-C, before the sweep's Dask tasks are cancelled: the scheduler and the client
+    in this process would report each task they could no longer gather ("Couldn't gather keys
+    … forgotten", "rescheduling") — the sweep says itself what it kept.  Unless this process
+    shows distributed's info (``-v``), their loggers are set to critical until the cluster or
+    the client has closed (:class:`_LoggerLevels`)."""
+    if logging.getLogger("distributed").getEffectiveLevel() < logging.WARNING:
+        return
+    for name in INTERRUPT_LOGGERS:
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+
+
+class _LoggerLevels:
+    """A context that sets the named loggers' levels back to what they were on entry."""
+
+    def __init__(self, names: Sequence[str]) -> None:
+        self._names = tuple(names)
+        self._levels: dict[str, int] = {}
+
+    def __enter__(self) -> None:
+        self._levels = {name: logging.getLogger(name).level for name in self._names}
+
+    def __exit__(self, *_: object) -> None:
+        for name, level in self._levels.items():
+            logging.getLogger(name).setLevel(level)
 
 
 LOCAL_DASK_QUIET: dict[str, Any] = {

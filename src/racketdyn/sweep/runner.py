@@ -33,7 +33,12 @@ from pathlib import Path
 from typing import Any
 
 from racketdyn.sweep.design import Design
-from racketdyn.sweep.executors import ProcessPool, SerialExecutor, _in_flight_limit
+from racketdyn.sweep.executors import (
+    ProcessPool,
+    SerialExecutor,
+    _in_flight_limit,
+    quiet_interrupted_cluster,
+)
 from racketdyn.sweep.spec import SweepSpec
 from racketdyn.sweep.store import STORE_NAME, StoreNotSeenError, recorded, write_chunk
 from racketdyn.sweep.task import SweepTask, TaskOutput, run_task
@@ -265,6 +270,7 @@ class _Runner:
                     self._pool_broke(broken)
                 self._check_timeouts()
         except KeyboardInterrupt:
+            quiet_interrupted_cluster()  # the tasks cancelled now are the sweep's to report
             lost = self._stop_all()
             # a worker writes its task's chunk when the task ends: count the designs of
             # unfinished tasks that made it to disk (the workers are stopped by now)
