@@ -302,8 +302,8 @@ def outliers(z: NDArray[np.float64]) -> NDArray[np.bool_]:
 
 
 def outlier_rank(z: NDArray[np.float64]) -> NDArray[np.int64]:
-    """Each row's rank among the outliers: 1 the worst (largest |z|), 2 the next, …; 0 for a row
-    that is not one."""
+    """Each row's rank among the outliers: 1 the worst (largest absolute z), 2 the next, …; 0
+    for a row that is not one."""
     rows = np.flatnonzero(outliers(z))
     rows = rows[np.argsort(-np.abs(z[rows]), kind="stable")]
     rank = np.zeros(np.shape(z), dtype=np.int64)

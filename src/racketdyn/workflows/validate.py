@@ -203,7 +203,7 @@ class ValidateResult(StepResult):
         return {method: outlier_rank(z) for method, z in self.standardised.items()}
 
     def outliers(self, method: str) -> tuple[str, ...]:
-        """The labels of one model's outlying rows (|z| beyond the limit), worst first."""
+        """The labels of one model's outlying rows (absolute z beyond the limit), worst first."""
         assert self.measured is not None
         return outlier_labels(self.measured, self.standardised[method])
 
