@@ -31,6 +31,7 @@ from racketdyn.modal.poles import (
     SelectedPoles,
     SelectionRules,
     Stabilisation,
+    pole_of,
     require_rules,
     select_poles,
     stabilisation,
@@ -640,9 +641,8 @@ def _clear_peaks(
             chosen.append(d)
     if not chosen:
         return selected, []
-    omega = 2 * np.pi * np.array([d.frequency_hz for d in chosen])
-    zeta = np.array([d.damping_ratio for d in chosen])
-    poles = np.concatenate([selected.pole, -zeta * omega + 1j * omega * np.sqrt(1 - zeta**2)])
+    found = pole_of([d.frequency_hz for d in chosen], [d.damping_ratio for d in chosen])
+    poles = np.concatenate([selected.pole, found])
     gains = fit_gain(frfs, fit_modal_constants(frfs, poles, band))[selected.n_modes :]
     keep: list[tuple[DroppedMode, float]] = []
     named: dict[float, float] = {}  # by frequency: the same clusters after a re-selection
@@ -772,8 +772,7 @@ def _close_pairs(
         ]
         kept += found_again
         rest[kept] = False
-        omega = 2 * np.pi * frequency
-        poles = -zeta * omega + 1j * omega * np.sqrt(1 - zeta**2)
+        poles = pole_of(frequency, zeta)
         fit = fit_modal_constants(frfs, np.concatenate([selected.pole[rest], poles]), band)
         gains = fit_gain(frfs, fit)[-2:]
         # a mode the selection kept needs a peak of the data, one it left out a clear peak: the
@@ -934,8 +933,7 @@ def _with_pair(
     spreads (NaN: no cluster of its own), pinned if mode ``k`` was; the local fit's constants
     as their residues, in order of frequency."""
     frequency, zeta, constants = pair
-    omega = 2 * np.pi * frequency
-    pole = -zeta * omega + 1j * omega * np.sqrt(1 - zeta**2)
+    pole = pole_of(frequency, zeta)
 
     def two(values: NDArray[Any], other: float) -> NDArray[Any]:
         return np.concatenate([values[rest], [values[k], other]])

@@ -85,7 +85,7 @@ from enum import IntEnum
 from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 from scipy.cluster.hierarchy import fcluster, linkage
 
 from racketdyn.errors import InputError, require_whole
@@ -104,6 +104,7 @@ __all__ = [
     "SelectionRules",
     "Stabilisation",
     "mac",
+    "pole_of",
     "require_rules",
     "select_poles",
     "stabilisation",
@@ -521,6 +522,14 @@ def stabilisation(
             "evenly_spaced": domain.even,
         },
     )
+
+
+def pole_of(frequency_hz: ArrayLike, damping_ratio: ArrayLike) -> NDArray[np.complex128]:
+    """The continuous-time poles of modes of (undamped) natural frequency ``frequency_hz`` (Hz)
+    and damping ratio ``damping_ratio``: −ζω + iω√(1 − ζ²), ω = 2πf (rad/s)."""
+    zeta = np.asarray(damping_ratio, dtype=float)
+    omega = 2 * np.pi * np.asarray(frequency_hz, dtype=float)
+    return np.asarray(-zeta * omega + 1j * omega * np.sqrt(1 - zeta**2))
 
 
 def diagram_fields(
@@ -1283,11 +1292,10 @@ def _selected(
     what was left out (``dropped``, ``dropped_modes``)."""
     frequency = np.array([c.frequency for c in chosen])
     zeta = np.array([c.damping_ratio for c in chosen])
-    omega = 2 * np.pi * frequency
     return SelectedPoles(
         frequency=frequency,
         damping_ratio=zeta,
-        pole=np.asarray(-zeta * omega + 1j * omega * np.sqrt(1 - zeta**2)),
+        pole=pole_of(frequency, zeta),
         n_orders=np.array([c.n_orders for c in chosen], dtype=int),
         frequency_spread_hz=np.array([np.std(stab.frequency[c.members]) for c in chosen]),
         damping_spread=np.array([np.std(stab.damping_ratio[c.members]) for c in chosen]),

@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 from scipy.optimize import least_squares
 
 from racketdyn.measurement.records import FrfSet
-from racketdyn.modal.poles import SelectedPoles
+from racketdyn.modal.poles import SelectedPoles, pole_of
 
 __all__ = [
     "MOVE_LINES",
@@ -94,8 +94,7 @@ def refine_narrow_poles(frfs: FrfSet, selected: SelectedPoles) -> tuple[Selected
         )
     if not lines:
         return selected, []
-    omega = 2 * np.pi * frequency
-    pole = np.asarray(-zeta * omega + 1j * omega * np.sqrt(1 - zeta**2))
+    pole = pole_of(frequency, zeta)
     return replace(selected, frequency=frequency, damping_ratio=zeta, pole=pole), lines
 
 
