@@ -380,6 +380,17 @@ def test_the_mode_table_still_reads_the_identification(page: str) -> None:
     assert "Nodes of the first mode along the long axis" in section
 
 
+def test_the_identified_models_say_where_their_fit_misses(page: str) -> None:
+    """Each identification's verdict on its fit error (racketdyn.modal.misfit), from its
+    modal_model*.json, under its mode table: the shares and what they say."""
+    section = _section(page, "stabilisation")
+    verdicts = re.findall(r"Where the fit misses: (median fit error [^<]*)\.</p>", section)
+    assert len(verdicts) == 2  # free and hand-held
+    for verdict in map(unescape, verdicts):
+        assert "the data's noise leaves" in verdict
+        assert "`" not in verdict
+
+
 def test_the_whole_page_has_no_json_escapes_nor_internal_names(page: str) -> None:
     """Run data with Unicode (…, Ω, Xⁿ, m/(N·s²)) as it is, in the tables and the plots' data."""
     assert not re.search(r"\\u[0-9a-fA-F]{4}", page)

@@ -254,11 +254,14 @@ def print_modes(
     note = identification.band_note
     band = f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
     opt.say(console, f"band {band}: " + ("as given (--band)" if note == "given" else note))
-    opt.say(
-        console,
-        f"median fit error {np.median(identification.fit.error):.2%}, design matrix "
-        f"condition {identification.fit.condition_number:.3g}",
+    where = identification.misfit
+    fit_line = (
+        f"median fit error {np.median(identification.fit.error):.2%}"
+        if where is None
+        else opt.in_flags(where.sentence(), parser)
     )
+    condition = f"design matrix condition {identification.fit.condition_number:.3g}"
+    opt.say(console, f"{fit_line}; {condition}")
     narrow = identification.half_power_lines < 1.0
     if narrow.any():
         spacing = float(np.median(np.diff(identification.frfs.frequency)))

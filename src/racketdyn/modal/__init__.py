@@ -13,10 +13,12 @@ The chain, usable on any structure's FRFs (:class:`racketdyn.measurement.FrfSet`
   against several references (:class:`racketdyn.measurement.records.FrfReferences`);
 - :func:`fit_modal_constants` and :func:`mass_normalised_shapes` — LSFD modal constants with
   residuals, and mode shapes scaled from the driving point (:class:`ModalFit`);
+- :func:`misfit` — where a fit misses its FRFs and what that says, the verdict on the fit
+  error (:class:`Misfit`; :attr:`Identification.misfit`);
 - :class:`ModalModel`, :func:`mac`, :func:`nodes_along`, :func:`pair_modes`.
 
-The name ``racketdyn.modal.identify`` is the function; its module's other names import as
-before (``from racketdyn.modal.identify import default_band``).  :mod:`racketdyn.testing` has
+The names ``racketdyn.modal.identify`` and ``racketdyn.modal.misfit`` are the functions; their
+modules' other names import as before (``from racketdyn.modal.identify import default_band``).  :mod:`racketdyn.testing` has
 structures with known modes to try the chain on.
 """
 
@@ -24,6 +26,7 @@ from __future__ import annotations
 
 from racketdyn.modal.identify import Identification, default_band, identify
 from racketdyn.modal.mac import mac
+from racketdyn.modal.misfit import Misfit, misfit
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import (
     SelectedPoles,
@@ -38,6 +41,7 @@ from racketdyn.modal.shapes import ModePairing, nodes_along, pair_modes
 
 __all__ = [
     "Identification",
+    "Misfit",
     "ModalFit",
     "ModalModel",
     "ModePairing",
@@ -49,6 +53,7 @@ __all__ = [
     "identify",
     "mac",
     "mass_normalised_shapes",
+    "misfit",
     "nodes_along",
     "pair_modes",
     "poly_stabilisation",

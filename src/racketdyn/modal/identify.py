@@ -25,6 +25,7 @@ from numpy.typing import NDArray
 from racketdyn.errors import InputError
 from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfReferences, FrfSet
 from racketdyn.modal.mac import mac
+from racketdyn.modal.misfit import Misfit, misfit
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.poles import (
     DroppedMode,
@@ -1002,6 +1003,9 @@ class Identification:
         it): the least-squares factor ``l`` with which its LSFD modal constants (the same
         poles) are ``l`` times the shape reference's; NaN where a mode's constants are all
         zero.  One row of ones for a single reference.
+    misfit : Misfit, optional
+        Where the fit misses the FRFs and what that says (:mod:`racketdyn.modal.misfit`):
+        the verdict on the fit error.
     """
 
     model: ModalModel
@@ -1014,6 +1018,7 @@ class Identification:
     scaling_note: str = ""
     references: tuple[int, ...] = ()
     participation: NDArray[np.float64] | None = None
+    misfit: Misfit | None = None
 
     @property
     def dropped_modes(self) -> tuple[DroppedMode, ...]:
@@ -1206,6 +1211,7 @@ def identify(
     if note:
         log.warning("%s: %s", fitted.frfs.source, note)
     frfs, selected, fit = fitted.frfs, fitted.selected, fitted.fit
+    where = misfit(frfs, fit)
     mass = scaled.scaling == "mass"
     shapes = mass_normalised_shapes(frfs, fit) if mass else unscaled_shapes(fit)
     names = tuple(f"mode {k + 1} ({f:.1f} Hz)" for k, f in enumerate(selected.frequency))
@@ -1230,6 +1236,7 @@ def identify(
                 *(r for r in references.references if r != frfs.reference_node),
             ],
             **_fit_record(fitted, note),
+            "misfit": where.record(),
             **_left_out_record(fitted, kept, refined, late),
         },
         scaling=scaled.scaling,
@@ -1242,7 +1249,17 @@ def identify(
     if frfs.metadata.get("sign_reversed"):  # the others as read, against the set as read
         participation[1:] *= -1
     return Identification(
-        model, frfs, stab, selected, fit, band, band_note, note, tuple(order), participation
+        model,
+        frfs,
+        stab,
+        selected,
+        fit,
+        band,
+        band_note,
+        note,
+        tuple(order),
+        participation,
+        where,
     )
 
 

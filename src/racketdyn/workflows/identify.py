@@ -432,6 +432,7 @@ def run_identify(
         "modes": found.model.summary()["modes"],
         "kept": found.model.metadata.get("kept", []),
         "dropped": found.model.metadata["dropped"],
+        "misfit": found.model.metadata.get("misfit"),
         TRUTH_FILES: truth_files,
     }
     return setup.finish(result, inputs, "identify")

@@ -2,19 +2,29 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from racketdyn.plotting.registry import labelled
 from racketdyn.report.figures import FigureGroup
-from racketdyn.report.folder import RunFolder, number, read_csv
+from racketdyn.report.folder import RunFolder, number, read_csv, read_json
 from racketdyn.report.formatting import fmt
 
 HOW_TO_RUN = (
     "racketdyn compare DIR/frf_free/frfs.uff DIR/frf_hand/frfs.uff "
     "--out DIR/compare (or racketdyn identify)"
 )
+
+
+def _misfit(path: Path) -> str:
+    """The verdict on the fit error the model file keeps (:mod:`racketdyn.modal.misfit`), its
+    sentence's parameter names as plain words; empty for a model without one."""
+    if not path.is_file():
+        return ""
+    record = read_json(path).get("metadata", {}).get("misfit") or {}
+    return str(record.get("sentence", "")).replace("`", "")
 
 
 def gather(run: RunFolder) -> dict[str, Any] | None:
@@ -47,7 +57,15 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             if errors.size and np.isfinite(errors).any():
                 fit_error = f"median {np.nanmedian(errors):.1%}, largest {np.nanmax(errors):.1%}"
         dropped = [str(d) for d in run.record(folder).get("dropped") or []]
-        models.append({"label": label, "modes": body, "fit_error": fit_error, "dropped": dropped})
+        models.append(
+            {
+                "label": label,
+                "modes": body,
+                "fit_error": fit_error,
+                "misfit": _misfit(folder / f"modal_model{suffix}.json"),
+                "dropped": dropped,
+            }
+        )
     return {
         "diagrams": figures("stabilisation"),
         "models": models,
