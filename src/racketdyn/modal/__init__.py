@@ -18,8 +18,8 @@ The chain, usable on any structure's FRFs (:class:`racketdyn.measurement.FrfSet`
 - :class:`ModalModel`, :func:`mac`, :func:`nodes_along`, :func:`pair_modes`.
 
 The names ``racketdyn.modal.identify`` and ``racketdyn.modal.misfit`` are the functions; their
-modules' other names import as before (``from racketdyn.modal.identify import default_band``).  :mod:`racketdyn.testing` has
-structures with known modes to try the chain on.
+modules' other names import as before (``from racketdyn.modal.identify import default_band``).
+:mod:`racketdyn.testing` has structures with known modes to try the chain on.
 """
 
 from __future__ import annotations

@@ -1211,7 +1211,12 @@ def identify(
     if note:
         log.warning("%s: %s", fitted.frfs.source, note)
     frfs, selected, fit = fitted.frfs, fitted.selected, fitted.fit
-    where = misfit(frfs, fit)
+    clear = ("unsettled", "edge")  # left out though a peak of the data stands there
+    where = misfit(
+        frfs,
+        fit,
+        [d.frequency_hz for d in (*selected.dropped_modes, *late) if d.stage in clear],
+    )
     mass = scaled.scaling == "mass"
     shapes = mass_normalised_shapes(frfs, fit) if mass else unscaled_shapes(fit)
     names = tuple(f"mode {k + 1} ({f:.1f} Hz)" for k, f in enumerate(selected.frequency))

@@ -28,6 +28,7 @@ an FRF's coherence, not where a modal fit misses; the split uses only numpy.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -62,6 +63,8 @@ DOMINANT = 0.5
 """The share of the residual's energy that names where the misfit lies."""
 WORST = 3
 """Frequencies named where the residual away from the modes is largest."""
+NEAR_WORST = 0.03
+"""A left-out mode within this fraction of a worst frequency is named with it."""
 
 CAUSES = ("noise", "missing modes", "band edges", "complex modes", "unresolved peaks", "poles")
 """The verdicts, plus ``"spread"`` when no place holds :data:`DOMINANT` of the misfit."""
@@ -94,6 +97,9 @@ class Misfit:
         first), Hz.
     unresolved_share : float
         The share of the residual at the kept modes that lies at the unresolved ones.
+    left_out_hz : tuple of float
+        Modes left out (given by the caller) within :data:`NEAR_WORST` of a frequency in
+        ``worst_hz``, Hz.
     cause : str
         One of :data:`CAUSES` or ``"spread"``.
     """
@@ -109,6 +115,7 @@ class Misfit:
     unresolved_hz: tuple[float, ...]
     worst_modes_hz: tuple[float, ...]
     unresolved_share: float
+    left_out_hz: tuple[float, ...]
     cause: str
 
     def sentence(self) -> str:
@@ -130,9 +137,12 @@ class Misfit:
         """What the dominant place says."""
         if self.cause == "missing modes":
             at = ", ".join(f"{f:.4g}" for f in self.worst_hz)
+            if not self.left_out_hz:
+                return f"modes or lines the model lacks, most at {at} Hz"
+            there = ", ".join(f"{f:.5g}" for f in self.left_out_hz)
             return (
-                f"modes or lines the model lacks, most at {at} Hz (a mode left out there is "
-                "kept with `pin_hz`)"
+                f"modes or lines the model lacks, most at {at} Hz, where {there} Hz were left "
+                "out (`pin_hz` keeps a mode)"
             )
         if self.cause == "band edges":
             lo0, lo1, hi0, hi1 = self.edges_hz
@@ -173,12 +183,13 @@ class Misfit:
             "worst_hz": list(self.worst_hz),
             "unresolved_hz": list(self.unresolved_hz),
             "worst_modes_hz": list(self.worst_modes_hz),
+            "left_out_hz": list(self.left_out_hz),
             "cause": self.cause,
             "sentence": self.sentence(),
         }
 
 
-def misfit(frfs: FrfSet, fit: ModalFit) -> Misfit:
+def misfit(frfs: FrfSet, fit: ModalFit, left_out_hz: Sequence[float] = ()) -> Misfit:
     """Where ``fit`` misses ``frfs`` (module docstring).
 
     Parameters
@@ -187,6 +198,9 @@ def misfit(frfs: FrfSet, fit: ModalFit) -> Misfit:
         The FRFs fitted (the lines of ``fit.frequency`` among theirs).
     fit : ModalFit
         The LSFD fit (:func:`racketdyn.modal.residues.fit_modal_constants`).
+    left_out_hz : sequence of float
+        Modes the identification left out although they stand in the data (clear peaks), Hz:
+        those near where the misfit lies are named with it.
 
     Returns
     -------
@@ -205,6 +219,7 @@ def misfit(frfs: FrfSet, fit: ModalFit) -> Misfit:
     unresolved = 2 * fit.damping_ratio * fit.frequency_hz < spacing
     per_mode = _per_mode(fit, residual.sum(axis=0), near)
     at_modes = float(per_mode.sum())
+    worst = _worst(fit.frequency, residual.sum(axis=0), ~near & ~edge)
     found = Misfit(
         median_error=float(np.median(fit.error)),
         noise_error=float(np.median(noise)),
@@ -212,7 +227,7 @@ def misfit(frfs: FrfSet, fit: ModalFit) -> Misfit:
         near_modes=shares[0],
         edges=shares[1],
         elsewhere=shares[2],
-        worst_hz=_worst(fit.frequency, residual.sum(axis=0), ~near & ~edge),
+        worst_hz=worst,
         edges_hz=edges_hz,
         unresolved_hz=tuple(float(f) for f in fit.frequency_hz[unresolved]),
         worst_modes_hz=tuple(
@@ -221,6 +236,11 @@ def misfit(frfs: FrfSet, fit: ModalFit) -> Misfit:
             if per_mode[k] > 0
         ),
         unresolved_share=float(per_mode[unresolved].sum()) / at_modes if at_modes > 0 else 0.0,
+        left_out_hz=tuple(
+            sorted(
+                float(f) for f in left_out_hz if any(abs(f - w) <= NEAR_WORST * w for w in worst)
+            )
+        ),
         cause="",
     )
     return _judged(found)
