@@ -166,8 +166,9 @@ class Misfit:
         if self.cause == "poles":
             at = ", ".join(f"{f:.4g}" for f in self.worst_modes_hz)
             return (
-                f"the poles miss the peaks, most at {at} Hz (modes too close to part, or a "
-                "nonlinear, amplitude-dependent mode)"
+                f"the peaks' shapes are not the kept poles', most at {at} Hz (two modes too "
+                "close to part, a peak distorted in the measurement by leakage or a window, "
+                "or a nonlinear, amplitude-dependent mode)"
             )
         return "no one place holds the misfit"
 
