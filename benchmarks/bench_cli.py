@@ -5,7 +5,10 @@ identify`` on the demo's 69 free-free FRFs with the demo's band (≤ 3 s) and ``
 (≤ 30 s), each run as a fresh process through the installed ``racketdyn`` script, end to end
 (start-up, imports, computation, figures, files). The machine is shared, so each command is
 repeated and the minimum wall time is printed, with the CPU time (user + system) of that run
-and its ratio to the target (≤ 1 meets it). A benchmark prints; it does not assert.
+and its ratio to the target (≤ 1 meets it). A benchmark prints; it does not assert. First it
+prints the host: the libraries' versions, the import times of scipy.optimize and
+matplotlib.pyplot in a fresh process, and a fixed Python loop, so that runs on two hosts (or two
+library versions) can be told apart from a change in racketdyn.
 
 Run: ``python benchmarks/bench_cli.py`` (≈ 3–4 min; ``--repeat N`` for the short commands,
 ``--demo-repeat N`` for the demo, ``--skip-demo`` to make the FRFs with ``rig`` + ``frf``
@@ -35,7 +38,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -189,9 +192,55 @@ def make_frfs(work: Path) -> Path:
     return frf / "frfs.uff"
 
 
+HOST_LIBRARIES = ("numpy", "scipy", "matplotlib", "xarray", "pandas", "numba")
+"""The libraries whose versions and import times set a command's start-up (issue 27: scipy
+1.17 imports its optimize ≈ 0.6 s slower than 1.15 on the same host, its array-API decorators
+parsing docstrings at import)."""
+
+
+def host_lines() -> list[str]:
+    """What the host and its libraries are, to tell a slower host from a slower racketdyn:
+    the versions, a fresh process's ``import scipy.optimize`` and ``import matplotlib.pyplot``
+    (best of 3), and a fixed pure-Python loop (best of 3), each in s."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    def installed(name: str) -> str:
+        try:
+            return f"{name} {version(name)}"
+        except PackageNotFoundError:
+            return f"{name} absent"
+
+    def fresh_import(module: str) -> float:
+        code = f"import time; t = time.perf_counter(); import {module}; "
+        code += "print(time.perf_counter() - t)"
+        runs = [
+            float(subprocess.run([sys.executable, "-c", code], check=True,
+                                 capture_output=True, text=True).stdout)
+            for _ in range(3)
+        ]  # fmt: skip
+        return min(runs)
+
+    def loop() -> float:
+        start = time.perf_counter()
+        total = 0
+        for k in range(2_000_000):
+            total += k % 7
+        return time.perf_counter() - start
+
+    python_loop = min(loop() for _ in range(3))
+    return [
+        "host: " + ", ".join(installed(name) for name in HOST_LIBRARIES),
+        f"host: import scipy.optimize {fresh_import('scipy.optimize'):.2f} s, import "
+        f"matplotlib.pyplot {fresh_import('matplotlib.pyplot'):.2f} s (fresh process, best of "
+        f"3); a 2·10⁶-step Python loop {python_loop:.2f} s (best of 3)",
+    ]
+
+
 def benchmark(repeats: int, demo_repeats: int, skip_demo: bool) -> None:
     print(f"racketdyn CLI, {os.cpu_count()} cores, best of {repeats} (demo: {demo_repeats})")
     print(f"load average before: {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
+    for text in host_lines():
+        print(text, flush=True)
     with tempfile.TemporaryDirectory() as folder:
         work = Path(folder)
         wall, cpu = best_of(["--help"], repeats)
@@ -212,6 +261,38 @@ def benchmark(repeats: int, demo_repeats: int, skip_demo: bool) -> None:
 
 
 # --- where the time goes ---------------------------------------------------------------------
+def time_demo_steps(
+    steps: list[tuple[str, float, float, float]], drawn: Callable[[], float]
+) -> None:
+    """Time each of the demo's steps (``racketdyn.cli.demo.steps``' calls) as it runs: its
+    command's name, wall, CPU and the part of ``drawn()`` (CPU spent drawing figures) it took,
+    appended to ``steps``."""
+    from racketdyn.cli import demo
+
+    chain_of = demo.steps
+
+    def timed_chain(*args: Any, **kwargs: Any) -> list[tuple[str, list[str], Callable[[], object]]]:
+        def timed(command: list[str], call: Callable[[], object]) -> Callable[[], object]:
+            def run() -> object:
+                wall, cpu, drawing = time.perf_counter(), time.process_time(), drawn()
+                result = call()
+                steps.append(
+                    (
+                        command[1],
+                        time.perf_counter() - wall,
+                        time.process_time() - cpu,
+                        drawn() - drawing,
+                    )
+                )
+                return result
+
+            return run
+
+        return [(label, c, timed(c, call)) for label, c, call in chain_of(*args, **kwargs)]
+
+    demo.steps = timed_chain
+
+
 class _Clock:
     """Inclusive wall and CPU time of the outermost calls of wrapped functions, by category."""
 
@@ -309,16 +390,8 @@ def _profile(argv: Sequence[str]) -> None:
         clock.wrap(racketdyn.report, "write_report", "report")
     clock.wrap(cli, "main", "command")
     steps: list[tuple[str, float, float, float]] = []
-    run_step = getattr(cli, "_run_step", None)  # the demo's steps (cli.py of 2026-11)
-    if run_step is not None:
-
-        def timed_step(step: list[str], *args: Any) -> None:
-            wall, cpu, drawing = time.perf_counter(), time.process_time(), clock.get("figures")[1]
-            run_step(step, *args)
-            drawing = clock.get("figures")[1] - drawing
-            steps.append((step[0], time.perf_counter() - wall, time.process_time() - cpu, drawing))
-
-        cli._run_step = timed_step
+    if argv[0] == "demo":
+        time_demo_steps(steps, lambda: clock.get("figures")[1])
     cli.main(list(argv))
     print(f"\n== racketdyn {' '.join(argv[:2])} …  (one run, timers around the steps)")
     print(_row("start-up: importing the CLI (fresh process)", (start_wall, start_cpu)))
