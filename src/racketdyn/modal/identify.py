@@ -708,25 +708,26 @@ def _close_pairs(
     """Two modes under one peak that the LSCF over a wide band does not part: fitted locally.
 
     Over a band holding many modes the orders computed resolve two modes closer than their
-    half-power width late or never: the low orders fit one pole of mixed shape and damping
-    for both, and the broader mode's own poles appear in a few high orders only.  The
-    selection then keeps the mixed pole, or the narrow mode alone, and drops the broader one
-    for its orders (a hand-held racket's 3-node bending and 2-node twisting 0.14 Hz apart, ζ 1
-    and 4 %: the twisting's damping 71 % low, its pole dropped, the shapes unscaled; issue 25).
-    For each kept mode with a neighbour within their mean half-power width (a kept mode, or a
-    candidate dropped for its orders, as :func:`_clear_peaks` takes them) two poles are
-    fitted to the FRFs' own lines around it (:func:`racketdyn.modal.refine.fit_poles`, over
+    half-power width late or never: the low orders fit one pole of mixed shape and damping for
+    both, and the broader mode's own poles appear in a few high orders only.  The selection then
+    keeps the mixed pole, or the narrow mode alone, and drops the broader one for its orders (a
+    hand-held racket's 3-node bending and 2-node twisting 0.14 Hz apart, ζ 1 and 4 %: the
+    twisting's damping 71 % low, its pole dropped, the shapes unscaled; issue 25). For each kept
+    mode with a neighbour within their mean half-power width (a kept mode, or a candidate
+    dropped for its orders, as :func:`_clear_peaks` takes them) two poles are fitted to the
+    FRFs' own lines around it (:func:`racketdyn.modal.refine.fit_poles`, over
     :data:`PAIR_WIDTHS` of the broader pole's half-power width either side, refitted while that
     widens), started from the mode and the neighbour least like it in damping.  The two are
-    taken, in place of the mode and every kept mode within one peak of it or of them, when they
-    stay one peak, their shapes are unlike (MAC under :data:`PAIR_MAC`: one mode split in two
-    has one shape) and each holds a peak of the data over the whole band (:func:`fit_gain`,
-    fitted with every other mode kept, :data:`FIT_GAIN_MIN` or more for one within one peak of
-    a mode the selection kept, :data:`CLEAR_PEAK_GAIN` for one it left out); else the selection
-    stays as it is, and a weaker mode of the two between :data:`FIT_GAIN_MIN` and
-    :data:`CLEAR_PEAK_GAIN` that no kept mode stands for is an ``unsettled`` row naming the
-    ``band_hz`` that keeps it (:func:`_weak_of_pair`; ``narrower`` False: not tried, as in
-    that band's own fit).
+    taken, in place of the mode and every kept mode within one peak of it or of them (one at
+    most: where the wide band's fit kept three or more under one peak, two poles would lose one,
+    and the selection stays), when they stay one peak, their shapes are unlike (MAC under
+    :data:`PAIR_MAC`: one mode split in two has one shape) and each holds a peak of the data
+    over the whole band (:func:`fit_gain`, fitted with every other mode kept,
+    :data:`FIT_GAIN_MIN` or more for one within one peak of a mode the selection kept,
+    :data:`CLEAR_PEAK_GAIN` for one it left out); else the selection stays as it is, and a
+    weaker mode of the two between :data:`FIT_GAIN_MIN` and :data:`CLEAR_PEAK_GAIN` that no kept
+    mode stands for is an ``unsettled`` row naming the ``band_hz`` that keeps it
+    (:func:`_weak_of_pair`; ``narrower`` False: not tried, as in that band's own fit).
 
     Returns
     -------
@@ -772,6 +773,13 @@ def _close_pairs(
             if np.any(np.abs(selected.frequency[j] - frequency) < reach[j])
         ]
         kept += found_again
+        if len(kept) > 1:  # the wide band's fit parted three or more here: two poles lose one
+            log.debug(
+                "close pair at %.2f Hz: %d kept modes under one peak, not refitted as two",
+                fk,
+                len(kept) + 1,
+            )
+            continue
         rest[kept] = False
         poles = pole_of(frequency, zeta)
         fit = fit_modal_constants(frfs, np.concatenate([selected.pole[rest], poles]), band)
