@@ -175,3 +175,23 @@ def test_identify_says_where_the_fit_misses_in_its_options(
     assert "pin_hz" not in said
     record = json.loads((out / "run.json").read_text())
     assert record["misfit"]["cause"] == "missing modes"
+
+
+def test_an_frf_of_zeros_adds_no_misfit_and_no_warning() -> None:
+    """A dead channel's FRF (all zeros) among live ones: its share is nothing, and no division
+    by its zero energy warns."""
+    import warnings
+
+    from racketdyn.modal.residues import fit_modal_constants
+
+    found = identify(_clean_bar().frfs, (40.0, 1200.0))
+    values = found.frfs.values.copy()
+    values[3] = 0.0
+    frfs = replace(found.frfs, values=values)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the fit's own error of that FRF is 0/0
+        fit = fit_modal_constants(frfs, found.fit.poles, found.band_hz)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        where = misfit(frfs, fit)
+    assert np.isfinite([where.near_modes, where.edges, where.elsewhere, where.noise_error]).all()

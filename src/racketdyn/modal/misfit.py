@@ -211,8 +211,9 @@ def misfit(frfs: FrfSet, fit: ModalFit, left_out_hz: Sequence[float] = ()) -> Mi
     lines = np.isin(frfs.frequency, fit.frequency)
     data = frfs.values[:, lines]
     energy = np.sum(np.abs(data) ** 2, axis=1)
+    energy = np.where(energy > 0, energy, np.inf)  # an FRF of zeros misses nothing
     residual = np.abs(data - fit.synthesised) ** 2 / energy[:, None]
-    noise = np.sqrt(second_difference_noise(data) * data.shape[1] / energy)
+    noise = np.sqrt(second_difference_noise(data) * data.shape[1] / energy)[np.isfinite(energy)]
     near, edge, edges_hz = _places(fit)
     total = float(residual.sum())
     shares = [float(residual[:, m].sum()) / total if total > 0 else 0.0 for m in _split(near, edge)]
@@ -222,8 +223,8 @@ def misfit(frfs: FrfSet, fit: ModalFit, left_out_hz: Sequence[float] = ()) -> Mi
     at_modes = float(per_mode.sum())
     worst = _worst(fit.frequency, residual.sum(axis=0), ~near & ~edge)
     found = Misfit(
-        median_error=float(np.median(fit.error)),
-        noise_error=float(np.median(noise)),
+        median_error=float(np.nanmedian(fit.error)) if np.isfinite(fit.error).any() else 0.0,
+        noise_error=float(np.median(noise)) if noise.size else 0.0,
         complex_error=_complex_error(frfs, fit, data),
         near_modes=shares[0],
         edges=shares[1],
@@ -293,8 +294,10 @@ def _complex_error(frfs: FrfSet, fit: ModalFit, data: NDArray[np.complex128]) ->
     rhs = np.vstack([data.T.real, data.T.imag])
     solution, *_ = np.linalg.lstsq(stacked / scale, rhs, rcond=None)
     synthesised = (matrix @ (solution / scale[:, None])).T
-    errors = np.linalg.norm(data - synthesised, axis=1) / np.linalg.norm(data, axis=1)
-    return float(np.median(errors))
+    size = np.linalg.norm(data, axis=1)
+    live = size > 0  # an FRF of zeros has no error to give
+    errors = np.linalg.norm(data[live] - synthesised[live], axis=1) / size[live]
+    return float(np.median(errors)) if errors.size else 0.0
 
 
 def _worst(
