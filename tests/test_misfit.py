@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from racketdyn.modal.identify import identify
-from racketdyn.modal.misfit import COMPLEX_GAIN, DOMINANT, NOISE_FACTOR, misfit
+from racketdyn.modal.misfit import COMPLEX_GAIN, DOMINANT, NEGLIGIBLE, NOISE_FACTOR, misfit
 from racketdyn.testing.free_beam import beam_frfs
 
 POINTS = np.linspace(0.0, 1.0, 11)
@@ -195,3 +195,14 @@ def test_an_frf_of_zeros_adds_no_misfit_and_no_warning() -> None:
         warnings.simplefilter("error")
         where = misfit(frfs, fit)
     assert np.isfinite([where.near_modes, where.edges, where.elsewhere, where.noise_error]).all()
+
+
+def test_a_noise_free_fit_within_half_a_per_cent_is_negligible() -> None:
+    """Noise-free FRFs (the bar without noise or floor): the fit is within round-off of the
+    data and the noise's own error is nil, so "twice the noise" would judge a 1e-6 misfit; a
+    median error under 0.5 % is said to be as close as a fit need be."""
+    test = beam_frfs(POINTS, 0.0, noise=0.0, floor=0.0)
+    where = identify(test.frfs, (40.0, 1200.0)).misfit
+    assert where is not None
+    assert where.median_error < NEGLIGIBLE
+    assert where.cause == "negligible", where.sentence()

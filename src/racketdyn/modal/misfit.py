@@ -18,6 +18,8 @@ in docs/develop.md: 0.07–1.4 % against medians of 7–79 %); what the misfit s
   beyond an edge that the residual terms cannot stand for.
 * **elsewhere** — away from every kept mode: modes (or lines) the model lacks.
 
+A median error under :data:`NEGLIGIBLE` is as close as a fit need be whatever the noise.
+
 The noise's own share is the error white noise of the data's level would leave
 (:func:`racketdyn.modal.poles.second_difference_noise`, per FRF, over all the band's lines):
 a median error within :data:`NOISE_FACTOR` of it is as good as the data allow.
@@ -56,6 +58,9 @@ EDGE_SHARE = 0.03
 """The fraction of the band's width at each end that counts as its edge."""
 NOISE_FACTOR = 2.0
 """A median fit error within this factor of the noise's own is the noise's."""
+NEGLIGIBLE = 0.005
+"""A median fit error under this is as good as a fit need be, whatever the noise (noise-free
+synthetic FRFs leave 0.0–0.1 %)."""
 COMPLEX_GAIN = 0.6
 """Complex constants leaving at most this fraction of the median error: the modes are
 complex."""
@@ -66,7 +71,15 @@ WORST = 3
 NEAR_WORST = 0.03
 """A left-out mode within this fraction of a worst frequency is named with it."""
 
-CAUSES = ("noise", "missing modes", "band edges", "complex modes", "unresolved peaks", "poles")
+CAUSES = (
+    "noise",
+    "negligible",
+    "missing modes",
+    "band edges",
+    "complex modes",
+    "unresolved peaks",
+    "poles",
+)
 """The verdicts, plus ``"spread"`` when no place holds :data:`DOMINANT` of the misfit."""
 
 
@@ -127,6 +140,8 @@ class Misfit:
         )
         if self.cause == "noise":
             return f"{head}: as good as the noise allows"
+        if self.cause == "negligible":
+            return f"{head}: under {NEGLIGIBLE:.1%}, as close as a fit need be"
         places = (
             f"{self.near_modes:.0%} of the misfit at the kept modes, {self.edges:.0%} at the "
             f"band's edges, {self.elsewhere:.0%} elsewhere"
@@ -154,8 +169,9 @@ class Misfit:
         if self.cause == "complex modes":
             return (
                 f"complex modal constants would leave {self.complex_error:.1%}: the modes are "
-                "complex (non-proportional damping) or the channels differ in phase (a delay, "
-                "a filter), which the real constants of mass-normalised shapes cannot follow"
+                "complex (non-proportional damping), the channels differ in phase (a delay, a "
+                "filter) or the record ends before the ringing does (leakage), which the real "
+                "constants of mass-normalised shapes cannot follow"
             )
         if self.cause == "unresolved peaks":
             at = ", ".join(f"{f:.4g}" for f in self.unresolved_hz)
@@ -167,8 +183,8 @@ class Misfit:
             at = ", ".join(f"{f:.4g}" for f in self.worst_modes_hz)
             return (
                 f"the peaks' shapes are not the kept poles', most at {at} Hz (two modes too "
-                "close to part, a peak distorted in the measurement by leakage or a window, "
-                "or a nonlinear, amplitude-dependent mode)"
+                "close to part, a nonlinear, amplitude-dependent mode, or a peak the "
+                "measurement distorted)"
             )
         return "no one place holds the misfit"
 
@@ -317,6 +333,8 @@ def _judged(found: Misfit) -> Misfit:
     """The verdict: the noise's, else the place holding :data:`DOMINANT` of the misfit."""
     if found.median_error <= NOISE_FACTOR * found.noise_error:
         return replace(found, cause="noise")
+    if found.median_error < NEGLIGIBLE:
+        return replace(found, cause="negligible")
     if found.elsewhere >= DOMINANT:
         return replace(found, cause="missing modes")
     if found.edges >= DOMINANT:
