@@ -631,3 +631,25 @@ def test_a_sweep_range_of_absurdly_many_values_is_one_line(tmp_path: Path) -> No
         )
         with pytest.raises(InputError, match=r"\[variables\]\.tension_n\.num.*1 to 100000"):
             load_sweep_spec(path)
+
+
+def test_every_hit_rejected_names_no_file_the_failed_run_leaves_out(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """An unseen lab's NI DAQ record whose force channel wanders (a 35 N swell over 0.1 s on
+    a drifting baseline, no impulse) was refused "... see quality.csv ..." while the failed
+    run leaves its folder as it was, without a quality.csv: the message names what to check,
+    not a file that is not there."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    records = _records()
+    records = replace(records, force=tuple(f + np.roll(f, 40, axis=1) for f in records.force))
+    path = write_hammer_uff(records, tmp_path / "double.uff")
+    out = tmp_path / "frf"
+    assert main(["frf", str(path), "--out", str(out)]) == 2
+    message = " ".join(capsys.readouterr().err.split())
+    assert "every average of every point was rejected: double hit 6" in message, message
+    assert not (out / "quality.csv").exists()
+    assert "quality.csv" not in message, message

@@ -164,6 +164,43 @@ def test_clean_hits_pass_and_clipping_is_caught() -> None:
     assert all("force overload" in c.reasons for c in clipped.checks)
 
 
+def _inverted(records: HammerRecords) -> HammerRecords:
+    """The records of a hammer channel that reads compression as negative volts."""
+    return replace(records, force=tuple(-f for f in records.force))
+
+
+def test_a_negative_hammer_channel_is_read_by_its_pulse() -> None:
+    # A hammer channel wired to read compression as negative (the Tokyo Sokki frame's:
+    # -924, +258, +228, +118 V at 50 Hz) took its positive undershoot for the pulse: peak
+    # 2.2 N for a 7.9 N hit, the pulse start one sample late.  The pulse is the largest
+    # excursion either way; the FRFs then take their sign from the driving point, as a
+    # negated set's do.
+    records = records_for(MODES, n_averages=3, force_noise=0.002, response_noise=0.01)
+    upright = estimate_frfs(records)
+    inverted = estimate_frfs(_inverted(records))
+    assert all(c.accepted for c in inverted.checks)
+    for up, down in zip(upright.checks, inverted.checks, strict=True):
+        assert down.peak_force_n == pytest.approx(up.peak_force_n, rel=1e-9)
+        assert down.pulse_start_s == pytest.approx(up.pulse_start_s)
+    assert upright.frfs is not None
+    assert inverted.frfs is not None
+    np.testing.assert_allclose(inverted.frfs.values, upright.frfs.values, rtol=1e-9)
+    force = half_sine(np.arange(512) * 2e-4 - 40 * 2e-4, 0.0, 3.3e-3, 100.0)
+    assert contact_time(-force, 2e-4, 40 * 2e-4) == pytest.approx(3.3e-3, rel=0.02)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_noise_of_a_long_record_is_no_second_hit(seed: int) -> None:
+    # A 50 Hz, 178 s record (the Tokyo Sokki frame's driving point): its quiet force noise
+    # (1 % of the peak) gave dips and bumps whose prominence reached the detection level
+    # (6 × the noise), read as a second hit though no bump stood above it.  A second pulse
+    # must rise above the detection level from the baseline, as the first must.
+    records = records_for(
+        MODES, n_averages=4, n_samples=8192, pretrigger_samples=4, force_noise=0.01, seed=seed
+    )
+    assert [c.reasons for c in estimate_frfs(records).checks] == [()] * 8
+
+
 def _replace_point(records: HammerRecords, index: int, force: np.ndarray) -> HammerRecords:
     forces = list(records.force)
     forces[index] = force

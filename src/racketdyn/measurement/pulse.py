@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from racketdyn.measurement.quality import AverageCheck, force_baseline_and_noise
+from racketdyn.measurement.quality import AverageCheck, force_baseline_and_noise, pulse_polarity
 from racketdyn.measurement.records import HammerRecords
 
 __all__ = ["HALF_SINE_FWHM_FACTOR", "ContactTimes", "contact_time", "contact_times"]
@@ -45,6 +45,7 @@ def contact_time(
     pretrigger = round(pretrigger_s / sampling_interval_s)
     baseline, _ = force_baseline_and_noise(force, pretrigger)
     pulse = np.asarray(force, dtype=float) - baseline
+    pulse = pulse_polarity(pulse) * pulse  # a channel reading compression as negative
     top = int(np.argmax(pulse))
     half = 0.5 * pulse[top]
     if half <= 0:

@@ -16,15 +16,22 @@ Checks (each named in the reasons it gives):
 ``double hit``
     A second force pulse: more than one peak standing out of the force record by more than the
     detection level (``max(5 % of the peak, 6 × noise rms)``), whether the second pulse follows
-    after the first has ended or rides on its tail.  Found with ``scipy.signal.find_peaks``
-    (prominence), so a second hit 0.5–4 ms after the first is caught on frame and string
-    pulses alike.
+    after the first has ended or rides on its tail, and rising above that level from the
+    baseline as the first must (a long record's quiet noise has dips and bumps whose
+    prominence reaches six times its rms: the Tokyo Sokki frame's 178 s driving point).
+    Found with ``scipy.signal.find_peaks`` (height and prominence), so a second hit 0.5–4 ms
+    after the first is caught on frame and string pulses alike.
 ``trigger``
     The pulse is cut by the start or the end of the record, or it starts more than
     ``trigger_tolerance_s`` away from the other averages of its point (their median start;
     :func:`check_point_starts`).  The pulse may lie anywhere in the record: a record whose
     t = 0 is its first sample and whose pulse comes 10 ms later (an acquisition with a
     pre-trigger that exports no negative times) is as good as one triggered at t = 0.
+
+The pulse is the force's largest excursion from its baseline, whichever its sign: a hammer
+channel may read compression as negative (the Tokyo Sokki frame's: −924 V then a +258 V
+undershoot); its size is the peak force (:func:`pulse_polarity`).  The FRFs are estimated from
+the channel as recorded and take their sign from the driving point, as a negated set's do.
 
 The noise level comes from the pre-trigger samples when there are at least 8, else from the
 last quarter of the record (robust estimate: 1.4826 × median absolute deviation), and is never
@@ -51,6 +58,7 @@ __all__ = [
     "check_average",
     "check_point_starts",
     "force_baseline_and_noise",
+    "pulse_polarity",
     "quantisation_step",
     "rail_level",
 ]
@@ -129,6 +137,13 @@ def force_baseline_and_noise(
     return baseline, noise
 
 
+def pulse_polarity(pulse: NDArray[np.float64]) -> float:
+    """+1, or −1 when the largest excursion of ``pulse`` (a force less its baseline) is negative:
+    a hammer channel that reads compression as negative."""
+    values = np.asarray(pulse, dtype=float)
+    return -1.0 if values.size and -float(np.min(values)) > float(np.max(values)) else 1.0
+
+
 def quantisation_step(signal: NDArray[np.float64]) -> float:
     """The step of the converter that quantised ``signal``: the smallest difference between
     two of its distinct values (0 for a constant record).
@@ -172,6 +187,7 @@ def check_average(
     baseline, noise = force_baseline_and_noise(force, pretrigger)
     noise = max(noise, quantisation_step(force))
     pulse = force - baseline
+    pulse = pulse_polarity(pulse) * pulse
     peak = float(np.max(pulse))
     level = max(settings.relative_level * peak, settings.noise_factor * noise)
     if peak <= settings.noise_factor * noise or peak <= 0:
@@ -186,7 +202,7 @@ def check_average(
     # this module only for its tables (benchmarks/bench_cli.py)
     from scipy.signal import find_peaks
 
-    peaks, _ = find_peaks(pulse, prominence=level)
+    peaks, _ = find_peaks(pulse, height=level, prominence=level)
     if peaks.size > 1:
         reasons.append("double hit")
     above = np.flatnonzero(pulse > level)

@@ -49,7 +49,9 @@ CONJUGATE_LEVEL = 0.05
 """The phase direction (:meth:`FrfSet.phase_direction`) above which a set is taken to be
 written with the conjugate convention.  Measured sets of the usual convention read −0.12 to
 −0.57 (the real exports of tests/realdata.py, racketdyn's estimates), vtb_siglab's conjugate
-case 2 +0.23; a set of noise reads about 0 and is left as it is."""
+case 2 +0.23; a set of noise reads about 0 and is left as it is.  Each FRF counts once (the
+mean of their directions): the same exports then read −0.23 to −0.57 (meca0062 −0.27, the wing
+−0.23, pyuff's showcase −0.33, vtb_siglab's case 1 −0.57)."""
 
 ResponseType = Literal["acceleration", "velocity", "displacement"]
 RESPONSE_TYPES: tuple[str, ...] = get_args(ResponseType)
@@ -432,10 +434,15 @@ class FrfSet(_PointsAndReference):
     def phase_direction(self) -> float:
         """Which way the phase turns as the frequency rises: < 0 falls (e^{iωt}), > 0 rises.
 
-        The mean of sin Δφ between neighbouring lines, weighted by ``|H_k| |H_k+1|`` over every FRF
-        of the set (between −1 and 1; 0 without a usable line).  With the usual convention
-        (a response ``H e^{iωt}``) a mode's phase falls by 180° through its resonance and a
-        delay's phase falls too; only anti-resonances, where ``|H|`` is small, rise.  An analyser
+        The mean over the FRFs of each one's mean sin Δφ between neighbouring lines, weighted by
+        ``|H_k| |H_k+1|`` within the FRF (between −1 and 1; 0 without a usable line).  Each FRF
+        counts once whatever its scale: the convention is the analyser's, one for the file,
+        and a weakly struck point's FRF, large and its phase steps mostly noise, outweighed the
+        others when every line of the set was weighted by its magnitude (an unseen lab's 50 Hz
+        frame: its driving point +0.12 against −0.07 and −0.28, the set +0.10, conjugated).
+        With the usual convention (a response ``H e^{iωt}``) a mode's phase falls by 180°
+        through its resonance and a delay's phase falls too; only anti-resonances, where
+        ``|H|`` is small, rise.  An analyser
         writing ``H e^{−iωt}`` (SigLab, vtb_siglab's case 2) gives the conjugate FRF, whose
         phase rises through its resonances.  The sign does not depend on the FRF's type nor on
         its sign (a negated FRF turns the same way).  Only lines up to :attr:`bandwidth_hz`
@@ -446,8 +453,11 @@ class FrfSet(_PointsAndReference):
         h = self.values[:, (self.frequency > 0) & (self.frequency <= self.bandwidth_hz)]
         h = h[:, np.all(np.isfinite(h), axis=0)]
         turns = np.conj(h[:, :-1]) * h[:, 1:]
-        weight = float(np.sum(np.abs(turns)))
-        return float(np.sum(turns.imag)) / weight if weight > 0 else 0.0
+        weight = np.sum(np.abs(turns), axis=1)
+        usable = weight > 0
+        if not np.any(usable):
+            return 0.0
+        return float(np.mean(np.sum(turns.imag, axis=1)[usable] / weight[usable]))
 
     def with_usual_phase(self) -> FrfSet:
         """The set conjugated when its phase rises through the resonances (the conjugate

@@ -460,7 +460,7 @@ def _missed_peaks(
             tried = (low, min(float(np.ceil((low + reach) / 5.0) * 5.0), high))
         else:
             tried = (max(float(np.floor((high - reach) / 5.0) * 5.0), low), high)
-        mode = _mode_in(frfs, tried, choices, peak, max(3 * spacing, right - left))
+        mode = _mode_in(frfs, tried, choices, peak, max(3, right - left) * spacing)
         if mode is None:
             log.debug("clear peak at %.1f Hz: no mode over %g–%g Hz either", peak, *tried)
             continue

@@ -167,8 +167,8 @@ def run_frf(
         # the run folder is left as it was: the reasons go into the message
         raise InputError(
             f"{tests}: every average of every point was rejected: {estimate.rejections()}; "
-            "see quality.csv and the force range and window (`force_range_n`, "
-            "`force_window_s`)"
+            "check the hammer channel (a clean impulse a hit) and the force range and window "
+            "(`force_range_n`, `force_window_s`)"
         )
     result.written.append(write_frf_uff(estimate.frfs, out_dir / "frfs.uff"))
     result.frf_points = frf_points(estimate.frfs, the_racket)
