@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import json
 from pathlib import Path
 
@@ -53,3 +54,24 @@ def test_demo_runs_the_chain(tmp_path: Path, capsys: pytest.CaptureFixture[str])
     assert "of unknown kind" in said
     assert "The ball on the strings" in page.split("Not run</h2>")[0]  # issue 14's section
     assert "The ball on the strings" not in page.split("Not run</h2>")[-1]
+
+
+def test_each_frf_step_runs_the_options_its_command_records(tmp_path: Path) -> None:
+    """The demo recorded ``racketdyn frf … --force-window 0.01`` in its FRF steps' run.json
+    but ran them without the force window (its run.json said ``force_window_s: null`` and the
+    page both "force window: not set" and the hint to set it): what a step runs is what its
+    recorded command would."""
+    from racketdyn.cli.demo import steps
+
+    keyword = {
+        "--exp-window": "exponential_window_s",
+        "--force-window": "force_window_s",
+        "--force-range": "force_range_n",
+    }
+    frf_steps = [(argv, call) for _, argv, call in steps(tmp_path, None) if argv[1] == "frf"]
+    assert len(frf_steps) == 2
+    for argv, call in frf_steps:
+        assert isinstance(call, functools.partial)  # of run_frf, its keywords the options
+        for option, name in keyword.items():
+            assert option in argv
+            assert call.keywords[name] == float(argv[argv.index(option) + 1]), option

@@ -397,6 +397,11 @@ def test_the_whole_page_has_no_json_escapes_nor_internal_names(page: str) -> Non
     assert "write_report" not in page
     assert "Xⁿ" in page  # the transient integrator's order, from predict/run.json
     assert "steps per contact 128" in _section(page, "transient")  # words, not run.json keys
+    # the library's parameter names are the command's options on a page of command runs (the
+    # misfit verdict and the truth table's reasons said `pin_hz`)
+    words = _page_text(page)
+    for name in ("pin_hz", "band_hz", "exclude_hz", "max_order"):
+        assert name not in words, name
 
 
 PERSON = "70 kg, 1.75 m adult"

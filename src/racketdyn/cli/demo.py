@@ -27,6 +27,7 @@ DOUBLE_HITS, OVERLOADS = 0.03, 0.01  # probabilities per hit: a real test has a 
 # stays within 0.004 % in frequency and 0.3 % in damping (free, 40–850 Hz; docs/develop.md)
 RESPONSE_SNR_DB, FORCE_SNR_DB = 50.0, 60.0
 EXP_WINDOW_S = 0.1
+FORCE_WINDOW_S = 0.01
 FORCE_RANGE_N = 200.0
 BAND_HZ = (40.0, 850.0)
 
@@ -65,7 +66,11 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
     modal = out / "compare" / "modal_model_free.json"
     faults = ["--double-hits", "0.03", "--overloads", "0.01"]
     noise = ["--response-snr", "50", "--force-snr", "60"]
-    frf_options = ["--exp-window", "0.1", "--force-window", "0.01", "--force-range", "200"]
+    frf_options = [
+        *("--exp-window", f"{EXP_WINDOW_S:g}"),
+        *("--force-window", f"{FORCE_WINDOW_S:g}"),
+        *("--force-range", f"{FORCE_RANGE_N:g}"),
+    ]
     identified = [*r, "--modal", str(modal)]
     result: list[tuple[str, list[str], Callable[[], object]]] = []
 
@@ -125,6 +130,7 @@ def steps(out: Path, racket: str | None) -> list[tuple[str, list[str], Callable[
                 tests,
                 folder,
                 exponential_window_s=EXP_WINDOW_S,
+                force_window_s=FORCE_WINDOW_S,
                 force_range_n=FORCE_RANGE_N,
             ),
             Setup(racket=racket, figures=fig.frf_figures),

@@ -397,7 +397,9 @@ def run_identify(
     )
     shapes = identified_shapes(found.model, the_racket)
     written = write_model(found, out_dir)
-    truth_written, truth_files = write_truth_comparisons(out_dir, (found, frfs, ""))
+    truth_written, truth_files = write_truth_comparisons(
+        out_dir, (found, frfs, ""), words=setup.words
+    )
     written += truth_written
     fits = fit_figures(found, the_racket)
     result = IdentifyResult(
@@ -707,7 +709,7 @@ def run_compare(
     found_hand.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
     written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
     truth_written, truth_files = write_truth_comparisons(
-        out_dir, (found_free, free, "_free"), (found_hand, hand, "_hand")
+        out_dir, (found_free, free, "_free"), (found_hand, hand, "_hand"), words=setup.words
     )
     written += truth_written
     faces = on_racket_face(found_free.model, found_hand.model, the_racket, given)
@@ -763,6 +765,8 @@ def run_compare(
         **options.record(),
         "modes_free": found_free.model.summary()["modes"],
         "modes_hand": found_hand.model.summary()["modes"],
+        "misfit_free": found_free.model.metadata.get("misfit"),
+        "misfit_hand": found_hand.model.metadata.get("misfit"),
         "first_mode_nodes_m": _first_mode_nodes(comparison),
         "racket_parts": faces
         or "the first mode's nodes on the long axis, Fig. 6 free against "
@@ -1004,7 +1008,7 @@ def run_compare_ball(
         found_ball, out_dir, "_ball"
     )
     truth_written, truth_files = write_truth_comparisons(
-        out_dir, (found_alone, alone, "_alone"), (found_ball, with_ball, "_ball")
+        out_dir, (found_alone, alone, "_alone"), (found_ball, with_ball, "_ball"), words=setup.words
     )
     written += truth_written
     rows = compare_with_ball(found_alone, found_ball)

@@ -16,6 +16,7 @@ import csv
 import json
 import logging
 import os
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -121,7 +122,9 @@ def rig_truth_of(frfs: str | os.PathLike[str]) -> RigTruth | None:
 
 
 def write_truth_comparisons(
-    out: Path, *identified: tuple[Identification, str | os.PathLike[str], str]
+    out: Path,
+    *identified: tuple[Identification, str | os.PathLike[str], str],
+    words: Callable[[str], str] | None = None,
 ) -> tuple[list[Path], dict[str, str]]:
     """``truth_comparison<label>.csv`` of each identification whose FRFs come from a virtual
     rig (:func:`rig_truth_of`): every flexible truth mode against the identified model.
@@ -133,6 +136,10 @@ def write_truth_comparisons(
     *identified : (Identification, path, str)
         Each identification, the FRFs it identified and its model files' suffix (``_free``,
         ``_hand``; empty for ``identify``).
+    words : callable, optional
+        The step's words for the library's texts (:attr:`Setup.words
+        <racketdyn.workflows.setup.Setup.words>`): why a truth mode was not found, as the
+        command that ran would say it (``--pin`` for `` `pin_hz` ``).
 
     Returns
     -------
@@ -146,7 +153,8 @@ def write_truth_comparisons(
         truth = rig_truth_of(frfs)
         if truth is None:
             continue
-        dropped = [(d.frequency_hz, d.reason) for d in identification.dropped_modes]
+        said = words or str
+        dropped = [(d.frequency_hz, said(d.reason)) for d in identification.dropped_modes]
         modes = compare_with_truth(identification.model, truth.model, truth.reference_m, dropped)
         path = out / TRUTH_COMPARISON.format(label=label)
         with path.open("w", newline="", encoding="utf-8") as handle:

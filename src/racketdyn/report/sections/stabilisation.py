@@ -18,13 +18,17 @@ HOW_TO_RUN = (
 )
 
 
-def _misfit(path: Path) -> str:
-    """The verdict on the fit error the model file keeps (:mod:`racketdyn.modal.misfit`), its
-    sentence's parameter names as plain words; empty for a model without one."""
-    if not path.is_file():
-        return ""
-    record = read_json(path).get("metadata", {}).get("misfit") or {}
-    return str(record.get("sentence", "")).replace("`", "")
+def _misfit(record: dict[str, Any], folder: Path, suffix: str) -> str:
+    """The verdict on the fit error (:mod:`racketdyn.modal.misfit`): run.json's, in the words
+    of the command that ran (``misfit`` of identify, ``misfit_free``/``_hand`` of compare),
+    else the model file's with its parameter names as plain words; empty without one."""
+    kept = record.get(f"misfit{suffix}")
+    if not isinstance(kept, dict):
+        path = folder / f"modal_model{suffix}.json"
+        if not path.is_file():
+            return ""
+        kept = read_json(path).get("metadata", {}).get("misfit") or {}
+    return str(kept.get("sentence", "")).replace("`", "")
 
 
 def gather(run: RunFolder) -> dict[str, Any] | None:
@@ -62,7 +66,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 "label": label,
                 "modes": body,
                 "fit_error": fit_error,
-                "misfit": _misfit(folder / f"modal_model{suffix}.json"),
+                "misfit": _misfit(run.record(folder), folder, suffix),
                 "dropped": dropped,
             }
         )
