@@ -206,3 +206,65 @@ def test_a_noise_free_fit_within_half_a_per_cent_is_negligible() -> None:
     assert where is not None
     assert where.median_error < NEGLIGIBLE
     assert where.cause == "negligible", where.sentence()
+
+
+def test_a_pinned_mode_the_selection_left_out_is_said(caplog: pytest.LogCaptureFixture) -> None:
+    """``--pin`` on a mode the diagram left out (a new user pinned one stable in 1 of 60 orders
+    and got its damping 95 % low without a word): kept, and a warning says what the selection
+    held against it and that its damping is not a settled one."""
+    from racketdyn.modal.identify import SELECTION
+
+    rules = replace(SELECTION, min_fraction=0.99)  # no mode is stable in enough orders
+    test = _clean_bar()
+    third = float(test.frequency_hz[2])
+    with caplog.at_level(logging.WARNING, logger="racketdyn.modal.poles"):
+        found = identify(test.frfs, (300.0, 420.0), pin_hz=[third], rules=rules)
+    assert found.model.frequency[0] == pytest.approx(third, rel=1e-3)
+    said = [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING]
+    assert any("though the selection left it out: stable in" in m for m in said), said
+
+
+def test_a_spread_misfit_says_where_in_each_place() -> None:
+    """No place holding half the misfit said "no one place holds the misfit" and nothing a
+    user could act on: each place holding a quarter or more is named with where in it."""
+    from racketdyn.modal.misfit import Misfit
+
+    spread = Misfit(
+        median_error=0.23,
+        noise_error=0.02,
+        complex_error=0.22,
+        near_modes=0.39,
+        edges=0.46,
+        elsewhere=0.15,
+        worst_hz=(1840.0,),
+        edges_hz=(40.0, 98.0, 1895.0, 1953.0),
+        unresolved_hz=(),
+        worst_modes_hz=(1553.0, 1490.0),
+        unresolved_share=0.0,
+        left_out_hz=(),
+        cause="spread",
+    )
+    sentence = spread.sentence()
+    edges, modes = sentence.index("band's edges, 40–98"), sentence.index("most at 1553, 1490 Hz")
+    assert edges < modes  # the larger share first
+    assert "1840" not in sentence  # 15 % elsewhere: under a quarter, not named
+
+
+@pytest.mark.skipif(not REALDATA.is_dir(), reason="../shared/realdata is absent")
+def test_complex_modes_with_peaks_under_a_line_name_the_leakage() -> None:
+    """pyuff's showcase (1 s records, 1 Hz lines; six of seven peaks narrower than a line):
+    complex constants fit it far better, and the verdict names the peaks whose ringing
+    outlasts the record, not only the three causes in general."""
+    from racketdyn.io.frf_layout import read_frfs
+
+    path = REALDATA / "pyuff" / "pyuff_showcase_measurement.uff"
+    logging.disable(logging.WARNING)
+    try:
+        found = identify(read_frfs(path, None, None, require_coordinates=False))
+    finally:
+        logging.disable(logging.NOTSET)
+    where = found.misfit
+    assert where is not None
+    assert where.cause == "complex modes", where.sentence()
+    assert len(where.unresolved_hz) >= 3
+    assert "ringing outlasting the record: leakage there" in where.sentence()

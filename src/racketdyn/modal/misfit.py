@@ -162,22 +162,31 @@ class Misfit:
         if self.cause == "band edges":
             lo0, lo1, hi0, hi1 = self.edges_hz
             return (
-                f"at {lo0:.4g}–{lo1:.4g} and {hi0:.4g}–{hi1:.4g} Hz, a mode at or beyond an edge "
-                "that the residual terms cannot stand for (a `band_hz` whose edges lie between "
-                "peaks)"
+                f"at {lo0:.4g}–{lo1:.4g} and {hi0:.4g}–{hi1:.4g} Hz (the band's outer "
+                f"{EDGE_SHARE:.0%} at each end), a mode at or beyond an edge that the residual "
+                "terms cannot stand for (a `band_hz` whose edges lie between peaks, clear of "
+                "the first and last modes by more than that)"
             )
         if self.cause == "complex modes":
-            return (
+            said = (
                 f"complex modal constants would leave {self.complex_error:.1%}: the modes are "
                 "complex (non-proportional damping), the channels differ in phase (a delay, a "
                 "filter) or the record ends before the ringing does (leakage), which the real "
                 "constants of mass-normalised shapes cannot follow"
             )
+            if not self.unresolved_hz:
+                return said
+            at = ", ".join(f"{f:.4g}" for f in self.unresolved_hz)
+            return (
+                f"{said}; at {at} Hz the peaks are narrower than one line, their ringing "
+                "outlasting the record: leakage there"
+            )
         if self.cause == "unresolved peaks":
             at = ", ".join(f"{f:.4g}" for f in self.unresolved_hz)
             return (
                 f"the poles miss peaks narrower than one line at {at} Hz, which the lines "
-                "cannot pin down (a longer record, finer lines)"
+                "cannot pin down: their ringing outlasts the record (a longer record, finer "
+                "lines)"
             )
         if self.cause == "poles":
             at = ", ".join(f"{f:.4g}" for f in self.worst_modes_hz)
@@ -186,7 +195,30 @@ class Misfit:
                 "close to part, a nonlinear, amplitude-dependent mode, or a peak the "
                 "measurement distorted)"
             )
-        return "no one place holds the misfit"
+        return "no one place holds half of it: " + "; ".join(
+            self._place(place) for place in self._places_by_share() if self._share(place) >= 0.25
+        )
+
+    def _share(self, place: str) -> float:
+        return {"modes": self.near_modes, "edges": self.edges, "elsewhere": self.elsewhere}[place]
+
+    def _places_by_share(self) -> list[str]:
+        return sorted(("modes", "edges", "elsewhere"), key=self._share, reverse=True)
+
+    def _place(self, place: str) -> str:
+        """One place of a spread misfit with where in it (for the verdict of each alone, see
+        the causes)."""
+        if place == "modes":
+            at = ", ".join(f"{f:.4g}" for f in self.worst_modes_hz)
+            return f"at the kept modes most at {at} Hz (modes too close to part?)"
+        if place == "edges":
+            lo0, lo1, hi0, hi1 = self.edges_hz
+            return (
+                f"at the band's edges, {lo0:.4g}–{lo1:.4g} and {hi0:.4g}–{hi1:.4g} Hz (a mode at "
+                "or beyond an edge?)"
+            )
+        at = ", ".join(f"{f:.4g}" for f in self.worst_hz)
+        return f"away from the modes most at {at} Hz (modes the model lacks?)"
 
     def record(self) -> dict[str, Any]:
         """What run.json and modal_model.json keep of it."""

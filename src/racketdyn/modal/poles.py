@@ -1226,16 +1226,21 @@ def _pin(
             )
             raise InputError(
                 f"pinned {f:g} Hz: no stable pole within {100 * tolerance:g} % of it"
-                f"{nearest}; raise max_order, widen the band or lower the stability class"
+                f"{nearest}; raise `max_order` or widen `band_hz`"
             )
         k = min(near, key=lambda j: abs(centres[j] - f))
         if reasons[k].startswith("excluded"):
             raise InputError(f"{f:g} Hz is both pinned and excluded")
         if pinned[k]:
             raise InputError(f"two pins point at the same mode ({centres[k]:.1f} Hz)")
-        if not accepted[k]:
-            logger.info(
-                "pinned %g Hz: kept the mode at %.2f Hz despite: %s", f, centres[k], reasons[k]
+        if not accepted[k]:  # the user's word against the diagram's: said, not hidden
+            logger.warning(
+                "pinned %g Hz: kept the mode at %.2f Hz (ζ %.3g %%) though the selection "
+                "left it out: %s; its damping is that of the orders it has, not a settled one",
+                f,
+                centres[k],
+                100 * clusters[k].damping_ratio,
+                reasons[k],
             )
         pinned[k] = True
         accepted[k] = True
