@@ -135,16 +135,22 @@ def fit_poles(
     frequency_hz: NDArray[np.float64],
     damping_ratio: NDArray[np.float64],
     window_hz: tuple[float, float],
+    weights: NDArray[np.float64] | None = None,
+    max_steps: int | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128], bool] | None:
     """The poles of the FRFs' lines in ``window_hz`` by the local fit (module docstring),
     started from ``frequency_hz`` and ``damping_ratio``: frequencies (Hz), damping ratios, the
     constants ``r_ok`` of every FRF (one column a pole) and whether the fit improved on its
-    start; None where the window holds too few lines or the fit fails."""
+    start; None where the window holds too few lines or the fit fails.  ``weights`` (one a
+    FRF, e.g. one over its noise) weight each FRF's error; the constants are the FRFs' own.
+    ``max_steps`` bounds the nonlinear fit's steps (None: scipy's default); a fit that does not
+    converge within them is None."""
     spacing = float(np.median(np.diff(frfs.frequency)))
     shift = 1.0 / frfs.exponential_window_s if frfs.exponential_window_s else 0.0
     near = (frfs.frequency >= window_hz[0]) & (frfs.frequency <= window_hz[1])
     s = 2j * np.pi * frfs.frequency[near]
-    data = frfs.values[:, near].T
+    weight = np.ones(frfs.n_points) if weights is None else np.asarray(weights, dtype=float)
+    data = frfs.values[:, near].T * weight
     n = len(frequency_hz)
     if s.size < 2 * (2 * n + 2):
         return None
@@ -160,7 +166,8 @@ def fit_poles(
         )
         scale = np.linalg.norm(columns, axis=0)
         solution, *_ = np.linalg.lstsq(columns / scale, data, rcond=None)
-        return data - (columns / scale) @ solution, (solution / scale[:, None])[:n].T
+        amplitudes = (solution / scale[:, None])[:n].T / weight[:, None]
+        return data - (columns / scale) @ solution, amplitudes
 
     def residual(x: NDArray[np.float64]) -> NDArray[np.float64]:
         error = constants(x)[0]
@@ -168,7 +175,7 @@ def fit_poles(
 
     before = float(np.linalg.norm(residual(start)))
     try:
-        found = least_squares(residual, start)
+        found = least_squares(residual, start, max_nfev=max_steps)
     except (ValueError, np.linalg.LinAlgError):
         return None
     if not (found.success and np.all(np.isfinite(found.x))):
