@@ -752,7 +752,11 @@ def _close_pairs(
     stays as it is, and a weaker mode of the two between :data:`FIT_GAIN_MIN` and
     :data:`CLEAR_PEAK_GAIN` that no kept mode stands for is an ``unsettled`` row naming the
     ``band_hz`` that keeps it (:func:`_weak_of_pair`; ``narrower`` False: not tried, as in
-    that band's own fit).
+    that band's own fit).  The local fit and its gains weight each FRF by its noise
+    (:func:`_noise_weights`, from the coherence), and a kept mode with no neighbour is tried
+    for a broader mode hidden under its peak (:data:`BROAD_START`, :data:`BROAD_SCREEN`;
+    taken by the same rules, never named); a mode of the pair in the band's edge margin
+    (:func:`racketdyn.modal.poles.edge_margin`) is not taken.
 
     Returns
     -------
