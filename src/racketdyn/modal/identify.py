@@ -32,13 +32,20 @@ from racketdyn.modal.poles import (
     SelectedPoles,
     SelectionRules,
     Stabilisation,
+    edge_margin,
     pole_of,
     require_rules,
     select_poles,
     stabilisation,
 )
 from racketdyn.modal.polyreference import DEFAULT_MAX_ORDER, poly_stabilisation
-from racketdyn.modal.refine import MOVE_LINES, REFINE_LINES, fit_poles, refine_narrow_poles
+from racketdyn.modal.refine import (
+    MOVE_LINES,
+    REFINE_LINES,
+    fit_poles,
+    local_misfit,
+    refine_narrow_poles,
+)
 from racketdyn.modal.residues import (
     WEAK_DRIVING_POINT,
     ModalFit,
@@ -168,6 +175,26 @@ PAIR_MAC = 0.5
 """Largest MAC of a close pair's two shapes: under one peak two modes are told apart by their
 shapes alone, so they must be clearly unlike (the hand-held racket's bending and twisting
 0.00; one mode's peak split by the local fit into two poles of like damping 0.61-0.79)."""
+BROAD_START = 4.0
+"""A kept mode with no neighbour under its peak is tried for a broader one hidden there (its
+FRFs' coherence known): a second pole started this many times its damping, one half-power
+width above it (the held racket's 4-node twisting, ζ 3.6 %, 10 Hz above its 4-node bending,
+ζ 0.57 %: a shoulder of the bending's peak)."""
+BROAD_WIDTHS = 1.5
+"""... fitted over this many of the broader pole's half-power widths ``2ζf`` either side (not
+:data:`PAIR_WIDTHS`: over three, ±180 Hz, the held racket's 4-node pair's window reaches the
+651.8 and 971.1 Hz modes, which the two poles' local model does not hold, and its second pole
+runs to one of them)."""
+BROAD_SCREEN = 2.0
+"""... when the local model with the started pair fits at least this many times better than
+with the mode alone (no fit yet, a cost screen: the held racket's 4-node bending 6.9 with
+rig noise, 2.6 at 40/50 dB; other modes there 1.2-3.6 and 1.2-1.8)."""
+BROAD_STEPS = 40
+"""... in at most this many steps of the nonlinear fit (the held racket's pair: 5–15; a fit
+wandering over a window with no broader mode took hundreds, seconds each)."""
+NOISE_FLOOR = 1e-3
+"""An FRF's noise (from its coherence) is taken as at least this fraction of the noisiest
+FRF's: a coherence of 1 (noise-free lines) weights no FRF infinitely."""
 HEADER_DIGITS_RTOL = 1e-5
 """A band top this far (relative) above the last line is the last line: the UFF header keeps
 the step with 6 significant digits (E13.5), so a 1000 Hz export reads 999.997 Hz."""
@@ -727,7 +754,12 @@ def _close_pairs(
     :data:`CLEAR_PEAK_GAIN` for one it left out); else the selection stays as it is, and a
     weaker mode of the two between :data:`FIT_GAIN_MIN` and :data:`CLEAR_PEAK_GAIN` that no kept
     mode stands for is an ``unsettled`` row naming the ``band_hz`` that keeps it
-    (:func:`_weak_of_pair`; ``narrower`` False: not tried, as in that band's own fit).
+    (:func:`_weak_of_pair`; ``narrower`` False: not tried, as in that band's own fit).  The
+    local fit and its gains weight each FRF by its noise (:func:`_noise_weights`, from the
+    coherence), and a kept mode with no neighbour is tried for a broader mode hidden under its
+    peak (:data:`BROAD_START`, :data:`BROAD_SCREEN`; taken by the same rules, never named); a
+    mode of the pair in the band's edge margin (:func:`racketdyn.modal.poles.edge_margin`) is
+    not taken.
 
     Returns
     -------
@@ -750,12 +782,22 @@ def _close_pairs(
         fk, zk = float(selected.frequency[k]), float(selected.damping_ratio[k])
         tried.append(fk)
         kept, other = _neighbours(selected, k, rules)
-        if other is None:
+        hidden = other is None
+        if other is None:  # a broader mode whose peak is a shoulder of this one's, if any
+            if frfs.coherence is None or zk <= 0:
+                continue
+            other = (fk * (1 + zk), BROAD_START * zk, 0, float("nan"))
+        fitted = _pair_fit(frfs, (fk, zk), other[:2], spacing, rules.max_damping_ratio, hidden)
+        if fitted is None:
             continue
-        pair = _pair_fit(frfs, (fk, zk), other[:2], spacing, rules.max_damping_ratio)
-        if pair is None:
-            continue
+        pair, weights = fitted
         frequency, zeta, constants = pair
+        margins = np.array(
+            [edge_margin(rules, band, spacing, f, z) for f, z in zip(frequency, zeta, strict=True)]
+        )
+        if not np.all(np.abs(frequency - np.mean(band)) <= (band[1] - band[0]) / 2 - margins):
+            log.debug("close pair at %.2f Hz: a mode of the pair in the band's edge margin", fk)
+            continue
         if abs(frequency[1] - frequency[0]) >= float(np.sum(zeta * frequency)):
             log.debug("close pair at %.2f Hz: the local fit's poles are two peaks", fk)
             continue
@@ -772,6 +814,9 @@ def _close_pairs(
             for j in np.flatnonzero(rest)
             if np.any(np.abs(selected.frequency[j] - frequency) < reach[j])
         ]
+        if hidden and found_again:
+            log.debug("close pair at %.2f Hz: the broader pole is a kept mode's", fk)
+            continue
         kept += found_again
         if len(kept) > 1:  # the wide band's fit parted three or more here: two poles lose one
             log.debug(
@@ -783,7 +828,7 @@ def _close_pairs(
         rest[kept] = False
         poles = pole_of(frequency, zeta)
         fit = fit_modal_constants(frfs, np.concatenate([selected.pole[rest], poles]), band)
-        gains = fit_gain(frfs, fit)[-2:]
+        gains = fit_gain(frfs, fit, weights)[-2:]
         # a mode the selection kept needs a peak of the data, one it left out a clear peak: the
         # first stands for mode k, the second for a kept mode if it started from one or the
         # selection kept it apart from mode k (found again by the fit)
@@ -798,6 +843,7 @@ def _close_pairs(
                 gains[1 - weak] >= needed[1 - weak]
                 and gains[weak] >= FIT_GAIN_MIN
                 and narrower
+                and not hidden
                 and needed[weak] == CLEAR_PEAK_GAIN
             ):
                 row = _weak_of_pair(frfs, band, choices, (fk, agree), pair, gains)
@@ -906,19 +952,42 @@ def _pair_fit(
     other: tuple[float, float],
     spacing: float,
     max_damping: float,
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]] | None:
+    hidden: bool = False,
+) -> (
+    tuple[
+        tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]],
+        NDArray[np.float64] | None,
+    ]
+    | None
+):
     """Two poles fitted on the lines around ``mode`` started from it and ``other`` (frequency
-    Hz, ζ): frequencies, damping ratios and constants, the mode's first; None if no pair."""
+    Hz, ζ), each FRF weighted by its noise there (:func:`_noise_weights`): frequencies, damping
+    ratios and constants, the mode's first, and the weights of the last window; None if no
+    pair.  ``hidden``: ``other`` is a guess (:data:`BROAD_START`), the window
+    :data:`BROAD_WIDTHS` of the broader pole's width either side, and the fit stops as soon as
+    its poles are not the mode (within its ``ζf``) and a broader one under its peak."""
     frequency = np.array([mode[0], other[0]])
     zeta = np.array([mode[1], other[1]])
+    widths = BROAD_WIDTHS if hidden else PAIR_WIDTHS
     half = 0.0
+    weights = None
+    if hidden:  # worth a nonlinear fit only if the started pair explains more than the mode
+        half = max(REFINE_LINES * spacing, widths * float(np.max(2 * zeta * frequency)))
+        window = (mode[0] - half, mode[0] + half)
+        weights = _noise_weights(frfs, window)
+        alone = local_misfit(frfs, frequency[:1], zeta[:1], window, weights)
+        if not alone >= BROAD_SCREEN * local_misfit(frfs, frequency, zeta, window, weights):
+            log.debug("close pair at %.2f Hz: no broader mode under its peak", mode[0])
+            return None
+        half = 0.0
     for _ in range(PAIR_TRIES):
-        wanted = max(REFINE_LINES * spacing, PAIR_WIDTHS * float(np.max(2 * zeta * frequency)))
+        wanted = max(REFINE_LINES * spacing, widths * float(np.max(2 * zeta * frequency)))
         if wanted <= 1.2 * half:
             break
         half = wanted
         window = (mode[0] - half, mode[0] + half)
-        found = fit_poles(frfs, frequency, zeta, window)
+        weights = _noise_weights(frfs, window)
+        found = fit_poles(frfs, frequency, zeta, window, weights, BROAD_STEPS if hidden else None)
         if found is None:
             return None
         frequency, zeta, constants, _ = found
@@ -926,7 +995,33 @@ def _pair_fit(
             np.all((zeta > 0) & (zeta < max_damping)) and np.all(np.abs(frequency - mode[0]) < half)
         ):
             return None
-    return frequency, zeta, constants
+        if hidden and not (
+            abs(frequency[0] - mode[0]) <= mode[1] * mode[0]
+            and zeta[1] > zeta[0]
+            and abs(frequency[1] - frequency[0]) < float(np.sum(zeta * frequency))
+        ):
+            log.debug("close pair at %.2f Hz: no broader mode under its peak", mode[0])
+            return None
+    return (frequency, zeta, constants), weights
+
+
+def _noise_weights(frfs: FrfSet, window_hz: tuple[float, float]) -> NDArray[np.float64] | None:
+    """One weight an FRF, one over its noise over ``window_hz`` as its coherence says (H1's
+    variance ``(1 − γ²)/γ² |H|²`` over the averages, the random error of an H1 estimate:
+    Bendat and Piersol, *Random Data*, ch. 9), at least
+    :data:`NOISE_FLOOR` of the largest; None without coherence.  Where a few FRFs carry most of
+    the noise — a racket's bed points, struck through the strings' long contact, have 30–300 ×
+    its frame points' at 830 Hz — an unweighted fit follows them."""
+    if frfs.coherence is None:
+        return None
+    near = (frfs.frequency >= window_hz[0]) & (frfs.frequency <= window_hz[1])
+    coherence = np.clip(frfs.coherence[:, near], 1e-12, 1.0)
+    variance = np.mean((1 - coherence) / coherence * np.abs(frfs.values[:, near]) ** 2, axis=1)
+    noise = np.sqrt(variance)
+    if not (noise.size and np.all(np.isfinite(noise)) and np.max(noise) > 0):
+        return None
+    weights: NDArray[np.float64] = 1.0 / np.maximum(noise, NOISE_FLOOR * np.max(noise))
+    return weights
 
 
 def _with_pair(
@@ -1499,7 +1594,9 @@ def _left_out_record(
     }
 
 
-def fit_gain(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
+def fit_gain(
+    frfs: FrfSet, fit: ModalFit, weights: NDArray[np.float64] | None = None
+) -> NDArray[np.float64]:
     """How much worse the fit is near each mode without it: the peak each mode has in the data.
 
     Over the lines within three half-power bandwidths (``6 ζ f``, at least five lines) of the
@@ -1515,13 +1612,17 @@ def fit_gain(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
         The FRFs fitted.
     fit : ModalFit
         Their fit (:func:`racketdyn.modal.residues.fit_modal_constants`).
+    weights : ndarray, shape (n_points,), optional
+        One a FRF, weighting its misfit (e.g. one over its noise); every FRF alike by default.
 
     Returns
     -------
     ndarray, shape (n_modes,)
     """
     lines = np.searchsorted(frfs.frequency, fit.frequency)
-    residual = frfs.values[:, lines] - fit.synthesised
+    weight = np.ones(frfs.n_points) if weights is None else np.asarray(weights, dtype=float)
+    residual = (frfs.values[:, lines] - fit.synthesised) * weight[:, None]
+    constants = fit.constants * weight[:, None]
     step = float(np.median(np.diff(fit.frequency))) if fit.frequency.size > 1 else 1.0
     gains = np.empty(fit.poles.size)
     for k, (f, zeta) in enumerate(zip(fit.frequency_hz, fit.damping_ratio, strict=True)):
@@ -1531,7 +1632,7 @@ def fit_gain(frfs: FrfSet, fit: ModalFit) -> NDArray[np.float64]:
             gains[k] = np.inf
             continue
         term = design_columns(frfs, fit.poles[k : k + 1], fit.frequency[near])[:, 0]
-        without = residual[:, near] + fit.constants[:, k, None] * term[None, :]
+        without = residual[:, near] + constants[:, k, None] * term[None, :]
         # the evidence is the peak's, not the real constant's: real constants turned by one
         # phase common to every FRF (a mode whose peak the analyser's delay turns off ±90° —
         # pyFRF's 7092 Hz at 168° — fits no real constant, yet is in the data; one phase, not

@@ -103,6 +103,7 @@ __all__ = [
     "SelectedPoles",
     "SelectionRules",
     "Stabilisation",
+    "edge_margin",
     "mac",
     "pole_of",
     "require_rules",
@@ -1147,6 +1148,23 @@ def select_poles(
     return _selected(stab, chosen, pinned_kept, (tuple(dropped), tuple(dropped_modes)))
 
 
+def edge_margin(
+    rules: SelectionRules,
+    band_hz: tuple[float, float],
+    line_spacing_hz: float,
+    frequency_hz: float,
+    damping_ratio: float,
+) -> float:
+    """A mode's edge margin by ``rules``, Hz: ``edge_margin`` of the band's width,
+    ``edge_lines`` line spacings and ``edge_widths`` of its own half-power width ``2ζf``; no
+    mode is taken nearer the band's edge (its peak is not in the band whole)."""
+    return (
+        rules.edge_margin * (band_hz[1] - band_hz[0])
+        + rules.edge_lines * line_spacing_hz
+        + rules.edge_widths * 2 * max(damping_ratio, 0.0) * frequency_hz
+    )
+
+
 def _reasons(stab: Stabilisation, clusters: list[_Cluster], rules: SelectionRules) -> list[str]:
     """Why each cluster is not a mode by the rules of step 2 (empty: it is one)."""
     low_hz, high_hz = stab.band_hz
@@ -1154,10 +1172,8 @@ def _reasons(stab: Stabilisation, clusters: list[_Cluster], rules: SelectionRule
     need = max(1, math.ceil(rules.min_fraction * n_orders_total))
     reasons: list[str] = []
     for c in clusters:
-        margin = (
-            rules.edge_margin * (high_hz - low_hz)
-            + rules.edge_lines * stab.line_spacing_hz
-            + rules.edge_widths * 2 * max(c.damping_ratio, 0.0) * c.frequency
+        margin = edge_margin(
+            rules, stab.band_hz, stab.line_spacing_hz, c.frequency, c.damping_ratio
         )
         if not 0.0 < c.damping_ratio < rules.max_damping_ratio:
             reasons.append(

@@ -23,7 +23,7 @@ spans lines, or the poles settle, the LSCF's damping agrees with the independent
 from __future__ import annotations
 
 import logging
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -39,6 +39,7 @@ __all__ = [
     "REFINE_LINES",
     "SETTLED_FRACTION",
     "fit_poles",
+    "local_misfit",
     "refine_narrow_poles",
 ]
 
@@ -135,43 +136,100 @@ def fit_poles(
     frequency_hz: NDArray[np.float64],
     damping_ratio: NDArray[np.float64],
     window_hz: tuple[float, float],
+    weights: NDArray[np.float64] | None = None,
+    max_steps: int | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128], bool] | None:
     """The poles of the FRFs' lines in ``window_hz`` by the local fit (module docstring),
     started from ``frequency_hz`` and ``damping_ratio``: frequencies (Hz), damping ratios, the
     constants ``r_ok`` of every FRF (one column a pole) and whether the fit improved on its
-    start; None where the window holds too few lines or the fit fails."""
-    spacing = float(np.median(np.diff(frfs.frequency)))
-    shift = 1.0 / frfs.exponential_window_s if frfs.exponential_window_s else 0.0
-    near = (frfs.frequency >= window_hz[0]) & (frfs.frequency <= window_hz[1])
-    s = 2j * np.pi * frfs.frequency[near]
-    data = frfs.values[:, near].T
-    n = len(frequency_hz)
-    if s.size < 2 * (2 * n + 2):
+    start; None where the window holds too few lines or the fit fails.  ``weights`` (one a
+    FRF, e.g. one over its noise) weight each FRF's error; the constants are the FRFs' own.
+    ``max_steps`` bounds the nonlinear fit's steps (None: scipy's default); a fit that does not
+    converge within them is None."""
+    model = _LocalModel.of(frfs, frequency_hz, damping_ratio, window_hz, weights)
+    if model is None:
         return None
-    start = np.concatenate([np.zeros(n), np.log(np.maximum(damping_ratio, 1e-9))])
-    base = np.asarray(frequency_hz, dtype=float)
-
-    def constants(x: NDArray[np.float64]) -> tuple[NDArray[np.complex128], NDArray[Any]]:
-        omega = 2 * np.pi * (base + x[:n] * spacing)
-        z = np.exp(x[n:])
-        pole = -z * omega + 1j * omega * np.sqrt(np.maximum(1 - z**2, 0.0)) - shift
-        columns = np.column_stack(
-            [1 / (s[:, None] - pole), 1 / (s[:, None] - pole.conj()), np.ones_like(s), s / s[0]]
-        )
-        scale = np.linalg.norm(columns, axis=0)
-        solution, *_ = np.linalg.lstsq(columns / scale, data, rcond=None)
-        return data - (columns / scale) @ solution, (solution / scale[:, None])[:n].T
-
-    def residual(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        error = constants(x)[0]
-        return np.concatenate([error.real.ravel(), error.imag.ravel()])
-
-    before = float(np.linalg.norm(residual(start)))
+    before = float(np.linalg.norm(model.residual(model.start)))
     try:
-        found = least_squares(residual, start)
+        found = least_squares(model.residual, model.start, max_nfev=max_steps)
     except (ValueError, np.linalg.LinAlgError):
         return None
     if not (found.success and np.all(np.isfinite(found.x))):
         return None
     improved = bool(np.linalg.norm(found.fun) < before)
-    return base + found.x[:n] * spacing, np.exp(found.x[n:]), constants(found.x)[1], improved
+    n = model.base.size
+    frequency = model.base + found.x[:n] * model.spacing
+    return frequency, np.exp(found.x[n:]), model.constants(found.x)[1], improved
+
+
+def local_misfit(
+    frfs: FrfSet,
+    frequency_hz: NDArray[np.float64],
+    damping_ratio: NDArray[np.float64],
+    window_hz: tuple[float, float],
+    weights: NDArray[np.float64] | None = None,
+) -> float:
+    """The local model's misfit (the norm of the weighted error) over ``window_hz`` with these
+    poles as they are (no fit of the poles: their constants only); NaN where the window holds
+    too few lines."""
+    model = _LocalModel.of(frfs, frequency_hz, damping_ratio, window_hz, weights)
+    if model is None:
+        return float("nan")
+    return float(np.linalg.norm(model.residual(model.start)))
+
+
+@dataclass(frozen=True)
+class _LocalModel:
+    """The local model of :func:`fit_poles` over one window: its poles' parameters ``x``
+    (offsets from ``base`` in lines, log damping ratios) to the weighted error and constants."""
+
+    s: NDArray[np.complex128]
+    data: NDArray[np.complex128]
+    weight: NDArray[np.float64]
+    base: NDArray[np.float64]
+    start: NDArray[np.float64]
+    spacing: float
+    shift: float
+
+    @classmethod
+    def of(
+        cls,
+        frfs: FrfSet,
+        frequency_hz: NDArray[np.float64],
+        damping_ratio: NDArray[np.float64],
+        window_hz: tuple[float, float],
+        weights: NDArray[np.float64] | None,
+    ) -> _LocalModel | None:
+        near = (frfs.frequency >= window_hz[0]) & (frfs.frequency <= window_hz[1])
+        n = len(frequency_hz)
+        if np.count_nonzero(near) < 2 * (2 * n + 2):
+            return None
+        weight = np.ones(frfs.n_points) if weights is None else np.asarray(weights, dtype=float)
+        return cls(
+            s=(2j * np.pi * frfs.frequency[near]).astype(np.complex128),
+            data=frfs.values[:, near].T * weight,
+            weight=weight,
+            base=np.asarray(frequency_hz, dtype=float),
+            start=np.concatenate([np.zeros(n), np.log(np.maximum(damping_ratio, 1e-9))]),
+            spacing=float(np.median(np.diff(frfs.frequency))),
+            shift=1.0 / frfs.exponential_window_s if frfs.exponential_window_s else 0.0,
+        )
+
+    def constants(self, x: NDArray[np.float64]) -> tuple[NDArray[np.complex128], NDArray[Any]]:
+        """The weighted error (lines × FRFs) and the FRFs' constants (FRFs × poles)."""
+        n, s = self.base.size, self.s
+        omega = 2 * np.pi * (self.base + x[:n] * self.spacing)
+        z = np.exp(x[n:])
+        pole = -z * omega + 1j * omega * np.sqrt(np.maximum(1 - z**2, 0.0)) - self.shift
+        columns = np.column_stack(
+            [1 / (s[:, None] - pole), 1 / (s[:, None] - pole.conj()), np.ones_like(s), s / s[0]]
+        )
+        scale = np.linalg.norm(columns, axis=0)
+        solution, *_ = np.linalg.lstsq(columns / scale, self.data, rcond=None)
+        amplitudes = (solution / scale[:, None])[:n].T / self.weight[:, None]
+        return self.data - (columns / scale) @ solution, amplitudes
+
+    def residual(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The weighted error as real numbers."""
+        error = self.constants(x)[0]
+        return np.concatenate([error.real.ravel(), error.imag.ravel()])
