@@ -31,6 +31,7 @@ from racketdyn.modal.poles import (
     SelectedPoles,
     SelectionRules,
     Stabilisation,
+    _combine,
     pole_of,
     require_rules,
     select_poles,
@@ -389,6 +390,11 @@ class _Choices:
             return poly_stabilisation(self.references, band, self.max_order)
         return stabilisation(frfs, band, max_order=self.max_order)
 
+    def fitted(self, frfs: FrfSet) -> FrfSet:
+        """The FRFs a selection's residues stand for: every reference's, stacked reference by
+        reference as the pLSCF's residues are, else ``frfs``."""
+        return frfs if self.references is None else _combine(self.references.sets)
+
 
 def _missed_peaks(
     selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float], choices: _Choices
@@ -714,7 +720,8 @@ def _close_pairs(
     and 4 %: the twisting's damping 71 % low, its pole dropped, the shapes unscaled; issue 25).
     For each kept mode with a neighbour within their mean half-power width (a kept mode, or a
     candidate dropped for its orders, as :func:`_clear_peaks` takes them) two poles are
-    fitted to the FRFs' own lines around it (:func:`racketdyn.modal.refine.fit_poles`, over
+    fitted to the FRFs' own lines around it (every reference's with several references:
+    the pLSCF's residues stack them; :func:`racketdyn.modal.refine.fit_poles`, over
     :data:`PAIR_WIDTHS` of the broader pole's half-power width either side, refitted while that
     widens), started from the mode and the neighbour least like it in damping.  The two are
     taken, in place of the mode and every kept mode within one peak of it or of them, when they
@@ -734,6 +741,7 @@ def _close_pairs(
     """
     rules = choices.rules
     spacing = _spacing(frfs)
+    fitted = choices.fitted(frfs)
     lines: list[str] = []
     tried: list[float] = []
     while True:
@@ -750,7 +758,9 @@ def _close_pairs(
         kept, other = _neighbours(selected, k, rules)
         if other is None:
             continue
-        pair = _pair_fit(frfs, (fk, zk), other[:2], spacing, rules.max_damping_ratio)
+        # fitted on the FRFs the residues stand for (every reference's under the pLSCF): the
+        # pair's constants join them, and its shapes are told apart as the stabilisation's are
+        pair = _pair_fit(fitted, (fk, zk), other[:2], spacing, rules.max_damping_ratio)
         if pair is None:
             continue
         frequency, zeta, constants = pair
