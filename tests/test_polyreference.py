@@ -205,6 +205,8 @@ def test_the_rigs_first_bending_is_kept_or_named_with_the_band_that_keeps_it(
             if d.stage != "selection" and abs(d.frequency_hz / f_true - 1) < 0.01
         ]
         assert [d.stage for d in named] == ["edge"], named
+        # why, not "too near the edge": the band's bottom at 5 Hz instead of 60 loses it too
+        assert "slow decay (ζω 3.7 rad/s" in named[0].reason, named[0].reason
         band = named[0].reason.split("`band_hz` ")[1].split()[0]
         found = identify(frfs, tuple(float(v) for v in band.split(",")))  # type: ignore[arg-type]
         near = np.abs(found.model.frequency / f_true - 1) < 0.01

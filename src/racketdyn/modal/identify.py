@@ -478,7 +478,7 @@ def _missed_peaks(
                 f"a clear peak of the data at {peak:.1f} Hz ({20 * prominence:.0f} dB above "
                 f"its surroundings, {peak - low if bottom else high - peak:.3g} Hz from the "
                 f"band's {'bottom' if bottom else 'top'}) where the fit over {low:g}–{high:g} "
-                f"Hz finds no stable pole: too near the edge of so wide a band; `band_hz` "
+                f"Hz finds no stable pole: {_slow_decay(mode, selected)}; `band_hz` "
                 f"{tried[0]:g},{tried[1]:g} keeps it (there {mode[0]:.2f} Hz, ζ "
                 f"{100 * mode[1]:.2g} %)",
             )
@@ -487,6 +487,25 @@ def _missed_peaks(
     if not rows:
         return selected
     return replace(selected, dropped_modes=(*selected.dropped_modes, *rows))
+
+
+def _slow_decay(mode: tuple[float, float], selected: SelectedPoles) -> str:
+    """Why a wide band's fit holds no stable pole of a mode (frequency Hz, ζ): its pole errors,
+    about one size in rad/s for every mode and growing with the band's width, are large
+    against this mode's decay rate ζω (the virtual rig's 120 Hz over 60–1,953 Hz, 3.8 rad/s:
+    ±40 % in damping from order to order, while the modes decaying at 18–56 rad/s settle;
+    the band's bottom moved from 60 to 5 Hz, no better: docs/develop.md, issue 25); a mode
+    decaying no slower than the kept modes' median is said to be too near the band's edge."""
+    decay = 2 * np.pi * mode[0] * mode[1]
+    rates = 2 * np.pi * selected.frequency * selected.damping_ratio
+    slower = float(np.median(rates)) / decay if rates.size and decay > 0 else np.nan
+    if not slower > 1:
+        return "too near the edge of so wide a band"
+    return (
+        f"over so wide a band the fit's pole errors, about one size for every mode, are large "
+        f"against this mode's slow decay (ζω {decay:.2g} rad/s, {slower:.2g} × below the kept "
+        "modes' median)"
+    )
 
 
 def _mode_in(
