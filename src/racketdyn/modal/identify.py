@@ -403,7 +403,10 @@ def _missed_peaks(
     each (stage ``edge``) naming the ``band_hz`` that keeps the mode, tried before it is named.
 
     Over a band many times wider than a mode's distance from its edge the fit may find no
-    stable pole there at all, so :func:`_edge_modes` has nothing to name.  The data are
+    stable pole there at all, so :func:`_edge_modes` has nothing to name: its pole errors,
+    about one size in rad/s for every mode and growing with the band's width, are large
+    against a slowly decaying mode's decay rate (:func:`_slow_decay`, which the row quotes;
+    a band's first mode is often its slowest).  The data are
     searched instead: within :data:`EDGE_SCAN` of the band's width from each end, peaks of the
     summed ``|H|`` standing :data:`EDGE_PEAK` above their surroundings whose phase (in the FRF
     where the peak is largest) turns by more than 90° across them, below the FRFs' bandwidth.
