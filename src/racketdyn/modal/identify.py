@@ -32,6 +32,7 @@ from racketdyn.modal.poles import (
     SelectedPoles,
     SelectionRules,
     Stabilisation,
+    _combine,
     edge_margin,
     pole_of,
     require_rules,
@@ -417,6 +418,11 @@ class _Choices:
             return poly_stabilisation(self.references, band, self.max_order)
         return stabilisation(frfs, band, max_order=self.max_order)
 
+    def fitted(self, frfs: FrfSet) -> FrfSet:
+        """The FRFs a selection's residues stand for: every reference's, stacked reference by
+        reference as the pLSCF's residues are, else ``frfs``."""
+        return frfs if self.references is None else _combine(self.references.sets)
+
 
 def _missed_peaks(
     selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float], choices: _Choices
@@ -425,7 +431,10 @@ def _missed_peaks(
     each (stage ``edge``) naming the ``band_hz`` that keeps the mode, tried before it is named.
 
     Over a band many times wider than a mode's distance from its edge the fit may find no
-    stable pole there at all, so :func:`_edge_modes` has nothing to name.  The data are
+    stable pole there at all, so :func:`_edge_modes` has nothing to name: its pole errors,
+    about one size in rad/s for every mode and growing with the band's width, are large
+    against a slowly decaying mode's decay rate (:func:`_slow_decay`, which the row quotes;
+    a band's first mode is often its slowest).  The data are
     searched instead: within :data:`EDGE_SCAN` of the band's width from each end, peaks of the
     summed ``|H|`` standing :data:`EDGE_PEAK` above their surroundings whose phase (in the FRF
     where the peak is largest) turns by more than 90° across them, below the FRFs' bandwidth.
@@ -500,7 +509,7 @@ def _missed_peaks(
                 f"a clear peak of the data at {peak:.1f} Hz ({20 * prominence:.0f} dB above "
                 f"its surroundings, {peak - low if bottom else high - peak:.3g} Hz from the "
                 f"band's {'bottom' if bottom else 'top'}) where the fit over {low:g}–{high:g} "
-                f"Hz finds no stable pole: too near the edge of so wide a band; `band_hz` "
+                f"Hz finds no stable pole: {_slow_decay(mode, selected)}; `band_hz` "
                 f"{tried[0]:g},{tried[1]:g} keeps it (there {mode[0]:.2f} Hz, ζ "
                 f"{100 * mode[1]:.2g} %)",
             )
@@ -509,6 +518,25 @@ def _missed_peaks(
     if not rows:
         return selected
     return replace(selected, dropped_modes=(*selected.dropped_modes, *rows))
+
+
+def _slow_decay(mode: tuple[float, float], selected: SelectedPoles) -> str:
+    """Why a wide band's fit holds no stable pole of a mode (frequency Hz, ζ): its pole errors,
+    about one size in rad/s for every mode and growing with the band's width, are large
+    against this mode's decay rate ζω (the virtual rig's 120 Hz over 60–1,953 Hz, 3.8 rad/s:
+    ±40 % in damping from order to order, while the modes decaying at 18–56 rad/s settle;
+    the band's bottom moved from 60 to 5 Hz, no better: docs/develop.md, issue 25); a mode
+    decaying no slower than the kept modes' median is said to be too near the band's edge."""
+    decay = 2 * np.pi * mode[0] * mode[1]
+    rates = 2 * np.pi * selected.frequency * selected.damping_ratio
+    slower = float(np.median(rates)) / decay if rates.size and decay > 0 else np.nan
+    if not slower > 1:
+        return "too near the edge of so wide a band"
+    return (
+        f"over so wide a band the fit's pole errors, about one size for every mode, are large "
+        f"against this mode's slow decay (ζω {decay:.2g} rad/s, {slower:.2g} × below the kept "
+        "modes' median)"
+    )
 
 
 def _mode_in(
@@ -735,14 +763,15 @@ def _close_pairs(
     """Two modes under one peak that the LSCF over a wide band does not part: fitted locally.
 
     Over a band holding many modes the orders computed resolve two modes closer than their
-    half-power width late or never: the low orders fit one pole of mixed shape and damping for
-    both, and the broader mode's own poles appear in a few high orders only.  The selection then
-    keeps the mixed pole, or the narrow mode alone, and drops the broader one for its orders (a
-    hand-held racket's 3-node bending and 2-node twisting 0.14 Hz apart, ζ 1 and 4 %: the
-    twisting's damping 71 % low, its pole dropped, the shapes unscaled; issue 25). For each kept
-    mode with a neighbour within their mean half-power width (a kept mode, or a candidate
-    dropped for its orders, as :func:`_clear_peaks` takes them) two poles are fitted to the
-    FRFs' own lines around it (:func:`racketdyn.modal.refine.fit_poles`, over
+    half-power width late or never: the low orders fit one pole of mixed shape and damping
+    for both, and the broader mode's own poles appear in a few high orders only.  The
+    selection then keeps the mixed pole, or the narrow mode alone, and drops the broader one
+    for its orders (a hand-held racket's 3-node bending and 2-node twisting 0.14 Hz apart, ζ 1
+    and 4 %: the twisting's damping 71 % low, its pole dropped, the shapes unscaled; issue 25).
+    For each kept mode with a neighbour within their mean half-power width (a kept mode, or a
+    candidate dropped for its orders, as :func:`_clear_peaks` takes them) two poles are
+    fitted to the FRFs' own lines around it (every reference's with several references:
+    the pLSCF's residues stack them; :func:`racketdyn.modal.refine.fit_poles`, over
     :data:`PAIR_WIDTHS` of the broader pole's half-power width either side, refitted while that
     widens), started from the mode and the neighbour least like it in damping.  The two are
     taken, in place of the mode and every kept mode within one peak of it or of them (one at
@@ -768,6 +797,7 @@ def _close_pairs(
     """
     rules = choices.rules
     spacing = _spacing(frfs)
+    stacked = choices.fitted(frfs)
     lines: list[str] = []
     tried: list[float] = []
     while True:
@@ -787,10 +817,12 @@ def _close_pairs(
             if frfs.coherence is None or zk <= 0:
                 continue
             other = (fk * (1 + zk), BROAD_START * zk, 0, float("nan"))
-        fitted = _pair_fit(frfs, (fk, zk), other[:2], spacing, rules.max_damping_ratio, hidden)
-        if fitted is None:
+        # fitted on the FRFs the residues stand for (every reference's under the pLSCF): the
+        # pair's constants join them, and its shapes are told apart as the stabilisation's are
+        found = _pair_fit(stacked, (fk, zk), other[:2], spacing, rules.max_damping_ratio, hidden)
+        if found is None:
             continue
-        pair, weights = fitted
+        pair, weights = found
         frequency, zeta, constants = pair
         margins = np.array(
             [edge_margin(rules, band, spacing, f, z) for f, z in zip(frequency, zeta, strict=True)]
@@ -828,7 +860,9 @@ def _close_pairs(
         rest[kept] = False
         poles = pole_of(frequency, zeta)
         fit = fit_modal_constants(frfs, np.concatenate([selected.pole[rest], poles]), band)
-        gains = fit_gain(frfs, fit, weights)[-2:]
+        # the weights are the stacked FRFs' (one per FRF): the gains' own set only when it is
+        # that one (several references: each FRF counted alike, as before the weights)
+        gains = fit_gain(frfs, fit, weights if stacked is frfs else None)[-2:]
         # a mode the selection kept needs a peak of the data, one it left out a clear peak: the
         # first stands for mode k, the second for a kept mode if it started from one or the
         # selection kept it apart from mode k (found again by the fit)
