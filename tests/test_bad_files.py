@@ -323,6 +323,27 @@ def test_a_geometry_in_mm_without_164_is_one_line_naming_the_file(
         read_frf_uff(frfs, geometry=nodes)
 
 
+def test_a_csv_geometry_in_mm_is_one_line_naming_the_file(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A geometry CSV whose x_m, y_m are in mm (a racket's points at 90–680 "m") was read
+    without a word by identify (a new user's trial: "modes numbered: no points on both the
+    strings and the frame"; only predict, a step later, said "in mm?"). It is refused as a
+    Universal File's nodes are, with the span in mm and in inches."""
+    frfs = _frfs()
+    lines = _lines(write_frf_uff(frfs, tmp_path / "frfs.uff"))
+    only = _write(tmp_path / "frfs_only.uff", lines[6:])
+    rows = ["node,x_m,y_m"]  # the reference is node 7, a hammer point (the driving point)
+    rows += [
+        f"{n},{1e3 * x},{1e3 * y}" for n, (x, y) in zip(frfs.nodes, frfs.locations, strict=True)
+    ]
+    geometry = tmp_path / "points_mm.csv"
+    geometry.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    argv = ["identify", str(only), "--geometry", str(geometry), "--out", str(tmp_path / "o")]
+    assert main(argv) == 2
+    _one_line(capsys, "points_mm.csv", "m if in mm", "m if in inches", "give the coordinates in m")
+
+
 # --- item 4: nothing lost silently ------------------------------------------------------------
 @pytest.mark.parametrize("kind", ["frf", "hammer"])
 def test_a_racketdyn_file_cut_between_data_sets_is_refused(

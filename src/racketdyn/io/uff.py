@@ -1923,6 +1923,13 @@ def _read_geometry_csv(path: Path) -> dict[int, tuple[float, float]]:
         if int(n) in coordinates and coordinates[int(n)] != (float(xi), float(yi)):
             raise InputError(f"{path}: line {number}: node {n} is listed twice, at two places")
         coordinates[int(n)] = (float(xi), float(yi))
+    extent = float(max(np.ptp(x), np.ptp(y))) if len(coordinates) > 1 else 0.0
+    if extent > MAX_EXTENT_M:  # as a Universal File's nodes (_nodes_xyz_of): another unit
+        raise InputError(
+            f"{path}: the points span {extent:.4g} m in x_m, y_m, more than the "
+            f"{MAX_EXTENT_M:g} m of any structure tested with a hammer: {_unit_guess(extent)}; "
+            "give the coordinates in m"
+        )
     return coordinates
 
 
