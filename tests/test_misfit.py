@@ -268,3 +268,20 @@ def test_complex_modes_with_peaks_under_a_line_name_the_leakage() -> None:
     assert where.cause == "complex modes", where.sentence()
     assert len(where.unresolved_hz) >= 3
     assert "ringing outlasting the record: leakage there" in where.sentence()
+
+
+@pytest.mark.skipif(not REALDATA.is_dir(), reason="../shared/realdata is absent")
+def test_one_reference_of_several_names_the_option_that_fits_them_together(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The verdict on meca0062 against 201 says its poles miss peaks two modes share, and
+    the file holds FRFs against 202 and 203 too: the console names ``--reference all`` (a new
+    user's trial: the docs' table said so, the console did not)."""
+    from racketdyn.cli import main
+
+    path = _real(tmp_path, "meca0062_aircraft", "meca0062_aircraft_3acc.uff.xz")
+    argv = ["identify", str(path), "--reference", "201", "--out", str(tmp_path / "o")]
+    assert main(argv) == 0
+    said = " ".join(capsys.readouterr().out.split())
+    assert "the peaks' shapes are not the kept poles'" in said
+    assert "--reference all fits them together" in said

@@ -262,6 +262,20 @@ def print_modes(
     )
     condition = f"design matrix condition {identification.fit.condition_number:.3g}"
     opt.say(console, f"{fit_line}; {condition}")
+    others = identification.frfs.metadata.get("not_against_reference")
+    if (
+        where is not None
+        and where.cause == "poles"
+        and others
+        and len(identification.references) < 2
+    ):
+        opt.say(
+            console,
+            "the file holds FRFs against other references too (data sets "
+            f"{_listed(list(others))}): --reference all fits them together, which parts modes "
+            "one reference sees as one",
+            "yellow",
+        )
     narrow = identification.half_power_lines < 1.0
     if narrow.any():
         spacing = float(np.median(np.diff(identification.frfs.frequency)))
