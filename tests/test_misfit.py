@@ -242,12 +242,14 @@ def test_a_spread_misfit_says_where_in_each_place() -> None:
         worst_modes_hz=(1553.0, 1490.0),
         unresolved_share=0.0,
         left_out_hz=(),
+        worst_nodes=(60, 33),
         cause="spread",
     )
     sentence = spread.sentence()
     edges, modes = sentence.index("band's edges, 40–98"), sentence.index("most at 1553, 1490 Hz")
     assert edges < modes  # the larger share first
     assert "1840" not in sentence  # 15 % elsewhere: under a quarter, not named
+    assert sentence.endswith("worst at nodes 60, 33")  # the points fitted worst
 
 
 @pytest.mark.skipif(not REALDATA.is_dir(), reason="../shared/realdata is absent")

@@ -113,6 +113,8 @@ class Misfit:
     left_out_hz : tuple of float
         Modes left out (given by the caller) within :data:`NEAR_WORST` of a frequency in
         ``worst_hz``, Hz.
+    worst_nodes : tuple of int
+        The points whose FRFs the fit misses most (up to :data:`WORST`, the worst first).
     cause : str
         One of :data:`CAUSES` or ``"spread"``.
     """
@@ -129,6 +131,7 @@ class Misfit:
     worst_modes_hz: tuple[float, ...]
     unresolved_share: float
     left_out_hz: tuple[float, ...]
+    worst_nodes: tuple[int, ...]
     cause: str
 
     def sentence(self) -> str:
@@ -146,7 +149,8 @@ class Misfit:
             f"{self.near_modes:.0%} of the misfit at the kept modes, {self.edges:.0%} at the "
             f"band's edges, {self.elsewhere:.0%} elsewhere"
         )
-        return f"{head}; {places}: {self._why()}"
+        nodes = ", ".join(map(str, self.worst_nodes))
+        return f"{head}; {places}: {self._why()}; worst at nodes {nodes}"
 
     def _why(self) -> str:
         """What the dominant place says."""
@@ -233,6 +237,7 @@ class Misfit:
             "unresolved_hz": list(self.unresolved_hz),
             "worst_modes_hz": list(self.worst_modes_hz),
             "left_out_hz": list(self.left_out_hz),
+            "worst_nodes": list(self.worst_nodes),
             "cause": self.cause,
             "sentence": self.sentence(),
         }
@@ -290,6 +295,9 @@ def misfit(frfs: FrfSet, fit: ModalFit, left_out_hz: Sequence[float] = ()) -> Mi
             sorted(
                 float(f) for f in left_out_hz if any(abs(f - w) <= NEAR_WORST * w for w in worst)
             )
+        ),
+        worst_nodes=tuple(
+            int(frfs.nodes[i]) for i in np.argsort(-np.nan_to_num(fit.error))[:WORST]
         ),
         cause="",
     )
