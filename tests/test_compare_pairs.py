@@ -117,10 +117,20 @@ def test_compare_lists_every_mode_it_leaves_without_a_pair(compared: CompareResu
     for row in rows:
         paired = bool(row["frequency_free_hz"]) and bool(row["frequency_hand_hz"])
         assert paired == bool(row["mac"]) == (not row["note"]), row
-    for frequency_hz in (375.35, 688.66, 905.32):
-        alone = _at(rows, "frequency_free_hz", frequency_hz)
-        assert not alone["frequency_hand_hz"]
-        assert "no hand-held mode of its kind" in alone["note"]
+    alone = _at(rows, "frequency_free_hz", 688.66)
+    assert not alone["frequency_hand_hz"]
+    assert "no hand-held mode of its kind" in alone["note"]
+    # the free 3-node bending and 4-node twisting were alone while their held partners were
+    # lost (a mixed pole of the 3-node bending and the 2-node twisting 0.14 Hz apart; the 4-node
+    # twisting a shoulder of the 4-node bending's peak); found since the thirteenth session,
+    # they pair (the rig's truth, held: 353.954 and 837.13 Hz)
+    for free_hz, hand_hz, name in (
+        (375.35, 353.954, "3-node bending"),
+        (905.32, 837.13, "4-node twisting"),
+    ):
+        pair = _at(rows, "frequency_free_hz", free_hz)
+        assert pair["mode"] == name
+        assert float(pair["frequency_hand_hz"]) == pytest.approx(hand_hz, rel=1e-3)
     # what the figure and the report read: the pairs' numbers, NaN where a mode is alone
     comparison = compared.comparison
     assert comparison is not None

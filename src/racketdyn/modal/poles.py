@@ -1157,7 +1157,24 @@ def edge_margin(
 ) -> float:
     """A mode's edge margin by ``rules``, Hz: ``edge_margin`` of the band's width,
     ``edge_lines`` line spacings and ``edge_widths`` of its own half-power width ``2ζf``; no
-    mode is taken nearer the band's edge (its peak is not in the band whole)."""
+    mode is taken nearer the band's edge (its peak is not in the band whole).
+
+    Parameters
+    ----------
+    rules : SelectionRules
+        The selection's rules (``edge_margin``, ``edge_lines``, ``edge_widths``).
+    band_hz : tuple of float
+        The band, Hz.
+    line_spacing_hz : float
+        The FRFs' line spacing, Hz.
+    frequency_hz, damping_ratio : float
+        The mode's frequency, Hz, and damping ratio.
+
+    Returns
+    -------
+    float
+        The margin, Hz.
+    """
     return (
         rules.edge_margin * (band_hz[1] - band_hz[0])
         + rules.edge_lines * line_spacing_hz
