@@ -16,7 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from racketdyn.modal.identify import identify
+from racketdyn.measurement.records import FrfSet
+from racketdyn.modal.identify import Identification, identify
 from racketdyn.modal.misfit import COMPLEX_GAIN, DOMINANT, NEGLIGIBLE, NOISE_FACTOR, misfit
 from racketdyn.testing.free_beam import beam_frfs
 
@@ -109,17 +110,22 @@ def test_one_reference_of_the_aircraft_misses_the_pairs_the_lab_parts(tmp_path: 
     from racketdyn.io.frf_layout import read_frfs
 
     path = _real(tmp_path, "meca0062_aircraft", "meca0062_aircraft_3acc.uff.xz")
-    logging.disable(logging.WARNING)
-    try:
-        found = identify(read_frfs(path, None, 201, require_coordinates=False))
-    finally:
-        logging.disable(logging.NOTSET)
+    found = _quietly(read_frfs(path, None, 201, require_coordinates=False))
     where = found.misfit
     assert where is not None
     assert where.cause == "poles", where.sentence()
     named = sorted(where.worst_modes_hz[:2])
     assert named[0] == pytest.approx(40.1, abs=0.2)
     assert named[1] == pytest.approx(125.4, abs=0.3)
+
+
+def _quietly(frfs: FrfSet) -> Identification:
+    """``identify`` of a real file with its warnings (a lab's quirks, said on the console) off."""
+    logging.disable(logging.WARNING)
+    try:
+        return identify(frfs)
+    finally:
+        logging.disable(logging.NOTSET)
 
 
 def _real(tmp_path: Path, folder: str, name: str) -> Path:
@@ -137,11 +143,7 @@ def test_a_peak_narrower_than_a_line_is_said(tmp_path: Path) -> None:
     from racketdyn.io.frf_layout import read_frfs
 
     path = _real(tmp_path, "vtb_siglab", "vtb_case2.uff.xz")
-    logging.disable(logging.WARNING)
-    try:
-        found = identify(read_frfs(path, None, None, require_coordinates=False))
-    finally:
-        logging.disable(logging.NOTSET)
+    found = _quietly(read_frfs(path, None, None, require_coordinates=False))
     where = found.misfit
     assert where is not None
     assert found.half_power_lines[0] < 1.0
@@ -260,11 +262,7 @@ def test_complex_modes_with_peaks_under_a_line_name_the_leakage() -> None:
     from racketdyn.io.frf_layout import read_frfs
 
     path = REALDATA / "pyuff" / "pyuff_showcase_measurement.uff"
-    logging.disable(logging.WARNING)
-    try:
-        found = identify(read_frfs(path, None, None, require_coordinates=False))
-    finally:
-        logging.disable(logging.NOTSET)
+    found = _quietly(read_frfs(path, None, None, require_coordinates=False))
     where = found.misfit
     assert where is not None
     assert where.cause == "complex modes", where.sentence()

@@ -52,6 +52,7 @@ from racketdyn.modal.residues import (
     ModalFit,
     design_columns,
     fit_modal_constants,
+    half_power_lines,
     mass_normalised_shapes,
     unscaled_shapes,
 )
@@ -822,7 +823,7 @@ def _close_pairs(
         found = _pair_fit(stacked, (fk, zk), other[:2], spacing, rules.max_damping_ratio, hidden)
         if found is None:
             continue
-        pair, weights = found
+        pair, window = found
         frequency, zeta, constants = pair
         margins = np.array(
             [edge_margin(rules, band, spacing, f, z) for f, z in zip(frequency, zeta, strict=True)]
@@ -860,9 +861,8 @@ def _close_pairs(
         rest[kept] = False
         poles = pole_of(frequency, zeta)
         fit = fit_modal_constants(frfs, np.concatenate([selected.pole[rest], poles]), band)
-        # the weights are the stacked FRFs' (one per FRF): the gains' own set only when it is
-        # that one (several references: each FRF counted alike, as before the weights)
-        gains = fit_gain(frfs, fit, weights if stacked is frfs else None)[-2:]
+        # each of these FRFs weighted by its own noise over the pair's window, as the pair was
+        gains = fit_gain(frfs, fit, _noise_weights(frfs, window))[-2:]
         # a mode the selection kept needs a peak of the data, one it left out a clear peak: the
         # first stands for mode k, the second for a kept mode if it started from one or the
         # selection kept it apart from mode k (found again by the fit)
@@ -990,32 +990,33 @@ def _pair_fit(
 ) -> (
     tuple[
         tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]],
-        NDArray[np.float64] | None,
+        tuple[float, float],
     ]
     | None
 ):
     """Two poles fitted on the lines around ``mode`` started from it and ``other`` (frequency
     Hz, ζ), each FRF weighted by its noise there (:func:`_noise_weights`): frequencies, damping
-    ratios and constants, the mode's first, and the weights of the last window; None if no
+    ratios and constants, the mode's first, and the last window fitted (Hz); None if no
     pair.  ``hidden``: ``other`` is a guess (:data:`BROAD_START`), the window
     :data:`BROAD_WIDTHS` of the broader pole's width either side, and the fit stops as soon as
     its poles are not the mode (within its ``ζf``) and a broader one under its peak."""
     frequency = np.array([mode[0], other[0]])
     zeta = np.array([mode[1], other[1]])
     widths = BROAD_WIDTHS if hidden else PAIR_WIDTHS
-    half = 0.0
-    weights = None
+
+    def half_width() -> float:  # of the window round the mode the poles now ask for, Hz
+        return max(REFINE_LINES * spacing, widths * float(np.max(2 * zeta * frequency)))
+
     if hidden:  # worth a nonlinear fit only if the started pair explains more than the mode
-        half = max(REFINE_LINES * spacing, widths * float(np.max(2 * zeta * frequency)))
-        window = (mode[0] - half, mode[0] + half)
+        window = (mode[0] - half_width(), mode[0] + half_width())
         weights = _noise_weights(frfs, window)
         alone = local_misfit(frfs, frequency[:1], zeta[:1], window, weights)
         if not alone >= BROAD_SCREEN * local_misfit(frfs, frequency, zeta, window, weights):
             log.debug("close pair at %.2f Hz: no broader mode under its peak", mode[0])
             return None
-        half = 0.0
+    half = 0.0
     for _ in range(PAIR_TRIES):
-        wanted = max(REFINE_LINES * spacing, widths * float(np.max(2 * zeta * frequency)))
+        wanted = half_width()
         if wanted <= 1.2 * half:
             break
         half = wanted
@@ -1036,7 +1037,7 @@ def _pair_fit(
         ):
             log.debug("close pair at %.2f Hz: no broader mode under its peak", mode[0])
             return None
-    return (frequency, zeta, constants), weights
+    return (frequency, zeta, constants), (mode[0] - half, mode[0] + half)
 
 
 def _noise_weights(frfs: FrfSet, window_hz: tuple[float, float]) -> NDArray[np.float64] | None:
@@ -1170,8 +1171,7 @@ class Identification:
         fit's model of the peak alone (a lab's 1 Hz lines and ζ 0.013–0.068 % below 1 kHz),
         and a longer record (finer lines) is what confirms it.
         """
-        spacing = float(np.median(np.diff(self.frfs.frequency)))
-        return np.asarray(2.0 * self.model.damping_ratio * self.model.frequency / spacing)
+        return half_power_lines(self.model.frequency, self.model.damping_ratio, self.frfs.frequency)
 
     def write_dropped_csv(self, path: Path) -> None:
         """``dropped_modes.csv``: one row per candidate left out (:class:`DroppedMode`)."""

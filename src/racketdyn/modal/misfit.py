@@ -39,7 +39,7 @@ from numpy.typing import NDArray
 
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.poles import second_difference_noise
-from racketdyn.modal.residues import ModalFit, design_columns
+from racketdyn.modal.residues import ModalFit, design_columns, half_power_lines
 
 __all__ = [
     "COMPLEX_GAIN",
@@ -79,8 +79,9 @@ CAUSES = (
     "complex modes",
     "unresolved peaks",
     "poles",
+    "spread",
 )
-"""The verdicts, plus ``"spread"`` when no place holds :data:`DOMINANT` of the misfit."""
+"""The verdicts (``"spread"``: no place holds :data:`DOMINANT` of the misfit)."""
 
 
 @dataclass(frozen=True)
@@ -116,7 +117,7 @@ class Misfit:
     worst_nodes : tuple of int
         The points whose FRFs the fit misses most (up to :data:`WORST`, the worst first).
     cause : str
-        One of :data:`CAUSES` or ``"spread"``.
+        One of :data:`CAUSES`.
     """
 
     median_error: float
@@ -269,9 +270,9 @@ def misfit(frfs: FrfSet, fit: ModalFit, left_out_hz: Sequence[float] = ()) -> Mi
     noise = np.sqrt(second_difference_noise(data) * data.shape[1] / energy)[np.isfinite(energy)]
     near, edge, edges_hz = _places(fit)
     total = float(residual.sum())
-    shares = [float(residual[:, m].sum()) / total if total > 0 else 0.0 for m in _split(near, edge)]
-    spacing = float(np.median(np.diff(fit.frequency)))
-    unresolved = 2 * fit.damping_ratio * fit.frequency_hz < spacing
+    places = (near, edge, ~near & ~edge)  # at the modes, at the edges, elsewhere
+    shares = [float(residual[:, m].sum()) / total if total > 0 else 0.0 for m in places]
+    unresolved = half_power_lines(fit.frequency_hz, fit.damping_ratio, fit.frequency) < 1.0
     per_mode = _per_mode(fit, residual.sum(axis=0), near)
     at_modes = float(per_mode.sum())
     worst = _worst(fit.frequency, residual.sum(axis=0), ~near & ~edge)
@@ -326,11 +327,6 @@ def _per_mode(
     nearest = np.argmin(np.abs(fit.frequency[:, None] - fit.frequency_hz[None, :]), axis=1)
     counted = np.bincount(nearest[near], weights=residual[near], minlength=fit.poles.size)
     return np.asarray(counted, dtype=float)
-
-
-def _split(near: NDArray[np.bool_], edge: NDArray[np.bool_]) -> list[NDArray[np.bool_]]:
-    """The three places, as line masks: at the modes, at the edges, elsewhere."""
-    return [near, edge, ~near & ~edge]
 
 
 def _complex_error(frfs: FrfSet, fit: ModalFit, data: NDArray[np.complex128]) -> float:

@@ -25,7 +25,7 @@ import logging
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from racketdyn.errors import InputError
 from racketdyn.measurement.records import FrfSet
@@ -35,6 +35,7 @@ __all__ = [
     "ModalFit",
     "design_columns",
     "fit_modal_constants",
+    "half_power_lines",
     "mac",
     "mass_normalised_shapes",
     "unscaled_shapes",
@@ -87,6 +88,23 @@ class ModalFit:
     def damping_ratio(self) -> NDArray[np.float64]:
         """Damping ratios ``−Re λ / |λ|``."""
         return np.asarray(-self.poles.real / np.abs(self.poles))
+
+
+def half_power_lines(
+    frequency_hz: NDArray[np.float64], damping_ratio: NDArray[np.float64], lines_hz: ArrayLike
+) -> NDArray[np.float64]:
+    """Each mode's half-power width 2ζf in lines (Δf the lines' median spacing): under one,
+    the lines do not resolve its peak (its ringing outlasts the record, ζωT < π for T = 1/Δf).
+
+    Parameters
+    ----------
+    frequency_hz, damping_ratio : ndarray
+        The modes' frequencies, Hz, and damping ratios.
+    lines_hz : array_like
+        The FRFs' lines, Hz.
+    """
+    spacing = float(np.median(np.diff(np.asarray(lines_hz, dtype=float))))
+    return np.asarray(2.0 * np.asarray(damping_ratio) * np.asarray(frequency_hz) / spacing)
 
 
 def fit_modal_constants(
