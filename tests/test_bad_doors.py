@@ -211,7 +211,12 @@ def test_an_absurd_hammer_range_is_one_line(
      ("--pin=nan", ["--pin", "finite", "Hz"]),
      ("--exclude=-5", ["--exclude", "frequencies", "Hz"]),
      ("--pin=1e9", ["--pin:", "outside the band"]),
-     ("--max-order=0", ["--max-order", "at least 1"])],
+     ("--max-order=0", ["--max-order", "at least 1"]),
+     ("--band=1000,40", ["--band 1000,40", "low end is not below the high end", "give 40,1000"]),
+     ("--band=40,40", ["--band 40,40", "not below the high end"]),
+     ("--pin=1e4", ["--pin: 10000 Hz", "outside the band 40–", "give --band"]),
+     ("--exclude=20", ["--exclude: 20 Hz", "outside the band 40–"]),
+     ("--band=3000,4000", ["3000–4000 Hz", "(their last line; the default band is 40–"])],
 )  # fmt: skip
 def test_identifys_bad_numbers_name_their_option_and_unit(
     tmp_path: Path,
@@ -222,12 +227,17 @@ def test_identifys_bad_numbers_name_their_option_and_unit(
 ) -> None:
     """The fifth session's scan: ``--band nan,500`` was "finite speeds of zero or more, m/s"
     (frequencies read by the speeds' parser), and ``--max-order 0`` and ``--pin 1e9`` named
-    the library's ``max_order`` and ``pin_hz`` instead of their options."""
+    the library's ``max_order`` and ``pin_hz`` instead of their options.  A new user's pass
+    (thirteenth session): ``--band 1000,40`` said only "takes two frequencies low,high";
+    ``--pin 5000`` quoted the band's first fitted line, 41.5039 Hz, as its bottom where the
+    console says 40 Hz; a band beyond the FRFs quoted their 0–2500 Hz and not the default
+    band the console shows."""
     assert main(["identify", str(frfs), option, "--out", str(tmp_path / "o")]) == 2
     line = _one_line(capsys, *words)
     assert "m/s" not in line
     assert "_hz" not in line
     assert "max_order" not in line
+    assert "41.5" not in line
 
 
 def test_more_worker_processes_than_the_machine_holds_is_one_line(

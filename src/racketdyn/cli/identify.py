@@ -125,13 +125,10 @@ _LOWEST_BAND_TOP_HZ = 10.0
 
 def _options(args: argparse.Namespace) -> tuple[IdentifyOptions, tuple[float, float] | None]:
     """The identification's options from the command line (one place), and ``--ball-at``."""
-    from racketdyn.workflows.identify import IdentifyOptions
+    from racketdyn.workflows.identify import IdentifyOptions, checked_band
 
-    band = None if args.band is None else opt.parse_frequencies("--band", args.band)
-    if band is not None and (len(band) != 2 or band[0] >= band[1]):
-        from racketdyn.errors import InputError
-
-        raise InputError(f"--band takes two frequencies low,high in Hz (got {args.band!r})")
+    # checked_band's words name `band_hz`, which the CLI says as --band
+    band = None if args.band is None else checked_band(opt.parse_frequencies("--band", args.band))
     if band is not None and band[1] < _LOWEST_BAND_TOP_HZ:
         from racketdyn.errors import InputError
 

@@ -283,10 +283,11 @@ def _checked_band(frfs: FrfSet, band: tuple[float, float]) -> tuple[float, float
     if last < high <= last * (1 + HEADER_DIGITS_RTOL):
         high = last
     if not 0 <= low < high <= last:
+        default = default_band(frfs)
         raise InputError(
             f"{frfs.source}: band {low:g}–{high:g} Hz must lie within the FRFs' "
-            f"{float(frfs.frequency[0]):g}–{last:.7g} Hz (their last line); give `band_hz` "
-            f"LOW,HIGH inside it"
+            f"{float(frfs.frequency[0]):g}–{last:.7g} Hz (their last line; the default band "
+            f"is {default[0]:g}–{default[1]:g} Hz); give `band_hz` LOW,HIGH inside it"
         )
     return (low, high)
 
@@ -1433,6 +1434,18 @@ def _participation(
     return np.asarray(rows, dtype=float)
 
 
+def _within_band(choices: _Choices, band: tuple[float, float]) -> None:
+    """Refuse a pin or an exclusion outside the band, quoted as the console quotes it (the
+    fitted lines' own ends, 41.5039 Hz for a 40 Hz band, are checked by select_poles)."""
+    for name, values in (("pin_hz", choices.pin_hz), ("exclude_hz", choices.exclude_hz)):
+        outside = [f for f in values if not band[0] <= f <= band[1]]
+        if outside:
+            raise InputError(
+                f"`{name}`: {outside[0]:g} Hz lies outside the band {band[0]:g}–{band[1]:g} "
+                f"Hz; give `band_hz` a band that holds it"
+            )
+
+
 def _selected_poles(
     stab: Stabilisation, frfs: FrfSet, band: tuple[float, float], choices: _Choices
 ) -> tuple[SelectedPoles, list[str], list[str]]:
@@ -1442,6 +1455,7 @@ def _selected_poles(
     lines named, clear peaks stable in too few orders kept, close pairs under one peak fitted
     on their own lines, peaks the fit missed found, narrow modes refined.
     """
+    _within_band(choices, band)
     selected = select_poles(
         stab, choices.pin_hz, choices.exclude_hz, rules=choices.rules
     )  # raises if none

@@ -84,6 +84,7 @@ __all__ = [
     "IdentifyResult",
     "ModeComparison",
     "ball_mode_share",
+    "checked_band",
     "compare_modes",
     "compare_with_ball",
     "coordinates_note",
@@ -98,6 +99,37 @@ __all__ = [
 
 CHECK_SPEED_MPS = SHOWN_SPEED_MPS
 """Default incoming ball speed of ``compare``'s Fig. 15 check, m/s (the paper's 20 m/s)."""
+
+
+def checked_band(band_hz: Sequence[float]) -> tuple[float, float]:
+    """A band to identify over, checked: two frequencies, low before high, none negative.
+
+    Parameters
+    ----------
+    band_hz : sequence of float
+        (low, high), Hz.
+
+    Returns
+    -------
+    tuple of float
+        (low, high), Hz.
+
+    Raises
+    ------
+    InputError
+        Naming what is wrong with ``band_hz`` and the band that would do.
+    """
+    values = require_numbers("`band_hz`", band_hz, "Hz")
+    given = ",".join(f"{v:g}" for v in values)
+    if len(values) != 2:
+        raise InputError(f"`band_hz` takes two frequencies low,high in Hz (got {given})")
+    low, high = values
+    if low < 0:
+        raise InputError(f"`band_hz` {given}: {low:g} Hz is below 0 Hz; give 0 Hz or above")
+    if low >= high:
+        fix = f"give {high:g},{low:g}" if low > high else "give a high end above the low one"
+        raise InputError(f"`band_hz` {given}: the low end is not below the high end; {fix}")
+    return (low, high)
 
 
 @dataclass(frozen=True)
@@ -140,12 +172,7 @@ class IdentifyOptions:
         require_rules("IdentifyOptions", self.rules)
         object.__setattr__(self, "reference", reference_choice(self.reference))
         if self.band_hz is not None:
-            values = require_numbers("`band_hz`", self.band_hz, "Hz")
-            if len(values) != 2 or not 0.0 <= values[0] < values[1]:
-                raise InputError(
-                    f"`band_hz` takes two frequencies low,high in Hz (got {self.band_hz!r})"
-                )
-            object.__setattr__(self, "band_hz", (values[0], values[1]))
+            object.__setattr__(self, "band_hz", checked_band(self.band_hz))
         for name in ("pin_hz", "exclude_hz"):  # as the command line spells them too: "600,700"
             values = require_numbers(f"`{name}`", getattr(self, name), "Hz")
             object.__setattr__(self, name, tuple(values))
