@@ -971,12 +971,8 @@ def _third_mode(
     rules, spacing = choices.rules, _spacing(frfs)
     candidates = [
         d
-        for d in selected.dropped_modes
-        if d.stage in ("selection", "unsettled")
-        and "stable in" in d.reason
-        and d.orders_stable > 3
-        and 0.0 < d.damping_ratio < rules.max_damping_ratio
-        and np.any(
+        for d in _dropped_for_orders(selected, rules)
+        if np.any(
             np.abs(frequency - d.frequency_hz) < zeta * frequency + d.damping_ratio * d.frequency_hz
         )
         and np.all(np.abs(frequency - d.frequency_hz) > ONE_PEAK_LINES * spacing)
@@ -1071,16 +1067,25 @@ def _neighbours(
         for j in kept
     ] + [
         (d.frequency_hz, d.damping_ratio, d.orders_stable, d.peak_to_noise)
+        for d in _dropped_for_orders(selected, rules)
+        if abs(d.frequency_hz - fk) < zk * fk + d.damping_ratio * d.frequency_hz
+    ]
+    if not near or zk <= 0:
+        return kept, None
+    return kept, max(near, key=lambda p: abs(np.log(p[1] / zk)))
+
+
+def _dropped_for_orders(selected: SelectedPoles, rules: SelectionRules) -> list[DroppedMode]:
+    """The candidates dropped for their orders that a close pair may take: stable in more than
+    three (as :func:`_clear_peaks` takes them), damped within the rules."""
+    return [
+        d
         for d in selected.dropped_modes
         if d.stage in ("selection", "unsettled")
         and "stable in" in d.reason
         and d.orders_stable > 3
         and 0.0 < d.damping_ratio < rules.max_damping_ratio
-        and abs(d.frequency_hz - fk) < zk * fk + d.damping_ratio * d.frequency_hz
     ]
-    if not near or zk <= 0:
-        return kept, None
-    return kept, max(near, key=lambda p: abs(np.log(p[1] / zk)))
 
 
 def _weak_of_pair(
