@@ -790,12 +790,13 @@ def _close_pairs(
     coherence), and a kept mode with no neighbour is tried for a broader mode hidden under its
     peak (:data:`BROAD_START`, :data:`BROAD_SCREEN`; taken by the same rules, never named); a
     mode of the pair in the band's edge margin (:func:`racketdyn.modal.poles.edge_margin`) is
-    not taken.
+    not taken.  A candidate left under the peak of a pair taken is fitted with it as a third
+    mode, kept or named (:func:`_third_mode`).
 
     Returns
     -------
     SelectedPoles, list of str
-        The selection, and one line per pair fitted saying what it replaced.
+        The selection, and one line per pair (or three) fitted saying what it replaced.
     """
     rules = choices.rules
     spacing = _spacing(frfs)
@@ -821,7 +822,7 @@ def _close_pairs(
             other = (fk * (1 + zk), BROAD_START * zk, 0, float("nan"))
         # fitted on the FRFs the residues stand for (every reference's under the pLSCF): the
         # pair's constants join them, and its shapes are told apart as the stabilisation's are
-        found = _pair_fit(stacked, (fk, zk), other[:2], spacing, rules.max_damping_ratio, hidden)
+        found = _pair_fit(stacked, (fk, zk), [other[:2]], spacing, rules.max_damping_ratio, hidden)
         if found is None:
             continue
         pair, window = found
@@ -884,21 +885,167 @@ def _close_pairs(
                 row = _weak_of_pair(frfs, band, choices, (fk, agree), pair, gains)
                 selected = replace(selected, dropped_modes=(*selected.dropped_modes, row))
             continue
+        seconds = [other[2:]]
+        third = _third_mode(selected, frfs, band, choices, (rest, needed), (pair, window))
+        if isinstance(third, DroppedMode):
+            selected = replace(selected, dropped_modes=_renamed(selected.dropped_modes, third))
+        elif third is not None:
+            pair, gains, agree, source = third
+            seconds.append(source)
         was = ", ".join(
             f"{selected.frequency[j]:.2f} Hz ζ {100 * selected.damping_ratio[j]:.3g} %"
             for j in sorted([k, *kept])
         )
-        low, high = np.argsort(frequency)
-        lines.append(
-            f"{frequency[low]:.2f} Hz (ζ {100 * zeta[low]:.3g} %) and {frequency[high]:.2f} Hz "
-            f"(ζ {100 * zeta[high]:.3g} %): two modes under one peak (shapes' MAC "
-            f"{agree:.2f}, the fit near each {gains[low]:.3g} and {gains[high]:.3g} × better "
-            f"with it) fitted on their own lines; the fit over {band[0]:g}–{band[1]:g} Hz "
-            f"had {was}"
-        )
-        selected = _with_pair(selected, rest, k, pair, other[2:])
-        tried.extend(float(f) for f in frequency)
+        lines.append(_under_one_peak(pair, gains, agree, f"{band[0]:g}–{band[1]:g} Hz had {was}"))
+        selected = _with_pair(selected, rest, k, pair, seconds)
+        tried.extend(float(f) for f in pair[0])
     return selected, lines
+
+
+def _under_one_peak(
+    pair: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]],
+    gains: NDArray[np.float64],
+    agree: float,
+    had: str,
+) -> str:
+    """The line saying which modes were fitted under one peak (two or three; ``agree`` their
+    shapes' largest MAC) in place of what the wide band's fit ``had``."""
+    frequency, zeta, _ = pair
+    order = np.argsort(frequency)
+
+    def listed(items: list[str]) -> str:
+        return " and ".join([", ".join(items[:-1]), items[-1]])
+
+    most = " at most" if frequency.size > 2 else ""
+    return (
+        f"{listed([f'{frequency[j]:.2f} Hz (ζ {100 * zeta[j]:.3g} %)' for j in order])}: "
+        f"{['two', 'three'][frequency.size - 2]} modes under one peak (shapes' MAC {agree:.2f}"
+        f"{most}, the fit near each {listed([f'{gains[j]:.3g}' for j in order])} × better "
+        f"with it) fitted on their own lines; the fit over {had}"
+    )
+
+
+def _third_mode(
+    selected: SelectedPoles,
+    frfs: FrfSet,
+    band: tuple[float, float],
+    choices: _Choices,
+    kept: tuple[NDArray[np.bool_], NDArray[np.float64]],
+    found: tuple[
+        tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]],
+        tuple[float, float],
+    ],
+) -> (
+    tuple[
+        tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]],
+        NDArray[np.float64],
+        float,
+        tuple[int, float],
+    ]
+    | DroppedMode
+    | None
+):
+    """A third mode under a close pair's peak (the pair just taken, with the gains it needed):
+    three poles fitted, or the candidate named, or None.
+
+    Three modes within one another's half-power widths that the wide band's fit keeps as two
+    become a pair, and the third stays a candidate dropped for its orders (299, 300 and 301.2
+    Hz at ζ 0.6 %: the pair 299.26/301.20 Hz, the candidate 300.29 Hz stable in 4 of 60).
+    The candidate (as :func:`_neighbours` takes them; the one stable in most orders) within
+    one peak of a mode of the pair and further than :data:`ONE_PEAK_LINES` lines from both is
+    fitted with the pair on the pair's lines (:func:`_pair_fit`, started from the pair and
+    it).  The three are taken when each stays in the band's margins and one peak with
+    another, their shapes are unlike (MAC under :data:`PAIR_MAC`, pair by pair), the pair's
+    gains still pass and the third's is :data:`CLEAR_PEAK_GAIN` or more (a mode the selection
+    left out, as for the pair's).  Else, where the candidate's own pole gains
+    :data:`FIT_GAIN_MIN` or more beside the pair (fitted with every other mode kept), its row
+    becomes ``unsettled`` naming the ``pin_hz`` that keeps it.
+
+    Returns
+    -------
+    tuple, DroppedMode or None
+        The three modes (frequencies, damping ratios, constants), their gains, their shapes'
+        largest MAC and the candidate's (orders, peak over the noise); or the candidate's row
+        named; or None (no candidate, or no peak of its own).
+    """
+    (rest, needed), ((frequency, zeta, _), window) = kept, found
+    rules, spacing = choices.rules, _spacing(frfs)
+    candidates = [
+        d
+        for d in _dropped_for_orders(selected, rules)
+        if np.any(
+            np.abs(frequency - d.frequency_hz) < zeta * frequency + d.damping_ratio * d.frequency_hz
+        )
+        and np.all(np.abs(frequency - d.frequency_hz) > ONE_PEAK_LINES * spacing)
+    ]
+    if not candidates:
+        return None
+    d = max(candidates, key=lambda d: (d.orders_stable, d.peak_to_noise))
+    weights = _noise_weights(frfs, window)
+    three = _pair_fit(
+        choices.fitted(frfs),
+        (float(frequency[0]), float(zeta[0])),
+        [(float(frequency[1]), float(zeta[1])), (d.frequency_hz, d.damping_ratio)],
+        spacing,
+        rules.max_damping_ratio,
+    )
+    if three is not None:
+        (f3, z3, constants), _ = three
+        margins = np.array(
+            [edge_margin(rules, band, spacing, f, z) for f, z in zip(f3, z3, strict=True)]
+        )
+        reach = z3[:, None] * f3[:, None] + z3 * f3
+        apart = np.abs(f3[:, None] - f3)
+        agree = float(np.max(mac(constants, constants)[np.triu_indices(3, 1)]))
+        gains = fit_gain(
+            frfs,
+            fit_modal_constants(frfs, np.concatenate([selected.pole[rest], pole_of(f3, z3)]), band),
+            weights,
+        )[-3:]
+        if (
+            np.all(np.abs(f3 - np.mean(band)) <= (band[1] - band[0]) / 2 - margins)
+            and np.all(np.sum(apart < reach, axis=1) >= 2)  # itself and another
+            and np.min(apart[np.triu_indices(3, 1)]) > ONE_PEAK_LINES * spacing
+            and agree < PAIR_MAC
+            and np.all(gains >= [*needed, CLEAR_PEAK_GAIN])
+        ):
+            return (f3, z3, constants), gains, agree, (d.orders_stable, d.peak_to_noise)
+        log.debug(
+            "close pair at %.2f Hz: no third mode at %.2f Hz (gains %s, MAC %.2f)",
+            frequency[0],
+            d.frequency_hz,
+            gains,
+            agree,
+        )
+    poles = pole_of([*frequency, d.frequency_hz], [*zeta, d.damping_ratio])
+    gain = float(
+        fit_gain(
+            frfs,
+            fit_modal_constants(frfs, np.concatenate([selected.pole[rest], poles]), band),
+            weights,
+        )[-1]
+    )
+    if d.stage != "selection" or not gain >= FIT_GAIN_MIN:  # named once
+        return None
+    return replace(
+        d,
+        stage="unsettled",
+        fit_gain=gain,
+        reason=(
+            f"a third mode under the peak of {frequency[0]:.2f} and {frequency[1]:.2f} Hz "
+            f"(the fit near it {gain:.2g} × better with it) that three poles fitted on their "
+            f"own lines do not part: {d.reason}; `pin_hz` {d.frequency_hz:.1f} keeps the wide "
+            f"band's pole there, its neighbours as that fit has them"
+        ),
+    )
+
+
+def _renamed(rows: tuple[DroppedMode, ...], row: DroppedMode) -> tuple[DroppedMode, ...]:
+    """``rows`` with the row of ``row``'s frequency (and orders) replaced by ``row``."""
+    return tuple(
+        row if (d.frequency_hz, d.orders_stable) == (row.frequency_hz, row.orders_stable) else d
+        for d in rows
+    )
 
 
 def _neighbours(
@@ -921,16 +1068,25 @@ def _neighbours(
         for j in kept
     ] + [
         (d.frequency_hz, d.damping_ratio, d.orders_stable, d.peak_to_noise)
+        for d in _dropped_for_orders(selected, rules)
+        if abs(d.frequency_hz - fk) < zk * fk + d.damping_ratio * d.frequency_hz
+    ]
+    if not near or zk <= 0:
+        return kept, None
+    return kept, max(near, key=lambda p: abs(np.log(p[1] / zk)))
+
+
+def _dropped_for_orders(selected: SelectedPoles, rules: SelectionRules) -> list[DroppedMode]:
+    """The candidates dropped for their orders that a close pair may take: stable in more than
+    three (as :func:`_clear_peaks` takes them), damped within the rules."""
+    return [
+        d
         for d in selected.dropped_modes
         if d.stage in ("selection", "unsettled")
         and "stable in" in d.reason
         and d.orders_stable > 3
         and 0.0 < d.damping_ratio < rules.max_damping_ratio
-        and abs(d.frequency_hz - fk) < zk * fk + d.damping_ratio * d.frequency_hz
     ]
-    if not near or zk <= 0:
-        return kept, None
-    return kept, max(near, key=lambda p: abs(np.log(p[1] / zk)))
 
 
 def _weak_of_pair(
@@ -984,7 +1140,7 @@ def _weak_of_pair(
 def _pair_fit(
     frfs: FrfSet,
     mode: tuple[float, float],
-    other: tuple[float, float],
+    others: Sequence[tuple[float, float]],
     spacing: float,
     max_damping: float,
     hidden: bool = False,
@@ -995,14 +1151,14 @@ def _pair_fit(
     ]
     | None
 ):
-    """Two poles fitted on the lines around ``mode`` started from it and ``other`` (frequency
-    Hz, ζ), each FRF weighted by its noise there (:func:`_noise_weights`): frequencies, damping
-    ratios and constants, the mode's first, and the last window fitted (Hz); None if no
-    pair.  ``hidden``: ``other`` is a guess (:data:`BROAD_START`), the window
+    """Two poles (or more) fitted on the lines around ``mode`` started from it and ``others``
+    (frequency Hz, ζ each), each FRF weighted by its noise there (:func:`_noise_weights`):
+    frequencies, damping ratios and constants, the mode's first, and the last window fitted
+    (Hz); None if no pair.  ``hidden``: the other is a guess (:data:`BROAD_START`), the window
     :data:`BROAD_WIDTHS` of the broader pole's width either side, and the fit stops as soon as
     its poles are not the mode (within its ``ζf``) and a broader one under its peak."""
-    frequency = np.array([mode[0], other[0]])
-    zeta = np.array([mode[1], other[1]])
+    frequency = np.array([mode[0], *(f for f, _ in others)])
+    zeta = np.array([mode[1], *(z for _, z in others)])
     widths = BROAD_WIDTHS if hidden else PAIR_WIDTHS
 
     def half_width() -> float:  # of the window round the mode the poles now ask for, Hz
@@ -1065,30 +1221,33 @@ def _with_pair(
     rest: NDArray[np.bool_],
     k: int,
     pair: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]],
-    second: tuple[int, float],
+    seconds: Sequence[tuple[int, float]],
 ) -> SelectedPoles:
-    """The selection of ``rest`` with a fitted pair added in place of mode ``k`` (and the
-    neighbours ``rest`` leaves out): the first with mode ``k``'s orders, spreads and peak, the
-    second with the orders and peak of the neighbour it started from (``second``) and no
+    """The selection of ``rest`` with a fitted pair (or three) added in place of mode ``k`` (and
+    the neighbours ``rest`` leaves out): the first with mode ``k``'s orders, spreads and peak,
+    each other with the orders and peak of the neighbour it started from (``seconds``) and no
     spreads (NaN: no cluster of its own), pinned if mode ``k`` was; the local fit's constants
     as their residues, in order of frequency."""
     frequency, zeta, constants = pair
     pole = pole_of(frequency, zeta)
 
-    def two(values: NDArray[Any], other: float) -> NDArray[Any]:
-        return np.concatenate([values[rest], [values[k], other]])
+    def two(values: NDArray[Any], others: Sequence[float]) -> NDArray[Any]:
+        return np.concatenate([values[rest], [values[k], *others]])
 
+    nan = [np.nan] * len(seconds)
     merged = replace(
         selected,
         frequency=np.concatenate([selected.frequency[rest], frequency]),
         damping_ratio=np.concatenate([selected.damping_ratio[rest], zeta]),
         pole=np.concatenate([selected.pole[rest], pole]),
-        n_orders=two(selected.n_orders, second[0]),
-        frequency_spread_hz=two(selected.frequency_spread_hz, np.nan),
-        damping_spread=two(selected.damping_spread, np.nan),
-        peak_to_noise=two(selected.peak_to_noise, second[1]),
+        n_orders=two(selected.n_orders, [s[0] for s in seconds]),
+        frequency_spread_hz=two(selected.frequency_spread_hz, nan),
+        damping_spread=two(selected.damping_spread, nan),
+        peak_to_noise=two(selected.peak_to_noise, [s[1] for s in seconds]),
         residues=np.concatenate([selected.residues[:, rest], constants], axis=1),
-        pinned=np.concatenate([selected.pinned[rest], [selected.pinned[k], False]]),
+        pinned=np.concatenate(
+            [selected.pinned[rest], [selected.pinned[k]], [False] * len(seconds)]
+        ),
     )
     return merged.select(np.argsort(merged.frequency, kind="stable"))
 
