@@ -888,14 +888,15 @@ def _close_pairs(
             for j in sorted([k, *kept])
         )
         low, high = np.argsort(frequency)
+        selected, started = _candidates_kept(selected, (frequency[1], zeta[1]), other, rules)
         lines.append(
             f"{frequency[low]:.2f} Hz (ζ {100 * zeta[low]:.3g} %) and {frequency[high]:.2f} Hz "
             f"(ζ {100 * zeta[high]:.3g} %): two modes under one peak (shapes' MAC "
             f"{agree:.2f}, the fit near each {gains[low]:.3g} and {gains[high]:.3g} × better "
             f"with it) fitted on their own lines; the fit over {band[0]:g}–{band[1]:g} Hz "
-            f"had {was}"
+            f"had {was}{started}"
         )
-        selected = _with_pair(selected, rest, k, pair, other[2:])
+        selected = _with_pair(selected, rest, k, pair, other[3])
         tried.extend(float(f) for f in frequency)
     return selected, lines
 
@@ -930,6 +931,51 @@ def _neighbours(
     if not near or zk <= 0:
         return kept, None
     return kept, max(near, key=lambda p: abs(np.log(p[1] / zk)))
+
+
+def _candidates_kept(
+    selected: SelectedPoles,
+    second: tuple[float, float],
+    start: tuple[float, float, int, float],
+    rules: SelectionRules,
+) -> tuple[SelectedPoles, str]:
+    """The selection without the rows of the candidates a close pair's second mode (frequency
+    Hz, ζ) stands for — the one its fit started from (``start``: frequency, ζ, orders, peak)
+    and every other stable in more than three orders within its half-power width and its
+    damping within :attr:`~racketdyn.modal.poles.SelectionRules.damping_tolerance` — which
+    ``dropped_modes.csv`` would list as left out though the mode is kept; and a clause naming
+    the candidate it started from ("" for a guess: the broad-mode search)."""
+    f, zeta = second
+    tolerance = np.log(1 + rules.damping_tolerance)
+
+    def stands_for(d: DroppedMode) -> bool:
+        if d.stage not in ("selection", "unsettled") or "stable in" not in d.reason:
+            return False
+        if np.isclose(d.frequency_hz, start[0]) and d.orders_stable == start[2]:
+            return True
+        return bool(
+            d.orders_stable > 3
+            and abs(d.frequency_hz - f) < zeta * f
+            and d.damping_ratio > 0
+            and abs(np.log(d.damping_ratio / zeta)) < tolerance
+        )
+
+    gone = [d for d in selected.dropped_modes if stands_for(d)]
+    if not gone:
+        return selected, ""
+    said = tuple(f"{d.frequency_hz:.2f} Hz," for d in gone)
+    selected = replace(
+        selected,
+        dropped_modes=tuple(d for d in selected.dropped_modes if not stands_for(d)),
+        dropped=tuple(line for line in selected.dropped if not line.startswith(said)),
+    )
+    started = [d for d in gone if np.isclose(d.frequency_hz, start[0])]
+    if not started:
+        return selected, ""
+    return selected, (
+        f"; the second started from the candidate at {started[0].frequency_hz:.2f} Hz "
+        f"({started[0].reason})"
+    )
 
 
 def _weak_of_pair(
@@ -1064,30 +1110,36 @@ def _with_pair(
     rest: NDArray[np.bool_],
     k: int,
     pair: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]],
-    second: tuple[int, float],
+    peak: float,
 ) -> SelectedPoles:
     """The selection of ``rest`` with a fitted pair added in place of mode ``k`` (and the
     neighbours ``rest`` leaves out): the first with mode ``k``'s orders, spreads and peak, the
-    second with the orders and peak of the neighbour it started from (``second``) and no
-    spreads (NaN: no cluster of its own), pinned if mode ``k`` was; the local fit's constants
-    as their residues, in order of frequency."""
+    second :attr:`~racketdyn.modal.poles.SelectedPoles.pair_fitted` with the pair's orders
+    (mode ``k``'s: no cluster of the band's orders is its own, so no count is reported for
+    it), the peak of the neighbour it started from (``peak``) and no spreads (NaN), pinned
+    if mode ``k`` was; the local fit's constants as their residues, in order of frequency."""
     frequency, zeta, constants = pair
     pole = pole_of(frequency, zeta)
 
     def two(values: NDArray[Any], other: float) -> NDArray[Any]:
         return np.concatenate([values[rest], [values[k], other]])
 
+    fitted = (
+        np.zeros(selected.n_modes, bool) if selected.pair_fitted is None else selected.pair_fitted
+    )
+
     merged = replace(
         selected,
         frequency=np.concatenate([selected.frequency[rest], frequency]),
         damping_ratio=np.concatenate([selected.damping_ratio[rest], zeta]),
         pole=np.concatenate([selected.pole[rest], pole]),
-        n_orders=two(selected.n_orders, second[0]),
+        n_orders=two(selected.n_orders, selected.n_orders[k]),
         frequency_spread_hz=two(selected.frequency_spread_hz, np.nan),
         damping_spread=two(selected.damping_spread, np.nan),
-        peak_to_noise=two(selected.peak_to_noise, second[1]),
+        peak_to_noise=two(selected.peak_to_noise, peak),
         residues=np.concatenate([selected.residues[:, rest], constants], axis=1),
         pinned=np.concatenate([selected.pinned[rest], [selected.pinned[k], False]]),
+        pair_fitted=np.concatenate([fitted[rest], [False, True]]),
     )
     return merged.select(np.argsort(merged.frequency, kind="stable"))
 
@@ -1199,7 +1251,8 @@ class Identification:
         return replace(self, model=replace(self.model, names=tuple(names), kinds=tuple(kinds)))
 
     def write_modes_csv(self, path: Path) -> None:
-        """``mode, frequency_hz, damping_ratio, name`` (+ kind, orders stable, fit spread)."""
+        """``mode, frequency_hz, damping_ratio, name`` (+ kind, orders stable, fit spread); the
+        orders stable empty for a close pair's second mode (fitted on the FRFs' own lines)."""
         with Path(path).open("w", newline="", encoding="utf-8") as handle:
             writer = csv.writer(handle)
             writer.writerow(
@@ -1214,6 +1267,7 @@ class Identification:
                 ]
             )
             model, selected = self.model, self.selected
+            orders = selected.orders_stable()
             for k in range(model.n_modes):
                 writer.writerow(
                     [
@@ -1222,7 +1276,7 @@ class Identification:
                         f"{model.damping_ratio[k]:.6g}",
                         model.names[k],
                         model.kinds[k],
-                        int(selected.n_orders[k]),
+                        "" if orders[k] is None else orders[k],
                         f"{selected.frequency_spread_hz[k]:.3g}",
                     ]
                 )
@@ -1607,7 +1661,7 @@ def _fit_record(fitted: _Fitted, note: str) -> dict[str, Any]:
         "directions": frfs.metadata.get("directions") or {},
         "fit_error_median": float(np.median(fitted.fit.error)),
         "design_condition_number": fitted.fit.condition_number,
-        "orders_stable": fitted.selected.n_orders.tolist(),
+        "orders_stable": fitted.selected.orders_stable(),
         "scaling_note": note,
     }
 
