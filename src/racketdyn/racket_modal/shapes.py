@@ -877,6 +877,7 @@ def _classify(
     square_ratio = np.full(model.n_modes, np.inf)
     from_band: list[int] = []  # frame modes named in the unclear band by their frame shape
     notes: list[str] = []
+    frame_macs = np.full(model.n_modes, np.nan)
     for k in range(model.n_modes):
         reasons.append("")
         notes.append("")
@@ -912,6 +913,7 @@ def _classify(
         nodes, frame_mac, rival, rival_mac = (
             twisting_nodes if kind == "twisting" else bending_nodes
         )[k]
+        frame_macs[k] = frame_mac
         # the frame's shape says more than the strings': the frame matches one of its own modes
         # better than the strings' own motion matches one of the bed's (module docstring)
         frame_says = nodes is not None and frame_mac > np.nan_to_num(membrane_mac[k])
@@ -982,9 +984,10 @@ def _classify(
         bed = membrane[k]
         if kinds[k] in ("bending", "twisting") and bed is not None and bed not in names:
             notes[k] = (
-                f"its frame matches the {names[k]} and its strings' own motion the bed's "
-                f"{bed.removeprefix('string-bed ')} mode (MAC {membrane_mac[k]:.2f}), which no "
-                f"other mode here is named after: a frame mode veering with the bed, its "
+                f"its frame matches the {names[k]} (MAC {frame_macs[k]:.2f}) and its strings' "
+                f"own motion the bed's {bed.removeprefix('string-bed ')} mode (MAC "
+                f"{membrane_mac[k]:.2f}), which no other mode here is named after: a frame "
+                "mode veering with the bed, its "
                 "partner not found; the points cannot tell whether the frame or the strings "
                 "hold more of its energy"
             )
