@@ -46,3 +46,21 @@ tension_n = 235.0
 first_bending_hz = 145.0
 """
 """The eleventh session's new-user trial racket: 300 g, 100 sq in, 145 Hz, 235 N."""
+
+TRIAL_RACKET_104 = """name = "Invented 276 g 104 sq in head-heavy"
+
+[racket]
+mass_kg = 0.276
+length_m = 0.690
+balance_m = 0.345
+swingweight_kgcm2 = 318.0
+
+[head]
+centre_x_m = 0.510
+half_length_m = 0.172
+area_cm2 = 671.0
+
+[modal]
+first_bending_hz = 166.0
+"""
+"""The thirteenth session's new user's invented racket: 276 g, 104 sq in, 166 Hz, head-heavy."""

@@ -885,19 +885,25 @@ def _close_pairs(
                 row = _weak_of_pair(frfs, band, choices, (fk, agree), pair, gains)
                 selected = replace(selected, dropped_modes=(*selected.dropped_modes, row))
             continue
-        seconds = [other[2:]]
+        peaks, third_from, named = [other[3]], None, None
         third = _third_mode(selected, frfs, band, choices, (rest, needed), (pair, window))
         if isinstance(third, DroppedMode):
+            named = third  # a third mode under the peak, not one the second stands for
             selected = replace(selected, dropped_modes=_renamed(selected.dropped_modes, third))
         elif third is not None:
-            pair, gains, agree, source = third
-            seconds.append(source)
+            pair, gains, agree, third_from = third
+            peaks.append(third_from[3])
         was = ", ".join(
             f"{selected.frequency[j]:.2f} Hz ζ {100 * selected.damping_ratio[j]:.3g} %"
             for j in sorted([k, *kept])
         )
-        lines.append(_under_one_peak(pair, gains, agree, f"{band[0]:g}–{band[1]:g} Hz had {was}"))
-        selected = _with_pair(selected, rest, k, pair, seconds)
+        second = (frequency[1], zeta[1])
+        selected, started = _candidates_kept(selected, second, other, rules, named)
+        if third_from is not None:  # the third's candidate row goes too
+            selected, _ = _candidates_kept(selected, third_from[:2], third_from, rules)
+        had = f"{band[0]:g}–{band[1]:g} Hz had {was}{started}"
+        lines.append(_under_one_peak(pair, gains, agree, had))
+        selected = _with_pair(selected, rest, k, pair, peaks)
         tried.extend(float(f) for f in pair[0])
     return selected, lines
 
@@ -940,7 +946,7 @@ def _third_mode(
         tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]],
         NDArray[np.float64],
         float,
-        tuple[int, float],
+        tuple[float, float, int, float],
     ]
     | DroppedMode
     | None
@@ -965,7 +971,7 @@ def _third_mode(
     -------
     tuple, DroppedMode or None
         The three modes (frequencies, damping ratios, constants), their gains, their shapes'
-        largest MAC and the candidate's (orders, peak over the noise); or the candidate's row
+        largest MAC and the candidate (frequency, ζ, orders, peak over the noise); or its row
         named; or None (no candidate, or no peak of its own).
     """
     (rest, needed), ((frequency, zeta, _), window) = kept, found
@@ -1009,7 +1015,7 @@ def _third_mode(
             and agree < PAIR_MAC
             and np.all(gains >= [*needed, CLEAR_PEAK_GAIN])
         ):
-            return (f3, z3, constants), gains, agree, (d.orders_stable, d.peak_to_noise)
+            return (f3, z3, constants), gains, agree, _as_neighbour(d)
         log.debug(
             "close pair at %.2f Hz: no third mode at %.2f Hz (gains %s, MAC %.2f)",
             frequency[0],
@@ -1067,13 +1073,18 @@ def _neighbours(
         )
         for j in kept
     ] + [
-        (d.frequency_hz, d.damping_ratio, d.orders_stable, d.peak_to_noise)
+        _as_neighbour(d)
         for d in _dropped_for_orders(selected, rules)
         if abs(d.frequency_hz - fk) < zk * fk + d.damping_ratio * d.frequency_hz
     ]
     if not near or zk <= 0:
         return kept, None
     return kept, max(near, key=lambda p: abs(np.log(p[1] / zk)))
+
+
+def _as_neighbour(d: DroppedMode) -> tuple[float, float, int, float]:
+    """A candidate as :func:`_neighbours` gives one: frequency, ζ, orders, peak over noise."""
+    return (d.frequency_hz, d.damping_ratio, d.orders_stable, d.peak_to_noise)
 
 
 def _dropped_for_orders(selected: SelectedPoles, rules: SelectionRules) -> list[DroppedMode]:
@@ -1087,6 +1098,55 @@ def _dropped_for_orders(selected: SelectedPoles, rules: SelectionRules) -> list[
         and d.orders_stable > 3
         and 0.0 < d.damping_ratio < rules.max_damping_ratio
     ]
+
+
+def _candidates_kept(
+    selected: SelectedPoles,
+    second: tuple[float, float],
+    start: tuple[float, float, int, float],
+    rules: SelectionRules,
+    named: DroppedMode | None = None,
+) -> tuple[SelectedPoles, str]:
+    """The selection without the rows of the candidates a close pair's second mode (frequency
+    Hz, ζ) stands for — the one its fit started from (``start``: frequency, ζ, orders, peak)
+    and every other stable in more than three orders within its half-power width and its
+    damping within :attr:`~racketdyn.modal.poles.SelectionRules.damping_tolerance` — which
+    ``dropped_modes.csv`` would list as left out though the mode is kept, but for the row
+    ``named`` (a third mode under the peak, :func:`_third_mode`); and a clause naming the
+    candidate it started from ("" for a guess: the broad-mode search)."""
+    f, zeta = second
+    tolerance = np.log(1 + rules.damping_tolerance)
+
+    def stands_for(d: DroppedMode) -> bool:
+        if d == named:
+            return False
+        if d.stage not in ("selection", "unsettled") or "stable in" not in d.reason:
+            return False
+        if np.isclose(d.frequency_hz, start[0]) and d.orders_stable == start[2]:
+            return True
+        return bool(
+            d.orders_stable > 3
+            and abs(d.frequency_hz - f) < zeta * f
+            and d.damping_ratio > 0
+            and abs(np.log(d.damping_ratio / zeta)) < tolerance
+        )
+
+    gone = [d for d in selected.dropped_modes if stands_for(d)]
+    if not gone:
+        return selected, ""
+    said = tuple(f"{d.frequency_hz:.2f} Hz," for d in gone)
+    selected = replace(
+        selected,
+        dropped_modes=tuple(d for d in selected.dropped_modes if not stands_for(d)),
+        dropped=tuple(line for line in selected.dropped if not line.startswith(said)),
+    )
+    started = [d for d in gone if np.isclose(d.frequency_hz, start[0])]
+    if not started:
+        return selected, ""
+    return selected, (
+        f"; the second started from the candidate at {started[0].frequency_hz:.2f} Hz "
+        f"({started[0].reason})"
+    )
 
 
 def _weak_of_pair(
@@ -1221,33 +1281,36 @@ def _with_pair(
     rest: NDArray[np.bool_],
     k: int,
     pair: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]],
-    seconds: Sequence[tuple[int, float]],
+    peaks: Sequence[float],
 ) -> SelectedPoles:
-    """The selection of ``rest`` with a fitted pair (or three) added in place of mode ``k`` (and
-    the neighbours ``rest`` leaves out): the first with mode ``k``'s orders, spreads and peak,
-    each other with the orders and peak of the neighbour it started from (``seconds``) and no
-    spreads (NaN: no cluster of its own), pinned if mode ``k`` was; the local fit's constants
-    as their residues, in order of frequency."""
+    """The selection of ``rest`` with a fitted pair (or three) added in place of mode ``k``
+    (and the neighbours ``rest`` leaves out): the first with mode ``k``'s orders, spreads and
+    peak, each other :attr:`~racketdyn.modal.poles.SelectedPoles.pair_fitted` with mode
+    ``k``'s orders (no cluster of the band's orders is its own, so no count is reported for
+    it), the peak of the candidate it started from (``peaks``) and no spreads (NaN), pinned
+    if mode ``k`` was; the local fit's constants as their residues, in order of frequency."""
     frequency, zeta, constants = pair
     pole = pole_of(frequency, zeta)
 
     def two(values: NDArray[Any], others: Sequence[float]) -> NDArray[Any]:
         return np.concatenate([values[rest], [values[k], *others]])
 
-    nan = [np.nan] * len(seconds)
+    nan = [np.nan] * len(peaks)
+    fitted = (
+        np.zeros(selected.n_modes, bool) if selected.pair_fitted is None else selected.pair_fitted
+    )
     merged = replace(
         selected,
         frequency=np.concatenate([selected.frequency[rest], frequency]),
         damping_ratio=np.concatenate([selected.damping_ratio[rest], zeta]),
         pole=np.concatenate([selected.pole[rest], pole]),
-        n_orders=two(selected.n_orders, [s[0] for s in seconds]),
+        n_orders=two(selected.n_orders, [selected.n_orders[k]] * len(peaks)),
         frequency_spread_hz=two(selected.frequency_spread_hz, nan),
         damping_spread=two(selected.damping_spread, nan),
-        peak_to_noise=two(selected.peak_to_noise, [s[1] for s in seconds]),
+        peak_to_noise=two(selected.peak_to_noise, peaks),
         residues=np.concatenate([selected.residues[:, rest], constants], axis=1),
-        pinned=np.concatenate(
-            [selected.pinned[rest], [selected.pinned[k]], [False] * len(seconds)]
-        ),
+        pinned=np.concatenate([selected.pinned[rest], [selected.pinned[k]], [False] * len(peaks)]),
+        pair_fitted=np.concatenate([fitted[rest], [False], [True] * len(peaks)]),
     )
     return merged.select(np.argsort(merged.frequency, kind="stable"))
 
@@ -1359,7 +1422,8 @@ class Identification:
         return replace(self, model=replace(self.model, names=tuple(names), kinds=tuple(kinds)))
 
     def write_modes_csv(self, path: Path) -> None:
-        """``mode, frequency_hz, damping_ratio, name`` (+ kind, orders stable, fit spread)."""
+        """``mode, frequency_hz, damping_ratio, name`` (+ kind, orders stable, fit spread); the
+        orders stable empty for a close pair's second mode (fitted on the FRFs' own lines)."""
         with Path(path).open("w", newline="", encoding="utf-8") as handle:
             writer = csv.writer(handle)
             writer.writerow(
@@ -1374,6 +1438,7 @@ class Identification:
                 ]
             )
             model, selected = self.model, self.selected
+            orders = selected.orders_stable()
             for k in range(model.n_modes):
                 writer.writerow(
                     [
@@ -1382,7 +1447,7 @@ class Identification:
                         f"{model.damping_ratio[k]:.6g}",
                         model.names[k],
                         model.kinds[k],
-                        int(selected.n_orders[k]),
+                        "" if orders[k] is None else orders[k],
                         f"{selected.frequency_spread_hz[k]:.3g}",
                     ]
                 )
@@ -1780,7 +1845,7 @@ def _fit_record(fitted: _Fitted, note: str) -> dict[str, Any]:
         "directions": frfs.metadata.get("directions") or {},
         "fit_error_median": float(np.median(fitted.fit.error)),
         "design_condition_number": fitted.fit.condition_number,
-        "orders_stable": fitted.selected.n_orders.tolist(),
+        "orders_stable": fitted.selected.orders_stable(),
         "scaling_note": note,
     }
 

@@ -361,6 +361,11 @@ class SelectedPoles:
         What was left out and why (one line per cluster of stable poles), also logged.
     dropped_modes : tuple of DroppedMode
         The same as a table, plus what identification left out later.
+    pair_fitted : ndarray of bool, shape (n_modes,), optional
+        True for the second mode of a close pair fitted on the FRFs' own lines
+        (:func:`racketdyn.modal.identify.identify`): no cluster of the band's orders is its own,
+        so its ``n_orders`` is its pair's (the first mode's) and its spreads are NaN; what a
+        user reads (:meth:`orders_stable`) has no count for it.  None: no such mode.
     """
 
     frequency: NDArray[np.float64]
@@ -378,6 +383,7 @@ class SelectedPoles:
     nodes: tuple[int, ...]
     dropped: tuple[str, ...] = ()
     dropped_modes: tuple[DroppedMode, ...] = ()
+    pair_fitted: NDArray[np.bool_] | None = None
 
     @property
     def n_modes(self) -> int:
@@ -403,7 +409,14 @@ class SelectedPoles:
             peak_to_noise=self.peak_to_noise[index],
             residues=self.residues[:, index],
             pinned=self.pinned[index],
+            pair_fitted=None if self.pair_fitted is None else self.pair_fitted[index],
         )
+
+    def orders_stable(self) -> list[int | None]:
+        """Each mode's orders stable as a user reads it (``modes.csv``, run.json): None for a
+        close pair's second mode, fitted on the FRFs' own lines (:attr:`pair_fitted`)."""
+        fitted = np.zeros(self.n_modes, bool) if self.pair_fitted is None else self.pair_fitted
+        return [None if f else int(n) for n, f in zip(self.n_orders, fitted, strict=True)]
 
     @property
     def windowed_pole(self) -> NDArray[np.complex128]:

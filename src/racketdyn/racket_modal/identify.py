@@ -28,6 +28,7 @@ from racketdyn.racket_modal.shapes import (
     ON_STRINGS,
     classify_modes,
     naming_evidence,
+    naming_notes,
     naming_reasons,
     outline_rigid_share,
     rigid_share,
@@ -229,14 +230,22 @@ def name_if_racket(
 
 def _unknown_modes(model: ModalModel, racket: Racket, ball_at: tuple[float, float] | None) -> str:
     """A clause naming each mode the shapes leave ``unknown`` and why
-    (:func:`~racketdyn.racket_modal.shapes.naming_reasons`), "" when none is."""
-    reasons = naming_reasons(model, racket.head, ball_at, reference_shapes(racket))
-    said = [
-        f"{model.frequency[k]:.1f} Hz ({reason})"
-        for k, reason in enumerate(reasons)
-        if reason and model.kinds[k] == "unknown"
-    ]
-    return "; unknown: " + "; ".join(said) if said else ""
+    (:func:`~racketdyn.racket_modal.shapes.naming_reasons`), and each whose name they support
+    only in part and what makes it uncertain (:func:`~racketdyn.racket_modal.shapes.naming_notes`);
+    "" when none is."""
+    reference = reference_shapes(racket)
+    reasons = naming_reasons(model, racket.head, ball_at, reference)
+    notes = naming_notes(model, racket.head, ball_at, reference)
+    clauses = []
+    for word, said in (
+        ("unknown", [(k, r) for k, r in enumerate(reasons) if r and model.kinds[k] == "unknown"]),
+        ("uncertain", [(k, n) for k, n in enumerate(notes) if n]),
+    ):
+        if said:
+            clauses.append(
+                f"; {word}: " + "; ".join(f"{model.frequency[k]:.1f} Hz ({why})" for k, why in said)
+            )
+    return "".join(clauses)
 
 
 _SWING_ON_HAND_HZ = 40.0

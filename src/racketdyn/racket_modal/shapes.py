@@ -55,11 +55,19 @@ Naming, from the shape at the measured points and the racket's head:
   at 586 and 721 Hz: beds 1.00 and 0.99, frames 0.82 and 0.91).  A veering pair's member
   identified without its partner carries some of the partner's shape: the 305 g racket's
   1522.1 Hz (the truth's (2, 0) membrane, 52 % strings, its partner at 1422.3 Hz not found)
-  matches the 5-node bending at 0.96 and the bed at 0.73 and takes the bending's name;
+  matches the 5-node bending at 0.96 and the bed at 0.73 and takes the bending's name, with a
+  note (:func:`naming_notes`) naming the bed mode its strings match that no other mode is
+  named after: the points cannot tell whether the frame or the strings hold more of its
+  energy;
 * **twisting** when more than half of the shape's energy is odd in y: points are paired with
   their mirror images across the long axis (within 1 cm) and the odd part (φ(x,y) − φ(x,−y))/2
   compared with the whole;
-* **bending** otherwise.
+* **bending** otherwise;
+* a bending (twisting) mode whose shape holds :data:`MIXED_SHARE` or more of its energy at the
+  mirrored points odd (even) in y is two modes of opposite symmetry under one peak, fitted as
+  one pole: named ``"3-node twisting mixed with string-bed membrane"`` (the other part's bed
+  mode, or frame mode, where it matches one), kind ``unknown`` (charged for the frame it moves),
+  and :func:`naming_reasons` says so.
 
 A name says the mode's shape, not its rank among the modes found, so a mode missed does not
 shift the names above it (issue 25 item 8, tenth session):
@@ -70,7 +78,9 @@ shift the names above it (issue 25 item 8, tenth session):
   ``θ(x)`` (:class:`ReferenceShapes`, from :func:`racketdyn.racket_modal.beam.reference_shapes`:
   an n-node bending has n sign changes of ``w`` from butt to tip, an n-node twisting n − 1 of
   ``θ``).  The points do not reach the butt, where the outer node of the higher modes sits, so
-  the count is read against whole shapes rather than counted.  Without a frame model or a
+  the count is read against whole shapes rather than counted; where another count's frame
+  mode matches nearly as well (:data:`COUNT_CONTRAST`) the name gives both ("3- or 4-node
+  twisting") and :func:`naming_notes` says why.  Without a frame model or a
   match, the n-th bending mode in frequency is "(n+1)-node bending" (a free or hand-held racket
   has its bending modes in the order of their nodes) and the twisting modes likewise;
   :func:`axis_nodes` gives the node positions for the figures (paper, Figs 6 and 15);
@@ -111,12 +121,14 @@ __all__ = [
     "BED_DEGREE",
     "BED_OWN_RATIO",
     "CLEAR_STRING_BED_RATIO",
+    "COUNT_CONTRAST",
     "FRAME_MAC",
     "HOOP_DEGREE",
     "HOOP_REACH",
     "IN_PHASE_SHARE",
     "MEMBRANE_MAC",
     "MIRROR_TOLERANCE_M",
+    "MIXED_SHARE",
     "RECOIL_CORRELATION",
     "SHAPES_AS_MEASURED",
     "SHAPES_FRAME_MODEL",
@@ -133,6 +145,7 @@ __all__ = [
     "membrane_name",
     "membrane_names",
     "naming_evidence",
+    "naming_notes",
     "naming_reasons",
     "outline_rigid_share",
     "rigid_share",
@@ -204,6 +217,20 @@ its name (–): the rig's membrane modes to 2.1 kHz score 0.83–1.00 at the ham
 FRAME_MAC = 0.8
 """Least MAC of a bending (twisting) mode's frame shape with one of the frame's own bending
 (twisting) modes for the mode to take that mode's node count (–; :class:`ReferenceShapes`)."""
+MIXED_SHARE = 0.2
+"""Least share of a bending (twisting) mode's shape at the points (sum of squares over the
+mirrored pairs) odd (even) in y for the mode to be named a mix of two (–): two modes of opposite
+symmetry under one peak give one pole of both shapes (a 276 g racket's 3-node twisting and
+membrane 1.4 Hz apart, ζ 0.5 %: 38 % even, MAC 0.58 and 0.42 with the two; its 6-node twisting
+and (2, 0) membrane 5 Hz apart: 26 %, 0.66 and 0.29); the rig's modes identified alone score
+at most 10 % (a 305 g racket's 5-node bending veering with the bed)."""
+COUNT_CONTRAST = 2.0
+"""Least ratio of the misfit ``1 − MAC`` of a frame mode's shape with the frame's own mode of
+the best other node count to its misfit with the best for the count to be named alone (–):
+otherwise the name gives both ("3- or 4-node twisting").  The hoop's points sample the twist
+over 0.34–0.67 m only, where a held racket's 4-node twisting matched the free frame's 3-node at
+0.82 and its 4-node at 0.69 (ratio 1.7; the rig's truth: the 4-node), while a free 5-node
+twisting matched its own at 1.00 and the 7-node at 0.85 (ratio > 100)."""
 NODE_LEVEL = 0.05
 """Samples smaller than this share of a shape's largest magnitude are taken as on a node when
 counting sign changes (–): a node sampled exactly would otherwise count twice or not at all."""
@@ -417,7 +444,9 @@ class ReferenceShapes:
     twisting_nodes: tuple[int, ...] = ()
 
 
-_Counts = list[tuple[int | None, float]]
+_Counts = list[tuple[int | None, float, int | None, float]]
+"""Per mode: the node count of the frame's own mode its frame shape matches best (None below
+:data:`FRAME_MAC`), that MAC, and the count and MAC of the best match of another count."""
 
 
 def _frame_counts(
@@ -427,7 +456,7 @@ def _frame_counts(
     frame's own modes (None below :data:`FRAME_MAC` or without a frame model), with that MAC
     (NaN without a frame model)."""
     n = model.n_modes
-    none: _Counts = [(None, float("nan"))] * n
+    none: _Counts = [(None, float("nan"), None, float("nan"))] * n
     if reference.frame_x is None or model.n_dimensions != 2:
         return none, list(none)
     frame = head.normalised_radius(model.locations) >= ON_STRINGS
@@ -466,17 +495,26 @@ def _best_counts(
     measured: NDArray[np.float64], reference: NDArray[np.float64], counts: tuple[int, ...]
 ) -> _Counts:
     if reference.size == 0:
-        return [(None, float("nan"))] * measured.shape[1]
+        return [(None, float("nan"), None, float("nan"))] * measured.shape[1]
     with np.errstate(invalid="ignore", divide="ignore"):
         mac = (reference.T @ measured) ** 2 / (
             np.sum(reference**2, axis=0)[:, None] * np.sum(measured**2, axis=0)[None, :]
         )
     mac = np.nan_to_num(mac)
     best = np.argmax(mac, axis=0)
-    return [
-        (counts[b] if mac[b, k] >= FRAME_MAC else None, float(mac[b, k]))
-        for k, b in enumerate(best)
-    ]
+    found: _Counts = []
+    for k, b in enumerate(best):
+        other = [j for j in range(len(counts)) if counts[j] != counts[b]]
+        rival = max(other, key=lambda j: mac[j, k]) if other else None
+        found.append(
+            (
+                counts[b] if mac[b, k] >= FRAME_MAC else None,
+                float(mac[b, k]),
+                None if rival is None else counts[rival],
+                float("nan") if rival is None else float(mac[rival, k]),
+            )
+        )
+    return found
 
 
 def _mirror_pairs(locations: NDArray[np.float64]) -> NDArray[np.int_]:
@@ -745,7 +783,7 @@ def classify_modes(
         Names (``"2-node bending"`` …) and kinds (``bending``, ``twisting``, ``string-bed``,
         ``other`` for the ball, ``unknown`` where the shape does not say).
     """
-    names, kinds, _ = _classify(model, head, ball_at, reference)
+    names, kinds, _, _ = _classify(model, head, ball_at, reference)
     return names, kinds
 
 
@@ -772,13 +810,42 @@ def naming_reasons(
     return _classify(model, head, ball_at, reference)[2]
 
 
+def naming_notes(
+    model: ModalModel,
+    head: HeadEllipse,
+    ball_at: tuple[float, float] | None = None,
+    reference: ReferenceShapes | None = None,
+) -> tuple[str, ...]:
+    """What makes a named mode's name uncertain ("" for a name the shape supports).
+
+    Two cases (module docstring): a node count the frame's shape does not tell from another
+    (:data:`COUNT_CONTRAST`: the name gives both), and a frame mode named in the unclear band
+    (strings 4–40 times the frame in mean square) whose strings match a bed mode no other mode
+    of the model is named after — a member of a veering pair whose partner is not found,
+    which carries some of the partner's shape and may hold as much of its energy in the
+    strings as in the frame.
+
+    Parameters
+    ----------
+    model, head, ball_at, reference
+        As :func:`classify_modes`.
+
+    Returns
+    -------
+    tuple of str
+        One clause per mode.
+    """
+    return _classify(model, head, ball_at, reference)[3]
+
+
 def _classify(
     model: ModalModel,
     head: HeadEllipse,
     ball_at: tuple[float, float] | None,
     reference: ReferenceShapes | None,
-) -> tuple[tuple[str, ...], tuple[str, ...], tuple[str, ...]]:
-    """Names, kinds and the reasons for each ``unknown`` (:func:`classify_modes`)."""
+) -> tuple[tuple[str, ...], tuple[str, ...], tuple[str, ...], tuple[str, ...]]:
+    """Names, kinds, the reasons for each ``unknown`` and the notes on uncertain names
+    (:func:`classify_modes`, :func:`naming_reasons`, :func:`naming_notes`)."""
     locations, shapes = model.locations, model.mode_shapes
     on_strings = head.normalised_radius(locations) < ON_STRINGS
     pairs = _mirror_pairs(locations)
@@ -796,6 +863,12 @@ def _classify(
     even_ratio, even_correlation = bed_own_motion(replace(model, mode_shapes=even), head)
     reference = reference or ReferenceShapes()
     membrane, membrane_mac = _membrane_names(model, head, reference)
+    # each part's bed mode, for a mode that mixes a frame mode with one of the other symmetry
+    parts = {
+        "even": replace(model, mode_shapes=even),
+        "odd": replace(model, mode_shapes=model.mode_shapes - even),
+    }
+    part_beds = {part: _membrane_names(m, head, reference)[0] for part, m in parts.items()}
     bed_lines = [
         "the bed's own mode" if name is None else f"the bed's {name.removeprefix('string-bed ')}"
         for name in membrane
@@ -803,8 +876,11 @@ def _classify(
     bending_nodes, twisting_nodes = _frame_counts(model, head, reference, pairs)
     square_ratio = np.full(model.n_modes, np.inf)
     from_band: list[int] = []  # frame modes named in the unclear band by their frame shape
+    notes: list[str] = []
+    frame_macs = np.full(model.n_modes, np.nan)
     for k in range(model.n_modes):
         reasons.append("")
+        notes.append("")
         if k == ball:
             names.append(BALL_MODE_NAME)
             kinds.append("other")
@@ -834,7 +910,10 @@ def _classify(
             odd_fraction <= 0.5 and correlation < -RECOIL_CORRELATION and ratio > BED_OWN_RATIO
         )
         kind = "twisting" if odd_fraction > 0.5 else "bending"
-        nodes, frame_mac = (twisting_nodes if kind == "twisting" else bending_nodes)[k]
+        nodes, frame_mac, rival, rival_mac = (
+            twisting_nodes if kind == "twisting" else bending_nodes
+        )[k]
+        frame_macs[k] = frame_mac
         # the frame's shape says more than the strings': the frame matches one of its own modes
         # better than the strings' own motion matches one of the bed's (module docstring)
         frame_says = nodes is not None and frame_mac > np.nan_to_num(membrane_mac[k])
@@ -861,18 +940,77 @@ def _classify(
         if unclear_ratio and not bed_follows:
             from_band.append(k)
         counts[kind] += 1
+        count = f"{nodes}"
+        if (
+            nodes is not None
+            and rival is not None
+            and 1 - rival_mac < COUNT_CONTRAST * (1 - frame_mac)
+        ):
+            low, high = sorted((nodes, rival))
+            count = f"{low}- or {high}"
+            notes[k] = (
+                f"its frame matches the {nodes}-node {kind} (MAC {frame_mac:.2f}) and the "
+                f"{rival}-node (MAC {rival_mac:.2f}) nearly as well: the points cannot tell the "
+                "count"
+            )
         if kind == "twisting":
-            names.append(f"{counts['twisting'] + 1 if nodes is None else nodes}-node twisting")
+            names.append(f"{counts['twisting'] + 1 if nodes is None else count}-node twisting")
         # after a mode the shape could not name, the bending order is no longer known
         elif nodes is not None:
-            names.append(f"{nodes}-node bending")
+            names.append(f"{count}-node bending")
         elif unclear:
             names.append(f"bending mode ({model.frequency[k]:.1f} Hz)")
         else:
             names.append(f"{counts['bending'] + 1}-node bending")
         kinds.append(kind)
+        mixed = (1.0 - odd_fraction) if kind == "twisting" else odd_fraction
+        if pairs.size and mixed >= MIXED_SHARE:
+            part = "even" if kind == "twisting" else "odd"
+            other = _other_part(parts[part], part_beds[part][k], k, on_strings)
+            if other is None:
+                other = (
+                    _other_count(bending_nodes, k, "bending")
+                    if kind == "twisting"
+                    else _other_count(twisting_nodes, k, "twisting")
+                )
+            name = f"{names[-1]} mixed with {other or f'a mode {part} in y'}"
+            names[-1], kinds[-1], notes[k] = name, "unknown", ""
+            reasons[k] = (
+                f"{mixed:.0%} of its shape at the points is {part} in y, the rest the "
+                f"{kind}'s: two modes of opposite symmetry under one peak, fitted as one"
+            )
     _one_mode_a_frame_name(names, kinds, reasons, from_band, square_ratio, membrane, model)
-    return _unique(names), tuple(kinds), tuple(reasons)
+    for k in from_band:
+        bed = membrane[k]
+        if kinds[k] in ("bending", "twisting") and bed is not None and bed not in names:
+            notes[k] = (
+                f"its frame matches the {names[k]} (MAC {frame_macs[k]:.2f}) and its strings' "
+                f"own motion the bed's {bed.removeprefix('string-bed ')} mode (MAC "
+                f"{membrane_mac[k]:.2f}), which no other mode here is named after: a frame "
+                "mode veering with the bed, its "
+                "partner not found; the points cannot tell whether the frame or the strings "
+                "hold more of its energy"
+            )
+    return _unique(names), tuple(kinds), tuple(reasons), tuple(notes)
+
+
+def _other_part(
+    part: ModalModel, bed: str | None, k: int, on_strings: NDArray[np.bool_]
+) -> str | None:
+    """The bed mode a part of mode ``k``'s shape (even or odd in y) is, when its strings move
+    more than :data:`STRING_BED_RATIO` times its frame in mean square and match one."""
+    phi = part.mode_shapes[:, k]
+    if bed is None or on_strings.all() or not on_strings.any():
+        return None
+    strings, frame = np.mean(phi[on_strings] ** 2), np.mean(phi[~on_strings] ** 2)
+    return bed if strings > STRING_BED_RATIO * frame else None
+
+
+def _other_count(counts: _Counts, k: int, kind: str) -> str | None:
+    """The frame mode of the other symmetry (``kind``) that mode ``k``'s frame matches, if
+    any."""
+    nodes = counts[k][0]
+    return None if nodes is None else f"{nodes}-node {kind}"
 
 
 def _unknown_reason(
