@@ -223,4 +223,5 @@ def test_a_figure_that_does_not_pickle_is_drawn_here_while_the_helper_draws(
             figure.not_picklable = lambda: None  # type: ignore[attr-defined]
         batch.add(figure, tmp_path / f"{k}.png")
     assert batch.render() == [tmp_path / f"{k}.png" for k in range(3)]
-    assert helper_saw_it == [True]  # its one figure waited for this process to draw
+    assert helper_saw_it  # the helper drew one or both of the others
+    assert all(helper_saw_it)  # each after this process had drawn the one that does not pickle
