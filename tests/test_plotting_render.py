@@ -20,7 +20,7 @@ from PIL import Image
 
 import racketdyn as rd
 from racketdyn.cli import options as opt
-from racketdyn.plotting import helper, primitives, render
+from racketdyn.plotting import helper, primitives, registry, render
 from racketdyn.plotting.registry import for_step
 from racketdyn.workflows.figure_data import paper_figures
 
@@ -225,3 +225,42 @@ def test_a_figure_that_does_not_pickle_is_drawn_here_while_the_helper_draws(
     assert batch.render() == [tmp_path / f"{k}.png" for k in range(3)]
     assert helper_saw_it  # the helper drew one or both of the others
     assert all(helper_saw_it)  # each after this process had drawn the one that does not pickle
+
+
+def _draw_titled(title: str) -> plt.Figure:
+    """A registry draw function for the test below."""
+    return _figure(title)
+
+
+def test_a_figure_marked_slow_to_draw_is_built_first_and_listed_in_order(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """predict built its face maps (the slowest of its figures to draw) last, so this process
+    drew them after figures.nc while the helper process, done with the others, waited.  An
+    entry marked ``draw_first`` is built and queued first (the helper takes it); the files are
+    returned in the registry's order."""
+    assert registry.entry("face_maps").draw_first  # predict's: four contour maps and bars
+    entries = {
+        name: registry.FigureEntry(
+            name,
+            "a step",
+            name,
+            draw=f"{__name__}:_draw_titled",
+            reads=(name,),
+            draw_first=name == "slow",
+        )
+        for name in ("quick", "other", "slow")
+    }
+    monkeypatch.setattr(registry, "FIGURES", entries)
+    monkeypatch.setenv("RACKETDYN_FIGURE_WORKERS", "1")
+    added: list[str] = []
+    add = render.FigureBatch.add
+
+    def queued(self: render.FigureBatch, figure: plt.Figure, path: Path) -> Path:
+        added.append(path.stem)
+        return add(self, figure, path)
+
+    monkeypatch.setattr(render.FigureBatch, "add", queued)
+    paths = registry.write_figures("a step", {name: name for name in entries}, tmp_path)
+    assert added == ["slow", "quick", "other"]
+    assert paths == [tmp_path / f"{name}.png" for name in ("quick", "other", "slow")]
