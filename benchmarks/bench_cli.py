@@ -245,10 +245,10 @@ def host_lines() -> list[str]:
     python_loop = min(loop() for _ in range(3))
     return [
         "host: " + ", ".join(installed(name) for name in HOST_LIBRARIES),
-        bytecode_line(),
         f"host: import scipy.optimize {fresh_import('scipy.optimize'):.2f} s, import "
         f"matplotlib.pyplot {fresh_import('matplotlib.pyplot'):.2f} s (fresh process, best of "
         f"3); a 2·10⁶-step Python loop {python_loop:.2f} s (best of 3)",
+        bytecode_line(),
     ]
 
 
