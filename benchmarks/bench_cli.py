@@ -65,9 +65,24 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 
 
 def _env(src: Path = SRC) -> dict[str, str]:
-    """The environment of a command: ``src`` first on ``PYTHONPATH``, a fixed width."""
+    """The environment of a command: ``src`` first on ``PYTHONPATH``, a fixed width, and
+    Python's bytecode caches written and read (``PYTHONDONTWRITEBYTECODE`` dropped: with it,
+    every command compiles racketdyn's modules from source again, which an installed racketdyn
+    never does; the first run of a command writes them)."""
     path = os.pathsep.join(p for p in (str(src), os.environ.get("PYTHONPATH", "")) if p)
-    return {**os.environ, "COLUMNS": "100", "PYTHONPATH": path}
+    env = {**os.environ, "COLUMNS": "100", "PYTHONPATH": path}
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    return env
+
+
+def bytecode_line() -> str:
+    """Whether this environment forbids bytecode caches (the commands are run without)."""
+    if os.environ.get("PYTHONDONTWRITEBYTECODE"):
+        return (
+            "host: PYTHONDONTWRITEBYTECODE is set here; the commands run without it (their "
+            "first run writes the bytecode caches)"
+        )
+    return "host: bytecode caches written and read"
 
 
 def timed(argv: Sequence[str], src: Path = SRC) -> tuple[float, float]:
@@ -233,6 +248,7 @@ def host_lines() -> list[str]:
         f"host: import scipy.optimize {fresh_import('scipy.optimize'):.2f} s, import "
         f"matplotlib.pyplot {fresh_import('matplotlib.pyplot'):.2f} s (fresh process, best of "
         f"3); a 2·10⁶-step Python loop {python_loop:.2f} s (best of 3)",
+        bytecode_line(),
     ]
 
 

@@ -44,3 +44,13 @@ def test_the_host_is_said_with_its_libraries() -> None:
     assert lines[0].startswith("host: numpy ")
     assert "scipy " in lines[0]
     assert "import scipy.optimize" in lines[1]
+
+
+def test_the_commands_run_from_cached_bytecode(monkeypatch: pytest.MonkeyPatch) -> None:
+    """With ``PYTHONDONTWRITEBYTECODE`` set (as on the session's host) every timed command
+    compiled racketdyn's ≈ 100 modules from source again (≈ 0.5–1 s of each command's CPU),
+    which an installed racketdyn never does; the warm-up runs now write the caches, and the
+    host's lines say whether the setting was there."""
+    monkeypatch.setenv("PYTHONDONTWRITEBYTECODE", "1")
+    assert "PYTHONDONTWRITEBYTECODE" not in bench_cli._env()
+    assert "PYTHONDONTWRITEBYTECODE" in bench_cli.bytecode_line()

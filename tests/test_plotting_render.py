@@ -6,9 +6,11 @@ from __future__ import annotations
 import argparse
 import logging
 import os
+import pickle
 import signal
 import subprocess
 import sys
+import threading
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -18,7 +20,7 @@ from PIL import Image
 
 import racketdyn as rd
 from racketdyn.cli import options as opt
-from racketdyn.plotting import helper, render
+from racketdyn.plotting import helper, primitives, registry, render
 from racketdyn.plotting.registry import for_step
 from racketdyn.workflows.figure_data import paper_figures
 
@@ -162,3 +164,103 @@ def test_a_command_starts_the_helper_unless_no_figures(
     monkeypatch.setattr(helper, "start_helper", lambda: started.append(True) or True)
     opt.start_figure_helper(argparse.Namespace(no_figures=no_figures))
     assert started == ([] if no_figures else [True])
+
+
+def test_the_figures_of_predict_and_identify_pickle_for_the_helper() -> None:
+    """Figs 13 and 15 (predict) and Fig. 6 (identify) did not pickle — their line labels'
+    secondary axis held matplotlib's own lambdas — so the helper process could not take them:
+    this process drew them after the helper had drawn the rest, one after the other."""
+    logging.disable(logging.WARNING)
+    try:
+        racket = rd.default_racket()
+        data = paper_figures(racket, rd.Ball(), modal_model=rd.modal_model_for(racket))
+        built = {
+            e.file: e.drawer()(data) for e in for_step("predict") if e.reads == ("paper_figures",)
+        }
+    finally:
+        logging.disable(logging.NOTSET)
+    figure, ax = plt.subplots(layout="constrained")
+    ax.plot([0.0, 1.0], [0.0, 1.0])
+    primitives.label_lines(ax, [(0.3, "node", "0.3"), (0.35, "centre of percussion", "k")])
+    built["label_lines"] = figure
+    try:
+        for name, figure in built.items():
+            assert pickle.loads(pickle.dumps(figure)) is not None, name
+    finally:
+        for figure in built.values():
+            plt.close(figure)
+
+
+def test_a_figure_that_does_not_pickle_is_drawn_here_while_the_helper_draws(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A figure the helper cannot take was queued with the others; when the helper's feeder
+    took it, this process drew it only after the helper had finished every other figure.  It
+    is now this process's from the start: drawn while the helper draws."""
+    monkeypatch.setenv("RACKETDYN_FIGURE_WORKERS", "1")
+    drawn_here = threading.Event()
+    helper_saw_it: list[bool] = []
+    render_job = render._png.render_job
+
+    def here(job: dict[str, object]) -> Path:
+        path = render_job(job)
+        if path.name == "0.png":
+            drawn_here.set()
+        return path
+
+    worker_render = helper.Worker.render
+
+    def there(self: helper.Worker, job: dict[str, object]) -> object:
+        helper_saw_it.append(drawn_here.wait(timeout=20))  # the helper's first figure waits
+        return worker_render(self, job)
+
+    monkeypatch.setattr(render._png, "render_job", here)
+    monkeypatch.setattr(helper.Worker, "render", there)
+    batch = render.FigureBatch()
+    for k in range(3):
+        figure = _figure(f"figure {k}")
+        if k == 0:
+            figure.not_picklable = lambda: None  # type: ignore[attr-defined]
+        batch.add(figure, tmp_path / f"{k}.png")
+    assert batch.render() == [tmp_path / f"{k}.png" for k in range(3)]
+    assert helper_saw_it  # the helper drew one or both of the others
+    assert all(helper_saw_it)  # each after this process had drawn the one that does not pickle
+
+
+def _draw_titled(title: str) -> plt.Figure:
+    """A registry draw function for the test below."""
+    return _figure(title)
+
+
+def test_a_figure_marked_slow_to_draw_is_built_first_and_listed_in_order(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """predict built its face maps (the slowest of its figures to draw) last, so this process
+    drew them after figures.nc while the helper process, done with the others, waited.  An
+    entry marked ``draw_first`` is built and queued first (the helper takes it); the files are
+    returned in the registry's order."""
+    assert registry.entry("face_maps").draw_first  # predict's: four contour maps and bars
+    entries = {
+        name: registry.FigureEntry(
+            name,
+            "a step",
+            name,
+            draw=f"{__name__}:_draw_titled",
+            reads=(name,),
+            draw_first=name == "slow",
+        )
+        for name in ("quick", "other", "slow")
+    }
+    monkeypatch.setattr(registry, "FIGURES", entries)
+    monkeypatch.setenv("RACKETDYN_FIGURE_WORKERS", "1")
+    added: list[str] = []
+    add = render.FigureBatch.add
+
+    def queued(self: render.FigureBatch, figure: plt.Figure, path: Path) -> Path:
+        added.append(path.stem)
+        return add(self, figure, path)
+
+    monkeypatch.setattr(render.FigureBatch, "add", queued)
+    paths = registry.write_figures("a step", {name: name for name in entries}, tmp_path)
+    assert added == ["slow", "quick", "other"]
+    assert paths == [tmp_path / f"{name}.png" for name in ("quick", "other", "slow")]

@@ -346,7 +346,9 @@ def label_lines(
         engine.execute(figure)
     width_pt = 0.95 * ax.get_position().width * figure.get_figwidth() * 72.0
     per_pt = abs(high - low) / width_pt
-    top: Any = ax.secondary_xaxis("top")
+    # the identity as NumPy's own function: matplotlib's default is a lambda, which does not
+    # pickle, and a figure that does not pickle cannot go to the figure helper process
+    top: Any = ax.secondary_xaxis("top", functions=(np.asanyarray, np.asanyarray))
     top.set_xticks([x for x, _, _ in marks], [label for _, label, _ in marks], fontsize=fontsize)
     top.tick_params(length=0, pad=2)
     texts = top.get_xticklabels()

@@ -74,6 +74,10 @@ class FigureEntry:
     ignore_float_errors : bool
         Drawn with NumPy's overflow and invalid-value errors ignored (mplot3d's projection
         overflows on the NaN outside the face of some surfaces; harmless).
+    draw_first : bool
+        Among the slowest of its step's figures to draw: built and queued before the others, so
+        that the figure helper process draws it while this process builds the rest and writes
+        the step's other files (:func:`write_figures`; the files and their order are the same).
 
     A read that is None gives no figure (Figs 4–5 of shapes without coordinates, Fig. 6 of a
     structure that is not a racket); nor does a draw function that returns None; the step then
@@ -90,6 +94,7 @@ class FigureEntry:
     reads: tuple[str, ...] = ()
     labelled: bool = False
     ignore_float_errors: bool = False
+    draw_first: bool = False
 
     @property
     def file(self) -> str:
@@ -204,6 +209,7 @@ FIGURES: dict[str, FigureEntry] = {
             labelled=True,
             draw=f"{_FIGURES}:figure_synthesised_frfs",
             reads=("fit_figures",),
+            draw_first=True,  # two log axes, 3,000-line FRFs: ≈ a quarter of identify's
         ),
         FigureEntry(
             "automac",
@@ -379,6 +385,7 @@ FIGURES: dict[str, FigureEntry] = {
             section="rebound",
             draw=f"{_FIGURES}:figure_face_maps",
             reads=("paper_figures",),
+            draw_first=True,  # four contour maps and their colour bars: ≈ 40 % of predict's
         ),
         # --- predict: the transient model (--model transient|both) ------------------------
         FigureEntry(
@@ -647,7 +654,8 @@ def write_figures(
     Several figures are drawn as one batch (:class:`racketdyn.plotting.render.FigureBatch`:
     in a helper process while the next is built); one alone is saved here. With a batch, the
     step's deferred files (``result.pending``, :func:`racketdyn.workflows.run.defer_file`) are
-    written once every figure is queued, while the helper draws.
+    written once every figure is queued, while the helper draws. Entries marked
+    ``draw_first`` are built first (the helper takes them), the others in the registry's order.
 
     Parameters
     ----------
@@ -676,6 +684,7 @@ def write_figures(
     from racketdyn.workflows.run import write_pending
 
     found = [(e, data) for e in for_step(step) if e.draw and (data := e.data(result)) is not None]
+    found.sort(key=lambda entry_data: not entry_data[0].draw_first)  # stable: registry order
     batch = render.FigureBatch() if len(found) > 1 else None
     paths: list[Path] = []
     for k, (figure, data) in enumerate(found, 1):
@@ -697,7 +706,8 @@ def write_figures(
         except Exception:
             batch.render()  # every queued figure finished before the step's error goes up
             raise
-        paths = batch.render()
+        order = [e.file_for(label) for e in for_step(step)]
+        paths = sorted(batch.render(), key=lambda path: order.index(path.name))
     for path in paths:
         log.info("wrote %s", path)
     return paths

@@ -102,7 +102,8 @@ class FigureBatch:
 
     With a helper process, it takes figures from the front of the batch as soon as they are
     added (so it draws while this process builds the next ones or computes what they need);
-    :meth:`render` draws the rest here, from the back.
+    :meth:`render` draws the rest here, from the back, after any figure that does not pickle
+    (the helper cannot take it: this process draws it first, while the helper draws).
     """
 
     def __init__(self) -> None:
@@ -112,6 +113,7 @@ class FigureBatch:
         self._closed = False
         self._outcomes: list[_Outcome] = []
         self._left: list[_Job] = []
+        self._here: list[_Job] = []  # figures that do not pickle: this process's from the start
         self._worker = shared_worker()  # starts it: it imports while the figures are built
         self._feeder: threading.Thread | None = None
 
@@ -138,8 +140,10 @@ class FigureBatch:
         if self._worker is not None and not self._worker.broken:
             try:
                 job.payload = pickle.dumps(figure)
-            except Exception as error:  # an artist that does not pickle: drawn here
+            except Exception as error:  # an artist that does not pickle: drawn here, first
                 log.info("%s is drawn here: its figure does not pickle (%s)", path, error)
+                self._here.append(job)
+                return Path(path)
             if self._feeder is None:
                 self._feeder = threading.Thread(target=self._feed, daemon=True)
                 self._feeder.start()
@@ -182,9 +186,12 @@ class FigureBatch:
         errors: list[BaseException] = []
         while True:
             with self._ready:
-                if not self._queue:
+                if self._here:
+                    job = self._here.pop(0)
+                elif self._queue:
+                    job = self._queue.pop()
+                else:
                     break
-                job = self._queue.pop()
             try:
                 _png.render_job(job.here())
             except Exception as error:  # raised below, after the other figures
