@@ -4,12 +4,18 @@ without the file: the file, its source and what racketdyn made of it are in docs
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
+from racketdyn.errors import InputError
+from racketdyn.io.frf_layout import read_frfs
 from racketdyn.measurement import HammerRecords
 from racketdyn.measurement.frf import estimate_frfs
+from racketdyn.modal.identify import identify
 from racketdyn.testing.records import Modes, records_for
+from test_frf_table import FREQUENCY, MODES_HZ, Z_M, _accelerance
 
 MODES = Modes(
     frequency=np.array([60.0, 170.0, 330.0]),
@@ -45,3 +51,46 @@ def test_a_second_hit_through_the_same_filter_is_still_one() -> None:
     # half its size.
     records = _sub_sample_hits(n_averages=2, second_hit=(8e-3, 0.5))
     assert all("double hit" in c.reasons for c in estimate_frfs(records).checks)
+
+
+def _bare_exports(folder: Path, units_line: str | None) -> Path:
+    """Receptances of test_frf_table's two-mode beam written as leekunhwee/Vibration-Signal-
+    Processing's tool-tip test has them (a tap-test program's export): three numbers a line,
+    frequency, real and imaginary part, no header, the 0 Hz line included; the units (m/N) are
+    in the lab's notes only."""
+    w = 2 * np.pi * FREQUENCY
+    lines = ["file,node,x_m,y_m,z_m,direction"]
+    if units_line is not None:
+        lines.insert(0, units_line)
+    for k, z in enumerate(Z_M, start=1):
+        receptance = _accelerance(z, 0.2) / np.where(w > 0, -(w**2), 1.0)
+        receptance[0] = 0.7  # the 0 Hz line: what a division by -ω² leaves there
+        rows = np.column_stack([FREQUENCY, receptance.real, receptance.imag])
+        np.savetxt(folder / f"Point_{k}_Channel_1_CH1.txt", rows, fmt="%.6e", delimiter="\t")
+        lines.append(f"Point_{k}_Channel_1_CH1.txt,{k},0,0,{z},+x")
+    lines.append("reference,2,,,,+x")
+    table = folder / "frfs.csv"
+    table.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return table
+
+
+def test_exports_without_a_header_take_their_units_from_the_table(tmp_path: Path) -> None:
+    # The tool-tip test's five files were refused: "no 'Frequency Real Imaginary' header …
+    # (export the FRF as real and imaginary parts)", which they are.  The table now says the
+    # units of exports that do not ('# units: m/N', response over force).
+    frfs = read_frfs(_bare_exports(tmp_path, "# units: m/N"))
+    assert frfs.frf_type == "receptance"
+    w = 2 * np.pi * FREQUENCY[1:]
+    expected = _accelerance(Z_M[3], 0.2)[1:] / -(w**2)
+    np.testing.assert_allclose(frfs.values[3, 1:], expected, rtol=1e-5, atol=1e-12)
+    found = identify(frfs)
+    np.testing.assert_allclose(np.sort(found.model.frequency), MODES_HZ, rtol=1e-4)
+
+
+def test_exports_without_a_header_or_units_are_one_line_naming_the_fix(tmp_path: Path) -> None:
+    with pytest.raises(InputError) as error:
+        read_frfs(_bare_exports(tmp_path, None))
+    message = str(error.value)
+    assert "\n" not in message
+    assert "Point_1_Channel_1_CH1.txt" in message
+    assert "# units: m/N" in message
