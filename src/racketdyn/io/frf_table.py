@@ -16,7 +16,9 @@ fixed sensor::
 node, or ``reference`` for the fixed accelerometer (a roving-hammer test); ``x_m, y_m, z_m``
 the point in the lab's frame, m (the reference's may be left empty); ``direction`` the
 hammer's or the sensor's axis and sense (``+x`` … ``-z``). Lines starting with ``#`` are
-comments. The FRFs are given in the lab's frame: an FRF whose hammer and sensor point opposite
+comments, but for ``# units: m/N`` (response over force), the units of exports that hold
+only numbers, three a line (frequency, real and imaginary part), as tap-test programs write
+them. The FRFs are given in the lab's frame: an FRF whose hammer and sensor point opposite
 ways along their axis is negated, as a Universal File's direction codes are.
 
 The format is documented in docs/uff-and-csv.md ("FRFs exported one file per point"). The
@@ -90,6 +92,30 @@ def _unit(path: Path, label: str, quantities: tuple[str, ...]) -> tuple[str, flo
     raise InputError(f"{path}: unit {label.strip()!r} is not one racketdyn reads ({known})")
 
 
+def _bare(lines: list[str]) -> bool:
+    """Whether an export starts with its data: three numbers a line and no header."""
+    first = next((s for s in lines if s.strip()), "")
+    try:
+        return len([float(x) for x in first.replace(",", " ").split()]) == 3
+    except ValueError:
+        return False
+
+
+def _units(path: Path, label: str) -> tuple[str, float]:
+    """The response type and the SI factor of an FRF's units, ``(m/s²)(N)`` as SignalCalc writes
+    them or ``m/s²/N`` (response over force) as an FRF table's ``# units:`` line says them."""
+    found = _UNITS.search(label)
+    parts = (found[1], found[2]) if found else tuple(label.strip().rsplit("/", 1))
+    if len(parts) != 2:
+        raise InputError(
+            f"{path}: units {label.strip()!r} do not read as response over force, e.g. "
+            "'(m/s²)(N)' or 'm/s²/N'"
+        )
+    response, response_scale = _unit(path, parts[0], ("acceleration", "velocity", "displacement"))
+    _, force_scale = _unit(path, parts[1], ("force",))
+    return response, response_scale / force_scale
+
+
 def _header(path: Path, lines: list[str]) -> tuple[int, str, str]:
     """The first data line's index, the units line and the channels of a text export."""
     columns = next((i for i, s in enumerate(lines[:40]) if s.lower().startswith("frequency")), None)
@@ -111,7 +137,7 @@ def _header(path: Path, lines: list[str]) -> tuple[int, str, str]:
     return units + 1, lines[units], channels.strip()
 
 
-def read_text_frf(path: Path | str) -> TextFrf:
+def read_text_frf(path: Path | str, units: str | None = None) -> TextFrf:
     """Read one FRF from a text export (DataPhysics SignalCalc's, columns Frequency Real
     Imaginary), in SI units.
 
@@ -119,6 +145,10 @@ def read_text_frf(path: Path | str) -> TextFrf:
     ----------
     path : Path or str
         The export.
+    units : str, optional
+        The FRF's units, response over force (``m/N``, ``g/N``, ``m/s²/N``), for an export
+        without a header: three numbers a line from its first line (frequency, real and
+        imaginary part), as tap-test programs write them. An export with a header must agree.
 
     Returns
     -------
@@ -140,15 +170,27 @@ def read_text_frf(path: Path | str) -> TextFrf:
     except UnicodeDecodeError:  # SignalCalc writes its units' ² in Latin-1
         text = raw.decode("latin-1")
     lines = text.splitlines()
-    start, units_line, channels = _header(path, lines)
-    found = _UNITS.search(units_line)
-    if found is None:
-        raise InputError(
-            f"{path}: units {units_line.strip()!r} do not read as '(response)(force)', e.g. "
-            "'(m/s²)(N)'"
-        )
-    response, response_scale = _unit(path, found[1], ("acceleration", "velocity", "displacement"))
-    _, force_scale = _unit(path, found[2], ("force",))
+    if _bare(lines):
+        if units is None:
+            raise InputError(
+                f"{path}: lines of numbers with no header naming their units: say them in the "
+                "FRF table, a line '# units: m/N' (response over force: m/N, m/s²/N, g/N …)"
+            )
+        start, channels = 0, ""
+        response, scale = _units(path, units)
+    else:
+        start, units_line, channels = _header(path, lines)
+        if _UNITS.search(units_line) is None:
+            raise InputError(
+                f"{path}: units {units_line.strip()!r} do not read as '(response)(force)', "
+                "e.g. '(m/s²)(N)'"
+            )
+        response, scale = _units(path, units_line)
+        if units is not None and _units(path, units) != (response, scale):
+            raise InputError(
+                f"{path}: its header says units {units_line.strip()!r}, the FRF table "
+                f"{units!r}; remove the table's '# units:' line or correct it"
+            )
     try:
         data = np.loadtxt(lines[start:], ndmin=2)
     except ValueError as error:
@@ -161,9 +203,7 @@ def read_text_frf(path: Path | str) -> TextFrf:
     bad = np.flatnonzero(~np.all(np.isfinite(data), axis=1))
     if bad.size:
         raise InputError(f"{path}: line {start + int(bad[0]) + 1} is not finite")
-    values = np.asarray(
-        (data[:, 1] + 1j * data[:, 2]) * (response_scale / force_scale), dtype=complex
-    )
+    values = np.asarray((data[:, 1] + 1j * data[:, 2]) * scale, dtype=complex)
     if np.abs(values).max() > ABSURD_FRF:
         raise InputError(
             f"{path}: an FRF value of {np.abs(values).max():.3g} SI units: damage or a unit slip"
@@ -219,6 +259,16 @@ def _row(table: Path, line: int, cells: dict[str, str]) -> _Row:
         _AXES[direction[1]],
         sign,
     )
+
+
+def _table_units(table: Path) -> str | None:
+    """The units of the table's exports from its ``# units: m/N`` line, if it has one."""
+    with table.open(encoding="utf-8") as handle:
+        for line in handle:
+            key, _, value = line.lstrip().lstrip("#").partition(":")
+            if line.lstrip().startswith("#") and key.strip().lower() == "units" and value.strip():
+                return value.strip()
+    return None
 
 
 def _rows(table: Path) -> tuple[list[_Row], _Row]:
@@ -296,12 +346,13 @@ def read_frf_table(path: Path | str, reference: int | None = None) -> FrfSet:
             f"{table}: reference {reference} is not the table's reference row's node ({fixed.node})"
         )
     points = sorted(points, key=lambda r: r.node)
+    units = _table_units(table)
     frfs = []
     for row in points:
         file = (table.parent / row.file).resolve()
         if not file.is_file():
             raise InputError(f"{table}: {row.file} (node {row.node}) is not a file")
-        frfs.append(read_text_frf(file))
+        frfs.append(read_text_frf(file, units))
     first = frfs[0]
     for row, frf in zip(points, frfs, strict=True):
         if frf.response != first.response:

@@ -20,7 +20,11 @@ Checks (each named in the reasons it gives):
     baseline as the first must (a long record's quiet noise has dips and bumps whose
     prominence reaches six times its rms: the Tokyo Sokki frame's 178 s driving point).
     Found with ``scipy.signal.find_peaks`` (height and prominence), so a second hit 0.5–4 ms
-    after the first is caught on frame and string pulses alike.
+    after the first is caught on frame and string pulses alike.  A hit shorter than a sample
+    leaves the converter's anti-alias filter ringing on both sides of it, lobes of alternating
+    sign (ladisk/lvm_read's 1024 Hz record: 28 % of the peak after it, 16 % before): a bump
+    with a pull at least as deep between it and the pulse is that ringing, not a hit (a hammer
+    only pushes).
 ``trigger``
     The pulse is cut by the start or the end of the record, or it starts more than
     ``trigger_tolerance_s`` away from the other averages of its point (their median start;
@@ -40,7 +44,7 @@ converter's quiet force is constant (its robust noise 0) but for a flicker of on
 must not count as a pulse (wing_openmodal's hammer, 4.88 mV steps and hits of 15–65 steps:
 13 of 18 clean hits were double hits).  On such a channel a pulse, or a second pulse, must
 stand out by ``noise_factor`` steps.  The pulse starts at the first sample above the detection
-level; windows count from there.
+level in the pulse's own lobe (not a ringing lobe before it); windows count from there.
 """
 
 from __future__ import annotations
@@ -170,6 +174,14 @@ def _clipped(signal: NDArray[np.float64]) -> bool:
     return bool(np.count_nonzero(at_rail) >= 3)
 
 
+def _filter_lobe(pulse: NDArray[np.float64], main: int, bump: int) -> bool:
+    """Whether the bump at ``bump`` is a lobe of the anti-alias filter's ringing around the
+    pulse at ``main``: between them the force pulls (a lobe of the other sign) at least as far
+    as the bump pushes, which a hammer cannot do between two hits."""
+    between = pulse[min(main, bump) + 1 : max(main, bump)]
+    return bool(between.size) and float(np.min(between)) <= -float(pulse[bump])
+
+
 def check_average(
     node: int,
     average: int,
@@ -203,11 +215,14 @@ def check_average(
     from scipy.signal import find_peaks
 
     peaks, _ = find_peaks(pulse, height=level, prominence=level)
-    if peaks.size > 1:
+    main = int(np.argmax(pulse))
+    if any(p != main and not _filter_lobe(pulse, main, int(p)) for p in peaks):
         reasons.append("double hit")
-    above = np.flatnonzero(pulse > level)
-    start_time = (above[0] - pretrigger) * sampling_interval_s
-    if above[0] == 0 or above[-1] >= force.size - 1:  # cut by the record's start or end
+    above = pulse > level
+    quiet_before = np.flatnonzero(~above[:main])
+    start = int(quiet_before[-1]) + 1 if quiet_before.size else 0  # where the pulse's lobe rises
+    start_time = (start - pretrigger) * sampling_interval_s
+    if above[0] or above[-1]:  # cut by the record's start or end
         reasons.append("trigger")
     return AverageCheck(node, average, not reasons, tuple(reasons), peak, float(start_time))
 

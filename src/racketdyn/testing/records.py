@@ -45,7 +45,7 @@ def half_sine(
     )
 
 
-# 12 parameters: a test's knobs (the acquisition, the faults, the seed), each set alone by
+# 13 parameters: a test's knobs (the acquisition, the faults, the seed), each set alone by
 # keyword in the tests; grouping them would only wrap the keywords
 def records_for(
     modes: Modes,
@@ -60,10 +60,13 @@ def records_for(
     second_hit: tuple[float, float] | None = None,
     clip_n: float | None = None,
     seed: int = 0,
+    start_jitter_s: float = 0.0,
 ) -> HammerRecords:
     """Records of every point of ``modes``.
 
     ``second_hit`` = (start of a second pulse after the first one starts, s; its relative size).
+    ``start_jitter_s``: each pulse starts at a random time in [0, start_jitter_s) after the
+    trigger, s (the hit between two samples, as a free-running trigger leaves it).
     """
     rng = np.random.default_rng(seed)
     fine_dt = dt / OVERSAMPLE
@@ -79,9 +82,10 @@ def records_for(
         f_avg, r_avg = [], []
         for _ in range(n_averages):
             peak = rng.uniform(50.0, 150.0)
-            force = half_sine(t, 0.0, pulse_s, peak)
+            start = rng.uniform(0.0, start_jitter_s) if start_jitter_s else 0.0
+            force = half_sine(t, start, pulse_s, peak)
             if second_hit is not None:
-                force += half_sine(t, second_hit[0], pulse_s, second_hit[1] * peak)
+                force += half_sine(t, start + second_hit[0], pulse_s, second_hit[1] * peak)
             spectrum = np.fft.rfft(force, n_pad) * fine_dt
             response = np.fft.irfft(h[point] * spectrum, n_pad)[:n_fine] / fine_dt
             f = decimate(force, OVERSAMPLE, n=8 * OVERSAMPLE, ftype="fir", zero_phase=True)
