@@ -778,15 +778,24 @@ def _wandering_peaks(
     spacing = _spacing(frfs)
     scan = EDGE_SCAN * (high - low)
     reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
-    named = [d for d in selected.dropped_modes if d.stage != "selection"]
+    named = [  # a row already named, or a mode the caller excluded
+        d
+        for d in selected.dropped_modes
+        if d.stage != "selection" or d.reason.startswith("excluded")
+    ]
     explained = [
         (float(f), 2 * max(float(z), 0.0) * float(f))
         for f, z in zip(selected.frequency, selected.damping_ratio, strict=True)
     ] + [(d.frequency_hz, 2 * max(d.damping_ratio, 0.0) * d.frequency_hz) for d in named]
+    noise = stab.noise_rms if stab.noise_rms.size == frfs.n_points else np.min(stab.noise_rms)
     rows: list[DroppedMode] = []
     for peak, prominence in clear_peaks(frfs, (low + scan, high - scan), EDGE_PEAK):
         if any(abs(peak - f) <= max(w, ONE_PEAK_LINES * spacing) for f, w in explained):
             continue
+        line = int(np.argmin(np.abs(frfs.frequency - peak)))
+        with np.errstate(divide="ignore", invalid="ignore"):  # the data's own peak first
+            if not np.max(np.abs(frfs.values[:, line]) / noise) >= WANDERING_PEAK * reference:
+                continue
         mode = mode_at_peak(stab, frfs, peak, choices.rules)
         if (
             mode is None
@@ -819,9 +828,9 @@ def _peak_pins(
     """The pins the selection's clusters cannot keep at the data's peak, taken from the data.
 
     A pin with no mode of the automatic selection within ``pin_tolerance`` of it, near which
-    (within ``pin_tolerance``) the data stand a clear peak (:data:`EDGE_PEAK`; the nearest),
-    is kept as :func:`racketdyn.modal.peaks.mode_at_peak` finds that peak's mode: a hint's
-    ``pin_hz`` keeps the mode it names even where no cluster of the fit is stable there (the
+    (within ``pin_tolerance``) the data stand a clear peak (:data:`EDGE_PEAK`; the nearest)
+    with no cluster of its own there (:func:`_cluster_at`), is kept as
+    :func:`racketdyn.modal.peaks.mode_at_peak` finds that peak's mode: a hint's ``pin_hz`` keeps the mode it names even where no cluster of the fit is stable there (the
     wing's 13.5 Hz near its band's bottom was refused, "no stable pole within 5 %") or where
     the nearest cluster is a fragment beside the peak (the wing's time records: 13.18 Hz,
     ζ 2.5 %, for a peak at 13.52 Hz).  Returns the choices with the other pins, and each
@@ -844,11 +853,25 @@ def _peak_pins(
         if near and not np.any(np.abs(automatic - f) <= tolerance * f):
             peak = min(near, key=lambda p: abs(p - f))
             mode = mode_at_peak(stab, frfs, peak, choices.rules)
-        if mode is None:
+        if mode is None or _cluster_at(stab, f, mode, choices):
             rest.append(f)
         else:
             taken.append((f, mode))
     return replace(choices, pin_hz=tuple(rest)), taken
+
+
+def _cluster_at(stab: Stabilisation, pin: float, mode: PeakMode, choices: _Choices) -> bool:
+    """Whether the cluster the selection pins at ``pin`` is a mode of its own at the peak's
+    ``mode``: stable in more than three orders (fewer are the noise's) and within the peak
+    mode's half half-power width and half a line of it (a cluster below ``min_fraction`` at
+    the peak keeps its own pole, as pins always did)."""
+    try:
+        found = select_poles(stab, [pin], choices.exclude_hz, rules=choices.rules)
+    except InputError:
+        return False
+    k = int(np.argmin(np.abs(np.where(found.pinned, found.frequency, np.inf) - pin)))
+    reach = mode.damping_ratio * mode.frequency_hz + stab.line_spacing_hz / 2
+    return bool(found.n_orders[k] > 3 and abs(found.frequency[k] - mode.frequency_hz) <= reach)
 
 
 def _with_peak_modes(
