@@ -830,10 +830,11 @@ def _peak_pins(
     A pin with no mode of the automatic selection within ``pin_tolerance`` of it, near which
     (within ``pin_tolerance``) the data stand a clear peak (:data:`EDGE_PEAK`; the nearest)
     with no cluster of its own there (:func:`_cluster_at`), is kept as
-    :func:`racketdyn.modal.peaks.mode_at_peak` finds that peak's mode: a hint's ``pin_hz`` keeps the mode it names even where no cluster of the fit is stable there (the
-    wing's 13.5 Hz near its band's bottom was refused, "no stable pole within 5 %") or where
-    the nearest cluster is a fragment beside the peak (the wing's time records: 13.18 Hz,
-    ζ 2.5 %, for a peak at 13.52 Hz).  Returns the choices with the other pins, and each
+    :func:`racketdyn.modal.peaks.mode_at_peak` finds that peak's mode: a hint's ``pin_hz``
+    keeps the mode it names even where no cluster of the fit is stable there (the wing's
+    13.5 Hz near its band's bottom was refused, "no stable pole within 5 %") or where the
+    nearest cluster is a fragment beside the peak (the wing's time records: 13.18 Hz, ζ 2.5 %,
+    for a peak at 13.52 Hz).  Returns the choices with the other pins, and each
     pin so kept with its mode.
     """
     if not choices.pin_hz:
