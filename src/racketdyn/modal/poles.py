@@ -1591,9 +1591,23 @@ def _summarise(stab: Stabilisation, members: NDArray[np.intp]) -> _Cluster:
 def modal_peak(
     stab: Stabilisation, residues: NDArray[np.complex128], decay: float
 ) -> tuple[float, float]:
-    """A mode's largest modal peak ``|A| / σ`` over the FRFs (FRF units) and its largest
-    ratio to that FRF's noise (``stab.noise_rms``); a peak narrower than the line spacing is
-    not seen at full height: σ (the decay rate, rad/s) at least π × the spacing."""
+    """A mode's largest modal peak ``|A| / σ`` over the FRFs and its largest ratio to that
+    FRF's noise; a peak narrower than the line spacing is not seen at full height.
+
+    Parameters
+    ----------
+    stab : Stabilisation
+        The diagram whose ``noise_rms`` (one an FRF) and ``line_spacing_hz`` are used.
+    residues : ndarray, complex, shape (n_points,)
+        The mode's residues ``A``, FRF units × rad/s.
+    decay : float
+        Its decay rate σ = ζω, rad/s (taken no smaller than π × the line spacing).
+
+    Returns
+    -------
+    tuple of float
+        The largest peak (FRF units) and the largest peak over its FRF's noise.
+    """
     peaks = np.abs(residues) / max(decay, np.pi * stab.line_spacing_hz)
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(peaks > 0, peaks / stab.noise_rms, 0.0)
