@@ -286,3 +286,38 @@ def test_a_left_out_gain_never_reads_as_its_threshold(tmp_path: Path) -> None:
         shown = float(row.reason.split("only ")[1].split(" ×")[0])
         assert shown < 1.5, row.reason
         assert shown == pytest.approx(row.fit_gain, abs=0.01)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case", ["wing_frfs", "wing_time"])
+def test_the_pin_a_left_out_row_names_keeps_the_wings_13_5_hz(case: str, tmp_path: Path) -> None:
+    # the wing's 13.5 Hz near the default band's bottom is named (an edge row), and the
+    # misfit's verdict says "(`pin_hz` keeps a mode)"; yet `pin_hz` 13.5 was refused ("no
+    # stable pole within 5 %", the FRF export) or kept a fragment beside the peak (13.18 Hz,
+    # ζ 2.5 %, the time records).  The pin keeps the peak's mode within 0.1 % of what the
+    # narrower band the row names gives, and of sdypy-EMA 0.31's LSCF over 5-400 Hz (13.521 Hz
+    # on the time records; docs/develop.md, issue 25), and says its damping is not settled
+    from test_realdata_must_hold import READ
+
+    frfs = READ[case](tmp_path)
+    found = identify(frfs)
+    rows = [d for d in found.dropped_modes if abs(d.frequency_hz - 13.52) < 0.1]
+    assert rows, found.dropped_modes
+    assert "`band_hz` " in rows[0].reason
+    narrow = identify(frfs, _band_of(rows[0].reason))
+    there = narrow.model.frequency[np.argmin(np.abs(narrow.model.frequency - 13.52))]
+    kept = identify(frfs, pin_hz=[13.5])
+    near = np.abs(kept.model.frequency - 13.52) < 0.1
+    assert near.sum() == 1, kept.model.frequency
+    assert float(kept.model.frequency[near][0]) == pytest.approx(there, rel=1e-3)
+    assert float(kept.model.frequency[near][0]) == pytest.approx(13.521, rel=1e-3)
+    assert any("not settled" in line for line in kept.model.metadata["kept"])
+    assert not any(
+        abs(d.frequency_hz - 13.52) < 0.1 and d.stage == "edge" for d in kept.dropped_modes
+    )
+
+
+def _band_of(reason: str) -> tuple[float, float]:
+    """The ``band_hz`` a row names."""
+    low, high = reason.split("`band_hz` ")[1].split()[0].rstrip(";,.").split(",")
+    return (float(low), float(high))

@@ -27,6 +27,7 @@ from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfReferenc
 from racketdyn.modal.mac import mac
 from racketdyn.modal.misfit import Misfit, misfit
 from racketdyn.modal.model import ModalModel
+from racketdyn.modal.peaks import PeakMode, clear_peaks, half_power_span, mode_at_peak
 from racketdyn.modal.poles import (
     DroppedMode,
     SelectedPoles,
@@ -194,6 +195,11 @@ rig noise, 2.6 at 40/50 dB; other modes there 1.2-3.6 and 1.2-1.8)."""
 BROAD_STEPS = 40
 """... in at most this many steps of the nonlinear fit (the held racket's pair: 5–15; a fit
 wandering over a window with no broader mode took hundreds, seconds each)."""
+WANDERING_PEAK = 0.5
+"""A clear peak whose poles agree in frequency but not in damping is named when its modal peak
+over the noise is at least this share of the kept modes' median (the frame's 2.164 Hz, its
+clearest peak: 0.7-1.8 × on four synthetic sets like it; a single hit's noise up to 18.5 kHz,
+pff_lms: 0.002-0.16 ×, none named)."""
 NOISE_FLOOR = 1e-3
 """An FRF's noise (from its coherence) is taken as at least this fraction of the noisiest
 FRF's: a coherence of 1 (noise-free lines) weights no FRF infinitely."""
@@ -475,13 +481,7 @@ def _missed_peaks(
             continue
         if any(abs(peak - fe) <= max(we, ONE_PEAK_LINES * spacing) for fe, we in explained):
             continue
-        half = level[index] / np.sqrt(2)
-        left = index
-        while left > 0 and level[left] > half:
-            left -= 1
-        right = index
-        while right < f.size - 1 and level[right] > half:
-            right += 1
+        left, right = half_power_span(level, int(index))
         strongest = int(np.argmax(np.abs(data.values[:, index])))
         before = data.values[strongest, max(2 * left - index, 0)]
         after = data.values[strongest, min(2 * right - index, f.size - 1)]
@@ -753,6 +753,178 @@ def _clear_peaks(
         for d, gain in keep
     ]
     return again, lines
+
+
+def _wandering_peaks(
+    selected: SelectedPoles,
+    stab: Stabilisation,
+    frfs: FrfSet,
+    band: tuple[float, float],
+    choices: _Choices,
+) -> SelectedPoles:
+    """Clear peaks of the data whose poles agree in frequency but not in damping: named.
+
+    A peak of the summed ``|H|`` standing :data:`EDGE_PEAK` above its surroundings, further
+    than :data:`EDGE_SCAN` of the band's width from its ends (:func:`_missed_peaks`' part) and
+    from every kept mode and named row (their half-power widths, at least
+    :data:`ONE_PEAK_LINES` lines), where the fit's poles agree with one frequency in the
+    ``min_fraction`` of the orders the selection asks (:func:`racketdyn.modal.peaks.
+    mode_at_peak`) while too few of them agree in damping to make a cluster, and whose modal
+    peak is at least :data:`WANDERING_PEAK` of the kept modes' median over the noise, is an
+    ``unsettled`` row naming the ``pin_hz`` that keeps it and saying that its damping is not
+    settled (an unseen lab's frame: 2.164 Hz, 74 × the noise, a pole there in ≈ 45 of 60
+    orders with ζ 0.07–0.5 %, was dropped with no line on the console).
+    """
+    low, high = band
+    spacing = _spacing(frfs)
+    scan = EDGE_SCAN * (high - low)
+    reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
+    named = [  # a row already named, or a mode the caller excluded
+        d
+        for d in selected.dropped_modes
+        if d.stage != "selection" or d.reason.startswith("excluded")
+    ]
+    explained = [
+        (float(f), 2 * max(float(z), 0.0) * float(f))
+        for f, z in zip(selected.frequency, selected.damping_ratio, strict=True)
+    ] + [(d.frequency_hz, 2 * max(d.damping_ratio, 0.0) * d.frequency_hz) for d in named]
+    noise = stab.noise_rms if stab.noise_rms.size == frfs.n_points else np.min(stab.noise_rms)
+    rows: list[DroppedMode] = []
+    for peak, prominence in clear_peaks(frfs, (low + scan, high - scan), EDGE_PEAK):
+        if any(abs(peak - f) <= max(w, ONE_PEAK_LINES * spacing) for f, w in explained):
+            continue
+        line = int(np.argmin(np.abs(frfs.frequency - peak)))
+        with np.errstate(divide="ignore", invalid="ignore"):  # the data's own peak first
+            if not np.max(np.abs(frfs.values[:, line]) / noise) >= WANDERING_PEAK * reference:
+                continue
+        mode = mode_at_peak(stab, frfs, peak, choices.rules)
+        if (
+            mode is None
+            or mode.orders < choices.rules.min_fraction * stab.orders.size
+            or mode.peak_to_noise < WANDERING_PEAK * reference
+        ):
+            continue
+        rows.append(
+            DroppedMode(
+                mode.frequency_hz,
+                mode.damping_ratio,
+                mode.settled_orders,
+                "unsettled",
+                f"a clear peak of the data ({20 * np.log10(prominence):.0f} dB above its "
+                f"surroundings) whose damping is not settled: "
+                f"{mode.damping_words(int(stab.orders.size))}; `pin_hz` "
+                f"{mode.frequency_hz:.5g} keeps it",
+                peak_to_noise=mode.peak_to_noise,
+            )
+        )
+        explained.append((mode.frequency_hz, 2 * mode.damping_ratio * mode.frequency_hz))
+    if not rows:
+        return selected
+    return replace(selected, dropped_modes=(*selected.dropped_modes, *rows))
+
+
+def _peak_pins(
+    stab: Stabilisation, frfs: FrfSet, choices: _Choices
+) -> tuple[_Choices, list[tuple[float, PeakMode]]]:
+    """The pins the selection's clusters cannot keep at the data's peak, taken from the data.
+
+    A pin with no mode of the automatic selection within ``pin_tolerance`` of it, near which
+    (within ``pin_tolerance``) the data stand a clear peak (:data:`EDGE_PEAK`; the nearest)
+    with no cluster of its own there (:func:`_cluster_at`), is kept as
+    :func:`racketdyn.modal.peaks.mode_at_peak` finds that peak's mode: a hint's ``pin_hz``
+    keeps the mode it names even where no cluster of the fit is stable there (the wing's
+    13.5 Hz near its band's bottom was refused, "no stable pole within 5 %") or where the
+    nearest cluster is a fragment beside the peak (the wing's time records: 13.18 Hz, ζ 2.5 %,
+    for a peak at 13.52 Hz).  Returns the choices with the other pins, and each
+    pin so kept with its mode.
+    """
+    if not choices.pin_hz:
+        return choices, []
+    tolerance = choices.rules.pin_tolerance
+    try:
+        automatic = select_poles(stab, (), choices.exclude_hz, rules=choices.rules).frequency
+    except InputError:
+        automatic = np.zeros(0)
+    peaks = [p for p, _ in clear_peaks(frfs, stab.band_hz, EDGE_PEAK)]
+    rest: list[float] = []
+    taken: list[tuple[float, PeakMode]] = []
+    for f in choices.pin_hz:
+        f = float(f)
+        near = [p for p in peaks if abs(p - f) <= tolerance * f]
+        mode = None
+        if near and not np.any(np.abs(automatic - f) <= tolerance * f):
+            peak = min(near, key=lambda p: abs(p - f))
+            mode = mode_at_peak(stab, frfs, peak, choices.rules)
+        if mode is None or _cluster_at(stab, f, mode, choices):
+            rest.append(f)
+        else:
+            taken.append((f, mode))
+    return replace(choices, pin_hz=tuple(rest)), taken
+
+
+def _cluster_at(stab: Stabilisation, pin: float, mode: PeakMode, choices: _Choices) -> bool:
+    """Whether the cluster the selection pins at ``pin`` is a mode of its own at the peak's
+    ``mode``: stable in more than three orders (fewer are the noise's) and within the peak
+    mode's half half-power width and half a line of it (a cluster below ``min_fraction`` at
+    the peak keeps its own pole, as pins always did)."""
+    try:
+        found = select_poles(stab, [pin], choices.exclude_hz, rules=choices.rules)
+    except InputError:
+        return False
+    k = int(np.argmin(np.abs(np.where(found.pinned, found.frequency, np.inf) - pin)))
+    reach = mode.damping_ratio * mode.frequency_hz + stab.line_spacing_hz / 2
+    return bool(found.n_orders[k] > 3 and abs(found.frequency[k] - mode.frequency_hz) <= reach)
+
+
+def _with_peak_modes(
+    selected: SelectedPoles,
+    taken: list[tuple[float, PeakMode]],
+    stab: Stabilisation,
+    frfs: FrfSet,
+) -> tuple[SelectedPoles, list[str]]:
+    """The selection with the pins kept at the data's peaks (:func:`_peak_pins`) added,
+    pinned, their rows (``edge``, ``unsettled``) gone, and one line each saying how."""
+    if not taken:
+        return selected, []
+    spacing = _spacing(frfs)
+    modes = [m for _, m in taken]
+    frequency = np.array([m.frequency_hz for m in modes])
+    zeta = np.array([m.damping_ratio for m in modes])
+    near = [
+        max(2 * m.damping_ratio * m.frequency_hz, ONE_PEAK_LINES * spacing, m.frequency_hz * 1e-3)
+        for m in modes
+    ]
+    rows = tuple(
+        d
+        for d in selected.dropped_modes
+        if d.stage not in ("edge", "unsettled")
+        or not any(abs(d.frequency_hz - f) <= w for f, w in zip(frequency, near, strict=True))
+    )
+    merged = replace(
+        selected,
+        frequency=np.concatenate([selected.frequency, frequency]),
+        damping_ratio=np.concatenate([selected.damping_ratio, zeta]),
+        pole=np.concatenate([selected.pole, pole_of(frequency, zeta)]),
+        n_orders=np.concatenate([selected.n_orders, [m.settled_orders for m in modes]]),
+        frequency_spread_hz=np.concatenate(
+            [selected.frequency_spread_hz, [m.frequency_spread_hz for m in modes]]
+        ),
+        damping_spread=np.concatenate(
+            [selected.damping_spread, [np.std(m.damping_range) for m in modes]]
+        ),
+        peak_to_noise=np.concatenate([selected.peak_to_noise, [m.peak_to_noise for m in modes]]),
+        residues=np.concatenate(
+            [selected.residues, np.column_stack([m.residues for m in modes])], axis=1
+        ),
+        pinned=np.concatenate([selected.pinned, np.ones(len(modes), dtype=bool)]),
+        dropped_modes=rows,
+    )
+    lines = [
+        f"{m.frequency_hz:.4f} Hz: pinned at {f:g} Hz, kept at the data's peak, where "
+        f"{m.damping_words(int(stab.orders.size))}"
+        for f, m in taken
+    ]
+    return merged.select(np.argsort(merged.frequency, kind="stable")), lines
 
 
 def _close_pairs(
@@ -1680,17 +1852,20 @@ def _selected_poles(
     on their own lines, peaks the fit missed found, narrow modes refined.
     """
     _within_band(choices, band)
+    choices, at_peaks = _peak_pins(stab, frfs, choices)
     selected = select_poles(
         stab, choices.pin_hz, choices.exclude_hz, rules=choices.rules
     )  # raises if none
     selected = _named_rows(_edge_modes(selected, frfs, band, choices), _spacing(frfs))
     selected, kept = _clear_peaks(selected, stab, frfs, band, choices)
+    selected = _wandering_peaks(selected, stab, frfs, band, choices)
     selected, pairs = _close_pairs(selected, frfs, band, choices)
     selected = _missed_peaks(selected, frfs, band, choices)
     selected, refined = refine_narrow_poles(frfs, selected)
     for line in refined:
         log.info("refined %s", line)
-    kept = [*kept, *pairs]
+    selected, pinned = _with_peak_modes(selected, at_peaks, stab, frfs)
+    kept = [*kept, *pairs, *pinned]
     for line in kept:
         log.warning("kept %s", line)
     for row in selected.dropped_modes:

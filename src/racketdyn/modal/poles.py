@@ -105,6 +105,7 @@ __all__ = [
     "Stabilisation",
     "edge_margin",
     "mac",
+    "modal_peak",
     "pole_of",
     "require_rules",
     "select_poles",
@@ -1586,20 +1587,47 @@ def _summarise(stab: Stabilisation, members: NDArray[np.intp]) -> _Cluster:
     f_med, z_med = _median(f), _median(zeta)
     spread = np.abs(f - f_med) / max(f_med, 1e-12) + np.abs(zeta - z_med) / max(abs(z_med), 1e-6)
     representative = int(members[np.argmin(spread)])
-    # the modal term's peak |A|/σ in each FRF (FRF units), against that FRF's noise; a peak
-    # narrower than the line spacing is not seen at full height: σ at least π × spacing
-    decay = max(-stab.pole[representative].real, np.pi * stab.line_spacing_hz)
-    peaks = np.abs(stab.residues[:, representative]) / decay
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(peaks > 0, peaks / stab.noise_rms, 0.0)
+    peak, peak_to_noise = modal_peak(
+        stab, stab.residues[:, representative], -stab.pole[representative].real
+    )
     return _Cluster(
         members=members,
         frequency=f_med,
         damping_ratio=z_med,
         n_orders=int(np.unique(stab.order[members]).size),
         representative=representative,
-        peak=float(np.max(peaks)) if math.isfinite(float(np.max(peaks))) else 0.0,
-        peak_to_noise=float(np.nan_to_num(np.max(ratio), nan=0.0, posinf=np.inf)),
+        peak=peak,
+        peak_to_noise=peak_to_noise,
+    )
+
+
+def modal_peak(
+    stab: Stabilisation, residues: NDArray[np.complex128], decay: float
+) -> tuple[float, float]:
+    """A mode's largest modal peak ``|A| / σ`` over the FRFs and its largest ratio to that
+    FRF's noise; a peak narrower than the line spacing is not seen at full height.
+
+    Parameters
+    ----------
+    stab : Stabilisation
+        The diagram whose ``noise_rms`` (one an FRF) and ``line_spacing_hz`` are used.
+    residues : ndarray, complex, shape (n_points,)
+        The mode's residues ``A``, FRF units × rad/s.
+    decay : float
+        Its decay rate σ = ζω, rad/s (taken no smaller than π × the line spacing).
+
+    Returns
+    -------
+    tuple of float
+        The largest peak (FRF units) and the largest peak over its FRF's noise.
+    """
+    peaks = np.abs(residues) / max(decay, np.pi * stab.line_spacing_hz)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(peaks > 0, peaks / stab.noise_rms, 0.0)
+    largest = float(np.max(peaks))
+    return (
+        largest if math.isfinite(largest) else 0.0,
+        float(np.nan_to_num(np.max(ratio), nan=0.0, posinf=np.inf)),
     )
 
 
