@@ -94,3 +94,20 @@ def test_exports_without_a_header_or_units_are_one_line_naming_the_fix(tmp_path:
     assert "\n" not in message
     assert "Point_1_Channel_1_CH1.txt" in message
     assert "# units: m/N" in message
+
+
+def test_a_clipped_pulse_is_an_overload_and_no_double_hit() -> None:
+    # At the merge of the ringing rule (fourteenth session) the rig's overloads read as double
+    # hits too (tests/test_rig_chain.py, 6 of 140 averages): find_peaks gives a clipped pulse's
+    # plateau at its middle, argmax at its first sample, so the pulse's own peak was taken
+    # for a second one.
+    from racketdyn.measurement.quality import QualitySettings, check_average
+
+    dt, pretrigger = 1e-5, 0.002
+    t = np.arange(2048) * dt
+    pulse = 300.0 * np.sin(np.pi * np.clip((t - pretrigger) / 1e-3, 0.0, 1.0))
+    force = np.minimum(pulse, 200.0)  # the channel's rail at 200 N: a plateau of many samples
+    response = np.sin(2 * np.pi * 300.0 * t) * np.exp(-t / 0.05)
+    check = check_average(1, 0, force, response, dt, pretrigger, QualitySettings())
+    assert "force overload" in check.reasons
+    assert "double hit" not in check.reasons

@@ -215,7 +215,9 @@ def check_average(
     from scipy.signal import find_peaks
 
     peaks, _ = find_peaks(pulse, height=level, prominence=level)
-    main = int(np.argmax(pulse))
+    # the pulse's own peak among those found: a clipped pulse's plateau is found at its middle,
+    # where argmax gives its first sample (the rig's overloads read as double hits)
+    main = int(peaks[np.argmax(pulse[peaks])]) if peaks.size else int(np.argmax(pulse))
     if any(p != main and not _filter_lobe(pulse, main, int(p)) for p in peaks):
         reasons.append("double hit")
     above = pulse > level

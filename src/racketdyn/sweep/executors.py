@@ -731,6 +731,24 @@ class _HeldCtrlC:
             raise KeyboardInterrupt
 
 
+@contextmanager
+def ctrl_c_as_flag(executor: object) -> Iterator[Callable[[], bool]]:
+    """While a sweep waits on ``executor``: a function saying whether Ctrl-C was pressed.
+
+    On a Dask executor a Ctrl-C is noted, not raised, and the caller raises it between its
+    polls: raised where it lands, in the event loop's wake-up (``_write_to_self``, called as
+    this process hands the loop a task), asyncio logged it and swallowed it, and the sweep ran
+    to its end with exit status 0 (a CI run under load).  Other executors keep Python's own
+    KeyboardInterrupt (a process pool's start may run a task here, which a flag would wait
+    out).  Only in the main thread, where Python runs signal handlers.
+    """
+    if not getattr(executor, "ctrl_c_at_polls", False):
+        yield lambda: False
+        return
+    with _HeldCtrlC() as held:
+        yield lambda: held.pressed
+
+
 def _restore_ctrl_c() -> None:
     while _SAVED_SIGINT:
         signal.signal(signal.SIGINT, _SAVED_SIGINT.pop())
@@ -763,6 +781,8 @@ def _dask_executor(client: Any, start_method: str = "") -> Executor:
     class DaskExecutor(ClientExecutor):
         """A Dask client's executor that knows the Dask task behind each future, so
         :meth:`stop_task` can restart the worker running it (a thread cannot be stopped)."""
+
+        ctrl_c_at_polls = True  # ctrl_c_as_flag: a Ctrl-C in the event loop is swallowed
 
         def __init__(self, client: Any, start_method: str) -> None:
             super().__init__(client, pure=False)  # type: ignore[no-untyped-call]

@@ -19,7 +19,7 @@ import math
 import time
 import traceback
 from collections import deque
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from concurrent.futures import (
     FIRST_COMPLETED,
     BrokenExecutor,
@@ -37,6 +37,7 @@ from racketdyn.sweep.executors import (
     ProcessPool,
     SerialExecutor,
     _in_flight_limit,
+    ctrl_c_as_flag,
     quiet_interrupted_cluster,
 )
 from racketdyn.sweep.spec import SweepSpec
@@ -252,23 +253,8 @@ class _Runner:
         """Run every job to an end: recorded, or failed for good."""
         self.queue.extend(jobs)
         try:
-            while self.queue or self.pending:
-                self._submit()
-                helped = self._help_while_starting()
-                if not self.pending:
-                    continue
-                finished, _ = wait(
-                    self.pending,
-                    timeout=0.0 if helped else self._poll_s(),
-                    return_when=FIRST_COMPLETED,
-                )
-                broken: list[_Job] = []
-                for future in finished:
-                    job, _ = self._pop(future)
-                    self._settle(future, job, broken)
-                if broken:
-                    self._pool_broke(broken)
-                self._check_timeouts()
+            with ctrl_c_as_flag(self.executor) as pressed:
+                self._loop(pressed)
         except KeyboardInterrupt:
             quiet_interrupted_cluster()  # the tasks cancelled now are the sweep's to report
             lost = self._stop_all()
@@ -287,6 +273,29 @@ class _Runner:
         except BaseException:
             self._stop_all()
             raise
+
+    def _loop(self, pressed: Callable[[], bool]) -> None:
+        """:meth:`run`'s loop: submit, wait a poll, settle; a Ctrl-C that ``pressed`` holds
+        (:func:`~racketdyn.sweep.executors.ctrl_c_as_flag`) raised between polls."""
+        while self.queue or self.pending:
+            if pressed():
+                raise KeyboardInterrupt
+            self._submit()
+            helped = self._help_while_starting()
+            if not self.pending:
+                continue
+            finished, _ = wait(
+                self.pending,
+                timeout=0.0 if helped else self._poll_s(),
+                return_when=FIRST_COMPLETED,
+            )
+            broken: list[_Job] = []
+            for future in finished:
+                job, _ = self._pop(future)
+                self._settle(future, job, broken)
+            if broken:
+                self._pool_broke(broken)
+            self._check_timeouts()
 
     def _starting(self) -> bool:
         """A fresh process pool (never replaced) that has given no result yet: its workers
