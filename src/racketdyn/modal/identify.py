@@ -27,7 +27,14 @@ from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfReferenc
 from racketdyn.modal.mac import mac
 from racketdyn.modal.misfit import Misfit, misfit
 from racketdyn.modal.model import ModalModel
-from racketdyn.modal.peaks import PeakMode, clear_peaks, half_power_span, mode_at_peak
+from racketdyn.modal.peaks import (
+    PeakMode,
+    clear_peaks,
+    half_power_span,
+    mode_at_peak,
+    peaks_beside,
+    phase_turns,
+)
 from racketdyn.modal.poles import (
     DroppedMode,
     SelectedPoles,
@@ -482,10 +489,7 @@ def _missed_peaks(
         if any(abs(peak - fe) <= max(we, ONE_PEAK_LINES * spacing) for fe, we in explained):
             continue
         left, right = half_power_span(level, int(index))
-        strongest = int(np.argmax(np.abs(data.values[:, index])))
-        before = data.values[strongest, max(2 * left - index, 0)]
-        after = data.values[strongest, min(2 * right - index, f.size - 1)]
-        if abs(np.angle(after * np.conj(before))) < np.pi / 2:
+        if not phase_turns(data.values, int(index), left, right):
             continue
         if tries[bottom] == 0:
             log.debug("clear peak at %.1f Hz near the band's edge: not tried", peak)
@@ -773,7 +777,14 @@ def _wandering_peaks(
     peak is at least :data:`WANDERING_PEAK` of the kept modes' median over the noise, is an
     ``unsettled`` row naming the ``pin_hz`` that keeps it and saying that its damping is not
     settled (an unseen lab's frame: 2.164 Hz, 74 × the noise, a pole there in ≈ 45 of 60
-    orders with ζ 0.07–0.5 %, was dropped with no line on the console).
+    orders with ζ 0.07–0.5 %, was dropped with no line on the console).  A peak that stands
+    less than :data:`EDGE_PEAK` above its surroundings only because a larger one beside it
+    fills the valley between (:func:`racketdyn.modal.peaks.peaks_beside`: no anti-resonance
+    parts two modes whose constants have opposite signs) is named so too, anywhere in the
+    band (the edge scan looks for clear peaks only) and with its poles in any number of
+    orders: its phase turning through it and its height over the noise are the evidence (a
+    LabVIEW record's 19.77 Hz, 5.5 × above the valley towards 21.15 Hz and 16 Hz from the
+    band's bottom, 2505 × the noise, was dropped with no line).
     """
     low, high = band
     spacing = _spacing(frfs)
@@ -789,8 +800,26 @@ def _wandering_peaks(
         for f, z in zip(selected.frequency, selected.damping_ratio, strict=True)
     ] + [(d.frequency_hz, 2 * max(d.damping_ratio, 0.0) * d.frequency_hz) for d in named]
     noise = stab.noise_rms if stab.noise_rms.size == frfs.n_points else np.min(stab.noise_rms)
+    n_orders = int(stab.orders.size)
     rows: list[DroppedMode] = []
-    for peak, prominence in clear_peaks(frfs, (low + scan, high - scan), EDGE_PEAK):
+    for peak, words, orders in [
+        (
+            p,
+            f"a clear peak of the data ({20 * np.log10(rise):.0f} dB above its surroundings) "
+            "whose damping is not settled",
+            choices.rules.min_fraction * n_orders,
+        )
+        for p, rise in clear_peaks(frfs, (low + scan, high - scan), EDGE_PEAK)
+    ] + [
+        (
+            p,
+            f"a clear peak of the data beside a larger one ({20 * np.log10(other):.0f} dB above "
+            f"the lowest point on its other side, {20 * np.log10(valley):.0f} dB above the "
+            "valley between, its phase turning through it) that the selection left out",
+            0.0,
+        )
+        for p, other, valley in peaks_beside(frfs, band, EDGE_PEAK)
+    ]:
         if any(abs(peak - f) <= max(w, ONE_PEAK_LINES * spacing) for f, w in explained):
             continue
         line = int(np.argmin(np.abs(frfs.frequency - peak)))
@@ -798,11 +827,7 @@ def _wandering_peaks(
             if not np.max(np.abs(frfs.values[:, line]) / noise) >= WANDERING_PEAK * reference:
                 continue
         mode = mode_at_peak(stab, frfs, peak, choices.rules)
-        if (
-            mode is None
-            or mode.orders < choices.rules.min_fraction * stab.orders.size
-            or mode.peak_to_noise < WANDERING_PEAK * reference
-        ):
+        if mode is None or mode.orders < orders or mode.peak_to_noise < WANDERING_PEAK * reference:
             continue
         rows.append(
             DroppedMode(
@@ -810,10 +835,8 @@ def _wandering_peaks(
                 mode.damping_ratio,
                 mode.settled_orders,
                 "unsettled",
-                f"a clear peak of the data ({20 * np.log10(prominence):.0f} dB above its "
-                f"surroundings) whose damping is not settled: "
-                f"{mode.damping_words(int(stab.orders.size))}; `pin_hz` "
-                f"{mode.frequency_hz:.5g} keeps it",
+                f"{words}: {mode.damping_words(n_orders)}; `pin_hz` {mode.frequency_hz:.5g} "
+                "keeps it",
                 peak_to_noise=mode.peak_to_noise,
             )
         )
@@ -829,8 +852,9 @@ def _peak_pins(
     """The pins the selection's clusters cannot keep at the data's peak, taken from the data.
 
     A pin with no mode of the automatic selection within ``pin_tolerance`` of it, near which
-    (within ``pin_tolerance``) the data stand a clear peak (:data:`EDGE_PEAK`; the nearest)
-    with no cluster of its own there (:func:`_cluster_at`), is kept as
+    (within ``pin_tolerance``) the data stand a clear peak (:data:`EDGE_PEAK`, or a peak
+    beside a larger one: :func:`racketdyn.modal.peaks.peaks_beside`; the nearest) with no
+    cluster of its own there (:func:`_cluster_at`), is kept as
     :func:`racketdyn.modal.peaks.mode_at_peak` finds that peak's mode: a hint's ``pin_hz``
     keeps the mode it names even where no cluster of the fit is stable there (the wing's
     13.5 Hz near its band's bottom was refused, "no stable pole within 5 %") or where the
@@ -846,6 +870,7 @@ def _peak_pins(
     except InputError:
         automatic = np.zeros(0)
     peaks = [p for p, _ in clear_peaks(frfs, stab.band_hz, EDGE_PEAK)]
+    peaks += [p for p, _, _ in peaks_beside(frfs, stab.band_hz, EDGE_PEAK)]
     rest: list[float] = []
     taken: list[tuple[float, PeakMode]] = []
     for f in choices.pin_hz:
