@@ -414,10 +414,15 @@ def test_a_ctrl_c_swallowed_where_it_lands_still_stops_a_dask_sweep() -> None:
         os.kill(os.getpid(), signal.SIGINT)
         time.sleep(0.05)
 
-    with ctrl_c_as_flag(Dask()) as pressed:
-        with contextlib.suppress(KeyboardInterrupt):  # as asyncio's callback wrapper does
-            ctrl_c()
-        assert pressed()
-    with ctrl_c_as_flag(object()), pytest.raises(KeyboardInterrupt):
-        ctrl_c()  # other executors: Python's own KeyboardInterrupt
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    # Python's own Ctrl-C, as a command has it (a test worker of pytest-xdist ignores SIGINT)
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with ctrl_c_as_flag(Dask()) as pressed:
+            with contextlib.suppress(KeyboardInterrupt):  # as asyncio's callback wrapper does
+                ctrl_c()
+            assert pressed()
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+        with ctrl_c_as_flag(object()), pytest.raises(KeyboardInterrupt):
+            ctrl_c()  # other executors: Python's own KeyboardInterrupt
+    finally:
+        signal.signal(signal.SIGINT, previous)
