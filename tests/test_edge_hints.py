@@ -11,12 +11,18 @@ analytic free bar (:mod:`racketdyn.testing.free_beam`): a hint names a frequency
 from __future__ import annotations
 
 import importlib
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pytest
 
 from racketdyn.modal.identify import identify
 from racketdyn.testing.free_beam import beam_frfs, natural_frequencies
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from racketdyn.testing.records import Modes
 
 POINTS = np.linspace(0.0, 0.8, 9)
 TRUE_HZ = natural_frequencies(5)  # 65.4, 180.3, 353.5, 584.4, 873.0 Hz
@@ -116,8 +122,6 @@ def test_a_clear_peak_whose_damping_wanders_is_kept_or_named(seed: int) -> None:
     # peak - within -0.21 … +0.17 % of 2.165 Hz).
     from dataclasses import replace
 
-    from scipy.signal import lfilter
-
     from racketdyn.measurement.frf import estimate_frfs
     from racketdyn.testing.records import Modes, records_for
 
@@ -138,14 +142,12 @@ def test_a_clear_peak_whose_damping_wanders_is_kept_or_named(seed: int) -> None:
         seed=seed,
     )
     rng = np.random.default_rng(100 + seed)
-    omega, zeta = 2 * np.pi * modes.frequency[0], modes.damping_ratio[0]
-    r = np.exp(-zeta * omega * dt)
-    ringing = [1.0, -2 * r * np.cos(omega * np.sqrt(1 - zeta**2) * dt), r * r]
-    shaken = []
-    for k, response in enumerate(records.response):
-        base = lfilter([1.0], ringing, rng.normal(size=response.shape[-1] + 5000))[5000:]
-        scale = 0.05 * np.max(np.abs(response)) * modes.constants[k, 0]
-        shaken.append(response + base / np.std(base) * scale)
+    shaken = [
+        response
+        + _base_ringing(modes, dt, response.shape[-1], rng)
+        * (0.05 * np.max(np.abs(response)) * modes.constants[k, 0])
+        for k, response in enumerate(records.response)
+    ]
     frfs = estimate_frfs(replace(records, response=tuple(shaken))).frfs
     assert frfs is not None
     found = identify(frfs)
@@ -179,8 +181,6 @@ def test_a_clear_peak_beside_a_larger_one_is_kept_or_named(seed: int, shaking: f
     # above (the pins here kept it at -0.28 ... +0.27 %, a half-power width ±0.25 %).
     from dataclasses import replace
 
-    from scipy.signal import lfilter
-
     from racketdyn.measurement.frf import estimate_frfs
     from racketdyn.testing.records import Modes, records_for
 
@@ -200,12 +200,9 @@ def test_a_clear_peak_beside_a_larger_one_is_kept_or_named(seed: int, shaking: f
         seed=seed,
     )
     rng = np.random.default_rng(100 + seed)
-    omega, zeta = 2 * np.pi * modes.frequency[0], modes.damping_ratio[0]
-    r = np.exp(-zeta * omega * dt)
-    ringing = [1.0, -2 * r * np.cos(omega * np.sqrt(1 - zeta**2) * dt), r * r]
     response = records.response[0]
-    base = lfilter([1.0], ringing, rng.normal(size=response.shape[-1] + 5000))[5000:]
-    shaken = response + base / np.std(base) * shaking * np.max(np.abs(response))
+    base = _base_ringing(modes, dt, response.shape[-1], rng)
+    shaken = response + base * shaking * np.max(np.abs(response))
     frfs = estimate_frfs(replace(records, response=(shaken,))).frfs
     assert frfs is not None
     level = np.abs(frfs.values).sum(axis=0)
@@ -262,3 +259,17 @@ def test_a_peak_beside_a_larger_one_with_no_antiresonance_between(sign: float) -
     else:
         assert beside == []
         assert clear == [19.75, 21.125]
+
+
+def _base_ringing(
+    modes: Modes, dt: float, n_samples: int, rng: np.random.Generator
+) -> NDArray[np.float64]:
+    """The first mode rung at random by a shaking base (white noise through its resonance,
+    5000 samples run in first), of unit rms."""
+    from scipy.signal import lfilter
+
+    omega, zeta = 2 * np.pi * modes.frequency[0], modes.damping_ratio[0]
+    r = np.exp(-zeta * omega * dt)
+    ringing = [1.0, -2 * r * np.cos(omega * np.sqrt(1 - zeta**2) * dt), r * r]
+    base = lfilter([1.0], ringing, rng.normal(size=n_samples + 5000))[5000:]
+    return np.asarray(base / np.std(base), dtype=float)

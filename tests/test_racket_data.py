@@ -592,7 +592,7 @@ def test_a_lone_veering_member_is_not_named_confidently(
     on the strings (0.73), took the bending's name with nothing said: its name now comes with a
     note naming both (the naming line's "uncertain"), or says the mix itself."""
     from racketdyn.racket_modal.beam import reference_shapes
-    from racketdyn.racket_modal.shapes import classify_modes, naming_notes
+    from racketdyn.racket_modal.shapes import classify_modes, naming_words
 
     truth = measured["free"][1]
     model = found["free"].model
@@ -601,13 +601,13 @@ def test_a_lone_veering_member_is_not_named_confidently(
     member = nearest(model, truth.frequency[truth.names.index(membrane)])
     reference = reference_shapes(racket)
     assert (model.names[partner], model.names[member]) == (bending, membrane)
-    notes = naming_notes(model, racket.head, None, reference)
+    notes = naming_words(model, racket.head, None, reference)[1]
     assert not notes[partner], notes
     assert not notes[member], notes
     alone = model.select([k for k in range(model.n_modes) if k != partner])
     k = member - (partner < member)
     names, kinds = classify_modes(alone, racket.head, None, reference)
-    note = naming_notes(alone, racket.head, None, reference)[k]
+    note = naming_words(alone, racket.head, None, reference)[1][k]
     said = names[k] + " " + note
     assert kinds[k] == "unknown" or (bending in said and "(2, 0)" in said), (names[k], note)
 

@@ -28,8 +28,7 @@ from racketdyn.racket_modal.shapes import (
     ON_STRINGS,
     classify_modes,
     naming_evidence,
-    naming_notes,
-    naming_reasons,
+    naming_words,
     outline_rigid_share,
     rigid_share,
 )
@@ -229,13 +228,11 @@ def name_if_racket(
 
 
 def _unknown_modes(model: ModalModel, racket: Racket, ball_at: tuple[float, float] | None) -> str:
-    """A clause naming each mode the shapes leave ``unknown`` and why
-    (:func:`~racketdyn.racket_modal.shapes.naming_reasons`), and each whose name they support
-    only in part and what makes it uncertain (:func:`~racketdyn.racket_modal.shapes.naming_notes`);
-    "" when none is."""
+    """A clause naming each mode the shapes leave ``unknown`` and why, and each whose name
+    they support only in part and what makes it uncertain
+    (:func:`~racketdyn.racket_modal.shapes.naming_words`); "" when none is."""
     reference = reference_shapes(racket)
-    reasons = naming_reasons(model, racket.head, ball_at, reference)
-    notes = naming_notes(model, racket.head, ball_at, reference)
+    reasons, notes = naming_words(model, racket.head, ball_at, reference)  # one classification
     clauses = []
     for word, said in (
         ("unknown", [(k, r) for k, r in enumerate(reasons) if r and model.kinds[k] == "unknown"]),

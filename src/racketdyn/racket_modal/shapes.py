@@ -56,7 +56,7 @@ Naming, from the shape at the measured points and the racket's head:
   identified without its partner carries some of the partner's shape: the 305 g racket's
   1522.1 Hz (the truth's (2, 0) membrane, 52 % strings, its partner at 1422.3 Hz not found)
   matches the 5-node bending at 0.96 and the bed at 0.73 and takes the bending's name, with a
-  note (:func:`naming_notes`) naming the bed mode its strings match that no other mode is
+  note (:func:`naming_words`) naming the bed mode its strings match that no other mode is
   named after: the points cannot tell whether the frame or the strings hold more of its
   energy;
 * **twisting** when more than half of the shape's energy is odd in y: points are paired with
@@ -80,7 +80,7 @@ shift the names above it (issue 25 item 8, tenth session):
   ``θ``).  The points do not reach the butt, where the outer node of the higher modes sits, so
   the count is read against whole shapes rather than counted; where another count's frame
   mode matches nearly as well (:data:`COUNT_CONTRAST`) the name gives both ("3- or 4-node
-  twisting") and :func:`naming_notes` says why.  Without a frame model or a
+  twisting") and :func:`naming_words` says why.  Without a frame model or a
   match, the n-th bending mode in frequency is "(n+1)-node bending" (a free or hand-held racket
   has its bending modes in the order of their nodes) and the twisting modes likewise;
   :func:`axis_nodes` gives the node positions for the figures (paper, Figs 6 and 15);
@@ -145,8 +145,8 @@ __all__ = [
     "membrane_name",
     "membrane_names",
     "naming_evidence",
-    "naming_notes",
     "naming_reasons",
+    "naming_words",
     "outline_rigid_share",
     "rigid_share",
     "sign_changes",
@@ -810,13 +810,14 @@ def naming_reasons(
     return _classify(model, head, ball_at, reference)[2]
 
 
-def naming_notes(
+def naming_words(
     model: ModalModel,
     head: HeadEllipse,
     ball_at: tuple[float, float] | None = None,
     reference: ReferenceShapes | None = None,
-) -> tuple[str, ...]:
-    """What makes a named mode's name uncertain ("" for a name the shape supports).
+) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Why each mode is ``unknown`` (:func:`naming_reasons`) and what makes a named mode's
+    name uncertain ("" for a name the shape supports), from one classification.
 
     Two cases (module docstring): a node count the frame's shape does not tell from another
     (:data:`COUNT_CONTRAST`: the name gives both), and a frame mode named in the unclear band
@@ -832,10 +833,11 @@ def naming_notes(
 
     Returns
     -------
-    tuple of str
-        One clause per mode.
+    reasons, notes : tuple of str
+        One clause per mode each.
     """
-    return _classify(model, head, ball_at, reference)[3]
+    _, _, reasons, notes = _classify(model, head, ball_at, reference)
+    return reasons, notes
 
 
 def _classify(
@@ -845,7 +847,7 @@ def _classify(
     reference: ReferenceShapes | None,
 ) -> tuple[tuple[str, ...], tuple[str, ...], tuple[str, ...], tuple[str, ...]]:
     """Names, kinds, the reasons for each ``unknown`` and the notes on uncertain names
-    (:func:`classify_modes`, :func:`naming_reasons`, :func:`naming_notes`)."""
+    (:func:`classify_modes`, :func:`naming_reasons`, :func:`naming_words`)."""
     locations, shapes = model.locations, model.mode_shapes
     on_strings = head.normalised_radius(locations) < ON_STRINGS
     pairs = _mirror_pairs(locations)
