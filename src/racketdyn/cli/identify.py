@@ -226,6 +226,8 @@ def print_modes(
     import numpy as np
     from rich.table import Table
 
+    from racketdyn.modal.identify import NO_FORCE, no_force_words
+
     model = identification.model
     # the support is a racket test's word (free or hand); a beam or a wing is supported as
     # its lab says, which the file does not
@@ -252,6 +254,14 @@ def print_modes(
     note = identification.band_note
     band = f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
     opt.say(console, f"band {band}: " + ("as given (--band)" if note == "given" else note))
+    force = identification.frfs.force_band_hz
+    if note == "given" and force is not None and identification.band_hz[1] > force:
+        opt.say(
+            console,
+            f"{no_force_words(force)}: peaks above it are the response's noise over almost no "
+            "force (a harder hammer tip puts force there)",
+            "yellow",
+        )
     where = identification.misfit
     fit_line = (
         f"median fit error {np.median(identification.fit.error):.2%}"
@@ -290,6 +300,15 @@ def print_modes(
     later = [d for d in identification.dropped_modes if d.stage in said]
     for row in later:
         opt.say(console, f"left out {row.frequency_hz:.2f} Hz: {opt.in_flags(row.reason, parser)}")
+    unforced = [d.frequency_hz for d in identification.dropped_modes if d.stage == NO_FORCE]
+    if unforced:
+        opt.say(
+            console,
+            f"left out {opt.plural(len(unforced), 'clear peak')} at {min(unforced):.6g}–"
+            f"{max(unforced):.6g} Hz: {no_force_words(force or 0.0)}, so they are the "
+            "response's noise over almost none, not modes (each in dropped_modes.csv)",
+        )
+        later += [d for d in identification.dropped_modes if d.stage == NO_FORCE]
     candidates = len(identification.dropped_modes) - len(later)
     if candidates:
         opt.say(

@@ -45,6 +45,7 @@ from racketdyn.io.uff import (
     _coherence,
     _Contents,
     _coordinates,
+    _force_band_of,
     _frf_id_fields,
     _frf_scale,
     _in_global_axes,
@@ -376,6 +377,7 @@ def _against(file: _File, ref: int, layout: str) -> FrfSet:
     frequency, values, coherence = _without_nyquist(path, chosen, frequency, values, coherence)
     estimator, tau, averages = _frf_id_fields(chosen)
     bandwidth = _bandwidth_of(chosen)
+    force_band = _force_band_of(chosen)
     frfs = FrfSet(
         frequency=frequency,
         values=values,
@@ -397,6 +399,7 @@ def _against(file: _File, ref: int, layout: str) -> FrfSet:
             "ignored_data_sets": ignored,
             "directions": {int(n): int(_point_of(points.by_node[n], ref)[1]) for n in nodes},
             **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
+            **({} if force_band is None else {"force_band_hz": force_band}),
         },
     )
     return frfs.with_usual_phase()  # an analyser's e^(-iωt) undone (vtb_siglab's case 2)

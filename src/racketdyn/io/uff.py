@@ -100,6 +100,7 @@ UNIT_SCALE: dict[str, dict[str, float]] = {
 _ABSCISSA_LINE = re.compile(r"racketdyn abscissa start (\S+) step (\S+)")
 _FRF_LINE = re.compile(r"estimator (\S+); exponential window tau (\S+) s; averages (\S+)")
 _BANDWIDTH = re.compile(r"; bandwidth (\S+) Hz")
+_FORCE_BAND = re.compile(r"; force band (\S+) Hz")
 
 
 # --------------------------------------------------------------------------------------------
@@ -1230,11 +1231,12 @@ def _coherence(
 ABSURD_COHERENCE = 1.0e3
 
 
-def _bandwidth_of(records: Sequence[_Record]) -> float | None:
-    """The analyser bandwidth racketdyn wrote in ID line 2 (Hz), if every record agrees."""
+def _id_number(records: Sequence[_Record], pattern: re.Pattern[str], line: int) -> float | None:
+    """The number racketdyn wrote in ID line ``line`` (from 1) of every record, if all agree."""
     found = set()
     for record in records:
-        match = _BANDWIDTH.search(record.ids[1]) if record.ids[0].startswith("racketdyn") else None
+        written = record.ids[0].startswith("racketdyn")
+        match = pattern.search(record.ids[line - 1]) if written else None
         if match is None:
             return None
         found.add(match.group(1))
@@ -1242,6 +1244,17 @@ def _bandwidth_of(records: Sequence[_Record]) -> float | None:
         return float(found.pop()) if len(found) == 1 else None
     except ValueError:
         return None
+
+
+def _bandwidth_of(records: Sequence[_Record]) -> float | None:
+    """The analyser bandwidth racketdyn wrote in ID line 2 (Hz), if every record agrees."""
+    return _id_number(records, _BANDWIDTH, 2)
+
+
+def _force_band_of(records: Sequence[_Record]) -> float | None:
+    """Where the hammer's force was 40 dB down (Hz), as racketdyn wrote it in ID line 3 of
+    every record (:attr:`~racketdyn.measurement.records.FrfSet.force_band_hz`)."""
+    return _id_number(records, _FORCE_BAND, 3)
 
 
 def _frf_id_fields(
@@ -1543,6 +1556,9 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
     date = datetime.datetime.now().strftime("%d-%b-%y %H:%M:%S")
     top = frfs.bandwidth_hz
     bandwidth = "" if top == frequency[-1] else f"; bandwidth {top:.7g} Hz"
+    # ID line 2 is full: the force's band goes after the date (ID line 3)
+    force = frfs.force_band_hz
+    dated = date if force is None else f"{date}; force band {force:.7g} Hz"
     for i, node in enumerate(frfs.nodes):
         _finite(path, "the FRF", node, frfs.values[i])
         averages = "?" if frfs.n_averages is None else str(int(frfs.n_averages[i]))
@@ -1550,7 +1566,7 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
             f"racketdyn {__version__} FRF {frfs.frf_type}",
             f"estimator {estimator}; exponential window tau {tau} s; averages {averages}"
             + bandwidth,
-            date,
+            dated,
             f"hammer node {node} to reference node {frfs.reference_node}; {frfs.source}",
         ]
         ends = _Ends(frfs.reference_node, node)
@@ -1575,7 +1591,7 @@ def write_frf_uff(frfs: FrfSet, path: Path | str, binary: bool = False) -> Path:
                     _Axes("frequency", None),
                     frequency,
                     np.asarray(frfs.coherence[i], dtype=float),
-                    [f"racketdyn {__version__} coherence", ids[1], date, ids[3]],
+                    [f"racketdyn {__version__} coherence", ids[1], dated, ids[3]],
                     binary=binary,
                     number=len(sets),
                 )

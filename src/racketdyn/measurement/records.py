@@ -27,6 +27,7 @@ log = logging.getLogger(__name__)
 __all__ = [
     "ANALYSER_BANDWIDTH_FACTOR",
     "CONJUGATE_LEVEL",
+    "FORCE_DROP_DB",
     "FRF_TYPES",
     "FRF_TYPE_OF_RESPONSE",
     "FRF_UNITS",
@@ -44,6 +45,22 @@ __all__ = [
 ANALYSER_BANDWIDTH_FACTOR = 2.56
 """Sampling rate / usable bandwidth of an analyser's anti-alias filter (the FFT analysers'
 convention): lines above fs/2.56 are filter roll-off."""
+
+FORCE_DROP_DB = 40.0
+"""How far the hammer's force spectrum may fall below its low-frequency level within the
+default band, dB (:func:`racketdyn.measurement.frf.force_band_top`).
+
+Why 40 dB.  A hammer pulse of length T is flat to about 1/(4T) and then falls; the envelope
+of a half sine's side lobes falls as (2fT)⁻² (−40 dB a decade).  H1 divides the response's
+noise by the force, so the FRF's floor rises as the force falls: 20 dB down it is 10 ×
+higher, 40 dB down 100 ×.  The usual rule for choosing a tip, 10–20 dB, lies at fT ≈ 1.6
+for 20 dB, on the main lobe's first null (1.5/T): modes that laboratories read on the side
+lobes would be cut (a tool tip's 1961 and 2617 Hz modes, 30 and 37 dB down under its hammer's
+pulse, which the lab itself reads).  40 dB (fT ≈ 5, about three times the first null) keeps
+them and leaves a mode whose peak stood 60 dB over the response's noise at the plateau (a
+good hammer test's) 20 dB over it at the top; beyond, the peaks are the response's noise
+over almost no force (the same tool tip's 3.9–14.6 kHz "clear peaks", where the force's envelope is
+53–105 dB down)."""
 
 CONJUGATE_LEVEL = 0.05
 """The phase direction (:meth:`FrfSet.phase_direction`) above which a set is taken to be
@@ -411,6 +428,23 @@ class FrfSet(_PointsAndReference):
         last = float(self.frequency[-1])
         return top if 0 < top <= last else last
 
+    @property
+    def force_band_hz(self) -> float | None:
+        """Where the hammer's force spectrum has fallen too far to excite the structure, Hz.
+
+        Above it the hammer gave no force: the FRF there is the response's noise over almost
+        none (:func:`racketdyn.measurement.frf.force_band_top`, ``metadata["force_band_hz"]``).
+        Known for FRFs estimated from time records (and written with them by racketdyn); None
+        for another system's export, which carries no force, and never above
+        :attr:`bandwidth_hz`.
+        """
+        value = self.metadata.get("force_band_hz")
+        try:
+            top = float(value) if value is not None else math.nan
+        except (TypeError, ValueError):
+            return None
+        return min(top, self.bandwidth_hz) if top > 0 else None
+
     def driving_point_sign(self) -> int | None:
         """+1 or −1: the sign the driving-point FRF's modal constants read with; None without one.
 
@@ -448,9 +482,12 @@ class FrfSet(_PointsAndReference):
         its sign (a negated FRF turns the same way).  Only lines up to :attr:`bandwidth_hz`
         count: above it (racketdyn's own estimates to fs/2) the anti-alias filter has taken the
         force away and ``|H|`` is the response's noise over nothing, large enough to outweigh the
-        resonances.
+        resonances; nor above :attr:`force_band_hz`, where the hammer's own spectrum has (1 ms
+        hits at 51.2 kHz, their force 40 dB down at 4.4 kHz, read +0.08 over the 20 kHz
+        bandwidth and were conjugated; −0.06 up to 4.4 kHz).
         """
-        h = self.values[:, (self.frequency > 0) & (self.frequency <= self.bandwidth_hz)]
+        top = self.force_band_hz or self.bandwidth_hz
+        h = self.values[:, (self.frequency > 0) & (self.frequency <= top)]
         h = h[:, np.all(np.isfinite(h), axis=0)]
         turns = np.conj(h[:, :-1]) * h[:, 1:]
         weight = np.sum(np.abs(turns), axis=1)

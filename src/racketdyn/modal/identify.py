@@ -23,7 +23,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
-from racketdyn.measurement.records import ANALYSER_BANDWIDTH_FACTOR, FrfReferences, FrfSet
+from racketdyn.measurement.records import (
+    ANALYSER_BANDWIDTH_FACTOR,
+    FORCE_DROP_DB,
+    FrfReferences,
+    FrfSet,
+)
 from racketdyn.modal.mac import mac
 from racketdyn.modal.misfit import Misfit, misfit
 from racketdyn.modal.model import ModalModel
@@ -253,6 +258,12 @@ def _default_band(frfs: FrfSet) -> tuple[tuple[float, float], str]:
         if high < float(frfs.frequency[-1])
         else " (their last line)"
     )
+    force = frfs.force_band_hz
+    if force is not None and DEFAULT_LOW_HZ < force < high:
+        # above it the FRF is the response's noise over no force (issue 25: a 51.2 kHz hit's
+        # peaks at 3.9-14.6 kHz, its force 53-105 dB down, were offered as clear modes)
+        top = f"to {force:.6g} Hz: {no_force_words(force)} (the FRFs' bandwidth {high:.6g} Hz)"
+        high = force
     first, suspension = _first_flexible_peak(frfs, high)
     if first is None or first >= DEFAULT_LOW_HZ:
         # no frequency named: of accelerances, whose level rises with ω², a low mode is often
@@ -270,6 +281,11 @@ def _default_band(frfs: FrfSet) -> tuple[tuple[float, float], str]:
     if low > first / FIRST_MODE_OCTAVE:
         why += f"; the lowest line used, {SKIPPED_LINES} lines up"
     return (low, high), f"from {low:.3g} Hz ({why}) {top}"
+
+
+def no_force_words(force_band_hz: float) -> str:
+    """ "the hammer's force is 40 dB down above 2.9 kHz": the top of the band the force fills."""
+    return f"the hammer's force is {FORCE_DROP_DB:g} dB down above {force_band_hz / 1e3:.2g} kHz"
 
 
 def _first_flexible_peak(frfs: FrfSet, high: float) -> tuple[float | None, int]:
@@ -641,6 +657,40 @@ def _named_rows(selected: SelectedPoles, spacing_hz: float) -> SelectedPoles:
     return replace(selected, dropped_modes=tuple(rows))
 
 
+NO_FORCE = "no force"
+"""The stage of a clear peak above the hammer's force band (:attr:`FrfSet.force_band_hz`)."""
+
+
+def _above_force(frequency_hz: float, frfs: FrfSet) -> bool:
+    """Whether a frequency lies above the band the hammer's force fills."""
+    top = frfs.force_band_hz
+    return top is not None and frequency_hz > top
+
+
+def _beyond_force(rows: Sequence[DroppedMode], frfs: FrfSet) -> tuple[DroppedMode, ...]:
+    """Rows that offer a ``pin_hz`` or a ``band_hz`` for a peak above the hammer's force band
+    turned into rows of stage :data:`NO_FORCE` saying why it is no mode to keep.
+
+    Above :attr:`~racketdyn.measurement.records.FrfSet.force_band_hz` the FRF is the response's
+    noise over almost no force: its peaks stand high over the FRF's own noise (a 51.2 kHz
+    hit's 3.9-14.6 kHz peaks, 120-1100 × it) and are no evidence of a mode.
+    """
+    top = frfs.force_band_hz
+    if top is None:
+        return tuple(rows)
+    return tuple(
+        replace(
+            d,
+            stage=NO_FORCE,
+            reason=f"{no_force_words(top)}: the peak is the response's noise over almost no "
+            "force, no mode to keep; a harder hammer tip puts force there",
+        )
+        if d.frequency_hz > top and d.stage in ("edge", "unsettled")
+        else d
+        for d in rows
+    )
+
+
 def _clear_peaks(
     selected: SelectedPoles,
     stab: Stabilisation,
@@ -687,6 +737,7 @@ def _clear_peaks(
         if d.stage in ("selection", "unsettled")
         and "stable in" in d.reason
         and d.orders_stable > 3
+        and not _above_force(d.frequency_hz, frfs)
         and 0.0 < d.damping_ratio < 1.0
         and np.all(
             np.abs(centre - d.frequency_hz)
@@ -1886,6 +1937,7 @@ def _selected_poles(
     selected = _wandering_peaks(selected, stab, frfs, band, choices)
     selected, pairs = _close_pairs(selected, frfs, band, choices)
     selected = _missed_peaks(selected, frfs, band, choices)
+    selected = replace(selected, dropped_modes=_beyond_force(selected.dropped_modes, frfs))
     selected, refined = refine_narrow_poles(frfs, selected)
     for line in refined:
         log.info("refined %s", line)

@@ -269,7 +269,8 @@ class DroppedMode:
         mode of the same shape; the reason names it), ``line`` (an electrical line: a mains
         harmonic with ζ ≈ 0), ``unsettled`` (a clear peak stable in too few orders; the reason
         names the pin that keeps it), ``edge`` (a clear mode in the band's edge margin; the
-        reason names the option that keeps it) or ``constants`` (what
+        reason names the option that keeps it), ``no force`` (a clear peak above the band
+        the hammer's force fills: the response's noise over none) or ``constants`` (what
         the modal constants showed: no peak in the data, not normalisable at the driving
         point).
     reason : str
