@@ -133,3 +133,20 @@ def test_the_tool_tips_hit_offers_no_pin_where_the_hammer_gave_no_force(tmp_path
     assert all(d.frequency_hz < 3000.0 for d in found.dropped_modes)
     assert np.min(np.abs(found.model.frequency / 1074.0 - 1)) < 0.005
     assert np.min(np.abs(found.model.frequency / 2617.0 - 1)) < 0.005
+
+
+@pytest.mark.slow
+def test_identify_says_where_the_top_came_from(
+    short_hits: FrfSet, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from racketdyn.cli import main
+
+    path = write_frf_uff(short_hits, tmp_path / "frfs.uff")
+    assert main(["identify", str(path), "--out", str(tmp_path / "a")]) == 0
+    printed = " ".join(capsys.readouterr().out.split())
+    assert "the hammer's force is 40 dB down above 4.4 kHz" in printed
+    assert "--band up to the FRFs' bandwidth, 20000 Hz, looks above it anyway" in printed
+    given = ["--band", "40,20000", "--out", str(tmp_path / "b")]
+    assert main(["identify", str(path), *given]) == 0
+    printed = " ".join(capsys.readouterr().out.split())
+    assert "as given (--band) the hammer's force is 40 dB down above 4.4 kHz" in printed

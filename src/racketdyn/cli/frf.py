@@ -117,6 +117,15 @@ def run(args: argparse.Namespace, console: Console) -> int:
             f"--geometry {three_d} to identify for the (x, y, z) points",
             "yellow",
         )
+    force = estimate.frfs.force_band_hz
+    if force is not None and force < estimate.frfs.bandwidth_hz:
+        from racketdyn.modal.identify import no_force_words
+
+        opt.say(
+            console,
+            f"{no_force_words(force)} (its envelope, at the point whose force reaches "
+            f"highest): identify's default band ends at {force:.6g} Hz",
+        )
     hint = estimate.force_noise_hint()
     if hint:
         opt.say(console, opt.in_flags(hint, args.parser), "yellow")

@@ -253,9 +253,12 @@ def print_modes(
     console.print(table)
     note = identification.band_note
     band = f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
-    opt.say(console, f"band {band}: " + ("as given (--band)" if note == "given" else note))
+    given = note == "given"
+    opt.say(
+        console, f"band {band}: " + ("as given (--band)" if given else opt.in_flags(note, parser))
+    )
     force = identification.frfs.force_band_hz
-    if note == "given" and force is not None and identification.band_hz[1] > force:
+    if given and force is not None and identification.band_hz[1] > force:
         opt.say(
             console,
             f"{no_force_words(force)}: peaks above it are the response's noise over almost no "

@@ -262,7 +262,10 @@ def _default_band(frfs: FrfSet) -> tuple[tuple[float, float], str]:
     if force is not None and DEFAULT_LOW_HZ < force < high:
         # above it the FRF is the response's noise over no force (issue 25: a 51.2 kHz hit's
         # peaks at 3.9-14.6 kHz, its force 53-105 dB down, were offered as clear modes)
-        top = f"to {force:.6g} Hz: {no_force_words(force)} (the FRFs' bandwidth {high:.6g} Hz)"
+        top = (
+            f"to {force:.6g} Hz: {no_force_words(force)} (a harder tip puts force higher; "
+            f"`band_hz` up to the FRFs' bandwidth, {high:.6g} Hz, looks above it anyway)"
+        )
         high = force
     first, suspension = _first_flexible_peak(frfs, high)
     if first is None or first >= DEFAULT_LOW_HZ:

@@ -185,6 +185,7 @@ def run_frf(
         "rejected_points": list(estimate.rejected_points),
         "three_d_geometry": records.metadata.get("three_d_geometry"),
         "fewer_averages": records.metadata.get("fewer_averages"),
+        "force_band_hz": estimate.frfs.force_band_hz,
         "force_noise": {
             "share_of_band_median": _median(estimate.force_noise_share),
             "share_with_force_window_median": _median(estimate.force_noise_share_windowed),
