@@ -51,7 +51,6 @@ from racketdyn.measurement.records import (
 )
 
 __all__ = [
-    "FORCE_DROP_DB",
     "FORCE_NOISE_RATIO",
     "FORCE_NOISE_SHARE",
     "SUGGESTED_FORCE_WINDOW_S",
@@ -72,9 +71,9 @@ SUGGESTED_FORCE_WINDOW_S = 0.01
 
 FORCE_SMOOTHING_OCTAVE = 1.0 / 3.0
 """The force's autospectrum is averaged over this fraction of an octave about each line before
-it is held to :data:`FORCE_DROP_DB`: the envelope of the pulse's side lobes (a third of an
-octave spans about one lobe where a half sine is 40 dB down), not its nulls, and no single
-line of a noisy spectrum decides."""
+it is held to :data:`~racketdyn.measurement.records.FORCE_DROP_DB`: the envelope of the
+pulse's side lobes (a third of an octave spans about one lobe where a half sine is 40 dB
+down), not its nulls, and no single line of a noisy spectrum decides."""
 
 _WINDOW_LIMIT = 10.0
 """A force or exponential window longer than this many records does nothing: a unit slip
@@ -181,9 +180,9 @@ def force_band_top(
     The force's autospectrum, averaged over :data:`FORCE_SMOOTHING_OCTAVE` of an octave about
     each line (its envelope), is held to its largest value (the pulse's low-frequency
     plateau): the top is the last line at or below ``bandwidth_hz`` where it is within
-    :data:`FORCE_DROP_DB` of it; above, it stays more than that below.  A force whose
-    envelope never falls that far (a short hit, or the force's own noise within 40 dB of the
-    plateau) gives ``bandwidth_hz``.
+    :data:`~racketdyn.measurement.records.FORCE_DROP_DB` of it; above, it stays more than
+    that below.  A force whose envelope never falls that far (a short hit, or the force's own
+    noise within 40 dB of the plateau) gives ``bandwidth_hz``.
 
     Parameters
     ----------

@@ -81,12 +81,14 @@ __all__ = [
     "LINE_DAMPING",
     "LINE_TOLERANCE_HZ",
     "MAINS_HZ",
+    "NO_FORCE",
     "ONE_PEAK_LINES",
     "SELECTION",
     "STRONG_NEGATIVE",
     "Identification",
     "default_band",
     "identify",
+    "no_force_words",
 ]
 
 log = logging.getLogger(__name__)
@@ -235,7 +237,11 @@ def default_band(frfs: FrfSet) -> tuple[float, float]:
     The top is :attr:`~racketdyn.measurement.records.FrfSet.bandwidth_hz`: the last
     spectral line of FRFs another system exported (they end at its analyser bandwidth, e.g.
     1000 Hz from fs = 2560 Hz), fs / 2.56 of FRFs racketdyn estimated from time records (whose
-    lines above it are the anti-alias filter's roll-off; :data:`ANALYSER_BANDWIDTH_FACTOR`).
+    lines above it are the anti-alias filter's roll-off; :data:`ANALYSER_BANDWIDTH_FACTOR`) —
+    or, lower, :attr:`~racketdyn.measurement.records.FrfSet.force_band_hz` of FRFs estimated
+    from time records: where the hammer's force envelope is
+    :data:`~racketdyn.measurement.records.FORCE_DROP_DB` below its plateau, above which the
+    FRF is the response's noise over almost no force.
 
     Parameters
     ----------
