@@ -226,14 +226,21 @@ def _pff_frfs(tmp_path: Path) -> FrfSet:
 
 
 def _kept_or_named(found, frfs: FrfSet, low: float, high: float) -> list[float]:
-    """The modes in low-high Hz, or those of the band the edge row names (and what it says)."""
+    """The modes in low-high Hz, or those of the band (an edge row) or the pin (an unsettled
+    row) the row names, with what it says."""
     if _near(found.model.frequency, low, high):
         return _near(found.model.frequency, low, high)
     named = [d for d in found.dropped_modes if d.stage != "selection"]  # the noise's unnamed
     (row,) = [d for d in named if low < d.frequency_hz < high]
-    assert row.stage == "edge"
-    band = row.reason.split("`band_hz` ")[1].split()[0].rstrip(";,.)")
-    again = identify(frfs, tuple(float(v) for v in band.split(",")))  # type: ignore[arg-type]
+    assert row.stage in ("edge", "unsettled")
+    option = "`band_hz` " if "`band_hz` " in row.reason else "`pin_hz` "
+    given = row.reason.split(option)[1].split()[0].rstrip(";,.)")
+    values = tuple(float(v) for v in given.split(","))
+    again = (
+        identify(frfs, values)  # type: ignore[arg-type]
+        if option == "`band_hz` "
+        else identify(frfs, pin_hz=values)
+    )
     return _near(again.model.frequency, low, high)
 
 
@@ -244,9 +251,14 @@ def test_pff_the_first_mode_of_a_wide_band_is_kept_or_named(tmp_path: Path) -> N
     # margin, 2 % of the band's width (399 Hz), took it, and over so wide a band it never
     # stabilised (no row at all).  sdypy-EMA 0.31's LSCF on the same FRF: 150.31 Hz,
     # ζ 0.34 %, in 49 of 60 orders over 40-5000 Hz (150.37 Hz, 14 orders, over 40-20,000).
+    # Over the default band 40-10,864 Hz (the hammer's force 40 dB down above it) the mode is
+    # a clear peak stable in 9 orders, named with `pin_hz` 150.1, which keeps it at the data's
+    # peak, 150.98 Hz (its local fit): within the 0.5 % of a named row
+    # (test_realdata_must_hold.NAMED_RTOL), not the 0.3 Hz of the band that kept it before
+    # (`band_hz` 40,1150 over 40-20,000 Hz: 150.29 Hz)
     frfs = _pff_frfs(tmp_path)
     found = identify(frfs)
-    assert _kept_or_named(found, frfs, 145.0, 155.0) == [pytest.approx(150.31, abs=0.3)]
+    assert _kept_or_named(found, frfs, 145.0, 155.0) == [pytest.approx(150.31, rel=5e-3)]
 
 
 @pytest.mark.slow
