@@ -199,6 +199,11 @@ BROAD_SCREEN = 2.0
 """... when the local model with the started pair fits at least this many times better than
 with the mode alone (no fit yet, a cost screen: the held racket's 4-node bending 6.9 with
 rig noise, 2.6 at 40/50 dB; other modes there 1.2-3.6 and 1.2-1.8)."""
+PAIR_STEPS_PER_POLE = 50
+"""A close pair's (or three modes') local fit stops after this many steps of the nonlinear fit
+a pole, and is not taken: every pair the rig's rackets keep converges within 39 steps (two
+poles), three modes within 79; the wing's export had two fits wander 258 and 345 steps
+(seconds each) to be refused after."""
 BROAD_STEPS = 40
 """... in at most this many steps of the nonlinear fit (the held racket's pair: 5–15; a fit
 wandering over a window with no broader mode took hundreds, seconds each)."""
@@ -1436,7 +1441,8 @@ def _pair_fit(
         half = wanted
         window = (mode[0] - half, mode[0] + half)
         weights = _noise_weights(frfs, window)
-        found = fit_poles(frfs, frequency, zeta, window, weights, BROAD_STEPS if hidden else None)
+        steps = BROAD_STEPS if hidden else PAIR_STEPS_PER_POLE * frequency.size
+        found = fit_poles(frfs, frequency, zeta, window, weights, steps)
         if found is None:
             return None
         frequency, zeta, constants, _ = found
