@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import csv
 import logging
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -404,10 +405,10 @@ def _edge_modes(
             mode = replace(mode, frequency_hz=there[0], damping_ratio=there[1])
             keep = f"{option} keeps it"
         elif fits:
-            keep = f"`pin_hz` {f:.1f} keeps it ({option} does not: the fit there finds no mode)"
+            keep = f"{_pin(f, spacing)} keeps it ({option} does not: the fit there finds no mode)"
         else:
             keep = (
-                f"{end}: `pin_hz` {f:.1f} keeps it (fitted with part of its peak beyond the data)"
+                f"{end}: {_pin(f, spacing)} keeps it (fitted with part of its peak beyond the data)"
             )
         rows.append(
             replace(
@@ -560,7 +561,7 @@ def _mode_in(
     """The mode a narrower band gives within ``within`` Hz of ``near`` (frequency, ζ), if any."""
     try:
         stab = choices.stabilisation(frfs, band)
-        found = select_poles(stab, rules=choices.rules)
+        found = select_poles(stab, rules=choices.rules, log=False)
     except InputError:
         return None
     close = np.flatnonzero(np.abs(found.frequency - near) <= within)
@@ -648,7 +649,7 @@ def _named_rows(selected: SelectedPoles, frfs: FrfSet) -> SelectedPoles:
                     reason=(
                         f"a clear peak ({d.peak_to_noise:.2g} × the noise, the kept modes' "
                         f"median {reference:.2g}) whose poles move from order to order: "
-                        f"{d.reason}; `pin_hz` {d.frequency_hz:.1f} keeps it"
+                        f"{d.reason}; {_pin(d.frequency_hz, spacing_hz)} keeps it"
                     ),
                 )
             )
@@ -747,8 +748,8 @@ def _clear_peaks(
                     fit_gain=gain,
                     reason=(
                         f"a peak of the data (the fit near it {gain:.2g} × better with it) "
-                        f"whose poles move from order to order: {d.reason}; `pin_hz` "
-                        f"{d.frequency_hz:.1f} keeps it"
+                        f"whose poles move from order to order: {d.reason}; "
+                        f"{_pin(d.frequency_hz, spacing)} keeps it"
                     ),
                 )
             )
@@ -757,11 +758,12 @@ def _clear_peaks(
     if not keep:
         return replace(selected, dropped_modes=relabelled(selected.dropped_modes)), []
     pins = [d.frequency_hz for d, _ in keep]
-    again = select_poles(
+    again = select_poles(  # the user's pins said once, the kept candidates by `lines`
         stab,
         pin_hz=[*choices.pin_hz, *pins],
         exclude_hz=choices.exclude_hz,
         rules=choices.rules,
+        log=False,
     )
     user = np.zeros(again.n_modes, dtype=bool)
     for f in choices.pin_hz:  # the user's own pins stay pinned, the kept candidates do not
@@ -871,7 +873,7 @@ def _peak_rows(
                 mode.damping_ratio,
                 mode.settled_orders,
                 "unsettled",
-                f"{words}: {mode.damping_words(n_orders)}; `pin_hz` {mode.frequency_hz:.5g} "
+                f"{words}: {mode.damping_words(n_orders)}; {_pin(mode.frequency_hz, spacing)} "
                 "keeps it",
                 peak_to_noise=mode.peak_to_noise,
             )
@@ -937,7 +939,9 @@ def _peak_pins(
         return choices, []
     tolerance = choices.rules.pin_tolerance
     try:
-        automatic = select_poles(stab, (), choices.exclude_hz, rules=choices.rules).frequency
+        automatic = select_poles(
+            stab, (), choices.exclude_hz, rules=choices.rules, log=False
+        ).frequency
     except InputError:
         automatic = np.zeros(0)
     peaks = [p for p, _ in clear_peaks(frfs, stab.band_hz, EDGE_PEAK)]
@@ -964,7 +968,7 @@ def _cluster_at(stab: Stabilisation, pin: float, mode: PeakMode, choices: _Choic
     mode's half half-power width and half a line of it (a cluster below ``min_fraction`` at
     the peak keeps its own pole, as pins always did)."""
     try:
-        found = select_poles(stab, [pin], choices.exclude_hz, rules=choices.rules)
+        found = select_poles(stab, [pin], choices.exclude_hz, rules=choices.rules, log=False)
     except InputError:
         return False
     k = int(np.argmin(np.abs(np.where(found.pinned, found.frequency, np.inf) - pin)))
@@ -979,7 +983,9 @@ def _with_peak_modes(
     frfs: FrfSet,
 ) -> tuple[SelectedPoles, list[str]]:
     """The selection with the pins kept at the data's peaks (:func:`_peak_pins`) added,
-    pinned, their rows (``edge``, ``unsettled``) gone, and one line each saying how."""
+    pinned and :attr:`~racketdyn.modal.poles.SelectedPoles.at_peak` (no orders count is
+    reported for them), their rows (``edge``, ``unsettled``) gone, and one line each saying
+    how."""
     if not taken:
         return selected, []
     spacing = _spacing(frfs)
@@ -1014,6 +1020,8 @@ def _with_peak_modes(
         ),
         pinned=np.concatenate([selected.pinned, np.ones(len(modes), dtype=bool)]),
         dropped_modes=rows,
+        pair_fitted=np.concatenate([selected.flags("pair_fitted"), np.zeros(len(modes), bool)]),
+        at_peak=np.concatenate([selected.flags("at_peak"), np.ones(len(modes), bool)]),
     )
     lines = [
         f"{m.frequency_hz:.4f} Hz: pinned at {f:g} Hz, kept at the data's peak, where "
@@ -1308,8 +1316,8 @@ def _third_mode(
         reason=(
             f"a third mode under the peak of {frequency[0]:.2f} and {frequency[1]:.2f} Hz "
             f"(the fit near it {gain:.2g} × better with it) that three poles fitted on their "
-            f"own lines do not part: {d.reason}; `pin_hz` {d.frequency_hz:.1f} keeps the wide "
-            f"band's pole there, its neighbours as that fit has them"
+            f"own lines do not part: {d.reason}; {_pin(d.frequency_hz, _spacing(frfs))} keeps "
+            f"the wide band's pole there, its neighbours as that fit has them"
         ),
     )
 
@@ -1436,7 +1444,11 @@ def _weak_of_pair(
         try:
             stab = choices.stabilisation(frfs, (band[0], top))
             there, _ = _close_pairs(
-                select_poles(stab, rules=choices.rules), frfs, (band[0], top), choices, False
+                select_poles(stab, rules=choices.rules, log=False),
+                frfs,
+                (band[0], top),
+                choices,
+                False,
             )
         except InputError:
             there = None
@@ -1564,9 +1576,7 @@ def _with_pair(
         return np.concatenate([values[rest], [values[k], *others]])
 
     nan = [np.nan] * len(peaks)
-    fitted = (
-        np.zeros(selected.n_modes, bool) if selected.pair_fitted is None else selected.pair_fitted
-    )
+    fitted, at_peak = selected.flags("pair_fitted"), selected.flags("at_peak")
     merged = replace(
         selected,
         frequency=np.concatenate([selected.frequency[rest], frequency]),
@@ -1579,8 +1589,19 @@ def _with_pair(
         residues=np.concatenate([selected.residues[:, rest], constants], axis=1),
         pinned=np.concatenate([selected.pinned[rest], [selected.pinned[k]], [False] * len(peaks)]),
         pair_fitted=np.concatenate([fitted[rest], [False], [True] * len(peaks)]),
+        at_peak=np.concatenate([at_peak[rest], [at_peak[k]], [False] * len(peaks)]),
     )
     return merged.select(np.argsort(merged.frequency, kind="stable"))
+
+
+def _pin(frequency_hz: float, spacing_hz: float) -> str:
+    """The words of a hint's pin, `` `pin_hz` F ``: ``F`` to the decimals that put it within a
+    tenth of a line of ``frequency_hz`` (half a unit of its last digit, at most
+    ``spacing_hz / 10``), so that it is the nearest candidate's wherever the next lies two
+    tenths of a line away or more (one decimal put a pin a fifth of a 0.125 Hz line off its
+    candidate, several lines off at finer lines)."""
+    decimals = max(0, math.ceil(math.log10(5.0 / spacing_hz)))
+    return f"`pin_hz` {frequency_hz:.{decimals}f}"
 
 
 def _spacing(frfs: FrfSet) -> float:
@@ -1691,7 +1712,8 @@ class Identification:
 
     def write_modes_csv(self, path: Path) -> None:
         """``mode, frequency_hz, damping_ratio, name`` (+ kind, orders stable, fit spread); the
-        orders stable empty for a close pair's second mode (fitted on the FRFs' own lines)."""
+        orders stable empty for a close pair's second mode (fitted on the FRFs' own lines) and
+        a mode pinned at the data's peak (:meth:`SelectedPoles.orders_stable`)."""
         with Path(path).open("w", newline="", encoding="utf-8") as handle:
             writer = csv.writer(handle)
             writer.writerow(
