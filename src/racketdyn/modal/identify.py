@@ -597,7 +597,7 @@ def _named_rows(selected: SelectedPoles, frfs: FrfSet) -> SelectedPoles:
       apart): a clear peak whose poles move from order to order (pyFRF's 4128 Hz, 10⁵ × the
       noise, stable in 6 of 60 orders); its row names the ``pin_hz`` that keeps it.  With
       no peak of the data there it stays out, its reason saying so (:data:`NO_PEAK`), and
-      :func:`_wandering_peaks` looks at the clear peaks either side.
+      :func:`_peaks_either_side` names the clear peaks beside it.
     """
     spacing_hz = _spacing(frfs)
     reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
