@@ -117,6 +117,14 @@ def test_the_string_bed_loses_less_than_the_ball_and_more_than_strings_alone() -
     assert Ball().rigid_cor < string_bed_cor() < 0.97
 
 
+def test_the_string_bed_cor_bounces_crosss_drop_as_measured(racket) -> None:  # type: ignore[no-untyped-def]
+    """e_S is defined by Cross's drop: with it the ball on the clamped bed returns e_BG = 0.84
+    at 1 m (:func:`ball_string_cor`'s energy balance, solved for e_S in closed form), to
+    rounding."""
+    e_bg = ball_string_cor(racket, Ball(), CROSS_DROP_SPEED_MPS, string_bed_cor())
+    assert float(e_bg) == pytest.approx(CROSS_DROP_E_BG, abs=1e-12)
+
+
 def test_e_bg_follows_kawazoe_and_haake(racket) -> None:  # type: ignore[no-untyped-def]
     """e_BG from ball + strings over 10–40 m/s: within Kawazoe's measured 0.8–0.9 ("almost
     independent of speed and tension"), falling slowly with speed (Haake, Carré and Goodwill

@@ -411,7 +411,7 @@ def clamped_bounce(racket: Racket, ball: Ball, speed: ArrayLike) -> dict[str, ND
 @lru_cache(maxsize=1)
 def string_bed_cor() -> float:
     """The string bed's own energy return under a ball, as a COR e_S (its share e_S² of what
-    it stores comes back), ≈ 0.875.
+    it stores comes back), ≈ 0.865.
 
     Solved so that the built-in ball (its own COR 0.745 on a rigid surface, ITF) on the paper's
     racket bounces from Cross's 1 m drop with e_BG = 0.84 (:data:`CROSS_DROP_SPEED_MPS`,
@@ -420,16 +420,17 @@ def string_bed_cor() -> float:
     tension.  Strings struck by a rigid impactor return ≈ 0.97 (docs/references.md,
     "Strings"); under a ball they also rub on one another and on the ball's cloth.
     """
-    from scipy.optimize import brentq
-
     from racketdyn.io.racket_file import default_racket
 
-    racket, ball = default_racket(), Ball()
-
-    def miss(cor: float) -> float:
-        return float(ball_string_cor(racket, ball, CROSS_DROP_SPEED_MPS, cor)) - CROSS_DROP_E_BG
-
-    return float(brentq(miss, ball.rigid_cor, 1.0, xtol=1e-12))
+    # The energies at the turn do not depend on e_S, so the defining equation of
+    # :func:`ball_string_cor`, e_BG² (E_B + E_G) = e_B² E_B + e_S² E_G, gives e_S directly.
+    ball = Ball()
+    bounce = clamped_bounce(default_racket(), ball, CROSS_DROP_SPEED_MPS)
+    e_b, e_g = float(bounce["ball_energy"]), float(bounce["bed_energy"])
+    squared = (CROSS_DROP_E_BG**2 * (e_b + e_g) - ball.rigid_cor**2 * e_b) / e_g
+    if not (e_g > 0.0 and ball.rigid_cor**2 <= squared <= 1.0):
+        raise ValueError(f"no string-bed COR in [e_B, 1] bounces Cross's drop (e_S² {squared})")
+    return math.sqrt(squared)
 
 
 def ball_string_cor(

@@ -242,13 +242,14 @@ def print_modes(
     for column in ("mode", "frequency (Hz)", "damping (%)", "name", "orders stable"):
         table.add_column(column)
     orders = identification.selected.orders_stable()
+    at_peak = identification.selected.flags("at_peak")
     for k in range(model.n_modes):
         table.add_row(
             str(k + 1),
             f"{model.frequency[k]:.2f}",
             f"{100 * model.damping_ratio[k]:.3f}",
             opt.plain(model.names[k]),
-            "pair fit" if orders[k] is None else str(orders[k]),
+            "pinned at peak" if at_peak[k] else "pair fit" if orders[k] is None else str(orders[k]),
         )
     console.print(table)
     note = identification.band_note

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import csv
 import logging
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -173,6 +174,11 @@ ONE_PEAK_LINES = 3
 edge fragment's is often a third of the mode's): the edge scan's and the clear peaks' rule,
 beside the half-power widths."""
 
+NO_PEAK = "no peak of the data there"
+"""Said of a candidate stable in too few orders, as clear as the kept modes by its modal peak,
+where the data have no peak (:func:`_data_peak`): a pole a wide band's fit puts between two
+modes for both (:func:`_named_rows`)."""
+
 CLEAR_PEAK_GAIN = 3.0
 """A candidate stable in too few orders (but more than three) and one peak with no kept mode
 is kept when the fit near it, with the kept modes, is at least this many times worse without
@@ -206,6 +212,11 @@ BROAD_SCREEN = 2.0
 """... when the local model with the started pair fits at least this many times better than
 with the mode alone (no fit yet, a cost screen: the held racket's 4-node bending 6.9 with
 rig noise, 2.6 at 40/50 dB; other modes there 1.2-3.6 and 1.2-1.8)."""
+PAIR_STEPS_PER_POLE = 50
+"""A close pair's (or three modes') local fit stops after this many steps of the nonlinear fit
+a pole, and is not taken: every pair the rig's rackets keep converges within 39 steps (two
+poles), three modes within 79; the wing's export had two fits wander 258 and 345 steps
+(seconds each) to be refused after."""
 BROAD_STEPS = 40
 """... in at most this many steps of the nonlinear fit (the held racket's pair: 5–15; a fit
 wandering over a window with no broader mode took hundreds, seconds each)."""
@@ -330,18 +341,22 @@ def _checked_band(frfs: FrfSet, band: tuple[float, float]) -> tuple[float, float
     return (low, high)
 
 
-def _data_peak(frfs: FrfSet, frequency: float, damping_ratio: float) -> bool:
+def _data_peak(frfs: FrfSet, frequency: float, damping_ratio: float, edge: bool = True) -> bool:
     """Whether the summed ``|H|`` (every line, the band's and beyond) peaks at ``frequency``.
 
-    A local maximum within the mode's half half-power width ``ζf`` (at least
-    :data:`ONE_PEAK_LINES` line spacings: an edge fragment's fitted damping may be a third of
-    its mode's).  The pole the LSCF puts in the edge margin for the flank of a mode beyond the
-    band has none: the data rise or fall straight through it (the trial racket's 846 Hz, on the
-    rise to its 917.6 Hz mode; its 1929 Hz, on its 1855.9 Hz mode's fall), however stable the
-    pole and large its fitted peak.
+    A local maximum within the mode's half half-power width ``ζf``: for a pole in the edge
+    margin (``edge``) at least :data:`ONE_PEAK_LINES` line spacings (an edge fragment's fitted
+    damping may be a third of its mode's), else ``ζf`` and half a line (the lines put a peak
+    within half a line of its mode).  The pole the LSCF puts in the edge margin for the flank
+    of a mode beyond the band has none: the data rise or fall straight through it (the trial
+    racket's 846 Hz, on the rise to its 917.6 Hz mode; its 1929 Hz, on its 1855.9 Hz mode's
+    fall), however stable the pole and large its fitted peak; nor has the pole a wide band's
+    fit puts between two modes for both (tests/test_edge_hints.py: 20.82 Hz between modes at
+    19.77 and 21.16 Hz of one sign, an anti-resonance between them).
     """
     found, _ = find_peaks(np.abs(frfs.values).sum(axis=0))
-    reach = max(max(damping_ratio, 0.0) * frequency, ONE_PEAK_LINES * _spacing(frfs))
+    own, spacing = max(damping_ratio, 0.0) * frequency, _spacing(frfs)
+    reach = max(own, ONE_PEAK_LINES * spacing) if edge else own + spacing / 2
     return bool(np.any(np.abs(frfs.frequency[found] - frequency) <= reach))
 
 
@@ -420,10 +435,10 @@ def _edge_modes(
             mode = replace(mode, frequency_hz=there[0], damping_ratio=there[1])
             keep = f"{option} keeps it"
         elif fits:
-            keep = f"`pin_hz` {f:.1f} keeps it ({option} does not: the fit there finds no mode)"
+            keep = f"{_pin(f, spacing)} keeps it ({option} does not: the fit there finds no mode)"
         else:
             keep = (
-                f"{end}: `pin_hz` {f:.1f} keeps it (fitted with part of its peak beyond the data)"
+                f"{end}: {_pin(f, spacing)} keeps it (fitted with part of its peak beyond the data)"
             )
         rows.append(
             replace(
@@ -576,7 +591,7 @@ def _mode_in(
     """The mode a narrower band gives within ``within`` Hz of ``near`` (frequency, ζ), if any."""
     try:
         stab = choices.stabilisation(frfs, band)
-        found = select_poles(stab, rules=choices.rules)
+        found = select_poles(stab, rules=choices.rules, log=False)
     except InputError:
         return None
     close = np.flatnonzero(np.abs(found.frequency - near) <= within)
@@ -596,7 +611,7 @@ def _harmonics(frequency: float) -> list[str]:
     return found
 
 
-def _named_rows(selected: SelectedPoles, spacing_hz: float) -> SelectedPoles:
+def _named_rows(selected: SelectedPoles, frfs: FrfSet) -> SelectedPoles:
     """Dropped candidates that are not noise, named: electrical lines and unsettled clear peaks.
 
     A candidate left out by the stabilisation rules (stage ``selection``) is
@@ -606,11 +621,15 @@ def _named_rows(selected: SelectedPoles, spacing_hz: float) -> SelectedPoles:
       it stays out, its row says what it likely is (from FRFs alone the pole of a hammer
       pulse's spectral zero on a harmonic looks the same: a 1 ms half-sine's at 1500 Hz);
     - ``unsettled`` when it was stable in too few orders (but more than three) while its peak
-      is at least the median kept mode's and does not overlap a kept mode's or a named row's
-      (their half-power widths and :data:`ONE_PEAK_LINES` lines of ``spacing_hz`` apart): a
-      clear peak whose poles move from order to order (pyFRF's 4128 Hz, 10⁵ × the noise,
-      stable in 6 of 60 orders); its row names the ``pin_hz`` that keeps it.
+      is at least the median kept mode's, the data peak there (:func:`_data_peak`: its modal
+      peak is the fit's, not the data's) and it does not overlap a kept mode's or a named
+      row's (their half-power widths and :data:`ONE_PEAK_LINES` lines of the FRFs' spacing
+      apart): a clear peak whose poles move from order to order (pyFRF's 4128 Hz, 10⁵ × the
+      noise, stable in 6 of 60 orders); its row names the ``pin_hz`` that keeps it.  With
+      no peak of the data there it stays out, its reason saying so (:data:`NO_PEAK`), and
+      :func:`_peaks_either_side` names the clear peaks beside it.
     """
+    spacing_hz = _spacing(frfs)
     reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
     named = [d for d in selected.dropped_modes if d.stage != "selection"]
     centre = np.concatenate([selected.frequency, [d.frequency_hz for d in named]])
@@ -650,6 +669,9 @@ def _named_rows(selected: SelectedPoles, spacing_hz: float) -> SelectedPoles:
             and d.peak_to_noise >= reference
             and not np.any(np.abs(centre - d.frequency_hz) < np.maximum(width + own(d), one_peak))
         ):
+            if not _data_peak(frfs, d.frequency_hz, d.damping_ratio, edge=False):
+                rows.append(replace(d, reason=f"{d.reason}; {NO_PEAK}"))
+                continue
             rows.append(
                 replace(
                     d,
@@ -657,7 +679,7 @@ def _named_rows(selected: SelectedPoles, spacing_hz: float) -> SelectedPoles:
                     reason=(
                         f"a clear peak ({d.peak_to_noise:.2g} × the noise, the kept modes' "
                         f"median {reference:.2g}) whose poles move from order to order: "
-                        f"{d.reason}; `pin_hz` {d.frequency_hz:.1f} keeps it"
+                        f"{d.reason}; {_pin(d.frequency_hz, spacing_hz)} keeps it"
                     ),
                 )
             )
@@ -771,7 +793,11 @@ def _clear_peaks(
     for d, gain in zip(chosen, gains, strict=True):
         if gain >= CLEAR_PEAK_GAIN:
             keep.append((d, float(gain)))
-        elif gain >= FIT_GAIN_MIN and d.stage == "selection":
+        elif (
+            gain >= FIT_GAIN_MIN
+            and d.stage == "selection"
+            and _data_peak(frfs, d.frequency_hz, d.damping_ratio, edge=False)
+        ):
             named[round(d.frequency_hz, 6)] = float(gain)
 
     def relabelled(rows: tuple[DroppedMode, ...]) -> tuple[DroppedMode, ...]:
@@ -787,8 +813,8 @@ def _clear_peaks(
                     fit_gain=gain,
                     reason=(
                         f"a peak of the data (the fit near it {gain:.2g} × better with it) "
-                        f"whose poles move from order to order: {d.reason}; `pin_hz` "
-                        f"{d.frequency_hz:.1f} keeps it"
+                        f"whose poles move from order to order: {d.reason}; "
+                        f"{_pin(d.frequency_hz, spacing)} keeps it"
                     ),
                 )
             )
@@ -797,17 +823,18 @@ def _clear_peaks(
     if not keep:
         return replace(selected, dropped_modes=relabelled(selected.dropped_modes)), []
     pins = [d.frequency_hz for d, _ in keep]
-    again = select_poles(
+    again = select_poles(  # the user's pins said once, the kept candidates by `lines`
         stab,
         pin_hz=[*choices.pin_hz, *pins],
         exclude_hz=choices.exclude_hz,
         rules=choices.rules,
+        log=False,
     )
     user = np.zeros(again.n_modes, dtype=bool)
     for f in choices.pin_hz:  # the user's own pins stay pinned, the kept candidates do not
         user[int(np.argmin(np.abs(again.frequency - f)))] = True
     again = _named_rows(
-        _edge_modes(replace(again, pinned=again.pinned & user), frfs, band, choices), spacing
+        _edge_modes(replace(again, pinned=again.pinned & user), frfs, band, choices), frfs
     )
     again = replace(again, dropped_modes=relabelled(again.dropped_modes))
     lines = [
@@ -847,22 +874,9 @@ def _wandering_peaks(
     band's bottom, 2505 × the noise, was dropped with no line).
     """
     low, high = band
-    spacing = _spacing(frfs)
     scan = EDGE_SCAN * (high - low)
-    reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
-    named = [  # a row already named, or a mode the caller excluded
-        d
-        for d in selected.dropped_modes
-        if d.stage != "selection" or d.reason.startswith("excluded")
-    ]
-    explained = [
-        (float(f), 2 * max(float(z), 0.0) * float(f))
-        for f, z in zip(selected.frequency, selected.damping_ratio, strict=True)
-    ] + [(d.frequency_hz, 2 * max(d.damping_ratio, 0.0) * d.frequency_hz) for d in named]
-    noise = stab.noise_rms if stab.noise_rms.size == frfs.n_points else np.min(stab.noise_rms)
     n_orders = int(stab.orders.size)
-    rows: list[DroppedMode] = []
-    for peak, words, orders in [
+    peaks = [
         (
             p,
             f"a clear peak of the data ({20 * np.log10(rise):.0f} dB above its surroundings) "
@@ -879,7 +893,36 @@ def _wandering_peaks(
             0.0,
         )
         for p, other, valley in peaks_beside(frfs, band, EDGE_PEAK)
-    ]:
+    ]
+    return _peak_rows(selected, stab, frfs, choices, peaks)
+
+
+def _peak_rows(
+    selected: SelectedPoles,
+    stab: Stabilisation,
+    frfs: FrfSet,
+    choices: _Choices,
+    peaks: list[tuple[float, str, float]],
+) -> SelectedPoles:
+    """The selection with an ``unsettled`` row for each of the data's ``peaks`` (frequency Hz,
+    words, the orders its mode must stand in) that no kept mode or named row explains, whose
+    data and mode (:func:`racketdyn.modal.peaks.mode_at_peak`) stand :data:`WANDERING_PEAK` of
+    the kept modes' median over the noise: :func:`_wandering_peaks`' rule."""
+    spacing = _spacing(frfs)
+    reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
+    named = [  # a row already named, or a mode the caller excluded
+        d
+        for d in selected.dropped_modes
+        if d.stage != "selection" or d.reason.startswith("excluded")
+    ]
+    explained = [
+        (float(f), 2 * max(float(z), 0.0) * float(f))
+        for f, z in zip(selected.frequency, selected.damping_ratio, strict=True)
+    ] + [(d.frequency_hz, 2 * max(d.damping_ratio, 0.0) * d.frequency_hz) for d in named]
+    noise = stab.noise_rms if stab.noise_rms.size == frfs.n_points else np.min(stab.noise_rms)
+    n_orders = int(stab.orders.size)
+    rows: list[DroppedMode] = []
+    for peak, words, orders in peaks:
         if any(abs(peak - f) <= max(w, ONE_PEAK_LINES * spacing) for f, w in explained):
             continue
         line = int(np.argmin(np.abs(frfs.frequency - peak)))
@@ -895,7 +938,7 @@ def _wandering_peaks(
                 mode.damping_ratio,
                 mode.settled_orders,
                 "unsettled",
-                f"{words}: {mode.damping_words(n_orders)}; `pin_hz` {mode.frequency_hz:.5g} "
+                f"{words}: {mode.damping_words(n_orders)}; {_pin(mode.frequency_hz, spacing)} "
                 "keeps it",
                 peak_to_noise=mode.peak_to_noise,
             )
@@ -904,6 +947,41 @@ def _wandering_peaks(
     if not rows:
         return selected
     return replace(selected, dropped_modes=(*selected.dropped_modes, *rows))
+
+
+def _peaks_either_side(
+    selected: SelectedPoles,
+    stab: Stabilisation,
+    frfs: FrfSet,
+    band: tuple[float, float],
+    choices: _Choices,
+) -> SelectedPoles:
+    """The clear peaks (:data:`EDGE_PEAK`) nearest below and above each candidate left out
+    with no peak of the data at it (:data:`NO_PEAK`) that nothing explains yet: named as
+    :func:`_wandering_peaks` names a peak, with its poles in any number of orders.
+
+    A wide band's fit stood for two modes of one sign with one pole between them (20.82 Hz,
+    ζ 0.5 %, 9 orders, between 19.77 and 21.16 Hz: an anti-resonance parts them), which was
+    named ``unsettled`` where the data have no peak; the peaks beside it are the modes the fit
+    missed.  Run after :func:`_missed_peaks`, whose narrower band's fit gives a peak near the
+    band's edge a better mode than the poles of the wide band.
+    """
+    between = [
+        d.frequency_hz
+        for d in selected.dropped_modes
+        if d.stage == "selection" and d.reason.endswith(NO_PEAK)
+    ]
+    found = clear_peaks(frfs, band, EDGE_PEAK)
+    peaks: dict[float, tuple[float, str, float]] = {}
+    for f in between:
+        for p, rise in [*[q for q in found if q[0] < f][-1:], *[q for q in found if q[0] > f][:1]]:
+            words = (
+                f"a clear peak of the data ({20 * np.log10(rise):.0f} dB above its "
+                f"surroundings) beside a pole the fit put between peaks ({f:.5g} Hz, {NO_PEAK}) "
+                "that the selection left out"
+            )
+            peaks.setdefault(p, (p, words, 0.0))
+    return _peak_rows(selected, stab, frfs, choices, sorted(peaks.values()))
 
 
 def _peak_pins(
@@ -926,7 +1004,9 @@ def _peak_pins(
         return choices, []
     tolerance = choices.rules.pin_tolerance
     try:
-        automatic = select_poles(stab, (), choices.exclude_hz, rules=choices.rules).frequency
+        automatic = select_poles(
+            stab, (), choices.exclude_hz, rules=choices.rules, log=False
+        ).frequency
     except InputError:
         automatic = np.zeros(0)
     peaks = [p for p, _ in clear_peaks(frfs, stab.band_hz, EDGE_PEAK)]
@@ -953,7 +1033,7 @@ def _cluster_at(stab: Stabilisation, pin: float, mode: PeakMode, choices: _Choic
     mode's half half-power width and half a line of it (a cluster below ``min_fraction`` at
     the peak keeps its own pole, as pins always did)."""
     try:
-        found = select_poles(stab, [pin], choices.exclude_hz, rules=choices.rules)
+        found = select_poles(stab, [pin], choices.exclude_hz, rules=choices.rules, log=False)
     except InputError:
         return False
     k = int(np.argmin(np.abs(np.where(found.pinned, found.frequency, np.inf) - pin)))
@@ -968,7 +1048,9 @@ def _with_peak_modes(
     frfs: FrfSet,
 ) -> tuple[SelectedPoles, list[str]]:
     """The selection with the pins kept at the data's peaks (:func:`_peak_pins`) added,
-    pinned, their rows (``edge``, ``unsettled``) gone, and one line each saying how."""
+    pinned and :attr:`~racketdyn.modal.poles.SelectedPoles.at_peak` (no orders count is
+    reported for them), their rows (``edge``, ``unsettled``) gone, and one line each saying
+    how."""
     if not taken:
         return selected, []
     spacing = _spacing(frfs)
@@ -1003,6 +1085,8 @@ def _with_peak_modes(
         ),
         pinned=np.concatenate([selected.pinned, np.ones(len(modes), dtype=bool)]),
         dropped_modes=rows,
+        pair_fitted=np.concatenate([selected.flags("pair_fitted"), np.zeros(len(modes), bool)]),
+        at_peak=np.concatenate([selected.flags("at_peak"), np.ones(len(modes), bool)]),
     )
     lines = [
         f"{m.frequency_hz:.4f} Hz: pinned at {f:g} Hz, kept at the data's peak, where "
@@ -1297,8 +1381,8 @@ def _third_mode(
         reason=(
             f"a third mode under the peak of {frequency[0]:.2f} and {frequency[1]:.2f} Hz "
             f"(the fit near it {gain:.2g} × better with it) that three poles fitted on their "
-            f"own lines do not part: {d.reason}; `pin_hz` {d.frequency_hz:.1f} keeps the wide "
-            f"band's pole there, its neighbours as that fit has them"
+            f"own lines do not part: {d.reason}; {_pin(d.frequency_hz, _spacing(frfs))} keeps "
+            f"the wide band's pole there, its neighbours as that fit has them"
         ),
     )
 
@@ -1425,7 +1509,11 @@ def _weak_of_pair(
         try:
             stab = choices.stabilisation(frfs, (band[0], top))
             there, _ = _close_pairs(
-                select_poles(stab, rules=choices.rules), frfs, (band[0], top), choices, False
+                select_poles(stab, rules=choices.rules, log=False),
+                frfs,
+                (band[0], top),
+                choices,
+                False,
             )
         except InputError:
             there = None
@@ -1496,7 +1584,8 @@ def _pair_fit(
         half = wanted
         window = (mode[0] - half, mode[0] + half)
         weights = _noise_weights(frfs, window)
-        found = fit_poles(frfs, frequency, zeta, window, weights, BROAD_STEPS if hidden else None)
+        steps = BROAD_STEPS if hidden else PAIR_STEPS_PER_POLE * frequency.size
+        found = fit_poles(frfs, frequency, zeta, window, weights, steps)
         if found is None:
             return None
         frequency, zeta, constants, _ = found
@@ -1553,9 +1642,7 @@ def _with_pair(
         return np.concatenate([values[rest], [values[k], *others]])
 
     nan = [np.nan] * len(peaks)
-    fitted = (
-        np.zeros(selected.n_modes, bool) if selected.pair_fitted is None else selected.pair_fitted
-    )
+    fitted, at_peak = selected.flags("pair_fitted"), selected.flags("at_peak")
     merged = replace(
         selected,
         frequency=np.concatenate([selected.frequency[rest], frequency]),
@@ -1568,8 +1655,19 @@ def _with_pair(
         residues=np.concatenate([selected.residues[:, rest], constants], axis=1),
         pinned=np.concatenate([selected.pinned[rest], [selected.pinned[k]], [False] * len(peaks)]),
         pair_fitted=np.concatenate([fitted[rest], [False], [True] * len(peaks)]),
+        at_peak=np.concatenate([at_peak[rest], [at_peak[k]], [False] * len(peaks)]),
     )
     return merged.select(np.argsort(merged.frequency, kind="stable"))
+
+
+def _pin(frequency_hz: float, spacing_hz: float) -> str:
+    """The words of a hint's pin, `` `pin_hz` F ``: ``F`` to the decimals that put it within a
+    tenth of a line of ``frequency_hz`` (half a unit of its last digit, at most
+    ``spacing_hz / 10``), so that it is the nearest candidate's wherever the next lies two
+    tenths of a line away or more (one decimal put a pin a fifth of a 0.125 Hz line off its
+    candidate, several lines off at finer lines)."""
+    decimals = max(0, math.ceil(math.log10(5.0 / spacing_hz)))
+    return f"`pin_hz` {frequency_hz:.{decimals}f}"
 
 
 def _spacing(frfs: FrfSet) -> float:
@@ -1680,7 +1778,8 @@ class Identification:
 
     def write_modes_csv(self, path: Path) -> None:
         """``mode, frequency_hz, damping_ratio, name`` (+ kind, orders stable, fit spread); the
-        orders stable empty for a close pair's second mode (fitted on the FRFs' own lines)."""
+        orders stable empty for a close pair's second mode (fitted on the FRFs' own lines) and
+        a mode pinned at the data's peak (:meth:`SelectedPoles.orders_stable`)."""
         with Path(path).open("w", newline="", encoding="utf-8") as handle:
             writer = csv.writer(handle)
             writer.writerow(
@@ -1941,11 +2040,12 @@ def _selected_poles(
     selected = select_poles(
         stab, choices.pin_hz, choices.exclude_hz, rules=choices.rules
     )  # raises if none
-    selected = _named_rows(_edge_modes(selected, frfs, band, choices), _spacing(frfs))
+    selected = _named_rows(_edge_modes(selected, frfs, band, choices), frfs)
     selected, kept = _clear_peaks(selected, stab, frfs, band, choices)
     selected = _wandering_peaks(selected, stab, frfs, band, choices)
     selected, pairs = _close_pairs(selected, frfs, band, choices)
     selected = _missed_peaks(selected, frfs, band, choices)
+    selected = _peaks_either_side(selected, stab, frfs, band, choices)
     selected = replace(selected, dropped_modes=_beyond_force(selected.dropped_modes, frfs))
     selected, refined = refine_narrow_poles(frfs, selected)
     for line in refined:

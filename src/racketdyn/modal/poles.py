@@ -368,6 +368,12 @@ class SelectedPoles:
         (:func:`racketdyn.modal.identify.identify`): no cluster of the band's orders is its own,
         so its ``n_orders`` is its pair's (the first mode's) and its spreads are NaN; what a
         user reads (:meth:`orders_stable`) has no count for it.  None: no such mode.
+    at_peak : ndarray of bool, shape (n_modes,), optional
+        True for a mode pinned at the data's peak where no cluster of the fit stands
+        (:func:`racketdyn.modal.identify.identify`: its pole from the poles that agree with
+        the peak in frequency, or a local fit of the peak's lines): no cluster is its own, so
+        its ``n_orders`` (the orders whose pole there is stable in damping too) is no count
+        of a cluster's, and :meth:`orders_stable` has none for it.  None: no such mode.
     """
 
     frequency: NDArray[np.float64]
@@ -386,6 +392,7 @@ class SelectedPoles:
     dropped: tuple[str, ...] = ()
     dropped_modes: tuple[DroppedMode, ...] = ()
     pair_fitted: NDArray[np.bool_] | None = None
+    at_peak: NDArray[np.bool_] | None = None
 
     @property
     def n_modes(self) -> int:
@@ -412,13 +419,20 @@ class SelectedPoles:
             residues=self.residues[:, index],
             pinned=self.pinned[index],
             pair_fitted=None if self.pair_fitted is None else self.pair_fitted[index],
+            at_peak=None if self.at_peak is None else self.at_peak[index],
         )
+
+    def flags(self, name: Literal["pair_fitted", "at_peak"]) -> NDArray[np.bool_]:
+        """:attr:`pair_fitted` or :attr:`at_peak` as an array, all False where None."""
+        given: NDArray[np.bool_] | None = getattr(self, name)
+        return np.zeros(self.n_modes, bool) if given is None else given
 
     def orders_stable(self) -> list[int | None]:
         """Each mode's orders stable as a user reads it (``modes.csv``, run.json): None for a
-        close pair's second mode, fitted on the FRFs' own lines (:attr:`pair_fitted`)."""
-        fitted = np.zeros(self.n_modes, bool) if self.pair_fitted is None else self.pair_fitted
-        return [None if f else int(n) for n, f in zip(self.n_orders, fitted, strict=True)]
+        close pair's second mode, fitted on the FRFs' own lines (:attr:`pair_fitted`), and for
+        a mode pinned at the data's peak (:attr:`at_peak`): no cluster is theirs."""
+        none = self.flags("pair_fitted") | self.flags("at_peak")
+        return [None if f else int(n) for n, f in zip(self.n_orders, none, strict=True)]
 
     @property
     def windowed_pole(self) -> NDArray[np.complex128]:
@@ -1068,6 +1082,7 @@ def select_poles(
     exclude_hz: Sequence[float] = (),
     *,
     rules: SelectionRules = DEFAULT_SELECTION,
+    log: bool = True,
 ) -> SelectedPoles:
     """Pick the physical modes from a stabilisation diagram, automatically.
 
@@ -1118,6 +1133,9 @@ def select_poles(
         Approximate frequencies of modes to leave out, Hz.
     rules : SelectionRules
         The rules of steps 1–3 (default :data:`DEFAULT_SELECTION`).
+    log : bool
+        Log what was kept, pinned, excluded and dropped (default).  False for a trial
+        selection whose outcome its caller says in its own words: a pin is said once.
 
     Returns
     -------
@@ -1141,18 +1159,18 @@ def select_poles(
     clusters = _cluster(stab, candidates, *rules.tolerances)
     # step 2: the rules, the dynamic range, one peak
     reasons = _reasons(stab, clusters, rules)
-    merged = _merge_one_peak(stab, clusters, reasons, rules.cluster_mac)
+    merged = _merge_one_peak(stab, clusters, reasons, rules.cluster_mac, log)
     # step 3: the user's exclusions and pins
     accepted = [not r for r in reasons]
-    _exclude(clusters, excludes, accepted, reasons, rules.pin_tolerance)
-    pinned = _pin(clusters, pins, accepted, reasons, rules.pin_tolerance)
-    dropped, dropped_modes = _dropped(clusters, reasons, accepted, merged)
+    _exclude(clusters, excludes, accepted, reasons, rules.pin_tolerance, log)
+    pinned = _pin(clusters, pins, accepted, reasons, rules.pin_tolerance, log)
+    dropped, dropped_modes = _dropped(clusters, reasons, accepted, merged, log)
     kept = sorted(
         (k for k in range(len(clusters)) if accepted[k]), key=lambda k: clusters[k].frequency
     )
     if not kept:
         raise _no_mode(stab, clusters, dropped)
-    logger.info(
+    (logger.info if log else logger.debug)(
         "selected %d modes (%s Hz); %d clusters of stable poles dropped",
         len(kept),
         ", ".join(f"{clusters[k].frequency:.1f}" for k in kept),
@@ -1236,13 +1254,16 @@ def _exclude(
     accepted: list[bool],
     reasons: list[str],
     tolerance: float,
+    log: bool = True,
 ) -> None:
-    """Drop the accepted mode nearest each exclusion (within ``tolerance``, relative)."""
+    """Drop the accepted mode nearest each exclusion (within ``tolerance``, relative); one
+    with none near it is logged when ``log``."""
     centres = np.array([c.frequency for c in clusters])
     for f in excludes:
         near = [k for k in range(len(centres)) if accepted[k] and _near(centres[k], f, tolerance)]
         if not near:
-            logger.warning("exclude %g Hz: no selected mode within %g %%", f, 100 * tolerance)
+            if log:
+                logger.warning("exclude %g Hz: no selected mode within %g %%", f, 100 * tolerance)
             continue
         k = min(near, key=lambda j: abs(centres[j] - f))
         accepted[k] = False
@@ -1255,8 +1276,10 @@ def _pin(
     accepted: list[bool],
     reasons: list[str],
     tolerance: float,
+    log: bool = True,
 ) -> list[bool]:
-    """Force in the cluster nearest each pin (within ``tolerance``); which ones are pinned."""
+    """Force in the cluster nearest each pin (within ``tolerance``); which ones are pinned.
+    One the selection had left out is logged when ``log``."""
     centres = np.array([c.frequency for c in clusters])
     pinned = [False] * len(clusters)
     for f in pins:
@@ -1281,7 +1304,7 @@ def _pin(
             raise InputError(f"{f:g} Hz is both pinned and excluded")
         if pinned[k]:
             raise InputError(f"two pins point at the same mode ({centres[k]:.1f} Hz)")
-        if not accepted[k]:  # the user's word against the diagram's: said, not hidden
+        if log and not accepted[k]:  # the user's word against the diagram's: said, not hidden
             logger.warning(
                 "pinned %g Hz: kept the mode at %.2f Hz (ζ %.3g %%) though the selection "
                 "left it out: %s; its damping is that of the orders it has, not a settled one",
@@ -1296,9 +1319,14 @@ def _pin(
 
 
 def _dropped(
-    clusters: list[_Cluster], reasons: list[str], accepted: list[bool], merged: set[int]
+    clusters: list[_Cluster],
+    reasons: list[str],
+    accepted: list[bool],
+    merged: set[int],
+    log: bool = True,
 ) -> tuple[list[str], list[DroppedMode]]:
-    """What was left out, as lines and as rows (logged; clusters of ≤ 3 poles at DEBUG)."""
+    """What was left out, as lines and as rows (logged when ``log``; clusters of ≤ 3 poles
+    at DEBUG)."""
     dropped = []
     dropped_modes = []
     for k, (c, reason, keep) in enumerate(zip(clusters, reasons, accepted, strict=True)):
@@ -1317,7 +1345,7 @@ def _dropped(
             )
         )
         # clusters of one to three poles are the noise's: logged at DEBUG only
-        (logger.info if c.n_orders > 3 else logger.debug)("dropped %s", line)
+        (logger.info if log and c.n_orders > 3 else logger.debug)("dropped %s", line)
     return dropped, dropped_modes
 
 
@@ -1365,7 +1393,11 @@ def _selected(
 
 
 def _merge_one_peak(
-    stab: Stabilisation, clusters: list[_Cluster], reasons: list[str], cluster_mac: float
+    stab: Stabilisation,
+    clusters: list[_Cluster],
+    reasons: list[str],
+    cluster_mac: float,
+    log: bool = True,
 ) -> set[int]:
     """Merge accepted neighbours that are one peak; their reasons set, their indices returned.
 
@@ -1404,7 +1436,9 @@ def _merge_one_peak(
             f"({stay.n_orders} against {clusters[gone].n_orders})"
         )
         merged.add(gone)
-        logger.info("%.2f Hz: %s", clusters[gone].frequency, reasons[gone])
+        (logger.info if log else logger.debug)(
+            "%.2f Hz: %s", clusters[gone].frequency, reasons[gone]
+        )
     return merged
 
 
