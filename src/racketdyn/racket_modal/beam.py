@@ -600,6 +600,12 @@ def reference_shapes(racket: Racket, hand: Hand | None = None) -> ReferenceShape
     )
 
 
+HAND_MODES = 3
+"""Modes of the racket on the hand that the held frame's lowest modes may hold besides its own,
+in bending (heave, pitch on the palm, the arm against the shoulder) and fewer in twisting
+(the roll in the fingers): :func:`reference_shapes` solves for this many more."""
+
+
 def _held_frame_modes(
     frame: _BeamFrame,
     racket: Racket,
@@ -609,32 +615,41 @@ def _held_frame_modes(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The lowest :data:`FRAME_REFERENCE_MODES` bending ``w(x)`` and twisting ``θ(x)`` modes of
     the beam held by ``hand`` (:func:`reference_shapes`), from the unit-stiffness bending and
-    torsion matrices and their mass and inertia matrices (without the point masses)."""
+    torsion matrices and their mass and inertia matrices (without the point masses).
+
+    The hand's matrices (:func:`racketdyn.racket_modal.grip.hand_matrices`) couple the grip's
+    ``w`` to the arm and its ``θ`` to nothing else, so bending (``w``, ``w'`` and the arm) and
+    twisting are two eigenproblems; of each one's lowest modes, those holding over half their
+    strain energy in the frame are the frame's own."""
     (k_bend, m_bend), (k_twist, m_twist) = bending, twisting
     scale_bend = _calibrated(k_bend, m_bend, 2, 1, racket.first_bending_hz)
     scale_twist = _calibrated(k_twist, m_twist, 1, 1, racket.twisting_hz)
     m_bend, m_twist = m_bend.copy(), m_twist.copy()
     _with_point_masses(frame, racket, m_bend, m_twist)
     nodes = frame.x.size
-    w, theta = slice(0, 2 * nodes), slice(2 * nodes, 3 * nodes)
-    own = np.zeros((2, 3 * nodes + 1, 3 * nodes + 1))  # the frame's bending and twisting
-    own[0][w, w], own[1][theta, theta] = scale_bend * k_bend, scale_twist * k_twist
     mass, stiffness, _ = hand_matrices(hand, frame.x, 3 * nodes)
-    mass[w, w] += m_bend
-    mass[theta, theta] += m_twist
-    stiffness += own[0] + own[1]
-    with one_blas_thread():
-        _, vectors = eigh(stiffness, mass)
-    strain = np.einsum("ik,sij,jk->sk", vectors, own, vectors)
-    total = np.einsum("ik,ij,jk->k", vectors, stiffness, vectors)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        share = strain / total  # NaN for a mode of no stiffness (the arm without a shoulder)
+    arm = [3 * nodes]
     kept = []
-    for kind, dofs in enumerate((w, theta)):
-        frame_modes = np.flatnonzero(np.nan_to_num(share[kind]) > 0.5)[:FRAME_REFERENCE_MODES]
-        shapes = vectors[dofs, :][:, frame_modes]
-        kept.append(shapes[0::2] if kind == 0 else shapes)
-    return kept[0], kept[1]
+    for dofs, own_mass, own_stiffness in (
+        (np.r_[0 : 2 * nodes, arm], m_bend, scale_bend * k_bend),
+        (np.r_[2 * nodes : 3 * nodes], m_twist, scale_twist * k_twist),
+    ):
+        n_own = own_mass.shape[0]
+        own = np.zeros((dofs.size, dofs.size))
+        own[:n_own, :n_own] = own_stiffness
+        held_mass = mass[np.ix_(dofs, dofs)]
+        held_mass[:n_own, :n_own] += own_mass
+        held_stiffness = stiffness[np.ix_(dofs, dofs)] + own
+        count = min(FRAME_REFERENCE_MODES + HAND_MODES, dofs.size) - 1
+        with one_blas_thread():
+            _, vectors = eigh(held_stiffness, held_mass, subset_by_index=[0, count])
+        with np.errstate(invalid="ignore", divide="ignore"):  # NaN: a mode of no stiffness
+            share = np.einsum("ik,ij,jk->k", vectors, own, vectors) / np.einsum(
+                "ik,ij,jk->k", vectors, held_stiffness, vectors
+            )
+        frame_modes = np.flatnonzero(np.nan_to_num(share) > 0.5)[:FRAME_REFERENCE_MODES]
+        kept.append(vectors[:n_own, frame_modes])
+    return kept[0][0::2], kept[1]
 
 
 def _sample_locations(x: NDArray[np.float64], head: HeadEllipse) -> NDArray[np.float64]:

@@ -89,7 +89,18 @@ def name_racket_modes(
         if isinstance(racket, Racket)
         else None
     )
-    names, kinds = classify_modes(identification.model, _head(racket), ball_at, reference)
+    return _named(identification, _head(racket), ball_at, reference)
+
+
+def _named(
+    identification: Identification,
+    head: HeadEllipse,
+    ball_at: tuple[float, float] | None,
+    reference: ReferenceShapes | None,
+) -> Identification:
+    """:func:`name_racket_modes` against ``reference`` (the shapes the names are read
+    against)."""
+    names, kinds = classify_modes(identification.model, head, ball_at, reference)
     return identification.renamed(names, kinds)
 
 
@@ -235,7 +246,8 @@ def name_if_racket(
     if reason:
         return identification, f"modes numbered: {reason}"
     held = holding(identification.model, hand)
-    named = name_racket_modes(identification, racket, ball_at, held)
+    reference = reference_shapes(racket, held)
+    named = _named(identification, racket.head, ball_at, reference)
     if racket_given:
         sentence = f"modes named from their shapes on the head of {racket.name}"
     else:  # the default racket: say so, a user's own racket may merely lie near its outline
@@ -248,7 +260,7 @@ def name_if_racket(
             ", their node counts read against its frame held in the hand (the grip "
             f"{1e3 * held.grip_start_m:.0f}–{1e3 * held.grip_end_m:.0f} mm from the butt)"
         )
-    sentence += _unknown_modes(named.model, racket, ball_at, reference_shapes(racket, held))
+    sentence += _unknown_modes(named.model, racket, ball_at, reference)
     if ball_at is None:
         return named, sentence + _looks_like_a_ball(named.model, racket, racket_given)
     names = named.model.names
