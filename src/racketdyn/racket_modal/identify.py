@@ -248,18 +248,16 @@ def name_if_racket(
     held = holding(identification.model, hand)
     reference = reference_shapes(racket, held)
     named = _named(identification, racket.head, ball_at, reference)
-    if racket_given:
-        sentence = f"modes named from their shapes on the head of {racket.name}"
-    else:  # the default racket: say so, a user's own racket may merely lie near its outline
-        sentence = (
-            f"modes named from their shapes on the head of the built-in {racket.name}, whose "
-            "outline the points fit; give `racket` to name them on your racket's head"
-        )
+    sentence = "modes named from their shapes on the head of " + (
+        racket.name if racket_given else f"the built-in {racket.name}, whose outline the points fit"
+    )
     if held is not None:
         sentence += (
             ", their node counts read against its frame held in the hand (the grip "
             f"{1e3 * held.grip_start_m:.0f}–{1e3 * held.grip_end_m:.0f} mm from the butt)"
         )
+    if not racket_given:  # the default racket: a user's own may merely lie near its outline
+        sentence += "; give `racket` to name them on your racket's head"
     sentence += _unknown_modes(named.model, racket, ball_at, reference)
     if ball_at is None:
         return named, sentence + _looks_like_a_ball(named.model, racket, racket_given)
