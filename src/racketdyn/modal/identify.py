@@ -15,7 +15,7 @@ from __future__ import annotations
 import csv
 import logging
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -2086,13 +2086,26 @@ def _with_peaks_only(
 ) -> tuple[_Fitted, list[DroppedMode]]:
     """The modal constants of the poles with a peak in the data (:data:`FIT_GAIN_MIN`, or
     pinned), and the rows of those without.  Against several references a mode has a peak
-    if the FRFs of any reference hold it (its best gain over them)."""
-    fit = fit_modal_constants(frfs, selected.pole, band)
-    gain = fit_gain(frfs, fit)
-    for other in () if references is None else references.sets:
-        if other.reference_node != frfs.reference_node:
-            other_fit = fit_modal_constants(other, selected.pole, band)
-            gain = np.maximum(gain, fit_gain(other, other_fit))
+    if the FRFs of any reference hold it (its best gain over them).
+
+    A mode without a peak that the selection kept over a neighbour of one peak with it (a
+    ``merged`` row, :attr:`~racketdyn.modal.poles.DroppedMode.merged_into_hz`) gives its place
+    to that neighbour when the neighbour has the peak: the merge keeps the cluster stable in
+    more orders, which on a dense, lightly damped structure (Badiane's spruce plate: 1366.84
+    Hz kept over 1370.78 Hz) may be a broad pole the data do not hold — the peak was left
+    with no mode, and the neighbour's row named a mode the model did not have."""
+
+    def gains(poles: NDArray[np.complex128]) -> tuple[ModalFit, NDArray[np.float64]]:
+        fit = fit_modal_constants(frfs, poles, band)
+        gain = fit_gain(frfs, fit)
+        for other in () if references is None else references.sets:
+            if other.reference_node != frfs.reference_node:
+                other_fit = fit_modal_constants(other, poles, band)
+                gain = np.maximum(gain, fit_gain(other, other_fit))
+        return fit, gain
+
+    fit, gain = gains(selected.pole)
+    selected, fit, gain, placed = _merged_in_place(selected, fit, gain, gains)
     real = (gain >= FIT_GAIN_MIN) | selected.pinned
     if not real.any():
         real = gain == gain.max()  # the best of them rather than nothing: select_poles chose
@@ -2108,7 +2121,112 @@ def _with_peaks_only(
         for k in np.flatnonzero(~real)
     ]
     fitted = _Fitted(frfs, selected, fit, gain)
-    return (fitted if real.all() else fitted.keeping(real, band)), no_peak
+    return (fitted if real.all() else fitted.keeping(real, band)), [*placed, *no_peak]
+
+
+def _in_place_of(
+    selected: SelectedPoles,
+    k: int,
+    row: DroppedMode,
+    poles: NDArray[np.complex128],
+    constants: NDArray[Any],
+) -> SelectedPoles:
+    """The selection with mode ``k`` replaced by the dropped ``row`` (its poles ``poles``):
+    the row's own orders and peak, no spreads (NaN), ``constants`` as its residues."""
+
+    def at_k(values: NDArray[Any], value: object) -> NDArray[Any]:
+        out = values.copy()
+        out[k] = value
+        return out
+
+    residues = selected.residues
+    if residues.shape[0] == constants.shape[0]:  # stacked references keep the LSCF's
+        residues = at_k(residues.T, constants).T
+    return replace(
+        selected,
+        frequency=at_k(selected.frequency, row.frequency_hz),
+        damping_ratio=at_k(selected.damping_ratio, row.damping_ratio),
+        pole=poles,
+        n_orders=at_k(selected.n_orders, row.orders_stable),
+        frequency_spread_hz=at_k(selected.frequency_spread_hz, np.nan),
+        damping_spread=at_k(selected.damping_spread, np.nan),
+        peak_to_noise=at_k(selected.peak_to_noise, row.peak_to_noise),
+        residues=residues,
+    )
+
+
+def _merged_in_place(
+    selected: SelectedPoles,
+    fit: ModalFit,
+    gain: NDArray[np.float64],
+    gains: Callable[[NDArray[np.complex128]], tuple[ModalFit, NDArray[np.float64]]],
+) -> tuple[SelectedPoles, ModalFit, NDArray[np.float64], list[DroppedMode]]:
+    """Each mode without a peak (not pinned) replaced by the ``merged`` row merged into it
+    that has one (:data:`FIT_GAIN_MIN`; the one stable in most orders first): the selection,
+    fit and gains after, and the rows of the modes replaced.  The replacement keeps its own
+    orders and peak, no spreads (NaN) and the fit's constants as its residues."""
+    placed: list[DroppedMode] = []
+    rows = list(selected.dropped_modes)
+    for k in np.flatnonzero((gain < FIT_GAIN_MIN) & ~selected.pinned):
+        f_k = float(selected.frequency[k])
+        partners = sorted(
+            (d for d in rows if d.stage == "merged" and abs(d.merged_into_hz - f_k) < 1e-6 * f_k),
+            key=lambda d: -d.orders_stable,
+        )
+        for d in partners:
+            poles = selected.pole.copy()
+            poles[k] = pole_of(d.frequency_hz, d.damping_ratio)
+            trial_fit, trial = gains(poles)
+            if trial[k] < FIT_GAIN_MIN:  # said: the mode its row names is left out too
+                rows[rows.index(d)] = replace(
+                    d,
+                    fit_gain=float(trial[k]),
+                    reason=f"{d.reason}; {f_k:.2f} Hz was then left out (no peak in the "
+                    f"data), and in its place the fit near this one is only "
+                    f"{np.floor(trial[k] * 100) / 100:.2f} × better with it (< {FIT_GAIN_MIN:g})",
+                )
+                continue
+            placed.append(
+                _dropped(
+                    selected,
+                    int(k),
+                    f"no peak in the data: the fit near it is only "
+                    f"{np.floor(gain[k] * 100) / 100:.2f} × better with it (< {FIT_GAIN_MIN:g}); "
+                    f"{d.frequency_hz:.2f} Hz, merged into it as one peak, holds the peak (the "
+                    f"fit near it {trial[k]:.2g} × better with it): kept in its place",
+                    gain=gain[k],
+                )
+            )
+            log.warning(
+                "kept %.2f Hz in place of %.2f Hz, the mode it was merged into, which has no "
+                "peak in the data (the fit near it %.2f × better with it, < %g; %.2g × with "
+                "%.2f Hz)",
+                d.frequency_hz,
+                f_k,
+                np.floor(gain[k] * 100) / 100,
+                FIT_GAIN_MIN,
+                trial[k],
+                d.frequency_hz,
+            )
+            selected = _in_place_of(selected, int(k), d, poles, trial_fit.constants[:, k])
+            rows = [r for r in rows if r is not d]
+            kept_line = f"{d.frequency_hz:.2f} Hz, "
+            selected = replace(
+                selected,
+                dropped=tuple(
+                    line
+                    for line in selected.dropped
+                    if not (line.startswith(kept_line) and "merged into it" in line)
+                ),
+            )
+            fit, gain = trial_fit, trial
+            break
+    selected = replace(selected, dropped_modes=tuple(rows))
+    if placed:
+        order = np.argsort(selected.frequency, kind="stable")
+        selected = selected.select(order)
+        fit, gain = gains(selected.pole)
+    return selected, fit, gain, placed
 
 
 @dataclass(frozen=True, eq=False)

@@ -282,6 +282,10 @@ class DroppedMode:
         about 1 for a pole with no peak in the data.
     driving_point_ratio : float
         Its driving-point constant over its largest constant, signed (NaN where not computed).
+    merged_into_hz : float
+        For a ``merged`` row, the frequency of the mode it was merged into, Hz (NaN
+        otherwise): :func:`racketdyn.modal.identify.identify` tries the row in that mode's
+        place when the modal constants find no peak for the mode.
     """
 
     frequency_hz: float
@@ -292,6 +296,7 @@ class DroppedMode:
     peak_to_noise: float = math.nan
     fit_gain: float = math.nan
     driving_point_ratio: float = math.nan
+    merged_into_hz: float = math.nan
 
     COLUMNS: ClassVar[tuple[str, ...]] = (
         "frequency_hz",
@@ -1322,7 +1327,7 @@ def _dropped(
     clusters: list[_Cluster],
     reasons: list[str],
     accepted: list[bool],
-    merged: set[int],
+    merged: dict[int, int],
     log: bool = True,
 ) -> tuple[list[str], list[DroppedMode]]:
     """What was left out, as lines and as rows (logged when ``log``; clusters of ≤ 3 poles
@@ -1342,6 +1347,7 @@ def _dropped(
                 "merged" if k in merged else "selection",
                 reason,
                 peak_to_noise=float(c.peak_to_noise),
+                merged_into_hz=float(clusters[merged[k]].frequency) if k in merged else math.nan,
             )
         )
         # clusters of one to three poles are the noise's: logged at DEBUG only
@@ -1398,8 +1404,9 @@ def _merge_one_peak(
     reasons: list[str],
     cluster_mac: float,
     log: bool = True,
-) -> set[int]:
-    """Merge accepted neighbours that are one peak; their reasons set, their indices returned.
+) -> dict[int, int]:
+    """Merge accepted neighbours that are one peak; their reasons set, each merged index
+    returned with the index of the cluster it was merged into (the one its reason names).
 
     Two accepted modes closer than their half-power width (the mean of their ``2 ζ f``) whose
     shapes agree (MAC of the clusters' mean shapes at least ``cluster_mac``) are one peak that
@@ -1408,7 +1415,7 @@ def _merge_one_peak(
     tie).  Close modes of other shapes (a symmetric structure's pairs) stay apart.
     """
     order = sorted((k for k, r in enumerate(reasons) if not r), key=lambda k: clusters[k].frequency)
-    merged: set[int] = set()
+    merged: dict[int, int] = {}
     if len(order) < 2:
         return merged
     kept = order[0]
@@ -1435,7 +1442,7 @@ def _merge_one_peak(
             f"{alike:.2f} ≥ {cluster_mac:g}); kept the one stable in more orders "
             f"({stay.n_orders} against {clusters[gone].n_orders})"
         )
-        merged.add(gone)
+        merged[gone] = kept
         (logger.info if log else logger.debug)(
             "%.2f Hz: %s", clusters[gone].frequency, reasons[gone]
         )

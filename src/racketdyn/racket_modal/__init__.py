@@ -1,8 +1,9 @@
 """The racket layer on top of :mod:`racketdyn.modal`: what modal results mean for a racket.
 
 The built-in beam-and-membrane modal model of a racket (:mod:`~racketdyn.racket_modal.beam`),
-mode names and kinds from a racket's shapes and the nodes along its long axis
-(:mod:`~racketdyn.racket_modal.shapes`), and the identification the racket workflows call
+the beam held in a hand (:mod:`~racketdyn.racket_modal.grip`), mode names and kinds from a
+racket's shapes and the nodes along its long axis (:mod:`~racketdyn.racket_modal.shapes`), and
+the identification the racket workflows call
 (:func:`racketdyn.racket_modal.identify.identify_racket`).
 """
 

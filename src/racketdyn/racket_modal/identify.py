@@ -13,6 +13,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from racketdyn.hand import Hand
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal import ModalModel
 from racketdyn.modal.identify import SELECTION, Identification, identify
@@ -26,6 +27,7 @@ from racketdyn.racket_modal.shapes import (
     BALL_MODE_NAME,
     BALL_RIGID_SHARE,
     ON_STRINGS,
+    ReferenceShapes,
     classify_modes,
     naming_evidence,
     naming_words,
@@ -36,6 +38,7 @@ from racketdyn.racket_modal.shapes import (
 __all__ = [
     "FRAME_KINDS",
     "PAIRED_KINDS",
+    "holding",
     "identify_racket",
     "name_after",
     "name_if_racket",
@@ -52,6 +55,7 @@ def name_racket_modes(
     identification: Identification,
     racket: Racket | HeadEllipse,
     ball_at: tuple[float, float] | None = None,
+    hand: Hand | None = None,
 ) -> Identification:
     """The identification with its modes named from their shapes on the racket.
 
@@ -67,6 +71,12 @@ def name_racket_modes(
     ball_at : tuple of float, optional
         Where a ball was fixed on the strings (x, y), m (the paper's compound test): its mode
         is named ``"ball on the strings"`` (:func:`~racketdyn.racket_modal.shapes.classify_modes`).
+    hand : Hand, optional
+        The hand that held the racket, for a model whose ``support`` is ``hand``: the node
+        counts are read against the frame held by it
+        (:func:`racketdyn.racket_modal.beam.reference_shapes`; None: the default
+        :class:`~racketdyn.hand.Hand`, the rig's and the impact model's).  Any other support:
+        against the frame free (:func:`holding`).
 
     Returns
     -------
@@ -74,9 +84,41 @@ def name_racket_modes(
         Names ``"2-node bending"``, ``"2-node twisting"``, ``"string-bed membrane"`` … and
         kinds ``bending``, ``twisting``, ``string-bed``.
     """
-    reference = reference_shapes(racket) if isinstance(racket, Racket) else None
-    names, kinds = classify_modes(identification.model, _head(racket), ball_at, reference)
+    reference = (
+        reference_shapes(racket, holding(identification.model, hand))
+        if isinstance(racket, Racket)
+        else None
+    )
+    return _named(identification, _head(racket), ball_at, reference)
+
+
+def _named(
+    identification: Identification,
+    head: HeadEllipse,
+    ball_at: tuple[float, float] | None,
+    reference: ReferenceShapes | None,
+) -> Identification:
+    """:func:`name_racket_modes` against ``reference`` (the shapes the names are read
+    against)."""
+    names, kinds = classify_modes(identification.model, head, ball_at, reference)
     return identification.renamed(names, kinds)
+
+
+def holding(model: ModalModel, hand: Hand | None = None) -> Hand | None:
+    """The hand a model's node counts are read against: for a model whose ``support`` is
+    ``hand``, ``hand`` or, if None, the default :class:`~racketdyn.hand.Hand` (the rig's and
+    the impact model's); None for any other support (the frame free).
+
+    Parameters
+    ----------
+    model : ModalModel
+        The identified model (its ``support``).
+    hand : Hand, optional
+        The hand that held the racket in the test.
+    """
+    if model.support != "hand":
+        return None
+    return Hand() if hand is None else hand
 
 
 def identify_racket(
@@ -136,6 +178,7 @@ def name_if_racket(
     racket: Racket,
     racket_given: bool,
     ball_at: tuple[float, float] | None = None,
+    hand: Hand | None = None,
 ) -> tuple[Identification, str]:
     """Name the modes the racket way only when the structure is a racket and the shapes show it.
 
@@ -159,6 +202,10 @@ def name_if_racket(
     ball_at : tuple of float, optional
         Where a ball was fixed on the strings (x, y), m (``--ball-at``): one mode is named
         ``"ball on the strings"`` if its frame shape shows it, and the sentence says which.
+    hand : Hand, optional
+        The hand that held the racket, for a model whose ``support`` is ``hand``
+        (:func:`name_racket_modes`; None: the default hand); the sentence then says the node
+        counts were read against the frame it holds.
 
     Returns
     -------
@@ -198,15 +245,20 @@ def name_if_racket(
     reason = naming_evidence(identification.model, racket.head)
     if reason:
         return identification, f"modes numbered: {reason}"
-    named = name_racket_modes(identification, racket, ball_at)
-    if racket_given:
-        sentence = f"modes named from their shapes on the head of {racket.name}"
-    else:  # the default racket: say so, a user's own racket may merely lie near its outline
-        sentence = (
-            f"modes named from their shapes on the head of the built-in {racket.name}, whose "
-            "outline the points fit; give `racket` to name them on your racket's head"
+    held = holding(identification.model, hand)
+    reference = reference_shapes(racket, held)
+    named = _named(identification, racket.head, ball_at, reference)
+    sentence = "modes named from their shapes on the head of " + (
+        racket.name if racket_given else f"the built-in {racket.name}, whose outline the points fit"
+    )
+    if held is not None:
+        sentence += (
+            ", their node counts read against its frame held in the hand (the grip "
+            f"{1e3 * held.grip_start_m:.0f}–{1e3 * held.grip_end_m:.0f} mm from the butt)"
         )
-    sentence += _unknown_modes(named.model, racket, ball_at)
+    if not racket_given:  # the default racket: a user's own may merely lie near its outline
+        sentence += "; give `racket` to name them on your racket's head"
+    sentence += _unknown_modes(named.model, racket, ball_at, reference)
     if ball_at is None:
         return named, sentence + _looks_like_a_ball(named.model, racket, racket_given)
     names = named.model.names
@@ -227,11 +279,16 @@ def name_if_racket(
     )
 
 
-def _unknown_modes(model: ModalModel, racket: Racket, ball_at: tuple[float, float] | None) -> str:
+def _unknown_modes(
+    model: ModalModel,
+    racket: Racket,
+    ball_at: tuple[float, float] | None,
+    reference: ReferenceShapes,
+) -> str:
     """A clause naming each mode the shapes leave ``unknown`` and why, and each whose name
     they support only in part and what makes it uncertain
-    (:func:`~racketdyn.racket_modal.shapes.naming_words`); "" when none is."""
-    reference = reference_shapes(racket)
+    (:func:`~racketdyn.racket_modal.shapes.naming_words`, against ``reference``, the shapes
+    the names were read against); "" when none is."""
     reasons, notes = naming_words(model, racket.head, ball_at, reference)  # one classification
     clauses = []
     for word, said in (

@@ -114,6 +114,7 @@ from racketdyn.racket_modal.beam import (
     _torsion_matrices,
     mass_along,
 )
+from racketdyn.racket_modal.grip import frame_rows, hand_matrices
 from racketdyn.racket_modal.shapes import membrane_names, sign_changes
 from racketdyn.rig.patch import BallPatch
 
@@ -148,7 +149,6 @@ MAX_FREQUENCY_HZ = 10_000.0
 """Modes above this are left out of the rig (well above any hammer test's band), Hz."""
 
 _GAUSS_X = np.polynomial.legendre.leggauss(8)
-_GAUSS_LINE = np.polynomial.legendre.leggauss(4)
 _CALIBRATION_TOLERANCE = 1e-7  # eigenvalue noise of the stiff Hermite mesh is ~1e-8
 
 
@@ -268,7 +268,7 @@ class RigModel:
                 f"(0 ≤ x ≤ {racket.length_m} m, |y| ≤ {reach:.3f} m)"
             )
         rows = np.zeros((xy.shape[0], self.n_dof))
-        rows[:, : 3 * self.nodes_x.size] = _frame_rows(self.nodes_x, xy[:, 0], xy[:, 1])
+        rows[:, : 3 * self.nodes_x.size] = frame_rows(self.nodes_x, xy[:, 0], xy[:, 1])
         bed = self.on_string_bed(xy)
         if np.any(bed):
             psi, _, _ = _membrane_functions(racket, self.membrane_powers, xy[bed])
@@ -548,7 +548,7 @@ def _string_bed(racket: Racket, mesh: _Mesh) -> _StringBed:
     sigma = string_mass / qw.sum()  # areal density, the quadrature's mass exactly m_s
     weight = sigma * qw
     bed_rows = np.zeros((qx.size, mesh.n_dof))
-    bed_rows[:, : mesh.n_frame] = _frame_rows(x, qx, qy)
+    bed_rows[:, : mesh.n_frame] = frame_rows(x, qx, qy)
     psi, dpsi_x, dpsi_y = _membrane_functions(racket, mesh.powers, np.column_stack([qx, qy]))
     bed_rows[:, mesh.n_frame :] = psi
     bed_mass = bed_rows.T @ (weight[:, None] * bed_rows)
@@ -623,7 +623,7 @@ def _with_point_masses(
     mass = mass.copy()
     for p in racket.point_masses:
         row = np.zeros(mesh.n_dof)
-        row[: mesh.n_frame] = _frame_rows(mesh.x, np.array([p.x_m]), np.array([p.y_m]))[0]
+        row[: mesh.n_frame] = frame_rows(mesh.x, np.array([p.x_m]), np.array([p.y_m]))[0]
         mass += p.mass_kg * np.outer(row, row)
     return mass
 
@@ -685,7 +685,7 @@ def _in_hand(hand: Hand, racket: Racket, mesh: _Mesh) -> _Held:
             "hand.shoulder_stiffness_n_per_m must be positive on the rig: without the "
             "shoulder the held racket floats away on its arm (a mode of 0 Hz)"
         )
-    m_support, k_support, c_support = _hand_matrices(hand, mesh.x, mesh.n_dof)
+    m_support, k_support, c_support = hand_matrices(hand, mesh.x, mesh.n_dof)
     metadata = {"hand": {k: float(v) for k, v in vars(hand).items()}}
     return _Held("hand", m_support, k_support, c_support, metadata)
 
@@ -718,7 +718,7 @@ def _real_modes(
 def _signed_modes(vectors: NDArray[np.float64], racket: Racket, mesh: _Mesh) -> NDArray[np.float64]:
     """The sign convention: the largest displacement over the racket (sampled) positive."""
     x = mesh.x
-    probe = _frame_rows(
+    probe = frame_rows(
         x, np.concatenate([x, x]), np.repeat([0.0, racket.head.half_width_m], x.size)
     )
     sampled = np.vstack(
@@ -739,29 +739,6 @@ def _strain_energy(
 
 
 # --- pieces --------------------------------------------------------------------------------
-
-
-def _frame_rows(
-    x: NDArray[np.float64], xs: NDArray[np.float64], ys: NDArray[np.float64]
-) -> NDArray[np.float64]:
-    """Rows giving ``w(x) + θ(x)·y`` from the frame DOFs (Hermite w, linear θ), ``(n, 3 n)``."""
-    n_nodes = x.size
-    element = np.clip(np.searchsorted(x, xs, side="right") - 1, 0, n_nodes - 2)
-    h = x[element + 1] - x[element]
-    s = (xs - x[element]) / h
-    rows = np.zeros((xs.size, 3 * n_nodes))
-    point = np.arange(xs.size)
-    hermite = (
-        1 - 3 * s**2 + 2 * s**3,
-        h * (s - 2 * s**2 + s**3),
-        3 * s**2 - 2 * s**3,
-        h * (-(s**2) + s**3),
-    )
-    for j, values in enumerate(hermite):
-        rows[point, 2 * element + j] = values
-    rows[point, 2 * n_nodes + element] = (1 - s) * ys
-    rows[point, 2 * n_nodes + element + 1] = s * ys
-    return rows
 
 
 def _membrane_functions(
@@ -789,7 +766,7 @@ def _bed_centre_row(racket: Racket, powers: tuple[tuple[int, int], ...]) -> NDAr
     x = np.linspace(0.0, racket.length_m, N_ELEMENTS + 1)
     centre = np.array([[racket.head.centre_x_m, racket.head.centre_y_m]])
     row = np.zeros((1, 3 * x.size + len(powers)))
-    row[:, : 3 * x.size] = _frame_rows(x, centre[:, 0], centre[:, 1])
+    row[:, : 3 * x.size] = frame_rows(x, centre[:, 0], centre[:, 1])
     row[:, 3 * x.size :] = _membrane_functions(racket, powers, centre)[0]
     return row
 
@@ -894,66 +871,6 @@ def _calibrate(
     args = (racket.first_bending_hz, racket.twisting_hz, mass, k_bend, k_twist, k_fixed)
     ei, gj = _remembered("calibrate", args, search)
     return ei, gj
-
-
-def _line_rows(
-    x: NDArray[np.float64], start: float, end: float
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Gauss points' frame rows (``w`` and ``θ`` at y = 1) over [start, end], and weights."""
-    gx, gw = _GAUSS_LINE
-    edges = np.unique(np.concatenate([[start, end], x[(x > start) & (x < end)]]))
-    xs = (0.5 * (edges[:-1, None] + edges[1:, None]) + 0.5 * np.diff(edges)[:, None] * gx).ravel()
-    ws = (0.5 * np.diff(edges)[:, None] * gw).ravel()
-    return _frame_rows(x, xs, np.ones_like(xs)), ws
-
-
-def _line_matrix(
-    x: NDArray[np.float64], start: float, end: float, *, bending: bool
-) -> NDArray[np.float64]:
-    """``∫ NᵀN dx`` over [start, end] for the frame's w (bending) or θ (twist) field."""
-    rows, ws = _line_rows(x, start, end)
-    rows = rows[:, : 2 * x.size] if bending else rows[:, 2 * x.size :]
-    return np.asarray(rows.T @ (ws[:, None] * rows))
-
-
-def _line_mean(x: NDArray[np.float64], start: float, end: float) -> NDArray[np.float64]:
-    """``∫ N dx`` over [start, end] for the frame's w field (bending DOFs)."""
-    rows, ws = _line_rows(x, start, end)
-    return np.asarray(ws @ rows[:, : 2 * x.size])
-
-
-def _hand_matrices(
-    hand: Hand, x: NDArray[np.float64], n_dof: int
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """Mass, stiffness and damping of the hand and arm, ``(n_dof + 1)`` square (the arm last).
-
-    The hand's mass, and its roll inertia, spread evenly over the grip; springs and dashpots
-    ``k/L ∫ (w(x) − a)² dx`` from the grip to the arm's displacement ``a``, and in roll to
-    the non-rotating arm; the arm's mass, and the shoulder's spring on it.
-    """
-    n = x.size
-    length = hand.grip_length_m
-    w_line = _line_matrix(x, hand.grip_start_m, hand.grip_end_m, bending=True) / length
-    t_line = _line_matrix(x, hand.grip_start_m, hand.grip_end_m, bending=False) / length
-    w_mean = _line_mean(x, hand.grip_start_m, hand.grip_end_m) / length
-    arm = n_dof
-    out = []
-    for translational, rolling, on_arm in (
-        (hand.hand_mass_kg, hand.roll_inertia_kgm2, hand.arm_mass_kg),
-        (hand.stiffness_n_per_m, hand.roll_stiffness_nm_per_rad, hand.shoulder_stiffness_n_per_m),
-        (hand.damping_ns_per_m, hand.roll_damping_nms_per_rad, 0.0),
-    ):
-        matrix = np.zeros((n_dof + 1, n_dof + 1))
-        matrix[: 2 * n, : 2 * n] = translational * w_line
-        matrix[2 * n : 3 * n, 2 * n : 3 * n] = rolling * t_line
-        matrix[arm, arm] = on_arm
-        out.append(matrix)
-    for matrix, value in ((out[1], hand.stiffness_n_per_m), (out[2], hand.damping_ns_per_m)):
-        # the grip's springs and dashpots pull the handle towards the arm
-        matrix[: 2 * n, arm] = -value * w_mean
-        matrix[arm, : 2 * n] = -value * w_mean
-        matrix[arm, arm] += value
-    return out[0], out[1], out[2]
 
 
 @dataclass(frozen=True)

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 
 from racketdyn.ball import Ball
 from racketdyn.errors import InputError, require_numbers, require_speeds
+from racketdyn.hand import Hand
 from racketdyn.impact.result import SHOWN_SPEED_MPS
 from racketdyn.io.frf_layout import ReferenceChoice, read_frfs, reference_choice
 from racketdyn.io.uff import write_modes_uff
@@ -205,6 +206,7 @@ def identify_file(
     racket_given: bool = True,
     ball_at: Sequence[float] | None = None,
     names_from: str | os.PathLike[str] | ModalModel | None = None,
+    hand: Hand | None = None,
 ) -> Identification:
     """Read FRFs (UFF 58, any layout) and identify their modal model.
 
@@ -233,6 +235,10 @@ def identify_file(
         A modal model of the same racket (or its JSON) whose names to give the modes by MAC
         pair (:func:`racketdyn.racket_modal.identify.name_after`): the free test's for a
         hand-held test, as ``compare`` names it (``--names-from``).
+    hand : Hand, optional
+        The hand that held the racket (``support`` ``hand`` only; None: the default
+        :class:`~racketdyn.hand.Hand`): the node counts are read against the frame it holds
+        (:func:`racketdyn.racket_modal.identify.name_if_racket`).
     """
     ball = None if ball_at is None else ball_location(ball_at, racket)
     reference_model = None
@@ -262,7 +268,7 @@ def identify_file(
         support=support,
         rules=options.rules,
     )
-    found, naming = name_if_racket(found, racket, racket_given, ball)
+    found, naming = name_if_racket(found, racket, racket_given, ball, hand)
     if ball is not None and naming.startswith("modes numbered"):
         naming += "; `ball_at` unused: the ball's mode is named only among a racket's modes"
     if reference_model is not None and naming.startswith("modes numbered"):
@@ -310,9 +316,8 @@ def _unused_by_all(frfs: FrfReferences) -> dict[str, Any]:
 
 
 HAND_COUNTS = (
-    "; held, a racket's twisting modes are damped (ζ up to 10 %) and may be missed, and the "
-    "node counts above a missed mode are short: `names_from` the free test's modal_model.json "
-    "names the modes after their free MAC pairs, as compare does"
+    "; `names_from` the free test's modal_model.json names the modes after their free MAC "
+    "pairs, as compare does"
 )
 """What ``identify --support hand`` adds to its naming line without ``--names-from``."""
 
@@ -421,6 +426,7 @@ def run_identify(
         racket_given=setup.racket is not None,
         ball_at=ball_at,
         names_from=names_from,
+        hand=setup.hand,
     )
     shapes = identified_shapes(found.model, the_racket)
     written = write_model(found, out_dir)
@@ -731,7 +737,13 @@ def run_compare(
     # a hand damps some modes out: the hand's modes are named after their free pairs (issue
     # 13), as identify --names-from names them (issue 25 item 8: one name for one mode)
     found_hand = identify_file(
-        hand, the_racket, "hand", options, racket_given=given, names_from=found_free.model
+        hand,
+        the_racket,
+        "hand",
+        options,
+        racket_given=given,
+        names_from=found_free.model,
+        hand=setup.hand,
     )
     found_hand.model.require_locations("compare (modes paired by MAC, the first mode's nodes)")
     written = write_model(found_free, out_dir, "_free") + write_model(found_hand, out_dir, "_hand")
@@ -1024,11 +1036,13 @@ def run_compare_ball(
     out_dir = Path(out)
     given = setup.racket is not None
     report(setup.progress, f"identifying {Path(alone).name}")
-    found_alone = identify_file(alone, the_racket, support, options, racket_given=given)
+    found_alone = identify_file(
+        alone, the_racket, support, options, racket_given=given, hand=setup.hand
+    )
     found_alone.model.require_locations("compare --ball-at (modes paired by MAC)")
     report(setup.progress, f"identifying {Path(with_ball).name}")
     found_ball = identify_file(
-        with_ball, the_racket, support, options, racket_given=given, ball_at=ball
+        with_ball, the_racket, support, options, racket_given=given, ball_at=ball, hand=setup.hand
     )
     found_ball.model.require_locations("compare --ball-at (modes paired by MAC)")
     written = write_model(found_alone, out_dir, "_alone") + write_model(
