@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -11,8 +12,10 @@ import racketdyn as rd
 from pull_tension import pull_tension_racket
 from racketdyn.io import read_hammer_uff, write_hammer_uff
 from racketdyn.measurement.frf import FORCE_NOISE_RATIO, FORCE_NOISE_SHARE, estimate_frfs
-from racketdyn.measurement.quality import QualitySettings
+from racketdyn.measurement.quality import QualitySettings, noise_only_frfs
+from racketdyn.modal.identify import default_band
 from racketdyn.rig import (
+    Acquisition,
     HammerFaults,
     RigModel,
     SensorNoise,
@@ -206,3 +209,41 @@ def test_the_force_noise_hint_on_the_rigs_default_noise_is_h1s_bias(free_rig) ->
     assert all("--force-window 0.01" in line for line in on_rig_records), on_rig_records
     rig_page = " ".join((docs / "rig.md").read_text(encoding="utf-8").split())
     assert "(coherence ≈ 1.000) |" not in rig_page
+
+
+def test_a_healthy_rig_test_names_no_frf_of_noise_and_an_unplugged_channel_is_named(
+    free_rig,
+) -> None:
+    """Issue 25 (the SigLab cantilever: two of three FRFs noise, said nowhere): an FRF whose
+    median coherence is under ``NOISE_COHERENCE`` is named as noise.  The rig's racket at a
+    lab's noise (40 dB response, 50 dB force SNR) with 3 averages, a force window, over frf's
+    band and identify's default band, names none; the same test with one point's response
+    left at the accelerometer's noise alone (0.05 m/s² rms, the rig's default floor: a cable
+    pulled out) names that point and no other."""
+    locations, nodes = hammer_points(free_rig.racket, n_frame=6, n_strings=8)
+    at = (tuple(locations[3]), nodes[3])
+    lab = SensorNoise(response_snr_db=40.0, force_snr_db=50.0)
+    records = simulate_hammer_test(
+        free_rig, locations, nodes, *at, acquisition=Acquisition(n_averages=3), noise=lab, seed=5
+    )
+    estimate = estimate_frfs(records, exponential_window_s=0.1, force_window_s=0.01)
+    assert estimate.frfs is not None
+    found = estimate.noise_only()
+    assert found is not None
+    assert found.noise_nodes == ()
+    in_band = noise_only_frfs(estimate.frfs, default_band(estimate.frfs))
+    assert in_band is not None
+    assert in_band.noise_nodes == ()
+    unplugged = 6  # a string-bed point, not the driving point
+    rng = np.random.default_rng(2)
+    response = tuple(
+        rng.normal(0.0, SensorNoise().acceleration_noise_ms2, r.shape) if k == unplugged else r
+        for k, r in enumerate(records.response)
+    )
+    broken = estimate_frfs(
+        dataclasses.replace(records, response=response),
+        exponential_window_s=0.1,
+        force_window_s=0.01,
+    ).noise_only()
+    assert broken is not None
+    assert broken.noise_nodes == (nodes[unplugged],)

@@ -106,6 +106,9 @@ def run(args: argparse.Namespace, console: Console) -> int:
             "several hits a point measure it",
             "yellow",
         )
+    noise = estimate.noise_only()
+    if noise is not None and noise.noise_nodes:
+        opt.say(console, noise.sentence(), "yellow")
     fewer = result.records_metadata.get("fewer_averages")
     if fewer:
         opt.say(console, fewer, "yellow")

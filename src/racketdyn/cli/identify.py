@@ -288,6 +288,9 @@ def print_modes(
             "one reference sees as one",
             "yellow",
         )
+    noise = identification.noise_frfs
+    if noise is not None and noise.noise_nodes:
+        opt.say(console, noise.sentence(), "yellow")
     narrow = identification.half_power_lines < 1.0
     if narrow.any():
         spacing = float(np.median(np.diff(identification.frfs.frequency)))

@@ -36,10 +36,12 @@ from racketdyn.errors import InputError, logs_warnings, require_positive
 from racketdyn.measurement.quality import (
     REASONS,
     AverageCheck,
+    NoiseOnly,
     QualitySettings,
     check_average,
     check_point_starts,
     force_baseline_and_noise,
+    noise_only_frfs,
     rail_level,
 )
 from racketdyn.measurement.records import (
@@ -133,6 +135,14 @@ class FrfEstimate:
             f"{windowed:.0%} with a force window): give `force_window_s` "
             f"{SUGGESTED_FORCE_WINDOW_S:g} (s, longer than the longest pulse)"
         )
+
+    def noise_only(self) -> NoiseOnly | None:
+        """The FRFs whose coherence over the lines up to the bandwidth says they measured noise
+        alone (:func:`racketdyn.measurement.quality.noise_only_frfs`); None without coherence
+        (one average a point)."""
+        if self.frfs is None:
+            return None
+        return noise_only_frfs(self.frfs, (0.0, self.frfs.bandwidth_hz))
 
     def write_quality_csv(self, path: Path) -> None:
         """``node, average, accepted, reasons, peak_force_n``: every average and its verdict."""

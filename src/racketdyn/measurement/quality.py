@@ -45,23 +45,32 @@ must not count as a pulse (wing_openmodal's hammer, 4.88 mV steps and hits of 15
 13 of 18 clean hits were double hits).  On such a channel a pulse, or a second pulse, must
 stand out by ``noise_factor`` steps.  The pulse starts at the first sample above the detection
 level in the pulse's own lobe (not a ringing lobe before it); windows count from there.
+
+Beside the checks of each average, one of each FRF: an FRF whose coherence says it measured
+noise alone (:func:`noise_only_frfs`, used by ``frf`` and ``identify`` alike).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn.measurement.records import FrfSet
+
 __all__ = [
+    "NOISE_COHERENCE",
     "REASONS",
     "AverageCheck",
+    "NoiseOnly",
     "QualitySettings",
     "check_average",
     "check_point_starts",
     "force_baseline_and_noise",
+    "noise_only_frfs",
     "pulse_polarity",
     "quantisation_step",
     "rail_level",
@@ -300,3 +309,111 @@ def check_point_starts(checks: list[AverageCheck], settings: QualitySettings) ->
             check = replace(check, accepted=False, reasons=(*check.reasons, "trigger"))
         out.append(check)
     return out
+
+
+NOISE_COHERENCE = 0.5
+"""An FRF whose median coherence over the band is under this measured noise alone.
+
+H1's random error (Bendat and Piersol, *Random Data*, ch. 9) is
+``ε[|Ĥ|] = √(1 − γ²) / (|γ| √(2 n_d))`` over n_d averages: ``(1 − γ²)/γ² = 2 n_d ε²`` is the
+response's noise over the part of it the force explains, one average's error.  At γ² = 1/2 they
+are equal, and under it on most of the band's lines (the median) the channel's noise outweighs
+the structure's response almost everywhere, the peaks included: more averages shrink the error
+as 1/√n_d but never make the FRF measure what the response does not hold.  Pure noise stays
+under it at any count of averages: independent signals give an estimated coherence with
+``P(γ̂² ≤ x) = 1 − (1 − x)^(n_d − 1)`` (the estimator's bias, E γ̂² = 1/n_d; ibid.), whose median
+``1 − 2^(−1/(n_d − 1))`` is 0.29 at 3 averages, 0.16 at 5 and 0.07 at 10 (1/2 at 2, where a
+coherence hardly tells anything).  Measured: the SigLab cantilever's two noise channels 0.36
+and 0.36, its measured one 0.58 (peaks narrower than a line: leakage lowers it); the rig's
+racket ≥ 0.64 at every point even at 20 dB response SNR with 2 averages, ≥ 0.98 at its
+default noise (docs/develop.md, issue 25, "FRFs that are only noise").
+"""
+
+
+@dataclass(frozen=True)
+class NoiseOnly:
+    """Each FRF's median coherence over a band, and those that measured noise alone.
+
+    Attributes
+    ----------
+    band_hz : tuple of float
+        The band the medians are over, Hz.
+    nodes : tuple of int
+        The FRFs' nodes (the hammer points against the reference).
+    median_coherence : tuple of float
+        Each FRF's median coherence over the band (0–1).
+    """
+
+    band_hz: tuple[float, float]
+    nodes: tuple[int, ...]
+    median_coherence: tuple[float, ...]
+
+    @property
+    def noise_only(self) -> tuple[bool, ...]:
+        """Per FRF: its median coherence is under :data:`NOISE_COHERENCE`."""
+        return tuple(bool(m < NOISE_COHERENCE) for m in self.median_coherence)
+
+    @property
+    def noise_nodes(self) -> tuple[int, ...]:
+        """The nodes of the FRFs that measured noise alone."""
+        return tuple(n for n, low in zip(self.nodes, self.noise_only, strict=True) if low)
+
+    def sentence(self) -> str:
+        """One line naming the FRFs of noise, what that likely means and what to do; empty
+        when there are none."""
+        nodes = self.noise_nodes
+        if not nodes:
+            return ""
+        medians = [m for m, low in zip(self.median_coherence, self.noise_only, strict=True) if low]
+        one = len(nodes) == 1
+        return (
+            f"{'node' if one else 'nodes'} {', '.join(map(str, nodes))}: median coherence "
+            f"{', '.join(f'{m:.2f}' for m in medians)} over {self.band_hz[0]:.4g}–"
+            f"{self.band_hz[1]:.4g} Hz (under {NOISE_COHERENCE:g}): {len(nodes)} of "
+            f"{len(self.nodes)} FRFs {'is' if one else 'are'} noise, the response measured "
+            "nothing there — an accelerometer unplugged or loose, a wrong channel, or a "
+            "sensitivity that leaves its signal under the noise; check "
+            f"{'that channel' if one else 'those channels'} and measure again (a mode shape's "
+            f"values at {'this point are' if one else 'these points are'} noise)"
+        )
+
+    def record(self) -> dict[str, Any]:
+        """What run.json keeps of it."""
+        return {
+            "nodes": list(self.noise_nodes),
+            "band_hz": list(self.band_hz),
+            "median_coherence": {
+                str(n): round(m, 4) for n, m in zip(self.nodes, self.median_coherence, strict=True)
+            },
+            "threshold": NOISE_COHERENCE,
+            "sentence": self.sentence(),
+        }
+
+
+def noise_only_frfs(frfs: FrfSet, band_hz: tuple[float, float]) -> NoiseOnly | None:
+    """Each FRF's median coherence over ``band_hz`` and those under :data:`NOISE_COHERENCE`
+    (noise alone); None where the FRFs carry no coherence (nothing is said).
+
+    Parameters
+    ----------
+    frfs : FrfSet
+        The FRFs, with their coherence.
+    band_hz : tuple of float
+        (low, high), Hz: the band used (inclusive).
+
+    Returns
+    -------
+    NoiseOnly or None
+        The medians and the FRFs of noise; None without coherence or lines in the band.
+    """
+    if frfs.coherence is None:
+        return None
+    lines = (frfs.frequency >= band_hz[0]) & (frfs.frequency <= band_hz[1]) & (frfs.frequency > 0)
+    if not np.any(lines):
+        return None
+    coherence = np.nan_to_num(np.asarray(frfs.coherence[:, lines], dtype=float), nan=0.0)
+    return NoiseOnly(
+        (float(band_hz[0]), float(band_hz[1])),
+        frfs.nodes,
+        tuple(float(m) for m in np.median(coherence, axis=1)),
+    )

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from racketdyn.errors import InputError
+from racketdyn.measurement.quality import NoiseOnly, noise_only_frfs
 from racketdyn.measurement.records import (
     ANALYSER_BANDWIDTH_FACTOR,
     FORCE_DROP_DB,
@@ -1722,6 +1723,10 @@ class Identification:
     misfit : Misfit, optional
         Where the fit misses the FRFs and what that says (:mod:`racketdyn.modal.misfit`):
         the verdict on the fit error.
+    noise_frfs : NoiseOnly, optional
+        Each FRF's median coherence over the band and those that measured noise alone
+        (:func:`racketdyn.measurement.quality.noise_only_frfs`); None where the FRFs carry no
+        coherence.
     """
 
     model: ModalModel
@@ -1735,6 +1740,7 @@ class Identification:
     references: tuple[int, ...] = ()
     participation: NDArray[np.float64] | None = None
     misfit: Misfit | None = None
+    noise_frfs: NoiseOnly | None = None
 
     @property
     def dropped_modes(self) -> tuple[DroppedMode, ...]:
@@ -1935,6 +1941,9 @@ def identify(
         fit,
         [d.frequency_hz for d in (*selected.dropped_modes, *late) if d.stage in clear],
     )
+    noise = noise_only_frfs(frfs, band)
+    if noise is not None and noise.noise_nodes:
+        log.warning("%s: %s", frfs.source, noise.sentence())
     mass = scaled.scaling == "mass"
     shapes = mass_normalised_shapes(frfs, fit) if mass else unscaled_shapes(fit)
     names = tuple(f"mode {k + 1} ({f:.1f} Hz)" for k, f in enumerate(selected.frequency))
@@ -1960,6 +1969,7 @@ def identify(
             ],
             **_fit_record(fitted, note),
             "misfit": where.record(),
+            **({} if noise is None else {"noise_frfs": noise.record()}),
             **_left_out_record(fitted, kept, refined, late),
         },
         scaling=scaled.scaling,
@@ -1983,6 +1993,7 @@ def identify(
         tuple(order),
         participation,
         where,
+        noise,
     )
 
 

@@ -1,7 +1,7 @@
 """Step ``frf``: FRFs and the per-average quality table from hammer-test records.
 
-Writes ``quality.csv``, ``frfs.uff`` (UFF 58, with geometry) and ``run.json``; figures come from
-the caller's hook.
+Writes ``quality.csv``, ``frfs.uff`` (UFF 58, with geometry) and ``run.json`` (with the FRFs whose
+coherence says they measured noise alone, ``noise_frfs``); figures come from the caller's hook.
 """
 
 from __future__ import annotations
@@ -171,6 +171,7 @@ def run_frf(
             "(`force_range_n`, `force_window_s`)"
         )
     result.written.append(write_frf_uff(estimate.frfs, out_dir / "frfs.uff"))
+    noise = estimate.noise_only()
     result.frf_points = frf_points(estimate.frfs, the_racket)
     defer_figure_data(result, {"frf_points": result.frf_points})
     inputs = {
@@ -186,6 +187,7 @@ def run_frf(
         "three_d_geometry": records.metadata.get("three_d_geometry"),
         "fewer_averages": records.metadata.get("fewer_averages"),
         "force_band_hz": estimate.frfs.force_band_hz,
+        "noise_frfs": None if noise is None else noise.record(),
         "force_noise": {
             "share_of_band_median": _median(estimate.force_noise_share),
             "share_with_force_window_median": _median(estimate.force_noise_share_windowed),

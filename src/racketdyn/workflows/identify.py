@@ -337,7 +337,9 @@ def coordinates_note(model: ModalModel) -> str:
 
 def write_model(identification: Identification, out: Path, label: str = "") -> list[Path]:
     """``modes<label>.csv``, ``modal_model<label>.json``, ``modes<label>.uff``,
-    ``fit_quality<label>.csv`` (x, y[, z] as the FRFs' points, empty without coordinates) and
+    ``fit_quality<label>.csv`` (x, y[, z] as the FRFs' points, empty without coordinates; each
+    FRF's median coherence over the band and ``noise_only`` 1 where that says it measured noise
+    alone, both empty without coherence) and
     ``dropped_modes<label>.csv`` of one identification; returns the paths."""
     model = identification.model
     # modes<label>.uff beside modal_model<label>.json: io.uff.MODES_FILE, model_json_beside
@@ -348,13 +350,24 @@ def write_model(identification: Identification, out: Path, label: str = "") -> l
     quality = out / f"fit_quality{label}.csv"
     locations = identification.frfs.locations
     axes = "xyz"[: locations.shape[1]]
+    n_points = identification.frfs.n_points
+    noise = identification.noise_frfs  # empty cells without coherence
+    coherence = [""] * n_points if noise is None else [f"{m:.4g}" for m in noise.median_coherence]
+    noise_only = [""] * n_points if noise is None else [str(int(n)) for n in noise.noise_only]
     with quality.open("w", encoding="utf-8") as handle:
-        handle.write("node," + ",".join(f"{a}_m" for a in axes) + ",fit_error\n")
-        for node, point, error in zip(
-            identification.frfs.nodes, locations, identification.fit.error, strict=True
+        handle.write(
+            "node," + ",".join(f"{a}_m" for a in axes) + ",fit_error,median_coherence,noise_only\n"
+        )
+        for node, point, error, median, alone in zip(
+            identification.frfs.nodes,
+            locations,
+            identification.fit.error,
+            coherence,
+            noise_only,
+            strict=True,
         ):
             coordinates = ",".join("" if np.isnan(c) else f"{c:.6g}" for c in point)
-            handle.write(f"{node},{coordinates},{error:.4g}\n")
+            handle.write(f"{node},{coordinates},{error:.4g},{median},{alone}\n")
     dropped = out / f"dropped_modes{label}.csv"
     identification.write_dropped_csv(dropped)
     return [*paths, quality, dropped]
@@ -468,6 +481,7 @@ def run_identify(
         "kept": found.model.metadata.get("kept", []),
         "dropped": found.model.metadata["dropped"],
         "misfit": found.model.metadata.get("misfit"),
+        "noise_frfs": found.model.metadata.get("noise_frfs"),
         TRUTH_FILES: truth_files,
     }
     return setup.finish(result, inputs, "identify")
@@ -806,6 +820,8 @@ def run_compare(
         "modes_hand": found_hand.model.summary()["modes"],
         "misfit_free": found_free.model.metadata.get("misfit"),
         "misfit_hand": found_hand.model.metadata.get("misfit"),
+        "noise_frfs_free": found_free.model.metadata.get("noise_frfs"),
+        "noise_frfs_hand": found_hand.model.metadata.get("noise_frfs"),
         "first_mode_nodes_m": _first_mode_nodes(comparison),
         "racket_parts": faces
         or "the first mode's nodes on the long axis, Fig. 6 free against "
