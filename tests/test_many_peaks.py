@@ -130,4 +130,4 @@ def test_a_band_whose_peaks_lie_low_names_the_noise_above_them() -> None:
     note = found.model.metadata["orders_note"]
     last = max(resolved_peaks(found.frfs, (40.0, 6000.0)))
     assert f"all lie below {last:.0f} Hz" in note
-    assert f"`band_hz` (40, {1.2 * last:.0f})" in note
+    assert f"`band_hz` 40,{1.2 * last:.0f}" in note

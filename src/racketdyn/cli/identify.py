@@ -253,6 +253,8 @@ def print_modes(
     note = identification.band_note
     band = f"{identification.band_hz[0]:g}–{identification.band_hz[1]:g} Hz"
     opt.say(console, f"band {band}: " + ("as given (--band)" if note == "given" else note))
+    if orders_note := model.metadata.get("orders_note"):
+        opt.say(console, opt.in_flags(orders_note, parser), "yellow")
     where = identification.misfit
     fit_line = (
         f"median fit error {np.median(identification.fit.error):.2%}"
