@@ -486,7 +486,8 @@ def _missed_peaks(
     summed ``|H|`` standing :data:`EDGE_PEAK` above their surroundings whose phase (in the FRF
     where the peak is largest) turns by more than 90° across them, below the FRFs' bandwidth.
     A peak within a half-power width (or three lines) of a kept mode or of a named row is
-    explained.  For the :data:`EDGE_TRIES` most prominent others at each end a band ten times
+    explained, but for an ``unsettled`` row (whose pin keeps the wide band's pole): a row
+    found here takes its place.  For the :data:`EDGE_TRIES` most prominent others at each end a band ten times
     the peak's distance from the edge is fitted, and a row is written only when a mode comes
     out there (near a wide band's top, in the anti-alias roll-off or a force's spectral
     zero, many peaks are noise's: untried or unconfirmed ones are logged at DEBUG).
@@ -507,8 +508,13 @@ def _missed_peaks(
     ] + [
         (d.frequency_hz, 2 * max(d.damping_ratio, 0.0) * d.frequency_hz)
         for d in selected.dropped_modes
-        if d.stage != "selection"
+        if d.stage not in ("selection", "unsettled")
     ]
+    # an unsettled row's pin keeps the wide band's pole; a band fitted round the peak may do
+    # better (pff_lms's 150.3 Hz over 40-20,000 Hz at order 80: the pin 150.98 Hz, 40-1150 Hz
+    # 150.29 Hz): it is tried, and its row takes the unsettled row's place
+    unsettled = [d for d in selected.dropped_modes if d.stage == "unsettled"]
+    replaced: list[DroppedMode] = []
     rows: list[DroppedMode] = []
     tries = {True: EDGE_TRIES, False: EDGE_TRIES}
     for index, prominence in sorted(
@@ -553,9 +559,15 @@ def _missed_peaks(
             )
         )
         explained.append((peak, float(right - left) * spacing))  # one row a peak
+        replaced += [
+            d
+            for d in unsettled
+            if abs(d.frequency_hz - peak) <= max(float(right - left), ONE_PEAK_LINES) * spacing
+        ]
     if not rows:
         return selected
-    return replace(selected, dropped_modes=(*selected.dropped_modes, *rows))
+    kept = [d for d in selected.dropped_modes if not any(d is r for r in replaced)]
+    return replace(selected, dropped_modes=(*kept, *rows))
 
 
 def _slow_decay(mode: tuple[float, float], selected: SelectedPoles) -> str:
