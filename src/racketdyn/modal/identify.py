@@ -487,10 +487,11 @@ def _missed_peaks(
     where the peak is largest) turns by more than 90° across them, below the FRFs' bandwidth.
     A peak within a half-power width (or three lines) of a kept mode or of a named row is
     explained, but for an ``unsettled`` row (whose pin keeps the wide band's pole): a row
-    found here takes its place.  For the :data:`EDGE_TRIES` most prominent others at each end a band ten times
-    the peak's distance from the edge is fitted, and a row is written only when a mode comes
-    out there (near a wide band's top, in the anti-alias roll-off or a force's spectral
-    zero, many peaks are noise's: untried or unconfirmed ones are logged at DEBUG).
+    found here takes its place.  For the :data:`EDGE_TRIES` most prominent others at each end
+    a band ten times the peak's distance from the edge is fitted, and a row is written only
+    when a mode comes out there (near a wide band's top, in the anti-alias roll-off or a
+    force's spectral zero, many peaks are noise's: untried or unconfirmed ones are logged at
+    DEBUG).
     """
     low, high = band
     data = frfs.band(low, high)
