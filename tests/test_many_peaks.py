@@ -111,6 +111,19 @@ def test_an_order_given_too_low_for_the_peaks_is_said_with_the_order_that_fits_t
     assert f"holds {n_peaks} clear peaks" in line
     assert f"`max_order` {ORDERS_PER_PEAK * n_peaks}" in line
     assert line in caplog.text
+    # the peaks it leaves with no mode and no row are listed, each a true mode of the set
+    # that no kept mode stands for; every other counted peak has a mode or a row near it
+    lost = found.model.metadata["unexplained_peaks_hz"]
+    assert lost
+    assert found.model.metadata["peaks_note"].startswith(f"{len(lost)} of the band's {n_peaks}")
+    f_n, _ = _modes()
+    for p in lost:
+        assert np.min(np.abs(f_n - p)) <= 2.0
+        assert np.min(np.abs(found.model.frequency - p)) > 2.0
+    rows = [d.frequency_hz for d in found.dropped_modes if d.stage != "selection"]
+    named = np.array([*found.model.frequency, *rows])
+    for p in resolved_peaks(found.frfs, BAND):
+        assert p in lost or np.min(np.abs(named - p)) <= 3.0
 
 
 def test_no_mode_found_names_the_peaks_not_a_wider_band() -> None:

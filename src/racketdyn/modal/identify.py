@@ -1909,6 +1909,10 @@ def identify(
     if note:
         log.warning("%s: %s", fitted.frfs.source, note)
     frfs, selected, fit = fitted.frfs, fitted.selected, fitted.fit
+    unexplained = _unexplained_peaks(peaks, selected, late, frfs)
+    peaks_note = _unexplained_words(unexplained, len(peaks)) if unexplained else ""
+    if peaks_note:
+        log.warning("%s", peaks_note)
     clear = ("unsettled", "edge")  # left out though a peak of the data stands there
     where = misfit(
         frfs,
@@ -1934,6 +1938,8 @@ def identify(
             "max_order": max_order,
             "peaks_in_band": len(peaks),
             "orders_note": orders_note,
+            "unexplained_peaks_hz": unexplained,
+            "peaks_note": peaks_note,
             "references": [frfs.reference_node]
             if references is None
             else [
@@ -2008,6 +2014,34 @@ def _orders_for(
         "" if raised == need else f"; `max_order` {need} would fit them all, or narrow `band_hz`"
     )
     return raised, f"`max_order` raised from {order} to {raised}: {peaks} ({fits}){short}"
+
+
+def _unexplained_peaks(
+    peaks: list[float], selected: SelectedPoles, late: Sequence[DroppedMode], frfs: FrfSet
+) -> list[float]:
+    """The band's clear peaks (:func:`racketdyn.modal.peaks.resolved_peaks`) with no kept
+    mode and no named row (any stage but ``selection``) within its half-power width ``2ζf``
+    or :data:`ONE_PEAK_LINES` lines, Hz."""
+    one_peak = ONE_PEAK_LINES * _spacing(frfs)
+    near = [
+        (float(f), 2 * abs(float(z)) * float(f))
+        for f, z in zip(selected.frequency, selected.damping_ratio, strict=True)
+    ] + [
+        (d.frequency_hz, 2 * abs(d.damping_ratio) * d.frequency_hz)
+        for d in (*selected.dropped_modes, *late)
+        if d.stage != "selection"
+    ]
+    return [p for p in peaks if not any(abs(p - f) <= max(w, one_peak) for f, w in near)]
+
+
+def _unexplained_words(unexplained: list[float], n_peaks: int) -> str:
+    """The line saying the clear peaks :func:`_unexplained_peaks` found."""
+    listed = ", ".join(f"{f:.1f}" for f in unexplained)
+    return (
+        f"{len(unexplained)} of the band's {n_peaks} clear peaks of the data have no mode and "
+        f"no row: {listed} Hz; `pin_hz` at one, or a narrower `band_hz` round them, may keep "
+        "them"
+    )
 
 
 def _peaks_low(peaks: list[float], band: tuple[float, float]) -> str:

@@ -454,6 +454,7 @@ def run_identify(
         "max_order": found.model.metadata["max_order"],
         "peaks_in_band": found.model.metadata.get("peaks_in_band"),
         "orders_note": found.model.metadata.get("orders_note"),
+        "unexplained_peaks_hz": found.model.metadata.get("unexplained_peaks_hz"),
         "reference_node": found.frfs.reference_node,
         "references": list(found.references),
         "ball_at_m": None if ball_at is None else [float(v) for v in ball_at],
