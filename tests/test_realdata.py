@@ -194,9 +194,13 @@ def test_clean_peaks_stable_in_few_orders_are_kept(tmp_path: Path) -> None:
     # 0.3 % in 51 of 60 orders, median 3007.34 Hz) and 4127.7 Hz (6 of 60; sdypy 56 of 60,
     # 4127.58 Hz) were left out (the second named `unsettled`); meca0062 against 203 left out
     # 105.18 Hz (9 of 60), which 201 and 202 give as a mode (105.18, 105.19 Hz).
-    found = identify(_pyfrf_frfs(tmp_path)).model
-    assert _near(found.frequency, 3000.0, 3015.0) == [pytest.approx(3007.34, abs=1.0)]
-    assert _near(found.frequency, 4120.0, 4135.0) == [pytest.approx(4127.6, abs=1.0)]
+    # The default order is raised to 120 there (27 clear peaks: tests/test_many_peaks.py),
+    # where both are stable in enough orders; the rule that keeps them is checked at 60.
+    frfs = _pyfrf_frfs(tmp_path)
+    for order in (None, 60):
+        found = identify(frfs, max_order=order).model
+        assert _near(found.frequency, 3000.0, 3015.0) == [pytest.approx(3007.34, abs=1.0)]
+        assert _near(found.frequency, 4120.0, 4135.0) == [pytest.approx(4127.6, abs=1.0)]
     kept = [line.split(" Hz")[0] for line in found.metadata["kept"]]
     assert {"3007.66", "4127.69"} <= set(kept)  # and 8682.65, 9295.85: peaks 4 × their
     # surroundings whose phase (123°, a sensor away from the hammer) no real constant fits

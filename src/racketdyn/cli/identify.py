@@ -266,6 +266,10 @@ def print_modes(
             "force (a harder hammer tip puts force there)",
             "yellow",
         )
+    if orders_note := model.metadata.get("orders_note"):
+        opt.say(console, opt.in_flags(orders_note, parser), "yellow")
+    if peaks_note := model.metadata.get("peaks_note"):
+        opt.say(console, opt.in_flags(peaks_note, parser), "yellow")
     where = identification.misfit
     fit_line = (
         f"median fit error {np.median(identification.fit.error):.2%}"

@@ -41,9 +41,11 @@ from racketdyn.modal.peaks import (
     mode_at_peak,
     peaks_beside,
     phase_turns,
+    resolved_peaks,
 )
 from racketdyn.modal.poles import (
     DroppedMode,
+    NoModeError,
     SelectedPoles,
     SelectionRules,
     Stabilisation,
@@ -232,6 +234,21 @@ FRF's: a coherence of 1 (noise-free lines) weights no FRF infinitely."""
 HEADER_DIGITS_RTOL = 1e-5
 """A band top this far (relative) above the last line is the last line: the UFF header keeps
 the step with 6 significant digits (E13.5), so a 1000 Hz export reads 999.997 Hz."""
+
+DEFAULT_ORDER = 60
+"""The highest model order against one reference unless the band's peaks ask for more."""
+ORDERS_PER_PEAK = 5
+"""Model orders a clear peak of the band takes (:func:`racketdyn.modal.peaks.resolved_peaks`):
+a free spruce plate's 20 peaks over 40-2,000 Hz (0.5 Hz lines, one FRF) needed order 100 for
+20 of the lab's 21 (14 at 60, 18 at 80); 45 well-separated synthetic modes (4 FRFs, 0.1 %
+noise) needed 66 (17 kept at 60): real data's noise takes poles too."""
+MAX_RAISED_ORDER = 120
+"""The highest order the default raises itself to (run time grows with it: benchmarks/
+bench_orders.py); beyond it the order that would fit the peaks is said."""
+PEAK_TOP_SHARE = 0.5
+"""A band whose clear peaks all lie in its lower part, below this share of its width: the
+lines above them are noise that takes the orders' poles (the cause named when no mode is
+found)."""
 
 
 def default_band(frfs: FrfSet) -> tuple[float, float]:
@@ -495,10 +512,12 @@ def _missed_peaks(
     summed ``|H|`` standing :data:`EDGE_PEAK` above their surroundings whose phase (in the FRF
     where the peak is largest) turns by more than 90° across them, below the FRFs' bandwidth.
     A peak within a half-power width (or three lines) of a kept mode or of a named row is
-    explained.  For the :data:`EDGE_TRIES` most prominent others at each end a band ten times
-    the peak's distance from the edge is fitted, and a row is written only when a mode comes
-    out there (near a wide band's top, in the anti-alias roll-off or a force's spectral
-    zero, many peaks are noise's: untried or unconfirmed ones are logged at DEBUG).
+    explained, but for an ``unsettled`` row (whose pin keeps the wide band's pole): a row
+    found here takes its place.  For the :data:`EDGE_TRIES` most prominent others at each end
+    a band ten times the peak's distance from the edge is fitted, and a row is written only
+    when a mode comes out there (near a wide band's top, in the anti-alias roll-off or a
+    force's spectral zero, many peaks are noise's: untried or unconfirmed ones are logged at
+    DEBUG).
     """
     low, high = band
     data = frfs.band(low, high)
@@ -516,8 +535,13 @@ def _missed_peaks(
     ] + [
         (d.frequency_hz, 2 * max(d.damping_ratio, 0.0) * d.frequency_hz)
         for d in selected.dropped_modes
-        if d.stage != "selection"
+        if d.stage not in ("selection", "unsettled")
     ]
+    # an unsettled row's pin keeps the wide band's pole; a band fitted round the peak may do
+    # better (pff_lms's 150.3 Hz over 40-20,000 Hz at order 80: the pin 150.98 Hz, 40-1150 Hz
+    # 150.29 Hz): it is tried, and its row takes the unsettled row's place
+    unsettled = [d for d in selected.dropped_modes if d.stage == "unsettled"]
+    replaced: list[DroppedMode] = []
     rows: list[DroppedMode] = []
     tries = {True: EDGE_TRIES, False: EDGE_TRIES}
     for index, prominence in sorted(
@@ -562,9 +586,15 @@ def _missed_peaks(
             )
         )
         explained.append((peak, float(right - left) * spacing))  # one row a peak
+        replaced += [
+            d
+            for d in unsettled
+            if abs(d.frequency_hz - peak) <= max(float(right - left), ONE_PEAK_LINES) * spacing
+        ]
     if not rows:
         return selected
-    return replace(selected, dropped_modes=(*selected.dropped_modes, *rows))
+    kept = [d for d in selected.dropped_modes if not any(d is r for r in replaced)]
+    return replace(selected, dropped_modes=(*kept, *rows))
 
 
 def _slow_decay(mode: tuple[float, float], selected: SelectedPoles) -> str:
@@ -1876,9 +1906,12 @@ def identify(
         a top within the UFF header's 6-digit rounding of the last line is the last line.
     max_order : int, optional
         Highest model order of the stabilisation diagram: the denominator's degree.  Default
-        60 against one reference; 30 against several
+        60 against one reference (:data:`DEFAULT_ORDER`), raised to :data:`ORDERS_PER_PEAK`
+        times the band's clear peaks (:func:`racketdyn.modal.peaks.resolved_peaks`) up to
+        :data:`MAX_RAISED_ORDER` (logged, ``metadata["orders_note"]``); 30 against several
         (:data:`racketdyn.modal.polyreference.DEFAULT_MAX_ORDER`: each order brings one pole
-        per reference, and higher orders split modes into fragments).
+        per reference, and higher orders split modes into fragments).  An order given that
+        the peaks outnumber is kept and the order that would fit them said.
     pin_hz, exclude_hz : sequence of float
         Modes to force in or leave out, by approximate frequency, Hz.
     support : str
@@ -1921,11 +1954,18 @@ def identify(
         band = _checked_band(frfs, default)
     else:
         band, band_note = _checked_band(frfs, band_hz), "given"
-    if max_order is None:
-        max_order = 60 if references is None else DEFAULT_MAX_ORDER
+    peaks = resolved_peaks(frfs, band)
+    max_order, orders_note = _orders_for(len(peaks), max_order, references, frfs, band)
+    low = _peaks_low(peaks, band)
+    orders_note = "; ".join(filter(None, (orders_note, low and f"the {low}")))
+    if orders_note:
+        log.warning("%s", orders_note)
     choices = _Choices(pin_hz, exclude_hz, rules, max_order, references)
     stab = choices.stabilisation(frfs, band)
-    selected, kept, refined = _selected_poles(stab, frfs, band, choices)
+    try:
+        selected, kept, refined = _selected_poles(stab, frfs, band, choices)
+    except NoModeError as error:
+        raise InputError(f"{error.head}. {_no_mode_cause(peaks, max_order, frfs, band)}") from None
     fitted, no_peak = _with_peaks_only(frfs, selected, band, references)
     scaled = _scaled(fitted, band)
     fitted, note = scaled.fitted, scaled.note
@@ -1935,6 +1975,10 @@ def identify(
     if note:
         log.warning("%s: %s", fitted.frfs.source, note)
     frfs, selected, fit = fitted.frfs, fitted.selected, fitted.fit
+    unexplained = _unexplained_peaks(peaks, selected, late, frfs)
+    peaks_note = _unexplained_words(unexplained, len(peaks)) if unexplained else ""
+    if peaks_note:
+        log.warning("%s", peaks_note)
     clear = ("unsettled", "edge")  # left out though a peak of the data stands there
     where = misfit(
         frfs,
@@ -1961,6 +2005,10 @@ def identify(
             "band_hz": list(band),
             "band_note": band_note,
             "max_order": max_order,
+            "peaks_in_band": len(peaks),
+            "orders_note": orders_note,
+            "unexplained_peaks_hz": unexplained,
+            "peaks_note": peaks_note,
             "references": [frfs.reference_node]
             if references is None
             else [
@@ -1994,6 +2042,119 @@ def identify(
         participation,
         where,
         noise,
+    )
+
+
+def _orders_for(
+    n_peaks: int,
+    max_order: int | None,
+    references: FrfReferences | None,
+    frfs: FrfSet,
+    band: tuple[float, float],
+) -> tuple[int, str]:
+    """The highest model order, and a line when the band's ``n_peaks`` clear peaks ask for
+    more than it (:data:`ORDERS_PER_PEAK` each) ("" if not).
+
+    The default order against one reference is raised to fit them, up to
+    :data:`MAX_RAISED_ORDER` and below half the band's lines; an order given is kept and the
+    order that would fit them said.  Against several references (one pole per reference an
+    order) the default is kept.
+    """
+    need = ORDERS_PER_PEAK * n_peaks
+    given = max_order is not None
+    order = max_order if max_order is not None else DEFAULT_ORDER
+    if references is not None and not given:
+        return DEFAULT_MAX_ORDER, ""
+    if need <= order:
+        return order, ""
+    fits = f"{ORDERS_PER_PEAK} orders a peak"
+    peaks = f"the band {band[0]:g}–{band[1]:g} Hz holds {n_peaks} clear peaks of the data"
+    if given or references is not None:
+        return order, (
+            f"{peaks}, more than `max_order` {order} can fit ({fits}): give `max_order` {need} "
+            "or narrow `band_hz`"
+        )
+    lines = int(np.count_nonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1])))
+    raised = min(need, MAX_RAISED_ORDER, (lines - 1) // 2)
+    if raised <= order:
+        return order, (
+            f"{peaks}, more than `max_order` {order} can fit ({fits}); too few lines for more: "
+            "narrow `band_hz`"
+        )
+    short = (
+        "" if raised == need else f"; `max_order` {need} would fit them all, or narrow `band_hz`"
+    )
+    return raised, f"`max_order` raised from {order} to {raised}: {peaks} ({fits}){short}"
+
+
+def _unexplained_peaks(
+    peaks: list[float], selected: SelectedPoles, late: Sequence[DroppedMode], frfs: FrfSet
+) -> list[float]:
+    """The band's clear peaks (:func:`racketdyn.modal.peaks.resolved_peaks`) with no kept
+    mode and no named row (any stage but ``selection``) within its half-power width ``2ζf``
+    or :data:`ONE_PEAK_LINES` lines, Hz."""
+    one_peak = ONE_PEAK_LINES * _spacing(frfs)
+    near = [
+        (float(f), 2 * abs(float(z)) * float(f))
+        for f, z in zip(selected.frequency, selected.damping_ratio, strict=True)
+    ] + [
+        (d.frequency_hz, 2 * abs(d.damping_ratio) * d.frequency_hz)
+        for d in (*selected.dropped_modes, *late)
+        if d.stage != "selection"
+    ]
+    return [p for p in peaks if not any(abs(p - f) <= max(w, one_peak) for f, w in near)]
+
+
+def _unexplained_words(unexplained: list[float], n_peaks: int) -> str:
+    """The line saying the clear peaks :func:`_unexplained_peaks` found."""
+    listed = ", ".join(f"{f:.1f}" for f in unexplained)
+    return (
+        f"{len(unexplained)} of the band's {n_peaks} clear peaks of the data have no mode and "
+        f"no row: {listed} Hz; `pin_hz` at one, or a narrower `band_hz` round them, may keep "
+        "them"
+    )
+
+
+def _peaks_low(peaks: list[float], band: tuple[float, float]) -> str:
+    """A line when the band's clear peaks all lie below :data:`PEAK_TOP_SHARE` of it (the
+    lines above them noise whose poles take the orders), else ""."""
+    if not peaks or peaks[-1] >= band[0] + PEAK_TOP_SHARE * (band[1] - band[0]):
+        return ""
+    return (
+        f"band's {len(peaks)} clear peaks of the data all lie below {peaks[-1]:.0f} Hz, in its "
+        f"lowest {PEAK_TOP_SHARE:.0%}; the lines above them are noise whose poles take the "
+        f"orders: give `band_hz` {band[0]:g},{1.2 * peaks[-1]:.0f}"
+    )
+
+
+def _no_mode_cause(
+    peaks: list[float], max_order: int, frfs: FrfSet, band: tuple[float, float]
+) -> str:
+    """Why no mode was found, from the band's clear peaks (:func:`_orders_for`'s count): too
+    many for the orders, all low in a band of noise above them, none at all, or a fit that
+    does not settle on them; widening the band is advised only for a band short of the data's
+    that holds no clear peak."""
+    n = len(peaks)
+    need = ORDERS_PER_PEAK * n
+    if n and need > max_order:
+        return (
+            f"The band holds {n} clear peaks of the data, more than `max_order` {max_order} "
+            f"can fit ({ORDERS_PER_PEAK} orders a peak): give `max_order` {need} or narrow "
+            "`band_hz`"
+        )
+    if low := _peaks_low(peaks, band):
+        return f"The {low} or raise `max_order`"
+    if n:
+        return (
+            f"The band holds {n} clear peaks of the data, yet no pole of the fit settles over "
+            "the orders: raise `max_order` or pin a mode (`pin_hz`)"
+        )
+    whole = band[0] <= frfs.frequency[1] and band[1] >= frfs.frequency[-1]
+    where = "The band, the data's whole band," if whole else "The band"
+    wider = "" if whole else "widen `band_hz`, "
+    return (
+        f"{where} holds no clear peak of the data above its noise: {wider}raise `max_order` or "
+        "pin a mode (`pin_hz`)"
     )
 
 

@@ -99,6 +99,7 @@ if TYPE_CHECKING:
 __all__ = [
     "DEFAULT_SELECTION",
     "DroppedMode",
+    "NoModeError",
     "PoleStability",
     "SelectedPoles",
     "SelectionRules",
@@ -1355,6 +1356,15 @@ def _dropped(
     return dropped, dropped_modes
 
 
+class NoModeError(InputError):
+    """No mode is left in the band (:func:`select_poles`): ``head`` says where and what was
+    dropped; a caller that knows the data's peaks may name the cause in its place."""
+
+    def __init__(self, head: str, advice: str) -> None:
+        super().__init__(f"{head}. {advice}")
+        self.head = head
+
+
 def _no_mode(stab: Stabilisation, clusters: list[_Cluster], dropped: list[str]) -> InputError:
     """The error when no mode is left: the first substantial clusters dropped, and why.
 
@@ -1363,9 +1373,9 @@ def _no_mode(stab: Stabilisation, clusters: list[_Cluster], dropped: list[str]) 
     low_hz, high_hz = stab.band_hz
     substantial = [d for d, c in zip(dropped, clusters, strict=True) if c.n_orders > 3]
     detail = "; ".join(substantial[:4]) if substantial else "no pole is stable over orders"
-    return InputError(
-        f"no mode found between {low_hz:.1f} and {high_hz:.1f} Hz ({detail}). The band may "
-        "hold no mode above the noise; widen the band, raise max_order or pin a mode"
+    return NoModeError(
+        f"no mode found between {low_hz:.1f} and {high_hz:.1f} Hz ({detail})",
+        "The band may hold no mode above the noise; widen the band, raise max_order or pin a mode",
     )
 
 
