@@ -2121,7 +2121,8 @@ def _peaks_low(peaks: list[float], band: tuple[float, float]) -> str:
     if not peaks or peaks[-1] >= band[0] + PEAK_TOP_SHARE * (band[1] - band[0]):
         return ""
     return (
-        f"band's {len(peaks)} clear peaks of the data all lie below {peaks[-1]:.0f} Hz, in its "
+        f"band's {len(peaks)} clear peak{'s' if len(peaks) > 1 else ''} of the data "
+        f"{'all lie' if len(peaks) > 1 else 'lies'} below {peaks[-1]:.0f} Hz, in its "
         f"lowest {PEAK_TOP_SHARE:.0%}; the lines above them are noise whose poles take the "
         f"orders: give `band_hz` {band[0]:g},{1.2 * peaks[-1]:.0f}"
     )
