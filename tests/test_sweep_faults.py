@@ -399,6 +399,55 @@ def test_an_interrupted_cluster_keeps_its_cancelled_tasks_off_the_console() -> N
         top.setLevel(before)
 
 
+def test_a_local_workers_lost_heartbeat_stays_off_the_quiet_console(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """CI (fifteenth session's stop): after Ctrl-C on a ``--dask-local`` sweep a worker, whose
+    scheduler (in the main process) had just closed, logged "Failed to communicate with
+    scheduler during heartbeat." with a Traceback at error level — the level a quiet sweep
+    lets its workers print (1 run in several).  A local worker's scheduler lives in the main
+    process, so that failure means the sweep is ending: its preload drops it unless -v asked
+    for distributed's info; other errors still print."""
+    import inspect
+    import logging
+
+    from distributed.worker import Worker
+
+    from racketdyn.sweep import _dask_worker
+
+    assert _dask_worker.HEARTBEAT_LOST in inspect.getsource(Worker.heartbeat)
+    worker_log = logging.getLogger("distributed.worker")
+    handler = logging.StreamHandler()  # as dask's logging config gives the worker
+    top = logging.getLogger("distributed")
+    before = top.level, list(worker_log.filters)
+    top.addHandler(handler)
+    try:
+        monkeypatch.setenv("DASK_LOGGING__DISTRIBUTED", "error")
+        _dask_worker.dask_setup(None)
+        try:
+            raise OSError("Stream is closed")
+        except OSError:
+            worker_log.exception("Failed to communicate with scheduler during heartbeat.")
+            worker_log.error("a task's own error")
+        err = capsys.readouterr().err
+        assert "heartbeat" not in err
+        assert "Traceback" not in err
+        assert "a task's own error" in err
+        for flt in list(worker_log.filters):
+            worker_log.removeFilter(flt)
+        monkeypatch.setenv("DASK_LOGGING__DISTRIBUTED", "info")  # -v: shown
+        _dask_worker.dask_setup(None)
+        worker_log.error("Failed to communicate with scheduler during heartbeat.")
+        assert "heartbeat" in capsys.readouterr().err
+    finally:
+        top.removeHandler(handler)
+        top.setLevel(before[0])
+        for flt in list(worker_log.filters):
+            worker_log.removeFilter(flt)
+        for flt in before[1]:
+            worker_log.addFilter(flt)
+
+
 @pytest.mark.skipif(not hasattr(signal, "SIGINT"), reason="needs SIGINT")
 def test_a_ctrl_c_swallowed_where_it_lands_still_stops_a_dask_sweep() -> None:
     # A CI run under load: the interrupted --dask-local sweep ran to its end with exit status
