@@ -150,10 +150,10 @@ def test_meca0062_a_close_pair_of_other_shapes_stays_two(tmp_path: Path) -> None
     assert single == [pytest.approx(129.95, abs=0.3)]
 
 
-def _pyfrf_frfs(tmp_path: Path) -> FrfSet:
+def _pyfrf_records(tmp_path: Path) -> HammerRecords:
     """pyFRF's five hammer impacts at one point (time, force N, acceleration m/s², 25.6 kHz)."""
     hits = [np.load(realdata.file(f"pyFRF/measurements_{k}.npy.xz", tmp_path)) for k in range(1, 6)]
-    records = HammerRecords(
+    return HammerRecords(
         sampling_interval_s=float(hits[0][0, 1] - hits[0][0, 0]),
         force=(np.array([h[1] for h in hits]),),
         response=(np.array([h[2] for h in hits]),),
@@ -164,7 +164,11 @@ def _pyfrf_frfs(tmp_path: Path) -> FrfSet:
         reference_location=(np.nan, np.nan),
         source="pyFRF",
     )
-    frfs = estimate_frfs(records).frfs
+
+
+def _pyfrf_frfs(tmp_path: Path) -> FrfSet:
+    """The FRF of pyFRF's five hits (:func:`_pyfrf_records`)."""
+    frfs = estimate_frfs(_pyfrf_records(tmp_path)).frfs
     assert frfs is not None
     return frfs
 
