@@ -1981,14 +1981,15 @@ def identify(
     if peaks_note:
         log.warning("%s", peaks_note)
     clear = ("unsettled", "edge")  # left out though a peak of the data stands there
+    noise = noise_only_frfs(frfs, band)
+    if noise is not None and noise.noise_nodes:
+        log.warning("%s: %s", frfs.source, noise.sentence())
     where = misfit(
         frfs,
         fit,
         [d.frequency_hz for d in (*selected.dropped_modes, *late) if d.stage in clear],
+        () if noise is None else noise.noise_nodes,
     )
-    noise = noise_only_frfs(frfs, band)
-    if noise is not None and noise.noise_nodes:
-        log.warning("%s: %s", frfs.source, noise.sentence())
     mass = scaled.scaling == "mass"
     shapes = mass_normalised_shapes(frfs, fit) if mass else unscaled_shapes(fit)
     names = tuple(f"mode {k + 1} ({f:.1f} Hz)" for k, f in enumerate(selected.frequency))
