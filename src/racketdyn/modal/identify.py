@@ -1910,8 +1910,10 @@ def identify(
         times the band's clear peaks (:func:`racketdyn.modal.peaks.resolved_peaks`) up to
         :data:`MAX_RAISED_ORDER` (logged, ``metadata["orders_note"]``); 30 against several
         (:data:`racketdyn.modal.polyreference.DEFAULT_MAX_ORDER`: each order brings one pole
-        per reference, and higher orders split modes into fragments).  An order given that
-        the peaks outnumber is kept and the order that would fit them said.
+        per reference, and higher orders split modes into fragments), raised alike when the
+        peaks ask for more poles (:data:`ORDERS_PER_PEAK` a peak over the references, up to
+        :data:`MAX_RAISED_ORDER` poles).  An order given that the peaks outnumber is kept and
+        the order that would fit them said.
     pin_hz, exclude_hz : sequence of float
         Modes to force in or leave out, by approximate frequency, Hz.
     support : str
@@ -2055,29 +2057,33 @@ def _orders_for(
     band: tuple[float, float],
 ) -> tuple[int, str]:
     """The highest model order, and a line when the band's ``n_peaks`` clear peaks ask for
-    more than it (:data:`ORDERS_PER_PEAK` each) ("" if not).
+    more than it (:data:`ORDERS_PER_PEAK` poles each) ("" if not).
 
-    The default order against one reference is raised to fit them, up to
-    :data:`MAX_RAISED_ORDER` and below half the band's lines; an order given is kept and the
-    order that would fit them said.  Against several references (one pole per reference an
-    order) the default is kept.
+    The default order is raised to fit them, up to :data:`MAX_RAISED_ORDER` poles and below
+    half the band's lines; an order given is kept and the order that would fit them said.
+    Against several references each order brings one pole a reference: the default (30)
+    is raised to ``ORDERS_PER_PEAK × n_peaks / n_references``, at most ``MAX_RAISED_ORDER /
+    n_references`` (45 synthetic modes against two references: 3 kept at 30, every one at
+    60).
     """
-    need = ORDERS_PER_PEAK * n_peaks
+    n_refs = 1 if references is None else len(references.references)
+    need = -(-ORDERS_PER_PEAK * n_peaks // n_refs)
     given = max_order is not None
-    order = max_order if max_order is not None else DEFAULT_ORDER
-    if references is not None and not given:
-        return DEFAULT_MAX_ORDER, ""
+    default = DEFAULT_ORDER if references is None else DEFAULT_MAX_ORDER
+    order = max_order if max_order is not None else default
     if need <= order:
         return order, ""
-    fits = f"{ORDERS_PER_PEAK} orders a peak"
+    fits = f"{ORDERS_PER_PEAK} orders a peak" + (
+        "" if n_refs == 1 else f" over {n_refs} references"
+    )
     peaks = f"the band {band[0]:g}–{band[1]:g} Hz holds {n_peaks} clear peaks of the data"
-    if given or references is not None:
+    if given:
         return order, (
             f"{peaks}, more than `max_order` {order} can fit ({fits}): give `max_order` {need} "
             "or narrow `band_hz`"
         )
     lines = int(np.count_nonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1])))
-    raised = min(need, MAX_RAISED_ORDER, (lines - 1) // 2)
+    raised = min(need, MAX_RAISED_ORDER // n_refs, (lines - 1) // 2)
     if raised <= order:
         return order, (
             f"{peaks}, more than `max_order` {order} can fit ({fits}); too few lines for more: "
