@@ -95,6 +95,16 @@ def _check(path: Path, record: _Record) -> None:
             "the points apart nor find the driving point; set record 6, fields 6 and 9 to the "
             "sensor's and the hammer's node numbers (the same at the driving point)"
         )
+    if record.denominator in RESPONSE_OF_CODE:
+        # a shaker test's response over the base's, or two accelerometers: the structure's
+        # poles are in it, but no force to scale shapes or charge an impact by
+        over = f"{RESPONSE_OF_CODE[record.quantity]} over {RESPONSE_OF_CODE[record.denominator]}"
+        raise InputError(
+            f"{record.where(path)}: holds {over} (record 10, field 1 = {record.denominator}), a "
+            "transmissibility (a base-excited shaker test or two sensors), not a response per "
+            "force: racketdyn identifies FRFs per newton; measure the force (an impact hammer, "
+            "or a force cell at the shaker's stinger) and export the FRF against it"
+        )
     if record.denominator not in (0, QUANTITY_CODE["force"]):
         raise InputError(
             f"{record.where(path)}: the FRF must be per force (record 10, field 1 = 13), "
