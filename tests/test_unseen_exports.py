@@ -201,36 +201,51 @@ def test_a_merged_row_whose_mode_is_left_out_says_so() -> None:
     assert row.fit_gain < 1.5
 
 
-def _transmissibility_uff(path: Path) -> Path:
+TRANSMISSIBILITY_HZ, TRANSMISSIBILITY_ZETA = 219.0, 0.011
+
+
+def _transmissibility_uff(path: Path, denominator: int = 12) -> Path:
     """A base-excited shaker test's acceleration over acceleration as Siemens LMS Test.Lab
     exports it (LolloCappo/pyLMS's ``data/FRF.mat``, "FRF Point2/Point1", unit "/"): function
-    type 4, ordinate 12 over denominator 12, 10-1000 Hz at 1 Hz; one mode at 219 Hz, ζ 1.1 %
-    (T = (ωn² + 2iζωnω)/(ωn² - ω² + 2iζωnω), the single-degree-of-freedom law)."""
+    type 4, ordinate 12 over denominator 12, 10-1000 Hz at 1 Hz; one mode at 219 Hz, ζ 1.1 %,
+    by the single-degree-of-freedom law of base excitation,
+    T = (ωn² + 2iζωnω)/(ωn² - ω² + 2iζωnω) = 1 + ω²/(ωn² - ω² + 2iζωnω)."""
     import pyuff
 
     f = np.arange(10.0, 1001.0)
-    wn, w, zeta = 2 * np.pi * 219.0, 2 * np.pi * f, 0.011
+    wn, w, zeta = 2 * np.pi * TRANSMISSIBILITY_HZ, 2 * np.pi * f, TRANSMISSIBILITY_ZETA
     t = (wn**2 + 2j * zeta * wn * w) / (wn**2 - w**2 + 2j * zeta * wn * w)
     dataset = pyuff.prepare_58(
         binary=0, func_type=4, rsp_node=2, rsp_dir=3, ref_node=1, ref_dir=3, data=t, x=f,
         id1="FRF Point2/Point1", abscissa_spacing=1, abscissa_spec_data_type=18,
         abscissa_axis_units_lab="Hz", ordinate_spec_data_type=12,
-        ordinate_axis_units_lab="m/s^2", orddenom_spec_data_type=12,
-        orddenom_axis_units_lab="m/s^2",
+        ordinate_axis_units_lab="m/s^2", orddenom_spec_data_type=denominator,
+        orddenom_axis_units_lab="m/s^2" if denominator == 12 else "m/s",
     )  # fmt: skip
     pyuff.UFF(str(path)).write_sets(dataset, mode="overwrite")
     return path
 
 
-def test_a_transmissibility_is_named_with_what_racketdyn_needs(tmp_path: Path) -> None:
-    # pyLMS's Test.Lab export of a shaker test (base acceleration as the reference) was refused
-    # "the FRF must be per force (record 10, field 1 = 13), not per quantity 12": true, but
-    # it named neither what the file holds nor what to measure instead.
+def test_a_transmissibility_gives_its_modes_with_unscaled_shapes(tmp_path: Path) -> None:
+    # pyLMS's Test.Lab export of a shaker test (the base's acceleration as the reference) was
+    # refused "the FRF must be per force (record 10, field 1 = 13), not per quantity 12": every
+    # mode lost.  Its poles are the structure's (T = 1 + ω² Σ …, an accelerance's form with
+    # the base's inertia load for the force); with no force the shapes cannot be scaled.
+    frfs = read_frfs(_transmissibility_uff(tmp_path / "frf.uff"), require_coordinates=False)
+    assert frfs.metadata["transmissibility"] == "acceleration over acceleration"
+    found = identify(frfs)
+    assert found.model.n_modes == 1
+    np.testing.assert_allclose(found.model.frequency, [TRANSMISSIBILITY_HZ], rtol=1e-4)
+    np.testing.assert_allclose(found.model.damping_ratio, [TRANSMISSIBILITY_ZETA], rtol=0.02)
+    assert found.model.scaling == "unscaled"
+    assert "transmissibility" in found.scaling_note
+    assert "force" in found.scaling_note
+
+
+def test_a_ratio_of_unlike_responses_is_one_line(tmp_path: Path) -> None:
     with pytest.raises(InputError) as error:
-        read_frfs(_transmissibility_uff(tmp_path / "frf.uff"))
+        read_frfs(_transmissibility_uff(tmp_path / "frf.uff", denominator=11))
     message = str(error.value)
     assert "\n" not in message
-    assert "acceleration over acceleration" in message
-    assert "transmissibility" in message
+    assert "acceleration over velocity" in message
     assert "per newton" in message
-    assert "force cell" in message

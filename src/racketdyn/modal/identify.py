@@ -2417,6 +2417,16 @@ def _scaled(fitted: _Fitted, band: tuple[float, float]) -> _Scaled:
     """Mass-normalisable from the driving point, or unscaled and why (:func:`identify`)."""
     frfs = fitted.frfs
     driving = frfs.driving_point
+    transmissibility = frfs.metadata.get("transmissibility")
+    if transmissibility:
+        return _Scaled(
+            fitted,
+            "unscaled",
+            f"a transmissibility ({transmissibility}, a base-excited shaker test or two "
+            "sensors): the poles are the structure's, but with no force the shapes are "
+            "unscaled; measure the force (an impact hammer, or a force cell at the shaker's "
+            "stinger) for mass-normalised shapes",
+        )
     if driving is None:
         return _Scaled(
             fitted,
