@@ -290,3 +290,25 @@ def test_a_mode_under_a_line_wide_where_the_fit_misses_is_named_with_its_pin() -
     assert "`pin_hz` keeps a mode" in found.misfit.sentence()
     pinned = identify(frfs, pin_hz=[round(left_out, 1)])
     assert np.min(np.abs(pinned.model.frequency - 78.6)) < 0.1
+
+
+def test_shapes_at_one_point_cannot_be_interpolated_and_say_so() -> None:
+    # compare on pyLMS's transmissibility (one point, a geometry given) stopped with scipy's
+    # "ValueError: At least 2 data points are required when `degree` is 1 …" and a traceback:
+    # a thin-plate spline needs one point more than its dimensions.
+    from racketdyn.modal.model import ModalModel
+
+    model = ModalModel(
+        frequency=np.array([219.0, 603.8]),
+        damping_ratio=np.array([0.011, 0.007]),
+        locations=np.array([[0.1, 0.0]]),
+        mode_shapes=np.array([[1.0, 1.0]]),
+        names=("mode 1", "mode 2"),
+        source="one point",
+    )
+    with pytest.raises(InputError) as error:
+        model.mode_shapes_at([[0.1, 0.0], [0.2, 0.0]])
+    message = str(error.value)
+    assert "\n" not in message
+    assert "1 point" in message
+    assert "2 or more" in message
