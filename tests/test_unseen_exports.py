@@ -312,3 +312,56 @@ def test_shapes_at_one_point_cannot_be_interpolated_and_say_so() -> None:
     assert "\n" not in message
     assert "1 point" in message
     assert "2 or more" in message
+
+
+def _stepped_sine(seed: int = 0) -> FrfSet:
+    """A stepped-sine test round one mode as the Brake-Reuss beam's
+    (mattiacenedese/BRBtesting, ``ForcedFrequencyResponses.mat``): 41 lines, 79.2-81.2 Hz at
+    0.05 Hz, an accelerance peak at 80.25 Hz (ζ 0.13 %: its half-power points 0.21 Hz apart);
+    0.5 % noise."""
+    f = 79.2 + 0.05 * np.arange(41)
+    w, wn, zeta = 2 * np.pi * f, 2 * np.pi * 80.25, 0.0013
+    h = -(w**2) / (wn**2 - w**2 + 2j * zeta * wn * w) / 0.35
+    rng = np.random.default_rng(seed)
+    h += 0.005 * np.abs(h) * (rng.standard_normal(f.size) + 1j * rng.standard_normal(f.size))
+    return FrfSet(
+        frequency=f,
+        values=h[None, :],
+        nodes=(2,),
+        locations=np.zeros((1, 2)),
+        frf_type="accelerance",
+        reference_node=1,
+        reference_location=(0.0, 0.0),
+        source="a stepped sine round one mode",
+    )
+
+
+def test_a_short_stepped_sine_takes_the_orders_its_lines_allow() -> None:
+    # The beam's force-controlled levels were refused with default options: "band 40–81.2 Hz
+    # holds 41 lines; max_order 60 needs more than 120: widen the band or lower max_order" —
+    # the file holds no more lines, and the default order is racketdyn's own choice.
+    found = identify(_stepped_sine())
+    np.testing.assert_allclose(found.model.frequency, [80.25], rtol=1e-4)
+    np.testing.assert_allclose(found.model.damping_ratio, [0.0013], rtol=0.05)
+    assert "41 lines" in found.model.metadata["orders_note"]
+
+
+def test_a_max_order_given_beyond_the_lines_names_the_order_that_fits() -> None:
+    with pytest.raises(InputError) as error:
+        identify(_stepped_sine(), max_order=60)
+    message = str(error.value)
+    assert "\n" not in message
+    assert "20 or lower" in message
+    assert "widen" not in message  # the band already holds every line of the FRFs
+
+
+def test_no_settled_pole_at_a_clear_peak_names_its_pin_and_no_order_the_lines_lack() -> None:
+    # The beam's higher force levels (a jointed, amplitude-dependent mode): "no mode found …
+    # yet no pole of the fit settles over the orders: raise --max-order or pin a mode (--pin)",
+    # at the order 41 lines allow and with no frequency to pin.
+    from racketdyn.modal.identify import _no_mode_cause
+
+    frfs = _stepped_sine()
+    words = _no_mode_cause([80.3], 20, frfs, (79.2, 81.2))
+    assert "`pin_hz` 80.30" in words
+    assert "max_order" not in words

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn._grammar import plural
 from racketdyn.errors import InputError
 from racketdyn.measurement.quality import NoiseOnly, noise_only_frfs
 from racketdyn.measurement.records import (
@@ -2061,6 +2062,16 @@ def _orders_for(
     order = max_order if max_order is not None else DEFAULT_ORDER
     if references is not None and not given:
         return DEFAULT_MAX_ORDER, ""
+    lines = int(np.count_nonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1])))
+    fitting = (lines - 1) // 2  # an order takes two lines (poles.stabilisation)
+    if not given and fitting < order:
+        # a short record of lines (a stepped sine round one mode: 41 lines) takes the orders
+        # its lines allow, not a default it cannot hold
+        few = "" if need <= fitting else f", too few for its {n_peaks} clear peaks"
+        return fitting, (
+            f"`max_order` lowered from {order} to {fitting}: the band {band[0]:g}–{band[1]:g} "
+            f"Hz holds {lines} lines (an order takes two){few}"
+        )
     if need <= order:
         return order, ""
     fits = f"{ORDERS_PER_PEAK} orders a peak"
@@ -2070,8 +2081,7 @@ def _orders_for(
             f"{peaks}, more than `max_order` {order} can fit ({fits}): give `max_order` {need} "
             "or narrow `band_hz`"
         )
-    lines = int(np.count_nonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1])))
-    raised = min(need, MAX_RAISED_ORDER, (lines - 1) // 2)
+    raised = min(need, MAX_RAISED_ORDER, fitting)
     if raised <= order:
         return order, (
             f"{peaks}, more than `max_order` {order} can fit ({fits}); too few lines for more: "
@@ -2165,9 +2175,13 @@ def _no_mode_cause(
     if low := _peaks_low(peaks, band):
         return f"The {low} or raise `max_order`"
     if n:
+        lines = int(np.count_nonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1])))
+        # no higher order where the band's lines hold no more (a stepped sine's 41 lines)
+        higher = "raise `max_order` or " if max_order < (lines - 1) // 2 else ""
+        pins = " or ".join(_pin(p, _spacing(frfs)) for p in peaks[:3])
         return (
-            f"The band holds {n} clear peaks of the data, yet no pole of the fit settles over "
-            "the orders: raise `max_order` or pin a mode (`pin_hz`)"
+            f"The band holds {plural(n, 'clear peak')} of the data, yet no pole of the fit "
+            f"settles over the orders: {higher}pin a mode ({pins})"
         )
     whole = band[0] <= frfs.frequency[1] and band[1] >= frfs.frequency[-1]
     where = "The band, the data's whole band," if whole else "The band"
