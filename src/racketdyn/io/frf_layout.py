@@ -105,7 +105,7 @@ def _check(path: Path, record: _Record) -> None:
             "shaker's stinger)"
         )
     if record.denominator == record.quantity:
-        return  # a transmissibility: its poles are the structure's (see _against)
+        return  # a transmissibility: its poles are the structure's (_transmissibility)
     if record.denominator not in (0, QUANTITY_CODE["force"]):
         raise InputError(
             f"{record.where(path)}: the FRF must be per force (record 10, field 1 = 13), "

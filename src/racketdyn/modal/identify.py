@@ -2053,17 +2053,17 @@ def _orders_for(
     more than it (:data:`ORDERS_PER_PEAK` each) ("" if not).
 
     The default order against one reference is raised to fit them, up to
-    :data:`MAX_RAISED_ORDER` and below half the band's lines; an order given is kept and the
-    order that would fit them said.  Against several references (one pole per reference an
-    order) the default is kept.
+    :data:`MAX_RAISED_ORDER` and below half the band's lines, and lowered to what the lines
+    hold where they hold less (a stepped sine's 41 lines round one mode); an order given is
+    kept and the order that would fit them said.  Against several references (one pole per
+    reference an order) the default is kept.
     """
     need = ORDERS_PER_PEAK * n_peaks
     given = max_order is not None
     order = max_order if max_order is not None else DEFAULT_ORDER
     if references is not None and not given:
         return DEFAULT_MAX_ORDER, ""
-    lines = int(np.count_nonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1])))
-    fitting = (lines - 1) // 2  # an order takes two lines (poles.stabilisation)
+    lines, fitting = _orders_of_lines(frfs, band)
     if not given and fitting < order:
         # a short record of lines (a stepped sine round one mode: 41 lines) takes the orders
         # its lines allow, not a default it cannot hold
@@ -2091,6 +2091,13 @@ def _orders_for(
         "" if raised == need else f"; `max_order` {need} would fit them all, or narrow `band_hz`"
     )
     return raised, f"`max_order` raised from {order} to {raised}: {peaks} ({fits}){short}"
+
+
+def _orders_of_lines(frfs: FrfSet, band: tuple[float, float]) -> tuple[int, int]:
+    """The band's lines and the highest model order they hold: an order takes two lines
+    (:func:`racketdyn.modal.poles.stabilisation` needs more than ``2 · max_order``)."""
+    lines = int(np.count_nonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1])))
+    return lines, (lines - 1) // 2
 
 
 def _left_out_in_data(rows: Sequence[DroppedMode], frfs: FrfSet) -> list[float]:
@@ -2175,9 +2182,8 @@ def _no_mode_cause(
     if low := _peaks_low(peaks, band):
         return f"The {low} or raise `max_order`"
     if n:
-        lines = int(np.count_nonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1])))
         # no higher order where the band's lines hold no more (a stepped sine's 41 lines)
-        higher = "raise `max_order` or " if max_order < (lines - 1) // 2 else ""
+        higher = "raise `max_order` or " if max_order < _orders_of_lines(frfs, band)[1] else ""
         pins = " or ".join(_pin(p, _spacing(frfs)) for p in peaks[:3])
         return (
             f"The band holds {plural(n, 'clear peak')} of the data, yet no pole of the fit "
