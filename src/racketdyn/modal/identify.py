@@ -55,6 +55,7 @@ from racketdyn.modal.poles import (
     edge_margin,
     pole_of,
     require_rules,
+    second_difference_noise,
     select_poles,
     stabilisation,
 )
@@ -2192,9 +2193,21 @@ def _no_mode_cause(
     whole = band[0] <= frfs.frequency[1] and band[1] >= frfs.frequency[-1]
     where = "The band, the data's whole band," if whole else "The band"
     wider = "" if whole else "widen `band_hz`, "
+    higher = "raise `max_order` or " if max_order < _orders_of_lines(frfs, band)[1] else ""
+    # a peak about as wide as the band (a stepped sine round one mode) stands no factor above
+    # the band's ends, yet the data's largest value inside the band is where a pin keeps it
+    inside = np.flatnonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1]))
+    level = np.abs(frfs.values[:, inside]).sum(axis=0)
+    top = int(np.argmax(level))
+    noise = float(np.sqrt(second_difference_noise(frfs.values[:, inside])).sum())
+    pin = (
+        f"{_pin(float(frfs.frequency[inside[top]]), _spacing(frfs))}, the data's largest peak"
+        if 0 < top < inside.size - 1 and level[top] >= PEAK_NOISE * noise
+        else "`pin_hz`"
+    )
     return (
-        f"{where} holds no clear peak of the data above its noise: {wider}raise `max_order` or "
-        "pin a mode (`pin_hz`)"
+        f"{where} holds no clear peak of the data above its noise: {wider}{higher}pin a mode "
+        f"({pin})"
     )
 
 
