@@ -58,14 +58,14 @@ MODES = Modes(
 1.8 kHz), as the rig's 1.5-1.8 kHz modes under its string pulses."""
 
 
-def _short_hard_hits() -> FrfSet:
+def _short_hard_hits(modes: Modes = MODES, n_samples: int = 8192) -> FrfSet:
     """1 ms hits sampled at 51.2 kHz (bandwidth 20 kHz): the force 40 dB down at ≈ 4.3 kHz,
     the response's noise above it over almost no force, as the tool tip's single hit."""
     records = records_for(
-        MODES,
+        modes,
         pulse_s=1e-3,
         n_averages=1,
-        n_samples=8192,
+        n_samples=n_samples,
         dt=1 / 51200,
         pretrigger_samples=40,
         response_noise=1e-4,
@@ -152,3 +152,29 @@ def test_identify_says_where_the_top_came_from(
     assert main(["identify", str(path), *given]) == 0
     printed = " ".join(capsys.readouterr().out.split())
     assert "as given (--band) the hammer's force is 40 dB down above 4.4 kHz" in printed
+
+
+LIGHT = Modes(
+    frequency=np.array([600.0, 1500.0, 2400.0, 3400.0]),
+    damping_ratio=np.array([0.004, 0.003, 0.0015, 0.003]),
+    constants=np.array([[4.0, 3.0, 2.0, 2.0], [2.0, -3.0, 2.5, -2.0], [-3.0, 1.0, 3.0, 1.5]]),
+)
+"""Four well-separated modes under the 1 ms pulse's 4.4 kHz, 2400 Hz lightly damped (ζ 0.15 %,
+half-power width 7.2 Hz, 18 lines of a 0.32 s record): as pff_lms's 6,007 Hz mode in the
+middle of a band whose force ends at 10.9 kHz."""
+
+
+@pytest.mark.slow
+def test_a_well_separated_modes_damping_does_not_move_with_the_bands_top() -> None:
+    # pff_lms's 6,007 Hz damping moved with the band's top (0.187 % over 40-10,864 Hz, 0.160 %
+    # over 40-20,000 Hz); sdypy's LSCF moves alike (0.186/0.146 %) and both follow the orders
+    # a kHz, not the top (tests/test_realdata.py): on a linear system the top alone moves
+    # nothing.  Over the force's band and up to 10 and 20 kHz, its upper part the response's
+    # noise over almost no force (orders raised to 60-115), the damping is within 0.04 % of the
+    # truth over seeds 0-3: 1 %, a twentieth of the must-hold's 20 %, is 25 times that
+    frfs = _short_hard_hits(LIGHT, n_samples=16384)
+    for band in (None, (40.0, 10000.0), (40.0, 20000.0)):
+        model = identify(frfs, band).model
+        k = int(np.argmin(np.abs(model.frequency - 2400.0)))
+        assert model.frequency[k] == pytest.approx(2400.0, rel=1e-4), band
+        assert model.damping_ratio[k] == pytest.approx(0.0015, rel=0.01), band

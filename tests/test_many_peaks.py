@@ -19,7 +19,7 @@ import pytest
 
 from racketdyn.errors import InputError
 from racketdyn.measurement.records import FrfSet
-from racketdyn.modal.identify import ORDERS_PER_PEAK, identify
+from racketdyn.modal.identify import ORDERS_PER_PEAK, PEAK_TOP_SHARE, identify
 from racketdyn.modal.peaks import resolved_peaks
 
 POINTS = np.linspace(0.0, 1.0, 4)
@@ -138,14 +138,49 @@ def test_no_mode_found_names_the_peaks_not_a_wider_band() -> None:
     assert "`max_order`" in message
 
 
-def test_a_band_whose_peaks_lie_low_names_the_noise_above_them() -> None:
-    """Ten modes at 200–2000 Hz in a 40–6000 Hz band of 0.1 % noise: the lines above
-    2 kHz are noise, the note says so and gives the band that holds the peaks."""
-    found = identify(_frfs(n=10, top_hz=6001.0), (40.0, 6000.0))
+def test_a_band_whose_peaks_lie_low_names_the_noise_above_them_where_peaks_are_lost() -> None:
+    """The 45 modes at 200–2000 Hz in a 40–6000 Hz band of 0.1 % noise: the lines above
+    2 kHz are noise whose poles take the orders (2 of 45 kept at the raised 120).  The note
+    says so with how many peaks have no mode and gives the band that holds the peaks, and
+    that band keeps every mode (within 0.1 % in frequency and 20 % in damping)."""
+    frfs = _frfs(top_hz=6001.0)
+    found = identify(frfs, (40.0, 6000.0))
     note = found.model.metadata["orders_note"]
-    last = max(resolved_peaks(found.frfs, (40.0, 6000.0)))
-    assert f"all lie below {last:.0f} Hz" in note
-    assert f"`band_hz` 40,{1.2 * last:.0f}" in note
+    peaks = resolved_peaks(found.frfs, (40.0, 6000.0))
+    lost = [p for p in peaks if np.min(np.abs(found.model.frequency - p)) > 3.0]
+    assert len(lost) > len(peaks) // 2
+    assert f"all lie below {max(peaks):.0f} Hz" in note
+    assert f"{len(lost)} of them have no mode" in note
+    assert f"`band_hz` 40,{1.2 * max(peaks):.0f}" in note
+    advised = (40.0, float(round(1.2 * max(peaks))))
+    f_n, zeta = _modes()
+    kept = identify(frfs, advised).model
+    assert kept.n_modes == f_n.size
+    for f in f_n:
+        k = int(np.argmin(np.abs(kept.frequency - f)))
+        assert kept.frequency[k] == pytest.approx(f, rel=1e-3)
+        assert kept.damping_ratio[k] == pytest.approx(zeta, rel=0.2)
+
+
+def test_a_band_whose_peaks_lie_low_but_are_all_kept_gives_no_band_advice() -> None:
+    """Ten modes at 200–2000 Hz in a 40–6000 Hz band of 0.1 % noise: every counted peak
+    has its mode, so the advice to narrow the band is not said.
+
+    This test expected the note here until the sixteenth session.  Measured then: the
+    narrower band the note gave (40–2395 Hz) moves the ten kept modes by at most 5e-5 in
+    frequency and 2.5 % of their damping (the first mode's 0.390 % → 0.398 %, truth 0.4 %),
+    and the median fit error 0.86 % → 0.53 %, both "as good as the noise allows"; on a real
+    file (SigLab case 2, one mode at 192.5 Hz) the band it gave loses the mode ("no mode
+    found"; stable in 5 of 60 orders there against 18 in the whole band).  Advice to narrow
+    the band is true only where a peak was lost."""
+    found = identify(_frfs(n=10, top_hz=6001.0), (40.0, 6000.0))
+    f_n, _ = _modes(10)
+    assert found.model.n_modes == f_n.size
+    assert np.max(np.abs(found.model.frequency - f_n[:, None]).min(axis=1)) <= 2.0
+    note = found.model.metadata["orders_note"]
+    assert f"lowest {PEAK_TOP_SHARE:.0%}" not in note
+    assert "`band_hz`" not in note
+    assert found.model.metadata["peaks_note"] == ""
 
 
 def test_the_command_says_the_raised_order_and_records_it(

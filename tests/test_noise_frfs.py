@@ -14,6 +14,8 @@ from __future__ import annotations
 import csv
 import dataclasses
 import json
+import re
+from html import unescape
 from pathlib import Path
 
 import numpy as np
@@ -25,6 +27,9 @@ from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.quality import NOISE_COHERENCE, noise_only_frfs
 from racketdyn.measurement.records import HammerRecords
 from racketdyn.modal.identify import identify
+from racketdyn.modal.misfit import misfit
+from racketdyn.modal.poles import pole_of
+from racketdyn.modal.residues import fit_modal_constants
 from racketdyn.testing.records import Modes, records_for
 
 MODES = Modes(
@@ -147,3 +152,68 @@ def test_a_file_without_coherence_leaves_the_files_as_they_were(
     rows = list(csv.DictReader((tmp_path / "id" / "fit_quality.csv").read_text().splitlines()))
     assert all(r["noise_only"] == "" and r["median_coherence"] == "" for r in rows)
     assert json.loads((tmp_path / "id" / "run.json").read_text())["noise_frfs"] is None
+
+
+def test_the_fit_verdict_is_read_over_the_frfs_that_carry_the_structure() -> None:
+    # Three of five FRFs noise (the SigLab cantilever had two of three): the median fit error
+    # was a noise FRF's (99 %, "as good as the noise allows", which says nothing of the
+    # structure's fit) and the worst nodes the noise's.  The verdict is read over the two
+    # FRFs that measured the structure — their median error, their noise — and the noise
+    # FRFs are named apart.
+    healthy = records_for(MODES, pulse_s=1e-3, n_averages=5, response_noise=0.01, seed=3)
+    noise_nodes = (2, 3, 5)
+    frfs = estimate_frfs(_with_noise_channels(healthy, noise_nodes), exponential_window_s=0.1).frfs
+    assert frfs is not None
+    found = identify(frfs, (40.0, 1000.0))
+    errors = dict(zip(found.frfs.nodes, found.fit.error, strict=True))
+    structure = [errors[n] for n in found.frfs.nodes if n not in noise_nodes]
+    assert min(errors[n] for n in noise_nodes) > 0.9  # what noise leaves of any fit
+    where = found.misfit
+    assert where.median_error == pytest.approx(float(np.median(structure)))
+    assert where.median_error < 0.1
+    assert where.cause != "noise"
+    assert not set(where.worst_nodes) & set(noise_nodes)
+    assert where.noise_nodes == noise_nodes
+    assert "over the FRFs that carry the structure, 3 FRFs of noise left out" in where.sentence()
+    assert found.model.metadata["misfit"]["noise_nodes"] == list(noise_nodes)
+
+
+def test_the_fit_verdict_keeps_every_frf_when_all_are_noise() -> None:
+    # nothing carries the structure: the verdict is read over them all, as before
+    healthy = records_for(MODES, pulse_s=1e-3, n_averages=5, response_noise=0.01, seed=3)
+    frfs = estimate_frfs(
+        _with_noise_channels(healthy, (1, 2, 3, 4, 5)), exponential_window_s=0.1
+    ).frfs
+    assert frfs is not None
+    noise = noise_only_frfs(frfs, (40.0, 1000.0))
+    assert noise is not None
+    assert noise.noise_nodes == (1, 2, 3, 4, 5)
+    poles = pole_of(MODES.frequency, MODES.damping_ratio)
+    fit = fit_modal_constants(frfs, poles, (40.0, 1000.0))
+    every = misfit(frfs, fit)
+    assert misfit(frfs, fit, noise_nodes=noise.noise_nodes).median_error == every.median_error
+
+
+@pytest.mark.slow
+def test_the_report_shows_the_frfs_of_noise_with_the_fit(
+    records: HammerRecords, tmp_path: Path
+) -> None:
+    # run.json kept `noise_frfs`; the page's fit-quality lines under the mode table did not
+    # show it.  Now the line is there, beside the verdict, which is read without them.
+    from racketdyn.report import write_report
+    from racketdyn.workflows.identify import IdentifyOptions, run_identify
+
+    frfs = estimate_frfs(records, exponential_window_s=0.1).frfs
+    assert frfs is not None
+    path = write_frf_uff(frfs, tmp_path / "frfs.uff")
+    run_identify(path, tmp_path / "id", options=IdentifyOptions(band_hz=(40.0, 1000.0)))
+    page = write_report(tmp_path / "id").read_text(encoding="utf-8")
+    start = page.index('<section id="stabilisation">')
+    section = unescape(re.sub(r"\s+", " ", page[start : page.index("</section>", start)]))
+    noise = re.findall(r"<p>FRFs of noise: ([^<]*)\.</p>", section)
+    assert len(noise) == 1
+    assert "nodes 3, 5" in noise[0]
+    assert "`" not in noise[0]
+    verdict = re.findall(r"Where the fit misses: ([^<]*)\.</p>", section)
+    assert len(verdict) == 1
+    assert "2 FRFs of noise left out" in verdict[0]

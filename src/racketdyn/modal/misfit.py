@@ -20,6 +20,12 @@ in docs/develop.md: 0.07–1.4 % against medians of 7–79 %); what the misfit s
 
 A median error under :data:`NEGLIGIBLE` is as close as a fit need be whatever the noise.
 
+FRFs that measured noise alone (:func:`racketdyn.measurement.quality.noise_only_frfs`) are
+read apart: a fit misses pure noise by ≈ 100 % whatever the model, so their errors would
+make the median theirs (a cantilever with two of three FRFs noise read 99.4 %, "as good as the
+noise allows", while its one measured FRF was missed by 35 %, mostly at its modes).  The
+verdict is read over the FRFs that carry the structure, the noise ones named.
+
 The noise's own share is the error white noise of the data's level would leave
 (:func:`racketdyn.modal.poles.second_difference_noise`, per FRF, over all the band's lines):
 a median error within :data:`NOISE_FACTOR` of it is as good as the data allow.
@@ -118,6 +124,9 @@ class Misfit:
         The points whose FRFs the fit misses most (up to :data:`WORST`, the worst first).
     cause : str
         One of :data:`CAUSES`.
+    noise_nodes : tuple of int
+        The points whose FRFs measured noise alone, left out of everything above (none when
+        every FRF is noise: then all are read).
     """
 
     median_error: float
@@ -134,13 +143,14 @@ class Misfit:
     left_out_hz: tuple[float, ...]
     worst_nodes: tuple[int, ...]
     cause: str
+    noise_nodes: tuple[int, ...] = ()
 
     def sentence(self) -> str:
         """One line: the error, the noise's, and where the misfit lies (parameter names in
         backticks, for a caller to spell as its own options)."""
         head = (
             f"median fit error {self.median_error:.1%} against {self.noise_error:.2%} that the "
-            "data's noise leaves"
+            f"data's noise leaves{self._apart()}"
         )
         if self.cause == "noise":
             return f"{head}: as good as the noise allows"
@@ -152,6 +162,15 @@ class Misfit:
         )
         nodes = ", ".join(map(str, self.worst_nodes))
         return f"{head}; {places}: {self._why()}; worst at nodes {nodes}"
+
+    def _apart(self) -> str:
+        """The FRFs of noise left out of the verdict, in words ("" if none; their nodes are
+        the noise line's to name, :meth:`racketdyn.measurement.quality.NoiseOnly.sentence`)."""
+        if not self.noise_nodes:
+            return ""
+        n = len(self.noise_nodes)
+        frfs = "1 FRF" if n == 1 else f"{n} FRFs"
+        return f" (over the FRFs that carry the structure, {frfs} of noise left out)"
 
     def _why(self) -> str:
         """What the dominant place says."""
@@ -240,11 +259,17 @@ class Misfit:
             "left_out_hz": list(self.left_out_hz),
             "worst_nodes": list(self.worst_nodes),
             "cause": self.cause,
+            "noise_nodes": list(self.noise_nodes),
             "sentence": self.sentence(),
         }
 
 
-def misfit(frfs: FrfSet, fit: ModalFit, left_out_hz: Sequence[float] = ()) -> Misfit:
+def misfit(
+    frfs: FrfSet,
+    fit: ModalFit,
+    left_out_hz: Sequence[float] = (),
+    noise_nodes: Sequence[int] = (),
+) -> Misfit:
     """Where ``fit`` misses ``frfs`` (module docstring).
 
     Parameters
@@ -256,12 +281,22 @@ def misfit(frfs: FrfSet, fit: ModalFit, left_out_hz: Sequence[float] = ()) -> Mi
     left_out_hz : sequence of float
         Modes the identification left out although they stand in the data (clear peaks), Hz:
         those near where the misfit lies are named with it.
+    noise_nodes : sequence of int
+        Points whose FRFs measured noise alone
+        (:attr:`racketdyn.measurement.quality.NoiseOnly.noise_nodes`): left out of the verdict
+        and named in it, unless every FRF is noise.
 
     Returns
     -------
     Misfit
         The shares, the noise's and the complex constants' errors, and the verdict.
     """
+    apart = tuple(n for n in frfs.nodes if n in set(noise_nodes))
+    structure = [i for i, n in enumerate(frfs.nodes) if n not in apart]
+    if apart and structure:
+        frfs, fit = frfs.at_points(structure), fit.at_points(structure)
+    else:
+        apart = ()
     lines = np.isin(frfs.frequency, fit.frequency)
     data = frfs.values[:, lines]
     energy = np.sum(np.abs(data) ** 2, axis=1)
@@ -301,6 +336,7 @@ def misfit(frfs: FrfSet, fit: ModalFit, left_out_hz: Sequence[float] = ()) -> Mi
             int(frfs.nodes[i]) for i in np.argsort(-np.nan_to_num(fit.error))[:WORST]
         ),
         cause="",
+        noise_nodes=apart,
     )
     return _judged(found)
 

@@ -22,7 +22,8 @@ Mass normalisation (the paper's eq 12 needs it): ``A_ok = φ_o φ_ref``, so at t
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -78,6 +79,18 @@ class ModalFit:
     frequency: NDArray[np.float64]
     error: NDArray[np.float64]
     condition_number: float
+
+    def at_points(self, indices: Sequence[int]) -> ModalFit:
+        """The fit of some FRFs only (by index, in the order given; the same poles)."""
+        keep = np.asarray(indices, dtype=int)
+        return replace(
+            self,
+            constants=self.constants[keep],
+            lower_residual=self.lower_residual[keep],
+            upper_residual=self.upper_residual[keep],
+            synthesised=self.synthesised[keep],
+            error=self.error[keep],
+        )
 
     @property
     def frequency_hz(self) -> NDArray[np.float64]:

@@ -18,16 +18,18 @@ HOW_TO_RUN = (
 )
 
 
-def _misfit(record: dict[str, Any], folder: Path, suffix: str) -> str:
-    """The verdict on the fit error (:mod:`racketdyn.modal.misfit`): run.json's, in the words
-    of the command that ran (``misfit`` of identify, ``misfit_free``/``_hand`` of compare),
-    else the model file's with its parameter names as plain words; empty without one."""
-    kept = record.get(f"misfit{suffix}")
+def _sentence(record: dict[str, Any], folder: Path, suffix: str, key: str) -> str:
+    """The sentence of an identification's record ``key`` — ``misfit``, the verdict on the fit
+    error (:mod:`racketdyn.modal.misfit`), or ``noise_frfs``, the FRFs that measured noise alone
+    (:func:`racketdyn.measurement.quality.noise_only_frfs`): run.json's, in the words of the
+    command that ran (``KEY`` of identify, ``KEY_free``/``_hand`` of compare), else the model
+    file's with its parameter names as plain words; empty without one."""
+    kept = record.get(f"{key}{suffix}")
     if not isinstance(kept, dict):
         path = folder / f"modal_model{suffix}.json"
         if not path.is_file():
             return ""
-        kept = read_json(path).get("metadata", {}).get("misfit") or {}
+        kept = read_json(path).get("metadata", {}).get(key) or {}
     return str(kept.get("sentence", "")).replace("`", "")
 
 
@@ -66,7 +68,8 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
                 "label": label,
                 "modes": body,
                 "fit_error": fit_error,
-                "misfit": _misfit(run.record(folder), folder, suffix),
+                "misfit": _sentence(run.record(folder), folder, suffix, "misfit"),
+                "noise": _sentence(run.record(folder), folder, suffix, "noise_frfs"),
                 "dropped": dropped,
             }
         )
