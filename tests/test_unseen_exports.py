@@ -377,3 +377,16 @@ def test_a_peak_as_wide_as_the_band_names_the_pin_that_keeps_it() -> None:
     message = str(error.value)
     assert "`pin_hz` 80.5" in message
     assert "max_order" not in message
+
+
+def test_a_candidate_beside_a_kept_mode_is_not_named_as_left_out() -> None:
+    # pyuff's showcase: candidates at 957.14 and 959.23 Hz beside its kept 958.5 Hz mode stand
+    # 30 times over the noise; one peak, one mode: the misfit must not name them.
+    from racketdyn.modal.identify import _left_out_in_data
+
+    frfs, selected = _merged_partner_case()
+    beside = DroppedMode(
+        301.0, 0.005, 3, "selection", "stable in 3 of 60 orders (< 12)", peak_to_noise=500.0
+    )
+    apart = replace(beside, frequency_hz=420.0)
+    assert _left_out_in_data((beside, apart), selected, frfs) == [420.0]

@@ -1989,7 +1989,7 @@ def identify(
     where = misfit(
         frfs,
         fit,
-        _left_out_in_data((*selected.dropped_modes, *late), frfs),
+        _left_out_in_data((*selected.dropped_modes, *late), selected, frfs),
         () if noise is None else noise.noise_nodes,
     )
     mass = scaled.scaling == "mass"
@@ -2107,7 +2107,9 @@ def _orders_of_lines(frfs: FrfSet, band: tuple[float, float]) -> tuple[int, int]
     return lines, (lines - 1) // 2
 
 
-def _left_out_in_data(rows: Sequence[DroppedMode], frfs: FrfSet) -> list[float]:
+def _left_out_in_data(
+    rows: Sequence[DroppedMode], selected: SelectedPoles, frfs: FrfSet
+) -> list[float]:
     """Frequencies (Hz) of left-out candidates that stand in the data, for the misfit to name
     with its worst frequencies (:func:`racketdyn.modal.misfit.misfit`, ``pin_hz`` keeps one):
     rows of stage ``unsettled`` or ``edge`` (a clear peak of the data stands there), and rows
@@ -2115,8 +2117,18 @@ def _left_out_in_data(rows: Sequence[DroppedMode], frfs: FrfSet) -> list[float]:
     times over the FRFs' noise within the hammer's force band — a mode under a line wide
     stabilises in a few orders only (pyLMS's 78.6 Hz, ζ 0.15 % on 1 Hz lines: 3 of 60 orders,
     687 × the noise, where the misfit said the model lacked a mode at 79 Hz), while a pole of
-    the noise stands 2-4 times over it.
+    the noise stands 2-4 times over it — and apart from every kept mode (their half-power
+    widths and :data:`ONE_PEAK_LINES` lines apart, as :func:`_named_rows` keeps them): one
+    peak, one mode.
     """
+    width = 2 * np.maximum(selected.damping_ratio, 0.0) * selected.frequency
+    one_peak = ONE_PEAK_LINES * _spacing(frfs)
+
+    def apart(d: DroppedMode) -> bool:
+        own = 2 * max(d.damping_ratio, 0.0) * d.frequency_hz
+        near = np.abs(selected.frequency - d.frequency_hz) < np.maximum(width + own, one_peak)
+        return not bool(np.any(near))
+
     return [
         d.frequency_hz
         for d in rows
@@ -2126,6 +2138,7 @@ def _left_out_in_data(rows: Sequence[DroppedMode], frfs: FrfSet) -> list[float]:
             and d.reason.startswith("stable in")
             and d.peak_to_noise >= PEAK_NOISE
             and not _above_force(d.frequency_hz, frfs)
+            and apart(d)
         )
     ]
 
