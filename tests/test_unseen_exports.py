@@ -199,3 +199,194 @@ def test_a_merged_row_whose_mode_is_left_out_says_so() -> None:
     (row,) = fitted.selected.dropped_modes
     assert "503.00 Hz was then left out" in row.reason
     assert row.fit_gain < 1.5
+
+
+TRANSMISSIBILITY_HZ, TRANSMISSIBILITY_ZETA = 219.0, 0.011
+
+
+def _transmissibility_uff(path: Path, denominator: int = 12) -> Path:
+    """A base-excited shaker test's acceleration over acceleration as Siemens LMS Test.Lab
+    exports it (LolloCappo/pyLMS's ``data/FRF.mat``, "FRF Point2/Point1", unit "/"): function
+    type 4, ordinate 12 over denominator 12, 10-1000 Hz at 1 Hz; one mode at 219 Hz, ζ 1.1 %,
+    by the single-degree-of-freedom law of base excitation,
+    T = (ωn² + 2iζωnω)/(ωn² - ω² + 2iζωnω) = 1 + ω²/(ωn² - ω² + 2iζωnω)."""
+    import pyuff
+
+    f = np.arange(10.0, 1001.0)
+    wn, w, zeta = 2 * np.pi * TRANSMISSIBILITY_HZ, 2 * np.pi * f, TRANSMISSIBILITY_ZETA
+    t = (wn**2 + 2j * zeta * wn * w) / (wn**2 - w**2 + 2j * zeta * wn * w)
+    dataset = pyuff.prepare_58(
+        binary=0, func_type=4, rsp_node=2, rsp_dir=3, ref_node=1, ref_dir=3, data=t, x=f,
+        id1="FRF Point2/Point1", abscissa_spacing=1, abscissa_spec_data_type=18,
+        abscissa_axis_units_lab="Hz", ordinate_spec_data_type=12,
+        ordinate_axis_units_lab="m/s^2", orddenom_spec_data_type=denominator,
+        orddenom_axis_units_lab="m/s^2" if denominator == 12 else "m/s",
+    )  # fmt: skip
+    pyuff.UFF(str(path)).write_sets(dataset, mode="overwrite")
+    return path
+
+
+def test_a_transmissibility_gives_its_modes_with_unscaled_shapes(tmp_path: Path) -> None:
+    # pyLMS's Test.Lab export of a shaker test (the base's acceleration as the reference) was
+    # refused "the FRF must be per force (record 10, field 1 = 13), not per quantity 12": every
+    # mode lost.  Its poles are the structure's (T = 1 + ω² Σ …, an accelerance's form with
+    # the base's inertia load for the force); with no force the shapes cannot be scaled.
+    frfs = read_frfs(_transmissibility_uff(tmp_path / "frf.uff"), require_coordinates=False)
+    assert frfs.metadata["transmissibility"] == "acceleration over acceleration"
+    found = identify(frfs)
+    assert found.model.n_modes == 1
+    np.testing.assert_allclose(found.model.frequency, [TRANSMISSIBILITY_HZ], rtol=1e-4)
+    np.testing.assert_allclose(found.model.damping_ratio, [TRANSMISSIBILITY_ZETA], rtol=0.02)
+    assert found.model.scaling == "unscaled"
+    assert "transmissibility" in found.scaling_note
+    assert "force" in found.scaling_note
+
+
+def test_a_ratio_of_unlike_responses_is_one_line(tmp_path: Path) -> None:
+    with pytest.raises(InputError) as error:
+        read_frfs(_transmissibility_uff(tmp_path / "frf.uff", denominator=11))
+    message = str(error.value)
+    assert "\n" not in message
+    assert "acceleration over velocity" in message
+    assert "per newton" in message
+
+
+def _sub_line_mode(seed: int) -> FrfSet:
+    """pyLMS's transmissibility (1 Hz lines) as the law of base excitation gives it: 219 Hz
+    (ζ 1.1 %), 603.5 Hz (ζ 0.6 %) and a mode at 78.6 Hz, ζ 0.15 %, whose half-power width
+    (0.24 Hz) is under a line: on the real file a bump of +0.5 on a baseline of 0.8 at 79 Hz,
+    sdypy 78.61-78.65 Hz at every band and order; 0.3 % noise."""
+    f = np.arange(10.0, 1001.0)
+    w = 2 * np.pi * f
+    t = np.ones_like(w, dtype=complex)
+    for f_n, zeta, a in ((219.0, 0.011, 1.0), (603.5, 0.006, -0.05), (78.6, 0.0015, 0.005)):
+        wn = 2 * np.pi * f_n
+        t += a * w**2 / (wn**2 - w**2 + 2j * zeta * wn * w)
+    rng = np.random.default_rng(seed)
+    t += 0.003 * np.abs(t) * (rng.standard_normal(t.size) + 1j * rng.standard_normal(t.size))
+    return FrfSet(
+        frequency=f,
+        values=t[None, :],
+        nodes=(1,),
+        locations=np.zeros((1, 2)),
+        frf_type="accelerance",
+        reference_node=2,
+        reference_location=(0.0, 0.0),
+        source="a mode under a line wide",
+        metadata={"transmissibility": "acceleration over acceleration"},
+    )
+
+
+def test_a_mode_under_a_line_wide_where_the_fit_misses_is_named_with_its_pin() -> None:
+    # pyLMS's 78.6 Hz: its poles stable in 3 of 60 orders (a pole 687 × the noise), left out
+    # with a row in dropped_modes.csv only, while the misfit said "modes or lines the model
+    # lacks, most at 79, 77, 81 Hz" with no option that keeps it.
+    frfs = _sub_line_mode(seed=1)
+    found = identify(frfs)
+    assert not np.any(np.abs(found.model.frequency - 78.6) < 1.0)
+    assert found.misfit is not None
+    (left_out,) = found.misfit.left_out_hz
+    assert abs(left_out - 78.6) < 1.0
+    assert "`pin_hz` keeps a mode" in found.misfit.sentence()
+    pinned = identify(frfs, pin_hz=[round(left_out, 1)])
+    assert np.min(np.abs(pinned.model.frequency - 78.6)) < 0.1
+
+
+def test_shapes_at_one_point_cannot_be_interpolated_and_say_so() -> None:
+    # compare on pyLMS's transmissibility (one point, a geometry given) stopped with scipy's
+    # "ValueError: At least 2 data points are required when `degree` is 1 …" and a traceback:
+    # a thin-plate spline needs one point more than its dimensions.
+    from racketdyn.modal.model import ModalModel
+
+    model = ModalModel(
+        frequency=np.array([219.0, 603.8]),
+        damping_ratio=np.array([0.011, 0.007]),
+        locations=np.array([[0.1, 0.0]]),
+        mode_shapes=np.array([[1.0, 1.0]]),
+        names=("mode 1", "mode 2"),
+        source="one point",
+    )
+    with pytest.raises(InputError) as error:
+        model.mode_shapes_at([[0.1, 0.0], [0.2, 0.0]])
+    message = str(error.value)
+    assert "\n" not in message
+    assert "1 point" in message
+    assert "2 or more" in message
+
+
+def _stepped_sine(seed: int = 0, mode: tuple[float, float] = (80.25, 0.0013)) -> FrfSet:
+    """A stepped-sine test round one mode as the Brake-Reuss beam's
+    (mattiacenedese/BRBtesting, ``ForcedFrequencyResponses.mat``): 41 lines, 79.2-81.2 Hz at
+    0.05 Hz, an accelerance peak at 80.25 Hz (ζ 0.13 %: its half-power points 0.21 Hz apart;
+    ``mode``, Hz and ζ); 0.5 % noise."""
+    f = 79.2 + 0.05 * np.arange(41)
+    w, wn, zeta = 2 * np.pi * f, 2 * np.pi * mode[0], mode[1]
+    h = -(w**2) / (wn**2 - w**2 + 2j * zeta * wn * w) / 0.35
+    rng = np.random.default_rng(seed)
+    h += 0.005 * np.abs(h) * (rng.standard_normal(f.size) + 1j * rng.standard_normal(f.size))
+    return FrfSet(
+        frequency=f,
+        values=h[None, :],
+        nodes=(2,),
+        locations=np.zeros((1, 2)),
+        frf_type="accelerance",
+        reference_node=1,
+        reference_location=(0.0, 0.0),
+        source="a stepped sine round one mode",
+    )
+
+
+def test_a_short_stepped_sine_takes_the_orders_its_lines_allow() -> None:
+    # The beam's force-controlled levels were refused with default options: "band 40–81.2 Hz
+    # holds 41 lines; max_order 60 needs more than 120: widen the band or lower max_order" —
+    # the file holds no more lines, and the default order is racketdyn's own choice.
+    found = identify(_stepped_sine())
+    np.testing.assert_allclose(found.model.frequency, [80.25], rtol=1e-4)
+    np.testing.assert_allclose(found.model.damping_ratio, [0.0013], rtol=0.05)
+    assert "41 lines" in found.model.metadata["orders_note"]
+
+
+def test_a_max_order_given_beyond_the_lines_names_the_order_that_fits() -> None:
+    with pytest.raises(InputError) as error:
+        identify(_stepped_sine(), max_order=60)
+    message = str(error.value)
+    assert "\n" not in message
+    assert "20 or lower" in message
+    assert "widen" not in message  # the band already holds every line of the FRFs
+
+
+def test_no_settled_pole_at_a_clear_peak_names_its_pin_and_no_order_the_lines_lack() -> None:
+    # The beam's higher force levels (a jointed, amplitude-dependent mode): "no mode found …
+    # yet no pole of the fit settles over the orders: raise --max-order or pin a mode (--pin)",
+    # at the order 41 lines allow and with no frequency to pin.
+    from racketdyn.modal.identify import _no_mode_cause
+
+    frfs = _stepped_sine()
+    words = _no_mode_cause([80.3], 20, frfs, (79.2, 81.2))
+    assert "`pin_hz` 80.30" in words
+    assert "max_order" not in words
+
+
+def test_a_peak_as_wide_as_the_band_names_the_pin_that_keeps_it() -> None:
+    # The beam's response-controlled levels 6 and 7 (ζ 0.58-0.65 %: the 2 Hz band holds the
+    # peak and little more): its pole, stable in 16-18 orders, left out at the band's edge
+    # margin, and "no mode found … holds no clear peak of the data above its noise: raise
+    # --max-order or pin a mode (--pin)", with no frequency and an order the lines cannot hold.
+    with pytest.raises(InputError) as error:
+        identify(_stepped_sine(mode=(80.5, 0.006)))
+    message = str(error.value)
+    assert "`pin_hz` 80.5" in message
+    assert "max_order" not in message
+
+
+def test_a_candidate_beside_a_kept_mode_is_not_named_as_left_out() -> None:
+    # pyuff's showcase: candidates at 957.14 and 959.23 Hz beside its kept 958.5 Hz mode stand
+    # 30 times over the noise; one peak, one mode: the misfit must not name them.
+    from racketdyn.modal.identify import _left_out_in_data
+
+    frfs, selected = _merged_partner_case()
+    beside = DroppedMode(
+        301.0, 0.005, 3, "selection", "stable in 3 of 60 orders (< 12)", peak_to_noise=500.0
+    )
+    apart = replace(beside, frequency_hz=420.0)
+    assert _left_out_in_data((beside, apart), selected, frfs) == [420.0]

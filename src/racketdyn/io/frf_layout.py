@@ -95,6 +95,17 @@ def _check(path: Path, record: _Record) -> None:
             "the points apart nor find the driving point; set record 6, fields 6 and 9 to the "
             "sensor's and the hammer's node numbers (the same at the driving point)"
         )
+    if record.denominator in RESPONSE_OF_CODE and record.denominator != record.quantity:
+        over = f"{RESPONSE_OF_CODE[record.quantity]} over {RESPONSE_OF_CODE[record.denominator]}"
+        raise InputError(
+            f"{record.where(path)}: holds {over} (record 10, field 1 = {record.denominator}), "
+            "neither a response per force nor a transmissibility (a response over the same "
+            "response at the base): racketdyn identifies FRFs per newton or like over like; "
+            "export the FRF against the force (an impact hammer, or a force cell at the "
+            "shaker's stinger)"
+        )
+    if record.denominator == record.quantity:
+        return  # a transmissibility: its poles are the structure's (_transmissibility)
     if record.denominator not in (0, QUANTITY_CODE["force"]):
         raise InputError(
             f"{record.where(path)}: the FRF must be per force (record 10, field 1 = 13), "
@@ -370,7 +381,12 @@ def _against(file: _File, ref: int, layout: str) -> FrfSet:
         require_coordinates=file.require_coordinates,
     )
     locations, reference_location = _locations(coordinates, nodes, ref)
-    frf_type = cast(FrfType, FRF_TYPE_OF_RESPONSE[response_type])
+    transmissibility = _transmissibility(chosen[0])
+    # a transmissibility has an accelerance's form in any like-over-like quantity (module
+    # _transmissibility): 1 − ω² Σ …
+    frf_type = cast(
+        FrfType, "accelerance" if transmissibility else FRF_TYPE_OF_RESPONSE[response_type]
+    )
     frequency, values = _values_in_si(path, chosen, frf_type, units)
     first = chosen[0]
     coherence = _coherence(path, every, ref, nodes, first) if layout == "roving hammer" else None
@@ -400,6 +416,7 @@ def _against(file: _File, ref: int, layout: str) -> FrfSet:
             "directions": {int(n): int(_point_of(points.by_node[n], ref)[1]) for n in nodes},
             **({} if bandwidth is None else {"bandwidth_hz": bandwidth}),
             **({} if force_band is None else {"force_band_hz": force_band}),
+            **({} if transmissibility is None else {"transmissibility": transmissibility}),
         },
     )
     return frfs.with_usual_phase()  # an analyser's e^(-iωt) undone (vtb_siglab's case 2)
@@ -509,6 +526,22 @@ def _one_per_point(path: Path, records: list[_Record], ref: int) -> _Points:
     return _Points(by_node, left_out, unused, usual, tuple(other_direction), tuple(reciprocal))
 
 
+def _transmissibility(record: _Record) -> str | None:
+    """``"acceleration over acceleration"`` (or velocity, displacement) for a response over the
+    same response (record 10, field 1 = record 9's), else None (a response per force).
+
+    A base-excited shaker test's response over the base's (or two sensors'): with the base's
+    motion y, the relative motion z = x − y obeys M z̈ + C ż + K z = −M r ÿ, so
+    ẍ/ÿ = 1 − ω² Σ_r ψ_r/(ω_r² − ω² + 2iζ_rω_rω), an accelerance's form whose force is the
+    base's inertia load: its poles are the structure's (base fixed), its constants the shapes
+    times each mode's participation, with no force to mass-normalise them.
+    """
+    if record.denominator != record.quantity or record.quantity not in RESPONSE_OF_CODE:
+        return None
+    response = RESPONSE_OF_CODE[record.quantity]
+    return f"{response} over {response}"
+
+
 def _check_alike(path: Path, chosen: list[_Record]) -> str:
     """The response type the chosen FRFs share; they must share it and the frequency axis."""
     first = chosen[0]
@@ -517,6 +550,11 @@ def _check_alike(path: Path, chosen: list[_Record]) -> str:
             raise InputError(
                 f"{path}: data sets {first.index} and {record.index} are FRFs of different types "
                 f"({record.quantity} against {first.quantity} in record 9); give one type"
+            )
+        if _transmissibility(record) != _transmissibility(first):
+            raise InputError(
+                f"{path}: data sets {first.index} and {record.index} are one per force and one "
+                "a transmissibility (record 10, field 1); give one kind"
             )
         _check_same_abscissa(path, first, record, "frequency axis")
     return RESPONSE_OF_CODE[first.quantity]

@@ -534,15 +534,18 @@ def _scale(path: Path, record: _Record, quantity: str, label: str | None, units:
 
 
 def _frf_scale(path: Path, record: _Record, response: str, units: _Units) -> float:
-    """Factor taking an FRF (response per force) to SI, from the labels of records 9 and 10."""
+    """Factor taking an FRF (response per force, or per the same response) to SI, from the
+    labels of records 9 and 10."""
     numerator, denominator = _normal_label(record.labels[1]), _normal_label(record.labels[2])
     if numerator is not None and numerator not in UNIT_SCALE[response] and "/" in numerator:
         top, bottom = numerator.rsplit("/", 1)
         top = top.strip("()")
         if top in UNIT_SCALE[response] and bottom in UNIT_SCALE["force"]:
             return UNIT_SCALE[response][top] / UNIT_SCALE["force"][bottom]
+    # a transmissibility's denominator is the same response's (io.frf_layout._transmissibility)
+    per = response if record.denominator == record.quantity else "force"
     return _scale(path, record, response, numerator, units) / _scale(
-        path, record, "force", denominator, units
+        path, record, per, denominator, units
     )
 
 

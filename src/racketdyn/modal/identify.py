@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn._grammar import plural
 from racketdyn.errors import InputError
 from racketdyn.measurement.quality import NoiseOnly, noise_only_frfs
 from racketdyn.measurement.records import (
@@ -35,6 +36,7 @@ from racketdyn.modal.mac import mac
 from racketdyn.modal.misfit import Misfit, misfit
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.peaks import (
+    PEAK_NOISE,
     PeakMode,
     clear_peaks,
     half_power_span,
@@ -53,6 +55,7 @@ from racketdyn.modal.poles import (
     edge_margin,
     pole_of,
     require_rules,
+    second_difference_noise,
     select_poles,
     stabilisation,
 )
@@ -1982,14 +1985,13 @@ def identify(
     peaks_note = _unexplained_words(unexplained, len(peaks)) if unexplained else ""
     if peaks_note:
         log.warning("%s", peaks_note)
-    clear = ("unsettled", "edge")  # left out though a peak of the data stands there
     noise = noise_only_frfs(frfs, band)
     if noise is not None and noise.noise_nodes:
         log.warning("%s: %s", frfs.source, noise.sentence())
     where = misfit(
         frfs,
         fit,
-        [d.frequency_hz for d in (*selected.dropped_modes, *late) if d.stage in clear],
+        _left_out_in_data((*selected.dropped_modes, *late), selected, frfs),
         () if noise is None else noise.noise_nodes,
     )
     mass = scaled.scaling == "mass"
@@ -2060,17 +2062,27 @@ def _orders_for(
     more than it (:data:`ORDERS_PER_PEAK` poles each) ("" if not).
 
     The default order is raised to fit them, up to :data:`MAX_RAISED_ORDER` poles and below
-    half the band's lines; an order given is kept and the order that would fit them said.
-    Against several references each order brings one pole a reference: the default (30)
-    is raised to ``ORDERS_PER_PEAK × n_peaks / n_references``, at most ``MAX_RAISED_ORDER /
-    n_references`` (45 synthetic modes against two references: 3 kept at 30, every one at
-    60).
+    half the band's lines, and lowered to what the lines hold where they hold less (a stepped
+    sine's 41 lines round one mode); an order given is kept and the order that would fit them
+    said.  Against several references each order brings one pole a reference: the default
+    (30) is raised to ``ORDERS_PER_PEAK × n_peaks / n_references``, at most
+    ``MAX_RAISED_ORDER / n_references`` (45 synthetic modes against two references: 3 kept at
+    30, every one at 60).
     """
     n_refs = 1 if references is None else len(references.references)
     need = -(-ORDERS_PER_PEAK * n_peaks // n_refs)
     given = max_order is not None
     default = DEFAULT_ORDER if references is None else DEFAULT_MAX_ORDER
     order = max_order if max_order is not None else default
+    lines, fitting = _orders_of_lines(frfs, band)
+    if not given and fitting < order:
+        # a short record of lines (a stepped sine round one mode: 41 lines) takes the orders
+        # its lines allow, not a default it cannot hold
+        few = "" if need <= fitting else f", too few for its {n_peaks} clear peaks"
+        return fitting, (
+            f"`max_order` lowered from {order} to {fitting}: the band {band[0]:g}–{band[1]:g} "
+            f"Hz holds {lines} lines (an order takes two){few}"
+        )
     if need <= order:
         return order, ""
     fits = f"{ORDERS_PER_PEAK} orders a peak" + (
@@ -2082,8 +2094,7 @@ def _orders_for(
             f"{peaks}, more than `max_order` {order} can fit ({fits}): give `max_order` {need} "
             "or narrow `band_hz`"
         )
-    lines = int(np.count_nonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1])))
-    raised = min(need, MAX_RAISED_ORDER // n_refs, (lines - 1) // 2)
+    raised = min(need, MAX_RAISED_ORDER // n_refs, fitting)
     if raised <= order:
         return order, (
             f"{peaks}, more than `max_order` {order} can fit ({fits}); too few lines for more: "
@@ -2093,6 +2104,49 @@ def _orders_for(
         "" if raised == need else f"; `max_order` {need} would fit them all, or narrow `band_hz`"
     )
     return raised, f"`max_order` raised from {order} to {raised}: {peaks} ({fits}){short}"
+
+
+def _orders_of_lines(frfs: FrfSet, band: tuple[float, float]) -> tuple[int, int]:
+    """The band's lines and the highest model order they hold: an order takes two lines
+    (:func:`racketdyn.modal.poles.stabilisation` needs more than ``2 · max_order``)."""
+    lines = int(np.count_nonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1])))
+    return lines, (lines - 1) // 2
+
+
+def _left_out_in_data(
+    rows: Sequence[DroppedMode], selected: SelectedPoles, frfs: FrfSet
+) -> list[float]:
+    """Frequencies (Hz) of left-out candidates that stand in the data, for the misfit to name
+    with its worst frequencies (:func:`racketdyn.modal.misfit.misfit`, ``pin_hz`` keeps one):
+    rows of stage ``unsettled`` or ``edge`` (a clear peak of the data stands there), and rows
+    left out for their orders whose modal peak stands :data:`~racketdyn.modal.peaks.PEAK_NOISE`
+    times over the FRFs' noise within the hammer's force band — a mode under a line wide
+    stabilises in a few orders only (pyLMS's 78.6 Hz, ζ 0.15 % on 1 Hz lines: 3 of 60 orders,
+    687 × the noise, where the misfit said the model lacked a mode at 79 Hz), while a pole of
+    the noise stands 2-4 times over it — and apart from every kept mode (their half-power
+    widths and :data:`ONE_PEAK_LINES` lines apart, as :func:`_named_rows` keeps them): one
+    peak, one mode.
+    """
+    width = 2 * np.maximum(selected.damping_ratio, 0.0) * selected.frequency
+    one_peak = ONE_PEAK_LINES * _spacing(frfs)
+
+    def apart(d: DroppedMode) -> bool:
+        own = 2 * max(d.damping_ratio, 0.0) * d.frequency_hz
+        near = np.abs(selected.frequency - d.frequency_hz) < np.maximum(width + own, one_peak)
+        return not bool(np.any(near))
+
+    return [
+        d.frequency_hz
+        for d in rows
+        if d.stage in ("unsettled", "edge")
+        or (
+            d.stage == "selection"
+            and d.reason.startswith("stable in")
+            and d.peak_to_noise >= PEAK_NOISE
+            and not _above_force(d.frequency_hz, frfs)
+            and apart(d)
+        )
+    ]
 
 
 def _unexplained_peaks(
@@ -2183,16 +2237,31 @@ def _no_mode_cause(
     if low := _peaks_low(peaks, band):
         return f"The {low} or raise `max_order`"
     if n:
+        # no higher order where the band's lines hold no more (a stepped sine's 41 lines)
+        higher = "raise `max_order` or " if max_order < _orders_of_lines(frfs, band)[1] else ""
+        pins = " or ".join(_pin(p, _spacing(frfs)) for p in peaks[:3])
         return (
-            f"The band holds {n} clear peaks of the data, yet no pole of the fit settles over "
-            "the orders: raise `max_order` or pin a mode (`pin_hz`)"
+            f"The band holds {plural(n, 'clear peak')} of the data, yet no pole of the fit "
+            f"settles over the orders: {higher}pin a mode ({pins})"
         )
     whole = band[0] <= frfs.frequency[1] and band[1] >= frfs.frequency[-1]
     where = "The band, the data's whole band," if whole else "The band"
     wider = "" if whole else "widen `band_hz`, "
+    higher = "raise `max_order` or " if max_order < _orders_of_lines(frfs, band)[1] else ""
+    # a peak about as wide as the band (a stepped sine round one mode) stands no factor above
+    # the band's ends, yet the data's largest value inside the band is where a pin keeps it
+    inside = np.flatnonzero((frfs.frequency >= band[0]) & (frfs.frequency <= band[1]))
+    level = np.abs(frfs.values[:, inside]).sum(axis=0)
+    top = int(np.argmax(level))
+    noise = float(np.sqrt(second_difference_noise(frfs.values[:, inside])).sum())
+    pin = (
+        f"{_pin(float(frfs.frequency[inside[top]]), _spacing(frfs))}, the data's largest peak"
+        if 0 < top < inside.size - 1 and level[top] >= PEAK_NOISE * noise
+        else "`pin_hz`"
+    )
     return (
-        f"{where} holds no clear peak of the data above its noise: {wider}raise `max_order` or "
-        "pin a mode (`pin_hz`)"
+        f"{where} holds no clear peak of the data above its noise: {wider}{higher}pin a mode "
+        f"({pin})"
     )
 
 
@@ -2454,6 +2523,16 @@ def _scaled(fitted: _Fitted, band: tuple[float, float]) -> _Scaled:
     """Mass-normalisable from the driving point, or unscaled and why (:func:`identify`)."""
     frfs = fitted.frfs
     driving = frfs.driving_point
+    transmissibility = frfs.metadata.get("transmissibility")
+    if transmissibility:
+        return _Scaled(
+            fitted,
+            "unscaled",
+            f"a transmissibility ({transmissibility}, a base-excited shaker test or two "
+            "sensors): the poles are the structure's, but with no force the shapes are "
+            "unscaled; measure the force (an impact hammer, or a force cell at the shaker's "
+            "stinger) for mass-normalised shapes",
+        )
     if driving is None:
         return _Scaled(
             fitted,

@@ -22,6 +22,7 @@ from scipy.interpolate import RBFInterpolator
 
 from racketdyn.__about__ import __version__
 from racketdyn._display import html_table, number, numbers, shorten, words
+from racketdyn._grammar import plural
 from racketdyn.errors import InputError
 from racketdyn.numerics import as_points
 
@@ -271,6 +272,12 @@ class ModalModel:
         keys = np.round(coordinates / (1e-6 * scale)).astype(np.int64)
         _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
         inverse = np.ravel(inverse)
+        needed = coordinates.shape[1] + 1  # the spline's plane (or line) through the samples
+        if first.size < needed:
+            raise InputError(
+                f"modal model ({self.source}): shapes sampled at {plural(first.size, 'point')}; "
+                f"shapes between the points need {needed} or more (FRFs at more points)"
+            )
         shapes = np.zeros((first.size, self.n_modes))
         np.add.at(shapes, inverse, self.mode_shapes)
         shapes /= np.bincount(inverse)[:, None]

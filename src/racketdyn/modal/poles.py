@@ -1733,9 +1733,10 @@ def _band(data: FrfSet, band_hz: tuple[float, float], max_order: int) -> FrfSet:
     band = data.band(max(low, f_min), min(high, f_max))
     n_lines = band.frequency.size
     if n_lines <= 2 * max_order:
+        wider = "" if low <= f_min and high >= f_max else ", or widen the band"
         raise InputError(
             f"band {low:g}–{high:g} Hz holds {n_lines} lines; max_order {max_order} needs more "
-            f"than {2 * max_order}: widen the band or lower max_order"
+            f"than {2 * max_order}: give `max_order` {(n_lines - 1) // 2} or lower{wider}"
         )
     finite = np.all(np.isfinite(band.values), axis=1)
     if not np.all(finite):
