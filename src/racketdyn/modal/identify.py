@@ -35,6 +35,7 @@ from racketdyn.modal.mac import mac
 from racketdyn.modal.misfit import Misfit, misfit
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.peaks import (
+    PEAK_PROMINENCE,
     PeakMode,
     clear_peaks,
     half_power_span,
@@ -257,7 +258,9 @@ def default_band(frfs: FrfSet) -> tuple[float, float]:
     The bottom is :data:`DEFAULT_LOW_HZ` unless the data's first flexible mode lies below it:
     then :data:`FIRST_MODE_OCTAVE` below its peak (issue 25, item 1: a clear mode below 40 Hz
     was lost without a word).  The first flexible mode is the lowest clear peak
-    (:data:`CLEAR_PEAK`) of the summed ``|H|`` above the support's rigid-body modes — clear peaks
+    (:data:`CLEAR_PEAK`, standing :data:`~racketdyn.modal.peaks.PEAK_PROMINENCE` over the line
+    it sits on: the bumps of a mass line's noise do not) of the summed ``|H|`` above the
+    support's rigid-body modes — clear peaks
     below :data:`SUSPENSION_MAX_HZ` and a gap of :data:`SUSPENSION_GAP` (a wing clamped at its
     root has none; an aircraft frame on bungees shows two near 1 Hz below its 18.8 Hz mode).
     A racket's first bending mode (≥ 100 Hz) leaves the bottom at 40 Hz, above the hand's
@@ -328,13 +331,22 @@ def no_force_words(force_band_hz: float) -> str:
 
 def _first_flexible_peak(frfs: FrfSet, high: float) -> tuple[float | None, int]:
     """The lowest clear peak above the support's rigid-body modes, Hz (None: no clear peak),
-    and how many clear peaks below it were taken as the support's."""
+    and how many clear peaks below it were taken as the support's (:func:`default_band`)."""
     keep = (frfs.frequency <= high) & (np.arange(frfs.frequency.size) >= SKIPPED_LINES)
     f = frfs.frequency[keep]
     level = np.abs(frfs.values[:, keep]).sum(axis=0)
     if f.size < 8 or not np.all(np.isfinite(level)):
         return None, 0
-    found, _ = find_peaks(level, height=CLEAR_PEAK * float(np.median(level)))
+    # a peak over the band's median that does not stand over the line it sits on is that
+    # line's noise: on a free structure's mass line, over a band whose median is far below it
+    # (a spruce plate's to 18.75 kHz: 0.53 against the mass line's ≈ 2), its bumps every line
+    # or two left no gap between the support's peaks and the first flexible mode
+    logs = np.log10(np.maximum(level, np.finfo(float).tiny))
+    found, _ = find_peaks(
+        logs,
+        height=math.log10(CLEAR_PEAK * float(np.median(level))),
+        prominence=math.log10(PEAK_PROMINENCE),
+    )
     peaks = f[found]
     support = (peaks[:-1] < SUSPENSION_MAX_HZ) & (peaks[1:] / peaks[:-1] >= SUSPENSION_GAP)
     gaps = np.flatnonzero(support)
