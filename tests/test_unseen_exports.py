@@ -390,3 +390,32 @@ def test_a_candidate_beside_a_kept_mode_is_not_named_as_left_out() -> None:
     )
     apart = replace(beside, frequency_hz=420.0)
     assert _left_out_in_data((beside, apart), selected, frfs) == [420.0]
+
+
+def test_a_clear_peak_whose_poles_the_fit_hardly_needs_is_named_with_its_pin() -> None:
+    # Badiane's plate with the force window its frf step asks for, default band 40-6392 Hz:
+    # the clear peak at 1370.5 Hz (6.7 × its surroundings) had two poles near it whose
+    # constants the fit hardly needed (1365.72 Hz, 1.25 ×; 1397.34 Hz, 1.43 ×): each row said
+    # "no peak in the data", the peak counted as explained by them, and the mode was lost
+    # with no option named.  Here the 500 Hz peak is held only by a pole broader than it
+    # (506 Hz, ζ 4 %, merged partner of another broad one): its row names the pin at the peak,
+    # and the pin keeps the mode.
+    from racketdyn.modal.peaks import resolved_peaks
+
+    frfs, selected = _merged_partner_case()
+    (partner,) = selected.dropped_modes
+    broad = replace(partner, frequency_hz=506.0, damping_ratio=0.04)
+    band = (100.0, 900.0)
+    peaks = resolved_peaks(frfs, band)
+    assert any(abs(p - 500.0) <= 0.5 for p in peaks)
+    fitted, rows = _with_peaks_only(
+        frfs, replace(selected, dropped_modes=(broad,)), band, peaks=peaks
+    )
+    assert fitted.selected.frequency.tolist() == [300.0]
+    named = [d for d in rows if "`pin_hz`" in d.reason]
+    assert len(named) == 1, [d.reason for d in rows]
+    assert "no peak in the data" not in named[0].reason
+    pin = float(named[0].reason.split("`pin_hz` ")[1].split()[0])
+    assert abs(pin - 500.0) <= 0.5  # the peak's line
+    again = identify(frfs, band_hz=band, pin_hz=[pin])
+    assert np.min(np.abs(again.model.frequency / 500.0 - 1)) <= 1e-3

@@ -37,6 +37,7 @@ from racketdyn.modal.misfit import Misfit, misfit
 from racketdyn.modal.model import ModalModel
 from racketdyn.modal.peaks import (
     PEAK_NOISE,
+    PEAK_PROMINENCE,
     PeakMode,
     clear_peaks,
     half_power_span,
@@ -260,7 +261,9 @@ def default_band(frfs: FrfSet) -> tuple[float, float]:
     The bottom is :data:`DEFAULT_LOW_HZ` unless the data's first flexible mode lies below it:
     then :data:`FIRST_MODE_OCTAVE` below its peak (issue 25, item 1: a clear mode below 40 Hz
     was lost without a word).  The first flexible mode is the lowest clear peak
-    (:data:`CLEAR_PEAK`) of the summed ``|H|`` above the support's rigid-body modes — clear peaks
+    (:data:`CLEAR_PEAK`, standing :data:`~racketdyn.modal.peaks.PEAK_PROMINENCE` over the line
+    it sits on: the bumps of a mass line's noise do not) of the summed ``|H|`` above the
+    support's rigid-body modes — clear peaks
     below :data:`SUSPENSION_MAX_HZ` and a gap of :data:`SUSPENSION_GAP` (a wing clamped at its
     root has none; an aircraft frame on bungees shows two near 1 Hz below its 18.8 Hz mode).
     A racket's first bending mode (≥ 100 Hz) leaves the bottom at 40 Hz, above the hand's
@@ -331,13 +334,22 @@ def no_force_words(force_band_hz: float) -> str:
 
 def _first_flexible_peak(frfs: FrfSet, high: float) -> tuple[float | None, int]:
     """The lowest clear peak above the support's rigid-body modes, Hz (None: no clear peak),
-    and how many clear peaks below it were taken as the support's."""
+    and how many clear peaks below it were taken as the support's (:func:`default_band`)."""
     keep = (frfs.frequency <= high) & (np.arange(frfs.frequency.size) >= SKIPPED_LINES)
     f = frfs.frequency[keep]
     level = np.abs(frfs.values[:, keep]).sum(axis=0)
     if f.size < 8 or not np.all(np.isfinite(level)):
         return None, 0
-    found, _ = find_peaks(level, height=CLEAR_PEAK * float(np.median(level)))
+    # a peak over the band's median that does not stand over the line it sits on is that
+    # line's noise: on a free structure's mass line, over a band whose median is far below it
+    # (a spruce plate's to 18.75 kHz: 0.53 against the mass line's ≈ 2), its bumps every line
+    # or two left no gap between the support's peaks and the first flexible mode
+    logs = np.log10(np.maximum(level, np.finfo(float).tiny))
+    found, _ = find_peaks(
+        logs,
+        height=math.log10(CLEAR_PEAK * float(np.median(level))),
+        prominence=math.log10(PEAK_PROMINENCE),
+    )
     peaks = f[found]
     support = (peaks[:-1] < SUSPENSION_MAX_HZ) & (peaks[1:] / peaks[:-1] >= SUSPENSION_GAP)
     gaps = np.flatnonzero(support)
@@ -501,7 +513,11 @@ class _Choices:
 
 
 def _missed_peaks(
-    selected: SelectedPoles, frfs: FrfSet, band: tuple[float, float], choices: _Choices
+    selected: SelectedPoles,
+    stab: Stabilisation,
+    frfs: FrfSet,
+    band: tuple[float, float],
+    choices: _Choices,
 ) -> SelectedPoles:
     """Clear peaks of the data near the band's edges that no mode or row explains: one row
     each (stage ``edge``) naming the ``band_hz`` that keeps the mode, tried before it is named.
@@ -517,10 +533,14 @@ def _missed_peaks(
     A peak within a half-power width (or three lines) of a kept mode or of a named row is
     explained, but for an ``unsettled`` row (whose pin keeps the wide band's pole): a row
     found here takes its place.  For the :data:`EDGE_TRIES` most prominent others at each end
-    a band ten times the peak's distance from the edge is fitted, and a row is written only
-    when a mode comes out there (near a wide band's top, in the anti-alias roll-off or a
-    force's spectral zero, many peaks are noise's: untried or unconfirmed ones are logged at
-    DEBUG).
+    a band ten times the peak's distance from the edge is fitted, and a row is written
+    when a mode comes out there, else when the mode at the peak
+    (:func:`racketdyn.modal.peaks.mode_at_peak` over ``stab``, the band's own poles or a local
+    fit) stands :data:`WANDERING_PEAK` of the kept modes' median over the noise, naming the
+    ``pin_hz`` that keeps it (a first mode near the bottom beside a mode of one sign, shaken,
+    stable in 7 of 60 orders over the narrower band too, had no row).  Near a wide band's top,
+    in the anti-alias roll-off or a force's spectral zero, many peaks are noise's: untried or
+    unconfirmed ones are logged at DEBUG.
     """
     low, high = band
     data = frfs.band(low, high)
@@ -544,6 +564,7 @@ def _missed_peaks(
     # better (pff_lms's 150.3 Hz over 40-20,000 Hz at order 80: the pin 150.98 Hz, 40-1150 Hz
     # 150.29 Hz): it is tried, and its row takes the unsettled row's place
     unsettled = [d for d in selected.dropped_modes if d.stage == "unsettled"]
+    reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
     replaced: list[DroppedMode] = []
     rows: list[DroppedMode] = []
     tries = {True: EDGE_TRIES, False: EDGE_TRIES}
@@ -571,29 +592,38 @@ def _missed_peaks(
         else:
             tried = (max(float(np.floor((high - reach) / 5.0) * 5.0), low), high)
         mode = _mode_in(frfs, tried, choices, peak, max(3, right - left) * spacing)
-        if mode is None:
-            log.debug("clear peak at %.1f Hz: no mode over %g–%g Hz either", peak, *tried)
-            continue
-        rows.append(
-            DroppedMode(
-                mode[0],
-                mode[1],
-                0,
-                "edge",
-                f"a clear peak of the data at {peak:.1f} Hz ({20 * prominence:.0f} dB above "
-                f"its surroundings, {peak - low if bottom else high - peak:.3g} Hz from the "
-                f"band's {'bottom' if bottom else 'top'}) where the fit over {low:g}–{high:g} "
-                f"Hz finds no stable pole: {_slow_decay(mode, selected)}; `band_hz` "
-                f"{tried[0]:g},{tried[1]:g} keeps it (there {mode[0]:.2f} Hz, ζ "
-                f"{100 * mode[1]:.2g} %)",
+        one_peak = max(float(right - left), ONE_PEAK_LINES) * spacing
+        where = (
+            f"a clear peak of the data at {peak:.1f} Hz ({20 * prominence:.0f} dB above its "
+            f"surroundings, {peak - low if bottom else high - peak:.3g} Hz from the band's "
+            f"{'bottom' if bottom else 'top'}) where the fit over {low:g}–{high:g} Hz finds no "
+            "stable pole"
+        )
+        if mode is not None:
+            reason = (
+                f"{where}: {_slow_decay(mode, selected)}; `band_hz` {tried[0]:g},{tried[1]:g} "
+                f"keeps it (there {mode[0]:.2f} Hz, ζ {100 * mode[1]:.2g} %)"
             )
+            orders, peak_to_noise = 0, math.nan
+        else:
+            # an unsettled row already names this peak's pin from the same evidence
+            named = any(abs(d.frequency_hz - peak) <= one_peak for d in unsettled)
+            at_peak = None if named else mode_at_peak(stab, frfs, peak, choices.rules)
+            if at_peak is None or at_peak.peak_to_noise < WANDERING_PEAK * reference:
+                log.debug("clear peak at %.1f Hz: no mode over %g–%g Hz either", peak, *tried)
+                continue
+            mode = (at_peak.frequency_hz, at_peak.damping_ratio)
+            reason = (
+                f"{where}, nor over {tried[0]:g}–{tried[1]:g} Hz: "
+                f"{at_peak.damping_words(int(stab.orders.size))}; "
+                f"{_pin(at_peak.frequency_hz, spacing)} keeps it"
+            )
+            orders, peak_to_noise = at_peak.settled_orders, at_peak.peak_to_noise
+        rows.append(
+            DroppedMode(mode[0], mode[1], orders, "edge", reason, peak_to_noise=peak_to_noise)
         )
         explained.append((peak, float(right - left) * spacing))  # one row a peak
-        replaced += [
-            d
-            for d in unsettled
-            if abs(d.frequency_hz - peak) <= max(float(right - left), ONE_PEAK_LINES) * spacing
-        ]
+        replaced += [d for d in unsettled if abs(d.frequency_hz - peak) <= one_peak]
     if not rows:
         return selected
     kept = [d for d in selected.dropped_modes if not any(d is r for r in replaced)]
@@ -1969,7 +1999,7 @@ def identify(
         selected, kept, refined = _selected_poles(stab, frfs, band, choices)
     except NoModeError as error:
         raise InputError(f"{error.head}. {_no_mode_cause(peaks, max_order, frfs, band)}") from None
-    fitted, no_peak = _with_peaks_only(frfs, selected, band, references)
+    fitted, no_peak = _with_peaks_only(frfs, selected, band, references, peaks)
     scaled = _scaled(fitted, band)
     fitted, note = scaled.fitted, scaled.note
     late = [*no_peak, *scaled.on_node]
@@ -2323,7 +2353,7 @@ def _selected_poles(
     selected, kept = _clear_peaks(selected, stab, frfs, band, choices)
     selected = _wandering_peaks(selected, stab, frfs, band, choices)
     selected, pairs = _close_pairs(selected, frfs, band, choices)
-    selected = _missed_peaks(selected, frfs, band, choices)
+    selected = _missed_peaks(selected, stab, frfs, band, choices)
     selected = _peaks_either_side(selected, stab, frfs, band, choices)
     selected = replace(selected, dropped_modes=_beyond_force(selected.dropped_modes, frfs))
     selected, refined = refine_narrow_poles(frfs, selected)
@@ -2362,10 +2392,19 @@ def _with_peaks_only(
     selected: SelectedPoles,
     band: tuple[float, float],
     references: FrfReferences | None = None,
+    peaks: Sequence[float] = (),
 ) -> tuple[_Fitted, list[DroppedMode]]:
     """The modal constants of the poles with a peak in the data (:data:`FIT_GAIN_MIN`, or
     pinned), and the rows of those without.  Against several references a mode has a peak
     if the FRFs of any reference hold it (its best gain over them).
+
+    A pole left out so whose half-power width (at least :data:`ONE_PEAK_LINES` lines) holds
+    one of the band's clear ``peaks`` (:func:`racketdyn.modal.peaks.resolved_peaks`) that no
+    kept mode holds does not say "no peak": its row names the ``pin_hz`` at that peak (a
+    pinned mode is kept whatever its gain; the nearest such row names it).  Badiane's spruce
+    plate's 1370.5 Hz, a clear peak, had only two poles near it whose constants the fit
+    hardly needed (1365.7 Hz, 1.25 ×; 1397.3 Hz, 1.43 ×), and was lost under their "no peak in
+    the data".
 
     A mode without a peak that the selection kept over a neighbour of one peak with it (a
     ``merged`` row, :attr:`~racketdyn.modal.poles.DroppedMode.merged_into_hz`) gives its place
@@ -2388,19 +2427,43 @@ def _with_peaks_only(
     real = (gain >= FIT_GAIN_MIN) | selected.pinned
     if not real.any():
         real = gain == gain.max()  # the best of them rather than nothing: select_poles chose
-    no_peak = [
-        _dropped(
-            selected,
-            int(k),
-            # cut, not rounded, to two decimals: 1.49 never reads as the threshold's 1.5
-            f"no peak in the data: the fit near it is only "
-            f"{np.floor(gain[k] * 100) / 100:.2f} × better with it (< {FIT_GAIN_MIN:g})",
-            gain=gain[k],
+    at_peak = _peaks_of_poles_left_out(frfs, selected, real, peaks)
+    no_peak = []
+    for k in np.flatnonzero(~real):
+        # cut, not rounded, to two decimals: 1.49 never reads as the threshold's 1.5
+        only = f"{np.floor(gain[k] * 100) / 100:.2f} × better with it (< {FIT_GAIN_MIN:g})"
+        peak = at_peak.get(int(k))
+        reason = (
+            f"no peak in the data: the fit near it is only {only}"
+            if peak is None
+            else f"the data's clear peak at {peak:.1f} Hz has no kept mode, and the fit near "
+            f"this pole is only {only}; {_pin(peak, _spacing(frfs))} keeps a mode there"
         )
-        for k in np.flatnonzero(~real)
-    ]
+        no_peak.append(_dropped(selected, int(k), reason, gain=gain[k]))
     fitted = _Fitted(frfs, selected, fit, gain)
     return (fitted if real.all() else fitted.keeping(real, band)), [*placed, *no_peak]
+
+
+def _peaks_of_poles_left_out(
+    frfs: FrfSet,
+    selected: SelectedPoles,
+    real: NDArray[np.bool_],
+    peaks: Sequence[float],
+) -> dict[int, float]:
+    """The clear ``peaks`` no kept mode (``real``) holds, each by the nearest pole left out
+    whose half-power width ``2ζf`` (at least :data:`ONE_PEAK_LINES` lines) holds it: {the
+    pole's index: the peak, Hz} (:func:`_with_peaks_only`)."""
+    one_peak = ONE_PEAK_LINES * _spacing(frfs)
+    width = np.maximum(2 * np.abs(selected.damping_ratio) * selected.frequency, one_peak)
+    held: dict[int, float] = {}
+    for peak in peaks:
+        distance = np.abs(selected.frequency - peak)
+        if np.any(real & (distance <= width)):
+            continue
+        near = np.flatnonzero(~real & (distance <= width))
+        if near.size:
+            held[int(near[np.argmin(distance[near])])] = float(peak)
+    return held
 
 
 def _in_place_of(
