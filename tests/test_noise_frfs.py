@@ -25,7 +25,7 @@ from racketdyn.cli import main
 from racketdyn.io import write_frf_uff, write_hammer_uff
 from racketdyn.measurement.frf import estimate_frfs
 from racketdyn.measurement.quality import NOISE_COHERENCE, noise_only_frfs
-from racketdyn.measurement.records import HammerRecords
+from racketdyn.measurement.records import FrfSet, HammerRecords
 from racketdyn.modal.identify import identify
 from racketdyn.modal.misfit import misfit
 from racketdyn.modal.poles import pole_of
@@ -154,17 +154,23 @@ def test_a_file_without_coherence_leaves_the_files_as_they_were(
     assert json.loads((tmp_path / "id" / "run.json").read_text())["noise_frfs"] is None
 
 
+def _three_of_five_noise(noise_nodes: tuple[int, ...]) -> FrfSet:
+    """The healthy five points' FRFs (1 % response noise, 5 averages) with ``noise_nodes``'
+    channels noise alone."""
+    healthy = records_for(MODES, pulse_s=1e-3, n_averages=5, response_noise=0.01, seed=3)
+    frfs = estimate_frfs(_with_noise_channels(healthy, noise_nodes), exponential_window_s=0.1).frfs
+    assert frfs is not None
+    return frfs
+
+
 def test_the_fit_verdict_is_read_over_the_frfs_that_carry_the_structure() -> None:
     # Three of five FRFs noise (the SigLab cantilever had two of three): the median fit error
     # was a noise FRF's (99 %, "as good as the noise allows", which says nothing of the
     # structure's fit) and the worst nodes the noise's.  The verdict is read over the two
     # FRFs that measured the structure — their median error, their noise — and the noise
     # FRFs are named apart.
-    healthy = records_for(MODES, pulse_s=1e-3, n_averages=5, response_noise=0.01, seed=3)
     noise_nodes = (2, 3, 5)
-    frfs = estimate_frfs(_with_noise_channels(healthy, noise_nodes), exponential_window_s=0.1).frfs
-    assert frfs is not None
-    found = identify(frfs, (40.0, 1000.0))
+    found = identify(_three_of_five_noise(noise_nodes), (40.0, 1000.0))
     errors = dict(zip(found.frfs.nodes, found.fit.error, strict=True))
     structure = [errors[n] for n in found.frfs.nodes if n not in noise_nodes]
     assert min(errors[n] for n in noise_nodes) > 0.9  # what noise leaves of any fit
@@ -176,6 +182,36 @@ def test_the_fit_verdict_is_read_over_the_frfs_that_carry_the_structure() -> Non
     assert where.noise_nodes == noise_nodes
     assert "over the FRFs that carry the structure, 3 FRFs of noise left out" in where.sentence()
     assert found.model.metadata["misfit"]["noise_nodes"] == list(noise_nodes)
+
+
+def test_the_recorded_fit_error_is_the_verdicts_reading() -> None:
+    # run.json's (and the model file's) `fit_error_median` was the median over every FRF, the
+    # noise's too (a noise FRF's ≈ 100 % here), while the verdict beside it read the FRFs that
+    # carry the structure: one number, the verdict's
+    found = identify(_three_of_five_noise((2, 3, 5)), (40.0, 1000.0))
+    assert found.misfit is not None
+    assert found.model.metadata["fit_error_median"] == found.misfit.median_error
+    assert found.model.metadata["fit_error_median"] < 0.1
+
+
+def test_the_reports_fit_error_line_reads_the_frfs_that_carry_the_structure(
+    tmp_path: Path,
+) -> None:
+    # the page's "FRF fit error: median …, largest …" read every row of fit_quality.csv, the
+    # noise FRFs' (noise_only 1) too: median 90 %, largest 99 % here against the verdict's 3 %
+    from racketdyn.report.sections.stabilisation import fit_error_line
+
+    table = tmp_path / "fit_quality.csv"
+    table.write_text(
+        "node,x_m,y_m,fit_error,median_coherence,noise_only\n"
+        "1,0,0,0.02,0.99,0\n2,0.1,0,0.98,0.2,1\n3,0.2,0,0.90,0.3,1\n4,0.3,0,0.04,0.99,0\n"
+        "5,0.4,0,0.99,0.1,1\n",
+        encoding="utf-8",
+    )
+    assert fit_error_line(table) == "median 3.0%, largest 4.0% (3 FRFs of noise left out)"
+    every = tmp_path / "every.csv"  # without the column, or all noise: every row, as before
+    every.write_text("node,x_m,fit_error\n1,0,0.02\n2,0.1,0.98\n3,0.2,0.90\n", encoding="utf-8")
+    assert fit_error_line(every) == "median 90.0%, largest 98.0%"
 
 
 def test_the_fit_verdict_keeps_every_frf_when_all_are_noise() -> None:

@@ -813,8 +813,6 @@ def _clear_peaks(
         The selection (re-run with the kept candidates pinned when there are any) and one line
         per kept candidate saying why.
     """
-    if selected.n_modes == 0:
-        return selected, []
     # one peak with a kept mode or with a row already named (edge, merged, line) is theirs
     named_rows = [d for d in selected.dropped_modes if d.stage in ("edge", "merged", "line")]
     centre = np.concatenate([selected.frequency, [d.frequency_hz for d in named_rows]])
@@ -971,9 +969,17 @@ def _peak_rows(
     """The selection with an ``unsettled`` row for each of the data's ``peaks`` (frequency Hz,
     words, the orders its mode must stand in) that no kept mode or named row explains, whose
     data and mode (:func:`racketdyn.modal.peaks.mode_at_peak`) stand :data:`WANDERING_PEAK` of
-    the kept modes' median over the noise: :func:`_wandering_peaks`' rule."""
+    the kept modes' median over the noise (with no kept mode, of the clearest such mode's):
+    :func:`_wandering_peaks`' rule."""
     spacing = _spacing(frfs)
-    reference = float(np.median(selected.peak_to_noise)) if selected.n_modes else np.inf
+    if selected.n_modes:
+        reference = float(np.median(selected.peak_to_noise))
+    else:  # no kept mode: the clearest of the peaks' modes stands for them
+        modes = [(mode_at_peak(stab, frfs, p, choices.rules), orders) for p, _, orders in peaks]
+        reference = max(
+            (m.peak_to_noise for m, orders in modes if m is not None and m.orders >= orders),
+            default=np.inf,
+        )
     named = [  # a row already named, or a mode the caller excluded
         d
         for d in selected.dropped_modes
@@ -1998,7 +2004,9 @@ def identify(
     try:
         selected, kept, refined = _selected_poles(stab, frfs, band, choices)
     except NoModeError as error:
-        raise InputError(f"{error.head}. {_no_mode_cause(peaks, max_order, frfs, band)}") from None
+        unsettled = () if error.selected is None else error.selected.dropped_modes
+        cause = _no_mode_cause(peaks, max_order, frfs, band, unsettled)
+        raise InputError(f"{error.head}. {cause}") from None
     fitted, no_peak = _with_peaks_only(frfs, selected, band, references, peaks)
     scaled = _scaled(fitted, band)
     fitted, note = scaled.fitted, scaled.note
@@ -2052,6 +2060,7 @@ def identify(
                 *(r for r in references.references if r != frfs.reference_node),
             ],
             **_fit_record(fitted, note),
+            "fit_error_median": where.median_error,  # the verdict's: the noise FRFs' left out
             "misfit": where.record(),
             **({} if noise is None else {"noise_frfs": noise.record()}),
             **_left_out_record(fitted, kept, refined, late),
@@ -2250,20 +2259,35 @@ def _peaks_low(
 
 
 def _no_mode_cause(
-    peaks: list[float], max_order: int, frfs: FrfSet, band: tuple[float, float]
+    peaks: list[float],
+    max_order: int,
+    frfs: FrfSet,
+    band: tuple[float, float],
+    rows: tuple[DroppedMode, ...] = (),
 ) -> str:
-    """Why no mode was found, from the band's clear peaks (:func:`_orders_for`'s count): too
-    many for the orders, all low in a band of noise above them, none at all, or a fit that
-    does not settle on them; widening the band is advised only for a band short of the data's
-    that holds no clear peak."""
+    """Why no mode was found: the data's peaks the rules named (``unsettled`` ``rows``, each
+    with the pin that keeps it), else from the band's clear peaks (:func:`_orders_for`'s
+    count): too many for the orders, all low in a band of noise above them, none at all, or a
+    fit that does not settle on them; widening the band is advised only for a band short of
+    the data's that holds no clear peak."""
+    named = [f"{d.frequency_hz:.2f} Hz, {d.reason}" for d in rows if d.stage == "unsettled"]
+    named_line = "The band holds " + "; ".join(named) if named else ""
     n = len(peaks)
     need = ORDERS_PER_PEAK * n
+    holds = f"The band holds {plural(n, 'clear peak')} of the data"
     if n and need > max_order:
-        return (
-            f"The band holds {n} clear peaks of the data, more than `max_order` {max_order} "
-            f"can fit ({ORDERS_PER_PEAK} orders a peak): give `max_order` {need} or narrow "
-            "`band_hz`"
-        )
+        return " ".join(
+            filter(
+                None,
+                (
+                    f"{holds}, more than `max_order` {max_order} can fit ({ORDERS_PER_PEAK} "
+                    f"orders a peak): give `max_order` {need} or narrow `band_hz`.",
+                    named_line,
+                ),
+            )
+        ).removesuffix(".")
+    if named_line:
+        return named_line
     if low := _peaks_low(peaks, band):
         return f"The {low} or raise `max_order`"
     if n:
@@ -2271,8 +2295,7 @@ def _no_mode_cause(
         higher = "raise `max_order` or " if max_order < _orders_of_lines(frfs, band)[1] else ""
         pins = " or ".join(_pin(p, _spacing(frfs)) for p in peaks[:3])
         return (
-            f"The band holds {plural(n, 'clear peak')} of the data, yet no pole of the fit "
-            f"settles over the orders: {higher}pin a mode ({pins})"
+            f"{holds}, yet no pole of the fit settles over the orders: {higher}pin a mode ({pins})"
         )
     whole = band[0] <= frfs.frequency[1] and band[1] >= frfs.frequency[-1]
     where = "The band, the data's whole band," if whole else "The band"
@@ -2340,15 +2363,23 @@ def _selected_poles(
 ) -> tuple[SelectedPoles, list[str], list[str]]:
     """The poles selected, and the clear peaks kept and the narrow modes refined (logged).
 
-    The automatic selection (raises if it finds none), the edge's clear modes and electrical
-    lines named, clear peaks stable in too few orders kept, close pairs under one peak fitted
-    on their own lines, peaks the fit missed found, narrow modes refined.
+    The automatic selection, the edge's clear modes and electrical lines named, clear peaks
+    stable in too few orders kept, close pairs under one peak fitted on their own lines, peaks
+    the fit missed found, narrow modes refined.  A selection that keeps no mode goes through
+    the same rules (a band's one clear peak whose damping settles in too few orders was lost
+    unnamed, and a pin at it refused: SigLab case 2 in 40-231 Hz); raises
+    :class:`~racketdyn.modal.poles.NoModeError` if none keeps one, with the data's peaks they
+    named (``unsettled`` rows) as ``selected``'s rows.
     """
     _within_band(choices, band)
     choices, at_peaks = _peak_pins(stab, frfs, choices)
-    selected = select_poles(
-        stab, choices.pin_hz, choices.exclude_hz, rules=choices.rules
-    )  # raises if none
+    none: NoModeError | None = None
+    try:
+        selected = select_poles(stab, choices.pin_hz, choices.exclude_hz, rules=choices.rules)
+    except NoModeError as error:
+        if error.selected is None:
+            raise
+        none, selected = error, error.selected
     selected = _named_rows(_edge_modes(selected, frfs, band, choices), frfs)
     selected, kept = _clear_peaks(selected, stab, frfs, band, choices)
     selected = _wandering_peaks(selected, stab, frfs, band, choices)
@@ -2360,6 +2391,8 @@ def _selected_poles(
     for line in refined:
         log.info("refined %s", line)
     selected, pinned = _with_peak_modes(selected, at_peaks, stab, frfs)
+    if none is not None and selected.n_modes == 0:
+        raise NoModeError(none.head, "", selected)
     kept = [*kept, *pairs, *pinned]
     for line in kept:
         log.warning("kept %s", line)
@@ -2674,7 +2707,6 @@ def _fit_record(fitted: _Fitted, note: str) -> dict[str, Any]:
         "nodes": list(frfs.nodes),
         "reference_node": frfs.reference_node,
         "directions": frfs.metadata.get("directions") or {},
-        "fit_error_median": float(np.median(fitted.fit.error)),
         "design_condition_number": fitted.fit.condition_number,
         "orders_stable": fitted.selected.orders_stable(),
         "scaling_note": note,

@@ -1175,7 +1175,8 @@ def select_poles(
         (k for k in range(len(clusters)) if accepted[k]), key=lambda k: clusters[k].frequency
     )
     if not kept:
-        raise _no_mode(stab, clusters, dropped)
+        left_out = (tuple(dropped), tuple(dropped_modes))
+        raise _no_mode(stab, clusters, dropped, _selected(stab, [], np.zeros(0, bool), left_out))
     (logger.info if log else logger.debug)(
         "selected %d modes (%s Hz); %d clusters of stable poles dropped",
         len(kept),
@@ -1358,15 +1359,20 @@ def _dropped(
 
 class NoModeError(InputError):
     """No mode is left in the band (:func:`select_poles`): ``head`` says where and what was
-    dropped; a caller that knows the data's peaks may name the cause in its place."""
+    dropped; a caller that knows the data's peaks may name the cause in its place, and may
+    go on from ``selected`` (no mode, every cluster's row) with rules of its own."""
 
-    def __init__(self, head: str, advice: str) -> None:
+    def __init__(self, head: str, advice: str, selected: SelectedPoles | None = None) -> None:
         super().__init__(f"{head}. {advice}")
         self.head = head
+        self.selected = selected
 
 
-def _no_mode(stab: Stabilisation, clusters: list[_Cluster], dropped: list[str]) -> InputError:
-    """The error when no mode is left: the first substantial clusters dropped, and why.
+def _no_mode(
+    stab: Stabilisation, clusters: list[_Cluster], dropped: list[str], selected: SelectedPoles
+) -> InputError:
+    """The error when no mode is left: the first substantial clusters dropped, and why, with
+    the empty ``selected``.
 
     ``dropped`` lines up with ``clusters`` here: every cluster was dropped.
     """
@@ -1376,6 +1382,7 @@ def _no_mode(stab: Stabilisation, clusters: list[_Cluster], dropped: list[str]) 
     return NoModeError(
         f"no mode found between {low_hz:.1f} and {high_hz:.1f} Hz ({detail})",
         "The band may hold no mode above the noise; widen the band, raise max_order or pin a mode",
+        selected,
     )
 
 

@@ -33,6 +33,26 @@ def _sentence(record: dict[str, Any], folder: Path, suffix: str, key: str) -> st
     return str(kept.get("sentence", "")).replace("`", "")
 
 
+def fit_error_line(path: Path) -> str:
+    """The median and largest fit error of an identification's ``fit_quality*.csv`` over the
+    FRFs that carry the structure (rows not ``noise_only``; every row where all are, or where
+    the file does not say), as the verdict reads them (:func:`racketdyn.modal.misfit.misfit`);
+    empty without a finite error."""
+    rows = read_csv(path, ("fit_error",))
+    noise = np.array([r.get("noise_only", "") == "1" for r in rows], dtype=bool)
+    if noise.all():
+        noise[:] = False
+    errors = np.array(
+        [number(r, "fit_error") for r, alone in zip(rows, noise, strict=True) if not alone]
+    )
+    if not (errors.size and np.isfinite(errors).any()):
+        return ""
+    line = f"median {np.nanmedian(errors):.1%}, largest {np.nanmax(errors):.1%}"
+    n = int(noise.sum())
+    apart = "1 FRF" if n == 1 else f"{n} FRFs"
+    return f"{line} ({apart} of noise left out)" if n else line
+
+
 def gather(run: RunFolder) -> dict[str, Any] | None:
     """For every identification: its figures, its ``modes*.csv`` and ``fit_quality*.csv``, and
     the orders it dropped (run.json)."""
@@ -57,11 +77,7 @@ def gather(run: RunFolder) -> dict[str, Any] | None:
             for r in rows
         ]
         fit = folder / f"fit_quality{suffix}.csv"
-        fit_error = ""
-        if fit.is_file():
-            errors = np.array([number(r, "fit_error") for r in read_csv(fit, ("fit_error",))])
-            if errors.size and np.isfinite(errors).any():
-                fit_error = f"median {np.nanmedian(errors):.1%}, largest {np.nanmax(errors):.1%}"
+        fit_error = fit_error_line(fit) if fit.is_file() else ""
         dropped = [str(d) for d in run.record(folder).get("dropped") or []]
         models.append(
             {
