@@ -53,6 +53,7 @@ from racketdyn.modal.poles import (
     SelectionRules,
     Stabilisation,
     _combine,
+    _within_a_line,
     edge_margin,
     pole_of,
     require_rules,
@@ -1250,6 +1251,11 @@ def _close_pairs(
         agree = float(mac(constants[:, :1], constants[:, 1:])[0, 0])
         if agree >= PAIR_MAC:
             log.debug("close pair at %.2f Hz: the local fit's shapes alike (MAC %.2f)", fk, agree)
+            continue
+        if _within_a_line(
+            spacing, (frequency[0], frequency[1]), (zeta[0], zeta[1]), rules.damping_tolerance
+        ):
+            log.debug("close pair at %.2f Hz: the local fit's poles within a line", fk)
             continue
         rest = np.ones(selected.n_modes, dtype=bool)
         rest[[k, *kept]] = False

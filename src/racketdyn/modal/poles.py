@@ -1118,9 +1118,10 @@ def select_poles(
        "mode" further down is the fit's model of a systematic error, e.g. leakage or the
        window, whose "noise" the white-noise estimate does not see).  Two such modes closer
        than their half-power width (the mean of their ``2ζf``) whose shapes agree (MAC of
-       the clusters' mean shapes ``cluster_mac`` or more) are one peak the fit split in two:
-       the one stable in more orders is kept, the other is dropped as ``merged`` (its reason
-       names the mode kept).
+       the clusters' mean shapes ``cluster_mac`` or more, or closer than one line with
+       dampings within ``damping_tolerance``: no line between them) are one peak the fit
+       split in two: the one stable in more orders is kept, the other is dropped as
+       ``merged`` (its reason names the mode kept).
     3. ``exclude_hz`` drops the selected mode nearest each frequency; ``pin_hz`` forces in the
        cluster nearest each frequency even if step 2 left it out (within ``pin_tolerance``,
        relative).  Everything left out is logged with the reason and listed in ``dropped``.
@@ -1165,7 +1166,9 @@ def select_poles(
     clusters = _cluster(stab, candidates, *rules.tolerances)
     # step 2: the rules, the dynamic range, one peak
     reasons = _reasons(stab, clusters, rules)
-    merged = _merge_one_peak(stab, clusters, reasons, rules.cluster_mac, log)
+    merged = _merge_one_peak(
+        stab, clusters, reasons, rules.cluster_mac, rules.damping_tolerance, log
+    )
     # step 3: the user's exclusions and pins
     accepted = [not r for r in reasons]
     _exclude(clusters, excludes, accepted, reasons, rules.pin_tolerance, log)
@@ -1420,6 +1423,7 @@ def _merge_one_peak(
     clusters: list[_Cluster],
     reasons: list[str],
     cluster_mac: float,
+    damping_tolerance: float,
     log: bool = True,
 ) -> dict[int, int]:
     """Merge accepted neighbours that are one peak; their reasons set, each merged index
@@ -1429,7 +1433,11 @@ def _merge_one_peak(
     shapes agree (MAC of the clusters' mean shapes at least ``cluster_mac``) are one peak that
     the fit's higher orders split in two: no single-reference test can tell two modes of one
     shape under one peak apart.  The one stable in more orders is kept (the larger peak on a
-    tie).  Close modes of other shapes (a symmetric structure's pairs) stay apart.
+    tie).  So are two closer than one line with dampings alike whatever their shapes
+    (:func:`_within_a_line`: the lines cannot part them; a narrow band's high orders split a
+    peak whose frequency moves a little from FRF to FRF into such poles, each with a share of
+    its constants).  Close modes of other shapes (a symmetric structure's pairs) a line or
+    more apart, or of unlike damping, stay apart.
     """
     order = sorted((k for k, r in enumerate(reasons) if not r), key=lambda k: clusters[k].frequency)
     merged: dict[int, int] = {}
@@ -1445,7 +1453,13 @@ def _merge_one_peak(
             continue
         shapes = mac(_mean_shape(stab, a.members)[:, None], _mean_shape(stab, b.members)[:, None])
         alike = float(shapes[0, 0])
-        if alike < cluster_mac:
+        unparted = _within_a_line(
+            stab.line_spacing_hz,
+            (a.frequency, b.frequency),
+            (a.damping_ratio, b.damping_ratio),
+            damping_tolerance,
+        )
+        if alike < cluster_mac and not unparted:
             kept = other
             continue
         if (b.n_orders, b.peak) > (a.n_orders, a.peak):
@@ -1453,17 +1467,59 @@ def _merge_one_peak(
         else:
             gone = other
         stay = clusters[kept]
+        if alike >= cluster_mac:
+            why = f"shapes alike (MAC {alike:.2f} ≥ {cluster_mac:g})"
+        else:
+            why = (
+                f"closer than a line ({stab.line_spacing_hz:.2g} Hz) with dampings alike: the "
+                f"lines cannot part them (MAC {alike:.2f})"
+            )
         reasons[gone] = (
             f"one peak with the mode at {stay.frequency:.2f} Hz, merged into it: {apart:.2g} "
-            f"Hz apart, within their half-power width {width:.2g} Hz (2ζf), shapes alike (MAC "
-            f"{alike:.2f} ≥ {cluster_mac:g}); kept the one stable in more orders "
-            f"({stay.n_orders} against {clusters[gone].n_orders})"
+            f"Hz apart, within their half-power width {width:.2g} Hz (2ζf), {why}; kept the "
+            f"one stable in more orders ({stay.n_orders} against {clusters[gone].n_orders})"
         )
         merged[gone] = kept
         (logger.info if log else logger.debug)(
             "%.2f Hz: %s", clusters[gone].frequency, reasons[gone]
         )
     return merged
+
+
+def _within_a_line(
+    spacing_hz: float,
+    frequency_hz: tuple[float, float],
+    damping_ratio: tuple[float, float],
+    damping_tolerance: float,
+) -> bool:
+    """Whether two poles are closer than one line with dampings alike: modes the FRF's lines
+    cannot part.
+
+    Two sinusoids closer than ``1/T`` (one line of a record of length ``T``) are not resolved
+    by its spectrum; a parametric fit parts them only by what else differs — their decay
+    (dampings further apart than ``damping_tolerance``, relative) or their shapes.  Under one
+    peak the shapes of two such poles are those of one mode split in two (each with a share
+    of its constants: a cantilevered wing's 167.18 Hz, ζ 0.063 % on 0.245 Hz lines, split by
+    a narrow band's high orders into 167.16 and 167.24 Hz of MAC 0.88), so they do not tell.
+
+    Parameters
+    ----------
+    spacing_hz : float
+        The FRFs' line spacing, Hz.
+    frequency_hz : tuple of float
+        The two poles' frequencies, Hz.
+    damping_ratio : tuple of float
+        Their damping ratios.
+    damping_tolerance : float
+        Relative difference of the dampings within which they are alike.
+
+    Returns
+    -------
+    bool
+    """
+    zeta = np.maximum(np.asarray(damping_ratio, dtype=float), 0.0)
+    alike = abs(zeta[1] - zeta[0]) <= damping_tolerance * max(float(zeta.mean()), 1e-12)
+    return bool(abs(frequency_hz[1] - frequency_hz[0]) < spacing_hz and alike)
 
 
 def _near(centre: float, target: float, tolerance: float) -> bool:
