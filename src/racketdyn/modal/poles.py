@@ -1433,11 +1433,12 @@ def _merge_one_peak(
     shapes agree (MAC of the clusters' mean shapes at least ``cluster_mac``) are one peak that
     the fit's higher orders split in two: no single-reference test can tell two modes of one
     shape under one peak apart.  The one stable in more orders is kept (the larger peak on a
-    tie).  So are two closer than one line with dampings alike whatever their shapes
-    (:func:`_within_a_line`: the lines cannot part them; a narrow band's high orders split a
-    peak whose frequency moves a little from FRF to FRF into such poles, each with a share of
-    its constants).  Close modes of other shapes (a symmetric structure's pairs) a line or
-    more apart, or of unlike damping, stay apart.
+    tie).  So are two closer than one line with dampings alike whose shapes are more alike
+    than not (MAC :data:`SPLIT_MAC` or more; :func:`_within_a_line`: the lines cannot part
+    them; a narrow band's high orders split a peak whose frequency moves a little from FRF to
+    FRF into such poles, each with a share of its constants: MAC 0.75–0.89 on the wing).
+    Close modes of other shapes (a symmetric structure's pairs, MAC near 0) or a line or more
+    apart, or of unlike damping, stay apart.
     """
     order = sorted((k for k, r in enumerate(reasons) if not r), key=lambda k: clusters[k].frequency)
     merged: dict[int, int] = {}
@@ -1453,7 +1454,7 @@ def _merge_one_peak(
             continue
         shapes = mac(_mean_shape(stab, a.members)[:, None], _mean_shape(stab, b.members)[:, None])
         alike = float(shapes[0, 0])
-        unparted = _within_a_line(
+        unparted = alike >= SPLIT_MAC and _within_a_line(
             stab.line_spacing_hz,
             (a.frequency, b.frequency),
             (a.damping_ratio, b.damping_ratio),
@@ -1484,6 +1485,13 @@ def _merge_one_peak(
             "%.2f Hz: %s", clusters[gone].frequency, reasons[gone]
         )
     return merged
+
+
+SPLIT_MAC = 0.5
+"""The MAC at or above which two poles closer than a line with dampings alike are one mode
+split in two (:func:`_merge_one_peak`): shares of one shape are more alike than not, while a
+symmetric structure's two modes under a line apart are near orthogonal (0.00 in
+``tests/test_close_modes.py``)."""
 
 
 def _within_a_line(
