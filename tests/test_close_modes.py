@@ -96,30 +96,38 @@ def test_a_third_mode_three_poles_do_not_part_is_named() -> None:
     assert any("third mode under the peak" in d.reason for d in named)
 
 
+POINTS_18 = np.linspace(0.0, 1.0, 18)
+LINES_0244 = np.arange(4096) * 0.244140625  # 0-1000 Hz on 0.244 Hz lines
+
+
+def _on_18_points(values: np.ndarray, seed: int, reference: int, source: str) -> FrfSet:
+    """Accelerances ``values`` at :data:`POINTS_18` on :data:`LINES_0244` against point
+    ``reference`` (index), with white noise at 0.1 % of each FRF's largest magnitude."""
+    rng = np.random.default_rng(seed)
+    white = rng.standard_normal(values.shape) + 1j * rng.standard_normal(values.shape)
+    values = values + 1e-3 * np.abs(values).max(axis=1, keepdims=True) * white / np.sqrt(2)
+    return FrfSet(
+        frequency=LINES_0244,
+        values=values,
+        nodes=tuple(range(1, POINTS_18.size + 1)),
+        locations=np.column_stack([POINTS_18, np.zeros_like(POINTS_18)]),
+        frf_type="accelerance",
+        reference_node=reference + 1,
+        reference_location=(float(POINTS_18[reference]), 0.0),
+        source=source,
+    )
+
+
 def _drifting_peak(seed: int, drift: float = 8e-4) -> FrfSet:
     """One mode, 167.2 Hz at ζ 0.065 % (half-power width 0.22 Hz) on 0.244 Hz lines, 0–1000
     Hz, accelerances at 18 points against the first whose own peak moves from point to point
     by ``drift`` of its frequency in all (0.13 Hz: a roving sensor's mass, as on the
     cantilevered wing's export), white noise at 0.1 % of each FRF's largest magnitude."""
-    points = np.linspace(0.0, 1.0, 18)
-    frequency = np.arange(4096) * 0.244140625
-    w = 2 * np.pi * frequency
-    shape = np.cos(0.8 * np.pi * points) + 0.1
-    wn = 2 * np.pi * 167.2 * (1 + drift * (0.5 - points))[:, None]
+    w = 2 * np.pi * LINES_0244
+    shape = np.cos(0.8 * np.pi * POINTS_18) + 0.1
+    wn = 2 * np.pi * 167.2 * (1 + drift * (0.5 - POINTS_18))[:, None]
     values = (shape * shape[0])[:, None] * (-(w**2) / (wn**2 - w**2 + 2j * 6.5e-4 * wn * w))
-    rng = np.random.default_rng(seed)
-    white = rng.standard_normal(values.shape) + 1j * rng.standard_normal(values.shape)
-    values += 1e-3 * np.abs(values).max(axis=1, keepdims=True) * white / np.sqrt(2)
-    return FrfSet(
-        frequency=frequency,
-        values=values,
-        nodes=tuple(range(1, points.size + 1)),
-        locations=np.column_stack([points, np.zeros_like(points)]),
-        frf_type="accelerance",
-        reference_node=1,
-        reference_location=(0.0, 0.0),
-        source="one peak drifting from point to point",
-    )
+    return _on_18_points(values, seed, 0, "one peak drifting from point to point")
 
 
 @pytest.mark.parametrize("seed", [0, 2, 4])
@@ -140,28 +148,14 @@ def _orthogonal_pair(seed: int) -> FrfSet:
     """Two modes 0.15 Hz apart (167.20 and 167.35 Hz, ζ 0.065 % each) on 0.244 Hz lines, of
     orthogonal shapes at 18 points (a symmetric structure's pair), accelerances against point
     6, white noise at 0.1 % of each FRF's largest magnitude."""
-    points = np.linspace(0.0, 1.0, 18)
-    frequency = np.arange(4096) * 0.244140625
-    w = 2 * np.pi * frequency
-    first = np.cos(np.pi * points)
-    second = np.sin(np.pi * points) + 0.2 * np.cos(2 * np.pi * points)
-    values = np.zeros((points.size, frequency.size), dtype=complex)
+    w = 2 * np.pi * LINES_0244
+    first = np.cos(np.pi * POINTS_18)
+    second = np.sin(np.pi * POINTS_18) + 0.2 * np.cos(2 * np.pi * POINTS_18)
+    values = np.zeros((POINTS_18.size, LINES_0244.size), dtype=complex)
     for f_n, shape in ((167.2, first), (167.35, second)):
         wn = 2 * np.pi * f_n
         values += (shape * shape[5])[:, None] * (-(w**2) / (wn**2 - w**2 + 2j * 6.5e-4 * wn * w))
-    rng = np.random.default_rng(seed)
-    white = rng.standard_normal(values.shape) + 1j * rng.standard_normal(values.shape)
-    values += 1e-3 * np.abs(values).max(axis=1, keepdims=True) * white / np.sqrt(2)
-    return FrfSet(
-        frequency=frequency,
-        values=values,
-        nodes=tuple(range(1, points.size + 1)),
-        locations=np.column_stack([points, np.zeros_like(points)]),
-        frf_type="accelerance",
-        reference_node=6,
-        reference_location=(float(points[5]), 0.0),
-        source="two orthogonal modes under a line apart",
-    )
+    return _on_18_points(values, seed, 5, "two orthogonal modes under a line apart")
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
