@@ -43,6 +43,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from racketdyn._grammar import plural
 from racketdyn.measurement.records import FrfSet
 from racketdyn.modal.poles import second_difference_noise
 from racketdyn.modal.residues import ModalFit, design_columns, half_power_lines
@@ -168,8 +169,7 @@ class Misfit:
         the noise line's to name, :meth:`racketdyn.measurement.quality.NoiseOnly.sentence`)."""
         if not self.noise_nodes:
             return ""
-        n = len(self.noise_nodes)
-        frfs = "1 FRF" if n == 1 else f"{n} FRFs"
+        frfs = plural(len(self.noise_nodes), "FRF")
         return f" (over the FRFs that carry the structure, {frfs} of noise left out)"
 
     def _why(self) -> str:
@@ -291,7 +291,8 @@ def misfit(
     Misfit
         The shares, the noise's and the complex constants' errors, and the verdict.
     """
-    apart = tuple(n for n in frfs.nodes if n in set(noise_nodes))
+    noise = set(noise_nodes)
+    apart = tuple(n for n in frfs.nodes if n in noise)
     structure = [i for i, n in enumerate(frfs.nodes) if n not in apart]
     if apart and structure:
         frfs, fit = frfs.at_points(structure), fit.at_points(structure)

@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from racketdyn._grammar import plural
 from racketdyn.plotting.registry import labelled
 from racketdyn.report.figures import FigureGroup
 from racketdyn.report.folder import RunFolder, number, read_csv, read_json
@@ -49,8 +50,7 @@ def fit_error_line(path: Path) -> str:
         return ""
     line = f"median {np.nanmedian(errors):.1%}, largest {np.nanmax(errors):.1%}"
     n = int(noise.sum())
-    apart = "1 FRF" if n == 1 else f"{n} FRFs"
-    return f"{line} ({apart} of noise left out)" if n else line
+    return f"{line} ({plural(n, 'FRF')} of noise left out)" if n else line
 
 
 def gather(run: RunFolder) -> dict[str, Any] | None:
